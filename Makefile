@@ -1,0 +1,56 @@
+# mmcontact: build, meshes, showcase run, tests, benchmarks.
+PETSC_DIR ?= /usr/lib/petsc
+include ${PETSC_DIR}/lib/petsc/conf/variables
+
+MPIEXEC ?= mpiexec --allow-run-as-root
+PYTHON  ?= /usr/bin/python3 -s
+NP      ?= 2
+
+SRC  := $(wildcard src/*.c)
+OBJ  := $(SRC:src/%.c=build/%.o)
+HDR  := $(wildcard include/*.h)
+CFLAGS_MM := ${PETSC_CC_INCLUDES} -Iinclude -O2 -Wall -Wno-unused-function
+MSH  := meshes/bar80.msh meshes/bar100.msh meshes/disk.msh meshes/ball.msh
+BENCH_MSH := meshes/disk_bench.msh
+
+.PHONY: all deps meshes run check bench clean
+all: mmcontact
+
+deps:
+	@bash scripts/install-deps
+
+build/%.o: src/%.c $(HDR) | build
+	${PCC} ${PCC_FLAGS} ${CFLAGS_MM} -c $< -o $@
+build:
+	@mkdir -p build
+
+mmcontact: $(OBJ)
+	${CLINKER} -o $@ $(OBJ) ${PETSC_LIB} -lmetis
+
+meshes: $(MSH)
+meshes/bar80.msh: meshes/bar.geo
+	gmsh -2 $< -setnumber N 80 -o $@ -v 2
+meshes/bar100.msh: meshes/bar.geo
+	gmsh -2 $< -setnumber N 100 -o $@ -v 2
+meshes/disk.msh: meshes/disk.geo
+	gmsh -2 $< -o $@ -v 2
+meshes/ball.msh: meshes/ball.geo
+	gmsh -3 $< -o $@ -v 2
+meshes/disk_bench.msh: meshes/disk.geo
+	gmsh -2 $< -setnumber H 0.006 -o $@ -v 2
+
+run: deps
+	$(MAKE) mmcontact meshes
+	$(MPIEXEC) -n $(NP) ./mmcontact -options_file options/d1_disk.opts
+	@echo "Open output/d1/solution.xmf in ParaView; history in output/d1/history.csv"
+
+check: deps
+	$(MAKE) mmcontact meshes
+	$(PYTHON) -m pytest -q tests
+
+bench: deps
+	$(MAKE) mmcontact meshes $(BENCH_MSH)
+	$(PYTHON) scripts/bench.py
+
+clean:
+	rm -rf build mmcontact meshes/*.msh output bench tests/__pycache__ .pytest_cache

@@ -1,0 +1,9 @@
+#pragma once
+#include "mmcontact.h"
+PETSC_EXTERN PetscErrorCode MMContactSetUp(MMCtx *);
+PETSC_EXTERN PetscErrorCode MMContactSetStepMatrix(MMCtx *, PetscReal);
+PETSC_EXTERN PetscErrorCode MMContactSolve(MMCtx *, Vec, Vec, Vec);
+PETSC_EXTERN PetscErrorCode MMContactProjectInitial(MMCtx *, Vec);
+PETSC_EXTERN PetscErrorCode MMContactDiagnostics(MMCtx *, Vec, Vec, MMHistory *);
+PETSC_EXTERN PetscErrorCode MMContactNodalFields(MMCtx *, Vec, Vec, Vec, Vec);
+PETSC_EXTERN PetscErrorCode MMContactDestroy(MMContact *);

@@ -1,0 +1,170 @@
+/* Shared context types of mmcontact: one struct per concern.
+ *
+ * Frames. Global vectors hold the free (non-Dirichlet) dofs. At every contact node the d dofs are
+ * expressed in the obstacle frame (nu, tau_1[, tau_2]), nu the body's outward normal (pointing into
+ * the obstacle): component 0 is the normal displacement u.nu, so u.nu <= g is a bound on one
+ * unknown. All other nodes keep Cartesian dofs. Q maps frame dofs to Cartesian: u_cart = Q w.
+ */
+#pragma once
+#include <petscdmplex.h>
+#include <petscds.h>
+#include <petscfe.h>
+#include <petscsnes.h>
+#include <petscts.h>
+
+#define MM_MAX_DIM 3
+
+typedef enum {
+  MM_MASS_MODIFIED,
+  MM_MASS_STANDARD
+} MMMassType;
+PETSC_EXTERN const char *const MMMassTypes[];
+
+/* A Dirichlet boundary: fixes the listed components to constant values. */
+typedef struct {
+  char      *name;
+  PetscInt   ncomp;
+  PetscInt   comps[MM_MAX_DIM];
+  PetscReal  values[MM_MAX_DIM];
+} MMDirichlet;
+
+/* A Neumann boundary carrying a constant traction (force per unit area). */
+typedef struct {
+  char     *name;
+  PetscReal traction[MM_MAX_DIM];
+} MMTraction;
+
+/* Run options: everything the user sets. Filled in one place, src/options.c. */
+typedef struct {
+  char         mesh_file[PETSC_MAX_PATH_LEN];
+  char         contact_name[256];
+  PetscInt     n_dirichlet, n_traction;
+  MMDirichlet *dirichlet;
+  MMTraction  *traction;
+  PetscReal    E, nu, rho;
+  PetscReal    gravity[MM_MAX_DIM];
+  PetscReal    u0_offset[MM_MAX_DIM], u0_gradient[MM_MAX_DIM * MM_MAX_DIM];
+  PetscReal    v0[MM_MAX_DIM], omega[MM_MAX_DIM], omega_center[MM_MAX_DIM];
+  PetscReal    obstacle_point[MM_MAX_DIM], obstacle_normal[MM_MAX_DIM];
+  PetscReal    mesh_rotation[MM_MAX_DIM], mesh_rotation_center[MM_MAX_DIM];
+  MMMassType   mass_type;
+  PetscBool    lumped;
+  PetscBool    contact;
+  PetscReal    contact_tol;
+  char         output_dir[PETSC_MAX_PATH_LEN];
+  PetscInt     output_every;
+  PetscBool    quiet;
+} MMOptions;
+
+/* Physical parameters, also passed to the pointwise kernels as constants[]. */
+typedef enum {
+  MM_C_LAMBDA,
+  MM_C_MU,
+  MM_C_RHO,
+  MM_C_WEIGHT_K, /* weights of the stiffness and mass kernels in an assembly */
+  MM_C_WEIGHT_M,
+  MM_C_GRAVITY,  /* MM_MAX_DIM entries */
+  MM_C_NUM = MM_C_GRAVITY + MM_MAX_DIM
+} MMConstantIndex;
+
+/* Finite element operators in the contact frame (w-dofs). */
+typedef struct {
+  DM        dm;
+  PetscInt  dim;
+  Mat       K;      /* stiffness A */
+  Mat       M;      /* standard mass (consistent or lumped) */
+  Mat       Mstar;  /* mass used in time stepping: M with the contact-normal rows/columns removed, or M */
+  Mat       Q;      /* frame rotation, u_cart = Q w */
+  Vec       load;   /* L: body force + traction (w-frame), constant in time */
+  Vec       lift;   /* K_fD u_D: the Dirichlet data's elastic force on the free dofs (w-frame) */
+  Vec       mass_lumped_cart; /* lumped standard mass per Cartesian dof, for rigid-body diagnostics */
+  PetscReal c_p;    /* pressure wave speed */
+} MMOperators;
+
+/* A bound-constrained quadratic problem A x = b, x <= upper, as the SNESVI residual context. */
+typedef struct {
+  Mat       A;
+  Vec       b;
+  PetscReal bnorm; /* ||b||, the scale of the absolute convergence test */
+  PetscReal rtol_b;
+} MMBoundQP;
+
+/* Contact set, gaps, bounds and the per-step contact solver. Friction wraps ContactSolve. */
+typedef struct {
+  PetscBool  enabled;
+  PetscInt   n_local, n_global;   /* contact nodes owned here / in total */
+  IS         is_normal;           /* global indices of the contact-normal dofs (owned) */
+  IS         is_tangent;          /* global indices of the contact-tangential dofs (owned) */
+  IS         is_star;             /* every other dof (owned) */
+  Vec        gap;                 /* g_i on the normal dofs, layout of is_normal */
+  Vec        lower, upper;        /* SNESVI bounds on the full w vector */
+  MMBoundQP  qp;                  /* the step problem: K~ w = b, K~ = K + 4/dt^2 M* */
+  MMBoundQP  qp0;                 /* the initial projection of the contact dofs */
+  Vec        gap0, lower0, upper0;
+  PetscReal  Kt_dt;               /* dt for which Kt was assembled */
+  SNES       snes;                /* the VI solver, prefix contact_ */
+  SNES       snes0;               /* quasi-static projection of the contact dofs, prefix contact0_ */
+  PetscReal  frame[MM_MAX_DIM][MM_MAX_DIM]; /* rows: nu, tau_1, tau_2 */
+  PetscReal  h_c;                 /* smallest diameter of cells touching the contact boundary */
+  PetscReal  tol;                 /* -contact_tol */
+  PetscBool *was_active;          /* per owned contact node, at the previous step */
+  PetscInt  *scalar_index;        /* per owned contact node, its global index in the scalar vertex DM */
+  Vec        area;                /* per owned contact node, int_Gc phi_i: force to pressure */
+  PetscInt   vi_its;              /* Newton iterations of the last solve */
+} MMContact;
+
+/* The Newmark state and the per-step energy audit. */
+typedef struct {
+  Vec       u, v, a;           /* current state, w-frame */
+  Vec       u_old, v_old, a_old;
+  Vec       react, react_old;  /* contact reactions on the body (K~ w - b on contact dofs) */
+  Vec       work;              /* scratch */
+  Vec       u_next;            /* the TS solution vector */
+  PetscReal dt;
+} MMState;
+
+/* One row of the history, and its running sums. */
+typedef struct {
+  PetscInt  step;
+  PetscReal time, dt;
+  PetscReal kinetic, elastic, total;
+  PetscReal work_ext, work_contact, work_friction; /* running sums */
+  PetscReal balance_residual;
+  PetscInt  active, slipping, switched;
+  PetscReal force_normal, force_tangential, max_penetration, coulomb_residual;
+  PetscInt  vi_its, friction_its;
+  PetscReal cfl;
+  PetscReal ucm[MM_MAX_DIM], vcm[MM_MAX_DIM], L[MM_MAX_DIM];
+  PetscReal max_balance, max_penetration_run; /* over the run, for the summary */
+} MMHistory;
+
+/* Output files. */
+typedef struct {
+  FILE       *csv;
+  PetscViewer h5;
+  char        h5_name[PETSC_MAX_PATH_LEN];
+  PetscInt    n_written, last_written;
+  PetscReal  *times;                 /* time of each snapshot */
+  Vec         disp_cart, vel_cart;  /* Cartesian output fields */
+  DM          dm_scalar;             /* one scalar per vertex: pressure, gap */
+  Vec         pressure, gap;
+} MMOutput;
+
+typedef struct {
+  PetscLogStage setup, solve, output;
+  PetscLogEvent assemble, contact_solve, energy;
+} MMLog;
+
+/* Everything the stepper needs; the TS type "newmark" holds a pointer to it. */
+typedef struct {
+  MMOptions   opt;
+  PetscReal   constants[MM_C_NUM];
+  MMOperators op;
+  MMContact   contact;
+  MMState     state;
+  MMHistory   hist;
+  MMOutput    out;
+  MMLog       log;
+  PetscInt    active_prev_count;
+  PetscBool   have_contact_label;
+} MMCtx;

@@ -1,0 +1,5 @@
+#pragma once
+#include "mmcontact.h"
+PETSC_EXTERN PetscErrorCode MMOutputOpen(MMCtx *);
+PETSC_EXTERN PetscErrorCode MMOutputMonitor(TS, PetscInt, PetscReal, Vec, void *);
+PETSC_EXTERN PetscErrorCode MMOutputClose(MMCtx *, PetscLogDouble);

@@ -1,0 +1,4 @@
+#pragma once
+#include <petscdmplex.h>
+#define MM_PARTITIONER_METIS "metis"
+PETSC_EXTERN PetscErrorCode MMPartitionerRegisterMetis(void);

@@ -1,0 +1,601 @@
+/* The contact set against a rigid plane: frames, gaps, bounds, and the exact per-step contact solve.
+ *
+ * Each step solves the bound-constrained QP  min 1/2 w.K~w - b.w  s.t.  w_c <= g  with SNESVI
+ * (vinewtonrsls by default, prefix -contact_). The friction loop will wrap MMContactSolve: it only
+ * changes the right-hand side and the tangential bounds between calls. */
+#include <petscsf.h>
+#include "contact.h"
+#include "mesh.h"
+
+/* ---------------------------------------------------------------- the bound-constrained QP as a SNES */
+
+static PetscErrorCode QPResidual(SNES snes, Vec x, Vec f, void *ptr)
+{
+  MMBoundQP *qp = (MMBoundQP *)ptr;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatMult(qp->A, x, f));
+  PetscCall(VecAXPY(f, -1.0, qp->b));
+  PetscFunctionReturn(0);
+}
+
+/* The matrix is constant: nothing to recompute, so the factorization is reused whenever SNES can. */
+static PetscErrorCode QPJacobian(SNES snes, Vec x, Mat J, Mat P, void *ptr)
+{
+  PetscFunctionBeginUser;
+  PetscFunctionReturn(0);
+}
+
+/* Warm-started solves start near the answer, where a relative test cannot be met: also accept
+ * ||F|| <= rtol_b ||b||, which is the solver's accuracy on this linear problem. */
+static PetscErrorCode QPConverged(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm, SNESConvergedReason *reason, void *ptr)
+{
+  MMBoundQP *qp = (MMBoundQP *)ptr;
+
+  PetscFunctionBeginUser;
+  PetscCall(SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, NULL));
+  if (*reason == SNES_CONVERGED_ITERATING && fnorm <= qp->rtol_b * qp->bnorm) *reason = SNES_CONVERGED_FNORM_ABS;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CreateQPSolver(MPI_Comm comm, const char prefix[], MMBoundQP *qp, PetscBool bounded, SNES *snes)
+{
+  KSP            ksp;
+  PC             pc;
+  SNESLineSearch ls;
+  Vec            r;
+
+  PetscFunctionBeginUser;
+  PetscCall(SNESCreate(comm, snes));
+  PetscCall(SNESSetOptionsPrefix(*snes, prefix));
+  PetscCall(SNESSetType(*snes, bounded ? SNESVINEWTONRSLS : SNESKSPONLY));
+  PetscCall(MatCreateVecs(qp->A, &r, NULL));
+  PetscCall(SNESSetFunction(*snes, r, QPResidual, qp));
+  PetscCall(VecDestroy(&r));
+  PetscCall(SNESSetJacobian(*snes, qp->A, qp->A, QPJacobian, qp));
+  PetscCall(SNESSetConvergenceTest(*snes, QPConverged, qp, NULL));
+  PetscCall(SNESSetTolerances(*snes, PETSC_DEFAULT, 1e-12, 0.0, 100, PETSC_DEFAULT));
+  /* a quadratic problem: the full projected Newton step is the right one */
+  PetscCall(SNESGetLineSearch(*snes, &ls));
+  PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
+  PetscCall(SNESGetKSP(*snes, &ksp));
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCLU));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(SNESSetFromOptions(*snes));
+  PetscFunctionReturn(0);
+}
+
+/* Solves A x = b with the solver's bounds; x is the initial guess on entry. */
+static PetscErrorCode SolveQP(SNES snes, MMBoundQP *qp, Vec x, PetscInt *its)
+{
+  SNESConvergedReason reason;
+  const char         *prefix;
+
+  PetscFunctionBeginUser;
+  PetscCall(SNESGetOptionsPrefix(snes, &prefix));
+  PetscCall(VecNorm(qp->b, NORM_2, &qp->bnorm));
+  qp->bnorm = PetscMax(qp->bnorm, PETSC_SMALL);
+  PetscCall(SNESSolve(snes, NULL, x));
+  PetscCall(SNESGetConvergedReason(snes, &reason));
+  PetscCall(SNESGetIterationNumber(snes, its));
+  PetscCheck(reason > 0, PetscObjectComm((PetscObject)snes), PETSC_ERR_NOT_CONVERGED, "The contact solver (%s) did not converge: %s after %" PetscInt_FMT " iterations. Run with -%ssnes_monitor -%ssnes_converged_reason to see why",
+             prefix, SNESConvergedReasons[reason], *its, prefix, prefix);
+  PetscFunctionReturn(0);
+}
+
+/* ---------------------------------------------------------------- contact set and frames */
+
+/* Orthonormal frame (nu, tau_1[, tau_2]) with nu = -n the body's outward normal. */
+static PetscErrorCode BuildFrame(MMCtx *ctx)
+{
+  PetscInt   dim = ctx->op.dim;
+  PetscReal(*F)[MM_MAX_DIM] = ctx->contact.frame;
+  const PetscReal *n = ctx->opt.obstacle_normal;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(ctx->contact.frame, sizeof(ctx->contact.frame)));
+  for (PetscInt d = 0; d < dim; ++d) F[0][d] = -n[d];
+  if (dim == 2) {
+    F[1][0] = -F[0][1];
+    F[1][1] = F[0][0];
+  } else {
+    /* tau_1 = e x nu / |e x nu| with e the axis least aligned with nu */
+    PetscInt  k = 0;
+    PetscReal e[3] = {0, 0, 0}, nrm;
+    for (PetscInt d = 1; d < 3; ++d)
+      if (PetscAbsReal(F[0][d]) < PetscAbsReal(F[0][k])) k = d;
+    e[k]    = 1;
+    F[1][0] = e[1] * F[0][2] - e[2] * F[0][1];
+    F[1][1] = e[2] * F[0][0] - e[0] * F[0][2];
+    F[1][2] = e[0] * F[0][1] - e[1] * F[0][0];
+    nrm     = PetscSqrtReal(PetscSqr(F[1][0]) + PetscSqr(F[1][1]) + PetscSqr(F[1][2]));
+    for (PetscInt d = 0; d < 3; ++d) F[1][d] /= nrm;
+    F[2][0] = F[0][1] * F[1][2] - F[0][2] * F[1][1];
+    F[2][1] = F[0][2] * F[1][0] - F[0][0] * F[1][2];
+    F[2][2] = F[0][0] * F[1][1] - F[0][1] * F[1][0];
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Marks the vertices of the contact faces, agreed over ranks through the point SF: a vertex can
+ * sit on a rank that does not hold the face it belongs to. */
+static PetscErrorCode MarkContactVertices(MMCtx *ctx, PetscInt **mark, Vec area)
+{
+  Vec          aloc;
+  PetscScalar *aa;
+  DM              dm = ctx->op.dm;
+  DMLabel         label;
+  IS              vis, pis;
+  PetscInt        pStart, pEnd, vStart, vEnd, value = PETSC_MIN_INT, n, nv;
+  const PetscInt *pts, *vals;
+  PetscInt       *root;
+  PetscSF         sf;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMMeshGetLabel(dm, ctx->opt.contact_name, &label));
+  PetscCall(DMPlexGetChart(dm, &pStart, &pEnd));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(PetscCalloc1(pEnd - pStart, mark));
+  PetscCall(PetscCalloc1(pEnd - pStart, &root));
+  PetscCall(DMLabelGetValueIS(label, &vis));
+  PetscCall(ISGetLocalSize(vis, &nv));
+  PetscCall(ISGetIndices(vis, &vals));
+  PetscCall(DMGetLocalVector(ctx->out.dm_scalar, &aloc));
+  PetscCall(VecZeroEntries(aloc));
+  PetscCall(VecGetArray(aloc, &aa));
+  for (PetscInt i = 0; i < nv; ++i) {
+    PetscCall(DMLabelGetStratumIS(label, vals[i], &pis));
+    if (!pis) continue;
+    PetscCall(ISGetLocalSize(pis, &n));
+    PetscCall(ISGetIndices(pis, &pts));
+    for (PetscInt j = 0; j < n; ++j) {
+      PetscInt *closure = NULL, ncl, h;
+      PetscCall(DMPlexGetPointHeight(dm, pts[j], &h));
+      PetscCheck(h >= 1, PetscObjectComm((PetscObject)dm), PETSC_ERR_USER_INPUT, "Contact boundary \"%s\" contains cells: it must be a Physical Curve (2D) or Physical Surface (3D)", ctx->opt.contact_name);
+      PetscReal farea = 0;
+      PetscInt  dim   = ctx->op.dim;
+      if (h == 1) PetscCall(DMPlexComputeCellGeometryFVM(dm, pts[j], &farea, NULL, NULL));
+      PetscCall(DMPlexGetTransitiveClosure(dm, pts[j], PETSC_TRUE, &ncl, &closure));
+      for (PetscInt k = 0; k < ncl; ++k) {
+        PetscInt off, end;
+        (*mark)[closure[2 * k] - pStart] = 1;
+        if (closure[2 * k] < vStart || closure[2 * k] >= vEnd) continue;
+        PetscCall(DMPlexGetPointLocal(ctx->out.dm_scalar, closure[2 * k], &off, &end));
+        aa[off] += farea / dim; /* int_F phi_i for P1 on a simplex face */
+      }
+      PetscCall(DMPlexRestoreTransitiveClosure(dm, pts[j], PETSC_TRUE, &ncl, &closure));
+    }
+    PetscCall(ISRestoreIndices(pis, &pts));
+    PetscCall(ISDestroy(&pis));
+  }
+  PetscCall(ISRestoreIndices(vis, &vals));
+  PetscCall(ISDestroy(&vis));
+  PetscCall(VecRestoreArray(aloc, &aa));
+  PetscCall(VecZeroEntries(area));
+  PetscCall(DMLocalToGlobal(ctx->out.dm_scalar, aloc, ADD_VALUES, area));
+  PetscCall(DMRestoreLocalVector(ctx->out.dm_scalar, &aloc));
+  (void)value;
+  PetscCall(DMGetPointSF(dm, &sf));
+  PetscCall(PetscArraycpy(root, *mark, pEnd - pStart));
+  PetscCall(PetscSFReduceBegin(sf, MPIU_INT, *mark, root, MPI_MAX));
+  PetscCall(PetscSFReduceEnd(sf, MPIU_INT, *mark, root, MPI_MAX));
+  PetscCall(PetscSFBcastBegin(sf, MPIU_INT, root, *mark, MPI_REPLACE));
+  PetscCall(PetscSFBcastEnd(sf, MPIU_INT, root, *mark, MPI_REPLACE));
+  PetscCall(PetscArraycpy(*mark, root, pEnd - pStart));
+  PetscCall(PetscFree(root));
+  PetscFunctionReturn(0);
+}
+
+/* h_c': the smallest diameter of the cells touching a contact node (Theorem 4.2). */
+static PetscErrorCode ContactLayerDiameter(MMCtx *ctx, const PetscInt mark[])
+{
+  DM        dm = ctx->op.dm;
+  PetscInt  cStart, cEnd, pStart, cdim;
+  PetscReal hmin = PETSC_MAX_REAL;
+  Vec       X;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetChart(dm, &pStart, NULL));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  PetscCall(DMGetCoordinateDim(dm, &cdim));
+  for (PetscInt c = cStart; c < cEnd; ++c) {
+    PetscScalar *xc = NULL;
+    PetscInt     nx, *closure = NULL, ncl;
+    PetscBool    touches = PETSC_FALSE;
+    PetscReal    diam    = 0;
+
+    PetscCall(DMPlexGetTransitiveClosure(dm, c, PETSC_TRUE, &ncl, &closure));
+    for (PetscInt k = 0; k < ncl; ++k) {
+      PetscInt dof;
+      PetscCall(DMPlexGetPointDepth(dm, closure[2 * k], &dof));
+      if (dof == 0 && mark[closure[2 * k] - pStart]) touches = PETSC_TRUE;
+    }
+    PetscCall(DMPlexRestoreTransitiveClosure(dm, c, PETSC_TRUE, &ncl, &closure));
+    if (!touches) continue;
+    PetscCall(DMPlexVecGetClosure(dm, NULL, X, c, &nx, &xc));
+    for (PetscInt i = 0; i < nx / cdim; ++i)
+      for (PetscInt j = i + 1; j < nx / cdim; ++j) {
+        PetscReal d2 = 0;
+        for (PetscInt d = 0; d < cdim; ++d) d2 += PetscSqr(PetscRealPart(xc[i * cdim + d] - xc[j * cdim + d]));
+        diam = PetscMax(diam, PetscSqrtReal(d2));
+      }
+    PetscCall(DMPlexVecRestoreClosure(dm, NULL, X, c, &nx, &xc));
+    hmin = PetscMin(hmin, diam);
+  }
+  PetscCall(MPIU_Allreduce(&hmin, &ctx->contact.h_c, 1, MPIU_REAL, MPIU_MIN, PetscObjectComm((PetscObject)dm)));
+  PetscFunctionReturn(0);
+}
+
+/* Index sets of the owned contact dofs, the gaps, and the rotation Q (identity off the contact set). */
+static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec area)
+{
+  PetscInt           astart;
+  const PetscScalar *av;
+  PetscReal         *nodal_area;
+  DM           dm = ctx->op.dm;
+  MMContact   *ct = &ctx->contact;
+  PetscSection gs, ls, cs;
+  PetscInt     vStart, vEnd, pStart, dim = ctx->op.dim, n, rstart, rend, nc = 0, *in, *it, *is;
+  PetscReal   *gap;
+  Vec          X, g;
+  const PetscScalar *x;
+  PetscBool   *is_contact_dof;
+  MPI_Comm     comm = PetscObjectComm((PetscObject)dm);
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalSection(dm, &gs));
+  PetscCall(DMGetLocalSection(dm, &ls));
+  PetscCall(DMGetCoordinateSection(dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  PetscCall(DMPlexGetChart(dm, &pStart, NULL));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(DMCreateGlobalVector(dm, &g));
+  PetscCall(VecGetLocalSize(g, &n));
+  PetscCall(VecGetOwnershipRange(g, &rstart, &rend));
+  PetscCall(VecDestroy(&g));
+  PetscCall(PetscMalloc4(n, &in, n, &it, n, &is, n, &gap));
+  PetscCall(PetscCalloc1(n, &is_contact_dof));
+  PetscCall(PetscMalloc1(n, &ct->scalar_index));
+  PetscCall(PetscMalloc1(n, &nodal_area));
+  PetscCall(VecGetOwnershipRange(area, &astart, NULL));
+  PetscCall(VecGetArrayRead(area, &av));
+  PetscCall(MatCreateAIJ(comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, dim, NULL, 0, NULL, &ctx->op.Q));
+  PetscCall(VecGetArrayRead(X, &x));
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt goff, cdof, xoff;
+    if (!mark[v - pStart]) continue;
+    PetscCall(PetscSectionGetOffset(gs, v, &goff));
+    if (goff < 0) continue;
+    PetscCall(PetscSectionGetConstraintDof(ls, v, &cdof));
+    PetscCall(PetscSectionGetOffset(cs, v, &xoff));
+    PetscCheck(cdof == 0, comm, PETSC_ERR_USER_INPUT, "A node of the contact boundary \"%s\" at (%g, %g) is also on a Dirichlet boundary. Contact dofs must be free: separate the two physical groups", ctx->opt.contact_name, (double)PetscRealPart(x[xoff]), (double)PetscRealPart(x[xoff + 1]));
+    /* g_i = (x_i - p).n, the distance to the plane along nu = -n */
+    gap[nc] = 0;
+    for (PetscInt d = 0; d < dim; ++d) gap[nc] += (PetscRealPart(x[xoff + d]) - ctx->opt.obstacle_point[d]) * ctx->opt.obstacle_normal[d];
+    in[nc] = goff;
+    {
+      PetscInt sstart, send;
+      PetscCall(DMPlexGetPointGlobal(ctx->out.dm_scalar, v, &sstart, &send));
+      ct->scalar_index[nc] = sstart;
+      nodal_area[nc]       = PetscRealPart(av[sstart - astart]);
+    }
+    for (PetscInt d = 1; d < dim; ++d) it[nc * (dim - 1) + d - 1] = goff + d;
+    for (PetscInt d = 0; d < dim; ++d) {
+      is_contact_dof[goff - rstart + d] = PETSC_TRUE;
+      for (PetscInt e = 0; e < dim; ++e) PetscCall(MatSetValue(ctx->op.Q, goff + d, goff + e, ct->frame[e][d], INSERT_VALUES));
+    }
+    ++nc;
+  }
+  PetscCall(VecRestoreArrayRead(X, &x));
+  PetscCall(VecRestoreArrayRead(area, &av));
+  {
+    PetscInt ns = 0;
+    for (PetscInt i = 0; i < n; ++i) {
+        if (!is_contact_dof[i]) PetscCall(MatSetValue(ctx->op.Q, rstart + i, rstart + i, 1.0, INSERT_VALUES));
+    }
+    /* with the standard mass the normal dofs keep their inertia: they belong with the others */
+    for (PetscInt i = 0; i < n; ++i) {
+      PetscBool normal = PETSC_FALSE;
+      for (PetscInt k = 0; k < nc && !normal; ++k) normal = (PetscBool)(in[k] == rstart + i);
+      if (!normal) is[ns++] = rstart + i;
+    }
+    PetscCall(ISCreateGeneral(comm, ns, is, PETSC_COPY_VALUES, &ct->is_star));
+  }
+  PetscCall(MatAssemblyBegin(ctx->op.Q, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(ctx->op.Q, MAT_FINAL_ASSEMBLY));
+  PetscCall(ISCreateGeneral(comm, nc, in, PETSC_COPY_VALUES, &ct->is_normal));
+  PetscCall(ISCreateGeneral(comm, nc * (dim - 1), it, PETSC_COPY_VALUES, &ct->is_tangent));
+  PetscCall(VecCreateMPI(comm, nc, PETSC_DETERMINE, &ct->gap));
+  PetscCall(VecDuplicate(ct->gap, &ct->area));
+  {
+    PetscScalar *ga, *aa;
+    PetscCall(VecGetArray(ct->gap, &ga));
+    PetscCall(VecGetArray(ct->area, &aa));
+    for (PetscInt k = 0; k < nc; ++k) {
+      ga[k] = gap[k];
+      aa[k] = nodal_area[k];
+    }
+    PetscCall(VecRestoreArray(ct->gap, &ga));
+    PetscCall(VecRestoreArray(ct->area, &aa));
+  }
+  PetscCall(PetscFree(nodal_area));
+  ct->n_local = nc;
+  PetscCall(MPIU_Allreduce(&nc, &ct->n_global, 1, MPIU_INT, MPI_SUM, comm));
+  PetscCall(PetscCalloc1(nc, &ct->was_active));
+  PetscCall(PetscFree4(in, it, is, gap));
+  PetscCall(PetscFree(is_contact_dof));
+  PetscFunctionReturn(0);
+}
+
+/* Without contact: Q = I and every dof is a star dof. */
+static PetscErrorCode BuildNoContact(MMCtx *ctx)
+{
+  Vec      g;
+  PetscInt n, rstart;
+  MPI_Comm comm = PetscObjectComm((PetscObject)ctx->op.dm);
+
+  PetscFunctionBeginUser;
+  PetscCall(DMCreateGlobalVector(ctx->op.dm, &g));
+  PetscCall(VecGetLocalSize(g, &n));
+  PetscCall(VecGetOwnershipRange(g, &rstart, NULL));
+  PetscCall(MatCreateAIJ(comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, 1, NULL, 0, NULL, &ctx->op.Q));
+  for (PetscInt i = rstart; i < rstart + n; ++i) PetscCall(MatSetValue(ctx->op.Q, i, i, 1.0, INSERT_VALUES));
+  PetscCall(MatAssemblyBegin(ctx->op.Q, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(ctx->op.Q, MAT_FINAL_ASSEMBLY));
+  PetscCall(ISCreateStride(comm, 0, 0, 1, &ctx->contact.is_normal));
+  PetscCall(ISCreateStride(comm, 0, 0, 1, &ctx->contact.is_tangent));
+  PetscCall(ISCreateStride(comm, n, rstart, 1, &ctx->contact.is_star));
+  PetscCall(VecCreateMPI(comm, 0, PETSC_DETERMINE, &ctx->contact.gap));
+  PetscCall(VecDestroy(&g));
+  ctx->contact.h_c = 0;
+  PetscFunctionReturn(0);
+}
+
+/* Finds the contact nodes and builds Q; runs before the operators are assembled. */
+PetscErrorCode MMContactSetUp(MMCtx *ctx)
+{
+  MMContact *ct = &ctx->contact;
+  PetscInt  *mark;
+  Vec        area;
+
+  PetscFunctionBeginUser;
+  ct->enabled = ctx->opt.contact;
+  ct->tol     = ctx->opt.contact_tol;
+  PetscCall(BuildFrame(ctx));
+  if (!ct->enabled) {
+    PetscCall(BuildNoContact(ctx));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(DMCreateGlobalVector(ctx->out.dm_scalar, &area));
+  PetscCall(MarkContactVertices(ctx, &mark, area));
+  PetscCall(BuildContactDofs(ctx, mark, area));
+  PetscCall(ContactLayerDiameter(ctx, mark));
+  PetscCall(PetscFree(mark));
+  PetscCall(VecDestroy(&area));
+  PetscCheck(ct->n_global > 0, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "The contact boundary \"%s\" has no nodes", ctx->opt.contact_name);
+  PetscFunctionReturn(0);
+}
+
+/* Bounds on the whole w vector: w_c <= g on the normal dofs, free elsewhere. */
+static PetscErrorCode SetBounds(MMContact *ct, Vec lower, Vec upper)
+{
+  Vec sub;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecSet(lower, PETSC_NINFINITY));
+  PetscCall(VecSet(upper, PETSC_INFINITY));
+  PetscCall(VecGetSubVector(upper, ct->is_normal, &sub));
+  PetscCall(VecCopy(ct->gap, sub));
+  PetscCall(VecRestoreSubVector(upper, ct->is_normal, &sub));
+  PetscFunctionReturn(0);
+}
+
+/* K~ = K + 4/dt^2 M*. Assembled only when dt changes; the solver is (re)created with it. */
+PetscErrorCode MMContactSetStepMatrix(MMCtx *ctx, PetscReal dt)
+{
+  MMContact *ct = &ctx->contact;
+
+  PetscFunctionBeginUser;
+  if (ct->qp.A && ct->Kt_dt == dt) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(ctx->log.assemble, 0, 0, 0, 0));
+  if (!ct->qp.A) {
+    PetscCall(MatDuplicate(ctx->op.K, MAT_COPY_VALUES, &ct->qp.A));
+    PetscCall(MatCreateVecs(ct->qp.A, &ct->qp.b, NULL));
+    PetscCall(VecDuplicate(ct->qp.b, &ct->lower));
+    PetscCall(VecDuplicate(ct->qp.b, &ct->upper));
+    ct->qp.rtol_b = ct->tol;
+    PetscCall(CreateQPSolver(PetscObjectComm((PetscObject)ctx->op.dm), "contact_", &ct->qp, ct->enabled, &ct->snes));
+    if (ct->enabled) {
+      PetscCall(SetBounds(ct, ct->lower, ct->upper));
+      PetscCall(SNESVISetVariableBounds(ct->snes, ct->lower, ct->upper));
+    }
+  } else PetscCall(MatCopy(ctx->op.K, ct->qp.A, SAME_NONZERO_PATTERN));
+  PetscCall(MatAXPY(ct->qp.A, 4.0 / (dt * dt), ctx->op.Mstar, SUBSET_NONZERO_PATTERN));
+  ct->Kt_dt = dt;
+  PetscCall(PetscLogEventEnd(ctx->log.assemble, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* Solves the step problem K~ w = b + f_c with w_c <= g; w holds the initial guess on entry.
+ * react returns f_c, the obstacle's force on the body (w-frame), on the contact dofs only. */
+PetscErrorCode MMContactSolve(MMCtx *ctx, Vec b, Vec w, Vec react)
+{
+  MMContact *ct = &ctx->contact;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ctx->log.contact_solve, 0, 0, 0, 0));
+  PetscCall(VecCopy(b, ct->qp.b));
+  PetscCall(SolveQP(ct->snes, &ct->qp, w, &ct->vi_its));
+  PetscCall(MatMult(ct->qp.A, w, react));
+  PetscCall(VecAXPY(react, -1.0, b));
+  /* off the contact set the residual is solver noise, not a force */
+  PetscCall(VecISSet(react, ct->is_star, 0.0));
+  PetscCall(PetscLogEventEnd(ctx->log.contact_solve, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* Consistent initial contact dofs (method.md, Initial state): with the other dofs fixed, the
+ * massless normal dofs solve the quasi-static problem A_cc u_c = L_c - A_c* u*, u_c <= g. */
+PetscErrorCode MMContactProjectInitial(MMCtx *ctx, Vec w)
+{
+  MMContact *ct = &ctx->contact;
+  Vec        r, rc, wc;
+  PetscInt   its;
+
+  PetscFunctionBeginUser;
+  if (!ct->enabled || ctx->opt.mass_type != MM_MASS_MODIFIED) PetscFunctionReturn(0);
+  PetscCall(MatCreateSubMatrix(ctx->op.K, ct->is_normal, ct->is_normal, MAT_INITIAL_MATRIX, &ct->qp0.A));
+  PetscCall(MatCreateVecs(ct->qp0.A, &ct->qp0.b, NULL));
+  PetscCall(VecDuplicate(ct->qp0.b, &ct->lower0));
+  PetscCall(VecDuplicate(ct->qp0.b, &ct->upper0));
+  PetscCall(VecSet(ct->lower0, PETSC_NINFINITY));
+  PetscCall(VecCopy(ct->gap, ct->upper0));
+  ct->qp0.rtol_b = ct->tol;
+  PetscCall(CreateQPSolver(PetscObjectComm((PetscObject)ctx->op.dm), "contact0_", &ct->qp0, PETSC_TRUE, &ct->snes0));
+  PetscCall(SNESVISetVariableBounds(ct->snes0, ct->lower0, ct->upper0));
+
+  /* b0 = (L - lift - K w*)_c with the contact dofs zeroed in w* */
+  PetscCall(VecDuplicate(w, &r));
+  PetscCall(VecCopy(w, r));
+  PetscCall(VecISSet(r, ct->is_normal, 0.0));
+  PetscCall(VecDuplicate(w, &rc));
+  PetscCall(MatMult(ctx->op.K, r, rc));
+  PetscCall(VecAYPX(rc, -1.0, ctx->op.load));
+  PetscCall(VecAXPY(rc, -1.0, ctx->op.lift));
+  PetscCall(VecGetSubVector(rc, ct->is_normal, &wc));
+  PetscCall(VecCopy(wc, ct->qp0.b));
+  PetscCall(VecRestoreSubVector(rc, ct->is_normal, &wc));
+
+  PetscCall(VecGetSubVector(w, ct->is_normal, &wc));
+  PetscCall(VecPointwiseMin(wc, wc, ct->gap));
+  PetscCall(SolveQP(ct->snes0, &ct->qp0, wc, &its));
+  PetscCall(VecRestoreSubVector(w, ct->is_normal, &wc));
+  PetscCall(VecDestroy(&r));
+  PetscCall(VecDestroy(&rc));
+  PetscFunctionReturn(0);
+}
+
+/* Per-step contact quantities (method.md sections 5-6). react is the obstacle's force on the body. */
+PetscErrorCode MMContactDiagnostics(MMCtx *ctx, Vec w, Vec react, MMHistory *h)
+{
+  MMContact         *ct = &ctx->contact;
+  PetscInt           dim = ctx->op.dim, nc = ct->n_local, cnt[3] = {0, 0, 0};
+  const PetscInt    *in, *it;
+  const PetscScalar *wa, *fa, *ga;
+  PetscReal          ft[MM_MAX_DIM] = {0, 0, 0}, loc[6] = {0, 0, 0, 0, 0, 0}, glob[6], rmax = 0, rstart_w;
+  PetscInt           rstart;
+  MPI_Comm           comm = PetscObjectComm((PetscObject)ctx->op.dm);
+
+  PetscFunctionBeginUser;
+  h->active = h->switched = h->slipping = 0;
+  h->force_normal = h->force_tangential = h->max_penetration = h->coulomb_residual = 0;
+  if (!ct->enabled) PetscFunctionReturn(0);
+  PetscCall(VecGetOwnershipRange(w, &rstart, NULL));
+  PetscCall(ISGetIndices(ct->is_normal, &in));
+  PetscCall(ISGetIndices(ct->is_tangent, &it));
+  PetscCall(VecGetArrayRead(w, &wa));
+  PetscCall(VecGetArrayRead(react, &fa));
+  PetscCall(VecGetArrayRead(ct->gap, &ga));
+  for (PetscInt k = 0; k < nc; ++k) rmax = PetscMax(rmax, -PetscRealPart(fa[in[k] - rstart]));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &rmax, 1, MPIU_REAL, MPIU_MAX, comm));
+  /* force scale of the normalized residuals: the largest reaction, but at least the nodal force of a
+   * 1e-3 strain on the contact layer, so that solver noise on a free boundary is not normalized by itself */
+  rstart_w = PetscMax(rmax, 1e-3 * ctx->opt.E * PetscPowReal(ct->h_c, dim - 1));
+  for (PetscInt k = 0; k < nc; ++k) {
+    const PetscReal un = PetscRealPart(wa[in[k] - rstart]), g = PetscRealPart(ga[k]), r = -PetscRealPart(fa[in[k] - rstart]);
+    const PetscBool active = (PetscBool)(g - un <= 1e-10 * ct->h_c);
+    PetscReal       tn = 0;
+
+    cnt[0] += active;
+    cnt[1] += (active != ct->was_active[k]);
+    ct->was_active[k] = active;
+    loc[0] += r;
+    for (PetscInt d = 1; d < dim; ++d) {
+      const PetscReal t = PetscRealPart(fa[it[k * (dim - 1) + d - 1] - rstart]);
+      ft[d - 1] += t;
+      tn += t * t;
+    }
+    loc[1] = PetscMax(loc[1], (un - g) / ct->h_c);                       /* penetration */
+    loc[2] = PetscMax(loc[2], -r / rstart_w);                              /* tension */
+    loc[3] = PetscMax(loc[3], PetscAbsReal(r * (un - g)) / (rstart_w * ct->h_c)); /* complementarity */
+    loc[4] = PetscMax(loc[4], PetscSqrtReal(tn) / rstart_w);               /* cone, mu = 0 */
+    loc[5] = PetscMax(loc[5], un - g);
+  }
+  PetscCall(VecRestoreArrayRead(ct->gap, &ga));
+  PetscCall(VecRestoreArrayRead(react, &fa));
+  PetscCall(VecRestoreArrayRead(w, &wa));
+  PetscCall(ISRestoreIndices(ct->is_tangent, &it));
+  PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cnt, 2, MPIU_INT, MPI_SUM, comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, ft, MM_MAX_DIM, MPIU_REAL, MPIU_SUM, comm));
+  PetscCall(MPIU_Allreduce(&loc[0], &glob[0], 1, MPIU_REAL, MPIU_SUM, comm));
+  PetscCall(MPIU_Allreduce(&loc[1], &glob[1], 5, MPIU_REAL, MPIU_MAX, comm));
+  h->active           = cnt[0];
+  h->switched         = cnt[1];
+  h->force_normal     = glob[0];
+  h->force_tangential = dim == 2 ? ft[0] : PetscSqrtReal(ft[0] * ft[0] + ft[1] * ft[1]);
+  h->max_penetration  = PetscMax(glob[5], 0.0);
+  h->coulomb_residual = PetscMax(PetscMax(PetscMax(glob[1], glob[2]), glob[3]), PetscMax(glob[4], 0.0));
+  h->vi_its           = ct->vi_its;
+  PetscFunctionReturn(0);
+}
+
+/* Nodal contact pressure r_i / int phi_i and current gap g_i - u.nu on the scalar vertex DM (zero off Gamma_c). */
+PetscErrorCode MMContactNodalFields(MMCtx *ctx, Vec w, Vec react, Vec pressure, Vec gap)
+{
+  MMContact         *ct = &ctx->contact;
+  const PetscInt    *in;
+  const PetscScalar *wa, *fa, *ga, *aa;
+  PetscInt           rstart;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(pressure));
+  PetscCall(VecZeroEntries(gap));
+  if (!ct->enabled) PetscFunctionReturn(0);
+  PetscCall(VecGetOwnershipRange(w, &rstart, NULL));
+  PetscCall(ISGetIndices(ct->is_normal, &in));
+  PetscCall(VecGetArrayRead(w, &wa));
+  PetscCall(VecGetArrayRead(react, &fa));
+  PetscCall(VecGetArrayRead(ct->gap, &ga));
+  PetscCall(VecGetArrayRead(ct->area, &aa));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    PetscCall(VecSetValue(pressure, ct->scalar_index[k], -fa[in[k] - rstart] / aa[k], INSERT_VALUES));
+    PetscCall(VecSetValue(gap, ct->scalar_index[k], ga[k] - wa[in[k] - rstart], INSERT_VALUES));
+  }
+  PetscCall(VecRestoreArrayRead(ct->area, &aa));
+  PetscCall(VecRestoreArrayRead(ct->gap, &ga));
+  PetscCall(VecRestoreArrayRead(react, &fa));
+  PetscCall(VecRestoreArrayRead(w, &wa));
+  PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  PetscCall(VecAssemblyBegin(pressure));
+  PetscCall(VecAssemblyEnd(pressure));
+  PetscCall(VecAssemblyBegin(gap));
+  PetscCall(VecAssemblyEnd(gap));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMContactDestroy(MMContact *ct)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SNESDestroy(&ct->snes));
+  PetscCall(SNESDestroy(&ct->snes0));
+  PetscCall(MatDestroy(&ct->qp.A));
+  PetscCall(VecDestroy(&ct->qp.b));
+  PetscCall(MatDestroy(&ct->qp0.A));
+  PetscCall(VecDestroy(&ct->qp0.b));
+  PetscCall(VecDestroy(&ct->lower));
+  PetscCall(VecDestroy(&ct->upper));
+  PetscCall(VecDestroy(&ct->lower0));
+  PetscCall(VecDestroy(&ct->upper0));
+  PetscCall(VecDestroy(&ct->gap));
+  PetscCall(VecDestroy(&ct->area));
+  PetscCall(ISDestroy(&ct->is_normal));
+  PetscCall(ISDestroy(&ct->is_tangent));
+  PetscCall(ISDestroy(&ct->is_star));
+  PetscCall(PetscFree(ct->was_active));
+  PetscCall(PetscFree(ct->scalar_index));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,174 @@
+/* The energy audit of every step (method.md section 4) and rigid-body diagnostics. */
+#include "energy.h"
+#include "contact.h"
+#include "fem.h"
+
+static PetscErrorCode KineticEnergy(MMCtx *ctx, Vec v, PetscReal *ek)
+{
+  PetscScalar vMv;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatMult(ctx->op.Mstar, v, ctx->state.work));
+  PetscCall(VecDot(v, ctx->state.work, &vMv));
+  *ek = 0.5 * PetscRealPart(vMv);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TotalEnergy(MMCtx *ctx, MMHistory *h)
+{
+  PetscFunctionBeginUser;
+  PetscCall(KineticEnergy(ctx, ctx->state.v, &h->kinetic));
+  PetscCall(MMFEElasticEnergy(ctx, ctx->state.u, &h->elastic));
+  h->total = h->kinetic + h->elastic;
+  PetscFunctionReturn(0);
+}
+
+/* 1/2 (f^n + f^{n+1}).du over the dofs of is: the trapezoidal work of a nodal force. */
+static PetscErrorCode TrapezoidalWork(MMCtx *ctx, IS is, Vec du, PetscReal *work)
+{
+  MMState    *s = &ctx->state;
+  Vec         f, fo, d;
+  PetscScalar w1, w0;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetSubVector(s->react, is, &f));
+  PetscCall(VecGetSubVector(s->react_old, is, &fo));
+  PetscCall(VecGetSubVector(du, is, &d));
+  PetscCall(VecDot(f, d, &w1));
+  PetscCall(VecDot(fo, d, &w0));
+  PetscCall(VecRestoreSubVector(du, is, &d));
+  PetscCall(VecRestoreSubVector(s->react_old, is, &fo));
+  PetscCall(VecRestoreSubVector(s->react, is, &f));
+  *work = 0.5 * PetscRealPart(w1 + w0);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMEnergyInitial(MMCtx *ctx)
+{
+  MMHistory *h = &ctx->hist;
+
+  PetscFunctionBeginUser;
+  h->step = 0;
+  h->time = 0;
+  h->work_ext = h->work_contact = h->work_friction = 0;
+  h->balance_residual = h->max_balance = h->max_penetration_run = 0;
+  h->cfl = ctx->contact.enabled ? ctx->op.c_p * h->dt / ctx->contact.h_c : 0;
+  PetscCall(TotalEnergy(ctx, h));
+  PetscCall(MMContactDiagnostics(ctx, ctx->state.u, ctx->state.react, h));
+  h->switched = 0;
+  h->vi_its   = 0;
+  h->max_penetration_run = h->max_penetration;
+  PetscCall(MMRigidBodyDiagnostics(ctx, h));
+  PetscFunctionReturn(0);
+}
+
+/* E^{n+1} - E^n = W_ext + W_c + W_f, each term recorded; the residual is the scheme's identity. */
+PetscErrorCode MMEnergyStep(MMCtx *ctx)
+{
+  MMHistory  *h = &ctx->hist;
+  MMState    *s = &ctx->state;
+  PetscReal   E_old = h->total, w_ext, w_c = 0, w_f = 0;
+  PetscScalar Ldu;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ctx->log.energy, 0, 0, 0, 0));
+  PetscCall(VecWAXPY(s->work, -1.0, s->u_old, s->u));
+  PetscCall(VecDot(ctx->op.load, s->work, &Ldu)); /* L is constant in time */
+  w_ext = PetscRealPart(Ldu);
+  if (ctx->contact.enabled) {
+    PetscCall(TrapezoidalWork(ctx, ctx->contact.is_normal, s->work, &w_c));
+    PetscCall(TrapezoidalWork(ctx, ctx->contact.is_tangent, s->work, &w_f));
+  }
+  h->dt = s->dt;
+  PetscCall(TotalEnergy(ctx, h));
+  h->work_ext += w_ext;
+  h->work_contact += w_c;
+  h->work_friction += w_f;
+  h->balance_residual = PetscAbsReal(h->total - E_old - w_ext - w_c - w_f) / PetscMax(PetscMax(PetscAbsReal(h->total), PetscAbsReal(E_old)), PETSC_SMALL * PETSC_SMALL);
+  h->max_balance      = PetscMax(h->max_balance, h->balance_residual);
+  h->cfl              = ctx->contact.enabled ? ctx->op.c_p * s->dt / ctx->contact.h_c : 0;
+  PetscCall(MMContactDiagnostics(ctx, s->u, s->react, h));
+  h->max_penetration_run = PetscMax(h->max_penetration_run, h->max_penetration);
+  PetscCall(MMRigidBodyDiagnostics(ctx, h));
+  PetscCall(PetscLogEventEnd(ctx->log.energy, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* Centre-of-mass displacement and velocity, and angular momentum about the centre of mass, with
+ * the lumped standard mass of the nodes whose dofs are all free (a constrained body is not free). */
+PetscErrorCode MMRigidBodyDiagnostics(MMCtx *ctx, MMHistory *h)
+{
+  DM                 dm = ctx->op.dm;
+  PetscSection       gs, cs;
+  PetscInt           vStart, vEnd, dim = ctx->op.dim, rstart;
+  Vec                uc, vc, X;
+  const PetscScalar *u, *v, *m, *x;
+  PetscReal          sum[1 + 4 * MM_MAX_DIM] = {0}, cm[MM_MAX_DIM];
+  MPI_Comm           comm = PetscObjectComm((PetscObject)dm);
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalVector(dm, &uc));
+  PetscCall(DMGetGlobalVector(dm, &vc));
+  PetscCall(MMFEToCartesian(ctx, ctx->state.u, uc));
+  PetscCall(MMFEToCartesian(ctx, ctx->state.v, vc));
+  PetscCall(DMGetGlobalSection(dm, &gs));
+  PetscCall(DMGetCoordinateSection(dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(VecGetOwnershipRange(uc, &rstart, NULL));
+  PetscCall(VecGetArrayRead(uc, &u));
+  PetscCall(VecGetArrayRead(vc, &v));
+  PetscCall(VecGetArrayRead(ctx->op.mass_lumped_cart, &m));
+  PetscCall(VecGetArrayRead(X, &x));
+  /* first pass: mass, first moments of position, displacement and velocity */
+  for (PetscInt p = vStart; p < vEnd; ++p) {
+    PetscInt goff, dof, xoff;
+    PetscCall(PetscSectionGetOffset(gs, p, &goff));
+    PetscCall(PetscSectionGetDof(gs, p, &dof));
+    if (goff < 0 || dof != dim) continue;
+    PetscCall(PetscSectionGetOffset(cs, p, &xoff));
+    goff -= rstart;
+    sum[0] += PetscRealPart(m[goff]);
+    for (PetscInt d = 0; d < dim; ++d) {
+      sum[1 + d] += PetscRealPart(m[goff] * (x[xoff + d] + u[goff + d]));
+      sum[1 + MM_MAX_DIM + d] += PetscRealPart(m[goff] * u[goff + d]);
+      sum[1 + 2 * MM_MAX_DIM + d] += PetscRealPart(m[goff] * v[goff + d]);
+    }
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, 1 + 3 * MM_MAX_DIM, MPIU_REAL, MPIU_SUM, comm));
+  for (PetscInt d = 0; d < dim; ++d) {
+    const PetscReal mt = PetscMax(sum[0], PETSC_SMALL);
+    cm[d]     = sum[1 + d] / mt;
+    h->ucm[d] = sum[1 + MM_MAX_DIM + d] / mt;
+    h->vcm[d] = sum[1 + 2 * MM_MAX_DIM + d] / mt;
+  }
+  /* second pass: angular momentum sum m (x + u - x_cm) x v */
+  {
+    PetscReal L[3] = {0, 0, 0};
+    for (PetscInt p = vStart; p < vEnd; ++p) {
+      PetscInt  goff, dof, xoff;
+      PetscReal r[3] = {0, 0, 0}, w[3] = {0, 0, 0}, mp;
+      PetscCall(PetscSectionGetOffset(gs, p, &goff));
+      PetscCall(PetscSectionGetDof(gs, p, &dof));
+      if (goff < 0 || dof != dim) continue;
+      PetscCall(PetscSectionGetOffset(cs, p, &xoff));
+      goff -= rstart;
+      mp = PetscRealPart(m[goff]);
+      for (PetscInt d = 0; d < dim; ++d) {
+        r[d] = PetscRealPart(x[xoff + d] + u[goff + d]) - cm[d];
+        w[d] = PetscRealPart(v[goff + d]);
+      }
+      L[0] += mp * (r[1] * w[2] - r[2] * w[1]);
+      L[1] += mp * (r[2] * w[0] - r[0] * w[2]);
+      L[2] += mp * (r[0] * w[1] - r[1] * w[0]);
+    }
+    PetscCall(MPIU_Allreduce(L, h->L, 3, MPIU_REAL, MPIU_SUM, comm));
+  }
+  PetscCall(VecRestoreArrayRead(X, &x));
+  PetscCall(VecRestoreArrayRead(ctx->op.mass_lumped_cart, &m));
+  PetscCall(VecRestoreArrayRead(vc, &v));
+  PetscCall(VecRestoreArrayRead(uc, &u));
+  PetscCall(DMRestoreGlobalVector(dm, &vc));
+  PetscCall(DMRestoreGlobalVector(dm, &uc));
+  PetscFunctionReturn(0);
+}

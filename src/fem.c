@@ -1,0 +1,414 @@
+/* P1 elasticity: discretization, boundary conditions, and the operators K, M, L in the contact frame. */
+#include "fem.h"
+#include "mesh.h"
+#include "contact.h"
+
+/* Field layout of every kernel: one field u (displacement), dim components, P1.
+ * constants[] = {lambda, mu, rho, w_K, w_M, g_x, g_y, g_z} (MMConstantIndex). The weights select
+ * the matrix an assembly produces, w_K K + w_M M, since PetscDS cannot unset a kernel. */
+
+/* Internal force: f1 = sigma(u) = lambda tr(eps) I + 2 mu eps */
+static void f1_elas_u(PetscInt dim, PetscInt Nf, PetscInt NfAux, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_t[], const PetscScalar u_x[], const PetscInt aOff[], const PetscInt aOff_x[], const PetscScalar a[], const PetscScalar a_t[], const PetscScalar a_x[], PetscReal t, const PetscReal x[], PetscInt numConstants, const PetscScalar constants[], PetscScalar f1[])
+{
+  const PetscReal lambda = PetscRealPart(constants[MM_C_LAMBDA]), mu = PetscRealPart(constants[MM_C_MU]);
+  PetscScalar     tr     = 0;
+  for (PetscInt c = 0; c < dim; ++c) tr += u_x[c * dim + c];
+  for (PetscInt c = 0; c < dim; ++c)
+    for (PetscInt d = 0; d < dim; ++d) f1[c * dim + d] = mu * (u_x[c * dim + d] + u_x[d * dim + c]) + (c == d ? lambda * tr : 0.0);
+}
+
+/* Stiffness: the derivative of f1_elas_u with respect to grad u */
+static void g3_elas_uu(PetscInt dim, PetscInt Nf, PetscInt NfAux, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_t[], const PetscScalar u_x[], const PetscInt aOff[], const PetscInt aOff_x[], const PetscScalar a[], const PetscScalar a_t[], const PetscScalar a_x[], PetscReal t, PetscReal u_tShift, const PetscReal x[], PetscInt numConstants, const PetscScalar constants[], PetscScalar g3[])
+{
+  const PetscReal w = PetscRealPart(constants[MM_C_WEIGHT_K]);
+  const PetscReal lambda = w * PetscRealPart(constants[MM_C_LAMBDA]), mu = w * PetscRealPart(constants[MM_C_MU]);
+  for (PetscInt c = 0; c < dim; ++c)
+    for (PetscInt f = 0; f < dim; ++f)
+      for (PetscInt d = 0; d < dim; ++d)
+        for (PetscInt e = 0; e < dim; ++e) g3[((c * dim + f) * dim + d) * dim + e] = (c == f && d == e ? mu : 0) + (c == e && d == f ? mu : 0) + (c == d && f == e ? lambda : 0);
+}
+
+/* Consistent mass: rho delta_cf */
+static void g0_mass_uu(PetscInt dim, PetscInt Nf, PetscInt NfAux, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_t[], const PetscScalar u_x[], const PetscInt aOff[], const PetscInt aOff_x[], const PetscScalar a[], const PetscScalar a_t[], const PetscScalar a_x[], PetscReal t, PetscReal u_tShift, const PetscReal x[], PetscInt numConstants, const PetscScalar constants[], PetscScalar g0[])
+{
+  for (PetscInt c = 0; c < dim; ++c) g0[c * dim + c] = constants[MM_C_WEIGHT_M] * constants[MM_C_RHO];
+}
+
+/* Elastic energy density 1/2 sigma(u) : eps(u) */
+static void obj_elastic_energy(PetscInt dim, PetscInt Nf, PetscInt NfAux, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_t[], const PetscScalar u_x[], const PetscInt aOff[], const PetscInt aOff_x[], const PetscScalar a[], const PetscScalar a_t[], const PetscScalar a_x[], PetscReal t, const PetscReal x[], PetscInt numConstants, const PetscScalar constants[], PetscScalar obj[])
+{
+  const PetscReal lambda = PetscRealPart(constants[MM_C_LAMBDA]), mu = PetscRealPart(constants[MM_C_MU]);
+  PetscScalar     tr = 0, ee = 0;
+  for (PetscInt c = 0; c < dim; ++c) tr += u_x[c * dim + c];
+  for (PetscInt c = 0; c < dim; ++c)
+    for (PetscInt d = 0; d < dim; ++d) ee += 0.25 * PetscSqr(u_x[c * dim + d] + u_x[d * dim + c]);
+  obj[0] = mu * ee + 0.5 * lambda * tr * tr;
+}
+
+/* Dirichlet data: constant values per fixed component; ctx is the MMDirichlet. */
+static PetscErrorCode bc_constant(PetscInt dim, PetscReal time, const PetscReal x[], PetscInt Nc, PetscScalar *u, void *ctx)
+{
+  const MMDirichlet *bc = (const MMDirichlet *)ctx;
+  for (PetscInt c = 0; c < Nc; ++c) u[c] = 0;
+  for (PetscInt c = 0; c < bc->ncomp; ++c) u[bc->comps[c]] = bc->values[c];
+  return 0;
+}
+
+/* The single value a physical group carries in its label (its gmsh tag), agreed over ranks. */
+static PetscErrorCode LabelValue(DM dm, DMLabel label, PetscInt *value)
+{
+  IS              vis;
+  PetscInt        n, v = PETSC_MIN_INT;
+  const PetscInt *vals;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMLabelGetValueIS(label, &vis));
+  PetscCall(ISGetLocalSize(vis, &n));
+  PetscCall(ISGetIndices(vis, &vals));
+  for (PetscInt i = 0; i < n; ++i) v = PetscMax(v, vals[i]);
+  PetscCall(ISRestoreIndices(vis, &vals));
+  PetscCall(ISDestroy(&vis));
+  PetscCall(MPIU_Allreduce(&v, value, 1, MPIU_INT, MPI_MAX, PetscObjectComm((PetscObject)dm)));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SetUpDirichlet(MMCtx *ctx)
+{
+  DM dm = ctx->op.dm;
+
+  PetscFunctionBeginUser;
+  for (PetscInt b = 0; b < ctx->opt.n_dirichlet; ++b) {
+    MMDirichlet *bc = &ctx->opt.dirichlet[b];
+    DMLabel      label;
+    PetscInt     value;
+
+    PetscCall(MMMeshGetLabel(dm, bc->name, &label));
+    PetscCall(LabelValue(dm, label, &value));
+    PetscCall(DMAddBoundary(dm, DM_BC_ESSENTIAL, bc->name, label, 1, &value, 0, bc->ncomp, bc->comps, (void (*)(void))bc_constant, NULL, bc, NULL));
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SetConstants(MMCtx *ctx)
+{
+  const MMOptions *o  = &ctx->opt;
+  const PetscReal  mu = o->E / (2 * (1 + o->nu));
+  /* plane strain in 2D, so the same Lame parameters serve both dimensions */
+  const PetscReal lambda = o->E * o->nu / ((1 + o->nu) * (1 - 2 * o->nu));
+
+  PetscFunctionBeginUser;
+  ctx->constants[MM_C_LAMBDA] = lambda;
+  ctx->constants[MM_C_MU]     = mu;
+  ctx->constants[MM_C_RHO]    = o->rho;
+  ctx->constants[MM_C_WEIGHT_K] = 1.0;
+  ctx->constants[MM_C_WEIGHT_M] = 0.0;
+  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) ctx->constants[MM_C_GRAVITY + d] = o->gravity[d];
+  ctx->op.c_p = PetscSqrtReal((lambda + 2 * mu) / o->rho);
+  PetscFunctionReturn(0);
+}
+
+/* Creates the P1 vector field, the Dirichlet constraints and the scalar vertex DM used for masses and output. */
+PetscErrorCode MMFESetUp(MMCtx *ctx)
+{
+  DM           dm = ctx->op.dm;
+  PetscFE      fe;
+  PetscDS      ds;
+  PetscInt     dim;
+  PetscSection s;
+  const char  *names[] = {"displacement_x", "displacement_y", "displacement_z"};
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetDimension(dm, &dim));
+  ctx->op.dim = dim;
+  PetscCall(SetConstants(ctx));
+  PetscCall(PetscFECreateLagrange(PetscObjectComm((PetscObject)dm), dim, dim, PETSC_TRUE, 1, PETSC_DETERMINE, &fe));
+  PetscCall(PetscObjectSetName((PetscObject)fe, "displacement"));
+  PetscCall(DMSetField(dm, 0, NULL, (PetscObject)fe));
+  PetscCall(PetscFEDestroy(&fe));
+  PetscCall(DMCreateDS(dm));
+  PetscCall(DMGetDS(dm, &ds));
+  PetscCall(PetscDSSetConstants(ds, MM_C_NUM, ctx->constants));
+  PetscCall(PetscDSSetResidual(ds, 0, NULL, f1_elas_u));
+  PetscCall(PetscDSSetObjective(ds, 0, obj_elastic_energy));
+  PetscCall(SetUpDirichlet(ctx));
+  PetscCall(DMGetLocalSection(dm, &s));
+  for (PetscInt c = 0; c < dim; ++c) PetscCall(PetscSectionSetComponentName(s, 0, c, names[c]));
+
+  /* one P1 scalar per vertex, no constraints: lumped masses, contact pressure and gap */
+  {
+    DM      dms;
+    PetscFE fes;
+
+    PetscCall(DMClone(dm, &dms));
+    PetscCall(PetscFECreateLagrange(PetscObjectComm((PetscObject)dm), dim, 1, PETSC_TRUE, 1, PETSC_DETERMINE, &fes));
+    PetscCall(PetscObjectSetName((PetscObject)fes, "nodal"));
+    PetscCall(DMSetField(dms, 0, NULL, (PetscObject)fes));
+    PetscCall(PetscFEDestroy(&fes));
+    PetscCall(DMCreateDS(dms));
+    ctx->out.dm_scalar = dms;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Lumped mass per vertex, int rho phi_i: exact row sums of the consistent mass, Dirichlet columns included. */
+static PetscErrorCode VertexMasses(MMCtx *ctx, Vec mloc)
+{
+  DM           dms = ctx->out.dm_scalar;
+  PetscInt     cStart, cEnd, vStart, vEnd, dim = ctx->op.dim;
+  Vec          mglob;
+  PetscScalar *m;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(mloc));
+  PetscCall(DMPlexGetHeightStratum(dms, 0, &cStart, &cEnd));
+  PetscCall(DMPlexGetDepthStratum(dms, 0, &vStart, &vEnd));
+  PetscCall(VecGetArray(mloc, &m));
+  for (PetscInt c = cStart; c < cEnd; ++c) {
+    PetscReal vol;
+    PetscInt *closure = NULL, ncl;
+    PetscCall(DMPlexComputeCellGeometryFVM(dms, c, &vol, NULL, NULL));
+    PetscCall(DMPlexGetTransitiveClosure(dms, c, PETSC_TRUE, &ncl, &closure));
+    for (PetscInt i = 0; i < ncl; ++i) {
+      PetscInt off, end;
+      if (closure[2 * i] < vStart || closure[2 * i] >= vEnd) continue;
+      PetscCall(DMPlexGetPointLocal(dms, closure[2 * i], &off, &end));
+      m[off] += ctx->opt.rho * vol / (dim + 1);
+    }
+    PetscCall(DMPlexRestoreTransitiveClosure(dms, c, PETSC_TRUE, &ncl, &closure));
+  }
+  PetscCall(VecRestoreArray(mloc, &m));
+  PetscCall(DMGetGlobalVector(dms, &mglob));
+  PetscCall(VecZeroEntries(mglob));
+  PetscCall(DMLocalToGlobal(dms, mloc, ADD_VALUES, mglob));
+  PetscCall(DMGlobalToLocal(dms, mglob, INSERT_VALUES, mloc));
+  PetscCall(DMRestoreGlobalVector(dms, &mglob));
+  PetscFunctionReturn(0);
+}
+
+/* Spreads a per-vertex scalar onto every free dof of that vertex, times a per-component factor. */
+static PetscErrorCode SpreadVertexScalar(MMCtx *ctx, Vec sloc, const PetscReal factor[], Vec g)
+{
+  DM                 dm = ctx->op.dm;
+  PetscSection       gs, ls;
+  PetscInt           vStart, vEnd, dim = ctx->op.dim;
+  const PetscScalar *s;
+  PetscScalar       *a;
+  PetscInt           rstart;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalSection(dm, &gs));
+  PetscCall(DMGetLocalSection(dm, &ls));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(VecGetOwnershipRange(g, &rstart, NULL));
+  PetscCall(VecGetArrayRead(sloc, &s));
+  PetscCall(VecGetArray(g, &a));
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt goff, soff, ncdof;
+    const PetscInt *cidx;
+    PetscCall(PetscSectionGetOffset(gs, v, &goff));
+    if (goff < 0) continue;
+    PetscCall(DMPlexGetPointLocal(ctx->out.dm_scalar, v, &soff, NULL));
+    PetscCall(PetscSectionGetConstraintDof(ls, v, &ncdof));
+    PetscCall(PetscSectionGetConstraintIndices(ls, v, &cidx));
+    for (PetscInt c = 0, k = 0; c < dim; ++c) {
+      PetscBool fixed = PETSC_FALSE;
+      for (PetscInt j = 0; j < ncdof; ++j) fixed = (PetscBool)(fixed || cidx[j] == c);
+      if (fixed) continue;
+      a[goff - rstart + k++] = s[soff] * factor[c];
+    }
+  }
+  PetscCall(VecRestoreArray(g, &a));
+  PetscCall(VecRestoreArrayRead(sloc, &s));
+  PetscFunctionReturn(0);
+}
+
+/* Nodal loads of constant tractions: int_F t phi_i = t |F| / d on each vertex of a boundary face F. */
+static PetscErrorCode AddTractions(MMCtx *ctx, Vec Lcart)
+{
+  DM  dm = ctx->op.dm;
+  Vec floc;
+
+  PetscFunctionBeginUser;
+  if (!ctx->opt.n_traction) PetscFunctionReturn(0);
+  PetscCall(DMGetLocalVector(dm, &floc));
+  PetscCall(VecZeroEntries(floc));
+  for (PetscInt b = 0; b < ctx->opt.n_traction; ++b) {
+    DMLabel         label;
+    IS              fis;
+    PetscInt        value, nf, dim = ctx->op.dim;
+    const PetscInt *faces;
+    PetscScalar    *f;
+
+    PetscCall(MMMeshGetLabel(dm, ctx->opt.traction[b].name, &label));
+    PetscCall(LabelValue(dm, label, &value));
+    PetscCall(DMLabelGetStratumIS(label, value, &fis));
+    if (!fis) continue;
+    PetscCall(ISGetLocalSize(fis, &nf));
+    PetscCall(ISGetIndices(fis, &faces));
+    PetscCall(VecGetArray(floc, &f));
+    for (PetscInt i = 0; i < nf; ++i) {
+      PetscInt  h, *closure = NULL, ncl;
+      PetscReal area;
+      PetscCall(DMPlexGetPointHeight(dm, faces[i], &h));
+      if (h != 1) continue; /* only the faces themselves; their closure is in the label too */
+      PetscCall(DMPlexComputeCellGeometryFVM(dm, faces[i], &area, NULL, NULL));
+      PetscCall(DMPlexGetTransitiveClosure(dm, faces[i], PETSC_TRUE, &ncl, &closure));
+      for (PetscInt j = 0; j < ncl; ++j) {
+        PetscInt off, end;
+        PetscCall(DMPlexGetPointLocal(dm, closure[2 * j], &off, &end));
+        if (end - off != dim) continue;
+        for (PetscInt c = 0; c < dim; ++c) f[off + c] += ctx->opt.traction[b].traction[c] * area / dim;
+      }
+      PetscCall(DMPlexRestoreTransitiveClosure(dm, faces[i], PETSC_TRUE, &ncl, &closure));
+    }
+    PetscCall(VecRestoreArray(floc, &f));
+    PetscCall(ISRestoreIndices(fis, &faces));
+    PetscCall(ISDestroy(&fis));
+  }
+  /* traction loads on Dirichlet-constrained components are dropped, as the reaction absorbs them */
+  PetscCall(DMLocalToGlobal(dm, floc, ADD_VALUES, Lcart));
+  PetscCall(DMRestoreLocalVector(dm, &floc));
+  PetscFunctionReturn(0);
+}
+
+/* Assembles w_K K + w_M M. */
+static PetscErrorCode AssembleMatrix(MMCtx *ctx, PetscReal wK, PetscReal wM, Mat A)
+{
+  DM      dm = ctx->op.dm;
+  PetscDS ds;
+  Vec     xloc;
+
+  PetscFunctionBeginUser;
+  ctx->constants[MM_C_WEIGHT_K] = wK;
+  ctx->constants[MM_C_WEIGHT_M] = wM;
+  PetscCall(DMGetDS(dm, &ds));
+  PetscCall(PetscDSSetConstants(ds, MM_C_NUM, ctx->constants));
+  PetscCall(DMGetLocalVector(dm, &xloc));
+  PetscCall(VecZeroEntries(xloc));
+  PetscCall(MatZeroEntries(A));
+  PetscCall(DMPlexSNESComputeJacobianFEM(dm, xloc, A, A, NULL));
+  PetscCall(DMRestoreLocalVector(dm, &xloc));
+  ctx->constants[MM_C_WEIGHT_K] = 1.0;
+  ctx->constants[MM_C_WEIGHT_M] = 0.0;
+  PetscCall(PetscDSSetConstants(ds, MM_C_NUM, ctx->constants));
+  PetscFunctionReturn(0);
+}
+
+/* K_fD u_D: the elastic force of the Dirichlet data on the free dofs, the residual at u_free = 0. */
+static PetscErrorCode DirichletLift(DM dm, Vec lift)
+{
+  Vec xloc;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLocalVector(dm, &xloc));
+  PetscCall(VecZeroEntries(xloc));
+  PetscCall(DMPlexInsertBoundaryValues(dm, PETSC_TRUE, xloc, 0.0, NULL, NULL, NULL));
+  PetscCall(DMPlexSNESComputeResidualFEM(dm, xloc, lift, NULL));
+  PetscCall(DMRestoreLocalVector(dm, &xloc));
+  PetscFunctionReturn(0);
+}
+
+/* w-frame operator from a Cartesian one: Q^T A Q */
+static PetscErrorCode RotateMatrix(Mat Q, Mat A, Mat *Aw)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MatPtAP(A, Q, MAT_INITIAL_MATRIX, 1.5, Aw));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMFEAssembleOperators(MMCtx *ctx)
+{
+  DM          dm = ctx->op.dm;
+  PetscDS     ds;
+  Mat         Kc, Mc = NULL;
+  Vec         mloc, Lcart, tmp;
+  PetscReal   ones[MM_MAX_DIM] = {1, 1, 1};
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ctx->log.assemble, 0, 0, 0, 0));
+  PetscCall(DMGetDS(dm, &ds));
+  PetscCall(DMSetMatType(dm, MATAIJ));
+  PetscCall(DMCreateMatrix(dm, &Kc));
+  PetscCall(PetscDSSetJacobian(ds, 0, 0, g0_mass_uu, NULL, NULL, g3_elas_uu));
+  PetscCall(AssembleMatrix(ctx, 1.0, 0.0, Kc));
+  PetscCall(RotateMatrix(ctx->op.Q, Kc, &ctx->op.K));
+
+  PetscCall(DMCreateGlobalVector(dm, &ctx->op.load));
+  PetscCall(VecDuplicate(ctx->op.load, &ctx->op.lift));
+  PetscCall(VecDuplicate(ctx->op.load, &ctx->op.mass_lumped_cart));
+  PetscCall(VecDuplicate(ctx->op.load, &Lcart));
+  PetscCall(VecDuplicate(ctx->op.load, &tmp));
+  PetscCall(DMGetLocalVector(ctx->out.dm_scalar, &mloc));
+  PetscCall(VertexMasses(ctx, mloc));
+  PetscCall(SpreadVertexScalar(ctx, mloc, ones, ctx->op.mass_lumped_cart));
+  /* body force: int rho g phi_i = m_i g, exactly, for constant g */
+  PetscCall(SpreadVertexScalar(ctx, mloc, ctx->opt.gravity, Lcart));
+  PetscCall(DMRestoreLocalVector(ctx->out.dm_scalar, &mloc));
+  PetscCall(AddTractions(ctx, Lcart));
+  PetscCall(MatMultTranspose(ctx->op.Q, Lcart, ctx->op.load));
+  PetscCall(DirichletLift(dm, tmp));
+  PetscCall(MatMultTranspose(ctx->op.Q, tmp, ctx->op.lift));
+
+  if (ctx->opt.lumped) {
+    /* equal per component at each node, so the frame rotation leaves it diagonal and unchanged */
+    PetscCall(MatDuplicate(ctx->op.K, MAT_DO_NOT_COPY_VALUES, &ctx->op.M));
+    PetscCall(MatZeroEntries(ctx->op.M));
+    PetscCall(MatDiagonalSet(ctx->op.M, ctx->op.mass_lumped_cart, INSERT_VALUES));
+  } else {
+    PetscCall(DMCreateMatrix(dm, &Mc));
+    PetscCall(AssembleMatrix(ctx, 0.0, 1.0, Mc));
+    PetscCall(RotateMatrix(ctx->op.Q, Mc, &ctx->op.M));
+  }
+  PetscCall(MatDuplicate(ctx->op.M, MAT_COPY_VALUES, &ctx->op.Mstar));
+  if (ctx->contact.enabled && ctx->opt.mass_type == MM_MASS_MODIFIED) PetscCall(MatZeroRowsColumnsIS(ctx->op.Mstar, ctx->contact.is_normal, 0.0, NULL, NULL));
+  PetscCall(MatViewFromOptions(ctx->op.K, NULL, "-stiffness_view"));
+  PetscCall(MatViewFromOptions(ctx->op.M, NULL, "-mass_view"));
+  PetscCall(MatDestroy(&Kc));
+  PetscCall(MatDestroy(&Mc));
+  PetscCall(VecDestroy(&Lcart));
+  PetscCall(VecDestroy(&tmp));
+  PetscCall(PetscLogEventEnd(ctx->log.assemble, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMFEToCartesian(MMCtx *ctx, Vec w, Vec ucart)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MatMult(ctx->op.Q, w, ucart));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMFEFromCartesian(MMCtx *ctx, Vec ucart, Vec w)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MatMultTranspose(ctx->op.Q, ucart, w));
+  PetscFunctionReturn(0);
+}
+
+/* 1/2 int sigma(u):eps(u) of the whole field, Dirichlet data included. */
+PetscErrorCode MMFEElasticEnergy(MMCtx *ctx, Vec w, PetscReal *energy)
+{
+  PetscScalar integral[1];
+  Vec         ucart;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalVector(ctx->op.dm, &ucart));
+  PetscCall(MMFEToCartesian(ctx, w, ucart));
+  PetscCall(DMPlexComputeIntegralFEM(ctx->op.dm, ucart, integral, NULL));
+  PetscCall(DMRestoreGlobalVector(ctx->op.dm, &ucart));
+  *energy = PetscRealPart(integral[0]);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMFEDestroy(MMOperators *op)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MatDestroy(&op->K));
+  PetscCall(MatDestroy(&op->M));
+  PetscCall(MatDestroy(&op->Mstar));
+  PetscCall(MatDestroy(&op->Q));
+  PetscCall(VecDestroy(&op->load));
+  PetscCall(VecDestroy(&op->lift));
+  PetscCall(VecDestroy(&op->mass_lumped_cart));
+  PetscFunctionReturn(0);
+}

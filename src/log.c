@@ -1,0 +1,17 @@
+/* Log stages and events, registered together so -log_view shows where time goes. */
+#include "log.h"
+
+PetscErrorCode MMLogRegister(MMLog *log)
+{
+  PetscClassId id;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscClassIdRegister("mmcontact", &id));
+  PetscCall(PetscLogStageRegister("MM setup", &log->setup));
+  PetscCall(PetscLogStageRegister("MM time steps", &log->solve));
+  PetscCall(PetscLogStageRegister("MM output", &log->output));
+  PetscCall(PetscLogEventRegister("MMAssemble", id, &log->assemble));
+  PetscCall(PetscLogEventRegister("MMContactSolve", id, &log->contact_solve));
+  PetscCall(PetscLogEventRegister("MMEnergy", id, &log->energy));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,98 @@
+static char help[] = "mmcontact: elastodynamic contact with Coulomb friction by the modified mass method\n"
+                     "(Doyen & Ern, SIAM J. Numer. Anal. 2011). P1 elements on a gmsh mesh, trapezoidal Newmark,\n"
+                     "exact unilateral contact against a rigid plane through SNESVI. Run:\n"
+                     "  mpiexec -n 2 ./mmcontact -options_file options/d1_disk.opts\n\n";
+
+#include "options.h"
+#include "mesh.h"
+#include "fem.h"
+#include "contact.h"
+#include "newmark.h"
+#include "energy.h"
+#include "output.h"
+#include "log.h"
+
+/* Start-up report: what is being solved, and the contact CFL number of Theorem 4.2. */
+static PetscErrorCode ReportSetup(MMCtx *ctx, TS ts)
+{
+  PetscInt  N;
+  PetscReal dt;
+
+  PetscFunctionBeginUser;
+  if (ctx->opt.quiet) PetscFunctionReturn(0);
+  PetscCall(VecGetSize(ctx->state.u, &N));
+  PetscCall(TSGetTimeStep(ts, &dt));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "mmcontact: %s, %" PetscInt_FMT "D, %" PetscInt_FMT " dofs, %" PetscInt_FMT " contact nodes, %s %s mass, contact %s\n", ctx->opt.mesh_file, ctx->op.dim, N, ctx->contact.n_global, ctx->opt.lumped ? "lumped" : "consistent", MMMassTypes[ctx->opt.mass_type], ctx->contact.enabled ? "on" : "off"));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  c_p = %g, h_c' = %g, dt = %g, c_p dt / h_c' = %g\n", (double)ctx->op.c_p, (double)ctx->contact.h_c, (double)dt, ctx->contact.h_c > 0 ? (double)(ctx->op.c_p * dt / ctx->contact.h_c) : 0.0));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts)
+{
+  MPI_Comm  comm = PETSC_COMM_WORLD;
+  PetscReal dt;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMOptionsProcess(comm, &ctx->opt));
+  PetscCall(MMMeshLoad(comm, &ctx->opt, &ctx->op.dm));
+  PetscCall(DMGetDimension(ctx->op.dm, &ctx->op.dim));
+  PetscCall(MMOptionsCheckDimension(comm, &ctx->opt, ctx->op.dim));
+  PetscCall(MMFESetUp(ctx));
+  PetscCall(MMContactSetUp(ctx));
+  PetscCall(MMFEAssembleOperators(ctx));
+  PetscCall(MMNewmarkInitialState(ctx));
+  PetscCall(MMNewmarkCreateTS(ctx, ts));
+  PetscCall(TSGetTimeStep(*ts, &dt));
+  PetscCall(MMContactSetStepMatrix(ctx, dt));
+  ctx->hist.dt = dt;
+  PetscCall(MMEnergyInitial(ctx));
+  PetscCall(MMOutputOpen(ctx));
+  PetscCall(TSMonitorSet(*ts, MMOutputMonitor, ctx, NULL));
+  PetscCall(ReportSetup(ctx, *ts));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Destroy(MMCtx *ctx, TS *ts)
+{
+  MMState *s = &ctx->state;
+
+  PetscFunctionBeginUser;
+  PetscCall(TSDestroy(ts));
+  {
+    Vec *vecs[] = {&s->u, &s->v, &s->a, &s->u_old, &s->v_old, &s->a_old, &s->react, &s->react_old, &s->work, &s->u_next};
+    for (size_t i = 0; i < sizeof(vecs) / sizeof(vecs[0]); ++i) PetscCall(VecDestroy(vecs[i]));
+  }
+  PetscCall(MMContactDestroy(&ctx->contact));
+  PetscCall(MMFEDestroy(&ctx->op));
+  PetscCall(DMDestroy(&ctx->op.dm));
+  PetscCall(MMOptionsDestroy(&ctx->opt));
+  PetscFunctionReturn(0);
+}
+
+int main(int argc, char **argv)
+{
+  MMCtx          ctx;
+  TS             ts;
+  PetscLogDouble t0, t1;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscCall(PetscMemzero(&ctx, sizeof(ctx)));
+  PetscCall(MMLogRegister(&ctx.log));
+  PetscCall(MMNewmarkRegister());
+
+  PetscCall(PetscLogStagePush(ctx.log.setup));
+  PetscCall(SetupProblem(&ctx, &ts));
+  PetscCall(PetscLogStagePop());
+
+  PetscCall(PetscTime(&t0));
+  PetscCall(PetscLogStagePush(ctx.log.solve));
+  PetscCall(TSSolve(ts, ctx.state.u_next));
+  PetscCall(PetscLogStagePop());
+  PetscCall(PetscTime(&t1));
+
+  PetscCall(MMOutputClose(&ctx, t1 - t0));
+  PetscCall(Destroy(&ctx, &ts));
+  PetscCall(PetscFinalize());
+  return 0;
+}

@@ -1,0 +1,284 @@
+/* Trapezoidal Newmark (beta = 1/4, gamma = 1/2) with exact contact, as the PETSc TS type "newmark".
+ *
+ * Registering a TS type keeps -ts_dt, -ts_max_time, -ts_max_steps, -ts_monitor, -ts_view and
+ * TSAdapt. Each step solves the one contact problem of method.md section 3 for u^{n+1}; the
+ * massless contact-normal dofs carry no inertia, so their equation is quasi-static. */
+#include <petsc/private/tsimpl.h>
+#include "newmark.h"
+#include "contact.h"
+#include "energy.h"
+#include "fem.h"
+
+typedef struct {
+  MMCtx *ctx;
+} TS_Newmark;
+
+/* The dofs without inertia: the contact-normal dofs under the modified mass, none otherwise. */
+static PetscBool HasMasslessDofs(MMCtx *ctx)
+{
+  return (PetscBool)(ctx->contact.enabled && ctx->opt.mass_type == MM_MASS_MODIFIED);
+}
+
+/* b = L - lift + M* (4/dt^2 u^n + 4/dt v^n + a^n) */
+static PetscErrorCode StepRHS(MMCtx *ctx, PetscReal dt, Vec b)
+{
+  MMState *s = &ctx->state;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecAXPBYPCZ(s->work, 4.0 / (dt * dt), 4.0 / dt, 0.0, s->u, s->v));
+  PetscCall(VecAXPY(s->work, 1.0, s->a));
+  PetscCall(MatMult(ctx->op.Mstar, s->work, b));
+  PetscCall(VecAXPY(b, 1.0, ctx->op.load));
+  PetscCall(VecAXPY(b, -1.0, ctx->op.lift));
+  PetscFunctionReturn(0);
+}
+
+/* a^{n+1}, v^{n+1} from u^{n+1} by the trapezoidal rule; the massless dofs get a = 0 and the
+ * backward-difference velocity, which enter neither the dynamics nor the energy. */
+static PetscErrorCode UpdateKinematics(MMCtx *ctx, PetscReal dt, Vec w)
+{
+  MMState *s = &ctx->state;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecWAXPY(s->work, -1.0, s->u_old, w));
+  PetscCall(VecAXPBYPCZ(s->a, 4.0 / (dt * dt), -4.0 / dt, 0.0, s->work, s->v_old));
+  PetscCall(VecAXPY(s->a, -1.0, s->a_old));
+  PetscCall(VecWAXPY(s->v, 1.0, s->a_old, s->a));
+  PetscCall(VecAYPX(s->v, 0.5 * dt, s->v_old));
+  if (HasMasslessDofs(ctx)) {
+    Vec vc, dc;
+    PetscCall(VecISSet(s->a, ctx->contact.is_normal, 0.0));
+    PetscCall(VecGetSubVector(s->v, ctx->contact.is_normal, &vc));
+    PetscCall(VecGetSubVector(s->work, ctx->contact.is_normal, &dc));
+    PetscCall(VecAXPBY(vc, 1.0 / dt, 0.0, dc));
+    PetscCall(VecRestoreSubVector(s->work, ctx->contact.is_normal, &dc));
+    PetscCall(VecRestoreSubVector(s->v, ctx->contact.is_normal, &vc));
+  }
+  PetscCall(VecCopy(w, s->u));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SaveOldState(MMState *s)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(s->u, s->u_old));
+  PetscCall(VecCopy(s->v, s->v_old));
+  PetscCall(VecCopy(s->a, s->a_old));
+  PetscCall(VecCopy(s->react, s->react_old));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSStep_Newmark(TS ts)
+{
+  MMCtx    *ctx = ((TS_Newmark *)ts->data)->ctx;
+  MMState  *s   = &ctx->state;
+  PetscReal dt = ts->time_step, next_dt = dt;
+  PetscBool accept;
+  Vec       w  = ts->vec_sol;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMContactSetStepMatrix(ctx, dt));
+  PetscCall(SaveOldState(s));
+  PetscCall(StepRHS(ctx, dt, ctx->contact.qp.b));
+  /* predictor u + dt v + dt^2/4 a: exact for constant acceleration */
+  PetscCall(VecAXPBYPCZ(w, dt, 0.25 * dt * dt, 0.0, s->v, s->a));
+  PetscCall(VecAXPY(w, 1.0, s->u));
+  PetscCall(MMContactSolve(ctx, ctx->contact.qp.b, w, s->react));
+  PetscCall(UpdateKinematics(ctx, dt, w));
+  s->dt = dt;
+  PetscCall(TSAdaptChoose(ts->adapt, ts, dt, NULL, &next_dt, &accept));
+  if (!accept) {
+    ts->reason = TS_DIVERGED_STEP_REJECTED;
+    PetscFunctionReturn(0);
+  }
+  ts->ptime += dt;
+  ts->time_step = next_dt;
+  ctx->hist.step = ts->steps + 1;
+  ctx->hist.time = ts->ptime;
+  PetscCall(MMEnergyStep(ctx));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSDestroy_Newmark(TS ts)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(ts->data));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSView_Newmark(TS ts, PetscViewer viewer)
+{
+  PetscBool iascii;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &iascii));
+  if (iascii) PetscCall(PetscViewerASCIIPrintf(viewer, "  Trapezoidal Newmark (beta = 1/4, gamma = 1/2), contact exact at t^{n+1}\n"));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSCreate_Newmark(TS ts)
+{
+  TS_Newmark *nm;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&nm));
+  ts->data                = nm;
+  ts->ops->step           = TSStep_Newmark;
+  ts->ops->destroy        = TSDestroy_Newmark;
+  ts->ops->view           = TSView_Newmark;
+  ts->default_adapt_type  = TSADAPTNONE;
+  ts->usessnes            = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMNewmarkRegister(void)
+{
+  PetscFunctionBeginUser;
+  PetscCall(TSRegister(TSNEWMARK, TSCreate_Newmark));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMNewmarkCreateTS(MMCtx *ctx, TS *ts)
+{
+  MPI_Comm  comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  PetscReal dt;
+  TSType    type;
+  PetscBool isnewmark;
+
+  PetscFunctionBeginUser;
+  PetscCall(TSCreate(comm, ts));
+  PetscCall(TSSetType(*ts, TSNEWMARK));
+  PetscCall(TSSetProblemType(*ts, TS_LINEAR));
+  PetscCall(TSSetTimeStep(*ts, 1e-3));
+  PetscCall(TSSetMaxTime(*ts, 1.0));
+  PetscCall(TSSetExactFinalTime(*ts, TS_EXACTFINALTIME_STEPOVER));
+  PetscCall(TSSetFromOptions(*ts));
+  PetscCall(TSGetType(*ts, &type));
+  PetscCall(PetscStrcmp(type, TSNEWMARK, &isnewmark));
+  PetscCheck(isnewmark, comm, PETSC_ERR_USER_INPUT, "-ts_type %s is not supported: mmcontact steps with its own -ts_type newmark", type);
+  ((TS_Newmark *)(*ts)->data)->ctx = ctx;
+  PetscCall(TSGetTimeStep(*ts, &dt));
+  PetscCheck(dt > 0, comm, PETSC_ERR_USER_INPUT, "The time step -ts_dt %g must be > 0", (double)dt);
+  PetscCall(TSSetSolution(*ts, ctx->state.u_next));
+  PetscFunctionReturn(0);
+}
+
+/* Affine initial displacement u0 = a + B x */
+static PetscErrorCode InitialDisplacement(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar *u, void *ptr)
+{
+  const MMOptions *o = (const MMOptions *)ptr;
+  for (PetscInt c = 0; c < dim; ++c) {
+    u[c] = o->u0_offset[c];
+    for (PetscInt d = 0; d < dim; ++d) u[c] += o->u0_gradient[c * dim + d] * x[d];
+  }
+  return 0;
+}
+
+/* Initial velocity: translation plus rigid rotation omega x (x - c) */
+static PetscErrorCode InitialVelocity(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar *v, void *ptr)
+{
+  const MMOptions *o = (const MMOptions *)ptr;
+  const PetscReal *w = o->omega, *c = o->omega_center;
+  const PetscReal  r[3] = {x[0] - c[0], x[1] - c[1], dim == 3 ? x[2] - c[2] : 0};
+
+  if (dim == 2) {
+    v[0] = o->v0[0] - w[0] * r[1];
+    v[1] = o->v0[1] + w[0] * r[0];
+  } else {
+    v[0] = o->v0[0] + w[1] * r[2] - w[2] * r[1];
+    v[1] = o->v0[1] + w[2] * r[0] - w[0] * r[2];
+    v[2] = o->v0[2] + w[0] * r[1] - w[1] * r[0];
+  }
+  return 0;
+}
+
+static PetscErrorCode ProjectInitialField(MMCtx *ctx, PetscErrorCode (*f)(PetscInt, PetscReal, const PetscReal[], PetscInt, PetscScalar *, void *), Vec w)
+{
+  Vec   ucart;
+  void *fctx = &ctx->opt;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalVector(ctx->op.dm, &ucart));
+  PetscCall(DMProjectFunction(ctx->op.dm, 0.0, &f, &fctx, INSERT_VALUES, ucart));
+  PetscCall(MMFEFromCartesian(ctx, ucart, w));
+  PetscCall(DMRestoreGlobalVector(ctx->op.dm, &ucart));
+  PetscFunctionReturn(0);
+}
+
+/* a0 from M* a0 = L - lift - K u0 + f_c0 on the dofs with inertia. */
+static PetscErrorCode InitialAcceleration(MMCtx *ctx)
+{
+  MMState *s = &ctx->state;
+  IS       is = ctx->contact.is_star, all = NULL;
+  Mat      Mss;
+  Vec      r, rs, as;
+  KSP      ksp;
+  PC       pc;
+
+  PetscFunctionBeginUser;
+  if (!HasMasslessDofs(ctx)) {
+    PetscInt n, rstart;
+    PetscCall(VecGetLocalSize(s->u, &n));
+    PetscCall(VecGetOwnershipRange(s->u, &rstart, NULL));
+    PetscCall(ISCreateStride(PetscObjectComm((PetscObject)s->u), n, rstart, 1, &all));
+    is = all;
+  }
+  PetscCall(VecDuplicate(s->u, &r));
+  PetscCall(MatMult(ctx->op.K, s->u, r));
+  PetscCall(VecAYPX(r, -1.0, ctx->op.load));
+  PetscCall(VecAXPY(r, -1.0, ctx->op.lift));
+  PetscCall(VecAXPY(r, 1.0, s->react));
+  PetscCall(MatCreateSubMatrix(ctx->op.Mstar, is, is, MAT_INITIAL_MATRIX, &Mss));
+  PetscCall(KSPCreate(PetscObjectComm((PetscObject)s->u), &ksp));
+  PetscCall(KSPSetOptionsPrefix(ksp, "mass_"));
+  PetscCall(KSPSetOperators(ksp, Mss, Mss));
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCLU));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(KSPSetFromOptions(ksp));
+  PetscCall(VecZeroEntries(s->a));
+  PetscCall(VecGetSubVector(r, is, &rs));
+  PetscCall(VecGetSubVector(s->a, is, &as));
+  PetscCall(KSPSolve(ksp, rs, as));
+  PetscCall(VecRestoreSubVector(s->a, is, &as));
+  PetscCall(VecRestoreSubVector(r, is, &rs));
+  PetscCall(KSPDestroy(&ksp));
+  PetscCall(MatDestroy(&Mss));
+  PetscCall(VecDestroy(&r));
+  PetscCall(ISDestroy(&all));
+  PetscFunctionReturn(0);
+}
+
+/* The consistent initial state: u0, v0 from the options, the contact dofs projected by the
+ * quasi-static contact problem, the initial reaction, and a0 from the equation of motion. */
+PetscErrorCode MMNewmarkInitialState(MMCtx *ctx)
+{
+  MMState *s = &ctx->state;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMCreateGlobalVector(ctx->op.dm, &s->u));
+  {
+    Vec *copies[] = {&s->v, &s->a, &s->u_old, &s->v_old, &s->a_old, &s->react, &s->react_old, &s->work, &s->u_next};
+    for (size_t i = 0; i < sizeof(copies) / sizeof(copies[0]); ++i) PetscCall(VecDuplicate(s->u, copies[i]));
+  }
+  PetscCall(ProjectInitialField(ctx, InitialDisplacement, s->u));
+  PetscCall(ProjectInitialField(ctx, InitialVelocity, s->v));
+  PetscCall(MMContactProjectInitial(ctx, s->u));
+  /* f_c0 = K u0 + lift - L on the massless dofs: their quasi-static equation */
+  PetscCall(VecZeroEntries(s->react));
+  if (HasMasslessDofs(ctx)) {
+    Vec rc, fc;
+    PetscCall(MatMult(ctx->op.K, s->u, s->work));
+    PetscCall(VecAXPY(s->work, 1.0, ctx->op.lift));
+    PetscCall(VecAXPY(s->work, -1.0, ctx->op.load));
+    PetscCall(VecGetSubVector(s->work, ctx->contact.is_normal, &fc));
+    PetscCall(VecGetSubVector(s->react, ctx->contact.is_normal, &rc));
+    PetscCall(VecCopy(fc, rc));
+    PetscCall(VecRestoreSubVector(s->react, ctx->contact.is_normal, &rc));
+    PetscCall(VecRestoreSubVector(s->work, ctx->contact.is_normal, &fc));
+  }
+  PetscCall(InitialAcceleration(ctx));
+  PetscCall(VecCopy(s->u, s->u_next));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,212 @@
+/* Output: the per-step history (CSV), HDF5 fields for ParaView with their XDMF index, and the closing summary.
+ *
+ * The HDF5 file is opened and closed around every write and the XDMF index rewritten after it, so
+ * whatever stops the run, everything written so far stays readable. */
+#include <petscsf.h>
+#include <petscviewerhdf5.h>
+#include "output.h"
+#include "contact.h"
+#include "fem.h"
+
+static PetscErrorCode CSVHeader(MMCtx *ctx)
+{
+  const char *axes = "xyz";
+  PetscInt    dim  = ctx->op.dim;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscFPrintf(PETSC_COMM_WORLD, ctx->out.csv, "step,time,dt,kinetic,elastic,total,work_ext,work_contact,work_friction,balance_residual,active,slipping,force_normal,force_tangential,max_penetration,coulomb_residual,vi_its,friction_its,cfl"));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(PetscFPrintf(PETSC_COMM_WORLD, ctx->out.csv, ",ucm_%c", axes[d]));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(PetscFPrintf(PETSC_COMM_WORLD, ctx->out.csv, ",vcm_%c", axes[d]));
+  if (dim == 2) PetscCall(PetscFPrintf(PETSC_COMM_WORLD, ctx->out.csv, ",L_z"));
+  else PetscCall(PetscFPrintf(PETSC_COMM_WORLD, ctx->out.csv, ",L_x,L_y,L_z"));
+  PetscCall(PetscFPrintf(PETSC_COMM_WORLD, ctx->out.csv, ",switched\n"));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CSVRow(MMCtx *ctx)
+{
+  const MMHistory *h   = &ctx->hist;
+  PetscInt         dim = ctx->op.dim;
+  FILE            *f   = ctx->out.csv;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "%" PetscInt_FMT ",%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.6e,%" PetscInt_FMT ",%" PetscInt_FMT ",%.16e,%.16e,%.6e,%.6e,%" PetscInt_FMT ",%" PetscInt_FMT ",%.6e", h->step, (double)h->time, (double)h->dt, (double)h->kinetic, (double)h->elastic, (double)h->total, (double)h->work_ext, (double)h->work_contact, (double)h->work_friction, (double)h->balance_residual, h->active, h->slipping, (double)h->force_normal, (double)h->force_tangential, (double)h->max_penetration, (double)h->coulomb_residual, h->vi_its, h->friction_its, (double)h->cfl));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, ",%.16e", (double)h->ucm[d]));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, ",%.16e", (double)h->vcm[d]));
+  if (dim == 2) PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, ",%.16e", (double)h->L[2]));
+  else PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, ",%.16e,%.16e,%.16e", (double)h->L[0], (double)h->L[1], (double)h->L[2]));
+  PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, ",%" PetscInt_FMT "\n", h->switched));
+  /* a row on disk is a row the user keeps, whatever happens next */
+  if (f) PetscCheck(fflush(f) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not write the history file");
+  PetscFunctionReturn(0);
+}
+
+/* The XDMF index of the HDF5 file, rewritten after every write so ParaView always opens all of it. */
+static PetscErrorCode WriteXDMF(MMCtx *ctx)
+{
+  MMOutput   *o   = &ctx->out;
+  DM          dm  = ctx->op.dm;
+  PetscInt    dim = ctx->op.dim, nv, nc, vStart, vEnd, cStart, cEnd;
+  char        xmf[PETSC_MAX_PATH_LEN], h5base[PETSC_MAX_PATH_LEN];
+  FILE       *f;
+  const char *topo = dim == 2 ? "Triangle" : "Tetrahedron";
+  const char *fields[]  = {"displacement", "velocity", "contact_pressure", "gap"};
+  const char *datasets[] = {"displacement_displacement", "velocity_displacement", "contact_pressure_nodal", "gap_nodal"};
+  const PetscInt ncomp[] = {dim, dim, 1, 1};
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  {
+    PetscInt loc[2], glob[2];
+    PetscSF  sf;
+    PetscInt nleaves;
+    const PetscInt *leaves;
+    PetscCall(DMGetPointSF(dm, &sf));
+    PetscCall(PetscSFGetGraph(sf, NULL, &nleaves, &leaves, NULL));
+    loc[0] = vEnd - vStart;
+    for (PetscInt l = 0; l < nleaves; ++l) {
+      const PetscInt p = leaves ? leaves[l] : l;
+      if (p >= vStart && p < vEnd) --loc[0];
+    }
+    loc[1] = cEnd - cStart;
+    PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)dm)));
+    nv = glob[0];
+    nc = glob[1];
+  }
+  PetscCall(PetscSNPrintf(xmf, sizeof(xmf), "%s/solution.xmf", ctx->opt.output_dir));
+  PetscCall(PetscStrcpy(h5base, "solution.h5"));
+  PetscCall(PetscFOpen(PETSC_COMM_WORLD, xmf, "w", &f));
+  PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf xmlns:xi=\"http://www.w3.org/2001/XInclude\" Version=\"2.99\">\n<Domain>\n"));
+  PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<Grid Name=\"mmcontact\" GridType=\"Collection\" CollectionType=\"Temporal\">\n"));
+  for (PetscInt k = 0; k < o->n_written; ++k) {
+    PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<Grid Name=\"step %" PetscInt_FMT "\" GridType=\"Uniform\">\n<Time Value=\"%.16e\"/>\n", k, (double)o->times[k]));
+    PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<Topology TopologyType=\"%s\" NumberOfElements=\"%" PetscInt_FMT "\">\n<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Int\" Format=\"HDF\">%s:/viz/topology/cells</DataItem>\n</Topology>\n", topo, nc, nc, dim + 1, h5base));
+    PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<Geometry GeometryType=\"%s\">\n<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n</Geometry>\n", dim == 2 ? "XY" : "XYZ", nv, dim, h5base));
+    for (size_t i = 0; i < sizeof(fields) / sizeof(fields[0]); ++i) {
+      PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", fields[i], ncomp[i] > 1 ? "Vector" : "Scalar"));
+      PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT " %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", nv, ncomp[i]));
+      PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<DataItem Dimensions=\"3 3\" Format=\"XML\">%" PetscInt_FMT " 0 0 1 1 1 1 %" PetscInt_FMT " %" PetscInt_FMT "</DataItem>\n", k, nv, ncomp[i]));
+      PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n</DataItem>\n</Attribute>\n", o->n_written, nv, ncomp[i], h5base, datasets[i]));
+    }
+    PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "</Grid>\n"));
+  }
+  PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "</Grid>\n</Domain>\n</Xdmf>\n"));
+  PetscCall(PetscFClose(PETSC_COMM_WORLD, f));
+  PetscFunctionReturn(0);
+}
+
+/* Writes the current fields as output number n_written, then closes the file again. */
+static PetscErrorCode WriteFields(MMCtx *ctx)
+{
+  MMOutput   *o = &ctx->out;
+  PetscViewer v;
+  PetscReal   t = ctx->hist.time;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(ctx->log.output));
+  PetscCall(MMFEToCartesian(ctx, ctx->state.u, o->disp_cart));
+  PetscCall(MMFEToCartesian(ctx, ctx->state.v, o->vel_cart));
+  PetscCall(MMContactNodalFields(ctx, ctx->state.u, ctx->state.react, o->pressure, o->gap));
+  PetscCall(PetscViewerHDF5Open(PETSC_COMM_WORLD, o->h5_name, FILE_MODE_APPEND, &v));
+  PetscCall(PetscViewerPushFormat(v, PETSC_VIEWER_HDF5_XDMF));
+  PetscCall(DMSetOutputSequenceNumber(ctx->op.dm, o->n_written, t));
+  PetscCall(DMSetOutputSequenceNumber(o->dm_scalar, o->n_written, t));
+  PetscCall(VecView(o->disp_cart, v));
+  PetscCall(VecView(o->vel_cart, v));
+  PetscCall(VecView(o->pressure, v));
+  PetscCall(VecView(o->gap, v));
+  PetscCall(PetscViewerPopFormat(v));
+  PetscCall(PetscViewerDestroy(&v));
+  PetscCall(PetscRealloc(sizeof(PetscReal) * (o->n_written + 1), &o->times));
+  o->times[o->n_written++] = t;
+  PetscCall(WriteXDMF(ctx));
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(0);
+}
+
+/* mkdir -p: each missing component of the path, on rank 0 */
+static PetscErrorCode MakeDirectories(const char path[])
+{
+  char      dir[PETSC_MAX_PATH_LEN];
+  PetscBool exists;
+  size_t    len;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(dir, path, sizeof(dir)));
+  PetscCall(PetscStrlen(dir, &len));
+  for (size_t i = 1; i <= len; ++i) {
+    if (dir[i] != '/' && dir[i] != 0) continue;
+    dir[i] = 0;
+    PetscCall(PetscTestDirectory(dir, 'w', &exists));
+    if (!exists) PetscCall(PetscMkdir(dir));
+    if (i < len) dir[i] = '/';
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMOutputOpen(MMCtx *ctx)
+{
+  MMOutput   *o = &ctx->out;
+  char        name[PETSC_MAX_PATH_LEN];
+  PetscViewer v;
+  PetscMPIInt rank;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
+  if (rank == 0) PetscCall(MakeDirectories(ctx->opt.output_dir));
+  PetscCallMPI(MPI_Barrier(PETSC_COMM_WORLD));
+  PetscCall(PetscSNPrintf(name, sizeof(name), "%s/history.csv", ctx->opt.output_dir));
+  PetscCall(PetscFOpen(PETSC_COMM_WORLD, name, "w", &o->csv));
+  PetscCall(CSVHeader(ctx));
+  PetscCall(PetscSNPrintf(o->h5_name, sizeof(o->h5_name), "%s/solution.h5", ctx->opt.output_dir));
+  PetscCall(PetscViewerHDF5Open(PETSC_COMM_WORLD, o->h5_name, FILE_MODE_WRITE, &v));
+  PetscCall(PetscViewerPushFormat(v, PETSC_VIEWER_HDF5_XDMF));
+  PetscCall(DMView(ctx->op.dm, v));
+  PetscCall(PetscViewerPopFormat(v));
+  PetscCall(PetscViewerDestroy(&v));
+  PetscCall(DMCreateGlobalVector(ctx->op.dm, &o->disp_cart));
+  PetscCall(DMCreateGlobalVector(ctx->op.dm, &o->vel_cart));
+  PetscCall(DMCreateGlobalVector(o->dm_scalar, &o->pressure));
+  PetscCall(DMCreateGlobalVector(o->dm_scalar, &o->gap));
+  PetscCall(PetscObjectSetName((PetscObject)o->disp_cart, "displacement"));
+  PetscCall(PetscObjectSetName((PetscObject)o->vel_cart, "velocity"));
+  PetscCall(PetscObjectSetName((PetscObject)o->pressure, "contact_pressure"));
+  PetscCall(PetscObjectSetName((PetscObject)o->gap, "gap"));
+  PetscFunctionReturn(0);
+}
+
+/* TS monitor: one history row per step, fields every -output_every steps. */
+PetscErrorCode MMOutputMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ptr)
+{
+  MMCtx   *ctx   = (MMCtx *)ptr;
+  PetscInt every = ctx->opt.output_every;
+
+  PetscFunctionBeginUser;
+  PetscCall(CSVRow(ctx));
+  if (step == 0 || (every > 0 && step % every == 0)) PetscCall(WriteFields(ctx));
+  ctx->out.last_written = step;
+  PetscFunctionReturn(0);
+}
+
+/* Writes the final state if the cadence missed it, closes the files and prints the summary. */
+PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble wall)
+{
+  MMOutput *o = &ctx->out;
+  MMHistory *h = &ctx->hist;
+
+  PetscFunctionBeginUser;
+  if (o->n_written && o->times[o->n_written - 1] != h->time) PetscCall(WriteFields(ctx));
+  PetscCall(PetscFClose(PETSC_COMM_WORLD, o->csv));
+  if (!ctx->opt.quiet) {
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "mmcontact summary: %" PetscInt_FMT " steps to t = %g in %.2f s wall; largest balance residual %.3e; largest penetration %.3e (h_c' %.3e)\n", h->step, (double)h->time, (double)wall, (double)h->max_balance, (double)h->max_penetration_run, (double)ctx->contact.h_c));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  output: %s/history.csv, %s (%" PetscInt_FMT " snapshots), %s/solution.xmf\n", ctx->opt.output_dir, o->h5_name, o->n_written, ctx->opt.output_dir));
+  }
+  PetscCall(VecDestroy(&o->disp_cart));
+  PetscCall(VecDestroy(&o->vel_cart));
+  PetscCall(VecDestroy(&o->pressure));
+  PetscCall(VecDestroy(&o->gap));
+  PetscCall(DMDestroy(&o->dm_scalar));
+  PetscCall(PetscFree(o->times));
+  PetscFunctionReturn(0);
+}
