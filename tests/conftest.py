@@ -1,0 +1,47 @@
+"""Shared helpers: run mmcontact through mpiexec and read what it writes.
+
+Every test runs the real executable on a real mesh and asserts numbers with tolerances."""
+import os
+import subprocess
+
+import h5py
+import numpy as np
+import pytest
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+EXE = os.path.join(ROOT, "mmcontact")
+MPIEXEC = ["mpiexec", "--allow-run-as-root", "--oversubscribe"]
+UNUSED = "There are options you set that were not used"
+
+
+class Run:
+    def __init__(self, proc, outdir):
+        self.returncode = proc.returncode
+        self.output = proc.stdout + proc.stderr
+        self.outdir = outdir
+
+    @property
+    def history(self):
+        return np.genfromtxt(os.path.join(self.outdir, "history.csv"), delimiter=",", names=True)
+
+    def fields(self):
+        return h5py.File(os.path.join(self.outdir, "solution.h5"), "r")
+
+
+def run(case, tmp_path, *extra, np_=1, name="out", check=True):
+    """Runs options/<case>.opts with extra options on np_ ranks, output under tmp_path/name."""
+    outdir = str(tmp_path / name)
+    args = MPIEXEC + ["-n", str(np_), EXE, "-options_file", os.path.join(ROOT, "options", case + ".opts"),
+                      "-output_dir", outdir, "-options_left", *map(str, extra)]
+    proc = subprocess.run(args, cwd=ROOT, capture_output=True, text=True, timeout=900)
+    r = Run(proc, outdir)
+    if check:
+        assert r.returncode == 0, r.output[-3000:]
+        # an option nobody used is a typo in a test or an options file
+        assert UNUSED not in r.output, r.output[-2000:]
+    return r
+
+
+@pytest.fixture
+def mm(tmp_path):
+    return lambda case, *extra, **kw: run(case, tmp_path, *extra, **kw)

@@ -1,0 +1,29 @@
+"""Bad input exits non-zero with a message that names the problem."""
+import pytest
+
+from conftest import run
+
+CASES = [
+    (["-mesh", "meshes/no_such_mesh.msh"], ["no_such_mesh.msh", "does not exist"]),
+    (["-contact_boundary", "bottom"], ['no physical group named "bottom"']),
+    (["-dirichlet", "clamp"], ['no physical group named "clamp"']),
+    (["-nu", "0.5"], ["Poisson ratio -nu 0.5", "must lie in (-1, 0.5)"]),
+    (["-nu", "0.7"], ["Poisson ratio -nu 0.7", "must lie in (-1, 0.5)"]),
+    (["-E", "0"], ["Young's modulus -E 0", "must be > 0"]),
+    (["-E", "-5"], ["Young's modulus -E -5", "must be > 0"]),
+    (["-ts_dt", "0"], ["time step -ts_dt 0", "must be > 0"]),
+    (["-ts_dt", "-0.01"], ["time step -ts_dt -0.01", "must be > 0"]),
+]
+
+
+@pytest.mark.parametrize("extra,messages", CASES)
+def test_bad_input_is_named(tmp_path, extra, messages):
+    r = run("d1_disk", tmp_path, *extra, check=False)
+    assert r.returncode != 0
+    for m in messages:
+        assert m in r.output, r.output[-1500:]
+
+
+def test_unknown_name_lists_the_known_ones(tmp_path):
+    r = run("d1_disk", tmp_path, "-contact_boundary", "bottom", check=False)
+    assert '"contact"' in r.output and '"upper"' in r.output and '"body"' in r.output
