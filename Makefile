@@ -20,12 +20,14 @@ deps:
 	@bash scripts/install-deps
 
 build/%.o: src/%.c $(HDR) | build
-	${PCC} ${PCC_FLAGS} ${CFLAGS_MM} -c $< -o $@
+	@echo "  CC  $<"
+	@${PCC} ${PCC_FLAGS} ${CFLAGS_MM} -c $< -o $@
 build:
 	@mkdir -p build
 
 mmcontact: $(OBJ)
-	${CLINKER} -o $@ $(OBJ) ${PETSC_LIB} -lmetis
+	@echo "  LD  $@"
+	@${CLINKER} -o $@ $(OBJ) ${PETSC_LIB} -lmetis
 
 meshes: $(MSH)
 meshes/bar80.msh: meshes/bar.geo
@@ -37,7 +39,7 @@ meshes/disk.msh: meshes/disk.geo
 meshes/ball.msh: meshes/ball.geo
 	gmsh -3 $< -o $@ -v 2
 meshes/disk_bench.msh: meshes/disk.geo
-	gmsh -2 $< -setnumber H 0.006 -o $@ -v 2
+	gmsh -2 $< -setnumber H 0.008 -setnumber G 0.001 -o $@ -v 2
 
 run: deps
 	$(MAKE) mmcontact meshes

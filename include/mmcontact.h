@@ -79,6 +79,8 @@ typedef struct {
   Vec       lift;   /* K_fD u_D: the Dirichlet data's elastic force on the free dofs (w-frame) */
   Vec       mass_lumped_cart; /* lumped standard mass per Cartesian dof, for rigid-body diagnostics */
   PetscReal c_p;    /* pressure wave speed */
+  PetscReal energy_dirichlet; /* elastic energy of the Dirichlet data alone, 1/2 u_D.A_DD u_D */
+  Vec       work;
 } MMOperators;
 
 /* A bound-constrained quadratic problem A x = b, x <= upper, as the SNESVI residual context. */
@@ -145,7 +147,8 @@ typedef struct {
   char        h5_name[PETSC_MAX_PATH_LEN];
   PetscInt    n_written, last_written;
   PetscReal  *times;                 /* time of each snapshot */
-  Vec         disp_cart, vel_cart;  /* Cartesian output fields */
+  DM          dm_out;                /* the displacement field without constraints: output of whole fields */
+  Vec         disp_cart, vel_cart;  /* Cartesian output fields on dm_out */
   DM          dm_scalar;             /* one scalar per vertex: pressure, gap */
   Vec         pressure, gap;
 } MMOutput;

@@ -53,6 +53,7 @@ PetscErrorCode MMEnergyInitial(MMCtx *ctx)
   h->work_ext = h->work_contact = h->work_friction = 0;
   h->balance_residual = h->max_balance = h->max_penetration_run = 0;
   h->cfl = ctx->contact.enabled ? ctx->op.c_p * h->dt / ctx->contact.h_c : 0;
+  PetscCall(MMFECheckElasticEnergy(ctx, ctx->state.u));
   PetscCall(TotalEnergy(ctx, h));
   PetscCall(MMContactDiagnostics(ctx, ctx->state.u, ctx->state.react, h));
   h->switched = 0;
@@ -99,7 +100,7 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
 PetscErrorCode MMRigidBodyDiagnostics(MMCtx *ctx, MMHistory *h)
 {
   DM                 dm = ctx->op.dm;
-  PetscSection       gs, cs;
+  PetscSection       gs, ls, cs;
   PetscInt           vStart, vEnd, dim = ctx->op.dim, rstart;
   Vec                uc, vc, X;
   const PetscScalar *u, *v, *m, *x;
@@ -112,6 +113,7 @@ PetscErrorCode MMRigidBodyDiagnostics(MMCtx *ctx, MMHistory *h)
   PetscCall(MMFEToCartesian(ctx, ctx->state.u, uc));
   PetscCall(MMFEToCartesian(ctx, ctx->state.v, vc));
   PetscCall(DMGetGlobalSection(dm, &gs));
+  PetscCall(DMGetLocalSection(dm, &ls));
   PetscCall(DMGetCoordinateSection(dm, &cs));
   PetscCall(DMGetCoordinatesLocal(dm, &X));
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
@@ -124,8 +126,8 @@ PetscErrorCode MMRigidBodyDiagnostics(MMCtx *ctx, MMHistory *h)
   for (PetscInt p = vStart; p < vEnd; ++p) {
     PetscInt goff, dof, xoff;
     PetscCall(PetscSectionGetOffset(gs, p, &goff));
-    PetscCall(PetscSectionGetDof(gs, p, &dof));
-    if (goff < 0 || dof != dim) continue;
+    PetscCall(PetscSectionGetConstraintDof(ls, p, &dof));
+    if (goff < 0 || dof) continue;
     PetscCall(PetscSectionGetOffset(cs, p, &xoff));
     goff -= rstart;
     sum[0] += PetscRealPart(m[goff]);
@@ -149,8 +151,8 @@ PetscErrorCode MMRigidBodyDiagnostics(MMCtx *ctx, MMHistory *h)
       PetscInt  goff, dof, xoff;
       PetscReal r[3] = {0, 0, 0}, w[3] = {0, 0, 0}, mp;
       PetscCall(PetscSectionGetOffset(gs, p, &goff));
-      PetscCall(PetscSectionGetDof(gs, p, &dof));
-      if (goff < 0 || dof != dim) continue;
+      PetscCall(PetscSectionGetConstraintDof(ls, p, &dof));
+      if (goff < 0 || dof) continue;
       PetscCall(PetscSectionGetOffset(cs, p, &xoff));
       goff -= rstart;
       mp = PetscRealPart(m[goff]);

@@ -45,6 +45,8 @@ static void obj_elastic_energy(PetscInt dim, PetscInt Nf, PetscInt NfAux, const 
   obj[0] = mu * ee + 0.5 * lambda * tr * tr;
 }
 
+static PetscErrorCode DirichletEnergy(MMCtx *);
+
 /* Dirichlet data: constant values per fixed component; ctx is the MMDirichlet. */
 static PetscErrorCode bc_constant(PetscInt dim, PetscReal time, const PetscReal x[], PetscInt Nc, PetscScalar *u, void *ctx)
 {
@@ -297,13 +299,19 @@ static PetscErrorCode AssembleMatrix(MMCtx *ctx, PetscReal wK, PetscReal wM, Mat
 /* K_fD u_D: the elastic force of the Dirichlet data on the free dofs, the residual at u_free = 0. */
 static PetscErrorCode DirichletLift(DM dm, Vec lift)
 {
-  Vec xloc;
+  Vec xloc, floc;
 
   PetscFunctionBeginUser;
   PetscCall(DMGetLocalVector(dm, &xloc));
+  PetscCall(DMGetLocalVector(dm, &floc));
   PetscCall(VecZeroEntries(xloc));
+  PetscCall(VecZeroEntries(floc));
   PetscCall(DMPlexInsertBoundaryValues(dm, PETSC_TRUE, xloc, 0.0, NULL, NULL, NULL));
-  PetscCall(DMPlexSNESComputeResidualFEM(dm, xloc, lift, NULL));
+  /* in PETSc 3.18 both vectors of the FEM residual are local */
+  PetscCall(DMPlexSNESComputeResidualFEM(dm, xloc, floc, NULL));
+  PetscCall(VecZeroEntries(lift));
+  PetscCall(DMLocalToGlobal(dm, floc, ADD_VALUES, lift));
+  PetscCall(DMRestoreLocalVector(dm, &floc));
   PetscCall(DMRestoreLocalVector(dm, &xloc));
   PetscFunctionReturn(0);
 }
@@ -348,6 +356,8 @@ PetscErrorCode MMFEAssembleOperators(MMCtx *ctx)
   PetscCall(MatMultTranspose(ctx->op.Q, Lcart, ctx->op.load));
   PetscCall(DirichletLift(dm, tmp));
   PetscCall(MatMultTranspose(ctx->op.Q, tmp, ctx->op.lift));
+  PetscCall(DirichletEnergy(ctx));
+  PetscCall(VecDuplicate(ctx->op.load, &ctx->op.work));
 
   if (ctx->opt.lumped) {
     /* equal per component at each node, so the frame rotation leaves it diagonal and unchanged */
@@ -385,18 +395,50 @@ PetscErrorCode MMFEFromCartesian(MMCtx *ctx, Vec ucart, Vec w)
   PetscFunctionReturn(0);
 }
 
-/* 1/2 int sigma(u):eps(u) of the whole field, Dirichlet data included. */
+/* Elastic energy of the whole field, Dirichlet data included: with u = (w, u_D),
+ * 1/2 u.A u = 1/2 w.K w + w.lift + 1/2 u_D.A_DD u_D. One MatMult per call, where the FE
+ * integral of 1/2 sigma:eps would cost an assembly. */
 PetscErrorCode MMFEElasticEnergy(MMCtx *ctx, Vec w, PetscReal *energy)
 {
+  PetscScalar wKw, wl;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatMult(ctx->op.K, w, ctx->op.work));
+  PetscCall(VecDot(w, ctx->op.work, &wKw));
+  PetscCall(VecDot(w, ctx->op.lift, &wl));
+  *energy = 0.5 * PetscRealPart(wKw) + PetscRealPart(wl) + ctx->op.energy_dirichlet;
+  PetscFunctionReturn(0);
+}
+
+/* 1/2 int sigma(u_D):eps(u_D) by quadrature, once: the free dofs zero, the Dirichlet data inserted. */
+static PetscErrorCode DirichletEnergy(MMCtx *ctx)
+{
   PetscScalar integral[1];
+  Vec         zero;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalVector(ctx->op.dm, &zero));
+  PetscCall(VecZeroEntries(zero));
+  PetscCall(DMPlexComputeIntegralFEM(ctx->op.dm, zero, integral, NULL));
+  PetscCall(DMRestoreGlobalVector(ctx->op.dm, &zero));
+  ctx->op.energy_dirichlet = PetscRealPart(integral[0]);
+  PetscFunctionReturn(0);
+}
+
+/* Start-up audit: the matrix form of the elastic energy against its quadrature on the state w. */
+PetscErrorCode MMFECheckElasticEnergy(MMCtx *ctx, Vec w)
+{
+  PetscScalar integral[1];
+  PetscReal   e;
   Vec         ucart;
 
   PetscFunctionBeginUser;
+  PetscCall(MMFEElasticEnergy(ctx, w, &e));
   PetscCall(DMGetGlobalVector(ctx->op.dm, &ucart));
   PetscCall(MMFEToCartesian(ctx, w, ucart));
   PetscCall(DMPlexComputeIntegralFEM(ctx->op.dm, ucart, integral, NULL));
   PetscCall(DMRestoreGlobalVector(ctx->op.dm, &ucart));
-  *energy = PetscRealPart(integral[0]);
+  PetscCheck(PetscAbsReal(e - PetscRealPart(integral[0])) <= 1e-10 * PetscMax(PetscAbsReal(e), PETSC_SMALL), PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_PLIB, "Elastic energy audit failed: matrix form %.16e, quadrature %.16e", (double)e, (double)PetscRealPart(integral[0]));
   PetscFunctionReturn(0);
 }
 
@@ -410,5 +452,6 @@ PetscErrorCode MMFEDestroy(MMOperators *op)
   PetscCall(VecDestroy(&op->load));
   PetscCall(VecDestroy(&op->lift));
   PetscCall(VecDestroy(&op->mass_lumped_cart));
+  PetscCall(VecDestroy(&op->work));
   PetscFunctionReturn(0);
 }

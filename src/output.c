@@ -4,6 +4,7 @@
  * whatever stops the run, everything written so far stays readable. */
 #include <petscsf.h>
 #include <petscviewerhdf5.h>
+#include <sys/resource.h>
 #include "output.h"
 #include "contact.h"
 #include "fem.h"
@@ -85,14 +86,40 @@ static PetscErrorCode WriteXDMF(MMCtx *ctx)
     PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<Geometry GeometryType=\"%s\">\n<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n</Geometry>\n", dim == 2 ? "XY" : "XYZ", nv, dim, h5base));
     for (size_t i = 0; i < sizeof(fields) / sizeof(fields[0]); ++i) {
       PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", fields[i], ncomp[i] > 1 ? "Vector" : "Scalar"));
-      PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT " %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", nv, ncomp[i]));
-      PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<DataItem Dimensions=\"3 3\" Format=\"XML\">%" PetscInt_FMT " 0 0 1 1 1 1 %" PetscInt_FMT " %" PetscInt_FMT "</DataItem>\n", k, nv, ncomp[i]));
-      PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n</DataItem>\n</Attribute>\n", o->n_written, nv, ncomp[i], h5base, datasets[i]));
+      if (ncomp[i] > 1) {
+        PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT " %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", nv, ncomp[i]));
+        PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<DataItem Dimensions=\"3 3\" Format=\"XML\">%" PetscInt_FMT " 0 0 1 1 1 1 %" PetscInt_FMT " %" PetscInt_FMT "</DataItem>\n", k, nv, ncomp[i]));
+        PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n</DataItem>\n</Attribute>\n", o->n_written, nv, ncomp[i], h5base, datasets[i]));
+      } else {
+        PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", nv));
+        PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<DataItem Dimensions=\"3 2\" Format=\"XML\">%" PetscInt_FMT " 0 1 1 1 %" PetscInt_FMT "</DataItem>\n", k, nv));
+        PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n</DataItem>\n</Attribute>\n", o->n_written, nv, h5base, datasets[i]));
+      }
     }
     PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "</Grid>\n"));
   }
   PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "</Grid>\n</Domain>\n</Xdmf>\n"));
   PetscCall(PetscFClose(PETSC_COMM_WORLD, f));
+  PetscFunctionReturn(0);
+}
+
+/* The Cartesian field on every node, from the free dofs w: the Dirichlet data on constrained dofs for
+ * the displacement, zero for the velocity (the data are constant in time). */
+static PetscErrorCode WholeField(MMCtx *ctx, Vec w, PetscBool with_bc, Vec whole)
+{
+  DM  dm = ctx->op.dm;
+  Vec g, l;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalVector(dm, &g));
+  PetscCall(DMGetLocalVector(dm, &l));
+  PetscCall(MMFEToCartesian(ctx, w, g));
+  PetscCall(VecZeroEntries(l));
+  PetscCall(DMGlobalToLocal(dm, g, INSERT_VALUES, l));
+  if (with_bc) PetscCall(DMPlexInsertBoundaryValues(dm, PETSC_TRUE, l, ctx->hist.time, NULL, NULL, NULL));
+  PetscCall(DMLocalToGlobal(ctx->out.dm_out, l, INSERT_VALUES, whole));
+  PetscCall(DMRestoreLocalVector(dm, &l));
+  PetscCall(DMRestoreGlobalVector(dm, &g));
   PetscFunctionReturn(0);
 }
 
@@ -105,12 +132,12 @@ static PetscErrorCode WriteFields(MMCtx *ctx)
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(ctx->log.output));
-  PetscCall(MMFEToCartesian(ctx, ctx->state.u, o->disp_cart));
-  PetscCall(MMFEToCartesian(ctx, ctx->state.v, o->vel_cart));
+  PetscCall(WholeField(ctx, ctx->state.u, PETSC_TRUE, o->disp_cart));
+  PetscCall(WholeField(ctx, ctx->state.v, PETSC_FALSE, o->vel_cart));
   PetscCall(MMContactNodalFields(ctx, ctx->state.u, ctx->state.react, o->pressure, o->gap));
   PetscCall(PetscViewerHDF5Open(PETSC_COMM_WORLD, o->h5_name, FILE_MODE_APPEND, &v));
   PetscCall(PetscViewerPushFormat(v, PETSC_VIEWER_HDF5_XDMF));
-  PetscCall(DMSetOutputSequenceNumber(ctx->op.dm, o->n_written, t));
+  PetscCall(DMSetOutputSequenceNumber(o->dm_out, o->n_written, t));
   PetscCall(DMSetOutputSequenceNumber(o->dm_scalar, o->n_written, t));
   PetscCall(VecView(o->disp_cart, v));
   PetscCall(VecView(o->vel_cart, v));
@@ -165,8 +192,21 @@ PetscErrorCode MMOutputOpen(MMCtx *ctx)
   PetscCall(DMView(ctx->op.dm, v));
   PetscCall(PetscViewerPopFormat(v));
   PetscCall(PetscViewerDestroy(&v));
-  PetscCall(DMCreateGlobalVector(ctx->op.dm, &o->disp_cart));
-  PetscCall(DMCreateGlobalVector(ctx->op.dm, &o->vel_cart));
+  {
+    PetscFE      fe;
+    PetscSection s;
+    const char  *names[] = {"displacement_x", "displacement_y", "displacement_z"};
+    PetscCall(DMClone(ctx->op.dm, &o->dm_out));
+    PetscCall(PetscFECreateLagrange(PETSC_COMM_WORLD, ctx->op.dim, ctx->op.dim, PETSC_TRUE, 1, PETSC_DETERMINE, &fe));
+    PetscCall(PetscObjectSetName((PetscObject)fe, "displacement"));
+    PetscCall(DMSetField(o->dm_out, 0, NULL, (PetscObject)fe));
+    PetscCall(PetscFEDestroy(&fe));
+    PetscCall(DMCreateDS(o->dm_out));
+    PetscCall(DMGetLocalSection(o->dm_out, &s));
+    for (PetscInt c = 0; c < ctx->op.dim; ++c) PetscCall(PetscSectionSetComponentName(s, 0, c, names[c]));
+  }
+  PetscCall(DMCreateGlobalVector(o->dm_out, &o->disp_cart));
+  PetscCall(DMCreateGlobalVector(o->dm_out, &o->vel_cart));
   PetscCall(DMCreateGlobalVector(o->dm_scalar, &o->pressure));
   PetscCall(DMCreateGlobalVector(o->dm_scalar, &o->gap));
   PetscCall(PetscObjectSetName((PetscObject)o->disp_cart, "displacement"));
@@ -199,7 +239,12 @@ PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble wall)
   if (o->n_written && o->times[o->n_written - 1] != h->time) PetscCall(WriteFields(ctx));
   PetscCall(PetscFClose(PETSC_COMM_WORLD, o->csv));
   if (!ctx->opt.quiet) {
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "mmcontact summary: %" PetscInt_FMT " steps to t = %g in %.2f s wall; largest balance residual %.3e; largest penetration %.3e (h_c' %.3e)\n", h->step, (double)h->time, (double)wall, (double)h->max_balance, (double)h->max_penetration_run, (double)ctx->contact.h_c));
+    struct rusage ru;
+    PetscReal     peak;
+    getrusage(RUSAGE_SELF, &ru);
+    peak = ru.ru_maxrss / 1024.0; /* kB on Linux */
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &peak, 1, MPIU_REAL, MPIU_MAX, PETSC_COMM_WORLD));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "mmcontact summary: %" PetscInt_FMT " steps to t = %g in %.3f s wall (%.4f s/step); peak memory %.1f MiB/rank; largest balance residual %.3e; largest penetration %.3e (h_c' %.3e)\n", h->step, (double)h->time, (double)wall, h->step ? (double)(wall / h->step) : 0.0, (double)peak, (double)h->max_balance, (double)h->max_penetration_run, (double)ctx->contact.h_c));
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  output: %s/history.csv, %s (%" PetscInt_FMT " snapshots), %s/solution.xmf\n", ctx->opt.output_dir, o->h5_name, o->n_written, ctx->opt.output_dir));
   }
   PetscCall(VecDestroy(&o->disp_cart));
@@ -207,6 +252,7 @@ PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble wall)
   PetscCall(VecDestroy(&o->pressure));
   PetscCall(VecDestroy(&o->gap));
   PetscCall(DMDestroy(&o->dm_scalar));
+  PetscCall(DMDestroy(&o->dm_out));
   PetscCall(PetscFree(o->times));
   PetscFunctionReturn(0);
 }
