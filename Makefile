@@ -3,7 +3,7 @@ PETSC_DIR ?= /usr/lib/petsc
 include ${PETSC_DIR}/lib/petsc/conf/variables
 
 MPIEXEC ?= mpiexec --allow-run-as-root
-PYTHON  ?= /usr/bin/python3 -s
+MM_PYTHON ?= /usr/bin/python3 -s
 NP      ?= 2
 
 SRC  := $(wildcard src/*.c)
@@ -48,11 +48,11 @@ run: deps
 
 check: deps
 	$(MAKE) mmcontact meshes
-	$(PYTHON) -m pytest -q tests
+	$(MM_PYTHON) -m pytest -q tests
 
 bench: deps
 	$(MAKE) mmcontact meshes $(BENCH_MSH)
-	$(PYTHON) scripts/bench.py
+	$(MM_PYTHON) scripts/bench.py
 
 clean:
 	rm -rf build mmcontact meshes/*.msh output bench tests/__pycache__ .pytest_cache

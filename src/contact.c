@@ -128,7 +128,7 @@ static PetscErrorCode MarkContactVertices(MMCtx *ctx, PetscInt **mark, Vec area)
   DM              dm = ctx->op.dm;
   DMLabel         label;
   IS              vis, pis;
-  PetscInt        pStart, pEnd, vStart, vEnd, value = PETSC_MIN_INT, n, nv;
+  PetscInt        pStart, pEnd, vStart, vEnd, n, nv;
   const PetscInt *pts, *vals;
   PetscInt       *root;
   PetscSF         sf;
@@ -176,7 +176,6 @@ static PetscErrorCode MarkContactVertices(MMCtx *ctx, PetscInt **mark, Vec area)
   PetscCall(VecZeroEntries(area));
   PetscCall(DMLocalToGlobal(ctx->out.dm_scalar, aloc, ADD_VALUES, area));
   PetscCall(DMRestoreLocalVector(ctx->out.dm_scalar, &aloc));
-  (void)value;
   PetscCall(DMGetPointSF(dm, &sf));
   PetscCall(PetscArraycpy(root, *mark, pEnd - pStart));
   PetscCall(PetscSFReduceBegin(sf, MPIU_INT, *mark, root, MPI_MAX));
@@ -242,7 +241,7 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
   PetscReal   *gap;
   Vec          X, g;
   const PetscScalar *x;
-  PetscBool   *is_contact_dof;
+  PetscInt    *is_contact_dof; /* 0: other, 1: contact dof, 2: contact-normal dof */
   MPI_Comm     comm = PetscObjectComm((PetscObject)dm);
 
   PetscFunctionBeginUser;
@@ -284,7 +283,7 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
     }
     for (PetscInt d = 1; d < dim; ++d) it[nc * (dim - 1) + d - 1] = goff + d;
     for (PetscInt d = 0; d < dim; ++d) {
-      is_contact_dof[goff - rstart + d] = PETSC_TRUE;
+      is_contact_dof[goff - rstart + d] = 1;
       for (PetscInt e = 0; e < dim; ++e) PetscCall(MatSetValue(ctx->op.Q, goff + d, goff + e, ct->frame[e][d], INSERT_VALUES));
     }
     ++nc;
@@ -293,15 +292,12 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
   PetscCall(VecRestoreArrayRead(area, &av));
   {
     PetscInt ns = 0;
-    for (PetscInt i = 0; i < n; ++i) {
-        if (!is_contact_dof[i]) PetscCall(MatSetValue(ctx->op.Q, rstart + i, rstart + i, 1.0, INSERT_VALUES));
-    }
-    /* with the standard mass the normal dofs keep their inertia: they belong with the others */
-    for (PetscInt i = 0; i < n; ++i) {
-      PetscBool normal = PETSC_FALSE;
-      for (PetscInt k = 0; k < nc && !normal; ++k) normal = (PetscBool)(in[k] == rstart + i);
-      if (!normal) is[ns++] = rstart + i;
-    }
+    for (PetscInt i = 0; i < n; ++i)
+      if (!is_contact_dof[i]) PetscCall(MatSetValue(ctx->op.Q, rstart + i, rstart + i, 1.0, INSERT_VALUES));
+    /* the star dofs: all but the contact-normal ones (tangential contact dofs keep their mass) */
+    for (PetscInt k = 0; k < nc; ++k) is_contact_dof[in[k] - rstart] = 2;
+    for (PetscInt i = 0; i < n; ++i)
+      if (is_contact_dof[i] != 2) is[ns++] = rstart + i;
     PetscCall(ISCreateGeneral(comm, ns, is, PETSC_COPY_VALUES, &ct->is_star));
   }
   PetscCall(MatAssemblyBegin(ctx->op.Q, MAT_FINAL_ASSEMBLY));
@@ -485,7 +481,7 @@ PetscErrorCode MMContactDiagnostics(MMCtx *ctx, Vec w, Vec react, MMHistory *h)
   PetscInt           dim = ctx->op.dim, nc = ct->n_local, cnt[3] = {0, 0, 0};
   const PetscInt    *in, *it;
   const PetscScalar *wa, *fa, *ga;
-  PetscReal          ft[MM_MAX_DIM] = {0, 0, 0}, loc[6] = {0, 0, 0, 0, 0, 0}, glob[6], rmax = 0, rstart_w;
+  PetscReal          ft[MM_MAX_DIM] = {0, 0, 0}, loc[6] = {0, 0, 0, 0, 0, 0}, glob[6], rmax = 0, fscale;
   PetscInt           rstart;
   MPI_Comm           comm = PetscObjectComm((PetscObject)ctx->op.dm);
 
@@ -503,7 +499,7 @@ PetscErrorCode MMContactDiagnostics(MMCtx *ctx, Vec w, Vec react, MMHistory *h)
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &rmax, 1, MPIU_REAL, MPIU_MAX, comm));
   /* force scale of the normalized residuals: the largest reaction, but at least the nodal force of a
    * 1e-3 strain on the contact layer, so that solver noise on a free boundary is not normalized by itself */
-  rstart_w = PetscMax(rmax, 1e-3 * ctx->opt.E * PetscPowReal(ct->h_c, dim - 1));
+  fscale = PetscMax(rmax, 1e-3 * ctx->opt.E * PetscPowReal(ct->h_c, dim - 1));
   for (PetscInt k = 0; k < nc; ++k) {
     const PetscReal un = PetscRealPart(wa[in[k] - rstart]), g = PetscRealPart(ga[k]), r = -PetscRealPart(fa[in[k] - rstart]);
     const PetscBool active = (PetscBool)(g - un <= 1e-10 * ct->h_c);
@@ -519,9 +515,9 @@ PetscErrorCode MMContactDiagnostics(MMCtx *ctx, Vec w, Vec react, MMHistory *h)
       tn += t * t;
     }
     loc[1] = PetscMax(loc[1], (un - g) / ct->h_c);                       /* penetration */
-    loc[2] = PetscMax(loc[2], -r / rstart_w);                              /* tension */
-    loc[3] = PetscMax(loc[3], PetscAbsReal(r * (un - g)) / (rstart_w * ct->h_c)); /* complementarity */
-    loc[4] = PetscMax(loc[4], PetscSqrtReal(tn) / rstart_w);               /* cone, mu = 0 */
+    loc[2] = PetscMax(loc[2], -r / fscale);                              /* tension */
+    loc[3] = PetscMax(loc[3], PetscAbsReal(r * (un - g)) / (fscale * ct->h_c)); /* complementarity */
+    loc[4] = PetscMax(loc[4], PetscSqrtReal(tn) / fscale);               /* cone, mu = 0 */
     loc[5] = PetscMax(loc[5], un - g);
   }
   PetscCall(VecRestoreArrayRead(ct->gap, &ga));

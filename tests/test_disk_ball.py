@@ -77,3 +77,23 @@ def test_d1_tilted_obstacle_frame(d1, mm):
     compare(h, d1.history)
     # and it did not by accident run the axis-aligned case
     assert abs(h["vcm_x"][0] - v[0]) < 1e-12
+
+
+def test_d2_tilted_obstacle_frame(d2, mm):
+    """3D: mesh, plane and velocity rotated together by 0.3 rad about the x axis."""
+    th = 0.3
+    c, s = np.cos(th), np.sin(th)
+    rot = lambda v: (v[0], c * v[1] - s * v[2], s * v[1] + c * v[2])
+    fmt = lambda v: ",".join("%.17g" % x for x in v)
+    h = mm("d2_ball", "-mesh_rotation", fmt((th, 0, 0)), "-obstacle_normal", fmt(rot((0, 0, 1))), "-v0", fmt(rot((0.5, 0, -1))),
+           np_=2, name="tilted").history
+    compare(h, d2.history)
+    assert abs(h["vcm_y"][0] - rot((0.5, 0, -1))[1]) < 1e-12
+
+
+def test_initial_rigid_rotation(mm):
+    """-omega spins the disk about its centre: L_z = I omega with I = m R^2 / 2 (to the lumped
+    mass's approximation of the polygon), and the centre of mass does not move."""
+    h = mm("d1_disk", "-v0", "0,0", "-omega", 2.0, "-omega_center", "0,1.01", "-ts_max_steps", 2, "-output_every", 0).history
+    assert abs(h["L_z"][0] - 0.5 * np.pi * 2.0) <= 0.01 * np.pi
+    assert abs(h["vcm_x"][0]) <= 1e-12 and abs(h["vcm_y"][0]) <= 1e-12
