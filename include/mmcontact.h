@@ -20,6 +20,14 @@ typedef enum {
 } MMMassType;
 PETSC_EXTERN const char *const MMMassTypes[];
 
+/* How each step's contact problem reaches SNESVI: condensed on the contact dofs through the
+ * Delassus operator W = E^T K~^{-1} E (K~ factored once per dt), or on the full dof vector. */
+typedef enum {
+  MM_CONTACT_CONDENSED,
+  MM_CONTACT_FULL
+} MMContactFormulation;
+PETSC_EXTERN const char *const MMContactFormulations[];
+
 /* A Dirichlet boundary: fixes the listed components to constant values. */
 typedef struct {
   char      *name;
@@ -50,6 +58,7 @@ typedef struct {
   MMMassType   mass_type;
   PetscBool    lumped;
   PetscBool    contact;
+  MMContactFormulation contact_formulation;
   PetscReal    contact_tol;
   char         output_dir[PETSC_MAX_PATH_LEN];
   PetscInt     output_every;
@@ -104,7 +113,12 @@ typedef struct {
   MMBoundQP  qp0;                 /* the initial projection of the contact dofs */
   Vec        gap0, lower0, upper0;
   PetscReal  Kt_dt;               /* dt for which Kt was assembled */
-  SNES       snes;                /* the VI solver, prefix contact_ */
+  MMContactFormulation formulation;
+  SNES       snes;                /* the VI solver, prefix contact_: on w (full) or on lambda (condensed) */
+  KSP        ksp_K;               /* K~ factored once per dt, prefix contact_K_ (condensed) */
+  Mat        W;                   /* Delassus operator E_n^T K~^{-1} E_n on the contact-normal dofs */
+  MMBoundQP  qpc;                 /* the condensed LCP: W lambda - q >= 0, lambda >= 0 */
+  Vec        lambda, z;           /* normal reactions (>= 0); the step's contact-free solution */
   SNES       snes0;               /* quasi-static projection of the contact dofs, prefix contact0_ */
   PetscReal  frame[MM_MAX_DIM][MM_MAX_DIM]; /* rows: nu, tau_1, tau_2 */
   PetscReal  h_c;                 /* smallest diameter of cells touching the contact boundary */

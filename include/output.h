@@ -2,4 +2,4 @@
 #include "mmcontact.h"
 PETSC_EXTERN PetscErrorCode MMOutputOpen(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMOutputMonitor(TS, PetscInt, PetscReal, Vec, void *);
-PETSC_EXTERN PetscErrorCode MMOutputClose(MMCtx *, PetscLogDouble);
+PETSC_EXTERN PetscErrorCode MMOutputClose(MMCtx *, PetscLogDouble, PetscLogDouble);

@@ -1,13 +1,13 @@
 /* The contact set against a rigid plane: frames, gaps, bounds, and the exact per-step contact solve.
  *
  * Each step solves the bound-constrained QP  min 1/2 w.K~w - b.w  s.t.  w_c <= g  with SNESVI
- * (vinewtonrsls by default, prefix -contact_). The friction loop will wrap MMContactSolve: it only
- * changes the right-hand side and the tangential bounds between calls. */
+ * (vinewtonrsls by default, prefix -contact_), condensed on the contact dofs by default. The friction
+ * loop will wrap MMContactSolve: it only changes the right-hand side and the tangential bounds. */
 #include <petscsf.h>
 #include "contact.h"
 #include "mesh.h"
 
-/* ---------------------------------------------------------------- the bound-constrained QP as a SNES */
+/* ---------------------------------------------------------------- a bound-constrained QP as a SNESVI */
 
 static PetscErrorCode QPResidual(SNES snes, Vec x, Vec f, void *ptr)
 {
@@ -38,7 +38,7 @@ static PetscErrorCode QPConverged(SNES snes, PetscInt it, PetscReal xnorm, Petsc
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode CreateQPSolver(MPI_Comm comm, const char prefix[], MMBoundQP *qp, PetscBool bounded, SNES *snes)
+static PetscErrorCode CreateQPSolver(MPI_Comm comm, const char prefix[], MMBoundQP *qp, SNES *snes)
 {
   KSP            ksp;
   PC             pc;
@@ -48,7 +48,7 @@ static PetscErrorCode CreateQPSolver(MPI_Comm comm, const char prefix[], MMBound
   PetscFunctionBeginUser;
   PetscCall(SNESCreate(comm, snes));
   PetscCall(SNESSetOptionsPrefix(*snes, prefix));
-  PetscCall(SNESSetType(*snes, bounded ? SNESVINEWTONRSLS : SNESKSPONLY));
+  PetscCall(SNESSetType(*snes, SNESVINEWTONRSLS));
   PetscCall(MatCreateVecs(qp->A, &r, NULL));
   PetscCall(SNESSetFunction(*snes, r, QPResidual, qp));
   PetscCall(VecDestroy(&r));
@@ -82,6 +82,138 @@ static PetscErrorCode SolveQP(SNES snes, MMBoundQP *qp, Vec x, PetscInt *its)
   PetscCall(SNESGetIterationNumber(snes, its));
   PetscCheck(reason > 0, PetscObjectComm((PetscObject)snes), PETSC_ERR_NOT_CONVERGED, "The contact solver (%s) did not converge: %s after %" PetscInt_FMT " iterations. Run with -%ssnes_monitor -%ssnes_converged_reason to see why",
              prefix, SNESConvergedReasons[reason], *its, prefix, prefix);
+  PetscFunctionReturn(0);
+}
+
+/* ---------------------------------------------------------------- the condensed formulation
+ * With z = K~^{-1} b and W = E_n^T K~^{-1} E_n, the contact-normal dofs are w_c = z_c - W lambda
+ * for normal reactions lambda >= 0, and the step problem is the LCP
+ *   lambda >= 0,  W lambda - (z_c - g) >= 0,  complementary,
+ * of the size of the contact set. K~ is factored once per dt; a step costs two solves with that
+ * factor and a VI on the contact dofs, whatever the active set does. */
+
+static PetscErrorCode FactorStepMatrix(MMCtx *ctx)
+{
+  MMContact *ct = &ctx->contact;
+  PC         pc;
+
+  PetscFunctionBeginUser;
+  if (!ct->ksp_K) {
+    PetscCall(KSPCreate(PetscObjectComm((PetscObject)ctx->op.dm), &ct->ksp_K));
+    PetscCall(KSPSetOptionsPrefix(ct->ksp_K, "contact_K_"));
+    PetscCall(KSPSetType(ct->ksp_K, KSPPREONLY));
+    PetscCall(KSPGetPC(ct->ksp_K, &pc));
+    PetscCall(PCSetType(pc, PCLU));
+    PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+    PetscCall(KSPSetFromOptions(ct->ksp_K));
+  }
+  PetscCall(KSPSetOperators(ct->ksp_K, ct->qp.A, ct->qp.A));
+  PetscCall(KSPSetUp(ct->ksp_K));
+  PetscFunctionReturn(0);
+}
+
+/* Columns of K~^{-1} E_n, a block at a time through the factor, restricted to the contact rows. */
+static PetscErrorCode AssembleDelassus(MMCtx *ctx)
+{
+  MMContact      *ct = &ctx->contact;
+  MPI_Comm        comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  const PetscInt  nb_max = 64, nc = ct->n_local, N = ct->n_global;
+  PetscInt        n, rstart, cstart, lda, *cols;
+  const PetscInt *in;
+  PetscScalar    *vals;
+  PC              pc;
+  Mat             F;
+
+  PetscFunctionBeginUser;
+  PetscCall(KSPGetPC(ct->ksp_K, &pc));
+  PetscCall(PCFactorGetMatrix(pc, &F));
+  PetscCall(MatGetLocalSize(ct->qp.A, &n, NULL));
+  PetscCall(MatGetOwnershipRange(ct->qp.A, &rstart, NULL));
+  PetscCall(VecGetOwnershipRange(ct->gap, &cstart, NULL));
+  if (!ct->W) PetscCall(MatCreateAIJ(comm, nc, nc, N, N, nc, NULL, N - nc, NULL, &ct->W));
+  PetscCall(MatZeroEntries(ct->W));
+  PetscCall(ISGetIndices(ct->is_normal, &in));
+  PetscCall(PetscMalloc2(nb_max, &cols, nb_max, &vals));
+  for (PetscInt j0 = 0; j0 < N; j0 += nb_max) {
+    const PetscInt     nb = PetscMin(nb_max, N - j0);
+    Mat                B, X;
+    const PetscScalar *x;
+
+    PetscCall(MatCreateDense(comm, n, PETSC_DECIDE, PETSC_DETERMINE, nb, NULL, &B));
+    for (PetscInt k = 0; k < nc; ++k)
+      if (cstart + k >= j0 && cstart + k < j0 + nb) PetscCall(MatSetValue(B, in[k], cstart + k - j0, 1.0, INSERT_VALUES));
+    PetscCall(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatDuplicate(B, MAT_DO_NOT_COPY_VALUES, &X));
+    PetscCall(MatMatSolve(F, B, X));
+    PetscCall(MatDenseGetLDA(X, &lda));
+    PetscCall(MatDenseGetArrayRead(X, &x));
+    for (PetscInt j = 0; j < nb; ++j) cols[j] = j0 + j;
+    for (PetscInt k = 0; k < nc; ++k) {
+      const PetscInt row = cstart + k;
+      for (PetscInt j = 0; j < nb; ++j) vals[j] = x[(in[k] - rstart) + j * lda];
+      PetscCall(MatSetValues(ct->W, 1, &row, nb, cols, vals, INSERT_VALUES));
+    }
+    PetscCall(MatDenseRestoreArrayRead(X, &x));
+    PetscCall(MatDestroy(&X));
+    PetscCall(MatDestroy(&B));
+  }
+  PetscCall(PetscFree2(cols, vals));
+  PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  PetscCall(MatAssemblyBegin(ct->W, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(ct->W, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CreateCondensedSolver(MMCtx *ctx)
+{
+  MMContact *ct = &ctx->contact;
+  Vec        lo, hi;
+
+  PetscFunctionBeginUser;
+  ct->qpc.A      = ct->W;
+  ct->qpc.rtol_b = ct->tol;
+  PetscCall(VecDuplicate(ct->gap, &ct->qpc.b));
+  PetscCall(VecDuplicate(ct->gap, &ct->lambda));
+  PetscCall(VecZeroEntries(ct->lambda));
+  PetscCall(CreateQPSolver(PetscObjectComm((PetscObject)ctx->op.dm), "contact_", &ct->qpc, &ct->snes));
+  PetscCall(VecDuplicate(ct->gap, &lo));
+  PetscCall(VecDuplicate(ct->gap, &hi));
+  PetscCall(VecSet(lo, 0.0));
+  PetscCall(VecSet(hi, PETSC_INFINITY));
+  PetscCall(SNESVISetVariableBounds(ct->snes, lo, hi));
+  /* SNESVI keeps references to the bounds */
+  PetscCall(VecDestroy(&lo));
+  PetscCall(VecDestroy(&hi));
+  PetscFunctionReturn(0);
+}
+
+/* w = z - K~^{-1} E_n lambda, with z = K~^{-1} b and lambda from the LCP, warm-started from the last step. */
+static PetscErrorCode SolveCondensed(MMCtx *ctx, Vec b, Vec w)
+{
+  MMContact *ct = &ctx->contact;
+  Vec        zc, rhs, rc;
+
+  PetscFunctionBeginUser;
+  if (!ct->z) PetscCall(VecDuplicate(w, &ct->z));
+  PetscCall(KSPSolve(ct->ksp_K, b, ct->z));
+  ct->vi_its = 0;
+  if (!ct->enabled) {
+    PetscCall(VecCopy(ct->z, w));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(VecGetSubVector(ct->z, ct->is_normal, &zc));
+  PetscCall(VecWAXPY(ct->qpc.b, -1.0, ct->gap, zc));
+  PetscCall(VecRestoreSubVector(ct->z, ct->is_normal, &zc));
+  PetscCall(SolveQP(ct->snes, &ct->qpc, ct->lambda, &ct->vi_its));
+  PetscCall(VecDuplicate(w, &rhs));
+  PetscCall(VecZeroEntries(rhs));
+  PetscCall(VecGetSubVector(rhs, ct->is_normal, &rc));
+  PetscCall(VecAXPY(rc, -1.0, ct->lambda));
+  PetscCall(VecRestoreSubVector(rhs, ct->is_normal, &rc));
+  PetscCall(KSPSolve(ct->ksp_K, rhs, w));
+  PetscCall(VecAXPY(w, 1.0, ct->z));
+  PetscCall(VecDestroy(&rhs));
   PetscFunctionReturn(0);
 }
 
@@ -358,8 +490,9 @@ PetscErrorCode MMContactSetUp(MMCtx *ctx)
   Vec        area;
 
   PetscFunctionBeginUser;
-  ct->enabled = ctx->opt.contact;
-  ct->tol     = ctx->opt.contact_tol;
+  ct->enabled     = ctx->opt.contact;
+  ct->tol         = ctx->opt.contact_tol;
+  ct->formulation = ctx->opt.contact_formulation;
   PetscCall(BuildFrame(ctx));
   if (!ct->enabled) {
     PetscCall(BuildNoContact(ctx));
@@ -389,10 +522,12 @@ static PetscErrorCode SetBounds(MMContact *ct, Vec lower, Vec upper)
   PetscFunctionReturn(0);
 }
 
-/* K~ = K + 4/dt^2 M*. Assembled only when dt changes; the solver is (re)created with it. */
+/* K~ = K + 4/dt^2 M*, assembled only when dt changes, with what the formulation builds on it: the
+ * factor and the Delassus operator (condensed), or the bounds of the full VI. */
 PetscErrorCode MMContactSetStepMatrix(MMCtx *ctx, PetscReal dt)
 {
-  MMContact *ct = &ctx->contact;
+  MMContact *ct        = &ctx->contact;
+  PetscBool  condensed = (PetscBool)(ct->formulation == MM_CONTACT_CONDENSED || !ct->enabled);
 
   PetscFunctionBeginUser;
   if (ct->qp.A && ct->Kt_dt == dt) PetscFunctionReturn(0);
@@ -400,31 +535,42 @@ PetscErrorCode MMContactSetStepMatrix(MMCtx *ctx, PetscReal dt)
   if (!ct->qp.A) {
     PetscCall(MatDuplicate(ctx->op.K, MAT_COPY_VALUES, &ct->qp.A));
     PetscCall(MatCreateVecs(ct->qp.A, &ct->qp.b, NULL));
-    PetscCall(VecDuplicate(ct->qp.b, &ct->lower));
-    PetscCall(VecDuplicate(ct->qp.b, &ct->upper));
     ct->qp.rtol_b = ct->tol;
-    PetscCall(CreateQPSolver(PetscObjectComm((PetscObject)ctx->op.dm), "contact_", &ct->qp, ct->enabled, &ct->snes));
-    if (ct->enabled) {
+    if (!condensed) {
+      PetscCall(VecDuplicate(ct->qp.b, &ct->lower));
+      PetscCall(VecDuplicate(ct->qp.b, &ct->upper));
+      PetscCall(CreateQPSolver(PetscObjectComm((PetscObject)ctx->op.dm), "contact_", &ct->qp, &ct->snes));
       PetscCall(SetBounds(ct, ct->lower, ct->upper));
       PetscCall(SNESVISetVariableBounds(ct->snes, ct->lower, ct->upper));
     }
   } else PetscCall(MatCopy(ctx->op.K, ct->qp.A, SAME_NONZERO_PATTERN));
   PetscCall(MatAXPY(ct->qp.A, 4.0 / (dt * dt), ctx->op.Mstar, SUBSET_NONZERO_PATTERN));
   ct->Kt_dt = dt;
+  if (condensed) {
+    PetscCall(FactorStepMatrix(ctx));
+    if (ct->enabled) {
+      PetscCall(AssembleDelassus(ctx));
+      if (!ct->snes) PetscCall(CreateCondensedSolver(ctx));
+    }
+  }
   PetscCall(PetscLogEventEnd(ctx->log.assemble, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
 /* Solves the step problem K~ w = b + f_c with w_c <= g; w holds the initial guess on entry.
- * react returns f_c, the obstacle's force on the body (w-frame), on the contact dofs only. */
+ * react returns f_c, the obstacle's force on the body (w-frame), on the contact dofs only,
+ * recomputed from w whatever the formulation, so the energy audit checks the solve. */
 PetscErrorCode MMContactSolve(MMCtx *ctx, Vec b, Vec w, Vec react)
 {
   MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ctx->log.contact_solve, 0, 0, 0, 0));
-  PetscCall(VecCopy(b, ct->qp.b));
-  PetscCall(SolveQP(ct->snes, &ct->qp, w, &ct->vi_its));
+  if (ct->formulation == MM_CONTACT_CONDENSED || !ct->enabled) PetscCall(SolveCondensed(ctx, b, w));
+  else {
+    PetscCall(VecCopy(b, ct->qp.b));
+    PetscCall(SolveQP(ct->snes, &ct->qp, w, &ct->vi_its));
+  }
   PetscCall(MatMult(ct->qp.A, w, react));
   PetscCall(VecAXPY(react, -1.0, b));
   /* off the contact set the residual is solver noise, not a force */
@@ -450,7 +596,7 @@ PetscErrorCode MMContactProjectInitial(MMCtx *ctx, Vec w)
   PetscCall(VecSet(ct->lower0, PETSC_NINFINITY));
   PetscCall(VecCopy(ct->gap, ct->upper0));
   ct->qp0.rtol_b = ct->tol;
-  PetscCall(CreateQPSolver(PetscObjectComm((PetscObject)ctx->op.dm), "contact0_", &ct->qp0, PETSC_TRUE, &ct->snes0));
+  PetscCall(CreateQPSolver(PetscObjectComm((PetscObject)ctx->op.dm), "contact0_", &ct->qp0, &ct->snes0));
   PetscCall(SNESVISetVariableBounds(ct->snes0, ct->lower0, ct->upper0));
 
   /* b0 = (L - lift - K w*)_c with the contact dofs zeroed in w* */
@@ -578,6 +724,11 @@ PetscErrorCode MMContactDestroy(MMContact *ct)
   PetscFunctionBeginUser;
   PetscCall(SNESDestroy(&ct->snes));
   PetscCall(SNESDestroy(&ct->snes0));
+  PetscCall(KSPDestroy(&ct->ksp_K));
+  PetscCall(MatDestroy(&ct->W));
+  PetscCall(VecDestroy(&ct->qpc.b));
+  PetscCall(VecDestroy(&ct->lambda));
+  PetscCall(VecDestroy(&ct->z));
   PetscCall(MatDestroy(&ct->qp.A));
   PetscCall(VecDestroy(&ct->qp.b));
   PetscCall(MatDestroy(&ct->qp0.A));

@@ -73,7 +73,7 @@ int main(int argc, char **argv)
 {
   MMCtx          ctx;
   TS             ts;
-  PetscLogDouble t0, t1;
+  PetscLogDouble ts0, t0, t1;
 
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
@@ -81,6 +81,7 @@ int main(int argc, char **argv)
   PetscCall(MMLogRegister(&ctx.log));
   PetscCall(MMNewmarkRegister());
 
+  PetscCall(PetscTime(&ts0));
   PetscCall(PetscLogStagePush(ctx.log.setup));
   PetscCall(SetupProblem(&ctx, &ts));
   PetscCall(PetscLogStagePop());
@@ -91,7 +92,7 @@ int main(int argc, char **argv)
   PetscCall(PetscLogStagePop());
   PetscCall(PetscTime(&t1));
 
-  PetscCall(MMOutputClose(&ctx, t1 - t0));
+  PetscCall(MMOutputClose(&ctx, t0 - ts0, t1 - t0));
   PetscCall(Destroy(&ctx, &ts));
   PetscCall(PetscFinalize());
   return 0;

@@ -2,6 +2,7 @@
 #include "options.h"
 
 const char *const MMMassTypes[] = {"modified", "standard", "MMMassType", "MM_MASS_", NULL};
+const char *const MMContactFormulations[] = {"condensed", "full", "MMContactFormulation", "MM_CONTACT_", NULL};
 
 /* Reads a real vector option of up to MM_MAX_DIM entries; *n returns how many were given. */
 static PetscErrorCode OptionsVector(PetscOptionItems *PetscOptionsObject, const char name[], const char help[], PetscReal v[], PetscInt *n)
@@ -130,6 +131,8 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   opt->contact = PETSC_TRUE;
   PetscCall(PetscOptionsBool("-contact", "Enforce unilateral contact; 0 gives linear elastodynamics on the same mesh (the contact boundary is then unused)", NULL, opt->contact, &opt->contact, NULL));
 
+  opt->contact_formulation = MM_CONTACT_CONDENSED;
+  PetscCall(PetscOptionsEnum("-contact_formulation", "Contact VI on the contact dofs through the Delassus operator (condensed: K~ factored once per dt) or on all dofs (full: a factorization per VI iteration)", NULL, MMContactFormulations, (PetscEnum)opt->contact_formulation, (PetscEnum *)&opt->contact_formulation, NULL));
   opt->contact_tol = 1e-11;
   PetscCall(PetscOptionsReal("-contact_tol", "Contact solves stop when ||K~ w - b - f_c|| <= contact_tol ||b|| (on top of -contact_snes_rtol/atol)", NULL, opt->contact_tol, &opt->contact_tol, NULL));
   PetscCall(PetscStrcpy(opt->output_dir, "output"));

@@ -230,7 +230,7 @@ PetscErrorCode MMOutputMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void
 }
 
 /* Writes the final state if the cadence missed it, closes the files and prints the summary. */
-PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble wall)
+PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wall)
 {
   MMOutput *o = &ctx->out;
   MMHistory *h = &ctx->hist;
@@ -244,7 +244,7 @@ PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble wall)
     getrusage(RUSAGE_SELF, &ru);
     peak = ru.ru_maxrss / 1024.0; /* kB on Linux */
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &peak, 1, MPIU_REAL, MPIU_MAX, PETSC_COMM_WORLD));
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "mmcontact summary: %" PetscInt_FMT " steps to t = %g in %.3f s wall (%.4f s/step); peak memory %.1f MiB/rank; largest balance residual %.3e; largest penetration %.3e (h_c' %.3e)\n", h->step, (double)h->time, (double)wall, h->step ? (double)(wall / h->step) : 0.0, (double)peak, (double)h->max_balance, (double)h->max_penetration_run, (double)ctx->contact.h_c));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "mmcontact summary: setup %.3f s; %" PetscInt_FMT " steps to t = %g in %.3f s wall (%.4f s/step); peak memory %.1f MiB/rank; largest balance residual %.3e; largest penetration %.3e (h_c' %.3e)\n", (double)setup, h->step, (double)h->time, (double)wall, h->step ? (double)(wall / h->step) : 0.0, (double)peak, (double)h->max_balance, (double)h->max_penetration_run, (double)ctx->contact.h_c));
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  output: %s/history.csv, %s (%" PetscInt_FMT " snapshots), %s/solution.xmf\n", ctx->opt.output_dir, o->h5_name, o->n_written, ctx->opt.output_dir));
   }
   PetscCall(VecDestroy(&o->disp_cart));

@@ -97,3 +97,12 @@ def test_initial_rigid_rotation(mm):
     h = mm("d1_disk", "-v0", "0,0", "-omega", 2.0, "-omega_center", "0,1.01", "-ts_max_steps", 2, "-output_every", 0).history
     assert abs(h["L_z"][0] - 0.5 * np.pi * 2.0) <= 0.01 * np.pi
     assert abs(h["vcm_x"][0]) <= 1e-12 and abs(h["vcm_y"][0]) <= 1e-12
+
+
+@pytest.mark.parametrize("case", ["d1_disk", "d2_ball"])
+def test_condensed_equals_full_formulation(case, mm):
+    """The condensed VI (Delassus operator, one factorization per dt) and the VI on all dofs are
+    the same problem: the same history to solver tolerance."""
+    hc = mm(case, "-output_every", 0, np_=2, name="condensed").history
+    hf = mm(case, "-contact_formulation", "full", "-output_every", 0, np_=2, name="full").history
+    compare(hc, hf, tol=1e-10)
