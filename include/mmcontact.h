@@ -118,7 +118,7 @@ typedef struct {
   KSP        ksp_K;               /* K~ factored once per dt, prefix contact_K_ (condensed) */
   Mat        W;                   /* Delassus operator E_n^T K~^{-1} E_n on the contact-normal dofs */
   MMBoundQP  qpc;                 /* the condensed LCP: W lambda - q >= 0, lambda >= 0 */
-  Vec        lambda, z;           /* normal reactions (>= 0); the step's contact-free solution */
+  Vec        lambda, z, rhs_c;    /* normal reactions (>= 0); the step's contact-free solution; E_n lambda */
   SNES       snes0;               /* quasi-static projection of the contact dofs, prefix contact0_ */
   PetscReal  frame[MM_MAX_DIM][MM_MAX_DIM]; /* rows: nu, tau_1, tau_2 */
   PetscReal  h_c;                 /* smallest diameter of cells touching the contact boundary */

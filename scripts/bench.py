@@ -43,7 +43,7 @@ def main():
         w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
         w.writeheader()
         w.writerows(rows)
-    print(f"D1 benchmark: {rows[0]['dofs']} dofs, {by[(1, 1, "condensed")]['contact_nodes']} contact nodes, {STEPS} steps through the impact")
+    print(f"D1 benchmark: {rows[0]['dofs']} dofs, {by[(1, 1, 'condensed')]['contact_nodes']} contact nodes, {STEPS} steps through the impact")
     print(f"{'ranks':>5} {'contact':>7} {'formulation':>11} {'setup s':>8} {'s/step':>9} {'contact/linear':>14} {'2-rank speedup':>14} {'peak MiB/rank':>13} {'max active':>10} {'VI its/step':>11}")
     for r in rows:
         print(f"{r['ranks']:>5} {r['contact']:>7} {r['formulation']:>11} {r['setup_s']:>8.2f} {r['s_per_step']:>9.4f} {r['contact_over_linear']:>14.2f} {r['speedup_2_ranks']:>14.2f} {r['peak_mib_per_rank']:>13.1f} {r['max_active']:>10} {r['mean_vi_its']:>11}")

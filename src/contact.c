@@ -99,6 +99,7 @@ static PetscErrorCode FactorStepMatrix(MMCtx *ctx)
 
   PetscFunctionBeginUser;
   if (!ct->ksp_K) {
+    PetscCall(MatCreateVecs(ct->qp.A, &ct->z, &ct->rhs_c));
     PetscCall(KSPCreate(PetscObjectComm((PetscObject)ctx->op.dm), &ct->ksp_K));
     PetscCall(KSPSetOptionsPrefix(ct->ksp_K, "contact_K_"));
     PetscCall(KSPSetType(ct->ksp_K, KSPPREONLY));
@@ -192,10 +193,9 @@ static PetscErrorCode CreateCondensedSolver(MMCtx *ctx)
 static PetscErrorCode SolveCondensed(MMCtx *ctx, Vec b, Vec w)
 {
   MMContact *ct = &ctx->contact;
-  Vec        zc, rhs, rc;
+  Vec        zc, rc;
 
   PetscFunctionBeginUser;
-  if (!ct->z) PetscCall(VecDuplicate(w, &ct->z));
   PetscCall(KSPSolve(ct->ksp_K, b, ct->z));
   ct->vi_its = 0;
   if (!ct->enabled) {
@@ -206,14 +206,12 @@ static PetscErrorCode SolveCondensed(MMCtx *ctx, Vec b, Vec w)
   PetscCall(VecWAXPY(ct->qpc.b, -1.0, ct->gap, zc));
   PetscCall(VecRestoreSubVector(ct->z, ct->is_normal, &zc));
   PetscCall(SolveQP(ct->snes, &ct->qpc, ct->lambda, &ct->vi_its));
-  PetscCall(VecDuplicate(w, &rhs));
-  PetscCall(VecZeroEntries(rhs));
-  PetscCall(VecGetSubVector(rhs, ct->is_normal, &rc));
+  PetscCall(VecZeroEntries(ct->rhs_c));
+  PetscCall(VecGetSubVector(ct->rhs_c, ct->is_normal, &rc));
   PetscCall(VecAXPY(rc, -1.0, ct->lambda));
-  PetscCall(VecRestoreSubVector(rhs, ct->is_normal, &rc));
-  PetscCall(KSPSolve(ct->ksp_K, rhs, w));
+  PetscCall(VecRestoreSubVector(ct->rhs_c, ct->is_normal, &rc));
+  PetscCall(KSPSolve(ct->ksp_K, ct->rhs_c, w));
   PetscCall(VecAXPY(w, 1.0, ct->z));
-  PetscCall(VecDestroy(&rhs));
   PetscFunctionReturn(0);
 }
 
@@ -729,6 +727,7 @@ PetscErrorCode MMContactDestroy(MMContact *ct)
   PetscCall(VecDestroy(&ct->qpc.b));
   PetscCall(VecDestroy(&ct->lambda));
   PetscCall(VecDestroy(&ct->z));
+  PetscCall(VecDestroy(&ct->rhs_c));
   PetscCall(MatDestroy(&ct->qp.A));
   PetscCall(VecDestroy(&ct->qp.b));
   PetscCall(MatDestroy(&ct->qp0.A));

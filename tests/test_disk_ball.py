@@ -106,3 +106,11 @@ def test_condensed_equals_full_formulation(case, mm):
     hc = mm(case, "-output_every", 0, np_=2, name="condensed").history
     hf = mm(case, "-contact_formulation", "full", "-output_every", 0, np_=2, name="full").history
     compare(hc, hf, tol=1e-10)
+
+
+def test_contact_disabled_is_linear_elastodynamics(mm):
+    """-contact 0: the disk flies through the plane, energy exactly conserved, momentum unchanged."""
+    h = mm("d1_disk", "-contact", 0, "-output_every", 0).history
+    assert h["active"].max() == 0 and h["force_normal"].max() == 0
+    assert np.abs(h["total"] - h["total"][0]).max() <= 1e-10 * h["total"][0]
+    assert np.abs(h["vcm_y"] + 1).max() <= 1e-10 and h["ucm_y"][-1] < -0.29
