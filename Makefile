@@ -2,7 +2,8 @@
 PETSC_DIR ?= /usr/lib/petsc
 include ${PETSC_DIR}/lib/petsc/conf/variables
 
-MPIEXEC ?= mpiexec --allow-run-as-root
+# PETSc's conf/variables defines MPIEXEC and PYTHON: ours have their own names
+MM_MPIEXEC ?= mpiexec $(if $(filter 0,$(shell id -u)),--allow-run-as-root)
 MM_PYTHON ?= /usr/bin/python3 -s
 NP      ?= 2
 
@@ -43,7 +44,7 @@ meshes/disk_bench.msh: meshes/disk.geo
 
 run: deps
 	$(MAKE) mmcontact meshes
-	$(MPIEXEC) -n $(NP) ./mmcontact -options_file options/d1_disk.opts
+	$(MM_MPIEXEC) -n $(NP) ./mmcontact -options_file options/d1_disk.opts
 	@echo "Open output/d1/solution.xmf in ParaView; history in output/d1/history.csv"
 
 check: deps
