@@ -114,3 +114,15 @@ def test_contact_disabled_is_linear_elastodynamics(mm):
     assert h["active"].max() == 0 and h["force_normal"].max() == 0
     assert np.abs(h["total"] - h["total"][0]).max() <= 1e-10 * h["total"][0]
     assert np.abs(h["vcm_y"] + 1).max() <= 1e-10 and h["ucm_y"][-1] < -0.29
+
+
+def pulse_roughness(h):
+    """Total variation of the contact force over twice its peak: exactly 1 for a single pulse."""
+    f = h["force_normal"]
+    return np.abs(np.diff(f)).sum() / (2 * f.max())
+
+
+def test_d1_single_smooth_pressure_pulse(d1, mm):
+    """The modified mass gives one smooth contact-force pulse; the standard mass chatters."""
+    assert pulse_roughness(d1.history) <= 1.02
+    assert pulse_roughness(mm("d1_disk", "-mass", "standard", "-output_every", 0, np_=2, name="standard").history) > 3
