@@ -1,5 +1,6 @@
 #pragma once
 #include "mmcontact.h"
+PETSC_EXTERN PetscErrorCode MMKSPSetDirect(KSP);
 PETSC_EXTERN PetscErrorCode MMContactSetUp(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMContactSetStepMatrix(MMCtx *, PetscReal);
 PETSC_EXTERN PetscErrorCode MMContactSolve(MMCtx *, Vec, Vec, Vec);

@@ -60,6 +60,7 @@ typedef struct {
   PetscBool    contact;
   MMContactFormulation contact_formulation;
   PetscReal    contact_tol;
+  PetscReal    audit_tol;
   char         output_dir[PETSC_MAX_PATH_LEN];
   PetscInt     output_every;
   PetscBool    quiet;
@@ -111,7 +112,7 @@ typedef struct {
   Vec        lower, upper;        /* SNESVI bounds on the full w vector */
   MMBoundQP  qp;                  /* the step problem: K~ w = b, K~ = K + 4/dt^2 M* */
   MMBoundQP  qp0;                 /* the initial projection of the contact dofs */
-  Vec        gap0, lower0, upper0;
+  Vec        lower0, upper0;
   PetscReal  Kt_dt;               /* dt for which Kt was assembled */
   MMContactFormulation formulation;
   SNES       snes;                /* the VI solver, prefix contact_: on w (full) or on lambda (condensed) */
@@ -157,9 +158,8 @@ typedef struct {
 /* Output files. */
 typedef struct {
   FILE       *csv;
-  PetscViewer h5;
   char        h5_name[PETSC_MAX_PATH_LEN];
-  PetscInt    n_written, last_written;
+  PetscInt    n_written;
   PetscReal  *times;                 /* time of each snapshot */
   DM          dm_out;                /* the displacement field without constraints: output of whole fields */
   Vec         disp_cart, vel_cart;  /* Cartesian output fields on dm_out */
@@ -182,6 +182,4 @@ typedef struct {
   MMHistory   hist;
   MMOutput    out;
   MMLog       log;
-  PetscInt    active_prev_count;
-  PetscBool   have_contact_label;
 } MMCtx;

@@ -9,6 +9,19 @@
 
 /* ---------------------------------------------------------------- a bound-constrained QP as a SNESVI */
 
+/* The default linear solver of every solve here: LU with MUMPS, options still apply on top. */
+PetscErrorCode MMKSPSetDirect(KSP ksp)
+{
+  PC pc;
+
+  PetscFunctionBeginUser;
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCLU));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode QPResidual(SNES snes, Vec x, Vec f, void *ptr)
 {
   MMBoundQP *qp = (MMBoundQP *)ptr;
@@ -41,7 +54,6 @@ static PetscErrorCode QPConverged(SNES snes, PetscInt it, PetscReal xnorm, Petsc
 static PetscErrorCode CreateQPSolver(MPI_Comm comm, const char prefix[], MMBoundQP *qp, SNES *snes)
 {
   KSP            ksp;
-  PC             pc;
   SNESLineSearch ls;
   Vec            r;
 
@@ -59,10 +71,7 @@ static PetscErrorCode CreateQPSolver(MPI_Comm comm, const char prefix[], MMBound
   PetscCall(SNESGetLineSearch(*snes, &ls));
   PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
   PetscCall(SNESGetKSP(*snes, &ksp));
-  PetscCall(KSPSetType(ksp, KSPPREONLY));
-  PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PCSetType(pc, PCLU));
-  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(MMKSPSetDirect(ksp));
   PetscCall(SNESSetFromOptions(*snes));
   PetscFunctionReturn(0);
 }
@@ -95,17 +104,13 @@ static PetscErrorCode SolveQP(SNES snes, MMBoundQP *qp, Vec x, PetscInt *its)
 static PetscErrorCode FactorStepMatrix(MMCtx *ctx)
 {
   MMContact *ct = &ctx->contact;
-  PC         pc;
 
   PetscFunctionBeginUser;
   if (!ct->ksp_K) {
     PetscCall(MatCreateVecs(ct->qp.A, &ct->z, &ct->rhs_c));
     PetscCall(KSPCreate(PetscObjectComm((PetscObject)ctx->op.dm), &ct->ksp_K));
     PetscCall(KSPSetOptionsPrefix(ct->ksp_K, "contact_K_"));
-    PetscCall(KSPSetType(ct->ksp_K, KSPPREONLY));
-    PetscCall(KSPGetPC(ct->ksp_K, &pc));
-    PetscCall(PCSetType(pc, PCLU));
-    PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+    PetscCall(MMKSPSetDirect(ct->ksp_K));
     PetscCall(KSPSetFromOptions(ct->ksp_K));
   }
   PetscCall(KSPSetOperators(ct->ksp_K, ct->qp.A, ct->qp.A));

@@ -87,6 +87,9 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
   h->work_friction += w_f;
   h->balance_residual = PetscAbsReal(h->total - E_old - w_ext - w_c - w_f) / PetscMax(PetscMax(PetscAbsReal(h->total), PetscAbsReal(E_old)), PETSC_SMALL * PETSC_SMALL);
   h->max_balance      = PetscMax(h->max_balance, h->balance_residual);
+  PetscCheck(h->balance_residual <= ctx->opt.audit_tol, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_NOT_CONVERGED,
+             "Energy audit failed at step %" PetscInt_FMT " (t = %g): balance residual %.3e > -audit_tol %.1e. The step was not solved exactly: tighten -contact_tol or the -contact_snes tolerances. The output up to the previous step is intact",
+             h->step, (double)h->time, (double)h->balance_residual, (double)ctx->opt.audit_tol);
   h->cfl              = ctx->contact.enabled ? ctx->op.c_p * s->dt / ctx->contact.h_c : 0;
   PetscCall(MMContactDiagnostics(ctx, s->u, s->react, h));
   h->max_penetration_run = PetscMax(h->max_penetration_run, h->max_penetration);

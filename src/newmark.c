@@ -213,7 +213,6 @@ static PetscErrorCode InitialAcceleration(MMCtx *ctx)
   Mat      Mss;
   Vec      r, rs, as;
   KSP      ksp;
-  PC       pc;
 
   PetscFunctionBeginUser;
   if (!HasMasslessDofs(ctx)) {
@@ -232,10 +231,7 @@ static PetscErrorCode InitialAcceleration(MMCtx *ctx)
   PetscCall(KSPCreate(PetscObjectComm((PetscObject)s->u), &ksp));
   PetscCall(KSPSetOptionsPrefix(ksp, "mass_"));
   PetscCall(KSPSetOperators(ksp, Mss, Mss));
-  PetscCall(KSPSetType(ksp, KSPPREONLY));
-  PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PCSetType(pc, PCLU));
-  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(MMKSPSetDirect(ksp));
   PetscCall(KSPSetFromOptions(ksp));
   PetscCall(VecZeroEntries(s->a));
   PetscCall(VecGetSubVector(r, is, &rs));

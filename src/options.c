@@ -135,6 +135,8 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(PetscOptionsEnum("-contact_formulation", "Contact VI on the contact dofs through the Delassus operator (condensed: K~ factored once per dt) or on all dofs (full: a factorization per VI iteration)", NULL, MMContactFormulations, (PetscEnum)opt->contact_formulation, (PetscEnum *)&opt->contact_formulation, NULL));
   opt->contact_tol = 1e-11;
   PetscCall(PetscOptionsReal("-contact_tol", "Contact solves stop when ||K~ w - b - f_c|| <= contact_tol ||b|| (on top of -contact_snes_rtol/atol)", NULL, opt->contact_tol, &opt->contact_tol, NULL));
+  opt->audit_tol = 1e-6;
+  PetscCall(PetscOptionsReal("-audit_tol", "Stop the run when a step's relative energy-balance residual exceeds this: the scheme's identity no longer holds", NULL, opt->audit_tol, &opt->audit_tol, NULL));
   PetscCall(PetscStrcpy(opt->output_dir, "output"));
   PetscCall(PetscOptionsString("-output_dir", "Directory for history.csv, solution.h5 and solution.xmf (created if missing)", NULL, opt->output_dir, opt->output_dir, sizeof(opt->output_dir), NULL));
   opt->output_every = 10;

@@ -225,7 +225,6 @@ PetscErrorCode MMOutputMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void
   PetscFunctionBeginUser;
   PetscCall(CSVRow(ctx));
   if (step == 0 || (every > 0 && step % every == 0)) PetscCall(WriteFields(ctx));
-  ctx->out.last_written = step;
   PetscFunctionReturn(0);
 }
 

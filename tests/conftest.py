@@ -22,7 +22,7 @@ class Run:
 
     @property
     def history(self):
-        return np.genfromtxt(os.path.join(self.outdir, "history.csv"), delimiter=",", names=True)
+        return np.genfromtxt(os.path.join(self.outdir, "history.csv"), delimiter=",", names=True, ndmin=1)
 
     def fields(self):
         return h5py.File(os.path.join(self.outdir, "solution.h5"), "r")
