@@ -61,6 +61,9 @@ typedef struct {
   MMContactFormulation contact_formulation;
   PetscReal    contact_tol;
   PetscReal    audit_tol;
+  PetscReal    mu;
+  PetscReal    friction_coulomb_tol;
+  PetscBool    friction_monitor;
   char         output_dir[PETSC_MAX_PATH_LEN];
   PetscInt     output_every;
   PetscBool    quiet;
@@ -108,6 +111,7 @@ typedef struct {
   IS         is_normal;           /* global indices of the contact-normal dofs (owned) */
   IS         is_tangent;          /* global indices of the contact-tangential dofs (owned) */
   IS         is_star;             /* every other dof (owned) */
+  IS         is_interior;         /* the dofs of the nodes off the contact boundary (owned) */
   Vec        gap;                 /* g_i on the normal dofs, layout of is_normal */
   Vec        lower, upper;        /* SNESVI bounds on the full w vector */
   MMBoundQP  qp;                  /* the step problem: K~ w = b, K~ = K + 4/dt^2 M* */
@@ -117,9 +121,12 @@ typedef struct {
   MMContactFormulation formulation;
   SNES       snes;                /* the VI solver, prefix contact_: on w (full) or on lambda (condensed) */
   KSP        ksp_K;               /* K~ factored once per dt, prefix contact_K_ (condensed) */
-  Mat        W;                   /* Delassus operator E_n^T K~^{-1} E_n on the contact-normal dofs */
-  MMBoundQP  qpc;                 /* the condensed LCP: W lambda - q >= 0, lambda >= 0 */
-  Vec        lambda, z, rhs_c;    /* normal reactions (>= 0); the step's contact-free solution; E_n lambda */
+  Mat        W;                   /* Delassus operator E^T K~^{-1} E on the condensed dofs */
+  MMBoundQP  qpc;                 /* the condensed VI: W rho - q complementary to the box of rho */
+  PetscInt   ncomp;               /* condensed dofs per contact node: 1 (normal), or dim with friction */
+  IS         is_cond;             /* the condensed dofs, node by node */
+  Vec        rho, rho_lo, rho_hi; /* contact reactions (lambda_n, -t) per node and their bounds */
+  Vec        offset, z, rhs_c;    /* q = z_c - offset; the step's contact-free solution; E rho */
   SNES       snes0;               /* quasi-static projection of the contact dofs, prefix contact0_ */
   PetscReal  frame[MM_MAX_DIM][MM_MAX_DIM]; /* rows: nu, tau_1, tau_2 */
   PetscReal  h_c;                 /* smallest diameter of cells touching the contact boundary */
@@ -140,6 +147,17 @@ typedef struct {
   PetscReal dt;
 } MMState;
 
+/* The Coulomb friction loop (friction.c): a shell SNES on the thresholds around the contact VI. */
+typedef struct {
+  SNES      snes;             /* prefix friction_ */
+  Vec       s, s_new;         /* thresholds mu r_i per contact node: the loop's unknown */
+  Vec       sigma;            /* velocity of the current iterate (slip velocity on the contact dofs) */
+  Vec       b, w, react;      /* the step problem being solved (borrowed) */
+  PetscReal coulomb_tol, coulomb, contraction, contraction_max;
+  PetscInt  its;
+  PetscBool monitor;
+} MMFriction;
+
 /* One row of the history, and its running sums. */
 typedef struct {
   PetscInt  step;
@@ -150,7 +168,7 @@ typedef struct {
   PetscInt  active, slipping, switched;
   PetscReal force_normal, force_tangential, max_penetration, coulomb_residual;
   PetscInt  vi_its, friction_its;
-  PetscReal cfl;
+  PetscReal cfl, contraction;
   PetscReal ucm[MM_MAX_DIM], vcm[MM_MAX_DIM], L[MM_MAX_DIM];
   PetscReal max_balance, max_penetration_run; /* over the run, for the summary */
 } MMHistory;
@@ -169,7 +187,7 @@ typedef struct {
 
 typedef struct {
   PetscLogStage setup, solve, output;
-  PetscLogEvent assemble, contact_solve, energy;
+  PetscLogEvent assemble, contact_solve, friction, energy;
 } MMLog;
 
 /* Everything the stepper needs; the TS type "newmark" holds a pointer to it. */
@@ -178,6 +196,7 @@ typedef struct {
   PetscReal   constants[MM_C_NUM];
   MMOperators op;
   MMContact   contact;
+  MMFriction  friction;
   MMState     state;
   MMHistory   hist;
   MMOutput    out;

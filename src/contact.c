@@ -95,11 +95,15 @@ static PetscErrorCode SolveQP(SNES snes, MMBoundQP *qp, Vec x, PetscInt *its)
 }
 
 /* ---------------------------------------------------------------- the condensed formulation
- * With z = K~^{-1} b and W = E_n^T K~^{-1} E_n, the contact-normal dofs are w_c = z_c - W lambda
- * for normal reactions lambda >= 0, and the step problem is the LCP
- *   lambda >= 0,  W lambda - (z_c - g) >= 0,  complementary,
- * of the size of the contact set. K~ is factored once per dt; a step costs two solves with that
- * factor and a VI on the contact dofs, whatever the active set does. */
+ * The condensed dofs are the normal dof of each contact node and, with friction, its tangential
+ * dofs. With z = K~^{-1} b and the Delassus operator W = E^T K~^{-1} E on them, the step solution
+ * is w = z - K~^{-1} E rho for contact reactions rho = (lambda_n, -t): lambda_n >= 0 the normal
+ * reaction, t the tangential force on the body. The step problem is the box-constrained VI
+ *   W rho - q  complementary to  lambda_n >= 0,  |rho_t| <= s,
+ * with q_n = z_n - g (the gap left) and q_t = z_t - (u_t^n + dt/2 v_t^n), which makes the
+ * tangential residual -dt/2 times the slip velocity: Tresca friction with thresholds s, exactly.
+ * K~ is factored once per dt; a step costs two solves with that factor and a VI on the contact
+ * dofs, whatever the contact set does. */
 
 static PetscErrorCode FactorStepMatrix(MMCtx *ctx)
 {
@@ -118,14 +122,14 @@ static PetscErrorCode FactorStepMatrix(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
-/* Columns of K~^{-1} E_n, a block at a time through the factor, restricted to the contact rows. */
+/* Columns of K~^{-1} E, a block at a time through the factor, restricted to the condensed rows. */
 static PetscErrorCode AssembleDelassus(MMCtx *ctx)
 {
   MMContact      *ct = &ctx->contact;
   MPI_Comm        comm = PetscObjectComm((PetscObject)ctx->op.dm);
-  const PetscInt  nb_max = 64, nc = ct->n_local, N = ct->n_global;
-  PetscInt        n, rstart, cstart, lda, *cols;
-  const PetscInt *in;
+  const PetscInt  nb_max = 64;
+  PetscInt        n, rstart, cstart, lda, nc, N, *cols;
+  const PetscInt *ic;
   PetscScalar    *vals;
   PC              pc;
   Mat             F;
@@ -135,10 +139,13 @@ static PetscErrorCode AssembleDelassus(MMCtx *ctx)
   PetscCall(PCFactorGetMatrix(pc, &F));
   PetscCall(MatGetLocalSize(ct->qp.A, &n, NULL));
   PetscCall(MatGetOwnershipRange(ct->qp.A, &rstart, NULL));
-  PetscCall(VecGetOwnershipRange(ct->gap, &cstart, NULL));
+  PetscCall(ISGetLocalSize(ct->is_cond, &nc));
+  PetscCall(ISGetSize(ct->is_cond, &N));
+  PetscCall(MPI_Scan(&nc, &cstart, 1, MPIU_INT, MPI_SUM, comm));
+  cstart -= nc;
   if (!ct->W) PetscCall(MatCreateAIJ(comm, nc, nc, N, N, nc, NULL, N - nc, NULL, &ct->W));
   PetscCall(MatZeroEntries(ct->W));
-  PetscCall(ISGetIndices(ct->is_normal, &in));
+  PetscCall(ISGetIndices(ct->is_cond, &ic));
   PetscCall(PetscMalloc2(nb_max, &cols, nb_max, &vals));
   for (PetscInt j0 = 0; j0 < N; j0 += nb_max) {
     const PetscInt     nb = PetscMin(nb_max, N - j0);
@@ -147,7 +154,7 @@ static PetscErrorCode AssembleDelassus(MMCtx *ctx)
 
     PetscCall(MatCreateDense(comm, n, PETSC_DECIDE, PETSC_DETERMINE, nb, NULL, &B));
     for (PetscInt k = 0; k < nc; ++k)
-      if (cstart + k >= j0 && cstart + k < j0 + nb) PetscCall(MatSetValue(B, in[k], cstart + k - j0, 1.0, INSERT_VALUES));
+      if (cstart + k >= j0 && cstart + k < j0 + nb) PetscCall(MatSetValue(B, ic[k], cstart + k - j0, 1.0, INSERT_VALUES));
     PetscCall(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY));
     PetscCall(MatDuplicate(B, MAT_DO_NOT_COPY_VALUES, &X));
@@ -157,7 +164,7 @@ static PetscErrorCode AssembleDelassus(MMCtx *ctx)
     for (PetscInt j = 0; j < nb; ++j) cols[j] = j0 + j;
     for (PetscInt k = 0; k < nc; ++k) {
       const PetscInt row = cstart + k;
-      for (PetscInt j = 0; j < nb; ++j) vals[j] = x[(in[k] - rstart) + j * lda];
+      for (PetscInt j = 0; j < nb; ++j) vals[j] = x[(ic[k] - rstart) + j * lda];
       PetscCall(MatSetValues(ct->W, 1, &row, nb, cols, vals, INSERT_VALUES));
     }
     PetscCall(MatDenseRestoreArrayRead(X, &x));
@@ -165,7 +172,7 @@ static PetscErrorCode AssembleDelassus(MMCtx *ctx)
     PetscCall(MatDestroy(&B));
   }
   PetscCall(PetscFree2(cols, vals));
-  PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  PetscCall(ISRestoreIndices(ct->is_cond, &ic));
   PetscCall(MatAssemblyBegin(ct->W, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(ct->W, MAT_FINAL_ASSEMBLY));
   PetscFunctionReturn(0);
@@ -174,31 +181,74 @@ static PetscErrorCode AssembleDelassus(MMCtx *ctx)
 static PetscErrorCode CreateCondensedSolver(MMCtx *ctx)
 {
   MMContact *ct = &ctx->contact;
-  Vec        lo, hi;
 
   PetscFunctionBeginUser;
   ct->qpc.A      = ct->W;
   ct->qpc.rtol_b = ct->tol;
-  PetscCall(VecDuplicate(ct->gap, &ct->qpc.b));
-  PetscCall(VecDuplicate(ct->gap, &ct->lambda));
-  PetscCall(VecZeroEntries(ct->lambda));
+  PetscCall(MatCreateVecs(ct->W, &ct->rho, &ct->qpc.b));
+  PetscCall(VecSetBlockSize(ct->rho, ct->ncomp));
+  PetscCall(VecZeroEntries(ct->rho));
+  PetscCall(VecDuplicate(ct->rho, &ct->rho_lo));
+  PetscCall(VecDuplicate(ct->rho, &ct->rho_hi));
+  PetscCall(VecDuplicate(ct->rho, &ct->offset));
+  /* frictionless until thresholds are set: rho_t in [0, 0] */
+  PetscCall(VecSet(ct->rho_lo, 0.0));
+  PetscCall(VecSet(ct->rho_hi, 0.0));
+  PetscCall(VecStrideSet(ct->rho_hi, 0, PETSC_INFINITY));
   PetscCall(CreateQPSolver(PetscObjectComm((PetscObject)ctx->op.dm), "contact_", &ct->qpc, &ct->snes));
-  PetscCall(VecDuplicate(ct->gap, &lo));
-  PetscCall(VecDuplicate(ct->gap, &hi));
-  PetscCall(VecSet(lo, 0.0));
-  PetscCall(VecSet(hi, PETSC_INFINITY));
-  PetscCall(SNESVISetVariableBounds(ct->snes, lo, hi));
-  /* SNESVI keeps references to the bounds */
-  PetscCall(VecDestroy(&lo));
-  PetscCall(VecDestroy(&hi));
+  PetscCall(SNESVISetVariableBounds(ct->snes, ct->rho_lo, ct->rho_hi));
   PetscFunctionReturn(0);
 }
 
-/* w = z - K~^{-1} E_n lambda, with z = K~^{-1} b and lambda from the LCP, warm-started from the last step. */
+/* Friction thresholds s (one per contact node): |rho_t| <= s in the next solves. */
+PetscErrorCode MMContactSetThresholds(MMCtx *ctx, Vec s)
+{
+  MMContact *ct = &ctx->contact;
+
+  PetscFunctionBeginUser;
+  for (PetscInt c = 1; c < ct->ncomp; ++c) {
+    PetscCall(VecStrideScatter(s, c, ct->rho_hi, INSERT_VALUES));
+    PetscCall(VecStrideScatter(s, c, ct->rho_lo, INSERT_VALUES));
+    PetscCall(VecStrideScale(ct->rho_lo, c, -1.0));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The normal reactions lambda_n of the last solve, one per contact node. */
+PetscErrorCode MMContactGetNormalReactions(MMCtx *ctx, Vec lambda)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecStrideGather(ctx->contact.rho, 0, lambda, INSERT_VALUES));
+  PetscFunctionReturn(0);
+}
+
+/* q = z_c - offset: the gap on the normal dofs, u_t^n + dt/2 v_t^n on the tangential ones. */
+static PetscErrorCode CondensedRHS(MMCtx *ctx)
+{
+  MMContact *ct = &ctx->contact;
+  Vec        zc;
+
+  PetscFunctionBeginUser;
+  if (ct->ncomp > 1) {
+    Vec ut, vt;
+    PetscCall(VecGetSubVector(ctx->state.u_old, ct->is_cond, &ut));
+    PetscCall(VecGetSubVector(ctx->state.v_old, ct->is_cond, &vt));
+    PetscCall(VecWAXPY(ct->offset, 0.5 * ct->Kt_dt, vt, ut));
+    PetscCall(VecRestoreSubVector(ctx->state.v_old, ct->is_cond, &vt));
+    PetscCall(VecRestoreSubVector(ctx->state.u_old, ct->is_cond, &ut));
+  }
+  PetscCall(VecStrideScatter(ct->gap, 0, ct->offset, INSERT_VALUES));
+  PetscCall(VecGetSubVector(ct->z, ct->is_cond, &zc));
+  PetscCall(VecWAXPY(ct->qpc.b, -1.0, ct->offset, zc));
+  PetscCall(VecRestoreSubVector(ct->z, ct->is_cond, &zc));
+  PetscFunctionReturn(0);
+}
+
+/* w = z - K~^{-1} E rho, with z = K~^{-1} b and rho from the VI, warm-started from the last solve. */
 static PetscErrorCode SolveCondensed(MMCtx *ctx, Vec b, Vec w)
 {
   MMContact *ct = &ctx->contact;
-  Vec        zc, rc;
+  Vec        rc;
 
   PetscFunctionBeginUser;
   PetscCall(KSPSolve(ct->ksp_K, b, ct->z));
@@ -207,14 +257,15 @@ static PetscErrorCode SolveCondensed(MMCtx *ctx, Vec b, Vec w)
     PetscCall(VecCopy(ct->z, w));
     PetscFunctionReturn(0);
   }
-  PetscCall(VecGetSubVector(ct->z, ct->is_normal, &zc));
-  PetscCall(VecWAXPY(ct->qpc.b, -1.0, ct->gap, zc));
-  PetscCall(VecRestoreSubVector(ct->z, ct->is_normal, &zc));
-  PetscCall(SolveQP(ct->snes, &ct->qpc, ct->lambda, &ct->vi_its));
+  PetscCall(CondensedRHS(ctx));
+  /* a warm start must lie in the box of the current thresholds */
+  PetscCall(VecPointwiseMax(ct->rho, ct->rho, ct->rho_lo));
+  PetscCall(VecPointwiseMin(ct->rho, ct->rho, ct->rho_hi));
+  PetscCall(SolveQP(ct->snes, &ct->qpc, ct->rho, &ct->vi_its));
   PetscCall(VecZeroEntries(ct->rhs_c));
-  PetscCall(VecGetSubVector(ct->rhs_c, ct->is_normal, &rc));
-  PetscCall(VecAXPY(rc, -1.0, ct->lambda));
-  PetscCall(VecRestoreSubVector(ct->rhs_c, ct->is_normal, &rc));
+  PetscCall(VecGetSubVector(ct->rhs_c, ct->is_cond, &rc));
+  PetscCall(VecAXPY(rc, -1.0, ct->rho));
+  PetscCall(VecRestoreSubVector(ct->rhs_c, ct->is_cond, &rc));
   PetscCall(KSPSolve(ct->ksp_K, ct->rhs_c, w));
   PetscCall(VecAXPY(w, 1.0, ct->z));
   PetscFunctionReturn(0);
@@ -434,11 +485,19 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
     for (PetscInt i = 0; i < n; ++i)
       if (is_contact_dof[i] != 2) is[ns++] = rstart + i;
     PetscCall(ISCreateGeneral(comm, ns, is, PETSC_COPY_VALUES, &ct->is_star));
+    ns = 0;
+    for (PetscInt i = 0; i < n; ++i)
+      if (!is_contact_dof[i]) is[ns++] = rstart + i;
+    PetscCall(ISCreateGeneral(comm, ns, is, PETSC_COPY_VALUES, &ct->is_interior));
   }
   PetscCall(MatAssemblyBegin(ctx->op.Q, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(ctx->op.Q, MAT_FINAL_ASSEMBLY));
   PetscCall(ISCreateGeneral(comm, nc, in, PETSC_COPY_VALUES, &ct->is_normal));
   PetscCall(ISCreateGeneral(comm, nc * (dim - 1), it, PETSC_COPY_VALUES, &ct->is_tangent));
+  /* the condensed dofs, node by node: the normal one, and the tangential ones with friction */
+  for (PetscInt k = 0; k < nc; ++k)
+    for (PetscInt c = 0; c < ct->ncomp; ++c) is[k * ct->ncomp + c] = in[k] + c;
+  PetscCall(ISCreateGeneral(comm, nc * ct->ncomp, is, PETSC_COPY_VALUES, &ct->is_cond));
   PetscCall(VecCreateMPI(comm, nc, PETSC_DETERMINE, &ct->gap));
   PetscCall(VecDuplicate(ct->gap, &ct->area));
   {
@@ -478,7 +537,9 @@ static PetscErrorCode BuildNoContact(MMCtx *ctx)
   PetscCall(MatAssemblyEnd(ctx->op.Q, MAT_FINAL_ASSEMBLY));
   PetscCall(ISCreateStride(comm, 0, 0, 1, &ctx->contact.is_normal));
   PetscCall(ISCreateStride(comm, 0, 0, 1, &ctx->contact.is_tangent));
+  PetscCall(ISCreateStride(comm, 0, 0, 1, &ctx->contact.is_cond));
   PetscCall(ISCreateStride(comm, n, rstart, 1, &ctx->contact.is_star));
+  PetscCall(ISCreateStride(comm, n, rstart, 1, &ctx->contact.is_interior));
   PetscCall(VecCreateMPI(comm, 0, PETSC_DETERMINE, &ctx->contact.gap));
   PetscCall(VecDestroy(&g));
   ctx->contact.h_c = 0;
@@ -496,6 +557,7 @@ PetscErrorCode MMContactSetUp(MMCtx *ctx)
   ct->enabled     = ctx->opt.contact;
   ct->tol         = ctx->opt.contact_tol;
   ct->formulation = ctx->opt.contact_formulation;
+  ct->ncomp       = ctx->opt.mu > 0 ? ctx->op.dim : 1;
   PetscCall(BuildFrame(ctx));
   if (!ct->enabled) {
     PetscCall(BuildNoContact(ctx));
@@ -507,6 +569,8 @@ PetscErrorCode MMContactSetUp(MMCtx *ctx)
   PetscCall(ContactLayerDiameter(ctx, mark));
   PetscCall(PetscFree(mark));
   PetscCall(VecDestroy(&area));
+  PetscCheck(ct->ncomp == 1 || ctx->op.dim == 2, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_SUP, "Coulomb friction (-mu %g) is implemented in 2D only so far: the 3D Coulomb disk is not, and a square box would not be Coulomb's law", (double)ctx->opt.mu);
+  PetscCheck(ct->ncomp == 1 || ct->formulation == MM_CONTACT_CONDENSED, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_SUP, "Friction (-mu %g) needs -contact_formulation condensed", (double)ctx->opt.mu);
   PetscCheck(ct->n_global > 0, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "The contact boundary \"%s\" has no nodes", ctx->opt.contact_name);
   PetscFunctionReturn(0);
 }
@@ -576,8 +640,9 @@ PetscErrorCode MMContactSolve(MMCtx *ctx, Vec b, Vec w, Vec react)
   }
   PetscCall(MatMult(ct->qp.A, w, react));
   PetscCall(VecAXPY(react, -1.0, b));
-  /* off the contact set the residual is solver noise, not a force */
-  PetscCall(VecISSet(react, ct->is_star, 0.0));
+  /* off the contact nodes the residual is solver noise, not a force */
+  PetscCall(VecISSet(react, ct->is_interior, 0.0));
+  if (ct->ncomp == 1) PetscCall(VecISSet(react, ct->is_tangent, 0.0));
   PetscCall(PetscLogEventEnd(ctx->log.contact_solve, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -623,68 +688,132 @@ PetscErrorCode MMContactProjectInitial(MMCtx *ctx, Vec w)
   PetscFunctionReturn(0);
 }
 
-/* Per-step contact quantities (method.md sections 5-6). react is the obstacle's force on the body. */
-PetscErrorCode MMContactDiagnostics(MMCtx *ctx, Vec w, Vec react, MMHistory *h)
+/* Per-node contact statistics of a state (w, react, sigma): sigma holds the velocity, whose
+ * tangential components at a contact node are its slip velocity. */
+typedef struct {
+  PetscInt  active, switched, slipping, sticking;
+  PetscReal force_normal, force_t[MM_MAX_DIM], max_penetration, coulomb;
+} ContactStats;
+
+static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma, PetscBool record_switches, ContactStats *st)
 {
   MMContact         *ct = &ctx->contact;
-  PetscInt           dim = ctx->op.dim, nc = ct->n_local, cnt[3] = {0, 0, 0};
-  const PetscInt    *in, *it;
-  const PetscScalar *wa, *fa, *ga;
-  PetscReal          ft[MM_MAX_DIM] = {0, 0, 0}, loc[6] = {0, 0, 0, 0, 0, 0}, glob[6], rmax = 0, fscale;
-  PetscInt           rstart;
+  const PetscReal    mu = ctx->opt.mu, vtol = 1e-10 * ctx->op.c_p;
+  PetscInt           dim = ctx->op.dim, nc = ct->n_local, cnt[4] = {0, 0, 0, 0}, rstart;
+  const PetscInt    *in;
+  const PetscScalar *wa, *fa, *ga, *va, *ra = NULL, *rh = NULL;
+  const PetscInt     nr = ct->ncomp;
+  PetscReal          sums[1 + MM_MAX_DIM] = {0, 0, 0, 0}, loc[2] = {0, 0}, rmax = 0, fscale;
   MPI_Comm           comm = PetscObjectComm((PetscObject)ctx->op.dm);
 
   PetscFunctionBeginUser;
-  h->active = h->switched = h->slipping = 0;
-  h->force_normal = h->force_tangential = h->max_penetration = h->coulomb_residual = 0;
+  PetscCall(PetscMemzero(st, sizeof(*st)));
   if (!ct->enabled) PetscFunctionReturn(0);
   PetscCall(VecGetOwnershipRange(w, &rstart, NULL));
   PetscCall(ISGetIndices(ct->is_normal, &in));
-  PetscCall(ISGetIndices(ct->is_tangent, &it));
   PetscCall(VecGetArrayRead(w, &wa));
   PetscCall(VecGetArrayRead(react, &fa));
+  PetscCall(VecGetArrayRead(sigma, &va));
   PetscCall(VecGetArrayRead(ct->gap, &ga));
+  if (nr > 1) {
+    PetscCall(VecGetArrayRead(ct->rho, &ra));
+    PetscCall(VecGetArrayRead(ct->rho_hi, &rh));
+  }
   for (PetscInt k = 0; k < nc; ++k) rmax = PetscMax(rmax, -PetscRealPart(fa[in[k] - rstart]));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &rmax, 1, MPIU_REAL, MPIU_MAX, comm));
   /* force scale of the normalized residuals: the largest reaction, but at least the nodal force of a
    * 1e-3 strain on the contact layer, so that solver noise on a free boundary is not normalized by itself */
   fscale = PetscMax(rmax, 1e-3 * ctx->opt.E * PetscPowReal(ct->h_c, dim - 1));
   for (PetscInt k = 0; k < nc; ++k) {
-    const PetscReal un = PetscRealPart(wa[in[k] - rstart]), g = PetscRealPart(ga[k]), r = -PetscRealPart(fa[in[k] - rstart]);
+    const PetscInt  i = in[k] - rstart;
+    const PetscReal un = PetscRealPart(wa[i]), g = PetscRealPart(ga[k]), r = -PetscRealPart(fa[i]);
     const PetscBool active = (PetscBool)(g - un <= 1e-10 * ct->h_c);
-    PetscReal       tn = 0;
+    PetscReal       tn = 0, vn = 0, res = 0;
 
-    cnt[0] += active;
-    cnt[1] += (active != ct->was_active[k]);
-    ct->was_active[k] = active;
-    loc[0] += r;
     for (PetscInt d = 1; d < dim; ++d) {
-      const PetscReal t = PetscRealPart(fa[it[k * (dim - 1) + d - 1] - rstart]);
-      ft[d - 1] += t;
-      tn += t * t;
+      tn += PetscSqr(PetscRealPart(fa[i + d]));
+      vn += PetscSqr(PetscRealPart(va[i + d]));
+      sums[d] += PetscRealPart(fa[i + d]);
     }
-    loc[1] = PetscMax(loc[1], (un - g) / ct->h_c);                       /* penetration */
-    loc[2] = PetscMax(loc[2], -r / fscale);                              /* tension */
-    loc[3] = PetscMax(loc[3], PetscAbsReal(r * (un - g)) / (fscale * ct->h_c)); /* complementarity */
-    loc[4] = PetscMax(loc[4], PetscSqrtReal(tn) / fscale);               /* cone, mu = 0 */
-    loc[5] = PetscMax(loc[5], un - g);
+    tn = PetscSqrtReal(tn);
+    vn = PetscSqrtReal(vn);
+    sums[0] += r;
+    res = PetscMax(res, (un - g) / ct->h_c);                                 /* penetration */
+    res = PetscMax(res, -r / fscale);                                        /* tension */
+    res = PetscMax(res, PetscAbsReal(r * (un - g)) / (fscale * ct->h_c));    /* complementarity */
+    res = PetscMax(res, (tn - mu * PetscMax(r, 0)) / fscale);                /* cone */
+    /* the VI's own stick/slip split: a tangential reaction strictly inside its bound sticks */
+    PetscBool at_bound = PETSC_FALSE;
+    if (nr > 1) {
+      PetscReal rt = 0;
+      for (PetscInt d = 1; d < nr; ++d) rt += PetscSqr(PetscRealPart(ra[k * nr + d]));
+      at_bound = (PetscBool)(PetscRealPart(rh[k * nr + 1]) > 0 && PetscSqrtReal(rt) >= (1 - 1e-10) * PetscRealPart(rh[k * nr + 1]));
+    }
+    if (active && at_bound && vn > vtol) {
+      PetscReal slip = 0; /* |t + mu r sigma/|sigma|| */
+      for (PetscInt d = 1; d < dim; ++d) slip += PetscSqr(PetscRealPart(fa[i + d]) + mu * r * PetscRealPart(va[i + d]) / vn);
+      res = PetscMax(res, PetscSqrtReal(slip) / fscale);
+      ++cnt[2];
+    } else if (active && nr > 1) ++cnt[3];
+    cnt[0] += active;
+    if (record_switches) {
+      cnt[1] += (active != ct->was_active[k]);
+      ct->was_active[k] = active;
+    }
+    loc[0] = PetscMax(loc[0], res);
+    loc[1] = PetscMax(loc[1], un - g);
+  }
+  if (nr > 1) {
+    PetscCall(VecRestoreArrayRead(ct->rho, &ra));
+    PetscCall(VecRestoreArrayRead(ct->rho_hi, &rh));
   }
   PetscCall(VecRestoreArrayRead(ct->gap, &ga));
+  PetscCall(VecRestoreArrayRead(sigma, &va));
   PetscCall(VecRestoreArrayRead(react, &fa));
   PetscCall(VecRestoreArrayRead(w, &wa));
-  PetscCall(ISRestoreIndices(ct->is_tangent, &it));
   PetscCall(ISRestoreIndices(ct->is_normal, &in));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cnt, 2, MPIU_INT, MPI_SUM, comm));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, ft, MM_MAX_DIM, MPIU_REAL, MPIU_SUM, comm));
-  PetscCall(MPIU_Allreduce(&loc[0], &glob[0], 1, MPIU_REAL, MPIU_SUM, comm));
-  PetscCall(MPIU_Allreduce(&loc[1], &glob[1], 5, MPIU_REAL, MPIU_MAX, comm));
-  h->active           = cnt[0];
-  h->switched         = cnt[1];
-  h->force_normal     = glob[0];
-  h->force_tangential = dim == 2 ? ft[0] : PetscSqrtReal(ft[0] * ft[0] + ft[1] * ft[1]);
-  h->max_penetration  = PetscMax(glob[5], 0.0);
-  h->coulomb_residual = PetscMax(PetscMax(PetscMax(glob[1], glob[2]), glob[3]), PetscMax(glob[4], 0.0));
-  h->vi_its           = ct->vi_its;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cnt, 4, MPIU_INT, MPI_SUM, comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums, 1 + MM_MAX_DIM, MPIU_REAL, MPIU_SUM, comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, loc, 2, MPIU_REAL, MPIU_MAX, comm));
+  st->active          = cnt[0];
+  st->switched        = cnt[1];
+  st->slipping        = cnt[2];
+  st->sticking        = cnt[3];
+  st->force_normal    = sums[0];
+  for (PetscInt d = 1; d < dim; ++d) st->force_t[d - 1] = sums[d];
+  st->coulomb         = PetscMax(loc[0], 0.0);
+  st->max_penetration = PetscMax(loc[1], 0.0);
+  PetscFunctionReturn(0);
+}
+
+/* The discrete Coulomb residual (method.md section 6) of a state, and its slipping/sticking counts. */
+PetscErrorCode MMContactCoulomb(MMCtx *ctx, Vec w, Vec react, Vec sigma, PetscReal *residual, PetscInt *nslip, PetscInt *nstick)
+{
+  ContactStats st;
+
+  PetscFunctionBeginUser;
+  PetscCall(ContactStatistics(ctx, w, react, sigma, PETSC_FALSE, &st));
+  *residual = st.coulomb;
+  *nslip    = st.slipping;
+  *nstick   = st.sticking;
+  PetscFunctionReturn(0);
+}
+
+/* Per-step contact quantities (method.md sections 5-6) of the accepted state. */
+PetscErrorCode MMContactDiagnostics(MMCtx *ctx, Vec w, Vec react, Vec v, MMHistory *h)
+{
+  ContactStats st;
+
+  PetscFunctionBeginUser;
+  PetscCall(ContactStatistics(ctx, w, react, v, PETSC_TRUE, &st));
+  h->active           = st.active;
+  h->switched         = st.switched;
+  h->slipping         = st.slipping;
+  h->force_normal     = st.force_normal;
+  h->force_tangential = ctx->op.dim == 2 ? st.force_t[0] : PetscSqrtReal(PetscSqr(st.force_t[0]) + PetscSqr(st.force_t[1]));
+  h->max_penetration  = st.max_penetration;
+  h->coulomb_residual = st.coulomb;
+  h->vi_its           = ctx->contact.vi_its;
   PetscFunctionReturn(0);
 }
 
@@ -730,7 +859,11 @@ PetscErrorCode MMContactDestroy(MMContact *ct)
   PetscCall(KSPDestroy(&ct->ksp_K));
   PetscCall(MatDestroy(&ct->W));
   PetscCall(VecDestroy(&ct->qpc.b));
-  PetscCall(VecDestroy(&ct->lambda));
+  PetscCall(VecDestroy(&ct->rho));
+  PetscCall(VecDestroy(&ct->rho_lo));
+  PetscCall(VecDestroy(&ct->rho_hi));
+  PetscCall(VecDestroy(&ct->offset));
+  PetscCall(ISDestroy(&ct->is_cond));
   PetscCall(VecDestroy(&ct->z));
   PetscCall(VecDestroy(&ct->rhs_c));
   PetscCall(MatDestroy(&ct->qp.A));
@@ -746,6 +879,7 @@ PetscErrorCode MMContactDestroy(MMContact *ct)
   PetscCall(ISDestroy(&ct->is_normal));
   PetscCall(ISDestroy(&ct->is_tangent));
   PetscCall(ISDestroy(&ct->is_star));
+  PetscCall(ISDestroy(&ct->is_interior));
   PetscCall(PetscFree(ct->was_active));
   PetscCall(PetscFree(ct->scalar_index));
   PetscFunctionReturn(0);

@@ -55,7 +55,7 @@ PetscErrorCode MMEnergyInitial(MMCtx *ctx)
   h->cfl = ctx->contact.enabled ? ctx->op.c_p * h->dt / ctx->contact.h_c : 0;
   PetscCall(MMFECheckElasticEnergy(ctx, ctx->state.u));
   PetscCall(TotalEnergy(ctx, h));
-  PetscCall(MMContactDiagnostics(ctx, ctx->state.u, ctx->state.react, h));
+  PetscCall(MMContactDiagnostics(ctx, ctx->state.u, ctx->state.react, ctx->state.v, h));
   h->switched = 0;
   h->vi_its   = 0;
   h->max_penetration_run = h->max_penetration;
@@ -91,7 +91,9 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
              "Energy audit failed at step %" PetscInt_FMT " (t = %g): balance residual %.3e > -audit_tol %.1e. The step was not solved exactly: tighten -contact_tol or the -contact_snes tolerances. The output up to the previous step is intact",
              h->step, (double)h->time, (double)h->balance_residual, (double)ctx->opt.audit_tol);
   h->cfl              = ctx->contact.enabled ? ctx->op.c_p * s->dt / ctx->contact.h_c : 0;
-  PetscCall(MMContactDiagnostics(ctx, s->u, s->react, h));
+  PetscCall(MMContactDiagnostics(ctx, s->u, s->react, s->v, h));
+  h->friction_its = ctx->friction.its;
+  h->contraction  = ctx->friction.contraction_max;
   h->max_penetration_run = PetscMax(h->max_penetration_run, h->max_penetration);
   PetscCall(MMRigidBodyDiagnostics(ctx, h));
   PetscCall(PetscLogEventEnd(ctx->log.energy, 0, 0, 0, 0));

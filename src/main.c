@@ -8,6 +8,7 @@ static char help[] = "mmcontact: elastodynamic contact with Coulomb friction by 
 #include "fem.h"
 #include "contact.h"
 #include "newmark.h"
+#include "friction.h"
 #include "energy.h"
 #include "output.h"
 #include "log.h"
@@ -41,6 +42,7 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts)
   PetscCall(MMContactSetUp(ctx));
   PetscCall(MMFEAssembleOperators(ctx));
   PetscCall(MMNewmarkInitialState(ctx));
+  PetscCall(MMFrictionSetUp(ctx));
   PetscCall(MMNewmarkCreateTS(ctx, ts));
   PetscCall(TSGetTimeStep(*ts, &dt));
   PetscCall(MMContactSetStepMatrix(ctx, dt));
@@ -62,6 +64,7 @@ static PetscErrorCode Destroy(MMCtx *ctx, TS *ts)
     Vec *vecs[] = {&s->u, &s->v, &s->a, &s->u_old, &s->v_old, &s->a_old, &s->react, &s->react_old, &s->work, &s->u_next};
     for (size_t i = 0; i < sizeof(vecs) / sizeof(vecs[0]); ++i) PetscCall(VecDestroy(vecs[i]));
   }
+  PetscCall(MMFrictionDestroy(&ctx->friction));
   PetscCall(MMContactDestroy(&ctx->contact));
   PetscCall(MMFEDestroy(&ctx->op));
   PetscCall(DMDestroy(&ctx->op.dm));

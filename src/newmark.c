@@ -8,6 +8,7 @@
 #include "contact.h"
 #include "energy.h"
 #include "fem.h"
+#include "friction.h"
 
 typedef struct {
   MMCtx *ctx;
@@ -68,24 +69,51 @@ static PetscErrorCode SaveOldState(MMState *s)
   PetscFunctionReturn(0);
 }
 
+/* A friction loop that does not converge rejects the step: dt shrinks by TSAdapt's
+ * -ts_adapt_scale_solve_failed, down to -ts_adapt_dt_min and at most -ts_max_reject times. */
+static PetscErrorCode RejectStep(TS ts, MMCtx *ctx, PetscInt rejections)
+{
+  const PetscReal dt = ts->time_step, cfl = ctx->op.c_p * dt / ctx->contact.h_c;
+  const PetscReal new_dt = dt * ts->adapt->scale_solve_failed;
+  PetscReal       hmin, hmax;
+
+  PetscFunctionBeginUser;
+  PetscCall(TSAdaptGetStepLimits(ts->adapt, &hmin, &hmax));
+  ts->reject++;
+  ts->num_snes_failures++;
+  PetscCall(VecCopy(ctx->state.react_old, ctx->state.react));
+  PetscCheck(new_dt >= hmin && (ts->max_reject < 0 || rejections <= ts->max_reject), PetscObjectComm((PetscObject)ts), PETSC_ERR_NOT_CONVERGED,
+             "The friction loop does not converge at t = %g: last dt = %g, observed contraction factor %.3f, c_p dt / h_c' = %.3f. The next dt %g would be below -ts_adapt_dt_min %g (or past -ts_max_reject %" PetscInt_FMT "). Theorem 4.2 needs c_p dt / h_c' small enough for mu = %g: lower -ts_dt or -mu. The output up to t = %g is intact",
+             (double)ts->ptime, (double)dt, (double)ctx->friction.contraction, (double)cfl, (double)new_dt, (double)hmin, ts->max_reject, (double)ctx->opt.mu, (double)ts->ptime);
+  if (!ctx->opt.quiet) PetscCall(PetscPrintf(PetscObjectComm((PetscObject)ts), "  step rejected at t = %g: the friction loop did not converge with dt = %g (contraction factor %.3f, c_p dt / h_c' = %.3f); retrying with dt = %g\n", (double)ts->ptime, (double)dt, (double)ctx->friction.contraction, (double)cfl, (double)new_dt));
+  ts->time_step = new_dt;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode TSStep_Newmark(TS ts)
 {
   MMCtx    *ctx = ((TS_Newmark *)ts->data)->ctx;
   MMState  *s   = &ctx->state;
-  PetscReal dt = ts->time_step, next_dt = dt;
-  PetscBool accept;
+  PetscReal dt = ts->time_step, next_dt;
+  PetscBool accept, solved = PETSC_FALSE;
+  PetscInt  rejections = 0;
   Vec       w  = ts->vec_sol;
 
   PetscFunctionBeginUser;
-  PetscCall(MMContactSetStepMatrix(ctx, dt));
   PetscCall(SaveOldState(s));
-  PetscCall(StepRHS(ctx, dt, ctx->contact.qp.b));
-  /* predictor u + dt v + dt^2/4 a: exact for constant acceleration */
-  PetscCall(VecAXPBYPCZ(w, dt, 0.25 * dt * dt, 0.0, s->v, s->a));
-  PetscCall(VecAXPY(w, 1.0, s->u));
-  PetscCall(MMContactSolve(ctx, ctx->contact.qp.b, w, s->react));
+  while (!solved) {
+    dt = ts->time_step;
+    PetscCall(MMContactSetStepMatrix(ctx, dt));
+    PetscCall(StepRHS(ctx, dt, ctx->contact.qp.b));
+    /* predictor u + dt v + dt^2/4 a: exact for constant acceleration */
+    PetscCall(VecAXPBYPCZ(w, dt, 0.25 * dt * dt, 0.0, s->v, s->a));
+    PetscCall(VecAXPY(w, 1.0, s->u));
+    PetscCall(MMFrictionSolve(ctx, ctx->contact.qp.b, w, s->react, &solved));
+    if (!solved) PetscCall(RejectStep(ts, ctx, ++rejections));
+  }
   PetscCall(UpdateKinematics(ctx, dt, w));
-  s->dt = dt;
+  s->dt   = dt;
+  next_dt = dt;
   PetscCall(TSAdaptChoose(ts->adapt, ts, dt, NULL, &next_dt, &accept));
   if (!accept) {
     ts->reason = TS_DIVERGED_STEP_REJECTED;

@@ -131,6 +131,12 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   opt->contact = PETSC_TRUE;
   PetscCall(PetscOptionsBool("-contact", "Enforce unilateral contact; 0 gives linear elastodynamics on the same mesh (the contact boundary is then unused)", NULL, opt->contact, &opt->contact, NULL));
 
+  opt->mu = 0.0;
+  PetscCall(PetscOptionsReal("-mu", "Coulomb friction coefficient, >= 0 (0: frictionless, the friction loop is skipped)", NULL, opt->mu, &opt->mu, NULL));
+  opt->friction_coulomb_tol = 1e-8;
+  PetscCall(PetscOptionsReal("-friction_coulomb_tol", "The friction loop converges when the thresholds change less than -friction_snes_rtol (default 1e-10) and the discrete Coulomb residual is below this", NULL, opt->friction_coulomb_tol, &opt->friction_coulomb_tol, NULL));
+  opt->friction_monitor = PETSC_FALSE;
+  PetscCall(PetscOptionsBool("-friction_monitor", "Print each friction iteration: threshold change, Coulomb residual, contraction factor, slipping and sticking node counts", NULL, opt->friction_monitor, &opt->friction_monitor, NULL));
   opt->contact_formulation = MM_CONTACT_CONDENSED;
   PetscCall(PetscOptionsEnum("-contact_formulation", "Contact VI on the contact dofs through the Delassus operator (condensed: K~ factored once per dt) or on all dofs (full: a factorization per VI iteration)", NULL, MMContactFormulations, (PetscEnum)opt->contact_formulation, (PetscEnum *)&opt->contact_formulation, NULL));
   opt->contact_tol = 1e-11;
@@ -148,6 +154,7 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCheck(opt->E > 0, comm, PETSC_ERR_USER_INPUT, "Young's modulus -E %g must be > 0", (double)opt->E);
   PetscCheck(opt->nu > -1.0 && opt->nu < 0.5, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -nu %g must lie in (-1, 0.5); nu >= 0.5 is incompressible, which P1 elements cannot represent", (double)opt->nu);
   PetscCheck(opt->rho > 0, comm, PETSC_ERR_USER_INPUT, "Density -rho %g must be > 0", (double)opt->rho);
+  PetscCheck(opt->mu >= 0, comm, PETSC_ERR_USER_INPUT, "Friction coefficient -mu %g must be >= 0", (double)opt->mu);
   PetscCheck(opt->output_every >= 0, comm, PETSC_ERR_USER_INPUT, "-output_every %" PetscInt_FMT " must be >= 0", opt->output_every);
   PetscFunctionReturn(0);
 }

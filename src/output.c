@@ -20,7 +20,7 @@ static PetscErrorCode CSVHeader(MMCtx *ctx)
   for (PetscInt d = 0; d < dim; ++d) PetscCall(PetscFPrintf(PETSC_COMM_WORLD, ctx->out.csv, ",vcm_%c", axes[d]));
   if (dim == 2) PetscCall(PetscFPrintf(PETSC_COMM_WORLD, ctx->out.csv, ",L_z"));
   else PetscCall(PetscFPrintf(PETSC_COMM_WORLD, ctx->out.csv, ",L_x,L_y,L_z"));
-  PetscCall(PetscFPrintf(PETSC_COMM_WORLD, ctx->out.csv, ",switched\n"));
+  PetscCall(PetscFPrintf(PETSC_COMM_WORLD, ctx->out.csv, ",switched,contraction\n"));
   PetscFunctionReturn(0);
 }
 
@@ -36,7 +36,7 @@ static PetscErrorCode CSVRow(MMCtx *ctx)
   for (PetscInt d = 0; d < dim; ++d) PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, ",%.16e", (double)h->vcm[d]));
   if (dim == 2) PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, ",%.16e", (double)h->L[2]));
   else PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, ",%.16e,%.16e,%.16e", (double)h->L[0], (double)h->L[1], (double)h->L[2]));
-  PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, ",%" PetscInt_FMT "\n", h->switched));
+  PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, ",%" PetscInt_FMT ",%.6e\n", h->switched, (double)h->contraction));
   /* a row on disk is a row the user keeps, whatever happens next */
   if (f) PetscCheck(fflush(f) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not write the history file");
   PetscFunctionReturn(0);

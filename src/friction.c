@@ -1,0 +1,131 @@
+/* Coulomb friction: the fixed point of the proof of Theorem 4.2 (map Phi^n) on the thresholds.
+ *
+ * An outer SNES of type shell (prefix friction_) wraps the contact VI: each iteration freezes the
+ * thresholds s_i = mu r_i, solves the Tresca-plus-contact step exactly (contact.c), and updates r.
+ * It converges when the thresholds stop changing (-friction_snes_rtol) and the discrete Coulomb
+ * residual is below -friction_coulomb_tol. A loop that does not contract is reported as
+ * diverged, and the stepper retries the step with a smaller dt. */
+#include <petsc/private/snesimpl.h>
+#include "friction.h"
+#include "contact.h"
+
+/* sigma = 2/dt (w - u^n) - v^n: the velocity of w; on the tangential contact dofs, the slip velocity. */
+static PetscErrorCode SlipVelocity(MMCtx *ctx, Vec w, Vec sigma)
+{
+  MMState  *s  = &ctx->state;
+  PetscReal dt = ctx->contact.Kt_dt;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecWAXPY(sigma, -1.0, s->u_old, w));
+  PetscCall(VecAXPBY(sigma, -1.0, 2.0 / dt, s->v_old));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode FrictionLoop(SNES snes, Vec s)
+{
+  MMCtx      *ctx;
+  MMFriction *fr;
+  PetscReal   rtol, ds_prev = 0;
+  PetscInt    maxit, growing = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(SNESShellGetContext(snes, &ctx));
+  fr = &ctx->friction;
+  PetscCall(SNESGetTolerances(snes, NULL, &rtol, NULL, &maxit, NULL));
+  fr->contraction_max = 0;
+  snes->reason        = SNES_CONVERGED_ITERATING;
+  for (PetscInt k = 0; k < maxit; ++k) {
+    PetscReal ds, snorm, coulomb;
+    PetscInt  nslip, nstick;
+
+    PetscCall(MMContactSetThresholds(ctx, s));
+    PetscCall(MMContactSolve(ctx, fr->b, fr->w, fr->react));
+    PetscCall(MMContactGetNormalReactions(ctx, fr->s_new));
+    PetscCall(VecScale(fr->s_new, ctx->opt.mu));
+    PetscCall(VecAXPY(s, -1.0, fr->s_new));
+    PetscCall(VecNorm(s, NORM_INFINITY, &ds));
+    PetscCall(VecNorm(fr->s_new, NORM_INFINITY, &snorm));
+    ds /= PetscMax(snorm, PETSC_SMALL * PETSC_SMALL);
+    PetscCall(VecCopy(fr->s_new, s));
+    fr->contraction = k ? ds / PetscMax(ds_prev, PETSC_SMALL * PETSC_SMALL) : 0;
+    if (k > 1) fr->contraction_max = PetscMax(fr->contraction_max, fr->contraction);
+    PetscCall(SlipVelocity(ctx, fr->w, fr->sigma));
+    PetscCall(MMContactCoulomb(ctx, fr->w, fr->react, fr->sigma, &coulomb, &nslip, &nstick));
+    snes->iter = k + 1;
+    PetscCall(SNESMonitor(snes, k, ds));
+    if (fr->monitor) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    friction %2" PetscInt_FMT ": threshold change %.3e, Coulomb residual %.3e, contraction %.3f, slipping %" PetscInt_FMT ", sticking %" PetscInt_FMT "\n", k, (double)ds, (double)coulomb, (double)fr->contraction, nslip, nstick));
+    fr->coulomb = coulomb;
+    if (ds <= rtol && coulomb <= fr->coulomb_tol) {
+      snes->reason = SNES_CONVERGED_FNORM_RELATIVE;
+      PetscFunctionReturn(0);
+    }
+    /* a map that keeps expanding does not contract: Theorem 4.2's condition fails at this dt */
+    growing = (k > 1 && fr->contraction >= 1.0) ? growing + 1 : 0;
+    if (growing >= 3) {
+      snes->reason = SNES_DIVERGED_DTOL;
+      PetscFunctionReturn(0);
+    }
+    ds_prev = ds;
+  }
+  snes->reason = SNES_DIVERGED_MAX_IT;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMFrictionSetUp(MMCtx *ctx)
+{
+  MMFriction *fr = &ctx->friction;
+
+  PetscFunctionBeginUser;
+  fr->coulomb_tol = ctx->opt.friction_coulomb_tol;
+  fr->monitor     = ctx->opt.friction_monitor;
+  if (ctx->opt.mu == 0 || !ctx->contact.enabled) PetscFunctionReturn(0);
+  PetscCall(SNESCreate(PetscObjectComm((PetscObject)ctx->op.dm), &fr->snes));
+  PetscCall(SNESSetOptionsPrefix(fr->snes, "friction_"));
+  PetscCall(SNESSetType(fr->snes, SNESSHELL));
+  PetscCall(SNESShellSetContext(fr->snes, ctx));
+  PetscCall(SNESShellSetSolve(fr->snes, FrictionLoop));
+  PetscCall(SNESSetTolerances(fr->snes, PETSC_DEFAULT, 1e-10, PETSC_DEFAULT, 100, PETSC_DEFAULT));
+  PetscCall(SNESSetFromOptions(fr->snes));
+  PetscCall(VecDuplicate(ctx->contact.gap, &fr->s));
+  PetscCall(VecDuplicate(ctx->contact.gap, &fr->s_new));
+  PetscCall(VecZeroEntries(fr->s));
+  PetscCall(VecDuplicate(ctx->state.u, &fr->sigma));
+  PetscFunctionReturn(0);
+}
+
+/* The step problem with friction; *ok is false when the loop did not converge (the caller retries
+ * with a smaller dt). Without friction it is the contact solve itself. */
+PetscErrorCode MMFrictionSolve(MMCtx *ctx, Vec b, Vec w, Vec react, PetscBool *ok)
+{
+  MMFriction         *fr = &ctx->friction;
+  SNESConvergedReason reason;
+
+  PetscFunctionBeginUser;
+  *ok      = PETSC_TRUE;
+  fr->its  = 0;
+  if (!fr->snes) {
+    PetscCall(MMContactSolve(ctx, b, w, react));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscLogEventBegin(ctx->log.friction, 0, 0, 0, 0));
+  fr->b     = b;
+  fr->w     = w;
+  fr->react = react;
+  /* warm start: the thresholds of the last step */
+  PetscCall(SNESSolve(fr->snes, NULL, fr->s));
+  PetscCall(SNESGetConvergedReason(fr->snes, &reason));
+  PetscCall(SNESGetIterationNumber(fr->snes, &fr->its));
+  *ok = (PetscBool)(reason > 0);
+  PetscCall(PetscLogEventEnd(ctx->log.friction, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMFrictionDestroy(MMFriction *fr)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SNESDestroy(&fr->snes));
+  PetscCall(VecDestroy(&fr->s));
+  PetscCall(VecDestroy(&fr->s_new));
+  PetscCall(VecDestroy(&fr->sigma));
+  PetscFunctionReturn(0);
+}
