@@ -15,6 +15,12 @@
 #define MM_MAX_DIM 3
 
 typedef enum {
+  MM_INITIAL_GIVEN,
+  MM_INITIAL_STATIC_SLIDING
+} MMInitialState;
+PETSC_EXTERN const char *const MMInitialStates[];
+
+typedef enum {
   MM_MASS_MODIFIED,
   MM_MASS_STANDARD
 } MMMassType;
@@ -53,6 +59,7 @@ typedef struct {
   PetscReal    gravity[MM_MAX_DIM];
   PetscReal    u0_offset[MM_MAX_DIM], u0_gradient[MM_MAX_DIM * MM_MAX_DIM];
   PetscReal    v0[MM_MAX_DIM], omega[MM_MAX_DIM], omega_center[MM_MAX_DIM];
+  MMInitialState initial_state;
   PetscReal    obstacle_point[MM_MAX_DIM], obstacle_normal[MM_MAX_DIM];
   PetscReal    mesh_rotation[MM_MAX_DIM], mesh_rotation_center[MM_MAX_DIM];
   MMMassType   mass_type;
@@ -171,6 +178,7 @@ typedef struct {
   PetscReal cfl, contraction;
   PetscReal ucm[MM_MAX_DIM], vcm[MM_MAX_DIM], L[MM_MAX_DIM];
   PetscReal max_balance, max_penetration_run; /* over the run, for the summary */
+  PetscReal energy_scale;                     /* the largest |E| of the run so far */
 } MMHistory;
 
 /* Output files. */

@@ -244,6 +244,37 @@ static PetscErrorCode CondensedRHS(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
+/* RSLS holds a variable as active when it is within 1e-8 (absolute) of a bound with F pushing
+ * outward, but leaves it where it is. Reactions can be far smaller than 1 (F1's are 1e-4), so put
+ * those variables on their bounds exactly: the same active set, now satisfied to round-off. */
+static PetscErrorCode SnapActiveToBounds(MMContact *ct)
+{
+  const PetscScalar *lo, *hi, *f;
+  PetscScalar       *x;
+  PetscInt           n;
+  Vec                F;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(ct->rho, &F));
+  PetscCall(MatMult(ct->W, ct->rho, F));
+  PetscCall(VecAXPY(F, -1.0, ct->qpc.b));
+  PetscCall(VecGetLocalSize(ct->rho, &n));
+  PetscCall(VecGetArray(ct->rho, &x));
+  PetscCall(VecGetArrayRead(ct->rho_lo, &lo));
+  PetscCall(VecGetArrayRead(ct->rho_hi, &hi));
+  PetscCall(VecGetArrayRead(F, &f));
+  for (PetscInt i = 0; i < n; ++i) {
+    if (PetscRealPart(x[i]) <= PetscRealPart(lo[i]) + 1e-8 && PetscRealPart(f[i]) > 0) x[i] = lo[i];
+    if (PetscRealPart(x[i]) >= PetscRealPart(hi[i]) - 1e-8 && PetscRealPart(f[i]) < 0) x[i] = hi[i];
+  }
+  PetscCall(VecRestoreArrayRead(F, &f));
+  PetscCall(VecRestoreArrayRead(ct->rho_hi, &hi));
+  PetscCall(VecRestoreArrayRead(ct->rho_lo, &lo));
+  PetscCall(VecRestoreArray(ct->rho, &x));
+  PetscCall(VecDestroy(&F));
+  PetscFunctionReturn(0);
+}
+
 /* w = z - K~^{-1} E rho, with z = K~^{-1} b and rho from the VI, warm-started from the last solve. */
 static PetscErrorCode SolveCondensed(MMCtx *ctx, Vec b, Vec w)
 {
@@ -262,6 +293,7 @@ static PetscErrorCode SolveCondensed(MMCtx *ctx, Vec b, Vec w)
   PetscCall(VecPointwiseMax(ct->rho, ct->rho, ct->rho_lo));
   PetscCall(VecPointwiseMin(ct->rho, ct->rho, ct->rho_hi));
   PetscCall(SolveQP(ct->snes, &ct->qpc, ct->rho, &ct->vi_its));
+  PetscCall(SnapActiveToBounds(ct));
   PetscCall(VecZeroEntries(ct->rhs_c));
   PetscCall(VecGetSubVector(ct->rhs_c, ct->is_cond, &rc));
   PetscCall(VecAXPY(rc, -1.0, ct->rho));
@@ -698,7 +730,9 @@ typedef struct {
 static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma, PetscBool record_switches, ContactStats *st)
 {
   MMContact         *ct = &ctx->contact;
-  const PetscReal    mu = ctx->opt.mu, vtol = 1e-10 * ctx->op.c_p;
+  const PetscReal    mu = ctx->opt.mu, dt = ct->Kt_dt;
+  /* slip is judged by the step's slip increment sigma dt/2 against h_c', like penetration */
+  const PetscReal    vtol = 1e-9 * 2 * ct->h_c / dt;
   PetscInt           dim = ctx->op.dim, nc = ct->n_local, cnt[4] = {0, 0, 0, 0}, rstart;
   const PetscInt    *in;
   const PetscScalar *wa, *fa, *ga, *va, *ra = NULL, *rh = NULL;
@@ -742,13 +776,17 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
     res = PetscMax(res, -r / fscale);                                        /* tension */
     res = PetscMax(res, PetscAbsReal(r * (un - g)) / (fscale * ct->h_c));    /* complementarity */
     res = PetscMax(res, (tn - mu * PetscMax(r, 0)) / fscale);                /* cone */
-    /* the VI's own stick/slip split: a tangential reaction strictly inside its bound sticks */
+    /* the VI's own stick/slip split: a tangential reaction inside its bound sticks (RSLS holds a
+     * variable within 1e-8, absolute, of its bound as active, hence the relative margin) */
     PetscBool at_bound = PETSC_FALSE;
     if (nr > 1) {
       PetscReal rt = 0;
       for (PetscInt d = 1; d < nr; ++d) rt += PetscSqr(PetscRealPart(ra[k * nr + d]));
-      at_bound = (PetscBool)(PetscRealPart(rh[k * nr + 1]) > 0 && PetscSqrtReal(rt) >= (1 - 1e-10) * PetscRealPart(rh[k * nr + 1]));
+      /* a zero threshold is a bound too: a node touching without force slides freely */
+      at_bound = (PetscBool)(PetscSqrtReal(rt) >= PetscRealPart(rh[k * nr + 1]) - PetscMax(1e-6 * PetscRealPart(rh[k * nr + 1]), 2e-8));
     }
+    /* inside the cone a node must not slip */
+    if (active && nr > 1 && !at_bound) res = PetscMax(res, vn * dt / (2 * ct->h_c));
     if (active && at_bound && vn > vtol) {
       PetscReal slip = 0; /* |t + mu r sigma/|sigma|| */
       for (PetscInt d = 1; d < dim; ++d) slip += PetscSqr(PetscRealPart(fa[i + d]) + mu * r * PetscRealPart(va[i + d]) / vn);

@@ -55,6 +55,7 @@ PetscErrorCode MMEnergyInitial(MMCtx *ctx)
   h->cfl = ctx->contact.enabled ? ctx->op.c_p * h->dt / ctx->contact.h_c : 0;
   PetscCall(MMFECheckElasticEnergy(ctx, ctx->state.u));
   PetscCall(TotalEnergy(ctx, h));
+  h->energy_scale = PetscAbsReal(h->total);
   PetscCall(MMContactDiagnostics(ctx, ctx->state.u, ctx->state.react, ctx->state.v, h));
   h->switched = 0;
   h->vi_its   = 0;
@@ -85,7 +86,9 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
   h->work_ext += w_ext;
   h->work_contact += w_c;
   h->work_friction += w_f;
-  h->balance_residual = PetscAbsReal(h->total - E_old - w_ext - w_c - w_f) / PetscMax(PetscMax(PetscAbsReal(h->total), PetscAbsReal(E_old)), PETSC_SMALL * PETSC_SMALL);
+  /* relative to the run's energy scale, so that a body coming to rest does not inflate it */
+  h->energy_scale     = PetscMax(h->energy_scale, PetscAbsReal(h->total));
+  h->balance_residual = PetscAbsReal(h->total - E_old - w_ext - w_c - w_f) / PetscMax(h->energy_scale, PETSC_SMALL * PETSC_SMALL);
   h->max_balance      = PetscMax(h->max_balance, h->balance_residual);
   PetscCheck(h->balance_residual <= ctx->opt.audit_tol, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_NOT_CONVERGED,
              "Energy audit failed at step %" PetscInt_FMT " (t = %g): balance residual %.3e > -audit_tol %.1e. The step was not solved exactly: tighten -contact_tol or the -contact_snes tolerances. The output up to the previous step is intact",

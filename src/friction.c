@@ -88,8 +88,16 @@ PetscErrorCode MMFrictionSetUp(MMCtx *ctx)
   PetscCall(SNESSetFromOptions(fr->snes));
   PetscCall(VecDuplicate(ctx->contact.gap, &fr->s));
   PetscCall(VecDuplicate(ctx->contact.gap, &fr->s_new));
-  PetscCall(VecZeroEntries(fr->s));
+  PetscCall(VecZeroEntries(fr->s_new));
   PetscCall(VecDuplicate(ctx->state.u, &fr->sigma));
+  /* the first thresholds: mu times the initial normal reactions */
+  {
+    Vec rn;
+    PetscCall(VecGetSubVector(ctx->state.react, ctx->contact.is_normal, &rn));
+    PetscCall(VecAXPBY(fr->s, -ctx->opt.mu, 0.0, rn));
+    PetscCall(VecRestoreSubVector(ctx->state.react, ctx->contact.is_normal, &rn));
+    PetscCall(VecPointwiseMax(fr->s, fr->s, fr->s_new)); /* s_new is zero here: clip tension */
+  }
   PetscFunctionReturn(0);
 }
 

@@ -9,6 +9,7 @@
 #include "energy.h"
 #include "fem.h"
 #include "friction.h"
+#include "sliding.h"
 
 typedef struct {
   MMCtx *ctx;
@@ -286,12 +287,15 @@ PetscErrorCode MMNewmarkInitialState(MMCtx *ctx)
     Vec *copies[] = {&s->v, &s->a, &s->u_old, &s->v_old, &s->a_old, &s->react, &s->react_old, &s->work, &s->u_next};
     for (size_t i = 0; i < sizeof(copies) / sizeof(copies[0]); ++i) PetscCall(VecDuplicate(s->u, copies[i]));
   }
-  PetscCall(ProjectInitialField(ctx, InitialDisplacement, s->u));
   PetscCall(ProjectInitialField(ctx, InitialVelocity, s->v));
-  PetscCall(MMContactProjectInitial(ctx, s->u));
-  /* f_c0 = K u0 + lift - L on the massless dofs: their quasi-static equation */
   PetscCall(VecZeroEntries(s->react));
-  if (HasMasslessDofs(ctx)) {
+  if (ctx->opt.initial_state == MM_INITIAL_STATIC_SLIDING) PetscCall(MMInitialStaticSliding(ctx, s->u, s->react));
+  else {
+    PetscCall(ProjectInitialField(ctx, InitialDisplacement, s->u));
+    PetscCall(MMContactProjectInitial(ctx, s->u));
+  }
+  /* f_c0 = K u0 + lift - L on the massless dofs: their quasi-static equation */
+  if (HasMasslessDofs(ctx) && ctx->opt.initial_state == MM_INITIAL_GIVEN) {
     Vec rc, fc;
     PetscCall(MatMult(ctx->op.K, s->u, s->work));
     PetscCall(VecAXPY(s->work, 1.0, ctx->op.lift));

@@ -2,6 +2,7 @@
 #include "options.h"
 
 const char *const MMMassTypes[] = {"modified", "standard", "MMMassType", "MM_MASS_", NULL};
+const char *const MMInitialStates[] = {"given", "static_sliding", "MMInitialState", "MM_INITIAL_", NULL};
 const char *const MMContactFormulations[] = {"condensed", "full", "MMContactFormulation", "MM_CONTACT_", NULL};
 
 /* Reads a real vector option of up to MM_MAX_DIM entries; *n returns how many were given. */
@@ -117,6 +118,8 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsVector(PetscOptionsObject, "-v0", "Initial translation velocity vx,vy[,vz]", opt->v0, NULL));
   PetscCall(OptionsVector(PetscOptionsObject, "-omega", "Initial rigid angular velocity (rad/s): a scalar in 2D, a vector in 3D", opt->omega, NULL));
   PetscCall(OptionsVector(PetscOptionsObject, "-omega_center", "Centre of the initial rigid rotation", opt->omega_center, NULL));
+  opt->initial_state = MM_INITIAL_GIVEN;
+  PetscCall(PetscOptionsEnum("-initial_state", "Initial displacement: given (-u0_offset, -u0_gradient, contact dofs projected) or static_sliding (the body sliding along -v0 on the obstacle under its loads, with friction -mu)", NULL, MMInitialStates, (PetscEnum)opt->initial_state, (PetscEnum *)&opt->initial_state, NULL));
 
   PetscCall(OptionsVector(PetscOptionsObject, "-obstacle_point", "A point of the rigid obstacle plane", opt->obstacle_point, NULL));
   opt->obstacle_normal[1] = 1.0;

@@ -1,0 +1,3 @@
+#pragma once
+#include "mmcontact.h"
+PETSC_EXTERN PetscErrorCode MMInitialStaticSliding(MMCtx *, Vec, Vec);
