@@ -8,27 +8,38 @@
 #include "contact.h"
 #include "fem.h"
 
-/* Total body load along the slip direction e and into the plane, the body's mass, and e itself. */
-static PetscErrorCode SlidingLoads(MMCtx *ctx, PetscReal e[], PetscReal *Fe, PetscReal *P, PetscReal *m)
+/* The tangential part of a vector along the obstacle plane; its norm. */
+static PetscReal Tangential(const PetscReal n[], const PetscReal v[], PetscInt dim, PetscReal e[])
+{
+  PetscReal vn = 0, ne = 0;
+  for (PetscInt d = 0; d < dim; ++d) vn += v[d] * n[d];
+  for (PetscInt d = 0; d < dim; ++d) e[d] = v[d] - vn * n[d];
+  for (PetscInt d = 0; d < dim; ++d) ne += e[d] * e[d];
+  return PetscSqrtReal(ne);
+}
+
+/* Total body load along the sliding direction e and into the plane, the body's mass, and e: the
+ * tangential direction of -v0, or from rest that of the load. */
+static PetscErrorCode SlidingLoads(MMCtx *ctx, PetscReal e[], PetscReal *Fe, PetscReal *P, PetscReal *m, PetscBool *from_rest)
 {
   const PetscInt   dim = ctx->op.dim;
-  const PetscReal *n = ctx->opt.obstacle_normal, *v = ctx->opt.v0;
-  PetscReal        vn = 0, ne = 0, F[MM_MAX_DIM] = {0, 0, 0};
+  const PetscReal *n = ctx->opt.obstacle_normal;
+  PetscReal        ne, F[MM_MAX_DIM] = {0, 0, 0};
   PetscInt         bs;
   Vec              Lc;
 
   PetscFunctionBeginUser;
-  for (PetscInt d = 0; d < dim; ++d) vn += v[d] * n[d];
-  for (PetscInt d = 0; d < dim; ++d) e[d] = v[d] - vn * n[d];
-  for (PetscInt d = 0; d < dim; ++d) ne += e[d] * e[d];
-  PetscCheck(ne > 0, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "-initial_state static_sliding needs -v0 with a component along the obstacle plane: it sets the sliding direction");
-  for (PetscInt d = 0; d < dim; ++d) e[d] /= PetscSqrtReal(ne);
   PetscCall(DMGetGlobalVector(ctx->op.dm, &Lc));
   PetscCall(MMFEToCartesian(ctx, ctx->op.load, Lc));
   PetscCall(VecGetBlockSize(Lc, &bs));
   PetscCheck(bs == dim, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_SUP, "-initial_state static_sliding needs a body without Dirichlet boundaries");
   for (PetscInt d = 0; d < dim; ++d) PetscCall(VecStrideSum(Lc, d, (PetscScalar *)&F[d]));
   PetscCall(DMRestoreGlobalVector(ctx->op.dm, &Lc));
+  ne         = Tangential(n, ctx->opt.v0, dim, e);
+  *from_rest = (PetscBool)(ne == 0);
+  if (*from_rest) ne = Tangential(n, F, dim, e);
+  PetscCheck(ne > 0, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "-initial_state static_sliding needs a direction along the obstacle plane: from -v0, or from the load when at rest");
+  for (PetscInt d = 0; d < dim; ++d) e[d] /= ne;
   PetscCall(VecSum(ctx->op.mass_lumped_cart, (PetscScalar *)m));
   *m /= dim;
   *Fe = *P = 0;
@@ -105,14 +116,18 @@ PetscErrorCode MMInitialStaticSliding(MMCtx *ctx, Vec w, Vec react)
   MMContact *ct = &ctx->contact;
   MPI_Comm   comm = PetscObjectComm((PetscObject)ctx->op.dm);
   PetscReal  e[MM_MAX_DIM] = {0, 0, 0}, Fe = 0, P = 0, m = 0, a, et = 0, rmin;
+  PetscBool  from_rest = PETSC_FALSE;
   Vec        f, rhs, me, rn;
   Mat        A;
   KSP        ksp;
 
   PetscFunctionBeginUser;
   PetscCheck(ct->enabled && ctx->op.dim == 2 && ctx->opt.n_dirichlet == 0, comm, PETSC_ERR_SUP, "-initial_state static_sliding needs contact on, a 2D body and no Dirichlet boundary");
-  PetscCall(SlidingLoads(ctx, e, &Fe, &P, &m));
+  PetscCall(SlidingLoads(ctx, e, &Fe, &P, &m, &from_rest));
   a = (Fe - ctx->opt.mu * P) / m;
+  /* from rest, a load that cannot overcome friction has no sliding state; the stuck equilibrium
+   * is no static Coulomb state either (the base corners slip under the Poisson shear) */
+  PetscCheck(!from_rest || a > 0, comm, PETSC_ERR_USER_INPUT, "-initial_state static_sliding from rest: the tangential load %g cannot overcome friction mu P = %g, so there is no sliding state. Start from -initial_state given", (double)Fe, (double)(ctx->opt.mu * P));
   for (PetscInt d = 0; d < 2; ++d) et += e[d] * ct->frame[1][d];
   /* f = L - m_i a e, the load in the frame sliding with the body */
   PetscCall(VecDuplicate(w, &f));
@@ -136,7 +151,7 @@ PetscErrorCode MMInitialStaticSliding(MMCtx *ctx, Vec w, Vec react)
   PetscCall(VecMax(rn, NULL, &rmin)); /* react_n = -r_i: all reactions > 0 means max < 0 */
   PetscCall(VecRestoreSubVector(react, ct->is_normal, &rn));
   PetscCheck(rmin < 0, comm, PETSC_ERR_USER_INPUT, "The static sliding state has a base node without compressive reaction (r = %g): the body would lift off; it is not a sliding state", (double)-rmin);
-  if (!ctx->opt.quiet) PetscCall(PetscPrintf(comm, "  static sliding state: rigid acceleration a = %g along the sliding direction (%g, %g)\n", (double)a, (double)e[0], (double)e[1]));
+  if (!ctx->opt.quiet) PetscCall(PetscPrintf(comm, "  static sliding state: rigid acceleration a = %g along (%g, %g)\n", (double)a, (double)e[0], (double)e[1]));
   PetscCall(KSPDestroy(&ksp));
   PetscCall(MatDestroy(&A));
   PetscCall(VecDestroy(&f));
