@@ -101,3 +101,45 @@ def test_f1_subcritical_load_does_not_slide(mm):
 def test_static_sliding_from_rest_needs_a_load_that_overcomes_friction(tmp_path):
     r = run("f1_block", tmp_path, "-v0", "0,0", "-gravity", "0.0025,-0.02", check=False)
     assert r.returncode != 0 and "cannot overcome friction" in r.output
+
+
+def test_f2_friction_iterations_grow_with_dt(mm):
+    """F2: the same block, friction switched on suddenly (u = 0 under gravity, sliding at v0): the
+    fixed point needs more iterations, and contracts less, as c_p dt / h grows; every step ends
+    with the Coulomb law satisfied."""
+    c_p, h = 1.16024, 0.05
+    its, rates = [], []
+    for ratio in (0.5, 1, 4):
+        hist = mm("f1_block", "-initial_state", "given", "-ts_dt", ratio * h / c_p, "-ts_max_steps", 15,
+                  "-output_every", 0, name="f2_%g" % ratio).history
+        assert hist["coulomb_residual"][1:].max() <= 1e-8
+        assert hist["balance_residual"].max() <= 1e-8
+        its.append(hist["friction_its"][1:16].mean())
+        rates.append(hist["contraction"].max())
+    assert its[0] <= its[1] <= its[2], its
+    assert rates[0] < rates[1] < rates[2] < 1, rates
+
+
+def test_nonconvergent_friction_loop_retries_with_smaller_dt(mm):
+    """mu = 10 at c_p dt / h_c' = 11: the loop cannot contract; the step is retried with smaller dt
+    (TSAdapt's -ts_adapt_scale_solve_failed) until it converges, and the run completes."""
+    r = mm("f1_block", "-initial_state", "given", "-mu", 10, "-ts_dt", 16 * 0.05 / 1.16024, "-ts_max_steps", 5,
+           "-output_every", 0)
+    h = r.history
+    assert "step rejected at t = 0" in r.output and "contraction factor" in r.output
+    assert len(h) == 6 and h["dt"][1] < 0.02
+    assert h["coulomb_residual"][1:].max() <= 1e-8 and h["balance_residual"].max() <= 1e-8
+
+
+def test_nonconvergent_friction_loop_stops_at_the_dt_floor(tmp_path):
+    """With the floor -ts_adapt_dt_min above the dt that would converge, the run stops with the
+    time, the last dt, the contraction factor and c_p dt / h_c', and what it wrote stays readable."""
+    r = run("f1_block", tmp_path, "-initial_state", "given", "-mu", 10, "-ts_dt", 16 * 0.05 / 1.16024,
+            "-ts_adapt_dt_min", 0.1, "-output_every", 1, check=False)
+    assert r.returncode != 0
+    for m in ("The friction loop does not converge at t = 0", "last dt = 0.172", "contraction factor", "c_p dt / h_c' = 2.8", "-ts_adapt_dt_min 0.1"):
+        assert m in r.output, m
+    h = r.history
+    assert len(h) == 1 and h["step"][0] == 0 and h["total"][0] > 0
+    with r.fields() as f:
+        assert f["vertex_fields/displacement_displacement"].shape[0] == 1
