@@ -46,9 +46,9 @@ meshes/disk_bench.msh: meshes/disk.geo
 
 run: deps
 	$(MAKE) mmcontact meshes
-	$(MM_MPIEXEC) -n $(NP) ./mmcontact -options_file options/d1_disk.opts
-	$(MM_PYTHON) scripts/plot_history.py output/d1/history.csv
-	@echo "Open output/d1/solution.xmf in ParaView; history in output/d1/history.csv, plotted in output/d1/history.png"
+	$(MM_MPIEXEC) -n $(NP) ./mmcontact -options_file options/d1_friction.opts
+	$(MM_PYTHON) scripts/plot_history.py output/d1_friction/history.csv
+	@echo "Open output/d1_friction/solution.xmf in ParaView; history in output/d1_friction/history.csv, plotted in output/d1_friction/history.png"
 
 check: deps
 	$(MAKE) mmcontact meshes

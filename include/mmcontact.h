@@ -140,6 +140,7 @@ typedef struct {
   PetscReal  tol;                 /* -contact_tol */
   PetscBool *was_active;          /* per owned contact node, at the previous step */
   PetscInt  *scalar_index;        /* per owned contact node, its global index in the scalar vertex DM */
+  PetscInt  *vertex;              /* per owned contact node, its mesh point */
   Vec        area;                /* per owned contact node, int_Gc phi_i: force to pressure */
   PetscInt   vi_its;              /* Newton iterations of the last solve */
 } MMContact;
@@ -191,6 +192,7 @@ typedef struct {
   Vec         disp_cart, vel_cart;  /* Cartesian output fields on dm_out */
   DM          dm_scalar;             /* one scalar per vertex: pressure, gap */
   Vec         pressure, gap;
+  Vec         traction_t, slip;      /* tangential traction and slip velocity on the contact boundary (dm_out) */
 } MMOutput;
 
 typedef struct {

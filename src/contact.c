@@ -476,6 +476,7 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
   PetscCall(PetscMalloc4(n, &in, n, &it, n, &is, n, &gap));
   PetscCall(PetscCalloc1(n, &is_contact_dof));
   PetscCall(PetscMalloc1(n, &ct->scalar_index));
+  PetscCall(PetscMalloc1(n, &ct->vertex));
   PetscCall(PetscMalloc1(n, &nodal_area));
   PetscCall(VecGetOwnershipRange(area, &astart, NULL));
   PetscCall(VecGetArrayRead(area, &av));
@@ -497,6 +498,7 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
       PetscInt sstart, send;
       PetscCall(DMPlexGetPointGlobal(ctx->out.dm_scalar, v, &sstart, &send));
       ct->scalar_index[nc] = sstart;
+      ct->vertex[nc]       = v;
       nodal_area[nc]       = PetscRealPart(av[sstart - astart]);
     }
     for (PetscInt d = 1; d < dim; ++d) it[nc * (dim - 1) + d - 1] = goff + d;
@@ -889,6 +891,51 @@ PetscErrorCode MMContactNodalFields(MMCtx *ctx, Vec w, Vec react, Vec pressure, 
   PetscFunctionReturn(0);
 }
 
+/* Tangential traction (force / nodal area) and slip velocity as Cartesian vectors on dm_out, zero
+ * off the contact boundary: the frame's tangential components mapped back. */
+PetscErrorCode MMContactTangentialFields(MMCtx *ctx, DM dm_out, Vec react, Vec v, Vec traction, Vec slip)
+{
+  MMContact         *ct  = &ctx->contact;
+  const PetscInt     dim = ctx->op.dim;
+  const PetscInt    *in;
+  const PetscScalar *fa, *va, *aa;
+  PetscInt           rstart;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(traction));
+  PetscCall(VecZeroEntries(slip));
+  if (ct->enabled) {
+    PetscCall(VecGetOwnershipRange(react, &rstart, NULL));
+    PetscCall(ISGetIndices(ct->is_normal, &in));
+    PetscCall(VecGetArrayRead(react, &fa));
+    PetscCall(VecGetArrayRead(v, &va));
+    PetscCall(VecGetArrayRead(ct->area, &aa));
+    for (PetscInt k = 0; k < ct->n_local; ++k) {
+      PetscInt    start, end;
+      PetscScalar tc[MM_MAX_DIM] = {0, 0, 0}, sc[MM_MAX_DIM] = {0, 0, 0};
+      for (PetscInt d = 1; d < dim; ++d)
+        for (PetscInt c = 0; c < dim; ++c) {
+          tc[c] += fa[in[k] + d - rstart] * ct->frame[d][c] / aa[k];
+          sc[c] += va[in[k] + d - rstart] * ct->frame[d][c];
+        }
+      PetscCall(DMPlexGetPointGlobal(dm_out, ct->vertex[k], &start, &end));
+      for (PetscInt c = 0; c < dim; ++c) {
+        PetscCall(VecSetValue(traction, start + c, tc[c], INSERT_VALUES));
+        PetscCall(VecSetValue(slip, start + c, sc[c], INSERT_VALUES));
+      }
+    }
+    PetscCall(VecRestoreArrayRead(ct->area, &aa));
+    PetscCall(VecRestoreArrayRead(v, &va));
+    PetscCall(VecRestoreArrayRead(react, &fa));
+    PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  }
+  PetscCall(VecAssemblyBegin(traction));
+  PetscCall(VecAssemblyEnd(traction));
+  PetscCall(VecAssemblyBegin(slip));
+  PetscCall(VecAssemblyEnd(slip));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MMContactDestroy(MMContact *ct)
 {
   PetscFunctionBeginUser;
@@ -920,5 +967,6 @@ PetscErrorCode MMContactDestroy(MMContact *ct)
   PetscCall(ISDestroy(&ct->is_interior));
   PetscCall(PetscFree(ct->was_active));
   PetscCall(PetscFree(ct->scalar_index));
+  PetscCall(PetscFree(ct->vertex));
   PetscFunctionReturn(0);
 }

@@ -51,9 +51,9 @@ static PetscErrorCode WriteXDMF(MMCtx *ctx)
   char        xmf[PETSC_MAX_PATH_LEN], h5base[PETSC_MAX_PATH_LEN];
   FILE       *f;
   const char *topo = dim == 2 ? "Triangle" : "Tetrahedron";
-  const char *fields[]  = {"displacement", "velocity", "contact_pressure", "gap"};
-  const char *datasets[] = {"displacement_displacement", "velocity_displacement", "contact_pressure_nodal", "gap_nodal"};
-  const PetscInt ncomp[] = {dim, dim, 1, 1};
+  const char *fields[]  = {"displacement", "velocity", "contact_pressure", "gap", "tangential_traction", "slip_velocity"};
+  const char *datasets[] = {"displacement_displacement", "velocity_displacement", "contact_pressure_nodal", "gap_nodal", "tangential_traction_displacement", "slip_velocity_displacement"};
+  const PetscInt ncomp[] = {dim, dim, 1, 1, dim, dim};
 
   PetscFunctionBeginUser;
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
@@ -135,6 +135,7 @@ static PetscErrorCode WriteFields(MMCtx *ctx)
   PetscCall(WholeField(ctx, ctx->state.u, PETSC_TRUE, o->disp_cart));
   PetscCall(WholeField(ctx, ctx->state.v, PETSC_FALSE, o->vel_cart));
   PetscCall(MMContactNodalFields(ctx, ctx->state.u, ctx->state.react, o->pressure, o->gap));
+  PetscCall(MMContactTangentialFields(ctx, o->dm_out, ctx->state.react, ctx->state.v, o->traction_t, o->slip));
   PetscCall(PetscViewerHDF5Open(PETSC_COMM_WORLD, o->h5_name, FILE_MODE_APPEND, &v));
   PetscCall(PetscViewerPushFormat(v, PETSC_VIEWER_HDF5_XDMF));
   PetscCall(DMSetOutputSequenceNumber(o->dm_out, o->n_written, t));
@@ -143,6 +144,8 @@ static PetscErrorCode WriteFields(MMCtx *ctx)
   PetscCall(VecView(o->vel_cart, v));
   PetscCall(VecView(o->pressure, v));
   PetscCall(VecView(o->gap, v));
+  PetscCall(VecView(o->traction_t, v));
+  PetscCall(VecView(o->slip, v));
   PetscCall(PetscViewerPopFormat(v));
   PetscCall(PetscViewerDestroy(&v));
   PetscCall(PetscRealloc(sizeof(PetscReal) * (o->n_written + 1), &o->times));
@@ -207,6 +210,10 @@ PetscErrorCode MMOutputOpen(MMCtx *ctx)
   }
   PetscCall(DMCreateGlobalVector(o->dm_out, &o->disp_cart));
   PetscCall(DMCreateGlobalVector(o->dm_out, &o->vel_cart));
+  PetscCall(DMCreateGlobalVector(o->dm_out, &o->traction_t));
+  PetscCall(DMCreateGlobalVector(o->dm_out, &o->slip));
+  PetscCall(PetscObjectSetName((PetscObject)o->traction_t, "tangential_traction"));
+  PetscCall(PetscObjectSetName((PetscObject)o->slip, "slip_velocity"));
   PetscCall(DMCreateGlobalVector(o->dm_scalar, &o->pressure));
   PetscCall(DMCreateGlobalVector(o->dm_scalar, &o->gap));
   PetscCall(PetscObjectSetName((PetscObject)o->disp_cart, "displacement"));
@@ -250,6 +257,8 @@ PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wa
   PetscCall(VecDestroy(&o->vel_cart));
   PetscCall(VecDestroy(&o->pressure));
   PetscCall(VecDestroy(&o->gap));
+  PetscCall(VecDestroy(&o->traction_t));
+  PetscCall(VecDestroy(&o->slip));
   PetscCall(DMDestroy(&o->dm_scalar));
   PetscCall(DMDestroy(&o->dm_out));
   PetscCall(PetscFree(o->times));

@@ -7,7 +7,7 @@ from conftest import run
 
 @pytest.fixture(scope="module")
 def d1f(tmp_path_factory):
-    return run("d1_disk", tmp_path_factory.mktemp("d1f"), "-mu", 0.2, "-output_every", 0, np_=2)
+    return run("d1_friction", tmp_path_factory.mktemp("d1f"), "-output_every", 0, np_=2)
 
 
 def test_d1_friction_energy_is_the_recorded_friction_work(d1f):
@@ -37,7 +37,7 @@ def test_d1_friction_spins_the_disk(d1f):
 
 
 def test_d1_friction_one_rank_equals_two(d1f, tmp_path):
-    h1 = run("d1_disk", tmp_path, "-mu", 0.2, "-output_every", 0, np_=1).history
+    h1 = run("d1_friction", tmp_path, "-output_every", 0, np_=1).history
     h2 = d1f.history
     scale = h2["total"][0]
     for c in ("total", "work_friction", "work_contact", "force_normal", "force_tangential", "L_z", "vcm_x"):
