@@ -6,6 +6,7 @@ PETSC_EXTERN PetscErrorCode MMContactSetStepMatrix(MMCtx *, PetscReal);
 PETSC_EXTERN PetscErrorCode MMContactSolve(MMCtx *, Vec, Vec, Vec);
 PETSC_EXTERN PetscErrorCode MMContactSetThresholds(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMContactGetNormalReactions(MMCtx *, Vec);
+PETSC_EXTERN PetscErrorCode MMContactUpdateSlip(MMCtx *, Vec, Vec, PetscInt *, PetscReal *);
 PETSC_EXTERN PetscErrorCode MMContactProjectInitial(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMContactDiagnostics(MMCtx *, Vec, Vec, Vec, MMHistory *);
 PETSC_EXTERN PetscErrorCode MMContactCoulomb(MMCtx *, Vec, Vec, Vec, PetscReal *, PetscInt *, PetscInt *);

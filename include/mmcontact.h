@@ -139,6 +139,10 @@ typedef struct {
   PetscReal  h_c;                 /* smallest diameter of cells touching the contact boundary */
   PetscReal  tol;                 /* -contact_tol */
   PetscBool *was_active;          /* per owned contact node, at the previous step */
+  PetscBool *slipping;            /* 3D friction: per owned contact node, slipping (else sticking) */
+  PetscReal *slip_dir;            /* 3D friction: per owned contact node, its slip direction in the tangent plane */
+  Mat        P, Wr;               /* 3D friction: rotation to the (n, d, d_perp) bases, and P^T W P */
+  Vec        rho_r, z_c, Wdiag;   /* 3D friction: rho in those bases; scratch; diag(W), the nodal compliances */
   PetscInt  *scalar_index;        /* per owned contact node, its global index in the scalar vertex DM */
   PetscInt  *vertex;              /* per owned contact node, its mesh point */
   Vec        area;                /* per owned contact node, int_Gc phi_i: force to pressure */
@@ -162,6 +166,7 @@ typedef struct {
   Vec       sigma;            /* velocity of the current iterate (slip velocity on the contact dofs) */
   Vec       b, w, react;      /* the step problem being solved (borrowed) */
   PetscReal coulomb_tol, coulomb, contraction, contraction_max;
+  PetscReal s_floor;          /* threshold scale below which changes count as absolute */
   PetscInt  its;
   PetscBool monitor;
 } MMFriction;

@@ -191,6 +191,7 @@ static PetscErrorCode CreateCondensedSolver(MMCtx *ctx)
   PetscCall(VecDuplicate(ct->rho, &ct->rho_lo));
   PetscCall(VecDuplicate(ct->rho, &ct->rho_hi));
   PetscCall(VecDuplicate(ct->rho, &ct->offset));
+  PetscCall(VecDuplicate(ct->rho, &ct->z_c));
   /* frictionless until thresholds are set: rho_t in [0, 0] */
   PetscCall(VecSet(ct->rho_lo, 0.0));
   PetscCall(VecSet(ct->rho_hi, 0.0));
@@ -200,12 +201,124 @@ static PetscErrorCode CreateCondensedSolver(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
-/* Friction thresholds s (one per contact node): |rho_t| <= s in the next solves. */
+/* 3D friction, the isotropic Coulomb disk |rho_t| <= s: each contact node sticks (rho_t free, so
+ * the VI enforces zero slip) or slips (rho_t = s d fixed, d its slip direction); a node without
+ * normal force carries no tangential force. The friction loop updates s, d and the states until
+ * they stop changing (MMContactUpdateSlip), so the disk is exact, not a square. */
+static PetscErrorCode SetDiskBounds(MMContact *ct, Vec s)
+{
+  const PetscScalar *sa;
+  PetscScalar       *lo, *hi;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(s, &sa));
+  PetscCall(VecGetArray(ct->rho_lo, &lo));
+  PetscCall(VecGetArray(ct->rho_hi, &hi));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscReal sk = PetscRealPart(sa[k]);
+    /* unknowns in the node's (d, d_perp) basis: a slipping node is a 1D Tresca box along d */
+    if (sk <= 0) lo[3 * k + 1] = hi[3 * k + 1] = lo[3 * k + 2] = hi[3 * k + 2] = 0;
+    else if (ct->slipping[k]) {
+      lo[3 * k + 1] = -sk;
+      hi[3 * k + 1] = sk;
+      lo[3 * k + 2] = hi[3 * k + 2] = 0;
+    } else {
+      lo[3 * k + 1] = lo[3 * k + 2] = PETSC_NINFINITY;
+      hi[3 * k + 1] = hi[3 * k + 2] = PETSC_INFINITY;
+    }
+  }
+  PetscCall(VecRestoreArray(ct->rho_hi, &hi));
+  PetscCall(VecRestoreArray(ct->rho_lo, &lo));
+  PetscCall(VecRestoreArrayRead(s, &sa));
+  PetscFunctionReturn(0);
+}
+
+/* P: the condensed dofs of each node from its (n, d, d_perp) basis to the frame's (n, t1, t2). */
+static PetscErrorCode AssembleSlipRotation(MMContact *ct)
+{
+  PetscInt cstart;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatGetOwnershipRange(ct->W, &cstart, NULL));
+  if (!ct->P) PetscCall(MatCreateAIJ(PetscObjectComm((PetscObject)ct->W), 3 * ct->n_local, 3 * ct->n_local, PETSC_DETERMINE, PETSC_DETERMINE, 2, NULL, 0, NULL, &ct->P));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscInt  r   = cstart + 3 * k;
+    const PetscReal *d  = &ct->slip_dir[2 * k];
+    const PetscReal dd  = PetscSqrtReal(d[0] * d[0] + d[1] * d[1]);
+    const PetscReal c   = dd > 0 ? d[0] / dd : 1, sn = dd > 0 ? d[1] / dd : 0;
+    PetscCall(MatSetValue(ct->P, r, r, 1.0, INSERT_VALUES));
+    PetscCall(MatSetValue(ct->P, r + 1, r + 1, c, INSERT_VALUES));
+    PetscCall(MatSetValue(ct->P, r + 1, r + 2, -sn, INSERT_VALUES));
+    PetscCall(MatSetValue(ct->P, r + 2, r + 1, sn, INSERT_VALUES));
+    PetscCall(MatSetValue(ct->P, r + 2, r + 2, c, INSERT_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(ct->P, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(ct->P, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatPtAP(ct->W, ct->P, ct->Wr ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, 1.0, &ct->Wr));
+  PetscFunctionReturn(0);
+}
+
+/* After a solve with thresholds s, the return mapping of each node: the trial force
+ * rho_t + (dt/2) sigma_t / W_tt (its reaction plus its slip over its tangential compliance)
+ * slips along itself when outside the disk, and sticks inside it. Returns the number of
+ * stick/slip switches and the largest change of a slip direction. */
+PetscErrorCode MMContactUpdateSlip(MMCtx *ctx, Vec s, Vec sigma, PetscInt *switches, PetscReal *dchange)
+{
+  MMContact         *ct = &ctx->contact;
+  const PetscScalar *sa, *ra, *va, *wd;
+  const PetscInt    *in;
+  PetscInt           rstart, nsw = 0;
+  PetscReal          dmax = 0;
+
+  PetscFunctionBeginUser;
+  *switches = 0;
+  *dchange  = 0;
+  if (ct->ncomp != 3) PetscFunctionReturn(0);
+  PetscCall(VecGetOwnershipRange(sigma, &rstart, NULL));
+  PetscCall(ISGetIndices(ct->is_normal, &in));
+  PetscCall(VecGetArrayRead(s, &sa));
+  PetscCall(VecGetArrayRead(ct->rho, &ra));
+  PetscCall(VecGetArrayRead(sigma, &va));
+  PetscCall(VecGetArrayRead(ct->Wdiag, &wd));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscReal sk = PetscRealPart(sa[k]);
+    const PetscReal kt = 0.5 * ct->Kt_dt * 2.0 / (PetscRealPart(wd[3 * k + 1]) + PetscRealPart(wd[3 * k + 2]));
+    const PetscReal tr[2] = {PetscRealPart(ra[3 * k + 1]) + kt * PetscRealPart(va[in[k] + 1 - rstart]), PetscRealPart(ra[3 * k + 2]) + kt * PetscRealPart(va[in[k] + 2 - rstart])};
+    const PetscReal tn = PetscSqrtReal(tr[0] * tr[0] + tr[1] * tr[1]);
+    const PetscBool slip = (PetscBool)(sk > 0 && tn > sk * (1 + 1e-10));
+    PetscReal      *d = &ct->slip_dir[2 * k];
+
+    if (sk <= 0) continue;
+    if (slip != ct->slipping[k]) ++nsw;
+    ct->slipping[k] = slip;
+    if (slip) {
+      if (d[0] != 0 || d[1] != 0) dmax = PetscMax(dmax, PetscSqrtReal(PetscSqr(tr[0] / tn - d[0]) + PetscSqr(tr[1] / tn - d[1])));
+      d[0] = tr[0] / tn;
+      d[1] = tr[1] / tn;
+    }
+  }
+  PetscCall(VecRestoreArrayRead(ct->Wdiag, &wd));
+  PetscCall(VecRestoreArrayRead(sigma, &va));
+  PetscCall(VecRestoreArrayRead(ct->rho, &ra));
+  PetscCall(VecRestoreArrayRead(s, &sa));
+  PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  PetscCall(MPIU_Allreduce(&nsw, switches, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)sigma)));
+  PetscCall(MPIU_Allreduce(&dmax, dchange, 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)sigma)));
+  PetscFunctionReturn(0);
+}
+
+/* Friction thresholds s (one per contact node): |rho_t| <= s in the next solves (2D: a box, exact;
+ * 3D: the disk through the stick/slip states). */
 PetscErrorCode MMContactSetThresholds(MMCtx *ctx, Vec s)
 {
   MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
+  if (ct->ncomp == 3) {
+    PetscCall(AssembleSlipRotation(ct));
+    PetscCall(SetDiskBounds(ct, s));
+    PetscFunctionReturn(0);
+  }
   for (PetscInt c = 1; c < ct->ncomp; ++c) {
     PetscCall(VecStrideScatter(s, c, ct->rho_hi, INSERT_VALUES));
     PetscCall(VecStrideScatter(s, c, ct->rho_lo, INSERT_VALUES));
@@ -247,7 +360,7 @@ static PetscErrorCode CondensedRHS(MMCtx *ctx)
 /* RSLS holds a variable as active when it is within 1e-8 (absolute) of a bound with F pushing
  * outward, but leaves it where it is. Reactions can be far smaller than 1 (F1's are 1e-4), so put
  * those variables on their bounds exactly: the same active set, now satisfied to round-off. */
-static PetscErrorCode SnapActiveToBounds(MMContact *ct)
+static PetscErrorCode SnapActiveToBounds(MMContact *ct, Mat A, Vec rho)
 {
   const PetscScalar *lo, *hi, *f;
   PetscScalar       *x;
@@ -255,11 +368,11 @@ static PetscErrorCode SnapActiveToBounds(MMContact *ct)
   Vec                F;
 
   PetscFunctionBeginUser;
-  PetscCall(VecDuplicate(ct->rho, &F));
-  PetscCall(MatMult(ct->W, ct->rho, F));
+  PetscCall(VecDuplicate(rho, &F));
+  PetscCall(MatMult(A, rho, F));
   PetscCall(VecAXPY(F, -1.0, ct->qpc.b));
-  PetscCall(VecGetLocalSize(ct->rho, &n));
-  PetscCall(VecGetArray(ct->rho, &x));
+  PetscCall(VecGetLocalSize(rho, &n));
+  PetscCall(VecGetArray(rho, &x));
   PetscCall(VecGetArrayRead(ct->rho_lo, &lo));
   PetscCall(VecGetArrayRead(ct->rho_hi, &hi));
   PetscCall(VecGetArrayRead(F, &f));
@@ -270,7 +383,7 @@ static PetscErrorCode SnapActiveToBounds(MMContact *ct)
   PetscCall(VecRestoreArrayRead(F, &f));
   PetscCall(VecRestoreArrayRead(ct->rho_hi, &hi));
   PetscCall(VecRestoreArrayRead(ct->rho_lo, &lo));
-  PetscCall(VecRestoreArray(ct->rho, &x));
+  PetscCall(VecRestoreArray(rho, &x));
   PetscCall(VecDestroy(&F));
   PetscFunctionReturn(0);
 }
@@ -289,11 +402,24 @@ static PetscErrorCode SolveCondensed(MMCtx *ctx, Vec b, Vec w)
     PetscFunctionReturn(0);
   }
   PetscCall(CondensedRHS(ctx));
-  /* a warm start must lie in the box of the current thresholds */
-  PetscCall(VecPointwiseMax(ct->rho, ct->rho, ct->rho_lo));
-  PetscCall(VecPointwiseMin(ct->rho, ct->rho, ct->rho_hi));
-  PetscCall(SolveQP(ct->snes, &ct->qpc, ct->rho, &ct->vi_its));
-  PetscCall(SnapActiveToBounds(ct));
+  if (ct->ncomp == 3) {
+    /* the VI in each node's (n, d, d_perp) basis: rho = P rho_r */
+    if (!ct->rho_r) PetscCall(VecDuplicate(ct->rho, &ct->rho_r));
+    PetscCall(VecCopy(ct->qpc.b, ct->z_c));
+    PetscCall(MatMultTranspose(ct->P, ct->z_c, ct->qpc.b));
+    PetscCall(MatMultTranspose(ct->P, ct->rho, ct->rho_r));
+    ct->qpc.A = ct->Wr;
+    PetscCall(SNESSetJacobian(ct->snes, ct->Wr, ct->Wr, NULL, NULL));
+  }
+  {
+    Vec x = ct->ncomp == 3 ? ct->rho_r : ct->rho;
+    /* a warm start must lie in the box of the current thresholds */
+    PetscCall(VecPointwiseMax(x, x, ct->rho_lo));
+    PetscCall(VecPointwiseMin(x, x, ct->rho_hi));
+    PetscCall(SolveQP(ct->snes, &ct->qpc, x, &ct->vi_its));
+    PetscCall(SnapActiveToBounds(ct, ct->qpc.A, x));
+    if (ct->ncomp == 3) PetscCall(MatMult(ct->P, ct->rho_r, ct->rho));
+  }
   PetscCall(VecZeroEntries(ct->rhs_c));
   PetscCall(VecGetSubVector(ct->rhs_c, ct->is_cond, &rc));
   PetscCall(VecAXPY(rc, -1.0, ct->rho));
@@ -549,6 +675,7 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
   ct->n_local = nc;
   PetscCall(MPIU_Allreduce(&nc, &ct->n_global, 1, MPIU_INT, MPI_SUM, comm));
   PetscCall(PetscCalloc1(nc, &ct->was_active));
+  PetscCall(PetscCalloc2(nc, &ct->slipping, 2 * nc, &ct->slip_dir));
   PetscCall(PetscFree4(in, it, is, gap));
   PetscCall(PetscFree(is_contact_dof));
   PetscFunctionReturn(0);
@@ -603,7 +730,6 @@ PetscErrorCode MMContactSetUp(MMCtx *ctx)
   PetscCall(ContactLayerDiameter(ctx, mark));
   PetscCall(PetscFree(mark));
   PetscCall(VecDestroy(&area));
-  PetscCheck(ct->ncomp == 1 || ctx->op.dim == 2, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_SUP, "Coulomb friction (-mu %g) is implemented in 2D only so far: the 3D Coulomb disk is not, and a square box would not be Coulomb's law", (double)ctx->opt.mu);
   PetscCheck(ct->ncomp == 1 || ct->formulation == MM_CONTACT_CONDENSED, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_SUP, "Friction (-mu %g) needs -contact_formulation condensed", (double)ctx->opt.mu);
   PetscCheck(ct->n_global > 0, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "The contact boundary \"%s\" has no nodes", ctx->opt.contact_name);
   PetscFunctionReturn(0);
@@ -652,6 +778,8 @@ PetscErrorCode MMContactSetStepMatrix(MMCtx *ctx, PetscReal dt)
     if (ct->enabled) {
       PetscCall(AssembleDelassus(ctx));
       if (!ct->snes) PetscCall(CreateCondensedSolver(ctx));
+      if (!ct->Wdiag) PetscCall(MatCreateVecs(ct->W, &ct->Wdiag, NULL));
+      PetscCall(MatGetDiagonal(ct->W, ct->Wdiag));
     }
   }
   PetscCall(PetscLogEventEnd(ctx->log.assemble, 0, 0, 0, 0));
@@ -781,7 +909,12 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
     /* the VI's own stick/slip split: a tangential reaction inside its bound sticks (RSLS holds a
      * variable within 1e-8, absolute, of its bound as active, hence the relative margin) */
     PetscBool at_bound = PETSC_FALSE;
-    if (nr > 1) {
+    if (nr == 3) {
+      PetscReal rt = PetscSqrtReal(PetscSqr(PetscRealPart(ra[k * nr + 1])) + PetscSqr(PetscRealPart(ra[k * nr + 2])));
+      /* on the disk's rim: a slipping node whose reaction reached its threshold, or no threshold */
+      at_bound = (PetscBool)((ct->slipping[k] || PetscRealPart(rh[k * nr + 1]) == 0) && rt >= PetscRealPart(rh[k * nr + 1]) - PetscMax(1e-6 * PetscRealPart(rh[k * nr + 1]), 2e-8));
+    }
+    else if (nr > 1) {
       PetscReal rt = 0;
       for (PetscInt d = 1; d < nr; ++d) rt += PetscSqr(PetscRealPart(ra[k * nr + d]));
       /* a zero threshold is a bound too: a node touching without force slides freely */
@@ -948,6 +1081,11 @@ PetscErrorCode MMContactDestroy(MMContact *ct)
   PetscCall(VecDestroy(&ct->rho_lo));
   PetscCall(VecDestroy(&ct->rho_hi));
   PetscCall(VecDestroy(&ct->offset));
+  PetscCall(VecDestroy(&ct->z_c));
+  PetscCall(VecDestroy(&ct->rho_r));
+  PetscCall(VecDestroy(&ct->Wdiag));
+  PetscCall(MatDestroy(&ct->P));
+  PetscCall(MatDestroy(&ct->Wr));
   PetscCall(ISDestroy(&ct->is_cond));
   PetscCall(VecDestroy(&ct->z));
   PetscCall(VecDestroy(&ct->rhs_c));
@@ -966,6 +1104,7 @@ PetscErrorCode MMContactDestroy(MMContact *ct)
   PetscCall(ISDestroy(&ct->is_star));
   PetscCall(ISDestroy(&ct->is_interior));
   PetscCall(PetscFree(ct->was_active));
+  PetscCall(PetscFree2(ct->slipping, ct->slip_dir));
   PetscCall(PetscFree(ct->scalar_index));
   PetscCall(PetscFree(ct->vertex));
   PetscFunctionReturn(0);

@@ -35,8 +35,8 @@ static PetscErrorCode FrictionLoop(SNES snes, Vec s)
   fr->contraction_max = 0;
   snes->reason        = SNES_CONVERGED_ITERATING;
   for (PetscInt k = 0; k < maxit; ++k) {
-    PetscReal ds, snorm, coulomb;
-    PetscInt  nslip, nstick;
+    PetscReal ds, snorm, coulomb, dchange;
+    PetscInt  nslip, nstick, nswitch;
 
     PetscCall(MMContactSetThresholds(ctx, s));
     PetscCall(MMContactSolve(ctx, fr->b, fr->w, fr->react));
@@ -44,7 +44,9 @@ static PetscErrorCode FrictionLoop(SNES snes, Vec s)
     PetscCall(VecScale(fr->s_new, ctx->opt.mu));
     PetscCall(VecNorm(s, NORM_INFINITY, &snorm));
     PetscCall(VecNorm(fr->s_new, NORM_INFINITY, &ds));
-    snorm = PetscMax(snorm, ds);
+    /* relative to the thresholds, but not below mu times the nodal force of a 1e-3 strain: a
+     * node losing contact drives its threshold to zero, and its relative change to infinity */
+    snorm = PetscMax(PetscMax(snorm, ds), fr->s_floor);
     PetscCall(VecAXPY(s, -1.0, fr->s_new));
     PetscCall(VecNorm(s, NORM_INFINITY, &ds));
     ds /= PetscMax(snorm, PETSC_SMALL * PETSC_SMALL);
@@ -56,11 +58,14 @@ static PetscErrorCode FrictionLoop(SNES snes, Vec s)
     if (k > 0 && ds > 1e3 * rtol && ds_first > 0) fr->contraction_max = PetscPowReal(ds / ds_first, 1.0 / k);
     PetscCall(SlipVelocity(ctx, fr->w, fr->sigma));
     PetscCall(MMContactCoulomb(ctx, fr->w, fr->react, fr->sigma, &coulomb, &nslip, &nstick));
+    /* 3D: the stick/slip states and slip directions are part of the fixed point */
+    PetscCall(MMContactUpdateSlip(ctx, s, fr->sigma, &nswitch, &dchange));
+    ds = PetscMax(ds, dchange);
     snes->iter = k + 1;
     PetscCall(SNESMonitor(snes, k, ds));
     if (fr->monitor) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    friction %2" PetscInt_FMT ": threshold change %.3e, Coulomb residual %.3e, contraction %.3f, slipping %" PetscInt_FMT ", sticking %" PetscInt_FMT "\n", k, (double)ds, (double)coulomb, (double)fr->contraction, nslip, nstick));
     fr->coulomb = coulomb;
-    if (ds <= rtol && coulomb <= fr->coulomb_tol) {
+    if (ds <= rtol && !nswitch && coulomb <= fr->coulomb_tol) {
       snes->reason = SNES_CONVERGED_FNORM_RELATIVE;
       PetscFunctionReturn(0);
     }
@@ -82,6 +87,7 @@ PetscErrorCode MMFrictionSetUp(MMCtx *ctx)
 
   PetscFunctionBeginUser;
   fr->coulomb_tol = ctx->opt.friction_coulomb_tol;
+  fr->s_floor     = ctx->opt.mu * 1e-3 * ctx->opt.E * PetscPowReal(ctx->contact.h_c, ctx->op.dim - 1);
   fr->monitor     = ctx->opt.friction_monitor;
   if (ctx->opt.mu == 0 || !ctx->contact.enabled) PetscFunctionReturn(0);
   PetscCall(SNESCreate(PetscObjectComm((PetscObject)ctx->op.dm), &fr->snes));

@@ -143,3 +143,23 @@ def test_nonconvergent_friction_loop_stops_at_the_dt_floor(tmp_path):
     assert len(h) == 1 and h["step"][0] == 0 and h["total"][0] > 0
     with r.fields() as f:
         assert f["vertex_fields/displacement_displacement"].shape[0] == 1
+
+
+@pytest.fixture(scope="module")
+def d2f(tmp_path_factory):
+    return run("d2_ball", tmp_path_factory.mktemp("d2f"), "-mu", 0.2, "-output_every", 0, np_=2)
+
+
+def test_d2_friction_energy_spin_and_ranks(d2f, tmp_path):
+    """3D: the isotropic Coulomb disk through stick/slip return mapping inside the friction loop."""
+    h = d2f.history
+    assert h["balance_residual"].max() <= 1e-8 and h["coulomb_residual"].max() <= 1e-8
+    assert h["max_penetration"].max() <= 1e-9 * 0.24
+    audit = h["total"] - h["work_ext"] - h["work_contact"] - h["work_friction"]
+    assert np.abs(audit - audit[0]).max() <= 1e-10 * h["total"][0]
+    assert h["work_friction"][-1] < -0.03 and h["slipping"].max() > 0
+    # moving along +x, dragged back at its lowest point: it spins about +y, and leaves
+    assert h["L_y"][-1] > 0.5 and abs(h["L_x"][-1]) < 0.05 * h["L_y"][-1] and h["active"][-1] == 0
+    h1 = run("d2_ball", tmp_path, "-mu", 0.2, "-output_every", 0, np_=1).history
+    for c in ("total", "work_friction", "force_tangential", "L_y"):
+        assert np.abs(h1[c] - h[c]).max() <= 1e-8 * max(h["total"][0], np.abs(h[c]).max()), c
