@@ -11,7 +11,7 @@ SRC  := $(wildcard src/*.c)
 OBJ  := $(SRC:src/%.c=build/%.o)
 HDR  := $(wildcard include/*.h)
 CFLAGS_MM := ${PETSC_CC_INCLUDES} -Iinclude -O2 -Wall -Wno-unused-function
-MSH  := meshes/bar80.msh meshes/bar100.msh meshes/disk.msh meshes/ball.msh meshes/block.msh
+MSH  := meshes/bar80.msh meshes/bar100.msh meshes/disk.msh meshes/ball.msh meshes/block.msh meshes/box.msh
 BENCH_MSH := meshes/disk_bench.msh
 
 .PHONY: all deps meshes run check bench clean
@@ -39,6 +39,8 @@ meshes/disk.msh: meshes/disk.geo
 	gmsh -2 $< -o $@ -v 2
 meshes/block.msh: meshes/block.geo
 	gmsh -2 $< -o $@ -v 2
+meshes/box.msh: meshes/box.geo
+	gmsh -3 $< -o $@ -v 2
 meshes/ball.msh: meshes/ball.geo
 	gmsh -3 $< -o $@ -v 2
 meshes/disk_bench.msh: meshes/disk.geo

@@ -50,60 +50,147 @@ static PetscErrorCode SlidingLoads(MMCtx *ctx, PetscReal e[], PetscReal *Fe, Pet
   PetscFunctionReturn(0);
 }
 
-/* Rows of the base nodes: u_n = g, and (K u - f)_t - mu e_t (K u - f)_n = 0 (t = -mu r e_t). */
-static PetscErrorCode SlidingSystem(MMCtx *ctx, const PetscReal et, Vec f, Mat *A, Vec rhs)
+/* The contact node with the smallest normal-dof index (global), and its coordinates, on every rank. */
+static PetscErrorCode ContactNodeCoordinates(MMCtx *ctx, PetscInt k, PetscReal x[])
 {
-  MMContact         *ct = &ctx->contact;
-  const PetscReal    mu = ctx->opt.mu;
+  PetscSection       cs;
+  Vec                X;
+  const PetscScalar *xa;
+  PetscInt           off;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetCoordinateSection(ctx->op.dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(ctx->op.dm, &X));
+  PetscCall(PetscSectionGetOffset(cs, ctx->contact.vertex[k], &off));
+  PetscCall(VecGetArrayRead(X, &xa));
+  for (PetscInt d = 0; d < ctx->op.dim; ++d) x[d] = PetscRealPart(xa[off + d]);
+  PetscCall(VecRestoreArrayRead(X, &xa));
+  PetscFunctionReturn(0);
+}
+
+/* Dofs that pin the rigid motions along the plane, which the sliding state leaves free: the
+ * tangential dofs of contact node A (the one of smallest index), and in 3D the tangential dof of
+ * the contact node B farthest from A that an in-plane rotation about A moves most. */
+static PetscErrorCode RigidPins(MMCtx *ctx, PetscInt pins[], PetscInt *npins)
+{
+  MMContact      *ct  = &ctx->contact;
+  const PetscInt  dim = ctx->op.dim;
+  MPI_Comm        comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  const PetscInt *in;
+  PetscInt        A = PETSC_MAX_INT, mine, kA = -1, B = PETSC_MAX_INT;
+  PetscReal       xA[MM_MAX_DIM] = {0, 0, 0}, xB[MM_MAX_DIM] = {0, 0, 0}, dmax = -1, gmax;
+
+  PetscFunctionBeginUser;
+  PetscCall(ISGetIndices(ct->is_normal, &in));
+  if (ct->n_local) kA = 0;
+  mine = ct->n_local ? in[0] : PETSC_MAX_INT;
+  PetscCall(MPIU_Allreduce(&mine, &A, 1, MPIU_INT, MPI_MIN, comm));
+  if (kA >= 0 && in[0] == A) PetscCall(ContactNodeCoordinates(ctx, 0, xA));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, xA, MM_MAX_DIM, MPIU_REAL, MPIU_SUM, comm));
+  *npins = 0;
+  for (PetscInt d = 1; d < dim; ++d) pins[(*npins)++] = A + d;
+  if (dim == 3) {
+    PetscInt  kB = -1, j = 1;
+    PetscReal r[3], nr[3];
+    for (PetscInt k = 0; k < ct->n_local; ++k) {
+      PetscReal x[3], dist = 0;
+      PetscCall(ContactNodeCoordinates(ctx, k, x));
+      for (PetscInt d = 0; d < 3; ++d) dist += PetscSqr(x[d] - xA[d]);
+      if (dist > dmax) {
+        dmax = dist;
+        kB   = k;
+      }
+    }
+    PetscCall(MPIU_Allreduce(&dmax, &gmax, 1, MPIU_REAL, MPIU_MAX, comm));
+    {
+      mine = (kB >= 0 && dmax == gmax) ? in[kB] : PETSC_MAX_INT;
+      PetscCall(MPIU_Allreduce(&mine, &B, 1, MPIU_INT, MPI_MIN, comm));
+      if (mine == B && kB >= 0) PetscCall(ContactNodeCoordinates(ctx, kB, xB));
+      PetscCall(MPIU_Allreduce(MPI_IN_PLACE, xB, MM_MAX_DIM, MPIU_REAL, MPIU_SUM, comm));
+    }
+    /* an in-plane rotation about A moves B along n x (x_B - x_A) */
+    for (PetscInt d = 0; d < 3; ++d) r[d] = xB[d] - xA[d];
+    nr[0] = ct->frame[0][1] * r[2] - ct->frame[0][2] * r[1];
+    nr[1] = ct->frame[0][2] * r[0] - ct->frame[0][0] * r[2];
+    nr[2] = ct->frame[0][0] * r[1] - ct->frame[0][1] * r[0];
+    {
+      PetscReal p1 = 0, p2 = 0;
+      for (PetscInt d = 0; d < 3; ++d) {
+        p1 += nr[d] * ct->frame[1][d];
+        p2 += nr[d] * ct->frame[2][d];
+      }
+      j = PetscAbsReal(p1) >= PetscAbsReal(p2) ? 1 : 2;
+    }
+    pins[(*npins)++] = B + j;
+  }
+  PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  PetscFunctionReturn(0);
+}
+
+/* Rows of the base nodes: u_n = g, and (K u - f)_tj - mu e_tj (K u - f)_n = 0 (t = -mu r e_t). */
+static PetscErrorCode SlidingSystem(MMCtx *ctx, const PetscReal et[], Vec f, Mat *A, Vec rhs)
+{
+  MMContact         *ct  = &ctx->contact;
+  const PetscReal    mu  = ctx->opt.mu;
+  const PetscInt     dim = ctx->op.dim;
   const PetscInt    *in;
   const PetscScalar *fa, *ga;
   PetscScalar       *ra;
-  PetscInt           rstart, pin = -1, first;
+  PetscInt           rstart, rend, pins[3], npins, *rows, nr = 0;
 
   PetscFunctionBeginUser;
   PetscCall(MatDuplicate(ctx->op.K, MAT_COPY_VALUES, A));
   PetscCall(VecCopy(f, rhs));
-  PetscCall(VecGetOwnershipRange(f, &rstart, NULL));
+  PetscCall(VecGetOwnershipRange(f, &rstart, &rend));
   PetscCall(ISGetIndices(ct->is_normal, &in));
   PetscCall(VecGetArrayRead(f, &fa));
   PetscCall(VecGetArrayRead(ct->gap, &ga));
   PetscCall(VecGetArray(rhs, &ra));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
-    const PetscInt     i = in[k], it = in[k] + 1;
+    const PetscInt     i = in[k];
     PetscInt           nn, nt;
     const PetscInt    *cn, *ctt;
     const PetscScalar *vn, *vt;
     PetscScalar       *row;
 
+    PetscScalar       *normal;
+
+    /* a parallel matrix lends one row at a time: keep a copy of the normal row */
+    PetscInt           nnormal;
     PetscCall(MatGetRow(ctx->op.K, i, &nn, &cn, &vn));
-    PetscCall(MatGetRow(ctx->op.K, it, &nt, &ctt, &vt));
-    PetscCheck(nn == nt, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Rows of one node with different patterns");
-    PetscCall(PetscMalloc1(nt, &row));
-    for (PetscInt j = 0; j < nt; ++j) row[j] = vt[j] - mu * et * vn[j];
-    PetscCall(MatSetValues(*A, 1, &it, nt, ctt, row, INSERT_VALUES));
-    PetscCall(PetscFree(row));
-    PetscCall(MatRestoreRow(ctx->op.K, it, &nt, &ctt, &vt));
+    nnormal = nn; /* MatRestoreRow zeroes the count */
+    PetscCall(PetscMalloc2(nn, &row, nn, &normal));
+    PetscCall(PetscArraycpy(normal, vn, nn));
     PetscCall(MatRestoreRow(ctx->op.K, i, &nn, &cn, &vn));
-    ra[it - rstart] = fa[it - rstart] - mu * et * fa[i - rstart];
-    ra[i - rstart]  = ga[k];
+    nn = nnormal;
+    for (PetscInt d = 1; d < dim; ++d) {
+      const PetscInt it = i + d;
+      PetscCall(MatGetRow(ctx->op.K, it, &nt, &ctt, &vt));
+      PetscCheck(nn == nt, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Rows of one node with different patterns");
+      for (PetscInt j = 0; j < nt; ++j) row[j] = vt[j] - mu * et[d - 1] * normal[j];
+      PetscCall(MatSetValues(*A, 1, &it, nt, ctt, row, INSERT_VALUES));
+      PetscCall(MatRestoreRow(ctx->op.K, it, &nt, &ctt, &vt));
+      ra[it - rstart] = fa[it - rstart] - mu * et[d - 1] * fa[i - rstart];
+    }
+    PetscCall(PetscFree2(row, normal));
+    ra[i - rstart] = ga[k];
   }
   PetscCall(VecRestoreArray(rhs, &ra));
   PetscCall(VecRestoreArrayRead(ct->gap, &ga));
   PetscCall(VecRestoreArrayRead(f, &fa));
   PetscCall(MatAssemblyBegin(*A, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(*A, MAT_FINAL_ASSEMBLY));
-  /* u_n = g, and the translation along the plane pinned at the first contact node */
-  first = ct->n_local ? in[0] + 1 : PETSC_MAX_INT;
-  PetscCall(MPIU_Allreduce(&first, &pin, 1, MPIU_INT, MPI_MIN, PetscObjectComm((PetscObject)f)));
-  {
-    PetscInt *rows, nr = 0;
-    PetscCall(PetscMalloc1(ct->n_local + 1, &rows));
-    for (PetscInt k = 0; k < ct->n_local; ++k) rows[nr++] = in[k];
-    if (ct->n_local && in[0] + 1 == pin) rows[nr++] = pin;
-    PetscCall(MatZeroRows(*A, nr, rows, 1.0, NULL, NULL));
-    if (ct->n_local && in[0] + 1 == pin) PetscCall(VecSetValue(rhs, pin, 0.0, INSERT_VALUES));
-    PetscCall(PetscFree(rows));
-  }
+  /* u_n = g, and the rigid motions along the plane pinned */
+  PetscCall(RigidPins(ctx, pins, &npins));
+  PetscCall(PetscMalloc1(ct->n_local + npins, &rows));
+  for (PetscInt k = 0; k < ct->n_local; ++k) rows[nr++] = in[k];
+  for (PetscInt p = 0; p < npins; ++p)
+    if (pins[p] >= rstart && pins[p] < rend) {
+      rows[nr++] = pins[p];
+      PetscCall(VecSetValue(rhs, pins[p], 0.0, INSERT_VALUES));
+    }
+  PetscCall(MatZeroRows(*A, nr, rows, 1.0, NULL, NULL));
+  PetscCall(PetscFree(rows));
   PetscCall(VecAssemblyBegin(rhs));
   PetscCall(VecAssemblyEnd(rhs));
   PetscCall(ISRestoreIndices(ct->is_normal, &in));
@@ -115,26 +202,28 @@ PetscErrorCode MMInitialStaticSliding(MMCtx *ctx, Vec w, Vec react)
 {
   MMContact *ct = &ctx->contact;
   MPI_Comm   comm = PetscObjectComm((PetscObject)ctx->op.dm);
-  PetscReal  e[MM_MAX_DIM] = {0, 0, 0}, Fe = 0, P = 0, m = 0, a, et = 0, rmin;
+  PetscReal  e[MM_MAX_DIM] = {0, 0, 0}, Fe = 0, P = 0, m = 0, a, et[2] = {0, 0}, rmin;
+  PetscInt   dim = ctx->op.dim;
   PetscBool  from_rest = PETSC_FALSE;
   Vec        f, rhs, me, rn;
   Mat        A;
   KSP        ksp;
 
   PetscFunctionBeginUser;
-  PetscCheck(ct->enabled && ctx->op.dim == 2 && ctx->opt.n_dirichlet == 0, comm, PETSC_ERR_SUP, "-initial_state static_sliding needs contact on, a 2D body and no Dirichlet boundary");
+  PetscCheck(ct->enabled && ctx->opt.n_dirichlet == 0, comm, PETSC_ERR_SUP, "-initial_state static_sliding needs contact on and no Dirichlet boundary");
   PetscCall(SlidingLoads(ctx, e, &Fe, &P, &m, &from_rest));
   a = (Fe - ctx->opt.mu * P) / m;
   /* from rest, a load that cannot overcome friction has no sliding state; the stuck equilibrium
    * is no static Coulomb state either (the base corners slip under the Poisson shear) */
   PetscCheck(!from_rest || a > 0, comm, PETSC_ERR_USER_INPUT, "-initial_state static_sliding from rest: the tangential load %g cannot overcome friction mu P = %g, so there is no sliding state. Start from -initial_state given", (double)Fe, (double)(ctx->opt.mu * P));
-  for (PetscInt d = 0; d < 2; ++d) et += e[d] * ct->frame[1][d];
+  for (PetscInt j = 1; j < dim; ++j)
+    for (PetscInt d = 0; d < dim; ++d) et[j - 1] += e[d] * ct->frame[j][d];
   /* f = L - m_i a e, the load in the frame sliding with the body */
   PetscCall(VecDuplicate(w, &f));
   PetscCall(VecDuplicate(w, &rhs));
   PetscCall(VecDuplicate(ctx->op.mass_lumped_cart, &me));
   PetscCall(VecCopy(ctx->op.mass_lumped_cart, me));
-  for (PetscInt d = 0; d < 2; ++d) PetscCall(VecStrideScale(me, d, -a * e[d]));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(VecStrideScale(me, d, -a * e[d]));
   PetscCall(MMFEFromCartesian(ctx, me, f));
   PetscCall(VecAXPY(f, 1.0, ctx->op.load));
   PetscCall(SlidingSystem(ctx, et, f, &A, rhs));
@@ -151,7 +240,7 @@ PetscErrorCode MMInitialStaticSliding(MMCtx *ctx, Vec w, Vec react)
   PetscCall(VecMax(rn, NULL, &rmin)); /* react_n = -r_i: all reactions > 0 means max < 0 */
   PetscCall(VecRestoreSubVector(react, ct->is_normal, &rn));
   PetscCheck(rmin < 0, comm, PETSC_ERR_USER_INPUT, "The static sliding state has a base node without compressive reaction (r = %g): the body would lift off; it is not a sliding state", (double)-rmin);
-  if (!ctx->opt.quiet) PetscCall(PetscPrintf(comm, "  static sliding state: rigid acceleration a = %g along (%g, %g)\n", (double)a, (double)e[0], (double)e[1]));
+  if (!ctx->opt.quiet) PetscCall(PetscPrintf(comm, "  static sliding state: rigid acceleration a = %g along (%g, %g, %g)\n", (double)a, (double)e[0], (double)e[1], (double)e[2]));
   PetscCall(KSPDestroy(&ksp));
   PetscCall(MatDestroy(&A));
   PetscCall(VecDestroy(&f));

@@ -163,3 +163,16 @@ def test_d2_friction_energy_spin_and_ranks(d2f, tmp_path):
     h1 = run("d2_ball", tmp_path, "-mu", 0.2, "-output_every", 0, np_=1).history
     for c in ("total", "work_friction", "force_tangential", "L_y"):
         assert np.abs(h1[c] - h[c]).max() <= 1e-8 * max(h["total"][0], np.abs(h[c]).max()), c
+
+
+def test_f1_box_3d_slides_along_its_velocity(mm):
+    """F1 in 3D: a box launched at 30 degrees to x slides along its velocity, whatever the mesh's
+    axes, and decelerates at mu g: the isotropic disk, not a square."""
+    h = mm("f1_box", "-output_every", 0, np_=2).history
+    t = h["time"]
+    direction = np.arctan2(h["vcm_y"], h["vcm_x"])
+    assert np.abs(direction - np.pi / 6).max() <= 1e-6
+    speed = np.hypot(h["vcm_x"], h["vcm_y"])
+    assert np.abs(speed - (0.05 - MU * G * t)).max() <= 1e-6 * 0.05
+    assert np.abs(h["force_tangential"] - MU * h["force_normal"]).max() <= 1e-8 * h["force_normal"][0]
+    assert h["coulomb_residual"].max() <= 1e-8 and h["balance_residual"].max() <= 1e-8
