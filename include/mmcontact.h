@@ -134,6 +134,9 @@ typedef struct {
   IS         is_cond;             /* the condensed dofs, node by node */
   Vec        rho, rho_lo, rho_hi; /* contact reactions (lambda_n, -t) per node and their bounds */
   Vec        offset, z, rhs_c;    /* q = z_c - offset; the step's contact-free solution; E rho */
+  Vec        z_b;                 /* the right-hand side z was solved for (not owned), its state and dt */
+  PetscObjectState z_b_state;
+  PetscReal  z_dt;
   SNES       snes0;               /* quasi-static projection of the contact dofs, prefix contact0_ */
   PetscReal  frame[MM_MAX_DIM][MM_MAX_DIM]; /* rows: nu, tau_1, tau_2 */
   PetscReal  h_c;                 /* smallest diameter of cells touching the contact boundary */

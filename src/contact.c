@@ -4,6 +4,7 @@
  * (vinewtonrsls by default, prefix -contact_), condensed on the contact dofs by default. The friction
  * loop will wrap MMContactSolve: it only changes the right-hand side and the tangential bounds. */
 #include <petscsf.h>
+#include <petsc/private/petscimpl.h> /* PetscObjectStateGet */
 #include "contact.h"
 #include "mesh.h"
 
@@ -395,7 +396,17 @@ static PetscErrorCode SolveCondensed(MMCtx *ctx, Vec b, Vec w)
   Vec        rc;
 
   PetscFunctionBeginUser;
-  PetscCall(KSPSolve(ct->ksp_K, b, ct->z));
+  {
+    PetscObjectState state;
+    /* the friction loop solves one step's problem many times: z = K~^{-1} b is the same each time */
+    PetscCall(PetscObjectStateGet((PetscObject)b, &state));
+    if (b != ct->z_b || state != ct->z_b_state || ct->z_dt != ct->Kt_dt) {
+      PetscCall(KSPSolve(ct->ksp_K, b, ct->z));
+      ct->z_b       = b;
+      ct->z_b_state = state;
+      ct->z_dt      = ct->Kt_dt;
+    }
+  }
   ct->vi_its = 0;
   if (!ct->enabled) {
     PetscCall(VecCopy(ct->z, w));
