@@ -168,7 +168,7 @@ typedef struct {
   Vec       s, s_new;         /* thresholds mu r_i per contact node: the loop's unknown */
   Vec       sigma;            /* velocity of the current iterate (slip velocity on the contact dofs) */
   Vec       b, w, react;      /* the step problem being solved (borrowed) */
-  PetscReal coulomb_tol, coulomb, contraction, contraction_max;
+  PetscReal coulomb_tol, contraction, contraction_max;
   PetscReal s_floor;          /* threshold scale below which changes count as absolute */
   PetscInt  its;
   PetscBool monitor;

@@ -64,7 +64,6 @@ static PetscErrorCode FrictionLoop(SNES snes, Vec s)
     snes->iter = k + 1;
     PetscCall(SNESMonitor(snes, k, ds));
     if (fr->monitor) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    friction %2" PetscInt_FMT ": threshold change %.3e, Coulomb residual %.3e, contraction %.3f, slipping %" PetscInt_FMT ", sticking %" PetscInt_FMT "\n", k, (double)ds, (double)coulomb, (double)fr->contraction, nslip, nstick));
-    fr->coulomb = coulomb;
     if (ds <= rtol && !nswitch && coulomb <= fr->coulomb_tol) {
       snes->reason = SNES_CONVERGED_FNORM_RELATIVE;
       PetscFunctionReturn(0);
