@@ -369,7 +369,7 @@ static PetscErrorCode SnapActiveToBounds(MMContact *ct, Mat A, Vec rho)
   Vec                F;
 
   PetscFunctionBeginUser;
-  PetscCall(VecDuplicate(rho, &F));
+  F = ct->z_c; /* scratch, free once the VI is solved */
   PetscCall(MatMult(A, rho, F));
   PetscCall(VecAXPY(F, -1.0, ct->qpc.b));
   PetscCall(VecGetLocalSize(rho, &n));
@@ -385,7 +385,6 @@ static PetscErrorCode SnapActiveToBounds(MMContact *ct, Mat A, Vec rho)
   PetscCall(VecRestoreArrayRead(ct->rho_hi, &hi));
   PetscCall(VecRestoreArrayRead(ct->rho_lo, &lo));
   PetscCall(VecRestoreArray(rho, &x));
-  PetscCall(VecDestroy(&F));
   PetscFunctionReturn(0);
 }
 
