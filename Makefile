@@ -10,7 +10,7 @@ NP      ?= 2
 SRC  := $(wildcard src/*.c)
 OBJ  := $(SRC:src/%.c=build/%.o)
 HDR  := $(wildcard include/*.h)
-CFLAGS_MM := ${PETSC_CC_INCLUDES} -Iinclude -O2 -Wall -Wno-unused-function
+CFLAGS_MM := ${PETSC_CC_INCLUDES} -Iinclude -O2 -Wall
 MSH  := meshes/bar80.msh meshes/bar100.msh meshes/disk.msh meshes/ball.msh meshes/block.msh meshes/box.msh
 BENCH_MSH := meshes/disk_bench.msh
 

@@ -10,6 +10,5 @@ PETSC_EXTERN PetscErrorCode MMContactUpdateSlip(MMCtx *, Vec, Vec, PetscInt *, P
 PETSC_EXTERN PetscErrorCode MMContactProjectInitial(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMContactDiagnostics(MMCtx *, Vec, Vec, Vec, MMHistory *);
 PETSC_EXTERN PetscErrorCode MMContactCoulomb(MMCtx *, Vec, Vec, Vec, PetscReal *, PetscInt *, PetscInt *);
-PETSC_EXTERN PetscErrorCode MMContactNodalFields(MMCtx *, Vec, Vec, Vec, Vec);
-PETSC_EXTERN PetscErrorCode MMContactTangentialFields(MMCtx *, DM, Vec, Vec, Vec, Vec);
+PETSC_EXTERN PetscErrorCode MMContactBoundaryFields(MMCtx *, MMOutput *);
 PETSC_EXTERN PetscErrorCode MMContactDestroy(MMContact *);

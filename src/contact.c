@@ -1000,82 +1000,57 @@ PetscErrorCode MMContactDiagnostics(MMCtx *ctx, Vec w, Vec react, Vec v, MMHisto
   PetscFunctionReturn(0);
 }
 
-/* Nodal contact pressure r_i / int phi_i and current gap g_i - u.nu on the scalar vertex DM (zero off Gamma_c). */
-PetscErrorCode MMContactNodalFields(MMCtx *ctx, Vec w, Vec react, Vec pressure, Vec gap)
-{
-  MMContact         *ct = &ctx->contact;
-  const PetscInt    *in;
-  const PetscScalar *wa, *fa, *ga, *aa;
-  PetscInt           rstart;
-
-  PetscFunctionBeginUser;
-  PetscCall(VecZeroEntries(pressure));
-  PetscCall(VecZeroEntries(gap));
-  if (!ct->enabled) PetscFunctionReturn(0);
-  PetscCall(VecGetOwnershipRange(w, &rstart, NULL));
-  PetscCall(ISGetIndices(ct->is_normal, &in));
-  PetscCall(VecGetArrayRead(w, &wa));
-  PetscCall(VecGetArrayRead(react, &fa));
-  PetscCall(VecGetArrayRead(ct->gap, &ga));
-  PetscCall(VecGetArrayRead(ct->area, &aa));
-  for (PetscInt k = 0; k < ct->n_local; ++k) {
-    PetscCall(VecSetValue(pressure, ct->scalar_index[k], -fa[in[k] - rstart] / aa[k], INSERT_VALUES));
-    PetscCall(VecSetValue(gap, ct->scalar_index[k], ga[k] - wa[in[k] - rstart], INSERT_VALUES));
-  }
-  PetscCall(VecRestoreArrayRead(ct->area, &aa));
-  PetscCall(VecRestoreArrayRead(ct->gap, &ga));
-  PetscCall(VecRestoreArrayRead(react, &fa));
-  PetscCall(VecRestoreArrayRead(w, &wa));
-  PetscCall(ISRestoreIndices(ct->is_normal, &in));
-  PetscCall(VecAssemblyBegin(pressure));
-  PetscCall(VecAssemblyEnd(pressure));
-  PetscCall(VecAssemblyBegin(gap));
-  PetscCall(VecAssemblyEnd(gap));
-  PetscFunctionReturn(0);
-}
-
-/* Tangential traction (force / nodal area) and slip velocity as Cartesian vectors on dm_out, zero
- * off the contact boundary: the frame's tangential components mapped back. */
-PetscErrorCode MMContactTangentialFields(MMCtx *ctx, DM dm_out, Vec react, Vec v, Vec traction, Vec slip)
+/* The contact fields of the output, zero off the contact boundary: nodal pressure r_i / int phi_i and
+ * current gap g_i - u.nu (scalars), tangential traction and slip velocity (Cartesian vectors on dm_out,
+ * the frame's tangential components mapped back). */
+PetscErrorCode MMContactBoundaryFields(MMCtx *ctx, MMOutput *o)
 {
   MMContact         *ct  = &ctx->contact;
   const PetscInt     dim = ctx->op.dim;
+  Vec                out[] = {o->pressure, o->gap, o->traction_t, o->slip};
   const PetscInt    *in;
-  const PetscScalar *fa, *va, *aa;
+  const PetscScalar *wa, *fa, *va, *ga, *aa;
   PetscInt           rstart;
 
   PetscFunctionBeginUser;
-  PetscCall(VecZeroEntries(traction));
-  PetscCall(VecZeroEntries(slip));
+  for (size_t i = 0; i < sizeof(out) / sizeof(out[0]); ++i) PetscCall(VecZeroEntries(out[i]));
   if (ct->enabled) {
-    PetscCall(VecGetOwnershipRange(react, &rstart, NULL));
+    PetscCall(VecGetOwnershipRange(ctx->state.u, &rstart, NULL));
     PetscCall(ISGetIndices(ct->is_normal, &in));
-    PetscCall(VecGetArrayRead(react, &fa));
-    PetscCall(VecGetArrayRead(v, &va));
+    PetscCall(VecGetArrayRead(ctx->state.u, &wa));
+    PetscCall(VecGetArrayRead(ctx->state.react, &fa));
+    PetscCall(VecGetArrayRead(ctx->state.v, &va));
+    PetscCall(VecGetArrayRead(ct->gap, &ga));
     PetscCall(VecGetArrayRead(ct->area, &aa));
     for (PetscInt k = 0; k < ct->n_local; ++k) {
-      PetscInt    start, end;
-      PetscScalar tc[MM_MAX_DIM] = {0, 0, 0}, sc[MM_MAX_DIM] = {0, 0, 0};
+      const PetscInt i = in[k] - rstart;
+      PetscInt       start, end;
+      PetscScalar    tc[MM_MAX_DIM] = {0, 0, 0}, sc[MM_MAX_DIM] = {0, 0, 0};
+
+      PetscCall(VecSetValue(o->pressure, ct->scalar_index[k], -fa[i] / aa[k], INSERT_VALUES));
+      PetscCall(VecSetValue(o->gap, ct->scalar_index[k], ga[k] - wa[i], INSERT_VALUES));
       for (PetscInt d = 1; d < dim; ++d)
         for (PetscInt c = 0; c < dim; ++c) {
-          tc[c] += fa[in[k] + d - rstart] * ct->frame[d][c] / aa[k];
-          sc[c] += va[in[k] + d - rstart] * ct->frame[d][c];
+          tc[c] += fa[i + d] * ct->frame[d][c] / aa[k];
+          sc[c] += va[i + d] * ct->frame[d][c];
         }
-      PetscCall(DMPlexGetPointGlobal(dm_out, ct->vertex[k], &start, &end));
+      PetscCall(DMPlexGetPointGlobal(o->dm_out, ct->vertex[k], &start, &end));
       for (PetscInt c = 0; c < dim; ++c) {
-        PetscCall(VecSetValue(traction, start + c, tc[c], INSERT_VALUES));
-        PetscCall(VecSetValue(slip, start + c, sc[c], INSERT_VALUES));
+        PetscCall(VecSetValue(o->traction_t, start + c, tc[c], INSERT_VALUES));
+        PetscCall(VecSetValue(o->slip, start + c, sc[c], INSERT_VALUES));
       }
     }
     PetscCall(VecRestoreArrayRead(ct->area, &aa));
-    PetscCall(VecRestoreArrayRead(v, &va));
-    PetscCall(VecRestoreArrayRead(react, &fa));
+    PetscCall(VecRestoreArrayRead(ct->gap, &ga));
+    PetscCall(VecRestoreArrayRead(ctx->state.v, &va));
+    PetscCall(VecRestoreArrayRead(ctx->state.react, &fa));
+    PetscCall(VecRestoreArrayRead(ctx->state.u, &wa));
     PetscCall(ISRestoreIndices(ct->is_normal, &in));
   }
-  PetscCall(VecAssemblyBegin(traction));
-  PetscCall(VecAssemblyEnd(traction));
-  PetscCall(VecAssemblyBegin(slip));
-  PetscCall(VecAssemblyEnd(slip));
+  for (size_t i = 0; i < sizeof(out) / sizeof(out[0]); ++i) {
+    PetscCall(VecAssemblyBegin(out[i]));
+    PetscCall(VecAssemblyEnd(out[i]));
+  }
   PetscFunctionReturn(0);
 }
 

@@ -134,8 +134,7 @@ static PetscErrorCode WriteFields(MMCtx *ctx)
   PetscCall(PetscLogStagePush(ctx->log.output));
   PetscCall(WholeField(ctx, ctx->state.u, PETSC_TRUE, o->disp_cart));
   PetscCall(WholeField(ctx, ctx->state.v, PETSC_FALSE, o->vel_cart));
-  PetscCall(MMContactNodalFields(ctx, ctx->state.u, ctx->state.react, o->pressure, o->gap));
-  PetscCall(MMContactTangentialFields(ctx, o->dm_out, ctx->state.react, ctx->state.v, o->traction_t, o->slip));
+  PetscCall(MMContactBoundaryFields(ctx, o));
   PetscCall(PetscViewerHDF5Open(PETSC_COMM_WORLD, o->h5_name, FILE_MODE_APPEND, &v));
   PetscCall(PetscViewerPushFormat(v, PETSC_VIEWER_HDF5_XDMF));
   PetscCall(DMSetOutputSequenceNumber(o->dm_out, o->n_written, t));
