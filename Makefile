@@ -1,6 +1,11 @@
 # mmcontact: build, meshes, showcase run, tests, benchmarks.
 PETSC_DIR ?= /usr/lib/petsc
-include ${PETSC_DIR}/lib/petsc/conf/variables
+# PETSc's variables exist only once `deps` has installed petsc-dev: `run`, `check` and `bench`
+# install first and then build in a sub-make, which reads them.
+PETSC_VARIABLES := $(wildcard ${PETSC_DIR}/lib/petsc/conf/variables)
+ifneq (${PETSC_VARIABLES},)
+include ${PETSC_VARIABLES}
+endif
 
 # PETSc's conf/variables defines MPIEXEC and PYTHON: ours have their own names
 MM_MPIEXEC ?= mpiexec $(if $(filter 0,$(shell id -u)),--allow-run-as-root)
@@ -14,13 +19,18 @@ CFLAGS_MM := ${PETSC_CC_INCLUDES} -Iinclude -O2 -Wall
 MSH  := meshes/bar80.msh meshes/bar100.msh meshes/disk.msh meshes/ball.msh meshes/block.msh meshes/box.msh
 BENCH_MSH := meshes/disk_bench.msh
 
-.PHONY: all deps meshes run check bench clean
+.PHONY: all deps petsc-found meshes run check bench clean
 all: mmcontact
 
 deps:
 	@bash scripts/install-deps
 
-build/%.o: src/%.c $(HDR) | build
+petsc-found:
+ifeq (${PETSC_VARIABLES},)
+	@echo "PETSc not found at ${PETSC_DIR}: run 'make deps' (or 'make run', which installs it first), or set PETSC_DIR"; exit 1
+endif
+
+build/%.o: src/%.c $(HDR) | build petsc-found
 	@echo "  CC  $<"
 	@${PCC} ${PCC_FLAGS} ${CFLAGS_MM} -c $< -o $@
 build:
