@@ -37,16 +37,33 @@ PETSC_EXTERN const char *const MMContactFormulations[];
 /* A Dirichlet boundary: fixes the listed components to constant values. */
 typedef struct {
   char      *name;
-  PetscInt   ncomp;
+  PetscInt   ncomp;   /* -1 until the dimension is known: then all components (a clamp) */
   PetscInt   comps[MM_MAX_DIM];
   PetscReal  values[MM_MAX_DIM];
+  PetscInt   nvalues; /* entries given to -dirichlet_NAME_value, -1 if not set */
 } MMDirichlet;
 
 /* A Neumann boundary carrying a constant traction (force per unit area). */
 typedef struct {
   char     *name;
   PetscReal traction[MM_MAX_DIM];
+  PetscInt  nvalues; /* entries given to -traction_NAME_value, -1 if not set */
 } MMTraction;
+
+/* The vector options, whose lengths can only be checked once the mesh gives the dimension. */
+typedef enum {
+  MM_V_GRAVITY,
+  MM_V_U0_OFFSET,
+  MM_V_U0_GRADIENT,
+  MM_V_V0,
+  MM_V_OMEGA,
+  MM_V_OMEGA_CENTER,
+  MM_V_OBSTACLE_POINT,
+  MM_V_OBSTACLE_NORMAL,
+  MM_V_MESH_ROTATION,
+  MM_V_MESH_ROTATION_CENTER,
+  MM_V_NUM
+} MMVectorOption;
 
 /* Run options: everything the user sets. Filled in one place, src/options.c. */
 typedef struct {
@@ -68,12 +85,16 @@ typedef struct {
   MMContactFormulation contact_formulation;
   PetscReal    contact_tol;
   PetscReal    audit_tol;
+  PetscReal    contact_work_tol;
+  PetscReal    initial_penetration_tol;
   PetscReal    mu;
   PetscReal    friction_coulomb_tol;
   PetscBool    friction_monitor;
   char         output_dir[PETSC_MAX_PATH_LEN];
   PetscInt     output_every;
   PetscBool    quiet;
+  PetscBool    allow_unused;
+  PetscInt     vec_count[MM_V_NUM]; /* entries given to each vector option, -1 if not set */
 } MMOptions;
 
 /* Physical parameters, also passed to the pointwise kernels as constants[]. */

@@ -3,3 +3,5 @@
 PETSC_EXTERN PetscErrorCode MMOptionsProcess(MPI_Comm, MMOptions *);
 PETSC_EXTERN PetscErrorCode MMOptionsCheckDimension(MPI_Comm, MMOptions *, PetscInt);
 PETSC_EXTERN PetscErrorCode MMOptionsDestroy(MMOptions *);
+PETSC_EXTERN PetscErrorCode MMOptionsHelpWithoutMesh(MPI_Comm, PetscBool *);
+PETSC_EXTERN PetscErrorCode MMOptionsCheckUnused(MPI_Comm, const MMOptions *, DM);

@@ -28,16 +28,17 @@ static PetscErrorCode ReportSetup(MMCtx *ctx, TS ts)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts)
+static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
 {
   MPI_Comm  comm = PETSC_COMM_WORLD;
   PetscReal dt;
 
   PetscFunctionBeginUser;
   PetscCall(MMOptionsProcess(comm, &ctx->opt));
+  PetscCall(MMOptionsHelpWithoutMesh(comm, help_only));
+  if (*help_only) PetscFunctionReturn(0);
   PetscCall(MMMeshLoad(comm, &ctx->opt, &ctx->op.dm));
   PetscCall(DMGetDimension(ctx->op.dm, &ctx->op.dim));
-  PetscCall(MMOptionsCheckDimension(comm, &ctx->opt, ctx->op.dim));
   PetscCall(MMFESetUp(ctx));
   PetscCall(MMContactSetUp(ctx));
   PetscCall(MMFEAssembleOperators(ctx));
@@ -48,6 +49,8 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts)
   PetscCall(MMContactSetStepMatrix(ctx, dt));
   ctx->hist.dt = dt;
   PetscCall(MMEnergyInitial(ctx));
+  /* every object has read its options, and no output has been touched yet */
+  PetscCall(MMOptionsCheckUnused(comm, &ctx->opt, ctx->op.dm));
   PetscCall(MMOutputOpen(ctx));
   PetscCall(TSMonitorSet(*ts, MMOutputMonitor, ctx, NULL));
   PetscCall(ReportSetup(ctx, *ts));
@@ -77,6 +80,7 @@ int main(int argc, char **argv)
   MMCtx          ctx;
   TS             ts;
   PetscLogDouble ts0, t0, t1;
+  PetscBool      help_only;
 
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
@@ -86,8 +90,13 @@ int main(int argc, char **argv)
 
   PetscCall(PetscTime(&ts0));
   PetscCall(PetscLogStagePush(ctx.log.setup));
-  PetscCall(SetupProblem(&ctx, &ts));
+  PetscCall(SetupProblem(&ctx, &ts, &help_only));
   PetscCall(PetscLogStagePop());
+  if (help_only) {
+    PetscCall(MMOptionsDestroy(&ctx.opt));
+    PetscCall(PetscFinalize());
+    return 0;
+  }
 
   PetscCall(PetscTime(&t0));
   PetscCall(PetscLogStagePush(ctx.log.solve));

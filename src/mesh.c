@@ -1,5 +1,6 @@
 /* Reading a gmsh mesh into DMPlex, naming its physical groups, and distributing it. */
 #include "mesh.h"
+#include "options.h"
 #include "partition_metis.h"
 
 /* Labels DMPlex makes itself: not physical groups the user named. */
@@ -87,6 +88,12 @@ PetscErrorCode MMMeshLoad(MPI_Comm comm, MMOptions *opt, DM *dm)
   PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_use_regions", "true"));
   PetscCall(DMPlexCreateFromFile(comm, opt->mesh_file, "mmcontact", PETSC_TRUE, dm));
   PetscCall(PetscObjectSetName((PetscObject)*dm, "mesh"));
+  {
+    PetscInt dim;
+    /* the vector options' lengths, the rotation's among them, need the dimension */
+    PetscCall(DMGetDimension(*dm, &dim));
+    PetscCall(MMOptionsCheckDimension(comm, opt, dim));
+  }
   for (PetscInt d = 0; d < MM_MAX_DIM; ++d) rotate = (PetscBool)(rotate || opt->mesh_rotation[d] != 0);
   if (rotate) PetscCall(RotateCoordinates(*dm, opt->mesh_rotation, opt->mesh_rotation_center));
 

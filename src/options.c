@@ -5,15 +5,50 @@ const char *const MMMassTypes[] = {"modified", "standard", "MMMassType", "MM_MAS
 const char *const MMInitialStates[] = {"given", "static_sliding", "MMInitialState", "MM_INITIAL_", NULL};
 const char *const MMContactFormulations[] = {"condensed", "full", "MMContactFormulation", "MM_CONTACT_", NULL};
 
-/* Reads a real vector option of up to MM_MAX_DIM entries; *n returns how many were given. */
-static PetscErrorCode OptionsVector(PetscOptionItems *PetscOptionsObject, const char name[], const char help[], PetscReal v[], PetscInt *n)
+/* What a vector option's length must be, once the dimension d is known. */
+typedef enum {
+  MM_LEN_DIM,     /* d entries */
+  MM_LEN_TENSOR,  /* d*d entries */
+  MM_LEN_ROTATION /* 1 entry in 2D (an angle), 3 in 3D (a vector) */
+} MMVectorLength;
+
+static const char *const VectorName[MM_V_NUM] = {"-gravity", "-u0_offset", "-u0_gradient", "-v0", "-omega", "-omega_center", "-obstacle_point", "-obstacle_normal", "-mesh_rotation", "-mesh_rotation_center"};
+static const MMVectorLength VectorLength[MM_V_NUM] = {MM_LEN_DIM, MM_LEN_DIM, MM_LEN_TENSOR, MM_LEN_DIM, MM_LEN_ROTATION, MM_LEN_DIM, MM_LEN_DIM, MM_LEN_DIM, MM_LEN_ROTATION, MM_LEN_DIM};
+
+/* PETSc parses "nan" and "inf" as numbers: every real option is checked here, by name. */
+static PetscErrorCode CheckFinite(MPI_Comm comm, const char name[], const PetscReal v[], PetscInt n)
 {
-  PetscInt  nmax = MM_MAX_DIM;
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < n; ++i) PetscCheck(!PetscIsInfOrNanReal(v[i]), comm, PETSC_ERR_USER_INPUT, "%s: entry %" PetscInt_FMT " is %g; every value must be a finite number", name, i, (double)v[i]);
+  PetscFunctionReturn(0);
+}
+
+/* A real option, refused unless finite. */
+static PetscErrorCode OptionsReal(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], PetscReal *v)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsReal(name, help, NULL, *v, v, NULL));
+  PetscCall(CheckFinite(comm, name, v, 1));
+  PetscFunctionReturn(0);
+}
+
+/* A real vector option of up to d*d entries; its length is checked against the dimension later. */
+static PetscErrorCode OptionsVector(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt, MMVectorOption which, const char help[], PetscReal v[])
+{
+  PetscInt  n = VectorLength[which] == MM_LEN_TENSOR ? MM_MAX_DIM * MM_MAX_DIM : MM_MAX_DIM;
   PetscBool set;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsRealArray(name, help, NULL, v, &nmax, &set));
-  if (n) *n = set ? nmax : -1;
+  /* one slot more than allowed, so that too many entries are seen rather than cut off */
+  PetscReal buf[MM_MAX_DIM * MM_MAX_DIM + 1];
+  PetscInt  nmax = n + 1;
+  for (PetscInt i = 0; i < n; ++i) buf[i] = v[i];
+  PetscCall(PetscOptionsRealArray(VectorName[which], help, NULL, buf, &nmax, &set));
+  opt->vec_count[which] = set ? nmax : -1;
+  if (!set) PetscFunctionReturn(0);
+  PetscCheck(nmax <= n, comm, PETSC_ERR_USER_INPUT, "%s has more than %" PetscInt_FMT " entries", VectorName[which], n);
+  PetscCall(CheckFinite(comm, VectorName[which], buf, nmax));
+  for (PetscInt i = 0; i < n; ++i) v[i] = i < nmax ? buf[i] : 0;
   PetscFunctionReturn(0);
 }
 
@@ -31,7 +66,7 @@ static PetscErrorCode SplitNames(const char list[], PetscInt *n, char ***names)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode ProcessDirichlet(PetscOptionItems *PetscOptionsObject, MMOptions *opt, const char list[])
+static PetscErrorCode ProcessDirichlet(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt, const char list[])
 {
   char   **names;
   PetscInt n;
@@ -43,25 +78,37 @@ static PetscErrorCode ProcessDirichlet(PetscOptionItems *PetscOptionsObject, MMO
   for (PetscInt b = 0; b < n; ++b) {
     MMDirichlet *bc = &opt->dirichlet[b];
     char         key[512];
-    PetscInt     nc = MM_MAX_DIM, nv = MM_MAX_DIM;
+    PetscInt     nc = MM_MAX_DIM + 1, nv = MM_MAX_DIM + 1, comps[MM_MAX_DIM + 1];
+    PetscReal    values[MM_MAX_DIM + 1];
     PetscBool    set;
 
     PetscCall(PetscStrallocpy(names[b], &bc->name));
     /* default: a clamp, fixing every component to zero */
-    for (PetscInt c = 0; c < MM_MAX_DIM; ++c) bc->comps[c] = c;
     bc->ncomp = -1;
     PetscCall(PetscSNPrintf(key, sizeof(key), "-dirichlet_%s_components", bc->name));
-    PetscCall(PetscOptionsIntArray(key, "Displacement components fixed on this Dirichlet boundary (0=x,1=y,2=z); default all (a clamp)", NULL, bc->comps, &nc, &set));
-    if (set) bc->ncomp = nc;
+    PetscCall(PetscOptionsIntArray(key, "Displacement components fixed on this Dirichlet boundary (0=x,1=y,2=z), each at most once; default all (a clamp)", NULL, comps, &nc, &set));
+    if (set) {
+      PetscCheck(nc <= MM_MAX_DIM, comm, PETSC_ERR_USER_INPUT, "%s lists %" PetscInt_FMT " or more components; a node has at most %d", key, nc, MM_MAX_DIM);
+      bc->ncomp = nc;
+      for (PetscInt c = 0; c < nc; ++c) {
+        bc->comps[c] = comps[c];
+        for (PetscInt e = 0; e < c; ++e) PetscCheck(comps[e] != comps[c], comm, PETSC_ERR_USER_INPUT, "%s lists component %" PetscInt_FMT " twice: give each fixed component once", key, comps[c]);
+      }
+    }
     PetscCall(PetscSNPrintf(key, sizeof(key), "-dirichlet_%s_value", bc->name));
-    PetscCall(PetscOptionsRealArray(key, "Constant displacement value of each fixed component, in the order of _components; default 0", NULL, bc->values, &nv, &set));
-    PetscCheck(!set || bc->ncomp < 0 || nv == bc->ncomp, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-dirichlet_%s_value has %" PetscInt_FMT " entries but -dirichlet_%s_components has %" PetscInt_FMT ": give one value per fixed component", bc->name, nv, bc->name, bc->ncomp);
+    PetscCall(PetscOptionsRealArray(key, "Constant displacement value of each fixed component, in the order of _components; default 0", NULL, values, &nv, &set));
+    bc->nvalues = set ? nv : -1;
+    if (set) {
+      PetscCheck(nv <= MM_MAX_DIM, comm, PETSC_ERR_USER_INPUT, "%s has more than %d entries", key, MM_MAX_DIM);
+      PetscCall(CheckFinite(comm, key, values, nv));
+      for (PetscInt c = 0; c < nv; ++c) bc->values[c] = values[c];
+    }
   }
   PetscCall(PetscStrToArrayDestroy((int)n, names));
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode ProcessTraction(PetscOptionItems *PetscOptionsObject, MMOptions *opt, const char list[])
+static PetscErrorCode ProcessTraction(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt, const char list[])
 {
   char   **names;
   PetscInt n;
@@ -71,61 +118,82 @@ static PetscErrorCode ProcessTraction(PetscOptionItems *PetscOptionsObject, MMOp
   opt->n_traction = n;
   PetscCall(PetscCalloc1(n, &opt->traction));
   for (PetscInt b = 0; b < n; ++b) {
-    char     key[512];
-    PetscInt nv = MM_MAX_DIM;
+    MMTraction *tr = &opt->traction[b];
+    char        key[512];
+    PetscInt    nv = MM_MAX_DIM + 1;
+    PetscReal   values[MM_MAX_DIM + 1];
+    PetscBool   set;
 
-    PetscCall(PetscStrallocpy(names[b], &opt->traction[b].name));
+    PetscCall(PetscStrallocpy(names[b], &tr->name));
     PetscCall(PetscSNPrintf(key, sizeof(key), "-traction_%s_value", names[b]));
-    PetscCall(PetscOptionsRealArray(key, "Constant traction vector (force per unit area) on this boundary", NULL, opt->traction[b].traction, &nv, NULL));
+    PetscCall(PetscOptionsRealArray(key, "Constant traction vector (force per unit area) on this boundary, d entries", NULL, values, &nv, &set));
+    tr->nvalues = set ? nv : -1;
+    if (set) {
+      PetscCheck(nv <= MM_MAX_DIM, comm, PETSC_ERR_USER_INPUT, "%s has more than %d entries", key, MM_MAX_DIM);
+      PetscCall(CheckFinite(comm, key, values, nv));
+      for (PetscInt c = 0; c < nv; ++c) tr->traction[c] = values[c];
+    }
   }
   PetscCall(PetscStrToArrayDestroy((int)n, names));
   PetscFunctionReturn(0);
 }
 
+/* The ranges of the scalar options, each refused with its range. */
+static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(opt->E > 0, comm, PETSC_ERR_USER_INPUT, "Young's modulus -E %g must be > 0", (double)opt->E);
+  PetscCheck(opt->nu > -1.0 && opt->nu < 0.5, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -nu %g must lie in (-1, 0.5); nu >= 0.5 is incompressible, which P1 elements cannot represent", (double)opt->nu);
+  PetscCheck(opt->rho > 0, comm, PETSC_ERR_USER_INPUT, "Density -rho %g must be > 0", (double)opt->rho);
+  PetscCheck(opt->mu >= 0, comm, PETSC_ERR_USER_INPUT, "Friction coefficient -mu %g must be >= 0", (double)opt->mu);
+  PetscCheck(opt->contact_tol > 0 && opt->contact_tol < 1, comm, PETSC_ERR_USER_INPUT, "-contact_tol %g must lie in (0, 1): it is a relative residual", (double)opt->contact_tol);
+  PetscCheck(opt->friction_coulomb_tol > 0 && opt->friction_coulomb_tol < 1, comm, PETSC_ERR_USER_INPUT, "-friction_coulomb_tol %g must lie in (0, 1): it is a normalized residual", (double)opt->friction_coulomb_tol);
+  PetscCheck(opt->audit_tol > 0, comm, PETSC_ERR_USER_INPUT, "-audit_tol %g must be > 0: it is a relative energy-balance residual", (double)opt->audit_tol);
+  PetscCheck(opt->contact_work_tol > 0, comm, PETSC_ERR_USER_INPUT, "-contact_work_tol %g must be > 0: it is a fraction of the run's energy scale", (double)opt->contact_work_tol);
+  PetscCheck(opt->initial_penetration_tol >= 0, comm, PETSC_ERR_USER_INPUT, "-initial_penetration_tol %g must be >= 0: it is a fraction of h_c'", (double)opt->initial_penetration_tol);
+  PetscCheck(opt->output_every >= 0, comm, PETSC_ERR_USER_INPUT, "-output_every %" PetscInt_FMT " must be >= 0", opt->output_every);
+  PetscCheck(opt->output_dir[0], comm, PETSC_ERR_USER_INPUT, "-output_dir is empty: give a directory name (\".\" for the current directory)");
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
 {
-  char      list[PETSC_MAX_PATH_LEN];
-  PetscBool set;
+  char list[PETSC_MAX_PATH_LEN];
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(opt, sizeof(*opt)));
   PetscOptionsBegin(comm, NULL, "mmcontact: modified-mass dynamic contact", "MMContact");
   opt->mesh_file[0] = 0;
-  PetscCall(PetscOptionsString("-mesh", "gmsh mesh file (.msh) with named physical groups; triangles give plane strain, tetrahedra 3D", NULL, opt->mesh_file, opt->mesh_file, sizeof(opt->mesh_file), NULL));
+  PetscCall(PetscOptionsString("-mesh", "gmsh mesh file (.msh, format 2.2 or 4.1) with named physical groups; first-order triangles give plane strain, first-order tetrahedra 3D", NULL, opt->mesh_file, opt->mesh_file, sizeof(opt->mesh_file), NULL));
   PetscCall(PetscStrcpy(opt->contact_name, "contact"));
-  PetscCall(PetscOptionsString("-contact_boundary", "Physical name of the contact boundary", NULL, opt->contact_name, opt->contact_name, sizeof(opt->contact_name), NULL));
+  PetscCall(PetscOptionsString("-contact_boundary", "Physical name of the contact boundary (a Physical Curve in 2D, Surface in 3D)", NULL, opt->contact_name, opt->contact_name, sizeof(opt->contact_name), NULL));
   list[0] = 0;
   PetscCall(PetscOptionsString("-dirichlet", "Comma-separated physical names of Dirichlet boundaries; each takes -dirichlet_NAME_components and -dirichlet_NAME_value", NULL, list, list, sizeof(list), NULL));
-  PetscCall(ProcessDirichlet(PetscOptionsObject, opt, list));
+  PetscCall(ProcessDirichlet(PetscOptionsObject, comm, opt, list));
   list[0] = 0;
-  PetscCall(PetscOptionsString("-traction", "Comma-separated physical names of traction (Neumann) boundaries; each takes -traction_NAME_value", NULL, list, list, sizeof(list), NULL));
-  PetscCall(ProcessTraction(PetscOptionsObject, opt, list));
+  PetscCall(PetscOptionsString("-traction", "Comma-separated physical names of traction (Neumann) boundaries, boundary faces only; each takes -traction_NAME_value", NULL, list, list, sizeof(list), NULL));
+  PetscCall(ProcessTraction(PetscOptionsObject, comm, opt, list));
 
   opt->E = 1.0;
-  PetscCall(PetscOptionsReal("-E", "Young's modulus (Pa), > 0", NULL, opt->E, &opt->E, NULL));
+  PetscCall(OptionsReal(PetscOptionsObject, comm, "-E", "Young's modulus (Pa), > 0", &opt->E));
   opt->nu = 0.3;
-  PetscCall(PetscOptionsReal("-nu", "Poisson ratio, in (-1, 0.5)", NULL, opt->nu, &opt->nu, NULL));
+  PetscCall(OptionsReal(PetscOptionsObject, comm, "-nu", "Poisson ratio, in (-1, 0.5)", &opt->nu));
   opt->rho = 1.0;
-  PetscCall(PetscOptionsReal("-rho", "Mass density (kg/m^d), > 0", NULL, opt->rho, &opt->rho, NULL));
-  PetscCall(OptionsVector(PetscOptionsObject, "-gravity", "Body-force acceleration gx,gy[,gz] (m/s^2)", opt->gravity, NULL));
+  PetscCall(OptionsReal(PetscOptionsObject, comm, "-rho", "Mass density (kg/m^d), > 0", &opt->rho));
+  PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_GRAVITY, "Body-force acceleration gx,gy[,gz] (m/s^2), d entries", opt->gravity));
 
-  PetscCall(OptionsVector(PetscOptionsObject, "-u0_offset", "Initial displacement u0 = a + B x: the vector a", opt->u0_offset, NULL));
-  {
-    PetscInt n = MM_MAX_DIM * MM_MAX_DIM;
-    PetscCall(PetscOptionsRealArray("-u0_gradient", "Initial displacement u0 = a + B x: the matrix B, row-major (d*d entries)", NULL, opt->u0_gradient, &n, &set));
-    PetscCheck(!set || n == 4 || n == 9, comm, PETSC_ERR_USER_INPUT, "-u0_gradient needs d*d entries (4 in 2D, 9 in 3D), got %" PetscInt_FMT, n);
-  }
-  PetscCall(OptionsVector(PetscOptionsObject, "-v0", "Initial translation velocity vx,vy[,vz]", opt->v0, NULL));
-  PetscCall(OptionsVector(PetscOptionsObject, "-omega", "Initial rigid angular velocity (rad/s): a scalar in 2D, a vector in 3D", opt->omega, NULL));
-  PetscCall(OptionsVector(PetscOptionsObject, "-omega_center", "Centre of the initial rigid rotation", opt->omega_center, NULL));
+  PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_U0_OFFSET, "Initial displacement u0 = a + B x: the vector a, d entries", opt->u0_offset));
+  PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_U0_GRADIENT, "Initial displacement u0 = a + B x: the matrix B, row-major, d*d entries", opt->u0_gradient));
+  PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_V0, "Initial translation velocity vx,vy[,vz], d entries", opt->v0));
+  PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OMEGA, "Initial rigid angular velocity (rad/s): a scalar in 2D, a vector in 3D", opt->omega));
+  PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OMEGA_CENTER, "Centre of the initial rigid rotation, d entries", opt->omega_center));
   opt->initial_state = MM_INITIAL_GIVEN;
   PetscCall(PetscOptionsEnum("-initial_state", "Initial displacement: given (-u0_offset, -u0_gradient, contact dofs projected) or static_sliding (the body sliding along -v0 on the obstacle under its loads, with friction -mu)", NULL, MMInitialStates, (PetscEnum)opt->initial_state, (PetscEnum *)&opt->initial_state, NULL));
 
-  PetscCall(OptionsVector(PetscOptionsObject, "-obstacle_point", "A point of the rigid obstacle plane", opt->obstacle_point, NULL));
-  opt->obstacle_normal[1] = 1.0;
-  PetscCall(OptionsVector(PetscOptionsObject, "-obstacle_normal", "Unit normal of the obstacle plane, pointing out of the obstacle towards the body (default +y in 2D, +z in 3D)", opt->obstacle_normal, NULL));
-  PetscCall(OptionsVector(PetscOptionsObject, "-mesh_rotation", "Rigid rotation applied to the mesh when it is read: an angle (2D) or a rotation vector (3D), in radians", opt->mesh_rotation, NULL));
-  PetscCall(OptionsVector(PetscOptionsObject, "-mesh_rotation_center", "Centre of the -mesh_rotation", opt->mesh_rotation_center, NULL));
+  PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OBSTACLE_POINT, "A point of the rigid obstacle plane, d entries", opt->obstacle_point));
+  PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OBSTACLE_NORMAL, "Unit normal of the obstacle plane, pointing out of the obstacle towards the body, d entries (default +y in 2D, +z in 3D)", opt->obstacle_normal));
+  PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_MESH_ROTATION, "Rigid rotation applied to the mesh when it is read: an angle (2D) or a rotation vector (3D), in radians", opt->mesh_rotation));
+  PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_MESH_ROTATION_CENTER, "Centre of the -mesh_rotation, d entries", opt->mesh_rotation_center));
 
   opt->mass_type = MM_MASS_MODIFIED;
   PetscCall(PetscOptionsEnum("-mass", "Mass matrix in time stepping: modified (normal mass of contact nodes removed) or standard", NULL, MMMassTypes, (PetscEnum)opt->mass_type, (PetscEnum *)&opt->mass_type, NULL));
@@ -135,42 +203,62 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(PetscOptionsBool("-contact", "Enforce unilateral contact; 0 gives linear elastodynamics on the same mesh (the contact boundary is then unused)", NULL, opt->contact, &opt->contact, NULL));
 
   opt->mu = 0.0;
-  PetscCall(PetscOptionsReal("-mu", "Coulomb friction coefficient, >= 0 (0: frictionless, the friction loop is skipped)", NULL, opt->mu, &opt->mu, NULL));
+  PetscCall(OptionsReal(PetscOptionsObject, comm, "-mu", "Coulomb friction coefficient, >= 0 (0: frictionless, the friction loop is skipped)", &opt->mu));
   opt->friction_coulomb_tol = 1e-8;
-  PetscCall(PetscOptionsReal("-friction_coulomb_tol", "The friction loop converges when the thresholds change less than -friction_snes_rtol (default 1e-10) and the discrete Coulomb residual is below this", NULL, opt->friction_coulomb_tol, &opt->friction_coulomb_tol, NULL));
+  PetscCall(OptionsReal(PetscOptionsObject, comm, "-friction_coulomb_tol", "The friction loop converges when the thresholds change less than -friction_snes_rtol (default 1e-10) and the discrete Coulomb residual is below this, in (0, 1)", &opt->friction_coulomb_tol));
   opt->friction_monitor = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-friction_monitor", "Print each friction iteration: threshold change, Coulomb residual, contraction factor, slipping and sticking node counts", NULL, opt->friction_monitor, &opt->friction_monitor, NULL));
   opt->contact_formulation = MM_CONTACT_CONDENSED;
   PetscCall(PetscOptionsEnum("-contact_formulation", "Contact VI on the contact dofs through the Delassus operator (condensed: K~ factored once per dt) or on all dofs (full: a factorization per VI iteration)", NULL, MMContactFormulations, (PetscEnum)opt->contact_formulation, (PetscEnum *)&opt->contact_formulation, NULL));
   opt->contact_tol = 1e-11;
-  PetscCall(PetscOptionsReal("-contact_tol", "Contact solves stop when ||K~ w - b - f_c|| <= contact_tol ||b|| (on top of -contact_snes_rtol/atol)", NULL, opt->contact_tol, &opt->contact_tol, NULL));
+  PetscCall(OptionsReal(PetscOptionsObject, comm, "-contact_tol", "Contact solves stop when ||K~ w - b - f_c|| <= contact_tol ||b|| (on top of -contact_snes_rtol/atol), in (0, 1)", &opt->contact_tol));
   opt->audit_tol = 1e-6;
-  PetscCall(PetscOptionsReal("-audit_tol", "Stop the run when a step's relative energy-balance residual exceeds this: the scheme's identity no longer holds", NULL, opt->audit_tol, &opt->audit_tol, NULL));
+  PetscCall(OptionsReal(PetscOptionsObject, comm, "-audit_tol", "Stop the run when a step's relative energy-balance residual exceeds this (> 0): the scheme's identity no longer holds", &opt->audit_tol));
+  opt->contact_work_tol = 1e-3;
+  PetscCall(OptionsReal(PetscOptionsObject, comm, "-contact_work_tol", "Reject and retry with a smaller dt a step whose contact work W_c creates more energy than this times the run's energy scale (> 0): a release that dt does not resolve", &opt->contact_work_tol));
+  opt->initial_penetration_tol = 1e-6;
+  PetscCall(OptionsReal(PetscOptionsObject, comm, "-initial_penetration_tol", "Refuse an initial state whose contact nodes penetrate the obstacle deeper than this times h_c' (>= 0)", &opt->initial_penetration_tol));
   PetscCall(PetscStrcpy(opt->output_dir, "output"));
-  PetscCall(PetscOptionsString("-output_dir", "Directory for history.csv, solution.h5 and solution.xmf (created if missing)", NULL, opt->output_dir, opt->output_dir, sizeof(opt->output_dir), NULL));
+  PetscCall(PetscOptionsString("-output_dir", "Directory for history.csv, solution.h5 and solution.xmf (created if missing; not empty)", NULL, opt->output_dir, opt->output_dir, sizeof(opt->output_dir), NULL));
   opt->output_every = 10;
   PetscCall(PetscOptionsInt("-output_every", "Write the HDF5 fields every k steps (0: only the initial and final state)", NULL, opt->output_every, &opt->output_every, NULL));
   opt->quiet = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-quiet", "Do not print the start-up report and closing summary", NULL, opt->quiet, &opt->quiet, NULL));
+  opt->allow_unused = PETSC_FALSE;
+  PetscCall(PetscOptionsBool("-allow_unused_options", "Run even if an option is set that nothing reads (by default such an option, usually a typo, stops the run before the first step)", NULL, opt->allow_unused, &opt->allow_unused, NULL));
   PetscOptionsEnd();
-
-  PetscCheck(opt->E > 0, comm, PETSC_ERR_USER_INPUT, "Young's modulus -E %g must be > 0", (double)opt->E);
-  PetscCheck(opt->nu > -1.0 && opt->nu < 0.5, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -nu %g must lie in (-1, 0.5); nu >= 0.5 is incompressible, which P1 elements cannot represent", (double)opt->nu);
-  PetscCheck(opt->rho > 0, comm, PETSC_ERR_USER_INPUT, "Density -rho %g must be > 0", (double)opt->rho);
-  PetscCheck(opt->mu >= 0, comm, PETSC_ERR_USER_INPUT, "Friction coefficient -mu %g must be >= 0", (double)opt->mu);
-  PetscCheck(opt->output_every >= 0, comm, PETSC_ERR_USER_INPUT, "-output_every %" PetscInt_FMT " must be >= 0", opt->output_every);
+  PetscCall(CheckRanges(comm, opt));
   PetscFunctionReturn(0);
 }
 
-/* Checks what depends on the mesh dimension, once the mesh is read. */
+/* The length a vector option must have in dimension dim. */
+static PetscInt ExpectedLength(MMVectorOption which, PetscInt dim)
+{
+  switch (VectorLength[which]) {
+  case MM_LEN_TENSOR:
+    return dim * dim;
+  case MM_LEN_ROTATION:
+    return dim == 2 ? 1 : 3;
+  default:
+    return dim;
+  }
+}
+
+/* Checks what depends on the mesh dimension, once the mesh is read: every vector option has exactly
+ * its length (a missing component would silently become 0), and the obstacle normal is a unit vector. */
 PetscErrorCode MMOptionsCheckDimension(MPI_Comm comm, MMOptions *opt, PetscInt dim)
 {
   PetscReal nrm = 0;
 
   PetscFunctionBeginUser;
-  if (dim == 3 && opt->obstacle_normal[0] == 0 && opt->obstacle_normal[1] == 1 && opt->obstacle_normal[2] == 0) {
-    opt->obstacle_normal[1] = 0;
-    opt->obstacle_normal[2] = 1;
+  for (PetscInt v = 0; v < MM_V_NUM; ++v) {
+    const PetscInt n = ExpectedLength((MMVectorOption)v, dim);
+    PetscCheck(opt->vec_count[v] < 0 || opt->vec_count[v] == n, comm, PETSC_ERR_USER_INPUT, "%s has %" PetscInt_FMT " entries; the mesh is %" PetscInt_FMT "D, so it needs exactly %" PetscInt_FMT, VectorName[v], opt->vec_count[v], dim, n);
+  }
+  /* the default normal is +y in 2D, +z in 3D: only when none was given */
+  if (opt->vec_count[MM_V_OBSTACLE_NORMAL] < 0) {
+    PetscCall(PetscArrayzero(opt->obstacle_normal, MM_MAX_DIM));
+    opt->obstacle_normal[dim - 1] = 1.0;
   }
   for (PetscInt d = 0; d < dim; ++d) nrm += PetscSqr(opt->obstacle_normal[d]);
   nrm = PetscSqrtReal(nrm);
@@ -178,8 +266,16 @@ PetscErrorCode MMOptionsCheckDimension(MPI_Comm comm, MMOptions *opt, PetscInt d
   for (PetscInt d = 0; d < dim; ++d) opt->obstacle_normal[d] /= nrm;
   for (PetscInt b = 0; b < opt->n_dirichlet; ++b) {
     MMDirichlet *bc = &opt->dirichlet[b];
-    if (bc->ncomp < 0) bc->ncomp = dim;
+    if (bc->ncomp < 0) {
+      bc->ncomp = dim;
+      for (PetscInt c = 0; c < dim; ++c) bc->comps[c] = c;
+    }
     for (PetscInt c = 0; c < bc->ncomp; ++c) PetscCheck(bc->comps[c] >= 0 && bc->comps[c] < dim, comm, PETSC_ERR_USER_INPUT, "-dirichlet_%s_components: component %" PetscInt_FMT " is not in [0, %" PetscInt_FMT ")", bc->name, bc->comps[c], dim);
+    PetscCheck(bc->nvalues < 0 || bc->nvalues == bc->ncomp, comm, PETSC_ERR_USER_INPUT, "-dirichlet_%s_value has %" PetscInt_FMT " entries but the boundary fixes %" PetscInt_FMT " components (-dirichlet_%s_components, default all %" PetscInt_FMT "): give one value per fixed component", bc->name, bc->nvalues, bc->ncomp, bc->name, dim);
+  }
+  for (PetscInt b = 0; b < opt->n_traction; ++b) {
+    const MMTraction *tr = &opt->traction[b];
+    PetscCheck(tr->nvalues < 0 || tr->nvalues == dim, comm, PETSC_ERR_USER_INPUT, "-traction_%s_value has %" PetscInt_FMT " entries; the mesh is %" PetscInt_FMT "D, so it needs exactly %" PetscInt_FMT, tr->name, tr->nvalues, dim, dim);
   }
   PetscFunctionReturn(0);
 }

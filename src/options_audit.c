@@ -1,0 +1,214 @@
+/* Options nobody reads, and -help without a mesh.
+ *
+ * A misspelled option is silently ignored by PETSc: -mu_ 0.2 runs frictionless. So, once every
+ * object has read its options, any option still unread stops the run before the first step, with the
+ * closest valid name. The valid names are what -help would print: the help text of every object is
+ * replayed into memory instead of the terminal. */
+#include <ctype.h>
+#include <stdarg.h>
+#include "options.h"
+#include "newmark.h"
+
+/* Options that PETSc reads at start-up or after the time loop (TSSolve's -ts_view, PetscFinalize's
+ * -options_left): valid, but not yet read when the check runs. */
+static const char *const LateOptions[] = {"-ts_view", "-ts_view_solution", "-options_left", "-options_view", "-malloc_dump", "-malloc_view", "-memory_view", "-objects_dump", "-log_view", "-log_view_memory", "-log_summary", "-log_trace", "-info", "-history", "-help", "-version", "-options_file", "-options_file_yaml", "-malloc_debug", "-on_error_abort", "-start_in_debugger", "-on_error_attach_debugger", "-check_pointer_intensity", "-viewer_binary_skip_info"};
+
+/* The valid names, parsed from the help text. */
+static struct {
+  char   **name;
+  PetscInt n, cap;
+} Collected;
+
+static PetscErrorCode AddName(const char name[], size_t len)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < Collected.n; ++i)
+    if (strlen(Collected.name[i]) == len && !strncmp(Collected.name[i], name, len)) PetscFunctionReturn(0);
+  if (Collected.n == Collected.cap) {
+    Collected.cap = PetscMax(64, 2 * Collected.cap);
+    PetscCall(PetscRealloc(sizeof(char *) * Collected.cap, &Collected.name));
+  }
+  PetscCall(PetscMalloc1(len + 1, &Collected.name[Collected.n]));
+  PetscCall(PetscStrncpy(Collected.name[Collected.n], name, len + 1));
+  Collected.n++;
+  PetscFunctionReturn(0);
+}
+
+/* Help lines start with blanks and the option's name: "  -ts_dt <0.001 : 0.001>: ...". */
+static PetscErrorCode ParseHelp(const char text[])
+{
+  PetscFunctionBeginUser;
+  for (const char *p = text; p && *p;) {
+    size_t len = 0;
+    while (*p == ' ' || *p == '\t') ++p;
+    if (*p == '-' && isalpha((unsigned char)p[1])) {
+      while (isalnum((unsigned char)p[len + 1]) || p[len + 1] == '_') ++len;
+      PetscCall(AddName(p, len + 1));
+    }
+    p = strchr(p, '\n');
+    if (p) ++p;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Every solver object mmcontact creates, by its prefix, read from the options: with -help set this
+ * prints their options. Objects a run does not create (the friction loop at mu = 0) are included, so
+ * that their options are known as valid names. */
+static PetscErrorCode SolverObjectsFromOptions(MPI_Comm comm)
+{
+  const char *snes_prefix[] = {"contact_", "contact0_", "friction_"};
+  const char *ksp_prefix[]  = {"contact_K_", "mass_"};
+  TS          ts;
+
+  PetscFunctionBeginUser;
+  PetscCall(TSCreate(comm, &ts));
+  PetscCall(TSSetType(ts, TSNEWMARK));
+  PetscCall(TSSetFromOptions(ts));
+  PetscCall(TSDestroy(&ts));
+  for (size_t i = 0; i < sizeof(snes_prefix) / sizeof(snes_prefix[0]); ++i) {
+    SNES snes;
+    PetscCall(SNESCreate(comm, &snes));
+    PetscCall(SNESSetOptionsPrefix(snes, snes_prefix[i]));
+    PetscCall(SNESSetType(snes, i < 2 ? SNESVINEWTONRSLS : SNESSHELL));
+    PetscCall(SNESSetFromOptions(snes));
+    PetscCall(SNESDestroy(&snes));
+  }
+  for (size_t i = 0; i < sizeof(ksp_prefix) / sizeof(ksp_prefix[0]); ++i) {
+    KSP ksp;
+    PetscCall(KSPCreate(comm, &ksp));
+    PetscCall(KSPSetOptionsPrefix(ksp, ksp_prefix[i]));
+    PetscCall(KSPSetFromOptions(ksp));
+    PetscCall(KSPDestroy(&ksp));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMOptionsHelpWithoutMesh(MPI_Comm comm, PetscBool *done)
+{
+  PetscBool help, mesh;
+
+  PetscFunctionBeginUser;
+  *done = PETSC_FALSE;
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-mesh", &mesh));
+  if (!help || mesh) PetscFunctionReturn(0);
+  PetscCall(SolverObjectsFromOptions(comm));
+  PetscCall(PetscPrintf(comm, "\nThe options of the mesh (-dm_*, -petscpartitioner_type) are listed when -help is given with -mesh FILE.\n"));
+  *done = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* The valid option names: the help text of the application and of every object, replayed into
+ * memory (PETSc prints help on rank 0, so only rank 0 knows them; only rank 0 prints the error). */
+static PetscErrorCode CollectValidNames(MPI_Comm comm, DM dm)
+{
+  FILE     *saved = PETSC_STDOUT, *saved_stdout = stdout, *mem;
+  char     *text  = NULL;
+  size_t    size  = 0;
+  PetscBool had_help;
+  MMOptions scratch;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasHelp(NULL, &had_help));
+  if (!had_help) PetscCall(PetscOptionsSetValue(NULL, "-help", NULL));
+  /* help already printed for a prefix is not printed again: forget what was printed */
+  PetscCall(PetscOptionsHelpPrintedDestroy(&PetscOptionsHelpPrintedSingleton));
+  mem = open_memstream(&text, &size);
+  PetscCheck(mem, PETSC_COMM_SELF, PETSC_ERR_MEM, "Cannot open a memory stream for the help text");
+  /* PetscFunctionListPrintTypes writes the "(one of)" lines to stdout itself */
+  PETSC_STDOUT = mem;
+  stdout       = mem;
+  PetscCall(MMOptionsProcess(comm, &scratch));
+  PetscCall(MMOptionsDestroy(&scratch));
+  PetscCall(SolverObjectsFromOptions(comm));
+  PetscCall(DMSetFromOptions(dm));
+  PETSC_STDOUT = saved;
+  stdout       = saved_stdout;
+  fclose(mem);
+  if (!had_help) PetscCall(PetscOptionsClearValue(NULL, "-help"));
+  PetscCall(ParseHelp(text));
+  free(text);
+  for (size_t i = 0; i < sizeof(LateOptions) / sizeof(LateOptions[0]); ++i) PetscCall(AddName(LateOptions[i], strlen(LateOptions[i])));
+  PetscFunctionReturn(0);
+}
+
+/* Edit distance between two option names, case-insensitive. */
+static PetscInt EditDistance(const char a[], const char b[])
+{
+  const size_t la = strlen(a), lb = strlen(b);
+  PetscInt     row[256], d = 0;
+
+  if (lb >= sizeof(row) / sizeof(row[0])) return PETSC_MAX_INT;
+  for (size_t j = 0; j <= lb; ++j) row[j] = (PetscInt)j;
+  for (size_t i = 1; i <= la; ++i) {
+    PetscInt diag = row[0];
+    row[0] = (PetscInt)i;
+    for (size_t j = 1; j <= lb; ++j) {
+      const PetscInt up = row[j], sub = diag + (tolower((unsigned char)a[i - 1]) != tolower((unsigned char)b[j - 1]));
+      row[j] = PetscMin(PetscMin(row[j - 1] + 1, up + 1), sub);
+      diag   = up;
+    }
+  }
+  d = row[lb];
+  return d;
+}
+
+/* What to tell the user about one unread option. */
+static PetscErrorCode DescribeUnused(const char name[], const char value[], char msg[], size_t len)
+{
+  const char *eq = strchr(name, '=');
+  PetscInt    best = PETSC_MAX_INT;
+  const char *closest = NULL;
+  char        key[PETSC_MAX_OPTION_NAME];
+
+  PetscFunctionBeginUser;
+  /* PETSc takes "-E=1000" as an option named "E=1000" without a value */
+  PetscCall(PetscSNPrintf(key, sizeof(key), "-%.*s", eq ? (int)(eq - name) : (int)strlen(name), name));
+  for (PetscInt i = 0; i < Collected.n; ++i) {
+    const PetscInt d = EditDistance(key, Collected.name[i]);
+    if (d < best) {
+      best    = d;
+      closest = Collected.name[i];
+    }
+  }
+  if (eq && best == 0) PetscCall(PetscSNPrintf(msg, len, "  -%s: options take the form \"%s %s\", with a blank, not \"=\"\n", name, key, eq + 1));
+  else if (best == 0) PetscCall(PetscSNPrintf(msg, len, "  -%s%s%s: a valid option, but nothing in this run reads it (friction options need -mu > 0, K~ options the condensed formulation)\n", name, value ? " " : "", value ? value : ""));
+  else if (closest && best <= PetscMax(2, (PetscInt)strlen(key) / 3)) PetscCall(PetscSNPrintf(msg, len, "  -%s%s%s: unknown; did you mean %s?\n", name, value ? " " : "", value ? value : "", closest));
+  else PetscCall(PetscSNPrintf(msg, len, "  -%s%s%s: unknown, and no valid option is close to it (-help lists them)\n", name, value ? " " : "", value ? value : ""));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMOptionsCheckUnused(MPI_Comm comm, const MMOptions *opt, DM dm)
+{
+  PetscInt n, nunused;
+  char   **names, **values;
+  char    *report;
+  size_t   cap = 512;
+
+  PetscFunctionBeginUser;
+  if (opt->allow_unused) PetscFunctionReturn(0);
+  /* read now what is read only after the time loop, so that it does not count as unused */
+  for (size_t i = 0; i < sizeof(LateOptions) / sizeof(LateOptions[0]); ++i) {
+    PetscBool set;
+    PetscCall(PetscOptionsHasName(NULL, NULL, LateOptions[i], &set));
+  }
+  PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
+  if (!n) {
+    PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
+    PetscFunctionReturn(0);
+  }
+  nunused = n;
+  PetscCall(CollectValidNames(comm, dm));
+  cap += (size_t)n * 512;
+  PetscCall(PetscCalloc1(cap, &report));
+  for (PetscInt i = 0; i < n; ++i) {
+    char line[512];
+    PetscCall(DescribeUnused(names[i], values[i], line, sizeof(line)));
+    PetscCall(PetscStrlcat(report, line, cap));
+  }
+  PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
+  for (PetscInt i = 0; i < Collected.n; ++i) PetscCall(PetscFree(Collected.name[i]));
+  PetscCall(PetscFree(Collected.name));
+  Collected.n = Collected.cap = 0;
+  SETERRQ(comm, PETSC_ERR_USER_INPUT, "%" PetscInt_FMT " option%s set but never read, so the run would ignore %s:\n%sFix the spelling, or pass -allow_unused_options to run anyway", nunused, nunused > 1 ? "s are" : " is", nunused > 1 ? "them" : "it", report);
+}
