@@ -3,3 +3,4 @@
 PETSC_EXTERN PetscErrorCode MMEnergyInitial(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMEnergyStep(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMRigidBodyDiagnostics(MMCtx *, MMHistory *);
+PETSC_EXTERN PetscErrorCode MMEnergyContactWork(MMCtx *, Vec, PetscReal *);

@@ -181,6 +181,7 @@ typedef struct {
   Vec       work;              /* scratch */
   Vec       u_next;            /* the TS solution vector */
   PetscReal dt;
+  PetscReal dt_user;           /* -ts_dt: after a rejected step, dt grows back to it */
 } MMState;
 
 /* The Coulomb friction loop (friction.c): a shell SNES on the thresholds around the contact VI. */

@@ -819,6 +819,64 @@ PetscErrorCode MMContactSolve(MMCtx *ctx, Vec b, Vec w, Vec react)
   PetscFunctionReturn(0);
 }
 
+/* A given initial state that penetrates the obstacle is a wrong case (a plane on the wrong side, a
+ * body placed inside it): projecting it would store elastic energy that launches the body. Refuse a
+ * penetration deeper than -initial_penetration_tol h_c', naming the deepest node. */
+static PetscErrorCode CheckInitialPenetration(MMCtx *ctx, Vec w)
+{
+  MMContact         *ct  = &ctx->contact;
+  DM                 dm  = ctx->op.dm;
+  PetscInt           dim = ctx->op.dim, rstart, deepest = -1;
+  const PetscInt    *in;
+  const PetscScalar *wa, *ga;
+  struct {
+    double depth;
+    int    rank;
+  } loc = {-PETSC_MAX_REAL, 0}, glob;
+  PetscReal   x[MM_MAX_DIM] = {0, 0, 0};
+  PetscMPIInt rank;
+  MPI_Comm    comm = PetscObjectComm((PetscObject)dm);
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  loc.rank = rank;
+  PetscCall(VecGetOwnershipRange(w, &rstart, NULL));
+  PetscCall(ISGetIndices(ct->is_normal, &in));
+  PetscCall(VecGetArrayRead(w, &wa));
+  PetscCall(VecGetArrayRead(ct->gap, &ga));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscReal depth = PetscRealPart(wa[in[k] - rstart] - ga[k]);
+    if (depth > loc.depth) {
+      loc.depth = depth;
+      deepest   = k;
+    }
+  }
+  PetscCall(VecRestoreArrayRead(ct->gap, &ga));
+  PetscCall(VecRestoreArrayRead(w, &wa));
+  PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  PetscCallMPI(MPI_Allreduce(&loc, &glob, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm));
+  if (glob.depth <= ctx->opt.initial_penetration_tol * ct->h_c) PetscFunctionReturn(0);
+  if (rank == glob.rank) {
+    PetscSection cs;
+    Vec          X;
+    PetscInt     off;
+    const PetscScalar *xa;
+    PetscCall(DMGetCoordinateSection(dm, &cs));
+    PetscCall(DMGetCoordinatesLocal(dm, &X));
+    PetscCall(PetscSectionGetOffset(cs, ct->vertex[deepest], &off));
+    PetscCall(VecGetArrayRead(X, &xa));
+    for (PetscInt d = 0; d < dim; ++d) x[d] = PetscRealPart(xa[off + d]);
+    PetscCall(VecRestoreArrayRead(X, &xa));
+  }
+  PetscCallMPI(MPI_Bcast(x, MM_MAX_DIM, MPIU_REAL, glob.rank, comm));
+  /* C's formatting, not PETSc's, which writes 0 as "0." */
+  char where[128];
+  if (dim == 2) snprintf(where, sizeof(where), "(%g, %g)", (double)x[0], (double)x[1]);
+  else snprintf(where, sizeof(where), "(%g, %g, %g)", (double)x[0], (double)x[1], (double)x[2]);
+  SETERRQ(comm, PETSC_ERR_USER_INPUT, "The initial state penetrates the obstacle: the deepest contact node, at %s, is %g inside it (-initial_penetration_tol %g h_c' = %g). Check -obstacle_point and the direction of -obstacle_normal (it points out of the obstacle, towards the body), and -u0_offset/-u0_gradient",
+          where, glob.depth, (double)ctx->opt.initial_penetration_tol, (double)(ctx->opt.initial_penetration_tol * ct->h_c));
+}
+
 /* Consistent initial contact dofs (method.md, Initial state): with the other dofs fixed, the
  * massless normal dofs solve the quasi-static problem A_cc u_c = L_c - A_c* u*, u_c <= g. */
 PetscErrorCode MMContactProjectInitial(MMCtx *ctx, Vec w)
@@ -828,6 +886,7 @@ PetscErrorCode MMContactProjectInitial(MMCtx *ctx, Vec w)
   PetscInt   its;
 
   PetscFunctionBeginUser;
+  if (ct->enabled) PetscCall(CheckInitialPenetration(ctx, w));
   if (!ct->enabled || ctx->opt.mass_type != MM_MASS_MODIFIED) PetscFunctionReturn(0);
   PetscCall(MatCreateSubMatrix(ctx->op.K, ct->is_normal, ct->is_normal, MAT_INITIAL_MATRIX, &ct->qp0.A));
   PetscCall(MatCreateVecs(ct->qp0.A, &ct->qp0.b, NULL));

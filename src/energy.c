@@ -43,6 +43,33 @@ static PetscErrorCode TrapezoidalWork(MMCtx *ctx, IS is, Vec du, PetscReal *work
   PetscFunctionReturn(0);
 }
 
+/* W_c of a candidate step w (not yet accepted: u still holds u^n), for the contact-work guard. */
+PetscErrorCode MMEnergyContactWork(MMCtx *ctx, Vec w, PetscReal *w_c)
+{
+  MMState *s = &ctx->state;
+
+  PetscFunctionBeginUser;
+  *w_c = 0;
+  if (!ctx->contact.enabled) PetscFunctionReturn(0);
+  PetscCall(VecWAXPY(s->work, -1.0, s->u, w));
+  PetscCall(TrapezoidalWork(ctx, ctx->contact.is_normal, s->work, w_c));
+  PetscFunctionReturn(0);
+}
+
+/* A NaN or inf anywhere in the state shows in its energies and works: stop before it is recorded. */
+static PetscErrorCode CheckFinite(MMCtx *ctx, const MMHistory *h, PetscReal w_ext, PetscReal w_c, PetscReal w_f)
+{
+  const char *name[] = {"kinetic energy", "elastic energy", "external work", "contact work", "friction work"};
+  PetscReal   val[]  = {h->kinetic, h->elastic, w_ext, w_c, w_f};
+
+  PetscFunctionBeginUser;
+  for (size_t i = 0; i < sizeof(val) / sizeof(val[0]); ++i)
+    PetscCheck(!PetscIsInfOrNanReal(val[i]), PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_FP,
+               "Non-finite %s (%g) at step %" PetscInt_FMT " (t = %g, dt = %g): the state overflowed or the solve failed. Check the material (-E %g, -rho %g: c_p dt / h_c' = %g) and the loads. The output up to the previous step is intact",
+               name[i], (double)val[i], h->step, (double)h->time, (double)ctx->state.dt, (double)ctx->opt.E, (double)ctx->opt.rho, ctx->contact.h_c > 0 ? (double)(ctx->op.c_p * ctx->state.dt / ctx->contact.h_c) : 0.0);
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MMEnergyInitial(MMCtx *ctx)
 {
   MMHistory *h = &ctx->hist;
@@ -55,6 +82,7 @@ PetscErrorCode MMEnergyInitial(MMCtx *ctx)
   h->cfl = ctx->contact.enabled ? ctx->op.c_p * h->dt / ctx->contact.h_c : 0;
   PetscCall(MMFECheckElasticEnergy(ctx, ctx->state.u));
   PetscCall(TotalEnergy(ctx, h));
+  PetscCall(CheckFinite(ctx, h, 0, 0, 0));
   h->energy_scale = PetscAbsReal(h->total);
   PetscCall(MMContactDiagnostics(ctx, ctx->state.u, ctx->state.react, ctx->state.v, h));
   h->switched = 0;
@@ -83,6 +111,7 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
   }
   h->dt = s->dt;
   PetscCall(TotalEnergy(ctx, h));
+  PetscCall(CheckFinite(ctx, h, w_ext, w_c, w_f));
   h->work_ext += w_ext;
   h->work_contact += w_c;
   h->work_friction += w_f;

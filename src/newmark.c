@@ -70,27 +70,59 @@ static PetscErrorCode SaveOldState(MMState *s)
   PetscFunctionReturn(0);
 }
 
-/* A friction loop that does not converge rejects the step: dt shrinks by TSAdapt's
- * -ts_adapt_scale_solve_failed, down to -ts_adapt_dt_min and at most -ts_max_reject times. */
-static PetscErrorCode RejectStep(TS ts, MMCtx *ctx, PetscInt rejections)
+/* Why a step is rejected and retried with a smaller dt. */
+typedef enum {
+  MM_REJECT_FRICTION,    /* the friction loop did not converge (Theorem 4.2's condition fails) */
+  MM_REJECT_CONTACT_WORK /* a release the step does not resolve creates energy */
+} MMRejectReason;
+
+/* A rejected step is retried with dt times TSAdapt's -ts_adapt_scale_solve_failed, down to
+ * -ts_adapt_dt_min and at most -ts_max_reject times; past those the run stops and says why. */
+static PetscErrorCode RejectStep(TS ts, MMCtx *ctx, PetscInt rejections, MMRejectReason why, PetscReal w_c, PetscReal scale)
 {
   const PetscReal dt = ts->time_step, cfl = ctx->op.c_p * dt / ctx->contact.h_c;
   const PetscReal new_dt = dt * ts->adapt->scale_solve_failed;
+  MPI_Comm        comm   = PetscObjectComm((PetscObject)ts);
   PetscReal       hmin, hmax;
+  PetscBool       can_retry;
 
   PetscFunctionBeginUser;
   PetscCall(TSAdaptGetStepLimits(ts->adapt, &hmin, &hmax));
   ts->reject++;
   ts->num_snes_failures++;
   PetscCall(VecCopy(ctx->state.react_old, ctx->state.react));
-  PetscCheck(new_dt >= hmin && (ts->max_reject < 0 || rejections <= ts->max_reject), PetscObjectComm((PetscObject)ts), PETSC_ERR_NOT_CONVERGED,
-             "The friction loop does not converge at t = %g: last dt = %g, observed contraction factor %.3f, c_p dt / h_c' = %.3f. The next dt %g would be below -ts_adapt_dt_min %g (or past -ts_max_reject %" PetscInt_FMT "). Theorem 4.2 needs c_p dt / h_c' small enough for mu = %g: lower -ts_dt or -mu. The output up to t = %g is intact",
-             (double)ts->ptime, (double)dt, (double)ctx->friction.contraction, (double)cfl, (double)new_dt, (double)hmin, ts->max_reject, (double)ctx->opt.mu, (double)ts->ptime);
-  if (!ctx->opt.quiet) PetscCall(PetscPrintf(PetscObjectComm((PetscObject)ts), "  step rejected at t = %g: the friction loop did not converge with dt = %g (contraction factor %.3f, c_p dt / h_c' = %.3f); retrying with dt = %g\n", (double)ts->ptime, (double)dt, (double)ctx->friction.contraction, (double)cfl, (double)new_dt));
+  can_retry = (PetscBool)(new_dt >= hmin && (ts->max_reject < 0 || rejections <= ts->max_reject));
+  if (why == MM_REJECT_FRICTION) {
+    PetscCheck(can_retry, comm, PETSC_ERR_NOT_CONVERGED,
+               "The friction loop does not converge at t = %g: last dt = %g, observed contraction factor %.3f, c_p dt / h_c' = %.3f. The next dt %g would be below -ts_adapt_dt_min %g (or past -ts_max_reject %" PetscInt_FMT "). Theorem 4.2 needs c_p dt / h_c' small enough for mu = %g: lower -ts_dt or -mu. The output up to t = %g is intact",
+               (double)ts->ptime, (double)dt, (double)ctx->friction.contraction, (double)cfl, (double)new_dt, (double)hmin, ts->max_reject, (double)ctx->opt.mu, (double)ts->ptime);
+    if (!ctx->opt.quiet) PetscCall(PetscPrintf(comm, "  step rejected at t = %g: the friction loop did not converge with dt = %g (contraction factor %.3f, c_p dt / h_c' = %.3f); retrying with dt = %g\n", (double)ts->ptime, (double)dt, (double)ctx->friction.contraction, (double)cfl, (double)new_dt));
+  } else {
+    PetscCheck(can_retry, comm, PETSC_ERR_NOT_CONVERGED,
+               "A contact release at t = %g creates energy that dt does not resolve: the step's contact work W_c = %g is %.3g of the energy scale, above -contact_work_tol %g, with dt = %g (c_p dt / h_c' = %.3g). The next dt %g would be below -ts_adapt_dt_min %g (or past -ts_max_reject %" PetscInt_FMT "). Use a -ts_dt near h_c' / c_p = %g, so that the contact pressure is resolved in time. The output up to t = %g is intact",
+               (double)ts->ptime, (double)w_c, (double)(w_c / scale), (double)ctx->opt.contact_work_tol, (double)dt, (double)cfl, (double)new_dt, (double)hmin, ts->max_reject, (double)(ctx->contact.h_c / ctx->op.c_p), (double)ts->ptime);
+    if (!ctx->opt.quiet) PetscCall(PetscPrintf(comm, "  step rejected at t = %g: its contact work W_c = %g would create %.3g of the energy scale (-contact_work_tol %g) with dt = %g (c_p dt / h_c' = %.3g); retrying with dt = %g\n", (double)ts->ptime, (double)w_c, (double)(w_c / scale), (double)ctx->opt.contact_work_tol, (double)dt, (double)cfl, (double)new_dt));
+  }
   ts->time_step = new_dt;
   PetscFunctionReturn(0);
 }
 
+/* The contact-work guard: the trapezoidal contact work 1/2 (lambda^n + lambda^{n+1}).du is not a
+ * solver error, so the balance audit cannot see energy created at a release that dt does not
+ * resolve (docs/method.md, "Energy at contact release"). A step that creates more than
+ * -contact_work_tol of the run's energy scale is refused. */
+static PetscErrorCode ContactWorkTooLarge(MMCtx *ctx, Vec w, PetscBool *too_large, PetscReal *w_c, PetscReal *scale)
+{
+  PetscFunctionBeginUser;
+  *scale = PetscMax(ctx->hist.energy_scale, PetscAbsReal(ctx->hist.work_ext));
+  PetscCall(MMEnergyContactWork(ctx, w, w_c));
+  /* with no energy in the run yet there is nothing to compare with */
+  *too_large = (PetscBool)(*scale > 0 && *w_c > ctx->opt.contact_work_tol * *scale);
+  PetscFunctionReturn(0);
+}
+
+/* One step: solve, guard, and on rejection retry with a smaller dt; after a step accepted without
+ * rejection, dt grows back towards -ts_dt by the inverse of the rejection factor. */
 static PetscErrorCode TSStep_Newmark(TS ts)
 {
   MMCtx    *ctx = ((TS_Newmark *)ts->data)->ctx;
@@ -103,6 +135,9 @@ static PetscErrorCode TSStep_Newmark(TS ts)
   PetscFunctionBeginUser;
   PetscCall(SaveOldState(s));
   while (!solved) {
+    PetscReal w_c, scale;
+    PetscBool too_large = PETSC_FALSE;
+
     dt = ts->time_step;
     PetscCall(MMContactSetStepMatrix(ctx, dt));
     PetscCall(StepRHS(ctx, dt, ctx->contact.qp.b));
@@ -110,7 +145,15 @@ static PetscErrorCode TSStep_Newmark(TS ts)
     PetscCall(VecAXPBYPCZ(w, dt, 0.25 * dt * dt, 0.0, s->v, s->a));
     PetscCall(VecAXPY(w, 1.0, s->u));
     PetscCall(MMFrictionSolve(ctx, ctx->contact.qp.b, w, s->react, &solved));
-    if (!solved) PetscCall(RejectStep(ts, ctx, ++rejections));
+    if (!solved) {
+      PetscCall(RejectStep(ts, ctx, ++rejections, MM_REJECT_FRICTION, 0, 0));
+      continue;
+    }
+    PetscCall(ContactWorkTooLarge(ctx, w, &too_large, &w_c, &scale));
+    if (too_large) {
+      solved = PETSC_FALSE;
+      PetscCall(RejectStep(ts, ctx, ++rejections, MM_REJECT_CONTACT_WORK, w_c, scale));
+    }
   }
   PetscCall(UpdateKinematics(ctx, dt, w));
   s->dt   = dt;
@@ -120,6 +163,7 @@ static PetscErrorCode TSStep_Newmark(TS ts)
     ts->reason = TS_DIVERGED_STEP_REJECTED;
     PetscFunctionReturn(0);
   }
+  if (!rejections && next_dt < s->dt_user) next_dt = PetscMin(s->dt_user, next_dt / ts->adapt->scale_solve_failed);
   ts->ptime += dt;
   ts->time_step = next_dt;
   ctx->hist.step = ts->steps + 1;
@@ -167,6 +211,40 @@ PetscErrorCode MMNewmarkRegister(void)
   PetscFunctionReturn(0);
 }
 
+/* -ts_dt, -ts_max_time and -ts_max_steps, each refused with its range. */
+static PetscErrorCode CheckTimeOptions(TS ts)
+{
+  MPI_Comm  comm = PetscObjectComm((PetscObject)ts);
+  PetscReal dt, tmax;
+  PetscInt  nmax;
+
+  PetscFunctionBeginUser;
+  PetscCall(TSGetTimeStep(ts, &dt));
+  PetscCall(TSGetMaxTime(ts, &tmax));
+  PetscCall(TSGetMaxSteps(ts, &nmax));
+  PetscCheck(!PetscIsInfOrNanReal(dt) && dt > 0, comm, PETSC_ERR_USER_INPUT, "The time step -ts_dt %g must be > 0 and finite", (double)dt);
+  PetscCheck(!PetscIsInfOrNanReal(tmax) && tmax > 0, comm, PETSC_ERR_USER_INPUT, "The final time -ts_max_time %g must be > 0 and finite", (double)tmax);
+  PetscCheck(nmax >= 0, comm, PETSC_ERR_USER_INPUT, "-ts_max_steps %" PetscInt_FMT " must be >= 0", nmax);
+  PetscCheck(dt <= tmax, comm, PETSC_ERR_USER_INPUT, "The time step -ts_dt %g is beyond the final time -ts_max_time %g: the run would take one step far past it. Give a -ts_dt below %g", (double)dt, (double)tmax, (double)tmax);
+  PetscFunctionReturn(0);
+}
+
+/* c_p dt / h_c' >> 1: the contact pressure is not resolved in time, releases may create energy
+ * (the contact-work guard then cuts dt), and Theorem 4.2's friction condition is far off. */
+static PetscErrorCode WarnUnresolvedContact(MMCtx *ctx, PetscReal dt)
+{
+  const PetscReal limit = 10;
+
+  PetscFunctionBeginUser;
+  if (!ctx->contact.enabled || ctx->contact.h_c <= 0) PetscFunctionReturn(0);
+  const PetscReal cfl = ctx->op.c_p * dt / ctx->contact.h_c;
+  PetscCheck(!PetscIsInfOrNanReal(cfl), PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "The wave speed c_p = %g from -E %g, -nu %g, -rho %g is not a finite number", (double)ctx->op.c_p, (double)ctx->opt.E, (double)ctx->opt.nu, (double)ctx->opt.rho);
+  if (cfl > limit)
+    PetscCall(PetscPrintf(PetscObjectComm((PetscObject)ctx->op.dm), "WARNING: c_p dt / h_c' = %.3g is far above 1 (c_p = %g, h_c' = %g, dt = %g): the time step does not resolve the contact pressure. A release may create energy; steps that create more than -contact_work_tol %g of the energy scale are retried with smaller dt. A -ts_dt near h_c' / c_p = %g resolves the contact\n",
+                          (double)cfl, (double)ctx->op.c_p, (double)ctx->contact.h_c, (double)dt, (double)ctx->opt.contact_work_tol, (double)(ctx->contact.h_c / ctx->op.c_p)));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MMNewmarkCreateTS(MMCtx *ctx, TS *ts)
 {
   MPI_Comm  comm = PetscObjectComm((PetscObject)ctx->op.dm);
@@ -186,8 +264,10 @@ PetscErrorCode MMNewmarkCreateTS(MMCtx *ctx, TS *ts)
   PetscCall(PetscStrcmp(type, TSNEWMARK, &isnewmark));
   PetscCheck(isnewmark, comm, PETSC_ERR_USER_INPUT, "-ts_type %s is not supported: mmcontact steps with its own -ts_type newmark", type);
   ((TS_Newmark *)(*ts)->data)->ctx = ctx;
+  PetscCall(CheckTimeOptions(*ts));
   PetscCall(TSGetTimeStep(*ts, &dt));
-  PetscCheck(dt > 0, comm, PETSC_ERR_USER_INPUT, "The time step -ts_dt %g must be > 0", (double)dt);
+  ctx->state.dt_user = dt;
+  PetscCall(WarnUnresolvedContact(ctx, dt));
   PetscCall(TSSetSolution(*ts, ctx->state.u_next));
   PetscFunctionReturn(0);
 }
