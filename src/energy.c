@@ -65,8 +65,8 @@ static PetscErrorCode CheckFinite(MMCtx *ctx, const MMHistory *h, PetscReal w_ex
   PetscFunctionBeginUser;
   for (size_t i = 0; i < sizeof(val) / sizeof(val[0]); ++i)
     PetscCheck(!PetscIsInfOrNanReal(val[i]), PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_FP,
-               "Non-finite %s (%g) at step %" PetscInt_FMT " (t = %g, dt = %g): the state overflowed or the solve failed. Check the material (-E %g, -rho %g: c_p dt / h_c' = %g) and the loads. The output up to the previous step is intact",
-               name[i], (double)val[i], h->step, (double)h->time, (double)ctx->state.dt, (double)ctx->opt.E, (double)ctx->opt.rho, ctx->contact.h_c > 0 ? (double)(ctx->op.c_p * ctx->state.dt / ctx->contact.h_c) : 0.0);
+               "The %s is %s at step %" PetscInt_FMT " (t = %g): the state overflowed or a solve failed. Check the units of the material (-E %g, -rho %g), the loads and the initial velocity. The output up to the previous step is intact",
+               name[i], PetscIsNanReal(val[i]) ? "NaN" : "infinite", h->step, (double)h->time, (double)ctx->opt.E, (double)ctx->opt.rho);
   PetscFunctionReturn(0);
 }
 

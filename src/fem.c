@@ -224,6 +224,32 @@ static PetscErrorCode SpreadVertexScalar(MMCtx *ctx, Vec sloc, const PetscReal f
   PetscFunctionReturn(0);
 }
 
+/* A traction acts on faces: a group of cells (the body) or of lower-dimensional points would load
+ * nothing, silently. */
+static PetscErrorCode CheckTractionGroup(DM dm, const char name[], IS fis)
+{
+  PetscInt        n = 0, counts[2] = {0, 0}; /* faces, cells */
+  const PetscInt *pts;
+  PetscInt        dim;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetDimension(dm, &dim));
+  if (fis) {
+    PetscCall(ISGetLocalSize(fis, &n));
+    PetscCall(ISGetIndices(fis, &pts));
+    for (PetscInt i = 0; i < n; ++i) {
+      PetscInt h;
+      PetscCall(DMPlexGetPointHeight(dm, pts[i], &h));
+      if (h <= 1) counts[h == 0 ? 1 : 0]++;
+    }
+    PetscCall(ISRestoreIndices(fis, &pts));
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, counts, 2, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)dm)));
+  PetscCheck(!counts[1], PetscObjectComm((PetscObject)dm), PETSC_ERR_USER_INPUT, "-traction %s: the physical group \"%s\" holds cells, not boundary faces. A traction acts on a Physical %s of the boundary", name, name, dim == 2 ? "Curve (2D)" : "Surface (3D)");
+  PetscCheck(counts[0], PetscObjectComm((PetscObject)dm), PETSC_ERR_USER_INPUT, "-traction %s: the physical group \"%s\" holds no faces. A traction acts on a Physical %s of the boundary", name, name, dim == 2 ? "Curve (2D)" : "Surface (3D)");
+  PetscFunctionReturn(0);
+}
+
 /* Nodal loads of constant tractions: int_F t phi_i = t |F| / d on each vertex of a boundary face F. */
 static PetscErrorCode AddTractions(MMCtx *ctx, Vec Lcart)
 {
@@ -244,6 +270,7 @@ static PetscErrorCode AddTractions(MMCtx *ctx, Vec Lcart)
     PetscCall(MMMeshGetLabel(dm, ctx->opt.traction[b].name, &label));
     PetscCall(LabelValue(dm, label, &value));
     PetscCall(DMLabelGetStratumIS(label, value, &fis));
+    PetscCall(CheckTractionGroup(dm, ctx->opt.traction[b].name, fis));
     if (!fis) continue;
     PetscCall(ISGetLocalSize(fis, &nf));
     PetscCall(ISGetIndices(fis, &faces));
@@ -324,6 +351,18 @@ static PetscErrorCode RotateMatrix(Mat Q, Mat A, Mat *Aw)
   PetscFunctionReturn(0);
 }
 
+/* -E 1e308 overflows the stiffness: say so before a factorization fails on it. */
+static PetscErrorCode CheckFiniteOperators(MMCtx *ctx)
+{
+  PetscReal nK, nM;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatNorm(ctx->op.K, NORM_FROBENIUS, &nK));
+  PetscCall(MatNorm(ctx->op.M, NORM_FROBENIUS, &nM));
+  PetscCheck(!PetscIsInfOrNanReal(nK) && !PetscIsInfOrNanReal(nM), PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "The %s matrix overflows with -E %g, -rho %g on this mesh: use consistent units (for steel in SI units, -E 2.1e11 -rho 7850)", PetscIsInfOrNanReal(nK) ? "stiffness" : "mass", (double)ctx->opt.E, (double)ctx->opt.rho);
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MMFEAssembleOperators(MMCtx *ctx)
 {
   DM          dm = ctx->op.dm;
@@ -369,6 +408,7 @@ PetscErrorCode MMFEAssembleOperators(MMCtx *ctx)
     PetscCall(AssembleMatrix(ctx, 0.0, 1.0, Mc));
     PetscCall(RotateMatrix(ctx->op.Q, Mc, &ctx->op.M));
   }
+  PetscCall(CheckFiniteOperators(ctx));
   PetscCall(MatDuplicate(ctx->op.M, MAT_COPY_VALUES, &ctx->op.Mstar));
   if (ctx->contact.enabled && ctx->opt.mass_type == MM_MASS_MODIFIED) PetscCall(MatZeroRowsColumnsIS(ctx->op.Mstar, ctx->contact.is_normal, 0.0, NULL, NULL));
   PetscCall(MatViewFromOptions(ctx->op.K, NULL, "-stiffness_view"));

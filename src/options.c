@@ -19,7 +19,7 @@ static const MMVectorLength VectorLength[MM_V_NUM] = {MM_LEN_DIM, MM_LEN_DIM, MM
 static PetscErrorCode CheckFinite(MPI_Comm comm, const char name[], const PetscReal v[], PetscInt n)
 {
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < n; ++i) PetscCheck(!PetscIsInfOrNanReal(v[i]), comm, PETSC_ERR_USER_INPUT, "%s: entry %" PetscInt_FMT " is %g; every value must be a finite number", name, i, (double)v[i]);
+  for (PetscInt i = 0; i < n; ++i) PetscCheck(!PetscIsInfOrNanReal(v[i]), comm, PETSC_ERR_USER_INPUT, "%s: entry %" PetscInt_FMT " is %s; every value must be a finite number", name, i, PetscIsNanReal(v[i]) ? "NaN" : "infinite");
   PetscFunctionReturn(0);
 }
 
