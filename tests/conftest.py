@@ -29,10 +29,13 @@ class Run:
 
 
 def run(case, tmp_path, *extra, np_=1, name="out", check=True):
-    """Runs options/<case>.opts with extra options on np_ ranks, output under tmp_path/name."""
+    """Runs options/<case>.opts with extra options on np_ ranks, output under tmp_path/name.
+    np_=0 runs the executable without mpiexec (one rank): a refused input then costs 0.3 s, not
+    the 1.4 s of MPI's abort path."""
     outdir = str(tmp_path / name)
-    args = MPIEXEC + ["-n", str(np_), EXE, "-options_file", os.path.join(ROOT, "options", case + ".opts"),
-                      "-output_dir", outdir, "-options_left", *map(str, extra)]
+    launcher = MPIEXEC + ["-n", str(np_)] if np_ > 0 else []
+    args = launcher + [EXE, "-options_file", os.path.join(ROOT, "options", case + ".opts"),
+                       "-output_dir", outdir, "-options_left", *map(str, extra)]
     proc = subprocess.run(args, cwd=ROOT, capture_output=True, text=True, timeout=900)
     r = Run(proc, outdir)
     if check:
