@@ -877,7 +877,7 @@ static PetscErrorCode CheckInitialPenetration(MMCtx *ctx, Vec w)
           where, glob.depth, (double)ctx->opt.initial_penetration_tol, (double)(ctx->opt.initial_penetration_tol * ct->h_c));
 }
 
-/* Consistent initial contact dofs (method.md, Initial state): with the other dofs fixed, the
+/* Consistent initial contact dofs (docs/method.md section 3, Initial state): with the other dofs fixed, the
  * massless normal dofs solve the quasi-static problem A_cc u_c = L_c - A_c* u*, u_c <= g. */
 PetscErrorCode MMContactProjectInitial(MMCtx *ctx, Vec w)
 {
@@ -1028,7 +1028,7 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
   PetscFunctionReturn(0);
 }
 
-/* The discrete Coulomb residual (method.md section 6) of a state, and its slipping/sticking counts. */
+/* The discrete Coulomb residual (docs/method.md section 6) of a state, and its slipping/sticking counts. */
 PetscErrorCode MMContactCoulomb(MMCtx *ctx, Vec w, Vec react, Vec sigma, PetscReal *residual, PetscInt *nslip, PetscInt *nstick)
 {
   ContactStats st;
@@ -1041,7 +1041,7 @@ PetscErrorCode MMContactCoulomb(MMCtx *ctx, Vec w, Vec react, Vec sigma, PetscRe
   PetscFunctionReturn(0);
 }
 
-/* Per-step contact quantities (method.md sections 5-6) of the accepted state. */
+/* Per-step contact quantities (docs/method.md sections 5-6) of the accepted state. */
 PetscErrorCode MMContactDiagnostics(MMCtx *ctx, Vec w, Vec react, Vec v, MMHistory *h)
 {
   ContactStats st;

@@ -1,4 +1,4 @@
-/* The energy audit of every step (method.md section 4) and rigid-body diagnostics. */
+/* The energy audit of every step (docs/method.md section 4) and rigid-body diagnostics. */
 #include "energy.h"
 #include "contact.h"
 #include "fem.h"

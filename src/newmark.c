@@ -1,7 +1,7 @@
 /* Trapezoidal Newmark (beta = 1/4, gamma = 1/2) with exact contact, as the PETSc TS type "newmark".
  *
  * Registering a TS type keeps -ts_dt, -ts_max_time, -ts_max_steps, -ts_monitor, -ts_view and
- * TSAdapt. Each step solves the one contact problem of method.md section 3 for u^{n+1}; the
+ * TSAdapt. Each step solves the one contact problem of docs/method.md section 3 for u^{n+1}; the
  * massless contact-normal dofs carry no inertia, so their equation is quasi-static. */
 #include <petsc/private/tsimpl.h>
 #include "newmark.h"
@@ -109,7 +109,7 @@ static PetscErrorCode RejectStep(TS ts, MMCtx *ctx, PetscInt rejections, MMRejec
 
 /* The contact-work guard: the trapezoidal contact work 1/2 (lambda^n + lambda^{n+1}).du is not a
  * solver error, so the balance audit cannot see energy created at a release that dt does not
- * resolve (docs/method.md, "Energy at contact release"). A step that creates more than
+ * resolve (docs/method.md section 4, "Energy at contact release"). A step that creates more than
  * -contact_work_tol of the run's energy scale is refused. */
 static PetscErrorCode ContactWorkTooLarge(MMCtx *ctx, Vec w, PetscBool *too_large, PetscReal *w_c, PetscReal *scale)
 {
