@@ -23,19 +23,26 @@ static PetscErrorCode KSPSetDefaultLU(KSP ksp)
   PetscFunctionReturn(0);
 }
 
-/* What each exact solve is for, by options prefix, so that a refusal says which solve it is. */
-static const char *ExactSolvePurpose(const char prefix[])
+/* What each exact solve is for, by options prefix, so that a refusal says which solve it is, and
+ * whether its matrix is symmetric, so that Cholesky applies. */
+typedef struct {
+  const char *prefix, *purpose;
+  PetscBool   symmetric;
+} ExactSolve;
+
+static ExactSolve ExactSolveInfo(const char prefix[])
 {
-  const char *purpose[][2] = {
-    {"contact_K_", "K~ = K + 4/dt^2 M* is factored once per dt: the condensed contact builds its Delassus operator from the factor, and every step (also with -contact 0) solves with it"},
-    {"mass_",      "the initial acceleration solves M* a0 = L - K u0 + f_c0"},
-    {"sliding_",   "the static sliding state solves its linear system"},
+  const ExactSolve known[] = {
+    {"contact_K_", "K~ = K + 4/dt^2 M* is factored once per dt: the condensed contact builds its Delassus operator from the factor, and every step (also with -contact 0) solves with it", PETSC_TRUE},
+    {"mass_",      "the initial acceleration solves M* a0 = L - K u0 + f_c0", PETSC_TRUE},
+    {"sliding_",   "the static sliding state solves its (nonsymmetric) linear system", PETSC_FALSE},
   };
-  for (size_t i = 0; i < sizeof(purpose) / sizeof(purpose[0]); ++i) {
+  const ExactSolve other = {prefix, "this solve", PETSC_FALSE};
+  for (size_t i = 0; i < sizeof(known) / sizeof(known[0]); ++i) {
     PetscBool same;
-    if (!PetscStrcmp(prefix, purpose[i][0], &same) && same) return purpose[i][1];
+    if (!PetscStrcmp(prefix, known[i].prefix, &same) && same) return known[i];
   }
-  return "this solve";
+  return other;
 }
 
 /* Solves the energy audit relies on, and the Delassus operator built from K~'s factor, must be
@@ -45,17 +52,19 @@ static PetscErrorCode KSPCheckDirect(KSP ksp)
 {
   PC          pc;
   PCType      type;
-  PetscBool   direct;
+  PetscBool   lu, cholesky;
   const char *prefix;
+  ExactSolve  info;
 
   PetscFunctionBeginUser;
   PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &direct, PCLU, PCCHOLESKY, ""));
-  if (direct) PetscFunctionReturn(0);
-  PetscCall(PCGetType(pc, &type));
   PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
-  if (!prefix) prefix = "";
-  SETERRQ(PetscObjectComm((PetscObject)ksp), PETSC_ERR_USER_INPUT, "-%spc_type %s is not supported: %s, and this solve must be exact. Use -%spc_type lu (the default, with MUMPS) or cholesky: iterative solvers and incomplete factorizations are not supported for it yet", prefix, type, ExactSolvePurpose(prefix), prefix);
+  info = ExactSolveInfo(prefix ? prefix : "");
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCCHOLESKY, &cholesky));
+  if (lu || (cholesky && info.symmetric)) PetscFunctionReturn(0);
+  PetscCall(PCGetType(pc, &type));
+  SETERRQ(PetscObjectComm((PetscObject)ksp), PETSC_ERR_USER_INPUT, "-%spc_type %s is not supported: %s, and this solve must be exact. Use -%spc_type lu (the default, with MUMPS)%s: iterative solvers and incomplete factorizations are not supported for it yet", info.prefix, type, info.purpose, info.prefix, info.symmetric ? " or cholesky" : "");
 }
 
 static PetscErrorCode KSPCheckDirectPreSolve(KSP ksp, Vec b, Vec x, void *ptr)
