@@ -178,6 +178,7 @@ static PetscErrorCode CreateQPSolver(MPI_Comm comm, const char prefix[], MMBound
   PetscCall(MatCreateVecs(qp->A, &r, NULL));
   PetscCall(SNESSetFunction(*snes, r, QPResidual, qp));
   PetscCall(VecDestroy(&r));
+  PetscCall(SNESSetJacobian(*snes, qp->A, qp->A, QPJacobian, qp));
   PetscCall(SNESSetConvergenceTest(*snes, QPConverged, qp, NULL));
   PetscCall(SNESSetTolerances(*snes, PETSC_DEFAULT, 1e-12, 0.0, 100, PETSC_DEFAULT));
   /* a quadratic problem: the full projected Newton step is the right one */

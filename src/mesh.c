@@ -120,19 +120,39 @@ static PetscErrorCode CheckCellTypes(MPI_Comm comm, DM dm, const char file[])
   PetscFunctionReturn(0);
 }
 
+/* The polynomial degree of the coordinate field: 1 unless the reader made a high-order one. */
+static PetscErrorCode CoordinateDegree(DM dm, PetscInt *degree)
+{
+  DM           cdm;
+  PetscInt     nf;
+  PetscObject  disc;
+  PetscClassId id;
+  PetscSpace   sp;
+
+  PetscFunctionBeginUser;
+  *degree = 1;
+  PetscCall(DMGetCoordinateDM(dm, &cdm));
+  PetscCall(DMGetNumFields(cdm, &nf));
+  if (!nf) PetscFunctionReturn(0);
+  PetscCall(DMGetField(cdm, 0, NULL, &disc));
+  PetscCall(PetscObjectGetClassId(disc, &id));
+  if (id != PETSCFE_CLASSID) PetscFunctionReturn(0);
+  PetscCall(PetscFEGetBasisSpace((PetscFE)disc, &sp));
+  PetscCall(PetscSpaceGetDegree(sp, degree, NULL));
+  PetscFunctionReturn(0);
+}
+
 /* A second-order mesh (gmsh -order 2) reads as straight-celled topology with its coordinates a
  * P2 field, carried on edges or cells, not vertex positions; every geometric computation here
  * reads vertex coordinates. Refuse any coordinate dof off the vertices. */
 static PetscErrorCode CheckLinearGeometry(MPI_Comm comm, DM dm, const char file[])
 {
-  DM           cdm;
   PetscSection cs;
-  PetscInt     cdim, pStart, pEnd, vStart, vEnd, nf, cStart, cEnd, degree = 1, nbad = 0;
+  PetscInt     cdim, pStart, pEnd, vStart, vEnd, cStart, cEnd, degree, nbad = 0;
   PetscInt     ct = -1;
 
   PetscFunctionBeginUser;
   PetscCall(DMGetCoordinateDim(dm, &cdim));
-  PetscCall(DMGetCoordinateDM(dm, &cdm));
   PetscCall(DMGetCoordinateSection(dm, &cs));
   PetscCall(PetscSectionGetChart(cs, &pStart, &pEnd));
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
@@ -142,18 +162,7 @@ static PetscErrorCode CheckLinearGeometry(MPI_Comm comm, DM dm, const char file[
     if (p >= vStart && p < vEnd ? dof != cdim : dof != 0) ++nbad;
   }
   if (vStart < pStart || vEnd > pEnd) nbad += vEnd - vStart; /* vertices without coordinates */
-  PetscCall(DMGetNumFields(cdm, &nf));
-  if (nf) {
-    PetscObject  disc;
-    PetscClassId id;
-    PetscCall(DMGetField(cdm, 0, NULL, &disc));
-    PetscCall(PetscObjectGetClassId(disc, &id));
-    if (id == PETSCFE_CLASSID) {
-      PetscSpace sp;
-      PetscCall(PetscFEGetBasisSpace((PetscFE)disc, &sp));
-      PetscCall(PetscSpaceGetDegree(sp, &degree, NULL));
-    }
-  }
+  PetscCall(CoordinateDegree(dm, &degree));
   PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
   if (cEnd > cStart) {
     DMPolytopeType t;
@@ -163,8 +172,9 @@ static PetscErrorCode CheckLinearGeometry(MPI_Comm comm, DM dm, const char file[
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nbad, 1, MPIU_INT, MPI_SUM, comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &degree, 1, MPIU_INT, MPI_MAX, comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ct, 1, MPIU_INT, MPI_MAX, comm));
-  PetscCheck(!nbad && degree <= 1, comm, PETSC_ERR_USER_INPUT, "Mesh file \"%s\" (-mesh) has high-order (order %" PetscInt_FMT ", curved) %s cells: its coordinates are a degree-%" PetscInt_FMT " field carried on edges or cells, not vertex positions. mmcontact supports first-order triangles (2D) and tetrahedra (3D) only: mesh with gmsh -2 (or -3) at the default order 1 (no -order 2, no Mesh.ElementOrder > 1)",
+  PetscCheck(degree <= 1, comm, PETSC_ERR_USER_INPUT, "Mesh file \"%s\" (-mesh) has high-order (order %" PetscInt_FMT ", curved) %s cells: its coordinates are a degree-%" PetscInt_FMT " field carried on edges or cells, not vertex positions. mmcontact supports first-order triangles (2D) and tetrahedra (3D) only: mesh with gmsh -2 (or -3) at the default order 1 (no -order 2, no Mesh.ElementOrder > 1)",
              file, degree, ct >= 0 ? DMPolytopeTypes[ct] : "unknown", degree);
+  PetscCheck(!nbad, comm, PETSC_ERR_USER_INPUT, "Mesh file \"%s\" (-mesh) has coordinates that are not vertex positions (%" PetscInt_FMT " points with other coordinate dofs; a discontinuous coordinate field, e.g. from -dm_plex_gmsh_highorder). mmcontact supports first-order triangles (2D) and tetrahedra (3D) with vertex coordinates only: drop that option", file, nbad);
   PetscFunctionReturn(0);
 }
 
