@@ -10,8 +10,8 @@
 
 /* ---------------------------------------------------------------- a bound-constrained QP as a SNESVI */
 
-/* The default linear solver of every solve here: LU with MUMPS, options still apply on top. */
-PetscErrorCode MMKSPSetDirect(KSP ksp)
+/* LU with MUMPS: the default of every linear solver here, options still apply on top. */
+static PetscErrorCode KSPSetDefaultLU(KSP ksp)
 {
   PC pc;
 
@@ -20,6 +20,67 @@ PetscErrorCode MMKSPSetDirect(KSP ksp)
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PCSetType(pc, PCLU));
   PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscFunctionReturn(0);
+}
+
+/* What each exact solve is for, by options prefix, so that a refusal says which solve it is, and
+ * whether its matrix is symmetric, so that Cholesky applies. */
+typedef struct {
+  const char *prefix, *purpose;
+  PetscBool   symmetric;
+} ExactSolve;
+
+static ExactSolve ExactSolveInfo(const char prefix[])
+{
+  const ExactSolve known[] = {
+    {"contact_K_", "K~ = K + 4/dt^2 M* is factored once per dt: the condensed contact builds its Delassus operator from the factor, and every step (also with -contact 0) solves with it", PETSC_TRUE},
+    {"mass_",      "the initial acceleration solves M* a0 = L - K u0 + f_c0", PETSC_TRUE},
+    {"sliding_",   "the static sliding state solves its (nonsymmetric) linear system", PETSC_FALSE},
+  };
+  const ExactSolve other = {prefix, "this solve", PETSC_FALSE};
+  for (size_t i = 0; i < sizeof(known) / sizeof(known[0]); ++i) {
+    PetscBool same;
+    if (!PetscStrcmp(prefix, known[i].prefix, &same) && same) return known[i];
+  }
+  return other;
+}
+
+/* Solves the energy audit relies on, and the Delassus operator built from K~'s factor, must be
+ * exact: only a complete factorization will do. An iterative or incomplete PC would fail late and
+ * obscurely (no getfactoredmatrix method, an energy audit failure), or, for a0, not at all. */
+static PetscErrorCode KSPCheckDirect(KSP ksp)
+{
+  PC          pc;
+  PCType      type;
+  PetscBool   lu, cholesky;
+  const char *prefix;
+  ExactSolve  info;
+
+  PetscFunctionBeginUser;
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
+  info = ExactSolveInfo(prefix ? prefix : "");
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCCHOLESKY, &cholesky));
+  if (lu || (cholesky && info.symmetric)) PetscFunctionReturn(0);
+  PetscCall(PCGetType(pc, &type));
+  SETERRQ(PetscObjectComm((PetscObject)ksp), PETSC_ERR_USER_INPUT, "-%spc_type %s is not supported: %s, and this solve must be exact. Use -%spc_type lu (the default, with MUMPS)%s: iterative solvers and incomplete factorizations are not supported for it yet", info.prefix, type, info.purpose, info.prefix, info.symmetric ? " or cholesky" : "");
+}
+
+static PetscErrorCode KSPCheckDirectPreSolve(KSP ksp, Vec b, Vec x, void *ptr)
+{
+  PetscFunctionBeginUser;
+  PetscCall(KSPCheckDirect(ksp));
+  PetscFunctionReturn(0);
+}
+
+/* A solve that must be exact: LU with MUMPS by default, and any -PREFIX_pc_type that is not a
+ * complete factorization refused when it solves (after KSPSetFromOptions). */
+PetscErrorCode MMKSPSetDirect(KSP ksp)
+{
+  PetscFunctionBeginUser;
+  PetscCall(KSPSetDefaultLU(ksp));
+  PetscCall(KSPSetPreSolve(ksp, KSPCheckDirectPreSolve, NULL));
   PetscFunctionReturn(0);
 }
 
@@ -33,10 +94,40 @@ static PetscErrorCode QPResidual(SNES snes, Vec x, Vec f, void *ptr)
   PetscFunctionReturn(0);
 }
 
-/* The matrix is constant: nothing to recompute, so the factorization is reused whenever SNES can. */
+/* The matrix is constant: nothing to recompute, so the factorization is reused whenever SNES can.
+ * Only a Jacobian that is a copy of A (see QPSetOperator) is refreshed from A. */
 static PetscErrorCode QPJacobian(SNES snes, Vec x, Mat J, Mat P, void *ptr)
 {
+  MMBoundQP *qp = (MMBoundQP *)ptr;
+
   PetscFunctionBeginUser;
+  if (J != qp->A) PetscCall(MatCopy(qp->A, J, SAME_NONZERO_PATTERN));
+  PetscFunctionReturn(0);
+}
+
+/* The Jacobian SNES gets for A. vinewtonrsls only takes submatrices of it, so A itself will do.
+ * vinewtonssls overwrites its Jacobian in place with the semismooth one, Da + Db J (row scaling
+ * and diagonal shift): given A, it would corrupt the operator of the residual, iteration after
+ * iteration, and never converge. It gets a copy of A instead, refreshed by QPJacobian. */
+static PetscErrorCode QPSetOperator(SNES snes, MMBoundQP *qp)
+{
+  Mat         J;
+  PetscObject source = NULL;
+  PetscBool   ssls;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESVINEWTONSSLS, &ssls));
+  PetscCall(SNESGetJacobian(snes, &J, NULL, NULL, NULL));
+  if (!ssls) {
+    if (J != qp->A) PetscCall(SNESSetJacobian(snes, qp->A, qp->A, QPJacobian, qp));
+    PetscFunctionReturn(0);
+  }
+  if (J) PetscCall(PetscObjectQuery((PetscObject)J, "MMQPOperator", &source));
+  if (J && source == (PetscObject)qp->A) PetscFunctionReturn(0);
+  PetscCall(MatDuplicate(qp->A, MAT_COPY_VALUES, &J));
+  PetscCall(PetscObjectCompose((PetscObject)J, "MMQPOperator", (PetscObject)qp->A));
+  PetscCall(SNESSetJacobian(snes, J, J, QPJacobian, qp));
+  PetscCall(MatDestroy(&J));
   PetscFunctionReturn(0);
 }
 
@@ -52,7 +143,29 @@ static PetscErrorCode QPConverged(SNES snes, PetscInt it, PetscReal xnorm, Petsc
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode CreateQPSolver(MPI_Comm comm, const char prefix[], MMBoundQP *qp, SNES *snes)
+/* Only the VI Newton methods honour bounds. vinewtonssls (Fischer-Burmeister) is refused with
+ * friction: PETSc's semismooth Jacobian uses a fixed cut-off (|a|, |b| < 1e-6 gives the
+ * derivative 1/2) which, at the weakly active tangential bounds of a stick/slip transition, turns
+ * its convergence sublinear (D1 with -mu 0.2 does not converge in 3000 iterations). */
+static PetscErrorCode CheckQPSolverType(SNES snes, PetscReal mu)
+{
+  MPI_Comm    comm = PetscObjectComm((PetscObject)snes);
+  PetscBool   rsls, ssls;
+  SNESType    type;
+  const char *prefix;
+
+  PetscFunctionBeginUser;
+  PetscCall(SNESGetType(snes, &type));
+  PetscCall(SNESGetOptionsPrefix(snes, &prefix));
+  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESVINEWTONRSLS, &rsls));
+  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESVINEWTONSSLS, &ssls));
+  PetscCheck(rsls || ssls, comm, PETSC_ERR_USER_INPUT, "-%ssnes_type %s is not supported: the contact problem is a bound-constrained VI. Use -%ssnes_type vinewtonrsls (the default) or, without friction, vinewtonssls", prefix, type, prefix);
+  PetscCheck(!ssls || mu == 0, comm, PETSC_ERR_USER_INPUT, "-%ssnes_type vinewtonssls is not supported with friction (-mu %g): at stick/slip transitions it converges too slowly to be usable. Use -%ssnes_type vinewtonrsls (the default)", prefix, (double)mu, prefix);
+  PetscFunctionReturn(0);
+}
+
+/* mu: the friction coefficient of the problem, 0 when its bounds are on normal dofs only. */
+static PetscErrorCode CreateQPSolver(MPI_Comm comm, const char prefix[], MMBoundQP *qp, PetscReal mu, SNES *snes)
 {
   KSP            ksp;
   SNESLineSearch ls;
@@ -72,8 +185,11 @@ static PetscErrorCode CreateQPSolver(MPI_Comm comm, const char prefix[], MMBound
   PetscCall(SNESGetLineSearch(*snes, &ls));
   PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
   PetscCall(SNESGetKSP(*snes, &ksp));
-  PetscCall(MMKSPSetDirect(ksp));
+  /* the SNES checks its own residual: any linear solver that converges will do here */
+  PetscCall(KSPSetDefaultLU(ksp));
   PetscCall(SNESSetFromOptions(*snes));
+  PetscCall(CheckQPSolverType(*snes, mu));
+  PetscCall(QPSetOperator(*snes, qp));
   PetscFunctionReturn(0);
 }
 
@@ -117,6 +233,8 @@ static PetscErrorCode FactorStepMatrix(MMCtx *ctx)
     PetscCall(KSPSetOptionsPrefix(ct->ksp_K, "contact_K_"));
     PetscCall(MMKSPSetDirect(ct->ksp_K));
     PetscCall(KSPSetFromOptions(ct->ksp_K));
+    /* now, not at the first solve: the Delassus operator is built from the factor before it */
+    PetscCall(KSPCheckDirect(ct->ksp_K));
   }
   PetscCall(KSPSetOperators(ct->ksp_K, ct->qp.A, ct->qp.A));
   PetscCall(KSPSetUp(ct->ksp_K));
@@ -197,7 +315,7 @@ static PetscErrorCode CreateCondensedSolver(MMCtx *ctx)
   PetscCall(VecSet(ct->rho_lo, 0.0));
   PetscCall(VecSet(ct->rho_hi, 0.0));
   PetscCall(VecStrideSet(ct->rho_hi, 0, PETSC_INFINITY));
-  PetscCall(CreateQPSolver(PetscObjectComm((PetscObject)ctx->op.dm), "contact_", &ct->qpc, &ct->snes));
+  PetscCall(CreateQPSolver(PetscObjectComm((PetscObject)ctx->op.dm), "contact_", &ct->qpc, ct->ncomp > 1 ? ctx->opt.mu : 0, &ct->snes));
   PetscCall(SNESVISetVariableBounds(ct->snes, ct->rho_lo, ct->rho_hi));
   PetscFunctionReturn(0);
 }
@@ -419,7 +537,7 @@ static PetscErrorCode SolveCondensed(MMCtx *ctx, Vec b, Vec w)
     PetscCall(MatMultTranspose(ct->P, ct->z_c, ct->qpc.b));
     PetscCall(MatMultTranspose(ct->P, ct->rho, ct->rho_r));
     ct->qpc.A = ct->Wr;
-    PetscCall(SNESSetJacobian(ct->snes, ct->Wr, ct->Wr, NULL, NULL));
+    PetscCall(QPSetOperator(ct->snes, &ct->qpc));
   }
   {
     Vec x = ct->ncomp == 3 ? ct->rho_r : ct->rho;
@@ -776,7 +894,7 @@ PetscErrorCode MMContactSetStepMatrix(MMCtx *ctx, PetscReal dt)
     if (!condensed) {
       PetscCall(VecDuplicate(ct->qp.b, &ct->lower));
       PetscCall(VecDuplicate(ct->qp.b, &ct->upper));
-      PetscCall(CreateQPSolver(PetscObjectComm((PetscObject)ctx->op.dm), "contact_", &ct->qp, &ct->snes));
+      PetscCall(CreateQPSolver(PetscObjectComm((PetscObject)ctx->op.dm), "contact_", &ct->qp, 0, &ct->snes));
       PetscCall(SetBounds(ct, ct->lower, ct->upper));
       PetscCall(SNESVISetVariableBounds(ct->snes, ct->lower, ct->upper));
     }
@@ -895,7 +1013,7 @@ PetscErrorCode MMContactProjectInitial(MMCtx *ctx, Vec w)
   PetscCall(VecSet(ct->lower0, PETSC_NINFINITY));
   PetscCall(VecCopy(ct->gap, ct->upper0));
   ct->qp0.rtol_b = ct->tol;
-  PetscCall(CreateQPSolver(PetscObjectComm((PetscObject)ctx->op.dm), "contact0_", &ct->qp0, &ct->snes0));
+  PetscCall(CreateQPSolver(PetscObjectComm((PetscObject)ctx->op.dm), "contact0_", &ct->qp0, 0, &ct->snes0));
   PetscCall(SNESVISetVariableBounds(ct->snes0, ct->lower0, ct->upper0));
 
   /* b0 = (L - lift - K w*)_c with the contact dofs zeroed in w* */

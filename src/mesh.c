@@ -75,6 +75,168 @@ static PetscErrorCode RotateCoordinates(DM dm, const PetscReal rot[], const Pets
   PetscFunctionReturn(0);
 }
 
+#define MM_SUPPORTED_MESHES "mmcontact reads gmsh .msh files (format 2.2 to 4.1) of first-order triangles (2D) or tetrahedra (3D) with named physical groups"
+
+/* Reads the gmsh file. PETSc's reader stops a truncated or foreign file with a message about
+ * items and sections that does not name the file: catch it and say what is wrong with which file. */
+static PetscErrorCode ReadGmsh(MPI_Comm comm, const char file[], DM *dm)
+{
+  PetscErrorCode ierr;
+  const char    *text     = NULL;
+  char          *specific = NULL;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  ierr = DMPlexCreateFromFile(comm, file, "mmcontact", PETSC_TRUE, dm);
+  PetscCall(PetscPopErrorHandler());
+  if (ierr) PetscCall(PetscErrorMessage(ierr, &text, &specific));
+  PetscCheck(!ierr, comm, PETSC_ERR_USER_INPUT, "Mesh file \"%s\" (-mesh) could not be read: it is truncated or not a valid gmsh file (the reader says: %s). " MM_SUPPORTED_MESHES ": regenerate it from its .geo (make meshes, or gmsh -2/-3 file.geo)", file, specific && specific[0] ? specific : text);
+  PetscFunctionReturn(0);
+}
+
+/* P1 assembly needs straight simplices: triangles in 2D, tetrahedra in 3D. Quadrilaterals
+ * (Recombine) would fail at assembly with a closure-size message. Serial mesh: rank 0 has
+ * every cell, hence the reductions. */
+static PetscErrorCode CheckCellTypes(MPI_Comm comm, DM dm, const char file[])
+{
+  PetscInt       dim, cStart, cEnd, nbad = 0, ncells, first = -1;
+  DMPolytopeType expected;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetDimension(dm, &dim));
+  PetscCheck(dim == 2 || dim == 3, comm, PETSC_ERR_USER_INPUT, "Mesh file \"%s\" (-mesh) is a %" PetscInt_FMT "D mesh. " MM_SUPPORTED_MESHES ": mesh the .geo with gmsh -2 or -3", file, dim);
+  expected = dim == 2 ? DM_POLYTOPE_TRIANGLE : DM_POLYTOPE_TETRAHEDRON;
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  for (PetscInt c = cStart; c < cEnd; ++c) {
+    DMPolytopeType ct;
+    PetscCall(DMPlexGetCellType(dm, c, &ct));
+    if (ct != expected && !nbad++) first = ct;
+  }
+  ncells = cEnd - cStart;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nbad, 1, MPIU_INT, MPI_SUM, comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ncells, 1, MPIU_INT, MPI_SUM, comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &first, 1, MPIU_INT, MPI_MAX, comm));
+  PetscCheck(!nbad, comm, PETSC_ERR_USER_INPUT, "Mesh file \"%s\" (-mesh) has %" PetscInt_FMT " %s cells (of %" PetscInt_FMT "): mmcontact supports first-order triangles (2D) and tetrahedra (3D) only. Mesh with gmsh -2 (or -3) at the default order 1 and without Recombine (no Recombine Surface, Mesh.RecombineAll 0)",
+             file, nbad, DMPolytopeTypes[first], ncells);
+  PetscFunctionReturn(0);
+}
+
+/* The polynomial degree of the coordinate field: 1 unless the reader made a high-order one. */
+static PetscErrorCode CoordinateDegree(DM dm, PetscInt *degree)
+{
+  DM           cdm;
+  PetscInt     nf;
+  PetscObject  disc;
+  PetscClassId id;
+  PetscSpace   sp;
+
+  PetscFunctionBeginUser;
+  *degree = 1;
+  PetscCall(DMGetCoordinateDM(dm, &cdm));
+  PetscCall(DMGetNumFields(cdm, &nf));
+  if (!nf) PetscFunctionReturn(0);
+  PetscCall(DMGetField(cdm, 0, NULL, &disc));
+  PetscCall(PetscObjectGetClassId(disc, &id));
+  if (id != PETSCFE_CLASSID) PetscFunctionReturn(0);
+  PetscCall(PetscFEGetBasisSpace((PetscFE)disc, &sp));
+  PetscCall(PetscSpaceGetDegree(sp, degree, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* A second-order mesh (gmsh -order 2) reads as straight-celled topology with its coordinates a
+ * P2 field, carried on edges or cells, not vertex positions; every geometric computation here
+ * reads vertex coordinates. Refuse any coordinate dof off the vertices. */
+static PetscErrorCode CheckLinearGeometry(MPI_Comm comm, DM dm, const char file[])
+{
+  PetscSection cs;
+  PetscInt     cdim, pStart, pEnd, vStart, vEnd, cStart, cEnd, degree, nbad = 0;
+  PetscInt     ct = -1;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetCoordinateDim(dm, &cdim));
+  PetscCall(DMGetCoordinateSection(dm, &cs));
+  PetscCall(PetscSectionGetChart(cs, &pStart, &pEnd));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  for (PetscInt p = pStart; p < pEnd; ++p) {
+    PetscInt dof;
+    PetscCall(PetscSectionGetDof(cs, p, &dof));
+    if (p >= vStart && p < vEnd ? dof != cdim : dof != 0) ++nbad;
+  }
+  if (vStart < pStart || vEnd > pEnd) nbad += vEnd - vStart; /* vertices without coordinates */
+  PetscCall(CoordinateDegree(dm, &degree));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  if (cEnd > cStart) {
+    DMPolytopeType t;
+    PetscCall(DMPlexGetCellType(dm, cStart, &t));
+    ct = t;
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nbad, 1, MPIU_INT, MPI_SUM, comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &degree, 1, MPIU_INT, MPI_MAX, comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ct, 1, MPIU_INT, MPI_MAX, comm));
+  PetscCheck(degree <= 1, comm, PETSC_ERR_USER_INPUT, "Mesh file \"%s\" (-mesh) has high-order (order %" PetscInt_FMT ", curved) %s cells: its coordinates are a degree-%" PetscInt_FMT " field carried on edges or cells, not vertex positions. mmcontact supports first-order triangles (2D) and tetrahedra (3D) only: mesh with gmsh -2 (or -3) at the default order 1 (no -order 2, no Mesh.ElementOrder > 1)",
+             file, degree, ct >= 0 ? DMPolytopeTypes[ct] : "unknown", degree);
+  PetscCheck(!nbad, comm, PETSC_ERR_USER_INPUT, "Mesh file \"%s\" (-mesh) has coordinates that are not vertex positions (%" PetscInt_FMT " points with other coordinate dofs; a discontinuous coordinate field, e.g. from -dm_plex_gmsh_highorder). mmcontact supports first-order triangles (2D) and tetrahedra (3D) with vertex coordinates only: drop that option", file, nbad);
+  PetscFunctionReturn(0);
+}
+
+/* The vertex mean of a cell, on the rank that holds it. */
+static PetscErrorCode CellCentroid(DM dm, PetscInt c, PetscReal centroid[])
+{
+  DM           cdm;
+  Vec          X;
+  PetscScalar *xc = NULL;
+  PetscInt     nx, cdim;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetCoordinateDim(dm, &cdim));
+  PetscCall(DMGetCoordinateDM(dm, &cdm));
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  PetscCall(DMPlexVecGetClosure(cdm, NULL, X, c, &nx, &xc));
+  for (PetscInt d = 0; d < cdim; ++d) {
+    centroid[d] = 0;
+    for (PetscInt i = 0; i < nx / cdim; ++i) centroid[d] += PetscRealPart(xc[i * cdim + d]) / (nx / cdim);
+  }
+  PetscCall(DMPlexVecRestoreClosure(cdm, NULL, X, c, &nx, &xc));
+  PetscFunctionReturn(0);
+}
+
+/* An inverted cell (vertex order reversed, negative Jacobian determinant) enters the mass and
+ * stiffness with the wrong sign and the run goes on silently: DMPlex's gmsh reader keeps the
+ * file's vertex order. Refuse it on the serial mesh, naming the first one. */
+static PetscErrorCode CheckOrientation(MPI_Comm comm, DM dm, const char file[])
+{
+  PetscInt    cStart, cEnd, ninv = 0, ncells, first = -1, dim;
+  PetscReal   first_det = 0, centroid[3] = {0, 0, 0};
+  char        where[128];
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetCoordinateDim(dm, &dim));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  for (PetscInt c = cStart; c < cEnd; ++c) {
+    PetscReal v0[3], J[9], invJ[9], detJ;
+    PetscCall(DMPlexComputeCellGeometryAffineFEM(dm, c, v0, J, invJ, &detJ));
+    if (detJ > 0) continue;
+    if (!ninv++) {
+      first     = c;
+      first_det = detJ;
+    }
+  }
+  if (first >= 0) PetscCall(CellCentroid(dm, first, centroid));
+  ncells = cEnd - cStart;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ninv, 1, MPIU_INT, MPI_SUM, comm));
+  if (!ninv) PetscFunctionReturn(0);
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ncells, 1, MPIU_INT, MPI_SUM, comm));
+  /* the serial mesh lives on rank 0 */
+  PetscCallMPI(MPI_Bcast(&first, 1, MPIU_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(&first_det, 1, MPIU_REAL, 0, comm));
+  PetscCallMPI(MPI_Bcast(centroid, 3, MPIU_REAL, 0, comm));
+  if (dim == 2) PetscCall(PetscSNPrintf(where, sizeof(where), "(%g, %g)", (double)centroid[0], (double)centroid[1]));
+  else PetscCall(PetscSNPrintf(where, sizeof(where), "(%g, %g, %g)", (double)centroid[0], (double)centroid[1], (double)centroid[2]));
+  SETERRQ(comm, PETSC_ERR_USER_INPUT, "Mesh file \"%s\" (-mesh) has an inverted (negatively oriented) element: cell %" PetscInt_FMT " (counting the file's %s from 0) with centroid %s has Jacobian determinant %g <= 0 (inverted cells: %" PetscInt_FMT " of %" PetscInt_FMT "). Their mass and stiffness would enter with the wrong sign. %s",
+          file, first, dim == 2 ? "triangles" : "tetrahedra", where, (double)first_det, ninv, ncells,
+          ninv == ncells ? "The whole surface (volume) is oriented backwards: reverse its Curve Loop (Surface Loop) in the .geo, or add ReverseMesh, and remesh" : "Regenerate the mesh from its .geo with gmsh, or fix the node order of that element");
+}
+
 PetscErrorCode MMMeshLoad(MPI_Comm comm, MMOptions *opt, DM *dm)
 {
   PetscBool exists, rotate = PETSC_FALSE;
@@ -86,7 +248,11 @@ PetscErrorCode MMMeshLoad(MPI_Comm comm, MMOptions *opt, DM *dm)
   PetscCheck(exists, comm, PETSC_ERR_FILE_OPEN, "Mesh file \"%s\" (-mesh) does not exist or is not readable. Generate it from its .geo (make meshes, or gmsh -2/-3 file.geo) or fix the path", opt->mesh_file);
   /* physical names become label names, so every option can refer to groups by name */
   PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_use_regions", "true"));
-  PetscCall(DMPlexCreateFromFile(comm, opt->mesh_file, "mmcontact", PETSC_TRUE, dm));
+  PetscCall(ReadGmsh(comm, opt->mesh_file, dm));
+  /* on the serial mesh, before distribution: the first bad cell is named by its file order */
+  PetscCall(CheckCellTypes(comm, *dm, opt->mesh_file));
+  PetscCall(CheckLinearGeometry(comm, *dm, opt->mesh_file));
+  PetscCall(CheckOrientation(comm, *dm, opt->mesh_file));
   PetscCall(PetscObjectSetName((PetscObject)*dm, "mesh"));
   {
     PetscInt dim;

@@ -1,0 +1,172 @@
+"""Unsupported meshes and solver options stop the run at set-up with a message that names the file
+or option, the problem and the fix; the solver options the README offers really work."""
+import os
+import re
+import subprocess
+
+import numpy as np
+import pytest
+
+from conftest import EXE, ROOT, run
+
+
+def refused(tmp_path, *extra, case="d1_disk"):
+    """Runs one rank without mpiexec (its abort path costs a second per run); returns the output
+    of a run that must fail."""
+    args = [EXE, "-options_file", os.path.join("options", case + ".opts"), "-output_dir", str(tmp_path / "out"), *map(str, extra)]
+    proc = subprocess.run(args, cwd=ROOT, capture_output=True, text=True, timeout=300)
+    out = proc.stdout + proc.stderr
+    assert proc.returncode != 0, out[-2000:]
+    return out
+
+
+def gmsh(tmp_path, geo, name, *args):
+    path = str(tmp_path / name)
+    subprocess.run(["gmsh", "-v", "2", *args, os.path.join(ROOT, "meshes", geo) if "/" not in geo else geo, "-o", path],
+                   cwd=ROOT, check=True, capture_output=True, timeout=300)
+    return path
+
+
+def element_types(path):
+    """gmsh element type numbers of a msh 4.1 file, with their counts."""
+    lines = open(path).read().split("\n")
+    i = lines.index("$Elements") + 2
+    types = {}
+    while lines[i] != "$EndElements":
+        _, _, typ, n = map(int, lines[i].split())
+        types[typ] = types.get(typ, 0) + n
+        i += n + 1
+    return types
+
+
+# ---------------------------------------------------------------- unsupported meshes
+
+SUPPORTED = "first-order triangles (2D) and tetrahedra (3D)"
+
+
+def test_truncated_mesh_is_named(tmp_path):
+    data = open(os.path.join(ROOT, "meshes", "disk.msh"), "rb").read()
+    path = tmp_path / "cut.msh"
+    path.write_bytes(data[: int(0.6 * len(data))])
+    out = refused(tmp_path, "-mesh", path)
+    assert 'Mesh file "%s" (-mesh) could not be read' % path in out, out[-2000:]
+    assert "truncated or not a valid gmsh file" in out
+    assert "first-order triangles (2D) or tetrahedra (3D)" in out
+
+
+def test_quadrilateral_mesh_is_refused(tmp_path):
+    path = gmsh(tmp_path, "disk.geo", "quad.msh", "-2", "-setnumber", "Mesh.RecombineAll", "1")
+    assert set(element_types(path)) == {1, 3}  # lines and quadrangles only: the test does test quads
+    out = refused(tmp_path, "-mesh", path)
+    assert 'Mesh file "%s" (-mesh) has 388 quadrilateral cells' % path in out, out[-2000:]
+    assert SUPPORTED in out and "without Recombine" in out
+
+
+@pytest.mark.parametrize("geo,flag,case,cell", [("disk.geo", "-2", "d1_disk", "triangle"), ("ball.geo", "-3", "d2_ball", "tetrahedron")])
+def test_second_order_mesh_is_refused(tmp_path, geo, flag, case, cell):
+    """The 2D one failed in the contact set-up with "Edge has 0 coordinates != 4"; the 3D one ran."""
+    path = gmsh(tmp_path, geo, "o2.msh", flag, "-order", "2")
+    assert {8, 9} <= set(element_types(path)) or {9, 11} <= set(element_types(path))
+    out = refused(tmp_path, "-mesh", path, case=case)
+    assert 'Mesh file "%s" (-mesh) has high-order (order 2, curved) %s cells' % (path, cell) in out, out[-2000:]
+    assert SUPPORTED in out and "default order 1" in out
+
+
+def msh_with_swapped_nodes(src, dst, k, elem_type):
+    """Copies a msh 4.1 file with the first two nodes of its k-th element of elem_type swapped;
+    returns the centroid of that element."""
+    lines = open(src).read().split("\n")
+    nodes = {}
+    i = lines.index("$Nodes") + 2
+    while lines[i] != "$EndNodes":
+        n = int(lines[i].split()[3])
+        tags = [int(t) for t in lines[i + 1: i + 1 + n]]
+        for t, xyz in zip(tags, lines[i + 1 + n: i + 1 + 2 * n]):
+            nodes[t] = np.array([float(x) for x in xyz.split()])
+        i += 1 + 2 * n
+    i = lines.index("$Elements") + 2
+    seen = 0
+    while lines[i] != "$EndElements":
+        _, _, typ, n = map(int, lines[i].split())
+        for r in range(i + 1, i + 1 + n):
+            if typ == elem_type and seen == k:
+                tags = lines[r].split()
+                tags[1], tags[2] = tags[2], tags[1]
+                lines[r] = " ".join(tags)
+                centroid = np.mean([nodes[int(t)] for t in tags[1:]], axis=0)
+            seen += typ == elem_type
+        i += n + 1
+    open(dst, "w").write("\n".join(lines))
+    return centroid
+
+
+@pytest.mark.parametrize("case,mesh,elem_type,k", [("d1_disk", "disk.msh", 2, 100), ("d2_ball", "ball.msh", 4, 7)])
+def test_inverted_cell_is_named(tmp_path, case, mesh, elem_type, k):
+    """One element with two nodes swapped: DMPlex keeps the file's vertex order (its Jacobian is
+    negative), and the run used to go on with that cell's mass negative (D1's kinetic energy
+    1.87058 instead of 1.87580)."""
+    path = str(tmp_path / "inverted.msh")
+    centroid = msh_with_swapped_nodes(os.path.join(ROOT, "meshes", mesh), path, k, elem_type)
+    out = refused(tmp_path, "-mesh", path, case=case)
+    assert 'Mesh file "%s" (-mesh) has an inverted (negatively oriented) element: cell %d ' % (path, k) in out, out[-2000:]
+    where = re.search(r"with centroid \(([^)]*)\)", out).group(1)
+    dim = 2 if elem_type == 2 else 3
+    assert np.allclose([float(x) for x in where.split(",")], centroid[:dim], rtol=1e-5, atol=1e-6)
+    assert "(inverted cells: 1 of " in out
+
+
+def test_backwards_surface_is_inverted_throughout(tmp_path):
+    """A clockwise Curve Loop: gmsh meshes every triangle clockwise (the run used to start with a
+    negative kinetic energy)."""
+    geo = open(os.path.join(ROOT, "meshes", "disk.geo")).read().replace("Curve Loop(1) = {1, 2, 3, 4};", "Curve Loop(1) = {-4, -3, -2, -1};")
+    assert "{-4, -3, -2, -1}" in geo
+    (tmp_path / "cw.geo").write_text(geo)
+    path = gmsh(tmp_path, str(tmp_path / "cw.geo"), "cw.msh", "-2")
+    out = refused(tmp_path, "-mesh", path)
+    assert "inverted (negatively oriented) element: cell 0 " in out, out[-2000:]
+    assert "oriented backwards" in out and "Curve Loop" in out
+
+
+# ---------------------------------------------------------------- solver options
+
+@pytest.mark.parametrize("extra,messages", [
+    (["-contact_K_pc_type", "jacobi"], ["-contact_K_pc_type jacobi is not supported", "Delassus operator", "-contact_K_pc_type lu", "cholesky"]),
+    (["-contact_K_pc_type", "ilu"], ["-contact_K_pc_type ilu is not supported", "incomplete factorizations"]),
+    (["-contact", 0, "-contact_K_pc_type", "jacobi"], ["-contact_K_pc_type jacobi is not supported", "also with -contact 0"]),
+    (["-mass_pc_type", "jacobi"], ["-mass_pc_type jacobi is not supported", "initial acceleration", "-mass_pc_type lu"]),
+    (["-contact_snes_type", "newtonls"], ["-contact_snes_type newtonls is not supported", "vinewtonrsls", "vinewtonssls"]),
+    (["-mu", 0.2, "-contact_snes_type", "vinewtonssls"], ["-contact_snes_type vinewtonssls is not supported with friction (-mu 0.2)", "vinewtonrsls"]),
+])
+def test_unsupported_solver_option_is_named(tmp_path, extra, messages):
+    out = refused(tmp_path, *extra)
+    for m in messages:
+        assert m in out, out[-2000:]
+
+
+def compare(h1, h2, tol):
+    assert len(h1) == len(h2)
+    scale = np.abs(h1["total"]).max()
+    for c in ["kinetic", "elastic", "total", "work_ext", "work_contact", "force_normal", "max_penetration", "vcm_x", "vcm_y", "L_z"]:
+        assert np.abs(h1[c] - h2[c]).max() <= tol * max(scale, np.abs(h1[c]).max()), c
+    assert np.array_equal(h1["active"], h2["active"])
+
+
+def test_cholesky_factorizations_equal_lu(mm):
+    """K~ and the mass matrix are symmetric: Cholesky (MUMPS, 2 ranks) gives the LU history. Gravity
+    makes the initial acceleration nonzero, so the mass solve matters."""
+    lu = mm("d1_disk", "-gravity", "0,-9.81", "-output_every", 0, np_=2, name="lu").history
+    ch = mm("d1_disk", "-gravity", "0,-9.81", "-output_every", 0, "-contact_K_pc_type", "cholesky", "-mass_pc_type", "cholesky", np_=2, name="cholesky").history
+    assert lu["active"].max() >= 3
+    compare(lu, ch, 1e-10)
+
+
+def test_semismooth_vi_equals_active_set_vi(mm):
+    """vinewtonssls converges (it used to stall from its first contact step: it overwrote the
+    operator with its semismooth Jacobian) and, being stopped by -contact_tol rather than exact
+    like the active set, agrees with vinewtonrsls to that tolerance."""
+    rs = mm("d1_disk", "-output_every", 0, name="rsls").history
+    ss = mm("d1_disk", "-output_every", 0, "-contact_snes_type", "vinewtonssls", name="ssls").history
+    compare(rs, ss, 1e-8)
+    tight = mm("d1_disk", "-output_every", 0, "-contact_snes_type", "vinewtonssls", "-contact_tol", 1e-14, name="ssls_tight").history
+    compare(rs, tight, 1e-10)
+    assert ss["vi_its"].sum() > rs["vi_its"].sum()  # it really ran the other solver
