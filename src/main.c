@@ -35,6 +35,7 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts)
 
   PetscFunctionBeginUser;
   PetscCall(MMOptionsProcess(comm, &ctx->opt));
+  PetscCall(MMOutputCheckOptions(comm, &ctx->opt));
   PetscCall(MMMeshLoad(comm, &ctx->opt, &ctx->op.dm));
   PetscCall(DMGetDimension(ctx->op.dm, &ctx->op.dim));
   PetscCall(MMOptionsCheckDimension(comm, &ctx->opt, ctx->op.dim));
@@ -48,9 +49,10 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts)
   PetscCall(MMContactSetStepMatrix(ctx, dt));
   ctx->hist.dt = dt;
   PetscCall(MMEnergyInitial(ctx));
+  PetscCall(ReportSetup(ctx, *ts));
+  /* last: the earlier results in the output directory are set aside only once the input is valid */
   PetscCall(MMOutputOpen(ctx));
   PetscCall(TSMonitorSet(*ts, MMOutputMonitor, ctx, NULL));
-  PetscCall(ReportSetup(ctx, *ts));
   PetscFunctionReturn(0);
 }
 
