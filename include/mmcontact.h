@@ -198,6 +198,8 @@ typedef struct {
   PetscInt      n_written;             /* snapshots on disk and flushed: the ones the XDMF index lists */
   PetscReal    *times;                 /* time of each snapshot */
   PetscInt      nv, nc;                /* global vertex and cell counts, for the XDMF index */
+  char         *index;                 /* rank 0: the index's grids, written out at every snapshot */
+  size_t        index_len, index_cap;
   PetscLogEvent ev_flush, ev_index;    /* HDF5 flush and XDMF rewrite, in -log_view */
   DM            dm_out;                /* the displacement field without constraints: output of whole fields */
   Vec           disp_cart, vel_cart;   /* Cartesian output fields on dm_out */

@@ -23,6 +23,7 @@
 static const char *const MMOutputFiles[] = {"history.csv", "solution.h5", "solution.xmf"};
 #define MM_PREVIOUS "previous"
 #define MM_XMF_TMP  ".tmp" /* suffix of the XDMF index being written */
+#define MM_N        "\001" /* in the index text kept in memory: the snapshot count, which grows */
 
 /* A file system call that failed on rank 0: what was tried on which file, and errno. */
 typedef struct {
@@ -116,9 +117,9 @@ static PetscErrorCode HDF5End(PetscErrorCode ierr, const char action[], const ch
   SETERRQ(PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not %s %s: %s (%s)", action, name, err ? strerror(err) : "the system gave no reason", specific && specific[0] ? specific : text);
 }
 
-/* One line of text, built whole so that it goes to disk in one write. */
+/* A piece of text built whole: a history row, so that it goes to disk in one write; an index grid. */
 typedef struct {
-  char   s[4096];
+  char   s[8192];
   size_t n;
 } MMLine;
 
@@ -135,7 +136,7 @@ static PetscErrorCode LineAdd(MMLine *l, const char fmt[], ...)
   PetscCall(ierr);
   PetscCall(PetscStrlen(l->s + l->n, &len));
   l->n += len;
-  PetscCheck(l->n + 1 < sizeof(l->s), PETSC_COMM_SELF, PETSC_ERR_PLIB, "A line of history.csv does not fit in %d characters", (int)sizeof(l->s) - 2);
+  PetscCheck(l->n + 1 < sizeof(l->s), PETSC_COMM_SELF, PETSC_ERR_PLIB, "Output text longer than %d characters", (int)sizeof(l->s) - 2);
   PetscFunctionReturn(0);
 }
 
@@ -154,7 +155,7 @@ static PetscErrorCode CSVHeader(MMCtx *ctx)
 {
   const char *axes = "xyz";
   PetscInt    dim  = ctx->op.dim;
-  MMLine      l    = {.n = 0};
+  MMLine      l    = {.n = 0, .s = ""};
 
   PetscFunctionBeginUser;
   PetscCall(LineAdd(&l, "step,time,dt,kinetic,elastic,total,work_ext,work_contact,work_friction,balance_residual,active,slipping,force_normal,force_tangential,max_penetration,coulomb_residual,vi_its,friction_its,cfl"));
@@ -172,7 +173,7 @@ static PetscErrorCode CSVRow(MMCtx *ctx)
 {
   const MMHistory *h   = &ctx->hist;
   PetscInt         dim = ctx->op.dim;
-  MMLine           l   = {.n = 0};
+  MMLine           l   = {.n = 0, .s = ""};
 
   PetscFunctionBeginUser;
   PetscCall(LineAdd(&l, "%" PetscInt_FMT ",%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.6e,%" PetscInt_FMT ",%" PetscInt_FMT ",%.16e,%.16e,%.6e,%.6e,%" PetscInt_FMT ",%" PetscInt_FMT ",%.6e", h->step, (double)h->time, (double)h->dt, (double)h->kinetic, (double)h->elastic, (double)h->total, (double)h->work_ext, (double)h->work_contact, (double)h->work_friction, (double)h->balance_residual, h->active, h->slipping, (double)h->force_normal, (double)h->force_tangential, (double)h->max_penetration, (double)h->coulomb_residual, h->vi_its, h->friction_its, (double)h->cfl));
@@ -185,41 +186,65 @@ static PetscErrorCode CSVRow(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
-/* rank 0: the XDMF text of the snapshots on disk. Errors are collected by the stream (ferror). */
-static void XDMFPrint(FILE *f, const MMOutput *o, PetscInt dim)
+/* rank 0: the newest snapshot's grid, added to the index text kept in memory. The snapshot count n
+ * appears in it as MM_N, filled in when the index is written: the only part that changes. */
+static PetscErrorCode IndexAddGrid(MMOutput *o, PetscInt dim)
 {
-  const char    *h5base = "solution.h5";
-  const char    *topo   = dim == 2 ? "Triangle" : "Tetrahedron";
+  const char    *h5base     = "solution.h5";
   const char    *fields[]   = {"displacement", "velocity", "contact_pressure", "gap", "tangential_traction", "slip_velocity"};
   const char    *datasets[] = {"displacement_displacement", "velocity_displacement", "contact_pressure_nodal", "gap_nodal", "tangential_traction_displacement", "slip_velocity_displacement"};
   const PetscInt ncomp[]    = {dim, dim, 1, 1, dim, dim};
-  const PetscInt nv = o->nv, nc = o->nc, n = o->n_written;
+  const PetscInt nv = o->nv, nc = o->nc, k = o->n_written - 1;
+  MMLine         l = {.n = 0, .s = ""};
 
-  fprintf(f, "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf xmlns:xi=\"http://www.w3.org/2001/XInclude\" Version=\"2.99\">\n<Domain>\n");
-  fprintf(f, "<Grid Name=\"mmcontact\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
-  for (PetscInt k = 0; k < n; ++k) {
-    fprintf(f, "<Grid Name=\"step %" PetscInt_FMT "\" GridType=\"Uniform\">\n<Time Value=\"%.16e\"/>\n", k, (double)o->times[k]);
-    fprintf(f, "<Topology TopologyType=\"%s\" NumberOfElements=\"%" PetscInt_FMT "\">\n<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Int\" Format=\"HDF\">%s:/viz/topology/cells</DataItem>\n</Topology>\n", topo, nc, nc, dim + 1, h5base);
-    fprintf(f, "<Geometry GeometryType=\"%s\">\n<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n</Geometry>\n", dim == 2 ? "XY" : "XYZ", nv, dim, h5base);
-    for (size_t i = 0; i < sizeof(fields) / sizeof(fields[0]); ++i) {
-      fprintf(f, "<Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", fields[i], ncomp[i] > 1 ? "Vector" : "Scalar");
-      if (ncomp[i] > 1) {
-        fprintf(f, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT " %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", nv, ncomp[i]);
-        fprintf(f, "<DataItem Dimensions=\"3 3\" Format=\"XML\">%" PetscInt_FMT " 0 0 1 1 1 1 %" PetscInt_FMT " %" PetscInt_FMT "</DataItem>\n", k, nv, ncomp[i]);
-        fprintf(f, "<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n</DataItem>\n</Attribute>\n", n, nv, ncomp[i], h5base, datasets[i]);
-      } else {
-        fprintf(f, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", nv);
-        fprintf(f, "<DataItem Dimensions=\"3 2\" Format=\"XML\">%" PetscInt_FMT " 0 1 1 1 %" PetscInt_FMT "</DataItem>\n", k, nv);
-        fprintf(f, "<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n</DataItem>\n</Attribute>\n", n, nv, h5base, datasets[i]);
-      }
+  PetscFunctionBeginUser;
+  PetscCall(LineAdd(&l, "<Grid Name=\"step %" PetscInt_FMT "\" GridType=\"Uniform\">\n<Time Value=\"%.16e\"/>\n", k, (double)o->times[k]));
+  PetscCall(LineAdd(&l, "<Topology TopologyType=\"%s\" NumberOfElements=\"%" PetscInt_FMT "\">\n<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Int\" Format=\"HDF\">%s:/viz/topology/cells</DataItem>\n</Topology>\n", dim == 2 ? "Triangle" : "Tetrahedron", nc, nc, dim + 1, h5base));
+  PetscCall(LineAdd(&l, "<Geometry GeometryType=\"%s\">\n<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n</Geometry>\n", dim == 2 ? "XY" : "XYZ", nv, dim, h5base));
+  for (size_t i = 0; i < sizeof(fields) / sizeof(fields[0]); ++i) {
+    PetscCall(LineAdd(&l, "<Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", fields[i], ncomp[i] > 1 ? "Vector" : "Scalar"));
+    if (ncomp[i] > 1) {
+      PetscCall(LineAdd(&l, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT " %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", nv, ncomp[i]));
+      PetscCall(LineAdd(&l, "<DataItem Dimensions=\"3 3\" Format=\"XML\">%" PetscInt_FMT " 0 0 1 1 1 1 %" PetscInt_FMT " %" PetscInt_FMT "</DataItem>\n", k, nv, ncomp[i]));
+      PetscCall(LineAdd(&l, "<DataItem Dimensions=\"" MM_N " %" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n</DataItem>\n</Attribute>\n", nv, ncomp[i], h5base, datasets[i]));
+    } else {
+      PetscCall(LineAdd(&l, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", nv));
+      PetscCall(LineAdd(&l, "<DataItem Dimensions=\"3 2\" Format=\"XML\">%" PetscInt_FMT " 0 1 1 1 %" PetscInt_FMT "</DataItem>\n", k, nv));
+      PetscCall(LineAdd(&l, "<DataItem Dimensions=\"" MM_N " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n</DataItem>\n</Attribute>\n", nv, h5base, datasets[i]));
     }
-    fprintf(f, "</Grid>\n");
   }
-  fprintf(f, "</Grid>\n</Domain>\n</Xdmf>\n");
+  PetscCall(LineAdd(&l, "</Grid>\n"));
+  if (o->index_len + l.n + 1 > o->index_cap) {
+    o->index_cap = 2 * (o->index_len + l.n + 1);
+    PetscCall(PetscRealloc(o->index_cap, &o->index));
+  }
+  PetscCall(PetscMemcpy(o->index + o->index_len, l.s, l.n));
+  o->index_len += l.n;
+  PetscFunctionReturn(0);
 }
 
-/* The XDMF index of the snapshots flushed so far, on rank 0, written whole to solution.xmf.tmp and
- * renamed over solution.xmf. Not fsync'd: this guards against the process dying, not the machine. */
+/* rank 0: the index text with the snapshot count filled in. Errors are collected by the stream (ferror). */
+static void IndexPrint(FILE *f, const MMOutput *o)
+{
+  const char *p = o->index, *end = o->index + o->index_len;
+  char        n[32];
+
+  (void)snprintf(n, sizeof(n), "%" PetscInt_FMT, o->n_written);
+  fputs("<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf xmlns:xi=\"http://www.w3.org/2001/XInclude\" Version=\"2.99\">\n<Domain>\n", f);
+  fputs("<Grid Name=\"mmcontact\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", f);
+  while (p < end) {
+    const char *m = memchr(p, MM_N[0], (size_t)(end - p));
+    size_t      len = (size_t)((m ? m : end) - p);
+
+    (void)fwrite(p, 1, len, f);
+    if (m) fputs(n, f);
+    p += len + (m ? 1 : 0);
+  }
+  fputs("</Grid>\n</Domain>\n</Xdmf>\n", f);
+}
+
+/* The XDMF index gains the snapshot just flushed and is rewritten, on rank 0: whole to solution.xmf.tmp,
+ * then renamed over solution.xmf. Not fsync'd: this guards against the process dying, not the machine. */
 static PetscErrorCode WriteIndex(MMCtx *ctx)
 {
   MMOutput    *o  = &ctx->out;
@@ -232,11 +257,12 @@ static PetscErrorCode WriteIndex(MMCtx *ctx)
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s%s", o->xmf_name, MM_XMF_TMP));
   if (rank == 0) {
-    FILE *f = fopen(tmp, "w");
+    FILE *f;
 
-    if (!f) PetscCall(Failed(&st, "create %s", tmp));
+    PetscCall(IndexAddGrid(o, ctx->op.dim));
+    if (!(f = fopen(tmp, "w"))) PetscCall(Failed(&st, "create %s", tmp));
     else {
-      XDMFPrint(f, o, ctx->op.dim);
+      IndexPrint(f, o);
       if (ferror(f) || fflush(f)) {
         PetscCall(Failed(&st, "write %s", tmp));
         (void)fclose(f);
@@ -567,5 +593,6 @@ PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wa
   PetscCall(DMDestroy(&o->dm_scalar));
   PetscCall(DMDestroy(&o->dm_out));
   PetscCall(PetscFree(o->times));
+  PetscCall(PetscFree(o->index));
   PetscFunctionReturn(0);
 }
