@@ -212,17 +212,22 @@ typedef struct {
   PetscReal energy_scale;                     /* the largest |E| of the run so far */
 } MMHistory;
 
-/* Output files. */
+/* Output files. Rank 0 alone writes history.csv and solution.xmf; solution.h5 is written by all. */
 typedef struct {
-  FILE       *csv;
-  char        h5_name[PETSC_MAX_PATH_LEN];
-  PetscInt    n_written;
-  PetscReal  *times;                 /* time of each snapshot */
-  DM          dm_out;                /* the displacement field without constraints: output of whole fields */
-  Vec         disp_cart, vel_cart;  /* Cartesian output fields on dm_out */
-  DM          dm_scalar;             /* one scalar per vertex: pressure, gap */
-  Vec         pressure, gap;
-  Vec         traction_t, slip;      /* tangential traction and slip velocity on the contact boundary (dm_out) */
+  int           csv_fd;                /* history.csv, on rank 0 (-1 elsewhere and once closed) */
+  char          csv_name[PETSC_MAX_PATH_LEN], h5_name[PETSC_MAX_PATH_LEN], xmf_name[PETSC_MAX_PATH_LEN];
+  PetscViewer   h5;                    /* solution.h5, open from MMOutputOpen to MMOutputClose */
+  PetscInt      n_written;             /* snapshots on disk and flushed: the ones the XDMF index lists */
+  PetscReal    *times;                 /* time of each snapshot */
+  PetscInt      nv, nc;                /* global vertex and cell counts, for the XDMF index */
+  char         *index;                 /* rank 0: the index's grids, written out at every snapshot */
+  size_t        index_len, index_cap;
+  PetscLogEvent ev_flush, ev_index;    /* HDF5 flush and XDMF rewrite, in -log_view */
+  DM            dm_out;                /* the displacement field without constraints: output of whole fields */
+  Vec           disp_cart, vel_cart;   /* Cartesian output fields on dm_out */
+  DM            dm_scalar;             /* one scalar per vertex: pressure, gap */
+  Vec           pressure, gap;
+  Vec           traction_t, slip;      /* tangential traction and slip velocity on the contact boundary (dm_out) */
 } MMOutput;
 
 typedef struct {

@@ -1,5 +1,6 @@
 #pragma once
 #include "mmcontact.h"
+PETSC_EXTERN PetscErrorCode MMOutputCheckOptions(MPI_Comm, const MMOptions *);
 PETSC_EXTERN PetscErrorCode MMOutputOpen(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMOutputMonitor(TS, PetscInt, PetscReal, Vec, void *);
 PETSC_EXTERN PetscErrorCode MMOutputClose(MMCtx *, PetscLogDouble, PetscLogDouble);

@@ -37,6 +37,7 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscCall(MMOptionsProcess(comm, &ctx->opt));
   PetscCall(MMOptionsHelpWithoutMesh(comm, help_only));
   if (*help_only) PetscFunctionReturn(0);
+  PetscCall(MMOutputCheckOptions(comm, &ctx->opt));
   PetscCall(MMMeshLoad(comm, &ctx->opt, &ctx->op.dm));
   PetscCall(DMGetDimension(ctx->op.dm, &ctx->op.dim));
   PetscCall(MMFESetUp(ctx));
@@ -49,11 +50,12 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscCall(MMContactSetStepMatrix(ctx, dt));
   ctx->hist.dt = dt;
   PetscCall(MMEnergyInitial(ctx));
-  /* every object has read its options, and no output has been touched yet */
+  PetscCall(ReportSetup(ctx, *ts));
+  /* every object has read its options: refuse the unread ones before any output is touched */
   PetscCall(MMOptionsCheckUnused(comm, &ctx->opt, ctx->op.dm));
+  /* last: the earlier results in the output directory are set aside only once the input is valid */
   PetscCall(MMOutputOpen(ctx));
   PetscCall(TSMonitorSet(*ts, MMOutputMonitor, ctx, NULL));
-  PetscCall(ReportSetup(ctx, *ts));
   PetscFunctionReturn(0);
 }
 

@@ -152,7 +152,6 @@ static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
   PetscCheck(opt->contact_work_tol > 0, comm, PETSC_ERR_USER_INPUT, "-contact_work_tol %g must be > 0: it is a fraction of the run's energy scale", (double)opt->contact_work_tol);
   PetscCheck(opt->initial_penetration_tol >= 0, comm, PETSC_ERR_USER_INPUT, "-initial_penetration_tol %g must be >= 0: it is a fraction of h_c'", (double)opt->initial_penetration_tol);
   PetscCheck(opt->output_every >= 0, comm, PETSC_ERR_USER_INPUT, "-output_every %" PetscInt_FMT " must be >= 0", opt->output_every);
-  PetscCheck(opt->output_dir[0], comm, PETSC_ERR_USER_INPUT, "-output_dir is empty: give a directory name (\".\" for the current directory)");
   PetscFunctionReturn(0);
 }
 

@@ -1,105 +1,277 @@
 /* Output: the per-step history (CSV), HDF5 fields for ParaView with their XDMF index, and the closing summary.
  *
- * The HDF5 file is opened and closed around every write and the XDMF index rewritten after it, so
- * whatever stops the run, everything written so far stays readable. */
+ * Whatever stops the run, even SIGKILL, what is on disk stays readable and consistent:
+ * - history.csv gets each row in one write(), so the rows on disk are whole rows;
+ * - solution.h5 stays open for the whole run and is flushed after each snapshot;
+ * - solution.xmf lists only the snapshots flushed so far. It is written beside the old one and renamed
+ *   over it, so a reader, or a kill in between, sees the old index or the new one, never part of one.
+ * Any failed write, flush or close stops the run with the file's name and the system's reason.
+ * Opening the output (at the end of set-up) first moves the last run's files into previous/. */
+#include <errno.h>
+#include <fcntl.h>
+#include <stdarg.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <petscsf.h>
 #include <petscviewerhdf5.h>
-#include <sys/resource.h>
 #include "output.h"
 #include "contact.h"
 #include "fem.h"
+
+static const char *const MMOutputFiles[] = {"history.csv", "solution.h5", "solution.xmf"};
+#define MM_PREVIOUS "previous"
+#define MM_XMF_TMP  ".tmp" /* suffix of the XDMF index being written */
+#define MM_N        "\001" /* in the index text kept in memory: the snapshot count, which grows */
+
+/* A file system call that failed on rank 0: what was tried on which file, and errno. */
+typedef struct {
+  int  err;
+  char what[2 * PETSC_MAX_PATH_LEN + 64];
+} MMFileStatus;
+
+/* Records the failure of the call just made; errno is read before anything can change it. */
+static PetscErrorCode Failed(MMFileStatus *st, const char fmt[], ...)
+{
+  int            err = errno ? errno : EIO;
+  size_t         len;
+  va_list        ap;
+  PetscErrorCode ierr;
+
+  PetscFunctionBeginUser;
+  va_start(ap, fmt);
+  ierr = PetscVSNPrintf(st->what, sizeof(st->what), fmt, &len, ap);
+  va_end(ap);
+  PetscCall(ierr);
+  st->err = err;
+  PetscFunctionReturn(0);
+}
+
+/* Rank 0 did the file system work: every rank learns how it went and stops with the same message,
+ * instead of waiting in the next collective for a rank 0 that has stopped. */
+static PetscErrorCode CheckRank0(MMFileStatus *st)
+{
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Bcast(&st->err, 1, MPI_INT, 0, PETSC_COMM_WORLD));
+  if (st->err) PetscCallMPI(MPI_Bcast(st->what, sizeof(st->what), MPI_CHAR, 0, PETSC_COMM_WORLD));
+  PetscCheck(!st->err, PETSC_COMM_WORLD, PETSC_ERR_FILE_WRITE, "Could not %s: %s", st->what, strerror(st->err));
+  PetscFunctionReturn(0);
+}
+
+/* write(2) of the whole buffer: one call unless the system takes only part (a full disk, a signal).
+ * 0, or -1 with errno set. */
+static int WriteAll(int fd, const char *buf, size_t len)
+{
+  while (len) {
+    ssize_t n = write(fd, buf, len);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return -1;
+    buf += n;
+    len -= (size_t)n;
+  }
+  return 0;
+}
+
+/* The system's reason for a failed HDF5 write. Through MPI-IO errno seldom carries it (the write
+ * that failed may even have been another rank's), so when it does not, ask the file system: extend
+ * the file by a block, as HDF5 was doing, note why that fails, and put the size back. 0: no reason. */
+static int SystemReason(const char name[])
+{
+  static const char zeros[4096];
+  struct stat       s;
+  int               fd, err = 0;
+
+  if ((fd = open(name, O_WRONLY | O_CLOEXEC)) < 0) return errno;
+  if (fstat(fd, &s)) err = errno;
+  else {
+    if (lseek(fd, 0, SEEK_END) < 0 || WriteAll(fd, zeros, sizeof(zeros))) err = errno;
+    if (ftruncate(fd, s.st_size) && !err) err = errno;
+  }
+  (void)close(fd);
+  return err;
+}
+
+/* PETSc reports a failed HDF5 call without the file's name and H5Fflush/H5Fclose give only a status:
+ * run them with PETSc's error printing off, then stop with the file and the reason. Rank-local: the
+ * I/O is independent, only the rank whose write failed knows, and its exit ends the job. */
+static PetscErrorCode HDF5Begin(void)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  errno = 0;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode HDF5End(PetscErrorCode ierr, const char action[], const char name[])
+{
+  int         err = errno; /* first: the reason of the failed write, if one failed here */
+  const char *text;
+  char       *specific;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscPopErrorHandler());
+  if (!ierr) PetscFunctionReturn(0);
+  if (!err) err = SystemReason(name);
+  PetscCall(PetscErrorMessage(ierr, &text, &specific));
+  SETERRQ(PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not %s %s: %s (%s)", action, name, err ? strerror(err) : "the system gave no reason", specific && specific[0] ? specific : text);
+}
+
+/* A piece of text built whole: a history row, so that it goes to disk in one write; an index grid. */
+typedef struct {
+  char   s[8192];
+  size_t n;
+} MMLine;
+
+static PetscErrorCode LineAdd(MMLine *l, const char fmt[], ...)
+{
+  size_t         len;
+  va_list        ap;
+  PetscErrorCode ierr;
+
+  PetscFunctionBeginUser;
+  va_start(ap, fmt);
+  ierr = PetscVSNPrintf(l->s + l->n, sizeof(l->s) - l->n, fmt, &len, ap);
+  va_end(ap);
+  PetscCall(ierr);
+  PetscCall(PetscStrlen(l->s + l->n, &len));
+  l->n += len;
+  PetscCheck(l->n + 1 < sizeof(l->s), PETSC_COMM_SELF, PETSC_ERR_PLIB, "Output text longer than %d characters", (int)sizeof(l->s) - 2);
+  PetscFunctionReturn(0);
+}
+
+/* rank 0 writes the line to history.csv; all ranks stop if that failed */
+static PetscErrorCode CSVWrite(MMOutput *o, const MMLine *l)
+{
+  MMFileStatus st = {0};
+
+  PetscFunctionBeginUser;
+  if (o->csv_fd >= 0 && WriteAll(o->csv_fd, l->s, l->n)) PetscCall(Failed(&st, "write %s", o->csv_name));
+  PetscCall(CheckRank0(&st));
+  PetscFunctionReturn(0);
+}
 
 static PetscErrorCode CSVHeader(MMCtx *ctx)
 {
   const char *axes = "xyz";
   PetscInt    dim  = ctx->op.dim;
+  MMLine      l    = {.n = 0, .s = ""};
 
   PetscFunctionBeginUser;
-  PetscCall(PetscFPrintf(PETSC_COMM_WORLD, ctx->out.csv, "step,time,dt,kinetic,elastic,total,work_ext,work_contact,work_friction,balance_residual,active,slipping,force_normal,force_tangential,max_penetration,coulomb_residual,vi_its,friction_its,cfl"));
-  for (PetscInt d = 0; d < dim; ++d) PetscCall(PetscFPrintf(PETSC_COMM_WORLD, ctx->out.csv, ",ucm_%c", axes[d]));
-  for (PetscInt d = 0; d < dim; ++d) PetscCall(PetscFPrintf(PETSC_COMM_WORLD, ctx->out.csv, ",vcm_%c", axes[d]));
-  if (dim == 2) PetscCall(PetscFPrintf(PETSC_COMM_WORLD, ctx->out.csv, ",L_z"));
-  else PetscCall(PetscFPrintf(PETSC_COMM_WORLD, ctx->out.csv, ",L_x,L_y,L_z"));
-  PetscCall(PetscFPrintf(PETSC_COMM_WORLD, ctx->out.csv, ",switched,contraction\n"));
+  PetscCall(LineAdd(&l, "step,time,dt,kinetic,elastic,total,work_ext,work_contact,work_friction,balance_residual,active,slipping,force_normal,force_tangential,max_penetration,coulomb_residual,vi_its,friction_its,cfl"));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",ucm_%c", axes[d]));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",vcm_%c", axes[d]));
+  if (dim == 2) PetscCall(LineAdd(&l, ",L_z"));
+  else PetscCall(LineAdd(&l, ",L_x,L_y,L_z"));
+  PetscCall(LineAdd(&l, ",switched,contraction\n"));
+  PetscCall(CSVWrite(&ctx->out, &l));
   PetscFunctionReturn(0);
 }
 
+/* A row on disk is a row the user keeps, whatever happens next: written whole, not buffered. */
 static PetscErrorCode CSVRow(MMCtx *ctx)
 {
   const MMHistory *h   = &ctx->hist;
   PetscInt         dim = ctx->op.dim;
-  FILE            *f   = ctx->out.csv;
+  MMLine           l   = {.n = 0, .s = ""};
 
   PetscFunctionBeginUser;
-  PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "%" PetscInt_FMT ",%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.6e,%" PetscInt_FMT ",%" PetscInt_FMT ",%.16e,%.16e,%.6e,%.6e,%" PetscInt_FMT ",%" PetscInt_FMT ",%.6e", h->step, (double)h->time, (double)h->dt, (double)h->kinetic, (double)h->elastic, (double)h->total, (double)h->work_ext, (double)h->work_contact, (double)h->work_friction, (double)h->balance_residual, h->active, h->slipping, (double)h->force_normal, (double)h->force_tangential, (double)h->max_penetration, (double)h->coulomb_residual, h->vi_its, h->friction_its, (double)h->cfl));
-  for (PetscInt d = 0; d < dim; ++d) PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, ",%.16e", (double)h->ucm[d]));
-  for (PetscInt d = 0; d < dim; ++d) PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, ",%.16e", (double)h->vcm[d]));
-  if (dim == 2) PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, ",%.16e", (double)h->L[2]));
-  else PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, ",%.16e,%.16e,%.16e", (double)h->L[0], (double)h->L[1], (double)h->L[2]));
-  PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, ",%" PetscInt_FMT ",%.6e\n", h->switched, (double)h->contraction));
-  /* a row on disk is a row the user keeps, whatever happens next */
-  if (f) PetscCheck(fflush(f) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not write the history file");
+  PetscCall(LineAdd(&l, "%" PetscInt_FMT ",%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.6e,%" PetscInt_FMT ",%" PetscInt_FMT ",%.16e,%.16e,%.6e,%.6e,%" PetscInt_FMT ",%" PetscInt_FMT ",%.6e", h->step, (double)h->time, (double)h->dt, (double)h->kinetic, (double)h->elastic, (double)h->total, (double)h->work_ext, (double)h->work_contact, (double)h->work_friction, (double)h->balance_residual, h->active, h->slipping, (double)h->force_normal, (double)h->force_tangential, (double)h->max_penetration, (double)h->coulomb_residual, h->vi_its, h->friction_its, (double)h->cfl));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",%.16e", (double)h->ucm[d]));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",%.16e", (double)h->vcm[d]));
+  if (dim == 2) PetscCall(LineAdd(&l, ",%.16e", (double)h->L[2]));
+  else PetscCall(LineAdd(&l, ",%.16e,%.16e,%.16e", (double)h->L[0], (double)h->L[1], (double)h->L[2]));
+  PetscCall(LineAdd(&l, ",%" PetscInt_FMT ",%.6e\n", h->switched, (double)h->contraction));
+  PetscCall(CSVWrite(&ctx->out, &l));
   PetscFunctionReturn(0);
 }
 
-/* The XDMF index of the HDF5 file, rewritten after every write so ParaView always opens all of it. */
-static PetscErrorCode WriteXDMF(MMCtx *ctx)
+/* rank 0: the newest snapshot's grid, added to the index text kept in memory. The snapshot count n
+ * appears in it as MM_N, filled in when the index is written: the only part that changes. */
+static PetscErrorCode IndexAddGrid(MMOutput *o, PetscInt dim)
 {
-  MMOutput   *o   = &ctx->out;
-  DM          dm  = ctx->op.dm;
-  PetscInt    dim = ctx->op.dim, nv, nc, vStart, vEnd, cStart, cEnd;
-  char        xmf[PETSC_MAX_PATH_LEN], h5base[PETSC_MAX_PATH_LEN];
-  FILE       *f;
-  const char *topo = dim == 2 ? "Triangle" : "Tetrahedron";
-  const char *fields[]  = {"displacement", "velocity", "contact_pressure", "gap", "tangential_traction", "slip_velocity"};
-  const char *datasets[] = {"displacement_displacement", "velocity_displacement", "contact_pressure_nodal", "gap_nodal", "tangential_traction_displacement", "slip_velocity_displacement"};
-  const PetscInt ncomp[] = {dim, dim, 1, 1, dim, dim};
+  const char    *h5base     = "solution.h5";
+  const char    *fields[]   = {"displacement", "velocity", "contact_pressure", "gap", "tangential_traction", "slip_velocity"};
+  const char    *datasets[] = {"displacement_displacement", "velocity_displacement", "contact_pressure_nodal", "gap_nodal", "tangential_traction_displacement", "slip_velocity_displacement"};
+  const PetscInt ncomp[]    = {dim, dim, 1, 1, dim, dim};
+  const PetscInt nv = o->nv, nc = o->nc, k = o->n_written - 1;
+  MMLine         l = {.n = 0, .s = ""};
 
   PetscFunctionBeginUser;
-  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
-  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
-  {
-    PetscInt loc[2], glob[2];
-    PetscSF  sf;
-    PetscInt nleaves;
-    const PetscInt *leaves;
-    PetscCall(DMGetPointSF(dm, &sf));
-    PetscCall(PetscSFGetGraph(sf, NULL, &nleaves, &leaves, NULL));
-    loc[0] = vEnd - vStart;
-    for (PetscInt l = 0; l < nleaves; ++l) {
-      const PetscInt p = leaves ? leaves[l] : l;
-      if (p >= vStart && p < vEnd) --loc[0];
+  PetscCall(LineAdd(&l, "<Grid Name=\"step %" PetscInt_FMT "\" GridType=\"Uniform\">\n<Time Value=\"%.16e\"/>\n", k, (double)o->times[k]));
+  PetscCall(LineAdd(&l, "<Topology TopologyType=\"%s\" NumberOfElements=\"%" PetscInt_FMT "\">\n<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Int\" Format=\"HDF\">%s:/viz/topology/cells</DataItem>\n</Topology>\n", dim == 2 ? "Triangle" : "Tetrahedron", nc, nc, dim + 1, h5base));
+  PetscCall(LineAdd(&l, "<Geometry GeometryType=\"%s\">\n<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n</Geometry>\n", dim == 2 ? "XY" : "XYZ", nv, dim, h5base));
+  for (size_t i = 0; i < sizeof(fields) / sizeof(fields[0]); ++i) {
+    PetscCall(LineAdd(&l, "<Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", fields[i], ncomp[i] > 1 ? "Vector" : "Scalar"));
+    if (ncomp[i] > 1) {
+      PetscCall(LineAdd(&l, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT " %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", nv, ncomp[i]));
+      PetscCall(LineAdd(&l, "<DataItem Dimensions=\"3 3\" Format=\"XML\">%" PetscInt_FMT " 0 0 1 1 1 1 %" PetscInt_FMT " %" PetscInt_FMT "</DataItem>\n", k, nv, ncomp[i]));
+      PetscCall(LineAdd(&l, "<DataItem Dimensions=\"" MM_N " %" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n</DataItem>\n</Attribute>\n", nv, ncomp[i], h5base, datasets[i]));
+    } else {
+      PetscCall(LineAdd(&l, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", nv));
+      PetscCall(LineAdd(&l, "<DataItem Dimensions=\"3 2\" Format=\"XML\">%" PetscInt_FMT " 0 1 1 1 %" PetscInt_FMT "</DataItem>\n", k, nv));
+      PetscCall(LineAdd(&l, "<DataItem Dimensions=\"" MM_N " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n</DataItem>\n</Attribute>\n", nv, h5base, datasets[i]));
     }
-    loc[1] = cEnd - cStart;
-    PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)dm)));
-    nv = glob[0];
-    nc = glob[1];
   }
-  PetscCall(PetscSNPrintf(xmf, sizeof(xmf), "%s/solution.xmf", ctx->opt.output_dir));
-  PetscCall(PetscStrcpy(h5base, "solution.h5"));
-  PetscCall(PetscFOpen(PETSC_COMM_WORLD, xmf, "w", &f));
-  PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf xmlns:xi=\"http://www.w3.org/2001/XInclude\" Version=\"2.99\">\n<Domain>\n"));
-  PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<Grid Name=\"mmcontact\" GridType=\"Collection\" CollectionType=\"Temporal\">\n"));
-  for (PetscInt k = 0; k < o->n_written; ++k) {
-    PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<Grid Name=\"step %" PetscInt_FMT "\" GridType=\"Uniform\">\n<Time Value=\"%.16e\"/>\n", k, (double)o->times[k]));
-    PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<Topology TopologyType=\"%s\" NumberOfElements=\"%" PetscInt_FMT "\">\n<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Int\" Format=\"HDF\">%s:/viz/topology/cells</DataItem>\n</Topology>\n", topo, nc, nc, dim + 1, h5base));
-    PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<Geometry GeometryType=\"%s\">\n<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n</Geometry>\n", dim == 2 ? "XY" : "XYZ", nv, dim, h5base));
-    for (size_t i = 0; i < sizeof(fields) / sizeof(fields[0]); ++i) {
-      PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", fields[i], ncomp[i] > 1 ? "Vector" : "Scalar"));
-      if (ncomp[i] > 1) {
-        PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT " %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", nv, ncomp[i]));
-        PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<DataItem Dimensions=\"3 3\" Format=\"XML\">%" PetscInt_FMT " 0 0 1 1 1 1 %" PetscInt_FMT " %" PetscInt_FMT "</DataItem>\n", k, nv, ncomp[i]));
-        PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n</DataItem>\n</Attribute>\n", o->n_written, nv, ncomp[i], h5base, datasets[i]));
-      } else {
-        PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", nv));
-        PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<DataItem Dimensions=\"3 2\" Format=\"XML\">%" PetscInt_FMT " 0 1 1 1 %" PetscInt_FMT "</DataItem>\n", k, nv));
-        PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n</DataItem>\n</Attribute>\n", o->n_written, nv, h5base, datasets[i]));
-      }
+  PetscCall(LineAdd(&l, "</Grid>\n"));
+  if (o->index_len + l.n + 1 > o->index_cap) {
+    o->index_cap = 2 * (o->index_len + l.n + 1);
+    PetscCall(PetscRealloc(o->index_cap, &o->index));
+  }
+  PetscCall(PetscMemcpy(o->index + o->index_len, l.s, l.n));
+  o->index_len += l.n;
+  PetscFunctionReturn(0);
+}
+
+/* rank 0: the index text with the snapshot count filled in. Errors are collected by the stream (ferror). */
+static void IndexPrint(FILE *f, const MMOutput *o)
+{
+  const char *p = o->index, *end = o->index + o->index_len;
+  char        n[32];
+
+  (void)snprintf(n, sizeof(n), "%" PetscInt_FMT, o->n_written);
+  fputs("<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf xmlns:xi=\"http://www.w3.org/2001/XInclude\" Version=\"2.99\">\n<Domain>\n", f);
+  fputs("<Grid Name=\"mmcontact\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", f);
+  while (p < end) {
+    const char *m = memchr(p, MM_N[0], (size_t)(end - p));
+    size_t      len = (size_t)((m ? m : end) - p);
+
+    (void)fwrite(p, 1, len, f);
+    if (m) fputs(n, f);
+    p += len + (m ? 1 : 0);
+  }
+  fputs("</Grid>\n</Domain>\n</Xdmf>\n", f);
+}
+
+/* The XDMF index gains the snapshot just flushed and is rewritten, on rank 0: whole to solution.xmf.tmp,
+ * then renamed over solution.xmf. Not fsync'd: this guards against the process dying, not the machine. */
+static PetscErrorCode WriteIndex(MMCtx *ctx)
+{
+  MMOutput    *o  = &ctx->out;
+  MMFileStatus st = {0};
+  char         tmp[PETSC_MAX_PATH_LEN];
+  PetscMPIInt  rank;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(o->ev_index, 0, 0, 0, 0));
+  PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
+  PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s%s", o->xmf_name, MM_XMF_TMP));
+  if (rank == 0) {
+    FILE *f;
+
+    PetscCall(IndexAddGrid(o, ctx->op.dim));
+    if (!(f = fopen(tmp, "w"))) PetscCall(Failed(&st, "create %s", tmp));
+    else {
+      IndexPrint(f, o);
+      if (ferror(f) || fflush(f)) {
+        PetscCall(Failed(&st, "write %s", tmp));
+        (void)fclose(f);
+      } else if (fclose(f)) PetscCall(Failed(&st, "close %s", tmp));
+      else if (rename(tmp, o->xmf_name)) PetscCall(Failed(&st, "rename %s to %s", tmp, o->xmf_name));
     }
-    PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "</Grid>\n"));
   }
-  PetscCall(PetscFPrintf(PETSC_COMM_WORLD, f, "</Grid>\n</Domain>\n</Xdmf>\n"));
-  PetscCall(PetscFClose(PETSC_COMM_WORLD, f));
+  PetscCall(CheckRank0(&st));
+  PetscCall(PetscLogEventEnd(o->ev_index, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -123,43 +295,58 @@ static PetscErrorCode WholeField(MMCtx *ctx, Vec w, PetscBool with_bc, Vec whole
   PetscFunctionReturn(0);
 }
 
-/* Writes the current fields as output number n_written, then closes the file again. */
+/* Everything written to solution.h5 so far goes to disk: after this the index may list it. */
+static PetscErrorCode FlushFields(MMOutput *o)
+{
+  hid_t  fid;
+  herr_t status;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(o->ev_flush, 0, 0, 0, 0));
+  PetscCall(PetscViewerHDF5GetFileId(o->h5, &fid));
+  errno  = 0;
+  status = H5Fflush(fid, H5F_SCOPE_GLOBAL);
+  if (status < 0) {
+    int err = errno ? errno : SystemReason(o->h5_name);
+    SETERRQ(PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not flush %s: %s (H5Fflush failed)", o->h5_name, err ? strerror(err) : "the system gave no reason");
+  }
+  PetscCall(PetscLogEventEnd(o->ev_flush, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* Writes the current fields as snapshot n_written, flushes them, and only then indexes them. */
 static PetscErrorCode WriteFields(MMCtx *ctx)
 {
-  MMOutput   *o = &ctx->out;
-  PetscViewer v;
-  PetscReal   t = ctx->hist.time;
+  MMOutput      *o      = &ctx->out;
+  PetscReal      t      = ctx->hist.time;
+  Vec            vecs[] = {o->disp_cart, o->vel_cart, o->pressure, o->gap, o->traction_t, o->slip};
+  PetscErrorCode ierr   = 0;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(ctx->log.output));
   PetscCall(WholeField(ctx, ctx->state.u, PETSC_TRUE, o->disp_cart));
   PetscCall(WholeField(ctx, ctx->state.v, PETSC_FALSE, o->vel_cart));
   PetscCall(MMContactBoundaryFields(ctx, o));
-  PetscCall(PetscViewerHDF5Open(PETSC_COMM_WORLD, o->h5_name, FILE_MODE_APPEND, &v));
-  PetscCall(PetscViewerPushFormat(v, PETSC_VIEWER_HDF5_XDMF));
+  /* VecView also writes this time into /time, ahead of the fields: the index, not /time, says what is complete */
   PetscCall(DMSetOutputSequenceNumber(o->dm_out, o->n_written, t));
   PetscCall(DMSetOutputSequenceNumber(o->dm_scalar, o->n_written, t));
-  PetscCall(VecView(o->disp_cart, v));
-  PetscCall(VecView(o->vel_cart, v));
-  PetscCall(VecView(o->pressure, v));
-  PetscCall(VecView(o->gap, v));
-  PetscCall(VecView(o->traction_t, v));
-  PetscCall(VecView(o->slip, v));
-  PetscCall(PetscViewerPopFormat(v));
-  PetscCall(PetscViewerDestroy(&v));
+  PetscCall(HDF5Begin());
+  for (size_t i = 0; i < sizeof(vecs) / sizeof(vecs[0]) && !ierr; ++i) ierr = VecView(vecs[i], o->h5);
+  PetscCall(HDF5End(ierr, "write", o->h5_name));
+  PetscCall(FlushFields(o));
   PetscCall(PetscRealloc(sizeof(PetscReal) * (o->n_written + 1), &o->times));
   o->times[o->n_written++] = t;
-  PetscCall(WriteXDMF(ctx));
+  PetscCall(WriteIndex(ctx));
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(0);
 }
 
-/* mkdir -p: each missing component of the path, on rank 0 */
-static PetscErrorCode MakeDirectories(const char path[])
+/* rank 0, mkdir -p: each missing component of the path; then the path must be a directory */
+static PetscErrorCode MakeDirectories(const char path[], MMFileStatus *st)
 {
-  char      dir[PETSC_MAX_PATH_LEN];
-  PetscBool exists;
-  size_t    len;
+  char        dir[PETSC_MAX_PATH_LEN];
+  size_t      len;
+  struct stat s;
 
   PetscFunctionBeginUser;
   PetscCall(PetscStrncpy(dir, path, sizeof(dir)));
@@ -167,46 +354,142 @@ static PetscErrorCode MakeDirectories(const char path[])
   for (size_t i = 1; i <= len; ++i) {
     if (dir[i] != '/' && dir[i] != 0) continue;
     dir[i] = 0;
-    PetscCall(PetscTestDirectory(dir, 'w', &exists));
-    if (!exists) PetscCall(PetscMkdir(dir));
+    /* EEXIST may also be a file in the way: stat() below says so */
+    if (mkdir(dir, 0777) && errno != EEXIST) {
+      PetscCall(Failed(st, "create the output directory %s", dir));
+      PetscFunctionReturn(0);
+    }
     if (i < len) dir[i] = '/';
+  }
+  if (stat(path, &s)) PetscCall(Failed(st, "use the output directory %s", path));
+  else if (!S_ISDIR(s.st_mode)) {
+    errno = ENOTDIR;
+    PetscCall(Failed(st, "use the output directory %s", path));
   }
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMOutputOpen(MMCtx *ctx)
+/* rank 0: the last run's files move to DIR/previous/, replacing the set there, so that they survive
+ * this run whatever happens to it. Symbolic links move as links: what they point to is not touched. */
+static PetscErrorCode KeepPrevious(const char dir[], MMFileStatus *st)
 {
-  MMOutput   *o = &ctx->out;
-  char        name[PETSC_MAX_PATH_LEN];
-  PetscViewer v;
-  PetscMPIInt rank;
+  const PetscInt n = sizeof(MMOutputFiles) / sizeof(MMOutputFiles[0]);
+  char           prev[PETSC_MAX_PATH_LEN], from[PETSC_MAX_PATH_LEN], to[PETSC_MAX_PATH_LEN];
+  PetscBool      has[sizeof(MMOutputFiles) / sizeof(MMOutputFiles[0])], any = PETSC_FALSE;
+  struct stat    s;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < n; ++i) {
+    PetscCall(PetscSNPrintf(from, sizeof(from), "%s/%s", dir, MMOutputFiles[i]));
+    has[i] = lstat(from, &s) == 0 ? PETSC_TRUE : PETSC_FALSE;
+    any    = (PetscBool)(any || has[i]);
+  }
+  if (!any) PetscFunctionReturn(0);
+  PetscCall(PetscSNPrintf(prev, sizeof(prev), "%s/%s", dir, MM_PREVIOUS));
+  if (mkdir(prev, 0777) && errno != EEXIST) {
+    PetscCall(Failed(st, "create %s for the earlier results", prev));
+    PetscFunctionReturn(0);
+  }
+  /* the older set goes whole, so previous/ never mixes two runs */
+  for (PetscInt i = 0; i < n; ++i) {
+    PetscCall(PetscSNPrintf(to, sizeof(to), "%s/%s", prev, MMOutputFiles[i]));
+    if (unlink(to) && errno != ENOENT) {
+      PetscCall(Failed(st, "remove the older %s", to));
+      PetscFunctionReturn(0);
+    }
+  }
+  for (PetscInt i = 0; i < n; ++i) {
+    if (!has[i]) continue;
+    PetscCall(PetscSNPrintf(from, sizeof(from), "%s/%s", dir, MMOutputFiles[i]));
+    PetscCall(PetscSNPrintf(to, sizeof(to), "%s/%s", prev, MMOutputFiles[i]));
+    if (rename(from, to)) {
+      PetscCall(Failed(st, "move the earlier %s to %s", from, to));
+      PetscFunctionReturn(0);
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The output directory exists, holds none of this run's names, and history.csv is open on rank 0. */
+static PetscErrorCode OpenDirectoryAndHistory(MMCtx *ctx)
+{
+  MMOutput    *o  = &ctx->out;
+  MMFileStatus st = {0};
+  PetscMPIInt  rank;
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
-  if (rank == 0) PetscCall(MakeDirectories(ctx->opt.output_dir));
-  PetscCallMPI(MPI_Barrier(PETSC_COMM_WORLD));
-  PetscCall(PetscSNPrintf(name, sizeof(name), "%s/history.csv", ctx->opt.output_dir));
-  PetscCall(PetscFOpen(PETSC_COMM_WORLD, name, "w", &o->csv));
-  PetscCall(CSVHeader(ctx));
-  PetscCall(PetscSNPrintf(o->h5_name, sizeof(o->h5_name), "%s/solution.h5", ctx->opt.output_dir));
-  PetscCall(PetscViewerHDF5Open(PETSC_COMM_WORLD, o->h5_name, FILE_MODE_WRITE, &v));
-  PetscCall(PetscViewerPushFormat(v, PETSC_VIEWER_HDF5_XDMF));
-  PetscCall(DMView(ctx->op.dm, v));
-  PetscCall(PetscViewerPopFormat(v));
-  PetscCall(PetscViewerDestroy(&v));
-  {
-    PetscFE      fe;
-    PetscSection s;
-    const char  *names[] = {"displacement_x", "displacement_y", "displacement_z"};
-    PetscCall(DMClone(ctx->op.dm, &o->dm_out));
-    PetscCall(PetscFECreateLagrange(PETSC_COMM_WORLD, ctx->op.dim, ctx->op.dim, PETSC_TRUE, 1, PETSC_DETERMINE, &fe));
-    PetscCall(PetscObjectSetName((PetscObject)fe, "displacement"));
-    PetscCall(DMSetField(o->dm_out, 0, NULL, (PetscObject)fe));
-    PetscCall(PetscFEDestroy(&fe));
-    PetscCall(DMCreateDS(o->dm_out));
-    PetscCall(DMGetLocalSection(o->dm_out, &s));
-    for (PetscInt c = 0; c < ctx->op.dim; ++c) PetscCall(PetscSectionSetComponentName(s, 0, c, names[c]));
+  o->csv_fd = -1;
+  if (rank == 0) {
+    PetscCall(MakeDirectories(ctx->opt.output_dir, &st));
+    if (!st.err) PetscCall(KeepPrevious(ctx->opt.output_dir, &st));
+    if (!st.err && (o->csv_fd = open(o->csv_name, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666)) < 0) PetscCall(Failed(&st, "create %s", o->csv_name));
   }
+  PetscCall(CheckRank0(&st));
+  PetscFunctionReturn(0);
+}
+
+/* Global vertex and cell counts, for the XDMF index. */
+static PetscErrorCode CountMesh(MMCtx *ctx)
+{
+  DM              dm = ctx->op.dm;
+  PetscSF         sf;
+  PetscInt        vStart, vEnd, cStart, cEnd, nleaves, loc[2], glob[2];
+  const PetscInt *leaves;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  PetscCall(DMGetPointSF(dm, &sf));
+  PetscCall(PetscSFGetGraph(sf, NULL, &nleaves, &leaves, NULL));
+  loc[0] = vEnd - vStart;
+  for (PetscInt l = 0; l < nleaves; ++l) {
+    const PetscInt p = leaves ? leaves[l] : l;
+    if (p >= vStart && p < vEnd) --loc[0];
+  }
+  loc[1] = cEnd - cStart;
+  PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)dm)));
+  ctx->out.nv = glob[0];
+  ctx->out.nc = glob[1];
+  PetscFunctionReturn(0);
+}
+
+/* solution.h5 with the mesh, on disk; the viewer stays open for the snapshots. */
+static PetscErrorCode OpenFields(MMCtx *ctx)
+{
+  MMOutput      *o = &ctx->out;
+  PetscErrorCode ierr;
+
+  PetscFunctionBeginUser;
+  PetscCall(HDF5Begin());
+  ierr = PetscViewerHDF5Open(PETSC_COMM_WORLD, o->h5_name, FILE_MODE_WRITE, &o->h5);
+  PetscCall(HDF5End(ierr, "create", o->h5_name));
+  PetscCall(PetscViewerPushFormat(o->h5, PETSC_VIEWER_HDF5_XDMF));
+  PetscCall(HDF5Begin());
+  ierr = DMView(ctx->op.dm, o->h5);
+  PetscCall(HDF5End(ierr, "write", o->h5_name));
+  PetscCall(FlushFields(o));
+  PetscCall(CountMesh(ctx));
+  PetscFunctionReturn(0);
+}
+
+/* The output vectors: Cartesian fields on a copy of the mesh without constraints, scalars per vertex. */
+static PetscErrorCode CreateFieldVectors(MMCtx *ctx)
+{
+  MMOutput    *o = &ctx->out;
+  PetscFE      fe;
+  PetscSection s;
+  const char  *names[] = {"displacement_x", "displacement_y", "displacement_z"};
+
+  PetscFunctionBeginUser;
+  PetscCall(DMClone(ctx->op.dm, &o->dm_out));
+  PetscCall(PetscFECreateLagrange(PETSC_COMM_WORLD, ctx->op.dim, ctx->op.dim, PETSC_TRUE, 1, PETSC_DETERMINE, &fe));
+  PetscCall(PetscObjectSetName((PetscObject)fe, "displacement"));
+  PetscCall(DMSetField(o->dm_out, 0, NULL, (PetscObject)fe));
+  PetscCall(PetscFEDestroy(&fe));
+  PetscCall(DMCreateDS(o->dm_out));
+  PetscCall(DMGetLocalSection(o->dm_out, &s));
+  for (PetscInt c = 0; c < ctx->op.dim; ++c) PetscCall(PetscSectionSetComponentName(s, 0, c, names[c]));
   PetscCall(DMCreateGlobalVector(o->dm_out, &o->disp_cart));
   PetscCall(DMCreateGlobalVector(o->dm_out, &o->vel_cart));
   PetscCall(DMCreateGlobalVector(o->dm_out, &o->traction_t));
@@ -222,6 +505,38 @@ PetscErrorCode MMOutputOpen(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
+/* Checked with the other options, long before the output is opened. */
+PetscErrorCode MMOutputCheckOptions(MPI_Comm comm, const MMOptions *opt)
+{
+  size_t len;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrlen(opt->output_dir, &len));
+  PetscCheck(len > 0, comm, PETSC_ERR_USER_INPUT, "-output_dir is empty: name the directory for history.csv, solution.h5 and solution.xmf (\".\" for the current one)");
+  /* room for the longest name written under it */
+  PetscCheck(len + sizeof("/" MM_PREVIOUS "/solution.xmf" MM_XMF_TMP) <= PETSC_MAX_PATH_LEN, comm, PETSC_ERR_USER_INPUT, "-output_dir %s is too long (%d characters at most)", opt->output_dir, (int)(PETSC_MAX_PATH_LEN - sizeof("/" MM_PREVIOUS "/solution.xmf" MM_XMF_TMP)));
+  PetscFunctionReturn(0);
+}
+
+/* Called last in set-up, once all input is valid: from here on the earlier results are in previous/. */
+PetscErrorCode MMOutputOpen(MMCtx *ctx)
+{
+  MMOutput   *o   = &ctx->out;
+  const char *dir = ctx->opt.output_dir;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventRegister("MMOutputFlush", PETSC_VIEWER_CLASSID, &o->ev_flush));
+  PetscCall(PetscLogEventRegister("MMOutputIndex", PETSC_VIEWER_CLASSID, &o->ev_index));
+  PetscCall(PetscSNPrintf(o->csv_name, sizeof(o->csv_name), "%s/%s", dir, MMOutputFiles[0]));
+  PetscCall(PetscSNPrintf(o->h5_name, sizeof(o->h5_name), "%s/%s", dir, MMOutputFiles[1]));
+  PetscCall(PetscSNPrintf(o->xmf_name, sizeof(o->xmf_name), "%s/%s", dir, MMOutputFiles[2]));
+  PetscCall(OpenDirectoryAndHistory(ctx));
+  PetscCall(CSVHeader(ctx));
+  PetscCall(OpenFields(ctx));
+  PetscCall(CreateFieldVectors(ctx));
+  PetscFunctionReturn(0);
+}
+
 /* TS monitor: one history row per step, fields every -output_every steps. */
 PetscErrorCode MMOutputMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ptr)
 {
@@ -234,15 +549,32 @@ PetscErrorCode MMOutputMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void
   PetscFunctionReturn(0);
 }
 
+/* Closing reports errors too: a close can be where a deferred write fails. */
+static PetscErrorCode CloseFiles(MMOutput *o)
+{
+  MMFileStatus   st = {0};
+  PetscErrorCode ierr;
+
+  PetscFunctionBeginUser;
+  if (o->csv_fd >= 0 && close(o->csv_fd)) PetscCall(Failed(&st, "close %s", o->csv_name));
+  o->csv_fd = -1;
+  PetscCall(CheckRank0(&st));
+  PetscCall(PetscViewerPopFormat(o->h5));
+  PetscCall(HDF5Begin());
+  ierr = PetscViewerDestroy(&o->h5);
+  PetscCall(HDF5End(ierr, "close", o->h5_name));
+  PetscFunctionReturn(0);
+}
+
 /* Writes the final state if the cadence missed it, closes the files and prints the summary. */
 PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wall)
 {
-  MMOutput *o = &ctx->out;
+  MMOutput  *o = &ctx->out;
   MMHistory *h = &ctx->hist;
 
   PetscFunctionBeginUser;
   if (o->n_written && o->times[o->n_written - 1] != h->time) PetscCall(WriteFields(ctx));
-  PetscCall(PetscFClose(PETSC_COMM_WORLD, o->csv));
+  PetscCall(CloseFiles(o));
   if (!ctx->opt.quiet) {
     struct rusage ru;
     PetscReal     peak;
@@ -250,7 +582,7 @@ PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wa
     peak = ru.ru_maxrss / 1024.0; /* kB on Linux */
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &peak, 1, MPIU_REAL, MPIU_MAX, PETSC_COMM_WORLD));
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "mmcontact summary: setup %.3f s; %" PetscInt_FMT " steps to t = %g in %.3f s wall (%.4f s/step); peak memory %.1f MiB/rank; largest balance residual %.3e; largest penetration %.3e (h_c' %.3e)\n", (double)setup, h->step, (double)h->time, (double)wall, h->step ? (double)(wall / h->step) : 0.0, (double)peak, (double)h->max_balance, (double)h->max_penetration_run, (double)ctx->contact.h_c));
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  output: %s/history.csv, %s (%" PetscInt_FMT " snapshots), %s/solution.xmf\n", ctx->opt.output_dir, o->h5_name, o->n_written, ctx->opt.output_dir));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  output: %s, %s (%" PetscInt_FMT " snapshots), %s\n", o->csv_name, o->h5_name, o->n_written, o->xmf_name));
   }
   PetscCall(VecDestroy(&o->disp_cart));
   PetscCall(VecDestroy(&o->vel_cart));
@@ -261,5 +593,6 @@ PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wa
   PetscCall(DMDestroy(&o->dm_scalar));
   PetscCall(DMDestroy(&o->dm_out));
   PetscCall(PetscFree(o->times));
+  PetscCall(PetscFree(o->index));
   PetscFunctionReturn(0);
 }
