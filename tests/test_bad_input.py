@@ -36,7 +36,7 @@ def test_energy_audit_stops_the_run_and_keeps_the_output(tmp_path):
     """An audit tolerance below round-off trips at the first step with energy exchange: the run
     stops with a message that says why, and the history written so far stays readable."""
     import numpy as np
-    r = run("d1_disk", tmp_path, "-audit_tol", 1e-30, "-output_every", 1, check=False)
+    r = run("d1_disk", tmp_path, "-audit_tol", 1e-30, "-output_every", 1, np_=0, check=False)
     assert r.returncode != 0
     assert "Energy audit failed at step" in r.output
     h = r.history

@@ -99,7 +99,7 @@ def test_f1_subcritical_load_does_not_slide(mm):
 
 
 def test_static_sliding_from_rest_needs_a_load_that_overcomes_friction(tmp_path):
-    r = run("f1_block", tmp_path, "-v0", "0,0", "-gravity", "0.0025,-0.02", check=False)
+    r = run("f1_block", tmp_path, "-v0", "0,0", "-gravity", "0.0025,-0.02", np_=0, check=False)
     assert r.returncode != 0 and "cannot overcome friction" in r.output
 
 
@@ -135,7 +135,7 @@ def test_nonconvergent_friction_loop_stops_at_the_dt_floor(tmp_path):
     """With the floor -ts_adapt_dt_min above the dt that would converge, the run stops with the
     time, the last dt, the contraction factor and c_p dt / h_c', and what it wrote stays readable."""
     r = run("f1_block", tmp_path, "-initial_state", "given", "-mu", 10, "-ts_dt", 16 * 0.05 / 1.16024,
-            "-ts_adapt_dt_min", 0.1, "-output_every", 1, check=False)
+            "-ts_adapt_dt_min", 0.1, "-output_every", 1, np_=0, check=False)
     assert r.returncode != 0
     for m in ("The friction loop does not converge at t = 0", "last dt = 0.172", "contraction factor", "c_p dt / h_c' = 2.8", "-ts_adapt_dt_min 0.1"):
         assert m in r.output, m

@@ -46,7 +46,6 @@ VALUES = [
     (["-ts_max_time", "-1"], ["The final time -ts_max_time -1", "must be > 0 and finite"]),
     (["-ts_max_steps", "-5"], "-ts_max_steps -5 must be >= 0"),
     (["-ts_dt", "1e30"], "The time step -ts_dt 1e+30 is beyond the final time -ts_max_time 0.3"),
-    (["-output_dir", ""], "-output_dir is empty"),
 ]
 
 

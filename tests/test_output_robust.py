@@ -73,7 +73,7 @@ def run_file_limited(outdir, limit, *extra, case="b1_bar"):
 
 def test_empty_output_dir_is_refused(tmp_path):
     root_had = {n: os.path.exists("/" + n) for n in FILES}
-    proc = subprocess.run(MPIEXEC + ["-n", "1", EXE, "-options_file", opts("d1_disk"), "-output_dir", "", "-quiet"],
+    proc = subprocess.run([EXE, "-options_file", opts("d1_disk"), "-output_dir", "", "-quiet"],
                           cwd=ROOT, capture_output=True, text=True, timeout=120)
     assert proc.returncode != 0
     assert "-output_dir is empty" in proc.stdout + proc.stderr, (proc.stdout + proc.stderr)[-1500:]
@@ -84,7 +84,7 @@ def test_empty_output_dir_is_refused(tmp_path):
 def test_bad_input_leaves_earlier_results_untouched(tmp_path):
     out = run("d1_disk", tmp_path, *SHORT).outdir
     before = contents(out)
-    r = run("d1_disk", tmp_path, *SHORT, "-E", -1, check=False)
+    r = run("d1_disk", tmp_path, *SHORT, "-E", -1, np_=0, check=False)
     assert r.returncode != 0 and "Young's modulus" in r.output
     assert contents(out) == before
     assert not os.path.exists(os.path.join(out, "previous"))
@@ -94,7 +94,7 @@ def test_run_failing_at_step_1_keeps_earlier_results_in_previous(tmp_path):
     """The energy audit stops the new run at its first step: the last run's files are in previous/, whole."""
     out = run("d1_disk", tmp_path, *SHORT).outdir
     before = contents(out)
-    r = run("d1_disk", tmp_path, *SHORT, "-audit_tol", 1e-30, check=False)
+    r = run("d1_disk", tmp_path, *SHORT, "-audit_tol", 1e-30, np_=0, check=False)
     assert r.returncode != 0 and "Energy audit failed at step" in r.output
     prev = os.path.join(out, "previous")
     assert contents(prev) == before
