@@ -32,23 +32,32 @@ static PetscErrorCode OptionsReal(PetscOptionItems *PetscOptionsObject, MPI_Comm
   PetscFunctionReturn(0);
 }
 
-/* A real vector option of up to d*d entries; its length is checked against the dimension later. */
-static PetscErrorCode OptionsVector(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt, MMVectorOption which, const char help[], PetscReal v[])
+/* A real array option of at most nmax finite entries; *count is how many were given, -1 if none.
+ * One slot more is read, so that too many entries are refused rather than cut off. */
+static PetscErrorCode OptionsRealArray(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], PetscInt nmax, PetscReal v[], PetscInt *count)
 {
-  PetscInt  n = VectorLength[which] == MM_LEN_TENSOR ? MM_MAX_DIM * MM_MAX_DIM : MM_MAX_DIM;
+  PetscReal buf[MM_MAX_DIM * MM_MAX_DIM + 1];
+  PetscInt  n = nmax + 1;
   PetscBool set;
 
   PetscFunctionBeginUser;
-  /* one slot more than allowed, so that too many entries are seen rather than cut off */
-  PetscReal buf[MM_MAX_DIM * MM_MAX_DIM + 1];
-  PetscInt  nmax = n + 1;
-  for (PetscInt i = 0; i < n; ++i) buf[i] = v[i];
-  PetscCall(PetscOptionsRealArray(VectorName[which], help, NULL, buf, &nmax, &set));
-  opt->vec_count[which] = set ? nmax : -1;
+  for (PetscInt i = 0; i < nmax; ++i) buf[i] = v[i];
+  PetscCall(PetscOptionsRealArray(name, help, NULL, buf, &n, &set));
+  *count = set ? n : -1;
   if (!set) PetscFunctionReturn(0);
-  PetscCheck(nmax <= n, comm, PETSC_ERR_USER_INPUT, "%s has more than %" PetscInt_FMT " entries", VectorName[which], n);
-  PetscCall(CheckFinite(comm, VectorName[which], buf, nmax));
-  for (PetscInt i = 0; i < n; ++i) v[i] = i < nmax ? buf[i] : 0;
+  PetscCheck(n <= nmax, comm, PETSC_ERR_USER_INPUT, "%s has more than %" PetscInt_FMT " entries", name, nmax);
+  PetscCall(CheckFinite(comm, name, buf, n));
+  for (PetscInt i = 0; i < nmax; ++i) v[i] = i < n ? buf[i] : 0;
+  PetscFunctionReturn(0);
+}
+
+/* A vector option; its length is checked against the dimension once the mesh is read. */
+static PetscErrorCode OptionsVector(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt, MMVectorOption which, const char help[], PetscReal v[])
+{
+  const PetscInt nmax = VectorLength[which] == MM_LEN_TENSOR ? MM_MAX_DIM * MM_MAX_DIM : MM_MAX_DIM;
+
+  PetscFunctionBeginUser;
+  PetscCall(OptionsRealArray(PetscOptionsObject, comm, VectorName[which], help, nmax, v, &opt->vec_count[which]));
   PetscFunctionReturn(0);
 }
 
@@ -78,8 +87,7 @@ static PetscErrorCode ProcessDirichlet(PetscOptionItems *PetscOptionsObject, MPI
   for (PetscInt b = 0; b < n; ++b) {
     MMDirichlet *bc = &opt->dirichlet[b];
     char         key[512];
-    PetscInt     nc = MM_MAX_DIM + 1, nv = MM_MAX_DIM + 1, comps[MM_MAX_DIM + 1];
-    PetscReal    values[MM_MAX_DIM + 1];
+    PetscInt     nc = MM_MAX_DIM + 1, comps[MM_MAX_DIM + 1];
     PetscBool    set;
 
     PetscCall(PetscStrallocpy(names[b], &bc->name));
@@ -96,13 +104,7 @@ static PetscErrorCode ProcessDirichlet(PetscOptionItems *PetscOptionsObject, MPI
       }
     }
     PetscCall(PetscSNPrintf(key, sizeof(key), "-dirichlet_%s_value", bc->name));
-    PetscCall(PetscOptionsRealArray(key, "Constant displacement value of each fixed component, in the order of _components; default 0", NULL, values, &nv, &set));
-    bc->nvalues = set ? nv : -1;
-    if (set) {
-      PetscCheck(nv <= MM_MAX_DIM, comm, PETSC_ERR_USER_INPUT, "%s has more than %d entries", key, MM_MAX_DIM);
-      PetscCall(CheckFinite(comm, key, values, nv));
-      for (PetscInt c = 0; c < nv; ++c) bc->values[c] = values[c];
-    }
+    PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "Constant displacement value of each fixed component, in the order of _components; default 0", MM_MAX_DIM, bc->values, &bc->nvalues));
   }
   PetscCall(PetscStrToArrayDestroy((int)n, names));
   PetscFunctionReturn(0);
@@ -120,19 +122,10 @@ static PetscErrorCode ProcessTraction(PetscOptionItems *PetscOptionsObject, MPI_
   for (PetscInt b = 0; b < n; ++b) {
     MMTraction *tr = &opt->traction[b];
     char        key[512];
-    PetscInt    nv = MM_MAX_DIM + 1;
-    PetscReal   values[MM_MAX_DIM + 1];
-    PetscBool   set;
 
     PetscCall(PetscStrallocpy(names[b], &tr->name));
     PetscCall(PetscSNPrintf(key, sizeof(key), "-traction_%s_value", names[b]));
-    PetscCall(PetscOptionsRealArray(key, "Constant traction vector (force per unit area) on this boundary, d entries", NULL, values, &nv, &set));
-    tr->nvalues = set ? nv : -1;
-    if (set) {
-      PetscCheck(nv <= MM_MAX_DIM, comm, PETSC_ERR_USER_INPUT, "%s has more than %d entries", key, MM_MAX_DIM);
-      PetscCall(CheckFinite(comm, key, values, nv));
-      for (PetscInt c = 0; c < nv; ++c) tr->traction[c] = values[c];
-    }
+    PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "Constant traction vector (force per unit area) on this boundary, d entries", MM_MAX_DIM, tr->traction, &tr->nvalues));
   }
   PetscCall(PetscStrToArrayDestroy((int)n, names));
   PetscFunctionReturn(0);
