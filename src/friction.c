@@ -1,7 +1,7 @@
 /* Coulomb friction: the fixed point of the proof of Theorem 4.2 (map Phi^n) on the thresholds.
  *
  * An outer SNES of type shell (prefix friction_) wraps the contact VI: each iteration freezes the
- * thresholds s_i = mu r_i, solves the Tresca-plus-contact step exactly (contact.c), and updates r.
+ * thresholds s_i = mu r_i, solves the Tresca-plus-contact step exactly (the contact module), and updates r.
  * It converges when the thresholds stop changing (-friction_snes_rtol) and the discrete Coulomb
  * residual is below -friction_coulomb_tol. A loop that does not contract is reported as
  * diverged, and the stepper retries the step with a smaller dt. */

@@ -1,0 +1,19 @@
+/* Internals of the contact module, shared by its files (src/contact*.c) and by no one else. */
+#pragma once
+#include "contact.h"
+
+/* contact_qp.c: bound-constrained QPs as SNESVI solves; exact linear solves */
+PETSC_EXTERN PetscErrorCode MMKSPCheckDirect(KSP);
+PETSC_EXTERN PetscErrorCode MMQPCreate(MPI_Comm, const char[], MMBoundQP *, PetscReal, SNES *);
+PETSC_EXTERN PetscErrorCode MMQPSetOperator(SNES, MMBoundQP *);
+PETSC_EXTERN PetscErrorCode MMQPSolve(SNES, MMBoundQP *, Vec, PetscInt *);
+
+/* contact_condensed.c: the Delassus operator and the condensed VI */
+PETSC_EXTERN PetscErrorCode MMCondensedFactor(MMCtx *);
+PETSC_EXTERN PetscErrorCode MMCondensedAssembleDelassus(MMCtx *);
+PETSC_EXTERN PetscErrorCode MMCondensedCreateSolver(MMCtx *);
+PETSC_EXTERN PetscErrorCode MMCondensedSolve(MMCtx *, Vec, Vec);
+
+/* contact_slip.c: 3D stick/slip states */
+PETSC_EXTERN PetscErrorCode MMSlipSetDiskBounds(MMContact *, Vec);
+PETSC_EXTERN PetscErrorCode MMSlipAssembleRotation(MMContact *);

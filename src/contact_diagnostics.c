@@ -1,0 +1,199 @@
+/* Contact diagnostics of a state: active, switching, slipping and sticking nodes, contact forces,
+ * penetration, the discrete Coulomb residual (docs/method.md section 6), and the output fields on
+ * the contact boundary. */
+#include "contact_impl.h"
+
+/* Per-node contact statistics of a state (w, react, sigma): sigma holds the velocity, whose
+ * tangential components at a contact node are its slip velocity. */
+typedef struct {
+  PetscInt  active, switched, slipping, sticking;
+  PetscReal force_normal, force_t[MM_MAX_DIM], max_penetration, coulomb;
+} ContactStats;
+
+static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma, PetscBool record_switches, ContactStats *st)
+{
+  MMContact         *ct = &ctx->contact;
+  const PetscReal    mu = ctx->opt.mu, dt = ct->Kt_dt;
+  /* slip is judged by the step's slip increment sigma dt/2 against h_c', like penetration */
+  const PetscReal    vtol = 1e-9 * 2 * ct->h_c / dt;
+  PetscInt           dim = ctx->op.dim, nc = ct->n_local, cnt[4] = {0, 0, 0, 0}, rstart;
+  const PetscInt    *in;
+  const PetscScalar *wa, *fa, *ga, *va, *ra = NULL, *rh = NULL;
+  const PetscInt     nr = ct->ncomp;
+  PetscReal          sums[1 + MM_MAX_DIM] = {0, 0, 0, 0}, loc[2] = {0, 0}, rmax = 0, fscale;
+  MPI_Comm           comm = PetscObjectComm((PetscObject)ctx->op.dm);
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(st, sizeof(*st)));
+  if (!ct->enabled) PetscFunctionReturn(0);
+  PetscCall(VecGetOwnershipRange(w, &rstart, NULL));
+  PetscCall(ISGetIndices(ct->is_normal, &in));
+  PetscCall(VecGetArrayRead(w, &wa));
+  PetscCall(VecGetArrayRead(react, &fa));
+  PetscCall(VecGetArrayRead(sigma, &va));
+  PetscCall(VecGetArrayRead(ct->gap, &ga));
+  if (nr > 1) {
+    PetscCall(VecGetArrayRead(ct->rho, &ra));
+    PetscCall(VecGetArrayRead(ct->rho_hi, &rh));
+  }
+  for (PetscInt k = 0; k < nc; ++k) rmax = PetscMax(rmax, -PetscRealPart(fa[in[k] - rstart]));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &rmax, 1, MPIU_REAL, MPIU_MAX, comm));
+  /* force scale of the normalized residuals: the largest reaction, but at least the nodal force of a
+   * 1e-3 strain on the contact layer, so that solver noise on a free boundary is not normalized by itself */
+  fscale = PetscMax(rmax, 1e-3 * ctx->opt.E * PetscPowReal(ct->h_c, dim - 1));
+  for (PetscInt k = 0; k < nc; ++k) {
+    const PetscInt  i = in[k] - rstart;
+    const PetscReal un = PetscRealPart(wa[i]), g = PetscRealPart(ga[k]), r = -PetscRealPart(fa[i]);
+    const PetscBool active = (PetscBool)(g - un <= 1e-10 * ct->h_c);
+    PetscReal       tn = 0, vn = 0, res = 0;
+
+    for (PetscInt d = 1; d < dim; ++d) {
+      tn += PetscSqr(PetscRealPart(fa[i + d]));
+      vn += PetscSqr(PetscRealPart(va[i + d]));
+      sums[d] += PetscRealPart(fa[i + d]);
+    }
+    tn = PetscSqrtReal(tn);
+    vn = PetscSqrtReal(vn);
+    sums[0] += r;
+    res = PetscMax(res, (un - g) / ct->h_c);                                 /* penetration */
+    res = PetscMax(res, -r / fscale);                                        /* tension */
+    res = PetscMax(res, PetscAbsReal(r * (un - g)) / (fscale * ct->h_c));    /* complementarity */
+    res = PetscMax(res, (tn - mu * PetscMax(r, 0)) / fscale);                /* cone */
+    /* the VI's own stick/slip split: a tangential reaction inside its bound sticks (RSLS holds a
+     * variable within 1e-8, absolute, of its bound as active, hence the relative margin) */
+    PetscBool at_bound = PETSC_FALSE;
+    if (nr == 3) {
+      PetscReal rt = PetscSqrtReal(PetscSqr(PetscRealPart(ra[k * nr + 1])) + PetscSqr(PetscRealPart(ra[k * nr + 2])));
+      /* on the disk's rim: a slipping node whose reaction reached its threshold, or no threshold */
+      at_bound = (PetscBool)((ct->slipping[k] || PetscRealPart(rh[k * nr + 1]) == 0) && rt >= PetscRealPart(rh[k * nr + 1]) - PetscMax(1e-6 * PetscRealPart(rh[k * nr + 1]), 2e-8));
+    }
+    else if (nr > 1) {
+      PetscReal rt = 0;
+      for (PetscInt d = 1; d < nr; ++d) rt += PetscSqr(PetscRealPart(ra[k * nr + d]));
+      /* a zero threshold is a bound too: a node touching without force slides freely */
+      at_bound = (PetscBool)(PetscSqrtReal(rt) >= PetscRealPart(rh[k * nr + 1]) - PetscMax(1e-6 * PetscRealPart(rh[k * nr + 1]), 2e-8));
+    }
+    /* inside the cone a node must not slip */
+    if (active && nr > 1 && !at_bound) res = PetscMax(res, vn * dt / (2 * ct->h_c));
+    if (active && at_bound && vn > vtol) {
+      PetscReal slip = 0; /* |t + mu r sigma/|sigma|| */
+      for (PetscInt d = 1; d < dim; ++d) slip += PetscSqr(PetscRealPart(fa[i + d]) + mu * r * PetscRealPart(va[i + d]) / vn);
+      res = PetscMax(res, PetscSqrtReal(slip) / fscale);
+      ++cnt[2];
+    } else if (active && nr > 1) ++cnt[3];
+    cnt[0] += active;
+    if (record_switches) {
+      cnt[1] += (active != ct->was_active[k]);
+      ct->was_active[k] = active;
+    }
+    loc[0] = PetscMax(loc[0], res);
+    loc[1] = PetscMax(loc[1], un - g);
+  }
+  if (nr > 1) {
+    PetscCall(VecRestoreArrayRead(ct->rho, &ra));
+    PetscCall(VecRestoreArrayRead(ct->rho_hi, &rh));
+  }
+  PetscCall(VecRestoreArrayRead(ct->gap, &ga));
+  PetscCall(VecRestoreArrayRead(sigma, &va));
+  PetscCall(VecRestoreArrayRead(react, &fa));
+  PetscCall(VecRestoreArrayRead(w, &wa));
+  PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cnt, 4, MPIU_INT, MPI_SUM, comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums, 1 + MM_MAX_DIM, MPIU_REAL, MPIU_SUM, comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, loc, 2, MPIU_REAL, MPIU_MAX, comm));
+  st->active          = cnt[0];
+  st->switched        = cnt[1];
+  st->slipping        = cnt[2];
+  st->sticking        = cnt[3];
+  st->force_normal    = sums[0];
+  for (PetscInt d = 1; d < dim; ++d) st->force_t[d - 1] = sums[d];
+  st->coulomb         = PetscMax(loc[0], 0.0);
+  st->max_penetration = PetscMax(loc[1], 0.0);
+  PetscFunctionReturn(0);
+}
+
+/* The discrete Coulomb residual (docs/method.md section 6) of a state, and its slipping/sticking counts. */
+PetscErrorCode MMContactCoulomb(MMCtx *ctx, Vec w, Vec react, Vec sigma, PetscReal *residual, PetscInt *nslip, PetscInt *nstick)
+{
+  ContactStats st;
+
+  PetscFunctionBeginUser;
+  PetscCall(ContactStatistics(ctx, w, react, sigma, PETSC_FALSE, &st));
+  *residual = st.coulomb;
+  *nslip    = st.slipping;
+  *nstick   = st.sticking;
+  PetscFunctionReturn(0);
+}
+
+/* Per-step contact quantities (docs/method.md sections 5-6) of the accepted state. */
+PetscErrorCode MMContactDiagnostics(MMCtx *ctx, Vec w, Vec react, Vec v, MMHistory *h)
+{
+  ContactStats st;
+
+  PetscFunctionBeginUser;
+  PetscCall(ContactStatistics(ctx, w, react, v, PETSC_TRUE, &st));
+  h->active           = st.active;
+  h->switched         = st.switched;
+  h->slipping         = st.slipping;
+  h->force_normal     = st.force_normal;
+  h->force_tangential = ctx->op.dim == 2 ? st.force_t[0] : PetscSqrtReal(PetscSqr(st.force_t[0]) + PetscSqr(st.force_t[1]));
+  h->max_penetration  = st.max_penetration;
+  h->coulomb_residual = st.coulomb;
+  h->vi_its           = ctx->contact.vi_its;
+  PetscFunctionReturn(0);
+}
+
+/* The contact fields of the output, zero off the contact boundary: nodal pressure r_i / int phi_i and
+ * current gap g_i - u.nu (scalars), tangential traction and slip velocity (Cartesian vectors on dm_out,
+ * the frame's tangential components mapped back). */
+PetscErrorCode MMContactBoundaryFields(MMCtx *ctx, MMOutput *o)
+{
+  MMContact         *ct  = &ctx->contact;
+  const PetscInt     dim = ctx->op.dim;
+  Vec                out[] = {o->pressure, o->gap, o->traction_t, o->slip};
+  const PetscInt    *in;
+  const PetscScalar *wa, *fa, *va, *ga, *aa;
+  PetscInt           rstart;
+
+  PetscFunctionBeginUser;
+  for (size_t i = 0; i < sizeof(out) / sizeof(out[0]); ++i) PetscCall(VecZeroEntries(out[i]));
+  if (ct->enabled) {
+    PetscCall(VecGetOwnershipRange(ctx->state.u, &rstart, NULL));
+    PetscCall(ISGetIndices(ct->is_normal, &in));
+    PetscCall(VecGetArrayRead(ctx->state.u, &wa));
+    PetscCall(VecGetArrayRead(ctx->state.react, &fa));
+    PetscCall(VecGetArrayRead(ctx->state.v, &va));
+    PetscCall(VecGetArrayRead(ct->gap, &ga));
+    PetscCall(VecGetArrayRead(ct->area, &aa));
+    for (PetscInt k = 0; k < ct->n_local; ++k) {
+      const PetscInt i = in[k] - rstart;
+      PetscInt       start, end;
+      PetscScalar    tc[MM_MAX_DIM] = {0, 0, 0}, sc[MM_MAX_DIM] = {0, 0, 0};
+
+      PetscCall(VecSetValue(o->pressure, ct->scalar_index[k], -fa[i] / aa[k], INSERT_VALUES));
+      PetscCall(VecSetValue(o->gap, ct->scalar_index[k], ga[k] - wa[i], INSERT_VALUES));
+      for (PetscInt d = 1; d < dim; ++d)
+        for (PetscInt c = 0; c < dim; ++c) {
+          tc[c] += fa[i + d] * ct->frame[d][c] / aa[k];
+          sc[c] += va[i + d] * ct->frame[d][c];
+        }
+      PetscCall(DMPlexGetPointGlobal(o->dm_out, ct->vertex[k], &start, &end));
+      for (PetscInt c = 0; c < dim; ++c) {
+        PetscCall(VecSetValue(o->traction_t, start + c, tc[c], INSERT_VALUES));
+        PetscCall(VecSetValue(o->slip, start + c, sc[c], INSERT_VALUES));
+      }
+    }
+    PetscCall(VecRestoreArrayRead(ct->area, &aa));
+    PetscCall(VecRestoreArrayRead(ct->gap, &ga));
+    PetscCall(VecRestoreArrayRead(ctx->state.v, &va));
+    PetscCall(VecRestoreArrayRead(ctx->state.react, &fa));
+    PetscCall(VecRestoreArrayRead(ctx->state.u, &wa));
+    PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  }
+  for (size_t i = 0; i < sizeof(out) / sizeof(out[0]); ++i) {
+    PetscCall(VecAssemblyBegin(out[i]));
+    PetscCall(VecAssemblyEnd(out[i]));
+  }
+  PetscFunctionReturn(0);
+}
+

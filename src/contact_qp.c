@@ -1,0 +1,205 @@
+/* The bound-constrained quadratic problems of the contact module as SNESVI solves, and the exact
+ * (factorization) linear solves they and the stepper rely on. */
+#include "contact_impl.h"
+
+/* LU with MUMPS: the default of every linear solver here, options still apply on top. */
+static PetscErrorCode KSPSetDefaultLU(KSP ksp)
+{
+  PC pc;
+
+  PetscFunctionBeginUser;
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCLU));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscFunctionReturn(0);
+}
+
+/* What each exact solve is for, by options prefix, so that a refusal says which solve it is, and
+ * whether its matrix is symmetric, so that Cholesky applies. */
+typedef struct {
+  const char *prefix, *purpose;
+  PetscBool   symmetric;
+} ExactSolve;
+
+static ExactSolve ExactSolveInfo(const char prefix[])
+{
+  const ExactSolve known[] = {
+    {"contact_K_", "K~ = K + 4/dt^2 M* is factored once per dt: the condensed contact builds its Delassus operator from the factor, and every step (also with -contact 0) solves with it", PETSC_TRUE},
+    {"mass_",      "the initial acceleration solves M* a0 = L - K u0 + f_c0", PETSC_TRUE},
+    {"sliding_",   "the static sliding state solves its (nonsymmetric) linear system", PETSC_FALSE},
+  };
+  const ExactSolve other = {prefix, "this solve", PETSC_FALSE};
+  for (size_t i = 0; i < sizeof(known) / sizeof(known[0]); ++i) {
+    PetscBool same;
+    if (!PetscStrcmp(prefix, known[i].prefix, &same) && same) return known[i];
+  }
+  return other;
+}
+
+/* Solves the energy audit relies on, and the Delassus operator built from K~'s factor, must be
+ * exact: only a complete factorization will do. An iterative or incomplete PC would fail late and
+ * obscurely (no getfactoredmatrix method, an energy audit failure), or, for a0, not at all. */
+PetscErrorCode MMKSPCheckDirect(KSP ksp)
+{
+  PC          pc;
+  PCType      type;
+  PetscBool   lu, cholesky;
+  const char *prefix;
+  ExactSolve  info;
+
+  PetscFunctionBeginUser;
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
+  info = ExactSolveInfo(prefix ? prefix : "");
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCCHOLESKY, &cholesky));
+  if (lu || (cholesky && info.symmetric)) PetscFunctionReturn(0);
+  PetscCall(PCGetType(pc, &type));
+  SETERRQ(PetscObjectComm((PetscObject)ksp), PETSC_ERR_USER_INPUT, "-%spc_type %s is not supported: %s, and this solve must be exact. Use -%spc_type lu (the default, with MUMPS)%s: iterative solvers and incomplete factorizations are not supported for it yet", info.prefix, type, info.purpose, info.prefix, info.symmetric ? " or cholesky" : "");
+}
+
+static PetscErrorCode KSPCheckDirectPreSolve(KSP ksp, Vec b, Vec x, void *ptr)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMKSPCheckDirect(ksp));
+  PetscFunctionReturn(0);
+}
+
+/* A solve that must be exact: LU with MUMPS by default, and any -PREFIX_pc_type that is not a
+ * complete factorization refused when it solves (after KSPSetFromOptions). */
+PetscErrorCode MMKSPSetDirect(KSP ksp)
+{
+  PetscFunctionBeginUser;
+  PetscCall(KSPSetDefaultLU(ksp));
+  PetscCall(KSPSetPreSolve(ksp, KSPCheckDirectPreSolve, NULL));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode QPResidual(SNES snes, Vec x, Vec f, void *ptr)
+{
+  MMBoundQP *qp = (MMBoundQP *)ptr;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatMult(qp->A, x, f));
+  PetscCall(VecAXPY(f, -1.0, qp->b));
+  PetscFunctionReturn(0);
+}
+
+/* The matrix is constant: nothing to recompute, so the factorization is reused whenever SNES can.
+ * Only a Jacobian that is a copy of A (see QPSetOperator) is refreshed from A. */
+static PetscErrorCode QPJacobian(SNES snes, Vec x, Mat J, Mat P, void *ptr)
+{
+  MMBoundQP *qp = (MMBoundQP *)ptr;
+
+  PetscFunctionBeginUser;
+  if (J != qp->A) PetscCall(MatCopy(qp->A, J, SAME_NONZERO_PATTERN));
+  PetscFunctionReturn(0);
+}
+
+/* The Jacobian SNES gets for A. vinewtonrsls only takes submatrices of it, so A itself will do.
+ * vinewtonssls overwrites its Jacobian in place with the semismooth one, Da + Db J (row scaling
+ * and diagonal shift): given A, it would corrupt the operator of the residual, iteration after
+ * iteration, and never converge. It gets a copy of A instead, refreshed by QPJacobian. */
+PetscErrorCode MMQPSetOperator(SNES snes, MMBoundQP *qp)
+{
+  Mat         J;
+  PetscObject source = NULL;
+  PetscBool   ssls;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESVINEWTONSSLS, &ssls));
+  PetscCall(SNESGetJacobian(snes, &J, NULL, NULL, NULL));
+  if (!ssls) {
+    if (J != qp->A) PetscCall(SNESSetJacobian(snes, qp->A, qp->A, QPJacobian, qp));
+    PetscFunctionReturn(0);
+  }
+  if (J) PetscCall(PetscObjectQuery((PetscObject)J, "MMQPOperator", &source));
+  if (J && source == (PetscObject)qp->A) PetscFunctionReturn(0);
+  PetscCall(MatDuplicate(qp->A, MAT_COPY_VALUES, &J));
+  PetscCall(PetscObjectCompose((PetscObject)J, "MMQPOperator", (PetscObject)qp->A));
+  PetscCall(SNESSetJacobian(snes, J, J, QPJacobian, qp));
+  PetscCall(MatDestroy(&J));
+  PetscFunctionReturn(0);
+}
+
+/* Warm-started solves start near the answer, where a relative test cannot be met: also accept
+ * ||F|| <= rtol_b ||b||, which is the solver's accuracy on this linear problem. */
+static PetscErrorCode QPConverged(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm, SNESConvergedReason *reason, void *ptr)
+{
+  MMBoundQP *qp = (MMBoundQP *)ptr;
+
+  PetscFunctionBeginUser;
+  PetscCall(SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, NULL));
+  if (*reason == SNES_CONVERGED_ITERATING && fnorm <= qp->rtol_b * qp->bnorm) *reason = SNES_CONVERGED_FNORM_ABS;
+  PetscFunctionReturn(0);
+}
+
+/* Only the VI Newton methods honour bounds. vinewtonssls (Fischer-Burmeister) is refused with
+ * friction: PETSc's semismooth Jacobian uses a fixed cut-off (|a|, |b| < 1e-6 gives the
+ * derivative 1/2) which, at the weakly active tangential bounds of a stick/slip transition, turns
+ * its convergence sublinear (D1 with -mu 0.2 does not converge in 3000 iterations). */
+static PetscErrorCode CheckQPSolverType(SNES snes, PetscReal mu)
+{
+  MPI_Comm    comm = PetscObjectComm((PetscObject)snes);
+  PetscBool   rsls, ssls;
+  SNESType    type;
+  const char *prefix;
+
+  PetscFunctionBeginUser;
+  PetscCall(SNESGetType(snes, &type));
+  PetscCall(SNESGetOptionsPrefix(snes, &prefix));
+  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESVINEWTONRSLS, &rsls));
+  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESVINEWTONSSLS, &ssls));
+  PetscCheck(rsls || ssls, comm, PETSC_ERR_USER_INPUT, "-%ssnes_type %s is not supported: the contact problem is a bound-constrained VI. Use -%ssnes_type vinewtonrsls (the default) or, without friction, vinewtonssls", prefix, type, prefix);
+  PetscCheck(!ssls || mu == 0, comm, PETSC_ERR_USER_INPUT, "-%ssnes_type vinewtonssls is not supported with friction (-mu %g): at stick/slip transitions it converges too slowly to be usable. Use -%ssnes_type vinewtonrsls (the default)", prefix, (double)mu, prefix);
+  PetscFunctionReturn(0);
+}
+
+/* mu: the friction coefficient of the problem, 0 when its bounds are on normal dofs only. */
+PetscErrorCode MMQPCreate(MPI_Comm comm, const char prefix[], MMBoundQP *qp, PetscReal mu, SNES *snes)
+{
+  KSP            ksp;
+  SNESLineSearch ls;
+  Vec            r;
+
+  PetscFunctionBeginUser;
+  PetscCall(SNESCreate(comm, snes));
+  PetscCall(SNESSetOptionsPrefix(*snes, prefix));
+  PetscCall(SNESSetType(*snes, SNESVINEWTONRSLS));
+  PetscCall(MatCreateVecs(qp->A, &r, NULL));
+  PetscCall(SNESSetFunction(*snes, r, QPResidual, qp));
+  PetscCall(VecDestroy(&r));
+  PetscCall(SNESSetJacobian(*snes, qp->A, qp->A, QPJacobian, qp));
+  PetscCall(SNESSetConvergenceTest(*snes, QPConverged, qp, NULL));
+  PetscCall(SNESSetTolerances(*snes, PETSC_DEFAULT, 1e-12, 0.0, 100, PETSC_DEFAULT));
+  /* a quadratic problem: the full projected Newton step is the right one */
+  PetscCall(SNESGetLineSearch(*snes, &ls));
+  PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
+  PetscCall(SNESGetKSP(*snes, &ksp));
+  /* the SNES checks its own residual: any linear solver that converges will do here */
+  PetscCall(KSPSetDefaultLU(ksp));
+  PetscCall(SNESSetFromOptions(*snes));
+  PetscCall(CheckQPSolverType(*snes, mu));
+  PetscCall(MMQPSetOperator(*snes, qp));
+  PetscFunctionReturn(0);
+}
+
+/* Solves A x = b with the solver's bounds; x is the initial guess on entry. */
+PetscErrorCode MMQPSolve(SNES snes, MMBoundQP *qp, Vec x, PetscInt *its)
+{
+  SNESConvergedReason reason;
+  const char         *prefix;
+
+  PetscFunctionBeginUser;
+  PetscCall(SNESGetOptionsPrefix(snes, &prefix));
+  PetscCall(VecNorm(qp->b, NORM_2, &qp->bnorm));
+  qp->bnorm = PetscMax(qp->bnorm, PETSC_SMALL);
+  PetscCall(SNESSolve(snes, NULL, x));
+  PetscCall(SNESGetConvergedReason(snes, &reason));
+  PetscCall(SNESGetIterationNumber(snes, its));
+  PetscCheck(reason > 0, PetscObjectComm((PetscObject)snes), PETSC_ERR_NOT_CONVERGED, "The contact solver (%s) did not converge: %s after %" PetscInt_FMT " iterations. Run with -%ssnes_monitor -%ssnes_converged_reason to see why",
+             prefix, SNESConvergedReasons[reason], *its, prefix, prefix);
+  PetscFunctionReturn(0);
+}
+

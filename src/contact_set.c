@@ -1,0 +1,310 @@
+/* The contact set against a rigid plane: the contact nodes, their frames and gaps, the rotation Q
+ * to frame dofs, the index sets of the dofs, and h_c'. */
+#include <petscsf.h>
+#include "mesh.h"
+#include "contact_impl.h"
+
+/* Orthonormal frame (nu, tau_1[, tau_2]) with nu = -n the body's outward normal. */
+static PetscErrorCode BuildFrame(MMCtx *ctx)
+{
+  PetscInt   dim = ctx->op.dim;
+  PetscReal(*F)[MM_MAX_DIM] = ctx->contact.frame;
+  const PetscReal *n = ctx->opt.obstacle_normal;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(ctx->contact.frame, sizeof(ctx->contact.frame)));
+  for (PetscInt d = 0; d < dim; ++d) F[0][d] = -n[d];
+  if (dim == 2) {
+    F[1][0] = -F[0][1];
+    F[1][1] = F[0][0];
+  } else {
+    /* tau_1 = e x nu / |e x nu| with e the axis least aligned with nu */
+    PetscInt  k = 0;
+    PetscReal e[3] = {0, 0, 0}, nrm;
+    for (PetscInt d = 1; d < 3; ++d)
+      if (PetscAbsReal(F[0][d]) < PetscAbsReal(F[0][k])) k = d;
+    e[k]    = 1;
+    F[1][0] = e[1] * F[0][2] - e[2] * F[0][1];
+    F[1][1] = e[2] * F[0][0] - e[0] * F[0][2];
+    F[1][2] = e[0] * F[0][1] - e[1] * F[0][0];
+    nrm     = PetscSqrtReal(PetscSqr(F[1][0]) + PetscSqr(F[1][1]) + PetscSqr(F[1][2]));
+    for (PetscInt d = 0; d < 3; ++d) F[1][d] /= nrm;
+    F[2][0] = F[0][1] * F[1][2] - F[0][2] * F[1][1];
+    F[2][1] = F[0][2] * F[1][0] - F[0][0] * F[1][2];
+    F[2][2] = F[0][0] * F[1][1] - F[0][1] * F[1][0];
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Marks the vertices of the contact faces, agreed over ranks through the point SF: a vertex can
+ * sit on a rank that does not hold the face it belongs to. */
+static PetscErrorCode MarkContactVertices(MMCtx *ctx, PetscInt **mark, Vec area)
+{
+  Vec          aloc;
+  PetscScalar *aa;
+  DM              dm = ctx->op.dm;
+  DMLabel         label;
+  IS              vis, pis;
+  PetscInt        pStart, pEnd, vStart, vEnd, n, nv;
+  const PetscInt *pts, *vals;
+  PetscInt       *root;
+  PetscSF         sf;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMMeshGetLabel(dm, ctx->opt.contact_name, &label));
+  PetscCall(DMPlexGetChart(dm, &pStart, &pEnd));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(PetscCalloc1(pEnd - pStart, mark));
+  PetscCall(PetscCalloc1(pEnd - pStart, &root));
+  PetscCall(DMLabelGetValueIS(label, &vis));
+  PetscCall(ISGetLocalSize(vis, &nv));
+  PetscCall(ISGetIndices(vis, &vals));
+  PetscCall(DMGetLocalVector(ctx->out.dm_scalar, &aloc));
+  PetscCall(VecZeroEntries(aloc));
+  PetscCall(VecGetArray(aloc, &aa));
+  for (PetscInt i = 0; i < nv; ++i) {
+    PetscCall(DMLabelGetStratumIS(label, vals[i], &pis));
+    if (!pis) continue;
+    PetscCall(ISGetLocalSize(pis, &n));
+    PetscCall(ISGetIndices(pis, &pts));
+    for (PetscInt j = 0; j < n; ++j) {
+      PetscInt *closure = NULL, ncl, h;
+      PetscCall(DMPlexGetPointHeight(dm, pts[j], &h));
+      PetscCheck(h >= 1, PetscObjectComm((PetscObject)dm), PETSC_ERR_USER_INPUT, "Contact boundary \"%s\" contains cells: it must be a Physical Curve (2D) or Physical Surface (3D)", ctx->opt.contact_name);
+      PetscReal farea = 0;
+      PetscInt  dim   = ctx->op.dim;
+      if (h == 1) PetscCall(DMPlexComputeCellGeometryFVM(dm, pts[j], &farea, NULL, NULL));
+      PetscCall(DMPlexGetTransitiveClosure(dm, pts[j], PETSC_TRUE, &ncl, &closure));
+      for (PetscInt k = 0; k < ncl; ++k) {
+        PetscInt off, end;
+        (*mark)[closure[2 * k] - pStart] = 1;
+        if (closure[2 * k] < vStart || closure[2 * k] >= vEnd) continue;
+        PetscCall(DMPlexGetPointLocal(ctx->out.dm_scalar, closure[2 * k], &off, &end));
+        aa[off] += farea / dim; /* int_F phi_i for P1 on a simplex face */
+      }
+      PetscCall(DMPlexRestoreTransitiveClosure(dm, pts[j], PETSC_TRUE, &ncl, &closure));
+    }
+    PetscCall(ISRestoreIndices(pis, &pts));
+    PetscCall(ISDestroy(&pis));
+  }
+  PetscCall(ISRestoreIndices(vis, &vals));
+  PetscCall(ISDestroy(&vis));
+  PetscCall(VecRestoreArray(aloc, &aa));
+  PetscCall(VecZeroEntries(area));
+  PetscCall(DMLocalToGlobal(ctx->out.dm_scalar, aloc, ADD_VALUES, area));
+  PetscCall(DMRestoreLocalVector(ctx->out.dm_scalar, &aloc));
+  PetscCall(DMGetPointSF(dm, &sf));
+  PetscCall(PetscArraycpy(root, *mark, pEnd - pStart));
+  PetscCall(PetscSFReduceBegin(sf, MPIU_INT, *mark, root, MPI_MAX));
+  PetscCall(PetscSFReduceEnd(sf, MPIU_INT, *mark, root, MPI_MAX));
+  PetscCall(PetscSFBcastBegin(sf, MPIU_INT, root, *mark, MPI_REPLACE));
+  PetscCall(PetscSFBcastEnd(sf, MPIU_INT, root, *mark, MPI_REPLACE));
+  PetscCall(PetscArraycpy(*mark, root, pEnd - pStart));
+  PetscCall(PetscFree(root));
+  PetscFunctionReturn(0);
+}
+
+/* h_c': the smallest diameter of the cells touching a contact node (Theorem 4.2). */
+static PetscErrorCode ContactLayerDiameter(MMCtx *ctx, const PetscInt mark[])
+{
+  DM        dm = ctx->op.dm;
+  PetscInt  cStart, cEnd, pStart, cdim;
+  PetscReal hmin = PETSC_MAX_REAL;
+  Vec       X;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetChart(dm, &pStart, NULL));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  PetscCall(DMGetCoordinateDim(dm, &cdim));
+  for (PetscInt c = cStart; c < cEnd; ++c) {
+    PetscScalar *xc = NULL;
+    PetscInt     nx, *closure = NULL, ncl;
+    PetscBool    touches = PETSC_FALSE;
+    PetscReal    diam    = 0;
+
+    PetscCall(DMPlexGetTransitiveClosure(dm, c, PETSC_TRUE, &ncl, &closure));
+    for (PetscInt k = 0; k < ncl; ++k) {
+      PetscInt dof;
+      PetscCall(DMPlexGetPointDepth(dm, closure[2 * k], &dof));
+      if (dof == 0 && mark[closure[2 * k] - pStart]) touches = PETSC_TRUE;
+    }
+    PetscCall(DMPlexRestoreTransitiveClosure(dm, c, PETSC_TRUE, &ncl, &closure));
+    if (!touches) continue;
+    PetscCall(DMPlexVecGetClosure(dm, NULL, X, c, &nx, &xc));
+    for (PetscInt i = 0; i < nx / cdim; ++i)
+      for (PetscInt j = i + 1; j < nx / cdim; ++j) {
+        PetscReal d2 = 0;
+        for (PetscInt d = 0; d < cdim; ++d) d2 += PetscSqr(PetscRealPart(xc[i * cdim + d] - xc[j * cdim + d]));
+        diam = PetscMax(diam, PetscSqrtReal(d2));
+      }
+    PetscCall(DMPlexVecRestoreClosure(dm, NULL, X, c, &nx, &xc));
+    hmin = PetscMin(hmin, diam);
+  }
+  PetscCall(MPIU_Allreduce(&hmin, &ctx->contact.h_c, 1, MPIU_REAL, MPIU_MIN, PetscObjectComm((PetscObject)dm)));
+  PetscFunctionReturn(0);
+}
+
+/* Index sets of the owned contact dofs, the gaps, and the rotation Q (identity off the contact set). */
+static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec area)
+{
+  PetscInt           astart;
+  const PetscScalar *av;
+  PetscReal         *nodal_area;
+  DM           dm = ctx->op.dm;
+  MMContact   *ct = &ctx->contact;
+  PetscSection gs, ls, cs;
+  PetscInt     vStart, vEnd, pStart, dim = ctx->op.dim, n, rstart, rend, nc = 0, *in, *it, *is;
+  PetscReal   *gap;
+  Vec          X, g;
+  const PetscScalar *x;
+  PetscInt    *is_contact_dof; /* 0: other, 1: contact dof, 2: contact-normal dof */
+  MPI_Comm     comm = PetscObjectComm((PetscObject)dm);
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalSection(dm, &gs));
+  PetscCall(DMGetLocalSection(dm, &ls));
+  PetscCall(DMGetCoordinateSection(dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  PetscCall(DMPlexGetChart(dm, &pStart, NULL));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(DMCreateGlobalVector(dm, &g));
+  PetscCall(VecGetLocalSize(g, &n));
+  PetscCall(VecGetOwnershipRange(g, &rstart, &rend));
+  PetscCall(VecDestroy(&g));
+  PetscCall(PetscMalloc4(n, &in, n, &it, n, &is, n, &gap));
+  PetscCall(PetscCalloc1(n, &is_contact_dof));
+  PetscCall(PetscMalloc1(n, &ct->scalar_index));
+  PetscCall(PetscMalloc1(n, &ct->vertex));
+  PetscCall(PetscMalloc1(n, &nodal_area));
+  PetscCall(VecGetOwnershipRange(area, &astart, NULL));
+  PetscCall(VecGetArrayRead(area, &av));
+  PetscCall(MatCreateAIJ(comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, dim, NULL, 0, NULL, &ctx->op.Q));
+  PetscCall(VecGetArrayRead(X, &x));
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt goff, cdof, xoff;
+    if (!mark[v - pStart]) continue;
+    PetscCall(PetscSectionGetOffset(gs, v, &goff));
+    if (goff < 0) continue;
+    PetscCall(PetscSectionGetConstraintDof(ls, v, &cdof));
+    PetscCall(PetscSectionGetOffset(cs, v, &xoff));
+    PetscCheck(cdof == 0, comm, PETSC_ERR_USER_INPUT, "A node of the contact boundary \"%s\" at (%g, %g) is also on a Dirichlet boundary. Contact dofs must be free: separate the two physical groups", ctx->opt.contact_name, (double)PetscRealPart(x[xoff]), (double)PetscRealPart(x[xoff + 1]));
+    /* g_i = (x_i - p).n, the distance to the plane along nu = -n */
+    gap[nc] = 0;
+    for (PetscInt d = 0; d < dim; ++d) gap[nc] += (PetscRealPart(x[xoff + d]) - ctx->opt.obstacle_point[d]) * ctx->opt.obstacle_normal[d];
+    in[nc] = goff;
+    {
+      PetscInt sstart, send;
+      PetscCall(DMPlexGetPointGlobal(ctx->out.dm_scalar, v, &sstart, &send));
+      ct->scalar_index[nc] = sstart;
+      ct->vertex[nc]       = v;
+      nodal_area[nc]       = PetscRealPart(av[sstart - astart]);
+    }
+    for (PetscInt d = 1; d < dim; ++d) it[nc * (dim - 1) + d - 1] = goff + d;
+    for (PetscInt d = 0; d < dim; ++d) {
+      is_contact_dof[goff - rstart + d] = 1;
+      for (PetscInt e = 0; e < dim; ++e) PetscCall(MatSetValue(ctx->op.Q, goff + d, goff + e, ct->frame[e][d], INSERT_VALUES));
+    }
+    ++nc;
+  }
+  PetscCall(VecRestoreArrayRead(X, &x));
+  PetscCall(VecRestoreArrayRead(area, &av));
+  {
+    PetscInt ns = 0;
+    for (PetscInt i = 0; i < n; ++i)
+      if (!is_contact_dof[i]) PetscCall(MatSetValue(ctx->op.Q, rstart + i, rstart + i, 1.0, INSERT_VALUES));
+    /* the star dofs: all but the contact-normal ones (tangential contact dofs keep their mass) */
+    for (PetscInt k = 0; k < nc; ++k) is_contact_dof[in[k] - rstart] = 2;
+    for (PetscInt i = 0; i < n; ++i)
+      if (is_contact_dof[i] != 2) is[ns++] = rstart + i;
+    PetscCall(ISCreateGeneral(comm, ns, is, PETSC_COPY_VALUES, &ct->is_star));
+    ns = 0;
+    for (PetscInt i = 0; i < n; ++i)
+      if (!is_contact_dof[i]) is[ns++] = rstart + i;
+    PetscCall(ISCreateGeneral(comm, ns, is, PETSC_COPY_VALUES, &ct->is_interior));
+  }
+  PetscCall(MatAssemblyBegin(ctx->op.Q, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(ctx->op.Q, MAT_FINAL_ASSEMBLY));
+  PetscCall(ISCreateGeneral(comm, nc, in, PETSC_COPY_VALUES, &ct->is_normal));
+  PetscCall(ISCreateGeneral(comm, nc * (dim - 1), it, PETSC_COPY_VALUES, &ct->is_tangent));
+  /* the condensed dofs, node by node: the normal one, and the tangential ones with friction */
+  for (PetscInt k = 0; k < nc; ++k)
+    for (PetscInt c = 0; c < ct->ncomp; ++c) is[k * ct->ncomp + c] = in[k] + c;
+  PetscCall(ISCreateGeneral(comm, nc * ct->ncomp, is, PETSC_COPY_VALUES, &ct->is_cond));
+  PetscCall(VecCreateMPI(comm, nc, PETSC_DETERMINE, &ct->gap));
+  PetscCall(VecDuplicate(ct->gap, &ct->area));
+  {
+    PetscScalar *ga, *aa;
+    PetscCall(VecGetArray(ct->gap, &ga));
+    PetscCall(VecGetArray(ct->area, &aa));
+    for (PetscInt k = 0; k < nc; ++k) {
+      ga[k] = gap[k];
+      aa[k] = nodal_area[k];
+    }
+    PetscCall(VecRestoreArray(ct->gap, &ga));
+    PetscCall(VecRestoreArray(ct->area, &aa));
+  }
+  PetscCall(PetscFree(nodal_area));
+  ct->n_local = nc;
+  PetscCall(MPIU_Allreduce(&nc, &ct->n_global, 1, MPIU_INT, MPI_SUM, comm));
+  PetscCall(PetscCalloc1(nc, &ct->was_active));
+  PetscCall(PetscCalloc2(nc, &ct->slipping, 2 * nc, &ct->slip_dir));
+  PetscCall(PetscFree4(in, it, is, gap));
+  PetscCall(PetscFree(is_contact_dof));
+  PetscFunctionReturn(0);
+}
+
+/* Without contact: Q = I and every dof is a star dof. */
+static PetscErrorCode BuildNoContact(MMCtx *ctx)
+{
+  Vec      g;
+  PetscInt n, rstart;
+  MPI_Comm comm = PetscObjectComm((PetscObject)ctx->op.dm);
+
+  PetscFunctionBeginUser;
+  PetscCall(DMCreateGlobalVector(ctx->op.dm, &g));
+  PetscCall(VecGetLocalSize(g, &n));
+  PetscCall(VecGetOwnershipRange(g, &rstart, NULL));
+  PetscCall(MatCreateAIJ(comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, 1, NULL, 0, NULL, &ctx->op.Q));
+  for (PetscInt i = rstart; i < rstart + n; ++i) PetscCall(MatSetValue(ctx->op.Q, i, i, 1.0, INSERT_VALUES));
+  PetscCall(MatAssemblyBegin(ctx->op.Q, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(ctx->op.Q, MAT_FINAL_ASSEMBLY));
+  PetscCall(ISCreateStride(comm, 0, 0, 1, &ctx->contact.is_normal));
+  PetscCall(ISCreateStride(comm, 0, 0, 1, &ctx->contact.is_tangent));
+  PetscCall(ISCreateStride(comm, 0, 0, 1, &ctx->contact.is_cond));
+  PetscCall(ISCreateStride(comm, n, rstart, 1, &ctx->contact.is_star));
+  PetscCall(ISCreateStride(comm, n, rstart, 1, &ctx->contact.is_interior));
+  PetscCall(VecCreateMPI(comm, 0, PETSC_DETERMINE, &ctx->contact.gap));
+  PetscCall(VecDestroy(&g));
+  ctx->contact.h_c = 0;
+  PetscFunctionReturn(0);
+}
+
+/* Finds the contact nodes and builds Q; runs before the operators are assembled. */
+PetscErrorCode MMContactSetUp(MMCtx *ctx)
+{
+  MMContact *ct = &ctx->contact;
+  PetscInt  *mark;
+  Vec        area;
+
+  PetscFunctionBeginUser;
+  ct->enabled     = ctx->opt.contact;
+  ct->tol         = ctx->opt.contact_tol;
+  ct->formulation = ctx->opt.contact_formulation;
+  ct->ncomp       = ctx->opt.mu > 0 ? ctx->op.dim : 1;
+  PetscCall(BuildFrame(ctx));
+  if (!ct->enabled) {
+    PetscCall(BuildNoContact(ctx));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(DMCreateGlobalVector(ctx->out.dm_scalar, &area));
+  PetscCall(MarkContactVertices(ctx, &mark, area));
+  PetscCall(BuildContactDofs(ctx, mark, area));
+  PetscCall(ContactLayerDiameter(ctx, mark));
+  PetscCall(PetscFree(mark));
+  PetscCall(VecDestroy(&area));
+  PetscCheck(ct->ncomp == 1 || ct->formulation == MM_CONTACT_CONDENSED, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_SUP, "Friction (-mu %g) needs -contact_formulation condensed", (double)ctx->opt.mu);
+  PetscCheck(ct->n_global > 0, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "The contact boundary \"%s\" has no nodes", ctx->opt.contact_name);
+  PetscFunctionReturn(0);
+}
+
