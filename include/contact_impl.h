@@ -12,7 +12,9 @@ PETSC_EXTERN PetscErrorCode MMQPSolve(SNES, MMBoundQP *, Vec, PetscInt *);
 PETSC_EXTERN PetscErrorCode MMCondensedFactor(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMCondensedAssembleDelassus(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMCondensedCreateSolver(MMCtx *);
-PETSC_EXTERN PetscErrorCode MMCondensedSolve(MMCtx *, Vec, Vec);
+PETSC_EXTERN PetscErrorCode MMCondensedSolveReactions(MMCtx *, Vec);
+PETSC_EXTERN PetscErrorCode MMCondensedContactDofs(MMCtx *, Vec, Vec);
+PETSC_EXTERN PetscErrorCode MMCondensedRecover(MMCtx *, Vec);
 
 /* contact_slip.c: 3D stick/slip states */
 PETSC_EXTERN PetscErrorCode MMSlipSetDiskBounds(MMContact *, Vec);

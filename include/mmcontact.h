@@ -232,7 +232,7 @@ typedef struct {
 
 typedef struct {
   PetscLogStage setup, solve, output;
-  PetscLogEvent assemble, contact_solve, friction, energy;
+  PetscLogEvent assemble, contact_solve, contact_recover, friction, energy;
 } MMLog;
 
 /* Everything the stepper needs; the TS type "newmark" holds a pointer to it. */

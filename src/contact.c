@@ -60,23 +60,61 @@ PetscErrorCode MMContactSetStepMatrix(MMCtx *ctx, PetscReal dt)
 /* Solves the step problem K~ w = b + f_c with w_c <= g; w holds the initial guess on entry.
  * react returns f_c, the obstacle's force on the body (w-frame), on the contact dofs only,
  * recomputed from w whatever the formulation, so the energy audit checks the solve. */
+/* react = K~ w - b on the contact dofs: recomputed from w whatever the formulation, so that the
+ * energy audit checks the solve. */
+static PetscErrorCode ContactForce(MMCtx *ctx, Vec b, Vec w, Vec react)
+{
+  MMContact *ct = &ctx->contact;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatMult(ct->qp.A, w, react));
+  PetscCall(VecAXPY(react, -1.0, b));
+  /* off the contact nodes the residual is solver noise, not a force */
+  PetscCall(VecISSet(react, ct->is_interior, 0.0));
+  if (ct->ncomp == 1) PetscCall(VecISSet(react, ct->is_tangent, 0.0));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MMContactSolve(MMCtx *ctx, Vec b, Vec w, Vec react)
 {
   MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ctx->log.contact_solve, 0, 0, 0, 0));
-  if (ct->formulation == MM_CONTACT_CONDENSED || !ct->enabled) PetscCall(MMCondensedSolve(ctx, b, w));
-  else {
+  if (ct->formulation == MM_CONTACT_CONDENSED || !ct->enabled) {
+    PetscCall(MMCondensedSolveReactions(ctx, b));
+    PetscCall(MMCondensedRecover(ctx, w));
+  } else {
     PetscCall(VecCopy(b, ct->qp.b));
     PetscCall(MMQPSolve(ct->snes, &ct->qp, w, &ct->vi_its));
   }
-  PetscCall(MatMult(ct->qp.A, w, react));
-  PetscCall(VecAXPY(react, -1.0, b));
-  /* off the contact nodes the residual is solver noise, not a force */
-  PetscCall(VecISSet(react, ct->is_interior, 0.0));
-  if (ct->ncomp == 1) PetscCall(VecISSet(react, ct->is_tangent, 0.0));
+  PetscCall(ContactForce(ctx, b, w, react));
   PetscCall(PetscLogEventEnd(ctx->log.contact_solve, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* The friction loop's solve: only the contact dofs of w and react are updated, exactly, with no
+ * full-size solve (friction needs the condensed formulation); MMContactRecover completes w once
+ * the loop has converged. */
+PetscErrorCode MMContactSolveContactDofs(MMCtx *ctx, Vec b, Vec w, Vec react)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(ctx->contact.formulation == MM_CONTACT_CONDENSED && ctx->contact.enabled, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_PLIB, "The contact-dof solve needs the condensed formulation");
+  PetscCall(PetscLogEventBegin(ctx->log.contact_solve, 0, 0, 0, 0));
+  PetscCall(MMCondensedSolveReactions(ctx, b));
+  PetscCall(MMCondensedContactDofs(ctx, w, react));
+  PetscCall(PetscLogEventEnd(ctx->log.contact_solve, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* The whole step solution and contact force from the last contact-dof solve: one full-size solve. */
+PetscErrorCode MMContactRecover(MMCtx *ctx, Vec b, Vec w, Vec react)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ctx->log.contact_recover, 0, 0, 0, 0));
+  PetscCall(MMCondensedRecover(ctx, w));
+  PetscCall(ContactForce(ctx, b, w, react));
+  PetscCall(PetscLogEventEnd(ctx->log.contact_recover, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

@@ -171,11 +171,11 @@ static PetscErrorCode SnapActiveToBounds(MMContact *ct, Mat A, Vec rho)
   PetscFunctionReturn(0);
 }
 
-/* w = z - K~^{-1} E rho, with z = K~^{-1} b and rho from the VI, warm-started from the last solve. */
-PetscErrorCode MMCondensedSolve(MMCtx *ctx, Vec b, Vec w)
+/* The step's contact reactions rho: z = K~^{-1} b (once per step), then the VI on the condensed
+ * dofs. No full-size solve: the friction loop calls this once per iteration. */
+PetscErrorCode MMCondensedSolveReactions(MMCtx *ctx, Vec b)
 {
   MMContact *ct = &ctx->contact;
-  Vec        rc;
 
   PetscFunctionBeginUser;
   {
@@ -190,10 +190,7 @@ PetscErrorCode MMCondensedSolve(MMCtx *ctx, Vec b, Vec w)
     }
   }
   ct->vi_its = 0;
-  if (!ct->enabled) {
-    PetscCall(VecCopy(ct->z, w));
-    PetscFunctionReturn(0);
-  }
+  if (!ct->enabled) PetscFunctionReturn(0);
   PetscCall(CondensedRHS(ctx));
   if (ct->ncomp == 3) {
     /* the VI in each node's (n, d, d_perp) basis: rho = P rho_r */
@@ -212,6 +209,40 @@ PetscErrorCode MMCondensedSolve(MMCtx *ctx, Vec b, Vec w)
     PetscCall(MMQPSolve(ct->snes, &ct->qpc, x, &ct->vi_its));
     PetscCall(SnapActiveToBounds(ct, ct->qpc.A, x));
     if (ct->ncomp == 3) PetscCall(MatMult(ct->P, ct->rho_r, ct->rho));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The condensed dofs of the step's solution and of the contact force, exactly, from rho alone:
+ * w_c = z_c - W rho and f_c = -rho (K~ w - b = -E rho). What the friction loop needs. */
+PetscErrorCode MMCondensedContactDofs(MMCtx *ctx, Vec w, Vec react)
+{
+  MMContact *ct = &ctx->contact;
+  Vec        wc, zc, rc;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatMult(ct->W, ct->rho, ct->z_c)); /* z_c: scratch, free once the VI is solved */
+  PetscCall(VecGetSubVector(w, ct->is_cond, &wc));
+  PetscCall(VecGetSubVector(ct->z, ct->is_cond, &zc));
+  PetscCall(VecWAXPY(wc, -1.0, ct->z_c, zc));
+  PetscCall(VecRestoreSubVector(ct->z, ct->is_cond, &zc));
+  PetscCall(VecRestoreSubVector(w, ct->is_cond, &wc));
+  PetscCall(VecGetSubVector(react, ct->is_cond, &rc));
+  PetscCall(VecAXPBY(rc, -1.0, 0.0, ct->rho));
+  PetscCall(VecRestoreSubVector(react, ct->is_cond, &rc));
+  PetscFunctionReturn(0);
+}
+
+/* The whole step solution from rho: w = z - K~^{-1} E rho, one full-size solve. */
+PetscErrorCode MMCondensedRecover(MMCtx *ctx, Vec w)
+{
+  MMContact *ct = &ctx->contact;
+  Vec        rc;
+
+  PetscFunctionBeginUser;
+  if (!ct->enabled) {
+    PetscCall(VecCopy(ct->z, w));
+    PetscFunctionReturn(0);
   }
   PetscCall(VecZeroEntries(ct->rhs_c));
   PetscCall(VecGetSubVector(ct->rhs_c, ct->is_cond, &rc));

@@ -12,6 +12,7 @@ PetscErrorCode MMLogRegister(MMLog *log)
   PetscCall(PetscLogStageRegister("MM output", &log->output));
   PetscCall(PetscLogEventRegister("MMAssemble", id, &log->assemble));
   PetscCall(PetscLogEventRegister("MMContactSolve", id, &log->contact_solve));
+  PetscCall(PetscLogEventRegister("MMContactRecover", id, &log->contact_recover));
   PetscCall(PetscLogEventRegister("MMFrictionLoop", id, &log->friction));
   PetscCall(PetscLogEventRegister("MMEnergy", id, &log->energy));
   PetscFunctionReturn(0);
