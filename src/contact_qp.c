@@ -56,7 +56,7 @@ PetscErrorCode MMKSPCheckDirect(KSP ksp)
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCCHOLESKY, &cholesky));
   if (lu || (cholesky && info.symmetric)) PetscFunctionReturn(0);
   PetscCall(PCGetType(pc, &type));
-  SETERRQ(PetscObjectComm((PetscObject)ksp), PETSC_ERR_USER_INPUT, "-%spc_type %s is not supported: %s, and this solve must be exact. Use -%spc_type lu (the default, with MUMPS)%s: iterative solvers and incomplete factorizations are not supported for it yet", info.prefix, type, info.purpose, info.prefix, info.symmetric ? " or cholesky" : "");
+  SETERRQ(PetscObjectComm((PetscObject)ksp), PETSC_ERR_USER_INPUT, "-%spc_type %s is not supported: %s, and this solve must be exact. Use -%spc_type lu%s: iterative solvers and incomplete factorizations are not supported for it yet", info.prefix, type, info.purpose, info.prefix, info.symmetric ? " or cholesky" : "");
 }
 
 static PetscErrorCode KSPCheckDirectPreSolve(KSP ksp, Vec b, Vec x, void *ptr)
@@ -73,6 +73,26 @@ PetscErrorCode MMKSPSetDirect(KSP ksp)
   PetscFunctionBeginUser;
   PetscCall(KSPSetDefaultLU(ksp));
   PetscCall(KSPSetPreSolve(ksp, KSPCheckDirectPreSolve, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* An exact solve with a symmetric positive definite matrix (K~): on one rank PETSc's own Cholesky
+ * with nested-dissection ordering, which solves the 115k-dof 2D K~ 3.4 times faster than MUMPS
+ * LU (a frictional D1 step 2.2 times faster, README "Solvers"); on several ranks MUMPS LU, since
+ * PETSc's own factorizations are serial. Options still apply on top. */
+PetscErrorCode MMKSPSetDirectSPD(KSP ksp)
+{
+  PetscMPIInt size;
+  PC          pc;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMKSPSetDirect(ksp));
+  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)ksp), &size));
+  if (size > 1) PetscFunctionReturn(0);
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCCHOLESKY));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERPETSC));
+  PetscCall(PCFactorSetMatOrderingType(pc, MATORDERINGND));
   PetscFunctionReturn(0);
 }
 

@@ -170,3 +170,16 @@ def test_semismooth_vi_equals_active_set_vi(mm):
     tight = mm("d1_disk", "-output_every", 0, "-contact_snes_type", "vinewtonssls", "-contact_tol", 1e-14, name="ssls_tight").history
     compare(rs, tight, 1e-10)
     assert ss["vi_its"].sum() > rs["vi_its"].sum()  # it really ran the other solver
+
+
+def test_default_native_cholesky_equals_mumps_lu(mm):
+    """On one rank K~ is factored by PETSc's own Cholesky (nested dissection) by default: the
+    frictional D1 history is MUMPS LU's, to solver tolerance."""
+    short = ("-ts_max_time", 0.06, "-output_every", 0)
+    native = mm("d1_friction", *short, name="native").history
+    mumps = mm("d1_friction", *short, "-contact_K_pc_type", "lu", "-contact_K_pc_factor_mat_solver_type", "mumps", name="mumps").history
+    scale = np.abs(mumps["total"]).max()
+    assert native["active"].max() > 0 and native["friction_its"].max() > 1
+    for c in ("total", "work_contact", "work_friction", "force_normal", "force_tangential"):
+        assert np.abs(native[c] - mumps[c]).max() <= 1e-10 * scale, c
+    assert np.array_equal(native["active"], mumps["active"])
