@@ -34,6 +34,14 @@ typedef enum {
 } MMContactFormulation;
 PETSC_EXTERN const char *const MMContactFormulations[];
 
+/* How K and M are assembled: closed-form P1 element matrices in one pass over the cells, or the
+ * PetscFE quadrature (DMPlexSNESComputeJacobianFEM), kept to cross-check the first. */
+typedef enum {
+  MM_ASSEMBLY_CLOSED_FORM,
+  MM_ASSEMBLY_FE
+} MMAssemblyType;
+PETSC_EXTERN const char *const MMAssemblyTypes[];
+
 /* A Dirichlet boundary: fixes the listed components to constant values. */
 typedef struct {
   char      *name;
@@ -81,6 +89,8 @@ typedef struct {
   PetscReal    mesh_rotation[MM_MAX_DIM], mesh_rotation_center[MM_MAX_DIM];
   MMMassType   mass_type;
   PetscBool    lumped;
+  MMAssemblyType assembly;
+  PetscBool    assembly_check; /* assemble K and M both ways and stop if they differ */
   PetscBool    contact;
   MMContactFormulation contact_formulation;
   PetscReal    contact_tol;

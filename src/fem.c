@@ -2,6 +2,8 @@
 #include "fem.h"
 #include "mesh.h"
 #include "contact.h"
+#include "assembly_p1.h"
+#include "log.h"
 
 /* Field layout of every kernel: one field u (displacement), dim components, P1.
  * constants[] = {lambda, mu, rho, w_K, w_M, g_x, g_y, g_z} (MMConstantIndex). The weights select
@@ -343,6 +345,60 @@ static PetscErrorCode DirichletLift(DM dm, Vec lift)
   PetscFunctionReturn(0);
 }
 
+/* The Cartesian stiffness into K and, unless M is NULL, the consistent mass into M, by either path. */
+static PetscErrorCode AssembleKM(MMCtx *ctx, MMAssemblyType type, Mat K, Mat M)
+{
+  PetscFunctionBeginUser;
+  if (type == MM_ASSEMBLY_CLOSED_FORM) {
+    PetscCall(MMAssembleP1(ctx->op.dm, PetscRealPart(ctx->constants[MM_C_LAMBDA]), PetscRealPart(ctx->constants[MM_C_MU]), ctx->opt.rho, K, M));
+  } else {
+    PetscCall(AssembleMatrix(ctx, 1.0, 0.0, K));
+    if (M) PetscCall(AssembleMatrix(ctx, 0.0, 1.0, M));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* max |A - B| / max |B|: A and B share the DMCreateMatrix layout and pattern. */
+static PetscErrorCode RelativeMaxDifference(Mat A, Mat B, PetscReal *diff)
+{
+  Mat       D;
+  PetscReal nD, nB;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatDuplicate(A, MAT_COPY_VALUES, &D));
+  PetscCall(MatAXPY(D, -1.0, B, SAME_NONZERO_PATTERN));
+  PetscCall(MatNorm(D, NORM_MAX, &nD));
+  PetscCall(MatNorm(B, NORM_MAX, &nB));
+  PetscCall(MatDestroy(&D));
+  *diff = nB > 0 ? nD / nB : nD;
+  PetscFunctionReturn(0);
+}
+
+/* -assembly_check: K and M again by the other path, compared entry by entry. The closed form and
+ * the quadrature are both exact for P1, so they agree to rounding. */
+static PetscErrorCode CheckAssembly(MMCtx *ctx, Mat K, Mat M)
+{
+  const MMAssemblyType other = ctx->opt.assembly == MM_ASSEMBLY_FE ? MM_ASSEMBLY_CLOSED_FORM : MM_ASSEMBLY_FE;
+  MPI_Comm             comm  = PetscObjectComm((PetscObject)ctx->op.dm);
+  Mat                  K2, M2 = NULL;
+  PetscReal            dK, dM = 0;
+  PetscLogDouble       t0, t1;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMCreateMatrix(ctx->op.dm, &K2));
+  if (M) PetscCall(DMCreateMatrix(ctx->op.dm, &M2));
+  PetscCall(PetscTime(&t0));
+  PetscCall(AssembleKM(ctx, other, K2, M2));
+  PetscCall(PetscTime(&t1));
+  PetscCall(RelativeMaxDifference(K, K2, &dK));
+  if (M) PetscCall(RelativeMaxDifference(M, M2, &dM));
+  PetscCall(MatDestroy(&K2));
+  PetscCall(MatDestroy(&M2));
+  PetscCall(PetscPrintf(comm, "Assembly check, %s against %s: K max|diff|/max|entry| = %.3e, M %.3e (%s); %s took %.3f s\n", MMAssemblyTypes[ctx->opt.assembly], MMAssemblyTypes[other], (double)dK, (double)dM, M ? "consistent" : "lumped, not compared", MMAssemblyTypes[other], (double)(t1 - t0)));
+  PetscCheck(dK <= 1e-12 && dM <= 1e-12, comm, PETSC_ERR_PLIB, "-assembly_check: the %s and %s assemblies differ by %.3e in K and %.3e in M (relative to the largest entry), above 1e-12", MMAssemblyTypes[ctx->opt.assembly], MMAssemblyTypes[other], (double)dK, (double)dM);
+  PetscFunctionReturn(0);
+}
+
 /* w-frame operator from a Cartesian one: Q^T A Q */
 static PetscErrorCode RotateMatrix(Mat Q, Mat A, Mat *Aw)
 {
@@ -376,8 +432,13 @@ PetscErrorCode MMFEAssembleOperators(MMCtx *ctx)
   PetscCall(DMGetDS(dm, &ds));
   PetscCall(DMSetMatType(dm, MATAIJ));
   PetscCall(DMCreateMatrix(dm, &Kc));
+  /* a lumped mass is built from vertex masses below: no consistent mass to assemble */
+  if (!ctx->opt.lumped) PetscCall(DMCreateMatrix(dm, &Mc));
   PetscCall(PetscDSSetJacobian(ds, 0, 0, g0_mass_uu, NULL, NULL, g3_elas_uu));
-  PetscCall(AssembleMatrix(ctx, 1.0, 0.0, Kc));
+  PetscCall(PetscLogEventBegin(MM_AssembleKM, 0, 0, 0, 0));
+  PetscCall(AssembleKM(ctx, ctx->opt.assembly, Kc, Mc));
+  PetscCall(PetscLogEventEnd(MM_AssembleKM, 0, 0, 0, 0));
+  if (ctx->opt.assembly_check) PetscCall(CheckAssembly(ctx, Kc, Mc));
   PetscCall(RotateMatrix(ctx->op.Q, Kc, &ctx->op.K));
 
   PetscCall(DMCreateGlobalVector(dm, &ctx->op.load));
@@ -403,11 +464,7 @@ PetscErrorCode MMFEAssembleOperators(MMCtx *ctx)
     PetscCall(MatDuplicate(ctx->op.K, MAT_DO_NOT_COPY_VALUES, &ctx->op.M));
     PetscCall(MatZeroEntries(ctx->op.M));
     PetscCall(MatDiagonalSet(ctx->op.M, ctx->op.mass_lumped_cart, INSERT_VALUES));
-  } else {
-    PetscCall(DMCreateMatrix(dm, &Mc));
-    PetscCall(AssembleMatrix(ctx, 0.0, 1.0, Mc));
-    PetscCall(RotateMatrix(ctx->op.Q, Mc, &ctx->op.M));
-  }
+  } else PetscCall(RotateMatrix(ctx->op.Q, Mc, &ctx->op.M));
   PetscCall(CheckFiniteOperators(ctx));
   PetscCall(MatDuplicate(ctx->op.M, MAT_COPY_VALUES, &ctx->op.Mstar));
   if (ctx->contact.enabled && ctx->opt.mass_type == MM_MASS_MODIFIED) PetscCall(MatZeroRowsColumnsIS(ctx->op.Mstar, ctx->contact.is_normal, 0.0, NULL, NULL));

@@ -1,6 +1,8 @@
 /* Log stages and events, registered together so -log_view shows where time goes. */
 #include "log.h"
 
+PetscLogEvent MM_AssembleKM;
+
 PetscErrorCode MMLogRegister(MMLog *log)
 {
   PetscClassId id;
@@ -11,6 +13,7 @@ PetscErrorCode MMLogRegister(MMLog *log)
   PetscCall(PetscLogStageRegister("MM time steps", &log->solve));
   PetscCall(PetscLogStageRegister("MM output", &log->output));
   PetscCall(PetscLogEventRegister("MMAssemble", id, &log->assemble));
+  PetscCall(PetscLogEventRegister("MMAssembleKM", id, &MM_AssembleKM));
   PetscCall(PetscLogEventRegister("MMContactSolve", id, &log->contact_solve));
   PetscCall(PetscLogEventRegister("MMContactRecover", id, &log->contact_recover));
   PetscCall(PetscLogEventRegister("MMFrictionLoop", id, &log->friction));

@@ -3,6 +3,7 @@
 
 const char *const MMMassTypes[] = {"modified", "standard", "MMMassType", "MM_MASS_", NULL};
 const char *const MMInitialStates[] = {"given", "static_sliding", "MMInitialState", "MM_INITIAL_", NULL};
+const char *const MMAssemblyTypes[] = {"closed_form", "fe", "MMAssemblyType", "MM_ASSEMBLY_", NULL};
 const char *const MMContactFormulations[] = {"condensed", "full", "MMContactFormulation", "MM_CONTACT_", NULL};
 
 /* What a vector option's length must be, once the dimension d is known. */
@@ -191,6 +192,10 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(PetscOptionsEnum("-mass", "Mass matrix in time stepping: modified (normal mass of contact nodes removed) or standard", NULL, MMMassTypes, (PetscEnum)opt->mass_type, (PetscEnum *)&opt->mass_type, NULL));
   opt->lumped = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-mass_lumped", "Use the row-sum lumped mass instead of the consistent mass", NULL, opt->lumped, &opt->lumped, NULL));
+  opt->assembly = MM_ASSEMBLY_CLOSED_FORM;
+  PetscCall(PetscOptionsEnum("-assembly", "How the stiffness and mass are assembled: closed_form (P1 element matrices in closed form, one pass over the cells) or fe (PetscFE quadrature, the slower reference)", NULL, MMAssemblyTypes, (PetscEnum)opt->assembly, (PetscEnum *)&opt->assembly, NULL));
+  opt->assembly_check = PETSC_FALSE;
+  PetscCall(PetscOptionsBool("-assembly_check", "Also assemble the stiffness and mass the other -assembly way, print the relative difference of each, and stop if one exceeds 1e-12", NULL, opt->assembly_check, &opt->assembly_check, NULL));
   opt->contact = PETSC_TRUE;
   PetscCall(PetscOptionsBool("-contact", "Enforce unilateral contact; 0 gives linear elastodynamics on the same mesh (the contact boundary is then unused)", NULL, opt->contact, &opt->contact, NULL));
 

@@ -1,0 +1,3 @@
+#pragma once
+#include "mmcontact.h"
+PETSC_EXTERN PetscErrorCode MMAssembleP1(DM, PetscReal, PetscReal, PetscReal, Mat, Mat);
