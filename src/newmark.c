@@ -211,6 +211,18 @@ PetscErrorCode MMNewmarkRegister(void)
   PetscFunctionReturn(0);
 }
 
+/* The stepper and its defaults, before the options (also what -help shows without a mesh). */
+PetscErrorCode MMNewmarkSetDefaults(TS ts)
+{
+  PetscFunctionBeginUser;
+  PetscCall(TSSetType(ts, TSNEWMARK));
+  PetscCall(TSSetProblemType(ts, TS_LINEAR));
+  PetscCall(TSSetTimeStep(ts, 1e-3));
+  PetscCall(TSSetMaxTime(ts, 1.0));
+  PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_STEPOVER));
+  PetscFunctionReturn(0);
+}
+
 /* -ts_dt, -ts_max_time and -ts_max_steps, each refused with its range. */
 static PetscErrorCode CheckTimeOptions(TS ts)
 {
@@ -254,11 +266,7 @@ PetscErrorCode MMNewmarkCreateTS(MMCtx *ctx, TS *ts)
 
   PetscFunctionBeginUser;
   PetscCall(TSCreate(comm, ts));
-  PetscCall(TSSetType(*ts, TSNEWMARK));
-  PetscCall(TSSetProblemType(*ts, TS_LINEAR));
-  PetscCall(TSSetTimeStep(*ts, 1e-3));
-  PetscCall(TSSetMaxTime(*ts, 1.0));
-  PetscCall(TSSetExactFinalTime(*ts, TS_EXACTFINALTIME_STEPOVER));
+  PetscCall(MMNewmarkSetDefaults(*ts));
   PetscCall(TSSetFromOptions(*ts));
   PetscCall(TSGetType(*ts, &type));
   PetscCall(PetscStrcmp(type, TSNEWMARK, &isnewmark));

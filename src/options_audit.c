@@ -8,6 +8,7 @@
 #include <stdarg.h>
 #include "options.h"
 #include "newmark.h"
+#include "contact.h"
 
 /* Options that PETSc reads at start-up or after the time loop (TSSolve's -ts_view, PetscFinalize's
  * -options_left): valid, but not yet read when the check runs. */
@@ -62,7 +63,7 @@ static PetscErrorCode SolverObjectsFromOptions(MPI_Comm comm)
 
   PetscFunctionBeginUser;
   PetscCall(TSCreate(comm, &ts));
-  PetscCall(TSSetType(ts, TSNEWMARK));
+  PetscCall(MMNewmarkSetDefaults(ts));
   PetscCall(TSSetFromOptions(ts));
   PetscCall(TSDestroy(&ts));
   for (size_t i = 0; i < sizeof(snes_prefix) / sizeof(snes_prefix[0]); ++i) {
@@ -77,6 +78,7 @@ static PetscErrorCode SolverObjectsFromOptions(MPI_Comm comm)
     KSP ksp;
     PetscCall(KSPCreate(comm, &ksp));
     PetscCall(KSPSetOptionsPrefix(ksp, ksp_prefix[i]));
+    PetscCall(i == 0 ? MMKSPSetDirectSPD(ksp) : MMKSPSetDirect(ksp));
     PetscCall(KSPSetFromOptions(ksp));
     PetscCall(KSPDestroy(&ksp));
   }
