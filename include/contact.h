@@ -1,7 +1,7 @@
 #pragma once
 #include "mmcontact.h"
 PETSC_EXTERN PetscErrorCode MMKSPSetDirect(KSP);
-PETSC_EXTERN PetscErrorCode MMKSPSetDirectSPD(KSP);
+PETSC_EXTERN PetscErrorCode MMKSPSetDirectSPD(KSP, PetscInt);
 PETSC_EXTERN PetscErrorCode MMContactSetUp(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMContactSetStepMatrix(MMCtx *, PetscReal);
 PETSC_EXTERN PetscErrorCode MMContactSolve(MMCtx *, Vec, Vec, Vec);

@@ -22,7 +22,7 @@ PetscErrorCode MMCondensedFactor(MMCtx *ctx)
     PetscCall(MatCreateVecs(ct->qp.A, &ct->z, &ct->rhs_c));
     PetscCall(KSPCreate(PetscObjectComm((PetscObject)ctx->op.dm), &ct->ksp_K));
     PetscCall(KSPSetOptionsPrefix(ct->ksp_K, "contact_K_"));
-    PetscCall(MMKSPSetDirectSPD(ct->ksp_K));
+    PetscCall(MMKSPSetDirectSPD(ct->ksp_K, ctx->op.dim));
     PetscCall(KSPSetFromOptions(ct->ksp_K));
     /* now, not at the first solve: the Delassus operator is built from the factor before it */
     PetscCall(MMKSPCheckDirect(ct->ksp_K));

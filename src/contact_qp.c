@@ -76,11 +76,13 @@ PetscErrorCode MMKSPSetDirect(KSP ksp)
   PetscFunctionReturn(0);
 }
 
-/* An exact solve with a symmetric positive definite matrix (K~): on one rank PETSc's own Cholesky
- * with nested-dissection ordering, which solves the 115k-dof 2D K~ 3.4 times faster than MUMPS
- * LU (a frictional D1 step 2.2 times faster, README "Solvers"); on several ranks MUMPS LU, since
- * PETSc's own factorizations are serial. Options still apply on top. */
-PetscErrorCode MMKSPSetDirectSPD(KSP ksp)
+/* An exact solve with a symmetric positive definite matrix (K~), chosen by measurement (README
+ * "Solvers"): in 2D on one rank PETSc's own Cholesky with nested-dissection ordering (115k-dof
+ * frictional D1: a step 2.2 times faster than with MUMPS LU, set-up faster too); in 3D, where its
+ * factorization and the Delassus columns cost more than MUMPS's (12k-dof D2: 6.1 against 3.4 s, and
+ * 29 against 22 s), and on several ranks (PETSc's own factorizations are serial), MUMPS LU.
+ * Options still apply on top. */
+PetscErrorCode MMKSPSetDirectSPD(KSP ksp, PetscInt dim)
 {
   PetscMPIInt size;
   PC          pc;
@@ -88,7 +90,7 @@ PetscErrorCode MMKSPSetDirectSPD(KSP ksp)
   PetscFunctionBeginUser;
   PetscCall(MMKSPSetDirect(ksp));
   PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)ksp), &size));
-  if (size > 1) PetscFunctionReturn(0);
+  if (size > 1 || dim != 2) PetscFunctionReturn(0);
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PCSetType(pc, PCCHOLESKY));
   PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERPETSC));

@@ -78,7 +78,7 @@ static PetscErrorCode SolverObjectsFromOptions(MPI_Comm comm)
     KSP ksp;
     PetscCall(KSPCreate(comm, &ksp));
     PetscCall(KSPSetOptionsPrefix(ksp, ksp_prefix[i]));
-    PetscCall(i == 0 ? MMKSPSetDirectSPD(ksp) : MMKSPSetDirect(ksp));
+    PetscCall(i == 0 ? MMKSPSetDirectSPD(ksp, 2) : MMKSPSetDirect(ksp)); /* the 2D default */
     PetscCall(KSPSetFromOptions(ksp));
     PetscCall(KSPDestroy(&ksp));
   }
