@@ -192,6 +192,7 @@ typedef struct {
   Vec       u_next;            /* the TS solution vector */
   PetscReal dt;
   PetscReal dt_user;           /* -ts_dt: after a rejected step, dt grows back to it */
+  PetscReal work_contact;      /* W_c of the accepted step, computed once by the contact-work guard */
 } MMState;
 
 /* The Coulomb friction loop (friction.c): a shell SNES on the thresholds around the contact VI. */

@@ -43,7 +43,8 @@ static PetscErrorCode TrapezoidalWork(MMCtx *ctx, IS is, Vec du, PetscReal *work
   PetscFunctionReturn(0);
 }
 
-/* W_c of a candidate step w (not yet accepted: u still holds u^n), for the contact-work guard. */
+/* W_c of a candidate step w (not yet accepted: u still holds u^n), for the contact-work guard; the
+ * stepper keeps the accepted step's value in state.work_contact for the energy audit. */
 PetscErrorCode MMEnergyContactWork(MMCtx *ctx, Vec w, PetscReal *w_c)
 {
   MMState *s = &ctx->state;
@@ -97,7 +98,7 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
 {
   MMHistory  *h = &ctx->hist;
   MMState    *s = &ctx->state;
-  PetscReal   E_old = h->total, w_ext, w_c = 0, w_f = 0;
+  PetscReal   E_old = h->total, w_ext, w_c = s->work_contact, w_f = 0;
   PetscScalar Ldu;
 
   PetscFunctionBeginUser;
@@ -105,10 +106,8 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
   PetscCall(VecWAXPY(s->work, -1.0, s->u_old, s->u));
   PetscCall(VecDot(ctx->op.load, s->work, &Ldu)); /* L is constant in time */
   w_ext = PetscRealPart(Ldu);
-  if (ctx->contact.enabled) {
-    PetscCall(TrapezoidalWork(ctx, ctx->contact.is_normal, s->work, &w_c));
-    PetscCall(TrapezoidalWork(ctx, ctx->contact.is_tangent, s->work, &w_f));
-  }
+  /* W_c was computed on this very state by the contact-work guard (MMEnergyContactWork) */
+  if (ctx->contact.enabled) PetscCall(TrapezoidalWork(ctx, ctx->contact.is_tangent, s->work, &w_f));
   h->dt = s->dt;
   PetscCall(TotalEnergy(ctx, h));
   PetscCall(CheckFinite(ctx, h, w_ext, w_c, w_f));

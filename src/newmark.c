@@ -150,6 +150,7 @@ static PetscErrorCode TSStep_Newmark(TS ts)
       continue;
     }
     PetscCall(ContactWorkTooLarge(ctx, w, &too_large, &w_c, &scale));
+    s->work_contact = w_c;
     if (too_large) {
       solved = PETSC_FALSE;
       PetscCall(RejectStep(ts, ctx, ++rejections, MM_REJECT_CONTACT_WORK, w_c, scale));

@@ -58,7 +58,7 @@ static PetscErrorCode ParseHelp(const char text[])
 static PetscErrorCode SolverObjectsFromOptions(MPI_Comm comm)
 {
   const char *snes_prefix[] = {"contact_", "contact0_", "friction_"};
-  const char *ksp_prefix[]  = {"contact_K_", "mass_"};
+  const char *ksp_prefix[]  = {"contact_K_", "mass_", "sliding_"};
   TS          ts;
 
   PetscFunctionBeginUser;
