@@ -10,7 +10,6 @@ PETSC_EXTERN PetscErrorCode MMQPSolve(SNES, MMBoundQP *, Vec, PetscInt *);
 
 /* contact_condensed.c: the Delassus operator and the condensed VI */
 PETSC_EXTERN PetscErrorCode MMCondensedFactor(MMCtx *);
-PETSC_EXTERN PetscErrorCode MMCondensedAssembleDelassus(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMCondensedCreateSolver(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMCondensedSolveReactions(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMCondensedContactDofs(MMCtx *, Vec, Vec);
@@ -18,4 +17,14 @@ PETSC_EXTERN PetscErrorCode MMCondensedRecover(MMCtx *, Vec);
 
 /* contact_slip.c: 3D stick/slip states */
 PETSC_EXTERN PetscErrorCode MMSlipSetDiskBounds(MMContact *, Vec);
-PETSC_EXTERN PetscErrorCode MMSlipAssembleRotation(MMContact *);
+PETSC_EXTERN PetscErrorCode MMSlipStoreRotations(MMContact *);
+PETSC_EXTERN PetscErrorCode MMSlipRotateSet(MMCandidates *);
+PETSC_EXTERN PetscErrorCode MMSlipRotateBack(MMCandidates *, Vec);
+
+/* contact_candidates.c: the candidate set, its cached columns of K~^{-1} E and its dense block */
+PETSC_EXTERN PetscErrorCode MMCandidatesSetUp(MMCtx *);
+PETSC_EXTERN PetscErrorCode MMCandidatesInvalidate(MMContact *);
+PETSC_EXTERN PetscErrorCode MMCandidatesSelect(MMCtx *);
+PETSC_EXTERN PetscErrorCode MMCandidatesGrow(MMCtx *, Vec, PetscBool *);
+PETSC_EXTERN PetscErrorCode MMCandidatesMult(MMContact *, Vec, PetscScalar[]);
+PETSC_EXTERN PetscErrorCode MMCandidatesDestroy(MMCandidates *);

@@ -94,6 +94,9 @@ typedef struct {
   PetscBool    contact;
   MMContactFormulation contact_formulation;
   PetscReal    contact_tol;
+  PetscReal    candidate_margin;  /* candidate set: predicted gap within this times the deepest predicted penetration */
+  PetscReal    candidate_memory;  /* candidate set: MiB of cached operator columns, over all ranks */
+  PetscBool    candidate_all;     /* candidate set: every contact node, every step (the reference) */
   PetscReal    audit_tol;
   PetscReal    contact_work_tol;
   PetscReal    initial_penetration_tol;
@@ -142,6 +145,34 @@ typedef struct {
   PetscReal rtol_b;
 } MMBoundQP;
 
+/* The candidate set of the condensed formulation (docs/method.md section 3, "Candidate set"): the
+ * contact nodes that can touch in the step, with the columns of K~^{-1} E computed when a node
+ * first enters the set and kept, under a memory cap, until K~ is refactored. The step's VI on the
+ * set is small and dense: it is replicated on every rank and solved with LAPACK. */
+typedef struct {
+  PetscInt     node_start;          /* global number of the first contact node owned here */
+  PetscMPIInt *node_counts, *node_displs; /* contact nodes per rank, for the set's gathers */
+  PetscInt    *normal_dof;          /* per contact node (all ranks): global index of its normal dof */
+  PetscInt    *slot;                /* per contact node (all ranks): its column block in the cache, or -1 */
+  PetscInt    *slot_node;           /* per cached block: its contact node */
+  PetscInt     n_cached, cap;       /* cached nodes; blocks allocated */
+  PetscScalar *cols;                /* cached columns of K~^{-1} E on the owned condensed rows (lda nc_local) */
+  PetscInt     nc_local;            /* owned condensed dofs: ncomp n_local */
+  PetscBool   *in_set;              /* per contact node (all ranks): in the step's set */
+  PetscInt     n_set, *set;         /* the step's set: contact nodes in increasing order, on every rank */
+  PetscInt     m;                   /* its condensed dofs: ncomp n_set */
+  Mat          W, Wr;               /* the set's Delassus block (seqdense, symmetrized); 3D: rotated */
+  Vec          x, lo, hi, q, rot, f;/* the set's reactions, bounds, right-hand side, 3D rotations, residual */
+  VecScatter   gather;              /* global condensed vectors -> the set */
+  SNES         snes;                /* the VI on the set, prefix contact_ */
+  MMBoundQP    qp;
+  PetscReal    margin;              /* -contact_candidate_margin */
+  PetscBool    all;                 /* -contact_candidate_all */
+  PetscReal    memory_cap;          /* -contact_candidate_memory, bytes over all ranks */
+  PetscInt     resolves;            /* re-solves of the step after the set grew */
+  PetscInt     columns;             /* columns computed in the run */
+} MMCandidates;
+
 /* Contact set, gaps, bounds and the per-step contact solver. Friction wraps ContactSolve. */
 typedef struct {
   PetscBool  enabled;
@@ -159,12 +190,13 @@ typedef struct {
   MMContactFormulation formulation;
   SNES       snes;                /* the VI solver, prefix contact_: on w (full) or on lambda (condensed) */
   KSP        ksp_K;               /* K~ factored once per dt, prefix contact_K_ (condensed) */
-  Mat        W;                   /* Delassus operator E^T K~^{-1} E on the condensed dofs */
-  MMBoundQP  qpc;                 /* the condensed VI: W rho - q complementary to the box of rho */
+  MMCandidates cand;              /* the condensed VI on the candidate set: W rho - q complementary to the box of rho */
+  Vec        q;                   /* the condensed right-hand side on all contact nodes: z_c - offset */
   PetscInt   ncomp;               /* condensed dofs per contact node: 1 (normal), or dim with friction */
   IS         is_cond;             /* the condensed dofs, node by node */
   Vec        rho, rho_lo, rho_hi; /* contact reactions (lambda_n, -t) per node and their bounds */
   Vec        offset, z, rhs_c;    /* q = z_c - offset; the step's contact-free solution; E rho */
+  Vec        zc_loc;              /* scratch on the condensed dofs */
   Vec        z_b;                 /* the right-hand side z was solved for (not owned), its state and dt */
   PetscObjectState z_b_state;
   PetscReal  z_dt;
@@ -175,8 +207,8 @@ typedef struct {
   PetscBool *was_active;          /* per owned contact node, at the previous step */
   PetscBool *slipping;            /* 3D friction: per owned contact node, slipping (else sticking) */
   PetscReal *slip_dir;            /* 3D friction: per owned contact node, its slip direction in the tangent plane */
-  Mat        P, Wr;               /* 3D friction: rotation to the (n, d, d_perp) bases, and P^T W P */
-  Vec        rho_r, z_c, Wdiag;   /* 3D friction: rho in those bases; scratch; diag(W), the nodal compliances */
+  Vec        rot;                 /* 3D friction: per node (1, cos, sin) of its slip direction: the (n, d, d_perp) basis */
+  Vec        Wdiag;               /* diag(W) on the cached nodes, the nodal compliances (1 elsewhere) */
   PetscInt  *scalar_index;        /* per owned contact node, its global index in the scalar vertex DM */
   PetscInt  *vertex;              /* per owned contact node, its mesh point */
   Vec        area;                /* per owned contact node, int_Gc phi_i: force to pressure */
@@ -217,6 +249,7 @@ typedef struct {
   PetscInt  active, slipping, switched;
   PetscReal force_normal, force_tangential, max_penetration, coulomb_residual;
   PetscInt  vi_its, friction_its;
+  PetscInt  candidates, resolves; /* the step's candidate-set size; re-solves after the set grew, over the run */
   PetscReal cfl, contraction;
   PetscReal ucm[MM_MAX_DIM], vcm[MM_MAX_DIM], L[MM_MAX_DIM];
   PetscReal max_balance, max_penetration_run; /* over the run, for the summary */
@@ -244,6 +277,7 @@ typedef struct {
 typedef struct {
   PetscLogStage setup, solve, output;
   PetscLogEvent assemble, contact_solve, contact_recover, friction, energy;
+  PetscLogEvent candidate_columns, candidate_operator; /* K~^{-1} E columns of new candidates; the set's dense block */
 } MMLog;
 
 /* Everything the stepper needs; the TS type "newmark" holds a pointer to it. */

@@ -46,12 +46,7 @@ PetscErrorCode MMContactSetStepMatrix(MMCtx *ctx, PetscReal dt)
   ct->Kt_dt = dt;
   if (condensed) {
     PetscCall(MMCondensedFactor(ctx));
-    if (ct->enabled) {
-      PetscCall(MMCondensedAssembleDelassus(ctx));
-      if (!ct->snes) PetscCall(MMCondensedCreateSolver(ctx));
-      if (!ct->Wdiag) PetscCall(MatCreateVecs(ct->W, &ct->Wdiag, NULL));
-      PetscCall(MatGetDiagonal(ct->W, ct->Wdiag));
-    }
+    if (ct->enabled && !ct->rho) PetscCall(MMCondensedCreateSolver(ctx));
   }
   PetscCall(PetscLogEventEnd(ctx->log.assemble, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -104,6 +99,17 @@ PetscErrorCode MMContactSolveContactDofs(MMCtx *ctx, Vec b, Vec w, Vec react)
   PetscCall(MMCondensedSolveReactions(ctx, b));
   PetscCall(MMCondensedContactDofs(ctx, w, react));
   PetscCall(PetscLogEventEnd(ctx->log.contact_solve, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* After the step is complete: *grown says that a contact node outside the condensed candidate set
+ * would penetrate, that the set took it in, and that the step must be solved again. */
+PetscErrorCode MMContactGrowCandidates(MMCtx *ctx, Vec w, PetscBool *grown)
+{
+  PetscFunctionBeginUser;
+  *grown = PETSC_FALSE;
+  if (ctx->contact.formulation != MM_CONTACT_CONDENSED || !ctx->contact.enabled) PetscFunctionReturn(0);
+  PetscCall(MMCandidatesGrow(ctx, w, grown));
   PetscFunctionReturn(0);
 }
 
@@ -224,17 +230,14 @@ PetscErrorCode MMContactDestroy(MMContact *ct)
   PetscCall(SNESDestroy(&ct->snes));
   PetscCall(SNESDestroy(&ct->snes0));
   PetscCall(KSPDestroy(&ct->ksp_K));
-  PetscCall(MatDestroy(&ct->W));
-  PetscCall(VecDestroy(&ct->qpc.b));
+  PetscCall(MMCandidatesDestroy(&ct->cand));
+  PetscCall(VecDestroy(&ct->q));
+  PetscCall(VecDestroy(&ct->rot));
   PetscCall(VecDestroy(&ct->rho));
   PetscCall(VecDestroy(&ct->rho_lo));
   PetscCall(VecDestroy(&ct->rho_hi));
   PetscCall(VecDestroy(&ct->offset));
-  PetscCall(VecDestroy(&ct->z_c));
-  PetscCall(VecDestroy(&ct->rho_r));
   PetscCall(VecDestroy(&ct->Wdiag));
-  PetscCall(MatDestroy(&ct->P));
-  PetscCall(MatDestroy(&ct->Wr));
   PetscCall(ISDestroy(&ct->is_cond));
   PetscCall(VecDestroy(&ct->z));
   PetscCall(VecDestroy(&ct->rhs_c));

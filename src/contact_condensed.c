@@ -10,8 +10,8 @@
  *   W rho - q  complementary to  lambda_n >= 0,  |rho_t| <= s,
  * with q_n = z_n - g (the gap left) and q_t = z_t - (u_t^n + dt/2 v_t^n), which makes the
  * tangential residual -dt/2 times the slip velocity: Tresca friction with thresholds s, exactly.
- * K~ is factored once per dt; a step costs two solves with that factor and a VI on the contact
- * dofs, whatever the contact set does. */
+ * K~ is factored once per dt; a step costs two solves with that factor and a VI on the candidate
+ * set's dofs (contact_candidates.c), whatever the size of the contact boundary. */
 
 PetscErrorCode MMCondensedFactor(MMCtx *ctx)
 {
@@ -29,85 +29,33 @@ PetscErrorCode MMCondensedFactor(MMCtx *ctx)
   }
   PetscCall(KSPSetOperators(ct->ksp_K, ct->qp.A, ct->qp.A));
   PetscCall(KSPSetUp(ct->ksp_K));
+  if (ct->enabled) PetscCall(MMCandidatesInvalidate(ct));
   PetscFunctionReturn(0);
 }
 
-/* Columns of K~^{-1} E, a block at a time through the factor, restricted to the condensed rows. */
-PetscErrorCode MMCondensedAssembleDelassus(MMCtx *ctx)
-{
-  MMContact      *ct = &ctx->contact;
-  MPI_Comm        comm = PetscObjectComm((PetscObject)ctx->op.dm);
-  const PetscInt  nb_max = 64;
-  PetscInt        n, rstart, cstart, lda, nc, N, *cols;
-  const PetscInt *ic;
-  PetscScalar    *vals;
-  PC              pc;
-  Mat             F;
-
-  PetscFunctionBeginUser;
-  PetscCall(KSPGetPC(ct->ksp_K, &pc));
-  PetscCall(PCFactorGetMatrix(pc, &F));
-  PetscCall(MatGetLocalSize(ct->qp.A, &n, NULL));
-  PetscCall(MatGetOwnershipRange(ct->qp.A, &rstart, NULL));
-  PetscCall(ISGetLocalSize(ct->is_cond, &nc));
-  PetscCall(ISGetSize(ct->is_cond, &N));
-  PetscCall(MPI_Scan(&nc, &cstart, 1, MPIU_INT, MPI_SUM, comm));
-  cstart -= nc;
-  if (!ct->W) PetscCall(MatCreateAIJ(comm, nc, nc, N, N, nc, NULL, N - nc, NULL, &ct->W));
-  PetscCall(MatZeroEntries(ct->W));
-  PetscCall(ISGetIndices(ct->is_cond, &ic));
-  PetscCall(PetscMalloc2(nb_max, &cols, nb_max, &vals));
-  for (PetscInt j0 = 0; j0 < N; j0 += nb_max) {
-    const PetscInt     nb = PetscMin(nb_max, N - j0);
-    Mat                B, X;
-    const PetscScalar *x;
-
-    PetscCall(MatCreateDense(comm, n, PETSC_DECIDE, PETSC_DETERMINE, nb, NULL, &B));
-    for (PetscInt k = 0; k < nc; ++k)
-      if (cstart + k >= j0 && cstart + k < j0 + nb) PetscCall(MatSetValue(B, ic[k], cstart + k - j0, 1.0, INSERT_VALUES));
-    PetscCall(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY));
-    PetscCall(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY));
-    PetscCall(MatDuplicate(B, MAT_DO_NOT_COPY_VALUES, &X));
-    PetscCall(MatMatSolve(F, B, X));
-    PetscCall(MatDenseGetLDA(X, &lda));
-    PetscCall(MatDenseGetArrayRead(X, &x));
-    for (PetscInt j = 0; j < nb; ++j) cols[j] = j0 + j;
-    for (PetscInt k = 0; k < nc; ++k) {
-      const PetscInt row = cstart + k;
-      for (PetscInt j = 0; j < nb; ++j) vals[j] = x[(ic[k] - rstart) + j * lda];
-      PetscCall(MatSetValues(ct->W, 1, &row, nb, cols, vals, INSERT_VALUES));
-    }
-    PetscCall(MatDenseRestoreArrayRead(X, &x));
-    PetscCall(MatDestroy(&X));
-    PetscCall(MatDestroy(&B));
-  }
-  PetscCall(PetscFree2(cols, vals));
-  PetscCall(ISRestoreIndices(ct->is_cond, &ic));
-  PetscCall(MatAssemblyBegin(ct->W, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(ct->W, MAT_FINAL_ASSEMBLY));
-  PetscFunctionReturn(0);
-}
-
+/* The reactions, their bounds and the right-hand side on all contact nodes (global, ncomp per
+ * node), and the candidate set that carries the VI. */
 PetscErrorCode MMCondensedCreateSolver(MMCtx *ctx)
 {
   MMContact *ct = &ctx->contact;
+  MPI_Comm   comm = PetscObjectComm((PetscObject)ctx->op.dm);
 
   PetscFunctionBeginUser;
-  ct->qpc.A      = ct->W;
-  ct->qpc.rtol_b = ct->tol;
-  PetscCall(MatCreateVecs(ct->W, &ct->rho, &ct->qpc.b));
+  PetscCall(VecCreateMPI(comm, ct->ncomp * ct->n_local, PETSC_DETERMINE, &ct->rho));
   PetscCall(VecSetBlockSize(ct->rho, ct->ncomp));
   PetscCall(VecZeroEntries(ct->rho));
   PetscCall(VecDuplicate(ct->rho, &ct->rho_lo));
   PetscCall(VecDuplicate(ct->rho, &ct->rho_hi));
   PetscCall(VecDuplicate(ct->rho, &ct->offset));
-  PetscCall(VecDuplicate(ct->rho, &ct->z_c));
+  PetscCall(VecDuplicate(ct->rho, &ct->q));
+  PetscCall(VecDuplicate(ct->rho, &ct->Wdiag));
+  PetscCall(VecSet(ct->Wdiag, 1.0));
+  if (ct->ncomp == 3) PetscCall(VecDuplicate(ct->rho, &ct->rot));
   /* frictionless until thresholds are set: rho_t in [0, 0] */
   PetscCall(VecSet(ct->rho_lo, 0.0));
   PetscCall(VecSet(ct->rho_hi, 0.0));
   PetscCall(VecStrideSet(ct->rho_hi, 0, PETSC_INFINITY));
-  PetscCall(MMQPCreate(PetscObjectComm((PetscObject)ctx->op.dm), "contact_", &ct->qpc, ct->ncomp > 1 ? ctx->opt.mu : 0, &ct->snes));
-  PetscCall(SNESVISetVariableBounds(ct->snes, ct->rho_lo, ct->rho_hi));
+  PetscCall(MMCandidatesSetUp(ctx));
   PetscFunctionReturn(0);
 }
 
@@ -136,7 +84,7 @@ static PetscErrorCode CondensedRHS(MMCtx *ctx)
   }
   PetscCall(VecStrideScatter(ct->gap, 0, ct->offset, INSERT_VALUES));
   PetscCall(VecGetSubVector(ct->z, ct->is_cond, &zc));
-  PetscCall(VecWAXPY(ct->qpc.b, -1.0, ct->offset, zc));
+  PetscCall(VecWAXPY(ct->q, -1.0, ct->offset, zc));
   PetscCall(VecRestoreSubVector(ct->z, ct->is_cond, &zc));
   PetscFunctionReturn(0);
 }
@@ -144,38 +92,71 @@ static PetscErrorCode CondensedRHS(MMCtx *ctx)
 /* RSLS holds a variable as active when it is within 1e-8 (absolute) of a bound with F pushing
  * outward, but leaves it where it is. Reactions can be far smaller than 1 (F1's are 1e-4), so put
  * those variables on their bounds exactly: the same active set, now satisfied to round-off. */
-static PetscErrorCode SnapActiveToBounds(MMContact *ct, Mat A, Vec rho)
+static PetscErrorCode SnapActiveToBounds(MMCandidates *c)
 {
   const PetscScalar *lo, *hi, *f;
   PetscScalar       *x;
-  PetscInt           n;
-  Vec                F;
 
   PetscFunctionBeginUser;
-  F = ct->z_c; /* scratch, free once the VI is solved */
-  PetscCall(MatMult(A, rho, F));
-  PetscCall(VecAXPY(F, -1.0, ct->qpc.b));
-  PetscCall(VecGetLocalSize(rho, &n));
-  PetscCall(VecGetArray(rho, &x));
-  PetscCall(VecGetArrayRead(ct->rho_lo, &lo));
-  PetscCall(VecGetArrayRead(ct->rho_hi, &hi));
-  PetscCall(VecGetArrayRead(F, &f));
-  for (PetscInt i = 0; i < n; ++i) {
+  PetscCall(MatMult(c->qp.A, c->x, c->f));
+  PetscCall(VecAXPY(c->f, -1.0, c->q));
+  PetscCall(VecGetArray(c->x, &x));
+  PetscCall(VecGetArrayRead(c->lo, &lo));
+  PetscCall(VecGetArrayRead(c->hi, &hi));
+  PetscCall(VecGetArrayRead(c->f, &f));
+  for (PetscInt i = 0; i < c->m; ++i) {
     if (PetscRealPart(x[i]) <= PetscRealPart(lo[i]) + 1e-8 && PetscRealPart(f[i]) > 0) x[i] = lo[i];
     if (PetscRealPart(x[i]) >= PetscRealPart(hi[i]) - 1e-8 && PetscRealPart(f[i]) < 0) x[i] = hi[i];
   }
-  PetscCall(VecRestoreArrayRead(F, &f));
-  PetscCall(VecRestoreArrayRead(ct->rho_hi, &hi));
-  PetscCall(VecRestoreArrayRead(ct->rho_lo, &lo));
-  PetscCall(VecRestoreArray(rho, &x));
+  PetscCall(VecRestoreArrayRead(c->f, &f));
+  PetscCall(VecRestoreArrayRead(c->hi, &hi));
+  PetscCall(VecRestoreArrayRead(c->lo, &lo));
+  PetscCall(VecRestoreArray(c->x, &x));
   PetscFunctionReturn(0);
 }
 
-/* The step's contact reactions rho: z = K~^{-1} b (once per step), then the VI on the condensed
- * dofs. No full-size solve: the friction loop calls this once per iteration. */
+static PetscErrorCode GatherToSet(MMCandidates *c, Vec from, Vec to)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecScatterBegin(c->gather, from, to, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(c->gather, from, to, INSERT_VALUES, SCATTER_FORWARD));
+  PetscFunctionReturn(0);
+}
+
+/* The set's VI: W_SS x - q complementary to the bounds of x; in 3D in each node's (n, d, d_perp)
+ * basis, rotated blockwise (contact_slip.c). rho: x on the set, zero elsewhere. */
+static PetscErrorCode SolveSetVI(MMCtx *ctx)
+{
+  MMContact    *ct = &ctx->contact;
+  MMCandidates *c  = &ct->cand;
+
+  PetscFunctionBeginUser;
+  PetscCall(GatherToSet(c, ct->q, c->q));
+  PetscCall(GatherToSet(c, ct->rho, c->x));
+  PetscCall(GatherToSet(c, ct->rho_lo, c->lo));
+  PetscCall(GatherToSet(c, ct->rho_hi, c->hi));
+  if (ct->ncomp == 3) {
+    PetscCall(GatherToSet(c, ct->rot, c->rot));
+    PetscCall(MMSlipRotateSet(c));
+  }
+  /* a warm start must lie in the box of the current thresholds */
+  PetscCall(VecPointwiseMax(c->x, c->x, c->lo));
+  PetscCall(VecPointwiseMin(c->x, c->x, c->hi));
+  PetscCall(MMQPSolve(c->snes, &c->qp, c->x, &ct->vi_its));
+  PetscCall(SnapActiveToBounds(c));
+  if (ct->ncomp == 3) PetscCall(MMSlipRotateBack(c, c->x));
+  PetscCall(VecZeroEntries(ct->rho));
+  PetscCall(VecScatterBegin(c->gather, c->x, ct->rho, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(c->gather, c->x, ct->rho, INSERT_VALUES, SCATTER_REVERSE));
+  PetscFunctionReturn(0);
+}
+
+/* The step's contact reactions rho: z = K~^{-1} b (once per step), then the VI on the candidate
+ * set, chosen when z is new. No full-size solve: the friction loop calls this once per iteration. */
 PetscErrorCode MMCondensedSolveReactions(MMCtx *ctx, Vec b)
 {
-  MMContact *ct = &ctx->contact;
+  MMContact *ct    = &ctx->contact;
+  PetscBool  fresh = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   {
@@ -187,29 +168,18 @@ PetscErrorCode MMCondensedSolveReactions(MMCtx *ctx, Vec b)
       ct->z_b       = b;
       ct->z_b_state = state;
       ct->z_dt      = ct->Kt_dt;
+      fresh         = PETSC_TRUE;
     }
   }
   ct->vi_its = 0;
   if (!ct->enabled) PetscFunctionReturn(0);
   PetscCall(CondensedRHS(ctx));
-  if (ct->ncomp == 3) {
-    /* the VI in each node's (n, d, d_perp) basis: rho = P rho_r */
-    if (!ct->rho_r) PetscCall(VecDuplicate(ct->rho, &ct->rho_r));
-    PetscCall(VecCopy(ct->qpc.b, ct->z_c));
-    PetscCall(MatMultTranspose(ct->P, ct->z_c, ct->qpc.b));
-    PetscCall(MatMultTranspose(ct->P, ct->rho, ct->rho_r));
-    ct->qpc.A = ct->Wr;
-    PetscCall(MMQPSetOperator(ct->snes, &ct->qpc));
+  if (fresh) PetscCall(MMCandidatesSelect(ctx));
+  if (!ct->cand.m) {
+    PetscCall(VecZeroEntries(ct->rho));
+    PetscFunctionReturn(0);
   }
-  {
-    Vec x = ct->ncomp == 3 ? ct->rho_r : ct->rho;
-    /* a warm start must lie in the box of the current thresholds */
-    PetscCall(VecPointwiseMax(x, x, ct->rho_lo));
-    PetscCall(VecPointwiseMin(x, x, ct->rho_hi));
-    PetscCall(MMQPSolve(ct->snes, &ct->qpc, x, &ct->vi_its));
-    PetscCall(SnapActiveToBounds(ct, ct->qpc.A, x));
-    if (ct->ncomp == 3) PetscCall(MatMult(ct->P, ct->rho_r, ct->rho));
-  }
+  PetscCall(SolveSetVI(ctx));
   PetscFunctionReturn(0);
 }
 
@@ -217,16 +187,25 @@ PetscErrorCode MMCondensedSolveReactions(MMCtx *ctx, Vec b)
  * w_c = z_c - W rho and f_c = -rho (K~ w - b = -E rho). What the friction loop needs. */
 PetscErrorCode MMCondensedContactDofs(MMCtx *ctx, Vec w, Vec react)
 {
-  MMContact *ct = &ctx->contact;
-  Vec        wc, zc, rc;
+  MMContact         *ct = &ctx->contact;
+  Vec                wc, zc, rc;
+  PetscScalar       *wa, *y;
+  const PetscScalar *za;
 
   PetscFunctionBeginUser;
-  PetscCall(MatMult(ct->W, ct->rho, ct->z_c)); /* z_c: scratch, free once the VI is solved */
+  PetscCall(PetscMalloc1(ct->cand.nc_local, &y));
+  if (ct->cand.m) PetscCall(GatherToSet(&ct->cand, ct->rho, ct->cand.x));
+  PetscCall(MMCandidatesMult(ct, ct->cand.x, y));
   PetscCall(VecGetSubVector(w, ct->is_cond, &wc));
   PetscCall(VecGetSubVector(ct->z, ct->is_cond, &zc));
-  PetscCall(VecWAXPY(wc, -1.0, ct->z_c, zc));
+  PetscCall(VecGetArray(wc, &wa));
+  PetscCall(VecGetArrayRead(zc, &za));
+  for (PetscInt r = 0; r < ct->cand.nc_local; ++r) wa[r] = za[r] - y[r];
+  PetscCall(VecRestoreArrayRead(zc, &za));
+  PetscCall(VecRestoreArray(wc, &wa));
   PetscCall(VecRestoreSubVector(ct->z, ct->is_cond, &zc));
   PetscCall(VecRestoreSubVector(w, ct->is_cond, &wc));
+  PetscCall(PetscFree(y));
   PetscCall(VecGetSubVector(react, ct->is_cond, &rc));
   PetscCall(VecAXPBY(rc, -1.0, 0.0, ct->rho));
   PetscCall(VecRestoreSubVector(react, ct->is_cond, &rc));

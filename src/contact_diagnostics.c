@@ -140,6 +140,8 @@ PetscErrorCode MMContactDiagnostics(MMCtx *ctx, Vec w, Vec react, Vec v, MMHisto
   h->max_penetration  = st.max_penetration;
   h->coulomb_residual = st.coulomb;
   h->vi_its           = ctx->contact.vi_its;
+  h->candidates       = ctx->contact.cand.n_set;
+  h->resolves         = ctx->contact.cand.resolves; /* over the run so far */
   PetscFunctionReturn(0);
 }
 

@@ -178,6 +178,28 @@ static PetscErrorCode CheckQPSolverType(SNES snes, PetscReal mu)
   PetscFunctionReturn(0);
 }
 
+/* A dense operator (the candidate set's Delassus block) is factored by LAPACK: Cholesky, as W is
+ * symmetric positive definite, unless the semismooth method's Jacobian (not symmetric) needs LU.
+ * A -PREFIX_pc_type the user gave stays. */
+static PetscErrorCode DenseFactorDefault(SNES snes, Mat A, const char prefix[])
+{
+  PetscBool dense, ssls, set;
+  KSP       ksp;
+  PC        pc;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)A, MATSEQDENSE, &dense));
+  if (!dense) PetscFunctionReturn(0);
+  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESVINEWTONSSLS, &ssls));
+  PetscCall(SNESGetKSP(snes, &ksp));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PetscOptionsHasName(NULL, prefix, "-pc_type", &set));
+  if (!set) PetscCall(PCSetType(pc, ssls ? PCLU : PCCHOLESKY));
+  PetscCall(PetscOptionsHasName(NULL, prefix, "-pc_factor_mat_solver_type", &set));
+  if (!set) PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERPETSC));
+  PetscFunctionReturn(0);
+}
+
 /* mu: the friction coefficient of the problem, 0 when its bounds are on normal dofs only. */
 PetscErrorCode MMQPCreate(MPI_Comm comm, const char prefix[], MMBoundQP *qp, PetscReal mu, SNES *snes)
 {
@@ -202,6 +224,7 @@ PetscErrorCode MMQPCreate(MPI_Comm comm, const char prefix[], MMBoundQP *qp, Pet
   /* the SNES checks its own residual: any linear solver that converges will do here */
   PetscCall(KSPSetDefaultLU(ksp));
   PetscCall(SNESSetFromOptions(*snes));
+  PetscCall(DenseFactorDefault(*snes, qp->A, prefix));
   PetscCall(CheckQPSolverType(*snes, mu));
   PetscCall(MMQPSetOperator(*snes, qp));
   PetscFunctionReturn(0);

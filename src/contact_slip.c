@@ -34,28 +34,105 @@ PetscErrorCode MMSlipSetDiskBounds(MMContact *ct, Vec s)
   PetscFunctionReturn(0);
 }
 
-/* P: the condensed dofs of each node from its (n, d, d_perp) basis to the frame's (n, t1, t2). */
-PetscErrorCode MMSlipAssembleRotation(MMContact *ct)
+/* Each owned node's (n, d, d_perp) basis as (1, cos, sin) of its slip direction in the frame's
+ * tangent plane, gathered to the candidate set by the VI. */
+PetscErrorCode MMSlipStoreRotations(MMContact *ct)
 {
-  PetscInt cstart;
+  PetscScalar *ra;
 
   PetscFunctionBeginUser;
-  PetscCall(MatGetOwnershipRange(ct->W, &cstart, NULL));
-  if (!ct->P) PetscCall(MatCreateAIJ(PetscObjectComm((PetscObject)ct->W), 3 * ct->n_local, 3 * ct->n_local, PETSC_DETERMINE, PETSC_DETERMINE, 2, NULL, 0, NULL, &ct->P));
+  PetscCall(VecGetArray(ct->rot, &ra));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
-    const PetscInt  r   = cstart + 3 * k;
     const PetscReal *d  = &ct->slip_dir[2 * k];
-    const PetscReal dd  = PetscSqrtReal(d[0] * d[0] + d[1] * d[1]);
-    const PetscReal c   = dd > 0 ? d[0] / dd : 1, sn = dd > 0 ? d[1] / dd : 0;
-    PetscCall(MatSetValue(ct->P, r, r, 1.0, INSERT_VALUES));
-    PetscCall(MatSetValue(ct->P, r + 1, r + 1, c, INSERT_VALUES));
-    PetscCall(MatSetValue(ct->P, r + 1, r + 2, -sn, INSERT_VALUES));
-    PetscCall(MatSetValue(ct->P, r + 2, r + 1, sn, INSERT_VALUES));
-    PetscCall(MatSetValue(ct->P, r + 2, r + 2, c, INSERT_VALUES));
+    const PetscReal  dd = PetscSqrtReal(d[0] * d[0] + d[1] * d[1]);
+    ra[3 * k]     = 1.0;
+    ra[3 * k + 1] = dd > 0 ? d[0] / dd : 1;
+    ra[3 * k + 2] = dd > 0 ? d[1] / dd : 0;
   }
-  PetscCall(MatAssemblyBegin(ct->P, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(ct->P, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatPtAP(ct->W, ct->P, ct->Wr ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, 1.0, &ct->Wr));
+  PetscCall(VecRestoreArray(ct->rot, &ra));
+  PetscFunctionReturn(0);
+}
+
+/* The 3x3 rotation R of a node, from the frame's (n, t1, t2) to its (n, d, d_perp): x_frame = R x_r. */
+static void NodeRotation(const PetscScalar *rot, PetscReal R[3][3])
+{
+  const PetscReal c = PetscRealPart(rot[1]), s = PetscRealPart(rot[2]);
+  R[0][0] = 1; R[0][1] = 0; R[0][2] = 0;
+  R[1][0] = 0; R[1][1] = c; R[1][2] = -s;
+  R[2][0] = 0; R[2][1] = s; R[2][2] = c;
+}
+
+/* The set's VI in the nodes' own bases, block by block: Wr_ij = R_i^T W_ij R_j, q_r = R^T q and
+ * the warm start x_r = R^T x. Only the candidate block is rotated, never a whole matrix. */
+PetscErrorCode MMSlipRotateSet(MMCandidates *c)
+{
+  const PetscInt     n = c->n_set, m = c->m;
+  const PetscScalar *w, *ra;
+  PetscScalar       *wr, *qa, *xa;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatDenseGetArrayRead(c->W, &w));
+  PetscCall(MatDenseGetArrayWrite(c->Wr, &wr));
+  PetscCall(VecGetArrayRead(c->rot, &ra));
+  for (PetscInt j = 0; j < n; ++j) {
+    PetscReal Rj[3][3];
+    NodeRotation(&ra[3 * j], Rj);
+    for (PetscInt i = 0; i < n; ++i) {
+      PetscReal Ri[3][3], WR[3][3];
+      NodeRotation(&ra[3 * i], Ri);
+      for (PetscInt p = 0; p < 3; ++p)
+        for (PetscInt q = 0; q < 3; ++q) {
+          WR[p][q] = 0;
+          for (PetscInt r = 0; r < 3; ++r) WR[p][q] += PetscRealPart(w[(3 * i + p) + (size_t)(3 * j + r) * m]) * Rj[r][q];
+        }
+      for (PetscInt p = 0; p < 3; ++p)
+        for (PetscInt q = 0; q < 3; ++q) {
+          PetscReal v = 0;
+          for (PetscInt r = 0; r < 3; ++r) v += Ri[r][p] * WR[r][q];
+          wr[(3 * i + p) + (size_t)(3 * j + q) * m] = v;
+        }
+    }
+  }
+  PetscCall(MatDenseRestoreArrayWrite(c->Wr, &wr));
+  PetscCall(MatDenseRestoreArrayRead(c->W, &w));
+  PetscCall(MatAssemblyBegin(c->Wr, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(c->Wr, MAT_FINAL_ASSEMBLY));
+  PetscCall(VecGetArray(c->q, &qa));
+  PetscCall(VecGetArray(c->x, &xa));
+  for (PetscInt i = 0; i < n; ++i) {
+    PetscReal       R[3][3];
+    const PetscReal q1 = PetscRealPart(qa[3 * i + 1]), q2 = PetscRealPart(qa[3 * i + 2]);
+    const PetscReal x1 = PetscRealPart(xa[3 * i + 1]), x2 = PetscRealPart(xa[3 * i + 2]);
+    NodeRotation(&ra[3 * i], R);
+    qa[3 * i + 1] = R[1][1] * q1 + R[2][1] * q2;
+    qa[3 * i + 2] = R[1][2] * q1 + R[2][2] * q2;
+    xa[3 * i + 1] = R[1][1] * x1 + R[2][1] * x2;
+    xa[3 * i + 2] = R[1][2] * x1 + R[2][2] * x2;
+  }
+  PetscCall(VecRestoreArray(c->x, &xa));
+  PetscCall(VecRestoreArray(c->q, &qa));
+  PetscCall(VecRestoreArrayRead(c->rot, &ra));
+  PetscFunctionReturn(0);
+}
+
+/* x = R x_r: the set's reactions back in the frame's components. */
+PetscErrorCode MMSlipRotateBack(MMCandidates *c, Vec x)
+{
+  const PetscScalar *ra;
+  PetscScalar       *xa;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(c->rot, &ra));
+  PetscCall(VecGetArray(x, &xa));
+  for (PetscInt i = 0; i < c->n_set; ++i) {
+    PetscReal       R[3][3];
+    const PetscReal x1 = PetscRealPart(xa[3 * i + 1]), x2 = PetscRealPart(xa[3 * i + 2]);
+    NodeRotation(&ra[3 * i], R);
+    xa[3 * i + 1] = R[1][1] * x1 + R[1][2] * x2;
+    xa[3 * i + 2] = R[2][1] * x1 + R[2][2] * x2;
+  }
+  PetscCall(VecRestoreArray(x, &xa));
+  PetscCall(VecRestoreArrayRead(c->rot, &ra));
   PetscFunctionReturn(0);
 }
 
@@ -116,7 +193,7 @@ PetscErrorCode MMContactSetThresholds(MMCtx *ctx, Vec s)
 
   PetscFunctionBeginUser;
   if (ct->ncomp == 3) {
-    PetscCall(MMSlipAssembleRotation(ct));
+    PetscCall(MMSlipStoreRotations(ct));
     PetscCall(MMSlipSetDiskBounds(ct, s));
     PetscFunctionReturn(0);
   }

@@ -17,6 +17,8 @@ PetscErrorCode MMLogRegister(MMLog *log)
   PetscCall(PetscLogEventRegister("MMContactSolve", id, &log->contact_solve));
   PetscCall(PetscLogEventRegister("MMContactRecover", id, &log->contact_recover));
   PetscCall(PetscLogEventRegister("MMFrictionLoop", id, &log->friction));
+  PetscCall(PetscLogEventRegister("MMCandidateCols", id, &log->candidate_columns));
+  PetscCall(PetscLogEventRegister("MMCandidateOp", id, &log->candidate_operator));
   PetscCall(PetscLogEventRegister("MMEnergy", id, &log->energy));
   PetscFunctionReturn(0);
 }

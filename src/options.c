@@ -143,6 +143,8 @@ static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
   PetscCheck(opt->contact_tol > 0 && opt->contact_tol < 1, comm, PETSC_ERR_USER_INPUT, "-contact_tol %g must lie in (0, 1): it is a relative residual", (double)opt->contact_tol);
   PetscCheck(opt->friction_coulomb_tol > 0 && opt->friction_coulomb_tol < 1, comm, PETSC_ERR_USER_INPUT, "-friction_coulomb_tol %g must lie in (0, 1): it is a normalized residual", (double)opt->friction_coulomb_tol);
   PetscCheck(opt->audit_tol > 0, comm, PETSC_ERR_USER_INPUT, "-audit_tol %g must be > 0: it is a relative energy-balance residual", (double)opt->audit_tol);
+  PetscCheck(opt->candidate_margin >= 0, comm, PETSC_ERR_USER_INPUT, "-contact_candidate_margin %g must be >= 0: it is a multiple of the deepest predicted penetration", (double)opt->candidate_margin);
+  PetscCheck(opt->candidate_memory > 0, comm, PETSC_ERR_USER_INPUT, "-contact_candidate_memory %g must be > 0 (MiB)", (double)opt->candidate_memory);
   PetscCheck(opt->contact_work_tol > 0, comm, PETSC_ERR_USER_INPUT, "-contact_work_tol %g must be > 0: it is a fraction of the run's energy scale", (double)opt->contact_work_tol);
   PetscCheck(opt->initial_penetration_tol >= 0, comm, PETSC_ERR_USER_INPUT, "-initial_penetration_tol %g must be >= 0: it is a fraction of h_c'", (double)opt->initial_penetration_tol);
   PetscCheck(opt->output_every >= 0, comm, PETSC_ERR_USER_INPUT, "-output_every %" PetscInt_FMT " must be >= 0", opt->output_every);
@@ -209,6 +211,12 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(PetscOptionsEnum("-contact_formulation", "Contact VI on the contact dofs through the Delassus operator (condensed: K~ factored once per dt) or on all dofs (full: a factorization per VI iteration)", NULL, MMContactFormulations, (PetscEnum)opt->contact_formulation, (PetscEnum *)&opt->contact_formulation, NULL));
   opt->contact_tol = 1e-11;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-contact_tol", "Contact solves stop when ||K~ w - b - f_c|| <= contact_tol ||b|| (on top of -contact_snes_rtol/atol), in (0, 1)", &opt->contact_tol));
+  opt->candidate_margin = 1.0;
+  PetscCall(OptionsReal(PetscOptionsObject, comm, "-contact_candidate_margin", "Condensed formulation: a contact node joins the step's candidate set when its contact-free predicted gap is below this times the deepest predicted penetration (>= 0; the set grows and the step is re-solved if a node outside it would penetrate, so this changes the cost, not the answer)", &opt->candidate_margin));
+  opt->candidate_all = PETSC_FALSE;
+  PetscCall(PetscOptionsBool("-contact_candidate_all", "Condensed formulation: every contact node in every step's candidate set (the full Delassus operator: the reference the candidate set is checked against)", NULL, opt->candidate_all, &opt->candidate_all, NULL));
+  opt->candidate_memory = 2048;
+  PetscCall(OptionsReal(PetscOptionsObject, comm, "-contact_candidate_memory", "Condensed formulation: MiB (over all ranks) of cached columns of K~^{-1} E; columns of nodes outside the step's set are dropped beyond it (> 0)", &opt->candidate_memory));
   opt->audit_tol = 1e-6;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-audit_tol", "Stop the run when a step's relative energy-balance residual exceeds this (> 0): the scheme's identity no longer holds", &opt->audit_tol));
   opt->contact_work_tol = 1e-3;

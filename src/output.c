@@ -163,7 +163,7 @@ static PetscErrorCode CSVHeader(MMCtx *ctx)
   for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",vcm_%c", axes[d]));
   if (dim == 2) PetscCall(LineAdd(&l, ",L_z"));
   else PetscCall(LineAdd(&l, ",L_x,L_y,L_z"));
-  PetscCall(LineAdd(&l, ",switched,contraction\n"));
+  PetscCall(LineAdd(&l, ",switched,contraction,candidates,candidate_resolves\n"));
   PetscCall(CSVWrite(&ctx->out, &l));
   PetscFunctionReturn(0);
 }
@@ -181,7 +181,7 @@ static PetscErrorCode CSVRow(MMCtx *ctx)
   for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",%.16e", (double)h->vcm[d]));
   if (dim == 2) PetscCall(LineAdd(&l, ",%.16e", (double)h->L[2]));
   else PetscCall(LineAdd(&l, ",%.16e,%.16e,%.16e", (double)h->L[0], (double)h->L[1], (double)h->L[2]));
-  PetscCall(LineAdd(&l, ",%" PetscInt_FMT ",%.6e\n", h->switched, (double)h->contraction));
+  PetscCall(LineAdd(&l, ",%" PetscInt_FMT ",%.6e,%" PetscInt_FMT ",%" PetscInt_FMT "\n", h->switched, (double)h->contraction, h->candidates, h->resolves));
   PetscCall(CSVWrite(&ctx->out, &l));
   PetscFunctionReturn(0);
 }

@@ -1,0 +1,455 @@
+/* The condensed operator on a candidate set (docs/method.md section 3, "Candidate set").
+ *
+ * The step's contact VI needs the Delassus operator W = E^T K~^{-1} E only on the nodes that can
+ * touch in the step. Its columns come from the factor of K~ when a node first enters the set and
+ * are cached, on the owned condensed rows, until K~ is refactored (a new dt) or the cache exceeds
+ * -contact_candidate_memory. The set's block W_SS is small and dense: it is gathered on every rank
+ * and its VI solved there with LAPACK, identically, so no matrix of size (contact dofs)^2 exists.
+ * A node outside the set that the recovered step would push into the obstacle joins it, and the
+ * step is solved again: the answer is the full-set one. */
+#include "contact_impl.h"
+
+static PetscBool NodeIsLocal(MMCandidates *c, MMContact *ct, PetscInt g)
+{
+  return (PetscBool)(g >= c->node_start && g < c->node_start + ct->n_local);
+}
+
+/* The set's VI solver, created at set-up on a 1x1 placeholder so that its options (prefix contact_)
+ * are read and checked before the first step; each new set gets its own (BuildSetOperator). */
+static PetscErrorCode CreateSetSolver(MMCtx *ctx)
+{
+  MMCandidates *c = &ctx->contact.cand;
+  Mat           W0;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, 1, 1, NULL, &W0));
+  PetscCall(MatShift(W0, 1.0));
+  PetscCall(MatAssemblyBegin(W0, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(W0, MAT_FINAL_ASSEMBLY));
+  c->qp.A      = W0;
+  c->qp.rtol_b = ctx->contact.tol;
+  PetscCall(MMQPCreate(PETSC_COMM_SELF, "contact_", &c->qp, ctx->contact.ncomp > 1 ? ctx->opt.mu : 0, &c->snes));
+  PetscCall(MatDestroy(&W0));
+  c->qp.A = NULL;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMCandidatesSetUp(MMCtx *ctx)
+{
+  MMContact   *ct = &ctx->contact;
+  MMCandidates *c = &ct->cand;
+  MPI_Comm     comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  PetscMPIInt  size, nl;
+  const PetscInt *in;
+  PetscInt    *mine;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(MPI_Scan(&ct->n_local, &c->node_start, 1, MPIU_INT, MPI_SUM, comm));
+  c->node_start -= ct->n_local;
+  c->nc_local   = ct->ncomp * ct->n_local;
+  c->margin     = ctx->opt.candidate_margin;
+  c->all        = ctx->opt.candidate_all;
+  c->memory_cap = ctx->opt.candidate_memory * 1024.0 * 1024.0;
+  PetscCall(PetscMalloc2(size, &c->node_counts, size, &c->node_displs));
+  PetscCall(PetscMPIIntCast(ct->n_local, &nl));
+  PetscCallMPI(MPI_Allgather(&nl, 1, MPI_INT, c->node_counts, 1, MPI_INT, comm));
+  c->node_displs[0] = 0;
+  for (PetscMPIInt r = 1; r < size; ++r) c->node_displs[r] = c->node_displs[r - 1] + c->node_counts[r - 1];
+  PetscCall(PetscMalloc4(ct->n_global, &c->normal_dof, ct->n_global, &c->slot, ct->n_global, &c->in_set, ct->n_global, &c->set));
+  PetscCall(ISGetIndices(ct->is_normal, &in));
+  PetscCall(PetscMalloc1(ct->n_local, &mine));
+  for (PetscInt k = 0; k < ct->n_local; ++k) mine[k] = in[k];
+  PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  PetscCallMPI(MPI_Allgatherv(mine, nl, MPIU_INT, c->normal_dof, c->node_counts, c->node_displs, MPIU_INT, comm));
+  PetscCall(PetscFree(mine));
+  for (PetscInt g = 0; g < ct->n_global; ++g) {
+    c->slot[g]   = -1;
+    c->in_set[g] = PETSC_FALSE;
+  }
+  PetscCall(CreateSetSolver(ctx));
+  PetscFunctionReturn(0);
+}
+
+/* K~ was refactored: every cached column is stale. */
+PetscErrorCode MMCandidatesInvalidate(MMContact *ct)
+{
+  MMCandidates *c = &ct->cand;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < c->n_cached; ++i) c->slot[c->slot_node[i]] = -1;
+  c->n_cached = 0;
+  for (PetscInt i = 0; i < c->n_set; ++i) c->in_set[c->set[i]] = PETSC_FALSE;
+  c->n_set = 0;
+  c->m     = 0;
+  PetscFunctionReturn(0);
+}
+
+/* Keeps only the cached columns of the set's nodes, compacted to the front of the cache. */
+static PetscErrorCode EvictOutsideSet(MMContact *ct)
+{
+  MMCandidates *c  = &ct->cand;
+  PetscInt      nb = ct->ncomp * c->nc_local, kept = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < c->n_cached; ++i) {
+    const PetscInt g = c->slot_node[i];
+    if (!c->in_set[g]) {
+      c->slot[g] = -1;
+      continue;
+    }
+    if (kept != i) PetscCall(PetscArraycpy(c->cols + kept * nb, c->cols + i * nb, nb));
+    c->slot_node[kept] = g;
+    c->slot[g]         = kept++;
+  }
+  PetscCall(PetscInfo(NULL, "Candidate cache: kept %" PetscInt_FMT " of %" PetscInt_FMT " nodes\n", kept, c->n_cached));
+  c->n_cached = kept;
+  PetscFunctionReturn(0);
+}
+
+/* Room for n more cached nodes, within the memory cap: beyond it the nodes outside the set go. */
+static PetscErrorCode ReserveSlots(MMCtx *ctx, PetscInt n)
+{
+  MMContact    *ct = &ctx->contact;
+  MMCandidates *c  = &ct->cand;
+  const double  per_node = 8.0 * ct->ncomp * ct->ncomp * ct->n_global; /* bytes over all ranks */
+
+  PetscFunctionBeginUser;
+  if ((c->n_cached + n) * per_node > c->memory_cap) PetscCall(EvictOutsideSet(ct));
+  PetscCheck((c->n_cached + n) * per_node <= c->memory_cap, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_MEM,
+             "The contact candidate set (%" PetscInt_FMT " nodes) needs %.0f MiB of K~^{-1} E columns, above -contact_candidate_memory %g MiB. Raise it, or use a contact formulation that needs no Delassus operator",
+             c->n_cached + n, (c->n_cached + n) * per_node / 1048576.0, (double)ctx->opt.candidate_memory);
+  if (c->n_cached + n > c->cap) {
+    PetscInt     cap = PetscMax(2 * c->cap, c->n_cached + n);
+    PetscScalar *cols;
+    PetscInt    *nodes;
+    PetscCall(PetscMalloc1((size_t)cap * ct->ncomp * c->nc_local, &cols));
+    PetscCall(PetscMalloc1(cap, &nodes));
+    PetscCall(PetscArraycpy(cols, c->cols, (size_t)c->n_cached * ct->ncomp * c->nc_local));
+    PetscCall(PetscArraycpy(nodes, c->slot_node, c->n_cached));
+    PetscCall(PetscFree(c->cols));
+    PetscCall(PetscFree(c->slot_node));
+    c->cols      = cols;
+    c->slot_node = nodes;
+    c->cap       = cap;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Columns of K~^{-1} E for the set's nodes not yet cached, a block of right-hand sides at a time
+ * through the factor, kept on the owned condensed rows. */
+static PetscErrorCode ComputeMissingColumns(MMCtx *ctx)
+{
+  MMContact      *ct = &ctx->contact;
+  MMCandidates   *c  = &ct->cand;
+  MPI_Comm        comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  const PetscInt  nb_max = 96, nr = ct->ncomp;
+  PetscInt        nnew = 0, *todo, n, rstart;
+  const PetscInt *ic;
+  PC              pc;
+  Mat             F;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(c->n_set, &todo));
+  for (PetscInt i = 0; i < c->n_set; ++i)
+    if (c->slot[c->set[i]] < 0) todo[nnew++] = c->set[i];
+  if (!nnew) {
+    PetscCall(PetscFree(todo));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscLogEventBegin(ctx->log.candidate_columns, 0, 0, 0, 0));
+  PetscCall(ReserveSlots(ctx, nnew));
+  PetscCall(KSPGetPC(ct->ksp_K, &pc));
+  PetscCall(PCFactorGetMatrix(pc, &F));
+  PetscCall(MatGetLocalSize(ct->qp.A, &n, NULL));
+  PetscCall(MatGetOwnershipRange(ct->qp.A, &rstart, NULL));
+  PetscCall(ISGetIndices(ct->is_cond, &ic));
+  for (PetscInt i0 = 0; i0 < nnew * nr; i0 += nb_max) {
+    const PetscInt     nb = PetscMin(nb_max, nnew * nr - i0);
+    Mat                B, X;
+    const PetscScalar *x;
+    PetscInt           lda;
+
+    PetscCall(MatCreateDense(comm, n, PETSC_DECIDE, PETSC_DETERMINE, nb, NULL, &B));
+    for (PetscInt j = 0; j < nb; ++j) {
+      const PetscInt g = todo[(i0 + j) / nr], comp = (i0 + j) % nr;
+      if (NodeIsLocal(c, ct, g)) PetscCall(MatSetValue(B, c->normal_dof[g] + comp, j, 1.0, INSERT_VALUES));
+    }
+    PetscCall(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatDuplicate(B, MAT_DO_NOT_COPY_VALUES, &X));
+    PetscCall(MatMatSolve(F, B, X));
+    PetscCall(MatDenseGetLDA(X, &lda));
+    PetscCall(MatDenseGetArrayRead(X, &x));
+    for (PetscInt j = 0; j < nb; ++j) {
+      const PetscInt g = todo[(i0 + j) / nr], comp = (i0 + j) % nr;
+      PetscScalar   *col;
+      if (comp == 0) {
+        c->slot[g]                  = c->n_cached;
+        c->slot_node[c->n_cached++] = g;
+      }
+      col = c->cols + ((size_t)c->slot[g] * nr + comp) * c->nc_local;
+      for (PetscInt r = 0; r < c->nc_local; ++r) col[r] = x[(ic[r] - rstart) + j * lda];
+    }
+    PetscCall(MatDenseRestoreArrayRead(X, &x));
+    PetscCall(MatDestroy(&X));
+    PetscCall(MatDestroy(&B));
+  }
+  PetscCall(ISRestoreIndices(ct->is_cond, &ic));
+  c->columns += nnew * nr;
+  PetscCall(PetscFree(todo));
+  PetscCall(PetscLogEventEnd(ctx->log.candidate_columns, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* diag(W) of the owned cached nodes: the nodal compliances of the 3D return mapping. */
+static PetscErrorCode UpdateCompliances(MMContact *ct)
+{
+  MMCandidates *c  = &ct->cand;
+  const PetscInt nr = ct->ncomp;
+  PetscScalar  *wd;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArray(ct->Wdiag, &wd));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscInt s = c->slot[c->node_start + k];
+    for (PetscInt p = 0; p < nr; ++p) wd[nr * k + p] = s < 0 ? 1.0 : c->cols[((size_t)s * nr + p) * c->nc_local + nr * k + p];
+  }
+  PetscCall(VecRestoreArray(ct->Wdiag, &wd));
+  PetscFunctionReturn(0);
+}
+
+/* The set's vectors, scatter and dense block W_SS: each rank contributes the rows it owns (the set
+ * is sorted, so they are contiguous), every rank receives them all. W is symmetric; its two
+ * triangles differ by the solves' round-off, so W_SS is their mean, and Cholesky applies. */
+static PetscErrorCode BuildSetOperator(MMCtx *ctx)
+{
+  MMContact    *ct = &ctx->contact;
+  MMCandidates *c  = &ct->cand;
+  MPI_Comm      comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  const PetscInt nr = ct->ncomp;
+  PetscMPIInt   size, *cnt, *dsp, mine;
+  PetscInt      first = -1, nloc = 0, m;
+  PetscScalar  *rows, *all, *w;
+  IS            is;
+  PetscInt     *idx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ctx->log.candidate_operator, 0, 0, 0, 0));
+  m = c->m = nr * c->n_set;
+  PetscCall(MatDestroy(&c->W));
+  PetscCall(MatDestroy(&c->Wr));
+  PetscCall(VecDestroy(&c->x));
+  PetscCall(VecDestroy(&c->lo));
+  PetscCall(VecDestroy(&c->hi));
+  PetscCall(VecDestroy(&c->q));
+  PetscCall(VecDestroy(&c->rot));
+  PetscCall(VecDestroy(&c->f));
+  PetscCall(VecScatterDestroy(&c->gather));
+  if (!m) {
+    PetscCall(PetscLogEventEnd(ctx->log.candidate_operator, 0, 0, 0, 0));
+    PetscFunctionReturn(0);
+  }
+  for (PetscInt i = 0; i < c->n_set; ++i)
+    if (NodeIsLocal(c, ct, c->set[i])) {
+      if (first < 0) first = i;
+      ++nloc;
+    }
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(PetscMalloc2(size, &cnt, size, &dsp));
+  PetscCall(PetscMPIIntCast(nloc * nr * m, &mine));
+  PetscCallMPI(MPI_Allgather(&mine, 1, MPI_INT, cnt, 1, MPI_INT, comm));
+  dsp[0] = 0;
+  for (PetscMPIInt r = 1; r < size; ++r) dsp[r] = dsp[r - 1] + cnt[r - 1];
+  PetscCall(PetscMalloc2((size_t)nloc * nr * m, &rows, (size_t)m * m, &all));
+  for (PetscInt i = 0; i < nloc; ++i) {
+    const PetscInt g = c->set[first + i], lr = nr * (g - c->node_start);
+    for (PetscInt p = 0; p < nr; ++p)
+      for (PetscInt j = 0; j < c->n_set; ++j)
+        for (PetscInt q = 0; q < nr; ++q) rows[(size_t)(i * nr + p) * m + j * nr + q] = c->cols[((size_t)c->slot[c->set[j]] * nr + q) * c->nc_local + lr + p];
+  }
+  PetscCallMPI(MPI_Allgatherv(rows, mine, MPIU_SCALAR, all, cnt, dsp, MPIU_SCALAR, comm));
+  PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, m, m, NULL, &c->W));
+  PetscCall(MatDenseGetArrayWrite(c->W, &w));
+  for (PetscInt j = 0; j < m; ++j)
+    for (PetscInt i = 0; i < m; ++i) w[i + (size_t)j * m] = 0.5 * (all[(size_t)i * m + j] + all[(size_t)j * m + i]);
+  PetscCall(MatDenseRestoreArrayWrite(c->W, &w));
+  PetscCall(MatAssemblyBegin(c->W, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(c->W, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatSetOption(c->W, MAT_SPD, PETSC_TRUE));
+  PetscCall(PetscFree2(rows, all));
+  PetscCall(PetscFree2(cnt, dsp));
+
+  PetscCall(MatCreateVecs(c->W, &c->x, &c->q));
+  PetscCall(VecDuplicate(c->x, &c->lo));
+  PetscCall(VecDuplicate(c->x, &c->hi));
+  PetscCall(VecDuplicate(c->x, &c->f));
+  PetscCall(PetscMalloc1(m, &idx));
+  for (PetscInt i = 0; i < c->n_set; ++i)
+    for (PetscInt p = 0; p < nr; ++p) idx[i * nr + p] = nr * c->set[i] + p;
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, m, idx, PETSC_OWN_POINTER, &is));
+  PetscCall(VecScatterCreate(ct->rho, is, c->x, NULL, &c->gather));
+  PetscCall(ISDestroy(&is));
+  if (nr == 3) {
+    PetscCall(VecDuplicate(c->x, &c->rot));
+    PetscCall(MatDuplicate(c->W, MAT_COPY_VALUES, &c->Wr));
+  }
+  c->qp.A      = nr == 3 ? c->Wr : c->W;
+  c->qp.b      = c->q;
+  c->qp.rtol_b = ct->tol;
+  /* a new solver for the new size: SNESReset leaves the semismooth method's work vectors behind */
+  PetscCall(SNESDestroy(&c->snes));
+  PetscCall(MMQPCreate(PETSC_COMM_SELF, "contact_", &c->qp, nr > 1 ? ctx->opt.mu : 0, &c->snes));
+  PetscCall(SNESVISetVariableBounds(c->snes, c->lo, c->hi));
+  PetscCall(PetscLogEventEnd(ctx->log.candidate_operator, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* Adds the listed nodes (owned here, increasing) of every rank to the set; returns how many. */
+static PetscErrorCode AddToSet(MMCtx *ctx, PetscInt nmine, const PetscInt mine[], PetscInt *added)
+{
+  MMContact    *ct = &ctx->contact;
+  MMCandidates *c  = &ct->cand;
+  MPI_Comm      comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  PetscMPIInt   size, n, *cnt, *dsp;
+  PetscInt     *news, total = 0, k = 0;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(PetscMalloc2(size, &cnt, size, &dsp));
+  PetscCall(PetscMPIIntCast(nmine, &n));
+  PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, cnt, 1, MPI_INT, comm));
+  dsp[0] = 0;
+  for (PetscMPIInt r = 0; r < size; ++r) {
+    if (r) dsp[r] = dsp[r - 1] + cnt[r - 1];
+    total += cnt[r];
+  }
+  PetscCall(PetscMalloc1(total + 1, &news));
+  PetscCallMPI(MPI_Allgatherv(mine, n, MPIU_INT, news, cnt, dsp, MPIU_INT, comm));
+  for (PetscInt i = 0; i < total; ++i) c->in_set[news[i]] = PETSC_TRUE;
+  /* the set in increasing order, so that each rank's rows of W_SS are contiguous */
+  for (PetscInt g = 0; g < ct->n_global; ++g)
+    if (c->in_set[g]) c->set[k++] = g;
+  c->n_set = k;
+  *added   = total;
+  PetscCall(PetscFree(news));
+  PetscCall(PetscFree2(cnt, dsp));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CompleteSet(MMCtx *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(ComputeMissingColumns(ctx));
+  PetscCall(UpdateCompliances(&ctx->contact));
+  PetscCall(BuildSetOperator(ctx));
+  PetscFunctionReturn(0);
+}
+
+/* The step's set, from q = z_c - offset (q_n = z_n - g: the contact-free predicted penetration):
+ * the nodes predicted within margin * (deepest predicted penetration) of the obstacle, and those
+ * carrying a reaction in the last solve. The reactions' displacement is largest at the nodes they
+ * push and decays away from them (over about c_p dt), so a node farther out than the deepest
+ * penetration they undo is not reached; rotations and bulging that do reach one are caught by
+ * MMCandidatesGrow. */
+PetscErrorCode MMCandidatesSelect(MMCtx *ctx)
+{
+  MMContact         *ct = &ctx->contact;
+  MMCandidates      *c  = &ct->cand;
+  const PetscInt     nr = ct->ncomp;
+  const PetscScalar *qa, *ra;
+  PetscReal          deepest = 0;
+  PetscInt          *mine, n = 0, added;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < c->n_set; ++i) c->in_set[c->set[i]] = PETSC_FALSE;
+  c->n_set = 0;
+  PetscCall(VecGetArrayRead(ct->q, &qa));
+  PetscCall(VecGetArrayRead(ct->rho, &ra));
+  for (PetscInt k = 0; k < ct->n_local; ++k) deepest = PetscMax(deepest, PetscRealPart(qa[nr * k]));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &deepest, 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)ctx->op.dm)));
+  PetscCall(PetscMalloc1(ct->n_local, &mine));
+  for (PetscInt k = 0; k < ct->n_local; ++k)
+    if (c->all || PetscRealPart(qa[nr * k]) >= -c->margin * deepest || PetscRealPart(ra[nr * k]) > 0) mine[n++] = c->node_start + k;
+  PetscCall(VecRestoreArrayRead(ct->rho, &ra));
+  PetscCall(VecRestoreArrayRead(ct->q, &qa));
+  PetscCall(AddToSet(ctx, n, mine, &added));
+  PetscCall(PetscFree(mine));
+  PetscCall(CompleteSet(ctx));
+  PetscFunctionReturn(0);
+}
+
+/* After the step is recovered: the nodes outside the set that it pushes into the obstacle (beyond
+ * 1e-10 h_c', the diagnostics' own "on the obstacle") join the set; *grown says the step must be
+ * solved again. */
+PetscErrorCode MMCandidatesGrow(MMCtx *ctx, Vec w, PetscBool *grown)
+{
+  MMContact         *ct = &ctx->contact;
+  MMCandidates      *c  = &ct->cand;
+  const PetscScalar *wa, *ga;
+  const PetscInt    *in;
+  PetscInt          *mine, n = 0, added, rstart;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetOwnershipRange(w, &rstart, NULL));
+  PetscCall(ISGetIndices(ct->is_normal, &in));
+  PetscCall(VecGetArrayRead(w, &wa));
+  PetscCall(VecGetArrayRead(ct->gap, &ga));
+  PetscCall(PetscMalloc1(ct->n_local, &mine));
+  for (PetscInt k = 0; k < ct->n_local; ++k)
+    if (!c->in_set[c->node_start + k] && PetscRealPart(wa[in[k] - rstart] - ga[k]) > 1e-10 * ct->h_c) mine[n++] = c->node_start + k;
+  PetscCall(VecRestoreArrayRead(ct->gap, &ga));
+  PetscCall(VecRestoreArrayRead(w, &wa));
+  PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  PetscCall(AddToSet(ctx, n, mine, &added));
+  PetscCall(PetscFree(mine));
+  *grown = (PetscBool)(added > 0);
+  if (!*grown) PetscFunctionReturn(0);
+  PetscCall(PetscInfo(NULL, "Candidate set grew by %" PetscInt_FMT " nodes to %" PetscInt_FMT ": the step is solved again\n", added, c->n_set));
+  ++c->resolves;
+  PetscCall(CompleteSet(ctx));
+  PetscFunctionReturn(0);
+}
+
+/* y = W_{.,S} x on the owned condensed rows: the displacement of every contact dof owned here
+ * under the set's reactions x (frame components). */
+PetscErrorCode MMCandidatesMult(MMContact *ct, Vec x, PetscScalar y[])
+{
+  MMCandidates      *c  = &ct->cand;
+  const PetscInt     nr = ct->ncomp;
+  const PetscScalar *xa;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscArrayzero(y, c->nc_local));
+  if (!c->m) PetscFunctionReturn(0);
+  PetscCall(VecGetArrayRead(x, &xa));
+  for (PetscInt j = 0; j < c->n_set; ++j)
+    for (PetscInt q = 0; q < nr; ++q) {
+      const PetscScalar  xj  = xa[j * nr + q];
+      const PetscScalar *col = c->cols + ((size_t)c->slot[c->set[j]] * nr + q) * c->nc_local;
+      if (xj == 0) continue;
+      for (PetscInt r = 0; r < c->nc_local; ++r) y[r] += col[r] * xj;
+    }
+  PetscCall(VecRestoreArrayRead(x, &xa));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMCandidatesDestroy(MMCandidates *c)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree2(c->node_counts, c->node_displs));
+  PetscCall(PetscFree4(c->normal_dof, c->slot, c->in_set, c->set));
+  PetscCall(PetscFree(c->slot_node));
+  PetscCall(PetscFree(c->cols));
+  PetscCall(MatDestroy(&c->W));
+  PetscCall(MatDestroy(&c->Wr));
+  PetscCall(VecDestroy(&c->x));
+  PetscCall(VecDestroy(&c->lo));
+  PetscCall(VecDestroy(&c->hi));
+  PetscCall(VecDestroy(&c->q));
+  PetscCall(VecDestroy(&c->rot));
+  PetscCall(VecDestroy(&c->f));
+  PetscCall(VecScatterDestroy(&c->gather));
+  PetscCall(SNESDestroy(&c->snes));
+  PetscFunctionReturn(0);
+}
