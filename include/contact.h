@@ -7,7 +7,6 @@ PETSC_EXTERN PetscErrorCode MMContactSetStepMatrix(MMCtx *, PetscReal);
 PETSC_EXTERN PetscErrorCode MMContactSolve(MMCtx *, Vec, Vec, Vec);
 PETSC_EXTERN PetscErrorCode MMContactSolveContactDofs(MMCtx *, Vec, Vec, Vec);
 PETSC_EXTERN PetscErrorCode MMContactRecover(MMCtx *, Vec, Vec, Vec);
-PETSC_EXTERN PetscErrorCode MMContactGrowCandidates(MMCtx *, Vec, PetscBool *);
 PETSC_EXTERN PetscErrorCode MMContactSetThresholds(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMContactGetNormalReactions(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMContactUpdateSlip(MMCtx *, Vec, Vec, PetscInt *, PetscReal *);

@@ -25,6 +25,6 @@ PETSC_EXTERN PetscErrorCode MMSlipRotateBack(MMCandidates *, Vec);
 PETSC_EXTERN PetscErrorCode MMCandidatesSetUp(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMCandidatesInvalidate(MMContact *);
 PETSC_EXTERN PetscErrorCode MMCandidatesSelect(MMCtx *);
-PETSC_EXTERN PetscErrorCode MMCandidatesGrow(MMCtx *, Vec, PetscBool *);
+PETSC_EXTERN PetscErrorCode MMCandidatesGrow(MMCtx *, const PetscScalar[], PetscBool *);
 PETSC_EXTERN PetscErrorCode MMCandidatesMult(MMContact *, Vec, PetscScalar[]);
 PETSC_EXTERN PetscErrorCode MMCandidatesDestroy(MMCandidates *);

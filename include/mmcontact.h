@@ -169,8 +169,10 @@ typedef struct {
   PetscReal    margin;              /* -contact_candidate_margin */
   PetscBool    all;                 /* -contact_candidate_all */
   PetscReal    memory_cap;          /* -contact_candidate_memory, bytes over all ranks */
-  PetscInt     resolves;            /* re-solves of the step after the set grew */
+  PetscScalar *wc;                  /* the step's solution on the owned condensed dofs, from the set's reactions */
+  PetscInt     resolves;            /* VI re-solves after the set grew, over the run */
   PetscInt     columns;             /* columns computed in the run */
+  PetscInt     max_set;             /* the largest set of the run */
 } MMCandidates;
 
 /* Contact set, gaps, bounds and the per-step contact solver. Friction wraps ContactSolve. */
@@ -249,7 +251,7 @@ typedef struct {
   PetscInt  active, slipping, switched;
   PetscReal force_normal, force_tangential, max_penetration, coulomb_residual;
   PetscInt  vi_its, friction_its;
-  PetscInt  candidates, resolves; /* the step's candidate-set size; re-solves after the set grew, over the run */
+  PetscInt  candidates, resolves; /* the step's candidate-set size; VI re-solves after the set grew, over the run */
   PetscReal cfl, contraction;
   PetscReal ucm[MM_MAX_DIM], vcm[MM_MAX_DIM], L[MM_MAX_DIM];
   PetscReal max_balance, max_penetration_run; /* over the run, for the summary */

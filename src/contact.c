@@ -102,17 +102,6 @@ PetscErrorCode MMContactSolveContactDofs(MMCtx *ctx, Vec b, Vec w, Vec react)
   PetscFunctionReturn(0);
 }
 
-/* After the step is complete: *grown says that a contact node outside the condensed candidate set
- * would penetrate, that the set took it in, and that the step must be solved again. */
-PetscErrorCode MMContactGrowCandidates(MMCtx *ctx, Vec w, PetscBool *grown)
-{
-  PetscFunctionBeginUser;
-  *grown = PETSC_FALSE;
-  if (ctx->contact.formulation != MM_CONTACT_CONDENSED || !ctx->contact.enabled) PetscFunctionReturn(0);
-  PetscCall(MMCandidatesGrow(ctx, w, grown));
-  PetscFunctionReturn(0);
-}
-
 /* The whole step solution and contact force from the last contact-dof solve: one full-size solve. */
 PetscErrorCode MMContactRecover(MMCtx *ctx, Vec b, Vec w, Vec react)
 {

@@ -67,6 +67,7 @@ PetscErrorCode MMCandidatesSetUp(MMCtx *ctx)
     c->slot[g]   = -1;
     c->in_set[g] = PETSC_FALSE;
   }
+  PetscCall(PetscMalloc1(c->nc_local, &c->wc));
   PetscCall(CreateSetSolver(ctx));
   PetscFunctionReturn(0);
 }
@@ -116,8 +117,8 @@ static PetscErrorCode ReserveSlots(MMCtx *ctx, PetscInt n)
 
   PetscFunctionBeginUser;
   if ((c->n_cached + n) * per_node > c->memory_cap) PetscCall(EvictOutsideSet(ct));
-  PetscCheck((c->n_cached + n) * per_node <= c->memory_cap, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_MEM,
-             "The contact candidate set (%" PetscInt_FMT " nodes) needs %.0f MiB of K~^{-1} E columns, above -contact_candidate_memory %g MiB. Raise it, or use a contact formulation that needs no Delassus operator",
+  PetscCheck((c->n_cached + n) * per_node <= c->memory_cap, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT,
+             "The contact candidate set (%" PetscInt_FMT " nodes) needs %.3g MiB of K~^{-1} E columns, above -contact_candidate_memory %g MiB. Raise it, or use a contact formulation that needs no Delassus operator",
              c->n_cached + n, (c->n_cached + n) * per_node / 1048576.0, (double)ctx->opt.candidate_memory);
   if (c->n_cached + n > c->cap) {
     PetscInt     cap = PetscMax(2 * c->cap, c->n_cached + n);
@@ -330,8 +331,9 @@ static PetscErrorCode AddToSet(MMCtx *ctx, PetscInt nmine, const PetscInt mine[]
   /* the set in increasing order, so that each rank's rows of W_SS are contiguous */
   for (PetscInt g = 0; g < ct->n_global; ++g)
     if (c->in_set[g]) c->set[k++] = g;
-  c->n_set = k;
-  *added   = total;
+  c->n_set   = k;
+  c->max_set = PetscMax(c->max_set, k);
+  *added     = total;
   PetscCall(PetscFree(news));
   PetscCall(PetscFree2(cnt, dsp));
   PetscFunctionReturn(0);
@@ -379,33 +381,27 @@ PetscErrorCode MMCandidatesSelect(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
-/* After the step is recovered: the nodes outside the set that it pushes into the obstacle (beyond
- * 1e-10 h_c', the diagnostics' own "on the obstacle") join the set; *grown says the step must be
- * solved again. */
-PetscErrorCode MMCandidatesGrow(MMCtx *ctx, Vec w, PetscBool *grown)
+/* After the set's VI: the nodes outside the set that its reactions push into the obstacle (beyond
+ * 1e-10 h_c', the diagnostics' own "on the obstacle") join the set, and *grown says the VI must be
+ * solved again. wc: the solution on the owned condensed dofs, exact on every contact node. */
+PetscErrorCode MMCandidatesGrow(MMCtx *ctx, const PetscScalar wc[], PetscBool *grown)
 {
   MMContact         *ct = &ctx->contact;
   MMCandidates      *c  = &ct->cand;
-  const PetscScalar *wa, *ga;
-  const PetscInt    *in;
-  PetscInt          *mine, n = 0, added, rstart;
+  const PetscScalar *ga;
+  PetscInt          *mine, n = 0, added;
 
   PetscFunctionBeginUser;
-  PetscCall(VecGetOwnershipRange(w, &rstart, NULL));
-  PetscCall(ISGetIndices(ct->is_normal, &in));
-  PetscCall(VecGetArrayRead(w, &wa));
   PetscCall(VecGetArrayRead(ct->gap, &ga));
   PetscCall(PetscMalloc1(ct->n_local, &mine));
   for (PetscInt k = 0; k < ct->n_local; ++k)
-    if (!c->in_set[c->node_start + k] && PetscRealPart(wa[in[k] - rstart] - ga[k]) > 1e-10 * ct->h_c) mine[n++] = c->node_start + k;
+    if (!c->in_set[c->node_start + k] && PetscRealPart(wc[ct->ncomp * k] - ga[k]) > 1e-10 * ct->h_c) mine[n++] = c->node_start + k;
   PetscCall(VecRestoreArrayRead(ct->gap, &ga));
-  PetscCall(VecRestoreArrayRead(w, &wa));
-  PetscCall(ISRestoreIndices(ct->is_normal, &in));
   PetscCall(AddToSet(ctx, n, mine, &added));
   PetscCall(PetscFree(mine));
   *grown = (PetscBool)(added > 0);
   if (!*grown) PetscFunctionReturn(0);
-  PetscCall(PetscInfo(NULL, "Candidate set grew by %" PetscInt_FMT " nodes to %" PetscInt_FMT ": the step is solved again\n", added, c->n_set));
+  PetscCall(PetscInfo(NULL, "Candidate set grew by %" PetscInt_FMT " nodes to %" PetscInt_FMT ": the VI is solved again\n", added, c->n_set));
   ++c->resolves;
   PetscCall(CompleteSet(ctx));
   PetscFunctionReturn(0);
@@ -441,6 +437,7 @@ PetscErrorCode MMCandidatesDestroy(MMCandidates *c)
   PetscCall(PetscFree4(c->normal_dof, c->slot, c->in_set, c->set));
   PetscCall(PetscFree(c->slot_node));
   PetscCall(PetscFree(c->cols));
+  PetscCall(PetscFree(c->wc));
   PetscCall(MatDestroy(&c->W));
   PetscCall(MatDestroy(&c->Wr));
   PetscCall(VecDestroy(&c->x));

@@ -151,6 +151,25 @@ static PetscErrorCode SolveSetVI(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
+/* w_c = z_c - W_{.,S} rho_S on every owned contact dof: exact everywhere, the set's columns
+ * carrying the rows of the whole contact boundary. */
+static PetscErrorCode ContactDofValues(MMCtx *ctx)
+{
+  MMContact         *ct = &ctx->contact;
+  MMCandidates      *c  = &ct->cand;
+  Vec                zc;
+  const PetscScalar *za;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMCandidatesMult(ct, c->x, c->wc));
+  PetscCall(VecGetSubVector(ct->z, ct->is_cond, &zc));
+  PetscCall(VecGetArrayRead(zc, &za));
+  for (PetscInt r = 0; r < c->nc_local; ++r) c->wc[r] = za[r] - c->wc[r];
+  PetscCall(VecRestoreArrayRead(zc, &za));
+  PetscCall(VecRestoreSubVector(ct->z, ct->is_cond, &zc));
+  PetscFunctionReturn(0);
+}
+
 /* The step's contact reactions rho: z = K~^{-1} b (once per step), then the VI on the candidate
  * set, chosen when z is new. No full-size solve: the friction loop calls this once per iteration. */
 PetscErrorCode MMCondensedSolveReactions(MMCtx *ctx, Vec b)
@@ -175,11 +194,14 @@ PetscErrorCode MMCondensedSolveReactions(MMCtx *ctx, Vec b)
   if (!ct->enabled) PetscFunctionReturn(0);
   PetscCall(CondensedRHS(ctx));
   if (fresh) PetscCall(MMCandidatesSelect(ctx));
-  if (!ct->cand.m) {
-    PetscCall(VecZeroEntries(ct->rho));
-    PetscFunctionReturn(0);
+  /* the set grows, and its VI is solved again, until no node outside it penetrates: then its
+   * reactions are the full-set ones (docs/method.md section 3, "Candidate set") */
+  for (PetscBool grown = PETSC_TRUE; grown;) {
+    if (ct->cand.m) PetscCall(SolveSetVI(ctx));
+    else PetscCall(VecZeroEntries(ct->rho));
+    PetscCall(ContactDofValues(ctx));
+    PetscCall(MMCandidatesGrow(ctx, ct->cand.wc, &grown));
   }
-  PetscCall(SolveSetVI(ctx));
   PetscFunctionReturn(0);
 }
 
@@ -187,25 +209,16 @@ PetscErrorCode MMCondensedSolveReactions(MMCtx *ctx, Vec b)
  * w_c = z_c - W rho and f_c = -rho (K~ w - b = -E rho). What the friction loop needs. */
 PetscErrorCode MMCondensedContactDofs(MMCtx *ctx, Vec w, Vec react)
 {
-  MMContact         *ct = &ctx->contact;
-  Vec                wc, zc, rc;
-  PetscScalar       *wa, *y;
-  const PetscScalar *za;
+  MMContact   *ct = &ctx->contact;
+  Vec          wc, rc;
+  PetscScalar *wa;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMalloc1(ct->cand.nc_local, &y));
-  if (ct->cand.m) PetscCall(GatherToSet(&ct->cand, ct->rho, ct->cand.x));
-  PetscCall(MMCandidatesMult(ct, ct->cand.x, y));
   PetscCall(VecGetSubVector(w, ct->is_cond, &wc));
-  PetscCall(VecGetSubVector(ct->z, ct->is_cond, &zc));
   PetscCall(VecGetArray(wc, &wa));
-  PetscCall(VecGetArrayRead(zc, &za));
-  for (PetscInt r = 0; r < ct->cand.nc_local; ++r) wa[r] = za[r] - y[r];
-  PetscCall(VecRestoreArrayRead(zc, &za));
+  PetscCall(PetscArraycpy(wa, ct->cand.wc, ct->cand.nc_local));
   PetscCall(VecRestoreArray(wc, &wa));
-  PetscCall(VecRestoreSubVector(ct->z, ct->is_cond, &zc));
   PetscCall(VecRestoreSubVector(w, ct->is_cond, &wc));
-  PetscCall(PetscFree(y));
   PetscCall(VecGetSubVector(react, ct->is_cond, &rc));
   PetscCall(VecAXPBY(rc, -1.0, 0.0, ct->rho));
   PetscCall(VecRestoreSubVector(react, ct->is_cond, &rc));

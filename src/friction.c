@@ -118,35 +118,27 @@ PetscErrorCode MMFrictionSolve(MMCtx *ctx, Vec b, Vec w, Vec react, PetscBool *o
 {
   MMFriction         *fr = &ctx->friction;
   SNESConvergedReason reason;
-  PetscBool           grown = PETSC_TRUE;
 
   PetscFunctionBeginUser;
-  *ok     = PETSC_TRUE;
-  fr->its = 0;
-  /* a step that would push a node outside the contact candidate set into the obstacle is solved
-   * again with that node in the set (docs/method.md section 3, "Candidate set") */
-  while (grown) {
-    if (!fr->snes) PetscCall(MMContactSolve(ctx, b, w, react));
-    else {
-      PetscInt its;
-      PetscCall(PetscLogEventBegin(ctx->log.friction, 0, 0, 0, 0));
-      fr->b     = b;
-      fr->w     = w;
-      fr->react = react;
-      /* warm start: the thresholds of the last step (or of the solve before the set grew) */
-      PetscCall(SNESSolve(fr->snes, NULL, fr->s));
-      PetscCall(SNESGetConvergedReason(fr->snes, &reason));
-      PetscCall(SNESGetIterationNumber(fr->snes, &its));
-      fr->its += its;
-      *ok = (PetscBool)(reason > 0);
-      /* the loop updated only the contact dofs: one full-size solve completes the step (a rejected
-       * step is solved again, so it needs none) */
-      if (*ok) PetscCall(MMContactRecover(ctx, b, w, react));
-      PetscCall(PetscLogEventEnd(ctx->log.friction, 0, 0, 0, 0));
-      if (!*ok) PetscFunctionReturn(0);
-    }
-    PetscCall(MMContactGrowCandidates(ctx, w, &grown));
+  *ok      = PETSC_TRUE;
+  fr->its  = 0;
+  if (!fr->snes) {
+    PetscCall(MMContactSolve(ctx, b, w, react));
+    PetscFunctionReturn(0);
   }
+  PetscCall(PetscLogEventBegin(ctx->log.friction, 0, 0, 0, 0));
+  fr->b     = b;
+  fr->w     = w;
+  fr->react = react;
+  /* warm start: the thresholds of the last step */
+  PetscCall(SNESSolve(fr->snes, NULL, fr->s));
+  PetscCall(SNESGetConvergedReason(fr->snes, &reason));
+  PetscCall(SNESGetIterationNumber(fr->snes, &fr->its));
+  *ok = (PetscBool)(reason > 0);
+  /* the loop updated only the contact dofs: one full-size solve completes the step (a rejected
+   * step is solved again, so it needs none) */
+  if (*ok) PetscCall(MMContactRecover(ctx, b, w, react));
+  PetscCall(PetscLogEventEnd(ctx->log.friction, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

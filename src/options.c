@@ -143,7 +143,7 @@ static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
   PetscCheck(opt->contact_tol > 0 && opt->contact_tol < 1, comm, PETSC_ERR_USER_INPUT, "-contact_tol %g must lie in (0, 1): it is a relative residual", (double)opt->contact_tol);
   PetscCheck(opt->friction_coulomb_tol > 0 && opt->friction_coulomb_tol < 1, comm, PETSC_ERR_USER_INPUT, "-friction_coulomb_tol %g must lie in (0, 1): it is a normalized residual", (double)opt->friction_coulomb_tol);
   PetscCheck(opt->audit_tol > 0, comm, PETSC_ERR_USER_INPUT, "-audit_tol %g must be > 0: it is a relative energy-balance residual", (double)opt->audit_tol);
-  PetscCheck(opt->candidate_margin >= 0, comm, PETSC_ERR_USER_INPUT, "-contact_candidate_margin %g must be >= 0: it is a multiple of the deepest predicted penetration", (double)opt->candidate_margin);
+  PetscCheck(opt->candidate_margin >= -1, comm, PETSC_ERR_USER_INPUT, "-contact_candidate_margin %g must be >= -1: it is a multiple of the deepest predicted penetration (-1 starts each step from the deepest node alone)", (double)opt->candidate_margin);
   PetscCheck(opt->candidate_memory > 0, comm, PETSC_ERR_USER_INPUT, "-contact_candidate_memory %g must be > 0 (MiB)", (double)opt->candidate_memory);
   PetscCheck(opt->contact_work_tol > 0, comm, PETSC_ERR_USER_INPUT, "-contact_work_tol %g must be > 0: it is a fraction of the run's energy scale", (double)opt->contact_work_tol);
   PetscCheck(opt->initial_penetration_tol >= 0, comm, PETSC_ERR_USER_INPUT, "-initial_penetration_tol %g must be >= 0: it is a fraction of h_c'", (double)opt->initial_penetration_tol);
@@ -212,7 +212,7 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   opt->contact_tol = 1e-11;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-contact_tol", "Contact solves stop when ||K~ w - b - f_c|| <= contact_tol ||b|| (on top of -contact_snes_rtol/atol), in (0, 1)", &opt->contact_tol));
   opt->candidate_margin = 1.0;
-  PetscCall(OptionsReal(PetscOptionsObject, comm, "-contact_candidate_margin", "Condensed formulation: a contact node joins the step's candidate set when its contact-free predicted gap is below this times the deepest predicted penetration (>= 0; the set grows and the step is re-solved if a node outside it would penetrate, so this changes the cost, not the answer)", &opt->candidate_margin));
+  PetscCall(OptionsReal(PetscOptionsObject, comm, "-contact_candidate_margin", "Condensed formulation: a contact node joins the step's candidate set when its contact-free predicted gap is below this times the deepest predicted penetration (>= -1; negative values start from a set smaller than the contact, which the growth completes: the set grows and the step is re-solved whenever a node outside it would penetrate, so this changes the cost, not the answer)", &opt->candidate_margin));
   opt->candidate_all = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-contact_candidate_all", "Condensed formulation: every contact node in every step's candidate set (the full Delassus operator: the reference the candidate set is checked against)", NULL, opt->candidate_all, &opt->candidate_all, NULL));
   opt->candidate_memory = 2048;

@@ -1,0 +1,55 @@
+"""The condensed contact on a candidate set (docs/method.md section 3, "Candidate set") gives the
+full-set answer: with the set started too small, it grows and re-solves until it does."""
+import numpy as np
+import pytest
+
+# tight enough that the full-set reference, whose VI also carries every far-away node, is exact to 1e-10
+TIGHT = ("-contact_tol", 1e-14, "-output_every", 0)
+TIGHT_FRICTION = ("-friction_snes_rtol", 1e-13, "-friction_coulomb_tol", 1e-11)
+COLUMNS = ["kinetic", "elastic", "total", "work_contact", "work_friction", "force_normal", "force_tangential"]
+
+
+def same_history(ref, h, tol):
+    assert len(ref) == len(h)
+    scale = np.abs(ref["total"]).max()
+    for c in COLUMNS + [n for n in ref.dtype.names if n.startswith(("vcm_", "L_"))]:
+        assert np.abs(ref[c] - h[c]).max() <= tol * max(scale, np.abs(ref[c]).max()), c
+    assert np.array_equal(ref["active"], h["active"])
+
+
+@pytest.mark.parametrize("case,extra,np_", [
+    ("d1_disk", ("-ts_max_time", 0.2), 1),
+    ("d2_ball", ("-mu", 0.2, "-ts_max_time", 0.08, *TIGHT_FRICTION), 2),
+])
+def test_growth_gives_the_full_set_solution(mm, case, extra, np_):
+    """-contact_candidate_margin -1 starts every step from the deepest predicted node alone: nodes
+    outside the set must come into contact within the step, the set grows and the step's VI is
+    solved again. The result is the full Delassus operator's (-contact_candidate_all) to 1e-10,
+    with the same active nodes at every step."""
+    full = mm(case, *extra, *TIGHT, "-contact_candidate_all", np_=np_, name="all")
+    grow = mm(case, *extra, *TIGHT, "-contact_candidate_margin", -1, np_=np_, name="grow")
+    h, ref = grow.history, full.history
+    assert h["candidate_resolves"][-1] > 0  # the growth really happened
+    assert ref["candidate_resolves"][-1] == 0
+    same_history(ref, h, 1e-10)
+    assert h["max_penetration"].max() <= 1e-10 * 0.08
+
+
+def test_default_set_is_small_and_exact(mm):
+    """The default margin: on the frictional D1 disk the set is a fraction of the 33 contact nodes,
+    never needs to grow, and gives the full-set history."""
+    full = mm("d1_friction", "-ts_max_time", 0.12, *TIGHT, *TIGHT_FRICTION, "-contact_candidate_all", np_=2, name="all")
+    cand = mm("d1_friction", "-ts_max_time", 0.12, *TIGHT, *TIGHT_FRICTION, np_=2, name="cand")
+    h = cand.history
+    assert full.history["candidates"].max() == 33
+    assert 0 < h["candidates"].max() <= 12
+    same_history(full.history, h, 1e-10)
+    assert "largest %d of 33 contact nodes" % h["candidates"].max() in cand.output
+
+
+def test_memory_cap_too_small_is_refused(mm):
+    """A cap the step's set alone exceeds stops the run, saying what it needs."""
+    r = mm("d1_friction", "-contact_candidate_memory", 0.002, np_=0, check=False)
+    assert r.returncode != 0
+    assert "-contact_candidate_memory 0.002 MiB" in r.output and "Raise it" in r.output
+    assert len(r.history) > 1  # the steps before it are on disk
