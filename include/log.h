@@ -4,3 +4,5 @@ PETSC_EXTERN PetscErrorCode MMLogRegister(MMLog *);
 /* The Cartesian stiffness and mass alone (fem.c), by the selected -assembly path: a global, as
  * PETSc's own events are, so the MMLog context type stays as it is. */
 PETSC_EXTERN PetscLogEvent MM_AssembleKM;
+/* Their rotation into the contact frame, K <- Q^T K Q and M <- Q^T M Q (fem.c) */
+PETSC_EXTERN PetscLogEvent MM_RotateKM;

@@ -3,20 +3,43 @@
  * The P1 shape functions of a simplex have constant gradients, so its stiffness is exact with one
  * point and its mass has a closed form: no quadrature, no tabulation, no PetscFE. DMPlex still
  * owns the mesh and the sections, and the matrices come from DMCreateMatrix: the dofs, the
- * preallocation and the dropped Dirichlet dofs are those of the PetscFE path (fem.c). */
+ * preallocation and the dropped Dirichlet dofs are those of the PetscFE path (fem.c).
+ *
+ * The element matrices are added straight into the CSR value arrays of K and M. MatSetValues
+ * costs a row search and a function call per element row and, once the matrix outgrows the cache,
+ * most of the assembly time; here each pair of vertices of a cell costs one binary search, shared
+ * by K and M and by all components. Rows owned by another rank still go through MatSetValues, to
+ * be sent at assembly. */
 #include "assembly_p1.h"
 
 #define MM_NV_MAX   (MM_MAX_DIM + 1)
 #define MM_NDOF_MAX (MM_NV_MAX * MM_MAX_DIM)
 
 /* Per-vertex data gathered once, so the cell loop reads plain arrays: the dim global dof indices
- * of each vertex (negative for a Dirichlet-constrained component, which MatSetValues skips) and
- * its coordinates. */
+ * of each vertex (negative for a Dirichlet-constrained component) and its coordinates. */
 typedef struct {
   PetscInt   dim, vStart;
   PetscInt  *dof;
   PetscReal *x;
 } VertexTable;
+
+/* One sequential AIJ block of K and the same block of M. K and M come from DMCreateMatrix on the
+ * same DM, so they share the nonzero pattern: one entry position serves both. */
+typedef struct {
+  Mat             K, M;
+  PetscInt        nrows;
+  const PetscInt *i, *j;
+  PetscScalar    *k, *m;
+} CSRBlock;
+
+/* Where the locally owned rows of K and M live: the diagonal block (columns [cstart, cend), local
+ * numbering) and, on several ranks, the off-diagonal one (columns through garray, which is sorted,
+ * so a row's off-diagonal columns are in global order too). */
+typedef struct {
+  PetscInt        rstart, rend, cstart, cend;
+  CSRBlock        d, o;
+  const PetscInt *garray;
+} CSRTarget;
 
 /* The global indices of a vertex, as DMPlexGetClosureIndices computes them from the local section
  * (constraints) and the global section (offsets, -(offset+1) at points owned elsewhere): the free
@@ -80,6 +103,89 @@ static PetscErrorCode VertexTableDestroy(VertexTable *t)
   PetscFunctionReturn(0);
 }
 
+/* The CSR arrays of one sequential AIJ block of K and of M. Entries are written in place, so the
+ * pattern must be the one DMCreateMatrix filled and assembled, the same in K and M. */
+static PetscErrorCode CSRBlockGet(Mat K, Mat M, CSRBlock *b)
+{
+  PetscInt        n, mrows;
+  const PetscInt *mi, *mj;
+  PetscBool       done, seqaij;
+  MatType         type;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectBaseTypeCompare((PetscObject)K, MATSEQAIJ, &seqaij));
+  PetscCall(MatGetType(K, &type));
+  PetscCheck(seqaij, PetscObjectComm((PetscObject)K), PETSC_ERR_SUP, "Closed-form assembly writes AIJ matrices, not %s (use -assembly fe)", type);
+  b->K = K;
+  b->M = M;
+  PetscCall(MatGetRowIJ(K, 0, PETSC_FALSE, PETSC_FALSE, &b->nrows, &b->i, &b->j, &done));
+  PetscCheck(done, PETSC_COMM_SELF, PETSC_ERR_SUP, "Closed-form assembly needs the CSR arrays of the stiffness matrix");
+  PetscCall(MatSeqAIJGetArray(K, &b->k));
+  b->m = NULL;
+  if (!M) PetscFunctionReturn(0);
+  PetscCall(MatGetRowIJ(M, 0, PETSC_FALSE, PETSC_FALSE, &mrows, &mi, &mj, &done));
+  PetscCheck(done && mrows == b->nrows && mi[mrows] == b->i[b->nrows], PETSC_COMM_SELF, PETSC_ERR_ARG_INCOMP, "Closed-form assembly needs K and M with one nonzero pattern (both from DMCreateMatrix on the same DM)");
+  n = mrows;
+  PetscCall(MatRestoreRowIJ(M, 0, PETSC_FALSE, PETSC_FALSE, &n, &mi, &mj, &done));
+  PetscCall(MatSeqAIJGetArray(M, &b->m));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CSRBlockRestore(CSRBlock *b)
+{
+  PetscBool done;
+
+  PetscFunctionBeginUser;
+  if (!b->K) PetscFunctionReturn(0);
+  PetscCall(MatSeqAIJRestoreArray(b->K, &b->k));
+  PetscCall(MatRestoreRowIJ(b->K, 0, PETSC_FALSE, PETSC_FALSE, &b->nrows, &b->i, &b->j, &done));
+  if (b->M) PetscCall(MatSeqAIJRestoreArray(b->M, &b->m));
+  PetscFunctionReturn(0);
+}
+
+/* An assembled matrix is needed: before its first assembly an AIJ matrix has room for its
+ * entries but no column indices yet (DMCreateMatrix with -dm_preallocate_only). */
+static PetscErrorCode CheckFilledPattern(Mat A)
+{
+  PetscBool assembled;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatAssembled(A, &assembled));
+  PetscCheck(assembled, PetscObjectComm((PetscObject)A), PETSC_ERR_ARG_WRONGSTATE, "Closed-form assembly writes into the nonzero pattern DMCreateMatrix fills; this matrix has none (was -dm_preallocate_only given?). Use -assembly fe");
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CSRTargetGet(Mat K, Mat M, CSRTarget *t)
+{
+  PetscMPIInt size;
+  Mat         Kd, Ko, Md = NULL, Mo = NULL;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(t, sizeof(*t)));
+  PetscCall(CheckFilledPattern(K));
+  if (M) PetscCall(CheckFilledPattern(M));
+  PetscCall(MatGetOwnershipRange(K, &t->rstart, &t->rend));
+  PetscCall(MatGetOwnershipRangeColumn(K, &t->cstart, &t->cend));
+  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)K), &size));
+  if (size == 1) {
+    PetscCall(CSRBlockGet(K, M, &t->d));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(MatMPIAIJGetSeqAIJ(K, &Kd, &Ko, &t->garray));
+  if (M) PetscCall(MatMPIAIJGetSeqAIJ(M, &Md, &Mo, NULL));
+  PetscCall(CSRBlockGet(Kd, Md, &t->d));
+  PetscCall(CSRBlockGet(Ko, Mo, &t->o));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CSRTargetRestore(CSRTarget *t)
+{
+  PetscFunctionBeginUser;
+  PetscCall(CSRBlockRestore(&t->d));
+  PetscCall(CSRBlockRestore(&t->o));
+  PetscFunctionReturn(0);
+}
+
 /* The k+1 vertices of a k-simplex p of an interpolated mesh: those of its first facet, plus the
  * vertex of its second facet that the first lacks. Cones only, no transitive closure: this is the
  * cheapest walk down the Hasse diagram. The vertex order does not matter, as the element matrices
@@ -113,39 +219,58 @@ static PetscErrorCode SimplexVertices(DM dm, PetscInt p, PetscInt k, PetscInt v[
   PetscFunctionReturn(0);
 }
 
+/* The vertices of cell c, checked to be a simplex. */
+static PetscErrorCode CellVertices(DM dm, PetscInt depth, PetscInt dim, PetscInt c, PetscInt v[])
+{
+  PetscInt csize;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetConeSize(dm, c, &csize));
+  PetscCheck(csize == dim + 1, PETSC_COMM_SELF, PETSC_ERR_SUP, "Closed-form assembly needs simplices: cell %" PetscInt_FMT " has %" PetscInt_FMT " faces", c, csize);
+  if (depth == 1) {
+    const PetscInt *cone;
+    PetscCall(DMPlexGetCone(dm, c, &cone));
+    for (PetscInt a = 0; a <= dim; ++a) v[a] = cone[a];
+  } else PetscCall(SimplexVertices(dm, c, dim, v));
+  PetscFunctionReturn(0);
+}
+
 /* Gradients g[a][i] of the P1 basis and the volume of the simplex with vertex coordinates x[a][i].
  * With J = [x_1 - x_0, ..., x_d - x_0], the reference coordinates are xi = J^{-1} (x - x_0), so
  * grad phi_a = row a-1 of J^{-1} (a >= 1) and grad phi_0 = -sum of the others. */
 static PetscErrorCode SimplexGradients(PetscInt dim, const PetscReal x[][MM_MAX_DIM], PetscReal g[][MM_MAX_DIM], PetscReal *vol)
 {
-  PetscReal J[MM_MAX_DIM][MM_MAX_DIM], det;
+  PetscReal J[MM_MAX_DIM][MM_MAX_DIM], det, idet;
 
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < dim; ++i)
     for (PetscInt k = 0; k < dim; ++k) J[i][k] = x[k + 1][i] - x[0][i];
   if (dim == 2) {
-    det     = J[0][0] * J[1][1] - J[0][1] * J[1][0];
-    g[1][0] = J[1][1] / det;
-    g[1][1] = -J[0][1] / det;
-    g[2][0] = -J[1][0] / det;
-    g[2][1] = J[0][0] / det;
+    det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+    PetscCheck(det != 0, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "Degenerate cell: zero volume");
+    idet    = 1 / det;
+    g[1][0] = J[1][1] * idet;
+    g[1][1] = -J[0][1] * idet;
+    g[2][0] = -J[1][0] * idet;
+    g[2][1] = J[0][0] * idet;
     *vol    = PetscAbsReal(det) / 2;
   } else {
     /* rows of J^{-1}: the cofactors of J's columns, divided by det J */
     const PetscReal c00 = J[1][1] * J[2][2] - J[1][2] * J[2][1], c01 = J[1][2] * J[2][0] - J[1][0] * J[2][2], c02 = J[1][0] * J[2][1] - J[1][1] * J[2][0];
-    det     = J[0][0] * c00 + J[0][1] * c01 + J[0][2] * c02;
-    g[1][0] = c00 / det;
-    g[1][1] = (J[0][2] * J[2][1] - J[0][1] * J[2][2]) / det;
-    g[1][2] = (J[0][1] * J[1][2] - J[0][2] * J[1][1]) / det;
-    g[2][0] = c01 / det;
-    g[2][1] = (J[0][0] * J[2][2] - J[0][2] * J[2][0]) / det;
-    g[2][2] = (J[0][2] * J[1][0] - J[0][0] * J[1][2]) / det;
-    g[3][0] = c02 / det;
-    g[3][1] = (J[0][1] * J[2][0] - J[0][0] * J[2][1]) / det;
-    g[3][2] = (J[0][0] * J[1][1] - J[0][1] * J[1][0]) / det;
+    det = J[0][0] * c00 + J[0][1] * c01 + J[0][2] * c02;
+    PetscCheck(det != 0, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "Degenerate cell: zero volume");
+    idet    = 1 / det;
+    g[1][0] = c00 * idet;
+    g[1][1] = (J[0][2] * J[2][1] - J[0][1] * J[2][2]) * idet;
+    g[1][2] = (J[0][1] * J[1][2] - J[0][2] * J[1][1]) * idet;
+    g[2][0] = c01 * idet;
+    g[2][1] = (J[0][0] * J[2][2] - J[0][2] * J[2][0]) * idet;
+    g[2][2] = (J[0][2] * J[1][0] - J[0][0] * J[1][2]) * idet;
+    g[3][0] = c02 * idet;
+    g[3][1] = (J[0][1] * J[2][0] - J[0][0] * J[2][1]) * idet;
+    g[3][2] = (J[0][0] * J[1][1] - J[0][1] * J[1][0]) * idet;
     *vol    = PetscAbsReal(det) / 6;
   }
-  PetscCheck(det != 0, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "Degenerate cell: zero volume");
   for (PetscInt i = 0; i < dim; ++i) {
     g[0][i] = 0;
     for (PetscInt a = 1; a <= dim; ++a) g[0][i] -= g[a][i];
@@ -157,23 +282,126 @@ static PetscErrorCode SimplexGradients(PetscInt dim, const PetscReal x[][MM_MAX_
  * fem.c's f1_elas_u, dofs vertex-major and component-minor. */
 static void ElementStiffness(PetscInt dim, PetscReal lambda, PetscReal mu, PetscReal vol, const PetscReal g[][MM_MAX_DIM], PetscScalar Ke[])
 {
-  const PetscInt n = (dim + 1) * dim;
+  const PetscInt  n = (dim + 1) * dim;
+  const PetscReal l = vol * lambda, m = vol * mu;
 
   for (PetscInt a = 0; a <= dim; ++a)
     for (PetscInt b = 0; b <= dim; ++b) {
       PetscReal gg = 0;
       for (PetscInt k = 0; k < dim; ++k) gg += g[a][k] * g[b][k];
       for (PetscInt i = 0; i < dim; ++i)
-        for (PetscInt j = 0; j < dim; ++j) Ke[(a * dim + i) * n + b * dim + j] = vol * (lambda * g[a][i] * g[b][j] + mu * g[a][j] * g[b][i] + (i == j ? mu * gg : 0));
+        for (PetscInt j = 0; j < dim; ++j) Ke[(a * dim + i) * n + b * dim + j] = l * g[a][i] * g[b][j] + m * g[a][j] * g[b][i] + (i == j ? m * gg : 0);
     }
+}
+
+/* The position of column col in the sorted row of a block: diagonal columns are local indices,
+ * off-diagonal ones index garray. -1 if the pattern lacks it. */
+static inline PetscInt FindColumn(const PetscInt *j, PetscInt lo, PetscInt end, const PetscInt *garray, PetscInt col)
+{
+  PetscInt hi = end;
+
+  while (lo < hi) {
+    const PetscInt mid = lo + (hi - lo) / 2, c = garray ? garray[j[mid]] : j[mid];
+    if (c < col) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo < end && (garray ? garray[j[lo]] : j[lo]) == col ? lo : -1;
+}
+
+/* Adds the block of vertex pair (a, b) to the owned rows of a: the components of a vertex are
+ * consecutive in a row and share their pattern (DMPlex's adjacency is per point), so one search in
+ * a's first row places all dim x dim entries of K and the dim diagonal ones of M. */
+static PetscErrorCode AddVertexPair(const CSRTarget *t, PetscInt dim, const PetscInt da[], const PetscInt db[], PetscInt a, PetscInt b, const PetscScalar Ke[], PetscScalar mab)
+{
+  const PetscInt  n = (dim + 1) * dim;
+  PetscInt        ra = -1, cb = -1, rel;
+  const CSRBlock *blk;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < dim && ra < 0; ++i) ra = da[i];
+  for (PetscInt j = 0; j < dim && cb < 0; ++j) cb = db[j];
+  if (ra < 0 || cb < 0) PetscFunctionReturn(0); /* all components of a or b are constrained */
+  ra -= t->rstart;
+  if (cb >= t->cstart && cb < t->cend) {
+    blk = &t->d;
+    rel = FindColumn(blk->j, blk->i[ra], blk->i[ra + 1], NULL, cb - t->cstart);
+  } else {
+    blk = &t->o;
+    rel = blk->K ? FindColumn(blk->j, blk->i[ra], blk->i[ra + 1], t->garray, cb) : -1;
+  }
+  PetscCheck(rel >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Closed-form assembly: global column %" PetscInt_FMT " is not in the pattern of row %" PetscInt_FMT, cb, ra + t->rstart);
+  rel -= blk->i[ra];
+  for (PetscInt i = 0; i < dim; ++i) {
+    PetscInt row;
+    if (da[i] < 0) continue;
+    row = blk->i[da[i] - t->rstart] + rel - cb;
+    for (PetscInt j = 0; j < dim; ++j) {
+      if (db[j] < 0) continue;
+      blk->k[row + db[j]] += Ke[(a * dim + i) * n + b * dim + j];
+    }
+    if (blk->m && db[i] >= 0) blk->m[row + db[i]] += mab;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The rows of vertex a of the element matrices, when another rank owns them: MatSetValues stashes
+ * them until the assembly sends them. Only cells on the partition boundary have such vertices. */
+static PetscErrorCode AddGhostRows(Mat K, Mat M, PetscInt dim, const PetscInt idx[], PetscInt a, const PetscScalar Ke[], const PetscScalar Me[])
+{
+  const PetscInt nv = dim + 1, n = nv * dim;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatSetValues(K, dim, &idx[a * dim], n, idx, &Ke[a * dim * n], ADD_VALUES));
+  if (!M) PetscFunctionReturn(0);
+  for (PetscInt i = 0; i < dim; ++i) {
+    PetscInt midx[MM_NV_MAX];
+    for (PetscInt b = 0; b < nv; ++b) midx[b] = idx[b * dim + i];
+    PetscCall(MatSetValues(M, 1, &idx[a * dim + i], nv, midx, &Me[a * nv], ADD_VALUES));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Computes the element matrices of cell c and adds them to K and M. */
+static PetscErrorCode AddCell(DM dm, PetscInt depth, const VertexTable *vt, const CSRTarget *t, PetscReal lambda, PetscReal mu, PetscReal rho, Mat K, Mat M, PetscInt c)
+{
+  const PetscInt  dim = vt->dim, nv = dim + 1;
+  /* int phi_a phi_b = vol (1 + delta_ab) / ((d+1)(d+2)) on a d-simplex */
+  const PetscReal mscale = rho / (nv * (nv + 1));
+  PetscInt        v[MM_NV_MAX], idx[MM_NDOF_MAX];
+  PetscReal       x[MM_NV_MAX][MM_MAX_DIM], g[MM_NV_MAX][MM_MAX_DIM], vol;
+  PetscScalar     Ke[MM_NDOF_MAX * MM_NDOF_MAX], Me[MM_NV_MAX * MM_NV_MAX];
+
+  PetscFunctionBeginUser;
+  PetscCall(CellVertices(dm, depth, dim, c, v));
+  for (PetscInt a = 0; a < nv; ++a)
+    for (PetscInt i = 0; i < dim; ++i) {
+      x[a][i]          = vt->x[(v[a] - vt->vStart) * dim + i];
+      idx[a * dim + i] = vt->dof[(v[a] - vt->vStart) * dim + i];
+    }
+  PetscCall(SimplexGradients(dim, (const PetscReal(*)[MM_MAX_DIM])x, g, &vol));
+  ElementStiffness(dim, lambda, mu, vol, (const PetscReal(*)[MM_MAX_DIM])g, Ke);
+  for (PetscInt a = 0; a < nv; ++a)
+    for (PetscInt b = 0; b < nv; ++b) Me[a * nv + b] = mscale * vol * (a == b ? 2 : 1);
+  for (PetscInt a = 0; a < nv; ++a) {
+    PetscInt r = -1;
+    for (PetscInt i = 0; i < dim && r < 0; ++i) r = idx[a * dim + i];
+    if (r < 0) continue;
+    if (r < t->rstart || r >= t->rend) {
+      PetscCall(AddGhostRows(K, M, dim, idx, a, Ke, Me));
+      continue;
+    }
+    for (PetscInt b = 0; b < nv; ++b) PetscCall(AddVertexPair(t, dim, &idx[a * dim], &idx[b * dim], a, b, Ke, Me[a * nv + b]));
+  }
+  PetscFunctionReturn(0);
 }
 
 /* Assembles the stiffness (Lame lambda, mu; plane strain in 2D) into K and the consistent mass
  * (density rho) into M, one pass over the cells. M may be NULL (a lumped mass needs only K). Both
- * come from DMCreateMatrix on dm; their entries are replaced. */
+ * come from DMCreateMatrix on dm (M may be K's duplicate); their entries are replaced. */
 PetscErrorCode MMAssembleP1(DM dm, PetscReal lambda, PetscReal mu, PetscReal rho, Mat K, Mat M)
 {
-  VertexTable t;
+  VertexTable vt;
+  CSRTarget   t;
   PetscInt    dim, depth, cStart, cEnd;
 
   PetscFunctionBeginUser;
@@ -181,46 +409,170 @@ PetscErrorCode MMAssembleP1(DM dm, PetscReal lambda, PetscReal mu, PetscReal rho
   PetscCheck(dim == 2 || dim == 3, PetscObjectComm((PetscObject)dm), PETSC_ERR_SUP, "Closed-form assembly is for triangles and tetrahedra, not dimension %" PetscInt_FMT, dim);
   PetscCall(DMPlexGetDepth(dm, &depth));
   PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
-  PetscCall(VertexTableCreate(dm, &t));
+  PetscCall(VertexTableCreate(dm, &vt));
   PetscCall(MatZeroEntries(K));
   if (M) PetscCall(MatZeroEntries(M));
-  for (PetscInt c = cStart; c < cEnd; ++c) {
-    const PetscInt nv = dim + 1, n = nv * dim;
-    /* int phi_a phi_b = vol (1 + delta_ab) / ((d+1)(d+2)) on a d-simplex */
-    const PetscReal mscale = rho / (nv * (nv + 1));
-    PetscInt        v[MM_NV_MAX], csize, idx[MM_NDOF_MAX], midx[MM_NV_MAX];
-    PetscReal       x[MM_NV_MAX][MM_MAX_DIM], g[MM_NV_MAX][MM_MAX_DIM], vol;
-    PetscScalar     Ke[MM_NDOF_MAX * MM_NDOF_MAX], Me[MM_NV_MAX * MM_NV_MAX];
-
-    PetscCall(DMPlexGetConeSize(dm, c, &csize));
-    PetscCheck(csize == nv, PETSC_COMM_SELF, PETSC_ERR_SUP, "Closed-form assembly needs simplices: cell %" PetscInt_FMT " has %" PetscInt_FMT " faces", c, csize);
-    if (depth == 1) {
-      const PetscInt *cone;
-      PetscCall(DMPlexGetCone(dm, c, &cone));
-      for (PetscInt a = 0; a < nv; ++a) v[a] = cone[a];
-    } else PetscCall(SimplexVertices(dm, c, dim, v));
-    for (PetscInt a = 0; a < nv; ++a)
-      for (PetscInt i = 0; i < dim; ++i) {
-        x[a][i]            = t.x[(v[a] - t.vStart) * dim + i];
-        idx[a * dim + i] = t.dof[(v[a] - t.vStart) * dim + i];
-      }
-    PetscCall(SimplexGradients(dim, (const PetscReal(*)[MM_MAX_DIM])x, g, &vol));
-    ElementStiffness(dim, lambda, mu, vol, (const PetscReal(*)[MM_MAX_DIM])g, Ke);
-    PetscCall(MatSetValues(K, n, idx, n, idx, Ke, ADD_VALUES));
-    if (!M) continue;
-    /* the mass couples equal components only: one (d+1) x (d+1) block per component */
-    for (PetscInt a = 0; a < nv; ++a)
-      for (PetscInt b = 0; b < nv; ++b) Me[a * nv + b] = mscale * vol * (a == b ? 2 : 1);
-    for (PetscInt i = 0; i < dim; ++i) {
-      for (PetscInt a = 0; a < nv; ++a) midx[a] = idx[a * dim + i];
-      PetscCall(MatSetValues(M, nv, midx, nv, midx, Me, ADD_VALUES));
-    }
-  }
-  PetscCall(VertexTableDestroy(&t));
-  /* both matrices' off-rank entries are sent before either is received */
+  PetscCall(CSRTargetGet(K, M, &t));
+  for (PetscInt c = cStart; c < cEnd; ++c) PetscCall(AddCell(dm, depth, &vt, &t, lambda, mu, rho, K, M, c));
+  PetscCall(CSRTargetRestore(&t));
+  PetscCall(VertexTableDestroy(&vt));
+  /* both matrices' off-rank rows are sent before either is received */
   PetscCall(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY));
   if (M) PetscCall(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
+  if (M) PetscCall(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+/* What the rotation needs of Q at one dof g: the dofs [first, first + n) of g's diagonal block of
+ * Q, and row g of that block. Packed in PetscScalars, so VecScatter can bring them for the ghost
+ * columns of K. */
+#define MM_QINFO (2 + MM_MAX_DIM)
+enum { MM_QINFO_FIRST, MM_QINFO_N, MM_QINFO_ROW };
+
+/* The Q information of the owned dofs, into a vector of block size MM_QINFO. The rotation works
+ * block by block: each row of Q must hold exactly the consecutive dofs of its block, as the
+ * contact frames of docs/method.md section 2 do (one vertex's dofs, or the dof alone). */
+static PetscErrorCode QInfoCreate(Mat Q, Vec *info)
+{
+  PetscInt     rstart, rend;
+  PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatGetOwnershipRange(Q, &rstart, &rend));
+  PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)Q), (rend - rstart) * MM_QINFO, PETSC_DETERMINE, info));
+  PetscCall(VecSetBlockSize(*info, MM_QINFO));
+  PetscCall(VecZeroEntries(*info));
+  PetscCall(VecGetArray(*info, &a));
+  for (PetscInt r = rstart; r < rend; ++r) {
+    PetscInt           ncols;
+    const PetscInt    *cols;
+    const PetscScalar *vals;
+    PetscScalar       *q = &a[(r - rstart) * MM_QINFO];
+    PetscBool          ok;
+
+    PetscCall(MatGetRow(Q, r, &ncols, &cols, &vals));
+    ok = (PetscBool)(ncols > 0 && ncols <= MM_MAX_DIM && cols[0] <= r && r < cols[0] + ncols && cols[0] >= rstart && cols[0] + ncols <= rend);
+    for (PetscInt k = 0; ok && k < ncols; ++k) {
+      ok        = (PetscBool)(cols[k] == cols[0] + k);
+      q[MM_QINFO_ROW + k] = vals[k];
+    }
+    q[MM_QINFO_FIRST] = ok ? cols[0] : -1;
+    q[MM_QINFO_N]     = ncols;
+    PetscCall(MatRestoreRow(Q, r, &ncols, &cols, &vals));
+    PetscCheck(ok, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "The frame rotation Q is not block diagonal with blocks of consecutive owned dofs at row %" PetscInt_FMT, r);
+  }
+  for (PetscInt r = rstart; r < rend; ++r) {
+    const PetscScalar *q = &a[(r - rstart) * MM_QINFO], *q0 = &a[((PetscInt)PetscRealPart(q[MM_QINFO_FIRST]) - rstart) * MM_QINFO];
+    PetscCheck(q[MM_QINFO_N] == q0[MM_QINFO_N], PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "The rows of the frame rotation Q's block at dof %" PetscInt_FMT " disagree on its size", r);
+  }
+  PetscCall(VecRestoreArray(*info, &a));
+  PetscFunctionReturn(0);
+}
+
+/* The Q information of the off-diagonal columns of K, in garray order. */
+static PetscErrorCode QInfoGhosts(Vec info, const PetscInt garray[], PetscInt ncols, Vec *ghosts)
+{
+  IS         is;
+  VecScatter sc;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, ncols * MM_QINFO, ghosts));
+  PetscCall(ISCreateBlock(PETSC_COMM_SELF, MM_QINFO, ncols, garray, PETSC_COPY_VALUES, &is));
+  PetscCall(VecScatterCreate(info, is, *ghosts, NULL, &sc));
+  PetscCall(VecScatterBegin(sc, info, *ghosts, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(sc, info, *ghosts, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterDestroy(&sc));
+  PetscCall(ISDestroy(&is));
+  PetscFunctionReturn(0);
+}
+
+/* Whether the block of Q whose rows start at q differs from the identity. */
+static PetscBool QBlockRotates(const PetscScalar *q)
+{
+  const PetscInt n = (PetscInt)PetscRealPart(q[MM_QINFO_N]);
+
+  for (PetscInt i = 0; i < n; ++i)
+    for (PetscInt j = 0; j < n; ++j)
+      if (q[i * MM_QINFO + MM_QINFO_ROW + j] != (PetscScalar)(i == j)) return PETSC_TRUE;
+  return PETSC_FALSE;
+}
+
+/* B <- Qa^T B Qb for the na x nb block at offset rel of rows ra of blk, in K and in M; qa and qb
+ * hold the rows of the two blocks of Q, MM_QINFO apart. */
+static void RotateBlock(const CSRBlock *blk, PetscInt ra, PetscInt na, PetscInt rel, PetscInt nb, const PetscScalar *qa, const PetscScalar *qb)
+{
+  for (PetscInt s = 0; s < 2; ++s) {
+    PetscScalar *val = s == 0 ? blk->k : blk->m, B[MM_MAX_DIM][MM_MAX_DIM], T[MM_MAX_DIM][MM_MAX_DIM];
+    if (!val) continue;
+    for (PetscInt i = 0; i < na; ++i)
+      for (PetscInt j = 0; j < nb; ++j) B[i][j] = val[blk->i[ra + i] + rel + j];
+    for (PetscInt i = 0; i < na; ++i)
+      for (PetscInt j = 0; j < nb; ++j) {
+        T[i][j] = 0;
+        for (PetscInt k = 0; k < nb; ++k) T[i][j] += B[i][k] * qb[k * MM_QINFO + MM_QINFO_ROW + j];
+      }
+    for (PetscInt i = 0; i < na; ++i)
+      for (PetscInt j = 0; j < nb; ++j) {
+        PetscScalar sum = 0;
+        for (PetscInt k = 0; k < na; ++k) sum += qa[k * MM_QINFO + MM_QINFO_ROW + i] * T[k][j];
+        val[blk->i[ra + i] + rel + j] = sum;
+      }
+  }
+}
+
+/* Rotates the rows [ra, ra + na) of one Q block (local numbering) in the CSR block blk, whose
+ * columns' Q information is cinfo (by local column): the row's columns are walked a Q block at a
+ * time, as a block's dofs are consecutive columns, and only blocks that Q rotates are touched. */
+static void RotateRows(const CSRBlock *blk, const PetscScalar *cinfo, const PetscScalar *qa, PetscBool rota, PetscInt ra, PetscInt na)
+{
+  for (PetscInt k = blk->i[ra]; k < blk->i[ra + 1];) {
+    const PetscScalar *qb = &cinfo[blk->j[k] * MM_QINFO];
+    const PetscInt     nb = (PetscInt)PetscRealPart(qb[MM_QINFO_N]);
+    if (rota || QBlockRotates(qb)) RotateBlock(blk, ra, na, k - blk->i[ra], nb, qa, qb);
+    k += nb;
+  }
+}
+
+/* K <- Q^T K Q and M <- Q^T M Q in place, for K and M as MMAssembleP1 takes them (M may be NULL) and
+ * Q block diagonal with blocks of consecutive dofs, one rank's: the contact frames of
+ * docs/method.md section 2. A block of the result is Q_a^T K_ab Q_b, so the pattern stays (DMPlex
+ * couples all the dofs of two adjacent vertices) and only the blocks Q rotates change. MatPtAP
+ * would compute the same into a new matrix, after a symbolic product. */
+PetscErrorCode MMRotateP1(Mat Q, Mat K, Mat M)
+{
+  CSRTarget          t;
+  Vec                info, ghosts = NULL;
+  const PetscScalar *qi, *qg = NULL;
+  PetscInt           nco = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(QInfoCreate(Q, &info));
+  PetscCall(CSRTargetGet(K, M, &t));
+  PetscCheck(t.rstart == t.cstart && t.rend == t.cend, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "The frame rotation needs the same row and column layout");
+  if (t.o.K) {
+    PetscCall(MatGetSize(t.o.K, NULL, &nco));
+    PetscCall(QInfoGhosts(info, t.garray, nco, &ghosts));
+    PetscCall(VecGetArrayRead(ghosts, &qg));
+  }
+  PetscCall(VecGetArrayRead(info, &qi));
+  for (PetscInt r = 0; r < t.rend - t.rstart;) {
+    const PetscScalar *qa   = &qi[r * MM_QINFO];
+    const PetscInt     na   = (PetscInt)PetscRealPart(qa[MM_QINFO_N]);
+    const PetscBool    rota = QBlockRotates(qa);
+    RotateRows(&t.d, qi, qa, rota, r, na);
+    if (t.o.K) RotateRows(&t.o, qg, qa, rota, r, na);
+    r += na;
+  }
+  PetscCall(VecRestoreArrayRead(info, &qi));
+  if (ghosts) PetscCall(VecRestoreArrayRead(ghosts, &qg));
+  PetscCall(CSRTargetRestore(&t));
+  PetscCall(VecDestroy(&ghosts));
+  PetscCall(VecDestroy(&info));
+  /* nothing to send: the assembly only marks K and M as changed, for whatever caches on them */
+  PetscCall(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
+  if (M) PetscCall(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
   if (M) PetscCall(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
   PetscFunctionReturn(0);
 }

@@ -385,8 +385,8 @@ static PetscErrorCode CheckAssembly(MMCtx *ctx, Mat K, Mat M)
   PetscLogDouble       t0, t1;
 
   PetscFunctionBeginUser;
-  PetscCall(DMCreateMatrix(ctx->op.dm, &K2));
-  if (M) PetscCall(DMCreateMatrix(ctx->op.dm, &M2));
+  PetscCall(MatDuplicate(K, MAT_DO_NOT_COPY_VALUES, &K2));
+  if (M) PetscCall(MatDuplicate(K, MAT_DO_NOT_COPY_VALUES, &M2));
   PetscCall(PetscTime(&t0));
   PetscCall(AssembleKM(ctx, other, K2, M2));
   PetscCall(PetscTime(&t1));
@@ -399,11 +399,16 @@ static PetscErrorCode CheckAssembly(MMCtx *ctx, Mat K, Mat M)
   PetscFunctionReturn(0);
 }
 
-/* w-frame operator from a Cartesian one: Q^T A Q */
-static PetscErrorCode RotateMatrix(Mat Q, Mat A, Mat *Aw)
+/* The w-frame operators from the Cartesian ones, K <- Q^T K Q and M <- Q^T M Q, in place (docs/method.md
+ * section 2). Q is block diagonal by vertex, so the pattern stays: MatPtAP would build new matrices,
+ * through a symbolic product that costs more than the closed-form assembly (README "Assembly of K
+ * and M"). */
+static PetscErrorCode RotateToContactFrame(MMCtx *ctx, Mat K, Mat M)
 {
   PetscFunctionBeginUser;
-  PetscCall(MatPtAP(A, Q, MAT_INITIAL_MATRIX, 1.5, Aw));
+  PetscCall(PetscLogEventBegin(MM_RotateKM, 0, 0, 0, 0));
+  PetscCall(MMRotateP1(ctx->op.Q, K, M));
+  PetscCall(PetscLogEventEnd(MM_RotateKM, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -432,14 +437,17 @@ PetscErrorCode MMFEAssembleOperators(MMCtx *ctx)
   PetscCall(DMGetDS(dm, &ds));
   PetscCall(DMSetMatType(dm, MATAIJ));
   PetscCall(DMCreateMatrix(dm, &Kc));
-  /* a lumped mass is built from vertex masses below: no consistent mass to assemble */
-  if (!ctx->opt.lumped) PetscCall(DMCreateMatrix(dm, &Mc));
+  /* a lumped mass is built from vertex masses below: no consistent mass to assemble. M has K's
+   * pattern, and duplicating it skips a second DMPlex preallocation, which alone costs several
+   * assemblies (README "Assembly of K and M") */
+  if (!ctx->opt.lumped) PetscCall(MatDuplicate(Kc, MAT_DO_NOT_COPY_VALUES, &Mc));
   PetscCall(PetscDSSetJacobian(ds, 0, 0, g0_mass_uu, NULL, NULL, g3_elas_uu));
   PetscCall(PetscLogEventBegin(MM_AssembleKM, 0, 0, 0, 0));
   PetscCall(AssembleKM(ctx, ctx->opt.assembly, Kc, Mc));
   PetscCall(PetscLogEventEnd(MM_AssembleKM, 0, 0, 0, 0));
   if (ctx->opt.assembly_check) PetscCall(CheckAssembly(ctx, Kc, Mc));
-  PetscCall(RotateMatrix(ctx->op.Q, Kc, &ctx->op.K));
+  PetscCall(RotateToContactFrame(ctx, Kc, Mc));
+  ctx->op.K = Kc;
 
   PetscCall(DMCreateGlobalVector(dm, &ctx->op.load));
   PetscCall(VecDuplicate(ctx->op.load, &ctx->op.lift));
@@ -464,14 +472,12 @@ PetscErrorCode MMFEAssembleOperators(MMCtx *ctx)
     PetscCall(MatDuplicate(ctx->op.K, MAT_DO_NOT_COPY_VALUES, &ctx->op.M));
     PetscCall(MatZeroEntries(ctx->op.M));
     PetscCall(MatDiagonalSet(ctx->op.M, ctx->op.mass_lumped_cart, INSERT_VALUES));
-  } else PetscCall(RotateMatrix(ctx->op.Q, Mc, &ctx->op.M));
+  } else ctx->op.M = Mc;
   PetscCall(CheckFiniteOperators(ctx));
   PetscCall(MatDuplicate(ctx->op.M, MAT_COPY_VALUES, &ctx->op.Mstar));
   if (ctx->contact.enabled && ctx->opt.mass_type == MM_MASS_MODIFIED) PetscCall(MatZeroRowsColumnsIS(ctx->op.Mstar, ctx->contact.is_normal, 0.0, NULL, NULL));
   PetscCall(MatViewFromOptions(ctx->op.K, NULL, "-stiffness_view"));
   PetscCall(MatViewFromOptions(ctx->op.M, NULL, "-mass_view"));
-  PetscCall(MatDestroy(&Kc));
-  PetscCall(MatDestroy(&Mc));
   PetscCall(VecDestroy(&Lcart));
   PetscCall(VecDestroy(&tmp));
   PetscCall(PetscLogEventEnd(ctx->log.assemble, 0, 0, 0, 0));

@@ -1,7 +1,7 @@
 /* Log stages and events, registered together so -log_view shows where time goes. */
 #include "log.h"
 
-PetscLogEvent MM_AssembleKM;
+PetscLogEvent MM_AssembleKM, MM_RotateKM;
 
 PetscErrorCode MMLogRegister(MMLog *log)
 {
@@ -14,6 +14,7 @@ PetscErrorCode MMLogRegister(MMLog *log)
   PetscCall(PetscLogStageRegister("MM output", &log->output));
   PetscCall(PetscLogEventRegister("MMAssemble", id, &log->assemble));
   PetscCall(PetscLogEventRegister("MMAssembleKM", id, &MM_AssembleKM));
+  PetscCall(PetscLogEventRegister("MMRotateKM", id, &MM_RotateKM));
   PetscCall(PetscLogEventRegister("MMContactSolve", id, &log->contact_solve));
   PetscCall(PetscLogEventRegister("MMContactRecover", id, &log->contact_recover));
   PetscCall(PetscLogEventRegister("MMFrictionLoop", id, &log->friction));
