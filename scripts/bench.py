@@ -47,7 +47,7 @@ FRICTION = dict(case="friction", options="-contact_formulation condensed -mu 0.2
 FULL = dict(case="full", options="-contact_formulation full -mu 0")
 
 # One row per (suite, variant, ranks). dt and steps go through the impact: the D1 disk touches the
-# plane after 1 ms (gap 0.001, v = -1), the D2 ball after 10 ms (gap 0.01).
+# plane after 1 ms (gap 0.001, v = -1; step 5), the D2 ball after 10 ms (gap 0.01; step 10).
 SUITES = [
     dict(suite="2d", problem="D1 disk", dim=2, options_file="options/d1_disk.opts", mesh="meshes/disk_bench.msh",
          dt=2e-4, steps=30, ranks=(1, 2), variants=(LINEAR, CONTACT, FRICTION, FULL), csv="bench/results.csv"),
@@ -102,7 +102,8 @@ def run(suite, variant, ranks, steps):
     proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
     summary, dofs = SUMMARY.search(proc.stdout), DOFS.search(proc.stdout)
     if proc.returncode or not summary:
-        print(f"    failed (exit {proc.returncode}):\n" + "\n".join((proc.stdout + proc.stderr).splitlines()[-15:]), flush=True)
+        lines = proc.stderr.splitlines()
+        print(f"    failed (exit {proc.returncode}):", *(lines if len(lines) <= 16 else lines[:10] + ["..."] + lines[-5:]), sep="\n    ", flush=True)
         return dict(row, status="failed", **{k: "-" for k in FIELDS if k not in row})
     rss = [int(kb) / 1024 for kb in RANK_RSS.findall(proc.stderr)]
     return dict(row, dofs=int(dofs.group(1)), contact_nodes=int(dofs.group(2)), setup_s=float(summary.group(1)),
