@@ -17,9 +17,13 @@ OBJ  := $(SRC:src/%.c=build/%.o)
 HDR  := $(wildcard include/*.h)
 CFLAGS_MM := ${PETSC_CC_INCLUDES} -Iinclude -O2 -Wall
 MSH  := meshes/bar80.msh meshes/bar100.msh meshes/disk.msh meshes/ball.msh meshes/block.msh meshes/box.msh
-BENCH_MSH := meshes/disk_bench.msh
+# Bench meshes: the 2D D1 disk (115k dofs), the 3D D2 ball (H 0.045: 113k dofs, 3.8k contact nodes)
+# and the large D2 ball of `make bench-large` (H 0.021: about 1M dofs), generated when first needed.
+BALL_BENCH_H ?= 0.045
+BALL_LARGE_H ?= 0.021
+BENCH_MSH := meshes/disk_bench.msh meshes/ball_bench.msh
 
-.PHONY: all deps petsc-found meshes run check bench clean
+.PHONY: all deps petsc-found meshes run check bench bench-large clean
 all: mmcontact
 
 deps:
@@ -55,6 +59,10 @@ meshes/ball.msh: meshes/ball.geo
 	gmsh -3 $< -o $@ -v 2
 meshes/disk_bench.msh: meshes/disk.geo
 	gmsh -2 $< -setnumber H 0.008 -setnumber G 0.001 -o $@ -v 2
+meshes/ball_bench.msh: meshes/ball.geo
+	gmsh -3 $< -setnumber H $(BALL_BENCH_H) -o $@ -v 2
+meshes/ball_large.msh: meshes/ball.geo
+	gmsh -3 $< -setnumber H $(BALL_LARGE_H) -o $@ -v 2
 
 run: deps
 	$(MAKE) mmcontact meshes
@@ -69,6 +77,10 @@ check: deps
 bench: deps
 	$(MAKE) mmcontact meshes $(BENCH_MSH)
 	$(MM_PYTHON) scripts/bench.py
+
+bench-large: deps
+	$(MAKE) mmcontact meshes/ball_large.msh
+	$(MM_PYTHON) scripts/bench.py large
 
 clean:
 	rm -rf build mmcontact meshes/*.msh output bench tests/__pycache__ .pytest_cache

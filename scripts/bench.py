@@ -1,57 +1,172 @@
-"""make bench: D1 on a >= 100k-dof disk for a fixed number of steps through the impact, on 1 and 2
-ranks: without contact, with contact (condensed), with contact and friction mu = 0.2, and with
-contact on all dofs (full). Writes bench/results.csv and prints a table of ratios measured
-in this one run (absolute times on a shared machine are noise; ratios are the figures)."""
+"""Benchmarks of mmcontact: a fixed number of steps through the impact, without and with contact.
+
+Suites (the table SUITES below):
+  2d     D1 disk, 115k dofs (meshes/disk_bench.msh): linear, contact, friction mu = 0.2, and
+         contact on all dofs (full); 1 and 2 ranks.                       -> bench/results.csv
+  3d     D2 ball, 113k dofs (meshes/ball_bench.msh): linear, contact, friction mu = 0.2; 1 and 2
+         ranks.                                                           -> bench/results.csv
+  large  D2 ball, about 1M dofs (meshes/ball_large.msh): linear, contact, friction mu = 0.2 on 2
+         ranks, contact solved with LARGE_OPTS.                           -> bench/results_large.csv
+
+`make bench` runs 2d and 3d, `make bench-large` runs large. Each suite's rows are written to its
+CSV (one common header) and printed as a table. Absolute times on a shared machine are noise: the
+figures are the ratios within one run (contact/linear on the same ranks and mesh, 1-rank over
+2-rank time for the 2-rank speed-up).
+
+Environment (all optional):
+  BENCH_CASES       suites or suite:case to run, comma-separated (e.g. 2d,3d or 3d:linear,3d:friction);
+                    the command-line arguments, if any, take precedence. Default: 2d,3d.
+  BENCH_STEPS       steps per run for every suite (default: each suite's own, see SUITES)
+  BENCH_RANKS       ranks to run, comma-separated (e.g. 2); ratios need both rows present
+  BENCH_MESH_<SUITE> another mesh for that suite (e.g. BENCH_MESH_3D=meshes/ball.msh), to try rows quickly
+  BENCH_LARGE_OPTS  contact solver options for the large suite's contact rows (default LARGE_OPTS)
+
+Peak memory: the program's summary prints the largest peak RSS over the ranks ("MiB/rank" is the
+max over ranks, src/output.c); to get the total, every rank runs under this script's --rank-rss
+mode, which reports the peak RSS of its mmcontact process, and the column peak_mib_total sums them.
+"""
 import csv
 import os
 import re
+import resource
+import shlex
 import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-MESH = "meshes/disk_bench.msh"
-STEPS = int(os.environ.get("BENCH_STEPS", "30"))
-SUMMARY = re.compile(r"mmcontact summary: setup ([\d.]+) s; (\d+) steps .* in ([\d.]+) s wall \(([\d.]+) s/step\); peak memory ([\d.]+) MiB/rank")
+MPIEXEC = ["mpiexec"] + (["--allow-run-as-root"] if os.geteuid() == 0 else [])
+PYTHON = [sys.executable, "-s"]
+
+# Contact solver options of the large suite's contact rows (e.g. "-contact_formulation <name>" once
+# an iterative formulation exists); empty: the program's defaults.
+LARGE_OPTS = os.environ.get("BENCH_LARGE_OPTS", "")
+
+LINEAR = dict(case="linear", options="-contact 0")
+CONTACT = dict(case="contact", options="-contact_formulation condensed -mu 0")
+FRICTION = dict(case="friction", options="-contact_formulation condensed -mu 0.2")
+FULL = dict(case="full", options="-contact_formulation full -mu 0")
+
+# One row per (suite, variant, ranks). dt and steps go through the impact: the D1 disk touches the
+# plane after 1 ms (gap 0.001, v = -1; step 5), the D2 ball after 10 ms (gap 0.01; step 10).
+SUITES = [
+    dict(suite="2d", problem="D1 disk", dim=2, options_file="options/d1_disk.opts", mesh="meshes/disk_bench.msh",
+         dt=2e-4, steps=30, ranks=(1, 2), variants=(LINEAR, CONTACT, FRICTION, FULL), csv="bench/results.csv"),
+    dict(suite="3d", problem="D2 ball", dim=3, options_file="options/d2_ball.opts", mesh="meshes/ball_bench.msh",
+         dt=1e-3, steps=30, ranks=(1, 2), variants=(LINEAR, CONTACT, FRICTION), csv="bench/results.csv"),
+    dict(suite="large", problem="D2 ball", dim=3, options_file="options/d2_ball.opts", mesh="meshes/ball_large.msh",
+         dt=1e-3, steps=30, ranks=(2,),
+         variants=(LINEAR, dict(case="contact", options=f"-mu 0 {LARGE_OPTS}"), dict(case="friction", options=f"-mu 0.2 {LARGE_OPTS}")),
+         csv="bench/results_large.csv"),
+]
+
+FIELDS = ["suite", "problem", "dim", "ranks", "case", "formulation", "mu", "dofs", "contact_nodes", "steps", "setup_s",
+          "s_per_step", "contact_over_linear", "speedup_2_ranks", "peak_mib_max_rank", "peak_mib_total", "candidates",
+          "max_active", "mean_vi_its", "mean_friction_its_in_contact", "status"]
+SUMMARY = re.compile(r"mmcontact summary: setup ([\d.]+) s; (\d+) steps .* \(([\d.]+) s/step\); peak memory ([\d.]+) MiB/rank")
 DOFS = re.compile(r"(\d+) dofs, (\d+) contact nodes")
+RANK_RSS = re.compile(r"bench rank peak rss (\d+) kB")
 
 
-def run(np_, contact, formulation="condensed", mu=0.0):
-    cmd = ["mpiexec", "--allow-run-as-root", "-n", str(np_), "./mmcontact", "-options_file", "options/d1_disk.opts",
-           "-mesh", MESH, "-ts_dt", "2e-4", "-ts_max_steps", str(STEPS), "-ts_max_time", "1", "-ts_monitor_cancel",
-           "-output_every", "0", "-output_dir", "bench/out", "-contact", str(int(contact)), "-contact_formulation", formulation, "-mu", str(mu)]
-    out = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, check=True).stdout
-    m, d = SUMMARY.search(out), DOFS.search(out)
-    hist = os.path.join(ROOT, "bench/out/history.csv")
-    with open(hist) as f:
+def option_value(options, name, default):
+    """The value of option `name` in an options string, else `default`."""
+    words = shlex.split(options)
+    return words[words.index(name) + 1] if name in words[:-1] else default
+
+
+def history_stats(path):
+    """Per-run figures from history.csv: max candidates (or "-"), max active, mean VI its per step,
+    mean friction its per step with contact."""
+    with open(path) as f:
         rows = list(csv.DictReader(f))
-    active = max(int(r["active"]) for r in rows)
-    vi = sum(int(r["vi_its"]) for r in rows[1:]) / max(len(rows) - 1, 1)
-    touching = [r for r in rows[1:] if int(r["active"]) > 0]
-    fits = sum(int(r["friction_its"]) for r in touching) / max(len(touching), 1)
-    return dict(ranks=np_, contact=int(contact), formulation=formulation if contact else "-", mu=mu, dofs=int(d.group(1)), contact_nodes=int(d.group(2)), setup_s=float(m.group(1)),
-                steps=int(m.group(2)), wall_s=float(m.group(3)), s_per_step=float(m.group(4)), peak_mib_per_rank=float(m.group(5)),
-                max_active=active, mean_vi_its=round(vi, 2), mean_friction_its_in_contact=round(fits, 2))
+    steps = rows[1:]  # row 0 is the initial state
+    touching = [r for r in steps if int(r["active"]) > 0]
+    mean = lambda rs, key: round(sum(int(r[key]) for r in rs) / len(rs), 2) if rs else 0
+    return dict(candidates=max(int(r["candidates"]) for r in rows) if "candidates" in rows[0] else "-",
+                max_active=max(int(r["active"]) for r in rows), mean_vi_its=mean(steps, "vi_its"),
+                mean_friction_its_in_contact=mean(touching, "friction_its"))
 
 
-def main():
+def run(suite, variant, ranks, steps):
+    """Runs one row; returns its dict (status "ok", or "failed" with the blanks as "-")."""
+    options = variant["options"]
+    contact = option_value(options, "-contact", "1") != "0"
+    out_dir = f"bench/out/{suite['suite']}-{variant['case']}-{ranks}"
+    mesh = os.environ.get(f"BENCH_MESH_{suite['suite'].upper()}", suite["mesh"])
+    cmd = (MPIEXEC + ["-n", str(ranks)] + PYTHON + [os.path.abspath(__file__), "--rank-rss", "./mmcontact",
+           "-options_file", suite["options_file"], "-mesh", mesh, "-ts_dt", str(suite["dt"]), "-ts_max_steps", str(steps),
+           "-ts_max_time", "1", "-ts_monitor_cancel", "-output_every", "0", "-output_dir", out_dir] + shlex.split(options))
+    row = dict(suite=suite["suite"], problem=suite["problem"], dim=suite["dim"], ranks=ranks, case=variant["case"],
+               formulation=option_value(options, "-contact_formulation", "default") if contact else "-",
+               mu=float(option_value(options, "-mu", "0")), steps=steps, status="ok")
+    print(f"  {suite['suite']} {variant['case']} on {ranks} rank(s): {' '.join(cmd[cmd.index('./mmcontact'):])}", flush=True)
+    proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
+    summary, dofs = SUMMARY.search(proc.stdout), DOFS.search(proc.stdout)
+    if proc.returncode or not summary:
+        lines = proc.stderr.splitlines()
+        print(f"    failed (exit {proc.returncode}):", *(lines if len(lines) <= 16 else lines[:10] + ["..."] + lines[-5:]), sep="\n    ", flush=True)
+        return dict(row, status="failed", **{k: "-" for k in FIELDS if k not in row})
+    rss = [int(kb) / 1024 for kb in RANK_RSS.findall(proc.stderr)]
+    return dict(row, dofs=int(dofs.group(1)), contact_nodes=int(dofs.group(2)), setup_s=float(summary.group(1)),
+                s_per_step=float(summary.group(3)), peak_mib_max_rank=float(summary.group(4)),
+                peak_mib_total=round(sum(rss), 1) if len(rss) == ranks else "-", **history_stats(os.path.join(ROOT, out_dir, "history.csv")))
+
+
+def add_ratios(rows):
+    """contact/linear: s/step over the linear row's (same suite, ranks); 2-rank speed-up: the 1-rank
+    row's s/step over the 2-rank row's (same suite, case), on the 2-rank row. "-" when a row is missing."""
+    ok = {(r["suite"], r["case"], r["ranks"]): r["s_per_step"] for r in rows if r["status"] == "ok"}
+    ratio = lambda a, b: round(ok[a] / ok[b], 3) if a in ok and b in ok and ok[b] > 0 else "-"
+    for r in rows:
+        key = (r["suite"], r["case"], r["ranks"])
+        r["contact_over_linear"] = ratio(key, (r["suite"], "linear", r["ranks"]))
+        r["speedup_2_ranks"] = ratio((r["suite"], r["case"], 1), key) if r["ranks"] == 2 else "-"
+
+
+def print_table(rows):
+    cols = [("suite", 5), ("ranks", 5), ("case", 8), ("formulation", 11), ("mu", 4), ("dofs", 8), ("contact_nodes", 13),
+            ("steps", 5), ("setup_s", 8), ("s_per_step", 10), ("contact_over_linear", 19), ("speedup_2_ranks", 15),
+            ("peak_mib_max_rank", 17), ("peak_mib_total", 14), ("candidates", 10), ("max_active", 10), ("mean_vi_its", 11),
+            ("mean_friction_its_in_contact", 28), ("status", 6)]
+    print(" ".join(f"{name:>{width}}" for name, width in cols))
+    for r in rows:
+        print(" ".join(f"{r[name]:>{width}}" for name, width in cols))
+
+
+def rank_rss(cmd):
+    """--rank-rss mode, one per rank under mpiexec: runs cmd and reports its peak RSS on stderr."""
+    code = subprocess.call(cmd)
+    print(f"bench rank peak rss {resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss} kB", file=sys.stderr)
+    return code
+
+
+def main(args):
+    selected = (args or os.environ.get("BENCH_CASES", "2d,3d").split(","))
+    ranks = [int(n) for n in os.environ["BENCH_RANKS"].split(",")] if os.environ.get("BENCH_RANKS") else None
+    unknown = [s for s in selected if s.split(":")[0] not in [suite["suite"] for suite in SUITES]]
+    if unknown:
+        sys.exit(f"bench.py: unknown suite(s) {unknown}; the suites are {[suite['suite'] for suite in SUITES]}")
     os.makedirs(os.path.join(ROOT, "bench"), exist_ok=True)
-    runs = [(n, c, f, mu) for n in (1, 2) for c, f, mu in ((False, "condensed", 0.0), (True, "condensed", 0.0), (True, "condensed", 0.2), (True, "full", 0.0))]
-    rows = [run(*r) for r in runs]
-    by = {(r["ranks"], r["contact"], r["formulation"], r["mu"]): r for r in rows}
-    for r in rows:
-        r["contact_over_linear"] = round(r["s_per_step"] / by[(r["ranks"], 0, "-", 0.0)]["s_per_step"], 3)
-        r["speedup_2_ranks"] = round(by[(1, r["contact"], r["formulation"], r["mu"])]["s_per_step"] / by[(2, r["contact"], r["formulation"], r["mu"])]["s_per_step"], 3)
-    path = os.path.join(ROOT, "bench/results.csv")
-    with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        w.writeheader()
-        w.writerows(rows)
-    print(f"D1 benchmark: {rows[0]['dofs']} dofs, {by[(1, 1, 'condensed', 0.0)]['contact_nodes']} contact nodes, {STEPS} steps through the impact")
-    print(f"{'ranks':>5} {'contact':>7} {'formulation':>11} {'mu':>4} {'setup s':>8} {'s/step':>9} {'contact/linear':>14} {'2-rank speedup':>14} {'peak MiB/rank':>13} {'max active':>10} {'VI its/step':>11} {'friction its':>12}")
-    for r in rows:
-        print(f"{r['ranks']:>5} {r['contact']:>7} {r['formulation']:>11} {r['mu']:>4} {r['setup_s']:>8.2f} {r['s_per_step']:>9.4f} {r['contact_over_linear']:>14.2f} {r['speedup_2_ranks']:>14.2f} {r['peak_mib_per_rank']:>13.1f} {r['max_active']:>10} {r['mean_vi_its']:>11} {r['mean_friction_its_in_contact']:>12}")
-    print(f"written to {path}")
+    rows = []
+    for suite in SUITES:
+        steps = int(os.environ.get("BENCH_STEPS", suite["steps"]))
+        for n in suite["ranks"]:
+            for variant in suite["variants"]:
+                if (suite["suite"] in selected or f"{suite['suite']}:{variant['case']}" in selected) and (ranks is None or n in ranks):
+                    rows.append(run(suite, variant, n, steps))
+    add_ratios(rows)
+    for path in dict.fromkeys(suite["csv"] for suite in SUITES):
+        written = [r for suite in SUITES if suite["csv"] == path for r in rows if r["suite"] == suite["suite"]]
+        if written:
+            with open(os.path.join(ROOT, path), "w", newline="") as f:
+                w = csv.DictWriter(f, fieldnames=FIELDS)
+                w.writeheader()
+                w.writerows(written)
+            print(f"written to {path}")
+    print_table(rows)
+    return 1 if any(r["status"] != "ok" for r in rows) else 0
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    if sys.argv[1:2] == ["--rank-rss"]:
+        sys.exit(rank_rss(sys.argv[2:]))
+    sys.exit(main(sys.argv[1:]))
