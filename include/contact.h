@@ -1,6 +1,7 @@
 #pragma once
 #include "mmcontact.h"
 PETSC_EXTERN PetscErrorCode MMKSPSetDirect(KSP);
+PETSC_EXTERN PetscErrorCode MMKSPCheckFactored(KSP);
 PETSC_EXTERN PetscErrorCode MMKSPSetDirectSPD(KSP, PetscInt);
 PETSC_EXTERN PetscErrorCode MMContactSetUp(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMContactSetStepMatrix(MMCtx *, PetscReal);

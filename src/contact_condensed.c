@@ -29,6 +29,7 @@ PetscErrorCode MMCondensedFactor(MMCtx *ctx)
   }
   PetscCall(KSPSetOperators(ct->ksp_K, ct->qp.A, ct->qp.A));
   PetscCall(KSPSetUp(ct->ksp_K));
+  PetscCall(MMKSPCheckFactored(ct->ksp_K));
   if (ct->enabled) PetscCall(MMCandidatesInvalidate(ct));
   PetscFunctionReturn(0);
 }

@@ -66,13 +66,48 @@ static PetscErrorCode KSPCheckDirectPreSolve(KSP ksp, Vec b, Vec x, void *ptr)
   PetscFunctionReturn(0);
 }
 
+/* A factorization that failed (MUMPS out of memory, a zero pivot) does not stop KSPSetUp: its
+ * solves would return garbage or nothing. Stop here, on every rank, naming the solve and why. */
+PetscErrorCode MMKSPCheckFactored(KSP ksp)
+{
+  PC             pc;
+  PCFailedReason reason;
+  PetscInt       r;
+  const char    *prefix;
+
+  PetscFunctionBeginUser;
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCGetFailedReasonRank(pc, &reason));
+  r = (PetscInt)reason;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &r, 1, MPIU_INT, MPI_MAX, PetscObjectComm((PetscObject)ksp)));
+  if (!r) PetscFunctionReturn(0);
+  PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
+  SETERRQ(PetscObjectComm((PetscObject)ksp), PETSC_ERR_LIB, "The factorization for the solve -%s failed: %s. %s", prefix ? prefix : "", PCFailedReasons[r],
+          (PCFailedReason)r == PC_FACTOR_OUTMEMORY ? "The direct factor does not fit in memory: use a coarser mesh, more ranks or memory, or an iterative solver where one is supported (README \"Solvers\")" : "Check the mesh (inverted or degenerate cells) and the Dirichlet conditions");
+}
+
+static PetscErrorCode KSPCheckSolvedPostSolve(KSP ksp, Vec b, Vec x, void *ptr)
+{
+  KSPConvergedReason reason;
+  const char        *prefix;
+
+  PetscFunctionBeginUser;
+  PetscCall(KSPGetConvergedReason(ksp, &reason));
+  if (reason >= 0) PetscFunctionReturn(0);
+  PetscCall(MMKSPCheckFactored(ksp));
+  PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
+  SETERRQ(PetscObjectComm((PetscObject)ksp), PETSC_ERR_NOT_CONVERGED, "The solve -%s failed: %s. Run with -%sksp_converged_reason -%sksp_view to see why", prefix ? prefix : "", KSPConvergedReasons[reason], prefix ? prefix : "", prefix ? prefix : "");
+}
+
 /* A solve that must be exact: LU with MUMPS by default, and any -PREFIX_pc_type that is not a
- * complete factorization refused when it solves (after KSPSetFromOptions). */
+ * complete factorization refused when it solves (after KSPSetFromOptions); a failed factorization
+ * or solve stops the run. */
 PetscErrorCode MMKSPSetDirect(KSP ksp)
 {
   PetscFunctionBeginUser;
   PetscCall(KSPSetDefaultLU(ksp));
   PetscCall(KSPSetPreSolve(ksp, KSPCheckDirectPreSolve, NULL));
+  PetscCall(KSPSetPostSolve(ksp, KSPCheckSolvedPostSolve, NULL));
   PetscFunctionReturn(0);
 }
 

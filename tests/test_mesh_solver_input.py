@@ -183,3 +183,13 @@ def test_default_native_cholesky_equals_mumps_lu(mm):
     for c in ("total", "work_contact", "work_friction", "force_normal", "force_tangential"):
         assert np.abs(native[c] - mumps[c]).max() <= 1e-10 * scale, c
     assert np.array_equal(native["active"], mumps["active"])
+
+
+def test_failed_factorization_stops_the_run(mm):
+    """A factorization that runs out of memory (MUMPS limited to 1 MB of working space here) used to
+    go on to the next solve: now it stops at once, naming the solve and the reason."""
+    r = mm("d1_disk", "-ts_max_steps", 2, "-contact_K_pc_type", "lu", "-contact_K_pc_factor_mat_solver_type", "mumps",
+           "-contact_K_mat_mumps_icntl_14", -99, "-contact_K_mat_mumps_icntl_23", 1, np_=0, check=False)
+    assert r.returncode != 0
+    assert "The factorization for the solve -contact_K_ failed: FACTOR_OUTMEMORY" in r.output
+    assert "does not fit in memory" in r.output
