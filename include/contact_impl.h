@@ -27,4 +27,5 @@ PETSC_EXTERN PetscErrorCode MMCandidatesInvalidate(MMContact *);
 PETSC_EXTERN PetscErrorCode MMCandidatesSelect(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMCandidatesGrow(MMCtx *, const PetscScalar[], PetscBool *);
 PETSC_EXTERN PetscErrorCode MMCandidatesMult(MMContact *, Vec, PetscScalar[]);
+PETSC_EXTERN PetscErrorCode MMCandidatesRecover(MMContact *, Vec);
 PETSC_EXTERN PetscErrorCode MMCandidatesDestroy(MMCandidates *);

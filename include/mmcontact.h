@@ -158,6 +158,10 @@ typedef struct {
   PetscInt     n_cached, cap;       /* cached nodes; blocks allocated */
   PetscScalar *cols;                /* cached columns of K~^{-1} E on the owned condensed rows (lda nc_local) */
   PetscInt     nc_local;            /* owned condensed dofs: ncomp n_local */
+  PetscInt    *cond_row;            /* per owned condensed dof, its local row in the full vectors */
+  PetscScalar *full;                /* the same columns on all owned dofs (lda n_local), while they fit */
+  PetscInt     n_local, N;          /* owned and global dofs */
+  PetscBool    full_ok;             /* full columns kept: the step is recovered from them, without a solve */
   PetscBool   *in_set;              /* per contact node (all ranks): in the step's set */
   PetscInt     n_set, *set;         /* the step's set: contact nodes in increasing order, on every rank */
   PetscInt     m;                   /* its condensed dofs: ncomp n_set */

@@ -48,6 +48,9 @@ PetscErrorCode MMCandidatesSetUp(MMCtx *ctx)
   PetscCall(MPI_Scan(&ct->n_local, &c->node_start, 1, MPIU_INT, MPI_SUM, comm));
   c->node_start -= ct->n_local;
   c->nc_local   = ct->ncomp * ct->n_local;
+  c->full_ok    = PETSC_TRUE;
+  PetscCall(MatGetLocalSize(ct->qp.A, &c->n_local, NULL));
+  PetscCall(MatGetSize(ct->qp.A, &c->N, NULL));
   c->margin     = ctx->opt.candidate_margin;
   c->all        = ctx->opt.candidate_all;
   c->memory_cap = ctx->opt.candidate_memory * 1024.0 * 1024.0;
@@ -68,6 +71,16 @@ PetscErrorCode MMCandidatesSetUp(MMCtx *ctx)
     c->in_set[g] = PETSC_FALSE;
   }
   PetscCall(PetscMalloc1(c->nc_local, &c->wc));
+  {
+    const PetscInt *ic;
+    PetscInt        rstart;
+    /* is_cond holds owned dofs only: array offsets, where VecGetSubVector would build a scatter each call */
+    PetscCall(MatGetOwnershipRange(ct->qp.A, &rstart, NULL));
+    PetscCall(PetscMalloc1(c->nc_local, &c->cond_row));
+    PetscCall(ISGetIndices(ct->is_cond, &ic));
+    for (PetscInt r = 0; r < c->nc_local; ++r) c->cond_row[r] = ic[r] - rstart;
+    PetscCall(ISRestoreIndices(ct->is_cond, &ic));
+  }
   PetscCall(CreateSetSolver(ctx));
   PetscFunctionReturn(0);
 }
@@ -80,6 +93,7 @@ PetscErrorCode MMCandidatesInvalidate(MMContact *ct)
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < c->n_cached; ++i) c->slot[c->slot_node[i]] = -1;
   c->n_cached = 0;
+  c->full_ok  = PETSC_TRUE;
   for (PetscInt i = 0; i < c->n_set; ++i) c->in_set[c->set[i]] = PETSC_FALSE;
   c->n_set = 0;
   c->m     = 0;
@@ -100,6 +114,7 @@ static PetscErrorCode EvictOutsideSet(MMContact *ct)
       continue;
     }
     if (kept != i) PetscCall(PetscArraycpy(c->cols + kept * nb, c->cols + i * nb, nb));
+    if (kept != i && c->full_ok) PetscCall(PetscArraycpy(c->full + (size_t)kept * ct->ncomp * c->n_local, c->full + (size_t)i * ct->ncomp * c->n_local, (size_t)ct->ncomp * c->n_local));
     c->slot_node[kept] = g;
     c->slot[g]         = kept++;
   }
@@ -108,29 +123,44 @@ static PetscErrorCode EvictOutsideSet(MMContact *ct)
   PetscFunctionReturn(0);
 }
 
-/* Room for n more cached nodes, within the memory cap: beyond it the nodes outside the set go. */
+/* Room for n more cached nodes, within the memory cap: beyond it the nodes outside the set go,
+ * then the full columns (the step is then recovered by a solve), and a set that alone does not
+ * fit stops the run. */
 static PetscErrorCode ReserveSlots(MMCtx *ctx, PetscInt n)
 {
   MMContact    *ct = &ctx->contact;
   MMCandidates *c  = &ct->cand;
-  const double  per_node = 8.0 * ct->ncomp * ct->ncomp * ct->n_global; /* bytes over all ranks */
+  const PetscInt nr = ct->ncomp;
+  const double  per_node = 8.0 * nr * nr * ct->n_global, per_node_full = 8.0 * nr * c->N; /* bytes over all ranks */
 
   PetscFunctionBeginUser;
-  if ((c->n_cached + n) * per_node > c->memory_cap) PetscCall(EvictOutsideSet(ct));
+  if ((c->n_cached + n) * (per_node + (c->full_ok ? per_node_full : 0)) > c->memory_cap) PetscCall(EvictOutsideSet(ct));
+  if (c->full_ok && (c->n_cached + n) * (per_node + per_node_full) > c->memory_cap) {
+    PetscCall(PetscInfo(NULL, "Candidate cache: full columns dropped; the step is recovered by a solve\n"));
+    c->full_ok = PETSC_FALSE;
+    PetscCall(PetscFree(c->full));
+  }
   PetscCheck((c->n_cached + n) * per_node <= c->memory_cap, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT,
              "The contact candidate set (%" PetscInt_FMT " nodes) needs %.3g MiB of K~^{-1} E columns, above -contact_candidate_memory %g MiB. Raise it, or use a contact formulation that needs no Delassus operator",
              c->n_cached + n, (c->n_cached + n) * per_node / 1048576.0, (double)ctx->opt.candidate_memory);
-  if (c->n_cached + n > c->cap) {
+  if (c->n_cached + n > c->cap || (c->full_ok && !c->full)) {
     PetscInt     cap = PetscMax(2 * c->cap, c->n_cached + n);
-    PetscScalar *cols;
+    PetscScalar *cols, *full = NULL;
     PetscInt    *nodes;
-    PetscCall(PetscMalloc1((size_t)cap * ct->ncomp * c->nc_local, &cols));
+    PetscCall(PetscMalloc1((size_t)cap * nr * c->nc_local, &cols));
     PetscCall(PetscMalloc1(cap, &nodes));
-    PetscCall(PetscArraycpy(cols, c->cols, (size_t)c->n_cached * ct->ncomp * c->nc_local));
+    PetscCall(PetscArraycpy(cols, c->cols, (size_t)c->n_cached * nr * c->nc_local));
     PetscCall(PetscArraycpy(nodes, c->slot_node, c->n_cached));
+    if (c->full_ok) {
+      PetscCall(PetscMalloc1((size_t)cap * nr * c->n_local, &full));
+      if (c->full) PetscCall(PetscArraycpy(full, c->full, (size_t)c->n_cached * nr * c->n_local));
+      else c->n_cached = 0; /* no full columns yet for the cached ones: start the cache again */
+    }
     PetscCall(PetscFree(c->cols));
+    PetscCall(PetscFree(c->full));
     PetscCall(PetscFree(c->slot_node));
     c->cols      = cols;
+    c->full      = full;
     c->slot_node = nodes;
     c->cap       = cap;
   }
@@ -191,6 +221,7 @@ static PetscErrorCode ComputeMissingColumns(MMCtx *ctx)
       }
       col = c->cols + ((size_t)c->slot[g] * nr + comp) * c->nc_local;
       for (PetscInt r = 0; r < c->nc_local; ++r) col[r] = x[(ic[r] - rstart) + j * lda];
+      if (c->full_ok) PetscCall(PetscArraycpy(c->full + ((size_t)c->slot[g] * nr + comp) * c->n_local, x + (size_t)j * lda, c->n_local));
     }
     PetscCall(MatDenseRestoreArrayRead(X, &x));
     PetscCall(MatDestroy(&X));
@@ -430,6 +461,31 @@ PetscErrorCode MMCandidatesMult(MMContact *ct, Vec x, PetscScalar y[])
   PetscFunctionReturn(0);
 }
 
+/* w = z - K~^{-1} E_S x from the full columns: the step's solution without a solve. */
+PetscErrorCode MMCandidatesRecover(MMContact *ct, Vec w)
+{
+  MMCandidates      *c  = &ct->cand;
+  const PetscInt     nr = ct->ncomp;
+  const PetscScalar *xa;
+  PetscScalar       *wa;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(ct->z, w));
+  if (!c->m) PetscFunctionReturn(0);
+  PetscCall(VecGetArray(w, &wa));
+  PetscCall(VecGetArrayRead(c->x, &xa));
+  for (PetscInt j = 0; j < c->n_set; ++j)
+    for (PetscInt q = 0; q < nr; ++q) {
+      const PetscScalar  xj  = xa[j * nr + q];
+      const PetscScalar *col = c->full + ((size_t)c->slot[c->set[j]] * nr + q) * c->n_local;
+      if (xj == 0) continue;
+      for (PetscInt r = 0; r < c->n_local; ++r) wa[r] -= col[r] * xj;
+    }
+  PetscCall(VecRestoreArrayRead(c->x, &xa));
+  PetscCall(VecRestoreArray(w, &wa));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MMCandidatesDestroy(MMCandidates *c)
 {
   PetscFunctionBeginUser;
@@ -437,7 +493,9 @@ PetscErrorCode MMCandidatesDestroy(MMCandidates *c)
   PetscCall(PetscFree4(c->normal_dof, c->slot, c->in_set, c->set));
   PetscCall(PetscFree(c->slot_node));
   PetscCall(PetscFree(c->cols));
+  PetscCall(PetscFree(c->full));
   PetscCall(PetscFree(c->wc));
+  PetscCall(PetscFree(c->cond_row));
   PetscCall(MatDestroy(&c->W));
   PetscCall(MatDestroy(&c->Wr));
   PetscCall(VecDestroy(&c->x));

@@ -71,22 +71,28 @@ PetscErrorCode MMContactGetNormalReactions(MMCtx *ctx, Vec lambda)
 /* q = z_c - offset: the gap on the normal dofs, u_t^n + dt/2 v_t^n on the tangential ones. */
 static PetscErrorCode CondensedRHS(MMCtx *ctx)
 {
-  MMContact *ct = &ctx->contact;
-  Vec        zc;
+  MMContact         *ct = &ctx->contact;
+  const PetscInt    *row = ct->cand.cond_row, nr = ct->ncomp;
+  const PetscScalar *za, *ua, *va, *ga;
+  PetscScalar       *oa, *qa;
 
   PetscFunctionBeginUser;
-  if (ct->ncomp > 1) {
-    Vec ut, vt;
-    PetscCall(VecGetSubVector(ctx->state.u_old, ct->is_cond, &ut));
-    PetscCall(VecGetSubVector(ctx->state.v_old, ct->is_cond, &vt));
-    PetscCall(VecWAXPY(ct->offset, 0.5 * ct->Kt_dt, vt, ut));
-    PetscCall(VecRestoreSubVector(ctx->state.v_old, ct->is_cond, &vt));
-    PetscCall(VecRestoreSubVector(ctx->state.u_old, ct->is_cond, &ut));
+  PetscCall(VecGetArrayRead(ct->z, &za));
+  PetscCall(VecGetArrayRead(ctx->state.u_old, &ua));
+  PetscCall(VecGetArrayRead(ctx->state.v_old, &va));
+  PetscCall(VecGetArrayRead(ct->gap, &ga));
+  PetscCall(VecGetArray(ct->offset, &oa));
+  PetscCall(VecGetArray(ct->q, &qa));
+  for (PetscInt r = 0; r < ct->cand.nc_local; ++r) {
+    oa[r] = r % nr ? ua[row[r]] + 0.5 * ct->Kt_dt * va[row[r]] : ga[r / nr];
+    qa[r] = za[row[r]] - oa[r];
   }
-  PetscCall(VecStrideScatter(ct->gap, 0, ct->offset, INSERT_VALUES));
-  PetscCall(VecGetSubVector(ct->z, ct->is_cond, &zc));
-  PetscCall(VecWAXPY(ct->q, -1.0, ct->offset, zc));
-  PetscCall(VecRestoreSubVector(ct->z, ct->is_cond, &zc));
+  PetscCall(VecRestoreArray(ct->q, &qa));
+  PetscCall(VecRestoreArray(ct->offset, &oa));
+  PetscCall(VecRestoreArrayRead(ct->gap, &ga));
+  PetscCall(VecRestoreArrayRead(ctx->state.v_old, &va));
+  PetscCall(VecRestoreArrayRead(ctx->state.u_old, &ua));
+  PetscCall(VecRestoreArrayRead(ct->z, &za));
   PetscFunctionReturn(0);
 }
 
@@ -158,16 +164,13 @@ static PetscErrorCode ContactDofValues(MMCtx *ctx)
 {
   MMContact         *ct = &ctx->contact;
   MMCandidates      *c  = &ct->cand;
-  Vec                zc;
   const PetscScalar *za;
 
   PetscFunctionBeginUser;
   PetscCall(MMCandidatesMult(ct, c->x, c->wc));
-  PetscCall(VecGetSubVector(ct->z, ct->is_cond, &zc));
-  PetscCall(VecGetArrayRead(zc, &za));
-  for (PetscInt r = 0; r < c->nc_local; ++r) c->wc[r] = za[r] - c->wc[r];
-  PetscCall(VecRestoreArrayRead(zc, &za));
-  PetscCall(VecRestoreSubVector(ct->z, ct->is_cond, &zc));
+  PetscCall(VecGetArrayRead(ct->z, &za));
+  for (PetscInt r = 0; r < c->nc_local; ++r) c->wc[r] = za[c->cond_row[r]] - c->wc[r];
+  PetscCall(VecRestoreArrayRead(ct->z, &za));
   PetscFunctionReturn(0);
 }
 
@@ -210,23 +213,28 @@ PetscErrorCode MMCondensedSolveReactions(MMCtx *ctx, Vec b)
  * w_c = z_c - W rho and f_c = -rho (K~ w - b = -E rho). What the friction loop needs. */
 PetscErrorCode MMCondensedContactDofs(MMCtx *ctx, Vec w, Vec react)
 {
-  MMContact   *ct = &ctx->contact;
-  Vec          wc, rc;
-  PetscScalar *wa;
+  MMContact         *ct = &ctx->contact;
+  const PetscInt    *row = ct->cand.cond_row;
+  const PetscScalar *ra;
+  PetscScalar       *wa, *fa;
 
   PetscFunctionBeginUser;
-  PetscCall(VecGetSubVector(w, ct->is_cond, &wc));
-  PetscCall(VecGetArray(wc, &wa));
-  PetscCall(PetscArraycpy(wa, ct->cand.wc, ct->cand.nc_local));
-  PetscCall(VecRestoreArray(wc, &wa));
-  PetscCall(VecRestoreSubVector(w, ct->is_cond, &wc));
-  PetscCall(VecGetSubVector(react, ct->is_cond, &rc));
-  PetscCall(VecAXPBY(rc, -1.0, 0.0, ct->rho));
-  PetscCall(VecRestoreSubVector(react, ct->is_cond, &rc));
+  PetscCall(VecGetArray(w, &wa));
+  PetscCall(VecGetArray(react, &fa));
+  PetscCall(VecGetArrayRead(ct->rho, &ra));
+  for (PetscInt r = 0; r < ct->cand.nc_local; ++r) {
+    wa[row[r]] = ct->cand.wc[r];
+    fa[row[r]] = -ra[r];
+  }
+  PetscCall(VecRestoreArrayRead(ct->rho, &ra));
+  PetscCall(VecRestoreArray(react, &fa));
+  PetscCall(VecRestoreArray(w, &wa));
   PetscFunctionReturn(0);
 }
 
-/* The whole step solution from rho: w = z - K~^{-1} E rho, one full-size solve. */
+/* The whole step solution from rho: w = z - K~^{-1} E rho, from the set's full columns while
+ * they fit in the cache (a product with the few columns of nonzero reactions), else by one
+ * full-size solve. */
 PetscErrorCode MMCondensedRecover(MMCtx *ctx, Vec w)
 {
   MMContact *ct = &ctx->contact;
@@ -235,6 +243,10 @@ PetscErrorCode MMCondensedRecover(MMCtx *ctx, Vec w)
   PetscFunctionBeginUser;
   if (!ct->enabled) {
     PetscCall(VecCopy(ct->z, w));
+    PetscFunctionReturn(0);
+  }
+  if (ct->cand.full_ok) {
+    PetscCall(MMCandidatesRecover(ct, w));
     PetscFunctionReturn(0);
   }
   PetscCall(VecZeroEntries(ct->rhs_c));
