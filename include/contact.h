@@ -10,6 +10,8 @@ PETSC_EXTERN PetscErrorCode MMContactRecover(MMCtx *, Vec, Vec, Vec);
 PETSC_EXTERN PetscErrorCode MMContactSetThresholds(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMContactGetNormalReactions(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMContactUpdateSlip(MMCtx *, Vec, Vec, PetscInt *, PetscReal *);
+PETSC_EXTERN PetscErrorCode MMContactSetFrictionThresholds(MMCtx *, Vec);
+PETSC_EXTERN PetscErrorCode MMContactUpdateFrictionStates(MMCtx *, Vec, Vec, PetscInt *, PetscReal *);
 PETSC_EXTERN PetscErrorCode MMContactProjectInitial(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMContactDiagnostics(MMCtx *, Vec, Vec, Vec, MMHistory *);
 PETSC_EXTERN PetscErrorCode MMContactCoulomb(MMCtx *, Vec, Vec, Vec, PetscReal *, PetscInt *, PetscInt *);

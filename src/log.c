@@ -18,5 +18,9 @@ PetscErrorCode MMLogRegister(MMLog *log)
   PetscCall(PetscLogEventRegister("MMContactRecover", id, &log->contact_recover));
   PetscCall(PetscLogEventRegister("MMFrictionLoop", id, &log->friction));
   PetscCall(PetscLogEventRegister("MMEnergy", id, &log->energy));
+  PetscCall(PetscLogEventRegister("MMKtSetUp", id, &log->kt_setup));
+  PetscCall(PetscLogEventRegister("MMKtSolve", id, &log->kt_solve));
+  PetscCall(PetscLogEventRegister("MMActiveSetIter", id, &log->as_iterate));
+  PetscCall(PetscLogEventRegister("MMActiveSetCG", id, &log->as_linear));
   PetscFunctionReturn(0);
 }
