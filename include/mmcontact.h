@@ -169,6 +169,8 @@ typedef struct {
   PetscBool *active;    /* normal: w_n = g (else rho_n = 0) */
   PetscBool *stick;     /* tangential: w_t = off_t (else rho_t = s d) */
   PetscReal *dir;       /* slip direction d per node, dim-1 components in the tangent frame */
+  PetscReal *kappa, *beta, *rperp; /* 3D slip: Newton tangent of the disk across d (a spring kappa on
+                                    * w.d_perp), and the reaction across d it corrects (beta rperp) */
   PetscInt   max_it, its, lin_its;
   PetscBool  monitor;
 } MMActiveSet;

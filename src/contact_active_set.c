@@ -7,6 +7,11 @@
  *   Tresca (thresholds s, friction loop): with off_t = u_t^n + dt/2 v_t^n and the trial force
  *            tr = rho_t + c (w_t - off_t), stick (w_t = off_t) if |tr| <= s, else slip with the
  *            known load rho_t = s tr/|tr|.
+ * In 3D the slip direction d = tr/|tr| is itself an unknown. Taking it from the last iterate alone
+ * is a fixed point that crawls (rate s/(s + c |slip|): a node that barely slips barely moves), so a
+ * slipping node gets the semismooth Newton step of the disk: rho_t.d = s along d, and across it, with
+ * a = s/|tr| < 1 and e = d_perp, the linearized rho_t.e = kappa e.(w^{k+1} - w^k) - beta rho_t^k.e,
+ * beta = a/(1-a), kappa = beta c: a spring on w.e, symmetric, added to the operator.
  * Each iteration fixes the dofs D of the active and sticking nodes at their values, loads the
  * slipping ones, and solves K~ on the free dofs F by CG with the operator P_F K~ P_F + P_D and the
  * PC P_F M^{-1} P_F + P_D, M^{-1} the contact_K_ PC set up once per dt, warm-started from the last
@@ -14,7 +19,39 @@
  * satisfies every condition exactly, up to the CG tolerance on the free dofs. */
 #include "contact_impl.h"
 
-/* y = P_F K~ P_F x + P_D x, with P_F the diagonal 0/1 mask `free`. */
+/* y += kappa_k e_k (e_k.x_t) at every slipping node in 3D, e_k = d_perp: the Newton tangent of the
+ * Tresca disk across the slip direction (its tangential dofs are free). */
+static PetscErrorCode AddDiskTangent(MMCtx *ctx, Vec x, Vec y)
+{
+  MMContact         *ct = &ctx->contact;
+  MMActiveSet       *as = &ct->as;
+  const PetscInt    *in;
+  const PetscScalar *xa;
+  PetscScalar       *ya;
+  PetscInt           rstart;
+
+  PetscFunctionBeginUser;
+  if (ct->ncomp != 3) PetscFunctionReturn(0);
+  PetscCall(VecGetOwnershipRange(x, &rstart, NULL));
+  PetscCall(ISGetIndices(ct->is_normal, &in));
+  PetscCall(VecGetArrayRead(x, &xa));
+  PetscCall(VecGetArray(y, &ya));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscInt   i = in[k] - rstart;
+    const PetscReal *d = &as->dir[2 * k], e[2] = {-d[1], d[0]};
+    PetscReal        ex;
+    if (as->kappa[k] == 0) continue;
+    ex = e[0] * PetscRealPart(xa[i + 1]) + e[1] * PetscRealPart(xa[i + 2]);
+    ya[i + 1] += as->kappa[k] * ex * e[0];
+    ya[i + 2] += as->kappa[k] * ex * e[1];
+  }
+  PetscCall(VecRestoreArray(y, &ya));
+  PetscCall(VecRestoreArrayRead(x, &xa));
+  PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  PetscFunctionReturn(0);
+}
+
+/* y = P_F (K~ + S) P_F x + P_D x, with P_F the diagonal 0/1 mask `free` and S the disk tangent. */
 static PetscErrorCode ProjectedOperator(Mat A, Vec x, Vec y)
 {
   MMCtx       *ctx;
@@ -25,6 +62,7 @@ static PetscErrorCode ProjectedOperator(Mat A, Vec x, Vec y)
   as = &ctx->contact.as;
   PetscCall(VecPointwiseMult(as->t, as->free, x));
   PetscCall(MatMult(ctx->contact.qp.A, as->t, y));
+  PetscCall(AddDiskTangent(ctx, as->t, y));
   PetscCall(VecPointwiseMult(y, as->free, y));
   PetscCall(VecAXPY(y, 1.0, x));
   PetscCall(VecAXPY(y, -1.0, as->t));
@@ -90,6 +128,7 @@ PetscErrorCode MMActiveSetSetUp(MMCtx *ctx)
   PetscCall(VecZeroEntries(as->s));
   PetscCall(CreateReactions(ctx));
   PetscCall(PetscCalloc3(ct->n_local, &as->active, ct->n_local, &as->stick, PetscMax(1, ct->n_local * (ctx->op.dim - 1)), &as->dir));
+  PetscCall(PetscCalloc3(ct->n_local, &as->kappa, ct->n_local, &as->beta, ct->n_local, &as->rperp));
 
   PetscCall(VecGetLocalSize(ct->qp.b, &n));
   PetscCall(VecGetSize(ct->qp.b, &N));
@@ -188,13 +227,15 @@ static inline PetscReal Offset(const NodeData *nd, PetscInt i, PetscInt j)
 }
 
 /* The linear problem of the current sets: x0 = w with the fixed dofs at their values (g, off_t),
- * free = the mask of F, and r = P_F (b - E rho_slip - K~ x0), the free dofs' residual. */
+ * free = the mask of F, and r = P_F (b - E rho_slip - K~ x0), the free dofs' residual, rho_slip the
+ * slipping nodes' load s d (3D: minus beta rperp e, the Newton step's part across d). */
 static PetscErrorCode FixSets(MMCtx *ctx, Vec b, Vec w)
 {
   MMContact   *ct = &ctx->contact;
   MMActiveSet *as = &ct->as;
   NodeData     nd;
   PetscScalar *x, *f, *r;
+  const PetscScalar *rho;
 
   PetscFunctionBeginUser;
   PetscCall(VecCopy(w, as->x0));
@@ -204,21 +245,31 @@ static PetscErrorCode FixSets(MMCtx *ctx, Vec b, Vec w)
   PetscCall(VecGetArray(as->x0, &x));
   PetscCall(VecGetArray(as->free, &f));
   PetscCall(VecGetArray(as->t, &r));
+  PetscCall(VecGetArrayRead(ct->rho, &rho));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
-    const PetscInt  i  = nd.in[k] - nd.rstart;
-    const PetscReal sk = nd.nt ? PetscRealPart(nd.s[k]) : 0;
+    const PetscInt   i  = nd.in[k] - nd.rstart;
+    const PetscReal  sk = nd.nt ? PetscRealPart(nd.s[k]) : 0;
+    const PetscReal *d  = &as->dir[k * nd.nt];
     if (as->active[k]) {
       x[i] = nd.g[k];
       f[i] = 0;
     }
+    as->rperp[k] = 0;
     if (sk <= 0) continue; /* no threshold: the tangential dofs are free and unloaded */
     for (PetscInt j = 0; j < nd.nt; ++j) {
       if (as->stick[k]) {
         x[i + 1 + j] = Offset(&nd, i, j);
         f[i + 1 + j] = 0;
-      } else r[i + 1 + j] -= sk * as->dir[k * nd.nt + j];
+      } else r[i + 1 + j] -= sk * d[j];
+    }
+    if (as->stick[k] || !as->kappa[k]) continue;
+    {
+      const PetscReal e[2] = {-d[1], d[0]};
+      as->rperp[k] = e[0] * PetscRealPart(rho[k * 3 + 1]) + e[1] * PetscRealPart(rho[k * 3 + 2]);
+      for (PetscInt j = 0; j < 2; ++j) r[i + 1 + j] += as->beta[k] * as->rperp[k] * e[j];
     }
   }
+  PetscCall(VecRestoreArrayRead(ct->rho, &rho));
   PetscCall(VecRestoreArray(as->t, &r));
   PetscCall(VecRestoreArray(as->free, &f));
   PetscCall(VecRestoreArray(as->x0, &x));
@@ -227,6 +278,17 @@ static PetscErrorCode FixSets(MMCtx *ctx, Vec b, Vec w)
   PetscCall(VecAYPX(as->r, -1.0, as->t));
   PetscCall(VecPointwiseMult(as->r, as->free, as->r));
   PetscFunctionReturn(0);
+}
+
+/* The Newton tangent of the disk at a slipping node from its trial force tr, |tr| = trn > s: a = s/|tr|,
+ * beta = a/(1-a), capped where the node barely slips (a -> 1, an infinitely stiff spring that would
+ * ruin CG's conditioning; the capped step is still a contraction). */
+static void DiskTangent(MMActiveSet *as, PetscInt k, PetscReal sk, PetscReal trn, PetscReal c)
+{
+  const PetscReal beta_max = 1e6, a = sk / trn;
+
+  as->beta[k]  = a < beta_max / (1 + beta_max) ? a / (1 - a) : beta_max;
+  as->kappa[k] = as->beta[k] * c;
 }
 
 /* w = x0 + dx, P_F K~ P_F dx = r by the projected CG from dx = 0 (x0 is the warm start). */
@@ -253,7 +315,7 @@ static PetscErrorCode SolveFree(MMCtx *ctx, Vec b, Vec w)
  * scale, as the Coulomb residual measures them, docs/method.md section 6); within them either set
  * is a solution, and switching back and forth on noise would never stop. */
 typedef struct {
-  PetscReal len, force, dir;
+  PetscReal len, force, fscale;
 } SetTolerances;
 
 static PetscErrorCode GetSetTolerances(MMCtx *ctx, SetTolerances *tol)
@@ -263,22 +325,23 @@ static PetscErrorCode GetSetTolerances(MMCtx *ctx, SetTolerances *tol)
 
   PetscFunctionBeginUser;
   PetscCall(VecStrideMax(ct->rho, 0, NULL, &rmax));
-  tol->len   = 1e-10 * ct->h_c;
-  tol->force = 1e-9 * PetscMax(rmax, 1e-3 * ctx->opt.E * PetscPowReal(ct->h_c, ctx->op.dim - 1));
-  tol->dir   = 1e-2 * ctx->opt.friction_coulomb_tol;
+  tol->fscale = PetscMax(rmax, 1e-3 * ctx->opt.E * PetscPowReal(ct->h_c, ctx->op.dim - 1));
+  tol->len    = 1e-10 * ct->h_c;
+  tol->force  = 1e-9 * tol->fscale;
   PetscFunctionReturn(0);
 }
 
 /* From the solution w of the current sets: the reactions rho (res = b - K~ w = E rho on the fixed
- * dofs, the known loads on the slipping ones), then the new sets. Returns how many nodes changed
- * set and the largest change of a slip direction. */
+ * dofs, the loads on the slipping ones), then the new sets. Returns how many nodes changed set and
+ * the largest change of a slipping node's force over the force scale (its direction, and in 3D its
+ * part across the direction). */
 static PetscErrorCode UpdateSets(MMCtx *ctx, Vec b, Vec w, PetscInt *changed, PetscReal *dchange)
 {
   MMContact         *ct = &ctx->contact;
   MMActiveSet       *as = &ct->as;
   NodeData           nd;
   SetTolerances      tol = {0, 0, 0};
-  const PetscScalar *wa, *res;
+  const PetscScalar *wa, *res, *dx;
   PetscScalar       *rho;
   PetscInt           nch = 0;
   PetscReal          dmax = 0;
@@ -289,14 +352,23 @@ static PetscErrorCode UpdateSets(MMCtx *ctx, Vec b, Vec w, PetscInt *changed, Pe
   PetscCall(NodeDataGet(ctx, &nd));
   PetscCall(VecGetArrayRead(w, &wa));
   PetscCall(VecGetArrayRead(as->r, &res));
+  PetscCall(VecGetArrayRead(as->dx, &dx));
   PetscCall(VecGetArray(ct->rho, &rho));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
-    const PetscInt  i  = nd.in[k] - nd.rstart;
-    const PetscReal sk = nd.nt ? PetscRealPart(nd.s[k]) : 0;
+    const PetscInt   i  = nd.in[k] - nd.rstart;
+    const PetscReal  sk = nd.nt ? PetscRealPart(nd.s[k]) : 0;
+    const PetscReal *d  = &as->dir[k * nd.nt];
     rho[k * nd.ncomp] = as->active[k] ? res[i] : 0;
-    for (PetscInt j = 0; j < nd.nt; ++j) rho[k * nd.ncomp + 1 + j] = sk <= 0 ? 0 : as->stick[k] ? res[i + 1 + j] : sk * as->dir[k * nd.nt + j];
+    for (PetscInt j = 0; j < nd.nt; ++j) rho[k * nd.ncomp + 1 + j] = sk <= 0 ? 0 : as->stick[k] ? res[i + 1 + j] : sk * d[j];
+    if (sk > 0 && !as->stick[k] && as->kappa[k]) {
+      /* across d, the Newton step's reaction: the spring's force and the corrected one */
+      const PetscReal e[2] = {-d[1], d[0]};
+      const PetscReal rp   = as->kappa[k] * (e[0] * PetscRealPart(dx[i + 1]) + e[1] * PetscRealPart(dx[i + 2])) - as->beta[k] * as->rperp[k];
+      for (PetscInt j = 0; j < 2; ++j) rho[k * 3 + 1 + j] += rp * e[j];
+    }
   }
   PetscCall(VecRestoreArray(ct->rho, &rho));
+  PetscCall(VecRestoreArrayRead(as->dx, &dx));
   PetscCall(GetSetTolerances(ctx, &tol));
   PetscCall(VecGetArray(ct->rho, &rho));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
@@ -322,15 +394,21 @@ static PetscErrorCode UpdateSets(MMCtx *ctx, Vec b, Vec w, PetscInt *changed, Pe
     if (stick != as->stick[k]) ++nch;
     as->stick[k]    = stick;
     ct->slipping[k] = (PetscBool)!stick;
+    as->kappa[k]    = 0;
     if (stick) continue;
     {
-      PetscReal dd = 0;
+      /* the change of the slip force s d, and in 3D its part across d: both vanish at the solution */
+      PetscReal dd = 0, rp = 0;
       for (PetscInt j = 0; j < nd.nt; ++j) {
         const PetscReal d = tr[j] / trn;
         dd += PetscSqr(d - as->dir[k * nd.nt + j]);
         as->dir[k * nd.nt + j] = d;
       }
-      dmax = PetscMax(dmax, PetscSqrtReal(dd));
+      if (nd.nt == 2) {
+        rp = PetscAbsReal(-as->dir[2 * k + 1] * PetscRealPart(rho[3 * k + 1]) + as->dir[2 * k] * PetscRealPart(rho[3 * k + 2]));
+        DiskTangent(as, k, sk, trn, ct_k);
+      }
+      dmax = PetscMax(dmax, PetscMax(sk * PetscSqrtReal(dd), rp) / tol.fscale);
     }
   }
   PetscCall(VecRestoreArray(ct->rho, &rho));
@@ -362,7 +440,7 @@ PetscErrorCode MMActiveSetSolve(MMCtx *ctx, Vec b, Vec w)
     PetscCall(SolveFree(ctx, b, w));
     PetscCall(UpdateSets(ctx, b, w, &changed, &dchange));
     PetscCall(PetscLogEventEnd(ctx->log.as_iterate, 0, 0, 0, 0));
-    if (as->monitor) PetscCall(PetscPrintf(comm, "    active set %2" PetscInt_FMT ": %" PetscInt_FMT " nodes changed set, slip directions changed by %.3e, %" PetscInt_FMT " CG iterations so far\n", as->its, changed, (double)dchange, as->lin_its));
+    if (as->monitor) PetscCall(PetscPrintf(comm, "    active set %2" PetscInt_FMT ": %" PetscInt_FMT " nodes changed set, slip forces changed by %.3e of the force scale, %" PetscInt_FMT " CG iterations so far\n", as->its, changed, (double)dchange, as->lin_its));
     if (!changed && dchange <= dtol) break;
   }
   PetscCheck(as->its <= as->max_it, comm, PETSC_ERR_NOT_CONVERGED, "The active-set contact solver did not converge in -active_set_max_it %" PetscInt_FMT " iterations: the contact or stick/slip sets keep changing. Run with -active_set_monitor to see how, and raise -active_set_max_it", as->max_it);
@@ -383,5 +461,6 @@ PetscErrorCode MMActiveSetDestroy(MMActiveSet *as)
   PetscCall(VecDestroy(&as->s));
   PetscCall(VecDestroy(&as->ct_diag));
   PetscCall(PetscFree3(as->active, as->stick, as->dir));
+  PetscCall(PetscFree3(as->kappa, as->beta, as->rperp));
   PetscFunctionReturn(0);
 }
