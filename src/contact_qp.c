@@ -27,7 +27,7 @@ static ExactSolve ExactSolveInfo(const char prefix[])
 {
   const ExactSolve known[] = {
     {"contact_K_", "the condensed contact formulation builds its Delassus operator from K~'s factor", PETSC_TRUE, PETSC_FALSE,
-     "Iterative K~ solves (-contact_K_ksp_type cg with -contact_K_pc_type gamg or hypre) are supported by -contact_formulation active_set and by -contact 0"},
+     "Iterative solvers and incomplete factorizations cannot give it. Iterative K~ solves (-contact_K_ksp_type cg with -contact_K_pc_type gamg or hypre) are supported by -contact_formulation active_set and by -contact 0"},
     /* M* restricted to the dofs with inertia is SPD and well conditioned: CG to a tight tolerance is exact enough */
     {"mass_",      "the initial acceleration solves M* a0 = L - K u0 + f_c0", PETSC_TRUE, PETSC_TRUE, "CG is also accepted: -mass_ksp_type cg with, e.g., -mass_pc_type jacobi (default tolerance -mass_ksp_rtol 1e-13)"},
     {"sliding_",   "the static sliding state solves its (nonsymmetric) linear system", PETSC_FALSE, PETSC_FALSE, NULL},
