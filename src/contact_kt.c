@@ -5,49 +5,79 @@
  * contact_K_. The condensed formulation keeps its own factor (contact_condensed.c). */
 #include "contact_impl.h"
 
-/* The rigid-body mode `mode` at x: translations e_0..e_{d-1}, then rotations (2D: one, 3D: three),
- * about the origin (the modes are orthonormalized afterwards, so the centre does not matter). */
-static PetscErrorCode RigidMode(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar *u, void *ptr)
+/* Component c of rigid-body mode m at x: translations e_0..e_{d-1}, then rotations (2D: one, 3D:
+ * three, e_k x x), about the origin (the modes are orthonormalized afterwards). */
+static PetscReal RigidMode(PetscInt dim, PetscInt m, PetscInt c, const PetscReal x[])
 {
-  const PetscInt mode = *(const PetscInt *)ptr;
-
-  for (PetscInt c = 0; c < Nc; ++c) u[c] = 0;
-  if (mode < dim) {
-    u[mode] = 1;
-    return 0;
-  }
-  if (dim == 2) {
-    u[0] = -x[1];
-    u[1] = x[0];
-    return 0;
-  }
+  if (m < dim) return m == c ? 1 : 0;
+  if (dim == 2) return c == 0 ? -x[1] : x[0];
   {
-    const PetscInt k = mode - dim, i = (k + 1) % 3, j = (k + 2) % 3;
-    /* e_k x x */
-    u[i] = -x[j];
-    u[j] = x[i];
+    const PetscInt k = m - dim, i = (k + 1) % 3, j = (k + 2) % 3;
+    return c == i ? -x[j] : c == j ? x[i] : 0;
   }
-  return 0;
 }
 
-/* The rigid-body modes of the free dofs in the w-frame: projected on the DM's global vectors (which
- * drop the Dirichlet-constrained dofs), rotated by Q^T at the contact nodes, orthonormalized. */
-static PetscErrorCode RigidBodyModes(MMCtx *ctx, MatNullSpace *sp)
+/* The rigid-body modes of the free dofs, Cartesian, straight from the vertex coordinates: the
+ * global section lists each owned vertex's free components (Dirichlet-constrained ones dropped). */
+static PetscErrorCode RigidBodyModesCartesian(MMCtx *ctx, PetscInt nmodes, Vec modes[])
 {
-  const PetscInt dim = ctx->op.dim, nmodes = dim == 2 ? 3 : 6;
-  Vec            modes[6], ucart;
-  PetscInt       mode;
-  void          *fctx = &mode;
-  PetscErrorCode (*f[1])(PetscInt, PetscReal, const PetscReal[], PetscInt, PetscScalar *, void *) = {RigidMode};
+  DM                 dm  = ctx->op.dm;
+  const PetscInt     dim = ctx->op.dim;
+  PetscSection       gs, ls, cs;
+  PetscInt           vStart, vEnd, rstart;
+  Vec                X;
+  const PetscScalar *xa;
+  PetscScalar       *ma[6];
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalVector(ctx->op.dm, &ucart));
-  for (mode = 0; mode < nmodes; ++mode) {
-    PetscCall(DMProjectFunction(ctx->op.dm, 0.0, f, &fctx, INSERT_VALUES, ucart));
-    PetscCall(VecDuplicate(ctx->contact.qp.b, &modes[mode]));
-    PetscCall(MatMultTranspose(ctx->op.Q, ucart, modes[mode]));
+  PetscCall(DMGetGlobalSection(dm, &gs));
+  PetscCall(DMGetLocalSection(dm, &ls));
+  PetscCall(DMGetCoordinateSection(dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(VecGetOwnershipRange(modes[0], &rstart, NULL));
+  PetscCall(VecGetArrayRead(X, &xa));
+  for (PetscInt m = 0; m < nmodes; ++m) PetscCall(VecGetArray(modes[m], &ma[m]));
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt        goff, cdof, xoff, i = 0;
+    const PetscInt *cind = NULL;
+    PetscReal       x[MM_MAX_DIM] = {0, 0, 0};
+    PetscCall(PetscSectionGetOffset(gs, v, &goff));
+    if (goff < 0) continue; /* not owned */
+    PetscCall(PetscSectionGetConstraintDof(ls, v, &cdof));
+    if (cdof) PetscCall(PetscSectionGetConstraintIndices(ls, v, &cind));
+    PetscCall(PetscSectionGetOffset(cs, v, &xoff));
+    for (PetscInt d = 0; d < dim; ++d) x[d] = PetscRealPart(xa[xoff + d]);
+    for (PetscInt c = 0; c < dim; ++c) {
+      PetscBool fixed = PETSC_FALSE;
+      for (PetscInt j = 0; j < cdof; ++j) fixed = (PetscBool)(fixed || cind[j] == c);
+      if (fixed) continue;
+      for (PetscInt m = 0; m < nmodes; ++m) ma[m][goff - rstart + i] = RigidMode(dim, m, c, x);
+      ++i;
+    }
   }
-  PetscCall(DMRestoreGlobalVector(ctx->op.dm, &ucart));
+  for (PetscInt m = 0; m < nmodes; ++m) PetscCall(VecRestoreArray(modes[m], &ma[m]));
+  PetscCall(VecRestoreArrayRead(X, &xa));
+  PetscFunctionReturn(0);
+}
+
+/* The rigid-body modes of the free dofs in the w-frame (rotated by Q^T at the contact nodes),
+ * orthonormalized: GAMG's near-null space. */
+static PetscErrorCode RigidBodyModes(MMCtx *ctx, MatNullSpace *sp)
+{
+  const PetscInt nmodes = ctx->op.dim == 2 ? 3 : 6;
+  Vec            modes[6], ucart[6];
+
+  PetscFunctionBeginUser;
+  for (PetscInt m = 0; m < nmodes; ++m) {
+    PetscCall(DMGetGlobalVector(ctx->op.dm, &ucart[m]));
+    PetscCall(VecDuplicate(ctx->contact.qp.b, &modes[m]));
+  }
+  PetscCall(RigidBodyModesCartesian(ctx, nmodes, ucart));
+  for (PetscInt m = 0; m < nmodes; ++m) {
+    PetscCall(MatMultTranspose(ctx->op.Q, ucart[m], modes[m]));
+    PetscCall(DMRestoreGlobalVector(ctx->op.dm, &ucart[m]));
+  }
   /* modified Gram-Schmidt; a mode the Dirichlet data remove entirely is still harmless to GAMG */
   for (PetscInt i = 0; i < nmodes; ++i) {
     PetscReal nrm;
@@ -59,7 +89,7 @@ static PetscErrorCode RigidBodyModes(MMCtx *ctx, MatNullSpace *sp)
     PetscCall(VecNormalize(modes[i], &nrm));
   }
   PetscCall(MatNullSpaceCreate(PetscObjectComm((PetscObject)ctx->op.dm), PETSC_FALSE, nmodes, modes, sp));
-  for (PetscInt i = 0; i < nmodes; ++i) PetscCall(VecDestroy(&modes[i]));
+  for (PetscInt m = 0; m < nmodes; ++m) PetscCall(VecDestroy(&modes[m]));
   PetscFunctionReturn(0);
 }
 
