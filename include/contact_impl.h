@@ -12,7 +12,7 @@ PETSC_EXTERN PetscErrorCode MMKSPSetFactorSPD(KSP, PetscInt);
 /* contact_kt.c: K~ without a Delassus operator, by a factorization or preconditioned CG */
 PETSC_EXTERN PetscErrorCode MMKtCreate(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMKtSetOperator(MMCtx *, Mat);
-PETSC_EXTERN PetscErrorCode MMKtSetTolerance(KSP, PetscReal, Vec);
+PETSC_EXTERN PetscErrorCode MMKtSolveToTolerance(KSP, PetscReal, Vec, Vec, Vec);
 PETSC_EXTERN PetscErrorCode MMKtSolve(MMCtx *, Vec, Vec);
 PETSC_EXTERN PetscErrorCode MMKtDestroy(MMStepSolver *);
 

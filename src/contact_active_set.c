@@ -301,9 +301,8 @@ static PetscErrorCode SolveFree(MMCtx *ctx, Vec b, Vec w)
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ctx->log.as_linear, 0, 0, 0, 0));
-  PetscCall(MMKtSetTolerance(as->ksp, ct->tol, b));
   PetscCall(VecZeroEntries(as->dx));
-  PetscCall(KSPSolve(as->ksp, as->r, as->dx));
+  PetscCall(MMKtSolveToTolerance(as->ksp, ct->tol, b, as->r, as->dx));
   PetscCall(KSPGetIterationNumber(as->ksp, &its));
   as->lin_its += its;
   PetscCall(VecWAXPY(w, 1.0, as->x0, as->dx));

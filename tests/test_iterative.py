@@ -24,8 +24,8 @@ def assert_same_history(h1, h2, tol=1e-8):
 CASES = {
     "d1": ("d1_disk", "-ts_max_time", 0.05),
     "d1_friction": ("d1_friction", "-ts_max_time", 0.05),
-    "d2": ("d2_ball", "-ts_max_time", 0.1),
-    "d2_friction": ("d2_ball", "-mu", 0.2, "-ts_max_time", 0.1),
+    "d2": ("d2_ball", "-ts_max_time", 0.08),
+    "d2_friction": ("d2_ball", "-mu", 0.2, "-ts_max_time", 0.08),
 }
 
 
@@ -55,8 +55,10 @@ def test_active_set_two_ranks(mm):
 
 @pytest.mark.parametrize("pc", ["gamg", "hypre"])
 def test_linear_run_iterative_equals_direct(pc, mm):
-    """-contact 0: one K~ solve per step, by CG with AMG (and the initial acceleration by CG)."""
-    short = ("-contact", 0, "-ts_max_time", 0.06, "-gravity", "0,0,-9.81", "-output_every", 0)
+    """-contact 0: one K~ solve per step, by CG with AMG (and the initial acceleration by CG). A rigid
+    motion under gravity is the Newmark predictor itself (CG would take no iteration): the ball starts
+    strained, and vibrates."""
+    short = ("-contact", 0, "-ts_max_time", 0.06, "-gravity", "0,0,-9.81", "-u0_gradient", "0.01,0,0,0,0.01,0,0,0,-0.02", "-output_every", 0)
     direct = mm("d2_ball", *short, name="direct").history
     cg = mm("d2_ball", *short, "-contact_K_ksp_type", "cg", "-contact_K_pc_type", pc, "-mass_ksp_type", "cg", "-mass_pc_type", "jacobi", np_=2, name=pc).history
     assert len(direct) == len(cg)
