@@ -207,7 +207,7 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   opt->friction_monitor = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-friction_monitor", "Print each friction iteration: threshold change, Coulomb residual, contraction factor, slipping and sticking node counts", NULL, opt->friction_monitor, &opt->friction_monitor, NULL));
   opt->contact_formulation = MM_CONTACT_CONDENSED;
-  PetscCall(PetscOptionsEnum("-contact_formulation", "Contact VI on the contact dofs through the Delassus operator (condensed: K~ factored once per dt), on all dofs (full: a factorization per VI iteration, frictionless), or the primal-dual active-set method on all dofs (active_set: CG on the free dofs with the contact_K_ PC, default GAMG, set up once per dt; for large 3D meshes)", NULL, MMContactFormulations, (PetscEnum)opt->contact_formulation, (PetscEnum *)&opt->contact_formulation, NULL));
+  PetscCall(PetscOptionsEnum("-contact_formulation", "Contact VI on the contact dofs through the Delassus operator (condensed: K~ factored once per dt), on all dofs (full: a factorization per VI iteration, frictionless), or the primal-dual active-set method on all dofs (active_set: CG on the free dofs with the contact_K_ PC, default Jacobi, -contact_K_pc_type gamg or hypre for c_p dt / h_c' above about 10, set up once per dt; for large 3D meshes)", NULL, MMContactFormulations, (PetscEnum)opt->contact_formulation, (PetscEnum *)&opt->contact_formulation, NULL));
   opt->active_set_max_it = 100;
   PetscCall(PetscOptionsInt("-active_set_max_it", "Active-set formulation: iterations per contact solve before the run stops (each is one projected CG solve)", NULL, opt->active_set_max_it, &opt->active_set_max_it, NULL));
   opt->active_set_monitor = PETSC_FALSE;

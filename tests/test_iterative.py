@@ -46,9 +46,10 @@ def test_active_set_equals_condensed(case, mm):
 
 
 def test_active_set_two_ranks(mm):
+    """2 ranks, and the default PC (Jacobi) against GAMG on 1 rank."""
     opts, *extra = CASES["d2_friction"]
     one = mm(opts, *extra, *TIGHT, *ITERATIVE, "-output_every", 0, name="one").history
-    two = mm(opts, *extra, *TIGHT, *ITERATIVE, "-output_every", 0, np_=2, name="two").history
+    two = mm(opts, *extra, *TIGHT, "-contact_formulation", "active_set", "-output_every", 0, np_=2, name="two").history
     assert_same_history(one, two)
     assert two["coulomb_residual"].max() <= 1e-8
 
