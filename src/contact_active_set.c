@@ -255,6 +255,8 @@ static PetscErrorCode FixSets(MMCtx *ctx, Vec b, Vec w)
       f[i] = 0;
     }
     as->rperp[k] = 0;
+    /* the disk's spring belongs to slipping nodes only: a threshold that dropped to 0 removes it */
+    if (sk <= 0 || as->stick[k]) as->kappa[k] = 0;
     if (sk <= 0) continue; /* no threshold: the tangential dofs are free and unloaded */
     for (PetscInt j = 0; j < nd.nt; ++j) {
       if (as->stick[k]) {
