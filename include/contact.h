@@ -2,6 +2,7 @@
 #include "mmcontact.h"
 PETSC_EXTERN PetscErrorCode MMKSPSetDirect(KSP);
 PETSC_EXTERN PetscErrorCode MMKSPCheckFactored(KSP);
+PETSC_EXTERN PetscErrorCode MMKSPSetFailureCheck(KSP);
 PETSC_EXTERN PetscErrorCode MMKSPSetDirectSPD(KSP, PetscInt);
 PETSC_EXTERN PetscErrorCode MMContactSetUp(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMContactSetStepMatrix(MMCtx *, PetscReal);
@@ -11,6 +12,8 @@ PETSC_EXTERN PetscErrorCode MMContactRecover(MMCtx *, Vec, Vec, Vec);
 PETSC_EXTERN PetscErrorCode MMContactSetThresholds(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMContactGetNormalReactions(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMContactUpdateSlip(MMCtx *, Vec, Vec, PetscInt *, PetscReal *);
+PETSC_EXTERN PetscErrorCode MMContactSetFrictionThresholds(MMCtx *, Vec);
+PETSC_EXTERN PetscErrorCode MMContactUpdateFrictionStates(MMCtx *, Vec, Vec, PetscInt *, PetscReal *);
 PETSC_EXTERN PetscErrorCode MMContactProjectInitial(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMContactDiagnostics(MMCtx *, Vec, Vec, Vec, MMHistory *);
 PETSC_EXTERN PetscErrorCode MMContactCoulomb(MMCtx *, Vec, Vec, Vec, PetscReal *, PetscInt *, PetscInt *);

@@ -7,6 +7,21 @@ PETSC_EXTERN PetscErrorCode MMKSPCheckDirect(KSP);
 PETSC_EXTERN PetscErrorCode MMQPCreate(MPI_Comm, const char[], MMBoundQP *, PetscReal, SNES *);
 PETSC_EXTERN PetscErrorCode MMQPSetOperator(SNES, MMBoundQP *);
 PETSC_EXTERN PetscErrorCode MMQPSolve(SNES, MMBoundQP *, Vec, PetscInt *);
+PETSC_EXTERN PetscErrorCode MMKSPSetFactorSPD(KSP, PetscInt);
+
+/* contact_kt.c: K~ without a Delassus operator, by a factorization or preconditioned CG */
+PETSC_EXTERN PetscErrorCode MMKtCreate(MMCtx *);
+PETSC_EXTERN PetscErrorCode MMKtSetOperator(MMCtx *, Mat);
+PETSC_EXTERN PetscErrorCode MMKtSolveToTolerance(KSP, PetscReal, Vec, Vec, Vec);
+PETSC_EXTERN PetscErrorCode MMKtSolve(MMCtx *, Vec, Vec);
+PETSC_EXTERN PetscErrorCode MMKtDestroy(MMStepSolver *);
+
+/* contact_active_set.c: the primal-dual active-set formulation */
+PETSC_EXTERN PetscErrorCode MMActiveSetSetUp(MMCtx *);
+PETSC_EXTERN PetscErrorCode MMActiveSetSetOperator(MMCtx *);
+PETSC_EXTERN PetscErrorCode MMActiveSetSetThresholds(MMCtx *, Vec);
+PETSC_EXTERN PetscErrorCode MMActiveSetSolve(MMCtx *, Vec, Vec);
+PETSC_EXTERN PetscErrorCode MMActiveSetDestroy(MMActiveSet *);
 
 /* contact_condensed.c: the Delassus operator and the condensed VI */
 PETSC_EXTERN PetscErrorCode MMCondensedFactor(MMCtx *);

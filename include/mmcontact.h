@@ -26,11 +26,14 @@ typedef enum {
 } MMMassType;
 PETSC_EXTERN const char *const MMMassTypes[];
 
-/* How each step's contact problem reaches SNESVI: condensed on the contact dofs through the
- * Delassus operator W = E^T K~^{-1} E (K~ factored once per dt), or on the full dof vector. */
+/* How each step's contact problem is solved: SNESVI condensed on the contact dofs through the
+ * Delassus operator W = E^T K~^{-1} E (K~ factored once per dt), SNESVI on the full dof vector, or
+ * a primal-dual active-set method on the full dof vector whose linear solves are preconditioned CG
+ * (docs/method.md section 3, "Active-set formulation"): no factor, no Delassus operator. */
 typedef enum {
   MM_CONTACT_CONDENSED,
-  MM_CONTACT_FULL
+  MM_CONTACT_FULL,
+  MM_CONTACT_ACTIVE_SET
 } MMContactFormulation;
 PETSC_EXTERN const char *const MMContactFormulations[];
 
@@ -97,6 +100,8 @@ typedef struct {
   PetscReal    candidate_margin;  /* candidate set: predicted gap within this times the deepest predicted penetration */
   PetscReal    candidate_memory;  /* candidate set: MiB of cached operator columns, over all ranks */
   PetscBool    candidate_all;     /* candidate set: every contact node, every step (the reference) */
+  PetscInt     active_set_max_it;   /* active-set iterations per contact solve */
+  PetscBool    active_set_monitor;
   PetscReal    audit_tol;
   PetscReal    contact_work_tol;
   PetscReal    initial_penetration_tol;
@@ -178,6 +183,33 @@ typedef struct {
   PetscInt     columns;             /* columns computed in the run */
   PetscInt     max_set;             /* the largest set of the run */
 } MMCandidates;
+/* The K~ solver of the paths that build no Delassus operator (-contact 0 and the active-set
+ * formulation): a factorization, or CG with an algebraic multigrid PC, prefix contact_K_. Its PC is
+ * set up once per dt. */
+typedef struct {
+  KSP          ksp;
+  PetscBool    iterative; /* its PC is not a complete factorization */
+  MatNullSpace rigid;     /* rigid-body modes in the w-frame: GAMG's near-null space */
+  PetscInt     its;       /* linear iterations since the step began */
+} MMStepSolver;
+
+/* The active-set contact solver (contact_active_set.c): per owned contact node its normal state and,
+ * with friction, its stick/slip state and slip direction; the projected CG on the free dofs. */
+typedef struct {
+  KSP        ksp;       /* prefix contact_as_: CG on the free dofs, PC the projected contact_K_ PC */
+  Mat        A;         /* shell operator P_F K~ P_F + P_D */
+  Vec        free;      /* 1 on the dofs free in this iteration, 0 on the fixed ones (D) */
+  Vec        x0, r, dx, t; /* the iterate with its fixed values, residuals, correction, scratch */
+  Vec        s;         /* Tresca thresholds per contact node (0 without friction) */
+  Vec        ct_diag;   /* diag(K~): the scale c of the complementarity functions, per dof */
+  PetscBool *active;    /* normal: w_n = g (else rho_n = 0) */
+  PetscBool *stick;     /* tangential: w_t = off_t (else rho_t = s d) */
+  PetscReal *dir;       /* slip direction d per node, dim-1 components in the tangent frame */
+  PetscReal *kappa, *beta, *rperp; /* 3D slip: Newton tangent of the disk across d (a spring kappa on
+                                    * w.d_perp), and the reaction across d it corrects (beta rperp) */
+  PetscInt   max_it, its, lin_its;
+  PetscBool  monitor;
+} MMActiveSet;
 
 /* Contact set, gaps, bounds and the per-step contact solver. Friction wraps ContactSolve. */
 typedef struct {
@@ -219,6 +251,8 @@ typedef struct {
   PetscInt  *vertex;              /* per owned contact node, its mesh point */
   Vec        area;                /* per owned contact node, int_Gc phi_i: force to pressure */
   PetscInt   vi_its;              /* Newton iterations of the last solve */
+  MMStepSolver kt;                /* K~ solver without a Delassus operator (-contact 0, active set) */
+  MMActiveSet  as;                /* the active-set formulation */
 } MMContact;
 
 /* The Newmark state and the per-step energy audit. */
@@ -284,6 +318,7 @@ typedef struct {
   PetscLogStage setup, solve, output;
   PetscLogEvent assemble, contact_solve, contact_recover, friction, energy;
   PetscLogEvent candidate_columns, candidate_operator; /* K~^{-1} E columns of new candidates; the set's dense block */
+  PetscLogEvent kt_setup, kt_solve, as_iterate, as_linear; /* K~ PC set-up and solves; active-set iterations and their CG */
 } MMLog;
 
 /* Everything the stepper needs; the TS type "newmark" holds a pointer to it. */

@@ -1,9 +1,11 @@
-/* The contact module's step interface: the step matrix K~ for a dt, the step's contact solve in either
- * formulation, and the consistent initial contact dofs.
+/* The contact module's step interface: the step matrix K~ for a dt, the step's contact solve in the
+ * chosen formulation, and the consistent initial contact dofs.
  *
- * Each step solves the bound-constrained QP  min 1/2 w.K~w - b.w  s.t.  w_c <= g  with SNESVI
- * (vinewtonrsls by default, prefix -contact_), condensed on the contact dofs by default; the friction
- * loop wraps MMContactSolve, changing only the right-hand side and the tangential bounds. */
+ * Each step solves the bound-constrained QP  min 1/2 w.K~w - b.w  s.t.  w_c <= g: with SNESVI
+ * (vinewtonrsls by default, prefix -contact_), condensed on the contact dofs (the default) or on all
+ * dofs, or by the active-set method on all dofs (contact_active_set.c); the friction loop wraps
+ * MMContactSolveContactDofs, changing only the right-hand side and the tangential thresholds.
+ * Without contact each step is one K~ solve (contact_kt.c). */
 #include "contact_impl.h"
 
 /* Bounds on the whole w vector: w_c <= g on the normal dofs, free elsewhere. */
@@ -21,11 +23,13 @@ static PetscErrorCode SetBounds(MMContact *ct, Vec lower, Vec upper)
 }
 
 /* K~ = K + 4/dt^2 M*, assembled only when dt changes, with what the formulation builds on it: the
- * factor and the Delassus operator (condensed), or the bounds of the full VI. */
+ * factor and the Delassus operator (condensed), the bounds of the full VI, or the K~ solver and its
+ * PC (active set, and without contact). */
 PetscErrorCode MMContactSetStepMatrix(MMCtx *ctx, PetscReal dt)
 {
   MMContact *ct        = &ctx->contact;
-  PetscBool  condensed = (PetscBool)(ct->formulation == MM_CONTACT_CONDENSED || !ct->enabled);
+  PetscBool  condensed = (PetscBool)(ct->formulation == MM_CONTACT_CONDENSED && ct->enabled);
+  PetscBool  full      = (PetscBool)(ct->formulation == MM_CONTACT_FULL && ct->enabled);
 
   PetscFunctionBeginUser;
   if (ct->qp.A && ct->Kt_dt == dt) PetscFunctionReturn(0);
@@ -34,7 +38,9 @@ PetscErrorCode MMContactSetStepMatrix(MMCtx *ctx, PetscReal dt)
     PetscCall(MatDuplicate(ctx->op.K, MAT_COPY_VALUES, &ct->qp.A));
     PetscCall(MatCreateVecs(ct->qp.A, &ct->qp.b, NULL));
     ct->qp.rtol_b = ct->tol;
-    if (!condensed) {
+    if (!ct->enabled) PetscCall(MMKtCreate(ctx));
+    else if (ct->formulation == MM_CONTACT_ACTIVE_SET) PetscCall(MMActiveSetSetUp(ctx));
+    if (full) {
       PetscCall(VecDuplicate(ct->qp.b, &ct->lower));
       PetscCall(VecDuplicate(ct->qp.b, &ct->upper));
       PetscCall(MMQPCreate(PetscObjectComm((PetscObject)ctx->op.dm), "contact_", &ct->qp, 0, &ct->snes));
@@ -46,15 +52,13 @@ PetscErrorCode MMContactSetStepMatrix(MMCtx *ctx, PetscReal dt)
   ct->Kt_dt = dt;
   if (condensed) {
     PetscCall(MMCondensedFactor(ctx));
-    if (ct->enabled && !ct->rho) PetscCall(MMCondensedCreateSolver(ctx));
-  }
+    if (!ct->rho) PetscCall(MMCondensedCreateSolver(ctx));
+  } else if (!ct->enabled) PetscCall(MMKtSetOperator(ctx, ct->qp.A));
+  else if (ct->formulation == MM_CONTACT_ACTIVE_SET) PetscCall(MMActiveSetSetOperator(ctx));
   PetscCall(PetscLogEventEnd(ctx->log.assemble, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
-/* Solves the step problem K~ w = b + f_c with w_c <= g; w holds the initial guess on entry.
- * react returns f_c, the obstacle's force on the body (w-frame), on the contact dofs only,
- * recomputed from w whatever the formulation, so the energy audit checks the solve. */
 /* react = K~ w - b on the contact dofs: recomputed from w whatever the formulation, so that the
  * energy audit checks the solve. */
 static PetscErrorCode ContactForce(MMCtx *ctx, Vec b, Vec w, Vec react)
@@ -70,15 +74,41 @@ static PetscErrorCode ContactForce(MMCtx *ctx, Vec b, Vec w, Vec react)
   PetscFunctionReturn(0);
 }
 
+/* Solves the step problem K~ w = b + f_c with w_c <= g; w holds the initial guess on entry.
+ * react returns f_c, the obstacle's force on the body (w-frame), on the contact dofs only. */
+/* The active-set formulation's contact force: -rho on the contact dofs, exactly. On its fixed dofs
+ * rho is K~ w - b's own value; on its free contact dofs (a node off the obstacle, a slipping node's
+ * tangential dofs) rho is the prescribed value and K~ w - b differs from it by the CG residual,
+ * which is left to the energy audit, as on the interior dofs, instead of passing for a force. */
+static PetscErrorCode ActiveSetContactForce(MMCtx *ctx, Vec react)
+{
+  MMContact *ct = &ctx->contact;
+  Vec        rc;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(react));
+  PetscCall(VecGetSubVector(react, ct->is_cond, &rc));
+  PetscCall(VecAXPY(rc, -1.0, ct->rho));
+  PetscCall(VecRestoreSubVector(react, ct->is_cond, &rc));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MMContactSolve(MMCtx *ctx, Vec b, Vec w, Vec react)
 {
   MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ctx->log.contact_solve, 0, 0, 0, 0));
-  if (ct->formulation == MM_CONTACT_CONDENSED || !ct->enabled) {
+  ct->kt.its = 0;
+  if (!ct->enabled) PetscCall(MMKtSolve(ctx, b, w));
+  else if (ct->formulation == MM_CONTACT_CONDENSED) {
     PetscCall(MMCondensedSolveReactions(ctx, b));
     PetscCall(MMCondensedRecover(ctx, w));
+  } else if (ct->formulation == MM_CONTACT_ACTIVE_SET) {
+    PetscCall(MMActiveSetSolve(ctx, b, w));
+    PetscCall(ActiveSetContactForce(ctx, react));
+    PetscCall(PetscLogEventEnd(ctx->log.contact_solve, 0, 0, 0, 0));
+    PetscFunctionReturn(0);
   } else {
     PetscCall(VecCopy(b, ct->qp.b));
     PetscCall(MMQPSolve(ct->snes, &ct->qp, w, &ct->vi_its));
@@ -88,28 +118,62 @@ PetscErrorCode MMContactSolve(MMCtx *ctx, Vec b, Vec w, Vec react)
   PetscFunctionReturn(0);
 }
 
-/* The friction loop's solve: only the contact dofs of w and react are updated, exactly, with no
- * full-size solve (friction needs the condensed formulation); MMContactRecover completes w once
- * the loop has converged. */
+/* The friction loop's solve: at least the contact dofs of w and react are updated, exactly. The
+ * condensed formulation updates only those, with no full-size solve, and MMContactRecover completes
+ * w once the loop has converged; the active-set formulation solves on all dofs, warm-started. */
 PetscErrorCode MMContactSolveContactDofs(MMCtx *ctx, Vec b, Vec w, Vec react)
 {
+  MMContact *ct = &ctx->contact;
+
   PetscFunctionBeginUser;
-  PetscCheck(ctx->contact.formulation == MM_CONTACT_CONDENSED && ctx->contact.enabled, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_PLIB, "The contact-dof solve needs the condensed formulation");
+  PetscCheck(ct->enabled && ct->formulation != MM_CONTACT_FULL, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_PLIB, "The contact-dof solve needs the condensed or the active-set formulation");
   PetscCall(PetscLogEventBegin(ctx->log.contact_solve, 0, 0, 0, 0));
-  PetscCall(MMCondensedSolveReactions(ctx, b));
-  PetscCall(MMCondensedContactDofs(ctx, w, react));
+  if (ct->formulation == MM_CONTACT_ACTIVE_SET) {
+    PetscCall(MMActiveSetSolve(ctx, b, w));
+    PetscCall(ActiveSetContactForce(ctx, react));
+  } else {
+    PetscCall(MMCondensedSolveReactions(ctx, b));
+    PetscCall(MMCondensedContactDofs(ctx, w, react));
+  }
   PetscCall(PetscLogEventEnd(ctx->log.contact_solve, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
-/* The whole step solution and contact force from the last contact-dof solve: one full-size solve. */
+/* The whole step solution and contact force from the last contact-dof solve: one full-size solve
+ * (condensed), nothing left to do (active set: its solves give the whole w). */
 PetscErrorCode MMContactRecover(MMCtx *ctx, Vec b, Vec w, Vec react)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ctx->log.contact_recover, 0, 0, 0, 0));
-  PetscCall(MMCondensedRecover(ctx, w));
-  PetscCall(ContactForce(ctx, b, w, react));
+  if (ctx->contact.formulation == MM_CONTACT_ACTIVE_SET) PetscCall(ActiveSetContactForce(ctx, react));
+  else {
+    PetscCall(MMCondensedRecover(ctx, w));
+    PetscCall(ContactForce(ctx, b, w, react));
+  }
   PetscCall(PetscLogEventEnd(ctx->log.contact_recover, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* Friction thresholds s (one per contact node) for the next solves: the condensed formulation turns
+ * them into VI bounds (contact_slip.c), the active-set formulation into its Tresca conditions. */
+PetscErrorCode MMContactSetFrictionThresholds(MMCtx *ctx, Vec s)
+{
+  PetscFunctionBeginUser;
+  if (ctx->contact.formulation == MM_CONTACT_ACTIVE_SET) PetscCall(MMActiveSetSetThresholds(ctx, s));
+  else PetscCall(MMContactSetThresholds(ctx, s));
+  PetscFunctionReturn(0);
+}
+
+/* 3D: the condensed formulation's stick/slip states and slip directions, part of the friction loop's
+ * fixed point (MMContactUpdateSlip). The active-set formulation solves the Tresca disk itself, with
+ * its own states: nothing to update, no switch to report. */
+PetscErrorCode MMContactUpdateFrictionStates(MMCtx *ctx, Vec s, Vec sigma, PetscInt *switches, PetscReal *dchange)
+{
+  PetscFunctionBeginUser;
+  *switches = 0;
+  *dchange  = 0;
+  if (ctx->contact.formulation == MM_CONTACT_ACTIVE_SET) PetscFunctionReturn(0);
+  PetscCall(MMContactUpdateSlip(ctx, s, sigma, switches, dchange));
   PetscFunctionReturn(0);
 }
 
@@ -222,6 +286,8 @@ PetscErrorCode MMContactDestroy(MMContact *ct)
   PetscCall(MMCandidatesDestroy(&ct->cand));
   PetscCall(VecDestroy(&ct->q));
   PetscCall(VecDestroy(&ct->rot));
+  PetscCall(MMKtDestroy(&ct->kt));
+  PetscCall(MMActiveSetDestroy(&ct->as));
   PetscCall(VecDestroy(&ct->rho));
   PetscCall(VecDestroy(&ct->rho_lo));
   PetscCall(VecDestroy(&ct->rho_hi));

@@ -15,21 +15,24 @@ static PetscErrorCode KSPSetDefaultLU(KSP ksp)
   PetscFunctionReturn(0);
 }
 
-/* What each exact solve is for, by options prefix, so that a refusal says which solve it is, and
- * whether its matrix is symmetric, so that Cholesky applies. */
+/* What each exact solve is for, by options prefix, so that a refusal says which solve it is; whether
+ * its matrix is symmetric, so that Cholesky applies; and whether CG may solve it instead, and where. */
 typedef struct {
   const char *prefix, *purpose;
-  PetscBool   symmetric;
+  PetscBool   symmetric, cg;
+  const char *iterative; /* where an iterative solve of this matrix is supported, if anywhere */
 } ExactSolve;
 
 static ExactSolve ExactSolveInfo(const char prefix[])
 {
   const ExactSolve known[] = {
-    {"contact_K_", "K~ = K + 4/dt^2 M* is factored once per dt: the condensed contact builds its Delassus operator from the factor, and every step (also with -contact 0) solves with it", PETSC_TRUE},
-    {"mass_",      "the initial acceleration solves M* a0 = L - K u0 + f_c0", PETSC_TRUE},
-    {"sliding_",   "the static sliding state solves its (nonsymmetric) linear system", PETSC_FALSE},
+    {"contact_K_", "the condensed contact formulation builds its Delassus operator from K~'s factor", PETSC_TRUE, PETSC_FALSE,
+     "Iterative solvers and incomplete factorizations cannot give it. Iterative K~ solves (-contact_K_ksp_type cg with -contact_K_pc_type gamg or hypre) are supported by -contact_formulation active_set and by -contact 0"},
+    /* M* restricted to the dofs with inertia is SPD and well conditioned: CG to a tight tolerance is exact enough */
+    {"mass_",      "the initial acceleration solves M* a0 = L - K u0 + f_c0", PETSC_TRUE, PETSC_TRUE, "CG is also accepted: -mass_ksp_type cg with, e.g., -mass_pc_type jacobi (default tolerance -mass_ksp_rtol 1e-13)"},
+    {"sliding_",   "the static sliding state solves its (nonsymmetric) linear system", PETSC_FALSE, PETSC_FALSE, NULL},
   };
-  const ExactSolve other = {prefix, "this solve", PETSC_FALSE};
+  const ExactSolve other = {prefix, "this solve", PETSC_FALSE, PETSC_FALSE, NULL};
   for (size_t i = 0; i < sizeof(known) / sizeof(known[0]); ++i) {
     PetscBool same;
     if (!PetscStrcmp(prefix, known[i].prefix, &same) && same) return known[i];
@@ -38,13 +41,14 @@ static ExactSolve ExactSolveInfo(const char prefix[])
 }
 
 /* Solves the energy audit relies on, and the Delassus operator built from K~'s factor, must be
- * exact: only a complete factorization will do. An iterative or incomplete PC would fail late and
- * obscurely (no getfactoredmatrix method, an energy audit failure), or, for a0, not at all. */
+ * exact: a complete factorization, or CG to a tight tolerance where the matrix allows it (mass_).
+ * An iterative or incomplete PC would fail late and obscurely (no getfactoredmatrix method, an
+ * energy audit failure), or, for a0, not at all. */
 PetscErrorCode MMKSPCheckDirect(KSP ksp)
 {
   PC          pc;
   PCType      type;
-  PetscBool   lu, cholesky;
+  PetscBool   lu, cholesky, cg;
   const char *prefix;
   ExactSolve  info;
 
@@ -54,9 +58,11 @@ PetscErrorCode MMKSPCheckDirect(KSP ksp)
   info = ExactSolveInfo(prefix ? prefix : "");
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCCHOLESKY, &cholesky));
-  if (lu || (cholesky && info.symmetric)) PetscFunctionReturn(0);
+  PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPCG, &cg));
+  if (lu || (cholesky && info.symmetric) || (cg && info.cg)) PetscFunctionReturn(0);
   PetscCall(PCGetType(pc, &type));
-  SETERRQ(PetscObjectComm((PetscObject)ksp), PETSC_ERR_USER_INPUT, "-%spc_type %s is not supported: %s, and this solve must be exact. Use -%spc_type lu%s: iterative solvers and incomplete factorizations are not supported for it yet", info.prefix, type, info.purpose, info.prefix, info.symmetric ? " or cholesky" : "");
+  SETERRQ(PetscObjectComm((PetscObject)ksp), PETSC_ERR_USER_INPUT, "-%spc_type %s is not supported here: %s, and this solve must be exact. Use -%spc_type lu%s. %s", info.prefix, type, info.purpose, info.prefix, info.symmetric ? " or cholesky" : "",
+          info.iterative ? info.iterative : "Iterative solvers and incomplete factorizations are not supported for it");
 }
 
 static PetscErrorCode KSPCheckDirectPreSolve(KSP ksp, Vec b, Vec x, void *ptr)
@@ -99,37 +105,57 @@ static PetscErrorCode KSPCheckSolvedPostSolve(KSP ksp, Vec b, Vec x, void *ptr)
   SETERRQ(PetscObjectComm((PetscObject)ksp), PETSC_ERR_NOT_CONVERGED, "The solve -%s failed: %s. Run with -%sksp_converged_reason -%sksp_view to see why", prefix ? prefix : "", KSPConvergedReasons[reason], prefix ? prefix : "", prefix ? prefix : "");
 }
 
-/* A solve that must be exact: LU with MUMPS by default, and any -PREFIX_pc_type that is not a
- * complete factorization refused when it solves (after KSPSetFromOptions); a failed factorization
- * or solve stops the run. */
-PetscErrorCode MMKSPSetDirect(KSP ksp)
+/* A failed factorization or solve stops the run with a message that names the solve (rather than
+ * KSPSetErrorIfNotConverged, which stops inside PCSetUp with the factorization package's own code). */
+PetscErrorCode MMKSPSetFailureCheck(KSP ksp)
 {
   PetscFunctionBeginUser;
-  PetscCall(KSPSetDefaultLU(ksp));
-  PetscCall(KSPSetPreSolve(ksp, KSPCheckDirectPreSolve, NULL));
   PetscCall(KSPSetPostSolve(ksp, KSPCheckSolvedPostSolve, NULL));
   PetscFunctionReturn(0);
 }
 
-/* An exact solve with a symmetric positive definite matrix (K~), chosen by measurement (README
- * "Solvers"): in 2D on one rank PETSc's own Cholesky with nested-dissection ordering (115k-dof
+/* A solve that must be exact: LU with MUMPS by default, and anything else MMKSPCheckDirect does not
+ * accept refused when it solves (after KSPSetFromOptions). A CG chosen by options, where accepted,
+ * stops at a tight relative residual; a failed factorization or solve stops the run. */
+PetscErrorCode MMKSPSetDirect(KSP ksp)
+{
+  PetscFunctionBeginUser;
+  PetscCall(KSPSetDefaultLU(ksp));
+  PetscCall(KSPSetTolerances(ksp, 1e-13, PETSC_DEFAULT, PETSC_DEFAULT, 10000));
+  PetscCall(KSPSetPreSolve(ksp, KSPCheckDirectPreSolve, NULL));
+  PetscCall(MMKSPSetFailureCheck(ksp));
+  PetscFunctionReturn(0);
+}
+
+/* The default factorization of a symmetric positive definite matrix (K~), chosen by measurement
+ * (README "Solvers"): in 2D on one rank PETSc's own Cholesky with nested-dissection ordering (115k-dof
  * frictional D1: a step 2.2 times faster than with MUMPS LU, set-up faster too); in 3D, where its
  * factorization and the Delassus columns cost more than MUMPS's (12k-dof D2: 6.1 against 3.4 s, and
  * 29 against 22 s), and on several ranks (PETSc's own factorizations are serial), MUMPS LU.
- * Options still apply on top. */
-PetscErrorCode MMKSPSetDirectSPD(KSP ksp, PetscInt dim)
+ * Options still apply on top; nothing is checked here (contact_kt.c also accepts iterative PCs). */
+PetscErrorCode MMKSPSetFactorSPD(KSP ksp, PetscInt dim)
 {
   PetscMPIInt size;
   PC          pc;
 
   PetscFunctionBeginUser;
-  PetscCall(MMKSPSetDirect(ksp));
+  PetscCall(KSPSetDefaultLU(ksp));
   PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)ksp), &size));
   if (size > 1 || dim != 2) PetscFunctionReturn(0);
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PCSetType(pc, PCCHOLESKY));
   PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERPETSC));
   PetscCall(PCFactorSetMatOrderingType(pc, MATORDERINGND));
+  PetscFunctionReturn(0);
+}
+
+/* The exact solve of K~ the condensed formulation needs: the default factorization, and anything
+ * but a complete factorization refused. */
+PetscErrorCode MMKSPSetDirectSPD(KSP ksp, PetscInt dim)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMKSPSetDirect(ksp));
+  PetscCall(MMKSPSetFactorSPD(ksp, dim));
   PetscFunctionReturn(0);
 }
 

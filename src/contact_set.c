@@ -303,7 +303,7 @@ PetscErrorCode MMContactSetUp(MMCtx *ctx)
   PetscCall(ContactLayerDiameter(ctx, mark));
   PetscCall(PetscFree(mark));
   PetscCall(VecDestroy(&area));
-  PetscCheck(ct->ncomp == 1 || ct->formulation == MM_CONTACT_CONDENSED, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_SUP, "Friction (-mu %g) needs -contact_formulation condensed", (double)ctx->opt.mu);
+  PetscCheck(ct->ncomp == 1 || ct->formulation != MM_CONTACT_FULL, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_SUP, "Friction (-mu %g) needs -contact_formulation condensed or active_set", (double)ctx->opt.mu);
   PetscCheck(ct->n_global > 0, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "The contact boundary \"%s\" has no nodes", ctx->opt.contact_name);
   PetscFunctionReturn(0);
 }

@@ -38,7 +38,7 @@ static PetscErrorCode FrictionLoop(SNES snes, Vec s)
     PetscReal ds, snorm, coulomb, dchange;
     PetscInt  nslip, nstick, nswitch;
 
-    PetscCall(MMContactSetThresholds(ctx, s));
+    PetscCall(MMContactSetFrictionThresholds(ctx, s));
     /* contact dofs only: the thresholds, slip, Coulomb residual and states need nothing else */
     PetscCall(MMContactSolveContactDofs(ctx, fr->b, fr->w, fr->react));
     PetscCall(MMContactGetNormalReactions(ctx, fr->s_new));
@@ -59,8 +59,8 @@ static PetscErrorCode FrictionLoop(SNES snes, Vec s)
     if (k > 0 && ds > 1e3 * rtol && ds_first > 0) fr->contraction_max = PetscPowReal(ds / ds_first, 1.0 / k);
     PetscCall(SlipVelocity(ctx, fr->w, fr->sigma));
     PetscCall(MMContactCoulomb(ctx, fr->w, fr->react, fr->sigma, &coulomb, &nslip, &nstick));
-    /* 3D: the stick/slip states and slip directions are part of the fixed point */
-    PetscCall(MMContactUpdateSlip(ctx, s, fr->sigma, &nswitch, &dchange));
+    /* 3D, condensed: the stick/slip states and slip directions are part of the fixed point */
+    PetscCall(MMContactUpdateFrictionStates(ctx, s, fr->sigma, &nswitch, &dchange));
     ds = PetscMax(ds, dchange);
     snes->iter = k + 1;
     PetscCall(SNESMonitor(snes, k, ds));

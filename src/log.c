@@ -21,5 +21,9 @@ PetscErrorCode MMLogRegister(MMLog *log)
   PetscCall(PetscLogEventRegister("MMCandidateCols", id, &log->candidate_columns));
   PetscCall(PetscLogEventRegister("MMCandidateOp", id, &log->candidate_operator));
   PetscCall(PetscLogEventRegister("MMEnergy", id, &log->energy));
+  PetscCall(PetscLogEventRegister("MMKtSetUp", id, &log->kt_setup));
+  PetscCall(PetscLogEventRegister("MMKtSolve", id, &log->kt_solve));
+  PetscCall(PetscLogEventRegister("MMActiveSetIter", id, &log->as_iterate));
+  PetscCall(PetscLogEventRegister("MMActiveSetCG", id, &log->as_linear));
   PetscFunctionReturn(0);
 }

@@ -4,7 +4,7 @@
 const char *const MMMassTypes[] = {"modified", "standard", "MMMassType", "MM_MASS_", NULL};
 const char *const MMInitialStates[] = {"given", "static_sliding", "MMInitialState", "MM_INITIAL_", NULL};
 const char *const MMAssemblyTypes[] = {"closed_form", "fe", "MMAssemblyType", "MM_ASSEMBLY_", NULL};
-const char *const MMContactFormulations[] = {"condensed", "full", "MMContactFormulation", "MM_CONTACT_", NULL};
+const char *const MMContactFormulations[] = {"condensed", "full", "active_set", "MMContactFormulation", "MM_CONTACT_", NULL};
 
 /* What a vector option's length must be, once the dimension d is known. */
 typedef enum {
@@ -147,6 +147,7 @@ static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
   PetscCheck(opt->candidate_memory > 0, comm, PETSC_ERR_USER_INPUT, "-contact_candidate_memory %g must be > 0 (MiB)", (double)opt->candidate_memory);
   PetscCheck(opt->contact_work_tol > 0, comm, PETSC_ERR_USER_INPUT, "-contact_work_tol %g must be > 0: it is a fraction of the run's energy scale", (double)opt->contact_work_tol);
   PetscCheck(opt->initial_penetration_tol >= 0, comm, PETSC_ERR_USER_INPUT, "-initial_penetration_tol %g must be >= 0: it is a fraction of h_c'", (double)opt->initial_penetration_tol);
+  PetscCheck(opt->active_set_max_it >= 1, comm, PETSC_ERR_USER_INPUT, "-active_set_max_it %" PetscInt_FMT " must be >= 1", opt->active_set_max_it);
   PetscCheck(opt->output_every >= 0, comm, PETSC_ERR_USER_INPUT, "-output_every %" PetscInt_FMT " must be >= 0", opt->output_every);
   PetscFunctionReturn(0);
 }
@@ -208,7 +209,11 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   opt->friction_monitor = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-friction_monitor", "Print each friction iteration: threshold change, Coulomb residual, contraction factor, slipping and sticking node counts", NULL, opt->friction_monitor, &opt->friction_monitor, NULL));
   opt->contact_formulation = MM_CONTACT_CONDENSED;
-  PetscCall(PetscOptionsEnum("-contact_formulation", "Contact VI on the contact dofs through the Delassus operator (condensed: K~ factored once per dt) or on all dofs (full: a factorization per VI iteration)", NULL, MMContactFormulations, (PetscEnum)opt->contact_formulation, (PetscEnum *)&opt->contact_formulation, NULL));
+  PetscCall(PetscOptionsEnum("-contact_formulation", "Contact VI on the contact dofs through the Delassus operator (condensed: K~ factored once per dt), on all dofs (full: a factorization per VI iteration, frictionless), or the primal-dual active-set method on all dofs (active_set: CG on the free dofs with the contact_K_ PC, default Jacobi, -contact_K_pc_type gamg or hypre for c_p dt / h_c' above about 10, set up once per dt; for large 3D meshes)", NULL, MMContactFormulations, (PetscEnum)opt->contact_formulation, (PetscEnum *)&opt->contact_formulation, NULL));
+  opt->active_set_max_it = 100;
+  PetscCall(PetscOptionsInt("-active_set_max_it", "Active-set formulation: iterations per contact solve before the run stops (each is one projected CG solve)", NULL, opt->active_set_max_it, &opt->active_set_max_it, NULL));
+  opt->active_set_monitor = PETSC_FALSE;
+  PetscCall(PetscOptionsBool("-active_set_monitor", "Active-set formulation: print each iteration, the nodes that changed set and the CG iterations", NULL, opt->active_set_monitor, &opt->active_set_monitor, NULL));
   opt->contact_tol = 1e-11;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-contact_tol", "Contact solves stop when ||K~ w - b - f_c|| <= contact_tol ||b|| (on top of -contact_snes_rtol/atol), in (0, 1)", &opt->contact_tol));
   opt->candidate_margin = 1.0;

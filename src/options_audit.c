@@ -58,7 +58,7 @@ static PetscErrorCode ParseHelp(const char text[])
 static PetscErrorCode SolverObjectsFromOptions(MPI_Comm comm)
 {
   const char *snes_prefix[] = {"contact_", "contact0_", "friction_"};
-  const char *ksp_prefix[]  = {"contact_K_", "mass_", "sliding_"};
+  const char *ksp_prefix[]  = {"contact_K_", "mass_", "sliding_", "contact_as_"};
   TS          ts;
 
   PetscFunctionBeginUser;
@@ -78,7 +78,8 @@ static PetscErrorCode SolverObjectsFromOptions(MPI_Comm comm)
     KSP ksp;
     PetscCall(KSPCreate(comm, &ksp));
     PetscCall(KSPSetOptionsPrefix(ksp, ksp_prefix[i]));
-    PetscCall(i == 0 ? MMKSPSetDirectSPD(ksp, 2) : MMKSPSetDirect(ksp)); /* the 2D default */
+    if (i < 3) PetscCall(i == 0 ? MMKSPSetDirectSPD(ksp, 2) : MMKSPSetDirect(ksp)); /* the 2D default */
+    else PetscCall(KSPSetType(ksp, KSPCG));
     PetscCall(KSPSetFromOptions(ksp));
     PetscCall(KSPDestroy(&ksp));
   }
@@ -174,7 +175,7 @@ static PetscErrorCode DescribeUnused(const char name[], const char value[], char
     }
   }
   if (eq && best == 0) PetscCall(PetscSNPrintf(msg, len, "  -%s: options take the form \"%s %s\", with a blank, not \"=\"\n", name, key, eq + 1));
-  else if (best == 0) PetscCall(PetscSNPrintf(msg, len, "  -%s%s%s: a valid option, but nothing in this run reads it (friction options need -mu > 0, K~ options the condensed formulation)\n", name, value ? " " : "", value ? value : ""));
+  else if (best == 0) PetscCall(PetscSNPrintf(msg, len, "  -%s%s%s: a valid option, but nothing in this run reads it (friction options need -mu > 0, contact_as_ options the active-set formulation)\n", name, value ? " " : "", value ? value : ""));
   else if (closest && best <= PetscMax(2, (PetscInt)strlen(key) / 3)) PetscCall(PetscSNPrintf(msg, len, "  -%s%s%s: unknown; did you mean %s?\n", name, value ? " " : "", value ? value : "", closest));
   else PetscCall(PetscSNPrintf(msg, len, "  -%s%s%s: unknown, and no valid option is close to it (-help lists them)\n", name, value ? " " : "", value ? value : ""));
   PetscFunctionReturn(0);

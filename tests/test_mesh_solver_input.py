@@ -130,9 +130,8 @@ def test_backwards_surface_is_inverted_throughout(tmp_path):
 # ---------------------------------------------------------------- solver options
 
 @pytest.mark.parametrize("extra,messages", [
-    (["-contact_K_pc_type", "jacobi"], ["-contact_K_pc_type jacobi is not supported", "Delassus operator", "-contact_K_pc_type lu", "cholesky"]),
+    (["-contact_K_pc_type", "jacobi"], ["-contact_K_pc_type jacobi is not supported", "Delassus operator", "-contact_K_pc_type lu", "cholesky", "-contact_formulation active_set"]),
     (["-contact_K_pc_type", "ilu"], ["-contact_K_pc_type ilu is not supported", "incomplete factorizations"]),
-    (["-contact", 0, "-contact_K_pc_type", "jacobi"], ["-contact_K_pc_type jacobi is not supported", "also with -contact 0"]),
     (["-mass_pc_type", "jacobi"], ["-mass_pc_type jacobi is not supported", "initial acceleration", "-mass_pc_type lu"]),
     (["-contact_snes_type", "newtonls"], ["-contact_snes_type newtonls is not supported", "vinewtonrsls", "vinewtonssls"]),
     (["-mu", 0.2, "-contact_snes_type", "vinewtonssls"], ["-contact_snes_type vinewtonssls is not supported with friction (-mu 0.2)", "vinewtonrsls"]),

@@ -1,0 +1,468 @@
+/* The active-set formulation (docs/method.md section 3, "Active-set formulation"): the step's
+ * contact problem on the full dof vector by a primal-dual active-set (semismooth Newton) method,
+ * with no factor and no Delassus operator, so that K~ can be solved by preconditioned CG.
+ *
+ * Per contact node, with rho = (lambda_n, -t) its reactions (K~ w = b - E rho) and c > 0 a scale:
+ *   normal:  active (w_n = g) if lambda_n + c (w_n - g) > 0, else free with lambda_n = 0;
+ *   Tresca (thresholds s, friction loop): with off_t = u_t^n + dt/2 v_t^n and the trial force
+ *            tr = rho_t + c (w_t - off_t), stick (w_t = off_t) if |tr| <= s, else slip with the
+ *            known load rho_t = s tr/|tr|.
+ * In 3D the slip direction d = tr/|tr| is itself an unknown. Taking it from the last iterate alone
+ * is a fixed point that crawls (rate s/(s + c |slip|): a node that barely slips barely moves), so a
+ * slipping node gets the semismooth Newton step of the disk: rho_t.d = s along d, and across it, with
+ * a = s/|tr| < 1 and e = d_perp, the linearized rho_t.e = kappa e.(w^{k+1} - w^k) - beta rho_t^k.e,
+ * beta = a/(1-a), kappa = beta c: a spring on w.e, symmetric, added to the operator.
+ * Each iteration fixes the dofs D of the active and sticking nodes at their values, loads the
+ * slipping ones, and solves K~ on the free dofs F by CG with the operator P_F K~ P_F + P_D and the
+ * PC P_F M^{-1} P_F + P_D, M^{-1} the contact_K_ PC set up once per dt, warm-started from the last
+ * iterate. It stops when the sets (and, in 3D, the slip directions) stop changing: the solution then
+ * satisfies every condition exactly, up to the CG tolerance on the free dofs. */
+#include "contact_impl.h"
+
+/* y += kappa_k e_k (e_k.x_t) at every slipping node in 3D, e_k = d_perp: the Newton tangent of the
+ * Tresca disk across the slip direction (its tangential dofs are free). */
+static PetscErrorCode AddDiskTangent(MMCtx *ctx, Vec x, Vec y)
+{
+  MMContact         *ct = &ctx->contact;
+  MMActiveSet       *as = &ct->as;
+  const PetscInt    *in;
+  const PetscScalar *xa;
+  PetscScalar       *ya;
+  PetscInt           rstart;
+
+  PetscFunctionBeginUser;
+  if (ct->ncomp != 3) PetscFunctionReturn(0);
+  PetscCall(VecGetOwnershipRange(x, &rstart, NULL));
+  PetscCall(ISGetIndices(ct->is_normal, &in));
+  PetscCall(VecGetArrayRead(x, &xa));
+  PetscCall(VecGetArray(y, &ya));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscInt   i = in[k] - rstart;
+    const PetscReal *d = &as->dir[2 * k], e[2] = {-d[1], d[0]};
+    PetscReal        ex;
+    if (as->kappa[k] == 0) continue;
+    ex = e[0] * PetscRealPart(xa[i + 1]) + e[1] * PetscRealPart(xa[i + 2]);
+    ya[i + 1] += as->kappa[k] * ex * e[0];
+    ya[i + 2] += as->kappa[k] * ex * e[1];
+  }
+  PetscCall(VecRestoreArray(y, &ya));
+  PetscCall(VecRestoreArrayRead(x, &xa));
+  PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  PetscFunctionReturn(0);
+}
+
+/* y = P_F (K~ + S) P_F x + P_D x, with P_F the diagonal 0/1 mask `free` and S the disk tangent. */
+static PetscErrorCode ProjectedOperator(Mat A, Vec x, Vec y)
+{
+  MMCtx       *ctx;
+  MMActiveSet *as;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatShellGetContext(A, &ctx));
+  as = &ctx->contact.as;
+  PetscCall(VecPointwiseMult(as->t, as->free, x));
+  PetscCall(MatMult(ctx->contact.qp.A, as->t, y));
+  PetscCall(AddDiskTangent(ctx, as->t, y));
+  PetscCall(VecPointwiseMult(y, as->free, y));
+  PetscCall(VecAXPY(y, 1.0, x));
+  PetscCall(VecAXPY(y, -1.0, as->t));
+  PetscFunctionReturn(0);
+}
+
+/* y = P_F M^{-1} P_F x + P_D x: the K~ PC, blind to the fixed dofs. */
+static PetscErrorCode ProjectedPC(PC pc, Vec x, Vec y)
+{
+  MMCtx       *ctx;
+  MMActiveSet *as;
+  PC           pcK;
+
+  PetscFunctionBeginUser;
+  PetscCall(PCShellGetContext(pc, &ctx));
+  as = &ctx->contact.as;
+  PetscCall(KSPGetPC(ctx->contact.kt.ksp, &pcK));
+  PetscCall(VecPointwiseMult(as->t, as->free, x));
+  PetscCall(PCApply(pcK, as->t, y));
+  PetscCall(VecPointwiseMult(y, as->free, y));
+  PetscCall(VecAXPY(y, 1.0, x));
+  PetscCall(VecAXPY(y, -1.0, as->t));
+  PetscFunctionReturn(0);
+}
+
+/* The reactions rho and their bounds, laid out as the condensed formulation lays them out (one block
+ * of ncomp per contact node), which the friction loop and the diagnostics read. */
+static PetscErrorCode CreateReactions(MMCtx *ctx)
+{
+  MMContact *ct = &ctx->contact;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)ctx->op.dm), ct->n_local * ct->ncomp, PETSC_DETERMINE, &ct->rho));
+  PetscCall(VecSetBlockSize(ct->rho, ct->ncomp));
+  PetscCall(VecZeroEntries(ct->rho));
+  PetscCall(VecDuplicate(ct->rho, &ct->rho_lo));
+  PetscCall(VecDuplicate(ct->rho, &ct->rho_hi));
+  PetscCall(VecSet(ct->rho_lo, 0.0));
+  PetscCall(VecSet(ct->rho_hi, 0.0));
+  PetscCall(VecStrideSet(ct->rho_hi, 0, PETSC_INFINITY));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMActiveSetSetUp(MMCtx *ctx)
+{
+  MMContact   *ct = &ctx->contact;
+  MMActiveSet *as = &ct->as;
+  MPI_Comm     comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  PetscInt     n, N;
+  PC           pc;
+
+  PetscFunctionBeginUser;
+  as->max_it  = ctx->opt.active_set_max_it;
+  as->monitor = ctx->opt.active_set_monitor;
+  PetscCall(MMKtCreate(ctx));
+  PetscCall(VecDuplicate(ct->qp.b, &as->free));
+  PetscCall(VecDuplicate(ct->qp.b, &as->x0));
+  PetscCall(VecDuplicate(ct->qp.b, &as->r));
+  PetscCall(VecDuplicate(ct->qp.b, &as->dx));
+  PetscCall(VecDuplicate(ct->qp.b, &as->t));
+  PetscCall(VecDuplicate(ct->qp.b, &as->ct_diag));
+  PetscCall(VecDuplicate(ct->gap, &as->s));
+  PetscCall(VecZeroEntries(as->s));
+  PetscCall(CreateReactions(ctx));
+  PetscCall(PetscCalloc3(ct->n_local, &as->active, ct->n_local, &as->stick, PetscMax(1, ct->n_local * (ctx->op.dim - 1)), &as->dir));
+  PetscCall(PetscCalloc3(ct->n_local, &as->kappa, ct->n_local, &as->beta, ct->n_local, &as->rperp));
+
+  PetscCall(VecGetLocalSize(ct->qp.b, &n));
+  PetscCall(VecGetSize(ct->qp.b, &N));
+  PetscCall(MatCreateShell(comm, n, n, N, N, ctx, &as->A));
+  PetscCall(MatShellSetOperation(as->A, MATOP_MULT, (void (*)(void))ProjectedOperator));
+  PetscCall(KSPCreate(comm, &as->ksp));
+  PetscCall(KSPSetOptionsPrefix(as->ksp, "contact_as_"));
+  PetscCall(KSPSetType(as->ksp, KSPCG));
+  /* the test is on the true residual of the free dofs: ||r_F|| <= contact_tol ||b|| */
+  PetscCall(KSPSetNormType(as->ksp, KSP_NORM_UNPRECONDITIONED));
+  PetscCall(KSPSetTolerances(as->ksp, 1e-14, PETSC_DEFAULT, PETSC_DEFAULT, 5000));
+  PetscCall(KSPSetErrorIfNotConverged(as->ksp, PETSC_TRUE));
+  PetscCall(KSPGetPC(as->ksp, &pc));
+  PetscCall(PCSetType(pc, PCSHELL));
+  PetscCall(PCShellSetContext(pc, ctx));
+  PetscCall(PCShellSetApply(pc, ProjectedPC));
+  PetscCall(PCShellSetName(pc, "P_F (contact_K_ PC) P_F + P_D"));
+  PetscCall(KSPSetFromOptions(as->ksp));
+  PetscFunctionReturn(0);
+}
+
+/* A new K~ (a new dt): its PC, set up once, and the scale c = diag(K~) of the complementarity
+ * functions, which keeps force and displacement in the same units. */
+PetscErrorCode MMActiveSetSetOperator(MMCtx *ctx)
+{
+  MMContact *ct = &ctx->contact;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMKtSetOperator(ctx, ct->qp.A));
+  PetscCall(MatGetDiagonal(ct->qp.A, ct->as.ct_diag));
+  PetscCall(KSPSetOperators(ct->as.ksp, ct->as.A, ct->as.A));
+  PetscFunctionReturn(0);
+}
+
+/* Tresca thresholds s, one per contact node, for the next solves; the bounds |rho_t| <= s are
+ * also what the diagnostics compare the reactions with. */
+PetscErrorCode MMActiveSetSetThresholds(MMCtx *ctx, Vec s)
+{
+  MMContact *ct = &ctx->contact;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(s, ct->as.s));
+  for (PetscInt c = 1; c < ct->ncomp; ++c) {
+    PetscCall(VecStrideScatter(s, c, ct->rho_hi, INSERT_VALUES));
+    PetscCall(VecStrideScatter(s, c, ct->rho_lo, INSERT_VALUES));
+    PetscCall(VecStrideScale(ct->rho_lo, c, -1.0));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* What one iteration needs per node: the arrays of the state and of the step's data. */
+typedef struct {
+  PetscInt           dim, nt, ncomp, rstart;
+  const PetscInt    *in;    /* normal dof of each contact node; its tangential dofs follow */
+  const PetscScalar *g, *s, *uo, *vo, *c;
+  PetscReal          half_dt;
+} NodeData;
+
+static PetscErrorCode NodeDataGet(MMCtx *ctx, NodeData *nd)
+{
+  MMContact *ct = &ctx->contact;
+
+  PetscFunctionBeginUser;
+  nd->dim     = ctx->op.dim;
+  nd->nt      = ct->ncomp > 1 ? nd->dim - 1 : 0; /* tangential dofs with friction */
+  nd->ncomp   = ct->ncomp;
+  nd->half_dt = 0.5 * ct->Kt_dt;
+  PetscCall(VecGetOwnershipRange(ct->qp.b, &nd->rstart, NULL));
+  PetscCall(ISGetIndices(ct->is_normal, &nd->in));
+  PetscCall(VecGetArrayRead(ct->gap, &nd->g));
+  PetscCall(VecGetArrayRead(ct->as.s, &nd->s));
+  PetscCall(VecGetArrayRead(ctx->state.u_old, &nd->uo));
+  PetscCall(VecGetArrayRead(ctx->state.v_old, &nd->vo));
+  PetscCall(VecGetArrayRead(ct->as.ct_diag, &nd->c));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode NodeDataRestore(MMCtx *ctx, NodeData *nd)
+{
+  MMContact *ct = &ctx->contact;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecRestoreArrayRead(ct->as.ct_diag, &nd->c));
+  PetscCall(VecRestoreArrayRead(ctx->state.v_old, &nd->vo));
+  PetscCall(VecRestoreArrayRead(ctx->state.u_old, &nd->uo));
+  PetscCall(VecRestoreArrayRead(ct->as.s, &nd->s));
+  PetscCall(VecRestoreArrayRead(ct->gap, &nd->g));
+  PetscCall(ISRestoreIndices(ct->is_normal, &nd->in));
+  PetscFunctionReturn(0);
+}
+
+/* off_t = u_t^n + dt/2 v_t^n: w_t - off_t is dt/2 times the slip velocity (contact_condensed.c). */
+static inline PetscReal Offset(const NodeData *nd, PetscInt i, PetscInt j)
+{
+  return PetscRealPart(nd->uo[i + 1 + j]) + nd->half_dt * PetscRealPart(nd->vo[i + 1 + j]);
+}
+
+/* The linear problem of the current sets: x0 = w with the fixed dofs at their values (g, off_t),
+ * free = the mask of F, and r = P_F (b - E rho_slip - K~ x0), the free dofs' residual, rho_slip the
+ * slipping nodes' load s d (3D: minus beta rperp e, the Newton step's part across d). */
+static PetscErrorCode FixSets(MMCtx *ctx, Vec b, Vec w)
+{
+  MMContact   *ct = &ctx->contact;
+  MMActiveSet *as = &ct->as;
+  NodeData     nd;
+  PetscScalar *x, *f, *r;
+  const PetscScalar *rho;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(w, as->x0));
+  PetscCall(VecSet(as->free, 1.0));
+  PetscCall(VecCopy(b, as->t)); /* b - E rho_slip */
+  PetscCall(NodeDataGet(ctx, &nd));
+  PetscCall(VecGetArray(as->x0, &x));
+  PetscCall(VecGetArray(as->free, &f));
+  PetscCall(VecGetArray(as->t, &r));
+  PetscCall(VecGetArrayRead(ct->rho, &rho));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscInt   i  = nd.in[k] - nd.rstart;
+    const PetscReal  sk = nd.nt ? PetscRealPart(nd.s[k]) : 0;
+    const PetscReal *d  = &as->dir[k * nd.nt];
+    if (as->active[k]) {
+      x[i] = nd.g[k];
+      f[i] = 0;
+    }
+    as->rperp[k] = 0;
+    /* the disk's spring belongs to slipping nodes only: a threshold that dropped to 0 removes it */
+    if (sk <= 0 || as->stick[k]) as->kappa[k] = 0;
+    if (sk <= 0) continue; /* no threshold: the tangential dofs are free and unloaded */
+    for (PetscInt j = 0; j < nd.nt; ++j) {
+      if (as->stick[k]) {
+        x[i + 1 + j] = Offset(&nd, i, j);
+        f[i + 1 + j] = 0;
+      } else r[i + 1 + j] -= sk * d[j];
+    }
+    if (as->stick[k] || !as->kappa[k]) continue;
+    {
+      const PetscReal e[2] = {-d[1], d[0]};
+      as->rperp[k] = e[0] * PetscRealPart(rho[k * 3 + 1]) + e[1] * PetscRealPart(rho[k * 3 + 2]);
+      for (PetscInt j = 0; j < 2; ++j) r[i + 1 + j] += as->beta[k] * as->rperp[k] * e[j];
+    }
+  }
+  PetscCall(VecRestoreArrayRead(ct->rho, &rho));
+  PetscCall(VecRestoreArray(as->t, &r));
+  PetscCall(VecRestoreArray(as->free, &f));
+  PetscCall(VecRestoreArray(as->x0, &x));
+  PetscCall(NodeDataRestore(ctx, &nd));
+  PetscCall(MatMult(ct->qp.A, as->x0, as->r));
+  PetscCall(VecAYPX(as->r, -1.0, as->t));
+  PetscCall(VecPointwiseMult(as->r, as->free, as->r));
+  PetscFunctionReturn(0);
+}
+
+/* The Newton tangent of the disk at a slipping node from its trial force tr, |tr| = trn > s: a = s/|tr|,
+ * beta = a/(1-a), capped where the node barely slips (a -> 1: an infinitely stiff spring). The cap
+ * is a few isolated large eigenvalues for CG; a cap of 1e2 left D2 with mu = 0.2 crawling at 0.99
+ * per iteration at such a node, 1e6 converges in at most 5 iterations. */
+static void DiskTangent(MMActiveSet *as, PetscInt k, PetscReal sk, PetscReal trn, PetscReal c)
+{
+  const PetscReal beta_max = 1e6, a = sk / trn;
+
+  as->beta[k]  = a < beta_max / (1 + beta_max) ? a / (1 - a) : beta_max;
+  as->kappa[k] = as->beta[k] * c;
+}
+
+/* w = x0 + dx, P_F K~ P_F dx = r by the projected CG from dx = 0 (x0 is the warm start). */
+static PetscErrorCode SolveFree(MMCtx *ctx, Vec b, Vec w)
+{
+  MMContact   *ct = &ctx->contact;
+  MMActiveSet *as = &ct->as;
+  PetscInt     its;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ctx->log.as_linear, 0, 0, 0, 0));
+  PetscCall(VecZeroEntries(as->dx));
+  PetscCall(MMKtSolveToTolerance(as->ksp, ct->tol, b, as->r, as->dx));
+  PetscCall(KSPGetIterationNumber(as->ksp, &its));
+  as->lin_its += its;
+  PetscCall(VecWAXPY(w, 1.0, as->x0, as->dx));
+  PetscCall(PetscLogEventEnd(ctx->log.as_linear, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* Tolerances of the set updates: a node changes set only when its condition is violated beyond
+ * solver noise (a penetration of 1e-10 h_c', a tension or a Tresca excess of 1e-9 of the force
+ * scale, as the Coulomb residual measures them, docs/method.md section 6); within them either set
+ * is a solution, and switching back and forth on noise would never stop. */
+typedef struct {
+  PetscReal len, force, fscale;
+} SetTolerances;
+
+static PetscErrorCode GetSetTolerances(MMCtx *ctx, SetTolerances *tol)
+{
+  MMContact *ct = &ctx->contact;
+  PetscReal  rmax;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecStrideMax(ct->rho, 0, NULL, &rmax));
+  tol->fscale = PetscMax(rmax, 1e-3 * ctx->opt.E * PetscPowReal(ct->h_c, ctx->op.dim - 1));
+  tol->len    = 1e-10 * ct->h_c;
+  tol->force  = 1e-9 * tol->fscale;
+  PetscFunctionReturn(0);
+}
+
+/* From the solution w of the current sets: the reactions rho (res = b - K~ w = E rho on the fixed
+ * dofs, the loads on the slipping ones), then the new sets. Returns how many nodes changed set and
+ * the largest change of a slipping node's force over the force scale (its direction, and in 3D its
+ * part across the direction). */
+static PetscErrorCode UpdateSets(MMCtx *ctx, Vec b, Vec w, PetscInt *changed, PetscReal *dchange)
+{
+  MMContact         *ct = &ctx->contact;
+  MMActiveSet       *as = &ct->as;
+  NodeData           nd;
+  SetTolerances      tol = {0, 0, 0};
+  const PetscScalar *wa, *res, *dx;
+  PetscScalar       *rho;
+  PetscInt           nch = 0;
+  PetscReal          dmax = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatMult(ct->qp.A, w, as->r));
+  PetscCall(VecAYPX(as->r, -1.0, b));
+  PetscCall(NodeDataGet(ctx, &nd));
+  PetscCall(VecGetArrayRead(w, &wa));
+  PetscCall(VecGetArrayRead(as->r, &res));
+  PetscCall(VecGetArrayRead(as->dx, &dx));
+  PetscCall(VecGetArray(ct->rho, &rho));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscInt   i  = nd.in[k] - nd.rstart;
+    const PetscReal  sk = nd.nt ? PetscRealPart(nd.s[k]) : 0;
+    const PetscReal *d  = &as->dir[k * nd.nt];
+    rho[k * nd.ncomp] = as->active[k] ? res[i] : 0;
+    for (PetscInt j = 0; j < nd.nt; ++j) rho[k * nd.ncomp + 1 + j] = sk <= 0 ? 0 : as->stick[k] ? res[i + 1 + j] : sk * d[j];
+    if (sk > 0 && !as->stick[k] && as->kappa[k]) {
+      /* across d, the Newton step's reaction: the spring's force and the corrected one */
+      const PetscReal e[2] = {-d[1], d[0]};
+      const PetscReal rp   = as->kappa[k] * (e[0] * PetscRealPart(dx[i + 1]) + e[1] * PetscRealPart(dx[i + 2])) - as->beta[k] * as->rperp[k];
+      for (PetscInt j = 0; j < 2; ++j) rho[k * 3 + 1 + j] += rp * e[j];
+    }
+  }
+  PetscCall(VecRestoreArray(ct->rho, &rho));
+  PetscCall(VecRestoreArrayRead(as->dx, &dx));
+  PetscCall(GetSetTolerances(ctx, &tol));
+  PetscCall(VecGetArray(ct->rho, &rho));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscInt  i  = nd.in[k] - nd.rstart;
+    const PetscReal sk = nd.nt ? PetscRealPart(nd.s[k]) : 0;
+    const PetscReal rn = PetscRealPart(rho[k * nd.ncomp]), gap = PetscRealPart(wa[i] - nd.g[k]);
+    PetscReal       tr[MM_MAX_DIM] = {0, 0, 0}, trn = 0, ct_k = 0;
+    PetscBool       stick;
+
+    /* normal: the fixed one has w_n = g, the free one rho_n = 0, so only one term of the trial is live */
+    if (as->active[k] ? rn < -tol.force : gap > tol.len) {
+      as->active[k] = (PetscBool)!as->active[k];
+      ++nch;
+    }
+    if (sk <= 0) continue;
+    for (PetscInt j = 0; j < nd.nt; ++j) ct_k += PetscRealPart(nd.c[i + 1 + j]) / nd.nt; /* isotropic c: the disk stays a disk */
+    for (PetscInt j = 0; j < nd.nt; ++j) {
+      tr[j] = PetscRealPart(rho[k * nd.ncomp + 1 + j]) + ct_k * (PetscRealPart(wa[i + 1 + j]) - Offset(&nd, i, j));
+      trn += tr[j] * tr[j];
+    }
+    trn   = PetscSqrtReal(trn);
+    stick = as->stick[k] ? (PetscBool)(trn <= sk + tol.force) : (PetscBool)(trn < sk - ct_k * tol.len);
+    if (stick != as->stick[k]) ++nch;
+    as->stick[k]    = stick;
+    ct->slipping[k] = (PetscBool)!stick;
+    as->kappa[k]    = 0;
+    if (stick) continue;
+    {
+      /* the change of the slip force s d, and in 3D its part across d: both vanish at the solution */
+      PetscReal dd = 0, rp = 0;
+      for (PetscInt j = 0; j < nd.nt; ++j) {
+        const PetscReal d = tr[j] / trn;
+        dd += PetscSqr(d - as->dir[k * nd.nt + j]);
+        as->dir[k * nd.nt + j] = d;
+      }
+      if (nd.nt == 2) {
+        rp = PetscAbsReal(-as->dir[2 * k + 1] * PetscRealPart(rho[3 * k + 1]) + as->dir[2 * k] * PetscRealPart(rho[3 * k + 2]));
+        DiskTangent(as, k, sk, trn, ct_k);
+      }
+      dmax = PetscMax(dmax, PetscMax(sk * PetscSqrtReal(dd), rp) / tol.fscale);
+    }
+  }
+  PetscCall(VecRestoreArray(ct->rho, &rho));
+  PetscCall(VecRestoreArrayRead(as->r, &res));
+  PetscCall(VecRestoreArrayRead(w, &wa));
+  PetscCall(NodeDataRestore(ctx, &nd));
+  PetscCall(MPIU_Allreduce(&nch, changed, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)w)));
+  PetscCall(MPIU_Allreduce(&dmax, dchange, 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)w)));
+  PetscFunctionReturn(0);
+}
+
+/* The step's contact problem K~ w = b - E rho with the conditions above; w is the warm start on entry
+ * (with the sets of the last solve) and the whole solution on return, ct->rho its reactions. */
+PetscErrorCode MMActiveSetSolve(MMCtx *ctx, Vec b, Vec w)
+{
+  MMContact   *ct = &ctx->contact;
+  MMActiveSet *as = &ct->as;
+  MPI_Comm     comm = PetscObjectComm((PetscObject)w);
+  PetscReal    dtol = 1e-2 * ctx->opt.friction_coulomb_tol;
+
+  PetscFunctionBeginUser;
+  as->lin_its = 0;
+  for (as->its = 1; as->its <= as->max_it; ++as->its) {
+    PetscInt  changed;
+    PetscReal dchange;
+
+    PetscCall(PetscLogEventBegin(ctx->log.as_iterate, 0, 0, 0, 0));
+    PetscCall(FixSets(ctx, b, w));
+    PetscCall(SolveFree(ctx, b, w));
+    PetscCall(UpdateSets(ctx, b, w, &changed, &dchange));
+    PetscCall(PetscLogEventEnd(ctx->log.as_iterate, 0, 0, 0, 0));
+    if (as->monitor) PetscCall(PetscPrintf(comm, "    active set %2" PetscInt_FMT ": %" PetscInt_FMT " nodes changed set, slip forces changed by %.3e of the force scale, %" PetscInt_FMT " CG iterations so far\n", as->its, changed, (double)dchange, as->lin_its));
+    if (!changed && dchange <= dtol) break;
+  }
+  PetscCheck(as->its <= as->max_it, comm, PETSC_ERR_NOT_CONVERGED, "The active-set contact solver did not converge in -active_set_max_it %" PetscInt_FMT " iterations: the contact or stick/slip sets keep changing. Run with -active_set_monitor to see how, and raise -active_set_max_it", as->max_it);
+  ct->vi_its = as->its;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMActiveSetDestroy(MMActiveSet *as)
+{
+  PetscFunctionBeginUser;
+  PetscCall(KSPDestroy(&as->ksp));
+  PetscCall(MatDestroy(&as->A));
+  PetscCall(VecDestroy(&as->free));
+  PetscCall(VecDestroy(&as->x0));
+  PetscCall(VecDestroy(&as->r));
+  PetscCall(VecDestroy(&as->dx));
+  PetscCall(VecDestroy(&as->t));
+  PetscCall(VecDestroy(&as->s));
+  PetscCall(VecDestroy(&as->ct_diag));
+  PetscCall(PetscFree3(as->active, as->stick, as->dir));
+  PetscCall(PetscFree3(as->kappa, as->beta, as->rperp));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,208 @@
+/* The K~ solver of the paths that build no Delassus operator: the linear runs (-contact 0) and the
+ * active-set formulation (docs/method.md section 3). K~ = K + 4/dt^2 M* is symmetric positive
+ * definite, so besides a factorization it can be solved by CG with an algebraic multigrid PC (GAMG
+ * with the rigid-body modes as near-null space, or hypre BoomerAMG), set up once per dt, prefix
+ * contact_K_. The condensed formulation keeps its own factor (contact_condensed.c). */
+#include "contact_impl.h"
+
+/* Component c of rigid-body mode m at x: translations e_0..e_{d-1}, then rotations (2D: one, 3D:
+ * three, e_k x x), about the origin (the modes are orthonormalized afterwards). */
+static PetscReal RigidMode(PetscInt dim, PetscInt m, PetscInt c, const PetscReal x[])
+{
+  if (m < dim) return m == c ? 1 : 0;
+  if (dim == 2) return c == 0 ? -x[1] : x[0];
+  {
+    const PetscInt k = m - dim, i = (k + 1) % 3, j = (k + 2) % 3;
+    return c == i ? -x[j] : c == j ? x[i] : 0;
+  }
+}
+
+/* The rigid-body modes of the free dofs, Cartesian, straight from the vertex coordinates: the
+ * global section lists each owned vertex's free components (Dirichlet-constrained ones dropped). */
+static PetscErrorCode RigidBodyModesCartesian(MMCtx *ctx, PetscInt nmodes, Vec modes[])
+{
+  DM                 dm  = ctx->op.dm;
+  const PetscInt     dim = ctx->op.dim;
+  PetscSection       gs, ls, cs;
+  PetscInt           vStart, vEnd, rstart;
+  Vec                X;
+  const PetscScalar *xa;
+  PetscScalar       *ma[6];
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalSection(dm, &gs));
+  PetscCall(DMGetLocalSection(dm, &ls));
+  PetscCall(DMGetCoordinateSection(dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(VecGetOwnershipRange(modes[0], &rstart, NULL));
+  PetscCall(VecGetArrayRead(X, &xa));
+  for (PetscInt m = 0; m < nmodes; ++m) PetscCall(VecGetArray(modes[m], &ma[m]));
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt        goff, cdof, xoff, i = 0;
+    const PetscInt *cind = NULL;
+    PetscReal       x[MM_MAX_DIM] = {0, 0, 0};
+    PetscCall(PetscSectionGetOffset(gs, v, &goff));
+    if (goff < 0) continue; /* not owned */
+    PetscCall(PetscSectionGetConstraintDof(ls, v, &cdof));
+    if (cdof) PetscCall(PetscSectionGetConstraintIndices(ls, v, &cind));
+    PetscCall(PetscSectionGetOffset(cs, v, &xoff));
+    for (PetscInt d = 0; d < dim; ++d) x[d] = PetscRealPart(xa[xoff + d]);
+    for (PetscInt c = 0; c < dim; ++c) {
+      PetscBool fixed = PETSC_FALSE;
+      for (PetscInt j = 0; j < cdof; ++j) fixed = (PetscBool)(fixed || cind[j] == c);
+      if (fixed) continue;
+      for (PetscInt m = 0; m < nmodes; ++m) ma[m][goff - rstart + i] = RigidMode(dim, m, c, x);
+      ++i;
+    }
+  }
+  for (PetscInt m = 0; m < nmodes; ++m) PetscCall(VecRestoreArray(modes[m], &ma[m]));
+  PetscCall(VecRestoreArrayRead(X, &xa));
+  PetscFunctionReturn(0);
+}
+
+/* The rigid-body modes of the free dofs in the w-frame (rotated by Q^T at the contact nodes),
+ * orthonormalized: GAMG's near-null space. */
+static PetscErrorCode RigidBodyModes(MMCtx *ctx, MatNullSpace *sp)
+{
+  const PetscInt nmodes = ctx->op.dim == 2 ? 3 : 6;
+  Vec            modes[6], ucart[6];
+
+  PetscFunctionBeginUser;
+  for (PetscInt m = 0; m < nmodes; ++m) {
+    PetscCall(DMGetGlobalVector(ctx->op.dm, &ucart[m]));
+    PetscCall(VecDuplicate(ctx->contact.qp.b, &modes[m]));
+  }
+  PetscCall(RigidBodyModesCartesian(ctx, nmodes, ucart));
+  for (PetscInt m = 0; m < nmodes; ++m) {
+    PetscCall(MatMultTranspose(ctx->op.Q, ucart[m], modes[m]));
+    PetscCall(DMRestoreGlobalVector(ctx->op.dm, &ucart[m]));
+  }
+  /* modified Gram-Schmidt; a mode the Dirichlet data remove entirely is still harmless to GAMG */
+  for (PetscInt i = 0; i < nmodes; ++i) {
+    PetscReal nrm;
+    for (PetscInt j = 0; j < i; ++j) {
+      PetscScalar dot;
+      PetscCall(VecDot(modes[i], modes[j], &dot));
+      PetscCall(VecAXPY(modes[i], -dot, modes[j]));
+    }
+    PetscCall(VecNormalize(modes[i], &nrm));
+  }
+  PetscCall(MatNullSpaceCreate(PetscObjectComm((PetscObject)ctx->op.dm), PETSC_FALSE, nmodes, modes, sp));
+  for (PetscInt m = 0; m < nmodes; ++m) PetscCall(VecDestroy(&modes[m]));
+  PetscFunctionReturn(0);
+}
+
+/* The defaults, before the options: the linear runs keep the exact factorization they always had;
+ * the active-set formulation, made for large meshes, CG with Jacobi. At the c_p dt / h_c' near 1
+ * that resolves the contact, K~ = K + 4/dt^2 M* is dominated by the mass and Jacobi needs about 15
+ * iterations: measured (README "Large meshes"), it is 3 times faster per step than GAMG, whose
+ * cycle costs about 12 matrix products; GAMG (with the rigid-body modes) wins from c_p dt / h_c'
+ * of about 10 up. */
+static PetscErrorCode KtSetDefaults(KSP ksp, PetscBool iterative, PetscInt dim)
+{
+  PC pc;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMKSPSetFactorSPD(ksp, dim));
+  PetscCall(KSPSetTolerances(ksp, 1e-14, PETSC_DEFAULT, PETSC_DEFAULT, 5000));
+  PetscCall(MMKSPSetFailureCheck(ksp));
+  if (!iterative) PetscFunctionReturn(0);
+  PetscCall(KSPSetType(ksp, KSPCG));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCJACOBI));
+  PetscFunctionReturn(0);
+}
+
+/* Whether the PC is a complete factorization; an iterative one behind KSPPREONLY would be a single
+ * cycle, not a solve, so it gets CG. */
+static PetscErrorCode KtClassify(MMStepSolver *kt)
+{
+  PC        pc;
+  PetscBool lu, cholesky, preonly;
+
+  PetscFunctionBeginUser;
+  PetscCall(KSPGetPC(kt->ksp, &pc));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCCHOLESKY, &cholesky));
+  PetscCall(PetscObjectTypeCompare((PetscObject)kt->ksp, KSPPREONLY, &preonly));
+  kt->iterative = (PetscBool)!(lu || cholesky);
+  if (kt->iterative && preonly) PetscCall(KSPSetType(kt->ksp, KSPCG));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMKtCreate(MMCtx *ctx)
+{
+  MMStepSolver *kt = &ctx->contact.kt;
+
+  PetscFunctionBeginUser;
+  PetscCall(KSPCreate(PetscObjectComm((PetscObject)ctx->op.dm), &kt->ksp));
+  PetscCall(KSPSetOptionsPrefix(kt->ksp, "contact_K_"));
+  PetscCall(KtSetDefaults(kt->ksp, (PetscBool)(ctx->contact.enabled && ctx->contact.formulation == MM_CONTACT_ACTIVE_SET), ctx->op.dim));
+  PetscCall(KSPSetFromOptions(kt->ksp));
+  PetscCall(KtClassify(kt));
+  if (!kt->iterative) PetscFunctionReturn(0);
+  /* warm-started from the predictor, and tested on the true residual, ||K~ w - b|| <= contact_tol ||b|| (MMKtSolve) */
+  PetscCall(KSPSetInitialGuessNonzero(kt->ksp, PETSC_TRUE));
+  PetscCall(KSPSetNormType(kt->ksp, KSP_NORM_UNPRECONDITIONED));
+  PetscFunctionReturn(0);
+}
+
+/* A new K~ (a new dt): the PC is set up here, once, and serves every solve until dt changes. */
+PetscErrorCode MMKtSetOperator(MMCtx *ctx, Mat Kt)
+{
+  MMStepSolver *kt = &ctx->contact.kt;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ctx->log.kt_setup, 0, 0, 0, 0));
+  if (kt->iterative) {
+    if (!kt->rigid) PetscCall(RigidBodyModes(ctx, &kt->rigid));
+    PetscCall(MatSetNearNullSpace(Kt, kt->rigid));
+  }
+  PetscCall(KSPSetOperators(kt->ksp, Kt, Kt));
+  PetscCall(KSPSetUp(kt->ksp));
+  PetscCall(MMKSPCheckFactored(kt->ksp));
+  PetscCall(PetscLogEventEnd(ctx->log.kt_setup, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* An iterative solve of ksp x = rhs for the step whose right-hand side is b: it stops at
+ * ||r|| <= contact_tol ||b|| on the true residual, the accuracy the energy audit needs (README
+ * "Large meshes"), or at the user's -..._ksp_atol if looser; the user's atol is restored after. */
+PetscErrorCode MMKtSolveToTolerance(KSP ksp, PetscReal tol, Vec b, Vec rhs, Vec x)
+{
+  PetscReal rtol, atol, bnorm;
+  PetscInt  maxit;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecNorm(b, NORM_2, &bnorm));
+  PetscCall(KSPGetTolerances(ksp, &rtol, &atol, NULL, &maxit));
+  PetscCall(KSPSetTolerances(ksp, rtol, PetscMax(atol, tol * bnorm), PETSC_DEFAULT, maxit));
+  PetscCall(KSPSolve(ksp, rhs, x));
+  PetscCall(KSPSetTolerances(ksp, rtol, atol, PETSC_DEFAULT, maxit));
+  PetscFunctionReturn(0);
+}
+
+/* w = K~^{-1} b, w the initial guess on entry (the Newmark predictor) when the solve is iterative. */
+PetscErrorCode MMKtSolve(MMCtx *ctx, Vec b, Vec w)
+{
+  MMStepSolver *kt = &ctx->contact.kt;
+  PetscInt      its;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ctx->log.kt_solve, 0, 0, 0, 0));
+  if (kt->iterative) PetscCall(MMKtSolveToTolerance(kt->ksp, ctx->contact.tol, b, b, w));
+  else PetscCall(KSPSolve(kt->ksp, b, w));
+  PetscCall(KSPGetIterationNumber(kt->ksp, &its));
+  kt->its += its;
+  PetscCall(PetscLogEventEnd(ctx->log.kt_solve, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMKtDestroy(MMStepSolver *kt)
+{
+  PetscFunctionBeginUser;
+  PetscCall(KSPDestroy(&kt->ksp));
+  PetscCall(MatNullSpaceDestroy(&kt->rigid));
+  PetscFunctionReturn(0);
+}
