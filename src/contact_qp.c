@@ -89,7 +89,7 @@ PetscErrorCode MMKSPCheckFactored(KSP ksp)
   if (!r) PetscFunctionReturn(0);
   PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
   SETERRQ(PetscObjectComm((PetscObject)ksp), PETSC_ERR_LIB, "The factorization for the solve -%s failed: %s. %s", prefix ? prefix : "", PCFailedReasons[r],
-          (PCFailedReason)r == PC_FACTOR_OUTMEMORY ? "The direct factor does not fit in memory: use a coarser mesh, more ranks or memory, or an iterative solver where one is supported (README \"Solvers\")" : "Check the mesh (inverted or degenerate cells) and the Dirichlet conditions");
+          (PCFailedReason)r == PC_FACTOR_OUTMEMORY ? "The direct factor does not fit in memory: use a coarser mesh, more ranks or memory, or the iterative path: -contact_formulation active_set with CG for K~ (README \"Large meshes\")" : "Check the mesh (inverted or degenerate cells) and the Dirichlet conditions");
 }
 
 static PetscErrorCode KSPCheckSolvedPostSolve(KSP ksp, Vec b, Vec x, void *ptr)
@@ -128,7 +128,7 @@ PetscErrorCode MMKSPSetDirect(KSP ksp)
 }
 
 /* The default factorization of a symmetric positive definite matrix (K~), chosen by measurement
- * (README "Solvers"): in 2D on one rank PETSc's own Cholesky with nested-dissection ordering (115k-dof
+ * (README "Options", the contact_K_ solve): in 2D on one rank PETSc's own Cholesky with nested-dissection ordering (115k-dof
  * frictional D1: a step 2.2 times faster than with MUMPS LU, set-up faster too); in 3D, where its
  * factorization and the Delassus columns cost more than MUMPS's (12k-dof D2: 6.1 against 3.4 s, and
  * 29 against 22 s), and on several ranks (PETSc's own factorizations are serial), MUMPS LU.
