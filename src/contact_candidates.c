@@ -251,6 +251,22 @@ static PetscErrorCode UpdateCompliances(MMContact *ct)
   PetscFunctionReturn(0);
 }
 
+/* The objects sized by the set, rebuilt whenever it changes. */
+static PetscErrorCode DestroySetProblem(MMCandidates *c)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MatDestroy(&c->W));
+  PetscCall(MatDestroy(&c->Wr));
+  PetscCall(VecDestroy(&c->x));
+  PetscCall(VecDestroy(&c->lo));
+  PetscCall(VecDestroy(&c->hi));
+  PetscCall(VecDestroy(&c->q));
+  PetscCall(VecDestroy(&c->rot));
+  PetscCall(VecDestroy(&c->f));
+  PetscCall(VecScatterDestroy(&c->gather));
+  PetscFunctionReturn(0);
+}
+
 /* The set's vectors, scatter and dense block W_SS: each rank contributes the rows it owns (the set
  * is sorted, so they are contiguous), every rank receives them all. W is symmetric; its two
  * triangles differ by the solves' round-off, so W_SS is their mean, and Cholesky applies. */
@@ -269,15 +285,7 @@ static PetscErrorCode BuildSetOperator(MMCtx *ctx)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ctx->log.candidate_operator, 0, 0, 0, 0));
   m = c->m = nr * c->n_set;
-  PetscCall(MatDestroy(&c->W));
-  PetscCall(MatDestroy(&c->Wr));
-  PetscCall(VecDestroy(&c->x));
-  PetscCall(VecDestroy(&c->lo));
-  PetscCall(VecDestroy(&c->hi));
-  PetscCall(VecDestroy(&c->q));
-  PetscCall(VecDestroy(&c->rot));
-  PetscCall(VecDestroy(&c->f));
-  PetscCall(VecScatterDestroy(&c->gather));
+  PetscCall(DestroySetProblem(c));
   if (!m) {
     PetscCall(PetscLogEventEnd(ctx->log.candidate_operator, 0, 0, 0, 0));
     PetscFunctionReturn(0);
@@ -496,15 +504,7 @@ PetscErrorCode MMCandidatesDestroy(MMCandidates *c)
   PetscCall(PetscFree(c->full));
   PetscCall(PetscFree(c->wc));
   PetscCall(PetscFree(c->cond_row));
-  PetscCall(MatDestroy(&c->W));
-  PetscCall(MatDestroy(&c->Wr));
-  PetscCall(VecDestroy(&c->x));
-  PetscCall(VecDestroy(&c->lo));
-  PetscCall(VecDestroy(&c->hi));
-  PetscCall(VecDestroy(&c->q));
-  PetscCall(VecDestroy(&c->rot));
-  PetscCall(VecDestroy(&c->f));
-  PetscCall(VecScatterDestroy(&c->gather));
+  PetscCall(DestroySetProblem(c));
   PetscCall(SNESDestroy(&c->snes));
   PetscFunctionReturn(0);
 }
