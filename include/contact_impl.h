@@ -25,6 +25,7 @@ PETSC_EXTERN PetscErrorCode MMActiveSetDestroy(MMActiveSet *);
 
 /* contact_condensed.c: the Delassus operator and the condensed VI */
 PETSC_EXTERN PetscErrorCode MMCondensedFactor(MMCtx *);
+PETSC_EXTERN PetscErrorCode MMContactCreateReactions(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMCondensedCreateSolver(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMCondensedSolveReactions(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMCondensedContactDofs(MMCtx *, Vec, Vec);

@@ -88,24 +88,6 @@ static PetscErrorCode ProjectedPC(PC pc, Vec x, Vec y)
   PetscFunctionReturn(0);
 }
 
-/* The reactions rho and their bounds, laid out as the condensed formulation lays them out (one block
- * of ncomp per contact node), which the friction loop and the diagnostics read. */
-static PetscErrorCode CreateReactions(MMCtx *ctx)
-{
-  MMContact *ct = &ctx->contact;
-
-  PetscFunctionBeginUser;
-  PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)ctx->op.dm), ct->n_local * ct->ncomp, PETSC_DETERMINE, &ct->rho));
-  PetscCall(VecSetBlockSize(ct->rho, ct->ncomp));
-  PetscCall(VecZeroEntries(ct->rho));
-  PetscCall(VecDuplicate(ct->rho, &ct->rho_lo));
-  PetscCall(VecDuplicate(ct->rho, &ct->rho_hi));
-  PetscCall(VecSet(ct->rho_lo, 0.0));
-  PetscCall(VecSet(ct->rho_hi, 0.0));
-  PetscCall(VecStrideSet(ct->rho_hi, 0, PETSC_INFINITY));
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode MMActiveSetSetUp(MMCtx *ctx)
 {
   MMContact   *ct = &ctx->contact;
@@ -126,7 +108,7 @@ PetscErrorCode MMActiveSetSetUp(MMCtx *ctx)
   PetscCall(VecDuplicate(ct->qp.b, &as->ct_diag));
   PetscCall(VecDuplicate(ct->gap, &as->s));
   PetscCall(VecZeroEntries(as->s));
-  PetscCall(CreateReactions(ctx));
+  PetscCall(MMContactCreateReactions(ctx));
   PetscCall(PetscCalloc3(ct->n_local, &as->active, ct->n_local, &as->stick, PetscMax(1, ct->n_local * (ctx->op.dim - 1)), &as->dir));
   PetscCall(PetscCalloc3(ct->n_local, &as->kappa, ct->n_local, &as->beta, ct->n_local, &as->rperp));
 

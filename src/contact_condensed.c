@@ -34,28 +34,38 @@ PetscErrorCode MMCondensedFactor(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
-/* The reactions, their bounds and the right-hand side on all contact nodes (global, ncomp per
- * node), and the candidate set that carries the VI. */
-PetscErrorCode MMCondensedCreateSolver(MMCtx *ctx)
+/* The reactions rho and their bounds, one block of ncomp per contact node: the layout the friction
+ * loop and the diagnostics read, whatever the formulation. Frictionless until thresholds are set:
+ * rho_t in [0, 0]. */
+PetscErrorCode MMContactCreateReactions(MMCtx *ctx)
 {
   MMContact *ct = &ctx->contact;
-  MPI_Comm   comm = PetscObjectComm((PetscObject)ctx->op.dm);
 
   PetscFunctionBeginUser;
-  PetscCall(VecCreateMPI(comm, ct->ncomp * ct->n_local, PETSC_DETERMINE, &ct->rho));
+  PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)ctx->op.dm), ct->ncomp * ct->n_local, PETSC_DETERMINE, &ct->rho));
   PetscCall(VecSetBlockSize(ct->rho, ct->ncomp));
   PetscCall(VecZeroEntries(ct->rho));
   PetscCall(VecDuplicate(ct->rho, &ct->rho_lo));
   PetscCall(VecDuplicate(ct->rho, &ct->rho_hi));
+  PetscCall(VecSet(ct->rho_lo, 0.0));
+  PetscCall(VecSet(ct->rho_hi, 0.0));
+  PetscCall(VecStrideSet(ct->rho_hi, 0, PETSC_INFINITY));
+  PetscFunctionReturn(0);
+}
+
+/* The condensed right-hand side on all contact nodes (global, ncomp per node), and the candidate
+ * set that carries the VI. */
+PetscErrorCode MMCondensedCreateSolver(MMCtx *ctx)
+{
+  MMContact *ct = &ctx->contact;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMContactCreateReactions(ctx));
   PetscCall(VecDuplicate(ct->rho, &ct->offset));
   PetscCall(VecDuplicate(ct->rho, &ct->q));
   PetscCall(VecDuplicate(ct->rho, &ct->Wdiag));
   PetscCall(VecSet(ct->Wdiag, 1.0));
   if (ct->ncomp == 3) PetscCall(VecDuplicate(ct->rho, &ct->rot));
-  /* frictionless until thresholds are set: rho_t in [0, 0] */
-  PetscCall(VecSet(ct->rho_lo, 0.0));
-  PetscCall(VecSet(ct->rho_hi, 0.0));
-  PetscCall(VecStrideSet(ct->rho_hi, 0, PETSC_INFINITY));
   PetscCall(MMCandidatesSetUp(ctx));
   PetscFunctionReturn(0);
 }
@@ -196,8 +206,11 @@ PetscErrorCode MMCondensedSolveReactions(MMCtx *ctx, Vec b)
   }
   ct->vi_its = 0;
   if (!ct->enabled) PetscFunctionReturn(0);
-  PetscCall(CondensedRHS(ctx));
-  if (fresh) PetscCall(MMCandidatesSelect(ctx));
+  /* q and the set depend on z, u^n and v^n only: once per step, not per friction iteration */
+  if (fresh) {
+    PetscCall(CondensedRHS(ctx));
+    PetscCall(MMCandidatesSelect(ctx));
+  }
   /* the set grows, and its VI is solved again, until no node outside it penetrates: then its
    * reactions are the full-set ones (docs/method.md section 3, "Candidate set") */
   for (PetscBool grown = PETSC_TRUE; grown;) {
