@@ -53,3 +53,12 @@ def test_memory_cap_too_small_is_refused(mm):
     assert r.returncode != 0
     assert "-contact_candidate_memory 0.002 MiB" in r.output and "Raise it" in r.output
     assert len(r.history) > 1  # the steps before it are on disk
+
+
+@pytest.mark.parametrize("option,value,message", [
+    ("-contact_candidate_margin", -2, "-contact_candidate_margin -2. must be >= -1"),
+    ("-contact_candidate_memory", 0, "-contact_candidate_memory 0. must be > 0 (MiB)"),
+])
+def test_candidate_options_out_of_range_are_refused(mm, option, value, message):
+    r = mm("d1_disk", option, value, np_=0, check=False)
+    assert r.returncode != 0 and message in r.output, r.output[-1500:]
