@@ -181,6 +181,8 @@ typedef struct {
   PetscScalar *wc;                  /* the step's solution on the owned condensed dofs, from the set's reactions */
   PetscInt     resolves;            /* VI re-solves after the set grew, over the run */
   PetscInt     columns;             /* columns computed in the run */
+  PetscInt     evicted;             /* cached nodes dropped under the memory cap, over the run */
+  PetscInt     recover_solves;      /* steps recovered by a solve, the full columns being over the cap */
   PetscInt     max_set;             /* the largest set of the run */
 } MMCandidates;
 /* The K~ solver of the paths that build no Delassus operator (-contact 0 and the active-set

@@ -119,6 +119,7 @@ static PetscErrorCode EvictOutsideSet(MMContact *ct)
     c->slot[g]         = kept++;
   }
   PetscCall(PetscInfo(NULL, "Candidate cache: kept %" PetscInt_FMT " of %" PetscInt_FMT " nodes\n", kept, c->n_cached));
+  c->evicted += c->n_cached - kept;
   c->n_cached = kept;
   PetscFunctionReturn(0);
 }
@@ -144,7 +145,9 @@ static PetscErrorCode ReserveSlots(MMCtx *ctx, PetscInt n)
              "The contact candidate set (%" PetscInt_FMT " nodes) needs %.3g MiB of K~^{-1} E columns, above -contact_candidate_memory %g MiB. Raise it, or use a contact formulation that needs no Delassus operator",
              c->n_cached + n, (c->n_cached + n) * per_node / 1048576.0, (double)ctx->opt.candidate_memory);
   if (c->n_cached + n > c->cap || (c->full_ok && !c->full)) {
-    PetscInt     cap = PetscMax(2 * c->cap, c->n_cached + n);
+    /* doubling, but never allocating past the cap */
+    const PetscInt fit = (PetscInt)(c->memory_cap / (per_node + (c->full_ok ? per_node_full : 0)));
+    PetscInt       cap = PetscMax(PetscMin(2 * c->cap, fit), c->n_cached + n);
     PetscScalar *cols, *full = NULL;
     PetscInt    *nodes;
     PetscCall(PetscMalloc1((size_t)cap * nr * c->nc_local, &cols));

@@ -262,6 +262,7 @@ PetscErrorCode MMCondensedRecover(MMCtx *ctx, Vec w)
     PetscCall(MMCandidatesRecover(ct, w));
     PetscFunctionReturn(0);
   }
+  ct->cand.recover_solves++;
   PetscCall(VecZeroEntries(ct->rhs_c));
   PetscCall(VecGetSubVector(ct->rhs_c, ct->is_cond, &rc));
   PetscCall(VecAXPY(rc, -1.0, ct->rho));
