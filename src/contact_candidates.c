@@ -180,6 +180,7 @@ static PetscErrorCode ComputeMissingColumns(MMCtx *ctx)
   const PetscInt  nb_max = 96, nr = ct->ncomp;
   PetscInt        nnew = 0, *todo, n, rstart;
   const PetscInt *ic;
+  PetscMPIInt     rank;
   PC              pc;
   Mat             F;
   PetscBool       sparse;
@@ -197,16 +198,15 @@ static PetscErrorCode ComputeMissingColumns(MMCtx *ctx)
   PetscCall(KSPGetPC(ct->ksp_K, &pc));
   PetscCall(PCFactorGetMatrix(pc, &F));
   {
-    /* MUMPS on one rank: unit right-hand sides as a sparse B^T cut the column cost by a third
-     * (12k-dof D2 with friction: 0.31 s to 0.21 s, the same columns to 1e-14). PETSc 3.18 cannot
-     * pass a distributed sparse B^T to MUMPS (INFOG(1) = -27), so several ranks keep a dense B. */
+    /* MUMPS: unit right-hand sides as a sparse B^T cut the column cost by a third (12k-dof D2
+     * with friction: 0.31 s to 0.21 s, the same columns to 1e-14). MUMPS takes a sparse
+     * right-hand side only centralized on its host, so B^T lives on rank 0 whole (a distributed
+     * one fails with INFOG(1) = -27); every rank knows every contact node's normal dof. */
     MatSolverType type;
-    PetscMPIInt   size;
-    PetscCallMPI(MPI_Comm_size(comm, &size));
     PetscCall(MatFactorGetSolverType(F, &type));
     PetscCall(PetscStrcmp(type, MATSOLVERMUMPS, &sparse));
-    sparse = (PetscBool)(sparse && size == 1);
   }
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(MatGetLocalSize(ct->qp.A, &n, NULL));
   PetscCall(MatGetOwnershipRange(ct->qp.A, &rstart, NULL));
   PetscCall(ISGetIndices(ct->is_cond, &ic));
@@ -219,10 +219,10 @@ static PetscErrorCode ComputeMissingColumns(MMCtx *ctx)
     PetscCall(MatCreateDense(comm, n, PETSC_DECIDE, PETSC_DETERMINE, nb, NULL, &X));
     if (sparse) {
       /* MUMPS takes the unit right-hand sides as a sparse B^T and prunes its forward elimination */
-      PetscCall(MatCreateAIJ(comm, PETSC_DECIDE, n, nb, PETSC_DETERMINE, 1, NULL, 1, NULL, &B));
-      for (PetscInt j = 0; j < nb; ++j) {
+      PetscCall(MatCreateAIJ(comm, rank ? 0 : nb, rank ? 0 : c->N, nb, c->N, 1, NULL, 0, NULL, &B));
+      for (PetscInt j = 0; !rank && j < nb; ++j) {
         const PetscInt g = todo[(i0 + j) / nr], comp = (i0 + j) % nr;
-        if (NodeIsLocal(c, ct, g)) PetscCall(MatSetValue(B, j, c->normal_dof[g] + comp, 1.0, INSERT_VALUES));
+        PetscCall(MatSetValue(B, j, c->normal_dof[g] + comp, 1.0, INSERT_VALUES));
       }
     } else {
       PetscCall(MatDuplicate(X, MAT_DO_NOT_COPY_VALUES, &B));
