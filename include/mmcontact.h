@@ -61,6 +61,25 @@ typedef struct {
   PetscInt  nvalues; /* entries given to -traction_NAME_value, -1 if not set */
 } MMTraction;
 
+/* A rigid obstacle (docs/method.md section 6): a shape from the registry (src/obstacle*.c) that
+ * gives the signed distance of a point and its gradient, the outward normal of the obstacle; it
+ * may translate at a constant velocity from a start time. */
+typedef struct _MMObstacle MMObstacle;
+struct _MMObstacle {
+  char      name[64], type[32];
+  PetscReal point[MM_MAX_DIM], normal[MM_MAX_DIM], center[MM_MAX_DIM], axis[MM_MAX_DIM], radius;
+  PetscInt  npoint, nnormal, ncenter, naxis, nvelocity; /* entries given, -1 if not set */
+  PetscBool radius_set;
+  PetscBool inside;                  /* the body is inside the sphere, circle or cylinder */
+  PetscReal mu;                      /* friction coefficient against this obstacle */
+  PetscReal velocity[MM_MAX_DIM], start;
+  /* checks the parameters the shape needs, once the dimension is known */
+  PetscErrorCode (*check)(MMObstacle *, MPI_Comm, PetscInt);
+  /* signed distance g of x (positive outside the obstacle) and n = grad g, in the obstacle's
+   * position at time 0 */
+  PetscErrorCode (*distance)(const MMObstacle *, PetscInt, const PetscReal[], PetscReal *, PetscReal[]);
+};
+
 /* The vector options, whose lengths can only be checked once the mesh gives the dimension. */
 typedef enum {
   MM_V_GRAVITY,
@@ -113,6 +132,10 @@ typedef struct {
   PetscBool    quiet;
   PetscBool    allow_unused;
   PetscInt     vec_count[MM_V_NUM]; /* entries given to each vector option, -1 if not set */
+  PetscInt     n_obstacles;         /* -obstacles, or the one plane of -obstacle_point/_normal */
+  MMObstacle  *obstacles;
+  PetscBool    obstacles_named;     /* -obstacles was given */
+  PetscReal    mu_max;              /* the largest friction coefficient of the obstacles */
 } MMOptions;
 
 /* Physical parameters, also passed to the pointwise kernels as constants[]. */
@@ -241,7 +264,14 @@ typedef struct {
   PetscObjectState z_b_state;
   PetscReal  z_dt;
   SNES       snes0;               /* quasi-static projection of the contact dofs, prefix contact0_ */
-  PetscReal  frame[MM_MAX_DIM][MM_MAX_DIM]; /* rows: nu, tau_1, tau_2 */
+  PetscReal  frame[MM_MAX_DIM][MM_MAX_DIM]; /* the single plane's frame (static sliding); rows: nu, tau_1, tau_2 */
+  PetscReal *node_frame;          /* per owned contact node its frame, 9 reals: rows nu, tau_1, tau_2 */
+  PetscInt  *obstacle;            /* per owned contact node, the obstacle it is constrained against */
+  Vec        gap0;                /* g_i at time 0, layout of gap */
+  Vec        mu;                  /* per owned contact node, the friction coefficient of its obstacle */
+  PetscReal *slide_ref;           /* per owned contact node and tangent, dt/2 V.tau_j: the obstacle's sliding */
+  PetscBool  moving;              /* some obstacle moves: gaps follow it every step */
+  PetscReal *force_obstacle;      /* per obstacle, MM_MAX_DIM: the contact force on it (Cartesian), last step */
   PetscReal  h_c;                 /* smallest diameter of cells touching the contact boundary */
   PetscReal  tol;                 /* -contact_tol */
   PetscBool *was_active;          /* per owned contact node, at the previous step */

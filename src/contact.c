@@ -192,6 +192,7 @@ static PetscErrorCode CheckInitialPenetration(MMCtx *ctx, Vec w)
     int    rank;
   } loc = {-PETSC_MAX_REAL, 0}, glob;
   PetscReal   x[MM_MAX_DIM] = {0, 0, 0};
+  PetscInt    glob_obstacle = 0;
   PetscMPIInt rank;
   MPI_Comm    comm = PetscObjectComm((PetscObject)dm);
 
@@ -227,12 +228,14 @@ static PetscErrorCode CheckInitialPenetration(MMCtx *ctx, Vec w)
     PetscCall(VecRestoreArrayRead(X, &xa));
   }
   PetscCallMPI(MPI_Bcast(x, MM_MAX_DIM, MPIU_REAL, glob.rank, comm));
+  if (rank == glob.rank) glob_obstacle = ct->obstacle[deepest];
+  PetscCallMPI(MPI_Bcast(&glob_obstacle, 1, MPIU_INT, glob.rank, comm));
   /* C's formatting, not PETSc's, which writes 0 as "0." */
   char where[128];
   if (dim == 2) snprintf(where, sizeof(where), "(%g, %g)", (double)x[0], (double)x[1]);
   else snprintf(where, sizeof(where), "(%g, %g, %g)", (double)x[0], (double)x[1], (double)x[2]);
-  SETERRQ(comm, PETSC_ERR_USER_INPUT, "The initial state penetrates the obstacle: the deepest contact node, at %s, is %g inside it (-initial_penetration_tol %g h_c' = %g). Check -obstacle_point and the direction of -obstacle_normal (it points out of the obstacle, towards the body), and -u0_offset/-u0_gradient",
-          where, glob.depth, (double)ctx->opt.initial_penetration_tol, (double)(ctx->opt.initial_penetration_tol * ct->h_c));
+  SETERRQ(comm, PETSC_ERR_USER_INPUT, "The initial state penetrates the obstacle \"%s\": the deepest contact node, at %s, is %g inside it (-initial_penetration_tol %g h_c' = %g). Check that obstacle's position, its -obstacle_..._side, the direction of a plane's normal (it points out of the obstacle, towards the body), and -u0_offset/-u0_gradient",
+          ctx->opt.obstacles[glob_obstacle].name, where, glob.depth, (double)ctx->opt.initial_penetration_tol, (double)(ctx->opt.initial_penetration_tol * ct->h_c));
 }
 
 /* Consistent initial contact dofs (docs/method.md section 3, Initial state): with the other dofs fixed, the
@@ -305,6 +308,12 @@ PetscErrorCode MMContactDestroy(MMContact *ct)
   PetscCall(VecDestroy(&ct->lower0));
   PetscCall(VecDestroy(&ct->upper0));
   PetscCall(VecDestroy(&ct->gap));
+  PetscCall(VecDestroy(&ct->gap0));
+  PetscCall(VecDestroy(&ct->mu));
+  PetscCall(PetscFree(ct->slide_ref));
+  PetscCall(PetscFree(ct->node_frame));
+  PetscCall(PetscFree(ct->obstacle));
+  PetscCall(PetscFree(ct->force_obstacle));
   PetscCall(VecDestroy(&ct->area));
   PetscCall(ISDestroy(&ct->is_normal));
   PetscCall(ISDestroy(&ct->is_tangent));

@@ -166,6 +166,7 @@ typedef struct {
   PetscInt           dim, nt, ncomp, rstart;
   const PetscInt    *in;    /* normal dof of each contact node; its tangential dofs follow */
   const PetscScalar *g, *s, *uo, *vo, *c;
+  const PetscReal   *slide; /* per node and tangent: dt/2 times the obstacle's tangential velocity */
   PetscReal          half_dt;
 } NodeData;
 
@@ -178,6 +179,7 @@ static PetscErrorCode NodeDataGet(MMCtx *ctx, NodeData *nd)
   nd->nt      = ct->ncomp > 1 ? nd->dim - 1 : 0; /* tangential dofs with friction */
   nd->ncomp   = ct->ncomp;
   nd->half_dt = 0.5 * ct->Kt_dt;
+  nd->slide   = ct->slide_ref;
   PetscCall(VecGetOwnershipRange(ct->qp.b, &nd->rstart, NULL));
   PetscCall(ISGetIndices(ct->is_normal, &nd->in));
   PetscCall(VecGetArrayRead(ct->gap, &nd->g));
@@ -202,10 +204,11 @@ static PetscErrorCode NodeDataRestore(MMCtx *ctx, NodeData *nd)
   PetscFunctionReturn(0);
 }
 
-/* off_t = u_t^n + dt/2 v_t^n: w_t - off_t is dt/2 times the slip velocity (contact_condensed.c). */
-static inline PetscReal Offset(const NodeData *nd, PetscInt i, PetscInt j)
+/* off_t = u_t^n + dt/2 (v_t^n + V_t): w_t - off_t is dt/2 times the slip velocity relative to the
+ * obstacle, V its velocity (contact_condensed.c). */
+static inline PetscReal Offset(const NodeData *nd, PetscInt k, PetscInt i, PetscInt j)
 {
-  return PetscRealPart(nd->uo[i + 1 + j]) + nd->half_dt * PetscRealPart(nd->vo[i + 1 + j]);
+  return PetscRealPart(nd->uo[i + 1 + j]) + nd->half_dt * PetscRealPart(nd->vo[i + 1 + j]) + nd->slide[k * (nd->dim - 1) + j];
 }
 
 /* The linear problem of the current sets: x0 = w with the fixed dofs at their values (g, off_t),
@@ -242,7 +245,7 @@ static PetscErrorCode FixSets(MMCtx *ctx, Vec b, Vec w)
     if (sk <= 0) continue; /* no threshold: the tangential dofs are free and unloaded */
     for (PetscInt j = 0; j < nd.nt; ++j) {
       if (as->stick[k]) {
-        x[i + 1 + j] = Offset(&nd, i, j);
+        x[i + 1 + j] = Offset(&nd, k, i, j);
         f[i + 1 + j] = 0;
       } else r[i + 1 + j] -= sk * d[j];
     }
@@ -370,7 +373,7 @@ static PetscErrorCode UpdateSets(MMCtx *ctx, Vec b, Vec w, PetscInt *changed, Pe
     if (sk <= 0) continue;
     for (PetscInt j = 0; j < nd.nt; ++j) ct_k += PetscRealPart(nd.c[i + 1 + j]) / nd.nt; /* isotropic c: the disk stays a disk */
     for (PetscInt j = 0; j < nd.nt; ++j) {
-      tr[j] = PetscRealPart(rho[k * nd.ncomp + 1 + j]) + ct_k * (PetscRealPart(wa[i + 1 + j]) - Offset(&nd, i, j));
+      tr[j] = PetscRealPart(rho[k * nd.ncomp + 1 + j]) + ct_k * (PetscRealPart(wa[i + 1 + j]) - Offset(&nd, k, i, j));
       trn += tr[j] * tr[j];
     }
     trn   = PetscSqrtReal(trn);

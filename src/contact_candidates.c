@@ -28,7 +28,7 @@ static PetscErrorCode CreateSetSolver(MMCtx *ctx)
   PetscCall(MatAssemblyEnd(W0, MAT_FINAL_ASSEMBLY));
   c->qp.A      = W0;
   c->qp.rtol_b = ctx->contact.tol;
-  PetscCall(MMQPCreate(PETSC_COMM_SELF, "contact_", &c->qp, ctx->contact.ncomp > 1 ? ctx->opt.mu : 0, &c->snes));
+  PetscCall(MMQPCreate(PETSC_COMM_SELF, "contact_", &c->qp, ctx->contact.ncomp > 1 ? ctx->opt.mu_max : 0, &c->snes));
   PetscCall(MatDestroy(&W0));
   c->qp.A = NULL;
   PetscFunctionReturn(0);
@@ -364,7 +364,7 @@ static PetscErrorCode BuildSetOperator(MMCtx *ctx)
   c->qp.rtol_b = ct->tol;
   /* a new solver for the new size: SNESReset leaves the semismooth method's work vectors behind */
   PetscCall(SNESDestroy(&c->snes));
-  PetscCall(MMQPCreate(PETSC_COMM_SELF, "contact_", &c->qp, nr > 1 ? ctx->opt.mu : 0, &c->snes));
+  PetscCall(MMQPCreate(PETSC_COMM_SELF, "contact_", &c->qp, nr > 1 ? ctx->opt.mu_max : 0, &c->snes));
   PetscCall(SNESVISetVariableBounds(c->snes, c->lo, c->hi));
   PetscCall(PetscLogEventEnd(ctx->log.candidate_operator, 0, 0, 0, 0));
   PetscFunctionReturn(0);

@@ -94,7 +94,8 @@ static PetscErrorCode CondensedRHS(MMCtx *ctx)
   PetscCall(VecGetArray(ct->offset, &oa));
   PetscCall(VecGetArray(ct->q, &qa));
   for (PetscInt r = 0; r < ct->cand.nc_local; ++r) {
-    oa[r] = r % nr ? ua[row[r]] + 0.5 * ct->Kt_dt * va[row[r]] : ga[r / nr];
+    /* tangential: relative to the obstacle's own velocity (slide_ref, contact_set.c) */
+    oa[r] = r % nr ? ua[row[r]] + 0.5 * ct->Kt_dt * va[row[r]] + ct->slide_ref[(r / nr) * (nr - 1) + r % nr - 1] : ga[r / nr];
     qa[r] = za[row[r]] - oa[r];
   }
   PetscCall(VecRestoreArray(ct->q, &qa));

@@ -13,7 +13,10 @@ typedef struct {
 static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma, PetscBool record_switches, ContactStats *st)
 {
   MMContact         *ct = &ctx->contact;
-  const PetscReal    mu = ctx->opt.mu, dt = ct->Kt_dt;
+  const PetscReal    dt = ct->Kt_dt;
+  const PetscInt     nob = ctx->opt.n_obstacles;
+  const PetscScalar *mua;
+  PetscReal         *fob;
   /* slip is judged by the step's slip increment sigma dt/2 against h_c', like penetration */
   const PetscReal    vtol = 1e-9 * 2 * ct->h_c / dt;
   PetscInt           dim = ctx->op.dim, nc = ct->n_local, cnt[4] = {0, 0, 0, 0}, rstart;
@@ -26,6 +29,8 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(st, sizeof(*st)));
   if (!ct->enabled) PetscFunctionReturn(0);
+  PetscCall(PetscCalloc1(MM_MAX_DIM * nob, &fob));
+  PetscCall(VecGetArrayRead(ct->mu, &mua));
   PetscCall(VecGetOwnershipRange(w, &rstart, NULL));
   PetscCall(ISGetIndices(ct->is_normal, &in));
   PetscCall(VecGetArrayRead(w, &wa));
@@ -45,13 +50,19 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
     const PetscInt  i = in[k] - rstart;
     const PetscReal un = PetscRealPart(wa[i]), g = PetscRealPart(ga[k]), r = -PetscRealPart(fa[i]);
     const PetscBool active = (PetscBool)(g - un <= 1e-10 * ct->h_c);
-    PetscReal       tn = 0, vn = 0, res = 0;
+    const PetscReal mu = PetscRealPart(mua[k]), *F = &ct->node_frame[9 * k];
+    PetscReal       tn = 0, vn = 0, res = 0, vt[MM_MAX_DIM] = {0, 0, 0};
 
     for (PetscInt d = 1; d < dim; ++d) {
+      /* slip is relative to the obstacle: its velocity V.tau_d is 2 slide_ref / dt */
+      vt[d] = PetscRealPart(va[i + d]) - (dt > 0 ? 2 * ct->slide_ref[k * (dim - 1) + d - 1] / dt : 0);
       tn += PetscSqr(PetscRealPart(fa[i + d]));
-      vn += PetscSqr(PetscRealPart(va[i + d]));
+      vn += PetscSqr(vt[d]);
       sums[d] += PetscRealPart(fa[i + d]);
     }
+    /* the force on the obstacle: minus the reaction on the body, back to Cartesian */
+    for (PetscInt d = 0; d < dim; ++d)
+      for (PetscInt c = 0; c < dim; ++c) fob[MM_MAX_DIM * ct->obstacle[k] + c] -= PetscRealPart(fa[i + d]) * F[3 * d + c];
     tn = PetscSqrtReal(tn);
     vn = PetscSqrtReal(vn);
     sums[0] += r;
@@ -77,7 +88,7 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
     if (active && nr > 1 && !at_bound) res = PetscMax(res, vn * dt / (2 * ct->h_c));
     if (active && at_bound && vn > vtol) {
       PetscReal slip = 0; /* |t + mu r sigma/|sigma|| */
-      for (PetscInt d = 1; d < dim; ++d) slip += PetscSqr(PetscRealPart(fa[i + d]) + mu * r * PetscRealPart(va[i + d]) / vn);
+      for (PetscInt d = 1; d < dim; ++d) slip += PetscSqr(PetscRealPart(fa[i + d]) + mu * r * vt[d] / vn);
       res = PetscMax(res, PetscSqrtReal(slip) / fscale);
       ++cnt[2];
     } else if (active && nr > 1) ++cnt[3];
@@ -94,6 +105,10 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
     PetscCall(VecRestoreArrayRead(ct->rho_hi, &rh));
   }
   PetscCall(VecRestoreArrayRead(ct->gap, &ga));
+  PetscCall(VecRestoreArrayRead(ct->mu, &mua));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, fob, MM_MAX_DIM * nob, MPIU_REAL, MPIU_SUM, comm));
+  if (record_switches) PetscCall(PetscArraycpy(ct->force_obstacle, fob, MM_MAX_DIM * nob));
+  PetscCall(PetscFree(fob));
   PetscCall(VecRestoreArrayRead(sigma, &va));
   PetscCall(VecRestoreArrayRead(react, &fa));
   PetscCall(VecRestoreArrayRead(w, &wa));
@@ -176,8 +191,9 @@ PetscErrorCode MMContactBoundaryFields(MMCtx *ctx, MMOutput *o)
       PetscCall(VecSetValue(o->gap, ct->scalar_index[k], ga[k] - wa[i], INSERT_VALUES));
       for (PetscInt d = 1; d < dim; ++d)
         for (PetscInt c = 0; c < dim; ++c) {
-          tc[c] += fa[i + d] * ct->frame[d][c] / aa[k];
-          sc[c] += va[i + d] * ct->frame[d][c];
+          const PetscReal Vt = ct->Kt_dt > 0 ? 2 * ct->slide_ref[k * (dim - 1) + d - 1] / ct->Kt_dt : 0;
+          tc[c] += fa[i + d] * ct->node_frame[9 * k + 3 * d + c] / aa[k];
+          sc[c] += (va[i + d] - Vt) * ct->node_frame[9 * k + 3 * d + c];
         }
       PetscCall(DMPlexGetPointGlobal(o->dm_out, ct->vertex[k], &start, &end));
       for (PetscInt c = 0; c < dim; ++c) {

@@ -3,16 +3,15 @@
 #include <petscsf.h>
 #include "mesh.h"
 #include "contact_impl.h"
+#include "obstacle.h"
 
-/* Orthonormal frame (nu, tau_1[, tau_2]) with nu = -n the body's outward normal. */
-static PetscErrorCode BuildFrame(MMCtx *ctx)
+/* Orthonormal frame (nu, tau_1[, tau_2]) with nu = -n, n the obstacle's outward normal: nu is the
+ * body's outward normal. A function of n alone, so a node shared by ranks gets the same frame on
+ * each. */
+static void FrameFromNormal(PetscInt dim, const PetscReal n[], PetscReal F[MM_MAX_DIM][MM_MAX_DIM])
 {
-  PetscInt   dim = ctx->op.dim;
-  PetscReal(*F)[MM_MAX_DIM] = ctx->contact.frame;
-  const PetscReal *n = ctx->opt.obstacle_normal;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscMemzero(ctx->contact.frame, sizeof(ctx->contact.frame)));
+  for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
+    for (PetscInt b = 0; b < MM_MAX_DIM; ++b) F[a][b] = 0;
   for (PetscInt d = 0; d < dim; ++d) F[0][d] = -n[d];
   if (dim == 2) {
     F[1][0] = -F[0][1];
@@ -32,6 +31,38 @@ static PetscErrorCode BuildFrame(MMCtx *ctx)
     F[2][0] = F[0][1] * F[1][2] - F[0][2] * F[1][1];
     F[2][1] = F[0][2] * F[1][0] - F[0][0] * F[1][2];
     F[2][2] = F[0][0] * F[1][1] - F[0][1] * F[1][0];
+  }
+}
+
+/* The single plane's frame, which the static sliding state uses (sliding.c). */
+static PetscErrorCode BuildFrame(MMCtx *ctx)
+{
+  PetscFunctionBeginUser;
+  FrameFromNormal(ctx->op.dim, ctx->opt.obstacle_normal, ctx->contact.frame);
+  PetscFunctionReturn(0);
+}
+
+/* The obstacle a contact node is constrained against: the nearest, by signed distance at its
+ * reference position x (docs/method.md section 6), ties to the one listed first; its gap and normal
+ * n there. The assignment and the frame are fixed for the run: M* removes the mass of each node's
+ * normal dof, so a frame that turned would change M* and K~ and break the energy identity. */
+static PetscErrorCode NearestObstacle(MMCtx *ctx, const PetscReal x[], PetscInt *which, PetscReal *gap, PetscReal n[])
+{
+  const PetscInt dim = ctx->op.dim;
+
+  PetscFunctionBeginUser;
+  *which = -1;
+  for (PetscInt b = 0; b < ctx->opt.n_obstacles; ++b) {
+    const MMObstacle *ob = &ctx->opt.obstacles[b];
+    PetscReal         g, nb[MM_MAX_DIM] = {0, 0, 0}, len = 0;
+    PetscCall((*ob->distance)(ob, dim, x, &g, nb));
+    for (PetscInt d = 0; d < dim; ++d) len += nb[d] * nb[d];
+    if (*which >= 0 && g >= *gap) continue;
+    /* a point on a sphere's centre or a cylinder's axis has no normal */
+    PetscCheck(len > 0.5, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "A contact node at (%g, %g, %g) sits on the centre or axis of obstacle %s, where its normal is undefined: move the obstacle or the body", (double)x[0], (double)x[1], dim == 3 ? (double)x[2] : 0.0, ob->name);
+    *which = b;
+    *gap   = g;
+    for (PetscInt d = 0; d < MM_MAX_DIM; ++d) n[d] = nb[d];
   }
   PetscFunctionReturn(0);
 }
@@ -177,6 +208,8 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
   PetscCall(PetscMalloc1(n, &ct->scalar_index));
   PetscCall(PetscMalloc1(n, &ct->vertex));
   PetscCall(PetscMalloc1(n, &nodal_area));
+  PetscCall(PetscMalloc1(n, &ct->obstacle));
+  PetscCall(PetscMalloc1(9 * (size_t)n, &ct->node_frame));
   PetscCall(VecGetOwnershipRange(area, &astart, NULL));
   PetscCall(VecGetArrayRead(area, &av));
   PetscCall(MatCreateAIJ(comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, dim, NULL, 0, NULL, &ctx->op.Q));
@@ -189,9 +222,14 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
     PetscCall(PetscSectionGetConstraintDof(ls, v, &cdof));
     PetscCall(PetscSectionGetOffset(cs, v, &xoff));
     PetscCheck(cdof == 0, comm, PETSC_ERR_USER_INPUT, "A node of the contact boundary \"%s\" at (%g, %g) is also on a Dirichlet boundary. Contact dofs must be free: separate the two physical groups", ctx->opt.contact_name, (double)PetscRealPart(x[xoff]), (double)PetscRealPart(x[xoff + 1]));
-    /* g_i = (x_i - p).n, the distance to the plane along nu = -n */
-    gap[nc] = 0;
-    for (PetscInt d = 0; d < dim; ++d) gap[nc] += (PetscRealPart(x[xoff + d]) - ctx->opt.obstacle_point[d]) * ctx->opt.obstacle_normal[d];
+    {
+      PetscReal xv[MM_MAX_DIM] = {0, 0, 0}, n[MM_MAX_DIM] = {0, 0, 0}, F[MM_MAX_DIM][MM_MAX_DIM];
+      for (PetscInt d = 0; d < dim; ++d) xv[d] = PetscRealPart(x[xoff + d]);
+      PetscCall(NearestObstacle(ctx, xv, &ct->obstacle[nc], &gap[nc], n));
+      FrameFromNormal(dim, n, F);
+      for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
+        for (PetscInt b = 0; b < MM_MAX_DIM; ++b) ct->node_frame[9 * nc + 3 * a + b] = F[a][b];
+    }
     in[nc] = goff;
     {
       PetscInt sstart, send;
@@ -203,7 +241,7 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
     for (PetscInt d = 1; d < dim; ++d) it[nc * (dim - 1) + d - 1] = goff + d;
     for (PetscInt d = 0; d < dim; ++d) {
       is_contact_dof[goff - rstart + d] = 1;
-      for (PetscInt e = 0; e < dim; ++e) PetscCall(MatSetValue(ctx->op.Q, goff + d, goff + e, ct->frame[e][d], INSERT_VALUES));
+      for (PetscInt e = 0; e < dim; ++e) PetscCall(MatSetValue(ctx->op.Q, goff + d, goff + e, ct->node_frame[9 * nc + 3 * e + d], INSERT_VALUES));
     }
     ++nc;
   }
@@ -233,17 +271,24 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
   PetscCall(ISCreateGeneral(comm, nc * ct->ncomp, is, PETSC_COPY_VALUES, &ct->is_cond));
   PetscCall(VecCreateMPI(comm, nc, PETSC_DETERMINE, &ct->gap));
   PetscCall(VecDuplicate(ct->gap, &ct->area));
+  PetscCall(VecDuplicate(ct->gap, &ct->mu));
   {
-    PetscScalar *ga, *aa;
+    PetscScalar *ga, *aa, *ma;
     PetscCall(VecGetArray(ct->gap, &ga));
     PetscCall(VecGetArray(ct->area, &aa));
+    PetscCall(VecGetArray(ct->mu, &ma));
     for (PetscInt k = 0; k < nc; ++k) {
       ga[k] = gap[k];
       aa[k] = nodal_area[k];
+      ma[k] = ctx->opt.obstacles[ct->obstacle[k]].mu;
     }
+    PetscCall(VecRestoreArray(ct->mu, &ma));
     PetscCall(VecRestoreArray(ct->gap, &ga));
     PetscCall(VecRestoreArray(ct->area, &aa));
   }
+  PetscCall(VecDuplicate(ct->gap, &ct->gap0));
+  PetscCall(VecCopy(ct->gap, ct->gap0));
+  PetscCall(PetscCalloc1((size_t)nc * (dim - 1) + 1, &ct->slide_ref));
   PetscCall(PetscFree(nodal_area));
   ct->n_local = nc;
   PetscCall(MPIU_Allreduce(&nc, &ct->n_global, 1, MPIU_INT, MPI_SUM, comm));
@@ -275,6 +320,7 @@ static PetscErrorCode BuildNoContact(MMCtx *ctx)
   PetscCall(ISCreateStride(comm, n, rstart, 1, &ctx->contact.is_star));
   PetscCall(ISCreateStride(comm, n, rstart, 1, &ctx->contact.is_interior));
   PetscCall(VecCreateMPI(comm, 0, PETSC_DETERMINE, &ctx->contact.gap));
+  PetscCall(PetscCalloc1(1, &ctx->contact.slide_ref));
   PetscCall(VecDestroy(&g));
   ctx->contact.h_c = 0;
   PetscFunctionReturn(0);
@@ -291,7 +337,20 @@ PetscErrorCode MMContactSetUp(MMCtx *ctx)
   ct->enabled     = ctx->opt.contact;
   ct->tol         = ctx->opt.contact_tol;
   ct->formulation = ctx->opt.contact_formulation;
-  ct->ncomp       = ctx->opt.mu > 0 ? ctx->op.dim : 1;
+  ct->ncomp       = ctx->opt.mu_max > 0 ? ctx->op.dim : 1;
+  PetscCall(PetscCalloc1(MM_MAX_DIM * ctx->opt.n_obstacles, &ct->force_obstacle));
+  for (PetscInt b = 0; b < ctx->opt.n_obstacles; ++b)
+    for (PetscInt d = 0; d < ctx->op.dim; ++d) ct->moving = (PetscBool)(ct->moving || ctx->opt.obstacles[b].velocity[d] != 0);
+  if (ctx->opt.initial_state == MM_INITIAL_STATIC_SLIDING) {
+    const MMObstacle *ob = &ctx->opt.obstacles[0];
+    PetscBool         plane;
+    PetscCall(PetscStrcmp(ob->type, "plane", &plane));
+    PetscCheck(ctx->opt.n_obstacles == 1 && plane && !ct->moving, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "-initial_state static_sliding needs a single fixed plane obstacle: the sliding state is built on one plane");
+    for (PetscInt d = 0; d < MM_MAX_DIM; ++d) {
+      ctx->opt.obstacle_point[d]  = ob->point[d];
+      ctx->opt.obstacle_normal[d] = ob->normal[d];
+    }
+  }
   PetscCall(BuildFrame(ctx));
   if (!ct->enabled) {
     PetscCall(BuildNoContact(ctx));
@@ -303,8 +362,43 @@ PetscErrorCode MMContactSetUp(MMCtx *ctx)
   PetscCall(ContactLayerDiameter(ctx, mark));
   PetscCall(PetscFree(mark));
   PetscCall(VecDestroy(&area));
-  PetscCheck(ct->ncomp == 1 || ct->formulation != MM_CONTACT_FULL, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_SUP, "Friction (-mu %g) needs -contact_formulation condensed or active_set", (double)ctx->opt.mu);
+  PetscCheck(ct->ncomp == 1 || ct->formulation != MM_CONTACT_FULL, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_SUP, "Friction (-mu %g) needs -contact_formulation condensed or active_set", (double)ctx->opt.mu_max);
   PetscCheck(ct->n_global > 0, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "The contact boundary \"%s\" has no nodes", ctx->opt.contact_name);
   PetscFunctionReturn(0);
 }
 
+
+/* The obstacles at time t^{n+1} = t for a step of dt: each node's gap follows its obstacle's
+ * translation c(t) along the node's fixed normal, g_i(t) = g_i(0) + c(t).nu_i (exact for a plane;
+ * for a curved obstacle, exact while the node stays on its normal line, docs/method.md section 6),
+ * and the friction law measures slip relative to the obstacle's velocity V, through
+ * slide_ref = dt/2 V.tau_j. */
+PetscErrorCode MMContactSetTime(MMCtx *ctx, PetscReal t, PetscReal dt)
+{
+  MMContact         *ct  = &ctx->contact;
+  const PetscInt     dim = ctx->op.dim;
+  const PetscScalar *g0;
+  PetscScalar       *g;
+
+  PetscFunctionBeginUser;
+  if (!ct->enabled || !ct->moving) PetscFunctionReturn(0);
+  PetscCall(VecGetArrayRead(ct->gap0, &g0));
+  PetscCall(VecGetArray(ct->gap, &g));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const MMObstacle *ob = &ctx->opt.obstacles[ct->obstacle[k]];
+    const PetscReal  *F  = &ct->node_frame[9 * k];
+    const PetscBool   on = (PetscBool)(t > ob->start);
+    PetscReal         c[MM_MAX_DIM] = {0, 0, 0}, cn = 0;
+    MMObstacleDisplacement(ob, dim, t, c);
+    for (PetscInt d = 0; d < dim; ++d) cn += c[d] * F[d];
+    g[k] = g0[k] + cn;
+    for (PetscInt j = 1; j < dim; ++j) {
+      PetscReal vt = 0;
+      for (PetscInt d = 0; d < dim; ++d) vt += (on ? ob->velocity[d] : 0) * F[3 * j + d];
+      ct->slide_ref[k * (dim - 1) + j - 1] = 0.5 * dt * vt;
+    }
+  }
+  PetscCall(VecRestoreArray(ct->gap, &g));
+  PetscCall(VecRestoreArrayRead(ct->gap0, &g0));
+  PetscFunctionReturn(0);
+}

@@ -42,7 +42,7 @@ static PetscErrorCode FrictionLoop(SNES snes, Vec s)
     /* contact dofs only: the thresholds, slip, Coulomb residual and states need nothing else */
     PetscCall(MMContactSolveContactDofs(ctx, fr->b, fr->w, fr->react));
     PetscCall(MMContactGetNormalReactions(ctx, fr->s_new));
-    PetscCall(VecScale(fr->s_new, ctx->opt.mu));
+    PetscCall(VecPointwiseMult(fr->s_new, fr->s_new, ctx->contact.mu));
     PetscCall(VecNorm(s, NORM_INFINITY, &snorm));
     PetscCall(VecNorm(fr->s_new, NORM_INFINITY, &ds));
     /* relative to the thresholds, but not below mu times the nodal force of a 1e-3 strain: a
@@ -87,9 +87,9 @@ PetscErrorCode MMFrictionSetUp(MMCtx *ctx)
 
   PetscFunctionBeginUser;
   fr->coulomb_tol = ctx->opt.friction_coulomb_tol;
-  fr->s_floor     = ctx->opt.mu * 1e-3 * ctx->opt.E * PetscPowReal(ctx->contact.h_c, ctx->op.dim - 1);
+  fr->s_floor     = ctx->opt.mu_max * 1e-3 * ctx->opt.E * PetscPowReal(ctx->contact.h_c, ctx->op.dim - 1);
   fr->monitor     = ctx->opt.friction_monitor;
-  if (ctx->opt.mu == 0 || !ctx->contact.enabled) PetscFunctionReturn(0);
+  if (ctx->opt.mu_max == 0 || !ctx->contact.enabled) PetscFunctionReturn(0);
   PetscCall(SNESCreate(PetscObjectComm((PetscObject)ctx->op.dm), &fr->snes));
   PetscCall(SNESSetOptionsPrefix(fr->snes, "friction_"));
   PetscCall(SNESSetType(fr->snes, SNESSHELL));
@@ -105,7 +105,8 @@ PetscErrorCode MMFrictionSetUp(MMCtx *ctx)
   {
     Vec rn;
     PetscCall(VecGetSubVector(ctx->state.react, ctx->contact.is_normal, &rn));
-    PetscCall(VecAXPBY(fr->s, -ctx->opt.mu, 0.0, rn));
+    PetscCall(VecAXPBY(fr->s, -1.0, 0.0, rn));
+    PetscCall(VecPointwiseMult(fr->s, fr->s, ctx->contact.mu));
     PetscCall(VecRestoreSubVector(ctx->state.react, ctx->contact.is_normal, &rn));
     PetscCall(VecPointwiseMax(fr->s, fr->s, fr->s_new)); /* s_new is zero here: clip tension */
   }

@@ -140,6 +140,7 @@ static PetscErrorCode TSStep_Newmark(TS ts)
 
     dt = ts->time_step;
     PetscCall(MMContactSetStepMatrix(ctx, dt));
+    PetscCall(MMContactSetTime(ctx, ts->ptime + dt, dt));
     PetscCall(StepRHS(ctx, dt, ctx->contact.qp.b));
     /* predictor u + dt v + dt^2/4 a: exact for constant acceleration */
     PetscCall(VecAXPBYPCZ(w, dt, 0.25 * dt * dt, 0.0, s->v, s->a));

@@ -1,5 +1,6 @@
 /* Every run option of mmcontact, declared in one place with its help string. */
 #include "options.h"
+#include "obstacle.h"
 
 const char *const MMMassTypes[] = {"modified", "standard", "MMMassType", "MM_MASS_", NULL};
 const char *const MMInitialStates[] = {"given", "static_sliding", "MMInitialState", "MM_INITIAL_", NULL};
@@ -132,6 +133,85 @@ static PetscErrorCode ProcessTraction(PetscOptionItems *PetscOptionsObject, MPI_
   PetscFunctionReturn(0);
 }
 
+/* One named obstacle of -obstacles: its type and every shape parameter (each type checks the ones
+ * it needs, and refuses the others, in MMObstacleCheck once the dimension is known). */
+static PetscErrorCode ProcessObstacle(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt, MMObstacle *ob)
+{
+  char      key[512], type[32] = "plane", side[32] = "outside", types[128], help[256];
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMObstacleTypesList(types, sizeof(types)));
+  PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_type", ob->name));
+  PetscCall(PetscSNPrintf(help, sizeof(help), "Shape of this obstacle: %s (default plane)", types));
+  PetscCall(PetscOptionsString(key, help, NULL, type, type, sizeof(type), NULL));
+  PetscCall(MMObstacleSetType(ob, comm, type));
+  PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_point", ob->name));
+  PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "plane: a point of the plane; cylinder: a point on the axis; d entries", MM_MAX_DIM, ob->point, &ob->npoint));
+  PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_normal", ob->name));
+  PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "plane: normal pointing out of the obstacle, towards the body (normalized), d entries", MM_MAX_DIM, ob->normal, &ob->nnormal));
+  PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_center", ob->name));
+  PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "sphere, circle: the centre, d entries", MM_MAX_DIM, ob->center, &ob->ncenter));
+  PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_axis", ob->name));
+  PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "cylinder: the axis direction (normalized), 3 entries", MM_MAX_DIM, ob->axis, &ob->naxis));
+  PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_radius", ob->name));
+  PetscCall(PetscOptionsReal(key, "sphere, circle, cylinder: the radius, > 0", NULL, ob->radius, &ob->radius, &ob->radius_set));
+  PetscCall(CheckFinite(comm, key, &ob->radius, 1));
+  PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_side", ob->name));
+  PetscCall(PetscOptionsString(key, "sphere, circle, cylinder: outside (the body outside the shape: a bump) or inside (the body inside it: a bowl, a rail, a cavity)", NULL, side, side, sizeof(side), &set));
+  {
+    PetscBool out, in;
+    PetscCall(PetscStrcmp(side, "outside", &out));
+    PetscCall(PetscStrcmp(side, "inside", &in));
+    PetscCheck(out || in, comm, PETSC_ERR_USER_INPUT, "%s %s: use outside or inside", key, side);
+    ob->inside = in;
+  }
+  ob->mu = opt->mu;
+  PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_mu", ob->name));
+  PetscCall(OptionsReal(PetscOptionsObject, comm, key, "Coulomb friction coefficient against this obstacle, >= 0 (default -mu)", &ob->mu));
+  PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_velocity", ob->name));
+  PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "Constant translation velocity of the obstacle from -obstacle_NAME_start on, d entries (default 0: fixed)", MM_MAX_DIM, ob->velocity, &ob->nvelocity));
+  PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_start", ob->name));
+  PetscCall(OptionsReal(PetscOptionsObject, comm, key, "Time at which the obstacle starts moving, >= 0 (default 0)", &ob->start));
+  PetscFunctionReturn(0);
+}
+
+/* -obstacles NAME,... or, without it, the single plane of -obstacle_point and -obstacle_normal
+ * (completed once the dimension is known). */
+static PetscErrorCode ProcessObstacles(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt)
+{
+  char     list[PETSC_MAX_PATH_LEN] = "", **names;
+  PetscInt n;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsString("-obstacles", "Comma-separated names of the rigid obstacles; each takes -obstacle_NAME_type plane|sphere|circle|cylinder and its parameters. Each contact node is constrained against the one nearest to it in the reference configuration (default: one plane, -obstacle_point and -obstacle_normal)", NULL, list, list, sizeof(list), NULL));
+  PetscCall(SplitNames(list, &n, &names));
+  opt->obstacles_named = (PetscBool)(n > 0);
+  PetscCheck(!n || (opt->vec_count[MM_V_OBSTACLE_POINT] < 0 && opt->vec_count[MM_V_OBSTACLE_NORMAL] < 0), comm, PETSC_ERR_USER_INPUT, "-obstacles %s and -obstacle_point/-obstacle_normal were both given: give the plane as one of the named obstacles (-obstacle_NAME_type plane -obstacle_NAME_point ... -obstacle_NAME_normal ...)", list);
+  opt->n_obstacles = n ? n : 1;
+  PetscCall(PetscCalloc1(opt->n_obstacles, &opt->obstacles));
+  for (PetscInt b = 0; b < opt->n_obstacles; ++b) {
+    MMObstacle *ob = &opt->obstacles[b];
+    ob->npoint = ob->nnormal = ob->ncenter = ob->naxis = ob->nvelocity = -1;
+    if (!n) {
+      PetscCall(PetscStrncpy(ob->name, "plane", sizeof(ob->name)));
+      PetscCall(MMObstacleSetType(ob, comm, "plane"));
+      ob->mu = opt->mu;
+      continue;
+    }
+    PetscCheck(names[b][0], comm, PETSC_ERR_USER_INPUT, "-obstacles %s has an empty name", list);
+    for (PetscInt a = 0; a < b; ++a) {
+      PetscBool same;
+      PetscCall(PetscStrcmp(names[a], names[b], &same));
+      PetscCheck(!same, comm, PETSC_ERR_USER_INPUT, "-obstacles %s names %s twice", list, names[b]);
+    }
+    PetscCall(PetscStrncpy(ob->name, names[b], sizeof(ob->name)));
+    PetscCall(ProcessObstacle(PetscOptionsObject, comm, opt, ob));
+  }
+  PetscCall(PetscStrToArrayDestroy((int)n, names));
+  PetscFunctionReturn(0);
+}
+
 /* The ranges of the scalar options, each refused with its range. */
 static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
 {
@@ -204,6 +284,7 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
 
   opt->mu = 0.0;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-mu", "Coulomb friction coefficient, >= 0 (0: frictionless, the friction loop is skipped)", &opt->mu));
+  PetscCall(ProcessObstacles(PetscOptionsObject, comm, opt));
   opt->friction_coulomb_tol = 1e-8;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-friction_coulomb_tol", "The friction loop converges when the thresholds change less than -friction_snes_rtol (default 1e-10) and the discrete Coulomb residual is below this, in (0, 1)", &opt->friction_coulomb_tol));
   opt->friction_monitor = PETSC_FALSE;
@@ -274,6 +355,19 @@ PetscErrorCode MMOptionsCheckDimension(MPI_Comm comm, MMOptions *opt, PetscInt d
   nrm = PetscSqrtReal(nrm);
   PetscCheck(PetscAbsReal(nrm - 1.0) < 1e-6, comm, PETSC_ERR_USER_INPUT, "-obstacle_normal must be a unit vector, its norm is %g", (double)nrm);
   for (PetscInt d = 0; d < dim; ++d) opt->obstacle_normal[d] /= nrm;
+  if (!opt->obstacles_named) {
+    MMObstacle *ob = &opt->obstacles[0];
+    for (PetscInt d = 0; d < MM_MAX_DIM; ++d) {
+      ob->point[d]  = opt->obstacle_point[d];
+      ob->normal[d] = opt->obstacle_normal[d];
+    }
+    ob->npoint = ob->nnormal = dim;
+  }
+  opt->mu_max = 0;
+  for (PetscInt b = 0; b < opt->n_obstacles; ++b) {
+    PetscCall(MMObstacleCheck(&opt->obstacles[b], comm, dim));
+    opt->mu_max = PetscMax(opt->mu_max, opt->obstacles[b].mu);
+  }
   for (PetscInt b = 0; b < opt->n_dirichlet; ++b) {
     MMDirichlet *bc = &opt->dirichlet[b];
     if (bc->ncomp < 0) {
@@ -297,5 +391,6 @@ PetscErrorCode MMOptionsDestroy(MMOptions *opt)
   for (PetscInt b = 0; b < opt->n_traction; ++b) PetscCall(PetscFree(opt->traction[b].name));
   PetscCall(PetscFree(opt->dirichlet));
   PetscCall(PetscFree(opt->traction));
+  PetscCall(PetscFree(opt->obstacles));
   PetscFunctionReturn(0);
 }
