@@ -61,7 +61,7 @@ typedef struct {
   PetscInt  nvalues; /* entries given to -traction_NAME_value, -1 if not set */
 } MMTraction;
 
-/* A rigid obstacle (docs/method.md section 6): a shape from the registry (src/obstacle*.c) that
+/* A rigid obstacle (docs/method.md section 8): a shape from the registry (src/obstacle*.c) that
  * gives the signed distance of a point and its gradient, the outward normal of the obstacle; it
  * may translate at a constant velocity from a start time. */
 typedef struct _MMObstacle MMObstacle;
@@ -317,6 +317,7 @@ typedef struct {
   PetscReal time, dt;
   PetscReal kinetic, elastic, total;
   PetscReal work_ext, work_contact, work_friction; /* running sums */
+  PetscReal work_obstacle;     /* running sum: the work of the moving obstacles' contact forces */
   PetscReal balance_residual;
   PetscInt  active, slipping, switched;
   PetscReal force_normal, force_tangential, max_penetration, coulomb_residual;

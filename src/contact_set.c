@@ -43,7 +43,7 @@ static PetscErrorCode BuildFrame(MMCtx *ctx)
 }
 
 /* The obstacle a contact node is constrained against: the nearest, by signed distance at its
- * reference position x (docs/method.md section 6), ties to the one listed first; its gap and normal
+ * reference position x (docs/method.md section 8), ties to the one listed first; its gap and normal
  * n there. The assignment and the frame are fixed for the run: M* removes the mass of each node's
  * normal dof, so a frame that turned would change M* and K~ and break the energy identity. */
 static PetscErrorCode NearestObstacle(MMCtx *ctx, const PetscReal x[], PetscInt *which, PetscReal *gap, PetscReal n[])
@@ -370,7 +370,7 @@ PetscErrorCode MMContactSetUp(MMCtx *ctx)
 
 /* The obstacles at time t^{n+1} = t for a step of dt: each node's gap follows its obstacle's
  * translation c(t) along the node's fixed normal, g_i(t) = g_i(0) + c(t).nu_i (exact for a plane;
- * for a curved obstacle, exact while the node stays on its normal line, docs/method.md section 6),
+ * for a curved obstacle, exact while the node stays on its normal line, docs/method.md section 8),
  * and the friction law measures slip relative to the obstacle's velocity V, through
  * slide_ref = dt/2 V.tau_j. */
 PetscErrorCode MMContactSetTime(MMCtx *ctx, PetscReal t, PetscReal dt)

@@ -2,6 +2,7 @@
 #include "energy.h"
 #include "contact.h"
 #include "fem.h"
+#include "obstacle.h"
 
 static PetscErrorCode KineticEnergy(MMCtx *ctx, Vec v, PetscReal *ek)
 {
@@ -43,8 +44,52 @@ static PetscErrorCode TrapezoidalWork(MMCtx *ctx, IS is, Vec du, PetscReal *work
   PetscFunctionReturn(0);
 }
 
+/* The work of the moving obstacles over the step from t0 to t1: at each contact node, the
+ * trapezoidal contact force (frame components, normal and tangential) times the obstacle's
+ * displacement in the node's frame (docs/method.md section 8). The contact and friction works on
+ * the body split into this and the method's own remainder; wn and wt are the normal and
+ * tangential parts. Zero when nothing moves. */
+static PetscErrorCode ObstacleWork(MMCtx *ctx, PetscReal t0, PetscReal t1, PetscReal *wn, PetscReal *wt)
+{
+  MMContact         *ct  = &ctx->contact;
+  const PetscInt     dim = ctx->op.dim;
+  const PetscInt    *in;
+  const PetscScalar *f1, *f0;
+  PetscInt           rstart;
+  PetscReal          w[2] = {0, 0};
+
+  PetscFunctionBeginUser;
+  *wn = *wt = 0;
+  if (!ct->enabled || !ct->moving) PetscFunctionReturn(0);
+  PetscCall(VecGetOwnershipRange(ctx->state.react, &rstart, NULL));
+  PetscCall(ISGetIndices(ct->is_normal, &in));
+  PetscCall(VecGetArrayRead(ctx->state.react, &f1));
+  PetscCall(VecGetArrayRead(ctx->state.react_old, &f0));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const MMObstacle *ob = &ctx->opt.obstacles[ct->obstacle[k]];
+    const PetscReal  *F  = &ct->node_frame[9 * k];
+    PetscReal         c0[MM_MAX_DIM] = {0, 0, 0}, c1[MM_MAX_DIM] = {0, 0, 0};
+    MMObstacleDisplacement(ob, dim, t0, c0);
+    MMObstacleDisplacement(ob, dim, t1, c1);
+    for (PetscInt j = 0; j < dim; ++j) {
+      const PetscInt i  = in[k] - rstart + j;
+      PetscReal      dc = 0;
+      for (PetscInt d = 0; d < dim; ++d) dc += (c1[d] - c0[d]) * F[3 * j + d];
+      w[j ? 1 : 0] += 0.5 * PetscRealPart(f1[i] + f0[i]) * dc;
+    }
+  }
+  PetscCall(VecRestoreArrayRead(ctx->state.react_old, &f0));
+  PetscCall(VecRestoreArrayRead(ctx->state.react, &f1));
+  PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, w, 2, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)ctx->op.dm)));
+  *wn = w[0];
+  *wt = w[1];
+  PetscFunctionReturn(0);
+}
+
 /* W_c of a candidate step w (not yet accepted: u still holds u^n), for the contact-work guard; the
- * stepper keeps the accepted step's value in state.work_contact for the energy audit. */
+ * stepper keeps the accepted step's value in state.work_contact for the energy audit. It excludes
+ * the moving obstacles' normal work, which is not the method's doing. */
 PetscErrorCode MMEnergyContactWork(MMCtx *ctx, Vec w, PetscReal *w_c)
 {
   MMState *s = &ctx->state;
@@ -54,6 +99,11 @@ PetscErrorCode MMEnergyContactWork(MMCtx *ctx, Vec w, PetscReal *w_c)
   if (!ctx->contact.enabled) PetscFunctionReturn(0);
   PetscCall(VecWAXPY(s->work, -1.0, s->u, w));
   PetscCall(TrapezoidalWork(ctx, ctx->contact.is_normal, s->work, w_c));
+  {
+    PetscReal wn, wt;
+    PetscCall(ObstacleWork(ctx, ctx->hist.time, ctx->hist.time + ctx->contact.Kt_dt, &wn, &wt));
+    *w_c -= wn;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -78,7 +128,7 @@ PetscErrorCode MMEnergyInitial(MMCtx *ctx)
   PetscFunctionBeginUser;
   h->step = 0;
   h->time = 0;
-  h->work_ext = h->work_contact = h->work_friction = 0;
+  h->work_ext = h->work_contact = h->work_friction = h->work_obstacle = 0;
   h->balance_residual = h->max_balance = h->max_penetration_run = 0;
   h->cfl = ctx->contact.enabled ? ctx->op.c_p * h->dt / ctx->contact.h_c : 0;
   PetscCall(MMFECheckElasticEnergy(ctx, ctx->state.u));
@@ -98,7 +148,7 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
 {
   MMHistory  *h = &ctx->hist;
   MMState    *s = &ctx->state;
-  PetscReal   E_old = h->total, w_ext, w_c = s->work_contact, w_f = 0;
+  PetscReal   E_old = h->total, w_ext, w_c = s->work_contact, w_f = 0, w_obs = 0;
   PetscScalar Ldu;
 
   PetscFunctionBeginUser;
@@ -108,6 +158,14 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
   w_ext = PetscRealPart(Ldu);
   /* W_c was computed on this very state by the contact-work guard (MMEnergyContactWork) */
   if (ctx->contact.enabled) PetscCall(TrapezoidalWork(ctx, ctx->contact.is_tangent, s->work, &w_f));
+  {
+    PetscReal wn, wt;
+    /* h->time is already t^{n+1} */
+    PetscCall(ObstacleWork(ctx, h->time - s->dt, h->time, &wn, &wt));
+    w_f -= wt;
+    h->work_obstacle += wn + wt;
+    w_obs = wn + wt;
+  }
   h->dt = s->dt;
   PetscCall(TotalEnergy(ctx, h));
   PetscCall(CheckFinite(ctx, h, w_ext, w_c, w_f));
@@ -116,7 +174,7 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
   h->work_friction += w_f;
   /* relative to the run's energy scale, so that a body coming to rest does not inflate it */
   h->energy_scale     = PetscMax(h->energy_scale, PetscAbsReal(h->total));
-  h->balance_residual = PetscAbsReal(h->total - E_old - w_ext - w_c - w_f) / PetscMax(h->energy_scale, PETSC_SMALL * PETSC_SMALL);
+  h->balance_residual = PetscAbsReal(h->total - E_old - w_ext - w_c - w_f - w_obs) / PetscMax(h->energy_scale, PETSC_SMALL * PETSC_SMALL);
   h->max_balance      = PetscMax(h->max_balance, h->balance_residual);
   PetscCheck(h->balance_residual <= ctx->opt.audit_tol, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_NOT_CONVERGED,
              "Energy audit failed at step %" PetscInt_FMT " (t = %g): balance residual %.3e > -audit_tol %.1e. The step was not solved exactly: tighten -contact_tol or the -contact_snes tolerances. The output up to the previous step is intact",

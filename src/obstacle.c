@@ -1,5 +1,5 @@
 /* The registry of rigid obstacle shapes: each type sets the check of its parameters and its signed
- * distance (docs/method.md section 6). A new shape is one file and one line in MMObstacleRegisterAll. */
+ * distance (docs/method.md section 8). A new shape is one file and one line in MMObstacleRegisterAll. */
 #include "obstacle.h"
 
 static PetscFunctionList ObstacleList = NULL;

@@ -163,7 +163,10 @@ static PetscErrorCode CSVHeader(MMCtx *ctx)
   for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",vcm_%c", axes[d]));
   if (dim == 2) PetscCall(LineAdd(&l, ",L_z"));
   else PetscCall(LineAdd(&l, ",L_x,L_y,L_z"));
-  PetscCall(LineAdd(&l, ",switched,contraction,candidates,candidate_resolves\n"));
+  PetscCall(LineAdd(&l, ",switched,contraction,candidates,candidate_resolves,work_obstacle"));
+  for (PetscInt b = 0; b < ctx->opt.n_obstacles; ++b)
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",force_%s_%c", ctx->opt.obstacles[b].name, axes[d]));
+  PetscCall(LineAdd(&l, "\n"));
   PetscCall(CSVWrite(&ctx->out, &l));
   PetscFunctionReturn(0);
 }
@@ -181,7 +184,10 @@ static PetscErrorCode CSVRow(MMCtx *ctx)
   for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",%.16e", (double)h->vcm[d]));
   if (dim == 2) PetscCall(LineAdd(&l, ",%.16e", (double)h->L[2]));
   else PetscCall(LineAdd(&l, ",%.16e,%.16e,%.16e", (double)h->L[0], (double)h->L[1], (double)h->L[2]));
-  PetscCall(LineAdd(&l, ",%" PetscInt_FMT ",%.6e,%" PetscInt_FMT ",%" PetscInt_FMT "\n", h->switched, (double)h->contraction, h->candidates, h->resolves));
+  PetscCall(LineAdd(&l, ",%" PetscInt_FMT ",%.6e,%" PetscInt_FMT ",%" PetscInt_FMT ",%.16e", h->switched, (double)h->contraction, h->candidates, h->resolves, (double)h->work_obstacle));
+  for (PetscInt b = 0; b < ctx->opt.n_obstacles; ++b)
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",%.16e", ctx->contact.enabled ? (double)ctx->contact.force_obstacle[MM_MAX_DIM * b + d] : 0.0));
+  PetscCall(LineAdd(&l, "\n"));
   PetscCall(CSVWrite(&ctx->out, &l));
   PetscFunctionReturn(0);
 }

@@ -34,7 +34,8 @@ def run(case, tmp_path, *extra, np_=1, name="out", check=True):
     the 1.4 s of MPI's abort path."""
     outdir = str(tmp_path / name)
     launcher = MPIEXEC + ["-n", str(np_)] if np_ > 0 else []
-    args = launcher + [EXE, "-options_file", os.path.join(ROOT, "options", case + ".opts"),
+    opts = case if case.endswith(".opts") else os.path.join(ROOT, "options", case + ".opts")  # a case name or a file
+    args = launcher + [EXE, "-options_file", opts,
                        "-output_dir", outdir, "-options_left", *map(str, extra)]
     proc = subprocess.run(args, cwd=ROOT, capture_output=True, text=True, timeout=900)
     r = Run(proc, outdir)
