@@ -50,7 +50,8 @@ def test_history_and_xdmf(tmp_path):
     with open(os.path.join(r.outdir, "history.csv")) as f:
         header = f.readline().strip().split(",")
     assert header[:len(HEADER)] == HEADER
-    assert header[len(HEADER):] == ["ucm_x", "ucm_y", "vcm_x", "vcm_y", "L_z", "switched", "contraction", "candidates", "candidate_resolves"]
+    assert header[len(HEADER):] == ["ucm_x", "ucm_y", "vcm_x", "vcm_y", "L_z", "switched", "contraction", "candidates", "candidate_resolves",
+                                      "work_obstacle", "force_plane_x", "force_plane_y"]  # the default obstacle is "plane"
     h = r.history
     assert len(h) == 26 and h["step"][-1] == 25
     root = ET.parse(os.path.join(r.outdir, "solution.xmf")).getroot()
