@@ -106,8 +106,8 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
   }
   PetscCall(VecRestoreArrayRead(ct->gap, &ga));
   PetscCall(VecRestoreArrayRead(ct->mu, &mua));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, fob, MM_MAX_DIM * nob, MPIU_REAL, MPIU_SUM, comm));
-  if (record_switches) PetscCall(PetscArraycpy(ct->force_obstacle, fob, MM_MAX_DIM * nob));
+  /* the obstacle forces are recorded for accepted steps only: no reduction inside the friction loop */
+  if (record_switches) PetscCall(MPIU_Allreduce(fob, ct->force_obstacle, MM_MAX_DIM * nob, MPIU_REAL, MPIU_SUM, comm));
   PetscCall(PetscFree(fob));
   PetscCall(VecRestoreArrayRead(sigma, &va));
   PetscCall(VecRestoreArrayRead(react, &fa));
