@@ -17,6 +17,8 @@ OBJ  := $(SRC:src/%.c=build/%.o)
 HDR  := $(wildcard include/*.h)
 CFLAGS_MM := ${PETSC_CC_INCLUDES} -Iinclude -O2 -Wall
 MSH  := meshes/bar80.msh meshes/bar100.msh meshes/disk.msh meshes/ball.msh meshes/block.msh meshes/box.msh
+# The cases with several, curved and moving obstacles (README "Cases")
+MSH  += meshes/ball_bowl.msh meshes/disk_rail.msh meshes/block_push.msh meshes/ball_vgroove.msh meshes/block_squeeze.msh
 # Bench meshes: the 2D D1 disk (115k dofs), the 3D D2 ball (H 0.045: 113k dofs, 3.8k contact nodes)
 # and the large D2 ball of `make bench-large` (H 0.021: about 1M dofs), generated when first needed.
 BALL_BENCH_H ?= 0.045
@@ -57,6 +59,16 @@ meshes/box.msh: meshes/box.geo
 	gmsh -3 $< -o $@ -v 2
 meshes/ball.msh: meshes/ball.geo
 	gmsh -3 $< -o $@ -v 2
+meshes/ball_bowl.msh: meshes/ball_bowl.geo
+	gmsh -3 $< -o $@ -v 2
+meshes/disk_rail.msh: meshes/disk_rail.geo
+	gmsh -2 $< -o $@ -v 2
+meshes/block_push.msh: meshes/block_push.geo
+	gmsh -2 $< -o $@ -v 2
+meshes/ball_vgroove.msh: meshes/ball.geo
+	gmsh -3 $< -setnumber G 0.45 -o $@ -v 2
+meshes/block_squeeze.msh: meshes/block_squeeze.geo
+	gmsh -2 $< -o $@ -v 2
 meshes/disk_bench.msh: meshes/disk.geo
 	gmsh -2 $< -setnumber H 0.008 -setnumber G 0.001 -o $@ -v 2
 meshes/ball_bench.msh: meshes/ball.geo

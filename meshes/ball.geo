@@ -1,4 +1,5 @@
-// Elastic ball of radius R centred at (0, 0, R + G) above the plane z = 0 (showcase D2).
+// Elastic ball of radius R centred at (0, 0, R + G) above the plane z = 0 (showcase D2; with
+// G = 0.45, the V-groove case ball_vgroove).
 // Physical names: body (volume), contact (lower hemisphere), upper (upper hemisphere).
 // Parameters: R radius, G initial gap, H mesh size.
 SetFactory("OpenCASCADE");
