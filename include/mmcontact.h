@@ -63,7 +63,7 @@ typedef struct {
 
 /* A rigid obstacle (docs/method.md section 8): a shape from the registry (src/obstacle*.c) that
  * gives the signed distance of a point and its gradient, the outward normal of the obstacle; it
- * may translate at a constant velocity from a start time. */
+ * may translate at a constant velocity between a start and a stop time. */
 typedef struct _MMObstacle MMObstacle;
 struct _MMObstacle {
   char      name[64], type[32];
@@ -72,7 +72,7 @@ struct _MMObstacle {
   PetscBool radius_set;
   PetscBool inside;                  /* the body is inside the sphere, circle or cylinder */
   PetscReal mu;                      /* friction coefficient against this obstacle */
-  PetscReal velocity[MM_MAX_DIM], start;
+  PetscReal velocity[MM_MAX_DIM], start, stop; /* moves at velocity for start < t <= stop */
   /* checks the parameters the shape needs, once the dimension is known */
   PetscErrorCode (*check)(MMObstacle *, MPI_Comm, PetscInt);
   /* signed distance g of x (positive outside the obstacle) and n = grad g, in the obstacle's
@@ -325,6 +325,7 @@ typedef struct {
   PetscInt  candidates, resolves; /* the step's candidate-set size; VI re-solves after the set grew, over the run */
   PetscReal cfl, contraction;
   PetscReal ucm[MM_MAX_DIM], vcm[MM_MAX_DIM], L[MM_MAX_DIM];
+  PetscReal P[MM_MAX_DIM], J[3], load[MM_MAX_DIM]; /* the scheme's momenta and the loads' resultant */
   PetscReal max_balance, max_penetration_run; /* over the run, for the summary */
   PetscReal energy_scale;                     /* the largest |E| of the run so far */
 } MMHistory;
@@ -344,6 +345,7 @@ typedef struct {
   Vec           disp_cart, vel_cart;   /* Cartesian output fields on dm_out */
   DM            dm_scalar;             /* one scalar per vertex: pressure, gap */
   Vec           pressure, gap;
+  Vec           obstacle;              /* each contact node's obstacle (index in -obstacles), -1 elsewhere: written once */
   Vec           traction_t, slip;      /* tangential traction and slip velocity on the contact boundary (dm_out) */
 } MMOutput;
 

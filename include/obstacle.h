@@ -6,6 +6,7 @@ PETSC_EXTERN PetscErrorCode MMObstacleSetType(MMObstacle *, MPI_Comm, const char
 PETSC_EXTERN PetscErrorCode MMObstacleTypesList(char[], size_t);
 PETSC_EXTERN PetscErrorCode MMObstacleCheck(MMObstacle *, MPI_Comm, PetscInt);
 PETSC_EXTERN void           MMObstacleDisplacement(const MMObstacle *, PetscInt, PetscReal, PetscReal[]);
+PETSC_EXTERN void           MMObstacleVelocity(const MMObstacle *, PetscInt, PetscReal, PetscReal[]);
 PETSC_EXTERN PetscErrorCode MMObstacleFinalize(void);
 PETSC_EXTERN PetscErrorCode MMObstacleCreate_Plane(MMObstacle *);
 PETSC_EXTERN PetscErrorCode MMObstacleCreate_Sphere(MMObstacle *);

@@ -9,6 +9,10 @@ typedef struct {
   PetscInt  active, switched, slipping, sticking;
   PetscReal force_normal, force_t[MM_MAX_DIM], max_penetration, coulomb;
 } ContactStats;
+/* force_t: in 2D the sum of the tangential reactions along each node's tangent (the tangents turn
+ * with the normals, so the sum does not depend on the orientation of the mesh); in 3D the
+ * Cartesian resultant of the tangential reactions, since the tangent bases of two nodes need not
+ * share an orientation. */
 
 static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma, PetscBool record_switches, ContactStats *st)
 {
@@ -58,7 +62,9 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
       vt[d] = PetscRealPart(va[i + d]) - (dt > 0 ? 2 * ct->slide_ref[k * (dim - 1) + d - 1] / dt : 0);
       tn += PetscSqr(PetscRealPart(fa[i + d]));
       vn += PetscSqr(vt[d]);
-      sums[d] += PetscRealPart(fa[i + d]);
+      if (dim == 2) sums[d] += PetscRealPart(fa[i + d]);
+      else
+        for (PetscInt c = 0; c < dim; ++c) sums[1 + c] += PetscRealPart(fa[i + d]) * F[3 * d + c];
     }
     /* the force on the obstacle: minus the reaction on the body, back to Cartesian */
     for (PetscInt d = 0; d < dim; ++d)
@@ -121,7 +127,7 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
   st->slipping        = cnt[2];
   st->sticking        = cnt[3];
   st->force_normal    = sums[0];
-  for (PetscInt d = 1; d < dim; ++d) st->force_t[d - 1] = sums[d];
+  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) st->force_t[d] = sums[1 + d];
   st->coulomb         = PetscMax(loc[0], 0.0);
   st->max_penetration = PetscMax(loc[1], 0.0);
   PetscFunctionReturn(0);
@@ -151,7 +157,7 @@ PetscErrorCode MMContactDiagnostics(MMCtx *ctx, Vec w, Vec react, Vec v, MMHisto
   h->switched         = st.switched;
   h->slipping         = st.slipping;
   h->force_normal     = st.force_normal;
-  h->force_tangential = ctx->op.dim == 2 ? st.force_t[0] : PetscSqrtReal(PetscSqr(st.force_t[0]) + PetscSqr(st.force_t[1]));
+  h->force_tangential = ctx->op.dim == 2 ? st.force_t[0] : PetscSqrtReal(PetscSqr(st.force_t[0]) + PetscSqr(st.force_t[1]) + PetscSqr(st.force_t[2]));
   h->max_penetration  = st.max_penetration;
   h->coulomb_residual = st.coulomb;
   h->vi_its           = ctx->contact.vi_its;
@@ -215,3 +221,18 @@ PetscErrorCode MMContactBoundaryFields(MMCtx *ctx, MMOutput *o)
   PetscFunctionReturn(0);
 }
 
+
+/* The output field of each contact node's obstacle (its index in -obstacles), -1 off the contact
+ * boundary. */
+PetscErrorCode MMContactObstacleField(MMCtx *ctx, Vec field)
+{
+  MMContact *ct = &ctx->contact;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecSet(field, -1.0));
+  if (ct->enabled)
+    for (PetscInt k = 0; k < ct->n_local; ++k) PetscCall(VecSetValue(field, ct->scalar_index[k], (PetscScalar)ct->obstacle[k], INSERT_VALUES));
+  PetscCall(VecAssemblyBegin(field));
+  PetscCall(VecAssemblyEnd(field));
+  PetscFunctionReturn(0);
+}

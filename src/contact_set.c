@@ -387,14 +387,14 @@ PetscErrorCode MMContactSetTime(MMCtx *ctx, PetscReal t, PetscReal dt)
   for (PetscInt k = 0; k < ct->n_local; ++k) {
     const MMObstacle *ob = &ctx->opt.obstacles[ct->obstacle[k]];
     const PetscReal  *F  = &ct->node_frame[9 * k];
-    const PetscBool   on = (PetscBool)(t > ob->start);
-    PetscReal         c[MM_MAX_DIM] = {0, 0, 0}, cn = 0;
+    PetscReal         c[MM_MAX_DIM] = {0, 0, 0}, V[MM_MAX_DIM] = {0, 0, 0}, cn = 0;
     MMObstacleDisplacement(ob, dim, t, c);
+    MMObstacleVelocity(ob, dim, t, V);
     for (PetscInt d = 0; d < dim; ++d) cn += c[d] * F[d];
     g[k] = g0[k] + cn;
     for (PetscInt j = 1; j < dim; ++j) {
       PetscReal vt = 0;
-      for (PetscInt d = 0; d < dim; ++d) vt += (on ? ob->velocity[d] : 0) * F[3 * j + d];
+      for (PetscInt d = 0; d < dim; ++d) vt += V[d] * F[3 * j + d];
       ct->slide_ref[k * (dim - 1) + j - 1] = 0.5 * dt * vt;
     }
   }

@@ -189,6 +189,69 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
+/* The momenta the scheme balances exactly (docs/method.md section 4): P = sum_i (M* v)_i and
+ * J = sum_i X_i x (M* v)_i about the origin, X_i the reference position, and the resultant of the
+ * loads L, all Cartesian. Rigid translations and infinitesimal rotations are in the kernel of the
+ * stiffness, so P and J change over a step by dt times the trapezoidal mean of the resultant (and
+ * moment) of L and the contact forces: no elastic term, whatever the deformation. */
+static PetscErrorCode SchemeMomenta(MMCtx *ctx, MMHistory *h)
+{
+  DM                 dm  = ctx->op.dm;
+  const PetscInt     dim = ctx->op.dim;
+  PetscSection       gs, ls, cs;
+  PetscInt           vStart, vEnd, rstart;
+  Vec                mv, lc, X;
+  const PetscScalar *p, *l, *x;
+  PetscReal          sum[2 * MM_MAX_DIM + 3] = {0};
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalVector(dm, &mv));
+  PetscCall(DMGetGlobalVector(dm, &lc));
+  PetscCall(MatMult(ctx->op.Mstar, ctx->state.v, ctx->state.work));
+  PetscCall(MMFEToCartesian(ctx, ctx->state.work, mv));
+  PetscCall(MMFEToCartesian(ctx, ctx->op.load, lc));
+  PetscCall(DMGetGlobalSection(dm, &gs));
+  PetscCall(DMGetLocalSection(dm, &ls));
+  PetscCall(DMGetCoordinateSection(dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(VecGetOwnershipRange(mv, &rstart, NULL));
+  PetscCall(VecGetArrayRead(mv, &p));
+  PetscCall(VecGetArrayRead(lc, &l));
+  PetscCall(VecGetArrayRead(X, &x));
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt  goff, cdof, xoff;
+    PetscReal r[3] = {0, 0, 0}, q[3] = {0, 0, 0};
+
+    PetscCall(PetscSectionGetOffset(gs, v, &goff));
+    PetscCall(PetscSectionGetConstraintDof(ls, v, &cdof));
+    if (goff < 0 || cdof) continue; /* another rank's, or held by Dirichlet data */
+    PetscCall(PetscSectionGetOffset(cs, v, &xoff));
+    goff -= rstart;
+    for (PetscInt d = 0; d < dim; ++d) {
+      r[d] = PetscRealPart(x[xoff + d]);
+      q[d] = PetscRealPart(p[goff + d]);
+      sum[d] += q[d];
+      sum[MM_MAX_DIM + 3 + d] += PetscRealPart(l[goff + d]);
+    }
+    sum[MM_MAX_DIM + 0] += r[1] * q[2] - r[2] * q[1];
+    sum[MM_MAX_DIM + 1] += r[2] * q[0] - r[0] * q[2];
+    sum[MM_MAX_DIM + 2] += r[0] * q[1] - r[1] * q[0];
+  }
+  PetscCall(VecRestoreArrayRead(X, &x));
+  PetscCall(VecRestoreArrayRead(lc, &l));
+  PetscCall(VecRestoreArrayRead(mv, &p));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, 2 * MM_MAX_DIM + 3, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)dm)));
+  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) {
+    h->P[d]    = sum[d];
+    h->load[d] = sum[MM_MAX_DIM + 3 + d];
+  }
+  for (PetscInt d = 0; d < 3; ++d) h->J[d] = sum[MM_MAX_DIM + d];
+  PetscCall(DMRestoreGlobalVector(dm, &lc));
+  PetscCall(DMRestoreGlobalVector(dm, &mv));
+  PetscFunctionReturn(0);
+}
+
 /* Centre-of-mass displacement and velocity, and angular momentum about the centre of mass, with
  * the lumped standard mass of the nodes whose dofs are all free (a constrained body is not free). */
 PetscErrorCode MMRigidBodyDiagnostics(MMCtx *ctx, MMHistory *h)
@@ -260,6 +323,7 @@ PetscErrorCode MMRigidBodyDiagnostics(MMCtx *ctx, MMHistory *h)
     }
     PetscCall(MPIU_Allreduce(L, h->L, 3, MPIU_REAL, MPIU_SUM, comm));
   }
+  PetscCall(SchemeMomenta(ctx, h));
   PetscCall(VecRestoreArrayRead(X, &x));
   PetscCall(VecRestoreArrayRead(ctx->op.mass_lumped_cart, &m));
   PetscCall(VecRestoreArrayRead(vc, &v));

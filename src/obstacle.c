@@ -58,14 +58,22 @@ PetscErrorCode MMObstacleCheck(MMObstacle *ob, MPI_Comm comm, PetscInt dim)
   PetscCheck(ob->nvelocity < 0 || ob->nvelocity == dim, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_velocity has %" PetscInt_FMT " entries; the mesh is %" PetscInt_FMT "D, so it needs exactly %" PetscInt_FMT, ob->name, ob->nvelocity, dim, dim);
   PetscCheck(ob->mu >= 0, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_mu %g must be >= 0", ob->name, (double)ob->mu);
   PetscCheck(ob->start >= 0, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_start %g must be >= 0 (a time)", ob->name, (double)ob->start);
+  PetscCheck(ob->stop > ob->start, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_stop %g must be after -obstacle_%s_start %g", ob->name, (double)ob->stop, ob->name, (double)ob->start);
   PetscCall((*ob->check)(ob, comm, dim));
   PetscFunctionReturn(0);
 }
 
-/* c(t) = V max(0, t - t_start): how far the obstacle has moved at time t. */
+/* c(t) = V (min(t, t_stop) - t_start)^+: how far the obstacle has moved at time t. */
+/* The obstacle's velocity at time t (the left limit at the start and stop times, as a step to t sees it). */
+void MMObstacleVelocity(const MMObstacle *ob, PetscInt dim, PetscReal t, PetscReal V[])
+{
+  const PetscBool on = (PetscBool)(t > ob->start && t <= ob->stop);
+  for (PetscInt d = 0; d < dim; ++d) V[d] = on ? ob->velocity[d] : 0;
+}
+
 void MMObstacleDisplacement(const MMObstacle *ob, PetscInt dim, PetscReal t, PetscReal c[])
 {
-  const PetscReal s = PetscMax(0.0, t - ob->start);
+  const PetscReal s = PetscMax(0.0, PetscMin(t, ob->stop) - ob->start);
   for (PetscInt d = 0; d < dim; ++d) c[d] = ob->velocity[d] * s;
 }
 

@@ -170,9 +170,11 @@ static PetscErrorCode ProcessObstacle(PetscOptionItems *PetscOptionsObject, MPI_
   PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_mu", ob->name));
   PetscCall(OptionsReal(PetscOptionsObject, comm, key, "Coulomb friction coefficient against this obstacle, >= 0 (default -mu)", &ob->mu));
   PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_velocity", ob->name));
-  PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "Constant translation velocity of the obstacle from -obstacle_NAME_start on, d entries (default 0: fixed)", MM_MAX_DIM, ob->velocity, &ob->nvelocity));
+  PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "Constant translation velocity of the obstacle between -obstacle_NAME_start and -obstacle_NAME_stop, d entries (default 0: fixed)", MM_MAX_DIM, ob->velocity, &ob->nvelocity));
   PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_start", ob->name));
   PetscCall(OptionsReal(PetscOptionsObject, comm, key, "Time at which the obstacle starts moving, >= 0 (default 0)", &ob->start));
+  PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_stop", ob->name));
+  PetscCall(OptionsReal(PetscOptionsObject, comm, key, "Time at which the obstacle stops, after -obstacle_NAME_start (default: never)", &ob->stop));
   PetscFunctionReturn(0);
 }
 
@@ -193,6 +195,7 @@ static PetscErrorCode ProcessObstacles(PetscOptionItems *PetscOptionsObject, MPI
   for (PetscInt b = 0; b < opt->n_obstacles; ++b) {
     MMObstacle *ob = &opt->obstacles[b];
     ob->npoint = ob->nnormal = ob->ncenter = ob->naxis = ob->nvelocity = -1;
+    ob->stop = PETSC_MAX_REAL;
     if (!n) {
       PetscCall(PetscStrncpy(ob->name, "plane", sizeof(ob->name)));
       PetscCall(MMObstacleSetType(ob, comm, "plane"));

@@ -163,6 +163,10 @@ static PetscErrorCode CSVHeader(MMCtx *ctx)
   for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",vcm_%c", axes[d]));
   if (dim == 2) PetscCall(LineAdd(&l, ",L_z"));
   else PetscCall(LineAdd(&l, ",L_x,L_y,L_z"));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",P_%c", axes[d]));
+  if (dim == 2) PetscCall(LineAdd(&l, ",J_z"));
+  else PetscCall(LineAdd(&l, ",J_x,J_y,J_z"));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",load_%c", axes[d]));
   PetscCall(LineAdd(&l, ",switched,contraction,candidates,candidate_resolves,work_obstacle"));
   for (PetscInt b = 0; b < ctx->opt.n_obstacles; ++b)
     for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",force_%s_%c", ctx->opt.obstacles[b].name, axes[d]));
@@ -184,6 +188,10 @@ static PetscErrorCode CSVRow(MMCtx *ctx)
   for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",%.16e", (double)h->vcm[d]));
   if (dim == 2) PetscCall(LineAdd(&l, ",%.16e", (double)h->L[2]));
   else PetscCall(LineAdd(&l, ",%.16e,%.16e,%.16e", (double)h->L[0], (double)h->L[1], (double)h->L[2]));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",%.16e", (double)h->P[d]));
+  if (dim == 2) PetscCall(LineAdd(&l, ",%.16e", (double)h->J[2]));
+  else PetscCall(LineAdd(&l, ",%.16e,%.16e,%.16e", (double)h->J[0], (double)h->J[1], (double)h->J[2]));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",%.16e", (double)h->load[d]));
   PetscCall(LineAdd(&l, ",%" PetscInt_FMT ",%.6e,%" PetscInt_FMT ",%" PetscInt_FMT ",%.16e", h->switched, (double)h->contraction, h->candidates, h->resolves, (double)h->work_obstacle));
   for (PetscInt b = 0; b < ctx->opt.n_obstacles; ++b)
     for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",%.16e", ctx->contact.enabled ? (double)ctx->contact.force_obstacle[MM_MAX_DIM * b + d] : 0.0));
@@ -219,6 +227,7 @@ static PetscErrorCode IndexAddGrid(MMOutput *o, PetscInt dim)
       PetscCall(LineAdd(&l, "<DataItem Dimensions=\"" MM_N " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n</DataItem>\n</Attribute>\n", nv, h5base, datasets[i]));
     }
   }
+  PetscCall(LineAdd(&l, "<Attribute Name=\"contact_obstacle\" AttributeType=\"Scalar\" Center=\"Node\">\n<DataItem Dimensions=\"%" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/contact_obstacle_nodal</DataItem>\n</Attribute>\n", nv, h5base));
   PetscCall(LineAdd(&l, "</Grid>\n"));
   if (o->index_len + l.n + 1 > o->index_cap) {
     o->index_cap = 2 * (o->index_len + l.n + 1);
@@ -320,6 +329,22 @@ static PetscErrorCode FlushFields(MMOutput *o)
   PetscFunctionReturn(0);
 }
 
+/* Each contact node's obstacle, fixed at set-up (docs/method.md section 8): written once, without
+ * a time index, with the first snapshot; every snapshot's grid refers to it. */
+static PetscErrorCode WriteObstacleField(MMCtx *ctx)
+{
+  MMOutput      *o = &ctx->out;
+  PetscErrorCode ierr;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMContactObstacleField(ctx, o->obstacle));
+  PetscCall(DMSetOutputSequenceNumber(o->dm_scalar, -1, 0));
+  PetscCall(HDF5Begin());
+  ierr = VecView(o->obstacle, o->h5);
+  PetscCall(HDF5End(ierr, "write", o->h5_name));
+  PetscFunctionReturn(0);
+}
+
 /* Writes the current fields as snapshot n_written, flushes them, and only then indexes them. */
 static PetscErrorCode WriteFields(MMCtx *ctx)
 {
@@ -333,6 +358,7 @@ static PetscErrorCode WriteFields(MMCtx *ctx)
   PetscCall(WholeField(ctx, ctx->state.u, PETSC_TRUE, o->disp_cart));
   PetscCall(WholeField(ctx, ctx->state.v, PETSC_FALSE, o->vel_cart));
   PetscCall(MMContactBoundaryFields(ctx, o));
+  if (!o->n_written) PetscCall(WriteObstacleField(ctx));
   /* VecView also writes this time into /time, ahead of the fields: the index, not /time, says what is complete */
   PetscCall(DMSetOutputSequenceNumber(o->dm_out, o->n_written, t));
   PetscCall(DMSetOutputSequenceNumber(o->dm_scalar, o->n_written, t));
@@ -508,6 +534,8 @@ static PetscErrorCode CreateFieldVectors(MMCtx *ctx)
   PetscCall(PetscObjectSetName((PetscObject)o->vel_cart, "velocity"));
   PetscCall(PetscObjectSetName((PetscObject)o->pressure, "contact_pressure"));
   PetscCall(PetscObjectSetName((PetscObject)o->gap, "gap"));
+  PetscCall(DMCreateGlobalVector(o->dm_scalar, &o->obstacle));
+  PetscCall(PetscObjectSetName((PetscObject)o->obstacle, "contact_obstacle"));
   PetscFunctionReturn(0);
 }
 
@@ -600,6 +628,7 @@ PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wa
   PetscCall(VecDestroy(&o->disp_cart));
   PetscCall(VecDestroy(&o->vel_cart));
   PetscCall(VecDestroy(&o->pressure));
+  PetscCall(VecDestroy(&o->obstacle));
   PetscCall(VecDestroy(&o->gap));
   PetscCall(VecDestroy(&o->traction_t));
   PetscCall(VecDestroy(&o->slip));

@@ -50,8 +50,8 @@ def test_history_and_xdmf(tmp_path):
     with open(os.path.join(r.outdir, "history.csv")) as f:
         header = f.readline().strip().split(",")
     assert header[:len(HEADER)] == HEADER
-    assert header[len(HEADER):] == ["ucm_x", "ucm_y", "vcm_x", "vcm_y", "L_z", "switched", "contraction", "candidates", "candidate_resolves",
-                                      "work_obstacle", "force_plane_x", "force_plane_y"]  # the default obstacle is "plane"
+    assert header[len(HEADER):] == ["ucm_x", "ucm_y", "vcm_x", "vcm_y", "L_z", "P_x", "P_y", "J_z", "load_x", "load_y", "switched", "contraction",
+                                      "candidates", "candidate_resolves", "work_obstacle", "force_plane_x", "force_plane_y"]  # the default obstacle is "plane"
     h = r.history
     assert len(h) == 26 and h["step"][-1] == 25
     root = ET.parse(os.path.join(r.outdir, "solution.xmf")).getroot()
@@ -73,3 +73,7 @@ def test_history_and_xdmf(tmp_path):
         p = f["vertex_fields/contact_pressure_nodal"][-1]
         assert gap.min() >= -1e-12 and (p > 1e-8 * p.max()).sum() == h["active"][-1]
         assert np.all(np.abs(gap[p > 1e-8 * p.max()]) <= 1e-12)
+        # the obstacle of each contact node, written once: the one plane on the contact boundary
+        owner = f["vertex_fields/contact_obstacle_nodal"][:]
+        assert owner.shape == (nv,) and set(np.unique(owner)) == {-1, 0}
+        assert np.array_equal(owner == 0, f["vertex_fields/gap_nodal"][0] > 0)  # at t = 0 every contact node has a gap
