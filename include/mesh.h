@@ -1,4 +1,4 @@
 #pragma once
 #include "mmcontact.h"
-PETSC_EXTERN PetscErrorCode MMMeshLoad(MPI_Comm, MMOptions *, DM *);
+PETSC_EXTERN PetscErrorCode MMMeshLoad(MPI_Comm, MMOptions *, DM *, PetscInt **);
 PETSC_EXTERN PetscErrorCode MMMeshGetLabel(DM, const char[], DMLabel *);

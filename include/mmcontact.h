@@ -129,6 +129,7 @@ typedef struct {
   PetscBool    friction_monitor;
   char         output_dir[PETSC_MAX_PATH_LEN];
   PetscInt     output_every;
+  PetscInt     checkpoint_every; /* steps between checkpoints, 0: only at the end */
   PetscBool    quiet;
   PetscBool    allow_unused;
   PetscInt     vec_count[MM_V_NUM]; /* entries given to each vector option, -1 if not set */
@@ -351,10 +352,20 @@ typedef struct {
 
 typedef struct {
   PetscLogStage setup, solve, output;
-  PetscLogEvent assemble, contact_solve, contact_recover, friction, energy;
+  PetscLogEvent assemble, contact_solve, contact_recover, friction, energy, checkpoint;
   PetscLogEvent candidate_columns, candidate_operator; /* K~^{-1} E columns of new candidates; the set's dense block */
   PetscLogEvent kt_setup, kt_solve, as_iterate, as_linear; /* K~ PC set-up and solves; active-set iterations and their CG */
 } MMLog;
+
+/* Checkpoints (checkpoint.c, docs/method.md section 9): the state keyed by the serial mesh's vertex
+ * numbers, so that a run can continue on any number of ranks. */
+typedef struct {
+  PetscInt *vertex_orig; /* per local vertex (from vStart), its number in the serial mesh */
+  PetscInt  nv_global;   /* vertices of the whole mesh */
+  PetscInt  every;       /* -checkpoint_every: steps between checkpoints, 0 only at the end */
+  PetscInt  written;     /* checkpoints written by this run */
+  PetscInt  last_step;   /* step of the last one written */
+} MMCheckpoint;
 
 /* Everything the stepper needs; the TS type "newmark" holds a pointer to it. */
 typedef struct {
@@ -366,5 +377,6 @@ typedef struct {
   MMState     state;
   MMHistory   hist;
   MMOutput    out;
+  MMCheckpoint ckpt;
   MMLog       log;
 } MMCtx;

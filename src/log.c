@@ -21,6 +21,7 @@ PetscErrorCode MMLogRegister(MMLog *log)
   PetscCall(PetscLogEventRegister("MMCandidateCols", id, &log->candidate_columns));
   PetscCall(PetscLogEventRegister("MMCandidateOp", id, &log->candidate_operator));
   PetscCall(PetscLogEventRegister("MMEnergy", id, &log->energy));
+  PetscCall(PetscLogEventRegister("MMCheckpoint", id, &log->checkpoint));
   PetscCall(PetscLogEventRegister("MMKtSetUp", id, &log->kt_setup));
   PetscCall(PetscLogEventRegister("MMKtSolve", id, &log->kt_solve));
   PetscCall(PetscLogEventRegister("MMActiveSetIter", id, &log->as_iterate));

@@ -12,6 +12,7 @@ static char help[] = "mmcontact: elastodynamic contact with Coulomb friction by 
 #include "energy.h"
 #include "output.h"
 #include "log.h"
+#include "checkpoint.h"
 
 /* Start-up report: what is being solved, and the contact CFL number of Theorem 4.2. */
 static PetscErrorCode ReportSetup(MMCtx *ctx, TS ts)
@@ -38,7 +39,7 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscCall(MMOptionsHelpWithoutMesh(comm, help_only));
   if (*help_only) PetscFunctionReturn(0);
   PetscCall(MMOutputCheckOptions(comm, &ctx->opt));
-  PetscCall(MMMeshLoad(comm, &ctx->opt, &ctx->op.dm));
+  PetscCall(MMMeshLoad(comm, &ctx->opt, &ctx->op.dm, &ctx->ckpt.vertex_orig));
   PetscCall(DMGetDimension(ctx->op.dm, &ctx->op.dim));
   PetscCall(MMFESetUp(ctx));
   PetscCall(MMContactSetUp(ctx));
@@ -56,6 +57,7 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   /* last: the earlier results in the output directory are set aside only once the input is valid */
   PetscCall(MMOutputOpen(ctx));
   PetscCall(TSMonitorSet(*ts, MMOutputMonitor, ctx, NULL));
+  PetscCall(TSMonitorSet(*ts, MMCheckpointMonitor, ctx, NULL));
   PetscFunctionReturn(0);
 }
 
@@ -74,6 +76,7 @@ static PetscErrorCode Destroy(MMCtx *ctx, TS *ts)
   PetscCall(MMFEDestroy(&ctx->op));
   PetscCall(DMDestroy(&ctx->op.dm));
   PetscCall(MMOptionsDestroy(&ctx->opt));
+  PetscCall(MMCheckpointDestroy(&ctx->ckpt));
   PetscFunctionReturn(0);
 }
 
@@ -105,6 +108,7 @@ int main(int argc, char **argv)
   PetscCall(TSSolve(ts, ctx.state.u_next));
   PetscCall(PetscLogStagePop());
   PetscCall(PetscTime(&t1));
+  if (ctx.ckpt.last_step != ctx.hist.step || !ctx.ckpt.written) PetscCall(MMCheckpointWrite(&ctx, ts));
 
   PetscCall(MMOutputClose(&ctx, t0 - ts0, t1 - t0));
   PetscCall(Destroy(&ctx, &ts));

@@ -1,4 +1,5 @@
 /* Reading a gmsh mesh into DMPlex, naming its physical groups, and distributing it. */
+#include <petscsf.h>
 #include "mesh.h"
 #include "options.h"
 #include "partition_metis.h"
@@ -237,10 +238,42 @@ static PetscErrorCode CheckOrientation(MPI_Comm comm, DM dm, const char file[])
           ninv == ncells ? "The whole surface (volume) is oriented backwards: reverse its Curve Loop (Surface Loop) in the .geo, or add ReverseMesh, and remesh" : "Regenerate the mesh from its .geo with gmsh, or fix the node order of that element");
 }
 
-PetscErrorCode MMMeshLoad(MPI_Comm comm, MMOptions *opt, DM *dm)
+/* Each local vertex's number in the file's serial mesh (from 0), through the migration SF of the
+ * distribution, whose roots are the serial mesh's points on rank 0: a key that does not depend on
+ * the number of ranks, for checkpoints (docs/method.md section 9). */
+static PetscErrorCode OriginalVertexNumbers(MPI_Comm comm, DM dist, PetscSF migration, PetscInt vStart0, PetscInt **orig)
+{
+  PetscInt           vStart, vEnd, pStart, pEnd, nleaves, *point;
+  const PetscInt    *ilocal;
+  const PetscSFNode *iremote;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Bcast(&vStart0, 1, MPIU_INT, 0, comm));
+  PetscCall(DMPlexGetDepthStratum(dist, 0, &vStart, &vEnd));
+  PetscCall(DMPlexGetChart(dist, &pStart, &pEnd));
+  PetscCall(PetscMalloc1(vEnd - vStart, orig));
+  if (!migration) {
+    for (PetscInt v = vStart; v < vEnd; ++v) (*orig)[v - vStart] = v - vStart;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscMalloc1(pEnd - pStart, &point));
+  for (PetscInt p = pStart; p < pEnd; ++p) point[p - pStart] = -1;
+  PetscCall(PetscSFGetGraph(migration, NULL, &nleaves, &ilocal, &iremote));
+  for (PetscInt l = 0; l < nleaves; ++l) point[(ilocal ? ilocal[l] : l) - pStart] = iremote[l].index;
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscCheck(point[v - pStart] >= vStart0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Vertex %" PetscInt_FMT " has no vertex of the serial mesh", v);
+    (*orig)[v - vStart] = point[v - pStart] - vStart0;
+  }
+  PetscCall(PetscFree(point));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMMeshLoad(MPI_Comm comm, MMOptions *opt, DM *dm, PetscInt **vertex_orig)
 {
   PetscBool exists, rotate = PETSC_FALSE;
   DM        dist;
+  PetscSF   migration = NULL;
+  PetscInt  vStart0, vEnd0;
 
   PetscFunctionBeginUser;
   PetscCheck(opt->mesh_file[0], comm, PETSC_ERR_USER_INPUT, "No mesh given: set -mesh FILE.msh (a gmsh mesh with named physical groups; `make meshes` builds the ones in meshes/)");
@@ -270,11 +303,17 @@ PetscErrorCode MMMeshLoad(MPI_Comm comm, MMOptions *opt, DM *dm)
     PetscCall(PetscPartitionerSetType(part, MM_PARTITIONER_METIS));
     PetscCall(PetscPartitionerSetFromOptions(part));
   }
-  PetscCall(DMPlexDistribute(*dm, 0, NULL, &dist));
+  PetscCall(DMPlexGetDepthStratum(*dm, 0, &vStart0, &vEnd0));
+  PetscCall(DMPlexDistribute(*dm, 0, &migration, &dist));
   if (dist) {
     PetscCall(DMDestroy(dm));
     *dm = dist;
   }
+  PetscCall(OriginalVertexNumbers(comm, *dm, migration, vStart0, vertex_orig));
+  PetscCall(PetscSFDestroy(&migration));
+  /* DMSetFromOptions would distribute the mesh a second time, moving every vertex away from the
+   * numbers just computed: the METIS partition above is the one wanted */
+  PetscCall(DMPlexDistributeSetDefault(*dm, PETSC_FALSE));
   PetscCall(DMSetFromOptions(*dm));
   PetscCall(DMViewFromOptions(*dm, NULL, "-dm_view"));
   PetscFunctionReturn(0);

@@ -232,6 +232,7 @@ static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
   PetscCheck(opt->initial_penetration_tol >= 0, comm, PETSC_ERR_USER_INPUT, "-initial_penetration_tol %g must be >= 0: it is a fraction of h_c'", (double)opt->initial_penetration_tol);
   PetscCheck(opt->active_set_max_it >= 1, comm, PETSC_ERR_USER_INPUT, "-active_set_max_it %" PetscInt_FMT " must be >= 1", opt->active_set_max_it);
   PetscCheck(opt->output_every >= 0, comm, PETSC_ERR_USER_INPUT, "-output_every %" PetscInt_FMT " must be >= 0", opt->output_every);
+  PetscCheck(opt->checkpoint_every >= 0, comm, PETSC_ERR_USER_INPUT, "-checkpoint_every %" PetscInt_FMT " must be >= 0 (0: a checkpoint at the end only)", opt->checkpoint_every);
   PetscFunctionReturn(0);
 }
 
@@ -315,6 +316,8 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(PetscStrcpy(opt->output_dir, "output"));
   PetscCall(PetscOptionsString("-output_dir", "Directory for history.csv, solution.h5 and solution.xmf (created if missing; not empty)", NULL, opt->output_dir, opt->output_dir, sizeof(opt->output_dir), NULL));
   opt->output_every = 10;
+  opt->checkpoint_every = 0;
+  PetscCall(PetscOptionsInt("-checkpoint_every", "Write the complete state to OUTPUT_DIR/checkpoint.h5 every k steps, replacing the previous one atomically (0: only at the end of the run)", NULL, opt->checkpoint_every, &opt->checkpoint_every, NULL));
   PetscCall(PetscOptionsInt("-output_every", "Write the HDF5 fields every k steps (0: only the initial and final state)", NULL, opt->output_every, &opt->output_every, NULL));
   opt->quiet = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-quiet", "Do not print the start-up report and closing summary", NULL, opt->quiet, &opt->quiet, NULL));

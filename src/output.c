@@ -20,7 +20,8 @@
 #include "contact.h"
 #include "fem.h"
 
-static const char *const MMOutputFiles[] = {"history.csv", "solution.h5", "solution.xmf"};
+/* the files a run writes (checkpoint.h5 by checkpoint.c): an earlier run's move to previous/ together */
+static const char *const MMOutputFiles[] = {"history.csv", "solution.h5", "solution.xmf", "checkpoint.h5"};
 #define MM_PREVIOUS "previous"
 #define MM_XMF_TMP  ".tmp" /* suffix of the XDMF index being written */
 #define MM_N        "\001" /* in the index text kept in memory: the snapshot count, which grows */
