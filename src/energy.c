@@ -194,7 +194,8 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
  * loads L, all Cartesian. Rigid translations and infinitesimal rotations are in the kernel of the
  * stiffness, so P and J change over a step by dt times the trapezoidal mean of the resultant (and
  * moment) of L and the contact forces: no elastic term, whatever the deformation. */
-static PetscErrorCode SchemeMomenta(MMCtx *ctx, MMHistory *h)
+/* L is constant in time: its resultant is summed on the initial state only (with_load). */
+static PetscErrorCode SchemeMomenta(MMCtx *ctx, MMHistory *h, PetscBool with_load)
 {
   DM                 dm  = ctx->op.dm;
   const PetscInt     dim = ctx->op.dim;
@@ -209,7 +210,8 @@ static PetscErrorCode SchemeMomenta(MMCtx *ctx, MMHistory *h)
   PetscCall(DMGetGlobalVector(dm, &lc));
   PetscCall(MatMult(ctx->op.Mstar, ctx->state.v, ctx->state.work));
   PetscCall(MMFEToCartesian(ctx, ctx->state.work, mv));
-  PetscCall(MMFEToCartesian(ctx, ctx->op.load, lc));
+  if (with_load) PetscCall(MMFEToCartesian(ctx, ctx->op.load, lc));
+  else PetscCall(VecZeroEntries(lc));
   PetscCall(DMGetGlobalSection(dm, &gs));
   PetscCall(DMGetLocalSection(dm, &ls));
   PetscCall(DMGetCoordinateSection(dm, &cs));
@@ -243,8 +245,8 @@ static PetscErrorCode SchemeMomenta(MMCtx *ctx, MMHistory *h)
   PetscCall(VecRestoreArrayRead(mv, &p));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, 2 * MM_MAX_DIM + 3, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)dm)));
   for (PetscInt d = 0; d < MM_MAX_DIM; ++d) {
-    h->P[d]    = sum[d];
-    h->load[d] = sum[MM_MAX_DIM + 3 + d];
+    h->P[d] = sum[d];
+    if (with_load) h->load[d] = sum[MM_MAX_DIM + 3 + d];
   }
   for (PetscInt d = 0; d < 3; ++d) h->J[d] = sum[MM_MAX_DIM + d];
   PetscCall(DMRestoreGlobalVector(dm, &lc));
@@ -323,7 +325,7 @@ PetscErrorCode MMRigidBodyDiagnostics(MMCtx *ctx, MMHistory *h)
     }
     PetscCall(MPIU_Allreduce(L, h->L, 3, MPIU_REAL, MPIU_SUM, comm));
   }
-  PetscCall(SchemeMomenta(ctx, h));
+  PetscCall(SchemeMomenta(ctx, h, (PetscBool)(h->step == 0)));
   PetscCall(VecRestoreArrayRead(X, &x));
   PetscCall(VecRestoreArrayRead(ctx->op.mass_lumped_cart, &m));
   PetscCall(VecRestoreArrayRead(vc, &v));

@@ -49,3 +49,12 @@ def run(case, tmp_path, *extra, np_=1, name="out", check=True):
 @pytest.fixture
 def mm(tmp_path):
     return lambda case, *extra, **kw: run(case, tmp_path, *extra, **kw)
+
+
+def options_without_plane(case, tmp_path):
+    """options/<case>.opts without its single plane, so that -obstacles can name the obstacles."""
+    drop = ("-obstacle_point", "-obstacle_normal", "-ts_monitor")
+    lines = [l for l in open(os.path.join(ROOT, "options", case + ".opts")).read().splitlines() if not l.split() or l.split()[0] not in drop]
+    path = tmp_path / (case + "_no_plane.opts")
+    path.write_text("\n".join(lines) + "\n")
+    return str(path)

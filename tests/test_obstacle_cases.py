@@ -7,7 +7,7 @@ import h5py
 import numpy as np
 import pytest
 
-from conftest import ROOT, run
+from conftest import ROOT, options_without_plane, run
 
 CASES = ["ball_bowl", "disk_rail", "block_push", "ball_vgroove", "block_squeeze"]
 HC_MIN = 0.0707  # the smallest h_c' of the five meshes
@@ -208,11 +208,7 @@ SHAPES = {
 
 @pytest.fixture
 def ball_opts(tmp_path):
-    drop = ("-obstacle_point", "-obstacle_normal", "-ts_monitor")
-    lines = [l for l in open(f"{ROOT}/options/d2_ball.opts").read().splitlines() if not l.split() or l.split()[0] not in drop]
-    path = tmp_path / "d2_no_plane.opts"
-    path.write_text("\n".join(lines) + "\n")
-    return str(path)
+    return options_without_plane("d2_ball", tmp_path)
 
 
 @pytest.mark.parametrize("shape", SHAPES)

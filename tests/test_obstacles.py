@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from conftest import ROOT
+from conftest import options_without_plane
 
 TIGHT = ("-contact_tol", 1e-14, "-friction_snes_rtol", 1e-13, "-friction_coulomb_tol", 1e-11, "-output_every", 0)
 
@@ -10,11 +10,7 @@ TIGHT = ("-contact_tol", 1e-14, "-friction_snes_rtol", 1e-13, "-friction_coulomb
 @pytest.fixture
 def disk_opts(tmp_path):
     """The frictional D1 disk without its plane, so that -obstacles can name the obstacles."""
-    drop = ("-obstacle_point", "-obstacle_normal", "-ts_monitor")
-    lines = [l for l in open(f"{ROOT}/options/d1_friction.opts").read().splitlines() if not l.split() or l.split()[0] not in drop]
-    path = tmp_path / "d1_no_plane.opts"
-    path.write_text("\n".join(lines) + "\n")
-    return str(path)
+    return options_without_plane("d1_friction", tmp_path)
 
 
 def run_opts(mm, opts_path, *extra, **kw):
