@@ -38,10 +38,11 @@ def progress_lines(output):
 
 
 def test_progress_lines_follow_the_run(mm):
-    """The frictional D1 disk with 3000 steps (a few seconds) and a line every 0.2 s: the lines come
-    at that interval, not every step; time, percentage and step advance; the ETA is the elapsed wall
-    time scaled by the simulated time left over the time done, and it falls; energy, balance
-    residual, contact counts and mean friction iterations are those of history.csv at that step."""
+    """The frictional D1 disk with 3000 steps (two seconds on an idle machine) and a line every 0.2 s:
+    the lines come at that interval, not every step; time, percentage and step advance; the ETA is
+    the elapsed wall time scaled by the simulated time left over the time done, and it falls;
+    energy, balance residual and contact counts are those of history.csv at that step, and the
+    friction iterations their mean over the steps since the previous line."""
     every = 0.2
     r = mm("d1_friction", "-ts_dt", 1e-4, "-progress_every", every, "-output_every", 0)
     lines = progress_lines(r.output)
@@ -69,9 +70,14 @@ def test_progress_lines_follow_the_run(mm):
             q = lines[k - 1]
             assert p["t"] > q["t"] and p["step"] > q["step"] and p["pct"] >= q["pct"]
             assert p["wall"] - q["wall"] >= every - 0.1 - 1e-9  # the interval, up to the 0.1 s rounding
-            # the ETA does not grow, but for the machine's noise in the step rate
-            assert p["eta"] <= 1.25 * q["eta"] + 0.1, (q, p)
-    assert lines[-1]["eta"] < 0.5 * lines[0]["eta"]
+    # The ETA falls: from the first line to the last, and from line to line up to the 0.1 s rounding
+    # in at least two pairs of three. Not in every pair: the step rate is not steady (the contact
+    # steps cost more than the free flight before them) and the machine is shared, and the rate
+    # since the start is what the ETA extrapolates.
+    etas = [p["eta"] for p in lines]
+    assert etas[-1] < 0.5 * etas[0], etas
+    falls = sum(b <= a + 0.1 + 1e-9 for a, b in zip(etas, etas[1:]))
+    assert falls >= 2 / 3 * (len(etas) - 1), etas
     assert max(p["active"] for p in lines) > 0 and max(p["friction"] for p in lines) > 1
 
 
