@@ -7,6 +7,7 @@ PETSC_EXTERN PetscErrorCode MMKSPSetDirectSPD(KSP, PetscInt);
 PETSC_EXTERN PetscErrorCode MMContactSetUp(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMContactSetTime(MMCtx *, PetscReal, PetscReal);
 PETSC_EXTERN PetscErrorCode MMContactSetStepMatrix(MMCtx *, PetscReal);
+PETSC_EXTERN PetscErrorCode MMContactGetStepKSP(MMCtx *, KSP *, KSP *);
 PETSC_EXTERN PetscErrorCode MMContactSolve(MMCtx *, Vec, Vec, Vec);
 PETSC_EXTERN PetscErrorCode MMContactSolveContactDofs(MMCtx *, Vec, Vec, Vec);
 PETSC_EXTERN PetscErrorCode MMContactRecover(MMCtx *, Vec, Vec, Vec);

@@ -131,6 +131,7 @@ typedef struct {
   PetscInt     output_every;
   PetscInt     checkpoint_every; /* steps between checkpoints, 0: only at the end */
   PetscBool    quiet;
+  PetscReal    progress_every;      /* seconds of wall time between progress lines, 0: none */
   PetscBool    allow_unused;
   PetscInt     vec_count[MM_V_NUM]; /* entries given to each vector option, -1 if not set */
   PetscInt     n_obstacles;         /* -obstacles, or the one plane of -obstacle_point/_normal */
@@ -331,6 +332,16 @@ typedef struct {
   PetscReal energy_scale;                     /* the largest |E| of the run so far */
 } MMHistory;
 
+/* The progress line (progress.c): what it keeps between two lines. The references are taken at the
+ * first monitor call, the start of TSSolve, so that the rates are those of this run's time loop. */
+typedef struct {
+  PetscBool      started;
+  PetscLogDouble wall_start, wall_last; /* wall time at the start of the time loop and at the last line */
+  PetscReal      t_start;               /* simulated time at the start of the time loop */
+  PetscInt       step_start, step_last; /* the step then, and the last step counted */
+  PetscInt       friction_its, steps;   /* friction iterations and steps since the last line */
+} MMProgress;
+
 /* Output files. Rank 0 alone writes history.csv and solution.xmf; solution.h5 is written by all. */
 typedef struct {
   int           csv_fd;                /* history.csv, on rank 0 (-1 elsewhere and once closed) */
@@ -376,6 +387,7 @@ typedef struct {
   MMFriction  friction;
   MMState     state;
   MMHistory   hist;
+  MMProgress  progress;
   MMOutput    out;
   MMCheckpoint ckpt;
   MMLog       log;

@@ -65,7 +65,8 @@ FIELDS = ["suite", "problem", "dim", "ranks", "case", "formulation", "mu", "dofs
           "s_per_step", "contact_over_linear", "speedup_2_ranks", "peak_mib_max_rank", "peak_mib_total", "candidates",
           "max_active", "mean_vi_its", "mean_friction_its_in_contact", "status"]
 SUMMARY = re.compile(r"mmcontact summary: setup ([\d.]+) s; (\d+) steps .* \(([\d.]+) s/step\); peak memory ([\d.]+) MiB/rank")
-DOFS = re.compile(r"(\d+) dofs, (\d+) contact nodes")
+DOFS = re.compile(r"(\d+) dofs[ ;(]")
+CONTACT_NODES = re.compile(r"(\d+) contact nodes")
 RANK_RSS = re.compile(r"bench rank peak rss (\d+) kB")
 
 
@@ -102,13 +103,13 @@ def run(suite, variant, ranks, steps):
                mu=float(option_value(options, "-mu", "0")), steps=steps, status="ok")
     print(f"  {suite['suite']} {variant['case']} on {ranks} rank(s): {' '.join(cmd[cmd.index('./mmcontact'):])}", flush=True)
     proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
-    summary, dofs = SUMMARY.search(proc.stdout), DOFS.search(proc.stdout)
+    summary, dofs, nodes = SUMMARY.search(proc.stdout), DOFS.search(proc.stdout), CONTACT_NODES.search(proc.stdout)
     if proc.returncode or not summary:
         lines = proc.stderr.splitlines()
         print(f"    failed (exit {proc.returncode}):", *(lines if len(lines) <= 16 else lines[:10] + ["..."] + lines[-5:]), sep="\n    ", flush=True)
         return dict(row, status="failed", **{k: "-" for k in FIELDS if k not in row})
     rss = [int(kb) / 1024 for kb in RANK_RSS.findall(proc.stderr)]
-    return dict(row, dofs=int(dofs.group(1)), contact_nodes=int(dofs.group(2)), setup_s=float(summary.group(1)),
+    return dict(row, dofs=int(dofs.group(1)), contact_nodes=int(nodes.group(1)), setup_s=float(summary.group(1)),
                 s_per_step=float(summary.group(3)), peak_mib_max_rank=float(summary.group(4)),
                 peak_mib_total=round(sum(rss), 1) if len(rss) == ranks else "-", **history_stats(os.path.join(ROOT, out_dir, "history.csv")))
 

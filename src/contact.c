@@ -325,3 +325,21 @@ PetscErrorCode MMContactDestroy(MMContact *ct)
   PetscCall(PetscFree(ct->vertex));
   PetscFunctionReturn(0);
 }
+
+/* The solvers of K~, for the start-up report: krylov is the KSP whose method solves with K~, pc_ksp
+ * the one whose PC does. They are one KSP (prefix contact_K_), except in the active-set formulation,
+ * whose CG on the free dofs (prefix contact_as_) applies the contact_K_ PC projected on them, and in
+ * the full formulation, whose VI factors K~'s free block in each iteration with its own linear
+ * solver (prefix contact_). */
+PetscErrorCode MMContactGetStepKSP(MMCtx *ctx, KSP *krylov, KSP *pc_ksp)
+{
+  MMContact *ct = &ctx->contact;
+
+  PetscFunctionBeginUser;
+  if (!ct->enabled) *krylov = ct->kt.ksp;
+  else if (ct->formulation == MM_CONTACT_CONDENSED) *krylov = ct->ksp_K;
+  else if (ct->formulation == MM_CONTACT_ACTIVE_SET) *krylov = ct->as.ksp;
+  else PetscCall(SNESGetKSP(ct->snes, krylov));
+  *pc_ksp = (ct->enabled && ct->formulation == MM_CONTACT_ACTIVE_SET) ? ct->kt.ksp : *krylov;
+  PetscFunctionReturn(0);
+}

@@ -13,21 +13,7 @@ static char help[] = "mmcontact: elastodynamic contact with Coulomb friction by 
 #include "output.h"
 #include "log.h"
 #include "checkpoint.h"
-
-/* Start-up report: what is being solved, and the contact CFL number of Theorem 4.2. */
-static PetscErrorCode ReportSetup(MMCtx *ctx, TS ts)
-{
-  PetscInt  N;
-  PetscReal dt;
-
-  PetscFunctionBeginUser;
-  if (ctx->opt.quiet) PetscFunctionReturn(0);
-  PetscCall(VecGetSize(ctx->state.u, &N));
-  PetscCall(TSGetTimeStep(ts, &dt));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "mmcontact: %s, %" PetscInt_FMT "D, %" PetscInt_FMT " dofs, %" PetscInt_FMT " contact nodes, %s %s mass, contact %s\n", ctx->opt.mesh_file, ctx->op.dim, N, ctx->contact.n_global, ctx->opt.lumped ? "lumped" : "consistent", MMMassTypes[ctx->opt.mass_type], ctx->contact.enabled ? "on" : "off"));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  c_p = %g, h_c' = %g, dt = %g, c_p dt / h_c' = %g\n", (double)ctx->op.c_p, (double)ctx->contact.h_c, (double)dt, ctx->contact.h_c > 0 ? (double)(ctx->op.c_p * dt / ctx->contact.h_c) : 0.0));
-  PetscFunctionReturn(0);
-}
+#include "progress.h"
 
 static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
 {
@@ -51,13 +37,14 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscCall(MMContactSetStepMatrix(ctx, dt));
   ctx->hist.dt = dt;
   PetscCall(MMEnergyInitial(ctx));
-  PetscCall(ReportSetup(ctx, *ts));
+  PetscCall(MMProgressHeader(ctx, *ts));
   /* every object has read its options: refuse the unread ones before any output is touched */
   PetscCall(MMOptionsCheckUnused(comm, &ctx->opt, ctx->op.dm));
   /* last: the earlier results in the output directory are set aside only once the input is valid */
   PetscCall(MMOutputOpen(ctx));
   PetscCall(TSMonitorSet(*ts, MMOutputMonitor, ctx, NULL));
   PetscCall(TSMonitorSet(*ts, MMCheckpointMonitor, ctx, NULL));
+  PetscCall(MMProgressSetUp(ctx, *ts));
   PetscFunctionReturn(0);
 }
 

@@ -318,3 +318,29 @@ PetscErrorCode MMMeshLoad(MPI_Comm comm, MMOptions *opt, DM *dm, PetscInt **vert
   PetscCall(DMViewFromOptions(*dm, NULL, "-dm_view"));
   PetscFunctionReturn(0);
 }
+
+/* Global numbers of cells and vertices of the distributed mesh: a point shared by several ranks is
+ * a leaf of the point SF on all of them but its owner, so the leaves are left out. */
+PetscErrorCode MMMeshGetSizes(DM dm, PetscInt *ncells, PetscInt *nvertices)
+{
+  PetscSF         sf;
+  PetscInt        vStart, vEnd, cStart, cEnd, nleaves, n[2];
+  const PetscInt *leaves;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(DMGetPointSF(dm, &sf));
+  PetscCall(PetscSFGetGraph(sf, NULL, &nleaves, &leaves, NULL));
+  n[0] = cEnd - cStart;
+  n[1] = vEnd - vStart;
+  for (PetscInt l = 0; l < PetscMax(nleaves, 0); ++l) {
+    const PetscInt p = leaves ? leaves[l] : l;
+    if (p >= cStart && p < cEnd) --n[0];
+    if (p >= vStart && p < vEnd) --n[1];
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, n, 2, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)dm)));
+  *ncells    = n[0];
+  *nvertices = n[1];
+  PetscFunctionReturn(0);
+}

@@ -231,6 +231,7 @@ static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
   PetscCheck(opt->contact_work_tol > 0, comm, PETSC_ERR_USER_INPUT, "-contact_work_tol %g must be > 0: it is a fraction of the run's energy scale", (double)opt->contact_work_tol);
   PetscCheck(opt->initial_penetration_tol >= 0, comm, PETSC_ERR_USER_INPUT, "-initial_penetration_tol %g must be >= 0: it is a fraction of h_c'", (double)opt->initial_penetration_tol);
   PetscCheck(opt->active_set_max_it >= 1, comm, PETSC_ERR_USER_INPUT, "-active_set_max_it %" PetscInt_FMT " must be >= 1", opt->active_set_max_it);
+  PetscCheck(opt->progress_every >= 0, comm, PETSC_ERR_USER_INPUT, "-progress_every %.6g must be >= 0: it is the wall time in seconds between progress lines (0 turns them off)", (double)opt->progress_every);
   PetscCheck(opt->output_every >= 0, comm, PETSC_ERR_USER_INPUT, "-output_every %" PetscInt_FMT " must be >= 0", opt->output_every);
   PetscCheck(opt->checkpoint_every >= 0, comm, PETSC_ERR_USER_INPUT, "-checkpoint_every %" PetscInt_FMT " must be >= 0 (0: a checkpoint at the end only)", opt->checkpoint_every);
   PetscFunctionReturn(0);
@@ -320,7 +321,9 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(PetscOptionsInt("-checkpoint_every", "Write the complete state to OUTPUT_DIR/checkpoint.h5 every k steps, replacing the previous one atomically (0: only at the end of the run)", NULL, opt->checkpoint_every, &opt->checkpoint_every, NULL));
   PetscCall(PetscOptionsInt("-output_every", "Write the HDF5 fields every k steps (0: only the initial and final state)", NULL, opt->output_every, &opt->output_every, NULL));
   opt->quiet = PETSC_FALSE;
-  PetscCall(PetscOptionsBool("-quiet", "Do not print the start-up report and closing summary", NULL, opt->quiet, &opt->quiet, NULL));
+  PetscCall(PetscOptionsBool("-quiet", "Do not print the start-up report, progress lines and closing summary", NULL, opt->quiet, &opt->quiet, NULL));
+  opt->progress_every = 5;
+  PetscCall(OptionsReal(PetscOptionsObject, comm, "-progress_every", "Print a progress line (time, wall time and ETA, energy balance, contact and friction) every this many seconds of wall time, >= 0 (0: none)", &opt->progress_every));
   opt->allow_unused = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-allow_unused_options", "Run even if an option is set that nothing reads (by default such an option, usually a typo, stops the run before the first step)", NULL, opt->allow_unused, &opt->allow_unused, NULL));
   PetscOptionsEnd();

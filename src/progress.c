@@ -1,0 +1,247 @@
+/* What the user sees while the program runs: the start-up header (the case, the mesh, the material,
+ * the time step and the solvers, read from the objects that were built) and a progress line every
+ * -progress_every seconds of wall time, not every step, so that a long run's log stays short.
+ * Both go to rank 0 through PetscPrintf; -quiet turns both off. */
+#include "progress.h"
+#include "contact.h"
+#include "mesh.h"
+
+/* The options files of the run, as given on the command line. PETSc reads -options_file while it
+ * starts and keeps only the options inside, not the option itself, so the arguments are read
+ * again here. "command line" when there is none. */
+static PetscErrorCode CaseName(char name[], size_t len)
+{
+  int    argc;
+  char **args;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(name, "", len));
+  PetscCall(PetscGetArgs(&argc, &args));
+  for (int i = 1; i + 1 < argc; ++i) {
+    PetscBool file, yaml;
+
+    PetscCall(PetscStrcmp(args[i], "-options_file", &file));
+    PetscCall(PetscStrcmp(args[i], "-options_file_yaml", &yaml));
+    if (!file && !yaml) continue;
+    if (name[0]) PetscCall(PetscStrlcat(name, ", ", len));
+    PetscCall(PetscStrlcat(name, args[++i], len));
+  }
+  if (!name[0]) PetscCall(PetscStrncpy(name, "command line", len));
+  PetscFunctionReturn(0);
+}
+
+/* The obstacles by name and shape, e.g. "2 obstacles: floor (plane), bowl (sphere)". */
+static PetscErrorCode ObstacleList(const MMOptions *opt, char list[], size_t len)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(list, len, "%" PetscInt_FMT " obstacle%s:", opt->n_obstacles, opt->n_obstacles == 1 ? "" : "s"));
+  for (PetscInt b = 0; b < opt->n_obstacles; ++b) {
+    char one[128];
+
+    PetscCall(PetscSNPrintf(one, sizeof(one), "%s %s (%s)", b ? "," : "", opt->obstacles[b].name, opt->obstacles[b].type));
+    PetscCall(PetscStrlcat(list, one, len));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* "frictionless", or the Coulomb coefficient, or its range when the obstacles have their own. */
+static PetscErrorCode FrictionText(const MMOptions *opt, char text[], size_t len)
+{
+  PetscReal lo = opt->mu_max;
+
+  PetscFunctionBeginUser;
+  for (PetscInt b = 0; b < opt->n_obstacles; ++b) lo = PetscMin(lo, opt->obstacles[b].mu);
+  if (opt->mu_max == 0) PetscCall(PetscStrncpy(text, "frictionless", len));
+  else if (lo == opt->mu_max) PetscCall(PetscSNPrintf(text, len, "Coulomb friction, mu = %.6g", (double)lo));
+  else PetscCall(PetscSNPrintf(text, len, "Coulomb friction, mu = %.6g to %.6g by obstacle", (double)lo, (double)opt->mu_max));
+  PetscFunctionReturn(0);
+}
+
+/* The K~ solver as the objects have it after set-up, e.g. "preonly + lu (mumps), prefix contact_K_":
+ * the Krylov method, the PC and, for a factorization, the package that computes it. */
+static PetscErrorCode SolverText(MMCtx *ctx, char text[], size_t len)
+{
+  KSP           krylov, pc_ksp;
+  PC            pc;
+  KSPType       ktype;
+  PCType        ptype;
+  MatSolverType package = NULL;
+  const char   *kprefix, *pprefix;
+  PetscBool     factor, same;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMContactGetStepKSP(ctx, &krylov, &pc_ksp));
+  PetscCall(KSPGetType(krylov, &ktype));
+  PetscCall(KSPGetOptionsPrefix(krylov, &kprefix));
+  PetscCall(KSPGetPC(pc_ksp, &pc));
+  PetscCall(PCGetType(pc, &ptype));
+  PetscCall(KSPGetOptionsPrefix(pc_ksp, &pprefix));
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &factor, PCLU, PCCHOLESKY, PCILU, PCICC, ""));
+  if (factor) PetscCall(PCFactorGetMatSolverType(pc, &package));
+  PetscCall(PetscStrcmp(kprefix, pprefix, &same));
+  PetscCall(PetscSNPrintf(text, len, "%s + %s%s%s%s, prefix%s %s%s%s", ktype, ptype, package ? " (" : "", package ? package : "", package ? ")" : "", same ? "" : "es", kprefix, same ? "" : " and ", same ? "" : pprefix));
+  PetscFunctionReturn(0);
+}
+
+/* Line 1, the case and the mesh: cells, vertices, dofs (the free ones, the unknowns of the steps)
+ * and ranks. */
+static PetscErrorCode HeaderMesh(MMCtx *ctx)
+{
+  MPI_Comm    comm = PETSC_COMM_WORLD;
+  char        name[PETSC_MAX_PATH_LEN], fixed[64] = "";
+  PetscInt    ncells, nvertices, ndofs;
+  PetscMPIInt size;
+
+  PetscFunctionBeginUser;
+  PetscCall(CaseName(name, sizeof(name)));
+  PetscCall(MMMeshGetSizes(ctx->op.dm, &ncells, &nvertices));
+  PetscCall(VecGetSize(ctx->state.u, &ndofs));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  if (ndofs < ctx->op.dim * nvertices) PetscCall(PetscSNPrintf(fixed, sizeof(fixed), " (and %" PetscInt_FMT " fixed by -dirichlet)", ctx->op.dim * nvertices - ndofs));
+  PetscCall(PetscPrintf(comm, "mmcontact: case %s; mesh %s, %" PetscInt_FMT "D: %" PetscInt_FMT " cells, %" PetscInt_FMT " vertices, %" PetscInt_FMT " dofs%s; %d rank%s\n", name, ctx->opt.mesh_file, ctx->op.dim, ncells, nvertices, ndofs, fixed, size, size == 1 ? "" : "s"));
+  PetscFunctionReturn(0);
+}
+
+/* Lines 2 and 3, the material and the time step: the wave speeds and the contact CFL number of
+ * Theorem 4.2, c_p dt / h_c'. */
+static PetscErrorCode HeaderPhysics(MMCtx *ctx, TS ts)
+{
+  MPI_Comm        comm = PETSC_COMM_WORLD;
+  const MMOptions *opt = &ctx->opt;
+  const PetscReal c_s  = PetscSqrtReal(PetscRealPart(ctx->constants[MM_C_MU]) / opt->rho), h_c = ctx->contact.h_c;
+  PetscReal       dt, t_end;
+  PetscInt        max_steps;
+  char            steps[64] = "", cfl[128];
+
+  PetscFunctionBeginUser;
+  PetscCall(TSGetTimeStep(ts, &dt));
+  PetscCall(TSGetMaxTime(ts, &t_end));
+  PetscCall(TSGetMaxSteps(ts, &max_steps));
+  if (max_steps < PETSC_MAX_INT) PetscCall(PetscSNPrintf(steps, sizeof(steps), " or %" PetscInt_FMT " steps", max_steps));
+  if (h_c > 0) PetscCall(PetscSNPrintf(cfl, sizeof(cfl), "h_c' = %.4g, c_p dt / h_c' = %.3g", (double)h_c, (double)(ctx->op.c_p * dt / h_c)));
+  else PetscCall(PetscStrncpy(cfl, "no contact boundary", sizeof(cfl)));
+  PetscCall(PetscPrintf(comm, "  material: E = %.6g, nu = %.6g, rho = %.6g; waves c_p = %.4g, c_s = %.4g\n", (double)opt->E, (double)opt->nu, (double)opt->rho, (double)ctx->op.c_p, (double)c_s));
+  PetscCall(PetscPrintf(comm, "  time: dt = %.6g to t = %.6g%s; %s\n", (double)dt, (double)t_end, steps, cfl));
+  PetscFunctionReturn(0);
+}
+
+/* Lines 4 and 5, contact and solvers: the contact nodes and obstacles, the mass, friction, the
+ * contact formulation and the K~ solver. */
+static PetscErrorCode HeaderContact(MMCtx *ctx)
+{
+  MPI_Comm         comm = PETSC_COMM_WORLD;
+  const MMOptions *opt  = &ctx->opt;
+  char             obstacles[512], friction[128], solver[256], progress[64] = "no progress lines";
+
+  PetscFunctionBeginUser;
+  PetscCall(ObstacleList(opt, obstacles, sizeof(obstacles)));
+  PetscCall(FrictionText(opt, friction, sizeof(friction)));
+  PetscCall(SolverText(ctx, solver, sizeof(solver)));
+  if (opt->progress_every > 0) PetscCall(PetscSNPrintf(progress, sizeof(progress), "progress every %.6g s", (double)opt->progress_every));
+  if (ctx->contact.enabled) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes against %s; %s %s mass; %s\n", ctx->contact.n_global, obstacles, opt->lumped ? "lumped" : "consistent", MMMassTypes[opt->mass_type], friction));
+  else PetscCall(PetscPrintf(comm, "  contact: off (-contact 0), 0 contact nodes: linear elastodynamics; %s mass\n", opt->lumped ? "lumped" : "consistent"));
+  PetscCall(PetscPrintf(comm, "  solvers: contact formulation %s; K~ by %s; %s\n", ctx->contact.enabled ? MMContactFormulations[ctx->contact.formulation] : "none", solver, progress));
+  PetscFunctionReturn(0);
+}
+
+/* The start-up report, once everything is set up and before the first step. */
+PetscErrorCode MMProgressHeader(MMCtx *ctx, TS ts)
+{
+  PetscFunctionBeginUser;
+  if (ctx->opt.quiet) PetscFunctionReturn(0);
+  PetscCall(HeaderMesh(ctx));
+  PetscCall(HeaderPhysics(ctx, ts));
+  PetscCall(HeaderContact(ctx));
+  PetscFunctionReturn(0);
+}
+
+/* A wall-clock duration, short: "12.3 s", "4m05s", "2h07m"; "?" when unknown. */
+static PetscErrorCode Duration(PetscReal s, char text[], size_t len)
+{
+  PetscFunctionBeginUser;
+  if (s < 0 || s >= PETSC_MAX_REAL) PetscCall(PetscStrncpy(text, "?", len));
+  else if (s < 60) PetscCall(PetscSNPrintf(text, len, "%.1f s", (double)s));
+  else if (s < 3600) PetscCall(PetscSNPrintf(text, len, "%dm%02ds", (int)(s / 60), (int)s % 60));
+  else PetscCall(PetscSNPrintf(text, len, "%dh%02dm", (int)(s / 3600), (int)(s / 60) % 60));
+  PetscFunctionReturn(0);
+}
+
+/* How far the run is, in [0, 1], and the wall time left: the elapsed wall time times what is left
+ * over what this run has done, by simulated time and, if -ts_max_steps is set, by steps; the limit
+ * that ends the run first is the one that counts. */
+static void Estimate(const MMProgress *p, PetscReal t_end, PetscInt max_steps, PetscReal wall, PetscInt step, PetscReal t, PetscReal *done, PetscReal *eta)
+{
+  *done = t / t_end;
+  *eta  = t > p->t_start ? wall * PetscMax(t_end - t, 0) / (t - p->t_start) : PETSC_MAX_REAL;
+  if (max_steps < PETSC_MAX_INT && max_steps > 0) {
+    *done = PetscMax(*done, (PetscReal)step / max_steps);
+    if (step > p->step_start) *eta = PetscMin(*eta, wall * (PetscReal)(max_steps - step) / (step - p->step_start));
+  }
+  *done = PetscMin(*done, 1);
+}
+
+/* The line itself, e.g.
+ *   t = 0.12 of 0.3 (40.0%), step 60 | wall 1.0 s, ETA 1.5 s | energy 1.2e+00, balance 3.1e-15 | active 5, slipping 2, friction its 4.5
+ * The percentage is of the whole run: with -ts_max_steps it follows the step count ("step 60 of
+ * 100 (60.0%)") if that ends the run first. The friction iterations are the mean over the steps
+ * since the previous line. */
+static PetscErrorCode PrintLine(MMCtx *ctx, TS ts, PetscReal wall)
+{
+  const MMHistory  *h = &ctx->hist;
+  const MMProgress *p = &ctx->progress;
+  PetscReal         t_end, done, eta;
+  PetscInt          max_steps;
+  char              where[128], wall_text[32], eta_text[32], friction[64] = "";
+
+  PetscFunctionBeginUser;
+  PetscCall(TSGetMaxTime(ts, &t_end));
+  PetscCall(TSGetMaxSteps(ts, &max_steps));
+  Estimate(p, t_end, max_steps, wall, h->step, h->time, &done, &eta);
+  if (max_steps < PETSC_MAX_INT) PetscCall(PetscSNPrintf(where, sizeof(where), "t = %.6g of %.6g, step %" PetscInt_FMT " of %" PetscInt_FMT " (%.1f%%)", (double)h->time, (double)t_end, h->step, max_steps, (double)(100 * done)));
+  else PetscCall(PetscSNPrintf(where, sizeof(where), "t = %.6g of %.6g (%.1f%%), step %" PetscInt_FMT, (double)h->time, (double)t_end, (double)(100 * done), h->step));
+  PetscCall(Duration(wall, wall_text, sizeof(wall_text)));
+  PetscCall(Duration(eta, eta_text, sizeof(eta_text)));
+  if (ctx->opt.mu_max > 0) PetscCall(PetscSNPrintf(friction, sizeof(friction), ", friction its %.1f", p->steps ? (double)p->friction_its / p->steps : 0.0));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  %s | wall %s, ETA %s | energy %.10e, balance %.2e | active %" PetscInt_FMT ", slipping %" PetscInt_FMT "%s\n", where, wall_text, eta_text, (double)h->total, (double)h->balance_residual, h->active, h->slipping, friction));
+  PetscFunctionReturn(0);
+}
+
+/* TS monitor: counts the step, and prints a line when -progress_every seconds of wall time have
+ * passed since the last one. Nothing is communicated: only rank 0 prints, and every rank holds the
+ * same history row (the monitor runs after MMEnergyStep has filled it). */
+PetscErrorCode MMProgressMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ptr)
+{
+  MMCtx         *ctx = (MMCtx *)ptr;
+  MMProgress    *p   = &ctx->progress;
+  PetscLogDouble now;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&now));
+  if (!p->started) {
+    p->started    = PETSC_TRUE;
+    p->wall_start = p->wall_last = now;
+    p->t_start    = time;
+    p->step_start = p->step_last = step;
+    PetscFunctionReturn(0);
+  }
+  if (step <= p->step_last) PetscFunctionReturn(0);
+  p->step_last = step;
+  p->friction_its += ctx->hist.friction_its;
+  p->steps++;
+  if (now - p->wall_last < ctx->opt.progress_every) PetscFunctionReturn(0);
+  PetscCall(PrintLine(ctx, ts, (PetscReal)(now - p->wall_start)));
+  p->wall_last    = now;
+  p->friction_its = 0;
+  p->steps        = 0;
+  PetscFunctionReturn(0);
+}
+
+/* The progress line, unless -quiet or -progress_every 0: a TS monitor after the others (after
+ * -ts_monitor, which still works, and after the history row). */
+PetscErrorCode MMProgressSetUp(MMCtx *ctx, TS ts)
+{
+  PetscFunctionBeginUser;
+  if (ctx->opt.quiet || ctx->opt.progress_every == 0) PetscFunctionReturn(0);
+  PetscCall(TSMonitorSet(ts, MMProgressMonitor, ctx, NULL));
+  PetscFunctionReturn(0);
+}
