@@ -149,7 +149,7 @@ def obstacles(opts, dim):
     out = []
     for name in opts["obstacles"].split(","):
         pre = f"obstacle_{name}_"
-        typ = opts.get(pre + "type")
+        typ = opts.get(pre + "type", "plane")  # the default type, as in mmcontact
         side = opts.get(pre + "side", "outside")
         if side not in ("outside", "inside"):
             raise SystemExit(f"-{pre}side {side}: outside or inside")

@@ -64,6 +64,8 @@ class Solution:
 
     def __init__(self, outdir):
         path = os.path.join(outdir, "solution.h5")
+        if not os.path.exists(path):
+            sys.exit(f"{path}: no such file (OUTPUT_DIR is a run's -output_dir)")
         with h5py.File(path, "r") as h:
             self.vertices = h["/geometry/vertices"][:]
             self.cells = h["/viz/topology/cells"][:].astype(np.int64)
