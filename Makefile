@@ -80,7 +80,8 @@ run: deps
 	$(MAKE) mmcontact meshes
 	$(MM_MPIEXEC) -n $(NP) ./mmcontact -options_file options/d1_friction.opts
 	$(MM_PYTHON) scripts/plot_history.py output/d1_friction/history.csv
-	@echo "Open output/d1_friction/solution.xmf in ParaView; history in output/d1_friction/history.csv, plotted in output/d1_friction/history.png"
+	$(MM_PYTHON) scripts/plot_contact.py output/d1_friction
+	@echo "Open output/d1_friction/solution.xmf in ParaView; history in output/d1_friction/history.csv, plotted in output/d1_friction/history.png; contact pressure map in output/d1_friction/contact_pressure.png"
 
 check: deps
 	$(MAKE) mmcontact meshes

@@ -28,27 +28,36 @@ import numpy as np
 CFL_MAX = 1.5
 
 
+def is_option_name(token):
+    """-E, -ts_dt: an option; -1, -0.5: a value."""
+    return token.startswith("-") and len(token) > 1 and (token[1].isalpha() or token[1] == "_")
+
+
+def parse_option_tokens(tokens, where, opts=None):
+    """Tokens '-name [value]' -> dict name -> value string ('' for a flag), added to opts.
+    Later occurrences win, as in PETSc."""
+    opts = {} if opts is None else opts
+    i = 0
+    while i < len(tokens):
+        t = tokens[i]
+        if not is_option_name(t):
+            raise SystemExit(f"{where}: value {t!r} without an option")
+        val = ""
+        if i + 1 < len(tokens) and not is_option_name(tokens[i + 1]):
+            val = tokens[i + 1]
+            i += 1
+        opts[t[1:]] = val
+        i += 1
+    return opts
+
+
 def read_options(path):
     """Options file -> dict name -> value string ('' for a flag). Later occurrences win."""
     tokens = []
     for line in open(path):
         line = line.split("#", 1)[0]
         tokens += line.split()
-    opts = {}
-    i = 0
-    while i < len(tokens):
-        t = tokens[i]
-        if not (t.startswith("-") and len(t) > 1 and (t[1].isalpha() or t[1] == "_")):
-            raise SystemExit(f"{path}: value {t!r} without an option")
-        val = ""
-        if i + 1 < len(tokens):
-            n = tokens[i + 1]
-            if not (n.startswith("-") and len(n) > 1 and (n[1].isalpha() or n[1] == "_")):
-                val = n
-                i += 1
-        opts[t[1:]] = val
-        i += 1
-    return opts
+    return parse_option_tokens(tokens, path)
 
 
 def read_msh41(path):
@@ -140,7 +149,7 @@ def obstacles(opts, dim):
     out = []
     for name in opts["obstacles"].split(","):
         pre = f"obstacle_{name}_"
-        typ = opts.get(pre + "type")
+        typ = opts.get(pre + "type", "plane")  # the default type, as in mmcontact
         side = opts.get(pre + "side", "outside")
         if side not in ("outside", "inside"):
             raise SystemExit(f"-{pre}side {side}: outside or inside")
