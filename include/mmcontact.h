@@ -130,6 +130,7 @@ typedef struct {
   char         output_dir[PETSC_MAX_PATH_LEN];
   PetscInt     output_every;
   PetscInt     checkpoint_every; /* steps between checkpoints, 0: only at the end */
+  char         restart[PETSC_MAX_PATH_LEN]; /* -restart: the checkpoint, or its directory, to continue; empty: none */
   PetscBool    quiet;
   PetscReal    progress_every;      /* seconds of wall time between progress lines, 0: none */
   PetscBool    allow_unused;
@@ -358,6 +359,8 @@ typedef struct {
   DM            dm_scalar;             /* one scalar per vertex: pressure, gap */
   Vec           pressure, gap;
   Vec           obstacle;              /* each contact node's obstacle (index in -obstacles), -1 elsewhere: written once */
+  Vec           serial;                /* each vertex's number in the serial mesh: written once */
+  PetscBool     static_written;        /* obstacle and serial are in solution.h5 */
   Vec           traction_t, slip;      /* tangential traction and slip velocity on the contact boundary (dm_out) */
 } MMOutput;
 
@@ -376,6 +379,14 @@ typedef struct {
   PetscInt  every;       /* -checkpoint_every: steps between checkpoints, 0 only at the end */
   PetscInt  written;     /* checkpoints written by this run */
   PetscInt  last_step;   /* step of the last one written */
+  /* -restart */
+  PetscBool    restarted;
+  PetscInt     restart_step;                   /* the step the run continues from */
+  char         file[PETSC_MAX_PATH_LEN];       /* the checkpoint read */
+  char         source_dir[PETSC_MAX_PATH_LEN]; /* its directory: the history and snapshots to continue */
+  PetscReal    run[32];                        /* its run record */
+  PetscScalar *node;                           /* its per-node records of the owned contact nodes */
+  int          stop_signal;                    /* the signal that stopped the run (signals.c), 0: none */
 } MMCheckpoint;
 
 /* Everything the stepper needs; the TS type "newmark" holds a pointer to it. */

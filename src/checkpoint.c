@@ -3,12 +3,16 @@
  * does not depend on the number of ranks that wrote it. */
 #include <errno.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <petscviewerhdf5.h>
 #include "checkpoint.h"
+#include "contact.h"
 
 #define MM_CKPT_FILE "checkpoint.h5"
 #define MM_CKPT_TMP  ".tmp" /* written whole, then renamed over the last good one */
-#define MM_CKPT_NODE 9      /* per vertex: contact, s, slipping, was_active, slip_dir[2], rho[3] */
+#define MM_CKPT_NODE 13     /* per vertex: contact, s, slipping, was_active, slip_dir[2], rho[3], and the
+                               * active-set formulation's warm start: active, stick, dir[2] */
+#define MM_CKPT_VERSION 2
 
 /* The scalars of a run, in the "run" vector of the file, in this order. */
 typedef enum {
@@ -33,8 +37,13 @@ typedef enum {
   MM_RUN_ENERGY_SCALE,
   MM_RUN_RESOLVES,
   MM_RUN_SNAPSHOTS,
+  MM_RUN_E,
+  MM_RUN_NU,
+  MM_RUN_RHO,
+  MM_RUN_MASS, /* the mass type, plus 2 if lumped */
   MM_RUN_NUM
 } MMRunEntry;
+_Static_assert(MM_RUN_NUM <= sizeof(((MMCheckpoint *)0)->run) / sizeof(PetscReal), "MMCheckpoint.run holds the run record");
 
 /* The free dofs of an owned vertex: global offset, and which of its dim components are free. */
 static PetscErrorCode OwnedVertexDofs(MMCtx *ctx, PetscInt v, PetscInt *goff, PetscBool freedof[])
@@ -106,6 +115,11 @@ static PetscErrorCode PackContact(MMCtx *ctx, Vec packed)
         rec[5] = ct->slip_dir[2 * k + 1];
       }
       for (PetscInt c = 0; ra && c < ct->ncomp; ++c) rec[6 + c] = ra[k * ct->ncomp + c];
+      if (ct->as.active) {
+        rec[9]  = (PetscScalar)ct->as.active[k];
+        rec[10] = (PetscScalar)ct->as.stick[k];
+        for (PetscInt j = 0; j < ctx->op.dim - 1; ++j) rec[11 + j] = ct->as.dir[k * (ctx->op.dim - 1) + j];
+      }
       for (PetscInt c = 0; c < MM_CKPT_NODE; ++c) PetscCall(VecSetValue(packed, base + c, rec[c], INSERT_VALUES));
     }
     if (ra) PetscCall(VecRestoreArrayRead(ct->rho, &ra));
@@ -156,7 +170,7 @@ static PetscErrorCode RunRecord(MMCtx *ctx, TS ts, PetscReal run[])
   ncells = cEnd - cStart; /* no overlap: every cell is on one rank */
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ncells, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ctx->op.dm)));
   PetscCall(TSGetTimeStep(ts, &dt));
-  run[MM_RUN_VERSION]         = 1;
+  run[MM_RUN_VERSION]         = MM_CKPT_VERSION;
   run[MM_RUN_DIM]             = ctx->op.dim;
   run[MM_RUN_VERTICES]        = ctx->ckpt.nv_global;
   run[MM_RUN_CELLS]           = ncells;
@@ -177,6 +191,10 @@ static PetscErrorCode RunRecord(MMCtx *ctx, TS ts, PetscReal run[])
   run[MM_RUN_ENERGY_SCALE]    = h->energy_scale;
   run[MM_RUN_RESOLVES]        = h->resolves;
   run[MM_RUN_SNAPSHOTS]       = ctx->out.n_written;
+  run[MM_RUN_E]               = ctx->opt.E;
+  run[MM_RUN_NU]              = ctx->opt.nu;
+  run[MM_RUN_RHO]             = ctx->opt.rho;
+  run[MM_RUN_MASS]            = ctx->opt.mass_type + (ctx->opt.lumped ? 2 : 0);
   PetscFunctionReturn(0);
 }
 
@@ -274,7 +292,7 @@ PetscErrorCode MMCheckpointMonitor(TS ts, PetscInt step, PetscReal time, Vec u, 
   const PetscInt every = ctx->opt.checkpoint_every;
 
   PetscFunctionBeginUser;
-  if (every > 0 && step > 0 && step % every == 0) PetscCall(MMCheckpointWrite(ctx, ts));
+  if (every > 0 && step > 0 && step % every == 0 && step != ctx->ckpt.last_step) PetscCall(MMCheckpointWrite(ctx, ts));
   PetscFunctionReturn(0);
 }
 
@@ -282,5 +300,315 @@ PetscErrorCode MMCheckpointDestroy(MMCheckpoint *c)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscFree(c->vertex_orig));
+  PetscCall(PetscFree(c->node));
+  PetscFunctionReturn(0);
+}
+
+/* ---- Restart: the state of a checkpoint into this run (docs/method.md section 9) ---- */
+
+/* -restart names the file or the output directory that holds checkpoint.h5; the directory of the
+ * file is where the history and the snapshots to continue are read from. */
+static PetscErrorCode ResolveRestartPath(MMCtx *ctx)
+{
+  MMCheckpoint *c    = &ctx->ckpt;
+  MPI_Comm      comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  struct stat   st;
+  int           isdir = 0, exists = 0;
+  char         *slash;
+
+  PetscFunctionBeginUser;
+  if (!stat(ctx->opt.restart, &st)) {
+    exists = 1;
+    isdir  = S_ISDIR(st.st_mode);
+  }
+  if (isdir) PetscCall(PetscSNPrintf(c->file, sizeof(c->file), "%s/%s", ctx->opt.restart, MM_CKPT_FILE));
+  else PetscCall(PetscStrncpy(c->file, ctx->opt.restart, sizeof(c->file)));
+  if (isdir) exists = !stat(c->file, &st);
+  PetscCheck(exists, comm, PETSC_ERR_FILE_OPEN, "-restart %s: %s does not exist. Give the checkpoint file, or the output directory of the run to continue (its checkpoint.h5 is written every -checkpoint_every steps and at the end)", ctx->opt.restart, c->file);
+  PetscCall(PetscStrncpy(c->source_dir, c->file, sizeof(c->source_dir)));
+  slash = strrchr(c->source_dir, '/');
+  if (slash) *slash = 0;
+  else PetscCall(PetscStrncpy(c->source_dir, ".", sizeof(c->source_dir)));
+  PetscFunctionReturn(0);
+}
+
+/* A dataset of the checkpoint into v (named). A file cut short or not HDF5 stops with its name. */
+static PetscErrorCode LoadVector(MMCtx *ctx, PetscViewer viewer, const char name[], Vec v)
+{
+  PetscErrorCode ierr;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectSetName((PetscObject)v, name));
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  ierr = VecLoad(v, viewer);
+  PetscCall(PetscPopErrorHandler());
+  PetscCheck(!ierr, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_FILE_READ, "Could not read \"%s\" from the checkpoint %s: the file is incomplete or not a checkpoint of mmcontact. The checkpoint is written to checkpoint.h5.tmp and renamed only when whole, so an earlier checkpoint.h5 of the run is intact", name, ctx->ckpt.file);
+  PetscFunctionReturn(0);
+}
+
+/* The run's scalars, on every rank. */
+static PetscErrorCode LoadRunRecord(MMCtx *ctx, PetscViewer viewer, PetscReal run[])
+{
+  MPI_Comm           comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  Vec                rv, all;
+  VecScatter         sc;
+  PetscInt           n;
+  const PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecCreate(comm, &rv));
+  PetscCall(LoadVector(ctx, viewer, "run", rv));
+  PetscCall(VecGetSize(rv, &n));
+  PetscCall(VecScatterCreateToAll(rv, &sc, &all));
+  PetscCall(VecScatterBegin(sc, rv, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(sc, rv, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGetArrayRead(all, &a));
+  PetscCheck(n >= 1 && PetscRealPart(a[MM_RUN_VERSION]) == MM_CKPT_VERSION && n == MM_RUN_NUM, comm, PETSC_ERR_FILE_UNEXPECTED, "The checkpoint %s is of format %g with %" PetscInt_FMT " run entries; this mmcontact reads format %d with %d. Continue it with the mmcontact that wrote it", ctx->ckpt.file, n ? (double)PetscRealPart(a[0]) : 0.0, n, MM_CKPT_VERSION, (int)MM_RUN_NUM);
+  for (PetscInt i = 0; i < MM_RUN_NUM; ++i) run[i] = PetscRealPart(a[i]);
+  PetscCall(VecRestoreArrayRead(all, &a));
+  PetscCall(VecScatterDestroy(&sc));
+  PetscCall(VecDestroy(&all));
+  PetscCall(VecDestroy(&rv));
+  PetscFunctionReturn(0);
+}
+
+/* The checkpoint must be of this problem: the same mesh (vertices, cells, coordinates), the same
+ * contact boundary, dimension, friction coefficient, material and mass. Each difference is named. */
+static PetscErrorCode CheckFingerprint(MMCtx *ctx, TS ts, const PetscReal ck[])
+{
+  MPI_Comm    comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  const char *f    = ctx->ckpt.file;
+  PetscReal   me[MM_RUN_NUM];
+
+  PetscFunctionBeginUser;
+  PetscCall(RunRecord(ctx, ts, me));
+  PetscCheck(ck[MM_RUN_DIM] == me[MM_RUN_DIM], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of a %gD problem, this mesh %s is %gD: another dimension. Restart with the mesh and options of the run that wrote it", f, (double)ck[MM_RUN_DIM], ctx->opt.mesh_file, (double)me[MM_RUN_DIM]);
+  PetscCheck(ck[MM_RUN_VERTICES] == me[MM_RUN_VERTICES] && ck[MM_RUN_CELLS] == me[MM_RUN_CELLS], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another mesh: %g vertices and %g cells, this mesh %s has %g and %g. Restart with the mesh of the run that wrote it", f, (double)ck[MM_RUN_VERTICES], (double)ck[MM_RUN_CELLS], ctx->opt.mesh_file, (double)me[MM_RUN_VERTICES], (double)me[MM_RUN_CELLS]);
+  PetscCheck(PetscAbsReal(ck[MM_RUN_COORDINATES] - me[MM_RUN_COORDINATES]) <= 1e-10 * PetscMax(PetscAbsReal(me[MM_RUN_COORDINATES]), 1.0), comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another mesh: it has as many vertices and cells as %s, but other coordinates (checksums %.15g and %.15g). Restart with the mesh, and -mesh_rotation, of the run that wrote it", f, ctx->opt.mesh_file, (double)ck[MM_RUN_COORDINATES], (double)me[MM_RUN_COORDINATES]);
+  PetscCheck(ck[MM_RUN_CONTACT_NODES] == me[MM_RUN_CONTACT_NODES], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another contact boundary: %g contact nodes, this run has %g (-contact_boundary %s, -contact %s). Restart with the contact options of the run that wrote it", f, (double)ck[MM_RUN_CONTACT_NODES], (double)me[MM_RUN_CONTACT_NODES], ctx->opt.contact_name, ctx->opt.contact ? "1" : "0");
+  PetscCheck(ck[MM_RUN_MU] == me[MM_RUN_MU], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with -mu %g, this run has -mu %g: a different friction law. Restart with -mu %g", f, (double)ck[MM_RUN_MU], (double)me[MM_RUN_MU], (double)ck[MM_RUN_MU]);
+  PetscCheck(ck[MM_RUN_E] == me[MM_RUN_E] && ck[MM_RUN_NU] == me[MM_RUN_NU] && ck[MM_RUN_RHO] == me[MM_RUN_RHO], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with -E %g -nu %g -rho %g, this run has -E %g -nu %g -rho %g: another material. Restart with the material of the run that wrote it", f, (double)ck[MM_RUN_E], (double)ck[MM_RUN_NU], (double)ck[MM_RUN_RHO], (double)me[MM_RUN_E], (double)me[MM_RUN_NU], (double)me[MM_RUN_RHO]);
+  PetscCheck(ck[MM_RUN_MASS] == me[MM_RUN_MASS], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with the %s%s mass, this run has the %s%s mass. Restart with the -mass_type and -mass_lumped of the run that wrote it", f, MMMassTypes[(int)ck[MM_RUN_MASS] % 2], (int)ck[MM_RUN_MASS] / 2 ? " lumped" : "", MMMassTypes[(int)me[MM_RUN_MASS] % 2], (int)me[MM_RUN_MASS] / 2 ? " lumped" : "");
+  PetscFunctionReturn(0);
+}
+
+/* From the packed dataset NAME (bs entries per serial-mesh vertex), the blocks of the n vertices
+ * serial[] into vals (n bs entries): one scatter, whatever the partition that wrote the file. */
+static PetscErrorCode LoadPacked(MMCtx *ctx, PetscViewer viewer, const char name[], PetscInt bs, PetscInt n, const PetscInt serial[], PetscScalar vals[])
+{
+  MPI_Comm   comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  Vec        packed, local;
+  IS         from;
+  VecScatter sc;
+  PetscInt  *idx, N;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecCreate(comm, &packed));
+  PetscCall(LoadVector(ctx, viewer, name, packed));
+  PetscCall(VecGetSize(packed, &N));
+  PetscCheck(N == bs * ctx->ckpt.nv_global, comm, PETSC_ERR_FILE_UNEXPECTED, "The checkpoint %s has %" PetscInt_FMT " entries in \"%s\", expected %" PetscInt_FMT ": the file is damaged", ctx->ckpt.file, N, name, bs * ctx->ckpt.nv_global);
+  PetscCall(PetscMalloc1(n * bs, &idx));
+  for (PetscInt i = 0; i < n; ++i)
+    for (PetscInt c = 0; c < bs; ++c) idx[i * bs + c] = serial[i] * bs + c;
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, n * bs, idx, PETSC_OWN_POINTER, &from));
+  PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, n * bs, vals, &local));
+  PetscCall(VecScatterCreate(packed, from, local, NULL, &sc));
+  PetscCall(VecScatterBegin(sc, packed, local, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(sc, packed, local, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterDestroy(&sc));
+  PetscCall(VecDestroy(&local));
+  PetscCall(ISDestroy(&from));
+  PetscCall(VecDestroy(&packed));
+  PetscFunctionReturn(0);
+}
+
+/* The inverse of PackDofs: the free dofs of the owned vertices from their serial-mesh blocks. */
+static PetscErrorCode LoadDofs(MMCtx *ctx, PetscViewer viewer, const char name[], Vec w)
+{
+  const PetscInt dim = ctx->op.dim;
+  PetscInt       vStart, vEnd, rstart, n = 0, *serial;
+  PetscScalar   *vals, *wa;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetDepthStratum(ctx->op.dm, 0, &vStart, &vEnd));
+  PetscCall(PetscMalloc2(vEnd - vStart, &serial, dim * (vEnd - vStart), &vals));
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt  goff;
+    PetscBool freedof[MM_MAX_DIM];
+    PetscCall(OwnedVertexDofs(ctx, v, &goff, freedof));
+    if (goff >= 0) serial[n++] = ctx->ckpt.vertex_orig[v - vStart];
+  }
+  PetscCall(LoadPacked(ctx, viewer, name, dim, n, serial, vals));
+  PetscCall(VecGetOwnershipRange(w, &rstart, NULL));
+  PetscCall(VecGetArray(w, &wa));
+  n = 0;
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt  goff, j = 0;
+    PetscBool freedof[MM_MAX_DIM];
+    PetscCall(OwnedVertexDofs(ctx, v, &goff, freedof));
+    if (goff < 0) continue;
+    for (PetscInt d = 0; d < dim; ++d)
+      if (freedof[d]) wa[goff - rstart + j++] = vals[n * dim + d];
+    ++n;
+  }
+  PetscCall(VecRestoreArray(w, &wa));
+  PetscCall(PetscFree2(serial, vals));
+  PetscFunctionReturn(0);
+}
+
+/* The per-contact-node records, kept until the history is restored (was_active is recomputed by
+ * the initial diagnostics in between); each of this run's contact nodes must be one in the file. */
+static PetscErrorCode LoadContactRecords(MMCtx *ctx, PetscViewer viewer)
+{
+  MMContact *ct = &ctx->contact;
+  PetscInt   vStart, vEnd, *serial, bad = 0;
+
+  PetscFunctionBeginUser;
+  if (!ct->enabled) PetscFunctionReturn(0);
+  PetscCall(DMPlexGetDepthStratum(ctx->op.dm, 0, &vStart, &vEnd));
+  PetscCall(PetscMalloc1(ct->n_local, &serial));
+  PetscCall(PetscMalloc1(MM_CKPT_NODE * ct->n_local, &ctx->ckpt.node));
+  for (PetscInt k = 0; k < ct->n_local; ++k) serial[k] = ctx->ckpt.vertex_orig[ct->vertex[k] - vStart];
+  PetscCall(LoadPacked(ctx, viewer, "contact", MM_CKPT_NODE, ct->n_local, serial, ctx->ckpt.node));
+  for (PetscInt k = 0; k < ct->n_local; ++k) bad += PetscRealPart(ctx->ckpt.node[MM_CKPT_NODE * k]) != 1;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ctx->op.dm)));
+  PetscCheck(!bad, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "The checkpoint %s is of another contact boundary: %" PetscInt_FMT " of this run's %" PetscInt_FMT " contact nodes are not contact nodes there (-contact_boundary %s). Restart with the contact boundary of the run that wrote it", ctx->ckpt.file, bad, ct->n_global, ctx->opt.contact_name);
+  PetscCall(PetscFree(serial));
+  PetscFunctionReturn(0);
+}
+
+/* The friction thresholds, 3D slip states and directions, condensed reactions and the active-set
+ * warm start: what the next step's solvers start from. */
+static PetscErrorCode RestoreContactState(MMCtx *ctx)
+{
+  MMContact   *ct = &ctx->contact;
+  PetscScalar *sa = NULL, *ra = NULL;
+
+  PetscFunctionBeginUser;
+  if (!ct->enabled) PetscFunctionReturn(0);
+  if (ctx->friction.s) PetscCall(VecGetArray(ctx->friction.s, &sa));
+  if (ct->rho) PetscCall(VecGetArray(ct->rho, &ra));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscScalar *rec = &ctx->ckpt.node[MM_CKPT_NODE * k];
+    if (sa) sa[k] = rec[1];
+    if (ct->slipping) ct->slipping[k] = (PetscBool)(PetscRealPart(rec[2]) != 0);
+    if (ct->slip_dir) {
+      ct->slip_dir[2 * k]     = PetscRealPart(rec[4]);
+      ct->slip_dir[2 * k + 1] = PetscRealPart(rec[5]);
+    }
+    for (PetscInt c = 0; ra && c < ct->ncomp; ++c) ra[k * ct->ncomp + c] = rec[6 + c];
+    if (ct->as.active) {
+      ct->as.active[k] = (PetscBool)(PetscRealPart(rec[9]) != 0);
+      ct->as.stick[k]  = (PetscBool)(PetscRealPart(rec[10]) != 0);
+      for (PetscInt j = 0; j < ctx->op.dim - 1; ++j) ct->as.dir[k * (ctx->op.dim - 1) + j] = PetscRealPart(rec[11 + j]);
+    }
+  }
+  if (ra) PetscCall(VecRestoreArray(ct->rho, &ra));
+  if (sa) PetscCall(VecRestoreArray(ctx->friction.s, &sa));
+  PetscFunctionReturn(0);
+}
+
+/* -restart: the state, the stepper's time, step and dt, and the solvers' warm starts from the
+ * checkpoint, after the fingerprint is checked. Called once the TS exists, before the step matrix
+ * is factored (for the restored dt) and the initial energy is taken (of the restored state). */
+PetscErrorCode MMCheckpointLoad(MMCtx *ctx, TS ts)
+{
+  MPI_Comm       comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  MMCheckpoint  *c    = &ctx->ckpt;
+  MMState       *s    = &ctx->state;
+  PetscViewer    viewer;
+  PetscErrorCode ierr;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ctx->log.checkpoint, 0, 0, 0, 0));
+  PetscCall(ResolveRestartPath(ctx));
+  if (!c->nv_global) PetscCall(CountVertices(ctx));
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  ierr = PetscViewerHDF5Open(comm, c->file, FILE_MODE_READ, &viewer);
+  PetscCall(PetscPopErrorHandler());
+  PetscCheck(!ierr, comm, PETSC_ERR_FILE_OPEN, "Could not open the checkpoint %s: it is not a complete HDF5 file. A checkpoint is written to checkpoint.h5.tmp and renamed only when whole: give the directory's checkpoint.h5, or the directory itself", c->file);
+  PetscCall(LoadRunRecord(ctx, viewer, c->run));
+  PetscCall(CheckFingerprint(ctx, ts, c->run));
+  PetscCall(LoadContactRecords(ctx, viewer));
+  PetscCall(LoadDofs(ctx, viewer, "u", s->u));
+  PetscCall(LoadDofs(ctx, viewer, "v", s->v));
+  PetscCall(LoadDofs(ctx, viewer, "a", s->a));
+  PetscCall(LoadDofs(ctx, viewer, "react", s->react));
+  PetscCall(PetscViewerDestroy(&viewer));
+  PetscCall(VecCopy(s->u, s->u_next));
+  PetscCall(RestoreContactState(ctx));
+  s->dt           = c->run[MM_RUN_DT_LAST];
+  c->restart_step = (PetscInt)c->run[MM_RUN_STEP];
+  c->restarted    = PETSC_TRUE;
+  PetscCall(TSSetTime(ts, c->run[MM_RUN_TIME]));
+  PetscCall(TSSetStepNumber(ts, c->restart_step));
+  PetscCall(TSSetTimeStep(ts, c->run[MM_RUN_DT_NEXT]));
+  /* the gaps of moving obstacles at the checkpoint's time, for the initial diagnostics */
+  if (ctx->contact.enabled) PetscCall(MMContactSetTime(ctx, c->run[MM_RUN_TIME], s->dt));
+  if (!ctx->opt.quiet) PetscCall(PetscPrintf(comm, "Restart from %s: step %" PetscInt_FMT ", t = %.10g, dt %g (written on %d ranks, continued on %d)\n", c->file, c->restart_step, (double)c->run[MM_RUN_TIME], (double)c->run[MM_RUN_DT_NEXT], (int)c->run[MM_RUN_RANKS], PetscGlobalSize));
+  PetscCall(PetscLogEventEnd(ctx->log.checkpoint, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* After the initial energy of the restored state: the history's running sums and maxima, the last
+ * active set (for the switched count) and the snapshots already on disk, as at the checkpoint. */
+PetscErrorCode MMCheckpointRestoreHistory(MMCtx *ctx)
+{
+  MMCheckpoint   *c   = &ctx->ckpt;
+  MMHistory      *h   = &ctx->hist;
+  MMContact      *ct  = &ctx->contact;
+  const PetscReal *run = c->run;
+
+  PetscFunctionBeginUser;
+  h->step                = c->restart_step;
+  h->time                = run[MM_RUN_TIME];
+  h->dt                  = run[MM_RUN_DT_LAST];
+  h->cfl                 = ct->enabled ? ctx->op.c_p * h->dt / ct->h_c : 0;
+  h->work_ext            = run[MM_RUN_WORK_EXT];
+  h->work_contact        = run[MM_RUN_WORK_CONTACT];
+  h->work_friction       = run[MM_RUN_WORK_FRICTION];
+  h->work_obstacle       = run[MM_RUN_WORK_OBSTACLE];
+  h->max_balance         = run[MM_RUN_MAX_BALANCE];
+  h->max_penetration_run = run[MM_RUN_MAX_PENETRATION];
+  h->energy_scale        = run[MM_RUN_ENERGY_SCALE];
+  h->resolves = ct->cand.resolves = (PetscInt)run[MM_RUN_RESOLVES];
+  for (PetscInt k = 0; ct->enabled && k < ct->n_local; ++k) ct->was_active[k] = (PetscBool)(PetscRealPart(c->node[MM_CKPT_NODE * k + 3]) != 0);
+  c->last_step = c->restart_step;
+  c->written   = 1; /* the checkpoint of this step exists */
+  PetscFunctionReturn(0);
+}
+
+/* The snapshot count and times of the checkpoint, for the output to continue its series. */
+PetscErrorCode MMCheckpointSnapshots(MMCtx *ctx, PetscInt *n, PetscReal **times)
+{
+  MMCheckpoint *c    = &ctx->ckpt;
+  MPI_Comm      comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  PetscViewer   viewer;
+  Vec           tv, all;
+  VecScatter    sc;
+  PetscInt      N;
+
+  PetscFunctionBeginUser;
+  *n = (PetscInt)c->run[MM_RUN_SNAPSHOTS];
+  PetscCall(PetscMalloc1(PetscMax(*n, 1), times));
+  if (!*n) PetscFunctionReturn(0);
+  PetscCall(PetscViewerHDF5Open(comm, c->file, FILE_MODE_READ, &viewer));
+  PetscCall(VecCreate(comm, &tv));
+  PetscCall(LoadVector(ctx, viewer, "snapshot_times", tv));
+  PetscCall(PetscViewerDestroy(&viewer));
+  PetscCall(VecGetSize(tv, &N));
+  PetscCheck(N == *n, comm, PETSC_ERR_FILE_UNEXPECTED, "The checkpoint %s lists %" PetscInt_FMT " snapshot times for %" PetscInt_FMT " snapshots: the file is damaged", c->file, N, *n);
+  PetscCall(VecScatterCreateToAll(tv, &sc, &all));
+  PetscCall(VecScatterBegin(sc, tv, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(sc, tv, all, INSERT_VALUES, SCATTER_FORWARD));
+  {
+    const PetscScalar *a;
+    PetscCall(VecGetArrayRead(all, &a));
+    for (PetscInt i = 0; i < N; ++i) (*times)[i] = PetscRealPart(a[i]);
+    PetscCall(VecRestoreArrayRead(all, &a));
+  }
+  PetscCall(VecScatterDestroy(&sc));
+  PetscCall(VecDestroy(&all));
+  PetscCall(VecDestroy(&tv));
   PetscFunctionReturn(0);
 }

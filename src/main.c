@@ -14,6 +14,7 @@ static char help[] = "mmcontact: elastodynamic contact with Coulomb friction by 
 #include "log.h"
 #include "checkpoint.h"
 #include "progress.h"
+#include "signals.h"
 
 static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
 {
@@ -33,10 +34,12 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscCall(MMNewmarkInitialState(ctx));
   PetscCall(MMFrictionSetUp(ctx));
   PetscCall(MMNewmarkCreateTS(ctx, ts));
+  if (ctx->opt.restart[0]) PetscCall(MMCheckpointLoad(ctx, *ts));
   PetscCall(TSGetTimeStep(*ts, &dt));
   PetscCall(MMContactSetStepMatrix(ctx, dt));
   ctx->hist.dt = dt;
   PetscCall(MMEnergyInitial(ctx));
+  if (ctx->ckpt.restarted) PetscCall(MMCheckpointRestoreHistory(ctx));
   PetscCall(MMProgressHeader(ctx, *ts));
   /* every object has read its options: refuse the unread ones before any output is touched */
   PetscCall(MMOptionsCheckUnused(comm, &ctx->opt, ctx->op.dm));
@@ -45,6 +48,7 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscCall(TSMonitorSet(*ts, MMOutputMonitor, ctx, NULL));
   PetscCall(TSMonitorSet(*ts, MMCheckpointMonitor, ctx, NULL));
   PetscCall(MMProgressSetUp(ctx, *ts));
+  PetscCall(MMSignalsSetUp(ctx, *ts));
   PetscFunctionReturn(0);
 }
 
@@ -73,6 +77,7 @@ int main(int argc, char **argv)
   TS             ts;
   PetscLogDouble ts0, t0, t1;
   PetscBool      help_only;
+  int            stopped;
 
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
@@ -98,7 +103,9 @@ int main(int argc, char **argv)
   if (ctx.ckpt.last_step != ctx.hist.step || !ctx.ckpt.written) PetscCall(MMCheckpointWrite(&ctx, ts));
 
   PetscCall(MMOutputClose(&ctx, t0 - ts0, t1 - t0));
+  PetscCall(MMSignalsReport(&ctx));
+  stopped = ctx.ckpt.stop_signal;
   PetscCall(Destroy(&ctx, &ts));
   PetscCall(PetscFinalize());
-  return 0;
+  return stopped ? MM_EXIT_RESTARTABLE : 0;
 }

@@ -319,6 +319,8 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   opt->output_every = 10;
   opt->checkpoint_every = 0;
   PetscCall(PetscOptionsInt("-checkpoint_every", "Write the complete state to OUTPUT_DIR/checkpoint.h5 every k steps, replacing the previous one atomically (0: only at the end of the run)", NULL, opt->checkpoint_every, &opt->checkpoint_every, NULL));
+  opt->restart[0] = 0;
+  PetscCall(PetscOptionsString("-restart", "Continue the run of a checkpoint: its checkpoint.h5, or the output directory that holds it, on any number of ranks. The history.csv and solution.h5/.xmf of that directory, cut at the checkpoint's step, are continued in -output_dir. Give the options of the run that wrote it: another mesh, contact boundary, dimension, -mu, material or mass is refused", NULL, opt->restart, opt->restart, sizeof(opt->restart), NULL));
   PetscCall(PetscOptionsInt("-output_every", "Write the HDF5 fields every k steps (0: only the initial and final state)", NULL, opt->output_every, &opt->output_every, NULL));
   opt->quiet = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-quiet", "Do not print the start-up report, progress lines and closing summary", NULL, opt->quiet, &opt->quiet, NULL));

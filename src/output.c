@@ -9,7 +9,9 @@
  * Opening the output (at the end of set-up) first moves the last run's files into previous/. */
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
 #include <stdarg.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -17,6 +19,7 @@
 #include <petscsf.h>
 #include <petscviewerhdf5.h>
 #include "output.h"
+#include "output_impl.h"
 #include "contact.h"
 #include "fem.h"
 
@@ -26,14 +29,8 @@ static const char *const MMOutputFiles[] = {"history.csv", "solution.h5", "solut
 #define MM_XMF_TMP  ".tmp" /* suffix of the XDMF index being written */
 #define MM_N        "\001" /* in the index text kept in memory: the snapshot count, which grows */
 
-/* A file system call that failed on rank 0: what was tried on which file, and errno. */
-typedef struct {
-  int  err;
-  char what[2 * PETSC_MAX_PATH_LEN + 64];
-} MMFileStatus;
-
 /* Records the failure of the call just made; errno is read before anything can change it. */
-static PetscErrorCode Failed(MMFileStatus *st, const char fmt[], ...)
+PetscErrorCode MMOutputFailed(MMFileStatus *st, const char fmt[], ...)
 {
   int            err = errno ? errno : EIO;
   size_t         len;
@@ -51,18 +48,20 @@ static PetscErrorCode Failed(MMFileStatus *st, const char fmt[], ...)
 
 /* Rank 0 did the file system work: every rank learns how it went and stops with the same message,
  * instead of waiting in the next collective for a rank 0 that has stopped. */
-static PetscErrorCode CheckRank0(MMFileStatus *st)
+PetscErrorCode MMOutputCheckRank0(MMFileStatus *st)
 {
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Bcast(&st->err, 1, MPI_INT, 0, PETSC_COMM_WORLD));
   if (st->err) PetscCallMPI(MPI_Bcast(st->what, sizeof(st->what), MPI_CHAR, 0, PETSC_COMM_WORLD));
+  /* err < 0: not a system call's failure, what says it all */
+  PetscCheck(st->err >= 0, PETSC_COMM_WORLD, PETSC_ERR_FILE_UNEXPECTED, "%s", st->what);
   PetscCheck(!st->err, PETSC_COMM_WORLD, PETSC_ERR_FILE_WRITE, "Could not %s: %s", st->what, strerror(st->err));
   PetscFunctionReturn(0);
 }
 
 /* write(2) of the whole buffer: one call unless the system takes only part (a full disk, a signal).
  * 0, or -1 with errno set. */
-static int WriteAll(int fd, const char *buf, size_t len)
+int MMOutputWriteAll(int fd, const char *buf, size_t len)
 {
   while (len) {
     ssize_t n = write(fd, buf, len);
@@ -86,7 +85,7 @@ static int SystemReason(const char name[])
   if ((fd = open(name, O_WRONLY | O_CLOEXEC)) < 0) return errno;
   if (fstat(fd, &s)) err = errno;
   else {
-    if (lseek(fd, 0, SEEK_END) < 0 || WriteAll(fd, zeros, sizeof(zeros))) err = errno;
+    if (lseek(fd, 0, SEEK_END) < 0 || MMOutputWriteAll(fd, zeros, sizeof(zeros))) err = errno;
     if (ftruncate(fd, s.st_size) && !err) err = errno;
   }
   (void)close(fd);
@@ -96,7 +95,7 @@ static int SystemReason(const char name[])
 /* PETSc reports a failed HDF5 call without the file's name and H5Fflush/H5Fclose give only a status:
  * run them with PETSc's error printing off, then stop with the file and the reason. Rank-local: the
  * I/O is independent, only the rank whose write failed knows, and its exit ends the job. */
-static PetscErrorCode HDF5Begin(void)
+PetscErrorCode MMOutputHDF5Begin(void)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
@@ -104,7 +103,7 @@ static PetscErrorCode HDF5Begin(void)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode HDF5End(PetscErrorCode ierr, const char action[], const char name[])
+PetscErrorCode MMOutputHDF5End(PetscErrorCode ierr, const char action[], const char name[])
 {
   int         err = errno; /* first: the reason of the failed write, if one failed here */
   const char *text;
@@ -118,13 +117,7 @@ static PetscErrorCode HDF5End(PetscErrorCode ierr, const char action[], const ch
   SETERRQ(PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not %s %s: %s (%s)", action, name, err ? strerror(err) : "the system gave no reason", specific && specific[0] ? specific : text);
 }
 
-/* A piece of text built whole: a history row, so that it goes to disk in one write; an index grid. */
-typedef struct {
-  char   s[8192];
-  size_t n;
-} MMLine;
-
-static PetscErrorCode LineAdd(MMLine *l, const char fmt[], ...)
+PetscErrorCode MMOutputLineAdd(MMLine *l, const char fmt[], ...)
 {
   size_t         len;
   va_list        ap;
@@ -147,31 +140,42 @@ static PetscErrorCode CSVWrite(MMOutput *o, const MMLine *l)
   MMFileStatus st = {0};
 
   PetscFunctionBeginUser;
-  if (o->csv_fd >= 0 && WriteAll(o->csv_fd, l->s, l->n)) PetscCall(Failed(&st, "write %s", o->csv_name));
-  PetscCall(CheckRank0(&st));
+  if (o->csv_fd >= 0 && MMOutputWriteAll(o->csv_fd, l->s, l->n)) PetscCall(MMOutputFailed(&st, "write %s", o->csv_name));
+  PetscCall(MMOutputCheckRank0(&st));
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode CSVHeader(MMCtx *ctx)
+/* The header of history.csv: its columns depend on the dimension and the obstacles. */
+PetscErrorCode MMOutputCSVHeaderLine(MMCtx *ctx, MMLine *lp)
 {
   const char *axes = "xyz";
   PetscInt    dim  = ctx->op.dim;
   MMLine      l    = {.n = 0, .s = ""};
 
   PetscFunctionBeginUser;
-  PetscCall(LineAdd(&l, "step,time,dt,kinetic,elastic,total,work_ext,work_contact,work_friction,balance_residual,active,slipping,force_normal,force_tangential,max_penetration,coulomb_residual,vi_its,friction_its,cfl"));
-  for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",ucm_%c", axes[d]));
-  for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",vcm_%c", axes[d]));
-  if (dim == 2) PetscCall(LineAdd(&l, ",L_z"));
-  else PetscCall(LineAdd(&l, ",L_x,L_y,L_z"));
-  for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",P_%c", axes[d]));
-  if (dim == 2) PetscCall(LineAdd(&l, ",J_z"));
-  else PetscCall(LineAdd(&l, ",J_x,J_y,J_z"));
-  for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",load_%c", axes[d]));
-  PetscCall(LineAdd(&l, ",switched,contraction,candidates,candidate_resolves,work_obstacle"));
+  PetscCall(MMOutputLineAdd(&l, "step,time,dt,kinetic,elastic,total,work_ext,work_contact,work_friction,balance_residual,active,slipping,force_normal,force_tangential,max_penetration,coulomb_residual,vi_its,friction_its,cfl"));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",ucm_%c", axes[d]));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",vcm_%c", axes[d]));
+  if (dim == 2) PetscCall(MMOutputLineAdd(&l, ",L_z"));
+  else PetscCall(MMOutputLineAdd(&l, ",L_x,L_y,L_z"));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",P_%c", axes[d]));
+  if (dim == 2) PetscCall(MMOutputLineAdd(&l, ",J_z"));
+  else PetscCall(MMOutputLineAdd(&l, ",J_x,J_y,J_z"));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",load_%c", axes[d]));
+  PetscCall(MMOutputLineAdd(&l, ",switched,contraction,candidates,candidate_resolves,work_obstacle"));
   for (PetscInt b = 0; b < ctx->opt.n_obstacles; ++b)
-    for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",force_%s_%c", ctx->opt.obstacles[b].name, axes[d]));
-  PetscCall(LineAdd(&l, "\n"));
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",force_%s_%c", ctx->opt.obstacles[b].name, axes[d]));
+  PetscCall(MMOutputLineAdd(&l, "\n"));
+  *lp = l;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CSVHeader(MMCtx *ctx)
+{
+  MMLine l;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMOutputCSVHeaderLine(ctx, &l));
   PetscCall(CSVWrite(&ctx->out, &l));
   PetscFunctionReturn(0);
 }
@@ -184,52 +188,52 @@ static PetscErrorCode CSVRow(MMCtx *ctx)
   MMLine           l   = {.n = 0, .s = ""};
 
   PetscFunctionBeginUser;
-  PetscCall(LineAdd(&l, "%" PetscInt_FMT ",%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.6e,%" PetscInt_FMT ",%" PetscInt_FMT ",%.16e,%.16e,%.6e,%.6e,%" PetscInt_FMT ",%" PetscInt_FMT ",%.6e", h->step, (double)h->time, (double)h->dt, (double)h->kinetic, (double)h->elastic, (double)h->total, (double)h->work_ext, (double)h->work_contact, (double)h->work_friction, (double)h->balance_residual, h->active, h->slipping, (double)h->force_normal, (double)h->force_tangential, (double)h->max_penetration, (double)h->coulomb_residual, h->vi_its, h->friction_its, (double)h->cfl));
-  for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",%.16e", (double)h->ucm[d]));
-  for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",%.16e", (double)h->vcm[d]));
-  if (dim == 2) PetscCall(LineAdd(&l, ",%.16e", (double)h->L[2]));
-  else PetscCall(LineAdd(&l, ",%.16e,%.16e,%.16e", (double)h->L[0], (double)h->L[1], (double)h->L[2]));
-  for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",%.16e", (double)h->P[d]));
-  if (dim == 2) PetscCall(LineAdd(&l, ",%.16e", (double)h->J[2]));
-  else PetscCall(LineAdd(&l, ",%.16e,%.16e,%.16e", (double)h->J[0], (double)h->J[1], (double)h->J[2]));
-  for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",%.16e", (double)h->load[d]));
-  PetscCall(LineAdd(&l, ",%" PetscInt_FMT ",%.6e,%" PetscInt_FMT ",%" PetscInt_FMT ",%.16e", h->switched, (double)h->contraction, h->candidates, h->resolves, (double)h->work_obstacle));
+  PetscCall(MMOutputLineAdd(&l, "%" PetscInt_FMT ",%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.6e,%" PetscInt_FMT ",%" PetscInt_FMT ",%.16e,%.16e,%.6e,%.6e,%" PetscInt_FMT ",%" PetscInt_FMT ",%.6e", h->step, (double)h->time, (double)h->dt, (double)h->kinetic, (double)h->elastic, (double)h->total, (double)h->work_ext, (double)h->work_contact, (double)h->work_friction, (double)h->balance_residual, h->active, h->slipping, (double)h->force_normal, (double)h->force_tangential, (double)h->max_penetration, (double)h->coulomb_residual, h->vi_its, h->friction_its, (double)h->cfl));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->ucm[d]));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->vcm[d]));
+  if (dim == 2) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->L[2]));
+  else PetscCall(MMOutputLineAdd(&l, ",%.16e,%.16e,%.16e", (double)h->L[0], (double)h->L[1], (double)h->L[2]));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->P[d]));
+  if (dim == 2) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->J[2]));
+  else PetscCall(MMOutputLineAdd(&l, ",%.16e,%.16e,%.16e", (double)h->J[0], (double)h->J[1], (double)h->J[2]));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->load[d]));
+  PetscCall(MMOutputLineAdd(&l, ",%" PetscInt_FMT ",%.6e,%" PetscInt_FMT ",%" PetscInt_FMT ",%.16e", h->switched, (double)h->contraction, h->candidates, h->resolves, (double)h->work_obstacle));
   for (PetscInt b = 0; b < ctx->opt.n_obstacles; ++b)
-    for (PetscInt d = 0; d < dim; ++d) PetscCall(LineAdd(&l, ",%.16e", ctx->contact.enabled ? (double)ctx->contact.force_obstacle[MM_MAX_DIM * b + d] : 0.0));
-  PetscCall(LineAdd(&l, "\n"));
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", ctx->contact.enabled ? (double)ctx->contact.force_obstacle[MM_MAX_DIM * b + d] : 0.0));
+  PetscCall(MMOutputLineAdd(&l, "\n"));
   PetscCall(CSVWrite(&ctx->out, &l));
   PetscFunctionReturn(0);
 }
 
 /* rank 0: the newest snapshot's grid, added to the index text kept in memory. The snapshot count n
  * appears in it as MM_N, filled in when the index is written: the only part that changes. */
-static PetscErrorCode IndexAddGrid(MMOutput *o, PetscInt dim)
+PetscErrorCode MMOutputIndexAddGrid(MMOutput *o, PetscInt dim, PetscInt k)
 {
   const char    *h5base     = "solution.h5";
   const char    *fields[]   = {"displacement", "velocity", "contact_pressure", "gap", "tangential_traction", "slip_velocity"};
   const char    *datasets[] = {"displacement_displacement", "velocity_displacement", "contact_pressure_nodal", "gap_nodal", "tangential_traction_displacement", "slip_velocity_displacement"};
   const PetscInt ncomp[]    = {dim, dim, 1, 1, dim, dim};
-  const PetscInt nv = o->nv, nc = o->nc, k = o->n_written - 1;
+  const PetscInt nv = o->nv, nc = o->nc;
   MMLine         l = {.n = 0, .s = ""};
 
   PetscFunctionBeginUser;
-  PetscCall(LineAdd(&l, "<Grid Name=\"step %" PetscInt_FMT "\" GridType=\"Uniform\">\n<Time Value=\"%.16e\"/>\n", k, (double)o->times[k]));
-  PetscCall(LineAdd(&l, "<Topology TopologyType=\"%s\" NumberOfElements=\"%" PetscInt_FMT "\">\n<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Int\" Format=\"HDF\">%s:/viz/topology/cells</DataItem>\n</Topology>\n", dim == 2 ? "Triangle" : "Tetrahedron", nc, nc, dim + 1, h5base));
-  PetscCall(LineAdd(&l, "<Geometry GeometryType=\"%s\">\n<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n</Geometry>\n", dim == 2 ? "XY" : "XYZ", nv, dim, h5base));
+  PetscCall(MMOutputLineAdd(&l, "<Grid Name=\"step %" PetscInt_FMT "\" GridType=\"Uniform\">\n<Time Value=\"%.16e\"/>\n", k, (double)o->times[k]));
+  PetscCall(MMOutputLineAdd(&l, "<Topology TopologyType=\"%s\" NumberOfElements=\"%" PetscInt_FMT "\">\n<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Int\" Format=\"HDF\">%s:/viz/topology/cells</DataItem>\n</Topology>\n", dim == 2 ? "Triangle" : "Tetrahedron", nc, nc, dim + 1, h5base));
+  PetscCall(MMOutputLineAdd(&l, "<Geometry GeometryType=\"%s\">\n<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n</Geometry>\n", dim == 2 ? "XY" : "XYZ", nv, dim, h5base));
   for (size_t i = 0; i < sizeof(fields) / sizeof(fields[0]); ++i) {
-    PetscCall(LineAdd(&l, "<Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", fields[i], ncomp[i] > 1 ? "Vector" : "Scalar"));
+    PetscCall(MMOutputLineAdd(&l, "<Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", fields[i], ncomp[i] > 1 ? "Vector" : "Scalar"));
     if (ncomp[i] > 1) {
-      PetscCall(LineAdd(&l, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT " %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", nv, ncomp[i]));
-      PetscCall(LineAdd(&l, "<DataItem Dimensions=\"3 3\" Format=\"XML\">%" PetscInt_FMT " 0 0 1 1 1 1 %" PetscInt_FMT " %" PetscInt_FMT "</DataItem>\n", k, nv, ncomp[i]));
-      PetscCall(LineAdd(&l, "<DataItem Dimensions=\"" MM_N " %" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n</DataItem>\n</Attribute>\n", nv, ncomp[i], h5base, datasets[i]));
+      PetscCall(MMOutputLineAdd(&l, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT " %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", nv, ncomp[i]));
+      PetscCall(MMOutputLineAdd(&l, "<DataItem Dimensions=\"3 3\" Format=\"XML\">%" PetscInt_FMT " 0 0 1 1 1 1 %" PetscInt_FMT " %" PetscInt_FMT "</DataItem>\n", k, nv, ncomp[i]));
+      PetscCall(MMOutputLineAdd(&l, "<DataItem Dimensions=\"" MM_N " %" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n</DataItem>\n</Attribute>\n", nv, ncomp[i], h5base, datasets[i]));
     } else {
-      PetscCall(LineAdd(&l, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", nv));
-      PetscCall(LineAdd(&l, "<DataItem Dimensions=\"3 2\" Format=\"XML\">%" PetscInt_FMT " 0 1 1 1 %" PetscInt_FMT "</DataItem>\n", k, nv));
-      PetscCall(LineAdd(&l, "<DataItem Dimensions=\"" MM_N " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n</DataItem>\n</Attribute>\n", nv, h5base, datasets[i]));
+      PetscCall(MMOutputLineAdd(&l, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", nv));
+      PetscCall(MMOutputLineAdd(&l, "<DataItem Dimensions=\"3 2\" Format=\"XML\">%" PetscInt_FMT " 0 1 1 1 %" PetscInt_FMT "</DataItem>\n", k, nv));
+      PetscCall(MMOutputLineAdd(&l, "<DataItem Dimensions=\"" MM_N " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n</DataItem>\n</Attribute>\n", nv, h5base, datasets[i]));
     }
   }
-  PetscCall(LineAdd(&l, "<Attribute Name=\"contact_obstacle\" AttributeType=\"Scalar\" Center=\"Node\">\n<DataItem Dimensions=\"%" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/contact_obstacle_nodal</DataItem>\n</Attribute>\n", nv, h5base));
-  PetscCall(LineAdd(&l, "</Grid>\n"));
+  PetscCall(MMOutputLineAdd(&l, "<Attribute Name=\"contact_obstacle\" AttributeType=\"Scalar\" Center=\"Node\">\n<DataItem Dimensions=\"%" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/contact_obstacle_nodal</DataItem>\n</Attribute>\n", nv, h5base));
+  PetscCall(MMOutputLineAdd(&l, "</Grid>\n"));
   if (o->index_len + l.n + 1 > o->index_cap) {
     o->index_cap = 2 * (o->index_len + l.n + 1);
     PetscCall(PetscRealloc(o->index_cap, &o->index));
@@ -259,9 +263,9 @@ static void IndexPrint(FILE *f, const MMOutput *o)
   fputs("</Grid>\n</Domain>\n</Xdmf>\n", f);
 }
 
-/* The XDMF index gains the snapshot just flushed and is rewritten, on rank 0: whole to solution.xmf.tmp,
- * then renamed over solution.xmf. Not fsync'd: this guards against the process dying, not the machine. */
-static PetscErrorCode WriteIndex(MMCtx *ctx)
+/* The XDMF index, rewritten on rank 0: whole to solution.xmf.tmp, then renamed over solution.xmf.
+ * Not fsync'd: this guards against the process dying, not the machine. */
+PetscErrorCode MMOutputWriteIndexFile(MMCtx *ctx)
 {
   MMOutput    *o  = &ctx->out;
   MMFileStatus st = {0};
@@ -275,19 +279,30 @@ static PetscErrorCode WriteIndex(MMCtx *ctx)
   if (rank == 0) {
     FILE *f;
 
-    PetscCall(IndexAddGrid(o, ctx->op.dim));
-    if (!(f = fopen(tmp, "w"))) PetscCall(Failed(&st, "create %s", tmp));
+    if (!(f = fopen(tmp, "w"))) PetscCall(MMOutputFailed(&st, "create %s", tmp));
     else {
       IndexPrint(f, o);
       if (ferror(f) || fflush(f)) {
-        PetscCall(Failed(&st, "write %s", tmp));
+        PetscCall(MMOutputFailed(&st, "write %s", tmp));
         (void)fclose(f);
-      } else if (fclose(f)) PetscCall(Failed(&st, "close %s", tmp));
-      else if (rename(tmp, o->xmf_name)) PetscCall(Failed(&st, "rename %s to %s", tmp, o->xmf_name));
+      } else if (fclose(f)) PetscCall(MMOutputFailed(&st, "close %s", tmp));
+      else if (rename(tmp, o->xmf_name)) PetscCall(MMOutputFailed(&st, "rename %s to %s", tmp, o->xmf_name));
     }
   }
-  PetscCall(CheckRank0(&st));
+  PetscCall(MMOutputCheckRank0(&st));
   PetscCall(PetscLogEventEnd(o->ev_index, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* The index gains the snapshot just flushed. */
+static PetscErrorCode WriteIndex(MMCtx *ctx)
+{
+  PetscMPIInt rank;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
+  if (rank == 0) PetscCall(MMOutputIndexAddGrid(&ctx->out, ctx->op.dim, ctx->out.n_written - 1));
+  PetscCall(MMOutputWriteIndexFile(ctx));
   PetscFunctionReturn(0);
 }
 
@@ -312,7 +327,7 @@ static PetscErrorCode WholeField(MMCtx *ctx, Vec w, PetscBool with_bc, Vec whole
 }
 
 /* Everything written to solution.h5 so far goes to disk: after this the index may list it. */
-static PetscErrorCode FlushFields(MMOutput *o)
+PetscErrorCode MMOutputFlushFields(MMOutput *o)
 {
   hid_t  fid;
   herr_t status;
@@ -330,19 +345,46 @@ static PetscErrorCode FlushFields(MMOutput *o)
   PetscFunctionReturn(0);
 }
 
-/* Each contact node's obstacle, fixed at set-up (docs/method.md section 8): written once, without
- * a time index, with the first snapshot; every snapshot's grid refers to it. */
-static PetscErrorCode WriteObstacleField(MMCtx *ctx)
+/* Each vertex's number in the serial mesh: PETSc writes the vertices in the partition's order, so
+ * this is what matches a vertex across runs on other rank counts (and -restart's copy of the
+ * earlier snapshots). */
+static PetscErrorCode SerialVertexField(MMCtx *ctx, Vec f)
+{
+  PetscSection gs;
+  PetscInt     vStart, vEnd, rstart;
+  PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalSection(ctx->out.dm_scalar, &gs));
+  PetscCall(DMPlexGetDepthStratum(ctx->out.dm_scalar, 0, &vStart, &vEnd));
+  PetscCall(VecGetOwnershipRange(f, &rstart, NULL));
+  PetscCall(VecGetArray(f, &a));
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt goff;
+    PetscCall(PetscSectionGetOffset(gs, v, &goff));
+    if (goff >= 0) a[goff - rstart] = (PetscScalar)ctx->ckpt.vertex_orig[v - vStart];
+  }
+  PetscCall(VecRestoreArray(f, &a));
+  PetscFunctionReturn(0);
+}
+
+/* The fields without a time index, written once with the first snapshot: each contact node's
+ * obstacle, fixed at set-up (docs/method.md section 8), which every snapshot's grid refers to, and
+ * each vertex's serial number. */
+PetscErrorCode MMOutputWriteStaticFields(MMCtx *ctx)
 {
   MMOutput      *o = &ctx->out;
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
   PetscCall(MMContactObstacleField(ctx, o->obstacle));
+  PetscCall(SerialVertexField(ctx, o->serial));
   PetscCall(DMSetOutputSequenceNumber(o->dm_scalar, -1, 0));
-  PetscCall(HDF5Begin());
+  PetscCall(MMOutputHDF5Begin());
   ierr = VecView(o->obstacle, o->h5);
-  PetscCall(HDF5End(ierr, "write", o->h5_name));
+  if (!ierr) ierr = VecView(o->serial, o->h5);
+  PetscCall(MMOutputHDF5End(ierr, "write", o->h5_name));
+  o->static_written = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
@@ -359,14 +401,14 @@ static PetscErrorCode WriteFields(MMCtx *ctx)
   PetscCall(WholeField(ctx, ctx->state.u, PETSC_TRUE, o->disp_cart));
   PetscCall(WholeField(ctx, ctx->state.v, PETSC_FALSE, o->vel_cart));
   PetscCall(MMContactBoundaryFields(ctx, o));
-  if (!o->n_written) PetscCall(WriteObstacleField(ctx));
+  if (!o->static_written) PetscCall(MMOutputWriteStaticFields(ctx));
   /* VecView also writes this time into /time, ahead of the fields: the index, not /time, says what is complete */
   PetscCall(DMSetOutputSequenceNumber(o->dm_out, o->n_written, t));
   PetscCall(DMSetOutputSequenceNumber(o->dm_scalar, o->n_written, t));
-  PetscCall(HDF5Begin());
+  PetscCall(MMOutputHDF5Begin());
   for (size_t i = 0; i < sizeof(vecs) / sizeof(vecs[0]) && !ierr; ++i) ierr = VecView(vecs[i], o->h5);
-  PetscCall(HDF5End(ierr, "write", o->h5_name));
-  PetscCall(FlushFields(o));
+  PetscCall(MMOutputHDF5End(ierr, "write", o->h5_name));
+  PetscCall(MMOutputFlushFields(o));
   PetscCall(PetscRealloc(sizeof(PetscReal) * (o->n_written + 1), &o->times));
   o->times[o->n_written++] = t;
   PetscCall(WriteIndex(ctx));
@@ -375,7 +417,7 @@ static PetscErrorCode WriteFields(MMCtx *ctx)
 }
 
 /* rank 0, mkdir -p: each missing component of the path; then the path must be a directory */
-static PetscErrorCode MakeDirectories(const char path[], MMFileStatus *st)
+PetscErrorCode MMOutputMakeDirectories(const char path[], MMFileStatus *st)
 {
   char        dir[PETSC_MAX_PATH_LEN];
   size_t      len;
@@ -389,22 +431,22 @@ static PetscErrorCode MakeDirectories(const char path[], MMFileStatus *st)
     dir[i] = 0;
     /* EEXIST may also be a file in the way: stat() below says so */
     if (mkdir(dir, 0777) && errno != EEXIST) {
-      PetscCall(Failed(st, "create the output directory %s", dir));
+      PetscCall(MMOutputFailed(st, "create the output directory %s", dir));
       PetscFunctionReturn(0);
     }
     if (i < len) dir[i] = '/';
   }
-  if (stat(path, &s)) PetscCall(Failed(st, "use the output directory %s", path));
+  if (stat(path, &s)) PetscCall(MMOutputFailed(st, "use the output directory %s", path));
   else if (!S_ISDIR(s.st_mode)) {
     errno = ENOTDIR;
-    PetscCall(Failed(st, "use the output directory %s", path));
+    PetscCall(MMOutputFailed(st, "use the output directory %s", path));
   }
   PetscFunctionReturn(0);
 }
 
 /* rank 0: the last run's files move to DIR/previous/, replacing the set there, so that they survive
  * this run whatever happens to it. Symbolic links move as links: what they point to is not touched. */
-static PetscErrorCode KeepPrevious(const char dir[], MMFileStatus *st)
+PetscErrorCode MMOutputKeepPrevious(const char dir[], MMFileStatus *st)
 {
   const PetscInt n = sizeof(MMOutputFiles) / sizeof(MMOutputFiles[0]);
   char           prev[PETSC_MAX_PATH_LEN], from[PETSC_MAX_PATH_LEN], to[PETSC_MAX_PATH_LEN];
@@ -420,14 +462,14 @@ static PetscErrorCode KeepPrevious(const char dir[], MMFileStatus *st)
   if (!any) PetscFunctionReturn(0);
   PetscCall(PetscSNPrintf(prev, sizeof(prev), "%s/%s", dir, MM_PREVIOUS));
   if (mkdir(prev, 0777) && errno != EEXIST) {
-    PetscCall(Failed(st, "create %s for the earlier results", prev));
+    PetscCall(MMOutputFailed(st, "create %s for the earlier results", prev));
     PetscFunctionReturn(0);
   }
   /* the older set goes whole, so previous/ never mixes two runs */
   for (PetscInt i = 0; i < n; ++i) {
     PetscCall(PetscSNPrintf(to, sizeof(to), "%s/%s", prev, MMOutputFiles[i]));
     if (unlink(to) && errno != ENOENT) {
-      PetscCall(Failed(st, "remove the older %s", to));
+      PetscCall(MMOutputFailed(st, "remove the older %s", to));
       PetscFunctionReturn(0);
     }
   }
@@ -436,14 +478,21 @@ static PetscErrorCode KeepPrevious(const char dir[], MMFileStatus *st)
     PetscCall(PetscSNPrintf(from, sizeof(from), "%s/%s", dir, MMOutputFiles[i]));
     PetscCall(PetscSNPrintf(to, sizeof(to), "%s/%s", prev, MMOutputFiles[i]));
     if (rename(from, to)) {
-      PetscCall(Failed(st, "move the earlier %s to %s", from, to));
+      PetscCall(MMOutputFailed(st, "move the earlier %s to %s", from, to));
       PetscFunctionReturn(0);
     }
   }
   PetscFunctionReturn(0);
 }
 
-/* The output directory exists, holds none of this run's names, and history.csv is open on rank 0. */
+static PetscBool SameDirectory(const char a[], const char b[])
+{
+  char ra[PATH_MAX], rb[PATH_MAX];
+  return (PetscBool)(realpath(a, ra) && realpath(b, rb) && !strcmp(ra, rb));
+}
+
+/* The output directory exists, holds none of this run's names (or, on -restart, the files it
+ * continues), and history.csv is open on rank 0. */
 static PetscErrorCode OpenDirectoryAndHistory(MMCtx *ctx)
 {
   MMOutput    *o  = &ctx->out;
@@ -454,11 +503,13 @@ static PetscErrorCode OpenDirectoryAndHistory(MMCtx *ctx)
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   o->csv_fd = -1;
   if (rank == 0) {
-    PetscCall(MakeDirectories(ctx->opt.output_dir, &st));
-    if (!st.err) PetscCall(KeepPrevious(ctx->opt.output_dir, &st));
-    if (!st.err && (o->csv_fd = open(o->csv_name, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666)) < 0) PetscCall(Failed(&st, "create %s", o->csv_name));
+    PetscCall(MMOutputMakeDirectories(ctx->opt.output_dir, &st));
+    /* a restart continues the files of its checkpoint's directory: only another run's move away */
+    if (!st.err && !(ctx->ckpt.restarted && SameDirectory(ctx->opt.output_dir, ctx->ckpt.source_dir))) PetscCall(MMOutputKeepPrevious(ctx->opt.output_dir, &st));
+    if (!st.err && ctx->ckpt.restarted) PetscCall(MMOutputRestartHistory(ctx, &st));
+    else if (!st.err && (o->csv_fd = open(o->csv_name, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666)) < 0) PetscCall(MMOutputFailed(&st, "create %s", o->csv_name));
   }
-  PetscCall(CheckRank0(&st));
+  PetscCall(MMOutputCheckRank0(&st));
   PetscFunctionReturn(0);
 }
 
@@ -494,14 +545,14 @@ static PetscErrorCode OpenFields(MMCtx *ctx)
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
-  PetscCall(HDF5Begin());
+  PetscCall(MMOutputHDF5Begin());
   ierr = PetscViewerHDF5Open(PETSC_COMM_WORLD, o->h5_name, FILE_MODE_WRITE, &o->h5);
-  PetscCall(HDF5End(ierr, "create", o->h5_name));
+  PetscCall(MMOutputHDF5End(ierr, "create", o->h5_name));
   PetscCall(PetscViewerPushFormat(o->h5, PETSC_VIEWER_HDF5_XDMF));
-  PetscCall(HDF5Begin());
+  PetscCall(MMOutputHDF5Begin());
   ierr = DMView(ctx->op.dm, o->h5);
-  PetscCall(HDF5End(ierr, "write", o->h5_name));
-  PetscCall(FlushFields(o));
+  PetscCall(MMOutputHDF5End(ierr, "write", o->h5_name));
+  PetscCall(MMOutputFlushFields(o));
   PetscCall(CountMesh(ctx));
   PetscFunctionReturn(0);
 }
@@ -537,6 +588,8 @@ static PetscErrorCode CreateFieldVectors(MMCtx *ctx)
   PetscCall(PetscObjectSetName((PetscObject)o->gap, "gap"));
   PetscCall(DMCreateGlobalVector(o->dm_scalar, &o->obstacle));
   PetscCall(PetscObjectSetName((PetscObject)o->obstacle, "contact_obstacle"));
+  PetscCall(DMCreateGlobalVector(o->dm_scalar, &o->serial));
+  PetscCall(PetscObjectSetName((PetscObject)o->serial, "serial_vertex"));
   PetscFunctionReturn(0);
 }
 
@@ -566,9 +619,15 @@ PetscErrorCode MMOutputOpen(MMCtx *ctx)
   PetscCall(PetscSNPrintf(o->h5_name, sizeof(o->h5_name), "%s/%s", dir, MMOutputFiles[1]));
   PetscCall(PetscSNPrintf(o->xmf_name, sizeof(o->xmf_name), "%s/%s", dir, MMOutputFiles[2]));
   PetscCall(OpenDirectoryAndHistory(ctx));
-  PetscCall(CSVHeader(ctx));
-  PetscCall(OpenFields(ctx));
-  PetscCall(CreateFieldVectors(ctx));
+  if (ctx->ckpt.restarted) {
+    PetscCall(CountMesh(ctx));
+    PetscCall(CreateFieldVectors(ctx));
+    PetscCall(MMOutputRestartFields(ctx));
+  } else {
+    PetscCall(CSVHeader(ctx));
+    PetscCall(OpenFields(ctx));
+    PetscCall(CreateFieldVectors(ctx));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -579,6 +638,8 @@ PetscErrorCode MMOutputMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void
   PetscInt every = ctx->opt.output_every;
 
   PetscFunctionBeginUser;
+  /* -restart: the row and snapshot of the checkpoint's step are on disk already */
+  if (ctx->ckpt.restarted && step == ctx->ckpt.restart_step) PetscFunctionReturn(0);
   PetscCall(CSVRow(ctx));
   if (step == 0 || (every > 0 && step % every == 0)) PetscCall(WriteFields(ctx));
   PetscFunctionReturn(0);
@@ -591,13 +652,13 @@ static PetscErrorCode CloseFiles(MMOutput *o)
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
-  if (o->csv_fd >= 0 && close(o->csv_fd)) PetscCall(Failed(&st, "close %s", o->csv_name));
+  if (o->csv_fd >= 0 && close(o->csv_fd)) PetscCall(MMOutputFailed(&st, "close %s", o->csv_name));
   o->csv_fd = -1;
-  PetscCall(CheckRank0(&st));
+  PetscCall(MMOutputCheckRank0(&st));
   PetscCall(PetscViewerPopFormat(o->h5));
-  PetscCall(HDF5Begin());
+  PetscCall(MMOutputHDF5Begin());
   ierr = PetscViewerDestroy(&o->h5);
-  PetscCall(HDF5End(ierr, "close", o->h5_name));
+  PetscCall(MMOutputHDF5End(ierr, "close", o->h5_name));
   PetscFunctionReturn(0);
 }
 
@@ -617,7 +678,8 @@ PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wa
     peak = ru.ru_maxrss / 1024.0; /* kB on Linux */
     PetscCall(MPIU_Allreduce(&peak, &total, 1, MPIU_REAL, MPIU_SUM, PETSC_COMM_WORLD));
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &peak, 1, MPIU_REAL, MPIU_MAX, PETSC_COMM_WORLD));
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "mmcontact summary: setup %.3f s; %" PetscInt_FMT " steps to t = %g in %.3f s wall (%.4f s/step); peak memory %.1f MiB/rank (%.1f MiB over all ranks); largest balance residual %.3e; largest penetration %.3e (h_c' %.3e)\n", (double)setup, h->step, (double)h->time, (double)wall, h->step ? (double)(wall / h->step) : 0.0, (double)peak, (double)total, (double)h->max_balance, (double)h->max_penetration_run, (double)ctx->contact.h_c));
+    const PetscInt steps = h->step - (ctx->ckpt.restarted ? ctx->ckpt.restart_step : 0); /* this run's */
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "mmcontact summary: setup %.3f s; %" PetscInt_FMT " steps to t = %g in %.3f s wall (%.4f s/step); peak memory %.1f MiB/rank (%.1f MiB over all ranks); largest balance residual %.3e; largest penetration %.3e (h_c' %.3e)\n", (double)setup, steps, (double)h->time, (double)wall, steps ? (double)(wall / steps) : 0.0, (double)peak, (double)total, (double)h->max_balance, (double)h->max_penetration_run, (double)ctx->contact.h_c));
     if (ctx->contact.enabled && ctx->contact.formulation == MM_CONTACT_CONDENSED) {
       const MMCandidates *c = &ctx->contact.cand;
       PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  contact candidate set: largest %" PetscInt_FMT " of %" PetscInt_FMT " contact nodes; %" PetscInt_FMT " columns of K~^{-1} E computed; %" PetscInt_FMT " VI re-solves after the set grew\n", c->max_set, ctx->contact.n_global, c->columns, c->resolves));
@@ -630,6 +692,7 @@ PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wa
   PetscCall(VecDestroy(&o->vel_cart));
   PetscCall(VecDestroy(&o->pressure));
   PetscCall(VecDestroy(&o->obstacle));
+  PetscCall(VecDestroy(&o->serial));
   PetscCall(VecDestroy(&o->gap));
   PetscCall(VecDestroy(&o->traction_t));
   PetscCall(VecDestroy(&o->slip));

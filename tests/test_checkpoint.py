@@ -25,7 +25,7 @@ def test_checkpoint_is_the_same_on_one_and_two_ranks(mm):
         scale = np.abs(sa[k]).max()
         assert scale > 0 and np.abs(sa[k] - sb[k]).max() <= 1e-10 * scale, k
     assert np.abs(sa["a"] - sb["a"]).max() <= 1e-9 * np.abs(sa["a"]).max()
-    ca, cb = sa["contact"].reshape(-1, 9), sb["contact"].reshape(-1, 9)
+    ca, cb = sa["contact"].reshape(-1, 13), sb["contact"].reshape(-1, 13)
     assert np.array_equal(ca[:, 0], cb[:, 0]) and ca[:, 0].sum() > 10  # the contact set
     assert np.array_equal(ca[:, 3], cb[:, 3])  # the active set of the last step
     assert np.abs(ca[:, 1] - cb[:, 1]).max() <= 1e-9 * max(np.abs(ca[:, 1]).max(), 1e-300)  # friction thresholds

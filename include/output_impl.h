@@ -1,0 +1,33 @@
+/* The output's own helpers, shared by output.c and output_restart.c. */
+#pragma once
+#include <stdio.h>
+#include "mmcontact.h"
+
+/* A file system call that failed on rank 0: what was tried on which file, and errno. */
+typedef struct {
+  int  err;
+  char what[2 * PETSC_MAX_PATH_LEN + 64];
+} MMFileStatus;
+
+/* A piece of text built whole: a history row, so that it goes to disk in one write; an index grid. */
+typedef struct {
+  char   s[8192];
+  size_t n;
+} MMLine;
+
+PETSC_INTERN PetscErrorCode MMOutputFailed(MMFileStatus *, const char[], ...);
+PETSC_INTERN PetscErrorCode MMOutputCheckRank0(MMFileStatus *);
+PETSC_INTERN int            MMOutputWriteAll(int, const char *, size_t);
+PETSC_INTERN PetscErrorCode MMOutputHDF5Begin(void);
+PETSC_INTERN PetscErrorCode MMOutputHDF5End(PetscErrorCode, const char[], const char[]);
+PETSC_INTERN PetscErrorCode MMOutputLineAdd(MMLine *, const char[], ...);
+PETSC_INTERN PetscErrorCode MMOutputCSVHeaderLine(MMCtx *, MMLine *);
+PETSC_INTERN PetscErrorCode MMOutputIndexAddGrid(MMOutput *, PetscInt, PetscInt);
+PETSC_INTERN PetscErrorCode MMOutputWriteIndexFile(MMCtx *);
+PETSC_INTERN PetscErrorCode MMOutputFlushFields(MMOutput *);
+PETSC_INTERN PetscErrorCode MMOutputWriteStaticFields(MMCtx *);
+PETSC_INTERN PetscErrorCode MMOutputMakeDirectories(const char[], MMFileStatus *);
+PETSC_INTERN PetscErrorCode MMOutputKeepPrevious(const char[], MMFileStatus *);
+/* output_restart.c: -restart continues the history and the snapshots up to the checkpoint */
+PETSC_INTERN PetscErrorCode MMOutputRestartHistory(MMCtx *, MMFileStatus *);
+PETSC_INTERN PetscErrorCode MMOutputRestartFields(MMCtx *);

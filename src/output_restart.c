@@ -1,0 +1,275 @@
+/* -restart continues the output of the run it restarts (docs/method.md section 9): history.csv and
+ * solution.h5/.xmf are cut at the checkpoint's step, in -output_dir, and the run appends to them.
+ *
+ * - history.csv keeps its header and rows 0 .. N, N the checkpoint's step; the rows must be exactly
+ *   those, one per step, or the restart is refused. Written whole to history.csv.tmp and renamed.
+ * - solution.h5 is rewritten: PETSc writes the vertices in the order of the partition, which a
+ *   restart on another number of ranks does not share, so the checkpoint's snapshots are copied
+ *   vertex by vertex (matched by the serial vertex numbers the file carries) into a new file in
+ *   this run's order, with this run's mesh. The XDMF index of those snapshots is written first (it
+ *   still matches the old file), then the new file is renamed over the old one: at every moment
+ *   the index and the file agree. */
+#include <errno.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include <petscviewerhdf5.h>
+#include "output.h"
+#include "output_impl.h"
+#include "checkpoint.h"
+
+#define MM_TMP ".tmp"
+
+/* Rows of the history from the start through step `last`: the length of that prefix of text, or
+ * -1 with the step at which the rows stop being 0, 1, 2, ... */
+static ssize_t HistoryPrefix(const char *text, size_t len, PetscInt last, PetscInt *stop)
+{
+  const char *p = memchr(text, '\n', len), *end = text + len;
+  PetscInt    expect = 0;
+
+  *stop = -1;
+  if (!p) return -1;
+  for (++p; p < end; ++expect) {
+    const char *nl = memchr(p, '\n', (size_t)(end - p));
+    char       *after;
+    long long   step = strtoll(p, &after, 10);
+    if (!nl || after == p || *after != ',' || step != expect) break;
+    *stop = expect;
+    p     = nl + 1;
+    if (expect == last) return (ssize_t)(p - text);
+  }
+  return -1;
+}
+
+/* rank 0: the source history cut after the checkpoint's step, written whole and renamed into place,
+ * then opened for appending. A history of another run, or with rows missing, is refused. */
+PetscErrorCode MMOutputRestartHistory(MMCtx *ctx, MMFileStatus *st)
+{
+  MMOutput *o = &ctx->out;
+  char      src[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN], *text = NULL;
+  MMLine    header;
+  FILE     *f;
+  long      len = 0;
+  ssize_t   keep;
+  PetscInt  stop, last = ctx->ckpt.restart_step;
+  int       fd;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMOutputCSVHeaderLine(ctx, &header));
+  PetscCall(PetscSNPrintf(src, sizeof(src), "%s/history.csv", ctx->ckpt.source_dir));
+  PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s%s", o->csv_name, MM_TMP));
+  if (!(f = fopen(src, "r"))) {
+    PetscCall(MMOutputFailed(st, "read %s, the history the restart continues", src));
+    PetscFunctionReturn(0);
+  }
+  if (fseek(f, 0, SEEK_END) || (len = ftell(f)) < 0 || fseek(f, 0, SEEK_SET)) PetscCall(MMOutputFailed(st, "read %s", src));
+  else {
+    PetscCall(PetscMalloc1(len + 1, &text));
+    if (fread(text, 1, (size_t)len, f) != (size_t)len) PetscCall(MMOutputFailed(st, "read %s", src));
+  }
+  (void)fclose(f);
+  if (st->err) {
+    PetscCall(PetscFree(text));
+    PetscFunctionReturn(0);
+  }
+  if ((size_t)len < header.n || memcmp(text, header.s, header.n)) {
+    st->err = -1;
+    PetscCall(PetscSNPrintf(st->what, sizeof(st->what), "The history %s has other columns than this run's: it is not of the run that wrote %s (another dimension or other obstacles)", src, ctx->ckpt.file));
+  } else if ((keep = HistoryPrefix(text, (size_t)len, last, &stop)) < 0) {
+    st->err = -1;
+    PetscCall(PetscSNPrintf(st->what, sizeof(st->what), "The history %s has rows for steps 0 to %" PetscInt_FMT " in order, the checkpoint %s is at step %" PetscInt_FMT ": it is not the history of the run that wrote the checkpoint", src, stop, ctx->ckpt.file, last));
+  } else if ((fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666)) < 0) PetscCall(MMOutputFailed(st, "create %s", tmp));
+  else {
+    if (MMOutputWriteAll(fd, text, (size_t)keep)) PetscCall(MMOutputFailed(st, "write %s", tmp));
+    if (close(fd) && !st->err) PetscCall(MMOutputFailed(st, "close %s", tmp));
+    if (!st->err && rename(tmp, o->csv_name)) PetscCall(MMOutputFailed(st, "rename %s to %s", tmp, o->csv_name));
+    if (!st->err && (o->csv_fd = open(o->csv_name, O_WRONLY | O_APPEND | O_CLOEXEC)) < 0) PetscCall(MMOutputFailed(st, "open %s", o->csv_name));
+  }
+  PetscCall(PetscFree(text));
+  PetscFunctionReturn(0);
+}
+
+/* The snapshots of the run being continued: its solution.h5, read by every rank on its own. */
+typedef struct {
+  hid_t     file;
+  char      name[PETSC_MAX_PATH_LEN];
+  PetscInt  nv, *row; /* vertices; per serial vertex number, its row in the file */
+  PetscReal *slab;    /* one snapshot of one field, all vertices */
+} MMOldFields;
+
+/* The dataset's size per time index (or in all, without one) and its number of time indices. */
+static PetscErrorCode DatasetShape(MPI_Comm comm, MMOldFields *of, const char path[], hid_t *dset, PetscInt *ntime, PetscInt *per)
+{
+  hid_t   space;
+  hsize_t dims[4];
+  int     rank;
+
+  PetscFunctionBeginUser;
+  *dset = H5Dopen2(of->file, path, H5P_DEFAULT);
+  PetscCheck(*dset >= 0, comm, PETSC_ERR_FILE_UNEXPECTED, "%s has no dataset %s: it is not the output of the run that wrote the checkpoint, or of an mmcontact without restarts", of->name, path);
+  space = H5Dget_space(*dset);
+  rank  = H5Sget_simple_extent_ndims(space);
+  PetscCheck(rank >= 1 && rank <= 3, comm, PETSC_ERR_FILE_UNEXPECTED, "%s: %s has %d dimensions", of->name, path, rank);
+  (void)H5Sget_simple_extent_dims(space, dims, NULL);
+  (void)H5Sclose(space);
+  *ntime = (PetscInt)dims[0];
+  *per   = 1;
+  for (int i = 1; i < rank; ++i) *per *= (PetscInt)dims[i];
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode OldFieldsOpen(MMCtx *ctx, MMOldFields *of)
+{
+  MPI_Comm  comm = PETSC_COMM_WORLD;
+  hid_t     dset;
+  PetscInt  n, per;
+  PetscReal *serial;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(of->name, sizeof(of->name), "%s/solution.h5", ctx->ckpt.source_dir));
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL)); /* HDF5's own printing stays on */
+  of->file = H5Fopen(of->name, H5F_ACC_RDONLY, H5P_DEFAULT);
+  PetscCall(PetscPopErrorHandler());
+  PetscCheck(of->file >= 0, comm, PETSC_ERR_FILE_OPEN, "Could not open %s, the snapshots the restart continues: it is missing or not an HDF5 file", of->name);
+  PetscCall(DatasetShape(comm, of, "/vertex_fields/serial_vertex_nodal", &dset, &n, &per));
+  of->nv = n;
+  PetscCheck(n == ctx->ckpt.nv_global && per == 1, comm, PETSC_ERR_FILE_UNEXPECTED, "%s has %" PetscInt_FMT " vertices, the mesh has %" PetscInt_FMT ": it is not the output of the run that wrote the checkpoint", of->name, n, ctx->ckpt.nv_global);
+  PetscCall(PetscMalloc1(n, &serial));
+  PetscCall(PetscMalloc2(n, &of->row, n * MM_MAX_DIM, &of->slab));
+  PetscCheck(H5Dread(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, serial) >= 0, comm, PETSC_ERR_FILE_READ, "Could not read the serial vertex numbers of %s", of->name);
+  (void)H5Dclose(dset);
+  for (PetscInt i = 0; i < n; ++i) of->row[i] = -1;
+  for (PetscInt i = 0; i < n; ++i) {
+    const PetscInt s = (PetscInt)serial[i];
+    PetscCheck(s >= 0 && s < n && of->row[s] < 0, comm, PETSC_ERR_FILE_UNEXPECTED, "%s: the serial vertex numbers are not a permutation", of->name);
+    of->row[s] = i;
+  }
+  PetscCall(PetscFree(serial));
+  PetscFunctionReturn(0);
+}
+
+/* Snapshot k of a vertex field, all vertices, into of->slab (nv * per values). */
+static PetscErrorCode OldFieldsRead(MMOldFields *of, const char path[], PetscInt k, PetscInt want_per)
+{
+  MPI_Comm comm = PETSC_COMM_WORLD;
+  hid_t    dset, fspace, mspace;
+  hsize_t  start[3] = {(hsize_t)k, 0, 0}, count[3] = {1, 0, 0};
+  PetscInt ntime, per;
+  int      rank;
+
+  PetscFunctionBeginUser;
+  PetscCall(DatasetShape(comm, of, path, &dset, &ntime, &per));
+  PetscCheck(k < ntime, comm, PETSC_ERR_FILE_UNEXPECTED, "%s holds %" PetscInt_FMT " snapshots of %s, the checkpoint counts more: it is not the output of the run that wrote the checkpoint", of->name, ntime, path);
+  PetscCheck(per == of->nv * want_per, comm, PETSC_ERR_FILE_UNEXPECTED, "%s: %s has %" PetscInt_FMT " values per snapshot, expected %" PetscInt_FMT, of->name, path, per, of->nv * want_per);
+  fspace = H5Dget_space(dset);
+  rank   = H5Sget_simple_extent_ndims(fspace);
+  (void)H5Sget_simple_extent_dims(fspace, count, NULL);
+  count[0] = 1;
+  (void)H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL);
+  {
+    hsize_t m = (hsize_t)per;
+    mspace    = H5Screate_simple(1, &m, NULL);
+  }
+  PetscCheck(rank >= 1 && H5Dread(dset, H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT, of->slab) >= 0, comm, PETSC_ERR_FILE_READ, "Could not read snapshot %" PetscInt_FMT " of %s from %s", k, path, of->name);
+  (void)H5Sclose(mspace);
+  (void)H5Sclose(fspace);
+  (void)H5Dclose(dset);
+  PetscFunctionReturn(0);
+}
+
+/* The old snapshot in of->slab into this run's vector on dm (nc values per vertex), vertex by vertex. */
+static PetscErrorCode FillFromOld(MMCtx *ctx, MMOldFields *of, DM dm, PetscInt nc, Vec f)
+{
+  PetscSection gs;
+  PetscInt     vStart, vEnd, rstart;
+  PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalSection(dm, &gs));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(VecGetOwnershipRange(f, &rstart, NULL));
+  PetscCall(VecGetArray(f, &a));
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt goff, row;
+    PetscCall(PetscSectionGetOffset(gs, v, &goff));
+    if (goff < 0) continue;
+    row = of->row[ctx->ckpt.vertex_orig[v - vStart]];
+    for (PetscInt c = 0; c < nc; ++c) a[goff - rstart + c] = of->slab[row * nc + c];
+  }
+  PetscCall(VecRestoreArray(f, &a));
+  PetscFunctionReturn(0);
+}
+
+/* The checkpoint's times against the old file's: the snapshots are of the checkpoint's run. */
+static PetscErrorCode CheckOldTimes(MMCtx *ctx, MMOldFields *of, PetscInt n, const PetscReal times[])
+{
+  hid_t    dset;
+  PetscInt ntime, per;
+  PetscReal *t;
+
+  PetscFunctionBeginUser;
+  if (!n) PetscFunctionReturn(0);
+  PetscCall(DatasetShape(PETSC_COMM_WORLD, of, "/time", &dset, &ntime, &per));
+  PetscCheck(ntime >= n && per == 1, PETSC_COMM_WORLD, PETSC_ERR_FILE_UNEXPECTED, "%s holds %" PetscInt_FMT " snapshot times, the checkpoint %s counts %" PetscInt_FMT ": it is not the output of the run that wrote the checkpoint", of->name, ntime, ctx->ckpt.file, n);
+  PetscCall(PetscMalloc1(ntime, &t));
+  PetscCheck(H5Dread(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, t) >= 0, PETSC_COMM_WORLD, PETSC_ERR_FILE_READ, "Could not read /time from %s", of->name);
+  (void)H5Dclose(dset);
+  for (PetscInt k = 0; k < n; ++k) PetscCheck(t[k] == times[k], PETSC_COMM_WORLD, PETSC_ERR_FILE_UNEXPECTED, "Snapshot %" PetscInt_FMT " of %s is at t = %.16g, the checkpoint %s has it at t = %.16g: it is not the output of the run that wrote the checkpoint", k, of->name, (double)t[k], ctx->ckpt.file, (double)times[k]);
+  PetscCall(PetscFree(t));
+  PetscFunctionReturn(0);
+}
+
+/* solution.h5 of this run: the mesh, then the checkpoint's snapshots copied from the old file. */
+PetscErrorCode MMOutputRestartFields(MMCtx *ctx)
+{
+  MMOutput      *o         = &ctx->out;
+  const PetscInt dim       = ctx->op.dim;
+  const char    *paths[]   = {"/vertex_fields/displacement_displacement", "/vertex_fields/velocity_displacement", "/vertex_fields/contact_pressure_nodal", "/vertex_fields/gap_nodal", "/vertex_fields/tangential_traction_displacement", "/vertex_fields/slip_velocity_displacement"};
+  Vec            vecs[]    = {o->disp_cart, o->vel_cart, o->pressure, o->gap, o->traction_t, o->slip};
+  const PetscInt ncomp[]   = {dim, dim, 1, 1, dim, dim};
+  MMOldFields    of        = {0};
+  MMFileStatus   st        = {0};
+  char           tmp[PETSC_MAX_PATH_LEN];
+  PetscInt       n;
+  PetscReal     *times;
+  PetscMPIInt    rank;
+  PetscErrorCode ierr;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMCheckpointSnapshots(ctx, &n, &times));
+  PetscCall(OldFieldsOpen(ctx, &of));
+  PetscCall(CheckOldTimes(ctx, &of, n, times));
+  PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s%s", o->h5_name, MM_TMP));
+  PetscCall(MMOutputHDF5Begin());
+  ierr = PetscViewerHDF5Open(PETSC_COMM_WORLD, tmp, FILE_MODE_WRITE, &o->h5);
+  PetscCall(MMOutputHDF5End(ierr, "create", tmp));
+  PetscCall(PetscViewerPushFormat(o->h5, PETSC_VIEWER_HDF5_XDMF));
+  PetscCall(MMOutputHDF5Begin());
+  ierr = DMView(ctx->op.dm, o->h5);
+  PetscCall(MMOutputHDF5End(ierr, "write", tmp));
+  for (PetscInt k = 0; k < n; ++k) {
+    for (size_t i = 0; i < sizeof(vecs) / sizeof(vecs[0]); ++i) {
+      PetscCall(OldFieldsRead(&of, paths[i], k, ncomp[i]));
+      PetscCall(FillFromOld(ctx, &of, ncomp[i] > 1 ? o->dm_out : o->dm_scalar, ncomp[i], vecs[i]));
+    }
+    if (!o->static_written) PetscCall(MMOutputWriteStaticFields(ctx));
+    PetscCall(DMSetOutputSequenceNumber(o->dm_out, k, times[k]));
+    PetscCall(DMSetOutputSequenceNumber(o->dm_scalar, k, times[k]));
+    PetscCall(MMOutputHDF5Begin());
+    for (size_t i = 0; i < sizeof(vecs) / sizeof(vecs[0]) && !ierr; ++i) ierr = VecView(vecs[i], o->h5);
+    PetscCall(MMOutputHDF5End(ierr, "write", tmp));
+  }
+  (void)H5Fclose(of.file);
+  PetscCall(PetscFree2(of.row, of.slab));
+  PetscCall(MMOutputFlushFields(o));
+  o->times     = times;
+  o->n_written = n;
+  PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
+  for (PetscInt k = 0; !rank && k < n; ++k) PetscCall(MMOutputIndexAddGrid(o, dim, k));
+  if (n) PetscCall(MMOutputWriteIndexFile(ctx));
+  if (!rank && rename(tmp, o->h5_name)) PetscCall(MMOutputFailed(&st, "rename %s to %s", tmp, o->h5_name));
+  PetscCall(MMOutputCheckRank0(&st));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,62 @@
+/* SIGTERM and SIGINT: batch schedulers send SIGTERM before they kill a job, and users press
+ * Ctrl-C. The run finishes the step it is in, writes a checkpoint, closes its output and exits with
+ * MM_EXIT_RESTARTABLE and a message that says how to continue (docs/method.md section 9).
+ *
+ * The handler only records the signal, the one thing a handler may safely do; every rank looks at
+ * it after each step, together, so that all stop after the same step. A second signal is not
+ * caught (SA_RESETHAND): it ends the process at once, as without this handler. */
+#include <signal.h>
+#include <string.h>
+#include "signals.h"
+
+static volatile sig_atomic_t mm_signal = 0;
+
+static void RecordSignal(int sig)
+{
+  mm_signal = sig;
+}
+
+/* TS post-step: stop after this step if any rank has been signalled. */
+static PetscErrorCode StopOnSignal(TS ts)
+{
+  MMCtx *ctx;
+  int    sig = (int)mm_signal, any;
+
+  PetscFunctionBeginUser;
+  PetscCall(TSGetApplicationContext(ts, &ctx));
+  PetscCallMPI(MPI_Allreduce(&sig, &any, 1, MPI_INT, MPI_MAX, PetscObjectComm((PetscObject)ts)));
+  if (any) {
+    TSConvergedReason reason;
+    PetscCall(TSGetConvergedReason(ts, &reason));
+    if (reason == TS_CONVERGED_ITERATING) {
+      ctx->ckpt.stop_signal = any;
+      PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* After PETSc's initialization, whose own handlers would abort the run on these signals. */
+PetscErrorCode MMSignalsSetUp(MMCtx *ctx, TS ts)
+{
+  struct sigaction sa;
+
+  PetscFunctionBeginUser;
+  memset(&sa, 0, sizeof(sa));
+  sa.sa_handler = RecordSignal;
+  sa.sa_flags   = SA_RESETHAND | SA_RESTART;
+  sigemptyset(&sa.sa_mask);
+  PetscCheck(!sigaction(SIGTERM, &sa, NULL) && !sigaction(SIGINT, &sa, NULL), PETSC_COMM_SELF, PETSC_ERR_SYS, "Could not install the SIGTERM and SIGINT handlers");
+  PetscCall(TSSetApplicationContext(ts, ctx));
+  PetscCall(TSSetPostStep(ts, StopOnSignal));
+  PetscFunctionReturn(0);
+}
+
+/* The run stopped on a signal: where its state is and the command that continues it. */
+PetscErrorCode MMSignalsReport(MMCtx *ctx)
+{
+  PetscFunctionBeginUser;
+  if (!ctx->ckpt.stop_signal) PetscFunctionReturn(0);
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "mmcontact: stopped by %s after step %" PetscInt_FMT " (t = %.10g). The state is in %s/checkpoint.h5 and the output up to this step is complete. Continue the run, on any number of ranks, with the same options and\n  -restart %s\n", ctx->ckpt.stop_signal == SIGTERM ? "SIGTERM" : ctx->ckpt.stop_signal == SIGINT ? "SIGINT" : "a signal", ctx->hist.step, (double)ctx->hist.time, ctx->opt.output_dir, ctx->opt.output_dir));
+  PetscFunctionReturn(0);
+}
