@@ -40,7 +40,8 @@ typedef enum {
   MM_RUN_E,
   MM_RUN_NU,
   MM_RUN_RHO,
-  MM_RUN_MASS, /* the mass type, plus 2 if lumped */
+  MM_RUN_MASS,    /* the mass type, plus 2 if lumped */
+  MM_RUN_DT_USER, /* -ts_dt */
   MM_RUN_NUM
 } MMRunEntry;
 _Static_assert(MM_RUN_NUM <= sizeof(((MMCheckpoint *)0)->run) / sizeof(PetscReal), "MMCheckpoint.run holds the run record");
@@ -195,6 +196,7 @@ static PetscErrorCode RunRecord(MMCtx *ctx, TS ts, PetscReal run[])
   run[MM_RUN_NU]              = ctx->opt.nu;
   run[MM_RUN_RHO]             = ctx->opt.rho;
   run[MM_RUN_MASS]            = ctx->opt.mass_type + (ctx->opt.lumped ? 2 : 0);
+  run[MM_RUN_DT_USER]         = ctx->state.dt_user;
   PetscFunctionReturn(0);
 }
 
@@ -363,7 +365,7 @@ static PetscErrorCode LoadRunRecord(MMCtx *ctx, PetscViewer viewer, PetscReal ru
   PetscCall(VecScatterBegin(sc, rv, all, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecScatterEnd(sc, rv, all, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecGetArrayRead(all, &a));
-  PetscCheck(n >= 1 && PetscRealPart(a[MM_RUN_VERSION]) == MM_CKPT_VERSION && n == MM_RUN_NUM, comm, PETSC_ERR_FILE_UNEXPECTED, "The checkpoint %s is of format %g with %" PetscInt_FMT " run entries; this mmcontact reads format %d with %d. Continue it with the mmcontact that wrote it", ctx->ckpt.file, n ? (double)PetscRealPart(a[0]) : 0.0, n, MM_CKPT_VERSION, (int)MM_RUN_NUM);
+  PetscCheck(n >= 1 && PetscRealPart(a[MM_RUN_VERSION]) == MM_CKPT_VERSION && n == MM_RUN_NUM, comm, PETSC_ERR_FILE_UNEXPECTED, "The checkpoint %s is of format %d with %" PetscInt_FMT " run entries; this mmcontact reads format %d with %d. Continue it with the mmcontact that wrote it", ctx->ckpt.file, n ? (int)PetscRealPart(a[0]) : 0, n, MM_CKPT_VERSION, (int)MM_RUN_NUM);
   for (PetscInt i = 0; i < MM_RUN_NUM; ++i) run[i] = PetscRealPart(a[i]);
   PetscCall(VecRestoreArrayRead(all, &a));
   PetscCall(VecScatterDestroy(&sc));
@@ -382,13 +384,13 @@ static PetscErrorCode CheckFingerprint(MMCtx *ctx, TS ts, const PetscReal ck[])
 
   PetscFunctionBeginUser;
   PetscCall(RunRecord(ctx, ts, me));
-  PetscCheck(ck[MM_RUN_DIM] == me[MM_RUN_DIM], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of a %gD problem, this mesh %s is %gD: another dimension. Restart with the mesh and options of the run that wrote it", f, (double)ck[MM_RUN_DIM], ctx->opt.mesh_file, (double)me[MM_RUN_DIM]);
-  PetscCheck(ck[MM_RUN_VERTICES] == me[MM_RUN_VERTICES] && ck[MM_RUN_CELLS] == me[MM_RUN_CELLS], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another mesh: %g vertices and %g cells, this mesh %s has %g and %g. Restart with the mesh of the run that wrote it", f, (double)ck[MM_RUN_VERTICES], (double)ck[MM_RUN_CELLS], ctx->opt.mesh_file, (double)me[MM_RUN_VERTICES], (double)me[MM_RUN_CELLS]);
+  PetscCheck(ck[MM_RUN_DIM] == me[MM_RUN_DIM], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of a %dD problem, this mesh %s is %dD: another dimension. Restart with the mesh and options of the run that wrote it", f, (int)ck[MM_RUN_DIM], ctx->opt.mesh_file, (int)me[MM_RUN_DIM]);
+  PetscCheck(ck[MM_RUN_VERTICES] == me[MM_RUN_VERTICES] && ck[MM_RUN_CELLS] == me[MM_RUN_CELLS], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another mesh: %d vertices and %d cells, this mesh %s has %d and %d. Restart with the mesh of the run that wrote it", f, (int)ck[MM_RUN_VERTICES], (int)ck[MM_RUN_CELLS], ctx->opt.mesh_file, (int)me[MM_RUN_VERTICES], (int)me[MM_RUN_CELLS]);
   PetscCheck(PetscAbsReal(ck[MM_RUN_COORDINATES] - me[MM_RUN_COORDINATES]) <= 1e-10 * PetscMax(PetscAbsReal(me[MM_RUN_COORDINATES]), 1.0), comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another mesh: it has as many vertices and cells as %s, but other coordinates (checksums %.15g and %.15g). Restart with the mesh, and -mesh_rotation, of the run that wrote it", f, ctx->opt.mesh_file, (double)ck[MM_RUN_COORDINATES], (double)me[MM_RUN_COORDINATES]);
-  PetscCheck(ck[MM_RUN_CONTACT_NODES] == me[MM_RUN_CONTACT_NODES], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another contact boundary: %g contact nodes, this run has %g (-contact_boundary %s, -contact %s). Restart with the contact options of the run that wrote it", f, (double)ck[MM_RUN_CONTACT_NODES], (double)me[MM_RUN_CONTACT_NODES], ctx->opt.contact_name, ctx->opt.contact ? "1" : "0");
-  PetscCheck(ck[MM_RUN_MU] == me[MM_RUN_MU], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with -mu %g, this run has -mu %g: a different friction law. Restart with -mu %g", f, (double)ck[MM_RUN_MU], (double)me[MM_RUN_MU], (double)ck[MM_RUN_MU]);
-  PetscCheck(ck[MM_RUN_E] == me[MM_RUN_E] && ck[MM_RUN_NU] == me[MM_RUN_NU] && ck[MM_RUN_RHO] == me[MM_RUN_RHO], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with -E %g -nu %g -rho %g, this run has -E %g -nu %g -rho %g: another material. Restart with the material of the run that wrote it", f, (double)ck[MM_RUN_E], (double)ck[MM_RUN_NU], (double)ck[MM_RUN_RHO], (double)me[MM_RUN_E], (double)me[MM_RUN_NU], (double)me[MM_RUN_RHO]);
-  PetscCheck(ck[MM_RUN_MASS] == me[MM_RUN_MASS], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with the %s%s mass, this run has the %s%s mass. Restart with the -mass_type and -mass_lumped of the run that wrote it", f, MMMassTypes[(int)ck[MM_RUN_MASS] % 2], (int)ck[MM_RUN_MASS] / 2 ? " lumped" : "", MMMassTypes[(int)me[MM_RUN_MASS] % 2], (int)me[MM_RUN_MASS] / 2 ? " lumped" : "");
+  PetscCheck(ck[MM_RUN_CONTACT_NODES] == me[MM_RUN_CONTACT_NODES], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another contact boundary: %d contact nodes, this run has %d (-contact_boundary %s, -contact %s). Restart with the contact options of the run that wrote it", f, (int)ck[MM_RUN_CONTACT_NODES], (int)me[MM_RUN_CONTACT_NODES], ctx->opt.contact_name, ctx->opt.contact ? "1" : "0");
+  PetscCheck(ck[MM_RUN_MU] == me[MM_RUN_MU], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with -mu %.10g, this run has -mu %.10g: a different friction law. Restart with -mu %.10g", f, (double)ck[MM_RUN_MU], (double)me[MM_RUN_MU], (double)ck[MM_RUN_MU]);
+  PetscCheck(ck[MM_RUN_E] == me[MM_RUN_E] && ck[MM_RUN_NU] == me[MM_RUN_NU] && ck[MM_RUN_RHO] == me[MM_RUN_RHO], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with -E %.10g -nu %.10g -rho %.10g, this run has -E %.10g -nu %.10g -rho %.10g: another material. Restart with the material of the run that wrote it", f, (double)ck[MM_RUN_E], (double)ck[MM_RUN_NU], (double)ck[MM_RUN_RHO], (double)me[MM_RUN_E], (double)me[MM_RUN_NU], (double)me[MM_RUN_RHO]);
+  PetscCheck(ck[MM_RUN_MASS] == me[MM_RUN_MASS], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with the %s%s mass, this run has the %s%s mass. Restart with the -mass and -mass_lumped of the run that wrote it", f, MMMassTypes[(int)ck[MM_RUN_MASS] % 2], (int)ck[MM_RUN_MASS] / 2 ? " lumped" : "", MMMassTypes[(int)me[MM_RUN_MASS] % 2], (int)me[MM_RUN_MASS] / 2 ? " lumped" : "");
   PetscFunctionReturn(0);
 }
 
@@ -542,10 +544,16 @@ PetscErrorCode MMCheckpointLoad(MMCtx *ctx, TS ts)
   c->restarted    = PETSC_TRUE;
   PetscCall(TSSetTime(ts, c->run[MM_RUN_TIME]));
   PetscCall(TSSetStepNumber(ts, c->restart_step));
-  PetscCall(TSSetTimeStep(ts, c->run[MM_RUN_DT_NEXT]));
+  /* the same -ts_dt continues the run's own dt sequence; another one is the user's new dt */
+  if (c->run[MM_RUN_DT_USER] == s->dt_user) PetscCall(TSSetTimeStep(ts, c->run[MM_RUN_DT_NEXT]));
   /* the gaps of moving obstacles at the checkpoint's time, for the initial diagnostics */
   if (ctx->contact.enabled) PetscCall(MMContactSetTime(ctx, c->run[MM_RUN_TIME], s->dt));
-  if (!ctx->opt.quiet) PetscCall(PetscPrintf(comm, "Restart from %s: step %" PetscInt_FMT ", t = %.10g, dt %g (written on %d ranks, continued on %d)\n", c->file, c->restart_step, (double)c->run[MM_RUN_TIME], (double)c->run[MM_RUN_DT_NEXT], (int)c->run[MM_RUN_RANKS], PetscGlobalSize));
+  if (!ctx->opt.quiet) {
+    PetscReal dt;
+    PetscCall(TSGetTimeStep(ts, &dt));
+    PetscCall(PetscPrintf(comm, "Restart from %s: step %" PetscInt_FMT ", t = %.10g, next dt %g (written on %d ranks, continued on %d)\n", c->file, c->restart_step, (double)c->run[MM_RUN_TIME], (double)dt, (int)c->run[MM_RUN_RANKS], PetscGlobalSize));
+    if (c->run[MM_RUN_DT_USER] != s->dt_user) PetscCall(PetscPrintf(comm, "  -ts_dt %g here, %g in the checkpoint's run: the steps from here on are of the new dt\n", (double)s->dt_user, (double)c->run[MM_RUN_DT_USER]));
+  }
   PetscCall(PetscLogEventEnd(ctx->log.checkpoint, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
