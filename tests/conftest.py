@@ -2,6 +2,7 @@
 
 Every test runs the real executable on a real mesh and asserts numbers with tolerances."""
 import os
+import signal
 import subprocess
 
 import h5py
@@ -58,3 +59,44 @@ def options_without_plane(case, tmp_path):
     path = tmp_path / (case + "_no_plane.opts")
     path.write_text("\n".join(lines) + "\n")
     return str(path)
+
+
+# Processes of a run, for the tests that kill one.
+def children(pid):
+    """The processes whose parent is pid (the ranks, for mpiexec)."""
+    kids = []
+    for p in os.listdir("/proc"):
+        if p.isdigit():
+            try:
+                stat = open(f"/proc/{p}/stat").read()
+            except OSError:
+                continue
+            if int(stat.rsplit(")", 1)[1].split()[1]) == pid:
+                kids.append(int(p))
+    return kids
+
+
+def history_rows(path):
+    try:
+        with open(path, "rb") as f:
+            return f.read().count(b"\n") - 1
+    except OSError:
+        return -1
+
+
+def alive(pids):
+    """Those of pids still running (not gone, not zombies)."""
+    def state(pid):
+        try:
+            return open(f"/proc/{pid}/stat").read().rsplit(")", 1)[1].split()[0]
+        except OSError:
+            return None
+    return [p for p in pids if state(p) not in (None, "Z")]
+
+
+def stop(proc):
+    if proc.poll() is None:
+        for p in children(proc.pid):
+            os.kill(p, signal.SIGKILL)
+        proc.kill()
+        proc.wait()

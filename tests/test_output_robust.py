@@ -9,7 +9,7 @@ import xml.etree.ElementTree as ET
 import h5py
 import numpy as np
 
-from conftest import EXE, MPIEXEC, ROOT, run
+from conftest import EXE, MPIEXEC, ROOT, alive, children, history_rows, run, stop
 
 FILES = ("history.csv", "solution.h5", "solution.xmf")
 SHORT = ("-ts_max_time", 0.01, "-output_every", 1, "-quiet")  # D1, 6 steps
@@ -141,46 +141,6 @@ def test_index_write_error_names_the_file(tmp_path):
     r = run("d1_disk", tmp_path, *SHORT, np_=2, check=False)
     assert r.returncode != 0
     assert f"Could not write {out}/solution.xmf.tmp: No space left on device" in r.output, r.output[-3000:]
-
-
-def children(pid):
-    """The processes whose parent is pid (the ranks, for mpiexec)."""
-    kids = []
-    for p in os.listdir("/proc"):
-        if p.isdigit():
-            try:
-                stat = open(f"/proc/{p}/stat").read()
-            except OSError:
-                continue
-            if int(stat.rsplit(")", 1)[1].split()[1]) == pid:
-                kids.append(int(p))
-    return kids
-
-
-def history_rows(path):
-    try:
-        with open(path, "rb") as f:
-            return f.read().count(b"\n") - 1
-    except OSError:
-        return -1
-
-
-def alive(pids):
-    """Those of pids still running (not gone, not zombies)."""
-    def state(pid):
-        try:
-            return open(f"/proc/{pid}/stat").read().rsplit(")", 1)[1].split()[0]
-        except OSError:
-            return None
-    return [p for p in pids if state(p) not in (None, "Z")]
-
-
-def stop(proc):
-    if proc.poll() is None:
-        for p in children(proc.pid):
-            os.kill(p, signal.SIGKILL)
-        proc.kill()
-        proc.wait()
 
 
 def rows_reach(rows):
