@@ -551,7 +551,7 @@ PetscErrorCode MMCheckpointLoad(MMCtx *ctx, TS ts)
   if (!ctx->opt.quiet) {
     PetscReal dt;
     PetscCall(TSGetTimeStep(ts, &dt));
-    PetscCall(PetscPrintf(comm, "Restart from %s: step %" PetscInt_FMT ", t = %.10g, next dt %g (written on %d ranks, continued on %d)\n", c->file, c->restart_step, (double)c->run[MM_RUN_TIME], (double)dt, (int)c->run[MM_RUN_RANKS], PetscGlobalSize));
+    PetscCall(PetscPrintf(comm, "Restart from %s: step %" PetscInt_FMT ", t = %.10g, next dt %g (written on %d rank%s, continued on %d)\n", c->file, c->restart_step, (double)c->run[MM_RUN_TIME], (double)dt, (int)c->run[MM_RUN_RANKS], c->run[MM_RUN_RANKS] > 1 ? "s" : "", PetscGlobalSize));
     if (c->run[MM_RUN_DT_USER] != s->dt_user) PetscCall(PetscPrintf(comm, "  -ts_dt %g here, %g in the checkpoint's run: the steps from here on are of the new dt\n", (double)s->dt_user, (double)c->run[MM_RUN_DT_USER]));
   }
   PetscCall(PetscLogEventEnd(ctx->log.checkpoint, 0, 0, 0, 0));

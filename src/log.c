@@ -22,6 +22,7 @@ PetscErrorCode MMLogRegister(MMLog *log)
   PetscCall(PetscLogEventRegister("MMCandidateOp", id, &log->candidate_operator));
   PetscCall(PetscLogEventRegister("MMEnergy", id, &log->energy));
   PetscCall(PetscLogEventRegister("MMCheckpoint", id, &log->checkpoint));
+  PetscCall(PetscLogEventRegister("MMRestartOutput", id, &log->restart_output));
   PetscCall(PetscLogEventRegister("MMKtSetUp", id, &log->kt_setup));
   PetscCall(PetscLogEventRegister("MMKtSolve", id, &log->kt_solve));
   PetscCall(PetscLogEventRegister("MMActiveSetIter", id, &log->as_iterate));

@@ -618,11 +618,13 @@ PetscErrorCode MMOutputOpen(MMCtx *ctx)
   PetscCall(PetscSNPrintf(o->csv_name, sizeof(o->csv_name), "%s/%s", dir, MMOutputFiles[0]));
   PetscCall(PetscSNPrintf(o->h5_name, sizeof(o->h5_name), "%s/%s", dir, MMOutputFiles[1]));
   PetscCall(PetscSNPrintf(o->xmf_name, sizeof(o->xmf_name), "%s/%s", dir, MMOutputFiles[2]));
+  if (ctx->ckpt.restarted) PetscCall(PetscLogEventBegin(ctx->log.restart_output, 0, 0, 0, 0));
   PetscCall(OpenDirectoryAndHistory(ctx));
   if (ctx->ckpt.restarted) {
     PetscCall(CountMesh(ctx));
     PetscCall(CreateFieldVectors(ctx));
     PetscCall(MMOutputRestartFields(ctx));
+    PetscCall(PetscLogEventEnd(ctx->log.restart_output, 0, 0, 0, 0));
   } else {
     PetscCall(CSVHeader(ctx));
     PetscCall(OpenFields(ctx));
