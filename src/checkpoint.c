@@ -538,7 +538,6 @@ PetscErrorCode MMCheckpointLoad(MMCtx *ctx, TS ts)
   PetscCall(LoadDofs(ctx, viewer, "react", s->react));
   PetscCall(PetscViewerDestroy(&viewer));
   PetscCall(VecCopy(s->u, s->u_next));
-  PetscCall(RestoreContactState(ctx));
   s->dt           = c->run[MM_RUN_DT_LAST];
   c->restart_step = (PetscInt)c->run[MM_RUN_STEP];
   c->restarted    = PETSC_TRUE;
@@ -558,8 +557,9 @@ PetscErrorCode MMCheckpointLoad(MMCtx *ctx, TS ts)
   PetscFunctionReturn(0);
 }
 
-/* After the initial energy of the restored state: the history's running sums and maxima, the last
- * active set (for the switched count) and the snapshots already on disk, as at the checkpoint. */
+/* After the step matrix and the initial energy of the restored state: the history's running sums
+ * and maxima, the last active set (for the switched count) and the contact solvers' warm starts,
+ * as at the checkpoint. */
 PetscErrorCode MMCheckpointRestoreHistory(MMCtx *ctx)
 {
   MMCheckpoint   *c   = &ctx->ckpt;
@@ -581,6 +581,9 @@ PetscErrorCode MMCheckpointRestoreHistory(MMCtx *ctx)
   h->energy_scale        = run[MM_RUN_ENERGY_SCALE];
   h->resolves = ct->cand.resolves = (PetscInt)run[MM_RUN_RESOLVES];
   for (PetscInt k = 0; ct->enabled && k < ct->n_local; ++k) ct->was_active[k] = (PetscBool)(PetscRealPart(c->node[MM_CKPT_NODE * k + 3]) != 0);
+  /* here, not at the load: the condensed reactions and the active-set states are created with the
+   * step matrix, and the initial diagnostics would overwrite the states */
+  PetscCall(RestoreContactState(ctx));
   c->last_step = c->restart_step;
   c->written   = 1; /* the checkpoint of this step exists */
   PetscFunctionReturn(0);
