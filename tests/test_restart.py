@@ -129,15 +129,16 @@ def test_killed_run_continues_on_other_ranks(tmp_path, reference, before, after)
     assert_same_end(reference[before], r)
 
 
-def test_sigterm_checkpoints_and_restarts(tmp_path, reference):
-    """SIGTERM to the ranks, as a scheduler sends it: the step is finished, the checkpoint is of
-    that step, the output is closed, the message says how to continue and the exit status is 75;
-    the restart ends as the uninterrupted run."""
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT])
+def test_signal_checkpoints_and_restarts(tmp_path, reference, sig):
+    """SIGTERM to the ranks, as a scheduler sends it (or SIGINT, Ctrl-C): the step is finished, the
+    checkpoint is of that step, the output is closed, the message says how to continue and the exit
+    status is 75; the restart ends as the uninterrupted run."""
     out = str(tmp_path / "run")
     hist = os.path.join(out, "history.csv")
-    rc, text = signal_when(start(out, 2), lambda: history_rows(hist) >= 30, signal.SIGTERM, 2)
+    rc, text = signal_when(start(out, 2), lambda: history_rows(hist) >= 30, sig, 2)
     assert rc == 75, text[-2000:]
-    assert "stopped by SIGTERM after step" in text and f"-restart {out}" in text
+    assert f"stopped by {sig.name} after step" in text and f"-restart {out}" in text
     k = ckpt_step(out)
     assert 30 <= k < STEPS and history_rows(hist) == k + 1  # the checkpoint is of the last step
     assert not os.path.exists(os.path.join(out, "checkpoint.h5.tmp"))
