@@ -4,6 +4,7 @@ Every test runs the real executable on a real mesh and asserts numbers with tole
 import os
 import signal
 import subprocess
+import time
 
 import h5py
 import numpy as np
@@ -100,3 +101,26 @@ def stop(proc):
             os.kill(p, signal.SIGKILL)
         proc.kill()
         proc.wait()
+
+
+def signal_ranks(proc, ready, sig, nranks, delay=0.0):
+    """Once ready(), waits delay s and sends sig to the nranks ranks of the mpiexec proc at once (as
+    a batch scheduler does), then waits until they are gone: their files are then final (mpiexec
+    itself takes a while longer to notice). On any failure the job is killed."""
+    try:
+        t0, ranks = time.time(), []
+        while len(ranks) < nranks:  # found first, so that the signal follows the trigger at once
+            assert proc.poll() is None and time.time() - t0 < 60, "no ranks"
+            ranks = children(proc.pid)
+        while not ready():
+            assert proc.poll() is None and time.time() - t0 < 60, "the run ended before the signal"
+            time.sleep(0.0002)
+        time.sleep(delay)
+        for p in ranks:
+            os.kill(p, sig)
+        while alive(ranks):
+            assert time.time() - t0 < 60, "the ranks outlived the signal"
+            time.sleep(0.001)
+    except BaseException:
+        stop(proc)
+        raise

@@ -9,7 +9,7 @@ import xml.etree.ElementTree as ET
 import h5py
 import numpy as np
 
-from conftest import EXE, MPIEXEC, ROOT, alive, children, history_rows, run, stop
+from conftest import EXE, MPIEXEC, ROOT, history_rows, run, signal_ranks, stop
 
 FILES = ("history.csv", "solution.h5", "solution.xmf")
 SHORT = ("-ts_max_time", 0.01, "-output_every", 1, "-quiet")  # D1, 6 steps
@@ -174,23 +174,7 @@ def kill_d1(outdir, ready, delay, sig):
     args = MPIEXEC + ["-n", "2", EXE, "-options_file", opts("d1_disk"), "-output_dir", outdir,
                       "-output_every", "1", "-quiet"]
     proc = subprocess.Popen(args, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    try:
-        t0, ranks = time.time(), []
-        while len(ranks) < 2:  # found first, so that the kill follows the trigger at once
-            assert proc.poll() is None and time.time() - t0 < 60, "no ranks"
-            ranks = children(proc.pid)
-        while not ready(outdir):
-            assert proc.poll() is None and time.time() - t0 < 60, "the run ended before the kill"
-            time.sleep(0.0002)
-        time.sleep(delay)
-        for p in ranks:
-            os.kill(p, sig)
-        while alive(ranks):
-            assert time.time() - t0 < 60, "the ranks outlived the signal"
-            time.sleep(0.001)
-    except BaseException:
-        stop(proc)
-        raise
+    signal_ranks(proc, lambda: ready(outdir), sig, 2, delay)
     return proc
 
 

@@ -6,12 +6,11 @@ import os
 import shutil
 import signal
 import subprocess
-import time
 
 import h5py
 import numpy as np
 import pytest
-from conftest import EXE, MPIEXEC, ROOT, alive, children, history_rows, run, stop
+from conftest import EXE, MPIEXEC, ROOT, history_rows, run, signal_ranks
 
 # The frictional disk: it lands sliding at step 5, friction drags it and it leaves spinning. 400
 # steps; a checkpoint every 25, a snapshot every 5.
@@ -35,23 +34,7 @@ def start(outdir, np_, *extra):
 
 
 def signal_when(proc, ready, sig, np_):
-    """Once ready(), sends sig to every rank (as a batch scheduler does) and waits until they are gone."""
-    try:
-        t0, ranks = time.time(), []
-        while len(ranks) < np_:
-            assert proc.poll() is None and time.time() - t0 < 60, "no ranks"
-            ranks = children(proc.pid)
-        while not ready():
-            assert proc.poll() is None and time.time() - t0 < 60, "the run ended before the signal"
-            time.sleep(0.0002)
-        for p in ranks:
-            os.kill(p, sig)
-        while alive(ranks):
-            assert time.time() - t0 < 60, "the ranks outlived the signal"
-            time.sleep(0.001)
-    except BaseException:
-        stop(proc)
-        raise
+    signal_ranks(proc, ready, sig, np_)
     out, _ = proc.communicate(timeout=60)
     return proc.returncode, out
 
