@@ -22,39 +22,32 @@
 
 #define MM_TMP ".tmp"
 
-/* Rows of the history from the start through step `last`: the length of that prefix of text, or
- * -1 with the step at which the rows stop being 0, 1, 2, ... */
-static ssize_t HistoryPrefix(const char *text, size_t len, PetscInt last, PetscInt *stop)
+/* The step number a history row starts with, or -1 if the line is not a whole row. */
+static long long RowStep(const char *line, ssize_t len)
 {
-  const char *p = memchr(text, '\n', len), *end = text + len;
-  PetscInt    expect = 0;
+  char     *after;
+  long long step;
 
-  *stop = -1;
-  if (!p) return -1;
-  for (++p; p < end; ++expect) {
-    const char *nl = memchr(p, '\n', (size_t)(end - p));
-    char       *after;
-    long long   step = strtoll(p, &after, 10);
-    if (!nl || after == p || *after != ',' || step != expect) break;
-    *stop = expect;
-    p     = nl + 1;
-    if (expect == last) return (ssize_t)(p - text);
-  }
-  return -1;
+  if (len < 2 || line[len - 1] != '\n') return -1;
+  step = strtoll(line, &after, 10);
+  return (after == line || *after != ',') ? -1 : step;
 }
 
-/* rank 0: the source history cut after the checkpoint's step, written whole and renamed into place,
- * then opened for appending. A history of another run, or with rows missing, is refused. */
+/* rank 0: the source history, streamed line by line (a long run's history can be large) into
+ * history.csv.tmp through the checkpoint's row, then renamed into place and opened for appending.
+ * Its header must be this run's and its rows exactly steps 0, 1, ..., N: otherwise it is another
+ * run's history, and the restart is refused. */
 PetscErrorCode MMOutputRestartHistory(MMCtx *ctx, MMFileStatus *st)
 {
-  MMOutput *o = &ctx->out;
-  char      src[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN], *text = NULL;
-  MMLine    header;
-  FILE     *f;
-  long      len = 0;
-  ssize_t   keep;
-  PetscInt  stop, last = ctx->ckpt.restart_step;
-  int       fd;
+  MMOutput      *o    = &ctx->out;
+  const PetscInt last = ctx->ckpt.restart_step;
+  char           src[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN], *line = NULL;
+  size_t         cap = 0;
+  ssize_t        len;
+  MMLine         header;
+  FILE          *f;
+  PetscInt       expect = 0;
+  int            fd;
 
   PetscFunctionBeginUser;
   PetscCall(MMOutputCSVHeaderLine(ctx, &header));
@@ -64,30 +57,33 @@ PetscErrorCode MMOutputRestartHistory(MMCtx *ctx, MMFileStatus *st)
     PetscCall(MMOutputFailed(st, "read %s, the history the restart continues", src));
     PetscFunctionReturn(0);
   }
-  if (fseek(f, 0, SEEK_END) || (len = ftell(f)) < 0 || fseek(f, 0, SEEK_SET)) PetscCall(MMOutputFailed(st, "read %s", src));
-  else {
-    PetscCall(PetscMalloc1(len + 1, &text));
-    if (fread(text, 1, (size_t)len, f) != (size_t)len) PetscCall(MMOutputFailed(st, "read %s", src));
-  }
-  (void)fclose(f);
-  if (st->err) {
-    PetscCall(PetscFree(text));
+  if ((fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666)) < 0) {
+    PetscCall(MMOutputFailed(st, "create %s", tmp));
+    (void)fclose(f);
     PetscFunctionReturn(0);
   }
-  if ((size_t)len < header.n || memcmp(text, header.s, header.n)) {
+  len = getline(&line, &cap, f);
+  if (len != (ssize_t)header.n || memcmp(line, header.s, header.n)) {
     st->err = -1;
     PetscCall(PetscSNPrintf(st->what, sizeof(st->what), "The history %s has other columns than this run's: it is not of the run that wrote %s (another dimension or other obstacles)", src, ctx->ckpt.file));
-  } else if ((keep = HistoryPrefix(text, (size_t)len, last, &stop)) < 0) {
-    st->err = -1;
-    PetscCall(PetscSNPrintf(st->what, sizeof(st->what), "The history %s has rows for steps 0 to %" PetscInt_FMT " in order, the checkpoint %s is at step %" PetscInt_FMT ": it is not the history of the run that wrote the checkpoint", src, stop, ctx->ckpt.file, last));
-  } else if ((fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666)) < 0) PetscCall(MMOutputFailed(st, "create %s", tmp));
-  else {
-    if (MMOutputWriteAll(fd, text, (size_t)keep)) PetscCall(MMOutputFailed(st, "write %s", tmp));
-    if (close(fd) && !st->err) PetscCall(MMOutputFailed(st, "close %s", tmp));
-    if (!st->err && rename(tmp, o->csv_name)) PetscCall(MMOutputFailed(st, "rename %s to %s", tmp, o->csv_name));
-    if (!st->err && (o->csv_fd = open(o->csv_name, O_WRONLY | O_APPEND | O_CLOEXEC)) < 0) PetscCall(MMOutputFailed(st, "open %s", o->csv_name));
+  } else if (MMOutputWriteAll(fd, line, (size_t)len)) PetscCall(MMOutputFailed(st, "write %s", tmp));
+  while (!st->err && expect <= last && (len = getline(&line, &cap, f)) > 0 && RowStep(line, len) == expect) {
+    if (MMOutputWriteAll(fd, line, (size_t)len)) PetscCall(MMOutputFailed(st, "write %s", tmp));
+    ++expect;
   }
-  PetscCall(PetscFree(text));
+  free(line); /* getline's buffer */
+  (void)fclose(f);
+  if (!st->err && expect <= last) {
+    st->err = -1;
+    PetscCall(PetscSNPrintf(st->what, sizeof(st->what), "The history %s has rows for steps 0 to %" PetscInt_FMT " in order, the checkpoint %s is at step %" PetscInt_FMT ": it is not the history of the run that wrote the checkpoint", src, expect - 1, ctx->ckpt.file, last));
+  }
+  if (close(fd) && !st->err) PetscCall(MMOutputFailed(st, "close %s", tmp));
+  if (st->err) {
+    (void)unlink(tmp);
+    PetscFunctionReturn(0);
+  }
+  if (rename(tmp, o->csv_name)) PetscCall(MMOutputFailed(st, "rename %s to %s", tmp, o->csv_name));
+  else if ((o->csv_fd = open(o->csv_name, O_WRONLY | O_APPEND | O_CLOEXEC)) < 0) PetscCall(MMOutputFailed(st, "open %s", o->csv_name));
   PetscFunctionReturn(0);
 }
 
