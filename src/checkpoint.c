@@ -46,21 +46,34 @@ typedef enum {
 } MMRunEntry;
 _Static_assert(MM_RUN_NUM <= sizeof(((MMCheckpoint *)0)->run) / sizeof(PetscReal), "MMCheckpoint.run holds the run record");
 
-/* The free dofs of an owned vertex: global offset, and which of its dim components are free. */
-static PetscErrorCode OwnedVertexDofs(MMCtx *ctx, PetscInt v, PetscInt *goff, PetscBool freedof[])
+/* Where each owned vertex's dofs are: its serial-mesh number, and per component its index in the
+ * local part of a global vector, -1 for a Dirichlet (constrained) component. Packing and loading
+ * share it, so that the two stay each other's inverse. */
+static PetscErrorCode OwnedDofMap(MMCtx *ctx, PetscInt *n, PetscInt **serial, PetscInt **loc)
 {
-  PetscSection    gs, ls;
-  PetscInt        cdof;
-  const PetscInt *cind;
+  const PetscInt dim = ctx->op.dim;
+  PetscSection   gs, ls;
+  PetscInt       vStart, vEnd, rstart;
 
   PetscFunctionBeginUser;
   PetscCall(DMGetGlobalSection(ctx->op.dm, &gs));
   PetscCall(DMGetLocalSection(ctx->op.dm, &ls));
-  PetscCall(PetscSectionGetOffset(gs, v, goff));
-  PetscCall(PetscSectionGetConstraintDof(ls, v, &cdof));
-  PetscCall(PetscSectionGetConstraintIndices(ls, v, &cind));
-  for (PetscInt d = 0; d < ctx->op.dim; ++d) freedof[d] = PETSC_TRUE;
-  for (PetscInt c = 0; c < cdof; ++c) freedof[cind[c]] = PETSC_FALSE;
+  PetscCall(DMPlexGetDepthStratum(ctx->op.dm, 0, &vStart, &vEnd));
+  PetscCall(VecGetOwnershipRange(ctx->state.u, &rstart, NULL));
+  PetscCall(PetscMalloc2(vEnd - vStart, serial, dim * (vEnd - vStart), loc));
+  *n = 0;
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt        goff, cdof, j = 0, *l = *loc + dim * *n;
+    PetscBool       fixed[MM_MAX_DIM] = {PETSC_FALSE, PETSC_FALSE, PETSC_FALSE};
+    const PetscInt *cind;
+    PetscCall(PetscSectionGetOffset(gs, v, &goff));
+    if (goff < 0) continue;
+    PetscCall(PetscSectionGetConstraintDof(ls, v, &cdof));
+    PetscCall(PetscSectionGetConstraintIndices(ls, v, &cind));
+    for (PetscInt c = 0; c < cdof; ++c) fixed[cind[c]] = PETSC_TRUE;
+    for (PetscInt d = 0; d < dim; ++d) l[d] = fixed[d] ? -1 : goff - rstart + j++;
+    (*serial)[(*n)++] = ctx->ckpt.vertex_orig[v - vStart];
+  }
   PetscFunctionReturn(0);
 }
 
@@ -71,21 +84,16 @@ static PetscErrorCode PackDofs(MMCtx *ctx, Vec w, Vec packed)
 {
   const PetscInt     dim = ctx->op.dim;
   const PetscScalar *wa;
-  PetscInt           vStart, vEnd, rstart;
+  PetscInt           n, *serial, *loc;
 
   PetscFunctionBeginUser;
-  PetscCall(DMPlexGetDepthStratum(ctx->op.dm, 0, &vStart, &vEnd));
-  PetscCall(VecGetOwnershipRange(w, &rstart, NULL));
+  PetscCall(OwnedDofMap(ctx, &n, &serial, &loc));
   PetscCall(VecGetArrayRead(w, &wa));
-  for (PetscInt v = vStart; v < vEnd; ++v) {
-    PetscInt  goff, j = 0;
-    PetscBool freedof[MM_MAX_DIM];
-    PetscCall(OwnedVertexDofs(ctx, v, &goff, freedof));
-    if (goff < 0) continue;
+  for (PetscInt i = 0; i < n; ++i)
     for (PetscInt d = 0; d < dim; ++d)
-      if (freedof[d]) PetscCall(VecSetValue(packed, ctx->ckpt.vertex_orig[v - vStart] * dim + d, wa[goff - rstart + j++], INSERT_VALUES));
-  }
+      if (loc[i * dim + d] >= 0) PetscCall(VecSetValue(packed, serial[i] * dim + d, wa[loc[i * dim + d]], INSERT_VALUES));
   PetscCall(VecRestoreArrayRead(w, &wa));
+  PetscCall(PetscFree2(serial, loc));
   PetscCall(VecAssemblyBegin(packed));
   PetscCall(VecAssemblyEnd(packed));
   PetscFunctionReturn(0);
@@ -303,6 +311,7 @@ PetscErrorCode MMCheckpointDestroy(MMCheckpoint *c)
   PetscFunctionBeginUser;
   PetscCall(PetscFree(c->vertex_orig));
   PetscCall(PetscFree(c->node));
+  PetscCall(PetscFree(c->snapshot_times));
   PetscFunctionReturn(0);
 }
 
@@ -428,33 +437,19 @@ static PetscErrorCode LoadPacked(MMCtx *ctx, PetscViewer viewer, const char name
 static PetscErrorCode LoadDofs(MMCtx *ctx, PetscViewer viewer, const char name[], Vec w)
 {
   const PetscInt dim = ctx->op.dim;
-  PetscInt       vStart, vEnd, rstart, n = 0, *serial;
+  PetscInt       n, *serial, *loc;
   PetscScalar   *vals, *wa;
 
   PetscFunctionBeginUser;
-  PetscCall(DMPlexGetDepthStratum(ctx->op.dm, 0, &vStart, &vEnd));
-  PetscCall(PetscMalloc2(vEnd - vStart, &serial, dim * (vEnd - vStart), &vals));
-  for (PetscInt v = vStart; v < vEnd; ++v) {
-    PetscInt  goff;
-    PetscBool freedof[MM_MAX_DIM];
-    PetscCall(OwnedVertexDofs(ctx, v, &goff, freedof));
-    if (goff >= 0) serial[n++] = ctx->ckpt.vertex_orig[v - vStart];
-  }
+  PetscCall(OwnedDofMap(ctx, &n, &serial, &loc));
+  PetscCall(PetscMalloc1(dim * n, &vals));
   PetscCall(LoadPacked(ctx, viewer, name, dim, n, serial, vals));
-  PetscCall(VecGetOwnershipRange(w, &rstart, NULL));
   PetscCall(VecGetArray(w, &wa));
-  n = 0;
-  for (PetscInt v = vStart; v < vEnd; ++v) {
-    PetscInt  goff, j = 0;
-    PetscBool freedof[MM_MAX_DIM];
-    PetscCall(OwnedVertexDofs(ctx, v, &goff, freedof));
-    if (goff < 0) continue;
-    for (PetscInt d = 0; d < dim; ++d)
-      if (freedof[d]) wa[goff - rstart + j++] = vals[n * dim + d];
-    ++n;
-  }
+  for (PetscInt i = 0; i < n * dim; ++i)
+    if (loc[i] >= 0) wa[loc[i]] = vals[i];
   PetscCall(VecRestoreArray(w, &wa));
-  PetscCall(PetscFree2(serial, vals));
+  PetscCall(PetscFree(vals));
+  PetscCall(PetscFree2(serial, loc));
   PetscFunctionReturn(0);
 }
 
@@ -510,6 +505,36 @@ static PetscErrorCode RestoreContactState(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
+/* The times of the snapshots up to the checkpoint, on every rank. */
+static PetscErrorCode LoadSnapshotTimes(MMCtx *ctx, PetscViewer viewer)
+{
+  MMCheckpoint      *c    = &ctx->ckpt;
+  MPI_Comm           comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  const PetscInt     n    = (PetscInt)c->run[MM_RUN_SNAPSHOTS];
+  Vec                tv, all;
+  VecScatter         sc;
+  PetscInt           N;
+  const PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(PetscMax(n, 1), &c->snapshot_times));
+  if (!n) PetscFunctionReturn(0);
+  PetscCall(VecCreate(comm, &tv));
+  PetscCall(LoadVector(ctx, viewer, "snapshot_times", tv));
+  PetscCall(VecGetSize(tv, &N));
+  PetscCheck(N == n, comm, PETSC_ERR_FILE_UNEXPECTED, "The checkpoint %s lists %" PetscInt_FMT " snapshot times for %" PetscInt_FMT " snapshots: the file is damaged", c->file, N, n);
+  PetscCall(VecScatterCreateToAll(tv, &sc, &all));
+  PetscCall(VecScatterBegin(sc, tv, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(sc, tv, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGetArrayRead(all, &a));
+  for (PetscInt i = 0; i < n; ++i) c->snapshot_times[i] = PetscRealPart(a[i]);
+  PetscCall(VecRestoreArrayRead(all, &a));
+  PetscCall(VecScatterDestroy(&sc));
+  PetscCall(VecDestroy(&all));
+  PetscCall(VecDestroy(&tv));
+  PetscFunctionReturn(0);
+}
+
 /* -restart: the state, the stepper's time, step and dt, and the solvers' warm starts from the
  * checkpoint, after the fingerprint is checked. Called once the TS exists, before the step matrix
  * is factored (for the restored dt) and the initial energy is taken (of the restored state). */
@@ -536,6 +561,7 @@ PetscErrorCode MMCheckpointLoad(MMCtx *ctx, TS ts)
   PetscCall(LoadDofs(ctx, viewer, "v", s->v));
   PetscCall(LoadDofs(ctx, viewer, "a", s->a));
   PetscCall(LoadDofs(ctx, viewer, "react", s->react));
+  PetscCall(LoadSnapshotTimes(ctx, viewer));
   PetscCall(PetscViewerDestroy(&viewer));
   PetscCall(VecCopy(s->u, s->u_next));
   s->dt           = c->run[MM_RUN_DT_LAST];
@@ -589,37 +615,12 @@ PetscErrorCode MMCheckpointRestoreHistory(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
-/* The snapshot count and times of the checkpoint, for the output to continue its series. */
+/* The snapshot count and times of the checkpoint, read with the state: the caller takes them. */
 PetscErrorCode MMCheckpointSnapshots(MMCtx *ctx, PetscInt *n, PetscReal **times)
 {
-  MMCheckpoint *c    = &ctx->ckpt;
-  MPI_Comm      comm = PetscObjectComm((PetscObject)ctx->op.dm);
-  PetscViewer   viewer;
-  Vec           tv, all;
-  VecScatter    sc;
-  PetscInt      N;
-
   PetscFunctionBeginUser;
-  *n = (PetscInt)c->run[MM_RUN_SNAPSHOTS];
-  PetscCall(PetscMalloc1(PetscMax(*n, 1), times));
-  if (!*n) PetscFunctionReturn(0);
-  PetscCall(PetscViewerHDF5Open(comm, c->file, FILE_MODE_READ, &viewer));
-  PetscCall(VecCreate(comm, &tv));
-  PetscCall(LoadVector(ctx, viewer, "snapshot_times", tv));
-  PetscCall(PetscViewerDestroy(&viewer));
-  PetscCall(VecGetSize(tv, &N));
-  PetscCheck(N == *n, comm, PETSC_ERR_FILE_UNEXPECTED, "The checkpoint %s lists %" PetscInt_FMT " snapshot times for %" PetscInt_FMT " snapshots: the file is damaged", c->file, N, *n);
-  PetscCall(VecScatterCreateToAll(tv, &sc, &all));
-  PetscCall(VecScatterBegin(sc, tv, all, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(sc, tv, all, INSERT_VALUES, SCATTER_FORWARD));
-  {
-    const PetscScalar *a;
-    PetscCall(VecGetArrayRead(all, &a));
-    for (PetscInt i = 0; i < N; ++i) (*times)[i] = PetscRealPart(a[i]);
-    PetscCall(VecRestoreArrayRead(all, &a));
-  }
-  PetscCall(VecScatterDestroy(&sc));
-  PetscCall(VecDestroy(&all));
-  PetscCall(VecDestroy(&tv));
+  *n                       = (PetscInt)ctx->ckpt.run[MM_RUN_SNAPSHOTS];
+  *times                   = ctx->ckpt.snapshot_times;
+  ctx->ckpt.snapshot_times = NULL;
   PetscFunctionReturn(0);
 }
