@@ -134,6 +134,7 @@ typedef struct {
   PetscBool    quiet;
   PetscReal    progress_every;      /* seconds of wall time between progress lines, 0: none */
   PetscBool    allow_unused;
+  PetscBool    debug; /* -debug: full PETSc traces (read again by errors.c before the options) */
   PetscInt     vec_count[MM_V_NUM]; /* entries given to each vector option, -1 if not set */
   PetscInt     n_obstacles;         /* -obstacles, or the one plane of -obstacle_point/_normal */
   MMObstacle  *obstacles;

@@ -15,6 +15,7 @@ static char help[] = "mmcontact: elastodynamic contact with Coulomb friction by 
 #include "checkpoint.h"
 #include "progress.h"
 #include "signals.h"
+#include "errors.h"
 
 static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
 {
@@ -42,6 +43,7 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   if (ctx->ckpt.restarted) PetscCall(MMCheckpointRestoreHistory(ctx));
   PetscCall(MMProgressHeader(ctx, *ts));
   /* every object has read its options: refuse the unread ones before any output is touched */
+  PetscCall(MMOptionsCheckValueless(comm));
   PetscCall(MMOptionsCheckUnused(comm, &ctx->opt, ctx->op.dm));
   /* last: the earlier results in the output directory are set aside only once the input is valid */
   PetscCall(MMOutputOpen(ctx));
@@ -81,6 +83,7 @@ int main(int argc, char **argv)
 
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscCall(MMErrorsSetUp());
   PetscCall(PetscMemzero(&ctx, sizeof(ctx)));
   PetscCall(MMLogRegister(&ctx.log));
   PetscCall(MMNewmarkRegister());

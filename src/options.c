@@ -1,5 +1,7 @@
 /* Every run option of mmcontact, declared in one place with its help string. */
 #include "options.h"
+#include <errno.h>
+#include <stdlib.h>
 #include "obstacle.h"
 
 const char *const MMMassTypes[] = {"modified", "standard", "MMMassType", "MM_MASS_", NULL};
@@ -17,6 +19,51 @@ typedef enum {
 static const char *const VectorName[MM_V_NUM] = {"-gravity", "-u0_offset", "-u0_gradient", "-v0", "-omega", "-omega_center", "-obstacle_point", "-obstacle_normal", "-mesh_rotation", "-mesh_rotation_center"};
 static const MMVectorLength VectorLength[MM_V_NUM] = {MM_LEN_DIM, MM_LEN_DIM, MM_LEN_TENSOR, MM_LEN_DIM, MM_LEN_ROTATION, MM_LEN_DIM, MM_LEN_DIM, MM_LEN_DIM, MM_LEN_ROTATION, MM_LEN_DIM};
 
+/* What an option's value must be, checked before PETSc parses it: PETSc's own message for "-E 1e3Pa"
+ * names the string, not the option, and an option given without a value ("-E" followed by another
+ * option, or last) silently keeps its default, even over the options file's value. */
+typedef enum {
+  MM_VALUE_REAL, /* comma-separated numbers */
+  MM_VALUE_INT,  /* comma-separated integers */
+  MM_VALUE_TEXT  /* any non-empty text: a name, a path, a choice */
+} MMValueKind;
+
+/* Whether text (up to len characters) is one number of the kind, all of it. */
+static PetscBool IsNumber(const char text[], size_t len, MMValueKind kind)
+{
+  char  buf[128], *end;
+  char *p;
+
+  if (!len || len >= sizeof(buf)) return PETSC_FALSE;
+  memcpy(buf, text, len);
+  buf[len] = 0;
+  for (p = buf; *p == ' '; ++p) {}
+  errno = 0;
+  if (kind == MM_VALUE_INT) (void)strtoll(p, &end, 10);
+  else (void)strtod(p, &end);
+  while (*end == ' ') ++end;
+  return (PetscBool)(end != p && !*end);
+}
+
+static PetscErrorCode MMOptionsCheckValue(MPI_Comm comm, const char name[], MMValueKind kind)
+{
+  const char *value;
+  PetscBool   set;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsFindPair(NULL, NULL, name, &value, &set));
+  if (!set) PetscFunctionReturn(0);
+  PetscCheck(value && value[0], comm, PETSC_ERR_USER_INPUT, "%s was given without a value: write \"%s VALUE\", or leave the option out for its default", name, name);
+  if (kind == MM_VALUE_TEXT) PetscFunctionReturn(0);
+  for (const char *p = value; p;) {
+    const char  *comma = strchr(p, ',');
+    const size_t len   = comma ? (size_t)(comma - p) : strlen(p);
+    PetscCheck(IsNumber(p, len, kind), comm, PETSC_ERR_USER_INPUT, "%s %s: \"%.*s\" is not %s. Give %s%s", name, value, (int)len, p, kind == MM_VALUE_INT ? "an integer" : "a number", kind == MM_VALUE_INT ? "whole numbers" : "plain numbers, in SI units, without a unit (1e3, not 1e3Pa)", strchr(value, ',') ? ", separated by commas without blanks" : "");
+    p = comma ? comma + 1 : NULL;
+  }
+  PetscFunctionReturn(0);
+}
+
 /* PETSc parses "nan" and "inf" as numbers: every real option is checked here, by name. */
 static PetscErrorCode CheckFinite(MPI_Comm comm, const char name[], const PetscReal v[], PetscInt n)
 {
@@ -29,6 +76,7 @@ static PetscErrorCode CheckFinite(MPI_Comm comm, const char name[], const PetscR
 static PetscErrorCode OptionsReal(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], PetscReal *v)
 {
   PetscFunctionBeginUser;
+  PetscCall(MMOptionsCheckValue(comm, name, MM_VALUE_REAL));
   PetscCall(PetscOptionsReal(name, help, NULL, *v, v, NULL));
   PetscCall(CheckFinite(comm, name, v, 1));
   PetscFunctionReturn(0);
@@ -44,12 +92,40 @@ static PetscErrorCode OptionsRealArray(PetscOptionItems *PetscOptionsObject, MPI
 
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < nmax; ++i) buf[i] = v[i];
+  PetscCall(MMOptionsCheckValue(comm, name, MM_VALUE_REAL));
   PetscCall(PetscOptionsRealArray(name, help, NULL, buf, &n, &set));
   *count = set ? n : -1;
   if (!set) PetscFunctionReturn(0);
   PetscCheck(n <= nmax, comm, PETSC_ERR_USER_INPUT, "%s has more than %" PetscInt_FMT " entries", name, nmax);
   PetscCall(CheckFinite(comm, name, buf, n));
   for (PetscInt i = 0; i < nmax; ++i) v[i] = i < n ? buf[i] : 0;
+  PetscFunctionReturn(0);
+}
+
+/* An integer option. */
+static PetscErrorCode OptionsInt(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], PetscInt *v)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMOptionsCheckValue(comm, name, MM_VALUE_INT));
+  PetscCall(PetscOptionsInt(name, help, NULL, *v, v, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* A text option: a name, a list of names, a path. */
+static PetscErrorCode OptionsString(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], char v[], size_t len, PetscBool *set)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMOptionsCheckValue(comm, name, MM_VALUE_TEXT));
+  PetscCall(PetscOptionsString(name, help, NULL, v, v, len, set));
+  PetscFunctionReturn(0);
+}
+
+/* An enumerated option. */
+static PetscErrorCode OptionsEnum(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], const char *const list[], PetscEnum *v)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMOptionsCheckValue(comm, name, MM_VALUE_TEXT));
+  PetscCall(PetscOptionsEnum(name, help, NULL, list, *v, v, NULL));
   PetscFunctionReturn(0);
 }
 
@@ -63,15 +139,19 @@ static PetscErrorCode OptionsVector(PetscOptionItems *PetscOptionsObject, MPI_Co
   PetscFunctionReturn(0);
 }
 
-/* Splits a comma-separated list of physical names into a freshly allocated array. */
-static PetscErrorCode SplitNames(const char list[], PetscInt *n, char ***names)
+/* Splits a comma-separated list of physical names into a freshly allocated array. PetscStrToArray
+ * would skip an empty name ("floor,,wall"), a typo that would drop an obstacle or a boundary. */
+static PetscErrorCode SplitNames(MPI_Comm comm, const char option[], const char list[], PetscInt *n, char ***names)
 {
-  int argc;
+  int    argc;
+  size_t len = strlen(list);
 
   PetscFunctionBeginUser;
   *n     = 0;
   *names = NULL;
   if (!list[0]) PetscFunctionReturn(0);
+  PetscCheck(list[0] != ',' && list[len - 1] != ',' && !strstr(list, ",,"), comm, PETSC_ERR_USER_INPUT, "%s %s has an empty name: give the names separated by single commas", option, list);
+  for (const char *p = list; *p; ++p) PetscCheck(*p != ' ' && *p != '\t', comm, PETSC_ERR_USER_INPUT, "%s \"%s\" has a blank: give the names separated by commas, without blanks", option, list);
   PetscCall(PetscStrToArray(list, ',', &argc, names));
   *n = argc;
   PetscFunctionReturn(0);
@@ -83,7 +163,7 @@ static PetscErrorCode ProcessDirichlet(PetscOptionItems *PetscOptionsObject, MPI
   PetscInt n;
 
   PetscFunctionBeginUser;
-  PetscCall(SplitNames(list, &n, &names));
+  PetscCall(SplitNames(comm, "-dirichlet", list, &n, &names));
   opt->n_dirichlet = n;
   PetscCall(PetscCalloc1(n, &opt->dirichlet));
   for (PetscInt b = 0; b < n; ++b) {
@@ -96,6 +176,7 @@ static PetscErrorCode ProcessDirichlet(PetscOptionItems *PetscOptionsObject, MPI
     /* default: a clamp, fixing every component to zero */
     bc->ncomp = -1;
     PetscCall(PetscSNPrintf(key, sizeof(key), "-dirichlet_%s_components", bc->name));
+    PetscCall(MMOptionsCheckValue(comm, key, MM_VALUE_INT));
     PetscCall(PetscOptionsIntArray(key, "Displacement components fixed on this Dirichlet boundary (0=x,1=y,2=z), each at most once; default all (a clamp)", NULL, comps, &nc, &set));
     if (set) {
       PetscCheck(nc <= MM_MAX_DIM, comm, PETSC_ERR_USER_INPUT, "%s lists %" PetscInt_FMT " or more components; a node has at most %d", key, nc, MM_MAX_DIM);
@@ -118,7 +199,7 @@ static PetscErrorCode ProcessTraction(PetscOptionItems *PetscOptionsObject, MPI_
   PetscInt n;
 
   PetscFunctionBeginUser;
-  PetscCall(SplitNames(list, &n, &names));
+  PetscCall(SplitNames(comm, "-traction", list, &n, &names));
   opt->n_traction = n;
   PetscCall(PetscCalloc1(n, &opt->traction));
   for (PetscInt b = 0; b < n; ++b) {
@@ -144,7 +225,7 @@ static PetscErrorCode ProcessObstacle(PetscOptionItems *PetscOptionsObject, MPI_
   PetscCall(MMObstacleTypesList(types, sizeof(types)));
   PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_type", ob->name));
   PetscCall(PetscSNPrintf(help, sizeof(help), "Shape of this obstacle: %s (default plane)", types));
-  PetscCall(PetscOptionsString(key, help, NULL, type, type, sizeof(type), NULL));
+  PetscCall(OptionsString(PetscOptionsObject, comm, key, help, type, sizeof(type), NULL));
   PetscCall(MMObstacleSetType(ob, comm, type));
   PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_point", ob->name));
   PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "plane: a point of the plane; cylinder: a point on the axis; d entries", MM_MAX_DIM, ob->point, &ob->npoint));
@@ -155,10 +236,11 @@ static PetscErrorCode ProcessObstacle(PetscOptionItems *PetscOptionsObject, MPI_
   PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_axis", ob->name));
   PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "cylinder: the axis direction (normalized), 3 entries", MM_MAX_DIM, ob->axis, &ob->naxis));
   PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_radius", ob->name));
+  PetscCall(MMOptionsCheckValue(comm, key, MM_VALUE_REAL));
   PetscCall(PetscOptionsReal(key, "sphere, circle, cylinder: the radius, > 0", NULL, ob->radius, &ob->radius, &ob->radius_set));
   PetscCall(CheckFinite(comm, key, &ob->radius, 1));
   PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_side", ob->name));
-  PetscCall(PetscOptionsString(key, "sphere, circle, cylinder: outside (the body outside the shape: a bump) or inside (the body inside it: a bowl, a rail, a cavity)", NULL, side, side, sizeof(side), &set));
+  PetscCall(OptionsString(PetscOptionsObject, comm, key, "sphere, circle, cylinder: outside (the body outside the shape: a bump) or inside (the body inside it: a bowl, a rail, a cavity)", side, sizeof(side), &set));
   {
     PetscBool out, in;
     PetscCall(PetscStrcmp(side, "outside", &out));
@@ -186,8 +268,8 @@ static PetscErrorCode ProcessObstacles(PetscOptionItems *PetscOptionsObject, MPI
   PetscInt n;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsString("-obstacles", "Comma-separated names of the rigid obstacles; each takes -obstacle_NAME_type plane|sphere|circle|cylinder and its parameters. Each contact node is constrained against the one nearest to it in the reference configuration (default: one plane, -obstacle_point and -obstacle_normal)", NULL, list, list, sizeof(list), NULL));
-  PetscCall(SplitNames(list, &n, &names));
+  PetscCall(OptionsString(PetscOptionsObject, comm, "-obstacles", "Comma-separated names of the rigid obstacles; each takes -obstacle_NAME_type plane|sphere|circle|cylinder and its parameters. Each contact node is constrained against the one nearest to it in the reference configuration (default: one plane, -obstacle_point and -obstacle_normal)", list, sizeof(list), NULL));
+  PetscCall(SplitNames(comm, "-obstacles", list, &n, &names));
   opt->obstacles_named = (PetscBool)(n > 0);
   PetscCheck(!n || (opt->vec_count[MM_V_OBSTACLE_POINT] < 0 && opt->vec_count[MM_V_OBSTACLE_NORMAL] < 0), comm, PETSC_ERR_USER_INPUT, "-obstacles %s and -obstacle_point/-obstacle_normal were both given: give the plane as one of the named obstacles (-obstacle_NAME_type plane -obstacle_NAME_point ... -obstacle_NAME_normal ...)", list);
   opt->n_obstacles = n ? n : 1;
@@ -245,14 +327,14 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(PetscMemzero(opt, sizeof(*opt)));
   PetscOptionsBegin(comm, NULL, "mmcontact: modified-mass dynamic contact", "MMContact");
   opt->mesh_file[0] = 0;
-  PetscCall(PetscOptionsString("-mesh", "gmsh mesh file (.msh, format 2.2 or 4.1) with named physical groups; first-order triangles give plane strain, first-order tetrahedra 3D", NULL, opt->mesh_file, opt->mesh_file, sizeof(opt->mesh_file), NULL));
+  PetscCall(OptionsString(PetscOptionsObject, comm, "-mesh", "gmsh mesh file (.msh, format 2.2 or 4.1) with named physical groups; first-order triangles give plane strain, first-order tetrahedra 3D", opt->mesh_file, sizeof(opt->mesh_file), NULL));
   PetscCall(PetscStrcpy(opt->contact_name, "contact"));
-  PetscCall(PetscOptionsString("-contact_boundary", "Physical name of the contact boundary (a Physical Curve in 2D, Surface in 3D)", NULL, opt->contact_name, opt->contact_name, sizeof(opt->contact_name), NULL));
+  PetscCall(OptionsString(PetscOptionsObject, comm, "-contact_boundary", "Physical name of the contact boundary (a Physical Curve in 2D, Surface in 3D)", opt->contact_name, sizeof(opt->contact_name), NULL));
   list[0] = 0;
-  PetscCall(PetscOptionsString("-dirichlet", "Comma-separated physical names of Dirichlet boundaries; each takes -dirichlet_NAME_components and -dirichlet_NAME_value", NULL, list, list, sizeof(list), NULL));
+  PetscCall(OptionsString(PetscOptionsObject, comm, "-dirichlet", "Comma-separated physical names of Dirichlet boundaries; each takes -dirichlet_NAME_components and -dirichlet_NAME_value", list, sizeof(list), NULL));
   PetscCall(ProcessDirichlet(PetscOptionsObject, comm, opt, list));
   list[0] = 0;
-  PetscCall(PetscOptionsString("-traction", "Comma-separated physical names of traction (Neumann) boundaries, boundary faces only; each takes -traction_NAME_value", NULL, list, list, sizeof(list), NULL));
+  PetscCall(OptionsString(PetscOptionsObject, comm, "-traction", "Comma-separated physical names of traction (Neumann) boundaries, boundary faces only; each takes -traction_NAME_value", list, sizeof(list), NULL));
   PetscCall(ProcessTraction(PetscOptionsObject, comm, opt, list));
 
   opt->E = 1.0;
@@ -269,7 +351,7 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OMEGA, "Initial rigid angular velocity (rad/s): a scalar in 2D, a vector in 3D", opt->omega));
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OMEGA_CENTER, "Centre of the initial rigid rotation, d entries", opt->omega_center));
   opt->initial_state = MM_INITIAL_GIVEN;
-  PetscCall(PetscOptionsEnum("-initial_state", "Initial displacement: given (-u0_offset, -u0_gradient, contact dofs projected) or static_sliding (the body sliding along -v0 on the obstacle under its loads, with friction -mu)", NULL, MMInitialStates, (PetscEnum)opt->initial_state, (PetscEnum *)&opt->initial_state, NULL));
+  PetscCall(OptionsEnum(PetscOptionsObject, comm, "-initial_state", "Initial displacement: given (-u0_offset, -u0_gradient, contact dofs projected) or static_sliding (the body sliding along -v0 on the obstacle under its loads, with friction -mu)", MMInitialStates, (PetscEnum *)&opt->initial_state));
 
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OBSTACLE_POINT, "A point of the rigid obstacle plane, d entries", opt->obstacle_point));
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OBSTACLE_NORMAL, "Unit normal of the obstacle plane, pointing out of the obstacle towards the body, d entries (default +y in 2D, +z in 3D)", opt->obstacle_normal));
@@ -277,11 +359,11 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_MESH_ROTATION_CENTER, "Centre of the -mesh_rotation, d entries", opt->mesh_rotation_center));
 
   opt->mass_type = MM_MASS_MODIFIED;
-  PetscCall(PetscOptionsEnum("-mass", "Mass matrix in time stepping: modified (normal mass of contact nodes removed) or standard", NULL, MMMassTypes, (PetscEnum)opt->mass_type, (PetscEnum *)&opt->mass_type, NULL));
+  PetscCall(OptionsEnum(PetscOptionsObject, comm, "-mass", "Mass matrix in time stepping: modified (normal mass of contact nodes removed) or standard", MMMassTypes, (PetscEnum *)&opt->mass_type));
   opt->lumped = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-mass_lumped", "Use the row-sum lumped mass instead of the consistent mass", NULL, opt->lumped, &opt->lumped, NULL));
   opt->assembly = MM_ASSEMBLY_CLOSED_FORM;
-  PetscCall(PetscOptionsEnum("-assembly", "How the stiffness and mass are assembled: closed_form (P1 element matrices in closed form, one pass over the cells) or fe (PetscFE quadrature, the slower reference)", NULL, MMAssemblyTypes, (PetscEnum)opt->assembly, (PetscEnum *)&opt->assembly, NULL));
+  PetscCall(OptionsEnum(PetscOptionsObject, comm, "-assembly", "How the stiffness and mass are assembled: closed_form (P1 element matrices in closed form, one pass over the cells) or fe (PetscFE quadrature, the slower reference)", MMAssemblyTypes, (PetscEnum *)&opt->assembly));
   opt->assembly_check = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-assembly_check", "Also assemble the stiffness and mass the other -assembly way, print the relative difference of each, and stop if one exceeds 1e-12", NULL, opt->assembly_check, &opt->assembly_check, NULL));
   opt->contact = PETSC_TRUE;
@@ -295,9 +377,9 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   opt->friction_monitor = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-friction_monitor", "Print each friction iteration: threshold change, Coulomb residual, contraction factor, slipping and sticking node counts", NULL, opt->friction_monitor, &opt->friction_monitor, NULL));
   opt->contact_formulation = MM_CONTACT_CONDENSED;
-  PetscCall(PetscOptionsEnum("-contact_formulation", "Contact VI on the contact dofs through the Delassus operator (condensed: K~ factored once per dt), on all dofs (full: a factorization per VI iteration, frictionless), or the primal-dual active-set method on all dofs (active_set: CG on the free dofs with the contact_K_ PC, default Jacobi, -contact_K_pc_type gamg or hypre for c_p dt / h_c' above about 10, set up once per dt; for large 3D meshes)", NULL, MMContactFormulations, (PetscEnum)opt->contact_formulation, (PetscEnum *)&opt->contact_formulation, NULL));
+  PetscCall(OptionsEnum(PetscOptionsObject, comm, "-contact_formulation", "Contact VI on the contact dofs through the Delassus operator (condensed: K~ factored once per dt), on all dofs (full: a factorization per VI iteration, frictionless), or the primal-dual active-set method on all dofs (active_set: CG on the free dofs with the contact_K_ PC, default Jacobi, -contact_K_pc_type gamg or hypre for c_p dt / h_c' above about 10, set up once per dt; for large 3D meshes)", MMContactFormulations, (PetscEnum *)&opt->contact_formulation));
   opt->active_set_max_it = 100;
-  PetscCall(PetscOptionsInt("-active_set_max_it", "Active-set formulation: iterations per contact solve before the run stops (each is one projected CG solve)", NULL, opt->active_set_max_it, &opt->active_set_max_it, NULL));
+  PetscCall(OptionsInt(PetscOptionsObject, comm, "-active_set_max_it", "Active-set formulation: iterations per contact solve before the run stops (each is one projected CG solve)", &opt->active_set_max_it));
   opt->active_set_monitor = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-active_set_monitor", "Active-set formulation: print each iteration, the nodes that changed set and the CG iterations", NULL, opt->active_set_monitor, &opt->active_set_monitor, NULL));
   opt->contact_tol = 1e-11;
@@ -315,17 +397,19 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   opt->initial_penetration_tol = 1e-6;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-initial_penetration_tol", "Refuse an initial state whose contact nodes penetrate the obstacle deeper than this times h_c' (>= 0)", &opt->initial_penetration_tol));
   PetscCall(PetscStrcpy(opt->output_dir, "output"));
-  PetscCall(PetscOptionsString("-output_dir", "Directory for history.csv, solution.h5 and solution.xmf (created if missing; not empty)", NULL, opt->output_dir, opt->output_dir, sizeof(opt->output_dir), NULL));
+  PetscCall(OptionsString(PetscOptionsObject, comm, "-output_dir", "Directory for history.csv, solution.h5 and solution.xmf (created if missing; not empty)", opt->output_dir, sizeof(opt->output_dir), NULL));
   opt->output_every = 10;
   opt->checkpoint_every = 0;
-  PetscCall(PetscOptionsInt("-checkpoint_every", "Write the complete state to OUTPUT_DIR/checkpoint.h5 every k steps, replacing the previous one atomically (0: only at the end of the run)", NULL, opt->checkpoint_every, &opt->checkpoint_every, NULL));
+  PetscCall(OptionsInt(PetscOptionsObject, comm, "-checkpoint_every", "Write the complete state to OUTPUT_DIR/checkpoint.h5 every k steps, replacing the previous one atomically (0: only at the end of the run)", &opt->checkpoint_every));
   opt->restart[0] = 0;
-  PetscCall(PetscOptionsString("-restart", "Continue the run of a checkpoint: its checkpoint.h5, or the output directory that holds it, on any number of ranks. The history.csv and solution.h5/.xmf of that directory, cut at the checkpoint's step, are continued in -output_dir. Give the options of the run that wrote it: another mesh, contact boundary, dimension, -mu, material or mass is refused", NULL, opt->restart, opt->restart, sizeof(opt->restart), NULL));
-  PetscCall(PetscOptionsInt("-output_every", "Write the HDF5 fields every k steps (0: only the initial and final state)", NULL, opt->output_every, &opt->output_every, NULL));
+  PetscCall(OptionsString(PetscOptionsObject, comm, "-restart", "Continue the run of a checkpoint: its checkpoint.h5, or the output directory that holds it, on any number of ranks. The history.csv and solution.h5/.xmf of that directory, cut at the checkpoint's step, are continued in -output_dir. Give the options of the run that wrote it: another mesh, contact boundary, dimension, -mu, material or mass is refused", opt->restart, sizeof(opt->restart), NULL));
+  PetscCall(OptionsInt(PetscOptionsObject, comm, "-output_every", "Write the HDF5 fields every k steps (0: only the initial and final state)", &opt->output_every));
   opt->quiet = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-quiet", "Do not print the start-up report, progress lines and closing summary", NULL, opt->quiet, &opt->quiet, NULL));
   opt->progress_every = 5;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-progress_every", "Print a progress line (time, wall time and ETA, energy balance, contact and friction) every this many seconds of wall time, >= 0 (0: none)", &opt->progress_every));
+  opt->debug = PETSC_FALSE;
+  PetscCall(PetscOptionsBool("-debug", "On an error, print PETSc's full trace on every rank (by default an error a user can act on prints its message alone; README \"Exit status\")", NULL, opt->debug, &opt->debug, NULL));
   opt->allow_unused = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-allow_unused_options", "Run even if an option is set that nothing reads (by default such an option, usually a typo, stops the run before the first step)", NULL, opt->allow_unused, &opt->allow_unused, NULL));
   PetscOptionsEnd();

@@ -5,6 +5,7 @@
  * closest valid name. The valid names are what -help would print: the help text of every object is
  * replayed into memory instead of the terminal. */
 #include <ctype.h>
+#include <strings.h>
 #include <stdarg.h>
 #include "options.h"
 #include "newmark.h"
@@ -14,28 +15,46 @@
  * -options_left): valid, but not yet read when the check runs. */
 static const char *const LateOptions[] = {"-ts_view", "-ts_view_solution", "-options_left", "-options_view", "-malloc_dump", "-malloc_view", "-memory_view", "-objects_dump", "-log_view", "-log_view_memory", "-log_summary", "-log_trace", "-info", "-history", "-help", "-version", "-options_file", "-options_file_yaml", "-malloc_debug", "-on_error_abort", "-start_in_debugger", "-on_error_attach_debugger", "-check_pointer_intensity", "-viewer_binary_skip_info"};
 
-/* The valid names, parsed from the help text. */
+/* The valid names, parsed from the help text, and which of them take a value. */
 static struct {
-  char   **name;
-  PetscInt n, cap;
+  char     **name;
+  PetscBool *takes_value;
+  PetscInt   n, cap;
 } Collected;
 
-static PetscErrorCode AddName(const char name[], size_t len)
+static PetscErrorCode AddName(const char name[], size_t len, PetscBool takes_value)
 {
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < Collected.n; ++i)
-    if (strlen(Collected.name[i]) == len && !strncmp(Collected.name[i], name, len)) PetscFunctionReturn(0);
+    if (strlen(Collected.name[i]) == len && !strncasecmp(Collected.name[i], name, len)) {
+      Collected.takes_value[i] = (PetscBool)(Collected.takes_value[i] || takes_value);
+      PetscFunctionReturn(0);
+    }
   if (Collected.n == Collected.cap) {
     Collected.cap = PetscMax(64, 2 * Collected.cap);
     PetscCall(PetscRealloc(sizeof(char *) * Collected.cap, &Collected.name));
+    PetscCall(PetscRealloc(sizeof(PetscBool) * Collected.cap, &Collected.takes_value));
   }
   PetscCall(PetscMalloc1(len + 1, &Collected.name[Collected.n]));
   PetscCall(PetscStrncpy(Collected.name[Collected.n], name, len + 1));
+  Collected.takes_value[Collected.n] = takes_value;
   Collected.n++;
   PetscFunctionReturn(0);
 }
 
-/* Help lines start with blanks and the option's name: "  -ts_dt <0.001 : 0.001>: ...". */
+static PetscErrorCode FreeNames(void)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < Collected.n; ++i) PetscCall(PetscFree(Collected.name[i]));
+  PetscCall(PetscFree(Collected.name));
+  PetscCall(PetscFree(Collected.takes_value));
+  Collected.n = Collected.cap = 0;
+  PetscFunctionReturn(0);
+}
+
+/* Help lines start with blanks and the option's name. An option with a value shows it in angle
+ * brackets right after the name, "  -ts_dt <0.001 : 0.001>: ...", a flag after a colon,
+ * "  -quiet: <FALSE : FALSE> ...", a viewer its syntax, "  -ts_monitor ascii[:...]". */
 static PetscErrorCode ParseHelp(const char text[])
 {
   PetscFunctionBeginUser;
@@ -44,7 +63,7 @@ static PetscErrorCode ParseHelp(const char text[])
     while (*p == ' ' || *p == '\t') ++p;
     if (*p == '-' && isalpha((unsigned char)p[1])) {
       while (isalnum((unsigned char)p[len + 1]) || p[len + 1] == '_') ++len;
-      PetscCall(AddName(p, len + 1));
+      PetscCall(AddName(p, len + 1, (PetscBool)(p[len + 1] == ' ' && p[len + 2] == '<')));
     }
     p = strchr(p, '\n');
     if (p) ++p;
@@ -102,7 +121,8 @@ PetscErrorCode MMOptionsHelpWithoutMesh(MPI_Comm comm, PetscBool *done)
 }
 
 /* The valid option names: the help text of the application and of every object, replayed into
- * memory (PETSc prints help on rank 0, so only rank 0 knows them; only rank 0 prints the error). */
+ * memory (PETSc prints help on rank 0, so only rank 0 knows them; only rank 0 prints the error).
+ * Without dm, the mesh's options are left out: replaying them on a DM in use could change it. */
 static PetscErrorCode CollectValidNames(MPI_Comm comm, DM dm)
 {
   FILE     *saved = PETSC_STDOUT, *saved_stdout = stdout, *mem;
@@ -124,14 +144,15 @@ static PetscErrorCode CollectValidNames(MPI_Comm comm, DM dm)
   PetscCall(MMOptionsProcess(comm, &scratch));
   PetscCall(MMOptionsDestroy(&scratch));
   PetscCall(SolverObjectsFromOptions(comm));
-  PetscCall(DMSetFromOptions(dm));
+  /* the run stops after the unused-option report: the mesh's options may be replayed on its DM */
+  if (dm) PetscCall(DMSetFromOptions(dm));
   PETSC_STDOUT = saved;
   stdout       = saved_stdout;
   fclose(mem);
   if (!had_help) PetscCall(PetscOptionsClearValue(NULL, "-help"));
   PetscCall(ParseHelp(text));
   free(text);
-  for (size_t i = 0; i < sizeof(LateOptions) / sizeof(LateOptions[0]); ++i) PetscCall(AddName(LateOptions[i], strlen(LateOptions[i])));
+  for (size_t i = 0; i < sizeof(LateOptions) / sizeof(LateOptions[0]); ++i) PetscCall(AddName(LateOptions[i], strlen(LateOptions[i]), PETSC_FALSE));
   PetscFunctionReturn(0);
 }
 
@@ -181,6 +202,53 @@ static PetscErrorCode DescribeUnused(const char name[], const char value[], char
   PetscFunctionReturn(0);
 }
 
+/* The options given without a value, from the database's text "-a 1 -b -c x ": a name followed by
+ * another name or by nothing. A value that itself looks like a name ("-x -y") is read as none: it is
+ * only looked at if the option takes a value, and then is refused with the rest. */
+static PetscErrorCode ValuelessOptions(PetscInt *n, char ***names)
+{
+  char   *all, **tok;
+  int     ntok;
+  PetscInt k = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetAll(NULL, &all));
+  PetscCall(PetscStrToArray(all, ' ', &ntok, &tok));
+  PetscCall(PetscCalloc1(ntok + 1, names));
+  for (int i = 0; i < ntok; ++i) {
+    const PetscBool name = (PetscBool)(tok[i][0] == '-' && (isalpha((unsigned char)tok[i][1]) || tok[i][1] == '_'));
+    const PetscBool next = (PetscBool)(i + 1 < ntok && tok[i + 1][0] == '-' && (isalpha((unsigned char)tok[i + 1][1]) || tok[i + 1][1] == '_'));
+    if (name && (i + 1 == ntok || next)) PetscCall(PetscStrallocpy(tok[i], &(*names)[k++]));
+  }
+  PetscCall(PetscStrToArrayDestroy(ntok, tok));
+  PetscCall(PetscFree(all));
+  *n = k;
+  PetscFunctionReturn(0);
+}
+
+/* An option that takes a value, given without one ("-ts_dt" followed by another option, or last),
+ * keeps its default in silence, even over an options file's value: refused, by name. mmcontact's own
+ * options are checked as they are read (options.c); this catches the solvers' and the stepper's. */
+PetscErrorCode MMOptionsCheckValueless(MPI_Comm comm)
+{
+  PetscInt n = 0;
+  char   **names, bad[PETSC_MAX_OPTION_NAME] = "";
+
+  PetscFunctionBeginUser;
+  PetscCall(ValuelessOptions(&n, &names));
+  if (n) PetscCall(CollectValidNames(comm, NULL));
+  for (PetscInt i = 0; i < n && !bad[0]; ++i)
+    for (PetscInt j = 0; j < Collected.n; ++j)
+      if (Collected.takes_value[j] && !strcasecmp(Collected.name[j], names[i])) PetscCall(PetscStrncpy(bad, names[i], sizeof(bad)));
+  for (PetscInt i = 0; i < n; ++i) PetscCall(PetscFree(names[i]));
+  PetscCall(PetscFree(names));
+  PetscCall(FreeNames());
+  /* only rank 0 has the help text */
+  PetscCallMPI(MPI_Bcast(bad, sizeof(bad), MPI_CHAR, 0, comm));
+  PetscCheck(!bad[0], comm, PETSC_ERR_USER_INPUT, "%s was given without a value: write \"%s VALUE\", or leave the option out for its default (-help shows its values)", bad, bad);
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MMOptionsCheckUnused(MPI_Comm comm, const MMOptions *opt, DM dm)
 {
   PetscInt n, nunused;
@@ -210,8 +278,6 @@ PetscErrorCode MMOptionsCheckUnused(MPI_Comm comm, const MMOptions *opt, DM dm)
     PetscCall(PetscStrlcat(report, line, cap));
   }
   PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
-  for (PetscInt i = 0; i < Collected.n; ++i) PetscCall(PetscFree(Collected.name[i]));
-  PetscCall(PetscFree(Collected.name));
-  Collected.n = Collected.cap = 0;
+  PetscCall(FreeNames());
   SETERRQ(comm, PETSC_ERR_USER_INPUT, "%" PetscInt_FMT " option%s set but never read, so the run would ignore %s:\n%sFix the spelling, or pass -allow_unused_options to run anyway", nunused, nunused > 1 ? "s are" : " is", nunused > 1 ? "them" : "it", report);
 }

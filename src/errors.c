@@ -1,0 +1,113 @@
+/* How a run that stops says why (README "Exit status").
+ *
+ * PETSc's default handler prints, on every rank, the message under its configure line, a traceback
+ * and the list of options not yet read: right for a bug, noise for a user who mistyped an option.
+ * Here the errors a user can act on (a refused input, an output file that cannot be written, a run
+ * stopped by a check of its physics) print their message alone, once, as the first line of stderr,
+ * and the run exits with a documented status. Any other error is a bug of ours or of a library: it
+ * keeps PETSc's full trace, and so does every error under -debug. */
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include "errors.h"
+
+static PetscBool debug_trace = PETSC_FALSE;
+
+/* Our own sources are compiled as "src/...", PETSc's as "./src/...": an unsupported combination of
+ * options is the user's to fix when we raise it, a bug when PETSc does. */
+static PetscBool OurCode(const char file[])
+{
+  return (PetscBool)(file && !strncmp(file, "src/", 4));
+}
+
+/* The exit status of an error a user can act on, 0 for any other (a bug: full trace). */
+static int ExitStatus(PetscErrorCode n, const char fun[], const char file[])
+{
+  switch (n) {
+  case PETSC_ERR_USER_INPUT:
+  case PETSC_ERR_FILE_OPEN:
+  case PETSC_ERR_FILE_READ:
+  case PETSC_ERR_FILE_UNEXPECTED:
+    return MM_EXIT_USAGE;
+  case PETSC_ERR_SUP:
+    return OurCode(file) ? MM_EXIT_USAGE : 0;
+  case PETSC_ERR_ARG_OUTOFRANGE:
+  case PETSC_ERR_ARG_WRONG:
+  case PETSC_ERR_ARG_UNKNOWN_TYPE:
+    /* PETSc's reading of its own options: "-ts_type foo", "-ts_dt 1e-3s" */
+    return fun && (!strncmp(fun, "PetscOptions", 12) || strstr(fun, "SetType") || strstr(fun, "SetFromOptions")) ? MM_EXIT_USAGE : 0;
+  case PETSC_ERR_FILE_WRITE:
+    return MM_EXIT_IO;
+  case MM_ERR_LOCKED:
+    return MM_EXIT_LOCKED;
+  case MM_ERR_PHYSICS:
+  case PETSC_ERR_NOT_CONVERGED:
+  case PETSC_ERR_FP:
+    return OurCode(file) ? MM_EXIT_PHYSICS : 0;
+  default:
+    return 0;
+  }
+}
+
+/* A copy of MPI_COMM_WORLD for the end of a run that stops on an error, so that its barrier never
+ * meets another collective in flight. */
+static MPI_Comm end_comm = MPI_COMM_NULL;
+
+/* Whether every rank has reached the end within a few seconds: then the job can end cleanly. */
+static PetscBool AllRanksEnding(void)
+{
+  MPI_Request req;
+  int         done = 0;
+
+  if (end_comm == MPI_COMM_NULL || MPI_Ibarrier(end_comm, &req) != MPI_SUCCESS) return PETSC_FALSE;
+  for (int i = 0; i < 2000 && !done; ++i) {
+    if (MPI_Test(&req, &done, MPI_STATUS_IGNORE) != MPI_SUCCESS) return PETSC_FALSE;
+    if (!done) (void)usleep(5000);
+  }
+  return (PetscBool)done;
+}
+
+/* Prints the message and ends every rank with the status. An error raised on all ranks together
+ * (PetscCheck on a collective condition) is printed by rank 0 alone, and the job ends normally,
+ * each rank with the status. An error of one rank alone is printed by that rank, which ends the
+ * job with MPI_Abort (its banner follows the message). */
+static void PrintAndExit(MPI_Comm comm, const char mess[], int status)
+{
+  PetscMPIInt size = 1, rank = 0, wsize = 1, wrank = 0;
+
+  (void)MPI_Comm_size(comm, &size);
+  (void)MPI_Comm_rank(comm, &rank);
+  (void)MPI_Comm_size(MPI_COMM_WORLD, &wsize);
+  (void)MPI_Comm_rank(MPI_COMM_WORLD, &wrank);
+  (void)fflush(stdout);
+  if (rank == 0) {
+    if (size == 1 && wsize > 1) (void)fprintf(stderr, "mmcontact error (rank %d): %s\n", (int)wrank, mess);
+    else (void)fprintf(stderr, "mmcontact error: %s\n", mess);
+    (void)fflush(stderr);
+  }
+  if (size == wsize && (wsize == 1 || AllRanksEnding())) {
+    (void)MPI_Finalize();
+    exit(status);
+  }
+  (void)MPI_Abort(MPI_COMM_WORLD, status);
+  exit(status);
+}
+
+static PetscErrorCode MMErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
+{
+  const int status = p == PETSC_ERROR_INITIAL && mess && mess[0] ? ExitStatus(n, fun, file) : 0;
+
+  if (!status || debug_trace) return PetscTraceBackErrorHandler(comm, line, fun, file, n, p, mess, ctx);
+  PrintAndExit(comm, mess, status);
+  return n;
+}
+
+/* Right after PetscInitialize: -debug is read here, before any option can fail. */
+PetscErrorCode MMErrorsSetUp(void)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-debug", &debug_trace, NULL));
+  PetscCallMPI(MPI_Comm_dup(MPI_COMM_WORLD, &end_comm));
+  PetscCall(PetscPushErrorHandler(MMErrorHandler, NULL));
+  PetscFunctionReturn(0);
+}
