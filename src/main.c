@@ -43,8 +43,9 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   if (ctx->ckpt.restarted) PetscCall(MMCheckpointRestoreHistory(ctx));
   PetscCall(MMProgressHeader(ctx, *ts));
   /* every object has read its options: refuse the unread ones before any output is touched */
-  PetscCall(MMOptionsCheckValueless(comm));
   PetscCall(MMOptionsCheckUnused(comm, &ctx->opt, ctx->op.dm));
+  /* after: its replay of the help text reads every option */
+  PetscCall(MMOptionsCheckValueless(comm));
   /* last: the earlier results in the output directory are set aside only once the input is valid */
   PetscCall(MMOutputOpen(ctx));
   PetscCall(TSMonitorSet(*ts, MMOutputMonitor, ctx, NULL));

@@ -53,8 +53,10 @@ static PetscErrorCode MMOptionsCheckValue(MPI_Comm comm, const char name[], MMVa
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsFindPair(NULL, NULL, name, &value, &set));
   if (!set) PetscFunctionReturn(0);
-  PetscCheck(value && value[0], comm, PETSC_ERR_USER_INPUT, "%s was given without a value: write \"%s VALUE\", or leave the option out for its default", name, name);
+  PetscCheck(value, comm, PETSC_ERR_USER_INPUT, "%s was given without a value: write \"%s VALUE\", or leave the option out for its default", name, name);
+  /* an empty text ("") is for the option's own check to name: -output_dir "" is refused there */
   if (kind == MM_VALUE_TEXT) PetscFunctionReturn(0);
+  PetscCheck(value[0], comm, PETSC_ERR_USER_INPUT, "%s is given an empty value: give %s", name, kind == MM_VALUE_INT ? "an integer" : "a number");
   for (const char *p = value; p;) {
     const char  *comma = strchr(p, ',');
     const size_t len   = comma ? (size_t)(comma - p) : strlen(p);
