@@ -11,3 +11,4 @@
 #define MM_ERR_LOCKED  (PETSC_ERR_MAX_VALUE + 1) /* the output directory is another run's */
 #define MM_ERR_PHYSICS (PETSC_ERR_MAX_VALUE + 2) /* the result is meaningless: a check of the physics failed */
 PETSC_EXTERN PetscErrorCode MMErrorsSetUp(void);
+PETSC_EXTERN PetscErrorCode MMErrorsAtAbort(void (*)(void));

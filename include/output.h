@@ -4,3 +4,5 @@ PETSC_EXTERN PetscErrorCode MMOutputCheckOptions(MPI_Comm, const MMOptions *);
 PETSC_EXTERN PetscErrorCode MMOutputOpen(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMOutputMonitor(TS, PetscInt, PetscReal, Vec, void *);
 PETSC_EXTERN PetscErrorCode MMOutputClose(MMCtx *, PetscLogDouble, PetscLogDouble);
+PETSC_EXTERN PetscErrorCode MMOutputLock(const char[]);
+PETSC_EXTERN PetscErrorCode MMOutputUnlock(void);

@@ -6,12 +6,14 @@
  * stopped by a check of its physics) print their message alone, once, as the first line of stderr,
  * and the run exits with a documented status. Any other error is a bug of ours or of a library: it
  * keeps PETSc's full trace, and so does every error under -debug. */
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 #include "errors.h"
 
 static PetscBool debug_trace = PETSC_FALSE;
+static void (*at_abort)(void) = NULL; /* what exit() would run through atexit, on the MPI_Abort path */
 
 /* Our own sources are compiled as "src/...", PETSc's as "./src/...": an unsupported combination of
  * options is the user's to fix when we raise it, a bug when PETSc does. */
@@ -89,6 +91,7 @@ static void PrintAndExit(MPI_Comm comm, const char mess[], int status)
     (void)MPI_Finalize();
     exit(status);
   }
+  if (at_abort) at_abort();
   (void)MPI_Abort(MPI_COMM_WORLD, status);
   exit(status);
 }
@@ -102,10 +105,22 @@ static PetscErrorCode MMErrorHandler(MPI_Comm comm, int line, const char *fun, c
   return n;
 }
 
-/* Right after PetscInitialize: -debug is read here, before any option can fail. */
+/* A clean-up that must run also when the job ends by MPI_Abort (atexit handlers do not). */
+PetscErrorCode MMErrorsAtAbort(void (*fn)(void))
+{
+  PetscFunctionBeginUser;
+  at_abort = fn;
+  PetscFunctionReturn(0);
+}
+
+/* Right after PetscInitialize: -debug is read here, before any option can fail. A write beyond the
+ * file-size limit (ulimit -f) raises SIGXFSZ, which kills the process without a word and can leave a
+ * row of history.csv cut mid-number: ignored, the write fails with EFBIG instead and the run stops
+ * naming the file (exit status MM_EXIT_IO). */
 PetscErrorCode MMErrorsSetUp(void)
 {
   PetscFunctionBeginUser;
+  PetscCheck(signal(SIGXFSZ, SIG_IGN) != SIG_ERR, PETSC_COMM_SELF, PETSC_ERR_SYS, "Could not ignore SIGXFSZ");
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-debug", &debug_trace, NULL));
   PetscCallMPI(MPI_Comm_dup(MPI_COMM_WORLD, &end_comm));
   PetscCall(PetscPushErrorHandler(MMErrorHandler, NULL));

@@ -27,6 +27,8 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscCall(MMOptionsHelpWithoutMesh(comm, help_only));
   if (*help_only) PetscFunctionReturn(0);
   PetscCall(MMOutputCheckOptions(comm, &ctx->opt));
+  /* before anything in the output directory is read or moved: one run per directory */
+  PetscCall(MMOutputLock(ctx->opt.output_dir));
   PetscCall(MMMeshLoad(comm, &ctx->opt, &ctx->op.dm, &ctx->ckpt.vertex_orig));
   PetscCall(DMGetDimension(ctx->op.dm, &ctx->op.dim));
   PetscCall(MMFESetUp(ctx));
@@ -108,6 +110,7 @@ int main(int argc, char **argv)
 
   PetscCall(MMOutputClose(&ctx, t0 - ts0, t1 - t0));
   PetscCall(MMSignalsReport(&ctx));
+  PetscCall(MMOutputUnlock());
   stopped = ctx.ckpt.stop_signal;
   PetscCall(Destroy(&ctx, &ts));
   PetscCall(PetscFinalize());

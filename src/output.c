@@ -95,10 +95,15 @@ static int SystemReason(const char name[])
 /* PETSc reports a failed HDF5 call without the file's name and H5Fflush/H5Fclose give only a status:
  * run them with PETSc's error printing off, then stop with the file and the reason. Rank-local: the
  * I/O is independent, only the rank whose write failed knows, and its exit ends the job. */
+static H5E_auto2_t hdf5_print;      /* HDF5's own error printing, off between Begin and End: */
+static void       *hdf5_print_data; /* its stack dump would come before, and bury, the message */
+
 PetscErrorCode MMOutputHDF5Begin(void)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  PetscCheck(H5Eget_auto2(H5E_DEFAULT, &hdf5_print, &hdf5_print_data) >= 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "H5Eget_auto2 failed");
+  PetscCheck(H5Eset_auto2(H5E_DEFAULT, NULL, NULL) >= 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "H5Eset_auto2 failed");
   errno = 0;
   PetscFunctionReturn(0);
 }
@@ -111,6 +116,7 @@ PetscErrorCode MMOutputHDF5End(PetscErrorCode ierr, const char action[], const c
 
   PetscFunctionBeginUser;
   PetscCall(PetscPopErrorHandler());
+  PetscCheck(H5Eset_auto2(H5E_DEFAULT, hdf5_print, hdf5_print_data) >= 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "H5Eset_auto2 failed");
   if (!ierr) PetscFunctionReturn(0);
   if (!err) err = SystemReason(name);
   PetscCall(PetscErrorMessage(ierr, &text, &specific));
@@ -140,7 +146,15 @@ static PetscErrorCode CSVWrite(MMOutput *o, const MMLine *l)
   MMFileStatus st = {0};
 
   PetscFunctionBeginUser;
-  if (o->csv_fd >= 0 && MMOutputWriteAll(o->csv_fd, l->s, l->n)) PetscCall(MMOutputFailed(&st, "write %s", o->csv_name));
+  if (o->csv_fd >= 0) {
+    const off_t end = lseek(o->csv_fd, 0, SEEK_CUR);
+    if (MMOutputWriteAll(o->csv_fd, l->s, l->n)) {
+      PetscCall(MMOutputFailed(&st, "write %s", o->csv_name));
+      /* a full disk or a file-size limit may have taken part of the row: cut it, so that the file
+       * ends on the last whole row and no cut number reads as a value */
+      if (end >= 0) (void)ftruncate(o->csv_fd, end);
+    }
+  }
   PetscCall(MMOutputCheckRank0(&st));
   PetscFunctionReturn(0);
 }
