@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <petscviewerhdf5.h>
 #include "checkpoint.h"
+#include "output.h"
 #include "contact.h"
 
 #define MM_CKPT_FILE "checkpoint.h5"
@@ -334,6 +335,7 @@ static PetscErrorCode ResolveRestartPath(MMCtx *ctx)
   }
   if (isdir) PetscCall(PetscSNPrintf(c->file, sizeof(c->file), "%s/%s", ctx->opt.restart, MM_CKPT_FILE));
   else PetscCall(PetscStrncpy(c->file, ctx->opt.restart, sizeof(c->file)));
+  PetscCall(MMOutputCheckHDF5Path(comm, "-restart", c->file, ""));
   if (isdir) exists = !stat(c->file, &st);
   PetscCheck(exists, comm, PETSC_ERR_FILE_OPEN, "-restart %s: %s does not exist. Give the checkpoint file, or the output directory of the run to continue (its checkpoint.h5 is written every -checkpoint_every steps and at the end)", ctx->opt.restart, c->file);
   PetscCall(PetscStrncpy(c->source_dir, c->file, sizeof(c->source_dir)));

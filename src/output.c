@@ -607,6 +607,24 @@ static PetscErrorCode CreateFieldVectors(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
+/* The HDF5 files are opened through MPI-IO, and Open MPI 4.1's shared-file-pointer component
+ * (sharedfp/lockedfile) copies the file name and a suffix into a buffer of 256 characters: a longer
+ * name aborts the process inside the open (SIGABRT, "buffer overflow detected"), after the earlier
+ * results have been moved to previous/. So the names are checked with the other options, as
+ * given (a relative name reaches MPI-IO relative), with a margin for the suffix. */
+#define MM_MPIIO_NAME_MAX 220
+
+PetscErrorCode MMOutputCheckHDF5Path(MPI_Comm comm, const char option[], const char path[], const char longest[])
+{
+  size_t len, extra;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrlen(path, &len));
+  PetscCall(PetscStrlen(longest, &extra));
+  PetscCheck(len + extra <= MM_MPIIO_NAME_MAX, comm, PETSC_ERR_USER_INPUT, "%s %s is %d characters long; the HDF5 files under it need names of at most %d characters (Open MPI's file open fails beyond), so it can have at most %d. Give a shorter path, for example a relative one or a symbolic link to the directory", option, path, (int)len, MM_MPIIO_NAME_MAX, (int)(MM_MPIIO_NAME_MAX - extra));
+  PetscFunctionReturn(0);
+}
+
 /* Checked with the other options, long before the output is opened. */
 PetscErrorCode MMOutputCheckOptions(MPI_Comm comm, const MMOptions *opt)
 {
@@ -615,8 +633,9 @@ PetscErrorCode MMOutputCheckOptions(MPI_Comm comm, const MMOptions *opt)
   PetscFunctionBeginUser;
   PetscCall(PetscStrlen(opt->output_dir, &len));
   PetscCheck(len > 0, comm, PETSC_ERR_USER_INPUT, "-output_dir is empty: name the directory for history.csv, solution.h5 and solution.xmf (\".\" for the current one)");
-  /* room for the longest name written under it */
+  /* room for the longest name written under it, and for Open MPI's file open (MMOutputCheckHDF5Path) */
   PetscCheck(len + sizeof("/" MM_PREVIOUS "/solution.xmf" MM_XMF_TMP) <= PETSC_MAX_PATH_LEN, comm, PETSC_ERR_USER_INPUT, "-output_dir %s is too long (%d characters at most)", opt->output_dir, (int)(PETSC_MAX_PATH_LEN - sizeof("/" MM_PREVIOUS "/solution.xmf" MM_XMF_TMP)));
+  PetscCall(MMOutputCheckHDF5Path(comm, "-output_dir", opt->output_dir, "/checkpoint.h5.tmp"));
   PetscFunctionReturn(0);
 }
 
