@@ -3,3 +3,4 @@
 #include "errors.h" /* MM_EXIT_RESTARTABLE: the exit status of a run stopped by SIGTERM or SIGINT */
 PETSC_EXTERN PetscErrorCode MMSignalsSetUp(MMCtx *, TS);
 PETSC_EXTERN PetscErrorCode MMSignalsReport(MMCtx *);
+PETSC_EXTERN PetscErrorCode MMSignalsDieWithLauncher(void);

@@ -85,6 +85,7 @@ int main(int argc, char **argv)
   int            stopped;
 
   PetscFunctionBeginUser;
+  PetscCall(MMSignalsDieWithLauncher());
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(MMErrorsSetUp());
   PetscCall(PetscMemzero(&ctx, sizeof(ctx)));

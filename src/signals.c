@@ -6,7 +6,10 @@
  * it after each step, together, so that all stop after the same step. A second signal is not
  * caught (SA_RESETHAND): it ends the process at once, as without this handler. */
 #include <signal.h>
+#include <stdlib.h>
 #include <string.h>
+#include <sys/prctl.h>
+#include <unistd.h>
 #include "signals.h"
 
 static volatile sig_atomic_t mm_signal = 0;
@@ -59,4 +62,20 @@ PetscErrorCode MMSignalsReport(MMCtx *ctx)
   if (!ctx->ckpt.stop_signal) PetscFunctionReturn(0);
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "mmcontact: stopped by %s after step %" PetscInt_FMT " (t = %.10g). The state is in %s/checkpoint.h5 and the output up to this step is complete. Continue the run, on any number of ranks, with the same options and\n  -restart %s\n", ctx->ckpt.stop_signal == SIGTERM ? "SIGTERM" : ctx->ckpt.stop_signal == SIGINT ? "SIGINT" : "a signal", ctx->hist.step, (double)ctx->hist.time, ctx->opt.output_dir, ctx->opt.output_dir));
   PetscFunctionReturn(0);
+}
+
+/* A rank whose launcher dies (SIGKILL to mpiexec, a node daemon lost) would go on for a second or
+ * two, still writing its output, before Open MPI notices. Under mpiexec the kernel kills it with its
+ * parent instead (PR_SET_PDEATHSIG), so that nothing is written after the job is gone. Only under a
+ * launcher: a run started from a shell must outlive that shell (nohup). Called before MPI starts,
+ * while the environment is the launcher's. */
+PetscErrorCode MMSignalsDieWithLauncher(void)
+{
+  const pid_t parent = getppid();
+
+  if (!getenv("OMPI_COMM_WORLD_SIZE") && !getenv("PMIX_RANK") && !getenv("PMI_RANK")) return 0;
+  if (prctl(PR_SET_PDEATHSIG, SIGKILL)) return 0; /* not Linux: the old behaviour */
+  /* the launcher may have died before the call */
+  if (getppid() != parent) _exit(MM_EXIT_RESTARTABLE);
+  return 0;
 }
