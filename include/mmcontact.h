@@ -134,6 +134,7 @@ typedef struct {
   PetscBool    quiet;
   PetscReal    progress_every;      /* seconds of wall time between progress lines, 0: none */
   PetscBool    allow_unused;
+  PetscReal    strain_warn, max_strain; /* the deformation audit's thresholds (deformation.c) */
   PetscBool    debug; /* -debug: full PETSc traces (read again by errors.c before the options) */
   PetscInt     vec_count[MM_V_NUM]; /* entries given to each vector option, -1 if not set */
   PetscInt     n_obstacles;         /* -obstacles, or the one plane of -obstacle_point/_normal */
@@ -392,6 +393,15 @@ typedef struct {
   int          stop_signal;                    /* the signal that stopped the run (signals.c), 0: none */
 } MMCheckpoint;
 
+/* The deformation audit (deformation.c): the largest strain of the run and where it was. */
+typedef struct {
+  PetscReal     max_strain;                /* over the run: the largest principal strain magnitude */
+  PetscReal     where[MM_MAX_DIM];         /* the reference centroid of the cell that had it */
+  PetscInt      step;                      /* the step at which it was reached */
+  PetscBool     warned;                    /* the -strain_warn warning was printed */
+  PetscLogEvent ev;                        /* MMDeformation, in -log_view */
+} MMDeformation;
+
 /* Everything the stepper needs; the TS type "newmark" holds a pointer to it. */
 typedef struct {
   MMOptions   opt;
@@ -404,5 +414,6 @@ typedef struct {
   MMProgress  progress;
   MMOutput    out;
   MMCheckpoint ckpt;
+  MMDeformation deform;
   MMLog       log;
 } MMCtx;

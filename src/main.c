@@ -16,6 +16,7 @@ static char help[] = "mmcontact: elastodynamic contact with Coulomb friction by 
 #include "progress.h"
 #include "signals.h"
 #include "errors.h"
+#include "deformation.h"
 
 static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
 {
@@ -42,6 +43,7 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscCall(MMContactSetStepMatrix(ctx, dt));
   ctx->hist.dt = dt;
   PetscCall(MMEnergyInitial(ctx));
+  PetscCall(MMDeformationCheck(ctx));
   if (ctx->ckpt.restarted) PetscCall(MMCheckpointRestoreHistory(ctx));
   PetscCall(MMProgressHeader(ctx, *ts));
   /* every object has read its options: refuse the unread ones before any output is touched */

@@ -5,6 +5,7 @@
  * massless contact-normal dofs carry no inertia, so their equation is quasi-static. */
 #include <petsc/private/tsimpl.h>
 #include "newmark.h"
+#include "deformation.h"
 #include "contact.h"
 #include "energy.h"
 #include "fem.h"
@@ -171,6 +172,7 @@ static PetscErrorCode TSStep_Newmark(TS ts)
   ctx->hist.step = ts->steps + 1;
   ctx->hist.time = ts->ptime;
   PetscCall(MMEnergyStep(ctx));
+  PetscCall(MMDeformationCheck(ctx));
   PetscFunctionReturn(0);
 }
 

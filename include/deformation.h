@@ -1,0 +1,4 @@
+#pragma once
+#include "mmcontact.h"
+PETSC_EXTERN PetscErrorCode MMDeformationCheck(MMCtx *);
+PETSC_EXTERN PetscErrorCode MMDeformationSummary(MMCtx *);

@@ -1,0 +1,218 @@
+/* The deformation audit: the model is linear, small-strain elasticity (docs/method.md section 1),
+ * and its answer means nothing for a body turned inside out or strained far beyond a few percent.
+ * Nothing else would say so: the contact audit checks the contact nodes, which may stay put while
+ * the rest of the body passes through the obstacle, and the energy identity holds for any
+ * displacement. So after every step each cell's deformation gradient F = I + grad u (constant on a
+ * P1 simplex) is checked:
+ * - det F <= 0, a cell turned inside out: the run stops (MM_ERR_PHYSICS);
+ * - its largest principal strain |eps|, eps = sym(grad u), above -max_strain: the run stops;
+ * - above -strain_warn: one warning, with the step, the cell and the value.
+ * One pass over the cells with a few dozen flops each, on the displacement already in memory. */
+#include "deformation.h"
+#include "fem.h"
+#include "errors.h"
+
+/* The strain's largest principal value in magnitude: the spectral norm of the symmetric e. */
+static PetscReal PrincipalStrain(PetscInt dim, const PetscReal e[MM_MAX_DIM][MM_MAX_DIM])
+{
+  if (dim == 2) {
+    const PetscReal m = 0.5 * (e[0][0] + e[1][1]), r = PetscSqrtReal(0.25 * PetscSqr(e[0][0] - e[1][1]) + PetscSqr(e[0][1]));
+    return PetscMax(PetscAbsReal(m + r), PetscAbsReal(m - r));
+  } else {
+    /* eigenvalues of a symmetric 3x3 matrix in closed form (trigonometric) */
+    const PetscReal p1 = PetscSqr(e[0][1]) + PetscSqr(e[0][2]) + PetscSqr(e[1][2]);
+    const PetscReal q  = (e[0][0] + e[1][1] + e[2][2]) / 3;
+    const PetscReal p2 = PetscSqr(e[0][0] - q) + PetscSqr(e[1][1] - q) + PetscSqr(e[2][2] - q) + 2 * p1;
+    const PetscReal p  = PetscSqrtReal(p2 / 6);
+    PetscReal       b[3][3], r, phi, l1, l3;
+
+    if (p == 0) return PetscAbsReal(q);
+    for (PetscInt i = 0; i < 3; ++i)
+      for (PetscInt j = 0; j < 3; ++j) b[i][j] = (e[i][j] - (i == j ? q : 0)) / p;
+    r   = 0.5 * (b[0][0] * (b[1][1] * b[2][2] - b[1][2] * b[2][1]) - b[0][1] * (b[1][0] * b[2][2] - b[1][2] * b[2][0]) + b[0][2] * (b[1][0] * b[2][1] - b[1][1] * b[2][0]));
+    phi = r <= -1 ? PETSC_PI / 3 : r >= 1 ? 0 : PetscAcosReal(r) / 3;
+    l1  = q + 2 * p * PetscCosReal(phi);
+    l3  = q + 2 * p * PetscCosReal(phi + 2 * PETSC_PI / 3);
+    return PetscMax(PetscAbsReal(l1), PetscAbsReal(l3));
+  }
+}
+
+/* det of the dim x dim matrix a, and its inverse when wanted. */
+static PetscReal Determinant(PetscInt dim, const PetscReal a[MM_MAX_DIM][MM_MAX_DIM], PetscReal inv[MM_MAX_DIM][MM_MAX_DIM])
+{
+  PetscReal det;
+
+  if (dim == 2) {
+    det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+    if (inv && det != 0) {
+      inv[0][0] = a[1][1] / det;
+      inv[0][1] = -a[0][1] / det;
+      inv[1][0] = -a[1][0] / det;
+      inv[1][1] = a[0][0] / det;
+    }
+    return det;
+  }
+  det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  if (inv && det != 0)
+    for (PetscInt i = 0; i < 3; ++i)
+      for (PetscInt j = 0; j < 3; ++j) {
+        const PetscInt i1 = (j + 1) % 3, i2 = (j + 2) % 3, j1 = (i + 1) % 3, j2 = (i + 2) % 3;
+        inv[i][j] = (a[i1][j1] * a[i2][j2] - a[i1][j2] * a[i2][j1]) / det;
+      }
+  return det;
+}
+
+/* The worst cell of this rank: the smallest det F (relative) and the largest strain, with places. */
+typedef struct {
+  PetscReal detF, strain;
+  PetscReal at_det[MM_MAX_DIM], at_strain[MM_MAX_DIM];
+} Worst;
+
+static PetscErrorCode ScanCells(MMCtx *ctx, Vec ucart_local, Worst *w)
+{
+  DM                 dm = ctx->op.dm, cdm;
+  const PetscInt     dim = ctx->op.dim;
+  PetscSection       ls, cs;
+  Vec                xl;
+  const PetscScalar *u, *x;
+  PetscInt           cStart, cEnd, vStart, vEnd;
+
+  PetscFunctionBeginUser;
+  w->detF   = PETSC_MAX_REAL;
+  w->strain = 0;
+  PetscCall(DMGetLocalSection(dm, &ls));
+  PetscCall(DMGetCoordinateDM(dm, &cdm));
+  PetscCall(DMGetLocalSection(cdm, &cs));
+  PetscCall(DMGetCoordinatesLocal(dm, &xl));
+  PetscCall(VecGetArrayRead(ucart_local, &u));
+  PetscCall(VecGetArrayRead(xl, &x));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  for (PetscInt c = cStart; c < cEnd; ++c) {
+    PetscInt *closure = NULL, nclosure, nv = 0;
+    PetscReal X[MM_MAX_DIM + 1][MM_MAX_DIM], U[MM_MAX_DIM + 1][MM_MAX_DIM], J[MM_MAX_DIM][MM_MAX_DIM], Ji[MM_MAX_DIM][MM_MAX_DIM], G[MM_MAX_DIM][MM_MAX_DIM], F[MM_MAX_DIM][MM_MAX_DIM], e[MM_MAX_DIM][MM_MAX_DIM];
+    PetscReal detJ, detF, strain, centroid[MM_MAX_DIM] = {0};
+
+    PetscCall(DMPlexGetTransitiveClosure(dm, c, PETSC_TRUE, &nclosure, &closure));
+    for (PetscInt k = 0; k < nclosure && nv <= dim; ++k) {
+      const PetscInt p = closure[2 * k];
+      PetscInt       uoff, xoff;
+      if (p < vStart || p >= vEnd) continue;
+      PetscCall(PetscSectionGetOffset(ls, p, &uoff));
+      PetscCall(PetscSectionGetOffset(cs, p, &xoff));
+      for (PetscInt i = 0; i < dim; ++i) {
+        X[nv][i] = PetscRealPart(x[xoff + i]);
+        U[nv][i] = PetscRealPart(u[uoff + i]);
+        centroid[i] += X[nv][i] / (dim + 1);
+      }
+      ++nv;
+    }
+    PetscCall(DMPlexRestoreTransitiveClosure(dm, c, PETSC_TRUE, &nclosure, &closure));
+    /* J = [X_k - X_0] (columns), grad u = [U_k - U_0] J^{-1}, F = I + grad u: det F = det(J + dU) / det J */
+    for (PetscInt i = 0; i < dim; ++i)
+      for (PetscInt k = 0; k < dim; ++k) {
+        J[i][k] = X[k + 1][i] - X[0][i];
+        F[i][k] = J[i][k] + U[k + 1][i] - U[0][i];
+      }
+    detJ = Determinant(dim, J, Ji);
+    if (detJ == 0) continue; /* degenerate cells are refused when the mesh is read */
+    detF = Determinant(dim, F, NULL) / detJ;
+    for (PetscInt i = 0; i < dim; ++i)
+      for (PetscInt j = 0; j < dim; ++j) {
+        G[i][j] = 0;
+        for (PetscInt k = 0; k < dim; ++k) G[i][j] += (U[k + 1][i] - U[0][i]) * Ji[k][j];
+      }
+    for (PetscInt i = 0; i < dim; ++i)
+      for (PetscInt j = 0; j < dim; ++j) e[i][j] = 0.5 * (G[i][j] + G[j][i]);
+    strain = PrincipalStrain(dim, e);
+    if (detF < w->detF) {
+      w->detF = detF;
+      for (PetscInt i = 0; i < dim; ++i) w->at_det[i] = centroid[i];
+    }
+    if (strain > w->strain || PetscIsInfOrNanReal(strain)) {
+      w->strain = strain;
+      for (PetscInt i = 0; i < dim; ++i) w->at_strain[i] = centroid[i];
+    }
+  }
+  PetscCall(VecRestoreArrayRead(xl, &x));
+  PetscCall(VecRestoreArrayRead(ucart_local, &u));
+  PetscFunctionReturn(0);
+}
+
+/* The place of the worst value over all ranks: the rank with the extreme sends its place. */
+static PetscErrorCode GlobalWorst(MPI_Comm comm, PetscReal *value, PetscReal at[], PetscBool smallest)
+{
+  struct {
+    double      v;
+    PetscMPIInt rank;
+  } mine, all;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &mine.rank));
+  mine.v = smallest ? -(double)*value : (double)*value;
+  PetscCallMPI(MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm));
+  *value = smallest ? -(PetscReal)all.v : (PetscReal)all.v;
+  PetscCallMPI(MPI_Bcast(at, MM_MAX_DIM, MPIU_REAL, all.rank, comm));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode FormatPlace(PetscInt dim, const PetscReal at[], char s[], size_t len)
+{
+  PetscFunctionBeginUser;
+  if (dim == 2) PetscCall(PetscSNPrintf(s, len, "(%.4g, %.4g)", (double)at[0], (double)at[1]));
+  else PetscCall(PetscSNPrintf(s, len, "(%.4g, %.4g, %.4g)", (double)at[0], (double)at[1], (double)at[2]));
+  PetscFunctionReturn(0);
+}
+
+/* After each accepted step (and on the initial state): stop, warn once, or record. */
+PetscErrorCode MMDeformationCheck(MMCtx *ctx)
+{
+  DM             dm   = ctx->op.dm;
+  MPI_Comm       comm = PetscObjectComm((PetscObject)dm);
+  MMDeformation *d    = &ctx->deform;
+  const MMHistory *h  = &ctx->hist;
+  Vec            g, l;
+  Worst          w;
+  char           place[96];
+
+  PetscFunctionBeginUser;
+  if (!d->ev) PetscCall(PetscLogEventRegister("MMDeformation", DM_CLASSID, &d->ev));
+  PetscCall(PetscLogEventBegin(d->ev, 0, 0, 0, 0));
+  PetscCall(DMGetGlobalVector(dm, &g));
+  PetscCall(DMGetLocalVector(dm, &l));
+  PetscCall(MMFEToCartesian(ctx, ctx->state.u, g));
+  PetscCall(VecZeroEntries(l));
+  PetscCall(DMGlobalToLocal(dm, g, INSERT_VALUES, l));
+  PetscCall(DMPlexInsertBoundaryValues(dm, PETSC_TRUE, l, h->time, NULL, NULL, NULL));
+  PetscCall(ScanCells(ctx, l, &w));
+  PetscCall(DMRestoreLocalVector(dm, &l));
+  PetscCall(DMRestoreGlobalVector(dm, &g));
+  PetscCall(GlobalWorst(comm, &w.detF, w.at_det, PETSC_TRUE));
+  PetscCall(GlobalWorst(comm, &w.strain, w.at_strain, PETSC_FALSE));
+  PetscCall(PetscLogEventEnd(d->ev, 0, 0, 0, 0));
+  if (w.strain > d->max_strain) {
+    d->max_strain = w.strain;
+    d->step       = h->step;
+    for (PetscInt i = 0; i < MM_MAX_DIM; ++i) d->where[i] = w.at_strain[i];
+  }
+  PetscCall(FormatPlace(ctx->op.dim, w.at_det, place, sizeof(place)));
+  PetscCheck(w.detF > 0, comm, MM_ERR_PHYSICS, "At step %" PetscInt_FMT " (t = %g) the cell at %s has turned inside out (det F = %.3g): the body passes through itself, and the result is meaningless. The impact or the load is far too strong for a small-strain model: check -v0, the loads and the units (SI). The output up to the previous step is intact", h->step, (double)h->time, place, (double)w.detF);
+  PetscCall(FormatPlace(ctx->op.dim, w.at_strain, place, sizeof(place)));
+  PetscCheck(w.strain <= ctx->opt.max_strain, comm, MM_ERR_PHYSICS, "At step %" PetscInt_FMT " (t = %g) the cell at %s has a strain of %.3g, above -max_strain %g: a small-strain model means nothing there. Check -v0, the loads and the units (SI), or raise -max_strain. The output up to the previous step is intact", h->step, (double)h->time, place, (double)w.strain, (double)ctx->opt.max_strain);
+  if (w.strain > ctx->opt.strain_warn && !d->warned) {
+    d->warned = PETSC_TRUE;
+    PetscCall(PetscPrintf(comm, "mmcontact warning: at step %" PetscInt_FMT " (t = %g) the cell at %s has a strain of %.3g, above -strain_warn %g: from here on the small-strain model is an approximation (warned once; the summary gives the largest)\n", h->step, (double)h->time, place, (double)w.strain, (double)ctx->opt.strain_warn));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* A line of the closing summary: the largest strain of the run. */
+PetscErrorCode MMDeformationSummary(MMCtx *ctx)
+{
+  char place[96];
+
+  PetscFunctionBeginUser;
+  PetscCall(FormatPlace(ctx->op.dim, ctx->deform.where, place, sizeof(place)));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  largest strain %.3e at step %" PetscInt_FMT ", in the cell at %s (-strain_warn %g, -max_strain %g)\n", (double)ctx->deform.max_strain, ctx->deform.step, place, (double)ctx->opt.strain_warn, (double)ctx->opt.max_strain));
+  PetscFunctionReturn(0);
+}
