@@ -134,7 +134,8 @@ typedef struct {
   PetscBool    quiet;
   PetscReal    progress_every;      /* seconds of wall time between progress lines, 0: none */
   PetscBool    allow_unused;
-  PetscReal    strain_warn, max_strain; /* the deformation audit's thresholds (deformation.c) */
+  PetscBool    deformation_audit;       /* the deformation audit (deformation.c) and its thresholds */
+  PetscReal    strain_warn, max_strain;
   PetscBool    debug; /* -debug: full PETSc traces (read again by errors.c before the options) */
   PetscInt     vec_count[MM_V_NUM]; /* entries given to each vector option, -1 if not set */
   PetscInt     n_obstacles;         /* -obstacles, or the one plane of -obstacle_point/_normal */

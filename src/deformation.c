@@ -176,6 +176,7 @@ PetscErrorCode MMDeformationCheck(MMCtx *ctx)
   char           place[96];
 
   PetscFunctionBeginUser;
+  if (!ctx->opt.deformation_audit) PetscFunctionReturn(0);
   if (!d->ev) PetscCall(PetscLogEventRegister("MMDeformation", DM_CLASSID, &d->ev));
   PetscCall(PetscLogEventBegin(d->ev, 0, 0, 0, 0));
   PetscCall(DMGetGlobalVector(dm, &g));
@@ -212,6 +213,7 @@ PetscErrorCode MMDeformationSummary(MMCtx *ctx)
   char place[96];
 
   PetscFunctionBeginUser;
+  if (!ctx->opt.deformation_audit) PetscFunctionReturn(0);
   PetscCall(FormatPlace(ctx->op.dim, ctx->deform.where, place, sizeof(place)));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  largest strain %.3e at step %" PetscInt_FMT ", in the cell at %s (-strain_warn %g, -max_strain %g)\n", (double)ctx->deform.max_strain, ctx->deform.step, place, (double)ctx->opt.strain_warn, (double)ctx->opt.max_strain));
   PetscFunctionReturn(0);

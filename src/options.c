@@ -398,6 +398,8 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-audit_tol", "Stop the run when a step's relative energy-balance residual exceeds this (> 0): the scheme's identity no longer holds", &opt->audit_tol));
   opt->contact_work_tol = 1e-3;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-contact_work_tol", "Reject and retry with a smaller dt a step whose contact work W_c creates more energy than this times the run's energy scale (> 0): a release that dt does not resolve", &opt->contact_work_tol));
+  opt->deformation_audit = PETSC_TRUE;
+  PetscCall(PetscOptionsBool("-deformation_audit", "After every step, check each cell's deformation: a cell turned inside out or a strain above -max_strain stops the run, one above -strain_warn is warned (0: no check, for nondimensional verification cases whose strains are large by design)", NULL, opt->deformation_audit, &opt->deformation_audit, NULL));
   opt->strain_warn = 0.1;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-strain_warn", "Warn once when a cell's strain (its largest principal strain, in magnitude) exceeds this, > 0: beyond it the small-strain model is an approximation", &opt->strain_warn));
   opt->max_strain = 1.0;
