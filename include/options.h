@@ -6,3 +6,4 @@ PETSC_EXTERN PetscErrorCode MMOptionsDestroy(MMOptions *);
 PETSC_EXTERN PetscErrorCode MMOptionsHelpWithoutMesh(MPI_Comm, PetscBool *);
 PETSC_EXTERN PetscErrorCode MMOptionsCheckUnused(MPI_Comm, const MMOptions *, DM);
 PETSC_EXTERN PetscErrorCode MMOptionsCheckValueless(MPI_Comm);
+PETSC_EXTERN int            MMOptionsCheckFiles(int, char **);

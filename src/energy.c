@@ -143,6 +143,16 @@ PetscErrorCode MMEnergyInitial(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
+/* What a failed energy audit asks the user to check. The solves stop at -contact_tol (relative):
+ * a residual near it is a loose solve, and tighter tolerances fix it; one orders of magnitude above
+ * it is not, and the usual cause is inconsistent units (a mesh in millimetres with E in Pa, a
+ * density in g/cm^3), which leave K~ so ill-conditioned that no solve is exact. */
+static const char *AuditAdvice(MMCtx *ctx, PetscReal residual)
+{
+  if (residual > 1e4 * ctx->opt.contact_tol) return "A residual this far above the solver tolerance is not a loose solve: check that the units are consistent (SI throughout: the mesh in metres, -E in Pa, -rho in kg/m^3, loads in N/m^2 and m/s^2) and that the material values are what you meant; tightening the tolerances will not help.";
+  return "The step was not solved exactly: tighten -contact_tol or the -contact_snes tolerances (and check that the units are consistent, SI throughout).";
+}
+
 /* E^{n+1} - E^n = W_ext + W_c + W_f, each term recorded; the residual is the scheme's identity. */
 PetscErrorCode MMEnergyStep(MMCtx *ctx)
 {
@@ -177,8 +187,8 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
   h->balance_residual = PetscAbsReal(h->total - E_old - w_ext - w_c - w_f - w_obs) / PetscMax(h->energy_scale, PETSC_SMALL * PETSC_SMALL);
   h->max_balance      = PetscMax(h->max_balance, h->balance_residual);
   PetscCheck(h->balance_residual <= ctx->opt.audit_tol, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_NOT_CONVERGED,
-             "Energy audit failed at step %" PetscInt_FMT " (t = %g): balance residual %.3e > -audit_tol %.1e. The step was not solved exactly: tighten -contact_tol or the -contact_snes tolerances. The output up to the previous step is intact",
-             h->step, (double)h->time, (double)h->balance_residual, (double)ctx->opt.audit_tol);
+             "Energy audit failed at step %" PetscInt_FMT " (t = %g): balance residual %.3e > -audit_tol %.1e. %s The output up to the previous step is intact",
+             h->step, (double)h->time, (double)h->balance_residual, (double)ctx->opt.audit_tol, AuditAdvice(ctx, h->balance_residual));
   h->cfl              = ctx->contact.enabled ? ctx->op.c_p * s->dt / ctx->contact.h_c : 0;
   PetscCall(MMContactDiagnostics(ctx, s->u, s->react, s->v, h));
   h->friction_its = ctx->friction.its;

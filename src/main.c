@@ -1,7 +1,11 @@
-static char help[] = "mmcontact: elastodynamic contact with Coulomb friction by the modified mass method\n"
-                     "(Doyen & Ern, SIAM J. Numer. Anal. 2011). P1 elements on a gmsh mesh, trapezoidal Newmark,\n"
-                     "exact unilateral contact against a rigid plane through SNESVI. Run:\n"
-                     "  mpiexec -n 2 ./mmcontact -options_file options/d1_disk.opts\n\n";
+static char help[] = "mmcontact: elastic bodies hitting and sliding on rigid obstacles, by the modified mass method\n"
+                     "(Doyen & Ern, SIAM J. Numer. Anal. 2011): P1 elastodynamics on a gmsh mesh of triangles (plane\n"
+                     "strain) or tetrahedra, trapezoidal Newmark, unilateral contact enforced exactly at every contact\n"
+                     "node against planes, spheres/circles and cylinders, fixed or moving (-obstacles), Coulomb friction\n"
+                     "(-mu) by the threshold fixed point, an exact discrete energy balance audited every step, HDF5/XDMF\n"
+                     "fields, a CSV history, checkpoints and restart on any number of ranks. Run:\n"
+                     "  mpiexec -n 2 ./mmcontact -options_file options/d1_friction.opts\n"
+                     "README.md describes every option, the output and the exit status.\n\n";
 
 #include "options.h"
 #include "mesh.h"
@@ -87,6 +91,10 @@ int main(int argc, char **argv)
   int            stopped;
 
   PetscFunctionBeginUser;
+  {
+    const int status = MMOptionsCheckFiles(argc, argv);
+    if (status) return status;
+  }
   PetscCall(MMSignalsDieWithLauncher());
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(MMErrorsSetUp());
