@@ -55,39 +55,56 @@ static int ExitStatus(PetscErrorCode n, const char fun[], const char file[])
  * meets another collective in flight. */
 static MPI_Comm end_comm = MPI_COMM_NULL;
 
-/* Whether every rank has reached the end within a few seconds: then the job can end cleanly. */
-static PetscBool AllRanksEnding(void)
+/* Whether every rank has reached the end within about `seconds`: then the job can end cleanly. */
+static PetscBool AllRanksEnding(double seconds)
 {
   MPI_Request req;
   int         done = 0;
 
   if (end_comm == MPI_COMM_NULL || MPI_Ibarrier(end_comm, &req) != MPI_SUCCESS) return PETSC_FALSE;
-  for (int i = 0; i < 2000 && !done; ++i) {
+  for (int i = 0; i < (int)(seconds / 0.005) && !done; ++i) {
     if (MPI_Test(&req, &done, MPI_STATUS_IGNORE) != MPI_SUCCESS) return PETSC_FALSE;
     if (!done) (void)usleep(5000);
   }
   return (PetscBool)done;
 }
 
-/* Prints the message and ends every rank with the status. An error raised on all ranks together
- * (PetscCheck on a collective condition) is printed by rank 0 alone, and the job ends normally,
- * each rank with the status. An error of one rank alone is printed by that rank, which ends the
- * job with MPI_Abort (its banner follows the message). */
+static void Print(const char mess[], int rank)
+{
+  if (rank >= 0) (void)fprintf(stderr, "mmcontact error (rank %d): %s\n", rank, mess);
+  else (void)fprintf(stderr, "mmcontact error: %s\n", mess);
+  (void)fflush(stderr);
+}
+
+/* Prints the message and ends every rank with the status, the job ending normally when every rank
+ * stops together: an error raised on all ranks (PetscCheck on a collective condition, or PETSc's
+ * own check of an option, which each rank raises alone on PETSC_COMM_SELF) is printed once, by rank
+ * 0. An error of one rank alone is printed by that rank, which ends the job with MPI_Abort (its
+ * banner follows the message). */
 static void PrintAndExit(MPI_Comm comm, const char mess[], int status)
 {
   PetscMPIInt size = 1, rank = 0, wsize = 1, wrank = 0;
+  PetscBool   together;
 
   (void)MPI_Comm_size(comm, &size);
   (void)MPI_Comm_rank(comm, &rank);
   (void)MPI_Comm_size(MPI_COMM_WORLD, &wsize);
   (void)MPI_Comm_rank(MPI_COMM_WORLD, &wrank);
   (void)fflush(stdout);
-  if (rank == 0) {
-    if (size == 1 && wsize > 1) (void)fprintf(stderr, "mmcontact error (rank %d): %s\n", (int)wrank, mess);
-    else (void)fprintf(stderr, "mmcontact error: %s\n", mess);
-    (void)fflush(stderr);
+  if (wsize == 1) {
+    Print(mess, -1);
+    (void)MPI_Finalize();
+    exit(status);
   }
-  if (size == wsize && (wsize == 1 || AllRanksEnding())) {
+  if (size == wsize) { /* collective: every rank is here, or about to be */
+    if (rank == 0) Print(mess, -1);
+    together = AllRanksEnding(10);
+  } else { /* raised on fewer ranks: are the others stopping too? */
+    together = AllRanksEnding(2);
+    if (together && wrank == 0) Print(mess, -1);
+    if (!together) Print(mess, wrank);
+  }
+  if (together) {
     (void)MPI_Finalize();
     exit(status);
   }
