@@ -401,6 +401,8 @@ typedef struct {
   PetscInt      step;                      /* the step at which it was reached */
   PetscBool     warned;                    /* the -strain_warn warning was printed */
   PetscLogEvent ev;                        /* MMDeformation, in -log_view */
+  PetscInt      ncells;                    /* this rank's cells, and for each its dim+1 vertices' */
+  PetscInt     *cell_u, *cell_x;           /* offsets in the local displacement and coordinate vectors */
 } MMDeformation;
 
 /* Everything the stepper needs; the TS type "newmark" holds a pointer to it. */

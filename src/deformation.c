@@ -68,51 +68,83 @@ typedef struct {
   PetscReal at_det[MM_MAX_DIM], at_strain[MM_MAX_DIM];
 } Worst;
 
+/* The vertices of point p (a cell, face or edge of a simplicial mesh), through the cones: cheaper
+ * than a transitive closure, which also lists the faces and edges. */
+static PetscErrorCode PointVertices(DM dm, PetscInt p, PetscInt vStart, PetscInt vEnd, PetscInt v[], PetscInt *nv)
+{
+  const PetscInt *cone;
+  PetscInt        n;
+
+  PetscFunctionBeginUser;
+  if (p >= vStart && p < vEnd) {
+    for (PetscInt k = 0; k < *nv; ++k)
+      if (v[k] == p) PetscFunctionReturn(0);
+    PetscCheck(*nv <= MM_MAX_DIM, PETSC_COMM_SELF, PETSC_ERR_PLIB, "A cell with more than %d vertices", MM_MAX_DIM + 1);
+    v[(*nv)++] = p;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(DMPlexGetConeSize(dm, p, &n));
+  PetscCall(DMPlexGetCone(dm, p, &cone));
+  for (PetscInt k = 0; k < n; ++k) PetscCall(PointVertices(dm, cone[k], vStart, vEnd, v, nv));
+  PetscFunctionReturn(0);
+}
+
+/* Once: where each cell's vertices are in the local displacement and coordinate vectors. */
+static PetscErrorCode CellTable(MMCtx *ctx)
+{
+  MMDeformation *d  = &ctx->deform;
+  DM             dm = ctx->op.dm, cdm;
+  const PetscInt dim = ctx->op.dim;
+  PetscSection   ls, cs;
+  PetscInt       cStart, cEnd, vStart, vEnd;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLocalSection(dm, &ls));
+  PetscCall(DMGetCoordinateDM(dm, &cdm));
+  PetscCall(DMGetLocalSection(cdm, &cs));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  d->ncells = cEnd - cStart;
+  PetscCall(PetscMalloc2((dim + 1) * d->ncells, &d->cell_u, (dim + 1) * d->ncells, &d->cell_x));
+  for (PetscInt c = cStart; c < cEnd; ++c) {
+    PetscInt v[MM_MAX_DIM + 1], nv = 0;
+    PetscCall(PointVertices(dm, c, vStart, vEnd, v, &nv));
+    PetscCheck(nv == dim + 1, PETSC_COMM_SELF, PETSC_ERR_SUP, "The deformation audit needs simplices: cell %" PetscInt_FMT " has %" PetscInt_FMT " vertices", c, nv);
+    for (PetscInt a = 0; a <= dim; ++a) {
+      PetscCall(PetscSectionGetOffset(ls, v[a], &d->cell_u[(dim + 1) * (c - cStart) + a]));
+      PetscCall(PetscSectionGetOffset(cs, v[a], &d->cell_x[(dim + 1) * (c - cStart) + a]));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode ScanCells(MMCtx *ctx, Vec ucart_local, Worst *w)
 {
-  DM                 dm = ctx->op.dm, cdm;
+  MMDeformation     *d = &ctx->deform;
+  DM                 dm = ctx->op.dm;
   const PetscInt     dim = ctx->op.dim;
-  PetscSection       ls, cs;
   Vec                xl;
   const PetscScalar *u, *x;
-  PetscInt           cStart, cEnd, vStart, vEnd;
 
   PetscFunctionBeginUser;
   w->detF   = PETSC_MAX_REAL;
   w->strain = 0;
-  PetscCall(DMGetLocalSection(dm, &ls));
-  PetscCall(DMGetCoordinateDM(dm, &cdm));
-  PetscCall(DMGetLocalSection(cdm, &cs));
+  if (!d->cell_u) PetscCall(CellTable(ctx));
   PetscCall(DMGetCoordinatesLocal(dm, &xl));
   PetscCall(VecGetArrayRead(ucart_local, &u));
   PetscCall(VecGetArrayRead(xl, &x));
-  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
-  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
-  for (PetscInt c = cStart; c < cEnd; ++c) {
-    PetscInt *closure = NULL, nclosure, nv = 0;
-    PetscReal X[MM_MAX_DIM + 1][MM_MAX_DIM], U[MM_MAX_DIM + 1][MM_MAX_DIM], J[MM_MAX_DIM][MM_MAX_DIM], Ji[MM_MAX_DIM][MM_MAX_DIM], G[MM_MAX_DIM][MM_MAX_DIM], F[MM_MAX_DIM][MM_MAX_DIM], e[MM_MAX_DIM][MM_MAX_DIM];
-    PetscReal detJ, detF, strain, centroid[MM_MAX_DIM] = {0};
+  for (PetscInt c = 0; c < d->ncells; ++c) {
+    const PetscInt *uo = &d->cell_u[(dim + 1) * c], *xo = &d->cell_x[(dim + 1) * c];
+    PetscReal       J[MM_MAX_DIM][MM_MAX_DIM], Ji[MM_MAX_DIM][MM_MAX_DIM], D[MM_MAX_DIM][MM_MAX_DIM], F[MM_MAX_DIM][MM_MAX_DIM], G[MM_MAX_DIM][MM_MAX_DIM], e[MM_MAX_DIM][MM_MAX_DIM];
+    PetscReal       detJ, detF, strain;
 
-    PetscCall(DMPlexGetTransitiveClosure(dm, c, PETSC_TRUE, &nclosure, &closure));
-    for (PetscInt k = 0; k < nclosure && nv <= dim; ++k) {
-      const PetscInt p = closure[2 * k];
-      PetscInt       uoff, xoff;
-      if (p < vStart || p >= vEnd) continue;
-      PetscCall(PetscSectionGetOffset(ls, p, &uoff));
-      PetscCall(PetscSectionGetOffset(cs, p, &xoff));
-      for (PetscInt i = 0; i < dim; ++i) {
-        X[nv][i] = PetscRealPart(x[xoff + i]);
-        U[nv][i] = PetscRealPart(u[uoff + i]);
-        centroid[i] += X[nv][i] / (dim + 1);
-      }
-      ++nv;
-    }
-    PetscCall(DMPlexRestoreTransitiveClosure(dm, c, PETSC_TRUE, &nclosure, &closure));
-    /* J = [X_k - X_0] (columns), grad u = [U_k - U_0] J^{-1}, F = I + grad u: det F = det(J + dU) / det J */
+    /* J = [X_k - X_0] and D = [U_k - U_0] (columns k = 1..dim): grad u = D J^{-1}, and
+     * det F = det(I + D J^{-1}) = det(J + D) / det J */
     for (PetscInt i = 0; i < dim; ++i)
       for (PetscInt k = 0; k < dim; ++k) {
-        J[i][k] = X[k + 1][i] - X[0][i];
-        F[i][k] = J[i][k] + U[k + 1][i] - U[0][i];
+        J[i][k] = PetscRealPart(x[xo[k + 1] + i] - x[xo[0] + i]);
+        D[i][k] = PetscRealPart(u[uo[k + 1] + i] - u[uo[0] + i]);
+        F[i][k] = J[i][k] + D[i][k];
       }
     detJ = Determinant(dim, J, Ji);
     if (detJ == 0) continue; /* degenerate cells are refused when the mesh is read */
@@ -120,23 +152,42 @@ static PetscErrorCode ScanCells(MMCtx *ctx, Vec ucart_local, Worst *w)
     for (PetscInt i = 0; i < dim; ++i)
       for (PetscInt j = 0; j < dim; ++j) {
         G[i][j] = 0;
-        for (PetscInt k = 0; k < dim; ++k) G[i][j] += (U[k + 1][i] - U[0][i]) * Ji[k][j];
+        for (PetscInt k = 0; k < dim; ++k) G[i][j] += D[i][k] * Ji[k][j];
       }
     for (PetscInt i = 0; i < dim; ++i)
       for (PetscInt j = 0; j < dim; ++j) e[i][j] = 0.5 * (G[i][j] + G[j][i]);
-    strain = PrincipalStrain(dim, e);
-    if (detF < w->detF) {
-      w->detF = detF;
-      for (PetscInt i = 0; i < dim; ++i) w->at_det[i] = centroid[i];
-    }
-    if (strain > w->strain || PetscIsInfOrNanReal(strain)) {
-      w->strain = strain;
-      for (PetscInt i = 0; i < dim; ++i) w->at_strain[i] = centroid[i];
+    /* the largest principal value is at most the Frobenius norm: the eigenvalues (with their
+     * trigonometry in 3D) only for the cells that could exceed the largest strain found so far */
+    strain = 0;
+    for (PetscInt i = 0; i < dim; ++i)
+      for (PetscInt j = 0; j < dim; ++j) strain += e[i][j] * e[i][j];
+    strain = PetscSqrtReal(strain);
+    if (strain > w->strain || PetscIsInfOrNanReal(strain)) strain = PrincipalStrain(dim, e);
+    if (detF < w->detF || strain > w->strain || PetscIsInfOrNanReal(strain)) {
+      PetscReal centroid[MM_MAX_DIM] = {0};
+      for (PetscInt a = 0; a <= dim; ++a)
+        for (PetscInt i = 0; i < dim; ++i) centroid[i] += PetscRealPart(x[xo[a] + i]) / (dim + 1);
+      if (detF < w->detF) {
+        w->detF = detF;
+        for (PetscInt i = 0; i < dim; ++i) w->at_det[i] = centroid[i];
+      }
+      if (strain > w->strain || PetscIsInfOrNanReal(strain)) {
+        w->strain = strain;
+        for (PetscInt i = 0; i < dim; ++i) w->at_strain[i] = centroid[i];
+      }
     }
   }
   PetscCall(VecRestoreArrayRead(xl, &x));
   PetscCall(VecRestoreArrayRead(ucart_local, &u));
   PetscFunctionReturn(0);
+}
+
+static PetscBool NonzeroDirichlet(const MMOptions *opt)
+{
+  for (PetscInt b = 0; b < opt->n_dirichlet; ++b)
+    for (PetscInt c = 0; c < opt->dirichlet[b].nvalues; ++c)
+      if (opt->dirichlet[b].values[c] != 0) return PETSC_TRUE;
+  return PETSC_FALSE;
 }
 
 /* The place of the worst value over all ranks: the rank with the extreme sends its place. */
@@ -184,7 +235,8 @@ PetscErrorCode MMDeformationCheck(MMCtx *ctx)
   PetscCall(MMFEToCartesian(ctx, ctx->state.u, g));
   PetscCall(VecZeroEntries(l));
   PetscCall(DMGlobalToLocal(dm, g, INSERT_VALUES, l));
-  PetscCall(DMPlexInsertBoundaryValues(dm, PETSC_TRUE, l, h->time, NULL, NULL, NULL));
+  /* the constrained dofs are zero in l: only nonzero Dirichlet data need inserting (a projection) */
+  if (NonzeroDirichlet(&ctx->opt)) PetscCall(DMPlexInsertBoundaryValues(dm, PETSC_TRUE, l, h->time, NULL, NULL, NULL));
   PetscCall(ScanCells(ctx, l, &w));
   PetscCall(DMRestoreLocalVector(dm, &l));
   PetscCall(DMRestoreGlobalVector(dm, &g));
@@ -216,5 +268,12 @@ PetscErrorCode MMDeformationSummary(MMCtx *ctx)
   if (!ctx->opt.deformation_audit) PetscFunctionReturn(0);
   PetscCall(FormatPlace(ctx->op.dim, ctx->deform.where, place, sizeof(place)));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  largest strain %.3e at step %" PetscInt_FMT ", in the cell at %s (-strain_warn %g, -max_strain %g)\n", (double)ctx->deform.max_strain, ctx->deform.step, place, (double)ctx->opt.strain_warn, (double)ctx->opt.max_strain));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMDeformationDestroy(MMDeformation *d)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree2(d->cell_u, d->cell_x));
   PetscFunctionReturn(0);
 }

@@ -79,6 +79,7 @@ static PetscErrorCode Destroy(MMCtx *ctx, TS *ts)
   PetscCall(DMDestroy(&ctx->op.dm));
   PetscCall(MMOptionsDestroy(&ctx->opt));
   PetscCall(MMCheckpointDestroy(&ctx->ckpt));
+  PetscCall(MMDeformationDestroy(&ctx->deform));
   PetscFunctionReturn(0);
 }
 
