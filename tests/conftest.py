@@ -62,6 +62,62 @@ def options_without_plane(case, tmp_path):
     return str(path)
 
 
+# Floating-point results are compared to the physical scale of their case (tests/README.md), never to
+# their own round-off: a column that is physically zero (the angular momentum of a bar moving
+# straight) holds round-off of 1e-16 on one machine and 1e-15 on another.
+def physical_scales(outdir, case, history):
+    """The scales of a case, from what its run wrote: the body's size D (diagonal of its bounding box)
+    and mass M (rho, from the options file, times the volume of the mesh in solution.h5), the energy
+    scale E (the largest energy or work of the run), and from them a velocity V = sqrt(2 E / M), a
+    momentum M V, an angular momentum M V D and a force: the larger of E / D and the largest contact
+    force of the run."""
+    with h5py.File(os.path.join(outdir, "solution.h5"), "r") as f:
+        X = f["geometry/vertices"][:]
+        cells = f["viz/topology/cells"][:].astype(int)
+    dim = X.shape[1]
+    D = float(np.linalg.norm(X.max(axis=0) - X.min(axis=0)))
+    J = np.stack([X[cells[:, k + 1]] - X[cells[:, 0]] for k in range(dim)], axis=2)
+    volume = float(np.abs(np.linalg.det(J)).sum()) / (2 if dim == 2 else 6)
+    rho = 1.0
+    opts = case if case.endswith(".opts") else os.path.join(ROOT, "options", case + ".opts")
+    for line in open(opts):
+        words = line.split("#")[0].split()
+        if len(words) == 2 and words[0] == "-rho":
+            rho = float(words[1])
+    M = rho * volume
+    E = max(float(np.abs(history[c]).max()) for c in ("kinetic", "elastic", "total", "work_ext", "work_contact", "work_friction"))
+    V = (2 * E / M) ** 0.5
+    force = max(E / D, float(np.abs(history["force_normal"]).max()), float(np.abs(history["force_tangential"]).max()))
+    return dict(length=D, mass=M, energy=E, velocity=V, momentum=M * V, angular_momentum=M * V * D, force=force)
+
+
+def column_scale(column, scales):
+    """The physical scale of a history column."""
+    if column in ("kinetic", "elastic", "total") or column.startswith("work_"):
+        return scales["energy"]
+    if column.startswith("force_"):
+        return scales["force"]
+    if column.startswith("ucm_"):
+        return scales["length"]
+    if column.startswith("vcm_"):
+        return scales["velocity"]
+    if column.startswith("P_"):
+        return scales["momentum"]
+    if column.startswith(("L_", "J_")):
+        return scales["angular_momentum"]
+    raise KeyError(column)
+
+
+def assert_close(got, ref, scale, rtol=1e-10, what=""):
+    """|got - ref| <= rtol * scale, scale the quantity's physical scale (column_scale): the tolerance
+    of tests/README.md. 1e-10 is 20 times the largest difference seen between two correct machines
+    (5e-12 of the scale, over whole runs), and 1e4 times below an error of 1e-6."""
+    got, ref = np.asarray(got, float), np.asarray(ref, float)
+    assert got.shape == ref.shape, (what, got.shape, ref.shape)
+    err = float(np.abs(got - ref).max(initial=0))
+    assert err <= rtol * scale, f"{what}: differs by {err:.3e}, {err / scale:.2e} of its scale {scale:.3e}"
+
+
 # Processes of a run, for the tests that kill one.
 def children(pid):
     """The processes whose parent is pid (the ranks, for mpiexec)."""

@@ -16,7 +16,8 @@ def test_d1_friction_energy_is_the_recorded_friction_work(d1f):
     assert h["coulomb_residual"].max() <= 1e-8
     assert h["max_penetration"].max() <= 1e-9 * 0.08
     # friction dissipates: W_f <= 0 and never increases, and E - W_ext - W_c - W_f is conserved
-    assert h["work_friction"][-1] < -0.05 and np.all(np.diff(h["work_friction"]) <= 1e-14)
+    # friction only dissipates: each step's work is <= 0, up to round-off of the energy scale
+    assert h["work_friction"][-1] < -0.05 and np.all(np.diff(h["work_friction"]) <= 1e-12 * np.abs(h["total"]).max())
     audit = h["total"] - h["work_ext"] - h["work_contact"] - h["work_friction"]
     assert np.abs(audit - audit[0]).max() <= 1e-10 * h["total"][0]
     # where contact persists (no node switches) the energy changes by exactly the friction work
