@@ -122,6 +122,25 @@ static PetscErrorCode ContactWorkTooLarge(MMCtx *ctx, Vec w, PetscBool *too_larg
   PetscFunctionReturn(0);
 }
 
+/* How close to -ts_max_time a time counts as that time: far above the rounding of a sum of steps,
+ * far below any step. */
+static PetscReal FinalTimeTolerance(TS ts)
+{
+  return 1e-10 * ts->max_time;
+}
+
+/* -ts_exact_final_time matchstep (the default): a step that would end past the final time is
+ * shortened to end on it (K~ = A + 4/dt^2 M* is then factored once more, for that last step);
+ * stepover takes it whole, as PETSc's TS does (README "Options", time). A step that ends on the
+ * final time up to rounding is left alone: it is snapped to the final time once taken. */
+static PetscErrorCode MatchFinalTime(TS ts)
+{
+  PetscFunctionBeginUser;
+  if (ts->exact_final_time != TS_EXACTFINALTIME_MATCHSTEP) PetscFunctionReturn(0);
+  if (ts->ptime + ts->time_step > ts->max_time + FinalTimeTolerance(ts)) ts->time_step = ts->max_time - ts->ptime;
+  PetscFunctionReturn(0);
+}
+
 /* One step: solve, guard, and on rejection retry with a smaller dt; after a step accepted without
  * rejection, dt grows back towards -ts_dt by the inverse of the rejection factor. */
 static PetscErrorCode TSStep_Newmark(TS ts)
@@ -135,6 +154,7 @@ static PetscErrorCode TSStep_Newmark(TS ts)
 
   PetscFunctionBeginUser;
   PetscCall(SaveOldState(s));
+  PetscCall(MatchFinalTime(ts));
   while (!solved) {
     PetscReal w_c, scale;
     PetscBool too_large = PETSC_FALSE;
@@ -166,8 +186,14 @@ static PetscErrorCode TSStep_Newmark(TS ts)
     ts->reason = TS_DIVERGED_STEP_REJECTED;
     PetscFunctionReturn(0);
   }
+  /* TSAdapt's matchstep clipping changes dt by rounding when the next step ends on the final time:
+   * keep dt, and the factorization of K~ that goes with it (the step is snapped to the final time) */
+  if (PetscAbsReal(next_dt - dt) <= 1e-8 * dt) next_dt = dt;
   if (!rejections && next_dt < s->dt_user) next_dt = PetscMin(s->dt_user, next_dt / ts->adapt->scale_solve_failed);
   ts->ptime += dt;
+  /* the sum of n steps misses n dt by rounding: a time within the tolerance of the final time is it,
+   * so the run ends there instead of taking one more step past it */
+  if (PetscAbsReal(ts->ptime - ts->max_time) <= FinalTimeTolerance(ts)) ts->ptime = ts->max_time;
   ts->time_step = next_dt;
   ctx->hist.step = ts->steps + 1;
   ctx->hist.time = ts->ptime;
@@ -223,7 +249,7 @@ PetscErrorCode MMNewmarkSetDefaults(TS ts)
   PetscCall(TSSetProblemType(ts, TS_LINEAR));
   PetscCall(TSSetTimeStep(ts, 1e-3));
   PetscCall(TSSetMaxTime(ts, 1.0));
-  PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_STEPOVER));
+  PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
   PetscFunctionReturn(0);
 }
 
@@ -231,8 +257,9 @@ PetscErrorCode MMNewmarkSetDefaults(TS ts)
 static PetscErrorCode CheckTimeOptions(TS ts)
 {
   MPI_Comm  comm = PetscObjectComm((PetscObject)ts);
-  PetscReal dt, tmax;
-  PetscInt  nmax;
+  PetscReal              dt, tmax;
+  PetscInt               nmax;
+  TSExactFinalTimeOption eft;
 
   PetscFunctionBeginUser;
   PetscCall(TSGetTimeStep(ts, &dt));
@@ -241,6 +268,8 @@ static PetscErrorCode CheckTimeOptions(TS ts)
   PetscCheck(!PetscIsInfOrNanReal(dt) && dt > 0, comm, PETSC_ERR_USER_INPUT, "The time step -ts_dt %g must be > 0 and finite", (double)dt);
   PetscCheck(!PetscIsInfOrNanReal(tmax) && tmax > 0, comm, PETSC_ERR_USER_INPUT, "The final time -ts_max_time %g must be > 0 and finite", (double)tmax);
   PetscCheck(nmax >= 0, comm, PETSC_ERR_USER_INPUT, "-ts_max_steps %" PetscInt_FMT " must be >= 0", nmax);
+  PetscCall(TSGetExactFinalTime(ts, &eft));
+  PetscCheck(eft != TS_EXACTFINALTIME_INTERPOLATE, comm, PETSC_ERR_USER_INPUT, "-ts_exact_final_time interpolate is not supported: the scheme's energy identity, audited every step, holds at its steps and not between them, so no state is reported between steps. Use matchstep (the default: the last step is shortened to end at -ts_max_time) or stepover (the last step is taken whole, ending past it)");
   PetscCheck(dt <= tmax, comm, PETSC_ERR_USER_INPUT, "The time step -ts_dt %g is beyond the final time -ts_max_time %g: the run would take one step far past it. Give a -ts_dt below %g", (double)dt, (double)tmax, (double)tmax);
   PetscFunctionReturn(0);
 }
@@ -369,6 +398,23 @@ static PetscErrorCode InitialAcceleration(MMCtx *ctx)
 
 /* The consistent initial state: u0, v0 from the options, the contact dofs projected by the
  * quasi-static contact problem, the initial reaction, and a0 from the equation of motion. */
+/* -initial_state static_sliding: the body rests on the plane, its base on it, so it slides along the
+ * plane with the tangential part of -v0; a normal part would lift it off or push it in at once
+ * (README "Options"). The normal part is dropped, and said. */
+static PetscErrorCode TangentialInitialVelocity(MMCtx *ctx)
+{
+  const PetscReal *n   = ctx->opt.obstacles[0].normal; /* the single plane static_sliding needs */
+  const PetscInt   dim = ctx->op.dim;
+  PetscReal        vn  = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt d = 0; d < dim; ++d) vn += ctx->opt.v0[d] * n[d];
+  if (vn == 0) PetscFunctionReturn(0);
+  for (PetscInt d = 0; d < dim; ++d) ctx->opt.v0[d] -= vn * n[d];
+  if (!ctx->opt.quiet) PetscCall(PetscPrintf(PetscObjectComm((PetscObject)ctx->op.dm), "mmcontact: -initial_state static_sliding slides along the plane: the normal part %g of -v0 is dropped\n", (double)vn));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MMNewmarkInitialState(MMCtx *ctx)
 {
   MMState *s = &ctx->state;
@@ -379,6 +425,7 @@ PetscErrorCode MMNewmarkInitialState(MMCtx *ctx)
     Vec *copies[] = {&s->v, &s->a, &s->u_old, &s->v_old, &s->a_old, &s->react, &s->react_old, &s->work, &s->u_next};
     for (size_t i = 0; i < sizeof(copies) / sizeof(copies[0]); ++i) PetscCall(VecDuplicate(s->u, copies[i]));
   }
+  if (ctx->opt.initial_state == MM_INITIAL_STATIC_SLIDING) PetscCall(TangentialInitialVelocity(ctx));
   PetscCall(ProjectInitialField(ctx, InitialVelocity, s->v));
   PetscCall(VecZeroEntries(s->react));
   if (ctx->opt.initial_state == MM_INITIAL_STATIC_SLIDING) PetscCall(MMInitialStaticSliding(ctx, s->u, s->react));

@@ -356,7 +356,7 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OMEGA, "Initial rigid angular velocity (rad/s): a scalar in 2D, a vector in 3D", opt->omega));
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OMEGA_CENTER, "Centre of the initial rigid rotation, d entries", opt->omega_center));
   opt->initial_state = MM_INITIAL_GIVEN;
-  PetscCall(OptionsEnum(PetscOptionsObject, comm, "-initial_state", "Initial displacement: given (-u0_offset, -u0_gradient, contact dofs projected) or static_sliding (the body sliding along -v0 on the obstacle under its loads, with friction -mu)", MMInitialStates, (PetscEnum *)&opt->initial_state));
+  PetscCall(OptionsEnum(PetscOptionsObject, comm, "-initial_state", "Initial displacement: given (-u0_offset, -u0_gradient, contact dofs projected) or static_sliding (the body sliding along the tangential part of -v0 on the obstacle under its loads, with friction -mu; the normal part of -v0 is dropped)", MMInitialStates, (PetscEnum *)&opt->initial_state));
 
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OBSTACLE_POINT, "A point of the rigid obstacle plane, d entries", opt->obstacle_point));
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OBSTACLE_NORMAL, "Unit normal of the obstacle plane, pointing out of the obstacle towards the body, d entries (default +y in 2D, +z in 3D)", opt->obstacle_normal));
