@@ -1,5 +1,7 @@
 #pragma once
 #include "mmcontact.h"
-PETSC_EXTERN PetscErrorCode MMMeshLoad(MPI_Comm, MMOptions *, DM *, PetscInt **);
+PETSC_EXTERN PetscErrorCode MMMeshLoad(MPI_Comm, MMOptions *, DM *, PetscInt **, PetscInt **);
+PETSC_EXTERN PetscErrorCode MMMeshCheckFile(MPI_Comm, const char[]);
+PETSC_EXTERN PetscErrorCode MMMeshFileNodes(MPI_Comm, DM, const char[], PetscInt **);
 PETSC_EXTERN PetscErrorCode MMMeshGetLabel(DM, const char[], DMLabel *);
 PETSC_EXTERN PetscErrorCode MMMeshGetSizes(DM, PetscInt *, PetscInt *);

@@ -379,6 +379,7 @@ typedef struct {
  * numbers, so that a run can continue on any number of ranks. */
 typedef struct {
   PetscInt *vertex_orig; /* per local vertex (from vStart), its number in the serial mesh */
+  PetscInt *vertex_file; /* per serial-mesh vertex, its position among the mesh file's nodes (mesh_file.c) */
   PetscInt  nv_global;   /* vertices of the whole mesh */
   PetscInt  every;       /* -checkpoint_every: steps between checkpoints, 0 only at the end */
   PetscInt  written;     /* checkpoints written by this run */

@@ -311,6 +311,7 @@ PetscErrorCode MMCheckpointDestroy(MMCheckpoint *c)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscFree(c->vertex_orig));
+  PetscCall(PetscFree(c->vertex_file));
   PetscCall(PetscFree(c->node));
   PetscCall(PetscFree(c->snapshot_times));
   PetscFunctionReturn(0);

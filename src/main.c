@@ -34,7 +34,7 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscCall(MMOutputCheckOptions(comm, &ctx->opt));
   /* before anything in the output directory is read or moved: one run per directory */
   PetscCall(MMOutputLock(ctx->opt.output_dir));
-  PetscCall(MMMeshLoad(comm, &ctx->opt, &ctx->op.dm, &ctx->ckpt.vertex_orig));
+  PetscCall(MMMeshLoad(comm, &ctx->opt, &ctx->op.dm, &ctx->ckpt.vertex_orig, &ctx->ckpt.vertex_file));
   PetscCall(DMGetDimension(ctx->op.dm, &ctx->op.dim));
   PetscCall(MMFESetUp(ctx));
   PetscCall(MMContactSetUp(ctx));

@@ -268,23 +268,24 @@ static PetscErrorCode OriginalVertexNumbers(MPI_Comm comm, DM dist, PetscSF migr
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMMeshLoad(MPI_Comm comm, MMOptions *opt, DM *dm, PetscInt **vertex_orig)
+PetscErrorCode MMMeshLoad(MPI_Comm comm, MMOptions *opt, DM *dm, PetscInt **vertex_orig, PetscInt **vertex_file)
 {
-  PetscBool exists, rotate = PETSC_FALSE;
+  PetscBool rotate = PETSC_FALSE;
   DM        dist;
   PetscSF   migration = NULL;
   PetscInt  vStart0, vEnd0;
 
   PetscFunctionBeginUser;
   PetscCheck(opt->mesh_file[0], comm, PETSC_ERR_USER_INPUT, "No mesh given: set -mesh FILE.msh (a gmsh mesh with named physical groups; `make meshes` builds the ones in meshes/)");
-  PetscCall(PetscTestFile(opt->mesh_file, 'r', &exists));
-  PetscCheck(exists, comm, PETSC_ERR_FILE_OPEN, "Mesh file \"%s\" (-mesh) does not exist or is not readable. Generate it from its .geo (make meshes, or gmsh -2/-3 file.geo) or fix the path", opt->mesh_file);
+  PetscCall(MMMeshCheckFile(comm, opt->mesh_file));
   /* physical names become label names, so every option can refer to groups by name */
   PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_use_regions", "true"));
   PetscCall(ReadGmsh(comm, opt->mesh_file, dm));
   /* on the serial mesh, before distribution: the first bad cell is named by its file order */
   PetscCall(CheckCellTypes(comm, *dm, opt->mesh_file));
   PetscCall(CheckLinearGeometry(comm, *dm, opt->mesh_file));
+  /* before the orientation check, which would call a cell with a NaN vertex inverted */
+  PetscCall(MMMeshFileNodes(comm, *dm, opt->mesh_file, vertex_file));
   PetscCall(CheckOrientation(comm, *dm, opt->mesh_file));
   PetscCall(PetscObjectSetName((PetscObject)*dm, "mesh"));
   {

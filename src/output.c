@@ -360,9 +360,9 @@ PetscErrorCode MMOutputFlushFields(MMOutput *o)
   PetscFunctionReturn(0);
 }
 
-/* Each vertex's number in the serial mesh: PETSc writes the vertices in the partition's order, so
- * this is what matches a vertex across runs on other rank counts (and -restart's copy of the
- * earlier snapshots). */
+/* Each vertex's position among the mesh file's nodes (from 0): PETSc writes the vertices in the
+ * partition's order, so this is what matches a vertex across runs on other rank counts, to the
+ * file (and -restart's copy of the earlier snapshots). */
 static PetscErrorCode SerialVertexField(MMCtx *ctx, Vec f)
 {
   PetscSection gs;
@@ -377,7 +377,7 @@ static PetscErrorCode SerialVertexField(MMCtx *ctx, Vec f)
   for (PetscInt v = vStart; v < vEnd; ++v) {
     PetscInt goff;
     PetscCall(PetscSectionGetOffset(gs, v, &goff));
-    if (goff >= 0) a[goff - rstart] = (PetscScalar)ctx->ckpt.vertex_orig[v - vStart];
+    if (goff >= 0) a[goff - rstart] = (PetscScalar)ctx->ckpt.vertex_file[ctx->ckpt.vertex_orig[v - vStart]];
   }
   PetscCall(VecRestoreArray(f, &a));
   PetscFunctionReturn(0);

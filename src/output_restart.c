@@ -136,11 +136,20 @@ static PetscErrorCode OldFieldsOpen(MMCtx *ctx, MMOldFields *of)
   PetscCall(PetscMalloc2(n, &of->row, n * MM_MAX_DIM, &of->slab));
   PetscCheck(H5Dread(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, serial) >= 0, comm, PETSC_ERR_FILE_READ, "Could not read the serial vertex numbers of %s", of->name);
   (void)H5Dclose(dset);
-  for (PetscInt i = 0; i < n; ++i) of->row[i] = -1;
-  for (PetscInt i = 0; i < n; ++i) {
-    const PetscInt s = (PetscInt)serial[i];
-    PetscCheck(s >= 0 && s < n && of->row[s] < 0, comm, PETSC_ERR_FILE_UNEXPECTED, "%s: the serial vertex numbers are not a permutation", of->name);
-    of->row[s] = i;
+  /* the field holds each vertex's position in the mesh file: back to serial-mesh numbers */
+  {
+    PetscInt nfile = 0, *serial_of;
+    for (PetscInt k = 0; k < n; ++k) nfile = PetscMax(nfile, ctx->ckpt.vertex_file[k] + 1);
+    PetscCall(PetscMalloc1(nfile, &serial_of));
+    for (PetscInt p = 0; p < nfile; ++p) serial_of[p] = -1;
+    for (PetscInt k = 0; k < n; ++k) serial_of[ctx->ckpt.vertex_file[k]] = k;
+    for (PetscInt i = 0; i < n; ++i) of->row[i] = -1;
+    for (PetscInt i = 0; i < n; ++i) {
+      const PetscInt p = (PetscInt)serial[i], s = p >= 0 && p < nfile ? serial_of[p] : -1;
+      PetscCheck(s >= 0 && of->row[s] < 0, comm, PETSC_ERR_FILE_UNEXPECTED, "%s: its serial_vertex numbers are not those of the mesh's vertices: it is not the output of the run that wrote the checkpoint", of->name);
+      of->row[s] = i;
+    }
+    PetscCall(PetscFree(serial_of));
   }
   PetscCall(PetscFree(serial));
   PetscFunctionReturn(0);
