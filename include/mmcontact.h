@@ -351,7 +351,8 @@ typedef struct {
   int           csv_fd;                /* history.csv, on rank 0 (-1 elsewhere and once closed) */
   char          csv_name[PETSC_MAX_PATH_LEN], h5_name[PETSC_MAX_PATH_LEN], xmf_name[PETSC_MAX_PATH_LEN];
   PetscViewer   h5;                    /* solution.h5, open from MMOutputOpen to MMOutputClose */
-  PetscInt      n_written;             /* snapshots on disk and flushed: the ones the XDMF index lists */
+  PetscInt      n_written;             /* snapshots on disk and flushed */
+  PetscInt      n_indexed;             /* the ones the XDMF index on disk lists */
   PetscReal    *times;                 /* time of each snapshot */
   PetscInt      nv, nc;                /* global vertex and cell counts, for the XDMF index */
   char         *index;                 /* rank 0: the index's grids, written out at every snapshot */

@@ -16,7 +16,11 @@ For each options file it reads the mesh (`-mesh`, gmsh 4.1 ASCII), and reports:
   to the one listed first, as mmcontact does; the script prints, per obstacle, the vertices it
   gets, their smallest gap, and a rigid-body estimate of the first contact (the body translated
   by its `-v0` and `-gravity`, the obstacle by `-obstacle_NAME_velocity` from `-obstacle_NAME_start`;
-  it ignores `-omega`, `-u0_offset`, deformation and the modified mass).
+  it ignores `-omega`, deformation and the modified mass).
+The geometry is placed as mmcontact places it: the mesh turned by `-mesh_rotation` about
+`-mesh_rotation_center` when it is read (the vertices are assigned to obstacles there, in the
+reference configuration), and the initial displacement u0 = a + B x of `-u0_offset` and
+`-u0_gradient` added for the gaps and the initial-penetration check.
 It exits 1 if a group is missing, a contact vertex starts inside an obstacle (signed distance < 0),
 or c_p dt / h_c' is above 1.5.
 """
@@ -186,6 +190,30 @@ def obstacles(opts, dim):
     return out
 
 
+def mesh_rotation(opts, dim):
+    """The rigid rotation mmcontact applies to the mesh when it reads it (src/mesh.c): an angle in 2D,
+    a rotation vector in 3D (Rodrigues), about -mesh_rotation_center. (R, center)."""
+    center = vec(opts, "mesh_rotation_center", dim, [0.0] * dim)
+    if dim == 2:
+        th = vec(opts, "mesh_rotation", 1, [0.0])[0]
+        c, s = math.cos(th), math.sin(th)
+        return np.array([[c, -s], [s, c]]), center
+    r = vec(opts, "mesh_rotation", 3, [0.0, 0.0, 0.0])
+    th = np.linalg.norm(r)
+    if th == 0:
+        return np.eye(3), center
+    k = r / th
+    K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    return math.cos(th) * np.eye(3) + (1 - math.cos(th)) * np.outer(k, k) + math.sin(th) * K, center
+
+
+def initial_displacement(opts, x, dim):
+    """u0 = a + B x (-u0_offset a, -u0_gradient B row-major), at the placed vertices x."""
+    a = vec(opts, "u0_offset", dim, [0.0] * dim)
+    B = vec(opts, "u0_gradient", dim * dim, [0.0] * dim * dim).reshape(dim, dim)
+    return a + x @ B.T
+
+
 def first_contact(f, x, v0, grav, vel, start, tmax, dt):
     """First time on a grid of dt / 10 up to tmax at which a vertex of x, translated rigidly by
     v0 t + grav t^2 / 2, reaches the obstacle f translated by vel (t - start)+; inf if none."""
@@ -203,7 +231,10 @@ def check(path):
     dim = max(d for d, _ in groups.values())
     body = [c for d, cells in groups.values() if d == dim for c in cells]
     used = np.unique(np.array(body).ravel())
-    x = coords[:, :dim]
+    R, center = mesh_rotation(opts, dim)
+    x = center + (coords[:, :dim] - center) @ R.T
+    if not np.array_equal(R, np.eye(dim)):
+        print(f"  mesh turned by -mesh_rotation {opts['mesh_rotation']} about ({', '.join(f'{c:g}' for c in center)})")
     print(f"  mesh {opts['mesh']}: {dim}D, groups " + ", ".join(f"{n} (dim {d}, {len(c)} cells)" for n, (d, c) in groups.items()))
     print(f"  vertices {len(used)}, dofs {dim * len(used)}")
     cname = opts.get("contact_boundary", "contact")
@@ -223,7 +254,7 @@ def check(path):
     hmin = math.inf
     for cell in body:
         if mark[cell].any():
-            p = coords[cell]
+            p = x[cell]
             hmin = min(hmin, max(np.linalg.norm(p[i] - p[j]) for i in range(len(cell)) for j in range(i + 1, len(cell))))
     E, nu, rho = float(opts.get("E", 1)), float(opts.get("nu", 0.3)), float(opts.get("rho", 1))
     cp = math.sqrt(E * (1 - nu) / (rho * (1 + nu) * (1 - 2 * nu)))
@@ -236,9 +267,12 @@ def check(path):
         ok = False
     obs = obstacles(opts, dim)
     xc = x[cverts]
-    dist = np.array([f(xc) for _, f, _, _, _ in obs])  # obstacles x contact vertices
-    owner = np.argmin(dist, axis=0)  # argmin takes the first of equal values: ties to the first listed
-    srt = np.sort(dist, axis=0)
+    # assigned in the reference configuration; the gaps are those of the initial state x + u0
+    ref = np.array([f(xc) for _, f, _, _, _ in obs])  # obstacles x contact vertices
+    owner = np.argmin(ref, axis=0)  # argmin takes the first of equal values: ties to the first listed
+    srt = np.sort(ref, axis=0)
+    xc = xc + initial_displacement(opts, xc, dim)
+    dist = np.array([f(xc) for _, f, _, _, _ in obs])
     near_ties = int(np.sum(srt[1] - srt[0] <= 1e-9 * hmin)) if len(obs) > 1 else 0
     v0 = vec(opts, "v0", dim, [0.0] * dim)
     grav = vec(opts, "gravity", dim, [0.0] * dim)

@@ -38,7 +38,8 @@ PetscErrorCode MMMeshCheckFile(MPI_Comm comm, const char file[])
   PetscCallMPI(MPI_Bcast(&isdir, 1, MPI_INT, 0, comm));
   PetscCallMPI(MPI_Bcast(&bom, 1, MPI_INT, 0, comm));
   PetscCheck(!isdir, comm, PETSC_ERR_USER_INPUT, "-mesh %s is a directory: give the .msh file in it (make meshes writes meshes/NAME.msh from meshes/NAME.geo)", file);
-  PetscCheck(!err, comm, PETSC_ERR_FILE_OPEN, "Mesh file \"%s\" (-mesh) cannot be read: %s. Generate it from its .geo (make meshes, or gmsh -2/-3 file.geo) or fix the path", file, strerror(err));
+  PetscCheck(err != ENOENT, comm, PETSC_ERR_FILE_OPEN, "Mesh file \"%s\" (-mesh) does not exist. Generate it from its .geo (make meshes, or gmsh -2/-3 file.geo) or fix the path", file);
+  PetscCheck(!err, comm, PETSC_ERR_FILE_OPEN, "Mesh file \"%s\" (-mesh) cannot be read: %s. Fix its permissions or the path", file, strerror(err));
   PetscCheck(!bom, comm, PETSC_ERR_USER_INPUT, "Mesh file \"%s\" (-mesh) starts with a UTF-8 byte order mark (bytes EF BB BF), which gmsh never writes and PETSc's reader cannot read: save it without one, or regenerate it with gmsh", file);
   PetscFunctionReturn(0);
 }

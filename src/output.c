@@ -3,8 +3,9 @@
  * Whatever stops the run, even SIGKILL, what is on disk stays readable and consistent:
  * - history.csv gets each row in one write(), so the rows on disk are whole rows;
  * - solution.h5 stays open for the whole run and is flushed after each snapshot;
- * - solution.xmf lists only the snapshots flushed so far. It is written beside the old one and renamed
- *   over it, so a reader, or a kill in between, sees the old index or the new one, never part of one.
+ * - solution.xmf lists only snapshots flushed (at least half of them, all at checkpoints and at the
+ *   end). It is written beside the old one and renamed over it, so a reader, or a kill in between,
+ *   sees the old index or the new one, never part of one.
  * Any failed write, flush or close stops the run with the file's name and the system's reason.
  * Opening the output (at the end of set-up) first moves the last run's files into previous/. */
 #include <errno.h>
@@ -305,19 +306,34 @@ PetscErrorCode MMOutputWriteIndexFile(MMCtx *ctx)
     }
   }
   PetscCall(MMOutputCheckRank0(&st));
+  o->n_indexed = o->n_written;
   PetscCall(PetscLogEventEnd(o->ev_index, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
-/* The index gains the snapshot just flushed. */
+/* The index gains the snapshot just flushed. Each grid names the snapshot count (the datasets'
+ * first dimension), so the file is rewritten whole, atomically: after every snapshot that would be
+ * O(N^2) bytes over a run of N snapshots. It is rewritten when the snapshots have doubled since the
+ * last time (O(N) bytes in all), and by MMOutputSyncIndex at every checkpoint and at the end of the
+ * run: while the run goes on it lists at least half of the snapshots written, all of them up to the
+ * last checkpoint (README "Output"). */
 static PetscErrorCode WriteIndex(MMCtx *ctx)
 {
+  MMOutput   *o = &ctx->out;
   PetscMPIInt rank;
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
-  if (rank == 0) PetscCall(MMOutputIndexAddGrid(&ctx->out, ctx->op.dim, ctx->out.n_written - 1));
-  PetscCall(MMOutputWriteIndexFile(ctx));
+  if (rank == 0) PetscCall(MMOutputIndexAddGrid(o, ctx->op.dim, o->n_written - 1));
+  if (o->n_written >= 2 * o->n_indexed) PetscCall(MMOutputWriteIndexFile(ctx));
+  PetscFunctionReturn(0);
+}
+
+/* The index lists every snapshot written: at checkpoints and at the end of the run. */
+PetscErrorCode MMOutputSyncIndex(MMCtx *ctx)
+{
+  PetscFunctionBeginUser;
+  if (ctx->out.n_indexed < ctx->out.n_written) PetscCall(MMOutputWriteIndexFile(ctx));
   PetscFunctionReturn(0);
 }
 
@@ -706,6 +722,7 @@ PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wa
 
   PetscFunctionBeginUser;
   if (o->n_written && o->times[o->n_written - 1] != h->time) PetscCall(WriteFields(ctx));
+  PetscCall(MMOutputSyncIndex(ctx));
   PetscCall(CloseFiles(o));
   if (!ctx->opt.quiet) {
     struct rusage ru;

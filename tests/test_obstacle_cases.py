@@ -240,6 +240,12 @@ def test_single_plane_cases_unchanged(case, mm):
     ref = np.genfromtxt(os.path.join(ROOT, "tests", "reference", case + ".csv.gz"), delimiter=",", names=True)
     r = mm(case, "-output_every", 0, np_=1)
     h = r.history
+    # the references of b2_bar, f1_block and f1_box end with one step past -ts_max_time, taken because
+    # the sum of the steps fell short of it by rounding (issue 17, item 10): that row is not compared
+    t_end = h["time"][-1]
+    if len(ref) == len(h) + 1:
+        assert ref["time"][-1] > t_end and abs(ref["time"][-2] - t_end) <= 1e-10 * t_end
+        ref = ref[:-1]
     assert len(h) == len(ref)
     scales = physical_scales(r.outdir, case, ref)
     cols = ["kinetic", "elastic", "total", "work_ext", "work_contact", "work_friction", "force_normal", "force_tangential"]

@@ -1,0 +1,69 @@
+"""solution.xmf, the XDMF index of solution.h5 (README "Output"): rewritten whole and atomically,
+but not after every snapshot (O(N^2) bytes over a run): when the snapshots have doubled, at
+checkpoints and at the end. Readable at any moment, listing only complete snapshots."""
+import math
+import os
+import re
+import signal
+import subprocess
+import time
+import xml.etree.ElementTree as ET
+
+import h5py
+
+from conftest import EXE, MPIEXEC, ROOT, children, history_rows, run, stop
+
+
+def grids(path):
+    root = ET.parse(path).getroot()  # raises on a partial or malformed file
+    return [g for g in root.iter("Grid") if g.get("GridType") == "Uniform"]
+
+
+def test_index_is_rewritten_log_n_times_and_lists_every_snapshot_at_the_end(tmp_path):
+    """D1 with a snapshot every step (151): the index is written 9 times (at 1, 2, 4, ..., 128
+    snapshots and at the end), not 151; at the end it lists all 151, each at its time."""
+    r = run("d1_disk", tmp_path, "-output_every", 1, "-log_view")
+    counts = [int(c) for c in re.findall(r"^MMOutputIndex\s+(\d+)", r.output, re.M)]  # one line per log stage
+    assert counts, r.output[-3000:]
+    n = 151
+    assert sum(counts) == math.floor(math.log2(n)) + 2, counts
+    g = grids(os.path.join(r.outdir, "solution.xmf"))
+    assert len(g) == n
+    times = [float(x.find("Time").get("Value")) for x in g]
+    with h5py.File(os.path.join(r.outdir, "solution.h5"), "r") as f:
+        assert list(f["time"][:, 0]) == times
+
+
+def test_index_is_readable_while_the_run_goes_on(tmp_path):
+    """Frozen (SIGSTOP) at several moments of a 2-rank run: the index parses, lists at least half of
+    the snapshots the history says were written and none that is not complete in solution.h5."""
+    out = tmp_path / "out"
+    args = MPIEXEC + ["-n", "2", EXE, "-options_file", os.path.join(ROOT, "options", "d1_friction.opts"), "-ts_dt", "2e-4",
+                      "-output_every", "2", "-output_dir", str(out), "-quiet"]
+    proc = subprocess.Popen(args, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    seen = []
+    try:
+        for rows in (30, 100, 250, 600, 1200):
+            t0 = time.time()
+            while history_rows(str(out / "history.csv")) < rows:
+                assert proc.poll() is None and time.time() - t0 < 120, "the run ended early"
+                time.sleep(0.001)
+            ranks = children(proc.pid)
+            for p in ranks:
+                os.kill(p, signal.SIGSTOP)
+            try:
+                steps = history_rows(str(out / "history.csv")) - 1
+                written = steps // 2 + 1  # snapshots at steps 0, 2, 4, ... up to the last row
+                listed = len(grids(out / "solution.xmf"))
+                with h5py.File(out / "solution.h5", "r") as f:
+                    complete = f["time"].shape[0]
+                assert (written - 1) / 2 <= listed <= min(written, complete), (steps, written, listed, complete)
+                seen.append(listed)
+            finally:
+                for p in ranks:
+                    os.kill(p, signal.SIGCONT)
+        assert proc.wait(timeout=300) == 0, proc.stderr.read()[-2000:]
+    finally:
+        stop(proc)
+    assert len(set(seen)) > 2  # the index moved on between the looks
+    assert len(grids(out / "solution.xmf")) == 751  # all of them at the end (1500 steps)
