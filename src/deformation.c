@@ -254,7 +254,7 @@ PetscErrorCode MMDeformationCheck(MMCtx *ctx)
   PetscCheck(w.strain <= ctx->opt.max_strain, comm, MM_ERR_PHYSICS, "At step %" PetscInt_FMT " (t = %g) the cell at %s has a strain of %.3g, above -max_strain %g: a small-strain model means nothing there. Check -v0, the loads and the units (SI), or raise -max_strain. The output up to the previous step is intact", h->step, (double)h->time, place, (double)w.strain, (double)ctx->opt.max_strain);
   if (w.strain > ctx->opt.strain_warn && !d->warned) {
     d->warned = PETSC_TRUE;
-    PetscCall(PetscPrintf(comm, "mmcontact warning: at step %" PetscInt_FMT " (t = %g) the cell at %s has a strain of %.3g, above -strain_warn %g: from here on the small-strain model is an approximation (warned once; the summary gives the largest)\n", h->step, (double)h->time, place, (double)w.strain, (double)ctx->opt.strain_warn));
+    PetscCall(PetscPrintf(comm, "mmcontact warning: at step %" PetscInt_FMT " (t = %g) the cell at %s has a strain of %.4g, above -strain_warn %g: from here on the small-strain model is an approximation (warned once; the summary gives the largest)\n", h->step, (double)h->time, place, (double)w.strain, (double)ctx->opt.strain_warn));
   }
   PetscFunctionReturn(0);
 }
