@@ -12,18 +12,20 @@ MM_MPIEXEC ?= mpiexec $(if $(filter 0,$(shell id -u)),--allow-run-as-root)
 MM_PYTHON ?= /usr/bin/python3 -s
 NP      ?= 2
 
-SRC  := $(wildcard src/*.c)
+SRC  := $(shell find src -name '*.c' | sort)
 OBJ  := $(SRC:src/%.c=build/%.o)
-HDR  := $(wildcard include/*.h)
+HDR  := $(wildcard include/*.h) $(shell find src -name '*.h')
 CFLAGS_MM := ${PETSC_CC_INCLUDES} -Iinclude -O2 -Wall
 MSH  := meshes/bar80.msh meshes/bar100.msh meshes/disk.msh meshes/ball.msh meshes/block.msh meshes/box.msh
+# The D2 ball at H = 0.1 (12k dofs): friction at c_p dt / h_c' = 4 (tests/test_friction_solvers.py)
+MSH  += meshes/ball10.msh
 # The cases with several, curved and moving obstacles (README "Cases")
 MSH  += meshes/ball_bowl.msh meshes/disk_rail.msh meshes/block_push.msh meshes/ball_vgroove.msh meshes/block_squeeze.msh
 # Bench meshes: the 2D D1 disk (115k dofs), the 3D D2 ball (H 0.045: 113k dofs, 3.8k contact nodes)
 # and the large D2 ball of `make bench-large` (H 0.021: about 1M dofs), generated when first needed.
 BALL_BENCH_H ?= 0.045
 BALL_LARGE_H ?= 0.021
-BENCH_MSH := meshes/disk_bench.msh meshes/ball_bench.msh
+BENCH_MSH := meshes/disk_bench.msh meshes/ball_bench.msh meshes/ball07.msh
 
 .PHONY: all deps petsc-found meshes run check bench bench-large clean
 all: mmcontact
@@ -38,6 +40,7 @@ endif
 
 build/%.o: src/%.c $(HDR) | build petsc-found
 	@echo "  CC  $<"
+	@mkdir -p $(dir $@)
 	@${PCC} ${PCC_FLAGS} ${CFLAGS_MM} -c $< -o $@
 build:
 	@mkdir -p build
@@ -59,6 +62,8 @@ meshes/box.msh: meshes/box.geo
 	gmsh -3 $< -o $@ -v 2
 meshes/ball.msh: meshes/ball.geo
 	gmsh -3 $< -o $@ -v 2
+meshes/ball10.msh: meshes/ball.geo
+	gmsh -3 $< -setnumber H 0.1 -o $@ -v 2
 meshes/ball_bowl.msh: meshes/ball_bowl.geo
 	gmsh -3 $< -o $@ -v 2
 meshes/disk_rail.msh: meshes/disk_rail.geo
@@ -73,6 +78,8 @@ meshes/disk_bench.msh: meshes/disk.geo
 	gmsh -2 $< -setnumber H 0.008 -setnumber G 0.001 -o $@ -v 2
 meshes/ball_bench.msh: meshes/ball.geo
 	gmsh -3 $< -setnumber H $(BALL_BENCH_H) -o $@ -v 2
+meshes/ball07.msh: meshes/ball.geo
+	gmsh -3 $< -setnumber H 0.07 -o $@ -v 2
 meshes/ball_large.msh: meshes/ball.geo
 	gmsh -3 $< -setnumber H $(BALL_LARGE_H) -o $@ -v 2
 

@@ -11,11 +11,21 @@ PETSC_EXTERN PetscErrorCode MMContactGetStepKSP(MMCtx *, KSP *, KSP *);
 PETSC_EXTERN PetscErrorCode MMContactSolve(MMCtx *, Vec, Vec, Vec);
 PETSC_EXTERN PetscErrorCode MMContactSolveContactDofs(MMCtx *, Vec, Vec, Vec);
 PETSC_EXTERN PetscErrorCode MMContactRecover(MMCtx *, Vec, Vec, Vec);
-PETSC_EXTERN PetscErrorCode MMContactSetThresholds(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMContactGetNormalReactions(MMCtx *, Vec);
-PETSC_EXTERN PetscErrorCode MMContactUpdateSlip(MMCtx *, Vec, Vec, PetscInt *, PetscReal *);
 PETSC_EXTERN PetscErrorCode MMContactSetFrictionThresholds(MMCtx *, Vec);
-PETSC_EXTERN PetscErrorCode MMContactUpdateFrictionStates(MMCtx *, Vec, Vec, PetscInt *, PetscReal *);
+/* The step's contact problem in contact space, on the condensed formulation's candidate set, for a
+ * friction solver: n nodes of nc components (normal, then the tangents of the node's frame); the
+ * set's Delassus block W (column-major, symmetric), the right-hand side q with u = W r - q (u_n: the
+ * gap left; u_t: -dt/2 times the slip velocity), each node's mu. The solver overwrites x (the warm
+ * start) with the reactions r. */
+typedef struct {
+  PetscInt           n, nc;
+  const PetscScalar *W, *q;
+  const PetscReal   *mu;
+} MMContactSetProblem;
+typedef PetscErrorCode (*MMContactSetSolver)(void *, const MMContactSetProblem *, PetscScalar[], PetscBool *);
+PETSC_EXTERN PetscErrorCode MMContactHasDelassus(MMCtx *, PetscBool *);
+PETSC_EXTERN PetscErrorCode MMContactSolveCoulomb(MMCtx *, Vec, Vec, Vec, MMContactSetSolver, void *, PetscBool *);
 PETSC_EXTERN PetscErrorCode MMContactProjectInitial(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMContactDiagnostics(MMCtx *, Vec, Vec, Vec, MMHistory *);
 PETSC_EXTERN PetscErrorCode MMContactCoulomb(MMCtx *, Vec, Vec, Vec, PetscReal *, PetscInt *, PetscInt *);

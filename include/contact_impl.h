@@ -30,12 +30,7 @@ PETSC_EXTERN PetscErrorCode MMCondensedCreateSolver(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMCondensedSolveReactions(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMCondensedContactDofs(MMCtx *, Vec, Vec);
 PETSC_EXTERN PetscErrorCode MMCondensedRecover(MMCtx *, Vec);
-
-/* contact_slip.c: 3D stick/slip states */
-PETSC_EXTERN PetscErrorCode MMSlipSetDiskBounds(MMContact *, Vec);
-PETSC_EXTERN PetscErrorCode MMSlipStoreRotations(MMContact *);
-PETSC_EXTERN PetscErrorCode MMSlipRotateSet(MMCandidates *);
-PETSC_EXTERN PetscErrorCode MMSlipRotateBack(MMCandidates *, Vec);
+PETSC_EXTERN PetscErrorCode MMCondensedSolveCoulomb(MMCtx *, Vec, Vec, Vec, MMContactSetSolver, void *, PetscBool *);
 
 /* contact_candidates.c: the candidate set, its cached columns of K~^{-1} E and its dense block */
 PETSC_EXTERN PetscErrorCode MMCandidatesSetUp(MMCtx *);

@@ -126,6 +126,8 @@ typedef struct {
   PetscReal    initial_penetration_tol;
   PetscReal    mu;
   PetscReal    friction_coulomb_tol;
+  char         friction_type[64];   /* -friction_type: a name registered in src/friction/ */
+  PetscBool    friction_type_set;
   PetscBool    friction_monitor;
   char         output_dir[PETSC_MAX_PATH_LEN];
   PetscInt     output_every;
@@ -199,8 +201,8 @@ typedef struct {
   PetscBool   *in_set;              /* per contact node (all ranks): in the step's set */
   PetscInt     n_set, *set;         /* the step's set: contact nodes in increasing order, on every rank */
   PetscInt     m;                   /* its condensed dofs: ncomp n_set */
-  Mat          W, Wr;               /* the set's Delassus block (seqdense, symmetrized); 3D: rotated */
-  Vec          x, lo, hi, q, rot, f;/* the set's reactions, bounds, right-hand side, 3D rotations, residual */
+  Mat          W;                   /* the set's Delassus block (seqdense, symmetrized) */
+  Vec          x, lo, hi, q, f;     /* the set's reactions, bounds, right-hand side, residual */
   VecScatter   gather;              /* global condensed vectors -> the set */
   SNES         snes;                /* the VI on the set, prefix contact_ */
   MMBoundQP    qp;
@@ -281,9 +283,9 @@ typedef struct {
   PetscReal  h_c;                 /* smallest diameter of cells touching the contact boundary */
   PetscReal  tol;                 /* -contact_tol */
   PetscBool *was_active;          /* per owned contact node, at the previous step */
-  PetscBool *slipping;            /* 3D friction: per owned contact node, slipping (else sticking) */
-  PetscReal *slip_dir;            /* 3D friction: per owned contact node, its slip direction in the tangent plane */
-  Vec        rot;                 /* 3D friction: per node (1, cos, sin) of its slip direction: the (n, d, d_perp) basis */
+  PetscBool *slipping;            /* friction: per owned contact node, slipping (on the rim of its disk) */
+  PetscReal *slip_dir;            /* 3D friction: per owned contact node, its slip direction in the tangent plane (checkpointed) */
+  Vec        mu_c;                /* mu of each contact node in each of its condensed dofs (layout of rho) */
   Vec        Wdiag;               /* diag(W) on the cached nodes, the nodal compliances (1 elsewhere) */
   PetscInt  *scalar_index;        /* per owned contact node, its global index in the scalar vertex DM */
   PetscInt  *vertex;              /* per owned contact node, its mesh point */
@@ -305,17 +307,9 @@ typedef struct {
   PetscReal work_contact;      /* W_c of the accepted step, computed once by the contact-work guard */
 } MMState;
 
-/* The Coulomb friction loop (friction.c): a shell SNES on the thresholds around the contact VI. */
-typedef struct {
-  SNES      snes;             /* prefix friction_ */
-  Vec       s, s_new;         /* thresholds mu r_i per contact node: the loop's unknown */
-  Vec       sigma;            /* velocity of the current iterate (slip velocity on the contact dofs) */
-  Vec       b, w, react;      /* the step problem being solved (borrowed) */
-  PetscReal coulomb_tol, contraction, contraction_max;
-  PetscReal s_floor;          /* threshold scale below which changes count as absolute */
-  PetscInt  its;
-  PetscBool monitor;
-} MMFriction;
+/* The Coulomb friction solver: an opaque handle, owned by the friction component (include/friction.h,
+ * src/friction/). */
+typedef struct _p_MMFriction *MMFriction;
 
 /* One row of the history, and its running sums. */
 typedef struct {

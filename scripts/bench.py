@@ -5,10 +5,14 @@ Suites (the table SUITES below):
          contact on all dofs (full); 1 and 2 ranks.                       -> bench/results.csv
   3d     D2 ball, 113k dofs (meshes/ball_bench.msh): linear, contact, friction mu = 0.2; 1 and 2
          ranks.                                                           -> bench/results.csv
+  users  D2 ball at the time steps users choose (meshes/ball07.msh, H = 0.07, 33k dofs): dt = 4e-3
+         and 8e-3 (c_p dt / h_c' = 2.1 and 4.2; suites users4, users8), linear, and friction with
+         mu = 0.2 and 0.5 by each friction solver (-friction_type newton, the default, and
+         fixedpoint, the paper's); 1 rank, 20 steps through the impact.  -> bench/results.csv
   large  D2 ball, about 1M dofs (meshes/ball_large.msh): linear, contact, friction mu = 0.2 on 2
          ranks, contact solved with LARGE_OPTS.                           -> bench/results_large.csv
 
-`make bench` runs 2d and 3d, `make bench-large` runs large. Each suite's rows are written to its
+`make bench` runs 2d, 3d and users, `make bench-large` runs large. Each suite's rows are written to its
 CSV (one common header) and printed as a table. Absolute times on a shared machine are noise: the
 figures are the ratios within one run (contact/linear on the same ranks and mesh, 1-rank over
 2-rank time for the 2-rank speed-up).
@@ -46,6 +50,8 @@ LINEAR = dict(case="linear", options="-contact 0")
 CONTACT = dict(case="contact", options="-contact_formulation condensed -mu 0")
 FRICTION = dict(case="friction", options="-contact_formulation condensed -mu 0.2")
 FULL = dict(case="full", options="-contact_formulation full -mu 0")
+USERS = (LINEAR,) + tuple(dict(case=f"fric_{mu}_{ft}", options=f"-contact_formulation condensed -mu {mu} -friction_type {ft}")
+                          for mu in (0.2, 0.5) for ft in ("newton", "fixedpoint"))
 
 # One row per (suite, variant, ranks). dt and steps go through the impact: the D1 disk touches the
 # plane after 1 ms (gap 0.001, v = -1; step 5), the D2 ball after 10 ms (gap 0.01; step 10).
@@ -54,6 +60,10 @@ SUITES = [
          dt=2e-4, steps=30, ranks=(1, 2), variants=(LINEAR, CONTACT, FRICTION, FULL), csv="bench/results.csv"),
     dict(suite="3d", problem="D2 ball", dim=3, options_file="options/d2_ball.opts", mesh="meshes/ball_bench.msh",
          dt=1e-3, steps=30, ranks=(1, 2), variants=(LINEAR, CONTACT, FRICTION), csv="bench/results.csv"),
+    dict(suite="users4", group="users", problem="D2 ball", dim=3, options_file="options/d2_ball.opts", mesh="meshes/ball07.msh",
+         dt=4e-3, steps=20, ranks=(1,), variants=USERS, csv="bench/results.csv"),
+    dict(suite="users8", group="users", problem="D2 ball", dim=3, options_file="options/d2_ball.opts", mesh="meshes/ball07.msh",
+         dt=8e-3, steps=20, ranks=(1,), variants=USERS, csv="bench/results.csv"),
     dict(suite="large", problem="D2 ball", dim=3, options_file="options/d2_ball.opts", mesh="meshes/ball_large.msh",
          dt=1e-3, steps=30, ranks=(2,),
          variants=(dict(case="linear", options=f"-contact 0 {LARGE_SOLVERS}"), dict(case="contact", options=f"-mu 0 {LARGE_SOLVERS} {LARGE_OPTS}"),
@@ -61,9 +71,9 @@ SUITES = [
          csv="bench/results_large.csv"),
 ]
 
-FIELDS = ["suite", "problem", "dim", "ranks", "case", "formulation", "mu", "dofs", "contact_nodes", "steps", "setup_s",
+FIELDS = ["suite", "problem", "dim", "ranks", "case", "formulation", "mu", "friction_type", "cfl", "dofs", "contact_nodes", "steps", "setup_s",
           "s_per_step", "contact_over_linear", "speedup_2_ranks", "peak_mib_max_rank", "peak_mib_total", "candidates",
-          "max_active", "mean_vi_its", "mean_friction_its_in_contact", "status"]
+          "max_active", "mean_vi_its", "mean_friction_its_in_contact", "max_friction_its", "rejections", "status"]
 SUMMARY = re.compile(r"mmcontact summary: setup ([\d.]+) s; (\d+) steps .* \(([\d.]+) s/step\); peak memory ([\d.]+) MiB/rank")
 DOFS = re.compile(r"(\d+) dofs[ ;(]")
 CONTACT_NODES = re.compile(r"(\d+) contact nodes")
@@ -86,7 +96,8 @@ def history_stats(path):
     mean = lambda rs, key: round(sum(int(r[key]) for r in rs) / len(rs), 2) if rs else 0
     return dict(candidates=max(int(r["candidates"]) for r in rows) if "candidates" in rows[0] else "-",
                 max_active=max(int(r["active"]) for r in rows), mean_vi_its=mean(steps, "vi_its"),
-                mean_friction_its_in_contact=mean(touching, "friction_its"))
+                mean_friction_its_in_contact=mean(touching, "friction_its"),
+                max_friction_its=max(int(r["friction_its"]) for r in rows), cfl=round(float(rows[-1]["cfl"]), 2))
 
 
 def run(suite, variant, ranks, steps):
@@ -101,6 +112,7 @@ def run(suite, variant, ranks, steps):
     row = dict(suite=suite["suite"], problem=suite["problem"], dim=suite["dim"], ranks=ranks, case=variant["case"],
                formulation=option_value(options, "-contact_formulation", "default") if contact else "-",
                mu=float(option_value(options, "-mu", "0")), steps=steps, status="ok")
+    row["friction_type"] = option_value(options, "-friction_type", "newton") if contact and row["mu"] > 0 else "-"
     print(f"  {suite['suite']} {variant['case']} on {ranks} rank(s): {' '.join(cmd[cmd.index('./mmcontact'):])}", flush=True)
     proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
     summary, dofs, nodes = SUMMARY.search(proc.stdout), DOFS.search(proc.stdout), CONTACT_NODES.search(proc.stdout)
@@ -111,7 +123,8 @@ def run(suite, variant, ranks, steps):
     rss = [int(kb) / 1024 for kb in RANK_RSS.findall(proc.stderr)]
     return dict(row, dofs=int(dofs.group(1)), contact_nodes=int(nodes.group(1)), setup_s=float(summary.group(1)),
                 s_per_step=float(summary.group(3)), peak_mib_max_rank=float(summary.group(4)),
-                peak_mib_total=round(sum(rss), 1) if len(rss) == ranks else "-", **history_stats(os.path.join(ROOT, out_dir, "history.csv")))
+                peak_mib_total=round(sum(rss), 1) if len(rss) == ranks else "-", rejections=proc.stdout.count("step rejected"),
+                **history_stats(os.path.join(ROOT, out_dir, "history.csv")))
 
 
 def add_ratios(rows):
@@ -126,10 +139,10 @@ def add_ratios(rows):
 
 
 def print_table(rows):
-    cols = [("suite", 5), ("ranks", 5), ("case", 8), ("formulation", 11), ("mu", 4), ("dofs", 8), ("contact_nodes", 13),
+    cols = [("suite", 6), ("ranks", 5), ("case", 20), ("formulation", 11), ("mu", 4), ("friction_type", 13), ("cfl", 5), ("dofs", 8), ("contact_nodes", 13),
             ("steps", 5), ("setup_s", 8), ("s_per_step", 10), ("contact_over_linear", 19), ("speedup_2_ranks", 15),
             ("peak_mib_max_rank", 17), ("peak_mib_total", 14), ("candidates", 10), ("max_active", 10), ("mean_vi_its", 11),
-            ("mean_friction_its_in_contact", 28), ("status", 6)]
+            ("mean_friction_its_in_contact", 28), ("max_friction_its", 16), ("rejections", 10), ("status", 6)]
     print(" ".join(f"{name:>{width}}" for name, width in cols))
     for r in rows:
         print(" ".join(f"{r[name]:>{width}}" for name, width in cols))
@@ -143,18 +156,20 @@ def rank_rss(cmd):
 
 
 def main(args):
-    selected = (args or os.environ.get("BENCH_CASES", "2d,3d").split(","))
+    selected = (args or os.environ.get("BENCH_CASES", "2d,3d,users").split(","))
     ranks = [int(n) for n in os.environ["BENCH_RANKS"].split(",")] if os.environ.get("BENCH_RANKS") else None
-    unknown = [s for s in selected if s.split(":")[0] not in [suite["suite"] for suite in SUITES]]
+    names = [suite["suite"] for suite in SUITES] + [suite.get("group") for suite in SUITES if suite.get("group")]
+    unknown = [s for s in selected if s.split(":")[0] not in names]
     if unknown:
-        sys.exit(f"bench.py: unknown suite(s) {unknown}; the suites are {[suite['suite'] for suite in SUITES]}")
+        sys.exit(f"bench.py: unknown suite(s) {unknown}; the suites are {names}")
     os.makedirs(os.path.join(ROOT, "bench"), exist_ok=True)
     rows = []
     for suite in SUITES:
         steps = int(os.environ.get("BENCH_STEPS", suite["steps"]))
         for n in suite["ranks"]:
             for variant in suite["variants"]:
-                if (suite["suite"] in selected or f"{suite['suite']}:{variant['case']}" in selected) and (ranks is None or n in ranks):
+                chosen = suite["suite"] in selected or suite.get("group") in selected or f"{suite['suite']}:{variant['case']}" in selected
+                if chosen and (ranks is None or n in ranks):
                     rows.append(run(suite, variant, n, steps))
     add_ratios(rows)
     for path in dict.fromkeys(suite["csv"] for suite in SUITES):

@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <petscviewerhdf5.h>
 #include "checkpoint.h"
+#include "friction.h"
 #include "output.h"
 #include "contact.h"
 
@@ -107,11 +108,13 @@ static PetscErrorCode PackContact(MMCtx *ctx, Vec packed)
   MMContact         *ct = &ctx->contact;
   const PetscScalar *sa = NULL, *ra = NULL;
   PetscInt           vStart, vEnd;
+  Vec                thresholds;
 
   PetscFunctionBeginUser;
   PetscCall(DMPlexGetDepthStratum(ctx->op.dm, 0, &vStart, &vEnd));
+  PetscCall(MMFrictionGetThresholds(ctx->friction, &thresholds));
   if (ct->enabled) {
-    if (ctx->friction.s) PetscCall(VecGetArrayRead(ctx->friction.s, &sa));
+    if (thresholds) PetscCall(VecGetArrayRead(thresholds, &sa));
     if (ct->rho) PetscCall(VecGetArrayRead(ct->rho, &ra));
     for (PetscInt k = 0; k < ct->n_local; ++k) {
       PetscScalar    rec[MM_CKPT_NODE] = {0};
@@ -133,7 +136,7 @@ static PetscErrorCode PackContact(MMCtx *ctx, Vec packed)
       for (PetscInt c = 0; c < MM_CKPT_NODE; ++c) PetscCall(VecSetValue(packed, base + c, rec[c], INSERT_VALUES));
     }
     if (ra) PetscCall(VecRestoreArrayRead(ct->rho, &ra));
-    if (sa) PetscCall(VecRestoreArrayRead(ctx->friction.s, &sa));
+    if (sa) PetscCall(VecRestoreArrayRead(thresholds, &sa));
   }
   PetscCall(VecAssemblyBegin(packed));
   PetscCall(VecAssemblyEnd(packed));
@@ -485,10 +488,12 @@ static PetscErrorCode RestoreContactState(MMCtx *ctx)
 {
   MMContact   *ct = &ctx->contact;
   PetscScalar *sa = NULL, *ra = NULL;
+  Vec          thresholds;
 
   PetscFunctionBeginUser;
   if (!ct->enabled) PetscFunctionReturn(0);
-  if (ctx->friction.s) PetscCall(VecGetArray(ctx->friction.s, &sa));
+  PetscCall(MMFrictionGetThresholds(ctx->friction, &thresholds));
+  if (thresholds) PetscCall(VecGetArray(thresholds, &sa));
   if (ct->rho) PetscCall(VecGetArray(ct->rho, &ra));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
     const PetscScalar *rec = &ctx->ckpt.node[MM_CKPT_NODE * k];
@@ -506,7 +511,7 @@ static PetscErrorCode RestoreContactState(MMCtx *ctx)
     }
   }
   if (ra) PetscCall(VecRestoreArray(ct->rho, &ra));
-  if (sa) PetscCall(VecRestoreArray(ctx->friction.s, &sa));
+  if (sa) PetscCall(VecRestoreArray(thresholds, &sa));
   PetscFunctionReturn(0);
 }
 

@@ -154,26 +154,38 @@ PetscErrorCode MMContactRecover(MMCtx *ctx, Vec b, Vec w, Vec react)
   PetscFunctionReturn(0);
 }
 
-/* Friction thresholds s (one per contact node) for the next solves: the condensed formulation turns
- * them into VI bounds (contact_slip.c), the active-set formulation into its Tresca conditions. */
+/* Friction thresholds s (one per contact node) for the next Tresca solves of a threshold loop: the
+ * active-set formulation's own Tresca conditions. The condensed formulation solves Coulomb's
+ * problem in contact space instead (MMContactSolveCoulomb). */
 PetscErrorCode MMContactSetFrictionThresholds(MMCtx *ctx, Vec s)
 {
   PetscFunctionBeginUser;
-  if (ctx->contact.formulation == MM_CONTACT_ACTIVE_SET) PetscCall(MMActiveSetSetThresholds(ctx, s));
-  else PetscCall(MMContactSetThresholds(ctx, s));
+  PetscCheck(ctx->contact.formulation == MM_CONTACT_ACTIVE_SET, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_PLIB, "Threshold solves are the active-set formulation's");
+  PetscCall(MMActiveSetSetThresholds(ctx, s));
   PetscFunctionReturn(0);
 }
 
-/* 3D: the condensed formulation's stick/slip states and slip directions, part of the friction loop's
- * fixed point (MMContactUpdateSlip). The active-set formulation solves the Tresca disk itself, with
- * its own states: nothing to update, no switch to report. */
-PetscErrorCode MMContactUpdateFrictionStates(MMCtx *ctx, Vec s, Vec sigma, PetscInt *switches, PetscReal *dchange)
+/* Whether the formulation builds the Delassus operator on a candidate set, so that a friction
+ * solver can work in contact space. */
+PetscErrorCode MMContactHasDelassus(MMCtx *ctx, PetscBool *has)
 {
   PetscFunctionBeginUser;
-  *switches = 0;
-  *dchange  = 0;
-  if (ctx->contact.formulation == MM_CONTACT_ACTIVE_SET) PetscFunctionReturn(0);
-  PetscCall(MMContactUpdateSlip(ctx, s, sigma, switches, dchange));
+  *has = (PetscBool)(ctx->contact.enabled && ctx->contact.formulation == MM_CONTACT_CONDENSED);
+  PetscFunctionReturn(0);
+}
+
+/* The step's Coulomb problem solved in contact space by fn: the contact dofs of w and react,
+ * exactly (MMContactRecover completes w). *ok is fn's verdict. */
+PetscErrorCode MMContactSolveCoulomb(MMCtx *ctx, Vec b, Vec w, Vec react, MMContactSetSolver fn, void *fctx, PetscBool *ok)
+{
+  PetscBool has;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMContactHasDelassus(ctx, &has));
+  PetscCheck(has, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_PLIB, "A contact-space solve needs the condensed formulation");
+  PetscCall(PetscLogEventBegin(ctx->log.contact_solve, 0, 0, 0, 0));
+  PetscCall(MMCondensedSolveCoulomb(ctx, b, w, react, fn, fctx, ok));
+  PetscCall(PetscLogEventEnd(ctx->log.contact_solve, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -288,7 +300,7 @@ PetscErrorCode MMContactDestroy(MMContact *ct)
   PetscCall(KSPDestroy(&ct->ksp_K));
   PetscCall(MMCandidatesDestroy(&ct->cand));
   PetscCall(VecDestroy(&ct->q));
-  PetscCall(VecDestroy(&ct->rot));
+  PetscCall(VecDestroy(&ct->mu_c));
   PetscCall(MMKtDestroy(&ct->kt));
   PetscCall(MMActiveSetDestroy(&ct->as));
   PetscCall(VecDestroy(&ct->rho));

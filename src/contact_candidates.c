@@ -281,12 +281,10 @@ static PetscErrorCode DestroySetProblem(MMCandidates *c)
 {
   PetscFunctionBeginUser;
   PetscCall(MatDestroy(&c->W));
-  PetscCall(MatDestroy(&c->Wr));
   PetscCall(VecDestroy(&c->x));
   PetscCall(VecDestroy(&c->lo));
   PetscCall(VecDestroy(&c->hi));
   PetscCall(VecDestroy(&c->q));
-  PetscCall(VecDestroy(&c->rot));
   PetscCall(VecDestroy(&c->f));
   PetscCall(VecScatterDestroy(&c->gather));
   PetscFunctionReturn(0);
@@ -355,11 +353,7 @@ static PetscErrorCode BuildSetOperator(MMCtx *ctx)
   PetscCall(ISCreateGeneral(PETSC_COMM_SELF, m, idx, PETSC_OWN_POINTER, &is));
   PetscCall(VecScatterCreate(ct->rho, is, c->x, NULL, &c->gather));
   PetscCall(ISDestroy(&is));
-  if (nr == 3) {
-    PetscCall(VecDuplicate(c->x, &c->rot));
-    PetscCall(MatDuplicate(c->W, MAT_COPY_VALUES, &c->Wr));
-  }
-  c->qp.A      = nr == 3 ? c->Wr : c->W;
+  c->qp.A      = c->W;
   c->qp.b      = c->q;
   c->qp.rtol_b = ct->tol;
   /* a new solver for the new size: SNESReset leaves the semismooth method's work vectors behind */

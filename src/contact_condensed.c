@@ -65,7 +65,6 @@ PetscErrorCode MMCondensedCreateSolver(MMCtx *ctx)
   PetscCall(VecDuplicate(ct->rho, &ct->q));
   PetscCall(VecDuplicate(ct->rho, &ct->Wdiag));
   PetscCall(VecSet(ct->Wdiag, 1.0));
-  if (ct->ncomp == 3) PetscCall(VecDuplicate(ct->rho, &ct->rot));
   PetscCall(MMCandidatesSetUp(ctx));
   PetscFunctionReturn(0);
 }
@@ -141,8 +140,7 @@ static PetscErrorCode GatherToSet(MMCandidates *c, Vec from, Vec to)
   PetscFunctionReturn(0);
 }
 
-/* The set's VI: W_SS x - q complementary to the bounds of x; in 3D in each node's (n, d, d_perp)
- * basis, rotated blockwise (contact_slip.c). rho: x on the set, zero elsewhere. */
+/* The set's VI: W_SS x - q complementary to the box bounds of x (frictionless: rho_t in [0, 0]). */
 static PetscErrorCode SolveSetVI(MMCtx *ctx)
 {
   MMContact    *ct = &ctx->contact;
@@ -153,19 +151,11 @@ static PetscErrorCode SolveSetVI(MMCtx *ctx)
   PetscCall(GatherToSet(c, ct->rho, c->x));
   PetscCall(GatherToSet(c, ct->rho_lo, c->lo));
   PetscCall(GatherToSet(c, ct->rho_hi, c->hi));
-  if (ct->ncomp == 3) {
-    PetscCall(GatherToSet(c, ct->rot, c->rot));
-    PetscCall(MMSlipRotateSet(c));
-  }
   /* a warm start must lie in the box of the current thresholds */
   PetscCall(VecPointwiseMax(c->x, c->x, c->lo));
   PetscCall(VecPointwiseMin(c->x, c->x, c->hi));
   PetscCall(MMQPSolve(c->snes, &c->qp, c->x, &ct->vi_its));
   PetscCall(SnapActiveToBounds(c));
-  if (ct->ncomp == 3) PetscCall(MMSlipRotateBack(c, c->x));
-  PetscCall(VecZeroEntries(ct->rho));
-  PetscCall(VecScatterBegin(c->gather, c->x, ct->rho, INSERT_VALUES, SCATTER_REVERSE));
-  PetscCall(VecScatterEnd(c->gather, c->x, ct->rho, INSERT_VALUES, SCATTER_REVERSE));
   PetscFunctionReturn(0);
 }
 
@@ -185,41 +175,164 @@ static PetscErrorCode ContactDofValues(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
-/* The step's contact reactions rho: z = K~^{-1} b (once per step), then the VI on the candidate
- * set, chosen when z is new. No full-size solve: the friction loop calls this once per iteration. */
-PetscErrorCode MMCondensedSolveReactions(MMCtx *ctx, Vec b)
+/* z = K~^{-1} b, once per step: the friction solvers solve one step's problem many times. When z
+ * is new, so are q and the candidate set (they depend on z, u^n and v^n only). */
+static PetscErrorCode PrepareStep(MMCtx *ctx, Vec b)
 {
-  MMContact *ct    = &ctx->contact;
-  PetscBool  fresh = PETSC_FALSE;
+  MMContact       *ct = &ctx->contact;
+  PetscObjectState state;
 
   PetscFunctionBeginUser;
-  {
-    PetscObjectState state;
-    /* the friction loop solves one step's problem many times: z = K~^{-1} b is the same each time */
-    PetscCall(PetscObjectStateGet((PetscObject)b, &state));
-    if (b != ct->z_b || state != ct->z_b_state || ct->z_dt != ct->Kt_dt) {
-      PetscCall(KSPSolve(ct->ksp_K, b, ct->z));
-      ct->z_b       = b;
-      ct->z_b_state = state;
-      ct->z_dt      = ct->Kt_dt;
-      fresh         = PETSC_TRUE;
-    }
-  }
-  ct->vi_its = 0;
+  PetscCall(PetscObjectStateGet((PetscObject)b, &state));
+  if (b == ct->z_b && state == ct->z_b_state && ct->z_dt == ct->Kt_dt) PetscFunctionReturn(0);
+  PetscCall(KSPSolve(ct->ksp_K, b, ct->z));
+  ct->z_b       = b;
+  ct->z_b_state = state;
+  ct->z_dt      = ct->Kt_dt;
   if (!ct->enabled) PetscFunctionReturn(0);
-  /* q and the set depend on z, u^n and v^n only: once per step, not per friction iteration */
-  if (fresh) {
-    PetscCall(CondensedRHS(ctx));
-    PetscCall(MMCandidatesSelect(ctx));
-  }
-  /* the set grows, and its VI is solved again, until no node outside it penetrates: then its
-   * reactions are the full-set ones (docs/method.md section 3, "Candidate set") */
+  PetscCall(CondensedRHS(ctx));
+  PetscCall(MMCandidatesSelect(ctx));
+  PetscFunctionReturn(0);
+}
+
+/* The set grows, and its problem is solved again, until no node outside it penetrates: then its
+ * reactions are the full-set ones (docs/method.md section 3, "Candidate set"). solve() leaves the
+ * set's reactions in c->x; *ok false stops the loop (a solver that did not converge). */
+static PetscErrorCode SolveGrowingSet(MMCtx *ctx, PetscErrorCode (*solve)(MMCtx *, void *, PetscBool *), void *sctx, PetscBool *ok)
+{
+  MMContact *ct = &ctx->contact;
+
+  PetscFunctionBeginUser;
+  *ok = PETSC_TRUE;
   for (PetscBool grown = PETSC_TRUE; grown;) {
-    if (ct->cand.m) PetscCall(SolveSetVI(ctx));
-    else PetscCall(VecZeroEntries(ct->rho));
+    if (ct->cand.m) {
+      PetscCall(solve(ctx, sctx, ok));
+      PetscCall(VecZeroEntries(ct->rho));
+      PetscCall(VecScatterBegin(ct->cand.gather, ct->cand.x, ct->rho, INSERT_VALUES, SCATTER_REVERSE));
+      PetscCall(VecScatterEnd(ct->cand.gather, ct->cand.x, ct->rho, INSERT_VALUES, SCATTER_REVERSE));
+    } else PetscCall(VecZeroEntries(ct->rho));
+    if (!*ok) PetscFunctionReturn(0);
     PetscCall(ContactDofValues(ctx));
     PetscCall(MMCandidatesGrow(ctx, ct->cand.wc, &grown));
   }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SolveSetBox(MMCtx *ctx, void *unused, PetscBool *ok)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SolveSetVI(ctx));
+  *ok = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* The step's contact reactions rho with the box bounds of rho_lo/rho_hi (frictionless, or 2D
+ * Tresca thresholds): z = K~^{-1} b once per step, then the VI on the candidate set. No full-size
+ * solve. */
+PetscErrorCode MMCondensedSolveReactions(MMCtx *ctx, Vec b)
+{
+  MMContact *ct = &ctx->contact;
+  PetscBool  ok;
+
+  PetscFunctionBeginUser;
+  PetscCall(PrepareStep(ctx, b));
+  ct->vi_its = 0;
+  if (!ct->enabled) PetscFunctionReturn(0);
+  PetscCall(SolveGrowingSet(ctx, SolveSetBox, NULL, &ok));
+  PetscFunctionReturn(0);
+}
+
+typedef struct {
+  MMContactSetSolver fn;
+  void              *fctx;
+} CoulombSetCtx;
+
+/* The set's Coulomb problem handed to a friction solver: W_SS, q_S, mu per set node, and the warm
+ * start (the last reactions) in c->x, all in the nodes' frames. */
+static PetscErrorCode SolveSetCoulomb(MMCtx *ctx, void *sctx, PetscBool *ok)
+{
+  MMContact          *ct = &ctx->contact;
+  MMCandidates       *c  = &ct->cand;
+  CoulombSetCtx      *cc = (CoulombSetCtx *)sctx;
+  MMContactSetProblem p;
+  const PetscScalar  *w, *q, *mua;
+  PetscScalar        *x;
+  PetscReal          *mu;
+
+  PetscFunctionBeginUser;
+  if (!ct->mu_c) {
+    PetscCall(VecDuplicate(ct->rho, &ct->mu_c));
+    for (PetscInt d = 0; d < ct->ncomp; ++d) PetscCall(VecStrideScatter(ct->mu, d, ct->mu_c, INSERT_VALUES));
+  }
+  PetscCall(GatherToSet(c, ct->q, c->q));
+  PetscCall(GatherToSet(c, ct->rho, c->x));
+  PetscCall(GatherToSet(c, ct->mu_c, c->lo));
+  PetscCall(PetscMalloc1(c->n_set, &mu));
+  PetscCall(VecGetArrayRead(c->lo, &mua));
+  for (PetscInt i = 0; i < c->n_set; ++i) mu[i] = PetscRealPart(mua[i * ct->ncomp]);
+  PetscCall(VecRestoreArrayRead(c->lo, &mua));
+  PetscCall(MatDenseGetArrayRead(c->W, &w));
+  PetscCall(VecGetArrayRead(c->q, &q));
+  PetscCall(VecGetArray(c->x, &x));
+  p.n  = c->n_set;
+  p.nc = ct->ncomp;
+  p.W  = w;
+  p.q  = q;
+  p.mu = mu;
+  PetscCall(cc->fn(cc->fctx, &p, x, ok));
+  PetscCall(VecRestoreArray(c->x, &x));
+  PetscCall(VecRestoreArrayRead(c->q, &q));
+  PetscCall(MatDenseRestoreArrayRead(c->W, &w));
+  PetscCall(PetscFree(mu));
+  PetscFunctionReturn(0);
+}
+
+/* The thresholds mu r_n of the solution as the reactions' bounds, and each node's state (slipping:
+ * on the rim of its disk), so that the diagnostics read a Coulomb solution as they read a Tresca
+ * one. */
+static PetscErrorCode StoreCoulombBounds(MMCtx *ctx)
+{
+  MMContact         *ct = &ctx->contact;
+  const PetscInt     nr = ct->ncomp;
+  const PetscScalar *ra, *mua;
+  PetscScalar       *lo, *hi;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(ct->rho, &ra));
+  PetscCall(VecGetArrayRead(ct->mu, &mua));
+  PetscCall(VecGetArray(ct->rho_lo, &lo));
+  PetscCall(VecGetArray(ct->rho_hi, &hi));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscReal s = PetscRealPart(mua[k]) * PetscMax(PetscRealPart(ra[nr * k]), 0.0);
+    PetscReal       rt = 0;
+    for (PetscInt d = 1; d < nr; ++d) {
+      lo[nr * k + d] = -s;
+      hi[nr * k + d] = s;
+      rt += PetscSqr(PetscRealPart(ra[nr * k + d]));
+    }
+    ct->slipping[k] = (PetscBool)(s > 0 && PetscSqrtReal(rt) >= s * (1 - 1e-6));
+  }
+  PetscCall(VecRestoreArray(ct->rho_hi, &hi));
+  PetscCall(VecRestoreArray(ct->rho_lo, &lo));
+  PetscCall(VecRestoreArrayRead(ct->mu, &mua));
+  PetscCall(VecRestoreArrayRead(ct->rho, &ra));
+  PetscFunctionReturn(0);
+}
+
+/* The step's Coulomb problem in contact space, solved on the candidate set by fn (a friction
+ * solver): rho, and the contact dofs of w and react, exactly; MMContactRecover completes w. */
+PetscErrorCode MMCondensedSolveCoulomb(MMCtx *ctx, Vec b, Vec w, Vec react, MMContactSetSolver fn, void *fctx, PetscBool *ok)
+{
+  MMContact    *ct = &ctx->contact;
+  CoulombSetCtx cc = {fn, fctx};
+
+  PetscFunctionBeginUser;
+  PetscCall(PrepareStep(ctx, b));
+  ct->vi_its = 0;
+  PetscCall(SolveGrowingSet(ctx, SolveSetCoulomb, &cc, ok));
+  if (!*ok) PetscFunctionReturn(0);
+  PetscCall(StoreCoulombBounds(ctx));
+  PetscCall(MMCondensedContactDofs(ctx, w, react));
   PetscFunctionReturn(0);
 }
 

@@ -3,6 +3,7 @@
 #include "contact.h"
 #include "fem.h"
 #include "obstacle.h"
+#include "friction.h"
 
 static PetscErrorCode KineticEnergy(MMCtx *ctx, Vec v, PetscReal *ek)
 {
@@ -191,8 +192,7 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
              h->step, (double)h->time, (double)h->balance_residual, (double)ctx->opt.audit_tol, AuditAdvice(ctx, h->balance_residual));
   h->cfl              = ctx->contact.enabled ? ctx->op.c_p * s->dt / ctx->contact.h_c : 0;
   PetscCall(MMContactDiagnostics(ctx, s->u, s->react, s->v, h));
-  h->friction_its = ctx->friction.its;
-  h->contraction  = ctx->friction.contraction_max;
+  PetscCall(MMFrictionGetConvergence(ctx->friction, &h->friction_its, NULL, NULL, &h->contraction));
   h->max_penetration_run = PetscMax(h->max_penetration_run, h->max_penetration);
   PetscCall(MMRigidBodyDiagnostics(ctx, h));
   PetscCall(PetscLogEventEnd(ctx->log.energy, 0, 0, 0, 0));

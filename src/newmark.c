@@ -82,6 +82,7 @@ typedef enum {
 static PetscErrorCode RejectStep(TS ts, MMCtx *ctx, PetscInt rejections, MMRejectReason why, PetscReal w_c, PetscReal scale)
 {
   const PetscReal dt = ts->time_step, cfl = ctx->op.c_p * dt / ctx->contact.h_c;
+  PetscReal       contraction;
   const PetscReal new_dt = dt * ts->adapt->scale_solve_failed;
   MPI_Comm        comm   = PetscObjectComm((PetscObject)ts);
   PetscReal       hmin, hmax;
@@ -89,15 +90,16 @@ static PetscErrorCode RejectStep(TS ts, MMCtx *ctx, PetscInt rejections, MMRejec
 
   PetscFunctionBeginUser;
   PetscCall(TSAdaptGetStepLimits(ts->adapt, &hmin, &hmax));
+  PetscCall(MMFrictionGetConvergence(ctx->friction, NULL, NULL, &contraction, NULL));
   ts->reject++;
   ts->num_snes_failures++;
   PetscCall(VecCopy(ctx->state.react_old, ctx->state.react));
   can_retry = (PetscBool)(new_dt >= hmin && (ts->max_reject < 0 || rejections <= ts->max_reject));
   if (why == MM_REJECT_FRICTION) {
     PetscCheck(can_retry, comm, PETSC_ERR_NOT_CONVERGED,
-               "The friction loop does not converge at t = %g: last dt = %g, observed contraction factor %.3f, c_p dt / h_c' = %.3f. The next dt %g would be below -ts_adapt_dt_min %g (or past -ts_max_reject %" PetscInt_FMT "). Theorem 4.2 needs c_p dt / h_c' small enough for mu = %g: lower -ts_dt or -mu. The output up to t = %g is intact",
-               (double)ts->ptime, (double)dt, (double)ctx->friction.contraction, (double)cfl, (double)new_dt, (double)hmin, ts->max_reject, (double)ctx->opt.mu, (double)ts->ptime);
-    if (!ctx->opt.quiet) PetscCall(PetscPrintf(comm, "  step rejected at t = %g: the friction loop did not converge with dt = %g (contraction factor %.3f, c_p dt / h_c' = %.3f); retrying with dt = %g\n", (double)ts->ptime, (double)dt, (double)ctx->friction.contraction, (double)cfl, (double)new_dt));
+               "The friction loop does not converge at t = %g: last dt = %g, observed contraction factor %.3f, c_p dt / h_c' = %.3f. The next dt %g would be below -ts_adapt_dt_min %g (or past -ts_max_reject %" PetscInt_FMT "). The paper's fixed point (Theorem 4.2) needs c_p dt / h_c' small enough for mu = %g: use -friction_type newton, or lower -ts_dt or -mu, or raise -friction_snes_max_it. The output up to t = %g is intact",
+               (double)ts->ptime, (double)dt, (double)contraction, (double)cfl, (double)new_dt, (double)hmin, ts->max_reject, (double)ctx->opt.mu, (double)ts->ptime);
+    if (!ctx->opt.quiet) PetscCall(PetscPrintf(comm, "  step rejected at t = %g: the friction loop did not converge with dt = %g (contraction factor %.3f, c_p dt / h_c' = %.3f); retrying with dt = %g\n", (double)ts->ptime, (double)dt, (double)contraction, (double)cfl, (double)new_dt));
   } else {
     PetscCheck(can_retry, comm, PETSC_ERR_NOT_CONVERGED,
                "A contact release at t = %g creates energy that dt does not resolve: the step's contact work W_c = %g is %.3g of the energy scale, above -contact_work_tol %g, with dt = %g (c_p dt / h_c' = %.3g). The next dt %g would be below -ts_adapt_dt_min %g (or past -ts_max_reject %" PetscInt_FMT "). Use a -ts_dt near h_c' / c_p = %g, so that the contact pressure is resolved in time. The output up to t = %g is intact",

@@ -1,0 +1,26 @@
+/* -friction_type newton, the default: the step's Coulomb problem solved at once by semismooth Newton
+ * on Alart-Curnier's function in contact space (src/friction/interface/coulombnewton.c,
+ * docs/method.md section 6). Its iterations do not depend on a contraction of the threshold map, so
+ * it converges at the time steps users choose (c_p dt / h_c' of 4 and more). It needs the Delassus
+ * operator: the condensed formulation. */
+#include "../../frictionimpl.h"
+
+static PetscErrorCode SolveSet_Newton(MMFriction fr, const MMCoulombProblem *p, PetscScalar r[], MMCoulombResult *res)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMCoulombNewton(p, &fr->work, fr->rtol, fr->maxit, r, res));
+  res->inner_its   = res->its;
+  res->contraction = 0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMFrictionCreate_Newton(MMFriction fr)
+{
+  PetscFunctionBeginUser;
+  fr->ops.solveset        = SolveSet_Newton;
+  fr->ops.solvethresholds = NULL;
+  /* |Phi|_inf relative to the force scale: quadratic convergence makes a tight default cheap */
+  fr->ops.default_rtol = 1e-12;
+  fr->ops.rtol_meaning = "Alart-Curnier residual over the force scale";
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,216 @@
+/* The friction solver's interface: the registry of types, set-up, and the per-step solve as a shell
+ * SNES (prefix friction_), so that -friction_snes_rtol, _max_it, _monitor and _converged_reason apply
+ * whatever the type.
+ *
+ * A type fills an ops table (frictionimpl.h): a contact-space solve on the condensed formulation's
+ * candidate set (solveset), and/or a threshold loop over the formulation's own Tresca solves
+ * (solvethresholds, for formulations without a Delassus operator). A NULL entry is a capability the
+ * type lacks. Adding a type: one folder in src/friction/impls/ and one MMFrictionRegister line. */
+#include "../frictionimpl.h"
+
+PetscFunctionList MMFrictionList = NULL;
+static PetscBool  registered     = PETSC_FALSE;
+
+PetscErrorCode MMFrictionRegister(const char name[], PetscErrorCode (*create)(MMFriction))
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFunctionListAdd(&MMFrictionList, name, create));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMFrictionRegisterAll(void)
+{
+  PetscFunctionBeginUser;
+  if (registered) PetscFunctionReturn(0);
+  registered = PETSC_TRUE;
+  PetscCall(MMFrictionRegister("newton", MMFrictionCreate_Newton));
+  PetscCall(MMFrictionRegister("fixedpoint", MMFrictionCreate_FixedPoint));
+  PetscFunctionReturn(0);
+}
+
+/* sigma = 2/dt (w - u^n) - v^n: the velocity of w; on the tangential contact dofs, the slip velocity. */
+static PetscErrorCode SlipVelocity(MMCtx *ctx, Vec w, Vec sigma)
+{
+  MMState  *s  = &ctx->state;
+  PetscReal dt = ctx->contact.Kt_dt;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecWAXPY(sigma, -1.0, s->u_old, w));
+  PetscCall(VecAXPBY(sigma, -1.0, 2.0 / dt, s->v_old));
+  PetscFunctionReturn(0);
+}
+
+/* The discrete Coulomb residual of the iterate (docs/method.md section 6): the audit every type's
+ * answer must pass, whatever its own stopping test. */
+static PetscErrorCode CoulombResidual(MMFriction fr, PetscReal *coulomb, PetscInt *nslip, PetscInt *nstick)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SlipVelocity(fr->ctx, fr->w, fr->sigma));
+  PetscCall(MMContactCoulomb(fr->ctx, fr->w, fr->react, fr->sigma, coulomb, nslip, nstick));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SolveSetAdaptor(void *ptr, const MMContactSetProblem *sp, PetscScalar x[], PetscBool *ok)
+{
+  MMFriction       fr = (MMFriction)ptr;
+  MMCoulombProblem p  = {sp->n, sp->nc, sp->W, sp->q, sp->mu, NULL};
+  MMCoulombResult  res;
+
+  PetscFunctionBeginUser;
+  PetscCall(fr->ops.solveset(fr, &p, x, &res));
+  /* a set that grew is solved again: the iterations add up */
+  fr->its += res.its;
+  fr->inner_its += res.inner_its;
+  fr->contraction     = res.contraction;
+  fr->contraction_max = PetscMax(fr->contraction_max, res.contraction);
+  *ok                 = res.converged;
+  PetscFunctionReturn(0);
+}
+
+/* The shell SNES's solve: the type's contact-space solve, or its threshold loop; then the Coulomb
+ * audit. */
+static PetscErrorCode FrictionShellSolve(SNES snes, Vec unused)
+{
+  MMFriction fr;
+  PetscBool  has, ok;
+  PetscInt   nslip, nstick;
+
+  PetscFunctionBeginUser;
+  PetscCall(SNESShellGetContext(snes, &fr));
+  fr->its = fr->inner_its = 0;
+  fr->contraction = fr->contraction_max = 0;
+  PetscCall(MMContactHasDelassus(fr->ctx, &has));
+  if (has && fr->ops.solveset) {
+    PetscCall(MMContactSolveCoulomb(fr->ctx, fr->b, fr->w, fr->react, SolveSetAdaptor, fr, &ok));
+    PetscCall(SNESSetIterationNumber(snes, fr->its));
+    if (!ok) {
+      PetscCall(SNESSetConvergedReason(snes, SNES_DIVERGED_MAX_IT));
+      PetscFunctionReturn(0);
+    }
+    PetscCall(CoulombResidual(fr, &fr->coulomb, &nslip, &nstick));
+    if (fr->monitor) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    friction (%s): %" PetscInt_FMT " iterations (%" PetscInt_FMT " inner), Coulomb residual %.3e, slipping %" PetscInt_FMT ", sticking %" PetscInt_FMT "\n", fr->type, fr->its, fr->inner_its, (double)fr->coulomb, nslip, nstick));
+    PetscCall(SNESMonitor(snes, fr->its, fr->coulomb));
+    PetscCall(SNESSetConvergedReason(snes, fr->coulomb <= fr->coulomb_tol ? SNES_CONVERGED_FNORM_RELATIVE : SNES_DIVERGED_INNER));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(fr->ops.solvethresholds(fr, fr->b, fr->w, fr->react));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMFrictionSetUp(MMCtx *ctx)
+{
+  MMFriction fr;
+  PetscErrorCode (*create)(MMFriction) = NULL;
+  PetscBool   has;
+  const char *type;
+  MPI_Comm    comm = PetscObjectComm((PetscObject)ctx->op.dm);
+
+  PetscFunctionBeginUser;
+  PetscCall(MMFrictionRegisterAll());
+  PetscCall(PetscNew(&fr));
+  ctx->friction   = fr;
+  fr->ctx         = ctx;
+  fr->coulomb_tol = ctx->opt.friction_coulomb_tol;
+  fr->s_floor     = ctx->opt.mu_max * 1e-3 * ctx->opt.E * PetscPowReal(ctx->contact.h_c, ctx->op.dim - 1);
+  fr->monitor     = ctx->opt.friction_monitor;
+  PetscCall(MMContactHasDelassus(ctx, &has));
+  /* the default: Newton where the formulation gives the Delassus operator, else the fixed point */
+  type = ctx->opt.friction_type_set ? ctx->opt.friction_type : (has || !ctx->contact.enabled ? "newton" : "fixedpoint");
+  PetscCall(PetscFunctionListFind(MMFrictionList, type, &create));
+  PetscCheck(create, comm, PETSC_ERR_USER_INPUT, "-friction_type %s is not a friction solver: use newton (semismooth Newton on the Coulomb problem, the default) or fixedpoint (the paper's fixed point on the thresholds)", type);
+  PetscCall(PetscStrncpy(fr->type, type, sizeof(fr->type)));
+  PetscCall((*create)(fr));
+  if (ctx->opt.mu_max == 0 || !ctx->contact.enabled) PetscFunctionReturn(0);
+  PetscCheck(has ? fr->ops.solveset != NULL : fr->ops.solvethresholds != NULL, comm, PETSC_ERR_USER_INPUT,
+             "-friction_type %s needs the Delassus operator of -contact_formulation condensed; with -contact_formulation %s use -friction_type fixedpoint", type, MMContactFormulations[ctx->contact.formulation]);
+  PetscCall(SNESCreate(comm, &fr->snes));
+  PetscCall(SNESSetOptionsPrefix(fr->snes, "friction_"));
+  PetscCall(SNESSetType(fr->snes, SNESSHELL));
+  PetscCall(SNESShellSetContext(fr->snes, fr));
+  PetscCall(SNESShellSetSolve(fr->snes, FrictionShellSolve));
+  PetscCall(SNESSetTolerances(fr->snes, PETSC_DEFAULT, fr->ops.default_rtol, PETSC_DEFAULT, 100, PETSC_DEFAULT));
+  PetscCall(SNESSetFromOptions(fr->snes));
+  PetscCall(SNESGetTolerances(fr->snes, NULL, &fr->rtol, NULL, &fr->maxit, NULL));
+  PetscCall(VecDuplicate(ctx->contact.gap, &fr->s));
+  PetscCall(VecDuplicate(ctx->contact.gap, &fr->s_new));
+  PetscCall(VecZeroEntries(fr->s_new));
+  PetscCall(VecDuplicate(ctx->state.u, &fr->sigma));
+  /* the first thresholds of a threshold loop: mu times the initial normal reactions */
+  {
+    Vec rn;
+    PetscCall(VecGetSubVector(ctx->state.react, ctx->contact.is_normal, &rn));
+    PetscCall(VecAXPBY(fr->s, -1.0, 0.0, rn));
+    PetscCall(VecPointwiseMult(fr->s, fr->s, ctx->contact.mu));
+    PetscCall(VecRestoreSubVector(ctx->state.react, ctx->contact.is_normal, &rn));
+    PetscCall(VecPointwiseMax(fr->s, fr->s, fr->s_new)); /* s_new is zero here: clip tension */
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The step problem with friction; *ok is false when the solver did not converge (the caller retries
+ * with a smaller dt). Without friction it is the contact solve itself. */
+PetscErrorCode MMFrictionSolve(MMCtx *ctx, Vec b, Vec w, Vec react, PetscBool *ok)
+{
+  MMFriction          fr = ctx->friction;
+  SNESConvergedReason reason;
+
+  PetscFunctionBeginUser;
+  *ok     = PETSC_TRUE;
+  fr->its = fr->inner_its = 0;
+  if (!fr->snes) {
+    PetscCall(MMContactSolve(ctx, b, w, react));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscLogEventBegin(ctx->log.friction, 0, 0, 0, 0));
+  fr->b     = b;
+  fr->w     = w;
+  fr->react = react;
+  PetscCall(SNESSolve(fr->snes, NULL, fr->s));
+  PetscCall(SNESGetConvergedReason(fr->snes, &reason));
+  *ok = (PetscBool)(reason > 0);
+  /* the solve updated only the contact dofs: one full-size solve completes the step (a rejected
+   * step is solved again, so it needs none) */
+  if (*ok) PetscCall(MMContactRecover(ctx, b, w, react));
+  PetscCall(PetscLogEventEnd(ctx->log.friction, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMFrictionGetType(MMFriction fr, const char **type)
+{
+  PetscFunctionBeginUser;
+  *type = fr->type;
+  PetscFunctionReturn(0);
+}
+
+/* The last step's iterations (the type's own loop, and Newton steps inside it), the contraction
+ * rate of the last threshold loop and its largest over the step (0 for Newton). */
+PetscErrorCode MMFrictionGetConvergence(MMFriction fr, PetscInt *its, PetscInt *inner_its, PetscReal *contraction, PetscReal *contraction_max)
+{
+  PetscFunctionBeginUser;
+  if (its) *its = fr ? fr->its : 0;
+  if (inner_its) *inner_its = fr ? fr->inner_its : 0;
+  if (contraction) *contraction = fr ? fr->contraction : 0;
+  if (contraction_max) *contraction_max = fr ? fr->contraction_max : 0;
+  PetscFunctionReturn(0);
+}
+
+/* The thresholds mu r_n of the threshold loop (checkpointed), or NULL without friction. */
+PetscErrorCode MMFrictionGetThresholds(MMFriction fr, Vec *s)
+{
+  PetscFunctionBeginUser;
+  *s = fr ? fr->s : NULL;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMFrictionDestroy(MMFriction *fr)
+{
+  PetscFunctionBeginUser;
+  if (!*fr) PetscFunctionReturn(0);
+  PetscCall(SNESDestroy(&(*fr)->snes));
+  PetscCall(VecDestroy(&(*fr)->s));
+  PetscCall(VecDestroy(&(*fr)->s_new));
+  PetscCall(VecDestroy(&(*fr)->sigma));
+  PetscCall(MMCoulombWorkDestroy(&(*fr)->work));
+  PetscCall(PetscFree(*fr));
+  PetscFunctionReturn(0);
+}
