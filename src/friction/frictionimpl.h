@@ -68,3 +68,4 @@ struct _p_MMFriction {
 PETSC_INTERN PetscErrorCode MMFrictionCreate_Newton(MMFriction);
 PETSC_INTERN PetscErrorCode MMFrictionCreate_FixedPoint(MMFriction);
 PETSC_INTERN PetscErrorCode MMFrictionThresholdLoop(MMFriction, Vec, Vec, Vec);
+PETSC_INTERN PetscErrorCode MMFrictionCoulombResidual(MMFriction, PetscReal *, PetscInt *, PetscInt *);

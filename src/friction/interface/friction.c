@@ -42,7 +42,7 @@ static PetscErrorCode SlipVelocity(MMCtx *ctx, Vec w, Vec sigma)
 
 /* The discrete Coulomb residual of the iterate (docs/method.md section 6): the audit every type's
  * answer must pass, whatever its own stopping test. */
-static PetscErrorCode CoulombResidual(MMFriction fr, PetscReal *coulomb, PetscInt *nslip, PetscInt *nstick)
+PetscErrorCode MMFrictionCoulombResidual(MMFriction fr, PetscReal *coulomb, PetscInt *nslip, PetscInt *nstick)
 {
   PetscFunctionBeginUser;
   PetscCall(SlipVelocity(fr->ctx, fr->w, fr->sigma));
@@ -87,7 +87,7 @@ static PetscErrorCode FrictionShellSolve(SNES snes, Vec unused)
       PetscCall(SNESSetConvergedReason(snes, SNES_DIVERGED_MAX_IT));
       PetscFunctionReturn(0);
     }
-    PetscCall(CoulombResidual(fr, &fr->coulomb, &nslip, &nstick));
+    PetscCall(MMFrictionCoulombResidual(fr, &fr->coulomb, &nslip, &nstick));
     if (fr->monitor) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    friction (%s): %" PetscInt_FMT " iterations (%" PetscInt_FMT " inner), Coulomb residual %.3e, slipping %" PetscInt_FMT ", sticking %" PetscInt_FMT "\n", fr->type, fr->its, fr->inner_its, (double)fr->coulomb, nslip, nstick));
     PetscCall(SNESMonitor(snes, fr->its, fr->coulomb));
     PetscCall(SNESSetConvergedReason(snes, fr->coulomb <= fr->coulomb_tol ? SNES_CONVERGED_FNORM_RELATIVE : SNES_DIVERGED_INNER));

@@ -75,7 +75,6 @@ PetscErrorCode MMFrictionThresholdLoop(MMFriction fr, Vec b, Vec w, Vec react)
   for (PetscInt k = 0; k < fr->maxit; ++k) {
     PetscReal ds, snorm, coulomb;
     PetscInt  nslip, nstick;
-    Vec       sigma = fr->sigma;
 
     PetscCall(MMContactSetFrictionThresholds(ctx, fr->s));
     PetscCall(MMContactSolveContactDofs(ctx, b, w, react));
@@ -91,10 +90,7 @@ PetscErrorCode MMFrictionThresholdLoop(MMFriction fr, Vec b, Vec w, Vec react)
     fr->contraction = (k && ds_prev > 1e3 * fr->rtol) ? ds / ds_prev : 0;
     if (k == 0) ds_first = ds;
     if (k > 0 && ds > 1e3 * fr->rtol && ds_first > 0) fr->contraction_max = PetscPowReal(ds / ds_first, 1.0 / k);
-    /* sigma = 2/dt (w - u^n) - v^n: on the tangential contact dofs, the slip velocity */
-    PetscCall(VecWAXPY(sigma, -1.0, ctx->state.u_old, w));
-    PetscCall(VecAXPBY(sigma, -1.0, 2.0 / ctx->contact.Kt_dt, ctx->state.v_old));
-    PetscCall(MMContactCoulomb(ctx, w, react, sigma, &coulomb, &nslip, &nstick));
+    PetscCall(MMFrictionCoulombResidual(fr, &coulomb, &nslip, &nstick));
     fr->its     = k + 1;
     fr->coulomb = coulomb;
     PetscCall(SNESSetIterationNumber(fr->snes, k + 1));
