@@ -351,7 +351,7 @@ typedef struct {
   PetscInt      nv, nc;                /* global vertex and cell counts, for the XDMF index */
   char         *index;                 /* rank 0: the index's grids, written out at every snapshot */
   size_t        index_len, index_cap;
-  PetscLogEvent ev_flush, ev_index;    /* HDF5 flush and XDMF rewrite, in -log_view */
+  PetscLogEvent ev_flush, ev_index, ev_copy; /* HDF5 flush, XDMF rewrite, the checkpoint's copy of solution.h5 */
   DM            dm_out;                /* the displacement field without constraints: output of whole fields */
   Vec           disp_cart, vel_cart;   /* Cartesian output fields on dm_out */
   DM            dm_scalar;             /* one scalar per vertex: pressure, gap */

@@ -8,3 +8,4 @@ PETSC_EXTERN PetscErrorCode MMOutputLock(const char[]);
 PETSC_EXTERN PetscErrorCode MMOutputUnlock(void);
 PETSC_EXTERN PetscErrorCode MMOutputCheckHDF5Path(MPI_Comm, const char[], const char[], const char[]);
 PETSC_EXTERN PetscErrorCode MMOutputSyncIndex(MMCtx *);
+PETSC_EXTERN PetscErrorCode MMOutputCopySnapshots(MMCtx *);

@@ -3,6 +3,8 @@
 #include <stdio.h>
 #include "mmcontact.h"
 
+#define MM_SNAPSHOT_COPY "checkpoint_snapshots.h5" /* solution.h5 as of the last checkpoint */
+
 /* A file system call that failed on rank 0: what was tried on which file, and errno. */
 typedef struct {
   int  err;

@@ -276,6 +276,7 @@ PetscErrorCode MMCheckpointWrite(MMCtx *ctx, TS ts)
   PetscCall(PetscSNPrintf(name, sizeof(name), "%s/%s", ctx->opt.output_dir, MM_CKPT_FILE));
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s%s", name, MM_CKPT_TMP));
   PetscCall(RunRecord(ctx, ts, run));
+  PetscCall(MMOutputCopySnapshots(ctx)); /* before the checkpoint that counts on it */
   PetscCall(PetscViewerHDF5Open(comm, tmp, FILE_MODE_WRITE, &viewer));
   PetscCall(RootVector(comm, "run", MM_RUN_NUM, run, &rv));
   PetscCall(VecView(rv, viewer));

@@ -2,12 +2,14 @@
  *
  * Whatever stops the run, even SIGKILL, what is on disk stays readable and consistent:
  * - history.csv gets each row in one write(), so the rows on disk are whole rows;
- * - solution.h5 stays open for the whole run and is flushed after each snapshot;
+ * - solution.h5 stays open for the whole run and is flushed after each snapshot; each checkpoint
+ *   keeps a copy of it (checkpoint_snapshots.h5), since a kill while HDF5 writes can spoil the file;
  * - solution.xmf lists only snapshots flushed (at least half of them, all at checkpoints and at the
  *   end). It is written beside the old one and renamed over it, so a reader, or a kill in between,
  *   sees the old index or the new one, never part of one.
  * Any failed write, flush or close stops the run with the file's name and the system's reason.
  * Opening the output (at the end of set-up) first moves the last run's files into previous/. */
+#define _GNU_SOURCE /* copy_file_range */
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
@@ -26,7 +28,7 @@
 #include "deformation.h"
 
 /* the files a run writes (checkpoint.h5 by checkpoint.c): an earlier run's move to previous/ together */
-static const char *const MMOutputFiles[] = {"history.csv", "solution.h5", "solution.xmf", "checkpoint.h5"};
+static const char *const MMOutputFiles[] = {"history.csv", "solution.h5", "solution.xmf", "checkpoint.h5", MM_SNAPSHOT_COPY};
 #define MM_PREVIOUS "previous"
 #define MM_XMF_TMP  ".tmp" /* suffix of the XDMF index being written */
 #define MM_N        "\001" /* in the index text kept in memory: the snapshot count, which grows */
@@ -376,6 +378,81 @@ PetscErrorCode MMOutputFlushFields(MMOutput *o)
   PetscFunctionReturn(0);
 }
 
+/* rank 0: src copied whole to dst (through dst.tmp, renamed when whole), by the kernel where it can. */
+static PetscErrorCode CopyFile(const char src[], const char dst[], MMFileStatus *st)
+{
+  char  tmp[PETSC_MAX_PATH_LEN], buf[1 << 16];
+  int   in, out;
+  off_t left;
+  struct stat s;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s%s", dst, MM_XMF_TMP));
+  if ((in = open(src, O_RDONLY | O_CLOEXEC)) < 0 || fstat(in, &s)) {
+    PetscCall(MMOutputFailed(st, "read %s to copy its snapshots", src));
+    if (in >= 0) close(in);
+    PetscFunctionReturn(0);
+  }
+  if ((out = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666)) < 0) {
+    PetscCall(MMOutputFailed(st, "create %s", tmp));
+    close(in);
+    PetscFunctionReturn(0);
+  }
+  for (left = s.st_size; left > 0;) {
+    ssize_t n = copy_file_range(in, NULL, out, NULL, (size_t)left, 0);
+    if (n < 0 && (errno == ENOSYS || errno == EXDEV || errno == EINVAL || errno == EOPNOTSUPP)) { /* a file system without it */
+      n = read(in, buf, sizeof(buf));
+      if (n > 0 && MMOutputWriteAll(out, buf, (size_t)n)) n = -1;
+    }
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    left -= n;
+  }
+  if (left > 0) PetscCall(MMOutputFailed(st, "copy %s to %s", src, tmp));
+  if (close(out) && !st->err) PetscCall(MMOutputFailed(st, "close %s", tmp));
+  close(in);
+  if (!st->err && rename(tmp, dst)) PetscCall(MMOutputFailed(st, "rename %s to %s", tmp, dst));
+  if (st->err) (void)unlink(tmp);
+  PetscFunctionReturn(0);
+}
+
+/* solution.h5 is written in place, and HDF5 rewrites its index as it grows: a run killed while it
+ * writes a snapshot can leave the whole file unreadable. So a checkpoint keeps a copy of it, taken
+ * when every snapshot up to the checkpoint is on disk; -restart reads the earlier snapshots from
+ * the copy (docs/method.md section 9). Collective. */
+PetscErrorCode MMOutputCopySnapshots(MMCtx *ctx)
+{
+  MMOutput    *o  = &ctx->out;
+  MMFileStatus st = {0};
+  char         dst[PETSC_MAX_PATH_LEN];
+  PetscMPIInt  rank;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(o->ev_copy, 0, 0, 0, 0));
+  PetscCall(MMOutputFlushFields(o));
+  PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
+  PetscCall(PetscSNPrintf(dst, sizeof(dst), "%s/%s", ctx->opt.output_dir, MM_SNAPSHOT_COPY));
+  if (!rank) PetscCall(CopyFile(o->h5_name, dst, &st));
+  PetscCall(MMOutputCheckRank0(&st));
+  PetscCall(PetscLogEventEnd(o->ev_copy, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* After a clean close solution.h5 is whole and holds every snapshot of the last checkpoint: the copy
+ * is not needed any more. */
+static PetscErrorCode DropSnapshotCopy(MMCtx *ctx)
+{
+  char        dst[PETSC_MAX_PATH_LEN];
+  PetscMPIInt rank;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
+  if (rank || !ctx->ckpt.written || ctx->ckpt.last_step != ctx->hist.step) PetscFunctionReturn(0);
+  PetscCall(PetscSNPrintf(dst, sizeof(dst), "%s/%s", ctx->opt.output_dir, MM_SNAPSHOT_COPY));
+  (void)unlink(dst);
+  PetscFunctionReturn(0);
+}
+
 /* Each vertex's position among the mesh file's nodes (from 0): PETSc writes the vertices in the
  * partition's order, so this is what matches a vertex across runs on other rank counts, to the
  * file (and -restart's copy of the earlier snapshots). */
@@ -665,6 +742,7 @@ PetscErrorCode MMOutputOpen(MMCtx *ctx)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventRegister("MMOutputFlush", PETSC_VIEWER_CLASSID, &o->ev_flush));
   PetscCall(PetscLogEventRegister("MMOutputIndex", PETSC_VIEWER_CLASSID, &o->ev_index));
+  PetscCall(PetscLogEventRegister("MMOutputCopy", PETSC_VIEWER_CLASSID, &o->ev_copy));
   PetscCall(PetscSNPrintf(o->csv_name, sizeof(o->csv_name), "%s/%s", dir, MMOutputFiles[0]));
   PetscCall(PetscSNPrintf(o->h5_name, sizeof(o->h5_name), "%s/%s", dir, MMOutputFiles[1]));
   PetscCall(PetscSNPrintf(o->xmf_name, sizeof(o->xmf_name), "%s/%s", dir, MMOutputFiles[2]));
@@ -724,6 +802,7 @@ PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wa
   if (o->n_written && o->times[o->n_written - 1] != h->time) PetscCall(WriteFields(ctx));
   PetscCall(MMOutputSyncIndex(ctx));
   PetscCall(CloseFiles(o));
+  PetscCall(DropSnapshotCopy(ctx));
   if (!ctx->opt.quiet) {
     struct rusage ru;
     PetscReal     peak, total;

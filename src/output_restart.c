@@ -8,7 +8,9 @@
  *   vertex by vertex (matched by the serial vertex numbers the file carries) into a new file in
  *   this run's order, with this run's mesh. The XDMF index of those snapshots is written first (it
  *   still matches the old file), then the new file is renamed over the old one: at every moment
- *   the index and the file agree. */
+ *   the index and the file agree.
+ * - The snapshots are read from the checkpoint's copy of solution.h5, checkpoint_snapshots.h5, when
+ *   there is one: a run killed while writing solution.h5 can leave it unreadable. */
 #include <errno.h>
 #include <fcntl.h>
 #include <stdio.h>
@@ -124,7 +126,9 @@ static PetscErrorCode OldFieldsOpen(MMCtx *ctx, MMOldFields *of)
   PetscReal *serial;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(of->name, sizeof(of->name), "%s/solution.h5", ctx->ckpt.source_dir));
+  /* the checkpoint's copy while there is one: solution.h5 itself may have been spoiled by a kill */
+  PetscCall(PetscSNPrintf(of->name, sizeof(of->name), "%s/%s", ctx->ckpt.source_dir, MM_SNAPSHOT_COPY));
+  if (access(of->name, R_OK)) PetscCall(PetscSNPrintf(of->name, sizeof(of->name), "%s/solution.h5", ctx->ckpt.source_dir));
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL)); /* HDF5's own printing stays on */
   of->file = H5Fopen(of->name, H5F_ACC_RDONLY, H5P_DEFAULT);
   PetscCall(PetscPopErrorHandler());
@@ -276,5 +280,6 @@ PetscErrorCode MMOutputRestartFields(MMCtx *ctx)
   if (n) PetscCall(MMOutputWriteIndexFile(ctx));
   if (!rank && rename(tmp, o->h5_name)) PetscCall(MMOutputFailed(&st, "rename %s to %s", tmp, o->h5_name));
   PetscCall(MMOutputCheckRank0(&st));
+  PetscCall(MMOutputCopySnapshots(ctx)); /* the checkpoint this run continues now counts on this file */
   PetscFunctionReturn(0);
 }
