@@ -122,7 +122,7 @@ PetscErrorCode MMFrictionSetUp(MMCtx *ctx)
   PetscCall((*create)(fr));
   if (ctx->opt.mu_max == 0 || !ctx->contact.enabled) PetscFunctionReturn(0);
   PetscCheck(has ? fr->ops.solveset != NULL : fr->ops.solvethresholds != NULL, comm, PETSC_ERR_USER_INPUT,
-             "-friction_type %s needs the Delassus operator of -contact_formulation condensed; with -contact_formulation %s use -friction_type fixedpoint", type, MMContactFormulations[ctx->contact.formulation]);
+             "-friction_type %s needs the Delassus operator of -contact_formulation condensed; with -contact_formulation %s use -friction_type fixedpoint", type, ctx->contact.type);
   PetscCall(SNESCreate(comm, &fr->snes));
   PetscCall(SNESSetOptionsPrefix(fr->snes, "friction_"));
   PetscCall(SNESSetType(fr->snes, SNESSHELL));

@@ -2,8 +2,8 @@
  * active-set formulation (docs/method.md section 3). K~ = K + 4/dt^2 M* is symmetric positive
  * definite, so besides a factorization it can be solved by CG with an algebraic multigrid PC (GAMG
  * with the rigid-body modes as near-null space, or hypre BoomerAMG), set up once per dt, prefix
- * contact_K_. The condensed formulation keeps its own factor (contact_condensed.c). */
-#include "contact_impl.h"
+ * contact_K_. The condensed formulation keeps its own factor (impls/condensed/). */
+#include "../contactimpl.h"
 
 /* Component c of rigid-body mode m at x: translations e_0..e_{d-1}, then rotations (2D: one, 3D:
  * three, e_k x x), about the origin (the modes are orthonormalized afterwards). */
@@ -131,14 +131,15 @@ static PetscErrorCode KtClassify(MMStepSolver *kt)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMKtCreate(MMCtx *ctx)
+/* iterative: CG by default (the active-set formulation), else a factorization. */
+PetscErrorCode MMKtCreate(MMCtx *ctx, PetscBool iterative)
 {
   MMStepSolver *kt = &ctx->contact.kt;
 
   PetscFunctionBeginUser;
   PetscCall(KSPCreate(PetscObjectComm((PetscObject)ctx->op.dm), &kt->ksp));
   PetscCall(KSPSetOptionsPrefix(kt->ksp, "contact_K_"));
-  PetscCall(KtSetDefaults(kt->ksp, (PetscBool)(ctx->contact.enabled && ctx->contact.formulation == MM_CONTACT_ACTIVE_SET), ctx->op.dim));
+  PetscCall(KtSetDefaults(kt->ksp, iterative, ctx->op.dim));
   PetscCall(KSPSetFromOptions(kt->ksp));
   PetscCall(KtClassify(kt));
   if (!kt->iterative) PetscFunctionReturn(0);
@@ -204,5 +205,50 @@ PetscErrorCode MMKtDestroy(MMStepSolver *kt)
   PetscFunctionBeginUser;
   PetscCall(KSPDestroy(&kt->ksp));
   PetscCall(MatNullSpaceDestroy(&kt->rigid));
+  PetscFunctionReturn(0);
+}
+
+/* ---- "none": no contact boundary (-contact 0); each step is one K~ solve ---- */
+
+static PetscErrorCode NoneSetUp(MMCtx *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMKtCreate(ctx, PETSC_FALSE));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode NoneSetOperator(MMCtx *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMKtSetOperator(ctx, ctx->contact.qp.A));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode NoneSolve(MMCtx *ctx, Vec b, Vec w, Vec react)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMKtSolve(ctx, b, w));
+  PetscCall(MMContactForce(ctx, b, w, react));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode NoneGetStepKSP(MMCtx *ctx, KSP *krylov, KSP *pc_ksp)
+{
+  PetscFunctionBeginUser;
+  *krylov = *pc_ksp = ctx->contact.kt.ksp;
+  PetscFunctionReturn(0);
+}
+
+static const MMContactOps NoneOps = {
+  .setup       = NoneSetUp,
+  .setoperator = NoneSetOperator,
+  .solve       = NoneSolve,
+  .getstepksp  = NoneGetStepKSP,
+};
+
+PetscErrorCode MMContactCreate_None(MMContact *ct)
+{
+  PetscFunctionBeginUser;
+  ct->ops = &NoneOps;
   PetscFunctionReturn(0);
 }

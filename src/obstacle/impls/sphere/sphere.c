@@ -1,7 +1,7 @@
 /* A sphere (3D) or a circle (2D): centre and radius, the body outside it (a bump) or inside it (a
  * bowl, a rail, a cavity). Along the radial line through a point the distance is exactly linear,
  * so the bound along a node's own normal is exact for motion along that normal. */
-#include "obstacle.h"
+#include "../../obstacleimpl.h"
 
 static PetscErrorCode RoundCheck(MMObstacle *ob, MPI_Comm comm, PetscInt dim, PetscInt need)
 {

@@ -22,7 +22,7 @@
 #include <petscsf.h>
 #include <petscviewerhdf5.h>
 #include "output.h"
-#include "output_impl.h"
+#include "outputimpl.h"
 #include "contact.h"
 #include "fem.h"
 #include "deformation.h"
@@ -812,12 +812,7 @@ PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wa
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &peak, 1, MPIU_REAL, MPIU_MAX, PETSC_COMM_WORLD));
     const PetscInt steps = h->step - (ctx->ckpt.restarted ? ctx->ckpt.restart_step : 0); /* this run's */
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "mmcontact summary: setup %.3f s; %" PetscInt_FMT " steps to t = %g in %.3f s wall (%.4f s/step); peak memory %.1f MiB/rank (%.1f MiB over all ranks); largest balance residual %.3e; largest penetration %.3e (h_c' %.3e)\n", (double)setup, steps, (double)h->time, (double)wall, steps ? (double)(wall / steps) : 0.0, (double)peak, (double)total, (double)h->max_balance, (double)h->max_penetration_run, (double)ctx->contact.h_c));
-    if (ctx->contact.enabled && ctx->contact.formulation == MM_CONTACT_CONDENSED) {
-      const MMCandidates *c = &ctx->contact.cand;
-      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  contact candidate set: largest %" PetscInt_FMT " of %" PetscInt_FMT " contact nodes; %" PetscInt_FMT " columns of K~^{-1} E computed; %" PetscInt_FMT " VI re-solves after the set grew\n", c->max_set, ctx->contact.n_global, c->columns, c->resolves));
-      if (c->evicted || c->recover_solves)
-        PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  contact candidate cache at -contact_candidate_memory %g MiB: %" PetscInt_FMT " cached nodes dropped and their columns recomputed when needed; %" PetscInt_FMT " steps recovered by a solve, the whole columns being over the cap\n", (double)ctx->opt.candidate_memory, c->evicted, c->recover_solves));
-    }
+    PetscCall(MMContactSummary(ctx));
     PetscCall(MMDeformationSummary(ctx));
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  output: %s, %s (%" PetscInt_FMT " snapshots), %s\n", o->csv_name, o->h5_name, o->n_written, o->xmf_name));
   }

@@ -1,6 +1,6 @@
 /* The registry of rigid obstacle shapes: each type sets the check of its parameters and its signed
  * distance (docs/method.md section 8). A new shape is one file and one line in MMObstacleRegisterAll. */
-#include "obstacle.h"
+#include "../obstacleimpl.h"
 
 static PetscFunctionList ObstacleList = NULL;
 

@@ -1,6 +1,6 @@
 /* A cylinder (3D): a point on its axis, the axis direction and the radius; the body outside it (a
  * rail, a roller) or inside it (a pipe). */
-#include "obstacle.h"
+#include "../../obstacleimpl.h"
 
 static PetscErrorCode CylinderCheck(MMObstacle *ob, MPI_Comm comm, PetscInt dim)
 {

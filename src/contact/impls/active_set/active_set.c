@@ -17,7 +17,7 @@
  * PC P_F M^{-1} P_F + P_D, M^{-1} the contact_K_ PC set up once per dt, warm-started from the last
  * iterate. It stops when the sets (and, in 3D, the slip directions) stop changing: the solution then
  * satisfies every condition exactly, up to the CG tolerance on the free dofs. */
-#include "contact_impl.h"
+#include "../../contactimpl.h"
 
 /* y += kappa_k e_k (e_k.x_t) at every slipping node in 3D, e_k = d_perp: the Newton tangent of the
  * Tresca disk across the slip direction (its tangential dofs are free). */
@@ -99,7 +99,7 @@ PetscErrorCode MMActiveSetSetUp(MMCtx *ctx)
   PetscFunctionBeginUser;
   as->max_it  = ctx->opt.active_set_max_it;
   as->monitor = ctx->opt.active_set_monitor;
-  PetscCall(MMKtCreate(ctx));
+  PetscCall(MMKtCreate(ctx, PETSC_TRUE));
   PetscCall(VecDuplicate(ct->qp.b, &as->free));
   PetscCall(VecDuplicate(ct->qp.b, &as->x0));
   PetscCall(VecDuplicate(ct->qp.b, &as->r));
@@ -205,7 +205,7 @@ static PetscErrorCode NodeDataRestore(MMCtx *ctx, NodeData *nd)
 }
 
 /* off_t = u_t^n + dt/2 (v_t^n + V_t): w_t - off_t is dt/2 times the slip velocity relative to the
- * obstacle, V its velocity (contact_condensed.c). */
+ * obstacle, V its velocity (impls/condensed/). */
 static inline PetscReal Offset(const NodeData *nd, PetscInt k, PetscInt i, PetscInt j)
 {
   return PetscRealPart(nd->uo[i + 1 + j]) + nd->half_dt * PetscRealPart(nd->vo[i + 1 + j]) + nd->slide[k * (nd->dim - 1) + j];
@@ -449,5 +449,59 @@ PetscErrorCode MMActiveSetDestroy(MMActiveSet *as)
   PetscCall(VecDestroy(&as->ct_diag));
   PetscCall(PetscFree3(as->active, as->stick, as->dir));
   PetscCall(PetscFree3(as->kappa, as->beta, as->rperp));
+  PetscFunctionReturn(0);
+}
+
+/* ---- The formulation's ops ---- */
+
+/* The contact force: -rho on the contact dofs, exactly. On its fixed dofs rho is K~ w - b's own
+ * value; on its free contact dofs (a node off the obstacle, a slipping node's tangential dofs) rho is
+ * the prescribed value and K~ w - b differs from it by the CG residual, which is left to the energy
+ * audit, as on the interior dofs, instead of passing for a force. */
+static PetscErrorCode ActiveSetContactForce(MMCtx *ctx, Vec b, Vec w, Vec react)
+{
+  MMContact *ct = &ctx->contact;
+  Vec        rc;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(react));
+  PetscCall(VecGetSubVector(react, ct->is_cond, &rc));
+  PetscCall(VecAXPY(rc, -1.0, ct->rho));
+  PetscCall(VecRestoreSubVector(react, ct->is_cond, &rc));
+  PetscFunctionReturn(0);
+}
+
+/* Every solve gives the whole w: the contact-dof solve is the solve. */
+static PetscErrorCode ActiveSetSolveStep(MMCtx *ctx, Vec b, Vec w, Vec react)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMActiveSetSolve(ctx, b, w));
+  PetscCall(ActiveSetContactForce(ctx, b, w, react));
+  PetscFunctionReturn(0);
+}
+
+/* The CG on the free dofs (prefix contact_as_) applies the contact_K_ PC projected on them. */
+static PetscErrorCode ActiveSetGetStepKSP(MMCtx *ctx, KSP *krylov, KSP *pc_ksp)
+{
+  PetscFunctionBeginUser;
+  *krylov = ctx->contact.as.ksp;
+  *pc_ksp = ctx->contact.kt.ksp;
+  PetscFunctionReturn(0);
+}
+
+static const MMContactOps ActiveSetOps = {
+  .setup            = MMActiveSetSetUp,
+  .setoperator      = MMActiveSetSetOperator,
+  .solve            = ActiveSetSolveStep,
+  .solvecontactdofs = ActiveSetSolveStep,
+  .recover          = ActiveSetContactForce,
+  .setthresholds    = MMActiveSetSetThresholds,
+  .getstepksp       = ActiveSetGetStepKSP,
+};
+
+PetscErrorCode MMContactCreate_ActiveSet(MMContact *ct)
+{
+  PetscFunctionBeginUser;
+  ct->ops = &ActiveSetOps;
   PetscFunctionReturn(0);
 }

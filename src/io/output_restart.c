@@ -19,7 +19,7 @@
 #include <unistd.h>
 #include <petscviewerhdf5.h>
 #include "output.h"
-#include "output_impl.h"
+#include "outputimpl.h"
 #include "checkpoint.h"
 
 #define MM_TMP ".tmp"

@@ -1,7 +1,7 @@
 /* Contact diagnostics of a state: active, switching, slipping and sticking nodes, contact forces,
  * penetration, the discrete Coulomb residual (docs/method.md section 6), and the output fields on
  * the contact boundary. */
-#include "contact_impl.h"
+#include "../contactimpl.h"
 
 /* Per-node contact statistics of a state (w, react, sigma): sigma holds the velocity, whose
  * tangential components at a contact node are its slip velocity. */

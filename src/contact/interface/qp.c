@@ -1,6 +1,6 @@
 /* The bound-constrained quadratic problems of the contact module as SNESVI solves, and the exact
  * (factorization) linear solves they and the stepper rely on. */
-#include "contact_impl.h"
+#include "../contactimpl.h"
 
 /* LU with MUMPS: the default of every linear solver here, options still apply on top. */
 static PetscErrorCode KSPSetDefaultLU(KSP ksp)
@@ -132,7 +132,7 @@ PetscErrorCode MMKSPSetDirect(KSP ksp)
  * frictional D1: a step 2.2 times faster than with MUMPS LU, set-up faster too); in 3D, where its
  * factorization and the Delassus columns cost more than MUMPS's (12k-dof D2: 6.1 against 3.4 s, and
  * 29 against 22 s), and on several ranks (PETSc's own factorizations are serial), MUMPS LU.
- * Options still apply on top; nothing is checked here (contact_kt.c also accepts iterative PCs). */
+ * Options still apply on top; nothing is checked here (kt.c also accepts iterative PCs). */
 PetscErrorCode MMKSPSetFactorSPD(KSP ksp, PetscInt dim)
 {
   PetscMPIInt size;

@@ -19,7 +19,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include "output.h"
-#include "output_impl.h"
+#include "outputimpl.h"
 #include "errors.h"
 
 #define MM_LOCK_NAME ".mmcontact.lock"

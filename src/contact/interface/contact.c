@@ -1,35 +1,56 @@
-/* The contact module's step interface: the step matrix K~ for a dt, the step's contact solve in the
- * chosen formulation, and the consistent initial contact dofs.
+/* The contact component's interface: the registry of contact formulations, the step matrix K~ for a
+ * dt, the step's contact solve in the chosen formulation (through its ops table, contactimpl.h),
+ * and the consistent initial contact dofs.
  *
  * Each step solves the bound-constrained QP  min 1/2 w.K~w - b.w  s.t.  w_c <= g: with SNESVI
- * (vinewtonrsls by default, prefix -contact_), condensed on the contact dofs (the default) or on all
- * dofs, or by the active-set method on all dofs (contact_active_set.c); the friction loop wraps
- * MMContactSolveContactDofs, changing only the right-hand side and the tangential thresholds.
- * Without contact each step is one K~ solve (contact_kt.c). */
-#include "contact_impl.h"
+ * (vinewtonrsls by default, prefix -contact_), condensed on the contact dofs (the default,
+ * impls/condensed/) or on all dofs (impls/full/), or by the active-set method on all dofs
+ * (impls/active_set/). Without contact each step is one K~ solve (kt.c, the "none" ops). */
+#include "../contactimpl.h"
 
-/* Bounds on the whole w vector: w_c <= g on the normal dofs, free elsewhere. */
-static PetscErrorCode SetBounds(MMContact *ct, Vec lower, Vec upper)
+static PetscFunctionList MMContactList              = NULL;
+static PetscBool         MMContactRegisterAllCalled = PETSC_FALSE;
+
+/* Adds a contact formulation: create sets the ops table of the MMContact it is given. */
+PetscErrorCode MMContactRegister(const char name[], PetscErrorCode (*create)(MMContact *))
 {
-  Vec sub;
-
   PetscFunctionBeginUser;
-  PetscCall(VecSet(lower, PETSC_NINFINITY));
-  PetscCall(VecSet(upper, PETSC_INFINITY));
-  PetscCall(VecGetSubVector(upper, ct->is_normal, &sub));
-  PetscCall(VecCopy(ct->gap, sub));
-  PetscCall(VecRestoreSubVector(upper, ct->is_normal, &sub));
+  PetscCall(PetscFunctionListAdd(&MMContactList, name, create));
   PetscFunctionReturn(0);
 }
 
-/* K~ = K + 4/dt^2 M*, assembled only when dt changes, with what the formulation builds on it: the
- * factor and the Delassus operator (condensed), the bounds of the full VI, or the K~ solver and its
- * PC (active set, and without contact). */
+PetscErrorCode MMContactRegisterAll(void)
+{
+  PetscFunctionBeginUser;
+  if (MMContactRegisterAllCalled) PetscFunctionReturn(0);
+  MMContactRegisterAllCalled = PETSC_TRUE;
+  PetscCall(MMContactRegister("condensed", MMContactCreate_Condensed));
+  PetscCall(MMContactRegister("full", MMContactCreate_Full));
+  PetscCall(MMContactRegister("active_set", MMContactCreate_ActiveSet));
+  PetscFunctionReturn(0);
+}
+
+/* ct->ops of -contact_formulation, or of "none" (K~ solves alone) without contact. */
+PetscErrorCode MMContactSetType(MMCtx *ctx)
+{
+  MMContact *ct = &ctx->contact;
+  PetscErrorCode (*create)(MMContact *) = NULL;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMContactRegisterAll());
+  PetscCall(PetscFunctionListFind(MMContactList, ctx->opt.contact_formulation, &create));
+  PetscCheck(create, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "-contact_formulation %s is not a contact formulation: use condensed (the default), full or active_set", ctx->opt.contact_formulation);
+  if (!ct->enabled) create = MMContactCreate_None;
+  PetscCall(PetscStrncpy(ct->type, ct->enabled ? ctx->opt.contact_formulation : "none", sizeof(ct->type)));
+  PetscCall((*create)(ct));
+  PetscFunctionReturn(0);
+}
+
+/* K~ = K + 4/dt^2 M*, assembled only when dt changes; the formulation then builds on it what it
+ * needs (a factor and the Delassus operator, a PC, nothing). */
 PetscErrorCode MMContactSetStepMatrix(MMCtx *ctx, PetscReal dt)
 {
-  MMContact *ct        = &ctx->contact;
-  PetscBool  condensed = (PetscBool)(ct->formulation == MM_CONTACT_CONDENSED && ct->enabled);
-  PetscBool  full      = (PetscBool)(ct->formulation == MM_CONTACT_FULL && ct->enabled);
+  MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
   if (ct->qp.A && ct->Kt_dt == dt) PetscFunctionReturn(0);
@@ -38,30 +59,18 @@ PetscErrorCode MMContactSetStepMatrix(MMCtx *ctx, PetscReal dt)
     PetscCall(MatDuplicate(ctx->op.K, MAT_COPY_VALUES, &ct->qp.A));
     PetscCall(MatCreateVecs(ct->qp.A, &ct->qp.b, NULL));
     ct->qp.rtol_b = ct->tol;
-    if (!ct->enabled) PetscCall(MMKtCreate(ctx));
-    else if (ct->formulation == MM_CONTACT_ACTIVE_SET) PetscCall(MMActiveSetSetUp(ctx));
-    if (full) {
-      PetscCall(VecDuplicate(ct->qp.b, &ct->lower));
-      PetscCall(VecDuplicate(ct->qp.b, &ct->upper));
-      PetscCall(MMQPCreate(PetscObjectComm((PetscObject)ctx->op.dm), "contact_", &ct->qp, 0, &ct->snes));
-      PetscCall(SetBounds(ct, ct->lower, ct->upper));
-      PetscCall(SNESVISetVariableBounds(ct->snes, ct->lower, ct->upper));
-    }
+    if (ct->ops->setup) PetscCall((*ct->ops->setup)(ctx));
   } else PetscCall(MatCopy(ctx->op.K, ct->qp.A, SAME_NONZERO_PATTERN));
   PetscCall(MatAXPY(ct->qp.A, 4.0 / (dt * dt), ctx->op.Mstar, SUBSET_NONZERO_PATTERN));
   ct->Kt_dt = dt;
-  if (condensed) {
-    PetscCall(MMCondensedFactor(ctx));
-    if (!ct->rho) PetscCall(MMCondensedCreateSolver(ctx));
-  } else if (!ct->enabled) PetscCall(MMKtSetOperator(ctx, ct->qp.A));
-  else if (ct->formulation == MM_CONTACT_ACTIVE_SET) PetscCall(MMActiveSetSetOperator(ctx));
+  if (ct->ops->setoperator) PetscCall((*ct->ops->setoperator)(ctx));
   PetscCall(PetscLogEventEnd(ctx->log.assemble, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
 /* react = K~ w - b on the contact dofs: recomputed from w whatever the formulation, so that the
  * energy audit checks the solve. */
-static PetscErrorCode ContactForce(MMCtx *ctx, Vec b, Vec w, Vec react)
+PetscErrorCode MMContactForce(MMCtx *ctx, Vec b, Vec w, Vec react)
 {
   MMContact *ct = &ctx->contact;
 
@@ -74,25 +83,27 @@ static PetscErrorCode ContactForce(MMCtx *ctx, Vec b, Vec w, Vec react)
   PetscFunctionReturn(0);
 }
 
-/* Solves the step problem K~ w = b + f_c with w_c <= g; w holds the initial guess on entry.
- * react returns f_c, the obstacle's force on the body (w-frame), on the contact dofs only. */
-/* The active-set formulation's contact force: -rho on the contact dofs, exactly. On its fixed dofs
- * rho is K~ w - b's own value; on its free contact dofs (a node off the obstacle, a slipping node's
- * tangential dofs) rho is the prescribed value and K~ w - b differs from it by the CG residual,
- * which is left to the energy audit, as on the interior dofs, instead of passing for a force. */
-static PetscErrorCode ActiveSetContactForce(MMCtx *ctx, Vec react)
+/* The reactions rho and their bounds, one block of ncomp per contact node: the layout the friction
+ * loop and the diagnostics read, whatever the formulation. Frictionless until thresholds are set:
+ * rho_t in [0, 0]. */
+PetscErrorCode MMContactCreateReactions(MMCtx *ctx)
 {
   MMContact *ct = &ctx->contact;
-  Vec        rc;
 
   PetscFunctionBeginUser;
-  PetscCall(VecZeroEntries(react));
-  PetscCall(VecGetSubVector(react, ct->is_cond, &rc));
-  PetscCall(VecAXPY(rc, -1.0, ct->rho));
-  PetscCall(VecRestoreSubVector(react, ct->is_cond, &rc));
+  PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)ctx->op.dm), ct->ncomp * ct->n_local, PETSC_DETERMINE, &ct->rho));
+  PetscCall(VecSetBlockSize(ct->rho, ct->ncomp));
+  PetscCall(VecZeroEntries(ct->rho));
+  PetscCall(VecDuplicate(ct->rho, &ct->rho_lo));
+  PetscCall(VecDuplicate(ct->rho, &ct->rho_hi));
+  PetscCall(VecSet(ct->rho_lo, 0.0));
+  PetscCall(VecSet(ct->rho_hi, 0.0));
+  PetscCall(VecStrideSet(ct->rho_hi, 0, PETSC_INFINITY));
   PetscFunctionReturn(0);
 }
 
+/* Solves the step problem K~ w = b + f_c with w_c <= g; w holds the initial guess on entry.
+ * react returns f_c, the obstacle's force on the body (w-frame), on the contact dofs only. */
 PetscErrorCode MMContactSolve(MMCtx *ctx, Vec b, Vec w, Vec react)
 {
   MMContact *ct = &ctx->contact;
@@ -100,20 +111,7 @@ PetscErrorCode MMContactSolve(MMCtx *ctx, Vec b, Vec w, Vec react)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ctx->log.contact_solve, 0, 0, 0, 0));
   ct->kt.its = 0;
-  if (!ct->enabled) PetscCall(MMKtSolve(ctx, b, w));
-  else if (ct->formulation == MM_CONTACT_CONDENSED) {
-    PetscCall(MMCondensedSolveReactions(ctx, b));
-    PetscCall(MMCondensedRecover(ctx, w));
-  } else if (ct->formulation == MM_CONTACT_ACTIVE_SET) {
-    PetscCall(MMActiveSetSolve(ctx, b, w));
-    PetscCall(ActiveSetContactForce(ctx, react));
-    PetscCall(PetscLogEventEnd(ctx->log.contact_solve, 0, 0, 0, 0));
-    PetscFunctionReturn(0);
-  } else {
-    PetscCall(VecCopy(b, ct->qp.b));
-    PetscCall(MMQPSolve(ct->snes, &ct->qp, w, &ct->vi_its));
-  }
-  PetscCall(ContactForce(ctx, b, w, react));
+  PetscCall((*ct->ops->solve)(ctx, b, w, react));
   PetscCall(PetscLogEventEnd(ctx->log.contact_solve, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -126,42 +124,35 @@ PetscErrorCode MMContactSolveContactDofs(MMCtx *ctx, Vec b, Vec w, Vec react)
   MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
-  PetscCheck(ct->enabled && ct->formulation != MM_CONTACT_FULL, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_PLIB, "The contact-dof solve needs the condensed or the active-set formulation");
+  PetscCheck(ct->ops->solvecontactdofs, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_PLIB, "The contact formulation %s cannot solve the contact dofs alone", ct->type);
   PetscCall(PetscLogEventBegin(ctx->log.contact_solve, 0, 0, 0, 0));
-  if (ct->formulation == MM_CONTACT_ACTIVE_SET) {
-    PetscCall(MMActiveSetSolve(ctx, b, w));
-    PetscCall(ActiveSetContactForce(ctx, react));
-  } else {
-    PetscCall(MMCondensedSolveReactions(ctx, b));
-    PetscCall(MMCondensedContactDofs(ctx, w, react));
-  }
+  PetscCall((*ct->ops->solvecontactdofs)(ctx, b, w, react));
   PetscCall(PetscLogEventEnd(ctx->log.contact_solve, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
-/* The whole step solution and contact force from the last contact-dof solve: one full-size solve
- * (condensed), nothing left to do (active set: its solves give the whole w). */
+/* The whole step solution and contact force from the last contact-dof solve. */
 PetscErrorCode MMContactRecover(MMCtx *ctx, Vec b, Vec w, Vec react)
 {
+  MMContact *ct = &ctx->contact;
+
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ctx->log.contact_recover, 0, 0, 0, 0));
-  if (ctx->contact.formulation == MM_CONTACT_ACTIVE_SET) PetscCall(ActiveSetContactForce(ctx, react));
-  else {
-    PetscCall(MMCondensedRecover(ctx, w));
-    PetscCall(ContactForce(ctx, b, w, react));
-  }
+  PetscCall((*ct->ops->recover)(ctx, b, w, react));
   PetscCall(PetscLogEventEnd(ctx->log.contact_recover, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
 /* Friction thresholds s (one per contact node) for the next Tresca solves of a threshold loop: the
- * active-set formulation's own Tresca conditions. The condensed formulation solves Coulomb's
+ * formulation's own Tresca conditions (active set). The condensed formulation solves Coulomb's
  * problem in contact space instead (MMContactSolveCoulomb). */
 PetscErrorCode MMContactSetFrictionThresholds(MMCtx *ctx, Vec s)
 {
+  MMContact *ct = &ctx->contact;
+
   PetscFunctionBeginUser;
-  PetscCheck(ctx->contact.formulation == MM_CONTACT_ACTIVE_SET, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_PLIB, "Threshold solves are the active-set formulation's");
-  PetscCall(MMActiveSetSetThresholds(ctx, s));
+  PetscCheck(ct->ops->setthresholds, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_PLIB, "The contact formulation %s has no threshold solves", ct->type);
+  PetscCall((*ct->ops->setthresholds)(ctx, s));
   PetscFunctionReturn(0);
 }
 
@@ -170,7 +161,7 @@ PetscErrorCode MMContactSetFrictionThresholds(MMCtx *ctx, Vec s)
 PetscErrorCode MMContactHasDelassus(MMCtx *ctx, PetscBool *has)
 {
   PetscFunctionBeginUser;
-  *has = (PetscBool)(ctx->contact.enabled && ctx->contact.formulation == MM_CONTACT_CONDENSED);
+  *has = (PetscBool)(ctx->contact.ops && ctx->contact.ops->solvecoulomb);
   PetscFunctionReturn(0);
 }
 
@@ -178,14 +169,21 @@ PetscErrorCode MMContactHasDelassus(MMCtx *ctx, PetscBool *has)
  * exactly (MMContactRecover completes w). *ok is fn's verdict. */
 PetscErrorCode MMContactSolveCoulomb(MMCtx *ctx, Vec b, Vec w, Vec react, MMContactSetSolver fn, void *fctx, PetscBool *ok)
 {
-  PetscBool has;
+  MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
-  PetscCall(MMContactHasDelassus(ctx, &has));
-  PetscCheck(has, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_PLIB, "A contact-space solve needs the condensed formulation");
+  PetscCheck(ct->ops->solvecoulomb, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_PLIB, "The contact formulation %s has no Delassus operator for a contact-space solve", ct->type);
   PetscCall(PetscLogEventBegin(ctx->log.contact_solve, 0, 0, 0, 0));
-  PetscCall(MMCondensedSolveCoulomb(ctx, b, w, react, fn, fctx, ok));
+  PetscCall((*ct->ops->solvecoulomb)(ctx, b, w, react, fn, fctx, ok));
   PetscCall(PetscLogEventEnd(ctx->log.contact_solve, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* The formulation's lines of the closing summary. */
+PetscErrorCode MMContactSummary(MMCtx *ctx)
+{
+  PetscFunctionBeginUser;
+  if (ctx->contact.ops->summary) PetscCall((*ctx->contact.ops->summary)(ctx));
   PetscFunctionReturn(0);
 }
 
@@ -339,19 +337,10 @@ PetscErrorCode MMContactDestroy(MMContact *ct)
 }
 
 /* The solvers of K~, for the start-up report: krylov is the KSP whose method solves with K~, pc_ksp
- * the one whose PC does. They are one KSP (prefix contact_K_), except in the active-set formulation,
- * whose CG on the free dofs (prefix contact_as_) applies the contact_K_ PC projected on them, and in
- * the full formulation, whose VI factors K~'s free block in each iteration with its own linear
- * solver (prefix contact_). */
+ * the one whose PC does (the formulation's getstepksp). */
 PetscErrorCode MMContactGetStepKSP(MMCtx *ctx, KSP *krylov, KSP *pc_ksp)
 {
-  MMContact *ct = &ctx->contact;
-
   PetscFunctionBeginUser;
-  if (!ct->enabled) *krylov = ct->kt.ksp;
-  else if (ct->formulation == MM_CONTACT_CONDENSED) *krylov = ct->ksp_K;
-  else if (ct->formulation == MM_CONTACT_ACTIVE_SET) *krylov = ct->as.ksp;
-  else PetscCall(SNESGetKSP(ct->snes, krylov));
-  *pc_ksp = (ct->enabled && ct->formulation == MM_CONTACT_ACTIVE_SET) ? ct->kt.ksp : *krylov;
+  PetscCall((*ctx->contact.ops->getstepksp)(ctx, krylov, pc_ksp));
   PetscFunctionReturn(0);
 }

@@ -2,7 +2,7 @@
  * to frame dofs, the index sets of the dofs, and h_c'. */
 #include <petscsf.h>
 #include "mesh.h"
-#include "contact_impl.h"
+#include "../contactimpl.h"
 #include "obstacle.h"
 
 /* Orthonormal frame (nu, tau_1[, tau_2]) with nu = -n, n the obstacle's outward normal: nu is the
@@ -336,7 +336,6 @@ PetscErrorCode MMContactSetUp(MMCtx *ctx)
   PetscFunctionBeginUser;
   ct->enabled     = ctx->opt.contact;
   ct->tol         = ctx->opt.contact_tol;
-  ct->formulation = ctx->opt.contact_formulation;
   ct->ncomp       = ctx->opt.mu_max > 0 ? ctx->op.dim : 1;
   PetscCall(PetscCalloc1(MM_MAX_DIM * ctx->opt.n_obstacles, &ct->force_obstacle));
   for (PetscInt b = 0; b < ctx->opt.n_obstacles; ++b)
@@ -351,6 +350,7 @@ PetscErrorCode MMContactSetUp(MMCtx *ctx)
       ctx->opt.obstacle_normal[d] = ob->normal[d];
     }
   }
+  PetscCall(MMContactSetType(ctx));
   PetscCall(BuildFrame(ctx));
   if (!ct->enabled) {
     PetscCall(BuildNoContact(ctx));
@@ -362,7 +362,7 @@ PetscErrorCode MMContactSetUp(MMCtx *ctx)
   PetscCall(ContactLayerDiameter(ctx, mark));
   PetscCall(PetscFree(mark));
   PetscCall(VecDestroy(&area));
-  PetscCheck(ct->ncomp == 1 || ct->formulation != MM_CONTACT_FULL, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_SUP, "Friction (-mu %g) needs -contact_formulation condensed or active_set", (double)ctx->opt.mu_max);
+  PetscCheck(ct->ncomp == 1 || ct->ops->solvecontactdofs, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_SUP, "Friction (-mu %g) needs a contact formulation that solves the contact dofs alone, and -contact_formulation %s cannot: use condensed or active_set", (double)ctx->opt.mu_max, ct->type);
   PetscCheck(ct->n_global > 0, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "The contact boundary \"%s\" has no nodes", ctx->opt.contact_name);
   PetscFunctionReturn(0);
 }

@@ -141,7 +141,7 @@ static PetscErrorCode HeaderContact(MMCtx *ctx)
   if (opt->progress_every > 0) PetscCall(PetscSNPrintf(progress, sizeof(progress), "progress every %.6g s", (double)opt->progress_every));
   if (ctx->contact.enabled) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes against %s; %s %s mass; %s\n", ctx->contact.n_global, obstacles, opt->lumped ? "lumped" : "consistent", MMMassTypes[opt->mass_type], friction));
   else PetscCall(PetscPrintf(comm, "  contact: off (-contact 0), 0 contact nodes: linear elastodynamics; %s mass\n", opt->lumped ? "lumped" : "consistent"));
-  PetscCall(PetscPrintf(comm, "  solvers: contact formulation %s; K~ by %s; %s\n", ctx->contact.enabled ? MMContactFormulations[ctx->contact.formulation] : "none", solver, progress));
+  PetscCall(PetscPrintf(comm, "  solvers: contact formulation %s; K~ by %s; %s\n", ctx->contact.type, solver, progress));
   PetscFunctionReturn(0);
 }
 

@@ -8,7 +8,6 @@
 const char *const MMMassTypes[] = {"modified", "standard", "MMMassType", "MM_MASS_", NULL};
 const char *const MMInitialStates[] = {"given", "static_sliding", "MMInitialState", "MM_INITIAL_", NULL};
 const char *const MMAssemblyTypes[] = {"closed_form", "fe", "MMAssemblyType", "MM_ASSEMBLY_", NULL};
-const char *const MMContactFormulations[] = {"condensed", "full", "active_set", "MMContactFormulation", "MM_CONTACT_", NULL};
 
 /* What a vector option's length must be, once the dimension d is known. */
 typedef enum {
@@ -383,8 +382,8 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsString(PetscOptionsObject, comm, "-friction_type", "Coulomb friction solver: newton (semismooth Newton on Alart-Curnier's function in contact space, the default; needs -contact_formulation condensed) or fixedpoint (the paper's fixed point on the thresholds, each Tresca problem solved exactly; the default of -contact_formulation active_set)", opt->friction_type, sizeof(opt->friction_type), &opt->friction_type_set));
   opt->friction_monitor = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-friction_monitor", "Print each friction iteration: threshold change, Coulomb residual, contraction factor, slipping and sticking node counts", NULL, opt->friction_monitor, &opt->friction_monitor, NULL));
-  opt->contact_formulation = MM_CONTACT_CONDENSED;
-  PetscCall(OptionsEnum(PetscOptionsObject, comm, "-contact_formulation", "Contact VI on the contact dofs through the Delassus operator (condensed: K~ factored once per dt), on all dofs (full: a factorization per VI iteration, frictionless), or the primal-dual active-set method on all dofs (active_set: CG on the free dofs with the contact_K_ PC, default Jacobi, -contact_K_pc_type gamg or hypre for c_p dt / h_c' above about 10, set up once per dt; for large 3D meshes)", MMContactFormulations, (PetscEnum *)&opt->contact_formulation));
+  PetscCall(PetscStrncpy(opt->contact_formulation, "condensed", sizeof(opt->contact_formulation)));
+  PetscCall(OptionsString(PetscOptionsObject, comm, "-contact_formulation", "Contact formulation: condensed (the VI on the contact dofs through the Delassus operator, K~ factored once per dt; the default), full (the VI on all dofs, a factorization per VI iteration, frictionless), or active_set (the primal-dual active-set method on all dofs: CG on the free dofs with the contact_K_ PC, default Jacobi, -contact_K_pc_type gamg or hypre for c_p dt / h_c' above about 10, set up once per dt; for large 3D meshes)", opt->contact_formulation, sizeof(opt->contact_formulation), NULL));
   opt->active_set_max_it = 100;
   PetscCall(OptionsInt(PetscOptionsObject, comm, "-active_set_max_it", "Active-set formulation: iterations per contact solve before the run stops (each is one projected CG solve)", &opt->active_set_max_it));
   opt->active_set_monitor = PETSC_FALSE;

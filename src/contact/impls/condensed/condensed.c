@@ -1,7 +1,7 @@
 /* The condensed formulation: K~ factored once per dt, the Delassus operator on the contact dofs, and
  * the step's contact VI on the reactions (docs/method.md section 3). */
 #include <petsc/private/petscimpl.h> /* PetscObjectStateGet */
-#include "contact_impl.h"
+#include "../../contactimpl.h"
 
 /* The condensed dofs are the normal dof of each contact node and, with friction, its tangential
  * dofs. With z = K~^{-1} b and the Delassus operator W = E^T K~^{-1} E on them, the step solution
@@ -11,7 +11,7 @@
  * with q_n = z_n - g (the gap left) and q_t = z_t - (u_t^n + dt/2 v_t^n), which makes the
  * tangential residual -dt/2 times the slip velocity: Tresca friction with thresholds s, exactly.
  * K~ is factored once per dt; a step costs two solves with that factor and a VI on the candidate
- * set's dofs (contact_candidates.c), whatever the size of the contact boundary. */
+ * set's dofs (candidates.c), whatever the size of the contact boundary. */
 
 PetscErrorCode MMCondensedFactor(MMCtx *ctx)
 {
@@ -31,25 +31,6 @@ PetscErrorCode MMCondensedFactor(MMCtx *ctx)
   PetscCall(KSPSetUp(ct->ksp_K));
   PetscCall(MMKSPCheckFactored(ct->ksp_K));
   if (ct->enabled) PetscCall(MMCandidatesInvalidate(ct));
-  PetscFunctionReturn(0);
-}
-
-/* The reactions rho and their bounds, one block of ncomp per contact node: the layout the friction
- * loop and the diagnostics read, whatever the formulation. Frictionless until thresholds are set:
- * rho_t in [0, 0]. */
-PetscErrorCode MMContactCreateReactions(MMCtx *ctx)
-{
-  MMContact *ct = &ctx->contact;
-
-  PetscFunctionBeginUser;
-  PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)ctx->op.dm), ct->ncomp * ct->n_local, PETSC_DETERMINE, &ct->rho));
-  PetscCall(VecSetBlockSize(ct->rho, ct->ncomp));
-  PetscCall(VecZeroEntries(ct->rho));
-  PetscCall(VecDuplicate(ct->rho, &ct->rho_lo));
-  PetscCall(VecDuplicate(ct->rho, &ct->rho_hi));
-  PetscCall(VecSet(ct->rho_lo, 0.0));
-  PetscCall(VecSet(ct->rho_hi, 0.0));
-  PetscCall(VecStrideSet(ct->rho_hi, 0, PETSC_INFINITY));
   PetscFunctionReturn(0);
 }
 
@@ -93,7 +74,7 @@ static PetscErrorCode CondensedRHS(MMCtx *ctx)
   PetscCall(VecGetArray(ct->offset, &oa));
   PetscCall(VecGetArray(ct->q, &qa));
   for (PetscInt r = 0; r < ct->cand.nc_local; ++r) {
-    /* tangential: relative to the obstacle's own velocity (slide_ref, contact_set.c) */
+    /* tangential: relative to the obstacle's own velocity (slide_ref, interface/set.c) */
     oa[r] = r % nr ? ua[row[r]] + 0.5 * ct->Kt_dt * va[row[r]] + ct->slide_ref[(r / nr) * (nr - 1) + r % nr - 1] : ga[r / nr];
     qa[r] = za[row[r]] - oa[r];
   }
@@ -386,3 +367,75 @@ PetscErrorCode MMCondensedRecover(MMCtx *ctx, Vec w)
   PetscFunctionReturn(0);
 }
 
+
+/* ---- The formulation's ops ---- */
+
+/* K~ for a new dt: its factor, and on the first one the VI solver on the reactions. */
+static PetscErrorCode CondensedSetOperator(MMCtx *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMCondensedFactor(ctx));
+  if (!ctx->contact.rho) PetscCall(MMCondensedCreateSolver(ctx));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CondensedSolve(MMCtx *ctx, Vec b, Vec w, Vec react)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMCondensedSolveReactions(ctx, b));
+  PetscCall(MMCondensedRecover(ctx, w));
+  PetscCall(MMContactForce(ctx, b, w, react));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CondensedSolveContactDofs(MMCtx *ctx, Vec b, Vec w, Vec react)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMCondensedSolveReactions(ctx, b));
+  PetscCall(MMCondensedContactDofs(ctx, w, react));
+  PetscFunctionReturn(0);
+}
+
+/* One full-size solve completes w once the friction loop has converged on the contact dofs. */
+static PetscErrorCode CondensedRecoverAll(MMCtx *ctx, Vec b, Vec w, Vec react)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMCondensedRecover(ctx, w));
+  PetscCall(MMContactForce(ctx, b, w, react));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CondensedGetStepKSP(MMCtx *ctx, KSP *krylov, KSP *pc_ksp)
+{
+  PetscFunctionBeginUser;
+  *krylov = *pc_ksp = ctx->contact.ksp_K;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CondensedSummary(MMCtx *ctx)
+{
+  const MMCandidates *c = &ctx->contact.cand;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  contact candidate set: largest %" PetscInt_FMT " of %" PetscInt_FMT " contact nodes; %" PetscInt_FMT " columns of K~^{-1} E computed; %" PetscInt_FMT " VI re-solves after the set grew\n", c->max_set, ctx->contact.n_global, c->columns, c->resolves));
+  if (c->evicted || c->recover_solves)
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  contact candidate cache at -contact_candidate_memory %g MiB: %" PetscInt_FMT " cached nodes dropped and their columns recomputed when needed; %" PetscInt_FMT " steps recovered by a solve, the whole columns being over the cap\n", (double)ctx->opt.candidate_memory, c->evicted, c->recover_solves));
+  PetscFunctionReturn(0);
+}
+
+static const MMContactOps CondensedOps = {
+  .setoperator      = CondensedSetOperator,
+  .solve            = CondensedSolve,
+  .solvecontactdofs = CondensedSolveContactDofs,
+  .recover          = CondensedRecoverAll,
+  .solvecoulomb     = MMCondensedSolveCoulomb,
+  .getstepksp       = CondensedGetStepKSP,
+  .summary          = CondensedSummary,
+};
+
+PetscErrorCode MMContactCreate_Condensed(MMContact *ct)
+{
+  PetscFunctionBeginUser;
+  ct->ops = &CondensedOps;
+  PetscFunctionReturn(0);
+}

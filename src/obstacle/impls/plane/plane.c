@@ -1,5 +1,5 @@
 /* A plane through a point with a unit normal pointing out of the obstacle, towards the body. */
-#include "obstacle.h"
+#include "../../obstacleimpl.h"
 
 static PetscErrorCode PlaneCheck(MMObstacle *ob, MPI_Comm comm, PetscInt dim)
 {

@@ -7,7 +7,7 @@
  * and its VI solved there with LAPACK, identically, so no matrix of size (contact dofs)^2 exists.
  * A node outside the set that the recovered step would push into the obstacle joins it, and the
  * step is solved again: the answer is the full-set one. */
-#include "contact_impl.h"
+#include "../../contactimpl.h"
 
 static PetscBool NodeIsLocal(MMCandidates *c, MMContact *ct, PetscInt g)
 {

@@ -1,0 +1,106 @@
+/* Run options: everything the user sets (src/app/options.c), and the enums they choose from. */
+#pragma once
+#include "mmbase.h"
+#include "obstacletypes.h"
+
+typedef enum {
+  MM_INITIAL_GIVEN,
+  MM_INITIAL_STATIC_SLIDING
+} MMInitialState;
+PETSC_EXTERN const char *const MMInitialStates[];
+
+typedef enum {
+  MM_MASS_MODIFIED,
+  MM_MASS_STANDARD
+} MMMassType;
+PETSC_EXTERN const char *const MMMassTypes[];
+
+/* How K and M are assembled: closed-form P1 element matrices in one pass over the cells, or the
+ * PetscFE quadrature (DMPlexSNESComputeJacobianFEM), kept to cross-check the first. */
+typedef enum {
+  MM_ASSEMBLY_CLOSED_FORM,
+  MM_ASSEMBLY_FE
+} MMAssemblyType;
+PETSC_EXTERN const char *const MMAssemblyTypes[];
+
+/* A Dirichlet boundary: fixes the listed components to constant values. */
+typedef struct {
+  char      *name;
+  PetscInt   ncomp;   /* -1 until the dimension is known: then all components (a clamp) */
+  PetscInt   comps[MM_MAX_DIM];
+  PetscReal  values[MM_MAX_DIM];
+  PetscInt   nvalues; /* entries given to -dirichlet_NAME_value, -1 if not set */
+} MMDirichlet;
+
+/* A Neumann boundary carrying a constant traction (force per unit area). */
+typedef struct {
+  char     *name;
+  PetscReal traction[MM_MAX_DIM];
+  PetscInt  nvalues; /* entries given to -traction_NAME_value, -1 if not set */
+} MMTraction;
+
+/* The vector options, whose lengths can only be checked once the mesh gives the dimension. */
+typedef enum {
+  MM_V_GRAVITY,
+  MM_V_U0_OFFSET,
+  MM_V_U0_GRADIENT,
+  MM_V_V0,
+  MM_V_OMEGA,
+  MM_V_OMEGA_CENTER,
+  MM_V_OBSTACLE_POINT,
+  MM_V_OBSTACLE_NORMAL,
+  MM_V_MESH_ROTATION,
+  MM_V_MESH_ROTATION_CENTER,
+  MM_V_NUM
+} MMVectorOption;
+
+/* Run options: everything the user sets. Filled in one place, src/app/options.c. */
+typedef struct {
+  char         mesh_file[PETSC_MAX_PATH_LEN];
+  char         contact_name[256];
+  PetscInt     n_dirichlet, n_traction;
+  MMDirichlet *dirichlet;
+  MMTraction  *traction;
+  PetscReal    E, nu, rho;
+  PetscReal    gravity[MM_MAX_DIM];
+  PetscReal    u0_offset[MM_MAX_DIM], u0_gradient[MM_MAX_DIM * MM_MAX_DIM];
+  PetscReal    v0[MM_MAX_DIM], omega[MM_MAX_DIM], omega_center[MM_MAX_DIM];
+  MMInitialState initial_state;
+  PetscReal    obstacle_point[MM_MAX_DIM], obstacle_normal[MM_MAX_DIM];
+  PetscReal    mesh_rotation[MM_MAX_DIM], mesh_rotation_center[MM_MAX_DIM];
+  MMMassType   mass_type;
+  PetscBool    lumped;
+  MMAssemblyType assembly;
+  PetscBool    assembly_check; /* assemble K and M both ways and stop if they differ */
+  PetscBool    contact;
+  char         contact_formulation[MM_TYPE_LEN]; /* a registered contact formulation */
+  PetscReal    contact_tol;
+  PetscReal    candidate_margin;  /* candidate set: predicted gap within this times the deepest predicted penetration */
+  PetscReal    candidate_memory;  /* candidate set: MiB of cached operator columns, over all ranks */
+  PetscBool    candidate_all;     /* candidate set: every contact node, every step (the reference) */
+  PetscInt     active_set_max_it;   /* active-set iterations per contact solve */
+  PetscBool    active_set_monitor;
+  PetscReal    audit_tol;
+  PetscReal    contact_work_tol;
+  PetscReal    initial_penetration_tol;
+  PetscReal    mu;
+  PetscReal    friction_coulomb_tol;
+  char         friction_type[64];   /* -friction_type: a name registered in src/friction/ */
+  PetscBool    friction_type_set;
+  PetscBool    friction_monitor;
+  char         output_dir[PETSC_MAX_PATH_LEN];
+  PetscInt     output_every;
+  PetscInt     checkpoint_every; /* steps between checkpoints, 0: only at the end */
+  char         restart[PETSC_MAX_PATH_LEN]; /* -restart: the checkpoint, or its directory, to continue; empty: none */
+  PetscBool    quiet;
+  PetscReal    progress_every;      /* seconds of wall time between progress lines, 0: none */
+  PetscBool    allow_unused;
+  PetscBool    deformation_audit;       /* the deformation audit (src/ts/deformation.c) and its thresholds */
+  PetscReal    strain_warn, max_strain;
+  PetscBool    debug; /* -debug: full PETSc traces (read again by errors.c before the options) */
+  PetscInt     vec_count[MM_V_NUM]; /* entries given to each vector option, -1 if not set */
+  PetscInt     n_obstacles;         /* -obstacles, or the one plane of -obstacle_point/_normal */
+  MMObstacle  *obstacles;
+  PetscBool    obstacles_named;     /* -obstacles was given */
+  PetscReal    mu_max;              /* the largest friction coefficient of the obstacles */
+} MMOptions;

@@ -1,0 +1,55 @@
+/* Output, progress lines and checkpoints (src/io/). */
+#pragma once
+#include "mmbase.h"
+
+/* The progress line (src/io/progress.c): what it keeps between two lines. The references are taken at the
+ * first monitor call, the start of TSSolve, so that the rates are those of this run's time loop. */
+typedef struct {
+  PetscBool      started;
+  PetscLogDouble wall_start, wall_last; /* wall time at the start of the time loop and at the last line */
+  PetscReal      t_start;               /* simulated time at the start of the time loop */
+  PetscInt       step_start, step_last; /* the step then, and the last step counted */
+  PetscInt       friction_its, steps;   /* friction iterations and steps since the last line */
+} MMProgress;
+
+/* Output files. Rank 0 alone writes history.csv and solution.xmf; solution.h5 is written by all. */
+typedef struct {
+  int           csv_fd;                /* history.csv, on rank 0 (-1 elsewhere and once closed) */
+  char          csv_name[PETSC_MAX_PATH_LEN], h5_name[PETSC_MAX_PATH_LEN], xmf_name[PETSC_MAX_PATH_LEN];
+  PetscViewer   h5;                    /* solution.h5, open from MMOutputOpen to MMOutputClose */
+  PetscInt      n_written;             /* snapshots on disk and flushed */
+  PetscInt      n_indexed;             /* the ones the XDMF index on disk lists */
+  PetscReal    *times;                 /* time of each snapshot */
+  PetscInt      nv, nc;                /* global vertex and cell counts, for the XDMF index */
+  char         *index;                 /* rank 0: the index's grids, written out at every snapshot */
+  size_t        index_len, index_cap;
+  PetscLogEvent ev_flush, ev_index, ev_copy; /* HDF5 flush, XDMF rewrite, the checkpoint's copy of solution.h5 */
+  DM            dm_out;                /* the displacement field without constraints: output of whole fields */
+  Vec           disp_cart, vel_cart;   /* Cartesian output fields on dm_out */
+  DM            dm_scalar;             /* one scalar per vertex: pressure, gap */
+  Vec           pressure, gap;
+  Vec           obstacle;              /* each contact node's obstacle (index in -obstacles), -1 elsewhere: written once */
+  Vec           serial;                /* each vertex's number in the serial mesh: written once */
+  PetscBool     static_written;        /* obstacle and serial are in solution.h5 */
+  Vec           traction_t, slip;      /* tangential traction and slip velocity on the contact boundary (dm_out) */
+} MMOutput;
+
+/* Checkpoints (src/io/checkpoint.c, docs/method.md section 9): the state keyed by the serial mesh's vertex
+ * numbers, so that a run can continue on any number of ranks. */
+typedef struct {
+  PetscInt *vertex_orig; /* per local vertex (from vStart), its number in the serial mesh */
+  PetscInt *vertex_file; /* per serial-mesh vertex, its position among the mesh file's nodes (mesh_file.c) */
+  PetscInt  nv_global;   /* vertices of the whole mesh */
+  PetscInt  every;       /* -checkpoint_every: steps between checkpoints, 0 only at the end */
+  PetscInt  written;     /* checkpoints written by this run */
+  PetscInt  last_step;   /* step of the last one written */
+  /* -restart */
+  PetscBool    restarted;
+  PetscInt     restart_step;                   /* the step the run continues from */
+  char         file[PETSC_MAX_PATH_LEN];       /* the checkpoint read */
+  char         source_dir[PETSC_MAX_PATH_LEN]; /* its directory: the history and snapshots to continue */
+  PetscReal    run[32];                        /* its run record */
+  PetscScalar *node;                           /* its per-node records of the owned contact nodes */
+  PetscReal   *snapshot_times;                 /* the times of its snapshots, until the output takes them */
+  int          stop_signal;                    /* the signal that stopped the run (signals.c), 0: none */
+} MMCheckpoint;

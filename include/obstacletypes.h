@@ -1,0 +1,22 @@
+/* A rigid obstacle: what a shape of the registry fills in (src/obstacle/). */
+#pragma once
+#include "mmbase.h"
+
+/* A rigid obstacle (docs/method.md section 8): a shape from the registry (src/obstacle/) that
+ * gives the signed distance of a point and its gradient, the outward normal of the obstacle; it
+ * may translate at a constant velocity between a start and a stop time. */
+typedef struct _MMObstacle MMObstacle;
+struct _MMObstacle {
+  char      name[64], type[32];
+  PetscReal point[MM_MAX_DIM], normal[MM_MAX_DIM], center[MM_MAX_DIM], axis[MM_MAX_DIM], radius;
+  PetscInt  npoint, nnormal, ncenter, naxis, nvelocity; /* entries given, -1 if not set */
+  PetscBool radius_set;
+  PetscBool inside;                  /* the body is inside the sphere, circle or cylinder */
+  PetscReal mu;                      /* friction coefficient against this obstacle */
+  PetscReal velocity[MM_MAX_DIM], start, stop; /* moves at velocity for start < t <= stop */
+  /* checks the parameters the shape needs, once the dimension is known */
+  PetscErrorCode (*check)(MMObstacle *, MPI_Comm, PetscInt);
+  /* signed distance g of x (positive outside the obstacle) and n = grad g, in the obstacle's
+   * position at time 0 */
+  PetscErrorCode (*distance)(const MMObstacle *, PetscInt, const PetscReal[], PetscReal *, PetscReal[]);
+};

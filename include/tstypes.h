@@ -1,0 +1,45 @@
+/* The time stepper's state, its per-step history row and the deformation audit (src/ts/). */
+#pragma once
+#include "mmbase.h"
+
+/* The Newmark state and the per-step energy audit. */
+typedef struct {
+  Vec       u, v, a;           /* current state, w-frame */
+  Vec       u_old, v_old, a_old;
+  Vec       react, react_old;  /* contact reactions on the body (K~ w - b on contact dofs) */
+  Vec       work;              /* scratch */
+  Vec       u_next;            /* the TS solution vector */
+  PetscReal dt;
+  PetscReal dt_user;           /* -ts_dt: after a rejected step, dt grows back to it */
+  PetscReal work_contact;      /* W_c of the accepted step, computed once by the contact-work guard */
+} MMState;
+
+/* One row of the history, and its running sums. */
+typedef struct {
+  PetscInt  step;
+  PetscReal time, dt;
+  PetscReal kinetic, elastic, total;
+  PetscReal work_ext, work_contact, work_friction; /* running sums */
+  PetscReal work_obstacle;     /* running sum: the work of the moving obstacles' contact forces */
+  PetscReal balance_residual;
+  PetscInt  active, slipping, switched;
+  PetscReal force_normal, force_tangential, max_penetration, coulomb_residual;
+  PetscInt  vi_its, friction_its;
+  PetscInt  candidates, resolves; /* the step's candidate-set size; VI re-solves after the set grew, over the run */
+  PetscReal cfl, contraction;
+  PetscReal ucm[MM_MAX_DIM], vcm[MM_MAX_DIM], L[MM_MAX_DIM];
+  PetscReal P[MM_MAX_DIM], J[3], load[MM_MAX_DIM]; /* the scheme's momenta and the loads' resultant */
+  PetscReal max_balance, max_penetration_run; /* over the run, for the summary */
+  PetscReal energy_scale;                     /* the largest |E| of the run so far */
+} MMHistory;
+
+/* The deformation audit (src/ts/deformation.c): the largest strain of the run and where it was. */
+typedef struct {
+  PetscReal     max_strain;                /* over the run: the largest principal strain magnitude */
+  PetscReal     where[MM_MAX_DIM];         /* the reference centroid of the cell that had it */
+  PetscInt      step;                      /* the step at which it was reached */
+  PetscBool     warned;                    /* the -strain_warn warning was printed */
+  PetscLogEvent ev;                        /* MMDeformation, in -log_view */
+  PetscInt      ncells;                    /* this rank's cells, and for each its dim+1 vertices' */
+  PetscInt     *cell_u, *cell_x;           /* offsets in the local displacement and coordinate vectors */
+} MMDeformation;

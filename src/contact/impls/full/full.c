@@ -1,0 +1,65 @@
+/* The full formulation (docs/method.md section 3): the step's bound-constrained QP
+ * min 1/2 w.K~w - b.w s.t. w_c <= g solved by SNESVI on the whole dof vector (prefix contact_),
+ * whose Newton steps factor K~'s block on the free dofs. Frictionless: it cannot solve the contact
+ * dofs alone, and has no Delassus operator. */
+#include "../../contactimpl.h"
+
+/* Bounds on the whole w vector: w_c <= g on the normal dofs, free elsewhere. */
+static PetscErrorCode SetBounds(MMContact *ct, Vec lower, Vec upper)
+{
+  Vec sub;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecSet(lower, PETSC_NINFINITY));
+  PetscCall(VecSet(upper, PETSC_INFINITY));
+  PetscCall(VecGetSubVector(upper, ct->is_normal, &sub));
+  PetscCall(VecCopy(ct->gap, sub));
+  PetscCall(VecRestoreSubVector(upper, ct->is_normal, &sub));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode FullSetUp(MMCtx *ctx)
+{
+  MMContact *ct = &ctx->contact;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(ct->qp.b, &ct->lower));
+  PetscCall(VecDuplicate(ct->qp.b, &ct->upper));
+  PetscCall(MMQPCreate(PetscObjectComm((PetscObject)ctx->op.dm), "contact_", &ct->qp, 0, &ct->snes));
+  PetscCall(SetBounds(ct, ct->lower, ct->upper));
+  PetscCall(SNESVISetVariableBounds(ct->snes, ct->lower, ct->upper));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode FullSolve(MMCtx *ctx, Vec b, Vec w, Vec react)
+{
+  MMContact *ct = &ctx->contact;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(b, ct->qp.b));
+  PetscCall(MMQPSolve(ct->snes, &ct->qp, w, &ct->vi_its));
+  PetscCall(MMContactForce(ctx, b, w, react));
+  PetscFunctionReturn(0);
+}
+
+/* The VI factors K~'s free block in each iteration with its own linear solver (prefix contact_). */
+static PetscErrorCode FullGetStepKSP(MMCtx *ctx, KSP *krylov, KSP *pc_ksp)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SNESGetKSP(ctx->contact.snes, krylov));
+  *pc_ksp = *krylov;
+  PetscFunctionReturn(0);
+}
+
+static const MMContactOps FullOps = {
+  .setup      = FullSetUp,
+  .solve      = FullSolve,
+  .getstepksp = FullGetStepKSP,
+};
+
+PetscErrorCode MMContactCreate_Full(MMContact *ct)
+{
+  PetscFunctionBeginUser;
+  ct->ops = &FullOps;
+  PetscFunctionReturn(0);
+}
