@@ -77,6 +77,7 @@ typedef struct {
   PetscReal    contact_tol;
   PetscReal    candidate_margin;  /* candidate set: predicted gap within this times the deepest predicted penetration */
   PetscReal    candidate_memory;  /* candidate set: MiB of cached operator columns, over all ranks */
+  PetscBool    keep_factor;       /* keep K~'s factor (and its columns) for the previous dt */
   PetscBool    candidate_all;     /* candidate set: every contact node, every step (the reference) */
   PetscInt     active_set_max_it;   /* active-set iterations per contact solve */
   PetscBool    active_set_monitor;

@@ -17,6 +17,22 @@ typedef struct {
   PetscReal rtol_b;
 } MMBoundQP;
 
+/* The cached columns of K~^{-1} E of one factor of K~, which a kept factor keeps with it. */
+typedef struct {
+  PetscScalar *cols, *full;  /* on the owned condensed dofs; on all owned dofs (MMCandidates) */
+  PetscInt    *slot_node;    /* per cached block: its contact node */
+  PetscInt     n_cached, cap;
+  PetscBool    full_ok;
+} MMColumnCache;
+
+/* K~ and its factor for the previous dt, with its columns (-contact_K_keep). */
+typedef struct {
+  Mat           A;
+  KSP           ksp;
+  PetscReal     dt;
+  MMColumnCache cache;
+} MMKtKept;
+
 /* The candidate set of the condensed formulation (docs/method.md section 3, "Candidate set"): the
  * contact nodes that can touch in the step, with the columns of K~^{-1} E computed when a node
  * first enters the set and kept, under a memory cap, until K~ is refactored. The step's VI on the
@@ -98,7 +114,8 @@ typedef struct {
   const MMContactOps *ops;        /* the formulation's operations (contactimpl.h) */
   SNES       snes;                /* the VI solver, prefix contact_: on w (full) or on lambda (condensed) */
   KSP        ksp_K;               /* K~ factored once per dt, prefix contact_K_ (condensed) */
-  MMCandidates cand;              /* the condensed VI on the candidate set: W rho - q complementary to the box of rho */
+  MMCandidates cand;
+  MMKtKept     kept;              /* the previous dt's K~, factor and columns (condensed, -contact_K_keep) */              /* the condensed VI on the candidate set: W rho - q complementary to the box of rho */
   Vec        q;                   /* the condensed right-hand side on all contact nodes: z_c - offset */
   PetscInt   ncomp;               /* condensed dofs per contact node: 1 (normal), or dim with friction */
   IS         is_cond;             /* the condensed dofs, node by node */

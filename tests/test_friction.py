@@ -140,6 +140,41 @@ def test_nonconvergent_friction_loop_retries_with_smaller_dt(mm):
     assert h["coulomb_residual"][1:].max() <= 1e-8 and h["balance_residual"].max() <= 1e-8
 
 
+def stage_event_count(output, stage, event):
+    """How many times -log_view counted `event` in the log stage named `stage` (0 if not there)."""
+    count, inside = 0, False
+    for line in output.splitlines():
+        if line.startswith("--- Event Stage"):
+            inside = line.rstrip().endswith(stage)
+        elif inside and line.split()[:1] == [event]:
+            count += int(line.split()[1])
+    return count
+
+
+@pytest.mark.parametrize("keep", [1, 0])
+def test_rejection_then_growth_refactors_at_most_once(mm, keep):
+    """The step at -ts_dt is rejected (the fixed point held to 3 updates cannot converge there) and
+    retried at dt/4, which converges. The growback adaptor grows dt back after 5 accepted steps; the
+    grown step is rejected again, and each such rejection doubles the wait (5, then 10): 3 rejections
+    in 25 steps, not one every other step. With the kept factor, the whole run factors K~ once in its
+    time steps (for dt/4: going back and forth to -ts_dt swaps factors, MMKtReuse); without it
+    (-contact_K_keep 0), every change of dt refactors."""
+    dt = 6.73242e-4
+    r = mm("f1_block", "-initial_state", "given", "-mu", 10, "-ts_dt", dt, "-ts_max_steps", 25, "-output_every", 0,
+           "-friction_type", "fixedpoint", "-friction_snes_max_it", 3, "-contact_K_keep", keep, "-log_view", name=f"keep{keep}")
+    h = r.history
+    times = [float(l.split("t = ")[1].split(":")[0]) for l in r.output.splitlines() if "step rejected at t =" in l]
+    steps = [int(np.argmin(np.abs(h["time"] - t))) for t in times]
+    assert steps == [0, 6, 17], steps  # waits of 5 and 10 accepted steps before dt grows
+    assert np.allclose(h["dt"][1:], dt / 4, rtol=1e-12)
+    assert h["coulomb_residual"][1:].max() <= 1e-8 and h["balance_residual"].max() <= 1e-8
+    factors = stage_event_count(r.output, "MM time steps", "MMAssemble")
+    if keep:
+        assert factors == 1 and stage_event_count(r.output, "MM time steps", "MMKtReuse") == 5
+    else:
+        assert factors == 5
+
+
 def test_nonconvergent_friction_loop_stops_at_the_dt_floor(tmp_path):
     """With the floor -ts_adapt_dt_min above the dt that would converge, the run stops with the
     time, the last dt, the contraction factor and c_p dt / h_c', and what it wrote stays readable."""

@@ -135,6 +135,7 @@ def test_backwards_surface_is_inverted_throughout(tmp_path):
     (["-mass_pc_type", "jacobi"], ["-mass_pc_type jacobi is not supported", "initial acceleration", "-mass_pc_type lu"]),
     (["-contact_snes_type", "newtonls"], ["-contact_snes_type newtonls is not supported", "vinewtonrsls", "vinewtonssls"]),
     (["-mu", 0.2, "-contact_snes_type", "vinewtonssls"], ["-contact_snes_type vinewtonssls is not supported with friction (-mu 0.2)", "vinewtonrsls"]),
+    (["-ts_adapt_type", "basic"], ["-ts_adapt_type basic is not supported", "no error estimate", "growback", "none"]),
     (["-contact_formulation", "condenced"], ["-contact_formulation condenced is not a contact formulation", "condensed", "full", "active_set"]),
     (["-mu", 0.2, "-contact_formulation", "full"], ["needs a contact formulation that solves the contact dofs alone", "-contact_formulation full cannot", "condensed or active_set"]),
 ])

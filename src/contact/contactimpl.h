@@ -14,6 +14,7 @@ struct _MMContactOps {
   PetscErrorCode (*setthresholds)(MMCtx *, Vec);
   PetscErrorCode (*solvecoulomb)(MMCtx *, Vec, Vec, Vec, MMContactSetSolver, void *, PetscBool *);
   PetscErrorCode (*getstepksp)(MMCtx *, KSP *, KSP *);      /* the K~ solvers, for the start-up report */
+  PetscErrorCode (*swapkept)(MMCtx *, PetscReal, PetscBool *); /* swap K~ and its factor with the kept ones; true if those are for dt */
   PetscErrorCode (*summary)(MMCtx *);                       /* its lines of the closing summary */
 };
 
@@ -58,6 +59,7 @@ PETSC_EXTERN PetscErrorCode MMCondensedSolveCoulomb(MMCtx *, Vec, Vec, Vec, MMCo
 /* impls/condensed/candidates.c: the candidate set, its cached columns of K~^{-1} E and its dense block */
 PETSC_EXTERN PetscErrorCode MMCandidatesSetUp(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMCandidatesInvalidate(MMContact *);
+PETSC_EXTERN PetscErrorCode MMCandidatesSwapCache(MMContact *, MMColumnCache *);
 PETSC_EXTERN PetscErrorCode MMCandidatesSelect(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMCandidatesGrow(MMCtx *, const PetscScalar[], PetscBool *);
 PETSC_EXTERN PetscErrorCode MMCandidatesMult(MMContact *, Vec, PetscScalar[]);

@@ -9,12 +9,13 @@
 #include "friction.h"
 #include "output.h"
 #include "contact.h"
+#include "newmark.h"
 
 #define MM_CKPT_FILE "checkpoint.h5"
 #define MM_CKPT_TMP  ".tmp" /* written whole, then renamed over the last good one */
 #define MM_CKPT_NODE 13     /* per vertex: contact, s, slipping, was_active, slip_dir[2], rho[3], and the
                                * active-set formulation's warm start: active, stick, dir[2] */
-#define MM_CKPT_VERSION 2
+#define MM_CKPT_VERSION 3
 
 /* The scalars of a run, in the "run" vector of the file, in this order. */
 typedef enum {
@@ -44,7 +45,8 @@ typedef enum {
   MM_RUN_RHO,
   MM_RUN_MASS,    /* the mass type, plus 2 if lumped */
   MM_RUN_DT_USER, /* -ts_dt */
-  MM_RUN_NUM
+  MM_RUN_ADAPT,   /* the growback adaptor's state, MM_ADAPT_STATE entries */
+  MM_RUN_NUM = MM_RUN_ADAPT + MM_ADAPT_STATE
 } MMRunEntry;
 _Static_assert(MM_RUN_NUM <= sizeof(((MMCheckpoint *)0)->run) / sizeof(PetscReal), "MMCheckpoint.run holds the run record");
 
@@ -209,6 +211,7 @@ static PetscErrorCode RunRecord(MMCtx *ctx, TS ts, PetscReal run[])
   run[MM_RUN_RHO]             = ctx->opt.rho;
   run[MM_RUN_MASS]            = ctx->opt.mass_type + (ctx->opt.lumped ? 2 : 0);
   run[MM_RUN_DT_USER]         = ctx->state.dt_user;
+  PetscCall(MMAdaptGrowBackGetState(ts, &run[MM_RUN_ADAPT]));
   PetscFunctionReturn(0);
 }
 
@@ -581,7 +584,10 @@ PetscErrorCode MMCheckpointLoad(MMCtx *ctx, TS ts)
   PetscCall(TSSetTime(ts, c->run[MM_RUN_TIME]));
   PetscCall(TSSetStepNumber(ts, c->restart_step));
   /* the same -ts_dt continues the run's own dt sequence; another one is the user's new dt */
-  if (c->run[MM_RUN_DT_USER] == s->dt_user) PetscCall(TSSetTimeStep(ts, c->run[MM_RUN_DT_NEXT]));
+  if (c->run[MM_RUN_DT_USER] == s->dt_user) {
+    PetscCall(TSSetTimeStep(ts, c->run[MM_RUN_DT_NEXT]));
+    PetscCall(MMAdaptGrowBackSetState(ts, &c->run[MM_RUN_ADAPT]));
+  }
   /* the gaps of moving obstacles at the checkpoint's time, for the initial diagnostics */
   if (ctx->contact.enabled) PetscCall(MMContactSetTime(ctx, c->run[MM_RUN_TIME], s->dt));
   if (!ctx->opt.quiet) {

@@ -23,6 +23,7 @@ PetscErrorCode MMLogRegister(MMLog *log)
   PetscCall(PetscLogEventRegister("MMEnergy", id, &log->energy));
   PetscCall(PetscLogEventRegister("MMCheckpoint", id, &log->checkpoint));
   PetscCall(PetscLogEventRegister("MMRestartOutput", id, &log->restart_output));
+  PetscCall(PetscLogEventRegister("MMKtReuse", id, &log->kt_reuse));
   PetscCall(PetscLogEventRegister("MMKtSetUp", id, &log->kt_setup));
   PetscCall(PetscLogEventRegister("MMKtSolve", id, &log->kt_solve));
   PetscCall(PetscLogEventRegister("MMActiveSetIter", id, &log->as_iterate));

@@ -143,8 +143,8 @@ static PetscErrorCode MatchFinalTime(TS ts)
   PetscFunctionReturn(0);
 }
 
-/* One step: solve, guard, and on rejection retry with a smaller dt; after a step accepted without
- * rejection, dt grows back towards -ts_dt by the inverse of the rejection factor. */
+/* One step: solve, guard, and on rejection retry with a smaller dt; the adaptor (growback by default,
+ * adapt_growback.c) then chooses the next dt. */
 static PetscErrorCode TSStep_Newmark(TS ts)
 {
   MMCtx    *ctx = ((TS_Newmark *)ts->data)->ctx;
@@ -191,7 +191,6 @@ static PetscErrorCode TSStep_Newmark(TS ts)
   /* TSAdapt's matchstep clipping changes dt by rounding when the next step ends on the final time:
    * keep dt, and the factorization of K~ that goes with it (the step is snapped to the final time) */
   if (PetscAbsReal(next_dt - dt) <= 1e-8 * dt) next_dt = dt;
-  if (!rejections && next_dt < s->dt_user) next_dt = PetscMin(s->dt_user, next_dt / ts->adapt->scale_solve_failed);
   ts->ptime += dt;
   /* the sum of n steps misses n dt by rounding: a time within the tolerance of the final time is it,
    * so the run ends there instead of taking one more step past it */
@@ -231,7 +230,7 @@ static PetscErrorCode TSCreate_Newmark(TS ts)
   ts->ops->step           = TSStep_Newmark;
   ts->ops->destroy        = TSDestroy_Newmark;
   ts->ops->view           = TSView_Newmark;
-  ts->default_adapt_type  = TSADAPTNONE;
+  ts->default_adapt_type  = TSADAPTGROWBACK;
   ts->usessnes            = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
@@ -240,6 +239,7 @@ PetscErrorCode MMNewmarkRegister(void)
 {
   PetscFunctionBeginUser;
   PetscCall(TSRegister(TSNEWMARK, TSCreate_Newmark));
+  PetscCall(MMAdaptGrowBackRegister());
   PetscFunctionReturn(0);
 }
 
@@ -292,6 +292,27 @@ static PetscErrorCode WarnUnresolvedContact(MMCtx *ctx, PetscReal dt)
   PetscFunctionReturn(0);
 }
 
+/* The adaptor only chooses dt after rejections: growback (the default) or none (dt stays where a
+ * rejection left it). The others need an error estimate the scheme does not make. dt never grows
+ * past -ts_dt. */
+static PetscErrorCode SetUpAdapt(TS ts, PetscReal dt)
+{
+  TSAdapt   adapt;
+  TSAdaptType type;
+  PetscBool gb, none;
+  PetscReal hmin, hmax;
+
+  PetscFunctionBeginUser;
+  PetscCall(TSGetAdapt(ts, &adapt));
+  PetscCall(TSAdaptGetType(adapt, &type));
+  PetscCall(PetscStrcmp(type, TSADAPTGROWBACK, &gb));
+  PetscCall(PetscStrcmp(type, TSADAPTNONE, &none));
+  PetscCheck(gb || none, PetscObjectComm((PetscObject)ts), PETSC_ERR_USER_INPUT, "-ts_adapt_type %s is not supported: the trapezoidal scheme makes no error estimate, and dt changes only after a rejected step. Use growback (the default: dt grows back after -ts_adapt_growback_steps accepted steps) or none (dt stays reduced)", type);
+  PetscCall(TSAdaptGetStepLimits(adapt, &hmin, &hmax));
+  PetscCall(TSAdaptSetStepLimits(adapt, hmin, PetscMin(hmax, dt)));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MMNewmarkCreateTS(MMCtx *ctx, TS *ts)
 {
   MPI_Comm  comm = PetscObjectComm((PetscObject)ctx->op.dm);
@@ -310,6 +331,7 @@ PetscErrorCode MMNewmarkCreateTS(MMCtx *ctx, TS *ts)
   PetscCall(CheckTimeOptions(*ts));
   PetscCall(TSGetTimeStep(*ts, &dt));
   ctx->state.dt_user = dt;
+  PetscCall(SetUpAdapt(*ts, dt));
   PetscCall(WarnUnresolvedContact(ctx, dt));
   PetscCall(TSSetSolution(*ts, ctx->state.u_next));
   PetscFunctionReturn(0);

@@ -54,13 +54,22 @@ PetscErrorCode MMContactSetStepMatrix(MMCtx *ctx, PetscReal dt)
 
   PetscFunctionBeginUser;
   if (ct->qp.A && ct->Kt_dt == dt) PetscFunctionReturn(0);
+  if (ct->qp.A && ct->ops->swapkept && ctx->opt.keep_factor) {
+    PetscBool hit;
+    PetscCall(PetscLogEventBegin(ctx->log.kt_reuse, 0, 0, 0, 0));
+    PetscCall((*ct->ops->swapkept)(ctx, dt, &hit));
+    PetscCall(PetscLogEventEnd(ctx->log.kt_reuse, 0, 0, 0, 0));
+    if (hit) PetscFunctionReturn(0);
+    /* else the current buffers are the older kept ones, or none yet: K~ for dt is built in them */
+  }
   PetscCall(PetscLogEventBegin(ctx->log.assemble, 0, 0, 0, 0));
-  if (!ct->qp.A) {
+  if (!ct->qp.b) {
     PetscCall(MatDuplicate(ctx->op.K, MAT_COPY_VALUES, &ct->qp.A));
     PetscCall(MatCreateVecs(ct->qp.A, &ct->qp.b, NULL));
     ct->qp.rtol_b = ct->tol;
     if (ct->ops->setup) PetscCall((*ct->ops->setup)(ctx));
-  } else PetscCall(MatCopy(ctx->op.K, ct->qp.A, SAME_NONZERO_PATTERN));
+  } else if (!ct->qp.A) PetscCall(MatDuplicate(ctx->op.K, MAT_COPY_VALUES, &ct->qp.A));
+  else PetscCall(MatCopy(ctx->op.K, ct->qp.A, SAME_NONZERO_PATTERN));
   PetscCall(MatAXPY(ct->qp.A, 4.0 / (dt * dt), ctx->op.Mstar, SUBSET_NONZERO_PATTERN));
   ct->Kt_dt = dt;
   if (ct->ops->setoperator) PetscCall((*ct->ops->setoperator)(ctx));
@@ -297,6 +306,11 @@ PetscErrorCode MMContactDestroy(MMContact *ct)
   PetscCall(SNESDestroy(&ct->snes0));
   PetscCall(KSPDestroy(&ct->ksp_K));
   PetscCall(MMCandidatesDestroy(&ct->cand));
+  PetscCall(MatDestroy(&ct->kept.A));
+  PetscCall(KSPDestroy(&ct->kept.ksp));
+  PetscCall(PetscFree(ct->kept.cache.cols));
+  PetscCall(PetscFree(ct->kept.cache.full));
+  PetscCall(PetscFree(ct->kept.cache.slot_node));
   PetscCall(VecDestroy(&ct->q));
   PetscCall(VecDestroy(&ct->mu_c));
   PetscCall(MMKtDestroy(&ct->kt));

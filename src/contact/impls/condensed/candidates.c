@@ -100,6 +100,29 @@ PetscErrorCode MMCandidatesInvalidate(MMContact *ct)
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode UpdateCompliances(MMContact *);
+
+/* The cached columns swapped with other's (a kept factor's): the set is emptied, as after a
+ * refactorization, and the slots and compliances follow the columns now in place. */
+PetscErrorCode MMCandidatesSwapCache(MMContact *ct, MMColumnCache *other)
+{
+  MMCandidates *c   = &ct->cand;
+  MMColumnCache mine = {c->cols, c->full, c->slot_node, c->n_cached, c->cap, c->full_ok};
+
+  PetscFunctionBeginUser;
+  PetscCall(MMCandidatesInvalidate(ct));
+  c->cols      = other->cols;
+  c->full      = other->full;
+  c->slot_node = other->slot_node;
+  c->n_cached  = other->n_cached;
+  c->cap       = other->cap;
+  c->full_ok   = other->cols ? other->full_ok : PETSC_TRUE;
+  *other       = mine;
+  for (PetscInt i = 0; i < c->n_cached; ++i) c->slot[c->slot_node[i]] = i;
+  PetscCall(UpdateCompliances(ct));
+  PetscFunctionReturn(0);
+}
+
 /* Keeps only the cached columns of the set's nodes, compacted to the front of the cache. */
 static PetscErrorCode EvictOutsideSet(MMContact *ct)
 {

@@ -18,8 +18,8 @@ PetscErrorCode MMCondensedFactor(MMCtx *ctx)
   MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
-  if (!ct->ksp_K) {
-    PetscCall(MatCreateVecs(ct->qp.A, &ct->z, &ct->rhs_c));
+  if (!ct->z) PetscCall(MatCreateVecs(ct->qp.A, &ct->z, &ct->rhs_c));
+  if (!ct->ksp_K) { /* the first, or a second one for the kept factor */
     PetscCall(KSPCreate(PetscObjectComm((PetscObject)ctx->op.dm), &ct->ksp_K));
     PetscCall(KSPSetOptionsPrefix(ct->ksp_K, "contact_K_"));
     PetscCall(MMKSPSetDirectSPD(ct->ksp_K, ctx->op.dim));
@@ -423,6 +423,28 @@ static PetscErrorCode CondensedSummary(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
+/* K~, its factor and its cached columns swapped with the kept ones (those of the previous dt): a
+ * step that goes back to that dt, after a rejection, needs no factorization. */
+static PetscErrorCode CondensedSwapKept(MMCtx *ctx, PetscReal dt, PetscBool *hit)
+{
+  MMContact *ct = &ctx->contact;
+  MMKtKept  *k  = &ct->kept;
+  Mat        A  = ct->qp.A;
+  KSP        ksp = ct->ksp_K;
+  PetscReal  kdt = ct->Kt_dt;
+
+  PetscFunctionBeginUser;
+  ct->qp.A  = k->A;
+  ct->ksp_K = k->ksp;
+  ct->Kt_dt = k->dt;
+  k->A      = A;
+  k->ksp    = ksp;
+  k->dt     = kdt;
+  PetscCall(MMCandidatesSwapCache(ct, &k->cache));
+  *hit = (PetscBool)(ct->qp.A && ct->Kt_dt == dt);
+  PetscFunctionReturn(0);
+}
+
 static const MMContactOps CondensedOps = {
   .setoperator      = CondensedSetOperator,
   .solve            = CondensedSolve,
@@ -431,6 +453,7 @@ static const MMContactOps CondensedOps = {
   .solvecoulomb     = MMCondensedSolveCoulomb,
   .getstepksp       = CondensedGetStepKSP,
   .summary          = CondensedSummary,
+  .swapkept         = CondensedSwapKept,
 };
 
 PetscErrorCode MMContactCreate_Condensed(MMContact *ct)

@@ -1,0 +1,141 @@
+/* TSAdapt "growback", the default of -ts_type newmark (docs/method.md section 4, "Rejected steps").
+ *
+ * A step the stepper rejects (the friction solver did not converge, or a release would create
+ * energy) is retried with dt times -ts_adapt_scale_solve_failed. Growing dt straight back on the
+ * next accepted step hits the same difficulty and ping-pongs, refactoring K~ each way. Here dt grows
+ * back (by the inverse factor, to the dt values whose factors are kept, up to -ts_dt) only after
+ * -ts_adapt_growback_steps accepted steps at the reduced dt; a rejection within that many steps of a
+ * growth doubles the wait, up to -ts_adapt_growback_max_steps. No error estimate is used: the
+ * scheme's energy identity holds at every dt. */
+#include <petsc/private/tsimpl.h>
+#include "newmark.h"
+
+typedef struct {
+  PetscInt wait, wait0, wait_max; /* accepted steps before dt grows; its start and cap */
+  PetscInt accepted;              /* accepted steps since dt last changed */
+  PetscInt since_growth;          /* accepted steps since dt last grew */
+  PetscInt rejects_seen;          /* ts->reject at the last choice */
+} TSAdapt_GrowBack;
+
+static PetscErrorCode TSAdaptChoose_GrowBack(TSAdapt adapt, TS ts, PetscReal h, PetscInt *next_sc, PetscReal *next_h, PetscBool *accept, PetscReal *wlte, PetscReal *wltea, PetscReal *wlter)
+{
+  TSAdapt_GrowBack *gb       = (TSAdapt_GrowBack *)adapt->data;
+  const PetscBool   rejected = (PetscBool)(ts->reject > gb->rejects_seen);
+
+  PetscFunctionBeginUser;
+  *accept       = PETSC_TRUE;
+  *next_sc      = 0;
+  *wlte         = -1;
+  *wltea        = -1;
+  *wlter        = -1;
+  *next_h       = h;
+  gb->rejects_seen = ts->reject;
+  if (rejected) {
+    /* the grown dt failed again soon: wait longer before the next try */
+    if (gb->since_growth <= gb->wait) gb->wait = PetscMin(2 * gb->wait, gb->wait_max);
+    gb->accepted     = 0;
+    gb->since_growth = PETSC_MAX_INT / 2;
+    PetscFunctionReturn(0);
+  }
+  gb->accepted++;
+  gb->since_growth++;
+  if (h < adapt->dt_max && gb->accepted >= gb->wait) {
+    *next_h          = PetscMin(adapt->dt_max, h / adapt->scale_solve_failed);
+    gb->accepted     = 0;
+    gb->since_growth = 0;
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSAdaptSetFromOptions_GrowBack(TSAdapt adapt, PetscOptionItems *PetscOptionsObject)
+{
+  TSAdapt_GrowBack *gb = (TSAdapt_GrowBack *)adapt->data;
+
+  PetscFunctionBeginUser;
+  PetscOptionsHeadBegin(PetscOptionsObject, "Grow-back adaptor options (-ts_type newmark)");
+  PetscCall(PetscOptionsInt("-ts_adapt_growback_steps", "Accepted steps at a dt reduced by a rejection before dt grows back by 1/-ts_adapt_scale_solve_failed (>= 1)", NULL, gb->wait0, &gb->wait0, NULL));
+  PetscCall(PetscOptionsInt("-ts_adapt_growback_max_steps", "The longest wait: each rejection soon after a growth doubles the wait, up to this", NULL, gb->wait_max, &gb->wait_max, NULL));
+  PetscOptionsHeadEnd();
+  PetscCheck(gb->wait0 >= 1 && gb->wait_max >= gb->wait0, PetscObjectComm((PetscObject)adapt), PETSC_ERR_USER_INPUT, "-ts_adapt_growback_steps %" PetscInt_FMT " must be >= 1 and at most -ts_adapt_growback_max_steps %" PetscInt_FMT, gb->wait0, gb->wait_max);
+  gb->wait = gb->wait0;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSAdaptView_GrowBack(TSAdapt adapt, PetscViewer viewer)
+{
+  TSAdapt_GrowBack *gb = (TSAdapt_GrowBack *)adapt->data;
+  PetscBool         ascii;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
+  if (ascii) PetscCall(PetscViewerASCIIPrintf(viewer, "  grows back after %" PetscInt_FMT " accepted steps (now %" PetscInt_FMT ", at most %" PetscInt_FMT ")\n", gb->wait0, gb->wait, gb->wait_max));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSAdaptDestroy_GrowBack(TSAdapt adapt)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(adapt->data));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSAdaptCreate_GrowBack(TSAdapt adapt)
+{
+  TSAdapt_GrowBack *gb;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&gb));
+  gb->wait0    = 5;
+  gb->wait     = gb->wait0;
+  gb->wait_max = 80;
+  gb->since_growth        = PETSC_MAX_INT / 2;
+  adapt->data             = gb;
+  adapt->ops->choose         = TSAdaptChoose_GrowBack;
+  adapt->ops->setfromoptions = TSAdaptSetFromOptions_GrowBack;
+  adapt->ops->view           = TSAdaptView_GrowBack;
+  adapt->ops->destroy        = TSAdaptDestroy_GrowBack;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMAdaptGrowBackRegister(void)
+{
+  PetscFunctionBeginUser;
+  PetscCall(TSAdaptRegister(TSADAPTGROWBACK, TSAdaptCreate_GrowBack));
+  PetscFunctionReturn(0);
+}
+
+/* The adaptor's state, for a checkpoint: the dt sequence after a restart continues as it would
+ * have (0s for another adaptor). */
+PetscErrorCode MMAdaptGrowBackGetState(TS ts, PetscReal state[MM_ADAPT_STATE])
+{
+  TSAdapt   adapt;
+  PetscBool gb;
+
+  PetscFunctionBeginUser;
+  PetscCall(TSGetAdapt(ts, &adapt));
+  PetscCall(PetscObjectTypeCompare((PetscObject)adapt, TSADAPTGROWBACK, &gb));
+  for (PetscInt i = 0; i < MM_ADAPT_STATE; ++i) state[i] = 0;
+  if (!gb) PetscFunctionReturn(0);
+  state[0] = ((TSAdapt_GrowBack *)adapt->data)->wait;
+  state[1] = ((TSAdapt_GrowBack *)adapt->data)->accepted;
+  state[2] = PetscMin(((TSAdapt_GrowBack *)adapt->data)->since_growth, 1e9);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMAdaptGrowBackSetState(TS ts, const PetscReal state[MM_ADAPT_STATE])
+{
+  TSAdapt           adapt;
+  TSAdapt_GrowBack *g;
+  PetscBool         gb;
+
+  PetscFunctionBeginUser;
+  PetscCall(TSGetAdapt(ts, &adapt));
+  PetscCall(PetscObjectTypeCompare((PetscObject)adapt, TSADAPTGROWBACK, &gb));
+  if (!gb || state[0] < 1) PetscFunctionReturn(0);
+  g               = (TSAdapt_GrowBack *)adapt->data;
+  g->wait         = (PetscInt)state[0];
+  g->accepted     = (PetscInt)state[1];
+  g->since_growth = state[2] >= 1e9 ? PETSC_MAX_INT / 2 : (PetscInt)state[2];
+  g->rejects_seen = ts->reject;
+  PetscFunctionReturn(0);
+}
