@@ -89,6 +89,7 @@ typedef struct {
   char         friction_type[64];   /* -friction_type: a name registered in src/friction/ */
   PetscBool    friction_type_set;
   PetscBool    friction_monitor;
+  char         friction_dump[PETSC_MAX_PATH_LEN]; /* -friction_dump: directory for the step problems, empty: none */
   char         output_dir[PETSC_MAX_PATH_LEN];
   PetscInt     output_every;
   PetscInt     checkpoint_every; /* steps between checkpoints, 0: only at the end */

@@ -1,6 +1,7 @@
 """The friction solvers (-friction_type, docs/method.md section 6): the semismooth Newton solver, the
 default, gives the paper's fixed point's solution wherever that converges, and converges where the
 fixed point's contraction is poor (c_p dt / h_c' of 4 in 3D)."""
+import h5py
 import numpy as np
 import pytest
 
@@ -53,12 +54,45 @@ def test_newton_two_ranks_equal_one(tmp_path):
     assert_same_solution(a, b)
 
 
-def test_3d_friction_at_cfl_4_has_no_rejection(mm):
+def fc3d_error(W, q, mu, r):
+    """The Friction Contact Library's (and Siconos') error of r for u = W r + q, r in the Coulomb cone:
+    |r - P_K(r - (u + mu |u_t| e_n))| / max(|q|, |r|, |u|)."""
+    u = W @ r + q
+    R, U = r.reshape(-1, 3), u.reshape(-1, 3)
+    z = R - U
+    z[:, 0] -= mu * np.linalg.norm(U[:, 1:], axis=1)
+    P = np.zeros_like(z)
+    zn, nt = z[:, 0], np.linalg.norm(z[:, 1:], axis=1)
+    inside = nt <= mu * zn
+    P[inside] = z[inside]
+    mid = ~inside & (mu * nt > -zn)
+    a = (zn[mid] + mu[mid] * nt[mid]) / (1 + mu[mid] ** 2)
+    P[mid, 0] = a
+    P[mid, 1:] = (mu[mid] * a / nt[mid])[:, None] * z[mid, 1:]
+    return np.linalg.norm(R - P) / max(np.linalg.norm(q), np.linalg.norm(r), np.linalg.norm(u))
+
+
+def test_3d_friction_at_cfl_4_has_no_rejection(tmp_path):
     """The D2 ball on the H = 0.1 mesh at c_p dt / h_c' = 4 with mu = 0.5, through the impact: no step
-    is rejected, a few Newton steps each, and the energy balance and Coulomb law hold at every step."""
-    r = mm("d2_ball", "-mesh", "meshes/ball10.msh", "-mu", 0.5, "-ts_dt", 0.0109, "-ts_max_time", 11 * 0.0109,
-           "-output_every", 0)
+    is rejected, a few Newton steps each, and the energy balance and Coulomb law hold at every step.
+    -friction_dump writes each contact step's problem in fclib's form u = W r + q: W symmetric with a
+    positive diagonal, our reactions solve it (fc3d error), and they are the step's contact force."""
+    dump = tmp_path / "dump"
+    r = run("d2_ball", tmp_path, "-mesh", "meshes/ball10.msh", "-mu", 0.5, "-ts_dt", 0.0109, "-ts_max_time", 11 * 0.0109,
+            "-output_every", 0, "-friction_dump", str(dump))
     h = r.history
+    files = sorted(dump.glob("step_*.h5"))
+    steps = [int(f.name[5:11]) for f in files]
+    assert steps == [k for k in range(1, len(h)) if h["candidates"][k] > 0]
+    fscale = np.abs(h["force_normal"]).max()
+    for f, k in zip(files, steps):
+        with h5py.File(f, "r") as d:
+            W, q, mu, rr = (np.array(d[x]) for x in ("W", "q", "mu", "r"))
+            assert d.attrs["spacedim"] == 3 and d.attrs["n"] == h["candidates"][k] and d.attrs["dt"] == 0.0109
+        assert np.abs(W - W.T).max() <= 1e-12 * np.abs(W).max() and np.diag(W).min() > 0
+        assert np.all(mu == 0.5) and rr[0::3].min() >= 0
+        assert fc3d_error(W, q, mu, rr) <= 1e-9
+        assert abs(rr[0::3].sum() - h["force_normal"][k]) <= 1e-9 * fscale, k
     assert "rejected" not in r.output
     assert 3.8 <= h["cfl"][1:].min() and h["cfl"].max() <= 4.2
     assert np.allclose(np.diff(h["time"]), 0.0109, rtol=1e-9, atol=0)

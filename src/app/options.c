@@ -380,6 +380,8 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-friction_coulomb_tol", "The friction loop converges when the thresholds change less than -friction_snes_rtol (default 1e-10) and the discrete Coulomb residual is below this, in (0, 1)", &opt->friction_coulomb_tol));
   PetscCall(PetscStrncpy(opt->friction_type, "newton", sizeof(opt->friction_type)));
   PetscCall(OptionsString(PetscOptionsObject, comm, "-friction_type", "Coulomb friction solver: newton (semismooth Newton on Alart-Curnier's function in contact space, the default; needs -contact_formulation condensed) or fixedpoint (the paper's fixed point on the thresholds, each Tresca problem solved exactly; the default of -contact_formulation active_set)", opt->friction_type, sizeof(opt->friction_type), &opt->friction_type_set));
+  opt->friction_dump[0] = 0;
+  PetscCall(OptionsString(PetscOptionsObject, comm, "-friction_dump", "Directory (created if missing) for each step's Coulomb problem on the candidate set, in the Friction Contact Library's form u = W r + q (docs/method.md section 6), with our reactions and solve time: step_NNNNNN.h5. scripts/fclib_compare.py solves them with Siconos. Needs the condensed formulation", opt->friction_dump, sizeof(opt->friction_dump), NULL));
   opt->friction_monitor = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-friction_monitor", "Print each friction iteration: threshold change, Coulomb residual, contraction factor, slipping and sticking node counts", NULL, opt->friction_monitor, &opt->friction_monitor, NULL));
   PetscCall(PetscStrncpy(opt->contact_formulation, "condensed", sizeof(opt->contact_formulation)));

@@ -68,4 +68,6 @@ struct _p_MMFriction {
 PETSC_INTERN PetscErrorCode MMFrictionCreate_Newton(MMFriction);
 PETSC_INTERN PetscErrorCode MMFrictionCreate_FixedPoint(MMFriction);
 PETSC_INTERN PetscErrorCode MMFrictionThresholdLoop(MMFriction, Vec, Vec, Vec);
+PETSC_INTERN PetscErrorCode MMFrictionDumpSetUp(MMFriction);
+PETSC_INTERN PetscErrorCode MMFrictionDump(MMFriction, const MMCoulombProblem *, const PetscScalar[], const PetscScalar[], const MMCoulombResult *, PetscLogDouble);
 PETSC_INTERN PetscErrorCode MMFrictionCoulombResidual(MMFriction, PetscReal *, PetscInt *, PetscInt *);

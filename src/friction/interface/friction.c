@@ -55,9 +55,20 @@ static PetscErrorCode SolveSetAdaptor(void *ptr, const MMContactSetProblem *sp, 
   MMFriction       fr = (MMFriction)ptr;
   MMCoulombProblem p  = {sp->n, sp->nc, sp->W, sp->q, sp->mu, NULL};
   MMCoulombResult  res;
+  PetscLogDouble   t0, t1;
+  PetscScalar     *x0 = NULL;
+  const PetscBool  dump = (PetscBool)(fr->ctx->opt.friction_dump[0] != 0);
 
   PetscFunctionBeginUser;
+  if (dump) { /* the warm start, for the dump */
+    PetscCall(PetscMalloc1(sp->n * sp->nc, &x0));
+    PetscCall(PetscArraycpy(x0, x, sp->n * sp->nc));
+  }
+  PetscCall(PetscTime(&t0));
   PetscCall(fr->ops.solveset(fr, &p, x, &res));
+  PetscCall(PetscTime(&t1));
+  if (dump) PetscCall(MMFrictionDump(fr, &p, x0, x, &res, t1 - t0));
+  PetscCall(PetscFree(x0));
   /* a set that grew is solved again: the iterations add up */
   fr->its += res.its;
   fr->inner_its += res.inner_its;
@@ -120,6 +131,8 @@ PetscErrorCode MMFrictionSetUp(MMCtx *ctx)
   PetscCheck(create, comm, PETSC_ERR_USER_INPUT, "-friction_type %s is not a friction solver: use newton (semismooth Newton on the Coulomb problem, the default) or fixedpoint (the paper's fixed point on the thresholds)", type);
   PetscCall(PetscStrncpy(fr->type, type, sizeof(fr->type)));
   PetscCall((*create)(fr));
+  PetscCheck(!ctx->opt.friction_dump[0] || (ctx->opt.mu_max > 0 && has && fr->ops.solveset), comm, PETSC_ERR_USER_INPUT, "-friction_dump %s writes the contact-space Coulomb problems, which this run does not solve: it needs -mu > 0, -contact_formulation condensed and a -friction_type that solves them (newton or fixedpoint)", ctx->opt.friction_dump);
+  PetscCall(MMFrictionDumpSetUp(fr));
   if (ctx->opt.mu_max == 0 || !ctx->contact.enabled) PetscFunctionReturn(0);
   PetscCheck(has ? fr->ops.solveset != NULL : fr->ops.solvethresholds != NULL, comm, PETSC_ERR_USER_INPUT,
              "-friction_type %s needs the Delassus operator of -contact_formulation condensed; with -contact_formulation %s use -friction_type fixedpoint", type, ctx->contact.type);
