@@ -50,7 +50,7 @@ LINEAR = dict(case="linear", options="-contact 0")
 CONTACT = dict(case="contact", options="-contact_formulation condensed -mu 0")
 FRICTION = dict(case="friction", options="-contact_formulation condensed -mu 0.2")
 FULL = dict(case="full", options="-contact_formulation full -mu 0")
-USERS = (LINEAR,) + tuple(dict(case=f"fric_{mu}_{ft}", options=f"-contact_formulation condensed -mu {mu} -friction_type {ft}")
+USERS = (LINEAR, CONTACT) + tuple(dict(case=f"fric_{mu}_{ft}", options=f"-contact_formulation condensed -mu {mu} -friction_type {ft}")
                           for mu in (0.2, 0.5) for ft in ("newton", "fixedpoint"))
 
 # One row per (suite, variant, ranks). dt and steps go through the impact: the D1 disk touches the

@@ -294,12 +294,14 @@ static PetscErrorCode WarnUnresolvedContact(MMCtx *ctx, PetscReal dt)
 
 /* The adaptor only chooses dt after rejections: growback (the default) or none (dt stays where a
  * rejection left it). The others need an error estimate the scheme does not make. dt never grows
- * past -ts_dt. */
+ * past -ts_dt, and unless -ts_adapt_dt_min says otherwise never falls below 1e-6 -ts_dt: a step
+ * that still fails there fails for another reason than dt, and the run stops and says so instead of
+ * crawling. */
 static PetscErrorCode SetUpAdapt(TS ts, PetscReal dt)
 {
   TSAdapt   adapt;
   TSAdaptType type;
-  PetscBool gb, none;
+  PetscBool gb, none, set;
   PetscReal hmin, hmax;
 
   PetscFunctionBeginUser;
@@ -309,6 +311,8 @@ static PetscErrorCode SetUpAdapt(TS ts, PetscReal dt)
   PetscCall(PetscStrcmp(type, TSADAPTNONE, &none));
   PetscCheck(gb || none, PetscObjectComm((PetscObject)ts), PETSC_ERR_USER_INPUT, "-ts_adapt_type %s is not supported: the trapezoidal scheme makes no error estimate, and dt changes only after a rejected step. Use growback (the default: dt grows back after -ts_adapt_growback_steps accepted steps) or none (dt stays reduced)", type);
   PetscCall(TSAdaptGetStepLimits(adapt, &hmin, &hmax));
+  PetscCall(PetscOptionsHasName(NULL, ((PetscObject)adapt)->prefix, "-ts_adapt_dt_min", &set));
+  if (!set) hmin = 1e-6 * dt;
   PetscCall(TSAdaptSetStepLimits(adapt, hmin, PetscMin(hmax, dt)));
   PetscFunctionReturn(0);
 }
