@@ -4,9 +4,13 @@
  * energy) is retried with dt times -ts_adapt_scale_solve_failed. Growing dt straight back on the
  * next accepted step hits the same difficulty and ping-pongs, refactoring K~ each way. Here dt grows
  * back (by the inverse factor, to the dt values whose factors are kept, up to -ts_dt) only after
- * -ts_adapt_growback_steps accepted steps at the reduced dt; a rejection within that many steps of a
- * growth doubles the wait, up to -ts_adapt_growback_max_steps. No error estimate is used: the
- * scheme's energy identity holds at every dt. */
+ * -ts_adapt_growback_steps accepted steps at the reduced dt when the rejection was of a regime (the
+ * friction solver: its difficulty lasts over steps); a grown dt rejected at once doubles the wait,
+ * up to -ts_adapt_growback_max_steps. A rejection of an event (a contact release that dt does not
+ * resolve, MMAdaptGrowBackRejected with regime false) is over once the step is past it: dt grows on
+ * the next step accepted without one (waiting there multiplies the steps of a run whose contact
+ * chatters, e.g. -mass standard, by 100). No error estimate is used: the scheme's energy identity
+ * holds at every dt. */
 #include <petsc/private/tsimpl.h>
 #include "newmark.h"
 
@@ -14,13 +18,17 @@ typedef struct {
   PetscInt wait, wait0, wait_max; /* accepted steps before dt grows; its start and cap */
   PetscInt accepted;              /* accepted steps since dt last changed */
   PetscInt since_growth;          /* accepted steps since dt last grew */
+  PetscInt regime_rejects;        /* rejections of a regime (the friction solver) */
+  PetscInt regime_seen;           /* regime_rejects at the last choice */
   PetscInt rejects_seen;          /* ts->reject at the last choice */
+  PetscBool event;                /* dt was last cut by an event: it grows on every clean step */
 } TSAdapt_GrowBack;
 
 static PetscErrorCode TSAdaptChoose_GrowBack(TSAdapt adapt, TS ts, PetscReal h, PetscInt *next_sc, PetscReal *next_h, PetscBool *accept, PetscReal *wlte, PetscReal *wltea, PetscReal *wlter)
 {
   TSAdapt_GrowBack *gb       = (TSAdapt_GrowBack *)adapt->data;
   const PetscBool   rejected = (PetscBool)(ts->reject > gb->rejects_seen);
+  const PetscBool   regime   = (PetscBool)(gb->regime_rejects > gb->regime_seen);
 
   PetscFunctionBeginUser;
   *accept       = PETSC_TRUE;
@@ -30,16 +38,23 @@ static PetscErrorCode TSAdaptChoose_GrowBack(TSAdapt adapt, TS ts, PetscReal h, 
   *wlter        = -1;
   *next_h       = h;
   gb->rejects_seen = ts->reject;
+  gb->regime_seen  = gb->regime_rejects;
+  if (rejected && !regime) { /* an event: grow on every clean step from the next one */
+    gb->event = PETSC_TRUE;
+    PetscFunctionReturn(0);
+  }
   if (rejected) {
-    /* the grown dt failed again soon: wait longer before the next try */
-    if (gb->since_growth <= gb->wait) gb->wait = PetscMin(2 * gb->wait, gb->wait_max);
+    gb->event = PETSC_FALSE;
+    /* the grown dt failed at once: wait longer before the next try */
+    if (gb->since_growth == 0) gb->wait = PetscMin(2 * gb->wait, gb->wait_max);
     gb->accepted     = 0;
     gb->since_growth = PETSC_MAX_INT / 2;
     PetscFunctionReturn(0);
   }
   gb->accepted++;
   gb->since_growth++;
-  if (h < adapt->dt_max && gb->accepted >= gb->wait) {
+  if (h >= adapt->dt_max) gb->event = PETSC_FALSE;
+  if (h < adapt->dt_max && (gb->event || gb->accepted >= gb->wait)) {
     *next_h          = PetscMin(adapt->dt_max, h / adapt->scale_solve_failed);
     gb->accepted     = 0;
     gb->since_growth = 0;
@@ -97,6 +112,20 @@ static PetscErrorCode TSAdaptCreate_GrowBack(TSAdapt adapt)
   PetscFunctionReturn(0);
 }
 
+/* The stepper's note of a rejection: regime (its cause lasts over steps, as a friction solve that
+ * does not converge at this dt) or event (a release within the step). */
+PetscErrorCode MMAdaptGrowBackRejected(TS ts, PetscBool regime)
+{
+  TSAdapt   adapt;
+  PetscBool gb;
+
+  PetscFunctionBeginUser;
+  PetscCall(TSGetAdapt(ts, &adapt));
+  PetscCall(PetscObjectTypeCompare((PetscObject)adapt, TSADAPTGROWBACK, &gb));
+  if (gb && regime) ((TSAdapt_GrowBack *)adapt->data)->regime_rejects++;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MMAdaptGrowBackRegister(void)
 {
   PetscFunctionBeginUser;
@@ -119,6 +148,7 @@ PetscErrorCode MMAdaptGrowBackGetState(TS ts, PetscReal state[MM_ADAPT_STATE])
   state[0] = ((TSAdapt_GrowBack *)adapt->data)->wait;
   state[1] = ((TSAdapt_GrowBack *)adapt->data)->accepted;
   state[2] = PetscMin(((TSAdapt_GrowBack *)adapt->data)->since_growth, 1e9);
+  state[3] = ((TSAdapt_GrowBack *)adapt->data)->event;
   PetscFunctionReturn(0);
 }
 
@@ -136,6 +166,8 @@ PetscErrorCode MMAdaptGrowBackSetState(TS ts, const PetscReal state[MM_ADAPT_STA
   g->wait         = (PetscInt)state[0];
   g->accepted     = (PetscInt)state[1];
   g->since_growth = state[2] >= 1e9 ? PETSC_MAX_INT / 2 : (PetscInt)state[2];
+  g->event        = (PetscBool)(state[3] != 0);
   g->rejects_seen = ts->reject;
+  g->regime_seen  = g->regime_rejects;
   PetscFunctionReturn(0);
 }

@@ -93,6 +93,7 @@ static PetscErrorCode RejectStep(TS ts, MMCtx *ctx, PetscInt rejections, MMRejec
   PetscCall(MMFrictionGetConvergence(ctx->friction, NULL, NULL, &contraction, NULL));
   ts->reject++;
   ts->num_snes_failures++;
+  PetscCall(MMAdaptGrowBackRejected(ts, (PetscBool)(why == MM_REJECT_FRICTION)));
   PetscCall(VecCopy(ctx->state.react_old, ctx->state.react));
   can_retry = (PetscBool)(new_dt >= hmin && (ts->max_reject < 0 || rejections <= ts->max_reject));
   if (why == MM_REJECT_FRICTION) {
