@@ -105,6 +105,9 @@ static PetscErrorCode TSAdaptCreate_GrowBack(TSAdapt adapt)
   gb->wait_max = 80;
   gb->since_growth        = PETSC_MAX_INT / 2;
   adapt->data             = gb;
+  /* the final stretch as one shortened step (MatchFinalTime in newmark.c), not split in two halves
+   * as TSAdapt does by default: each new dt is a factorization of K~ */
+  adapt->matchstepfac[1]  = 0.0;
   adapt->ops->choose         = TSAdaptChoose_GrowBack;
   adapt->ops->setfromoptions = TSAdaptSetFromOptions_GrowBack;
   adapt->ops->view           = TSAdaptView_GrowBack;
