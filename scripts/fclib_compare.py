@@ -110,7 +110,7 @@ def main():
         sizes = [int(p["n"]) for p in probs]
         lines.append(f"\n{d}: {len(probs)} problems, {min(sizes)} to {max(sizes)} candidate nodes, "
                      f"mu {float(probs[0]['mu'][0]):g}, dt {float(probs[0]['dt']):g}")
-        lines.append(f"| solver | solved | iterations, mean (max) | ms per problem, mean (max) | max |r - r_mmcontact| / |r| |")
+        lines.append(f"| solver | solved | iterations, mean (max) | ms per problem, mean (max) | largest difference from our r, of max r |")
         lines.append("|---|---|---|---|---|")
         ours_t = np.array([float(p["solve_time"]) for p in probs]) * 1e3
         ours_i = np.array([int(p["its"]) for p in probs])
