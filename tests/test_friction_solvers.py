@@ -112,3 +112,12 @@ def test_unknown_friction_type_is_refused(tmp_path):
 def test_newton_needs_the_delassus_operator(tmp_path):
     r = run("d1_friction", tmp_path, "-friction_type", "newton", "-contact_formulation", "active_set", np_=0, check=False)
     assert r.returncode != 0 and "use -friction_type fixedpoint" in r.output
+
+
+@pytest.mark.parametrize("extra", [("-mu", 0), ("-contact_formulation", "active_set")])
+def test_friction_dump_needs_contact_space_problems(tmp_path, extra):
+    """-friction_dump writes the contact-space Coulomb problems: a run that solves none (frictionless,
+    or a formulation without the Delassus operator) is refused, naming what it needs."""
+    r = run("d1_friction", tmp_path, "-friction_dump", str(tmp_path / "dump"), *extra, np_=0, check=False)
+    assert r.returncode != 0 and "-friction_dump" in r.output and "-contact_formulation condensed" in r.output
+    assert not (tmp_path / "dump").exists()

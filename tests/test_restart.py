@@ -219,6 +219,10 @@ def test_restart_needs_the_history_of_its_run(tmp_path, short_checkpoint):
     # 3D: every node in the candidate set, so that the cached columns of K~^{-1} E are computed in
     # the same blocks as in the uninterrupted run (MUMPS's multi-column solves round by block)
     ("d2_ball", ["-mu", 0.3, "-contact_candidate_all"]),
+    # rejected steps at 0, 6 and 17, the growback adaptor waiting 20 steps across the restart: its
+    # state is in the checkpoint, or the restarted run would grow dt at step 28 instead of 37
+    ("f1_block", ["-initial_state", "given", "-mu", 10, "-ts_dt", 6.73242e-4, "-friction_type", "fixedpoint",
+                  "-friction_snes_max_it", 3]),
 ])
 def test_restart_on_the_same_rank_is_bitwise(tmp_path, case, extra):
     """On one rank, where runs repeat bit for bit, a run stopped after step 23 and restarted writes
