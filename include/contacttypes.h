@@ -25,12 +25,14 @@ typedef struct {
   PetscBool    full_ok;
 } MMColumnCache;
 
-/* K~ and its factor for the previous dt, with its columns (-contact_K_keep). */
+/* K~ and its factor (or PC) for the previous dt, with what the formulation built on it
+ * (-contact_K_keep): the condensed formulation's columns, the active-set formulation's diag(K~). */
 typedef struct {
   Mat           A;
   KSP           ksp;
   PetscReal     dt;
   MMColumnCache cache;
+  Vec           diag;
 } MMKtKept;
 
 /* The candidate set of the condensed formulation (docs/method.md section 3, "Candidate set"): the

@@ -151,17 +151,19 @@ def stage_event_count(output, stage, event):
     return count
 
 
-@pytest.mark.parametrize("keep", [1, 0])
-def test_rejection_then_growth_refactors_at_most_once(mm, keep):
+@pytest.mark.parametrize("formulation,keep", [("condensed", 1), ("condensed", 0), ("active_set", 1)])
+def test_rejection_then_growth_refactors_at_most_once(mm, formulation, keep):
     """The step at -ts_dt is rejected (the fixed point held to 3 updates cannot converge there) and
     retried at dt/4, which converges. The growback adaptor grows dt back after 5 accepted steps; the
     grown step is rejected again, and each such rejection doubles the wait (5, then 10): 3 rejections
     in 25 steps, not one every other step. With the kept factor, the whole run factors K~ once in its
     time steps (for dt/4: going back and forth to -ts_dt swaps factors, MMKtReuse); without it
-    (-contact_K_keep 0), every change of dt refactors."""
+    (-contact_K_keep 0), every change of dt refactors. The active-set formulation keeps K~ and its PC
+    the same way."""
     dt = 6.73242e-4
     r = mm("f1_block", "-initial_state", "given", "-mu", 10, "-ts_dt", dt, "-ts_max_steps", 25, "-output_every", 0,
-           "-friction_type", "fixedpoint", "-friction_snes_max_it", 3, "-contact_K_keep", keep, "-log_view", name=f"keep{keep}")
+           "-friction_type", "fixedpoint", "-friction_snes_max_it", 3, "-contact_K_keep", keep, "-contact_formulation", formulation,
+           "-log_view", name=f"{formulation}{keep}")
     h = r.history
     times = [float(l.split("t = ")[1].split(":")[0]) for l in r.output.splitlines() if "step rejected at t =" in l]
     steps = [int(np.argmin(np.abs(h["time"] - t))) for t in times]

@@ -307,6 +307,7 @@ PetscErrorCode MMContactDestroy(MMContact *ct)
   PetscCall(KSPDestroy(&ct->ksp_K));
   PetscCall(MMCandidatesDestroy(&ct->cand));
   PetscCall(MatDestroy(&ct->kept.A));
+  PetscCall(VecDestroy(&ct->kept.diag));
   PetscCall(KSPDestroy(&ct->kept.ksp));
   PetscCall(PetscFree(ct->kept.cache.cols));
   PetscCall(PetscFree(ct->kept.cache.full));

@@ -489,6 +489,33 @@ static PetscErrorCode ActiveSetGetStepKSP(MMCtx *ctx, KSP *krylov, KSP *pc_ksp)
   PetscFunctionReturn(0);
 }
 
+/* K~, its PC (a factor with -contact_K_pc_type lu) and diag(K~) swapped with the kept ones of the
+ * previous dt: going back to it sets nothing up again. */
+static PetscErrorCode ActiveSetSwapKept(MMCtx *ctx, PetscReal dt, PetscBool *hit)
+{
+  MMContact *ct = &ctx->contact;
+  MMKtKept  *k  = &ct->kept;
+  Mat        A  = ct->qp.A;
+  KSP        ksp = ct->kt.ksp;
+  Vec        diag = ct->as.ct_diag;
+  PetscReal  kdt = ct->Kt_dt;
+
+  PetscFunctionBeginUser;
+  ct->qp.A      = k->A;
+  ct->kt.ksp    = k->ksp;
+  ct->as.ct_diag = k->diag;
+  ct->Kt_dt     = k->dt;
+  k->A          = A;
+  k->ksp        = ksp;
+  k->diag       = diag;
+  k->dt         = kdt;
+  /* a first swap: the buffers of the new dt are made here, as MMActiveSetSetUp made the first ones */
+  if (!ct->kt.ksp) PetscCall(MMKtCreate(ctx, PETSC_TRUE));
+  if (!ct->as.ct_diag) PetscCall(VecDuplicate(ct->qp.b, &ct->as.ct_diag));
+  *hit = (PetscBool)(ct->qp.A && ct->Kt_dt == dt);
+  PetscFunctionReturn(0);
+}
+
 static const MMContactOps ActiveSetOps = {
   .setup            = MMActiveSetSetUp,
   .setoperator      = MMActiveSetSetOperator,
@@ -497,6 +524,7 @@ static const MMContactOps ActiveSetOps = {
   .recover          = ActiveSetContactForce,
   .setthresholds    = MMActiveSetSetThresholds,
   .getstepksp       = ActiveSetGetStepKSP,
+  .swapkept         = ActiveSetSwapKept,
 };
 
 PetscErrorCode MMContactCreate_ActiveSet(MMContact *ct)
