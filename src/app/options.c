@@ -395,7 +395,7 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   opt->candidate_margin = 1.0;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-contact_candidate_margin", "Condensed formulation: a contact node joins the step's candidate set when its contact-free predicted gap is below this times the deepest predicted penetration (>= -1; negative values start from a set smaller than the contact, which the growth completes: the set grows and the step is re-solved whenever a node outside it would penetrate, so this changes the cost, not the answer)", &opt->candidate_margin));
   opt->keep_factor = PETSC_TRUE;
-  PetscCall(PetscOptionsBool("-contact_K_keep", "Condensed formulation: keep the factor of K~ and its cached columns for the previous dt, so that dt growing back after a rejected step costs no factorization (the memory of a second factor)", NULL, opt->keep_factor, &opt->keep_factor, NULL));
+  PetscCall(PetscOptionsBool("-contact_K_keep", "Keep K~ for the previous dt with its factor and cached columns (condensed) or its PC (active_set), so that dt growing back after a rejected step costs no factorization (the memory of a second factor)", NULL, opt->keep_factor, &opt->keep_factor, NULL));
   opt->candidate_all = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-contact_candidate_all", "Condensed formulation: every contact node in every step's candidate set (the full Delassus operator: the reference the candidate set is checked against)", NULL, opt->candidate_all, &opt->candidate_all, NULL));
   opt->candidate_memory = 2048;
