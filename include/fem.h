@@ -7,3 +7,5 @@ PETSC_EXTERN PetscErrorCode MMFECheckElasticEnergy(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMFEToCartesian(MMCtx *, Vec, Vec);
 PETSC_EXTERN PetscErrorCode MMFEFromCartesian(MMCtx *, Vec, Vec);
 PETSC_EXTERN PetscErrorCode MMFEDestroy(MMOperators *);
+/* det of the dim x dim matrix a, and its inverse into inv when inv is not NULL and det != 0 */
+PETSC_EXTERN PetscReal MMDetInverse(PetscInt, const PetscReal[MM_MAX_DIM][MM_MAX_DIM], PetscReal[MM_MAX_DIM][MM_MAX_DIM]);

@@ -32,6 +32,9 @@ typedef struct {
   Vec           serial;                /* each vertex's number in the serial mesh: written once */
   PetscBool     static_written;        /* obstacle and serial are in solution.h5 */
   Vec           traction_t, slip;      /* tangential traction and slip velocity on the contact boundary (dm_out) */
+  DM            dm_stress;             /* 6 components per vertex: the symmetric stress xx, xy, xz, yy, yz, zz */
+  Vec           stress, von_mises, stress_weight; /* nodal stress (dm_stress), von Mises and lumped weights (dm_scalar) */
+  PetscInt     *cell_vertex;           /* per local cell its dim + 1 vertices (src/io/stress.c) */
 } MMOutput;
 
 /* Checkpoints (src/io/checkpoint.c, docs/method.md section 9): the state keyed by the serial mesh's vertex

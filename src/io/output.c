@@ -228,9 +228,9 @@ static PetscErrorCode CSVRow(MMCtx *ctx)
 PetscErrorCode MMOutputIndexAddGrid(MMOutput *o, PetscInt dim, PetscInt k)
 {
   const char    *h5base     = "solution.h5";
-  const char    *fields[]   = {"displacement", "velocity", "contact_pressure", "gap", "tangential_traction", "slip_velocity"};
-  const char    *datasets[] = {"displacement_displacement", "velocity_displacement", "contact_pressure_nodal", "gap_nodal", "tangential_traction_displacement", "slip_velocity_displacement"};
-  const PetscInt ncomp[]    = {dim, dim, 1, 1, dim, dim};
+  const char    *fields[]   = {"displacement", "velocity", "contact_pressure", "gap", "tangential_traction", "slip_velocity", "stress", "von_mises"};
+  const char    *datasets[] = {"displacement_displacement", "velocity_displacement", "contact_pressure_nodal", "gap_nodal", "tangential_traction_displacement", "slip_velocity_displacement", "stress_stress", "von_mises_nodal"};
+  const PetscInt ncomp[]    = {dim, dim, 1, 1, dim, dim, 6, 1};
   const PetscInt nv = o->nv, nc = o->nc;
   MMLine         l = {.n = 0, .s = ""};
 
@@ -239,7 +239,7 @@ PetscErrorCode MMOutputIndexAddGrid(MMOutput *o, PetscInt dim, PetscInt k)
   PetscCall(MMOutputLineAdd(&l, "<Topology TopologyType=\"%s\" NumberOfElements=\"%" PetscInt_FMT "\">\n<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Int\" Format=\"HDF\">%s:/viz/topology/cells</DataItem>\n</Topology>\n", dim == 2 ? "Triangle" : "Tetrahedron", nc, nc, dim + 1, h5base));
   PetscCall(MMOutputLineAdd(&l, "<Geometry GeometryType=\"%s\">\n<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n</Geometry>\n", dim == 2 ? "XY" : "XYZ", nv, dim, h5base));
   for (size_t i = 0; i < sizeof(fields) / sizeof(fields[0]); ++i) {
-    PetscCall(MMOutputLineAdd(&l, "<Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", fields[i], ncomp[i] > 1 ? "Vector" : "Scalar"));
+    PetscCall(MMOutputLineAdd(&l, "<Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", fields[i], ncomp[i] == 6 ? "Tensor6" : ncomp[i] > 1 ? "Vector" : "Scalar"));
     if (ncomp[i] > 1) {
       PetscCall(MMOutputLineAdd(&l, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT " %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", nv, ncomp[i]));
       PetscCall(MMOutputLineAdd(&l, "<DataItem Dimensions=\"3 3\" Format=\"XML\">%" PetscInt_FMT " 0 0 1 1 1 1 %" PetscInt_FMT " %" PetscInt_FMT "</DataItem>\n", k, nv, ncomp[i]));
@@ -501,7 +501,7 @@ static PetscErrorCode WriteFields(MMCtx *ctx)
 {
   MMOutput      *o      = &ctx->out;
   PetscReal      t      = ctx->hist.time;
-  Vec            vecs[] = {o->disp_cart, o->vel_cart, o->pressure, o->gap, o->traction_t, o->slip};
+  Vec            vecs[] = {o->disp_cart, o->vel_cart, o->pressure, o->gap, o->traction_t, o->slip, o->stress, o->von_mises};
   PetscErrorCode ierr   = 0;
 
   PetscFunctionBeginUser;
@@ -509,10 +509,12 @@ static PetscErrorCode WriteFields(MMCtx *ctx)
   PetscCall(WholeField(ctx, ctx->state.u, PETSC_TRUE, o->disp_cart));
   PetscCall(WholeField(ctx, ctx->state.v, PETSC_FALSE, o->vel_cart));
   PetscCall(MMContactBoundaryFields(ctx, o));
+  PetscCall(MMStressCompute(ctx));
   if (!o->static_written) PetscCall(MMOutputWriteStaticFields(ctx));
   /* VecView also writes this time into /time, ahead of the fields: the index, not /time, says what is complete */
   PetscCall(DMSetOutputSequenceNumber(o->dm_out, o->n_written, t));
   PetscCall(DMSetOutputSequenceNumber(o->dm_scalar, o->n_written, t));
+  PetscCall(DMSetOutputSequenceNumber(o->dm_stress, o->n_written, t));
   PetscCall(MMOutputHDF5Begin());
   for (size_t i = 0; i < sizeof(vecs) / sizeof(vecs[0]) && !ierr; ++i) ierr = VecView(vecs[i], o->h5);
   PetscCall(MMOutputHDF5End(ierr, "write", o->h5_name));
@@ -698,6 +700,7 @@ static PetscErrorCode CreateFieldVectors(MMCtx *ctx)
   PetscCall(PetscObjectSetName((PetscObject)o->obstacle, "contact_obstacle"));
   PetscCall(DMCreateGlobalVector(o->dm_scalar, &o->serial));
   PetscCall(PetscObjectSetName((PetscObject)o->serial, "serial_vertex"));
+  PetscCall(MMStressCreate(ctx));
   PetscFunctionReturn(0);
 }
 
@@ -816,6 +819,7 @@ PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wa
     PetscCall(MMDeformationSummary(ctx));
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  output: %s, %s (%" PetscInt_FMT " snapshots), %s\n", o->csv_name, o->h5_name, o->n_written, o->xmf_name));
   }
+  PetscCall(MMStressDestroy(o));
   PetscCall(VecDestroy(&o->disp_cart));
   PetscCall(VecDestroy(&o->vel_cart));
   PetscCall(VecDestroy(&o->pressure));

@@ -137,7 +137,7 @@ static PetscErrorCode OldFieldsOpen(MMCtx *ctx, MMOldFields *of)
   of->nv = n;
   PetscCheck(n == ctx->ckpt.nv_global && per == 1, comm, PETSC_ERR_FILE_UNEXPECTED, "%s has %" PetscInt_FMT " vertices, the mesh has %" PetscInt_FMT ": it is not the output of the run that wrote the checkpoint", of->name, n, ctx->ckpt.nv_global);
   PetscCall(PetscMalloc1(n, &serial));
-  PetscCall(PetscMalloc2(n, &of->row, n * MM_MAX_DIM, &of->slab));
+  PetscCall(PetscMalloc2(n, &of->row, n * 6, &of->slab)); /* the widest field: the stress tensor */
   PetscCheck(H5Dread(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, serial) >= 0, comm, PETSC_ERR_FILE_READ, "Could not read the serial vertex numbers of %s", of->name);
   (void)H5Dclose(dset);
   /* the field holds each vertex's position in the mesh file: back to serial-mesh numbers */
@@ -235,9 +235,10 @@ PetscErrorCode MMOutputRestartFields(MMCtx *ctx)
 {
   MMOutput      *o         = &ctx->out;
   const PetscInt dim       = ctx->op.dim;
-  const char    *paths[]   = {"/vertex_fields/displacement_displacement", "/vertex_fields/velocity_displacement", "/vertex_fields/contact_pressure_nodal", "/vertex_fields/gap_nodal", "/vertex_fields/tangential_traction_displacement", "/vertex_fields/slip_velocity_displacement"};
-  Vec            vecs[]    = {o->disp_cart, o->vel_cart, o->pressure, o->gap, o->traction_t, o->slip};
-  const PetscInt ncomp[]   = {dim, dim, 1, 1, dim, dim};
+  const char    *paths[]   = {"/vertex_fields/displacement_displacement", "/vertex_fields/velocity_displacement", "/vertex_fields/contact_pressure_nodal", "/vertex_fields/gap_nodal", "/vertex_fields/tangential_traction_displacement", "/vertex_fields/slip_velocity_displacement", "/vertex_fields/stress_stress", "/vertex_fields/von_mises_nodal"};
+  Vec            vecs[]    = {o->disp_cart, o->vel_cart, o->pressure, o->gap, o->traction_t, o->slip, o->stress, o->von_mises};
+  const PetscInt ncomp[]   = {dim, dim, 1, 1, dim, dim, 6, 1};
+  DM             dms[]     = {o->dm_out, o->dm_out, o->dm_scalar, o->dm_scalar, o->dm_out, o->dm_out, o->dm_stress, o->dm_scalar};
   MMOldFields    of        = {0};
   MMFileStatus   st        = {0};
   char           tmp[PETSC_MAX_PATH_LEN];
@@ -261,11 +262,12 @@ PetscErrorCode MMOutputRestartFields(MMCtx *ctx)
   for (PetscInt k = 0; k < n; ++k) {
     for (size_t i = 0; i < sizeof(vecs) / sizeof(vecs[0]); ++i) {
       PetscCall(OldFieldsRead(&of, paths[i], k, ncomp[i]));
-      PetscCall(FillFromOld(ctx, &of, ncomp[i] > 1 ? o->dm_out : o->dm_scalar, ncomp[i], vecs[i]));
+      PetscCall(FillFromOld(ctx, &of, dms[i], ncomp[i], vecs[i]));
     }
     if (!o->static_written) PetscCall(MMOutputWriteStaticFields(ctx));
     PetscCall(DMSetOutputSequenceNumber(o->dm_out, k, times[k]));
     PetscCall(DMSetOutputSequenceNumber(o->dm_scalar, k, times[k]));
+    PetscCall(DMSetOutputSequenceNumber(o->dm_stress, k, times[k]));
     PetscCall(MMOutputHDF5Begin());
     for (size_t i = 0; i < sizeof(vecs) / sizeof(vecs[0]) && !ierr; ++i) ierr = VecView(vecs[i], o->h5);
     PetscCall(MMOutputHDF5End(ierr, "write", tmp));

@@ -30,6 +30,10 @@ PETSC_INTERN PetscErrorCode MMOutputFlushFields(MMOutput *);
 PETSC_INTERN PetscErrorCode MMOutputWriteStaticFields(MMCtx *);
 PETSC_INTERN PetscErrorCode MMOutputMakeDirectories(const char[], MMFileStatus *);
 PETSC_INTERN PetscErrorCode MMOutputKeepPrevious(const char[], MMFileStatus *);
+/* stress.c: the nodal stress and von Mises of each snapshot */
+PETSC_INTERN PetscErrorCode MMStressCreate(MMCtx *);
+PETSC_INTERN PetscErrorCode MMStressCompute(MMCtx *);
+PETSC_INTERN PetscErrorCode MMStressDestroy(MMOutput *);
 /* output_restart.c: -restart continues the history and the snapshots up to the checkpoint */
 PETSC_INTERN PetscErrorCode MMOutputRestartHistory(MMCtx *, MMFileStatus *);
 PETSC_INTERN PetscErrorCode MMOutputRestartFields(MMCtx *);

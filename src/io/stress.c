@@ -1,0 +1,168 @@
+/* The stress a user looks at first (docs/method.md section 5, "Stress"): sigma = lambda tr(eps) I +
+ * 2 mu eps, eps = sym(grad u), constant on each P1 cell, and its L2 projection on the P1 space with
+ * the lumped mass, sigma_v = sum_T |T| sigma_T / sum_T |T| over the cells T around vertex v, for
+ * smooth plots; and the von Mises stress of the projected tensor. 2D is plane strain:
+ * sigma_zz = lambda (eps_xx + eps_yy), sigma_xz = sigma_yz = 0. The tensor is written as XDMF's
+ * Tensor6 (xx, xy, xz, yy, yz, zz), so ParaView shows it as a tensor in 2D and 3D. A uniform strain
+ * gives the exact stress at every vertex: the projection of a constant is that constant. */
+#include "output.h"
+#include "outputimpl.h"
+#include "fem.h"
+
+#define MM_SYM 6
+
+/* Once: the stress DM (6 components per vertex, no constraints), its vectors, each local cell's vertices. */
+PetscErrorCode MMStressCreate(MMCtx *ctx)
+{
+  MMOutput      *o   = &ctx->out;
+  const PetscInt dim = ctx->op.dim;
+  const char    *names[MM_SYM] = {"stress_xx", "stress_xy", "stress_xz", "stress_yy", "stress_yz", "stress_zz"};
+  PetscFE        fe;
+  PetscSection   s;
+  PetscInt       cStart, cEnd, vStart, vEnd;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMClone(ctx->op.dm, &o->dm_stress));
+  PetscCall(PetscFECreateLagrange(PETSC_COMM_WORLD, dim, MM_SYM, PETSC_TRUE, 1, PETSC_DETERMINE, &fe));
+  PetscCall(PetscObjectSetName((PetscObject)fe, "stress"));
+  PetscCall(DMSetField(o->dm_stress, 0, NULL, (PetscObject)fe));
+  PetscCall(PetscFEDestroy(&fe));
+  PetscCall(DMCreateDS(o->dm_stress));
+  PetscCall(DMGetLocalSection(o->dm_stress, &s));
+  for (PetscInt c = 0; c < MM_SYM; ++c) PetscCall(PetscSectionSetComponentName(s, 0, c, names[c]));
+  PetscCall(DMCreateGlobalVector(o->dm_stress, &o->stress));
+  PetscCall(PetscObjectSetName((PetscObject)o->stress, "stress"));
+  PetscCall(DMCreateGlobalVector(o->dm_scalar, &o->von_mises));
+  PetscCall(PetscObjectSetName((PetscObject)o->von_mises, "von_mises"));
+  PetscCall(DMCreateGlobalVector(o->dm_scalar, &o->stress_weight));
+  PetscCall(DMPlexGetHeightStratum(ctx->op.dm, 0, &cStart, &cEnd));
+  PetscCall(DMPlexGetDepthStratum(ctx->op.dm, 0, &vStart, &vEnd));
+  PetscCall(PetscMalloc1((dim + 1) * (cEnd - cStart), &o->cell_vertex));
+  for (PetscInt c = cStart; c < cEnd; ++c) {
+    PetscInt *closure = NULL, n, k = 0;
+    PetscCall(DMPlexGetTransitiveClosure(ctx->op.dm, c, PETSC_TRUE, &n, &closure));
+    for (PetscInt i = 0; i < n; ++i)
+      if (closure[2 * i] >= vStart && closure[2 * i] < vEnd && k <= dim) o->cell_vertex[(dim + 1) * (c - cStart) + k++] = closure[2 * i];
+    PetscCall(DMPlexRestoreTransitiveClosure(ctx->op.dm, c, PETSC_TRUE, &n, &closure));
+    PetscCheck(k == dim + 1, PETSC_COMM_SELF, PETSC_ERR_SUP, "The stress output needs simplices: cell %" PetscInt_FMT " has %" PetscInt_FMT " vertices", c, k);
+  }
+  PetscFunctionReturn(0);
+}
+
+/* One cell: its stress (MM_SYM, Tensor6 order) and its volume, from the vertex positions x and the
+ * Cartesian displacements u. */
+static void CellStress(PetscInt dim, const PetscReal x[][MM_MAX_DIM], const PetscReal u[][MM_MAX_DIM], PetscReal lambda, PetscReal mu, PetscReal s[MM_SYM], PetscReal *vol)
+{
+  PetscReal J[MM_MAX_DIM][MM_MAX_DIM] = {{0}}, Ji[MM_MAX_DIM][MM_MAX_DIM] = {{0}}, e[3][3] = {{0}}, det, tr;
+
+  /* columns of J: the edges from vertex 0; grad u = D J^{-1}, D's columns the displacement differences */
+  for (PetscInt i = 0; i < dim; ++i)
+    for (PetscInt j = 0; j < dim; ++j) J[i][j] = x[j + 1][i] - x[0][i];
+  det = MMDetInverse(dim, J, Ji);
+  for (PetscInt i = 0; i < dim; ++i)
+    for (PetscInt j = 0; j < dim; ++j) {
+      PetscReal g = 0;
+      for (PetscInt k = 0; k < dim; ++k) g += (u[k + 1][i] - u[0][i]) * Ji[k][j];
+      e[i][j] += 0.5 * g;
+      e[j][i] += 0.5 * g;
+    }
+  tr   = e[0][0] + e[1][1] + e[2][2];
+  s[0] = lambda * tr + 2 * mu * e[0][0];
+  s[1] = 2 * mu * e[0][1];
+  s[2] = 2 * mu * e[0][2];
+  s[3] = lambda * tr + 2 * mu * e[1][1];
+  s[4] = 2 * mu * e[1][2];
+  s[5] = lambda * tr + 2 * mu * e[2][2]; /* 2D: plane strain, e_zz = 0 */
+  *vol = PetscAbsReal(det) / (dim == 2 ? 2.0 : 6.0);
+}
+
+/* The nodal stress and von Mises of the displacement in o->disp_cart (whole, Cartesian, on dm_out). */
+PetscErrorCode MMStressCompute(MMCtx *ctx)
+{
+  MMOutput          *o   = &ctx->out;
+  const PetscInt     dim = ctx->op.dim;
+  const PetscReal    lambda = PetscRealPart(ctx->constants[MM_C_LAMBDA]), mu = PetscRealPart(ctx->constants[MM_C_MU]);
+  DM                 cdm;
+  PetscSection       su, ss, sw, sx;
+  Vec                lu, ls, lw, X;
+  const PetscScalar *ua, *xa;
+  PetscScalar       *sa, *wa, *vm;
+  PetscInt           cStart, cEnd, n;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLocalVector(o->dm_out, &lu));
+  PetscCall(DMGlobalToLocal(o->dm_out, o->disp_cart, INSERT_VALUES, lu));
+  PetscCall(DMGetLocalVector(o->dm_stress, &ls));
+  PetscCall(DMGetLocalVector(o->dm_scalar, &lw));
+  PetscCall(VecZeroEntries(ls));
+  PetscCall(VecZeroEntries(lw));
+  PetscCall(DMGetLocalSection(o->dm_out, &su));
+  PetscCall(DMGetLocalSection(o->dm_stress, &ss));
+  PetscCall(DMGetLocalSection(o->dm_scalar, &sw));
+  PetscCall(DMGetCoordinateDM(ctx->op.dm, &cdm));
+  PetscCall(DMGetLocalSection(cdm, &sx));
+  PetscCall(DMGetCoordinatesLocal(ctx->op.dm, &X));
+  PetscCall(DMPlexGetHeightStratum(ctx->op.dm, 0, &cStart, &cEnd));
+  PetscCall(VecGetArrayRead(lu, &ua));
+  PetscCall(VecGetArrayRead(X, &xa));
+  PetscCall(VecGetArray(ls, &sa));
+  PetscCall(VecGetArray(lw, &wa));
+  for (PetscInt c = 0; c < cEnd - cStart; ++c) {
+    const PetscInt *v = &o->cell_vertex[(dim + 1) * c];
+    PetscReal       x[MM_MAX_DIM + 1][MM_MAX_DIM] = {{0}}, u[MM_MAX_DIM + 1][MM_MAX_DIM] = {{0}}, s[MM_SYM], vol;
+    for (PetscInt a = 0; a <= dim; ++a) {
+      PetscInt ou, ox;
+      PetscCall(PetscSectionGetOffset(su, v[a], &ou));
+      PetscCall(PetscSectionGetOffset(sx, v[a], &ox));
+      for (PetscInt d = 0; d < dim; ++d) {
+        u[a][d] = PetscRealPart(ua[ou + d]);
+        x[a][d] = PetscRealPart(xa[ox + d]);
+      }
+    }
+    CellStress(dim, x, u, lambda, mu, s, &vol);
+    for (PetscInt a = 0; a <= dim; ++a) {
+      PetscInt os, ow;
+      PetscCall(PetscSectionGetOffset(ss, v[a], &os));
+      PetscCall(PetscSectionGetOffset(sw, v[a], &ow));
+      for (PetscInt k = 0; k < MM_SYM; ++k) sa[os + k] += vol * s[k];
+      wa[ow] += vol;
+    }
+  }
+  PetscCall(VecRestoreArray(lw, &wa));
+  PetscCall(VecRestoreArray(ls, &sa));
+  PetscCall(VecRestoreArrayRead(X, &xa));
+  PetscCall(VecRestoreArrayRead(lu, &ua));
+  PetscCall(VecZeroEntries(o->stress));
+  PetscCall(VecZeroEntries(o->stress_weight));
+  PetscCall(DMLocalToGlobal(o->dm_stress, ls, ADD_VALUES, o->stress));
+  PetscCall(DMLocalToGlobal(o->dm_scalar, lw, ADD_VALUES, o->stress_weight));
+  PetscCall(DMRestoreLocalVector(o->dm_scalar, &lw));
+  PetscCall(DMRestoreLocalVector(o->dm_stress, &ls));
+  PetscCall(DMRestoreLocalVector(o->dm_out, &lu));
+  /* the two DMs number the owned vertices alike: block i of the stress is vertex i of the weights */
+  PetscCall(VecGetLocalSize(o->stress_weight, &n));
+  PetscCall(VecGetArray(o->stress, &sa));
+  PetscCall(VecGetArrayRead(o->stress_weight, (const PetscScalar **)&wa));
+  PetscCall(VecGetArray(o->von_mises, &vm));
+  for (PetscInt i = 0; i < n; ++i) {
+    PetscScalar *s = sa + MM_SYM * i;
+    for (PetscInt k = 0; k < MM_SYM; ++k) s[k] /= wa[i];
+    vm[i] = PetscSqrtReal(0.5 * (PetscSqr(PetscRealPart(s[0] - s[3])) + PetscSqr(PetscRealPart(s[3] - s[5])) + PetscSqr(PetscRealPart(s[5] - s[0]))) +
+                          3 * (PetscSqr(PetscRealPart(s[1])) + PetscSqr(PetscRealPart(s[2])) + PetscSqr(PetscRealPart(s[4]))));
+  }
+  PetscCall(VecRestoreArray(o->von_mises, &vm));
+  PetscCall(VecRestoreArrayRead(o->stress_weight, (const PetscScalar **)&wa));
+  PetscCall(VecRestoreArray(o->stress, &sa));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMStressDestroy(MMOutput *o)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecDestroy(&o->stress));
+  PetscCall(VecDestroy(&o->von_mises));
+  PetscCall(VecDestroy(&o->stress_weight));
+  PetscCall(DMDestroy(&o->dm_stress));
+  PetscCall(PetscFree(o->cell_vertex));
+  PetscFunctionReturn(0);
+}
