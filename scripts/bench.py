@@ -26,7 +26,7 @@ Environment (all optional):
   BENCH_LARGE_OPTS  contact solver options for the large suite's contact rows (default LARGE_OPTS)
 
 Peak memory: the program's summary prints the largest peak RSS over the ranks ("MiB/rank" is the
-max over ranks, src/output.c); to get the total, every rank runs under this script's --rank-rss
+max over ranks, src/io/output.c); to get the total, every rank runs under this script's --rank-rss
 mode, which reports the peak RSS of its mmcontact process, and the column peak_mib_total sums them.
 """
 import csv

@@ -191,7 +191,7 @@ def obstacles(opts, dim):
 
 
 def mesh_rotation(opts, dim):
-    """The rigid rotation mmcontact applies to the mesh when it reads it (src/mesh.c): an angle in 2D,
+    """The rigid rotation mmcontact applies to the mesh when it reads it (src/mesh/mesh.c): an angle in 2D,
     a rotation vector in 3D (Rodrigues), about -mesh_rotation_center. (R, center)."""
     center = vec(opts, "mesh_rotation_center", dim, [0.0] * dim)
     if dim == 2:
