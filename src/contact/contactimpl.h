@@ -23,6 +23,8 @@ PETSC_INTERN PetscErrorCode MMContactCreate_Condensed(MMContact *);
 PETSC_INTERN PetscErrorCode MMContactCreate_Full(MMContact *);
 PETSC_INTERN PetscErrorCode MMContactCreate_ActiveSet(MMContact *);
 PETSC_INTERN PetscErrorCode MMContactCreate_None(MMContact *);
+/* K~, its KSP and dt swapped with the kept ones (contact.c) */
+PETSC_INTERN PetscErrorCode MMContactSwapKeptOperator(MMContact *, KSP *);
 /* react = K~ w - b on the contact dofs (contact.c) */
 PETSC_INTERN PetscErrorCode MMContactForce(MMCtx *, Vec, Vec, Vec);
 

@@ -223,31 +223,45 @@ static PetscErrorCode CSVRow(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
+void MMOutputSnapshotFields(MMOutput *o, PetscInt dim, MMSnapshotField f[MM_SNAPSHOT_FIELDS])
+{
+  const MMSnapshotField all[MM_SNAPSHOT_FIELDS] = {
+    {"displacement", "displacement_displacement", dim, o->disp_cart, o->dm_out},
+    {"velocity", "velocity_displacement", dim, o->vel_cart, o->dm_out},
+    {"contact_pressure", "contact_pressure_nodal", 1, o->pressure, o->dm_scalar},
+    {"gap", "gap_nodal", 1, o->gap, o->dm_scalar},
+    {"tangential_traction", "tangential_traction_displacement", dim, o->traction_t, o->dm_out},
+    {"slip_velocity", "slip_velocity_displacement", dim, o->slip, o->dm_out},
+    {"stress", "stress_stress", 6, o->stress, o->dm_stress},
+    {"von_mises", "von_mises_nodal", 1, o->von_mises, o->dm_scalar},
+  };
+  for (PetscInt i = 0; i < MM_SNAPSHOT_FIELDS; ++i) f[i] = all[i];
+}
+
 /* rank 0: the newest snapshot's grid, added to the index text kept in memory. The snapshot count n
  * appears in it as MM_N, filled in when the index is written: the only part that changes. */
 PetscErrorCode MMOutputIndexAddGrid(MMOutput *o, PetscInt dim, PetscInt k)
 {
   const char    *h5base     = "solution.h5";
-  const char    *fields[]   = {"displacement", "velocity", "contact_pressure", "gap", "tangential_traction", "slip_velocity", "stress", "von_mises"};
-  const char    *datasets[] = {"displacement_displacement", "velocity_displacement", "contact_pressure_nodal", "gap_nodal", "tangential_traction_displacement", "slip_velocity_displacement", "stress_stress", "von_mises_nodal"};
-  const PetscInt ncomp[]    = {dim, dim, 1, 1, dim, dim, 6, 1};
   const PetscInt nv = o->nv, nc = o->nc;
   MMLine         l = {.n = 0, .s = ""};
+  MMSnapshotField f[MM_SNAPSHOT_FIELDS];
 
   PetscFunctionBeginUser;
+  MMOutputSnapshotFields(o, dim, f);
   PetscCall(MMOutputLineAdd(&l, "<Grid Name=\"step %" PetscInt_FMT "\" GridType=\"Uniform\">\n<Time Value=\"%.16e\"/>\n", k, (double)o->times[k]));
   PetscCall(MMOutputLineAdd(&l, "<Topology TopologyType=\"%s\" NumberOfElements=\"%" PetscInt_FMT "\">\n<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Int\" Format=\"HDF\">%s:/viz/topology/cells</DataItem>\n</Topology>\n", dim == 2 ? "Triangle" : "Tetrahedron", nc, nc, dim + 1, h5base));
   PetscCall(MMOutputLineAdd(&l, "<Geometry GeometryType=\"%s\">\n<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n</Geometry>\n", dim == 2 ? "XY" : "XYZ", nv, dim, h5base));
-  for (size_t i = 0; i < sizeof(fields) / sizeof(fields[0]); ++i) {
-    PetscCall(MMOutputLineAdd(&l, "<Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", fields[i], ncomp[i] == 6 ? "Tensor6" : ncomp[i] > 1 ? "Vector" : "Scalar"));
-    if (ncomp[i] > 1) {
-      PetscCall(MMOutputLineAdd(&l, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT " %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", nv, ncomp[i]));
-      PetscCall(MMOutputLineAdd(&l, "<DataItem Dimensions=\"3 3\" Format=\"XML\">%" PetscInt_FMT " 0 0 1 1 1 1 %" PetscInt_FMT " %" PetscInt_FMT "</DataItem>\n", k, nv, ncomp[i]));
-      PetscCall(MMOutputLineAdd(&l, "<DataItem Dimensions=\"" MM_N " %" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n</DataItem>\n</Attribute>\n", nv, ncomp[i], h5base, datasets[i]));
+  for (PetscInt i = 0; i < MM_SNAPSHOT_FIELDS; ++i) {
+    PetscCall(MMOutputLineAdd(&l, "<Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", f[i].name, f[i].ncomp == 6 ? "Tensor6" : f[i].ncomp > 1 ? "Vector" : "Scalar"));
+    if (f[i].ncomp > 1) {
+      PetscCall(MMOutputLineAdd(&l, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT " %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", nv, f[i].ncomp));
+      PetscCall(MMOutputLineAdd(&l, "<DataItem Dimensions=\"3 3\" Format=\"XML\">%" PetscInt_FMT " 0 0 1 1 1 1 %" PetscInt_FMT " %" PetscInt_FMT "</DataItem>\n", k, nv, f[i].ncomp));
+      PetscCall(MMOutputLineAdd(&l, "<DataItem Dimensions=\"" MM_N " %" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n</DataItem>\n</Attribute>\n", nv, f[i].ncomp, h5base, f[i].dataset));
     } else {
       PetscCall(MMOutputLineAdd(&l, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", nv));
       PetscCall(MMOutputLineAdd(&l, "<DataItem Dimensions=\"3 2\" Format=\"XML\">%" PetscInt_FMT " 0 1 1 1 %" PetscInt_FMT "</DataItem>\n", k, nv));
-      PetscCall(MMOutputLineAdd(&l, "<DataItem Dimensions=\"" MM_N " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n</DataItem>\n</Attribute>\n", nv, h5base, datasets[i]));
+      PetscCall(MMOutputLineAdd(&l, "<DataItem Dimensions=\"" MM_N " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n</DataItem>\n</Attribute>\n", nv, h5base, f[i].dataset));
     }
   }
   PetscCall(MMOutputLineAdd(&l, "<Attribute Name=\"contact_obstacle\" AttributeType=\"Scalar\" Center=\"Node\">\n<DataItem Dimensions=\"%" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/contact_obstacle_nodal</DataItem>\n</Attribute>\n", nv, h5base));
@@ -501,7 +515,7 @@ static PetscErrorCode WriteFields(MMCtx *ctx)
 {
   MMOutput      *o      = &ctx->out;
   PetscReal      t      = ctx->hist.time;
-  Vec            vecs[] = {o->disp_cart, o->vel_cart, o->pressure, o->gap, o->traction_t, o->slip, o->stress, o->von_mises};
+  MMSnapshotField f[MM_SNAPSHOT_FIELDS];
   PetscErrorCode ierr   = 0;
 
   PetscFunctionBeginUser;
@@ -516,7 +530,8 @@ static PetscErrorCode WriteFields(MMCtx *ctx)
   PetscCall(DMSetOutputSequenceNumber(o->dm_scalar, o->n_written, t));
   PetscCall(DMSetOutputSequenceNumber(o->dm_stress, o->n_written, t));
   PetscCall(MMOutputHDF5Begin());
-  for (size_t i = 0; i < sizeof(vecs) / sizeof(vecs[0]) && !ierr; ++i) ierr = VecView(vecs[i], o->h5);
+  MMOutputSnapshotFields(o, ctx->op.dim, f);
+  for (PetscInt i = 0; i < MM_SNAPSHOT_FIELDS && !ierr; ++i) ierr = VecView(f[i].vec, o->h5);
   PetscCall(MMOutputHDF5End(ierr, "write", o->h5_name));
   PetscCall(MMOutputFlushFields(o));
   PetscCall(PetscRealloc(sizeof(PetscReal) * (o->n_written + 1), &o->times));

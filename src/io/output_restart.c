@@ -235,10 +235,7 @@ PetscErrorCode MMOutputRestartFields(MMCtx *ctx)
 {
   MMOutput      *o         = &ctx->out;
   const PetscInt dim       = ctx->op.dim;
-  const char    *paths[]   = {"/vertex_fields/displacement_displacement", "/vertex_fields/velocity_displacement", "/vertex_fields/contact_pressure_nodal", "/vertex_fields/gap_nodal", "/vertex_fields/tangential_traction_displacement", "/vertex_fields/slip_velocity_displacement", "/vertex_fields/stress_stress", "/vertex_fields/von_mises_nodal"};
-  Vec            vecs[]    = {o->disp_cart, o->vel_cart, o->pressure, o->gap, o->traction_t, o->slip, o->stress, o->von_mises};
-  const PetscInt ncomp[]   = {dim, dim, 1, 1, dim, dim, 6, 1};
-  DM             dms[]     = {o->dm_out, o->dm_out, o->dm_scalar, o->dm_scalar, o->dm_out, o->dm_out, o->dm_stress, o->dm_scalar};
+  MMSnapshotField f[MM_SNAPSHOT_FIELDS];
   MMOldFields    of        = {0};
   MMFileStatus   st        = {0};
   char           tmp[PETSC_MAX_PATH_LEN];
@@ -248,6 +245,7 @@ PetscErrorCode MMOutputRestartFields(MMCtx *ctx)
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
+  MMOutputSnapshotFields(o, dim, f);
   PetscCall(MMCheckpointSnapshots(ctx, &n, &times));
   PetscCall(OldFieldsOpen(ctx, &of));
   PetscCall(CheckOldTimes(ctx, &of, n, times));
@@ -260,16 +258,18 @@ PetscErrorCode MMOutputRestartFields(MMCtx *ctx)
   ierr = DMView(ctx->op.dm, o->h5);
   PetscCall(MMOutputHDF5End(ierr, "write", tmp));
   for (PetscInt k = 0; k < n; ++k) {
-    for (size_t i = 0; i < sizeof(vecs) / sizeof(vecs[0]); ++i) {
-      PetscCall(OldFieldsRead(&of, paths[i], k, ncomp[i]));
-      PetscCall(FillFromOld(ctx, &of, dms[i], ncomp[i], vecs[i]));
+    for (PetscInt i = 0; i < MM_SNAPSHOT_FIELDS; ++i) {
+      char path[PETSC_MAX_PATH_LEN];
+      PetscCall(PetscSNPrintf(path, sizeof(path), "/vertex_fields/%s", f[i].dataset));
+      PetscCall(OldFieldsRead(&of, path, k, f[i].ncomp));
+      PetscCall(FillFromOld(ctx, &of, f[i].dm, f[i].ncomp, f[i].vec));
     }
     if (!o->static_written) PetscCall(MMOutputWriteStaticFields(ctx));
     PetscCall(DMSetOutputSequenceNumber(o->dm_out, k, times[k]));
     PetscCall(DMSetOutputSequenceNumber(o->dm_scalar, k, times[k]));
     PetscCall(DMSetOutputSequenceNumber(o->dm_stress, k, times[k]));
     PetscCall(MMOutputHDF5Begin());
-    for (size_t i = 0; i < sizeof(vecs) / sizeof(vecs[0]) && !ierr; ++i) ierr = VecView(vecs[i], o->h5);
+    for (PetscInt i = 0; i < MM_SNAPSHOT_FIELDS && !ierr; ++i) ierr = VecView(f[i].vec, o->h5);
     PetscCall(MMOutputHDF5End(ierr, "write", tmp));
   }
   (void)H5Fclose(of.file);

@@ -30,6 +30,16 @@ PETSC_INTERN PetscErrorCode MMOutputFlushFields(MMOutput *);
 PETSC_INTERN PetscErrorCode MMOutputWriteStaticFields(MMCtx *);
 PETSC_INTERN PetscErrorCode MMOutputMakeDirectories(const char[], MMFileStatus *);
 PETSC_INTERN PetscErrorCode MMOutputKeepPrevious(const char[], MMFileStatus *);
+/* The fields of each snapshot, in one table for the writer, the XDMF index and the restart's copy:
+ * the XDMF name, the dataset under /vertex_fields, components, the vector and its DM. */
+#define MM_SNAPSHOT_FIELDS 8
+typedef struct {
+  const char *name, *dataset;
+  PetscInt    ncomp;
+  Vec         vec;
+  DM          dm;
+} MMSnapshotField;
+PETSC_INTERN void MMOutputSnapshotFields(MMOutput *, PetscInt, MMSnapshotField[MM_SNAPSHOT_FIELDS]);
 /* stress.c: the nodal stress and von Mises of each snapshot */
 PETSC_INTERN PetscErrorCode MMStressCreate(MMCtx *);
 PETSC_INTERN PetscErrorCode MMStressCompute(MMCtx *);

@@ -11,6 +11,8 @@
 
 #define MM_SYM 6
 
+static PetscErrorCode StressWeights(MMCtx *);
+
 /* Once: the stress DM (6 components per vertex, no constraints), its vectors, each local cell's vertices. */
 PetscErrorCode MMStressCreate(MMCtx *ctx)
 {
@@ -46,19 +48,33 @@ PetscErrorCode MMStressCreate(MMCtx *ctx)
     PetscCall(DMPlexRestoreTransitiveClosure(ctx->op.dm, c, PETSC_TRUE, &n, &closure));
     PetscCheck(k == dim + 1, PETSC_COMM_SELF, PETSC_ERR_SUP, "The stress output needs simplices: cell %" PetscInt_FMT " has %" PetscInt_FMT " vertices", c, k);
   }
+  PetscCall(StressWeights(ctx));
   PetscFunctionReturn(0);
 }
 
-/* One cell: its stress (MM_SYM, Tensor6 order) and its volume, from the vertex positions x and the
- * Cartesian displacements u. */
-static void CellStress(PetscInt dim, const PetscReal x[][MM_MAX_DIM], const PetscReal u[][MM_MAX_DIM], PetscReal lambda, PetscReal mu, PetscReal s[MM_SYM], PetscReal *vol)
+/* J: its columns the edges from vertex 0 of the cell with vertices x. */
+static void EdgeMatrix(PetscInt dim, const PetscReal x[][MM_MAX_DIM], PetscReal J[MM_MAX_DIM][MM_MAX_DIM])
 {
-  PetscReal J[MM_MAX_DIM][MM_MAX_DIM] = {{0}}, Ji[MM_MAX_DIM][MM_MAX_DIM] = {{0}}, e[3][3] = {{0}}, det, tr;
-
-  /* columns of J: the edges from vertex 0; grad u = D J^{-1}, D's columns the displacement differences */
   for (PetscInt i = 0; i < dim; ++i)
     for (PetscInt j = 0; j < dim; ++j) J[i][j] = x[j + 1][i] - x[0][i];
-  det = MMDetInverse(dim, J, Ji);
+}
+
+static PetscReal CellVolume(PetscInt dim, const PetscReal x[][MM_MAX_DIM])
+{
+  PetscReal J[MM_MAX_DIM][MM_MAX_DIM] = {{0}};
+
+  EdgeMatrix(dim, x, J);
+  return PetscAbsReal(MMDetInverse(dim, J, NULL)) / (dim == 2 ? 2.0 : 6.0);
+}
+
+/* One cell's stress (MM_SYM, Tensor6 order) from its vertex positions x and Cartesian displacements u:
+ * grad u = D J^{-1}, D's columns the displacement differences along the edges. */
+static void CellStress(PetscInt dim, const PetscReal x[][MM_MAX_DIM], const PetscReal u[][MM_MAX_DIM], PetscReal lambda, PetscReal mu, PetscReal s[MM_SYM])
+{
+  PetscReal J[MM_MAX_DIM][MM_MAX_DIM] = {{0}}, Ji[MM_MAX_DIM][MM_MAX_DIM] = {{0}}, e[3][3] = {{0}}, tr;
+
+  EdgeMatrix(dim, x, J);
+  (void)MMDetInverse(dim, J, Ji);
   for (PetscInt i = 0; i < dim; ++i)
     for (PetscInt j = 0; j < dim; ++j) {
       PetscReal g = 0;
@@ -73,7 +89,51 @@ static void CellStress(PetscInt dim, const PetscReal x[][MM_MAX_DIM], const Pets
   s[3] = lambda * tr + 2 * mu * e[1][1];
   s[4] = 2 * mu * e[1][2];
   s[5] = lambda * tr + 2 * mu * e[2][2]; /* 2D: plane strain, e_zz = 0 */
-  *vol = PetscAbsReal(det) / (dim == 2 ? 2.0 : 6.0);
+}
+
+/* The lumped weights sum_T |T| of each vertex: geometry only, computed once. */
+static PetscErrorCode StressWeights(MMCtx *ctx)
+{
+  MMOutput          *o   = &ctx->out;
+  const PetscInt     dim = ctx->op.dim;
+  DM                 cdm;
+  PetscSection       sw, sx;
+  Vec                lw, X;
+  const PetscScalar *xa;
+  PetscScalar       *wa;
+  PetscInt           cStart, cEnd;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLocalVector(o->dm_scalar, &lw));
+  PetscCall(VecZeroEntries(lw));
+  PetscCall(DMGetLocalSection(o->dm_scalar, &sw));
+  PetscCall(DMGetCoordinateDM(ctx->op.dm, &cdm));
+  PetscCall(DMGetLocalSection(cdm, &sx));
+  PetscCall(DMGetCoordinatesLocal(ctx->op.dm, &X));
+  PetscCall(DMPlexGetHeightStratum(ctx->op.dm, 0, &cStart, &cEnd));
+  PetscCall(VecGetArrayRead(X, &xa));
+  PetscCall(VecGetArray(lw, &wa));
+  for (PetscInt c = 0; c < cEnd - cStart; ++c) {
+    const PetscInt *v = &o->cell_vertex[(dim + 1) * c];
+    PetscReal       x[MM_MAX_DIM + 1][MM_MAX_DIM] = {{0}}, vol;
+    for (PetscInt a = 0; a <= dim; ++a) {
+      PetscInt ox;
+      PetscCall(PetscSectionGetOffset(sx, v[a], &ox));
+      for (PetscInt d = 0; d < dim; ++d) x[a][d] = PetscRealPart(xa[ox + d]);
+    }
+    vol = CellVolume(dim, x);
+    for (PetscInt a = 0; a <= dim; ++a) {
+      PetscInt ow;
+      PetscCall(PetscSectionGetOffset(sw, v[a], &ow));
+      wa[ow] += vol;
+    }
+  }
+  PetscCall(VecRestoreArray(lw, &wa));
+  PetscCall(VecRestoreArrayRead(X, &xa));
+  PetscCall(VecZeroEntries(o->stress_weight));
+  PetscCall(DMLocalToGlobal(o->dm_scalar, lw, ADD_VALUES, o->stress_weight));
+  PetscCall(DMRestoreLocalVector(o->dm_scalar, &lw));
+  PetscFunctionReturn(0);
 }
 
 /* The nodal stress and von Mises of the displacement in o->disp_cart (whole, Cartesian, on dm_out). */
@@ -83,8 +143,8 @@ PetscErrorCode MMStressCompute(MMCtx *ctx)
   const PetscInt     dim = ctx->op.dim;
   const PetscReal    lambda = PetscRealPart(ctx->constants[MM_C_LAMBDA]), mu = PetscRealPart(ctx->constants[MM_C_MU]);
   DM                 cdm;
-  PetscSection       su, ss, sw, sx;
-  Vec                lu, ls, lw, X;
+  PetscSection       su, ss, sx;
+  Vec                lu, ls, X;
   const PetscScalar *ua, *xa;
   PetscScalar       *sa, *wa, *vm;
   PetscInt           cStart, cEnd, n;
@@ -93,12 +153,9 @@ PetscErrorCode MMStressCompute(MMCtx *ctx)
   PetscCall(DMGetLocalVector(o->dm_out, &lu));
   PetscCall(DMGlobalToLocal(o->dm_out, o->disp_cart, INSERT_VALUES, lu));
   PetscCall(DMGetLocalVector(o->dm_stress, &ls));
-  PetscCall(DMGetLocalVector(o->dm_scalar, &lw));
   PetscCall(VecZeroEntries(ls));
-  PetscCall(VecZeroEntries(lw));
   PetscCall(DMGetLocalSection(o->dm_out, &su));
   PetscCall(DMGetLocalSection(o->dm_stress, &ss));
-  PetscCall(DMGetLocalSection(o->dm_scalar, &sw));
   PetscCall(DMGetCoordinateDM(ctx->op.dm, &cdm));
   PetscCall(DMGetLocalSection(cdm, &sx));
   PetscCall(DMGetCoordinatesLocal(ctx->op.dm, &X));
@@ -106,7 +163,6 @@ PetscErrorCode MMStressCompute(MMCtx *ctx)
   PetscCall(VecGetArrayRead(lu, &ua));
   PetscCall(VecGetArrayRead(X, &xa));
   PetscCall(VecGetArray(ls, &sa));
-  PetscCall(VecGetArray(lw, &wa));
   for (PetscInt c = 0; c < cEnd - cStart; ++c) {
     const PetscInt *v = &o->cell_vertex[(dim + 1) * c];
     PetscReal       x[MM_MAX_DIM + 1][MM_MAX_DIM] = {{0}}, u[MM_MAX_DIM + 1][MM_MAX_DIM] = {{0}}, s[MM_SYM], vol;
@@ -119,24 +175,19 @@ PetscErrorCode MMStressCompute(MMCtx *ctx)
         x[a][d] = PetscRealPart(xa[ox + d]);
       }
     }
-    CellStress(dim, x, u, lambda, mu, s, &vol);
+    CellStress(dim, x, u, lambda, mu, s);
+    vol = CellVolume(dim, x);
     for (PetscInt a = 0; a <= dim; ++a) {
-      PetscInt os, ow;
+      PetscInt os;
       PetscCall(PetscSectionGetOffset(ss, v[a], &os));
-      PetscCall(PetscSectionGetOffset(sw, v[a], &ow));
       for (PetscInt k = 0; k < MM_SYM; ++k) sa[os + k] += vol * s[k];
-      wa[ow] += vol;
     }
   }
-  PetscCall(VecRestoreArray(lw, &wa));
   PetscCall(VecRestoreArray(ls, &sa));
   PetscCall(VecRestoreArrayRead(X, &xa));
   PetscCall(VecRestoreArrayRead(lu, &ua));
   PetscCall(VecZeroEntries(o->stress));
-  PetscCall(VecZeroEntries(o->stress_weight));
   PetscCall(DMLocalToGlobal(o->dm_stress, ls, ADD_VALUES, o->stress));
-  PetscCall(DMLocalToGlobal(o->dm_scalar, lw, ADD_VALUES, o->stress_weight));
-  PetscCall(DMRestoreLocalVector(o->dm_scalar, &lw));
   PetscCall(DMRestoreLocalVector(o->dm_stress, &ls));
   PetscCall(DMRestoreLocalVector(o->dm_out, &lu));
   /* the two DMs number the owned vertices alike: block i of the stress is vertex i of the weights */

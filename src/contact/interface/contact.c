@@ -46,6 +46,25 @@ PetscErrorCode MMContactSetType(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
+/* K~, the KSP that holds its factor or PC (ksp: the formulation's own) and its dt swapped with the
+ * kept ones (-contact_K_keep); what else the formulation built on K~ it swaps itself. */
+PetscErrorCode MMContactSwapKeptOperator(MMContact *ct, KSP *ksp)
+{
+  MMKtKept *k = &ct->kept;
+  Mat       A = ct->qp.A;
+  KSP       s = *ksp;
+  PetscReal dt = ct->Kt_dt;
+
+  PetscFunctionBeginUser;
+  ct->qp.A  = k->A;
+  *ksp      = k->ksp;
+  ct->Kt_dt = k->dt;
+  k->A      = A;
+  k->ksp    = s;
+  k->dt     = dt;
+  PetscFunctionReturn(0);
+}
+
 /* K~ = K + 4/dt^2 M*, assembled only when dt changes; the formulation then builds on it what it
  * needs (a factor and the Delassus operator, a PC, nothing). */
 PetscErrorCode MMContactSetStepMatrix(MMCtx *ctx, PetscReal dt)

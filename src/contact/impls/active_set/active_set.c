@@ -493,22 +493,13 @@ static PetscErrorCode ActiveSetGetStepKSP(MMCtx *ctx, KSP *krylov, KSP *pc_ksp)
  * previous dt: going back to it sets nothing up again. */
 static PetscErrorCode ActiveSetSwapKept(MMCtx *ctx, PetscReal dt, PetscBool *hit)
 {
-  MMContact *ct = &ctx->contact;
-  MMKtKept  *k  = &ct->kept;
-  Mat        A  = ct->qp.A;
-  KSP        ksp = ct->kt.ksp;
+  MMContact *ct   = &ctx->contact;
   Vec        diag = ct->as.ct_diag;
-  PetscReal  kdt = ct->Kt_dt;
 
   PetscFunctionBeginUser;
-  ct->qp.A      = k->A;
-  ct->kt.ksp    = k->ksp;
-  ct->as.ct_diag = k->diag;
-  ct->Kt_dt     = k->dt;
-  k->A          = A;
-  k->ksp        = ksp;
-  k->diag       = diag;
-  k->dt         = kdt;
+  PetscCall(MMContactSwapKeptOperator(ct, &ct->kt.ksp));
+  ct->as.ct_diag = ct->kept.diag;
+  ct->kept.diag  = diag;
   /* a first swap: the buffers of the new dt are made here, as MMActiveSetSetUp made the first ones */
   if (!ct->kt.ksp) PetscCall(MMKtCreate(ctx, PETSC_TRUE));
   if (!ct->as.ct_diag) PetscCall(VecDuplicate(ct->qp.b, &ct->as.ct_diag));

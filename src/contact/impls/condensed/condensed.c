@@ -428,19 +428,10 @@ static PetscErrorCode CondensedSummary(MMCtx *ctx)
 static PetscErrorCode CondensedSwapKept(MMCtx *ctx, PetscReal dt, PetscBool *hit)
 {
   MMContact *ct = &ctx->contact;
-  MMKtKept  *k  = &ct->kept;
-  Mat        A  = ct->qp.A;
-  KSP        ksp = ct->ksp_K;
-  PetscReal  kdt = ct->Kt_dt;
 
   PetscFunctionBeginUser;
-  ct->qp.A  = k->A;
-  ct->ksp_K = k->ksp;
-  ct->Kt_dt = k->dt;
-  k->A      = A;
-  k->ksp    = ksp;
-  k->dt     = kdt;
-  PetscCall(MMCandidatesSwapCache(ct, &k->cache));
+  PetscCall(MMContactSwapKeptOperator(ct, &ct->ksp_K));
+  PetscCall(MMCandidatesSwapCache(ct, &ct->kept.cache));
   *hit = (PetscBool)(ct->qp.A && ct->Kt_dt == dt);
   PetscFunctionReturn(0);
 }
