@@ -11,7 +11,8 @@ PETSC_EXTERN const char *const MMInitialStates[];
 
 typedef enum {
   MM_MASS_MODIFIED,
-  MM_MASS_STANDARD
+  MM_MASS_STANDARD,
+  MM_MASS_REDISTRIBUTED /* modified, its removed mass given to the other nodes (docs/method.md section 2) */
 } MMMassType;
 PETSC_EXTERN const char *const MMMassTypes[];
 

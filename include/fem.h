@@ -7,5 +7,12 @@ PETSC_EXTERN PetscErrorCode MMFECheckElasticEnergy(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMFEToCartesian(MMCtx *, Vec, Vec);
 PETSC_EXTERN PetscErrorCode MMFEFromCartesian(MMCtx *, Vec, Vec);
 PETSC_EXTERN PetscErrorCode MMFEDestroy(MMOperators *);
+PETSC_EXTERN PetscErrorCode MMFERedistributeMass(MMCtx *);
+PETSC_EXTERN PetscErrorCode MMFEMassMoments(MMCtx *);
+/* The modified and the redistributed mass leave the contact-normal dofs without inertia. */
+static inline PetscBool MMFEHasMasslessDofs(const MMCtx *ctx)
+{
+  return (PetscBool)(ctx->contact.enabled && ctx->opt.mass_type != MM_MASS_STANDARD);
+}
 /* det of the dim x dim matrix a, and its inverse into inv when inv is not NULL and det != 0 */
 PETSC_EXTERN PetscReal MMDetInverse(PetscInt, const PetscReal[MM_MAX_DIM][MM_MAX_DIM], PetscReal[MM_MAX_DIM][MM_MAX_DIM]);

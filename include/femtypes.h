@@ -23,7 +23,13 @@ typedef struct {
   Mat       Q;      /* frame rotation, u_cart = Q w */
   Vec       load;   /* L: body force + traction (w-frame), constant in time */
   Vec       lift;   /* K_fD u_D: the Dirichlet data's elastic force on the free dofs (w-frame) */
-  Vec       mass_lumped_cart; /* lumped standard mass per Cartesian dof, for rigid-body diagnostics */
+  Vec       mass_lumped_cart; /* lumped standard mass per Cartesian dof */
+  PetscReal mass_M;           /* total mass of M */
+  PetscReal mass_star[MM_MAX_DIM * MM_MAX_DIM]; /* M*'s mass for rigid translations, dim x dim (m I for M) */
+  PetscReal x_cg[MM_MAX_DIM];                   /* M's centre of gravity in the reference configuration */
+  PetscReal mass_correction;      /* -mass redistributed: the largest negative eigenvalue of a node's moment correction over its mass */
+  PetscReal mass_moment_unreachable; /* 3D: |trace of G's translation-rotation block| left, / total mass (mass_redistribution.c) */
+  PetscReal mass_moment_mismatch; /* -mass redistributed: max |rigid-mode Gram of M* - of M| / total mass */
   PetscReal c_p;    /* pressure wave speed */
   PetscReal energy_dirichlet; /* elastic energy of the Dirichlet data alone, 1/2 u_D.A_DD u_D */
   Vec       work;

@@ -13,8 +13,8 @@ SOLVERS = ("newton", "fixedpoint")
 def contact_fields(r):
     """Contact pressure and tangential traction of every snapshot, in the mesh file's vertex order."""
     with r.fields() as f:
-        order = np.argsort(f["fields/serial_vertex"][:])
-        return f["fields/contact_pressure"][:][:, order], f["fields/tangential_traction"][:][:, order]
+        order = np.argsort(f["vertex_fields/serial_vertex_nodal"][:])
+        return f["vertex_fields/contact_pressure_nodal"][:][:, order], f["vertex_fields/tangential_traction_displacement"][:][:, order]
 
 
 def assert_same_solution(a, b):

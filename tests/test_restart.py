@@ -177,7 +177,7 @@ def short_checkpoint(tmp_path_factory):
     (["-mesh_rotation", 0.001], "is of another mesh: it has as many vertices and cells as meshes/disk.msh, but other coordinates"),
     (["-mesh", "meshes/disk_rail.msh"], "is of another contact boundary: 33 contact nodes, this run has 64"),
     (["-contact", 0], "is of another contact boundary: 33 contact nodes, this run has 0"),
-    (["-mass", "standard"], "was written with the modified mass, this run has the standard mass"),
+    (["-mass", "standard"], "was written with the redistributed mass, this run has the standard mass"),
 ])
 def test_mismatched_restart_is_refused(tmp_path, short_checkpoint, extra, message):
     before = open(os.path.join(short_checkpoint.outdir, "history.csv")).read()

@@ -5,7 +5,7 @@
 #include "obstacle.h"
 #include "errors.h"
 
-const char *const MMMassTypes[] = {"modified", "standard", "MMMassType", "MM_MASS_", NULL};
+const char *const MMMassTypes[] = {"modified", "standard", "redistributed", "MMMassType", "MM_MASS_", NULL};
 const char *const MMInitialStates[] = {"given", "static_sliding", "MMInitialState", "MM_INITIAL_", NULL};
 const char *const MMAssemblyTypes[] = {"closed_form", "fe", "MMAssemblyType", "MM_ASSEMBLY_", NULL};
 
@@ -362,8 +362,8 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_MESH_ROTATION, "Rigid rotation applied to the mesh when it is read: an angle (2D) or a rotation vector (3D), in radians", opt->mesh_rotation));
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_MESH_ROTATION_CENTER, "Centre of the -mesh_rotation, d entries", opt->mesh_rotation_center));
 
-  opt->mass_type = MM_MASS_MODIFIED;
-  PetscCall(OptionsEnum(PetscOptionsObject, comm, "-mass", "Mass matrix in time stepping: modified (normal mass of contact nodes removed) or standard", MMMassTypes, (PetscEnum *)&opt->mass_type));
+  opt->mass_type = MM_MASS_REDISTRIBUTED;
+  PetscCall(OptionsEnum(PetscOptionsObject, comm, "-mass", "Mass matrix in time stepping: modified (normal mass of contact nodes removed), redistributed (modified, with the removed mass given to the other nodes so that the total mass, centre of gravity and inertia are those of the standard mass) or standard", MMMassTypes, (PetscEnum *)&opt->mass_type));
   opt->lumped = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-mass_lumped", "Use the row-sum lumped mass instead of the consistent mass", NULL, opt->lumped, &opt->lumped, NULL));
   opt->assembly = MM_ASSEMBLY_CLOSED_FORM;

@@ -475,7 +475,9 @@ PetscErrorCode MMFEAssembleOperators(MMCtx *ctx)
   } else ctx->op.M = Mc;
   PetscCall(CheckFiniteOperators(ctx));
   PetscCall(MatDuplicate(ctx->op.M, MAT_COPY_VALUES, &ctx->op.Mstar));
-  if (ctx->contact.enabled && ctx->opt.mass_type == MM_MASS_MODIFIED) PetscCall(MatZeroRowsColumnsIS(ctx->op.Mstar, ctx->contact.is_normal, 0.0, NULL, NULL));
+  if (MMFEHasMasslessDofs(ctx)) PetscCall(MatZeroRowsColumnsIS(ctx->op.Mstar, ctx->contact.is_normal, 0.0, NULL, NULL));
+  if (MMFEHasMasslessDofs(ctx) && ctx->opt.mass_type == MM_MASS_REDISTRIBUTED) PetscCall(MMFERedistributeMass(ctx));
+  PetscCall(MMFEMassMoments(ctx));
   PetscCall(MatViewFromOptions(ctx->op.K, NULL, "-stiffness_view"));
   PetscCall(MatViewFromOptions(ctx->op.M, NULL, "-mass_view"));
   PetscCall(VecDestroy(&Lcart));

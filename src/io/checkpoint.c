@@ -15,7 +15,7 @@
 #define MM_CKPT_TMP  ".tmp" /* written whole, then renamed over the last good one */
 #define MM_CKPT_NODE 13     /* per vertex: contact, s, slipping, was_active, slip_dir[2], rho[3], and the
                                * active-set formulation's warm start: active, stick, dir[2] */
-#define MM_CKPT_VERSION 3
+#define MM_CKPT_VERSION 4
 
 /* The scalars of a run, in the "run" vector of the file, in this order. */
 typedef enum {
@@ -43,7 +43,7 @@ typedef enum {
   MM_RUN_E,
   MM_RUN_NU,
   MM_RUN_RHO,
-  MM_RUN_MASS,    /* the mass type, plus 2 if lumped */
+  MM_RUN_MASS,    /* the mass type, plus 3 if lumped */
   MM_RUN_DT_USER, /* -ts_dt */
   MM_RUN_ADAPT,   /* the growback adaptor's state, MM_ADAPT_STATE entries */
   MM_RUN_NUM = MM_RUN_ADAPT + MM_ADAPT_STATE
@@ -209,7 +209,7 @@ static PetscErrorCode RunRecord(MMCtx *ctx, TS ts, PetscReal run[])
   run[MM_RUN_E]               = ctx->opt.E;
   run[MM_RUN_NU]              = ctx->opt.nu;
   run[MM_RUN_RHO]             = ctx->opt.rho;
-  run[MM_RUN_MASS]            = ctx->opt.mass_type + (ctx->opt.lumped ? 2 : 0);
+  run[MM_RUN_MASS]            = ctx->opt.mass_type + (ctx->opt.lumped ? 3 : 0);
   run[MM_RUN_DT_USER]         = ctx->state.dt_user;
   PetscCall(MMAdaptGrowBackGetState(ts, &run[MM_RUN_ADAPT]));
   PetscFunctionReturn(0);
@@ -411,7 +411,7 @@ static PetscErrorCode CheckFingerprint(MMCtx *ctx, TS ts, const PetscReal ck[])
   PetscCheck(ck[MM_RUN_CONTACT_NODES] == me[MM_RUN_CONTACT_NODES], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another contact boundary: %d contact nodes, this run has %d (-contact_boundary %s, -contact %s). Restart with the contact options of the run that wrote it", f, (int)ck[MM_RUN_CONTACT_NODES], (int)me[MM_RUN_CONTACT_NODES], ctx->opt.contact_name, ctx->opt.contact ? "1" : "0");
   PetscCheck(ck[MM_RUN_MU] == me[MM_RUN_MU], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with -mu %.10g, this run has -mu %.10g: a different friction law. Restart with -mu %.10g", f, (double)ck[MM_RUN_MU], (double)me[MM_RUN_MU], (double)ck[MM_RUN_MU]);
   PetscCheck(ck[MM_RUN_E] == me[MM_RUN_E] && ck[MM_RUN_NU] == me[MM_RUN_NU] && ck[MM_RUN_RHO] == me[MM_RUN_RHO], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with -E %.10g -nu %.10g -rho %.10g, this run has -E %.10g -nu %.10g -rho %.10g: another material. Restart with the material of the run that wrote it", f, (double)ck[MM_RUN_E], (double)ck[MM_RUN_NU], (double)ck[MM_RUN_RHO], (double)me[MM_RUN_E], (double)me[MM_RUN_NU], (double)me[MM_RUN_RHO]);
-  PetscCheck(ck[MM_RUN_MASS] == me[MM_RUN_MASS], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with the %s%s mass, this run has the %s%s mass. Restart with the -mass and -mass_lumped of the run that wrote it", f, MMMassTypes[(int)ck[MM_RUN_MASS] % 2], (int)ck[MM_RUN_MASS] / 2 ? " lumped" : "", MMMassTypes[(int)me[MM_RUN_MASS] % 2], (int)me[MM_RUN_MASS] / 2 ? " lumped" : "");
+  PetscCheck(ck[MM_RUN_MASS] == me[MM_RUN_MASS], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with the %s%s mass, this run has the %s%s mass. Restart with the -mass and -mass_lumped of the run that wrote it", f, MMMassTypes[(int)ck[MM_RUN_MASS] % 3], (int)ck[MM_RUN_MASS] / 3 ? " lumped" : "", MMMassTypes[(int)me[MM_RUN_MASS] % 3], (int)me[MM_RUN_MASS] / 3 ? " lumped" : "");
   PetscFunctionReturn(0);
 }
 

@@ -6,6 +6,7 @@
 #include "progress.h"
 #include "contact.h"
 #include "mesh.h"
+#include "fem.h"
 
 /* The options files of the run, as given on the command line. PETSc reads -options_file while it
  * starts and keeps only the options inside, not the option itself, so the arguments are read
@@ -126,6 +127,26 @@ static PetscErrorCode HeaderPhysics(MMCtx *ctx, TS ts)
   PetscFunctionReturn(0);
 }
 
+/* Line 6, the masses: M's total, and M*'s for a rigid translation along each axis (the modified
+ * mass lacks the contact nodes' normal masses; the redistributed one has them back, and its moments
+ * are M's, docs/method.md section 2). */
+static PetscErrorCode HeaderMass(MMCtx *ctx)
+{
+  const PetscInt dim = ctx->op.dim;
+  char           star[128] = "", moments[320] = "", unreachable[160] = "";
+
+  PetscFunctionBeginUser;
+  for (PetscInt d = 0; d < dim; ++d) {
+    size_t len;
+    PetscCall(PetscStrlen(star, &len));
+    PetscCall(PetscSNPrintf(star + len, sizeof(star) - len, "%s%c %.10g", d ? ", " : "", "xyz"[d], (double)ctx->op.mass_star[d * dim + d]));
+  }
+  if (ctx->op.mass_moment_unreachable > 1e-14) PetscCall(PetscSNPrintf(unreachable, sizeof(unreachable), " (and %.1e in the trace of the translation-rotation block, out of reach: docs/method.md section 2)", (double)ctx->op.mass_moment_unreachable));
+  if (MMFEHasMasslessDofs(ctx) && ctx->opt.mass_type == MM_MASS_REDISTRIBUTED) PetscCall(PetscSNPrintf(moments, sizeof(moments), "; M*'s moments equal M's to %.1e (largest node correction %.3g of its mass)%s", (double)ctx->op.mass_moment_mismatch, (double)ctx->op.mass_correction, unreachable));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  mass: total of M %.10g; of M* along %s%s\n", (double)ctx->op.mass_M, star, moments));
+  PetscFunctionReturn(0);
+}
+
 /* Lines 4 and 5, contact and solvers: the contact nodes and obstacles, the mass, friction, the
  * contact formulation and the K~ solver. */
 static PetscErrorCode HeaderContact(MMCtx *ctx)
@@ -142,6 +163,7 @@ static PetscErrorCode HeaderContact(MMCtx *ctx)
   if (ctx->contact.enabled) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes against %s; %s %s mass; %s\n", ctx->contact.n_global, obstacles, opt->lumped ? "lumped" : "consistent", MMMassTypes[opt->mass_type], friction));
   else PetscCall(PetscPrintf(comm, "  contact: off (-contact 0), 0 contact nodes: linear elastodynamics; %s mass\n", opt->lumped ? "lumped" : "consistent"));
   PetscCall(PetscPrintf(comm, "  solvers: contact formulation %s; K~ by %s; %s\n", ctx->contact.type, solver, progress));
+  PetscCall(HeaderMass(ctx));
   PetscFunctionReturn(0);
 }
 

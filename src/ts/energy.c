@@ -264,16 +264,19 @@ static PetscErrorCode SchemeMomenta(MMCtx *ctx, MMHistory *h, PetscBool with_loa
   PetscFunctionReturn(0);
 }
 
-/* Centre-of-mass displacement and velocity, and angular momentum about the centre of mass, with
- * the lumped standard mass of the nodes whose dofs are all free (a constrained body is not free). */
-PetscErrorCode MMRigidBodyDiagnostics(MMCtx *ctx, MMHistory *h)
+/* The physical angular momentum about the centre of mass, L = sum_i m_i (x_i - x_cm) x v_i with the
+ * lumped standard mass, x_i = X_i + u_i the current position, over the nodes whose dofs are all
+ * free. It stays the standard mass's: the modified mass lacks the contact nodes' normal masses, so
+ * it has no single centre, and its rigid translation would carry an angular momentum. The scheme's
+ * own (M*) momenta are P and J. */
+static PetscErrorCode AngularMomentum(MMCtx *ctx, MMHistory *h)
 {
   DM                 dm = ctx->op.dm;
   PetscSection       gs, ls, cs;
   PetscInt           vStart, vEnd, dim = ctx->op.dim, rstart;
   Vec                uc, vc, X;
   const PetscScalar *u, *v, *m, *x;
-  PetscReal          sum[1 + 4 * MM_MAX_DIM] = {0}, cm[MM_MAX_DIM];
+  PetscReal          sum[1 + MM_MAX_DIM] = {0}, cm[MM_MAX_DIM];
   MPI_Comm           comm = PetscObjectComm((PetscObject)dm);
 
   PetscFunctionBeginUser;
@@ -291,7 +294,7 @@ PetscErrorCode MMRigidBodyDiagnostics(MMCtx *ctx, MMHistory *h)
   PetscCall(VecGetArrayRead(vc, &v));
   PetscCall(VecGetArrayRead(ctx->op.mass_lumped_cart, &m));
   PetscCall(VecGetArrayRead(X, &x));
-  /* first pass: mass, first moments of position, displacement and velocity */
+  /* first pass: mass and first moment of the current position */
   for (PetscInt p = vStart; p < vEnd; ++p) {
     PetscInt goff, dof, xoff;
     PetscCall(PetscSectionGetOffset(gs, p, &goff));
@@ -302,17 +305,10 @@ PetscErrorCode MMRigidBodyDiagnostics(MMCtx *ctx, MMHistory *h)
     sum[0] += PetscRealPart(m[goff]);
     for (PetscInt d = 0; d < dim; ++d) {
       sum[1 + d] += PetscRealPart(m[goff] * (x[xoff + d] + u[goff + d]));
-      sum[1 + MM_MAX_DIM + d] += PetscRealPart(m[goff] * u[goff + d]);
-      sum[1 + 2 * MM_MAX_DIM + d] += PetscRealPart(m[goff] * v[goff + d]);
     }
   }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, 1 + 3 * MM_MAX_DIM, MPIU_REAL, MPIU_SUM, comm));
-  for (PetscInt d = 0; d < dim; ++d) {
-    const PetscReal mt = PetscMax(sum[0], PETSC_SMALL);
-    cm[d]     = sum[1 + d] / mt;
-    h->ucm[d] = sum[1 + MM_MAX_DIM + d] / mt;
-    h->vcm[d] = sum[1 + 2 * MM_MAX_DIM + d] / mt;
-  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, 1 + MM_MAX_DIM, MPIU_REAL, MPIU_SUM, comm));
+  for (PetscInt d = 0; d < dim; ++d) cm[d] = sum[1 + d] / PetscMax(sum[0], PETSC_SMALL);
   /* second pass: angular momentum sum m (x + u - x_cm) x v */
   {
     PetscReal L[3] = {0, 0, 0};
@@ -335,12 +331,94 @@ PetscErrorCode MMRigidBodyDiagnostics(MMCtx *ctx, MMHistory *h)
     }
     PetscCall(MPIU_Allreduce(L, h->L, 3, MPIU_REAL, MPIU_SUM, comm));
   }
-  PetscCall(SchemeMomenta(ctx, h, (PetscBool)(h->step == 0)));
   PetscCall(VecRestoreArrayRead(X, &x));
   PetscCall(VecRestoreArrayRead(ctx->op.mass_lumped_cart, &m));
   PetscCall(VecRestoreArrayRead(vc, &v));
   PetscCall(VecRestoreArrayRead(uc, &u));
   PetscCall(DMRestoreGlobalVector(dm, &vc));
   PetscCall(DMRestoreGlobalVector(dm, &uc));
+  PetscFunctionReturn(0);
+}
+
+/* A vertex's Cartesian entries of a global vector, a Dirichlet component as 0. */
+static PetscErrorCode VertexValues(PetscSection gs, PetscSection ls, PetscInt v, PetscInt rstart, PetscInt dim, const PetscScalar *a, PetscBool *owned, PetscReal val[])
+{
+  PetscInt        goff, ncdof;
+  const PetscInt *cidx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSectionGetOffset(gs, v, &goff));
+  *owned = (PetscBool)(goff >= 0);
+  if (goff < 0) PetscFunctionReturn(0);
+  PetscCall(PetscSectionGetConstraintDof(ls, v, &ncdof));
+  PetscCall(PetscSectionGetConstraintIndices(ls, v, &cidx));
+  for (PetscInt c = 0, i = goff - rstart; c < MM_MAX_DIM; ++c) {
+    PetscBool fixed = (PetscBool)(c >= dim);
+    for (PetscInt j = 0; j < ncdof; ++j) fixed = (PetscBool)(fixed || cidx[j] == c);
+    val[c] = fixed ? 0.0 : PetscRealPart(a[i++]);
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Centre-of-mass displacement and velocity, and angular momentum about the centre of mass, of the
+ * discrete system: weighted by M*, whose momentum the scheme conserves (docs/method.md section 4,
+ * "Momentum"). The modified mass lacks the contact nodes' normal masses, so its mass for a rigid
+ * translation is a matrix m*, not m I: ucm = m*^-1 sum_i (M* u)_i, vcm = m*^-1 sum_i (M* v)_i. */
+PetscErrorCode MMRigidBodyDiagnostics(MMCtx *ctx, MMHistory *h)
+{
+  DM                 dm = ctx->op.dm;
+  PetscSection       gs, ls;
+  PetscInt           vStart, vEnd, dim = ctx->op.dim, rstart;
+  Vec                mu, mv;
+  const PetscScalar *q, *p;
+  PetscReal          sum[2 * MM_MAX_DIM] = {0}, minv[MM_MAX_DIM][MM_MAX_DIM], mstar[MM_MAX_DIM][MM_MAX_DIM] = {{0}};
+  MPI_Comm           comm = PetscObjectComm((PetscObject)dm);
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalVector(dm, &mu));
+  PetscCall(DMGetGlobalVector(dm, &mv));
+  PetscCall(MatMult(ctx->op.Mstar, ctx->state.u, ctx->state.work));
+  PetscCall(MMFEToCartesian(ctx, ctx->state.work, mu));
+  PetscCall(MatMult(ctx->op.Mstar, ctx->state.v, ctx->state.work));
+  PetscCall(MMFEToCartesian(ctx, ctx->state.work, mv));
+  PetscCall(DMGetGlobalSection(dm, &gs));
+  PetscCall(DMGetLocalSection(dm, &ls));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(VecGetOwnershipRange(mu, &rstart, NULL));
+  PetscCall(VecGetArrayRead(mu, &q));
+  PetscCall(VecGetArrayRead(mv, &p));
+  /* sum_i (M* u)_i and sum_i (M* v)_i */
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscReal qi[MM_MAX_DIM], pi[MM_MAX_DIM];
+    PetscBool owned;
+    PetscCall(VertexValues(gs, ls, v, rstart, dim, q, &owned, qi));
+    if (!owned) continue;
+    PetscCall(VertexValues(gs, ls, v, rstart, dim, p, &owned, pi));
+    for (PetscInt d = 0; d < dim; ++d) {
+      sum[d] += qi[d];
+      sum[MM_MAX_DIM + d] += pi[d];
+    }
+  }
+  PetscCall(VecRestoreArrayRead(mv, &p));
+  PetscCall(VecRestoreArrayRead(mu, &q));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, 2 * MM_MAX_DIM, MPIU_REAL, MPIU_SUM, comm));
+  for (PetscInt a = 0; a < dim; ++a)
+    for (PetscInt b = 0; b < dim; ++b) mstar[a][b] = ctx->op.mass_star[a * dim + b];
+  if (dim == 2) mstar[2][2] = 1;
+  if (PetscAbsReal(MMDetInverse(dim, mstar, minv)) <= PETSC_SMALL * PetscPowRealInt(PetscMax(ctx->op.mass_M, PETSC_SMALL), dim)) {
+    for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
+      for (PetscInt b = 0; b < MM_MAX_DIM; ++b) minv[a][b] = 0; /* a body without mass: no centre */
+  }
+  for (PetscInt a = 0; a < dim; ++a) {
+    h->ucm[a] = h->vcm[a] = 0;
+    for (PetscInt b = 0; b < dim; ++b) {
+      h->ucm[a] += minv[a][b] * sum[b];
+      h->vcm[a] += minv[a][b] * sum[MM_MAX_DIM + b];
+    }
+  }
+  PetscCall(AngularMomentum(ctx, h));
+  PetscCall(SchemeMomenta(ctx, h, (PetscBool)(h->step == 0)));
+  PetscCall(DMRestoreGlobalVector(dm, &mv));
+  PetscCall(DMRestoreGlobalVector(dm, &mu));
   PetscFunctionReturn(0);
 }

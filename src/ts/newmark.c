@@ -19,7 +19,7 @@ typedef struct {
 /* The dofs without inertia: the contact-normal dofs under the modified mass, none otherwise. */
 static PetscBool HasMasslessDofs(MMCtx *ctx)
 {
-  return (PetscBool)(ctx->contact.enabled && ctx->opt.mass_type == MM_MASS_MODIFIED);
+  return MMFEHasMasslessDofs(ctx);
 }
 
 /* b = L - lift + M* (4/dt^2 u^n + 4/dt v^n + a^n) */

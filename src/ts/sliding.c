@@ -218,13 +218,15 @@ PetscErrorCode MMInitialStaticSliding(MMCtx *ctx, Vec w, Vec react)
   PetscCheck(!from_rest || a > 0, comm, PETSC_ERR_USER_INPUT, "-initial_state static_sliding from rest: the tangential load %g cannot overcome friction mu P = %g, so there is no sliding state. Start from -initial_state given", (double)Fe, (double)(ctx->opt.mu * P));
   for (PetscInt j = 1; j < dim; ++j)
     for (PetscInt d = 0; d < dim; ++d) et[j - 1] += e[d] * ct->frame[j][d];
-  /* f = L - m_i a e, the load in the frame sliding with the body */
+  /* f = L - M* (a e), the load in the frame sliding with the body: the inertia of the uniform
+   * acceleration a e is the scheme's, M*'s (the redistributed mass has node blocks that are not
+   * m_i I), and the strides are the Cartesian components (no Dirichlet data here) */
   PetscCall(VecDuplicate(w, &f));
   PetscCall(VecDuplicate(w, &rhs));
   PetscCall(VecDuplicate(ctx->op.mass_lumped_cart, &me));
-  PetscCall(VecCopy(ctx->op.mass_lumped_cart, me));
-  for (PetscInt d = 0; d < dim; ++d) PetscCall(VecStrideScale(me, d, -a * e[d]));
-  PetscCall(MMFEFromCartesian(ctx, me, f));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(VecStrideSet(me, d, -a * e[d]));
+  PetscCall(MMFEFromCartesian(ctx, me, rhs));
+  PetscCall(MatMult(ctx->op.Mstar, rhs, f));
   PetscCall(VecAXPY(f, 1.0, ctx->op.load));
   PetscCall(SlidingSystem(ctx, et, f, &A, rhs));
   PetscCall(KSPCreate(comm, &ksp));

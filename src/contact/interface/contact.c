@@ -7,6 +7,7 @@
  * impls/condensed/) or on all dofs (impls/full/), or by the active-set method on all dofs
  * (impls/active_set/). Without contact each step is one K~ solve (kt.c, the "none" ops). */
 #include "../contactimpl.h"
+#include "fem.h"
 
 static PetscFunctionList MMContactList              = NULL;
 static PetscBool         MMContactRegisterAllCalled = PETSC_FALSE;
@@ -286,7 +287,7 @@ PetscErrorCode MMContactProjectInitial(MMCtx *ctx, Vec w)
 
   PetscFunctionBeginUser;
   if (ct->enabled) PetscCall(CheckInitialPenetration(ctx, w));
-  if (!ct->enabled || ctx->opt.mass_type != MM_MASS_MODIFIED) PetscFunctionReturn(0);
+  if (!MMFEHasMasslessDofs(ctx)) PetscFunctionReturn(0);
   PetscCall(MatCreateSubMatrix(ctx->op.K, ct->is_normal, ct->is_normal, MAT_INITIAL_MATRIX, &ct->qp0.A));
   PetscCall(MatCreateVecs(ct->qp0.A, &ct->qp0.b, NULL));
   PetscCall(VecDuplicate(ct->qp0.b, &ct->lower0));

@@ -1,0 +1,497 @@
+/* The mass's rigid-body moments, and the redistributed modified mass (docs/method.md section 2,
+ * "Mass redistribution").
+ *
+ * A mass matrix acts on rigid motions r = T(x) p (p: translation and rotation) through its Gram
+ * matrix G = R^T M R, R the rigid modes: G holds the total mass, the first moments (the centre of
+ * gravity) and the second moments (the inertia tensor). The modified mass M* drops the contact
+ * nodes' normal mass, and with it part of G. -mass redistributed gives it back on the other nodes,
+ * in node-diagonal blocks, so that G(M*) = G(M) exactly while M*'s normal rows and columns stay
+ * zero (the paper's (3.5)):
+ *  1. local: each cell gives the normal mass its contact vertices lose in it, rho |T| / (d+1)
+ *     along the vertex's normal, to its vertices that are neither contact nor Dirichlet nodes, in
+ *     equal parts. The removed mass stays where it was, within a cell;
+ *  2. global: what the local step misses of G (the first and second moments it moves by a cell's
+ *     size, and the share of cells with no such vertex) is matched exactly by the smallest
+ *     correction D_j = m_j T_j Lambda T_j^T on the free non-contact nodes, weighted by their
+ *     mass: Lambda solves sum_j m_j A_j Lambda A_j = G(M) - G(M* + local), A_j = T_j^T T_j, a
+ *     6x6 (3x3 in 2D) system summed over the ranks.
+ * Both steps visit each cell and each node on exactly one rank, so M* is the same on any number
+ * of ranks (to the order of the sums). */
+#include "fem.h"
+#include <petscblaslapack.h>
+
+#define MM_MAX_RIGID 6
+
+static PetscInt NumRigidModes(PetscInt dim)
+{
+  return dim == 2 ? 3 : 6;
+}
+
+/* T(x): the velocity at x of each rigid mode, translations first, then rotations about the axes. */
+static void RigidModeMatrix(PetscInt dim, const PetscReal x[], PetscReal T[MM_MAX_DIM][MM_MAX_RIGID])
+{
+  for (PetscInt c = 0; c < MM_MAX_DIM; ++c)
+    for (PetscInt k = 0; k < MM_MAX_RIGID; ++k) T[c][k] = (c == k && c < dim) ? 1.0 : 0.0;
+  if (dim == 2) {
+    T[0][2] = -x[1];
+    T[1][2] = x[0];
+    return;
+  }
+  /* e_a x x: component c is eps_{c a b} x_b */
+  T[1][3] = -x[2], T[2][3] = x[1];
+  T[0][4] = x[2], T[2][4] = -x[0];
+  T[0][5] = -x[1], T[1][5] = x[0];
+}
+
+/* The centre and half-diagonal of the mesh's bounding box: rigid modes about it, scaled by it, keep
+ * the Gram matrices of order one whatever the units and the position of the body. */
+static PetscErrorCode RigidFrame(MMCtx *ctx, PetscReal x0[], PetscReal *ell)
+{
+  DM                 dm  = ctx->op.dm;
+  const PetscInt     dim = ctx->op.dim;
+  Vec                X;
+  const PetscScalar *x;
+  PetscInt           n;
+  PetscReal          lo[MM_MAX_DIM] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}, hi[MM_MAX_DIM] = {PETSC_MIN_REAL, PETSC_MIN_REAL, PETSC_MIN_REAL}, d2 = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  PetscCall(VecGetLocalSize(X, &n));
+  PetscCall(VecGetArrayRead(X, &x));
+  for (PetscInt i = 0; i < n; i += dim)
+    for (PetscInt d = 0; d < dim; ++d) {
+      lo[d] = PetscMin(lo[d], PetscRealPart(x[i + d]));
+      hi[d] = PetscMax(hi[d], PetscRealPart(x[i + d]));
+    }
+  PetscCall(VecRestoreArrayRead(X, &x));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, lo, MM_MAX_DIM, MPIU_REAL, MPIU_MIN, PetscObjectComm((PetscObject)dm)));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, hi, MM_MAX_DIM, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)dm)));
+  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) x0[d] = 0;
+  for (PetscInt d = 0; d < dim; ++d) {
+    x0[d] = 0.5 * (lo[d] + hi[d]);
+    d2 += 0.25 * (hi[d] - lo[d]) * (hi[d] - lo[d]);
+  }
+  *ell = PetscSqrtReal(d2);
+  PetscFunctionReturn(0);
+}
+
+/* The rigid modes as w-frame vectors on the free dofs, about x0 and scaled by 1/ell (ell = 1, x0 = 0:
+ * the plain modes). A Dirichlet component has no dof: its row of T is dropped. */
+static PetscErrorCode RigidModes(MMCtx *ctx, const PetscReal x0[], PetscReal ell, Vec R[])
+{
+  DM                 dm  = ctx->op.dm;
+  const PetscInt     dim = ctx->op.dim, nr = NumRigidModes(dim);
+  PetscSection       gs, ls, cs;
+  PetscInt           vStart, vEnd, rstart;
+  Vec                X, cart;
+  const PetscScalar *x;
+  PetscScalar       *r[MM_MAX_RIGID];
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalSection(dm, &gs));
+  PetscCall(DMGetLocalSection(dm, &ls));
+  PetscCall(DMGetCoordinateSection(dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(DMGetGlobalVector(dm, &cart));
+  PetscCall(VecGetOwnershipRange(cart, &rstart, NULL));
+  for (PetscInt k = 0; k < nr; ++k) PetscCall(VecDuplicate(cart, &R[k]));
+  for (PetscInt k = 0; k < nr; ++k) PetscCall(VecGetArray(R[k], &r[k]));
+  PetscCall(VecGetArrayRead(X, &x));
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt        goff, xoff, ncdof;
+    const PetscInt *cidx;
+    PetscReal       xh[MM_MAX_DIM] = {0, 0, 0}, T[MM_MAX_DIM][MM_MAX_RIGID];
+
+    PetscCall(PetscSectionGetOffset(gs, v, &goff));
+    if (goff < 0) continue;
+    PetscCall(PetscSectionGetOffset(cs, v, &xoff));
+    PetscCall(PetscSectionGetConstraintDof(ls, v, &ncdof));
+    PetscCall(PetscSectionGetConstraintIndices(ls, v, &cidx));
+    for (PetscInt d = 0; d < dim; ++d) xh[d] = (PetscRealPart(x[xoff + d]) - x0[d]) / ell;
+    RigidModeMatrix(dim, xh, T);
+    for (PetscInt c = 0, i = goff - rstart; c < dim; ++c) {
+      PetscBool fixed = PETSC_FALSE;
+      for (PetscInt j = 0; j < ncdof; ++j) fixed = (PetscBool)(fixed || cidx[j] == c);
+      if (fixed) continue;
+      for (PetscInt k = 0; k < nr; ++k) r[k][i] = T[c][k];
+      ++i;
+    }
+  }
+  PetscCall(VecRestoreArrayRead(X, &x));
+  for (PetscInt k = 0; k < nr; ++k) {
+    PetscCall(VecRestoreArray(R[k], &r[k]));
+    PetscCall(MatMultTranspose(ctx->op.Q, R[k], cart)); /* to the w-frame */
+    PetscCall(VecCopy(cart, R[k]));
+  }
+  PetscCall(DMRestoreGlobalVector(dm, &cart));
+  PetscFunctionReturn(0);
+}
+
+/* G = R^T A R: A's moments on the rigid modes. */
+static PetscErrorCode Gram(Mat A, PetscInt nr, Vec R[], PetscReal G[MM_MAX_RIGID][MM_MAX_RIGID])
+{
+  Vec         AR;
+  PetscScalar dots[MM_MAX_RIGID];
+
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(R[0], &AR));
+  for (PetscInt k = 0; k < nr; ++k) {
+    PetscCall(MatMult(A, R[k], AR));
+    PetscCall(VecMDot(AR, nr, R, dots));
+    for (PetscInt l = 0; l < nr; ++l) G[k][l] = PetscRealPart(dots[l]);
+  }
+  PetscCall(VecDestroy(&AR));
+  PetscFunctionReturn(0);
+}
+
+/* Each local vertex's kind, ghosts included: 1 a contact node, 0 a free node, -1 a node with a
+ * Dirichlet component; and each contact node's normal, component by component (n[d], all on the
+ * scalar vertex DM: the set-up has no vector one yet). */
+static PetscErrorCode VertexKinds(MMCtx *ctx, Vec *kind, Vec n[])
+{
+  MMContact     *ct = &ctx->contact;
+  DM             dms = ctx->out.dm_scalar;
+  const PetscInt dim = ctx->op.dim;
+  PetscSection   ls;
+  PetscInt       vStart, vEnd, sstart;
+  Vec            g;
+  PetscScalar   *k;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalVector(dms, &g));
+  PetscCall(VecGetOwnershipRange(g, &sstart, NULL));
+  for (PetscInt d = -1; d < dim; ++d) {
+    Vec *out = d < 0 ? kind : &n[d];
+    PetscCall(VecZeroEntries(g));
+    PetscCall(VecGetArray(g, &k));
+    /* row 0 of a node's frame is its normal */
+    for (PetscInt c = 0; c < ct->n_local; ++c) k[ct->scalar_index[c] - sstart] = d < 0 ? 1.0 : ct->node_frame[9 * c + d];
+    PetscCall(VecRestoreArray(g, &k));
+    PetscCall(DMCreateLocalVector(dms, out));
+    PetscCall(DMGlobalToLocal(dms, g, INSERT_VALUES, *out));
+  }
+  PetscCall(DMRestoreGlobalVector(dms, &g));
+  /* the Dirichlet nodes, known on every rank from the local section */
+  PetscCall(DMGetLocalSection(ctx->op.dm, &ls));
+  PetscCall(DMPlexGetDepthStratum(dms, 0, &vStart, &vEnd));
+  PetscCall(VecGetArray(*kind, &k));
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt off, cdof;
+    PetscCall(PetscSectionGetConstraintDof(ls, v, &cdof));
+    PetscCall(DMPlexGetPointLocal(dms, v, &off, NULL));
+    if (cdof) k[off] = -1;
+  }
+  PetscCall(VecRestoreArray(*kind, &k));
+  PetscFunctionReturn(0);
+}
+
+/* The global dof of a vertex's first component, owned or not (a ghost's offset is -(off + 1)). */
+static PetscErrorCode VertexGlobalDof(PetscSection gs, PetscInt v, PetscInt *g)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscSectionGetOffset(gs, v, g));
+  if (*g < 0) *g = -(*g + 1);
+  PetscFunctionReturn(0);
+}
+
+/* Step 1: each cell's lost normal mass to its free non-contact vertices. The blocks go in the
+ * Cartesian frame, which is the w-frame of a non-contact node (docs/method.md section 8). */
+static PetscErrorCode AddCellShares(MMCtx *ctx, Vec kind, Vec normal[], Mat A)
+{
+  DM                 dm = ctx->op.dm, dms = ctx->out.dm_scalar;
+  const PetscInt     dim = ctx->op.dim;
+  PetscSection       gs;
+  PetscInt           cStart, cEnd, vStart, vEnd;
+  const PetscScalar *k, *n[MM_MAX_DIM];
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalSection(dm, &gs));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(VecGetArrayRead(kind, &k));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(VecGetArrayRead(normal[d], &n[d]));
+  for (PetscInt c = cStart; c < cEnd; ++c) {
+    PetscInt   *closure = NULL, ncl, contact[MM_MAX_DIM + 1], others[MM_MAX_DIM + 1], nc = 0, nf = 0;
+    PetscReal   vol, B[MM_MAX_DIM][MM_MAX_DIM] = {{0}};
+    PetscScalar vals[MM_MAX_DIM * MM_MAX_DIM];
+
+    PetscCall(DMPlexGetTransitiveClosure(dm, c, PETSC_TRUE, &ncl, &closure));
+    for (PetscInt i = 0; i < ncl; ++i) {
+      const PetscInt p = closure[2 * i];
+      PetscInt       off;
+      if (p < vStart || p >= vEnd) continue;
+      PetscCall(DMPlexGetPointLocal(dms, p, &off, NULL));
+      if (PetscRealPart(k[off]) > 0.5) contact[nc++] = p;
+      else if (PetscRealPart(k[off]) > -0.5) others[nf++] = p;
+    }
+    PetscCall(DMPlexRestoreTransitiveClosure(dm, c, PETSC_TRUE, &ncl, &closure));
+    if (!nc || !nf) continue; /* nothing lost here, or nowhere to put it: the global step's */
+    PetscCall(DMPlexComputeCellGeometryFVM(dm, c, &vol, NULL, NULL));
+    for (PetscInt i = 0; i < nc; ++i) {
+      PetscInt off;
+      PetscCall(DMPlexGetPointLocal(dms, contact[i], &off, NULL));
+      for (PetscInt a = 0; a < dim; ++a)
+        for (PetscInt b = 0; b < dim; ++b) B[a][b] += ctx->opt.rho * vol / (dim + 1) / nf * PetscRealPart(n[a][off] * n[b][off]);
+    }
+    for (PetscInt a = 0; a < dim; ++a)
+      for (PetscInt b = 0; b < dim; ++b) vals[a * dim + b] = B[a][b];
+    for (PetscInt j = 0; j < nf; ++j) {
+      PetscInt g, idx[MM_MAX_DIM];
+      PetscCall(VertexGlobalDof(gs, others[j], &g));
+      for (PetscInt a = 0; a < dim; ++a) idx[a] = g + a;
+      PetscCall(MatSetValues(A, dim, idx, dim, idx, vals, ADD_VALUES));
+    }
+  }
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(VecRestoreArrayRead(normal[d], &n[d]));
+  PetscCall(VecRestoreArrayRead(kind, &k));
+  PetscFunctionReturn(0);
+}
+
+/* The smallest eigenvalue of a symmetric dim x dim block. */
+static PetscErrorCode SmallestEigenvalue(PetscInt dim, PetscReal D[MM_MAX_DIM][MM_MAX_DIM], PetscReal *lmin)
+{
+  PetscScalar  a[MM_MAX_DIM * MM_MAX_DIM], work[16 * MM_MAX_DIM];
+  PetscReal    w[MM_MAX_DIM];
+  PetscBLASInt n, lwork = 16 * MM_MAX_DIM, info;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscBLASIntCast(dim, &n));
+  for (PetscInt i = 0; i < dim; ++i)
+    for (PetscInt j = 0; j < dim; ++j) a[i * dim + j] = D[i][j];
+  PetscCall(PetscFPTrapPush(PETSC_FP_TRAP_OFF));
+  PetscCallBLAS("LAPACKsyev", LAPACKsyev_("N", "U", &n, a, &n, w, work, &lwork, &info));
+  PetscCall(PetscFPTrapPop());
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev failed with info %d", (int)info);
+  *lmin = w[0];
+  PetscFunctionReturn(0);
+}
+
+/* Step 2: the smallest mass-weighted node-block correction with moments dG, on the owned nodes
+ * that may carry mass: the free non-contact nodes in every direction, the contact nodes in their
+ * tangent plane only (P = I - n n^T: (3.5) stays exact, and the surface's lever arm restores the
+ * inertia with small blocks). Minimizing sum_j |D_j|^2 / m_j under sum_j T_j^T D_j T_j = dG gives
+ * D_j = m_j P_j T_j Lambda T_j^T P_j, Lambda solving sum_j m_j A_j Lambda A_j = dG with
+ * A_j = T_j^T P_j T_j: an nr^2 system, summed over the ranks. */
+static PetscErrorCode AddMomentCorrection(MMCtx *ctx, Vec kind, const PetscReal x0[], PetscReal ell, PetscReal dG[MM_MAX_RIGID][MM_MAX_RIGID], Mat A)
+{
+  DM                 dm = ctx->op.dm, dms = ctx->out.dm_scalar;
+  MMContact         *ct  = &ctx->contact;
+  const PetscInt     dim = ctx->op.dim, nr = NumRigidModes(dim), n2 = nr * nr;
+  MPI_Comm           comm = PetscObjectComm((PetscObject)dm);
+  PetscSection       gs, cs;
+  PetscInt           vStart, vEnd, rstart, *node;
+  Vec                X;
+  const PetscScalar *x, *k, *m;
+  PetscReal          S[MM_MAX_RIGID * MM_MAX_RIGID * MM_MAX_RIGID * MM_MAX_RIGID] = {0}, lam[MM_MAX_RIGID * MM_MAX_RIGID], worst = 0;
+  /* the consistent mass is at least 1/(d+2) of the lumped one (the P1 element matrix is
+   * rho |T| (I + 1 1^T) / ((d+1)(d+2))): a block above -0.9 of that keeps M* positive definite */
+  const PetscReal    floor = 0.9 / (ctx->opt.lumped ? 1.0 : (PetscReal)(dim + 2));
+  PetscBLASInt       bn, one = 1, info;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalSection(dm, &gs));
+  PetscCall(DMGetCoordinateSection(dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(PetscMalloc1(vEnd - vStart, &node));
+  for (PetscInt v = 0; v < vEnd - vStart; ++v) node[v] = -1;
+  for (PetscInt c = 0; c < ct->n_local; ++c) node[ct->vertex[c] - vStart] = c;
+  PetscCall(VecGetOwnershipRange(ctx->op.mass_lumped_cart, &rstart, NULL));
+  PetscCall(VecGetArrayRead(X, &x));
+  PetscCall(VecGetArrayRead(kind, &k));
+  PetscCall(VecGetArrayRead(ctx->op.mass_lumped_cart, &m));
+  for (PetscInt pass = 0; pass < 2; ++pass) {
+    for (PetscInt v = vStart; v < vEnd; ++v) {
+      PetscInt         goff, xoff, soff;
+      PetscReal        xh[MM_MAX_DIM] = {0, 0, 0}, T[MM_MAX_DIM][MM_MAX_RIGID], PT[MM_MAX_DIM][MM_MAX_RIGID] = {{0}}, Aj[MM_MAX_RIGID][MM_MAX_RIGID] = {{0}}, mj;
+      const PetscReal *F = node[v - vStart] >= 0 ? &ct->node_frame[9 * node[v - vStart]] : NULL;
+
+      PetscCall(PetscSectionGetOffset(gs, v, &goff));
+      PetscCall(DMPlexGetPointLocal(dms, v, &soff, NULL));
+      if (goff < 0 || PetscRealPart(k[soff]) < 0) continue;
+      PetscCall(PetscSectionGetOffset(cs, v, &xoff));
+      mj = PetscRealPart(m[goff - rstart]);
+      for (PetscInt d = 0; d < dim; ++d) xh[d] = (PetscRealPart(x[xoff + d]) - x0[d]) / ell;
+      RigidModeMatrix(dim, xh, T);
+      /* PT = P T, P the projection on the tangent plane (the identity off the contact boundary) */
+      for (PetscInt a = 0; a < dim; ++a)
+        for (PetscInt c = 0; c < nr; ++c) {
+          PT[a][c] = T[a][c];
+          if (F)
+            for (PetscInt b = 0; b < dim; ++b) PT[a][c] -= F[a] * F[b] * T[b][c];
+        }
+      if (pass == 0) { /* S_{(ab),(cd)} += m_j A_ac A_bd */
+        for (PetscInt a = 0; a < nr; ++a)
+          for (PetscInt b = 0; b < nr; ++b)
+            for (PetscInt c = 0; c < dim; ++c) Aj[a][b] += PT[c][a] * PT[c][b];
+        for (PetscInt a = 0; a < nr; ++a)
+          for (PetscInt b = 0; b < nr; ++b)
+            for (PetscInt c = 0; c < nr; ++c)
+              for (PetscInt d = 0; d < nr; ++d) S[(a * nr + b) * n2 + c * nr + d] += mj * Aj[a][c] * Aj[b][d];
+      } else { /* D_j = m_j PT Lambda PT^T, symmetrized against the solve's round-off */
+        PetscReal   D[MM_MAX_DIM][MM_MAX_DIM] = {{0}}, W[MM_MAX_DIM][MM_MAX_DIM] = {{0}}, lmin = 0;
+        PetscScalar vals[MM_MAX_DIM * MM_MAX_DIM];
+        PetscInt    idx[MM_MAX_DIM], first = F ? 1 : 0, nb = dim - first;
+        for (PetscInt a = 0; a < dim; ++a)
+          for (PetscInt b = 0; b < dim; ++b)
+            for (PetscInt c = 0; c < nr; ++c)
+              for (PetscInt d = 0; d < nr; ++d) D[a][b] += 0.5 * mj * PT[a][c] * (lam[c * nr + d] + lam[d * nr + c]) * PT[b][d];
+        PetscCall(SmallestEigenvalue(dim, D, &lmin));
+        worst = PetscMax(worst, -lmin / mj);
+        /* in the node's w-frame, W = F D F^T (row e of F is the frame's e-th vector); the normal
+         * row and column (e = 0) are not touched */
+        for (PetscInt a = 0; a < dim; ++a)
+          for (PetscInt b = 0; b < dim; ++b) {
+            if (!F) W[a][b] = D[a][b];
+            else
+              for (PetscInt c = 0; c < dim; ++c)
+                for (PetscInt d = 0; d < dim; ++d) W[a][b] += F[3 * a + c] * D[c][d] * F[3 * b + d];
+          }
+        for (PetscInt a = 0; a < nb; ++a) {
+          idx[a] = goff + first + a;
+          for (PetscInt b = 0; b < nb; ++b) vals[a * nb + b] = W[first + a][first + b];
+        }
+        PetscCall(MatSetValues(A, nb, idx, nb, idx, vals, ADD_VALUES));
+      }
+    }
+    if (pass == 0) {
+      /* S is singular: in 3D every node-block mass has tr(K G) = 0 for K = [[0, I], [I, 0]] (T K T^T
+       * = 0 at every point), and so has dG; such directions of Lambda change no D_j. The
+       * least-squares solution of least norm (SVD, LAPACK gelss) leaves them out. */
+      PetscReal    sv[MM_MAX_RIGID * MM_MAX_RIGID], work[8 * MM_MAX_RIGID * MM_MAX_RIGID], rcond = 1e-12;
+      PetscBLASInt rank, lwork = 8 * MM_MAX_RIGID * MM_MAX_RIGID;
+      PetscCall(MPIU_Allreduce(MPI_IN_PLACE, S, n2 * n2, MPIU_REAL, MPIU_SUM, comm));
+      for (PetscInt a = 0; a < nr; ++a)
+        for (PetscInt b = 0; b < nr; ++b) lam[a * nr + b] = dG[a][b];
+      PetscCall(PetscBLASIntCast(n2, &bn));
+      PetscCall(PetscFPTrapPush(PETSC_FP_TRAP_OFF));
+      PetscCallBLAS("LAPACKgelss", LAPACKgelss_(&bn, &bn, &one, S, &bn, lam, &bn, sv, &rcond, &rank, work, &lwork, &info));
+      PetscCall(PetscFPTrapPop());
+      PetscCheck(info == 0, comm, PETSC_ERR_LIB, "-mass redistributed: LAPACK gelss failed with info %d", (int)info);
+    }
+  }
+  PetscCall(VecRestoreArrayRead(ctx->op.mass_lumped_cart, &m));
+  PetscCall(VecRestoreArrayRead(kind, &k));
+  PetscCall(VecRestoreArrayRead(X, &x));
+  PetscCall(PetscFree(node));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &worst, 1, MPIU_REAL, MPIU_MAX, comm));
+  ctx->op.mass_correction = worst;
+  PetscCheck(worst <= floor, comm, PETSC_ERR_USER_INPUT, "-mass redistributed: the moment correction takes %.3g of a node's own mass away (more than %.3g could leave M* indefinite): the contact boundary carries too much of the body's mass for this mesh. Refine the mesh, or use -mass modified", (double)worst, (double)floor);
+  PetscFunctionReturn(0);
+}
+
+/* max |G(M) - G(M*)| over the moments node blocks can set. In 3D one combination is out of their
+ * reach: the trace of the translation-rotation block, sum_a G[a][3+a], is zero for any node block
+ * that is a multiple of I (M's) and for any node-block correction (T K T^T = 0, K = [[0, I], [I,
+ * 0]]), but not for the consistent M* when neighbouring contact nodes have different normals (its
+ * pair blocks m_ij P_i P_j are not symmetric). It is none of the total mass, the centre of gravity
+ * (the antisymmetric part of that block) or the inertia tensor; it is left out, and reported. */
+static PetscReal MomentMismatch(PetscInt nr, PetscReal GM[MM_MAX_RIGID][MM_MAX_RIGID], PetscReal Gs[MM_MAX_RIGID][MM_MAX_RIGID], PetscReal *unreachable)
+{
+  PetscReal r[MM_MAX_RIGID][MM_MAX_RIGID], k = 0, d = 0;
+
+  for (PetscInt a = 0; a < nr; ++a)
+    for (PetscInt b = 0; b < nr; ++b) r[a][b] = GM[a][b] - Gs[a][b];
+  if (nr == 6) {
+    for (PetscInt a = 0; a < 3; ++a) k += r[a][3 + a];
+    for (PetscInt a = 0; a < 3; ++a) r[a][3 + a] -= k / 3, r[3 + a][a] -= k / 3;
+  }
+  for (PetscInt a = 0; a < nr; ++a)
+    for (PetscInt b = 0; b < nr; ++b) d = PetscMax(d, PetscAbsReal(r[a][b]));
+  *unreachable = PetscAbsReal(k);
+  return d;
+}
+
+/* -mass redistributed: M* (already without its contact-normal rows and columns) gets the lost
+ * moments back on the other nodes, and is checked: its Gram matrix equals M's to 1e-12 of the mass
+ * (docs/method.md section 2). */
+PetscErrorCode MMFERedistributeMass(MMCtx *ctx)
+{
+  const PetscInt nr   = NumRigidModes(ctx->op.dim);
+  MPI_Comm       comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  PetscReal      x0[MM_MAX_DIM], ell = 1, GM[MM_MAX_RIGID][MM_MAX_RIGID], Gs[MM_MAX_RIGID][MM_MAX_RIGID], dG[MM_MAX_RIGID][MM_MAX_RIGID];
+  Vec            R[MM_MAX_RIGID], kind, normal[MM_MAX_DIM];
+
+  PetscFunctionBeginUser;
+  PetscCall(RigidFrame(ctx, x0, &ell));
+  PetscCall(RigidModes(ctx, x0, ell, R));
+  PetscCall(Gram(ctx->op.M, nr, R, GM));
+  PetscCall(VertexKinds(ctx, &kind, normal));
+  PetscCall(MatSetOption(ctx->op.Mstar, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  PetscCall(AddCellShares(ctx, kind, normal, ctx->op.Mstar));
+  PetscCall(MatAssemblyBegin(ctx->op.Mstar, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(ctx->op.Mstar, MAT_FINAL_ASSEMBLY));
+  PetscCall(Gram(ctx->op.Mstar, nr, R, Gs));
+  for (PetscInt a = 0; a < nr; ++a)
+    for (PetscInt b = 0; b < nr; ++b) dG[a][b] = GM[a][b] - Gs[a][b];
+  /* the correction, and up to two more on what round-off left of dG (iterative refinement, for
+   * contact surfaces that leave the moment system ill-conditioned) */
+  for (PetscInt it = 0; it < 3; ++it) {
+    PetscCall(AddMomentCorrection(ctx, kind, x0, ell, dG, ctx->op.Mstar));
+    PetscCall(MatAssemblyBegin(ctx->op.Mstar, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(ctx->op.Mstar, MAT_FINAL_ASSEMBLY));
+    PetscCall(Gram(ctx->op.Mstar, nr, R, Gs));
+    ctx->op.mass_moment_mismatch = MomentMismatch(nr, GM, Gs, &ctx->op.mass_moment_unreachable) / PetscMax(GM[0][0], PETSC_SMALL);
+    ctx->op.mass_moment_unreachable /= PetscMax(GM[0][0], PETSC_SMALL);
+    if (ctx->op.mass_moment_mismatch <= 1e-14) break;
+    for (PetscInt a = 0; a < nr; ++a)
+      for (PetscInt b = 0; b < nr; ++b) dG[a][b] = GM[a][b] - Gs[a][b];
+  }
+  PetscCheck(ctx->op.mass_moment_mismatch <= 1e-12, comm, PETSC_ERR_PLIB, "-mass redistributed: the moments of M* differ from those of M by %.3e of the mass after the redistribution", (double)ctx->op.mass_moment_mismatch);
+  PetscCall(VecDestroy(&kind));
+  for (PetscInt d = 0; d < ctx->op.dim; ++d) PetscCall(VecDestroy(&normal[d]));
+  for (PetscInt k = 0; k < nr; ++k) PetscCall(VecDestroy(&R[k]));
+  PetscFunctionReturn(0);
+}
+
+/* The masses the diagnostics need: M's total mass, M*'s mass for rigid translations (a dim x dim
+ * matrix: the modified mass lacks the normal masses, so it is not m I) and M's centre of gravity. */
+PetscErrorCode MMFEMassMoments(MMCtx *ctx)
+{
+  const PetscInt dim = ctx->op.dim, nr = NumRigidModes(dim);
+  PetscReal      zero[MM_MAX_DIM] = {0, 0, 0}, GM[MM_MAX_RIGID][MM_MAX_RIGID], Gs[MM_MAX_RIGID][MM_MAX_RIGID];
+  Vec            R[MM_MAX_RIGID];
+
+  PetscFunctionBeginUser;
+  PetscCall(RigidModes(ctx, zero, 1.0, R));
+  PetscCall(Gram(ctx->op.M, nr, R, GM));
+  PetscCall(Gram(ctx->op.Mstar, nr, R, Gs));
+  ctx->op.mass_M = GM[0][0];
+  for (PetscInt a = 0; a < dim; ++a)
+    for (PetscInt b = 0; b < dim; ++b) ctx->op.mass_star[a * dim + b] = Gs[a][b];
+  /* the centre of gravity of M, over the nodes without Dirichlet data; M* redistributed has the
+   * same (docs/method.md section 2) */
+  {
+    DM                 dm = ctx->op.dm;
+    PetscSection       gs, ls, cs;
+    PetscInt           vStart, vEnd, rstart;
+    Vec                X;
+    const PetscScalar *x, *m;
+    PetscReal          sum[1 + MM_MAX_DIM] = {0};
+
+    PetscCall(DMGetGlobalSection(dm, &gs));
+    PetscCall(DMGetLocalSection(dm, &ls));
+    PetscCall(DMGetCoordinateSection(dm, &cs));
+    PetscCall(DMGetCoordinatesLocal(dm, &X));
+    PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+    PetscCall(VecGetOwnershipRange(ctx->op.mass_lumped_cart, &rstart, NULL));
+    PetscCall(VecGetArrayRead(ctx->op.mass_lumped_cart, &m));
+    PetscCall(VecGetArrayRead(X, &x));
+    for (PetscInt v = vStart; v < vEnd; ++v) {
+      PetscInt goff, xoff, ncdof;
+      PetscCall(PetscSectionGetOffset(gs, v, &goff));
+      PetscCall(PetscSectionGetConstraintDof(ls, v, &ncdof));
+      if (goff < 0 || ncdof) continue;
+      PetscCall(PetscSectionGetOffset(cs, v, &xoff));
+      sum[0] += PetscRealPart(m[goff - rstart]);
+      for (PetscInt d = 0; d < dim; ++d) sum[1 + d] += PetscRealPart(m[goff - rstart] * x[xoff + d]);
+    }
+    PetscCall(VecRestoreArrayRead(X, &x));
+    PetscCall(VecRestoreArrayRead(ctx->op.mass_lumped_cart, &m));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, 1 + MM_MAX_DIM, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)dm)));
+    for (PetscInt d = 0; d < MM_MAX_DIM; ++d) ctx->op.x_cg[d] = d < dim && sum[0] > 0 ? sum[1 + d] / sum[0] : 0;
+  }
+  for (PetscInt k = 0; k < nr; ++k) PetscCall(VecDestroy(&R[k]));
+  PetscFunctionReturn(0);
+}
