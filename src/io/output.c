@@ -234,6 +234,8 @@ void MMOutputSnapshotFields(MMOutput *o, PetscInt dim, MMSnapshotField f[MM_SNAP
     {"slip_velocity", "slip_velocity_displacement", dim, o->slip, o->dm_out},
     {"stress", "stress_stress", 6, o->stress, o->dm_stress},
     {"von_mises", "von_mises_nodal", 1, o->von_mises, o->dm_scalar},
+    {"stress_cell", "stress_cell", 6, o->stress_cell, NULL},
+    {"von_mises_cell", "von_mises_cell", 1, o->von_mises_cell, NULL},
   };
   for (PetscInt i = 0; i < MM_SNAPSHOT_FIELDS; ++i) f[i] = all[i];
 }
@@ -253,15 +255,17 @@ PetscErrorCode MMOutputIndexAddGrid(MMOutput *o, PetscInt dim, PetscInt k)
   PetscCall(MMOutputLineAdd(&l, "<Topology TopologyType=\"%s\" NumberOfElements=\"%" PetscInt_FMT "\">\n<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Int\" Format=\"HDF\">%s:/viz/topology/cells</DataItem>\n</Topology>\n", dim == 2 ? "Triangle" : "Tetrahedron", nc, nc, dim + 1, h5base));
   PetscCall(MMOutputLineAdd(&l, "<Geometry GeometryType=\"%s\">\n<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n</Geometry>\n", dim == 2 ? "XY" : "XYZ", nv, dim, h5base));
   for (PetscInt i = 0; i < MM_SNAPSHOT_FIELDS; ++i) {
-    PetscCall(MMOutputLineAdd(&l, "<Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", f[i].name, f[i].ncomp == 6 ? "Tensor6" : f[i].ncomp > 1 ? "Vector" : "Scalar"));
+    const PetscInt n     = f[i].dm ? nv : nc;
+    const char    *group = f[i].dm ? "vertex_fields" : "cell_fields";
+    PetscCall(MMOutputLineAdd(&l, "<Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n", f[i].name, f[i].ncomp == 6 ? "Tensor6" : f[i].ncomp > 1 ? "Vector" : "Scalar", f[i].dm ? "Node" : "Cell"));
     if (f[i].ncomp > 1) {
-      PetscCall(MMOutputLineAdd(&l, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT " %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", nv, f[i].ncomp));
-      PetscCall(MMOutputLineAdd(&l, "<DataItem Dimensions=\"3 3\" Format=\"XML\">%" PetscInt_FMT " 0 0 1 1 1 1 %" PetscInt_FMT " %" PetscInt_FMT "</DataItem>\n", k, nv, f[i].ncomp));
-      PetscCall(MMOutputLineAdd(&l, "<DataItem Dimensions=\"" MM_N " %" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n</DataItem>\n</Attribute>\n", nv, f[i].ncomp, h5base, f[i].dataset));
+      PetscCall(MMOutputLineAdd(&l, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT " %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", n, f[i].ncomp));
+      PetscCall(MMOutputLineAdd(&l, "<DataItem Dimensions=\"3 3\" Format=\"XML\">%" PetscInt_FMT " 0 0 1 1 1 1 %" PetscInt_FMT " %" PetscInt_FMT "</DataItem>\n", k, n, f[i].ncomp));
+      PetscCall(MMOutputLineAdd(&l, "<DataItem Dimensions=\"" MM_N " %" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/%s/%s</DataItem>\n</DataItem>\n</Attribute>\n", n, f[i].ncomp, h5base, group, f[i].dataset));
     } else {
-      PetscCall(MMOutputLineAdd(&l, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", nv));
-      PetscCall(MMOutputLineAdd(&l, "<DataItem Dimensions=\"3 2\" Format=\"XML\">%" PetscInt_FMT " 0 1 1 1 %" PetscInt_FMT "</DataItem>\n", k, nv));
-      PetscCall(MMOutputLineAdd(&l, "<DataItem Dimensions=\"" MM_N " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n</DataItem>\n</Attribute>\n", nv, h5base, f[i].dataset));
+      PetscCall(MMOutputLineAdd(&l, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", n));
+      PetscCall(MMOutputLineAdd(&l, "<DataItem Dimensions=\"3 2\" Format=\"XML\">%" PetscInt_FMT " 0 1 1 1 %" PetscInt_FMT "</DataItem>\n", k, n));
+      PetscCall(MMOutputLineAdd(&l, "<DataItem Dimensions=\"" MM_N " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/%s/%s</DataItem>\n</DataItem>\n</Attribute>\n", n, h5base, group, f[i].dataset));
     }
   }
   PetscCall(MMOutputLineAdd(&l, "<Attribute Name=\"contact_obstacle\" AttributeType=\"Scalar\" Center=\"Node\">\n<DataItem Dimensions=\"%" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/contact_obstacle_nodal</DataItem>\n</Attribute>\n", nv, h5base));
@@ -490,6 +494,76 @@ static PetscErrorCode SerialVertexField(MMCtx *ctx, Vec f)
   PetscFunctionReturn(0);
 }
 
+/* One dataset under group: v's entries in the order of its global vector, which for the output
+ * DMs (one field, dofs on the vertices only) is the order of the XDMF geometry's vertices, and for
+ * a cell field that of the topology's cells; with a time index when step >= 0. VecView of a DM
+ * vector would write the field twice, in the section's layout under /fields and again under
+ * /vertex_fields: the XDMF index and the restart read only the second, so only it is written, from
+ * the same array through a vector without a DM. */
+static PetscErrorCode ViewDataset(PetscViewer viewer, const char group[], const char name[], Vec v, PetscInt ncomp, PetscInt step)
+{
+  Vec                w;
+  const PetscScalar *a;
+  PetscInt           n, N;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(v, &n));
+  PetscCall(VecGetSize(v, &N));
+  PetscCall(VecGetArrayRead(v, &a));
+  PetscCall(VecCreateMPIWithArray(PetscObjectComm((PetscObject)v), ncomp, n, N, a, &w));
+  PetscCall(PetscObjectSetName((PetscObject)w, name));
+  PetscCall(PetscViewerHDF5PushGroup(viewer, group));
+  if (step >= 0) {
+    PetscCall(PetscViewerHDF5PushTimestepping(viewer));
+    PetscCall(PetscViewerHDF5SetTimestep(viewer, step));
+  }
+  PetscCall(VecView(w, viewer));
+  PetscCall(PetscViewerHDF5WriteObjectAttribute(viewer, (PetscObject)w, "vector_field_type", PETSC_STRING, ncomp > 1 ? "vector" : "scalar"));
+  if (step >= 0) PetscCall(PetscViewerHDF5PopTimestepping(viewer));
+  PetscCall(PetscViewerHDF5PopGroup(viewer));
+  PetscCall(VecDestroy(&w));
+  PetscCall(VecRestoreArrayRead(v, &a));
+  PetscFunctionReturn(0);
+}
+
+/* /time[step] = t: one entry, written by rank 0. */
+static PetscErrorCode ViewTime(PetscViewer viewer, PetscInt step, PetscReal t)
+{
+  Vec         stamp;
+  PetscMPIInt rank;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(PetscObjectComm((PetscObject)viewer), &rank));
+  PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)viewer), rank ? 0 : 1, 1, &stamp));
+  PetscCall(PetscObjectSetName((PetscObject)stamp, "time"));
+  if (!rank) PetscCall(VecSetValue(stamp, 0, t, INSERT_VALUES));
+  PetscCall(VecAssemblyBegin(stamp));
+  PetscCall(VecAssemblyEnd(stamp));
+  PetscCall(PetscViewerHDF5PushGroup(viewer, "/"));
+  PetscCall(PetscViewerHDF5PushTimestepping(viewer));
+  PetscCall(PetscViewerHDF5SetTimestep(viewer, step));
+  PetscCall(VecView(stamp, viewer));
+  PetscCall(PetscViewerHDF5PopTimestepping(viewer));
+  PetscCall(PetscViewerHDF5PopGroup(viewer));
+  PetscCall(VecDestroy(&stamp));
+  PetscFunctionReturn(0);
+}
+
+/* Snapshot step at time t: /time, then each field once (a failed write returns its error, for the
+ * caller's MMOutputHDF5End to name the file). */
+PetscErrorCode MMOutputViewSnapshot(MMOutput *o, PetscViewer viewer, PetscInt step, PetscReal t)
+{
+  MMSnapshotField f[MM_SNAPSHOT_FIELDS];
+  PetscInt        dim;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetDimension(o->dm_scalar, &dim));
+  MMOutputSnapshotFields(o, dim, f);
+  PetscCall(ViewTime(viewer, step, t));
+  for (PetscInt i = 0; i < MM_SNAPSHOT_FIELDS; ++i) PetscCall(ViewDataset(viewer, f[i].dm ? "/vertex_fields" : "/cell_fields", f[i].dataset, f[i].vec, f[i].ncomp, step));
+  PetscFunctionReturn(0);
+}
+
 /* The fields without a time index, written once with the first snapshot: each contact node's
  * obstacle, fixed at set-up (docs/method.md section 8), which every snapshot's grid refers to, and
  * each vertex's serial number. */
@@ -501,10 +575,9 @@ PetscErrorCode MMOutputWriteStaticFields(MMCtx *ctx)
   PetscFunctionBeginUser;
   PetscCall(MMContactObstacleField(ctx, o->obstacle));
   PetscCall(SerialVertexField(ctx, o->serial));
-  PetscCall(DMSetOutputSequenceNumber(o->dm_scalar, -1, 0));
   PetscCall(MMOutputHDF5Begin());
-  ierr = VecView(o->obstacle, o->h5);
-  if (!ierr) ierr = VecView(o->serial, o->h5);
+  ierr = ViewDataset(o->h5, "/vertex_fields", "contact_obstacle_nodal", o->obstacle, 1, -1);
+  if (!ierr) ierr = ViewDataset(o->h5, "/vertex_fields", "serial_vertex_nodal", o->serial, 1, -1);
   PetscCall(MMOutputHDF5End(ierr, "write", o->h5_name));
   o->static_written = PETSC_TRUE;
   PetscFunctionReturn(0);
@@ -513,25 +586,20 @@ PetscErrorCode MMOutputWriteStaticFields(MMCtx *ctx)
 /* Writes the current fields as snapshot n_written, flushes them, and only then indexes them. */
 static PetscErrorCode WriteFields(MMCtx *ctx)
 {
-  MMOutput      *o      = &ctx->out;
-  PetscReal      t      = ctx->hist.time;
-  MMSnapshotField f[MM_SNAPSHOT_FIELDS];
-  PetscErrorCode ierr   = 0;
+  MMOutput      *o = &ctx->out;
+  PetscReal      t = ctx->hist.time;
+  PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(ctx->log.output));
   PetscCall(WholeField(ctx, ctx->state.u, PETSC_TRUE, o->disp_cart));
   PetscCall(WholeField(ctx, ctx->state.v, PETSC_FALSE, o->vel_cart));
   PetscCall(MMContactBoundaryFields(ctx, o));
-  PetscCall(MMStressCompute(ctx));
+  PetscCall(MMStressCompute(ctx, PETSC_TRUE));
   if (!o->static_written) PetscCall(MMOutputWriteStaticFields(ctx));
-  /* VecView also writes this time into /time, ahead of the fields: the index, not /time, says what is complete */
-  PetscCall(DMSetOutputSequenceNumber(o->dm_out, o->n_written, t));
-  PetscCall(DMSetOutputSequenceNumber(o->dm_scalar, o->n_written, t));
-  PetscCall(DMSetOutputSequenceNumber(o->dm_stress, o->n_written, t));
+  /* /time is written ahead of the fields: the index, not /time, says what is complete */
   PetscCall(MMOutputHDF5Begin());
-  MMOutputSnapshotFields(o, ctx->op.dim, f);
-  for (PetscInt i = 0; i < MM_SNAPSHOT_FIELDS && !ierr; ++i) ierr = VecView(f[i].vec, o->h5);
+  ierr = MMOutputViewSnapshot(o, o->h5, o->n_written, t);
   PetscCall(MMOutputHDF5End(ierr, "write", o->h5_name));
   PetscCall(MMOutputFlushFields(o));
   PetscCall(PetscRealloc(sizeof(PetscReal) * (o->n_written + 1), &o->times));

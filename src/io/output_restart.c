@@ -258,18 +258,20 @@ PetscErrorCode MMOutputRestartFields(MMCtx *ctx)
   ierr = DMView(ctx->op.dm, o->h5);
   PetscCall(MMOutputHDF5End(ierr, "write", tmp));
   for (PetscInt k = 0; k < n; ++k) {
+    /* the vertex fields by the vertices' serial numbers; the cells of this partition are not the
+     * old run's, so the cell stress is computed again from the copied displacement (exact: it is
+     * a function of the cell's vertices' displacements) */
     for (PetscInt i = 0; i < MM_SNAPSHOT_FIELDS; ++i) {
       char path[PETSC_MAX_PATH_LEN];
+      if (!f[i].dm) continue;
       PetscCall(PetscSNPrintf(path, sizeof(path), "/vertex_fields/%s", f[i].dataset));
       PetscCall(OldFieldsRead(&of, path, k, f[i].ncomp));
       PetscCall(FillFromOld(ctx, &of, f[i].dm, f[i].ncomp, f[i].vec));
     }
+    PetscCall(MMStressCompute(ctx, PETSC_FALSE));
     if (!o->static_written) PetscCall(MMOutputWriteStaticFields(ctx));
-    PetscCall(DMSetOutputSequenceNumber(o->dm_out, k, times[k]));
-    PetscCall(DMSetOutputSequenceNumber(o->dm_scalar, k, times[k]));
-    PetscCall(DMSetOutputSequenceNumber(o->dm_stress, k, times[k]));
     PetscCall(MMOutputHDF5Begin());
-    for (PetscInt i = 0; i < MM_SNAPSHOT_FIELDS && !ierr; ++i) ierr = VecView(f[i].vec, o->h5);
+    ierr = MMOutputViewSnapshot(o, o->h5, k, times[k]);
     PetscCall(MMOutputHDF5End(ierr, "write", tmp));
   }
   (void)H5Fclose(of.file);

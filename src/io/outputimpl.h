@@ -31,18 +31,20 @@ PETSC_INTERN PetscErrorCode MMOutputWriteStaticFields(MMCtx *);
 PETSC_INTERN PetscErrorCode MMOutputMakeDirectories(const char[], MMFileStatus *);
 PETSC_INTERN PetscErrorCode MMOutputKeepPrevious(const char[], MMFileStatus *);
 /* The fields of each snapshot, in one table for the writer, the XDMF index and the restart's copy:
- * the XDMF name, the dataset under /vertex_fields, components, the vector and its DM. */
-#define MM_SNAPSHOT_FIELDS 8
+ * the XDMF name, the dataset under /vertex_fields (or /cell_fields), components, the vector and its
+ * DM (NULL: a cell field, a plain vector in the topology's cell order). */
+#define MM_SNAPSHOT_FIELDS 10
 typedef struct {
   const char *name, *dataset;
   PetscInt    ncomp;
   Vec         vec;
   DM          dm;
 } MMSnapshotField;
+PETSC_INTERN PetscErrorCode MMOutputViewSnapshot(MMOutput *, PetscViewer, PetscInt, PetscReal);
 PETSC_INTERN void MMOutputSnapshotFields(MMOutput *, PetscInt, MMSnapshotField[MM_SNAPSHOT_FIELDS]);
 /* stress.c: the nodal stress and von Mises of each snapshot */
 PETSC_INTERN PetscErrorCode MMStressCreate(MMCtx *);
-PETSC_INTERN PetscErrorCode MMStressCompute(MMCtx *);
+PETSC_INTERN PetscErrorCode MMStressCompute(MMCtx *, PetscBool);
 PETSC_INTERN PetscErrorCode MMStressDestroy(MMOutput *);
 /* output_restart.c: -restart continues the history and the snapshots up to the checkpoint */
 PETSC_INTERN PetscErrorCode MMOutputRestartHistory(MMCtx *, MMFileStatus *);

@@ -4,7 +4,10 @@
  * smooth plots; and the von Mises stress of the projected tensor. 2D is plane strain:
  * sigma_zz = lambda (eps_xx + eps_yy), sigma_xz = sigma_yz = 0. The tensor is written as XDMF's
  * Tensor6 (xx, xy, xz, yy, yz, zz), so ParaView shows it as a tensor in 2D and 3D. A uniform strain
- * gives the exact stress at every vertex: the projection of a constant is that constant. */
+ * gives the exact stress at every vertex: the projection of a constant is that constant. The cell
+ * stress itself, and its von Mises value, are written too (cell fields, in the order of the cells
+ * of the XDMF topology: each rank's cells in local order, the mesh being distributed without
+ * overlap). */
 #include "output.h"
 #include "outputimpl.h"
 #include "fem.h"
@@ -38,6 +41,11 @@ PetscErrorCode MMStressCreate(MMCtx *ctx)
   PetscCall(PetscObjectSetName((PetscObject)o->von_mises, "von_mises"));
   PetscCall(DMCreateGlobalVector(o->dm_scalar, &o->stress_weight));
   PetscCall(DMPlexGetHeightStratum(ctx->op.dm, 0, &cStart, &cEnd));
+  PetscCall(VecCreateMPI(PETSC_COMM_WORLD, MM_SYM * (cEnd - cStart), PETSC_DETERMINE, &o->stress_cell));
+  PetscCall(VecSetBlockSize(o->stress_cell, MM_SYM));
+  PetscCall(PetscObjectSetName((PetscObject)o->stress_cell, "stress_cell"));
+  PetscCall(VecCreateMPI(PETSC_COMM_WORLD, cEnd - cStart, PETSC_DETERMINE, &o->von_mises_cell));
+  PetscCall(PetscObjectSetName((PetscObject)o->von_mises_cell, "von_mises_cell"));
   PetscCall(DMPlexGetDepthStratum(ctx->op.dm, 0, &vStart, &vEnd));
   PetscCall(PetscMalloc1((dim + 1) * (cEnd - cStart), &o->cell_vertex));
   for (PetscInt c = cStart; c < cEnd; ++c) {
@@ -91,6 +99,11 @@ static void CellStress(PetscInt dim, const PetscReal x[][MM_MAX_DIM], const Pets
   s[5] = lambda * tr + 2 * mu * e[2][2]; /* 2D: plane strain, e_zz = 0 */
 }
 
+static PetscReal VonMises(const PetscScalar s[MM_SYM])
+{
+  return PetscSqrtReal(0.5 * (PetscSqr(PetscRealPart(s[0] - s[3])) + PetscSqr(PetscRealPart(s[3] - s[5])) + PetscSqr(PetscRealPart(s[5] - s[0]))) + 3 * (PetscSqr(PetscRealPart(s[1])) + PetscSqr(PetscRealPart(s[2])) + PetscSqr(PetscRealPart(s[4]))));
+}
+
 /* The lumped weights sum_T |T| of each vertex: geometry only, computed once. */
 static PetscErrorCode StressWeights(MMCtx *ctx)
 {
@@ -136,8 +149,9 @@ static PetscErrorCode StressWeights(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
-/* The nodal stress and von Mises of the displacement in o->disp_cart (whole, Cartesian, on dm_out). */
-PetscErrorCode MMStressCompute(MMCtx *ctx)
+/* The cell stress and von Mises of the displacement in o->disp_cart (whole, Cartesian, on dm_out),
+ * and with nodal, the nodal ones (a restart copies those from the old file). */
+PetscErrorCode MMStressCompute(MMCtx *ctx, PetscBool nodal)
 {
   MMOutput          *o   = &ctx->out;
   const PetscInt     dim = ctx->op.dim;
@@ -146,7 +160,7 @@ PetscErrorCode MMStressCompute(MMCtx *ctx)
   PetscSection       su, ss, sx;
   Vec                lu, ls, X;
   const PetscScalar *ua, *xa;
-  PetscScalar       *sa, *wa, *vm;
+  PetscScalar       *sa, *wa, *vm, *sc, *vc;
   PetscInt           cStart, cEnd, n;
 
   PetscFunctionBeginUser;
@@ -163,6 +177,8 @@ PetscErrorCode MMStressCompute(MMCtx *ctx)
   PetscCall(VecGetArrayRead(lu, &ua));
   PetscCall(VecGetArrayRead(X, &xa));
   PetscCall(VecGetArray(ls, &sa));
+  PetscCall(VecGetArray(o->stress_cell, &sc));
+  PetscCall(VecGetArray(o->von_mises_cell, &vc));
   for (PetscInt c = 0; c < cEnd - cStart; ++c) {
     const PetscInt *v = &o->cell_vertex[(dim + 1) * c];
     PetscReal       x[MM_MAX_DIM + 1][MM_MAX_DIM] = {{0}}, u[MM_MAX_DIM + 1][MM_MAX_DIM] = {{0}}, s[MM_SYM], vol;
@@ -176,16 +192,25 @@ PetscErrorCode MMStressCompute(MMCtx *ctx)
       }
     }
     CellStress(dim, x, u, lambda, mu, s);
-    vol = CellVolume(dim, x);
+    for (PetscInt k = 0; k < MM_SYM; ++k) sc[MM_SYM * c + k] = s[k];
+    vc[c] = VonMises(&sc[MM_SYM * c]);
+    vol   = CellVolume(dim, x);
     for (PetscInt a = 0; a <= dim; ++a) {
       PetscInt os;
       PetscCall(PetscSectionGetOffset(ss, v[a], &os));
       for (PetscInt k = 0; k < MM_SYM; ++k) sa[os + k] += vol * s[k];
     }
   }
+  PetscCall(VecRestoreArray(o->von_mises_cell, &vc));
+  PetscCall(VecRestoreArray(o->stress_cell, &sc));
   PetscCall(VecRestoreArray(ls, &sa));
   PetscCall(VecRestoreArrayRead(X, &xa));
   PetscCall(VecRestoreArrayRead(lu, &ua));
+  if (!nodal) {
+    PetscCall(DMRestoreLocalVector(o->dm_stress, &ls));
+    PetscCall(DMRestoreLocalVector(o->dm_out, &lu));
+    PetscFunctionReturn(0);
+  }
   PetscCall(VecZeroEntries(o->stress));
   PetscCall(DMLocalToGlobal(o->dm_stress, ls, ADD_VALUES, o->stress));
   PetscCall(DMRestoreLocalVector(o->dm_stress, &ls));
@@ -198,8 +223,7 @@ PetscErrorCode MMStressCompute(MMCtx *ctx)
   for (PetscInt i = 0; i < n; ++i) {
     PetscScalar *s = sa + MM_SYM * i;
     for (PetscInt k = 0; k < MM_SYM; ++k) s[k] /= wa[i];
-    vm[i] = PetscSqrtReal(0.5 * (PetscSqr(PetscRealPart(s[0] - s[3])) + PetscSqr(PetscRealPart(s[3] - s[5])) + PetscSqr(PetscRealPart(s[5] - s[0]))) +
-                          3 * (PetscSqr(PetscRealPart(s[1])) + PetscSqr(PetscRealPart(s[2])) + PetscSqr(PetscRealPart(s[4]))));
+    vm[i] = VonMises(s);
   }
   PetscCall(VecRestoreArray(o->von_mises, &vm));
   PetscCall(VecRestoreArrayRead(o->stress_weight, (const PetscScalar **)&wa));
@@ -213,6 +237,8 @@ PetscErrorCode MMStressDestroy(MMOutput *o)
   PetscCall(VecDestroy(&o->stress));
   PetscCall(VecDestroy(&o->von_mises));
   PetscCall(VecDestroy(&o->stress_weight));
+  PetscCall(VecDestroy(&o->stress_cell));
+  PetscCall(VecDestroy(&o->von_mises_cell));
   PetscCall(DMDestroy(&o->dm_stress));
   PetscCall(PetscFree(o->cell_vertex));
   PetscFunctionReturn(0);
