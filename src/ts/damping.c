@@ -12,13 +12,13 @@
 PetscErrorCode MMDampingCheckOptions(MPI_Comm comm, const MMOptions *o)
 {
   PetscFunctionBeginUser;
-  PetscCheck(o->damping_mass >= 0, comm, PETSC_ERR_USER_INPUT, "-damping_mass %g must be >= 0: alpha (1/s) of the Rayleigh damping C = alpha M* + beta K; a negative value feeds energy in", (double)o->damping_mass);
-  PetscCheck(o->damping_stiffness >= 0, comm, PETSC_ERR_USER_INPUT, "-damping_stiffness %g must be >= 0: beta (s) of the Rayleigh damping C = alpha M* + beta K; a negative value feeds energy in", (double)o->damping_stiffness);
+  PetscCheck(o->damping_mass >= 0, comm, PETSC_ERR_USER_INPUT, "-damping_mass %.6g must be >= 0: alpha (1/s) of the Rayleigh damping C = alpha M* + beta K; a negative value feeds energy in", (double)o->damping_mass);
+  PetscCheck(o->damping_stiffness >= 0, comm, PETSC_ERR_USER_INPUT, "-damping_stiffness %.6g must be >= 0: beta (s) of the Rayleigh damping C = alpha M* + beta K; a negative value feeds energy in", (double)o->damping_stiffness);
   if (o->damping_ratio_set) {
     PetscCheck(!o->damping_mass_set && !o->damping_stiffness_set, comm, PETSC_ERR_USER_INPUT, "-damping_ratio was given together with -damping_mass or -damping_stiffness: the ratio sets both alpha and beta. Give either -damping_ratio with -damping_frequencies, or -damping_mass and/or -damping_stiffness");
-    PetscCheck(o->damping_ratio >= 0, comm, PETSC_ERR_USER_INPUT, "-damping_ratio %g must be >= 0 (0.02 is 2%% of critical damping)", (double)o->damping_ratio);
+    PetscCheck(o->damping_ratio >= 0, comm, PETSC_ERR_USER_INPUT, "-damping_ratio %.6g must be >= 0 (0.02 is 2%% of critical damping)", (double)o->damping_ratio);
     PetscCheck(o->damping_nfreq == 2, comm, PETSC_ERR_USER_INPUT, "-damping_ratio needs the two frequencies (Hz) at which it holds: give -damping_frequencies f1,f2 (%s)", o->damping_nfreq < 0 ? "it is missing" : "it needs exactly 2 entries");
-    PetscCheck(o->damping_freq[0] > 0 && o->damping_freq[1] > 0, comm, PETSC_ERR_USER_INPUT, "-damping_frequencies %g,%g: both frequencies must be > 0 (Hz)", (double)o->damping_freq[0], (double)o->damping_freq[1]);
+    PetscCheck(o->damping_freq[0] > 0 && o->damping_freq[1] > 0, comm, PETSC_ERR_USER_INPUT, "-damping_frequencies %.6g,%.6g: both frequencies must be > 0 (Hz)", (double)o->damping_freq[0], (double)o->damping_freq[1]);
   } else PetscCheck(o->damping_nfreq < 0, comm, PETSC_ERR_USER_INPUT, "-damping_frequencies is only read with -damping_ratio: give -damping_ratio zeta too, or leave the frequencies out");
   PetscFunctionReturn(0);
 }
