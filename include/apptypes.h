@@ -106,4 +106,9 @@ typedef struct {
   MMObstacle  *obstacles;
   PetscBool    obstacles_named;     /* -obstacles was given */
   PetscReal    mu_max;              /* the largest friction coefficient of the obstacles */
+  PetscReal    damping_mass, damping_stiffness; /* Rayleigh alpha (1/s) and beta (s), as given */
+  PetscReal    damping_ratio;       /* target damping ratio at -damping_frequencies, as given */
+  PetscReal    damping_freq[2];     /* -damping_frequencies f1,f2 (Hz) */
+  PetscBool    damping_mass_set, damping_stiffness_set, damping_ratio_set;
+  PetscInt     damping_nfreq;       /* entries given to -damping_frequencies, -1 if not set */
 } MMOptions;

@@ -52,7 +52,7 @@ typedef struct {
   PetscInt     restart_step;                   /* the step the run continues from */
   char         file[PETSC_MAX_PATH_LEN];       /* the checkpoint read */
   char         source_dir[PETSC_MAX_PATH_LEN]; /* its directory: the history and snapshots to continue */
-  PetscReal    run[32];                        /* its run record */
+  PetscReal    run[40];                        /* its run record */
   PetscScalar *node;                           /* its per-node records of the owned contact nodes */
   PetscReal   *snapshot_times;                 /* the times of its snapshots, until the output takes them */
   int          stop_signal;                    /* the signal that stopped the run (signals.c), 0: none */

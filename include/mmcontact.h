@@ -19,6 +19,7 @@ typedef struct {
   MMContact   contact;
   MMFriction  friction;
   MMState     state;
+  MMDamping   damping;
   MMHistory   hist;
   MMProgress  progress;
   MMOutput    out;

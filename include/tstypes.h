@@ -21,6 +21,7 @@ typedef struct {
   PetscReal kinetic, elastic, total;
   PetscReal work_ext, work_contact, work_friction; /* running sums */
   PetscReal work_obstacle;     /* running sum: the work of the moving obstacles' contact forces */
+  PetscReal work_damping;      /* running sum: the Rayleigh damping work W_d <= 0 (src/ts/damping.c) */
   PetscReal balance_residual;
   PetscInt  active, slipping, switched;
   PetscReal force_normal, force_tangential, max_penetration, coulomb_residual;
@@ -43,3 +44,10 @@ typedef struct {
   PetscInt      ncells;                    /* this rank's cells, and for each its dim+1 vertices' */
   PetscInt     *cell_u, *cell_x;           /* offsets in the local displacement and coordinate vectors */
 } MMDeformation;
+
+/* Rayleigh damping C = alpha M* + beta K (src/ts/damping.c, docs/method.md section 3). */
+typedef struct {
+  PetscReal alpha, beta; /* 1/s and s; both 0: no damping, and nothing below exists */
+  Vec       vC;          /* the trapezoidal velocity 2/dt (u^{n+1} - u^n) - vC^n, on all dofs */
+  Vec       work, x;     /* scratch */
+} MMDamping;

@@ -51,7 +51,8 @@ def test_history_and_xdmf(tmp_path):
         header = f.readline().strip().split(",")
     assert header[:len(HEADER)] == HEADER
     assert header[len(HEADER):] == ["ucm_x", "ucm_y", "vcm_x", "vcm_y", "L_z", "P_x", "P_y", "J_z", "load_x", "load_y", "switched", "contraction",
-                                      "candidates", "candidate_resolves", "work_obstacle", "force_plane_x", "force_plane_y"]  # the default obstacle is "plane"
+                                      "candidates", "candidate_resolves", "work_obstacle", "force_plane_x", "force_plane_y",
+                                      "work_damping"]  # the default obstacle is "plane"; new columns go at the end
     h = r.history
     assert len(h) == 26 and h["step"][-1] == 25
     root = ET.parse(os.path.join(r.outdir, "solution.xmf")).getroot()

@@ -178,6 +178,7 @@ def short_checkpoint(tmp_path_factory):
     (["-mesh", "meshes/disk_rail.msh"], "is of another contact boundary: 33 contact nodes, this run has 64"),
     (["-contact", 0], "is of another contact boundary: 33 contact nodes, this run has 0"),
     (["-mass", "standard"], "was written with the redistributed mass, this run has the standard mass"),
+    (["-damping_mass", 1], "was written with the Rayleigh damping alpha = 0, beta = 0, this run has alpha = 1, beta = 0: another damping"),
 ])
 def test_mismatched_restart_is_refused(tmp_path, short_checkpoint, extra, message):
     before = open(os.path.join(short_checkpoint.outdir, "history.csv")).read()
@@ -215,6 +216,8 @@ def test_restart_needs_the_history_of_its_run(tmp_path, short_checkpoint):
 @pytest.mark.parametrize("case,extra", [
     ("d1_friction", []),
     ("d1_friction", ["-contact_formulation", "active_set"]),
+    # Rayleigh damping: its velocity vC (all dofs, also the massless normal ones) is in the checkpoint
+    ("d1_friction", ["-damping_mass", 5, "-damping_stiffness", 1e-3]),
     ("block_push", []),
     # 3D: every node in the candidate set, so that the cached columns of K~^{-1} E are computed in
     # the same blocks as in the uninterrupted run (MUMPS's multi-column solves round by block)
@@ -236,5 +239,5 @@ def test_restart_on_the_same_rank_is_bitwise(tmp_path, case, extra):
     assert open(os.path.join(a.outdir, "history.csv"), "rb").read() == open(os.path.join(b.outdir, "history.csv"), "rb").read()
     assert len(a.history) == 41 and a.history["active"][23:].max() > 0  # in contact across the restart
     with h5py.File(os.path.join(a.outdir, "checkpoint.h5"), "r") as fa, h5py.File(os.path.join(b.outdir, "checkpoint.h5"), "r") as fb:
-        for k in ("u", "v", "a", "react", "contact"):
+        for k in ("u", "v", "a", "react", "contact") + (("vC",) if "-damping_mass" in extra else ()):
             assert np.array_equal(fa[k][:], fb[k][:]), k

@@ -21,6 +21,7 @@ static char help[] = "mmcontact: elastic bodies hitting and sliding on rigid obs
 #include "signals.h"
 #include "errors.h"
 #include "deformation.h"
+#include "damping.h"
 
 static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
 {
@@ -73,6 +74,7 @@ static PetscErrorCode Destroy(MMCtx *ctx, TS *ts)
     Vec *vecs[] = {&s->u, &s->v, &s->a, &s->u_old, &s->v_old, &s->a_old, &s->react, &s->react_old, &s->work, &s->u_next};
     for (size_t i = 0; i < sizeof(vecs) / sizeof(vecs[0]); ++i) PetscCall(VecDestroy(vecs[i]));
   }
+  PetscCall(MMDampingDestroy(&ctx->damping));
   PetscCall(MMFrictionDestroy(&ctx->friction));
   PetscCall(MMContactDestroy(&ctx->contact));
   PetscCall(MMFEDestroy(&ctx->op));

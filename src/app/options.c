@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include "obstacle.h"
 #include "errors.h"
+#include "damping.h"
 
 const char *const MMMassTypes[] = {"modified", "standard", "redistributed", "MMMassType", "MM_MASS_", NULL};
 const char *const MMInitialStates[] = {"given", "static_sliding", "MMInitialState", "MM_INITIAL_", NULL};
@@ -299,6 +300,24 @@ static PetscErrorCode ProcessObstacles(PetscOptionItems *PetscOptionsObject, MPI
   PetscFunctionReturn(0);
 }
 
+/* Rayleigh damping C = alpha M* + beta K: alpha and beta, or a ratio at two frequencies
+ * (src/ts/damping.c checks them together and turns a ratio into alpha and beta). */
+static PetscErrorCode ProcessDamping(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMOptionsCheckValue(comm, "-damping_mass", MM_VALUE_REAL));
+  PetscCall(PetscOptionsReal("-damping_mass", "Rayleigh damping C = alpha M* + beta K: alpha (1/s), >= 0 (default 0: no damping)", NULL, opt->damping_mass, &opt->damping_mass, &opt->damping_mass_set));
+  PetscCall(CheckFinite(comm, "-damping_mass", &opt->damping_mass, 1));
+  PetscCall(MMOptionsCheckValue(comm, "-damping_stiffness", MM_VALUE_REAL));
+  PetscCall(PetscOptionsReal("-damping_stiffness", "Rayleigh damping C = alpha M* + beta K: beta (s), >= 0 (default 0: no damping)", NULL, opt->damping_stiffness, &opt->damping_stiffness, &opt->damping_stiffness_set));
+  PetscCall(CheckFinite(comm, "-damping_stiffness", &opt->damping_stiffness, 1));
+  PetscCall(MMOptionsCheckValue(comm, "-damping_ratio", MM_VALUE_REAL));
+  PetscCall(PetscOptionsReal("-damping_ratio", "Rayleigh damping by its ratio to critical, >= 0, reached at the two -damping_frequencies: sets alpha = 2 zeta w1 w2/(w1 + w2) and beta = 2 zeta/(w1 + w2), w = 2 pi f (not with -damping_mass or -damping_stiffness)", NULL, opt->damping_ratio, &opt->damping_ratio, &opt->damping_ratio_set));
+  PetscCall(CheckFinite(comm, "-damping_ratio", &opt->damping_ratio, 1));
+  PetscCall(OptionsRealArray(PetscOptionsObject, comm, "-damping_frequencies", "The two frequencies f1,f2 (Hz, > 0) at which -damping_ratio holds; between them the damping ratio is lower, outside higher", 2, opt->damping_freq, &opt->damping_nfreq));
+  PetscFunctionReturn(0);
+}
+
 /* The ranges of the scalar options, each refused with its range. */
 static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
 {
@@ -320,6 +339,7 @@ static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
   PetscCheck(opt->progress_every >= 0, comm, PETSC_ERR_USER_INPUT, "-progress_every %.6g must be >= 0: it is the wall time in seconds between progress lines (0 turns them off)", (double)opt->progress_every);
   PetscCheck(opt->output_every >= 0, comm, PETSC_ERR_USER_INPUT, "-output_every %" PetscInt_FMT " must be >= 0", opt->output_every);
   PetscCheck(opt->checkpoint_every >= 0, comm, PETSC_ERR_USER_INPUT, "-checkpoint_every %" PetscInt_FMT " must be >= 0 (0: a checkpoint at the end only)", opt->checkpoint_every);
+  PetscCall(MMDampingCheckOptions(comm, opt));
   PetscFunctionReturn(0);
 }
 
@@ -370,6 +390,7 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsEnum(PetscOptionsObject, comm, "-assembly", "How the stiffness and mass are assembled: closed_form (P1 element matrices in closed form, one pass over the cells) or fe (PetscFE quadrature, the slower reference)", MMAssemblyTypes, (PetscEnum *)&opt->assembly));
   opt->assembly_check = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-assembly_check", "Also assemble the stiffness and mass the other -assembly way, print the relative difference of each, and stop if one exceeds 1e-12", NULL, opt->assembly_check, &opt->assembly_check, NULL));
+  PetscCall(ProcessDamping(PetscOptionsObject, comm, opt));
   opt->contact = PETSC_TRUE;
   PetscCall(PetscOptionsBool("-contact", "Enforce unilateral contact; 0 gives linear elastodynamics on the same mesh (the contact boundary is then unused)", NULL, opt->contact, &opt->contact, NULL));
 

@@ -10,12 +10,13 @@
 #include "output.h"
 #include "contact.h"
 #include "newmark.h"
+#include "damping.h"
 
 #define MM_CKPT_FILE "checkpoint.h5"
 #define MM_CKPT_TMP  ".tmp" /* written whole, then renamed over the last good one */
 #define MM_CKPT_NODE 13     /* per vertex: contact, s, slipping, was_active, slip_dir[2], rho[3], and the
                                * active-set formulation's warm start: active, stick, dir[2] */
-#define MM_CKPT_VERSION 4
+#define MM_CKPT_VERSION 4 /* 4: the redistributed mass (mass type + 3 if lumped); the Rayleigh damping (alpha, beta, W_d and vC) */
 
 /* The scalars of a run, in the "run" vector of the file, in this order. */
 typedef enum {
@@ -45,6 +46,9 @@ typedef enum {
   MM_RUN_RHO,
   MM_RUN_MASS,    /* the mass type, plus 3 if lumped */
   MM_RUN_DT_USER, /* -ts_dt */
+  MM_RUN_WORK_DAMPING,
+  MM_RUN_DAMPING_ALPHA, /* the Rayleigh damping, part of the fingerprint */
+  MM_RUN_DAMPING_BETA,
   MM_RUN_ADAPT,   /* the growback adaptor's state, MM_ADAPT_STATE entries */
   MM_RUN_NUM = MM_RUN_ADAPT + MM_ADAPT_STATE
 } MMRunEntry;
@@ -211,6 +215,9 @@ static PetscErrorCode RunRecord(MMCtx *ctx, TS ts, PetscReal run[])
   run[MM_RUN_RHO]             = ctx->opt.rho;
   run[MM_RUN_MASS]            = ctx->opt.mass_type + (ctx->opt.lumped ? 3 : 0);
   run[MM_RUN_DT_USER]         = ctx->state.dt_user;
+  run[MM_RUN_WORK_DAMPING]    = h->work_damping;
+  run[MM_RUN_DAMPING_ALPHA]   = ctx->damping.alpha;
+  run[MM_RUN_DAMPING_BETA]    = ctx->damping.beta;
   PetscCall(MMAdaptGrowBackGetState(ts, &run[MM_RUN_ADAPT]));
   PetscFunctionReturn(0);
 }
@@ -290,6 +297,7 @@ PetscErrorCode MMCheckpointWrite(MMCtx *ctx, TS ts)
   PetscCall(ViewPacked(ctx, viewer, "u", ctx->op.dim, s->u, PETSC_FALSE));
   PetscCall(ViewPacked(ctx, viewer, "v", ctx->op.dim, s->v, PETSC_FALSE));
   PetscCall(ViewPacked(ctx, viewer, "a", ctx->op.dim, s->a, PETSC_FALSE));
+  if (MMDampingOn(ctx)) PetscCall(ViewPacked(ctx, viewer, "vC", ctx->op.dim, ctx->damping.vC, PETSC_FALSE));
   PetscCall(ViewPacked(ctx, viewer, "react", ctx->op.dim, s->react, PETSC_FALSE));
   PetscCall(ViewPacked(ctx, viewer, "contact", MM_CKPT_NODE, NULL, PETSC_TRUE));
   PetscCall(PetscViewerDestroy(&viewer));
@@ -412,6 +420,7 @@ static PetscErrorCode CheckFingerprint(MMCtx *ctx, TS ts, const PetscReal ck[])
   PetscCheck(ck[MM_RUN_MU] == me[MM_RUN_MU], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with -mu %.10g, this run has -mu %.10g: a different friction law. Restart with -mu %.10g", f, (double)ck[MM_RUN_MU], (double)me[MM_RUN_MU], (double)ck[MM_RUN_MU]);
   PetscCheck(ck[MM_RUN_E] == me[MM_RUN_E] && ck[MM_RUN_NU] == me[MM_RUN_NU] && ck[MM_RUN_RHO] == me[MM_RUN_RHO], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with -E %.10g -nu %.10g -rho %.10g, this run has -E %.10g -nu %.10g -rho %.10g: another material. Restart with the material of the run that wrote it", f, (double)ck[MM_RUN_E], (double)ck[MM_RUN_NU], (double)ck[MM_RUN_RHO], (double)me[MM_RUN_E], (double)me[MM_RUN_NU], (double)me[MM_RUN_RHO]);
   PetscCheck(ck[MM_RUN_MASS] == me[MM_RUN_MASS], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with the %s%s mass, this run has the %s%s mass. Restart with the -mass and -mass_lumped of the run that wrote it", f, MMMassTypes[(int)ck[MM_RUN_MASS] % 3], (int)ck[MM_RUN_MASS] / 3 ? " lumped" : "", MMMassTypes[(int)me[MM_RUN_MASS] % 3], (int)me[MM_RUN_MASS] / 3 ? " lumped" : "");
+  PetscCheck(ck[MM_RUN_DAMPING_ALPHA] == me[MM_RUN_DAMPING_ALPHA] && ck[MM_RUN_DAMPING_BETA] == me[MM_RUN_DAMPING_BETA], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with the Rayleigh damping alpha = %.10g, beta = %.10g, this run has alpha = %.10g, beta = %.10g: another damping. Restart with the -damping_mass and -damping_stiffness (or -damping_ratio and -damping_frequencies) of the run that wrote it", f, (double)ck[MM_RUN_DAMPING_ALPHA], (double)ck[MM_RUN_DAMPING_BETA], (double)me[MM_RUN_DAMPING_ALPHA], (double)me[MM_RUN_DAMPING_BETA]);
   PetscFunctionReturn(0);
 }
 
@@ -574,6 +583,7 @@ PetscErrorCode MMCheckpointLoad(MMCtx *ctx, TS ts)
   PetscCall(LoadDofs(ctx, viewer, "u", s->u));
   PetscCall(LoadDofs(ctx, viewer, "v", s->v));
   PetscCall(LoadDofs(ctx, viewer, "a", s->a));
+  if (MMDampingOn(ctx)) PetscCall(LoadDofs(ctx, viewer, "vC", ctx->damping.vC));
   PetscCall(LoadDofs(ctx, viewer, "react", s->react));
   PetscCall(LoadSnapshotTimes(ctx, viewer));
   PetscCall(PetscViewerDestroy(&viewer));
@@ -619,6 +629,7 @@ PetscErrorCode MMCheckpointRestoreHistory(MMCtx *ctx)
   h->work_contact        = run[MM_RUN_WORK_CONTACT];
   h->work_friction       = run[MM_RUN_WORK_FRICTION];
   h->work_obstacle       = run[MM_RUN_WORK_OBSTACLE];
+  h->work_damping        = run[MM_RUN_WORK_DAMPING];
   h->max_balance         = run[MM_RUN_MAX_BALANCE];
   h->max_penetration_run = run[MM_RUN_MAX_PENETRATION];
   h->energy_scale        = run[MM_RUN_ENERGY_SCALE];

@@ -7,6 +7,7 @@
 #include "contact.h"
 #include "mesh.h"
 #include "fem.h"
+#include "damping.h"
 
 /* The options files of the run, as given on the command line. PETSc reads -options_file while it
  * starts and keeps only the options inside, not the option itself, so the arguments are read
@@ -105,7 +106,7 @@ static PetscErrorCode HeaderMesh(MMCtx *ctx)
 }
 
 /* Lines 2 and 3, the material and the time step: the wave speeds and the contact CFL number of
- * Theorem 4.2, c_p dt / h_c'. */
+ * Theorem 4.2, c_p dt / h_c'; and the Rayleigh damping when there is one. */
 static PetscErrorCode HeaderPhysics(MMCtx *ctx, TS ts)
 {
   MPI_Comm        comm = PETSC_COMM_WORLD;
@@ -124,6 +125,11 @@ static PetscErrorCode HeaderPhysics(MMCtx *ctx, TS ts)
   else PetscCall(PetscStrncpy(cfl, "no contact boundary", sizeof(cfl)));
   PetscCall(PetscPrintf(comm, "  material: E = %.6g, nu = %.6g, rho = %.6g; waves c_p = %.4g, c_s = %.4g\n", (double)opt->E, (double)opt->nu, (double)opt->rho, (double)ctx->op.c_p, (double)c_s));
   PetscCall(PetscPrintf(comm, "  time: dt = %.6g to t = %.6g%s; %s\n", (double)dt, (double)t_end, steps, cfl));
+  if (MMDampingOn(ctx)) {
+    char ratio[128] = "";
+    if (opt->damping_ratio_set) PetscCall(PetscSNPrintf(ratio, sizeof(ratio), " (-damping_ratio %.6g at %.6g and %.6g Hz)", (double)opt->damping_ratio, (double)opt->damping_freq[0], (double)opt->damping_freq[1]));
+    PetscCall(PetscPrintf(comm, "  damping: Rayleigh C = alpha M* + beta K, alpha = %.10g 1/s, beta = %.10g s%s\n", (double)ctx->damping.alpha, (double)ctx->damping.beta, ratio));
+  }
   PetscFunctionReturn(0);
 }
 

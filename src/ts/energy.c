@@ -4,6 +4,7 @@
 #include "fem.h"
 #include "obstacle.h"
 #include "friction.h"
+#include "damping.h"
 
 static PetscErrorCode KineticEnergy(MMCtx *ctx, Vec v, PetscReal *ek)
 {
@@ -130,6 +131,7 @@ PetscErrorCode MMEnergyInitial(MMCtx *ctx)
   h->step = 0;
   h->time = 0;
   h->work_ext = h->work_contact = h->work_friction = h->work_obstacle = 0;
+  h->work_damping = 0;
   h->balance_residual = h->max_balance = h->max_penetration_run = 0;
   h->cfl = ctx->contact.enabled ? ctx->op.c_p * h->dt / ctx->contact.h_c : 0;
   PetscCall(MMFECheckElasticEnergy(ctx, ctx->state.u));
@@ -154,12 +156,13 @@ static const char *AuditAdvice(MMCtx *ctx, PetscReal residual)
   return "The step was not solved exactly: tighten -contact_tol or the -contact_snes tolerances (and check that the units are consistent, SI throughout).";
 }
 
-/* E^{n+1} - E^n = W_ext + W_c + W_f, each term recorded; the residual is the scheme's identity. */
+/* E^{n+1} - E^n = W_ext + W_c + W_f (+ W_obstacle + W_d), each term recorded; the residual is the
+ * scheme's identity. */
 PetscErrorCode MMEnergyStep(MMCtx *ctx)
 {
   MMHistory  *h = &ctx->hist;
   MMState    *s = &ctx->state;
-  PetscReal   E_old = h->total, w_ext, w_c = s->work_contact, w_f = 0, w_obs = 0;
+  PetscReal   E_old = h->total, w_ext, w_c = s->work_contact, w_f = 0, w_obs = 0, w_d;
   PetscScalar Ldu;
 
   PetscFunctionBeginUser;
@@ -167,6 +170,7 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
   PetscCall(VecWAXPY(s->work, -1.0, s->u_old, s->u));
   PetscCall(VecDot(ctx->op.load, s->work, &Ldu)); /* L is constant in time */
   w_ext = PetscRealPart(Ldu);
+  PetscCall(MMDampingWork(ctx, s->work, s->dt, &w_d));
   /* W_c was computed on this very state by the contact-work guard (MMEnergyContactWork) */
   if (ctx->contact.enabled) PetscCall(TrapezoidalWork(ctx, ctx->contact.is_tangent, s->work, &w_f));
   {
@@ -183,9 +187,10 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
   h->work_ext += w_ext;
   h->work_contact += w_c;
   h->work_friction += w_f;
+  h->work_damping += w_d;
   /* relative to the run's energy scale, so that a body coming to rest does not inflate it */
   h->energy_scale     = PetscMax(h->energy_scale, PetscAbsReal(h->total));
-  h->balance_residual = PetscAbsReal(h->total - E_old - w_ext - w_c - w_f - w_obs) / PetscMax(h->energy_scale, PETSC_SMALL * PETSC_SMALL);
+  h->balance_residual = PetscAbsReal(h->total - E_old - w_ext - w_c - w_f - w_obs - w_d) / PetscMax(h->energy_scale, PETSC_SMALL * PETSC_SMALL);
   h->max_balance      = PetscMax(h->max_balance, h->balance_residual);
   PetscCheck(h->balance_residual <= ctx->opt.audit_tol, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_NOT_CONVERGED,
              "Energy audit failed at step %" PetscInt_FMT " (t = %g): balance residual %.3e > -audit_tol %.1e. %s The output up to the previous step is intact",

@@ -11,6 +11,7 @@
 #include "fem.h"
 #include "friction.h"
 #include "sliding.h"
+#include "damping.h"
 
 typedef struct {
   MMCtx *ctx;
@@ -22,7 +23,7 @@ static PetscBool HasMasslessDofs(MMCtx *ctx)
   return MMFEHasMasslessDofs(ctx);
 }
 
-/* b = L - lift + M* (4/dt^2 u^n + 4/dt v^n + a^n) */
+/* b = L - lift + M* (4/dt^2 u^n + 4/dt v^n + a^n) [+ C (2/dt u^n + vC^n) with damping] */
 static PetscErrorCode StepRHS(MMCtx *ctx, PetscReal dt, Vec b)
 {
   MMState *s = &ctx->state;
@@ -33,6 +34,7 @@ static PetscErrorCode StepRHS(MMCtx *ctx, PetscReal dt, Vec b)
   PetscCall(MatMult(ctx->op.Mstar, s->work, b));
   PetscCall(VecAXPY(b, 1.0, ctx->op.load));
   PetscCall(VecAXPY(b, -1.0, ctx->op.lift));
+  PetscCall(MMDampingAddStepRHS(ctx, dt, b));
   PetscFunctionReturn(0);
 }
 
@@ -182,6 +184,7 @@ static PetscErrorCode TSStep_Newmark(TS ts)
     }
   }
   PetscCall(UpdateKinematics(ctx, dt, w));
+  PetscCall(MMDampingUpdateVelocity(ctx, dt));
   s->dt   = dt;
   next_dt = dt;
   PetscCall(TSAdaptChoose(ts->adapt, ts, dt, NULL, &next_dt, &accept));
@@ -384,7 +387,7 @@ static PetscErrorCode ProjectInitialField(MMCtx *ctx, PetscErrorCode (*f)(PetscI
   PetscFunctionReturn(0);
 }
 
-/* a0 from M* a0 = L - lift - K u0 + f_c0 on the dofs with inertia. */
+/* a0 from M* a0 = L - lift - K u0 - C v0 + f_c0 on the dofs with inertia. */
 static PetscErrorCode InitialAcceleration(MMCtx *ctx)
 {
   MMState *s = &ctx->state;
@@ -406,6 +409,7 @@ static PetscErrorCode InitialAcceleration(MMCtx *ctx)
   PetscCall(VecAYPX(r, -1.0, ctx->op.load));
   PetscCall(VecAXPY(r, -1.0, ctx->op.lift));
   PetscCall(VecAXPY(r, 1.0, s->react));
+  PetscCall(MMDampingAddForce(ctx, s->v, -1.0, r));
   PetscCall(MatCreateSubMatrix(ctx->op.Mstar, is, is, MAT_INITIAL_MATRIX, &Mss));
   PetscCall(KSPCreate(PetscObjectComm((PetscObject)s->u), &ksp));
   PetscCall(KSPSetOptionsPrefix(ksp, "mass_"));
@@ -456,18 +460,20 @@ PetscErrorCode MMNewmarkInitialState(MMCtx *ctx)
   }
   if (ctx->opt.initial_state == MM_INITIAL_STATIC_SLIDING) PetscCall(TangentialInitialVelocity(ctx));
   PetscCall(ProjectInitialField(ctx, InitialVelocity, s->v));
+  PetscCall(MMDampingSetUp(ctx));
   PetscCall(VecZeroEntries(s->react));
   if (ctx->opt.initial_state == MM_INITIAL_STATIC_SLIDING) PetscCall(MMInitialStaticSliding(ctx, s->u, s->react));
   else {
     PetscCall(ProjectInitialField(ctx, InitialDisplacement, s->u));
     PetscCall(MMContactProjectInitial(ctx, s->u));
   }
-  /* f_c0 = K u0 + lift - L on the massless dofs: their quasi-static equation */
+  /* f_c0 = K u0 + lift - L (+ C v0) on the massless dofs: their quasi-static equation */
   if (HasMasslessDofs(ctx) && ctx->opt.initial_state == MM_INITIAL_GIVEN) {
     Vec rc, fc;
     PetscCall(MatMult(ctx->op.K, s->u, s->work));
     PetscCall(VecAXPY(s->work, 1.0, ctx->op.lift));
     PetscCall(VecAXPY(s->work, -1.0, ctx->op.load));
+    PetscCall(MMDampingAddForce(ctx, s->v, 1.0, s->work));
     PetscCall(VecGetSubVector(s->work, ctx->contact.is_normal, &fc));
     PetscCall(VecGetSubVector(s->react, ctx->contact.is_normal, &rc));
     PetscCall(VecCopy(fc, rc));

@@ -8,6 +8,7 @@
  * (impls/active_set/). Without contact each step is one K~ solve (kt.c, the "none" ops). */
 #include "../contactimpl.h"
 #include "fem.h"
+#include "damping.h"
 
 static PetscFunctionList MMContactList              = NULL;
 static PetscBool         MMContactRegisterAllCalled = PETSC_FALSE;
@@ -66,8 +67,9 @@ PetscErrorCode MMContactSwapKeptOperator(MMContact *ct, KSP *ksp)
   PetscFunctionReturn(0);
 }
 
-/* K~ = K + 4/dt^2 M*, assembled only when dt changes; the formulation then builds on it what it
- * needs (a factor and the Delassus operator, a PC, nothing). */
+/* K~ = K + 4/dt^2 M* (with Rayleigh damping (1 + 2 beta/dt) K + (4/dt^2 + 2 alpha/dt) M*, the
+ * coefficients of MMStepMatrixCoefficients), assembled only when dt changes; the formulation then
+ * builds on it what it needs (a factor and the Delassus operator, a PC, nothing). */
 PetscErrorCode MMContactSetStepMatrix(MMCtx *ctx, PetscReal dt)
 {
   MMContact *ct = &ctx->contact;
@@ -90,7 +92,12 @@ PetscErrorCode MMContactSetStepMatrix(MMCtx *ctx, PetscReal dt)
     if (ct->ops->setup) PetscCall((*ct->ops->setup)(ctx));
   } else if (!ct->qp.A) PetscCall(MatDuplicate(ctx->op.K, MAT_COPY_VALUES, &ct->qp.A));
   else PetscCall(MatCopy(ctx->op.K, ct->qp.A, SAME_NONZERO_PATTERN));
-  PetscCall(MatAXPY(ct->qp.A, 4.0 / (dt * dt), ctx->op.Mstar, SUBSET_NONZERO_PATTERN));
+  {
+    PetscReal ck, cm;
+    MMStepMatrixCoefficients(ctx, dt, &ck, &cm);
+    if (ck != 1.0) PetscCall(MatScale(ct->qp.A, ck));
+    PetscCall(MatAXPY(ct->qp.A, cm, ctx->op.Mstar, SUBSET_NONZERO_PATTERN));
+  }
   ct->Kt_dt = dt;
   if (ct->ops->setoperator) PetscCall((*ct->ops->setoperator)(ctx));
   PetscCall(PetscLogEventEnd(ctx->log.assemble, 0, 0, 0, 0));

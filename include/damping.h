@@ -1,0 +1,13 @@
+/* Rayleigh damping C = alpha M* + beta K in the trapezoidal scheme (src/ts/damping.c). */
+#pragma once
+#include "mmcontact.h"
+PETSC_EXTERN PetscErrorCode MMDampingCheckOptions(MPI_Comm, const MMOptions *);
+PETSC_EXTERN PetscErrorCode MMDampingCoefficients(const MMOptions *, PetscReal *, PetscReal *);
+PETSC_EXTERN PetscBool      MMDampingOn(const MMCtx *);
+PETSC_EXTERN PetscErrorCode MMDampingSetUp(MMCtx *);
+PETSC_EXTERN PetscErrorCode MMDampingDestroy(MMDamping *);
+PETSC_EXTERN void           MMStepMatrixCoefficients(const MMCtx *, PetscReal, PetscReal *, PetscReal *);
+PETSC_EXTERN PetscErrorCode MMDampingAddForce(MMCtx *, Vec, PetscReal, Vec);
+PETSC_EXTERN PetscErrorCode MMDampingAddStepRHS(MMCtx *, PetscReal, Vec);
+PETSC_EXTERN PetscErrorCode MMDampingUpdateVelocity(MMCtx *, PetscReal);
+PETSC_EXTERN PetscErrorCode MMDampingWork(MMCtx *, Vec, PetscReal, PetscReal *);
