@@ -7,5 +7,7 @@ PETSC_EXTERN PetscErrorCode MMFECheckElasticEnergy(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMFEToCartesian(MMCtx *, Vec, Vec);
 PETSC_EXTERN PetscErrorCode MMFEFromCartesian(MMCtx *, Vec, Vec);
 PETSC_EXTERN PetscErrorCode MMFEDestroy(MMOperators *);
+PETSC_EXTERN PetscErrorCode MMFEAddTraction(MMCtx *, PetscInt, Vec);
+PETSC_EXTERN PetscErrorCode MMFEVertexMasses(MMCtx *, Vec);
 /* det of the dim x dim matrix a, and its inverse into inv when inv is not NULL and det != 0 */
 PETSC_EXTERN PetscReal MMDetInverse(PetscInt, const PetscReal[MM_MAX_DIM][MM_MAX_DIM], PetscReal[MM_MAX_DIM][MM_MAX_DIM]);

@@ -10,12 +10,13 @@
 #include "output.h"
 #include "contact.h"
 #include "newmark.h"
+#include "loads.h"
 
 #define MM_CKPT_FILE "checkpoint.h5"
 #define MM_CKPT_TMP  ".tmp" /* written whole, then renamed over the last good one */
 #define MM_CKPT_NODE 13     /* per vertex: contact, s, slipping, was_active, slip_dir[2], rho[3], and the
                                * active-set formulation's warm start: active, stick, dir[2] */
-#define MM_CKPT_VERSION 3
+#define MM_CKPT_VERSION 4
 
 /* The scalars of a run, in the "run" vector of the file, in this order. */
 typedef enum {
@@ -46,7 +47,8 @@ typedef enum {
   MM_RUN_MASS,    /* the mass type, plus 2 if lumped */
   MM_RUN_DT_USER, /* -ts_dt */
   MM_RUN_ADAPT,   /* the growback adaptor's state, MM_ADAPT_STATE entries */
-  MM_RUN_NUM = MM_RUN_ADAPT + MM_ADAPT_STATE
+  MM_RUN_WORK_DIRICHLET = MM_RUN_ADAPT + MM_ADAPT_STATE, /* the moving Dirichlet boundaries' work */
+  MM_RUN_NUM
 } MMRunEntry;
 _Static_assert(MM_RUN_NUM <= sizeof(((MMCheckpoint *)0)->run) / sizeof(PetscReal), "MMCheckpoint.run holds the run record");
 
@@ -212,6 +214,7 @@ static PetscErrorCode RunRecord(MMCtx *ctx, TS ts, PetscReal run[])
   run[MM_RUN_MASS]            = ctx->opt.mass_type + (ctx->opt.lumped ? 2 : 0);
   run[MM_RUN_DT_USER]         = ctx->state.dt_user;
   PetscCall(MMAdaptGrowBackGetState(ts, &run[MM_RUN_ADAPT]));
+  run[MM_RUN_WORK_DIRICHLET]  = h->work_dirichlet;
   PetscFunctionReturn(0);
 }
 
@@ -590,6 +593,8 @@ PetscErrorCode MMCheckpointLoad(MMCtx *ctx, TS ts)
   }
   /* the gaps of moving obstacles at the checkpoint's time, for the initial diagnostics */
   if (ctx->contact.enabled) PetscCall(MMContactSetTime(ctx, c->run[MM_RUN_TIME], s->dt));
+  /* the loads and Dirichlet data of the checkpoint's time, for the energy of the restored state */
+  PetscCall(MMLoadsSetTime(ctx, c->run[MM_RUN_TIME], c->run[MM_RUN_TIME]));
   if (!ctx->opt.quiet) {
     PetscReal dt;
     PetscCall(TSGetTimeStep(ts, &dt));
@@ -619,6 +624,7 @@ PetscErrorCode MMCheckpointRestoreHistory(MMCtx *ctx)
   h->work_contact        = run[MM_RUN_WORK_CONTACT];
   h->work_friction       = run[MM_RUN_WORK_FRICTION];
   h->work_obstacle       = run[MM_RUN_WORK_OBSTACLE];
+  h->work_dirichlet      = run[MM_RUN_WORK_DIRICHLET];
   h->max_balance         = run[MM_RUN_MAX_BALANCE];
   h->max_penetration_run = run[MM_RUN_MAX_PENETRATION];
   h->energy_scale        = run[MM_RUN_ENERGY_SCALE];

@@ -26,6 +26,7 @@
 #include "contact.h"
 #include "fem.h"
 #include "deformation.h"
+#include "loads.h"
 
 /* the files a run writes (checkpoint.h5 by checkpoint.c): an earlier run's move to previous/ together */
 static const char *const MMOutputFiles[] = {"history.csv", "solution.h5", "solution.xmf", "checkpoint.h5", MM_SNAPSHOT_COPY};
@@ -183,6 +184,10 @@ PetscErrorCode MMOutputCSVHeaderLine(MMCtx *ctx, MMLine *lp)
   PetscCall(MMOutputLineAdd(&l, ",switched,contraction,candidates,candidate_resolves,work_obstacle"));
   for (PetscInt b = 0; b < ctx->opt.n_obstacles; ++b)
     for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",force_%s_%c", ctx->opt.obstacles[b].name, axes[d]));
+  /* with Dirichlet boundaries: their work and each one's reaction (docs/method.md section 10) */
+  if (ctx->opt.n_dirichlet) PetscCall(MMOutputLineAdd(&l, ",work_dirichlet"));
+  for (PetscInt b = 0; b < ctx->opt.n_dirichlet; ++b)
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",reaction_%s_%c", ctx->opt.dirichlet[b].name, axes[d]));
   PetscCall(MMOutputLineAdd(&l, "\n"));
   *lp = l;
   PetscFunctionReturn(0);
@@ -218,6 +223,9 @@ static PetscErrorCode CSVRow(MMCtx *ctx)
   PetscCall(MMOutputLineAdd(&l, ",%" PetscInt_FMT ",%.6e,%" PetscInt_FMT ",%" PetscInt_FMT ",%.16e", h->switched, (double)h->contraction, h->candidates, h->resolves, (double)h->work_obstacle));
   for (PetscInt b = 0; b < ctx->opt.n_obstacles; ++b)
     for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", ctx->contact.enabled ? (double)ctx->contact.force_obstacle[MM_MAX_DIM * b + d] : 0.0));
+  if (ctx->opt.n_dirichlet) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->work_dirichlet));
+  for (PetscInt b = 0; b < ctx->opt.n_dirichlet; ++b)
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)ctx->loads.reaction[MM_MAX_DIM * b + d]));
   PetscCall(MMOutputLineAdd(&l, "\n"));
   PetscCall(CSVWrite(&ctx->out, &l));
   PetscFunctionReturn(0);
@@ -522,6 +530,7 @@ static PetscErrorCode WriteFields(MMCtx *ctx)
   PetscCall(PetscLogStagePush(ctx->log.output));
   PetscCall(WholeField(ctx, ctx->state.u, PETSC_TRUE, o->disp_cart));
   PetscCall(WholeField(ctx, ctx->state.v, PETSC_FALSE, o->vel_cart));
+  PetscCall(MMLoadsInsertDirichletVelocity(ctx, o->vel_cart));
   PetscCall(MMContactBoundaryFields(ctx, o));
   PetscCall(MMStressCompute(ctx));
   if (!o->static_written) PetscCall(MMOutputWriteStaticFields(ctx));

@@ -162,6 +162,9 @@ static PetscBool NonzeroDirichlet(const MMOptions *opt)
   for (PetscInt b = 0; b < opt->n_dirichlet; ++b)
     for (PetscInt c = 0; c < opt->dirichlet[b].nvalues; ++c)
       if (opt->dirichlet[b].values[c] != 0) return PETSC_TRUE;
+  for (PetscInt b = 0; b < opt->n_dirichlet; ++b)
+    for (PetscInt c = 0; c < opt->dirichlet[b].nvelocity; ++c)
+      if (opt->dirichlet[b].velocity[c] != 0) return PETSC_TRUE;
   return PETSC_FALSE;
 }
 

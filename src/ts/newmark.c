@@ -11,6 +11,7 @@
 #include "fem.h"
 #include "friction.h"
 #include "sliding.h"
+#include "loads.h"
 
 typedef struct {
   MMCtx *ctx;
@@ -22,7 +23,7 @@ static PetscBool HasMasslessDofs(MMCtx *ctx)
   return (PetscBool)(ctx->contact.enabled && ctx->opt.mass_type == MM_MASS_MODIFIED);
 }
 
-/* b = L - lift + M* (4/dt^2 u^n + 4/dt v^n + a^n) */
+/* b = L(t^{n+1}) - lift(t^{n+1}) + M* (4/dt^2 u^n + 4/dt v^n + a^n) */
 static PetscErrorCode StepRHS(MMCtx *ctx, PetscReal dt, Vec b)
 {
   MMState *s = &ctx->state;
@@ -165,6 +166,7 @@ static PetscErrorCode TSStep_Newmark(TS ts)
     dt = ts->time_step;
     PetscCall(MMContactSetStepMatrix(ctx, dt));
     PetscCall(MMContactSetTime(ctx, ts->ptime + dt, dt));
+    PetscCall(MMLoadsSetTime(ctx, ts->ptime, ts->ptime + dt)); /* L^{n+1} and the lift of u_D(t^{n+1}) */
     PetscCall(StepRHS(ctx, dt, ctx->contact.qp.b));
     /* predictor u + dt v + dt^2/4 a: exact for constant acceleration */
     PetscCall(VecAXPBYPCZ(w, dt, 0.25 * dt * dt, 0.0, s->v, s->a));
