@@ -135,7 +135,7 @@ static PetscErrorCode ReadTable(MPI_Comm comm, const char option[], const char f
     free(t);
     free(f);
   }
-  PetscCheck(!msg[0], comm, PETSC_ERR_USER_INPUT, "%s %s: the file %s. Give a CSV of rows time,factor with the times increasing (README \"Loads in time\")", option, file, msg);
+  PetscCheck(!msg[0], comm, PETSC_ERR_USER_INPUT, "%s_amplitude_table %s: the file %s. Give a CSV of rows time,factor with the times increasing (README \"Loads in time\")", option, file, msg);
   PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm));
   a->n = n;
   PetscCall(PetscMalloc2(n, &a->t, n, &a->f));
