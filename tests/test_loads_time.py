@@ -113,6 +113,20 @@ def test_table_equals_ramp_and_interpolates(tmp_path):
     assert h["balance_residual"].max() <= 1e-10
 
 
+def test_gravity_amplitude(tmp_path):
+    """The gravity's amplitude: a half-sine of T = 5 on the body force, with the traction off. The
+    loads' resultant is the constant one times sin(pi t / T), then 0, and the balance closes."""
+    opts = options_without_amplitude(tmp_path)
+    h = run(opts, tmp_path, "-traction_right_value", "0,0", "-gravity", "1e-3,0", "-gravity_amplitude", "halfsine",
+            "-gravity_amplitude_time", 5, "-ts_max_time", 8, "-output_every", 0).history
+    a = np.where(h["time"] < 5, np.sin(np.pi * np.minimum(h["time"], 5) / 5), 0.0)
+    k = np.argmax(a)
+    g_res = h["load_x"][k] / a[k]
+    assert 0.9 * 1e-3 * A < g_res <= 1e-3 * A  # the mass of the nodes that are not clamped, times g
+    assert np.abs(h["load_x"] - g_res * a).max() <= 1e-12 * g_res
+    assert h["balance_residual"].max() <= 1e-10 and h["work_ext"].max() > 0
+
+
 def impulse(h, column):
     """The trapezoidal integral of a history column from the start to each step."""
     dt = np.diff(h["time"])
