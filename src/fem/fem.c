@@ -273,34 +273,32 @@ PetscErrorCode MMFEAddTraction(MMCtx *ctx, PetscInt b, Vec floc)
   PetscScalar    *f;
 
   PetscFunctionBeginUser;
-  {
-    PetscCall(MMMeshGetLabel(dm, ctx->opt.traction[b].name, &label));
-    PetscCall(LabelValue(dm, label, &value));
-    PetscCall(DMLabelGetStratumIS(label, value, &fis));
-    PetscCall(CheckTractionGroup(dm, ctx->opt.traction[b].name, fis));
-    if (!fis) PetscFunctionReturn(0);
-    PetscCall(ISGetLocalSize(fis, &nf));
-    PetscCall(ISGetIndices(fis, &faces));
-    PetscCall(VecGetArray(floc, &f));
-    for (PetscInt i = 0; i < nf; ++i) {
-      PetscInt  h, *closure = NULL, ncl;
-      PetscReal area;
-      PetscCall(DMPlexGetPointHeight(dm, faces[i], &h));
-      if (h != 1) continue; /* only the faces themselves; their closure is in the label too */
-      PetscCall(DMPlexComputeCellGeometryFVM(dm, faces[i], &area, NULL, NULL));
-      PetscCall(DMPlexGetTransitiveClosure(dm, faces[i], PETSC_TRUE, &ncl, &closure));
-      for (PetscInt j = 0; j < ncl; ++j) {
-        PetscInt off, end;
-        PetscCall(DMPlexGetPointLocal(dm, closure[2 * j], &off, &end));
-        if (end - off != dim) continue;
-        for (PetscInt c = 0; c < dim; ++c) f[off + c] += ctx->opt.traction[b].traction[c] * area / dim;
-      }
-      PetscCall(DMPlexRestoreTransitiveClosure(dm, faces[i], PETSC_TRUE, &ncl, &closure));
+  PetscCall(MMMeshGetLabel(dm, ctx->opt.traction[b].name, &label));
+  PetscCall(LabelValue(dm, label, &value));
+  PetscCall(DMLabelGetStratumIS(label, value, &fis));
+  PetscCall(CheckTractionGroup(dm, ctx->opt.traction[b].name, fis));
+  if (!fis) PetscFunctionReturn(0);
+  PetscCall(ISGetLocalSize(fis, &nf));
+  PetscCall(ISGetIndices(fis, &faces));
+  PetscCall(VecGetArray(floc, &f));
+  for (PetscInt i = 0; i < nf; ++i) {
+    PetscInt  h, *closure = NULL, ncl;
+    PetscReal area;
+    PetscCall(DMPlexGetPointHeight(dm, faces[i], &h));
+    if (h != 1) continue; /* only the faces themselves; their closure is in the label too */
+    PetscCall(DMPlexComputeCellGeometryFVM(dm, faces[i], &area, NULL, NULL));
+    PetscCall(DMPlexGetTransitiveClosure(dm, faces[i], PETSC_TRUE, &ncl, &closure));
+    for (PetscInt j = 0; j < ncl; ++j) {
+      PetscInt off, end;
+      PetscCall(DMPlexGetPointLocal(dm, closure[2 * j], &off, &end));
+      if (end - off != dim) continue;
+      for (PetscInt c = 0; c < dim; ++c) f[off + c] += ctx->opt.traction[b].traction[c] * area / dim;
     }
-    PetscCall(VecRestoreArray(floc, &f));
-    PetscCall(ISRestoreIndices(fis, &faces));
-    PetscCall(ISDestroy(&fis));
+    PetscCall(DMPlexRestoreTransitiveClosure(dm, faces[i], PETSC_TRUE, &ncl, &closure));
   }
+  PetscCall(VecRestoreArray(floc, &f));
+  PetscCall(ISRestoreIndices(fis, &faces));
+  PetscCall(ISDestroy(&fis));
   PetscFunctionReturn(0);
 }
 
