@@ -236,3 +236,23 @@ def test_bad_amplitude_input_is_named(tmp_path, extra, messages):
     assert r.returncode != 0
     for m in messages:
         assert m in r.output, r.output[-1500:]
+
+
+def test_3d_press_with_friction_and_gravity_ramp(tmp_path):
+    """3D: the box's top driven down and sideways (-dirichlet_top_velocity 0.01,0,-0.02) onto the
+    plane with friction mu = 0.3 under a ramped gravity. The balance with W_D closes on 1 and 2 ranks,
+    which agree to 1e-10 of the energy scale; the press has done work and the base slips."""
+    extra = ("-mesh", "meshes/box.msh", "-contact_boundary", "base", "-E", 100, "-nu", 0.3, "-rho", 1, "-dirichlet", "top",
+             "-dirichlet_top_velocity", "0.01,0,-0.02", "-gravity", "0,0,-1", "-gravity_amplitude", "ramp",
+             "-gravity_amplitude_time", 0.5, "-obstacle_point", "0,0,-0.001", "-obstacle_normal", "0,0,1", "-mu", 0.3,
+             "-ts_dt", 0.01, "-ts_max_time", 1, "-output_every", 0, "-quiet")
+    empty = tmp_path / "empty.opts"
+    empty.write_text("# everything on the command line\n")
+    h1 = run(str(empty), tmp_path, *extra, np_=1, name="np1").history
+    h2 = run(str(empty), tmp_path, *extra, np_=2, name="np2").history
+    escale = max(np.abs(h1[c]).max() for c in ENERGIES)
+    for h in (h1, h2):
+        assert h["balance_residual"].max() <= 1e-10
+    assert h1["work_dirichlet"][-1] > 0.1 * escale and h1["slipping"][-1] > 0 and h1["work_friction"][-1] < 0
+    for c in ENERGIES + ("reaction_top_x", "reaction_top_z"):
+        assert np.abs(h1[c] - h2[c]).max() <= 1e-10 * max(escale, np.abs(h1["force_normal"]).max()), c
