@@ -24,20 +24,32 @@ typedef enum {
 } MMAssemblyType;
 PETSC_EXTERN const char *const MMAssemblyTypes[];
 
-/* A Dirichlet boundary: fixes the listed components to constant values. */
+/* An amplitude in time as the user gave it (-traction_NAME_amplitude..., -gravity_amplitude...): its
+ * kind, a name registered in src/fem/loads.c, and its data; checked there. */
+typedef struct {
+  char      kind[MM_TYPE_LEN];         /* "constant" (the default), "ramp", "halfsine", "table" */
+  PetscReal time;                      /* T of ramp and halfsine */
+  PetscBool time_set;
+  char      table[PETSC_MAX_PATH_LEN]; /* the two-column CSV of table, empty if not given */
+} MMAmplitudeOptions;
+
+/* A Dirichlet boundary: fixes the listed components to value + velocity t. */
 typedef struct {
   char      *name;
   PetscInt   ncomp;   /* -1 until the dimension is known: then all components (a clamp) */
   PetscInt   comps[MM_MAX_DIM];
   PetscReal  values[MM_MAX_DIM];
   PetscInt   nvalues; /* entries given to -dirichlet_NAME_value, -1 if not set */
+  PetscReal  velocity[MM_MAX_DIM];
+  PetscInt   nvelocity; /* entries given to -dirichlet_NAME_velocity, -1 if not set */
 } MMDirichlet;
 
-/* A Neumann boundary carrying a constant traction (force per unit area). */
+/* A Neumann boundary carrying a traction (force per unit area) times an amplitude in time. */
 typedef struct {
   char     *name;
   PetscReal traction[MM_MAX_DIM];
   PetscInt  nvalues; /* entries given to -traction_NAME_value, -1 if not set */
+  MMAmplitudeOptions amplitude;
 } MMTraction;
 
 /* The vector options, whose lengths can only be checked once the mesh gives the dimension. */
@@ -64,6 +76,7 @@ typedef struct {
   MMTraction  *traction;
   PetscReal    E, nu, rho;
   PetscReal    gravity[MM_MAX_DIM];
+  MMAmplitudeOptions gravity_amplitude;
   PetscReal    u0_offset[MM_MAX_DIM], u0_gradient[MM_MAX_DIM * MM_MAX_DIM];
   PetscReal    v0[MM_MAX_DIM], omega[MM_MAX_DIM], omega_center[MM_MAX_DIM];
   MMInitialState initial_state;

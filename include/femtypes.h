@@ -34,3 +34,38 @@ typedef struct {
   PetscReal energy_dirichlet; /* elastic energy of the Dirichlet data alone, 1/2 u_D.A_DD u_D */
   Vec       work;
 } MMOperators;
+
+/* An amplitude in time (src/fem/loads.c): a(t) of a registered kind, docs/method.md section 10. */
+typedef struct _MMAmplitude MMAmplitude;
+struct _MMAmplitude {
+  PetscReal (*value)(const MMAmplitude *, PetscReal);
+  PetscReal  T;          /* ramp, halfsine */
+  PetscInt   n;          /* table: rows, times t[] increasing, factors f[] */
+  PetscReal *t, *f;
+  PetscBool  constant;   /* a(t) = 1 */
+};
+
+/* Loads in time, moving Dirichlet data and the support reactions (src/fem/loads.c, docs/method.md
+ * section 10). The load is a sum of parts, each a fixed vector times its amplitude,
+ * L(t) = sum_k a_k(t) L_k: gravity is one part, each traction one. Nothing is reassembled per step. */
+typedef struct {
+  PetscInt     nparts;
+  MMAmplitude *amp;        /* per part */
+  Vec         *part;       /* per part: w-frame, free dofs */
+  PetscBool    in_time;    /* some amplitude is not constant: op.load is set at each step's time */
+  Vec          load_old;   /* L(t0), the step's start; op.load holds L(t1) */
+  PetscReal    t0, t1;     /* the times of the step being taken (both the current time between steps) */
+  /* the constrained dofs (all Dirichlet boundaries): rows of the Cartesian K and M on a copy of the
+   * mesh without constraints, and the load parts there */
+  DM           dm_full;
+  IS           isD;        /* the owned constrained dofs in dm_full's global numbering */
+  PetscInt     nD;         /* how many (this rank) */
+  PetscInt    *Dbc;        /* per owned constrained dof: the boundary whose reaction it counts in */
+  PetscInt    *Dcomp;      /* and its Cartesian component */
+  Mat          KD, MD;     /* rows D of the Cartesian stiffness and mass (M*: a is zero on the massless dofs) */
+  Vec         *partD;      /* per part: its values on D */
+  Vec          full, full2, rD, rD0, uD0, uD1, vD; /* scratch on dm_full and D; vD the boundary velocity */
+  PetscBool    moving;     /* some -dirichlet_NAME_velocity is nonzero */
+  PetscReal    vMv_DD;     /* vD . M_DD vD */
+  PetscReal   *reaction;   /* per boundary, MM_MAX_DIM Cartesian components of the support's force on the body */
+} MMLoads;

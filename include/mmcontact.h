@@ -16,6 +16,7 @@ typedef struct {
   MMOptions   opt;
   PetscReal   constants[MM_C_NUM];
   MMOperators op;
+  MMLoads     loads;
   MMContact   contact;
   MMFriction  friction;
   MMState     state;

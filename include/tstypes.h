@@ -22,6 +22,7 @@ typedef struct {
   PetscReal work_ext, work_contact, work_friction; /* running sums */
   PetscReal work_obstacle;     /* running sum: the work of the moving obstacles' contact forces */
   PetscReal work_damping;      /* running sum: the Rayleigh damping work W_d <= 0 (src/ts/damping.c) */
+  PetscReal work_dirichlet;    /* running sum: the work of the moving Dirichlet boundaries' reactions */
   PetscReal balance_residual;
   PetscInt  active, slipping, switched;
   PetscReal force_normal, force_tangential, max_penetration, coulomb_residual;

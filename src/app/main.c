@@ -22,6 +22,7 @@ static char help[] = "mmcontact: elastic bodies hitting and sliding on rigid obs
 #include "errors.h"
 #include "deformation.h"
 #include "damping.h"
+#include "loads.h"
 
 static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
 {
@@ -40,6 +41,7 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscCall(MMFESetUp(ctx));
   PetscCall(MMContactSetUp(ctx));
   PetscCall(MMFEAssembleOperators(ctx));
+  PetscCall(MMLoadsSetUp(ctx));
   PetscCall(MMNewmarkInitialState(ctx));
   PetscCall(MMFrictionSetUp(ctx));
   PetscCall(MMNewmarkCreateTS(ctx, ts));
@@ -77,6 +79,7 @@ static PetscErrorCode Destroy(MMCtx *ctx, TS *ts)
   PetscCall(MMDampingDestroy(&ctx->damping));
   PetscCall(MMFrictionDestroy(&ctx->friction));
   PetscCall(MMContactDestroy(&ctx->contact));
+  PetscCall(MMLoadsDestroy(&ctx->loads));
   PetscCall(MMFEDestroy(&ctx->op));
   PetscCall(DMDestroy(&ctx->op.dm));
   PetscCall(MMOptionsDestroy(&ctx->opt));

@@ -160,6 +160,29 @@ static PetscErrorCode SplitNames(MPI_Comm comm, const char option[], const char 
   PetscFunctionReturn(0);
 }
 
+/* The amplitude in time of a load, PREFIX_amplitude KIND, PREFIX_amplitude_time T and
+ * PREFIX_amplitude_table FILE (docs/method.md section 10); the kinds and their data are checked in
+ * src/fem/loads.c, where they are registered. A table given alone means the table kind. */
+static PetscErrorCode ProcessAmplitude(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char prefix[], MMAmplitudeOptions *a)
+{
+  char      key[512];
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(a->kind, "constant", sizeof(a->kind)));
+  PetscCall(PetscSNPrintf(key, sizeof(key), "%s_amplitude", prefix));
+  PetscCall(OptionsString(PetscOptionsObject, comm, key, "Amplitude in time multiplying this load: constant (1, the default), ramp (0 at t = 0 to 1 at _amplitude_time, then 1), halfsine (sin(pi t/T) for t in [0, T], then 0) or table (_amplitude_table)", a->kind, sizeof(a->kind), &set));
+  PetscCall(PetscSNPrintf(key, sizeof(key), "%s_amplitude_time", prefix));
+  PetscCall(MMOptionsCheckValue(comm, key, MM_VALUE_REAL));
+  PetscCall(PetscOptionsReal(key, "The time T of the ramp or halfsine amplitude, > 0", NULL, a->time, &a->time, &a->time_set));
+  PetscCall(CheckFinite(comm, key, &a->time, 1));
+  a->table[0] = 0;
+  PetscCall(PetscSNPrintf(key, sizeof(key), "%s_amplitude_table", prefix));
+  PetscCall(OptionsString(PetscOptionsObject, comm, key, "Two-column CSV file of the table amplitude: time,factor per line, times increasing, interpolated linearly and constant beyond the ends", a->table, sizeof(a->table), NULL));
+  if (!set && a->table[0]) PetscCall(PetscStrncpy(a->kind, "table", sizeof(a->kind)));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode ProcessDirichlet(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt, const char list[])
 {
   char   **names;
@@ -191,6 +214,8 @@ static PetscErrorCode ProcessDirichlet(PetscOptionItems *PetscOptionsObject, MPI
     }
     PetscCall(PetscSNPrintf(key, sizeof(key), "-dirichlet_%s_value", bc->name));
     PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "Constant displacement value of each fixed component, in the order of _components; default 0", MM_MAX_DIM, bc->values, &bc->nvalues));
+    PetscCall(PetscSNPrintf(key, sizeof(key), "-dirichlet_%s_velocity", bc->name));
+    PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "Constant velocity of each fixed component, in the order of _components: the boundary moves as value + velocity t; default 0", MM_MAX_DIM, bc->velocity, &bc->nvelocity));
   }
   PetscCall(PetscStrToArrayDestroy((int)n, names));
   PetscFunctionReturn(0);
@@ -211,7 +236,9 @@ static PetscErrorCode ProcessTraction(PetscOptionItems *PetscOptionsObject, MPI_
 
     PetscCall(PetscStrallocpy(names[b], &tr->name));
     PetscCall(PetscSNPrintf(key, sizeof(key), "-traction_%s_value", names[b]));
-    PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "Constant traction vector (force per unit area) on this boundary, d entries", MM_MAX_DIM, tr->traction, &tr->nvalues));
+    PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "Traction vector (force per unit area) on this boundary, d entries, times its _amplitude", MM_MAX_DIM, tr->traction, &tr->nvalues));
+    PetscCall(PetscSNPrintf(key, sizeof(key), "-traction_%s", names[b]));
+    PetscCall(ProcessAmplitude(PetscOptionsObject, comm, key, &tr->amplitude));
   }
   PetscCall(PetscStrToArrayDestroy((int)n, names));
   PetscFunctionReturn(0);
@@ -355,10 +382,10 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(PetscStrcpy(opt->contact_name, "contact"));
   PetscCall(OptionsString(PetscOptionsObject, comm, "-contact_boundary", "Physical name of the contact boundary (a Physical Curve in 2D, Surface in 3D)", opt->contact_name, sizeof(opt->contact_name), NULL));
   list[0] = 0;
-  PetscCall(OptionsString(PetscOptionsObject, comm, "-dirichlet", "Comma-separated physical names of Dirichlet boundaries; each takes -dirichlet_NAME_components and -dirichlet_NAME_value", list, sizeof(list), NULL));
+  PetscCall(OptionsString(PetscOptionsObject, comm, "-dirichlet", "Comma-separated physical names of Dirichlet boundaries; each takes -dirichlet_NAME_components, -dirichlet_NAME_value and -dirichlet_NAME_velocity", list, sizeof(list), NULL));
   PetscCall(ProcessDirichlet(PetscOptionsObject, comm, opt, list));
   list[0] = 0;
-  PetscCall(OptionsString(PetscOptionsObject, comm, "-traction", "Comma-separated physical names of traction (Neumann) boundaries, boundary faces only; each takes -traction_NAME_value", list, sizeof(list), NULL));
+  PetscCall(OptionsString(PetscOptionsObject, comm, "-traction", "Comma-separated physical names of traction (Neumann) boundaries, boundary faces only; each takes -traction_NAME_value and -traction_NAME_amplitude", list, sizeof(list), NULL));
   PetscCall(ProcessTraction(PetscOptionsObject, comm, opt, list));
 
   opt->E = 1.0;
@@ -367,7 +394,8 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-nu", "Poisson ratio, in (-1, 0.5)", &opt->nu));
   opt->rho = 1.0;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-rho", "Mass density (kg/m^d), > 0", &opt->rho));
-  PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_GRAVITY, "Body-force acceleration gx,gy[,gz] (m/s^2), d entries", opt->gravity));
+  PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_GRAVITY, "Body-force acceleration gx,gy[,gz] (m/s^2), d entries, times -gravity_amplitude", opt->gravity));
+  PetscCall(ProcessAmplitude(PetscOptionsObject, comm, "-gravity", &opt->gravity_amplitude));
 
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_U0_OFFSET, "Initial displacement u0 = a + B x: the vector a, d entries", opt->u0_offset));
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_U0_GRADIENT, "Initial displacement u0 = a + B x: the matrix B, row-major, d*d entries", opt->u0_gradient));
@@ -508,6 +536,10 @@ PetscErrorCode MMOptionsCheckDimension(MPI_Comm comm, MMOptions *opt, PetscInt d
     }
     for (PetscInt c = 0; c < bc->ncomp; ++c) PetscCheck(bc->comps[c] >= 0 && bc->comps[c] < dim, comm, PETSC_ERR_USER_INPUT, "-dirichlet_%s_components: component %" PetscInt_FMT " is not in [0, %" PetscInt_FMT ")", bc->name, bc->comps[c], dim);
     PetscCheck(bc->nvalues < 0 || bc->nvalues == bc->ncomp, comm, PETSC_ERR_USER_INPUT, "-dirichlet_%s_value has %" PetscInt_FMT " entries but the boundary fixes %" PetscInt_FMT " components (-dirichlet_%s_components, default all %" PetscInt_FMT "): give one value per fixed component", bc->name, bc->nvalues, bc->ncomp, bc->name, dim);
+    PetscCheck(bc->nvelocity < 0 || bc->nvelocity == bc->ncomp, comm, PETSC_ERR_USER_INPUT, "-dirichlet_%s_velocity has %" PetscInt_FMT " entries but the boundary fixes %" PetscInt_FMT " components (-dirichlet_%s_components, default all %" PetscInt_FMT "): give one velocity per fixed component", bc->name, bc->nvelocity, bc->ncomp, bc->name, dim);
+    /* the damping force of the moving boundary's velocity on the free dofs, C_fD v_D, is not in the
+     * scheme (docs/method.md section 10): refuse rather than let the energy audit stop the run */
+    PetscCheck(bc->nvelocity < 0 || (opt->damping_mass <= 0 && opt->damping_stiffness <= 0 && opt->damping_ratio <= 0), comm, PETSC_ERR_SUP, "-dirichlet_%s_velocity with Rayleigh damping (-damping_mass, -damping_stiffness or -damping_ratio) is not supported: the damping force of a moving boundary is not in the scheme. Drop one of the two", bc->name);
   }
   for (PetscInt b = 0; b < opt->n_traction; ++b) {
     const MMTraction *tr = &opt->traction[b];

@@ -49,12 +49,13 @@ static void obj_elastic_energy(PetscInt dim, PetscInt Nf, PetscInt NfAux, const 
 
 static PetscErrorCode DirichletEnergy(MMCtx *);
 
-/* Dirichlet data: constant values per fixed component; ctx is the MMDirichlet. */
+/* Dirichlet data: value + velocity t per fixed component (docs/method.md section 10); ctx is the
+ * MMDirichlet. Without a velocity the value is exactly the constant one. */
 static PetscErrorCode bc_constant(PetscInt dim, PetscReal time, const PetscReal x[], PetscInt Nc, PetscScalar *u, void *ctx)
 {
   const MMDirichlet *bc = (const MMDirichlet *)ctx;
   for (PetscInt c = 0; c < Nc; ++c) u[c] = 0;
-  for (PetscInt c = 0; c < bc->ncomp; ++c) u[bc->comps[c]] = bc->values[c];
+  for (PetscInt c = 0; c < bc->ncomp; ++c) u[bc->comps[c]] = bc->nvelocity > 0 ? bc->values[c] + bc->velocity[c] * time : bc->values[c];
   return 0;
 }
 
@@ -189,6 +190,14 @@ static PetscErrorCode VertexMasses(MMCtx *ctx, Vec mloc)
   PetscFunctionReturn(0);
 }
 
+/* The lumped mass per vertex on the scalar DM's local vector (gravity's load part, src/fem/loads.c). */
+PetscErrorCode MMFEVertexMasses(MMCtx *ctx, Vec mloc)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VertexMasses(ctx, mloc));
+  PetscFunctionReturn(0);
+}
+
 /* Spreads a per-vertex scalar onto every free dof of that vertex, times a per-component factor. */
 static PetscErrorCode SpreadVertexScalar(MMCtx *ctx, Vec sloc, const PetscReal factor[], Vec g)
 {
@@ -252,7 +261,48 @@ static PetscErrorCode CheckTractionGroup(DM dm, const char name[], IS fis)
   PetscFunctionReturn(0);
 }
 
-/* Nodal loads of constant tractions: int_F t phi_i = t |F| / d on each vertex of a boundary face F. */
+/* Nodal loads of traction b: int_F t phi_i = t |F| / d on each vertex of a boundary face F, added
+ * to the local vector floc (this rank's faces: summed over ranks by a DMLocalToGlobal with ADD). */
+PetscErrorCode MMFEAddTraction(MMCtx *ctx, PetscInt b, Vec floc)
+{
+  DM              dm = ctx->op.dm;
+  DMLabel         label;
+  IS              fis;
+  PetscInt        value, nf, dim = ctx->op.dim;
+  const PetscInt *faces;
+  PetscScalar    *f;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMMeshGetLabel(dm, ctx->opt.traction[b].name, &label));
+  PetscCall(LabelValue(dm, label, &value));
+  PetscCall(DMLabelGetStratumIS(label, value, &fis));
+  PetscCall(CheckTractionGroup(dm, ctx->opt.traction[b].name, fis));
+  if (!fis) PetscFunctionReturn(0);
+  PetscCall(ISGetLocalSize(fis, &nf));
+  PetscCall(ISGetIndices(fis, &faces));
+  PetscCall(VecGetArray(floc, &f));
+  for (PetscInt i = 0; i < nf; ++i) {
+    PetscInt  h, *closure = NULL, ncl;
+    PetscReal area;
+    PetscCall(DMPlexGetPointHeight(dm, faces[i], &h));
+    if (h != 1) continue; /* only the faces themselves; their closure is in the label too */
+    PetscCall(DMPlexComputeCellGeometryFVM(dm, faces[i], &area, NULL, NULL));
+    PetscCall(DMPlexGetTransitiveClosure(dm, faces[i], PETSC_TRUE, &ncl, &closure));
+    for (PetscInt j = 0; j < ncl; ++j) {
+      PetscInt off, end;
+      PetscCall(DMPlexGetPointLocal(dm, closure[2 * j], &off, &end));
+      if (end - off != dim) continue;
+      for (PetscInt c = 0; c < dim; ++c) f[off + c] += ctx->opt.traction[b].traction[c] * area / dim;
+    }
+    PetscCall(DMPlexRestoreTransitiveClosure(dm, faces[i], PETSC_TRUE, &ncl, &closure));
+  }
+  PetscCall(VecRestoreArray(floc, &f));
+  PetscCall(ISRestoreIndices(fis, &faces));
+  PetscCall(ISDestroy(&fis));
+  PetscFunctionReturn(0);
+}
+
+/* Nodal loads of the tractions at amplitude 1. */
 static PetscErrorCode AddTractions(MMCtx *ctx, Vec Lcart)
 {
   DM  dm = ctx->op.dm;
@@ -262,40 +312,7 @@ static PetscErrorCode AddTractions(MMCtx *ctx, Vec Lcart)
   if (!ctx->opt.n_traction) PetscFunctionReturn(0);
   PetscCall(DMGetLocalVector(dm, &floc));
   PetscCall(VecZeroEntries(floc));
-  for (PetscInt b = 0; b < ctx->opt.n_traction; ++b) {
-    DMLabel         label;
-    IS              fis;
-    PetscInt        value, nf, dim = ctx->op.dim;
-    const PetscInt *faces;
-    PetscScalar    *f;
-
-    PetscCall(MMMeshGetLabel(dm, ctx->opt.traction[b].name, &label));
-    PetscCall(LabelValue(dm, label, &value));
-    PetscCall(DMLabelGetStratumIS(label, value, &fis));
-    PetscCall(CheckTractionGroup(dm, ctx->opt.traction[b].name, fis));
-    if (!fis) continue;
-    PetscCall(ISGetLocalSize(fis, &nf));
-    PetscCall(ISGetIndices(fis, &faces));
-    PetscCall(VecGetArray(floc, &f));
-    for (PetscInt i = 0; i < nf; ++i) {
-      PetscInt  h, *closure = NULL, ncl;
-      PetscReal area;
-      PetscCall(DMPlexGetPointHeight(dm, faces[i], &h));
-      if (h != 1) continue; /* only the faces themselves; their closure is in the label too */
-      PetscCall(DMPlexComputeCellGeometryFVM(dm, faces[i], &area, NULL, NULL));
-      PetscCall(DMPlexGetTransitiveClosure(dm, faces[i], PETSC_TRUE, &ncl, &closure));
-      for (PetscInt j = 0; j < ncl; ++j) {
-        PetscInt off, end;
-        PetscCall(DMPlexGetPointLocal(dm, closure[2 * j], &off, &end));
-        if (end - off != dim) continue;
-        for (PetscInt c = 0; c < dim; ++c) f[off + c] += ctx->opt.traction[b].traction[c] * area / dim;
-      }
-      PetscCall(DMPlexRestoreTransitiveClosure(dm, faces[i], PETSC_TRUE, &ncl, &closure));
-    }
-    PetscCall(VecRestoreArray(floc, &f));
-    PetscCall(ISRestoreIndices(fis, &faces));
-    PetscCall(ISDestroy(&fis));
-  }
+  for (PetscInt b = 0; b < ctx->opt.n_traction; ++b) PetscCall(MMFEAddTraction(ctx, b, floc));
   /* traction loads on Dirichlet-constrained components are dropped, as the reaction absorbs them */
   PetscCall(DMLocalToGlobal(dm, floc, ADD_VALUES, Lcart));
   PetscCall(DMRestoreLocalVector(dm, &floc));
@@ -538,6 +555,8 @@ PetscErrorCode MMFECheckElasticEnergy(MMCtx *ctx, Vec w)
   Vec         ucart;
 
   PetscFunctionBeginUser;
+  /* the quadrature inserts the Dirichlet data of t = 0: a restarted run's moving boundary is elsewhere */
+  if (ctx->loads.moving && ctx->ckpt.restarted) PetscFunctionReturn(0);
   PetscCall(MMFEElasticEnergy(ctx, w, &e));
   PetscCall(DMGetGlobalVector(ctx->op.dm, &ucart));
   PetscCall(MMFEToCartesian(ctx, w, ucart));

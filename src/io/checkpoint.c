@@ -11,6 +11,7 @@
 #include "contact.h"
 #include "newmark.h"
 #include "damping.h"
+#include "loads.h"
 
 #define MM_CKPT_FILE "checkpoint.h5"
 #define MM_CKPT_TMP  ".tmp" /* written whole, then renamed over the last good one */
@@ -50,7 +51,8 @@ typedef enum {
   MM_RUN_DAMPING_ALPHA, /* the Rayleigh damping, part of the fingerprint */
   MM_RUN_DAMPING_BETA,
   MM_RUN_ADAPT,   /* the growback adaptor's state, MM_ADAPT_STATE entries */
-  MM_RUN_NUM = MM_RUN_ADAPT + MM_ADAPT_STATE
+  MM_RUN_WORK_DIRICHLET = MM_RUN_ADAPT + MM_ADAPT_STATE, /* the moving Dirichlet boundaries' work */
+  MM_RUN_NUM
 } MMRunEntry;
 _Static_assert(MM_RUN_NUM <= sizeof(((MMCheckpoint *)0)->run) / sizeof(PetscReal), "MMCheckpoint.run holds the run record");
 
@@ -219,6 +221,7 @@ static PetscErrorCode RunRecord(MMCtx *ctx, TS ts, PetscReal run[])
   run[MM_RUN_DAMPING_ALPHA]   = ctx->damping.alpha;
   run[MM_RUN_DAMPING_BETA]    = ctx->damping.beta;
   PetscCall(MMAdaptGrowBackGetState(ts, &run[MM_RUN_ADAPT]));
+  run[MM_RUN_WORK_DIRICHLET]  = h->work_dirichlet;
   PetscFunctionReturn(0);
 }
 
@@ -600,6 +603,8 @@ PetscErrorCode MMCheckpointLoad(MMCtx *ctx, TS ts)
   }
   /* the gaps of moving obstacles at the checkpoint's time, for the initial diagnostics */
   if (ctx->contact.enabled) PetscCall(MMContactSetTime(ctx, c->run[MM_RUN_TIME], s->dt));
+  /* the loads and Dirichlet data of the checkpoint's time, for the energy of the restored state */
+  PetscCall(MMLoadsSetTime(ctx, c->run[MM_RUN_TIME], c->run[MM_RUN_TIME]));
   if (!ctx->opt.quiet) {
     PetscReal dt;
     PetscCall(TSGetTimeStep(ts, &dt));
@@ -630,6 +635,7 @@ PetscErrorCode MMCheckpointRestoreHistory(MMCtx *ctx)
   h->work_friction       = run[MM_RUN_WORK_FRICTION];
   h->work_obstacle       = run[MM_RUN_WORK_OBSTACLE];
   h->work_damping        = run[MM_RUN_WORK_DAMPING];
+  h->work_dirichlet      = run[MM_RUN_WORK_DIRICHLET];
   h->max_balance         = run[MM_RUN_MAX_BALANCE];
   h->max_penetration_run = run[MM_RUN_MAX_PENETRATION];
   h->energy_scale        = run[MM_RUN_ENERGY_SCALE];

@@ -26,6 +26,7 @@
 #include "contact.h"
 #include "fem.h"
 #include "deformation.h"
+#include "loads.h"
 
 /* the files a run writes (checkpoint.h5 by checkpoint.c): an earlier run's move to previous/ together */
 static const char *const MMOutputFiles[] = {"history.csv", "solution.h5", "solution.xmf", "checkpoint.h5", MM_SNAPSHOT_COPY};
@@ -184,6 +185,10 @@ PetscErrorCode MMOutputCSVHeaderLine(MMCtx *ctx, MMLine *lp)
   for (PetscInt b = 0; b < ctx->opt.n_obstacles; ++b)
     for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",force_%s_%c", ctx->opt.obstacles[b].name, axes[d]));
   PetscCall(MMOutputLineAdd(&l, ",work_damping"));
+  /* with Dirichlet boundaries: their work and each one's reaction (docs/method.md section 10) */
+  if (ctx->opt.n_dirichlet) PetscCall(MMOutputLineAdd(&l, ",work_dirichlet"));
+  for (PetscInt b = 0; b < ctx->opt.n_dirichlet; ++b)
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",reaction_%s_%c", ctx->opt.dirichlet[b].name, axes[d]));
   PetscCall(MMOutputLineAdd(&l, "\n"));
   *lp = l;
   PetscFunctionReturn(0);
@@ -220,6 +225,9 @@ static PetscErrorCode CSVRow(MMCtx *ctx)
   for (PetscInt b = 0; b < ctx->opt.n_obstacles; ++b)
     for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", ctx->contact.enabled ? (double)ctx->contact.force_obstacle[MM_MAX_DIM * b + d] : 0.0));
   PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->work_damping));
+  if (ctx->opt.n_dirichlet) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->work_dirichlet));
+  for (PetscInt b = 0; b < ctx->opt.n_dirichlet; ++b)
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)ctx->loads.reaction[MM_MAX_DIM * b + d]));
   PetscCall(MMOutputLineAdd(&l, "\n"));
   PetscCall(CSVWrite(&ctx->out, &l));
   PetscFunctionReturn(0);
@@ -596,6 +604,7 @@ static PetscErrorCode WriteFields(MMCtx *ctx)
   PetscCall(PetscLogStagePush(ctx->log.output));
   PetscCall(WholeField(ctx, ctx->state.u, PETSC_TRUE, o->disp_cart));
   PetscCall(WholeField(ctx, ctx->state.v, PETSC_FALSE, o->vel_cart));
+  PetscCall(MMLoadsInsertDirichletVelocity(ctx, o->vel_cart));
   PetscCall(MMContactBoundaryFields(ctx, o));
   PetscCall(MMStressCompute(ctx, PETSC_TRUE));
   if (!o->static_written) PetscCall(MMOutputWriteStaticFields(ctx));

@@ -162,6 +162,9 @@ static PetscBool NonzeroDirichlet(const MMOptions *opt)
   for (PetscInt b = 0; b < opt->n_dirichlet; ++b)
     for (PetscInt c = 0; c < opt->dirichlet[b].nvalues; ++c)
       if (opt->dirichlet[b].values[c] != 0) return PETSC_TRUE;
+  for (PetscInt b = 0; b < opt->n_dirichlet; ++b)
+    for (PetscInt c = 0; c < opt->dirichlet[b].nvelocity; ++c)
+      if (opt->dirichlet[b].velocity[c] != 0) return PETSC_TRUE;
   return PETSC_FALSE;
 }
 
@@ -211,7 +214,8 @@ PetscErrorCode MMDeformationCheck(MMCtx *ctx)
   PetscCall(VecZeroEntries(l));
   PetscCall(DMGlobalToLocal(dm, g, INSERT_VALUES, l));
   /* the constrained dofs are zero in l: only nonzero Dirichlet data need inserting (a projection) */
-  if (NonzeroDirichlet(&ctx->opt)) PetscCall(DMPlexInsertBoundaryValues(dm, PETSC_TRUE, l, h->time, NULL, NULL, NULL));
+  /* the data of the state's time: loads.t1, which a restart sets before the history's time */
+  if (NonzeroDirichlet(&ctx->opt)) PetscCall(DMPlexInsertBoundaryValues(dm, PETSC_TRUE, l, ctx->loads.t1, NULL, NULL, NULL));
   PetscCall(ScanCells(ctx, l, &w));
   PetscCall(DMRestoreLocalVector(dm, &l));
   PetscCall(DMRestoreGlobalVector(dm, &g));

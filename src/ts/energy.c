@@ -5,6 +5,7 @@
 #include "obstacle.h"
 #include "friction.h"
 #include "damping.h"
+#include "loads.h"
 
 static PetscErrorCode KineticEnergy(MMCtx *ctx, Vec v, PetscReal *ek)
 {
@@ -14,6 +15,11 @@ static PetscErrorCode KineticEnergy(MMCtx *ctx, Vec v, PetscReal *ek)
   PetscCall(MatMult(ctx->op.Mstar, v, ctx->state.work));
   PetscCall(VecDot(v, ctx->state.work, &vMv));
   *ek = 0.5 * PetscRealPart(vMv);
+  if (ctx->loads.moving) {
+    PetscReal ekD;
+    PetscCall(MMLoadsDirichletKinetic(ctx, v, &ekD)); /* the moving boundary's nodes (docs/method.md section 10) */
+    *ek += ekD;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -132,6 +138,7 @@ PetscErrorCode MMEnergyInitial(MMCtx *ctx)
   h->time = 0;
   h->work_ext = h->work_contact = h->work_friction = h->work_obstacle = 0;
   h->work_damping = 0;
+  h->work_dirichlet = 0;
   h->balance_residual = h->max_balance = h->max_penetration_run = 0;
   h->cfl = ctx->contact.enabled ? ctx->op.c_p * h->dt / ctx->contact.h_c : 0;
   PetscCall(MMFECheckElasticEnergy(ctx, ctx->state.u));
@@ -143,6 +150,7 @@ PetscErrorCode MMEnergyInitial(MMCtx *ctx)
   h->vi_its   = 0;
   h->max_penetration_run = h->max_penetration;
   PetscCall(MMRigidBodyDiagnostics(ctx, h));
+  PetscCall(MMLoadsReactions(ctx));
   PetscFunctionReturn(0);
 }
 
@@ -162,14 +170,22 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
 {
   MMHistory  *h = &ctx->hist;
   MMState    *s = &ctx->state;
-  PetscReal   E_old = h->total, w_ext, w_c = s->work_contact, w_f = 0, w_obs = 0, w_d;
+  PetscReal   E_old = h->total, w_ext, w_c = s->work_contact, w_f = 0, w_obs = 0, w_d, w_ext_D, w_D;
   PetscScalar Ldu;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ctx->log.energy, 0, 0, 0, 0));
   PetscCall(VecWAXPY(s->work, -1.0, s->u_old, s->u));
-  PetscCall(VecDot(ctx->op.load, s->work, &Ldu)); /* L is constant in time */
+  PetscCall(VecDot(ctx->op.load, s->work, &Ldu)); /* L^{n+1}: L^n too when the loads are constant */
   w_ext = PetscRealPart(Ldu);
+  if (ctx->loads.in_time) { /* 1/2 (L^n + L^{n+1}).du (docs/method.md section 10) */
+    PetscScalar L0du;
+    PetscCall(VecDot(ctx->loads.load_old, s->work, &L0du));
+    w_ext = 0.5 * (PetscRealPart(L0du) + w_ext);
+  }
+  /* the loads' and the support's work on the moving Dirichlet dofs, and the reactions at t^{n+1} */
+  PetscCall(MMLoadsStepWork(ctx, &w_ext_D, &w_D));
+  w_ext += w_ext_D;
   PetscCall(MMDampingWork(ctx, s->work, s->dt, &w_d));
   /* W_c was computed on this very state by the contact-work guard (MMEnergyContactWork) */
   if (ctx->contact.enabled) PetscCall(TrapezoidalWork(ctx, ctx->contact.is_tangent, s->work, &w_f));
@@ -188,9 +204,10 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
   h->work_contact += w_c;
   h->work_friction += w_f;
   h->work_damping += w_d;
+  h->work_dirichlet += w_D;
   /* relative to the run's energy scale, so that a body coming to rest does not inflate it */
   h->energy_scale     = PetscMax(h->energy_scale, PetscAbsReal(h->total));
-  h->balance_residual = PetscAbsReal(h->total - E_old - w_ext - w_c - w_f - w_obs - w_d) / PetscMax(h->energy_scale, PETSC_SMALL * PETSC_SMALL);
+  h->balance_residual = PetscAbsReal(h->total - E_old - w_ext - w_c - w_f - w_obs - w_d - w_D) / PetscMax(h->energy_scale, PETSC_SMALL * PETSC_SMALL);
   h->max_balance      = PetscMax(h->max_balance, h->balance_residual);
   PetscCheck(h->balance_residual <= ctx->opt.audit_tol, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_NOT_CONVERGED,
              "Energy audit failed at step %" PetscInt_FMT " (t = %g): balance residual %.3e > -audit_tol %.1e. %s The output up to the previous step is intact",
@@ -209,7 +226,7 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
  * loads L, all Cartesian. Rigid translations and infinitesimal rotations are in the kernel of the
  * stiffness, so P and J change over a step by dt times the trapezoidal mean of the resultant (and
  * moment) of L and the contact forces: no elastic term, whatever the deformation. */
-/* L is constant in time: its resultant is summed on the initial state only (with_load). */
+/* A constant L's resultant is summed on the initial state only (with_load); L(t) at every step. */
 static PetscErrorCode SchemeMomenta(MMCtx *ctx, MMHistory *h, PetscBool with_load)
 {
   DM                 dm  = ctx->op.dm;
@@ -422,7 +439,7 @@ PetscErrorCode MMRigidBodyDiagnostics(MMCtx *ctx, MMHistory *h)
     }
   }
   PetscCall(AngularMomentum(ctx, h));
-  PetscCall(SchemeMomenta(ctx, h, (PetscBool)(h->step == 0)));
+  PetscCall(SchemeMomenta(ctx, h, (PetscBool)(h->step == 0 || ctx->loads.in_time)));
   PetscCall(DMRestoreGlobalVector(dm, &mv));
   PetscCall(DMRestoreGlobalVector(dm, &mu));
   PetscFunctionReturn(0);

@@ -12,6 +12,7 @@
 #include "friction.h"
 #include "sliding.h"
 #include "damping.h"
+#include "loads.h"
 
 typedef struct {
   MMCtx *ctx;
@@ -23,7 +24,7 @@ static PetscBool HasMasslessDofs(MMCtx *ctx)
   return MMFEHasMasslessDofs(ctx);
 }
 
-/* b = L - lift + M* (4/dt^2 u^n + 4/dt v^n + a^n) [+ C (2/dt u^n + vC^n) with damping] */
+/* b = L(t^{n+1}) - lift(t^{n+1}) + M* (4/dt^2 u^n + 4/dt v^n + a^n) [+ C (2/dt u^n + vC^n) with damping] */
 static PetscErrorCode StepRHS(MMCtx *ctx, PetscReal dt, Vec b)
 {
   MMState *s = &ctx->state;
@@ -167,6 +168,7 @@ static PetscErrorCode TSStep_Newmark(TS ts)
     dt = ts->time_step;
     PetscCall(MMContactSetStepMatrix(ctx, dt));
     PetscCall(MMContactSetTime(ctx, ts->ptime + dt, dt));
+    PetscCall(MMLoadsSetTime(ctx, ts->ptime, ts->ptime + dt)); /* L^{n+1} and the lift of u_D(t^{n+1}) */
     PetscCall(StepRHS(ctx, dt, ctx->contact.qp.b));
     /* predictor u + dt v + dt^2/4 a: exact for constant acceleration */
     PetscCall(VecAXPBYPCZ(w, dt, 0.25 * dt * dt, 0.0, s->v, s->a));

@@ -1,0 +1,778 @@
+/* Loads in time, moving Dirichlet boundaries and the support reactions (docs/method.md section 10).
+ *
+ * The load is a sum of parts, each a fixed vector times an amplitude in time, L(t) = sum_k a_k(t) L_k:
+ * gravity is part 0, traction b is part 1 + b. The parts are assembled once; a step only sums them.
+ * A Dirichlet boundary moves as u_D(t) = value + velocity t. Its reaction, the force the support
+ * exerts on the body, is R_D = (M* a + K u - L)_D on the constrained dofs: it needs the rows of K and
+ * M on those dofs, which the global operators (free dofs only) do not hold, so they are assembled
+ * once on a copy of the mesh without constraints. */
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include "loads.h"
+#include "fem.h"
+#include "mesh.h"
+#include "assembly_p1.h"
+
+/* ---------------------------------------------------------------- amplitudes */
+
+static PetscReal AmplitudeConstant(const MMAmplitude *a, PetscReal t)
+{
+  return 1.0;
+}
+
+/* 0 at t = 0, 1 at t = T, then 1 */
+static PetscReal AmplitudeRamp(const MMAmplitude *a, PetscReal t)
+{
+  return t <= 0 ? 0.0 : (t >= a->T ? 1.0 : t / a->T);
+}
+
+/* sin(pi t / T) on [0, T], 0 outside: one pulse */
+static PetscReal AmplitudeHalfSine(const MMAmplitude *a, PetscReal t)
+{
+  return t <= 0 || t >= a->T ? 0.0 : PetscSinReal(PETSC_PI * t / a->T);
+}
+
+/* Linear between the rows, constant beyond the first and last (Abaqus *AMPLITUDE, code_aster
+ * DEFI_FONCTION with constant prolongation). */
+static PetscReal AmplitudeTable(const MMAmplitude *a, PetscReal t)
+{
+  PetscInt lo = 0, hi = a->n - 1;
+
+  if (t <= a->t[0]) return a->f[0];
+  if (t >= a->t[hi]) return a->f[hi];
+  while (hi - lo > 1) {
+    const PetscInt mid = (lo + hi) / 2;
+    if (a->t[mid] <= t) lo = mid;
+    else hi = mid;
+  }
+  return a->f[lo] + (a->f[hi] - a->f[lo]) * (t - a->t[lo]) / (a->t[hi] - a->t[lo]);
+}
+
+/* The table's rows, read on rank 0: "time,factor" per line; blank lines and lines starting with #
+ * are skipped, and a first line that is not two numbers is taken for a header. Returns a message
+ * in msg (empty: fine). */
+static void ReadTableRows(const char file[], PetscInt *n, PetscReal **t, PetscReal **f, char msg[], size_t len)
+{
+  FILE    *fp = fopen(file, "r");
+  char     line[1024];
+  PetscInt cap = 0, lineno = 0;
+  PetscBool first = PETSC_TRUE;
+
+  *n   = 0;
+  *t   = *f = NULL;
+  msg[0] = 0;
+  if (!fp) {
+    snprintf(msg, len, "cannot be read: %s", strerror(errno));
+    return;
+  }
+  while (fgets(line, sizeof(line), fp)) {
+    char  *p = line, *end;
+    double x, y;
+
+    ++lineno;
+    while (*p == ' ' || *p == '\t') ++p;
+    if (!*p || *p == '\n' || *p == '\r' || *p == '#') continue;
+    x = strtod(p, &end);
+    if (end != p) {
+      p = end;
+      while (*p == ' ' || *p == '\t') ++p;
+      if (*p == ',') {
+        ++p;
+        y = strtod(p, &end);
+        if (end != p) {
+          p = end;
+          while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n') ++p;
+          if (!*p) {
+            if (*n == cap) {
+              cap = PetscMax(16, 2 * cap);
+              *t  = (PetscReal *)realloc(*t, cap * sizeof(PetscReal));
+              *f  = (PetscReal *)realloc(*f, cap * sizeof(PetscReal));
+            }
+            (*t)[*n] = x;
+            (*f)[*n] = y;
+            if (PetscIsInfOrNanReal((*t)[*n]) || PetscIsInfOrNanReal((*f)[*n])) {
+              snprintf(msg, len, "line %d holds a value that is not finite", (int)lineno);
+              break;
+            }
+            if (*n && (*t)[*n] <= (*t)[*n - 1]) {
+              snprintf(msg, len, "line %d: time %g is not after the previous row's %g; the times must increase strictly", (int)lineno, x, (double)(*t)[*n - 1]);
+              break;
+            }
+            ++*n;
+            first = PETSC_FALSE;
+            continue;
+          }
+        }
+      }
+    }
+    if (first) { /* a header */
+      first = PETSC_FALSE;
+      continue;
+    }
+    line[strcspn(line, "\r\n")] = 0;
+    snprintf(msg, len, "line %d \"%.60s\" is not two numbers time,factor", (int)lineno, line);
+    break;
+  }
+  fclose(fp);
+  if (!msg[0] && *n < 2) snprintf(msg, len, "has %d row%s; a table needs at least two (time,factor) rows", (int)*n, *n == 1 ? "" : "s");
+}
+
+/* Reads the table on rank 0 and gives it to every rank; a bad table stops every rank with the
+ * same message. */
+static PetscErrorCode ReadTable(MPI_Comm comm, const char option[], const char file[], MMAmplitude *a)
+{
+  PetscMPIInt rank;
+  char        msg[512] = "";
+  PetscInt    n        = 0;
+  PetscReal  *t = NULL, *f = NULL;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (!rank) ReadTableRows(file, &n, &t, &f, msg, sizeof(msg));
+  PetscCallMPI(MPI_Bcast(msg, sizeof(msg), MPI_CHAR, 0, comm));
+  if (msg[0]) {
+    free(t);
+    free(f);
+  }
+  PetscCheck(!msg[0], comm, PETSC_ERR_USER_INPUT, "%s_amplitude_table %s: the file %s. Give a CSV of rows time,factor with the times increasing (README \"Loads in time\")", option, file, msg);
+  PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm));
+  a->n = n;
+  PetscCall(PetscMalloc2(n, &a->t, n, &a->f));
+  if (!rank) {
+    PetscCall(PetscArraycpy(a->t, t, n));
+    PetscCall(PetscArraycpy(a->f, f, n));
+    free(t);
+    free(f);
+  }
+  PetscCallMPI(MPI_Bcast(a->t, n, MPIU_REAL, 0, comm));
+  PetscCallMPI(MPI_Bcast(a->f, n, MPIU_REAL, 0, comm));
+  PetscFunctionReturn(0);
+}
+
+/* The kinds, by name: each checks its data and sets its function. */
+typedef PetscErrorCode (*MMAmplitudeCreate)(MPI_Comm, const char[], const MMAmplitudeOptions *, MMAmplitude *);
+
+static PetscErrorCode CreateConstant(MPI_Comm comm, const char option[], const MMAmplitudeOptions *o, MMAmplitude *a)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(!o->time_set && !o->table[0], comm, PETSC_ERR_USER_INPUT, "%s_amplitude_%s is given but the amplitude is constant: give %s_amplitude %s, or drop the option", option, o->time_set ? "time" : "table", option, o->time_set ? "ramp or halfsine" : "table");
+  a->value    = AmplitudeConstant;
+  a->constant = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CreateTimed(MPI_Comm comm, const char option[], const MMAmplitudeOptions *o, MMAmplitude *a)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(o->time_set, comm, PETSC_ERR_USER_INPUT, "%s_amplitude %s needs its time: give %s_amplitude_time T (> 0)", option, o->kind, option);
+  PetscCheck(o->time > 0, comm, PETSC_ERR_USER_INPUT, "%s_amplitude_time %g must be > 0", option, (double)o->time);
+  PetscCheck(!o->table[0], comm, PETSC_ERR_USER_INPUT, "%s_amplitude_table is given with %s_amplitude %s: a table is its own kind, give %s_amplitude table without _amplitude_time, or drop the table", option, option, o->kind, option);
+  a->T = o->time;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CreateRamp(MPI_Comm comm, const char option[], const MMAmplitudeOptions *o, MMAmplitude *a)
+{
+  PetscFunctionBeginUser;
+  PetscCall(CreateTimed(comm, option, o, a));
+  a->value = AmplitudeRamp;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CreateHalfSine(MPI_Comm comm, const char option[], const MMAmplitudeOptions *o, MMAmplitude *a)
+{
+  PetscFunctionBeginUser;
+  PetscCall(CreateTimed(comm, option, o, a));
+  a->value = AmplitudeHalfSine;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CreateTable(MPI_Comm comm, const char option[], const MMAmplitudeOptions *o, MMAmplitude *a)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(o->table[0], comm, PETSC_ERR_USER_INPUT, "%s_amplitude table needs its file: give %s_amplitude_table FILE.csv (rows time,factor)", option, option);
+  PetscCheck(!o->time_set, comm, PETSC_ERR_USER_INPUT, "%s_amplitude_time is given with a table amplitude, which takes its times from the file: drop it", option);
+  PetscCall(ReadTable(comm, option, o->table, a));
+  a->value = AmplitudeTable;
+  PetscFunctionReturn(0);
+}
+
+static PetscFunctionList AmplitudeList = NULL;
+
+static PetscErrorCode AmplitudeFinalize(void)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFunctionListDestroy(&AmplitudeList));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode AmplitudeRegisterAll(void)
+{
+  PetscFunctionBeginUser;
+  if (AmplitudeList) PetscFunctionReturn(0);
+  PetscCall(PetscFunctionListAdd(&AmplitudeList, "constant", CreateConstant));
+  PetscCall(PetscFunctionListAdd(&AmplitudeList, "ramp", CreateRamp));
+  PetscCall(PetscFunctionListAdd(&AmplitudeList, "halfsine", CreateHalfSine));
+  PetscCall(PetscFunctionListAdd(&AmplitudeList, "table", CreateTable));
+  PetscCall(PetscRegisterFinalize(AmplitudeFinalize));
+  PetscFunctionReturn(0);
+}
+
+/* The amplitude of option (the load's option prefix, -gravity or -traction_NAME) from its kind. */
+static PetscErrorCode AmplitudeCreate(MPI_Comm comm, const char option[], const MMAmplitudeOptions *o, MMAmplitude *a)
+{
+  MMAmplitudeCreate create;
+
+  PetscFunctionBeginUser;
+  PetscCall(AmplitudeRegisterAll());
+  PetscCall(PetscFunctionListFind(AmplitudeList, o->kind, &create));
+  PetscCheck(create, comm, PETSC_ERR_USER_INPUT, "%s_amplitude %s: unknown amplitude. Use constant (the default), ramp or halfsine (with %s_amplitude_time T) or table (with %s_amplitude_table FILE.csv)", option, o->kind, option, option);
+  PetscCall(create(comm, option, o, a));
+  PetscFunctionReturn(0);
+}
+
+PetscReal MMAmplitudeValue(const MMAmplitude *a, PetscReal t)
+{
+  return a->value(a, t);
+}
+
+/* -traction_NAME_amplitude... for a NAME that -traction does not list would be an unused option;
+ * say what it is and how to fix it. */
+static PetscErrorCode CheckAmplitudeNames(MPI_Comm comm, const MMOptions *opt)
+{
+  char *all, *p;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetAll(NULL, &all));
+  for (p = strstr(all, "-traction_"); p; p = strstr(p + 1, "-traction_")) {
+    const char *name = p + strlen("-traction_"), *amp = strstr(name, "_amplitude"), *sp = strchr(name, ' ');
+    PetscBool   known = PETSC_FALSE;
+    if (p != all && p[-1] != ' ') continue;
+    if (!amp || (sp && amp > sp)) continue;
+    for (PetscInt b = 0; b < opt->n_traction; ++b) known = (PetscBool)(known || (strlen(opt->traction[b].name) == (size_t)(amp - name) && !strncmp(opt->traction[b].name, name, amp - name)));
+    PetscCheck(known, comm, PETSC_ERR_USER_INPUT, "%.*s: \"%.*s\" is not a traction boundary (-traction lists %s): add it to -traction with its -traction_%.*s_value, or correct the name", (int)(sp ? sp - p : (ptrdiff_t)strlen(p)), p, (int)(amp - name), name, opt->n_traction ? opt->traction[0].name : "none", (int)(amp - name), name);
+  }
+  PetscCall(PetscFree(all));
+  PetscFunctionReturn(0);
+}
+
+/* ---------------------------------------------------------------- the constrained dofs */
+
+/* The displacement field on a copy of the mesh without constraints: every dof is in its global
+ * vectors, in the same local layout as the constrained DM (as the output's). */
+static PetscErrorCode CreateFullDM(MMCtx *ctx)
+{
+  PetscFE fe;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMClone(ctx->op.dm, &ctx->loads.dm_full));
+  PetscCall(PetscFECreateLagrange(PetscObjectComm((PetscObject)ctx->op.dm), ctx->op.dim, ctx->op.dim, PETSC_TRUE, 1, PETSC_DETERMINE, &fe));
+  PetscCall(PetscObjectSetName((PetscObject)fe, "displacement"));
+  PetscCall(DMSetField(ctx->loads.dm_full, 0, NULL, (PetscObject)fe));
+  PetscCall(PetscFEDestroy(&fe));
+  PetscCall(DMCreateDS(ctx->loads.dm_full));
+  PetscFunctionReturn(0);
+}
+
+/* The owned constrained dofs, in dm_full's global numbering, and for each the boundary it counts in:
+ * a dof that two boundaries constrain (a corner node of both) counts once, in the first listed in
+ * -dirichlet. */
+static PetscErrorCode ConstrainedDofs(MMCtx *ctx)
+{
+  MMLoads        *ld = &ctx->loads;
+  DM              dm = ctx->op.dm;
+  const PetscInt  dim = ctx->op.dim;
+  PetscSection    ls, gsf;
+  PetscInt        vStart, vEnd, *owner, n = 0, *idx;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLocalSection(dm, &ls));
+  PetscCall(DMGetGlobalSection(ld->dm_full, &gsf));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(PetscMalloc1(dim * (vEnd - vStart), &owner));
+  for (PetscInt i = 0; i < dim * (vEnd - vStart); ++i) owner[i] = -1;
+  for (PetscInt b = 0; b < ctx->opt.n_dirichlet; ++b) {
+    const MMDirichlet *bc = &ctx->opt.dirichlet[b];
+    DMLabel            label;
+    IS                 vis;
+    PetscInt           nval;
+    const PetscInt    *vals;
+
+    PetscCall(MMMeshGetLabel(dm, bc->name, &label));
+    PetscCall(DMLabelGetValueIS(label, &vis));
+    PetscCall(ISGetLocalSize(vis, &nval));
+    PetscCall(ISGetIndices(vis, &vals));
+    for (PetscInt k = 0; k < nval; ++k) {
+      IS              pis;
+      PetscInt        np;
+      const PetscInt *pts;
+      PetscCall(DMLabelGetStratumIS(label, vals[k], &pis));
+      if (!pis) continue;
+      PetscCall(ISGetLocalSize(pis, &np));
+      PetscCall(ISGetIndices(pis, &pts));
+      for (PetscInt i = 0; i < np; ++i) {
+        PetscInt *closure = NULL, ncl;
+        PetscCall(DMPlexGetTransitiveClosure(dm, pts[i], PETSC_TRUE, &ncl, &closure));
+        for (PetscInt j = 0; j < ncl; ++j) {
+          const PetscInt v = closure[2 * j];
+          if (v < vStart || v >= vEnd) continue;
+          for (PetscInt c = 0; c < bc->ncomp; ++c)
+            if (owner[dim * (v - vStart) + bc->comps[c]] < 0) owner[dim * (v - vStart) + bc->comps[c]] = b;
+        }
+        PetscCall(DMPlexRestoreTransitiveClosure(dm, pts[i], PETSC_TRUE, &ncl, &closure));
+      }
+      PetscCall(ISRestoreIndices(pis, &pts));
+      PetscCall(ISDestroy(&pis));
+    }
+    PetscCall(ISRestoreIndices(vis, &vals));
+    PetscCall(ISDestroy(&vis));
+  }
+  /* the dofs PETSc constrains, owned here */
+  for (int pass = 0; pass < 2; ++pass) {
+    n = 0;
+    for (PetscInt v = vStart; v < vEnd; ++v) {
+      PetscInt        goff, ncdof;
+      const PetscInt *cidx;
+      PetscCall(PetscSectionGetOffset(gsf, v, &goff));
+      if (goff < 0) continue;
+      PetscCall(PetscSectionGetConstraintDof(ls, v, &ncdof));
+      if (!ncdof) continue;
+      PetscCall(PetscSectionGetConstraintIndices(ls, v, &cidx));
+      for (PetscInt j = 0; j < ncdof; ++j) {
+        if (pass) {
+          idx[n]      = goff + cidx[j];
+          ld->Dcomp[n] = cidx[j];
+          ld->Dbc[n]   = PetscMax(owner[dim * (v - vStart) + cidx[j]], 0);
+        }
+        ++n;
+      }
+    }
+    if (!pass) {
+      PetscCall(PetscMalloc1(n, &idx));
+      PetscCall(PetscMalloc1(n, &ld->Dcomp));
+      PetscCall(PetscMalloc1(n, &ld->Dbc));
+    }
+  }
+  ld->nD = n;
+  PetscCall(ISCreateGeneral(PetscObjectComm((PetscObject)dm), n, idx, PETSC_COPY_VALUES, &ld->isD));
+  PetscCall(PetscFree(idx));
+  PetscCall(PetscFree(owner));
+  PetscFunctionReturn(0);
+}
+
+/* The rows D of the Cartesian K and M (M lumped by row sums when -mass_lumped), all columns. */
+static PetscErrorCode AssembleRowsD(MMCtx *ctx)
+{
+  MMLoads *ld = &ctx->loads;
+  Mat      K, M;
+  IS       cols;
+  PetscInt rstart, rend;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMSetMatType(ld->dm_full, MATAIJ));
+  PetscCall(DMCreateMatrix(ld->dm_full, &K));
+  PetscCall(MatDuplicate(K, MAT_DO_NOT_COPY_VALUES, &M));
+  PetscCall(MMAssembleP1(ld->dm_full, PetscRealPart(ctx->constants[MM_C_LAMBDA]), PetscRealPart(ctx->constants[MM_C_MU]), ctx->opt.rho, K, M));
+  if (ctx->opt.lumped) {
+    Vec rs;
+    PetscCall(MatCreateVecs(M, NULL, &rs));
+    PetscCall(MatGetRowSum(M, rs));
+    PetscCall(MatZeroEntries(M));
+    PetscCall(MatDiagonalSet(M, rs, INSERT_VALUES));
+    PetscCall(VecDestroy(&rs));
+  }
+  PetscCall(MatGetOwnershipRange(K, &rstart, &rend));
+  PetscCall(ISCreateStride(PetscObjectComm((PetscObject)K), rend - rstart, rstart, 1, &cols));
+  PetscCall(MatCreateSubMatrix(K, ld->isD, cols, MAT_INITIAL_MATRIX, &ld->KD));
+  PetscCall(MatCreateSubMatrix(M, ld->isD, cols, MAT_INITIAL_MATRIX, &ld->MD));
+  PetscCall(ISDestroy(&cols));
+  PetscCall(MatDestroy(&K));
+  PetscCall(MatDestroy(&M));
+  PetscCall(MatCreateVecs(ld->KD, &ld->full, &ld->rD));
+  PetscCall(VecDuplicate(ld->full, &ld->full2));
+  PetscCall(VecDuplicate(ld->rD, &ld->rD0));
+  PetscCall(VecDuplicate(ld->rD, &ld->uD0));
+  PetscCall(VecDuplicate(ld->rD, &ld->uD1));
+  PetscCall(VecDuplicate(ld->rD, &ld->vD));
+  PetscFunctionReturn(0);
+}
+
+/* The Cartesian field on every dof (dm_full) from the free dofs w, with the Dirichlet data of time t
+ * on the constrained dofs when with_bc, zero there otherwise. w may be NULL (zero). */
+static PetscErrorCode FullField(MMCtx *ctx, Vec w, PetscReal t, PetscBool with_bc, Vec full)
+{
+  DM  dm = ctx->op.dm;
+  Vec g, l;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalVector(dm, &g));
+  PetscCall(DMGetLocalVector(dm, &l));
+  if (w) PetscCall(MMFEToCartesian(ctx, w, g));
+  else PetscCall(VecZeroEntries(g));
+  PetscCall(VecZeroEntries(l));
+  PetscCall(DMGlobalToLocal(dm, g, INSERT_VALUES, l));
+  if (with_bc) PetscCall(DMPlexInsertBoundaryValues(dm, PETSC_TRUE, l, t, NULL, NULL, NULL));
+  PetscCall(DMLocalToGlobal(ctx->loads.dm_full, l, INSERT_VALUES, full));
+  PetscCall(DMRestoreLocalVector(dm, &l));
+  PetscCall(DMRestoreGlobalVector(dm, &g));
+  PetscFunctionReturn(0);
+}
+
+/* The free dofs of a dm_full vector, in the w-frame. */
+static PetscErrorCode FreePart(MMCtx *ctx, Vec full, Vec w)
+{
+  DM  dm = ctx->op.dm;
+  Vec g, l;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalVector(dm, &g));
+  PetscCall(DMGetLocalVector(dm, &l));
+  PetscCall(DMGlobalToLocal(ctx->loads.dm_full, full, INSERT_VALUES, l));
+  PetscCall(VecZeroEntries(g));
+  PetscCall(DMLocalToGlobal(dm, l, INSERT_VALUES, g));
+  PetscCall(MMFEFromCartesian(ctx, g, w));
+  PetscCall(DMRestoreLocalVector(dm, &l));
+  PetscCall(DMRestoreGlobalVector(dm, &g));
+  PetscFunctionReturn(0);
+}
+
+/* A copy of the w-frame vector x with the massless (contact-normal) dofs zeroed: M* has no entries
+ * there, in the rows D too. */
+static PetscErrorCode WithInertia(MMCtx *ctx, Vec x, Vec y)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(x, y));
+  if (ctx->contact.enabled && ctx->opt.mass_type == MM_MASS_MODIFIED) PetscCall(VecISSet(y, ctx->contact.is_normal, 0.0));
+  PetscFunctionReturn(0);
+}
+
+/* ---------------------------------------------------------------- the load parts */
+
+/* Part k at amplitude 1 on every dof (dm_full, Cartesian) into full: k = 0 gravity, m_i g at each
+ * vertex (the lumped mass is exact for a constant g), k = 1 + b traction b. */
+static PetscErrorCode LoadPartFull(MMCtx *ctx, PetscInt k, Vec full)
+{
+  DM       dm = ctx->op.dm;
+  Vec      floc;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLocalVector(dm, &floc));
+  PetscCall(VecZeroEntries(floc));
+  PetscCall(VecZeroEntries(full));
+  if (k == 0) {
+    Vec                mloc;
+    const PetscScalar *m;
+    PetscScalar       *f;
+    PetscInt           vStart, vEnd;
+
+    PetscCall(DMGetLocalVector(ctx->out.dm_scalar, &mloc));
+    PetscCall(MMFEVertexMasses(ctx, mloc));
+    PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+    PetscCall(VecGetArrayRead(mloc, &m));
+    PetscCall(VecGetArray(floc, &f));
+    for (PetscInt v = vStart; v < vEnd; ++v) {
+      PetscInt off, soff;
+      PetscCall(DMPlexGetPointLocal(dm, v, &off, NULL));
+      PetscCall(DMPlexGetPointLocal(ctx->out.dm_scalar, v, &soff, NULL));
+      for (PetscInt c = 0; c < ctx->op.dim; ++c) f[off + c] = m[soff] * ctx->opt.gravity[c];
+    }
+    PetscCall(VecRestoreArray(floc, &f));
+    PetscCall(VecRestoreArrayRead(mloc, &m));
+    PetscCall(DMRestoreLocalVector(ctx->out.dm_scalar, &mloc));
+    /* the vertex masses are summed over ranks already */
+    PetscCall(DMLocalToGlobal(ctx->loads.dm_full, floc, INSERT_VALUES, full));
+  } else {
+    PetscCall(MMFEAddTraction(ctx, k - 1, floc));
+    PetscCall(DMLocalToGlobal(ctx->loads.dm_full, floc, ADD_VALUES, full));
+  }
+  PetscCall(DMRestoreLocalVector(dm, &floc));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CreateParts(MMCtx *ctx)
+{
+  MMLoads *ld   = &ctx->loads;
+  MPI_Comm comm = PetscObjectComm((PetscObject)ctx->op.dm);
+
+  PetscFunctionBeginUser;
+  ld->nparts = 1 + ctx->opt.n_traction;
+  PetscCall(PetscCalloc1(ld->nparts, &ld->amp));
+  PetscCall(AmplitudeCreate(comm, "-gravity", &ctx->opt.gravity_amplitude, &ld->amp[0]));
+  for (PetscInt b = 0; b < ctx->opt.n_traction; ++b) {
+    char option[300];
+    PetscCall(PetscSNPrintf(option, sizeof(option), "-traction_%s", ctx->opt.traction[b].name));
+    PetscCall(AmplitudeCreate(comm, option, &ctx->opt.traction[b].amplitude, &ld->amp[1 + b]));
+  }
+  for (PetscInt k = 0; k < ld->nparts; ++k) ld->in_time = (PetscBool)(ld->in_time || !ld->amp[k].constant);
+  PetscCheck(!ld->in_time || ctx->opt.initial_state != MM_INITIAL_STATIC_SLIDING, comm, PETSC_ERR_USER_INPUT, "-initial_state static_sliding balances the loads of t = 0 for all time: it needs constant loads. Drop the -gravity_amplitude and -traction_NAME_amplitude options, or use -initial_state given");
+  if (!ld->in_time && !ctx->opt.n_dirichlet) PetscFunctionReturn(0);
+  if (ld->in_time) {
+    PetscCall(PetscMalloc1(ld->nparts, &ld->part));
+    PetscCall(VecDuplicate(ctx->op.load, &ld->load_old));
+  }
+  if (ctx->opt.n_dirichlet) PetscCall(PetscMalloc1(ld->nparts, &ld->partD));
+  for (PetscInt k = 0; k < ld->nparts; ++k) {
+    Vec full;
+    PetscCall(DMGetGlobalVector(ld->dm_full, &full));
+    PetscCall(LoadPartFull(ctx, k, full));
+    if (ld->in_time) {
+      PetscCall(VecDuplicate(ctx->op.load, &ld->part[k]));
+      PetscCall(FreePart(ctx, full, ld->part[k]));
+    }
+    if (ctx->opt.n_dirichlet) {
+      Vec sub;
+      PetscCall(VecDuplicate(ld->rD, &ld->partD[k]));
+      PetscCall(VecGetSubVector(full, ld->isD, &sub));
+      PetscCall(VecCopy(sub, ld->partD[k]));
+      PetscCall(VecRestoreSubVector(full, ld->isD, &sub));
+    }
+    PetscCall(DMRestoreGlobalVector(ld->dm_full, &full));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* L_D(t) = sum_k a_k(t) L_k on D, into y. */
+static PetscErrorCode LoadD(MMCtx *ctx, PetscReal t, Vec y)
+{
+  MMLoads *ld = &ctx->loads;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(y));
+  for (PetscInt k = 0; k < ld->nparts; ++k) PetscCall(VecAXPY(y, MMAmplitudeValue(&ld->amp[k], t), ld->partD[k]));
+  PetscFunctionReturn(0);
+}
+
+/* The boundary velocity on D, uD(1) - uD(0), and vD . M_DD vD for the kinetic energy. */
+static PetscErrorCode SetUpMoving(MMCtx *ctx)
+{
+  MMLoads    *ld = &ctx->loads;
+  Vec         sub, y;
+  PetscScalar vMv;
+
+  PetscFunctionBeginUser;
+  for (PetscInt b = 0; b < ctx->opt.n_dirichlet; ++b)
+    for (PetscInt c = 0; c < ctx->opt.dirichlet[b].nvelocity; ++c) ld->moving = (PetscBool)(ld->moving || ctx->opt.dirichlet[b].velocity[c] != 0);
+  if (!ld->moving) PetscFunctionReturn(0);
+  PetscCall(FullField(ctx, NULL, 1.0, PETSC_TRUE, ld->full));
+  PetscCall(VecGetSubVector(ld->full, ld->isD, &sub));
+  PetscCall(VecCopy(sub, ld->vD));
+  PetscCall(VecRestoreSubVector(ld->full, ld->isD, &sub));
+  PetscCall(FullField(ctx, NULL, 0.0, PETSC_TRUE, ld->full));
+  PetscCall(VecGetSubVector(ld->full, ld->isD, &sub));
+  PetscCall(VecAXPY(ld->vD, -1.0, sub));
+  PetscCall(VecRestoreSubVector(ld->full, ld->isD, &sub));
+  PetscCall(VecZeroEntries(ld->full));
+  PetscCall(VecISCopy(ld->full, ld->isD, SCATTER_FORWARD, ld->vD));
+  PetscCall(VecDuplicate(ld->rD, &y));
+  PetscCall(MatMult(ld->MD, ld->full, y));
+  PetscCall(VecDot(ld->vD, y, &vMv));
+  ld->vMv_DD = PetscRealPart(vMv);
+  PetscCall(VecDestroy(&y));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMLoadsSetUp(MMCtx *ctx)
+{
+  MMLoads *ld = &ctx->loads;
+
+  PetscFunctionBeginUser;
+  PetscCall(CheckAmplitudeNames(PetscObjectComm((PetscObject)ctx->op.dm), &ctx->opt));
+  if (ctx->opt.n_dirichlet) {
+    PetscCall(CreateFullDM(ctx));
+    PetscCall(ConstrainedDofs(ctx));
+    PetscCall(AssembleRowsD(ctx));
+    PetscCall(PetscCalloc1(MM_MAX_DIM * ctx->opt.n_dirichlet, &ld->reaction));
+  }
+  PetscCall(CreateParts(ctx));
+  if (ctx->opt.n_dirichlet) PetscCall(SetUpMoving(ctx));
+  PetscCall(MMLoadsSetTime(ctx, 0.0, 0.0));
+  PetscFunctionReturn(0);
+}
+
+/* ---------------------------------------------------------------- per step */
+
+/* The loads of a step from t0 to t1 (between steps t0 = t1, the current time): op.load = L(t1) and
+ * load_old = L(t0); with moving Dirichlet data op.lift = K_fD u_D(t1) and op.energy_dirichlet =
+ * 1/2 u_D.A_DD u_D at t1, both from the rows D of K, the operator the reaction uses, so that the
+ * energy identity closes with the reaction's work (docs/method.md section 10). */
+PetscErrorCode MMLoadsSetTime(MMCtx *ctx, PetscReal t0, PetscReal t1)
+{
+  MMLoads *ld = &ctx->loads;
+
+  PetscFunctionBeginUser;
+  ld->t0 = t0;
+  ld->t1 = t1;
+  if (ld->in_time) {
+    PetscCall(VecZeroEntries(ctx->op.load));
+    PetscCall(VecZeroEntries(ld->load_old));
+    for (PetscInt k = 0; k < ld->nparts; ++k) {
+      PetscCall(VecAXPY(ctx->op.load, MMAmplitudeValue(&ld->amp[k], t1), ld->part[k]));
+      PetscCall(VecAXPY(ld->load_old, MMAmplitudeValue(&ld->amp[k], t0), ld->part[k]));
+    }
+  }
+  if (ld->moving) {
+    Vec         sub;
+    PetscScalar e;
+    PetscCall(FullField(ctx, NULL, t1, PETSC_TRUE, ld->full));
+    PetscCall(VecGetSubVector(ld->full, ld->isD, &sub));
+    PetscCall(VecCopy(sub, ld->uD1));
+    PetscCall(VecRestoreSubVector(ld->full, ld->isD, &sub));
+    PetscCall(MatMult(ld->KD, ld->full, ld->rD));
+    PetscCall(VecDot(ld->uD1, ld->rD, &e));
+    ctx->op.energy_dirichlet = 0.5 * PetscRealPart(e);
+    PetscCall(MatMultTranspose(ld->KD, ld->uD1, ld->full2));
+    PetscCall(FreePart(ctx, ld->full2, ctx->op.lift));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* R_D = (M* a + K u - L)_D at time t, the support's force on the body on each constrained dof. */
+static PetscErrorCode Reaction(MMCtx *ctx, Vec u, Vec a, PetscReal t, Vec R)
+{
+  MMLoads *ld = &ctx->loads;
+  Vec      aw;
+
+  PetscFunctionBeginUser;
+  PetscCall(FullField(ctx, u, t, PETSC_TRUE, ld->full));
+  PetscCall(MatMult(ld->KD, ld->full, R));
+  PetscCall(VecDuplicate(a, &aw));
+  PetscCall(WithInertia(ctx, a, aw));
+  /* the data are affine in t: their acceleration is zero */
+  PetscCall(FullField(ctx, aw, t, PETSC_FALSE, ld->full2));
+  PetscCall(VecDestroy(&aw));
+  PetscCall(MatMultAdd(ld->MD, ld->full2, R, R));
+  PetscCall(LoadD(ctx, t, ld->rD0));
+  PetscCall(VecAXPY(R, -1.0, ld->rD0));
+  PetscFunctionReturn(0);
+}
+
+/* The resultant of R per boundary and Cartesian component, over all ranks. */
+static PetscErrorCode SumReactions(MMCtx *ctx, Vec R)
+{
+  MMLoads           *ld = &ctx->loads;
+  const PetscScalar *r;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscArrayzero(ld->reaction, MM_MAX_DIM * ctx->opt.n_dirichlet));
+  PetscCall(VecGetArrayRead(R, &r));
+  for (PetscInt i = 0; i < ld->nD; ++i) ld->reaction[MM_MAX_DIM * ld->Dbc[i] + ld->Dcomp[i]] += PetscRealPart(r[i]);
+  PetscCall(VecRestoreArrayRead(R, &r));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, ld->reaction, MM_MAX_DIM * ctx->opt.n_dirichlet, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)ctx->op.dm)));
+  PetscFunctionReturn(0);
+}
+
+/* The reactions of the current state, at the current time (the initial row, a restart's). */
+PetscErrorCode MMLoadsReactions(MMCtx *ctx)
+{
+  MMLoads *ld = &ctx->loads;
+  Vec      R;
+
+  PetscFunctionBeginUser;
+  if (!ctx->opt.n_dirichlet) PetscFunctionReturn(0);
+  PetscCall(VecDuplicate(ld->rD, &R));
+  PetscCall(Reaction(ctx, ctx->state.u, ctx->state.a, ld->t1, R));
+  PetscCall(SumReactions(ctx, R));
+  PetscCall(VecDestroy(&R));
+  PetscFunctionReturn(0);
+}
+
+/* The accepted step's works on the constrained dofs, and the reactions at its end: with the data
+ * moving by du_D = u_D(t1) - u_D(t0), the loads there do 1/2 (L_D^n + L_D^{n+1}).du_D (part of
+ * W_ext) and the support 1/2 (R_D^n + R_D^{n+1}).du_D (W_D). R_D^n is recomputed from the step's
+ * start, so nothing but the running sum is carried between steps (or in a checkpoint). */
+PetscErrorCode MMLoadsStepWork(MMCtx *ctx, PetscReal *w_ext_D, PetscReal *w_D)
+{
+  MMLoads    *ld = &ctx->loads;
+  MMState    *s  = &ctx->state;
+  Vec         R1, R0, L0, du, sub;
+  PetscScalar wr, wl;
+
+  PetscFunctionBeginUser;
+  *w_ext_D = *w_D = 0;
+  if (!ctx->opt.n_dirichlet) PetscFunctionReturn(0);
+  PetscCall(VecDuplicate(ld->rD, &R1));
+  PetscCall(Reaction(ctx, s->u, s->a, ld->t1, R1));
+  PetscCall(SumReactions(ctx, R1));
+  if (ld->moving) {
+    PetscCall(VecDuplicate(ld->rD, &R0));
+    PetscCall(VecDuplicate(ld->rD, &L0));
+    PetscCall(VecDuplicate(ld->rD, &du));
+    PetscCall(FullField(ctx, NULL, ld->t0, PETSC_TRUE, ld->full));
+    PetscCall(VecGetSubVector(ld->full, ld->isD, &sub));
+    PetscCall(VecCopy(sub, ld->uD0));
+    PetscCall(VecRestoreSubVector(ld->full, ld->isD, &sub));
+    PetscCall(VecWAXPY(du, -1.0, ld->uD0, ld->uD1));
+    PetscCall(Reaction(ctx, s->u_old, s->a_old, ld->t0, R0));
+    PetscCall(VecAXPY(R0, 1.0, R1));
+    PetscCall(VecDot(R0, du, &wr));
+    PetscCall(LoadD(ctx, ld->t0, L0));
+    PetscCall(LoadD(ctx, ld->t1, R0));
+    PetscCall(VecAXPY(L0, 1.0, R0));
+    PetscCall(VecDot(L0, du, &wl));
+    *w_D     = 0.5 * PetscRealPart(wr);
+    *w_ext_D = 0.5 * PetscRealPart(wl);
+    PetscCall(VecDestroy(&R0));
+    PetscCall(VecDestroy(&L0));
+    PetscCall(VecDestroy(&du));
+  }
+  PetscCall(VecDestroy(&R1));
+  PetscFunctionReturn(0);
+}
+
+/* The kinetic energy the constrained dofs add to 1/2 v_f.M*_ff v_f: with v = (v_f, v_D),
+ * 1/2 v.M* v = 1/2 v_f.M*_ff v_f + v_D.M_Df v_f + 1/2 v_D.M_DD v_D = ... + v_D.(M_D v) - 1/2 v_D.M_DD v_D. */
+PetscErrorCode MMLoadsDirichletKinetic(MMCtx *ctx, Vec v, PetscReal *ek)
+{
+  MMLoads    *ld = &ctx->loads;
+  Vec         vw;
+  PetscScalar vMv;
+
+  PetscFunctionBeginUser;
+  *ek = 0;
+  if (!ld->moving) PetscFunctionReturn(0);
+  PetscCall(VecDuplicate(v, &vw));
+  PetscCall(WithInertia(ctx, v, vw));
+  PetscCall(FullField(ctx, vw, 0.0, PETSC_FALSE, ld->full2));
+  PetscCall(VecDestroy(&vw));
+  PetscCall(VecISCopy(ld->full2, ld->isD, SCATTER_FORWARD, ld->vD));
+  PetscCall(MatMult(ld->MD, ld->full2, ld->rD0));
+  PetscCall(VecDot(ld->vD, ld->rD0, &vMv));
+  *ek = PetscRealPart(vMv) - 0.5 * ld->vMv_DD;
+  PetscFunctionReturn(0);
+}
+
+/* The whole velocity field's constrained dofs (the output's dm_out shares dm_full's layout): the
+ * boundary's velocity. */
+PetscErrorCode MMLoadsInsertDirichletVelocity(MMCtx *ctx, Vec whole)
+{
+  PetscFunctionBeginUser;
+  if (ctx->loads.moving) PetscCall(VecISCopy(whole, ctx->loads.isD, SCATTER_FORWARD, ctx->loads.vD));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMLoadsDestroy(MMLoads *ld)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < ld->nparts; ++k) {
+    if (ld->part) PetscCall(VecDestroy(&ld->part[k]));
+    if (ld->partD) PetscCall(VecDestroy(&ld->partD[k]));
+    PetscCall(PetscFree2(ld->amp[k].t, ld->amp[k].f));
+  }
+  PetscCall(PetscFree(ld->part));
+  PetscCall(PetscFree(ld->partD));
+  PetscCall(PetscFree(ld->amp));
+  PetscCall(VecDestroy(&ld->load_old));
+  {
+    Vec *vecs[] = {&ld->full, &ld->full2, &ld->rD, &ld->rD0, &ld->uD0, &ld->uD1, &ld->vD};
+    for (size_t i = 0; i < sizeof(vecs) / sizeof(vecs[0]); ++i) PetscCall(VecDestroy(vecs[i]));
+  }
+  PetscCall(MatDestroy(&ld->KD));
+  PetscCall(MatDestroy(&ld->MD));
+  PetscCall(ISDestroy(&ld->isD));
+  PetscCall(PetscFree(ld->Dcomp));
+  PetscCall(PetscFree(ld->Dbc));
+  PetscCall(PetscFree(ld->reaction));
+  PetscCall(DMDestroy(&ld->dm_full));
+  PetscFunctionReturn(0);
+}
