@@ -66,3 +66,17 @@ def test_consistent_initial_state(b1):
     assert abs(h["total"][1] - h["total"][0]) <= 1e-12 * h["total"][0]
     # E0 is the elastic energy of the consistent state: 1/8 W (1 - h) on the strip
     assert abs(h["total"][0] - W / 8 * (1 - H)) <= 1e-12
+
+
+def test_redistributed_mass_rings_within_its_measured_bound(tmp_path):
+    """B1 is exact with the paper's modified mass (options/b1_bar.opts sets it, the tests above). The
+    redistributed mass, the default elsewhere, moves the end node's mass one cell into the bar: the
+    contact stress plateau then rings, measured at 2.2% (README "The mass"), and the energy balance
+    still closes. Bound 3%, and the ringing is there (above 1%): what the README says it gives."""
+    from conftest import run
+    h = run("b1_bar", tmp_path, "-mass", "redistributed", "-output_every", 0).history
+    t, stress = h["time"], h["force_normal"] / W
+    window = (t >= 1.2) & (t <= 1.85)
+    err = np.abs(stress[window] - 0.5).max() / 0.5
+    assert 0.01 < err <= 0.03, err
+    assert h["balance_residual"].max() <= 1e-10
