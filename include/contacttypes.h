@@ -145,6 +145,8 @@ typedef struct {
   Vec        Wdiag;               /* diag(W) on the cached nodes, the nodal compliances (1 elsewhere) */
   PetscInt  *scalar_index;        /* per owned contact node, its global index in the scalar vertex DM */
   PetscInt  *vertex;              /* per owned contact node, its mesh point */
+  PetscReal *all_gap0, *all_nu;   /* several obstacles: per owned contact node and obstacle b, the reference gap
+                                     g_b(X) and normal nu_b (3 entries): every node is checked against every obstacle */
   Vec        area;                /* per owned contact node, int_Gc phi_i: force to pressure */
   PetscInt   vi_its;              /* Newton iterations of the last solve */
   MMStepSolver kt;                /* K~ solver without a Delassus operator (-contact 0, active set) */

@@ -364,6 +364,7 @@ PetscErrorCode MMContactDestroy(MMContact *ct)
   PetscCall(VecDestroy(&ct->mu));
   PetscCall(PetscFree(ct->slide_ref));
   PetscCall(PetscFree(ct->node_frame));
+  PetscCall(PetscFree2(ct->all_gap0, ct->all_nu));
   PetscCall(PetscFree(ct->obstacle));
   PetscCall(PetscFree(ct->force_obstacle));
   PetscCall(VecDestroy(&ct->area));

@@ -2,6 +2,7 @@
  * penetration, the discrete Coulomb residual (docs/method.md section 6), and the output fields on
  * the contact boundary. */
 #include "../contactimpl.h"
+#include "obstacle.h"
 
 /* Per-node contact statistics of a state (w, react, sigma): sigma holds the velocity, whose
  * tangential components at a contact node are its slip velocity. */
@@ -14,13 +15,36 @@ typedef struct {
  * Cartesian resultant of the tangential reactions, since the tangent bases of two nodes need not
  * share an orientation. */
 
+/* With several obstacles: contact node k's deepest penetration of any obstacle, u.nu_b - g_b(t),
+ * g_b(t) = g_b(X) + c_b(t).nu_b, linearized at the reference position like its own constraint
+ * (docs/method.md section 8); w the node's frame components, cob the obstacles' displacements. A
+ * node tied to one obstacle may cross another (a corner between two walls): the history and the
+ * summary report it. */
+static PetscReal OtherObstaclesPenetration(MMCtx *ctx, PetscInt k, const PetscScalar w[], const PetscReal cob[])
+{
+  MMContact       *ct  = &ctx->contact;
+  const PetscInt   dim = ctx->op.dim, nob = ctx->opt.n_obstacles;
+  const PetscReal *F   = &ct->node_frame[9 * k];
+  PetscReal        u[MM_MAX_DIM] = {0, 0, 0}, worst = PETSC_MIN_REAL;
+
+  for (PetscInt e = 0; e < dim; ++e)
+    for (PetscInt d = 0; d < dim; ++d) u[d] += PetscRealPart(w[e]) * F[3 * e + d];
+  for (PetscInt b = 0; b < nob; ++b) {
+    const PetscReal *nu = &ct->all_nu[3 * (k * nob + b)];
+    PetscReal        p  = -ct->all_gap0[k * nob + b];
+    for (PetscInt d = 0; d < dim; ++d) p += (u[d] - cob[MM_MAX_DIM * b + d]) * nu[d];
+    worst = PetscMax(worst, p);
+  }
+  return worst;
+}
+
 static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma, PetscBool record_switches, ContactStats *st)
 {
   MMContact         *ct = &ctx->contact;
   const PetscReal    dt = ct->Kt_dt;
   const PetscInt     nob = ctx->opt.n_obstacles;
   const PetscScalar *mua;
-  PetscReal         *fob;
+  PetscReal         *fob, *cob;
   /* slip is judged by the step's slip increment sigma dt/2 against h_c', like penetration */
   const PetscReal    vtol = 1e-9 * 2 * ct->h_c / dt;
   PetscInt           dim = ctx->op.dim, nc = ct->n_local, cnt[4] = {0, 0, 0, 0}, rstart;
@@ -34,6 +58,8 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
   PetscCall(PetscMemzero(st, sizeof(*st)));
   if (!ct->enabled) PetscFunctionReturn(0);
   PetscCall(PetscCalloc1(MM_MAX_DIM * nob, &fob));
+  PetscCall(PetscCalloc1(MM_MAX_DIM * nob, &cob));
+  for (PetscInt b = 0; b < nob && ct->all_gap0; ++b) MMObstacleDisplacement(&ctx->opt.obstacles[b], dim, ctx->hist.time, &cob[MM_MAX_DIM * b]);
   PetscCall(VecGetArrayRead(ct->mu, &mua));
   PetscCall(VecGetOwnershipRange(w, &rstart, NULL));
   PetscCall(ISGetIndices(ct->is_normal, &in));
@@ -105,6 +131,7 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
     }
     loc[0] = PetscMax(loc[0], res);
     loc[1] = PetscMax(loc[1], un - g);
+    if (ct->all_gap0) loc[1] = PetscMax(loc[1], OtherObstaclesPenetration(ctx, k, &wa[i], cob));
   }
   if (nr > 1) {
     PetscCall(VecRestoreArrayRead(ct->rho, &ra));
@@ -115,6 +142,7 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
   /* the obstacle forces are recorded for accepted steps only: no reduction inside the friction loop */
   if (record_switches) PetscCall(MPIU_Allreduce(fob, ct->force_obstacle, MM_MAX_DIM * nob, MPIU_REAL, MPIU_SUM, comm));
   PetscCall(PetscFree(fob));
+  PetscCall(PetscFree(cob));
   PetscCall(VecRestoreArrayRead(sigma, &va));
   PetscCall(VecRestoreArrayRead(react, &fa));
   PetscCall(VecRestoreArrayRead(w, &wa));

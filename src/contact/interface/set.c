@@ -67,6 +67,25 @@ static PetscErrorCode NearestObstacle(MMCtx *ctx, const PetscReal x[], PetscInt 
   PetscFunctionReturn(0);
 }
 
+/* With several obstacles, contact node k's reference gap and normal (frame convention: nu = -n, the
+ * body's outward normal) to every obstacle, so that its penetration of any of them is seen, not only
+ * of the one it is constrained against (docs/method.md section 8). */
+static PetscErrorCode AllObstacleGaps(MMCtx *ctx, const PetscReal x[], PetscInt k)
+{
+  MMContact     *ct  = &ctx->contact;
+  const PetscInt dim = ctx->op.dim, nob = ctx->opt.n_obstacles;
+
+  PetscFunctionBeginUser;
+  if (nob < 2) PetscFunctionReturn(0);
+  for (PetscInt b = 0; b < nob; ++b) {
+    const MMObstacle *ob = &ctx->opt.obstacles[b];
+    PetscReal         n[MM_MAX_DIM] = {0, 0, 0};
+    PetscCall((*ob->distance)(ob, dim, x, &ct->all_gap0[k * nob + b], n));
+    for (PetscInt d = 0; d < 3; ++d) ct->all_nu[3 * (k * nob + b) + d] = -n[d];
+  }
+  PetscFunctionReturn(0);
+}
+
 /* Marks the vertices of the contact faces, agreed over ranks through the point SF: a vertex can
  * sit on a rank that does not hold the face it belongs to. */
 static PetscErrorCode MarkContactVertices(MMCtx *ctx, PetscInt **mark, Vec area)
@@ -210,6 +229,7 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
   PetscCall(PetscMalloc1(n, &nodal_area));
   PetscCall(PetscMalloc1(n, &ct->obstacle));
   PetscCall(PetscMalloc1(9 * (size_t)n, &ct->node_frame));
+  if (ctx->opt.n_obstacles > 1) PetscCall(PetscMalloc2((size_t)n * ctx->opt.n_obstacles, &ct->all_gap0, 3 * (size_t)n * ctx->opt.n_obstacles, &ct->all_nu));
   PetscCall(VecGetOwnershipRange(area, &astart, NULL));
   PetscCall(VecGetArrayRead(area, &av));
   PetscCall(MatCreateAIJ(comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, dim, NULL, 0, NULL, &ctx->op.Q));
@@ -226,6 +246,7 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
       PetscReal xv[MM_MAX_DIM] = {0, 0, 0}, n[MM_MAX_DIM] = {0, 0, 0}, F[MM_MAX_DIM][MM_MAX_DIM];
       for (PetscInt d = 0; d < dim; ++d) xv[d] = PetscRealPart(x[xoff + d]);
       PetscCall(NearestObstacle(ctx, xv, &ct->obstacle[nc], &gap[nc], n));
+      PetscCall(AllObstacleGaps(ctx, xv, nc));
       FrameFromNormal(dim, n, F);
       for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
         for (PetscInt b = 0; b < MM_MAX_DIM; ++b) ct->node_frame[9 * nc + 3 * a + b] = F[a][b];
