@@ -9,6 +9,14 @@ PETSC_EXTERN PetscErrorCode MMFEFromCartesian(MMCtx *, Vec, Vec);
 PETSC_EXTERN PetscErrorCode MMFEDestroy(MMOperators *);
 PETSC_EXTERN PetscErrorCode MMFERedistributeMass(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMFEMassMoments(MMCtx *);
+/* rigid_modes.c: the rigid-body modes, translations then rotations */
+#define MM_MAX_RIGID 6
+static inline PetscInt MMFENumRigidModes(PetscInt dim)
+{
+  return dim == 2 ? 3 : 6;
+}
+PETSC_EXTERN void           MMFERigidModeMatrix(PetscInt, const PetscReal[], PetscReal[MM_MAX_DIM][MM_MAX_RIGID]);
+PETSC_EXTERN PetscErrorCode MMFERigidModesCartesian(MMCtx *, const PetscReal[], PetscReal, PetscInt, Vec[]);
 /* The modified and the redistributed mass leave the contact-normal dofs without inertia. */
 static inline PetscBool MMFEHasMasslessDofs(const MMCtx *ctx)
 {

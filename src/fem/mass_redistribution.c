@@ -20,29 +20,6 @@
 #include "fem.h"
 #include <petscblaslapack.h>
 
-#define MM_MAX_RIGID 6
-
-static PetscInt NumRigidModes(PetscInt dim)
-{
-  return dim == 2 ? 3 : 6;
-}
-
-/* T(x): the velocity at x of each rigid mode, translations first, then rotations about the axes. */
-static void RigidModeMatrix(PetscInt dim, const PetscReal x[], PetscReal T[MM_MAX_DIM][MM_MAX_RIGID])
-{
-  for (PetscInt c = 0; c < MM_MAX_DIM; ++c)
-    for (PetscInt k = 0; k < MM_MAX_RIGID; ++k) T[c][k] = (c == k && c < dim) ? 1.0 : 0.0;
-  if (dim == 2) {
-    T[0][2] = -x[1];
-    T[1][2] = x[0];
-    return;
-  }
-  /* e_a x x: component c is eps_{c a b} x_b */
-  T[1][3] = -x[2], T[2][3] = x[1];
-  T[0][4] = x[2], T[2][4] = -x[0];
-  T[0][5] = -x[1], T[1][5] = x[0];
-}
-
 /* The centre and half-diagonal of the mesh's bounding box: rigid modes about it, scaled by it, keep
  * the Gram matrices of order one whatever the units and the position of the body. */
 static PetscErrorCode RigidFrame(MMCtx *ctx, PetscReal x0[], PetscReal *ell)
@@ -75,56 +52,21 @@ static PetscErrorCode RigidFrame(MMCtx *ctx, PetscReal x0[], PetscReal *ell)
   PetscFunctionReturn(0);
 }
 
-/* The rigid modes as w-frame vectors on the free dofs, about x0 and scaled by 1/ell (ell = 1, x0 = 0:
- * the plain modes). A Dirichlet component has no dof: its row of T is dropped. */
+/* The rigid modes as w-frame vectors on the free dofs, about x0 and scaled by 1/ell. */
 static PetscErrorCode RigidModes(MMCtx *ctx, const PetscReal x0[], PetscReal ell, Vec R[])
 {
-  DM                 dm  = ctx->op.dm;
-  const PetscInt     dim = ctx->op.dim, nr = NumRigidModes(dim);
-  PetscSection       gs, ls, cs;
-  PetscInt           vStart, vEnd, rstart;
-  Vec                X, cart;
-  const PetscScalar *x;
-  PetscScalar       *r[MM_MAX_RIGID];
+  const PetscInt nr = MMFENumRigidModes(ctx->op.dim);
+  Vec            cart;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalSection(dm, &gs));
-  PetscCall(DMGetLocalSection(dm, &ls));
-  PetscCall(DMGetCoordinateSection(dm, &cs));
-  PetscCall(DMGetCoordinatesLocal(dm, &X));
-  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
-  PetscCall(DMGetGlobalVector(dm, &cart));
-  PetscCall(VecGetOwnershipRange(cart, &rstart, NULL));
+  PetscCall(DMGetGlobalVector(ctx->op.dm, &cart));
   for (PetscInt k = 0; k < nr; ++k) PetscCall(VecDuplicate(cart, &R[k]));
-  for (PetscInt k = 0; k < nr; ++k) PetscCall(VecGetArray(R[k], &r[k]));
-  PetscCall(VecGetArrayRead(X, &x));
-  for (PetscInt v = vStart; v < vEnd; ++v) {
-    PetscInt        goff, xoff, ncdof;
-    const PetscInt *cidx;
-    PetscReal       xh[MM_MAX_DIM] = {0, 0, 0}, T[MM_MAX_DIM][MM_MAX_RIGID];
-
-    PetscCall(PetscSectionGetOffset(gs, v, &goff));
-    if (goff < 0) continue;
-    PetscCall(PetscSectionGetOffset(cs, v, &xoff));
-    PetscCall(PetscSectionGetConstraintDof(ls, v, &ncdof));
-    PetscCall(PetscSectionGetConstraintIndices(ls, v, &cidx));
-    for (PetscInt d = 0; d < dim; ++d) xh[d] = (PetscRealPart(x[xoff + d]) - x0[d]) / ell;
-    RigidModeMatrix(dim, xh, T);
-    for (PetscInt c = 0, i = goff - rstart; c < dim; ++c) {
-      PetscBool fixed = PETSC_FALSE;
-      for (PetscInt j = 0; j < ncdof; ++j) fixed = (PetscBool)(fixed || cidx[j] == c);
-      if (fixed) continue;
-      for (PetscInt k = 0; k < nr; ++k) r[k][i] = T[c][k];
-      ++i;
-    }
-  }
-  PetscCall(VecRestoreArrayRead(X, &x));
+  PetscCall(MMFERigidModesCartesian(ctx, x0, ell, nr, R));
   for (PetscInt k = 0; k < nr; ++k) {
-    PetscCall(VecRestoreArray(R[k], &r[k]));
     PetscCall(MatMultTranspose(ctx->op.Q, R[k], cart)); /* to the w-frame */
     PetscCall(VecCopy(cart, R[k]));
   }
-  PetscCall(DMRestoreGlobalVector(dm, &cart));
+  PetscCall(DMRestoreGlobalVector(ctx->op.dm, &cart));
   PetscFunctionReturn(0);
 }
 
@@ -277,7 +219,7 @@ static PetscErrorCode AddMomentCorrection(MMCtx *ctx, Vec kind, const PetscReal 
 {
   DM                 dm = ctx->op.dm, dms = ctx->out.dm_scalar;
   MMContact         *ct  = &ctx->contact;
-  const PetscInt     dim = ctx->op.dim, nr = NumRigidModes(dim), n2 = nr * nr;
+  const PetscInt     dim = ctx->op.dim, nr = MMFENumRigidModes(dim), n2 = nr * nr;
   MPI_Comm           comm = PetscObjectComm((PetscObject)dm);
   PetscSection       gs, cs;
   PetscInt           vStart, vEnd, rstart, *node;
@@ -313,7 +255,7 @@ static PetscErrorCode AddMomentCorrection(MMCtx *ctx, Vec kind, const PetscReal 
       PetscCall(PetscSectionGetOffset(cs, v, &xoff));
       mj = PetscRealPart(m[goff - rstart]);
       for (PetscInt d = 0; d < dim; ++d) xh[d] = (PetscRealPart(x[xoff + d]) - x0[d]) / ell;
-      RigidModeMatrix(dim, xh, T);
+      MMFERigidModeMatrix(dim, xh, T);
       /* PT = P T, P the projection on the tangent plane (the identity off the contact boundary) */
       for (PetscInt a = 0; a < dim; ++a)
         for (PetscInt c = 0; c < nr; ++c) {
@@ -408,7 +350,7 @@ static PetscReal MomentMismatch(PetscInt nr, PetscReal GM[MM_MAX_RIGID][MM_MAX_R
  * (docs/method.md section 2). */
 PetscErrorCode MMFERedistributeMass(MMCtx *ctx)
 {
-  const PetscInt nr   = NumRigidModes(ctx->op.dim);
+  const PetscInt nr   = MMFENumRigidModes(ctx->op.dim);
   MPI_Comm       comm = PetscObjectComm((PetscObject)ctx->op.dm);
   PetscReal      x0[MM_MAX_DIM], ell = 1, GM[MM_MAX_RIGID][MM_MAX_RIGID], Gs[MM_MAX_RIGID][MM_MAX_RIGID], dG[MM_MAX_RIGID][MM_MAX_RIGID];
   Vec            R[MM_MAX_RIGID], kind, normal[MM_MAX_DIM];
@@ -449,7 +391,7 @@ PetscErrorCode MMFERedistributeMass(MMCtx *ctx)
  * matrix: the modified mass lacks the normal masses, so it is not m I) and M's centre of gravity. */
 PetscErrorCode MMFEMassMoments(MMCtx *ctx)
 {
-  const PetscInt dim = ctx->op.dim, nr = NumRigidModes(dim);
+  const PetscInt dim = ctx->op.dim, nr = MMFENumRigidModes(dim);
   PetscReal      zero[MM_MAX_DIM] = {0, 0, 0}, GM[MM_MAX_RIGID][MM_MAX_RIGID], Gs[MM_MAX_RIGID][MM_MAX_RIGID];
   Vec            R[MM_MAX_RIGID];
 

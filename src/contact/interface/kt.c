@@ -4,62 +4,7 @@
  * with the rigid-body modes as near-null space, or hypre BoomerAMG), set up once per dt, prefix
  * contact_K_. The condensed formulation keeps its own factor (impls/condensed/). */
 #include "../contactimpl.h"
-
-/* Component c of rigid-body mode m at x: translations e_0..e_{d-1}, then rotations (2D: one, 3D:
- * three, e_k x x), about the origin (the modes are orthonormalized afterwards). */
-static PetscReal RigidMode(PetscInt dim, PetscInt m, PetscInt c, const PetscReal x[])
-{
-  if (m < dim) return m == c ? 1 : 0;
-  if (dim == 2) return c == 0 ? -x[1] : x[0];
-  {
-    const PetscInt k = m - dim, i = (k + 1) % 3, j = (k + 2) % 3;
-    return c == i ? -x[j] : c == j ? x[i] : 0;
-  }
-}
-
-/* The rigid-body modes of the free dofs, Cartesian, straight from the vertex coordinates: the
- * global section lists each owned vertex's free components (Dirichlet-constrained ones dropped). */
-static PetscErrorCode RigidBodyModesCartesian(MMCtx *ctx, PetscInt nmodes, Vec modes[])
-{
-  DM                 dm  = ctx->op.dm;
-  const PetscInt     dim = ctx->op.dim;
-  PetscSection       gs, ls, cs;
-  PetscInt           vStart, vEnd, rstart;
-  Vec                X;
-  const PetscScalar *xa;
-  PetscScalar       *ma[6];
-
-  PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalSection(dm, &gs));
-  PetscCall(DMGetLocalSection(dm, &ls));
-  PetscCall(DMGetCoordinateSection(dm, &cs));
-  PetscCall(DMGetCoordinatesLocal(dm, &X));
-  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
-  PetscCall(VecGetOwnershipRange(modes[0], &rstart, NULL));
-  PetscCall(VecGetArrayRead(X, &xa));
-  for (PetscInt m = 0; m < nmodes; ++m) PetscCall(VecGetArray(modes[m], &ma[m]));
-  for (PetscInt v = vStart; v < vEnd; ++v) {
-    PetscInt        goff, cdof, xoff, i = 0;
-    const PetscInt *cind = NULL;
-    PetscReal       x[MM_MAX_DIM] = {0, 0, 0};
-    PetscCall(PetscSectionGetOffset(gs, v, &goff));
-    if (goff < 0) continue; /* not owned */
-    PetscCall(PetscSectionGetConstraintDof(ls, v, &cdof));
-    if (cdof) PetscCall(PetscSectionGetConstraintIndices(ls, v, &cind));
-    PetscCall(PetscSectionGetOffset(cs, v, &xoff));
-    for (PetscInt d = 0; d < dim; ++d) x[d] = PetscRealPart(xa[xoff + d]);
-    for (PetscInt c = 0; c < dim; ++c) {
-      PetscBool fixed = PETSC_FALSE;
-      for (PetscInt j = 0; j < cdof; ++j) fixed = (PetscBool)(fixed || cind[j] == c);
-      if (fixed) continue;
-      for (PetscInt m = 0; m < nmodes; ++m) ma[m][goff - rstart + i] = RigidMode(dim, m, c, x);
-      ++i;
-    }
-  }
-  for (PetscInt m = 0; m < nmodes; ++m) PetscCall(VecRestoreArray(modes[m], &ma[m]));
-  PetscCall(VecRestoreArrayRead(X, &xa));
-  PetscFunctionReturn(0);
-}
+#include "fem.h"
 
 /* The rigid-body modes of the free dofs in the w-frame (rotated by Q^T at the contact nodes),
  * orthonormalized: GAMG's near-null space. */
@@ -73,7 +18,7 @@ static PetscErrorCode RigidBodyModes(MMCtx *ctx, MatNullSpace *sp)
     PetscCall(DMGetGlobalVector(ctx->op.dm, &ucart[m]));
     PetscCall(VecDuplicate(ctx->contact.qp.b, &modes[m]));
   }
-  PetscCall(RigidBodyModesCartesian(ctx, nmodes, ucart));
+  PetscCall(MMFERigidModesCartesian(ctx, (PetscReal[MM_MAX_DIM]){0, 0, 0}, 1.0, nmodes, ucart));
   for (PetscInt m = 0; m < nmodes; ++m) {
     PetscCall(MatMultTranspose(ctx->op.Q, ucart[m], modes[m]));
     PetscCall(DMRestoreGlobalVector(ctx->op.dm, &ucart[m]));
