@@ -6,6 +6,8 @@ import re
 import numpy as np
 import pytest
 
+from conftest import ROOT
+
 G = 9.81
 # the obstacle far below: the contact boundary is there, but nothing touches it in these runs
 FREE_2D = ("-mesh", "meshes/block.msh", "-contact_boundary", "base", "-obstacle_point", "0,-10", "-obstacle_normal", "0,1")
@@ -104,3 +106,19 @@ def test_spinning_body_keeps_its_angular_momentum(mm):
     assert max(np.abs(h["P_" + a] - h["P_" + a][0]).max() for a in "xyz") <= 1e-12 * scale
     L = np.vstack([h["L_x"], h["L_y"], h["L_z"]])
     assert np.abs(L - L[:, :1]).max() <= 1e-3 * np.abs(L).max()
+
+
+def test_body_one_cell_across_is_refused(tmp_path, mm):
+    """A block one cell thick, its base the contact boundary and its top held: every node is a contact
+    or a Dirichlet node, so no node can take the removed mass back. The run stops with a message that
+    says why and what to do, rather than running with a mass that lost its moments."""
+    import subprocess
+    mesh = tmp_path / "thin.msh"
+    subprocess.run(["gmsh", "-2", "meshes/block.geo", "-setnumber", "NX", "10", "-setnumber", "NY", "1", "-o", str(mesh), "-v", "0"],
+                   check=True, cwd=ROOT)
+    r = mm("punch", "-mesh", str(mesh), "-ts_max_steps", 2, np_=2, check=False)
+    assert r.returncode != 0
+    assert "-mass redistributed cannot give the contact nodes' normal mass back" in r.output
+    assert "more cells across, or use -mass modified" in r.output
+    ok = mm("punch", "-mesh", str(mesh), "-ts_max_steps", 2, "-mass", "modified", np_=2, name="modified")
+    assert ok.history["balance_residual"].max() <= 1e-12

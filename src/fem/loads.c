@@ -443,7 +443,7 @@ static PetscErrorCode WithInertia(MMCtx *ctx, Vec x, Vec y)
 {
   PetscFunctionBeginUser;
   PetscCall(VecCopy(x, y));
-  if (ctx->contact.enabled && ctx->opt.mass_type == MM_MASS_MODIFIED) PetscCall(VecISSet(y, ctx->contact.is_normal, 0.0));
+  if (MMFEHasMasslessDofs(ctx)) PetscCall(VecISSet(y, ctx->contact.is_normal, 0.0));
   PetscFunctionReturn(0);
 }
 

@@ -380,7 +380,9 @@ PetscErrorCode MMFERedistributeMass(MMCtx *ctx)
     for (PetscInt a = 0; a < nr; ++a)
       for (PetscInt b = 0; b < nr; ++b) dG[a][b] = GM[a][b] - Gs[a][b];
   }
-  PetscCheck(ctx->op.mass_moment_mismatch <= 1e-12, comm, PETSC_ERR_PLIB, "-mass redistributed: the moments of M* differ from those of M by %.3e of the mass after the redistribution", (double)ctx->op.mass_moment_mismatch);
+  /* what no node-block correction can reach: a body whose every node is on the contact boundary or
+   * held by Dirichlet data (one cell across), or whose free nodes are too few to carry the moments */
+  PetscCheck(ctx->op.mass_moment_mismatch <= 1e-12, comm, PETSC_ERR_USER_INPUT, "-mass redistributed cannot give the contact nodes' normal mass back: after the redistribution the moments of M* still differ from those of M by %.3g of the mass, because too few nodes are off the contact boundary and free of Dirichlet data to carry it (a body one cell across has none). Mesh the body with more cells across, or use -mass modified", (double)ctx->op.mass_moment_mismatch);
   PetscCall(VecDestroy(&kind));
   for (PetscInt d = 0; d < ctx->op.dim; ++d) PetscCall(VecDestroy(&normal[d]));
   for (PetscInt k = 0; k < nr; ++k) PetscCall(VecDestroy(&R[k]));
