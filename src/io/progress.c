@@ -133,10 +133,10 @@ static PetscErrorCode HeaderPhysics(MMCtx *ctx, TS ts)
   PetscFunctionReturn(0);
 }
 
-/* Line 6, the masses: M's total, and M*'s for a rigid translation along each axis (the modified
+/* Line 6 of the start-up report, and a line of the closing summary: the masses, M's total, and M*'s for a rigid translation along each axis (the modified
  * mass lacks the contact nodes' normal masses; the redistributed one has them back, and its moments
  * are M's, docs/method.md section 2). */
-static PetscErrorCode HeaderMass(MMCtx *ctx)
+PetscErrorCode MMProgressMassLine(MMCtx *ctx)
 {
   const PetscInt dim = ctx->op.dim;
   char           star[128] = "", moments[320] = "", unreachable[160] = "";
@@ -169,7 +169,7 @@ static PetscErrorCode HeaderContact(MMCtx *ctx)
   if (ctx->contact.enabled) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes against %s; %s %s mass; %s\n", ctx->contact.n_global, obstacles, opt->lumped ? "lumped" : "consistent", MMMassTypes[opt->mass_type], friction));
   else PetscCall(PetscPrintf(comm, "  contact: off (-contact 0), 0 contact nodes: linear elastodynamics; %s mass\n", opt->lumped ? "lumped" : "consistent"));
   PetscCall(PetscPrintf(comm, "  solvers: contact formulation %s; K~ by %s; %s\n", ctx->contact.type, solver, progress));
-  PetscCall(HeaderMass(ctx));
+  PetscCall(MMProgressMassLine(ctx));
   PetscFunctionReturn(0);
 }
 
