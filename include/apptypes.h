@@ -33,7 +33,8 @@ typedef struct {
   char      table[PETSC_MAX_PATH_LEN]; /* the two-column CSV of table, empty if not given */
 } MMAmplitudeOptions;
 
-/* A Dirichlet boundary: fixes the listed components to value + velocity t. */
+/* A Dirichlet boundary: fixes the listed components to value a(t) + velocity t, a its amplitude. */
+struct _MMAmplitude;
 typedef struct {
   char      *name;
   PetscInt   ncomp;   /* -1 until the dimension is known: then all components (a clamp) */
@@ -42,6 +43,8 @@ typedef struct {
   PetscInt   nvalues; /* entries given to -dirichlet_NAME_value, -1 if not set */
   PetscReal  velocity[MM_MAX_DIM];
   PetscInt   nvelocity; /* entries given to -dirichlet_NAME_velocity, -1 if not set */
+  MMAmplitudeOptions amplitude;     /* -dirichlet_NAME_amplitude... of the value */
+  const struct _MMAmplitude *amp;   /* its a(t), set by src/fem/loads.c; NULL: constant */
 } MMDirichlet;
 
 /* A Neumann boundary carrying a traction (force per unit area) times an amplitude in time. */

@@ -65,7 +65,10 @@ typedef struct {
   Mat          KD, MD;     /* rows D of the Cartesian stiffness and mass (M*: a is zero on the massless dofs) */
   Vec         *partD;      /* per part: its values on D */
   Vec          full, full2, rD, rD0, uD0, uD1, vD; /* scratch on dm_full and D; vD the boundary velocity */
-  PetscBool    moving;     /* some -dirichlet_NAME_velocity is nonzero */
+  PetscBool    moving;     /* some -dirichlet_NAME_velocity is nonzero, or some value has an amplitude */
+  PetscBool    dirichlet_amplitude; /* some value has an amplitude: u_D is not affine in t (lumped mass only) */
+  MMAmplitude *bc_amp;     /* per Dirichlet boundary (n_bc of them), its value's amplitude */
+  PetscInt     n_bc;
   PetscReal    vMv_DD;     /* vD . M_DD vD */
   PetscReal   *reaction;   /* per boundary, MM_MAX_DIM Cartesian components of the support's force on the body */
 } MMLoads;

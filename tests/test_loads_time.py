@@ -257,3 +257,50 @@ def test_3d_press_with_friction_and_gravity_ramp(tmp_path):
     assert h1["work_dirichlet"][-1] > 0.1 * escale and h1["slipping"][-1] > 0 and h1["work_friction"][-1] < 0
     for c in ENERGIES + ("reaction_top_x", "reaction_top_z"):
         assert np.abs(h1[c] - h2[c]).max() <= 1e-10 * max(escale, np.abs(h1["force_normal"]).max()), c
+
+
+DIRICHLET_RAMP = ("-contact", 0, "-v0", "0,0", "-mass_lumped", "-dirichlet", "left,right", "-dirichlet_left_components", 0,
+                  "-dirichlet_right_components", 0, "-dirichlet_right_value", 0.01, "-output_every", 0)
+
+
+def test_dirichlet_value_ramp_stretches_the_bar_quasi_statically(tmp_path):
+    """A bar (E = 1, nu = 0, 1 x 0.01) held at x = 0 whose end x = 1 is pulled to u = 0.01 by a slow ramp
+    amplitude on the Dirichlet value (T = 50, 16 times the bar's first period): at t = 60 the stress is
+    E eps = 0.01, so each support carries sigma A = 1e-4, the left one -1e-4, within 2% (the rest is
+    the vibration the ramp leaves, of order 1/(omega T)); the elastic energy is 1/2 sigma eps V =
+    5e-7; the support's work W_D equals the energy the bar gained, and the balance closes."""
+    r = run("b2_bar", tmp_path, *DIRICHLET_RAMP, "-dirichlet_right_amplitude", "ramp", "-dirichlet_right_amplitude_time", 50,
+            "-ts_dt", 0.05, "-ts_max_time", 60, np_=2)
+    h = r.history
+    assert abs(h["reaction_right_x"][-1] - 1e-4) <= 0.02 * 1e-4
+    assert abs(h["reaction_left_x"][-1] + 1e-4) <= 0.02 * 1e-4
+    assert abs(h["elastic"][-1] - 5e-7) <= 0.02 * 5e-7
+    assert abs(h["work_dirichlet"][-1] - (h["total"][-1] - h["total"][0])) <= 1e-10 * 5e-7
+    assert h["balance_residual"].max() <= 1e-10
+
+
+def test_dirichlet_value_pulse_balances_on_one_and_two_ranks(tmp_path):
+    """A half-sine pulse of the end displacement (T = 0.5, a fraction of the bar's transit time 1):
+    the energy identity with W_D closes at every step, and 1 and 2 ranks agree to 1e-10 of the energy
+    scale; the pulse puts energy in and takes part of it out again (W_D > 0 at the end: a wave runs)."""
+    extra = (*DIRICHLET_RAMP, "-dirichlet_right_amplitude", "halfsine", "-dirichlet_right_amplitude_time", 0.5,
+             "-ts_dt", 0.01, "-ts_max_time", 2)
+    one = run("b2_bar", tmp_path, *extra, np_=1, name="one").history
+    two = run("b2_bar", tmp_path, *extra, np_=2, name="two").history
+    escale = np.abs(one["total"]).max()
+    assert escale > 0 and one["balance_residual"].max() <= 1e-10 and two["balance_residual"].max() <= 1e-10
+    for c in ("kinetic", "elastic", "total", "work_dirichlet"):
+        assert np.abs(one[c] - two[c]).max() <= 1e-10 * escale, c
+    assert one["work_dirichlet"][-1] > 0.1 * escale
+
+
+@pytest.mark.parametrize("extra,message", [
+    (("-mass_lumped", 0), "-dirichlet_right_amplitude ramp needs -mass_lumped"),
+    (("-damping_mass", 1), "-dirichlet_right_amplitude with Rayleigh damping is not supported"),
+])
+def test_dirichlet_amplitude_refusals(tmp_path, extra, message):
+    """The consistent mass (the boundary's acceleration would drive the free dofs through M_fD) and
+    damping (the moving boundary's damping force) are refused with a message that says why."""
+    r = run("b2_bar", tmp_path, *DIRICHLET_RAMP, "-dirichlet_right_amplitude", "ramp", "-dirichlet_right_amplitude_time", 50,
+            "-ts_max_steps", 2, *extra, np_=1, check=False)
+    assert r.returncode != 0 and message in r.output, r.output[-1500:]

@@ -213,9 +213,11 @@ static PetscErrorCode ProcessDirichlet(PetscOptionItems *PetscOptionsObject, MPI
       }
     }
     PetscCall(PetscSNPrintf(key, sizeof(key), "-dirichlet_%s_value", bc->name));
-    PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "Constant displacement value of each fixed component, in the order of _components; default 0", MM_MAX_DIM, bc->values, &bc->nvalues));
+    PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "Displacement value of each fixed component, in the order of _components, times its _amplitude (default constant); default 0", MM_MAX_DIM, bc->values, &bc->nvalues));
     PetscCall(PetscSNPrintf(key, sizeof(key), "-dirichlet_%s_velocity", bc->name));
-    PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "Constant velocity of each fixed component, in the order of _components: the boundary moves as value + velocity t; default 0", MM_MAX_DIM, bc->velocity, &bc->nvelocity));
+    PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "Constant velocity of each fixed component, in the order of _components: the boundary moves as value a(t) + velocity t; default 0", MM_MAX_DIM, bc->velocity, &bc->nvelocity));
+    PetscCall(PetscSNPrintf(key, sizeof(key), "-dirichlet_%s", bc->name));
+    PetscCall(ProcessAmplitude(PetscOptionsObject, comm, key, &bc->amplitude));
   }
   PetscCall(PetscStrToArrayDestroy((int)n, names));
   PetscFunctionReturn(0);

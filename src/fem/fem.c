@@ -1,5 +1,6 @@
 /* P1 elasticity: discretization, boundary conditions, and the operators K, M, L in the contact frame. */
 #include "fem.h"
+#include "loads.h"
 #include "mesh.h"
 #include "contact.h"
 #include "assembly_p1.h"
@@ -49,13 +50,14 @@ static void obj_elastic_energy(PetscInt dim, PetscInt Nf, PetscInt NfAux, const 
 
 static PetscErrorCode DirichletEnergy(MMCtx *);
 
-/* Dirichlet data: value + velocity t per fixed component (docs/method.md section 10); ctx is the
- * MMDirichlet. Without a velocity the value is exactly the constant one. */
+/* Dirichlet data: value a(t) + velocity t per fixed component (docs/method.md section 10); ctx is
+ * the MMDirichlet. Without an amplitude or a velocity the value is exactly the constant one. */
 static PetscErrorCode bc_constant(PetscInt dim, PetscReal time, const PetscReal x[], PetscInt Nc, PetscScalar *u, void *ctx)
 {
   const MMDirichlet *bc = (const MMDirichlet *)ctx;
+  const PetscReal    a  = bc->amp ? MMAmplitudeValue(bc->amp, time) : 1.0;
   for (PetscInt c = 0; c < Nc; ++c) u[c] = 0;
-  for (PetscInt c = 0; c < bc->ncomp; ++c) u[bc->comps[c]] = bc->nvelocity > 0 ? bc->values[c] + bc->velocity[c] * time : bc->values[c];
+  for (PetscInt c = 0; c < bc->ncomp; ++c) u[bc->comps[c]] = bc->nvelocity > 0 ? bc->values[c] * a + bc->velocity[c] * time : bc->values[c] * a;
   return 0;
 }
 

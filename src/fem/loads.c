@@ -553,6 +553,7 @@ static PetscErrorCode SetUpMoving(MMCtx *ctx)
   PetscFunctionBeginUser;
   for (PetscInt b = 0; b < ctx->opt.n_dirichlet; ++b)
     for (PetscInt c = 0; c < ctx->opt.dirichlet[b].nvelocity; ++c) ld->moving = (PetscBool)(ld->moving || ctx->opt.dirichlet[b].velocity[c] != 0);
+  ld->moving = (PetscBool)(ld->moving || ld->dirichlet_amplitude);
   if (!ld->moving) PetscFunctionReturn(0);
   PetscCall(FullField(ctx, NULL, 1.0, PETSC_TRUE, ld->full));
   PetscCall(VecGetSubVector(ld->full, ld->isD, &sub));
@@ -572,12 +573,40 @@ static PetscErrorCode SetUpMoving(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
+/* The amplitudes of the Dirichlet values. A value that is not affine in t has an acceleration: with
+ * the lumped mass (M_fD = 0) it reaches the free dofs only through K_fD u_D(t), and the boundary
+ * nodes' own inertia is left out of the system, their motion being the support's (docs/method.md
+ * section 10); the consistent mass would need a_D in M*_fD a_D, which is not carried. */
+static PetscErrorCode DirichletAmplitudes(MMCtx *ctx)
+{
+  MMLoads  *ld   = &ctx->loads;
+  MMOptions *opt = &ctx->opt;
+  MPI_Comm  comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  char      prefix[PETSC_MAX_PATH_LEN];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscCalloc1(opt->n_dirichlet, &ld->bc_amp));
+  ld->n_bc = opt->n_dirichlet;
+  for (PetscInt b = 0; b < opt->n_dirichlet; ++b) {
+    MMDirichlet *bc = &opt->dirichlet[b];
+    PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "-dirichlet_%s", bc->name));
+    PetscCall(AmplitudeCreate(comm, prefix, &bc->amplitude, &ld->bc_amp[b]));
+    if (ld->bc_amp[b].constant) continue;
+    PetscCheck(opt->lumped, comm, PETSC_ERR_SUP, "%s_amplitude %s needs -mass_lumped: with the consistent mass the boundary's acceleration drives the free dofs through M_fD, which is not in the scheme (a constant -dirichlet_%s_velocity works with either mass)", prefix, bc->amplitude.kind, bc->name);
+    PetscCheck(opt->damping_mass <= 0 && opt->damping_stiffness <= 0 && opt->damping_ratio <= 0, comm, PETSC_ERR_SUP, "%s_amplitude with Rayleigh damping is not supported: the damping force of a moving boundary is not in the scheme. Drop one of the two", prefix);
+    bc->amp                 = &ld->bc_amp[b];
+    ld->dirichlet_amplitude = PETSC_TRUE;
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MMLoadsSetUp(MMCtx *ctx)
 {
   MMLoads *ld = &ctx->loads;
 
   PetscFunctionBeginUser;
   PetscCall(CheckAmplitudeNames(PetscObjectComm((PetscObject)ctx->op.dm), &ctx->opt));
+  if (ctx->opt.n_dirichlet) PetscCall(DirichletAmplitudes(ctx));
   if (ctx->opt.n_dirichlet) {
     PetscCall(CreateFullDM(ctx));
     PetscCall(ConstrainedDofs(ctx));
@@ -703,6 +732,8 @@ PetscErrorCode MMLoadsStepWork(MMCtx *ctx, PetscReal *w_ext_D, PetscReal *w_D)
     PetscCall(VecCopy(sub, ld->uD0));
     PetscCall(VecRestoreSubVector(ld->full, ld->isD, &sub));
     PetscCall(VecWAXPY(du, -1.0, ld->uD0, ld->uD1));
+    /* with amplitudes the boundary's velocity changes: the output shows the step's mean */
+    if (ld->dirichlet_amplitude && ld->t1 > ld->t0) PetscCall(VecAXPBY(ld->vD, 1.0 / (ld->t1 - ld->t0), 0.0, du));
     PetscCall(Reaction(ctx, s->u_old, s->a_old, ld->t0, R0));
     PetscCall(VecAXPY(R0, 1.0, R1));
     PetscCall(VecDot(R0, du, &wr));
@@ -730,7 +761,9 @@ PetscErrorCode MMLoadsDirichletKinetic(MMCtx *ctx, Vec v, PetscReal *ek)
 
   PetscFunctionBeginUser;
   *ek = 0;
-  if (!ld->moving) PetscFunctionReturn(0);
+  /* with amplitudes the boundary nodes' inertia is the support's, out of the system (lumped mass:
+   * M_fD = 0, so nothing couples them to the free dofs) */
+  if (!ld->moving || ld->dirichlet_amplitude) PetscFunctionReturn(0);
   PetscCall(VecDuplicate(v, &vw));
   PetscCall(WithInertia(ctx, v, vw));
   PetscCall(FullField(ctx, vw, 0.0, PETSC_FALSE, ld->full2));
@@ -762,6 +795,8 @@ PetscErrorCode MMLoadsDestroy(MMLoads *ld)
   PetscCall(PetscFree(ld->part));
   PetscCall(PetscFree(ld->partD));
   PetscCall(PetscFree(ld->amp));
+  for (PetscInt b = 0; b < ld->n_bc; ++b) PetscCall(PetscFree2(ld->bc_amp[b].t, ld->bc_amp[b].f));
+  PetscCall(PetscFree(ld->bc_amp));
   PetscCall(VecDestroy(&ld->load_old));
   {
     Vec *vecs[] = {&ld->full, &ld->full2, &ld->rD, &ld->rD0, &ld->uD0, &ld->uD1, &ld->vD};
