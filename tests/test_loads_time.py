@@ -265,7 +265,7 @@ DIRICHLET_RAMP = ("-contact", 0, "-v0", "0,0", "-mass_lumped", "-dirichlet", "le
 
 def test_dirichlet_value_ramp_stretches_the_bar_quasi_statically(tmp_path):
     """A bar (E = 1, nu = 0, 1 x 0.01) held at x = 0 whose end x = 1 is pulled to u = 0.01 by a slow ramp
-    amplitude on the Dirichlet value (T = 50, 16 times the bar's first period): at t = 60 the stress is
+    amplitude on the Dirichlet value (T = 50, 25 periods 2L/c of the held bar): at t = 60 the stress is
     E eps = 0.01, so each support carries sigma A = 1e-4, the left one -1e-4, within 2% (the rest is
     the vibration the ramp leaves, of order 1/(omega T)); the elastic energy is 1/2 sigma eps V =
     5e-7; the support's work W_D equals the energy the bar gained, and the balance closes."""
