@@ -6,3 +6,4 @@ PETSC_EXTERN PetscErrorCode MMLogRegister(MMLog *);
 PETSC_EXTERN PetscLogEvent MM_AssembleKM;
 /* Their rotation into the contact frame, K <- Q^T K Q and M <- Q^T M Q (fem.c) */
 PETSC_EXTERN PetscLogEvent MM_RotateKM;
+PETSC_EXTERN PetscLogEvent MM_MassRedistribute; /* -mass redistributed's construction, in set-up */

@@ -495,7 +495,11 @@ PetscErrorCode MMFEAssembleOperators(MMCtx *ctx)
   PetscCall(CheckFiniteOperators(ctx));
   PetscCall(MatDuplicate(ctx->op.M, MAT_COPY_VALUES, &ctx->op.Mstar));
   if (MMFEHasMasslessDofs(ctx)) PetscCall(MatZeroRowsColumnsIS(ctx->op.Mstar, ctx->contact.is_normal, 0.0, NULL, NULL));
-  if (MMFEHasMasslessDofs(ctx) && ctx->opt.mass_type == MM_MASS_REDISTRIBUTED) PetscCall(MMFERedistributeMass(ctx));
+  if (MMFEHasMasslessDofs(ctx) && ctx->opt.mass_type == MM_MASS_REDISTRIBUTED) {
+    PetscCall(PetscLogEventBegin(MM_MassRedistribute, 0, 0, 0, 0));
+    PetscCall(MMFERedistributeMass(ctx));
+    PetscCall(PetscLogEventEnd(MM_MassRedistribute, 0, 0, 0, 0));
+  }
   PetscCall(MMFEMassMoments(ctx));
   PetscCall(MatViewFromOptions(ctx->op.K, NULL, "-stiffness_view"));
   PetscCall(MatViewFromOptions(ctx->op.M, NULL, "-mass_view"));
