@@ -26,7 +26,7 @@ typedef struct {
   Vec       mass_lumped_cart; /* lumped standard mass per Cartesian dof */
   PetscReal mass_M;           /* total mass of M */
   PetscReal mass_star[MM_MAX_DIM * MM_MAX_DIM]; /* M*'s mass for rigid translations, dim x dim (m I for M) */
-  PetscReal x_cg[MM_MAX_DIM];                   /* M's centre of gravity in the reference configuration */
+  PetscReal mass_star_inv[MM_MAX_DIM * MM_MAX_DIM]; /* its inverse (zero without mass), for ucm and vcm */
   PetscReal mass_correction;      /* -mass redistributed: the largest negative eigenvalue of a node's moment correction over its mass */
   PetscReal mass_moment_unreachable; /* 3D: |trace of G's translation-rotation block| left, / total mass (mass_redistribution.c) */
   PetscReal mass_moment_mismatch; /* -mass redistributed: max |rigid-mode Gram of M* - of M| / total mass */

@@ -24,25 +24,11 @@
  * the Gram matrices of order one whatever the units and the position of the body. */
 static PetscErrorCode RigidFrame(MMCtx *ctx, PetscReal x0[], PetscReal *ell)
 {
-  DM                 dm  = ctx->op.dm;
-  const PetscInt     dim = ctx->op.dim;
-  Vec                X;
-  const PetscScalar *x;
-  PetscInt           n;
-  PetscReal          lo[MM_MAX_DIM] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}, hi[MM_MAX_DIM] = {PETSC_MIN_REAL, PETSC_MIN_REAL, PETSC_MIN_REAL}, d2 = 0;
+  const PetscInt dim = ctx->op.dim;
+  PetscReal      lo[MM_MAX_DIM], hi[MM_MAX_DIM], d2 = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetCoordinatesLocal(dm, &X));
-  PetscCall(VecGetLocalSize(X, &n));
-  PetscCall(VecGetArrayRead(X, &x));
-  for (PetscInt i = 0; i < n; i += dim)
-    for (PetscInt d = 0; d < dim; ++d) {
-      lo[d] = PetscMin(lo[d], PetscRealPart(x[i + d]));
-      hi[d] = PetscMax(hi[d], PetscRealPart(x[i + d]));
-    }
-  PetscCall(VecRestoreArrayRead(X, &x));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, lo, MM_MAX_DIM, MPIU_REAL, MPIU_MIN, PetscObjectComm((PetscObject)dm)));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, hi, MM_MAX_DIM, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)dm)));
+  PetscCall(DMGetBoundingBox(ctx->op.dm, lo, hi));
   for (PetscInt d = 0; d < MM_MAX_DIM; ++d) x0[d] = 0;
   for (PetscInt d = 0; d < dim; ++d) {
     x0[d] = 0.5 * (lo[d] + hi[d]);
@@ -389,8 +375,8 @@ PetscErrorCode MMFERedistributeMass(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
-/* The masses the diagnostics need: M's total mass, M*'s mass for rigid translations (a dim x dim
- * matrix: the modified mass lacks the normal masses, so it is not m I) and M's centre of gravity. */
+/* The masses the diagnostics need: M's total mass, and M*'s mass for rigid translations (a dim x dim
+ * matrix: the modified mass lacks the normal masses, so it is not m I) and its inverse. */
 PetscErrorCode MMFEMassMoments(MMCtx *ctx)
 {
   const PetscInt dim = ctx->op.dim, nr = MMFENumRigidModes(dim);
@@ -404,37 +390,16 @@ PetscErrorCode MMFEMassMoments(MMCtx *ctx)
   ctx->op.mass_M = GM[0][0];
   for (PetscInt a = 0; a < dim; ++a)
     for (PetscInt b = 0; b < dim; ++b) ctx->op.mass_star[a * dim + b] = Gs[a][b];
-  /* the centre of gravity of M, over the nodes without Dirichlet data; M* redistributed has the
-   * same (docs/method.md section 2) */
+  /* its inverse, for the centre-of-mass columns of every step (zero for a body without mass) */
   {
-    DM                 dm = ctx->op.dm;
-    PetscSection       gs, ls, cs;
-    PetscInt           vStart, vEnd, rstart;
-    Vec                X;
-    const PetscScalar *x, *m;
-    PetscReal          sum[1 + MM_MAX_DIM] = {0};
-
-    PetscCall(DMGetGlobalSection(dm, &gs));
-    PetscCall(DMGetLocalSection(dm, &ls));
-    PetscCall(DMGetCoordinateSection(dm, &cs));
-    PetscCall(DMGetCoordinatesLocal(dm, &X));
-    PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
-    PetscCall(VecGetOwnershipRange(ctx->op.mass_lumped_cart, &rstart, NULL));
-    PetscCall(VecGetArrayRead(ctx->op.mass_lumped_cart, &m));
-    PetscCall(VecGetArrayRead(X, &x));
-    for (PetscInt v = vStart; v < vEnd; ++v) {
-      PetscInt goff, xoff, ncdof;
-      PetscCall(PetscSectionGetOffset(gs, v, &goff));
-      PetscCall(PetscSectionGetConstraintDof(ls, v, &ncdof));
-      if (goff < 0 || ncdof) continue;
-      PetscCall(PetscSectionGetOffset(cs, v, &xoff));
-      sum[0] += PetscRealPart(m[goff - rstart]);
-      for (PetscInt d = 0; d < dim; ++d) sum[1 + d] += PetscRealPart(m[goff - rstart] * x[xoff + d]);
-    }
-    PetscCall(VecRestoreArrayRead(X, &x));
-    PetscCall(VecRestoreArrayRead(ctx->op.mass_lumped_cart, &m));
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, 1 + MM_MAX_DIM, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)dm)));
-    for (PetscInt d = 0; d < MM_MAX_DIM; ++d) ctx->op.x_cg[d] = d < dim && sum[0] > 0 ? sum[1 + d] / sum[0] : 0;
+    PetscReal m[MM_MAX_DIM][MM_MAX_DIM] = {{0}}, inv[MM_MAX_DIM][MM_MAX_DIM] = {{0}};
+    for (PetscInt a = 0; a < dim; ++a)
+      for (PetscInt b = 0; b < dim; ++b) m[a][b] = Gs[a][b];
+    if (PetscAbsReal(MMDetInverse(dim, m, inv)) <= PETSC_SMALL * PetscPowRealInt(PetscMax(ctx->op.mass_M, PETSC_SMALL), dim))
+      for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
+        for (PetscInt b = 0; b < MM_MAX_DIM; ++b) inv[a][b] = 0;
+    for (PetscInt a = 0; a < dim; ++a)
+      for (PetscInt b = 0; b < dim; ++b) ctx->op.mass_star_inv[a * dim + b] = inv[a][b];
   }
   for (PetscInt k = 0; k < nr; ++k) PetscCall(VecDestroy(&R[k]));
   PetscFunctionReturn(0);

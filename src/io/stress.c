@@ -13,8 +13,9 @@
 #include "fem.h"
 
 #define MM_SYM 6
+#define MM_GEOM (MM_MAX_DIM * MM_MAX_DIM + 1) /* per cell: J^{-1} (row-major, MM_MAX_DIM wide), then |T| */
 
-static PetscErrorCode StressWeights(MMCtx *);
+static PetscErrorCode StressGeometry(MMCtx *);
 
 /* Once: the stress DM (6 components per vertex, no constraints), its vectors, each local cell's vertices. */
 PetscErrorCode MMStressCreate(MMCtx *ctx)
@@ -56,7 +57,7 @@ PetscErrorCode MMStressCreate(MMCtx *ctx)
     PetscCall(DMPlexRestoreTransitiveClosure(ctx->op.dm, c, PETSC_TRUE, &n, &closure));
     PetscCheck(k == dim + 1, PETSC_COMM_SELF, PETSC_ERR_SUP, "The stress output needs simplices: cell %" PetscInt_FMT " has %" PetscInt_FMT " vertices", c, k);
   }
-  PetscCall(StressWeights(ctx));
+  PetscCall(StressGeometry(ctx));
   PetscFunctionReturn(0);
 }
 
@@ -67,26 +68,17 @@ static void EdgeMatrix(PetscInt dim, const PetscReal x[][MM_MAX_DIM], PetscReal 
     for (PetscInt j = 0; j < dim; ++j) J[i][j] = x[j + 1][i] - x[0][i];
 }
 
-static PetscReal CellVolume(PetscInt dim, const PetscReal x[][MM_MAX_DIM])
+/* One cell's stress (MM_SYM, Tensor6 order) from its inverse edge matrix Ji (MM_GEOM layout) and
+ * its vertices' Cartesian displacements u: grad u = D J^{-1}, D's columns the displacement
+ * differences along the edges. */
+static void CellStress(PetscInt dim, const PetscReal Ji[], const PetscReal u[][MM_MAX_DIM], PetscReal lambda, PetscReal mu, PetscReal s[MM_SYM])
 {
-  PetscReal J[MM_MAX_DIM][MM_MAX_DIM] = {{0}};
+  PetscReal e[3][3] = {{0}}, tr;
 
-  EdgeMatrix(dim, x, J);
-  return PetscAbsReal(MMDetInverse(dim, J, NULL)) / (dim == 2 ? 2.0 : 6.0);
-}
-
-/* One cell's stress (MM_SYM, Tensor6 order) from its vertex positions x and Cartesian displacements u:
- * grad u = D J^{-1}, D's columns the displacement differences along the edges. */
-static void CellStress(PetscInt dim, const PetscReal x[][MM_MAX_DIM], const PetscReal u[][MM_MAX_DIM], PetscReal lambda, PetscReal mu, PetscReal s[MM_SYM])
-{
-  PetscReal J[MM_MAX_DIM][MM_MAX_DIM] = {{0}}, Ji[MM_MAX_DIM][MM_MAX_DIM] = {{0}}, e[3][3] = {{0}}, tr;
-
-  EdgeMatrix(dim, x, J);
-  (void)MMDetInverse(dim, J, Ji);
   for (PetscInt i = 0; i < dim; ++i)
     for (PetscInt j = 0; j < dim; ++j) {
       PetscReal g = 0;
-      for (PetscInt k = 0; k < dim; ++k) g += (u[k + 1][i] - u[0][i]) * Ji[k][j];
+      for (PetscInt k = 0; k < dim; ++k) g += (u[k + 1][i] - u[0][i]) * Ji[MM_MAX_DIM * k + j];
       e[i][j] += 0.5 * g;
       e[j][i] += 0.5 * g;
     }
@@ -104,8 +96,9 @@ static PetscReal VonMises(const PetscScalar s[MM_SYM])
   return PetscSqrtReal(0.5 * (PetscSqr(PetscRealPart(s[0] - s[3])) + PetscSqr(PetscRealPart(s[3] - s[5])) + PetscSqr(PetscRealPart(s[5] - s[0]))) + 3 * (PetscSqr(PetscRealPart(s[1])) + PetscSqr(PetscRealPart(s[2])) + PetscSqr(PetscRealPart(s[4]))));
 }
 
-/* The lumped weights sum_T |T| of each vertex: geometry only, computed once. */
-static PetscErrorCode StressWeights(MMCtx *ctx)
+/* Geometry only, computed once: each cell's inverse edge matrix and volume (o->cell_geom), and the
+ * lumped weights sum_T |T| of each vertex. */
+static PetscErrorCode StressGeometry(MMCtx *ctx)
 {
   MMOutput          *o   = &ctx->out;
   const PetscInt     dim = ctx->op.dim;
@@ -117,28 +110,33 @@ static PetscErrorCode StressWeights(MMCtx *ctx)
   PetscInt           cStart, cEnd;
 
   PetscFunctionBeginUser;
+  PetscCall(DMPlexGetHeightStratum(ctx->op.dm, 0, &cStart, &cEnd));
+  PetscCall(PetscMalloc1(MM_GEOM * (cEnd - cStart), &o->cell_geom));
   PetscCall(DMGetLocalVector(o->dm_scalar, &lw));
   PetscCall(VecZeroEntries(lw));
   PetscCall(DMGetLocalSection(o->dm_scalar, &sw));
   PetscCall(DMGetCoordinateDM(ctx->op.dm, &cdm));
   PetscCall(DMGetLocalSection(cdm, &sx));
   PetscCall(DMGetCoordinatesLocal(ctx->op.dm, &X));
-  PetscCall(DMPlexGetHeightStratum(ctx->op.dm, 0, &cStart, &cEnd));
   PetscCall(VecGetArrayRead(X, &xa));
   PetscCall(VecGetArray(lw, &wa));
   for (PetscInt c = 0; c < cEnd - cStart; ++c) {
     const PetscInt *v = &o->cell_vertex[(dim + 1) * c];
-    PetscReal       x[MM_MAX_DIM + 1][MM_MAX_DIM] = {{0}}, vol;
+    PetscReal      *g = &o->cell_geom[MM_GEOM * c];
+    PetscReal       x[MM_MAX_DIM + 1][MM_MAX_DIM] = {{0}}, J[MM_MAX_DIM][MM_MAX_DIM] = {{0}}, Ji[MM_MAX_DIM][MM_MAX_DIM] = {{0}};
     for (PetscInt a = 0; a <= dim; ++a) {
       PetscInt ox;
       PetscCall(PetscSectionGetOffset(sx, v[a], &ox));
       for (PetscInt d = 0; d < dim; ++d) x[a][d] = PetscRealPart(xa[ox + d]);
     }
-    vol = CellVolume(dim, x);
+    EdgeMatrix(dim, x, J);
+    g[MM_GEOM - 1] = PetscAbsReal(MMDetInverse(dim, J, Ji)) / (dim == 2 ? 2.0 : 6.0);
+    for (PetscInt i = 0; i < MM_MAX_DIM; ++i)
+      for (PetscInt j = 0; j < MM_MAX_DIM; ++j) g[MM_MAX_DIM * i + j] = Ji[i][j];
     for (PetscInt a = 0; a <= dim; ++a) {
       PetscInt ow;
       PetscCall(PetscSectionGetOffset(sw, v[a], &ow));
-      wa[ow] += vol;
+      wa[ow] += g[MM_GEOM - 1];
     }
   }
   PetscCall(VecRestoreArray(lw, &wa));
@@ -156,10 +154,9 @@ PetscErrorCode MMStressCompute(MMCtx *ctx, PetscBool nodal)
   MMOutput          *o   = &ctx->out;
   const PetscInt     dim = ctx->op.dim;
   const PetscReal    lambda = PetscRealPart(ctx->constants[MM_C_LAMBDA]), mu = PetscRealPart(ctx->constants[MM_C_MU]);
-  DM                 cdm;
-  PetscSection       su, ss, sx;
-  Vec                lu, ls, X;
-  const PetscScalar *ua, *xa;
+  PetscSection       su, ss;
+  Vec                lu, ls;
+  const PetscScalar *ua;
   PetscScalar       *sa, *wa, *vm, *sc, *vc;
   PetscInt           cStart, cEnd, n;
 
@@ -170,31 +167,23 @@ PetscErrorCode MMStressCompute(MMCtx *ctx, PetscBool nodal)
   PetscCall(VecZeroEntries(ls));
   PetscCall(DMGetLocalSection(o->dm_out, &su));
   PetscCall(DMGetLocalSection(o->dm_stress, &ss));
-  PetscCall(DMGetCoordinateDM(ctx->op.dm, &cdm));
-  PetscCall(DMGetLocalSection(cdm, &sx));
-  PetscCall(DMGetCoordinatesLocal(ctx->op.dm, &X));
   PetscCall(DMPlexGetHeightStratum(ctx->op.dm, 0, &cStart, &cEnd));
   PetscCall(VecGetArrayRead(lu, &ua));
-  PetscCall(VecGetArrayRead(X, &xa));
   PetscCall(VecGetArray(ls, &sa));
   PetscCall(VecGetArray(o->stress_cell, &sc));
   PetscCall(VecGetArray(o->von_mises_cell, &vc));
   for (PetscInt c = 0; c < cEnd - cStart; ++c) {
     const PetscInt *v = &o->cell_vertex[(dim + 1) * c];
-    PetscReal       x[MM_MAX_DIM + 1][MM_MAX_DIM] = {{0}}, u[MM_MAX_DIM + 1][MM_MAX_DIM] = {{0}}, s[MM_SYM], vol;
+    const PetscReal *g   = &o->cell_geom[MM_GEOM * c], vol = g[MM_GEOM - 1];
+    PetscReal        u[MM_MAX_DIM + 1][MM_MAX_DIM] = {{0}}, s[MM_SYM];
     for (PetscInt a = 0; a <= dim; ++a) {
-      PetscInt ou, ox;
+      PetscInt ou;
       PetscCall(PetscSectionGetOffset(su, v[a], &ou));
-      PetscCall(PetscSectionGetOffset(sx, v[a], &ox));
-      for (PetscInt d = 0; d < dim; ++d) {
-        u[a][d] = PetscRealPart(ua[ou + d]);
-        x[a][d] = PetscRealPart(xa[ox + d]);
-      }
+      for (PetscInt d = 0; d < dim; ++d) u[a][d] = PetscRealPart(ua[ou + d]);
     }
-    CellStress(dim, x, u, lambda, mu, s);
+    CellStress(dim, g, u, lambda, mu, s);
     for (PetscInt k = 0; k < MM_SYM; ++k) sc[MM_SYM * c + k] = s[k];
     vc[c] = VonMises(&sc[MM_SYM * c]);
-    vol   = CellVolume(dim, x);
     for (PetscInt a = 0; a <= dim; ++a) {
       PetscInt os;
       PetscCall(PetscSectionGetOffset(ss, v[a], &os));
@@ -204,7 +193,6 @@ PetscErrorCode MMStressCompute(MMCtx *ctx, PetscBool nodal)
   PetscCall(VecRestoreArray(o->von_mises_cell, &vc));
   PetscCall(VecRestoreArray(o->stress_cell, &sc));
   PetscCall(VecRestoreArray(ls, &sa));
-  PetscCall(VecRestoreArrayRead(X, &xa));
   PetscCall(VecRestoreArrayRead(lu, &ua));
   if (!nodal) {
     PetscCall(DMRestoreLocalVector(o->dm_stress, &ls));
@@ -241,5 +229,6 @@ PetscErrorCode MMStressDestroy(MMOutput *o)
   PetscCall(VecDestroy(&o->von_mises_cell));
   PetscCall(DMDestroy(&o->dm_stress));
   PetscCall(PetscFree(o->cell_vertex));
+  PetscCall(PetscFree(o->cell_geom));
   PetscFunctionReturn(0);
 }

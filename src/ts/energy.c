@@ -227,21 +227,18 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
  * stiffness, so P and J change over a step by dt times the trapezoidal mean of the resultant (and
  * moment) of L and the contact forces: no elastic term, whatever the deformation. */
 /* A constant L's resultant is summed on the initial state only (with_load); L(t) at every step. */
-static PetscErrorCode SchemeMomenta(MMCtx *ctx, MMHistory *h, PetscBool with_load)
+static PetscErrorCode SchemeMomenta(MMCtx *ctx, MMHistory *h, PetscBool with_load, Vec mv)
 {
   DM                 dm  = ctx->op.dm;
   const PetscInt     dim = ctx->op.dim;
   PetscSection       gs, ls, cs;
   PetscInt           vStart, vEnd, rstart;
-  Vec                mv, lc, X;
+  Vec                lc, X;
   const PetscScalar *p, *l, *x;
   PetscReal          sum[2 * MM_MAX_DIM + 3] = {0};
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalVector(dm, &mv));
   PetscCall(DMGetGlobalVector(dm, &lc));
-  PetscCall(MatMult(ctx->op.Mstar, ctx->state.v, ctx->state.work));
-  PetscCall(MMFEToCartesian(ctx, ctx->state.work, mv));
   if (with_load) PetscCall(MMFEToCartesian(ctx, ctx->op.load, lc));
   else PetscCall(VecZeroEntries(lc));
   PetscCall(DMGetGlobalSection(dm, &gs));
@@ -282,7 +279,6 @@ static PetscErrorCode SchemeMomenta(MMCtx *ctx, MMHistory *h, PetscBool with_loa
   }
   for (PetscInt d = 0; d < 3; ++d) h->J[d] = sum[MM_MAX_DIM + d];
   PetscCall(DMRestoreGlobalVector(dm, &lc));
-  PetscCall(DMRestoreGlobalVector(dm, &mv));
   PetscFunctionReturn(0);
 }
 
@@ -393,7 +389,7 @@ PetscErrorCode MMRigidBodyDiagnostics(MMCtx *ctx, MMHistory *h)
   PetscInt           vStart, vEnd, dim = ctx->op.dim, rstart;
   Vec                mu, mv;
   const PetscScalar *q, *p;
-  PetscReal          sum[2 * MM_MAX_DIM] = {0}, minv[MM_MAX_DIM][MM_MAX_DIM], mstar[MM_MAX_DIM][MM_MAX_DIM] = {{0}};
+  PetscReal          sum[2 * MM_MAX_DIM] = {0};
   MPI_Comm           comm = PetscObjectComm((PetscObject)dm);
 
   PetscFunctionBeginUser;
@@ -424,22 +420,15 @@ PetscErrorCode MMRigidBodyDiagnostics(MMCtx *ctx, MMHistory *h)
   PetscCall(VecRestoreArrayRead(mv, &p));
   PetscCall(VecRestoreArrayRead(mu, &q));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, 2 * MM_MAX_DIM, MPIU_REAL, MPIU_SUM, comm));
-  for (PetscInt a = 0; a < dim; ++a)
-    for (PetscInt b = 0; b < dim; ++b) mstar[a][b] = ctx->op.mass_star[a * dim + b];
-  if (dim == 2) mstar[2][2] = 1;
-  if (PetscAbsReal(MMDetInverse(dim, mstar, minv)) <= PETSC_SMALL * PetscPowRealInt(PetscMax(ctx->op.mass_M, PETSC_SMALL), dim)) {
-    for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
-      for (PetscInt b = 0; b < MM_MAX_DIM; ++b) minv[a][b] = 0; /* a body without mass: no centre */
-  }
   for (PetscInt a = 0; a < dim; ++a) {
     h->ucm[a] = h->vcm[a] = 0;
     for (PetscInt b = 0; b < dim; ++b) {
-      h->ucm[a] += minv[a][b] * sum[b];
-      h->vcm[a] += minv[a][b] * sum[MM_MAX_DIM + b];
+      h->ucm[a] += ctx->op.mass_star_inv[a * dim + b] * sum[b];
+      h->vcm[a] += ctx->op.mass_star_inv[a * dim + b] * sum[MM_MAX_DIM + b];
     }
   }
   PetscCall(AngularMomentum(ctx, h));
-  PetscCall(SchemeMomenta(ctx, h, (PetscBool)(h->step == 0 || ctx->loads.in_time)));
+  PetscCall(SchemeMomenta(ctx, h, (PetscBool)(h->step == 0 || ctx->loads.in_time), mv));
   PetscCall(DMRestoreGlobalVector(dm, &mv));
   PetscCall(DMRestoreGlobalVector(dm, &mu));
   PetscFunctionReturn(0);
