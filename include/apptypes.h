@@ -118,7 +118,8 @@ typedef struct {
   PetscReal    strain_warn, max_strain;
   PetscBool    debug; /* -debug: full PETSc traces (read again by errors.c before the options) */
   PetscInt     vec_count[MM_V_NUM]; /* entries given to each vector option, -1 if not set */
-  PetscInt     n_obstacles;         /* -obstacles, or the one plane of -obstacle_point/_normal */
+  PetscInt     n_obstacles;         /* the rigid obstacles, then the contact pairs */
+  PetscInt     n_rigid;             /* -obstacles, or the one plane of -obstacle_point/_normal (0 with pairs alone) */
   MMObstacle  *obstacles;
   PetscBool    obstacles_named;     /* -obstacles was given */
   PetscReal    mu_max;              /* the largest friction coefficient of the obstacles */

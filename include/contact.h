@@ -36,3 +36,4 @@ PETSC_EXTERN PetscErrorCode MMContactCoulomb(MMCtx *, Vec, Vec, Vec, PetscReal *
 PETSC_EXTERN PetscErrorCode MMContactBoundaryFields(MMCtx *, MMOutput *);
 PETSC_EXTERN PetscErrorCode MMContactObstacleField(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMContactDestroy(MMContact *);
+PETSC_EXTERN PetscErrorCode MMContactPairsTransformOperators(MMCtx *);

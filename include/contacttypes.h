@@ -98,6 +98,18 @@ typedef struct {
   PetscBool  monitor;
 } MMActiveSet;
 
+/* The contact pairs between surfaces of the mesh (src/contact/interface/pairs.c): each pair's master
+ * surface gathered on every rank, and per owned contact node the master vertices' first global dofs
+ * (-1: held or absent) and weights of its constraint. */
+typedef struct {
+  PetscInt   n;        /* pairs */
+  PetscInt  *nf;       /* per pair: master facets */
+  PetscReal **xf;      /* per pair and facet: vertex coordinates, outward normal, centroid */
+  PetscInt  **df;      /* per pair and facet: each vertex's first global dof, -1 if held */
+  PetscReal *phi;      /* per contact node, MM_MAX_DIM: weights phi_j of its master vertices */
+  PetscInt  *mdof;     /* per contact node, MM_MAX_DIM: their first global dofs */
+} MMContactPairs;
+
 /* Contact set, gaps, bounds and the per-step contact solver. Friction wraps ContactSolve. */
 typedef struct {
   PetscBool  enabled;
@@ -151,4 +163,5 @@ typedef struct {
   PetscInt   vi_its;              /* Newton iterations of the last solve */
   MMStepSolver kt;                /* K~ solver without a Delassus operator (-contact 0, active set) */
   MMActiveSet  as;                /* the active-set formulation */
+  MMContactPairs pairs;           /* contact between two bodies of the mesh */
 } MMContact;

@@ -6,6 +6,8 @@ PETSC_EXTERN PetscErrorCode MMFEElasticEnergy(MMCtx *, Vec, PetscReal *);
 PETSC_EXTERN PetscErrorCode MMFECheckElasticEnergy(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMFEToCartesian(MMCtx *, Vec, Vec);
 PETSC_EXTERN PetscErrorCode MMFEFromCartesian(MMCtx *, Vec, Vec);
+PETSC_EXTERN PetscErrorCode MMFEForceToCartesian(MMCtx *, Vec, Vec);
+PETSC_EXTERN PetscErrorCode MMFEForceFromCartesian(MMCtx *, Vec, Vec);
 PETSC_EXTERN PetscErrorCode MMFEDestroy(MMOperators *);
 PETSC_EXTERN PetscErrorCode MMFERedistributeMass(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMFEMassMoments(MMCtx *);

@@ -20,7 +20,9 @@ typedef struct {
   Mat       K;      /* stiffness A */
   Mat       M;      /* standard mass (consistent or lumped) */
   Mat       Mstar;  /* mass used in time stepping: M with the contact-normal rows/columns removed, or M */
-  Mat       Q;      /* frame rotation, u_cart = Q w */
+  Mat       Q;      /* frame rotation, u_cart = Q w without contact pairs */
+  Mat       N, Ninv; /* contact pairs: the slave nodes' relative variables, u_cart = Q N w (NULL without pairs) */
+  Vec       pair_work; /* scratch for Q N w */
   Vec       load;   /* L: body force + traction (w-frame), constant in time */
   Vec       lift;   /* K_fD u_D: the Dirichlet data's elastic force on the free dofs (w-frame) */
   Vec       mass_lumped_cart; /* lumped standard mass per Cartesian dof */

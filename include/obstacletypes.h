@@ -14,6 +14,10 @@ struct _MMObstacle {
   PetscBool inside;                  /* the body is inside the sphere, circle or cylinder */
   PetscReal mu;                      /* friction coefficient against this obstacle */
   PetscReal velocity[MM_MAX_DIM], start, stop; /* moves at velocity for start < t <= stop */
+  /* a contact pair between two surfaces of the mesh (-contact_pairs), not a rigid shape: its slave
+   * and master surfaces; it never moves and has no distance function */
+  PetscBool pair;
+  char      slave[64], master[64];
   /* checks the parameters the shape needs, once the dimension is known */
   PetscErrorCode (*check)(MMObstacle *, MPI_Comm, PetscInt);
   /* signed distance g of x (positive outside the obstacle) and n = grad g, in the obstacle's

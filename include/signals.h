@@ -4,3 +4,4 @@
 PETSC_EXTERN PetscErrorCode MMSignalsSetUp(MMCtx *, TS);
 PETSC_EXTERN PetscErrorCode MMSignalsReport(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMSignalsDieWithLauncher(void);
+PETSC_EXTERN PetscErrorCode MMMPIEnvironmentSet(void);

@@ -102,6 +102,7 @@ int main(int argc, char **argv)
     if (status) return status;
   }
   PetscCall(MMSignalsDieWithLauncher());
+  PetscCall(MMMPIEnvironmentSet());
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(MMErrorsSetUp());
   PetscCall(PetscMemzero(&ctx, sizeof(ctx)));

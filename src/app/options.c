@@ -292,21 +292,60 @@ static PetscErrorCode ProcessObstacle(PetscOptionItems *PetscOptionsObject, MPI_
   PetscFunctionReturn(0);
 }
 
+/* Contact pair p of -contact_pairs, kept after the rigid obstacles in opt->obstacles so that each
+ * contact node's constraint has one index, force column and mu (docs/method.md section 11): its
+ * slave and master surfaces (physical names) and its friction coefficient. */
+static PetscErrorCode ProcessPair(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt, char **names, PetscInt p, const char list[])
+{
+  MMObstacle *ob = &opt->obstacles[opt->n_rigid + p];
+  char        key[512];
+  PetscBool   set;
+
+  PetscFunctionBeginUser;
+  PetscCheck(names[p][0], comm, PETSC_ERR_USER_INPUT, "-contact_pairs %s has an empty name", list);
+  for (PetscInt a = 0; a < p; ++a) {
+    PetscBool same;
+    PetscCall(PetscStrcmp(names[a], names[p], &same));
+    PetscCheck(!same, comm, PETSC_ERR_USER_INPUT, "-contact_pairs %s names %s twice", list, names[p]);
+  }
+  PetscCall(PetscStrncpy(ob->name, names[p], sizeof(ob->name)));
+  PetscCall(PetscStrncpy(ob->type, "pair", sizeof(ob->type)));
+  ob->pair = PETSC_TRUE;
+  ob->stop = PETSC_MAX_REAL;
+  ob->mu   = opt->mu;
+  PetscCall(PetscSNPrintf(key, sizeof(key), "-contact_pair_%s_slave", ob->name));
+  PetscCall(OptionsString(PetscOptionsObject, comm, key, "Physical name of the pair's slave surface (a Physical Curve in 2D, Surface in 3D): its nodes carry the constraints and lose their normal mass", ob->slave, sizeof(ob->slave), &set));
+  PetscCheck(set, comm, PETSC_ERR_USER_INPUT, "Contact pair %s has no slave surface: give -contact_pair_%s_slave NAME, a physical group of the mesh (the finer of the two surfaces)", ob->name, ob->name);
+  PetscCall(PetscSNPrintf(key, sizeof(key), "-contact_pair_%s_master", ob->name));
+  PetscCall(OptionsString(PetscOptionsObject, comm, key, "Physical name of the pair's master surface: the facets the slave nodes are projected on", ob->master, sizeof(ob->master), &set));
+  PetscCheck(set, comm, PETSC_ERR_USER_INPUT, "Contact pair %s has no master surface: give -contact_pair_%s_master NAME, a physical group of the mesh on the other body", ob->name, ob->name);
+  PetscCall(PetscSNPrintf(key, sizeof(key), "-contact_pair_%s_mu", ob->name));
+  PetscCall(OptionsReal(PetscOptionsObject, comm, key, "Coulomb friction coefficient between the pair's surfaces, >= 0 (default -mu)", &ob->mu));
+  PetscCheck(ob->mu >= 0, comm, PETSC_ERR_USER_INPUT, "-contact_pair_%s_mu %g: a friction coefficient is >= 0", ob->name, (double)ob->mu);
+  PetscFunctionReturn(0);
+}
+
 /* -obstacles NAME,... or, without it, the single plane of -obstacle_point and -obstacle_normal
  * (completed once the dimension is known). */
 static PetscErrorCode ProcessObstacles(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt)
 {
-  char     list[PETSC_MAX_PATH_LEN] = "", **names;
-  PetscInt n;
+  char     list[PETSC_MAX_PATH_LEN] = "", plist[PETSC_MAX_PATH_LEN] = "", **names, **pnames;
+  PetscInt n, np;
 
   PetscFunctionBeginUser;
   PetscCall(OptionsString(PetscOptionsObject, comm, "-obstacles", "Comma-separated names of the rigid obstacles; each takes -obstacle_NAME_type plane|sphere|circle|cylinder and its parameters. Each contact node is constrained against the one nearest to it in the reference configuration (default: one plane, -obstacle_point and -obstacle_normal)", list, sizeof(list), NULL));
   PetscCall(SplitNames(comm, "-obstacles", list, &n, &names));
   opt->obstacles_named = (PetscBool)(n > 0);
   PetscCheck(!n || (opt->vec_count[MM_V_OBSTACLE_POINT] < 0 && opt->vec_count[MM_V_OBSTACLE_NORMAL] < 0), comm, PETSC_ERR_USER_INPUT, "-obstacles %s and -obstacle_point/-obstacle_normal were both given: give the plane as one of the named obstacles (-obstacle_NAME_type plane -obstacle_NAME_point ... -obstacle_NAME_normal ...)", list);
-  opt->n_obstacles = n ? n : 1;
+  PetscCall(OptionsString(PetscOptionsObject, comm, "-contact_pairs", "Comma-separated names of contact pairs between two surfaces of the mesh (two elastic bodies); each takes -contact_pair_NAME_slave, -contact_pair_NAME_master and -contact_pair_NAME_mu. Without -obstacles, a run with pairs has no rigid obstacle", plist, sizeof(plist), NULL));
+  PetscCall(SplitNames(comm, "-contact_pairs", plist, &np, &pnames));
+  /* pairs alone: no default plane, unless one was given by -obstacle_point/-obstacle_normal */
+  opt->n_rigid     = n ? n : (np && opt->vec_count[MM_V_OBSTACLE_POINT] < 0 && opt->vec_count[MM_V_OBSTACLE_NORMAL] < 0 ? 0 : 1);
+  opt->n_obstacles = opt->n_rigid + np;
   PetscCall(PetscCalloc1(opt->n_obstacles, &opt->obstacles));
-  for (PetscInt b = 0; b < opt->n_obstacles; ++b) {
+  for (PetscInt p = 0; p < np; ++p) PetscCall(ProcessPair(PetscOptionsObject, comm, opt, pnames, p, plist));
+  PetscCall(PetscStrToArrayDestroy((int)np, pnames));
+  for (PetscInt b = 0; b < opt->n_rigid; ++b) {
     MMObstacle *ob = &opt->obstacles[b];
     ob->npoint = ob->nnormal = ob->ncenter = ob->naxis = ob->nvelocity = -1;
     ob->stop = PETSC_MAX_REAL;
@@ -517,7 +556,7 @@ PetscErrorCode MMOptionsCheckDimension(MPI_Comm comm, MMOptions *opt, PetscInt d
   nrm = PetscSqrtReal(nrm);
   PetscCheck(PetscAbsReal(nrm - 1.0) < 1e-6, comm, PETSC_ERR_USER_INPUT, "-obstacle_normal must be a unit vector, its norm is %g", (double)nrm);
   for (PetscInt d = 0; d < dim; ++d) opt->obstacle_normal[d] /= nrm;
-  if (!opt->obstacles_named) {
+  if (!opt->obstacles_named && opt->n_rigid) {
     MMObstacle *ob = &opt->obstacles[0];
     for (PetscInt d = 0; d < MM_MAX_DIM; ++d) {
       ob->point[d]  = opt->obstacle_point[d];
@@ -527,7 +566,7 @@ PetscErrorCode MMOptionsCheckDimension(MPI_Comm comm, MMOptions *opt, PetscInt d
   }
   opt->mu_max = 0;
   for (PetscInt b = 0; b < opt->n_obstacles; ++b) {
-    PetscCall(MMObstacleCheck(&opt->obstacles[b], comm, dim));
+    if (b < opt->n_rigid) PetscCall(MMObstacleCheck(&opt->obstacles[b], comm, dim));
     opt->mu_max = PetscMax(opt->mu_max, opt->obstacles[b].mu);
   }
   for (PetscInt b = 0; b < opt->n_dirichlet; ++b) {

@@ -28,6 +28,12 @@ PETSC_INTERN PetscErrorCode MMContactSwapKeptOperator(MMContact *, KSP *);
 /* react = K~ w - b on the contact dofs (contact.c) */
 PETSC_INTERN PetscErrorCode MMContactForce(MMCtx *, Vec, Vec, Vec);
 
+/* interface/pairs.c: contact pairs between two bodies, node to segment or facet */
+PETSC_INTERN PetscErrorCode MMContactPairsSetUp(MMCtx *, const PetscInt[], PetscInt);
+PETSC_INTERN PetscErrorCode MMContactPairsProject(MMCtx *, PetscInt, PetscInt, const PetscReal[], PetscReal *, PetscReal[]);
+PETSC_INTERN PetscErrorCode MMContactPairsBuildTransform(MMCtx *);
+PETSC_INTERN PetscErrorCode MMContactPairsDestroy(MMContactPairs *);
+
 /* interface/qp.c: bound-constrained QPs as SNESVI solves; exact linear solves */
 PETSC_EXTERN PetscErrorCode MMKSPCheckDirect(KSP);
 PETSC_EXTERN PetscErrorCode MMQPCreate(MPI_Comm, const char[], MMBoundQP *, PetscReal, SNES *);

@@ -501,6 +501,8 @@ PetscErrorCode MMFEAssembleOperators(MMCtx *ctx)
     PetscCall(PetscLogEventEnd(MM_MassRedistribute, 0, 0, 0, 0));
   }
   PetscCall(MMFEMassMoments(ctx));
+  if (ctx->op.N) PetscCall(VecDuplicate(ctx->op.load, &ctx->op.pair_work));
+  PetscCall(MMContactPairsTransformOperators(ctx));
   PetscCall(MatViewFromOptions(ctx->op.K, NULL, "-stiffness_view"));
   PetscCall(MatViewFromOptions(ctx->op.M, NULL, "-mass_view"));
   PetscCall(VecDestroy(&Lcart));
@@ -509,17 +511,45 @@ PetscErrorCode MMFEAssembleOperators(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
+/* Displacements and velocities: u = Q N w, w = N^{-1} Q^T u (N = I without contact pairs, Q
+ * orthogonal). Forces, their duals: f = Q N^{-T} f_w, f_w = N^T Q^T f (docs/method.md section 11). */
 PetscErrorCode MMFEToCartesian(MMCtx *ctx, Vec w, Vec ucart)
 {
   PetscFunctionBeginUser;
-  PetscCall(MatMult(ctx->op.Q, w, ucart));
+  if (ctx->op.N) {
+    PetscCall(MatMult(ctx->op.N, w, ctx->op.pair_work));
+    PetscCall(MatMult(ctx->op.Q, ctx->op.pair_work, ucart));
+  } else PetscCall(MatMult(ctx->op.Q, w, ucart));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode MMFEFromCartesian(MMCtx *ctx, Vec ucart, Vec w)
 {
   PetscFunctionBeginUser;
-  PetscCall(MatMultTranspose(ctx->op.Q, ucart, w));
+  if (ctx->op.N) {
+    PetscCall(MatMultTranspose(ctx->op.Q, ucart, ctx->op.pair_work));
+    PetscCall(MatMult(ctx->op.Ninv, ctx->op.pair_work, w));
+  } else PetscCall(MatMultTranspose(ctx->op.Q, ucart, w));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMFEForceToCartesian(MMCtx *ctx, Vec fw, Vec fcart)
+{
+  PetscFunctionBeginUser;
+  if (ctx->op.N) {
+    PetscCall(MatMultTranspose(ctx->op.Ninv, fw, ctx->op.pair_work));
+    PetscCall(MatMult(ctx->op.Q, ctx->op.pair_work, fcart));
+  } else PetscCall(MatMult(ctx->op.Q, fw, fcart));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMFEForceFromCartesian(MMCtx *ctx, Vec fcart, Vec fw)
+{
+  PetscFunctionBeginUser;
+  if (ctx->op.N) {
+    PetscCall(MatMultTranspose(ctx->op.Q, fcart, ctx->op.pair_work));
+    PetscCall(MatMultTranspose(ctx->op.N, ctx->op.pair_work, fw));
+  } else PetscCall(MatMultTranspose(ctx->op.Q, fcart, fw));
   PetscFunctionReturn(0);
 }
 
@@ -579,6 +609,9 @@ PetscErrorCode MMFEDestroy(MMOperators *op)
   PetscCall(MatDestroy(&op->M));
   PetscCall(MatDestroy(&op->Mstar));
   PetscCall(MatDestroy(&op->Q));
+  PetscCall(MatDestroy(&op->N));
+  PetscCall(MatDestroy(&op->Ninv));
+  PetscCall(VecDestroy(&op->pair_work));
   PetscCall(VecDestroy(&op->load));
   PetscCall(VecDestroy(&op->lift));
   PetscCall(VecDestroy(&op->mass_lumped_cart));

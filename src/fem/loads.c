@@ -419,7 +419,7 @@ static PetscErrorCode FullField(MMCtx *ctx, Vec w, PetscReal t, PetscBool with_b
   PetscFunctionReturn(0);
 }
 
-/* The free dofs of a dm_full vector, in the w-frame. */
+/* The free dofs of a dm_full vector of forces, in the w-frame. */
 static PetscErrorCode FreePart(MMCtx *ctx, Vec full, Vec w)
 {
   DM  dm = ctx->op.dm;
@@ -431,7 +431,7 @@ static PetscErrorCode FreePart(MMCtx *ctx, Vec full, Vec w)
   PetscCall(DMGlobalToLocal(ctx->loads.dm_full, full, INSERT_VALUES, l));
   PetscCall(VecZeroEntries(g));
   PetscCall(DMLocalToGlobal(dm, l, INSERT_VALUES, g));
-  PetscCall(MMFEFromCartesian(ctx, g, w));
+  PetscCall(MMFEForceFromCartesian(ctx, g, w));
   PetscCall(DMRestoreLocalVector(dm, &l));
   PetscCall(DMRestoreGlobalVector(dm, &g));
   PetscFunctionReturn(0);
@@ -512,6 +512,8 @@ static PetscErrorCode CreateParts(MMCtx *ctx)
     PetscCall(VecDuplicate(ctx->op.load, &ld->load_old));
   }
   if (ctx->opt.n_dirichlet) PetscCall(PetscMalloc1(ld->nparts, &ld->partD));
+  /* a load in time on a body without Dirichlet boundaries still builds its parts on dm_full */
+  if (!ld->dm_full) PetscCall(CreateFullDM(ctx));
   for (PetscInt k = 0; k < ld->nparts; ++k) {
     Vec full;
     PetscCall(DMGetGlobalVector(ld->dm_full, &full));

@@ -239,7 +239,7 @@ static PetscErrorCode SchemeMomenta(MMCtx *ctx, MMHistory *h, PetscBool with_loa
 
   PetscFunctionBeginUser;
   PetscCall(DMGetGlobalVector(dm, &lc));
-  if (with_load) PetscCall(MMFEToCartesian(ctx, ctx->op.load, lc));
+  if (with_load) PetscCall(MMFEForceToCartesian(ctx, ctx->op.load, lc));
   else PetscCall(VecZeroEntries(lc));
   PetscCall(DMGetGlobalSection(dm, &gs));
   PetscCall(DMGetLocalSection(dm, &ls));
@@ -396,9 +396,9 @@ PetscErrorCode MMRigidBodyDiagnostics(MMCtx *ctx, MMHistory *h)
   PetscCall(DMGetGlobalVector(dm, &mu));
   PetscCall(DMGetGlobalVector(dm, &mv));
   PetscCall(MatMult(ctx->op.Mstar, ctx->state.u, ctx->state.work));
-  PetscCall(MMFEToCartesian(ctx, ctx->state.work, mu));
+  PetscCall(MMFEForceToCartesian(ctx, ctx->state.work, mu));
   PetscCall(MatMult(ctx->op.Mstar, ctx->state.v, ctx->state.work));
-  PetscCall(MMFEToCartesian(ctx, ctx->state.work, mv));
+  PetscCall(MMFEForceToCartesian(ctx, ctx->state.work, mv));
   PetscCall(DMGetGlobalSection(dm, &gs));
   PetscCall(DMGetLocalSection(dm, &ls));
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));

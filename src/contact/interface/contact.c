@@ -366,6 +366,7 @@ PetscErrorCode MMContactDestroy(MMContact *ct)
   PetscCall(PetscFree(ct->node_frame));
   PetscCall(PetscFree2(ct->all_gap0, ct->all_nu));
   PetscCall(PetscFree(ct->obstacle));
+  PetscCall(MMContactPairsDestroy(&ct->pairs));
   PetscCall(PetscFree(ct->force_obstacle));
   PetscCall(VecDestroy(&ct->area));
   PetscCall(ISDestroy(&ct->is_normal));

@@ -23,7 +23,7 @@ typedef struct {
 static PetscReal OtherObstaclesPenetration(MMCtx *ctx, PetscInt k, const PetscScalar w[], const PetscReal cob[])
 {
   MMContact       *ct  = &ctx->contact;
-  const PetscInt   dim = ctx->op.dim, nob = ctx->opt.n_obstacles;
+  const PetscInt   dim = ctx->op.dim, nob = ctx->opt.n_rigid;
   const PetscReal *F   = &ct->node_frame[9 * k];
   PetscReal        u[MM_MAX_DIM] = {0, 0, 0}, worst = PETSC_MIN_REAL;
 
@@ -59,7 +59,7 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
   if (!ct->enabled) PetscFunctionReturn(0);
   PetscCall(PetscCalloc1(MM_MAX_DIM * nob, &fob));
   PetscCall(PetscCalloc1(MM_MAX_DIM * nob, &cob));
-  for (PetscInt b = 0; b < nob && ct->all_gap0; ++b) MMObstacleDisplacement(&ctx->opt.obstacles[b], dim, ctx->hist.time, &cob[MM_MAX_DIM * b]);
+  for (PetscInt b = 0; b < ctx->opt.n_rigid && ct->all_gap0; ++b) MMObstacleDisplacement(&ctx->opt.obstacles[b], dim, ctx->hist.time, &cob[MM_MAX_DIM * b]);
   PetscCall(VecGetArrayRead(ct->mu, &mua));
   PetscCall(VecGetOwnershipRange(w, &rstart, NULL));
   PetscCall(ISGetIndices(ct->is_normal, &in));
@@ -131,7 +131,8 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
     }
     loc[0] = PetscMax(loc[0], res);
     loc[1] = PetscMax(loc[1], un - g);
-    if (ct->all_gap0) loc[1] = PetscMax(loc[1], OtherObstaclesPenetration(ctx, k, &wa[i], cob));
+    /* a pair's slave node: its w are relative displacements (it is on no rigid obstacle's surface) */
+    if (ct->all_gap0 && ct->obstacle[k] < ctx->opt.n_rigid) loc[1] = PetscMax(loc[1], OtherObstaclesPenetration(ctx, k, &wa[i], cob));
   }
   if (nr > 1) {
     PetscCall(VecRestoreArrayRead(ct->rho, &ra));

@@ -20,7 +20,7 @@ static PetscErrorCode RigidBodyModes(MMCtx *ctx, MatNullSpace *sp)
   }
   PetscCall(MMFERigidModesCartesian(ctx, (PetscReal[MM_MAX_DIM]){0, 0, 0}, 1.0, nmodes, ucart));
   for (PetscInt m = 0; m < nmodes; ++m) {
-    PetscCall(MatMultTranspose(ctx->op.Q, ucart[m], modes[m]));
+    PetscCall(MMFEFromCartesian(ctx, ucart[m], modes[m]));
     PetscCall(DMRestoreGlobalVector(ctx->op.dm, &ucart[m]));
   }
   /* modified Gram-Schmidt; a mode the Dirichlet data remove entirely is still harmless to GAMG */

@@ -52,7 +52,7 @@ static PetscErrorCode NearestObstacle(MMCtx *ctx, const PetscReal x[], PetscInt 
 
   PetscFunctionBeginUser;
   *which = -1;
-  for (PetscInt b = 0; b < ctx->opt.n_obstacles; ++b) {
+  for (PetscInt b = 0; b < ctx->opt.n_rigid; ++b) {
     const MMObstacle *ob = &ctx->opt.obstacles[b];
     PetscReal         g, nb[MM_MAX_DIM] = {0, 0, 0}, len = 0;
     PetscCall((*ob->distance)(ob, dim, x, &g, nb));
@@ -73,7 +73,7 @@ static PetscErrorCode NearestObstacle(MMCtx *ctx, const PetscReal x[], PetscInt 
 static PetscErrorCode AllObstacleGaps(MMCtx *ctx, const PetscReal x[], PetscInt k)
 {
   MMContact     *ct  = &ctx->contact;
-  const PetscInt dim = ctx->op.dim, nob = ctx->opt.n_obstacles;
+  const PetscInt dim = ctx->op.dim, nob = ctx->opt.n_rigid;
 
   PetscFunctionBeginUser;
   if (nob < 2) PetscFunctionReturn(0);
@@ -86,32 +86,23 @@ static PetscErrorCode AllObstacleGaps(MMCtx *ctx, const PetscReal x[], PetscInt 
   PetscFunctionReturn(0);
 }
 
-/* Marks the vertices of the contact faces, agreed over ranks through the point SF: a vertex can
- * sit on a rank that does not hold the face it belongs to. */
-static PetscErrorCode MarkContactVertices(MMCtx *ctx, PetscInt **mark, Vec area)
+/* Marks the points of one contact surface with value, and adds int_F phi_i to each vertex's area. */
+static PetscErrorCode MarkSurface(MMCtx *ctx, const char name[], PetscInt value, PetscInt mark[], PetscScalar aa[])
 {
-  Vec          aloc;
-  PetscScalar *aa;
   DM              dm = ctx->op.dm;
   DMLabel         label;
   IS              vis, pis;
-  PetscInt        pStart, pEnd, vStart, vEnd, n, nv;
+  PetscInt        pStart, vStart, vEnd, n, nv;
   const PetscInt *pts, *vals;
-  PetscInt       *root;
-  PetscSF         sf;
+  const PetscInt  dim = ctx->op.dim;
 
   PetscFunctionBeginUser;
-  PetscCall(MMMeshGetLabel(dm, ctx->opt.contact_name, &label));
-  PetscCall(DMPlexGetChart(dm, &pStart, &pEnd));
+  PetscCall(MMMeshGetLabel(dm, name, &label));
+  PetscCall(DMPlexGetChart(dm, &pStart, NULL));
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
-  PetscCall(PetscCalloc1(pEnd - pStart, mark));
-  PetscCall(PetscCalloc1(pEnd - pStart, &root));
   PetscCall(DMLabelGetValueIS(label, &vis));
   PetscCall(ISGetLocalSize(vis, &nv));
   PetscCall(ISGetIndices(vis, &vals));
-  PetscCall(DMGetLocalVector(ctx->out.dm_scalar, &aloc));
-  PetscCall(VecZeroEntries(aloc));
-  PetscCall(VecGetArray(aloc, &aa));
   for (PetscInt i = 0; i < nv; ++i) {
     PetscCall(DMLabelGetStratumIS(label, vals[i], &pis));
     if (!pis) continue;
@@ -119,17 +110,18 @@ static PetscErrorCode MarkContactVertices(MMCtx *ctx, PetscInt **mark, Vec area)
     PetscCall(ISGetIndices(pis, &pts));
     for (PetscInt j = 0; j < n; ++j) {
       PetscInt *closure = NULL, ncl, h;
-      PetscCall(DMPlexGetPointHeight(dm, pts[j], &h));
-      PetscCheck(h >= 1, PetscObjectComm((PetscObject)dm), PETSC_ERR_USER_INPUT, "Contact boundary \"%s\" contains cells: it must be a Physical Curve (2D) or Physical Surface (3D)", ctx->opt.contact_name);
       PetscReal farea = 0;
-      PetscInt  dim   = ctx->op.dim;
+      PetscCall(DMPlexGetPointHeight(dm, pts[j], &h));
+      PetscCheck(h >= 1, PetscObjectComm((PetscObject)dm), PETSC_ERR_USER_INPUT, "Contact surface \"%s\" contains cells: it must be a Physical Curve (2D) or Physical Surface (3D)", name);
       if (h == 1) PetscCall(DMPlexComputeCellGeometryFVM(dm, pts[j], &farea, NULL, NULL));
       PetscCall(DMPlexGetTransitiveClosure(dm, pts[j], PETSC_TRUE, &ncl, &closure));
       for (PetscInt k = 0; k < ncl; ++k) {
-        PetscInt off, end;
-        (*mark)[closure[2 * k] - pStart] = 1;
-        if (closure[2 * k] < vStart || closure[2 * k] >= vEnd) continue;
-        PetscCall(DMPlexGetPointLocal(ctx->out.dm_scalar, closure[2 * k], &off, &end));
+        const PetscInt q = closure[2 * k];
+        PetscInt       off, end;
+        PetscCheck(!mark[q - pStart] || mark[q - pStart] == value, PetscObjectComm((PetscObject)dm), PETSC_ERR_USER_INPUT, "Contact surface \"%s\" shares a node with another contact surface (-contact_boundary or a pair's slave surface): a node carries one kind of constraint. Separate the physical groups", name);
+        mark[q - pStart] = value;
+        if (q < vStart || q >= vEnd) continue;
+        PetscCall(DMPlexGetPointLocal(ctx->out.dm_scalar, q, &off, &end));
         aa[off] += farea / dim; /* int_F phi_i for P1 on a simplex face */
       }
       PetscCall(DMPlexRestoreTransitiveClosure(dm, pts[j], PETSC_TRUE, &ncl, &closure));
@@ -139,6 +131,30 @@ static PetscErrorCode MarkContactVertices(MMCtx *ctx, PetscInt **mark, Vec area)
   }
   PetscCall(ISRestoreIndices(vis, &vals));
   PetscCall(ISDestroy(&vis));
+  PetscFunctionReturn(0);
+}
+
+/* Marks the vertices of the contact faces, agreed over ranks through the point SF: a vertex can
+ * sit on a rank that does not hold the face it belongs to. The mark is 1 on -contact_boundary (the
+ * rigid obstacles') and 2 + p on pair p's slave surface. */
+static PetscErrorCode MarkContactVertices(MMCtx *ctx, PetscInt **mark, Vec area)
+{
+  Vec          aloc;
+  PetscScalar *aa;
+  DM           dm = ctx->op.dm;
+  PetscInt     pStart, pEnd;
+  PetscInt    *root;
+  PetscSF      sf;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetChart(dm, &pStart, &pEnd));
+  PetscCall(PetscCalloc1(pEnd - pStart, mark));
+  PetscCall(PetscCalloc1(pEnd - pStart, &root));
+  PetscCall(DMGetLocalVector(ctx->out.dm_scalar, &aloc));
+  PetscCall(VecZeroEntries(aloc));
+  PetscCall(VecGetArray(aloc, &aa));
+  if (ctx->opt.n_rigid) PetscCall(MarkSurface(ctx, ctx->opt.contact_name, 1, *mark, aa));
+  for (PetscInt b = ctx->opt.n_rigid; b < ctx->opt.n_obstacles; ++b) PetscCall(MarkSurface(ctx, ctx->opt.obstacles[b].slave, 2 + b - ctx->opt.n_rigid, *mark, aa));
   PetscCall(VecRestoreArray(aloc, &aa));
   PetscCall(VecZeroEntries(area));
   PetscCall(DMLocalToGlobal(ctx->out.dm_scalar, aloc, ADD_VALUES, area));
@@ -229,7 +245,7 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
   PetscCall(PetscMalloc1(n, &nodal_area));
   PetscCall(PetscMalloc1(n, &ct->obstacle));
   PetscCall(PetscMalloc1(9 * (size_t)n, &ct->node_frame));
-  if (ctx->opt.n_obstacles > 1) PetscCall(PetscMalloc2((size_t)n * ctx->opt.n_obstacles, &ct->all_gap0, 3 * (size_t)n * ctx->opt.n_obstacles, &ct->all_nu));
+  if (ctx->opt.n_rigid > 1) PetscCall(PetscMalloc2((size_t)n * ctx->opt.n_rigid, &ct->all_gap0, 3 * (size_t)n * ctx->opt.n_rigid, &ct->all_nu));
   PetscCall(VecGetOwnershipRange(area, &astart, NULL));
   PetscCall(VecGetArrayRead(area, &av));
   PetscCall(MatCreateAIJ(comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, dim, NULL, 0, NULL, &ctx->op.Q));
@@ -241,12 +257,18 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
     if (goff < 0) continue;
     PetscCall(PetscSectionGetConstraintDof(ls, v, &cdof));
     PetscCall(PetscSectionGetOffset(cs, v, &xoff));
-    PetscCheck(cdof == 0, comm, PETSC_ERR_USER_INPUT, "A node of the contact boundary \"%s\" at (%g, %g) is also on a Dirichlet boundary. Contact dofs must be free: separate the two physical groups", ctx->opt.contact_name, (double)PetscRealPart(x[xoff]), (double)PetscRealPart(x[xoff + 1]));
+    PetscCheck(cdof == 0, comm, PETSC_ERR_USER_INPUT, "A node of the contact boundary \"%s\" at (%g, %g) is also on a Dirichlet boundary. Contact dofs must be free: separate the two physical groups", mark[v - pStart] >= 2 ? ctx->opt.obstacles[ctx->opt.n_rigid + mark[v - pStart] - 2].slave : ctx->opt.contact_name, (double)PetscRealPart(x[xoff]), (double)PetscRealPart(x[xoff + 1]));
     {
       PetscReal xv[MM_MAX_DIM] = {0, 0, 0}, n[MM_MAX_DIM] = {0, 0, 0}, F[MM_MAX_DIM][MM_MAX_DIM];
       for (PetscInt d = 0; d < dim; ++d) xv[d] = PetscRealPart(x[xoff + d]);
-      PetscCall(NearestObstacle(ctx, xv, &ct->obstacle[nc], &gap[nc], n));
-      PetscCall(AllObstacleGaps(ctx, xv, nc));
+      if (mark[v - pStart] >= 2) {
+        const PetscInt p = mark[v - pStart] - 2;
+        PetscCall(MMContactPairsProject(ctx, p, nc, xv, &gap[nc], n));
+        ct->obstacle[nc] = ctx->opt.n_rigid + p;
+      } else {
+        PetscCall(NearestObstacle(ctx, xv, &ct->obstacle[nc], &gap[nc], n));
+        PetscCall(AllObstacleGaps(ctx, xv, nc));
+      }
       FrameFromNormal(dim, n, F);
       for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
         for (PetscInt b = 0; b < MM_MAX_DIM; ++b) ct->node_frame[9 * nc + 3 * a + b] = F[a][b];
@@ -379,7 +401,13 @@ PetscErrorCode MMContactSetUp(MMCtx *ctx)
   }
   PetscCall(DMCreateGlobalVector(ctx->out.dm_scalar, &area));
   PetscCall(MarkContactVertices(ctx, &mark, area));
+  {
+    PetscInt vStart, vEnd;
+    PetscCall(DMPlexGetDepthStratum(ctx->op.dm, 0, &vStart, &vEnd));
+    PetscCall(MMContactPairsSetUp(ctx, mark, vEnd - vStart));
+  }
   PetscCall(BuildContactDofs(ctx, mark, area));
+  PetscCall(MMContactPairsBuildTransform(ctx));
   PetscCall(ContactLayerDiameter(ctx, mark));
   PetscCall(PetscFree(mark));
   PetscCall(VecDestroy(&area));

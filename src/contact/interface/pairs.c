@@ -1,0 +1,376 @@
+/* Contact between two elastic bodies (docs/method.md section 11): the pairs of -contact_pairs.
+ *
+ * Each slave node s is projected, in the reference configuration, on the closest facet of its
+ * pair's master surface: local coordinates phi_j on the facet's vertices m_j, the facet's outward
+ * normal n and the gap g = n.(X_s - sum_j phi_j X_mj). Its constraint is the node-to-segment (2D)
+ * or node-to-facet (3D) condition nu.(u_s - sum_j phi_j u_mj) <= g, nu = -n.
+ *
+ * The constraint becomes a bound on one dof by a change of variables. With y = Q^T u the contact
+ * frame components, the slave node's frame components are replaced by relative ones,
+ * w_s = y_s - sum_j phi_j F_s u_mj (F_s the node's frame), every other dof unchanged: y = N w with
+ * N = I + C, C nonzero only in the slave rows and the master columns. Since no master node is a
+ * slave or a rigid-contact node, C^2 = 0 and N^{-1} = I - C. The normal component of w_s is then
+ * bounded by g exactly as against a rigid obstacle, and every contact formulation and friction
+ * solver runs unchanged on K_w = N^T K_y N and M*_w = N^T M*_y N. M*_y has no mass on the slave
+ * normals, so N^T M*_y N = M*_y when only the normal is relative (frictionless): the slave nodes'
+ * normal mass is removed as in Hager, Hueber and Wohlmuth (2008). With friction the tangential
+ * components are relative too, so that the friction law sees the relative slip.
+ *
+ * The master surface is small next to the mesh: it is gathered on every rank, so that a slave node
+ * and its master facet may sit on different ranks. */
+#include <petscsf.h>
+#include "mesh.h"
+#include "../contactimpl.h"
+
+/* One facet of a master surface, as gathered on every rank. */
+#define MM_FACET_REALS 16 /* coordinates (dim x dim), outward normal (dim), centroid key (dim) */
+
+/* The facets of pair p's master surface owned or seen here: vertex coordinates, outward normal
+ * (away from the master body's cell), and the global index of each vertex's first dof, -1 for a
+ * vertex held by Dirichlet data (it does not move). */
+static PetscErrorCode LocalMasterFacets(MMCtx *ctx, const MMObstacle *ob, const PetscInt mark[], PetscInt *nf, PetscReal **xf, PetscInt **df)
+{
+  DM              dm = ctx->op.dm;
+  const PetscInt  dim = ctx->op.dim;
+  DMLabel         label;
+  IS              vis, pis;
+  PetscInt        nv, pStart, vStart, vEnd, cap = 16, n = 0;
+  const PetscInt *vals;
+  PetscSection    gs, ls;
+  Vec             X;
+  MPI_Comm        comm = PetscObjectComm((PetscObject)dm);
+
+  PetscFunctionBeginUser;
+  PetscCall(MMMeshGetLabel(dm, ob->master, &label));
+  PetscCall(DMGetGlobalSection(dm, &gs));
+  PetscCall(DMGetLocalSection(dm, &ls));
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  PetscCall(DMPlexGetChart(dm, &pStart, NULL));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(PetscMalloc2(cap * MM_FACET_REALS, xf, cap * MM_MAX_DIM, df));
+  PetscCall(DMLabelGetValueIS(label, &vis));
+  PetscCall(ISGetLocalSize(vis, &nv));
+  PetscCall(ISGetIndices(vis, &vals));
+  for (PetscInt i = 0; i < nv; ++i) {
+    const PetscInt *pts;
+    PetscInt        np;
+    PetscCall(DMLabelGetStratumIS(label, vals[i], &pis));
+    if (!pis) continue;
+    PetscCall(ISGetLocalSize(pis, &np));
+    PetscCall(ISGetIndices(pis, &pts));
+    for (PetscInt j = 0; j < np; ++j) {
+      PetscInt       *closure = NULL, ncl, h, nvx = 0, nsup, nx;
+      const PetscInt *sup;
+      PetscScalar    *xc = NULL, *cc = NULL;
+      PetscReal      *f, cen[MM_MAX_DIM] = {0, 0, 0}, ccen[MM_MAX_DIM] = {0, 0, 0}, dot = 0;
+
+      PetscCall(DMPlexGetPointHeight(dm, pts[j], &h));
+      PetscCheck(h == 1, comm, PETSC_ERR_USER_INPUT, "The master surface \"%s\" of contact pair %s contains points that are not facets: it must be a Physical Curve (2D) or Physical Surface (3D)", ob->master, ob->name);
+      if (n == cap) {
+        PetscReal *x2;
+        PetscInt  *d2;
+        PetscCall(PetscMalloc2(2 * cap * MM_FACET_REALS, &x2, 2 * cap * MM_MAX_DIM, &d2));
+        PetscCall(PetscArraycpy(x2, *xf, cap * MM_FACET_REALS));
+        PetscCall(PetscArraycpy(d2, *df, cap * MM_MAX_DIM));
+        PetscCall(PetscFree2(*xf, *df));
+        *xf = x2;
+        *df = d2;
+        cap *= 2;
+      }
+      f = &(*xf)[n * MM_FACET_REALS];
+      PetscCall(DMPlexGetTransitiveClosure(dm, pts[j], PETSC_TRUE, &ncl, &closure));
+      for (PetscInt k = 0; k < ncl; ++k) {
+        const PetscInt v = closure[2 * k];
+        PetscInt       goff, cdof;
+        if (v < vStart || v >= vEnd) continue;
+        PetscCheck(!mark[v - pStart], comm, PETSC_ERR_USER_INPUT, "The master surface \"%s\" of contact pair %s shares a node with a contact surface (a slave surface or -contact_boundary): a master node cannot carry a constraint itself. Separate the surfaces", ob->master, ob->name);
+        PetscCall(PetscSectionGetOffset(gs, v, &goff));
+        PetscCall(PetscSectionGetConstraintDof(ls, v, &cdof));
+        PetscCheck(cdof == 0 || cdof == dim, comm, PETSC_ERR_SUP, "A node of the master surface \"%s\" of contact pair %s has %" PetscInt_FMT " of its %" PetscInt_FMT " components held by Dirichlet data: a master node is either free or fully held. Keep partial Dirichlet conditions off the master surface", ob->master, ob->name, cdof, dim);
+        (*df)[n * MM_MAX_DIM + nvx++] = cdof ? -1 : (goff < 0 ? -(goff + 1) : goff);
+      }
+      PetscCall(DMPlexRestoreTransitiveClosure(dm, pts[j], PETSC_TRUE, &ncl, &closure));
+      PetscCall(DMPlexVecGetClosure(dm, NULL, X, pts[j], &nx, &xc));
+      for (PetscInt k = 0; k < nx; ++k) f[k] = PetscRealPart(xc[k]);
+      PetscCall(DMPlexVecRestoreClosure(dm, NULL, X, pts[j], &nx, &xc));
+      PetscCheck(nvx == dim && nx == dim * dim, comm, PETSC_ERR_SUP, "Contact pair %s: a master facet with %" PetscInt_FMT " vertices; only simplices are supported", ob->name, nvx);
+      /* the normal, oriented away from the master body's cell */
+      if (dim == 2) {
+        f[4] = f[3] - f[1];
+        f[5] = -(f[2] - f[0]);
+      } else {
+        const PetscReal a[3] = {f[3] - f[0], f[4] - f[1], f[5] - f[2]}, b[3] = {f[6] - f[0], f[7] - f[1], f[8] - f[2]};
+        f[9]  = a[1] * b[2] - a[2] * b[1];
+        f[10] = a[2] * b[0] - a[0] * b[2];
+        f[11] = a[0] * b[1] - a[1] * b[0];
+      }
+      {
+        PetscReal *nrm = &f[dim * dim], len = 0;
+        for (PetscInt d = 0; d < dim; ++d) len += nrm[d] * nrm[d];
+        len = PetscSqrtReal(len);
+        for (PetscInt d = 0; d < dim; ++d) nrm[d] /= len;
+        for (PetscInt k = 0; k < dim; ++k)
+          for (PetscInt d = 0; d < dim; ++d) cen[d] += f[k * dim + d] / dim;
+        PetscCall(DMPlexGetSupportSize(dm, pts[j], &nsup));
+        PetscCall(DMPlexGetSupport(dm, pts[j], &sup));
+        PetscCheck(nsup == 1, comm, PETSC_ERR_USER_INPUT, "The master surface \"%s\" of contact pair %s has a facet inside the mesh (%" PetscInt_FMT " cells on it): it must lie on the boundary of its body", ob->master, ob->name, nsup);
+        PetscCall(DMPlexVecGetClosure(dm, NULL, X, sup[0], &nx, &cc));
+        for (PetscInt k = 0; k < nx / dim; ++k)
+          for (PetscInt d = 0; d < dim; ++d) ccen[d] += PetscRealPart(cc[k * dim + d]) / (nx / dim);
+        PetscCall(DMPlexVecRestoreClosure(dm, NULL, X, sup[0], &nx, &cc));
+        for (PetscInt d = 0; d < dim; ++d) dot += (ccen[d] - cen[d]) * nrm[d];
+        if (dot > 0)
+          for (PetscInt d = 0; d < dim; ++d) nrm[d] = -nrm[d];
+        /* the centroid breaks ties between equidistant facets the same way on any number of ranks */
+        for (PetscInt d = 0; d < dim; ++d) f[dim * dim + dim + d] = cen[d];
+      }
+      ++n;
+    }
+    PetscCall(ISRestoreIndices(pis, &pts));
+    PetscCall(ISDestroy(&pis));
+  }
+  PetscCall(ISRestoreIndices(vis, &vals));
+  PetscCall(ISDestroy(&vis));
+  *nf = n;
+  PetscFunctionReturn(0);
+}
+
+/* Pair p's master surface gathered on every rank (a facet on a partition boundary comes twice,
+ * which changes nothing). */
+static PetscErrorCode GatherMasterSurface(MMCtx *ctx, PetscInt p, const PetscInt mark[])
+{
+  MMContactPairs *pr   = &ctx->contact.pairs;
+  const MMObstacle *ob = &ctx->opt.obstacles[ctx->opt.n_rigid + p];
+  MPI_Comm        comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  PetscMPIInt     size, nl, *cnt, *dsp, *cntd, *dspd;
+  PetscInt        nf = 0, ntot = 0;
+  PetscReal      *xf;
+  PetscInt       *df;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(LocalMasterFacets(ctx, ob, mark, &nf, &xf, &df));
+  PetscCall(PetscMalloc4(size, &cnt, size, &dsp, size, &cntd, size, &dspd));
+  PetscCall(PetscMPIIntCast(nf, &nl));
+  PetscCallMPI(MPI_Allgather(&nl, 1, MPI_INT, cnt, 1, MPI_INT, comm));
+  for (PetscMPIInt r = 0; r < size; ++r) ntot += cnt[r];
+  PetscCheck(ntot > 0, comm, PETSC_ERR_USER_INPUT, "The master surface \"%s\" of contact pair %s has no facets", ob->master, ob->name);
+  dsp[0] = dspd[0] = 0;
+  for (PetscMPIInt r = 0; r < size; ++r) {
+    cntd[r] = cnt[r] * MM_MAX_DIM;
+    cnt[r] *= MM_FACET_REALS;
+    if (r) {
+      dsp[r]  = dsp[r - 1] + cnt[r - 1];
+      dspd[r] = dspd[r - 1] + cntd[r - 1];
+    }
+  }
+  pr->nf[p] = ntot;
+  PetscCall(PetscMalloc2(ntot * MM_FACET_REALS, &pr->xf[p], ntot * MM_MAX_DIM, &pr->df[p]));
+  PetscCallMPI(MPI_Allgatherv(xf, nl * MM_FACET_REALS, MPIU_REAL, pr->xf[p], cnt, dsp, MPIU_REAL, comm));
+  PetscCallMPI(MPI_Allgatherv(df, nl * MM_MAX_DIM, MPIU_INT, pr->df[p], cntd, dspd, MPIU_INT, comm));
+  PetscCall(PetscFree4(cnt, dsp, cntd, dspd));
+  PetscCall(PetscFree2(xf, df));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMContactPairsSetUp(MMCtx *ctx, const PetscInt mark[], PetscInt n_vertex_bound)
+{
+  MMContactPairs *pr = &ctx->contact.pairs;
+  const PetscInt  np = ctx->opt.n_obstacles - ctx->opt.n_rigid;
+
+  PetscFunctionBeginUser;
+  pr->n = np;
+  if (!np) PetscFunctionReturn(0);
+  PetscCall(PetscCalloc3(np, &pr->nf, np, &pr->xf, np, &pr->df));
+  for (PetscInt p = 0; p < np; ++p) PetscCall(GatherMasterSurface(ctx, p, mark));
+  /* per contact node (an upper bound: the owned vertices) its master vertices' dofs and weights */
+  PetscCall(PetscMalloc2(MM_MAX_DIM * n_vertex_bound, &pr->phi, MM_MAX_DIM * n_vertex_bound, &pr->mdof));
+  PetscFunctionReturn(0);
+}
+
+/* The closest point of the segment or triangle f (dim vertices) to x: its barycentric coordinates
+ * phi and squared distance. */
+static PetscReal ClosestOnFacet(PetscInt dim, const PetscReal f[], const PetscReal x[], PetscReal phi[])
+{
+  PetscReal best = PETSC_MAX_REAL;
+
+  if (dim == 2) {
+    const PetscReal e[2] = {f[2] - f[0], f[3] - f[1]}, r[2] = {x[0] - f[0], x[1] - f[1]};
+    PetscReal       t = (r[0] * e[0] + r[1] * e[1]) / (e[0] * e[0] + e[1] * e[1]);
+    t      = PetscMin(1.0, PetscMax(0.0, t));
+    phi[0] = 1 - t;
+    phi[1] = t;
+  } else {
+    const PetscReal *a = f, *b = f + 3, *c = f + 6;
+    const PetscReal  ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, ac[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]}, ap[3] = {x[0] - a[0], x[1] - a[1], x[2] - a[2]};
+    const PetscReal  d00 = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2], d01 = ab[0] * ac[0] + ab[1] * ac[1] + ab[2] * ac[2], d11 = ac[0] * ac[0] + ac[1] * ac[1] + ac[2] * ac[2];
+    const PetscReal  d20 = ap[0] * ab[0] + ap[1] * ab[1] + ap[2] * ab[2], d21 = ap[0] * ac[0] + ap[1] * ac[1] + ap[2] * ac[2], den = d00 * d11 - d01 * d01;
+    const PetscReal  v = (d11 * d20 - d01 * d21) / den, w = (d00 * d21 - d01 * d20) / den;
+    if (v >= 0 && w >= 0 && v + w <= 1) {
+      phi[0] = 1 - v - w;
+      phi[1] = v;
+      phi[2] = w;
+    } else {
+      /* outside: the closest point is on one of the three edges */
+      for (PetscInt e = 0; e < 3; ++e) {
+        const PetscInt   i = e, j = (e + 1) % 3;
+        const PetscReal *p = f + 3 * i, *q = f + 3 * j;
+        PetscReal        pq[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, t = 0, l2 = 0, d2 = 0, ph[3] = {0, 0, 0};
+        for (PetscInt d = 0; d < 3; ++d) {
+          t += (x[d] - p[d]) * pq[d];
+          l2 += pq[d] * pq[d];
+        }
+        t = PetscMin(1.0, PetscMax(0.0, t / l2));
+        for (PetscInt d = 0; d < 3; ++d) d2 += PetscSqr(p[d] + t * pq[d] - x[d]);
+        ph[i] = 1 - t;
+        ph[j] = t;
+        if (d2 < best) {
+          best = d2;
+          for (PetscInt k = 0; k < 3; ++k) phi[k] = ph[k];
+        }
+      }
+    }
+  }
+  /* snapped, so that a slave node facing a master node couples to it alone, exactly (node to node) */
+  {
+    PetscReal s = 0;
+    for (PetscInt k = 0; k < dim; ++k) {
+      if (phi[k] < 1e-10) phi[k] = 0;
+      if (phi[k] > 1 - 1e-10) phi[k] = 1;
+      s += phi[k];
+    }
+    for (PetscInt k = 0; k < dim; ++k) phi[k] /= s;
+  }
+  best = 0;
+  for (PetscInt d = 0; d < dim; ++d) {
+    PetscReal xp = 0;
+    for (PetscInt k = 0; k < dim; ++k) xp += phi[k] * f[k * dim + d];
+    best += PetscSqr(xp - x[d]);
+  }
+  return best;
+}
+
+/* Slave node k (reference position x) of pair p: its closest master facet, the weights and master
+ * dofs of its constraint, its gap and the facet's outward normal n. Equidistant facets (a node
+ * facing a master vertex) are told apart by their centroids, so the choice does not depend on the
+ * partition. */
+PetscErrorCode MMContactPairsProject(MMCtx *ctx, PetscInt p, PetscInt k, const PetscReal x[], PetscReal *gap, PetscReal n[])
+{
+  MMContactPairs *pr  = &ctx->contact.pairs;
+  const PetscInt  dim = ctx->op.dim;
+  PetscInt        fb  = -1;
+  PetscReal       db  = PETSC_MAX_REAL, phib[MM_MAX_DIM] = {0, 0, 0}, scale;
+
+  PetscFunctionBeginUser;
+  for (PetscInt f = 0; f < pr->nf[p]; ++f) {
+    const PetscReal *xf = &pr->xf[p][f * MM_FACET_REALS];
+    PetscReal        phi[MM_MAX_DIM], d2 = ClosestOnFacet(dim, xf, x, phi);
+    PetscBool        take = PETSC_FALSE;
+    scale = 0;
+    for (PetscInt d = 0; d < dim; ++d) scale += PetscSqr(xf[d] - xf[dim + d]);
+    if (fb < 0 || d2 < db - 1e-13 * scale) take = PETSC_TRUE;
+    else if (d2 <= db + 1e-13 * scale) {
+      const PetscReal *c0 = &pr->xf[p][fb * MM_FACET_REALS + dim * dim + dim], *c1 = &xf[dim * dim + dim];
+      for (PetscInt d = 0; d < dim; ++d) {
+        if (c1[d] == c0[d]) continue;
+        take = (PetscBool)(c1[d] < c0[d]);
+        break;
+      }
+    }
+    if (!take) continue;
+    fb = f;
+    db = d2;
+    for (PetscInt j = 0; j < dim; ++j) phib[j] = phi[j];
+  }
+  {
+    const PetscReal *xf = &pr->xf[p][fb * MM_FACET_REALS];
+    *gap                = 0;
+    for (PetscInt d = 0; d < MM_MAX_DIM; ++d) n[d] = d < dim ? xf[dim * dim + d] : 0;
+    for (PetscInt d = 0; d < dim; ++d) {
+      PetscReal xp = 0;
+      for (PetscInt j = 0; j < dim; ++j) xp += phib[j] * xf[j * dim + d];
+      *gap += n[d] * (x[d] - xp);
+    }
+    for (PetscInt j = 0; j < MM_MAX_DIM; ++j) {
+      pr->phi[MM_MAX_DIM * k + j]  = j < dim ? phib[j] : 0;
+      pr->mdof[MM_MAX_DIM * k + j] = j < dim ? pr->df[p][fb * MM_MAX_DIM + j] : -1;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* N = I + C and N^{-1} = I - C, C[s_a, m_j d] = phi_j F_a[d] for the slave node s's frame rows a (the
+ * normal; the tangents too with friction, for the relative slip) and its master vertices m_j. */
+PetscErrorCode MMContactPairsBuildTransform(MMCtx *ctx)
+{
+  MMContact      *ct  = &ctx->contact;
+  MMContactPairs *pr  = &ct->pairs;
+  const PetscInt  dim = ctx->op.dim, nr = ct->ncomp;
+  const PetscInt *in;
+  PetscInt        n, rstart;
+  Mat             N[2];
+  MPI_Comm        comm = PetscObjectComm((PetscObject)ctx->op.dm);
+
+  PetscFunctionBeginUser;
+  if (!pr->n) PetscFunctionReturn(0);
+  PetscCall(MatGetLocalSize(ctx->op.Q, &n, NULL));
+  PetscCall(MatGetOwnershipRange(ctx->op.Q, &rstart, NULL));
+  PetscCall(ISGetIndices(ct->is_normal, &in));
+  for (PetscInt s = 0; s < 2; ++s) {
+    const PetscScalar sign = s ? -1.0 : 1.0;
+    PetscCall(MatCreateAIJ(comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, 1 + dim * dim, NULL, dim * dim, NULL, &N[s]));
+    PetscCall(MatSetOption(N[s], MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
+    for (PetscInt i = rstart; i < rstart + n; ++i) PetscCall(MatSetValue(N[s], i, i, 1.0, INSERT_VALUES));
+    for (PetscInt k = 0; k < ct->n_local; ++k) {
+      const PetscReal *F = &ct->node_frame[9 * k];
+      if (ct->obstacle[k] < ctx->opt.n_rigid) continue;
+      for (PetscInt a = 0; a < nr; ++a)
+        for (PetscInt j = 0; j < dim; ++j) {
+          const PetscInt m = pr->mdof[MM_MAX_DIM * k + j];
+          if (m < 0 || pr->phi[MM_MAX_DIM * k + j] == 0) continue; /* a held master node does not move */
+          for (PetscInt d = 0; d < dim; ++d) PetscCall(MatSetValue(N[s], in[k] + a, m + d, sign * pr->phi[MM_MAX_DIM * k + j] * F[3 * a + d], INSERT_VALUES));
+        }
+    }
+    PetscCall(MatAssemblyBegin(N[s], MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(N[s], MAT_FINAL_ASSEMBLY));
+  }
+  PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  ctx->op.N    = N[0];
+  ctx->op.Ninv = N[1];
+  PetscFunctionReturn(0);
+}
+
+/* The w-frame operators and loads of the pairs' relative variables, from the contact-frame ones:
+ * K <- N^T K N, M <- N^T M N, M* <- N^T M* N, and the loads L <- N^T L (docs/method.md section 11).
+ * Runs after M* is built and its moments taken, which N leaves unchanged. */
+PetscErrorCode MMContactPairsTransformOperators(MMCtx *ctx)
+{
+  MMOperators *op = &ctx->op;
+  Mat         *A[3] = {&op->K, &op->M, &op->Mstar}, B;
+  Vec          t;
+
+  PetscFunctionBeginUser;
+  if (!op->N) PetscFunctionReturn(0);
+  for (PetscInt i = 0; i < 3; ++i) {
+    PetscCall(MatPtAP(*A[i], op->N, MAT_INITIAL_MATRIX, 2.0, &B));
+    PetscCall(MatDestroy(A[i]));
+    *A[i] = B;
+  }
+  PetscCall(VecDuplicate(op->load, &t));
+  PetscCall(VecCopy(op->load, t));
+  PetscCall(MatMultTranspose(op->N, t, op->load));
+  PetscCall(VecCopy(op->lift, t));
+  PetscCall(MatMultTranspose(op->N, t, op->lift));
+  PetscCall(VecDestroy(&t));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMContactPairsDestroy(MMContactPairs *pr)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt p = 0; p < pr->n; ++p) PetscCall(PetscFree2(pr->xf[p], pr->df[p]));
+  if (pr->n) PetscCall(PetscFree3(pr->nf, pr->xf, pr->df));
+  PetscCall(PetscFree2(pr->phi, pr->mdof));
+  pr->n = 0;
+  PetscFunctionReturn(0);
+}
