@@ -21,6 +21,11 @@ MSH  := meshes/bar80.msh meshes/bar100.msh meshes/disk.msh meshes/ball.msh meshe
 MSH  += meshes/ball10.msh
 # The cases with several, curved and moving obstacles (README "Cases")
 MSH  += meshes/ball_bowl.msh meshes/disk_rail.msh meshes/block_push.msh meshes/ball_vgroove.msh meshes/block_squeeze.msh
+# Two-body contact (issue 20): two bars end to end (non-matching and conforming interfaces), two
+# balls, ball A alone (the one-ball reference against the plane x = 0, meshed exactly as in
+# two_balls), a ball on a block; and the cube dropped into a V-groove
+MSH  += meshes/two_bars.msh meshes/two_bars_conf.msh meshes/two_balls.msh meshes/ball_x.msh meshes/ball_block.msh
+MSH  += meshes/cube_groove.msh
 # Bench meshes: the 2D D1 disk (115k dofs), the 3D D2 ball (H 0.045: 113k dofs, 3.8k contact nodes)
 # and the large D2 ball of `make bench-large` (H 0.021: about 1M dofs), generated when first needed.
 BALL_BENCH_H ?= 0.045
@@ -74,6 +79,18 @@ meshes/ball_vgroove.msh: meshes/ball.geo
 	gmsh -3 $< -setnumber G 0.45 -o $@ -v 2
 meshes/block_squeeze.msh: meshes/block_squeeze.geo
 	gmsh -2 $< -o $@ -v 2
+meshes/two_bars.msh: meshes/two_bars.geo
+	gmsh -2 $< -o $@ -v 2
+meshes/two_bars_conf.msh: meshes/two_bars.geo
+	gmsh -2 $< -setnumber CONF 1 -o $@ -v 2
+meshes/two_balls.msh: meshes/two_balls.geo
+	gmsh -3 $< -o $@ -v 2
+meshes/ball_x.msh: meshes/two_balls.geo
+	gmsh -3 $< -setnumber ONLY_A 1 -o $@ -v 2
+meshes/ball_block.msh: meshes/ball_block.geo
+	gmsh -3 $< -o $@ -v 2
+meshes/cube_groove.msh: meshes/cube_groove.geo
+	gmsh -3 $< -o $@ -v 2
 meshes/disk_bench.msh: meshes/disk.geo
 	gmsh -2 $< -setnumber H 0.008 -setnumber G 0.001 -o $@ -v 2
 meshes/ball_bench.msh: meshes/ball.geo
