@@ -143,6 +143,9 @@ typedef struct {
   PetscReal  frame[MM_MAX_DIM][MM_MAX_DIM]; /* the single plane's frame (static sliding); rows: nu, tau_1, tau_2 */
   PetscReal *node_frame;          /* per owned contact node its frame, 9 reals: rows nu, tau_1, tau_2 */
   PetscInt  *obstacle;            /* per owned contact node, the obstacle it is constrained against */
+  PetscBool *second;              /* per row: a corner node's second row, on its dof 1 (the row before is its first) */
+  PetscReal *corner_ab;           /* per row, 2: a second row's nu_2 = a nu_1 + b tau_1 in its node's frame */
+  PetscInt   n_corners;           /* second rows over all ranks */
   Vec        gap0;                /* g_i at time 0, layout of gap */
   Vec        mu;                  /* per owned contact node, the friction coefficient of its obstacle */
   PetscReal *slide_ref;           /* per owned contact node and tangent, dt/2 V.tau_j: the obstacle's sliding */

@@ -94,7 +94,8 @@ static PetscErrorCode VertexKinds(MMCtx *ctx, Vec *kind, Vec n[])
     PetscCall(VecZeroEntries(g));
     PetscCall(VecGetArray(g, &k));
     /* row 0 of a node's frame is its normal */
-    for (PetscInt c = 0; c < ct->n_local; ++c) k[ct->scalar_index[c] - sstart] = d < 0 ? 1.0 : ct->node_frame[9 * c + d];
+    for (PetscInt c = 0; c < ct->n_local; ++c)
+      if (!ct->second[c]) k[ct->scalar_index[c] - sstart] = d < 0 ? 1.0 : ct->node_frame[9 * c + d];
     PetscCall(VecRestoreArray(g, &k));
     PetscCall(DMCreateLocalVector(dms, out));
     PetscCall(DMGlobalToLocal(dms, g, INSERT_VALUES, *out));
@@ -224,7 +225,8 @@ static PetscErrorCode AddMomentCorrection(MMCtx *ctx, Vec kind, const PetscReal 
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
   PetscCall(PetscMalloc1(vEnd - vStart, &node));
   for (PetscInt v = 0; v < vEnd - vStart; ++v) node[v] = -1;
-  for (PetscInt c = 0; c < ct->n_local; ++c) node[ct->vertex[c] - vStart] = c;
+  for (PetscInt c = 0; c < ct->n_local; ++c)
+    if (!ct->second[c]) node[ct->vertex[c] - vStart] = c;
   PetscCall(VecGetOwnershipRange(ctx->op.mass_lumped_cart, &rstart, NULL));
   PetscCall(VecGetArrayRead(X, &x));
   PetscCall(VecGetArrayRead(kind, &k));
@@ -234,6 +236,8 @@ static PetscErrorCode AddMomentCorrection(MMCtx *ctx, Vec kind, const PetscReal 
       PetscInt         goff, xoff, soff;
       PetscReal        xh[MM_MAX_DIM] = {0, 0, 0}, T[MM_MAX_DIM][MM_MAX_RIGID], PT[MM_MAX_DIM][MM_MAX_RIGID] = {{0}}, Aj[MM_MAX_RIGID][MM_MAX_RIGID] = {{0}}, mj;
       const PetscReal *F = node[v - vStart] >= 0 ? &ct->node_frame[9 * node[v - vStart]] : NULL;
+      /* a corner node (its row followed by a second row) is massless along tau_1 too */
+      const PetscBool  corner = (PetscBool)(F && node[v - vStart] + 1 < ct->n_local && ct->second[node[v - vStart] + 1]);
 
       PetscCall(PetscSectionGetOffset(gs, v, &goff));
       PetscCall(DMPlexGetPointLocal(dms, v, &soff, NULL));
@@ -248,6 +252,8 @@ static PetscErrorCode AddMomentCorrection(MMCtx *ctx, Vec kind, const PetscReal 
           PT[a][c] = T[a][c];
           if (F)
             for (PetscInt b = 0; b < dim; ++b) PT[a][c] -= F[a] * F[b] * T[b][c];
+          if (corner)
+            for (PetscInt b = 0; b < dim; ++b) PT[a][c] -= F[3 + a] * F[3 + b] * T[b][c];
         }
       if (pass == 0) { /* S_{(ab),(cd)} += m_j A_ac A_bd */
         for (PetscInt a = 0; a < nr; ++a)

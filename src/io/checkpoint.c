@@ -17,6 +17,10 @@
 #define MM_CKPT_TMP  ".tmp" /* written whole, then renamed over the last good one */
 #define MM_CKPT_NODE 13     /* per vertex: contact, s, slipping, was_active, slip_dir[2], rho[3], and the
                                * active-set formulation's warm start: active, stick, dir[2] */
+/* a corner node's second row, frictionless, keeps its states in slots the friction law leaves free */
+#define MM_CKPT_SECOND_ACTIVE 4
+#define MM_CKPT_SECOND_RHO    7
+#define MM_CKPT_SECOND_AS     11
 #define MM_CKPT_VERSION 4 /* 4: the redistributed mass (mass type + 3 if lumped); the Rayleigh damping (alpha, beta, W_d and vC) */
 
 /* The scalars of a run, in the "run" vector of the file, in this order. */
@@ -127,6 +131,13 @@ static PetscErrorCode PackContact(MMCtx *ctx, Vec packed)
     for (PetscInt k = 0; k < ct->n_local; ++k) {
       PetscScalar    rec[MM_CKPT_NODE] = {0};
       const PetscInt base = MM_CKPT_NODE * ctx->ckpt.vertex_orig[ct->vertex[k] - vStart];
+      if (ct->second[k]) {
+        /* a corner's second row (frictionless): its states in its vertex's unused friction slots */
+        PetscCall(VecSetValue(packed, base + MM_CKPT_SECOND_ACTIVE, (PetscScalar)ct->was_active[k], INSERT_VALUES));
+        if (ra) PetscCall(VecSetValue(packed, base + MM_CKPT_SECOND_RHO, ra[k], INSERT_VALUES));
+        if (ct->as.active) PetscCall(VecSetValue(packed, base + MM_CKPT_SECOND_AS, (PetscScalar)ct->as.active[k], INSERT_VALUES));
+        continue;
+      }
       rec[0] = 1;
       rec[1] = sa ? sa[k] : 0;
       rec[2] = ct->slipping ? (PetscScalar)ct->slipping[k] : 0;
@@ -141,7 +152,8 @@ static PetscErrorCode PackContact(MMCtx *ctx, Vec packed)
         rec[10] = (PetscScalar)ct->as.stick[k];
         for (PetscInt j = 0; j < ctx->op.dim - 1; ++j) rec[11 + j] = ct->as.dir[k * (ctx->op.dim - 1) + j];
       }
-      for (PetscInt c = 0; c < MM_CKPT_NODE; ++c) PetscCall(VecSetValue(packed, base + c, rec[c], INSERT_VALUES));
+      for (PetscInt c = 0; c < MM_CKPT_NODE; ++c)
+        if (!(k + 1 < ct->n_local && ct->second[k + 1] && (c == MM_CKPT_SECOND_ACTIVE || c == MM_CKPT_SECOND_RHO || c == MM_CKPT_SECOND_AS))) PetscCall(VecSetValue(packed, base + c, rec[c], INSERT_VALUES));
     }
     if (ra) PetscCall(VecRestoreArrayRead(ct->rho, &ra));
     if (sa) PetscCall(VecRestoreArrayRead(thresholds, &sa));
@@ -513,6 +525,11 @@ static PetscErrorCode RestoreContactState(MMCtx *ctx)
   if (ct->rho) PetscCall(VecGetArray(ct->rho, &ra));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
     const PetscScalar *rec = &ctx->ckpt.node[MM_CKPT_NODE * k];
+    if (ct->second[k]) {
+      if (ra) ra[k] = rec[MM_CKPT_SECOND_RHO];
+      if (ct->as.active) ct->as.active[k] = (PetscBool)(PetscRealPart(rec[MM_CKPT_SECOND_AS]) != 0);
+      continue;
+    }
     if (sa) sa[k] = rec[1];
     if (ct->slipping) ct->slipping[k] = (PetscBool)(PetscRealPart(rec[2]) != 0);
     if (ct->slip_dir) {
@@ -640,7 +657,7 @@ PetscErrorCode MMCheckpointRestoreHistory(MMCtx *ctx)
   h->max_penetration_run = run[MM_RUN_MAX_PENETRATION];
   h->energy_scale        = run[MM_RUN_ENERGY_SCALE];
   h->resolves = ct->cand.resolves = (PetscInt)run[MM_RUN_RESOLVES];
-  for (PetscInt k = 0; ct->enabled && k < ct->n_local; ++k) ct->was_active[k] = (PetscBool)(PetscRealPart(c->node[MM_CKPT_NODE * k + 3]) != 0);
+  for (PetscInt k = 0; ct->enabled && k < ct->n_local; ++k) ct->was_active[k] = (PetscBool)(PetscRealPart(c->node[MM_CKPT_NODE * k + (ct->second[k] ? MM_CKPT_SECOND_ACTIVE : 3)]) != 0);
   /* here, not at the load: the condensed reactions and the active-set states are created with the
    * step matrix, and the initial diagnostics would overwrite the states */
   PetscCall(RestoreContactState(ctx));

@@ -79,7 +79,7 @@ static PetscErrorCode ObstacleWork(MMCtx *ctx, PetscReal t0, PetscReal t1, Petsc
     PetscReal         c0[MM_MAX_DIM] = {0, 0, 0}, c1[MM_MAX_DIM] = {0, 0, 0};
     MMObstacleDisplacement(ob, dim, t0, c0);
     MMObstacleDisplacement(ob, dim, t1, c1);
-    for (PetscInt j = 0; j < dim; ++j) {
+    for (PetscInt j = 0; j < ct->ncomp; ++j) { /* frictionless: the tangential reactions are zero */
       const PetscInt i  = in[k] - rstart + j;
       PetscReal      dc = 0;
       for (PetscInt d = 0; d < dim; ++d) dc += (c1[d] - c0[d]) * F[3 * j + d];

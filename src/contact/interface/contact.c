@@ -216,10 +216,30 @@ PetscErrorCode MMContactSolveCoulomb(MMCtx *ctx, Vec b, Vec w, Vec react, MMCont
 }
 
 /* The formulation's lines of the closing summary. */
+/* The corner nodes (docs/method.md section 8): how many carry a row per obstacle, and on how many
+ * both rows were active at the last step, each wall taking its share of the force. */
+static PetscErrorCode CornerSummary(MMCtx *ctx)
+{
+  MMContact *ct      = &ctx->contact;
+  PetscInt   both[2] = {0, 0};
+
+  PetscFunctionBeginUser;
+  if (!ct->n_corners) PetscFunctionReturn(0);
+  for (PetscInt k = 1; k < ct->n_local; ++k)
+    if (ct->second[k]) {
+      both[0] += ct->was_active[k] && ct->was_active[k - 1];
+      both[1] += ct->was_active[k];
+    }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, both, 2, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ctx->op.dm)));
+  PetscCall(PetscPrintf(PetscObjectComm((PetscObject)ctx->op.dm), "  corners: %" PetscInt_FMT " contact nodes constrained against two obstacles, a row for each; at the last step %" PetscInt_FMT " in contact with both, %" PetscInt_FMT " with the second\n", ct->n_corners, both[0], both[1]));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MMContactSummary(MMCtx *ctx)
 {
   PetscFunctionBeginUser;
   if (ctx->contact.ops->summary) PetscCall((*ctx->contact.ops->summary)(ctx));
+  if (ctx->contact.enabled) PetscCall(CornerSummary(ctx));
   PetscFunctionReturn(0);
 }
 
@@ -367,6 +387,7 @@ PetscErrorCode MMContactDestroy(MMContact *ct)
   PetscCall(PetscFree2(ct->all_gap0, ct->all_nu));
   PetscCall(PetscFree(ct->obstacle));
   PetscCall(MMContactPairsDestroy(&ct->pairs));
+  PetscCall(PetscFree2(ct->second, ct->corner_ab));
   PetscCall(PetscFree(ct->force_obstacle));
   PetscCall(VecDestroy(&ct->area));
   PetscCall(ISDestroy(&ct->is_normal));

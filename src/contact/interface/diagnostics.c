@@ -27,8 +27,13 @@ static PetscReal OtherObstaclesPenetration(MMCtx *ctx, PetscInt k, const PetscSc
   const PetscReal *F   = &ct->node_frame[9 * k];
   PetscReal        u[MM_MAX_DIM] = {0, 0, 0}, worst = PETSC_MIN_REAL;
 
+  PetscReal        y[MM_MAX_DIM] = {0, 0, 0};
+
+  for (PetscInt e = 0; e < dim; ++e) y[e] = PetscRealPart(w[e]);
+  /* a corner (the next row its second): w_1 = a y_0 + b y_1 */
+  if (k + 1 < ct->n_local && ct->second[k + 1]) y[1] = (y[1] - ct->corner_ab[2 * (k + 1)] * y[0]) / ct->corner_ab[2 * (k + 1) + 1];
   for (PetscInt e = 0; e < dim; ++e)
-    for (PetscInt d = 0; d < dim; ++d) u[d] += PetscRealPart(w[e]) * F[3 * e + d];
+    for (PetscInt d = 0; d < dim; ++d) u[d] += y[e] * F[3 * e + d];
   for (PetscInt b = 0; b < nob; ++b) {
     const PetscReal *nu = &ct->all_nu[3 * (k * nob + b)];
     PetscReal        p  = -ct->all_gap0[k * nob + b];
@@ -83,7 +88,7 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
     const PetscReal mu = PetscRealPart(mua[k]), *F = &ct->node_frame[9 * k];
     PetscReal       tn = 0, vn = 0, res = 0, vt[MM_MAX_DIM] = {0, 0, 0};
 
-    for (PetscInt d = 1; d < dim; ++d) {
+    for (PetscInt d = 1; d < nr; ++d) {
       /* slip is relative to the obstacle: its velocity V.tau_d is 2 slide_ref / dt */
       vt[d] = PetscRealPart(va[i + d]) - (dt > 0 ? 2 * ct->slide_ref[k * (dim - 1) + d - 1] / dt : 0);
       tn += PetscSqr(PetscRealPart(fa[i + d]));
@@ -93,7 +98,7 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
         for (PetscInt c = 0; c < dim; ++c) sums[1 + c] += PetscRealPart(fa[i + d]) * F[3 * d + c];
     }
     /* the force on the obstacle: minus the reaction on the body, back to Cartesian */
-    for (PetscInt d = 0; d < dim; ++d)
+    for (PetscInt d = 0; d < nr; ++d)
       for (PetscInt c = 0; c < dim; ++c) fob[MM_MAX_DIM * ct->obstacle[k] + c] -= PetscRealPart(fa[i + d]) * F[3 * d + c];
     tn = PetscSqrtReal(tn);
     vn = PetscSqrtReal(vn);
@@ -132,7 +137,7 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
     loc[0] = PetscMax(loc[0], res);
     loc[1] = PetscMax(loc[1], un - g);
     /* a pair's slave node: its w are relative displacements (it is on no rigid obstacle's surface) */
-    if (ct->all_gap0 && ct->obstacle[k] < ctx->opt.n_rigid) loc[1] = PetscMax(loc[1], OtherObstaclesPenetration(ctx, k, &wa[i], cob));
+    if (ct->all_gap0 && ct->obstacle[k] < ctx->opt.n_rigid && !ct->second[k]) loc[1] = PetscMax(loc[1], OtherObstaclesPenetration(ctx, k, &wa[i], cob));
   }
   if (nr > 1) {
     PetscCall(VecRestoreArrayRead(ct->rho, &ra));
@@ -222,7 +227,9 @@ PetscErrorCode MMContactBoundaryFields(MMCtx *ctx, MMOutput *o)
       PetscInt       start, end;
       PetscScalar    tc[MM_MAX_DIM] = {0, 0, 0}, sc[MM_MAX_DIM] = {0, 0, 0};
 
-      PetscCall(VecSetValue(o->pressure, ct->scalar_index[k], -fa[i] / aa[k], INSERT_VALUES));
+      /* a corner's two rows add their pressures; its gap, traction and slip are its first row's */
+      PetscCall(VecSetValue(o->pressure, ct->scalar_index[k], -fa[i] / aa[k], ADD_VALUES));
+      if (ct->second[k]) continue;
       PetscCall(VecSetValue(o->gap, ct->scalar_index[k], ga[k] - wa[i], INSERT_VALUES));
       for (PetscInt d = 1; d < dim; ++d)
         for (PetscInt c = 0; c < dim; ++c) {

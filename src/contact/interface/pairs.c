@@ -300,19 +300,24 @@ PetscErrorCode MMContactPairsProject(MMCtx *ctx, PetscInt p, PetscInt k, const P
 }
 
 /* N = I + C and N^{-1} = I - C, C[s_a, m_j d] = phi_j F_a[d] for the slave node s's frame rows a (the
- * normal; the tangents too with friction, for the relative slip) and its master vertices m_j. */
+ * normal; the tangents too with friction, for the relative slip) and its master vertices m_j. A
+ * corner node's second row (a node against two obstacles, set.c) is its own 2x2 block of N, with
+ * its explicit inverse: N stays the identity where there are neither pairs nor corners. */
 PetscErrorCode MMContactPairsBuildTransform(MMCtx *ctx)
 {
   MMContact      *ct  = &ctx->contact;
   MMContactPairs *pr  = &ct->pairs;
   const PetscInt  dim = ctx->op.dim, nr = ct->ncomp;
   const PetscInt *in;
-  PetscInt        n, rstart;
+  PetscInt        n, rstart, corners = 0;
   Mat             N[2];
   MPI_Comm        comm = PetscObjectComm((PetscObject)ctx->op.dm);
 
   PetscFunctionBeginUser;
-  if (!pr->n) PetscFunctionReturn(0);
+  for (PetscInt k = 0; k < ct->n_local; ++k) corners += ct->second[k];
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &corners, 1, MPIU_INT, MPI_SUM, comm));
+  ct->n_corners = corners;
+  if (!pr->n && !corners) PetscFunctionReturn(0);
   PetscCall(MatGetLocalSize(ctx->op.Q, &n, NULL));
   PetscCall(MatGetOwnershipRange(ctx->op.Q, &rstart, NULL));
   PetscCall(ISGetIndices(ct->is_normal, &in));
@@ -323,6 +328,13 @@ PetscErrorCode MMContactPairsBuildTransform(MMCtx *ctx)
     for (PetscInt i = rstart; i < rstart + n; ++i) PetscCall(MatSetValue(N[s], i, i, 1.0, INSERT_VALUES));
     for (PetscInt k = 0; k < ct->n_local; ++k) {
       const PetscReal *F = &ct->node_frame[9 * k];
+      if (ct->second[k]) {
+        /* a corner's second row: y_1 = (w_1 - a w_0)/b, w_1 = a y_0 + b y_1 (set.c CornerFrame) */
+        const PetscReal a = ct->corner_ab[2 * k], b = ct->corner_ab[2 * k + 1];
+        PetscCall(MatSetValue(N[s], in[k], in[k] - 1, s ? a : -a / b, INSERT_VALUES));
+        PetscCall(MatSetValue(N[s], in[k], in[k], s ? b : 1 / b, INSERT_VALUES));
+        continue;
+      }
       if (ct->obstacle[k] < ctx->opt.n_rigid) continue;
       for (PetscInt a = 0; a < nr; ++a)
         for (PetscInt j = 0; j < dim; ++j) {

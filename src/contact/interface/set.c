@@ -67,6 +67,51 @@ static PetscErrorCode NearestObstacle(MMCtx *ctx, const PetscReal x[], PetscInt 
   PetscFunctionReturn(0);
 }
 
+/* A corner (docs/method.md section 8): besides its nearest obstacle (normal n1), the nearest other
+ * obstacle within h_c' of the node and not parallel to the first, which gets a second row; -1 if none. */
+static PetscErrorCode SecondObstacle(MMCtx *ctx, const PetscReal x[], PetscInt first, const PetscReal n1[], PetscInt *which, PetscReal *gap, PetscReal n[])
+{
+  const PetscInt dim = ctx->op.dim;
+
+  PetscFunctionBeginUser;
+  *which = -1;
+  for (PetscInt b = 0; b < ctx->opt.n_rigid; ++b) {
+    const MMObstacle *ob = &ctx->opt.obstacles[b];
+    PetscReal         g, nb[MM_MAX_DIM] = {0, 0, 0}, c = 0;
+    if (b == first) continue;
+    PetscCall((*ob->distance)(ob, dim, x, &g, nb));
+    for (PetscInt d = 0; d < dim; ++d) c += nb[d] * n1[d];
+    if (g > ctx->contact.h_c || PetscAbsReal(c) > 1 - 1e-6 || (*which >= 0 && g >= *gap)) continue;
+    *which = b;
+    *gap   = g;
+    for (PetscInt d = 0; d < MM_MAX_DIM; ++d) n[d] = nb[d];
+  }
+  PetscFunctionReturn(0);
+}
+
+/* A corner node's frame: nu_1 = -n1, tau_1 in the plane of nu_1 and nu_2 = -n2, so that
+ * nu_2 = a nu_1 + b tau_1 (b > 0) and nu_2.u = a y_0 + b y_1 in the frame components y. */
+static void CornerFrame(PetscInt dim, const PetscReal n1[], const PetscReal n2[], PetscReal F[MM_MAX_DIM][MM_MAX_DIM], PetscReal *a, PetscReal *b)
+{
+  PetscReal len = 0;
+
+  FrameFromNormal(dim, n1, F);
+  *a = 0;
+  for (PetscInt d = 0; d < dim; ++d) *a += -n2[d] * F[0][d];
+  for (PetscInt d = 0; d < dim; ++d) {
+    F[1][d] = -n2[d] - *a * F[0][d];
+    len += F[1][d] * F[1][d];
+  }
+  len = PetscSqrtReal(len);
+  for (PetscInt d = 0; d < dim; ++d) F[1][d] /= len;
+  *b = len;
+  if (dim == 3) {
+    F[2][0] = F[0][1] * F[1][2] - F[0][2] * F[1][1];
+    F[2][1] = F[0][2] * F[1][0] - F[0][0] * F[1][2];
+    F[2][2] = F[0][0] * F[1][1] - F[0][1] * F[1][0];
+  }
+}
+
 /* With several obstacles, contact node k's reference gap and normal (frame convention: nu = -n, the
  * body's outward normal) to every obstacle, so that its penetration of any of them is seen, not only
  * of the one it is constrained against (docs/method.md section 8). */
@@ -220,7 +265,8 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
   DM           dm = ctx->op.dm;
   MMContact   *ct = &ctx->contact;
   PetscSection gs, ls, cs;
-  PetscInt     vStart, vEnd, pStart, dim = ctx->op.dim, n, rstart, rend, nc = 0, *in, *it, *is;
+  PetscInt     vStart, vEnd, pStart, dim = ctx->op.dim, n, rstart, rend, nc = 0, nt = 0, *in, *it, *is, b2;
+  PetscReal    ab[2] = {0, 0}, n2[MM_MAX_DIM] = {0, 0, 0};
   PetscReal   *gap;
   Vec          X, g;
   const PetscScalar *x;
@@ -244,6 +290,7 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
   PetscCall(PetscMalloc1(n, &ct->vertex));
   PetscCall(PetscMalloc1(n, &nodal_area));
   PetscCall(PetscMalloc1(n, &ct->obstacle));
+  PetscCall(PetscCalloc2(n, &ct->second, 2 * (size_t)n, &ct->corner_ab));
   PetscCall(PetscMalloc1(9 * (size_t)n, &ct->node_frame));
   if (ctx->opt.n_rigid > 1) PetscCall(PetscMalloc2((size_t)n * ctx->opt.n_rigid, &ct->all_gap0, 3 * (size_t)n * ctx->opt.n_rigid, &ct->all_nu));
   PetscCall(VecGetOwnershipRange(area, &astart, NULL));
@@ -257,6 +304,7 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
     if (goff < 0) continue;
     PetscCall(PetscSectionGetConstraintDof(ls, v, &cdof));
     PetscCall(PetscSectionGetOffset(cs, v, &xoff));
+    b2 = -1;
     PetscCheck(cdof == 0, comm, PETSC_ERR_USER_INPUT, "A node of the contact boundary \"%s\" at (%g, %g) is also on a Dirichlet boundary. Contact dofs must be free: separate the two physical groups", mark[v - pStart] >= 2 ? ctx->opt.obstacles[ctx->opt.n_rigid + mark[v - pStart] - 2].slave : ctx->opt.contact_name, (double)PetscRealPart(x[xoff]), (double)PetscRealPart(x[xoff + 1]));
     {
       PetscReal xv[MM_MAX_DIM] = {0, 0, 0}, n[MM_MAX_DIM] = {0, 0, 0}, F[MM_MAX_DIM][MM_MAX_DIM];
@@ -268,25 +316,46 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
       } else {
         PetscCall(NearestObstacle(ctx, xv, &ct->obstacle[nc], &gap[nc], n));
         PetscCall(AllObstacleGaps(ctx, xv, nc));
+        /* frictionless: a node near two walls gets a row for each (with friction its tangential
+         * dofs carry the friction law, and it keeps one row: the report shows the other wall) */
+        if (ct->ncomp == 1) PetscCall(SecondObstacle(ctx, xv, ct->obstacle[nc], n, &b2, &gap[nc + 1], n2));
       }
-      FrameFromNormal(dim, n, F);
+      if (b2 >= 0) CornerFrame(dim, n, n2, F, &ab[0], &ab[1]);
+      else FrameFromNormal(dim, n, F);
       for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
         for (PetscInt b = 0; b < MM_MAX_DIM; ++b) ct->node_frame[9 * nc + 3 * a + b] = F[a][b];
     }
-    in[nc] = goff;
-    {
-      PetscInt sstart, send;
-      PetscCall(DMPlexGetPointGlobal(ctx->out.dm_scalar, v, &sstart, &send));
-      ct->scalar_index[nc] = sstart;
-      ct->vertex[nc]       = v;
-      nodal_area[nc]       = PetscRealPart(av[sstart - astart]);
-    }
-    for (PetscInt d = 1; d < dim; ++d) it[nc * (dim - 1) + d - 1] = goff + d;
     for (PetscInt d = 0; d < dim; ++d) {
       is_contact_dof[goff - rstart + d] = 1;
       for (PetscInt e = 0; e < dim; ++e) PetscCall(MatSetValue(ctx->op.Q, goff + d, goff + e, ct->node_frame[9 * nc + 3 * e + d], INSERT_VALUES));
     }
-    ++nc;
+    /* the tangential dofs: all but the normals (a corner's second normal is its first tangent) */
+    for (PetscInt d = b2 >= 0 ? 2 : 1; d < dim; ++d) it[nt++] = goff + d;
+    for (PetscInt r = 0; r < (b2 >= 0 ? 2 : 1); ++r) {
+      PetscInt sstart, send;
+      in[nc] = goff + r;
+      PetscCall(DMPlexGetPointGlobal(ctx->out.dm_scalar, v, &sstart, &send));
+      ct->scalar_index[nc] = sstart;
+      ct->vertex[nc]       = v;
+      nodal_area[nc]       = PetscRealPart(av[sstart - astart]);
+      ct->second[nc]       = (PetscBool)(r == 1);
+      if (r == 1) {
+        /* the second row: the dof y_1 replaced by w_1 = nu_2.u = a y_0 + b y_1 (pairs.c builds N) */
+        PetscReal F2[MM_MAX_DIM][MM_MAX_DIM];
+        ct->obstacle[nc]          = b2;
+        ct->corner_ab[2 * nc]     = ab[0];
+        ct->corner_ab[2 * nc + 1] = ab[1];
+        FrameFromNormal(dim, n2, F2);
+        for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
+          for (PetscInt b = 0; b < MM_MAX_DIM; ++b) ct->node_frame[9 * nc + 3 * a + b] = F2[a][b];
+        if (ct->all_gap0)
+          for (PetscInt b = 0; b < ctx->opt.n_rigid; ++b) {
+            ct->all_gap0[nc * ctx->opt.n_rigid + b] = ct->all_gap0[(nc - 1) * ctx->opt.n_rigid + b];
+            for (PetscInt d = 0; d < 3; ++d) ct->all_nu[3 * (nc * ctx->opt.n_rigid + b) + d] = ct->all_nu[3 * ((nc - 1) * ctx->opt.n_rigid + b) + d];
+          }
+      }
+      ++nc;
+    }
   }
   PetscCall(VecRestoreArrayRead(X, &x));
   PetscCall(VecRestoreArrayRead(area, &av));
@@ -307,7 +376,7 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
   PetscCall(MatAssemblyBegin(ctx->op.Q, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(ctx->op.Q, MAT_FINAL_ASSEMBLY));
   PetscCall(ISCreateGeneral(comm, nc, in, PETSC_COPY_VALUES, &ct->is_normal));
-  PetscCall(ISCreateGeneral(comm, nc * (dim - 1), it, PETSC_COPY_VALUES, &ct->is_tangent));
+  PetscCall(ISCreateGeneral(comm, nt, it, PETSC_COPY_VALUES, &ct->is_tangent));
   /* the condensed dofs, node by node: the normal one, and the tangential ones with friction */
   for (PetscInt k = 0; k < nc; ++k)
     for (PetscInt c = 0; c < ct->ncomp; ++c) is[k * ct->ncomp + c] = in[k] + c;
@@ -406,9 +475,9 @@ PetscErrorCode MMContactSetUp(MMCtx *ctx)
     PetscCall(DMPlexGetDepthStratum(ctx->op.dm, 0, &vStart, &vEnd));
     PetscCall(MMContactPairsSetUp(ctx, mark, vEnd - vStart));
   }
+  PetscCall(ContactLayerDiameter(ctx, mark)); /* before the rows: h_c' is the reach of a second obstacle */
   PetscCall(BuildContactDofs(ctx, mark, area));
   PetscCall(MMContactPairsBuildTransform(ctx));
-  PetscCall(ContactLayerDiameter(ctx, mark));
   PetscCall(PetscFree(mark));
   PetscCall(VecDestroy(&area));
   PetscCheck(ct->ncomp == 1 || ct->ops->solvecontactdofs, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_SUP, "Friction (-mu %g) needs a contact formulation that solves the contact dofs alone, and -contact_formulation %s cannot: use condensed or active_set", (double)ctx->opt.mu_max, ct->type);
