@@ -21,6 +21,8 @@ MSH  := meshes/bar80.msh meshes/bar100.msh meshes/disk.msh meshes/ball.msh meshe
 MSH  += meshes/ball10.msh
 # The cases with several, curved and moving obstacles (README "Cases")
 MSH  += meshes/ball_bowl.msh meshes/disk_rail.msh meshes/block_push.msh meshes/ball_vgroove.msh meshes/block_squeeze.msh
+# Bodies of their own material (README "Bodies"): a strip of two glued halves, two separate bars
+MSH  += meshes/bimaterial.msh meshes/two_bars.msh
 # Bench meshes: the 2D D1 disk (115k dofs), the 3D D2 ball (H 0.045: 113k dofs, 3.8k contact nodes)
 # and the large D2 ball of `make bench-large` (H 0.021: about 1M dofs), generated when first needed.
 BALL_BENCH_H ?= 0.045
@@ -73,6 +75,10 @@ meshes/block_push.msh: meshes/block_push.geo
 meshes/ball_vgroove.msh: meshes/ball.geo
 	gmsh -3 $< -setnumber G 0.45 -o $@ -v 2
 meshes/block_squeeze.msh: meshes/block_squeeze.geo
+	gmsh -2 $< -o $@ -v 2
+meshes/bimaterial.msh: meshes/bimaterial.geo
+	gmsh -2 $< -o $@ -v 2
+meshes/two_bars.msh: meshes/two_bars.geo
 	gmsh -2 $< -o $@ -v 2
 meshes/disk_bench.msh: meshes/disk.geo
 	gmsh -2 $< -setnumber H 0.008 -setnumber G 0.001 -o $@ -v 2
