@@ -512,6 +512,8 @@ static PetscErrorCode CreateParts(MMCtx *ctx)
     PetscCall(VecDuplicate(ctx->op.load, &ld->load_old));
   }
   if (ctx->opt.n_dirichlet) PetscCall(PetscMalloc1(ld->nparts, &ld->partD));
+  /* the parts are built on every dof: without Dirichlet boundaries that copy of the mesh is made here */
+  if (!ld->dm_full) PetscCall(CreateFullDM(ctx));
   for (PetscInt k = 0; k < ld->nparts; ++k) {
     Vec full;
     PetscCall(DMGetGlobalVector(ld->dm_full, &full));
