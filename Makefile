@@ -26,6 +26,8 @@ MSH  += meshes/ball_bowl.msh meshes/disk_rail.msh meshes/block_push.msh meshes/b
 # two_balls), a ball on a block; and the cube dropped into a V-groove
 MSH  += meshes/two_bars.msh meshes/two_bars_conf.msh meshes/two_balls.msh meshes/ball_x.msh meshes/ball_block.msh
 MSH  += meshes/cube_groove.msh
+# Bodies of their own material (README "Bodies"): a strip of two glued halves, two separate bars
+MSH  += meshes/bimaterial.msh meshes/side_bars.msh
 # Bench meshes: the 2D D1 disk (115k dofs), the 3D D2 ball (H 0.045: 113k dofs, 3.8k contact nodes)
 # and the large D2 ball of `make bench-large` (H 0.021: about 1M dofs), generated when first needed.
 BALL_BENCH_H ?= 0.045
@@ -91,6 +93,10 @@ meshes/ball_block.msh: meshes/ball_block.geo
 	gmsh -3 $< -o $@ -v 2
 meshes/cube_groove.msh: meshes/cube_groove.geo
 	gmsh -3 $< -o $@ -v 2
+meshes/bimaterial.msh: meshes/bimaterial.geo
+	gmsh -2 $< -o $@ -v 2
+meshes/side_bars.msh: meshes/side_bars.geo
+	gmsh -2 $< -o $@ -v 2
 meshes/disk_bench.msh: meshes/disk.geo
 	gmsh -2 $< -setnumber H 0.008 -setnumber G 0.001 -o $@ -v 2
 meshes/ball_bench.msh: meshes/ball.geo

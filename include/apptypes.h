@@ -55,6 +55,17 @@ typedef struct {
   MMAmplitudeOptions amplitude;
 } MMTraction;
 
+/* A body of -bodies (docs/method.md section 2, "Bodies"): a physical group of cells with its own
+ * material and initial velocity, each defaulting to the whole mesh's -E, -nu, -rho and -v0. */
+typedef struct {
+  char     *name;
+  char      group[256]; /* -body_NAME_group: a Physical Surface (2D) or Volume (3D) */
+  PetscBool group_set;
+  PetscReal E, nu, rho;
+  PetscReal v0[MM_MAX_DIM];
+  PetscInt  nv0; /* entries given to -body_NAME_v0, -1 if not set */
+} MMBodyOptions;
+
 /* The vector options, whose lengths can only be checked once the mesh gives the dimension. */
 typedef enum {
   MM_V_GRAVITY,
@@ -78,6 +89,8 @@ typedef struct {
   MMDirichlet *dirichlet;
   MMTraction  *traction;
   PetscReal    E, nu, rho;
+  PetscInt     n_bodies;            /* -bodies, 0 without it: one body, the whole mesh, of -E -nu -rho -v0 */
+  MMBodyOptions *bodies;
   PetscReal    gravity[MM_MAX_DIM];
   MMAmplitudeOptions gravity_amplitude;
   PetscReal    u0_offset[MM_MAX_DIM], u0_gradient[MM_MAX_DIM * MM_MAX_DIM];

@@ -13,6 +13,34 @@ typedef enum {
   MM_C_NUM = MM_C_GRAVITY + MM_MAX_DIM
 } MMConstantIndex;
 
+/* One body's material and initial velocity (src/fem/material.c, docs/method.md section 2 "Bodies"). */
+typedef struct {
+  const char *name;    /* the -bodies name; "body" for the whole mesh without -bodies */
+  const char *group;   /* its physical group of cells; NULL: the whole mesh */
+  PetscReal   E, nu, rho;
+  PetscReal   lambda, mu; /* Lame parameters (plane strain in 2D) */
+  PetscReal   c_p, c_s;   /* its pressure and shear wave speeds */
+  PetscReal   v0[MM_MAX_DIM];
+  PetscInt    ncells;  /* over all ranks */
+  PetscReal   volume, mass;
+} MMBody;
+
+/* The material of each cell, built once at set-up: one body (the whole mesh, -E -nu -rho -v0)
+ * without -bodies, or the bodies of -bodies, every cell in exactly one. The per-cell arrays are
+ * indexed by the local cell number c - cStart of the mesh (and of its clones, which share it). */
+typedef struct {
+  PetscInt   n_bodies;
+  MMBody    *body;
+  PetscBool  named;       /* -bodies was given */
+  PetscBool  uniform;     /* every cell has the same E, nu, rho: the PetscDS constants hold it */
+  PetscInt   cStart, ncells; /* local cells */
+  PetscInt  *cell_body;   /* per local cell, its body */
+  PetscReal *lambda, *mu, *rho; /* per local cell */
+  PetscReal *vertex_v0;   /* -bodies: per local vertex (dim entries), the v0 of the body of its cells */
+  PetscReal  c_p_max;     /* the largest pressure wave speed: the CFL number's */
+  PetscReal  E_max;       /* the largest Young's modulus: the contact solvers' force scales */
+} MMMaterial;
+
 /* Finite element operators in the contact frame (w-dofs). */
 typedef struct {
   DM        dm;

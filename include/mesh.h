@@ -5,3 +5,5 @@ PETSC_EXTERN PetscErrorCode MMMeshCheckFile(MPI_Comm, const char[]);
 PETSC_EXTERN PetscErrorCode MMMeshFileNodes(MPI_Comm, DM, const char[], PetscInt **);
 PETSC_EXTERN PetscErrorCode MMMeshGetLabel(DM, const char[], DMLabel *);
 PETSC_EXTERN PetscErrorCode MMMeshGetSizes(DM, PetscInt *, PetscInt *);
+PETSC_EXTERN PetscErrorCode MMMeshCellCentroid(DM, PetscInt, PetscReal[]);
+PETSC_EXTERN PetscErrorCode MMMeshCellGroups(DM, char[], size_t);

@@ -15,6 +15,7 @@
 typedef struct {
   MMOptions   opt;
   PetscReal   constants[MM_C_NUM];
+  MMMaterial  material;
   MMOperators op;
   MMLoads     loads;
   MMContact   contact;

@@ -23,6 +23,7 @@ static char help[] = "mmcontact: elastic bodies hitting and sliding on rigid obs
 #include "deformation.h"
 #include "damping.h"
 #include "loads.h"
+#include "material.h"
 
 static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
 {
@@ -81,6 +82,7 @@ static PetscErrorCode Destroy(MMCtx *ctx, TS *ts)
   PetscCall(MMContactDestroy(&ctx->contact));
   PetscCall(MMLoadsDestroy(&ctx->loads));
   PetscCall(MMFEDestroy(&ctx->op));
+  PetscCall(MMMaterialDestroy(&ctx->material));
   PetscCall(DMDestroy(&ctx->op.dm));
   PetscCall(MMOptionsDestroy(&ctx->opt));
   PetscCall(MMCheckpointDestroy(&ctx->ckpt));

@@ -368,6 +368,48 @@ static PetscErrorCode ProcessObstacles(PetscOptionItems *PetscOptionsObject, MPI
   PetscFunctionReturn(0);
 }
 
+/* -bodies NAME,...: each body a physical group of cells with its own material and initial velocity,
+ * each defaulting to the whole mesh's (so -E, -nu, -rho and -v0 must be read first). The cells and
+ * the groups are checked against the mesh in src/fem/material.c. */
+static PetscErrorCode ProcessBodies(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt)
+{
+  char     list[PETSC_MAX_PATH_LEN] = "", **names;
+  PetscInt n;
+
+  PetscFunctionBeginUser;
+  PetscCall(OptionsString(PetscOptionsObject, comm, "-bodies", "Comma-separated names of the bodies, each a physical group of cells (-body_NAME_group) with its own -body_NAME_E, _nu, _rho and _v0; every cell must be in exactly one body (default: one body, the whole mesh, of -E, -nu, -rho and -v0)", list, sizeof(list), NULL));
+  PetscCall(SplitNames(comm, "-bodies", list, &n, &names));
+  opt->n_bodies = n;
+  PetscCall(PetscCalloc1(n, &opt->bodies));
+  for (PetscInt b = 0; b < n; ++b) {
+    MMBodyOptions *body = &opt->bodies[b];
+    char           key[512];
+
+    for (PetscInt a = 0; a < b; ++a) {
+      PetscBool same;
+      PetscCall(PetscStrcmp(names[a], names[b], &same));
+      PetscCheck(!same, comm, PETSC_ERR_USER_INPUT, "-bodies %s names %s twice", list, names[b]);
+    }
+    PetscCall(PetscStrallocpy(names[b], &body->name));
+    PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_group", body->name));
+    PetscCall(OptionsString(PetscOptionsObject, comm, key, "Physical group of this body's cells: a Physical Surface (2D) or Physical Volume (3D) of the mesh; required", body->group, sizeof(body->group), &body->group_set));
+    body->E   = opt->E;
+    body->nu  = opt->nu;
+    body->rho = opt->rho;
+    PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_E", body->name));
+    PetscCall(OptionsReal(PetscOptionsObject, comm, key, "This body's Young's modulus (Pa), > 0 (default -E)", &body->E));
+    PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_nu", body->name));
+    PetscCall(OptionsReal(PetscOptionsObject, comm, key, "This body's Poisson ratio, in (-1, 0.5) (default -nu)", &body->nu));
+    PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_rho", body->name));
+    PetscCall(OptionsReal(PetscOptionsObject, comm, key, "This body's mass density (kg/m^d), > 0 (default -rho)", &body->rho));
+    for (PetscInt d = 0; d < MM_MAX_DIM; ++d) body->v0[d] = opt->v0[d];
+    PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_v0", body->name));
+    PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "This body's initial translation velocity, d entries (default -v0); -omega adds the same rigid rotation to every body", MM_MAX_DIM, body->v0, &body->nv0));
+  }
+  PetscCall(PetscStrToArrayDestroy((int)n, names));
+  PetscFunctionReturn(0);
+}
+
 /* Rayleigh damping C = alpha M* + beta K: alpha and beta, or a ratio at two frequencies
  * (src/ts/damping.c checks them together and turns a ratio into alpha and beta). */
 static PetscErrorCode ProcessDamping(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt)
@@ -393,6 +435,13 @@ static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
   PetscCheck(opt->E > 0, comm, PETSC_ERR_USER_INPUT, "Young's modulus -E %g must be > 0", (double)opt->E);
   PetscCheck(opt->nu > -1.0 && opt->nu < 0.5, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -nu %g must lie in (-1, 0.5); nu >= 0.5 is incompressible, which P1 elements cannot represent", (double)opt->nu);
   PetscCheck(opt->rho > 0, comm, PETSC_ERR_USER_INPUT, "Density -rho %g must be > 0", (double)opt->rho);
+  for (PetscInt b = 0; b < opt->n_bodies; ++b) {
+    const MMBodyOptions *body = &opt->bodies[b];
+    PetscCheck(body->group_set && body->group[0], comm, PETSC_ERR_USER_INPUT, "-bodies: body %s has no cells: give -body_%s_group GROUP, the physical group (a Physical %s) of its cells", body->name, body->name, "Surface in 2D, Volume in 3D");
+    PetscCheck(body->E > 0, comm, PETSC_ERR_USER_INPUT, "Young's modulus -body_%s_E %g must be > 0", body->name, (double)body->E);
+    PetscCheck(body->nu > -1.0 && body->nu < 0.5, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -body_%s_nu %g must lie in (-1, 0.5); nu >= 0.5 is incompressible, which P1 elements cannot represent", body->name, (double)body->nu);
+    PetscCheck(body->rho > 0, comm, PETSC_ERR_USER_INPUT, "Density -body_%s_rho %g must be > 0", body->name, (double)body->rho);
+  }
   PetscCheck(opt->mu >= 0, comm, PETSC_ERR_USER_INPUT, "Friction coefficient -mu %g must be >= 0", (double)opt->mu);
   PetscCheck(opt->contact_tol > 0 && opt->contact_tol < 1, comm, PETSC_ERR_USER_INPUT, "-contact_tol %g must lie in (0, 1): it is a relative residual", (double)opt->contact_tol);
   PetscCheck(opt->friction_coulomb_tol > 0 && opt->friction_coulomb_tol < 1, comm, PETSC_ERR_USER_INPUT, "-friction_coulomb_tol %g must lie in (0, 1): it is a normalized residual", (double)opt->friction_coulomb_tol);
@@ -445,6 +494,7 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OMEGA_CENTER, "Centre of the initial rigid rotation, d entries", opt->omega_center));
   opt->initial_state = MM_INITIAL_GIVEN;
   PetscCall(OptionsEnum(PetscOptionsObject, comm, "-initial_state", "Initial displacement: given (-u0_offset, -u0_gradient, contact dofs projected) or static_sliding (the body sliding along the tangential part of -v0 on the obstacle under its loads, with friction -mu; the normal part of -v0 is dropped)", MMInitialStates, (PetscEnum *)&opt->initial_state));
+  PetscCall(ProcessBodies(PetscOptionsObject, comm, opt));
 
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OBSTACLE_POINT, "A point of the rigid obstacle plane, d entries", opt->obstacle_point));
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OBSTACLE_NORMAL, "Unit normal of the obstacle plane, pointing out of the obstacle towards the body, d entries (default +y in 2D, +z in 3D)", opt->obstacle_normal));
@@ -582,6 +632,10 @@ PetscErrorCode MMOptionsCheckDimension(MPI_Comm comm, MMOptions *opt, PetscInt d
      * scheme (docs/method.md section 10): refuse rather than let the energy audit stop the run */
     PetscCheck(bc->nvelocity < 0 || (opt->damping_mass <= 0 && opt->damping_stiffness <= 0 && opt->damping_ratio <= 0), comm, PETSC_ERR_SUP, "-dirichlet_%s_velocity with Rayleigh damping (-damping_mass, -damping_stiffness or -damping_ratio) is not supported: the damping force of a moving boundary is not in the scheme. Drop one of the two", bc->name);
   }
+  for (PetscInt b = 0; b < opt->n_bodies; ++b) {
+    const MMBodyOptions *body = &opt->bodies[b];
+    PetscCheck(body->nv0 < 0 || body->nv0 == dim, comm, PETSC_ERR_USER_INPUT, "-body_%s_v0 has %" PetscInt_FMT " entries; the mesh is %" PetscInt_FMT "D, so it needs exactly %" PetscInt_FMT, body->name, body->nv0, dim, dim);
+  }
   for (PetscInt b = 0; b < opt->n_traction; ++b) {
     const MMTraction *tr = &opt->traction[b];
     PetscCheck(tr->nvalues < 0 || tr->nvalues == dim, comm, PETSC_ERR_USER_INPUT, "-traction_%s_value has %" PetscInt_FMT " entries; the mesh is %" PetscInt_FMT "D, so it needs exactly %" PetscInt_FMT, tr->name, tr->nvalues, dim, dim);
@@ -594,6 +648,8 @@ PetscErrorCode MMOptionsDestroy(MMOptions *opt)
   PetscFunctionBeginUser;
   for (PetscInt b = 0; b < opt->n_dirichlet; ++b) PetscCall(PetscFree(opt->dirichlet[b].name));
   for (PetscInt b = 0; b < opt->n_traction; ++b) PetscCall(PetscFree(opt->traction[b].name));
+  for (PetscInt b = 0; b < opt->n_bodies; ++b) PetscCall(PetscFree(opt->bodies[b].name));
+  PetscCall(PetscFree(opt->bodies));
   PetscCall(PetscFree(opt->dirichlet));
   PetscCall(PetscFree(opt->traction));
   PetscCall(PetscFree(opt->obstacles));

@@ -395,10 +395,12 @@ static PetscErrorCode AddCell(DM dm, PetscInt depth, const VertexTable *vt, cons
   PetscFunctionReturn(0);
 }
 
-/* Assembles the stiffness (Lame lambda, mu; plane strain in 2D) into K and the consistent mass
- * (density rho) into M, one pass over the cells. M may be NULL (a lumped mass needs only K). Both
- * come from DMCreateMatrix on dm (M may be K's duplicate); their entries are replaced. */
-PetscErrorCode MMAssembleP1(DM dm, PetscReal lambda, PetscReal mu, PetscReal rho, Mat K, Mat M)
+/* Assembles the stiffness (each cell's Lame lambda, mu from mat; plane strain in 2D) into K and the
+ * consistent mass (its density rho) into M, one pass over the cells: K = sum_T K_T(lambda_T, mu_T),
+ * M = sum_T rho_T M_T (docs/method.md section 2, "Bodies"). M may be NULL (a lumped mass needs
+ * only K). Both come from DMCreateMatrix on dm (M may be K's duplicate), dm the mesh of mat or a
+ * clone of it; their entries are replaced. */
+PetscErrorCode MMAssembleP1(DM dm, const MMMaterial *mat, Mat K, Mat M)
 {
   VertexTable vt;
   CSRTarget   t;
@@ -413,7 +415,8 @@ PetscErrorCode MMAssembleP1(DM dm, PetscReal lambda, PetscReal mu, PetscReal rho
   PetscCall(MatZeroEntries(K));
   if (M) PetscCall(MatZeroEntries(M));
   PetscCall(CSRTargetGet(K, M, &t));
-  for (PetscInt c = cStart; c < cEnd; ++c) PetscCall(AddCell(dm, depth, &vt, &t, lambda, mu, rho, K, M, c));
+  PetscCheck(cStart == mat->cStart && cEnd - cStart == mat->ncells, PETSC_COMM_SELF, PETSC_ERR_ARG_INCOMP, "Closed-form assembly: the mesh has cells [%" PetscInt_FMT ", %" PetscInt_FMT "), the material %" PetscInt_FMT " from %" PetscInt_FMT, cStart, cEnd, mat->ncells, mat->cStart);
+  for (PetscInt c = cStart; c < cEnd; ++c) PetscCall(AddCell(dm, depth, &vt, &t, mat->lambda[c - cStart], mat->mu[c - cStart], mat->rho[c - cStart], K, M, c));
   PetscCall(CSRTargetRestore(&t));
   PetscCall(VertexTableDestroy(&vt));
   /* both matrices' off-rank rows are sent before either is received */
@@ -421,6 +424,61 @@ PetscErrorCode MMAssembleP1(DM dm, PetscReal lambda, PetscReal mu, PetscReal rho
   if (M) PetscCall(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
   if (M) PetscCall(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+/* The elastic force K x and energy 1/2 x.K x of a Cartesian local vector x (all dofs, constrained ones
+ * included), cell by cell with each cell's material: what the PetscFE residual and integral of the
+ * elastic energy compute with one material (fem.c). f (a local vector, added to) and energy (summed
+ * over ranks) may each be NULL. */
+PetscErrorCode MMApplyP1(DM dm, const MMMaterial *mat, Vec x, Vec f, PetscReal *energy)
+{
+  PetscSection       ls, cs;
+  Vec                coords;
+  const PetscScalar *xa, *xc;
+  PetscScalar       *fa = NULL;
+  PetscInt           dim, depth, cStart, cEnd;
+  PetscReal          e = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetDimension(dm, &dim));
+  PetscCall(DMPlexGetDepth(dm, &depth));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  PetscCheck(cStart == mat->cStart && cEnd - cStart == mat->ncells, PETSC_COMM_SELF, PETSC_ERR_ARG_INCOMP, "Closed-form elastic force: the mesh's cells are not the material's");
+  PetscCall(DMGetLocalSection(dm, &ls));
+  PetscCall(DMGetCoordinateSection(dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(dm, &coords));
+  PetscCall(VecGetArrayRead(coords, &xc));
+  PetscCall(VecGetArrayRead(x, &xa));
+  if (f) PetscCall(VecGetArray(f, &fa));
+  for (PetscInt c = cStart; c < cEnd; ++c) {
+    const PetscInt nv = dim + 1, n = nv * dim;
+    PetscInt       v[MM_NV_MAX], off[MM_NV_MAX];
+    PetscReal      X[MM_NV_MAX][MM_MAX_DIM], g[MM_NV_MAX][MM_MAX_DIM], vol;
+    PetscScalar    Ke[MM_NDOF_MAX * MM_NDOF_MAX];
+
+    PetscCall(CellVertices(dm, depth, dim, c, v));
+    for (PetscInt a = 0; a < nv; ++a) {
+      PetscInt xo;
+      PetscCall(PetscSectionGetOffset(cs, v[a], &xo));
+      PetscCall(PetscSectionGetOffset(ls, v[a], &off[a]));
+      for (PetscInt i = 0; i < dim; ++i) X[a][i] = PetscRealPart(xc[xo + i]);
+    }
+    PetscCall(SimplexGradients(dim, (const PetscReal(*)[MM_MAX_DIM])X, g, &vol));
+    ElementStiffness(dim, mat->lambda[c - cStart], mat->mu[c - cStart], vol, (const PetscReal(*)[MM_MAX_DIM])g, Ke);
+    for (PetscInt a = 0; a < nv; ++a)
+      for (PetscInt i = 0; i < dim; ++i) {
+        PetscScalar r = 0;
+        for (PetscInt b = 0; b < nv; ++b)
+          for (PetscInt j = 0; j < dim; ++j) r += Ke[(a * dim + i) * n + b * dim + j] * xa[off[b] + j];
+        if (fa) fa[off[a] + i] += r;
+        e += 0.5 * PetscRealPart(r * xa[off[a] + i]);
+      }
+  }
+  if (f) PetscCall(VecRestoreArray(f, &fa));
+  PetscCall(VecRestoreArrayRead(x, &xa));
+  PetscCall(VecRestoreArrayRead(coords, &xc));
+  if (energy) PetscCall(MPIU_Allreduce(&e, energy, 1, MPIU_REAL, MPI_SUM, PetscObjectComm((PetscObject)dm)));
   PetscFunctionReturn(0);
 }
 

@@ -5,6 +5,7 @@
 #include "contact.h"
 #include "assembly_p1.h"
 #include "log.h"
+#include "material.h"
 
 /* Field layout of every kernel: one field u (displacement), dim components, P1.
  * constants[] = {lambda, mu, rho, w_K, w_M, g_x, g_y, g_z} (MMConstantIndex). The weights select
@@ -96,21 +97,22 @@ static PetscErrorCode SetUpDirichlet(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
+/* The PetscDS constants: the material of the first body, which is every cell's when the material is
+ * uniform (the PetscFE kernels then hold it; otherwise they are not used for it, src/fem/material.c),
+ * and the wave speed of the CFL number, the largest of the bodies'. */
 static PetscErrorCode SetConstants(MMCtx *ctx)
 {
-  const MMOptions *o  = &ctx->opt;
-  const PetscReal  mu = o->E / (2 * (1 + o->nu));
-  /* plane strain in 2D, so the same Lame parameters serve both dimensions */
-  const PetscReal lambda = o->E * o->nu / ((1 + o->nu) * (1 - 2 * o->nu));
+  const MMOptions *o = &ctx->opt;
+  const MMBody    *b = &ctx->material.body[0];
 
   PetscFunctionBeginUser;
-  ctx->constants[MM_C_LAMBDA] = lambda;
-  ctx->constants[MM_C_MU]     = mu;
-  ctx->constants[MM_C_RHO]    = o->rho;
+  ctx->constants[MM_C_LAMBDA] = b->lambda;
+  ctx->constants[MM_C_MU]     = b->mu;
+  ctx->constants[MM_C_RHO]    = b->rho;
   ctx->constants[MM_C_WEIGHT_K] = 1.0;
   ctx->constants[MM_C_WEIGHT_M] = 0.0;
   for (PetscInt d = 0; d < MM_MAX_DIM; ++d) ctx->constants[MM_C_GRAVITY + d] = o->gravity[d];
-  ctx->op.c_p = PetscSqrtReal((lambda + 2 * mu) / o->rho);
+  ctx->op.c_p = ctx->material.c_p_max;
   PetscFunctionReturn(0);
 }
 
@@ -127,6 +129,7 @@ PetscErrorCode MMFESetUp(MMCtx *ctx)
   PetscFunctionBeginUser;
   PetscCall(DMGetDimension(dm, &dim));
   ctx->op.dim = dim;
+  PetscCall(MMMaterialSetUp(ctx));
   PetscCall(SetConstants(ctx));
   PetscCall(PetscFECreateLagrange(PetscObjectComm((PetscObject)dm), dim, dim, PETSC_TRUE, 1, PETSC_DETERMINE, &fe));
   PetscCall(PetscObjectSetName((PetscObject)fe, "displacement"));
@@ -157,7 +160,8 @@ PetscErrorCode MMFESetUp(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
-/* Lumped mass per vertex, int rho phi_i: exact row sums of the consistent mass, Dirichlet columns included. */
+/* Lumped mass per vertex, int rho phi_i = sum_T rho_T |T| / (d+1): exact row sums of the consistent
+ * mass, Dirichlet columns included. */
 static PetscErrorCode VertexMasses(MMCtx *ctx, Vec mloc)
 {
   DM           dms = ctx->out.dm_scalar;
@@ -179,7 +183,7 @@ static PetscErrorCode VertexMasses(MMCtx *ctx, Vec mloc)
       PetscInt off, end;
       if (closure[2 * i] < vStart || closure[2 * i] >= vEnd) continue;
       PetscCall(DMPlexGetPointLocal(dms, closure[2 * i], &off, &end));
-      m[off] += ctx->opt.rho * vol / (dim + 1);
+      m[off] += ctx->material.rho[c - cStart] * vol / (dim + 1);
     }
     PetscCall(DMPlexRestoreTransitiveClosure(dms, c, PETSC_TRUE, &ncl, &closure));
   }
@@ -344,9 +348,11 @@ static PetscErrorCode AssembleMatrix(MMCtx *ctx, PetscReal wK, PetscReal wM, Mat
   PetscFunctionReturn(0);
 }
 
-/* K_fD u_D: the elastic force of the Dirichlet data on the free dofs, the residual at u_free = 0. */
-static PetscErrorCode DirichletLift(DM dm, Vec lift)
+/* K_fD u_D: the elastic force of the Dirichlet data on the free dofs, the residual at u_free = 0. The
+ * PetscFE residual holds one material: with several, each cell's in closed form (assembly_p1.c). */
+static PetscErrorCode DirichletLift(MMCtx *ctx, Vec lift)
 {
+  DM  dm = ctx->op.dm;
   Vec xloc, floc;
 
   PetscFunctionBeginUser;
@@ -356,7 +362,8 @@ static PetscErrorCode DirichletLift(DM dm, Vec lift)
   PetscCall(VecZeroEntries(floc));
   PetscCall(DMPlexInsertBoundaryValues(dm, PETSC_TRUE, xloc, 0.0, NULL, NULL, NULL));
   /* in PETSc 3.18 both vectors of the FEM residual are local */
-  PetscCall(DMPlexSNESComputeResidualFEM(dm, xloc, floc, NULL));
+  if (ctx->material.uniform) PetscCall(DMPlexSNESComputeResidualFEM(dm, xloc, floc, NULL));
+  else PetscCall(MMApplyP1(dm, &ctx->material, xloc, floc, NULL));
   PetscCall(VecZeroEntries(lift));
   PetscCall(DMLocalToGlobal(dm, floc, ADD_VALUES, lift));
   PetscCall(DMRestoreLocalVector(dm, &floc));
@@ -369,7 +376,7 @@ static PetscErrorCode AssembleKM(MMCtx *ctx, MMAssemblyType type, Mat K, Mat M)
 {
   PetscFunctionBeginUser;
   if (type == MM_ASSEMBLY_CLOSED_FORM) {
-    PetscCall(MMAssembleP1(ctx->op.dm, PetscRealPart(ctx->constants[MM_C_LAMBDA]), PetscRealPart(ctx->constants[MM_C_MU]), ctx->opt.rho, K, M));
+    PetscCall(MMAssembleP1(ctx->op.dm, &ctx->material, K, M));
   } else {
     PetscCall(AssembleMatrix(ctx, 1.0, 0.0, K));
     if (M) PetscCall(AssembleMatrix(ctx, 0.0, 1.0, M));
@@ -481,7 +488,7 @@ PetscErrorCode MMFEAssembleOperators(MMCtx *ctx)
   PetscCall(DMRestoreLocalVector(ctx->out.dm_scalar, &mloc));
   PetscCall(AddTractions(ctx, Lcart));
   PetscCall(MatMultTranspose(ctx->op.Q, Lcart, ctx->op.load));
-  PetscCall(DirichletLift(dm, tmp));
+  PetscCall(DirichletLift(ctx, tmp));
   PetscCall(MatMultTranspose(ctx->op.Q, tmp, ctx->op.lift));
   PetscCall(DirichletEnergy(ctx));
   PetscCall(VecDuplicate(ctx->op.load, &ctx->op.work));
@@ -568,27 +575,48 @@ PetscErrorCode MMFEElasticEnergy(MMCtx *ctx, Vec w, PetscReal *energy)
   PetscFunctionReturn(0);
 }
 
-/* 1/2 int sigma(u_D):eps(u_D) by quadrature, once: the free dofs zero, the Dirichlet data inserted. */
+/* 1/2 int sigma(u):eps(u) of a Cartesian global vector u with the Dirichlet data of t = 0 inserted:
+ * by quadrature with the PetscDS's one material, or cell by cell with each cell's in closed form
+ * (assembly_p1.c) when the bodies differ. */
+static PetscErrorCode ElasticEnergyIntegral(MMCtx *ctx, Vec ucart, PetscReal *energy)
+{
+  DM          dm = ctx->op.dm;
+  PetscScalar integral[1];
+  Vec         xloc;
+
+  PetscFunctionBeginUser;
+  if (ctx->material.uniform) {
+    PetscCall(DMPlexComputeIntegralFEM(dm, ucart, integral, NULL));
+    *energy = PetscRealPart(integral[0]);
+    PetscFunctionReturn(0);
+  }
+  PetscCall(DMGetLocalVector(dm, &xloc));
+  PetscCall(VecZeroEntries(xloc));
+  PetscCall(DMGlobalToLocal(dm, ucart, INSERT_VALUES, xloc));
+  PetscCall(DMPlexInsertBoundaryValues(dm, PETSC_TRUE, xloc, 0.0, NULL, NULL, NULL));
+  PetscCall(MMApplyP1(dm, &ctx->material, xloc, NULL, energy));
+  PetscCall(DMRestoreLocalVector(dm, &xloc));
+  PetscFunctionReturn(0);
+}
+
+/* 1/2 int sigma(u_D):eps(u_D), once: the free dofs zero, the Dirichlet data inserted. */
 static PetscErrorCode DirichletEnergy(MMCtx *ctx)
 {
-  PetscScalar integral[1];
-  Vec         zero;
+  Vec zero;
 
   PetscFunctionBeginUser;
   PetscCall(DMGetGlobalVector(ctx->op.dm, &zero));
   PetscCall(VecZeroEntries(zero));
-  PetscCall(DMPlexComputeIntegralFEM(ctx->op.dm, zero, integral, NULL));
+  PetscCall(ElasticEnergyIntegral(ctx, zero, &ctx->op.energy_dirichlet));
   PetscCall(DMRestoreGlobalVector(ctx->op.dm, &zero));
-  ctx->op.energy_dirichlet = PetscRealPart(integral[0]);
   PetscFunctionReturn(0);
 }
 
 /* Start-up audit: the matrix form of the elastic energy against its quadrature on the state w. */
 PetscErrorCode MMFECheckElasticEnergy(MMCtx *ctx, Vec w)
 {
-  PetscScalar integral[1];
-  PetscReal   e;
-  Vec         ucart;
+  PetscReal e, integral[1];
+  Vec       ucart;
 
   PetscFunctionBeginUser;
   /* the quadrature inserts the Dirichlet data of t = 0: a restarted run's moving boundary is elsewhere */
@@ -596,9 +624,9 @@ PetscErrorCode MMFECheckElasticEnergy(MMCtx *ctx, Vec w)
   PetscCall(MMFEElasticEnergy(ctx, w, &e));
   PetscCall(DMGetGlobalVector(ctx->op.dm, &ucart));
   PetscCall(MMFEToCartesian(ctx, w, ucart));
-  PetscCall(DMPlexComputeIntegralFEM(ctx->op.dm, ucart, integral, NULL));
+  PetscCall(ElasticEnergyIntegral(ctx, ucart, &integral[0]));
   PetscCall(DMRestoreGlobalVector(ctx->op.dm, &ucart));
-  PetscCheck(PetscAbsReal(e - PetscRealPart(integral[0])) <= 1e-10 * PetscMax(PetscAbsReal(e), PETSC_SMALL), PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_PLIB, "Elastic energy audit failed: matrix form %.16e, quadrature %.16e", (double)e, (double)PetscRealPart(integral[0]));
+  PetscCheck(PetscAbsReal(e - integral[0]) <= 1e-10 * PetscMax(PetscAbsReal(e), PETSC_SMALL), PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_PLIB, "Elastic energy audit failed: matrix form %.16e, %s %.16e", (double)e, ctx->material.uniform ? "quadrature" : "cell by cell", (double)integral[0]);
   PetscFunctionReturn(0);
 }
 

@@ -373,7 +373,7 @@ static PetscErrorCode AssembleRowsD(MMCtx *ctx)
   PetscCall(DMSetMatType(ld->dm_full, MATAIJ));
   PetscCall(DMCreateMatrix(ld->dm_full, &K));
   PetscCall(MatDuplicate(K, MAT_DO_NOT_COPY_VALUES, &M));
-  PetscCall(MMAssembleP1(ld->dm_full, PetscRealPart(ctx->constants[MM_C_LAMBDA]), PetscRealPart(ctx->constants[MM_C_MU]), ctx->opt.rho, K, M));
+  PetscCall(MMAssembleP1(ld->dm_full, &ctx->material, K, M));
   if (ctx->opt.lumped) {
     Vec rs;
     PetscCall(MatCreateVecs(M, NULL, &rs));

@@ -161,7 +161,7 @@ static PetscErrorCode AddCellShares(MMCtx *ctx, Vec kind, Vec normal[], Mat A)
       PetscInt off;
       PetscCall(DMPlexGetPointLocal(dms, contact[i], &off, NULL));
       for (PetscInt a = 0; a < dim; ++a)
-        for (PetscInt b = 0; b < dim; ++b) B[a][b] += ctx->opt.rho * vol / (dim + 1) / nf * PetscRealPart(n[a][off] * n[b][off]);
+        for (PetscInt b = 0; b < dim; ++b) B[a][b] += ctx->material.rho[c - cStart] * vol / (dim + 1) / nf * PetscRealPart(n[a][off] * n[b][off]);
     }
     for (PetscInt a = 0; a < dim; ++a)
       for (PetscInt b = 0; b < dim; ++b) vals[a * dim + b] = B[a][b];

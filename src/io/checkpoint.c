@@ -12,6 +12,7 @@
 #include "newmark.h"
 #include "damping.h"
 #include "loads.h"
+#include "material.h"
 
 #define MM_CKPT_FILE "checkpoint.h5"
 #define MM_CKPT_TMP  ".tmp" /* written whole, then renamed over the last good one */
@@ -21,7 +22,8 @@
 #define MM_CKPT_SECOND_ACTIVE 4
 #define MM_CKPT_SECOND_RHO    7
 #define MM_CKPT_SECOND_AS     11
-#define MM_CKPT_VERSION 4 /* 4: the redistributed mass (mass type + 3 if lumped); the Rayleigh damping (alpha, beta, W_d and vC) */
+#define MM_CKPT_VERSION 5 /* 4: the redistributed mass (mass type + 3 if lumped); the Rayleigh damping (alpha, beta, W_d and vC);
+                           * 5: the per-cell material's checksums (-bodies) */
 
 /* The scalars of a run, in the "run" vector of the file, in this order. */
 typedef enum {
@@ -56,6 +58,8 @@ typedef enum {
   MM_RUN_DAMPING_BETA,
   MM_RUN_ADAPT,   /* the growback adaptor's state, MM_ADAPT_STATE entries */
   MM_RUN_WORK_DIRICHLET = MM_RUN_ADAPT + MM_ADAPT_STATE, /* the moving Dirichlet boundaries' work */
+  MM_RUN_MATERIAL,      /* the per-cell lambda, mu and rho's checksums, 3 entries (MMMaterialChecksum) */
+  MM_RUN_BODIES = MM_RUN_MATERIAL + 3, /* the number of bodies (-bodies; 1 without) */
   MM_RUN_NUM
 } MMRunEntry;
 _Static_assert(MM_RUN_NUM <= sizeof(((MMCheckpoint *)0)->run) / sizeof(PetscReal), "MMCheckpoint.run holds the run record");
@@ -234,6 +238,8 @@ static PetscErrorCode RunRecord(MMCtx *ctx, TS ts, PetscReal run[])
   run[MM_RUN_DAMPING_BETA]    = ctx->damping.beta;
   PetscCall(MMAdaptGrowBackGetState(ts, &run[MM_RUN_ADAPT]));
   run[MM_RUN_WORK_DIRICHLET]  = h->work_dirichlet;
+  PetscCall(MMMaterialChecksum(ctx, &run[MM_RUN_MATERIAL]));
+  run[MM_RUN_BODIES]          = ctx->material.n_bodies;
   PetscFunctionReturn(0);
 }
 
@@ -434,6 +440,11 @@ static PetscErrorCode CheckFingerprint(MMCtx *ctx, TS ts, const PetscReal ck[])
   PetscCheck(ck[MM_RUN_CONTACT_NODES] == me[MM_RUN_CONTACT_NODES], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another contact boundary: %d contact nodes, this run has %d (-contact_boundary %s, -contact %s). Restart with the contact options of the run that wrote it", f, (int)ck[MM_RUN_CONTACT_NODES], (int)me[MM_RUN_CONTACT_NODES], ctx->opt.contact_name, ctx->opt.contact ? "1" : "0");
   PetscCheck(ck[MM_RUN_MU] == me[MM_RUN_MU], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with -mu %.10g, this run has -mu %.10g: a different friction law. Restart with -mu %.10g", f, (double)ck[MM_RUN_MU], (double)me[MM_RUN_MU], (double)ck[MM_RUN_MU]);
   PetscCheck(ck[MM_RUN_E] == me[MM_RUN_E] && ck[MM_RUN_NU] == me[MM_RUN_NU] && ck[MM_RUN_RHO] == me[MM_RUN_RHO], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with -E %.10g -nu %.10g -rho %.10g, this run has -E %.10g -nu %.10g -rho %.10g: another material. Restart with the material of the run that wrote it", f, (double)ck[MM_RUN_E], (double)ck[MM_RUN_NU], (double)ck[MM_RUN_RHO], (double)me[MM_RUN_E], (double)me[MM_RUN_NU], (double)me[MM_RUN_RHO]);
+  {
+    PetscBool same = (PetscBool)(ck[MM_RUN_BODIES] == me[MM_RUN_BODIES]);
+    for (PetscInt k = 0; k < 3; ++k) same = (PetscBool)(same && PetscAbsReal(ck[MM_RUN_MATERIAL + k] - me[MM_RUN_MATERIAL + k]) <= 1e-10 * PetscAbsReal(me[MM_RUN_MATERIAL + k]));
+    PetscCheck(same, comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with %d bod%s of another material distribution than this run's %d (checksums of lambda, mu, rho over the cells %.10g, %.10g, %.10g here %.10g, %.10g, %.10g): another material. Restart with the -bodies, -body_NAME_group, -body_NAME_E, -body_NAME_nu and -body_NAME_rho of the run that wrote it", f, (int)ck[MM_RUN_BODIES], (int)ck[MM_RUN_BODIES] == 1 ? "y" : "ies", (int)me[MM_RUN_BODIES], (double)ck[MM_RUN_MATERIAL], (double)ck[MM_RUN_MATERIAL + 1], (double)ck[MM_RUN_MATERIAL + 2], (double)me[MM_RUN_MATERIAL], (double)me[MM_RUN_MATERIAL + 1], (double)me[MM_RUN_MATERIAL + 2]);
+  }
   PetscCheck(ck[MM_RUN_MASS] == me[MM_RUN_MASS], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with the %s%s mass, this run has the %s%s mass. Restart with the -mass and -mass_lumped of the run that wrote it", f, MMMassTypes[(int)ck[MM_RUN_MASS] % 3], (int)ck[MM_RUN_MASS] / 3 ? " lumped" : "", MMMassTypes[(int)me[MM_RUN_MASS] % 3], (int)me[MM_RUN_MASS] / 3 ? " lumped" : "");
   PetscCheck(ck[MM_RUN_DAMPING_ALPHA] == me[MM_RUN_DAMPING_ALPHA] && ck[MM_RUN_DAMPING_BETA] == me[MM_RUN_DAMPING_BETA], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with the Rayleigh damping alpha = %.10g, beta = %.10g, this run has alpha = %.10g, beta = %.10g: another damping. Restart with the -damping_mass and -damping_stiffness (or -damping_ratio and -damping_frequencies) of the run that wrote it", f, (double)ck[MM_RUN_DAMPING_ALPHA], (double)ck[MM_RUN_DAMPING_BETA], (double)me[MM_RUN_DAMPING_ALPHA], (double)me[MM_RUN_DAMPING_BETA]);
   PetscFunctionReturn(0);

@@ -105,6 +105,21 @@ static PetscErrorCode HeaderMesh(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
+/* -bodies: one line per body, its cells, material, wave speeds and mass; the CFL number takes the
+ * largest c_p (docs/method.md section 2, "Bodies"). */
+static PetscErrorCode HeaderBodies(MMCtx *ctx)
+{
+  const MMMaterial *mat = &ctx->material;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  material: %" PetscInt_FMT " bod%s (-bodies); the largest wave speed, c_p = %.4g, sets c_p dt / h_c'\n", mat->n_bodies, mat->n_bodies > 1 ? "ies" : "y", (double)mat->c_p_max));
+  for (PetscInt b = 0; b < mat->n_bodies; ++b) {
+    const MMBody *body = &mat->body[b];
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    body %s (group %s): %" PetscInt_FMT " cells; E = %.6g, nu = %.6g, rho = %.6g; waves c_p = %.4g, c_s = %.4g; mass %.10g\n", body->name, body->group, body->ncells, (double)body->E, (double)body->nu, (double)body->rho, (double)body->c_p, (double)body->c_s, (double)body->mass));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* Lines 2 and 3, the material and the time step: the wave speeds and the contact CFL number of
  * Theorem 4.2, c_p dt / h_c'; and the Rayleigh damping when there is one. */
 static PetscErrorCode HeaderPhysics(MMCtx *ctx, TS ts)
@@ -123,7 +138,8 @@ static PetscErrorCode HeaderPhysics(MMCtx *ctx, TS ts)
   if (max_steps < PETSC_MAX_INT) PetscCall(PetscSNPrintf(steps, sizeof(steps), " or %" PetscInt_FMT " steps", max_steps));
   if (h_c > 0) PetscCall(PetscSNPrintf(cfl, sizeof(cfl), "h_c' = %.4g, c_p dt / h_c' = %.3g", (double)h_c, (double)(ctx->op.c_p * dt / h_c)));
   else PetscCall(PetscStrncpy(cfl, "no contact boundary", sizeof(cfl)));
-  PetscCall(PetscPrintf(comm, "  material: E = %.6g, nu = %.6g, rho = %.6g; waves c_p = %.4g, c_s = %.4g\n", (double)opt->E, (double)opt->nu, (double)opt->rho, (double)ctx->op.c_p, (double)c_s));
+  if (!ctx->material.named) PetscCall(PetscPrintf(comm, "  material: E = %.6g, nu = %.6g, rho = %.6g; waves c_p = %.4g, c_s = %.4g\n", (double)opt->E, (double)opt->nu, (double)opt->rho, (double)ctx->op.c_p, (double)c_s));
+  else PetscCall(HeaderBodies(ctx));
   PetscCall(PetscPrintf(comm, "  time: dt = %.6g to t = %.6g%s; %s\n", (double)dt, (double)t_end, steps, cfl));
   if (MMDampingOn(ctx)) {
     char ratio[128] = "";

@@ -153,7 +153,7 @@ PetscErrorCode MMStressCompute(MMCtx *ctx, PetscBool nodal)
 {
   MMOutput          *o   = &ctx->out;
   const PetscInt     dim = ctx->op.dim;
-  const PetscReal    lambda = PetscRealPart(ctx->constants[MM_C_LAMBDA]), mu = PetscRealPart(ctx->constants[MM_C_MU]);
+  const MMMaterial  *mat = &ctx->material;
   PetscSection       su, ss;
   Vec                lu, ls;
   const PetscScalar *ua;
@@ -181,7 +181,7 @@ PetscErrorCode MMStressCompute(MMCtx *ctx, PetscBool nodal)
       PetscCall(PetscSectionGetOffset(su, v[a], &ou));
       for (PetscInt d = 0; d < dim; ++d) u[a][d] = PetscRealPart(ua[ou + d]);
     }
-    CellStress(dim, g, u, lambda, mu, s);
+    CellStress(dim, g, u, mat->lambda[c], mat->mu[c], s); /* each cell with its body's material */
     for (PetscInt k = 0; k < MM_SYM; ++k) sc[MM_SYM * c + k] = s[k];
     vc[c] = VonMises(&sc[MM_SYM * c]);
     for (PetscInt a = 0; a <= dim; ++a) {

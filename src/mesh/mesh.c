@@ -41,6 +41,39 @@ PetscErrorCode MMMeshGetLabel(DM dm, const char name[], DMLabel *label)
   PetscFunctionReturn(0);
 }
 
+/* The physical groups that hold cells (a Physical Surface in 2D, Volume in 3D), as " \"a\" \"b\"",
+ * or " (none)": what a body can be made of. Collective: a group's cells may all be on other ranks. */
+PetscErrorCode MMMeshCellGroups(DM dm, char list[], size_t len)
+{
+  PetscInt nl, cStart, cEnd;
+
+  PetscFunctionBeginUser;
+  list[0] = 0;
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  PetscCall(DMGetNumLabels(dm, &nl));
+  for (PetscInt l = 0; l < nl; ++l) {
+    const char *lname;
+    DMLabel     label;
+    PetscInt    n = 0, def;
+    PetscCall(DMGetLabelName(dm, l, &lname));
+    PetscCall(DMGetLabelByNum(dm, l, &label));
+    PetscCall(DMLabelGetDefaultValue(label, &def));
+    if (!IsInternalLabel(lname))
+      for (PetscInt c = cStart; c < cEnd && !n; ++c) {
+        PetscInt val;
+        PetscCall(DMLabelGetValue(label, c, &val));
+        if (val != def) n = 1;
+      }
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_INT, MPI_MAX, PetscObjectComm((PetscObject)dm)));
+    if (!n) continue;
+    PetscCall(PetscStrlcat(list, " \"", len));
+    PetscCall(PetscStrlcat(list, lname, len));
+    PetscCall(PetscStrlcat(list, "\"", len));
+  }
+  if (!list[0]) PetscCall(PetscStrncpy(list, " (none)", len));
+  PetscFunctionReturn(0);
+}
+
 /* A rigid rotation of the coordinates: angle in 2D, rotation vector in 3D (Rodrigues). */
 static PetscErrorCode RotateCoordinates(DM dm, const PetscReal rot[], const PetscReal center[])
 {
@@ -181,7 +214,7 @@ static PetscErrorCode CheckLinearGeometry(MPI_Comm comm, DM dm, const char file[
 }
 
 /* The vertex mean of a cell, on the rank that holds it. */
-static PetscErrorCode CellCentroid(DM dm, PetscInt c, PetscReal centroid[])
+PetscErrorCode MMMeshCellCentroid(DM dm, PetscInt c, PetscReal centroid[])
 {
   DM           cdm;
   Vec          X;
@@ -222,7 +255,7 @@ static PetscErrorCode CheckOrientation(MPI_Comm comm, DM dm, const char file[])
       first_det = detJ;
     }
   }
-  if (first >= 0) PetscCall(CellCentroid(dm, first, centroid));
+  if (first >= 0) PetscCall(MMMeshCellCentroid(dm, first, centroid));
   ncells = cEnd - cStart;
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ninv, 1, MPIU_INT, MPI_SUM, comm));
   if (!ninv) PetscFunctionReturn(0);

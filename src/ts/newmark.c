@@ -389,6 +389,44 @@ static PetscErrorCode ProjectInitialField(MMCtx *ctx, PetscErrorCode (*f)(PetscI
   PetscFunctionReturn(0);
 }
 
+/* -bodies: each vertex's translation is the v0 of its body (src/fem/material.c), and -omega's rigid
+ * rotation is added to every body. */
+static PetscErrorCode BodiesInitialVelocity(MMCtx *ctx, Vec w)
+{
+  DM             dm  = ctx->op.dm;
+  const PetscInt dim = ctx->op.dim;
+  PetscErrorCode (*f)(PetscInt, PetscReal, const PetscReal[], PetscInt, PetscScalar *, void *) = InitialVelocity;
+  MMOptions      rotation = ctx->opt; /* the rotation alone: InitialVelocity without -v0 */
+  void          *fctx     = &rotation;
+  PetscSection   ls;
+  PetscInt       vStart, vEnd;
+  PetscScalar   *a;
+  Vec            ucart, tloc, tglob;
+
+  PetscFunctionBeginUser;
+  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) rotation.v0[d] = 0;
+  PetscCall(DMGetGlobalVector(dm, &ucart));
+  PetscCall(DMGetGlobalVector(dm, &tglob));
+  PetscCall(DMGetLocalVector(dm, &tloc));
+  PetscCall(DMProjectFunction(dm, 0.0, &f, &fctx, INSERT_VALUES, ucart));
+  PetscCall(DMGetLocalSection(dm, &ls));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(VecGetArray(tloc, &a));
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(ls, v, &off));
+    for (PetscInt d = 0; d < dim; ++d) a[off + d] = ctx->material.vertex_v0[(v - vStart) * dim + d];
+  }
+  PetscCall(VecRestoreArray(tloc, &a));
+  PetscCall(DMLocalToGlobal(dm, tloc, INSERT_VALUES, tglob)); /* the Dirichlet dofs drop out */
+  PetscCall(VecAXPY(ucart, 1.0, tglob));
+  PetscCall(MMFEFromCartesian(ctx, ucart, w));
+  PetscCall(DMRestoreLocalVector(dm, &tloc));
+  PetscCall(DMRestoreGlobalVector(dm, &tglob));
+  PetscCall(DMRestoreGlobalVector(dm, &ucart));
+  PetscFunctionReturn(0);
+}
+
 /* a0 from M* a0 = L - lift - K u0 - C v0 + f_c0 on the dofs with inertia. */
 static PetscErrorCode InitialAcceleration(MMCtx *ctx)
 {
@@ -461,7 +499,8 @@ PetscErrorCode MMNewmarkInitialState(MMCtx *ctx)
     for (size_t i = 0; i < sizeof(copies) / sizeof(copies[0]); ++i) PetscCall(VecDuplicate(s->u, copies[i]));
   }
   if (ctx->opt.initial_state == MM_INITIAL_STATIC_SLIDING) PetscCall(TangentialInitialVelocity(ctx));
-  PetscCall(ProjectInitialField(ctx, InitialVelocity, s->v));
+  if (ctx->material.named) PetscCall(BodiesInitialVelocity(ctx, s->v));
+  else PetscCall(ProjectInitialField(ctx, InitialVelocity, s->v));
   PetscCall(MMDampingSetUp(ctx));
   PetscCall(VecZeroEntries(s->react));
   if (ctx->opt.initial_state == MM_INITIAL_STATIC_SLIDING) PetscCall(MMInitialStaticSliding(ctx, s->u, s->react));

@@ -80,7 +80,7 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &rmax, 1, MPIU_REAL, MPIU_MAX, comm));
   /* force scale of the normalized residuals: the largest reaction, but at least the nodal force of a
    * 1e-3 strain on the contact layer, so that solver noise on a free boundary is not normalized by itself */
-  fscale = PetscMax(rmax, 1e-3 * ctx->opt.E * PetscPowReal(ct->h_c, dim - 1));
+  fscale = PetscMax(rmax, 1e-3 * ctx->material.E_max * PetscPowReal(ct->h_c, dim - 1));
   for (PetscInt k = 0; k < nc; ++k) {
     const PetscInt  i = in[k] - rstart;
     const PetscReal un = PetscRealPart(wa[i]), g = PetscRealPart(ga[k]), r = -PetscRealPart(fa[i]);

@@ -133,7 +133,7 @@ PetscErrorCode MMFrictionSetUp(MMCtx *ctx)
   ctx->friction   = fr;
   fr->ctx         = ctx;
   fr->coulomb_tol = ctx->opt.friction_coulomb_tol;
-  fr->s_floor     = ctx->opt.mu_max * 1e-3 * ctx->opt.E * PetscPowReal(ctx->contact.h_c, ctx->op.dim - 1);
+  fr->s_floor     = ctx->opt.mu_max * 1e-3 * ctx->material.E_max * PetscPowReal(ctx->contact.h_c, ctx->op.dim - 1);
   fr->monitor     = ctx->opt.friction_monitor;
   PetscCall(MMContactHasDelassus(ctx, &has));
   /* the default: Newton where the formulation gives the Delassus operator, else the fixed point */

@@ -312,7 +312,7 @@ static PetscErrorCode GetSetTolerances(MMCtx *ctx, SetTolerances *tol)
 
   PetscFunctionBeginUser;
   PetscCall(VecStrideMax(ct->rho, 0, NULL, &rmax));
-  tol->fscale = PetscMax(rmax, 1e-3 * ctx->opt.E * PetscPowReal(ct->h_c, ctx->op.dim - 1));
+  tol->fscale = PetscMax(rmax, 1e-3 * ctx->material.E_max * PetscPowReal(ct->h_c, ctx->op.dim - 1));
   tol->len    = 1e-10 * ct->h_c;
   tol->force  = 1e-9 * tol->fscale;
   PetscFunctionReturn(0);
