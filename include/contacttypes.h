@@ -108,6 +108,7 @@ typedef struct {
   PetscInt  **df;      /* per pair and facet: each vertex's first global dof, -1 if held */
   PetscReal *phi;      /* per contact node, MM_MAX_DIM: weights phi_j of its master vertices */
   PetscInt  *mdof;     /* per contact node, MM_MAX_DIM: their first global dofs */
+  PetscInt  *count;    /* per pair, 2: its slave nodes, and those facing a master node (node to node) */
 } MMContactPairs;
 
 /* Contact set, gaps, bounds and the per-step contact solver. Friction wraps ContactSolve. */

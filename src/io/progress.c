@@ -184,7 +184,11 @@ static PetscErrorCode HeaderContact(MMCtx *ctx)
   if (opt->progress_every > 0) PetscCall(PetscSNPrintf(progress, sizeof(progress), "progress every %.6g s", (double)opt->progress_every));
   if (ctx->contact.enabled && ctx->contact.n_corners) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes (%" PetscInt_FMT " of them against two obstacles: %" PetscInt_FMT " rows) against %s; %s %s mass; %s\n", ctx->contact.n_global - ctx->contact.n_corners, ctx->contact.n_corners, ctx->contact.n_global, obstacles, opt->lumped ? "lumped" : "consistent", MMMassTypes[opt->mass_type], friction));
   else if (ctx->contact.enabled) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes against %s; %s %s mass; %s\n", ctx->contact.n_global, obstacles, opt->lumped ? "lumped" : "consistent", MMMassTypes[opt->mass_type], friction));
-  else PetscCall(PetscPrintf(comm, "  contact: off (-contact 0), 0 contact nodes: linear elastodynamics; %s mass\n", opt->lumped ? "lumped" : "consistent"));
+  for (PetscInt p = 0; ctx->contact.enabled && p < ctx->contact.pairs.n; ++p) {
+    const MMObstacle *ob = &opt->obstacles[opt->n_rigid + p];
+    PetscCall(PetscPrintf(comm, "  pair %s: slave %s, %" PetscInt_FMT " nodes (%" PetscInt_FMT " facing a master node: node to node), on %" PetscInt_FMT " facets of master %s; mu = %g\n", ob->name, ob->slave, ctx->contact.pairs.count[2 * p], ctx->contact.pairs.count[2 * p + 1], ctx->contact.pairs.nf[p], ob->master, (double)ob->mu));
+  }
+  if (!ctx->contact.enabled) PetscCall(PetscPrintf(comm, "  contact: off (-contact 0), 0 contact nodes: linear elastodynamics; %s mass\n", opt->lumped ? "lumped" : "consistent"));
   PetscCall(PetscPrintf(comm, "  solvers: contact formulation %s; K~ by %s; %s\n", ctx->contact.type, solver, progress));
   PetscCall(MMProgressMassLine(ctx));
   PetscFunctionReturn(0);

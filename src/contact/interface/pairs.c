@@ -181,7 +181,7 @@ PetscErrorCode MMContactPairsSetUp(MMCtx *ctx, const PetscInt mark[], PetscInt n
   PetscFunctionBeginUser;
   pr->n = np;
   if (!np) PetscFunctionReturn(0);
-  PetscCall(PetscCalloc3(np, &pr->nf, np, &pr->xf, np, &pr->df));
+  PetscCall(PetscCalloc4(np, &pr->nf, np, &pr->xf, np, &pr->df, 2 * np, &pr->count));
   for (PetscInt p = 0; p < np; ++p) PetscCall(GatherMasterSurface(ctx, p, mark));
   /* per contact node (an upper bound: the owned vertices) its master vertices' dofs and weights */
   PetscCall(PetscMalloc2(MM_MAX_DIM * n_vertex_bound, &pr->phi, MM_MAX_DIM * n_vertex_bound, &pr->mdof));
@@ -317,6 +317,16 @@ PetscErrorCode MMContactPairsBuildTransform(MMCtx *ctx)
   for (PetscInt k = 0; k < ct->n_local; ++k) corners += ct->second[k];
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &corners, 1, MPIU_INT, MPI_SUM, comm));
   ct->n_corners = corners;
+  /* per pair its slave nodes, and those that face a master node (one weight 1: node to node) */
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscInt p = ct->obstacle[k] - ctx->opt.n_rigid;
+    PetscBool      facing = PETSC_FALSE;
+    if (p < 0 || ct->second[k]) continue;
+    for (PetscInt j = 0; j < dim; ++j) facing = (PetscBool)(facing || pr->phi[MM_MAX_DIM * k + j] == 1.0);
+    pr->count[2 * p] += 1;
+    pr->count[2 * p + 1] += facing;
+  }
+  if (pr->n) PetscCall(MPIU_Allreduce(MPI_IN_PLACE, pr->count, 2 * pr->n, MPIU_INT, MPI_SUM, comm));
   if (!pr->n && !corners) PetscFunctionReturn(0);
   PetscCall(MatGetLocalSize(ctx->op.Q, &n, NULL));
   PetscCall(MatGetOwnershipRange(ctx->op.Q, &rstart, NULL));
@@ -381,7 +391,7 @@ PetscErrorCode MMContactPairsDestroy(MMContactPairs *pr)
 {
   PetscFunctionBeginUser;
   for (PetscInt p = 0; p < pr->n; ++p) PetscCall(PetscFree2(pr->xf[p], pr->df[p]));
-  if (pr->n) PetscCall(PetscFree3(pr->nf, pr->xf, pr->df));
+  if (pr->n) PetscCall(PetscFree4(pr->nf, pr->xf, pr->df, pr->count));
   PetscCall(PetscFree2(pr->phi, pr->mdof));
   pr->n = 0;
   PetscFunctionReturn(0);
