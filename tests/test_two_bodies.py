@@ -121,6 +121,8 @@ def test_two_balls_friction_momentum(tmp_path):
     for c in ("P_x", "P_y", "P_z"):
         assert np.abs(h[c] - h[c][0]).max() <= 1e-12 * m_v, c
     assert h["work_friction"][-1] < -1e-3 * h["total"][0]   # friction dissipates
+    assert h["slipping"].max() > 0
+    assert h["coulomb_residual"].max() <= 1e-6               # the Coulomb law on the relative slip
     assert np.abs(h["balance_residual"]).max() <= 1e-10
     assert h["max_penetration"].max() <= 1e-12
 
@@ -157,3 +159,27 @@ def test_pair_input_errors(tmp_path):
     assert r.returncode != 0
     r = run("two_bars", tmp_path, "-contact_pair_p_master", "a_right", np_=0, check=False, name="o2")
     assert r.returncode != 0 and "master node cannot carry a constraint" in r.output, r.output[-800:]
+
+
+@pytest.mark.parametrize("formulation,tol", [("full", 1e-9), ("active_set", 1e-5)])
+def test_two_bars_every_formulation(bars, tmp_path, formulation, tol):
+    """The relative variables make the pair a bound on one dof: the full VI and the active-set
+    method solve the same steps as the condensed default (the active set to its CG tolerance)."""
+    h = run("two_bars", tmp_path, "-contact_formulation", formulation).history
+    ref = bars[1].history
+    assert np.abs(h["total"] - ref["total"]).max() <= tol * ref["total"].max()
+    assert np.abs(h["force_p_x"] - ref["force_p_x"]).max() <= tol * W * V0
+
+
+@pytest.mark.parametrize("case,cut,end,np_a,np_b,force", [("two_bars", 1.2, 2.5, 1, 2, "force_p_x"),
+                                                         ("cube_groove", 0.2, 0.4, 2, 1, "force_left_z")])
+def test_restart_across_ranks(tmp_path, case, cut, end, np_a, np_b, force):
+    """A pair's slave rows and a corner's second rows are checkpointed: a run stopped at t = cut and
+    continued on another number of ranks ends as the uninterrupted run."""
+    ref = run(case, tmp_path, "-ts_max_time", end, "-quiet", np_=np_a, name="ref").history
+    run(case, tmp_path, "-ts_max_time", cut, "-quiet", np_=np_a, name="cut")
+    h = run(case, tmp_path, "-restart", str(tmp_path / "cut"), "-ts_max_time", end, "-quiet", np_=np_b, name="cut").history
+    assert list(h["step"]) == list(ref["step"])
+    assert np.array_equal(h["active"], ref["active"]) and np.array_equal(h["switched"], ref["switched"])
+    assert np.abs(h["total"] - ref["total"]).max() <= 1e-10 * np.abs(ref["total"]).max()
+    assert np.abs(h[force] - ref[force]).max() <= 1e-10 * np.abs(ref[force]).max()
