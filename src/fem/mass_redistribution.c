@@ -14,7 +14,8 @@
  *     size, and the share of cells with no such vertex) is matched exactly by the smallest
  *     correction D_j = m_j T_j Lambda T_j^T on the free non-contact nodes, weighted by their
  *     mass: Lambda solves sum_j m_j A_j Lambda A_j = G(M) - G(M* + local), A_j = T_j^T T_j, a
- *     6x6 (3x3 in 2D) system summed over the ranks.
+ *     6x6 (3x3 in 2D) system summed over the ranks. With several bodies each body's moments are
+ *     matched on its own nodes, so that no mass moves from one body to another.
  * Both steps visit each cell and each node on exactly one rank, so M* is the same on any number
  * of ranks (to the order of the sums). */
 #include "fem.h"
@@ -202,7 +203,7 @@ static PetscErrorCode SmallestEigenvalue(PetscInt dim, PetscReal D[MM_MAX_DIM][M
  * inertia with small blocks). Minimizing sum_j |D_j|^2 / m_j under sum_j T_j^T D_j T_j = dG gives
  * D_j = m_j P_j T_j Lambda T_j^T P_j, Lambda solving sum_j m_j A_j Lambda A_j = dG with
  * A_j = T_j^T P_j T_j: an nr^2 system, summed over the ranks. */
-static PetscErrorCode AddMomentCorrection(MMCtx *ctx, Vec kind, const PetscReal x0[], PetscReal ell, PetscReal dG[MM_MAX_RIGID][MM_MAX_RIGID], Mat A)
+static PetscErrorCode AddMomentCorrection(MMCtx *ctx, Vec kind, const PetscInt vgroup[], PetscInt group, const PetscReal x0[], PetscReal ell, PetscReal dG[MM_MAX_RIGID][MM_MAX_RIGID], Mat A)
 {
   DM                 dm = ctx->op.dm, dms = ctx->out.dm_scalar;
   MMContact         *ct  = &ctx->contact;
@@ -241,7 +242,7 @@ static PetscErrorCode AddMomentCorrection(MMCtx *ctx, Vec kind, const PetscReal 
 
       PetscCall(PetscSectionGetOffset(gs, v, &goff));
       PetscCall(DMPlexGetPointLocal(dms, v, &soff, NULL));
-      if (goff < 0 || PetscRealPart(k[soff]) < 0) continue;
+      if (goff < 0 || PetscRealPart(k[soff]) < 0 || vgroup[v - vStart] != group) continue;
       PetscCall(PetscSectionGetOffset(cs, v, &xoff));
       mj = PetscRealPart(m[goff - rstart]);
       for (PetscInt d = 0; d < dim; ++d) xh[d] = (PetscRealPart(x[xoff + d]) - x0[d]) / ell;
@@ -266,7 +267,7 @@ static PetscErrorCode AddMomentCorrection(MMCtx *ctx, Vec kind, const PetscReal 
       } else { /* D_j = m_j PT Lambda PT^T, symmetrized against the solve's round-off */
         PetscReal   D[MM_MAX_DIM][MM_MAX_DIM] = {{0}}, W[MM_MAX_DIM][MM_MAX_DIM] = {{0}}, lmin = 0;
         PetscScalar vals[MM_MAX_DIM * MM_MAX_DIM];
-        PetscInt    idx[MM_MAX_DIM], first = F ? 1 : 0, nb = dim - first;
+        PetscInt    idx[MM_MAX_DIM], first = F ? (corner ? 2 : 1) : 0, nb = dim - first;
         for (PetscInt a = 0; a < dim; ++a)
           for (PetscInt b = 0; b < dim; ++b)
             for (PetscInt c = 0; c < nr; ++c)
@@ -315,6 +316,87 @@ static PetscErrorCode AddMomentCorrection(MMCtx *ctx, Vec kind, const PetscReal 
   PetscFunctionReturn(0);
 }
 
+/* The bodies whose masses are matched separately: each body of -bodies, bodies that share a node
+ * (glued) counted as one, so that every body keeps its own mass, centre of gravity and inertia and no
+ * mass moves from one body to another (docs/method.md section 11). Per local vertex its group, the
+ * smallest body index of its class; *ngroups the bodies (a group number is a body index). */
+static PetscErrorCode VertexGroups(MMCtx *ctx, PetscInt **vgroup)
+{
+  const MMMaterial *mat = &ctx->material;
+  DM                dm  = ctx->op.dm;
+  const PetscInt    nb  = PetscMax(mat->n_bodies, 1);
+  PetscInt          vStart, vEnd, cStart, cEnd, *link;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  PetscCall(PetscMalloc1(vEnd - vStart, vgroup));
+  PetscCall(PetscCalloc1(nb * nb, &link));
+  for (PetscInt v = 0; v < vEnd - vStart; ++v) (*vgroup)[v] = -1;
+  for (PetscInt c = cStart; c < cEnd; ++c) {
+    const PetscInt b = mat->cell_body ? mat->cell_body[c - cStart] : 0;
+    PetscInt      *closure = NULL, ncl;
+    PetscCall(DMPlexGetTransitiveClosure(dm, c, PETSC_TRUE, &ncl, &closure));
+    for (PetscInt k = 0; k < ncl; ++k) {
+      const PetscInt v = closure[2 * k];
+      if (v < vStart || v >= vEnd) continue;
+      if ((*vgroup)[v - vStart] >= 0 && (*vgroup)[v - vStart] != b) link[(*vgroup)[v - vStart] * nb + b] = link[b * nb + (*vgroup)[v - vStart]] = 1;
+      (*vgroup)[v - vStart] = b;
+    }
+    PetscCall(DMPlexRestoreTransitiveClosure(dm, c, PETSC_TRUE, &ncl, &closure));
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, link, nb * nb, MPIU_INT, MPI_MAX, PetscObjectComm((PetscObject)dm)));
+  /* each body's class by its smallest member: a few passes of the transitive closure */
+  for (PetscInt b = 0; b < nb; ++b) link[b * nb + b] = 1;
+  for (PetscInt m = 0; m < nb; ++m)
+    for (PetscInt a = 0; a < nb; ++a)
+      for (PetscInt b = 0; b < nb; ++b)
+        if (link[a * nb + m] && link[m * nb + b]) link[a * nb + b] = 1;
+  for (PetscInt v = 0; v < vEnd - vStart; ++v) {
+    const PetscInt b = (*vgroup)[v] < 0 ? 0 : (*vgroup)[v];
+    PetscInt       g = b;
+    for (PetscInt a = 0; a < b; ++a)
+      if (link[a * nb + b]) {
+        g = a;
+        break;
+      }
+    (*vgroup)[v] = g;
+  }
+  PetscCall(PetscFree(link));
+  PetscFunctionReturn(0);
+}
+
+/* The rigid modes restricted to one group's dofs (all of them with one group: unchanged). */
+static PetscErrorCode GroupModes(MMCtx *ctx, const PetscInt vgroup[], PetscInt group, PetscInt nr, Vec R[], Vec Rg[])
+{
+  DM           dm = ctx->op.dm;
+  PetscSection gs;
+  PetscInt     vStart, vEnd, rstart;
+  Vec          mask;
+  PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalSection(dm, &gs));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(VecDuplicate(R[0], &mask));
+  PetscCall(VecGetOwnershipRange(mask, &rstart, NULL));
+  PetscCall(VecGetArray(mask, &a));
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt goff, gdof;
+    PetscCall(PetscSectionGetOffset(gs, v, &goff));
+    PetscCall(PetscSectionGetDof(gs, v, &gdof));
+    if (goff < 0) continue;
+    for (PetscInt d = 0; d < gdof; ++d) a[goff - rstart + d] = vgroup[v - vStart] == group ? 1.0 : 0.0;
+  }
+  PetscCall(VecRestoreArray(mask, &a));
+  for (PetscInt k = 0; k < nr; ++k) {
+    PetscCall(VecDuplicate(R[k], &Rg[k]));
+    PetscCall(VecPointwiseMult(Rg[k], R[k], mask));
+  }
+  PetscCall(VecDestroy(&mask));
+  PetscFunctionReturn(0);
+}
+
 /* max |G(M) - G(M*)| over the moments node blocks can set. In 3D one combination is out of their
  * reach: the trace of the translation-rotation block, sum_a G[a][3+a], is zero for any node block
  * that is a multiple of I (M's) and for any node-block correction (T K T^T = 0, K = [[0, I], [I,
@@ -345,33 +427,52 @@ PetscErrorCode MMFERedistributeMass(MMCtx *ctx)
   const PetscInt nr   = MMFENumRigidModes(ctx->op.dim);
   MPI_Comm       comm = PetscObjectComm((PetscObject)ctx->op.dm);
   PetscReal      x0[MM_MAX_DIM], ell = 1, GM[MM_MAX_RIGID][MM_MAX_RIGID], Gs[MM_MAX_RIGID][MM_MAX_RIGID], dG[MM_MAX_RIGID][MM_MAX_RIGID];
-  Vec            R[MM_MAX_RIGID], kind, normal[MM_MAX_DIM];
+  PetscReal      mismatch = 0, unreachable = 0, correction = 0;
+  Vec            R[MM_MAX_RIGID], Rg[MM_MAX_RIGID], kind, normal[MM_MAX_DIM];
+  PetscInt      *vgroup;
 
   PetscFunctionBeginUser;
   PetscCall(RigidFrame(ctx, x0, &ell));
   PetscCall(RigidModes(ctx, x0, ell, R));
-  PetscCall(Gram(ctx->op.M, nr, R, GM));
   PetscCall(VertexKinds(ctx, &kind, normal));
+  PetscCall(VertexGroups(ctx, &vgroup));
   PetscCall(MatSetOption(ctx->op.Mstar, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   PetscCall(AddCellShares(ctx, kind, normal, ctx->op.Mstar));
   PetscCall(MatAssemblyBegin(ctx->op.Mstar, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(ctx->op.Mstar, MAT_FINAL_ASSEMBLY));
-  PetscCall(Gram(ctx->op.Mstar, nr, R, Gs));
-  for (PetscInt a = 0; a < nr; ++a)
-    for (PetscInt b = 0; b < nr; ++b) dG[a][b] = GM[a][b] - Gs[a][b];
-  /* the correction, and up to two more on what round-off left of dG (iterative refinement, for
-   * contact surfaces that leave the moment system ill-conditioned) */
-  for (PetscInt it = 0; it < 3; ++it) {
-    PetscCall(AddMomentCorrection(ctx, kind, x0, ell, dG, ctx->op.Mstar));
-    PetscCall(MatAssemblyBegin(ctx->op.Mstar, MAT_FINAL_ASSEMBLY));
-    PetscCall(MatAssemblyEnd(ctx->op.Mstar, MAT_FINAL_ASSEMBLY));
-    PetscCall(Gram(ctx->op.Mstar, nr, R, Gs));
-    ctx->op.mass_moment_mismatch = MomentMismatch(nr, GM, Gs, &ctx->op.mass_moment_unreachable) / PetscMax(GM[0][0], PETSC_SMALL);
-    ctx->op.mass_moment_unreachable /= PetscMax(GM[0][0], PETSC_SMALL);
-    if (ctx->op.mass_moment_mismatch <= 1e-14) break;
-    for (PetscInt a = 0; a < nr; ++a)
-      for (PetscInt b = 0; b < nr; ++b) dG[a][b] = GM[a][b] - Gs[a][b];
+  /* each body (group) on its own: its moments matched by corrections on its own nodes */
+  for (PetscInt g = 0; g < PetscMax(ctx->material.n_bodies, 1); ++g) {
+    PetscCall(GroupModes(ctx, vgroup, g, nr, R, Rg));
+    PetscCall(Gram(ctx->op.M, nr, Rg, GM));
+    if (GM[0][0] > 0) {
+      PetscCall(Gram(ctx->op.Mstar, nr, Rg, Gs));
+      for (PetscInt a = 0; a < nr; ++a)
+        for (PetscInt b = 0; b < nr; ++b) dG[a][b] = GM[a][b] - Gs[a][b];
+      /* the correction, and up to two more on what round-off left of dG (iterative refinement, for
+       * contact surfaces that leave the moment system ill-conditioned) */
+      for (PetscInt it = 0; it < 3; ++it) {
+        PetscReal mm, un;
+        PetscCall(AddMomentCorrection(ctx, kind, vgroup, g, x0, ell, dG, ctx->op.Mstar));
+        PetscCall(MatAssemblyBegin(ctx->op.Mstar, MAT_FINAL_ASSEMBLY));
+        PetscCall(MatAssemblyEnd(ctx->op.Mstar, MAT_FINAL_ASSEMBLY));
+        PetscCall(Gram(ctx->op.Mstar, nr, Rg, Gs));
+        mm = MomentMismatch(nr, GM, Gs, &un) / PetscMax(GM[0][0], PETSC_SMALL);
+        if (it == 2 || mm <= 1e-14) {
+          mismatch    = PetscMax(mismatch, mm);
+          unreachable = PetscMax(unreachable, un / PetscMax(GM[0][0], PETSC_SMALL));
+        }
+        if (mm <= 1e-14) break;
+        for (PetscInt a = 0; a < nr; ++a)
+          for (PetscInt b = 0; b < nr; ++b) dG[a][b] = GM[a][b] - Gs[a][b];
+      }
+      correction = PetscMax(correction, ctx->op.mass_correction);
+    }
+    for (PetscInt k = 0; k < nr; ++k) PetscCall(VecDestroy(&Rg[k]));
   }
+  ctx->op.mass_correction         = correction;
+  ctx->op.mass_moment_mismatch    = mismatch;
+  ctx->op.mass_moment_unreachable = unreachable;
+  PetscCall(PetscFree(vgroup));
   /* what no node-block correction can reach: a body whose every node is on the contact boundary or
    * held by Dirichlet data (one cell across), or whose free nodes are too few to carry the moments */
   PetscCheck(ctx->op.mass_moment_mismatch <= 1e-12, comm, PETSC_ERR_USER_INPUT, "-mass redistributed cannot give the contact nodes' normal mass back: after the redistribution the moments of M* still differ from those of M by %.3g of the mass, because too few nodes are off the contact boundary and free of Dirichlet data to carry it (a body one cell across has none). Mesh the body with more cells across, or use -mass modified", (double)ctx->op.mass_moment_mismatch);

@@ -106,6 +106,8 @@ static PetscErrorCode RotateCoordinates(DM dm, const PetscReal rot[], const Pets
   }
   PetscCall(VecRestoreArray(X, &x));
   PetscCall(DMSetCoordinates(dm, X));
+  /* the local coordinates again, for whoever reads them before a distribution would rebuild them */
+  PetscCall(DMGetCoordinatesLocalSetUp(dm));
   PetscFunctionReturn(0);
 }
 
