@@ -9,7 +9,9 @@ For each options file it reads the mesh (`-mesh`, gmsh 4.1 ASCII), and reports:
 - the physical groups, and that `-contact_boundary` (and every `-dirichlet`/`-traction` name) exists;
 - vertices, dofs (d x vertices), contact vertices;
 - c_p, h_c' (the smallest diameter, i.e. longest edge, of the cells touching a contact vertex, as
-  mmcontact computes it), `-ts_dt`, c_p dt / h_c' and the number of steps to `-ts_max_time`;
+  mmcontact computes it), `-ts_dt`, c_p dt / h_c' and the number of steps to `-ts_max_time`; with
+  `-bodies`, c_p is the largest of the bodies' (their `-body_NAME_E`, `_nu`, `_rho`), as mmcontact
+  takes it (the rigid-body estimate below still moves every vertex by `-v0`, not by its body's);
 - the obstacles: the registry (`-obstacles a,b` with `-obstacle_NAME_type plane|sphere|circle|
   cylinder`, ...) or the single plane `-obstacle_point`/`-obstacle_normal`. Each contact vertex is
   assigned to the obstacle with the smallest signed distance in the reference configuration, ties
@@ -129,6 +131,15 @@ def read_msh41(path):
             name = names.get((edim, ptag), f"#{ptag}")
             groups.setdefault(name, (edim, []))[1].extend(cells)
     return coords, groups
+
+
+def wave_speed(opts):
+    """The largest pressure wave speed c_p of the bodies, as mmcontact's CFL number takes it: each
+    body of -bodies with its -body_NAME_E, _nu, _rho (default -E, -nu, -rho), or the one material."""
+    E, nu, rho = float(opts.get("E", 1)), float(opts.get("nu", 0.3)), float(opts.get("rho", 1))
+    bodies = opts["bodies"].split(",") if opts.get("bodies") else []
+    mats = [(float(opts.get(f"body_{b}_E", E)), float(opts.get(f"body_{b}_nu", nu)), float(opts.get(f"body_{b}_rho", rho))) for b in bodies] or [(E, nu, rho)]
+    return max(math.sqrt(e * (1 - n) / (r * (1 + n) * (1 - 2 * n))) for e, n, r in mats)
 
 
 def vec(opts, key, dim, default=None):
@@ -256,8 +267,7 @@ def check(path):
         if mark[cell].any():
             p = x[cell]
             hmin = min(hmin, max(np.linalg.norm(p[i] - p[j]) for i in range(len(cell)) for j in range(i + 1, len(cell))))
-    E, nu, rho = float(opts.get("E", 1)), float(opts.get("nu", 0.3)), float(opts.get("rho", 1))
-    cp = math.sqrt(E * (1 - nu) / (rho * (1 + nu) * (1 - 2 * nu)))
+    cp = wave_speed(opts)
     dt, tmax = float(opts["ts_dt"]), float(opts["ts_max_time"])
     cfl = cp * dt / hmin
     print(f"  contact vertices {len(cverts)}; c_p {cp:.4g}, h_c' {hmin:.4g}, dt {dt:g}, c_p dt / h_c' {cfl:.3f}, "

@@ -297,6 +297,8 @@ PetscErrorCode MMMaterialSetUp(MMCtx *ctx)
   PetscInt    cEnd;
 
   PetscFunctionBeginUser;
+  /* the cells' geometry reads the local coordinates, which a -mesh_rotation has reset (collective) */
+  PetscCall(DMGetCoordinatesLocalSetUp(dm));
   PetscCall(CreateBodies(ctx));
   PetscCall(CheckSupported(ctx, comm));
   PetscCall(DMPlexGetHeightStratum(dm, 0, &mat->cStart, &cEnd));
