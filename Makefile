@@ -29,10 +29,12 @@ MSH  += meshes/cube_groove.msh
 # Bodies of their own material (README "Bodies"): a strip of two glued halves, two separate bars
 MSH  += meshes/bimaterial.msh meshes/side_bars.msh
 # Bench meshes: the 2D D1 disk (115k dofs), the 3D D2 ball (H 0.045: 113k dofs, 3.8k contact nodes)
-# and the large D2 ball of `make bench-large` (H 0.021: about 1M dofs), generated when first needed.
+# and the large D2 ball of `make bench-large` (H 0.021: about 1M dofs), generated when first needed;
+# the two balls of the 3d suite's two_body row at H 0.057 (116,520 dofs for both, as the D2 ball's 113k).
 BALL_BENCH_H ?= 0.045
 BALL_LARGE_H ?= 0.021
-BENCH_MSH := meshes/disk_bench.msh meshes/ball_bench.msh meshes/ball07.msh
+TWO_BALLS_BENCH_H ?= 0.057
+BENCH_MSH := meshes/disk_bench.msh meshes/ball_bench.msh meshes/ball07.msh meshes/two_balls_bench.msh
 
 .PHONY: all deps petsc-found meshes run check bench bench-large clean
 all: mmcontact
@@ -102,6 +104,8 @@ meshes/disk_bench.msh: meshes/disk.geo
 	gmsh -2 $< -setnumber H 0.008 -setnumber G 0.001 -o $@ -v 2
 meshes/ball_bench.msh: meshes/ball.geo
 	gmsh -3 $< -setnumber H $(BALL_BENCH_H) -o $@ -v 2
+meshes/two_balls_bench.msh: meshes/two_balls.geo
+	gmsh -3 $< -setnumber H $(TWO_BALLS_BENCH_H) -o $@ -v 2
 meshes/ball07.msh: meshes/ball.geo
 	gmsh -3 $< -setnumber H 0.07 -o $@ -v 2
 meshes/ball_large.msh: meshes/ball.geo

@@ -3,8 +3,10 @@
 Suites (the table SUITES below):
   2d     D1 disk, 115k dofs (meshes/disk_bench.msh): linear, contact, friction mu = 0.2, and
          contact on all dofs (full); 1 and 2 ranks.                       -> bench/results.csv
-  3d     D2 ball, 113k dofs (meshes/ball_bench.msh): linear, contact, friction mu = 0.2; 1 and 2
-         ranks.                                                           -> bench/results.csv
+  3d     D2 ball, 113k dofs (meshes/ball_bench.msh): linear, contact, friction mu = 0.2; and
+         two_body, two balls thrown at each other, frictionless (options/two_balls.opts on
+         meshes/two_balls_bench.msh, H = 0.057: 117k dofs, its own dt); 1 and 2 ranks.
+                                                                          -> bench/results.csv
   users  D2 ball at the time steps users choose (meshes/ball07.msh, H = 0.07, 33k dofs): dt = 4e-3
          and 8e-3 (c_p dt / h_c' = 2.1 and 4.2; suites users4, users8), linear, and friction with
          mu = 0.2 and 0.5 by each friction solver (-friction_type newton, the default, and
@@ -22,7 +24,9 @@ Environment (all optional):
                     the command-line arguments, if any, take precedence. Default: 2d,3d.
   BENCH_STEPS       steps per run for every suite (default: each suite's own, see SUITES)
   BENCH_RANKS       ranks to run, comma-separated (e.g. 2); ratios need both rows present
-  BENCH_MESH_<SUITE> another mesh for that suite (e.g. BENCH_MESH_3D=meshes/ball.msh), to try rows quickly
+  BENCH_MESH_<SUITE> another mesh for that suite (e.g. BENCH_MESH_3D=meshes/ball.msh), to try rows quickly;
+                    a variant with its own mesh (3d two_body) takes BENCH_MESH_<SUITE>_<CASE> instead
+                    (e.g. BENCH_MESH_3D_TWO_BODY=meshes/two_balls.msh)
   BENCH_LARGE_OPTS  contact solver options for the large suite's contact rows (default LARGE_OPTS)
 
 Peak memory: the program's summary prints the largest peak RSS over the ranks ("MiB/rank" is the
@@ -50,6 +54,13 @@ LINEAR = dict(case="linear", options="-contact 0")
 CONTACT = dict(case="contact", options="-contact_formulation condensed -mu 0")
 FRICTION = dict(case="friction", options="-contact_formulation condensed -mu 0.2")
 FULL = dict(case="full", options="-contact_formulation full -mu 0")
+# Two-body contact (issue 20): a variant may bring its own options file, mesh and dt (the suite's
+# otherwise). Two balls of radius 1 at gap 0.01 and relative speed 1 (options/two_balls.opts): contact
+# from t = 0.01, step 5 of dt 2e-3 (c_p dt / h_c' = 1.3 at H = 0.057), and it lasts about 0.3, so
+# 25 of the 30 steps are in contact. Its contact_over_linear is against the D2 ball's linear row
+# (112,605 dofs against 116,520): the cost of contact at about the same size, not on the same mesh.
+TWO_BODY = dict(case="two_body", options="-contact_formulation condensed -mu 0", options_file="options/two_balls.opts",
+                problem="two balls", mesh="meshes/two_balls_bench.msh", dt=2e-3)
 USERS = (LINEAR, CONTACT) + tuple(dict(case=f"fric_{mu}_{ft}", options=f"-contact_formulation condensed -mu {mu} -friction_type {ft}")
                           for mu in (0.2, 0.5) for ft in ("newton", "fixedpoint"))
 
@@ -59,7 +70,7 @@ SUITES = [
     dict(suite="2d", problem="D1 disk", dim=2, options_file="options/d1_disk.opts", mesh="meshes/disk_bench.msh",
          dt=2e-4, steps=30, ranks=(1, 2), variants=(LINEAR, CONTACT, FRICTION, FULL), csv="bench/results.csv"),
     dict(suite="3d", problem="D2 ball", dim=3, options_file="options/d2_ball.opts", mesh="meshes/ball_bench.msh",
-         dt=1e-3, steps=30, ranks=(1, 2), variants=(LINEAR, CONTACT, FRICTION), csv="bench/results.csv"),
+         dt=1e-3, steps=30, ranks=(1, 2), variants=(LINEAR, CONTACT, FRICTION, TWO_BODY), csv="bench/results.csv"),
     dict(suite="users4", group="users", problem="D2 ball", dim=3, options_file="options/d2_ball.opts", mesh="meshes/ball07.msh",
          dt=4e-3, steps=20, ranks=(1,), variants=USERS, csv="bench/results.csv"),
     dict(suite="users8", group="users", problem="D2 ball", dim=3, options_file="options/d2_ball.opts", mesh="meshes/ball07.msh",
@@ -105,11 +116,13 @@ def run(suite, variant, ranks, steps):
     options = variant["options"]
     contact = option_value(options, "-contact", "1") != "0"
     out_dir = f"bench/out/{suite['suite']}-{variant['case']}-{ranks}"
-    mesh = os.environ.get(f"BENCH_MESH_{suite['suite'].upper()}", suite["mesh"])
+    mesh_env = f"BENCH_MESH_{suite['suite'].upper()}"  # BENCH_MESH_3D for the suite's mesh, BENCH_MESH_3D_TWO_BODY for a variant's own
+    mesh = os.environ.get(f"{mesh_env}_{variant['case'].upper()}") or variant.get("mesh") or os.environ.get(mesh_env, suite["mesh"])
+    options_file, dt = variant.get("options_file", suite["options_file"]), variant.get("dt", suite["dt"])
     cmd = (MPIEXEC + ["-n", str(ranks)] + PYTHON + [os.path.abspath(__file__), "--rank-rss", "./mmcontact",
-           "-options_file", suite["options_file"], "-mesh", mesh, "-ts_dt", str(suite["dt"]), "-ts_max_steps", str(steps),
+           "-options_file", options_file, "-mesh", mesh, "-ts_dt", str(dt), "-ts_max_steps", str(steps),
            "-ts_max_time", "1", "-ts_monitor_cancel", "-output_every", "0", "-output_dir", out_dir] + shlex.split(options))
-    row = dict(suite=suite["suite"], problem=suite["problem"], dim=suite["dim"], ranks=ranks, case=variant["case"],
+    row = dict(suite=suite["suite"], problem=variant.get("problem", suite["problem"]), dim=suite["dim"], ranks=ranks, case=variant["case"],
                formulation=option_value(options, "-contact_formulation", "default") if contact else "-",
                mu=float(option_value(options, "-mu", "0")), steps=steps, status="ok")
     row["friction_type"] = option_value(options, "-friction_type", "newton") if contact and row["mu"] > 0 else "-"
