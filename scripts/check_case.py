@@ -434,7 +434,7 @@ def check_pair(pair, opts, groups, x, cells, fcells, contact_mark, hmin, vel, dt
     gap = np.sum(nn * (y[sv] - p), axis=1)
     j = int(np.argmin(gap))
     print(f"  pair {name}: slave {slave}, {len(sv)} vertices ({facing} facing a master vertex: node to node), on "
-          f"{len({key(f) for f in mfac})} facets of master {master}; mu {mu:g}; smallest gap {gap[j]:.4g} at "
+          f"{len({key(f) for f in mfac})} facets of master {master}; mu {mu:g}; smallest gap {gap[j]:.6g} at "
           f"({', '.join(f'{c:.4g}' for c in y[sv][j])})")
     if gap[j] < -1e-9 * hmin:
         print(f"  ERROR: pair {name}: slave vertex at ({', '.join(f'{c:.4g}' for c in y[sv][j])}) starts inside the master body "
