@@ -6,23 +6,45 @@
 Run it from the repository root: the options' paths are relative to it.
 
 For each options file it reads the mesh (`-mesh`, gmsh 4.1 ASCII), and reports:
-- the physical groups, and that `-contact_boundary` (and every `-dirichlet`/`-traction` name) exists;
-- vertices, dofs (d x vertices), contact vertices;
-- c_p, h_c' (the smallest diameter, i.e. longest edge, of the cells touching a contact vertex, as
-  mmcontact computes it), `-ts_dt`, c_p dt / h_c' and the number of steps to `-ts_max_time`;
-- the obstacles: the registry (`-obstacles a,b` with `-obstacle_NAME_type plane|sphere|circle|
-  cylinder`, ...) or the single plane `-obstacle_point`/`-obstacle_normal`. Each contact vertex is
-  assigned to the obstacle with the smallest signed distance in the reference configuration, ties
-  to the one listed first, as mmcontact does; the script prints, per obstacle, the vertices it
-  gets, their smallest gap, and a rigid-body estimate of the first contact (the body translated
-  by its `-v0` and `-gravity`, the obstacle by `-obstacle_NAME_velocity` from `-obstacle_NAME_start`;
-  it ignores `-omega`, deformation and the modified mass).
+- the physical groups, and that `-contact_boundary` (when there are rigid obstacles) and every
+  `-dirichlet`/`-traction` name exists; with `-contact 0`, only the latter (no contact boundary);
+- vertices, dofs (d x vertices);
+- the bodies (`-bodies a,b` with `-body_NAME_group`, `-body_NAME_E/_nu/_rho/_v0`, defaulting to
+  -E/-nu/-rho/-v0): per body its cells and c_p; every cell must be in exactly one body;
+- the contact vertices: those of `-contact_boundary` if there are rigid obstacles, plus every contact
+  pair's slave vertices; c_p (the largest over the bodies), h_c' (the smallest diameter, i.e.
+  longest edge, of the cells touching a contact vertex, as mmcontact computes it), `-ts_dt`,
+  c_p dt / h_c' and the number of steps to `-ts_max_time`;
+- the rigid obstacles: the registry (`-obstacles a,b` with `-obstacle_NAME_type plane|sphere|circle|
+  cylinder`, ...) or the single plane `-obstacle_point`/`-obstacle_normal`; with `-contact_pairs` and
+  none of these, there is no rigid obstacle (and no `-contact_boundary` is needed). Each contact
+  vertex is assigned to the obstacle with the smallest signed distance in the reference
+  configuration, ties to the one listed first, as mmcontact does; the script prints, per obstacle,
+  the vertices it gets, their smallest gap, and a rigid-body estimate of the first contact (the body
+  translated by its `-v0` and `-gravity`, the obstacle by `-obstacle_NAME_velocity` from
+  `-obstacle_NAME_start`; it ignores `-omega`, deformation and the modified mass);
+- corners (docs/method.md section 8): without friction (every obstacle's and pair's mu 0), a
+  rigid-contact vertex whose nearest other obstacle, not parallel to its own (|n1.n2| <= 1 - 1e-6),
+  is within h_c' at the reference position gets a second row: the count and the rows in all (as
+  mmcontact's header: "N contact nodes (K of them against two obstacles: N + K rows)"). With friction
+  each vertex keeps one row, and those vertices are a WARNING (their crossing is reported, not
+  prevented);
+- the contact pairs (`-contact_pairs p` with `-contact_pair_NAME_slave/_master/_mu`, docs/method.md
+  section 11): the slave and master groups (boundary faces), the slave vertices, those facing a master
+  vertex (node to node) and the master facets (as mmcontact's header line "pair p: ..."), the smallest
+  gap n.(X_s - p) over the slave vertices, each projected as mmcontact does on the closest master
+  facet (segment or triangle; n the facet's outward normal, p the closest point, the weights snapped
+  within 1e-10 of 0 or 1), and a rigid-body estimate of the first contact from the two bodies' v0
+  (the gap closing at n.(v_master - v_slave); gravity, the same for both, cancels).
 The geometry is placed as mmcontact places it: the mesh turned by `-mesh_rotation` about
-`-mesh_rotation_center` when it is read (the vertices are assigned to obstacles there, in the
-reference configuration), and the initial displacement u0 = a + B x of `-u0_offset` and
-`-u0_gradient` added for the gaps and the initial-penetration check.
-It exits 1 if a group is missing, a contact vertex starts inside an obstacle (signed distance < 0),
-or c_p dt / h_c' is above 1.5.
+`-mesh_rotation_center` when it is read (the vertices are assigned to obstacles, projected on the
+master facets and checked for corners there, in the reference configuration), and the initial
+displacement u0 = a + B x of `-u0_offset` and `-u0_gradient` added for the gaps and the
+initial-penetration checks.
+It exits 1 if a group is missing or of the wrong dimension, a pair's group has facets inside the
+mesh, a master surface shares a vertex with a contact surface, a cell is in no body or in two, a
+contact vertex starts inside a rigid obstacle (signed distance < 0) or a slave vertex inside its
+master body (gap < -1e-9 h_c'), or c_p dt / h_c' is above 1.5.
 """
 import math
 import sys
