@@ -165,8 +165,9 @@ def vec(opts, key, dim, default=None):
 
 
 def obstacles(opts, dim):
-    """The rigid obstacles: [(name, signed distance f(x), outward normal n(x), mu, velocity, start)],
-    f and n taking an array of points (k x dim). [] for a run with contact pairs and no rigid obstacle:
+    """The rigid obstacles: [(name, signed distance f(x), mu, velocity, start)], f taking an array of
+    points (k x dim) and carrying the outward normal as f.normal(x) (the tuple keeps its 5 entries for
+    scripts/dt_convergence.py). [] for a run with contact pairs and no rigid obstacle:
     without -obstacles, -obstacle_point and -obstacle_normal, -contact_pairs leaves out the default
     plane (as mmcontact does)."""
     mu0 = float(opts.get("mu", 0))
@@ -176,7 +177,9 @@ def obstacles(opts, dim):
             return []
         p, n = vec(opts, "obstacle_point", dim, zero), vec(opts, "obstacle_normal", dim, [0] * (dim - 1) + [1])
         n = n / np.linalg.norm(n)
-        return [("plane", lambda x, p=p, n=n: (x - p) @ n, lambda x, n=n: np.tile(n, (len(x), 1)), mu0, np.zeros(dim), 0.0)]
+        f = (lambda x, p=p, n=n: (x - p) @ n)
+        f.normal = (lambda x, n=n: np.tile(n, (len(x), 1)))
+        return [("plane", f, mu0, np.zeros(dim), 0.0)]
     out = []
     for name in opts["obstacles"].split(","):
         pre = f"obstacle_{name}_"
@@ -221,7 +224,8 @@ def obstacles(opts, dim):
                 return s * d / np.linalg.norm(d, axis=1)[:, None]
         else:
             raise SystemExit(f"-{pre}type {typ}: plane, sphere, circle or cylinder")
-        out.append((name, f, g, float(opts.get(pre + "mu", mu0)), vec(opts, pre + "velocity", dim, zero),
+        f.normal = g
+        out.append((name, f, float(opts.get(pre + "mu", mu0)), vec(opts, pre + "velocity", dim, zero),
                     float(opts.get(pre + "start", 0))))
     return out
 
@@ -481,7 +485,7 @@ def second_obstacles(obs, xref, owner, hmin):
     if len(obs) < 2:
         return np.full(len(xref), -1)
     ref = np.array([o[1](xref) for o in obs])
-    nrm = np.array([o[2](xref) for o in obs])  # obstacles x vertices x dim
+    nrm = np.array([o[1].normal(xref) for o in obs])  # obstacles x vertices x dim
     n1 = nrm[owner, np.arange(len(xref))]
     cos = np.abs(np.einsum("bvd,vd->bv", nrm, n1))
     ok = (ref <= hmin) & (cos <= 1 - 1e-6) & (np.arange(len(obs))[:, None] != owner[None, :])
@@ -504,7 +508,7 @@ def check_rigid(obs, opts, x, cverts, hmin, vel, frictionless, dt, tmax, cp):
     near_ties = int(np.sum(srt[1] - srt[0] <= 1e-9 * hmin)) if len(obs) > 1 else 0
     grav = vec(opts, "gravity", dim, [0.0] * dim)
     v0 = vel[cverts]
-    for k, (name, f, _, mu, ovel, start) in enumerate(obs):
+    for k, (name, f, mu, ovel, start) in enumerate(obs):
         mine = owner == k
         dmin_all = dist[k].min()
         if dmin_all < 0:
@@ -589,7 +593,7 @@ def check(path):
         print(f"  ERROR: c_p dt / h_c' above {CFL_MAX}")
         ok = False
     # frictionless when every obstacle's and pair's mu is 0 (mmcontact: one row per node otherwise)
-    frictionless = max([o[3] for o in obs] + [p[3] for p in prs] + [0.0]) == 0
+    frictionless = max([o[2] for o in obs] + [p[3] for p in prs] + [0.0]) == 0
     if obs:
         rigid_ok, _ = check_rigid(obs, opts, x, cverts, hmin, vel, frictionless, dt, tmax, cp)
         ok = ok and rigid_ok
