@@ -370,23 +370,26 @@ static PetscErrorCode VertexGroups(MMCtx *ctx, PetscInt **vgroup)
 static PetscErrorCode GroupModes(MMCtx *ctx, const PetscInt vgroup[], PetscInt group, PetscInt nr, Vec R[], Vec Rg[])
 {
   DM           dm = ctx->op.dm;
-  PetscSection gs;
+  PetscSection gs, ls;
   PetscInt     vStart, vEnd, rstart;
   Vec          mask;
   PetscScalar *a;
 
   PetscFunctionBeginUser;
   PetscCall(DMGetGlobalSection(dm, &gs));
+  PetscCall(DMGetLocalSection(dm, &ls));
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
   PetscCall(VecDuplicate(R[0], &mask));
   PetscCall(VecGetOwnershipRange(mask, &rstart, NULL));
   PetscCall(VecGetArray(mask, &a));
   for (PetscInt v = vStart; v < vEnd; ++v) {
-    PetscInt goff, gdof;
+    PetscInt goff, dof, cdof;
     PetscCall(PetscSectionGetOffset(gs, v, &goff));
-    PetscCall(PetscSectionGetDof(gs, v, &gdof));
+    PetscCall(PetscSectionGetDof(ls, v, &dof));
+    PetscCall(PetscSectionGetConstraintDof(ls, v, &cdof));
     if (goff < 0) continue;
-    for (PetscInt d = 0; d < gdof; ++d) a[goff - rstart + d] = vgroup[v - vStart] == group ? 1.0 : 0.0;
+    /* the vertex's free dofs: the global vectors hold no Dirichlet component */
+    for (PetscInt d = 0; d < dof - cdof; ++d) a[goff - rstart + d] = vgroup[v - vStart] == group ? 1.0 : 0.0;
   }
   PetscCall(VecRestoreArray(mask, &a));
   for (PetscInt k = 0; k < nr; ++k) {

@@ -102,6 +102,7 @@ static PetscErrorCode ScanCells(MMCtx *ctx, Vec ucart_local, Worst *w)
   const PetscScalar *u, *x;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(w, sizeof(*w))); /* the places too: a body at rest has no cell above strain 0 */
   w->detF   = PETSC_MAX_REAL;
   w->strain = 0;
   if (!d->cell_u) PetscCall(CellTable(ctx));
