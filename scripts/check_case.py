@@ -14,7 +14,8 @@ For each options file it reads the mesh (`-mesh`, gmsh 4.1 ASCII), and reports:
 - the contact vertices: those of `-contact_boundary` if there are rigid obstacles, plus every contact
   pair's slave vertices; c_p (the largest over the bodies), h_c' (the smallest diameter, i.e.
   longest edge, of the cells touching a contact vertex, as mmcontact computes it), `-ts_dt`,
-  c_p dt / h_c' and the number of steps to `-ts_max_time`;
+  c_p dt / h_c' and the number of steps to `-ts_max_time`; with `-bodies` the check takes it body by
+  body (each contact-layer cell with its own body's c_p);
 - the rigid obstacles: the registry (`-obstacles a,b` with `-obstacle_NAME_type plane|sphere|circle|
   cylinder`, ...) or the single plane `-obstacle_point`/`-obstacle_normal`; with `-contact_pairs` and
   none of these, there is no rigid obstacle (and no `-contact_boundary` is needed). Each contact
