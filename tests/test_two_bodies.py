@@ -159,6 +159,11 @@ def test_pair_input_errors(tmp_path):
     assert r.returncode != 0
     r = run("two_bars", tmp_path, "-contact_pair_p_master", "a_right", np_=0, check=False, name="o2")
     assert r.returncode != 0 and "master node cannot carry a constraint" in r.output, r.output[-800:]
+    r = run("two_bars", tmp_path, "-contact_pairs", "p,p", np_=0, check=False, name="o3")
+    assert r.returncode != 0 and "-contact_pairs p,p names p twice" in r.output, r.output[-800:]
+    r = run("two_bars", tmp_path, "-obstacles", "p", "-obstacle_p_point", "3,0", "-obstacle_p_normal", "-1,0",
+            "-contact_boundary", "b_right", np_=0, check=False, name="o4")
+    assert r.returncode != 0 and "both name p" in r.output, r.output[-800:]
 
 
 @pytest.mark.parametrize("formulation,tol", [("full", 1e-9), ("active_set", 1e-5)])

@@ -157,6 +157,13 @@ static PetscErrorCode SplitNames(MPI_Comm comm, const char option[], const char 
   for (const char *p = list; *p; ++p) PetscCheck(*p != ' ' && *p != '\t', comm, PETSC_ERR_USER_INPUT, "%s \"%s\" has a blank: give the names separated by commas, without blanks", option, list);
   PetscCall(PetscStrToArray(list, ',', &argc, names));
   *n = argc;
+  /* a name given twice would make two objects of one name (two force columns, two bodies) */
+  for (PetscInt b = 0; b < *n; ++b)
+    for (PetscInt a = 0; a < b; ++a) {
+      PetscBool same;
+      PetscCall(PetscStrcmp((*names)[a], (*names)[b], &same));
+      PetscCheck(!same, comm, PETSC_ERR_USER_INPUT, "%s %s names %s twice", option, list, (*names)[b]);
+    }
   PetscFunctionReturn(0);
 }
 
@@ -295,19 +302,13 @@ static PetscErrorCode ProcessObstacle(PetscOptionItems *PetscOptionsObject, MPI_
 /* Contact pair p of -contact_pairs, kept after the rigid obstacles in opt->obstacles so that each
  * contact node's constraint has one index, force column and mu (docs/method.md section 11): its
  * slave and master surfaces (physical names) and its friction coefficient. */
-static PetscErrorCode ProcessPair(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt, char **names, PetscInt p, const char list[])
+static PetscErrorCode ProcessPair(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt, char **names, PetscInt p)
 {
   MMObstacle *ob = &opt->obstacles[opt->n_rigid + p];
   char        key[512];
   PetscBool   set;
 
   PetscFunctionBeginUser;
-  PetscCheck(names[p][0], comm, PETSC_ERR_USER_INPUT, "-contact_pairs %s has an empty name", list);
-  for (PetscInt a = 0; a < p; ++a) {
-    PetscBool same;
-    PetscCall(PetscStrcmp(names[a], names[p], &same));
-    PetscCheck(!same, comm, PETSC_ERR_USER_INPUT, "-contact_pairs %s names %s twice", list, names[p]);
-  }
   PetscCall(PetscStrncpy(ob->name, names[p], sizeof(ob->name)));
   PetscCall(PetscStrncpy(ob->type, "pair", sizeof(ob->type)));
   ob->pair = PETSC_TRUE;
@@ -343,7 +344,14 @@ static PetscErrorCode ProcessObstacles(PetscOptionItems *PetscOptionsObject, MPI
   opt->n_rigid     = n ? n : (np && opt->vec_count[MM_V_OBSTACLE_POINT] < 0 && opt->vec_count[MM_V_OBSTACLE_NORMAL] < 0 ? 0 : 1);
   opt->n_obstacles = opt->n_rigid + np;
   PetscCall(PetscCalloc1(opt->n_obstacles, &opt->obstacles));
-  for (PetscInt p = 0; p < np; ++p) PetscCall(ProcessPair(PetscOptionsObject, comm, opt, pnames, p, plist));
+  for (PetscInt p = 0; p < np; ++p) {
+    for (PetscInt b = 0; b < n; ++b) {
+      PetscBool same;
+      PetscCall(PetscStrcmp(names[b], pnames[p], &same));
+      PetscCheck(!same, comm, PETSC_ERR_USER_INPUT, "-contact_pairs %s and -obstacles %s both name %s: each obstacle and pair has its own force columns (force_NAME_x ...), so give them different names", plist, list, pnames[p]);
+    }
+    PetscCall(ProcessPair(PetscOptionsObject, comm, opt, pnames, p));
+  }
   PetscCall(PetscStrToArrayDestroy((int)np, pnames));
   for (PetscInt b = 0; b < opt->n_rigid; ++b) {
     MMObstacle *ob = &opt->obstacles[b];
@@ -354,12 +362,6 @@ static PetscErrorCode ProcessObstacles(PetscOptionItems *PetscOptionsObject, MPI
       PetscCall(MMObstacleSetType(ob, comm, "plane"));
       ob->mu = opt->mu;
       continue;
-    }
-    PetscCheck(names[b][0], comm, PETSC_ERR_USER_INPUT, "-obstacles %s has an empty name", list);
-    for (PetscInt a = 0; a < b; ++a) {
-      PetscBool same;
-      PetscCall(PetscStrcmp(names[a], names[b], &same));
-      PetscCheck(!same, comm, PETSC_ERR_USER_INPUT, "-obstacles %s names %s twice", list, names[b]);
     }
     PetscCall(PetscStrncpy(ob->name, names[b], sizeof(ob->name)));
     PetscCall(ProcessObstacle(PetscOptionsObject, comm, opt, ob));
@@ -385,11 +387,6 @@ static PetscErrorCode ProcessBodies(PetscOptionItems *PetscOptionsObject, MPI_Co
     MMBodyOptions *body = &opt->bodies[b];
     char           key[512];
 
-    for (PetscInt a = 0; a < b; ++a) {
-      PetscBool same;
-      PetscCall(PetscStrcmp(names[a], names[b], &same));
-      PetscCheck(!same, comm, PETSC_ERR_USER_INPUT, "-bodies %s names %s twice", list, names[b]);
-    }
     PetscCall(PetscStrallocpy(names[b], &body->name));
     PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_group", body->name));
     PetscCall(OptionsString(PetscOptionsObject, comm, key, "Physical group of this body's cells: a Physical Surface (2D) or Physical Volume (3D) of the mesh; required", body->group, sizeof(body->group), &body->group_set));

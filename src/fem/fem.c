@@ -518,45 +518,56 @@ PetscErrorCode MMFEAssembleOperators(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
-/* Displacements and velocities: u = Q N w, w = N^{-1} Q^T u (N = I without contact pairs, Q
- * orthogonal). Forces, their duals: f = Q N^{-T} f_w, f_w = N^T Q^T f (docs/method.md section 11). */
+/* Displacements and velocities: u = Q N w, w = N^{-1} Q^T u (N = I without contact pairs or corners,
+ * Q orthogonal). Forces, their duals: f = Q N^{-T} f_w, f_w = N^T Q^T f (docs/method.md section 11).
+ * One pass of each: to Cartesian, N (or N^{-T}) then Q; from it, Q^T then N^{-1} (or N^T). */
+static PetscErrorCode FrameTransform(MMCtx *ctx, PetscBool to_cartesian, Mat Nmat, PetscBool n_transpose, Vec x, Vec y)
+{
+  Vec t = ctx->op.pair_work;
+
+  PetscFunctionBeginUser;
+  if (!ctx->op.N) {
+    if (to_cartesian) PetscCall(MatMult(ctx->op.Q, x, y));
+    else PetscCall(MatMultTranspose(ctx->op.Q, x, y));
+    PetscFunctionReturn(0);
+  }
+  if (to_cartesian) {
+    if (n_transpose) PetscCall(MatMultTranspose(Nmat, x, t));
+    else PetscCall(MatMult(Nmat, x, t));
+    PetscCall(MatMult(ctx->op.Q, t, y));
+  } else {
+    PetscCall(MatMultTranspose(ctx->op.Q, x, t));
+    if (n_transpose) PetscCall(MatMultTranspose(Nmat, t, y));
+    else PetscCall(MatMult(Nmat, t, y));
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MMFEToCartesian(MMCtx *ctx, Vec w, Vec ucart)
 {
   PetscFunctionBeginUser;
-  if (ctx->op.N) {
-    PetscCall(MatMult(ctx->op.N, w, ctx->op.pair_work));
-    PetscCall(MatMult(ctx->op.Q, ctx->op.pair_work, ucart));
-  } else PetscCall(MatMult(ctx->op.Q, w, ucart));
+  PetscCall(FrameTransform(ctx, PETSC_TRUE, ctx->op.N, PETSC_FALSE, w, ucart));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode MMFEFromCartesian(MMCtx *ctx, Vec ucart, Vec w)
 {
   PetscFunctionBeginUser;
-  if (ctx->op.N) {
-    PetscCall(MatMultTranspose(ctx->op.Q, ucart, ctx->op.pair_work));
-    PetscCall(MatMult(ctx->op.Ninv, ctx->op.pair_work, w));
-  } else PetscCall(MatMultTranspose(ctx->op.Q, ucart, w));
+  PetscCall(FrameTransform(ctx, PETSC_FALSE, ctx->op.Ninv, PETSC_FALSE, ucart, w));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode MMFEForceToCartesian(MMCtx *ctx, Vec fw, Vec fcart)
 {
   PetscFunctionBeginUser;
-  if (ctx->op.N) {
-    PetscCall(MatMultTranspose(ctx->op.Ninv, fw, ctx->op.pair_work));
-    PetscCall(MatMult(ctx->op.Q, ctx->op.pair_work, fcart));
-  } else PetscCall(MatMult(ctx->op.Q, fw, fcart));
+  PetscCall(FrameTransform(ctx, PETSC_TRUE, ctx->op.Ninv, PETSC_TRUE, fw, fcart));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode MMFEForceFromCartesian(MMCtx *ctx, Vec fcart, Vec fw)
 {
   PetscFunctionBeginUser;
-  if (ctx->op.N) {
-    PetscCall(MatMultTranspose(ctx->op.Q, fcart, ctx->op.pair_work));
-    PetscCall(MatMultTranspose(ctx->op.N, ctx->op.pair_work, fw));
-  } else PetscCall(MatMultTranspose(ctx->op.Q, fcart, fw));
+  PetscCall(FrameTransform(ctx, PETSC_FALSE, ctx->op.N, PETSC_TRUE, fcart, fw));
   PetscFunctionReturn(0);
 }
 
