@@ -2,6 +2,8 @@
 #include "mmcontact.h"
 PETSC_EXTERN PetscErrorCode MMFESetUp(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMFEAssembleOperators(MMCtx *);
+PETSC_EXTERN PetscErrorCode MMFECreateMatrix(MMCtx *, DM, Mat *);
+PETSC_EXTERN PetscErrorCode MMFEInterpolate(MMCtx *, PetscErrorCode (*)(PetscInt, PetscReal, const PetscReal[], PetscInt, PetscScalar *, void *), void *, Vec);
 PETSC_EXTERN PetscErrorCode MMFEElasticEnergy(MMCtx *, Vec, PetscReal *);
 PETSC_EXTERN PetscErrorCode MMFECheckElasticEnergy(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMFEToCartesian(MMCtx *, Vec, Vec);

@@ -25,6 +25,14 @@ static char help[] = "mmcontact: elastic bodies hitting and sliding on rigid obs
 #include "loads.h"
 #include "material.h"
 
+/* A set-up phase under its own event (MMLog), so that -log_view shows where the set-up goes */
+#define MMPhase(event, call) \
+  do { \
+    PetscCall(PetscLogEventBegin((event), 0, 0, 0, 0)); \
+    PetscCall(call); \
+    PetscCall(PetscLogEventEnd((event), 0, 0, 0, 0)); \
+  } while (0)
+
 static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
 {
   MPI_Comm  comm = PETSC_COMM_WORLD;
@@ -37,21 +45,21 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscCall(MMOutputCheckOptions(comm, &ctx->opt));
   /* before anything in the output directory is read or moved: one run per directory */
   PetscCall(MMOutputLock(ctx->opt.output_dir));
-  PetscCall(MMMeshLoad(comm, &ctx->opt, &ctx->op.dm, &ctx->ckpt.vertex_orig, &ctx->ckpt.vertex_file));
+  MMPhase(ctx->log.mesh_load, MMMeshLoad(comm, &ctx->opt, &ctx->op.dm, &ctx->ckpt.vertex_orig, &ctx->ckpt.vertex_file));
   PetscCall(DMGetDimension(ctx->op.dm, &ctx->op.dim));
-  PetscCall(MMFESetUp(ctx));
-  PetscCall(MMContactSetUp(ctx));
+  MMPhase(ctx->log.fe_setup, MMFESetUp(ctx));
+  MMPhase(ctx->log.contact_setup, MMContactSetUp(ctx));
   PetscCall(MMFEAssembleOperators(ctx));
-  PetscCall(MMLoadsSetUp(ctx));
-  PetscCall(MMNewmarkInitialState(ctx));
-  PetscCall(MMFrictionSetUp(ctx));
+  MMPhase(ctx->log.loads_setup, MMLoadsSetUp(ctx));
+  MMPhase(ctx->log.initial_state, MMNewmarkInitialState(ctx));
+  MMPhase(ctx->log.friction_setup, MMFrictionSetUp(ctx));
   PetscCall(MMNewmarkCreateTS(ctx, ts));
   if (ctx->opt.restart[0]) PetscCall(MMCheckpointLoad(ctx, *ts));
   PetscCall(TSGetTimeStep(*ts, &dt));
-  PetscCall(MMContactSetStepMatrix(ctx, dt));
+  MMPhase(ctx->log.step_matrix, MMContactSetStepMatrix(ctx, dt));
   ctx->hist.dt = dt;
-  PetscCall(MMEnergyInitial(ctx));
-  PetscCall(MMDeformationCheck(ctx));
+  MMPhase(ctx->log.energy_initial, MMEnergyInitial(ctx));
+  MMPhase(ctx->log.deformation_check, MMDeformationCheck(ctx));
   if (ctx->ckpt.restarted) PetscCall(MMCheckpointRestoreHistory(ctx));
   PetscCall(MMProgressHeader(ctx, *ts));
   /* every object has read its options: refuse the unread ones before any output is touched */
@@ -59,7 +67,7 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   /* after: its replay of the help text reads every option */
   PetscCall(MMOptionsCheckValueless(comm));
   /* last: the earlier results in the output directory are set aside only once the input is valid */
-  PetscCall(MMOutputOpen(ctx));
+  MMPhase(ctx->log.output_open, MMOutputOpen(ctx));
   PetscCall(TSMonitorSet(*ts, MMOutputMonitor, ctx, NULL));
   PetscCall(TSMonitorSet(*ts, MMCheckpointMonitor, ctx, NULL));
   PetscCall(MMProgressSetUp(ctx, *ts));

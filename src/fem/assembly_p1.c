@@ -427,6 +427,93 @@ PetscErrorCode MMAssembleP1(DM dm, const MMMaterial *mat, Mat K, Mat M)
   PetscFunctionReturn(0);
 }
 
+/* The block size of the P1 operators: dim when no vertex has a Dirichlet-constrained component (the
+ * dofs then come in whole vertices), else 1; as DMCreateMatrix sets it. */
+static PetscErrorCode P1BlockSize(DM dm, const VertexTable *vt, PetscInt nv, PetscInt *bs)
+{
+  PetscInt whole = 1;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < nv * vt->dim && whole; ++i) whole = vt->dof[i] >= 0;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &whole, 1, MPIU_INT, MPI_MIN, PetscObjectComm((PetscObject)dm)));
+  *bs = whole ? vt->dim : 1;
+  PetscFunctionReturn(0);
+}
+
+/* Marks the couplings of vertices a and b (both ways) in the preallocator P: with bs = dim one entry
+ * stands for the vertex block; with bs = 1 every free component pair. Rows owned elsewhere go through
+ * P's stash to their owner, which merges them with its own (the edges of the partition boundary
+ * come from both ranks, the ones only the other rank's cells hold from it alone). */
+static PetscErrorCode MarkVertexPair(Mat P, const VertexTable *vt, PetscInt bs, PetscInt a, PetscInt b)
+{
+  const PetscInt *da = &vt->dof[(a - vt->vStart) * vt->dim], *db = &vt->dof[(b - vt->vStart) * vt->dim];
+  PetscScalar     zeros[MM_MAX_DIM * MM_MAX_DIM] = {0};
+  const PetscInt  n = bs > 1 ? 1 : vt->dim;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatSetValues(P, n, da, n, db, zeros, INSERT_VALUES));
+  if (a != b) PetscCall(MatSetValues(P, n, db, n, da, zeros, INSERT_VALUES));
+  PetscFunctionReturn(0);
+}
+
+/* The matrix the closed-form assembly fills (MMAssembleP1): an AIJ matrix on the DM's global
+ * section whose pattern, filled with zeros and assembled, couples exactly the vertices that share
+ * an edge, with each vertex's free dofs; what DMCreateMatrix builds for P1, which gets it from the
+ * DMPlex point adjacency at several times the cost of the assembly itself (README "Assembly of K
+ * and M"). Here the mesh edges are the couplings, and MATPREALLOCATOR merges them across ranks. */
+PetscErrorCode MMCreateMatrixP1(DM dm, Mat *A)
+{
+  MPI_Comm               comm = PetscObjectComm((PetscObject)dm);
+  VertexTable            vt;
+  PetscSection           gs;
+  Mat                    P;
+  PetscInt               n, bs = 1, depth, dim, vStart, vEnd, cStart, cEnd;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetDimension(dm, &dim));
+  PetscCall(DMPlexGetDepth(dm, &depth));
+  PetscCall(VertexTableCreate(dm, &vt));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(P1BlockSize(dm, &vt, vEnd - vStart, &bs));
+  PetscCall(DMGetGlobalSection(dm, &gs));
+  PetscCall(PetscSectionGetConstrainedStorageSize(gs, &n));
+  PetscCall(MatCreate(comm, &P));
+  PetscCall(MatSetSizes(P, n, n, PETSC_DETERMINE, PETSC_DETERMINE));
+  PetscCall(MatSetBlockSize(P, bs));
+  PetscCall(MatSetType(P, MATPREALLOCATOR));
+  PetscCall(MatSetUp(P));
+  for (PetscInt v = vStart; v < vEnd; ++v) PetscCall(MarkVertexPair(P, &vt, bs, v, v));
+  if (depth > 1) {
+    /* interpolated: each edge once */
+    PetscInt eStart, eEnd;
+    PetscCall(DMPlexGetDepthStratum(dm, 1, &eStart, &eEnd));
+    for (PetscInt e = eStart; e < eEnd; ++e) {
+      const PetscInt *cone;
+      PetscCall(DMPlexGetCone(dm, e, &cone));
+      PetscCall(MarkVertexPair(P, &vt, bs, cone[0], cone[1]));
+    }
+  } else {
+    PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+    for (PetscInt c = cStart; c < cEnd; ++c) {
+      PetscInt v[MM_NV_MAX];
+      PetscCall(CellVertices(dm, depth, dim, c, v));
+      for (PetscInt a = 0; a <= dim; ++a)
+        for (PetscInt b = a + 1; b <= dim; ++b) PetscCall(MarkVertexPair(P, &vt, bs, v[a], v[b]));
+    }
+  }
+  PetscCall(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatCreate(comm, A));
+  PetscCall(MatSetSizes(*A, n, n, PETSC_DETERMINE, PETSC_DETERMINE));
+  PetscCall(MatSetBlockSize(*A, bs));
+  PetscCall(MatSetType(*A, MATAIJ));
+  PetscCall(MatPreallocatorPreallocate(P, PETSC_TRUE, *A));
+  PetscCall(MatDestroy(&P));
+  PetscCall(MatSetDM(*A, dm));
+  PetscCall(VertexTableDestroy(&vt));
+  PetscFunctionReturn(0);
+}
+
 /* The elastic force K x and energy 1/2 x.K x of a Cartesian local vector x (all dofs, constrained ones
  * included), cell by cell with each cell's material: what the PetscFE residual and integral of the
  * elastic energy compute with one material (fem.c). f (a local vector, added to) and energy (summed

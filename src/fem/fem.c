@@ -348,8 +348,9 @@ static PetscErrorCode AssembleMatrix(MMCtx *ctx, PetscReal wK, PetscReal wM, Mat
   PetscFunctionReturn(0);
 }
 
-/* K_fD u_D: the elastic force of the Dirichlet data on the free dofs, the residual at u_free = 0. The
- * PetscFE residual holds one material: with several, each cell's in closed form (assembly_p1.c). */
+/* K_fD u_D: the elastic force of the Dirichlet data on the free dofs, the residual at u_free = 0: cell
+ * by cell in closed form with each cell's material (assembly_p1.c), or by the PetscFE residual with
+ * -assembly fe (one material), several times slower. */
 static PetscErrorCode DirichletLift(MMCtx *ctx, Vec lift)
 {
   DM  dm = ctx->op.dm;
@@ -362,7 +363,7 @@ static PetscErrorCode DirichletLift(MMCtx *ctx, Vec lift)
   PetscCall(VecZeroEntries(floc));
   PetscCall(DMPlexInsertBoundaryValues(dm, PETSC_TRUE, xloc, 0.0, NULL, NULL, NULL));
   /* in PETSc 3.18 both vectors of the FEM residual are local */
-  if (ctx->material.uniform) PetscCall(DMPlexSNESComputeResidualFEM(dm, xloc, floc, NULL));
+  if (ctx->opt.assembly == MM_ASSEMBLY_FE) PetscCall(DMPlexSNESComputeResidualFEM(dm, xloc, floc, NULL));
   else PetscCall(MMApplyP1(dm, &ctx->material, xloc, floc, NULL));
   PetscCall(VecZeroEntries(lift));
   PetscCall(DMLocalToGlobal(dm, floc, ADD_VALUES, lift));
@@ -425,6 +426,57 @@ static PetscErrorCode CheckAssembly(MMCtx *ctx, Mat K, Mat M)
   PetscFunctionReturn(0);
 }
 
+/* The matrix K and M are assembled into: for the closed form, with the P1 edge pattern built
+ * directly (MMCreateMatrixP1, several times faster than DMCreateMatrix's point adjacency); for
+ * -assembly fe, DMCreateMatrix's, which the PetscFE path fills. The patterns are the same. */
+PetscErrorCode MMFECreateMatrix(MMCtx *ctx, DM dm, Mat *A)
+{
+  PetscFunctionBeginUser;
+  if (ctx->opt.assembly == MM_ASSEMBLY_CLOSED_FORM) {
+    PetscCall(MMCreateMatrixP1(dm, A));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(DMSetMatType(dm, MATAIJ));
+  PetscCall(DMCreateMatrix(dm, A));
+  PetscFunctionReturn(0);
+}
+
+/* The P1 interpolant of f (f's signature is DMProjectFunction's) into the Cartesian global vector u:
+ * f at each vertex, which is what DMProjectFunction computes for P1 through the dual basis, at a
+ * fraction of its cost; the Dirichlet dofs drop out in the local-to-global map. */
+PetscErrorCode MMFEInterpolate(MMCtx *ctx, PetscErrorCode (*f)(PetscInt, PetscReal, const PetscReal[], PetscInt, PetscScalar *, void *), void *fctx, Vec u)
+{
+  DM                 dm = ctx->op.dm;
+  const PetscInt     dim = ctx->op.dim;
+  PetscSection       ls, cs;
+  Vec                uloc, coords;
+  const PetscScalar *xc;
+  PetscScalar       *ua;
+  PetscInt           vStart, vEnd;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLocalSection(dm, &ls));
+  PetscCall(DMGetCoordinateSection(dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(dm, &coords));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(DMGetLocalVector(dm, &uloc));
+  PetscCall(VecGetArray(uloc, &ua));
+  PetscCall(VecGetArrayRead(coords, &xc));
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt  off, xo;
+    PetscReal x[MM_MAX_DIM];
+    PetscCall(PetscSectionGetOffset(ls, v, &off));
+    PetscCall(PetscSectionGetOffset(cs, v, &xo));
+    for (PetscInt d = 0; d < dim; ++d) x[d] = PetscRealPart(xc[xo + d]);
+    PetscCall((*f)(dim, 0.0, x, dim, &ua[off], fctx));
+  }
+  PetscCall(VecRestoreArrayRead(coords, &xc));
+  PetscCall(VecRestoreArray(uloc, &ua));
+  PetscCall(DMLocalToGlobal(dm, uloc, INSERT_VALUES, u));
+  PetscCall(DMRestoreLocalVector(dm, &uloc));
+  PetscFunctionReturn(0);
+}
+
 /* The w-frame operators from the Cartesian ones, K <- Q^T K Q and M <- Q^T M Q, in place (docs/method.md
  * section 2). Q is block diagonal by vertex, so the pattern stays: MatPtAP would build new matrices,
  * through a symbolic product that costs more than the closed-form assembly (README "Assembly of K
@@ -461,8 +513,7 @@ PetscErrorCode MMFEAssembleOperators(MMCtx *ctx)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ctx->log.assemble, 0, 0, 0, 0));
   PetscCall(DMGetDS(dm, &ds));
-  PetscCall(DMSetMatType(dm, MATAIJ));
-  PetscCall(DMCreateMatrix(dm, &Kc));
+  PetscCall(MMFECreateMatrix(ctx, dm, &Kc));
   /* a lumped mass is built from vertex masses below: no consistent mass to assemble. M has K's
    * pattern, and duplicating it skips a second DMPlex preallocation, which alone costs several
    * assemblies (README "Assembly of K and M") */
@@ -587,8 +638,8 @@ PetscErrorCode MMFEElasticEnergy(MMCtx *ctx, Vec w, PetscReal *energy)
 }
 
 /* 1/2 int sigma(u):eps(u) of a Cartesian global vector u with the Dirichlet data of t = 0 inserted:
- * by quadrature with the PetscDS's one material, or cell by cell with each cell's in closed form
- * (assembly_p1.c) when the bodies differ. */
+ * cell by cell in closed form with each cell's material (assembly_p1.c), or by the PetscDS's
+ * quadrature with -assembly fe (one material). */
 static PetscErrorCode ElasticEnergyIntegral(MMCtx *ctx, Vec ucart, PetscReal *energy)
 {
   DM          dm = ctx->op.dm;
@@ -596,7 +647,7 @@ static PetscErrorCode ElasticEnergyIntegral(MMCtx *ctx, Vec ucart, PetscReal *en
   Vec         xloc;
 
   PetscFunctionBeginUser;
-  if (ctx->material.uniform) {
+  if (ctx->opt.assembly == MM_ASSEMBLY_FE) {
     PetscCall(DMPlexComputeIntegralFEM(dm, ucart, integral, NULL));
     *energy = PetscRealPart(integral[0]);
     PetscFunctionReturn(0);

@@ -370,8 +370,7 @@ static PetscErrorCode AssembleRowsD(MMCtx *ctx)
   PetscInt rstart, rend;
 
   PetscFunctionBeginUser;
-  PetscCall(DMSetMatType(ld->dm_full, MATAIJ));
-  PetscCall(DMCreateMatrix(ld->dm_full, &K));
+  PetscCall(MMCreateMatrixP1(ld->dm_full, &K));
   PetscCall(MatDuplicate(K, MAT_DO_NOT_COPY_VALUES, &M));
   PetscCall(MMAssembleP1(ld->dm_full, &ctx->material, K, M));
   if (ctx->opt.lumped) {

@@ -29,5 +29,15 @@ PetscErrorCode MMLogRegister(MMLog *log)
   PetscCall(PetscLogEventRegister("MMKtSolve", id, &log->kt_solve));
   PetscCall(PetscLogEventRegister("MMActiveSetIter", id, &log->as_iterate));
   PetscCall(PetscLogEventRegister("MMActiveSetCG", id, &log->as_linear));
+  PetscCall(PetscLogEventRegister("MMMeshLoad", id, &log->mesh_load));
+  PetscCall(PetscLogEventRegister("MMFESetUp", id, &log->fe_setup));
+  PetscCall(PetscLogEventRegister("MMContactSetUp", id, &log->contact_setup));
+  PetscCall(PetscLogEventRegister("MMLoadsSetUp", id, &log->loads_setup));
+  PetscCall(PetscLogEventRegister("MMInitialState", id, &log->initial_state));
+  PetscCall(PetscLogEventRegister("MMFrictionSetUp", id, &log->friction_setup));
+  PetscCall(PetscLogEventRegister("MMStepMatrix", id, &log->step_matrix));
+  PetscCall(PetscLogEventRegister("MMEnergyInitial", id, &log->energy_initial));
+  PetscCall(PetscLogEventRegister("MMDeformCheck", id, &log->deformation_check));
+  PetscCall(PetscLogEventRegister("MMOutputOpen", id, &log->output_open));
   PetscFunctionReturn(0);
 }

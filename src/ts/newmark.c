@@ -383,7 +383,7 @@ static PetscErrorCode ProjectInitialField(MMCtx *ctx, PetscErrorCode (*f)(PetscI
 
   PetscFunctionBeginUser;
   PetscCall(DMGetGlobalVector(ctx->op.dm, &ucart));
-  PetscCall(DMProjectFunction(ctx->op.dm, 0.0, &f, &fctx, INSERT_VALUES, ucart));
+  PetscCall(MMFEInterpolate(ctx, f, fctx, ucart));
   PetscCall(MMFEFromCartesian(ctx, ucart, w));
   PetscCall(DMRestoreGlobalVector(ctx->op.dm, &ucart));
   PetscFunctionReturn(0);
@@ -408,7 +408,7 @@ static PetscErrorCode BodiesInitialVelocity(MMCtx *ctx, Vec w)
   PetscCall(DMGetGlobalVector(dm, &ucart));
   PetscCall(DMGetGlobalVector(dm, &tglob));
   PetscCall(DMGetLocalVector(dm, &tloc));
-  PetscCall(DMProjectFunction(dm, 0.0, &f, &fctx, INSERT_VALUES, ucart));
+  PetscCall(MMFEInterpolate(ctx, f, fctx, ucart));
   PetscCall(DMGetLocalSection(dm, &ls));
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
   PetscCall(VecGetArray(tloc, &a));
