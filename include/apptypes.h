@@ -103,7 +103,8 @@ typedef struct {
   MMAssemblyType assembly;
   PetscBool    assembly_check; /* assemble K and M both ways and stop if they differ */
   PetscBool    contact;
-  char         contact_formulation[MM_TYPE_LEN]; /* a registered contact formulation */
+  char         contact_formulation[MM_TYPE_LEN]; /* a registered contact formulation, or auto */
+  PetscInt     iterative_dofs;                   /* 3D problems this large default to the iterative path */
   PetscReal    contact_tol;
   PetscReal    candidate_margin;  /* candidate set: predicted gap within this times the deepest predicted penetration */
   PetscReal    candidate_memory;  /* candidate set: MiB of cached operator columns, over all ranks */

@@ -1,6 +1,7 @@
 #pragma once
 #include "mmcontact.h"
 PETSC_EXTERN PetscErrorCode MMKSPSetDirect(KSP);
+PETSC_EXTERN PetscErrorCode MMKSPSetExactCG(KSP);
 PETSC_EXTERN PetscErrorCode MMKSPCheckFactored(KSP);
 PETSC_EXTERN PetscErrorCode MMKSPSetFailureCheck(KSP);
 PETSC_EXTERN PetscErrorCode MMKSPSetDirectSPD(KSP, PetscInt);

@@ -114,6 +114,8 @@ typedef struct {
 /* Contact set, gaps, bounds and the per-step contact solver. Friction wraps ContactSolve. */
 typedef struct {
   PetscBool  enabled;
+  PetscBool  prefer_iterative; /* 3D with at least -iterative_dofs dofs: active_set and CG for K~ by default */
+  PetscBool  auto_type;        /* the formulation was chosen by -contact_formulation auto */
   PetscInt   n_local, n_global;   /* contact nodes owned here / in total */
   IS         is_normal;           /* global indices of the contact-normal dofs (owned) */
   IS         is_tangent;          /* global indices of the contact-tangential dofs (owned) */

@@ -449,6 +449,7 @@ static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
   PetscCheck(opt->strain_warn > 0, comm, PETSC_ERR_USER_INPUT, "-strain_warn %g must be > 0: it is a strain", (double)opt->strain_warn);
   PetscCheck(opt->max_strain >= opt->strain_warn, comm, PETSC_ERR_USER_INPUT, "-max_strain %g must be >= -strain_warn %g", (double)opt->max_strain, (double)opt->strain_warn);
   PetscCheck(opt->initial_penetration_tol >= 0, comm, PETSC_ERR_USER_INPUT, "-initial_penetration_tol %g must be >= 0: it is a fraction of h_c'", (double)opt->initial_penetration_tol);
+  PetscCheck(opt->iterative_dofs >= 0, comm, PETSC_ERR_USER_INPUT, "-iterative_dofs %" PetscInt_FMT " must be >= 0 (0: never the iterative path by default)", opt->iterative_dofs);
   PetscCheck(opt->active_set_max_it >= 1, comm, PETSC_ERR_USER_INPUT, "-active_set_max_it %" PetscInt_FMT " must be >= 1", opt->active_set_max_it);
   PetscCheck(opt->progress_every >= 0, comm, PETSC_ERR_USER_INPUT, "-progress_every %.6g must be >= 0: it is the wall time in seconds between progress lines (0 turns them off)", (double)opt->progress_every);
   PetscCheck(opt->output_every >= 0, comm, PETSC_ERR_USER_INPUT, "-output_every %" PetscInt_FMT " must be >= 0", opt->output_every);
@@ -521,8 +522,10 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsString(PetscOptionsObject, comm, "-friction_dump", "Directory (created if missing) for each step's Coulomb problem on the candidate set, in the Friction Contact Library's form u = W r + q (docs/method.md section 6), with our reactions and solve time: step_NNNNNN.h5. scripts/fclib_compare.py solves them with Siconos. Needs the condensed formulation", opt->friction_dump, sizeof(opt->friction_dump), NULL));
   opt->friction_monitor = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-friction_monitor", "Print each friction iteration: threshold change, Coulomb residual, contraction factor, slipping and sticking node counts", NULL, opt->friction_monitor, &opt->friction_monitor, NULL));
-  PetscCall(PetscStrncpy(opt->contact_formulation, "condensed", sizeof(opt->contact_formulation)));
-  PetscCall(OptionsString(PetscOptionsObject, comm, "-contact_formulation", "Contact formulation: condensed (the VI on the contact dofs through the Delassus operator, K~ factored once per dt; the default), full (the VI on all dofs, a factorization per VI iteration, frictionless), or active_set (the primal-dual active-set method on all dofs: CG on the free dofs with the contact_K_ PC, default Jacobi, -contact_K_pc_type gamg or hypre for c_p dt / h_c' above about 10, set up once per dt; for large 3D meshes)", opt->contact_formulation, sizeof(opt->contact_formulation), NULL));
+  PetscCall(PetscStrncpy(opt->contact_formulation, "auto", sizeof(opt->contact_formulation)));
+  opt->iterative_dofs = 50000;
+  PetscCall(OptionsInt(PetscOptionsObject, comm, "-iterative_dofs", "3D problems with at least this many dofs take the iterative path by default: -contact_formulation auto is active_set, and without contact K~ is solved by CG with Jacobi rather than factored (0: never). Below it, and in 2D, K~ is factored", &opt->iterative_dofs));
+  PetscCall(OptionsString(PetscOptionsObject, comm, "-contact_formulation", "Contact formulation: auto (the default: active_set for 3D problems of at least -iterative_dofs dofs, else condensed), condensed (the VI on the contact dofs through the Delassus operator, K~ factored once per dt), full (the VI on all dofs, a factorization per VI iteration, frictionless), or active_set (the primal-dual active-set method on all dofs: CG on the free dofs with the contact_K_ PC, default Jacobi, -contact_K_pc_type gamg or hypre for c_p dt / h_c' above about 10, set up once per dt; for large 3D meshes)", opt->contact_formulation, sizeof(opt->contact_formulation), NULL));
   opt->active_set_max_it = 100;
   PetscCall(OptionsInt(PetscOptionsObject, comm, "-active_set_max_it", "Active-set formulation: iterations per contact solve before the run stops (each is one projected CG solve)", &opt->active_set_max_it));
   opt->active_set_monitor = PETSC_FALSE;

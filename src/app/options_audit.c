@@ -97,7 +97,10 @@ static PetscErrorCode SolverObjectsFromOptions(MPI_Comm comm)
     KSP ksp;
     PetscCall(KSPCreate(comm, &ksp));
     PetscCall(KSPSetOptionsPrefix(ksp, ksp_prefix[i]));
-    if (i < 3) PetscCall(i == 0 ? MMKSPSetDirectSPD(ksp, 2) : MMKSPSetDirect(ksp)); /* the 2D default */
+    /* each solve's default (K~'s in 2D) */
+    if (i == 0) PetscCall(MMKSPSetDirectSPD(ksp, 2));
+    else if (i == 1) PetscCall(MMKSPSetExactCG(ksp));
+    else if (i == 2) PetscCall(MMKSPSetDirect(ksp));
     else PetscCall(KSPSetType(ksp, KSPCG));
     PetscCall(KSPSetFromOptions(ksp));
     PetscCall(KSPDestroy(&ksp));

@@ -189,7 +189,7 @@ static PetscErrorCode HeaderContact(MMCtx *ctx)
     PetscCall(PetscPrintf(comm, "  pair %s: slave %s, %" PetscInt_FMT " nodes (%" PetscInt_FMT " facing a master node: node to node), on %" PetscInt_FMT " facets of master %s; mu = %g\n", ob->name, ob->slave, ctx->contact.pairs.count[2 * p], ctx->contact.pairs.count[2 * p + 1], ctx->contact.pairs.nf[p], ob->master, (double)ob->mu));
   }
   if (!ctx->contact.enabled) PetscCall(PetscPrintf(comm, "  contact: off (-contact 0), 0 contact nodes: linear elastodynamics; %s mass\n", opt->lumped ? "lumped" : "consistent"));
-  PetscCall(PetscPrintf(comm, "  solvers: contact formulation %s; K~ by %s; %s\n", ctx->contact.type, solver, progress));
+  PetscCall(PetscPrintf(comm, "  solvers: contact formulation %s%s; K~ by %s; %s\n", ctx->contact.type, ctx->contact.auto_type && ctx->contact.enabled ? (ctx->contact.prefer_iterative ? " (auto: 3D, at least -iterative_dofs dofs)" : " (auto)") : "", solver, progress));
   PetscCall(MMProgressMassLine(ctx));
   PetscFunctionReturn(0);
 }

