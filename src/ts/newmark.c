@@ -459,7 +459,15 @@ static PetscErrorCode InitialAcceleration(MMCtx *ctx)
   PetscCall(VecZeroEntries(s->a));
   PetscCall(VecGetSubVector(r, is, &rs));
   PetscCall(VecGetSubVector(s->a, is, &as));
-  PetscCall(KSPSolve(ksp, rs, as));
+  {
+    /* CG's norms square the right-hand side: solved for r/|r|_inf, so that loads near the overflow
+     * limit still give a0 (and the run stops later, where the state itself overflows) */
+    PetscReal scale;
+    PetscCall(VecNorm(rs, NORM_INFINITY, &scale));
+    if (scale > 0 && !PetscIsInfOrNanReal(scale)) PetscCall(VecScale(rs, 1.0 / scale));
+    PetscCall(KSPSolve(ksp, rs, as));
+    if (scale > 0 && !PetscIsInfOrNanReal(scale)) PetscCall(VecScale(as, scale));
+  }
   PetscCall(VecRestoreSubVector(s->a, is, &as));
   PetscCall(VecRestoreSubVector(r, is, &rs));
   PetscCall(KSPDestroy(&ksp));
