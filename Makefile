@@ -122,12 +122,17 @@ check: deps
 	$(MAKE) mmcontact meshes
 	$(MM_PYTHON) -m pytest -q tests
 
+# STREAM triad on 1 and 2 processes: the memory-bandwidth ceiling of the 2-rank speed-up (bench.py)
+build/stream: scripts/stream.c | build petsc-found
+	@echo "  CC  $<"
+	@${PCC} ${PCC_FLAGS} -O2 $< -o $@
+
 bench: deps
-	$(MAKE) mmcontact meshes $(BENCH_MSH)
+	$(MAKE) mmcontact meshes build/stream $(BENCH_MSH)
 	$(MM_PYTHON) scripts/bench.py
 
 bench-large: deps
-	$(MAKE) mmcontact meshes/ball_large.msh
+	$(MAKE) mmcontact build/stream meshes/ball_large.msh
 	$(MM_PYTHON) scripts/bench.py large
 
 clean:

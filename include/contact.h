@@ -31,6 +31,8 @@ typedef struct {
 typedef PetscErrorCode (*MMContactSetSolver)(void *, const MMContactSetProblem *, PetscScalar[], PetscBool *);
 PETSC_EXTERN PetscErrorCode MMContactHasDelassus(MMCtx *, PetscBool *);
 PETSC_EXTERN PetscErrorCode MMContactSolveCoulomb(MMCtx *, Vec, Vec, Vec, MMContactSetSolver, void *, PetscBool *);
+PETSC_EXTERN PetscErrorCode MMContactHasCoulombDofs(MMCtx *, PetscBool *);
+PETSC_EXTERN PetscErrorCode MMContactSolveCoulombDofs(MMCtx *, Vec, Vec, Vec, Vec, PetscReal, PetscInt *, PetscBool *);
 PETSC_EXTERN PetscErrorCode MMContactProjectInitial(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMContactDiagnostics(MMCtx *, Vec, Vec, Vec, MMHistory *);
 PETSC_EXTERN PetscErrorCode MMContactCoulomb(MMCtx *, Vec, Vec, Vec, PetscReal *, PetscInt *, PetscInt *);

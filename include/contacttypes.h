@@ -96,6 +96,8 @@ typedef struct {
                                     * w.d_perp), and the reaction across d it corrects (beta rperp) */
   PetscInt   max_it, its, lin_its;
   PetscBool  monitor;
+  PetscBool  coulomb;   /* the thresholds follow the iterate, s = mu rho_n (a Coulomb solve) */
+  PetscReal  coulomb_rtol; /* its test: the thresholds' change over the force scale */
 } MMActiveSet;
 
 /* The contact pairs between surfaces of the mesh (src/contact/interface/pairs.c): each pair's master

@@ -29,6 +29,14 @@ Environment (all optional):
                     (e.g. BENCH_MESH_3D_TWO_BODY=meshes/two_balls.msh)
   BENCH_LARGE_OPTS  contact solver options for the large suite's contact rows (default LARGE_OPTS)
 
+The ceiling of the 2-rank speed-up: before the rows, build/stream (scripts/stream.c, `make bench`
+builds it) measures the STREAM triad bandwidth on 1 and 2 processes. Their ratio bounds what a
+second rank can give a memory-bound phase (sparse products, CG, triangular solves); it is written
+to bench/stream.csv and next to each 2-rank row as stream_ratio, with speedup_over_stream (the row's
+speed-up over that ratio) and speedup_target, "met" when the speed-up is at least 1.7 or at least
+95% of the STREAM ratio, whichever is lower (issue 21), else "missed". The ratio is the median of
+STREAM_REPEATS alternating 1- and 2-process measurements: a shared machine moves single readings.
+
 Peak memory: the program's summary prints the largest peak RSS over the ranks ("MiB/rank" is the
 max over ranks, src/io/output.c); to get the total, every rank runs under this script's --rank-rss
 mode, which reports the peak RSS of its mmcontact process, and the column peak_mib_total sums them.
@@ -84,11 +92,16 @@ SUITES = [
 
 FIELDS = ["suite", "problem", "dim", "ranks", "case", "formulation", "mu", "friction_type", "cfl", "dofs", "contact_nodes", "steps", "setup_s",
           "s_per_step", "contact_over_linear", "speedup_2_ranks", "peak_mib_max_rank", "peak_mib_total", "candidates",
-          "max_active", "mean_vi_its", "mean_friction_its_in_contact", "max_friction_its", "rejections", "status"]
+          "max_active", "mean_vi_its", "mean_friction_its_in_contact", "max_friction_its", "rejections", "stream_ratio",
+          "speedup_over_stream", "speedup_target", "status"]
 SUMMARY = re.compile(r"mmcontact summary: setup ([\d.]+) s; (\d+) steps .* \(([\d.]+) s/step\); peak memory ([\d.]+) MiB/rank")
 DOFS = re.compile(r"(\d+) dofs[ ;(]")
 CONTACT_NODES = re.compile(r"(\d+) contact nodes")
 RANK_RSS = re.compile(r"bench rank peak rss (\d+) kB")
+STREAM = re.compile(r"stream ranks (\d+) triad_mbs ([\d.]+)")
+STREAM_EXE = "build/stream"
+STREAM_REPEATS = 5
+SPEEDUP_TARGET, STREAM_FRACTION = 1.7, 0.95
 
 
 def option_value(options, name, default):
@@ -140,6 +153,45 @@ def run(suite, variant, ranks, steps):
                 **history_stats(os.path.join(ROOT, out_dir, "history.csv")))
 
 
+def stream_bandwidth(ranks):
+    """The STREAM triad bandwidth (MB/s, summed over the processes) of one run of build/stream."""
+    proc = subprocess.run(MPIEXEC + ["-n", str(ranks), STREAM_EXE], cwd=ROOT, capture_output=True, text=True)
+    found = STREAM.search(proc.stdout)
+    if proc.returncode or not found:
+        sys.exit(f"bench.py: {STREAM_EXE} on {ranks} process(es) failed (exit {proc.returncode}): {proc.stderr.strip()[-400:]}"
+                 f"\n  build it with `make build/stream` (make bench does)")
+    return float(found.group(2))
+
+
+def measure_stream():
+    """The 2-process over 1-process STREAM triad ratio, the median of STREAM_REPEATS alternating pairs;
+    writes bench/stream.csv (every measurement) and returns the ratio."""
+    if not os.path.exists(os.path.join(ROOT, STREAM_EXE)):
+        sys.exit(f"bench.py: {STREAM_EXE} is missing: build it with `make build/stream` (make bench does)")
+    pairs = [(stream_bandwidth(1), stream_bandwidth(2)) for _ in range(STREAM_REPEATS)]
+    ratios = sorted(two / one for one, two in pairs)
+    ratio = round(ratios[len(ratios) // 2], 3)
+    with open(os.path.join(ROOT, "bench/stream.csv"), "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["repeat", "triad_mbs_1", "triad_mbs_2", "ratio"])
+        w.writerows([i, one, two, round(two / one, 3)] for i, (one, two) in enumerate(pairs))
+    print(f"STREAM triad: 1 process {sorted(p[0] for p in pairs)[len(pairs) // 2]:.0f} MB/s, 2 processes "
+          f"{sorted(p[1] for p in pairs)[len(pairs) // 2]:.0f} MB/s (medians of {STREAM_REPEATS}); ratio {ratio} "
+          f"(the 2-rank ceiling of a memory-bound phase; written to bench/stream.csv)", flush=True)
+    return ratio
+
+
+def add_stream(rows, stream_ratio):
+    """The STREAM ratio and the issue-21 target on each 2-rank row with a speed-up ("-" without a ratio)."""
+    measured = stream_ratio != "-"
+    target = min(SPEEDUP_TARGET, STREAM_FRACTION * stream_ratio) if measured else None
+    for r in rows:
+        has = measured and r["ranks"] == 2 and r["speedup_2_ranks"] != "-"
+        r["stream_ratio"] = stream_ratio if r["ranks"] == 2 else "-"
+        r["speedup_over_stream"] = round(r["speedup_2_ranks"] / stream_ratio, 3) if has else "-"
+        r["speedup_target"] = ("met" if r["speedup_2_ranks"] >= target else "missed") if has else "-"
+
+
 def add_ratios(rows):
     """contact/linear: s/step over the linear row's (same suite, ranks); 2-rank speed-up: the 1-rank
     row's s/step over the 2-rank row's (same suite, case), on the 2-rank row. "-" when a row is missing."""
@@ -155,7 +207,8 @@ def print_table(rows):
     cols = [("suite", 6), ("ranks", 5), ("case", 20), ("formulation", 11), ("mu", 4), ("friction_type", 13), ("cfl", 5), ("dofs", 8), ("contact_nodes", 13),
             ("steps", 5), ("setup_s", 8), ("s_per_step", 10), ("contact_over_linear", 19), ("speedup_2_ranks", 15),
             ("peak_mib_max_rank", 17), ("peak_mib_total", 14), ("candidates", 10), ("max_active", 10), ("mean_vi_its", 11),
-            ("mean_friction_its_in_contact", 28), ("max_friction_its", 16), ("rejections", 10), ("status", 6)]
+            ("mean_friction_its_in_contact", 28), ("max_friction_its", 16), ("rejections", 10), ("stream_ratio", 12), ("speedup_over_stream", 19),
+            ("speedup_target", 14), ("status", 6)]
     print(" ".join(f"{name:>{width}}" for name, width in cols))
     for r in rows:
         print(" ".join(f"{r[name]:>{width}}" for name, width in cols))
@@ -176,6 +229,7 @@ def main(args):
     if unknown:
         sys.exit(f"bench.py: unknown suite(s) {unknown}; the suites are {names}")
     os.makedirs(os.path.join(ROOT, "bench"), exist_ok=True)
+    stream_ratio = measure_stream() if ranks is None or 2 in ranks else "-"
     rows = []
     for suite in SUITES:
         steps = int(os.environ.get("BENCH_STEPS", suite["steps"]))
@@ -185,6 +239,7 @@ def main(args):
                 if chosen and (ranks is None or n in ranks):
                     rows.append(run(suite, variant, n, steps))
     add_ratios(rows)
+    add_stream(rows, stream_ratio)
     for path in dict.fromkeys(suite["csv"] for suite in SUITES):
         written = [r for suite in SUITES if suite["csv"] == path for r in rows if r["suite"] == suite["suite"]]
         if written:

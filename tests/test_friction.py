@@ -75,6 +75,16 @@ def test_f1_sliding_block_is_exact(E, dt, solver, mm):
     check_sliding_exact(mm("f1_block", "-E", E, "-ts_dt", dt, "-output_every", 0, "-friction_type", solver).history, -MU * G)
 
 
+@pytest.mark.parametrize("E,dt", [(1, 0.05), (100, 0.01)])
+def test_f1_sliding_block_is_exact_with_active_set(E, dt, mm):
+    """The active-set formulation's Coulomb iteration (no Delassus operator) on F1: exact. Its CG
+    stops at -contact_tol of ||b||, which the inertia 4/dt^2 M* u dominates: over the 500 steps of
+    dt = 0.01 the velocity drifts by 1.6e-8 of v0 at 1e-13 and 1.8e-9 at 1e-14 (a factorization of K~,
+    -contact_K_pc_type lu, 3.4e-10), so the test runs at 1e-14."""
+    check_sliding_exact(mm("f1_block", "-E", E, "-ts_dt", dt, "-output_every", 0, "-contact_formulation", "active_set",
+                           "-contact_tol", "1e-14").history, -MU * G)
+
+
 @pytest.mark.parametrize("solver", SOLVERS)
 def test_f1_stop_and_stick(solver, mm):
     """gx = 0: the block stops at t = v0/(mu g) = 10 after sliding 0.25, then sticks."""
@@ -212,11 +222,13 @@ def test_d2_friction_energy_spin_and_ranks(d2f, tmp_path):
         assert np.abs(h1[c] - h[c]).max() <= 1e-8 * max(h["total"][0], np.abs(h[c]).max()), c
 
 
-@pytest.mark.parametrize("solver", SOLVERS)
+@pytest.mark.parametrize("solver", SOLVERS + ("active_set",))
 def test_f1_box_3d_slides_along_its_velocity(solver, mm):
     """F1 in 3D: a box launched at 30 degrees to x slides along its velocity, whatever the mesh's
-    axes, and decelerates at mu g: the isotropic disk, not a square."""
-    h = mm("f1_box", "-output_every", 0, "-friction_type", solver, np_=2).history
+    axes, and decelerates at mu g: the isotropic disk, not a square. active_set: that formulation's
+    own Coulomb iteration."""
+    how = ("-contact_formulation", "active_set", "-contact_tol", "1e-13") if solver == "active_set" else ("-friction_type", solver)
+    h = mm("f1_box", "-output_every", 0, *how, np_=2).history
     t = h["time"]
     direction = np.arctan2(h["vcm_y"], h["vcm_x"])
     assert np.abs(direction - np.pi / 6).max() <= 1e-6

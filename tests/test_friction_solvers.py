@@ -121,3 +121,21 @@ def test_friction_dump_needs_contact_space_problems(tmp_path, extra):
     r = run("d1_friction", tmp_path, "-friction_dump", str(tmp_path / "dump"), *extra, np_=0, check=False)
     assert r.returncode != 0 and "-friction_dump" in r.output and "-contact_formulation condensed" in r.output
     assert not (tmp_path / "dump").exists()
+
+
+@pytest.mark.parametrize("case,extra", [
+    ("d1_friction", ("-ts_max_time", 0.12)),                  # 2D: the interval
+    ("d2_ball", ("-mu", 0.2, "-ts_max_time", 0.1)),          # 3D: the disk
+])
+def test_active_set_coulomb_equals_its_fixed_point(case, extra, tmp_path):
+    """The active-set formulation's own Coulomb iteration (thresholds following the iterate,
+    docs/method.md section 3) gives the reactions of the paper's fixed point around its Tresca solves,
+    with the same stick/slip sets, and takes one linear solve per iteration: no more iterations on a
+    contact step than the fixed point has threshold updates times active-set iterations."""
+    opts = ("-contact_formulation", "active_set", "-contact_tol", "1e-14", "-output_every", 2, *extra)
+    runs = {s: run(case, tmp_path, "-friction_type", s, *opts, name=s, np_=1) for s in SOLVERS}
+    assert_same_solution(runs["newton"], runs["fixedpoint"])
+    hn = runs["newton"].history
+    assert hn["slipping"].max() > 0 and hn["friction_its"].max() >= 3
+    # in the newton run a friction iteration is one active-set iteration: the two counts are one
+    assert np.array_equal(hn["friction_its"], hn["vi_its"])

@@ -4,7 +4,8 @@
 
 /* A contact formulation's operations (docs/method.md section 3). A NULL entry is a capability the
  * formulation lacks: solvecontactdofs (a friction loop over it), setthresholds (Tresca solves with
- * given thresholds), solvecoulomb (the Delassus operator, for a contact-space Coulomb solver). */
+ * given thresholds), solvecoulomb (the Delassus operator, for a contact-space Coulomb solver),
+ * solvecoulombdofs (the formulation's own Coulomb solve on all dofs, for formulations without it). */
 struct _MMContactOps {
   PetscErrorCode (*setup)(MMCtx *);                         /* its solvers, before the first K~ */
   PetscErrorCode (*setoperator)(MMCtx *);                   /* after K~ is assembled for a new dt */
@@ -13,6 +14,7 @@ struct _MMContactOps {
   PetscErrorCode (*recover)(MMCtx *, Vec, Vec, Vec);        /* the whole w and react after solvecontactdofs */
   PetscErrorCode (*setthresholds)(MMCtx *, Vec);
   PetscErrorCode (*solvecoulomb)(MMCtx *, Vec, Vec, Vec, MMContactSetSolver, void *, PetscBool *);
+  PetscErrorCode (*solvecoulombdofs)(MMCtx *, Vec, Vec, Vec, Vec, PetscReal, PetscInt *, PetscBool *); /* b, w, react, thresholds (in and out), rtol */
   PetscErrorCode (*getstepksp)(MMCtx *, KSP *, KSP *);      /* the K~ solvers, for the start-up report */
   PetscErrorCode (*swapkept)(MMCtx *, PetscReal, PetscBool *); /* swap K~ and its factor with the kept ones; true if those are for dt */
   PetscErrorCode (*summary)(MMCtx *);                       /* its lines of the closing summary */
@@ -52,7 +54,7 @@ PETSC_EXTERN PetscErrorCode MMKtDestroy(MMStepSolver *);
 PETSC_EXTERN PetscErrorCode MMActiveSetSetUp(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMActiveSetSetOperator(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMActiveSetSetThresholds(MMCtx *, Vec);
-PETSC_EXTERN PetscErrorCode MMActiveSetSolve(MMCtx *, Vec, Vec);
+PETSC_EXTERN PetscErrorCode MMActiveSetSolve(MMCtx *, Vec, Vec, PetscBool *);
 PETSC_EXTERN PetscErrorCode MMActiveSetDestroy(MMActiveSet *);
 
 /* impls/condensed/condensed.c: the Delassus operator and the condensed VI */

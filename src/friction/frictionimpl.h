@@ -44,6 +44,8 @@ struct _MMFrictionOps {
   PetscErrorCode (*solveset)(MMFriction, const MMCoulombProblem *, PetscScalar[], MMCoulombResult *);
   /* the formulation's own Tresca solve inside a threshold loop (no Delassus operator); NULL: none */
   PetscErrorCode (*solvethresholds)(MMFriction, Vec, Vec, Vec);
+  /* the formulation's own Coulomb solve on all dofs (no Delassus operator); NULL: none */
+  PetscErrorCode (*solvedofs)(MMFriction, Vec, Vec, Vec);
   PetscReal default_rtol;
   const char *rtol_meaning;
 };
@@ -68,6 +70,7 @@ struct _p_MMFriction {
 PETSC_INTERN PetscErrorCode MMFrictionCreate_Newton(MMFriction);
 PETSC_INTERN PetscErrorCode MMFrictionCreate_FixedPoint(MMFriction);
 PETSC_INTERN PetscErrorCode MMFrictionThresholdLoop(MMFriction, Vec, Vec, Vec);
+PETSC_INTERN PetscErrorCode MMFrictionSolveDofs(MMFriction, Vec, Vec, Vec);
 PETSC_INTERN PetscErrorCode MMFrictionDumpSetUp(MMFriction);
 PETSC_INTERN PetscErrorCode MMFrictionDump(MMFriction, const MMCoulombProblem *, const PetscScalar[], const PetscScalar[], const MMCoulombResult *, PetscLogDouble);
 PETSC_INTERN PetscErrorCode MMFrictionCoulombResidual(MMFriction, PetscReal *, PetscInt *, PetscInt *);

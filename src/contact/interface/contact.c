@@ -237,7 +237,31 @@ PetscErrorCode MMContactSolveCoulomb(MMCtx *ctx, Vec b, Vec w, Vec react, MMCont
   PetscFunctionReturn(0);
 }
 
-/* The formulation's lines of the closing summary. */
+/* Whether the formulation solves the step's Coulomb problem itself on all dofs (no Delassus
+ * operator: the active-set formulation). */
+PetscErrorCode MMContactHasCoulombDofs(MMCtx *ctx, PetscBool *has)
+{
+  PetscFunctionBeginUser;
+  *has = (PetscBool)(ctx->contact.ops && ctx->contact.ops->solvecoulombdofs);
+  PetscFunctionReturn(0);
+}
+
+/* The step's Coulomb problem by the formulation's own solve on all dofs: w and react whole, s (the
+ * thresholds, a warm start on entry) mu r_n of the answer on return, to rtol of the force scale;
+ * *its the solver's iterations,
+ * *ok false when it did not converge. */
+PetscErrorCode MMContactSolveCoulombDofs(MMCtx *ctx, Vec b, Vec w, Vec react, Vec s, PetscReal rtol, PetscInt *its, PetscBool *ok)
+{
+  MMContact *ct = &ctx->contact;
+
+  PetscFunctionBeginUser;
+  PetscCheck(ct->ops->solvecoulombdofs, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_PLIB, "The contact formulation %s has no Coulomb solve of its own", ct->type);
+  PetscCall(PetscLogEventBegin(ctx->log.contact_solve, 0, 0, 0, 0));
+  PetscCall((*ct->ops->solvecoulombdofs)(ctx, b, w, react, s, rtol, its, ok));
+  PetscCall(PetscLogEventEnd(ctx->log.contact_solve, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
 /* The corner nodes (docs/method.md section 8): how many carry a row per obstacle, and on how many
  * both rows were active at the last step, each wall taking its share of the force. */
 static PetscErrorCode CornerSummary(MMCtx *ctx)
@@ -257,6 +281,7 @@ static PetscErrorCode CornerSummary(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
+/* The formulation's lines of the closing summary. */
 PetscErrorCode MMContactSummary(MMCtx *ctx)
 {
   PetscFunctionBeginUser;

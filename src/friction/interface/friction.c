@@ -78,44 +78,77 @@ static PetscErrorCode SolveSetAdaptor(void *ptr, const MMContactSetProblem *sp, 
   PetscFunctionReturn(0);
 }
 
-/* The shell SNES's solve: the type's contact-space solve, or its threshold loop; then the Coulomb
- * audit. */
+/* The contact-space solve on the candidate set's Delassus block (condensed formulation). The
+ * solver's own test (its residual over the force scale) and the Coulomb audit (on the recovered w)
+ * measure the same thing on different scales: a solve that passed its own test but not the audit is
+ * polished from where it stopped with a tighter test, at most twice, instead of rejecting the step
+ * over rounding. */
+static PetscErrorCode SolveContactSpace(MMFriction fr, SNES snes)
+{
+  const PetscReal rtol = fr->rtol;
+  PetscBool       ok;
+  PetscInt        nslip = 0, nstick = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt polish = 0;; ++polish) {
+    PetscCall(MMContactSolveCoulomb(fr->ctx, fr->b, fr->w, fr->react, SolveSetAdaptor, fr, &ok));
+    if (!ok) break;
+    PetscCall(MMFrictionCoulombResidual(fr, &fr->coulomb, &nslip, &nstick));
+    if (fr->coulomb <= fr->coulomb_tol || polish == 2) break;
+    fr->rtol *= 1e-2;
+  }
+  fr->rtol = rtol;
+  PetscCall(SNESSetIterationNumber(snes, fr->its));
+  if (!ok) {
+    PetscCall(SNESSetConvergedReason(snes, SNES_DIVERGED_MAX_IT));
+    PetscFunctionReturn(0);
+  }
+  if (fr->monitor) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    friction (%s): %" PetscInt_FMT " iterations (%" PetscInt_FMT " inner), Coulomb residual %.3e, slipping %" PetscInt_FMT ", sticking %" PetscInt_FMT "\n", fr->type, fr->its, fr->inner_its, (double)fr->coulomb, nslip, nstick));
+  PetscCall(SNESMonitor(snes, fr->its, fr->coulomb));
+  PetscCall(SNESSetConvergedReason(snes, fr->coulomb <= fr->coulomb_tol ? SNES_CONVERGED_FNORM_RELATIVE : SNES_DIVERGED_INNER));
+  PetscFunctionReturn(0);
+}
+
+/* The formulation's own Coulomb solve on all dofs (active set: its semismooth Newton with the
+ * thresholds mu r_n following the iterate, docs/method.md section 3), warm-started from the last
+ * step's thresholds fr->s, which it updates; then the Coulomb audit. One iteration is one linear
+ * solve on the free dofs, against one Tresca solve of several for the threshold loop. */
+PetscErrorCode MMFrictionSolveDofs(MMFriction fr, Vec b, Vec w, Vec react)
+{
+  PetscBool ok;
+  PetscInt  its, nslip = 0, nstick = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMContactSolveCoulombDofs(fr->ctx, b, w, react, fr->s, fr->rtol, &its, &ok));
+  fr->its = fr->inner_its = its;
+  PetscCall(SNESSetIterationNumber(fr->snes, its));
+  if (!ok) {
+    PetscCall(SNESSetConvergedReason(fr->snes, SNES_DIVERGED_MAX_IT));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(MMFrictionCoulombResidual(fr, &fr->coulomb, &nslip, &nstick));
+  if (fr->monitor) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    friction (%s, all dofs): %" PetscInt_FMT " iterations, Coulomb residual %.3e, slipping %" PetscInt_FMT ", sticking %" PetscInt_FMT "\n", fr->type, its, (double)fr->coulomb, nslip, nstick));
+  PetscCall(SNESMonitor(fr->snes, its, fr->coulomb));
+  PetscCall(SNESSetConvergedReason(fr->snes, fr->coulomb <= fr->coulomb_tol ? SNES_CONVERGED_FNORM_RELATIVE : SNES_DIVERGED_INNER));
+  PetscFunctionReturn(0);
+}
+
+/* The shell SNES's solve: the type's contact-space solve where the formulation has the Delassus
+ * operator; else the formulation's own Coulomb solve, or the threshold loop over its Tresca solves. */
 static PetscErrorCode FrictionShellSolve(SNES snes, Vec unused)
 {
   MMFriction fr;
-  PetscBool  has, ok;
-  PetscInt   nslip, nstick;
+  PetscBool  has, dofs;
 
   PetscFunctionBeginUser;
   PetscCall(SNESShellGetContext(snes, &fr));
   fr->its = fr->inner_its = 0;
   fr->contraction = fr->contraction_max = 0;
   PetscCall(MMContactHasDelassus(fr->ctx, &has));
-  if (has && fr->ops.solveset) {
-    const PetscReal rtol = fr->rtol;
-    /* The solver's own test (its residual over the force scale) and the Coulomb audit (on the
-     * recovered w) measure the same thing on different scales: a solve that passed its own test
-     * but not the audit is polished from where it stopped with a tighter test, at most twice,
-     * instead of rejecting the step over rounding. */
-    for (PetscInt polish = 0;; ++polish) {
-      PetscCall(MMContactSolveCoulomb(fr->ctx, fr->b, fr->w, fr->react, SolveSetAdaptor, fr, &ok));
-      if (!ok) break;
-      PetscCall(MMFrictionCoulombResidual(fr, &fr->coulomb, &nslip, &nstick));
-      if (fr->coulomb <= fr->coulomb_tol || polish == 2) break;
-      fr->rtol *= 1e-2;
-    }
-    fr->rtol = rtol;
-    PetscCall(SNESSetIterationNumber(snes, fr->its));
-    if (!ok) {
-      PetscCall(SNESSetConvergedReason(snes, SNES_DIVERGED_MAX_IT));
-      PetscFunctionReturn(0);
-    }
-    if (fr->monitor) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    friction (%s): %" PetscInt_FMT " iterations (%" PetscInt_FMT " inner), Coulomb residual %.3e, slipping %" PetscInt_FMT ", sticking %" PetscInt_FMT "\n", fr->type, fr->its, fr->inner_its, (double)fr->coulomb, nslip, nstick));
-    PetscCall(SNESMonitor(snes, fr->its, fr->coulomb));
-    PetscCall(SNESSetConvergedReason(snes, fr->coulomb <= fr->coulomb_tol ? SNES_CONVERGED_FNORM_RELATIVE : SNES_DIVERGED_INNER));
-    PetscFunctionReturn(0);
-  }
-  PetscCall(fr->ops.solvethresholds(fr, fr->b, fr->w, fr->react));
+  PetscCall(MMContactHasCoulombDofs(fr->ctx, &dofs));
+  if (has && fr->ops.solveset) PetscCall(SolveContactSpace(fr, snes));
+  else if (dofs && fr->ops.solvedofs) PetscCall(fr->ops.solvedofs(fr, fr->b, fr->w, fr->react));
+  else PetscCall(fr->ops.solvethresholds(fr, fr->b, fr->w, fr->react));
   PetscFunctionReturn(0);
 }
 
@@ -123,7 +156,7 @@ PetscErrorCode MMFrictionSetUp(MMCtx *ctx)
 {
   MMFriction fr;
   PetscErrorCode (*create)(MMFriction) = NULL;
-  PetscBool   has;
+  PetscBool   has, dofs;
   const char *type;
   MPI_Comm    comm = PetscObjectComm((PetscObject)ctx->op.dm);
 
@@ -136,8 +169,10 @@ PetscErrorCode MMFrictionSetUp(MMCtx *ctx)
   fr->s_floor     = ctx->opt.mu_max * 1e-3 * ctx->material.E_max * PetscPowReal(ctx->contact.h_c, ctx->op.dim - 1);
   fr->monitor     = ctx->opt.friction_monitor;
   PetscCall(MMContactHasDelassus(ctx, &has));
-  /* the default: Newton where the formulation gives the Delassus operator, else the fixed point */
-  type = ctx->opt.friction_type_set ? ctx->opt.friction_type : (has || !ctx->contact.enabled ? "newton" : "fixedpoint");
+  PetscCall(MMContactHasCoulombDofs(ctx, &dofs));
+  /* the default: Newton where the formulation gives the Delassus operator or solves Coulomb itself,
+   * else the fixed point */
+  type = ctx->opt.friction_type_set ? ctx->opt.friction_type : (has || dofs || !ctx->contact.enabled ? "newton" : "fixedpoint");
   PetscCall(PetscFunctionListFind(MMFrictionList, type, &create));
   PetscCheck(create, comm, PETSC_ERR_USER_INPUT, "-friction_type %s is not a friction solver: use newton (semismooth Newton on the Coulomb problem, the default) or fixedpoint (the paper's fixed point on the thresholds)", type);
   PetscCall(PetscStrncpy(fr->type, type, sizeof(fr->type)));
@@ -145,8 +180,8 @@ PetscErrorCode MMFrictionSetUp(MMCtx *ctx)
   PetscCheck(!ctx->opt.friction_dump[0] || (ctx->opt.mu_max > 0 && has && fr->ops.solveset), comm, PETSC_ERR_USER_INPUT, "-friction_dump %s writes the contact-space Coulomb problems, which this run does not solve: it needs -mu > 0, -contact_formulation condensed and a -friction_type that solves them (newton or fixedpoint)", ctx->opt.friction_dump);
   PetscCall(MMFrictionDumpSetUp(fr));
   if (ctx->opt.mu_max == 0 || !ctx->contact.enabled) PetscFunctionReturn(0);
-  PetscCheck(has ? fr->ops.solveset != NULL : fr->ops.solvethresholds != NULL, comm, PETSC_ERR_USER_INPUT,
-             "-friction_type %s needs the Delassus operator of -contact_formulation condensed; with -contact_formulation %s use -friction_type fixedpoint", type, ctx->contact.type);
+  PetscCheck(has ? fr->ops.solveset != NULL : (dofs && fr->ops.solvedofs) || fr->ops.solvethresholds, comm, PETSC_ERR_USER_INPUT,
+             "-friction_type %s cannot solve the Coulomb problem of -contact_formulation %s: use -friction_type fixedpoint", type, ctx->contact.type);
   PetscCall(SNESCreate(comm, &fr->snes));
   PetscCall(SNESSetOptionsPrefix(fr->snes, "friction_"));
   PetscCall(SNESSetType(fr->snes, SNESSHELL));

@@ -319,25 +319,19 @@ static PetscErrorCode GetSetTolerances(MMCtx *ctx, SetTolerances *tol)
 }
 
 /* From the solution w of the current sets: the reactions rho (res = b - K~ w = E rho on the fixed
- * dofs, the loads on the slipping ones), then the new sets. Returns how many nodes changed set and
- * the largest change of a slipping node's force over the force scale (its direction, and in 3D its
- * part across the direction). */
-static PetscErrorCode UpdateSets(MMCtx *ctx, Vec b, Vec w, PetscInt *changed, PetscReal *dchange)
+ * dofs, the loads on the slipping ones). */
+static PetscErrorCode Reactions(MMCtx *ctx, Vec b, Vec w)
 {
   MMContact         *ct = &ctx->contact;
   MMActiveSet       *as = &ct->as;
   NodeData           nd;
-  SetTolerances      tol = {0, 0, 0};
-  const PetscScalar *wa, *res, *dx;
+  const PetscScalar *res, *dx;
   PetscScalar       *rho;
-  PetscInt           nch = 0;
-  PetscReal          dmax = 0;
 
   PetscFunctionBeginUser;
   PetscCall(MatMult(ct->qp.A, w, as->r));
   PetscCall(VecAYPX(as->r, -1.0, b));
   PetscCall(NodeDataGet(ctx, &nd));
-  PetscCall(VecGetArrayRead(w, &wa));
   PetscCall(VecGetArrayRead(as->r, &res));
   PetscCall(VecGetArrayRead(as->dx, &dx));
   PetscCall(VecGetArray(ct->rho, &rho));
@@ -356,8 +350,54 @@ static PetscErrorCode UpdateSets(MMCtx *ctx, Vec b, Vec w, PetscInt *changed, Pe
   }
   PetscCall(VecRestoreArray(ct->rho, &rho));
   PetscCall(VecRestoreArrayRead(as->dx, &dx));
-  PetscCall(GetSetTolerances(ctx, &tol));
-  PetscCall(VecGetArray(ct->rho, &rho));
+  PetscCall(VecRestoreArrayRead(as->r, &res));
+  PetscCall(NodeDataRestore(ctx, &nd));
+  PetscFunctionReturn(0);
+}
+
+/* Coulomb (docs/method.md section 3, "Coulomb in the active-set iteration"): the thresholds follow
+ * the iterate, s = mu max(rho_n, 0), before the stick/slip sets are updated against them. Returns
+ * the largest change of a threshold over the force scale: the iteration has converged only when it
+ * vanishes with the set changes, and then s = mu rho_n, the Coulomb law, holds at every node. */
+static PetscErrorCode CoulombThresholds(MMCtx *ctx, PetscReal fscale, PetscReal *ds)
+{
+  MMContact         *ct = &ctx->contact;
+  const PetscScalar *rho, *mu;
+  PetscScalar       *s;
+
+  PetscFunctionBeginUser;
+  *ds = 0;
+  PetscCall(VecGetArrayRead(ct->rho, &rho));
+  PetscCall(VecGetArrayRead(ct->mu, &mu));
+  PetscCall(VecGetArray(ct->as.s, &s));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscReal s_new = PetscRealPart(mu[k]) * PetscMax(PetscRealPart(rho[k * ct->ncomp]), 0.0);
+    *ds  = PetscMax(*ds, PetscAbsReal(s_new - PetscRealPart(s[k])) / fscale);
+    s[k] = s_new;
+  }
+  PetscCall(VecRestoreArray(ct->as.s, &s));
+  PetscCall(VecRestoreArrayRead(ct->mu, &mu));
+  PetscCall(VecRestoreArrayRead(ct->rho, &rho));
+  PetscFunctionReturn(0);
+}
+
+/* The new sets from w and its reactions rho. Counts the nodes that changed set and the largest
+ * change of a slipping node's force over the force scale (its direction, and in 3D its part across
+ * the direction). */
+static PetscErrorCode NewSets(MMCtx *ctx, Vec w, const SetTolerances *tol, PetscInt *nch_out, PetscReal *dmax_out)
+{
+  MMContact         *ct = &ctx->contact;
+  MMActiveSet       *as = &ct->as;
+  NodeData           nd;
+  const PetscScalar *wa;
+  const PetscScalar *rho;
+  PetscInt           nch = 0;
+  PetscReal          dmax = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(NodeDataGet(ctx, &nd));
+  PetscCall(VecGetArrayRead(w, &wa));
+  PetscCall(VecGetArrayRead(ct->rho, &rho));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
     const PetscInt  i  = nd.in[k] - nd.rstart;
     const PetscReal sk = nd.nt ? PetscRealPart(nd.s[k]) : 0;
@@ -366,7 +406,7 @@ static PetscErrorCode UpdateSets(MMCtx *ctx, Vec b, Vec w, PetscInt *changed, Pe
     PetscBool       stick;
 
     /* normal: the fixed one has w_n = g, the free one rho_n = 0, so only one term of the trial is live */
-    if (as->active[k] ? rn < -tol.force : gap > tol.len) {
+    if (as->active[k] ? rn < -tol->force : gap > tol->len) {
       as->active[k] = (PetscBool)!as->active[k];
       ++nch;
     }
@@ -377,7 +417,7 @@ static PetscErrorCode UpdateSets(MMCtx *ctx, Vec b, Vec w, PetscInt *changed, Pe
       trn += tr[j] * tr[j];
     }
     trn   = PetscSqrtReal(trn);
-    stick = as->stick[k] ? (PetscBool)(trn <= sk + tol.force) : (PetscBool)(trn < sk - ct_k * tol.len);
+    stick = as->stick[k] ? (PetscBool)(trn <= sk + tol->force) : (PetscBool)(trn < sk - ct_k * tol->len);
     if (stick != as->stick[k]) ++nch;
     as->stick[k]    = stick;
     ct->slipping[k] = (PetscBool)!stick;
@@ -395,26 +435,48 @@ static PetscErrorCode UpdateSets(MMCtx *ctx, Vec b, Vec w, PetscInt *changed, Pe
         rp = PetscAbsReal(-as->dir[2 * k + 1] * PetscRealPart(rho[3 * k + 1]) + as->dir[2 * k] * PetscRealPart(rho[3 * k + 2]));
         DiskTangent(as, k, sk, trn, ct_k);
       }
-      dmax = PetscMax(dmax, PetscMax(sk * PetscSqrtReal(dd), rp) / tol.fscale);
+      dmax = PetscMax(dmax, PetscMax(sk * PetscSqrtReal(dd), rp) / tol->fscale);
     }
   }
-  PetscCall(VecRestoreArray(ct->rho, &rho));
-  PetscCall(VecRestoreArrayRead(as->r, &res));
+  PetscCall(VecRestoreArrayRead(ct->rho, &rho));
   PetscCall(VecRestoreArrayRead(w, &wa));
   PetscCall(NodeDataRestore(ctx, &nd));
+  *nch_out  = nch;
+  *dmax_out = dmax;
+  PetscFunctionReturn(0);
+}
+
+/* One update from the solution w of the current sets: the reactions, with Coulomb the thresholds,
+ * then the sets. Returns how many nodes changed set and the largest change of a slip force or a
+ * threshold over the force scale. */
+static PetscErrorCode UpdateSets(MMCtx *ctx, Vec b, Vec w, PetscInt *changed, PetscReal *dchange)
+{
+  MMContact    *ct = &ctx->contact;
+  SetTolerances tol = {0, 0, 0};
+  PetscInt      nch;
+  PetscReal     dmax, ds = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(Reactions(ctx, b, w));
+  PetscCall(GetSetTolerances(ctx, &tol));
+  if (ct->as.coulomb) PetscCall(CoulombThresholds(ctx, tol.fscale, &ds));
+  PetscCall(NewSets(ctx, w, &tol, &nch, &dmax));
+  dmax = PetscMax(dmax, ds);
   PetscCall(MPIU_Allreduce(&nch, changed, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)w)));
   PetscCall(MPIU_Allreduce(&dmax, dchange, 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)w)));
   PetscFunctionReturn(0);
 }
 
 /* The step's contact problem K~ w = b - E rho with the conditions above; w is the warm start on entry
- * (with the sets of the last solve) and the whole solution on return, ct->rho its reactions. */
-PetscErrorCode MMActiveSetSolve(MMCtx *ctx, Vec b, Vec w)
+ * (with the sets of the last solve) and the whole solution on return, ct->rho its reactions.
+ * *converged is false when the sets still change after -active_set_max_it iterations. */
+PetscErrorCode MMActiveSetSolve(MMCtx *ctx, Vec b, Vec w, PetscBool *converged)
 {
   MMContact   *ct = &ctx->contact;
   MMActiveSet *as = &ct->as;
   MPI_Comm     comm = PetscObjectComm((PetscObject)w);
-  PetscReal    dtol = 1e-2 * ctx->opt.friction_coulomb_tol;
+  /* with Coulomb the thresholds' change is the friction solver's own test (-friction_snes_rtol) */
+  PetscReal    dtol = as->coulomb ? PetscMin(as->coulomb_rtol, 1e-2 * ctx->opt.friction_coulomb_tol) : 1e-2 * ctx->opt.friction_coulomb_tol;
 
   PetscFunctionBeginUser;
   as->lin_its = 0;
@@ -427,11 +489,24 @@ PetscErrorCode MMActiveSetSolve(MMCtx *ctx, Vec b, Vec w)
     PetscCall(SolveFree(ctx, b, w));
     PetscCall(UpdateSets(ctx, b, w, &changed, &dchange));
     PetscCall(PetscLogEventEnd(ctx->log.as_iterate, 0, 0, 0, 0));
-    if (as->monitor) PetscCall(PetscPrintf(comm, "    active set %2" PetscInt_FMT ": %" PetscInt_FMT " nodes changed set, slip forces changed by %.3e of the force scale, %" PetscInt_FMT " CG iterations so far\n", as->its, changed, (double)dchange, as->lin_its));
+    if (as->monitor) PetscCall(PetscPrintf(comm, "    active set %2" PetscInt_FMT ": %" PetscInt_FMT " nodes changed set, slip forces%s changed by %.3e of the force scale, %" PetscInt_FMT " CG iterations so far\n", as->its, changed, as->coulomb ? " and thresholds" : "", (double)dchange, as->lin_its));
     if (!changed && dchange <= dtol) break;
   }
-  PetscCheck(as->its <= as->max_it, comm, PETSC_ERR_NOT_CONVERGED, "The active-set contact solver did not converge in -active_set_max_it %" PetscInt_FMT " iterations: the contact or stick/slip sets keep changing. Run with -active_set_monitor to see how, and raise -active_set_max_it", as->max_it);
+  *converged = (PetscBool)(as->its <= as->max_it);
+  as->its    = PetscMin(as->its, as->max_it);
   ct->vi_its = as->its;
+  PetscFunctionReturn(0);
+}
+
+/* The frictionless or Tresca step: a solve that does not converge stops the run, as the other
+ * formulations' VI does (the sets of a well-posed step settle in a few iterations). */
+static PetscErrorCode ActiveSetSolveOrFail(MMCtx *ctx, Vec b, Vec w)
+{
+  PetscBool converged;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMActiveSetSolve(ctx, b, w, &converged));
+  PetscCheck(converged, PetscObjectComm((PetscObject)w), PETSC_ERR_NOT_CONVERGED, "The active-set contact solver did not converge in -active_set_max_it %" PetscInt_FMT " iterations: the contact or stick/slip sets keep changing. Run with -active_set_monitor to see how, and raise -active_set_max_it", ctx->contact.as.max_it);
   PetscFunctionReturn(0);
 }
 
@@ -475,8 +550,30 @@ static PetscErrorCode ActiveSetContactForce(MMCtx *ctx, Vec b, Vec w, Vec react)
 static PetscErrorCode ActiveSetSolveStep(MMCtx *ctx, Vec b, Vec w, Vec react)
 {
   PetscFunctionBeginUser;
-  PetscCall(MMActiveSetSolve(ctx, b, w));
+  PetscCall(ActiveSetSolveOrFail(ctx, b, w));
   PetscCall(ActiveSetContactForce(ctx, b, w, react));
+  PetscFunctionReturn(0);
+}
+
+/* The step's Coulomb problem on all dofs: the same iteration with the thresholds following the
+ * iterate (CoulombThresholds), warm-started from s (the last step's thresholds), which it overwrites
+ * with mu r_n of the answer; it stops when the thresholds change by at most rtol of the force scale. A solve that does not converge reports it (*converged false): the
+ * friction solver rejects the step, and it is retried with a smaller dt. */
+static PetscErrorCode ActiveSetSolveCoulomb(MMCtx *ctx, Vec b, Vec w, Vec react, Vec s, PetscReal rtol, PetscInt *its, PetscBool *converged)
+{
+  MMActiveSet *as = &ctx->contact.as;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(s, as->s));
+  as->coulomb      = PETSC_TRUE;
+  as->coulomb_rtol = rtol;
+  PetscCall(MMActiveSetSolve(ctx, b, w, converged));
+  as->coulomb = PETSC_FALSE;
+  /* the bounds |rho_t| <= s of the diagnostics, at the thresholds of the answer */
+  PetscCall(MMActiveSetSetThresholds(ctx, as->s));
+  PetscCall(VecCopy(as->s, s));
+  PetscCall(ActiveSetContactForce(ctx, b, w, react));
+  *its = as->its;
   PetscFunctionReturn(0);
 }
 
@@ -514,6 +611,7 @@ static const MMContactOps ActiveSetOps = {
   .solvecontactdofs = ActiveSetSolveStep,
   .recover          = ActiveSetContactForce,
   .setthresholds    = MMActiveSetSetThresholds,
+  .solvecoulombdofs = ActiveSetSolveCoulomb,
   .getstepksp       = ActiveSetGetStepKSP,
   .swapkept         = ActiveSetSwapKept,
 };

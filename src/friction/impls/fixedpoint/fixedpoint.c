@@ -117,6 +117,7 @@ PetscErrorCode MMFrictionCreate_FixedPoint(MMFriction fr)
   PetscFunctionBeginUser;
   fr->ops.solveset        = SolveSet_FixedPoint;
   fr->ops.solvethresholds = MMFrictionThresholdLoop;
+  fr->ops.solvedofs       = NULL;
   fr->ops.default_rtol    = 1e-10;
   fr->ops.rtol_meaning    = "relative change of the thresholds";
   PetscFunctionReturn(0);
