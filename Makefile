@@ -34,7 +34,7 @@ MSH  += meshes/bimaterial.msh meshes/side_bars.msh
 BALL_BENCH_H ?= 0.045
 BALL_LARGE_H ?= 0.021
 TWO_BALLS_BENCH_H ?= 0.057
-BENCH_MSH := meshes/disk_bench.msh meshes/ball_bench.msh meshes/ball07.msh meshes/two_balls_bench.msh
+BENCH_MSH := meshes/disk_bench.msh meshes/ball_bench.msh meshes/ball07.msh meshes/two_balls_bench.msh meshes/slab.msh
 
 .PHONY: all deps petsc-found meshes run check bench bench-large clean
 all: mmcontact
@@ -108,6 +108,9 @@ meshes/two_balls_bench.msh: meshes/two_balls.geo
 	gmsh -3 $< -setnumber H $(TWO_BALLS_BENCH_H) -o $@ -v 2
 meshes/ball07.msh: meshes/ball.geo
 	gmsh -3 $< -setnumber H 0.07 -o $@ -v 2
+# The surface suite's slab: 144 x 144 x 5 hexahedra split into tetrahedra, 315k dofs, 21,025 base nodes
+meshes/slab.msh: meshes/slab.geo
+	gmsh -3 $< -o $@ -v 2
 meshes/ball_large.msh: meshes/ball.geo
 	gmsh -3 $< -setnumber H $(BALL_LARGE_H) -o $@ -v 2
 

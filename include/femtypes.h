@@ -101,4 +101,9 @@ typedef struct {
   PetscInt     n_bc;
   PetscReal    vMv_DD;     /* vD . M_DD vD */
   PetscReal   *reaction;   /* per boundary, MM_MAX_DIM Cartesian components of the support's force on the body */
+  /* the Dirichlet data of dm's local vectors, u_D(t) = bv0 + t bv1 at local dofs bv_idx, when no value
+   * has an amplitude (MMLoadsInsertBoundaryValues); bv_n < 0: not tabulated */
+  PetscInt     bv_n;
+  PetscInt    *bv_idx;
+  PetscReal   *bv0, *bv1;
 } MMLoads;

@@ -6,5 +6,6 @@ PETSC_EXTERN PetscErrorCode MMLoadsReactions(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMLoadsStepWork(MMCtx *, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode MMLoadsDirichletKinetic(MMCtx *, Vec, PetscReal *);
 PETSC_EXTERN PetscErrorCode MMLoadsInsertDirichletVelocity(MMCtx *, Vec);
+PETSC_EXTERN PetscErrorCode MMLoadsInsertBoundaryValues(MMCtx *, Vec, PetscReal);
 PETSC_EXTERN PetscErrorCode MMLoadsDestroy(MMLoads *);
 PETSC_EXTERN PetscReal      MMAmplitudeValue(const MMAmplitude *, PetscReal);

@@ -7,6 +7,9 @@ Suites (the table SUITES below):
          two_body, two balls thrown at each other, frictionless (options/two_balls.opts on
          meshes/two_balls_bench.msh, H = 0.057: 117k dofs, its own dt); 1 and 2 ranks.
                                                                           -> bench/results.csv
+  surface a slab pressed flat on a plane over its whole base (options/slab_press.opts on meshes/slab.msh:
+         315k dofs, 21,025 contact nodes): linear (the slab squeezed, base clamped), contact, friction
+         mu = 0.2; 2 ranks, 20 steps, the default formulation (active_set). -> bench/results.csv
   users  D2 ball at the time steps users choose (meshes/ball07.msh, H = 0.07, 33k dofs): dt = 4e-3
          and 8e-3 (c_p dt / h_c' = 2.1 and 4.2; suites users4, users8), linear, and friction with
          mu = 0.2 and 0.5 by each friction solver (-friction_type newton, the default, and
@@ -14,14 +17,14 @@ Suites (the table SUITES below):
   large  D2 ball, about 1M dofs (meshes/ball_large.msh): linear, contact, friction mu = 0.2 on 2
          ranks, contact solved with LARGE_OPTS.                           -> bench/results_large.csv
 
-`make bench` runs 2d, 3d and users, `make bench-large` runs large. Each suite's rows are written to its
+`make bench` runs 2d, 3d, surface and users, `make bench-large` runs large. Each suite's rows are written to its
 CSV (one common header) and printed as a table. Absolute times on a shared machine are noise: the
 figures are the ratios within one run (contact/linear on the same ranks and mesh, 1-rank over
 2-rank time for the 2-rank speed-up).
 
 Environment (all optional):
   BENCH_CASES       suites or suite:case to run, comma-separated (e.g. 2d,3d or 3d:linear,3d:friction);
-                    the command-line arguments, if any, take precedence. Default: 2d,3d.
+                    the command-line arguments, if any, take precedence. Default: 2d,3d,surface,users.
   BENCH_STEPS       steps per run for every suite (default: each suite's own, see SUITES)
   BENCH_RANKS       ranks to run, comma-separated (e.g. 2); ratios need both rows present
   BENCH_MESH_<SUITE> another mesh for that suite (e.g. BENCH_MESH_3D=meshes/ball.msh), to try rows quickly;
@@ -79,6 +82,17 @@ SUITES = [
          dt=2e-4, steps=30, ranks=(1, 2), variants=(LINEAR, CONTACT, FRICTION, FULL), csv="bench/results.csv"),
     dict(suite="3d", problem="D2 ball", dim=3, options_file="options/d2_ball.opts", mesh="meshes/ball_bench.msh",
          dt=1e-3, steps=30, ranks=(1, 2), variants=(LINEAR, CONTACT, FRICTION, TWO_BODY), csv="bench/results.csv"),
+    # A large contact surface (issue 21): a slab of 315k dofs pressed flat on a plane over its whole
+    # base, 21,025 contact nodes all touching from step 3, on 2 ranks. Its formulation is the default
+    # (-contact_formulation auto: active_set at this size). The linear row is the same slab squeezed
+    # between the press and a clamped base (-contact 0 -dirichlet top,base): the deformation of a
+    # sticking contact with no contact solve, so that CG has work to do in both (a rigid motion is the
+    # Newmark predictor itself).
+    dict(suite="surface", problem="slab pressed flat", dim=3, options_file="options/slab_press.opts", mesh="meshes/slab.msh",
+         dt=2e-4, steps=20, ranks=(2,),
+         variants=(dict(case="linear", options="-contact 0 -dirichlet top,base -dirichlet_base_components 2 -mu 0"), dict(case="contact", options="-mu 0"),
+                   dict(case="friction", options="-mu 0.2")),
+         csv="bench/results.csv"),
     dict(suite="users4", group="users", problem="D2 ball", dim=3, options_file="options/d2_ball.opts", mesh="meshes/ball07.msh",
          dt=4e-3, steps=20, ranks=(1,), variants=USERS, csv="bench/results.csv"),
     dict(suite="users8", group="users", problem="D2 ball", dim=3, options_file="options/d2_ball.opts", mesh="meshes/ball07.msh",
@@ -222,7 +236,7 @@ def rank_rss(cmd):
 
 
 def main(args):
-    selected = (args or os.environ.get("BENCH_CASES", "2d,3d,users").split(","))
+    selected = (args or os.environ.get("BENCH_CASES", "2d,3d,surface,users").split(","))
     ranks = [int(n) for n in os.environ["BENCH_RANKS"].split(",")] if os.environ.get("BENCH_RANKS") else None
     names = [suite["suite"] for suite in SUITES] + [suite.get("group") for suite in SUITES if suite.get("group")]
     unknown = [s for s in selected if s.split(":")[0] not in names]

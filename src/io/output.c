@@ -381,7 +381,7 @@ static PetscErrorCode WholeField(MMCtx *ctx, Vec w, PetscBool with_bc, Vec whole
   PetscCall(MMFEToCartesian(ctx, w, g));
   PetscCall(VecZeroEntries(l));
   PetscCall(DMGlobalToLocal(dm, g, INSERT_VALUES, l));
-  if (with_bc) PetscCall(DMPlexInsertBoundaryValues(dm, PETSC_TRUE, l, ctx->hist.time, NULL, NULL, NULL));
+  if (with_bc) PetscCall(MMLoadsInsertBoundaryValues(ctx, l, ctx->hist.time));
   PetscCall(DMLocalToGlobal(ctx->out.dm_out, l, INSERT_VALUES, whole));
   PetscCall(DMRestoreLocalVector(dm, &l));
   PetscCall(DMRestoreGlobalVector(dm, &g));

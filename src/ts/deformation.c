@@ -10,6 +10,7 @@
  * One pass over the cells with a few dozen flops each, on the displacement already in memory. */
 #include "deformation.h"
 #include "fem.h"
+#include "loads.h"
 #include "errors.h"
 
 /* The strain's largest principal value in magnitude: the spectral norm of the symmetric e. */
@@ -216,7 +217,7 @@ PetscErrorCode MMDeformationCheck(MMCtx *ctx)
   PetscCall(DMGlobalToLocal(dm, g, INSERT_VALUES, l));
   /* the constrained dofs are zero in l: only nonzero Dirichlet data need inserting (a projection) */
   /* the data of the state's time: loads.t1, which a restart sets before the history's time */
-  if (NonzeroDirichlet(&ctx->opt)) PetscCall(DMPlexInsertBoundaryValues(dm, PETSC_TRUE, l, ctx->loads.t1, NULL, NULL, NULL));
+  if (NonzeroDirichlet(&ctx->opt)) PetscCall(MMLoadsInsertBoundaryValues(ctx, l, ctx->loads.t1));
   PetscCall(ScanCells(ctx, l, &w));
   PetscCall(DMRestoreLocalVector(dm, &l));
   PetscCall(DMRestoreGlobalVector(dm, &g));
