@@ -109,9 +109,17 @@ def test_unknown_friction_type_is_refused(tmp_path):
     assert r.returncode != 0 and "-friction_type gauss_seidel is not a friction solver" in r.output
 
 
-def test_newton_needs_the_delassus_operator(tmp_path):
-    r = run("d1_friction", tmp_path, "-friction_type", "newton", "-contact_formulation", "active_set", np_=0, check=False)
-    assert r.returncode != 0 and "use -friction_type fixedpoint" in r.output
+def test_newton_without_the_delassus_operator_is_the_active_set_coulomb_iteration(tmp_path):
+    """With the active-set formulation (no Delassus operator) -friction_type newton, the default, is
+    that formulation's own Coulomb iteration: one active-set iteration per friction iteration, where
+    the fixed point counts threshold updates, each a whole active-set solve."""
+    opts = ("d1_friction", "-contact_formulation", "active_set", "-ts_max_time", 0.06, "-output_every", 0)
+    h = run(opts[0], tmp_path, *opts[1:], name="newton").history
+    hf = run(opts[0], tmp_path, *opts[1:], "-friction_type", "fixedpoint", name="fixedpoint").history
+    contact = h["active"] > 0
+    assert contact.sum() >= 5 and h["slipping"].max() > 0
+    assert np.array_equal(h["friction_its"], h["vi_its"])
+    assert not np.array_equal(hf["friction_its"], hf["vi_its"])
 
 
 @pytest.mark.parametrize("extra", [("-mu", 0), ("-contact_formulation", "active_set")])
