@@ -187,6 +187,24 @@ def test_default_native_cholesky_equals_mumps_lu(mm):
     assert np.array_equal(native["active"], mumps["active"])
 
 
+def test_redundant_cholesky_on_two_ranks_equals_mumps_lu(mm):
+    """2D on several ranks: K~ is factored by PETSc's Cholesky whole on every rank (PCREDUNDANT), the
+    Delassus columns computed from that factor on each rank; the frictional D1 history is the one of
+    MUMPS's distributed LU on the same 2 ranks, and of one rank, to solver tolerance."""
+    short = ("-ts_max_time", 0.06, "-output_every", 0)
+    redundant = mm("d1_friction", *short, np_=2, name="redundant")
+    assert "(redundant)" in redundant.output
+    mumps = mm("d1_friction", *short, "-contact_K_pc_type", "lu", "-contact_K_pc_factor_mat_solver_type", "mumps", np_=2, name="mumps").history
+    one = mm("d1_friction", *short, name="one").history
+    h = redundant.history
+    scale = np.abs(mumps["total"]).max()
+    assert h["active"].max() > 0 and h["friction_its"].max() > 1
+    for other in (mumps, one):
+        for c in ("total", "work_contact", "work_friction", "force_normal", "force_tangential"):
+            assert np.abs(h[c] - other[c]).max() <= 1e-10 * scale, c
+        assert np.array_equal(h["active"], other["active"])
+
+
 def test_failed_factorization_stops_the_run(mm):
     """A factorization that runs out of memory (MUMPS limited to 1 MB of working space here) used to
     go on to the next solve: now it stops at once, naming the solve and the reason."""

@@ -70,19 +70,28 @@ static PetscErrorCode SolverText(MMCtx *ctx, char text[], size_t len)
   PCType        ptype;
   MatSolverType package = NULL;
   const char   *kprefix, *pprefix;
-  PetscBool     factor, same;
+  PetscBool     factor, same, redundant;
+  char          pctext[128];
 
   PetscFunctionBeginUser;
   PetscCall(MMContactGetStepKSP(ctx, &krylov, &pc_ksp));
   PetscCall(KSPGetType(krylov, &ktype));
   PetscCall(KSPGetOptionsPrefix(krylov, &kprefix));
   PetscCall(KSPGetPC(pc_ksp, &pc));
-  PetscCall(PCGetType(pc, &ptype));
   PetscCall(KSPGetOptionsPrefix(pc_ksp, &pprefix));
+  /* a redundant PC (2D on several ranks): the factorization it holds on every rank */
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCREDUNDANT, &redundant));
+  if (redundant) {
+    KSP inner;
+    PetscCall(PCRedundantGetKSP(pc, &inner));
+    PetscCall(KSPGetPC(inner, &pc));
+  }
+  PetscCall(PCGetType(pc, &ptype));
   PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &factor, PCLU, PCCHOLESKY, PCILU, PCICC, ""));
   if (factor) PetscCall(PCFactorGetMatSolverType(pc, &package));
+  PetscCall(PetscSNPrintf(pctext, sizeof(pctext), "%s%s%s%s%s", ptype, package ? " (" : "", package ? package : "", package ? ")" : "", redundant ? " of the whole K~ on every rank (redundant)" : ""));
   PetscCall(PetscStrcmp(kprefix, pprefix, &same));
-  PetscCall(PetscSNPrintf(text, len, "%s + %s%s%s%s, prefix%s %s%s%s", ktype, ptype, package ? " (" : "", package ? package : "", package ? ")" : "", same ? "" : "es", kprefix, same ? "" : " and ", same ? "" : pprefix));
+  PetscCall(PetscSNPrintf(text, len, "%s + %s, prefix%s %s%s%s", ktype, pctext, same ? "" : "es", kprefix, same ? "" : " and ", same ? "" : pprefix));
   PetscFunctionReturn(0);
 }
 

@@ -67,7 +67,7 @@ static PetscErrorCode KtClassify(MMStepSolver *kt)
   PetscBool lu, cholesky, preonly;
 
   PetscFunctionBeginUser;
-  PetscCall(KSPGetPC(kt->ksp, &pc));
+  PetscCall(MMKSPGetFactorPC(kt->ksp, &pc, NULL));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCCHOLESKY, &cholesky));
   PetscCall(PetscObjectTypeCompare((PetscObject)kt->ksp, KSPPREONLY, &preonly));

@@ -16,7 +16,12 @@
  * slipping ones, and solves K~ on the free dofs F by CG with the operator P_F K~ P_F + P_D and the
  * PC P_F M^{-1} P_F + P_D, M^{-1} the contact_K_ PC set up once per dt, warm-started from the last
  * iterate. It stops when the sets (and, in 3D, the slip directions) stop changing: the solution then
- * satisfies every condition exactly, up to the CG tolerance on the free dofs. */
+ * satisfies every condition exactly, up to the CG tolerance on the free dofs.
+ * Coulomb (-friction_type newton): the thresholds follow the iterate, s = mu max(lambda_n, 0) after
+ * each solve, so one iteration is one CG solve; the derivative of s in lambda_n is left out of the
+ * operator, which keeps it symmetric (a full Newton step would couple each slipping node's
+ * tangential rows to its normal row and need GMRES or BiCGStab), and the thresholds converge
+ * linearly (docs/method.md section 3, "Coulomb in the active-set iteration"). */
 #include "../../contactimpl.h"
 
 /* y += kappa_k e_k (e_k.x_t) at every slipping node in 3D, e_k = d_perp: the Newton tangent of the
@@ -557,8 +562,9 @@ static PetscErrorCode ActiveSetSolveStep(MMCtx *ctx, Vec b, Vec w, Vec react)
 
 /* The step's Coulomb problem on all dofs: the same iteration with the thresholds following the
  * iterate (CoulombThresholds), warm-started from s (the last step's thresholds), which it overwrites
- * with mu r_n of the answer; it stops when the thresholds change by at most rtol of the force scale. A solve that does not converge reports it (*converged false): the
- * friction solver rejects the step, and it is retried with a smaller dt. */
+ * with mu r_n of the answer; it stops when the thresholds change by at most rtol of the force
+ * scale. A solve that does not converge reports it (*converged false): the friction solver rejects
+ * the step, and it is retried with a smaller dt. */
 static PetscErrorCode ActiveSetSolveCoulomb(MMCtx *ctx, Vec b, Vec w, Vec react, Vec s, PetscReal rtol, PetscInt *its, PetscBool *converged)
 {
   MMActiveSet *as = &ctx->contact.as;
