@@ -193,36 +193,39 @@ static PetscErrorCode ReserveSlots(MMCtx *ctx, PetscInt n)
   PetscFunctionReturn(0);
 }
 
-/* Columns of K~^{-1} E for the set's nodes not yet cached, a block of right-hand sides at a time
- * through the factor, kept on the owned condensed rows. */
-static PetscErrorCode ComputeMissingColumns(MMCtx *ctx)
+/* Column i of the new ones (node todo[i / nr], component i % nr) into the cache, from its owned
+ * rows xloc (xloc[0] is global row rstart); in order of i, so that a node's slot is taken by its
+ * first component. */
+static PetscErrorCode StoreColumn(MMContact *ct, const PetscInt todo[], PetscInt i, const PetscInt ic[], PetscInt rstart, const PetscScalar xloc[])
 {
-  MMContact      *ct = &ctx->contact;
-  MMCandidates   *c  = &ct->cand;
-  MPI_Comm        comm = PetscObjectComm((PetscObject)ctx->op.dm);
-  const PetscInt  nb_max = 96, nr = ct->ncomp;
-  PetscInt        nnew = 0, *todo, n, rstart;
-  const PetscInt *ic;
-  PetscMPIInt     rank;
-  PC              pc;
-  Mat             F;
-  PetscBool       sparse, redundant;
-  PetscInt        row0; /* the local array's row of global row g is g - row0 */
+  MMCandidates  *c  = &ct->cand;
+  const PetscInt nr = ct->ncomp, g = todo[i / nr], comp = i % nr;
+  PetscScalar   *col;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMalloc1(c->n_set, &todo));
-  for (PetscInt i = 0; i < c->n_set; ++i)
-    if (c->slot[c->set[i]] < 0) todo[nnew++] = c->set[i];
-  if (!nnew) {
-    PetscCall(PetscFree(todo));
-    PetscFunctionReturn(0);
+  if (comp == 0) {
+    c->slot[g]                  = c->n_cached;
+    c->slot_node[c->n_cached++] = g;
   }
-  PetscCall(PetscLogEventBegin(ctx->log.candidate_columns, 0, 0, 0, 0));
-  PetscCall(ReserveSlots(ctx, nnew));
-  /* with a redundant factor (2D on several ranks) every rank holds all of K~'s factor and computes
-   * every column whole, sequentially: no communication, the cost of one rank's */
-  PetscCall(MMKSPGetFactorPC(ct->ksp_K, &pc, &redundant));
-  PetscCall(PCFactorGetMatrix(pc, &F));
+  col = c->cols + ((size_t)c->slot[g] * nr + comp) * c->nc_local;
+  for (PetscInt r = 0; r < c->nc_local; ++r) col[r] = xloc[ic[r] - rstart];
+  if (c->full_ok) PetscCall(PetscArraycpy(c->full + ((size_t)c->slot[g] * nr + comp) * c->n_local, xloc, c->n_local));
+  PetscFunctionReturn(0);
+}
+
+/* The m new columns through a distributed factor (MUMPS), a block of right-hand sides at a time:
+ * every rank takes part in every solve and keeps its rows. */
+static PetscErrorCode SolveColumnsDistributed(MMCtx *ctx, Mat F, const PetscInt todo[], PetscInt m, const PetscInt ic[])
+{
+  MMContact     *ct = &ctx->contact;
+  MMCandidates  *c  = &ct->cand;
+  MPI_Comm       comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  const PetscInt nb_max = 96, nr = ct->ncomp;
+  PetscInt       n, rstart;
+  PetscMPIInt    rank;
+  PetscBool      sparse;
+
+  PetscFunctionBeginUser;
   {
     /* MUMPS: unit right-hand sides as a sparse B^T cut the column cost by a third (12k-dof D2
      * with friction: 0.31 s to 0.21 s, the same columns to 1e-14). MUMPS takes a sparse
@@ -235,23 +238,14 @@ static PetscErrorCode ComputeMissingColumns(MMCtx *ctx)
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(MatGetLocalSize(ct->qp.A, &n, NULL));
   PetscCall(MatGetOwnershipRange(ct->qp.A, &rstart, NULL));
-  row0 = redundant ? 0 : rstart;
-  PetscCall(ISGetIndices(ct->is_cond, &ic));
-  for (PetscInt i0 = 0; i0 < nnew * nr; i0 += nb_max) {
-    const PetscInt     nb = PetscMin(nb_max, nnew * nr - i0);
+  for (PetscInt i0 = 0; i0 < m; i0 += nb_max) {
+    const PetscInt     nb = PetscMin(nb_max, m - i0);
     Mat                B, X;
     const PetscScalar *x;
     PetscInt           lda;
 
-    if (redundant) PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, c->N, nb, NULL, &X));
-    else PetscCall(MatCreateDense(comm, n, PETSC_DECIDE, PETSC_DETERMINE, nb, NULL, &X));
-    if (redundant) {
-      PetscCall(MatDuplicate(X, MAT_DO_NOT_COPY_VALUES, &B));
-      for (PetscInt j = 0; j < nb; ++j) {
-        const PetscInt g = todo[(i0 + j) / nr], comp = (i0 + j) % nr;
-        PetscCall(MatSetValue(B, c->normal_dof[g] + comp, j, 1.0, INSERT_VALUES));
-      }
-    } else if (sparse) {
+    PetscCall(MatCreateDense(comm, n, PETSC_DECIDE, PETSC_DETERMINE, nb, NULL, &X));
+    if (sparse) {
       /* MUMPS takes the unit right-hand sides as a sparse B^T and prunes its forward elimination */
       PetscCall(MatCreateAIJ(comm, rank ? 0 : nb, rank ? 0 : c->N, nb, c->N, 1, NULL, 0, NULL, &B));
       for (PetscInt j = 0; !rank && j < nb; ++j) {
@@ -271,23 +265,109 @@ static PetscErrorCode ComputeMissingColumns(MMCtx *ctx)
     else PetscCall(MatMatSolve(F, B, X));
     PetscCall(MatDenseGetLDA(X, &lda));
     PetscCall(MatDenseGetArrayRead(X, &x));
-    for (PetscInt j = 0; j < nb; ++j) {
-      const PetscInt g = todo[(i0 + j) / nr], comp = (i0 + j) % nr;
-      PetscScalar   *col;
-      if (comp == 0) {
-        c->slot[g]                  = c->n_cached;
-        c->slot_node[c->n_cached++] = g;
-      }
-      col = c->cols + ((size_t)c->slot[g] * nr + comp) * c->nc_local;
-      for (PetscInt r = 0; r < c->nc_local; ++r) col[r] = x[(ic[r] - row0) + j * lda];
-      if (c->full_ok) PetscCall(PetscArraycpy(c->full + ((size_t)c->slot[g] * nr + comp) * c->n_local, x + (rstart - row0) + (size_t)j * lda, c->n_local));
+    for (PetscInt j = 0; j < nb; ++j) PetscCall(StoreColumn(ct, todo, i0 + j, ic, rstart, x + (size_t)j * lda));
+    PetscCall(MatDenseRestoreArrayRead(X, &x));
+    PetscCall(MatDestroy(&X));
+    PetscCall(MatDestroy(&B));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The m new columns through a redundant factor (2D on several ranks: every rank holds all of K~'s
+ * factor, sequential): rank q solves the columns [m q / P, m (q + 1) / P) whole, and one
+ * MPI_Alltoallv gives every rank its rows of all of them. Each rank solves 1/P of the columns. */
+static PetscErrorCode SolveColumnsRedundant(MMCtx *ctx, Mat F, const PetscInt todo[], PetscInt m, const PetscInt ic[])
+{
+  MMContact      *ct = &ctx->contact;
+  MMCandidates   *c  = &ct->cand;
+  MPI_Comm        comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  const PetscInt  nb_max = 96, nr = ct->ncomp, N = c->N;
+  const PetscInt *ranges;
+  PetscMPIInt     rank, size, *scount, *sdispl, *rcount, *rdispl;
+  PetscInt        lo, hi, rstart, n;
+  PetscScalar    *sbuf, *rbuf;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(MatGetOwnershipRanges(ct->qp.A, &ranges));
+  PetscCall(MatGetOwnershipRange(ct->qp.A, &rstart, NULL));
+  PetscCall(MatGetLocalSize(ct->qp.A, &n, NULL));
+  lo = (m * rank) / size;
+  hi = (m * (rank + 1)) / size;
+  PetscCall(PetscMalloc4(size, &scount, size + 1, &sdispl, size, &rcount, size + 1, &rdispl));
+  sdispl[0] = rdispl[0] = 0;
+  for (PetscMPIInt q = 0; q < size; ++q) {
+    const PetscInt lo_q = (m * q) / size, hi_q = (m * (q + 1)) / size;
+    PetscCall(PetscMPIIntCast((hi - lo) * (ranges[q + 1] - ranges[q]), &scount[q]));
+    PetscCall(PetscMPIIntCast((hi_q - lo_q) * n, &rcount[q]));
+    PetscCall(PetscMPIIntCast((PetscInt)sdispl[q] + scount[q], &sdispl[q + 1]));
+    PetscCall(PetscMPIIntCast((PetscInt)rdispl[q] + rcount[q], &rdispl[q + 1]));
+  }
+  PetscCall(PetscMalloc2(PetscMax(sdispl[size], 1), &sbuf, PetscMax(rdispl[size], 1), &rbuf));
+  for (PetscInt i0 = lo; i0 < hi; i0 += nb_max) {
+    const PetscInt     nb = PetscMin(nb_max, hi - i0);
+    Mat                B, X;
+    const PetscScalar *x;
+    PetscInt           lda;
+
+    PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, N, nb, NULL, &X));
+    PetscCall(MatDuplicate(X, MAT_DO_NOT_COPY_VALUES, &B));
+    for (PetscInt j = 0; j < nb; ++j) PetscCall(MatSetValue(B, c->normal_dof[todo[(i0 + j) / nr]] + (i0 + j) % nr, j, 1.0, INSERT_VALUES));
+    PetscCall(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatMatSolve(F, B, X));
+    PetscCall(MatDenseGetLDA(X, &lda));
+    PetscCall(MatDenseGetArrayRead(X, &x));
+    /* to rank q: rows [ranges[q], ranges[q+1]) of each column, column by column */
+    for (PetscMPIInt q = 0; q < size; ++q) {
+      const PetscInt nq = ranges[q + 1] - ranges[q];
+      for (PetscInt j = 0; j < nb; ++j) PetscCall(PetscArraycpy(sbuf + sdispl[q] + (i0 - lo + j) * nq, x + ranges[q] + (size_t)j * lda, nq));
     }
     PetscCall(MatDenseRestoreArrayRead(X, &x));
     PetscCall(MatDestroy(&X));
     PetscCall(MatDestroy(&B));
   }
+  PetscCallMPI(MPI_Alltoallv(sbuf, scount, sdispl, MPIU_SCALAR, rbuf, rcount, rdispl, MPIU_SCALAR, comm));
+  /* rank q's columns arrive in q's order: all of them, in the order of i */
+  for (PetscInt i = 0, q = 0; i < m; ++i) {
+    while ((m * (q + 1)) / size <= i) ++q;
+    PetscCall(StoreColumn(ct, todo, i, ic, rstart, rbuf + rdispl[q] + (i - (m * q) / size) * n));
+  }
+  PetscCall(PetscFree2(sbuf, rbuf));
+  PetscCall(PetscFree4(scount, sdispl, rcount, rdispl));
+  PetscFunctionReturn(0);
+}
+
+/* Columns of K~^{-1} E for the set's nodes not yet cached, kept on the owned condensed rows (and,
+ * under the memory cap, on all owned rows for the recovery of w). */
+static PetscErrorCode ComputeMissingColumns(MMCtx *ctx)
+{
+  MMContact      *ct = &ctx->contact;
+  MMCandidates   *c  = &ct->cand;
+  PetscInt        nnew = 0, *todo;
+  const PetscInt *ic;
+  PC              pc;
+  Mat             F;
+  PetscBool       redundant;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(c->n_set, &todo));
+  for (PetscInt i = 0; i < c->n_set; ++i)
+    if (c->slot[c->set[i]] < 0) todo[nnew++] = c->set[i];
+  if (!nnew) {
+    PetscCall(PetscFree(todo));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscLogEventBegin(ctx->log.candidate_columns, 0, 0, 0, 0));
+  PetscCall(ReserveSlots(ctx, nnew));
+  PetscCall(MMKSPGetFactorPC(ct->ksp_K, &pc, &redundant));
+  PetscCall(PCFactorGetMatrix(pc, &F));
+  PetscCall(ISGetIndices(ct->is_cond, &ic));
+  if (redundant) PetscCall(SolveColumnsRedundant(ctx, F, todo, nnew * ct->ncomp, ic));
+  else PetscCall(SolveColumnsDistributed(ctx, F, todo, nnew * ct->ncomp, ic));
   PetscCall(ISRestoreIndices(ct->is_cond, &ic));
-  c->columns += nnew * nr;
+  c->columns += nnew * ct->ncomp;
   PetscCall(PetscFree(todo));
   PetscCall(PetscLogEventEnd(ctx->log.candidate_columns, 0, 0, 0, 0));
   PetscFunctionReturn(0);
