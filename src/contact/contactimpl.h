@@ -42,7 +42,6 @@ PETSC_EXTERN PetscErrorCode MMQPCreate(MPI_Comm, const char[], MMBoundQP *, Pets
 PETSC_EXTERN PetscErrorCode MMQPSetOperator(SNES, MMBoundQP *);
 PETSC_EXTERN PetscErrorCode MMQPSolve(SNES, MMBoundQP *, Vec, PetscInt *);
 PETSC_EXTERN PetscErrorCode MMKSPSetFactorSPD(KSP, PetscInt);
-PETSC_EXTERN PetscErrorCode MMKSPGetFactorPC(KSP, PC *, PetscBool *);
 
 /* interface/kt.c: K~ without a Delassus operator, by a factorization or preconditioned CG */
 PETSC_EXTERN PetscErrorCode MMKtCreate(MMCtx *, PetscBool);

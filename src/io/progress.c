@@ -77,15 +77,9 @@ static PetscErrorCode SolverText(MMCtx *ctx, char text[], size_t len)
   PetscCall(MMContactGetStepKSP(ctx, &krylov, &pc_ksp));
   PetscCall(KSPGetType(krylov, &ktype));
   PetscCall(KSPGetOptionsPrefix(krylov, &kprefix));
-  PetscCall(KSPGetPC(pc_ksp, &pc));
   PetscCall(KSPGetOptionsPrefix(pc_ksp, &pprefix));
   /* a redundant PC (2D on several ranks): the factorization it holds on every rank */
-  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCREDUNDANT, &redundant));
-  if (redundant) {
-    KSP inner;
-    PetscCall(PCRedundantGetKSP(pc, &inner));
-    PetscCall(KSPGetPC(inner, &pc));
-  }
+  PetscCall(MMKSPGetFactorPC(pc_ksp, &pc, &redundant));
   PetscCall(PCGetType(pc, &ptype));
   PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &factor, PCLU, PCCHOLESKY, PCILU, PCICC, ""));
   if (factor) PetscCall(PCFactorGetMatSolverType(pc, &package));

@@ -78,6 +78,17 @@ static PetscErrorCode SolveSetAdaptor(void *ptr, const MMContactSetProblem *sp, 
   PetscFunctionReturn(0);
 }
 
+/* A converged solve's verdict, from the Coulomb audit of its answer (fr->coulomb): the monitor line,
+ * SNES's monitor and its converged reason. */
+static PetscErrorCode ReportAudit(MMFriction fr, SNES snes, const char where[], PetscInt nslip, PetscInt nstick)
+{
+  PetscFunctionBeginUser;
+  if (fr->monitor) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    friction (%s%s): %" PetscInt_FMT " iterations (%" PetscInt_FMT " inner), Coulomb residual %.3e, slipping %" PetscInt_FMT ", sticking %" PetscInt_FMT "\n", fr->type, where, fr->its, fr->inner_its, (double)fr->coulomb, nslip, nstick));
+  PetscCall(SNESMonitor(snes, fr->its, fr->coulomb));
+  PetscCall(SNESSetConvergedReason(snes, fr->coulomb <= fr->coulomb_tol ? SNES_CONVERGED_FNORM_RELATIVE : SNES_DIVERGED_INNER));
+  PetscFunctionReturn(0);
+}
+
 /* The contact-space solve on the candidate set's Delassus block (condensed formulation). The
  * solver's own test (its residual over the force scale) and the Coulomb audit (on the recovered w)
  * measure the same thing on different scales: a solve that passed its own test but not the audit is
@@ -103,9 +114,7 @@ static PetscErrorCode SolveContactSpace(MMFriction fr, SNES snes)
     PetscCall(SNESSetConvergedReason(snes, SNES_DIVERGED_MAX_IT));
     PetscFunctionReturn(0);
   }
-  if (fr->monitor) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    friction (%s): %" PetscInt_FMT " iterations (%" PetscInt_FMT " inner), Coulomb residual %.3e, slipping %" PetscInt_FMT ", sticking %" PetscInt_FMT "\n", fr->type, fr->its, fr->inner_its, (double)fr->coulomb, nslip, nstick));
-  PetscCall(SNESMonitor(snes, fr->its, fr->coulomb));
-  PetscCall(SNESSetConvergedReason(snes, fr->coulomb <= fr->coulomb_tol ? SNES_CONVERGED_FNORM_RELATIVE : SNES_DIVERGED_INNER));
+  PetscCall(ReportAudit(fr, snes, "", nslip, nstick));
   PetscFunctionReturn(0);
 }
 
@@ -127,9 +136,7 @@ PetscErrorCode MMFrictionSolveDofs(MMFriction fr, Vec b, Vec w, Vec react)
     PetscFunctionReturn(0);
   }
   PetscCall(MMFrictionCoulombResidual(fr, &fr->coulomb, &nslip, &nstick));
-  if (fr->monitor) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    friction (%s, all dofs): %" PetscInt_FMT " iterations, Coulomb residual %.3e, slipping %" PetscInt_FMT ", sticking %" PetscInt_FMT "\n", fr->type, its, (double)fr->coulomb, nslip, nstick));
-  PetscCall(SNESMonitor(fr->snes, its, fr->coulomb));
-  PetscCall(SNESSetConvergedReason(fr->snes, fr->coulomb <= fr->coulomb_tol ? SNES_CONVERGED_FNORM_RELATIVE : SNES_DIVERGED_INNER));
+  PetscCall(ReportAudit(fr, fr->snes, ", all dofs", nslip, nstick));
   PetscFunctionReturn(0);
 }
 
