@@ -14,7 +14,8 @@
  * beta = a/(1-a), kappa = beta c: a spring on w.e, symmetric, added to the operator.
  * Each iteration fixes the dofs D of the active and sticking nodes at their values, loads the
  * slipping ones, and solves K~ on the free dofs F by CG with the operator P_F K~ P_F + P_D and the
- * PC P_F M^{-1} P_F + P_D, M^{-1} the contact_K_ PC set up once per dt, warm-started from the last
+ * PC P_F M^{-1} P_F + P_D, M^{-1} the contact_K_ PC set up once per dt (in 3D scaled for the disk's
+ * springs, ScaleDiskTangent), warm-started from the last
  * iterate. It stops when the sets (and, in 3D, the slip directions) stop changing: the solution then
  * satisfies every condition exactly, up to the CG tolerance on the free dofs.
  * Coulomb (-friction_type newton): the thresholds follow the iterate, s = mu max(lambda_n, 0) after
@@ -74,7 +75,43 @@ static PetscErrorCode ProjectedOperator(Mat A, Vec x, Vec y)
   PetscFunctionReturn(0);
 }
 
-/* y = P_F M^{-1} P_F x + P_D x: the K~ PC, blind to the fixed dofs. */
+/* v_t -= (1 - 1/sqrt(1 + beta_k)) e_k (e_k.v_t) at every slipping node in 3D: the square root of the
+ * inverse of the disk tangent's stiffening, I + beta_k e_k e_k^T, on that node's tangential dofs.
+ * Applied on both sides of the K~ PC it keeps the PC symmetric and, when that PC is diagonal with
+ * the isotropic c of the spring, makes it the exact inverse of the node's tangential block
+ * c (I + beta e e^T). Without it the springs (beta up to 1e6) are as many large, distinct eigenvalues
+ * of the preconditioned operator as there are slipping nodes, and CG takes hundreds of iterations
+ * per solve once a few thousand nodes slip. */
+static PetscErrorCode ScaleDiskTangent(MMCtx *ctx, Vec v)
+{
+  MMContact      *ct = &ctx->contact;
+  MMActiveSet    *as = &ct->as;
+  const PetscInt *in;
+  PetscScalar    *va;
+  PetscInt        rstart;
+
+  PetscFunctionBeginUser;
+  if (ct->ncomp != 3) PetscFunctionReturn(0);
+  PetscCall(VecGetOwnershipRange(v, &rstart, NULL));
+  PetscCall(ISGetIndices(ct->is_normal, &in));
+  PetscCall(VecGetArray(v, &va));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscInt   i = in[k] - rstart;
+    const PetscReal *d = &as->dir[2 * k], e[2] = {-d[1], d[0]};
+    PetscReal        ev, f;
+    if (as->kappa[k] == 0) continue;
+    f  = 1.0 - 1.0 / PetscSqrtReal(1.0 + as->beta[k]);
+    ev = e[0] * PetscRealPart(va[i + 1]) + e[1] * PetscRealPart(va[i + 2]);
+    va[i + 1] -= f * ev * e[0];
+    va[i + 2] -= f * ev * e[1];
+  }
+  PetscCall(VecRestoreArray(v, &va));
+  PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  PetscFunctionReturn(0);
+}
+
+/* y = P_F S^{-1/2} M^{-1} S^{-1/2} P_F x + P_D x: the K~ PC, blind to the fixed dofs, with the disk
+ * tangent's stiffening S (ScaleDiskTangent) on both sides. */
 static PetscErrorCode ProjectedPC(PC pc, Vec x, Vec y)
 {
   MMCtx       *ctx;
@@ -86,9 +123,12 @@ static PetscErrorCode ProjectedPC(PC pc, Vec x, Vec y)
   as = &ctx->contact.as;
   PetscCall(KSPGetPC(ctx->contact.kt.ksp, &pcK));
   PetscCall(VecPointwiseMult(as->t, as->free, x));
+  PetscCall(ScaleDiskTangent(ctx, as->t));
   PetscCall(PCApply(pcK, as->t, y));
+  PetscCall(ScaleDiskTangent(ctx, y));
   PetscCall(VecPointwiseMult(y, as->free, y));
   PetscCall(VecAXPY(y, 1.0, x));
+  if (ctx->contact.ncomp == 3) PetscCall(VecPointwiseMult(as->t, as->free, x)); /* the scaling changed t */
   PetscCall(VecAXPY(y, -1.0, as->t));
   PetscFunctionReturn(0);
 }
