@@ -81,7 +81,7 @@ static PetscErrorCode ProjectedOperator(Mat A, Vec x, Vec y)
  * the isotropic c of the spring, makes it the exact inverse of the node's tangential block
  * c (I + beta e e^T). Without it the springs (beta up to 1e6) are as many large, distinct eigenvalues
  * of the preconditioned operator as there are slipping nodes, and CG takes hundreds of iterations
- * per solve once a few thousand nodes slip. */
+ * per solve once a few thousand nodes slip (docs/method.md section 3). */
 static PetscErrorCode ScaleDiskTangent(MMCtx *ctx, Vec v)
 {
   MMContact      *ct = &ctx->contact;
