@@ -34,7 +34,6 @@ typedef struct {
   Vec           traction_t, slip;      /* tangential traction and slip velocity on the contact boundary (dm_out) */
   DM            dm_stress;             /* 6 components per vertex: the symmetric stress xx, xy, xz, yy, yz, zz */
   Vec           stress, von_mises, stress_weight; /* nodal stress (dm_stress), von Mises and lumped weights (dm_scalar) */
-  PetscInt     *cell_vertex;           /* per local cell its dim + 1 vertices (src/io/stress.c) */
   PetscReal    *cell_geom;             /* per local cell its inverse edge matrix and volume, computed once */
   Vec           stress_cell, von_mises_cell; /* per cell, in the XDMF topology's order (no DM) */
 } MMOutput;

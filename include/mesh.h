@@ -7,3 +7,6 @@ PETSC_EXTERN PetscErrorCode MMMeshGetLabel(DM, const char[], DMLabel *);
 PETSC_EXTERN PetscErrorCode MMMeshGetSizes(DM, PetscInt *, PetscInt *);
 PETSC_EXTERN PetscErrorCode MMMeshCellCentroid(DM, PetscInt, PetscReal[]);
 PETSC_EXTERN PetscErrorCode MMMeshCellGroups(DM, char[], size_t);
+PETSC_EXTERN PetscErrorCode MMMeshCellVertices(DM, PetscInt, PetscInt, PetscInt, PetscInt[]);
+PETSC_EXTERN PetscErrorCode MMCellsCreate(DM, MMCells *);
+PETSC_EXTERN PetscErrorCode MMCellsDestroy(MMCells *);

@@ -11,6 +11,7 @@
  * by K and M and by all components. Rows owned by another rank still go through MatSetValues, to
  * be sent at assembly. */
 #include "assembly_p1.h"
+#include "mesh.h"
 
 #define MM_NV_MAX   (MM_MAX_DIM + 1)
 #define MM_NDOF_MAX (MM_NV_MAX * MM_MAX_DIM)
@@ -186,55 +187,6 @@ static PetscErrorCode CSRTargetRestore(CSRTarget *t)
   PetscFunctionReturn(0);
 }
 
-/* The k+1 vertices of a k-simplex p of an interpolated mesh: those of its first facet, plus the
- * vertex of its second facet that the first lacks. Cones only, no transitive closure: this is the
- * cheapest walk down the Hasse diagram. The vertex order does not matter, as the element matrices
- * are built for the order returned. */
-static PetscErrorCode SimplexVertices(DM dm, PetscInt p, PetscInt k, PetscInt v[])
-{
-  const PetscInt *cone;
-  PetscInt        w[MM_NV_MAX];
-
-  PetscFunctionBeginUser;
-  if (k == 0) {
-    v[0] = p;
-    PetscFunctionReturn(0);
-  }
-  PetscCall(DMPlexGetCone(dm, p, &cone));
-  if (k == 1) {
-    v[0] = cone[0];
-    v[1] = cone[1];
-    PetscFunctionReturn(0);
-  }
-  PetscCall(SimplexVertices(dm, cone[0], k - 1, v));
-  PetscCall(SimplexVertices(dm, cone[1], k - 1, w));
-  for (PetscInt i = 0; i < k; ++i) {
-    PetscBool found = PETSC_FALSE;
-    for (PetscInt j = 0; j < k; ++j) found = (PetscBool)(found || w[i] == v[j]);
-    if (!found) {
-      v[k] = w[i];
-      break;
-    }
-  }
-  PetscFunctionReturn(0);
-}
-
-/* The vertices of cell c, checked to be a simplex. */
-static PetscErrorCode CellVertices(DM dm, PetscInt depth, PetscInt dim, PetscInt c, PetscInt v[])
-{
-  PetscInt csize;
-
-  PetscFunctionBeginUser;
-  PetscCall(DMPlexGetConeSize(dm, c, &csize));
-  PetscCheck(csize == dim + 1, PETSC_COMM_SELF, PETSC_ERR_SUP, "Closed-form assembly needs simplices: cell %" PetscInt_FMT " has %" PetscInt_FMT " faces", c, csize);
-  if (depth == 1) {
-    const PetscInt *cone;
-    PetscCall(DMPlexGetCone(dm, c, &cone));
-    for (PetscInt a = 0; a <= dim; ++a) v[a] = cone[a];
-  } else PetscCall(SimplexVertices(dm, c, dim, v));
-  PetscFunctionReturn(0);
-}
-
 /* Gradients g[a][i] of the P1 basis and the volume of the simplex with vertex coordinates x[a][i].
  * With J = [x_1 - x_0, ..., x_d - x_0], the reference coordinates are xi = J^{-1} (x - x_0), so
  * grad phi_a = row a-1 of J^{-1} (a >= 1) and grad phi_0 = -sum of the others. */
@@ -372,7 +324,7 @@ static PetscErrorCode AddCell(DM dm, PetscInt depth, const VertexTable *vt, cons
   PetscScalar     Ke[MM_NDOF_MAX * MM_NDOF_MAX], Me[MM_NV_MAX * MM_NV_MAX];
 
   PetscFunctionBeginUser;
-  PetscCall(CellVertices(dm, depth, dim, c, v));
+  PetscCall(MMMeshCellVertices(dm, depth, dim, c, v));
   for (PetscInt a = 0; a < nv; ++a)
     for (PetscInt i = 0; i < dim; ++i) {
       x[a][i]          = vt->x[(v[a] - vt->vStart) * dim + i];
@@ -496,7 +448,7 @@ PetscErrorCode MMCreateMatrixP1(DM dm, Mat *A)
     PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
     for (PetscInt c = cStart; c < cEnd; ++c) {
       PetscInt v[MM_NV_MAX];
-      PetscCall(CellVertices(dm, depth, dim, c, v));
+      PetscCall(MMMeshCellVertices(dm, depth, dim, c, v));
       for (PetscInt a = 0; a <= dim; ++a)
         for (PetscInt b = a + 1; b <= dim; ++b) PetscCall(MarkVertexPair(P, &vt, bs, v[a], v[b]));
     }
@@ -544,7 +496,7 @@ PetscErrorCode MMApplyP1(DM dm, const MMMaterial *mat, Vec x, Vec f, PetscReal *
     PetscReal      X[MM_NV_MAX][MM_MAX_DIM], g[MM_NV_MAX][MM_MAX_DIM], vol;
     PetscScalar    Ke[MM_NDOF_MAX * MM_NDOF_MAX];
 
-    PetscCall(CellVertices(dm, depth, dim, c, v));
+    PetscCall(MMMeshCellVertices(dm, depth, dim, c, v));
     for (PetscInt a = 0; a < nv; ++a) {
       PetscInt xo;
       PetscCall(PetscSectionGetOffset(cs, v[a], &xo));

@@ -129,6 +129,7 @@ PetscErrorCode MMFESetUp(MMCtx *ctx)
   PetscFunctionBeginUser;
   PetscCall(DMGetDimension(dm, &dim));
   ctx->op.dim = dim;
+  PetscCall(MMCellsCreate(dm, &ctx->op.cells));
   PetscCall(MMMaterialSetUp(ctx));
   PetscCall(SetConstants(ctx));
   PetscCall(PetscFECreateLagrange(PetscObjectComm((PetscObject)dm), dim, dim, PETSC_TRUE, 1, PETSC_DETERMINE, &fe));
@@ -164,28 +165,22 @@ PetscErrorCode MMFESetUp(MMCtx *ctx)
  * mass, Dirichlet columns included. */
 static PetscErrorCode VertexMasses(MMCtx *ctx, Vec mloc)
 {
-  DM           dms = ctx->out.dm_scalar;
-  PetscInt     cStart, cEnd, vStart, vEnd, dim = ctx->op.dim;
-  Vec          mglob;
-  PetscScalar *m;
+  DM             dms   = ctx->out.dm_scalar;
+  const MMCells *cells = &ctx->op.cells;
+  PetscInt       dim   = ctx->op.dim;
+  Vec            mglob;
+  PetscScalar   *m;
 
   PetscFunctionBeginUser;
   PetscCall(VecZeroEntries(mloc));
-  PetscCall(DMPlexGetHeightStratum(dms, 0, &cStart, &cEnd));
-  PetscCall(DMPlexGetDepthStratum(dms, 0, &vStart, &vEnd));
   PetscCall(VecGetArray(mloc, &m));
-  for (PetscInt c = cStart; c < cEnd; ++c) {
-    PetscReal vol;
-    PetscInt *closure = NULL, ncl;
-    PetscCall(DMPlexComputeCellGeometryFVM(dms, c, &vol, NULL, NULL));
-    PetscCall(DMPlexGetTransitiveClosure(dms, c, PETSC_TRUE, &ncl, &closure));
-    for (PetscInt i = 0; i < ncl; ++i) {
+  for (PetscInt c = 0; c < cells->ncells; ++c) {
+    const PetscReal mv = ctx->material.rho[c] * cells->volume[c] / (dim + 1);
+    for (PetscInt a = 0; a < cells->nv; ++a) {
       PetscInt off, end;
-      if (closure[2 * i] < vStart || closure[2 * i] >= vEnd) continue;
-      PetscCall(DMPlexGetPointLocal(dms, closure[2 * i], &off, &end));
-      m[off] += ctx->material.rho[c - cStart] * vol / (dim + 1);
+      PetscCall(DMPlexGetPointLocal(dms, cells->vertex[cells->nv * c + a], &off, &end));
+      m[off] += mv;
     }
-    PetscCall(DMPlexRestoreTransitiveClosure(dms, c, PETSC_TRUE, &ncl, &closure));
   }
   PetscCall(VecRestoreArray(mloc, &m));
   PetscCall(DMGetGlobalVector(dms, &mglob));
@@ -695,6 +690,7 @@ PetscErrorCode MMFECheckElasticEnergy(MMCtx *ctx, Vec w)
 PetscErrorCode MMFEDestroy(MMOperators *op)
 {
   PetscFunctionBeginUser;
+  PetscCall(MMCellsDestroy(&op->cells));
   PetscCall(MatDestroy(&op->K));
   PetscCall(MatDestroy(&op->M));
   PetscCall(MatDestroy(&op->Mstar));

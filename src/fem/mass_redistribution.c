@@ -142,22 +142,20 @@ static PetscErrorCode AddCellShares(MMCtx *ctx, Vec kind, Vec normal[], Mat A)
   PetscCall(VecGetArrayRead(kind, &k));
   for (PetscInt d = 0; d < dim; ++d) PetscCall(VecGetArrayRead(normal[d], &n[d]));
   for (PetscInt c = cStart; c < cEnd; ++c) {
-    PetscInt   *closure = NULL, ncl, contact[MM_MAX_DIM + 1], others[MM_MAX_DIM + 1], nc = 0, nf = 0;
-    PetscReal   vol, B[MM_MAX_DIM][MM_MAX_DIM] = {{0}};
-    PetscScalar vals[MM_MAX_DIM * MM_MAX_DIM];
+    const MMCells *cells = &ctx->op.cells;
+    PetscInt       contact[MM_MAX_DIM + 1], others[MM_MAX_DIM + 1], nc = 0, nf = 0;
+    PetscReal      vol, B[MM_MAX_DIM][MM_MAX_DIM] = {{0}};
+    PetscScalar    vals[MM_MAX_DIM * MM_MAX_DIM];
 
-    PetscCall(DMPlexGetTransitiveClosure(dm, c, PETSC_TRUE, &ncl, &closure));
-    for (PetscInt i = 0; i < ncl; ++i) {
-      const PetscInt p = closure[2 * i];
+    for (PetscInt a = 0; a < cells->nv; ++a) {
+      const PetscInt p = cells->vertex[cells->nv * (c - cStart) + a];
       PetscInt       off;
-      if (p < vStart || p >= vEnd) continue;
       PetscCall(DMPlexGetPointLocal(dms, p, &off, NULL));
       if (PetscRealPart(k[off]) > 0.5) contact[nc++] = p;
       else if (PetscRealPart(k[off]) > -0.5) others[nf++] = p;
     }
-    PetscCall(DMPlexRestoreTransitiveClosure(dm, c, PETSC_TRUE, &ncl, &closure));
     if (!nc || !nf) continue; /* nothing lost here, or nowhere to put it: the global step's */
-    PetscCall(DMPlexComputeCellGeometryFVM(dm, c, &vol, NULL, NULL));
+    vol = cells->volume[c - cStart];
     for (PetscInt i = 0; i < nc; ++i) {
       PetscInt off;
       PetscCall(DMPlexGetPointLocal(dms, contact[i], &off, NULL));
@@ -334,16 +332,13 @@ static PetscErrorCode VertexGroups(MMCtx *ctx, PetscInt **vgroup)
   PetscCall(PetscCalloc1(nb * nb, &link));
   for (PetscInt v = 0; v < vEnd - vStart; ++v) (*vgroup)[v] = -1;
   for (PetscInt c = cStart; c < cEnd; ++c) {
-    const PetscInt b = mat->cell_body ? mat->cell_body[c - cStart] : 0;
-    PetscInt      *closure = NULL, ncl;
-    PetscCall(DMPlexGetTransitiveClosure(dm, c, PETSC_TRUE, &ncl, &closure));
-    for (PetscInt k = 0; k < ncl; ++k) {
-      const PetscInt v = closure[2 * k];
-      if (v < vStart || v >= vEnd) continue;
+    const PetscInt b     = mat->cell_body ? mat->cell_body[c - cStart] : 0;
+    const MMCells *cells = &ctx->op.cells;
+    for (PetscInt a = 0; a < cells->nv; ++a) {
+      const PetscInt v = cells->vertex[cells->nv * (c - cStart) + a];
       if ((*vgroup)[v - vStart] >= 0 && (*vgroup)[v - vStart] != b) link[(*vgroup)[v - vStart] * nb + b] = link[b * nb + (*vgroup)[v - vStart]] = 1;
       (*vgroup)[v - vStart] = b;
     }
-    PetscCall(DMPlexRestoreTransitiveClosure(dm, c, PETSC_TRUE, &ncl, &closure));
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, link, nb * nb, MPIU_INT, MPI_MAX, PetscObjectComm((PetscObject)dm)));
   /* each body's class by its smallest member: a few passes of the transitive closure */

@@ -152,12 +152,10 @@ static PetscErrorCode CellMaterial(MMCtx *ctx, DM dm)
   PetscCall(PetscCalloc1(mat->n_bodies, &vol));
   for (PetscInt c = 0; c < mat->ncells; ++c) {
     const MMBody *body = &mat->body[mat->cell_body[c]];
-    PetscReal     v;
     mat->lambda[c] = body->lambda;
     mat->mu[c]     = body->mu;
     mat->rho[c]    = body->rho;
-    PetscCall(DMPlexComputeCellGeometryFVM(dm, mat->cStart + c, &v, NULL, NULL));
-    vol[mat->cell_body[c]] += v;
+    vol[mat->cell_body[c]] += ctx->op.cells.volume[c];
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, vol, mat->n_bodies, MPIU_REAL, MPI_SUM, PetscObjectComm((PetscObject)dm)));
   for (PetscInt b = 0; b < mat->n_bodies; ++b) {
@@ -217,18 +215,15 @@ static PetscErrorCode VertexVelocities(MMCtx *ctx, DM dm)
     }
   }
   for (PetscInt c = 0; c < mat->ncells; ++c) {
-    const PetscReal *v = mat->body[mat->cell_body[c]].v0;
-    PetscInt        *closure = NULL, ncl;
-    PetscCall(DMPlexGetTransitiveClosure(dm, mat->cStart + c, PETSC_TRUE, &ncl, &closure));
-    for (PetscInt i = 0; i < ncl; ++i) {
-      const PetscInt p = closure[2 * i] - pStart;
-      if (closure[2 * i] < vStart || closure[2 * i] >= vEnd) continue;
+    const PetscReal *v     = mat->body[mat->cell_body[c]].v0;
+    const MMCells   *cells = &ctx->op.cells;
+    for (PetscInt a = 0; a < cells->nv; ++a) {
+      const PetscInt p = cells->vertex[cells->nv * c + a] - pStart;
       for (PetscInt d = 0; d < dim; ++d) {
         lo[d][p] = PetscMin(lo[d][p], v[d]);
         hi[d][p] = PetscMax(hi[d][p], v[d]);
       }
     }
-    PetscCall(DMPlexRestoreTransitiveClosure(dm, mat->cStart + c, PETSC_TRUE, &ncl, &closure));
   }
   for (PetscInt d = 0; d < dim; ++d) {
     PetscCall(PointReduce(dm, MPI_MIN, lo[d]));
@@ -331,8 +326,8 @@ PetscErrorCode MMMaterialChecksum(MMCtx *ctx, PetscReal sum[3])
   PetscCall(DMGetBoundingBox(dm, lo, hi));
   sum[0] = sum[1] = sum[2] = 0;
   for (PetscInt c = 0; c < mat->ncells; ++c) {
-    PetscReal vol, x[MM_MAX_DIM], w = 1;
-    PetscCall(DMPlexComputeCellGeometryFVM(dm, mat->cStart + c, &vol, x, NULL));
+    const PetscReal vol = ctx->op.cells.volume[c], *x = &ctx->op.cells.centroid[MM_MAX_DIM * c];
+    PetscReal       w   = 1;
     for (PetscInt d = 0; d < dim; ++d) w += (d + 1) * (x[d] - lo[d]) / (hi[d] > lo[d] ? hi[d] - lo[d] : 1.0);
     sum[0] += vol * w * mat->lambda[c];
     sum[1] += vol * w * mat->mu[c];

@@ -17,7 +17,7 @@
 
 static PetscErrorCode StressGeometry(MMCtx *);
 
-/* Once: the stress DM (6 components per vertex, no constraints), its vectors, each local cell's vertices. */
+/* Once: the stress DM (6 components per vertex, no constraints), its vectors, each cell's geometry. */
 PetscErrorCode MMStressCreate(MMCtx *ctx)
 {
   MMOutput      *o   = &ctx->out;
@@ -25,7 +25,7 @@ PetscErrorCode MMStressCreate(MMCtx *ctx)
   const char    *names[MM_SYM] = {"stress_xx", "stress_xy", "stress_xz", "stress_yy", "stress_yz", "stress_zz"};
   PetscFE        fe;
   PetscSection   s;
-  PetscInt       cStart, cEnd, vStart, vEnd;
+  PetscInt       cStart, cEnd;
 
   PetscFunctionBeginUser;
   PetscCall(DMClone(ctx->op.dm, &o->dm_stress));
@@ -47,16 +47,6 @@ PetscErrorCode MMStressCreate(MMCtx *ctx)
   PetscCall(PetscObjectSetName((PetscObject)o->stress_cell, "stress_cell"));
   PetscCall(VecCreateMPI(PETSC_COMM_WORLD, cEnd - cStart, PETSC_DETERMINE, &o->von_mises_cell));
   PetscCall(PetscObjectSetName((PetscObject)o->von_mises_cell, "von_mises_cell"));
-  PetscCall(DMPlexGetDepthStratum(ctx->op.dm, 0, &vStart, &vEnd));
-  PetscCall(PetscMalloc1((dim + 1) * (cEnd - cStart), &o->cell_vertex));
-  for (PetscInt c = cStart; c < cEnd; ++c) {
-    PetscInt *closure = NULL, n, k = 0;
-    PetscCall(DMPlexGetTransitiveClosure(ctx->op.dm, c, PETSC_TRUE, &n, &closure));
-    for (PetscInt i = 0; i < n; ++i)
-      if (closure[2 * i] >= vStart && closure[2 * i] < vEnd && k <= dim) o->cell_vertex[(dim + 1) * (c - cStart) + k++] = closure[2 * i];
-    PetscCall(DMPlexRestoreTransitiveClosure(ctx->op.dm, c, PETSC_TRUE, &n, &closure));
-    PetscCheck(k == dim + 1, PETSC_COMM_SELF, PETSC_ERR_SUP, "The stress output needs simplices: cell %" PetscInt_FMT " has %" PetscInt_FMT " vertices", c, k);
-  }
   PetscCall(StressGeometry(ctx));
   PetscFunctionReturn(0);
 }
@@ -121,7 +111,7 @@ static PetscErrorCode StressGeometry(MMCtx *ctx)
   PetscCall(VecGetArrayRead(X, &xa));
   PetscCall(VecGetArray(lw, &wa));
   for (PetscInt c = 0; c < cEnd - cStart; ++c) {
-    const PetscInt *v = &o->cell_vertex[(dim + 1) * c];
+    const PetscInt *v = &ctx->op.cells.vertex[(dim + 1) * c]; /* simplices: MMCellsCreate checked */
     PetscReal      *g = &o->cell_geom[MM_GEOM * c];
     PetscReal       x[MM_MAX_DIM + 1][MM_MAX_DIM] = {{0}}, J[MM_MAX_DIM][MM_MAX_DIM] = {{0}}, Ji[MM_MAX_DIM][MM_MAX_DIM] = {{0}};
     for (PetscInt a = 0; a <= dim; ++a) {
@@ -173,7 +163,7 @@ PetscErrorCode MMStressCompute(MMCtx *ctx, PetscBool nodal)
   PetscCall(VecGetArray(o->stress_cell, &sc));
   PetscCall(VecGetArray(o->von_mises_cell, &vc));
   for (PetscInt c = 0; c < cEnd - cStart; ++c) {
-    const PetscInt *v = &o->cell_vertex[(dim + 1) * c];
+    const PetscInt *v = &ctx->op.cells.vertex[(dim + 1) * c]; /* simplices: MMCellsCreate checked */
     const PetscReal *g   = &o->cell_geom[MM_GEOM * c], vol = g[MM_GEOM - 1];
     PetscReal        u[MM_MAX_DIM + 1][MM_MAX_DIM] = {{0}}, s[MM_SYM];
     for (PetscInt a = 0; a <= dim; ++a) {
@@ -228,7 +218,6 @@ PetscErrorCode MMStressDestroy(MMOutput *o)
   PetscCall(VecDestroy(&o->stress_cell));
   PetscCall(VecDestroy(&o->von_mises_cell));
   PetscCall(DMDestroy(&o->dm_stress));
-  PetscCall(PetscFree(o->cell_vertex));
   PetscCall(PetscFree(o->cell_geom));
   PetscFunctionReturn(0);
 }

@@ -229,18 +229,13 @@ static PetscErrorCode ContactLayerDiameter(MMCtx *ctx, const PetscInt mark[])
   PetscCall(DMGetCoordinatesLocal(dm, &X));
   PetscCall(DMGetCoordinateDim(dm, &cdim));
   for (PetscInt c = cStart; c < cEnd; ++c) {
-    PetscScalar *xc = NULL;
-    PetscInt     nx, *closure = NULL, ncl;
-    PetscBool    touches = PETSC_FALSE;
-    PetscReal    diam    = 0;
+    const MMCells *cells = &ctx->op.cells;
+    PetscScalar   *xc    = NULL;
+    PetscInt       nx;
+    PetscBool      touches = PETSC_FALSE;
+    PetscReal      diam    = 0;
 
-    PetscCall(DMPlexGetTransitiveClosure(dm, c, PETSC_TRUE, &ncl, &closure));
-    for (PetscInt k = 0; k < ncl; ++k) {
-      PetscInt dof;
-      PetscCall(DMPlexGetPointDepth(dm, closure[2 * k], &dof));
-      if (dof == 0 && mark[closure[2 * k] - pStart]) touches = PETSC_TRUE;
-    }
-    PetscCall(DMPlexRestoreTransitiveClosure(dm, c, PETSC_TRUE, &ncl, &closure));
+    for (PetscInt a = 0; a < cells->nv; ++a) touches = (PetscBool)(touches || mark[cells->vertex[cells->nv * (c - cStart) + a] - pStart]);
     if (!touches) continue;
     PetscCall(DMPlexVecGetClosure(dm, NULL, X, c, &nx, &xc));
     for (PetscInt i = 0; i < nx / cdim; ++i)

@@ -1,0 +1,122 @@
+/* The local cells as simplices, tabulated once after the mesh is distributed: each cell's vertices
+ * (local point numbers), volume and centroid. The set-up's loops over cells (lumped masses,
+ * materials, the mass redistribution, the contact set, the stress output, checksums) read them
+ * here. Asking DMPlex per cell for a transitive closure and an FVM geometry instead walks every
+ * face and edge and looks up each point's type in a label: at 1M dofs that cost seconds per loop,
+ * and the set-up had a dozen such loops. */
+#include "mesh.h"
+
+#define MM_NV_MAX (MM_MAX_DIM + 1)
+
+/* The k+1 vertices of a k-simplex p of an interpolated mesh: those of its first facet, plus the
+ * vertex of its second facet that the first lacks. Cones only, no transitive closure: this is the
+ * cheapest walk down the Hasse diagram. */
+static PetscErrorCode SimplexVertices(DM dm, PetscInt p, PetscInt k, PetscInt v[])
+{
+  const PetscInt *cone;
+  PetscInt        w[MM_NV_MAX];
+
+  PetscFunctionBeginUser;
+  if (k == 0) {
+    v[0] = p;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(DMPlexGetCone(dm, p, &cone));
+  if (k == 1) {
+    v[0] = cone[0];
+    v[1] = cone[1];
+    PetscFunctionReturn(0);
+  }
+  PetscCall(SimplexVertices(dm, cone[0], k - 1, v));
+  PetscCall(SimplexVertices(dm, cone[1], k - 1, w));
+  for (PetscInt i = 0; i < k; ++i) {
+    PetscBool found = PETSC_FALSE;
+    for (PetscInt j = 0; j < k; ++j) found = (PetscBool)(found || w[i] == v[j]);
+    if (!found) {
+      v[k] = w[i];
+      break;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The dim+1 vertices of cell c (depth 1: an uninterpolated mesh, its cone), checked to be a simplex.
+ * The order is the walk's, not the closure's: every user builds its element quantities for the
+ * order returned. */
+PetscErrorCode MMMeshCellVertices(DM dm, PetscInt depth, PetscInt dim, PetscInt c, PetscInt v[])
+{
+  PetscInt csize;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetConeSize(dm, c, &csize));
+  PetscCheck(csize == dim + 1, PETSC_COMM_SELF, PETSC_ERR_SUP, "P1 elements need simplices: cell %" PetscInt_FMT " has %" PetscInt_FMT " faces", c, csize);
+  if (depth == 1) {
+    const PetscInt *cone;
+    PetscCall(DMPlexGetCone(dm, c, &cone));
+    for (PetscInt a = 0; a <= dim; ++a) v[a] = cone[a];
+  } else PetscCall(SimplexVertices(dm, c, dim, v));
+  PetscFunctionReturn(0);
+}
+
+/* The measure of the simplex with vertices x (dim + 1 of them, cdim coordinates): the area of a
+ * triangle (in the plane or in space), the volume of a tetrahedron. */
+static PetscReal SimplexMeasure(PetscInt dim, PetscInt cdim, const PetscReal x[][MM_MAX_DIM])
+{
+  PetscReal e[MM_MAX_DIM][MM_MAX_DIM] = {{0}};
+
+  for (PetscInt a = 0; a < dim; ++a)
+    for (PetscInt d = 0; d < cdim; ++d) e[a][d] = x[a + 1][d] - x[0][d];
+  if (dim == 2) {
+    const PetscReal z = e[0][0] * e[1][1] - e[0][1] * e[1][0], xx = e[0][1] * e[1][2] - e[0][2] * e[1][1], y = e[0][2] * e[1][0] - e[0][0] * e[1][2];
+    return 0.5 * PetscSqrtReal(xx * xx + y * y + z * z);
+  }
+  return PetscAbsReal(e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) + e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) / 6.0;
+}
+
+PetscErrorCode MMCellsCreate(DM dm, MMCells *cells)
+{
+  PetscSection       cs;
+  Vec                X;
+  const PetscScalar *x;
+  PetscInt           dim, cdim, depth, cStart, cEnd, nv;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetDimension(dm, &dim));
+  PetscCall(DMGetCoordinateDim(dm, &cdim));
+  PetscCall(DMPlexGetDepth(dm, &depth));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  PetscCall(DMGetCoordinateSection(dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  nv            = dim + 1;
+  cells->cStart = cStart;
+  cells->ncells = cEnd - cStart;
+  cells->nv     = nv;
+  PetscCall(PetscMalloc3(nv * cells->ncells, &cells->vertex, cells->ncells, &cells->volume, MM_MAX_DIM * cells->ncells, &cells->centroid));
+  PetscCall(VecGetArrayRead(X, &x));
+  for (PetscInt c = 0; c < cells->ncells; ++c) {
+    PetscInt *v = &cells->vertex[nv * c];
+    PetscReal xv[MM_MAX_DIM + 1][MM_MAX_DIM] = {{0}}, *g = &cells->centroid[MM_MAX_DIM * c];
+
+    PetscCall(MMMeshCellVertices(dm, depth, dim, cStart + c, v));
+    for (PetscInt d = 0; d < MM_MAX_DIM; ++d) g[d] = 0;
+    for (PetscInt a = 0; a < nv; ++a) {
+      PetscInt off;
+      PetscCall(PetscSectionGetOffset(cs, v[a], &off));
+      for (PetscInt d = 0; d < cdim; ++d) {
+        xv[a][d] = PetscRealPart(x[off + d]);
+        g[d] += xv[a][d] / nv;
+      }
+    }
+    cells->volume[c] = SimplexMeasure(dim, cdim, xv);
+  }
+  PetscCall(VecRestoreArrayRead(X, &x));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMCellsDestroy(MMCells *cells)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree3(cells->vertex, cells->volume, cells->centroid));
+  cells->ncells = 0;
+  PetscFunctionReturn(0);
+}
