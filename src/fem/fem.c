@@ -346,12 +346,30 @@ static PetscErrorCode AssembleMatrix(MMCtx *ctx, PetscReal wK, PetscReal wM, Mat
 /* K_fD u_D: the elastic force of the Dirichlet data on the free dofs, the residual at u_free = 0: cell
  * by cell in closed form with each cell's material (assembly_p1.c), or by the PetscFE residual with
  * -assembly fe (one material), several times slower. */
-static PetscErrorCode DirichletLift(MMCtx *ctx, Vec lift)
+/* Whether any Dirichlet condition was set (-dirichlet): without one the data u_D is zero, and the
+ * set-up's passes over every cell for its force and energy are skipped. */
+static PetscErrorCode HasDirichlet(DM dm, PetscBool *has)
 {
-  DM  dm = ctx->op.dm;
-  Vec xloc, floc;
+  PetscDS  ds;
+  PetscInt nb;
 
   PetscFunctionBeginUser;
+  PetscCall(DMGetDS(dm, &ds));
+  PetscCall(PetscDSGetNumBoundary(ds, &nb));
+  *has = (PetscBool)(nb > 0);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode DirichletLift(MMCtx *ctx, Vec lift)
+{
+  DM        dm = ctx->op.dm;
+  Vec       xloc, floc;
+  PetscBool has;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(lift));
+  PetscCall(HasDirichlet(dm, &has));
+  if (!has) PetscFunctionReturn(0);
   PetscCall(DMGetLocalVector(dm, &xloc));
   PetscCall(DMGetLocalVector(dm, &floc));
   PetscCall(VecZeroEntries(xloc));
@@ -659,9 +677,13 @@ static PetscErrorCode ElasticEnergyIntegral(MMCtx *ctx, Vec ucart, PetscReal *en
 /* 1/2 int sigma(u_D):eps(u_D), once: the free dofs zero, the Dirichlet data inserted. */
 static PetscErrorCode DirichletEnergy(MMCtx *ctx)
 {
-  Vec zero;
+  Vec       zero;
+  PetscBool has;
 
   PetscFunctionBeginUser;
+  ctx->op.energy_dirichlet = 0;
+  PetscCall(HasDirichlet(ctx->op.dm, &has));
+  if (!has) PetscFunctionReturn(0);
   PetscCall(DMGetGlobalVector(ctx->op.dm, &zero));
   PetscCall(VecZeroEntries(zero));
   PetscCall(ElasticEnergyIntegral(ctx, zero, &ctx->op.energy_dirichlet));

@@ -44,27 +44,6 @@ typedef struct {
   PetscReal at_det[MM_MAX_DIM], at_strain[MM_MAX_DIM];
 } Worst;
 
-/* The vertices of point p (a cell, face or edge of a simplicial mesh), through the cones: cheaper
- * than a transitive closure, which also lists the faces and edges. */
-static PetscErrorCode PointVertices(DM dm, PetscInt p, PetscInt vStart, PetscInt vEnd, PetscInt v[], PetscInt *nv)
-{
-  const PetscInt *cone;
-  PetscInt        n;
-
-  PetscFunctionBeginUser;
-  if (p >= vStart && p < vEnd) {
-    for (PetscInt k = 0; k < *nv; ++k)
-      if (v[k] == p) PetscFunctionReturn(0);
-    PetscCheck(*nv <= MM_MAX_DIM, PETSC_COMM_SELF, PETSC_ERR_PLIB, "A cell with more than %d vertices", MM_MAX_DIM + 1);
-    v[(*nv)++] = p;
-    PetscFunctionReturn(0);
-  }
-  PetscCall(DMPlexGetConeSize(dm, p, &n));
-  PetscCall(DMPlexGetCone(dm, p, &cone));
-  for (PetscInt k = 0; k < n; ++k) PetscCall(PointVertices(dm, cone[k], vStart, vEnd, v, nv));
-  PetscFunctionReturn(0);
-}
-
 /* Once: where each cell's vertices are in the local displacement and coordinate vectors. */
 static PetscErrorCode CellTable(MMCtx *ctx)
 {
@@ -72,20 +51,18 @@ static PetscErrorCode CellTable(MMCtx *ctx)
   DM             dm = ctx->op.dm, cdm;
   const PetscInt dim = ctx->op.dim;
   PetscSection   ls, cs;
-  PetscInt       cStart, cEnd, vStart, vEnd;
+  PetscInt       cStart, cEnd;
 
   PetscFunctionBeginUser;
   PetscCall(DMGetLocalSection(dm, &ls));
   PetscCall(DMGetCoordinateDM(dm, &cdm));
   PetscCall(DMGetLocalSection(cdm, &cs));
   PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
-  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
   d->ncells = cEnd - cStart;
   PetscCall(PetscMalloc2((dim + 1) * d->ncells, &d->cell_u, (dim + 1) * d->ncells, &d->cell_x));
   for (PetscInt c = cStart; c < cEnd; ++c) {
-    PetscInt v[MM_MAX_DIM + 1], nv = 0;
-    PetscCall(PointVertices(dm, c, vStart, vEnd, v, &nv));
-    PetscCheck(nv == dim + 1, PETSC_COMM_SELF, PETSC_ERR_SUP, "The deformation audit needs simplices: cell %" PetscInt_FMT " has %" PetscInt_FMT " vertices", c, nv);
+    /* any vertex order: det F and the strain do not depend on it (simplices: MMCellsCreate checked) */
+    const PetscInt *v = &ctx->op.cells.vertex[(dim + 1) * (c - cStart)];
     for (PetscInt a = 0; a <= dim; ++a) {
       PetscCall(PetscSectionGetOffset(ls, v[a], &d->cell_u[(dim + 1) * (c - cStart) + a]));
       PetscCall(PetscSectionGetOffset(cs, v[a], &d->cell_x[(dim + 1) * (c - cStart) + a]));
