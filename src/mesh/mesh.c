@@ -236,27 +236,113 @@ PetscErrorCode MMMeshCellCentroid(DM dm, PetscInt c, PetscReal centroid[])
   PetscFunctionReturn(0);
 }
 
+/* The vertices of simplex cell c in the order of its closure, which is the order the file gave them
+ * (the reader keeps it and interpolation preserves it), found through cones and orientations
+ * instead of a closure: the closure of a triangle starts with its first edge as oriented, and a
+ * tetrahedron's with its first face as oriented, whose orientation is a rotation (o >= 0, the same
+ * cyclic order) or a reflection (o < 0); the last vertex is the one off that face. Only the cyclic
+ * order of the first face matters for the sign of the determinant, so a reflected face is returned
+ * in its own order with *flip set. */
+static PetscErrorCode ClosureVertexOrder(DM dm, PetscInt dim, PetscInt c, PetscInt v[], PetscBool *flip)
+{
+  const PetscInt *cone, *ornt, *econe, *tcone, *tornt;
+  PetscInt        tri = c, depth;
+
+  PetscFunctionBeginUser;
+  *flip = PETSC_FALSE;
+  PetscCall(DMPlexGetDepth(dm, &depth));
+  if (depth == 1) {
+    PetscCall(DMPlexGetCone(dm, c, &cone));
+    for (PetscInt a = 0; a <= dim; ++a) v[a] = cone[a];
+    PetscFunctionReturn(0);
+  }
+  if (dim == 3) {
+    PetscCall(DMPlexGetCone(dm, c, &cone));
+    PetscCall(DMPlexGetConeOrientation(dm, c, &ornt));
+    tri   = cone[0];
+    *flip = (PetscBool)(ornt[0] < 0);
+  }
+  PetscCall(DMPlexGetCone(dm, tri, &tcone));
+  PetscCall(DMPlexGetConeOrientation(dm, tri, &tornt));
+  {
+    const PetscInt *arr = DMPolytopeTypeGetVertexArrangment(DM_POLYTOPE_SEGMENT, tornt[0]);
+    PetscCall(DMPlexGetCone(dm, tcone[0], &econe));
+    v[0] = econe[arr[0]];
+    v[1] = econe[arr[1]];
+  }
+  PetscCall(DMPlexGetCone(dm, tcone[1], &econe));
+  v[2] = econe[0] == v[0] || econe[0] == v[1] ? econe[1] : econe[0];
+  if (dim == 3) {
+    /* the vertex off the first face: one of the second face's edges has it */
+    PetscCall(DMPlexGetCone(dm, cone[1], &tcone));
+    for (PetscInt e = 0; e < 3; ++e) {
+      PetscCall(DMPlexGetCone(dm, tcone[e], &econe));
+      for (PetscInt k = 0; k < 2; ++k)
+        if (econe[k] != v[0] && econe[k] != v[1] && econe[k] != v[2]) v[3] = econe[k];
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The Jacobian determinant of cell c's map from DMPlex's reference simplex, from its closure's
+ * vertex order: DMPlexComputeCellGeometryAffineFEM's, > 0 for a cell oriented as the reference. */
+static PetscErrorCode CellSignedDet(DM dm, PetscInt dim, PetscSection cs, const PetscScalar *x, PetscInt c, PetscReal *det)
+{
+  PetscInt  v[MM_MAX_DIM + 1];
+  PetscReal J[MM_MAX_DIM][MM_MAX_DIM] = {{0}}, x0[MM_MAX_DIM];
+  PetscBool flip;
+
+  PetscFunctionBeginUser;
+  PetscCall(ClosureVertexOrder(dm, dim, c, v, &flip));
+  for (PetscInt a = 0; a <= dim; ++a) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(cs, v[a], &off));
+    for (PetscInt d = 0; d < dim; ++d) {
+      if (!a) x0[d] = PetscRealPart(x[off + d]);
+      else J[d][a - 1] = PetscRealPart(x[off + d]) - x0[d];
+    }
+  }
+  *det = dim == 2 ? J[0][0] * J[1][1] - J[0][1] * J[1][0] : J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) - J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) + J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+  /* DMPlex's reference tetrahedron is oriented the other way (its first face's normal points
+   * inwards): a valid tetrahedron has the negative determinant in closure order */
+  if (flip != (dim == 3)) *det = -*det;
+  *det /= dim == 2 ? 4.0 : 8.0; /* the reference simplex has edges of length 2 */
+  PetscFunctionReturn(0);
+}
+
 /* An inverted cell (vertex order reversed, negative Jacobian determinant) enters the mass and
  * stiffness with the wrong sign and the run goes on silently: DMPlex's gmsh reader keeps the
  * file's vertex order. Refuse it on the serial mesh, naming the first one. */
 static PetscErrorCode CheckOrientation(MPI_Comm comm, DM dm, const char file[])
 {
-  PetscInt    cStart, cEnd, ninv = 0, ncells, first = -1, dim;
+  PetscInt    cStart, cEnd, ninv = 0, ncells, first = -1, dim, cdim;
+  PetscSection       cs;
+  Vec                X;
+  const PetscScalar *x;
   PetscReal   first_det = 0, centroid[3] = {0, 0, 0};
   char        where[128];
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetCoordinateDim(dm, &dim));
+  PetscCall(DMGetDimension(dm, &dim));
+  PetscCall(DMGetCoordinateDim(dm, &cdim));
   PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  PetscCall(DMGetCoordinateSection(dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  PetscCall(VecGetArrayRead(X, &x));
   for (PetscInt c = cStart; c < cEnd; ++c) {
-    PetscReal v0[3], J[9], invJ[9], detJ;
-    PetscCall(DMPlexComputeCellGeometryAffineFEM(dm, c, v0, J, invJ, &detJ));
+    PetscReal detJ = 0;
+    if (dim == cdim) PetscCall(CellSignedDet(dm, dim, cs, x, c, &detJ));
+    else {
+      PetscReal v0[3], J[9], invJ[9]; /* a surface mesh in space: PETSc's own, by closures */
+      PetscCall(DMPlexComputeCellGeometryAffineFEM(dm, c, v0, J, invJ, &detJ));
+    }
     if (detJ > 0) continue;
     if (!ninv++) {
       first     = c;
       first_det = detJ;
     }
   }
+  PetscCall(VecRestoreArrayRead(X, &x));
   if (first >= 0) PetscCall(MMMeshCellCentroid(dm, first, centroid));
   ncells = cEnd - cStart;
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ninv, 1, MPIU_INT, MPI_SUM, comm));
