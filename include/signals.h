@@ -5,3 +5,4 @@ PETSC_EXTERN PetscErrorCode MMSignalsSetUp(MMCtx *, TS);
 PETSC_EXTERN PetscErrorCode MMSignalsReport(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMSignalsDieWithLauncher(void);
 PETSC_EXTERN PetscErrorCode MMMPIEnvironmentSet(void);
+PETSC_EXTERN PetscErrorCode MMThreadsSetDefault(void);

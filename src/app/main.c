@@ -113,6 +113,7 @@ int main(int argc, char **argv)
   }
   PetscCall(MMSignalsDieWithLauncher());
   PetscCall(MMMPIEnvironmentSet());
+  PetscCall(MMThreadsSetDefault());
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(MMErrorsSetUp());
   PetscCall(PetscMemzero(&ctx, sizeof(ctx)));

@@ -755,7 +755,7 @@ static PetscErrorCode OpenFields(MMCtx *ctx)
   PetscCall(MMOutputHDF5End(ierr, "create", o->h5_name));
   PetscCall(PetscViewerPushFormat(o->h5, PETSC_VIEWER_HDF5_XDMF));
   PetscCall(MMOutputHDF5Begin());
-  ierr = DMView(ctx->op.dm, o->h5);
+  ierr = MMOutputWriteMesh(ctx, o->h5);
   PetscCall(MMOutputHDF5End(ierr, "write", o->h5_name));
   PetscCall(MMOutputFlushFields(o));
   PetscCall(CountMesh(ctx));

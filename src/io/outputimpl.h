@@ -49,3 +49,4 @@ PETSC_INTERN PetscErrorCode MMStressDestroy(MMOutput *);
 /* output_restart.c: -restart continues the history and the snapshots up to the checkpoint */
 PETSC_INTERN PetscErrorCode MMOutputRestartHistory(MMCtx *, MMFileStatus *);
 PETSC_INTERN PetscErrorCode MMOutputRestartFields(MMCtx *);
+PETSC_INTERN PetscErrorCode MMOutputWriteMesh(MMCtx *, PetscViewer);
