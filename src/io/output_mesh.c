@@ -7,6 +7,7 @@
 #include "output.h"
 #include <petscviewerhdf5.h>
 #include "outputimpl.h"
+#include "fem.h"
 
 static PetscErrorCode WriteVertices(DM dm, PetscViewer viewer)
 {
@@ -35,12 +36,11 @@ static PetscErrorCode WriteVertices(DM dm, PetscViewer viewer)
 /* Whether the simplex with vertices x (dim + 1 of them) is negatively oriented. */
 static PetscBool Negative(PetscInt dim, const PetscReal x[][MM_MAX_DIM])
 {
-  PetscReal e[MM_MAX_DIM][MM_MAX_DIM];
+  PetscReal e[MM_MAX_DIM][MM_MAX_DIM] = {{0}};
 
   for (PetscInt a = 0; a < dim; ++a)
     for (PetscInt d = 0; d < dim; ++d) e[a][d] = x[a + 1][d] - x[0][d];
-  if (dim == 2) return (PetscBool)(e[0][0] * e[1][1] - e[0][1] * e[1][0] < 0);
-  return (PetscBool)(e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) + e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]) < 0);
+  return (PetscBool)(MMDetInverse(dim, e, NULL) < 0);
 }
 
 static PetscErrorCode WriteCells(MMCtx *ctx, PetscViewer viewer)

@@ -5,6 +5,7 @@
  * face and edge and looks up each point's type in a label: at 1M dofs that cost seconds per loop,
  * and the set-up had a dozen such loops. */
 #include "mesh.h"
+#include "fem.h"
 
 #define MM_NV_MAX (MM_MAX_DIM + 1)
 
@@ -70,7 +71,7 @@ static PetscReal SimplexMeasure(PetscInt dim, PetscInt cdim, const PetscReal x[]
     const PetscReal z = e[0][0] * e[1][1] - e[0][1] * e[1][0], xx = e[0][1] * e[1][2] - e[0][2] * e[1][1], y = e[0][2] * e[1][0] - e[0][0] * e[1][2];
     return 0.5 * PetscSqrtReal(xx * xx + y * y + z * z);
   }
-  return PetscAbsReal(e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) + e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) / 6.0;
+  return PetscAbsReal(MMDetInverse(3, e, NULL)) / 6.0;
 }
 
 PetscErrorCode MMCellsCreate(DM dm, MMCells *cells)

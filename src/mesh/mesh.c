@@ -1,6 +1,7 @@
 /* Reading a gmsh mesh into DMPlex, naming its physical groups, and distributing it. */
 #include <petscsf.h>
 #include "mesh.h"
+#include "fem.h"
 #include "options.h"
 #include "partition_metis.h"
 
@@ -302,7 +303,7 @@ static PetscErrorCode CellSignedDet(DM dm, PetscInt dim, PetscSection cs, const 
       else J[d][a - 1] = PetscRealPart(x[off + d]) - x0[d];
     }
   }
-  *det = dim == 2 ? J[0][0] * J[1][1] - J[0][1] * J[1][0] : J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) - J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) + J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+  *det = MMDetInverse(dim, J, NULL);
   /* DMPlex's reference tetrahedron is oriented the other way (its first face's normal points
    * inwards): a valid tetrahedron has the negative determinant in closure order */
   if (flip != (dim == 3)) *det = -*det;
