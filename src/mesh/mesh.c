@@ -244,14 +244,13 @@ PetscErrorCode MMMeshCellCentroid(DM dm, PetscInt c, PetscReal centroid[])
  * cyclic order) or a reflection (o < 0); the last vertex is the one off that face. Only the cyclic
  * order of the first face matters for the sign of the determinant, so a reflected face is returned
  * in its own order with *flip set. */
-static PetscErrorCode ClosureVertexOrder(DM dm, PetscInt dim, PetscInt c, PetscInt v[], PetscBool *flip)
+static PetscErrorCode ClosureVertexOrder(DM dm, PetscInt depth, PetscInt dim, PetscInt c, PetscInt v[], PetscBool *flip)
 {
   const PetscInt *cone, *ornt, *econe, *tcone, *tornt;
-  PetscInt        tri = c, depth;
+  PetscInt        tri = c;
 
   PetscFunctionBeginUser;
   *flip = PETSC_FALSE;
-  PetscCall(DMPlexGetDepth(dm, &depth));
   if (depth == 1) {
     PetscCall(DMPlexGetCone(dm, c, &cone));
     for (PetscInt a = 0; a <= dim; ++a) v[a] = cone[a];
@@ -287,14 +286,14 @@ static PetscErrorCode ClosureVertexOrder(DM dm, PetscInt dim, PetscInt c, PetscI
 
 /* The Jacobian determinant of cell c's map from DMPlex's reference simplex, from its closure's
  * vertex order: DMPlexComputeCellGeometryAffineFEM's, > 0 for a cell oriented as the reference. */
-static PetscErrorCode CellSignedDet(DM dm, PetscInt dim, PetscSection cs, const PetscScalar *x, PetscInt c, PetscReal *det)
+static PetscErrorCode CellSignedDet(DM dm, PetscInt depth, PetscInt dim, PetscSection cs, const PetscScalar *x, PetscInt c, PetscReal *det)
 {
   PetscInt  v[MM_MAX_DIM + 1];
   PetscReal J[MM_MAX_DIM][MM_MAX_DIM] = {{0}}, x0[MM_MAX_DIM];
   PetscBool flip;
 
   PetscFunctionBeginUser;
-  PetscCall(ClosureVertexOrder(dm, dim, c, v, &flip));
+  PetscCall(ClosureVertexOrder(dm, depth, dim, c, v, &flip));
   for (PetscInt a = 0; a <= dim; ++a) {
     PetscInt off;
     PetscCall(PetscSectionGetOffset(cs, v[a], &off));
@@ -316,7 +315,7 @@ static PetscErrorCode CellSignedDet(DM dm, PetscInt dim, PetscSection cs, const 
  * file's vertex order. Refuse it on the serial mesh, naming the first one. */
 static PetscErrorCode CheckOrientation(MPI_Comm comm, DM dm, const char file[])
 {
-  PetscInt    cStart, cEnd, ninv = 0, ncells, first = -1, dim, cdim;
+  PetscInt    cStart, cEnd, ninv = 0, ncells, first = -1, dim, cdim, depth;
   PetscSection       cs;
   Vec                X;
   const PetscScalar *x;
@@ -326,13 +325,14 @@ static PetscErrorCode CheckOrientation(MPI_Comm comm, DM dm, const char file[])
   PetscFunctionBeginUser;
   PetscCall(DMGetDimension(dm, &dim));
   PetscCall(DMGetCoordinateDim(dm, &cdim));
+  PetscCall(DMPlexGetDepth(dm, &depth));
   PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
   PetscCall(DMGetCoordinateSection(dm, &cs));
   PetscCall(DMGetCoordinatesLocal(dm, &X));
   PetscCall(VecGetArrayRead(X, &x));
   for (PetscInt c = cStart; c < cEnd; ++c) {
     PetscReal detJ = 0;
-    if (dim == cdim) PetscCall(CellSignedDet(dm, dim, cs, x, c, &detJ));
+    if (dim == cdim) PetscCall(CellSignedDet(dm, depth, dim, cs, x, c, &detJ));
     else {
       PetscReal v0[3], J[9], invJ[9]; /* a surface mesh in space: PETSc's own, by closures */
       PetscCall(DMPlexComputeCellGeometryAffineFEM(dm, c, v0, J, invJ, &detJ));
