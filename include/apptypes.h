@@ -111,6 +111,7 @@ typedef struct {
   PetscBool    keep_factor;       /* keep K~'s factor (and its columns) for the previous dt */
   PetscBool    candidate_all;     /* candidate set: every contact node, every step (the reference) */
   PetscInt     active_set_max_it;   /* active-set iterations per contact solve */
+  PetscReal    active_set_inexact_rtol; /* CG's relative tolerance while nodes change set (0: every solve tight) */
   PetscBool    active_set_monitor;
   PetscReal    audit_tol;
   PetscReal    contact_work_tol;

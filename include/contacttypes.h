@@ -87,6 +87,10 @@ typedef struct {
   Mat        A;         /* shell operator P_F K~ P_F + P_D */
   Vec        free;      /* 1 on the dofs free in this iteration, 0 on the fixed ones (D) */
   Vec        x0, r, dx, t; /* the iterate with its fixed values, residuals, correction, scratch */
+  Mat        Kc;        /* K~'s contact rows (is_cond), for the reactions: built from Kc_of at state Kc_state */
+  Mat        Kc_of;
+  PetscObjectState Kc_state;
+  Vec        rc;        /* b - K~ w on the contact dofs */
   Vec        s;         /* Tresca thresholds per contact node (0 without friction) */
   Vec        ct_diag;   /* diag(K~): the scale c of the complementarity functions, per dof */
   PetscBool *active;    /* normal: w_n = g (else rho_n = 0) */
@@ -95,6 +99,7 @@ typedef struct {
   PetscReal *kappa, *beta, *rperp; /* 3D slip: Newton tangent of the disk across d (a spring kappa on
                                     * w.d_perp), and the reaction across d it corrects (beta rperp) */
   PetscInt   max_it, its, lin_its;
+  PetscReal  inexact_rtol; /* CG's relative tolerance while nodes change set (0: always tight) */
   PetscBool  monitor;
   PetscBool  coulomb;   /* the thresholds follow the iterate, s = mu rho_n (a Coulomb solve) */
   PetscReal  coulomb_rtol; /* its test: the thresholds' change over the force scale */

@@ -45,6 +45,7 @@ VALUES = [
     (["-contact_work_tol", "0"], ["-contact_work_tol 0", "must be > 0"]),
     (["-ts_max_time", "-1"], ["The final time -ts_max_time -1", "must be > 0 and finite"]),
     (["-ts_max_steps", "-5"], "-ts_max_steps -5 must be >= 0"),
+    (["-active_set_inexact_rtol", "1"], ["-active_set_inexact_rtol 1", "must be in [0, 1)"]),
     (["-ts_dt", "1e30"], "The time step -ts_dt 1e+30 is beyond the final time -ts_max_time 0.3"),
 ]
 

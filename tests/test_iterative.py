@@ -81,3 +81,34 @@ def test_active_set_monitor_and_log_events(mm):
     assert "active set  1:" in r.output
     for ev in ("MMKtSetUp", "MMActiveSetIter", "MMActiveSetCG"):
         assert ev in r.output
+
+
+def cg_iterations(output):
+    """Total CG iterations of a run from -active_set_monitor: each contact solve prints its running
+    count, restarting at "active set  1"."""
+    total, last = 0, 0
+    for line in output.splitlines():
+        if "active set " not in line or "CG iterations so far" not in line:
+            continue
+        if "active set  1:" in line:
+            total += last
+        last = int(line.split("nodes changed set")[1].split(",")[-1].split()[0])
+    return total + last
+
+
+@pytest.mark.parametrize("case", ["d2", "d2_friction"])
+def test_inexact_active_set_solves_give_the_exact_ones(case, mm):
+    """While nodes change set the active-set CG solves are loose (-active_set_inexact_rtol): they only
+    decide the next sets, which tight solves then confirm. The answer is the one of tight solves
+    throughout, with the same contact and slip sets, in fewer CG iterations, on 2 ranks."""
+    opts, *extra = CASES[case]
+    common = (opts, *extra, "-contact_formulation", "active_set", "-active_set_monitor", "-output_every", 0)
+    tight = mm(*common, "-active_set_inexact_rtol", 0, np_=2, name="tight")
+    loose = mm(*common, np_=2, name="loose")
+    assert_same_history(tight.history, loose.history)
+    assert np.array_equal(tight.history["slipping"], loose.history["slipping"])
+    assert "(loose solve)" in loose.output and "(loose solve)" not in tight.output
+    assert loose.history["balance_residual"].max() <= 1e-9
+    if "friction" in case:
+        assert loose.history["coulomb_residual"].max() <= 1e-8 and loose.history["slipping"].max() >= 2
+    assert cg_iterations(loose.output) < 0.9 * cg_iterations(tight.output)

@@ -451,6 +451,7 @@ static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
   PetscCheck(opt->initial_penetration_tol >= 0, comm, PETSC_ERR_USER_INPUT, "-initial_penetration_tol %g must be >= 0: it is a fraction of h_c'", (double)opt->initial_penetration_tol);
   PetscCheck(opt->iterative_dofs >= 0, comm, PETSC_ERR_USER_INPUT, "-iterative_dofs %" PetscInt_FMT " must be >= 0 (0: never the iterative path by default)", opt->iterative_dofs);
   PetscCheck(opt->active_set_max_it >= 1, comm, PETSC_ERR_USER_INPUT, "-active_set_max_it %" PetscInt_FMT " must be >= 1", opt->active_set_max_it);
+  PetscCheck(opt->active_set_inexact_rtol >= 0 && opt->active_set_inexact_rtol < 1, comm, PETSC_ERR_USER_INPUT, "-active_set_inexact_rtol %g must be in [0, 1): it is CG's relative residual reduction while nodes change set (0: every solve to -contact_tol)", (double)opt->active_set_inexact_rtol);
   PetscCheck(opt->progress_every >= 0, comm, PETSC_ERR_USER_INPUT, "-progress_every %.6g must be >= 0: it is the wall time in seconds between progress lines (0 turns them off)", (double)opt->progress_every);
   PetscCheck(opt->output_every >= 0, comm, PETSC_ERR_USER_INPUT, "-output_every %" PetscInt_FMT " must be >= 0", opt->output_every);
   PetscCheck(opt->checkpoint_every >= 0, comm, PETSC_ERR_USER_INPUT, "-checkpoint_every %" PetscInt_FMT " must be >= 0 (0: a checkpoint at the end only)", opt->checkpoint_every);
@@ -528,6 +529,8 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsString(PetscOptionsObject, comm, "-contact_formulation", "Contact formulation: auto (the default: active_set for 3D problems of at least -iterative_dofs dofs, else condensed), condensed (the VI on the contact dofs through the Delassus operator, K~ factored once per dt), full (the VI on all dofs, a factorization per VI iteration, frictionless), or active_set (the primal-dual active-set method on all dofs: CG on the free dofs with the contact_K_ PC, default Jacobi, -contact_K_pc_type gamg or hypre for c_p dt / h_c' above about 10, set up once per dt; for large 3D meshes)", opt->contact_formulation, sizeof(opt->contact_formulation), NULL));
   opt->active_set_max_it = 100;
   PetscCall(OptionsInt(PetscOptionsObject, comm, "-active_set_max_it", "Active-set formulation: iterations per contact solve before the run stops (each is one projected CG solve)", &opt->active_set_max_it));
+  opt->active_set_inexact_rtol = 1e-1;
+  PetscCall(OptionsReal(PetscOptionsObject, comm, "-active_set_inexact_rtol", "Active-set formulation: while nodes still change set, CG reduces the residual by this factor only; the last solves, which confirm the sets, go to -contact_tol (0: every solve to -contact_tol)", &opt->active_set_inexact_rtol));
   opt->active_set_monitor = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-active_set_monitor", "Active-set formulation: print each iteration, the nodes that changed set and the CG iterations", NULL, opt->active_set_monitor, &opt->active_set_monitor, NULL));
   opt->contact_tol = 1e-11;

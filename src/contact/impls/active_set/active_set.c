@@ -23,6 +23,7 @@
  * operator, which keeps it symmetric (a full Newton step would couple each slipping node's
  * tangential rows to its normal row and need GMRES or BiCGStab), and the thresholds converge
  * linearly (docs/method.md section 3, "Coulomb in the active-set iteration"). */
+#include <petsc/private/petscimpl.h> /* PetscObjectStateGet */
 #include "../../contactimpl.h"
 
 /* y += kappa_k e_k (e_k.x_t) at every slipping node in 3D, e_k = d_perp: the Newton tangent of the
@@ -143,6 +144,7 @@ PetscErrorCode MMActiveSetSetUp(MMCtx *ctx)
 
   PetscFunctionBeginUser;
   as->max_it  = ctx->opt.active_set_max_it;
+  as->inexact_rtol = ctx->opt.active_set_inexact_rtol;
   as->monitor = ctx->opt.active_set_monitor;
   PetscCall(MMKtCreate(ctx, PETSC_TRUE));
   PetscCall(VecDuplicate(ct->qp.b, &as->free));
@@ -324,17 +326,23 @@ static void DiskTangent(MMActiveSet *as, PetscInt k, PetscReal sk, PetscReal trn
   as->kappa[k] = as->beta[k] * c;
 }
 
-/* w = x0 + dx, P_F K~ P_F dx = r by the projected CG from dx = 0 (x0 is the warm start). */
-static PetscErrorCode SolveFree(MMCtx *ctx, Vec b, Vec w)
+/* w = x0 + dx, P_F K~ P_F dx = r by the projected CG from dx = 0 (x0 is the warm start). A loose
+ * solve stops once CG has reduced r by -active_set_inexact_rtol: its iterate only decides the next
+ * sets, which the solves to -contact_tol then confirm (MMActiveSetSolve). */
+static PetscErrorCode SolveFree(MMCtx *ctx, Vec b, Vec w, PetscBool loose)
 {
   MMContact   *ct = &ctx->contact;
   MMActiveSet *as = &ct->as;
-  PetscInt     its;
+  PetscInt     its, maxit;
+  PetscReal    rtol, atol, dtol;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ctx->log.as_linear, 0, 0, 0, 0));
   PetscCall(VecZeroEntries(as->dx));
+  PetscCall(KSPGetTolerances(as->ksp, &rtol, &atol, &dtol, &maxit));
+  if (loose) PetscCall(KSPSetTolerances(as->ksp, PetscMax(rtol, as->inexact_rtol), atol, dtol, maxit));
   PetscCall(MMKtSolveToTolerance(as->ksp, ct->tol, b, as->r, as->dx));
+  PetscCall(KSPSetTolerances(as->ksp, rtol, atol, dtol, maxit));
   PetscCall(KSPGetIterationNumber(as->ksp, &its));
   as->lin_its += its;
   PetscCall(VecWAXPY(w, 1.0, as->x0, as->dx));
@@ -363,6 +371,32 @@ static PetscErrorCode GetSetTolerances(MMCtx *ctx, SetTolerances *tol)
   PetscFunctionReturn(0);
 }
 
+/* b - K~ w on the contact dofs only, through K~'s contact rows (a few percent of its nonzeros, where
+ * a whole product would cost as much as a CG iteration), extracted again whenever K~ changes. */
+static PetscErrorCode ContactResidual(MMCtx *ctx, Vec b, Vec w)
+{
+  MMContact       *ct = &ctx->contact;
+  MMActiveSet     *as = &ct->as;
+  PetscObjectState state;
+  Vec              bc;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectStateGet((PetscObject)ct->qp.A, &state));
+  if (!as->Kc || as->Kc_of != ct->qp.A || as->Kc_state != state) {
+    PetscCall(MatDestroy(&as->Kc));
+    PetscCall(VecDestroy(&as->rc));
+    PetscCall(MatCreateSubMatrix(ct->qp.A, ct->is_cond, NULL, MAT_INITIAL_MATRIX, &as->Kc));
+    PetscCall(MatCreateVecs(as->Kc, NULL, &as->rc));
+    as->Kc_of    = ct->qp.A;
+    as->Kc_state = state;
+  }
+  PetscCall(MatMult(as->Kc, w, as->rc));
+  PetscCall(VecGetSubVector(b, ct->is_cond, &bc));
+  PetscCall(VecAYPX(as->rc, -1.0, bc));
+  PetscCall(VecRestoreSubVector(b, ct->is_cond, &bc));
+  PetscFunctionReturn(0);
+}
+
 /* From the solution w of the current sets: the reactions rho (res = b - K~ w = E rho on the fixed
  * dofs, the loads on the slipping ones). */
 static PetscErrorCode Reactions(MMCtx *ctx, Vec b, Vec w)
@@ -374,18 +408,17 @@ static PetscErrorCode Reactions(MMCtx *ctx, Vec b, Vec w)
   PetscScalar       *rho;
 
   PetscFunctionBeginUser;
-  PetscCall(MatMult(ct->qp.A, w, as->r));
-  PetscCall(VecAYPX(as->r, -1.0, b));
+  PetscCall(ContactResidual(ctx, b, w));
   PetscCall(NodeDataGet(ctx, &nd));
-  PetscCall(VecGetArrayRead(as->r, &res));
+  PetscCall(VecGetArrayRead(as->rc, &res));
   PetscCall(VecGetArrayRead(as->dx, &dx));
   PetscCall(VecGetArray(ct->rho, &rho));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
-    const PetscInt   i  = nd.in[k] - nd.rstart;
+    const PetscInt   i  = nd.in[k] - nd.rstart, ic = k * nd.ncomp;
     const PetscReal  sk = nd.nt ? PetscRealPart(nd.s[k]) : 0;
     const PetscReal *d  = &as->dir[k * nd.nt];
-    rho[k * nd.ncomp] = as->active[k] ? res[i] : 0;
-    for (PetscInt j = 0; j < nd.nt; ++j) rho[k * nd.ncomp + 1 + j] = sk <= 0 ? 0 : as->stick[k] ? res[i + 1 + j] : sk * d[j];
+    rho[k * nd.ncomp] = as->active[k] ? res[ic] : 0;
+    for (PetscInt j = 0; j < nd.nt; ++j) rho[k * nd.ncomp + 1 + j] = sk <= 0 ? 0 : as->stick[k] ? res[ic + 1 + j] : sk * d[j];
     if (sk > 0 && !as->stick[k] && as->kappa[k]) {
       /* across d, the Newton step's reaction: the spring's force and the corrected one */
       const PetscReal e[2] = {-d[1], d[0]};
@@ -395,7 +428,7 @@ static PetscErrorCode Reactions(MMCtx *ctx, Vec b, Vec w)
   }
   PetscCall(VecRestoreArray(ct->rho, &rho));
   PetscCall(VecRestoreArrayRead(as->dx, &dx));
-  PetscCall(VecRestoreArrayRead(as->r, &res));
+  PetscCall(VecRestoreArrayRead(as->rc, &res));
   PetscCall(NodeDataRestore(ctx, &nd));
   PetscFunctionReturn(0);
 }
@@ -523,6 +556,10 @@ PetscErrorCode MMActiveSetSolve(MMCtx *ctx, Vec b, Vec w, PetscBool *converged)
   /* with Coulomb the thresholds' change is the friction solver's own test (-friction_snes_rtol) */
   PetscReal    dtol = as->coulomb ? PetscMin(as->coulomb_rtol, 1e-2 * ctx->opt.friction_coulomb_tol) : 1e-2 * ctx->opt.friction_coulomb_tol;
 
+  /* while nodes change set, a solve only has to tell the next sets apart: it is loose; once they
+   * stop changing, the solves are tight and the last one, which changes nothing, is the answer */
+  PetscBool    loose = (PetscBool)(as->inexact_rtol > 0);
+
   PetscFunctionBeginUser;
   as->lin_its = 0;
   for (as->its = 1; as->its <= as->max_it; ++as->its) {
@@ -531,11 +568,12 @@ PetscErrorCode MMActiveSetSolve(MMCtx *ctx, Vec b, Vec w, PetscBool *converged)
 
     PetscCall(PetscLogEventBegin(ctx->log.as_iterate, 0, 0, 0, 0));
     PetscCall(FixSets(ctx, b, w));
-    PetscCall(SolveFree(ctx, b, w));
+    PetscCall(SolveFree(ctx, b, w, loose));
     PetscCall(UpdateSets(ctx, b, w, &changed, &dchange));
     PetscCall(PetscLogEventEnd(ctx->log.as_iterate, 0, 0, 0, 0));
-    if (as->monitor) PetscCall(PetscPrintf(comm, "    active set %2" PetscInt_FMT ": %" PetscInt_FMT " nodes changed set, slip forces%s changed by %.3e of the force scale, %" PetscInt_FMT " CG iterations so far\n", as->its, changed, as->coulomb ? " and thresholds" : "", (double)dchange, as->lin_its));
-    if (!changed && dchange <= dtol) break;
+    if (as->monitor) PetscCall(PetscPrintf(comm, "    active set %2" PetscInt_FMT ": %" PetscInt_FMT " nodes changed set, slip forces%s changed by %.3e of the force scale, %" PetscInt_FMT " CG iterations so far%s\n", as->its, changed, as->coulomb ? " and thresholds" : "", (double)dchange, as->lin_its, loose ? " (loose solve)" : ""));
+    if (!changed && dchange <= dtol && !loose) break;
+    loose = (PetscBool)(changed && as->inexact_rtol > 0);
   }
   *converged = (PetscBool)(as->its <= as->max_it);
   as->its    = PetscMin(as->its, as->max_it);
@@ -565,6 +603,8 @@ PetscErrorCode MMActiveSetDestroy(MMActiveSet *as)
   PetscCall(VecDestroy(&as->r));
   PetscCall(VecDestroy(&as->dx));
   PetscCall(VecDestroy(&as->t));
+  PetscCall(MatDestroy(&as->Kc));
+  PetscCall(VecDestroy(&as->rc));
   PetscCall(VecDestroy(&as->s));
   PetscCall(VecDestroy(&as->ct_diag));
   PetscCall(PetscFree3(as->active, as->stick, as->dir));
