@@ -2,7 +2,17 @@
 #include "mmcontact.h"
 PETSC_EXTERN PetscErrorCode MMMeshLoad(MPI_Comm, MMOptions *, DM *, PetscInt **, PetscInt **);
 PETSC_EXTERN PetscErrorCode MMMeshCheckFile(MPI_Comm, const char[]);
-PETSC_EXTERN PetscErrorCode MMMeshFileNodes(MPI_Comm, DM, const char[], PetscInt **);
+PETSC_EXTERN PetscErrorCode MMMeshFileNodes(MPI_Comm, DM, const char[], PetscInt **, PetscInt **);
+
+/* The facet physical groups (names and physical tags) of a mesh read without faces (src/mesh/facets.c). */
+typedef struct {
+  PetscInt ngroups;
+  char   (*name)[256];
+  PetscInt *tag;
+} MMMeshFacets;
+PETSC_EXTERN PetscErrorCode MMMeshFacetsRead(MPI_Comm, DM, const char[], const PetscInt[], MMMeshFacets *, PetscBool *);
+PETSC_EXTERN PetscErrorCode MMMeshFacetsInterpolate(MMMeshFacets *, DM *);
+PETSC_EXTERN PetscErrorCode MMMeshFacetsDestroy(MMMeshFacets *);
 PETSC_EXTERN PetscErrorCode MMMeshGetLabel(DM, const char[], DMLabel *);
 PETSC_EXTERN PetscErrorCode MMMeshGetSizes(DM, PetscInt *, PetscInt *);
 PETSC_EXTERN PetscErrorCode MMMeshCellCentroid(DM, PetscInt, PetscReal[]);

@@ -116,7 +116,7 @@ static PetscErrorCode RotateCoordinates(DM dm, const PetscReal rot[], const Pets
 
 /* Reads the gmsh file. PETSc's reader stops a truncated or foreign file with a message about
  * items and sections that does not name the file: catch it and say what is wrong with which file. */
-static PetscErrorCode ReadGmsh(MPI_Comm comm, const char file[], DM *dm)
+static PetscErrorCode ReadGmsh(MPI_Comm comm, const char file[], PetscBool interpolate, DM *dm, PetscBool *failed)
 {
   PetscErrorCode ierr;
   const char    *text     = NULL;
@@ -124,8 +124,14 @@ static PetscErrorCode ReadGmsh(MPI_Comm comm, const char file[], DM *dm)
 
   PetscFunctionBeginUser;
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-  ierr = DMPlexCreateFromFile(comm, file, "mmcontact", PETSC_TRUE, dm);
+  ierr = DMPlexCreateFromFile(comm, file, "mmcontact", interpolate, dm);
   PetscCall(PetscPopErrorHandler());
+  if (failed) {
+    /* the caller tries again with PETSc's interpolation, which names the problem if there is one */
+    *failed = (PetscBool)(ierr != 0);
+    if (ierr) PetscCall(DMDestroy(dm));
+    PetscFunctionReturn(0);
+  }
   if (ierr) PetscCall(PetscErrorMessage(ierr, &text, &specific));
   PetscCheck(!ierr, comm, PETSC_ERR_USER_INPUT, "Mesh file \"%s\" (-mesh) could not be read: it is truncated or not a valid gmsh file (the reader says: %s). " MM_SUPPORTED_MESHES ": regenerate it from its .geo (make meshes, or gmsh -2/-3 file.geo)", file, specific && specific[0] ? specific : text);
   PetscFunctionReturn(0);
@@ -395,19 +401,33 @@ PetscErrorCode MMMeshLoad(MPI_Comm comm, MMOptions *opt, DM *dm, PetscInt **vert
   PetscBool rotate = PETSC_FALSE;
   DM        dist;
   PetscSF   migration = NULL;
-  PetscInt  vStart0, vEnd0;
+  PetscInt  vStart0, vEnd0, *vtag = NULL;
+  MMMeshFacets facets = {0};
+  PetscBool    facets_read = PETSC_FALSE, failed;
 
   PetscFunctionBeginUser;
   PetscCheck(opt->mesh_file[0], comm, PETSC_ERR_USER_INPUT, "No mesh given: set -mesh FILE.msh (a gmsh mesh with named physical groups; `make meshes` builds the ones in meshes/)");
   PetscCall(MMMeshCheckFile(comm, opt->mesh_file));
   /* physical names become label names, so every option can refer to groups by name */
   PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_use_regions", "true"));
-  PetscCall(ReadGmsh(comm, opt->mesh_file, dm));
+  /* without faces and edges: each rank interpolates its own part after the distribution, and the
+   * facet groups are read here (src/mesh/facets.c) */
+  PetscCall(ReadGmsh(comm, opt->mesh_file, PETSC_FALSE, dm, &failed));
+  /* a second-order mesh needs the reader's interpolation, which then leads to its refusal below */
+  if (failed) PetscCall(ReadGmsh(comm, opt->mesh_file, PETSC_TRUE, dm, NULL));
   /* on the serial mesh, before distribution: the first bad cell is named by its file order */
   PetscCall(CheckCellTypes(comm, *dm, opt->mesh_file));
   PetscCall(CheckLinearGeometry(comm, *dm, opt->mesh_file));
   /* before the orientation check, which would call a cell with a NaN vertex inverted */
-  PetscCall(MMMeshFileNodes(comm, *dm, opt->mesh_file, vertex_file));
+  PetscCall(MMMeshFileNodes(comm, *dm, opt->mesh_file, vertex_file, &vtag));
+  if (!failed) PetscCall(MMMeshFacetsRead(comm, *dm, opt->mesh_file, vtag, &facets, &facets_read));
+  PetscCall(PetscFree(vtag));
+  if (!failed && !facets_read) {
+    /* a file read here cannot be (binary): PETSc's reader labels the facets, interpolating on rank 0.
+     * The vertices are the same, in the same order. */
+    PetscCall(DMDestroy(dm));
+    PetscCall(ReadGmsh(comm, opt->mesh_file, PETSC_TRUE, dm, NULL));
+  }
   PetscCall(CheckOrientation(comm, *dm, opt->mesh_file));
   PetscCall(PetscObjectSetName((PetscObject)*dm, "mesh"));
   {
@@ -425,6 +445,7 @@ PetscErrorCode MMMeshLoad(MPI_Comm comm, MMOptions *opt, DM *dm, PetscInt **vert
     PetscCall(DMPlexGetPartitioner(*dm, &part));
     PetscCall(PetscPartitionerSetType(part, MM_PARTITIONER_METIS));
     PetscCall(PetscPartitionerSetFromOptions(part));
+    PetscCall(MMPartitionerMetisSetDM(part, *dm));
   }
   PetscCall(DMPlexGetDepthStratum(*dm, 0, &vStart0, &vEnd0));
   PetscCall(DMPlexDistribute(*dm, 0, &migration, &dist));
@@ -434,6 +455,8 @@ PetscErrorCode MMMeshLoad(MPI_Comm comm, MMOptions *opt, DM *dm, PetscInt **vert
   }
   PetscCall(OriginalVertexNumbers(comm, *dm, migration, vStart0, vertex_orig));
   PetscCall(PetscSFDestroy(&migration));
+  if (facets_read) PetscCall(MMMeshFacetsInterpolate(&facets, dm));
+  PetscCall(MMMeshFacetsDestroy(&facets));
   /* DMSetFromOptions would distribute the mesh a second time, moving every vertex away from the
    * numbers just computed: the METIS partition above is the one wanted */
   PetscCall(DMPlexDistributeSetDefault(*dm, PETSC_FALSE));

@@ -132,8 +132,9 @@ static PetscErrorCode MatchVertices(DM dm, PetscInt dim, PetscInt nfile, const P
 
 /* On the serial mesh (rank 0 holds it), before any change of its coordinates: refuses non-finite
  * coordinates and unused gmsh 2 nodes, and gives every rank the file position of each serial
- * vertex (*pos, nv entries; the identity when the file cannot be compared). */
-PetscErrorCode MMMeshFileNodes(MPI_Comm comm, DM dm, const char file[], PetscInt **pos)
+ * vertex (*pos, nv entries; the identity when the file cannot be compared), and rank 0 its node tag
+ * in the file (*vtag; NULL on the other ranks and when the file cannot be compared). */
+PetscErrorCode MMMeshFileNodes(MPI_Comm comm, DM dm, const char file[], PetscInt **pos, PetscInt **vtag)
 {
   PetscMPIInt rank;
   PetscInt    dim, vStart, vEnd, nv, nfile = -1, bad = -1, lone = -1, *tag = NULL;
@@ -148,6 +149,7 @@ PetscErrorCode MMMeshFileNodes(MPI_Comm comm, DM dm, const char file[], PetscInt
   PetscCallMPI(MPI_Bcast(&nv, 1, MPIU_INT, 0, comm));
   PetscCall(PetscMalloc1(nv, pos));
   for (PetscInt k = 0; k < nv; ++k) (*pos)[k] = k;
+  *vtag = NULL;
   if (rank == 0) {
     Vec                X;
     const PetscScalar *x;
@@ -171,6 +173,10 @@ PetscErrorCode MMMeshFileNodes(MPI_Comm comm, DM dm, const char file[], PetscInt
     /* name nodes by their tag in the file when it is known, else by their position from 1 */
     if (bad >= 0) bad = tag && ok ? tag[(*pos)[bad]] : (*pos)[bad] + 1;
     if (lone >= 0) lone = tag && ok ? tag[(*pos)[lone]] : (*pos)[lone] + 1;
+    if (tag && ok) {
+      PetscCall(PetscMalloc1(nv, vtag));
+      for (PetscInt k = 0; k < nv; ++k) (*vtag)[k] = tag[(*pos)[k]];
+    }
     PetscCall(PetscFree2(xyz, tag));
   }
   PetscCallMPI(MPI_Bcast(&bad, 1, MPIU_INT, 0, comm));

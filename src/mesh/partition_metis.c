@@ -8,10 +8,21 @@
 
    Vertex weights (vertSection, present when part->usevwgt is true, the PETSc
    default) are passed to METIS; target part weights (targetSection) are
-   ignored, every part gets the same share. */
+   ignored, every part gets the same share.
+
+   The cell graph (cells sharing a face) is built here from the cells' vertices
+   (MMPartitionerMetisSetDM), not by PETSc: the mesh is distributed before it is
+   interpolated (src/mesh/facets.c), and PETSc's graph of a mesh without faces
+   (DMPlexCreateNeighborCSR, a meet per pair of cells sharing a vertex) took 120 s
+   of the 1M-dof set-up, where sorting the faces by their vertices takes about 2. */
 #include <petsc/private/partitionerimpl.h>
 #include <metis.h>
 #include "partition_metis.h"
+#include "mesh.h"
+
+typedef struct {
+  DM dm; /* the mesh being partitioned (borrowed) */
+} MetisPartitioner;
 
 /* The whole graph in METIS' own integer type, which may differ from PetscInt. */
 typedef struct {
@@ -205,11 +216,83 @@ static PetscErrorCode BuildPartition(PetscInt nparts, PetscInt n, const PetscInt
   PetscFunctionReturn(0);
 }
 
+/* One face of a cell: its vertices sorted (the last unused in 2D) and the cell. */
+typedef struct {
+  PetscInt v[3], cell;
+} Face;
+
+static int CompareFaces(const void *a, const void *b)
+{
+  const Face *f = (const Face *)a, *g = (const Face *)b;
+  for (int k = 0; k < 3; ++k)
+    if (f->v[k] != g->v[k]) return f->v[k] < g->v[k] ? -1 : 1;
+  return 0;
+}
+
+/* The local cells' graph (cells sharing a face), numbered from offset: every face of every cell,
+   sorted by its vertices, in buckets of its smallest vertex; a face found twice joins two cells.
+   A face shared with another rank's cell is not seen: the mesh is partitioned serial, on rank 0. */
+static PetscErrorCode CellGraph(DM dm, PetscInt offset, PetscInt *n, PetscInt **start, PetscInt **adj)
+{
+  PetscInt  dim, depth, cStart, cEnd, vStart, vEnd, nf, *bucket, *deg, *fill;
+  Face     *face, *sorted;
+
+  PetscFunctionBegin;
+  PetscCall(DMGetDimension(dm, &dim));
+  PetscCall(DMPlexGetDepth(dm, &depth));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  *n = cEnd - cStart;
+  nf = (dim + 1) * *n;
+  PetscCall(PetscMalloc2(nf, &face, nf, &sorted));
+  PetscCall(PetscCalloc1(vEnd - vStart + 1, &bucket));
+  for (PetscInt c = cStart; c < cEnd; ++c) {
+    PetscInt v[MM_MAX_DIM + 1];
+    PetscCall(MMMeshCellVertices(dm, depth, dim, c, v));
+    PetscCall(PetscSortInt(dim + 1, v));
+    for (PetscInt k = 0; k <= dim; ++k) {
+      Face *f = &face[(dim + 1) * (c - cStart) + k];
+      for (PetscInt a = 0, b = 0; a <= dim; ++a)
+        if (a != k) f->v[b++] = v[a];
+      if (dim == 2) f->v[2] = -1;
+      f->cell = c - cStart;
+      ++bucket[f->v[0] - vStart + 1];
+    }
+  }
+  for (PetscInt i = 0; i < vEnd - vStart; ++i) bucket[i + 1] += bucket[i];
+  for (PetscInt i = 0; i < nf; ++i) sorted[bucket[face[i].v[0] - vStart]++] = face[i];
+  /* bucket[i] is now the end of vertex i's faces; each bucket is short (the faces at one vertex) */
+  for (PetscInt i = vEnd - vStart; i > 0; --i) bucket[i] = bucket[i - 1];
+  bucket[0] = 0;
+  for (PetscInt i = 0; i < vEnd - vStart; ++i) qsort(&sorted[bucket[i]], (size_t)(bucket[i + 1] - bucket[i]), sizeof(Face), CompareFaces);
+  PetscCall(PetscCalloc1(*n + 1, start));
+  PetscCall(PetscCalloc1(PetscMax(*n, 1), &deg));
+  for (PetscInt i = 0; i + 1 < nf; ++i)
+    if (!CompareFaces(&sorted[i], &sorted[i + 1])) {
+      ++deg[sorted[i].cell];
+      ++deg[sorted[i + 1].cell];
+    }
+  for (PetscInt c = 0; c < *n; ++c) (*start)[c + 1] = (*start)[c] + deg[c];
+  PetscCall(PetscMalloc1(PetscMax((*start)[*n], 1), adj));
+  fill = deg;
+  for (PetscInt c = 0; c < *n; ++c) fill[c] = (*start)[c];
+  for (PetscInt i = 0; i + 1 < nf; ++i)
+    if (!CompareFaces(&sorted[i], &sorted[i + 1])) {
+      (*adj)[fill[sorted[i].cell]++]     = sorted[i + 1].cell + offset;
+      (*adj)[fill[sorted[i + 1].cell]++] = sorted[i].cell + offset;
+    }
+  PetscCall(PetscFree(deg));
+  PetscCall(PetscFree(bucket));
+  PetscCall(PetscFree2(face, sorted));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode PetscPartitionerPartition_Metis(PetscPartitioner part, PetscInt nparts, PetscInt numVertices, PetscInt start[], PetscInt adjacency[], PetscSection vertSection, PetscSection targetSection, PetscSection partSection, IS *partition)
 {
-  MPI_Comm    comm;
-  PetscMPIInt rank, size, *counts, *displs;
-  PetscInt    nglobal = 0, *assignment, *gassign = NULL;
+  MetisPartitioner *mp = (MetisPartitioner *)part->data;
+  MPI_Comm          comm;
+  PetscMPIInt       rank, size, *counts, *displs;
+  PetscInt          nglobal = 0, *assignment, *gassign = NULL, *own_start = NULL, *own_adj = NULL;
 
   PetscFunctionBegin;
   if (targetSection) PetscCall(PetscInfo(part, "Partitioner %s ignores target partition weights\n", MM_PARTITIONER_METIS));
@@ -218,9 +301,19 @@ static PetscErrorCode PetscPartitionerPartition_Metis(PetscPartitioner part, Pet
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(PetscMalloc2(size, &counts, size, &displs));
   PetscCall(GatherLayout(comm, numVertices, counts, displs, &nglobal));
+  if (!start) {
+    PetscInt n = 0;
+    PetscCheck(mp->dm, comm, PETSC_ERR_ORDER, "Call MMPartitionerMetisSetDM() before distributing the mesh");
+    PetscCall(CellGraph(mp->dm, displs[rank], &n, &own_start, &own_adj));
+    PetscCheck(n == numVertices, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Cell graph of %" PetscInt_FMT " cells for %" PetscInt_FMT " graph vertices", n, numVertices);
+    start     = own_start;
+    adjacency = own_adj;
+  }
   if (rank == 0) PetscCall(PetscMalloc1(nglobal, &gassign));
   PetscCall(PetscMalloc1(numVertices, &assignment));
   PetscCall(PartitionOnRoot(part, nparts, numVertices, start, adjacency, vertSection, counts, displs, nglobal, gassign));
+  PetscCall(PetscFree(own_start));
+  PetscCall(PetscFree(own_adj));
   PetscCallMPI(MPI_Scatterv(gassign, counts, displs, MPIU_INT, assignment, counts[rank], MPIU_INT, 0, comm));
   PetscCall(BuildPartition(nparts, numVertices, assignment, partSection, partition));
   PetscCall(PetscFree(assignment));
@@ -229,11 +322,34 @@ static PetscErrorCode PetscPartitionerPartition_Metis(PetscPartitioner part, Pet
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode PetscPartitionerCreate_Metis(PetscPartitioner part)
+static PetscErrorCode PetscPartitionerDestroy_Metis(PetscPartitioner part)
 {
   PetscFunctionBegin;
-  part->noGraph        = PETSC_FALSE;
+  PetscCall(PetscFree(part->data));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode PetscPartitionerCreate_Metis(PetscPartitioner part)
+{
+  MetisPartitioner *mp;
+
+  PetscFunctionBegin;
+  PetscCall(PetscNew(&mp));
+  part->data           = mp;
+  part->noGraph        = PETSC_TRUE; /* CellGraph builds it */
   part->ops->partition = PetscPartitionerPartition_Metis;
+  part->ops->destroy   = PetscPartitionerDestroy_Metis;
+  PetscFunctionReturn(0);
+}
+
+/* The mesh the partitioner will be given by DMPlexDistribute: PETSc passes the partitioner no mesh. */
+PetscErrorCode MMPartitionerMetisSetDM(PetscPartitioner part, DM dm)
+{
+  PetscBool is;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)part, MM_PARTITIONER_METIS, &is));
+  if (is) ((MetisPartitioner *)part->data)->dm = dm;
   PetscFunctionReturn(0);
 }
 

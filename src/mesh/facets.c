@@ -1,0 +1,451 @@
+/* The facet physical groups of a mesh interpolated after its distribution (README "Large meshes").
+ *
+ * PETSc's gmsh reader finds the face of a facet element (a Physical Curve in 2D, Surface in 3D)
+ * only on a mesh it interpolates itself, on rank 0, before the distribution: at 1M dofs that serial
+ * interpolation is the largest part of the set-up. So the mesh is read without faces and edges,
+ * and the facet elements are read from the file here (ASCII gmsh 2.2 and 4.1). On rank 0 each one
+ * marks the cells it bounds: per group, a cell label whose value has bit k set when the cell's face
+ * opposite its k-th vertex is in the group. The marks go with the cells through the distribution;
+ * each rank then interpolates its part, and the marked faces get the group's label with its
+ * physical tag, as the reader would have set it. A file this reader does not parse (binary) is
+ * read again by PETSc's, interpolated on rank 0 (ok false). */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "mesh.h"
+
+#define MM_FACET_NAME 256
+#define MM_FACET_MARK "mmcontact facet cells of "
+
+/* Rank 0's reading of the file: the named facet groups, and each (facet, group) pair's nodes. */
+typedef struct {
+  PetscInt   ngroups;
+  char     (*name)[MM_FACET_NAME];
+  PetscInt  *tag;      /* per group: its physical tag */
+  PetscInt   n, cap;   /* (facet, group) pairs */
+  PetscInt  *group;    /* per pair */
+  PetscInt  *node;     /* per pair: dim node tags */
+} FacetFile;
+
+static PetscErrorCode AddPair(FacetFile *f, PetscInt dim, PetscInt g, const long nodes[])
+{
+  PetscFunctionBeginUser;
+  if (f->n == f->cap) {
+    PetscInt *g2, *n2;
+    f->cap = PetscMax(1024, 2 * f->cap);
+    PetscCall(PetscMalloc2(f->cap, &g2, f->cap * dim, &n2));
+    PetscCall(PetscArraycpy(g2, f->group, f->n));
+    PetscCall(PetscArraycpy(n2, f->node, f->n * dim));
+    PetscCall(PetscFree2(f->group, f->node));
+    f->group = g2;
+    f->node  = n2;
+  }
+  f->group[f->n] = g;
+  for (PetscInt a = 0; a < dim; ++a) f->node[f->n * dim + a] = (PetscInt)nodes[a];
+  ++f->n;
+  PetscFunctionReturn(0);
+}
+
+static PetscInt GroupOfTag(const FacetFile *f, long tag)
+{
+  for (PetscInt g = 0; g < f->ngroups; ++g)
+    if (f->tag[g] == tag) return g;
+  return -1;
+}
+
+/* $PhysicalNames: the groups of dimension dim-1 with a name ("dim tag "name"" per line). */
+static PetscErrorCode ReadPhysicalNames(FILE *in, PetscInt dim, FacetFile *f, char **line, size_t *len, PetscBool *ok)
+{
+  long n = 0;
+
+  PetscFunctionBeginUser;
+  *ok = (PetscBool)(getline(line, len, in) > 0 && sscanf(*line, "%ld", &n) == 1 && n >= 0);
+  if (!*ok) PetscFunctionReturn(0);
+  PetscCall(PetscCalloc2(n, &f->name, n, &f->tag));
+  for (long i = 0; i < n && *ok; ++i) {
+    int   gdim;
+    long  tag;
+    char *q0, *q1;
+    *ok = (PetscBool)(getline(line, len, in) > 0 && sscanf(*line, "%d %ld", &gdim, &tag) == 2 && (q0 = strchr(*line, '"')) && (q1 = strrchr(*line, '"')) && q1 > q0);
+    if (!*ok || gdim != dim - 1) continue;
+    PetscCall(PetscStrncpy(f->name[f->ngroups], q0 + 1, PetscMin((size_t)(q1 - q0), (size_t)MM_FACET_NAME)));
+    f->tag[f->ngroups++] = tag;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* $Entities (4.1): the physical tags of each entity of dimension dim-1, as (entity, group) pairs. */
+static PetscErrorCode ReadEntities(FILE *in, PetscInt dim, const FacetFile *f, PetscInt *nent, PetscInt **ent, PetscInt **grp, char **line, size_t *len, PetscBool *ok)
+{
+  long     count[4];
+  PetscInt cap = 0;
+
+  PetscFunctionBeginUser;
+  *nent = 0;
+  *ok   = (PetscBool)(getline(line, len, in) > 0 && sscanf(*line, "%ld %ld %ld %ld", &count[0], &count[1], &count[2], &count[3]) == 4);
+  for (int d = 0; d < 4 && *ok; ++d)
+    for (long i = 0; i < count[d] && *ok; ++i) {
+      char *p, *e;
+      long  etag, nphys;
+      *ok = (PetscBool)(getline(line, len, in) > 0);
+      if (!*ok || d != dim - 1) continue;
+      p    = *line;
+      etag = strtol(p, &e, 10);
+      for (int k = 0; k < (d == 0 ? 3 : 6); ++k) {
+        p = e;
+        (void)strtod(p, &e);
+      }
+      p     = e;
+      nphys = strtol(p, &e, 10);
+      *ok   = (PetscBool)(e != p && nphys >= 0);
+      for (long k = 0; k < nphys && *ok; ++k) {
+        PetscInt g;
+        p = e;
+        g = GroupOfTag(f, strtol(p, &e, 10));
+        *ok = (PetscBool)(e != p);
+        if (g < 0) continue;
+        if (*nent == cap) {
+          PetscInt *e2, *g2;
+          cap = PetscMax(16, 2 * cap);
+          PetscCall(PetscMalloc2(cap, &e2, cap, &g2));
+          PetscCall(PetscArraycpy(e2, *ent, *nent));
+          PetscCall(PetscArraycpy(g2, *grp, *nent));
+          PetscCall(PetscFree2(*ent, *grp));
+          *ent = e2;
+          *grp = g2;
+        }
+        (*ent)[*nent] = (PetscInt)etag;
+        (*grp)[(*nent)++] = g;
+      }
+    }
+  PetscFunctionReturn(0);
+}
+
+/* A facet element line: its nodes after the first skip values (4.1: the element tag; 2.2: the tag,
+ * type, tag count and tags). */
+static PetscBool ParseNodes(const char *p, PetscInt skip, PetscInt dim, long nodes[])
+{
+  char *e;
+  for (PetscInt k = 0; k < skip + dim; ++k) {
+    long v = strtol(p, &e, 10);
+    if (e == p) return PETSC_FALSE;
+    if (k >= skip) nodes[k - skip] = v;
+    p = e;
+  }
+  return PETSC_TRUE;
+}
+
+/* $Elements, 4.1: blocks "entityDim entityTag type count", the facets' in the groups kept. */
+static PetscErrorCode ReadElements41(FILE *in, PetscInt dim, FacetFile *f, PetscInt nent, const PetscInt ent[], const PetscInt grp[], char **line, size_t *len, PetscBool *ok)
+{
+  long nblocks, nelem, lo, hi;
+  const int facet_type = dim == 3 ? 2 : 1; /* 3-node triangle, 2-node line */
+
+  PetscFunctionBeginUser;
+  *ok = (PetscBool)(getline(line, len, in) > 0 && sscanf(*line, "%ld %ld %ld %ld", &nblocks, &nelem, &lo, &hi) == 4);
+  for (long b = 0; b < nblocks && *ok; ++b) {
+    int  edim, type;
+    long etag, n;
+    PetscBool kept = PETSC_FALSE;
+    *ok = (PetscBool)(getline(line, len, in) > 0 && sscanf(*line, "%d %ld %d %ld", &edim, &etag, &type, &n) == 4);
+    if (!*ok) break;
+    if (edim == dim - 1)
+      for (PetscInt i = 0; i < nent; ++i) kept = (PetscBool)(kept || ent[i] == etag);
+    /* a facet group of another element type (second order): PETSc's reader handles it */
+    if (kept && type != facet_type) *ok = PETSC_FALSE;
+    for (long i = 0; i < n && *ok; ++i) {
+      long nodes[3];
+      *ok = (PetscBool)(getline(line, len, in) > 0);
+      if (!*ok || !kept) continue;
+      *ok = ParseNodes(*line, 1, dim, nodes);
+      for (PetscInt k = 0; k < nent && *ok; ++k)
+        if (ent[k] == etag) PetscCall(AddPair(f, dim, grp[k], nodes));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* $Elements, 2.2: "number type ntags tags... nodes" per line; the first tag is the physical one. */
+static PetscErrorCode ReadElements22(FILE *in, PetscInt dim, FacetFile *f, char **line, size_t *len, PetscBool *ok)
+{
+  long      nelem;
+  const int facet_type = dim == 3 ? 2 : 1;
+
+  PetscFunctionBeginUser;
+  *ok = (PetscBool)(getline(line, len, in) > 0 && sscanf(*line, "%ld", &nelem) == 1);
+  for (long i = 0; i < nelem && *ok; ++i) {
+    long     id, ntags, phys = -1, nodes[3];
+    int      type;
+    PetscInt g;
+    *ok = (PetscBool)(getline(line, len, in) > 0 && sscanf(*line, "%ld %d %ld %ld", &id, &type, &ntags, &phys) >= 3);
+    if (!*ok || type != facet_type || ntags < 1 || (g = GroupOfTag(f, phys)) < 0) continue;
+    *ok = ParseNodes(*line, 3 + ntags, dim, nodes);
+    if (*ok) PetscCall(AddPair(f, dim, g, nodes));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Rank 0: the named facet groups and their facets, from an ASCII gmsh 2.2 or 4.1 file. */
+static PetscErrorCode ReadFacetFile(const char file[], PetscInt dim, FacetFile *f, PetscBool *ok)
+{
+  FILE     *in = fopen(file, "r");
+  char     *line = NULL;
+  size_t    len = 0;
+  double    version = 0;
+  int       binary = 1;
+  PetscInt  nent = 0, *ent = NULL, *grp = NULL;
+  PetscBool names = PETSC_FALSE, elements = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  *ok = (PetscBool)(in != NULL);
+  while (*ok && !elements && getline(&line, &len, in) > 0) {
+    if (!strncmp(line, "$MeshFormat", 11)) {
+      *ok = (PetscBool)(getline(&line, &len, in) > 0 && sscanf(line, "%lf %d", &version, &binary) == 2 && !binary && (version == 2.2 || version == 4.1));
+    } else if (!strncmp(line, "$PhysicalNames", 14)) {
+      PetscCall(ReadPhysicalNames(in, dim, f, &line, &len, ok));
+      names = PETSC_TRUE;
+    } else if (!strncmp(line, "$Entities", 9)) {
+      PetscCall(ReadEntities(in, dim, f, &nent, &ent, &grp, &line, &len, ok));
+    } else if (!strncmp(line, "$Elements", 9)) {
+      if (!names) break; /* no named group: nothing to label */
+      if (version == 4.1) PetscCall(ReadElements41(in, dim, f, nent, ent, grp, &line, &len, ok));
+      else PetscCall(ReadElements22(in, dim, f, &line, &len, ok));
+      elements = PETSC_TRUE;
+    }
+  }
+  *ok = (PetscBool)(*ok && version > 0 && (elements || !names));
+  free(line);
+  if (in) (void)fclose(in);
+  PetscCall(PetscFree2(ent, grp));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode MarkName(const char group[], char mark[], size_t len)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(mark, len, "%s%s", MM_FACET_MARK, group));
+  PetscFunctionReturn(0);
+}
+
+/* Rank 0: each facet's cells on the serial mesh (those whose cone holds all its vertices), marked in
+ * the group's cell label with the bit of the cone position of the vertex off the facet. vtag is each
+ * serial vertex's node tag in the file. *bad is the first facet (pair) on no cell, -1 if none. */
+static PetscErrorCode MarkCells(DM dm, PetscInt dim, const FacetFile *f, const PetscInt vtag[], PetscInt *bad)
+{
+  PetscInt  vStart, vEnd, nv, cStart, cEnd, *sorted, *vert;
+  DMLabel  *mark;
+  PetscInt **bits;
+
+  PetscFunctionBeginUser;
+  *bad = -1;
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  nv = vEnd - vStart;
+  PetscCall(PetscMalloc2(nv, &sorted, nv, &vert));
+  for (PetscInt k = 0; k < nv; ++k) {
+    sorted[k] = vtag[k];
+    vert[k]   = vStart + k;
+  }
+  PetscCall(PetscSortIntWithArray(nv, sorted, vert));
+  PetscCall(PetscMalloc2(f->ngroups, &mark, f->ngroups, &bits));
+  for (PetscInt g = 0; g < f->ngroups; ++g) {
+    char name[MM_FACET_NAME + 64];
+    PetscCall(MarkName(f->name[g], name, sizeof(name)));
+    PetscCall(DMGetLabel(dm, name, &mark[g]));
+    PetscCall(PetscCalloc1(cEnd - cStart, &bits[g]));
+  }
+  for (PetscInt i = 0; i < f->n && *bad < 0; ++i) {
+    PetscInt        v[3], ns, found = 0;
+    const PetscInt *sup;
+    for (PetscInt a = 0; a < dim; ++a) {
+      PetscInt loc;
+      PetscCall(PetscFindInt(f->node[i * dim + a], nv, sorted, &loc));
+      v[a] = loc >= 0 ? vert[loc] : -1;
+    }
+    if (v[0] >= 0) {
+      PetscCall(DMPlexGetSupportSize(dm, v[0], &ns));
+      PetscCall(DMPlexGetSupport(dm, v[0], &sup));
+    } else ns = 0;
+    for (PetscInt s = 0; s < ns; ++s) {
+      const PetscInt *cone;
+      PetscInt        hits = 0, off = -1;
+      PetscCall(DMPlexGetCone(dm, sup[s], &cone));
+      for (PetscInt k = 0; k <= dim; ++k) {
+        PetscBool in = PETSC_FALSE;
+        for (PetscInt a = 0; a < dim; ++a) in = (PetscBool)(in || cone[k] == v[a]);
+        if (in) ++hits;
+        else off = k;
+      }
+      if (hits != dim) continue;
+      bits[f->group[i]][sup[s] - cStart] |= (PetscInt)1 << off;
+      ++found;
+    }
+    if (!found) *bad = i;
+  }
+  for (PetscInt g = 0; g < f->ngroups; ++g) {
+    for (PetscInt c = cStart; c < cEnd; ++c)
+      if (bits[g][c - cStart]) PetscCall(DMLabelSetValue(mark[g], c, bits[g][c - cStart]));
+    PetscCall(PetscFree(bits[g]));
+  }
+  PetscCall(PetscFree2(mark, bits));
+  PetscCall(PetscFree2(sorted, vert));
+  PetscFunctionReturn(0);
+}
+
+/* Reads the facet groups of the file and marks their cells on the serial mesh dm, read without faces
+ * (rank 0 holds it). vtag: rank 0's node tag of each serial vertex, NULL when the file's nodes could
+ * not be read. On every rank: the groups' names and tags in *groups, and *ok false when the file
+ * cannot be read here (binary, or another format): the caller reads it with PETSc's reader then. */
+PetscErrorCode MMMeshFacetsRead(MPI_Comm comm, DM dm, const char file[], const PetscInt vtag[], MMMeshFacets *groups, PetscBool *ok)
+{
+  PetscMPIInt rank;
+  PetscInt    dim, bad = -1, badnodes[3] = {-1, -1, -1}, badgroup = -1, flag[2];
+  FacetFile   f = {0};
+  PetscBool   read = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(DMGetDimension(dm, &dim));
+  if (!rank && vtag) PetscCall(ReadFacetFile(file, dim, &f, &read));
+  flag[0] = read;
+  flag[1] = f.ngroups;
+  PetscCallMPI(MPI_Bcast(flag, 2, MPIU_INT, 0, comm));
+  *ok               = (PetscBool)flag[0];
+  groups->ngroups   = *ok ? flag[1] : 0;
+  PetscCall(PetscCalloc2(groups->ngroups, &groups->name, groups->ngroups, &groups->tag));
+  if (*ok && !rank)
+    for (PetscInt g = 0; g < groups->ngroups; ++g) {
+      PetscCall(PetscStrncpy(groups->name[g], f.name[g], sizeof(groups->name[g])));
+      groups->tag[g] = f.tag[g];
+    }
+  PetscCallMPI(MPI_Bcast(groups->name, (PetscMPIInt)(groups->ngroups * sizeof(groups->name[0])), MPI_CHAR, 0, comm));
+  PetscCallMPI(MPI_Bcast(groups->tag, (PetscMPIInt)groups->ngroups, MPIU_INT, 0, comm));
+  for (PetscInt g = 0; g < groups->ngroups; ++g) {
+    char name[MM_FACET_NAME + 64];
+    PetscCall(MarkName(groups->name[g], name, sizeof(name)));
+    PetscCall(DMCreateLabel(dm, name));
+  }
+  if (*ok && !rank) {
+    PetscCall(MarkCells(dm, dim, &f, vtag, &bad));
+    if (bad >= 0) {
+      badgroup = f.group[bad];
+      for (PetscInt a = 0; a < dim; ++a) badnodes[a] = f.node[bad * dim + a];
+    }
+  }
+  PetscCall(PetscFree2(f.name, f.tag));
+  PetscCall(PetscFree2(f.group, f.node));
+  PetscCallMPI(MPI_Bcast(&badgroup, 1, MPIU_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(badnodes, 3, MPIU_INT, 0, comm));
+  if (badgroup >= 0) {
+    char nodes[128];
+    if (dim == 2) PetscCall(PetscSNPrintf(nodes, sizeof(nodes), "%" PetscInt_FMT " %" PetscInt_FMT, badnodes[0], badnodes[1]));
+    else PetscCall(PetscSNPrintf(nodes, sizeof(nodes), "%" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT, badnodes[0], badnodes[1], badnodes[2]));
+    SETERRQ(comm, PETSC_ERR_USER_INPUT, "Mesh file \"%s\" (-mesh): a facet of the physical group \"%s\" (nodes %s) is not a face of any %s. A facet group must lie on faces of the mesh's cells: regenerate the mesh from its .geo (gmsh -%" PetscInt_FMT ")", file, groups->name[badgroup], nodes, dim == 3 ? "tetrahedron" : "triangle", dim);
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The face of cell c (of the interpolated mesh) that does not hold vertex off. */
+static PetscErrorCode FaceOpposite(DM dm, PetscInt c, PetscInt off, PetscInt *face)
+{
+  const PetscInt *cone;
+  PetscInt        nc, vStart, vEnd;
+
+  PetscFunctionBeginUser;
+  *face = -1;
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(DMPlexGetConeSize(dm, c, &nc));
+  PetscCall(DMPlexGetCone(dm, c, &cone));
+  for (PetscInt i = 0; i < nc && *face < 0; ++i) {
+    PetscInt *cl = NULL, ncl;
+    PetscBool has = PETSC_FALSE;
+    PetscCall(DMPlexGetTransitiveClosure(dm, cone[i], PETSC_TRUE, &ncl, &cl));
+    for (PetscInt j = 0; j < ncl; ++j) has = (PetscBool)(has || cl[2 * j] == off);
+    PetscCall(DMPlexRestoreTransitiveClosure(dm, cone[i], PETSC_TRUE, &ncl, &cl));
+    if (!has) *face = cone[i];
+  }
+  PetscCheck(*face >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Cell %" PetscInt_FMT " has no face opposite vertex %" PetscInt_FMT, c, off);
+  PetscFunctionReturn(0);
+}
+
+/* On the distributed mesh read without faces: interpolates it on each rank (replacing *dm) and gives
+ * each marked face its group's label and tag. Cells and vertices keep their numbers. */
+PetscErrorCode MMMeshFacetsInterpolate(MMMeshFacets *groups, DM *dm)
+{
+  DM        idm;
+  PetscInt  n = 0, cap = 0, *cell = NULL, *off = NULL, *grp = NULL, v0[2], v1[2];
+
+  PetscFunctionBeginUser;
+  /* the (cell, vertex off the face) pairs, while the cones are still the vertices */
+  for (PetscInt g = 0; g < groups->ngroups; ++g) {
+    char            name[MM_FACET_NAME + 64];
+    DMLabel         mark;
+    IS              vis;
+    PetscInt        nval;
+    const PetscInt *vals;
+    PetscCall(MarkName(groups->name[g], name, sizeof(name)));
+    PetscCall(DMGetLabel(*dm, name, &mark));
+    PetscCall(DMLabelGetValueIS(mark, &vis));
+    PetscCall(ISGetLocalSize(vis, &nval));
+    PetscCall(ISGetIndices(vis, &vals));
+    for (PetscInt i = 0; i < nval; ++i) {
+      IS              pis;
+      PetscInt        np;
+      const PetscInt *pts;
+      PetscCall(DMLabelGetStratumIS(mark, vals[i], &pis));
+      if (!pis) continue;
+      PetscCall(ISGetLocalSize(pis, &np));
+      PetscCall(ISGetIndices(pis, &pts));
+      for (PetscInt j = 0; j < np; ++j) {
+        const PetscInt *cone;
+        PetscCall(DMPlexGetCone(*dm, pts[j], &cone));
+        for (PetscInt k = 0; k <= MM_MAX_DIM; ++k) {
+          if (!(vals[i] >> k & 1)) continue;
+          if (n == cap) {
+            PetscInt *c2, *o2, *g2;
+            cap = PetscMax(1024, 2 * cap);
+            PetscCall(PetscMalloc3(cap, &c2, cap, &o2, cap, &g2));
+            PetscCall(PetscArraycpy(c2, cell, n));
+            PetscCall(PetscArraycpy(o2, off, n));
+            PetscCall(PetscArraycpy(g2, grp, n));
+            PetscCall(PetscFree3(cell, off, grp));
+            cell = c2;
+            off  = o2;
+            grp  = g2;
+          }
+          cell[n] = pts[j];
+          off[n]  = cone[k];
+          grp[n++] = g;
+        }
+      }
+      PetscCall(ISRestoreIndices(pis, &pts));
+      PetscCall(ISDestroy(&pis));
+    }
+    PetscCall(ISRestoreIndices(vis, &vals));
+    PetscCall(ISDestroy(&vis));
+    PetscCall(DMRemoveLabel(*dm, name, NULL));
+  }
+  PetscCall(DMPlexGetDepthStratum(*dm, 0, &v0[0], &v0[1]));
+  PetscCall(DMPlexInterpolate(*dm, &idm));
+  PetscCall(DMPlexGetDepthStratum(idm, 0, &v1[0], &v1[1]));
+  PetscCheck(v0[0] == v1[0] && v0[1] == v1[1], PETSC_COMM_SELF, PETSC_ERR_PLIB, "Interpolation renumbered the vertices");
+  PetscCall(DMDestroy(dm));
+  *dm = idm;
+  for (PetscInt g = 0; g < groups->ngroups; ++g) PetscCall(DMCreateLabel(*dm, groups->name[g]));
+  for (PetscInt i = 0; i < n; ++i) {
+    PetscInt face;
+    PetscCall(FaceOpposite(*dm, cell[i], off[i], &face));
+    PetscCall(DMSetLabelValue(*dm, groups->name[grp[i]], face, groups->tag[grp[i]]));
+  }
+  PetscCall(PetscFree3(cell, off, grp));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMMeshFacetsDestroy(MMMeshFacets *groups)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree2(groups->name, groups->tag));
+  groups->ngroups = 0;
+  PetscFunctionReturn(0);
+}
