@@ -3,9 +3,10 @@
 Suites (the table SUITES below):
   2d     D1 disk, 115k dofs (meshes/disk_bench.msh): linear, contact, friction mu = 0.2, and
          contact on all dofs (full); 1 and 2 ranks.                       -> bench/results.csv
-  3d     D2 ball, 113k dofs (meshes/ball_bench.msh): linear, contact, friction mu = 0.2; and
+  3d     D2 ball, 113k dofs (meshes/ball_bench.msh): linear, contact, friction mu = 0.2 (condensed); and
          two_body, two balls thrown at each other, frictionless (options/two_balls.opts on
-         meshes/two_balls_bench.msh, H = 0.057: 117k dofs, its own dt); 1 and 2 ranks.
+         meshes/two_balls_bench.msh, H = 0.057: 117k dofs, its own dt); contact_as and friction_as,
+         the contact rows in the active-set formulation (the default at this size); 1 and 2 ranks.
                                                                           -> bench/results.csv
   surface a slab pressed flat on a plane over its whole base (options/slab_press.opts on meshes/slab.msh:
          315k dofs, 21,025 contact nodes): linear (the slab squeezed, base clamped), contact, friction
@@ -65,6 +66,10 @@ LINEAR = dict(case="linear", options="-contact 0")
 CONTACT = dict(case="contact", options="-contact_formulation condensed -mu 0")
 FRICTION = dict(case="friction", options="-contact_formulation condensed -mu 0.2")
 FULL = dict(case="full", options="-contact_formulation full -mu 0")
+# The active-set formulation, which -contact_formulation auto picks for 3D meshes of -iterative_dofs
+# (50,000) dofs and more: the 3d suite's contact rows in the formulation its users get by default.
+CONTACT_AS = dict(case="contact_as", options="-contact_formulation active_set -mu 0")
+FRICTION_AS = dict(case="friction_as", options="-contact_formulation active_set -mu 0.2")
 # Two-body contact (issue 20): a variant may bring its own options file, mesh and dt (the suite's
 # otherwise). Two balls of radius 1 at gap 0.01 and relative speed 1 (options/two_balls.opts): contact
 # from t = 0.01, step 5 of dt 2e-3 (c_p dt / h_c' = 1.3 at H = 0.057), and it lasts about 0.3, so
@@ -81,7 +86,7 @@ SUITES = [
     dict(suite="2d", problem="D1 disk", dim=2, options_file="options/d1_disk.opts", mesh="meshes/disk_bench.msh",
          dt=2e-4, steps=30, ranks=(1, 2), variants=(LINEAR, CONTACT, FRICTION, FULL), csv="bench/results.csv"),
     dict(suite="3d", problem="D2 ball", dim=3, options_file="options/d2_ball.opts", mesh="meshes/ball_bench.msh",
-         dt=1e-3, steps=30, ranks=(1, 2), variants=(LINEAR, CONTACT, FRICTION, TWO_BODY), csv="bench/results.csv"),
+         dt=1e-3, steps=30, ranks=(1, 2), variants=(LINEAR, CONTACT, FRICTION, TWO_BODY, CONTACT_AS, FRICTION_AS), csv="bench/results.csv"),
     # A large contact surface (issue 21): a slab of 315k dofs pressed flat on a plane over its whole
     # base, 21,025 contact nodes all touching from step 3, on 2 ranks. Its formulation is the default
     # (-contact_formulation auto: active_set at this size). The linear row is the same slab squeezed

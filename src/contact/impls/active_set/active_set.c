@@ -328,13 +328,14 @@ static void DiskTangent(MMActiveSet *as, PetscInt k, PetscReal sk, PetscReal trn
 
 /* w = x0 + dx, P_F K~ P_F dx = r by the projected CG from dx = 0 (x0 is the warm start). A loose
  * solve stops once CG has reduced r by -active_set_inexact_rtol: its iterate only decides the next
- * sets, which the solves to -contact_tol then confirm (MMActiveSetSolve). */
-static PetscErrorCode SolveFree(MMCtx *ctx, Vec b, Vec w, PetscBool loose)
+ * sets, which the solves to -contact_tol then confirm (MMActiveSetSolve). *tight: the solve met
+ * -contact_tol (a loose one can, when its residual was small to begin with). */
+static PetscErrorCode SolveFree(MMCtx *ctx, Vec b, Vec w, PetscBool loose, PetscBool *tight)
 {
   MMContact   *ct = &ctx->contact;
   MMActiveSet *as = &ct->as;
   PetscInt     its, maxit;
-  PetscReal    rtol, atol, dtol;
+  PetscReal    rtol, atol, dtol, rnorm, bnorm;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ctx->log.as_linear, 0, 0, 0, 0));
@@ -345,6 +346,12 @@ static PetscErrorCode SolveFree(MMCtx *ctx, Vec b, Vec w, PetscBool loose)
   PetscCall(KSPSetTolerances(as->ksp, rtol, atol, dtol, maxit));
   PetscCall(KSPGetIterationNumber(as->ksp, &its));
   as->lin_its += its;
+  *tight = (PetscBool)!loose;
+  if (loose) {
+    PetscCall(KSPGetResidualNorm(as->ksp, &rnorm));
+    PetscCall(VecNorm(b, NORM_2, &bnorm));
+    *tight = (PetscBool)(rnorm <= PetscMax(atol, ct->tol * bnorm));
+  }
   PetscCall(VecWAXPY(w, 1.0, as->x0, as->dx));
   PetscCall(PetscLogEventEnd(ctx->log.as_linear, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -565,14 +572,15 @@ PetscErrorCode MMActiveSetSolve(MMCtx *ctx, Vec b, Vec w, PetscBool *converged)
   for (as->its = 1; as->its <= as->max_it; ++as->its) {
     PetscInt  changed;
     PetscReal dchange;
+    PetscBool tight = PETSC_FALSE;
 
     PetscCall(PetscLogEventBegin(ctx->log.as_iterate, 0, 0, 0, 0));
     PetscCall(FixSets(ctx, b, w));
-    PetscCall(SolveFree(ctx, b, w, loose));
+    PetscCall(SolveFree(ctx, b, w, loose, &tight));
     PetscCall(UpdateSets(ctx, b, w, &changed, &dchange));
     PetscCall(PetscLogEventEnd(ctx->log.as_iterate, 0, 0, 0, 0));
-    if (as->monitor) PetscCall(PetscPrintf(comm, "    active set %2" PetscInt_FMT ": %" PetscInt_FMT " nodes changed set, slip forces%s changed by %.3e of the force scale, %" PetscInt_FMT " CG iterations so far%s\n", as->its, changed, as->coulomb ? " and thresholds" : "", (double)dchange, as->lin_its, loose ? " (loose solve)" : ""));
-    if (!changed && dchange <= dtol && !loose) break;
+    if (as->monitor) PetscCall(PetscPrintf(comm, "    active set %2" PetscInt_FMT ": %" PetscInt_FMT " nodes changed set, slip forces%s changed by %.3e of the force scale, %" PetscInt_FMT " CG iterations so far%s\n", as->its, changed, as->coulomb ? " and thresholds" : "", (double)dchange, as->lin_its, tight ? "" : " (loose solve)"));
+    if (!changed && dchange <= dtol && tight) break;
     loose = (PetscBool)(changed && as->inexact_rtol > 0);
   }
   *converged = (PetscBool)(as->its <= as->max_it);
