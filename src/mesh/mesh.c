@@ -127,9 +127,11 @@ static PetscErrorCode ReadGmsh(MPI_Comm comm, const char file[], PetscBool inter
   ierr = DMPlexCreateFromFile(comm, file, "mmcontact", interpolate, dm);
   PetscCall(PetscPopErrorHandler());
   if (failed) {
-    /* the caller tries again with PETSc's interpolation, which names the problem if there is one */
+    /* the caller tries again with PETSc's interpolation, which names the problem if there is one;
+     * every rank together, though the reader may have failed on rank 0 alone */
     *failed = (PetscBool)(ierr != 0);
-    if (ierr) PetscCall(DMDestroy(dm));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, failed, 1, MPIU_BOOL, MPI_LOR, comm));
+    if (*failed) PetscCall(DMDestroy(dm));
     PetscFunctionReturn(0);
   }
   if (ierr) PetscCall(PetscErrorMessage(ierr, &text, &specific));
