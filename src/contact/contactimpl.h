@@ -46,7 +46,7 @@ PETSC_EXTERN PetscErrorCode MMKSPSetFactorSPD(KSP, PetscInt);
 /* interface/kt.c: K~ without a Delassus operator, by a factorization or preconditioned CG */
 PETSC_EXTERN PetscErrorCode MMKtCreate(MMCtx *, PetscBool);
 PETSC_EXTERN PetscErrorCode MMKtSetOperator(MMCtx *, Mat);
-PETSC_EXTERN PetscErrorCode MMKtSolveToTolerance(KSP, PetscReal, Vec, Vec, Vec);
+PETSC_EXTERN PetscErrorCode MMKtSolveToTolerance(KSP, PetscReal, Vec, Vec, Vec, PetscReal *);
 PETSC_EXTERN PetscErrorCode MMKtSolve(MMCtx *, Vec, Vec);
 PETSC_EXTERN PetscErrorCode MMKtDestroy(MMStepSolver *);
 

@@ -114,8 +114,9 @@ PetscErrorCode MMKtSetOperator(MMCtx *ctx, Mat Kt)
 
 /* An iterative solve of ksp x = rhs for the step whose right-hand side is b: it stops at
  * ||r|| <= contact_tol ||b|| on the true residual, the accuracy the energy audit needs (README
- * "Large meshes"), or at the user's -..._ksp_atol if looser; the user's atol is restored after. */
-PetscErrorCode MMKtSolveToTolerance(KSP ksp, PetscReal tol, Vec b, Vec rhs, Vec x)
+ * "Large meshes"), or at the user's -..._ksp_atol if looser; the user's atol is restored after.
+ * *atol_used (if not NULL): that absolute tolerance. */
+PetscErrorCode MMKtSolveToTolerance(KSP ksp, PetscReal tol, Vec b, Vec rhs, Vec x, PetscReal *atol_used)
 {
   PetscReal rtol, atol, bnorm;
   PetscInt  maxit;
@@ -123,6 +124,7 @@ PetscErrorCode MMKtSolveToTolerance(KSP ksp, PetscReal tol, Vec b, Vec rhs, Vec 
   PetscFunctionBeginUser;
   PetscCall(VecNorm(b, NORM_2, &bnorm));
   PetscCall(KSPGetTolerances(ksp, &rtol, &atol, NULL, &maxit));
+  if (atol_used) *atol_used = PetscMax(atol, tol * bnorm);
   PetscCall(KSPSetTolerances(ksp, rtol, PetscMax(atol, tol * bnorm), PETSC_DEFAULT, maxit));
   PetscCall(KSPSolve(ksp, rhs, x));
   PetscCall(KSPSetTolerances(ksp, rtol, atol, PETSC_DEFAULT, maxit));
@@ -137,7 +139,7 @@ PetscErrorCode MMKtSolve(MMCtx *ctx, Vec b, Vec w)
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ctx->log.kt_solve, 0, 0, 0, 0));
-  if (kt->iterative) PetscCall(MMKtSolveToTolerance(kt->ksp, ctx->contact.tol, b, b, w));
+  if (kt->iterative) PetscCall(MMKtSolveToTolerance(kt->ksp, ctx->contact.tol, b, b, w, NULL));
   else PetscCall(KSPSolve(kt->ksp, b, w));
   PetscCall(KSPGetIterationNumber(kt->ksp, &its));
   kt->its += its;

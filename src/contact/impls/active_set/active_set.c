@@ -352,22 +352,21 @@ static PetscErrorCode SolveFree(MMCtx *ctx, Vec b, Vec w, PetscBool loose, Petsc
   MMContact   *ct = &ctx->contact;
   MMActiveSet *as = &ct->as;
   PetscInt     its, maxit;
-  PetscReal    rtol, atol, dtol, rnorm, bnorm;
+  PetscReal    rtol, atol, dtol, rnorm, tight_atol;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ctx->log.as_linear, 0, 0, 0, 0));
   PetscCall(VecZeroEntries(as->dx));
   PetscCall(KSPGetTolerances(as->ksp, &rtol, &atol, &dtol, &maxit));
   if (loose) PetscCall(KSPSetTolerances(as->ksp, PetscMax(rtol, as->inexact_rtol), atol, dtol, maxit));
-  PetscCall(MMKtSolveToTolerance(as->ksp, ct->tol, b, as->r, as->dx));
+  PetscCall(MMKtSolveToTolerance(as->ksp, ct->tol, b, as->r, as->dx, &tight_atol));
   PetscCall(KSPSetTolerances(as->ksp, rtol, atol, dtol, maxit));
   PetscCall(KSPGetIterationNumber(as->ksp, &its));
   as->lin_its += its;
   *tight = (PetscBool)!loose;
   if (loose) {
     PetscCall(KSPGetResidualNorm(as->ksp, &rnorm));
-    PetscCall(VecNorm(b, NORM_2, &bnorm));
-    *tight = (PetscBool)(rnorm <= PetscMax(atol, ct->tol * bnorm));
+    *tight = (PetscBool)(rnorm <= tight_atol);
   }
   PetscCall(VecWAXPY(w, 1.0, as->x0, as->dx));
   PetscCall(PetscLogEventEnd(ctx->log.as_linear, 0, 0, 0, 0));
