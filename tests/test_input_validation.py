@@ -190,3 +190,18 @@ def test_non_finite_state_stops_the_run_with_step_and_quantity(tmp_path):
     assert "The kinetic energy is infinite at step 38" in r.output, r.output[-1500:]
     h = r.history
     assert len(h) == 38 and np.all(np.isfinite(h["total"])) and np.all(np.isfinite(h["kinetic"]))
+
+
+def test_full_formulation_factor_options_are_read_at_set_up(tmp_path):
+    """The full formulation's VI factors K~'s free block inside its iterations, after the options
+    audit: its MUMPS options are read at set-up on a stand-in factor, so a valid one is accepted and
+    applied (another ordering, the same history) and a misspelled one refused."""
+    common = ("-contact_formulation", "full", "-ts_max_steps", 40)
+    ref = run("d1_disk", tmp_path, *common, np_=2, name="default")
+    pord = run("d1_disk", tmp_path, *common, "-contact_mat_mumps_icntl_7", 4, "-contact_mat_mumps_icntl_14", 40, np_=2, name="pord")
+    a, b = ref.history, pord.history
+    assert a["active"].max() > 0 and np.array_equal(a["active"], b["active"])
+    scale = np.abs(a["total"]).max()
+    for k in ("kinetic", "elastic", "work_contact"):
+        assert np.abs(a[k] - b[k]).max() <= 1e-10 * scale, k
+    refused("d1_disk", tmp_path, ["-contact_formulation", "full", "-contact_mat_mumps_icntl_777", "1"], "-contact_mat_mumps_icntl_777 1: unknown")

@@ -26,6 +26,7 @@ static PetscErrorCode FullSetUp(MMCtx *ctx)
   PetscCall(VecDuplicate(ct->qp.b, &ct->lower));
   PetscCall(VecDuplicate(ct->qp.b, &ct->upper));
   PetscCall(MMQPCreate(PetscObjectComm((PetscObject)ctx->op.dm), "contact_", &ct->qp, 0, &ct->snes));
+  PetscCall(MMQPSetFactorSPD(ct->snes, ctx->op.dim));
   PetscCall(SetBounds(ct, ct->lower, ct->upper));
   PetscCall(SNESVISetVariableBounds(ct->snes, ct->lower, ct->upper));
   PetscFunctionReturn(0);
