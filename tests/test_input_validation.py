@@ -205,3 +205,11 @@ def test_full_formulation_factor_options_are_read_at_set_up(tmp_path):
     for k in ("kinetic", "elastic", "work_contact"):
         assert np.abs(a[k] - b[k]).max() <= 1e-10 * scale, k
     refused("d1_disk", tmp_path, ["-contact_formulation", "full", "-contact_mat_mumps_icntl_777", "1"], "-contact_mat_mumps_icntl_777 1: unknown")
+
+
+def test_solve_time_viewers_are_accepted(tmp_path):
+    """-PREFIX_snes_converged_reason and -PREFIX_ksp_view are read when a solve ends, after the options
+    audit: accepted (the VI's refusal message suggests the first), and a misspelling still refused."""
+    r = run("d1_disk", tmp_path, "-contact_snes_converged_reason", "-contact_K_ksp_converged_reason", "-ts_max_steps", 8, np_=0, name="viewers")
+    assert "Nonlinear contact_ solve converged" in r.output
+    refused("d1_disk", tmp_path, ["-contact_snes_converged_reasonn"], "did you mean -contact_snes_converged_reason?")

@@ -15,6 +15,12 @@
  * -options_left): valid, but not yet read when the check runs. */
 static const char *const LateOptions[] = {"-ts_view", "-ts_view_solution", "-options_left", "-options_view", "-malloc_dump", "-malloc_view", "-memory_view", "-objects_dump", "-log_view", "-log_view_memory", "-log_summary", "-log_trace", "-info", "-history", "-help", "-version", "-options_file", "-options_file_yaml", "-malloc_debug", "-on_error_abort", "-start_in_debugger", "-on_error_attach_debugger", "-check_pointer_intensity", "-viewer_binary_skip_info"};
 
+/* The viewers PETSc reads when a solve ends (KSPSolve's -ksp_converged_reason and -ksp_view, SNESSolve's
+ * -snes_converged_reason and -snes_view), for each solver's prefix: valid, but the first solve comes
+ * after the check. The error messages of the solves themselves suggest some of them. */
+static const char *const SolverPrefixes[] = {"contact_", "contact0_", "friction_", "contact_K_", "mass_", "sliding_", "contact_as_"};
+static const char *const SolveTimeViewers[] = {"ksp_converged_reason", "ksp_view", "ksp_view_pre", "ksp_view_final_residual", "ksp_view_mat", "ksp_view_pmat", "ksp_view_rhs", "ksp_view_solution", "snes_converged_reason", "snes_view", "snes_view_pre", "snes_view_solution"};
+
 /* The valid names, parsed from the help text, and which of them take a value. */
 static struct {
   char     **name;
@@ -123,6 +129,21 @@ PetscErrorCode MMOptionsHelpWithoutMesh(MPI_Comm comm, PetscBool *done)
   PetscFunctionReturn(0);
 }
 
+/* Marks the solve-time viewers given as read, or (add_names) adds all of them to the valid names. */
+static PetscErrorCode SolveTimeViewerOptions(PetscBool add_names)
+{
+  PetscFunctionBeginUser;
+  for (size_t p = 0; p < sizeof(SolverPrefixes) / sizeof(SolverPrefixes[0]); ++p)
+    for (size_t v = 0; v < sizeof(SolveTimeViewers) / sizeof(SolveTimeViewers[0]); ++v) {
+      char      name[PETSC_MAX_OPTION_NAME];
+      PetscBool set;
+      PetscCall(PetscSNPrintf(name, sizeof(name), "-%s%s", SolverPrefixes[p], SolveTimeViewers[v]));
+      if (add_names) PetscCall(AddName(name, strlen(name), PETSC_FALSE));
+      else PetscCall(PetscOptionsHasName(NULL, NULL, name, &set));
+    }
+  PetscFunctionReturn(0);
+}
+
 /* The valid option names: the help text of the application and of every object, replayed into
  * memory (PETSc prints help on rank 0, so only rank 0 knows them; only rank 0 prints the error).
  * Without dm, the mesh's options are left out: replaying them on a DM in use could change it. */
@@ -156,6 +177,7 @@ static PetscErrorCode CollectValidNames(MPI_Comm comm, DM dm)
   PetscCall(ParseHelp(text));
   free(text);
   for (size_t i = 0; i < sizeof(LateOptions) / sizeof(LateOptions[0]); ++i) PetscCall(AddName(LateOptions[i], strlen(LateOptions[i]), PETSC_FALSE));
+  PetscCall(SolveTimeViewerOptions(PETSC_TRUE));
   PetscFunctionReturn(0);
 }
 
@@ -266,6 +288,7 @@ PetscErrorCode MMOptionsCheckUnused(MPI_Comm comm, const MMOptions *opt, DM dm)
     PetscBool set;
     PetscCall(PetscOptionsHasName(NULL, NULL, LateOptions[i], &set));
   }
+  PetscCall(SolveTimeViewerOptions(PETSC_FALSE));
   PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
   if (!n) {
     PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
