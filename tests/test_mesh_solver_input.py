@@ -213,3 +213,13 @@ def test_failed_factorization_stops_the_run(mm):
     assert r.returncode != 0
     assert "The factorization for the solve -contact_K_ failed: FACTOR_OUTMEMORY" in r.output
     assert "does not fit in memory" in r.output
+
+
+def test_failed_redundant_factorization_names_the_factor_reason(mm):
+    """2D on 2 ranks holds K~'s factor whole on every rank (PCREDUNDANT), which reports only that its
+    inner PC failed (SUBPC_ERROR): the check reads the inner factor's own reason."""
+    r = mm("d1_disk", "-ts_max_steps", 2, "-contact_K_redundant_pc_type", "lu", "-contact_K_redundant_pc_factor_mat_solver_type", "mumps",
+           "-contact_K_redundant_mat_mumps_icntl_14", -99, "-contact_K_redundant_mat_mumps_icntl_23", 1, np_=2, check=False)
+    assert r.returncode != 0
+    assert "The factorization for the solve -contact_K_ failed: FACTOR_OUTMEMORY" in r.output
+    assert "SUBPC_ERROR" not in r.output

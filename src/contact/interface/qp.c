@@ -72,8 +72,23 @@ static PetscErrorCode KSPCheckDirectPreSolve(KSP ksp, Vec b, Vec x, void *ptr)
   PetscFunctionReturn(0);
 }
 
+/* What to do about a failed factorization, by its reason. */
+static const char *FactorFailureHint(PCFailedReason reason)
+{
+  switch (reason) {
+  case PC_FACTOR_OUTMEMORY:
+    return "The direct factor does not fit in memory: use a coarser mesh, more ranks or memory, or the iterative path: -contact_formulation active_set with CG for K~ (README \"Large meshes\")";
+  case PC_FACTOR_NUMERIC_ZEROPIVOT:
+  case PC_FACTOR_STRUCT_ZEROPIVOT:
+    return "The matrix is singular: check the mesh (inverted or degenerate cells) and the Dirichlet conditions";
+  default:
+    return "Run with -info to see the factorization package's own error (MUMPS: its INFOG(1); a limit set by -..._mat_mumps_icntl_14 or _23 too small gives one), and check the mesh (inverted or degenerate cells) and the Dirichlet conditions";
+  }
+}
+
 /* A factorization that failed (MUMPS out of memory, a zero pivot) does not stop KSPSetUp: its
- * solves would return garbage or nothing. Stop here, on every rank, naming the solve and why. */
+ * solves would return garbage or nothing. Stop here, on every rank, naming the solve and why. The
+ * reason is the factor's own: PCREDUNDANT reports only that its inner PC failed (SUBPC_ERROR). */
 PetscErrorCode MMKSPCheckFactored(KSP ksp)
 {
   PC             pc;
@@ -82,14 +97,13 @@ PetscErrorCode MMKSPCheckFactored(KSP ksp)
   const char    *prefix;
 
   PetscFunctionBeginUser;
-  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(MMKSPGetFactorPC(ksp, &pc, NULL));
   PetscCall(PCGetFailedReasonRank(pc, &reason));
   r = (PetscInt)reason;
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &r, 1, MPIU_INT, MPI_MAX, PetscObjectComm((PetscObject)ksp)));
   if (!r) PetscFunctionReturn(0);
   PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
-  SETERRQ(PetscObjectComm((PetscObject)ksp), PETSC_ERR_LIB, "The factorization for the solve -%s failed: %s. %s", prefix ? prefix : "", PCFailedReasons[r],
-          (PCFailedReason)r == PC_FACTOR_OUTMEMORY ? "The direct factor does not fit in memory: use a coarser mesh, more ranks or memory, or the iterative path: -contact_formulation active_set with CG for K~ (README \"Large meshes\")" : "Check the mesh (inverted or degenerate cells) and the Dirichlet conditions");
+  SETERRQ(PetscObjectComm((PetscObject)ksp), PETSC_ERR_LIB, "The factorization for the solve -%s failed: %s. %s", prefix ? prefix : "", PCFailedReasons[r], FactorFailureHint((PCFailedReason)r));
 }
 
 static PetscErrorCode KSPCheckSolvedPostSolve(KSP ksp, Vec b, Vec x, void *ptr)
