@@ -23,28 +23,32 @@ typedef struct {
   PetscInt   ngroups;
   char     (*name)[MM_FACET_NAME];
   PetscInt  *tag;      /* per group: its physical tag */
-  PetscInt   n, cap;   /* (facet, group) pairs */
-  PetscInt  *group;    /* per pair */
-  PetscInt  *node;     /* per pair: dim node tags */
+  PetscInt   n;        /* (facet, group) pairs */
+  PetscSegBuffer seg;  /* while reading: the pairs as they come */
+  PetscInt  *pair;     /* then: per pair, 1 + dim entries, its group and its dim node tags */
 } FacetFile;
 
 static PetscErrorCode AddPair(FacetFile *f, PetscInt dim, PetscInt g, const long nodes[])
 {
+  PetscInt *p;
+
   PetscFunctionBeginUser;
-  if (f->n == f->cap) {
-    PetscInt *g2, *n2;
-    f->cap = PetscMax(1024, 2 * f->cap);
-    PetscCall(PetscMalloc2(f->cap, &g2, f->cap * dim, &n2));
-    PetscCall(PetscArraycpy(g2, f->group, f->n));
-    PetscCall(PetscArraycpy(n2, f->node, f->n * dim));
-    PetscCall(PetscFree2(f->group, f->node));
-    f->group = g2;
-    f->node  = n2;
-  }
-  f->group[f->n] = g;
-  for (PetscInt a = 0; a < dim; ++a) f->node[f->n * dim + a] = (PetscInt)nodes[a];
+  PetscCall(PetscSegBufferGetInts(f->seg, 1 + dim, &p));
+  p[0] = g;
+  for (PetscInt a = 0; a < dim; ++a) p[1 + a] = (PetscInt)nodes[a];
   ++f->n;
   PetscFunctionReturn(0);
+}
+
+/* Pair i's group, and its node a. */
+static inline PetscInt PairGroup(const FacetFile *f, PetscInt dim, PetscInt i)
+{
+  return f->pair[i * (1 + dim)];
+}
+
+static inline PetscInt PairNode(const FacetFile *f, PetscInt dim, PetscInt i, PetscInt a)
+{
+  return f->pair[i * (1 + dim) + 1 + a];
 }
 
 static PetscInt GroupOfTag(const FacetFile *f, long tag)
@@ -75,11 +79,11 @@ static PetscErrorCode ReadPhysicalNames(FILE *in, PetscInt dim, FacetFile *f, ch
   PetscFunctionReturn(0);
 }
 
-/* $Entities (4.1): the physical tags of each entity of dimension dim-1, as (entity, group) pairs. */
-static PetscErrorCode ReadEntities(FILE *in, PetscInt dim, const FacetFile *f, PetscInt *nent, PetscInt **ent, PetscInt **grp, char **line, size_t *len, PetscBool *ok)
+/* $Entities (4.1): the physical tags of each entity of dimension dim-1, as (entity, group) pairs
+ * appended to eg, two entries each. */
+static PetscErrorCode ReadEntities(FILE *in, PetscInt dim, const FacetFile *f, PetscSegBuffer eg, PetscInt *nent, char **line, size_t *len, PetscBool *ok)
 {
-  long     count[4];
-  PetscInt cap = 0;
+  long count[4];
 
   PetscFunctionBeginUser;
   *nent = 0;
@@ -100,23 +104,15 @@ static PetscErrorCode ReadEntities(FILE *in, PetscInt dim, const FacetFile *f, P
       nphys = strtol(p, &e, 10);
       *ok   = (PetscBool)(e != p && nphys >= 0);
       for (long k = 0; k < nphys && *ok; ++k) {
-        PetscInt g;
+        PetscInt g, *pair;
         p = e;
         g = GroupOfTag(f, strtol(p, &e, 10));
         *ok = (PetscBool)(e != p);
         if (g < 0) continue;
-        if (*nent == cap) {
-          PetscInt *e2, *g2;
-          cap = PetscMax(16, 2 * cap);
-          PetscCall(PetscMalloc2(cap, &e2, cap, &g2));
-          PetscCall(PetscArraycpy(e2, *ent, *nent));
-          PetscCall(PetscArraycpy(g2, *grp, *nent));
-          PetscCall(PetscFree2(*ent, *grp));
-          *ent = e2;
-          *grp = g2;
-        }
-        (*ent)[*nent] = (PetscInt)etag;
-        (*grp)[(*nent)++] = g;
+        PetscCall(PetscSegBufferGetInts(eg, 2, &pair));
+        pair[0] = (PetscInt)etag;
+        pair[1] = g;
+        ++*nent;
       }
     }
   PetscFunctionReturn(0);
@@ -137,7 +133,7 @@ static PetscBool ParseNodes(const char *p, PetscInt skip, PetscInt dim, long nod
 }
 
 /* $Elements, 4.1: blocks "entityDim entityTag type count", the facets' in the groups kept. */
-static PetscErrorCode ReadElements41(FILE *in, PetscInt dim, FacetFile *f, PetscInt nent, const PetscInt ent[], const PetscInt grp[], char **line, size_t *len, PetscBool *ok)
+static PetscErrorCode ReadElements41(FILE *in, PetscInt dim, FacetFile *f, PetscInt nent, const PetscInt eg[], char **line, size_t *len, PetscBool *ok)
 {
   long nblocks, nelem, lo, hi;
   const int facet_type = dim == 3 ? 2 : 1; /* 3-node triangle, 2-node line */
@@ -151,7 +147,7 @@ static PetscErrorCode ReadElements41(FILE *in, PetscInt dim, FacetFile *f, Petsc
     *ok = (PetscBool)(getline(line, len, in) > 0 && sscanf(*line, "%d %ld %d %ld", &edim, &etag, &type, &n) == 4);
     if (!*ok) break;
     if (edim == dim - 1)
-      for (PetscInt i = 0; i < nent; ++i) kept = (PetscBool)(kept || ent[i] == etag);
+      for (PetscInt i = 0; i < nent; ++i) kept = (PetscBool)(kept || eg[2 * i] == etag);
     /* a facet group of another element type (second order): PETSc's reader handles it */
     if (kept && type != facet_type) *ok = PETSC_FALSE;
     for (long i = 0; i < n && *ok; ++i) {
@@ -160,7 +156,7 @@ static PetscErrorCode ReadElements41(FILE *in, PetscInt dim, FacetFile *f, Petsc
       if (!*ok || !kept) continue;
       *ok = ParseNodes(*line, 1, dim, nodes);
       for (PetscInt k = 0; k < nent && *ok; ++k)
-        if (ent[k] == etag) PetscCall(AddPair(f, dim, grp[k], nodes));
+        if (eg[2 * k] == etag) PetscCall(AddPair(f, dim, eg[2 * k + 1], nodes));
     }
   }
   PetscFunctionReturn(0);
@@ -194,10 +190,13 @@ static PetscErrorCode ReadFacetFile(const char file[], PetscInt dim, FacetFile *
   size_t    len = 0;
   double    version = 0;
   int       binary = 1;
-  PetscInt  nent = 0, *ent = NULL, *grp = NULL;
-  PetscBool names = PETSC_FALSE, elements = PETSC_FALSE;
+  PetscInt       nent = 0, *eg = NULL;
+  PetscSegBuffer egs;
+  PetscBool      names = PETSC_FALSE, elements = PETSC_FALSE;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscSegBufferCreate(sizeof(PetscInt), 64, &egs));
+  PetscCall(PetscSegBufferCreate(sizeof(PetscInt), 1024 * (1 + dim), &f->seg));
   *ok = (PetscBool)(in != NULL);
   while (*ok && !elements && getline(&line, &len, in) > 0) {
     if (!strncmp(line, "$MeshFormat", 11)) {
@@ -206,10 +205,12 @@ static PetscErrorCode ReadFacetFile(const char file[], PetscInt dim, FacetFile *
       PetscCall(ReadPhysicalNames(in, dim, f, &line, &len, ok));
       names = PETSC_TRUE;
     } else if (!strncmp(line, "$Entities", 9)) {
-      PetscCall(ReadEntities(in, dim, f, &nent, &ent, &grp, &line, &len, ok));
+      PetscCall(ReadEntities(in, dim, f, egs, &nent, &line, &len, ok));
+      PetscCall(PetscFree(eg));
+      PetscCall(PetscSegBufferExtractAlloc(egs, &eg));
     } else if (!strncmp(line, "$Elements", 9)) {
       if (!names) break; /* no named group: nothing to label */
-      if (version == 4.1) PetscCall(ReadElements41(in, dim, f, nent, ent, grp, &line, &len, ok));
+      if (version == 4.1) PetscCall(ReadElements41(in, dim, f, nent, eg, &line, &len, ok));
       else PetscCall(ReadElements22(in, dim, f, &line, &len, ok));
       elements = PETSC_TRUE;
     }
@@ -217,7 +218,10 @@ static PetscErrorCode ReadFacetFile(const char file[], PetscInt dim, FacetFile *
   *ok = (PetscBool)(*ok && version > 0 && (elements || !names));
   free(line);
   if (in) (void)fclose(in);
-  PetscCall(PetscFree2(ent, grp));
+  PetscCall(PetscFree(eg));
+  PetscCall(PetscSegBufferDestroy(&egs));
+  PetscCall(PetscSegBufferExtractAlloc(f->seg, &f->pair));
+  PetscCall(PetscSegBufferDestroy(&f->seg));
   PetscFunctionReturn(0);
 }
 
@@ -260,7 +264,7 @@ static PetscErrorCode MarkCells(DM dm, PetscInt dim, const FacetFile *f, const P
     const PetscInt *sup;
     for (PetscInt a = 0; a < dim; ++a) {
       PetscInt loc;
-      PetscCall(PetscFindInt(f->node[i * dim + a], nv, sorted, &loc));
+      PetscCall(PetscFindInt(PairNode(f, dim, i, a), nv, sorted, &loc));
       v[a] = loc >= 0 ? vert[loc] : -1;
     }
     if (v[0] >= 0) {
@@ -278,7 +282,7 @@ static PetscErrorCode MarkCells(DM dm, PetscInt dim, const FacetFile *f, const P
         else off = k;
       }
       if (hits != dim) continue;
-      bits[f->group[i]][sup[s] - cStart] |= (PetscInt)1 << off;
+      bits[PairGroup(f, dim, i)][sup[s] - cStart] |= (PetscInt)1 << off;
       ++found;
     }
     if (!found) *bad = i;
@@ -329,12 +333,12 @@ PetscErrorCode MMMeshFacetsRead(MPI_Comm comm, DM dm, const char file[], const P
   if (*ok && !rank) {
     PetscCall(MarkCells(dm, dim, &f, vtag, &bad));
     if (bad >= 0) {
-      badgroup = f.group[bad];
-      for (PetscInt a = 0; a < dim; ++a) badnodes[a] = f.node[bad * dim + a];
+      badgroup = PairGroup(&f, dim, bad);
+      for (PetscInt a = 0; a < dim; ++a) badnodes[a] = PairNode(&f, dim, bad, a);
     }
   }
   PetscCall(PetscFree2(f.name, f.tag));
-  PetscCall(PetscFree2(f.group, f.node));
+  PetscCall(PetscFree(f.pair));
   PetscCallMPI(MPI_Bcast(&badgroup, 1, MPIU_INT, 0, comm));
   PetscCallMPI(MPI_Bcast(badnodes, 3, MPIU_INT, 0, comm));
   if (badgroup >= 0) {
@@ -373,10 +377,12 @@ static PetscErrorCode FaceOpposite(DM dm, PetscInt c, PetscInt off, PetscInt *fa
  * each marked face its group's label and tag. Cells and vertices keep their numbers. */
 PetscErrorCode MMMeshFacetsInterpolate(MMMeshFacets *groups, DM *dm)
 {
-  DM        idm;
-  PetscInt  n = 0, cap = 0, *cell = NULL, *off = NULL, *grp = NULL, v0[2], v1[2];
+  DM             idm;
+  PetscInt       n = 0, *cog = NULL, v0[2], v1[2];
+  PetscSegBuffer seg; /* per marked face: its cell, the cell's vertex off it, its group */
 
   PetscFunctionBeginUser;
+  PetscCall(PetscSegBufferCreate(sizeof(PetscInt), 3 * 1024, &seg));
   /* the (cell, vertex off the face) pairs, while the cones are still the vertices */
   for (PetscInt g = 0; g < groups->ngroups; ++g) {
     char            name[MM_FACET_NAME + 64];
@@ -401,22 +407,13 @@ PetscErrorCode MMMeshFacetsInterpolate(MMMeshFacets *groups, DM *dm)
         const PetscInt *cone;
         PetscCall(DMPlexGetCone(*dm, pts[j], &cone));
         for (PetscInt k = 0; k <= MM_MAX_DIM; ++k) {
+          PetscInt *p;
           if (!(vals[i] >> k & 1)) continue;
-          if (n == cap) {
-            PetscInt *c2, *o2, *g2;
-            cap = PetscMax(1024, 2 * cap);
-            PetscCall(PetscMalloc3(cap, &c2, cap, &o2, cap, &g2));
-            PetscCall(PetscArraycpy(c2, cell, n));
-            PetscCall(PetscArraycpy(o2, off, n));
-            PetscCall(PetscArraycpy(g2, grp, n));
-            PetscCall(PetscFree3(cell, off, grp));
-            cell = c2;
-            off  = o2;
-            grp  = g2;
-          }
-          cell[n] = pts[j];
-          off[n]  = cone[k];
-          grp[n++] = g;
+          PetscCall(PetscSegBufferGetInts(seg, 3, &p));
+          p[0] = pts[j];
+          p[1] = cone[k];
+          p[2] = g;
+          ++n;
         }
       }
       PetscCall(ISRestoreIndices(pis, &pts));
@@ -426,6 +423,8 @@ PetscErrorCode MMMeshFacetsInterpolate(MMMeshFacets *groups, DM *dm)
     PetscCall(ISDestroy(&vis));
     PetscCall(DMRemoveLabel(*dm, name, NULL));
   }
+  PetscCall(PetscSegBufferExtractAlloc(seg, &cog));
+  PetscCall(PetscSegBufferDestroy(&seg));
   PetscCall(DMPlexGetDepthStratum(*dm, 0, &v0[0], &v0[1]));
   PetscCall(DMPlexInterpolate(*dm, &idm));
   PetscCall(DMPlexGetDepthStratum(idm, 0, &v1[0], &v1[1]));
@@ -434,11 +433,12 @@ PetscErrorCode MMMeshFacetsInterpolate(MMMeshFacets *groups, DM *dm)
   *dm = idm;
   for (PetscInt g = 0; g < groups->ngroups; ++g) PetscCall(DMCreateLabel(*dm, groups->name[g]));
   for (PetscInt i = 0; i < n; ++i) {
-    PetscInt face;
-    PetscCall(FaceOpposite(*dm, cell[i], off[i], &face));
-    PetscCall(DMSetLabelValue(*dm, groups->name[grp[i]], face, groups->tag[grp[i]]));
+    const PetscInt *p = cog + 3 * i;
+    PetscInt        face;
+    PetscCall(FaceOpposite(*dm, p[0], p[1], &face));
+    PetscCall(DMSetLabelValue(*dm, groups->name[p[2]], face, groups->tag[p[2]]));
   }
-  PetscCall(PetscFree3(cell, off, grp));
+  PetscCall(PetscFree(cog));
   PetscFunctionReturn(0);
 }
 
