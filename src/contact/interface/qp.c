@@ -334,7 +334,7 @@ static PetscErrorCode ReadDeferredFactorOptions(SNES snes)
 {
   KSP           ksp;
   PC            pc;
-  PetscBool     cholesky, lu;
+  PetscBool     cholesky, lu, available;
   MatSolverType type;
   Mat           A, F;
   MatFactorInfo info;
@@ -354,12 +354,16 @@ static PetscErrorCode ReadDeferredFactorOptions(SNES snes)
   PetscCall(MatSetValue(A, row, row, 1.0, INSERT_VALUES));
   PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatGetFactor(A, type ? type : MATSOLVERPETSC, cholesky ? MAT_FACTOR_CHOLESKY : MAT_FACTOR_LU, &F));
-  PetscCall(MatSetOptionsPrefix(F, prefix));
-  PetscCall(MatFactorInfoInitialize(&info));
-  if (cholesky) PetscCall(MatCholeskyFactorSymbolic(F, A, NULL, &info));
-  else PetscCall(MatLUFactorSymbolic(F, A, NULL, NULL, &info));
-  PetscCall(MatDestroy(&F));
+  /* a package that cannot factor this matrix type is refused by the solve itself, as it would be */
+  PetscCall(MatGetFactorAvailable(A, type ? type : MATSOLVERPETSC, cholesky ? MAT_FACTOR_CHOLESKY : MAT_FACTOR_LU, &available));
+  if (available) {
+    PetscCall(MatGetFactor(A, type ? type : MATSOLVERPETSC, cholesky ? MAT_FACTOR_CHOLESKY : MAT_FACTOR_LU, &F));
+    PetscCall(MatSetOptionsPrefix(F, prefix));
+    PetscCall(MatFactorInfoInitialize(&info));
+    if (cholesky) PetscCall(MatCholeskyFactorSymbolic(F, A, NULL, &info));
+    else PetscCall(MatLUFactorSymbolic(F, A, NULL, NULL, &info));
+    PetscCall(MatDestroy(&F));
+  }
   PetscCall(MatDestroy(&A));
   PetscFunctionReturn(0);
 }
