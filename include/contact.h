@@ -6,6 +6,7 @@ PETSC_EXTERN PetscErrorCode MMKSPCheckFactored(KSP);
 PETSC_EXTERN PetscErrorCode MMKSPSetFailureCheck(KSP);
 PETSC_EXTERN PetscErrorCode MMKSPSetDirectSPD(KSP, PetscInt);
 PETSC_EXTERN PetscErrorCode MMKSPGetFactorPC(KSP, PC *, PetscBool *);
+PETSC_EXTERN PetscErrorCode MMFactorReadOptions(MPI_Comm, const char[], MatSolverType, MatFactorType);
 PETSC_EXTERN PetscErrorCode MMContactRegister(const char[], PetscErrorCode (*)(MMContact *));
 PETSC_EXTERN PetscErrorCode MMContactRegisterAll(void);
 PETSC_EXTERN PetscErrorCode MMContactSetUp(MMCtx *);

@@ -204,7 +204,9 @@ def test_full_formulation_factor_options_are_read_at_set_up(tmp_path):
     scale = np.abs(a["total"]).max()
     for k in ("kinetic", "elastic", "work_contact"):
         assert np.abs(a[k] - b[k]).max() <= 1e-10 * scale, k
-    refused("d1_disk", tmp_path, ["-contact_formulation", "full", "-contact_mat_mumps_icntl_777", "1"], "-contact_mat_mumps_icntl_777 1: unknown")
+    refused("d1_disk", tmp_path, ["-contact_formulation", "full", "-contact_mat_mumps_icntl_777", "1"], "-contact_mat_mumps_icntl_777 1: unknown; did you mean -contact_mat_mumps_icntl_7?")
+    # in 2D K~ is factored by PETSc's Cholesky: MUMPS's options for it are valid but read by nothing
+    refused("d1_disk", tmp_path, ["-contact_K_mat_mumps_icntl_14", "50"], "-contact_K_mat_mumps_icntl_14 50: a valid option, but nothing in this run reads it")
 
 
 def test_solve_time_viewers_are_accepted(tmp_path):

@@ -111,6 +111,9 @@ static PetscErrorCode SolverObjectsFromOptions(MPI_Comm comm)
     PetscCall(KSPSetFromOptions(ksp));
     PetscCall(KSPDestroy(&ksp));
   }
+  /* MUMPS's options of K~'s factor (3D) and of the full formulation's VI factor: their help */
+  PetscCall(MMFactorReadOptions(comm, "contact_K_", MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY));
+  PetscCall(MMFactorReadOptions(comm, "contact_", MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY));
   PetscFunctionReturn(0);
 }
 
@@ -221,7 +224,7 @@ static PetscErrorCode DescribeUnused(const char name[], const char value[], char
     }
   }
   if (eq && best == 0) PetscCall(PetscSNPrintf(msg, len, "  -%s: options take the form \"%s %s\", with a blank, not \"=\"\n", name, key, eq + 1));
-  else if (best == 0) PetscCall(PetscSNPrintf(msg, len, "  -%s%s%s: a valid option, but nothing in this run reads it (friction options need -mu > 0, contact_as_ options the active-set formulation)\n", name, value ? " " : "", value ? value : ""));
+  else if (best == 0) PetscCall(PetscSNPrintf(msg, len, "  -%s%s%s: a valid option, but nothing in this run reads it (friction options need -mu > 0, contact_as_ options the active-set formulation, mat_mumps_ options a MUMPS factor: K~ in 3D, the full formulation's VI)\n", name, value ? " " : "", value ? value : ""));
   else if (closest && best <= PetscMax(2, (PetscInt)strlen(key) / 3)) PetscCall(PetscSNPrintf(msg, len, "  -%s%s%s: unknown; did you mean %s?\n", name, value ? " " : "", value ? value : "", closest));
   else PetscCall(PetscSNPrintf(msg, len, "  -%s%s%s: unknown, and no valid option is close to it (-help lists them)\n", name, value ? " " : "", value ? value : ""));
   PetscFunctionReturn(0);

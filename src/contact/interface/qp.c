@@ -327,18 +327,44 @@ static PetscErrorCode DenseFactorDefault(SNES snes, Mat A, const char prefix[])
   PetscFunctionReturn(0);
 }
 
-/* A factor created inside a VI iteration reads its options (-PREFIX_mat_mumps_icntl_14, ...) only
- * then, after the options audit of the set-up, which would refuse them as unused. A stand-in factor
- * of the PC's kind, of one unit row per rank, reads them now. */
+/* Reads the options of a factor of package type and kind ftype with options prefix prefix, on a
+ * stand-in factor of one unit row per rank: -PREFIX_mat_mumps_icntl_14 and the like are read by
+ * the factor only when it is created, which may come after the options audit (a factor made inside
+ * the VI's iterations), or never in a run whose help lists the options. A package that cannot
+ * factor this matrix type reads nothing (its solve is refused by the solve itself). */
+PetscErrorCode MMFactorReadOptions(MPI_Comm comm, const char prefix[], MatSolverType type, MatFactorType ftype)
+{
+  Mat           A, F;
+  MatFactorInfo info;
+  PetscInt      row;
+  PetscBool     available;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatCreateAIJ(comm, 1, 1, PETSC_DETERMINE, PETSC_DETERMINE, 1, NULL, 0, NULL, &A));
+  PetscCall(MatGetOwnershipRange(A, &row, NULL));
+  PetscCall(MatSetValue(A, row, row, 1.0, INSERT_VALUES));
+  PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatGetFactorAvailable(A, type, ftype, &available));
+  if (available) {
+    PetscCall(MatGetFactor(A, type, ftype, &F));
+    PetscCall(MatSetOptionsPrefix(F, prefix));
+    PetscCall(MatFactorInfoInitialize(&info));
+    if (ftype == MAT_FACTOR_CHOLESKY) PetscCall(MatCholeskyFactorSymbolic(F, A, NULL, &info));
+    else PetscCall(MatLUFactorSymbolic(F, A, NULL, NULL, &info));
+    PetscCall(MatDestroy(&F));
+  }
+  PetscCall(MatDestroy(&A));
+  PetscFunctionReturn(0);
+}
+
+/* The VI's factor (full formulation) is created inside its iterations: its options are read now. */
 static PetscErrorCode ReadDeferredFactorOptions(SNES snes)
 {
   KSP           ksp;
   PC            pc;
-  PetscBool     cholesky, lu, available;
+  PetscBool     cholesky, lu;
   MatSolverType type;
-  Mat           A, F;
-  MatFactorInfo info;
-  PetscInt      row;
   const char   *prefix;
 
   PetscFunctionBeginUser;
@@ -349,22 +375,7 @@ static PetscErrorCode ReadDeferredFactorOptions(SNES snes)
   if (!cholesky && !lu) PetscFunctionReturn(0);
   PetscCall(PCFactorGetMatSolverType(pc, &type));
   PetscCall(PCGetOptionsPrefix(pc, &prefix));
-  PetscCall(MatCreateAIJ(PetscObjectComm((PetscObject)snes), 1, 1, PETSC_DETERMINE, PETSC_DETERMINE, 1, NULL, 0, NULL, &A));
-  PetscCall(MatGetOwnershipRange(A, &row, NULL));
-  PetscCall(MatSetValue(A, row, row, 1.0, INSERT_VALUES));
-  PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
-  /* a package that cannot factor this matrix type is refused by the solve itself, as it would be */
-  PetscCall(MatGetFactorAvailable(A, type ? type : MATSOLVERPETSC, cholesky ? MAT_FACTOR_CHOLESKY : MAT_FACTOR_LU, &available));
-  if (available) {
-    PetscCall(MatGetFactor(A, type ? type : MATSOLVERPETSC, cholesky ? MAT_FACTOR_CHOLESKY : MAT_FACTOR_LU, &F));
-    PetscCall(MatSetOptionsPrefix(F, prefix));
-    PetscCall(MatFactorInfoInitialize(&info));
-    if (cholesky) PetscCall(MatCholeskyFactorSymbolic(F, A, NULL, &info));
-    else PetscCall(MatLUFactorSymbolic(F, A, NULL, NULL, &info));
-    PetscCall(MatDestroy(&F));
-  }
-  PetscCall(MatDestroy(&A));
+  PetscCall(MMFactorReadOptions(PetscObjectComm((PetscObject)snes), prefix, type ? type : MATSOLVERPETSC, cholesky ? MAT_FACTOR_CHOLESKY : MAT_FACTOR_LU));
   PetscFunctionReturn(0);
 }
 
