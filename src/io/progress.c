@@ -60,8 +60,32 @@ static PetscErrorCode FrictionText(const MMOptions *opt, char text[], size_t len
   PetscFunctionReturn(0);
 }
 
-/* The K~ solver as the objects have it after set-up, e.g. "preonly + lu (mumps), prefix contact_K_":
- * the Krylov method, the PC and, for a factorization, the package that computes it. */
+/* The ordering MUMPS used for a factor it computed (INFOG(7)), e.g. ", SCOTCH ordering": which
+ * ordering packages the MUMPS library at run time has decides the fill (docs/scaling.md, "The
+ * factorization"), so the header says which one ran. Empty for another package or before analysis. */
+static PetscErrorCode MumpsOrderingText(PC pc, MatSolverType package, char text[], size_t len)
+{
+  const char *names[] = {"AMD", "user", "AMF", "SCOTCH", "PORD", "METIS", "QAMD"};
+  PetscBool   mumps, done;
+  Mat         F;
+  PetscInt    ord;
+
+  PetscFunctionBeginUser;
+  text[0] = 0;
+  PetscCall(PetscStrcmp(package, MATSOLVERMUMPS, &mumps));
+  if (!mumps) PetscFunctionReturn(0);
+  PetscCall(PCFactorGetMatrix(pc, &F));
+  if (!F) PetscFunctionReturn(0);
+  PetscCall(MatAssembled(F, &done)); /* numerically factored: the analysis has run */
+  if (!done) PetscFunctionReturn(0);
+  PetscCall(MatMumpsGetInfog(F, 7, &ord));
+  if (ord >= 0 && ord < (PetscInt)(sizeof(names) / sizeof(names[0]))) PetscCall(PetscSNPrintf(text, len, ", %s ordering", names[ord]));
+  PetscFunctionReturn(0);
+}
+
+/* The K~ solver as the objects have it after set-up, e.g. "preonly + cholesky (mumps, SCOTCH
+ * ordering), prefix contact_K_": the Krylov method, the PC and, for a factorization, the package
+ * that computes it. */
 static PetscErrorCode SolverText(MMCtx *ctx, char text[], size_t len)
 {
   KSP           krylov, pc_ksp;
@@ -71,7 +95,7 @@ static PetscErrorCode SolverText(MMCtx *ctx, char text[], size_t len)
   MatSolverType package = NULL;
   const char   *kprefix, *pprefix;
   PetscBool     factor, same, redundant;
-  char          pctext[128];
+  char          pctext[160], ordering[32] = "";
 
   PetscFunctionBeginUser;
   PetscCall(MMContactGetStepKSP(ctx, &krylov, &pc_ksp));
@@ -83,7 +107,8 @@ static PetscErrorCode SolverText(MMCtx *ctx, char text[], size_t len)
   PetscCall(PCGetType(pc, &ptype));
   PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &factor, PCLU, PCCHOLESKY, PCILU, PCICC, ""));
   if (factor) PetscCall(PCFactorGetMatSolverType(pc, &package));
-  PetscCall(PetscSNPrintf(pctext, sizeof(pctext), "%s%s%s%s%s", ptype, package ? " (" : "", package ? package : "", package ? ")" : "", redundant ? " of the whole K~ on every rank (redundant)" : ""));
+  if (package) PetscCall(MumpsOrderingText(pc, package, ordering, sizeof(ordering)));
+  PetscCall(PetscSNPrintf(pctext, sizeof(pctext), "%s%s%s%s%s%s", ptype, package ? " (" : "", package ? package : "", ordering, package ? ")" : "", redundant ? " of the whole K~ on every rank (redundant)" : ""));
   PetscCall(PetscStrcmp(kprefix, pprefix, &same));
   PetscCall(PetscSNPrintf(text, len, "%s + %s, prefix%s %s%s%s", ktype, pctext, same ? "" : "es", kprefix, same ? "" : " and ", same ? "" : pprefix));
   PetscFunctionReturn(0);
