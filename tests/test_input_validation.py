@@ -205,6 +205,10 @@ def test_full_formulation_factor_options_are_read_at_set_up(tmp_path):
     for k in ("kinetic", "elastic", "work_contact"):
         assert np.abs(a[k] - b[k]).max() <= 1e-10 * scale, k
     refused("d1_disk", tmp_path, ["-contact_formulation", "full", "-contact_mat_mumps_icntl_777", "1"], "-contact_mat_mumps_icntl_777 1: unknown; did you mean -contact_mat_mumps_icntl_7?")
+    # the options are read on a stand-in factor whose analysis runs with them: PORD on one rank
+    # ended the process there when the stand-in was a single unit row (a graph without edges)
+    one = run("d1_disk", tmp_path, "-contact_formulation", "full", "-ts_max_steps", 3, "-contact_mat_mumps_icntl_7", 4, np_=1, name="pord_1rank")
+    assert "mmcontact summary:" in one.output
     # in 2D K~ is factored by PETSc's Cholesky: MUMPS's options for it are valid but read by nothing
     refused("d1_disk", tmp_path, ["-contact_K_mat_mumps_icntl_14", "50"], "-contact_K_mat_mumps_icntl_14 50: a valid option, but nothing in this run reads it")
 

@@ -162,6 +162,10 @@ def test_header_names_the_3d_factor_ordering_scotch_by_default(tmp_path):
     if linked:
         assert "K~ by preonly + cholesky (mumps, SCOTCH ordering), prefix contact_K_" in scotch.output
     assert "K~ by preonly + cholesky (mumps, PORD ordering), prefix contact_K_" in pord.output
+    # -log_view is read only at the end, so the options audit replays the help, which reads
+    # K~'s MUMPS options on a stand-in factor: with PORD on one rank that ended the process
+    one = run("d2_ball", tmp_path, *common[:-2], "-ts_max_steps", 2, "-contact_K_mat_mumps_icntl_7", 4, "-log_view", np_=1, name="pord_1rank")
+    assert "mmcontact summary:" in one.output and "MatCholFctrNum" in one.output
     a, b = scotch.history, pord.history
     assert a["active"].max() > 0 and a["slipping"].max() > 0
     assert np.array_equal(a["active"], b["active"]) and np.array_equal(a["slipping"], b["slipping"])

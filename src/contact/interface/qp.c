@@ -166,7 +166,9 @@ PetscErrorCode MMKSPSetExactCG(KSP ksp)
  * factor is small, N log N); in 3D, where its factorization and the Delassus columns cost more
  * than MUMPS's (12k-dof D2: 6.1 against 3.4 s, and 29 against 22 s), MUMPS's Cholesky (LDL^T):
  * half the factor of its LU, so on the 113k-dof D2 ball's frictional row set-up 29 -> 21 s and
- * peak memory 3.6 -> 2.4 GiB on one rank, 26 -> 14 s and 4.7 -> 3.1 GiB over two.
+ * peak memory 3.6 -> 2.4 GiB on one rank, 26 -> 14 s and 4.7 -> 3.1 GiB over two. Its ordering is
+ * MUMPS's automatic choice, SCOTCH with the MUMPS build the Makefile links (docs/scaling.md, "The
+ * factorization is the wall"): 3.4e11 flops against 4.7e11 with PORD on that ball.
  * Options still apply on top; nothing is checked here (kt.c also accepts iterative PCs). */
 PetscErrorCode MMKSPSetFactorSPD(KSP ksp, PetscInt dim)
 {
@@ -328,21 +330,30 @@ static PetscErrorCode DenseFactorDefault(SNES snes, Mat A, const char prefix[])
 }
 
 /* Reads the options of a factor of package type and kind ftype with options prefix prefix, on a
- * stand-in factor of one unit row per rank: -PREFIX_mat_mumps_icntl_14 and the like are read by
- * the factor only when it is created, which may come after the options audit (a factor made inside
- * the VI's iterations), or never in a run whose help lists the options. A package that cannot
- * factor this matrix type reads nothing (its solve is refused by the solve itself). */
+ * stand-in factor of a small matrix: -PREFIX_mat_mumps_icntl_14 and the like are read by the
+ * factor only when it is created, which may come after the options audit (a factor made inside
+ * the VI's iterations), or never in a run whose help lists the options. The stand-in's analysis
+ * runs with the user's options, so it is a connected graph of a few dozen rows per rank, a 1D
+ * Laplacian: PORD (-..._mat_mumps_icntl_7 4) ends the process on a graph without edges ("no valid
+ * number of stages in multisector"), as a stand-in of unit rows was. A package that cannot factor
+ * this matrix type reads nothing (its solve is refused by the solve itself). */
 PetscErrorCode MMFactorReadOptions(MPI_Comm comm, const char prefix[], MatSolverType type, MatFactorType ftype)
 {
-  Mat           A, F;
-  MatFactorInfo info;
-  PetscInt      row;
-  PetscBool     available;
+  const PetscInt nlocal = 32;
+  Mat            A, F;
+  MatFactorInfo  info;
+  PetscInt       rstart, rend, n;
+  PetscBool      available;
 
   PetscFunctionBeginUser;
-  PetscCall(MatCreateAIJ(comm, 1, 1, PETSC_DETERMINE, PETSC_DETERMINE, 1, NULL, 0, NULL, &A));
-  PetscCall(MatGetOwnershipRange(A, &row, NULL));
-  PetscCall(MatSetValue(A, row, row, 1.0, INSERT_VALUES));
+  PetscCall(MatCreateAIJ(comm, nlocal, nlocal, PETSC_DETERMINE, PETSC_DETERMINE, 3, NULL, 1, NULL, &A));
+  PetscCall(MatGetOwnershipRange(A, &rstart, &rend));
+  PetscCall(MatGetSize(A, &n, NULL));
+  for (PetscInt i = rstart; i < rend; ++i) {
+    PetscCall(MatSetValue(A, i, i, 2.0, INSERT_VALUES));
+    if (i > 0) PetscCall(MatSetValue(A, i, i - 1, -1.0, INSERT_VALUES));
+    if (i < n - 1) PetscCall(MatSetValue(A, i, i + 1, -1.0, INSERT_VALUES));
+  }
   PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
   PetscCall(MatGetFactorAvailable(A, type, ftype, &available));
