@@ -54,10 +54,10 @@ build/%.o: src/%.c $(HDR) | build petsc-found
 build:
 	@mkdir -p build
 
-# MUMPS with SCOTCH's nested dissection (docs/scaling.md, "The factorization"). Debian builds MUMPS
-# 5.5 twice with one ABI: libdmumps, with the PORD ordering only, which PETSc links, and
-# libdmumps_ptscotch, with SCOTCH and PT-SCOTCH (package libmumps-ptscotch-5.5). Linked ahead of
-# PETSc, the second's dmumps_c is the one PETSc's MUMPS interface calls, and MUMPS's automatic
+# MUMPS with SCOTCH's nested dissection (docs/scaling.md, "The factorization is the wall").
+# Debian builds MUMPS 5.5 twice with one ABI: libdmumps, with the PORD ordering only, which PETSc
+# links, and libdmumps_ptscotch, with SCOTCH and PT-SCOTCH (package libmumps-ptscotch-5.5). Linked
+# ahead of PETSc, the second's dmumps_c is the one PETSc's MUMPS interface calls, and MUMPS's automatic
 # ordering picks SCOTCH: on the 113k-dof D2 ball 28% fewer flops in K~'s factorization than PORD.
 # --no-as-needed keeps the libraries though nothing of ours calls them; the progress header names
 # the ordering MUMPS used (INFOG(7)), and a test checks that it is SCOTCH. Only for a PETSc that

@@ -3,6 +3,7 @@
  * -progress_every seconds of wall time, not every step, so that a long run's log stays short.
  * Both go to rank 0 through PetscPrintf; -quiet turns both off. */
 #include <stdlib.h>
+#include <petsc/private/pcimpl.h> /* pc->setupcalled */
 #include "progress.h"
 #include "contact.h"
 #include "mesh.h"
@@ -60,9 +61,10 @@ static PetscErrorCode FrictionText(const MMOptions *opt, char text[], size_t len
   PetscFunctionReturn(0);
 }
 
-/* The ordering MUMPS used for a factor it computed (INFOG(7)), e.g. ", SCOTCH ordering": which
- * ordering packages the MUMPS library at run time has decides the fill (docs/scaling.md, "The
- * factorization"), so the header says which one ran. Empty for another package or before analysis. */
+/* The ordering MUMPS used for a factor it computed (INFOG(7)), e.g. ", SCOTCH ordering": the
+ * ordering packages of the MUMPS library loaded at run time decide the fill (docs/scaling.md, "The
+ * factorization is the wall"), so the header says which one ran. Empty for another package or
+ * before the factorization. */
 static PetscErrorCode MumpsOrderingText(PC pc, MatSolverType package, char text[], size_t len)
 {
   const char *names[] = {"AMD", "user", "AMF", "SCOTCH", "PORD", "METIS", "QAMD"};
@@ -74,8 +76,8 @@ static PetscErrorCode MumpsOrderingText(PC pc, MatSolverType package, char text[
   text[0] = 0;
   PetscCall(PetscStrcmp(package, MATSOLVERMUMPS, &mumps));
   if (!mumps) PetscFunctionReturn(0);
+  if (!pc->setupcalled) PetscFunctionReturn(0); /* PCFactorGetMatrix() refuses a PC not yet set up */
   PetscCall(PCFactorGetMatrix(pc, &F));
-  if (!F) PetscFunctionReturn(0);
   PetscCall(MatAssembled(F, &done)); /* numerically factored: the analysis has run */
   if (!done) PetscFunctionReturn(0);
   PetscCall(MatMumpsGetInfog(F, 7, &ord));
