@@ -41,6 +41,12 @@ speed-up over that ratio) and speedup_target, "met" when the speed-up is at leas
 95% of the STREAM ratio, whichever is lower (issue 21), else "missed". The ratio is the median of
 STREAM_REPEATS alternating 1- and 2-process measurements: a shared machine moves single readings.
 
+Pairs: a case's 1-rank and 2-rank rows run one after the other, not a suite apart, so that the
+machine's drift does not enter their ratio. A case whose 30 steps take less than SHORT_STEPPING_S
+of wall time on 1 rank (the 2d rows but full, the 3d linear and active-set rows: 1 to 5 s, where one
+busy second moves the speed-up by 20 to 50%) runs PAIR_REPEATS pairs in turn, and each row's s/step
+and set-up are the medians over its runs (column repeats); the other columns come from the first.
+
 Peak memory: the program's summary prints the largest peak RSS over the ranks ("MiB/rank" is the
 max over ranks, src/io/output.c); to get the total, every rank runs under this script's --rank-rss
 mode, which reports the peak RSS of its mmcontact process, and the column peak_mib_total sums them.
@@ -112,7 +118,7 @@ SUITES = [
 FIELDS = ["suite", "problem", "dim", "ranks", "case", "formulation", "mu", "friction_type", "cfl", "dofs", "contact_nodes", "steps", "setup_s",
           "s_per_step", "contact_over_linear", "speedup_2_ranks", "peak_mib_max_rank", "peak_mib_total", "candidates",
           "max_active", "mean_vi_its", "mean_friction_its_in_contact", "max_friction_its", "rejections", "stream_ratio",
-          "speedup_over_stream", "speedup_target", "status"]
+          "speedup_over_stream", "speedup_target", "repeats", "status"]
 SUMMARY = re.compile(r"mmcontact summary: setup ([\d.]+) s; (\d+) steps .* \(([\d.]+) s/step\); peak memory ([\d.]+) MiB/rank")
 DOFS = re.compile(r"(\d+) dofs[ ;(]")
 CONTACT_NODES = re.compile(r"(\d+) contact nodes")
@@ -120,6 +126,7 @@ RANK_RSS = re.compile(r"bench rank peak rss (\d+) kB")
 STREAM = re.compile(r"stream ranks (\d+) triad_mbs ([\d.]+)")
 STREAM_EXE = "build/stream"
 STREAM_REPEATS = 5
+SHORT_STEPPING_S, PAIR_REPEATS = 5.0, 3
 SPEEDUP_TARGET, STREAM_FRACTION = 1.7, 0.95
 
 
@@ -170,6 +177,32 @@ def run(suite, variant, ranks, steps):
                 s_per_step=float(summary.group(3)), peak_mib_max_rank=float(summary.group(4)),
                 peak_mib_total=round(sum(rss), 1) if len(rss) == ranks else "-", rejections=proc.stdout.count("step rejected"),
                 **history_stats(os.path.join(ROOT, out_dir, "history.csv")))
+
+
+def median(values):
+    v = sorted(values)
+    return v[len(v) // 2] if len(v) % 2 else (v[len(v) // 2 - 1] + v[len(v) // 2]) / 2
+
+
+def run_case(suite, variant, ranks, steps):
+    """One case on each of ranks, in turn; a short one (1-rank stepping under SHORT_STEPPING_S) on 1
+    and 2 ranks PAIR_REPEATS times in turn, its s/step and set-up the medians (see the docstring)."""
+    runs = [{n: run(suite, variant, n, steps) for n in ranks}]
+    first = runs[0]
+    short = (ranks == [1, 2] and all(r["status"] == "ok" for r in first.values())
+             and first[1]["s_per_step"] * steps < SHORT_STEPPING_S)
+    for _ in range(PAIR_REPEATS - 1 if short else 0):
+        runs.append({n: run(suite, variant, n, steps) for n in ranks})
+    rows = []
+    for n in ranks:
+        ok = [r[n] for r in runs if r[n]["status"] == "ok"]
+        row = dict(first[n], repeats=len(runs))
+        if len(ok) < len(runs):  # a repeat that fails fails the row
+            row = dict(row, status="failed")
+        elif len(ok) > 1:
+            row.update(s_per_step=round(median(r["s_per_step"] for r in ok), 4), setup_s=round(median(r["setup_s"] for r in ok), 3))
+        rows.append(row)
+    return rows
 
 
 def stream_bandwidth(ranks):
@@ -227,7 +260,7 @@ def print_table(rows):
             ("steps", 5), ("setup_s", 8), ("s_per_step", 10), ("contact_over_linear", 19), ("speedup_2_ranks", 15),
             ("peak_mib_max_rank", 17), ("peak_mib_total", 14), ("candidates", 10), ("max_active", 10), ("mean_vi_its", 11),
             ("mean_friction_its_in_contact", 28), ("max_friction_its", 16), ("rejections", 10), ("stream_ratio", 12), ("speedup_over_stream", 19),
-            ("speedup_target", 14), ("status", 6)]
+            ("speedup_target", 14), ("repeats", 7), ("status", 6)]
     print(" ".join(f"{name:>{width}}" for name, width in cols))
     for r in rows:
         print(" ".join(f"{r[name]:>{width}}" for name, width in cols))
@@ -252,11 +285,13 @@ def main(args):
     rows = []
     for suite in SUITES:
         steps = int(os.environ.get("BENCH_STEPS", suite["steps"]))
-        for n in suite["ranks"]:
-            for variant in suite["variants"]:
-                chosen = suite["suite"] in selected or suite.get("group") in selected or f"{suite['suite']}:{variant['case']}" in selected
-                if chosen and (ranks is None or n in ranks):
-                    rows.append(run(suite, variant, n, steps))
+        suite_rows = []
+        for variant in suite["variants"]:
+            chosen = suite["suite"] in selected or suite.get("group") in selected or f"{suite['suite']}:{variant['case']}" in selected
+            on = [n for n in suite["ranks"] if ranks is None or n in ranks]
+            if chosen and on:
+                suite_rows += run_case(suite, variant, on, steps)
+        rows += sorted(suite_rows, key=lambda r: r["ranks"])  # by ranks, then the variants' order (stable)
     add_ratios(rows)
     add_stream(rows, stream_ratio)
     for path in dict.fromkeys(suite["csv"] for suite in SUITES):
