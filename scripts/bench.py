@@ -42,9 +42,10 @@ speed-up over that ratio) and speedup_target, "met" when the speed-up is at leas
 STREAM_REPEATS alternating 1- and 2-process measurements: a shared machine moves single readings.
 
 Pairs: a case's 1-rank and 2-rank rows run one after the other, not a suite apart, so that the
-machine's drift does not enter their ratio. A case whose 30 steps take less than SHORT_STEPPING_S
-of wall time on 1 rank (the 2d rows but full, the 3d linear and active-set rows: 1 to 5 s, where one
-busy second moves the speed-up by 20 to 50%) runs PAIR_REPEATS pairs in turn, and each row's s/step
+machine's drift does not enter their ratio. A case whose steps take less than SHORT_STEPPING_S of
+wall time on 1 rank in its first run (the 2d rows but full, the 3d linear row, the active-set rows
+on a quiet machine: 1 to 5 s, where one busy second moves the speed-up by 20 to 50%) runs
+PAIR_REPEATS pairs in turn, and each row's s/step
 and set-up are the medians over its runs (column repeats); the other columns come from the first.
 
 Peak memory: the program's summary prints the largest peak RSS over the ranks ("MiB/rank" is the
