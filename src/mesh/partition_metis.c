@@ -229,9 +229,6 @@ static int CompareFaces(const void *a, const void *b)
   return 0;
 }
 
-/* The local cells' graph (cells sharing a face), numbered from offset: every face of every cell,
-   sorted by its vertices, in buckets of its smallest vertex; a face found twice joins two cells.
-   A face shared with another rank's cell is not seen: the mesh is partitioned serial, on rank 0. */
 /* The dim + 1 faces of cell c (its vertices sorted, each face's without one of them). */
 static PetscErrorCode CellFaces(DM dm, PetscInt depth, PetscInt dim, PetscInt c, PetscInt cStart, Face f[])
 {
@@ -249,6 +246,9 @@ static PetscErrorCode CellFaces(DM dm, PetscInt depth, PetscInt dim, PetscInt c,
   PetscFunctionReturn(0);
 }
 
+/* The local cells' graph (cells sharing a face), numbered from offset: every face of every cell,
+   sorted by its vertices, in buckets of its smallest vertex; a face found twice joins two cells.
+   A face shared with another rank's cell is not seen: the mesh is partitioned serial, on rank 0. */
 static PetscErrorCode CellGraph(DM dm, PetscInt offset, PetscInt *n, PetscInt **start, PetscInt **adj)
 {
   PetscInt dim, depth, cStart, cEnd, vStart, vEnd, nf, *bucket, *deg, *fill;

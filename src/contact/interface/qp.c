@@ -395,8 +395,10 @@ static PetscErrorCode ReadDeferredFactorOptions(SNES snes)
  * every time, sequentially on the host. K~'s block is SPD, so MUMPS's Cholesky (half the factor of
  * its LU), and in 2D the approximate minimum fill ordering (ICNTL(7) = 2), whose analysis is cheap
  * where PORD's is not: the 115k-dof D1 disk's 30 steps took 0.93 s/step with LU and PORD, 0.43
- * with Cholesky and AMF (1 rank). In 3D PORD's nested dissection keeps its far smaller fill.
- * vinewtonssls's semismooth Jacobian is not symmetric and keeps LU; options given stay. */
+ * with Cholesky and AMF (1 rank). In 3D MUMPS's automatic ordering stays: a nested dissection
+ * (SCOTCH with the MUMPS build the Makefile links), whose fill is far smaller than AMF's; on the
+ * 33k-dof D2 ball, 2 ranks, 0.95 s/step against 1.04 with PORD. vinewtonssls's semismooth
+ * Jacobian is not symmetric and keeps LU; options given stay. */
 PetscErrorCode MMQPSetFactorSPD(SNES snes, PetscInt dim)
 {
   const char *prefix;
