@@ -27,5 +27,6 @@ typedef struct {
   MMOutput    out;
   MMCheckpoint ckpt;
   MMDeformation deform;
+  MMMomenta   momenta;
   MMLog       log;
 } MMCtx;

@@ -4,7 +4,7 @@
 
 typedef struct {
   PetscLogStage setup, solve, output;
-  PetscLogEvent assemble, contact_solve, contact_recover, friction, energy, checkpoint;
+  PetscLogEvent assemble, contact_solve, contact_recover, friction, energy, momenta, checkpoint;
   PetscLogEvent restart_output; /* -restart: the history cut and the earlier snapshots copied */
   PetscLogEvent candidate_columns, candidate_operator; /* K~^{-1} E columns of new candidates; the set's dense block */
   PetscLogEvent kt_reuse;        /* the kept factor of K~ for the previous dt taken back: no factorization */

@@ -46,6 +46,16 @@ typedef struct {
   PetscInt     *cell_u, *cell_x;           /* offsets in the local displacement and coordinate vectors */
 } MMDeformation;
 
+/* The momentum audit's fixed data (src/ts/momenta.c), built on the first diagnostics: each linear
+ * momentum functional as one w-frame vector, and the vertices of the angular momentum. */
+typedef struct {
+  PetscInt  ng, nJ;             /* ng = 2 dim + nJ functionals; nJ: J's components, 3 in 3D, 1 (z) in 2D */
+  Vec       g[3 * MM_MAX_DIM];  /* g.x: the sums behind ucm or vcm (dim), P (dim) and J (nJ) for x = u or v */
+  Vec       sel[MM_MAX_DIM];    /* Cartesian: 1 at component d of the vertices with no Dirichlet dof */
+  PetscInt  nv;                 /* this rank's owned vertices with no Dirichlet dof */
+  PetscInt *vert_u, *vert_x;    /* their offsets in the owned part of a global vector and in the local coordinates */
+} MMMomenta;
+
 /* Rayleigh damping C = alpha M* + beta K (src/ts/damping.c, docs/method.md section 3). */
 typedef struct {
   PetscReal alpha, beta; /* 1/s and s; both 0: no damping, and nothing below exists */

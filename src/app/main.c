@@ -14,6 +14,7 @@ static char help[] = "mmcontact: elastic bodies hitting and sliding on rigid obs
 #include "newmark.h"
 #include "friction.h"
 #include "energy.h"
+#include "momenta.h"
 #include "output.h"
 #include "log.h"
 #include "checkpoint.h"
@@ -95,6 +96,7 @@ static PetscErrorCode Destroy(MMCtx *ctx, TS *ts)
   PetscCall(MMOptionsDestroy(&ctx->opt));
   PetscCall(MMCheckpointDestroy(&ctx->ckpt));
   PetscCall(MMDeformationDestroy(&ctx->deform));
+  PetscCall(MMMomentaDestroy(&ctx->momenta));
   PetscFunctionReturn(0);
 }
 

@@ -22,6 +22,7 @@ PetscErrorCode MMLogRegister(MMLog *log)
   PetscCall(PetscLogEventRegister("MMCandidateCols", id, &log->candidate_columns));
   PetscCall(PetscLogEventRegister("MMCandidateOp", id, &log->candidate_operator));
   PetscCall(PetscLogEventRegister("MMEnergy", id, &log->energy));
+  PetscCall(PetscLogEventRegister("MMMomenta", id, &log->momenta));
   PetscCall(PetscLogEventRegister("MMCheckpoint", id, &log->checkpoint));
   PetscCall(PetscLogEventRegister("MMRestartOutput", id, &log->restart_output));
   PetscCall(PetscLogEventRegister("MMKtReuse", id, &log->kt_reuse));

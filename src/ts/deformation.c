@@ -71,11 +71,85 @@ static PetscErrorCode CellTable(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
+/* A cell's grad u = D J^{-1} and det F = det(I + grad u), with J = [X_k - X_0] and D = [U_k - U_0]
+ * (columns k = 1..dim); false for a degenerate cell (refused when the mesh is read). Inlined with
+ * dim a constant (ScanCellsDim), so that its small loops unroll: this runs on every cell after
+ * every step, and the generic loops cost 3 times as much. The inverse of J is its adjugate over
+ * det J: one division per cell. */
+static inline PetscBool CellGradient(const PetscInt dim, const PetscScalar *u, const PetscScalar *x, const PetscInt *uo, const PetscInt *xo, PetscReal G[MM_MAX_DIM][MM_MAX_DIM], PetscReal *detF)
+{
+  PetscReal J[MM_MAX_DIM][MM_MAX_DIM], D[MM_MAX_DIM][MM_MAX_DIM], A[MM_MAX_DIM][MM_MAX_DIM], detJ, s;
+
+  for (PetscInt i = 0; i < dim; ++i)
+    for (PetscInt k = 0; k < dim; ++k) {
+      J[i][k] = PetscRealPart(x[xo[k + 1] + i] - x[xo[0] + i]);
+      D[i][k] = PetscRealPart(u[uo[k + 1] + i] - u[uo[0] + i]);
+    }
+  if (dim == 2) {
+    A[0][0] = J[1][1], A[0][1] = -J[0][1], A[1][0] = -J[1][0], A[1][1] = J[0][0];
+    detJ = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+  } else {
+    for (PetscInt i = 0; i < 3; ++i)
+      for (PetscInt j = 0; j < 3; ++j) {
+        const PetscInt i1 = (j + 1) % 3, i2 = (j + 2) % 3, j1 = (i + 1) % 3, j2 = (i + 2) % 3;
+        A[i][j] = J[i1][j1] * J[i2][j2] - J[i1][j2] * J[i2][j1];
+      }
+    detJ = J[0][0] * A[0][0] + J[0][1] * A[1][0] + J[0][2] * A[2][0];
+  }
+  if (detJ == 0) return PETSC_FALSE;
+  s = 1 / detJ;
+  for (PetscInt i = 0; i < dim; ++i)
+    for (PetscInt j = 0; j < dim; ++j) {
+      G[i][j] = 0;
+      for (PetscInt k = 0; k < dim; ++k) G[i][j] += D[i][k] * A[k][j];
+      G[i][j] *= s;
+    }
+  if (dim == 2) *detF = (1 + G[0][0]) * (1 + G[1][1]) - G[0][1] * G[1][0];
+  else
+    *detF = (1 + G[0][0]) * ((1 + G[1][1]) * (1 + G[2][2]) - G[1][2] * G[2][1]) - G[0][1] * (G[1][0] * (1 + G[2][2]) - G[1][2] * G[2][0]) + G[0][2] * (G[1][0] * G[2][1] - (1 + G[1][1]) * G[2][0]);
+  return PETSC_TRUE;
+}
+
+static inline void RecordPlace(const PetscInt dim, const PetscScalar *x, const PetscInt *xo, PetscReal at[])
+{
+  for (PetscInt i = 0; i < dim; ++i) {
+    at[i] = 0;
+    for (PetscInt a = 0; a <= dim; ++a) at[i] += PetscRealPart(x[xo[a] + i]) / (dim + 1);
+  }
+}
+
+/* The pass over this rank's cells, dim a constant once inlined: the smallest det F and the largest
+ * strain, each with its cell's reference centroid. */
+static inline void ScanCellsDim(const PetscInt dim, const MMDeformation *d, const PetscScalar *u, const PetscScalar *x, Worst *w)
+{
+  for (PetscInt c = 0; c < d->ncells; ++c) {
+    const PetscInt *uo = &d->cell_u[(dim + 1) * c], *xo = &d->cell_x[(dim + 1) * c];
+    PetscReal       G[MM_MAX_DIM][MM_MAX_DIM], e[MM_MAX_DIM][MM_MAX_DIM], detF, strain = 0;
+
+    if (!CellGradient(dim, u, x, uo, xo, G, &detF)) continue;
+    for (PetscInt i = 0; i < dim; ++i)
+      for (PetscInt j = 0; j < dim; ++j) {
+        e[i][j] = 0.5 * (G[i][j] + G[j][i]);
+        strain += e[i][j] * e[i][j];
+      }
+    /* the largest principal value is at most the Frobenius norm: the eigenvalues (with their
+     * trigonometry in 3D) only for the cells that could exceed the largest strain found so far */
+    strain = PetscSqrtReal(strain);
+    if (strain > w->strain || PetscIsInfOrNanReal(strain)) strain = PrincipalStrain(dim, e);
+    if (detF < w->detF) {
+      w->detF = detF;
+      RecordPlace(dim, x, xo, w->at_det);
+    }
+    if (strain > w->strain || PetscIsInfOrNanReal(strain)) {
+      w->strain = strain;
+      RecordPlace(dim, x, xo, w->at_strain);
+    }
+  }
+}
+
 static PetscErrorCode ScanCells(MMCtx *ctx, Vec ucart_local, Worst *w)
 {
   MMDeformation     *d = &ctx->deform;
-  DM                 dm = ctx->op.dm;
-  const PetscInt     dim = ctx->op.dim;
   Vec                xl;
   const PetscScalar *u, *x;
 
@@ -84,53 +158,11 @@ static PetscErrorCode ScanCells(MMCtx *ctx, Vec ucart_local, Worst *w)
   w->detF   = PETSC_MAX_REAL;
   w->strain = 0;
   if (!d->cell_u) PetscCall(CellTable(ctx));
-  PetscCall(DMGetCoordinatesLocal(dm, &xl));
+  PetscCall(DMGetCoordinatesLocal(ctx->op.dm, &xl));
   PetscCall(VecGetArrayRead(ucart_local, &u));
   PetscCall(VecGetArrayRead(xl, &x));
-  for (PetscInt c = 0; c < d->ncells; ++c) {
-    const PetscInt *uo = &d->cell_u[(dim + 1) * c], *xo = &d->cell_x[(dim + 1) * c];
-    PetscReal       J[MM_MAX_DIM][MM_MAX_DIM], Ji[MM_MAX_DIM][MM_MAX_DIM], D[MM_MAX_DIM][MM_MAX_DIM], F[MM_MAX_DIM][MM_MAX_DIM], G[MM_MAX_DIM][MM_MAX_DIM], e[MM_MAX_DIM][MM_MAX_DIM];
-    PetscReal       detJ, detF, strain;
-
-    /* J = [X_k - X_0] and D = [U_k - U_0] (columns k = 1..dim): grad u = D J^{-1}, and
-     * det F = det(I + D J^{-1}) = det(J + D) / det J */
-    for (PetscInt i = 0; i < dim; ++i)
-      for (PetscInt k = 0; k < dim; ++k) {
-        J[i][k] = PetscRealPart(x[xo[k + 1] + i] - x[xo[0] + i]);
-        D[i][k] = PetscRealPart(u[uo[k + 1] + i] - u[uo[0] + i]);
-        F[i][k] = J[i][k] + D[i][k];
-      }
-    detJ = MMDetInverse(dim, J, Ji);
-    if (detJ == 0) continue; /* degenerate cells are refused when the mesh is read */
-    detF = MMDetInverse(dim, F, NULL) / detJ;
-    for (PetscInt i = 0; i < dim; ++i)
-      for (PetscInt j = 0; j < dim; ++j) {
-        G[i][j] = 0;
-        for (PetscInt k = 0; k < dim; ++k) G[i][j] += D[i][k] * Ji[k][j];
-      }
-    for (PetscInt i = 0; i < dim; ++i)
-      for (PetscInt j = 0; j < dim; ++j) e[i][j] = 0.5 * (G[i][j] + G[j][i]);
-    /* the largest principal value is at most the Frobenius norm: the eigenvalues (with their
-     * trigonometry in 3D) only for the cells that could exceed the largest strain found so far */
-    strain = 0;
-    for (PetscInt i = 0; i < dim; ++i)
-      for (PetscInt j = 0; j < dim; ++j) strain += e[i][j] * e[i][j];
-    strain = PetscSqrtReal(strain);
-    if (strain > w->strain || PetscIsInfOrNanReal(strain)) strain = PrincipalStrain(dim, e);
-    if (detF < w->detF || strain > w->strain || PetscIsInfOrNanReal(strain)) {
-      PetscReal centroid[MM_MAX_DIM] = {0};
-      for (PetscInt a = 0; a <= dim; ++a)
-        for (PetscInt i = 0; i < dim; ++i) centroid[i] += PetscRealPart(x[xo[a] + i]) / (dim + 1);
-      if (detF < w->detF) {
-        w->detF = detF;
-        for (PetscInt i = 0; i < dim; ++i) w->at_det[i] = centroid[i];
-      }
-      if (strain > w->strain || PetscIsInfOrNanReal(strain)) {
-        w->strain = strain;
-        for (PetscInt i = 0; i < dim; ++i) w->at_strain[i] = centroid[i];
-      }
-    }
-  }
+  if (ctx->op.dim == 2) ScanCellsDim(2, d, u, x, w);
+  else ScanCellsDim(3, d, u, x, w);
   PetscCall(VecRestoreArrayRead(xl, &x));
   PetscCall(VecRestoreArrayRead(ucart_local, &u));
   PetscFunctionReturn(0);

@@ -1,0 +1,228 @@
+/* The momentum audit of every step: the centre of mass, the scheme's own momenta P and J, and the
+ * physical angular momentum (docs/method.md section 4, "Momentum").
+ *
+ * Every one but the angular momentum is a fixed linear functional of u or v: a sum over vertices
+ * of a Cartesian component of M* u or M* v, weighted by 1 or by a reference coordinate. With
+ * f = T f_w the map of forces to Cartesian (T = Q N^{-T}, fem.c) and e the Cartesian weights,
+ * e.(T M* x) = (M* T^T e).x, and T^T = N^{-1} Q^T is the map of displacements from Cartesian. So
+ * each functional is a vector g = M* (from Cartesian)(e), built once, and a step costs one
+ * multiple dot product on u and v: no product with M* and no Cartesian copy of them. */
+#include "momenta.h"
+#include "fem.h"
+
+/* The Cartesian weights, on this rank's owned vertices:
+ * - e[d]: 1 at every free component d (the centre of mass; a Dirichlet component counts as 0);
+ * - p[d]: 1 at component d of the vertices with no Dirichlet dof (P, the loads' resultant);
+ * - a[k]: the weights of J_k = sum_i (X_i x q_i)_k over the same vertices (k = z alone in 2D);
+ * and the table of those vertices for the angular momentum. */
+static PetscErrorCode MomentaWeights(MMCtx *ctx, Vec e[], Vec p[], Vec a[])
+{
+  MMMomenta         *mo  = &ctx->momenta;
+  DM                 dm  = ctx->op.dm;
+  const PetscInt     dim = ctx->op.dim;
+  PetscSection       gs, ls, cs;
+  PetscInt           vStart, vEnd, rstart, nv = 0;
+  Vec                X;
+  const PetscScalar *x;
+  PetscScalar       *ew[MM_MAX_DIM], *pw[MM_MAX_DIM], *aw[3];
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalSection(dm, &gs));
+  PetscCall(DMGetLocalSection(dm, &ls));
+  PetscCall(DMGetCoordinateSection(dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(PetscMalloc2(vEnd - vStart, &mo->vert_u, vEnd - vStart, &mo->vert_x));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(VecGetArray(e[d], &ew[d]));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(VecGetArray(p[d], &pw[d]));
+  for (PetscInt k = 0; k < mo->nJ; ++k) PetscCall(VecGetArray(a[k], &aw[k]));
+  PetscCall(VecGetOwnershipRange(e[0], &rstart, NULL));
+  PetscCall(VecGetArrayRead(X, &x));
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt        goff, ncdof, xoff, i;
+    const PetscInt *cidx;
+    PetscReal       r[3] = {0, 0, 0};
+
+    PetscCall(PetscSectionGetOffset(gs, v, &goff));
+    if (goff < 0) continue; /* another rank's */
+    PetscCall(PetscSectionGetConstraintDof(ls, v, &ncdof));
+    PetscCall(PetscSectionGetConstraintIndices(ls, v, &cidx));
+    i = goff - rstart;
+    for (PetscInt c = 0, j = i; c < dim; ++c) { /* the free components, in the section's order */
+      PetscBool fixed = PETSC_FALSE;
+      for (PetscInt k = 0; k < ncdof; ++k) fixed = (PetscBool)(fixed || cidx[k] == c);
+      if (!fixed) ew[c][j++] = 1;
+    }
+    if (ncdof) continue; /* P, J and the angular momentum leave out the vertices held by Dirichlet data */
+    PetscCall(PetscSectionGetOffset(cs, v, &xoff));
+    for (PetscInt d = 0; d < dim; ++d) {
+      r[d]         = PetscRealPart(x[xoff + d]);
+      pw[d][i + d] = 1;
+    }
+    if (dim == 3) { /* J_0 = r1 q2 - r2 q1, J_1 = r2 q0 - r0 q2, J_2 = r0 q1 - r1 q0 */
+      aw[0][i + 1] = -r[2], aw[0][i + 2] = r[1];
+      aw[1][i + 0] = r[2], aw[1][i + 2] = -r[0];
+      aw[2][i + 0] = -r[1], aw[2][i + 1] = r[0];
+    } else {
+      aw[0][i + 0] = -r[1], aw[0][i + 1] = r[0];
+    }
+    mo->vert_u[nv]   = i;
+    mo->vert_x[nv++] = xoff;
+  }
+  mo->nv = nv;
+  PetscCall(VecRestoreArrayRead(X, &x));
+  for (PetscInt k = 0; k < mo->nJ; ++k) PetscCall(VecRestoreArray(a[k], &aw[k]));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(VecRestoreArray(p[d], &pw[d]));
+  for (PetscInt d = 0; d < dim; ++d) PetscCall(VecRestoreArray(e[d], &ew[d]));
+  PetscFunctionReturn(0);
+}
+
+/* Once, on the final M* (after the mass redistribution): the functionals g and the selectors of P. */
+static PetscErrorCode MomentaSetUp(MMCtx *ctx)
+{
+  MMMomenta     *mo  = &ctx->momenta;
+  const PetscInt dim = ctx->op.dim;
+  Vec            w[3 * MM_MAX_DIM], t;
+
+  PetscFunctionBeginUser;
+  mo->nJ = dim == 3 ? 3 : 1;
+  mo->ng = 2 * dim + mo->nJ;
+  for (PetscInt k = 0; k < mo->ng; ++k) {
+    PetscCall(DMCreateGlobalVector(ctx->op.dm, &w[k]));
+    PetscCall(VecZeroEntries(w[k]));
+  }
+  PetscCall(MomentaWeights(ctx, w, &w[dim], &w[2 * dim]));
+  PetscCall(VecDuplicate(w[0], &t));
+  for (PetscInt k = 0; k < mo->ng; ++k) {
+    PetscCall(VecDuplicate(w[0], &mo->g[k]));
+    PetscCall(MMFEFromCartesian(ctx, w[k], t));
+    PetscCall(MatMult(ctx->op.Mstar, t, mo->g[k]));
+  }
+  PetscCall(VecDestroy(&t));
+  for (PetscInt d = 0; d < dim; ++d) mo->sel[d] = w[dim + d]; /* kept, for the loads' resultant */
+  for (PetscInt k = 0; k < mo->ng; ++k)
+    if (k < dim || k >= 2 * dim) PetscCall(VecDestroy(&w[k]));
+  PetscFunctionReturn(0);
+}
+
+/* The physical angular momentum about the centre of mass, L = sum_i m_i (x_i - x_cm) x v_i with the
+ * lumped standard mass, x_i = X_i + u_i the current position, over the nodes whose dofs are all
+ * free. It stays the standard mass's: the modified mass lacks the contact nodes' normal masses, so
+ * it has no single centre, and its rigid translation would carry an angular momentum. The scheme's
+ * own (M*) momenta are P and J. Quadratic in the state, so a pass over the vertex table. */
+static PetscErrorCode AngularMomentum(MMCtx *ctx, MMHistory *h)
+{
+  MMMomenta         *mo = &ctx->momenta;
+  DM                 dm = ctx->op.dm;
+  const PetscInt     dim = ctx->op.dim;
+  Vec                uc, vc, X;
+  const PetscScalar *u, *v, *m, *x;
+  PetscReal          sum[1 + MM_MAX_DIM] = {0}, cm[MM_MAX_DIM], L[3] = {0, 0, 0};
+  MPI_Comm           comm = PetscObjectComm((PetscObject)dm);
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalVector(dm, &uc));
+  PetscCall(DMGetGlobalVector(dm, &vc));
+  PetscCall(MMFEToCartesian(ctx, ctx->state.u, uc));
+  PetscCall(MMFEToCartesian(ctx, ctx->state.v, vc));
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  PetscCall(VecGetArrayRead(uc, &u));
+  PetscCall(VecGetArrayRead(vc, &v));
+  PetscCall(VecGetArrayRead(ctx->op.mass_lumped_cart, &m));
+  PetscCall(VecGetArrayRead(X, &x));
+  /* first pass: mass and first moment of the current position */
+  for (PetscInt n = 0; n < mo->nv; ++n) {
+    const PetscInt i = mo->vert_u[n], xo = mo->vert_x[n];
+    sum[0] += PetscRealPart(m[i]);
+    for (PetscInt d = 0; d < dim; ++d) sum[1 + d] += PetscRealPart(m[i] * (x[xo + d] + u[i + d]));
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, 1 + MM_MAX_DIM, MPIU_REAL, MPIU_SUM, comm));
+  for (PetscInt d = 0; d < dim; ++d) cm[d] = sum[1 + d] / PetscMax(sum[0], PETSC_SMALL);
+  /* second pass: sum m (x + u - x_cm) x v */
+  for (PetscInt n = 0; n < mo->nv; ++n) {
+    const PetscInt i = mo->vert_u[n], xo = mo->vert_x[n];
+    const PetscReal mp = PetscRealPart(m[i]);
+    PetscReal       r[3] = {0, 0, 0}, w[3] = {0, 0, 0};
+    for (PetscInt d = 0; d < dim; ++d) {
+      r[d] = PetscRealPart(x[xo + d] + u[i + d]) - cm[d];
+      w[d] = PetscRealPart(v[i + d]);
+    }
+    L[0] += mp * (r[1] * w[2] - r[2] * w[1]);
+    L[1] += mp * (r[2] * w[0] - r[0] * w[2]);
+    L[2] += mp * (r[0] * w[1] - r[1] * w[0]);
+  }
+  PetscCall(MPIU_Allreduce(L, h->L, 3, MPIU_REAL, MPIU_SUM, comm));
+  PetscCall(VecRestoreArrayRead(X, &x));
+  PetscCall(VecRestoreArrayRead(ctx->op.mass_lumped_cart, &m));
+  PetscCall(VecRestoreArrayRead(vc, &v));
+  PetscCall(VecRestoreArrayRead(uc, &u));
+  PetscCall(DMRestoreGlobalVector(dm, &vc));
+  PetscCall(DMRestoreGlobalVector(dm, &uc));
+  PetscFunctionReturn(0);
+}
+
+/* The resultant of the loads L, Cartesian, over the vertices with no Dirichlet dof: a constant L's
+ * on the initial state only, L(t)'s at every step. */
+static PetscErrorCode LoadResultant(MMCtx *ctx, MMHistory *h)
+{
+  MMMomenta  *mo = &ctx->momenta;
+  Vec         lc;
+  PetscScalar r[MM_MAX_DIM];
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalVector(ctx->op.dm, &lc));
+  PetscCall(MMFEForceToCartesian(ctx, ctx->op.load, lc));
+  PetscCall(VecMDot(lc, ctx->op.dim, mo->sel, r));
+  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) h->load[d] = d < ctx->op.dim ? PetscRealPart(r[d]) : 0;
+  PetscCall(DMRestoreGlobalVector(ctx->op.dm, &lc));
+  PetscFunctionReturn(0);
+}
+
+/* Centre-of-mass displacement and velocity of the discrete system, weighted by M*, whose momentum
+ * the scheme conserves: the modified mass lacks the contact nodes' normal masses, so its mass for a
+ * rigid translation is a matrix m*, not m I, and ucm = m*^-1 sum_i (M* u)_i, vcm = m*^-1 sum_i
+ * (M* v)_i. The scheme's momenta P = sum_i (M* v)_i and J = sum_i X_i x (M* v)_i about the origin
+ * over the vertices with no Dirichlet dof: rigid translations and infinitesimal rotations are in
+ * the kernel of the stiffness, so P and J change over a step by dt times the trapezoidal mean of
+ * the resultant (and moment) of L and the contact forces, whatever the deformation. */
+PetscErrorCode MMRigidBodyDiagnostics(MMCtx *ctx, MMHistory *h)
+{
+  MMMomenta     *mo  = &ctx->momenta;
+  const PetscInt dim = ctx->op.dim;
+  PetscScalar    su[MM_MAX_DIM], sv[3 * MM_MAX_DIM];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ctx->log.momenta, 0, 0, 0, 0));
+  if (!mo->ng) PetscCall(MomentaSetUp(ctx));
+  /* one reduction for both */
+  PetscCall(VecMDotBegin(ctx->state.u, dim, mo->g, su));
+  PetscCall(VecMDotBegin(ctx->state.v, mo->ng, mo->g, sv));
+  PetscCall(VecMDotEnd(ctx->state.u, dim, mo->g, su));
+  PetscCall(VecMDotEnd(ctx->state.v, mo->ng, mo->g, sv));
+  for (PetscInt a = 0; a < dim; ++a) {
+    h->ucm[a] = h->vcm[a] = 0;
+    for (PetscInt b = 0; b < dim; ++b) {
+      h->ucm[a] += ctx->op.mass_star_inv[a * dim + b] * PetscRealPart(su[b]);
+      h->vcm[a] += ctx->op.mass_star_inv[a * dim + b] * PetscRealPart(sv[b]);
+    }
+  }
+  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) h->P[d] = d < dim ? PetscRealPart(sv[dim + d]) : 0;
+  for (PetscInt k = 0; k < 3; ++k) h->J[k] = 0;
+  if (dim == 3)
+    for (PetscInt k = 0; k < 3; ++k) h->J[k] = PetscRealPart(sv[2 * dim + k]);
+  else h->J[2] = PetscRealPart(sv[2 * dim]);
+  if (h->step == 0 || ctx->loads.in_time) PetscCall(LoadResultant(ctx, h));
+  PetscCall(AngularMomentum(ctx, h));
+  PetscCall(PetscLogEventEnd(ctx->log.momenta, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMMomentaDestroy(MMMomenta *mo)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < mo->ng; ++k) PetscCall(VecDestroy(&mo->g[k]));
+  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) PetscCall(VecDestroy(&mo->sel[d]));
+  PetscCall(PetscFree2(mo->vert_u, mo->vert_x));
+  mo->ng = 0;
+  PetscFunctionReturn(0);
+}
