@@ -74,8 +74,8 @@ static PetscErrorCode CellTable(MMCtx *ctx)
 /* A cell's grad u = D J^{-1} and det F = det(I + grad u), with J = [X_k - X_0] and D = [U_k - U_0]
  * (columns k = 1..dim); false for a degenerate cell (refused when the mesh is read). Inlined with
  * dim a constant (ScanCellsDim), so that its small loops unroll: this runs on every cell after
- * every step, and the generic loops cost 3 times as much. The inverse of J is its adjugate over
- * det J: one division per cell. */
+ * every step (the 115k-dof disk's audit: 3.6 ms a step, 4.8 with the generic loops and a full
+ * inverse). The inverse of J is its adjugate over det J: one division per cell. */
 static inline PetscBool CellGradient(const PetscInt dim, const PetscScalar *u, const PetscScalar *x, const PetscInt *uo, const PetscInt *xo, PetscReal G[MM_MAX_DIM][MM_MAX_DIM], PetscReal *detF)
 {
   PetscReal J[MM_MAX_DIM][MM_MAX_DIM], D[MM_MAX_DIM][MM_MAX_DIM], A[MM_MAX_DIM][MM_MAX_DIM], detJ, s;
@@ -86,7 +86,10 @@ static inline PetscBool CellGradient(const PetscInt dim, const PetscScalar *u, c
       D[i][k] = PetscRealPart(u[uo[k + 1] + i] - u[uo[0] + i]);
     }
   if (dim == 2) {
-    A[0][0] = J[1][1], A[0][1] = -J[0][1], A[1][0] = -J[1][0], A[1][1] = J[0][0];
+    A[0][0] = J[1][1];
+    A[0][1] = -J[0][1];
+    A[1][0] = -J[1][0];
+    A[1][1] = J[0][0];
     detJ = J[0][0] * J[1][1] - J[0][1] * J[1][0];
   } else {
     for (PetscInt i = 0; i < 3; ++i)

@@ -59,12 +59,18 @@ static PetscErrorCode MomentaWeights(MMCtx *ctx, Vec e[], Vec p[], Vec a[])
       r[d]         = PetscRealPart(x[xoff + d]);
       pw[d][i + d] = 1;
     }
-    if (dim == 3) { /* J_0 = r1 q2 - r2 q1, J_1 = r2 q0 - r0 q2, J_2 = r0 q1 - r1 q0 */
-      aw[0][i + 1] = -r[2], aw[0][i + 2] = r[1];
-      aw[1][i + 0] = r[2], aw[1][i + 2] = -r[0];
-      aw[2][i + 0] = -r[1], aw[2][i + 1] = r[0];
+    /* J_k = sum_i q_i . (e_k x r_i): J_0 = r1 q2 - r2 q1, J_1 = r2 q0 - r0 q2, J_2 = r0 q1 - r1 q0
+     * (in 2D only J_2, the first functional) */
+    if (dim == 3) {
+      aw[0][i + 1] = -r[2];
+      aw[0][i + 2] = r[1];
+      aw[1][i + 0] = r[2];
+      aw[1][i + 2] = -r[0];
+      aw[2][i + 0] = -r[1];
+      aw[2][i + 1] = r[0];
     } else {
-      aw[0][i + 0] = -r[1], aw[0][i + 1] = r[0];
+      aw[0][i + 0] = -r[1];
+      aw[0][i + 1] = r[0];
     }
     mo->vert_u[nv]   = i;
     mo->vert_x[nv++] = xoff;
