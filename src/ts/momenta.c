@@ -10,67 +10,53 @@
 #include "momenta.h"
 #include "fem.h"
 
-/* The Cartesian weights, on this rank's owned vertices:
- * - e[d]: 1 at every free component d (the centre of mass; a Dirichlet component counts as 0);
- * - p[d]: 1 at component d of the vertices with no Dirichlet dof (P, the loads' resultant);
- * - a[k]: the weights of J_k = sum_i (X_i x q_i)_k over the same vertices (k = z alone in 2D);
+/* The Cartesian weights, on this rank's owned vertices. They are rigid-body modes about the
+ * origin (src/fem/rigid_modes.c):
+ * - e[d], the translations over every free component (MMFERigidModesCartesian: a Dirichlet
+ *   component counts as 0): the centre of mass;
+ * - p[d] and a[k], the translations and the rotations e_k x X (k = z alone in 2D), over the vertices
+ *   with no Dirichlet dof only: P, the loads' resultant, and J_k = sum_i (X_i x q_i)_k = sum_i
+ *   q_i . (e_k x X_i);
  * and the table of those vertices for the angular momentum. */
 static PetscErrorCode MomentaWeights(MMCtx *ctx, Vec e[], Vec p[], Vec a[])
 {
   MMMomenta         *mo  = &ctx->momenta;
   DM                 dm  = ctx->op.dm;
   const PetscInt     dim = ctx->op.dim;
+  const PetscReal    origin[MM_MAX_DIM] = {0, 0, 0};
   PetscSection       gs, ls, cs;
   PetscInt           vStart, vEnd, rstart, nv = 0;
   Vec                X;
   const PetscScalar *x;
-  PetscScalar       *ew[MM_MAX_DIM], *pw[MM_MAX_DIM], *aw[3];
+  PetscScalar       *pw[MM_MAX_DIM], *aw[3];
 
   PetscFunctionBeginUser;
+  PetscCall(MMFERigidModesCartesian(ctx, origin, 1.0, dim, e));
   PetscCall(DMGetGlobalSection(dm, &gs));
   PetscCall(DMGetLocalSection(dm, &ls));
   PetscCall(DMGetCoordinateSection(dm, &cs));
   PetscCall(DMGetCoordinatesLocal(dm, &X));
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
   PetscCall(PetscMalloc2(vEnd - vStart, &mo->vert_u, vEnd - vStart, &mo->vert_x));
-  for (PetscInt d = 0; d < dim; ++d) PetscCall(VecGetArray(e[d], &ew[d]));
   for (PetscInt d = 0; d < dim; ++d) PetscCall(VecGetArray(p[d], &pw[d]));
   for (PetscInt k = 0; k < mo->nJ; ++k) PetscCall(VecGetArray(a[k], &aw[k]));
   PetscCall(VecGetOwnershipRange(e[0], &rstart, NULL));
   PetscCall(VecGetArrayRead(X, &x));
   for (PetscInt v = vStart; v < vEnd; ++v) {
-    PetscInt        goff, ncdof, xoff, i;
-    const PetscInt *cidx;
-    PetscReal       r[3] = {0, 0, 0};
+    PetscInt  goff, ncdof, xoff, i;
+    PetscReal r[MM_MAX_DIM] = {0, 0, 0}, T[MM_MAX_DIM][MM_MAX_RIGID];
 
     PetscCall(PetscSectionGetOffset(gs, v, &goff));
     if (goff < 0) continue; /* another rank's */
     PetscCall(PetscSectionGetConstraintDof(ls, v, &ncdof));
-    PetscCall(PetscSectionGetConstraintIndices(ls, v, &cidx));
-    i = goff - rstart;
-    for (PetscInt c = 0, j = i; c < dim; ++c) { /* the free components, in the section's order */
-      PetscBool fixed = PETSC_FALSE;
-      for (PetscInt k = 0; k < ncdof; ++k) fixed = (PetscBool)(fixed || cidx[k] == c);
-      if (!fixed) ew[c][j++] = 1;
-    }
     if (ncdof) continue; /* P, J and the angular momentum leave out the vertices held by Dirichlet data */
     PetscCall(PetscSectionGetOffset(cs, v, &xoff));
-    for (PetscInt d = 0; d < dim; ++d) {
-      r[d]         = PetscRealPart(x[xoff + d]);
-      pw[d][i + d] = 1;
-    }
-    /* J_k = sum_i q_i . (e_k x r_i): J_0 = r1 q2 - r2 q1, J_1 = r2 q0 - r0 q2, J_2 = r0 q1 - r1 q0
-     * (in 2D only J_2, the first functional) */
-    if (dim == 3) {
-      aw[0][i + 1] = -r[2];
-      aw[0][i + 2] = r[1];
-      aw[1][i + 0] = r[2];
-      aw[1][i + 2] = -r[0];
-      aw[2][i + 0] = -r[1];
-      aw[2][i + 1] = r[0];
-    } else {
-      aw[0][i + 0] = -r[1];
-      aw[0][i + 1] = r[0];
+    i = goff - rstart;
+    for (PetscInt c = 0; c < dim; ++c) r[c] = PetscRealPart(x[xoff + c]);
+    MMFERigidModeMatrix(dim, r, T);
+    for (PetscInt c = 0; c < dim; ++c) {
+      for (PetscInt d = 0; d < dim; ++d) pw[d][i + c] = T[c][d];
+      for (PetscInt k = 0; k < mo->nJ; ++k) aw[k][i + c] = T[c][dim + k];
     }
     mo->vert_u[nv]   = i;
     mo->vert_x[nv++] = xoff;
@@ -79,7 +65,6 @@ static PetscErrorCode MomentaWeights(MMCtx *ctx, Vec e[], Vec p[], Vec a[])
   PetscCall(VecRestoreArrayRead(X, &x));
   for (PetscInt k = 0; k < mo->nJ; ++k) PetscCall(VecRestoreArray(a[k], &aw[k]));
   for (PetscInt d = 0; d < dim; ++d) PetscCall(VecRestoreArray(p[d], &pw[d]));
-  for (PetscInt d = 0; d < dim; ++d) PetscCall(VecRestoreArray(e[d], &ew[d]));
   PetscFunctionReturn(0);
 }
 
