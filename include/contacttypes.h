@@ -25,6 +25,17 @@ typedef struct {
   PetscBool    full_ok;
 } MMColumnCache;
 
+/* The map from the solution rows of a MUMPS factor of K~ on several ranks to PETSc's rows, for the
+ * candidate columns (src/contact/impls/condensed/mumps_columns.c): MUMPS keeps the same rows on each
+ * rank for every solve with one factorization, so the map is built once per factorization. */
+typedef struct {
+  Mat          F;               /* the factor whose solution rows sf maps */
+  PetscSF      sf;              /* MUMPS's solution rows here (leaves) -> PETSc's owned rows (roots) */
+  int         *isol, *isol_map; /* MUMPS_INT, from 1: the rows of the last solve here; those sf maps */
+  PetscScalar *sol;             /* the last solve's block on those rows, lsol x nb_cap */
+  PetscInt     lsol, nb_cap;
+} MMMumpsColumns;
+
 /* K~ and its factor (or PC) for the previous dt, with what the formulation built on it
  * (-contact_K_keep): the condensed formulation's columns, the active-set formulation's diag(K~). */
 typedef struct {
@@ -69,6 +80,7 @@ typedef struct {
   PetscInt     evicted;             /* cached nodes dropped under the memory cap, over the run */
   PetscInt     recover_solves;      /* steps recovered by a solve, the full columns being over the cap */
   PetscInt     max_set;             /* the largest set of the run */
+  MMMumpsColumns mumps;             /* the columns' solves on a MUMPS factor on several ranks */
 } MMCandidates;
 /* The K~ solver of the paths that build no Delassus operator (-contact 0 and the active-set
  * formulation): a factorization, or CG with an algebraic multigrid PC, prefix contact_K_. Its PC is

@@ -76,3 +76,7 @@ PETSC_EXTERN PetscErrorCode MMCandidatesGrow(MMCtx *, const PetscScalar[], Petsc
 PETSC_EXTERN PetscErrorCode MMCandidatesMult(MMContact *, Vec, PetscScalar[]);
 PETSC_EXTERN PetscErrorCode MMCandidatesRecover(MMContact *, Vec);
 PETSC_EXTERN PetscErrorCode MMCandidatesDestroy(MMCandidates *);
+/* impls/condensed/mumps_columns.c: columns of K~^{-1} for unit right-hand sides on a MUMPS factor on
+ * several ranks (done false: not such a factor, use MatMatTransposeSolve) */
+PETSC_INTERN PetscErrorCode MMMumpsColumnsSolve(MMMumpsColumns *, Mat, PetscInt, const PetscInt[], PetscScalar[], PetscInt, PetscBool *);
+PETSC_INTERN PetscErrorCode MMMumpsColumnsDestroy(MMMumpsColumns *);

@@ -244,6 +244,18 @@ static PetscErrorCode SolveColumnsDistributed(MMCtx *ctx, Mat F, const PetscInt 
     const PetscScalar *x;
     PetscInt           lda;
 
+    if (sparse) {
+      PetscInt    *rows;
+      PetscScalar *xb;
+      PetscBool    done;
+
+      PetscCall(PetscMalloc2(nb, &rows, (size_t)PetscMax(n, 1) * nb, &xb));
+      for (PetscInt j = 0; j < nb; ++j) rows[j] = c->normal_dof[todo[(i0 + j) / nr]] + (i0 + j) % nr;
+      PetscCall(MMMumpsColumnsSolve(&c->mumps, F, nb, rows, xb, n, &done));
+      for (PetscInt j = 0; done && j < nb; ++j) PetscCall(StoreColumn(ct, todo, i0 + j, ic, rstart, xb + (size_t)j * n));
+      PetscCall(PetscFree2(rows, xb));
+      if (done) continue;
+    }
     PetscCall(MatCreateDense(comm, n, PETSC_DECIDE, PETSC_DETERMINE, nb, NULL, &X));
     if (sparse) {
       /* MUMPS takes the unit right-hand sides as a sparse B^T and prunes its forward elimination */
@@ -639,5 +651,6 @@ PetscErrorCode MMCandidatesDestroy(MMCandidates *c)
   PetscCall(PetscFree(c->cond_row));
   PetscCall(DestroySetProblem(c));
   PetscCall(SNESDestroy(&c->snes));
+  PetscCall(MMMumpsColumnsDestroy(&c->mumps));
   PetscFunctionReturn(0);
 }
