@@ -4,6 +4,8 @@ PETSC_EXTERN PetscErrorCode MMLogRegister(MMLog *);
 /* The Cartesian stiffness and mass alone (fem.c), by the selected -assembly path: a global, as
  * PETSc's own events are, so the MMLog context type stays as it is. */
 PETSC_EXTERN PetscLogEvent MM_AssembleKM;
+/* MUMPS's solve of the candidate columns on several ranks, and their move to PETSc's rows (src/contact/impls/condensed/mumps_columns.c) */
+PETSC_EXTERN PetscLogEvent MM_ColumnsSolve, MM_ColumnsMove;
 /* Their rotation into the contact frame, K <- Q^T K Q and M <- Q^T M Q (fem.c) */
 PETSC_EXTERN PetscLogEvent MM_RotateKM;
 PETSC_EXTERN PetscLogEvent MM_MassRedistribute; /* -mass redistributed's construction, in set-up */

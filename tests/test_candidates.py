@@ -79,3 +79,30 @@ def test_memory_cap_too_small_is_refused(mm):
 def test_candidate_options_out_of_range_are_refused(mm, option, value, message):
     r = mm("d1_disk", option, value, np_=0, check=False)
     assert r.returncode != 0 and message in r.output, r.output[-1500:]
+
+
+@pytest.mark.parametrize("keep", [1, 0])
+def test_columns_on_two_ranks_through_refactorizations(mm, keep):
+    """3D on 2 ranks the candidate columns come from MUMPS's solve on PETSc's factor with a solution
+    map built once per factorization (src/contact/impls/condensed/mumps_columns.c); on 1 rank from
+    MatMatTransposeSolve. The 3D box at mu = 10 with the fixed point held to 3 updates is rejected
+    down to dt/64 and grown back: K~ is refactored at every change of dt (-contact_K_keep 0), or
+    swapped with the kept factor and its columns (1), and all 98 contact nodes are in the set. Both
+    rank counts give the same history to round-off: a column moved to the wrong rows, or one left
+    from the previous factor, would change the forces at once."""
+    case = ("-initial_state", "given", "-mu", 10, "-ts_max_steps", 25, "-output_every", 0, "-friction_type", "fixedpoint",
+            "-friction_snes_max_it", 3, "-contact_K_keep", keep, "-contact_formulation", "condensed")
+    one = mm("f1_box", *case, np_=1, name="one")
+    two = mm("f1_box", *case, np_=2, name="two")
+    h1, h2 = one.history, two.history
+    assert len(h1) == len(h2) == 26
+    assert np.array_equal(h1["dt"], h2["dt"]) and h1["dt"].max() / h1["dt"][1:].min() >= 64  # the refactorizations happened
+    assert np.array_equal(h1["active"], h2["active"]) and h1["active"].max() == 98
+    columns = [r.output.split("contact nodes; ")[1].split()[0] for r in (one, two)]
+    assert columns[0] == columns[1] == ("1764" if keep else "2940")
+    energy, force = h1["total"][0], np.abs(h1["force_normal"]).max()
+    for c in ("total", "kinetic", "work_friction", "vcm_x", "vcm_y"):
+        assert np.abs(h1[c] - h2[c]).max() <= 1e-10 * max(energy, np.abs(h1[c]).max()), c
+    for c in ("force_normal", "force_tangential"):
+        assert np.abs(h1[c] - h2[c]).max() <= 1e-9 * max(force, np.abs(h1[c]).max()), c
+    assert h2["coulomb_residual"][1:].max() <= 1e-8 and h2["balance_residual"].max() <= 1e-8

@@ -18,6 +18,7 @@
  * to MatMatTransposeSolve. */
 #include "../../contactimpl.h"
 #include <petscsf.h>
+#include "log.h"
 #include <petsc/private/matimpl.h> /* Mat->data: PETSc's MUMPS context, whose first member is the MUMPS instance */
 
 #if defined(PETSC_HAVE_MUMPS) && !defined(PETSC_USE_COMPLEX) && defined(PETSC_USE_REAL_DOUBLE) && !defined(PETSC_USE_64BIT_INDICES)
@@ -146,7 +147,9 @@ static PetscErrorCode SolveUnitColumns(MMMumpsColumns *mc, DMUMPS_STRUC_C *id, M
   id->sol_loc     = mc->sol;
   id->isol_loc    = mc->isol;
   id->lsol_loc    = (MUMPS_INT)mc->lsol;
+  PetscCall(PetscLogEventBegin(MM_ColumnsSolve, 0, 0, 0, 0));
   dmumps_c(id);
+  PetscCall(PetscLogEventEnd(MM_ColumnsSolve, 0, 0, 0, 0));
   info1 = id->INFOG(1);
   info2 = id->INFO(2);
   *id   = saved;
@@ -170,11 +173,13 @@ PetscErrorCode MMMumpsColumnsSolve(MMMumpsColumns *mc, Mat F, PetscInt nb, const
     PetscCall(MatGetLocalSize(F, &n, NULL));
     PetscCheck(ldx >= n, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "Leading dimension %" PetscInt_FMT " below the %" PetscInt_FMT " owned rows", ldx, n);
     PetscCall(SolveUnitColumns(mc, id, PetscObjectComm((PetscObject)F), nb, rows));
+    PetscCall(PetscLogEventBegin(MM_ColumnsMove, 0, 0, 0, 0));
     PetscCall(UpdateSolutionMap(mc, F));
     for (PetscInt j = 0; j < nb; ++j) {
       PetscCall(PetscSFReduceBegin(mc->sf, MPIU_SCALAR, mc->sol + (size_t)j * mc->lsol, X + (size_t)j * ldx, MPI_REPLACE));
       PetscCall(PetscSFReduceEnd(mc->sf, MPIU_SCALAR, mc->sol + (size_t)j * mc->lsol, X + (size_t)j * ldx, MPI_REPLACE));
     }
+    PetscCall(PetscLogEventEnd(MM_ColumnsMove, 0, 0, 0, 0));
     *done = PETSC_TRUE;
   }
 #endif
