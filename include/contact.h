@@ -6,6 +6,10 @@ PETSC_EXTERN PetscErrorCode MMKSPCheckFactored(KSP);
 PETSC_EXTERN PetscErrorCode MMKSPSetFailureCheck(KSP);
 PETSC_EXTERN PetscErrorCode MMKSPSetDirectSPD(KSP, PetscInt);
 PETSC_EXTERN PetscErrorCode MMKSPGetFactorPC(KSP, PC *, PetscBool *);
+/* The exact solve of K~ split at the ranks' interface (src/contact/interface/pc_schursplit.c): the
+ * default for K~ in 2D on 2 to 8 ranks, -contact_K_pc_type schursplit */
+#define MMPCSCHURSPLIT "schursplit"
+PETSC_EXTERN PetscErrorCode MMPCRegisterSchurSplit(void);
 PETSC_EXTERN PetscErrorCode MMFactorReadOptions(MPI_Comm, const char[], MatSolverType, MatFactorType);
 PETSC_EXTERN PetscErrorCode MMContactRegister(const char[], PetscErrorCode (*)(MMContact *));
 PETSC_EXTERN PetscErrorCode MMContactRegisterAll(void);

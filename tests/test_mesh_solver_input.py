@@ -187,19 +187,24 @@ def test_default_native_cholesky_equals_mumps_lu(mm):
     assert np.array_equal(native["active"], mumps["active"])
 
 
-def test_redundant_cholesky_on_two_ranks_equals_mumps_lu(mm):
-    """2D on several ranks: K~ is factored by PETSc's Cholesky whole on every rank (PCREDUNDANT), the
-    Delassus columns computed from that factor on each rank; the frictional D1 history is the one of
-    MUMPS's distributed LU on the same 2 ranks, and of one rank, to solver tolerance."""
+@pytest.mark.parametrize("np_", [2, 3])
+def test_split_cholesky_on_several_ranks_equals_mumps_lu(mm, np_):
+    """2D on several ranks: K~ is solved split at the ranks' interface (schursplit: each rank's
+    interior by PETSc's Cholesky, the interface by its dense Schur complement), the Delassus columns
+    by that solve. The frictional D1 history is the one of MUMPS's distributed LU on the same ranks,
+    of the whole factor held on every rank (-contact_K_pc_type redundant), and of one rank, to solver
+    tolerance. 3 ranks: interface rows on two ranks, which couple to each other."""
     short = ("-ts_max_time", 0.06, "-output_every", 0)
-    redundant = mm("d1_friction", *short, np_=2, name="redundant")
+    split = mm("d1_friction", *short, np_=np_, name="split")
+    assert "schursplit (each rank's interior" in split.output
+    mumps = mm("d1_friction", *short, "-contact_K_pc_type", "lu", "-contact_K_pc_factor_mat_solver_type", "mumps", np_=np_, name="mumps").history
+    redundant = mm("d1_friction", *short, "-contact_K_pc_type", "redundant", "-contact_K_redundant_pc_type", "cholesky", np_=np_, name="redundant")
     assert "(redundant)" in redundant.output
-    mumps = mm("d1_friction", *short, "-contact_K_pc_type", "lu", "-contact_K_pc_factor_mat_solver_type", "mumps", np_=2, name="mumps").history
     one = mm("d1_friction", *short, name="one").history
-    h = redundant.history
+    h = split.history
     scale = np.abs(mumps["total"]).max()
     assert h["active"].max() > 0 and h["friction_its"].max() > 1
-    for other in (mumps, one):
+    for other in (mumps, redundant.history, one):
         for c in ("total", "work_contact", "work_friction", "force_normal", "force_tangential"):
             assert np.abs(h[c] - other[c]).max() <= 1e-10 * scale, c
         assert np.array_equal(h["active"], other["active"])
@@ -216,9 +221,9 @@ def test_failed_factorization_stops_the_run(mm):
 
 
 def test_failed_redundant_factorization_names_the_factor_reason(mm):
-    """2D on 2 ranks holds K~'s factor whole on every rank (PCREDUNDANT), which reports only that its
-    inner PC failed (SUBPC_ERROR): the check reads the inner factor's own reason."""
-    r = mm("d1_disk", "-ts_max_steps", 2, "-contact_K_redundant_pc_type", "lu", "-contact_K_redundant_pc_factor_mat_solver_type", "mumps",
+    """2D on 2 ranks with K~'s factor held whole on every rank (-contact_K_pc_type redundant), which
+    reports only that its inner PC failed (SUBPC_ERROR): the check reads the inner factor's own reason."""
+    r = mm("d1_disk", "-ts_max_steps", 2, "-contact_K_pc_type", "redundant", "-contact_K_redundant_pc_type", "lu", "-contact_K_redundant_pc_factor_mat_solver_type", "mumps",
            "-contact_K_redundant_mat_mumps_icntl_14", -99, "-contact_K_redundant_mat_mumps_icntl_23", 1, np_=2, check=False)
     assert r.returncode != 0
     assert "The factorization for the solve -contact_K_ failed: FACTOR_OUTMEMORY" in r.output

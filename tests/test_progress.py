@@ -118,7 +118,7 @@ def test_header_counts_the_mesh_and_names_the_solvers(tmp_path):
     """The header's cells, vertices and dofs are those of the mesh written to solution.h5 (dofs = d x
     vertices, less the Dirichlet ones), its ranks the ranks, its case the options file (or the
     command line), and its K~ solver the one the objects have in 2D: PETSc's Cholesky, on 2 ranks
-    held whole on each (PCREDUNDANT)."""
+    of each rank's interior, with the interface's Schur complement (schursplit)."""
     opts = os.path.join(ROOT, "options", "d1_disk.opts")
     r = run("d1_disk", tmp_path, "-ts_max_steps", 2, np_=2, name="disk")
     m = header(r.output)
@@ -127,7 +127,7 @@ def test_header_counts_the_mesh_and_names_the_solvers(tmp_path):
         nc = f["viz/topology/cells"].shape[0]
     assert (m["case"], m["mesh"], int(m["dim"]), int(m["ranks"])) == (opts, "meshes/disk.msh", 2, 2)
     assert (int(m["cells"]), int(m["vertices"]), int(m["dofs"]), m["fixed"]) == (nc, nv, dim * nv, None)
-    assert "K~ by preonly + cholesky (petsc) of the whole K~ on every rank (redundant), prefix contact_K_" in r.output
+    assert "K~ by preonly + schursplit (each rank's interior by PETSc's Cholesky, the ranks' interface by its dense Schur complement), prefix contact_K_" in r.output
     assert "33 contact nodes against 1 obstacle: plane (plane)" in r.output and "frictionless" in r.output
     assert "c_p dt / h_c' = 0.919" in r.output
 

@@ -43,6 +43,7 @@ PETSC_EXTERN PetscErrorCode MMQPSetFactorSPD(SNES, PetscInt);
 PETSC_EXTERN PetscErrorCode MMQPSetOperator(SNES, MMBoundQP *);
 PETSC_EXTERN PetscErrorCode MMQPSolve(SNES, MMBoundQP *, Vec, PetscInt *);
 PETSC_EXTERN PetscErrorCode MMKSPSetFactorSPD(KSP, PetscInt);
+PETSC_EXTERN PetscErrorCode MMPCRegisterSchurSplit(void);
 
 /* interface/kt.c: K~ without a Delassus operator, by a factorization or preconditioned CG */
 PETSC_EXTERN PetscErrorCode MMKtCreate(MMCtx *, PetscBool);

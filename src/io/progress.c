@@ -96,8 +96,8 @@ static PetscErrorCode SolverText(MMCtx *ctx, char text[], size_t len)
   PCType        ptype;
   MatSolverType package = NULL;
   const char   *kprefix, *pprefix;
-  PetscBool     factor, same, redundant;
-  char          pctext[160], ordering[32] = "";
+  PetscBool     factor, same, redundant, split;
+  char          pctext[200], ordering[32] = "";
 
   PetscFunctionBeginUser;
   PetscCall(MMContactGetStepKSP(ctx, &krylov, &pc_ksp));
@@ -110,7 +110,9 @@ static PetscErrorCode SolverText(MMCtx *ctx, char text[], size_t len)
   PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &factor, PCLU, PCCHOLESKY, PCILU, PCICC, ""));
   if (factor) PetscCall(PCFactorGetMatSolverType(pc, &package));
   if (package) PetscCall(MumpsOrderingText(pc, package, ordering, sizeof(ordering)));
-  PetscCall(PetscSNPrintf(pctext, sizeof(pctext), "%s%s%s%s%s%s", ptype, package ? " (" : "", package ? package : "", ordering, package ? ")" : "", redundant ? " of the whole K~ on every rank (redundant)" : ""));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, MMPCSCHURSPLIT, &split));
+  PetscCall(PetscSNPrintf(pctext, sizeof(pctext), "%s%s%s%s%s%s%s", ptype, package ? " (" : "", package ? package : "", ordering, package ? ")" : "", redundant ? " of the whole K~ on every rank (redundant)" : "",
+                          split ? " (each rank's interior by PETSc's Cholesky, the ranks' interface by its dense Schur complement)" : ""));
   PetscCall(PetscStrcmp(kprefix, pprefix, &same));
   PetscCall(PetscSNPrintf(text, len, "%s + %s, prefix%s %s%s%s", ktype, pctext, same ? "" : "es", kprefix, same ? "" : " and ", same ? "" : pprefix));
   PetscFunctionReturn(0);

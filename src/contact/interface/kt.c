@@ -69,7 +69,7 @@ static PetscErrorCode KtClassify(MMStepSolver *kt)
   PetscFunctionBeginUser;
   PetscCall(MMKSPGetFactorPC(kt->ksp, &pc, NULL));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu));
-  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCCHOLESKY, &cholesky));
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &cholesky, PCCHOLESKY, MMPCSCHURSPLIT, ""));
   PetscCall(PetscObjectTypeCompare((PetscObject)kt->ksp, KSPPREONLY, &preonly));
   kt->iterative = (PetscBool)!(lu || cholesky);
   if (kt->iterative && preonly) PetscCall(KSPSetType(kt->ksp, KSPCG));

@@ -351,6 +351,36 @@ static PetscErrorCode SolveColumnsRedundant(MMCtx *ctx, Mat F, const PetscInt to
   PetscFunctionReturn(0);
 }
 
+/* The m new columns through a PC that solves exactly but holds no factor matrix (schursplit, 2D on
+ * several ranks: each solve is collective, and costs each rank a sweep of its half of K~). */
+static PetscErrorCode SolveColumnsByPC(MMCtx *ctx, PC pc, const PetscInt todo[], PetscInt m, const PetscInt ic[])
+{
+  MMContact         *ct = &ctx->contact;
+  MMCandidates      *c  = &ct->cand;
+  const PetscInt     nr = ct->ncomp;
+  PetscInt           rstart, rend;
+  Vec                e, x;
+  const PetscScalar *xa;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatCreateVecs(ct->qp.A, &x, &e));
+  PetscCall(VecGetOwnershipRange(e, &rstart, &rend));
+  for (PetscInt i = 0; i < m; ++i) {
+    const PetscInt row = c->normal_dof[todo[i / nr]] + i % nr;
+    PetscCall(VecZeroEntries(e));
+    if (row >= rstart && row < rend) PetscCall(VecSetValue(e, row, 1.0, INSERT_VALUES));
+    PetscCall(VecAssemblyBegin(e));
+    PetscCall(VecAssemblyEnd(e));
+    PetscCall(PCApply(pc, e, x));
+    PetscCall(VecGetArrayRead(x, &xa));
+    PetscCall(StoreColumn(ct, todo, i, ic, rstart, xa));
+    PetscCall(VecRestoreArrayRead(x, &xa));
+  }
+  PetscCall(VecDestroy(&e));
+  PetscCall(VecDestroy(&x));
+  PetscFunctionReturn(0);
+}
+
 /* Columns of K~^{-1} E for the set's nodes not yet cached, kept on the owned condensed rows (and,
  * under the memory cap, on all owned rows for the recovery of w). */
 static PetscErrorCode ComputeMissingColumns(MMCtx *ctx)
@@ -361,7 +391,7 @@ static PetscErrorCode ComputeMissingColumns(MMCtx *ctx)
   const PetscInt *ic;
   PC              pc;
   Mat             F;
-  PetscBool       redundant;
+  PetscBool       redundant, split;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc1(c->n_set, &todo));
@@ -374,10 +404,14 @@ static PetscErrorCode ComputeMissingColumns(MMCtx *ctx)
   PetscCall(PetscLogEventBegin(ctx->log.candidate_columns, 0, 0, 0, 0));
   PetscCall(ReserveSlots(ctx, nnew));
   PetscCall(MMKSPGetFactorPC(ct->ksp_K, &pc, &redundant));
-  PetscCall(PCFactorGetMatrix(pc, &F));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, MMPCSCHURSPLIT, &split));
   PetscCall(ISGetIndices(ct->is_cond, &ic));
-  if (redundant) PetscCall(SolveColumnsRedundant(ctx, F, todo, nnew * ct->ncomp, ic));
-  else PetscCall(SolveColumnsDistributed(ctx, F, todo, nnew * ct->ncomp, ic));
+  if (split) PetscCall(SolveColumnsByPC(ctx, pc, todo, nnew * ct->ncomp, ic));
+  else {
+    PetscCall(PCFactorGetMatrix(pc, &F));
+    if (redundant) PetscCall(SolveColumnsRedundant(ctx, F, todo, nnew * ct->ncomp, ic));
+    else PetscCall(SolveColumnsDistributed(ctx, F, todo, nnew * ct->ncomp, ic));
+  }
   PetscCall(ISRestoreIndices(ct->is_cond, &ic));
   c->columns += nnew * ct->ncomp;
   PetscCall(PetscFree(todo));
