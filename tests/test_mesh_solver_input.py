@@ -195,8 +195,9 @@ def test_split_cholesky_on_several_ranks_equals_mumps_lu(mm, np_):
     of the whole factor held on every rank (-contact_K_pc_type redundant), and of one rank, to solver
     tolerance. 3 ranks: interface rows on two ranks, which couple to each other."""
     short = ("-ts_max_time", 0.06, "-output_every", 0)
-    split = mm("d1_friction", *short, np_=np_, name="split")
+    split = mm("d1_friction", *short, "-contact_K_ksp_view", np_=np_, name="split")
     assert "schursplit (each rank's interior" in split.output
+    assert "then mmcontact's backward sweep (checked against MatBackwardSolve at set-up)" in split.output
     mumps = mm("d1_friction", *short, "-contact_K_pc_type", "lu", "-contact_K_pc_factor_mat_solver_type", "mumps", np_=np_, name="mumps").history
     redundant = mm("d1_friction", *short, "-contact_K_pc_type", "redundant", "-contact_K_redundant_pc_type", "cholesky", np_=np_, name="redundant")
     assert "(redundant)" in redundant.output

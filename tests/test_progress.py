@@ -137,7 +137,7 @@ def test_header_counts_the_mesh_and_names_the_solvers(tmp_path):
         nv, dim = f["geometry/vertices"].shape
     assert int(m["ranks"]) == 1 and int(m["vertices"]) == nv
     assert int(m["fixed"]) > 0 and int(m["dofs"]) + int(m["fixed"]) == dim * nv
-    assert "K~ by preonly + cholesky (petsc), prefix contact_K_" in bar.output
+    assert "K~ by preonly + schursplit (PETSc's Cholesky; one rank, no interface), prefix contact_K_" in bar.output
 
     # the same case given on the command line
     args = [w for line in open(opts) for w in line.split("#")[0].split()]

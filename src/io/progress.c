@@ -98,9 +98,11 @@ static PetscErrorCode SolverText(MMCtx *ctx, char text[], size_t len)
   const char   *kprefix, *pprefix;
   PetscBool     factor, same, redundant, split;
   char          pctext[200], ordering[32] = "";
+  PetscMPIInt   size;
 
   PetscFunctionBeginUser;
   PetscCall(MMContactGetStepKSP(ctx, &krylov, &pc_ksp));
+  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)krylov), &size));
   PetscCall(KSPGetType(krylov, &ktype));
   PetscCall(KSPGetOptionsPrefix(krylov, &kprefix));
   PetscCall(KSPGetOptionsPrefix(pc_ksp, &pprefix));
@@ -112,7 +114,7 @@ static PetscErrorCode SolverText(MMCtx *ctx, char text[], size_t len)
   if (package) PetscCall(MumpsOrderingText(pc, package, ordering, sizeof(ordering)));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, MMPCSCHURSPLIT, &split));
   PetscCall(PetscSNPrintf(pctext, sizeof(pctext), "%s%s%s%s%s%s%s", ptype, package ? " (" : "", package ? package : "", ordering, package ? ")" : "", redundant ? " of the whole K~ on every rank (redundant)" : "",
-                          split ? " (each rank's interior by PETSc's Cholesky, the ranks' interface by its dense Schur complement)" : ""));
+                          split ? (size > 1 ? " (each rank's interior by PETSc's Cholesky, the ranks' interface by its dense Schur complement)" : " (PETSc's Cholesky; one rank, no interface)") : ""));
   PetscCall(PetscStrcmp(kprefix, pprefix, &same));
   PetscCall(PetscSNPrintf(text, len, "%s + %s, prefix%s %s%s%s", ktype, pctext, same ? "" : "es", kprefix, same ? "" : " and ", same ? "" : pprefix));
   PetscFunctionReturn(0);
