@@ -375,6 +375,7 @@ static PetscErrorCode BuildSchur(PC pc, Mat Ad, Mat Ao, const PetscInt colmap[],
   PC_SchurSplit *sp = (PC_SchurSplit *)pc->data;
   PetscScalar   *s;
   Mat            C;
+  PetscMPIInt    count;
 
   PetscFunctionBegin;
   PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, sp->ns, sp->ns, NULL, &sp->S));
@@ -406,7 +407,8 @@ static PetscErrorCode BuildSchur(PC pc, Mat Ad, Mat Ao, const PetscInt colmap[],
     PetscCall(MatRestoreRow(C, i, &nc, &cols, &vals));
   }
   PetscCall(MatDestroy(&C));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, (PetscMPIInt)(sp->ns * sp->ns), MPIU_SCALAR, MPIU_SUM, PetscObjectComm((PetscObject)pc)));
+  PetscCall(PetscMPIIntCast(sp->ns * sp->ns, &count));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, count, MPIU_SCALAR, MPIU_SUM, PetscObjectComm((PetscObject)pc)));
   PetscCall(MatDenseRestoreArray(sp->S, &s));
   if (sp->ns) PetscCall(MatCholeskyFactor(sp->S, NULL, NULL));
   PetscFunctionReturn(0);
@@ -453,6 +455,7 @@ static PetscErrorCode PCApply_SchurSplit(PC pc, Vec b, Vec x)
   PC_SchurSplit     *sp = (PC_SchurSplit *)pc->data;
   const PetscScalar *ba, *xia, *xga;
   PetscScalar       *bia, *ra, *xa;
+  PetscMPIInt        count;
 
   PetscFunctionBegin;
   PetscCall(VecGetArrayRead(b, &ba));
@@ -465,7 +468,8 @@ static PetscErrorCode PCApply_SchurSplit(PC pc, Vec b, Vec x)
     PetscCall(VecGetArray(sp->g, &ra));
     for (PetscInt i = 0; i < sp->ns; ++i) ra[i] = -ra[i];
     for (PetscInt k = 0; k < sp->ng; ++k) ra[sp->gstart + k] += ba[sp->gloc[k]];
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, ra, (PetscMPIInt)sp->ns, MPIU_SCALAR, MPIU_SUM, PetscObjectComm((PetscObject)pc)));
+    PetscCall(PetscMPIIntCast(sp->ns, &count));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, ra, count, MPIU_SCALAR, MPIU_SUM, PetscObjectComm((PetscObject)pc)));
     PetscCall(VecRestoreArray(sp->g, &ra));
     PetscCall(MatSolve(sp->S, sp->g, sp->xg));
     if (sp->fast) {
