@@ -9,15 +9,14 @@
  * nonzeros of a forward solve from a sparse column are its ancestors in the elimination tree).
  * The interface's Schur complement S = K_GG - sum_r W_r^T W_r is dense, small (a line of nodes in
  * 2D), summed over the ranks and factored on each. A solve is exact:
- *   z_r = G^{-1} P b_r;  S x_G = b_G - sum_r W_r^T z_r;  x_r = A_r^{-1} (b_r - K~(I_r, Gamma) x_G),
- * with one MPI_Allreduce of |Gamma| numbers; x_r is also P^T G^{-T} (z_r - W_r x_G), one backward
- * sweep, which is what this PC does, with its own sweep (BackwardSweep): PETSc 3.18's
- * MatBackwardSolve took 8.0 ms on this factor against 2.9 ms for the forward sweep (115k-dof disk, 2
- * ranks), ours about 3. Each rank then sweeps its half-size factor once each way where
- * PCREDUNDANT's whole factor costs each rank a full solve of twice the size: 6.4 against 14.5 ms.
- * (Without the own sweep, or where the factor's layout is not the expected one, the second half is
- * x_r = A_r^{-1} (b_r - K~(I_r, Gamma) x_G) by the factor's MatSolve: 10.9 ms.) The set-up pays one
- * forward sweep per interface column for W_r. */
+ *   z_r = G^{-1} P b_r;  S x_G = b_G - sum_r W_r^T z_r;  x_r = P^T G^{-T} (z_r - W_r x_G),
+ * one forward sweep, one MPI_Allreduce of |Gamma| numbers and one backward sweep, ours
+ * (BackwardSweep: PETSc 3.18's MatBackwardSolve took 8.0 ms on the 115k-dof disk's half against
+ * 2.9 ms for the forward sweep; ours about 3). So each rank sweeps its half-size factor once each
+ * way, where PCREDUNDANT's whole factor costs each rank a full solve of twice the size: 6.0 against
+ * 13.6 ms. Where the factor's layout is not the one the sweep expects, x_r = A_r^{-1} (b_r -
+ * K~(I_r, Gamma) x_G) by the factor's MatSolve (10.9 ms). The set-up pays one forward sweep per
+ * interface column for W_r. */
 #include <petsc/private/pcimpl.h>
 #include "../contactimpl.h"
 
@@ -26,9 +25,9 @@ typedef struct {
   PetscInt *iloc, *gloc;        /* local row numbers of the interior and interface rows here */
   Mat       A, F;               /* the interior block and its Cholesky factor */
   Mat       Wt;                 /* W_r^T: ns x nI, sparse */
-  Mat       B;                  /* K~(I_r, Gamma): nI x ns */
+  Mat       B;                  /* K~(I_r, Gamma): nI x ns, kept only for the MatSolve fallback */
   Mat       S;                  /* the interface's Schur complement, factored, on every rank */
-  Vec       bI, z, v, xI, g, r, xg;
+  Vec       bI, z, v, xI, g, xg;
   PetscInt  nnzW;               /* nonzeros of W_r, for the view */
   /* The factor's backward sweep, our own (BackwardSweep): its arrays, borrowed from F */
   PetscBool          fast;      /* checked against MatBackwardSolve at set-up; else a full local solve */
@@ -73,7 +72,6 @@ static PetscErrorCode PCReset_SchurSplit(PC pc)
   PetscCall(VecDestroy(&sp->v));
   PetscCall(VecDestroy(&sp->xI));
   PetscCall(VecDestroy(&sp->g));
-  PetscCall(VecDestroy(&sp->r));
   PetscCall(VecDestroy(&sp->xg));
   sp->nI = sp->ng = sp->ns = sp->gstart = sp->nnzW = 0;
   PetscFunctionReturn(0);
@@ -149,56 +147,62 @@ static PetscErrorCode SplitRows(PC pc, Mat Ad, Mat Ao, const PetscInt colmap[], 
   PetscFunctionReturn(0);
 }
 
-/* The interface number of a column of row i (a local column of Ad, or a ghost of Ao), or -1. */
-static inline PetscInt GammaOfDiag(const PC_SchurSplit *sp, const PetscInt gpos[], PetscInt c)
+/* K~'s local rows as the split reads them: the diagonal and off-diagonal blocks, the ghost columns'
+ * global numbers, the global interface rows (sorted, all ranks) and each local row's interface
+ * position here (or -1). */
+typedef struct {
+  Mat             Ad, Ao;
+  const PetscInt *colmap, *gam_all, *gpos;
+} LocalRows;
+
+/* The entries of local row i in interface columns: their interface numbers j[] and values v[] (at
+ * most ns). An interior row must couple to no other rank's interior row: the matrix's structure
+ * would not be symmetric. */
+static PetscErrorCode InterfaceEntries(const PC_SchurSplit *sp, const LocalRows *lr, PetscInt i, PetscBool interior, PetscInt *n, PetscInt j[], PetscScalar v[])
 {
-  return gpos[c] < 0 ? -1 : sp->gstart + gpos[c];
-}
-static PetscErrorCode GammaOfGhost(const PC_SchurSplit *sp, const PetscInt gam_all[], PetscInt gcol, PetscInt *j)
-{
+  PetscInt           nc, g;
+  const PetscInt    *cols;
+  const PetscScalar *vals;
+
   PetscFunctionBegin;
-  PetscCall(PetscFindInt(gcol, sp->ns, gam_all, j));
+  *n = 0;
+  PetscCall(MatGetRow(lr->Ad, i, &nc, &cols, &vals));
+  for (PetscInt k = 0; k < nc; ++k)
+    if (lr->gpos[cols[k]] >= 0) {
+      j[*n]     = sp->gstart + lr->gpos[cols[k]];
+      v[(*n)++] = vals[k];
+    }
+  PetscCall(MatRestoreRow(lr->Ad, i, &nc, &cols, &vals));
+  if (!lr->Ao) PetscFunctionReturn(0);
+  PetscCall(MatGetRow(lr->Ao, i, &nc, &cols, &vals));
+  for (PetscInt k = 0; k < nc; ++k) {
+    PetscCall(PetscFindInt(lr->colmap[cols[k]], sp->ns, lr->gam_all, &g));
+    PetscCheck(g >= 0 || !interior, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "-pc_type schursplit: row %" PetscInt_FMT " couples to row %" PetscInt_FMT " of another rank's interior: the matrix's structure is not symmetric", i, lr->colmap[cols[k]]);
+    if (g < 0) continue;
+    j[*n]     = g;
+    v[(*n)++] = vals[k];
+  }
+  PetscCall(MatRestoreRow(lr->Ao, i, &nc, &cols, &vals));
   PetscFunctionReturn(0);
 }
 
-/* B = K~(I_r, Gamma), nI x ns; an interior row coupling to another rank's interior is an error
- * (a matrix whose structure is not symmetric). */
-static PetscErrorCode BuildInteriorInterface(PC pc, Mat Ad, Mat Ao, const PetscInt colmap[], const PetscInt gam_all[], const PetscInt gpos[], Mat *B)
+/* B = K~(I_r, Gamma), nI x ns. */
+static PetscErrorCode BuildInteriorInterface(PC pc, const LocalRows *lr, Mat *B)
 {
   PC_SchurSplit *sp = (PC_SchurSplit *)pc->data;
-  PetscInt      *nnz;
+  PetscInt      *nnz, *j, n;
+  PetscScalar   *v;
 
   PetscFunctionBegin;
-  PetscCall(PetscCalloc1(sp->nI + 1, &nnz));
-  for (PetscInt pass = 0; pass < 2; ++pass) {
-    if (pass == 1) {
-      PetscCall(MatCreateSeqAIJ(PETSC_COMM_SELF, sp->nI, sp->ns, 0, nnz, B));
-      PetscCall(MatSetOption(*B, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
-    }
-    for (PetscInt ii = 0; ii < sp->nI; ++ii) {
-      const PetscInt     i = sp->iloc[ii];
-      PetscInt           nc, j;
-      const PetscInt    *cols;
-      const PetscScalar *vals;
-      PetscCall(MatGetRow(Ad, i, &nc, &cols, &vals));
-      for (PetscInt k = 0; k < nc; ++k) {
-        if ((j = GammaOfDiag(sp, gpos, cols[k])) < 0) continue;
-        if (pass == 0) ++nnz[ii];
-        else PetscCall(MatSetValue(*B, ii, j, vals[k], INSERT_VALUES));
-      }
-      PetscCall(MatRestoreRow(Ad, i, &nc, &cols, &vals));
-      if (!Ao) continue;
-      PetscCall(MatGetRow(Ao, i, &nc, &cols, &vals));
-      for (PetscInt k = 0; k < nc; ++k) {
-        PetscCall(GammaOfGhost(sp, gam_all, colmap[cols[k]], &j));
-        PetscCheck(j >= 0, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "-pc_type schursplit: row %" PetscInt_FMT " couples to row %" PetscInt_FMT " of another rank's interior: the matrix's structure is not symmetric", i, colmap[cols[k]]);
-        if (pass == 0) ++nnz[ii];
-        else PetscCall(MatSetValue(*B, ii, j, vals[k], INSERT_VALUES));
-      }
-      PetscCall(MatRestoreRow(Ao, i, &nc, &cols, &vals));
-    }
+  PetscCall(PetscMalloc3(sp->nI + 1, &nnz, sp->ns + 1, &j, sp->ns + 1, &v));
+  for (PetscInt ii = 0; ii < sp->nI; ++ii) PetscCall(InterfaceEntries(sp, lr, sp->iloc[ii], PETSC_TRUE, &nnz[ii], j, v));
+  PetscCall(MatCreateSeqAIJ(PETSC_COMM_SELF, sp->nI, sp->ns, 0, nnz, B));
+  PetscCall(MatSetOption(*B, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  for (PetscInt ii = 0; ii < sp->nI; ++ii) {
+    PetscCall(InterfaceEntries(sp, lr, sp->iloc[ii], PETSC_TRUE, &n, j, v));
+    PetscCall(MatSetValues(*B, 1, &ii, n, j, v, INSERT_VALUES));
   }
-  PetscCall(PetscFree(nnz));
+  PetscCall(PetscFree3(nnz, j, v));
   PetscCall(MatAssemblyBegin(*B, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(*B, MAT_FINAL_ASSEMBLY));
   PetscFunctionReturn(0);
@@ -370,33 +374,23 @@ static PetscErrorCode BuildW(PC pc, Mat B)
 }
 
 /* S = K_GG - sum_r W_r^T W_r, dense, summed over the ranks and Cholesky-factored on each. */
-static PetscErrorCode BuildSchur(PC pc, Mat Ad, Mat Ao, const PetscInt colmap[], const PetscInt gam_all[], const PetscInt gpos[])
+static PetscErrorCode BuildSchur(PC pc, const LocalRows *lr)
 {
   PC_SchurSplit *sp = (PC_SchurSplit *)pc->data;
-  PetscScalar   *s;
+  PetscScalar   *s, *v;
+  PetscInt      *j, n;
   Mat            C;
   PetscMPIInt    count;
 
   PetscFunctionBegin;
   PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, sp->ns, sp->ns, NULL, &sp->S));
   PetscCall(MatDenseGetArray(sp->S, &s));
+  PetscCall(PetscMalloc2(sp->ns + 1, &j, sp->ns + 1, &v));
   for (PetscInt k = 0; k < sp->ng; ++k) {
-    const PetscInt     i = sp->gloc[k], row = sp->gstart + k;
-    PetscInt           nc, j;
-    const PetscInt    *cols;
-    const PetscScalar *vals;
-    PetscCall(MatGetRow(Ad, i, &nc, &cols, &vals));
-    for (PetscInt c = 0; c < nc; ++c)
-      if ((j = GammaOfDiag(sp, gpos, cols[c])) >= 0) s[row + j * sp->ns] += vals[c];
-    PetscCall(MatRestoreRow(Ad, i, &nc, &cols, &vals));
-    if (!Ao) continue;
-    PetscCall(MatGetRow(Ao, i, &nc, &cols, &vals));
-    for (PetscInt c = 0; c < nc; ++c) {
-      PetscCall(GammaOfGhost(sp, gam_all, colmap[cols[c]], &j));
-      if (j >= 0) s[row + j * sp->ns] += vals[c];
-    }
-    PetscCall(MatRestoreRow(Ao, i, &nc, &cols, &vals));
+    PetscCall(InterfaceEntries(sp, lr, sp->gloc[k], PETSC_FALSE, &n, j, v));
+    for (PetscInt c = 0; c < n; ++c) s[sp->gstart + k + j[c] * sp->ns] += v[c];
   }
+  PetscCall(PetscFree2(j, v));
   PetscCall(MatMatTransposeMult(sp->Wt, sp->Wt, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &C));
   for (PetscInt i = 0; i < sp->ns; ++i) {
     PetscInt           nc;
@@ -417,16 +411,17 @@ static PetscErrorCode BuildSchur(PC pc, Mat Ad, Mat Ao, const PetscInt colmap[],
 static PetscErrorCode PCSetUp_SchurSplit(PC pc)
 {
   PC_SchurSplit  *sp = (PC_SchurSplit *)pc->data;
-  Mat             Ad, Ao;
-  const PetscInt *colmap;
+  LocalRows       lr;
   PetscInt        rstart, *gam_all, *gpos;
 
   PetscFunctionBegin;
   PetscCall(PCReset_SchurSplit(pc));
-  PetscCall(GetLocalBlocks(pc->pmat, &Ad, &Ao, &colmap));
+  PetscCall(GetLocalBlocks(pc->pmat, &lr.Ad, &lr.Ao, &lr.colmap));
   PetscCall(MatGetOwnershipRange(pc->pmat, &rstart, NULL));
-  PetscCall(SplitRows(pc, Ad, Ao, colmap, rstart, &gam_all, &gpos));
-  PetscCall(FactorInterior(pc, Ad));
+  PetscCall(SplitRows(pc, lr.Ad, lr.Ao, lr.colmap, rstart, &gam_all, &gpos));
+  lr.gam_all = gam_all;
+  lr.gpos    = gpos;
+  PetscCall(FactorInterior(pc, lr.Ad));
   {
     PetscInt failed = (PetscInt)pc->failedreason; /* every rank stops building, or none */
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &failed, 1, MPIU_INT, MPI_MAX, PetscObjectComm((PetscObject)pc)));
@@ -434,9 +429,10 @@ static PetscErrorCode PCSetUp_SchurSplit(PC pc)
   }
   if (!pc->failedreason) {
     PetscCall(SetUpBackwardSweep(sp));
-    PetscCall(BuildInteriorInterface(pc, Ad, Ao, colmap, gam_all, gpos, &sp->B));
+    PetscCall(BuildInteriorInterface(pc, &lr, &sp->B));
     PetscCall(BuildW(pc, sp->B));
-    PetscCall(BuildSchur(pc, Ad, Ao, colmap, gam_all, gpos));
+    if (sp->fast) PetscCall(MatDestroy(&sp->B)); /* only the MatSolve fallback needs it */
+    PetscCall(BuildSchur(pc, &lr));
   }
   PetscCall(PetscFree(gam_all));
   PetscCall(PetscFree(gpos));
@@ -445,7 +441,6 @@ static PetscErrorCode PCSetUp_SchurSplit(PC pc)
   PetscCall(VecDuplicate(sp->bI, &sp->v));
   PetscCall(VecDuplicate(sp->bI, &sp->xI));
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, sp->ns, &sp->g));
-  PetscCall(VecDuplicate(sp->g, &sp->r));
   PetscCall(VecDuplicate(sp->g, &sp->xg));
   PetscFunctionReturn(0);
 }

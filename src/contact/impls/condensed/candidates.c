@@ -367,13 +367,18 @@ static PetscErrorCode SolveColumnsByPC(MMCtx *ctx, PC pc, const PetscInt todo[],
   PetscFunctionBeginUser;
   PetscCall(MatCreateVecs(ct->qp.A, &x, &e));
   PetscCall(VecGetOwnershipRange(e, &rstart, &rend));
+  PetscCall(VecZeroEntries(e));
   for (PetscInt i = 0; i < m; ++i) {
     const PetscInt row = c->normal_dof[todo[i / nr]] + i % nr;
-    PetscCall(VecZeroEntries(e));
-    if (row >= rstart && row < rend) PetscCall(VecSetValue(e, row, 1.0, INSERT_VALUES));
-    PetscCall(VecAssemblyBegin(e));
-    PetscCall(VecAssemblyEnd(e));
+    PetscScalar   *ea;
+    /* every rank knows every contact node's dofs: the owner sets its unit entry, no assembly */
+    PetscCall(VecGetArray(e, &ea));
+    if (row >= rstart && row < rend) ea[row - rstart] = 1.0;
+    PetscCall(VecRestoreArray(e, &ea));
     PetscCall(PCApply(pc, e, x));
+    PetscCall(VecGetArray(e, &ea));
+    if (row >= rstart && row < rend) ea[row - rstart] = 0.0;
+    PetscCall(VecRestoreArray(e, &ea));
     PetscCall(VecGetArrayRead(x, &xa));
     PetscCall(StoreColumn(ct, todo, i, ic, rstart, xa));
     PetscCall(VecRestoreArrayRead(x, &xa));
