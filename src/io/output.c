@@ -524,13 +524,8 @@ static PetscErrorCode ViewDataset(PetscViewer viewer, const char group[], const 
   PetscCall(VecCreateMPIWithArray(PetscObjectComm((PetscObject)v), ncomp, n, N, a, &w));
   PetscCall(PetscObjectSetName((PetscObject)w, name));
   PetscCall(PetscViewerHDF5PushGroup(viewer, group));
-  if (step >= 0) {
-    PetscCall(PetscViewerHDF5PushTimestepping(viewer));
-    PetscCall(PetscViewerHDF5SetTimestep(viewer, step));
-  }
-  PetscCall(VecView(w, viewer));
+  PetscCall(MMOutputWriteDataset(viewer, w, step));
   PetscCall(PetscViewerHDF5WriteObjectAttribute(viewer, (PetscObject)w, "vector_field_type", PETSC_STRING, ncomp > 1 ? "vector" : "scalar"));
-  if (step >= 0) PetscCall(PetscViewerHDF5PopTimestepping(viewer));
   PetscCall(PetscViewerHDF5PopGroup(viewer));
   PetscCall(VecDestroy(&w));
   PetscCall(VecRestoreArrayRead(v, &a));
@@ -551,10 +546,7 @@ static PetscErrorCode ViewTime(PetscViewer viewer, PetscInt step, PetscReal t)
   PetscCall(VecAssemblyBegin(stamp));
   PetscCall(VecAssemblyEnd(stamp));
   PetscCall(PetscViewerHDF5PushGroup(viewer, "/"));
-  PetscCall(PetscViewerHDF5PushTimestepping(viewer));
-  PetscCall(PetscViewerHDF5SetTimestep(viewer, step));
-  PetscCall(VecView(stamp, viewer));
-  PetscCall(PetscViewerHDF5PopTimestepping(viewer));
+  PetscCall(MMOutputWriteDataset(viewer, stamp, step));
   PetscCall(PetscViewerHDF5PopGroup(viewer));
   PetscCall(VecDestroy(&stamp));
   PetscFunctionReturn(0);
