@@ -19,6 +19,7 @@
  * interface column for W_r. */
 #include <petsc/private/pcimpl.h>
 #include "../contactimpl.h"
+#include "log.h"
 
 typedef struct {
   PetscInt  nI, ng, ns, gstart; /* interior rows here; interface rows here; in all; our first in the interface numbering */
@@ -459,6 +460,7 @@ static PetscErrorCode PCApply_SchurSplit(PC pc, Vec b, Vec x)
   PetscCall(VecRestoreArrayWrite(sp->bI, &bia));
   PetscCall(MatForwardSolve(sp->F, sp->bI, sp->z));
   if (sp->ns) {
+    PetscCall(PetscLogEventBegin(MM_SplitInterface, pc, 0, 0, 0));
     PetscCall(MatMult(sp->Wt, sp->z, sp->g));
     PetscCall(VecGetArray(sp->g, &ra));
     for (PetscInt i = 0; i < sp->ns; ++i) ra[i] = -ra[i];
@@ -467,16 +469,23 @@ static PetscErrorCode PCApply_SchurSplit(PC pc, Vec b, Vec x)
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, ra, count, MPIU_SCALAR, MPIU_SUM, PetscObjectComm((PetscObject)pc)));
     PetscCall(VecRestoreArray(sp->g, &ra));
     PetscCall(MatSolve(sp->S, sp->g, sp->xg));
+    PetscCall(PetscLogEventEnd(MM_SplitInterface, pc, 0, 0, 0));
     if (sp->fast) {
+      PetscCall(PetscLogEventBegin(MM_SplitBackward, pc, 0, 0, 0));
       PetscCall(MatMultTranspose(sp->Wt, sp->xg, sp->v));
       PetscCall(VecAYPX(sp->v, -1.0, sp->z));
       PetscCall(BackwardSweep(sp, sp->v, sp->xI));
+      PetscCall(PetscLogEventEnd(MM_SplitBackward, pc, 0, 0, 0));
     } else {
       PetscCall(MatMult(sp->B, sp->xg, sp->v));
       PetscCall(VecAYPX(sp->v, -1.0, sp->bI));
       PetscCall(MatSolve(sp->F, sp->v, sp->xI));
     }
-  } else if (sp->fast) PetscCall(BackwardSweep(sp, sp->z, sp->xI));
+  } else if (sp->fast) {
+    PetscCall(PetscLogEventBegin(MM_SplitBackward, pc, 0, 0, 0));
+    PetscCall(BackwardSweep(sp, sp->z, sp->xI));
+    PetscCall(PetscLogEventEnd(MM_SplitBackward, pc, 0, 0, 0));
+  }
   else PetscCall(MatBackwardSolve(sp->F, sp->z, sp->xI));
   PetscCall(VecRestoreArrayRead(b, &ba));
   PetscCall(VecGetArrayWrite(x, &xa));
