@@ -113,6 +113,7 @@ typedef struct {
   PetscInt     active_set_max_it;   /* active-set iterations per contact solve */
   PetscReal    active_set_inexact_rtol; /* CG's relative tolerance while nodes change set (0: every solve tight) */
   PetscBool    active_set_monitor;
+  PetscBool    active_set_block;  /* the CG's products with K~ in block (BAIJ) storage */
   PetscReal    audit_tol;
   PetscReal    contact_work_tol;
   PetscReal    initial_penetration_tol;

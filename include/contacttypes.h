@@ -105,6 +105,9 @@ typedef struct {
   Vec        rc;        /* b - K~ w on the contact dofs */
   Vec        s;         /* Tresca thresholds per contact node (0 without friction) */
   Vec        ct_diag;   /* diag(K~): the scale c of the complementarity functions, per dof */
+  PetscBool  block;     /* the CG's products with K~ through Kb, its block (BAIJ) copy */
+  Mat        Kb, Kb_of; /* that copy, made from Kb_of at state Kb_state (block_operator.c) */
+  PetscObjectState Kb_state;
   PetscBool *active;    /* normal: w_n = g (else rho_n = 0) */
   PetscBool *stick;     /* tangential: w_t = off_t (else rho_t = s d) */
   PetscReal *dir;       /* slip direction d per node, dim-1 components in the tangent frame */

@@ -8,6 +8,8 @@ PETSC_EXTERN PetscLogEvent MM_AssembleKM;
 PETSC_EXTERN PetscLogEvent MM_ColumnsSolve, MM_ColumnsMove;
 /* schursplit's apply: the interface's sum and dense solve (with the wait for the other ranks), the own backward sweep */
 PETSC_EXTERN PetscLogEvent MM_SplitInterface, MM_SplitBackward;
+/* the active-set CG's block copy of K~, made or refilled (src/contact/impls/active_set/block_operator.c) */
+PETSC_EXTERN PetscLogEvent MM_BlockOperator;
 /* Their rotation into the contact frame, K <- Q^T K Q and M <- Q^T M Q (fem.c) */
 PETSC_EXTERN PetscLogEvent MM_RotateKM;
 PETSC_EXTERN PetscLogEvent MM_MassRedistribute; /* -mass redistributed's construction, in set-up */

@@ -10,6 +10,8 @@ import time
 import xml.etree.ElementTree as ET
 
 import h5py
+import numpy as np
+import pytest
 
 from conftest import EXE, MPIEXEC, ROOT, children, history_rows, run, stop
 
@@ -67,3 +69,42 @@ def test_index_is_readable_while_the_run_goes_on(tmp_path):
         stop(proc)
     assert len(set(seen)) > 2  # the index moved on between the looks
     assert len(grids(out / "solution.xmf")) == 751  # all of them at the end (1500 steps)
+
+
+def test_snapshot_datasets_keep_petsc_vecview_layout(tmp_path):
+    """solution.h5's fields come from mmcontact's own writer (src/io/output_dataset.c), which must keep
+    the layout PETSc's VecView gives a time series, the one ParaView's XDMF reader and the restart
+    read: time first and unlimited, one step per chunk, components last, the "timestepping"
+    attribute; the static fields and the mesh untimed. 2 ranks, so that each dataset is written by
+    both. Every dataset the index names exists with the index's dimensions."""
+    r = run("d1_disk", tmp_path, "-ts_max_steps", 6, "-output_every", 2, np_=2)
+    with h5py.File(os.path.join(r.outdir, "solution.h5"), "r") as f:
+        nsnap = f["time"].shape[0]
+        assert nsnap == 4 and f["time"].shape == (4, 1) and f["time"].chunks == (1, 1)
+        assert list(f["time"][:, 0]) == pytest.approx([0, 4e-3, 8e-3, 1.2e-2], rel=1e-12, abs=1e-18)
+        timed = 0
+        for group in ("vertex_fields", "cell_fields"):
+            for name, d in f[group].items():
+                assert d.dtype == "float64", name
+                if "timestepping" not in d.attrs:  # written once: contact_obstacle, serial_vertex
+                    assert d.ndim == 1 and d.chunks == d.shape, (name, d.shape, d.chunks)
+                    continue
+                timed += 1
+                assert bool(d.attrs["timestepping"]), name
+                assert d.shape[0] == nsnap and d.maxshape[0] is None, (name, d.shape, d.maxshape)
+                assert d.chunks == (1,) + d.shape[1:] and d.maxshape[1:] == d.shape[1:], (name, d.chunks)
+                kind = d.attrs["vector_field_type"]
+                kind = kind.decode() if isinstance(kind, bytes) else str(kind)
+                assert kind == ("vector" if d.ndim == 3 else "scalar"), (name, kind, d.shape)
+                assert np.all(np.isfinite(d[...])), name
+        assert timed >= 9
+        named = 0
+        for g in grids(os.path.join(r.outdir, "solution.xmf")):
+            for item in g.iter("DataItem"):
+                if item.get("Format") != "HDF":
+                    continue
+                path = item.text.strip().split(":", 1)[1]
+                dims = tuple(int(x) for x in item.get("Dimensions").split())
+                assert dims == f[path].shape, (path, dims, f[path].shape)
+                named += 1
+        assert named >= nsnap * timed

@@ -1,7 +1,7 @@
 /* Log stages and events, registered together so -log_view shows where time goes. */
 #include "log.h"
 
-PetscLogEvent MM_AssembleKM, MM_RotateKM, MM_MassRedistribute, MM_ColumnsSolve, MM_ColumnsMove, MM_SplitInterface, MM_SplitBackward;
+PetscLogEvent MM_AssembleKM, MM_RotateKM, MM_MassRedistribute, MM_ColumnsSolve, MM_ColumnsMove, MM_SplitInterface, MM_SplitBackward, MM_BlockOperator;
 
 PetscErrorCode MMLogRegister(MMLog *log)
 {
@@ -24,6 +24,7 @@ PetscErrorCode MMLogRegister(MMLog *log)
   PetscCall(PetscLogEventRegister("MMColumnsMove", id, &MM_ColumnsMove));
   PetscCall(PetscLogEventRegister("MMSplitInterface", id, &MM_SplitInterface));
   PetscCall(PetscLogEventRegister("MMSplitBackward", id, &MM_SplitBackward));
+  PetscCall(PetscLogEventRegister("MMBlockOperator", id, &MM_BlockOperator));
   PetscCall(PetscLogEventRegister("MMCandidateOp", id, &log->candidate_operator));
   PetscCall(PetscLogEventRegister("MMEnergy", id, &log->energy));
   PetscCall(PetscLogEventRegister("MMMomenta", id, &log->momenta));

@@ -25,6 +25,7 @@
  * linearly (docs/method.md section 3, "Coulomb in the active-set iteration"). */
 #include <petsc/private/petscimpl.h> /* PetscObjectStateGet */
 #include "../../contactimpl.h"
+#include "log.h"
 
 /* y += kappa_k e_k (e_k.x_t) at every slipping node in 3D, e_k = d_perp: the Newton tangent of the
  * Tresca disk across the slip direction (its tangential dofs are free). */
@@ -90,7 +91,7 @@ static PetscErrorCode ProjectedOperator(Mat A, Vec x, Vec y)
   PetscCall(MatShellGetContext(A, &ctx));
   as = &ctx->contact.as;
   PetscCall(VecPointwiseMult(as->t, as->free, x));
-  PetscCall(MatMult(ctx->contact.qp.A, as->t, y));
+  PetscCall(MatMult(as->Kb ? as->Kb : ctx->contact.qp.A, as->t, y));
   PetscCall(AddDiskTangent(ctx, as->t, y));
   PetscCall(KeepFreeElseCopy(as->free, x, y));
   PetscFunctionReturn(0);
@@ -163,6 +164,7 @@ PetscErrorCode MMActiveSetSetUp(MMCtx *ctx)
   as->max_it  = ctx->opt.active_set_max_it;
   as->inexact_rtol = ctx->opt.active_set_inexact_rtol;
   as->monitor = ctx->opt.active_set_monitor;
+  as->block   = ctx->opt.active_set_block;
   PetscCall(MMKtCreate(ctx, PETSC_TRUE));
   PetscCall(VecDuplicate(ct->qp.b, &as->free));
   PetscCall(VecDuplicate(ct->qp.b, &as->x0));
@@ -325,7 +327,7 @@ static PetscErrorCode FixSets(MMCtx *ctx, Vec b, Vec w)
   PetscCall(VecRestoreArray(as->free, &f));
   PetscCall(VecRestoreArray(as->x0, &x));
   PetscCall(NodeDataRestore(ctx, &nd));
-  PetscCall(MatMult(ct->qp.A, as->x0, as->r));
+  PetscCall(MatMult(as->Kb ? as->Kb : ct->qp.A, as->x0, as->r));
   PetscCall(VecAYPX(as->r, -1.0, as->t));
   PetscCall(VecPointwiseMult(as->r, as->free, as->r));
   PetscFunctionReturn(0);
@@ -571,6 +573,27 @@ static PetscErrorCode UpdateSets(MMCtx *ctx, Vec b, Vec w, PetscInt *changed, Pe
 /* The step's contact problem K~ w = b - E rho with the conditions above; w is the warm start on entry
  * (with the sets of the last solve) and the whole solution on return, ct->rho its reactions.
  * *converged is false when the sets still change after -active_set_max_it iterations. */
+/* Kb made or refilled from the current K~ when K~ changed since (a new dt, or the kept one swapped
+ * back); left NULL, and the products on K~'s AIJ, where K~'s pattern is not in whole blocks. */
+static PetscErrorCode RefreshBlockOperator(MMCtx *ctx)
+{
+  MMContact       *ct = &ctx->contact;
+  MMActiveSet     *as = &ct->as;
+  PetscObjectState state;
+
+  PetscFunctionBeginUser;
+  if (!as->block) PetscFunctionReturn(0);
+  PetscCall(PetscObjectStateGet((PetscObject)ct->qp.A, &state));
+  if (as->Kb_of == ct->qp.A && as->Kb_state == state) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(MM_BlockOperator, 0, 0, 0, 0));
+  PetscCall(MMActiveSetBlockOperator(ct->qp.A, &as->Kb));
+  PetscCall(PetscLogEventEnd(MM_BlockOperator, 0, 0, 0, 0));
+  as->block    = (PetscBool)(as->Kb != NULL);
+  as->Kb_of    = ct->qp.A;
+  as->Kb_state = state;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MMActiveSetSolve(MMCtx *ctx, Vec b, Vec w, PetscBool *converged)
 {
   MMContact   *ct = &ctx->contact;
@@ -584,6 +607,7 @@ PetscErrorCode MMActiveSetSolve(MMCtx *ctx, Vec b, Vec w, PetscBool *converged)
   PetscBool    loose = (PetscBool)(as->inexact_rtol > 0);
 
   PetscFunctionBeginUser;
+  PetscCall(RefreshBlockOperator(ctx));
   as->lin_its = 0;
   for (as->its = 1; as->its <= as->max_it; ++as->its) {
     PetscInt  changed;
@@ -631,6 +655,7 @@ PetscErrorCode MMActiveSetDestroy(MMActiveSet *as)
   PetscCall(VecDestroy(&as->rc));
   PetscCall(VecDestroy(&as->s));
   PetscCall(VecDestroy(&as->ct_diag));
+  PetscCall(MatDestroy(&as->Kb));
   PetscCall(PetscFree3(as->active, as->stick, as->dir));
   PetscCall(PetscFree3(as->kappa, as->beta, as->rperp));
   PetscFunctionReturn(0);
