@@ -55,7 +55,7 @@ PETSC_EXTERN PetscErrorCode MMKtDestroy(MMStepSolver *);
 /* impls/active_set/: the primal-dual active-set formulation */
 PETSC_EXTERN PetscErrorCode MMActiveSetSetUp(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMActiveSetSetOperator(MMCtx *);
-PETSC_EXTERN PetscErrorCode MMActiveSetBlockOperator(Mat, Mat *);
+PETSC_EXTERN PetscErrorCode MMActiveSetBlockOperator(Mat, PetscInt, Mat *);
 PETSC_EXTERN PetscErrorCode MMActiveSetSetThresholds(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMActiveSetSolve(MMCtx *, Vec, Vec, PetscBool *);
 PETSC_EXTERN PetscErrorCode MMActiveSetDestroy(MMActiveSet *);

@@ -210,11 +210,14 @@ static PetscErrorCode HeaderContact(MMCtx *ctx)
   MPI_Comm         comm = PETSC_COMM_WORLD;
   const MMOptions *opt  = &ctx->opt;
   char             obstacles[512], friction[128], solver[256], progress[64] = "no progress lines";
+  const char      *products = "";
 
   PetscFunctionBeginUser;
   PetscCall(ObstacleList(opt, obstacles, sizeof(obstacles)));
   PetscCall(FrictionText(opt, friction, sizeof(friction)));
   PetscCall(SolverText(ctx, solver, sizeof(solver)));
+  /* the active-set CG's products (src/contact/impls/active_set/block_operator.c) */
+  if (ctx->contact.as.ksp) products = ctx->contact.as.Kb ? "; CG products with K~ in block storage (BAIJ)" : (opt->active_set_block ? "; CG products with K~'s AIJ (its pattern is not in whole blocks)" : "");
   if (opt->progress_every > 0) PetscCall(PetscSNPrintf(progress, sizeof(progress), "progress every %.6g s", (double)opt->progress_every));
   if (ctx->contact.enabled && ctx->contact.n_corners) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes (%" PetscInt_FMT " of them against two obstacles: %" PetscInt_FMT " rows) against %s; %s %s mass; %s\n", ctx->contact.n_global - ctx->contact.n_corners, ctx->contact.n_corners, ctx->contact.n_global, obstacles, opt->lumped ? "lumped" : "consistent", MMMassTypes[opt->mass_type], friction));
   else if (ctx->contact.enabled) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes against %s; %s %s mass; %s\n", ctx->contact.n_global, obstacles, opt->lumped ? "lumped" : "consistent", MMMassTypes[opt->mass_type], friction));
@@ -223,7 +226,7 @@ static PetscErrorCode HeaderContact(MMCtx *ctx)
     PetscCall(PetscPrintf(comm, "  pair %s: slave %s, %" PetscInt_FMT " nodes (%" PetscInt_FMT " facing a master node: node to node), on %" PetscInt_FMT " facets of master %s; mu = %g\n", ob->name, ob->slave, ctx->contact.pairs.count[2 * p], ctx->contact.pairs.count[2 * p + 1], ctx->contact.pairs.nf[p], ob->master, (double)ob->mu));
   }
   if (!ctx->contact.enabled) PetscCall(PetscPrintf(comm, "  contact: off (-contact 0), 0 contact nodes: linear elastodynamics; %s mass\n", opt->lumped ? "lumped" : "consistent"));
-  PetscCall(PetscPrintf(comm, "  solvers: contact formulation %s%s; K~ by %s; %s\n", ctx->contact.type, ctx->contact.auto_type && ctx->contact.enabled ? (ctx->contact.prefer_iterative ? " (auto: 3D, at least -iterative_dofs dofs)" : " (auto)") : "", solver, progress));
+  PetscCall(PetscPrintf(comm, "  solvers: contact formulation %s%s; K~ by %s%s; %s\n", ctx->contact.type, ctx->contact.auto_type && ctx->contact.enabled ? (ctx->contact.prefer_iterative ? " (auto: 3D, at least -iterative_dofs dofs)" : " (auto)") : "", solver, products, progress));
   PetscCall(MMProgressMassLine(ctx));
   PetscFunctionReturn(0);
 }

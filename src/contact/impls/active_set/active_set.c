@@ -198,6 +198,27 @@ PetscErrorCode MMActiveSetSetUp(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
+/* Kb made or refilled from the current K~ when K~ changed since (a new dt, or the kept one swapped
+ * back); left NULL, and the products on K~'s AIJ, where K~'s pattern is not in whole blocks. */
+static PetscErrorCode RefreshBlockOperator(MMCtx *ctx)
+{
+  MMContact       *ct = &ctx->contact;
+  MMActiveSet     *as = &ct->as;
+  PetscObjectState state;
+
+  PetscFunctionBeginUser;
+  if (!as->block) PetscFunctionReturn(0);
+  PetscCall(PetscObjectStateGet((PetscObject)ct->qp.A, &state));
+  if (as->Kb_of == ct->qp.A && as->Kb_state == state) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(MM_BlockOperator, 0, 0, 0, 0));
+  PetscCall(MMActiveSetBlockOperator(ct->qp.A, ctx->op.dim, &as->Kb));
+  PetscCall(PetscLogEventEnd(MM_BlockOperator, 0, 0, 0, 0));
+  as->block    = (PetscBool)(as->Kb != NULL);
+  as->Kb_of    = ct->qp.A;
+  as->Kb_state = state;
+  PetscFunctionReturn(0);
+}
+
 /* A new K~ (a new dt): its PC, set up once, and the scale c = diag(K~) of the complementarity
  * functions, which keeps force and displacement in the same units. */
 PetscErrorCode MMActiveSetSetOperator(MMCtx *ctx)
@@ -207,6 +228,7 @@ PetscErrorCode MMActiveSetSetOperator(MMCtx *ctx)
   PetscFunctionBeginUser;
   PetscCall(MMKtSetOperator(ctx, ct->qp.A));
   PetscCall(MatGetDiagonal(ct->qp.A, ct->as.ct_diag));
+  PetscCall(RefreshBlockOperator(ctx)); /* here too, so that the start-up header can tell */
   PetscCall(KSPSetOperators(ct->as.ksp, ct->as.A, ct->as.A));
   PetscFunctionReturn(0);
 }
@@ -573,27 +595,6 @@ static PetscErrorCode UpdateSets(MMCtx *ctx, Vec b, Vec w, PetscInt *changed, Pe
 /* The step's contact problem K~ w = b - E rho with the conditions above; w is the warm start on entry
  * (with the sets of the last solve) and the whole solution on return, ct->rho its reactions.
  * *converged is false when the sets still change after -active_set_max_it iterations. */
-/* Kb made or refilled from the current K~ when K~ changed since (a new dt, or the kept one swapped
- * back); left NULL, and the products on K~'s AIJ, where K~'s pattern is not in whole blocks. */
-static PetscErrorCode RefreshBlockOperator(MMCtx *ctx)
-{
-  MMContact       *ct = &ctx->contact;
-  MMActiveSet     *as = &ct->as;
-  PetscObjectState state;
-
-  PetscFunctionBeginUser;
-  if (!as->block) PetscFunctionReturn(0);
-  PetscCall(PetscObjectStateGet((PetscObject)ct->qp.A, &state));
-  if (as->Kb_of == ct->qp.A && as->Kb_state == state) PetscFunctionReturn(0);
-  PetscCall(PetscLogEventBegin(MM_BlockOperator, 0, 0, 0, 0));
-  PetscCall(MMActiveSetBlockOperator(ct->qp.A, &as->Kb));
-  PetscCall(PetscLogEventEnd(MM_BlockOperator, 0, 0, 0, 0));
-  as->block    = (PetscBool)(as->Kb != NULL);
-  as->Kb_of    = ct->qp.A;
-  as->Kb_state = state;
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode MMActiveSetSolve(MMCtx *ctx, Vec b, Vec w, PetscBool *converged)
 {
   MMContact   *ct = &ctx->contact;

@@ -17,7 +17,7 @@ typedef struct {
   PetscInt        m, cstart, bs;
 } AIJParts;
 
-static PetscErrorCode PartsGet(Mat A, AIJParts *p)
+static PetscErrorCode PartsGet(Mat A, PetscInt dim, AIJParts *p)
 {
   PetscInt  n;
   PetscBool done;
@@ -26,6 +26,9 @@ static PetscErrorCode PartsGet(Mat A, AIJParts *p)
 
   PetscFunctionBeginUser;
   PetscCall(MatGetBlockSize(A, &p->bs));
+  /* with Dirichlet conditions PETSc's K~ has block size 1, but where only whole vertices are
+   * constrained its rows still come in whole blocks: the pattern check decides */
+  if (p->bs == 1) p->bs = dim;
   PetscCall(MatGetOwnershipRangeColumn(A, &p->cstart, NULL));
   PetscCall(PetscObjectTypeCompare((PetscObject)A, MATMPIAIJ, &mpi));
   p->Ao = NULL;
@@ -127,10 +130,10 @@ static PetscInt WidestRow(const AIJParts *p)
   return w;
 }
 
-/* *B (created on the first call, NULL when K~'s pattern is not in whole blocks, e.g. a vertex
- * with some dofs constrained) with A's values. A is AIJ (Seq or MPI), with the pattern every K~ of
- * the run shares (K's). */
-PetscErrorCode MMActiveSetBlockOperator(Mat A, Mat *B)
+/* *B (created on the first call, NULL when K~'s pattern is not in whole dim x dim blocks, e.g. a
+ * vertex with only some of its dofs constrained) with A's values. A is AIJ (Seq or MPI), with the
+ * pattern every K~ of the run shares (K's). */
+PetscErrorCode MMActiveSetBlockOperator(Mat A, PetscInt dim, Mat *B)
 {
   AIJParts           p;
   PetscInt           rstart, M, N, n, *cols;
@@ -139,7 +142,7 @@ PetscErrorCode MMActiveSetBlockOperator(Mat A, Mat *B)
   PetscBool          ok = PETSC_TRUE;
 
   PetscFunctionBeginUser;
-  PetscCall(PartsGet(A, &p));
+  PetscCall(PartsGet(A, dim, &p));
   PetscCall(MatGetOwnershipRange(A, &rstart, NULL));
   if (!*B) {
     PetscInt *dnnz, *onnz;
