@@ -20,9 +20,7 @@ typedef struct {
 static PetscErrorCode PartsGet(Mat A, PetscInt dim, AIJParts *p)
 {
   PetscInt  n;
-  PetscBool done;
-
-  PetscBool mpi;
+  PetscBool done, mpi;
 
   PetscFunctionBeginUser;
   PetscCall(MatGetBlockSize(A, &p->bs));
