@@ -16,6 +16,9 @@ CASES = [
     (["-traction", "body", "-traction_body_value", "0,1"], ['-traction body: the physical group "body" holds cells, not boundary faces']),
     (["-dirichlet", "upper", "-dirichlet_upper_components", "1,1"], ["-dirichlet_upper_components lists component 1 twice"]),
     (["-E", "1e308"], ["The stiffness matrix overflows with -E 1e+308"]),
+    # a switch given a value PETSc cannot read as a logical: PETSc's own message does not name it
+    (["-active_set_block_matrix", "2"], ["-active_set_block_matrix 2: give 1 or 0"]),
+    (["-mass_lumped", "yes2"], ["-mass_lumped yes2: give 1 or 0 (also true/false, yes/no, on/off)"]),
 ]
 
 

@@ -2,6 +2,7 @@
 #include "options.h"
 #include <errno.h>
 #include <stdlib.h>
+#include <strings.h> /* strcasecmp */
 #include "obstacle.h"
 #include "errors.h"
 #include "damping.h"
@@ -111,6 +112,22 @@ static PetscErrorCode OptionsInt(PetscOptionItems *PetscOptionsObject, MPI_Comm 
   PetscFunctionBeginUser;
   PetscCall(MMOptionsCheckValue(comm, name, MM_VALUE_INT));
   PetscCall(PetscOptionsInt(name, help, NULL, *v, v, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* A switch: given alone it is on; given a value, that value must be one PETSc reads as a logical
+ * (its own error does not name the option). */
+static PetscErrorCode OptionsBool(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], PetscBool *v)
+{
+  static const char *const words[] = {"1", "0", "true", "false", "yes", "no", "on", "off"};
+  const char              *value;
+  PetscBool                set, known = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsFindPair(NULL, NULL, name, &value, &set));
+  for (size_t i = 0; set && value && value[0] && i < PETSC_STATIC_ARRAY_LENGTH(words); ++i) known = (PetscBool)(known || !strcasecmp(value, words[i]));
+  PetscCheck(!set || !value || !value[0] || known, comm, PETSC_ERR_USER_INPUT, "%s %s: give 1 or 0 (also true/false, yes/no, on/off), or %s alone for 1", name, value, name);
+  PetscCall(PetscOptionsBool(name, help, NULL, *v, v, NULL));
   PetscFunctionReturn(0);
 }
 
@@ -503,14 +520,14 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   opt->mass_type = MM_MASS_REDISTRIBUTED;
   PetscCall(OptionsEnum(PetscOptionsObject, comm, "-mass", "Mass matrix in time stepping: modified (normal mass of contact nodes removed), redistributed (modified, with the removed mass given to the other nodes so that the total mass, centre of gravity and inertia are those of the standard mass) or standard", MMMassTypes, (PetscEnum *)&opt->mass_type));
   opt->lumped = PETSC_FALSE;
-  PetscCall(PetscOptionsBool("-mass_lumped", "Use the row-sum lumped mass instead of the consistent mass", NULL, opt->lumped, &opt->lumped, NULL));
+  PetscCall(OptionsBool(PetscOptionsObject, comm, "-mass_lumped", "Use the row-sum lumped mass instead of the consistent mass", &opt->lumped));
   opt->assembly = MM_ASSEMBLY_CLOSED_FORM;
   PetscCall(OptionsEnum(PetscOptionsObject, comm, "-assembly", "How the stiffness and mass are assembled: closed_form (P1 element matrices in closed form, one pass over the cells) or fe (PetscFE quadrature, the slower reference)", MMAssemblyTypes, (PetscEnum *)&opt->assembly));
   opt->assembly_check = PETSC_FALSE;
-  PetscCall(PetscOptionsBool("-assembly_check", "Also assemble the stiffness and mass the other -assembly way, print the relative difference of each, and stop if one exceeds 1e-12", NULL, opt->assembly_check, &opt->assembly_check, NULL));
+  PetscCall(OptionsBool(PetscOptionsObject, comm, "-assembly_check", "Also assemble the stiffness and mass the other -assembly way, print the relative difference of each, and stop if one exceeds 1e-12", &opt->assembly_check));
   PetscCall(ProcessDamping(PetscOptionsObject, comm, opt));
   opt->contact = PETSC_TRUE;
-  PetscCall(PetscOptionsBool("-contact", "Enforce unilateral contact; 0 gives linear elastodynamics on the same mesh (the contact boundary is then unused)", NULL, opt->contact, &opt->contact, NULL));
+  PetscCall(OptionsBool(PetscOptionsObject, comm, "-contact", "Enforce unilateral contact; 0 gives linear elastodynamics on the same mesh (the contact boundary is then unused)", &opt->contact));
 
   opt->mu = 0.0;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-mu", "Coulomb friction coefficient, >= 0 (0: frictionless, the friction loop is skipped)", &opt->mu));
@@ -522,7 +539,7 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   opt->friction_dump[0] = 0;
   PetscCall(OptionsString(PetscOptionsObject, comm, "-friction_dump", "Directory (created if missing) for each step's Coulomb problem on the candidate set, in the Friction Contact Library's form u = W r + q (docs/method.md section 6), with our reactions and solve time: step_NNNNNN.h5. scripts/fclib_compare.py solves them with Siconos. Needs the condensed formulation", opt->friction_dump, sizeof(opt->friction_dump), NULL));
   opt->friction_monitor = PETSC_FALSE;
-  PetscCall(PetscOptionsBool("-friction_monitor", "Print each friction iteration: threshold change, Coulomb residual, contraction factor, slipping and sticking node counts", NULL, opt->friction_monitor, &opt->friction_monitor, NULL));
+  PetscCall(OptionsBool(PetscOptionsObject, comm, "-friction_monitor", "Print each friction iteration: threshold change, Coulomb residual, contraction factor, slipping and sticking node counts", &opt->friction_monitor));
   PetscCall(PetscStrncpy(opt->contact_formulation, "auto", sizeof(opt->contact_formulation)));
   opt->iterative_dofs = 50000;
   PetscCall(OptionsInt(PetscOptionsObject, comm, "-iterative_dofs", "3D problems with at least this many dofs take the iterative path by default: -contact_formulation auto is active_set, and without contact K~ is solved by CG with Jacobi rather than factored (0: never). Below it, and in 2D, K~ is factored", &opt->iterative_dofs));
@@ -532,17 +549,17 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   opt->active_set_inexact_rtol = 1e-1;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-active_set_inexact_rtol", "Active-set formulation: while nodes still change set, CG reduces the residual by this factor only; the last solves, which confirm the sets, go to -contact_tol (0: every solve to -contact_tol)", &opt->active_set_inexact_rtol));
   opt->active_set_block = PETSC_TRUE;
-  PetscCall(PetscOptionsBool("-active_set_block_matrix", "Active-set formulation: the CG's products with K~ from a copy of it in block storage (BAIJ, one block per pair of vertices: a third fewer bytes read per product, and the copy's memory, about 0.7 of K~'s); 0 keeps K~'s AIJ", NULL, opt->active_set_block, &opt->active_set_block, NULL));
+  PetscCall(OptionsBool(PetscOptionsObject, comm, "-active_set_block_matrix", "Active-set formulation: the CG's products with K~ from a copy of it in block storage (BAIJ, one block per pair of vertices: a third fewer bytes read per product, and the copy's memory, about 0.7 of K~'s); 0 keeps K~'s AIJ", &opt->active_set_block));
   opt->active_set_monitor = PETSC_FALSE;
-  PetscCall(PetscOptionsBool("-active_set_monitor", "Active-set formulation: print each iteration, the nodes that changed set and the CG iterations", NULL, opt->active_set_monitor, &opt->active_set_monitor, NULL));
+  PetscCall(OptionsBool(PetscOptionsObject, comm, "-active_set_monitor", "Active-set formulation: print each iteration, the nodes that changed set and the CG iterations", &opt->active_set_monitor));
   opt->contact_tol = 1e-11;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-contact_tol", "Contact solves stop when ||K~ w - b - f_c|| <= contact_tol ||b|| (on top of -contact_snes_rtol/atol), in (0, 1)", &opt->contact_tol));
   opt->candidate_margin = 1.0;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-contact_candidate_margin", "Condensed formulation: a contact node joins the step's candidate set when its contact-free predicted gap is below this times the deepest predicted penetration (>= -1; negative values start from a set smaller than the contact, which the growth completes: the set grows and the step is re-solved whenever a node outside it would penetrate, so this changes the cost, not the answer)", &opt->candidate_margin));
   opt->keep_factor = PETSC_TRUE;
-  PetscCall(PetscOptionsBool("-contact_K_keep", "Keep K~ for the previous dt with its factor and cached columns (condensed) or its PC (active_set), so that dt growing back after a rejected step costs no factorization (the memory of a second factor)", NULL, opt->keep_factor, &opt->keep_factor, NULL));
+  PetscCall(OptionsBool(PetscOptionsObject, comm, "-contact_K_keep", "Keep K~ for the previous dt with its factor and cached columns (condensed) or its PC (active_set), so that dt growing back after a rejected step costs no factorization (the memory of a second factor)", &opt->keep_factor));
   opt->candidate_all = PETSC_FALSE;
-  PetscCall(PetscOptionsBool("-contact_candidate_all", "Condensed formulation: every contact node in every step's candidate set (the full Delassus operator: the reference the candidate set is checked against)", NULL, opt->candidate_all, &opt->candidate_all, NULL));
+  PetscCall(OptionsBool(PetscOptionsObject, comm, "-contact_candidate_all", "Condensed formulation: every contact node in every step's candidate set (the full Delassus operator: the reference the candidate set is checked against)", &opt->candidate_all));
   opt->candidate_memory = 2048;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-contact_candidate_memory", "Condensed formulation: MiB (over all ranks) of cached columns of K~^{-1} E; columns of nodes outside the step's set are dropped beyond it (> 0)", &opt->candidate_memory));
   opt->audit_tol = 1e-6;
@@ -550,7 +567,7 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   opt->contact_work_tol = 1e-3;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-contact_work_tol", "Reject and retry with a smaller dt a step whose contact work W_c creates more energy than this times the run's energy scale (> 0): a release that dt does not resolve", &opt->contact_work_tol));
   opt->deformation_audit = PETSC_TRUE;
-  PetscCall(PetscOptionsBool("-deformation_audit", "After every step, check each cell's deformation: a cell turned inside out or a strain above -max_strain stops the run, one above -strain_warn is warned (0: no check, for nondimensional verification cases whose strains are large by design)", NULL, opt->deformation_audit, &opt->deformation_audit, NULL));
+  PetscCall(OptionsBool(PetscOptionsObject, comm, "-deformation_audit", "After every step, check each cell's deformation: a cell turned inside out or a strain above -max_strain stops the run, one above -strain_warn is warned (0: no check, for nondimensional verification cases whose strains are large by design)", &opt->deformation_audit));
   opt->strain_warn = 0.1;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-strain_warn", "Warn once when a cell's strain (its largest principal strain, in magnitude) exceeds this, > 0: beyond it the small-strain model is an approximation", &opt->strain_warn));
   opt->max_strain = 1.0;
@@ -566,13 +583,13 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsString(PetscOptionsObject, comm, "-restart", "Continue the run of a checkpoint: its checkpoint.h5, or the output directory that holds it, on any number of ranks. The history.csv and solution.h5/.xmf of that directory, cut at the checkpoint's step, are continued in -output_dir. Give the options of the run that wrote it: another mesh, contact boundary, dimension, -mu, material or mass is refused", opt->restart, sizeof(opt->restart), NULL));
   PetscCall(OptionsInt(PetscOptionsObject, comm, "-output_every", "Write the HDF5 fields every k steps (0: only the initial and final state)", &opt->output_every));
   opt->quiet = PETSC_FALSE;
-  PetscCall(PetscOptionsBool("-quiet", "Do not print the start-up report, progress lines and closing summary", NULL, opt->quiet, &opt->quiet, NULL));
+  PetscCall(OptionsBool(PetscOptionsObject, comm, "-quiet", "Do not print the start-up report, progress lines and closing summary", &opt->quiet));
   opt->progress_every = 5;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-progress_every", "Print a progress line (time, wall time and ETA, energy balance, contact and friction) every this many seconds of wall time, >= 0 (0: none)", &opt->progress_every));
   opt->debug = PETSC_FALSE;
-  PetscCall(PetscOptionsBool("-debug", "On an error, print PETSc's full trace on every rank (by default an error a user can act on prints its message alone; README \"Exit status\")", NULL, opt->debug, &opt->debug, NULL));
+  PetscCall(OptionsBool(PetscOptionsObject, comm, "-debug", "On an error, print PETSc's full trace on every rank (by default an error a user can act on prints its message alone; README \"Exit status\")", &opt->debug));
   opt->allow_unused = PETSC_FALSE;
-  PetscCall(PetscOptionsBool("-allow_unused_options", "Run even if an option is set that nothing reads (by default such an option, usually a typo, stops the run before the first step)", NULL, opt->allow_unused, &opt->allow_unused, NULL));
+  PetscCall(OptionsBool(PetscOptionsObject, comm, "-allow_unused_options", "Run even if an option is set that nothing reads (by default such an option, usually a typo, stops the run before the first step)", &opt->allow_unused));
   PetscOptionsEnd();
   PetscCall(CheckRanges(comm, opt));
   PetscFunctionReturn(0);

@@ -51,6 +51,7 @@ PETSC_EXTERN PetscErrorCode MMKtSetOperator(MMCtx *, Mat);
 PETSC_EXTERN PetscErrorCode MMKtSolveToTolerance(KSP, PetscReal, Vec, Vec, Vec, PetscReal *);
 PETSC_EXTERN PetscErrorCode MMKtSolve(MMCtx *, Vec, Vec);
 PETSC_EXTERN PetscErrorCode MMKtDestroy(MMStepSolver *);
+PETSC_EXTERN PetscErrorCode MMKtGetLocalBlocks(Mat, const char[], Mat *, Mat *, const PetscInt **);
 
 /* impls/active_set/: the primal-dual active-set formulation */
 PETSC_EXTERN PetscErrorCode MMActiveSetSetUp(MMCtx *);

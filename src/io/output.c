@@ -524,8 +524,7 @@ static PetscErrorCode ViewDataset(PetscViewer viewer, const char group[], const 
   PetscCall(VecCreateMPIWithArray(PetscObjectComm((PetscObject)v), ncomp, n, N, a, &w));
   PetscCall(PetscObjectSetName((PetscObject)w, name));
   PetscCall(PetscViewerHDF5PushGroup(viewer, group));
-  PetscCall(MMOutputWriteDataset(viewer, w, step));
-  PetscCall(PetscViewerHDF5WriteObjectAttribute(viewer, (PetscObject)w, "vector_field_type", PETSC_STRING, ncomp > 1 ? "vector" : "scalar"));
+  PetscCall(MMOutputWriteDataset(viewer, w, step, ncomp > 1 ? "vector" : "scalar"));
   PetscCall(PetscViewerHDF5PopGroup(viewer));
   PetscCall(VecDestroy(&w));
   PetscCall(VecRestoreArrayRead(v, &a));
@@ -546,7 +545,7 @@ static PetscErrorCode ViewTime(PetscViewer viewer, PetscInt step, PetscReal t)
   PetscCall(VecAssemblyBegin(stamp));
   PetscCall(VecAssemblyEnd(stamp));
   PetscCall(PetscViewerHDF5PushGroup(viewer, "/"));
-  PetscCall(MMOutputWriteDataset(viewer, stamp, step));
+  PetscCall(MMOutputWriteDataset(viewer, stamp, step, NULL));
   PetscCall(PetscViewerHDF5PopGroup(viewer));
   PetscCall(VecDestroy(&stamp));
   PetscFunctionReturn(0);

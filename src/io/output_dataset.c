@@ -113,9 +113,10 @@ static PetscErrorCode WriteRows(hid_t dset, const DatasetShape *s, Vec v)
 }
 
 /* v (its block size the components) as the dataset of its name in the viewer's current group: its
- * entry of step, or the whole dataset when step < 0. A time series gets, when created, the
- * attribute PETSc's VecView gives it, "timestepping", which VecLoad reads. */
-PetscErrorCode MMOutputWriteDataset(PetscViewer viewer, Vec v, PetscInt step)
+ * entry of step, or the whole dataset when step < 0. Its attributes are written once, when it is
+ * created: a time series's "timestepping", which PETSc's VecView gives it and VecLoad reads, and
+ * "vector_field_type" = field_type unless NULL. */
+PetscErrorCode MMOutputWriteDataset(PetscViewer viewer, Vec v, PetscInt step, const char field_type[])
 {
   DatasetShape s;
   const char  *name;
@@ -131,5 +132,6 @@ PetscErrorCode MMOutputWriteDataset(PetscViewer viewer, Vec v, PetscInt step)
   H5Call(H5Dclose(dset));
   H5Call(H5Gclose(group));
   if (created && step >= 0) PetscCall(PetscViewerHDF5WriteObjectAttribute(viewer, (PetscObject)v, "timestepping", PETSC_BOOL, &ts));
+  if (created && field_type) PetscCall(PetscViewerHDF5WriteObjectAttribute(viewer, (PetscObject)v, "vector_field_type", PETSC_STRING, field_type));
   PetscFunctionReturn(0);
 }

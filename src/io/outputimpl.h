@@ -27,7 +27,7 @@ PETSC_INTERN PetscErrorCode MMOutputCSVHeaderLine(MMCtx *, MMLine *);
 PETSC_INTERN PetscErrorCode MMOutputIndexAddGrid(MMOutput *, PetscInt, PetscInt);
 PETSC_INTERN PetscErrorCode MMOutputWriteIndexFile(MMCtx *);
 PETSC_INTERN PetscErrorCode MMOutputFlushFields(MMOutput *);
-PETSC_INTERN PetscErrorCode MMOutputWriteDataset(PetscViewer, Vec, PetscInt);
+PETSC_INTERN PetscErrorCode MMOutputWriteDataset(PetscViewer, Vec, PetscInt, const char[]);
 PETSC_INTERN PetscErrorCode MMOutputWriteStaticFields(MMCtx *);
 PETSC_INTERN PetscErrorCode MMOutputMakeDirectories(const char[], MMFileStatus *);
 PETSC_INTERN PetscErrorCode MMOutputKeepPrevious(const char[], MMFileStatus *);

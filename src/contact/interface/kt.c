@@ -201,3 +201,24 @@ PetscErrorCode MMContactCreate_None(MMContact *ct)
   ct->ops = &NoneOps;
   PetscFunctionReturn(0);
 }
+
+/* K~'s local diagonal and off-diagonal blocks (SeqAIJ) and the off-diagonal block's global columns,
+ * for the code that reads K~'s arrays (schursplit, the active set's block copy); on one rank the
+ * whole matrix and no off-diagonal block. who names the user of an AIJ-only path in the error. */
+PetscErrorCode MMKtGetLocalBlocks(Mat K, const char who[], Mat *Ad, Mat *Ao, const PetscInt **colmap)
+{
+  PetscBool mpi, seq;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)K, MATMPIAIJ, &mpi));
+  if (mpi) {
+    PetscCall(MatMPIAIJGetSeqAIJ(K, Ad, Ao, colmap));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscObjectTypeCompare((PetscObject)K, MATSEQAIJ, &seq));
+  PetscCheck(seq, PetscObjectComm((PetscObject)K), PETSC_ERR_SUP, "%s needs K~ as an AIJ matrix", who);
+  *Ad     = K;
+  *Ao     = NULL;
+  *colmap = NULL;
+  PetscFunctionReturn(0);
+}

@@ -86,25 +86,6 @@ static PetscErrorCode PCDestroy_SchurSplit(PC pc)
   PetscFunctionReturn(0);
 }
 
-/* The local diagonal and off-diagonal blocks of K~ and the off-diagonal block's global columns. */
-static PetscErrorCode GetLocalBlocks(Mat K, Mat *Ad, Mat *Ao, const PetscInt **colmap)
-{
-  PetscBool mpi;
-
-  PetscFunctionBegin;
-  PetscCall(PetscObjectTypeCompare((PetscObject)K, MATMPIAIJ, &mpi));
-  if (mpi) PetscCall(MatMPIAIJGetSeqAIJ(K, Ad, Ao, colmap));
-  else {
-    PetscBool seq;
-    PetscCall(PetscObjectTypeCompare((PetscObject)K, MATSEQAIJ, &seq));
-    PetscCheck(seq, PetscObjectComm((PetscObject)K), PETSC_ERR_SUP, "-pc_type schursplit needs an AIJ matrix");
-    *Ad     = K;
-    *Ao     = NULL;
-    *colmap = NULL;
-  }
-  PetscFunctionReturn(0);
-}
-
 /* Interface rows: those coupling to a lower rank's (a ghost column below rstart); the global list of
  * all of them, sorted, on every rank. */
 static PetscErrorCode SplitRows(PC pc, Mat Ad, Mat Ao, const PetscInt colmap[], PetscInt rstart, PetscInt **gam_all, PetscInt **gpos)
@@ -417,7 +398,7 @@ static PetscErrorCode PCSetUp_SchurSplit(PC pc)
 
   PetscFunctionBegin;
   PetscCall(PCReset_SchurSplit(pc));
-  PetscCall(GetLocalBlocks(pc->pmat, &lr.Ad, &lr.Ao, &lr.colmap));
+  PetscCall(MMKtGetLocalBlocks(pc->pmat, "-pc_type schursplit", &lr.Ad, &lr.Ao, &lr.colmap));
   PetscCall(MatGetOwnershipRange(pc->pmat, &rstart, NULL));
   PetscCall(SplitRows(pc, lr.Ad, lr.Ao, lr.colmap, rstart, &gam_all, &gpos));
   lr.gam_all = gam_all;

@@ -159,22 +159,23 @@ PetscErrorCode MMKSPSetExactCG(KSP ksp)
 }
 
 /* The default factorization of a symmetric positive definite matrix (K~), chosen by measurement
- * (README "Options", the contact_K_ solve): in 2D PETSc's own Cholesky with nested-dissection
- * ordering (115k-dof frictional D1: a step 2.2 times faster than with MUMPS LU, set-up faster too),
- * on up to 8 ranks split at the ranks' interface (schursplit, pc_schursplit.c: each rank factors
- * its interior, and the interface's Schur complement is dense on every rank; on one rank there is
- * no interface, and it is that factor with a faster backward sweep than PETSc's MatSolve: 115k-dof
- * disk, solve 11.0 against 13.6 ms; its linear step 1.79 times faster on 2 ranks than on 1, where
- * the whole factor held on every rank gained 1.11 to 1.23, its solve being whole on both ranks),
- * and on more ranks, where the dense
- * interface grows with the ranks, held whole on every rank (PCREDUNDANT: PETSc's factorizations
- * are serial, and MUMPS's distributed solve took 45 to 65 ms per right-hand side where this one
- * takes 17 ms; a 2D factor is small, N log N); in 3D, where its factorization and the Delassus columns cost more
- * than MUMPS's (12k-dof D2: 6.1 against 3.4 s, and 29 against 22 s), MUMPS's Cholesky (LDL^T):
- * half the factor of its LU, so on the 113k-dof D2 ball's frictional row set-up 29 -> 21 s and
- * peak memory 3.6 -> 2.4 GiB on one rank, 26 -> 14 s and 4.7 -> 3.1 GiB over two. Its ordering is
- * MUMPS's automatic choice, SCOTCH with the MUMPS build the Makefile links (docs/scaling.md, "The
- * factorization is the wall"): 3.4e11 flops against 4.7e11 with PORD on that ball.
+ * (README "Options", the contact_K_ solve).
+ * - 2D: PETSc's own Cholesky with nested-dissection ordering (115k-dof frictional D1: a step 2.2
+ *   times faster than with MUMPS LU, set-up faster too),
+ *   - on up to 8 ranks split at the ranks' interface (schursplit, pc_schursplit.c: each rank
+ *     factors its interior, the interface's Schur complement is dense on every rank). On one rank
+ *     there is no interface, and it is that factor with a faster backward sweep than PETSc's
+ *     MatSolve (115k-dof disk: solve 11.0 against 13.6 ms); the linear step is 1.79 times faster on
+ *     2 ranks than on 1, where the whole factor on every rank gained 1.11 to 1.23;
+ *   - on more ranks, where the dense interface grows with the ranks, held whole on every rank
+ *     (PCREDUNDANT: PETSc's factorizations are serial, and MUMPS's distributed solve took 45 to
+ *     65 ms per right-hand side where this one takes 17 ms; a 2D factor is small, N log N).
+ * - 3D, where that factorization and the Delassus columns cost more than MUMPS's (12k-dof D2: 6.1
+ *   against 3.4 s, and 29 against 22 s): MUMPS's Cholesky (LDL^T), half the factor of its LU (the
+ *   113k-dof D2 ball's frictional row: set-up 29 -> 21 s and peak memory 3.6 -> 2.4 GiB on one
+ *   rank, 26 -> 14 s and 4.7 -> 3.1 GiB over two). Its ordering is MUMPS's automatic choice,
+ *   SCOTCH with the MUMPS build the Makefile links (docs/scaling.md, "The factorization is the
+ *   wall"): 3.4e11 flops against 4.7e11 with PORD on that ball.
  * Options still apply on top; nothing is checked here (kt.c also accepts iterative PCs). */
 PetscErrorCode MMKSPSetFactorSPD(KSP ksp, PetscInt dim)
 {

@@ -20,7 +20,7 @@ typedef struct {
 static PetscErrorCode PartsGet(Mat A, PetscInt dim, AIJParts *p)
 {
   PetscInt  n;
-  PetscBool done, mpi;
+  PetscBool done;
 
   PetscFunctionBeginUser;
   PetscCall(MatGetBlockSize(A, &p->bs));
@@ -28,12 +28,8 @@ static PetscErrorCode PartsGet(Mat A, PetscInt dim, AIJParts *p)
    * constrained its rows still come in whole blocks: the pattern check decides */
   if (p->bs == 1) p->bs = dim;
   PetscCall(MatGetOwnershipRangeColumn(A, &p->cstart, NULL));
-  PetscCall(PetscObjectTypeCompare((PetscObject)A, MATMPIAIJ, &mpi));
-  p->Ao = NULL;
-  p->garray = NULL;
-  p->ozero  = NULL;
-  if (mpi) PetscCall(MatMPIAIJGetSeqAIJ(A, &p->Ad, &p->Ao, &p->garray));
-  else p->Ad = A;
+  p->ozero = NULL;
+  PetscCall(MMKtGetLocalBlocks(A, "-active_set_block_matrix", &p->Ad, &p->Ao, &p->garray));
   PetscCall(MatGetRowIJ(p->Ad, 0, PETSC_FALSE, PETSC_FALSE, &p->m, &p->di, &p->dj, &done));
   PetscCheck(done, PETSC_COMM_SELF, PETSC_ERR_SUP, "K~'s diagonal block gives no CSR");
   if (p->Ao) {

@@ -213,6 +213,12 @@ static PetscErrorCode StoreColumn(MMContact *ct, const PetscInt todo[], PetscInt
   PetscFunctionReturn(0);
 }
 
+/* The global dof of new column i: component i % nr of node todo[i / nr] (its normal dof first). */
+static inline PetscInt ColumnDof(const MMCandidates *c, const PetscInt todo[], PetscInt nr, PetscInt i)
+{
+  return c->normal_dof[todo[i / nr]] + i % nr;
+}
+
 /* The m new columns through a distributed factor (MUMPS), a block of right-hand sides at a time:
  * every rank takes part in every solve and keeps its rows. */
 static PetscErrorCode SolveColumnsDistributed(MMCtx *ctx, Mat F, const PetscInt todo[], PetscInt m, const PetscInt ic[])
@@ -221,7 +227,8 @@ static PetscErrorCode SolveColumnsDistributed(MMCtx *ctx, Mat F, const PetscInt 
   MMCandidates  *c  = &ct->cand;
   MPI_Comm       comm = PetscObjectComm((PetscObject)ctx->op.dm);
   const PetscInt nb_max = 96, nr = ct->ncomp;
-  PetscInt       n, rstart;
+  PetscInt       n, rstart, *rows = NULL;
+  PetscScalar   *xb   = NULL;
   PetscMPIInt    rank;
   PetscBool      sparse;
 
@@ -238,6 +245,8 @@ static PetscErrorCode SolveColumnsDistributed(MMCtx *ctx, Mat F, const PetscInt 
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(MatGetLocalSize(ct->qp.A, &n, NULL));
   PetscCall(MatGetOwnershipRange(ct->qp.A, &rstart, NULL));
+  /* the direct MUMPS path's buffers, one block's worth, for all the blocks */
+  if (sparse) PetscCall(PetscMalloc2(nb_max, &rows, (size_t)PetscMax(n, 1) * PetscMin(nb_max, m), &xb));
   for (PetscInt i0 = 0; i0 < m; i0 += nb_max) {
     const PetscInt     nb = PetscMin(nb_max, m - i0);
     Mat                B, X;
@@ -245,31 +254,22 @@ static PetscErrorCode SolveColumnsDistributed(MMCtx *ctx, Mat F, const PetscInt 
     PetscInt           lda;
 
     if (sparse) {
-      PetscInt    *rows;
-      PetscScalar *xb;
-      PetscBool    done;
+      PetscBool done;
 
-      PetscCall(PetscMalloc2(nb, &rows, (size_t)PetscMax(n, 1) * nb, &xb));
-      for (PetscInt j = 0; j < nb; ++j) rows[j] = c->normal_dof[todo[(i0 + j) / nr]] + (i0 + j) % nr;
+      for (PetscInt j = 0; j < nb; ++j) rows[j] = ColumnDof(c, todo, nr, i0 + j);
       PetscCall(MMMumpsColumnsSolve(&c->mumps, F, nb, rows, xb, n, &done));
       for (PetscInt j = 0; done && j < nb; ++j) PetscCall(StoreColumn(ct, todo, i0 + j, ic, rstart, xb + (size_t)j * n));
-      PetscCall(PetscFree2(rows, xb));
       if (done) continue;
     }
     PetscCall(MatCreateDense(comm, n, PETSC_DECIDE, PETSC_DETERMINE, nb, NULL, &X));
     if (sparse) {
       /* MUMPS takes the unit right-hand sides as a sparse B^T and prunes its forward elimination */
       PetscCall(MatCreateAIJ(comm, rank ? 0 : nb, rank ? 0 : c->N, nb, c->N, 1, NULL, 0, NULL, &B));
-      for (PetscInt j = 0; !rank && j < nb; ++j) {
-        const PetscInt g = todo[(i0 + j) / nr], comp = (i0 + j) % nr;
-        PetscCall(MatSetValue(B, j, c->normal_dof[g] + comp, 1.0, INSERT_VALUES));
-      }
+      for (PetscInt j = 0; !rank && j < nb; ++j) PetscCall(MatSetValue(B, j, ColumnDof(c, todo, nr, i0 + j), 1.0, INSERT_VALUES));
     } else {
       PetscCall(MatDuplicate(X, MAT_DO_NOT_COPY_VALUES, &B));
-      for (PetscInt j = 0; j < nb; ++j) {
-        const PetscInt g = todo[(i0 + j) / nr], comp = (i0 + j) % nr;
-        if (NodeIsLocal(c, ct, g)) PetscCall(MatSetValue(B, c->normal_dof[g] + comp, j, 1.0, INSERT_VALUES));
-      }
+      for (PetscInt j = 0; j < nb; ++j)
+        if (NodeIsLocal(c, ct, todo[(i0 + j) / nr])) PetscCall(MatSetValue(B, ColumnDof(c, todo, nr, i0 + j), j, 1.0, INSERT_VALUES));
     }
     PetscCall(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY));
@@ -282,6 +282,7 @@ static PetscErrorCode SolveColumnsDistributed(MMCtx *ctx, Mat F, const PetscInt 
     PetscCall(MatDestroy(&X));
     PetscCall(MatDestroy(&B));
   }
+  PetscCall(PetscFree2(rows, xb));
   PetscFunctionReturn(0);
 }
 
@@ -325,7 +326,7 @@ static PetscErrorCode SolveColumnsRedundant(MMCtx *ctx, Mat F, const PetscInt to
 
     PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, N, nb, NULL, &X));
     PetscCall(MatDuplicate(X, MAT_DO_NOT_COPY_VALUES, &B));
-    for (PetscInt j = 0; j < nb; ++j) PetscCall(MatSetValue(B, c->normal_dof[todo[(i0 + j) / nr]] + (i0 + j) % nr, j, 1.0, INSERT_VALUES));
+    for (PetscInt j = 0; j < nb; ++j) PetscCall(MatSetValue(B, ColumnDof(c, todo, nr, i0 + j), j, 1.0, INSERT_VALUES));
     PetscCall(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY));
     PetscCall(MatMatSolve(F, B, X));
@@ -369,7 +370,7 @@ static PetscErrorCode SolveColumnsByPC(MMCtx *ctx, PC pc, const PetscInt todo[],
   PetscCall(VecGetOwnershipRange(e, &rstart, &rend));
   PetscCall(VecZeroEntries(e));
   for (PetscInt i = 0; i < m; ++i) {
-    const PetscInt row = c->normal_dof[todo[i / nr]] + i % nr;
+    const PetscInt row = ColumnDof(c, todo, nr, i);
     PetscScalar   *ea;
     /* every rank knows every contact node's dofs: the owner sets its unit entry, no assembly */
     PetscCall(VecGetArray(e, &ea));
