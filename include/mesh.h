@@ -11,7 +11,20 @@ typedef struct {
   PetscInt *tag;
 } MMMeshFacets;
 PETSC_EXTERN PetscErrorCode MMMeshFacetsRead(MPI_Comm, DM, const char[], const PetscInt[], MMMeshFacets *, PetscBool *);
-PETSC_EXTERN PetscErrorCode MMMeshFacetsInterpolate(MMMeshFacets *, DM *);
+PETSC_EXTERN PetscErrorCode MMMeshFacetsLabelVertices(MMMeshFacets *, DM);
+/* The cell labels that carry the facet groups through the distribution (src/mesh/facets.c) */
+#define MM_MESH_FACET_MARK "mmcontact facet cells of "
+
+/* A facet group's facets on this rank, each once over all ranks: the face of cell[i] opposite its
+ * vertex off[i] (position in MMMeshCellVertices' order); interior[i] when a second cell shares it. */
+typedef struct {
+  PetscInt   n, cap;
+  PetscInt  *cell, *off;
+  PetscBool *interior;
+} MMFacetList;
+PETSC_EXTERN PetscErrorCode MMMeshGetFacets(DM, const char[], MMFacetList *);
+PETSC_EXTERN PetscErrorCode MMFacetListDestroy(MMFacetList *);
+PETSC_EXTERN PetscErrorCode MMFacetGeometry(DM, const MMFacetList *, PetscInt, PetscSection, const PetscScalar[], PetscInt[], PetscReal[], PetscReal *);
 PETSC_EXTERN PetscErrorCode MMMeshFacetsDestroy(MMMeshFacets *);
 PETSC_EXTERN PetscErrorCode MMMeshGetLabel(DM, const char[], DMLabel *);
 PETSC_EXTERN PetscErrorCode MMMeshGetSizes(DM, PetscInt *, PetscInt *);

@@ -238,23 +238,20 @@ static PetscErrorCode SpreadVertexScalar(MMCtx *ctx, Vec sloc, const PetscReal f
 
 /* A traction acts on faces: a group of cells (the body) or of lower-dimensional points would load
  * nothing, silently. */
-static PetscErrorCode CheckTractionGroup(DM dm, const char name[], IS fis)
+static PetscErrorCode CheckTractionGroup(DM dm, const char name[], DMLabel label, const MMFacetList *fl)
 {
-  PetscInt        n = 0, counts[2] = {0, 0}; /* faces, cells */
-  const PetscInt *pts;
-  PetscInt        dim;
+  PetscInt counts[2] = {0, 0}; /* facets, cells */
+  PetscInt dim, cStart, cEnd;
 
   PetscFunctionBeginUser;
   PetscCall(DMGetDimension(dm, &dim));
-  if (fis) {
-    PetscCall(ISGetLocalSize(fis, &n));
-    PetscCall(ISGetIndices(fis, &pts));
-    for (PetscInt i = 0; i < n; ++i) {
-      PetscInt h;
-      PetscCall(DMPlexGetPointHeight(dm, pts[i], &h));
-      if (h <= 1) counts[h == 0 ? 1 : 0]++;
-    }
-    PetscCall(ISRestoreIndices(fis, &pts));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  counts[0] = fl->n;
+  for (PetscInt c = cStart; c < cEnd && !counts[1]; ++c) {
+    PetscInt val, def;
+    PetscCall(DMLabelGetDefaultValue(label, &def));
+    PetscCall(DMLabelGetValue(label, c, &val));
+    if (val != def) counts[1] = 1;
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, counts, 2, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)dm)));
   PetscCheck(!counts[1], PetscObjectComm((PetscObject)dm), PETSC_ERR_USER_INPUT, "-traction %s: the physical group \"%s\" holds cells, not boundary faces. A traction acts on a Physical %s of the boundary", name, name, dim == 2 ? "Curve (2D)" : "Surface (3D)");
@@ -263,43 +260,40 @@ static PetscErrorCode CheckTractionGroup(DM dm, const char name[], IS fis)
 }
 
 /* Nodal loads of traction b: int_F t phi_i = t |F| / d on each vertex of a boundary face F, added
- * to the local vector floc (this rank's faces: summed over ranks by a DMLocalToGlobal with ADD). */
+ * to the local vector floc (each facet is listed on one rank: summed over ranks by a
+ * DMLocalToGlobal with ADD). */
 PetscErrorCode MMFEAddTraction(MMCtx *ctx, PetscInt b, Vec floc)
 {
-  DM              dm = ctx->op.dm;
-  DMLabel         label;
-  IS              fis;
-  PetscInt        value, nf, dim = ctx->op.dim;
-  const PetscInt *faces;
-  PetscScalar    *f;
+  DM                 dm = ctx->op.dm;
+  DMLabel            label;
+  MMFacetList        fl;
+  PetscSection       cs;
+  Vec                X;
+  const PetscScalar *xc;
+  PetscInt           dim = ctx->op.dim;
+  PetscScalar       *f;
 
   PetscFunctionBeginUser;
   PetscCall(MMMeshGetLabel(dm, ctx->opt.traction[b].name, &label));
-  PetscCall(LabelValue(dm, label, &value));
-  PetscCall(DMLabelGetStratumIS(label, value, &fis));
-  PetscCall(CheckTractionGroup(dm, ctx->opt.traction[b].name, fis));
-  if (!fis) PetscFunctionReturn(0);
-  PetscCall(ISGetLocalSize(fis, &nf));
-  PetscCall(ISGetIndices(fis, &faces));
+  PetscCall(MMMeshGetFacets(dm, ctx->opt.traction[b].name, &fl));
+  PetscCall(CheckTractionGroup(dm, ctx->opt.traction[b].name, label, &fl));
+  PetscCall(DMGetCoordinateSection(dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  PetscCall(VecGetArrayRead(X, &xc));
   PetscCall(VecGetArray(floc, &f));
-  for (PetscInt i = 0; i < nf; ++i) {
-    PetscInt  h, *closure = NULL, ncl;
+  for (PetscInt i = 0; i < fl.n; ++i) {
+    PetscInt  v[MM_MAX_DIM];
     PetscReal area;
-    PetscCall(DMPlexGetPointHeight(dm, faces[i], &h));
-    if (h != 1) continue; /* only the faces themselves; their closure is in the label too */
-    PetscCall(DMPlexComputeCellGeometryFVM(dm, faces[i], &area, NULL, NULL));
-    PetscCall(DMPlexGetTransitiveClosure(dm, faces[i], PETSC_TRUE, &ncl, &closure));
-    for (PetscInt j = 0; j < ncl; ++j) {
+    PetscCall(MMFacetGeometry(dm, &fl, i, cs, xc, v, NULL, &area));
+    for (PetscInt a = 0; a < dim; ++a) {
       PetscInt off, end;
-      PetscCall(DMPlexGetPointLocal(dm, closure[2 * j], &off, &end));
-      if (end - off != dim) continue;
+      PetscCall(DMPlexGetPointLocal(dm, v[a], &off, &end));
       for (PetscInt c = 0; c < dim; ++c) f[off + c] += ctx->opt.traction[b].traction[c] * area / dim;
     }
-    PetscCall(DMPlexRestoreTransitiveClosure(dm, faces[i], PETSC_TRUE, &ncl, &closure));
   }
   PetscCall(VecRestoreArray(floc, &f));
-  PetscCall(ISRestoreIndices(fis, &faces));
-  PetscCall(ISDestroy(&fis));
+  PetscCall(VecRestoreArrayRead(X, &xc));
+  PetscCall(MMFacetListDestroy(&fl));
   PetscFunctionReturn(0);
 }
 

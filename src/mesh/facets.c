@@ -1,14 +1,18 @@
-/* The facet physical groups of a mesh interpolated after its distribution (README "Large meshes").
+/* The facet physical groups of a mesh that is never interpolated (README "Large meshes").
  *
- * PETSc's gmsh reader finds the face of a facet element (a Physical Curve in 2D, Surface in 3D)
- * only on a mesh it interpolates itself, on rank 0, before the distribution: at 1M dofs that serial
- * interpolation is the largest part of the set-up. So the mesh is read without faces and edges,
- * and the facet elements are read from the file here (ASCII gmsh 2.2 and 4.1). On rank 0 each one
- * marks the cells it bounds: per group, a cell label whose value has bit k set when the cell's face
- * opposite its k-th vertex is in the group. The marks go with the cells through the distribution;
- * each rank then interpolates its part, and the marked faces get the group's label with its
- * physical tag, as the reader would have set it. A file this reader does not parse (binary) is
- * read again by PETSc's, interpolated on rank 0 (ok false). */
+ * P1 elements need cells and vertices only; the facet groups (contact surfaces, tractions,
+ * Dirichlet boundaries) need their facets' vertices, areas and cells. PETSc's gmsh reader finds the
+ * face of a facet element (a Physical Curve in 2D, Surface in 3D) only on a mesh it interpolates,
+ * and DMPlexInterpolate, creating every face and edge, was the largest part of the set-up (13 of
+ * 38 s at 1M dofs on 2 ranks, and the memory of the faces and edges). So the mesh is read without
+ * faces and edges, and the facet elements are read from the file here (ASCII gmsh 2.2 and 4.1). On
+ * rank 0 each one marks one cell it bounds: per group, a cell label whose value has bit k set when
+ * the cell's face opposite its k-th vertex (cone position) is in the group, and bit
+ * MM_FACET_INTERIOR + k when another cell shares that face. The marks go with the cells through the
+ * distribution. Each rank then labels the vertices of its marked facets with the group's name and
+ * physical tag (completed over ranks), which is what Dirichlet conditions and node sets need, and
+ * MMMeshGetFacets lists a group's facets from the marks. A file this reader does not parse (binary)
+ * is read by PETSc's reader, interpolated on rank 0, and its facets are its labelled faces. */
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,7 +20,7 @@
 #include "mesh.h"
 
 #define MM_FACET_NAME 256
-#define MM_FACET_MARK "mmcontact facet cells of "
+#define MM_FACET_INTERIOR 8 /* bit of "another cell shares the face": above the dim + 1 face bits */
 
 /* Rank 0's reading of the file: the named facet groups, and each (facet, group) pair's nodes. */
 typedef struct {
@@ -228,13 +232,15 @@ static PetscErrorCode ReadFacetFile(const char file[], PetscInt dim, FacetFile *
 static PetscErrorCode MarkName(const char group[], char mark[], size_t len)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(mark, len, "%s%s", MM_FACET_MARK, group));
+  PetscCall(PetscSNPrintf(mark, len, "%s%s", MM_MESH_FACET_MARK, group));
   PetscFunctionReturn(0);
 }
 
-/* Rank 0: each facet's cells on the serial mesh (those whose cone holds all its vertices), marked in
- * the group's cell label with the bit of the cone position of the vertex off the facet. vtag is each
- * serial vertex's node tag in the file. *bad is the first facet (pair) on no cell, -1 if none. */
+/* Rank 0: each facet's first cell on the serial mesh (the first whose cone holds all its vertices),
+ * marked in the group's cell label with the bit of the cone position of the vertex off the facet,
+ * and its interior bit when a second cell holds it too: each facet is listed once, on one rank. vtag
+ * is each serial vertex's node tag in the file. *bad is the first facet (pair) on no cell, -1 if
+ * none. */
 static PetscErrorCode MarkCells(DM dm, PetscInt dim, const FacetFile *f, const PetscInt vtag[], PetscInt *bad)
 {
   PetscInt  vStart, vEnd, nv, cStart, cEnd, *sorted, *vert;
@@ -260,7 +266,7 @@ static PetscErrorCode MarkCells(DM dm, PetscInt dim, const FacetFile *f, const P
     PetscCall(PetscCalloc1(cEnd - cStart, &bits[g]));
   }
   for (PetscInt i = 0; i < f->n && *bad < 0; ++i) {
-    PetscInt        v[3], ns, found = 0;
+    PetscInt        v[3], ns, found = 0, first = -1, foff = -1;
     const PetscInt *sup;
     for (PetscInt a = 0; a < dim; ++a) {
       PetscInt loc;
@@ -271,7 +277,7 @@ static PetscErrorCode MarkCells(DM dm, PetscInt dim, const FacetFile *f, const P
       PetscCall(DMPlexGetSupportSize(dm, v[0], &ns));
       PetscCall(DMPlexGetSupport(dm, v[0], &sup));
     } else ns = 0;
-    for (PetscInt s = 0; s < ns; ++s) {
+    for (PetscInt s = 0; s < ns && found < 2; ++s) {
       const PetscInt *cone;
       PetscInt        hits = 0, off = -1;
       PetscCall(DMPlexGetCone(dm, sup[s], &cone));
@@ -282,7 +288,11 @@ static PetscErrorCode MarkCells(DM dm, PetscInt dim, const FacetFile *f, const P
         else off = k;
       }
       if (hits != dim) continue;
-      bits[PairGroup(f, dim, i)][sup[s] - cStart] |= (PetscInt)1 << off;
+      if (!found) {
+        first = sup[s] - cStart;
+        foff  = off;
+        bits[PairGroup(f, dim, i)][first] |= (PetscInt)1 << off;
+      } else bits[PairGroup(f, dim, i)][first] |= (PetscInt)1 << (MM_FACET_INTERIOR + foff);
       ++found;
     }
     if (!found) *bad = i;
@@ -350,95 +360,221 @@ PetscErrorCode MMMeshFacetsRead(MPI_Comm comm, DM dm, const char file[], const P
   PetscFunctionReturn(0);
 }
 
-/* The face of cell c (of the interpolated mesh) that does not hold vertex off. */
-static PetscErrorCode FaceOpposite(DM dm, PetscInt c, PetscInt off, PetscInt *face)
+/* On the distributed mesh read without faces: each group's label (its name, its physical tag) on the
+ * vertices of its marked facets, completed over ranks (a vertex on the partition may sit on a rank
+ * that holds none of its facets). The marks stay: MMMeshGetFacets reads them. */
+PetscErrorCode MMMeshFacetsLabelVertices(MMMeshFacets *groups, DM dm)
 {
-  const PetscInt *cone;
-  PetscInt        nc, vStart, vEnd;
+  PetscInt dim;
 
   PetscFunctionBeginUser;
-  *face = -1;
-  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
-  PetscCall(DMPlexGetConeSize(dm, c, &nc));
-  PetscCall(DMPlexGetCone(dm, c, &cone));
-  for (PetscInt i = 0; i < nc && *face < 0; ++i) {
-    PetscInt *cl = NULL, ncl;
-    PetscBool has = PETSC_FALSE;
-    PetscCall(DMPlexGetTransitiveClosure(dm, cone[i], PETSC_TRUE, &ncl, &cl));
-    for (PetscInt j = 0; j < ncl; ++j) has = (PetscBool)(has || cl[2 * j] == off);
-    PetscCall(DMPlexRestoreTransitiveClosure(dm, cone[i], PETSC_TRUE, &ncl, &cl));
-    if (!has) *face = cone[i];
+  PetscCall(DMGetDimension(dm, &dim));
+  for (PetscInt g = 0; g < groups->ngroups; ++g) {
+    char    name[MM_FACET_NAME + 64];
+    DMLabel mark, label;
+    IS      cis;
+
+    PetscCall(MarkName(groups->name[g], name, sizeof(name)));
+    PetscCall(DMGetLabel(dm, name, &mark));
+    PetscCall(DMCreateLabel(dm, groups->name[g]));
+    PetscCall(DMGetLabel(dm, groups->name[g], &label));
+    PetscCall(DMLabelGetValueIS(mark, &cis));
+    {
+      PetscInt        nval;
+      const PetscInt *vals;
+      PetscCall(ISGetLocalSize(cis, &nval));
+      PetscCall(ISGetIndices(cis, &vals));
+      for (PetscInt i = 0; i < nval; ++i) {
+        IS              pis;
+        PetscInt        np;
+        const PetscInt *pts;
+        PetscCall(DMLabelGetStratumIS(mark, vals[i], &pis));
+        if (!pis) continue;
+        PetscCall(ISGetLocalSize(pis, &np));
+        PetscCall(ISGetIndices(pis, &pts));
+        for (PetscInt j = 0; j < np; ++j) {
+          const PetscInt *cone;
+          PetscCall(DMPlexGetCone(dm, pts[j], &cone));
+          for (PetscInt k = 0; k <= dim; ++k)
+            if (vals[i] >> k & 1)
+              for (PetscInt a = 0; a <= dim; ++a)
+                if (a != k) PetscCall(DMLabelSetValue(label, cone[a], groups->tag[g]));
+        }
+        PetscCall(ISRestoreIndices(pis, &pts));
+        PetscCall(ISDestroy(&pis));
+      }
+      PetscCall(ISRestoreIndices(cis, &vals));
+    }
+    PetscCall(ISDestroy(&cis));
+    PetscCall(DMPlexLabelComplete(dm, label));
   }
-  PetscCheck(*face >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Cell %" PetscInt_FMT " has no face opposite vertex %" PetscInt_FMT, c, off);
   PetscFunctionReturn(0);
 }
 
-/* On the distributed mesh read without faces: interpolates it on each rank (replacing *dm) and gives
- * each marked face its group's label and tag. Cells and vertices keep their numbers. */
-PetscErrorCode MMMeshFacetsInterpolate(MMMeshFacets *groups, DM *dm)
+/* Appends facet (cell c, vertex k off it, interior) to the list, growing it. */
+static PetscErrorCode FacetsAppend(MMFacetList *fl, PetscInt c, PetscInt k, PetscBool interior)
 {
-  DM             idm;
-  PetscInt       n = 0, *cog = NULL, v0[2], v1[2];
-  PetscSegBuffer seg; /* per marked face: its cell, the cell's vertex off it, its group */
+  PetscFunctionBeginUser;
+  if (fl->n == fl->cap) {
+    PetscInt  cap = PetscMax(64, 2 * fl->cap), *cell, *off;
+    PetscBool *in;
+    PetscCall(PetscMalloc3(cap, &cell, cap, &off, cap, &in));
+    PetscCall(PetscArraycpy(cell, fl->cell, fl->n));
+    PetscCall(PetscArraycpy(off, fl->off, fl->n));
+    PetscCall(PetscArraycpy(in, fl->interior, fl->n));
+    PetscCall(PetscFree3(fl->cell, fl->off, fl->interior));
+    fl->cell     = cell;
+    fl->off      = off;
+    fl->interior = in;
+    fl->cap      = cap;
+  }
+  fl->cell[fl->n]     = c;
+  fl->off[fl->n]      = k;
+  fl->interior[fl->n] = interior;
+  ++fl->n;
+  PetscFunctionReturn(0);
+}
+
+/* The facets of a mesh read without faces, from the group's cell marks. */
+static PetscErrorCode FacetsFromMarks(DM dm, DMLabel mark, MMFacetList *fl)
+{
+  IS              vis;
+  PetscInt        nval, dim;
+  const PetscInt *vals;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscSegBufferCreate(sizeof(PetscInt), 3 * 1024, &seg));
-  /* the (cell, vertex off the face) pairs, while the cones are still the vertices */
-  for (PetscInt g = 0; g < groups->ngroups; ++g) {
-    char            name[MM_FACET_NAME + 64];
-    DMLabel         mark;
-    IS              vis;
-    PetscInt        nval;
-    const PetscInt *vals;
-    PetscCall(MarkName(groups->name[g], name, sizeof(name)));
-    PetscCall(DMGetLabel(*dm, name, &mark));
-    PetscCall(DMLabelGetValueIS(mark, &vis));
-    PetscCall(ISGetLocalSize(vis, &nval));
-    PetscCall(ISGetIndices(vis, &vals));
-    for (PetscInt i = 0; i < nval; ++i) {
-      IS              pis;
-      PetscInt        np;
-      const PetscInt *pts;
-      PetscCall(DMLabelGetStratumIS(mark, vals[i], &pis));
-      if (!pis) continue;
-      PetscCall(ISGetLocalSize(pis, &np));
-      PetscCall(ISGetIndices(pis, &pts));
-      for (PetscInt j = 0; j < np; ++j) {
-        const PetscInt *cone;
-        PetscCall(DMPlexGetCone(*dm, pts[j], &cone));
-        for (PetscInt k = 0; k <= MM_MAX_DIM; ++k) {
-          PetscInt *p;
-          if (!(vals[i] >> k & 1)) continue;
-          PetscCall(PetscSegBufferGetInts(seg, 3, &p));
-          p[0] = pts[j];
-          p[1] = cone[k];
-          p[2] = g;
-          ++n;
-        }
+  PetscCall(DMGetDimension(dm, &dim));
+  PetscCall(DMLabelGetValueIS(mark, &vis));
+  PetscCall(ISGetLocalSize(vis, &nval));
+  PetscCall(ISGetIndices(vis, &vals));
+  for (PetscInt i = 0; i < nval; ++i) {
+    IS              pis;
+    PetscInt        np;
+    const PetscInt *pts;
+    PetscCall(DMLabelGetStratumIS(mark, vals[i], &pis));
+    if (!pis) continue;
+    PetscCall(ISGetLocalSize(pis, &np));
+    PetscCall(ISGetIndices(pis, &pts));
+    for (PetscInt j = 0; j < np; ++j)
+      for (PetscInt k = 0; k <= dim; ++k)
+        if (vals[i] >> k & 1) PetscCall(FacetsAppend(fl, pts[j], k, (PetscBool)(vals[i] >> (MM_FACET_INTERIOR + k) & 1)));
+    PetscCall(ISRestoreIndices(pis, &pts));
+    PetscCall(ISDestroy(&pis));
+  }
+  PetscCall(ISRestoreIndices(vis, &vals));
+  PetscCall(ISDestroy(&vis));
+  PetscFunctionReturn(0);
+}
+
+/* The facets of an interpolated mesh (a file PETSc's reader read): the label's faces, each with its
+ * first cell and the position, in MMMeshCellVertices' order, of that cell's vertex off the face. */
+static PetscErrorCode FacetsFromFaces(DM dm, DMLabel label, MMFacetList *fl)
+{
+  IS              vis;
+  PetscInt        nval, dim, depth;
+  const PetscInt *vals;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetDimension(dm, &dim));
+  PetscCall(DMPlexGetDepth(dm, &depth));
+  PetscCall(DMLabelGetValueIS(label, &vis));
+  PetscCall(ISGetLocalSize(vis, &nval));
+  PetscCall(ISGetIndices(vis, &vals));
+  for (PetscInt i = 0; i < nval; ++i) {
+    IS              pis;
+    PetscInt        np;
+    const PetscInt *pts;
+    PetscCall(DMLabelGetStratumIS(label, vals[i], &pis));
+    if (!pis) continue;
+    PetscCall(ISGetLocalSize(pis, &np));
+    PetscCall(ISGetIndices(pis, &pts));
+    for (PetscInt j = 0; j < np; ++j) {
+      PetscInt        h, nsup, v[MM_MAX_DIM + 1], *cl = NULL, ncl, k = -1;
+      const PetscInt *sup;
+      PetscCall(DMPlexGetPointHeight(dm, pts[j], &h));
+      if (h != 1) continue;
+      PetscCall(DMPlexGetSupportSize(dm, pts[j], &nsup));
+      PetscCall(DMPlexGetSupport(dm, pts[j], &sup));
+      if (!nsup) continue;
+      PetscCall(MMMeshCellVertices(dm, depth, dim, sup[0], v));
+      PetscCall(DMPlexGetTransitiveClosure(dm, pts[j], PETSC_TRUE, &ncl, &cl));
+      for (PetscInt a = 0; a <= dim && k < 0; ++a) {
+        PetscBool in = PETSC_FALSE;
+        for (PetscInt q = 0; q < ncl; ++q) in = (PetscBool)(in || cl[2 * q] == v[a]);
+        if (!in) k = a;
       }
-      PetscCall(ISRestoreIndices(pis, &pts));
-      PetscCall(ISDestroy(&pis));
+      PetscCall(DMPlexRestoreTransitiveClosure(dm, pts[j], PETSC_TRUE, &ncl, &cl));
+      PetscCheck(k >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Face %" PetscInt_FMT " holds every vertex of its cell", pts[j]);
+      PetscCall(FacetsAppend(fl, sup[0], k, (PetscBool)(nsup > 1)));
     }
-    PetscCall(ISRestoreIndices(vis, &vals));
-    PetscCall(ISDestroy(&vis));
-    PetscCall(DMRemoveLabel(*dm, name, NULL));
+    PetscCall(ISRestoreIndices(pis, &pts));
+    PetscCall(ISDestroy(&pis));
   }
-  PetscCall(PetscSegBufferExtractAlloc(seg, &cog));
-  PetscCall(PetscSegBufferDestroy(&seg));
-  PetscCall(DMPlexGetDepthStratum(*dm, 0, &v0[0], &v0[1]));
-  PetscCall(DMPlexInterpolate(*dm, &idm));
-  PetscCall(DMPlexGetDepthStratum(idm, 0, &v1[0], &v1[1]));
-  PetscCheck(v0[0] == v1[0] && v0[1] == v1[1], PETSC_COMM_SELF, PETSC_ERR_PLIB, "Interpolation renumbered the vertices");
-  PetscCall(DMDestroy(dm));
-  *dm = idm;
-  for (PetscInt g = 0; g < groups->ngroups; ++g) PetscCall(DMCreateLabel(*dm, groups->name[g]));
-  for (PetscInt i = 0; i < n; ++i) {
-    const PetscInt *p = cog + 3 * i;
-    PetscInt        face;
-    PetscCall(FaceOpposite(*dm, p[0], p[1], &face));
-    PetscCall(DMSetLabelValue(*dm, groups->name[p[2]], face, groups->tag[p[2]]));
+  PetscCall(ISRestoreIndices(vis, &vals));
+  PetscCall(ISDestroy(&vis));
+  PetscFunctionReturn(0);
+}
+
+/* The facets of physical group name on this rank, each listed once over all ranks (a face between
+ * two ranks' cells on one of them): cell, position of the cell's vertex off the facet (in
+ * MMMeshCellVertices' order), and whether a second cell shares it. Empty for a group of cells or of
+ * nodes. Free with MMFacetListDestroy. */
+PetscErrorCode MMMeshGetFacets(DM dm, const char name[], MMFacetList *fl)
+{
+  char      mname[MM_FACET_NAME + 64];
+  PetscBool marked;
+  PetscInt  depth;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(fl, sizeof(*fl)));
+  PetscCall(MarkName(name, mname, sizeof(mname)));
+  PetscCall(DMHasLabel(dm, mname, &marked));
+  PetscCall(DMPlexGetDepth(dm, &depth));
+  if (marked) {
+    DMLabel mark;
+    PetscCall(DMGetLabel(dm, mname, &mark));
+    PetscCall(FacetsFromMarks(dm, mark, fl));
+  } else if (depth > 1) {
+    DMLabel label;
+    PetscCall(MMMeshGetLabel(dm, name, &label));
+    PetscCall(FacetsFromFaces(dm, label, fl));
   }
-  PetscCall(PetscFree(cog));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMFacetListDestroy(MMFacetList *fl)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree3(fl->cell, fl->off, fl->interior));
+  fl->n = fl->cap = 0;
+  PetscFunctionReturn(0);
+}
+
+/* Facet i's dim vertices (local points; the cell's, in order, without the one off it), their
+ * coordinates x (dim x dim, from the local coordinates xc of the coordinate section cs), and its
+ * measure (length in 2D, area in 3D). x may be NULL. */
+PetscErrorCode MMFacetGeometry(DM dm, const MMFacetList *fl, PetscInt i, PetscSection cs, const PetscScalar xc[], PetscInt v[], PetscReal x[], PetscReal *measure)
+{
+  PetscInt  dim, depth, w[MM_MAX_DIM + 1], n = 0;
+  PetscReal y[MM_MAX_DIM * MM_MAX_DIM];
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetDimension(dm, &dim));
+  PetscCall(DMPlexGetDepth(dm, &depth));
+  PetscCall(MMMeshCellVertices(dm, depth, dim, fl->cell[i], w));
+  for (PetscInt a = 0; a <= dim; ++a) {
+    PetscInt off;
+    if (a == fl->off[i]) continue;
+    PetscCall(PetscSectionGetOffset(cs, w[a], &off));
+    for (PetscInt d = 0; d < dim; ++d) y[n * dim + d] = PetscRealPart(xc[off + d]);
+    v[n++] = w[a];
+  }
+  if (dim == 2) *measure = PetscSqrtReal(PetscSqr(y[2] - y[0]) + PetscSqr(y[3] - y[1]));
+  else {
+    const PetscReal a[3] = {y[3] - y[0], y[4] - y[1], y[5] - y[2]}, b[3] = {y[6] - y[0], y[7] - y[1], y[8] - y[2]};
+    *measure = 0.5 * PetscSqrtReal(PetscSqr(a[1] * b[2] - a[2] * b[1]) + PetscSqr(a[2] * b[0] - a[0] * b[2]) + PetscSqr(a[0] * b[1] - a[1] * b[0]));
+  }
+  if (x) PetscCall(PetscArraycpy(x, y, dim * dim));
   PetscFunctionReturn(0);
 }
 

@@ -5,7 +5,7 @@
 #include "options.h"
 #include "partition_metis.h"
 
-/* Labels DMPlex makes itself: not physical groups the user named. */
+/* Labels DMPlex makes itself, and our facet marks: not physical groups the user named. */
 static PetscBool IsInternalLabel(const char name[])
 {
   const char *internal[] = {"depth", "celltype", "Cell Sets", "Face Sets", "Vertex Sets", "Edge Sets", "marker", "boundary"};
@@ -13,7 +13,7 @@ static PetscBool IsInternalLabel(const char name[])
     PetscBool same;
     if (PetscStrcmp(name, internal[i], &same) || same) return PETSC_TRUE;
   }
-  return PETSC_FALSE;
+  return (PetscBool)!strncmp(name, MM_MESH_FACET_MARK, sizeof(MM_MESH_FACET_MARK) - 1); /* our facet groups' cell marks */
 }
 
 /* Gets the label of a physical group by name; an unknown name lists the ones the mesh has. */
@@ -412,8 +412,8 @@ PetscErrorCode MMMeshLoad(MPI_Comm comm, MMOptions *opt, DM *dm, PetscInt **vert
   PetscCall(MMMeshCheckFile(comm, opt->mesh_file));
   /* physical names become label names, so every option can refer to groups by name */
   PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_use_regions", "true"));
-  /* without faces and edges: each rank interpolates its own part after the distribution, and the
-   * facet groups are read here (src/mesh/facets.c) */
+  /* without faces and edges, never interpolated: P1 needs cells and vertices, and the facet groups
+   * are read here and carried by their cells (src/mesh/facets.c) */
   PetscCall(ReadGmsh(comm, opt->mesh_file, PETSC_FALSE, dm, &failed));
   /* a second-order mesh needs the reader's interpolation, which then leads to its refusal below */
   if (failed) PetscCall(ReadGmsh(comm, opt->mesh_file, PETSC_TRUE, dm, NULL));
@@ -457,7 +457,7 @@ PetscErrorCode MMMeshLoad(MPI_Comm comm, MMOptions *opt, DM *dm, PetscInt **vert
   }
   PetscCall(OriginalVertexNumbers(comm, *dm, migration, vStart0, vertex_orig));
   PetscCall(PetscSFDestroy(&migration));
-  if (facets_read) PetscCall(MMMeshFacetsInterpolate(&facets, dm));
+  if (facets_read) PetscCall(MMMeshFacetsLabelVertices(&facets, *dm));
   PetscCall(MMMeshFacetsDestroy(&facets));
   /* DMSetFromOptions would distribute the mesh a second time, moving every vertex away from the
    * numbers just computed: the METIS partition above is the one wanted */

@@ -30,113 +30,84 @@
  * vertex held by Dirichlet data (it does not move). */
 static PetscErrorCode LocalMasterFacets(MMCtx *ctx, const MMObstacle *ob, const PetscInt mark[], PetscInt *nf, PetscReal **xf, PetscInt **df)
 {
-  DM              dm = ctx->op.dm;
-  const PetscInt  dim = ctx->op.dim;
-  DMLabel         label;
-  IS              vis, pis;
-  PetscInt        nv, pStart, vStart, vEnd, cap = 16, n = 0;
-  const PetscInt *vals;
-  PetscSection    gs, ls;
-  Vec             X;
-  MPI_Comm        comm = PetscObjectComm((PetscObject)dm);
+  DM                 dm = ctx->op.dm;
+  const PetscInt     dim = ctx->op.dim;
+  DMLabel            label;
+  MMFacetList        fl;
+  PetscInt           pStart, cStart, cEnd, counts[3] = {0, 0, 0}; /* facets, cells in the group, interior facets */
+  PetscSection       gs, ls, cs;
+  Vec                X;
+  const PetscScalar *xc;
+  MPI_Comm           comm = PetscObjectComm((PetscObject)dm);
 
   PetscFunctionBeginUser;
   PetscCall(MMMeshGetLabel(dm, ob->master, &label));
+  PetscCall(MMMeshGetFacets(dm, ob->master, &fl));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  counts[0] = fl.n;
+  for (PetscInt c = cStart; c < cEnd && !counts[1]; ++c) {
+    PetscInt val, def;
+    PetscCall(DMLabelGetDefaultValue(label, &def));
+    PetscCall(DMLabelGetValue(label, c, &val));
+    if (val != def) counts[1] = 1;
+  }
+  for (PetscInt i = 0; i < fl.n; ++i)
+    if (fl.interior[i]) counts[2]++;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, counts, 3, MPIU_INT, MPI_SUM, comm));
+  PetscCheck(counts[0] && !counts[1], comm, PETSC_ERR_USER_INPUT, "The master surface \"%s\" of contact pair %s contains points that are not facets: it must be a Physical Curve (2D) or Physical Surface (3D)", ob->master, ob->name);
+  PetscCheck(!counts[2], comm, PETSC_ERR_USER_INPUT, "The master surface \"%s\" of contact pair %s has a facet inside the mesh (2 cells on it): it must lie on the boundary of its body", ob->master, ob->name);
   PetscCall(DMGetGlobalSection(dm, &gs));
   PetscCall(DMGetLocalSection(dm, &ls));
+  PetscCall(DMGetCoordinateSection(dm, &cs));
   PetscCall(DMGetCoordinatesLocal(dm, &X));
   PetscCall(DMPlexGetChart(dm, &pStart, NULL));
-  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
-  PetscCall(PetscMalloc2(cap * MM_FACET_REALS, xf, cap * MM_MAX_DIM, df));
-  PetscCall(DMLabelGetValueIS(label, &vis));
-  PetscCall(ISGetLocalSize(vis, &nv));
-  PetscCall(ISGetIndices(vis, &vals));
-  for (PetscInt i = 0; i < nv; ++i) {
-    const PetscInt *pts;
-    PetscInt        np;
-    PetscCall(DMLabelGetStratumIS(label, vals[i], &pis));
-    if (!pis) continue;
-    PetscCall(ISGetLocalSize(pis, &np));
-    PetscCall(ISGetIndices(pis, &pts));
-    for (PetscInt j = 0; j < np; ++j) {
-      PetscInt       *closure = NULL, ncl, h, nvx = 0, nsup, nx;
-      const PetscInt *sup;
-      PetscScalar    *xc = NULL, *cc = NULL;
-      PetscReal      *f, cen[MM_MAX_DIM] = {0, 0, 0}, ccen[MM_MAX_DIM] = {0, 0, 0}, dot = 0;
+  PetscCall(VecGetArrayRead(X, &xc));
+  PetscCall(PetscMalloc2(PetscMax(fl.n, 1) * MM_FACET_REALS, xf, PetscMax(fl.n, 1) * MM_MAX_DIM, df));
+  for (PetscInt j = 0; j < fl.n; ++j) {
+    PetscInt   v[MM_MAX_DIM];
+    PetscReal *f = &(*xf)[j * MM_FACET_REALS], area, ccen[MM_MAX_DIM] = {0, 0, 0}, cen[MM_MAX_DIM] = {0, 0, 0}, dot = 0;
 
-      PetscCall(DMPlexGetPointHeight(dm, pts[j], &h));
-      PetscCheck(h == 1, comm, PETSC_ERR_USER_INPUT, "The master surface \"%s\" of contact pair %s contains points that are not facets: it must be a Physical Curve (2D) or Physical Surface (3D)", ob->master, ob->name);
-      if (n == cap) {
-        PetscReal *x2;
-        PetscInt  *d2;
-        PetscCall(PetscMalloc2(2 * cap * MM_FACET_REALS, &x2, 2 * cap * MM_MAX_DIM, &d2));
-        PetscCall(PetscArraycpy(x2, *xf, cap * MM_FACET_REALS));
-        PetscCall(PetscArraycpy(d2, *df, cap * MM_MAX_DIM));
-        PetscCall(PetscFree2(*xf, *df));
-        *xf = x2;
-        *df = d2;
-        cap *= 2;
-      }
-      f = &(*xf)[n * MM_FACET_REALS];
-      PetscCall(DMPlexGetTransitiveClosure(dm, pts[j], PETSC_TRUE, &ncl, &closure));
-      for (PetscInt k = 0; k < ncl; ++k) {
-        const PetscInt v = closure[2 * k];
-        PetscInt       goff, cdof;
-        if (v < vStart || v >= vEnd) continue;
-        PetscCheck(!mark[v - pStart], comm, PETSC_ERR_USER_INPUT, "The master surface \"%s\" of contact pair %s shares a node with a contact surface (a slave surface or -contact_boundary): a master node cannot carry a constraint itself. Separate the surfaces", ob->master, ob->name);
-        PetscCall(PetscSectionGetOffset(gs, v, &goff));
-        PetscCall(PetscSectionGetConstraintDof(ls, v, &cdof));
-        PetscCheck(cdof == 0 || cdof == dim, comm, PETSC_ERR_SUP, "A node of the master surface \"%s\" of contact pair %s has %" PetscInt_FMT " of its %" PetscInt_FMT " components held by Dirichlet data: a master node is either free or fully held. Keep partial Dirichlet conditions off the master surface", ob->master, ob->name, cdof, dim);
-        (*df)[n * MM_MAX_DIM + nvx++] = cdof ? -1 : (goff < 0 ? -(goff + 1) : goff);
-      }
-      PetscCall(DMPlexRestoreTransitiveClosure(dm, pts[j], PETSC_TRUE, &ncl, &closure));
-      PetscCall(DMPlexVecGetClosure(dm, NULL, X, pts[j], &nx, &xc));
-      for (PetscInt k = 0; k < nx; ++k) f[k] = PetscRealPart(xc[k]);
-      PetscCall(DMPlexVecRestoreClosure(dm, NULL, X, pts[j], &nx, &xc));
-      PetscCheck(nvx == dim && nx == dim * dim, comm, PETSC_ERR_SUP, "Contact pair %s: a master facet with %" PetscInt_FMT " vertices; only simplices are supported", ob->name, nvx);
-      /* the normal, oriented away from the master body's cell */
-      if (dim == 2) {
-        f[4] = f[3] - f[1];
-        f[5] = -(f[2] - f[0]);
-      } else {
-        const PetscReal a[3] = {f[3] - f[0], f[4] - f[1], f[5] - f[2]}, b[3] = {f[6] - f[0], f[7] - f[1], f[8] - f[2]};
-        f[9]  = a[1] * b[2] - a[2] * b[1];
-        f[10] = a[2] * b[0] - a[0] * b[2];
-        f[11] = a[0] * b[1] - a[1] * b[0];
-      }
-      {
-        PetscReal *nrm = &f[dim * dim], len = 0;
-        for (PetscInt d = 0; d < dim; ++d) len += nrm[d] * nrm[d];
-        len = PetscSqrtReal(len);
-        for (PetscInt d = 0; d < dim; ++d) nrm[d] /= len;
-        for (PetscInt k = 0; k < dim; ++k)
-          for (PetscInt d = 0; d < dim; ++d) cen[d] += f[k * dim + d] / dim;
-        PetscCall(DMPlexGetSupportSize(dm, pts[j], &nsup));
-        PetscCall(DMPlexGetSupport(dm, pts[j], &sup));
-        PetscCheck(nsup == 1, comm, PETSC_ERR_USER_INPUT, "The master surface \"%s\" of contact pair %s has a facet inside the mesh (%" PetscInt_FMT " cells on it): it must lie on the boundary of its body", ob->master, ob->name, nsup);
-        PetscCall(DMPlexVecGetClosure(dm, NULL, X, sup[0], &nx, &cc));
-        for (PetscInt k = 0; k < nx / dim; ++k)
-          for (PetscInt d = 0; d < dim; ++d) ccen[d] += PetscRealPart(cc[k * dim + d]) / (nx / dim);
-        PetscCall(DMPlexVecRestoreClosure(dm, NULL, X, sup[0], &nx, &cc));
-        for (PetscInt d = 0; d < dim; ++d) dot += (ccen[d] - cen[d]) * nrm[d];
-        if (dot > 0)
-          for (PetscInt d = 0; d < dim; ++d) nrm[d] = -nrm[d];
-        /* the centroid breaks ties between equidistant facets the same way on any number of ranks */
-        for (PetscInt d = 0; d < dim; ++d) f[dim * dim + dim + d] = cen[d];
-      }
-      ++n;
+    PetscCall(MMFacetGeometry(dm, &fl, j, cs, xc, v, f, &area));
+    for (PetscInt a = 0; a < dim; ++a) {
+      PetscInt goff, cdof;
+      PetscCheck(!mark[v[a] - pStart], comm, PETSC_ERR_USER_INPUT, "The master surface \"%s\" of contact pair %s shares a node with a contact surface (a slave surface or -contact_boundary): a master node cannot carry a constraint itself. Separate the surfaces", ob->master, ob->name);
+      PetscCall(PetscSectionGetOffset(gs, v[a], &goff));
+      PetscCall(PetscSectionGetConstraintDof(ls, v[a], &cdof));
+      PetscCheck(cdof == 0 || cdof == dim, comm, PETSC_ERR_SUP, "A node of the master surface \"%s\" of contact pair %s has %" PetscInt_FMT " of its %" PetscInt_FMT " components held by Dirichlet data: a master node is either free or fully held. Keep partial Dirichlet conditions off the master surface", ob->master, ob->name, cdof, dim);
+      (*df)[j * MM_MAX_DIM + a] = cdof ? -1 : (goff < 0 ? -(goff + 1) : goff);
     }
-    PetscCall(ISRestoreIndices(pis, &pts));
-    PetscCall(ISDestroy(&pis));
+    /* the normal, oriented away from the master body's cell */
+    if (dim == 2) {
+      f[4] = f[3] - f[1];
+      f[5] = -(f[2] - f[0]);
+    } else {
+      const PetscReal a[3] = {f[3] - f[0], f[4] - f[1], f[5] - f[2]}, b[3] = {f[6] - f[0], f[7] - f[1], f[8] - f[2]};
+      f[9]  = a[1] * b[2] - a[2] * b[1];
+      f[10] = a[2] * b[0] - a[0] * b[2];
+      f[11] = a[0] * b[1] - a[1] * b[0];
+    }
+    {
+      PetscReal *nrm = &f[dim * dim], len = 0;
+      for (PetscInt d = 0; d < dim; ++d) len += nrm[d] * nrm[d];
+      len = PetscSqrtReal(len);
+      for (PetscInt d = 0; d < dim; ++d) nrm[d] /= len;
+      for (PetscInt k = 0; k < dim; ++k)
+        for (PetscInt d = 0; d < dim; ++d) cen[d] += f[k * dim + d] / dim;
+      PetscCall(MMMeshCellCentroid(dm, fl.cell[j], ccen));
+      for (PetscInt d = 0; d < dim; ++d) dot += (ccen[d] - cen[d]) * nrm[d];
+      if (dot > 0)
+        for (PetscInt d = 0; d < dim; ++d) nrm[d] = -nrm[d];
+      /* the centroid breaks ties between equidistant facets the same way on any number of ranks */
+      for (PetscInt d = 0; d < dim; ++d) f[dim * dim + dim + d] = cen[d];
+    }
   }
-  PetscCall(ISRestoreIndices(vis, &vals));
-  PetscCall(ISDestroy(&vis));
-  *nf = n;
+  PetscCall(VecRestoreArrayRead(X, &xc));
+  *nf = fl.n;
+  PetscCall(MMFacetListDestroy(&fl));
   PetscFunctionReturn(0);
 }
 
-/* Pair p's master surface gathered on every rank (a facet on a partition boundary comes twice,
- * which changes nothing). */
+/* Pair p's master surface gathered on every rank (each facet once). */
 static PetscErrorCode GatherMasterSurface(MMCtx *ctx, PetscInt p, const PetscInt mark[])
 {
   MMContactPairs *pr   = &ctx->contact.pairs;

@@ -131,20 +131,49 @@ static PetscErrorCode AllObstacleGaps(MMCtx *ctx, const PetscReal x[], PetscInt 
   PetscFunctionReturn(0);
 }
 
+/* int_F phi_i = |F| / dim for P1 on a simplex facet F: added to each of its vertices' area. Each
+ * facet is listed on one rank; the areas are summed over ranks by the caller. */
+static PetscErrorCode AddFacetAreas(DM dm, DM dms, const char name[], PetscScalar aa[])
+{
+  MMFacetList        fl;
+  PetscSection       cs;
+  Vec                X;
+  const PetscScalar *xc;
+  PetscInt           dim;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetDimension(dm, &dim));
+  PetscCall(MMMeshGetFacets(dm, name, &fl));
+  PetscCall(DMGetCoordinateSection(dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  PetscCall(VecGetArrayRead(X, &xc));
+  for (PetscInt i = 0; i < fl.n; ++i) {
+    PetscInt  v[MM_MAX_DIM];
+    PetscReal area;
+    PetscCall(MMFacetGeometry(dm, &fl, i, cs, xc, v, NULL, &area));
+    for (PetscInt a = 0; a < dim; ++a) {
+      PetscInt off, end;
+      PetscCall(DMPlexGetPointLocal(dms, v[a], &off, &end));
+      aa[off] += area / dim;
+    }
+  }
+  PetscCall(VecRestoreArrayRead(X, &xc));
+  PetscCall(MMFacetListDestroy(&fl));
+  PetscFunctionReturn(0);
+}
+
 /* Marks the points of one contact surface with value, and adds int_F phi_i to each vertex's area. */
 static PetscErrorCode MarkSurface(MMCtx *ctx, const char name[], PetscInt value, PetscInt mark[], PetscScalar aa[])
 {
   DM              dm = ctx->op.dm;
   DMLabel         label;
   IS              vis, pis;
-  PetscInt        pStart, vStart, vEnd, n, nv;
+  PetscInt        pStart, n, nv;
   const PetscInt *pts, *vals;
-  const PetscInt  dim = ctx->op.dim;
 
   PetscFunctionBeginUser;
   PetscCall(MMMeshGetLabel(dm, name, &label));
   PetscCall(DMPlexGetChart(dm, &pStart, NULL));
-  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
   PetscCall(DMLabelGetValueIS(label, &vis));
   PetscCall(ISGetLocalSize(vis, &nv));
   PetscCall(ISGetIndices(vis, &vals));
@@ -155,19 +184,13 @@ static PetscErrorCode MarkSurface(MMCtx *ctx, const char name[], PetscInt value,
     PetscCall(ISGetIndices(pis, &pts));
     for (PetscInt j = 0; j < n; ++j) {
       PetscInt *closure = NULL, ncl, h;
-      PetscReal farea = 0;
       PetscCall(DMPlexGetPointHeight(dm, pts[j], &h));
       PetscCheck(h >= 1, PetscObjectComm((PetscObject)dm), PETSC_ERR_USER_INPUT, "Contact surface \"%s\" contains cells: it must be a Physical Curve (2D) or Physical Surface (3D)", name);
-      if (h == 1) PetscCall(DMPlexComputeCellGeometryFVM(dm, pts[j], &farea, NULL, NULL));
       PetscCall(DMPlexGetTransitiveClosure(dm, pts[j], PETSC_TRUE, &ncl, &closure));
       for (PetscInt k = 0; k < ncl; ++k) {
         const PetscInt q = closure[2 * k];
-        PetscInt       off, end;
         PetscCheck(!mark[q - pStart] || mark[q - pStart] == value, PetscObjectComm((PetscObject)dm), PETSC_ERR_USER_INPUT, "Contact surface \"%s\" shares a node with another contact surface (-contact_boundary or a pair's slave surface): a node carries one kind of constraint. Separate the physical groups", name);
         mark[q - pStart] = value;
-        if (q < vStart || q >= vEnd) continue;
-        PetscCall(DMPlexGetPointLocal(ctx->out.dm_scalar, q, &off, &end));
-        aa[off] += farea / dim; /* int_F phi_i for P1 on a simplex face */
       }
       PetscCall(DMPlexRestoreTransitiveClosure(dm, pts[j], PETSC_TRUE, &ncl, &closure));
     }
@@ -176,6 +199,7 @@ static PetscErrorCode MarkSurface(MMCtx *ctx, const char name[], PetscInt value,
   }
   PetscCall(ISRestoreIndices(vis, &vals));
   PetscCall(ISDestroy(&vis));
+  PetscCall(AddFacetAreas(dm, ctx->out.dm_scalar, name, aa));
   PetscFunctionReturn(0);
 }
 
