@@ -1,5 +1,5 @@
-"""The facet physical groups of a mesh read without faces (src/mesh/facets.c): each rank interpolates
-its own part after the distribution, and the facet elements read from the file label the faces.
+"""The facet physical groups of a mesh that is never interpolated (src/mesh/facets.c): the facet
+elements read from the file mark their cells, and each rank lists its facets from the marks.
 PETSc's gmsh reader labels them itself only when it interpolates the whole mesh on rank 0, which it
 still does for a binary file: the binary copy of a mesh is the reference. The same contact nodes,
 Dirichlet dofs, tractions and master surfaces must follow, on 1 and 2 ranks, in 2D and 3D."""
@@ -83,3 +83,43 @@ def test_facet_off_the_cells_is_refused(tmp_path):
     r = run("bar_ramp", tmp_path, "-mesh", str(mesh), np_=0, check=False)
     assert r.returncode != 0
     assert re.search(r'a facet of the physical group "\w+" \(nodes %d %d\) is not a face of any triangle' % (n0, far), r.output), r.output[-1500:]
+
+
+def test_mesh_holds_no_faces_or_edges(tmp_path):
+    """The distributed mesh is cells and vertices only (no rank builds faces or edges); the binary
+    file's, read by PETSc's reader, is interpolated."""
+    ascii_run = run("d2_ball", tmp_path, "-ts_max_steps", 1, "-output_every", 0, "-dm_view", np_=2, name="ascii")
+    strata = re.findall(r"Number of (\d)-cells per rank", ascii_run.output)
+    assert strata == ["0", "3"], ascii_run.output[:3000]
+    binary_run = run("d2_ball", tmp_path, "-ts_max_steps", 1, "-output_every", 0, "-dm_view", "-mesh", binary_copy("meshes/ball.msh", tmp_path), np_=2, name="binary")
+    assert re.findall(r"Number of (\d)-cells per rank", binary_run.output) == ["0", "1", "2", "3"]
+
+
+def interface_mesh(tmp_path, binary):
+    """The bimaterial strip with its interface x = L1 (2 cells on each of its facets) as the facet
+    group "interface"."""
+    geo = tmp_path / "interface.geo"
+    geo.write_text(open(f"{ROOT}/meshes/bimaterial.geo").read() + '\nPhysical Curve("interface") = {2};\n')
+    out = tmp_path / ("interface_bin.msh" if binary else "interface.msh")
+    subprocess.run(["gmsh", str(geo), "-2", *(["-bin"] if binary else []), "-format", "msh41", "-o", str(out), "-v", "2"], check=True)
+    return str(out)
+
+
+@pytest.mark.parametrize("np_", [1, 2])
+@pytest.mark.parametrize("binary", [False, True], ids=["ascii", "binary"])
+def test_interior_facet_group_counts_each_facet_once(binary, np_, tmp_path):
+    """A traction on an interior curve (each facet bounds two cells, possibly on two ranks) loads
+    the strip with its value times the curve's length, W = L1 / N1 = 0.0125, at every step: a facet
+    listed from both of its cells would double it. As a pair's master surface it is refused."""
+    mesh = interface_mesh(tmp_path, binary)
+    r = run("bimaterial_pulse", tmp_path, "-mesh", mesh, "-traction", "left,interface", "-traction_interface_value", "2e-3,0",
+            "-traction_interface_amplitude", "halfsine", "-traction_interface_amplitude_time", 0.2, "-ts_max_time", 0.1,
+            "-output_every", 0, np_=np_)
+    h = r.history
+    expected = (1e-3 + 2e-3) * 0.0125 * np.sin(np.pi * h["time"] / 0.2)
+    assert np.abs(h["load_x"] - expected).max() <= 1e-12 * 3e-3 * 0.0125
+    assert np.abs(h["load_x"]).max() > 0.5 * 3e-3 * 0.0125
+    bad = run("bimaterial_pulse", tmp_path, "-mesh", mesh, "-contact", 1, "-contact_pairs", "p", "-contact_pair_p_slave", "left",
+              "-contact_pair_p_master", "interface", np_=np_, name="pair", check=False)
+    assert bad.returncode != 0
+    assert 'The master surface "interface" of contact pair p has a facet inside the mesh' in bad.output, bad.output[-1500:]

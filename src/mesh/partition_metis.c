@@ -11,8 +11,8 @@
    ignored, every part gets the same share.
 
    The cell graph (cells sharing a face) is built here from the cells' vertices
-   (MMPartitionerMetisSetDM), not by PETSc: the mesh is distributed before it is
-   interpolated (src/mesh/facets.c), and PETSc's graph of a mesh without faces
+   (MMPartitionerMetisSetDM), not by PETSc: the mesh is never interpolated
+   (src/mesh/facets.c), and PETSc's graph of a mesh without faces
    (DMPlexCreateNeighborCSR, a meet per pair of cells sharing a vertex) took 120 s
    of the 1M-dof set-up, where sorting the faces by their vertices takes about 2. */
 #include <petsc/private/partitionerimpl.h>
