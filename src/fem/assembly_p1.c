@@ -392,19 +392,62 @@ static PetscErrorCode P1BlockSize(DM dm, const VertexTable *vt, PetscInt nv, Pet
   PetscFunctionReturn(0);
 }
 
-/* Marks the couplings of vertices a and b (both ways) in the preallocator P: with bs = dim one entry
- * stands for the vertex block; with bs = 1 every free component pair. Rows owned elsewhere go through
- * P's stash to their owner, which merges them with its own (the edges of the partition boundary
- * come from both ranks, the ones only the other rank's cells hold from it alone). */
-static PetscErrorCode MarkVertexPair(Mat P, const VertexTable *vt, PetscInt bs, PetscInt a, PetscInt b)
+/* Marks the couplings of vertex a with its n neighbours b[] (a among them) in the preallocator P,
+ * row a only: with bs = dim one entry stands for the vertex block; with bs = 1 every free component
+ * pair. Rows owned elsewhere go through P's stash to their owner, which merges them with its own
+ * (the edges of the partition boundary come from both ranks, the ones only the other rank's cells
+ * hold from it alone). */
+static PetscErrorCode MarkVertexRow(Mat P, const VertexTable *vt, PetscInt bs, PetscInt a, PetscInt n, const PetscInt b[], PetscInt cols[], PetscScalar zeros[])
 {
-  const PetscInt *da = &vt->dof[(a - vt->vStart) * vt->dim], *db = &vt->dof[(b - vt->vStart) * vt->dim];
-  PetscScalar     zeros[MM_MAX_DIM * MM_MAX_DIM] = {0};
-  const PetscInt  n = bs > 1 ? 1 : vt->dim;
+  const PetscInt *da = &vt->dof[(a - vt->vStart) * vt->dim];
+  const PetscInt  m  = bs > 1 ? 1 : vt->dim;
 
   PetscFunctionBeginUser;
-  PetscCall(MatSetValues(P, n, da, n, db, zeros, INSERT_VALUES));
-  if (a != b) PetscCall(MatSetValues(P, n, db, n, da, zeros, INSERT_VALUES));
+  for (PetscInt k = 0; k < n; ++k)
+    for (PetscInt c = 0; c < m; ++c) cols[k * m + c] = vt->dof[(b[k] - vt->vStart) * vt->dim + c];
+  PetscCall(MatSetValues(P, m, da, n * m, cols, zeros, INSERT_VALUES));
+  PetscFunctionReturn(0);
+}
+
+/* Each local vertex's neighbours (itself and the vertices it shares a cell with), sorted and
+ * unique, in CSR form: a vertex pair is marked once, where the cells hold it about five times. */
+static PetscErrorCode VertexNeighbours(DM dm, PetscInt depth, PetscInt dim, PetscInt vStart, PetscInt vEnd, PetscInt **offsets, PetscInt **nbrs)
+{
+  const PetscInt nv = vEnd - vStart;
+  PetscInt       cStart, cEnd, *off, *nb, *fill;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  PetscCall(PetscCalloc1(nv + 1, &off));
+  PetscCall(PetscCalloc1(PetscMax(nv, 1), &fill));
+  for (PetscInt c = cStart; c < cEnd; ++c) {
+    PetscInt v[MM_NV_MAX];
+    PetscCall(MMMeshCellVertices(dm, depth, dim, c, v));
+    for (PetscInt a = 0; a <= dim; ++a) off[v[a] - vStart + 1] += dim + 1;
+  }
+  for (PetscInt i = 0; i < nv; ++i) off[i + 1] += off[i];
+  PetscCall(PetscMalloc1(PetscMax(off[nv], 1), &nb));
+  for (PetscInt c = cStart; c < cEnd; ++c) {
+    PetscInt v[MM_NV_MAX];
+    PetscCall(MMMeshCellVertices(dm, depth, dim, c, v));
+    for (PetscInt a = 0; a <= dim; ++a)
+      for (PetscInt b = 0; b <= dim; ++b) nb[off[v[a] - vStart] + fill[v[a] - vStart]++] = v[b];
+  }
+  /* sorted, unique, compacted in place */
+  {
+    PetscInt w = 0;
+    for (PetscInt i = 0; i < nv; ++i) {
+      PetscInt n = off[i + 1] - off[i];
+      PetscCall(PetscSortRemoveDupsInt(&n, nb + off[i]));
+      PetscCall(PetscArraymove(nb + w, nb + off[i], n));
+      off[i] = w;
+      w += n;
+    }
+    off[nv] = w;
+  }
+  PetscCall(PetscFree(fill));
+  *offsets = off;
+  *nbrs    = nb;
   PetscFunctionReturn(0);
 }
 
@@ -412,14 +455,15 @@ static PetscErrorCode MarkVertexPair(Mat P, const VertexTable *vt, PetscInt bs, 
  * section whose pattern, filled with zeros and assembled, couples exactly the vertices that share
  * an edge, with each vertex's free dofs; what DMCreateMatrix builds for P1, which gets it from the
  * DMPlex point adjacency at several times the cost of the assembly itself (README "Assembly of K
- * and M"). Here the mesh edges are the couplings, and MATPREALLOCATOR merges them across ranks. */
+ * and M"). Here the couplings are the cells' vertex pairs, each marked once per row (the mesh has no
+ * edges: src/mesh/facets.c), and MATPREALLOCATOR merges them across ranks. */
 PetscErrorCode MMCreateMatrixP1(DM dm, Mat *A)
 {
   MPI_Comm               comm = PetscObjectComm((PetscObject)dm);
   VertexTable            vt;
   PetscSection           gs;
   Mat                    P;
-  PetscInt               n, bs = 1, depth, dim, vStart, vEnd, cStart, cEnd;
+  PetscInt               n, bs = 1, depth, dim, vStart, vEnd;
 
   PetscFunctionBeginUser;
   PetscCall(DMGetDimension(dm, &dim));
@@ -434,24 +478,18 @@ PetscErrorCode MMCreateMatrixP1(DM dm, Mat *A)
   PetscCall(MatSetBlockSize(P, bs));
   PetscCall(MatSetType(P, MATPREALLOCATOR));
   PetscCall(MatSetUp(P));
-  for (PetscInt v = vStart; v < vEnd; ++v) PetscCall(MarkVertexPair(P, &vt, bs, v, v));
-  if (depth > 1) {
-    /* interpolated: each edge once */
-    PetscInt eStart, eEnd;
-    PetscCall(DMPlexGetDepthStratum(dm, 1, &eStart, &eEnd));
-    for (PetscInt e = eStart; e < eEnd; ++e) {
-      const PetscInt *cone;
-      PetscCall(DMPlexGetCone(dm, e, &cone));
-      PetscCall(MarkVertexPair(P, &vt, bs, cone[0], cone[1]));
-    }
-  } else {
-    PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
-    for (PetscInt c = cStart; c < cEnd; ++c) {
-      PetscInt v[MM_NV_MAX];
-      PetscCall(MMMeshCellVertices(dm, depth, dim, c, v));
-      for (PetscInt a = 0; a <= dim; ++a)
-        for (PetscInt b = a + 1; b <= dim; ++b) PetscCall(MarkVertexPair(P, &vt, bs, v[a], v[b]));
-    }
+  {
+    PetscInt    *off = NULL, *nb = NULL, maxn = 0, *cols;
+    PetscScalar *zeros;
+    PetscCall(VertexNeighbours(dm, depth, dim, vStart, vEnd, &off, &nb));
+    for (PetscInt i = 0; i < vEnd - vStart; ++i) maxn = PetscMax(maxn, off[i + 1] - off[i]);
+    PetscCall(PetscMalloc1(maxn * dim, &cols));
+    PetscCall(PetscCalloc1(maxn * dim * dim, &zeros));
+    for (PetscInt v = vStart; v < vEnd; ++v) PetscCall(MarkVertexRow(P, &vt, bs, v, off[v - vStart + 1] - off[v - vStart], nb + off[v - vStart], cols, zeros));
+    PetscCall(PetscFree(cols));
+    PetscCall(PetscFree(zeros));
+    PetscCall(PetscFree(off));
+    PetscCall(PetscFree(nb));
   }
   PetscCall(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY));
