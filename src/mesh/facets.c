@@ -360,57 +360,6 @@ PetscErrorCode MMMeshFacetsRead(MPI_Comm comm, DM dm, const char file[], const P
   PetscFunctionReturn(0);
 }
 
-/* On the distributed mesh read without faces: each group's label (its name, its physical tag) on the
- * vertices of its marked facets, completed over ranks (a vertex on the partition may sit on a rank
- * that holds none of its facets). The marks stay: MMMeshGetFacets reads them. */
-PetscErrorCode MMMeshFacetsLabelVertices(MMMeshFacets *groups, DM dm)
-{
-  PetscInt dim;
-
-  PetscFunctionBeginUser;
-  PetscCall(DMGetDimension(dm, &dim));
-  for (PetscInt g = 0; g < groups->ngroups; ++g) {
-    char    name[MM_FACET_NAME + 64];
-    DMLabel mark, label;
-    IS      cis;
-
-    PetscCall(MarkName(groups->name[g], name, sizeof(name)));
-    PetscCall(DMGetLabel(dm, name, &mark));
-    PetscCall(DMCreateLabel(dm, groups->name[g]));
-    PetscCall(DMGetLabel(dm, groups->name[g], &label));
-    PetscCall(DMLabelGetValueIS(mark, &cis));
-    {
-      PetscInt        nval;
-      const PetscInt *vals;
-      PetscCall(ISGetLocalSize(cis, &nval));
-      PetscCall(ISGetIndices(cis, &vals));
-      for (PetscInt i = 0; i < nval; ++i) {
-        IS              pis;
-        PetscInt        np;
-        const PetscInt *pts;
-        PetscCall(DMLabelGetStratumIS(mark, vals[i], &pis));
-        if (!pis) continue;
-        PetscCall(ISGetLocalSize(pis, &np));
-        PetscCall(ISGetIndices(pis, &pts));
-        for (PetscInt j = 0; j < np; ++j) {
-          const PetscInt *cone;
-          PetscCall(DMPlexGetCone(dm, pts[j], &cone));
-          for (PetscInt k = 0; k <= dim; ++k)
-            if (vals[i] >> k & 1)
-              for (PetscInt a = 0; a <= dim; ++a)
-                if (a != k) PetscCall(DMLabelSetValue(label, cone[a], groups->tag[g]));
-        }
-        PetscCall(ISRestoreIndices(pis, &pts));
-        PetscCall(ISDestroy(&pis));
-      }
-      PetscCall(ISRestoreIndices(cis, &vals));
-    }
-    PetscCall(ISDestroy(&cis));
-    PetscCall(DMPlexLabelComplete(dm, label));
-  }
-  PetscFunctionReturn(0);
-}
-
 /* Appends facet (cell c, vertex k off it, interior) to the list, growing it. */
 static PetscErrorCode FacetsAppend(MMFacetList *fl, PetscInt c, PetscInt k, PetscBool interior)
 {
@@ -463,6 +412,37 @@ static PetscErrorCode FacetsFromMarks(DM dm, DMLabel mark, MMFacetList *fl)
   }
   PetscCall(ISRestoreIndices(vis, &vals));
   PetscCall(ISDestroy(&vis));
+  PetscFunctionReturn(0);
+}
+
+/* On the distributed mesh read without faces: each group's label (its name, its physical tag) on the
+ * vertices of its marked facets, completed over ranks (a vertex on the partition may sit on a rank
+ * that holds none of its facets). The marks stay: MMMeshGetFacets reads them. */
+PetscErrorCode MMMeshFacetsLabelVertices(MMMeshFacets *groups, DM dm)
+{
+  PetscInt dim;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetDimension(dm, &dim));
+  for (PetscInt g = 0; g < groups->ngroups; ++g) {
+    char        name[MM_FACET_NAME + 64];
+    DMLabel     mark, label;
+    MMFacetList fl = {0};
+
+    PetscCall(MarkName(groups->name[g], name, sizeof(name)));
+    PetscCall(DMGetLabel(dm, name, &mark));
+    PetscCall(DMCreateLabel(dm, groups->name[g]));
+    PetscCall(DMGetLabel(dm, groups->name[g], &label));
+    PetscCall(FacetsFromMarks(dm, mark, &fl));
+    for (PetscInt i = 0; i < fl.n; ++i) {
+      const PetscInt *cone;
+      PetscCall(DMPlexGetCone(dm, fl.cell[i], &cone));
+      for (PetscInt a = 0; a <= dim; ++a)
+        if (a != fl.off[i]) PetscCall(DMLabelSetValue(label, cone[a], groups->tag[g]));
+    }
+    PetscCall(MMFacetListDestroy(&fl));
+    PetscCall(DMPlexLabelComplete(dm, label));
+  }
   PetscFunctionReturn(0);
 }
 
