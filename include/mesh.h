@@ -25,6 +25,7 @@ typedef struct {
 PETSC_EXTERN PetscErrorCode MMMeshGetFacets(DM, const char[], MMFacetList *);
 PETSC_EXTERN PetscErrorCode MMFacetListDestroy(MMFacetList *);
 PETSC_EXTERN PetscErrorCode MMFacetGeometry(DM, const MMFacetList *, PetscInt, PetscSection, const PetscScalar[], PetscInt[], PetscReal[], PetscReal *);
+PETSC_EXTERN PetscErrorCode MMMeshFacetsAddNodal(DM, const char[], DM, PetscInt, const PetscReal[], PetscScalar[]);
 PETSC_EXTERN PetscErrorCode MMMeshFacetsDestroy(MMMeshFacets *);
 PETSC_EXTERN PetscErrorCode MMMeshGetLabel(DM, const char[], DMLabel *);
 PETSC_EXTERN PetscErrorCode MMMeshGetSizes(DM, PetscInt *, PetscInt *);

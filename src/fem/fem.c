@@ -264,36 +264,19 @@ static PetscErrorCode CheckTractionGroup(DM dm, const char name[], DMLabel label
  * DMLocalToGlobal with ADD). */
 PetscErrorCode MMFEAddTraction(MMCtx *ctx, PetscInt b, Vec floc)
 {
-  DM                 dm = ctx->op.dm;
-  DMLabel            label;
-  MMFacetList        fl;
-  PetscSection       cs;
-  Vec                X;
-  const PetscScalar *xc;
-  PetscInt           dim = ctx->op.dim;
-  PetscScalar       *f;
+  DM          dm = ctx->op.dm;
+  DMLabel     label;
+  MMFacetList fl;
+  PetscScalar *f;
 
   PetscFunctionBeginUser;
   PetscCall(MMMeshGetLabel(dm, ctx->opt.traction[b].name, &label));
   PetscCall(MMMeshGetFacets(dm, ctx->opt.traction[b].name, &fl));
   PetscCall(CheckTractionGroup(dm, ctx->opt.traction[b].name, label, &fl));
-  PetscCall(DMGetCoordinateSection(dm, &cs));
-  PetscCall(DMGetCoordinatesLocal(dm, &X));
-  PetscCall(VecGetArrayRead(X, &xc));
-  PetscCall(VecGetArray(floc, &f));
-  for (PetscInt i = 0; i < fl.n; ++i) {
-    PetscInt  v[MM_MAX_DIM];
-    PetscReal area;
-    PetscCall(MMFacetGeometry(dm, &fl, i, cs, xc, v, NULL, &area));
-    for (PetscInt a = 0; a < dim; ++a) {
-      PetscInt off, end;
-      PetscCall(DMPlexGetPointLocal(dm, v[a], &off, &end));
-      for (PetscInt c = 0; c < dim; ++c) f[off + c] += ctx->opt.traction[b].traction[c] * area / dim;
-    }
-  }
-  PetscCall(VecRestoreArray(floc, &f));
-  PetscCall(VecRestoreArrayRead(X, &xc));
   PetscCall(MMFacetListDestroy(&fl));
+  PetscCall(VecGetArray(floc, &f));
+  PetscCall(MMMeshFacetsAddNodal(dm, ctx->opt.traction[b].name, dm, ctx->op.dim, ctx->opt.traction[b].traction, f));
+  PetscCall(VecRestoreArray(floc, &f));
   PetscFunctionReturn(0);
 }
 

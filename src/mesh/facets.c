@@ -384,34 +384,57 @@ static PetscErrorCode FacetsAppend(MMFacetList *fl, PetscInt c, PetscInt k, Pets
   PetscFunctionReturn(0);
 }
 
-/* The facets of a mesh read without faces, from the group's cell marks. */
-static PetscErrorCode FacetsFromMarks(DM dm, DMLabel mark, MMFacetList *fl)
+/* Every (point, value) pair of a label on this rank, in arrays the caller frees (PetscFree2). */
+static PetscErrorCode LabelPoints(DMLabel label, PetscInt *n, PetscInt **pts, PetscInt **vals)
 {
   IS              vis;
-  PetscInt        nval, dim;
-  const PetscInt *vals;
+  PetscInt        nval, total = 0;
+  const PetscInt *v;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetDimension(dm, &dim));
-  PetscCall(DMLabelGetValueIS(mark, &vis));
+  PetscCall(DMLabelGetValueIS(label, &vis));
   PetscCall(ISGetLocalSize(vis, &nval));
-  PetscCall(ISGetIndices(vis, &vals));
+  PetscCall(ISGetIndices(vis, &v));
+  for (PetscInt i = 0; i < nval; ++i) {
+    PetscInt size;
+    PetscCall(DMLabelGetStratumSize(label, v[i], &size));
+    total += size;
+  }
+  PetscCall(PetscMalloc2(total, pts, total, vals));
+  *n = 0;
   for (PetscInt i = 0; i < nval; ++i) {
     IS              pis;
     PetscInt        np;
-    const PetscInt *pts;
-    PetscCall(DMLabelGetStratumIS(mark, vals[i], &pis));
+    const PetscInt *p;
+    PetscCall(DMLabelGetStratumIS(label, v[i], &pis));
     if (!pis) continue;
     PetscCall(ISGetLocalSize(pis, &np));
-    PetscCall(ISGetIndices(pis, &pts));
-    for (PetscInt j = 0; j < np; ++j)
-      for (PetscInt k = 0; k <= dim; ++k)
-        if (vals[i] >> k & 1) PetscCall(FacetsAppend(fl, pts[j], k, (PetscBool)(vals[i] >> (MM_FACET_INTERIOR + k) & 1)));
-    PetscCall(ISRestoreIndices(pis, &pts));
+    PetscCall(ISGetIndices(pis, &p));
+    for (PetscInt j = 0; j < np; ++j) {
+      (*pts)[*n]    = p[j];
+      (*vals)[*n] = v[i];
+      ++*n;
+    }
+    PetscCall(ISRestoreIndices(pis, &p));
     PetscCall(ISDestroy(&pis));
   }
-  PetscCall(ISRestoreIndices(vis, &vals));
+  PetscCall(ISRestoreIndices(vis, &v));
   PetscCall(ISDestroy(&vis));
+  PetscFunctionReturn(0);
+}
+
+/* The facets of a mesh read without faces, from the group's cell marks. */
+static PetscErrorCode FacetsFromMarks(DM dm, DMLabel mark, MMFacetList *fl)
+{
+  PetscInt  n, dim, *pts, *vals;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetDimension(dm, &dim));
+  PetscCall(LabelPoints(mark, &n, &pts, &vals));
+  for (PetscInt i = 0; i < n; ++i)
+    for (PetscInt k = 0; k <= dim; ++k)
+      if (vals[i] >> k & 1) PetscCall(FacetsAppend(fl, pts[i], k, (PetscBool)(vals[i] >> (MM_FACET_INTERIOR + k) & 1)));
+  PetscCall(PetscFree2(pts, vals));
   PetscFunctionReturn(0);
 }
 
@@ -450,48 +473,32 @@ PetscErrorCode MMMeshFacetsLabelVertices(MMMeshFacets *groups, DM dm)
  * first cell and the position, in MMMeshCellVertices' order, of that cell's vertex off the face. */
 static PetscErrorCode FacetsFromFaces(DM dm, DMLabel label, MMFacetList *fl)
 {
-  IS              vis;
-  PetscInt        nval, dim, depth;
-  const PetscInt *vals;
+  PetscInt n, dim, depth, *pts, *vals;
 
   PetscFunctionBeginUser;
   PetscCall(DMGetDimension(dm, &dim));
   PetscCall(DMPlexGetDepth(dm, &depth));
-  PetscCall(DMLabelGetValueIS(label, &vis));
-  PetscCall(ISGetLocalSize(vis, &nval));
-  PetscCall(ISGetIndices(vis, &vals));
-  for (PetscInt i = 0; i < nval; ++i) {
-    IS              pis;
-    PetscInt        np;
-    const PetscInt *pts;
-    PetscCall(DMLabelGetStratumIS(label, vals[i], &pis));
-    if (!pis) continue;
-    PetscCall(ISGetLocalSize(pis, &np));
-    PetscCall(ISGetIndices(pis, &pts));
-    for (PetscInt j = 0; j < np; ++j) {
-      PetscInt        h, nsup, v[MM_MAX_DIM + 1], *cl = NULL, ncl, k = -1;
-      const PetscInt *sup;
-      PetscCall(DMPlexGetPointHeight(dm, pts[j], &h));
-      if (h != 1) continue;
-      PetscCall(DMPlexGetSupportSize(dm, pts[j], &nsup));
-      PetscCall(DMPlexGetSupport(dm, pts[j], &sup));
-      if (!nsup) continue;
-      PetscCall(MMMeshCellVertices(dm, depth, dim, sup[0], v));
-      PetscCall(DMPlexGetTransitiveClosure(dm, pts[j], PETSC_TRUE, &ncl, &cl));
-      for (PetscInt a = 0; a <= dim && k < 0; ++a) {
-        PetscBool in = PETSC_FALSE;
-        for (PetscInt q = 0; q < ncl; ++q) in = (PetscBool)(in || cl[2 * q] == v[a]);
-        if (!in) k = a;
-      }
-      PetscCall(DMPlexRestoreTransitiveClosure(dm, pts[j], PETSC_TRUE, &ncl, &cl));
-      PetscCheck(k >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Face %" PetscInt_FMT " holds every vertex of its cell", pts[j]);
-      PetscCall(FacetsAppend(fl, sup[0], k, (PetscBool)(nsup > 1)));
+  PetscCall(LabelPoints(label, &n, &pts, &vals));
+  for (PetscInt j = 0; j < n; ++j) {
+    PetscInt        h, nsup, v[MM_MAX_DIM + 1], *cl = NULL, ncl, k = -1;
+    const PetscInt *sup;
+    PetscCall(DMPlexGetPointHeight(dm, pts[j], &h));
+    if (h != 1) continue;
+    PetscCall(DMPlexGetSupportSize(dm, pts[j], &nsup));
+    PetscCall(DMPlexGetSupport(dm, pts[j], &sup));
+    if (!nsup) continue;
+    PetscCall(MMMeshCellVertices(dm, depth, dim, sup[0], v));
+    PetscCall(DMPlexGetTransitiveClosure(dm, pts[j], PETSC_TRUE, &ncl, &cl));
+    for (PetscInt a = 0; a <= dim && k < 0; ++a) {
+      PetscBool in = PETSC_FALSE;
+      for (PetscInt q = 0; q < ncl; ++q) in = (PetscBool)(in || cl[2 * q] == v[a]);
+      if (!in) k = a;
     }
-    PetscCall(ISRestoreIndices(pis, &pts));
-    PetscCall(ISDestroy(&pis));
+    PetscCall(DMPlexRestoreTransitiveClosure(dm, pts[j], PETSC_TRUE, &ncl, &cl));
+    PetscCheck(k >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Face %" PetscInt_FMT " holds every vertex of its cell", pts[j]);
+    PetscCall(FacetsAppend(fl, sup[0], k, (PetscBool)(nsup > 1)));
   }
-  PetscCall(ISRestoreIndices(vis, &vals));
-  PetscCall(ISDestroy(&vis));
+  PetscCall(PetscFree2(pts, vals));
   PetscFunctionReturn(0);
 }
 
@@ -563,5 +570,38 @@ PetscErrorCode MMMeshFacetsDestroy(MMMeshFacets *groups)
   PetscFunctionBeginUser;
   PetscCall(PetscFree2(groups->name, groups->tag));
   groups->ngroups = 0;
+  PetscFunctionReturn(0);
+}
+
+/* a[off(v) + c] += value[c] |F| / dim for every vertex v of every facet F of group name (int_F phi_v
+ * for P1 on a simplex facet), off(v) the vertex's offset in dmv's local section: contact areas (a
+ * scalar DM, value 1) and traction loads (the displacement DM, the traction). Each facet is listed
+ * on one rank: the caller sums a over ranks (DMLocalToGlobal with ADD). */
+PetscErrorCode MMMeshFacetsAddNodal(DM dm, const char name[], DM dmv, PetscInt ncomp, const PetscReal value[], PetscScalar a[])
+{
+  MMFacetList        fl;
+  PetscSection       cs;
+  Vec                X;
+  const PetscScalar *xc;
+  PetscInt           dim;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetDimension(dm, &dim));
+  PetscCall(MMMeshGetFacets(dm, name, &fl));
+  PetscCall(DMGetCoordinateSection(dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  PetscCall(VecGetArrayRead(X, &xc));
+  for (PetscInt i = 0; i < fl.n; ++i) {
+    PetscInt  v[MM_MAX_DIM];
+    PetscReal measure;
+    PetscCall(MMFacetGeometry(dm, &fl, i, cs, xc, v, NULL, &measure));
+    for (PetscInt k = 0; k < dim; ++k) {
+      PetscInt off, end;
+      PetscCall(DMPlexGetPointLocal(dmv, v[k], &off, &end));
+      for (PetscInt c = 0; c < ncomp; ++c) a[off + c] += value[c] * measure / dim;
+    }
+  }
+  PetscCall(VecRestoreArrayRead(X, &xc));
+  PetscCall(MMFacetListDestroy(&fl));
   PetscFunctionReturn(0);
 }

@@ -131,37 +131,6 @@ static PetscErrorCode AllObstacleGaps(MMCtx *ctx, const PetscReal x[], PetscInt 
   PetscFunctionReturn(0);
 }
 
-/* int_F phi_i = |F| / dim for P1 on a simplex facet F: added to each of its vertices' area. Each
- * facet is listed on one rank; the areas are summed over ranks by the caller. */
-static PetscErrorCode AddFacetAreas(DM dm, DM dms, const char name[], PetscScalar aa[])
-{
-  MMFacetList        fl;
-  PetscSection       cs;
-  Vec                X;
-  const PetscScalar *xc;
-  PetscInt           dim;
-
-  PetscFunctionBeginUser;
-  PetscCall(DMGetDimension(dm, &dim));
-  PetscCall(MMMeshGetFacets(dm, name, &fl));
-  PetscCall(DMGetCoordinateSection(dm, &cs));
-  PetscCall(DMGetCoordinatesLocal(dm, &X));
-  PetscCall(VecGetArrayRead(X, &xc));
-  for (PetscInt i = 0; i < fl.n; ++i) {
-    PetscInt  v[MM_MAX_DIM];
-    PetscReal area;
-    PetscCall(MMFacetGeometry(dm, &fl, i, cs, xc, v, NULL, &area));
-    for (PetscInt a = 0; a < dim; ++a) {
-      PetscInt off, end;
-      PetscCall(DMPlexGetPointLocal(dms, v[a], &off, &end));
-      aa[off] += area / dim;
-    }
-  }
-  PetscCall(VecRestoreArrayRead(X, &xc));
-  PetscCall(MMFacetListDestroy(&fl));
-  PetscFunctionReturn(0);
-}
-
 /* Marks the points of one contact surface with value, and adds int_F phi_i to each vertex's area. */
 static PetscErrorCode MarkSurface(MMCtx *ctx, const char name[], PetscInt value, PetscInt mark[], PetscScalar aa[])
 {
@@ -199,7 +168,11 @@ static PetscErrorCode MarkSurface(MMCtx *ctx, const char name[], PetscInt value,
   }
   PetscCall(ISRestoreIndices(vis, &vals));
   PetscCall(ISDestroy(&vis));
-  PetscCall(AddFacetAreas(dm, ctx->out.dm_scalar, name, aa));
+  {
+    const PetscReal one = 1;
+    /* int_F phi_i for P1 on each facet F: the contact nodes' areas */
+    PetscCall(MMMeshFacetsAddNodal(dm, name, ctx->out.dm_scalar, 1, &one, aa));
+  }
   PetscFunctionReturn(0);
 }
 
