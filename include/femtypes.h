@@ -1,6 +1,7 @@
 /* The P1 discretization: the kernels' constants and the operators (src/fem/). */
 #pragma once
 #include "mmbase.h"
+#include "insertmap.h"
 
 /* Physical parameters, also passed to the pointwise kernels as constants[]. */
 typedef enum {
@@ -98,6 +99,7 @@ typedef struct {
   /* the constrained dofs (all Dirichlet boundaries): rows of the Cartesian K and M on a copy of the
    * mesh without constraints, and the load parts there */
   DM           dm_full;
+  MMInsertMap  to_full, to_free; /* DMLocalToGlobal(INSERT) on dm_full and on the constrained DM, as maps */
   IS           isD;        /* the owned constrained dofs in dm_full's global numbering */
   PetscInt     nD;         /* how many (this rank) */
   PetscInt    *Dbc;        /* per owned constrained dof: the boundary whose reaction it counts in */

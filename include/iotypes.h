@@ -1,6 +1,7 @@
 /* Output, progress lines and checkpoints (src/io/). */
 #pragma once
 #include "mmbase.h"
+#include "insertmap.h"
 
 /* The progress line (src/io/progress.c): what it keeps between two lines. The references are taken at the
  * first monitor call, the start of TSSolve, so that the rates are those of this run's time loop. */
@@ -25,6 +26,7 @@ typedef struct {
   size_t        index_len, index_cap;
   PetscLogEvent ev_flush, ev_index, ev_copy; /* HDF5 flush, XDMF rewrite, the checkpoint's copy of solution.h5 */
   DM            dm_out;                /* the displacement field without constraints: output of whole fields */
+  MMInsertMap   to_out;                /* DMLocalToGlobal(INSERT) on dm_out, as a map */
   Vec           disp_cart, vel_cart;   /* Cartesian output fields on dm_out */
   DM            dm_scalar;             /* one scalar per vertex: pressure, gap */
   Vec           pressure, gap;

@@ -412,7 +412,7 @@ static PetscErrorCode FullField(MMCtx *ctx, Vec w, PetscReal t, PetscBool with_b
   PetscCall(VecZeroEntries(l));
   PetscCall(DMGlobalToLocal(dm, g, INSERT_VALUES, l));
   if (with_bc) PetscCall(MMLoadsInsertBoundaryValues(ctx, l, t));
-  PetscCall(DMLocalToGlobal(ctx->loads.dm_full, l, INSERT_VALUES, full));
+  PetscCall(MMInsertMapLocalToGlobal(ctx->loads.dm_full, &ctx->loads.to_full, l, full));
   PetscCall(DMRestoreLocalVector(dm, &l));
   PetscCall(DMRestoreGlobalVector(dm, &g));
   PetscFunctionReturn(0);
@@ -429,7 +429,7 @@ static PetscErrorCode FreePart(MMCtx *ctx, Vec full, Vec w)
   PetscCall(DMGetLocalVector(dm, &l));
   PetscCall(DMGlobalToLocal(ctx->loads.dm_full, full, INSERT_VALUES, l));
   PetscCall(VecZeroEntries(g));
-  PetscCall(DMLocalToGlobal(dm, l, INSERT_VALUES, g));
+  PetscCall(MMInsertMapLocalToGlobal(dm, &ctx->loads.to_free, l, g));
   PetscCall(MMFEForceFromCartesian(ctx, g, w));
   PetscCall(DMRestoreLocalVector(dm, &l));
   PetscCall(DMRestoreGlobalVector(dm, &g));
@@ -885,5 +885,7 @@ PetscErrorCode MMLoadsDestroy(MMLoads *ld)
   PetscCall(PetscFree(ld->Dbc));
   PetscCall(PetscFree(ld->reaction));
   PetscCall(DMDestroy(&ld->dm_full));
+  PetscCall(MMInsertMapDestroy(&ld->to_full));
+  PetscCall(MMInsertMapDestroy(&ld->to_free));
   PetscFunctionReturn(0);
 }

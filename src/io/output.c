@@ -382,7 +382,7 @@ static PetscErrorCode WholeField(MMCtx *ctx, Vec w, PetscBool with_bc, Vec whole
   PetscCall(VecZeroEntries(l));
   PetscCall(DMGlobalToLocal(dm, g, INSERT_VALUES, l));
   if (with_bc) PetscCall(MMLoadsInsertBoundaryValues(ctx, l, ctx->hist.time));
-  PetscCall(DMLocalToGlobal(ctx->out.dm_out, l, INSERT_VALUES, whole));
+  PetscCall(MMInsertMapLocalToGlobal(ctx->out.dm_out, &ctx->out.to_out, l, whole));
   PetscCall(DMRestoreLocalVector(dm, &l));
   PetscCall(DMRestoreGlobalVector(dm, &g));
   PetscFunctionReturn(0);
@@ -917,6 +917,7 @@ PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wa
   PetscCall(VecDestroy(&o->slip));
   PetscCall(DMDestroy(&o->dm_scalar));
   PetscCall(DMDestroy(&o->dm_out));
+  PetscCall(MMInsertMapDestroy(&o->to_out));
   PetscCall(PetscFree(o->times));
   PetscCall(PetscFree(o->index));
   PetscFunctionReturn(0);
