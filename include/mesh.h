@@ -19,13 +19,16 @@ PETSC_EXTERN PetscErrorCode MMMeshFacetsLabelVertices(MMMeshFacets *, DM);
  * vertex off[i] (position in MMMeshCellVertices' order); interior[i] when a second cell shares it. */
 typedef struct {
   PetscInt   n, cap;
+  PetscInt   dim, depth; /* the mesh's, for the cells' vertices */
   PetscInt  *cell, *off;
   PetscBool *interior;
 } MMFacetList;
 PETSC_EXTERN PetscErrorCode MMMeshGetFacets(DM, const char[], MMFacetList *);
 PETSC_EXTERN PetscErrorCode MMFacetListDestroy(MMFacetList *);
 PETSC_EXTERN PetscErrorCode MMFacetGeometry(DM, const MMFacetList *, PetscInt, PetscSection, const PetscScalar[], PetscInt[], PetscReal[], PetscReal *);
-PETSC_EXTERN PetscErrorCode MMMeshFacetsAddNodal(DM, const char[], DM, PetscInt, const PetscReal[], PetscScalar[]);
+PETSC_EXTERN PetscErrorCode MMMeshFacetsAddNodal(DM, const MMFacetList *, DM, PetscInt, const PetscReal[], PetscScalar[]);
+PETSC_EXTERN PetscErrorCode MMMeshLabelPoints(DMLabel, PetscInt *, PetscInt **, PetscInt **);
+PETSC_EXTERN PetscErrorCode MMMeshLabelHoldsCells(DM, DMLabel, PetscBool *);
 PETSC_EXTERN PetscErrorCode MMMeshFacetsDestroy(MMMeshFacets *);
 PETSC_EXTERN PetscErrorCode MMMeshGetLabel(DM, const char[], DMLabel *);
 PETSC_EXTERN PetscErrorCode MMMeshGetSizes(DM, PetscInt *, PetscInt *);

@@ -240,22 +240,15 @@ static PetscErrorCode SpreadVertexScalar(MMCtx *ctx, Vec sloc, const PetscReal f
  * nothing, silently. */
 static PetscErrorCode CheckTractionGroup(DM dm, const char name[], DMLabel label, const MMFacetList *fl)
 {
-  PetscInt counts[2] = {0, 0}; /* facets, cells */
-  PetscInt dim, cStart, cEnd;
+  PetscInt  counts[2] = {fl->n, 0}; /* facets, cells */
+  PetscBool holds;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetDimension(dm, &dim));
-  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
-  counts[0] = fl->n;
-  for (PetscInt c = cStart; c < cEnd && !counts[1]; ++c) {
-    PetscInt val, def;
-    PetscCall(DMLabelGetDefaultValue(label, &def));
-    PetscCall(DMLabelGetValue(label, c, &val));
-    if (val != def) counts[1] = 1;
-  }
+  PetscCall(MMMeshLabelHoldsCells(dm, label, &holds));
+  counts[1] = holds;
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, counts, 2, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)dm)));
-  PetscCheck(!counts[1], PetscObjectComm((PetscObject)dm), PETSC_ERR_USER_INPUT, "-traction %s: the physical group \"%s\" holds cells, not boundary faces. A traction acts on a Physical %s of the boundary", name, name, dim == 2 ? "Curve (2D)" : "Surface (3D)");
-  PetscCheck(counts[0], PetscObjectComm((PetscObject)dm), PETSC_ERR_USER_INPUT, "-traction %s: the physical group \"%s\" holds no faces. A traction acts on a Physical %s of the boundary", name, name, dim == 2 ? "Curve (2D)" : "Surface (3D)");
+  PetscCheck(!counts[1], PetscObjectComm((PetscObject)dm), PETSC_ERR_USER_INPUT, "-traction %s: the physical group \"%s\" holds cells, not boundary faces. A traction acts on a Physical %s of the boundary", name, name, fl->dim == 2 ? "Curve (2D)" : "Surface (3D)");
+  PetscCheck(counts[0], PetscObjectComm((PetscObject)dm), PETSC_ERR_USER_INPUT, "-traction %s: the physical group \"%s\" holds no faces. A traction acts on a Physical %s of the boundary", name, name, fl->dim == 2 ? "Curve (2D)" : "Surface (3D)");
   PetscFunctionReturn(0);
 }
 
@@ -273,10 +266,10 @@ PetscErrorCode MMFEAddTraction(MMCtx *ctx, PetscInt b, Vec floc)
   PetscCall(MMMeshGetLabel(dm, ctx->opt.traction[b].name, &label));
   PetscCall(MMMeshGetFacets(dm, ctx->opt.traction[b].name, &fl));
   PetscCall(CheckTractionGroup(dm, ctx->opt.traction[b].name, label, &fl));
-  PetscCall(MMFacetListDestroy(&fl));
   PetscCall(VecGetArray(floc, &f));
-  PetscCall(MMMeshFacetsAddNodal(dm, ctx->opt.traction[b].name, dm, ctx->op.dim, ctx->opt.traction[b].traction, f));
+  PetscCall(MMMeshFacetsAddNodal(dm, &fl, dm, ctx->op.dim, ctx->opt.traction[b].traction, f));
   PetscCall(VecRestoreArray(floc, &f));
+  PetscCall(MMFacetListDestroy(&fl));
   PetscFunctionReturn(0);
 }
 

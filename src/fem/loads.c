@@ -295,38 +295,22 @@ static PetscErrorCode ConstrainedDofs(MMCtx *ctx)
   for (PetscInt b = 0; b < ctx->opt.n_dirichlet; ++b) {
     const MMDirichlet *bc = &ctx->opt.dirichlet[b];
     DMLabel            label;
-    IS                 vis;
-    PetscInt           nval;
-    const PetscInt    *vals;
+    PetscInt           np, *pts, *vals;
 
     PetscCall(MMMeshGetLabel(dm, bc->name, &label));
-    PetscCall(DMLabelGetValueIS(label, &vis));
-    PetscCall(ISGetLocalSize(vis, &nval));
-    PetscCall(ISGetIndices(vis, &vals));
-    for (PetscInt k = 0; k < nval; ++k) {
-      IS              pis;
-      PetscInt        np;
-      const PetscInt *pts;
-      PetscCall(DMLabelGetStratumIS(label, vals[k], &pis));
-      if (!pis) continue;
-      PetscCall(ISGetLocalSize(pis, &np));
-      PetscCall(ISGetIndices(pis, &pts));
-      for (PetscInt i = 0; i < np; ++i) {
-        PetscInt *closure = NULL, ncl;
-        PetscCall(DMPlexGetTransitiveClosure(dm, pts[i], PETSC_TRUE, &ncl, &closure));
-        for (PetscInt j = 0; j < ncl; ++j) {
-          const PetscInt v = closure[2 * j];
-          if (v < vStart || v >= vEnd) continue;
-          for (PetscInt c = 0; c < bc->ncomp; ++c)
-            if (owner[dim * (v - vStart) + bc->comps[c]] < 0) owner[dim * (v - vStart) + bc->comps[c]] = b;
-        }
-        PetscCall(DMPlexRestoreTransitiveClosure(dm, pts[i], PETSC_TRUE, &ncl, &closure));
+    PetscCall(MMMeshLabelPoints(label, &np, &pts, &vals));
+    for (PetscInt i = 0; i < np; ++i) {
+      PetscInt *closure = NULL, ncl;
+      PetscCall(DMPlexGetTransitiveClosure(dm, pts[i], PETSC_TRUE, &ncl, &closure));
+      for (PetscInt j = 0; j < ncl; ++j) {
+        const PetscInt v = closure[2 * j];
+        if (v < vStart || v >= vEnd) continue;
+        for (PetscInt c = 0; c < bc->ncomp; ++c)
+          if (owner[dim * (v - vStart) + bc->comps[c]] < 0) owner[dim * (v - vStart) + bc->comps[c]] = b;
       }
-      PetscCall(ISRestoreIndices(pis, &pts));
-      PetscCall(ISDestroy(&pis));
+      PetscCall(DMPlexRestoreTransitiveClosure(dm, pts[i], PETSC_TRUE, &ncl, &closure));
     }
-    PetscCall(ISRestoreIndices(vis, &vals));
-    PetscCall(ISDestroy(&vis));
+    PetscCall(PetscFree2(pts, vals));
   }
   /* the dofs PETSc constrains, owned here */
   for (int pass = 0; pass < 2; ++pass) {

@@ -385,7 +385,7 @@ static PetscErrorCode FacetsAppend(MMFacetList *fl, PetscInt c, PetscInt k, Pets
 }
 
 /* Every (point, value) pair of a label on this rank, in arrays the caller frees (PetscFree2). */
-static PetscErrorCode LabelPoints(DMLabel label, PetscInt *n, PetscInt **pts, PetscInt **vals)
+PetscErrorCode MMMeshLabelPoints(DMLabel label, PetscInt *n, PetscInt **pts, PetscInt **vals)
 {
   IS              vis;
   PetscInt        nval, total = 0;
@@ -430,7 +430,7 @@ static PetscErrorCode FacetsFromMarks(DM dm, DMLabel mark, MMFacetList *fl)
 
   PetscFunctionBeginUser;
   PetscCall(DMGetDimension(dm, &dim));
-  PetscCall(LabelPoints(mark, &n, &pts, &vals));
+  PetscCall(MMMeshLabelPoints(mark, &n, &pts, &vals));
   for (PetscInt i = 0; i < n; ++i)
     for (PetscInt k = 0; k <= dim; ++k)
       if (vals[i] >> k & 1) PetscCall(FacetsAppend(fl, pts[i], k, (PetscBool)(vals[i] >> (MM_FACET_INTERIOR + k) & 1)));
@@ -478,7 +478,7 @@ static PetscErrorCode FacetsFromFaces(DM dm, DMLabel label, MMFacetList *fl)
   PetscFunctionBeginUser;
   PetscCall(DMGetDimension(dm, &dim));
   PetscCall(DMPlexGetDepth(dm, &depth));
-  PetscCall(LabelPoints(label, &n, &pts, &vals));
+  PetscCall(MMMeshLabelPoints(label, &n, &pts, &vals));
   for (PetscInt j = 0; j < n; ++j) {
     PetscInt        h, nsup, v[MM_MAX_DIM + 1], *cl = NULL, ncl, k = -1;
     const PetscInt *sup;
@@ -517,6 +517,8 @@ PetscErrorCode MMMeshGetFacets(DM dm, const char name[], MMFacetList *fl)
   PetscCall(MarkName(name, mname, sizeof(mname)));
   PetscCall(DMHasLabel(dm, mname, &marked));
   PetscCall(DMPlexGetDepth(dm, &depth));
+  PetscCall(DMGetDimension(dm, &fl->dim));
+  fl->depth = depth;
   if (marked) {
     DMLabel mark;
     PetscCall(DMGetLabel(dm, mname, &mark));
@@ -542,13 +544,12 @@ PetscErrorCode MMFacetListDestroy(MMFacetList *fl)
  * measure (length in 2D, area in 3D). x may be NULL. */
 PetscErrorCode MMFacetGeometry(DM dm, const MMFacetList *fl, PetscInt i, PetscSection cs, const PetscScalar xc[], PetscInt v[], PetscReal x[], PetscReal *measure)
 {
-  PetscInt  dim, depth, w[MM_MAX_DIM + 1], n = 0;
-  PetscReal y[MM_MAX_DIM * MM_MAX_DIM];
+  const PetscInt dim = fl->dim;
+  PetscInt       w[MM_MAX_DIM + 1], n = 0;
+  PetscReal      y[MM_MAX_DIM * MM_MAX_DIM];
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetDimension(dm, &dim));
-  PetscCall(DMPlexGetDepth(dm, &depth));
-  PetscCall(MMMeshCellVertices(dm, depth, dim, fl->cell[i], w));
+  PetscCall(MMMeshCellVertices(dm, fl->depth, dim, fl->cell[i], w));
   for (PetscInt a = 0; a <= dim; ++a) {
     PetscInt off;
     if (a == fl->off[i]) continue;
@@ -573,35 +574,30 @@ PetscErrorCode MMMeshFacetsDestroy(MMMeshFacets *groups)
   PetscFunctionReturn(0);
 }
 
-/* a[off(v) + c] += value[c] |F| / dim for every vertex v of every facet F of group name (int_F phi_v
+/* a[off(v) + c] += value[c] |F| / dim for every vertex v of every facet F of the list (int_F phi_v
  * for P1 on a simplex facet), off(v) the vertex's offset in dmv's local section: contact areas (a
  * scalar DM, value 1) and traction loads (the displacement DM, the traction). Each facet is listed
  * on one rank: the caller sums a over ranks (DMLocalToGlobal with ADD). */
-PetscErrorCode MMMeshFacetsAddNodal(DM dm, const char name[], DM dmv, PetscInt ncomp, const PetscReal value[], PetscScalar a[])
+PetscErrorCode MMMeshFacetsAddNodal(DM dm, const MMFacetList *fl, DM dmv, PetscInt ncomp, const PetscReal value[], PetscScalar a[])
 {
-  MMFacetList        fl;
   PetscSection       cs;
   Vec                X;
   const PetscScalar *xc;
-  PetscInt           dim;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetDimension(dm, &dim));
-  PetscCall(MMMeshGetFacets(dm, name, &fl));
   PetscCall(DMGetCoordinateSection(dm, &cs));
   PetscCall(DMGetCoordinatesLocal(dm, &X));
   PetscCall(VecGetArrayRead(X, &xc));
-  for (PetscInt i = 0; i < fl.n; ++i) {
+  for (PetscInt i = 0; i < fl->n; ++i) {
     PetscInt  v[MM_MAX_DIM];
     PetscReal measure;
-    PetscCall(MMFacetGeometry(dm, &fl, i, cs, xc, v, NULL, &measure));
-    for (PetscInt k = 0; k < dim; ++k) {
+    PetscCall(MMFacetGeometry(dm, fl, i, cs, xc, v, NULL, &measure));
+    for (PetscInt k = 0; k < fl->dim; ++k) {
       PetscInt off, end;
       PetscCall(DMPlexGetPointLocal(dmv, v[k], &off, &end));
-      for (PetscInt c = 0; c < ncomp; ++c) a[off + c] += value[c] * measure / dim;
+      for (PetscInt c = 0; c < ncomp; ++c) a[off + c] += value[c] * measure / fl->dim;
     }
   }
   PetscCall(VecRestoreArrayRead(X, &xc));
-  PetscCall(MMFacetListDestroy(&fl));
   PetscFunctionReturn(0);
 }

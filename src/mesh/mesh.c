@@ -42,29 +42,43 @@ PetscErrorCode MMMeshGetLabel(DM dm, const char name[], DMLabel *label)
   PetscFunctionReturn(0);
 }
 
+/* Whether label marks some cell on this rank (not collective). */
+PetscErrorCode MMMeshLabelHoldsCells(DM dm, DMLabel label, PetscBool *holds)
+{
+  PetscInt cStart, cEnd, def;
+
+  PetscFunctionBeginUser;
+  *holds = PETSC_FALSE;
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  PetscCall(DMLabelGetDefaultValue(label, &def));
+  for (PetscInt c = cStart; c < cEnd && !*holds; ++c) {
+    PetscInt val;
+    PetscCall(DMLabelGetValue(label, c, &val));
+    *holds = (PetscBool)(val != def);
+  }
+  PetscFunctionReturn(0);
+}
+
 /* The physical groups that hold cells (a Physical Surface in 2D, Volume in 3D), as " \"a\" \"b\"",
  * or " (none)": what a body can be made of. Collective: a group's cells may all be on other ranks. */
 PetscErrorCode MMMeshCellGroups(DM dm, char list[], size_t len)
 {
-  PetscInt nl, cStart, cEnd;
+  PetscInt nl;
 
   PetscFunctionBeginUser;
   list[0] = 0;
-  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
   PetscCall(DMGetNumLabels(dm, &nl));
   for (PetscInt l = 0; l < nl; ++l) {
     const char *lname;
     DMLabel     label;
-    PetscInt    n = 0, def;
+    PetscInt    n = 0;
     PetscCall(DMGetLabelName(dm, l, &lname));
     PetscCall(DMGetLabelByNum(dm, l, &label));
-    PetscCall(DMLabelGetDefaultValue(label, &def));
-    if (!IsInternalLabel(lname))
-      for (PetscInt c = cStart; c < cEnd && !n; ++c) {
-        PetscInt val;
-        PetscCall(DMLabelGetValue(label, c, &val));
-        if (val != def) n = 1;
-      }
+    if (!IsInternalLabel(lname)) {
+      PetscBool holds;
+      PetscCall(MMMeshLabelHoldsCells(dm, label, &holds));
+      n = holds;
+    }
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_INT, MPI_MAX, PetscObjectComm((PetscObject)dm)));
     if (!n) continue;
     PetscCall(PetscStrlcat(list, " \"", len));

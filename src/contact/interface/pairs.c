@@ -34,7 +34,7 @@ static PetscErrorCode LocalMasterFacets(MMCtx *ctx, const MMObstacle *ob, const 
   const PetscInt     dim = ctx->op.dim;
   DMLabel            label;
   MMFacetList        fl;
-  PetscInt           pStart, cStart, cEnd, counts[3] = {0, 0, 0}; /* facets, cells in the group, interior facets */
+  PetscInt           pStart, counts[3] = {0, 0, 0}; /* facets, cells in the group, interior facets */
   PetscSection       gs, ls, cs;
   Vec                X;
   const PetscScalar *xc;
@@ -43,13 +43,11 @@ static PetscErrorCode LocalMasterFacets(MMCtx *ctx, const MMObstacle *ob, const 
   PetscFunctionBeginUser;
   PetscCall(MMMeshGetLabel(dm, ob->master, &label));
   PetscCall(MMMeshGetFacets(dm, ob->master, &fl));
-  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
   counts[0] = fl.n;
-  for (PetscInt c = cStart; c < cEnd && !counts[1]; ++c) {
-    PetscInt val, def;
-    PetscCall(DMLabelGetDefaultValue(label, &def));
-    PetscCall(DMLabelGetValue(label, c, &val));
-    if (val != def) counts[1] = 1;
+  {
+    PetscBool holds;
+    PetscCall(MMMeshLabelHoldsCells(dm, label, &holds));
+    counts[1] = holds;
   }
   for (PetscInt i = 0; i < fl.n; ++i)
     if (fl.interior[i]) counts[2]++;

@@ -134,45 +134,33 @@ static PetscErrorCode AllObstacleGaps(MMCtx *ctx, const PetscReal x[], PetscInt 
 /* Marks the points of one contact surface with value, and adds int_F phi_i to each vertex's area. */
 static PetscErrorCode MarkSurface(MMCtx *ctx, const char name[], PetscInt value, PetscInt mark[], PetscScalar aa[])
 {
-  DM              dm = ctx->op.dm;
-  DMLabel         label;
-  IS              vis, pis;
-  PetscInt        pStart, n, nv;
-  const PetscInt *pts, *vals;
+  DM          dm = ctx->op.dm;
+  DMLabel     label;
+  MMFacetList fl;
+  PetscInt    pStart, n, *pts, *vals;
+  PetscReal   one = 1;
 
   PetscFunctionBeginUser;
   PetscCall(MMMeshGetLabel(dm, name, &label));
   PetscCall(DMPlexGetChart(dm, &pStart, NULL));
-  PetscCall(DMLabelGetValueIS(label, &vis));
-  PetscCall(ISGetLocalSize(vis, &nv));
-  PetscCall(ISGetIndices(vis, &vals));
-  for (PetscInt i = 0; i < nv; ++i) {
-    PetscCall(DMLabelGetStratumIS(label, vals[i], &pis));
-    if (!pis) continue;
-    PetscCall(ISGetLocalSize(pis, &n));
-    PetscCall(ISGetIndices(pis, &pts));
-    for (PetscInt j = 0; j < n; ++j) {
-      PetscInt *closure = NULL, ncl, h;
-      PetscCall(DMPlexGetPointHeight(dm, pts[j], &h));
-      PetscCheck(h >= 1, PetscObjectComm((PetscObject)dm), PETSC_ERR_USER_INPUT, "Contact surface \"%s\" contains cells: it must be a Physical Curve (2D) or Physical Surface (3D)", name);
-      PetscCall(DMPlexGetTransitiveClosure(dm, pts[j], PETSC_TRUE, &ncl, &closure));
-      for (PetscInt k = 0; k < ncl; ++k) {
-        const PetscInt q = closure[2 * k];
-        PetscCheck(!mark[q - pStart] || mark[q - pStart] == value, PetscObjectComm((PetscObject)dm), PETSC_ERR_USER_INPUT, "Contact surface \"%s\" shares a node with another contact surface (-contact_boundary or a pair's slave surface): a node carries one kind of constraint. Separate the physical groups", name);
-        mark[q - pStart] = value;
-      }
-      PetscCall(DMPlexRestoreTransitiveClosure(dm, pts[j], PETSC_TRUE, &ncl, &closure));
+  PetscCall(MMMeshLabelPoints(label, &n, &pts, &vals));
+  for (PetscInt j = 0; j < n; ++j) {
+    PetscInt *closure = NULL, ncl, h;
+    PetscCall(DMPlexGetPointHeight(dm, pts[j], &h));
+    PetscCheck(h >= 1, PetscObjectComm((PetscObject)dm), PETSC_ERR_USER_INPUT, "Contact surface \"%s\" contains cells: it must be a Physical Curve (2D) or Physical Surface (3D)", name);
+    PetscCall(DMPlexGetTransitiveClosure(dm, pts[j], PETSC_TRUE, &ncl, &closure));
+    for (PetscInt k = 0; k < ncl; ++k) {
+      const PetscInt q = closure[2 * k];
+      PetscCheck(!mark[q - pStart] || mark[q - pStart] == value, PetscObjectComm((PetscObject)dm), PETSC_ERR_USER_INPUT, "Contact surface \"%s\" shares a node with another contact surface (-contact_boundary or a pair's slave surface): a node carries one kind of constraint. Separate the physical groups", name);
+      mark[q - pStart] = value;
     }
-    PetscCall(ISRestoreIndices(pis, &pts));
-    PetscCall(ISDestroy(&pis));
+    PetscCall(DMPlexRestoreTransitiveClosure(dm, pts[j], PETSC_TRUE, &ncl, &closure));
   }
-  PetscCall(ISRestoreIndices(vis, &vals));
-  PetscCall(ISDestroy(&vis));
-  {
-    const PetscReal one = 1;
-    /* int_F phi_i for P1 on each facet F: the contact nodes' areas */
-    PetscCall(MMMeshFacetsAddNodal(dm, name, ctx->out.dm_scalar, 1, &one, aa));
-  }
+  PetscCall(PetscFree2(pts, vals));
+  /* int_F phi_i for P1 on each facet F: the contact nodes' areas */
+  PetscCall(MMMeshGetFacets(dm, name, &fl));
+  PetscCall(MMMeshFacetsAddNodal(dm, &fl, ctx->out.dm_scalar, 1, &one, aa));
+  PetscCall(MMFacetListDestroy(&fl));
   PetscFunctionReturn(0);
 }
 
