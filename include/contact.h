@@ -10,6 +10,12 @@ PETSC_EXTERN PetscErrorCode MMKSPGetFactorPC(KSP, PC *, PetscBool *);
  * default for K~ in 2D on 2 to 8 ranks, -contact_K_pc_type schursplit */
 #define MMPCSCHURSPLIT "schursplit"
 PETSC_EXTERN PetscErrorCode MMPCRegisterSchurSplit(void);
+/* The full formulation's Newton solves by one factor of the whole K~, its active rows and columns
+ * the identity's (src/contact/interface/pc_vifactor.c): the default, -contact_pc_type vifactor */
+#define MMPCVIFACTOR "vifactor"
+PETSC_EXTERN PetscErrorCode MMPCRegisterVIFactor(void);
+PETSC_EXTERN PetscErrorCode MMPCVIFactorSetSNES(PC, SNES);
+PETSC_EXTERN PetscErrorCode MMPCVIFactorGetFactorPC(PC, PC *);
 PETSC_EXTERN PetscErrorCode MMFactorReadOptions(MPI_Comm, const char[], MatSolverType, MatFactorType);
 PETSC_EXTERN PetscErrorCode MMContactRegister(const char[], PetscErrorCode (*)(MMContact *));
 PETSC_EXTERN PetscErrorCode MMContactRegisterAll(void);

@@ -180,3 +180,14 @@ def signal_ranks(proc, ready, sig, nranks, delay=0.0):
     except BaseException:
         stop(proc)
         raise
+
+
+def stage_event_count(output, stage, event):
+    """How many times -log_view counted `event` in the log stage named `stage` (0 if not there)."""
+    count, inside = 0, False
+    for line in output.splitlines():
+        if line.startswith("--- Event Stage"):
+            inside = line.rstrip().endswith(stage)
+        elif inside and line.split()[:1] == [event]:
+            count += int(line.split()[1])
+    return count

@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from conftest import run
+from conftest import run, stage_event_count
 
 
 @pytest.fixture(scope="module")
@@ -148,17 +148,6 @@ def test_nonconvergent_friction_loop_retries_with_smaller_dt(mm):
     assert "step rejected at t = 0" in r.output and "contraction factor" in r.output
     assert len(h) == 6 and h["dt"][1] < 0.02
     assert h["coulomb_residual"][1:].max() <= 1e-8 and h["balance_residual"].max() <= 1e-8
-
-
-def stage_event_count(output, stage, event):
-    """How many times -log_view counted `event` in the log stage named `stage` (0 if not there)."""
-    count, inside = 0, False
-    for line in output.splitlines():
-        if line.startswith("--- Event Stage"):
-            inside = line.rstrip().endswith(stage)
-        elif inside and line.split()[:1] == [event]:
-            count += int(line.split()[1])
-    return count
 
 
 @pytest.mark.parametrize("formulation,keep", [("condensed", 1), ("condensed", 0), ("active_set", 1)])

@@ -193,7 +193,7 @@ def test_non_finite_state_stops_the_run_with_step_and_quantity(tmp_path):
 
 
 def test_full_formulation_factor_options_are_read_at_set_up(tmp_path):
-    """The full formulation's VI factors K~'s free block inside its iterations, after the options
+    """The full formulation's VI factors K~ (its active rows the identity's) inside its iterations, after the options
     audit: its MUMPS options are read at set-up on a stand-in factor, so a valid one is accepted and
     applied (another ordering, the same history) and a misspelled one refused."""
     common = ("-contact_formulation", "full", "-ts_max_steps", 40)

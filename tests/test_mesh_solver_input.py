@@ -7,7 +7,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from conftest import EXE, ROOT, run
+from conftest import EXE, ROOT, run, stage_event_count
 
 
 def refused(tmp_path, *extra, case="d1_disk"):
@@ -138,6 +138,8 @@ def test_backwards_surface_is_inverted_throughout(tmp_path):
     (["-ts_adapt_type", "basic"], ["-ts_adapt_type basic is not supported", "no error estimate", "growback", "none"]),
     (["-contact_formulation", "condenced"], ["-contact_formulation condenced is not a contact formulation", "condensed", "full", "active_set"]),
     (["-mu", 0.2, "-contact_formulation", "full"], ["needs a contact formulation that solves the contact dofs alone", "-contact_formulation full cannot", "condensed or active_set"]),
+    (["-contact_formulation", "full", "-contact_pc_type", "vifactor", "-contact_snes_type", "vinewtonssls"],
+     ["-contact_pc_type vifactor solves the Newton steps of -contact_snes_type vinewtonrsls only", "drop one of the two options"]),
 ])
 def test_unsupported_solver_option_is_named(tmp_path, extra, messages):
     out = refused(tmp_path, *extra)
@@ -229,3 +231,34 @@ def test_failed_redundant_factorization_names_the_factor_reason(mm):
     assert r.returncode != 0
     assert "The factorization for the solve -contact_K_ failed: FACTOR_OUTMEMORY" in r.output
     assert "SUBPC_ERROR" not in r.output
+
+
+@pytest.mark.parametrize("np_", [1, 2])
+def test_full_formulation_whole_factor_equals_free_block_factor(mm, np_):
+    """The full formulation's VI solves its Newton steps on the free dofs by one factor of the whole
+    K~ with the active rows and columns the identity's (-contact_pc_type vifactor, the default): the
+    history of factoring the free block itself (-contact_pc_type cholesky, a new matrix at each
+    iteration), to 1e-10 of the energy, with the same active sets and VI iterations. -log_view in the time steps:
+    MUMPS's analysis once, against once per factorization, and an active set met again (the VI's
+    last iteration, the next step's first) is not factored again."""
+    common = ("-contact_formulation", "full", "-ts_max_steps", 40, "-output_every", 0, "-log_view")
+    whole = mm("d1_disk", *common, np_=np_, name="whole")
+    block = mm("d1_disk", *common, "-contact_pc_type", "cholesky", "-contact_pc_factor_mat_solver_type", "mumps", np_=np_, name="block")
+    assert "of the whole K~, the VI's active rows the identity's (vifactor)" in whole.output
+    assert whole.history["active"].max() >= 3
+    compare(whole.history, block.history, 1e-10)
+    assert np.array_equal(whole.history["vi_its"], block.history["vi_its"])  # the same Newton steps: exact solves
+    sym, num = ([stage_event_count(r.output, "MM time steps", e) for r in (whole, block)] for e in ("MatCholFctrSym", "MatCholFctrNum"))
+    assert sym[0] == 1 and sym[1] == num[1] >= 10, (sym, num)
+    assert 1 <= num[0] < num[1], num
+
+
+def test_failed_whole_factor_names_the_factor_reason(tmp_path):
+    """The full formulation's factor (8.6k dofs) runs out of memory (MUMPS limited to 1 MB here): the run stops
+    naming the VI's solve and the factor's reason, where the VI alone said DIVERGED_LINEAR_SOLVE."""
+    mesh = gmsh(tmp_path, "disk.geo", "disk_h03.msh", "-2", "-setnumber", "H", "0.03")
+    r = run("d1_disk", tmp_path, "-mesh", mesh, "-ts_max_steps", 12, "-contact_formulation", "full",
+            "-contact_mat_mumps_icntl_14", -99, "-contact_mat_mumps_icntl_23", 1, np_=0, check=False)
+    assert r.returncode != 0
+    assert "The factorization for the solve -contact_ failed: FACTOR_" in r.output, r.output[-2000:]
+    assert "DIVERGED_LINEAR_SOLVE" not in r.output

@@ -39,7 +39,7 @@ PETSC_INTERN PetscErrorCode MMContactPairsDestroy(MMContactPairs *);
 /* interface/qp.c: bound-constrained QPs as SNESVI solves; exact linear solves */
 PETSC_EXTERN PetscErrorCode MMKSPCheckDirect(KSP);
 PETSC_EXTERN PetscErrorCode MMQPCreate(MPI_Comm, const char[], MMBoundQP *, PetscReal, SNES *);
-PETSC_EXTERN PetscErrorCode MMQPSetFactorSPD(SNES, PetscInt);
+PETSC_EXTERN PetscErrorCode MMQPSetFactorSPD(SNES);
 PETSC_EXTERN PetscErrorCode MMQPSetOperator(SNES, MMBoundQP *);
 PETSC_EXTERN PetscErrorCode MMQPSolve(SNES, MMBoundQP *, Vec, PetscInt *);
 PETSC_EXTERN PetscErrorCode MMKSPSetFactorSPD(KSP, PetscInt);

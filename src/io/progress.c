@@ -96,7 +96,7 @@ static PetscErrorCode SolverText(MMCtx *ctx, char text[], size_t len)
   PCType        ptype;
   MatSolverType package = NULL;
   const char   *kprefix, *pprefix;
-  PetscBool     factor, same, redundant, split;
+  PetscBool     factor, same, redundant, split, vifactor;
   char          pctext[200], ordering[32] = "";
   PetscMPIInt   size;
 
@@ -113,7 +113,13 @@ static PetscErrorCode SolverText(MMCtx *ctx, char text[], size_t len)
   if (factor) PetscCall(PCFactorGetMatSolverType(pc, &package));
   if (package) PetscCall(MumpsOrderingText(pc, package, ordering, sizeof(ordering)));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, MMPCSCHURSPLIT, &split));
-  PetscCall(PetscSNPrintf(pctext, sizeof(pctext), "%s%s%s%s%s%s%s", ptype, package ? " (" : "", package ? package : "", ordering, package ? ")" : "", redundant ? " of the whole K~ on every rank (redundant)" : "",
+  {
+    PC outer;
+    PetscCall(KSPGetPC(pc_ksp, &outer));
+    PetscCall(PetscObjectTypeCompare((PetscObject)outer, MMPCVIFACTOR, &vifactor));
+  }
+  PetscCall(PetscSNPrintf(pctext, sizeof(pctext), "%s%s%s%s%s%s%s%s", ptype, package ? " (" : "", package ? package : "", ordering, package ? ")" : "", redundant ? " of the whole K~ on every rank (redundant)" : "",
+                          vifactor ? " of the whole K~, the VI's active rows the identity's (vifactor)" : "",
                           split ? (size > 1 ? " (each rank's interior by PETSc's Cholesky, the ranks' interface by its dense Schur complement)" : " (PETSc's Cholesky; one rank, no interface)") : ""));
   PetscCall(PetscStrcmp(kprefix, pprefix, &same));
   PetscCall(PetscSNPrintf(text, len, "%s + %s, prefix%s %s%s%s", ktype, pctext, same ? "" : "es", kprefix, same ? "" : " and ", same ? "" : pprefix));

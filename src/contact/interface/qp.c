@@ -223,6 +223,10 @@ PetscErrorCode MMKSPGetFactorPC(KSP ksp, PC *fpc, PetscBool *redundant)
     KSP inner;
     PetscCall(PCRedundantGetKSP(pc, &inner));
     PetscCall(KSPGetPC(inner, &pc));
+  } else {
+    PC inner;
+    PetscCall(MMPCVIFactorGetFactorPC(pc, &inner));
+    if (inner) pc = inner;
   }
   *fpc = pc;
   if (redundant) *redundant = red;
@@ -381,11 +385,12 @@ PetscErrorCode MMFactorReadOptions(MPI_Comm comm, const char prefix[], MatSolver
   PetscFunctionReturn(0);
 }
 
-/* The VI's factor (full formulation) is created inside its iterations: its options are read now. */
+/* The VI's factor (full formulation) is created inside its iterations: its options are read now.
+ * The factor's PC is the KSP's own, or the one inside vifactor. */
 static PetscErrorCode ReadDeferredFactorOptions(SNES snes)
 {
   KSP           ksp;
-  PC            pc;
+  PC            pc, inner;
   PetscBool     cholesky, lu;
   MatSolverType type;
   const char   *prefix;
@@ -393,6 +398,8 @@ static PetscErrorCode ReadDeferredFactorOptions(SNES snes)
   PetscFunctionBeginUser;
   PetscCall(SNESGetKSP(snes, &ksp));
   PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(MMPCVIFactorGetFactorPC(pc, &inner));
+  if (inner) pc = inner;
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCCHOLESKY, &cholesky));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu));
   if (!cholesky && !lu) PetscFunctionReturn(0);
@@ -402,44 +409,54 @@ static PetscErrorCode ReadDeferredFactorOptions(SNES snes)
   PetscFunctionReturn(0);
 }
 
+/* A vifactor PC (default or -PREFIX_pc_type vifactor) learns its VI; it needs the reduced-space VI's
+ * inactive sets. */
+static PetscErrorCode SetUpVIFactor(SNES snes)
+{
+  KSP         ksp;
+  PC          pc;
+  PetscBool   is, rsls;
+  const char *prefix;
+
+  PetscFunctionBeginUser;
+  PetscCall(SNESGetKSP(snes, &ksp));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, MMPCVIFACTOR, &is));
+  if (!is) PetscFunctionReturn(0);
+  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESVINEWTONRSLS, &rsls));
+  PetscCall(SNESGetOptionsPrefix(snes, &prefix));
+  PetscCheck(rsls, PetscObjectComm((PetscObject)snes), PETSC_ERR_USER_INPUT, "-%spc_type %s solves the Newton steps of -%ssnes_type %s only (it needs their inactive sets): drop one of the two options", prefix ? prefix : "", MMPCVIFACTOR, prefix ? prefix : "", SNESVINEWTONRSLS);
+  PetscCall(MMPCVIFactorSetSNES(pc, snes));
+  PetscFunctionReturn(0);
+}
+
 /* The full formulation's VI (vinewtonrsls) factors K~ on the free dofs once per iteration, and the
- * free dofs change from step to step, so each factorization is a new matrix: MUMPS's analysis runs
- * every time, sequentially on the host. K~'s block is SPD, so MUMPS's Cholesky (half the factor of
- * its LU), and in 2D the approximate minimum fill ordering (ICNTL(7) = 2), whose analysis is cheap
- * where PORD's is not: the 115k-dof D1 disk's 30 steps took 0.93 s/step with LU and PORD, 0.43
- * with Cholesky and AMF (1 rank). In 3D MUMPS's automatic ordering stays: a nested dissection
- * (SCOTCH with the MUMPS build the Makefile links), whose fill is far smaller than AMF's; on the
- * 33k-dof D2 ball, 2 ranks, 0.95 s/step against 1.04 with PORD. vinewtonssls's semismooth
- * Jacobian is not symmetric and keeps LU; options given stay. */
-PetscErrorCode MMQPSetFactorSPD(SNES snes, PetscInt dim)
+ * free dofs change from step to step. As submatrices, each would be a new matrix whose ordering and
+ * MUMPS analysis (sequential, on its host) ran every time: 2.3 of the 115k-dof D1 disk's 9.4 s on
+ * two ranks, which is why 2D used the approximate minimum fill ordering (ICNTL(7) = 2), cheap to
+ * compute but with more fill. The default PC vifactor (pc_vifactor.c) factors the whole K~ with the
+ * active rows the identity's: one pattern, ordered and analysed once, so MUMPS's automatic choice
+ * (a nested dissection) pays for itself in 2D too: 0.161 -> 0.140 s/step on that disk on two ranks,
+ * 0.245 -> 0.221 on one. K~'s block is SPD, so MUMPS's Cholesky, half the factor of its LU.
+ * vinewtonssls's semismooth Jacobian is not symmetric and keeps LU; options given stay. */
+PetscErrorCode MMQPSetFactorSPD(SNES snes)
 {
   const char *prefix;
   PetscBool   ssls, set;
   KSP         ksp;
   PC          pc;
-  char        name[PETSC_MAX_OPTION_NAME];
 
   PetscFunctionBeginUser;
   PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESVINEWTONSSLS, &ssls));
   PetscCall(SNESGetOptionsPrefix(snes, &prefix));
   PetscCall(PetscOptionsHasName(NULL, prefix, "-pc_type", &set));
-  if (ssls || set) {
-    PetscCall(ReadDeferredFactorOptions(snes));
-    PetscFunctionReturn(0);
+  if (!ssls && !set) {
+    PetscCall(SNESGetKSP(snes, &ksp));
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(PCSetType(pc, MMPCVIFACTOR));
+    PetscCall(SetUpVIFactor(snes));
   }
-  PetscCall(SNESGetKSP(snes, &ksp));
-  PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PCSetType(pc, PCCHOLESKY));
-  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-  PetscCall(PCSetFromOptions(pc)); /* the options given for the LU apply to the Cholesky */
   PetscCall(ReadDeferredFactorOptions(snes));
-  PetscCall(PetscOptionsHasName(NULL, prefix, "-mat_mumps_icntl_7", &set));
-  if (dim != 2 || set) PetscFunctionReturn(0);
-  /* the factor is created anew at each iteration and reads its options then: the database is the
-   * only place this default can live; read once here, so that the options audit counts it as used */
-  PetscCall(PetscSNPrintf(name, sizeof(name), "-%smat_mumps_icntl_7", prefix ? prefix : ""));
-  PetscCall(PetscOptionsSetValue(NULL, name, "2"));
-  PetscCall(PetscOptionsHasName(NULL, NULL, name, &set));
   PetscFunctionReturn(0);
 }
 
@@ -466,7 +483,9 @@ PetscErrorCode MMQPCreate(MPI_Comm comm, const char prefix[], MMBoundQP *qp, Pet
   PetscCall(SNESGetKSP(*snes, &ksp));
   /* the SNES checks its own residual: any linear solver that converges will do here */
   PetscCall(KSPSetDefaultLU(ksp));
+  PetscCall(MMPCRegisterVIFactor());
   PetscCall(SNESSetFromOptions(*snes));
+  PetscCall(SetUpVIFactor(*snes));
   PetscCall(DenseFactorDefault(*snes, qp->A, prefix));
   PetscCall(CheckQPSolverType(*snes, mu));
   PetscCall(MMQPSetOperator(*snes, qp));

@@ -18,15 +18,20 @@ static PetscErrorCode SetBounds(MMContact *ct, Vec lower, Vec upper)
   PetscFunctionReturn(0);
 }
 
+/* The VI's Newton steps factor K~ (pc_vifactor.c by default): a failed factorization stops the run
+ * naming the factor's reason, where the VI alone would say only DIVERGED_LINEAR_SOLVE. */
 static PetscErrorCode FullSetUp(MMCtx *ctx)
 {
   MMContact *ct = &ctx->contact;
+  KSP        ksp;
 
   PetscFunctionBeginUser;
   PetscCall(VecDuplicate(ct->qp.b, &ct->lower));
   PetscCall(VecDuplicate(ct->qp.b, &ct->upper));
   PetscCall(MMQPCreate(PetscObjectComm((PetscObject)ctx->op.dm), "contact_", &ct->qp, 0, &ct->snes));
-  PetscCall(MMQPSetFactorSPD(ct->snes, ctx->op.dim));
+  PetscCall(MMQPSetFactorSPD(ct->snes));
+  PetscCall(SNESGetKSP(ct->snes, &ksp));
+  PetscCall(MMKSPSetFailureCheck(ksp));
   PetscCall(SetBounds(ct, ct->lower, ct->upper));
   PetscCall(SNESVISetVariableBounds(ct->snes, ct->lower, ct->upper));
   PetscFunctionReturn(0);
