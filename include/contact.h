@@ -15,7 +15,8 @@ PETSC_EXTERN PetscErrorCode MMPCRegisterSchurSplit(void);
 #define MMPCVIFACTOR "vifactor"
 PETSC_EXTERN PetscErrorCode MMPCRegisterVIFactor(void);
 PETSC_EXTERN PetscErrorCode MMPCVIFactorSetSNES(PC, SNES);
-PETSC_EXTERN PetscErrorCode MMPCVIFactorGetFactorPC(PC, PC *);
+PETSC_EXTERN PetscErrorCode MMPCVIFactorAnalyse(PC, Mat);
+PETSC_EXTERN PetscErrorCode MMPCVIFactorGetFactor(PC, Mat *, const char **);
 PETSC_EXTERN PetscErrorCode MMFactorReadOptions(MPI_Comm, const char[], MatSolverType, MatFactorType);
 PETSC_EXTERN PetscErrorCode MMContactRegister(const char[], PetscErrorCode (*)(MMContact *));
 PETSC_EXTERN PetscErrorCode MMContactRegisterAll(void);

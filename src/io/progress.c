@@ -64,24 +64,36 @@ static PetscErrorCode FrictionText(const MMOptions *opt, char text[], size_t len
 /* The ordering MUMPS used for a factor it computed (INFOG(7)), e.g. ", SCOTCH ordering": the
  * ordering packages of the MUMPS library loaded at run time decide the fill (docs/scaling.md, "The
  * factorization is the wall"), so the header says which one ran. Empty for another package or
- * before the factorization. */
-static PetscErrorCode MumpsOrderingText(PC pc, MatSolverType package, char text[], size_t len)
+ * before the analysis. */
+static PetscErrorCode MumpsFactorOrderingText(Mat F, MatSolverType package, char text[], size_t len)
 {
   const char *names[] = {"AMD", "user", "AMF", "SCOTCH", "PORD", "METIS", "QAMD"};
-  PetscBool   mumps, done;
-  Mat         F;
+  PetscBool   mumps;
   PetscInt    ord;
 
   PetscFunctionBeginUser;
   text[0] = 0;
+  if (!F || !package) PetscFunctionReturn(0);
   PetscCall(PetscStrcmp(package, MATSOLVERMUMPS, &mumps));
   if (!mumps) PetscFunctionReturn(0);
+  PetscCall(MatMumpsGetInfog(F, 7, &ord)); /* set by the analysis */
+  if (ord >= 0 && ord < (PetscInt)(sizeof(names) / sizeof(names[0]))) PetscCall(PetscSNPrintf(text, len, ", %s ordering", names[ord]));
+  PetscFunctionReturn(0);
+}
+
+/* The same for a factor PC's matrix, once factored. */
+static PetscErrorCode MumpsOrderingText(PC pc, MatSolverType package, char text[], size_t len)
+{
+  PetscBool done;
+  Mat       F;
+
+  PetscFunctionBeginUser;
+  text[0] = 0;
   if (!pc->setupcalled) PetscFunctionReturn(0); /* PCFactorGetMatrix() refuses a PC not yet set up */
   PetscCall(PCFactorGetMatrix(pc, &F));
   PetscCall(MatAssembled(F, &done)); /* numerically factored: the analysis has run */
   if (!done) PetscFunctionReturn(0);
-  PetscCall(MatMumpsGetInfog(F, 7, &ord));
-  if (ord >= 0 && ord < (PetscInt)(sizeof(names) / sizeof(names[0]))) PetscCall(PetscSNPrintf(text, len, ", %s ordering", names[ord]));
+  PetscCall(MumpsFactorOrderingText(F, package, text, len));
   PetscFunctionReturn(0);
 }
 
@@ -110,15 +122,16 @@ static PetscErrorCode SolverText(MMCtx *ctx, char text[], size_t len)
   PetscCall(MMKSPGetFactorPC(pc_ksp, &pc, &redundant));
   PetscCall(PCGetType(pc, &ptype));
   PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &factor, PCLU, PCCHOLESKY, PCILU, PCICC, ""));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, MMPCVIFACTOR, &vifactor));
   if (factor) PetscCall(PCFactorGetMatSolverType(pc, &package));
-  if (package) PetscCall(MumpsOrderingText(pc, package, ordering, sizeof(ordering)));
-  PetscCall(PetscObjectTypeCompare((PetscObject)pc, MMPCSCHURSPLIT, &split));
-  {
-    PC outer;
-    PetscCall(KSPGetPC(pc_ksp, &outer));
-    PetscCall(PetscObjectTypeCompare((PetscObject)outer, MMPCVIFACTOR, &vifactor));
+  if (factor && package) PetscCall(MumpsOrderingText(pc, package, ordering, sizeof(ordering)));
+  if (vifactor) {
+    Mat F;
+    PetscCall(MMPCVIFactorGetFactor(pc, &F, &package));
+    PetscCall(MumpsFactorOrderingText(F, package, ordering, sizeof(ordering)));
   }
-  PetscCall(PetscSNPrintf(pctext, sizeof(pctext), "%s%s%s%s%s%s%s%s", ptype, package ? " (" : "", package ? package : "", ordering, package ? ")" : "", redundant ? " of the whole K~ on every rank (redundant)" : "",
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, MMPCSCHURSPLIT, &split));
+  PetscCall(PetscSNPrintf(pctext, sizeof(pctext), "%s%s%s%s%s%s%s%s", vifactor ? "cholesky" : ptype, package ? " (" : "", package ? package : "", ordering, package ? ")" : "", redundant ? " of the whole K~ on every rank (redundant)" : "",
                           vifactor ? " of the whole K~, the VI's active rows the identity's (vifactor)" : "",
                           split ? (size > 1 ? " (each rank's interior by PETSc's Cholesky, the ranks' interface by its dense Schur complement)" : " (PETSc's Cholesky; one rank, no interface)") : ""));
   PetscCall(PetscStrcmp(kprefix, pprefix, &same));

@@ -10,34 +10,41 @@
  * whose nonzero pattern is K~'s for every A: ordered and analysed once, refactored numerically
  * when A or K~ changes. K~_A = [K~(I, I) 0; 0 d 1] up to a permutation, so with zero right-hand
  * side on A the solve gives y_I = K~(I, I)^{-1} f_I exactly (and 0 on A). d is K~'s largest
- * diagonal entry: the identity block then has K~'s scale. */
+ * diagonal entry: the identity block then has K~'s scale. The ordering and analysis run when K~ is
+ * first set (MMPCVIFactorAnalyse, from the formulation's set-up): set-up work, not the first
+ * contact step's. The factor is held here, not by an inner PC, whose set-up would also factor. */
 #include <petsc/private/pcimpl.h>
 #include "../contactimpl.h"
 
 typedef struct {
-  SNES             snes;   /* the VI (borrowed): its inactive set, and its Jacobian, the whole K~ */
-  Mat              Ka;     /* K~_A */
-  PC               inner;  /* K~_A's factor, prefix the PC's own */
-  Vec              bf, xf; /* whole-size work vectors */
-  IS               inact;  /* the inactive set K~_A was factored for (a reference to the VI's) */
-  PetscScalar      d;      /* the diagonal of the active rows */
-  PetscObjectState kstate; /* K~'s state when K~_A was built */
+  SNES             snes;      /* the VI (borrowed): its inactive set, and its Jacobian, the whole K~ */
+  Mat              Ka;        /* K~_A */
+  Mat              F;         /* its factor, analysed once */
+  MatFactorInfo    info;
+  char             type[64];  /* the factor's package: -PREFIX_pc_factor_mat_solver_type, or MUMPS */
+  Vec              bf, xf;    /* whole-size work vectors */
+  IS               inact;     /* the inactive set F holds (a reference to the VI's), NULL before the first */
+  PetscScalar      d;         /* the diagonal of the active rows */
+  PetscObjectId    kid;       /* the K~ F was computed from: its object id and state */
+  PetscObjectState kstate;
 } PC_VIFactor;
 
-/* K~_A and its vectors, on first use. A dense K~ (a VI on a Delassus block) is factored by LAPACK,
- * unless the user named a package. */
-static PetscErrorCode CreateWhole(PC_VIFactor *vf, Mat K)
+/* K~_A's matrix, vectors and factor, ordered and analysed. A dense K~ (a VI on a Delassus block) is
+ * factored by LAPACK unless the user named a package. */
+static PetscErrorCode Analyse(PC pc, Mat K)
 {
-  Vec         diag;
-  PetscReal   dmax;
-  PetscBool   dense, set;
-  const char *prefix;
+  PC_VIFactor *vf = (PC_VIFactor *)pc->data;
+  const char  *prefix;
+  Vec          diag;
+  PetscReal    dmax;
+  PetscBool    dense, set, canorder;
+  IS           row = NULL, col = NULL;
 
   PetscFunctionBegin;
+  PetscCall(PCGetOptionsPrefix(pc, &prefix));
   PetscCall(PetscObjectTypeCompare((PetscObject)K, MATSEQDENSE, &dense));
-  PetscCall(PCGetOptionsPrefix(vf->inner, &prefix));
   PetscCall(PetscOptionsHasName(NULL, prefix, "-pc_factor_mat_solver_type", &set));
-  if (dense && !set) PetscCall(PCFactorSetMatSolverType(vf->inner, MATSOLVERPETSC));
+  if (dense && !set) PetscCall(PetscStrncpy(vf->type, MATSOLVERPETSC, sizeof(vf->type)));
   PetscCall(MatDuplicate(K, MAT_COPY_VALUES, &vf->Ka));
   PetscCall(MatCreateVecs(K, &vf->xf, &vf->bf));
   PetscCall(MatCreateVecs(K, &diag, NULL));
@@ -45,41 +52,67 @@ static PetscErrorCode CreateWhole(PC_VIFactor *vf, Mat K)
   PetscCall(VecNorm(diag, NORM_INFINITY, &dmax));
   PetscCall(VecDestroy(&diag));
   vf->d = dmax > 0 ? dmax : 1.0;
+  PetscCall(MatSetOptionsPrefixFactor(vf->Ka, prefix)); /* the factor reads -PREFIX_mat_mumps_* */
+  PetscCall(MatGetFactor(vf->Ka, vf->type, MAT_FACTOR_CHOLESKY, &vf->F));
+  PetscCall(MatFactorInfoInitialize(&vf->info));
+  PetscCall(MatFactorGetCanUseOrdering(vf->F, &canorder));
+  if (canorder) {
+    MatOrderingType otype;
+    PetscCall(MatFactorGetPreferredOrdering(vf->F, MAT_FACTOR_CHOLESKY, &otype));
+    PetscCall(MatGetOrdering(vf->Ka, otype, &row, &col));
+  }
+  PetscCall(MatCholeskyFactorSymbolic(vf->F, vf->Ka, row, &vf->info));
+  PetscCall(ISDestroy(&row));
+  PetscCall(ISDestroy(&col));
   PetscFunctionReturn(0);
 }
 
-/* Refactors K~_A unless it already holds this inactive set and this K~. */
-static PetscErrorCode PCSetUp_VIFactor(PC pc)
+/* K~_A for the inactive set inact, factored unless F already is, for this K~. */
+static PetscErrorCode FactorForInactiveSet(PC pc, Mat K, IS inact)
 {
   PC_VIFactor     *vf = (PC_VIFactor *)pc->data;
-  Mat              K;
-  IS               inact, act;
+  IS               act;
   PetscInt         rstart, rend;
+  PetscObjectId    kid;
   PetscObjectState kstate;
   PetscBool        same = PETSC_FALSE;
-  PCFailedReason   reason;
+  MatFactorError   err;
 
   PetscFunctionBegin;
-  PetscCheck(vf->snes && vf->inner, PetscObjectComm((PetscObject)pc), PETSC_ERR_ARG_WRONGSTATE, "PC %s solves the Newton steps of a SNESVINEWTONRSLS: MMPCVIFactorSetSNES() first", MMPCVIFACTOR);
-  PetscCall(SNESVIGetInactiveSet(vf->snes, &inact));
-  PetscCall(SNESGetJacobian(vf->snes, &K, NULL, NULL, NULL));
+  PetscCall(PetscObjectGetId((PetscObject)K, &kid));
   PetscCall(PetscObjectStateGet((PetscObject)K, &kstate));
-  if (vf->inact && kstate == vf->kstate) PetscCall(ISEqual(vf->inact, inact, &same));
+  if (vf->inact && kid == vf->kid && kstate == vf->kstate) PetscCall(ISEqual(vf->inact, inact, &same));
   if (same) PetscFunctionReturn(0);
-  if (!vf->Ka) PetscCall(CreateWhole(vf, K));
-  else PetscCall(MatCopy(K, vf->Ka, SAME_NONZERO_PATTERN));
+  PetscCall(PetscInfo(pc, "Factoring K~_A: %s\n", !vf->inact ? "first" : kid != vf->kid || kstate != vf->kstate ? "K~ changed" : "the active set changed"));
+  if (!vf->F) PetscCall(Analyse(pc, K));
+  PetscCall(MatCopy(K, vf->Ka, SAME_NONZERO_PATTERN));
   PetscCall(MatGetOwnershipRange(K, &rstart, &rend));
   PetscCall(ISComplement(inact, rstart, rend, &act));
   PetscCall(MatZeroRowsColumnsIS(vf->Ka, act, vf->d, NULL, NULL));
   PetscCall(ISDestroy(&act));
-  PetscCall(PCSetOperators(vf->inner, vf->Ka, vf->Ka));
-  PetscCall(PCSetUp(vf->inner));
-  PetscCall(PCGetFailedReasonRank(vf->inner, &reason));
-  pc->failedreason = reason;
+  PetscCall(MatCholeskyFactorNumeric(vf->F, vf->Ka, &vf->info));
+  PetscCall(MatFactorGetError(vf->F, &err));
+  pc->failedreason = (PCFailedReason)err; /* the two enums agree, as PETSc's own factor PCs assume */
   PetscCall(PetscObjectReference((PetscObject)inact));
   PetscCall(ISDestroy(&vf->inact));
   vf->inact  = inact;
+  vf->kid    = kid;
   vf->kstate = kstate;
+  PetscFunctionReturn(0);
+}
+
+/* The VI's current inactive set. */
+static PetscErrorCode PCSetUp_VIFactor(PC pc)
+{
+  PC_VIFactor *vf = (PC_VIFactor *)pc->data;
+  Mat          K;
+  IS           inact;
+
+  PetscFunctionBegin;
+  PetscCheck(vf->snes, PetscObjectComm((PetscObject)pc), PETSC_ERR_ARG_WRONGSTATE, "PC %s solves the Newton steps of a SNESVINEWTONRSLS: MMPCVIFactorSetSNES() first", MMPCVIFACTOR);
+  PetscCall(SNESVIGetInactiveSet(vf->snes, &inact));
+  PetscCall(SNESGetJacobian(vf->snes, &K, NULL, NULL, NULL));
+  PetscCall(FactorForInactiveSet(pc, K, inact));
   PetscFunctionReturn(0);
 }
 
@@ -102,7 +135,7 @@ static PetscErrorCode PCApply_VIFactor(PC pc, Vec f, Vec y)
   for (PetscInt i = 0; i < n; ++i) ba[idx[i] - rstart] = fa[i];
   PetscCall(VecRestoreArray(vf->bf, &ba));
   PetscCall(VecRestoreArrayRead(f, &fa));
-  PetscCall(PCApply(vf->inner, vf->bf, vf->xf));
+  PetscCall(MatSolve(vf->F, vf->bf, vf->xf));
   PetscCall(VecGetArrayRead(vf->xf, &xa));
   PetscCall(VecGetArray(y, &ya));
   for (PetscInt i = 0; i < n; ++i) ya[i] = xa[idx[i] - rstart];
@@ -126,11 +159,10 @@ static PetscErrorCode PCDestroy_VIFactor(PC pc)
 
   PetscFunctionBegin;
   PetscCall(MatDestroy(&vf->Ka));
-  PetscCall(PCDestroy(&vf->inner));
+  PetscCall(MatDestroy(&vf->F));
   PetscCall(VecDestroy(&vf->bf));
   PetscCall(VecDestroy(&vf->xf));
   PetscCall(ISDestroy(&vf->inact));
-  PetscCall(PetscObjectComposeFunction((PetscObject)pc, "MMPCVIFactorGetFactorPC_C", NULL));
   PetscCall(PetscFree(pc->data));
   PetscFunctionReturn(0);
 }
@@ -143,19 +175,12 @@ static PetscErrorCode PCView_VIFactor(PC pc, PetscViewer viewer)
   PetscFunctionBegin;
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
   if (!ascii) PetscFunctionReturn(0);
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  the whole K~ with the VI's active rows and columns the identity's (times %g), one pattern for every active set\n", (double)PetscRealPart(vf->d)));
-  if (vf->inner) {
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  Cholesky (%s) of the whole K~ with the VI's active rows and columns the identity's (times %g): one pattern for every active set\n", vf->type, (double)PetscRealPart(vf->d)));
+  if (vf->F) {
     PetscCall(PetscViewerASCIIPushTab(viewer));
-    PetscCall(PCView(vf->inner, viewer));
+    PetscCall(MatView(vf->F, viewer));
     PetscCall(PetscViewerASCIIPopTab(viewer));
   }
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode PCVIFactorGetFactorPC_VIFactor(PC pc, PC *inner)
-{
-  PetscFunctionBegin;
-  *inner = ((PC_VIFactor *)pc->data)->inner;
   PetscFunctionReturn(0);
 }
 
@@ -165,6 +190,7 @@ static PetscErrorCode PCCreate_VIFactor(PC pc)
 
   PetscFunctionBegin;
   PetscCall(PetscNew(&vf));
+  PetscCall(PetscStrncpy(vf->type, MATSOLVERMUMPS, sizeof(vf->type)));
   pc->data                = (void *)vf;
   pc->ops->setup          = PCSetUp_VIFactor;
   pc->ops->apply          = PCApply_VIFactor;
@@ -172,7 +198,6 @@ static PetscErrorCode PCCreate_VIFactor(PC pc)
   pc->ops->reset          = PCReset_VIFactor;
   pc->ops->destroy        = PCDestroy_VIFactor;
   pc->ops->view           = PCView_VIFactor;
-  PetscCall(PetscObjectComposeFunction((PetscObject)pc, "MMPCVIFactorGetFactorPC_C", PCVIFactorGetFactorPC_VIFactor));
   PetscFunctionReturn(0);
 }
 
@@ -187,36 +212,56 @@ PetscErrorCode MMPCRegisterVIFactor(void)
   PetscFunctionReturn(0);
 }
 
-/* The VI whose Newton steps pc solves (borrowed: the SNES holds the PC), and the factor's PC with
- * pc's prefix, so that the factor reads -PREFIX_mat_mumps_* as the VI's own factor did: Cholesky by
- * MUMPS, or by -PREFIX_pc_factor_mat_solver_type. Not PCSetFromOptions: -PREFIX_pc_type is this
- * PC's own type. */
+static PetscErrorCode IsVIFactor(PC pc, PetscBool *is)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, MMPCVIFACTOR, is));
+  PetscFunctionReturn(0);
+}
+
+/* The VI whose Newton steps pc solves (borrowed: the SNES holds the PC), and the factor's package:
+ * -PREFIX_pc_factor_mat_solver_type, or MUMPS. */
 PetscErrorCode MMPCVIFactorSetSNES(PC pc, SNES snes)
 {
   PC_VIFactor *vf = (PC_VIFactor *)pc->data;
   const char  *prefix;
-  char         type[64] = MATSOLVERMUMPS;
   PetscBool    is;
 
   PetscFunctionBegin;
-  PetscCall(PetscObjectTypeCompare((PetscObject)pc, MMPCVIFACTOR, &is));
+  PetscCall(IsVIFactor(pc, &is));
   if (!is) PetscFunctionReturn(0);
   vf->snes = snes;
-  if (vf->inner) PetscFunctionReturn(0);
-  PetscCall(PCCreate(PetscObjectComm((PetscObject)pc), &vf->inner));
   PetscCall(PCGetOptionsPrefix(pc, &prefix));
-  PetscCall(PCSetOptionsPrefix(vf->inner, prefix));
-  PetscCall(PCSetType(vf->inner, PCCHOLESKY));
-  PetscCall(PetscOptionsGetString(NULL, prefix, "-pc_factor_mat_solver_type", type, sizeof(type), NULL));
-  PetscCall(PCFactorSetMatSolverType(vf->inner, type));
+  PetscCall(PetscOptionsGetString(NULL, prefix, "-pc_factor_mat_solver_type", vf->type, sizeof(vf->type), NULL));
   PetscFunctionReturn(0);
 }
 
-/* The factor's PC inside a vifactor PC, or NULL (another type, or before MMPCVIFactorSetSNES). */
-PetscErrorCode MMPCVIFactorGetFactorPC(PC pc, PC *inner)
+/* A new K~ (set-up, a new dt): ordered and analysed now, on first use. The numeric factorization
+ * waits for the VI's first active set. */
+PetscErrorCode MMPCVIFactorAnalyse(PC pc, Mat K)
 {
+  PC_VIFactor *vf = (PC_VIFactor *)pc->data;
+  PetscBool    is;
+
   PetscFunctionBegin;
-  *inner = NULL;
-  PetscTryMethod(pc, "MMPCVIFactorGetFactorPC_C", (PC, PC *), (pc, inner));
+  PetscCall(IsVIFactor(pc, &is));
+  if (!is || vf->F) PetscFunctionReturn(0);
+  PetscCall(Analyse(pc, K));
+  PetscFunctionReturn(0);
+}
+
+/* The factor and its package, for the start-up report; F is NULL before the analysis or for another
+ * PC type. */
+PetscErrorCode MMPCVIFactorGetFactor(PC pc, Mat *F, const char **type)
+{
+  PetscBool is;
+
+  PetscFunctionBegin;
+  *F = NULL;
+  if (type) *type = NULL;
+  PetscCall(IsVIFactor(pc, &is));
+  if (!is) PetscFunctionReturn(0);
+  *F = ((PC_VIFactor *)pc->data)->F;
+  if (type) *type = ((PC_VIFactor *)pc->data)->type;
   PetscFunctionReturn(0);
 }

@@ -223,10 +223,6 @@ PetscErrorCode MMKSPGetFactorPC(KSP ksp, PC *fpc, PetscBool *redundant)
     KSP inner;
     PetscCall(PCRedundantGetKSP(pc, &inner));
     PetscCall(KSPGetPC(inner, &pc));
-  } else {
-    PC inner;
-    PetscCall(MMPCVIFactorGetFactorPC(pc, &inner));
-    if (inner) pc = inner;
   }
   *fpc = pc;
   if (redundant) *redundant = red;
@@ -385,25 +381,28 @@ PetscErrorCode MMFactorReadOptions(MPI_Comm comm, const char prefix[], MatSolver
   PetscFunctionReturn(0);
 }
 
-/* The VI's factor (full formulation) is created inside its iterations: its options are read now.
- * The factor's PC is the KSP's own, or the one inside vifactor. */
+/* The VI's factor (full formulation) is created inside its iterations, or (vifactor) when K~ is
+ * first set, after the options audit: its options are read now. */
 static PetscErrorCode ReadDeferredFactorOptions(SNES snes)
 {
   KSP           ksp;
-  PC            pc, inner;
-  PetscBool     cholesky, lu;
+  PC            pc;
+  PetscBool     cholesky, lu, vifactor;
   MatSolverType type;
   const char   *prefix;
 
   PetscFunctionBeginUser;
   PetscCall(SNESGetKSP(snes, &ksp));
   PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(MMPCVIFactorGetFactorPC(pc, &inner));
-  if (inner) pc = inner;
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCCHOLESKY, &cholesky));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu));
-  if (!cholesky && !lu) PetscFunctionReturn(0);
-  PetscCall(PCFactorGetMatSolverType(pc, &type));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, MMPCVIFACTOR, &vifactor));
+  if (!cholesky && !lu && !vifactor) PetscFunctionReturn(0);
+  if (vifactor) {
+    Mat F;
+    PetscCall(MMPCVIFactorGetFactor(pc, &F, &type));
+    cholesky = PETSC_TRUE;
+  } else PetscCall(PCFactorGetMatSolverType(pc, &type));
   PetscCall(PCGetOptionsPrefix(pc, &prefix));
   PetscCall(MMFactorReadOptions(PetscObjectComm((PetscObject)snes), prefix, type ? type : MATSOLVERPETSC, cholesky ? MAT_FACTOR_CHOLESKY : MAT_FACTOR_LU));
   PetscFunctionReturn(0);

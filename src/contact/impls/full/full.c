@@ -37,6 +37,19 @@ static PetscErrorCode FullSetUp(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
+/* A new K~ (set-up, a new dt): a vifactor PC orders and analyses it now, once. */
+static PetscErrorCode FullSetOperator(MMCtx *ctx)
+{
+  KSP ksp;
+  PC  pc;
+
+  PetscFunctionBeginUser;
+  PetscCall(SNESGetKSP(ctx->contact.snes, &ksp));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(MMPCVIFactorAnalyse(pc, ctx->contact.qp.A));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode FullSolve(MMCtx *ctx, Vec b, Vec w, Vec react)
 {
   MMContact *ct = &ctx->contact;
@@ -58,9 +71,10 @@ static PetscErrorCode FullGetStepKSP(MMCtx *ctx, KSP *krylov, KSP *pc_ksp)
 }
 
 static const MMContactOps FullOps = {
-  .setup      = FullSetUp,
-  .solve      = FullSolve,
-  .getstepksp = FullGetStepKSP,
+  .setup       = FullSetUp,
+  .setoperator = FullSetOperator,
+  .solve       = FullSolve,
+  .getstepksp  = FullGetStepKSP,
 };
 
 PetscErrorCode MMContactCreate_Full(MMContact *ct)
