@@ -136,7 +136,7 @@ def test_block_storage_products_equal_the_aij_ones(case, np_, mm):
     aij = mm(*common, "-active_set_block_matrix", 0, np_=np_, name="aij")
     block = mm(*common, np_=np_, name="block")
     assert block_copies(aij.output) == 0 and block_copies(block.output) == 1, (block_copies(aij.output), block_copies(block.output))
-    assert "CG products with K~ in block storage (BAIJ)" in block.output and "block storage" not in aij.output
+    assert "CG products with K~ in symmetric block storage (SBAIJ)" in block.output and "block storage" not in aij.output
     assert_same_history(aij.history, block.history, tol=1e-10)
     assert np.array_equal(aij.history["slipping"], block.history["slipping"])
     assert block.history["balance_residual"].max() <= 1e-9

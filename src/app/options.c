@@ -549,7 +549,7 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   opt->active_set_inexact_rtol = 1e-1;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-active_set_inexact_rtol", "Active-set formulation: while nodes still change set, CG reduces the residual by this factor only; the last solves, which confirm the sets, go to -contact_tol (0: every solve to -contact_tol)", &opt->active_set_inexact_rtol));
   opt->active_set_block = PETSC_TRUE;
-  PetscCall(OptionsBool(PetscOptionsObject, comm, "-active_set_block_matrix", "Active-set formulation: the CG's products with K~ from a copy of it in block storage (BAIJ, one block per pair of vertices: a third fewer bytes read per product, and the copy's memory, about 0.7 of K~'s); 0 keeps K~'s AIJ", &opt->active_set_block));
+  PetscCall(OptionsBool(PetscOptionsObject, comm, "-active_set_block_matrix", "Active-set formulation: the CG's products with K~ from a copy of it in symmetric block storage (SBAIJ, one block per pair of vertices, the upper triangle only: about 0.4 of the bytes an AIJ product reads, and the copy's memory, about 0.4 of K~'s); 0 keeps K~'s AIJ", &opt->active_set_block));
   opt->active_set_monitor = PETSC_FALSE;
   PetscCall(OptionsBool(PetscOptionsObject, comm, "-active_set_monitor", "Active-set formulation: print each iteration, the nodes that changed set and the CG iterations", &opt->active_set_monitor));
   opt->contact_tol = 1e-11;

@@ -236,7 +236,7 @@ static PetscErrorCode HeaderContact(MMCtx *ctx)
   PetscCall(FrictionText(opt, friction, sizeof(friction)));
   PetscCall(SolverText(ctx, solver, sizeof(solver)));
   /* the active-set CG's products (src/contact/impls/active_set/block_operator.c) */
-  if (ctx->contact.as.ksp) products = ctx->contact.as.Kb ? "; CG products with K~ in block storage (BAIJ)" : (opt->active_set_block ? "; CG products with K~'s AIJ (its pattern is not in whole blocks)" : "");
+  if (ctx->contact.as.ksp) products = ctx->contact.as.Kb ? "; CG products with K~ in symmetric block storage (SBAIJ)" : (opt->active_set_block ? "; CG products with K~'s AIJ (its pattern is not in whole blocks)" : "");
   if (opt->progress_every > 0) PetscCall(PetscSNPrintf(progress, sizeof(progress), "progress every %.6g s", (double)opt->progress_every));
   if (ctx->contact.enabled && ctx->contact.n_corners) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes (%" PetscInt_FMT " of them against two obstacles: %" PetscInt_FMT " rows) against %s; %s %s mass; %s\n", ctx->contact.n_global - ctx->contact.n_corners, ctx->contact.n_corners, ctx->contact.n_global, obstacles, opt->lumped ? "lumped" : "consistent", MMMassTypes[opt->mass_type], friction));
   else if (ctx->contact.enabled) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes against %s; %s %s mass; %s\n", ctx->contact.n_global, obstacles, opt->lumped ? "lumped" : "consistent", MMMassTypes[opt->mass_type], friction));

@@ -1,12 +1,14 @@
-/* K~ in block storage (MATBAIJ, one bs x bs block per pair of vertices) for the products of the
- * active-set CG. A P1 vector problem couples every dof of a vertex to every dof of its neighbours,
- * so K~'s AIJ pattern is made of full dim x dim blocks; AIJ stores a column index per entry, BAIJ
- * one per block. A product reads 8 + 4/bs^2 bytes per entry instead of 12, and CG on this operator
- * is bound by those reads: on the 113k-dof D2 ball, 2 ranks, the friction row's CG solves took
- * 0.90 s against 1.43 s with AIJ (docs/scaling.md, "Products in block storage").
- * PETSc 3.18's MatConvert from MPIAIJ to MPIBAIJ inserts entry by entry (2.7 s for that K~ on 2
- * ranks, about the cost of the whole run's solves), so the block matrix is preallocated from the
- * AIJ pattern and filled a block row at a time here; a new dt refills its values in place. */
+/* K~ in symmetric block storage (MATSBAIJ: one bs x bs block per pair of vertices, the upper
+ * triangle of blocks only) for the products of the active-set CG. A P1 vector problem couples every
+ * dof of a vertex to every dof of its neighbours, so K~'s AIJ pattern is made of full dim x dim
+ * blocks; AIJ stores a column index per entry, block storage one per block, and K~ being symmetric
+ * (SPD for every dt), the upper triangle of blocks holds all of it. A product is bound by the bytes
+ * it reads: BAIJ's 8 + 4/bs^2 per entry instead of AIJ's 12 took the 113k-dof D2 ball's friction CG
+ * from 1.43 to 0.90 s on 2 ranks; SBAIJ reads about half of BAIJ's and took the 1.02M-dof ball's
+ * products from 15.5 to 12.5 s, 20 steps on 2 ranks (docs/scaling.md, "Products in block
+ * storage"). PETSc 3.18's MatConvert from MPIAIJ inserts entry by entry (2.7 s for that K~ on 2
+ * ranks to BAIJ, about the cost of the whole run's solves), so the block matrix is preallocated
+ * from the AIJ pattern and filled a block row at a time here; a new dt refills its values in place. */
 #include "../../contactimpl.h"
 
 /* The local CSR of K~'s diagonal (d) and off-diagonal (o) parts, and the o part's global columns. */
@@ -57,8 +59,9 @@ static PetscErrorCode PartsRestore(AIJParts *p)
 
 /* Whether the bs rows of block row ib have the same columns, in whole blocks: column c of the part
  * (local in d, an index into garray in o) is global column g(c), and block q's bs columns are
- * g = bs J, ..., bs J + bs - 1. Counts the row's blocks. */
-static PetscBool BlockRow(const PetscInt *ia, const PetscInt *ja, const PetscInt *map, PetscInt shift, PetscInt bs, PetscInt ib, PetscInt *nb)
+ * g = bs J, ..., bs J + bs - 1. Counts the row's blocks in the upper triangle (J >= the row's
+ * global block index jrow), the only ones SBAIJ stores. */
+static PetscBool BlockRow(const PetscInt *ia, const PetscInt *ja, const PetscInt *map, PetscInt shift, PetscInt bs, PetscInt ib, PetscInt jrow, PetscInt *nb)
 {
   const PetscInt r0 = bs * ib, len = ia[r0 + 1] - ia[r0];
 
@@ -68,18 +71,19 @@ static PetscBool BlockRow(const PetscInt *ia, const PetscInt *ja, const PetscInt
     for (PetscInt k = 0; k < len; ++k)
       if (ja[ia[r0 + r] + k] != ja[ia[r0] + k]) return PETSC_FALSE;
   }
+  *nb = 0;
   for (PetscInt k = 0; k < len; k += bs) {
     const PetscInt g0 = (map ? map[ja[ia[r0] + k]] : ja[ia[r0] + k]) + shift;
     if (g0 % bs) return PETSC_FALSE;
     for (PetscInt j = 1; j < bs; ++j)
       if ((map ? map[ja[ia[r0] + k + j]] : ja[ia[r0] + k + j]) + shift != g0 + j) return PETSC_FALSE;
+    if (g0 / bs >= jrow) ++*nb;
   }
-  *nb = len / bs;
   return PETSC_TRUE;
 }
 
-/* Whether K~'s pattern is made of whole blocks on every rank (collective); if so, the block counts
- * of each block row in the two parts, for the preallocation. */
+/* Whether K~'s pattern is made of whole blocks on every rank (collective); if so, the upper
+ * triangle's block counts of each block row in the two parts, for the preallocation. */
 static PetscErrorCode BlockPattern(Mat A, const AIJParts *p, PetscInt dnnz[], PetscInt onnz[], PetscBool *ok)
 {
   PetscInt  rstart;
@@ -88,26 +92,36 @@ static PetscErrorCode BlockPattern(Mat A, const AIJParts *p, PetscInt dnnz[], Pe
   PetscFunctionBeginUser;
   PetscCall(MatGetOwnershipRange(A, &rstart, NULL));
   mine = (PetscBool)(p->bs > 1 && p->m % p->bs == 0 && rstart % p->bs == 0 && p->cstart % p->bs == 0);
-  for (PetscInt ib = 0; mine && ib < p->m / p->bs; ++ib) mine = (PetscBool)(BlockRow(p->di, p->dj, NULL, p->cstart, p->bs, ib, &dnnz[ib]) && BlockRow(p->oi, p->oj, p->garray, 0, p->bs, ib, &onnz[ib]));
+  for (PetscInt ib = 0; mine && ib < p->m / p->bs; ++ib) {
+    const PetscInt jrow = rstart / p->bs + ib;
+    mine = (PetscBool)(BlockRow(p->di, p->dj, NULL, p->cstart, p->bs, ib, jrow, &dnnz[ib]) && BlockRow(p->oi, p->oj, p->garray, 0, p->bs, ib, jrow, &onnz[ib]));
+  }
   PetscCall(MPIU_Allreduce(&mine, ok, 1, MPIU_BOOL, MPI_LAND, PetscObjectComm((PetscObject)A)));
   PetscFunctionReturn(0);
 }
 
-/* B's values from A's, a block row at a time: v holds the block row's bs rows, its blocks side by
- * side (MatSetValuesBlocked's row-major layout). */
+/* B's values from A's, a block row at a time, its upper triangle of blocks: the columns of a row are
+ * sorted (the o part's global columns too, garray being sorted), so the blocks left of the diagonal
+ * are a prefix of each part. v holds the kept blocks' bs rows, side by side (MatSetValuesBlocked's
+ * row-major layout). */
 static PetscErrorCode FillBlocks(const AIJParts *p, const PetscScalar *da, const PetscScalar *oa, PetscInt rstart, PetscInt *cols, PetscScalar *v, Mat B)
 {
   const PetscInt bs = p->bs;
 
   PetscFunctionBeginUser;
   for (PetscInt ib = 0; ib < p->m / bs; ++ib) {
-    const PetscInt r0 = bs * ib, nd = p->di[r0 + 1] - p->di[r0], no = p->oi[r0 + 1] - p->oi[r0], w = nd + no;
-    const PetscInt row = (rstart + r0) / bs;
-    for (PetscInt k = 0; k < nd; k += bs) cols[k / bs] = (p->cstart + p->dj[p->di[r0] + k]) / bs;
-    for (PetscInt k = 0; k < no; k += bs) cols[(nd + k) / bs] = p->garray[p->oj[p->oi[r0] + k]] / bs;
+    const PetscInt r0 = bs * ib, row = (rstart + r0) / bs;
+    PetscInt       d0 = 0, o0 = 0, nd, no, w;
+    while (d0 < p->di[r0 + 1] - p->di[r0] && (p->cstart + p->dj[p->di[r0] + d0]) / bs < row) d0 += bs;
+    while (o0 < p->oi[r0 + 1] - p->oi[r0] && p->garray[p->oj[p->oi[r0] + o0]] / bs < row) o0 += bs;
+    nd = p->di[r0 + 1] - p->di[r0] - d0;
+    no = p->oi[r0 + 1] - p->oi[r0] - o0;
+    w  = nd + no;
+    for (PetscInt k = 0; k < nd; k += bs) cols[k / bs] = (p->cstart + p->dj[p->di[r0] + d0 + k]) / bs;
+    for (PetscInt k = 0; k < no; k += bs) cols[(nd + k) / bs] = p->garray[p->oj[p->oi[r0] + o0 + k]] / bs;
     for (PetscInt r = 0; r < bs; ++r) {
-      PetscCall(PetscArraycpy(v + r * w, da + p->di[r0 + r], nd));
-      PetscCall(PetscArraycpy(v + r * w + nd, oa + p->oi[r0 + r], no));
+      PetscCall(PetscArraycpy(v + r * w, da + p->di[r0 + r] + d0, nd));
+      PetscCall(PetscArraycpy(v + r * w + nd, oa + p->oi[r0 + r] + o0, no));
     }
     PetscCall(MatSetValuesBlocked(B, 1, &row, w / bs, cols, v, INSERT_VALUES));
   }
@@ -125,8 +139,8 @@ static PetscInt WidestRow(const AIJParts *p)
 }
 
 /* *B (created on the first call, NULL when K~'s pattern is not in whole dim x dim blocks, e.g. a
- * vertex with only some of its dofs constrained) with A's values. A is AIJ (Seq or MPI), with the
- * pattern every K~ of the run shares (K's). */
+ * vertex with only some of its dofs constrained) with A's values, its upper triangle of blocks. A is
+ * AIJ (Seq or MPI) and symmetric, with the pattern every K~ of the run shares (K's). */
 PetscErrorCode MMActiveSetBlockOperator(Mat A, PetscInt dim, Mat *B)
 {
   AIJParts           p;
@@ -145,7 +159,7 @@ PetscErrorCode MMActiveSetBlockOperator(Mat A, PetscInt dim, Mat *B)
     if (ok) {
       PetscCall(MatGetSize(A, &M, &N));
       PetscCall(MatGetLocalSize(A, NULL, &n));
-      PetscCall(MatCreateBAIJ(PetscObjectComm((PetscObject)A), p.bs, p.m, n, M, N, 0, dnnz, 0, onnz, B));
+      PetscCall(MatCreateSBAIJ(PetscObjectComm((PetscObject)A), p.bs, p.m, n, M, N, 0, dnnz, 0, onnz, B));
       PetscCall(MatSetOption(*B, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
     }
     PetscCall(PetscFree2(dnnz, onnz));
