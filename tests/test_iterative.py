@@ -122,9 +122,9 @@ def block_copies(output):
 
 @pytest.mark.parametrize("case, np_", [("d2_friction", 2), ("d1_friction", 1), ("punch", 2)])
 def test_block_storage_products_equal_the_aij_ones(case, np_, mm):
-    """The active-set CG multiplies by a copy of K~ in block storage (BAIJ, one block per pair of
-    vertices, src/contact/impls/active_set/block_operator.c), filled from K~'s AIJ a block row at a
-    time. Its products only sum in another order, so the history equals the one with K~'s AIJ
+    """The active-set CG multiplies by a copy of K~ in symmetric block storage (SBAIJ, one block per
+    pair of vertices, the upper triangle only, src/contact/impls/active_set/block_operator.c), filled
+    from K~'s AIJ a block row at a time. Its products only sum in another order, so the history equals the one with K~'s AIJ
     (-active_set_block_matrix 0) to 1e-10 of the energy, with the same contact and slip sets: in 3D
     on 2 ranks (blocks in both ranks' off-diagonal parts) and in 2D on 1 rank (2 x 2 blocks). A block
     put in the wrong place or transposed changes the answer by far more. The punch (2D, the press's
