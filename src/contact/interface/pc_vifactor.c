@@ -22,6 +22,7 @@ typedef struct {
   Mat              F;         /* its factor, analysed once */
   MatFactorInfo    info;
   char             type[64];  /* the factor's package: -PREFIX_pc_factor_mat_solver_type, or MUMPS */
+  PetscBool        type_set;  /* whether the user named it */
   Vec              bf, xf;    /* whole-size work vectors */
   IS               inact;     /* the inactive set F holds (a reference to the VI's), NULL before the first */
   PetscScalar      d;         /* the diagonal of the active rows */
@@ -37,14 +38,13 @@ static PetscErrorCode Analyse(PC pc, Mat K)
   const char  *prefix;
   Vec          diag;
   PetscReal    dmax;
-  PetscBool    dense, set, canorder;
+  PetscBool    dense, canorder;
   IS           row = NULL, col = NULL;
 
   PetscFunctionBegin;
   PetscCall(PCGetOptionsPrefix(pc, &prefix));
   PetscCall(PetscObjectTypeCompare((PetscObject)K, MATSEQDENSE, &dense));
-  PetscCall(PetscOptionsHasName(NULL, prefix, "-pc_factor_mat_solver_type", &set));
-  if (dense && !set) PetscCall(PetscStrncpy(vf->type, MATSOLVERPETSC, sizeof(vf->type)));
+  if (dense && !vf->type_set) PetscCall(PetscStrncpy(vf->type, MATSOLVERPETSC, sizeof(vf->type)));
   PetscCall(MatDuplicate(K, MAT_COPY_VALUES, &vf->Ka));
   PetscCall(MatCreateVecs(K, &vf->xf, &vf->bf));
   PetscCall(MatCreateVecs(K, &diag, NULL));
@@ -232,7 +232,7 @@ PetscErrorCode MMPCVIFactorSetSNES(PC pc, SNES snes)
   if (!is) PetscFunctionReturn(0);
   vf->snes = snes;
   PetscCall(PCGetOptionsPrefix(pc, &prefix));
-  PetscCall(PetscOptionsGetString(NULL, prefix, "-pc_factor_mat_solver_type", vf->type, sizeof(vf->type), NULL));
+  PetscCall(PetscOptionsGetString(NULL, prefix, "-pc_factor_mat_solver_type", vf->type, sizeof(vf->type), &vf->type_set));
   PetscFunctionReturn(0);
 }
 
