@@ -57,7 +57,7 @@ typedef struct {
   MMCells   cells;
   PetscInt  dim;
   Mat       K;      /* stiffness A */
-  Mat       M;      /* standard mass (consistent or lumped) */
+  Mat       M;      /* standard mass (consistent or lumped): set-up only, NULL once M* is built */
   Mat       Mstar;  /* mass used in time stepping: M with the contact-normal rows/columns removed, or M */
   Mat       Q;      /* frame rotation, u_cart = Q w without contact pairs */
   Mat       N, Ninv; /* contact pairs: the slave nodes' relative variables, u_cart = Q N w (NULL without pairs) */
