@@ -145,7 +145,8 @@ PetscErrorCode MMKSPSetDirect(KSP ksp)
  * with the Jacobi PC does not grow with the mesh): CG with Jacobi to the tight tolerance, by default.
  * A factorization by options (-mass_pc_type lu or cholesky with -mass_ksp_type preonly) is still
  * accepted; anything MMKSPCheckDirect refuses stops the run when it solves. Against the MUMPS LU that
- * was the default: 21 s and 1.2 GiB less set-up on the 113k-dof D2 ball (README "Set-up"). */
+ * was the default: 21 s and 1.2 GiB less set-up on the 113k-dof D2 ball (measured when CG became the
+ * default; README "Options" lists the choices). */
 PetscErrorCode MMKSPSetExactCG(KSP ksp)
 {
   PC pc;
