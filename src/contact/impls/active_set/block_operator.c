@@ -5,7 +5,7 @@
  * (SPD for every dt), the upper triangle of blocks holds all of it. A product is bound by the bytes
  * it reads: BAIJ's 8 + 4/bs^2 per entry instead of AIJ's 12 took the 113k-dof D2 ball's friction CG
  * from 1.43 to 0.90 s on 2 ranks; SBAIJ reads about half of BAIJ's and took the 1.02M-dof ball's
- * products from 15.5 to 12.5 s, 20 steps on 2 ranks (docs/scaling.md, "Products in block
+ * products from 15.5 to 12.6 s, 20 steps on 2 ranks (docs/scaling.md, "Products in block
  * storage"). PETSc 3.18's MatConvert from MPIAIJ inserts entry by entry (2.7 s for that K~ on 2
  * ranks to BAIJ, about the cost of the whole run's solves), so the block matrix is preallocated
  * from the AIJ pattern and filled a block row at a time here; a new dt refills its values in place. */
@@ -57,13 +57,33 @@ static PetscErrorCode PartsRestore(AIJParts *p)
   PetscFunctionReturn(0);
 }
 
+/* Global column of entry k of a part: local in d (shift: the first owned column), an index into
+ * garray (map) in o. */
+static inline PetscInt GlobalColumn(const PetscInt *ja, const PetscInt *map, PetscInt shift, PetscInt k)
+{
+  return (map ? map[ja[k]] : ja[k]) + shift;
+}
+
+/* The first entry of row r0 of a part in the upper triangle of blocks (block column >= jrow, the
+ * only blocks SBAIJ stores), and how many entries from there: a row's columns are sorted (the o
+ * part's global columns too, garray being sorted), so the blocks left of the diagonal are a prefix.
+ * The row is in whole blocks (BlockRow). */
+static void UpperPart(const PetscInt *ia, const PetscInt *ja, const PetscInt *map, PetscInt shift, PetscInt bs, PetscInt r0, PetscInt jrow, PetscInt *k0, PetscInt *n)
+{
+  const PetscInt len = ia[r0 + 1] - ia[r0];
+
+  *k0 = 0;
+  while (*k0 < len && GlobalColumn(ja + ia[r0], map, shift, *k0) / bs < jrow) *k0 += bs;
+  *n = len - *k0;
+}
+
 /* Whether the bs rows of block row ib have the same columns, in whole blocks: column c of the part
- * (local in d, an index into garray in o) is global column g(c), and block q's bs columns are
- * g = bs J, ..., bs J + bs - 1. Counts the row's blocks in the upper triangle (J >= the row's
- * global block index jrow), the only ones SBAIJ stores. */
+ * is global column g(c), and block q's bs columns are g = bs J, ..., bs J + bs - 1. Counts the row's
+ * blocks in the upper triangle (J >= the row's global block index jrow). */
 static PetscBool BlockRow(const PetscInt *ia, const PetscInt *ja, const PetscInt *map, PetscInt shift, PetscInt bs, PetscInt ib, PetscInt jrow, PetscInt *nb)
 {
   const PetscInt r0 = bs * ib, len = ia[r0 + 1] - ia[r0];
+  PetscInt       k0, n;
 
   if (len % bs) return PETSC_FALSE;
   for (PetscInt r = 1; r < bs; ++r) {
@@ -71,14 +91,14 @@ static PetscBool BlockRow(const PetscInt *ia, const PetscInt *ja, const PetscInt
     for (PetscInt k = 0; k < len; ++k)
       if (ja[ia[r0 + r] + k] != ja[ia[r0] + k]) return PETSC_FALSE;
   }
-  *nb = 0;
   for (PetscInt k = 0; k < len; k += bs) {
-    const PetscInt g0 = (map ? map[ja[ia[r0] + k]] : ja[ia[r0] + k]) + shift;
+    const PetscInt g0 = GlobalColumn(ja + ia[r0], map, shift, k);
     if (g0 % bs) return PETSC_FALSE;
     for (PetscInt j = 1; j < bs; ++j)
-      if ((map ? map[ja[ia[r0] + k + j]] : ja[ia[r0] + k + j]) + shift != g0 + j) return PETSC_FALSE;
-    if (g0 / bs >= jrow) ++*nb;
+      if (GlobalColumn(ja + ia[r0], map, shift, k + j) != g0 + j) return PETSC_FALSE;
   }
+  UpperPart(ia, ja, map, shift, bs, r0, jrow, &k0, &n);
+  *nb = n / bs;
   return PETSC_TRUE;
 }
 
@@ -100,10 +120,8 @@ static PetscErrorCode BlockPattern(Mat A, const AIJParts *p, PetscInt dnnz[], Pe
   PetscFunctionReturn(0);
 }
 
-/* B's values from A's, a block row at a time, its upper triangle of blocks: the columns of a row are
- * sorted (the o part's global columns too, garray being sorted), so the blocks left of the diagonal
- * are a prefix of each part. v holds the kept blocks' bs rows, side by side (MatSetValuesBlocked's
- * row-major layout). */
+/* B's values from A's, a block row at a time, its upper triangle of blocks (UpperPart). v holds the
+ * kept blocks' bs rows, side by side (MatSetValuesBlocked's row-major layout). */
 static PetscErrorCode FillBlocks(const AIJParts *p, const PetscScalar *da, const PetscScalar *oa, PetscInt rstart, PetscInt *cols, PetscScalar *v, Mat B)
 {
   const PetscInt bs = p->bs;
@@ -111,14 +129,13 @@ static PetscErrorCode FillBlocks(const AIJParts *p, const PetscScalar *da, const
   PetscFunctionBeginUser;
   for (PetscInt ib = 0; ib < p->m / bs; ++ib) {
     const PetscInt r0 = bs * ib, row = (rstart + r0) / bs;
-    PetscInt       d0 = 0, o0 = 0, nd, no, w;
-    while (d0 < p->di[r0 + 1] - p->di[r0] && (p->cstart + p->dj[p->di[r0] + d0]) / bs < row) d0 += bs;
-    while (o0 < p->oi[r0 + 1] - p->oi[r0] && p->garray[p->oj[p->oi[r0] + o0]] / bs < row) o0 += bs;
-    nd = p->di[r0 + 1] - p->di[r0] - d0;
-    no = p->oi[r0 + 1] - p->oi[r0] - o0;
-    w  = nd + no;
-    for (PetscInt k = 0; k < nd; k += bs) cols[k / bs] = (p->cstart + p->dj[p->di[r0] + d0 + k]) / bs;
-    for (PetscInt k = 0; k < no; k += bs) cols[(nd + k) / bs] = p->garray[p->oj[p->oi[r0] + o0 + k]] / bs;
+    PetscInt       d0, o0, nd, no, w;
+
+    UpperPart(p->di, p->dj, NULL, p->cstart, bs, r0, row, &d0, &nd);
+    UpperPart(p->oi, p->oj, p->garray, 0, bs, r0, row, &o0, &no);
+    w = nd + no;
+    for (PetscInt k = 0; k < nd; k += bs) cols[k / bs] = GlobalColumn(p->dj + p->di[r0], NULL, p->cstart, d0 + k) / bs;
+    for (PetscInt k = 0; k < no; k += bs) cols[(nd + k) / bs] = GlobalColumn(p->oj + p->oi[r0], p->garray, 0, o0 + k) / bs;
     for (PetscInt r = 0; r < bs; ++r) {
       PetscCall(PetscArraycpy(v + r * w, da + p->di[r0 + r] + d0, nd));
       PetscCall(PetscArraycpy(v + r * w + nd, oa + p->oi[r0 + r] + o0, no));
