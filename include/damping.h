@@ -1,4 +1,4 @@
-/* Rayleigh damping C = alpha M* + beta K in the trapezoidal scheme (src/ts/damping.c). */
+/* Rayleigh damping C = alpha M* + beta B in the trapezoidal scheme (src/ts/damping.c). */
 #pragma once
 #include "mmcontact.h"
 PETSC_EXTERN PetscErrorCode MMDampingCheckOptions(MPI_Comm, const MMOptions *);
@@ -6,7 +6,7 @@ PETSC_EXTERN PetscErrorCode MMDampingCoefficients(const MMOptions *, PetscReal *
 PETSC_EXTERN PetscBool      MMDampingOn(const MMCtx *);
 PETSC_EXTERN PetscErrorCode MMDampingSetUp(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMDampingDestroy(MMDamping *);
-PETSC_EXTERN void           MMStepMatrixCoefficients(const MMCtx *, PetscReal, PetscReal *, PetscReal *);
+PETSC_EXTERN PetscErrorCode MMDampingStepMatrix(MMCtx *, PetscReal, Mat);
 PETSC_EXTERN PetscErrorCode MMDampingAddForce(MMCtx *, Vec, PetscReal, Vec);
 PETSC_EXTERN PetscErrorCode MMDampingAddStepRHS(MMCtx *, PetscReal, Vec);
 PETSC_EXTERN PetscErrorCode MMDampingUpdateVelocity(MMCtx *, PetscReal);

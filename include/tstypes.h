@@ -56,9 +56,10 @@ typedef struct {
   PetscInt *vert_u, *vert_x;    /* their offsets in the owned part of a global vector and in the local coordinates */
 } MMMomenta;
 
-/* Rayleigh damping C = alpha M* + beta K (src/ts/damping.c, docs/method.md section 3). */
+/* Rayleigh damping C = alpha M* + beta B, B = K or its condensed form (src/ts/damping.c, docs/method.md section 3). */
 typedef struct {
   PetscReal alpha, beta; /* 1/s and s; both 0: no damping, and nothing below exists */
   Vec       vC;          /* the trapezoidal velocity 2/dt (u^{n+1} - u^n) - vC^n, on all dofs */
+  Mat       B;           /* the damping stiffness: K, or with massless dofs K with them condensed out cell by cell */
   Vec       work, x;     /* scratch */
 } MMDamping;

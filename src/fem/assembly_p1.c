@@ -12,6 +12,7 @@
  * be sent at assembly. */
 #include "assembly_p1.h"
 #include "mesh.h"
+#include <petscblaslapack.h>
 
 #define MM_NV_MAX   (MM_MAX_DIM + 1)
 #define MM_NDOF_MAX (MM_NV_MAX * MM_MAX_DIM)
@@ -709,5 +710,192 @@ PetscErrorCode MMRotateP1(Mat Q, Mat K, Mat M)
   PetscCall(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
   if (M) PetscCall(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
   if (M) PetscCall(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+/* The stiffness of the Rayleigh damping on the modified mass (docs/method.md section 3, "Rayleigh
+ * damping of the massless dofs"): B = sum_T S_T, S_T the cell's stiffness in the w-frame with the
+ * cell's massless dofs (qmark = 1: the contact-normal dofs) condensed out,
+ *
+ *   S_T = K_T,ff - K_T,fq K_T,qq^+ K_T,qf   on the cell's other dofs f, nothing on its q dofs.
+ *
+ * S_T is symmetric positive semi-definite and zero on the cell's rigid motions (K_T is, and the
+ * range of K_T,qf lies in that of K_T,qq), so B leaves rigid motion undamped, has no row or column
+ * on a massless dof, and lies in K's pattern. Cells without massless dofs give K_T itself. B is
+ * assembled straight in the w-frame: Q's vertex blocks rotate each cell's matrix first. */
+
+/* The w-frame data of every local vertex (owned or not): Q's dim x dim block and the massless
+ * marks of its dofs, gathered by the vertices' global dofs. */
+typedef struct {
+  PetscScalar *q;    /* dim * dim per vertex: q[i * dim + k] = Q[dof_i, dof_k] */
+  PetscScalar *mark; /* dim per vertex: 1 on a massless dof */
+} VertexFrames;
+
+static PetscErrorCode VertexFramesCreate(const VertexTable *vt, PetscInt nvert, Mat Q, Vec qmark, VertexFrames *f)
+{
+  const PetscInt     dim = vt->dim;
+  PetscInt          *gi, n = 0;
+  Vec                info, ginfo, gmark;
+  IS                 is, ism;
+  VecScatter         sc, scm;
+  const PetscScalar *a, *m;
+
+  PetscFunctionBeginUser;
+  PetscCall(QInfoCreate(Q, &info));
+  PetscCall(PetscMalloc1(nvert * dim, &gi));
+  for (PetscInt k = 0; k < nvert * dim; ++k)
+    if (vt->dof[k] >= 0) gi[n++] = vt->dof[k];
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, n * MM_QINFO, &ginfo));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &gmark));
+  PetscCall(ISCreateBlock(PETSC_COMM_SELF, MM_QINFO, n, gi, PETSC_COPY_VALUES, &is));
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, n, gi, PETSC_COPY_VALUES, &ism));
+  PetscCall(VecScatterCreate(info, is, ginfo, NULL, &sc));
+  PetscCall(VecScatterCreate(qmark, ism, gmark, NULL, &scm));
+  PetscCall(VecScatterBegin(sc, info, ginfo, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterBegin(scm, qmark, gmark, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(sc, info, ginfo, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(scm, qmark, gmark, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(PetscCalloc2(nvert * dim * dim, &f->q, nvert * dim, &f->mark));
+  PetscCall(VecGetArrayRead(ginfo, &a));
+  PetscCall(VecGetArrayRead(gmark, &m));
+  for (PetscInt v = 0, k = 0; v < nvert; ++v) {
+    const PetscInt *dv = &vt->dof[v * dim];
+    PetscInt        pos[MM_MAX_DIM];
+    for (PetscInt i = 0; i < dim; ++i) pos[i] = dv[i] >= 0 ? k++ : -1;
+    for (PetscInt i = 0; i < dim; ++i) {
+      const PetscScalar *qi;
+      PetscInt           first, nb;
+      if (pos[i] < 0) continue;
+      qi    = &a[pos[i] * MM_QINFO];
+      first = (PetscInt)PetscRealPart(qi[MM_QINFO_FIRST]);
+      nb    = (PetscInt)PetscRealPart(qi[MM_QINFO_N]);
+      f->mark[v * dim + i] = m[pos[i]];
+      for (PetscInt j = 0; j < dim; ++j)
+        if (dv[j] >= first && dv[j] < first + nb) f->q[(v * dim + i) * dim + j] = qi[MM_QINFO_ROW + dv[j] - first];
+    }
+  }
+  PetscCall(VecRestoreArrayRead(gmark, &m));
+  PetscCall(VecRestoreArrayRead(ginfo, &a));
+  PetscCall(VecScatterDestroy(&sc));
+  PetscCall(VecScatterDestroy(&scm));
+  PetscCall(ISDestroy(&is));
+  PetscCall(ISDestroy(&ism));
+  PetscCall(VecDestroy(&ginfo));
+  PetscCall(VecDestroy(&gmark));
+  PetscCall(VecDestroy(&info));
+  PetscCall(PetscFree(gi));
+  PetscFunctionReturn(0);
+}
+
+/* Ke <- S: Ke rotated to the w-frame (Qe^T Ke Qe, Qe the cell's vertex blocks), then its massless
+ * dofs condensed out by the pseudo-inverse of their block (eigenvalues below 1e-12 of the largest
+ * dropped: a cell whose massless block is singular, which P1 cells on a smooth boundary never are,
+ * still gives a semi-definite S). Constrained dofs are left out (the caller drops them). */
+static PetscErrorCode CondenseCell(PetscInt dim, const PetscInt v[], PetscInt vStart, const PetscInt idx[], const VertexFrames *fr, PetscScalar Ke[])
+{
+  const PetscInt n = (dim + 1) * dim;
+  PetscScalar    T[MM_NDOF_MAX * MM_NDOF_MAX], Kq[MM_NDOF_MAX * MM_NDOF_MAX], w[MM_NDOF_MAX], work[3 * MM_NDOF_MAX * MM_NDOF_MAX];
+  PetscReal      ev[MM_NDOF_MAX], emax = 0;
+  PetscInt       q[MM_NDOF_MAX], nq = 0;
+  PetscBLASInt   bn, lwork = 3 * MM_NDOF_MAX * MM_NDOF_MAX, info;
+
+  PetscFunctionBeginUser;
+  /* T = Ke Qe, then Ke = Qe^T T: Qe is block diagonal, vertex a's block fr->q of v[a] */
+  for (PetscInt r = 0; r < n; ++r)
+    for (PetscInt b = 0; b <= dim; ++b) {
+      const PetscScalar *qb = &fr->q[(v[b] - vStart) * dim * dim];
+      for (PetscInt k = 0; k < dim; ++k) {
+        PetscScalar s = 0;
+        for (PetscInt j = 0; j < dim; ++j) s += Ke[r * n + b * dim + j] * qb[j * dim + k];
+        T[r * n + b * dim + k] = s;
+      }
+    }
+  for (PetscInt a = 0; a <= dim; ++a) {
+    const PetscScalar *qa = &fr->q[(v[a] - vStart) * dim * dim];
+    for (PetscInt k = 0; k < dim; ++k)
+      for (PetscInt c = 0; c < n; ++c) {
+        PetscScalar s = 0;
+        for (PetscInt i = 0; i < dim; ++i) s += qa[i * dim + k] * T[(a * dim + i) * n + c];
+        Ke[(a * dim + k) * n + c] = s;
+      }
+  }
+  for (PetscInt a = 0; a <= dim; ++a)
+    for (PetscInt k = 0; k < dim; ++k)
+      if (idx[a * dim + k] >= 0 && PetscRealPart(fr->mark[(v[a] - vStart) * dim + k]) != 0) q[nq++] = a * dim + k;
+  if (!nq) PetscFunctionReturn(0);
+  /* K_qq = V diag(ev) V^T (LAPACK syev), K_qq^+ = V diag(1/ev) V^T on the kept eigenvalues */
+  for (PetscInt i = 0; i < nq; ++i)
+    for (PetscInt j = 0; j < nq; ++j) Kq[i * nq + j] = 0.5 * (Ke[q[i] * n + q[j]] + Ke[q[j] * n + q[i]]);
+  PetscCall(PetscBLASIntCast(nq, &bn));
+  PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "U", &bn, Kq, &bn, ev, work, &lwork, &info));
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev failed (%d) on a cell's massless block", (int)info);
+  for (PetscInt e = 0; e < nq; ++e) emax = PetscMax(emax, ev[e]);
+  /* T = Ke - sum_e (Ke[:,q] V_e)(V_e^T Ke[q,:]) / ev_e, columns of V in Kq (column-major) */
+  for (PetscInt i = 0; i < n * n; ++i) T[i] = Ke[i];
+  for (PetscInt e = 0; e < nq; ++e) {
+    if (ev[e] <= 1e-12 * emax) continue;
+    for (PetscInt r = 0; r < n; ++r) {
+      PetscScalar s = 0;
+      for (PetscInt i = 0; i < nq; ++i) s += Ke[r * n + q[i]] * Kq[e * nq + i];
+      w[r] = s;
+    }
+    for (PetscInt r = 0; r < n; ++r)
+      for (PetscInt c = 0; c < n; ++c) T[r * n + c] -= w[r] * w[c] / ev[e];
+  }
+  /* symmetric to round-off; the massless rows and columns are zero exactly */
+  for (PetscInt r = 0; r < n; ++r)
+    for (PetscInt c = 0; c < n; ++c) Ke[r * n + c] = 0.5 * (T[r * n + c] + T[c * n + r]);
+  for (PetscInt i = 0; i < nq; ++i)
+    for (PetscInt c = 0; c < n; ++c) Ke[q[i] * n + c] = Ke[c * n + q[i]] = 0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMAssembleP1DampingStiffness(DM dm, const MMMaterial *mat, Mat Q, Vec qmark, Mat B)
+{
+  VertexTable  vt;
+  VertexFrames fr;
+  CSRTarget    t;
+  PetscInt     dim, depth, cStart, cEnd, vEnd;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetDimension(dm, &dim));
+  PetscCall(DMPlexGetDepth(dm, &depth));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  PetscCall(VertexTableCreate(dm, &vt));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, NULL, &vEnd));
+  PetscCall(VertexFramesCreate(&vt, vEnd - vt.vStart, Q, qmark, &fr));
+  PetscCall(MatZeroEntries(B));
+  PetscCall(CSRTargetGet(B, NULL, &t));
+  for (PetscInt c = cStart; c < cEnd; ++c) {
+    const PetscInt nv = dim + 1;
+    PetscInt       v[MM_NV_MAX], idx[MM_NDOF_MAX];
+    PetscReal      x[MM_NV_MAX][MM_MAX_DIM], g[MM_NV_MAX][MM_MAX_DIM], vol;
+    PetscScalar    Ke[MM_NDOF_MAX * MM_NDOF_MAX];
+
+    PetscCall(MMMeshCellVertices(dm, depth, dim, c, v));
+    for (PetscInt a = 0; a < nv; ++a)
+      for (PetscInt i = 0; i < dim; ++i) {
+        x[a][i]          = vt.x[(v[a] - vt.vStart) * dim + i];
+        idx[a * dim + i] = vt.dof[(v[a] - vt.vStart) * dim + i];
+      }
+    PetscCall(SimplexGradients(dim, (const PetscReal(*)[MM_MAX_DIM])x, g, &vol));
+    ElementStiffness(dim, mat->lambda[c - cStart], mat->mu[c - cStart], vol, (const PetscReal(*)[MM_MAX_DIM])g, Ke);
+    PetscCall(CondenseCell(dim, v, vt.vStart, idx, &fr, Ke));
+    for (PetscInt a = 0; a < nv; ++a) {
+      PetscInt r = -1;
+      for (PetscInt i = 0; i < dim && r < 0; ++i) r = idx[a * dim + i];
+      if (r < 0) continue;
+      if (r < t.rstart || r >= t.rend) {
+        PetscCall(AddGhostRows(B, NULL, dim, idx, a, Ke, NULL));
+        continue;
+      }
+      for (PetscInt b = 0; b < nv; ++b) PetscCall(AddVertexPair(&t, dim, &idx[a * dim], &idx[b * dim], a, b, Ke, 0));
+    }
+  }
+  PetscCall(CSRTargetRestore(&t));
+  PetscCall(PetscFree2(fr.q, fr.mark));
+  PetscCall(VertexTableDestroy(&vt));
+  PetscCall(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY));
   PetscFunctionReturn(0);
 }

@@ -1,11 +1,16 @@
-/* Rayleigh damping C = alpha M* + beta K in the trapezoidal scheme (docs/method.md sections 3, 4).
+/* Rayleigh damping C = alpha M* + beta B in the trapezoidal scheme (docs/method.md sections 3, 4).
  *
  * The step equation gains C (2/dt u^n + vC^n) on its right-hand side and K~ becomes
- * (1 + 2 beta/dt) K + (4/dt^2 + 2 alpha/dt) M* (MMStepMatrixCoefficients, the one place that gives
- * K~'s coefficients). vC is the trapezoidal velocity on all dofs, kept apart from the state's v:
- * on the massless contact-normal dofs v is a backward difference, but beta K couples them. With
- * alpha = beta = 0 none of this runs, so an undamped run is bitwise what it was. */
+ * K + 2 beta/dt B + (4/dt^2 + 2 alpha/dt) M* (MMDampingStepMatrix, the one place that builds K~).
+ * vC is the trapezoidal velocity on all dofs, kept apart from the state's v. B is K, except with
+ * the modified mass: there the massless contact-normal dofs are condensed out of each cell's
+ * stiffness, so that C has no row or column on them (docs/method.md, "Rayleigh damping of the
+ * massless dofs": on those dofs the trapezoidal vC carries an undamped (-1)^n mode, which C K-coupled
+ * turned into a contact force alternating at rest, issue 38). With alpha = beta = 0 none of this
+ * runs, so an undamped run is bitwise what it was. */
 #include "damping.h"
+#include "assembly_p1.h"
+#include "fem.h"
 
 /* The options as given: nothing contradictory, nothing negative, frequencies where a ratio needs
  * them. Called with the other range checks, before the mesh is read. */
@@ -44,7 +49,32 @@ PetscBool MMDampingOn(const MMCtx *ctx)
   return (PetscBool)(ctx->damping.alpha != 0 || ctx->damping.beta != 0);
 }
 
-/* After the initial velocity is set: vC^0 = v^0 on all dofs. */
+/* B with the massless dofs condensed cell by cell (MMAssembleP1DampingStiffness), in the w-frame of
+ * K: the cells are rotated by Q there, and contact pairs transform it by N as K (N^T B N keeps the
+ * slave-normal rows and columns zero: N's columns of those dofs are unit vectors). Its massless
+ * rows and columns are then set to zero exactly, against the condensation's round-off. */
+static PetscErrorCode CondensedDampingStiffness(MMCtx *ctx, Mat *B)
+{
+  Vec mark;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMFECreateMatrix(ctx, ctx->op.dm, B));
+  PetscCall(DMCreateGlobalVector(ctx->op.dm, &mark));
+  PetscCall(VecZeroEntries(mark));
+  PetscCall(VecISSet(mark, ctx->contact.is_normal, 1.0));
+  PetscCall(MMAssembleP1DampingStiffness(ctx->op.dm, &ctx->material, ctx->op.Q, mark, *B));
+  PetscCall(VecDestroy(&mark));
+  if (ctx->op.N) {
+    Mat BN;
+    PetscCall(MatPtAP(*B, ctx->op.N, MAT_INITIAL_MATRIX, 2.0, &BN));
+    PetscCall(MatDestroy(B));
+    *B = BN;
+  }
+  PetscCall(MatZeroRowsColumnsIS(*B, ctx->contact.is_normal, 0.0, NULL, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* After the initial velocity is set: vC^0 = v^0 on all dofs, and B. */
 PetscErrorCode MMDampingSetUp(MMCtx *ctx)
 {
   MMDamping *d = &ctx->damping;
@@ -56,6 +86,11 @@ PetscErrorCode MMDampingSetUp(MMCtx *ctx)
   PetscCall(VecDuplicate(ctx->state.v, &d->work));
   PetscCall(VecDuplicate(ctx->state.v, &d->x));
   PetscCall(VecCopy(ctx->state.v, d->vC));
+  if (d->beta != 0 && MMFEHasMasslessDofs(ctx)) PetscCall(CondensedDampingStiffness(ctx, &d->B));
+  else {
+    PetscCall(PetscObjectReference((PetscObject)ctx->op.K));
+    d->B = ctx->op.K;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -65,17 +100,24 @@ PetscErrorCode MMDampingDestroy(MMDamping *d)
   PetscCall(VecDestroy(&d->vC));
   PetscCall(VecDestroy(&d->work));
   PetscCall(VecDestroy(&d->x));
+  PetscCall(MatDestroy(&d->B));
   PetscFunctionReturn(0);
 }
 
-/* K~ = ck K + cm M*: ck = 1 + 2 beta/dt, cm = 4/dt^2 + 2 alpha/dt (docs/method.md section 3). Every
- * place that builds K~ takes its coefficients here. Undamped, ck = 1 and cm = 4/dt^2 exactly. */
-void MMStepMatrixCoefficients(const MMCtx *ctx, PetscReal dt, PetscReal *ck, PetscReal *cm)
+/* K~ from A = K (a copy, K's pattern): K + 2 beta/dt B + cm M*, cm = 4/dt^2 + 2 alpha/dt
+ * (docs/method.md section 3). Every formulation's K~ is built here. Undamped, K + 4/dt^2 M*
+ * exactly; with B = K, (1 + 2 beta/dt) K as one scaling. */
+PetscErrorCode MMDampingStepMatrix(MMCtx *ctx, PetscReal dt, Mat A)
 {
-  *ck = 1.0;
-  *cm = 4.0 / (dt * dt);
-  if (ctx->damping.beta != 0) *ck += 2.0 * ctx->damping.beta / dt;
-  if (ctx->damping.alpha != 0) *cm += 2.0 * ctx->damping.alpha / dt;
+  const MMDamping *d  = &ctx->damping;
+  PetscReal        cm = 4.0 / (dt * dt);
+
+  PetscFunctionBeginUser;
+  if (d->alpha != 0) cm += 2.0 * d->alpha / dt;
+  if (d->beta != 0 && d->B == ctx->op.K) PetscCall(MatScale(A, 1.0 + 2.0 * d->beta / dt));
+  else if (d->beta != 0) PetscCall(MatAXPY(A, 2.0 * d->beta / dt, d->B, SUBSET_NONZERO_PATTERN));
+  PetscCall(MatAXPY(A, cm, ctx->op.Mstar, SUBSET_NONZERO_PATTERN));
+  PetscFunctionReturn(0);
 }
 
 /* r += a C v: the damping force of a velocity in an equation of motion (the initial one). */
@@ -87,7 +129,7 @@ PetscErrorCode MMDampingAddForce(MMCtx *ctx, Vec v, PetscReal a, Vec r)
   if (!MMDampingOn(ctx)) PetscFunctionReturn(0);
   PetscCall(MatMult(ctx->op.Mstar, v, d->work));
   PetscCall(VecAXPY(r, a * d->alpha, d->work));
-  PetscCall(MatMult(ctx->op.K, v, d->work));
+  PetscCall(MatMult(d->B, v, d->work));
   PetscCall(VecAXPY(r, a * d->beta, d->work));
   PetscFunctionReturn(0);
 }
@@ -102,7 +144,7 @@ PetscErrorCode MMDampingAddStepRHS(MMCtx *ctx, PetscReal dt, Vec b)
   PetscCall(VecWAXPY(d->x, 2.0 / dt, ctx->state.u, d->vC));
   PetscCall(MatMult(ctx->op.Mstar, d->x, d->work));
   PetscCall(VecAXPY(b, d->alpha, d->work));
-  PetscCall(MatMult(ctx->op.K, d->x, d->work));
+  PetscCall(MatMult(d->B, d->x, d->work));
   PetscCall(VecAXPY(b, d->beta, d->work));
   PetscFunctionReturn(0);
 }
@@ -132,7 +174,7 @@ PetscErrorCode MMDampingWork(MMCtx *ctx, Vec du, PetscReal dt, PetscReal *w)
   if (!MMDampingOn(ctx)) PetscFunctionReturn(0);
   PetscCall(MatMult(ctx->op.Mstar, du, d->work));
   PetscCall(VecDot(du, d->work, &duMdu));
-  PetscCall(MatMult(ctx->op.K, du, d->work));
+  PetscCall(MatMult(d->B, du, d->work));
   PetscCall(VecDot(du, d->work, &duKdu));
   *w = -(d->alpha * PetscRealPart(duMdu) + d->beta * PetscRealPart(duKdu)) / dt;
   PetscFunctionReturn(0);

@@ -89,8 +89,8 @@ PetscErrorCode MMContactSwapKeptOperator(MMContact *ct, KSP *ksp)
   PetscFunctionReturn(0);
 }
 
-/* K~ = K + 4/dt^2 M* (with Rayleigh damping (1 + 2 beta/dt) K + (4/dt^2 + 2 alpha/dt) M*, the
- * coefficients of MMStepMatrixCoefficients), assembled only when dt changes; the formulation then
+/* K~ = K + 4/dt^2 M* (with Rayleigh damping K + 2 beta/dt B + (4/dt^2 + 2 alpha/dt) M*, built by
+ * MMDampingStepMatrix), assembled only when dt changes; the formulation then
  * builds on it what it needs (a factor and the Delassus operator, a PC, nothing). */
 PetscErrorCode MMContactSetStepMatrix(MMCtx *ctx, PetscReal dt)
 {
@@ -114,12 +114,7 @@ PetscErrorCode MMContactSetStepMatrix(MMCtx *ctx, PetscReal dt)
     if (ct->ops->setup) PetscCall((*ct->ops->setup)(ctx));
   } else if (!ct->qp.A) PetscCall(MatDuplicate(ctx->op.K, MAT_COPY_VALUES, &ct->qp.A));
   else PetscCall(MatCopy(ctx->op.K, ct->qp.A, SAME_NONZERO_PATTERN));
-  {
-    PetscReal ck, cm;
-    MMStepMatrixCoefficients(ctx, dt, &ck, &cm);
-    if (ck != 1.0) PetscCall(MatScale(ct->qp.A, ck));
-    PetscCall(MatAXPY(ct->qp.A, cm, ctx->op.Mstar, SUBSET_NONZERO_PATTERN));
-  }
+  PetscCall(MMDampingStepMatrix(ctx, dt, ct->qp.A));
   /* K~ is SPD for every dt: K is semi-definite with the rigid motions as its kernel, and M* is
    * positive on every rigid motion (docs/method.md, "Mass redistribution": G(M*) = G(M)). Said
    * once and for all, so that MUMPS factors it as SPD (SYM = 1: LDL^T without pivoting), 6%
