@@ -197,7 +197,9 @@ static PetscErrorCode HeaderPhysics(MMCtx *ctx, TS ts)
   if (MMDampingOn(ctx)) {
     char ratio[128] = "";
     if (opt->damping_ratio_set) PetscCall(PetscSNPrintf(ratio, sizeof(ratio), " (-damping_ratio %.6g at %.6g and %.6g Hz)", (double)opt->damping_ratio, (double)opt->damping_freq[0], (double)opt->damping_freq[1]));
-    PetscCall(PetscPrintf(comm, "  damping: Rayleigh C = alpha M* + beta K, alpha = %.10g 1/s, beta = %.10g s%s\n", (double)ctx->damping.alpha, (double)ctx->damping.beta, ratio));
+    /* B is K unless the massless dofs were condensed out of it (docs/method.md section 3) */
+    const char *B = (ctx->damping.B && ctx->damping.B != ctx->op.K) ? "B (K without the massless contact-normal dofs)" : "K";
+    PetscCall(PetscPrintf(comm, "  damping: Rayleigh C = alpha M* + beta %s, alpha = %.10g 1/s, beta = %.10g s%s\n", B, (double)ctx->damping.alpha, (double)ctx->damping.beta, ratio));
   }
   PetscFunctionReturn(0);
 }
