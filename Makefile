@@ -26,6 +26,8 @@ MSH  += meshes/ball_bowl.msh meshes/disk_rail.msh meshes/block_push.msh meshes/b
 # two_balls), a ball on a block; and the cube dropped into a V-groove
 MSH  += meshes/two_bars.msh meshes/two_bars_conf.msh meshes/two_balls.msh meshes/ball_x.msh meshes/ball_block.msh
 MSH  += meshes/cube_groove.msh
+# A coarse cube whose whole skin is contact boundary (issue 38: the redistributed mass on coarse meshes)
+MSH  += meshes/cube_drop.msh
 # Bodies of their own material (README "Bodies"): a strip of two glued halves, two separate bars
 MSH  += meshes/bimaterial.msh meshes/side_bars.msh
 # Bench meshes: the 2D D1 disk (115k dofs), the 3D D2 ball (H 0.045: 113k dofs, 3.8k contact nodes)
@@ -112,6 +114,8 @@ meshes/ball_x.msh: meshes/two_balls.geo
 meshes/ball_block.msh: meshes/ball_block.geo
 	gmsh -3 $< -o $@ -v 2
 meshes/cube_groove.msh: meshes/cube_groove.geo
+	gmsh -3 $< -o $@ -v 2
+meshes/cube_drop.msh: meshes/cube_drop.geo
 	gmsh -3 $< -o $@ -v 2
 meshes/bimaterial.msh: meshes/bimaterial.geo
 	gmsh -2 $< -o $@ -v 2
