@@ -864,7 +864,11 @@ PetscErrorCode MMFEMassMoments(MMCtx *ctx)
         PetscCall(PetscSNPrintf(axes + len, sizeof(axes) - len, "%s%.3g along %c", len ? ", " : "", (double)(Gs[d][d] / GM[d][d]), "xyz"[d]));
         worst = PetscMin(worst, Gs[d][d] / GM[d][d]);
       }
-    if (axes[0]) PetscCall(PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "mmcontact warning: -mass %s keeps only %s of M's mass: the body falls up to %.3g times faster than g along the contact normal and hits with that share of its momentum; the default -mass redistributed keeps all of it (README \"The mass\")\n", MMMassTypes[ctx->opt.mass_type], axes, (double)(1 / PetscMax(worst, PETSC_SMALL))));
+    if (axes[0]) {
+      char faster[96] = "the body has no inertia along the contact normal";
+      if (worst > 1e-6) PetscCall(PetscSNPrintf(faster, sizeof(faster), "the body falls up to %.3g times faster than g along the contact normal", (double)(1 / worst)));
+      PetscCall(PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "mmcontact warning: -mass %s keeps only %s of M's mass: %s and hits with that share of its momentum; the default -mass redistributed keeps all of it (README \"The mass\")\n", MMMassTypes[ctx->opt.mass_type], axes, faster));
+    }
   }
   for (PetscInt k = 0; k < nr; ++k) PetscCall(VecDestroy(&R[k]));
   PetscFunctionReturn(0);
