@@ -28,6 +28,8 @@ MSH  += meshes/two_bars.msh meshes/two_bars_conf.msh meshes/two_balls.msh meshes
 MSH  += meshes/cube_groove.msh
 # A cantilever settling on a plane under Rayleigh damping (issue 38)
 MSH  += meshes/cantilever.msh
+# A coarse cube whose whole skin is contact boundary (issue 38: the redistributed mass on coarse meshes)
+MSH  += meshes/cube_drop.msh
 # Bodies of their own material (README "Bodies"): a strip of two glued halves, two separate bars
 MSH  += meshes/bimaterial.msh meshes/side_bars.msh
 # Bench meshes: the 2D D1 disk (115k dofs), the 3D D2 ball (H 0.045: 113k dofs, 3.8k contact nodes)
@@ -116,6 +118,8 @@ meshes/ball_block.msh: meshes/ball_block.geo
 meshes/cantilever.msh: meshes/cantilever.geo
 	gmsh -2 $< -o $@ -v 2
 meshes/cube_groove.msh: meshes/cube_groove.geo
+	gmsh -3 $< -o $@ -v 2
+meshes/cube_drop.msh: meshes/cube_drop.geo
 	gmsh -3 $< -o $@ -v 2
 meshes/bimaterial.msh: meshes/bimaterial.geo
 	gmsh -2 $< -o $@ -v 2

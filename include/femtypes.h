@@ -71,6 +71,9 @@ typedef struct {
   PetscReal mass_correction;      /* -mass redistributed: the largest negative eigenvalue of a node's moment correction over its mass */
   PetscReal mass_moment_unreachable; /* 3D: |trace of G's translation-rotation block| left, / total mass (mass_redistribution.c) */
   PetscReal mass_moment_mismatch; /* -mass redistributed: max |rigid-mode Gram of M* - of M| / total mass */
+  PetscBool mass_bounded;          /* -mass redistributed: the bounded correction (a coarse mesh: docs/method.md section 2) */
+  PetscInt  mass_moments;          /* the moments matched: all (nr), or (dim) the masses and first moments alone */
+  PetscReal mass_inertia_mismatch; /* then max |second moments of M* - of M| / total mass */
   PetscReal c_p;    /* pressure wave speed */
   PetscReal energy_dirichlet; /* elastic energy of the Dirichlet data alone, 1/2 u_D.A_DD u_D */
   Vec       work;

@@ -122,3 +122,9 @@ def test_body_one_cell_across_is_refused(tmp_path, mm):
     assert "more cells across, or use -mass modified" in r.output
     ok = mm("punch", "-mesh", str(mesh), "-ts_max_steps", 2, "-mass", "modified", np_=2, name="modified")
     assert ok.history["balance_residual"].max() <= 1e-12
+    assert "mmcontact warning: -mass modified keeps only 0 along y of M's mass: the body has no inertia along the contact normal" in ok.output
+    # the other fix the refusal names: two cells across, and the default mass keeps M's moments
+    subprocess.run(["gmsh", "-2", "meshes/block.geo", "-setnumber", "NX", "10", "-setnumber", "NY", "2", "-o", str(tmp_path / "two.msh"), "-v", "0"],
+                   check=True, cwd=ROOT)
+    two = mm("punch", "-mesh", str(tmp_path / "two.msh"), "-ts_max_steps", 2, np_=2, name="two")
+    assert "M*'s moments equal M's" in two.output and "warning" not in two.output

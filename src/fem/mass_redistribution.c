@@ -127,7 +127,7 @@ static PetscErrorCode VertexGlobalDof(PetscSection gs, PetscInt v, PetscInt *g)
 
 /* Step 1: each cell's lost normal mass to its free non-contact vertices. The blocks go in the
  * Cartesian frame, which is the w-frame of a non-contact node (docs/method.md section 8). */
-static PetscErrorCode AddCellShares(MMCtx *ctx, Vec kind, Vec normal[], Mat A)
+static PetscErrorCode AddCellShares(MMCtx *ctx, Vec kind, Vec normal[], const PetscInt vgroup[], PetscInt group, PetscReal sign, Mat A)
 {
   DM                 dm = ctx->op.dm, dms = ctx->out.dm_scalar;
   const PetscInt     dim = ctx->op.dim;
@@ -155,12 +155,13 @@ static PetscErrorCode AddCellShares(MMCtx *ctx, Vec kind, Vec normal[], Mat A)
       else if (PetscRealPart(k[off]) > -0.5) others[nf++] = p;
     }
     if (!nc || !nf) continue; /* nothing lost here, or nowhere to put it: the global step's */
+    if (vgroup && vgroup[others[0] - vStart] != group) continue;
     vol = cells->volume[c - cStart];
     for (PetscInt i = 0; i < nc; ++i) {
       PetscInt off;
       PetscCall(DMPlexGetPointLocal(dms, contact[i], &off, NULL));
       for (PetscInt a = 0; a < dim; ++a)
-        for (PetscInt b = 0; b < dim; ++b) B[a][b] += ctx->material.rho[c - cStart] * vol / (dim + 1) / nf * PetscRealPart(n[a][off] * n[b][off]);
+        for (PetscInt b = 0; b < dim; ++b) B[a][b] += sign * ctx->material.rho[c - cStart] * vol / (dim + 1) / nf * PetscRealPart(n[a][off] * n[b][off]);
     }
     for (PetscInt a = 0; a < dim; ++a)
       for (PetscInt b = 0; b < dim; ++b) vals[a * dim + b] = B[a][b];
@@ -201,7 +202,7 @@ static PetscErrorCode SmallestEigenvalue(PetscInt dim, PetscReal D[MM_MAX_DIM][M
  * inertia with small blocks). Minimizing sum_j |D_j|^2 / m_j under sum_j T_j^T D_j T_j = dG gives
  * D_j = m_j P_j T_j Lambda T_j^T P_j, Lambda solving sum_j m_j A_j Lambda A_j = dG with
  * A_j = T_j^T P_j T_j: an nr^2 system, summed over the ranks. */
-static PetscErrorCode AddMomentCorrection(MMCtx *ctx, Vec kind, const PetscInt vgroup[], PetscInt group, const PetscReal x0[], PetscReal ell, PetscReal dG[MM_MAX_RIGID][MM_MAX_RIGID], Mat A)
+static PetscErrorCode AddMomentCorrection(MMCtx *ctx, Vec kind, const PetscInt vgroup[], PetscInt group, const PetscReal x0[], PetscReal ell, PetscReal dG[MM_MAX_RIGID][MM_MAX_RIGID], Mat A, PetscBool *exceeded)
 {
   DM                 dm = ctx->op.dm, dms = ctx->out.dm_scalar;
   MMContact         *ct  = &ctx->contact;
@@ -230,7 +231,17 @@ static PetscErrorCode AddMomentCorrection(MMCtx *ctx, Vec kind, const PetscInt v
   PetscCall(VecGetArrayRead(X, &x));
   PetscCall(VecGetArrayRead(kind, &k));
   PetscCall(VecGetArrayRead(ctx->op.mass_lumped_cart, &m));
-  for (PetscInt pass = 0; pass < 2; ++pass) {
+  *exceeded = PETSC_FALSE;
+  /* pass 0 sums the system, pass 1 measures the blocks, pass 2 adds them if they keep M* definite */
+  for (PetscInt pass = 0; pass < 3; ++pass) {
+    if (pass == 2) {
+      PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &worst, 1, MPIU_REAL, MPIU_MAX, comm));
+      ctx->op.mass_correction = worst;
+      if (worst > floor) { /* the bounded correction's (AddBoundedCorrection) */
+        *exceeded = PETSC_TRUE;
+        break;
+      }
+    }
     for (PetscInt v = vStart; v < vEnd; ++v) {
       PetscInt         goff, xoff, soff;
       PetscReal        xh[MM_MAX_DIM] = {0, 0, 0}, T[MM_MAX_DIM][MM_MAX_RIGID], PT[MM_MAX_DIM][MM_MAX_RIGID] = {{0}}, Aj[MM_MAX_RIGID][MM_MAX_RIGID] = {{0}}, mj;
@@ -270,8 +281,11 @@ static PetscErrorCode AddMomentCorrection(MMCtx *ctx, Vec kind, const PetscInt v
           for (PetscInt b = 0; b < dim; ++b)
             for (PetscInt c = 0; c < nr; ++c)
               for (PetscInt d = 0; d < nr; ++d) D[a][b] += 0.5 * mj * PT[a][c] * (lam[c * nr + d] + lam[d * nr + c]) * PT[b][d];
-        PetscCall(SmallestEigenvalue(dim, D, &lmin));
-        worst = PetscMax(worst, -lmin / mj);
+        if (pass == 1) {
+          PetscCall(SmallestEigenvalue(dim, D, &lmin));
+          worst = PetscMax(worst, -lmin / mj);
+          continue;
+        }
         /* in the node's w-frame, W = F D F^T (row e of F is the frame's e-th vector); the normal
          * row and column (e = 0) are not touched */
         for (PetscInt a = 0; a < dim; ++a)
@@ -308,9 +322,301 @@ static PetscErrorCode AddMomentCorrection(MMCtx *ctx, Vec kind, const PetscInt v
   PetscCall(VecRestoreArrayRead(kind, &k));
   PetscCall(VecRestoreArrayRead(X, &x));
   PetscCall(PetscFree(node));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &worst, 1, MPIU_REAL, MPIU_MAX, comm));
-  ctx->op.mass_correction = worst;
-  PetscCheck(worst <= floor, comm, PETSC_ERR_USER_INPUT, "-mass redistributed: the moment correction takes %.3g of a node's own mass away (more than %.3g could leave M* indefinite): the contact boundary carries too much of the body's mass for this mesh. Refine the mesh, or use -mass modified", (double)worst, (double)floor);
+  PetscFunctionReturn(0);
+}
+
+/* A node that may carry a correction, for the bounded correction: its first w-frame dof that may
+ * carry mass (goff + first: the first after a contact node's normal, and after tau_1 at a corner),
+ * their number k, its lumped mass, and B = V^T T (k x nr), its rigid modes on those dofs (V: the
+ * frame's tangent vectors, the identity off the contact boundary). */
+typedef struct {
+  PetscInt  dof, k;
+  PetscReal m, B[MM_MAX_DIM][MM_MAX_RIGID];
+} MassNode;
+
+static PetscErrorCode CollectMassNodes(MMCtx *ctx, Vec kind, const PetscInt vgroup[], PetscInt group, const PetscReal x0[], PetscReal ell, PetscInt *n, MassNode **nodes)
+{
+  DM                 dm = ctx->op.dm, dms = ctx->out.dm_scalar;
+  MMContact         *ct  = &ctx->contact;
+  const PetscInt     dim = ctx->op.dim, nr = MMFENumRigidModes(dim);
+  PetscSection       gs, cs;
+  PetscInt           vStart, vEnd, rstart, *node;
+  Vec                X;
+  const PetscScalar *x, *k, *m;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalSection(dm, &gs));
+  PetscCall(DMGetCoordinateSection(dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(PetscMalloc1(vEnd - vStart, &node));
+  PetscCall(PetscMalloc1(vEnd - vStart, nodes));
+  for (PetscInt v = 0; v < vEnd - vStart; ++v) node[v] = -1;
+  for (PetscInt c = 0; c < ct->n_local; ++c)
+    if (!ct->second[c]) node[ct->vertex[c] - vStart] = c;
+  PetscCall(VecGetOwnershipRange(ctx->op.mass_lumped_cart, &rstart, NULL));
+  PetscCall(VecGetArrayRead(X, &x));
+  PetscCall(VecGetArrayRead(kind, &k));
+  PetscCall(VecGetArrayRead(ctx->op.mass_lumped_cart, &m));
+  *n = 0;
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt         goff, xoff, soff, first;
+    PetscReal        xh[MM_MAX_DIM] = {0, 0, 0}, T[MM_MAX_DIM][MM_MAX_RIGID];
+    const PetscReal *F      = node[v - vStart] >= 0 ? &ct->node_frame[9 * node[v - vStart]] : NULL;
+    const PetscBool  corner = (PetscBool)(F && node[v - vStart] + 1 < ct->n_local && ct->second[node[v - vStart] + 1]);
+    MassNode        *nd     = &(*nodes)[*n];
+
+    PetscCall(PetscSectionGetOffset(gs, v, &goff));
+    PetscCall(DMPlexGetPointLocal(dms, v, &soff, NULL));
+    if (goff < 0 || PetscRealPart(k[soff]) < 0 || vgroup[v - vStart] != group) continue;
+    first = F ? (corner ? 2 : 1) : 0;
+    if (first >= dim) continue; /* a 2D corner: no dof with mass */
+    PetscCall(PetscSectionGetOffset(cs, v, &xoff));
+    for (PetscInt d = 0; d < dim; ++d) xh[d] = (PetscRealPart(x[xoff + d]) - x0[d]) / ell;
+    MMFERigidModeMatrix(dim, xh, T);
+    nd->dof = goff + first;
+    nd->k   = dim - first;
+    nd->m   = PetscRealPart(m[goff - rstart]);
+    /* row e of F is the frame's e-th vector: B's rows are the tangent vectors' components of T */
+    for (PetscInt e = 0; e < nd->k; ++e)
+      for (PetscInt c = 0; c < nr; ++c) {
+        nd->B[e][c] = 0;
+        if (!F) nd->B[e][c] = T[e][c];
+        else
+          for (PetscInt b = 0; b < dim; ++b) nd->B[e][c] += F[3 * (first + e) + b] * T[b][c];
+      }
+    ++*n;
+  }
+  PetscCall(VecRestoreArrayRead(ctx->op.mass_lumped_cart, &m));
+  PetscCall(VecRestoreArrayRead(kind, &k));
+  PetscCall(VecRestoreArrayRead(X, &x));
+  PetscCall(PetscFree(node));
+  PetscFunctionReturn(0);
+}
+
+/* The eigenvalues s (ascending) and eigenvectors (U[r][i]: component i of vector r) of a node's
+ * symmetric k x k block S = B Lambda B^T. */
+static PetscErrorCode NodeEigen(const MassNode *nd, PetscInt nr, const PetscReal L[MM_MAX_RIGID][MM_MAX_RIGID], PetscReal s[], PetscReal U[MM_MAX_DIM][MM_MAX_DIM])
+{
+  PetscScalar  a[MM_MAX_DIM * MM_MAX_DIM], work[16 * MM_MAX_DIM];
+  PetscBLASInt n, lwork = 16 * MM_MAX_DIM, info;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < nd->k; ++i)
+    for (PetscInt j = 0; j < nd->k; ++j) {
+      PetscReal sij = 0;
+      for (PetscInt c = 0; c < nr; ++c)
+        for (PetscInt d = 0; d < nr; ++d) sij += nd->B[i][c] * L[c][d] * nd->B[j][d];
+      a[i * nd->k + j] = sij;
+    }
+  PetscCall(PetscBLASIntCast(nd->k, &n));
+  PetscCall(PetscFPTrapPush(PETSC_FP_TRAP_OFF));
+  PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "U", &n, a, &n, s, work, &lwork, &info));
+  PetscCall(PetscFPTrapPop());
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev failed with info %d", (int)info);
+  for (PetscInt r = 0; r < nd->k; ++r)
+    for (PetscInt i = 0; i < nd->k; ++i) U[r][i] = PetscRealPart(a[r * nd->k + i]);
+  PetscFunctionReturn(0);
+}
+
+/* The dual of the bounded correction (docs/method.md section 2, "When the smallest correction would
+ * make M* indefinite") at Lambda = sum_p lam_p E_p over the np moment pairs (pa[p], pb[p]):
+ *   psi = sum_j c m_j tr(exp(S_j) - I - S_j) - <Lambda, dG>,  S_j = B_j Lambda B_j^T,
+ * its gradient g_p = <E_p, sum_j B_j^T E_j B_j - dG> (E_j = c m_j (exp(S_j) - I), the correction)
+ * and, with H != NULL, its Hessian H_pq = sum_j c m_j tr(Y_p Dexp_{S_j}[Y_q]), Y_p = B_j E_p B_j^T,
+ * by the Daleckii-Krein formula in S_j's eigenbasis. *smax: the largest |eigenvalue| of any S_j. */
+static PetscErrorCode BoundedDual(MPI_Comm comm, PetscInt n, const MassNode nodes[], PetscReal c, PetscInt nr, PetscInt np, const PetscInt pa[], const PetscInt pb[], const PetscReal lam[], PetscReal dG[MM_MAX_RIGID][MM_MAX_RIGID], PetscReal *psi, PetscReal g[], PetscReal H[], PetscReal *smax)
+{
+  const PetscInt np2 = np * np;
+  PetscReal      L[MM_MAX_RIGID][MM_MAX_RIGID] = {{0}}, *sum; /* [psi, R (nr x nr), H (np x np), -smax] */
+  const PetscInt nsum = 1 + MM_MAX_RIGID * MM_MAX_RIGID + np2;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscCalloc1(nsum + 1, &sum));
+  for (PetscInt p = 0; p < np; ++p) L[pa[p]][pb[p]] = L[pb[p]][pa[p]] = lam[p];
+  sum[nsum] = -PETSC_MAX_REAL;
+  for (PetscInt j = 0; j < n; ++j) {
+    const MassNode *nd = &nodes[j];
+    const PetscReal w  = c * nd->m;
+    PetscReal       s[MM_MAX_DIM], U[MM_MAX_DIM][MM_MAX_DIM], C[MM_MAX_DIM][MM_MAX_RIGID] = {{0}}, ex[MM_MAX_DIM];
+
+    PetscCall(NodeEigen(nd, nr, L, s, U));
+    for (PetscInt r = 0; r < nd->k; ++r) {
+      ex[r] = PetscExpReal(s[r]);
+      sum[0] += w * (expm1(s[r]) - s[r]);
+      sum[nsum] = PetscMax(sum[nsum], PetscAbsReal(s[r]));
+      for (PetscInt a = 0; a < nr; ++a)
+        for (PetscInt i = 0; i < nd->k; ++i) C[r][a] += U[r][i] * nd->B[i][a]; /* C = U^T B */
+    }
+    /* R = sum_j c m_j C^T diag(exp(s) - 1) C */
+    for (PetscInt a = 0; a < nr; ++a)
+      for (PetscInt b = 0; b < nr; ++b)
+        for (PetscInt r = 0; r < nd->k; ++r) sum[1 + a * MM_MAX_RIGID + b] += w * C[r][a] * expm1(s[r]) * C[r][b];
+    if (H) {
+      PetscReal Gam[MM_MAX_DIM][MM_MAX_DIM], Y[MM_MAX_RIGID * (MM_MAX_RIGID + 1) / 2][MM_MAX_DIM][MM_MAX_DIM];
+      /* Gamma_rs = (e^{s_r} - e^{s_s}) / (s_r - s_s), e^{s_r} when they meet */
+      for (PetscInt r = 0; r < nd->k; ++r)
+        for (PetscInt q = 0; q < nd->k; ++q) Gam[r][q] = PetscAbsReal(s[r] - s[q]) < 1e-12 ? ex[r] : ex[q] * expm1(s[r] - s[q]) / (s[r] - s[q]);
+      for (PetscInt p = 0; p < np; ++p)
+        for (PetscInt r = 0; r < nd->k; ++r)
+          for (PetscInt q = 0; q < nd->k; ++q) Y[p][r][q] = C[r][pa[p]] * C[q][pb[p]] + (pa[p] != pb[p] ? C[r][pb[p]] * C[q][pa[p]] : 0);
+      for (PetscInt p = 0; p < np; ++p)
+        for (PetscInt q = p; q < np; ++q) {
+          PetscReal h = 0;
+          for (PetscInt r = 0; r < nd->k; ++r)
+            for (PetscInt t = 0; t < nd->k; ++t) h += Gam[r][t] * Y[p][r][t] * Y[q][r][t];
+          sum[1 + MM_MAX_RIGID * MM_MAX_RIGID + p * np + q] += w * h;
+        }
+    }
+  }
+  sum[nsum] = -sum[nsum];
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, nsum, MPIU_REAL, MPIU_SUM, comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sum[nsum], 1, MPIU_REAL, MPIU_MIN, comm));
+  *psi  = sum[0];
+  *smax = -sum[nsum];
+  for (PetscInt p = 0; p < np; ++p) {
+    const PetscInt  a = pa[p], b = pb[p];
+    const PetscReal w = a == b ? 1.0 : 2.0; /* <E_p, X> for a symmetric X */
+    *psi -= w * lam[p] * dG[a][b];
+    g[p] = w * (sum[1 + a * MM_MAX_RIGID + b] - dG[a][b]);
+  }
+  if (H)
+    for (PetscInt p = 0; p < np; ++p)
+      for (PetscInt q = p; q < np; ++q) H[p * np + q] = H[q * np + p] = sum[1 + MM_MAX_RIGID * MM_MAX_RIGID + p * np + q];
+  PetscCall(PetscFree(sum));
+  PetscFunctionReturn(0);
+}
+
+/* The bounded correction, when the smallest one would take more than M* can lose (docs/method.md
+ * section 2): D_j = c m_j V_j (exp(S_j) - I) V_j^T, S_j = B_j Lambda B_j^T, which is above -c m_j on
+ * every node whatever Lambda, so M* stays positive definite; Lambda minimizes the convex dual
+ * BoundedDual by Newton's method with a backtracking line search. To first order in Lambda it is
+ * the smallest correction (AddMomentCorrection). moments: MM_MAX_RIGID matches every moment, dim
+ * only the total masses and first moments (the pairs with a translation). *matched is false, and
+ * nothing is added, when Newton's method finds no Lambda: the moments are out of the bound's reach. */
+static PetscErrorCode AddBoundedCorrection(MMCtx *ctx, Vec kind, const PetscInt vgroup[], PetscInt group, const PetscReal x0[], PetscReal ell, PetscReal dG0[MM_MAX_RIGID][MM_MAX_RIGID], PetscInt moments, PetscReal mass, Mat A, PetscBool *matched)
+{
+  const PetscInt dim = ctx->op.dim, nr = MMFENumRigidModes(dim);
+  MPI_Comm       comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  /* the bound of AddMomentCorrection: 0.9 of the consistent mass's margin 1/(d+2), or of all of a lumped one */
+  const PetscReal c = 0.9 / (ctx->opt.lumped ? 1.0 : (PetscReal)(dim + 2));
+  PetscInt        n = 0, np = 0, pa[MM_MAX_RIGID * (MM_MAX_RIGID + 1) / 2], pb[MM_MAX_RIGID * (MM_MAX_RIGID + 1) / 2], it;
+  PetscReal       dG[MM_MAX_RIGID][MM_MAX_RIGID], lam[MM_MAX_RIGID * (MM_MAX_RIGID + 1) / 2] = {0}, psi, smax, res = PETSC_MAX_REAL, worst = 0;
+  MassNode       *nodes;
+  /* exp(30): a node given 1e13 times its mass, exp(-30): one stripped to its bound to 1e-13, and a
+   * correction entropy of 1e3 times the mass: beyond, the moments are out of the bound's reach */
+  const PetscReal smax_ok = 30, psi_ok = 1e3;
+
+  PetscFunctionBeginUser;
+  *matched = PETSC_FALSE;
+  for (PetscInt a = 0; a < nr; ++a)
+    for (PetscInt b = 0; b < nr; ++b) dG[a][b] = dG0[a][b];
+  /* the trace of the translation-rotation block is out of any node block's reach (MomentMismatch):
+   * left in, the dual would fall linearly along Lambda = [[0, I], [I, 0]] forever */
+  if (nr == 6) {
+    PetscReal k = 0;
+    for (PetscInt a = 0; a < 3; ++a) k += dG[a][3 + a];
+    for (PetscInt a = 0; a < 3; ++a) dG[a][3 + a] -= k / 3, dG[3 + a][a] -= k / 3;
+  }
+  for (PetscInt a = 0; a < nr; ++a)
+    for (PetscInt b = a; b < nr; ++b)
+      if (a < moments) pa[np] = a, pb[np] = b, ++np;
+  PetscCall(CollectMassNodes(ctx, kind, vgroup, group, x0, ell, &n, &nodes));
+  for (it = 0; it < 60; ++it) {
+    PetscReal    g[MM_MAX_RIGID * (MM_MAX_RIGID + 1) / 2], H[MM_MAX_RIGID * MM_MAX_RIGID * (MM_MAX_RIGID + 1) * (MM_MAX_RIGID + 1) / 4], step[MM_MAX_RIGID * (MM_MAX_RIGID + 1) / 2], slope = 0, t = 1;
+    PetscReal    sv[MM_MAX_RIGID * (MM_MAX_RIGID + 1) / 2], work[8 * MM_MAX_RIGID * MM_MAX_RIGID], rcond = 1e-15;
+    PetscBLASInt bn, one = 1, rank, lwork = 8 * MM_MAX_RIGID * MM_MAX_RIGID, info;
+
+    PetscCall(BoundedDual(comm, n, nodes, c, nr, np, pa, pb, lam, dG, &psi, g, H, &smax));
+    res = 0;
+    for (PetscInt p = 0; p < np; ++p) res = PetscMax(res, PetscAbsReal(g[p]));
+    PetscCall(PetscInfo(NULL, "bounded mass correction, Newton step %" PetscInt_FMT ": psi %.15g, residual %g of the mass, largest exponent %g\n", it, (double)psi, (double)(res / mass), (double)smax));
+    if (res <= 1e-14 * mass) break;
+    /* Newton's step. The Hessian is singular along the trace direction Lambda = [[0, I], [I, 0]],
+     * which changes no S_j and which dG no longer holds: a penalty on it makes it regular there
+     * without changing the step, and the least-norm solve is left with the directions that far
+     * out are ill-conditioned only */
+    if (nr == 6) {
+      PetscReal kappa = 0;
+      for (PetscInt p = 0; p < np; ++p) kappa += H[p * np + p] / np;
+      for (PetscInt p = 0; p < np; ++p)
+        for (PetscInt q = 0; q < np; ++q)
+          if (pb[p] == pa[p] + 3 && pb[q] == pa[q] + 3) H[p * np + q] += kappa / 3;
+    }
+    for (PetscInt p = 0; p < np; ++p) step[p] = -g[p];
+    PetscCall(PetscBLASIntCast(np, &bn));
+    PetscCall(PetscFPTrapPush(PETSC_FP_TRAP_OFF));
+    PetscCallBLAS("LAPACKgelss", LAPACKgelss_(&bn, &bn, &one, H, &bn, step, &bn, sv, &rcond, &rank, work, &lwork, &info));
+    PetscCall(PetscFPTrapPop());
+    PetscCheck(info >= 0, comm, PETSC_ERR_LIB, "-mass redistributed: LAPACK gelss failed with info %d", (int)info);
+    if (info > 0) break; /* no SVD of a Hessian that far out: the moments are out of reach */
+    for (PetscInt p = 0; p < np; ++p) slope += g[p] * step[p];
+    /* backtrack until psi falls (Armijo); psi is convex, so a descent step always exists */
+    for (; t > 1e-12; t *= 0.5) {
+      PetscReal trial[MM_MAX_RIGID * (MM_MAX_RIGID + 1) / 2], gt[MM_MAX_RIGID * (MM_MAX_RIGID + 1) / 2], psit, st;
+      for (PetscInt p = 0; p < np; ++p) trial[p] = lam[p] + t * step[p];
+      PetscCall(BoundedDual(comm, n, nodes, c, nr, np, pa, pb, trial, dG, &psit, gt, NULL, &st));
+      if (st <= smax_ok && psit <= psi + 1e-4 * t * slope) {
+        for (PetscInt p = 0; p < np; ++p) lam[p] = trial[p];
+        break;
+      }
+    }
+    /* no descent left within |S_j| <= smax_ok, or the dual falling without bound (its minimum is
+     * minus the least correction entropy, a few times the mass when the moments are in reach) */
+    if (t <= 1e-12 || psi < -psi_ok * mass) break;
+  }
+  PetscCall(PetscInfo(NULL, "bounded mass correction (%" PetscInt_FMT " moments): %" PetscInt_FMT " Newton steps, residual %g of the mass, largest exponent %g\n", np, it, (double)(res / mass), (double)smax));
+  if (res <= 1e-14 * mass) {
+    PetscReal L[MM_MAX_RIGID][MM_MAX_RIGID] = {{0}};
+    *matched = PETSC_TRUE;
+    for (PetscInt p = 0; p < np; ++p) L[pa[p]][pb[p]] = L[pb[p]][pa[p]] = lam[p];
+    for (PetscInt j = 0; j < n; ++j) {
+      const MassNode *nd = &nodes[j];
+      PetscReal       s[MM_MAX_DIM], U[MM_MAX_DIM][MM_MAX_DIM];
+      PetscScalar     vals[MM_MAX_DIM * MM_MAX_DIM];
+      PetscInt        idx[MM_MAX_DIM];
+
+      PetscCall(NodeEigen(nd, nr, L, s, U));
+      /* E_j = c m_j U diag(exp(s) - 1) U^T on the node's dofs with mass, in its w-frame */
+      for (PetscInt a = 0; a < nd->k; ++a) {
+        idx[a] = nd->dof + a;
+        for (PetscInt b = 0; b < nd->k; ++b) {
+          PetscReal e = 0;
+          for (PetscInt r = 0; r < nd->k; ++r) e += U[r][a] * expm1(s[r]) * U[r][b];
+          vals[a * nd->k + b] = c * nd->m * e;
+        }
+      }
+      worst = PetscMax(worst, -c * expm1(s[0]));
+      PetscCall(MatSetValues(A, nd->k, idx, nd->k, idx, vals, ADD_VALUES));
+    }
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &worst, 1, MPIU_REAL, MPIU_MAX, comm));
+    ctx->op.mass_correction = worst;
+  }
+  PetscCall(PetscFree(nodes));
+  PetscFunctionReturn(0);
+}
+
+/* The nodes of a group off the contact boundary and free of Dirichlet data, over all ranks: the only
+ * ones that can carry mass along a contact normal, for the refusal's message. */
+static PetscErrorCode CountInnerNodes(MMCtx *ctx, Vec kind, const PetscInt vgroup[], PetscInt group, PetscInt *count)
+{
+  PetscSection       gs;
+  PetscInt           vStart, vEnd;
+  const PetscScalar *k;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalSection(ctx->op.dm, &gs));
+  PetscCall(DMPlexGetDepthStratum(ctx->op.dm, 0, &vStart, &vEnd));
+  PetscCall(VecGetArrayRead(kind, &k));
+  *count = 0;
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt goff, soff;
+    PetscCall(PetscSectionGetOffset(gs, v, &goff));
+    PetscCall(DMPlexGetPointLocal(ctx->out.dm_scalar, v, &soff, NULL));
+    if (goff >= 0 && PetscAbsReal(PetscRealPart(k[soff])) < 0.5 && vgroup[v - vStart] == group) ++*count;
+  }
+  PetscCall(VecRestoreArrayRead(kind, &k));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, count, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ctx->op.dm)));
   PetscFunctionReturn(0);
 }
 
@@ -401,7 +707,7 @@ static PetscErrorCode GroupModes(MMCtx *ctx, const PetscInt vgroup[], PetscInt g
  * 0]]), but not for the consistent M* when neighbouring contact nodes have different normals (its
  * pair blocks m_ij P_i P_j are not symmetric). It is none of the total mass, the centre of gravity
  * (the antisymmetric part of that block) or the inertia tensor; it is left out, and reported. */
-static PetscReal MomentMismatch(PetscInt nr, PetscReal GM[MM_MAX_RIGID][MM_MAX_RIGID], PetscReal Gs[MM_MAX_RIGID][MM_MAX_RIGID], PetscReal *unreachable)
+static PetscReal MomentMismatch(PetscInt nr, PetscInt moments, PetscReal GM[MM_MAX_RIGID][MM_MAX_RIGID], PetscReal Gs[MM_MAX_RIGID][MM_MAX_RIGID], PetscReal *unreachable, PetscReal *inertia)
 {
   PetscReal r[MM_MAX_RIGID][MM_MAX_RIGID], k = 0, d = 0;
 
@@ -411,8 +717,13 @@ static PetscReal MomentMismatch(PetscInt nr, PetscReal GM[MM_MAX_RIGID][MM_MAX_R
     for (PetscInt a = 0; a < 3; ++a) k += r[a][3 + a];
     for (PetscInt a = 0; a < 3; ++a) r[a][3 + a] -= k / 3, r[3 + a][a] -= k / 3;
   }
+  /* moments < nr: the second moments (the inertia) were not matched, and are reported apart */
+  *inertia = 0;
   for (PetscInt a = 0; a < nr; ++a)
-    for (PetscInt b = 0; b < nr; ++b) d = PetscMax(d, PetscAbsReal(r[a][b]));
+    for (PetscInt b = 0; b < nr; ++b) {
+      if (a < moments || b < moments) d = PetscMax(d, PetscAbsReal(r[a][b]));
+      else *inertia = PetscMax(*inertia, PetscAbsReal(r[a][b]));
+    }
   *unreachable = PetscAbsReal(k);
   return d;
 }
@@ -425,9 +736,9 @@ PetscErrorCode MMFERedistributeMass(MMCtx *ctx)
   const PetscInt nr   = MMFENumRigidModes(ctx->op.dim);
   MPI_Comm       comm = PetscObjectComm((PetscObject)ctx->op.dm);
   PetscReal      x0[MM_MAX_DIM], ell = 1, GM[MM_MAX_RIGID][MM_MAX_RIGID], Gs[MM_MAX_RIGID][MM_MAX_RIGID], dG[MM_MAX_RIGID][MM_MAX_RIGID];
-  PetscReal      mismatch = 0, unreachable = 0, correction = 0;
+  PetscReal      mismatch = 0, unreachable = 0, correction = 0, inertia = 0;
   Vec            R[MM_MAX_RIGID], Rg[MM_MAX_RIGID], kind, normal[MM_MAX_DIM];
-  PetscInt      *vgroup;
+  PetscInt      *vgroup, matched_moments = nr;
 
   PetscFunctionBeginUser;
   PetscCall(RigidFrame(ctx, x0, &ell));
@@ -435,7 +746,7 @@ PetscErrorCode MMFERedistributeMass(MMCtx *ctx)
   PetscCall(VertexKinds(ctx, &kind, normal));
   PetscCall(VertexGroups(ctx, &vgroup));
   PetscCall(MatSetOption(ctx->op.Mstar, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
-  PetscCall(AddCellShares(ctx, kind, normal, ctx->op.Mstar));
+  PetscCall(AddCellShares(ctx, kind, normal, NULL, 0, 1.0, ctx->op.Mstar));
   PetscCall(MatAssemblyBegin(ctx->op.Mstar, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(ctx->op.Mstar, MAT_FINAL_ASSEMBLY));
   /* each body (group) on its own: its moments matched by corrections on its own nodes */
@@ -446,30 +757,65 @@ PetscErrorCode MMFERedistributeMass(MMCtx *ctx)
       PetscCall(Gram(ctx->op.Mstar, nr, Rg, Gs));
       for (PetscInt a = 0; a < nr; ++a)
         for (PetscInt b = 0; b < nr; ++b) dG[a][b] = GM[a][b] - Gs[a][b];
+      PetscInt  moments = nr;         /* the moments matched: all, or the masses and first moments */
+      PetscBool bounded = PETSC_FALSE; /* the bounded correction in place of the smallest */
+      PetscReal largest = 0;
       /* the correction, and up to two more on what round-off left of dG (iterative refinement, for
        * contact surfaces that leave the moment system ill-conditioned) */
       for (PetscInt it = 0; it < 3; ++it) {
-        PetscReal mm, un;
-        PetscCall(AddMomentCorrection(ctx, kind, vgroup, g, x0, ell, dG, ctx->op.Mstar));
+        PetscReal mm, un, ri;
+        PetscBool exceeded = PETSC_FALSE, matched = PETSC_TRUE;
+        if (!bounded) PetscCall(AddMomentCorrection(ctx, kind, vgroup, g, x0, ell, dG, ctx->op.Mstar, &exceeded));
+        if (exceeded) {
+          /* the smallest correction would leave M* indefinite (coarse meshes whose contact boundary
+           * holds much of the mass): the bounded one, every moment if it can, else the masses and
+           * first moments, which make the body fall at g (docs/method.md section 2) */
+          bounded = PETSC_TRUE;
+          /* the cell shares taken back first: the bound then applies to the modified mass, whose
+           * every node keeps 1/(d+2) of its lumped mass, and the correction may place the mass
+           * where the moments need it (a wider set of corrections than on top of the shares) */
+          PetscCall(AddCellShares(ctx, kind, normal, vgroup, g, -1.0, ctx->op.Mstar));
+          PetscCall(MatAssemblyBegin(ctx->op.Mstar, MAT_FINAL_ASSEMBLY));
+          PetscCall(MatAssemblyEnd(ctx->op.Mstar, MAT_FINAL_ASSEMBLY));
+          PetscCall(Gram(ctx->op.Mstar, nr, Rg, Gs));
+          for (PetscInt a = 0; a < nr; ++a)
+            for (PetscInt b = 0; b < nr; ++b) dG[a][b] = GM[a][b] - Gs[a][b];
+          PetscCall(AddBoundedCorrection(ctx, kind, vgroup, g, x0, ell, dG, nr, GM[0][0], ctx->op.Mstar, &matched));
+          if (!matched) {
+            moments = ctx->op.dim;
+            PetscCall(AddBoundedCorrection(ctx, kind, vgroup, g, x0, ell, dG, moments, GM[0][0], ctx->op.Mstar, &matched));
+          }
+          if (!matched) {
+            PetscInt inner;
+            PetscCall(CountInnerNodes(ctx, kind, vgroup, g, &inner));
+            SETERRQ(comm, PETSC_ERR_USER_INPUT, "-mass redistributed cannot give the contact nodes' normal mass back on this mesh without making M* indefinite: %" PetscInt_FMT " node%s off the contact boundary and free of Dirichlet data cannot carry it at the centre of gravity. Name as -contact_boundary only the surface that can touch an obstacle, or mesh the body finer (more nodes inside); -mass modified runs, but falls faster than g along the contact normals", inner, inner == 1 ? "" : "s");
+          }
+        } else if (bounded) PetscCall(AddBoundedCorrection(ctx, kind, vgroup, g, x0, ell, dG, moments, GM[0][0], ctx->op.Mstar, &matched));
+        largest = PetscMax(largest, ctx->op.mass_correction);
         PetscCall(MatAssemblyBegin(ctx->op.Mstar, MAT_FINAL_ASSEMBLY));
         PetscCall(MatAssemblyEnd(ctx->op.Mstar, MAT_FINAL_ASSEMBLY));
         PetscCall(Gram(ctx->op.Mstar, nr, Rg, Gs));
-        mm = MomentMismatch(nr, GM, Gs, &un) / PetscMax(GM[0][0], PETSC_SMALL);
+        mm = MomentMismatch(nr, moments, GM, Gs, &un, &ri) / PetscMax(GM[0][0], PETSC_SMALL);
         if (it == 2 || mm <= 1e-14) {
           mismatch    = PetscMax(mismatch, mm);
           unreachable = PetscMax(unreachable, un / PetscMax(GM[0][0], PETSC_SMALL));
+          inertia     = PetscMax(inertia, ri / PetscMax(GM[0][0], PETSC_SMALL));
         }
         if (mm <= 1e-14) break;
         for (PetscInt a = 0; a < nr; ++a)
           for (PetscInt b = 0; b < nr; ++b) dG[a][b] = GM[a][b] - Gs[a][b];
       }
-      correction = PetscMax(correction, ctx->op.mass_correction);
+      correction = PetscMax(correction, largest);
+      matched_moments = PetscMin(matched_moments, moments);
+      if (bounded) ctx->op.mass_bounded = PETSC_TRUE;
     }
     for (PetscInt k = 0; k < nr; ++k) PetscCall(VecDestroy(&Rg[k]));
   }
   ctx->op.mass_correction         = correction;
   ctx->op.mass_moment_mismatch    = mismatch;
   ctx->op.mass_moment_unreachable = unreachable;
+  ctx->op.mass_moments            = matched_moments;
+  ctx->op.mass_inertia_mismatch   = inertia;
   PetscCall(PetscFree(vgroup));
   /* what no node-block correction can reach: a body whose every node is on the contact boundary or
    * held by Dirichlet data (one cell across), or whose free nodes are too few to carry the moments */
@@ -505,6 +851,24 @@ PetscErrorCode MMFEMassMoments(MMCtx *ctx)
         for (PetscInt b = 0; b < MM_MAX_DIM; ++b) inv[a][b] = 0;
     for (PetscInt a = 0; a < dim; ++a)
       for (PetscInt b = 0; b < dim; ++b) ctx->op.mass_star_inv[a * dim + b] = inv[a][b];
+  }
+  /* M* that lost more than a tenth of M along an axis: the body falls faster than g along it, by
+   * M/M*, and hits with that share of its momentum (README "The mass"). One line, on stderr. */
+  {
+    char      axes[192] = "";
+    PetscReal worst     = 1;
+    for (PetscInt d = 0; d < dim; ++d)
+      if (GM[d][d] > 0 && Gs[d][d] < 0.9 * GM[d][d]) {
+        size_t len;
+        PetscCall(PetscStrlen(axes, &len));
+        PetscCall(PetscSNPrintf(axes + len, sizeof(axes) - len, "%s%.3g along %c", len ? ", " : "", (double)(Gs[d][d] / GM[d][d]), "xyz"[d]));
+        worst = PetscMin(worst, Gs[d][d] / GM[d][d]);
+      }
+    if (axes[0]) {
+      char faster[96] = "the body has no inertia along the contact normal";
+      if (worst > 1e-6) PetscCall(PetscSNPrintf(faster, sizeof(faster), "the body falls up to %.3g times faster than g along the contact normal", (double)(1 / worst)));
+      PetscCall(PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "mmcontact warning: -mass %s keeps only %s of M's mass: %s and hits with that share of its momentum; the default -mass redistributed keeps all of it (README \"The mass\")\n", MMMassTypes[ctx->opt.mass_type], axes, faster));
+    }
   }
   for (PetscInt k = 0; k < nr; ++k) PetscCall(VecDestroy(&R[k]));
   PetscFunctionReturn(0);

@@ -210,7 +210,7 @@ static PetscErrorCode HeaderPhysics(MMCtx *ctx, TS ts)
 PetscErrorCode MMProgressMassLine(MMCtx *ctx)
 {
   const PetscInt dim = ctx->op.dim;
-  char           star[128] = "", moments[320] = "", unreachable[160] = "";
+  char           star[128] = "", moments[512] = "", unreachable[160] = "";
 
   PetscFunctionBeginUser;
   for (PetscInt d = 0; d < dim; ++d) {
@@ -219,7 +219,16 @@ PetscErrorCode MMProgressMassLine(MMCtx *ctx)
     PetscCall(PetscSNPrintf(star + len, sizeof(star) - len, "%s%c %.10g", d ? ", " : "", "xyz"[d], (double)ctx->op.mass_star[d * dim + d]));
   }
   if (ctx->op.mass_moment_unreachable > 1e-14) PetscCall(PetscSNPrintf(unreachable, sizeof(unreachable), " (and %.1e in the trace of the translation-rotation block, out of reach: docs/method.md section 2)", (double)ctx->op.mass_moment_unreachable));
-  if (MMFEHasMasslessDofs(ctx) && ctx->opt.mass_type == MM_MASS_REDISTRIBUTED) PetscCall(PetscSNPrintf(moments, sizeof(moments), "; M*'s moments equal M's to %.1e (largest node correction %.3g of its mass)%s", (double)ctx->op.mass_moment_mismatch, (double)ctx->op.mass_correction, unreachable));
+  if (MMFEHasMasslessDofs(ctx) && ctx->opt.mass_type == MM_MASS_REDISTRIBUTED) {
+    const char *which = "moments";
+    char        bounded[160] = "";
+    /* a coarse mesh: the bounded correction, and perhaps the inertia left (docs/method.md section 2) */
+    if (ctx->op.mass_moments < MMFENumRigidModes(dim)) {
+      which = "total mass and first moments";
+      PetscCall(PetscSNPrintf(bounded, sizeof(bounded), "; bounded correction, the inertia off by %.2g of the mass", (double)ctx->op.mass_inertia_mismatch));
+    } else if (ctx->op.mass_bounded) PetscCall(PetscStrncpy(bounded, "; bounded correction", sizeof(bounded)));
+    PetscCall(PetscSNPrintf(moments, sizeof(moments), "; M*'s %s equal M's to %.1e (largest node correction %.3g of its mass%s)%s", which, (double)ctx->op.mass_moment_mismatch, (double)ctx->op.mass_correction, bounded, unreachable));
+  }
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  mass: total of M %.10g; of M* along %s%s\n", (double)ctx->op.mass_M, star, moments));
   PetscFunctionReturn(0);
 }
