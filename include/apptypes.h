@@ -5,7 +5,8 @@
 
 typedef enum {
   MM_INITIAL_GIVEN,
-  MM_INITIAL_STATIC_SLIDING
+  MM_INITIAL_STATIC_SLIDING,
+  MM_INITIAL_STATIC /* the static contact problem under the loads at t = 0 (src/contact/interface/static.c) */
 } MMInitialState;
 PETSC_EXTERN const char *const MMInitialStates[];
 

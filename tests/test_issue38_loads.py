@@ -137,3 +137,63 @@ def test_bad_load_input_is_named(tmp_path, extra, messages):
     for m in messages:
         assert m in r.output, r.output[-1500:]
     assert "mmcontact error:" in r.output and "Traceback" not in r.output
+
+
+# ---------------------------------------------------------------- item 13: -initial_state static
+
+RHO_G, L_BAR, W_BAR = 1e-3, 1.0, 1.0 / 80  # options/bar_standing.opts: rho g, the bar's length and width
+
+
+@pytest.mark.parametrize("np_,extra", [(1, ()), (2, ()), (1, ("-mu", 0.3))])
+def test_static_start_stays_at_rest(tmp_path, np_, extra):
+    """options/bar_standing.opts: the B1 strip standing on its end on the plane y = 0 under gravity,
+    started static. The static state is an equilibrium of the scheme, so over the 100 steps the
+    kinetic energy stays below 1e-10 of the elastic energy, every velocity below 1e-10 of the velocity
+    scale sqrt(2 E / m), and the plane carries the weight rho g L W to 1e-10 at every step (measured:
+    2e-34 of the energy, 1e-12 of the velocity, 3e-13 of the weight), on 1 and 2 ranks and with
+    friction. The displacement is the 1D closed form u_y = -(rho g / E)(L y - y^2 / 2) up to the P1
+    strip's O(h^2) error: within (h / L)^2 = 1.6e-4 of the top's -rho g L^2 / (2 E) (measured 9.5e-6;
+    a start from u = 0 would be off by 100%)."""
+    r = run("bar_standing", tmp_path, *extra, np_=np_)
+    h = r.history
+    weight = RHO_G * L_BAR * W_BAR
+    E = h["elastic"].max()
+    V = np.sqrt(2 * E / (L_BAR * W_BAR))
+    assert "static contact problem at t = 0 solved" in r.output
+    assert np.abs(h["kinetic"]).max() <= 1e-10 * E
+    assert np.abs(h["force_normal"] - weight).max() <= 1e-10 * weight
+    assert np.abs(h["elastic"] - h["elastic"][0]).max() <= 1e-10 * E
+    assert h["balance_residual"].max() <= 1e-10
+    assert np.abs(h["vcm_y"]).max() <= 1e-10 * V
+    u_top = RHO_G * L_BAR ** 2 / 2
+    with r.fields() as f:
+        y = f["geometry/vertices"][:, 1]
+        u = f["vertex_fields/displacement_displacement"][:]
+        v = f["vertex_fields/velocity_displacement"][:]
+    assert u.shape[0] == 6  # the initial state and every 20th step
+    assert np.abs(v).max() <= 1e-10 * V
+    exact = -RHO_G * (L_BAR * y - y ** 2 / 2)
+    assert np.abs(u[:, :, 1] - exact).max() <= (1.0 / 80) ** 2 * u_top
+    assert abs(u[0, :, 1].min() + u_top) <= (1.0 / 80) ** 2 * u_top
+
+
+STATIC_BAD = [
+    # no -dirichlet: the bar can slide along the frictionless plane
+    (("-dirichlet", ""), ["-initial_state static: the static problem at t = 0 is not well posed", "1 rigid motion", "Hold it with -dirichlet"]),
+    # gravity pulling it off the plane: nothing holds it along y
+    (("-gravity", "0,1e-3"), ["not well posed", "rigid motions"]),
+    (("-u0_offset", "0,0.1"), ["-initial_state static computes u0", "drop -u0_offset"]),
+]
+
+
+@pytest.mark.parametrize("extra,messages", STATIC_BAD)
+def test_static_start_refuses_what_is_not_well_posed(tmp_path, extra, messages):
+    lines = [l for l in open(os.path.join(ROOT, "options", "bar_standing.opts")).read().splitlines() if not (extra[0] == "-dirichlet" and l.startswith("-dirichlet"))]
+    path = tmp_path / "bar.opts"
+    path.write_text("\n".join(lines) + "\n")
+    extra = extra if extra[0] != "-dirichlet" else ()
+    r = run(str(path), tmp_path, *extra, np_=0, check=False)
+    assert r.returncode == 64, r.output[-1500:]
+    for m in messages:
+        assert m in r.output, r.output[-1500:]
+    assert "MUMPS" not in r.output and "Traceback" not in r.output

@@ -8,7 +8,7 @@
 #include "damping.h"
 
 const char *const MMMassTypes[] = {"modified", "standard", "redistributed", "MMMassType", "MM_MASS_", NULL};
-const char *const MMInitialStates[] = {"given", "static_sliding", "MMInitialState", "MM_INITIAL_", NULL};
+const char *const MMInitialStates[] = {"given", "static_sliding", "static", "MMInitialState", "MM_INITIAL_", NULL};
 const char *const MMAssemblyTypes[] = {"closed_form", "fe", "MMAssemblyType", "MM_ASSEMBLY_", NULL};
 
 /* What a vector option's length must be, once the dimension d is known. */
@@ -567,7 +567,7 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OMEGA, "Initial rigid angular velocity (rad/s): a scalar in 2D, a vector in 3D", opt->omega));
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OMEGA_CENTER, "Centre of the initial rigid rotation, d entries", opt->omega_center));
   opt->initial_state = MM_INITIAL_GIVEN;
-  PetscCall(OptionsEnum(PetscOptionsObject, comm, "-initial_state", "Initial displacement: given (-u0_offset, -u0_gradient, contact dofs projected) or static_sliding (the body sliding along the tangential part of -v0 on the obstacle under its loads, with friction -mu; the normal part of -v0 is dropped)", MMInitialStates, (PetscEnum *)&opt->initial_state));
+  PetscCall(OptionsEnum(PetscOptionsObject, comm, "-initial_state", "Initial displacement: given (-u0_offset, -u0_gradient, contact dofs projected), static_sliding (the body sliding along the tangential part of -v0 on the obstacle under its loads, with friction -mu; the normal part of -v0 is dropped) or static (the static, frictionless contact problem K u0 = L(0) under the loads at t = 0, then the dynamics from u0 with -v0)", MMInitialStates, (PetscEnum *)&opt->initial_state));
   PetscCall(ProcessBodies(PetscOptionsObject, comm, opt));
 
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OBSTACLE_POINT, "A point of the rigid obstacle plane, d entries", opt->obstacle_point));
