@@ -32,6 +32,8 @@ MSH  += meshes/cantilever.msh
 MSH  += meshes/cube_drop.msh
 # Bodies of their own material (README "Bodies"): a strip of two glued halves, two separate bars
 MSH  += meshes/bimaterial.msh meshes/side_bars.msh
+# Pressures and concentrated forces (README "Loads in time"): a square plate with Physical Points
+MSH  += meshes/plate.msh
 # Bench meshes: the 2D D1 disk (115k dofs), the 3D D2 ball (H 0.045: 113k dofs, 3.8k contact nodes)
 # and the large D2 ball of `make bench-large` (H 0.021: about 1M dofs), generated when first needed;
 # the two balls of the 3d suite's two_body row at H 0.057 (116,520 dofs for both, as the D2 ball's 113k).
@@ -122,6 +124,8 @@ meshes/cube_groove.msh: meshes/cube_groove.geo
 meshes/cube_drop.msh: meshes/cube_drop.geo
 	gmsh -3 $< -o $@ -v 2
 meshes/bimaterial.msh: meshes/bimaterial.geo
+	gmsh -2 $< -o $@ -v 2
+meshes/plate.msh: meshes/plate.geo
 	gmsh -2 $< -o $@ -v 2
 meshes/side_bars.msh: meshes/side_bars.geo
 	gmsh -2 $< -o $@ -v 2

@@ -5,7 +5,8 @@
 
 typedef enum {
   MM_INITIAL_GIVEN,
-  MM_INITIAL_STATIC_SLIDING
+  MM_INITIAL_STATIC_SLIDING,
+  MM_INITIAL_STATIC /* the static contact problem under the loads at t = 0 (src/contact/interface/static.c) */
 } MMInitialState;
 PETSC_EXTERN const char *const MMInitialStates[];
 
@@ -55,6 +56,23 @@ typedef struct {
   MMAmplitudeOptions amplitude;
 } MMTraction;
 
+/* A pressure on a boundary group (README "Loads in time"): the traction -p n along each facet's
+ * outward normal n of the reference configuration (p > 0 pushes in), times an amplitude in time. */
+typedef struct {
+  char     *name;
+  PetscReal p;       /* force per unit area (per unit length in 2D, per unit thickness) */
+  PetscBool set;     /* -pressure_NAME_value was given */
+  MMAmplitudeOptions amplitude;
+} MMPressure;
+
+/* A concentrated force on each node of a Physical Point group, times an amplitude in time. */
+typedef struct {
+  char     *name;
+  PetscReal force[MM_MAX_DIM]; /* force (per unit thickness in 2D) on each node of the group */
+  PetscInt  nvalues; /* entries given to -point_force_NAME_value, -1 if not set */
+  MMAmplitudeOptions amplitude;
+} MMPointForce;
+
 /* A body of -bodies (docs/method.md section 2, "Bodies"): a physical group of cells with its own
  * material and initial velocity, each defaulting to the whole mesh's -E, -nu, -rho and -v0. */
 typedef struct {
@@ -88,6 +106,9 @@ typedef struct {
   PetscInt     n_dirichlet, n_traction;
   MMDirichlet *dirichlet;
   MMTraction  *traction;
+  PetscInt      n_pressure, n_point_force; /* -pressure and -point_force (src/fem/loads_nodal.c) */
+  MMPressure   *pressure;
+  MMPointForce *point_force;
   PetscReal    E, nu, rho;
   PetscInt     n_bodies;            /* -bodies, 0 without it: one body, the whole mesh, of -E -nu -rho -v0 */
   MMBodyOptions *bodies;

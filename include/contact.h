@@ -47,6 +47,7 @@ PETSC_EXTERN PetscErrorCode MMContactSolveCoulomb(MMCtx *, Vec, Vec, Vec, MMCont
 PETSC_EXTERN PetscErrorCode MMContactHasCoulombDofs(MMCtx *, PetscBool *);
 PETSC_EXTERN PetscErrorCode MMContactSolveCoulombDofs(MMCtx *, Vec, Vec, Vec, Vec, PetscReal, PetscInt *, PetscBool *);
 PETSC_EXTERN PetscErrorCode MMContactProjectInitial(MMCtx *, Vec);
+PETSC_EXTERN PetscErrorCode MMContactSolveStatic(MMCtx *, Vec, Vec);
 PETSC_EXTERN PetscErrorCode MMContactDiagnostics(MMCtx *, Vec, Vec, Vec, MMHistory *);
 PETSC_EXTERN PetscErrorCode MMContactCoulomb(MMCtx *, Vec, Vec, Vec, PetscReal *, PetscInt *, PetscInt *);
 PETSC_EXTERN PetscErrorCode MMContactBoundaryFields(MMCtx *, MMOutput *);

@@ -9,3 +9,6 @@ PETSC_EXTERN PetscErrorCode MMLoadsInsertDirichletVelocity(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMLoadsInsertBoundaryValues(MMCtx *, Vec, PetscReal);
 PETSC_EXTERN PetscErrorCode MMLoadsDestroy(MMLoads *);
 PETSC_EXTERN PetscReal      MMAmplitudeValue(const MMAmplitude *, PetscReal);
+/* the pressures' and point forces' nodal forces (src/fem/loads_nodal.c) */
+PETSC_EXTERN PetscErrorCode MMFEAddPressure(MMCtx *, PetscInt, Vec);
+PETSC_EXTERN PetscErrorCode MMFEAddPointForce(MMCtx *, PetscInt, Vec);

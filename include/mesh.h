@@ -12,6 +12,7 @@ typedef struct {
 } MMMeshFacets;
 PETSC_EXTERN PetscErrorCode MMMeshFacetsRead(MPI_Comm, DM, const char[], const PetscInt[], MMMeshFacets *, PetscBool *);
 PETSC_EXTERN PetscErrorCode MMMeshFacetsLabelVertices(MMMeshFacets *, DM);
+PETSC_EXTERN PetscErrorCode MMMeshPointGroupsRead(MPI_Comm, DM, const char[], const PetscInt[]);
 /* The cell labels that carry the facet groups through the distribution (src/mesh/facets.c) */
 #define MM_MESH_FACET_MARK "mmcontact facet cells of "
 

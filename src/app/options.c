@@ -8,7 +8,7 @@
 #include "damping.h"
 
 const char *const MMMassTypes[] = {"modified", "standard", "redistributed", "MMMassType", "MM_MASS_", NULL};
-const char *const MMInitialStates[] = {"given", "static_sliding", "MMInitialState", "MM_INITIAL_", NULL};
+const char *const MMInitialStates[] = {"given", "static_sliding", "static", "MMInitialState", "MM_INITIAL_", NULL};
 const char *const MMAssemblyTypes[] = {"closed_form", "fe", "MMAssemblyType", "MM_ASSEMBLY_", NULL};
 
 /* What a vector option's length must be, once the dimension d is known. */
@@ -270,6 +270,58 @@ static PetscErrorCode ProcessTraction(PetscOptionItems *PetscOptionsObject, MPI_
   PetscFunctionReturn(0);
 }
 
+/* -pressure NAME,...: each a boundary group with its pressure and amplitude (src/fem/loads_nodal.c). */
+static PetscErrorCode ProcessPressure(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt, const char list[])
+{
+  char   **names;
+  PetscInt n;
+
+  PetscFunctionBeginUser;
+  PetscCall(SplitNames(comm, "-pressure", list, &n, &names));
+  opt->n_pressure = n;
+  PetscCall(PetscCalloc1(n, &opt->pressure));
+  for (PetscInt b = 0; b < n; ++b) {
+    MMPressure *pr = &opt->pressure[b];
+    char        key[512];
+
+    PetscCall(PetscStrallocpy(names[b], &pr->name));
+    PetscCall(PetscSNPrintf(key, sizeof(key), "-pressure_%s_value", names[b]));
+    PetscCall(MMOptionsCheckValue(comm, key, MM_VALUE_REAL));
+    PetscCall(PetscOptionsReal(key, "Pressure p on this boundary (force per unit area, Pa; per unit length in 2D): the traction -p n along the facets' outward normal n, p > 0 pushing in, times its _amplitude", NULL, pr->p, &pr->p, &pr->set));
+    PetscCall(CheckFinite(comm, key, &pr->p, 1));
+    PetscCheck(pr->set, comm, PETSC_ERR_USER_INPUT, "-pressure lists %s but %s is not given: give the pressure (force per unit area, > 0 pushing in), or drop %s from -pressure", names[b], key, names[b]);
+    PetscCall(PetscSNPrintf(key, sizeof(key), "-pressure_%s", names[b]));
+    PetscCall(ProcessAmplitude(PetscOptionsObject, comm, key, &pr->amplitude));
+  }
+  PetscCall(PetscStrToArrayDestroy((int)n, names));
+  PetscFunctionReturn(0);
+}
+
+/* -point_force NAME,...: each a Physical Point group with its nodal force and amplitude. */
+static PetscErrorCode ProcessPointForce(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt, const char list[])
+{
+  char   **names;
+  PetscInt n;
+
+  PetscFunctionBeginUser;
+  PetscCall(SplitNames(comm, "-point_force", list, &n, &names));
+  opt->n_point_force = n;
+  PetscCall(PetscCalloc1(n, &opt->point_force));
+  for (PetscInt b = 0; b < n; ++b) {
+    MMPointForce *pf = &opt->point_force[b];
+    char          key[512];
+
+    PetscCall(PetscStrallocpy(names[b], &pf->name));
+    PetscCall(PetscSNPrintf(key, sizeof(key), "-point_force_%s_value", names[b]));
+    PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "Force on each node of this Physical Point group (N; per unit thickness in 2D), d entries, times its _amplitude", MM_MAX_DIM, pf->force, &pf->nvalues));
+    PetscCheck(pf->nvalues >= 0, comm, PETSC_ERR_USER_INPUT, "-point_force lists %s but %s is not given: give the force fx,fy[,fz] on each node of the group, or drop %s from -point_force", names[b], key, names[b]);
+    PetscCall(PetscSNPrintf(key, sizeof(key), "-point_force_%s", names[b]));
+    PetscCall(ProcessAmplitude(PetscOptionsObject, comm, key, &pf->amplitude));
+  }
+  PetscCall(PetscStrToArrayDestroy((int)n, names));
+  PetscFunctionReturn(0);
+}
+
 /* One named obstacle of -obstacles: its type and every shape parameter (each type checks the ones
  * it needs, and refuses the others, in MMObstacleCheck once the dimension is known). */
 static PetscErrorCode ProcessObstacle(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt, MMObstacle *ob)
@@ -493,6 +545,12 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   list[0] = 0;
   PetscCall(OptionsString(PetscOptionsObject, comm, "-traction", "Comma-separated physical names of traction (Neumann) boundaries, boundary faces only; each takes -traction_NAME_value and -traction_NAME_amplitude", list, sizeof(list), NULL));
   PetscCall(ProcessTraction(PetscOptionsObject, comm, opt, list));
+  list[0] = 0;
+  PetscCall(OptionsString(PetscOptionsObject, comm, "-pressure", "Comma-separated physical names of boundary groups under a pressure (a Physical Curve in 2D, Surface in 3D); each takes -pressure_NAME_value p and -pressure_NAME_amplitude", list, sizeof(list), NULL));
+  PetscCall(ProcessPressure(PetscOptionsObject, comm, opt, list));
+  list[0] = 0;
+  PetscCall(OptionsString(PetscOptionsObject, comm, "-point_force", "Comma-separated physical names of Physical Point groups carrying a concentrated force on each of their nodes; each takes -point_force_NAME_value and -point_force_NAME_amplitude", list, sizeof(list), NULL));
+  PetscCall(ProcessPointForce(PetscOptionsObject, comm, opt, list));
 
   opt->E = 1.0;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-E", "Young's modulus (Pa), > 0", &opt->E));
@@ -509,7 +567,7 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OMEGA, "Initial rigid angular velocity (rad/s): a scalar in 2D, a vector in 3D", opt->omega));
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OMEGA_CENTER, "Centre of the initial rigid rotation, d entries", opt->omega_center));
   opt->initial_state = MM_INITIAL_GIVEN;
-  PetscCall(OptionsEnum(PetscOptionsObject, comm, "-initial_state", "Initial displacement: given (-u0_offset, -u0_gradient, contact dofs projected) or static_sliding (the body sliding along the tangential part of -v0 on the obstacle under its loads, with friction -mu; the normal part of -v0 is dropped)", MMInitialStates, (PetscEnum *)&opt->initial_state));
+  PetscCall(OptionsEnum(PetscOptionsObject, comm, "-initial_state", "Initial displacement: given (-u0_offset, -u0_gradient, contact dofs projected), static_sliding (the body sliding along the tangential part of -v0 on the obstacle under its loads, with friction -mu; the normal part of -v0 is dropped) or static (the static, frictionless contact problem K u0 = L(0) under the loads at t = 0, then the dynamics from u0 with -v0)", MMInitialStates, (PetscEnum *)&opt->initial_state));
   PetscCall(ProcessBodies(PetscOptionsObject, comm, opt));
 
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OBSTACLE_POINT, "A point of the rigid obstacle plane, d entries", opt->obstacle_point));
@@ -662,6 +720,10 @@ PetscErrorCode MMOptionsCheckDimension(MPI_Comm comm, MMOptions *opt, PetscInt d
     const MMTraction *tr = &opt->traction[b];
     PetscCheck(tr->nvalues < 0 || tr->nvalues == dim, comm, PETSC_ERR_USER_INPUT, "-traction_%s_value has %" PetscInt_FMT " entries; the mesh is %" PetscInt_FMT "D, so it needs exactly %" PetscInt_FMT, tr->name, tr->nvalues, dim, dim);
   }
+  for (PetscInt b = 0; b < opt->n_point_force; ++b) {
+    const MMPointForce *pf = &opt->point_force[b];
+    PetscCheck(pf->nvalues == dim, comm, PETSC_ERR_USER_INPUT, "-point_force_%s_value has %" PetscInt_FMT " entries; the mesh is %" PetscInt_FMT "D, so it needs exactly %" PetscInt_FMT, pf->name, pf->nvalues, dim, dim);
+  }
   PetscFunctionReturn(0);
 }
 
@@ -670,6 +732,10 @@ PetscErrorCode MMOptionsDestroy(MMOptions *opt)
   PetscFunctionBeginUser;
   for (PetscInt b = 0; b < opt->n_dirichlet; ++b) PetscCall(PetscFree(opt->dirichlet[b].name));
   for (PetscInt b = 0; b < opt->n_traction; ++b) PetscCall(PetscFree(opt->traction[b].name));
+  for (PetscInt b = 0; b < opt->n_pressure; ++b) PetscCall(PetscFree(opt->pressure[b].name));
+  for (PetscInt b = 0; b < opt->n_point_force; ++b) PetscCall(PetscFree(opt->point_force[b].name));
+  PetscCall(PetscFree(opt->pressure));
+  PetscCall(PetscFree(opt->point_force));
   for (PetscInt b = 0; b < opt->n_bodies; ++b) PetscCall(PetscFree(opt->bodies[b].name));
   PetscCall(PetscFree(opt->bodies));
   PetscCall(PetscFree(opt->dirichlet));

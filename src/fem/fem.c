@@ -273,17 +273,19 @@ PetscErrorCode MMFEAddTraction(MMCtx *ctx, PetscInt b, Vec floc)
   PetscFunctionReturn(0);
 }
 
-/* Nodal loads of the tractions at amplitude 1. */
+/* Nodal loads of the tractions, pressures and point forces at amplitude 1. */
 static PetscErrorCode AddTractions(MMCtx *ctx, Vec Lcart)
 {
   DM  dm = ctx->op.dm;
   Vec floc;
 
   PetscFunctionBeginUser;
-  if (!ctx->opt.n_traction) PetscFunctionReturn(0);
+  if (!ctx->opt.n_traction && !ctx->opt.n_pressure && !ctx->opt.n_point_force) PetscFunctionReturn(0);
   PetscCall(DMGetLocalVector(dm, &floc));
   PetscCall(VecZeroEntries(floc));
   for (PetscInt b = 0; b < ctx->opt.n_traction; ++b) PetscCall(MMFEAddTraction(ctx, b, floc));
+  for (PetscInt b = 0; b < ctx->opt.n_pressure; ++b) PetscCall(MMFEAddPressure(ctx, b, floc));
+  for (PetscInt b = 0; b < ctx->opt.n_point_force; ++b) PetscCall(MMFEAddPointForce(ctx, b, floc));
   /* traction loads on Dirichlet-constrained components are dropped, as the reaction absorbs them */
   PetscCall(DMLocalToGlobal(dm, floc, ADD_VALUES, Lcart));
   PetscCall(DMRestoreLocalVector(dm, &floc));

@@ -1,7 +1,9 @@
 /* Loads in time, moving Dirichlet boundaries and the support reactions (docs/method.md section 10).
  *
  * The load is a sum of parts, each a fixed vector times an amplitude in time, L(t) = sum_k a_k(t) L_k:
- * gravity is part 0, traction b is part 1 + b. The parts are assembled once; a step only sums them.
+ * gravity is part 0, then the tractions, the pressures and the point forces, in the order of
+ * -traction, -pressure and -point_force (PartName). The parts are assembled once; a step only sums
+ * them.
  * A Dirichlet boundary moves as u_D(t) = value + velocity t. Its reaction, the force the support
  * exerts on the body, is R_D = (M* a + K u - L)_D on the constrained dofs: it needs the rows of K and
  * M on those dofs, which the global operators (free dofs only) do not hold, so they are assembled
@@ -219,7 +221,8 @@ static PetscErrorCode AmplitudeRegisterAll(void)
   PetscFunctionReturn(0);
 }
 
-/* The amplitude of option (the load's option prefix, -gravity or -traction_NAME) from its kind. */
+/* The amplitude of option (the load's option prefix: -gravity, -traction_NAME, -pressure_NAME,
+ * -point_force_NAME) from its kind. */
 static PetscErrorCode AmplitudeCreate(MPI_Comm comm, const char option[], const MMAmplitudeOptions *o, MMAmplitude *a)
 {
   MMAmplitudeCreate create;
@@ -237,23 +240,42 @@ PetscReal MMAmplitudeValue(const MMAmplitude *a, PetscReal t)
   return a->value(a, t);
 }
 
-/* -traction_NAME_amplitude... for a NAME that -traction does not list would be an unused option;
- * say what it is and how to fix it. */
-static PetscErrorCode CheckAmplitudeNames(MPI_Comm comm, const MMOptions *opt)
+/* OPTION_NAME_amplitude... for a NAME that OPTION (-traction, -pressure, -point_force) does not
+ * list would be an unused option; say what it is and how to fix it. */
+static PetscErrorCode CheckAmplitudeNamesOf(MPI_Comm comm, const char option[], const char what[], PetscInt n, const char *const names[])
 {
-  char *all, *p;
+  char       *all, *p, prefix[64];
+  const size_t plen = strlen(option) + 1;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "%s_", option));
   PetscCall(PetscOptionsGetAll(NULL, &all));
-  for (p = strstr(all, "-traction_"); p; p = strstr(p + 1, "-traction_")) {
-    const char *name = p + strlen("-traction_"), *amp = strstr(name, "_amplitude"), *sp = strchr(name, ' ');
+  for (p = strstr(all, prefix); p; p = strstr(p + 1, prefix)) {
+    const char *name = p + plen, *amp = strstr(name, "_amplitude"), *sp = strchr(name, ' ');
     PetscBool   known = PETSC_FALSE;
     if (p != all && p[-1] != ' ') continue;
     if (!amp || (sp && amp > sp)) continue;
-    for (PetscInt b = 0; b < opt->n_traction; ++b) known = (PetscBool)(known || (strlen(opt->traction[b].name) == (size_t)(amp - name) && !strncmp(opt->traction[b].name, name, amp - name)));
-    PetscCheck(known, comm, PETSC_ERR_USER_INPUT, "%.*s: \"%.*s\" is not a traction boundary (-traction lists %s): add it to -traction with its -traction_%.*s_value, or correct the name", (int)(sp ? sp - p : (ptrdiff_t)strlen(p)), p, (int)(amp - name), name, opt->n_traction ? opt->traction[0].name : "none", (int)(amp - name), name);
+    for (PetscInt b = 0; b < n; ++b) known = (PetscBool)(known || (strlen(names[b]) == (size_t)(amp - name) && !strncmp(names[b], name, amp - name)));
+    PetscCheck(known, comm, PETSC_ERR_USER_INPUT, "%.*s: \"%.*s\" is not a %s (%s lists %s): add it to %s with its %s%.*s_value, or correct the name", (int)(sp ? sp - p : (ptrdiff_t)strlen(p)), p, (int)(amp - name), name, what, option, n ? names[0] : "none", option, prefix, (int)(amp - name), name);
   }
   PetscCall(PetscFree(all));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CheckAmplitudeNames(MPI_Comm comm, const MMOptions *opt)
+{
+  const PetscInt n = PetscMax(PetscMax(opt->n_traction, opt->n_pressure), opt->n_point_force);
+  const char   **names;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(n + 1, &names));
+  for (PetscInt b = 0; b < opt->n_traction; ++b) names[b] = opt->traction[b].name;
+  PetscCall(CheckAmplitudeNamesOf(comm, "-traction", "traction boundary", opt->n_traction, names));
+  for (PetscInt b = 0; b < opt->n_pressure; ++b) names[b] = opt->pressure[b].name;
+  PetscCall(CheckAmplitudeNamesOf(comm, "-pressure", "pressure boundary", opt->n_pressure, names));
+  for (PetscInt b = 0; b < opt->n_point_force; ++b) names[b] = opt->point_force[b].name;
+  PetscCall(CheckAmplitudeNamesOf(comm, "-point_force", "point force group", opt->n_point_force, names));
+  PetscCall(PetscFree(names));
   PetscFunctionReturn(0);
 }
 
@@ -433,7 +455,8 @@ static PetscErrorCode WithInertia(MMCtx *ctx, Vec x, Vec y)
 /* ---------------------------------------------------------------- the load parts */
 
 /* Part k at amplitude 1 on every dof (dm_full, Cartesian) into full: k = 0 gravity, m_i g at each
- * vertex (the lumped mass is exact for a constant g), k = 1 + b traction b. */
+ * vertex (the lumped mass is exact for a constant g), then the tractions, pressures and point forces
+ * (PartName). */
 static PetscErrorCode LoadPartFull(MMCtx *ctx, PetscInt k, Vec full)
 {
   DM       dm = ctx->op.dm;
@@ -466,10 +489,36 @@ static PetscErrorCode LoadPartFull(MMCtx *ctx, PetscInt k, Vec full)
     /* the vertex masses are summed over ranks already */
     PetscCall(DMLocalToGlobal(ctx->loads.dm_full, floc, INSERT_VALUES, full));
   } else {
-    PetscCall(MMFEAddTraction(ctx, k - 1, floc));
+    const PetscInt nt = ctx->opt.n_traction, np = ctx->opt.n_pressure;
+    if (k <= nt) PetscCall(MMFEAddTraction(ctx, k - 1, floc));
+    else if (k <= nt + np) PetscCall(MMFEAddPressure(ctx, k - 1 - nt, floc));
+    else PetscCall(MMFEAddPointForce(ctx, k - 1 - nt - np, floc));
     PetscCall(DMLocalToGlobal(ctx->loads.dm_full, floc, ADD_VALUES, full));
   }
   PetscCall(DMRestoreLocalVector(dm, &floc));
+  PetscFunctionReturn(0);
+}
+
+/* Part k's option prefix (-gravity, -traction_NAME, -pressure_NAME, -point_force_NAME) and its
+ * amplitude's options. */
+static PetscErrorCode PartName(MMOptions *opt, PetscInt k, char option[], size_t len, MMAmplitudeOptions **amp)
+{
+  const PetscInt nt = opt->n_traction, np = opt->n_pressure;
+
+  PetscFunctionBeginUser;
+  if (k == 0) {
+    PetscCall(PetscStrncpy(option, "-gravity", len));
+    *amp = &opt->gravity_amplitude;
+  } else if (k <= nt) {
+    PetscCall(PetscSNPrintf(option, len, "-traction_%s", opt->traction[k - 1].name));
+    *amp = &opt->traction[k - 1].amplitude;
+  } else if (k <= nt + np) {
+    PetscCall(PetscSNPrintf(option, len, "-pressure_%s", opt->pressure[k - 1 - nt].name));
+    *amp = &opt->pressure[k - 1 - nt].amplitude;
+  } else {
+    PetscCall(PetscSNPrintf(option, len, "-point_force_%s", opt->point_force[k - 1 - nt - np].name));
+    *amp = &opt->point_force[k - 1 - nt - np].amplitude;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -479,16 +528,16 @@ static PetscErrorCode CreateParts(MMCtx *ctx)
   MPI_Comm comm = PetscObjectComm((PetscObject)ctx->op.dm);
 
   PetscFunctionBeginUser;
-  ld->nparts = 1 + ctx->opt.n_traction;
+  ld->nparts = 1 + ctx->opt.n_traction + ctx->opt.n_pressure + ctx->opt.n_point_force;
   PetscCall(PetscCalloc1(ld->nparts, &ld->amp));
-  PetscCall(AmplitudeCreate(comm, "-gravity", &ctx->opt.gravity_amplitude, &ld->amp[0]));
-  for (PetscInt b = 0; b < ctx->opt.n_traction; ++b) {
-    char option[300];
-    PetscCall(PetscSNPrintf(option, sizeof(option), "-traction_%s", ctx->opt.traction[b].name));
-    PetscCall(AmplitudeCreate(comm, option, &ctx->opt.traction[b].amplitude, &ld->amp[1 + b]));
+  for (PetscInt k = 0; k < ld->nparts; ++k) {
+    char                option[300];
+    MMAmplitudeOptions *amp = NULL;
+    PetscCall(PartName(&ctx->opt, k, option, sizeof(option), &amp));
+    PetscCall(AmplitudeCreate(comm, option, amp, &ld->amp[k]));
   }
   for (PetscInt k = 0; k < ld->nparts; ++k) ld->in_time = (PetscBool)(ld->in_time || !ld->amp[k].constant);
-  PetscCheck(!ld->in_time || ctx->opt.initial_state != MM_INITIAL_STATIC_SLIDING, comm, PETSC_ERR_USER_INPUT, "-initial_state static_sliding balances the loads of t = 0 for all time: it needs constant loads. Drop the -gravity_amplitude and -traction_NAME_amplitude options, or use -initial_state given");
+  PetscCheck(!ld->in_time || ctx->opt.initial_state != MM_INITIAL_STATIC_SLIDING, comm, PETSC_ERR_USER_INPUT, "-initial_state static_sliding balances the loads of t = 0 for all time: it needs constant loads. Drop the -gravity_amplitude, -traction_NAME_amplitude, -pressure_NAME_amplitude and -point_force_NAME_amplitude options, or use -initial_state given");
   if (!ld->in_time && !ctx->opt.n_dirichlet) PetscFunctionReturn(0);
   if (ld->in_time) {
     PetscCall(PetscMalloc1(ld->nparts, &ld->part));

@@ -437,6 +437,8 @@ PetscErrorCode MMMeshLoad(MPI_Comm comm, MMOptions *opt, DM *dm, PetscInt **vert
   /* before the orientation check, which would call a cell with a NaN vertex inverted */
   PetscCall(MMMeshFileNodes(comm, *dm, opt->mesh_file, vertex_file, &vtag));
   if (!failed) PetscCall(MMMeshFacetsRead(comm, *dm, opt->mesh_file, vtag, &facets, &facets_read));
+  /* the Physical Points (-point_force), labelled on the serial mesh: the distribution carries them */
+  if (!failed && facets_read) PetscCall(MMMeshPointGroupsRead(comm, *dm, opt->mesh_file, vtag));
   PetscCall(PetscFree(vtag));
   if (!failed && !facets_read) {
     /* a file read here cannot be (binary): PETSc's reader labels the facets, interpolating on rank 0.

@@ -512,7 +512,11 @@ PetscErrorCode MMNewmarkInitialState(MMCtx *ctx)
   PetscCall(MMDampingSetUp(ctx));
   PetscCall(VecZeroEntries(s->react));
   if (ctx->opt.initial_state == MM_INITIAL_STATIC_SLIDING) PetscCall(MMInitialStaticSliding(ctx, s->u, s->react));
-  else {
+  else if (ctx->opt.initial_state == MM_INITIAL_STATIC) {
+    /* u0 is the static solution: an affine u0 given with it would be ignored */
+    PetscCheck(ctx->opt.vec_count[MM_V_U0_OFFSET] < 0 && ctx->opt.vec_count[MM_V_U0_GRADIENT] < 0, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "-initial_state static computes u0 from the loads at t = 0: drop -u0_offset and -u0_gradient, or use -initial_state given");
+    PetscCall(MMContactSolveStatic(ctx, s->u, s->react));
+  } else {
     PetscCall(ProjectInitialField(ctx, InitialDisplacement, s->u));
     PetscCall(MMContactProjectInitial(ctx, s->u));
   }
