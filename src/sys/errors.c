@@ -104,6 +104,15 @@ static void PrintAndExit(MPI_Comm comm, const char mess[], int status)
     if (together && wrank == 0) Print(mess, -1);
     if (!together) Print(mess, wrank);
   }
+  /* After a failed write the ranks stop at different points of HDF5's calls, with its files open:
+   * MPI_Finalize would have HDF5 close them, collectively, from those different points, and the ranks
+   * wait for each other forever (under a full disk, one rank in H5AC_flush's barrier, the other in
+   * H5FD_truncate's broadcast, called from H5F_term_package; docs/full_disk.md). What is on
+   * disk is what a kill leaves, consistent by design: the job ends without closing them. */
+  if (together && status == MM_EXIT_IO) {
+    if (at_abort) at_abort();
+    _exit(status);
+  }
   if (together) {
     (void)MPI_Finalize();
     exit(status);
