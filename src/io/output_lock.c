@@ -10,7 +10,7 @@
  * of another host, is respected.
  *
  * A second run is refused before it touches anything in the directory. The run that takes the lock
- * owns the directory: it first removes what a killed run left there and no run reads (below), and
+ * owns the directory: it first removes the lock files of Open MPI that a killed run left (below), and
  * at its exit removes the directory it created if nothing was written into it (a refused input,
  * a refused -restart). */
 #include <dirent.h>
@@ -116,19 +116,15 @@ static PetscErrorCode TakeLock(const char dir[], MMFileStatus *st, PetscBool *he
   PetscFunctionReturn(0);
 }
 
-/* The files a killed run leaves that no run reads, in the directory whose lock is held:
- * - NAME-JOBID-PID.lock, the lock of Open MPI's sharedfp/lockedfile component beside each HDF5
- *   file it had open (src/sys/mpi_env.c; an earlier version, or a user's OMPI_MCA_io=ompio);
- * - the temporary files written whole and then renamed (solution.xmf.tmp, checkpoint.h5.tmp,
- *   checkpoint_snapshots.h5.tmp): a kill in between leaves one, never read, part written. */
+/* What a killed run leaves that no run reads, in the directory whose lock is held: NAME-JOBID-PID.lock,
+ * the lock of Open MPI's sharedfp/lockedfile component beside each HDF5 file it had open
+ * (src/sys/mpi_env.c: an earlier version of mmcontact, or a user's OMPI_MCA_io=ompio). Its name is
+ * new each run, so it would stay for good. */
 static PetscBool IsDebris(const char n[])
 {
-  static const char *const h5[]  = {"solution.h5-", "checkpoint.h5-", "checkpoint.h5.tmp-", "checkpoint_snapshots.h5-"};
-  static const char *const tmp[] = {"solution.xmf.tmp", "checkpoint.h5.tmp", "checkpoint_snapshots.h5.tmp"};
-  const size_t             len   = strlen(n);
+  static const char *const h5[] = {"solution.h5-", "checkpoint.h5-", "checkpoint.h5.tmp-", "checkpoint_snapshots.h5-"};
+  const size_t             len  = strlen(n);
 
-  for (size_t i = 0; i < sizeof(tmp) / sizeof(tmp[0]); ++i)
-    if (!strcmp(n, tmp[i])) return PETSC_TRUE;
   if (len < 5 || strcmp(n + len - 5, ".lock")) return PETSC_FALSE;
   for (size_t i = 0; i < sizeof(h5) / sizeof(h5[0]); ++i) {
     const size_t k = strlen(h5[i]);
