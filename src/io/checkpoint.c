@@ -13,6 +13,7 @@
 #include "damping.h"
 #include "loads.h"
 #include "material.h"
+#include "outputimpl.h"
 
 #define MM_CKPT_FILE "checkpoint.h5"
 #define MM_CKPT_TMP  ".tmp" /* written whole, then renamed over the last good one */
@@ -288,26 +289,16 @@ static PetscErrorCode CountVertices(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
-/* The state after the current step, to OUTPUT_DIR/checkpoint.h5: written whole to a temporary file
- * and renamed over the last one, so that a crash while writing leaves the last good checkpoint. */
-PetscErrorCode MMCheckpointWrite(MMCtx *ctx, TS ts)
+/* The checkpoint's datasets into the file tmp. A failed write returns its error, for the caller's
+ * MMOutputHDF5End to name the file. */
+static PetscErrorCode WriteCheckpointFile(MMCtx *ctx, const char tmp[], const PetscReal run[])
 {
   MPI_Comm    comm = PetscObjectComm((PetscObject)ctx->op.dm);
   MMState    *s    = &ctx->state;
   PetscViewer viewer;
-  PetscReal   run[MM_RUN_NUM];
-  char        name[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN];
   Vec         rv, tv;
-  PetscMPIInt rank;
-  int         err = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(ctx->log.checkpoint, 0, 0, 0, 0));
-  if (!ctx->ckpt.nv_global) PetscCall(CountVertices(ctx));
-  PetscCall(PetscSNPrintf(name, sizeof(name), "%s/%s", ctx->opt.output_dir, MM_CKPT_FILE));
-  PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s%s", name, MM_CKPT_TMP));
-  PetscCall(RunRecord(ctx, ts, run));
-  PetscCall(MMOutputCopySnapshots(ctx)); /* before the checkpoint that counts on it */
   PetscCall(PetscViewerHDF5Open(comm, tmp, FILE_MODE_WRITE, &viewer));
   PetscCall(RootVector(comm, "run", MM_RUN_NUM, run, &rv));
   PetscCall(VecView(rv, viewer));
@@ -322,6 +313,31 @@ PetscErrorCode MMCheckpointWrite(MMCtx *ctx, TS ts)
   PetscCall(ViewPacked(ctx, viewer, "react", ctx->op.dim, s->react, PETSC_FALSE));
   PetscCall(ViewPacked(ctx, viewer, "contact", MM_CKPT_NODE, NULL, PETSC_TRUE));
   PetscCall(PetscViewerDestroy(&viewer));
+  PetscFunctionReturn(0);
+}
+
+/* The state after the current step, to OUTPUT_DIR/checkpoint.h5: written whole to a temporary file
+ * and renamed over the last one, so that a crash while writing leaves the last good checkpoint. A
+ * failed write (a full disk) stops the run naming the temporary file, exit status 74. */
+PetscErrorCode MMCheckpointWrite(MMCtx *ctx, TS ts)
+{
+  MPI_Comm       comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  PetscReal      run[MM_RUN_NUM];
+  char           name[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN];
+  PetscMPIInt    rank;
+  int            err = 0;
+  PetscErrorCode ierr;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ctx->log.checkpoint, 0, 0, 0, 0));
+  if (!ctx->ckpt.nv_global) PetscCall(CountVertices(ctx));
+  PetscCall(PetscSNPrintf(name, sizeof(name), "%s/%s", ctx->opt.output_dir, MM_CKPT_FILE));
+  PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s%s", name, MM_CKPT_TMP));
+  PetscCall(RunRecord(ctx, ts, run));
+  PetscCall(MMOutputCopySnapshots(ctx)); /* before the checkpoint that counts on it */
+  PetscCall(MMOutputHDF5Begin());
+  ierr = WriteCheckpointFile(ctx, tmp, run);
+  PetscCall(MMOutputHDF5End(ierr, "write", tmp));
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (!rank && rename(tmp, name)) err = errno;
   PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));

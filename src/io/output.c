@@ -335,6 +335,7 @@ PetscErrorCode MMOutputWriteIndexFile(MMCtx *ctx)
       } else if (fclose(f)) PetscCall(MMOutputFailed(&st, "close %s", tmp));
       else if (rename(tmp, o->xmf_name)) PetscCall(MMOutputFailed(&st, "rename %s to %s", tmp, o->xmf_name));
     }
+    if (st.err) (void)unlink(tmp); /* part of an index, or none (a full disk): of no use to anyone */
   }
   PetscCall(MMOutputCheckRank0(&st));
   o->n_indexed = o->n_written;

@@ -9,7 +9,11 @@
  * flock (some network file systems), a lock file naming a live process of this host, or any process
  * of another host, is respected.
  *
- * A second run is refused before it touches anything in the directory. */
+ * A second run is refused before it touches anything in the directory. The run that takes the lock
+ * owns the directory: it first removes the lock files of Open MPI that a killed run left (below), and
+ * at its exit removes the directory it created if nothing was written into it (a refused input,
+ * a refused -restart). */
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <signal.h>
@@ -26,6 +30,8 @@
 
 static int  lock_fd = -1; /* rank 0: the held lock file */
 static char lock_path[PETSC_MAX_PATH_LEN];
+static char made_dir[PETSC_MAX_PATH_LEN]; /* rank 0: the output directory, if this run created it */
+static size_t made_from;                  /* the length of its first component this run created */
 
 /* The holder named in an existing lock file: "host pid". */
 static void ReadHolder(int fd, char host[], size_t hlen, long *pid)
@@ -110,6 +116,73 @@ static PetscErrorCode TakeLock(const char dir[], MMFileStatus *st, PetscBool *he
   PetscFunctionReturn(0);
 }
 
+/* What a killed run leaves that no run reads, in the directory whose lock is held: NAME-JOBID-PID.lock,
+ * the lock of Open MPI's sharedfp/lockedfile component beside each HDF5 file it had open
+ * (src/sys/mpi_env.c: an earlier version of mmcontact, or a user's OMPI_MCA_io=ompio). Its name is
+ * new each run, so it would stay for good. */
+static PetscBool IsDebris(const char n[])
+{
+  static const char *const h5[] = {"solution.h5-", "checkpoint.h5-", "checkpoint.h5.tmp-", "checkpoint_snapshots.h5-"};
+  const size_t             len  = strlen(n);
+
+  if (len < 5 || strcmp(n + len - 5, ".lock")) return PETSC_FALSE;
+  for (size_t i = 0; i < sizeof(h5) / sizeof(h5[0]); ++i) {
+    const size_t k = strlen(h5[i]);
+    unsigned     jobid;
+    int          pid, used = 0;
+
+    if (strncmp(n, h5[i], k)) continue;
+    if (sscanf(n + k, "%u-%d.lock%n", &jobid, &pid, &used) == 2 && (size_t)used == len - k) return PETSC_TRUE;
+  }
+  return PETSC_FALSE;
+}
+
+/* rank 0, the lock held: removes the debris of a killed run */
+static void RemoveDebris(const char dir[])
+{
+  DIR           *d = opendir(dir);
+  struct dirent *e;
+  char           path[PETSC_MAX_PATH_LEN];
+
+  if (!d) return;
+  while ((e = readdir(d)))
+    if (IsDebris(e->d_name) && snprintf(path, sizeof(path), "%s/%s", dir, e->d_name) < (int)sizeof(path)) (void)unlink(path);
+  (void)closedir(d);
+}
+
+/* The length of the first component of path that does not exist yet, 0 if it exists whole. */
+static size_t FirstMissing(const char path[])
+{
+  char        p[PETSC_MAX_PATH_LEN];
+  size_t      len;
+  struct stat s;
+
+  if (!stat(path, &s)) return 0;
+  (void)snprintf(p, sizeof(p), "%s", path);
+  len = strlen(p);
+  for (size_t i = 1; i <= len; ++i) {
+    if (p[i] != '/' && p[i] != 0) continue;
+    p[i] = 0;
+    if (stat(p, &s)) return i;
+    p[i] = '/';
+  }
+  return len;
+}
+
+/* The directories this run created, deepest first, each if empty (rmdir removes no other). */
+static void RemoveMadeDirectories(void)
+{
+  size_t len = strlen(made_dir);
+
+  while (made_from && len >= made_from) {
+    made_dir[len] = 0;
+    if (rmdir(made_dir) && errno != ENOENT) break; /* not empty: the run wrote into it */
+    while (len > 0 && made_dir[len - 1] != '/') --len; /* up to the parent */
+    while (len > 0 && made_dir[len - 1] == '/') --len;
+  }
+  made_from = 0;
+}
+
 /* At exit, including the exit of a refused input after the lock was taken. */
 static void ReleaseAtExit(void)
 {
@@ -117,6 +190,7 @@ static void ReleaseAtExit(void)
   (void)unlink(lock_path);
   (void)close(lock_fd);
   lock_fd = -1;
+  RemoveMadeDirectories();
 }
 
 /* Early in set-up, before anything in the directory is read or moved: creates the directory and
@@ -130,8 +204,12 @@ PetscErrorCode MMOutputLock(const char dir[])
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   if (rank == 0) {
+    made_from = FirstMissing(dir);
+    PetscCall(PetscStrncpy(made_dir, dir, sizeof(made_dir)));
     PetscCall(MMOutputMakeDirectories(dir, &st));
     if (!st.err) PetscCall(TakeLock(dir, &st, &other));
+    if (lock_fd < 0) made_from = 0; /* not ours to remove */
+    else RemoveDebris(dir);
     if (lock_fd >= 0) {
       PetscCheck(!atexit(ReleaseAtExit), PETSC_COMM_SELF, PETSC_ERR_SYS, "Could not register the lock's release");
       PetscCall(MMErrorsAtAbort(ReleaseAtExit));

@@ -76,6 +76,21 @@ static void Print(const char mess[], int rank)
   (void)fflush(stderr);
 }
 
+/* After a failed write the ranks stop at different points of HDF5's calls, with its files open:
+ * MPI_Finalize would have HDF5 close them, collectively, from those different points, and the ranks
+ * wait for each other forever (under a full disk, one rank in H5AC_flush's barrier, the other in
+ * H5FD_truncate's broadcast, called from H5F_term_package; docs/full_disk.md); on 1 rank the close
+ * of a file whose creation failed crashed (SIGSEGV). What is on disk is what a kill leaves,
+ * consistent by design: the job ends without closing the files, and without atexit's handlers,
+ * HDF5's among them. */
+static void EndWithFilesOpen(int status)
+{
+  (void)fflush(stdout);
+  (void)fflush(stderr);
+  if (at_abort) at_abort();
+  _exit(status);
+}
+
 /* Prints the message and ends every rank with the status, the job ending normally when every rank
  * stops together: an error raised on all ranks (PetscCheck on a collective condition, or PETSc's
  * own check of an option, which each rank raises alone on PETSC_COMM_SELF) is printed once, by rank
@@ -93,6 +108,7 @@ static void PrintAndExit(MPI_Comm comm, const char mess[], int status)
   (void)fflush(stdout);
   if (wsize == 1) {
     Print(mess, -1);
+    if (status == MM_EXIT_IO) EndWithFilesOpen(status);
     (void)MPI_Finalize();
     exit(status);
   }
@@ -104,6 +120,7 @@ static void PrintAndExit(MPI_Comm comm, const char mess[], int status)
     if (together && wrank == 0) Print(mess, -1);
     if (!together) Print(mess, wrank);
   }
+  if (together && status == MM_EXIT_IO) EndWithFilesOpen(status);
   if (together) {
     (void)MPI_Finalize();
     exit(status);
