@@ -199,11 +199,13 @@ static PetscErrorCode ReportPlan(MMCtx *ctx, TS ts, PetscReal *step0, PetscReal 
   PetscFunctionReturn(0);
 }
 
-/* Each node's initial acceleration with the standard lumped mass, a = M_L^{-1} (L - lift - K u - C v
- * + R), taken in Cartesian components (where M_L is diagonal) and brought back to the w-frame. The
- * modified mass leaves the contact-normal dofs massless (docs/method.md section 2), so the state's
- * a0 is 0 there and would hide gravity from the estimate; with M_L each node gets the acceleration
- * its share of the load gives it (g for a body at rest under gravity). */
+/* Each node's initial acceleration with the standard lumped mass, a = M_L^{-1} (L - K u - lift - C v),
+ * taken in Cartesian components (where M_L is diagonal) and brought back to the w-frame. The
+ * modified mass leaves the contact-normal dofs massless (docs/method.md section 2): the state's a0 is
+ * 0 there, and the initial projection puts them in quasi-static equilibrium, K u + lift = L on them,
+ * so either would hide gravity from the estimate. Their elastic force is left out instead: with M_L
+ * each node gets the acceleration its share of the load gives it (g for a body at rest under
+ * gravity). */
 static PetscErrorCode AccelerationEstimate(MMCtx *ctx, Vec a)
 {
   const MMState *s = &ctx->state;
@@ -213,9 +215,9 @@ static PetscErrorCode AccelerationEstimate(MMCtx *ctx, Vec a)
   PetscCall(VecDuplicate(s->u, &r));
   PetscCall(VecDuplicate(ctx->op.mass_lumped_cart, &f));
   PetscCall(MatMult(ctx->op.K, s->u, r));
+  PetscCall(VecAXPY(r, 1.0, ctx->op.lift));
+  if (MMFEHasMasslessDofs(ctx)) PetscCall(VecISSet(r, ctx->contact.is_normal, 0.0));
   PetscCall(VecAYPX(r, -1.0, ctx->op.load));
-  PetscCall(VecAXPY(r, -1.0, ctx->op.lift));
-  PetscCall(VecAXPY(r, 1.0, s->react));
   PetscCall(MMDampingAddForce(ctx, s->v, -1.0, r));
   PetscCall(MMFEForceToCartesian(ctx, r, f));
   PetscCall(VecPointwiseDivide(f, f, ctx->op.mass_lumped_cart));
@@ -252,8 +254,8 @@ static PetscErrorCode ReportFirstContact(MMCtx *ctx, TS ts, PetscReal step0)
   /* C's formatting, not PETSc's, which writes 0 as "0." */
   if (ctx->op.dim == 2) snprintf(where, sizeof(where), "(%g, %g)", (double)fc.x[0], (double)fc.x[1]);
   else snprintf(where, sizeof(where), "(%g, %g, %g)", (double)fc.x[0], (double)fc.x[1], (double)fc.x[2]);
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  first contact: %st ~ %.4g (step %.0f), the node at %s against %s: gap %.4g closing at %.4g (each node at its initial velocity and acceleration)\n", touching, (double)fc.t, (double)(step0 + PetscMax(1, PetscCeilReal((fc.t - t0) / dt - 1e-10))), where,
-                         ctx->opt.obstacles[fc.obstacle].name, (double)fc.gap, (double)fc.speed));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  first contact: %st ~ %.4g (step %.0f), the node at %s against %s: gap %.4g, approach speed %.4g and acceleration %.4g (each node at its initial velocity and acceleration)\n", touching, (double)fc.t, (double)(step0 + PetscMax(1, PetscCeilReal((fc.t - t0) / dt - 1e-10))), where,
+                         ctx->opt.obstacles[fc.obstacle].name, (double)fc.gap, (double)fc.speed, (double)fc.accel));
   PetscFunctionReturn(0);
 }
 

@@ -86,7 +86,7 @@ PetscErrorCode MMContactFirstContact(MMCtx *ctx, Vec u, Vec v, Vec a, PetscReal 
     double t;
     int    rank;
   } loc = {PETSC_MAX_REAL, 0}, glob;
-  PetscReal info[2 + MM_MAX_DIM + 1] = {0}; /* gap, approach speed, the node's position, its obstacle */
+  PetscReal info[3 + MM_MAX_DIM + 1] = {0}; /* gap, approach speed and acceleration, the node's position, its obstacle */
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(fc, sizeof(*fc)));
@@ -129,13 +129,14 @@ PetscErrorCode MMContactFirstContact(MMCtx *ctx, Vec u, Vec v, Vec a, PetscReal 
     ObstacleNormalMotion(&ctx->opt.obstacles[ct->obstacle[first]], dim, &ct->node_frame[9 * first], t0, &cn, &vn);
     info[0] = PetscRealPart(ga[first]) + cn - PetscRealPart(ua[i]);
     info[1] = PetscRealPart(va[i]) - vn;
+    info[2] = PetscRealPart(aa[i]);
     PetscCall(DMGetCoordinateSection(ctx->op.dm, &cs));
     PetscCall(DMGetCoordinatesLocal(ctx->op.dm, &X));
     PetscCall(PetscSectionGetOffset(cs, ct->vertex[first], &off));
     PetscCall(VecGetArrayRead(X, &xa));
-    for (PetscInt d = 0; d < dim; ++d) info[2 + d] = PetscRealPart(xa[off + d]);
+    for (PetscInt d = 0; d < dim; ++d) info[3 + d] = PetscRealPart(xa[off + d]);
     PetscCall(VecRestoreArrayRead(X, &xa));
-    info[2 + MM_MAX_DIM] = (PetscReal)ct->obstacle[first];
+    info[3 + MM_MAX_DIM] = (PetscReal)ct->obstacle[first];
   }
   PetscCall(VecRestoreArrayRead(ct->gap0, &ga));
   PetscCall(VecRestoreArrayRead(a, &aa));
@@ -149,7 +150,8 @@ PetscErrorCode MMContactFirstContact(MMCtx *ctx, Vec u, Vec v, Vec a, PetscReal 
   fc->t        = glob.t;
   fc->gap      = info[0];
   fc->speed    = info[1];
-  fc->obstacle = (PetscInt)info[2 + MM_MAX_DIM];
-  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) fc->x[d] = info[2 + d];
+  fc->accel    = info[2];
+  fc->obstacle = (PetscInt)info[3 + MM_MAX_DIM];
+  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) fc->x[d] = info[3 + d];
   PetscFunctionReturn(0);
 }
