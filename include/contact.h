@@ -63,3 +63,4 @@ typedef struct {
   PetscInt  obstacle, touching;
 } MMFirstContact;
 PETSC_EXTERN PetscErrorCode MMContactFirstContact(MMCtx *, Vec, Vec, Vec, PetscReal, PetscReal, MMFirstContact *);
+PETSC_EXTERN PetscErrorCode MMContactObstacleGaps(MMCtx *, Vec, PetscReal, PetscInt[], PetscReal[], PetscReal[]);

@@ -227,6 +227,40 @@ static PetscErrorCode AccelerationEstimate(MMCtx *ctx, Vec a)
   PetscFunctionReturn(0);
 }
 
+/* A point in C's formatting, not PETSc's, which writes 0 as "0." */
+static void PointText(PetscInt dim, const PetscReal x[], char text[], size_t len)
+{
+  if (dim == 2) snprintf(text, len, "(%g, %g)", (double)x[0], (double)x[1]);
+  else snprintf(text, len, "(%g, %g, %g)", (double)x[0], (double)x[1], (double)x[2]);
+}
+
+/* One line per obstacle and pair: the contact nodes it gets (the nearest obstacle of each node at the
+ * reference position, as the contact_obstacle field shows) and its smallest gap at the start. */
+static PetscErrorCode ReportObstacles(MMCtx *ctx, TS ts)
+{
+  const MMOptions *opt = &ctx->opt;
+  PetscInt        *count;
+  PetscReal       *gap, *x, t0;
+
+  PetscFunctionBeginUser;
+  if (!ctx->contact.enabled) PetscFunctionReturn(0);
+  PetscCall(TSGetTime(ts, &t0));
+  PetscCall(PetscMalloc3(opt->n_obstacles, &count, opt->n_obstacles, &gap, MM_MAX_DIM * opt->n_obstacles, &x));
+  PetscCall(MMContactObstacleGaps(ctx, ctx->state.u, t0, count, gap, x));
+  for (PetscInt b = 0; b < opt->n_obstacles; ++b) {
+    const PetscBool pair = (PetscBool)(b >= opt->n_rigid);
+    char            where[128];
+    if (gap[b] >= PETSC_MAX_REAL) {
+      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  gap to %s %s: 0 contact nodes\n", pair ? "pair" : "obstacle", opt->obstacles[b].name));
+      continue;
+    }
+    PointText(ctx->op.dim, &x[MM_MAX_DIM * b], where, sizeof(where));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  gap to %s %s: %" PetscInt_FMT " contact nodes, smallest %.6g at the node %s\n", pair ? "pair" : "obstacle", opt->obstacles[b].name, count[b], (double)gap[b], where));
+  }
+  PetscCall(PetscFree3(count, gap, x));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode ReportFirstContact(MMCtx *ctx, TS ts, PetscReal step0)
 {
   MMFirstContact fc;
@@ -251,9 +285,7 @@ static PetscErrorCode ReportFirstContact(MMCtx *ctx, TS ts, PetscReal step0)
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  first contact: %snone before t = %.6g (each node at its initial velocity and acceleration)\n", touching, (double)t_end));
     PetscFunctionReturn(0);
   }
-  /* C's formatting, not PETSc's, which writes 0 as "0." */
-  if (ctx->op.dim == 2) snprintf(where, sizeof(where), "(%g, %g)", (double)fc.x[0], (double)fc.x[1]);
-  else snprintf(where, sizeof(where), "(%g, %g, %g)", (double)fc.x[0], (double)fc.x[1], (double)fc.x[2]);
+  PointText(ctx->op.dim, fc.x, where, sizeof(where));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  first contact: %st ~ %.4g (step %.0f), the node at %s against %s: gap %.4g, approach speed %.4g and acceleration %.4g (each node at its initial velocity and acceleration)\n", touching, (double)fc.t, (double)(step0 + PetscMax(1, PetscCeilReal((fc.t - t0) / dt - 1e-10))), where,
                          ctx->opt.obstacles[fc.obstacle].name, (double)fc.gap, (double)fc.speed, (double)fc.accel));
   PetscFunctionReturn(0);
@@ -267,6 +299,7 @@ PetscErrorCode MMDataCheckReport(MMCtx *ctx, TS ts)
   PetscFunctionBeginUser;
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "mmcontact data check (-check_input): the physical groups of %s\n", ctx->opt.mesh_file));
   PetscCall(ReportGroups(ctx));
+  PetscCall(ReportObstacles(ctx, ts));
   PetscCall(ReportPlan(ctx, ts, &step0, &steps));
   PetscCall(ReportFirstContact(ctx, ts, step0));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "mmcontact data check: the case is valid; no step was taken and nothing was written\n"));

@@ -155,3 +155,73 @@ PetscErrorCode MMContactFirstContact(MMCtx *ctx, Vec u, Vec v, Vec a, PetscReal 
   for (PetscInt d = 0; d < MM_MAX_DIM; ++d) fc->x[d] = info[3 + d];
   PetscFunctionReturn(0);
 }
+
+/* Per obstacle (rigid ones, then the pairs): the contact nodes constrained against it (their first
+ * row, as the contact_obstacle field has them) and the smallest gap of its rows at t0, g_k(t0) - w_k,
+ * with that row's node (reference position; the first of equal gaps on the lowest rank). Arrays of
+ * n_obstacles entries, x of MM_MAX_DIM each; a gap is PETSC_MAX_REAL for an obstacle without rows. */
+PetscErrorCode MMContactObstacleGaps(MMCtx *ctx, Vec u, PetscReal t0, PetscInt count[], PetscReal gap[], PetscReal x[])
+{
+  MMContact         *ct  = &ctx->contact;
+  const PetscInt     dim = ctx->op.dim, nob = ctx->opt.n_obstacles;
+  const PetscScalar *ua, *ga, *xa;
+  const PetscInt    *in;
+  PetscInt           rstart, *best;
+  PetscMPIInt        rank;
+  PetscSection       cs;
+  Vec                X;
+  MPI_Comm           comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  struct {
+    double g;
+    int    rank;
+  } *loc, *glob;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscArrayzero(count, nob));
+  PetscCall(PetscArrayzero(x, MM_MAX_DIM * nob));
+  for (PetscInt b = 0; b < nob; ++b) gap[b] = PETSC_MAX_REAL;
+  if (!ct->enabled || !nob) PetscFunctionReturn(0);
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(PetscMalloc3(nob, &loc, nob, &glob, nob, &best));
+  for (PetscInt b = 0; b < nob; ++b) {
+    loc[b].g    = PETSC_MAX_REAL;
+    loc[b].rank = rank;
+    best[b]     = -1;
+  }
+  PetscCall(VecGetOwnershipRange(u, &rstart, NULL));
+  PetscCall(ISGetIndices(ct->is_normal, &in));
+  PetscCall(VecGetArrayRead(u, &ua));
+  PetscCall(VecGetArrayRead(ct->gap0, &ga));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscInt b = ct->obstacle[k];
+    PetscReal      cn, vn, g;
+
+    ObstacleNormalMotion(&ctx->opt.obstacles[b], dim, &ct->node_frame[9 * k], t0, &cn, &vn);
+    g = PetscRealPart(ga[k]) + cn - PetscRealPart(ua[in[k] - rstart]);
+    if (!ct->second[k]) ++count[b];
+    if (g < loc[b].g) {
+      loc[b].g = g;
+      best[b]  = k;
+    }
+  }
+  PetscCall(VecRestoreArrayRead(ct->gap0, &ga));
+  PetscCall(VecRestoreArrayRead(u, &ua));
+  PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, count, nob, MPIU_INT, MPI_SUM, comm));
+  PetscCallMPI(MPI_Allreduce(loc, glob, (PetscMPIInt)nob, MPI_DOUBLE_INT, MPI_MINLOC, comm));
+  /* the winner's node: its coordinates, zeros elsewhere, summed */
+  PetscCall(DMGetCoordinateSection(ctx->op.dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(ctx->op.dm, &X));
+  PetscCall(VecGetArrayRead(X, &xa));
+  for (PetscInt b = 0; b < nob; ++b) {
+    PetscInt off;
+    gap[b] = glob[b].g;
+    if (glob[b].rank != rank || best[b] < 0) continue;
+    PetscCall(PetscSectionGetOffset(cs, ct->vertex[best[b]], &off));
+    for (PetscInt d = 0; d < dim; ++d) x[MM_MAX_DIM * b + d] = PetscRealPart(xa[off + d]);
+  }
+  PetscCall(VecRestoreArrayRead(X, &xa));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, x, MM_MAX_DIM * nob, MPIU_REAL, MPIU_SUM, comm));
+  PetscCall(PetscFree3(loc, glob, best));
+  PetscFunctionReturn(0);
+}
