@@ -39,6 +39,10 @@ PetscErrorCode MMOutputPlanSize(MMCtx *ctx, PetscReal step0, PetscReal steps, MM
   /* once: the coordinates, the cells, each vertex's obstacle and serial number (MMOutputWriteMesh,
    * MMOutputWriteStaticFields) */
   plan->mesh_bytes = (PetscReal)nv * dim * sizeof(PetscReal) + (PetscReal)nc * (dim + 1) * sizeof(PetscInt) + 2.0 * nv * sizeof(PetscScalar);
+  /* and HDF5's own: object headers, chunk indices, groups. Measured 54 to 55 kB over the data for
+   * the 15 datasets (the fields, time, the mesh's two, the two written once) of 2D and 3D files of 1
+   * to 31 snapshots: 3.6 kB a dataset */
+  plan->mesh_bytes += (MM_SNAPSHOT_FIELDS + 5) * 3.6e3;
   plan->snapshots  = SnapshotCount(ctx->opt.output_every, step0, steps, ctx->ckpt.restarted);
   /* the XDMF index: a grid per snapshot, as the writer words it (MMOutputIndexAddGrid) */
   {
