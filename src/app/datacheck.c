@@ -195,7 +195,7 @@ static PetscErrorCode ReportPlan(MMCtx *ctx, TS ts, PetscReal *step0, PetscReal 
   PetscCall(BytesText(2 * h5 + csv + xmf, total, sizeof(total)));
   if (ctx->opt.output_every > 0) PetscCall(PetscSNPrintf(every, sizeof(every), "every %" PetscInt_FMT " steps and the last", ctx->opt.output_every));
   else PetscCall(PetscStrncpy(every, "the first and the last", sizeof(every)));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  output: %.0f snapshots (%s) of %s each: %s in solution.h5 with the mesh, %s in solution.xmf; %.0f history rows: at most %s in history.csv; at most %s in %s with the checkpoint's copy of solution.h5 (not created by -check_input)\n", (double)plan.snapshots, every, snap, h5_text, xmf_text, (double)plan.rows, csv_text, total, ctx->opt.output_dir));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  output: %.0f snapshots (%s) of %s each: %s in solution.h5 with the mesh, %s in solution.xmf; %.0f history rows: at most %s in history.csv; at most %s in %s with the checkpoint's copy of solution.h5%s (-check_input writes nothing)\n", (double)plan.snapshots, every, snap, h5_text, xmf_text, (double)plan.rows, csv_text, total, ctx->opt.output_dir, ctx->ckpt.restarted ? ", beyond what the restart continues from its checkpoint's directory" : ""));
   PetscFunctionReturn(0);
 }
 
