@@ -149,6 +149,7 @@ typedef struct {
   PetscInt     checkpoint_every; /* steps between checkpoints, 0: only at the end */
   char         restart[PETSC_MAX_PATH_LEN]; /* -restart: the checkpoint, or its directory, to continue; empty: none */
   PetscBool    quiet;
+  PetscBool    check_input;         /* -check_input: set up, report and exit without stepping or writing */
   PetscReal    progress_every;      /* seconds of wall time between progress lines, 0: none */
   PetscBool    allow_unused;
   PetscBool    deformation_audit;       /* the deformation audit (src/ts/deformation.c) and its thresholds */

@@ -54,3 +54,14 @@ PETSC_EXTERN PetscErrorCode MMContactBoundaryFields(MMCtx *, MMOutput *);
 PETSC_EXTERN PetscErrorCode MMContactObstacleField(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMContactDestroy(MMContact *);
 PETSC_EXTERN PetscErrorCode MMContactPairsTransformOperators(MMCtx *);
+/* The data check's first-contact estimate (interface/first_contact.c): the earliest time a contact
+ * row closes at the nodes' initial velocity and acceleration, its node (reference position), its
+ * obstacle (index in the options' obstacles, -1 if none closes before the end), its gap, approach
+ * speed and acceleration at the start; and the rows touching at the start. */
+typedef struct {
+  PetscReal t, gap, speed, accel;
+  PetscReal x[MM_MAX_DIM];
+  PetscInt  obstacle, touching;
+} MMFirstContact;
+PETSC_EXTERN PetscErrorCode MMContactFirstContact(MMCtx *, Vec, Vec, Vec, PetscReal, PetscReal, MMFirstContact *);
+PETSC_EXTERN PetscErrorCode MMContactObstacleGaps(MMCtx *, Vec, PetscReal, PetscInt[], PetscReal[], PetscReal[]);

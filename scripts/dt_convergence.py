@@ -38,8 +38,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from check_case import obstacles  # noqa: E402
-from mmrun import Solution, case_options, read_history, run_mmcontact, split_extra  # noqa: E402
+from mmrun import Solution, case_options, obstacles, read_history, run_mmcontact, split_extra  # noqa: E402
 
 METRICS = ["energy", "energy_M", "L2", "force"]
 

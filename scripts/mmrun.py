@@ -10,7 +10,116 @@ import sys
 import h5py
 import numpy as np
 
-from check_case import parse_option_tokens, read_options
+
+# The options of a run, read as mmcontact reads them (the checks of a case are mmcontact's own:
+# `mmcontact -check_input`, README "Checking a case before a batch job").
+def is_option_name(token):
+    """-E, -ts_dt: an option; -1, -0.5: a value."""
+    return token.startswith("-") and len(token) > 1 and (token[1].isalpha() or token[1] == "_")
+
+
+def parse_option_tokens(tokens, where, opts=None):
+    """Tokens '-name [value]' -> dict name -> value string ('' for a flag), added to opts.
+    Later occurrences win, as in PETSc."""
+    opts = {} if opts is None else opts
+    i = 0
+    while i < len(tokens):
+        t = tokens[i]
+        if not is_option_name(t):
+            raise SystemExit(f"{where}: value {t!r} without an option")
+        val = ""
+        if i + 1 < len(tokens) and not is_option_name(tokens[i + 1]):
+            val = tokens[i + 1]
+            i += 1
+        opts[t[1:]] = val
+        i += 1
+    return opts
+
+
+def read_options(path):
+    """Options file -> dict name -> value string ('' for a flag). Later occurrences win."""
+    tokens = []
+    for line in open(path):
+        line = line.split("#", 1)[0]
+        tokens += line.split()
+    return parse_option_tokens(tokens, path)
+
+
+def vec(opts, key, dim, default=None):
+    if key not in opts:
+        if default is None:
+            raise SystemExit(f"-{key} is missing")
+        return np.array(default, float)
+    v = np.array([float(x) for x in opts[key].split(",")])
+    if len(v) != dim:
+        raise SystemExit(f"-{key} {opts[key]}: needs {dim} entries")
+    return v
+
+
+def obstacles(opts, dim):
+    """The rigid obstacles: [(name, signed distance f(x), mu, velocity, start)], f taking an array of
+    points (k x dim) and carrying the outward normal as f.normal(x) (the tuple keeps its 5 entries for
+    scripts/dt_convergence.py). [] for a run with contact pairs and no rigid obstacle:
+    without -obstacles, -obstacle_point and -obstacle_normal, -contact_pairs leaves out the default
+    plane (as mmcontact does)."""
+    mu0 = float(opts.get("mu", 0))
+    zero = [0.0] * dim
+    if "obstacles" not in opts:
+        if "contact_pairs" in opts and "obstacle_point" not in opts and "obstacle_normal" not in opts:
+            return []
+        p, n = vec(opts, "obstacle_point", dim, zero), vec(opts, "obstacle_normal", dim, [0] * (dim - 1) + [1])
+        n = n / np.linalg.norm(n)
+        f = (lambda x, p=p, n=n: (x - p) @ n)
+        f.normal = (lambda x, n=n: np.tile(n, (len(x), 1)))
+        return [("plane", f, mu0, np.zeros(dim), 0.0)]
+    out = []
+    for name in opts["obstacles"].split(","):
+        pre = f"obstacle_{name}_"
+        typ = opts.get(pre + "type", "plane")  # the default type, as in mmcontact
+        side = opts.get(pre + "side", "outside")
+        if side not in ("outside", "inside"):
+            raise SystemExit(f"-{pre}side {side}: outside or inside")
+        sgn = 1.0 if side == "outside" else -1.0
+        if typ == "plane":
+            p, n = vec(opts, pre + "point", dim), vec(opts, pre + "normal", dim)
+            if abs(np.linalg.norm(n) - 1) > 1e-12:
+                print(f"  note: -{pre}normal has norm {np.linalg.norm(n):.15g}; normalized here")
+            n = n / np.linalg.norm(n)
+            f = (lambda x, p=p, n=n: (x - p) @ n)
+            g = (lambda x, n=n: np.tile(n, (len(x), 1)))
+        elif typ in ("sphere", "circle"):
+            if (typ == "circle") != (dim == 2):
+                raise SystemExit(f"-{pre}type {typ} in {dim}D: circle is 2D, sphere 3D")
+            c, r = vec(opts, pre + "center", dim), float(opts[pre + "radius"])
+
+            def f(x, c=c, r=r, s=sgn):
+                return s * (np.linalg.norm(x - c, axis=1) - r)
+
+            def g(x, c=c, s=sgn):
+                d = x - c
+                return s * d / np.linalg.norm(d, axis=1)[:, None]
+        elif typ == "cylinder":
+            if dim != 3:
+                raise SystemExit(f"-{pre}type cylinder needs a 3D mesh")
+            p, a, r = vec(opts, pre + "point", 3), vec(opts, pre + "axis", 3), float(opts[pre + "radius"])
+            a = a / np.linalg.norm(a)
+
+            def radial(x, p=p, a=a):
+                d = x - p
+                return d - np.outer(d @ a, a)
+
+            def f(x, r=r, s=sgn):
+                return s * (np.linalg.norm(radial(x), axis=1) - r)
+
+            def g(x, s=sgn):
+                d = radial(x)
+                return s * d / np.linalg.norm(d, axis=1)[:, None]
+        else:
+            raise SystemExit(f"-{pre}type {typ}: plane, sphere, circle or cylinder")
+        f.normal = g
+        out.append((name, f, float(opts.get(pre + "mu", mu0)), vec(opts, pre + "velocity", dim, zero),
+                    float(opts.get(pre + "start", 0))))
+    return out
 
 
 def case_options(options_file, extra_tokens):

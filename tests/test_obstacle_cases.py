@@ -276,17 +276,14 @@ def test_bad_3d_obstacles_are_refused_by_name(mm, ball_opts, extra, message):
     assert r.returncode != 0 and message in r.output, r.output[-1500:]
 
 
-def test_check_case_script_agrees_with_the_assignment(runs):
-    """scripts/check_case.py assigns the contact vertices without the executable, the same way: its
-    count per obstacle equals the executable's contact_obstacle field, in every case."""
-    import re
-    import subprocess
-    import sys
-    out = subprocess.run([sys.executable, "-s", "scripts/check_case.py", *[f"options/{c}.opts" for c in CASES]],
-                         cwd=ROOT, capture_output=True, text=True)
-    assert out.returncode == 0, out.stdout + out.stderr
-    for case, block in zip(CASES, out.stdout.split("== ")[1:]):
-        counts = [int(n) for n in re.findall(r"obstacle \S+: (\d+) contact vertices", block)]
+def test_check_input_agrees_with_the_assignment(runs, tmp_path):
+    """mmcontact -check_input reports the contact nodes of each obstacle before the run: its count
+    per obstacle equals the run's contact_obstacle field (2 ranks), in every case."""
+    from test_check_case_geometry import check, obstacle_gaps
+    for case in CASES:
+        rc, out, err = check(case, tmp_path)
+        assert rc == 0, out + err
+        counts = [n for n, _ in obstacle_gaps(out).values()]
         with h5py.File(os.path.join(runs(case, 2).outdir, "solution.h5"), "r") as f:
             owner = f["vertex_fields/contact_obstacle_nodal"][:]
         assert counts == [int((owner == b).sum()) for b in range(len(counts))], (case, counts)

@@ -25,6 +25,7 @@ static char help[] = "mmcontact: elastic bodies hitting and sliding on rigid obs
 #include "damping.h"
 #include "loads.h"
 #include "material.h"
+#include "datacheck.h"
 
 /* A set-up phase under its own event (MMLog), so that -log_view shows where the set-up goes */
 #define MMPhase(event, call) \
@@ -44,8 +45,9 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscCall(MMOptionsHelpWithoutMesh(comm, help_only));
   if (*help_only) PetscFunctionReturn(0);
   PetscCall(MMOutputCheckOptions(comm, &ctx->opt));
-  /* before anything in the output directory is read or moved: one run per directory */
-  PetscCall(MMOutputLock(ctx->opt.output_dir));
+  /* before anything in the output directory is read or moved: one run per directory. A data check
+   * writes nothing, and takes no lock */
+  if (!ctx->opt.check_input) PetscCall(MMOutputLock(ctx->opt.output_dir));
   MMPhase(ctx->log.mesh_load, MMMeshLoad(comm, &ctx->opt, &ctx->op.dm, &ctx->ckpt.vertex_orig, &ctx->ckpt.vertex_file));
   PetscCall(DMGetDimension(ctx->op.dm, &ctx->op.dim));
   MMPhase(ctx->log.fe_setup, MMFESetUp(ctx));
@@ -67,6 +69,11 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscCall(MMOptionsCheckUnused(comm, &ctx->opt, ctx->op.dm));
   /* after: its replay of the help text reads every option */
   PetscCall(MMOptionsCheckValueless(comm));
+  /* -check_input: the case is built and valid; its report, and a stop before any output is touched */
+  if (ctx->opt.check_input) {
+    PetscCall(MMDataCheckReport(ctx, *ts));
+    PetscFunctionReturn(0);
+  }
   /* last: the earlier results in the output directory are set aside only once the input is valid */
   MMPhase(ctx->log.output_open, MMOutputOpen(ctx));
   PetscCall(TSMonitorSet(*ts, MMOutputMonitor, ctx, NULL));
@@ -128,6 +135,12 @@ int main(int argc, char **argv)
   PetscCall(PetscLogStagePop());
   if (help_only) {
     PetscCall(MMOptionsDestroy(&ctx.opt));
+    PetscCall(PetscFinalize());
+    return 0;
+  }
+  if (ctx.opt.check_input) {
+    PetscCall(MMDataCheckDestroy(&ctx));
+    PetscCall(Destroy(&ctx, &ts));
     PetscCall(PetscFinalize());
     return 0;
   }

@@ -642,6 +642,10 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsInt(PetscOptionsObject, comm, "-output_every", "Write the HDF5 fields every k steps (0: only the initial and final state)", &opt->output_every));
   opt->quiet = PETSC_FALSE;
   PetscCall(OptionsBool(PetscOptionsObject, comm, "-quiet", "Do not print the start-up report, progress lines and closing summary", &opt->quiet));
+  /* a data check (abaqus datacheck, MOOSE --check-input): src/app/datacheck.c, README "Data check" */
+  opt->check_input = PETSC_FALSE;
+  PetscCall(OptionsBool(PetscOptionsObject, comm, "-check_input", "Check the case and exit: read the options and the mesh, build everything a run builds and refuse what a run would refuse, print the start-up report with each physical group's node and element counts, the planned steps and output size and a first-contact estimate, then exit 0 without stepping or writing anything (no output directory). -quiet does not apply", &opt->check_input));
+  if (opt->check_input) opt->quiet = PETSC_FALSE; /* the report is what the check is for */
   opt->progress_every = 5;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-progress_every", "Print a progress line (time, wall time and ETA, energy balance, contact and friction) every this many seconds of wall time, >= 0 (0: none)", &opt->progress_every));
   opt->debug = PETSC_FALSE;

@@ -16,6 +16,12 @@ static PetscBool IsInternalLabel(const char name[])
   return (PetscBool)!strncmp(name, MM_MESH_FACET_MARK, sizeof(MM_MESH_FACET_MARK) - 1); /* our facet groups' cell marks */
 }
 
+/* Whether a label of the mesh is a physical group the user named (the data check lists them). */
+PetscBool MMMeshIsPhysicalGroup(const char name[])
+{
+  return (PetscBool)!IsInternalLabel(name);
+}
+
 /* Gets the label of a physical group by name; an unknown name lists the ones the mesh has. */
 PetscErrorCode MMMeshGetLabel(DM dm, const char name[], DMLabel *label)
 {
