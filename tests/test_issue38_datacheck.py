@@ -170,3 +170,11 @@ def test_check_case_script_is_mmcontact_check_input(tmp_path):
     c = subprocess.run(script + ["options/d1_disk.opts", "--", "-traction", "nowhere", "-traction_nowhere_value", "0,1", *out], cwd=ROOT, capture_output=True, text=True)
     assert c.returncode == 64 and 'no physical group named "nowhere"' in c.stderr, c.stdout + c.stderr
     assert not os.path.exists(tmp_path / "out")
+
+
+def test_load_groups_named_with_their_role(tmp_path):
+    """The groups that carry a pressure or a point force (item 12) are named with that role, as the
+    contact and Dirichlet groups are, so a user sees which load lands where before the run."""
+    r = check_input("plate_loads", tmp_path, "-pressure", "top", "-pressure_top_value", 2)
+    assert re.search(r"group top: 8 facets, 9 nodes \(-pressure\)", r.output), r.output[-2000:]
+    assert re.search(r"group tip: 1 points, 1 nodes \(-point_force\)", r.output), r.output[-2000:]

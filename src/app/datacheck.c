@@ -98,6 +98,14 @@ static PetscErrorCode GroupRoles(MMCtx *ctx, const char name[], char text[], siz
     PetscCall(PetscStrcmp(name, opt->traction[b].name, &same));
     if (same) PetscCall(PetscStrlcat(roles, ", -traction", sizeof(roles)));
   }
+  for (PetscInt b = 0; b < opt->n_pressure; ++b) {
+    PetscCall(PetscStrcmp(name, opt->pressure[b].name, &same));
+    if (same) PetscCall(PetscStrlcat(roles, ", -pressure", sizeof(roles)));
+  }
+  for (PetscInt b = 0; b < opt->n_point_force; ++b) {
+    PetscCall(PetscStrcmp(name, opt->point_force[b].name, &same));
+    if (same) PetscCall(PetscStrlcat(roles, ", -point_force", sizeof(roles)));
+  }
   for (PetscInt b = 0; b < opt->n_bodies; ++b) {
     PetscCall(PetscStrcmp(name, opt->bodies[b].group, &same));
     if (same) {
