@@ -43,6 +43,10 @@ typedef struct {
 } MMSnapshotField;
 PETSC_INTERN PetscErrorCode MMOutputViewSnapshot(MMOutput *, PetscViewer, PetscInt, PetscReal);
 PETSC_INTERN void MMOutputSnapshotFields(MMOutput *, PetscInt, MMSnapshotField[MM_SNAPSHOT_FIELDS]);
+/* output_views.c: each snapshot's fields as datasets of their own, for the XDMF index */
+PETSC_INTERN PetscErrorCode MMOutputCreateViews(PetscViewer, const MMSnapshotField[MM_SNAPSHOT_FIELDS], PetscInt);
+PETSC_INTERN PetscInt       MMOutputViewComponents(PetscInt);
+PETSC_INTERN PetscErrorCode MMOutputViewPath(PetscInt, const char[], char[], size_t);
 /* stress.c: the nodal stress and von Mises of each snapshot */
 PETSC_INTERN PetscErrorCode MMStressCreate(MMCtx *);
 PETSC_INTERN PetscErrorCode MMStressCompute(MMCtx *, PetscBool);
