@@ -189,6 +189,11 @@ PetscErrorCode MMOutputCSVHeaderLine(MMCtx *ctx, MMLine *lp)
   if (ctx->opt.n_dirichlet) PetscCall(MMOutputLineAdd(&l, ",work_dirichlet"));
   for (PetscInt b = 0; b < ctx->opt.n_dirichlet; ++b)
     for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",reaction_%s_%c", ctx->opt.dirichlet[b].name, axes[d]));
+  /* -probes: each group's mean displacement, then velocity (probes.c) */
+  for (PetscInt g = 0; g < ctx->out.probes.n; ++g) {
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",probe_%s_u%c", ctx->out.probes.name[g], axes[d]));
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",probe_%s_v%c", ctx->out.probes.name[g], axes[d]));
+  }
   PetscCall(MMOutputLineAdd(&l, "\n"));
   *lp = l;
   PetscFunctionReturn(0);
@@ -228,6 +233,8 @@ static PetscErrorCode CSVRow(MMCtx *ctx)
   if (ctx->opt.n_dirichlet) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->work_dirichlet));
   for (PetscInt b = 0; b < ctx->opt.n_dirichlet; ++b)
     for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)ctx->loads.reaction[MM_MAX_DIM * b + d]));
+  PetscCall(MMProbesEvaluate(ctx));
+  for (PetscInt k = 0; k < 2 * dim * ctx->out.probes.n; ++k) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)ctx->out.probes.mean[k]));
   PetscCall(MMOutputLineAdd(&l, "\n"));
   PetscCall(CSVWrite(&ctx->out, &l));
   PetscFunctionReturn(0);
@@ -368,6 +375,19 @@ static PetscErrorCode WholeField(MMCtx *ctx, Vec w, PetscBool with_bc, Vec whole
   PetscCall(MMInsertMapLocalToGlobal(ctx->out.dm_out, &ctx->out.to_out, l, whole));
   PetscCall(DMRestoreLocalVector(dm, &l));
   PetscCall(DMRestoreGlobalVector(dm, &g));
+  PetscFunctionReturn(0);
+}
+
+/* The Cartesian displacement and velocity on every node, Dirichlet data included: the snapshot's and
+ * the probes' */
+PetscErrorCode MMOutputWholeState(MMCtx *ctx)
+{
+  MMOutput *o = &ctx->out;
+
+  PetscFunctionBeginUser;
+  PetscCall(WholeField(ctx, ctx->state.u, PETSC_TRUE, o->disp_cart));
+  PetscCall(WholeField(ctx, ctx->state.v, PETSC_FALSE, o->vel_cart));
+  PetscCall(MMLoadsInsertDirichletVelocity(ctx, o->vel_cart));
   PetscFunctionReturn(0);
 }
 
@@ -578,9 +598,7 @@ static PetscErrorCode WriteFields(MMCtx *ctx)
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(ctx->log.output));
-  PetscCall(WholeField(ctx, ctx->state.u, PETSC_TRUE, o->disp_cart));
-  PetscCall(WholeField(ctx, ctx->state.v, PETSC_FALSE, o->vel_cart));
-  PetscCall(MMLoadsInsertDirichletVelocity(ctx, o->vel_cart));
+  PetscCall(MMOutputWholeState(ctx));
   PetscCall(MMContactBoundaryFields(ctx, o));
   PetscCall(MMStressCompute(ctx, PETSC_TRUE));
   if (!o->static_written) PetscCall(MMOutputWriteStaticFields(ctx));
@@ -819,6 +837,7 @@ PetscErrorCode MMOutputOpen(MMCtx *ctx)
   PetscCall(PetscSNPrintf(o->csv_name, sizeof(o->csv_name), "%s/%s", dir, MMOutputFiles[0]));
   PetscCall(PetscSNPrintf(o->h5_name, sizeof(o->h5_name), "%s/%s", dir, MMOutputFiles[1]));
   PetscCall(PetscSNPrintf(o->xmf_name, sizeof(o->xmf_name), "%s/%s", dir, MMOutputFiles[2]));
+  PetscCall(MMProbesSetUp(ctx)); /* a group the mesh lacks is refused before any file is touched */
   if (ctx->ckpt.restarted) PetscCall(PetscLogEventBegin(ctx->log.restart_output, 0, 0, 0, 0));
   PetscCall(OpenDirectoryAndHistory(ctx));
   if (ctx->ckpt.restarted) {
@@ -834,17 +853,23 @@ PetscErrorCode MMOutputOpen(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
-/* TS monitor: one history row per step, fields every -output_every steps. */
+/* TS monitor: a history row every -history_every steps, the fields every -output_every steps or
+ * -output_interval (output_schedule.c). */
 PetscErrorCode MMOutputMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ptr)
 {
-  MMCtx   *ctx   = (MMCtx *)ptr;
-  PetscInt every = ctx->opt.output_every;
+  MMCtx *ctx = (MMCtx *)ptr;
 
   PetscFunctionBeginUser;
+  if (!ctx->out.planned) {
+    MMLine header;
+    PetscCall(MMOutputCSVHeaderLine(ctx, &header));
+    PetscCall(MMOutputPlanCheck(ctx, ts, &header));
+    ctx->out.planned = PETSC_TRUE;
+  }
   /* -restart: the row and snapshot of the checkpoint's step are on disk already */
   if (ctx->ckpt.restarted && step == ctx->ckpt.restart_step) PetscFunctionReturn(0);
-  PetscCall(CSVRow(ctx));
-  if (step == 0 || (every > 0 && step % every == 0)) PetscCall(WriteFields(ctx));
+  if (MMOutputHistoryDue(&ctx->opt, step)) PetscCall(CSVRow(ctx));
+  if (step == 0 || MMOutputSnapshotDue(&ctx->opt, step, time, ctx->hist.dt)) PetscCall(WriteFields(ctx));
   PetscFunctionReturn(0);
 }
 
@@ -872,6 +897,8 @@ PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wa
   MMHistory *h = &ctx->hist;
 
   PetscFunctionBeginUser;
+  /* the last step's row, if the cadence missed it (a restart that made no step has it on disk) */
+  if (!MMOutputHistoryDue(&ctx->opt, h->step) && !(ctx->ckpt.restarted && h->step == ctx->ckpt.restart_step)) PetscCall(CSVRow(ctx));
   if (o->n_written && o->times[o->n_written - 1] != h->time) PetscCall(WriteFields(ctx));
   PetscCall(MMOutputSyncIndex(ctx));
   PetscCall(CloseFiles(o));
@@ -891,6 +918,7 @@ PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wa
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  output: %s, %s (%" PetscInt_FMT " snapshots), %s\n", o->csv_name, o->h5_name, o->n_written, o->xmf_name));
   }
   PetscCall(MMStressDestroy(o));
+  PetscCall(MMProbesDestroy(&o->probes));
   PetscCall(VecDestroy(&o->disp_cart));
   PetscCall(VecDestroy(&o->vel_cart));
   PetscCall(VecDestroy(&o->pressure));
