@@ -6,7 +6,7 @@
  * Xdmf3ReaderT, the default for .xmf since ParaView 5.x) ask a HyperSlab for its number type before
  * reading it, get none (XdmfArray::populateItem never sets one for a HyperSlab, whatever its
  * NumberType says) and skip the field: "Skipping unrecognized array type [None]". A plain HDF
- * DataItem is read by both the Xdmf3 readers and the legacy XDMFReader (docs/method.md section 9).
+ * DataItem is read by both the Xdmf3 readers and the legacy XDMFReader (README "Fields").
  *
  * The view also gives every field the same components in both readers:
  * - a vector has 3 (in 2D the z column is no source's: HDF5 returns the fill value, 0), as VTK's

@@ -3,7 +3,7 @@
  * postprocessors give.
  *
  * The mean is weighted by each node's lumped standard mass m_i = sum over its cells of rho |cell| /
- * (dim + 1) (the row sums of M, README "Fields"): sum_i m_i u_i / sum_i m_i over the group's nodes,
+ * (dim + 1) (the row sums of M, README "History columns"): sum_i m_i u_i / sum_i m_i over the group's nodes,
  * with the Cartesian displacement of solution.h5 (Dirichlet data included). Weighted, so that it is
  * the motion of the group's centre of mass and does not change when the mesh is refined in part of
  * the group, as a plain mean of nodes does. By M, not by M*: the modified and redistributed masses
