@@ -6,7 +6,7 @@
 #define MM_PLAN_BYTES 1e9 /* 1 GB of history or of snapshots */
 #define MM_PLAN_STEPS 1e6
 
-/* Whether step (at time t, reached by a step of dt) has a history row. The rule depends on the step
+/* Whether step has a history row (the last step gets one from MMOutputClose). The rule depends on the step
  * alone, so that a restarted run keeps the cadence of the run it continues. */
 PetscBool MMOutputHistoryDue(const MMOptions *opt, PetscInt step)
 {
