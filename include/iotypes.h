@@ -13,6 +13,17 @@ typedef struct {
   PetscInt       friction_its, steps;   /* friction iterations and steps since the last line */
 } MMProgress;
 
+/* -probes (src/io/probes.c): each group's owned vertices with their lumped masses, and the group's mass. */
+typedef struct {
+  PetscInt   n;                /* groups */
+  char     (*name)[256];
+  PetscInt  *start;            /* group g's vertices are vertex[start[g] .. start[g + 1]) */
+  PetscInt  *vertex;           /* this rank's owned vertices of the groups (mesh points) */
+  PetscReal *weight;           /* their lumped standard masses */
+  PetscReal *mass;             /* per group, over all ranks */
+  PetscReal *mean;             /* per group, 2 dim values: the mean u, then the mean v, of the current row */
+} MMProbes;
+
 /* Output files. Rank 0 alone writes history.csv and solution.xmf; solution.h5 is written by all. */
 typedef struct {
   int           csv_fd;                /* history.csv, on rank 0 (-1 elsewhere and once closed) */
@@ -38,6 +49,8 @@ typedef struct {
   Vec           stress, von_mises, stress_weight; /* nodal stress (dm_stress), von Mises and lumped weights (dm_scalar) */
   PetscReal    *cell_geom;             /* per local cell its inverse edge matrix and volume, computed once */
   Vec           stress_cell, von_mises_cell; /* per cell, in the XDMF topology's order (no DM) */
+  MMProbes      probes;                /* -probes: groups' mean displacement and velocity in the history */
+  PetscBool     planned;               /* the planned output's size has been checked (output_schedule.c) */
 } MMOutput;
 
 /* Checkpoints (src/io/checkpoint.c, docs/method.md section 9): the state keyed by the serial mesh's vertex

@@ -208,7 +208,7 @@ def test_restart_needs_the_history_of_its_run(tmp_path, short_checkpoint):
     lines = open(d / "history.csv").read().splitlines(True)
     (d / "history.csv").write_text("".join(lines[:6]))
     r = run(CASE, tmp_path, "-restart", str(d), np_=0, name="copy", check=False)
-    assert r.returncode != 0 and "has rows for steps 0 to 4 in order" in r.output and "is at step 10" in r.output
+    assert r.returncode != 0 and "has no row for step 5 (its rows in order end at step 4;" in r.output and "is at step 10" in r.output
     r = run(CASE, tmp_path, "-restart", str(tmp_path / "nowhere"), np_=0, check=False)
     assert r.returncode != 0 and f"-restart {tmp_path}/nowhere: {tmp_path}/nowhere does not exist" in r.output
 

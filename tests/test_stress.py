@@ -1,4 +1,4 @@
-"""Stress output (src/io/stress.c, docs/method.md section 5): the nodal stress (XDMF Tensor6: xx, xy,
+"""Stress output (src/io/stress.c, docs/method.md section 5): the nodal stress (stored as 6 components xx, xy,
 xz, yy, yz, zz) and von Mises of every snapshot. A uniform strain gives the exact stress at every
 vertex, in 3D and in 2D plane strain; a run on 2 ranks writes the stress of 1 rank."""
 import numpy as np
@@ -60,7 +60,7 @@ def test_stress_of_two_ranks_is_that_of_one(tmp_path):
         pressure = f["vertex_fields/contact_pressure_nodal"][-1]
     assert v1[-1][pressure > 0].max() > 0.5 * v1[-1].max()
     xmf = open(runs[0].outdir + "/solution.xmf").read()
-    assert 'Name="stress" AttributeType="Tensor6"' in xmf and 'Name="von_mises" AttributeType="Scalar"' in xmf
+    assert 'Name="stress" AttributeType="Tensor"' in xmf and 'Name="von_mises" AttributeType="Scalar"' in xmf
 
 
 def cell_centroids(f):
@@ -87,7 +87,7 @@ def test_bar_under_traction_has_the_traction_in_every_cell(tmp_path, np_):
     assert np.abs(s - exact).max() <= 1e-9 * t, np.abs(s - exact).max()
     assert np.abs(vm - t).max() <= 1e-9 * t
     xmf = open(r.outdir + "/solution.xmf").read()
-    assert 'Name="stress_cell" AttributeType="Tensor6" Center="Cell"' in xmf
+    assert 'Name="stress_cell" AttributeType="Tensor" Center="Cell"' in xmf
     assert 'Name="von_mises_cell" AttributeType="Scalar" Center="Cell"' in xmf
 
 

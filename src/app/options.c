@@ -523,6 +523,8 @@ static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
   PetscCheck(opt->active_set_inexact_rtol >= 0 && opt->active_set_inexact_rtol < 1, comm, PETSC_ERR_USER_INPUT, "-active_set_inexact_rtol %g must be in [0, 1): it is CG's relative residual reduction while nodes change set (0: every solve to -contact_tol)", (double)opt->active_set_inexact_rtol);
   PetscCheck(opt->progress_every >= 0, comm, PETSC_ERR_USER_INPUT, "-progress_every %.6g must be >= 0: it is the wall time in seconds between progress lines (0 turns them off)", (double)opt->progress_every);
   PetscCheck(opt->output_every >= 0, comm, PETSC_ERR_USER_INPUT, "-output_every %" PetscInt_FMT " must be >= 0", opt->output_every);
+  PetscCheck(opt->output_interval >= 0, comm, PETSC_ERR_USER_INPUT, "-output_interval %g must be >= 0: it is the simulated time between snapshots (0: every -output_every steps)", (double)opt->output_interval);
+  PetscCheck(opt->history_every >= 1, comm, PETSC_ERR_USER_INPUT, "-history_every %" PetscInt_FMT " must be >= 1: it is the number of steps between history rows", opt->history_every);
   PetscCheck(opt->checkpoint_every >= 0, comm, PETSC_ERR_USER_INPUT, "-checkpoint_every %" PetscInt_FMT " must be >= 0 (0: a checkpoint at the end only)", opt->checkpoint_every);
   PetscCall(MMDampingCheckOptions(comm, opt));
   PetscFunctionReturn(0);
@@ -640,6 +642,12 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   opt->restart[0] = 0;
   PetscCall(OptionsString(PetscOptionsObject, comm, "-restart", "Continue the run of a checkpoint: its checkpoint.h5, or the output directory that holds it, on any number of ranks. The history.csv and solution.h5/.xmf of that directory, cut at the checkpoint's step, are continued in -output_dir. Give the options of the run that wrote it: another mesh, contact boundary, dimension, -mu, material or mass is refused", opt->restart, sizeof(opt->restart), NULL));
   PetscCall(OptionsInt(PetscOptionsObject, comm, "-output_every", "Write the HDF5 fields every k steps (0: only the initial and final state)", &opt->output_every));
+  opt->output_interval = 0;
+  PetscCall(OptionsReal(PetscOptionsObject, comm, "-output_interval", "Write the HDF5 fields at t = 0, T, 2T, ... (at the first step whose time reaches k T, to 1e-9 dt) and the final state; T > 0 replaces -output_every (0: by steps)", &opt->output_interval));
+  opt->history_every = 1;
+  PetscCall(OptionsInt(PetscOptionsObject, comm, "-history_every", "Write a history.csv row every N steps (step 0, N, 2N, ...) and at the last step, >= 1", &opt->history_every));
+  opt->probes[0] = 0;
+  PetscCall(OptionsString(PetscOptionsObject, comm, "-probes", "Comma-separated physical groups whose mean displacement and velocity (weighted by the nodes' lumped mass) go to history.csv as probe_NAME_ux, ..., probe_NAME_vx, ...", opt->probes, sizeof(opt->probes), NULL));
   opt->quiet = PETSC_FALSE;
   PetscCall(OptionsBool(PetscOptionsObject, comm, "-quiet", "Do not print the start-up report, progress lines and closing summary", &opt->quiet));
   /* a data check (abaqus datacheck, MOOSE --check-input): src/app/datacheck.c, README "Data check" */

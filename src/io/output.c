@@ -33,7 +33,6 @@
 static const char *const MMOutputFiles[] = {"history.csv", "solution.h5", "solution.xmf", "checkpoint.h5", MM_SNAPSHOT_COPY};
 #define MM_PREVIOUS "previous"
 #define MM_XMF_TMP  ".tmp" /* suffix of the XDMF index being written */
-#define MM_N        "\001" /* in the index text kept in memory: the snapshot count, which grows */
 
 /* Records the failure of the call just made; errno is read before anything can change it. */
 PetscErrorCode MMOutputFailed(MMFileStatus *st, const char fmt[], ...)
@@ -190,6 +189,11 @@ PetscErrorCode MMOutputCSVHeaderLine(MMCtx *ctx, MMLine *lp)
   if (ctx->opt.n_dirichlet) PetscCall(MMOutputLineAdd(&l, ",work_dirichlet"));
   for (PetscInt b = 0; b < ctx->opt.n_dirichlet; ++b)
     for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",reaction_%s_%c", ctx->opt.dirichlet[b].name, axes[d]));
+  /* -probes: each group's mean displacement, then velocity (probes.c) */
+  for (PetscInt g = 0; g < ctx->out.probes.n; ++g) {
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",probe_%s_u%c", ctx->out.probes.name[g], axes[d]));
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",probe_%s_v%c", ctx->out.probes.name[g], axes[d]));
+  }
   PetscCall(MMOutputLineAdd(&l, "\n"));
   *lp = l;
   PetscFunctionReturn(0);
@@ -229,6 +233,8 @@ static PetscErrorCode CSVRow(MMCtx *ctx)
   if (ctx->opt.n_dirichlet) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->work_dirichlet));
   for (PetscInt b = 0; b < ctx->opt.n_dirichlet; ++b)
     for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)ctx->loads.reaction[MM_MAX_DIM * b + d]));
+  PetscCall(MMProbesEvaluate(ctx));
+  for (PetscInt k = 0; k < 2 * dim * ctx->out.probes.n; ++k) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)ctx->out.probes.mean[k]));
   PetscCall(MMOutputLineAdd(&l, "\n"));
   PetscCall(CSVWrite(&ctx->out, &l));
   PetscFunctionReturn(0);
@@ -251,8 +257,8 @@ void MMOutputSnapshotFields(MMOutput *o, PetscInt dim, MMSnapshotField f[MM_SNAP
   for (PetscInt i = 0; i < MM_SNAPSHOT_FIELDS; ++i) f[i] = all[i];
 }
 
-/* rank 0: the newest snapshot's grid, added to the index text kept in memory. The snapshot count n
- * appears in it as MM_N, filled in when the index is written: the only part that changes. */
+/* rank 0: the newest snapshot's grid, added to the index text kept in memory. Each field is the
+ * snapshot's view of it (output_views.c), a dataset that both of ParaView's XDMF readers read. */
 PetscErrorCode MMOutputIndexAddGrid(MMOutput *o, PetscInt dim, PetscInt k)
 {
   const char    *h5base     = "solution.h5";
@@ -266,18 +272,14 @@ PetscErrorCode MMOutputIndexAddGrid(MMOutput *o, PetscInt dim, PetscInt k)
   PetscCall(MMOutputLineAdd(&l, "<Topology TopologyType=\"%s\" NumberOfElements=\"%" PetscInt_FMT "\">\n<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Int\" Format=\"HDF\">%s:/viz/topology/cells</DataItem>\n</Topology>\n", dim == 2 ? "Triangle" : "Tetrahedron", nc, nc, dim + 1, h5base));
   PetscCall(MMOutputLineAdd(&l, "<Geometry GeometryType=\"%s\">\n<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n</Geometry>\n", dim == 2 ? "XY" : "XYZ", nv, dim, h5base));
   for (PetscInt i = 0; i < MM_SNAPSHOT_FIELDS; ++i) {
-    const PetscInt n     = f[i].dm ? nv : nc;
-    const char    *group = f[i].dm ? "vertex_fields" : "cell_fields";
-    PetscCall(MMOutputLineAdd(&l, "<Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n", f[i].name, f[i].ncomp == 6 ? "Tensor6" : f[i].ncomp > 1 ? "Vector" : "Scalar", f[i].dm ? "Node" : "Cell"));
-    if (f[i].ncomp > 1) {
-      PetscCall(MMOutputLineAdd(&l, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT " %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", n, f[i].ncomp));
-      PetscCall(MMOutputLineAdd(&l, "<DataItem Dimensions=\"3 3\" Format=\"XML\">%" PetscInt_FMT " 0 0 1 1 1 1 %" PetscInt_FMT " %" PetscInt_FMT "</DataItem>\n", k, n, f[i].ncomp));
-      PetscCall(MMOutputLineAdd(&l, "<DataItem Dimensions=\"" MM_N " %" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/%s/%s</DataItem>\n</DataItem>\n</Attribute>\n", n, f[i].ncomp, h5base, group, f[i].dataset));
-    } else {
-      PetscCall(MMOutputLineAdd(&l, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %" PetscInt_FMT "\" Type=\"HyperSlab\">\n", n));
-      PetscCall(MMOutputLineAdd(&l, "<DataItem Dimensions=\"3 2\" Format=\"XML\">%" PetscInt_FMT " 0 1 1 1 %" PetscInt_FMT "</DataItem>\n", k, n));
-      PetscCall(MMOutputLineAdd(&l, "<DataItem Dimensions=\"" MM_N " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/%s/%s</DataItem>\n</DataItem>\n</Attribute>\n", n, h5base, group, f[i].dataset));
-    }
+    const PetscInt n = f[i].dm ? nv : nc, nview = MMOutputViewComponents(f[i].ncomp);
+    char           path[PETSC_MAX_PATH_LEN], dims[64];
+
+    PetscCall(MMOutputViewPath(k, f[i].name, path, sizeof(path)));
+    if (nview > 1) PetscCall(PetscSNPrintf(dims, sizeof(dims), "%" PetscInt_FMT " %" PetscInt_FMT, n, nview));
+    else PetscCall(PetscSNPrintf(dims, sizeof(dims), "%" PetscInt_FMT, n));
+    PetscCall(MMOutputLineAdd(&l, "<Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n", f[i].name, nview == 9 ? "Tensor" : nview > 1 ? "Vector" : "Scalar", f[i].dm ? "Node" : "Cell"));
+    PetscCall(MMOutputLineAdd(&l, "<DataItem Dimensions=\"%s\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:%s</DataItem>\n</Attribute>\n", dims, h5base, path));
   }
   PetscCall(MMOutputLineAdd(&l, "<Attribute Name=\"contact_obstacle\" AttributeType=\"Scalar\" Center=\"Node\">\n<DataItem Dimensions=\"%" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/contact_obstacle_nodal</DataItem>\n</Attribute>\n", nv, h5base));
   PetscCall(MMOutputLineAdd(&l, "</Grid>\n"));
@@ -290,23 +292,12 @@ PetscErrorCode MMOutputIndexAddGrid(MMOutput *o, PetscInt dim, PetscInt k)
   PetscFunctionReturn(0);
 }
 
-/* rank 0: the index text with the snapshot count filled in. Errors are collected by the stream (ferror). */
+/* rank 0: the index text. Errors are collected by the stream (ferror). */
 static void IndexPrint(FILE *f, const MMOutput *o)
 {
-  const char *p = o->index, *end = o->index + o->index_len;
-  char        n[32];
-
-  (void)snprintf(n, sizeof(n), "%" PetscInt_FMT, o->n_written);
   fputs("<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf xmlns:xi=\"http://www.w3.org/2001/XInclude\" Version=\"2.99\">\n<Domain>\n", f);
   fputs("<Grid Name=\"mmcontact\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", f);
-  while (p < end) {
-    const char *m = memchr(p, MM_N[0], (size_t)(end - p));
-    size_t      len = (size_t)((m ? m : end) - p);
-
-    (void)fwrite(p, 1, len, f);
-    if (m) fputs(n, f);
-    p += len + (m ? 1 : 0);
-  }
+  (void)fwrite(o->index, 1, o->index_len, f);
   fputs("</Grid>\n</Domain>\n</Xdmf>\n", f);
 }
 
@@ -343,9 +334,8 @@ PetscErrorCode MMOutputWriteIndexFile(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
-/* The index gains the snapshot just flushed. Each grid names the snapshot count (the datasets'
- * first dimension), so the file is rewritten whole, atomically: after every snapshot that would be
- * O(N^2) bytes over a run of N snapshots. It is rewritten when the snapshots have doubled since the
+/* The index gains the snapshot just flushed. The file is rewritten whole and renamed into place,
+ * so that a reader never sees part of it: after every snapshot that would be O(N^2) bytes over a run of N snapshots. It is rewritten when the snapshots have doubled since the
  * last time (O(N) bytes in all), and by MMOutputSyncIndex at every checkpoint and at the end of the
  * run: while the run goes on it lists at least half of the snapshots written, all of them up to the
  * last checkpoint (README "Output"). */
@@ -386,6 +376,19 @@ static PetscErrorCode WholeField(MMCtx *ctx, Vec w, PetscBool with_bc, Vec whole
   PetscCall(MMInsertMapLocalToGlobal(ctx->out.dm_out, &ctx->out.to_out, l, whole));
   PetscCall(DMRestoreLocalVector(dm, &l));
   PetscCall(DMRestoreGlobalVector(dm, &g));
+  PetscFunctionReturn(0);
+}
+
+/* The Cartesian displacement and velocity on every node, Dirichlet data included: the snapshot's and
+ * the probes' */
+PetscErrorCode MMOutputWholeState(MMCtx *ctx)
+{
+  MMOutput *o = &ctx->out;
+
+  PetscFunctionBeginUser;
+  PetscCall(WholeField(ctx, ctx->state.u, PETSC_TRUE, o->disp_cart));
+  PetscCall(WholeField(ctx, ctx->state.v, PETSC_FALSE, o->vel_cart));
+  PetscCall(MMLoadsInsertDirichletVelocity(ctx, o->vel_cart));
   PetscFunctionReturn(0);
 }
 
@@ -564,6 +567,7 @@ PetscErrorCode MMOutputViewSnapshot(MMOutput *o, PetscViewer viewer, PetscInt st
   MMOutputSnapshotFields(o, dim, f);
   PetscCall(ViewTime(viewer, step, t));
   for (PetscInt i = 0; i < MM_SNAPSHOT_FIELDS; ++i) PetscCall(ViewDataset(viewer, f[i].dm ? "/vertex_fields" : "/cell_fields", f[i].dataset, f[i].vec, f[i].ncomp, step));
+  PetscCall(MMOutputCreateViews(viewer, f, step));
   PetscFunctionReturn(0);
 }
 
@@ -595,9 +599,7 @@ static PetscErrorCode WriteFields(MMCtx *ctx)
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(ctx->log.output));
-  PetscCall(WholeField(ctx, ctx->state.u, PETSC_TRUE, o->disp_cart));
-  PetscCall(WholeField(ctx, ctx->state.v, PETSC_FALSE, o->vel_cart));
-  PetscCall(MMLoadsInsertDirichletVelocity(ctx, o->vel_cart));
+  PetscCall(MMOutputWholeState(ctx));
   PetscCall(MMContactBoundaryFields(ctx, o));
   PetscCall(MMStressCompute(ctx, PETSC_TRUE));
   if (!o->static_written) PetscCall(MMOutputWriteStaticFields(ctx));
@@ -836,6 +838,7 @@ PetscErrorCode MMOutputOpen(MMCtx *ctx)
   PetscCall(PetscSNPrintf(o->csv_name, sizeof(o->csv_name), "%s/%s", dir, MMOutputFiles[0]));
   PetscCall(PetscSNPrintf(o->h5_name, sizeof(o->h5_name), "%s/%s", dir, MMOutputFiles[1]));
   PetscCall(PetscSNPrintf(o->xmf_name, sizeof(o->xmf_name), "%s/%s", dir, MMOutputFiles[2]));
+  PetscCall(MMProbesSetUp(ctx)); /* a group the mesh lacks is refused before any file is touched */
   if (ctx->ckpt.restarted) PetscCall(PetscLogEventBegin(ctx->log.restart_output, 0, 0, 0, 0));
   PetscCall(OpenDirectoryAndHistory(ctx));
   if (ctx->ckpt.restarted) {
@@ -851,17 +854,23 @@ PetscErrorCode MMOutputOpen(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
-/* TS monitor: one history row per step, fields every -output_every steps. */
+/* TS monitor: a history row every -history_every steps, the fields every -output_every steps or
+ * -output_interval (output_schedule.c). */
 PetscErrorCode MMOutputMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ptr)
 {
-  MMCtx   *ctx   = (MMCtx *)ptr;
-  PetscInt every = ctx->opt.output_every;
+  MMCtx *ctx = (MMCtx *)ptr;
 
   PetscFunctionBeginUser;
+  if (!ctx->out.planned) {
+    MMLine header;
+    PetscCall(MMOutputCSVHeaderLine(ctx, &header));
+    PetscCall(MMOutputPlanCheck(ctx, ts, &header));
+    ctx->out.planned = PETSC_TRUE;
+  }
   /* -restart: the row and snapshot of the checkpoint's step are on disk already */
   if (ctx->ckpt.restarted && step == ctx->ckpt.restart_step) PetscFunctionReturn(0);
-  PetscCall(CSVRow(ctx));
-  if (step == 0 || (every > 0 && step % every == 0)) PetscCall(WriteFields(ctx));
+  if (MMOutputHistoryDue(&ctx->opt, step)) PetscCall(CSVRow(ctx));
+  if (step == 0 || MMOutputSnapshotDue(&ctx->opt, step, time, ctx->hist.dt)) PetscCall(WriteFields(ctx));
   PetscFunctionReturn(0);
 }
 
@@ -889,6 +898,8 @@ PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wa
   MMHistory *h = &ctx->hist;
 
   PetscFunctionBeginUser;
+  /* the last step's row, if the cadence missed it (a restart that made no step has it on disk) */
+  if (!MMOutputHistoryDue(&ctx->opt, h->step) && !(ctx->ckpt.restarted && h->step == ctx->ckpt.restart_step)) PetscCall(CSVRow(ctx));
   if (o->n_written && o->times[o->n_written - 1] != h->time) PetscCall(WriteFields(ctx));
   PetscCall(MMOutputSyncIndex(ctx));
   PetscCall(CloseFiles(o));
@@ -908,6 +919,7 @@ PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wa
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  output: %s, %s (%" PetscInt_FMT " snapshots), %s\n", o->csv_name, o->h5_name, o->n_written, o->xmf_name));
   }
   PetscCall(MMStressDestroy(o));
+  PetscCall(MMProbesDestroy(&o->probes));
   PetscCall(VecDestroy(&o->disp_cart));
   PetscCall(VecDestroy(&o->vel_cart));
   PetscCall(VecDestroy(&o->pressure));

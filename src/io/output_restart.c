@@ -1,8 +1,10 @@
 /* -restart continues the output of the run it restarts (docs/method.md section 9): history.csv and
  * solution.h5/.xmf are cut at the checkpoint's step, in -output_dir, and the run appends to them.
  *
- * - history.csv keeps its header and rows 0 .. N, N the checkpoint's step; the rows must be exactly
- *   those, one per step, or the restart is refused. Written whole to history.csv.tmp and renamed.
+ * - history.csv keeps its header and its rows up to N, the checkpoint's step; they must be those of
+ *   the cadence, steps 0, e, 2e, ... up to N with e = -history_every (and the last step of an
+ *   earlier run, which may fall between), or the restart is refused. Written whole to
+ *   history.csv.tmp and renamed.
  * - solution.h5 is rewritten: PETSc writes the vertices in the order of the partition, which a
  *   restart on another number of ranks does not share, so the checkpoint's snapshots are copied
  *   vertex by vertex (matched by the serial vertex numbers the file carries) into a new file in
@@ -37,8 +39,9 @@ static long long RowStep(const char *line, ssize_t len)
 
 /* rank 0: the source history, streamed line by line (a long run's history can be large) into
  * history.csv.tmp through the checkpoint's row, then renamed into place and opened for appending.
- * Its header must be this run's and its rows exactly steps 0, 1, ..., N: otherwise it is another
- * run's history, and the restart is refused. */
+ * Its header must be this run's and its rows every step 0, e, 2e, ... up to N in order, e =
+ * -history_every, with at most the last step of an earlier run in between (a row written at its end,
+ * output.c): otherwise it is another run's history, and the restart is refused. */
 PetscErrorCode MMOutputRestartHistory(MMCtx *ctx, MMFileStatus *st)
 {
   MMOutput      *o    = &ctx->out;
@@ -48,7 +51,8 @@ PetscErrorCode MMOutputRestartHistory(MMCtx *ctx, MMFileStatus *st)
   ssize_t        len;
   MMLine         header;
   FILE          *f;
-  PetscInt       expect = 0;
+  const PetscInt every = ctx->opt.history_every;
+  PetscInt       due = 0, prev = -1; /* the next step of the cadence; the last row kept */
   int            fd;
 
   PetscFunctionBeginUser;
@@ -69,15 +73,25 @@ PetscErrorCode MMOutputRestartHistory(MMCtx *ctx, MMFileStatus *st)
     st->err = -1;
     PetscCall(PetscSNPrintf(st->what, sizeof(st->what), "The history %s has other columns than this run's: it is not of the run that wrote %s (another dimension or other obstacles)", src, ctx->ckpt.file));
   } else if (MMOutputWriteAll(fd, line, (size_t)len)) PetscCall(MMOutputFailed(st, "write %s", tmp));
-  while (!st->err && expect <= last && (len = getline(&line, &cap, f)) > 0 && RowStep(line, len) == expect) {
+  while (!st->err && due <= last && (len = getline(&line, &cap, f)) > 0) {
+    const long long step = RowStep(line, len);
+    if (step <= prev || step > last || step > due) break; /* out of order, past the checkpoint, or a row of the cadence missing */
     if (MMOutputWriteAll(fd, line, (size_t)len)) PetscCall(MMOutputFailed(st, "write %s", tmp));
-    ++expect;
+    prev = (PetscInt)step;
+    if (step == due) due += every;
+  }
+  /* rows past the cadence's last step before N: an earlier run's last row */
+  while (!st->err && due > last && prev < last && (len = getline(&line, &cap, f)) > 0) {
+    const long long step = RowStep(line, len);
+    if (step <= prev || step > last) break;
+    if (MMOutputWriteAll(fd, line, (size_t)len)) PetscCall(MMOutputFailed(st, "write %s", tmp));
+    prev = (PetscInt)step;
   }
   free(line); /* getline's buffer */
   (void)fclose(f);
-  if (!st->err && expect <= last) {
+  if (!st->err && due <= last) {
     st->err = -1;
-    PetscCall(PetscSNPrintf(st->what, sizeof(st->what), "The history %s has rows for steps 0 to %" PetscInt_FMT " in order, the checkpoint %s is at step %" PetscInt_FMT ": it is not the history of the run that wrote the checkpoint", src, expect - 1, ctx->ckpt.file, last));
+    PetscCall(PetscSNPrintf(st->what, sizeof(st->what), "The history %s has no row for step %" PetscInt_FMT " (its rows in order end at step %" PetscInt_FMT "; the checkpoint %s is at step %" PetscInt_FMT ", -history_every %" PetscInt_FMT "): it is not the history of the run that wrote the checkpoint, or that run had another -history_every", src, due, prev, ctx->ckpt.file, last, every));
   }
   if (close(fd) && !st->err) PetscCall(MMOutputFailed(st, "close %s", tmp));
   if (st->err) {

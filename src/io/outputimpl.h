@@ -43,6 +43,19 @@ typedef struct {
 } MMSnapshotField;
 PETSC_INTERN PetscErrorCode MMOutputViewSnapshot(MMOutput *, PetscViewer, PetscInt, PetscReal);
 PETSC_INTERN void MMOutputSnapshotFields(MMOutput *, PetscInt, MMSnapshotField[MM_SNAPSHOT_FIELDS]);
+/* output_views.c: each snapshot's fields as datasets of their own, for the XDMF index */
+PETSC_INTERN PetscErrorCode MMOutputCreateViews(PetscViewer, const MMSnapshotField[MM_SNAPSHOT_FIELDS], PetscInt);
+PETSC_INTERN PetscInt       MMOutputViewComponents(PetscInt);
+PETSC_INTERN PetscErrorCode MMOutputViewPath(PetscInt, const char[], char[], size_t);
+/* output_schedule.c: which steps write a row or a snapshot; the planned output's size */
+PETSC_INTERN PetscBool      MMOutputHistoryDue(const MMOptions *, PetscInt);
+PETSC_INTERN PetscBool      MMOutputSnapshotDue(const MMOptions *, PetscInt, PetscReal, PetscReal);
+PETSC_INTERN PetscErrorCode MMOutputPlanCheck(MMCtx *, TS, const MMLine *);
+/* probes.c: -probes, the groups' mean displacement and velocity */
+PETSC_INTERN PetscErrorCode MMProbesSetUp(MMCtx *);
+PETSC_INTERN PetscErrorCode MMProbesEvaluate(MMCtx *);
+PETSC_INTERN PetscErrorCode MMProbesDestroy(MMProbes *);
+PETSC_INTERN PetscErrorCode MMOutputWholeState(MMCtx *);
 /* stress.c: the nodal stress and von Mises of each snapshot */
 PETSC_INTERN PetscErrorCode MMStressCreate(MMCtx *);
 PETSC_INTERN PetscErrorCode MMStressCompute(MMCtx *, PetscBool);
