@@ -42,11 +42,14 @@ BALL_LARGE_H ?= 0.021
 TWO_BALLS_BENCH_H ?= 0.057
 BENCH_MSH := meshes/disk_bench.msh meshes/ball_bench.msh meshes/ball07.msh meshes/two_balls_bench.msh meshes/slab.msh
 
-.PHONY: all deps petsc-found meshes run check bench bench-large clean
+.PHONY: all deps deps-tests petsc-found meshes run check bench bench-large clean
 all: mmcontact
 
 deps:
 	@bash scripts/install-deps
+# what only the tests need besides (ParaView's pvbatch, tests/test_issue38_viz.py)
+deps-tests:
+	@bash scripts/install-deps tests
 
 petsc-found:
 ifeq (${PETSC_VARIABLES},)
@@ -150,7 +153,7 @@ run: deps
 	$(MM_PYTHON) scripts/plot_contact.py output/d1_friction
 	@echo "Open output/d1_friction/solution.xmf in ParaView; history in output/d1_friction/history.csv, plotted in output/d1_friction/history.png; contact pressure map in output/d1_friction/contact_pressure.png"
 
-check: deps
+check: deps-tests
 	$(MAKE) mmcontact meshes
 	$(MM_PYTHON) -m pytest -q tests
 
