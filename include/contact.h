@@ -40,6 +40,7 @@ typedef struct {
   PetscInt           n, nc;
   const PetscScalar *W, *q;
   const PetscReal   *mu;
+  PetscBool          redundant; /* some nodes act on the same dofs (friction corners): W is singular */
 } MMContactSetProblem;
 typedef PetscErrorCode (*MMContactSetSolver)(void *, const MMContactSetProblem *, PetscScalar[], PetscBool *);
 PETSC_EXTERN PetscErrorCode MMContactHasDelassus(MMCtx *, PetscBool *);
@@ -53,3 +54,5 @@ PETSC_EXTERN PetscErrorCode MMContactBoundaryFields(MMCtx *, MMOutput *);
 PETSC_EXTERN PetscErrorCode MMContactObstacleField(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMContactDestroy(MMContact *);
 PETSC_EXTERN PetscErrorCode MMContactPairsTransformOperators(MMCtx *);
+PETSC_EXTERN PetscErrorCode MMContactCornersAccept(MMCtx *);
+PETSC_EXTERN PetscErrorCode MMContactCornersWork(MMCtx *, PetscReal, PetscReal, Vec, PetscReal *, PetscReal *, PetscReal *);

@@ -444,6 +444,14 @@ PetscErrorCode MMContactDestroy(MMContact *ct)
   PetscCall(PetscFree(ct->force_obstacle));
   PetscCall(VecDestroy(&ct->area));
   PetscCall(ISDestroy(&ct->is_normal));
+  PetscCall(ISDestroy(&ct->is_massless));
+  PetscCall(PetscFree(ct->fc_obstacle));
+  PetscCall(PetscFree4(ct->fc_ab, ct->fc_gap0, ct->fc_gap, ct->fc_slide));
+  PetscCall(PetscFree2(ct->fc_r, ct->fc_r_old));
+  PetscCall(VecDestroy(&ct->fc_geom));
+  PetscCall(VecDestroy(&ct->fc_mu));
+  PetscCall(VecDestroy(&ct->fc_q));
+  PetscCall(VecDestroy(&ct->fc_x));
   PetscCall(ISDestroy(&ct->is_tangent));
   PetscCall(ISDestroy(&ct->is_star));
   PetscCall(ISDestroy(&ct->is_interior));
