@@ -160,6 +160,7 @@ static PetscErrorCode TSStep_Newmark(TS ts)
 
   PetscFunctionBeginUser;
   PetscCall(SaveOldState(s));
+  PetscCall(MMContactCornersAccept(ctx));
   PetscCall(MatchFinalTime(ts));
   while (!solved) {
     PetscReal w_c, scale;

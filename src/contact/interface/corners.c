@@ -7,6 +7,7 @@
  * first), and the condensed formulation's contact-space problem gets a second node, on the same
  * dofs, for r_2. */
 #include "../contactimpl.h"
+#include "obstacle.h"
 
 void MMContactCornerT2(PetscInt dim, const PetscReal ab[2], PetscReal T[MM_MAX_DIM][MM_MAX_DIM])
 {
@@ -244,5 +245,70 @@ PetscErrorCode MMContactCornersAccept(MMCtx *ctx)
 
   PetscFunctionBeginUser;
   if (ct->fc_r) PetscCall(PetscArraycpy(ct->fc_r_old, ct->fc_r, (size_t)ct->n_local * ctx->op.dim));
+  PetscFunctionReturn(0);
+}
+
+/* The friction corners' part of the works over the step t0 -> t1 with increment du (w-frame), as
+ * corrections to the generic split (energy.c), which puts a node's y_0 force in W_c and its other
+ * components in W_f, each with both obstacles' parts, and measures the obstacle's work with the
+ * node's first obstacle only. Per obstacle instead (docs/method.md section 12): W_c gets each
+ * obstacle's normal force on its own normal displacement, W_f the tangential ones, and each
+ * obstacle's work is its own force on its own displacement. dwc + dwf = 0 and the obstacle works
+ * move between the terms only: the energy balance is unchanged, its split is each obstacle's. dwn,
+ * dwt: the corrections of the obstacles' normal and tangential works. Uses the trapezoidal
+ * averages of r_2 (this solve's and the accepted step's). */
+PetscErrorCode MMContactCornersWork(MMCtx *ctx, PetscReal t0, PetscReal t1, Vec du, PetscReal *dwc, PetscReal *dwn, PetscReal *dwt)
+{
+  MMContact         *ct  = &ctx->contact;
+  const PetscInt     dim = ctx->op.dim;
+  const PetscInt    *in;
+  const PetscScalar *da;
+  PetscInt           rstart;
+  PetscReal          w[3] = {0, 0, 0};
+
+  PetscFunctionBeginUser;
+  *dwc = *dwn = *dwt = 0;
+  if (!ct->enabled || !ct->n_fc) PetscFunctionReturn(0);
+  PetscCall(VecGetOwnershipRange(du, &rstart, NULL));
+  PetscCall(ISGetIndices(ct->is_normal, &in));
+  PetscCall(VecGetArrayRead(du, &da));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const MMObstacle *ob1 = &ctx->opt.obstacles[ct->obstacle[k]];
+    PetscReal         r2[MM_MAX_DIM], f2[MM_MAX_DIM], g2[MM_MAX_DIM], d[MM_MAX_DIM], Td[MM_MAX_DIM], c0[MM_MAX_DIM] = {0, 0, 0}, c1[MM_MAX_DIM] = {0, 0, 0}, e0[MM_MAX_DIM] = {0, 0, 0}, e1[MM_MAX_DIM] = {0, 0, 0}, dc1[MM_MAX_DIM], dc2[MM_MAX_DIM], Tdc2[MM_MAX_DIM];
+    const PetscReal  *F1 = &ct->node_frame[9 * k];
+    if (ct->fc_obstacle[k] < 0) continue;
+    /* the second obstacle's force on the body, trapezoidal: -r_2 in its frame, g2; f2 = T2 g2 in the node's */
+    for (PetscInt c = 0; c < dim; ++c) {
+      r2[c] = -0.5 * (ct->fc_r[dim * k + c] + ct->fc_r_old[dim * k + c]);
+      d[c]  = PetscRealPart(da[in[k] - rstart + c]);
+    }
+    for (PetscInt c = 0; c < dim; ++c) g2[c] = r2[c];
+    ApplyT2(dim, &ct->fc_ab[2 * k], g2, f2);
+    ApplyT2(dim, &ct->fc_ab[2 * k], d, Td);
+    /* W_c: the second obstacle's normal force on its own normal, not its y_0 component on y_0 */
+    w[0] += g2[0] * Td[0] - f2[0] * d[0];
+    if (!ct->moving) continue;
+    MMObstacleDisplacement(ob1, dim, t0, c0);
+    MMObstacleDisplacement(ob1, dim, t1, c1);
+    MMObstacleDisplacement(&ctx->opt.obstacles[ct->fc_obstacle[k]], dim, t0, e0);
+    MMObstacleDisplacement(&ctx->opt.obstacles[ct->fc_obstacle[k]], dim, t1, e1);
+    for (PetscInt c = 0; c < dim; ++c) {
+      dc1[c] = dc2[c] = 0;
+      for (PetscInt e = 0; e < dim; ++e) {
+        dc1[c] += (c1[e] - c0[e]) * F1[3 * c + e];
+        dc2[c] += (e1[e] - e0[e]) * F1[3 * c + e];
+      }
+    }
+    ApplyT2(dim, &ct->fc_ab[2 * k], dc2, Tdc2);
+    /* the generic obstacle work took f2 on the first obstacle's displacement: f2.dc1 out, g2.T2 dc2 in */
+    w[1] += g2[0] * Tdc2[0] - f2[0] * dc1[0];
+    for (PetscInt c = 1; c < dim; ++c) w[2] += g2[c] * Tdc2[c] - f2[c] * dc1[c];
+  }
+  PetscCall(VecRestoreArrayRead(du, &da));
+  PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, w, 3, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)ctx->op.dm)));
+  *dwc = w[0];
+  *dwn = w[1];
+  *dwt = w[2];
   PetscFunctionReturn(0);
 }

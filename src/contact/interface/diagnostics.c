@@ -79,17 +79,20 @@ static PetscReal RowResidual(const RowState *rs, PetscInt dim, PetscReal h_c, Pe
 }
 
 /* A friction corner's second obstacle (docs/method.md section 12): its row state from the node's
- * w and sigma (its frame components) and r_2; its force on the obstacle added to fob. */
-static void SecondObstacleRow(MMCtx *ctx, PetscInt k, const PetscScalar w[], const PetscScalar sigma[], PetscReal fob[], RowState *rs)
+ * w (its frame components), its slip sigma = 2/dt (w - u^n) - v^n (the one its law is solved with:
+ * the node's normal velocity is the massless dofs' backward difference in v, not this) and r_2;
+ * its force on the obstacle added to fob. uo, vo: u^n, v^n at the node (NULL at t = 0: v). */
+static void SecondObstacleRow(MMCtx *ctx, PetscInt k, const PetscScalar w[], const PetscScalar v[], const PetscScalar uo[], const PetscScalar vo[], PetscReal fob[], RowState *rs)
 {
   MMContact       *ct  = &ctx->contact;
   const PetscInt   dim = ctx->op.dim;
   const PetscReal *r2  = &ct->fc_r[dim * k], dt = ct->Kt_dt;
-  PetscReal        F2[MM_MAX_DIM][MM_MAX_DIM], T[MM_MAX_DIM][MM_MAX_DIM], rt = 0;
+  PetscReal        F2[MM_MAX_DIM][MM_MAX_DIM], T[MM_MAX_DIM][MM_MAX_DIM], rt = 0, sigma[MM_MAX_DIM];
 
   MMContactCornerFrame2(dim, &ct->node_frame[9 * k], &ct->fc_ab[2 * k], F2);
   MMContactCornerT2(dim, &ct->fc_ab[2 * k], T);
   PetscMemzero(rs, sizeof(*rs));
+  for (PetscInt e = 0; e < dim; ++e) sigma[e] = uo && dt > 0 ? PetscRealPart(2 / dt * (w[e] - uo[e]) - vo[e]) : PetscRealPart(v[e]);
   for (PetscInt e = 0; e < dim; ++e) rs->un += T[0][e] * PetscRealPart(w[e]);
   rs->g        = ct->fc_gap[k];
   rs->r        = r2[0];
@@ -97,7 +100,7 @@ static void SecondObstacleRow(MMCtx *ctx, PetscInt k, const PetscScalar w[], con
   rs->friction = PETSC_TRUE;
   for (PetscInt j = 1; j < dim; ++j) {
     rs->ft[j] = -r2[j];
-    for (PetscInt e = 0; e < dim; ++e) rs->vt[j] += T[j][e] * PetscRealPart(sigma[e]);
+    for (PetscInt e = 0; e < dim; ++e) rs->vt[j] += T[j][e] * sigma[e];
     rs->vt[j] -= dt > 0 ? 2 * ct->fc_slide[k * (dim - 1) + j - 1] / dt : 0;
     rt += PetscSqr(r2[j]);
   }
@@ -118,7 +121,7 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
   const PetscReal    vtol = 1e-9 * 2 * ct->h_c / dt;
   PetscInt           dim = ctx->op.dim, nc = ct->n_local, cnt[4] = {0, 0, 0, 0}, rstart;
   const PetscInt    *in;
-  const PetscScalar *wa, *fa, *ga, *va, *ra = NULL, *rh = NULL;
+  const PetscScalar *wa, *fa, *ga, *va, *ra = NULL, *rh = NULL, *uo = NULL, *vo = NULL;
   const PetscInt     nr = ct->ncomp;
   PetscReal          sums[1 + MM_MAX_DIM] = {0, 0, 0, 0}, loc[2] = {0, 0}, rmax = 0, fscale;
   MPI_Comm           comm = PetscObjectComm((PetscObject)ctx->op.dm);
@@ -136,6 +139,10 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
   PetscCall(VecGetArrayRead(react, &fa));
   PetscCall(VecGetArrayRead(sigma, &va));
   PetscCall(VecGetArrayRead(ct->gap, &ga));
+  if (ct->n_fc) {
+    PetscCall(VecGetArrayRead(ctx->state.u_old, &uo));
+    PetscCall(VecGetArrayRead(ctx->state.v_old, &vo));
+  }
   if (nr > 1) {
     PetscCall(VecGetArrayRead(ct->rho, &ra));
     PetscCall(VecGetArrayRead(ct->rho_hi, &rh));
@@ -194,7 +201,7 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
     active = (PetscBool)(rs.g - rs.un <= 1e-10 * ct->h_c);
     if (corner) {
       RowState rs2;
-      SecondObstacleRow(ctx, k, &wa[i], &va[i], fob, &rs2);
+      SecondObstacleRow(ctx, k, &wa[i], &va[i], uo ? &uo[i] : NULL, vo ? &vo[i] : NULL, fob, &rs2);
       res = PetscMax(res, RowResidual(&rs2, dim, ct->h_c, dt, fscale, vtol, cnt));
       sums[0] += rs2.r;
       loc[1] = PetscMax(loc[1], rs2.un - rs2.g);
@@ -213,6 +220,8 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
     PetscCall(VecRestoreArrayRead(ct->rho_hi, &rh));
   }
   PetscCall(VecRestoreArrayRead(ct->gap, &ga));
+  if (uo) PetscCall(VecRestoreArrayRead(ctx->state.u_old, &uo));
+  if (vo) PetscCall(VecRestoreArrayRead(ctx->state.v_old, &vo));
   PetscCall(VecRestoreArrayRead(ct->mu, &mua));
   /* the obstacle forces are recorded for accepted steps only: no reduction inside the friction loop */
   if (record_switches) PetscCall(MPIU_Allreduce(fob, ct->force_obstacle, MM_MAX_DIM * nob, MPIU_REAL, MPIU_SUM, comm));
