@@ -287,12 +287,32 @@ static PetscErrorCode CornerSummary(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
+/* The friction corners (docs/method.md section 12): how many, and on how many the second obstacle
+ * pushed at the last step (with the first too, or alone). */
+static PetscErrorCode FrictionCornerSummary(MMCtx *ctx)
+{
+  MMContact *ct      = &ctx->contact;
+  PetscInt   both[2] = {0, 0};
+
+  PetscFunctionBeginUser;
+  if (!ct->n_fc) PetscFunctionReturn(0);
+  for (PetscInt k = 0; k < ct->n_local; ++k)
+    if (ct->fc_obstacle[k] >= 0 && ct->fc_r[ctx->op.dim * k] > 0) {
+      both[0] += ct->was_active[k];
+      both[1] += 1;
+    }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, both, 2, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ctx->op.dm)));
+  PetscCall(PetscPrintf(PetscObjectComm((PetscObject)ctx->op.dm), "  friction corners: %" PetscInt_FMT " contact nodes against two obstacles, each obstacle with its own Coulomb law; at the last step %" PetscInt_FMT " in contact with both, %" PetscInt_FMT " pushed by the second\n", ct->n_fc, both[0], both[1]));
+  PetscFunctionReturn(0);
+}
+
 /* The formulation's lines of the closing summary. */
 PetscErrorCode MMContactSummary(MMCtx *ctx)
 {
   PetscFunctionBeginUser;
   if (ctx->contact.ops->summary) PetscCall((*ctx->contact.ops->summary)(ctx));
   if (ctx->contact.enabled) PetscCall(CornerSummary(ctx));
+  if (ctx->contact.enabled) PetscCall(FrictionCornerSummary(ctx));
   PetscFunctionReturn(0);
 }
 
