@@ -201,8 +201,10 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
     active = (PetscBool)(rs.g - rs.un <= 1e-10 * ct->h_c);
     if (corner) {
       RowState rs2;
+      PetscReal res2;
       SecondObstacleRow(ctx, k, &wa[i], &va[i], uo ? &uo[i] : NULL, vo ? &vo[i] : NULL, fob, &rs2);
-      res = PetscMax(res, RowResidual(&rs2, dim, ct->h_c, dt, fscale, vtol, cnt));
+      res2 = RowResidual(&rs2, dim, ct->h_c, dt, fscale, vtol, cnt); /* once: it counts (PetscMax evaluates twice) */
+      res  = PetscMax(res, res2);
       sums[0] += rs2.r;
       loc[1] = PetscMax(loc[1], rs2.un - rs2.g);
     }
