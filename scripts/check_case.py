@@ -28,8 +28,9 @@ For each options file it reads the mesh (`-mesh`, gmsh 4.1 ASCII), and reports:
   rigid-contact vertex whose nearest other obstacle, not parallel to its own (|n1.n2| <= 1 - 1e-6),
   is within h_c' at the reference position gets a second row: the count and the rows in all (as
   mmcontact's header: "N contact nodes (K of them against two obstacles: N + K rows)"). With friction
-  each vertex keeps one row, and those vertices are a WARNING (their crossing is reported, not
-  prevented);
+  each such vertex keeps one row that carries both obstacles' Coulomb laws (a friction corner,
+  docs/method.md section 12; mmcontact's header: "N contact nodes (K of them against two obstacles,
+  each with its own Coulomb law)"), which only -contact_formulation condensed solves;
 - the contact pairs (`-contact_pairs p` with `-contact_pair_NAME_slave/_master/_mu`, docs/method.md
   section 11): the slave and master groups (boundary faces), the slave vertices, those facing a master
   vertex (node to node) and the master facets (as mmcontact's header line "pair p: ..."), the smallest
@@ -547,8 +548,8 @@ def check_rigid(obs, opts, x, cverts, hmin, vel, frictionless, dt, tmax, cp):
         print(f"  corners: {ncorner} contact vertices within h_c' of a second obstacle get a row for it too "
               f"({len(cverts) + ncorner} rows; second rows against {per})")
     elif ncorner:
-        print(f"  WARNING: {ncorner} contact vertices within h_c' of two obstacles keep one row (friction): "
-              "their crossing of the second is reported, not prevented")
+        print(f"  friction corners: {ncorner} contact vertices within h_c' of a second obstacle carry its "
+              "Coulomb law too (-contact_formulation condensed only)")
     return ok, ncorner
 
 
