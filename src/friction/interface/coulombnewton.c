@@ -186,8 +186,8 @@ static PetscErrorCode NewtonDirection(const MMCoulombProblem *p, MMCoulombWork *
 }
 
 /* Node i's own problem with the others' reactions fixed, by its projection map r_i <- P(r_i - rho_i
- * (W_ii r_i - q_i')), which contracts on one node (rho_i = 1/|W_ii|_F): the sweep of projected
- * Gauss-Seidel. */
+ * (W_ii r_i - q_i')), a contraction for fixed thresholds (rho_i = 1/|W_ii|_F), at most 200 times:
+ * the step of projected Gauss-Seidel. */
 static void LocalSolve(const MMCoulombProblem *p, MMCoulombWork *wk, PetscInt i, PetscReal x[])
 {
   const PetscInt nc = p->nc, m = p->n * nc;
