@@ -305,16 +305,21 @@ PetscErrorCode MMContactBoundaryFields(MMCtx *ctx, MMOutput *o)
     for (PetscInt k = 0; k < ct->n_local; ++k) {
       const PetscInt i = in[k] - rstart;
       PetscInt       start, end;
-      PetscScalar    tc[MM_MAX_DIM] = {0, 0, 0}, sc[MM_MAX_DIM] = {0, 0, 0};
+      PetscScalar    tc[MM_MAX_DIM] = {0, 0, 0}, sc[MM_MAX_DIM] = {0, 0, 0}, f1[MM_MAX_DIM] = {0, 0, 0};
+      PetscReal      r1[MM_MAX_DIM], r2[MM_MAX_DIM];
 
-      /* a corner's two rows add their pressures; its gap, traction and slip are its first row's */
-      PetscCall(VecSetValue(o->pressure, ct->scalar_index[k], -fa[i] / aa[k], ADD_VALUES));
+      /* a corner's two rows add their pressures; its gap, traction and slip are its first row's (a
+       * friction corner: its first obstacle's share of the force, corners.c) */
+      for (PetscInt d = 0; d < dim; ++d) f1[d] = -fa[i + d];
+      MMContactCornerSplit(ct, dim, k, f1, r1, r2);
+      for (PetscInt d = 0; d < dim; ++d) f1[d] = ct->ncomp > 1 ? -r1[d] : fa[i + d];
+      PetscCall(VecSetValue(o->pressure, ct->scalar_index[k], (-f1[0] + r2[0]) / aa[k], ADD_VALUES));
       if (ct->second[k]) continue;
       PetscCall(VecSetValue(o->gap, ct->scalar_index[k], ga[k] - wa[i], INSERT_VALUES));
       for (PetscInt d = 1; d < dim; ++d)
         for (PetscInt c = 0; c < dim; ++c) {
           const PetscReal Vt = ct->Kt_dt > 0 ? 2 * ct->slide_ref[k * (dim - 1) + d - 1] / ct->Kt_dt : 0;
-          tc[c] += fa[i + d] * ct->node_frame[9 * k + 3 * d + c] / aa[k];
+          tc[c] += f1[d] * ct->node_frame[9 * k + 3 * d + c] / aa[k];
           sc[c] += (va[i + d] - Vt) * ct->node_frame[9 * k + 3 * d + c];
         }
       PetscCall(DMPlexGetPointGlobal(o->dm_out, ct->vertex[k], &start, &end));
