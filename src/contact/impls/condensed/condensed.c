@@ -361,6 +361,7 @@ PetscErrorCode MMCondensedSolveCoulomb(MMCtx *ctx, Vec b, Vec w, Vec react, MMCo
   ct->vi_its = 0;
   PetscCall(SolveGrowingSet(ctx, SolveSetCoulomb, &cc, ok));
   if (!*ok) PetscFunctionReturn(0);
+  if (!ct->cand.m && ct->fc_x) PetscCall(VecZeroEntries(ct->fc_x)); /* no set, no second obstacle's reaction */
   PetscCall(MMContactCornersStore(ctx));
   PetscCall(StoreCoulombBounds(ctx));
   PetscCall(MMCondensedContactDofs(ctx, w, react));
