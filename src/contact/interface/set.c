@@ -501,7 +501,7 @@ PetscErrorCode MMContactSetUp(MMCtx *ctx)
   PetscCall(PetscFree(mark));
   PetscCall(VecDestroy(&area));
   /* a friction corner's two Coulomb laws on one node's dofs are solved in contact space only */
-  PetscCheck(!ct->n_fc || ct->ops->solvecoulomb, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_SUP, "%" PetscInt_FMT " contact nodes are within h_c' of two obstacles with friction (-mu %g), and -contact_formulation %s cannot carry both obstacles' Coulomb laws on one node: use -contact_formulation condensed", ct->n_fc, (double)ctx->opt.mu_max, ct->type);
+  PetscCheck(!ct->n_fc || ct->ops->solvecoulomb, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_SUP, "%" PetscInt_FMT " contact nodes are within h_c' of two obstacles with friction (-mu %g), and -contact_formulation %s%s cannot carry both obstacles' Coulomb laws on one node: use -contact_formulation condensed", ct->n_fc, (double)ctx->opt.mu_max, ct->type, ct->auto_type ? " (auto's choice for a mesh this size)" : "");
   PetscCheck(ct->ncomp == 1 || ct->ops->solvecontactdofs, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_SUP, "Friction (-mu %g) needs a contact formulation that solves the contact dofs alone, and -contact_formulation %s cannot: use condensed or active_set", (double)ctx->opt.mu_max, ct->type);
   PetscCheck(ct->n_global > 0, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "The contact boundary \"%s\" has no nodes", ctx->opt.contact_name);
   PetscFunctionReturn(0);
