@@ -136,3 +136,20 @@ def test_groove_edge_stays_out_of_both_walls_with_friction(groove):
         assert np.abs(fa - fb).max() <= 1e-10 * sc["force"], x
     assert np.array_equal(a["active"], b["active"])
     assert "14 of them against two obstacles, each with its own Coulomb law" in groove[0].output
+
+
+def test_post_restart_across_ranks(tmp_path):
+    """The second obstacle's reactions, which warm-start the next step, are in the checkpoint: a run
+    stopped after the post's contact (t = 0.06) and continued on 2 ranks ends as the uninterrupted
+    run on 1, each obstacle's force included, and stays out of the post."""
+    ref = run("block_post", tmp_path, "-output_every", 0, "-quiet", np_=1, name="ref").history
+    run("block_post", tmp_path, "-output_every", 0, "-ts_max_time", 0.06, "-quiet", np_=1, name="cut")
+    h = run("block_post", tmp_path, "-output_every", 0, "-restart", str(tmp_path / "cut"), "-quiet", np_=2, name="cut").history
+    assert list(h["step"]) == list(ref["step"]) and np.array_equal(h["active"], ref["active"])
+    assert h["max_penetration"].max() <= 1e-10 * HC_2D
+    escale = np.abs(ref["total"]).max()
+    fscale = max(np.abs(ref[c]).max() for c in ["force_floor_y", "force_post_x"])
+    for c in ["total", "work_friction", "work_obstacle"]:
+        assert np.abs(h[c] - ref[c]).max() <= 1e-10 * escale, c
+    for c in ["force_floor_x", "force_floor_y", "force_post_x", "force_post_y"]:
+        assert np.abs(h[c] - ref[c]).max() <= 1e-10 * fscale, c
