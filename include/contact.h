@@ -40,6 +40,7 @@ typedef struct {
   PetscInt           n, nc;
   const PetscScalar *W, *q;
   const PetscReal   *mu;
+  PetscBool          redundant; /* some nodes act on the same dofs (friction corners): W is singular */
 } MMContactSetProblem;
 typedef PetscErrorCode (*MMContactSetSolver)(void *, const MMContactSetProblem *, PetscScalar[], PetscBool *);
 PETSC_EXTERN PetscErrorCode MMContactHasDelassus(MMCtx *, PetscBool *);
@@ -65,3 +66,5 @@ typedef struct {
 } MMFirstContact;
 PETSC_EXTERN PetscErrorCode MMContactFirstContact(MMCtx *, Vec, Vec, Vec, PetscReal, PetscReal, MMFirstContact *);
 PETSC_EXTERN PetscErrorCode MMContactObstacleGaps(MMCtx *, Vec, PetscReal, PetscInt[], PetscReal[], PetscReal[]);
+PETSC_EXTERN PetscErrorCode MMContactCornersAccept(MMCtx *);
+PETSC_EXTERN PetscErrorCode MMContactCornersWork(MMCtx *, PetscReal, PetscReal, Vec, PetscReal *, PetscReal *, PetscReal *);

@@ -171,6 +171,19 @@ typedef struct {
   PetscBool *second;              /* per row: a corner node's second row, on its dof 1 (the row before is its first) */
   PetscReal *corner_ab;           /* per row, 2: a second row's nu_2 = a nu_1 + b tau_1 in its node's frame */
   PetscInt   n_corners;           /* second rows over all ranks */
+  /* Friction corners (docs/method.md section 12): with friction, a node within h_c' of a second
+   * obstacle keeps one row, its tau_1 in the plane of both normals, and carries the second
+   * obstacle's own Coulomb law on the same dofs; NULL without friction. Per row: */
+  PetscInt  *fc_obstacle;         /* the second obstacle, or -1 */
+  PetscReal *fc_ab;               /* 2: nu_2 = a nu_1 + b tau_1 (b > 0) */
+  PetscReal *fc_gap0, *fc_gap;    /* g_2 at the reference position, and at the step's time */
+  PetscReal *fc_slide;            /* dim - 1: dt/2 V_2.tau'_j, the second obstacle's sliding */
+  PetscReal *fc_r, *fc_r_old;     /* dim: the second obstacle's reactions (normal, tangents of its frame), the
+                                     last solve's and the last accepted step's */
+  PetscInt   n_fc;                /* friction corners over all ranks */
+  Vec        fc_geom, fc_mu, fc_q, fc_x; /* layout of rho, for the candidate set's gathers: (b, a), mu_2, the second
+                                     row's q and reactions (zero off the friction corners) */
+  IS         is_massless;         /* the dofs M* drops: the normal dofs and the friction corners' tau_1 */
   Vec        gap0;                /* g_i at time 0, layout of gap */
   Vec        mu;                  /* per owned contact node, the friction coefficient of its obstacle */
   PetscReal *slide_ref;           /* per owned contact node and tangent, dt/2 V.tau_j: the obstacle's sliding */

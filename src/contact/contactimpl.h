@@ -30,6 +30,17 @@ PETSC_INTERN PetscErrorCode MMContactSwapKeptOperator(MMContact *, KSP *);
 /* react = K~ w - b on the contact dofs (contact.c) */
 PETSC_INTERN PetscErrorCode MMContactForce(MMCtx *, Vec, Vec, Vec);
 
+/* interface/corners.c: friction corners, a second obstacle's Coulomb law on a node's dofs */
+PETSC_INTERN void           MMContactCornerT2(PetscInt, const PetscReal[2], PetscReal[MM_MAX_DIM][MM_MAX_DIM]);
+PETSC_INTERN void           MMContactCornerFrame2(PetscInt, const PetscReal[], const PetscReal[2], PetscReal[MM_MAX_DIM][MM_MAX_DIM]);
+PETSC_INTERN void           MMContactCornerSplit(const MMContact *, PetscInt, PetscInt, const PetscScalar[], PetscReal[], PetscReal[]);
+PETSC_INTERN PetscBool      MMContactCornerCrosses(const MMContact *, PetscInt, PetscInt, const PetscScalar[], PetscReal);
+PETSC_INTERN PetscErrorCode MMContactCornersSetUpVecs(MMCtx *);
+PETSC_INTERN PetscErrorCode MMContactCornersRHS(MMCtx *, const PetscInt[]);
+PETSC_INTERN PetscErrorCode MMContactCornersExpand(PetscInt, PetscInt, const PetscScalar[], const PetscScalar[], const PetscReal[], const PetscScalar[], const PetscScalar[], const PetscScalar[], const PetscScalar[], const PetscScalar[], PetscInt *, PetscInt **, PetscScalar **, PetscScalar **, PetscReal **, PetscScalar **);
+PETSC_INTERN PetscErrorCode MMContactCornersContract(PetscInt, PetscInt, PetscInt, const PetscInt[], const PetscScalar[], const PetscScalar[], PetscScalar[], PetscScalar[]);
+PETSC_INTERN PetscErrorCode MMContactCornersStore(MMCtx *);
+
 /* interface/pairs.c: contact pairs between two bodies, node to segment or facet */
 PETSC_INTERN PetscErrorCode MMContactPairsSetUp(MMCtx *, const PetscInt[], PetscInt);
 PETSC_INTERN PetscErrorCode MMContactPairsProject(MMCtx *, PetscInt, PetscInt, const PetscReal[], PetscReal *, PetscReal[]);

@@ -537,7 +537,7 @@ PetscErrorCode MMFEAssembleOperators(MMCtx *ctx)
   } else ctx->op.M = Mc;
   PetscCall(CheckFiniteOperators(ctx));
   PetscCall(MatDuplicate(ctx->op.M, MAT_COPY_VALUES, &ctx->op.Mstar));
-  if (MMFEHasMasslessDofs(ctx)) PetscCall(MatZeroRowsColumnsIS(ctx->op.Mstar, ctx->contact.is_normal, 0.0, NULL, NULL));
+  if (MMFEHasMasslessDofs(ctx)) PetscCall(MatZeroRowsColumnsIS(ctx->op.Mstar, ctx->contact.is_massless, 0.0, NULL, NULL));
   if (MMFEHasMasslessDofs(ctx) && ctx->opt.mass_type == MM_MASS_REDISTRIBUTED) {
     PetscCall(PetscLogEventBegin(MM_MassRedistribute, 0, 0, 0, 0));
     PetscCall(MMFERedistributeMass(ctx));

@@ -448,7 +448,7 @@ static PetscErrorCode WithInertia(MMCtx *ctx, Vec x, Vec y)
 {
   PetscFunctionBeginUser;
   PetscCall(VecCopy(x, y));
-  if (MMFEHasMasslessDofs(ctx)) PetscCall(VecISSet(y, ctx->contact.is_normal, 0.0));
+  if (MMFEHasMasslessDofs(ctx)) PetscCall(VecISSet(y, ctx->contact.is_massless, 0.0));
   PetscFunctionReturn(0);
 }
 

@@ -246,8 +246,8 @@ static PetscErrorCode AddMomentCorrection(MMCtx *ctx, Vec kind, const PetscInt v
       PetscInt         goff, xoff, soff;
       PetscReal        xh[MM_MAX_DIM] = {0, 0, 0}, T[MM_MAX_DIM][MM_MAX_RIGID], PT[MM_MAX_DIM][MM_MAX_RIGID] = {{0}}, Aj[MM_MAX_RIGID][MM_MAX_RIGID] = {{0}}, mj;
       const PetscReal *F = node[v - vStart] >= 0 ? &ct->node_frame[9 * node[v - vStart]] : NULL;
-      /* a corner node (its row followed by a second row) is massless along tau_1 too */
-      const PetscBool  corner = (PetscBool)(F && node[v - vStart] + 1 < ct->n_local && ct->second[node[v - vStart] + 1]);
+      /* a corner node (its row followed by a second row, or a friction corner) is massless along tau_1 too */
+      const PetscBool  corner = (PetscBool)(F && ((node[v - vStart] + 1 < ct->n_local && ct->second[node[v - vStart] + 1]) || (ct->fc_obstacle && ct->fc_obstacle[node[v - vStart]] >= 0)));
 
       PetscCall(PetscSectionGetOffset(gs, v, &goff));
       PetscCall(DMPlexGetPointLocal(dms, v, &soff, NULL));

@@ -15,6 +15,8 @@ typedef struct {
   const PetscScalar *q;
   const PetscReal   *mu; /* per node */
   const PetscReal   *s;  /* per node: the Tresca thresholds, or NULL for Coulomb */
+  PetscBool          redundant; /* two nodes on one node's dofs (a friction corner, docs/method.md section 12):
+                                 * W singular, the Newton step the least-norm one */
 } MMCoulombProblem;
 
 /* Work arrays of the kernel, grown to the largest set seen. */

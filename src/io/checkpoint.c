@@ -19,7 +19,9 @@
 #define MM_CKPT_TMP  ".tmp" /* written whole, then renamed over the last good one */
 #define MM_CKPT_NODE 13     /* per vertex: contact, s, slipping, was_active, slip_dir[2], rho[3], and the
                                * active-set formulation's warm start: active, stick, dir[2] */
-/* a corner node's second row, frictionless, keeps its states in slots the friction law leaves free */
+/* a corner node's second row, frictionless, keeps its states in slots the friction law leaves free;
+ * a friction corner (condensed formulation only) its second obstacle's reactions in the active-set slots */
+#define MM_CKPT_CORNER_R 9
 #define MM_CKPT_SECOND_ACTIVE 4
 #define MM_CKPT_SECOND_RHO    7
 #define MM_CKPT_SECOND_AS     11
@@ -156,7 +158,8 @@ static PetscErrorCode PackContact(MMCtx *ctx, Vec packed)
         rec[9]  = (PetscScalar)ct->as.active[k];
         rec[10] = (PetscScalar)ct->as.stick[k];
         for (PetscInt j = 0; j < ctx->op.dim - 1; ++j) rec[11 + j] = ct->as.dir[k * (ctx->op.dim - 1) + j];
-      }
+      } else if (ct->fc_obstacle && ct->fc_obstacle[k] >= 0)
+        for (PetscInt c = 0; c < ctx->op.dim; ++c) rec[MM_CKPT_CORNER_R + c] = ct->fc_r[ctx->op.dim * k + c];
       for (PetscInt c = 0; c < MM_CKPT_NODE; ++c)
         if (!(k + 1 < ct->n_local && ct->second[k + 1] && (c == MM_CKPT_SECOND_ACTIVE || c == MM_CKPT_SECOND_RHO || c == MM_CKPT_SECOND_AS))) PetscCall(VecSetValue(packed, base + c, rec[c], INSERT_VALUES));
     }
@@ -568,7 +571,8 @@ static PetscErrorCode RestoreContactState(MMCtx *ctx)
       ct->as.active[k] = (PetscBool)(PetscRealPart(rec[9]) != 0);
       ct->as.stick[k]  = (PetscBool)(PetscRealPart(rec[10]) != 0);
       for (PetscInt j = 0; j < ctx->op.dim - 1; ++j) ct->as.dir[k * (ctx->op.dim - 1) + j] = PetscRealPart(rec[11 + j]);
-    }
+    } else if (ct->fc_obstacle && ct->fc_obstacle[k] >= 0)
+      for (PetscInt c = 0; c < ctx->op.dim; ++c) ct->fc_r[ctx->op.dim * k + c] = PetscRealPart(rec[MM_CKPT_CORNER_R + c]);
   }
   if (ra) PetscCall(VecRestoreArray(ct->rho, &ra));
   if (sa) PetscCall(VecRestoreArray(thresholds, &sa));

@@ -109,9 +109,11 @@ PetscErrorCode MMEnergyContactWork(MMCtx *ctx, Vec w, PetscReal *w_c)
   PetscCall(VecWAXPY(s->work, -1.0, s->u, w));
   PetscCall(TrapezoidalWork(ctx, ctx->contact.is_normal, s->work, w_c));
   {
-    PetscReal wn, wt;
+    PetscReal wn, wt, dwc, dwn, dwt;
     PetscCall(ObstacleWork(ctx, ctx->hist.time, ctx->hist.time + ctx->contact.Kt_dt, &wn, &wt));
-    *w_c -= wn;
+    /* a friction corner's two obstacles, each its own normal (docs/method.md section 12) */
+    PetscCall(MMContactCornersWork(ctx, ctx->hist.time, ctx->hist.time + ctx->contact.Kt_dt, s->work, &dwc, &dwn, &dwt));
+    *w_c += dwc - (wn + dwn);
   }
   PetscFunctionReturn(0);
 }
@@ -191,10 +193,14 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
   /* W_c was computed on this very state by the contact-work guard (MMEnergyContactWork) */
   if (ctx->contact.enabled) PetscCall(TrapezoidalWork(ctx, ctx->contact.is_tangent, s->work, &w_f));
   {
-    PetscReal wn, wt;
+    PetscReal wn, wt, dwc, dwn, dwt;
     /* h->time is already t^{n+1} */
     PetscCall(ObstacleWork(ctx, h->time - s->dt, h->time, &wn, &wt));
-    w_f -= wt;
+    /* W_c took the friction corners' share from W_f (MMEnergyContactWork) */
+    PetscCall(MMContactCornersWork(ctx, h->time - s->dt, h->time, s->work, &dwc, &dwn, &dwt));
+    wn += dwn;
+    wt += dwt;
+    w_f -= wt + dwc;
     h->work_obstacle += wn + wt;
     w_obs = wn + wt;
   }

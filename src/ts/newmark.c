@@ -160,6 +160,7 @@ static PetscErrorCode TSStep_Newmark(TS ts)
 
   PetscFunctionBeginUser;
   PetscCall(SaveOldState(s));
+  PetscCall(MMContactCornersAccept(ctx));
   PetscCall(MatchFinalTime(ts));
   while (!solved) {
     PetscReal w_c, scale;
@@ -527,11 +528,11 @@ PetscErrorCode MMNewmarkInitialState(MMCtx *ctx)
     PetscCall(VecAXPY(s->work, 1.0, ctx->op.lift));
     PetscCall(VecAXPY(s->work, -1.0, ctx->op.load));
     PetscCall(MMDampingAddForce(ctx, s->v, 1.0, s->work));
-    PetscCall(VecGetSubVector(s->work, ctx->contact.is_normal, &fc));
-    PetscCall(VecGetSubVector(s->react, ctx->contact.is_normal, &rc));
+    PetscCall(VecGetSubVector(s->work, ctx->contact.is_massless, &fc));
+    PetscCall(VecGetSubVector(s->react, ctx->contact.is_massless, &rc));
     PetscCall(VecCopy(fc, rc));
-    PetscCall(VecRestoreSubVector(s->react, ctx->contact.is_normal, &rc));
-    PetscCall(VecRestoreSubVector(s->work, ctx->contact.is_normal, &fc));
+    PetscCall(VecRestoreSubVector(s->react, ctx->contact.is_massless, &rc));
+    PetscCall(VecRestoreSubVector(s->work, ctx->contact.is_massless, &fc));
   }
   PetscCall(InitialAcceleration(ctx));
   PetscCall(VecCopy(s->u, s->u_next));

@@ -282,12 +282,32 @@ static PetscErrorCode CornerSummary(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
+/* The friction corners (docs/method.md section 12): how many, and on how many the second obstacle
+ * pushed at the last step (with the first too, or alone). */
+static PetscErrorCode FrictionCornerSummary(MMCtx *ctx)
+{
+  MMContact *ct      = &ctx->contact;
+  PetscInt   both[2] = {0, 0};
+
+  PetscFunctionBeginUser;
+  if (!ct->n_fc) PetscFunctionReturn(0);
+  for (PetscInt k = 0; k < ct->n_local; ++k)
+    if (ct->fc_obstacle[k] >= 0 && ct->fc_r[ctx->op.dim * k] > 0) {
+      both[0] += ct->was_active[k];
+      both[1] += 1;
+    }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, both, 2, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ctx->op.dm)));
+  PetscCall(PetscPrintf(PetscObjectComm((PetscObject)ctx->op.dm), "  friction corners: %" PetscInt_FMT " contact nodes against two obstacles, each obstacle with its own Coulomb law; at the last step %" PetscInt_FMT " in contact with both, %" PetscInt_FMT " pushed by the second\n", ct->n_fc, both[0], both[1]));
+  PetscFunctionReturn(0);
+}
+
 /* The formulation's lines of the closing summary. */
 PetscErrorCode MMContactSummary(MMCtx *ctx)
 {
   PetscFunctionBeginUser;
   if (ctx->contact.ops->summary) PetscCall((*ctx->contact.ops->summary)(ctx));
   if (ctx->contact.enabled) PetscCall(CornerSummary(ctx));
+  if (ctx->contact.enabled) PetscCall(FrictionCornerSummary(ctx));
   PetscFunctionReturn(0);
 }
 
@@ -352,8 +372,28 @@ static PetscErrorCode CheckInitialPenetration(MMCtx *ctx, Vec w)
           ctx->opt.obstacles[glob_obstacle].name, where, glob.depth, (double)ctx->opt.initial_penetration_tol, (double)(ctx->opt.initial_penetration_tol * ct->h_c));
 }
 
+/* The initial projection's upper bounds on the massless dofs: the gaps on the normal ones, none on a
+ * friction corner's tau_1 (docs/method.md section 12), in the order set.c lists them. */
+static PetscErrorCode MasslessUpperBounds(MMContact *ct, Vec upper)
+{
+  const PetscScalar *ga;
+  PetscScalar       *ua;
+  PetscInt           p = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(ct->gap, &ga));
+  PetscCall(VecGetArray(upper, &ua));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    ua[p++] = ga[k];
+    if (ct->fc_obstacle && ct->fc_obstacle[k] >= 0) ua[p++] = PETSC_INFINITY;
+  }
+  PetscCall(VecRestoreArray(upper, &ua));
+  PetscCall(VecRestoreArrayRead(ct->gap, &ga));
+  PetscFunctionReturn(0);
+}
+
 /* Consistent initial contact dofs (docs/method.md section 3, Initial state): with the other dofs fixed, the
- * massless normal dofs solve the quasi-static problem A_cc u_c = L_c - A_c* u*, u_c <= g. */
+ * massless dofs solve the quasi-static problem A_cc u_c = L_c - A_c* u*, u_c <= g on the normal ones. */
 PetscErrorCode MMContactProjectInitial(MMCtx *ctx, Vec w)
 {
   MMContact *ct = &ctx->contact;
@@ -363,12 +403,12 @@ PetscErrorCode MMContactProjectInitial(MMCtx *ctx, Vec w)
   PetscFunctionBeginUser;
   if (ct->enabled) PetscCall(CheckInitialPenetration(ctx, w));
   if (!MMFEHasMasslessDofs(ctx)) PetscFunctionReturn(0);
-  PetscCall(MatCreateSubMatrix(ctx->op.K, ct->is_normal, ct->is_normal, MAT_INITIAL_MATRIX, &ct->qp0.A));
+  PetscCall(MatCreateSubMatrix(ctx->op.K, ct->is_massless, ct->is_massless, MAT_INITIAL_MATRIX, &ct->qp0.A));
   PetscCall(MatCreateVecs(ct->qp0.A, &ct->qp0.b, NULL));
   PetscCall(VecDuplicate(ct->qp0.b, &ct->lower0));
   PetscCall(VecDuplicate(ct->qp0.b, &ct->upper0));
   PetscCall(VecSet(ct->lower0, PETSC_NINFINITY));
-  PetscCall(VecCopy(ct->gap, ct->upper0));
+  PetscCall(MasslessUpperBounds(ct, ct->upper0));
   ct->qp0.rtol_b = ct->tol;
   PetscCall(MMQPCreate(PetscObjectComm((PetscObject)ctx->op.dm), "contact0_", &ct->qp0, 0, &ct->snes0));
   PetscCall(SNESVISetVariableBounds(ct->snes0, ct->lower0, ct->upper0));
@@ -376,19 +416,19 @@ PetscErrorCode MMContactProjectInitial(MMCtx *ctx, Vec w)
   /* b0 = (L - lift - K w*)_c with the contact dofs zeroed in w* */
   PetscCall(VecDuplicate(w, &r));
   PetscCall(VecCopy(w, r));
-  PetscCall(VecISSet(r, ct->is_normal, 0.0));
+  PetscCall(VecISSet(r, ct->is_massless, 0.0));
   PetscCall(VecDuplicate(w, &rc));
   PetscCall(MatMult(ctx->op.K, r, rc));
   PetscCall(VecAYPX(rc, -1.0, ctx->op.load));
   PetscCall(VecAXPY(rc, -1.0, ctx->op.lift));
-  PetscCall(VecGetSubVector(rc, ct->is_normal, &wc));
+  PetscCall(VecGetSubVector(rc, ct->is_massless, &wc));
   PetscCall(VecCopy(wc, ct->qp0.b));
-  PetscCall(VecRestoreSubVector(rc, ct->is_normal, &wc));
+  PetscCall(VecRestoreSubVector(rc, ct->is_massless, &wc));
 
-  PetscCall(VecGetSubVector(w, ct->is_normal, &wc));
-  PetscCall(VecPointwiseMin(wc, wc, ct->gap));
+  PetscCall(VecGetSubVector(w, ct->is_massless, &wc));
+  PetscCall(VecPointwiseMin(wc, wc, ct->upper0));
   PetscCall(MMQPSolve(ct->snes0, &ct->qp0, wc, &its));
-  PetscCall(VecRestoreSubVector(w, ct->is_normal, &wc));
+  PetscCall(VecRestoreSubVector(w, ct->is_massless, &wc));
   PetscCall(VecDestroy(&r));
   PetscCall(VecDestroy(&rc));
   PetscFunctionReturn(0);
@@ -439,6 +479,14 @@ PetscErrorCode MMContactDestroy(MMContact *ct)
   PetscCall(PetscFree(ct->force_obstacle));
   PetscCall(VecDestroy(&ct->area));
   PetscCall(ISDestroy(&ct->is_normal));
+  PetscCall(ISDestroy(&ct->is_massless));
+  PetscCall(PetscFree(ct->fc_obstacle));
+  PetscCall(PetscFree4(ct->fc_ab, ct->fc_gap0, ct->fc_gap, ct->fc_slide));
+  PetscCall(PetscFree2(ct->fc_r, ct->fc_r_old));
+  PetscCall(VecDestroy(&ct->fc_geom));
+  PetscCall(VecDestroy(&ct->fc_mu));
+  PetscCall(VecDestroy(&ct->fc_q));
+  PetscCall(VecDestroy(&ct->fc_x));
   PetscCall(ISDestroy(&ct->is_tangent));
   PetscCall(ISDestroy(&ct->is_star));
   PetscCall(ISDestroy(&ct->is_interior));

@@ -43,6 +43,73 @@ static PetscReal OtherObstaclesPenetration(MMCtx *ctx, PetscInt k, const PetscSc
   return worst;
 }
 
+/* One obstacle's Coulomb law at one node (docs/method.md section 6): its gap g - un, normal
+ * reaction r, tangential force ft and slip vt (dim - 1 each, its own frame), whether its tangential
+ * reaction is on the rim of its disk; the residual, and cnt[2] (slipping) or cnt[3] (sticking). */
+typedef struct {
+  PetscReal un, g, r, mu, ft[MM_MAX_DIM], vt[MM_MAX_DIM];
+  PetscBool at_bound, friction;
+} RowState;
+
+static PetscReal RowResidual(const RowState *rs, PetscInt dim, PetscReal h_c, PetscReal dt, PetscReal fscale, PetscReal vtol, PetscInt cnt[4])
+{
+  const PetscBool active = (PetscBool)(rs->g - rs->un <= 1e-10 * h_c);
+  PetscReal       tn = 0, vn = 0, res = 0;
+
+  for (PetscInt d = 1; d < dim; ++d) {
+    tn += PetscSqr(rs->ft[d]);
+    vn += PetscSqr(rs->vt[d]);
+  }
+  tn  = PetscSqrtReal(tn);
+  vn  = PetscSqrtReal(vn);
+  res = PetscMax(res, (rs->un - rs->g) / h_c);                                    /* penetration */
+  res = PetscMax(res, -rs->r / fscale);                                           /* tension */
+  res = PetscMax(res, PetscAbsReal(rs->r * (rs->un - rs->g)) / (fscale * h_c));   /* complementarity */
+  res = PetscMax(res, (tn - rs->mu * PetscMax(rs->r, 0)) / fscale);               /* cone */
+  /* inside the cone a node must not slip */
+  if (active && rs->friction && !rs->at_bound) res = PetscMax(res, vn * dt / (2 * h_c));
+  if (active && rs->at_bound && vn > vtol) {
+    PetscReal slip = 0; /* |t + mu r sigma/|sigma|| */
+    for (PetscInt d = 1; d < dim; ++d) slip += PetscSqr(rs->ft[d] + rs->mu * rs->r * rs->vt[d] / vn);
+    res = PetscMax(res, PetscSqrtReal(slip) / fscale);
+    ++cnt[2];
+  } else if (active && rs->friction) ++cnt[3];
+  cnt[0] += active;
+  return res;
+}
+
+/* A friction corner's second obstacle (docs/method.md section 12): its row state from the node's
+ * w (its frame components), its slip sigma = 2/dt (w - u^n) - v^n (the one its law is solved with:
+ * the node's normal velocity is the massless dofs' backward difference in v, not this) and r_2;
+ * its force on the obstacle added to fob. uo, vo: u^n, v^n at the node (NULL at t = 0: v). */
+static void SecondObstacleRow(MMCtx *ctx, PetscInt k, const PetscScalar w[], const PetscScalar v[], const PetscScalar uo[], const PetscScalar vo[], PetscReal fob[], RowState *rs)
+{
+  MMContact       *ct  = &ctx->contact;
+  const PetscInt   dim = ctx->op.dim;
+  const PetscReal *r2  = &ct->fc_r[dim * k], dt = ct->Kt_dt;
+  PetscReal        F2[MM_MAX_DIM][MM_MAX_DIM], T[MM_MAX_DIM][MM_MAX_DIM], rt = 0, sigma[MM_MAX_DIM];
+
+  MMContactCornerFrame2(dim, &ct->node_frame[9 * k], &ct->fc_ab[2 * k], F2);
+  MMContactCornerT2(dim, &ct->fc_ab[2 * k], T);
+  PetscMemzero(rs, sizeof(*rs));
+  for (PetscInt e = 0; e < dim; ++e) sigma[e] = uo && dt > 0 ? PetscRealPart(2 / dt * (w[e] - uo[e]) - vo[e]) : PetscRealPart(v[e]);
+  for (PetscInt e = 0; e < dim; ++e) rs->un += T[0][e] * PetscRealPart(w[e]);
+  rs->g        = ct->fc_gap[k];
+  rs->r        = r2[0];
+  rs->mu       = ctx->opt.obstacles[ct->fc_obstacle[k]].mu;
+  rs->friction = PETSC_TRUE;
+  for (PetscInt j = 1; j < dim; ++j) {
+    rs->ft[j] = -r2[j];
+    for (PetscInt e = 0; e < dim; ++e) rs->vt[j] += T[j][e] * sigma[e];
+    rs->vt[j] -= dt > 0 ? 2 * ct->fc_slide[k * (dim - 1) + j - 1] / dt : 0;
+    rt += PetscSqr(r2[j]);
+  }
+  rs->at_bound = (PetscBool)(PetscSqrtReal(rt) >= rs->mu * PetscMax(rs->r, 0) * (1 - 1e-6) - 2e-8);
+  /* the force on the obstacle: minus the reaction on the body, -(-r_2), in Cartesian */
+  for (PetscInt j = 0; j < dim; ++j)
+    for (PetscInt c = 0; c < dim; ++c) fob[MM_MAX_DIM * ct->fc_obstacle[k] + c] += r2[j] * F2[j][c];
+}
+
 static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma, PetscBool record_switches, ContactStats *st)
 {
   MMContact         *ct = &ctx->contact;
@@ -54,7 +121,7 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
   const PetscReal    vtol = 1e-9 * 2 * ct->h_c / dt;
   PetscInt           dim = ctx->op.dim, nc = ct->n_local, cnt[4] = {0, 0, 0, 0}, rstart;
   const PetscInt    *in;
-  const PetscScalar *wa, *fa, *ga, *va, *ra = NULL, *rh = NULL;
+  const PetscScalar *wa, *fa, *ga, *va, *ra = NULL, *rh = NULL, *uo = NULL, *vo = NULL;
   const PetscInt     nr = ct->ncomp;
   PetscReal          sums[1 + MM_MAX_DIM] = {0, 0, 0, 0}, loc[2] = {0, 0}, rmax = 0, fscale;
   MPI_Comm           comm = PetscObjectComm((PetscObject)ctx->op.dm);
@@ -72,6 +139,10 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
   PetscCall(VecGetArrayRead(react, &fa));
   PetscCall(VecGetArrayRead(sigma, &va));
   PetscCall(VecGetArrayRead(ct->gap, &ga));
+  if (ct->n_fc) {
+    PetscCall(VecGetArrayRead(ctx->state.u_old, &uo));
+    PetscCall(VecGetArrayRead(ctx->state.v_old, &vo));
+  }
   if (nr > 1) {
     PetscCall(VecGetArrayRead(ct->rho, &ra));
     PetscCall(VecGetArrayRead(ct->rho_hi, &rh));
@@ -83,59 +154,66 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
   fscale = PetscMax(rmax, 1e-3 * ctx->material.E_max * PetscPowReal(ct->h_c, dim - 1));
   for (PetscInt k = 0; k < nc; ++k) {
     const PetscInt  i = in[k] - rstart;
-    const PetscReal un = PetscRealPart(wa[i]), g = PetscRealPart(ga[k]), r = -PetscRealPart(fa[i]);
-    const PetscBool active = (PetscBool)(g - un <= 1e-10 * ct->h_c);
-    const PetscReal mu = PetscRealPart(mua[k]), *F = &ct->node_frame[9 * k];
-    PetscReal       tn = 0, vn = 0, res = 0, vt[MM_MAX_DIM] = {0, 0, 0};
+    const PetscReal *F = &ct->node_frame[9 * k];
+    const PetscBool corner = (PetscBool)(ct->fc_obstacle && ct->fc_obstacle[k] >= 0);
+    PetscReal       res, f1[MM_MAX_DIM] = {0, 0, 0}, r1[MM_MAX_DIM] = {0, 0, 0}, r2[MM_MAX_DIM];
+    RowState        rs;
+    PetscBool       active;
 
+    /* a friction corner's own obstacle's force: the node's, without the second's (corners.c) */
+    for (PetscInt d = 0; d < nr; ++d) f1[d] = PetscRealPart(fa[i + d]);
+    if (corner) {
+      PetscScalar fs[MM_MAX_DIM] = {0, 0, 0};
+      for (PetscInt d = 0; d < nr; ++d) fs[d] = -fa[i + d];
+      MMContactCornerSplit(ct, nr, k, fs, r1, r2);
+      for (PetscInt d = 0; d < nr; ++d) f1[d] = -r1[d];
+    }
+    PetscCall(PetscMemzero(&rs, sizeof(rs)));
+    rs.un       = PetscRealPart(wa[i]);
+    rs.g        = PetscRealPart(ga[k]);
+    rs.r        = -f1[0];
+    rs.mu       = PetscRealPart(mua[k]);
+    rs.friction = (PetscBool)(nr > 1);
     for (PetscInt d = 1; d < nr; ++d) {
       /* slip is relative to the obstacle: its velocity V.tau_d is 2 slide_ref / dt */
-      vt[d] = PetscRealPart(va[i + d]) - (dt > 0 ? 2 * ct->slide_ref[k * (dim - 1) + d - 1] / dt : 0);
-      tn += PetscSqr(PetscRealPart(fa[i + d]));
-      vn += PetscSqr(vt[d]);
-      if (dim == 2) sums[d] += PetscRealPart(fa[i + d]);
+      rs.vt[d] = PetscRealPart(va[i + d]) - (dt > 0 ? 2 * ct->slide_ref[k * (dim - 1) + d - 1] / dt : 0);
+      rs.ft[d] = f1[d];
+      if (dim == 2) sums[d] += f1[d];
       else
-        for (PetscInt c = 0; c < dim; ++c) sums[1 + c] += PetscRealPart(fa[i + d]) * F[3 * d + c];
+        for (PetscInt c = 0; c < dim; ++c) sums[1 + c] += f1[d] * F[3 * d + c];
     }
     /* the force on the obstacle: minus the reaction on the body, back to Cartesian */
     for (PetscInt d = 0; d < nr; ++d)
-      for (PetscInt c = 0; c < dim; ++c) fob[MM_MAX_DIM * ct->obstacle[k] + c] -= PetscRealPart(fa[i + d]) * F[3 * d + c];
-    tn = PetscSqrtReal(tn);
-    vn = PetscSqrtReal(vn);
-    sums[0] += r;
-    res = PetscMax(res, (un - g) / ct->h_c);                                 /* penetration */
-    res = PetscMax(res, -r / fscale);                                        /* tension */
-    res = PetscMax(res, PetscAbsReal(r * (un - g)) / (fscale * ct->h_c));    /* complementarity */
-    res = PetscMax(res, (tn - mu * PetscMax(r, 0)) / fscale);                /* cone */
+      for (PetscInt c = 0; c < dim; ++c) fob[MM_MAX_DIM * ct->obstacle[k] + c] -= f1[d] * F[3 * d + c];
+    sums[0] += rs.r;
     /* the VI's own stick/slip split: a tangential reaction inside its bound sticks (RSLS holds a
      * variable within 1e-8, absolute, of its bound as active, hence the relative margin) */
-    PetscBool at_bound = PETSC_FALSE;
-    if (nr == 3) {
-      PetscReal rt = PetscSqrtReal(PetscSqr(PetscRealPart(ra[k * nr + 1])) + PetscSqr(PetscRealPart(ra[k * nr + 2])));
-      /* on the disk's rim: a slipping node whose reaction reached its threshold, or no threshold */
-      at_bound = (PetscBool)((ct->slipping[k] || PetscRealPart(rh[k * nr + 1]) == 0) && rt >= PetscRealPart(rh[k * nr + 1]) - PetscMax(1e-6 * PetscRealPart(rh[k * nr + 1]), 2e-8));
+    if (nr > 1) {
+      PetscReal rt = 0, rsplit[MM_MAX_DIM], r2s[MM_MAX_DIM];
+      MMContactCornerSplit(ct, nr, k, &ra[k * nr], rsplit, r2s);
+      for (PetscInt d = 1; d < nr; ++d) rt += PetscSqr(rsplit[d]);
+      rt = PetscSqrtReal(rt);
+      /* 3D: on the disk's rim, a slipping node whose reaction reached its threshold, or no
+       * threshold; 2D: a zero threshold is a bound too (a node touching without force slides freely) */
+      rs.at_bound = (PetscBool)((nr == 2 || ct->slipping[k] || PetscRealPart(rh[k * nr + 1]) == 0) && rt >= PetscRealPart(rh[k * nr + 1]) - PetscMax(1e-6 * PetscRealPart(rh[k * nr + 1]), 2e-8));
     }
-    else if (nr > 1) {
-      PetscReal rt = 0;
-      for (PetscInt d = 1; d < nr; ++d) rt += PetscSqr(PetscRealPart(ra[k * nr + d]));
-      /* a zero threshold is a bound too: a node touching without force slides freely */
-      at_bound = (PetscBool)(PetscSqrtReal(rt) >= PetscRealPart(rh[k * nr + 1]) - PetscMax(1e-6 * PetscRealPart(rh[k * nr + 1]), 2e-8));
+    res    = RowResidual(&rs, dim, ct->h_c, dt, fscale, vtol, cnt);
+    active = (PetscBool)(rs.g - rs.un <= 1e-10 * ct->h_c);
+    if (corner) {
+      RowState rs2;
+      PetscReal res2;
+      SecondObstacleRow(ctx, k, &wa[i], &va[i], uo ? &uo[i] : NULL, vo ? &vo[i] : NULL, fob, &rs2);
+      res2 = RowResidual(&rs2, dim, ct->h_c, dt, fscale, vtol, cnt); /* once: it counts (PetscMax evaluates twice) */
+      res  = PetscMax(res, res2);
+      sums[0] += rs2.r;
+      loc[1] = PetscMax(loc[1], rs2.un - rs2.g);
     }
-    /* inside the cone a node must not slip */
-    if (active && nr > 1 && !at_bound) res = PetscMax(res, vn * dt / (2 * ct->h_c));
-    if (active && at_bound && vn > vtol) {
-      PetscReal slip = 0; /* |t + mu r sigma/|sigma|| */
-      for (PetscInt d = 1; d < dim; ++d) slip += PetscSqr(PetscRealPart(fa[i + d]) + mu * r * vt[d] / vn);
-      res = PetscMax(res, PetscSqrtReal(slip) / fscale);
-      ++cnt[2];
-    } else if (active && nr > 1) ++cnt[3];
-    cnt[0] += active;
     if (record_switches) {
       cnt[1] += (active != ct->was_active[k]);
       ct->was_active[k] = active;
     }
     loc[0] = PetscMax(loc[0], res);
-    loc[1] = PetscMax(loc[1], un - g);
+    loc[1] = PetscMax(loc[1], rs.un - rs.g);
     /* a pair's slave node: its w are relative displacements (it is on no rigid obstacle's surface) */
     if (ct->all_gap0 && ct->obstacle[k] < ctx->opt.n_rigid && !ct->second[k]) loc[1] = PetscMax(loc[1], OtherObstaclesPenetration(ctx, k, &wa[i], cob));
   }
@@ -144,6 +222,8 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
     PetscCall(VecRestoreArrayRead(ct->rho_hi, &rh));
   }
   PetscCall(VecRestoreArrayRead(ct->gap, &ga));
+  if (uo) PetscCall(VecRestoreArrayRead(ctx->state.u_old, &uo));
+  if (vo) PetscCall(VecRestoreArrayRead(ctx->state.v_old, &vo));
   PetscCall(VecRestoreArrayRead(ct->mu, &mua));
   /* the obstacle forces are recorded for accepted steps only: no reduction inside the friction loop */
   if (record_switches) PetscCall(MPIU_Allreduce(fob, ct->force_obstacle, MM_MAX_DIM * nob, MPIU_REAL, MPIU_SUM, comm));
@@ -225,16 +305,21 @@ PetscErrorCode MMContactBoundaryFields(MMCtx *ctx, MMOutput *o)
     for (PetscInt k = 0; k < ct->n_local; ++k) {
       const PetscInt i = in[k] - rstart;
       PetscInt       start, end;
-      PetscScalar    tc[MM_MAX_DIM] = {0, 0, 0}, sc[MM_MAX_DIM] = {0, 0, 0};
+      PetscScalar    tc[MM_MAX_DIM] = {0, 0, 0}, sc[MM_MAX_DIM] = {0, 0, 0}, f1[MM_MAX_DIM] = {0, 0, 0};
+      PetscReal      r1[MM_MAX_DIM], r2[MM_MAX_DIM];
 
-      /* a corner's two rows add their pressures; its gap, traction and slip are its first row's */
-      PetscCall(VecSetValue(o->pressure, ct->scalar_index[k], -fa[i] / aa[k], ADD_VALUES));
+      /* a corner's two rows add their pressures; its gap, traction and slip are its first row's (a
+       * friction corner: its first obstacle's share of the force, corners.c) */
+      for (PetscInt d = 0; d < dim; ++d) f1[d] = -fa[i + d];
+      MMContactCornerSplit(ct, dim, k, f1, r1, r2);
+      for (PetscInt d = 0; d < dim; ++d) f1[d] = ct->ncomp > 1 ? -r1[d] : fa[i + d];
+      PetscCall(VecSetValue(o->pressure, ct->scalar_index[k], (-f1[0] + r2[0]) / aa[k], ADD_VALUES));
       if (ct->second[k]) continue;
       PetscCall(VecSetValue(o->gap, ct->scalar_index[k], ga[k] - wa[i], INSERT_VALUES));
       for (PetscInt d = 1; d < dim; ++d)
         for (PetscInt c = 0; c < dim; ++c) {
           const PetscReal Vt = ct->Kt_dt > 0 ? 2 * ct->slide_ref[k * (dim - 1) + d - 1] / ct->Kt_dt : 0;
-          tc[c] += fa[i + d] * ct->node_frame[9 * k + 3 * d + c] / aa[k];
+          tc[c] += f1[d] * ct->node_frame[9 * k + 3 * d + c] / aa[k];
           sc[c] += (va[i + d] - Vt) * ct->node_frame[9 * k + 3 * d + c];
         }
       PetscCall(DMPlexGetPointGlobal(o->dm_out, ct->vertex[k], &start, &end));

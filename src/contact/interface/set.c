@@ -236,6 +236,28 @@ static PetscErrorCode ContactLayerDiameter(MMCtx *ctx, const PetscInt mark[])
   PetscFunctionReturn(0);
 }
 
+/* The friction corners' arrays, per row (docs/method.md section 12). */
+static PetscErrorCode FrictionCornersAllocate(MMContact *ct, PetscInt dim, PetscInt n)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(n, &ct->fc_obstacle));
+  for (PetscInt k = 0; k < n; ++k) ct->fc_obstacle[k] = -1;
+  PetscCall(PetscCalloc4(2 * (size_t)n, &ct->fc_ab, n, &ct->fc_gap0, n, &ct->fc_gap, (size_t)n * (dim - 1), &ct->fc_slide));
+  PetscCall(PetscCalloc2((size_t)n * dim, &ct->fc_r, (size_t)n * dim, &ct->fc_r_old));
+  PetscFunctionReturn(0);
+}
+
+/* Row k, with friction, against a second obstacle b at gap g: nu_2 = a nu_1 + b tau_1 in its frame. */
+static void FrictionCornerSet(MMCtx *ctx, PetscInt k, PetscInt b, PetscReal g, const PetscReal ab[2])
+{
+  MMContact *ct = &ctx->contact;
+
+  ct->fc_obstacle[k]   = b;
+  ct->fc_ab[2 * k]     = ab[0];
+  ct->fc_ab[2 * k + 1] = ab[1];
+  ct->fc_gap0[k] = ct->fc_gap[k] = g;
+}
+
 /* Index sets of the owned contact dofs, the gaps, and the rotation Q (identity off the contact set). */
 static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec area)
 {
@@ -245,8 +267,8 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
   DM           dm = ctx->op.dm;
   MMContact   *ct = &ctx->contact;
   PetscSection gs, ls, cs;
-  PetscInt     vStart, vEnd, pStart, dim = ctx->op.dim, n, rstart, rend, nc = 0, nt = 0, *in, *it, *is, b2;
-  PetscReal    ab[2] = {0, 0}, n2[MM_MAX_DIM] = {0, 0, 0};
+  PetscInt     vStart, vEnd, pStart, dim = ctx->op.dim, n, rstart, rend, nc = 0, nt = 0, nm = 0, *in, *it, *is, *im, b2, bf;
+  PetscReal    ab[2] = {0, 0}, n2[MM_MAX_DIM] = {0, 0, 0}, g2 = 0;
   PetscReal   *gap;
   Vec          X, g;
   const PetscScalar *x;
@@ -264,13 +286,14 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
   PetscCall(VecGetLocalSize(g, &n));
   PetscCall(VecGetOwnershipRange(g, &rstart, &rend));
   PetscCall(VecDestroy(&g));
-  PetscCall(PetscMalloc4(n, &in, n, &it, n, &is, n, &gap));
+  PetscCall(PetscMalloc5(n, &in, n, &it, n, &is, n, &gap, n, &im));
   PetscCall(PetscCalloc1(n, &is_contact_dof));
   PetscCall(PetscMalloc1(n, &ct->scalar_index));
   PetscCall(PetscMalloc1(n, &ct->vertex));
   PetscCall(PetscMalloc1(n, &nodal_area));
   PetscCall(PetscMalloc1(n, &ct->obstacle));
   PetscCall(PetscCalloc2(n, &ct->second, 2 * (size_t)n, &ct->corner_ab));
+  if (ct->ncomp > 1) PetscCall(FrictionCornersAllocate(ct, dim, n));
   PetscCall(PetscMalloc1(9 * (size_t)n, &ct->node_frame));
   if (ctx->opt.n_rigid > 1) PetscCall(PetscMalloc2((size_t)n * ctx->opt.n_rigid, &ct->all_gap0, 3 * (size_t)n * ctx->opt.n_rigid, &ct->all_nu));
   PetscCall(VecGetOwnershipRange(area, &astart, NULL));
@@ -284,7 +307,7 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
     if (goff < 0) continue;
     PetscCall(PetscSectionGetConstraintDof(ls, v, &cdof));
     PetscCall(PetscSectionGetOffset(cs, v, &xoff));
-    b2 = -1;
+    b2 = bf = -1;
     PetscCheck(cdof == 0, comm, PETSC_ERR_USER_INPUT, "A node of the contact boundary \"%s\" at (%g, %g) is also on a Dirichlet boundary. Contact dofs must be free: separate the two physical groups", mark[v - pStart] >= 2 ? ctx->opt.obstacles[ctx->opt.n_rigid + mark[v - pStart] - 2].slave : ctx->opt.contact_name, (double)PetscRealPart(x[xoff]), (double)PetscRealPart(x[xoff + 1]));
     {
       PetscReal xv[MM_MAX_DIM] = {0, 0, 0}, n[MM_MAX_DIM] = {0, 0, 0}, F[MM_MAX_DIM][MM_MAX_DIM];
@@ -296,11 +319,16 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
       } else {
         PetscCall(NearestObstacle(ctx, xv, &ct->obstacle[nc], &gap[nc], n));
         PetscCall(AllObstacleGaps(ctx, xv, nc));
-        /* frictionless: a node near two walls gets a row for each (with friction its tangential
-         * dofs carry the friction law, and it keeps one row: the report shows the other wall) */
-        if (ct->ncomp == 1) PetscCall(SecondObstacle(ctx, xv, ct->obstacle[nc], n, &b2, &gap[nc + 1], n2));
+        /* a node near two walls: frictionless, a row for each; with friction one row whose dofs
+         * carry both obstacles' Coulomb laws (docs/method.md section 12) */
+        PetscCall(SecondObstacle(ctx, xv, ct->obstacle[nc], n, &b2, &g2, n2));
+        if (b2 >= 0 && ct->ncomp == 1) gap[nc + 1] = g2;
+        if (b2 >= 0 && ct->ncomp > 1) {
+          bf = b2;
+          b2 = -1;
+        }
       }
-      if (b2 >= 0) CornerFrame(dim, n, n2, F, &ab[0], &ab[1]);
+      if (b2 >= 0 || bf >= 0) CornerFrame(dim, n, n2, F, &ab[0], &ab[1]);
       else FrameFromNormal(dim, n, F);
       for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
         for (PetscInt b = 0; b < MM_MAX_DIM; ++b) ct->node_frame[9 * nc + 3 * a + b] = F[a][b];
@@ -311,6 +339,10 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
     }
     /* the tangential dofs: all but the normals (a corner's second normal is its first tangent) */
     for (PetscInt d = b2 >= 0 ? 2 : 1; d < dim; ++d) it[nt++] = goff + d;
+    /* the massless dofs: the normals, and a friction corner's tau_1 (its second normal lies in the
+     * plane of nu_1 and tau_1) */
+    for (PetscInt r = 0; r < (b2 >= 0 || bf >= 0 ? 2 : 1); ++r) im[nm++] = goff + r;
+    if (bf >= 0) FrictionCornerSet(ctx, nc, bf, g2, ab);
     for (PetscInt r = 0; r < (b2 >= 0 ? 2 : 1); ++r) {
       PetscInt sstart, send;
       in[nc] = goff + r;
@@ -343,8 +375,9 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
     PetscInt ns = 0;
     for (PetscInt i = 0; i < n; ++i)
       if (!is_contact_dof[i]) PetscCall(MatSetValue(ctx->op.Q, rstart + i, rstart + i, 1.0, INSERT_VALUES));
-    /* the star dofs: all but the contact-normal ones (tangential contact dofs keep their mass) */
-    for (PetscInt k = 0; k < nc; ++k) is_contact_dof[in[k] - rstart] = 2;
+    /* the star dofs: all but the massless ones (tangential contact dofs keep their mass, but for a
+     * friction corner's tau_1) */
+    for (PetscInt k = 0; k < nm; ++k) is_contact_dof[im[k] - rstart] = 2;
     for (PetscInt i = 0; i < n; ++i)
       if (is_contact_dof[i] != 2) is[ns++] = rstart + i;
     PetscCall(ISCreateGeneral(comm, ns, is, PETSC_COPY_VALUES, &ct->is_star));
@@ -356,6 +389,7 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
   PetscCall(MatAssemblyBegin(ctx->op.Q, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(ctx->op.Q, MAT_FINAL_ASSEMBLY));
   PetscCall(ISCreateGeneral(comm, nc, in, PETSC_COPY_VALUES, &ct->is_normal));
+  PetscCall(ISCreateGeneral(comm, nm, im, PETSC_COPY_VALUES, &ct->is_massless));
   PetscCall(ISCreateGeneral(comm, nt, it, PETSC_COPY_VALUES, &ct->is_tangent));
   /* the condensed dofs, node by node: the normal one, and the tangential ones with friction */
   for (PetscInt k = 0; k < nc; ++k)
@@ -386,7 +420,12 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
   PetscCall(MPIU_Allreduce(&nc, &ct->n_global, 1, MPIU_INT, MPI_SUM, comm));
   PetscCall(PetscCalloc1(nc, &ct->was_active));
   PetscCall(PetscCalloc2(nc, &ct->slipping, 2 * nc, &ct->slip_dir));
-  PetscCall(PetscFree4(in, it, is, gap));
+  PetscCall(PetscFree5(in, it, is, gap, im));
+  if (ct->fc_obstacle) {
+    PetscInt n_fc = 0;
+    for (PetscInt k = 0; k < nc; ++k) n_fc += ct->fc_obstacle[k] >= 0;
+    PetscCall(MPIU_Allreduce(&n_fc, &ct->n_fc, 1, MPIU_INT, MPI_SUM, comm));
+  }
   PetscCall(PetscFree(is_contact_dof));
   PetscFunctionReturn(0);
 }
@@ -407,6 +446,7 @@ static PetscErrorCode BuildNoContact(MMCtx *ctx)
   PetscCall(MatAssemblyBegin(ctx->op.Q, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(ctx->op.Q, MAT_FINAL_ASSEMBLY));
   PetscCall(ISCreateStride(comm, 0, 0, 1, &ctx->contact.is_normal));
+  PetscCall(ISCreateStride(comm, 0, 0, 1, &ctx->contact.is_massless));
   PetscCall(ISCreateStride(comm, 0, 0, 1, &ctx->contact.is_tangent));
   PetscCall(ISCreateStride(comm, 0, 0, 1, &ctx->contact.is_cond));
   PetscCall(ISCreateStride(comm, n, rstart, 1, &ctx->contact.is_star));
@@ -460,11 +500,34 @@ PetscErrorCode MMContactSetUp(MMCtx *ctx)
   PetscCall(MMContactPairsBuildTransform(ctx));
   PetscCall(PetscFree(mark));
   PetscCall(VecDestroy(&area));
+  /* a friction corner's two Coulomb laws on one node's dofs are solved in contact space only */
+  PetscCheck(!ct->n_fc || ct->ops->solvecoulomb, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_SUP, "%" PetscInt_FMT " contact nodes are within h_c' of two obstacles with friction (-mu %g), and -contact_formulation %s%s cannot carry both obstacles' Coulomb laws on one node: use -contact_formulation condensed", ct->n_fc, (double)ctx->opt.mu_max, ct->type, ct->auto_type ? " (auto's choice for a mesh this size)" : "");
   PetscCheck(ct->ncomp == 1 || ct->ops->solvecontactdofs, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_SUP, "Friction (-mu %g) needs a contact formulation that solves the contact dofs alone, and -contact_formulation %s cannot: use condensed or active_set", (double)ctx->opt.mu_max, ct->type);
   PetscCheck(ct->n_global > 0, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "The contact boundary \"%s\" has no nodes", ctx->opt.contact_name);
   PetscFunctionReturn(0);
 }
 
+
+/* A friction corner's second obstacle at time t: its gap g_2(t) = g_2(0) + c_2(t).nu_2 and its
+ * sliding dt/2 V_2.tau'_j along the second row's tangents (docs/method.md section 12). */
+static void FrictionCornerSetTime(MMCtx *ctx, PetscInt k, PetscReal t, PetscReal dt)
+{
+  MMContact        *ct  = &ctx->contact;
+  const PetscInt    dim = ctx->op.dim;
+  const MMObstacle *ob  = &ctx->opt.obstacles[ct->fc_obstacle[k]];
+  PetscReal         c[MM_MAX_DIM] = {0, 0, 0}, V[MM_MAX_DIM] = {0, 0, 0}, F2[MM_MAX_DIM][MM_MAX_DIM];
+
+  MMObstacleDisplacement(ob, dim, t, c);
+  MMObstacleVelocity(ob, dim, t, V);
+  MMContactCornerFrame2(dim, &ct->node_frame[9 * k], &ct->fc_ab[2 * k], F2);
+  ct->fc_gap[k] = ct->fc_gap0[k];
+  for (PetscInt d = 0; d < dim; ++d) ct->fc_gap[k] += c[d] * F2[0][d];
+  for (PetscInt j = 1; j < dim; ++j) {
+    PetscReal vt = 0;
+    for (PetscInt d = 0; d < dim; ++d) vt += V[d] * F2[j][d];
+    ct->fc_slide[k * (dim - 1) + j - 1] = 0.5 * dt * vt;
+  }
+}
 
 /* The obstacles at time t^{n+1} = t for a step of dt: each node's gap follows its obstacle's
  * translation c(t) along the node's fixed normal, g_i(t) = g_i(0) + c(t).nu_i (exact for a plane;
@@ -490,6 +553,7 @@ PetscErrorCode MMContactSetTime(MMCtx *ctx, PetscReal t, PetscReal dt)
     MMObstacleVelocity(ob, dim, t, V);
     for (PetscInt d = 0; d < dim; ++d) cn += c[d] * F[d];
     g[k] = g0[k] + cn;
+    if (ct->fc_obstacle && ct->fc_obstacle[k] >= 0) FrictionCornerSetTime(ctx, k, t, dt);
     for (PetscInt j = 1; j < dim; ++j) {
       PetscReal vt = 0;
       for (PetscInt d = 0; d < dim; ++d) vt += V[d] * F[3 * j + d];

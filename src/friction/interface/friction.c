@@ -53,7 +53,7 @@ PetscErrorCode MMFrictionCoulombResidual(MMFriction fr, PetscReal *coulomb, Pets
 static PetscErrorCode SolveSetAdaptor(void *ptr, const MMContactSetProblem *sp, PetscScalar x[], PetscBool *ok)
 {
   MMFriction       fr = (MMFriction)ptr;
-  MMCoulombProblem p  = {sp->n, sp->nc, sp->W, sp->q, sp->mu, NULL};
+  MMCoulombProblem p  = {sp->n, sp->nc, sp->W, sp->q, sp->mu, NULL, sp->redundant};
   MMCoulombResult  res;
   PetscLogDouble   t0, t1;
   PetscScalar     *x0 = NULL;

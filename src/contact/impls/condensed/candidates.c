@@ -576,7 +576,7 @@ PetscErrorCode MMCandidatesSelect(MMCtx *ctx)
   MMContact         *ct = &ctx->contact;
   MMCandidates      *c  = &ct->cand;
   const PetscInt     nr = ct->ncomp;
-  const PetscScalar *qa, *ra;
+  const PetscScalar *qa, *ra, *q2 = NULL, *r2 = NULL;
   PetscReal          deepest = 0;
   PetscInt          *mine, n = 0, added;
 
@@ -585,11 +585,18 @@ PetscErrorCode MMCandidatesSelect(MMCtx *ctx)
   c->n_set = 0;
   PetscCall(VecGetArrayRead(ct->q, &qa));
   PetscCall(VecGetArrayRead(ct->rho, &ra));
-  for (PetscInt k = 0; k < ct->n_local; ++k) deepest = PetscMax(deepest, PetscRealPart(qa[nr * k]));
+  /* a friction corner's second obstacle (zero elsewhere) can bring it into the set too */
+  if (ct->fc_q) PetscCall(VecGetArrayRead(ct->fc_q, &q2));
+  if (ct->fc_x) PetscCall(VecGetArrayRead(ct->fc_x, &r2));
+  for (PetscInt k = 0; k < ct->n_local; ++k) deepest = PetscMax(deepest, PetscMax(PetscRealPart(qa[nr * k]), q2 ? PetscRealPart(q2[nr * k]) : 0.0));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &deepest, 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)ctx->op.dm)));
   PetscCall(PetscMalloc1(ct->n_local, &mine));
-  for (PetscInt k = 0; k < ct->n_local; ++k)
-    if (c->all || PetscRealPart(qa[nr * k]) >= -c->margin * deepest || PetscRealPart(ra[nr * k]) > 0) mine[n++] = c->node_start + k;
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscBool second = (PetscBool)(q2 && ct->fc_obstacle[k] >= 0 && (PetscRealPart(q2[nr * k]) >= -c->margin * deepest || PetscRealPart(r2[nr * k]) > 0));
+    if (c->all || second || PetscRealPart(qa[nr * k]) >= -c->margin * deepest || PetscRealPart(ra[nr * k]) > 0) mine[n++] = c->node_start + k;
+  }
+  if (r2) PetscCall(VecRestoreArrayRead(ct->fc_x, &r2));
+  if (q2) PetscCall(VecRestoreArrayRead(ct->fc_q, &q2));
   PetscCall(VecRestoreArrayRead(ct->rho, &ra));
   PetscCall(VecRestoreArrayRead(ct->q, &qa));
   PetscCall(AddToSet(ctx, n, mine, &added));
@@ -612,7 +619,7 @@ PetscErrorCode MMCandidatesGrow(MMCtx *ctx, const PetscScalar wc[], PetscBool *g
   PetscCall(VecGetArrayRead(ct->gap, &ga));
   PetscCall(PetscMalloc1(ct->n_local, &mine));
   for (PetscInt k = 0; k < ct->n_local; ++k)
-    if (!c->in_set[c->node_start + k] && PetscRealPart(wc[ct->ncomp * k] - ga[k]) > 1e-10 * ct->h_c) mine[n++] = c->node_start + k;
+    if (!c->in_set[c->node_start + k] && (PetscRealPart(wc[ct->ncomp * k] - ga[k]) > 1e-10 * ct->h_c || MMContactCornerCrosses(ct, ct->ncomp, k, wc, 1e-10 * ct->h_c))) mine[n++] = c->node_start + k;
   PetscCall(VecRestoreArrayRead(ct->gap, &ga));
   PetscCall(AddToSet(ctx, n, mine, &added));
   PetscCall(PetscFree(mine));

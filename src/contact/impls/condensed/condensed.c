@@ -172,6 +172,7 @@ static PetscErrorCode PrepareStep(MMCtx *ctx, Vec b)
   ct->z_dt      = ct->Kt_dt;
   if (!ct->enabled) PetscFunctionReturn(0);
   PetscCall(CondensedRHS(ctx));
+  PetscCall(MMContactCornersRHS(ctx, ct->cand.cond_row));
   PetscCall(MMCandidatesSelect(ctx));
   PetscFunctionReturn(0);
 }
@@ -228,6 +229,50 @@ typedef struct {
   void              *fctx;
 } CoulombSetCtx;
 
+/* The set's problem with the friction corners' second nodes (docs/method.md section 12): extended,
+ * solved by the friction solver, and contracted back to the nodes' reactions x; their r_2 into
+ * ct->fc_x. */
+static PetscErrorCode SolveSetCoulombCorners(MMCtx *ctx, const MMContactSetProblem *p, PetscScalar x[], CoulombSetCtx *cc, PetscBool *ok)
+{
+  MMContact          *ct = &ctx->contact;
+  MMCandidates       *c  = &ct->cand;
+  Vec                 sv[4], from[4] = {ct->fc_geom, ct->fc_mu, ct->fc_q, ct->fc_x};
+  const PetscScalar  *geom, *mu2, *q2;
+  PetscScalar        *x2, *We, *qe, *xe;
+  PetscReal          *mue;
+  PetscInt            ne, *of;
+  MMContactSetProblem pe = *p;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < 4; ++i) {
+    PetscCall(VecDuplicate(c->q, &sv[i]));
+    PetscCall(GatherToSet(c, from[i], sv[i]));
+  }
+  PetscCall(VecGetArrayRead(sv[0], &geom));
+  PetscCall(VecGetArrayRead(sv[1], &mu2));
+  PetscCall(VecGetArrayRead(sv[2], &q2));
+  PetscCall(VecGetArray(sv[3], &x2));
+  PetscCall(MMContactCornersExpand(p->n, p->nc, p->W, p->q, p->mu, x, geom, mu2, q2, x2, &ne, &of, &We, &qe, &mue, &xe));
+  pe.n         = ne;
+  pe.W         = We;
+  pe.q         = qe;
+  pe.mu        = mue;
+  pe.redundant = (PetscBool)(ne > p->n);
+  PetscCall(cc->fn(cc->fctx, &pe, xe, ok));
+  PetscCall(MMContactCornersContract(p->n, p->nc, ne, of, geom, xe, x, x2));
+  PetscCall(PetscFree4(We, qe, mue, xe));
+  PetscCall(PetscFree(of));
+  PetscCall(VecRestoreArray(sv[3], &x2));
+  PetscCall(VecRestoreArrayRead(sv[2], &q2));
+  PetscCall(VecRestoreArrayRead(sv[1], &mu2));
+  PetscCall(VecRestoreArrayRead(sv[0], &geom));
+  PetscCall(VecZeroEntries(ct->fc_x));
+  PetscCall(VecScatterBegin(c->gather, sv[3], ct->fc_x, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(c->gather, sv[3], ct->fc_x, INSERT_VALUES, SCATTER_REVERSE));
+  for (PetscInt i = 0; i < 4; ++i) PetscCall(VecDestroy(&sv[i]));
+  PetscFunctionReturn(0);
+}
+
 /* The set's Coulomb problem handed to a friction solver: W_SS, q_S, mu per set node, and the warm
  * start (the last reactions) in c->x, all in the nodes' frames. */
 static PetscErrorCode SolveSetCoulomb(MMCtx *ctx, void *sctx, PetscBool *ok)
@@ -255,12 +300,14 @@ static PetscErrorCode SolveSetCoulomb(MMCtx *ctx, void *sctx, PetscBool *ok)
   PetscCall(MatDenseGetArrayRead(c->W, &w));
   PetscCall(VecGetArrayRead(c->q, &q));
   PetscCall(VecGetArray(c->x, &x));
-  p.n  = c->n_set;
-  p.nc = ct->ncomp;
-  p.W  = w;
-  p.q  = q;
-  p.mu = mu;
-  PetscCall(cc->fn(cc->fctx, &p, x, ok));
+  p.n         = c->n_set;
+  p.nc        = ct->ncomp;
+  p.W         = w;
+  p.q         = q;
+  p.mu        = mu;
+  p.redundant = PETSC_FALSE;
+  if (ct->n_fc) PetscCall(SolveSetCoulombCorners(ctx, &p, x, cc, ok));
+  else PetscCall(cc->fn(cc->fctx, &p, x, ok));
   PetscCall(VecRestoreArray(c->x, &x));
   PetscCall(VecRestoreArrayRead(c->q, &q));
   PetscCall(MatDenseRestoreArrayRead(c->W, &w));
@@ -284,12 +331,14 @@ static PetscErrorCode StoreCoulombBounds(MMCtx *ctx)
   PetscCall(VecGetArray(ct->rho_lo, &lo));
   PetscCall(VecGetArray(ct->rho_hi, &hi));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
-    const PetscReal s = PetscRealPart(mua[k]) * PetscMax(PetscRealPart(ra[nr * k]), 0.0);
-    PetscReal       rt = 0;
+    PetscReal r1[MM_MAX_DIM], r2[MM_MAX_DIM], s, rt = 0;
+    /* a friction corner's own obstacle's reaction, without the second's (corners.c) */
+    MMContactCornerSplit(ct, nr, k, &ra[nr * k], r1, r2);
+    s = PetscRealPart(mua[k]) * PetscMax(r1[0], 0.0);
     for (PetscInt d = 1; d < nr; ++d) {
       lo[nr * k + d] = -s;
       hi[nr * k + d] = s;
-      rt += PetscSqr(PetscRealPart(ra[nr * k + d]));
+      rt += PetscSqr(r1[d]);
     }
     ct->slipping[k] = (PetscBool)(s > 0 && PetscSqrtReal(rt) >= s * (1 - 1e-6));
   }
@@ -312,6 +361,8 @@ PetscErrorCode MMCondensedSolveCoulomb(MMCtx *ctx, Vec b, Vec w, Vec react, MMCo
   ct->vi_its = 0;
   PetscCall(SolveGrowingSet(ctx, SolveSetCoulomb, &cc, ok));
   if (!*ok) PetscFunctionReturn(0);
+  if (!ct->cand.m && ct->fc_x) PetscCall(VecZeroEntries(ct->fc_x)); /* no set, no second obstacle's reaction */
+  PetscCall(MMContactCornersStore(ctx));
   PetscCall(StoreCoulombBounds(ctx));
   PetscCall(MMCondensedContactDofs(ctx, w, react));
   PetscFunctionReturn(0);
