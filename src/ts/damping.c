@@ -49,7 +49,8 @@ PetscBool MMDampingOn(const MMCtx *ctx)
   return (PetscBool)(ctx->damping.alpha != 0 || ctx->damping.beta != 0);
 }
 
-/* B with the massless dofs condensed cell by cell (MMAssembleP1DampingStiffness), in the w-frame of
+/* B with the massless dofs (the contact normals and the friction corners' tau_1, docs/method.md
+ * section 12) condensed cell by cell (MMAssembleP1DampingStiffness), in the w-frame of
  * K: the cells are rotated by Q there, and contact pairs transform it by N as K (N^T B N keeps the
  * slave-normal rows and columns zero: N's columns of those dofs are unit vectors). Its massless
  * rows and columns are then set to zero exactly, against the condensation's round-off. */
@@ -61,7 +62,7 @@ static PetscErrorCode CondensedDampingStiffness(MMCtx *ctx, Mat *B)
   PetscCall(MMFECreateMatrix(ctx, ctx->op.dm, B));
   PetscCall(DMCreateGlobalVector(ctx->op.dm, &mark));
   PetscCall(VecZeroEntries(mark));
-  PetscCall(VecISSet(mark, ctx->contact.is_normal, 1.0));
+  PetscCall(VecISSet(mark, ctx->contact.is_massless, 1.0));
   PetscCall(MMAssembleP1DampingStiffness(ctx->op.dm, &ctx->material, ctx->op.Q, mark, *B));
   PetscCall(VecDestroy(&mark));
   if (ctx->op.N) {
@@ -70,7 +71,7 @@ static PetscErrorCode CondensedDampingStiffness(MMCtx *ctx, Mat *B)
     PetscCall(MatDestroy(B));
     *B = BN;
   }
-  PetscCall(MatZeroRowsColumnsIS(*B, ctx->contact.is_normal, 0.0, NULL, NULL));
+  PetscCall(MatZeroRowsColumnsIS(*B, ctx->contact.is_massless, 0.0, NULL, NULL));
   PetscFunctionReturn(0);
 }
 
