@@ -9,6 +9,39 @@ import pytest
 from conftest import ROOT, run
 from test_loads_time import options_without_amplitude
 
+HC_D1 = 0.07987  # h_c' of the D1 disk
+
+
+@pytest.mark.parametrize("np_", [0, 2])
+def test_penetration_stops_the_run(tmp_path, np_):
+    """-E 1e-30 on D1: the contact solve lets the disk cross the plane (by 10% of h_c' at step 9 on
+    one rank, 34% later), with an exact energy balance. The contact audit stops the run there (65),
+    naming the step and the depth, and the history ends at the step before."""
+    r = run("d1_disk", tmp_path, "-E", 1e-30, "-ts_max_time", 0.04, "-output_every", 5, np_=np_, check=False)
+    assert r.returncode == 65, r.output[-2000:]
+    err = [l for l in r.output.splitlines() if l.startswith("mmcontact error")]
+    assert len(err) == 1 and "Contact audit failed at step" in err[0] and "h_c', above -audit_penetration_tol 1e-06" in err[0], r.output[-2000:]
+    step = int(err[0].split("at step ")[1].split()[0])
+    h = r.history
+    assert 5 <= step <= 12 and h["step"][-1] == step - 1
+    assert h["max_penetration"].max() <= 1e-6 * HC_D1  # what was written is sound
+
+
+def test_coulomb_residual_stops_the_run(tmp_path):
+    """The same run with the penetration audit out of the way: the Coulomb residual (0.1 at step 9:
+    the penetration over h_c' is one of its terms) is past -audit_coulomb_tol 1e-2, and stops it."""
+    r = run("d1_disk", tmp_path, "-E", 1e-30, "-ts_max_time", 0.04, "-output_every", 0, "-audit_penetration_tol", 1, np_=0, check=False)
+    assert r.returncode == 65, r.output[-2000:]
+    assert "mmcontact error: Contact audit failed at step 9 (t = 0.018): the discrete Coulomb residual (history column coulomb_residual) is 0.102, above -audit_coulomb_tol 0.01" in r.output, r.output[-2000:]
+    assert r.history["step"][-1] == 8 and r.history["coulomb_residual"].max() <= 1e-8
+
+
+def test_audit_tolerances_are_checked(tmp_path):
+    for opt in ("-audit_penetration_tol", "-audit_coulomb_tol"):
+        r = run("d1_disk", tmp_path, opt, 0, np_=0, check=False)
+        assert r.returncode == 64 and f"{opt} 0 must be > 0" in r.output, r.output[-1500:]
+
+
 def table_run(tmp_path, content, name):
     path = tmp_path / (name + ".csv")
     path.write_bytes(content)

@@ -465,6 +465,8 @@ static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
   PetscCheck(opt->contact_work_tol > 0, comm, PETSC_ERR_USER_INPUT, "-contact_work_tol %g must be > 0: it is a fraction of the run's energy scale", (double)opt->contact_work_tol);
   PetscCheck(opt->strain_warn > 0, comm, PETSC_ERR_USER_INPUT, "-strain_warn %g must be > 0: it is a strain", (double)opt->strain_warn);
   PetscCheck(opt->max_strain >= opt->strain_warn, comm, PETSC_ERR_USER_INPUT, "-max_strain %g must be >= -strain_warn %g", (double)opt->max_strain, (double)opt->strain_warn);
+  PetscCheck(opt->audit_penetration_tol > 0, comm, PETSC_ERR_USER_INPUT, "-audit_penetration_tol %.6g must be > 0: it is a fraction of h_c'", (double)opt->audit_penetration_tol);
+  PetscCheck(opt->audit_coulomb_tol > 0, comm, PETSC_ERR_USER_INPUT, "-audit_coulomb_tol %.6g must be > 0: it is a normalized residual (the history's coulomb_residual)", (double)opt->audit_coulomb_tol);
   PetscCheck(opt->initial_penetration_tol >= 0, comm, PETSC_ERR_USER_INPUT, "-initial_penetration_tol %g must be >= 0: it is a fraction of h_c'", (double)opt->initial_penetration_tol);
   PetscCheck(opt->iterative_dofs >= 0, comm, PETSC_ERR_USER_INPUT, "-iterative_dofs %" PetscInt_FMT " must be >= 0 (0: never the iterative path by default)", opt->iterative_dofs);
   PetscCheck(opt->active_set_max_it >= 1, comm, PETSC_ERR_USER_INPUT, "-active_set_max_it %" PetscInt_FMT " must be >= 1", opt->active_set_max_it);
@@ -564,6 +566,14 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-contact_candidate_memory", "Condensed formulation: MiB (over all ranks) of cached columns of K~^{-1} E; columns of nodes outside the step's set are dropped beyond it (> 0)", &opt->candidate_memory));
   opt->audit_tol = 1e-6;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-audit_tol", "Stop the run when a step's relative energy-balance residual exceeds this (> 0): the scheme's identity no longer holds", &opt->audit_tol));
+  /* The contact audit's tolerances, far above what correct runs reach: penetration at most 3e-14
+   * h_c' over options/'s cases and the solver variants, the Coulomb residual at most 4e-5 (with
+   * -mass standard, at dt down to 1/1024 of -ts_dt, where the reactions carry the round-off of
+   * 4/dt^2 M), 1e-12 to 1e-10 otherwise (README "What is checked before the run") */
+  opt->audit_penetration_tol = 1e-6;
+  PetscCall(OptionsReal(PetscOptionsObject, comm, "-audit_penetration_tol", "Stop the run when, after a step, a contact node lies inside an obstacle deeper than this times h_c' (> 0): the contact solve did not hold the constraint", &opt->audit_penetration_tol));
+  opt->audit_coulomb_tol = 1e-2;
+  PetscCall(OptionsReal(PetscOptionsObject, comm, "-audit_coulomb_tol", "Stop the run when a step's discrete Coulomb residual (the history's coulomb_residual: penetration and open gap over h_c', tension, complementarity and the friction law over the force scale) exceeds this (> 0)", &opt->audit_coulomb_tol));
   opt->contact_work_tol = 1e-3;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-contact_work_tol", "Reject and retry with a smaller dt a step whose contact work W_c creates more energy than this times the run's energy scale (> 0): a release that dt does not resolve", &opt->contact_work_tol));
   opt->deformation_audit = PETSC_TRUE;
