@@ -2,6 +2,7 @@
 to the previous step intact), amplitude tables are read as written, values the arithmetic cannot
 carry are refused, and the messages say what they mean."""
 import os
+import re
 
 import numpy as np
 import pytest
@@ -12,28 +13,40 @@ from test_loads_time import options_without_amplitude
 HC_D1 = 0.07987  # h_c' of the D1 disk
 
 
+def audit_step(r, quantity):
+    """The step a failed contact audit names in its one error line, which names the quantity."""
+    err = [l for l in r.output.splitlines() if l.startswith("mmcontact error")]
+    assert r.returncode == 65 and len(err) == 1, r.output[-2000:]
+    m = re.match(r"mmcontact error: Contact audit failed at step (\d+) \(t = \S+\): (.*)", err[0])
+    assert m and quantity in m[2] and "The output up to the previous step is intact" in m[2], err[0]
+    return int(m[1]), m[2]
+
+
 @pytest.mark.parametrize("np_", [0, 2])
 def test_penetration_stops_the_run(tmp_path, np_):
-    """-E 1e-30 on D1: the contact solve lets the disk cross the plane (by 10% of h_c' at step 9 on
-    one rank, 34% later), with an exact energy balance. The contact audit stops the run there (65),
-    naming the step and the depth, and the history ends at the step before."""
-    r = run("d1_disk", tmp_path, "-E", 1e-30, "-ts_max_time", 0.04, "-output_every", 5, np_=np_, check=False)
-    assert r.returncode == 65, r.output[-2000:]
-    err = [l for l in r.output.splitlines() if l.startswith("mmcontact error")]
-    assert len(err) == 1 and "Contact audit failed at step" in err[0] and "h_c', above -audit_penetration_tol 1e-06" in err[0], r.output[-2000:]
-    step = int(err[0].split("at step ")[1].split()[0])
+    """-E 1e-8 on D1 (c_p dt / h_c' = 3e-6: the massless contact dofs' rows are 1e-10 of the others,
+    and the contact solve's relative residual leaves them off by a tenth of h_c'): the disk crosses
+    the plane by 10% of h_c' at step 9, with an exact energy balance, and used to end with exit 0.
+    The contact audit stops the run there (65), naming the step and the depth over h_c', and the
+    history ends at the step before, without a penetration."""
+    r = run("d1_disk", tmp_path, "-E", 1e-8, "-ts_max_time", 0.04, "-output_every", 5, np_=np_, check=False)
+    step, what = audit_step(r, "h_c', above -audit_penetration_tol 1e-06")
+    depth = float(re.search(r"a contact node is (\S+) inside an obstacle", what)[1])
+    assert depth > 1e-2 * HC_D1
     h = r.history
     assert 5 <= step <= 12 and h["step"][-1] == step - 1
     assert h["max_penetration"].max() <= 1e-6 * HC_D1  # what was written is sound
+    with r.fields() as f:  # and readable, up to the last snapshot before the failure
+        assert f["time"][-1, 0] <= h["time"][-1]
 
 
 def test_coulomb_residual_stops_the_run(tmp_path):
     """The same run with the penetration audit out of the way: the Coulomb residual (0.1 at step 9:
     the penetration over h_c' is one of its terms) is past -audit_coulomb_tol 1e-2, and stops it."""
-    r = run("d1_disk", tmp_path, "-E", 1e-30, "-ts_max_time", 0.04, "-output_every", 0, "-audit_penetration_tol", 1, np_=0, check=False)
-    assert r.returncode == 65, r.output[-2000:]
-    assert "mmcontact error: Contact audit failed at step 9 (t = 0.018): the discrete Coulomb residual (history column coulomb_residual) is 0.102, above -audit_coulomb_tol 0.01" in r.output, r.output[-2000:]
-    assert r.history["step"][-1] == 8 and r.history["coulomb_residual"].max() <= 1e-8
+    r = run("d1_disk", tmp_path, "-E", 1e-8, "-ts_max_time", 0.04, "-output_every", 0, "-audit_penetration_tol", 1, np_=0, check=False)
+    step, what = audit_step(r, "the discrete Coulomb residual (history column coulomb_residual) is")
+    assert "above -audit_coulomb_tol 0.01" in what and float(what.split(" is ")[1].split(",")[0]) > 1e-2
+    assert 5 <= step <= 12 and r.history["step"][-1] == step - 1 and r.history["coulomb_residual"].max() <= 1e-8
 
 
 def test_audit_tolerances_are_checked(tmp_path):
@@ -67,3 +80,41 @@ def test_first_row_of_numbers_is_data(tmp_path):
     r = table_run(tmp_path, b"t (s), factor\n0,0\n0.5,0\n10,1\n", "header")
     assert r.returncode == 0, r.output[-1500:]
     assert r.history["load_x"][np.searchsorted(r.history["time"], 0.5)] == 0  # the first rows hold it at 0
+
+
+ARITHMETIC = [
+    # the mass term of K~ = K + 4/dt^2 M below the stiffness' round-off: K~ singular in floating point
+    (("-rho", "1e-300"), "The step matrix K + 4/dt^2 M cannot be formed in double precision with dt = 0.002, -E 1000, -rho 1e-300 (c_p dt / h_c' = 9.19e+149): the mass term"),
+    (("-rho", "1e-16"), "(c_p dt / h_c' = 9.19e+07): the mass term, which alone holds the rigid motions"),
+    # 4/dt^2 overflows
+    (("-ts_dt", "1e-300"), "-ts_dt 1e-300 is too small for double precision: the step matrix's mass term 4/dt^2 M overflows"),
+    # the stiffness below the mass term's round-off
+    (("-E", "1e-30"), "-E 1e-30, -rho 1 (c_p dt / h_c' = 2.91e-17): the stiffness is"),
+    (("-ts_dt", "1e-100"), "the stiffness is"),
+    # the mass itself underflows
+    (("-rho", "1e-310"), "The mass matrix underflows with -E 1000, -rho 1e-310 on this mesh"),
+]
+
+
+@pytest.mark.parametrize("extra,message", ARITHMETIC)
+def test_what_the_arithmetic_cannot_carry_is_refused(tmp_path, extra, message):
+    """-rho 1e-300 and -ts_dt 1e-300 ended with status 56 and PETSc's trace from the factorization
+    (pc_schursplit.c): refused at set-up with one line, exit 64."""
+    r = run("d1_disk", tmp_path, *extra, "-ts_max_steps", 5, np_=0, check=False)  # main ran -ts_dt 1e-100 for ever
+    err = [l for l in r.output.splitlines() if "error" in l.lower()]
+    assert r.returncode == 64 and len(err) == 1 and err[0].startswith("mmcontact error: "), r.output[-2000:]
+    assert message in err[0], err[0]
+
+
+def test_what_the_arithmetic_cannot_carry_two_ranks(tmp_path):
+    r = run("d1_disk", tmp_path, "-rho", "1e-300", np_=2, check=False)
+    assert r.returncode == 64 and r.output.count("mmcontact error: The step matrix K + 4/dt^2 M cannot be formed") == 1, r.output[-2000:]
+    assert "PETSC ERROR" not in r.output
+
+
+def test_correct_runs_are_far_from_the_arithmetic_limits(tmp_path):
+    """D1 in steel in SI units (c_p dt / h_c' = 150, README "Contact release") and at dt / 1000 still
+    start: the refusals sit at c_p dt / h_c' of about 4e6 and 3e-7."""
+    for extra in (("-E", 2.1e11, "-rho", 7850), ("-ts_dt", 2e-6)):
+        r = run("d1_disk", tmp_path, *extra, "-ts_max_steps", 1, "-output_every", 0, np_=0)
+        assert r.returncode == 0
