@@ -118,3 +118,29 @@ def test_correct_runs_are_far_from_the_arithmetic_limits(tmp_path):
     for extra in (("-E", 2.1e11, "-rho", 7850), ("-ts_dt", 2e-6)):
         r = run("d1_disk", tmp_path, *extra, "-ts_max_steps", 1, "-output_every", 0, np_=0)
         assert r.returncode == 0
+
+
+@pytest.mark.parametrize("extra,said,unsaid", [
+    (("-nu", -1.1), "Poisson ratio -nu -1.1 must lie in (-1, 0.5): nu <= -1 makes the shear modulus", "incompressible"),
+    (("-nu", 0.5), "Poisson ratio -nu 0.5 must lie in (-1, 0.5): nu >= 0.5 is incompressible", "shear modulus"),
+])
+def test_poisson_ratio_refusal_names_its_side(tmp_path, extra, said, unsaid):
+    """-nu -1.1 was refused as "nu >= 0.5 is incompressible": each side says its own reason."""
+    r = run("d1_disk", tmp_path, *extra, np_=0, check=False)
+    assert r.returncode == 64 and said in r.output and unsaid not in r.output, r.output[-1500:]
+
+
+def test_body_poisson_ratio_refusal_names_its_side(tmp_path):
+    r = run("two_balls", tmp_path, "-body_a_nu", -2, np_=0, check=False)
+    assert r.returncode == 64 and "Poisson ratio -body_a_nu -2 must lie in (-1, 0.5): nu <= -1" in r.output, r.output[-1500:]
+
+
+def test_mu_used_nowhere_is_refused(tmp_path):
+    """-mu is the default of every obstacle's and pair's own mu: given while each sets its own it was
+    read and silently unused. Refused, naming them; where an obstacle takes it, it is used."""
+    r = run("two_balls", tmp_path, "-mu", 0.2, np_=0, check=False)
+    assert r.returncode == 64 and "mmcontact error: -mu 0.2 is used nowhere" in r.output and "(-contact_pair_p_mu)" in r.output, r.output[-1500:]
+    r = run("block_push", tmp_path, "-obstacle_floor_mu", 0.3, np_=0, check=False)
+    assert r.returncode == 64 and "(-obstacle_floor_mu, -obstacle_plate_mu)" in r.output, r.output[-1500:]
+    r = run("block_push", tmp_path, "-ts_max_steps", 1, "-output_every", 0, np_=0)  # the floor takes -mu 0.3
+    assert "Coulomb friction, mu = 0 to 0.3 by obstacle" in r.output

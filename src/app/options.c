@@ -343,6 +343,29 @@ static PetscErrorCode ProcessPair(PetscOptionItems *PetscOptionsObject, MPI_Comm
   PetscFunctionReturn(0);
 }
 
+/* -mu is the default of every obstacle's and pair's own _mu: given while each of them sets its own,
+ * it would be read and used nowhere, and the user would believe it applies. Refused, naming them. */
+static PetscErrorCode CheckMuUsed(MPI_Comm comm, const MMOptions *opt)
+{
+  PetscBool given, own = PETSC_TRUE;
+  char      key[512], names[1024] = "";
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-mu", &given));
+  if (!given || !opt->n_obstacles || (!opt->obstacles_named && opt->n_rigid)) PetscFunctionReturn(0); /* the unnamed plane takes -mu */
+  for (PetscInt b = 0; b < opt->n_obstacles && own; ++b) {
+    const MMObstacle *ob = &opt->obstacles[b];
+    PetscCall(PetscSNPrintf(key, sizeof(key), ob->pair ? "-contact_pair_%s_mu" : "-obstacle_%s_mu", ob->name));
+    PetscCall(PetscOptionsHasName(NULL, NULL, key, &own));
+    if (own) {
+      if (names[0]) PetscCall(PetscStrlcat(names, ", ", sizeof(names)));
+      PetscCall(PetscStrlcat(names, key, sizeof(names)));
+    }
+  }
+  PetscCheck(!own, comm, PETSC_ERR_USER_INPUT, "-mu %.6g is used nowhere: it is the default friction coefficient of the obstacles and contact pairs, and each sets its own (%s). Drop -mu, or drop the _mu of those that should take it", (double)opt->mu, names);
+  PetscFunctionReturn(0);
+}
+
 /* -obstacles NAME,... or, without it, the single plane of -obstacle_point and -obstacle_normal
  * (completed once the dimension is known). */
 static PetscErrorCode ProcessObstacles(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt)
@@ -384,6 +407,7 @@ static PetscErrorCode ProcessObstacles(PetscOptionItems *PetscOptionsObject, MPI
     PetscCall(ProcessObstacle(PetscOptionsObject, comm, opt, ob));
   }
   PetscCall(PetscStrToArrayDestroy((int)n, names));
+  PetscCall(CheckMuUsed(comm, opt));
   PetscFunctionReturn(0);
 }
 
@@ -447,13 +471,15 @@ static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
 {
   PetscFunctionBeginUser;
   PetscCheck(opt->E > 0, comm, PETSC_ERR_USER_INPUT, "Young's modulus -E %g must be > 0", (double)opt->E);
-  PetscCheck(opt->nu > -1.0 && opt->nu < 0.5, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -nu %g must lie in (-1, 0.5); nu >= 0.5 is incompressible, which P1 elements cannot represent", (double)opt->nu);
+  PetscCheck(opt->nu > -1.0, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -nu %.6g must lie in (-1, 0.5): nu <= -1 makes the shear modulus E / (2 (1 + nu)) infinite or negative, an unstable material", (double)opt->nu);
+  PetscCheck(opt->nu < 0.5, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -nu %.6g must lie in (-1, 0.5): nu >= 0.5 is incompressible, which P1 elements cannot represent", (double)opt->nu);
   PetscCheck(opt->rho > 0, comm, PETSC_ERR_USER_INPUT, "Density -rho %g must be > 0", (double)opt->rho);
   for (PetscInt b = 0; b < opt->n_bodies; ++b) {
     const MMBodyOptions *body = &opt->bodies[b];
     PetscCheck(body->group_set && body->group[0], comm, PETSC_ERR_USER_INPUT, "-bodies: body %s has no cells: give -body_%s_group GROUP, the physical group (a Physical %s) of its cells", body->name, body->name, "Surface in 2D, Volume in 3D");
     PetscCheck(body->E > 0, comm, PETSC_ERR_USER_INPUT, "Young's modulus -body_%s_E %g must be > 0", body->name, (double)body->E);
-    PetscCheck(body->nu > -1.0 && body->nu < 0.5, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -body_%s_nu %g must lie in (-1, 0.5); nu >= 0.5 is incompressible, which P1 elements cannot represent", body->name, (double)body->nu);
+    PetscCheck(body->nu > -1.0, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -body_%s_nu %.6g must lie in (-1, 0.5): nu <= -1 makes the shear modulus E / (2 (1 + nu)) infinite or negative, an unstable material", body->name, (double)body->nu);
+    PetscCheck(body->nu < 0.5, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -body_%s_nu %.6g must lie in (-1, 0.5): nu >= 0.5 is incompressible, which P1 elements cannot represent", body->name, (double)body->nu);
     PetscCheck(body->rho > 0, comm, PETSC_ERR_USER_INPUT, "Density -body_%s_rho %g must be > 0", body->name, (double)body->rho);
   }
   PetscCheck(opt->mu >= 0, comm, PETSC_ERR_USER_INPUT, "Friction coefficient -mu %g must be >= 0", (double)opt->mu);
@@ -532,7 +558,7 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsBool(PetscOptionsObject, comm, "-contact", "Enforce unilateral contact; 0 gives linear elastodynamics on the same mesh (the contact boundary is then unused)", &opt->contact));
 
   opt->mu = 0.0;
-  PetscCall(OptionsReal(PetscOptionsObject, comm, "-mu", "Coulomb friction coefficient, >= 0 (0: frictionless, the friction loop is skipped)", &opt->mu));
+  PetscCall(OptionsReal(PetscOptionsObject, comm, "-mu", "Coulomb friction coefficient, >= 0 (0: frictionless, the friction loop is skipped); the default of each -obstacle_NAME_mu and -contact_pair_NAME_mu (refused when each of them is given: it would be used nowhere)", &opt->mu));
   PetscCall(ProcessObstacles(PetscOptionsObject, comm, opt));
   opt->friction_coulomb_tol = 1e-8;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-friction_coulomb_tol", "The friction loop converges when the thresholds change less than -friction_snes_rtol (default 1e-10) and the discrete Coulomb residual is below this, in (0, 1)", &opt->friction_coulomb_tol));
