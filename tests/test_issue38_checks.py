@@ -3,11 +3,12 @@ to the previous step intact), amplitude tables are read as written, values the a
 carry are refused, and the messages say what they mean."""
 import os
 import re
+import subprocess
 
 import numpy as np
 import pytest
 
-from conftest import ROOT, run
+from conftest import EXE, ROOT, run
 from test_loads_time import options_without_amplitude
 
 HC_D1 = 0.07987  # h_c' of the D1 disk
@@ -144,3 +145,47 @@ def test_mu_used_nowhere_is_refused(tmp_path):
     assert r.returncode == 64 and "(-obstacle_floor_mu, -obstacle_plate_mu)" in r.output, r.output[-1500:]
     r = run("block_push", tmp_path, "-ts_max_steps", 1, "-output_every", 0, np_=0)  # the floor takes -mu 0.3
     assert "Coulomb friction, mu = 0 to 0.3 by obstacle" in r.output
+
+
+def test_mass_line_says_held_dofs_are_left_out(tmp_path):
+    """punch holds its top by -dirichlet: M's total, 0.475 of the block's 0.5, leaves those nodes out
+    and says so; D1, with nothing held, does not say it."""
+    r = run("punch", tmp_path, "-ts_max_steps", 1, "-output_every", 0, np_=0, name="punch")
+    assert "  mass: total of M 0.475 (without the dofs held by -dirichlet); of M* along x" in r.output, r.output[-2000:]
+    r = run("d1_disk", tmp_path, "-ts_max_steps", 1, "-output_every", 0, np_=0, name="d1")
+    assert "  mass: total of M 3.136548491; of M*" in r.output
+
+
+def test_friction_coulomb_tol_help_says_what_it_is(tmp_path):
+    out = subprocess.run([EXE, "-options_file", "options/d1_friction.opts", "-help", "-ts_max_steps", "0", "-output_dir", str(tmp_path / "help")],
+                         cwd=ROOT, capture_output=True).stdout.decode(errors="replace")  # PETSc 3.18's -help prints an uninitialized buffer
+    line = [l for l in out.splitlines() if l.strip().startswith("-friction_coulomb_tol")][0]
+    assert "Coulomb audit of every friction solve" in line and "rejected and retried with a smaller dt" in line, line
+
+
+def test_missing_contact_boundary_names_the_default(tmp_path):
+    """A mesh without a group "contact" and no -contact_boundary: the refusal says "contact" was the
+    default tried; a misspelt -contact_boundary names the option."""
+    opts = tmp_path / "block.opts"
+    opts.write_text("-mesh meshes/block.msh\n-ts_dt 1e-3\n-ts_max_time 1e-2\n")
+    r = run(str(opts), tmp_path, np_=0, check=False)
+    assert r.returncode == 64 and "no physical group named \"contact\" (the default of -contact_boundary, which was not given: name the mesh's contact boundary with -contact_boundary NAME)" in r.output, r.output[-1500:]
+    r = run(str(opts), tmp_path, "-contact_boundary", "bases", np_=0, check=False)
+    assert r.returncode == 64 and "no physical group named \"bases\" (-contact_boundary). Its physical names are: \"body\" \"base\"" in r.output, r.output[-1500:]
+
+
+def test_relative_mesh_path_names_the_file_tried(tmp_path):
+    """A relative -mesh is the current directory's, not the options file's: the refusal says so and
+    prints the absolute path it tried."""
+    r = run("d1_disk", tmp_path, "-mesh", "meshes/nothere.msh", np_=0, check=False)
+    assert r.returncode == 64, r.output[-1500:]
+    assert f"a relative path is taken from the current directory, not from the options file's, so the file tried was {ROOT}/meshes/nothere.msh" in r.output
+
+
+@pytest.mark.parametrize("np_", [0, 2])
+def test_unknown_option_is_refused_before_the_header(tmp_path, np_):
+    """The refusal of an unknown option came after the start-up report, which announced a run that
+    then did not happen: it comes first now, and alone."""
+    r = run("d1_disk", tmp_path, "-mu_", 0.2, np_=np_, check=False)
+    assert r.returncode == 64 and "-mu_ 0.2: unknown; did you mean -mu?" in r.output, r.output[-1500:]
+    assert "mmcontact: case" not in r.output and "  material:" not in r.output

@@ -218,7 +218,8 @@ PetscErrorCode MMProgressMassLine(MMCtx *ctx)
   }
   if (ctx->op.mass_moment_unreachable > 1e-14) PetscCall(PetscSNPrintf(unreachable, sizeof(unreachable), " (and %.1e in the trace of the translation-rotation block, out of reach: docs/method.md section 2)", (double)ctx->op.mass_moment_unreachable));
   if (MMFEHasMasslessDofs(ctx) && ctx->opt.mass_type == MM_MASS_REDISTRIBUTED) PetscCall(PetscSNPrintf(moments, sizeof(moments), "; M*'s moments equal M's to %.1e (largest node correction %.3g of its mass)%s", (double)ctx->op.mass_moment_mismatch, (double)ctx->op.mass_correction, unreachable));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  mass: total of M %.10g; of M* along %s%s\n", (double)ctx->op.mass_M, star, moments));
+  /* M is over the free dofs: a node held by -dirichlet is the support's, outside the system */
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  mass: total of M %.10g%s; of M* along %s%s\n", (double)ctx->op.mass_M, ctx->opt.n_dirichlet ? " (without the dofs held by -dirichlet)" : "", star, moments));
   PetscFunctionReturn(0);
 }
 

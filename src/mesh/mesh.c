@@ -16,8 +16,9 @@ static PetscBool IsInternalLabel(const char name[])
   return (PetscBool)!strncmp(name, MM_MESH_FACET_MARK, sizeof(MM_MESH_FACET_MARK) - 1); /* our facet groups' cell marks */
 }
 
-/* Gets the label of a physical group by name; an unknown name lists the ones the mesh has. */
-PetscErrorCode MMMeshGetLabel(DM dm, const char name[], DMLabel *label)
+/* Gets the label of a physical group by name; an unknown name lists the ones the mesh has, and
+ * names where it came from when the caller says (option: "-contact_boundary", or a default). */
+PetscErrorCode MMMeshGetLabelFor(DM dm, const char name[], const char option[], DMLabel *label)
 {
   PetscBool has;
 
@@ -36,9 +37,16 @@ PetscErrorCode MMMeshGetLabel(DM dm, const char name[], DMLabel *label)
       PetscCall(PetscStrlcat(known, lname, sizeof(known)));
       PetscCall(PetscStrlcat(known, "\"", sizeof(known)));
     }
-    SETERRQ(PetscObjectComm((PetscObject)dm), PETSC_ERR_USER_INPUT, "The mesh has no physical group named \"%s\". Its physical names are:%s. Fix the option or add the Physical group to the .geo", name, known[0] ? known : " (none: name the groups with Physical Curve/Surface/Volume(\"name\") in the .geo)");
+    SETERRQ(PetscObjectComm((PetscObject)dm), PETSC_ERR_USER_INPUT, "The mesh has no physical group named \"%s\"%s%s%s. Its physical names are:%s. Fix the option or add the Physical group to the .geo", name, option ? " (" : "", option ? option : "", option ? ")" : "", known[0] ? known : " (none: name the groups with Physical Curve/Surface/Volume(\"name\") in the .geo)");
   }
   PetscCall(DMGetLabel(dm, name, label));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMMeshGetLabel(DM dm, const char name[], DMLabel *label)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMMeshGetLabelFor(dm, name, NULL, label));
   PetscFunctionReturn(0);
 }
 
