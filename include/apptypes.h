@@ -138,6 +138,8 @@ typedef struct {
   PetscReal    audit_tol;
   PetscReal    contact_work_tol;
   PetscReal    initial_penetration_tol;
+  PetscReal    audit_penetration_tol; /* the contact audit of every step (src/contact/interface/diagnostics.c) */
+  PetscReal    audit_coulomb_tol;
   PetscReal    mu;
   PetscReal    friction_coulomb_tol;
   char         friction_type[64];   /* -friction_type: a name registered in src/friction/ */

@@ -51,6 +51,7 @@ PETSC_EXTERN PetscErrorCode MMContactProjectInitial(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMContactSolveStatic(MMCtx *, Vec, Vec);
 PETSC_EXTERN PetscErrorCode MMContactDiagnostics(MMCtx *, Vec, Vec, Vec, MMHistory *);
 PETSC_EXTERN PetscErrorCode MMContactCoulomb(MMCtx *, Vec, Vec, Vec, PetscReal *, PetscInt *, PetscInt *);
+PETSC_EXTERN PetscErrorCode MMContactAudit(MMCtx *, const MMHistory *);
 PETSC_EXTERN PetscErrorCode MMContactBoundaryFields(MMCtx *, MMOutput *);
 PETSC_EXTERN PetscErrorCode MMContactObstacleField(MMCtx *, Vec);
 PETSC_EXTERN PetscErrorCode MMContactDestroy(MMContact *);

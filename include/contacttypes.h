@@ -190,6 +190,7 @@ typedef struct {
   PetscBool  moving;              /* some obstacle moves: gaps follow it every step */
   PetscReal *force_obstacle;      /* per obstacle, MM_MAX_DIM: the contact force on it (Cartesian), last step */
   PetscReal  h_c;                 /* smallest diameter of cells touching the contact boundary */
+  PetscReal  penetration_free;    /* last accepted step: the deepest penetration of an obstacle a node has no row for */
   PetscReal  tol;                 /* -contact_tol */
   PetscBool *was_active;          /* per owned contact node, at the previous step */
   PetscBool *slipping;            /* friction: per owned contact node, slipping (on the rim of its disk) */

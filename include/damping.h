@@ -6,6 +6,7 @@ PETSC_EXTERN PetscErrorCode MMDampingCoefficients(const MMOptions *, PetscReal *
 PETSC_EXTERN PetscBool      MMDampingOn(const MMCtx *);
 PETSC_EXTERN PetscErrorCode MMDampingSetUp(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMDampingDestroy(MMDamping *);
+PETSC_EXTERN void           MMDampingStepCoefficients(const MMCtx *, PetscReal, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode MMDampingStepMatrix(MMCtx *, PetscReal, Mat);
 PETSC_EXTERN PetscErrorCode MMDampingAddForce(MMCtx *, Vec, PetscReal, Vec);
 PETSC_EXTERN PetscErrorCode MMDampingAddStepRHS(MMCtx *, PetscReal, Vec);

@@ -33,6 +33,7 @@ PETSC_EXTERN PetscErrorCode MMMeshLabelHoldsCells(DM, DMLabel, PetscBool *);
 PETSC_EXTERN PetscErrorCode MMMeshFacetsDestroy(MMMeshFacets *);
 PETSC_EXTERN PetscErrorCode MMMeshGetLabel(DM, const char[], DMLabel *);
 PETSC_EXTERN PetscBool      MMMeshIsPhysicalGroup(const char[]);
+PETSC_EXTERN PetscErrorCode MMMeshGetLabelFor(DM, const char[], const char[], DMLabel *);
 PETSC_EXTERN PetscErrorCode MMMeshGetSizes(DM, PetscInt *, PetscInt *);
 PETSC_EXTERN PetscErrorCode MMMeshCellCentroid(DM, PetscInt, PetscReal[]);
 PETSC_EXTERN PetscErrorCode MMMeshCellGroups(DM, char[], size_t);

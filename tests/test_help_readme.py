@@ -18,3 +18,22 @@ def test_every_help_option_is_in_readme():
         assert generic in readme, opt
     # every help string is there
     assert section.count("(None)") == len(options)
+
+
+def test_help_intro_is_the_readmes():
+    """`-help intro` describes the program from the same text as README.md's "-help intro" block:
+    the two are identical, line for line (issue 38: it still described the fixed point alone)."""
+    out = subprocess.run([EXE, "-help", "intro"], cwd=ROOT, capture_output=True).stdout.decode(errors="replace")
+    intro = out.split("\n\n----")[0].splitlines()
+    readme = open(os.path.join(ROOT, "README.md")).read()
+    block = readme.split("<!-- help intro -->\n")[1].split("\n<!-- /help intro -->")[0].splitlines()
+    assert [l[4:] for l in block] == intro and all(l.startswith("    ") for l in block)
+    for what in ("semismooth Newton", "-bodies", "-contact_pairs", "damping", "amplitude", "stress"):
+        assert what in out, what
+
+
+def test_readme_states_the_units():
+    """One paragraph on units: any consistent set, and in 2D everything per unit thickness."""
+    readme = open(os.path.join(ROOT, "README.md")).read()
+    units = [p for p in readme.split("\n\n") if p.startswith("**Units.**")]
+    assert len(units) == 1 and "consistent" in units[0] and "per unit thickness" in units[0]

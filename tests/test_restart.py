@@ -218,6 +218,7 @@ def test_restart_needs_the_history_of_its_run(tmp_path, short_checkpoint):
     ("d1_friction", ["-contact_formulation", "active_set"]),
     # Rayleigh damping: its velocity vC (all dofs, also the massless normal ones) is in the checkpoint
     ("d1_friction", ["-damping_mass", 5, "-damping_stiffness", 1e-3]),
+    # a friction corner: the second obstacle's reactions are in the checkpoint (docs/method.md section 12)
     ("block_push", []),
     # 3D: every node in the candidate set, so that the cached columns of K~^{-1} E are computed in
     # the same blocks as in the uninterrupted run (MUMPS's multi-column solves round by block)

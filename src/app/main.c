@@ -1,9 +1,14 @@
-static char help[] = "mmcontact: elastic bodies hitting and sliding on rigid obstacles, by the modified mass method\n"
-                     "(Doyen & Ern, SIAM J. Numer. Anal. 2011): P1 elastodynamics on a gmsh mesh of triangles (plane\n"
-                     "strain) or tetrahedra, trapezoidal Newmark, unilateral contact enforced exactly at every contact\n"
-                     "node against planes, spheres/circles and cylinders, fixed or moving (-obstacles), Coulomb friction\n"
-                     "(-mu) by the threshold fixed point, an exact discrete energy balance audited every step, HDF5/XDMF\n"
-                     "fields, a CSV history, checkpoints and restart on any number of ranks. Run:\n"
+/* The same text as README.md's "-help intro" block (tests/test_help_readme.py keeps them identical) */
+static char help[] = "mmcontact: elastic bodies hitting and sliding on rigid obstacles and on each other, by the modified\n"
+                     "mass method (Doyen & Ern, SIAM J. Numer. Anal. 2011): P1 elastodynamics on a gmsh mesh of\n"
+                     "triangles (plane strain) or tetrahedra, one body or several of their own material (-bodies);\n"
+                     "trapezoidal Newmark with optional Rayleigh damping (-damping_ratio); unilateral contact enforced\n"
+                     "exactly at every contact node against planes, spheres/circles and cylinders, fixed or moving\n"
+                     "(-obstacles), and between two bodies of the mesh (-contact_pairs); Coulomb friction (-mu) solved\n"
+                     "to round-off by semismooth Newton (the default) or the threshold fixed point; gravity, tractions\n"
+                     "and moving Dirichlet boundaries, each with an amplitude in time; an exact discrete energy balance\n"
+                     "and the contact law audited every step; HDF5/XDMF fields with the stress and von Mises, a CSV\n"
+                     "history, checkpoints and restart on any number of ranks. Run:\n"
                      "  mpiexec -n 2 ./mmcontact -options_file options/d1_friction.opts\n"
                      "README.md describes every option, the output and the exit status.\n\n";
 
@@ -64,11 +69,12 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   MMPhase(ctx->log.energy_initial, MMEnergyInitial(ctx));
   MMPhase(ctx->log.deformation_check, MMDeformationCheck(ctx));
   if (ctx->ckpt.restarted) PetscCall(MMCheckpointRestoreHistory(ctx));
-  PetscCall(MMProgressHeader(ctx, *ts));
-  /* every object has read its options: refuse the unread ones before any output is touched */
+  /* every object has read its options: refuse the unread ones before any output is touched, and
+   * before the start-up report, which would otherwise announce a run that is then refused */
   PetscCall(MMOptionsCheckUnused(comm, &ctx->opt, ctx->op.dm));
   /* after: its replay of the help text reads every option */
   PetscCall(MMOptionsCheckValueless(comm));
+  PetscCall(MMProgressHeader(ctx, *ts));
   /* -check_input: the case is built and valid; its report, and a stop before any output is touched */
   if (ctx->opt.check_input) {
     PetscCall(MMDataCheckReport(ctx, *ts));

@@ -395,6 +395,29 @@ static PetscErrorCode ProcessPair(PetscOptionItems *PetscOptionsObject, MPI_Comm
   PetscFunctionReturn(0);
 }
 
+/* -mu is the default of every obstacle's and pair's own _mu: given while each of them sets its own,
+ * it would be read and used nowhere, and the user would believe it applies. Refused, naming them. */
+static PetscErrorCode CheckMuUsed(MPI_Comm comm, const MMOptions *opt)
+{
+  PetscBool given, own = PETSC_TRUE;
+  char      key[512], names[1024] = "";
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-mu", &given));
+  if (!given || !opt->n_obstacles || (!opt->obstacles_named && opt->n_rigid)) PetscFunctionReturn(0); /* the unnamed plane takes -mu */
+  for (PetscInt b = 0; b < opt->n_obstacles && own; ++b) {
+    const MMObstacle *ob = &opt->obstacles[b];
+    PetscCall(PetscSNPrintf(key, sizeof(key), ob->pair ? "-contact_pair_%s_mu" : "-obstacle_%s_mu", ob->name));
+    PetscCall(PetscOptionsHasName(NULL, NULL, key, &own));
+    if (own) {
+      if (names[0]) PetscCall(PetscStrlcat(names, ", ", sizeof(names)));
+      PetscCall(PetscStrlcat(names, key, sizeof(names)));
+    }
+  }
+  PetscCheck(!own, comm, PETSC_ERR_USER_INPUT, "-mu %.6g is used nowhere: it is the default friction coefficient of the obstacles and contact pairs, and each sets its own (%s). Drop -mu, or drop the _mu of those that should take it", (double)opt->mu, names);
+  PetscFunctionReturn(0);
+}
+
 /* -obstacles NAME,... or, without it, the single plane of -obstacle_point and -obstacle_normal
  * (completed once the dimension is known). */
 static PetscErrorCode ProcessObstacles(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt)
@@ -436,6 +459,7 @@ static PetscErrorCode ProcessObstacles(PetscOptionItems *PetscOptionsObject, MPI
     PetscCall(ProcessObstacle(PetscOptionsObject, comm, opt, ob));
   }
   PetscCall(PetscStrToArrayDestroy((int)n, names));
+  PetscCall(CheckMuUsed(comm, opt));
   PetscFunctionReturn(0);
 }
 
@@ -499,13 +523,15 @@ static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
 {
   PetscFunctionBeginUser;
   PetscCheck(opt->E > 0, comm, PETSC_ERR_USER_INPUT, "Young's modulus -E %g must be > 0", (double)opt->E);
-  PetscCheck(opt->nu > -1.0 && opt->nu < 0.5, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -nu %g must lie in (-1, 0.5); nu >= 0.5 is incompressible, which P1 elements cannot represent", (double)opt->nu);
+  PetscCheck(opt->nu > -1.0, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -nu %.6g must lie in (-1, 0.5): nu <= -1 makes the shear modulus E / (2 (1 + nu)) infinite or negative, an unstable material", (double)opt->nu);
+  PetscCheck(opt->nu < 0.5, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -nu %.6g must lie in (-1, 0.5): nu >= 0.5 is incompressible, which P1 elements cannot represent", (double)opt->nu);
   PetscCheck(opt->rho > 0, comm, PETSC_ERR_USER_INPUT, "Density -rho %g must be > 0", (double)opt->rho);
   for (PetscInt b = 0; b < opt->n_bodies; ++b) {
     const MMBodyOptions *body = &opt->bodies[b];
     PetscCheck(body->group_set && body->group[0], comm, PETSC_ERR_USER_INPUT, "-bodies: body %s has no cells: give -body_%s_group GROUP, the physical group (a Physical %s) of its cells", body->name, body->name, "Surface in 2D, Volume in 3D");
     PetscCheck(body->E > 0, comm, PETSC_ERR_USER_INPUT, "Young's modulus -body_%s_E %g must be > 0", body->name, (double)body->E);
-    PetscCheck(body->nu > -1.0 && body->nu < 0.5, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -body_%s_nu %g must lie in (-1, 0.5); nu >= 0.5 is incompressible, which P1 elements cannot represent", body->name, (double)body->nu);
+    PetscCheck(body->nu > -1.0, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -body_%s_nu %.6g must lie in (-1, 0.5): nu <= -1 makes the shear modulus E / (2 (1 + nu)) infinite or negative, an unstable material", body->name, (double)body->nu);
+    PetscCheck(body->nu < 0.5, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -body_%s_nu %.6g must lie in (-1, 0.5): nu >= 0.5 is incompressible, which P1 elements cannot represent", body->name, (double)body->nu);
     PetscCheck(body->rho > 0, comm, PETSC_ERR_USER_INPUT, "Density -body_%s_rho %g must be > 0", body->name, (double)body->rho);
   }
   PetscCheck(opt->mu >= 0, comm, PETSC_ERR_USER_INPUT, "Friction coefficient -mu %g must be >= 0", (double)opt->mu);
@@ -517,6 +543,8 @@ static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
   PetscCheck(opt->contact_work_tol > 0, comm, PETSC_ERR_USER_INPUT, "-contact_work_tol %g must be > 0: it is a fraction of the run's energy scale", (double)opt->contact_work_tol);
   PetscCheck(opt->strain_warn > 0, comm, PETSC_ERR_USER_INPUT, "-strain_warn %g must be > 0: it is a strain", (double)opt->strain_warn);
   PetscCheck(opt->max_strain >= opt->strain_warn, comm, PETSC_ERR_USER_INPUT, "-max_strain %g must be >= -strain_warn %g", (double)opt->max_strain, (double)opt->strain_warn);
+  PetscCheck(opt->audit_penetration_tol > 0, comm, PETSC_ERR_USER_INPUT, "-audit_penetration_tol %.6g must be > 0: it is a fraction of h_c'", (double)opt->audit_penetration_tol);
+  PetscCheck(opt->audit_coulomb_tol > 0, comm, PETSC_ERR_USER_INPUT, "-audit_coulomb_tol %.6g must be > 0: it is a normalized residual (the history's coulomb_residual)", (double)opt->audit_coulomb_tol);
   PetscCheck(opt->initial_penetration_tol >= 0, comm, PETSC_ERR_USER_INPUT, "-initial_penetration_tol %g must be >= 0: it is a fraction of h_c'", (double)opt->initial_penetration_tol);
   PetscCheck(opt->iterative_dofs >= 0, comm, PETSC_ERR_USER_INPUT, "-iterative_dofs %" PetscInt_FMT " must be >= 0 (0: never the iterative path by default)", opt->iterative_dofs);
   PetscCheck(opt->active_set_max_it >= 1, comm, PETSC_ERR_USER_INPUT, "-active_set_max_it %" PetscInt_FMT " must be >= 1", opt->active_set_max_it);
@@ -590,10 +618,10 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsBool(PetscOptionsObject, comm, "-contact", "Enforce unilateral contact; 0 gives linear elastodynamics on the same mesh (the contact boundary is then unused)", &opt->contact));
 
   opt->mu = 0.0;
-  PetscCall(OptionsReal(PetscOptionsObject, comm, "-mu", "Coulomb friction coefficient, >= 0 (0: frictionless, the friction loop is skipped)", &opt->mu));
+  PetscCall(OptionsReal(PetscOptionsObject, comm, "-mu", "Coulomb friction coefficient, >= 0 (0: frictionless, the friction loop is skipped); the default of each -obstacle_NAME_mu and -contact_pair_NAME_mu (refused when each of them is given: it would be used nowhere)", &opt->mu));
   PetscCall(ProcessObstacles(PetscOptionsObject, comm, opt));
   opt->friction_coulomb_tol = 1e-8;
-  PetscCall(OptionsReal(PetscOptionsObject, comm, "-friction_coulomb_tol", "The friction loop converges when the thresholds change less than -friction_snes_rtol (default 1e-10) and the discrete Coulomb residual is below this, in (0, 1)", &opt->friction_coulomb_tol));
+  PetscCall(OptionsReal(PetscOptionsObject, comm, "-friction_coulomb_tol", "The Coulomb audit of every friction solve, in (0, 1): the step's discrete Coulomb residual (penetration and gap over h_c', tension, complementarity, the cone and the slip direction over the force scale) must be below this; a solve that met its own -friction_snes_rtol but not this is polished with a 100 times tighter test, at most twice, and then the step is rejected and retried with a smaller dt", &opt->friction_coulomb_tol));
   PetscCall(PetscStrncpy(opt->friction_type, "newton", sizeof(opt->friction_type)));
   PetscCall(OptionsString(PetscOptionsObject, comm, "-friction_type", "Coulomb friction solver: newton (the default: semismooth Newton, on Alart-Curnier's function in contact space with -contact_formulation condensed, on all dofs with the thresholds following the iterate with active_set) or fixedpoint (the paper's fixed point on the thresholds, each Tresca problem solved exactly)", opt->friction_type, sizeof(opt->friction_type), &opt->friction_type_set));
   opt->friction_dump[0] = 0;
@@ -624,6 +652,14 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-contact_candidate_memory", "Condensed formulation: MiB (over all ranks) of cached columns of K~^{-1} E; columns of nodes outside the step's set are dropped beyond it (> 0)", &opt->candidate_memory));
   opt->audit_tol = 1e-6;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-audit_tol", "Stop the run when a step's relative energy-balance residual exceeds this (> 0): the scheme's identity no longer holds", &opt->audit_tol));
+  /* The contact audit's tolerances, far above what correct runs reach: penetration at most 3e-14
+   * h_c' over options/'s cases and the solver variants, the Coulomb residual at most 4e-5 (with
+   * -mass standard, at dt down to 1/1024 of -ts_dt, where the reactions carry the round-off of
+   * 4/dt^2 M), 1e-12 to 1e-10 otherwise (README "What is checked before the run") */
+  opt->audit_penetration_tol = 1e-6;
+  PetscCall(OptionsReal(PetscOptionsObject, comm, "-audit_penetration_tol", "Stop the run when, after a step, a contact node lies inside an obstacle deeper than this times h_c' (> 0): the contact solve did not hold the constraint", &opt->audit_penetration_tol));
+  opt->audit_coulomb_tol = 1e-2;
+  PetscCall(OptionsReal(PetscOptionsObject, comm, "-audit_coulomb_tol", "Stop the run when a step's discrete Coulomb residual (the history's coulomb_residual: penetration and open gap over h_c', tension, complementarity and the friction law over the force scale) exceeds this (> 0)", &opt->audit_coulomb_tol));
   opt->contact_work_tol = 1e-3;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-contact_work_tol", "Reject and retry with a smaller dt a step whose contact work W_c creates more energy than this times the run's energy scale (> 0): a release that dt does not resolve", &opt->contact_work_tol));
   opt->deformation_audit = PETSC_TRUE;

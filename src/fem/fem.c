@@ -1,4 +1,5 @@
 /* P1 elasticity: discretization, boundary conditions, and the operators K, M, L in the contact frame. */
+#include <float.h>
 #include "fem.h"
 #include "loads.h"
 #include "mesh.h"
@@ -475,7 +476,8 @@ static PetscErrorCode RotateToContactFrame(MMCtx *ctx, Mat K, Mat M)
   PetscFunctionReturn(0);
 }
 
-/* -E 1e308 overflows the stiffness: say so before a factorization fails on it. */
+/* -E 1e308 overflows the stiffness, -rho 1e-310 underflows the mass (its entries subnormal or 0):
+ * say so before a solve fails on it. */
 static PetscErrorCode CheckFiniteOperators(MMCtx *ctx)
 {
   PetscReal nK, nM;
@@ -484,6 +486,16 @@ static PetscErrorCode CheckFiniteOperators(MMCtx *ctx)
   PetscCall(MatNorm(ctx->op.K, NORM_FROBENIUS, &nK));
   PetscCall(MatNorm(ctx->op.M, NORM_FROBENIUS, &nM));
   PetscCheck(!PetscIsInfOrNanReal(nK) && !PetscIsInfOrNanReal(nM), PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "The %s matrix overflows with -E %g, -rho %g on this mesh: use consistent units (for steel in SI units, -E 2.1e11 -rho 7850)", PetscIsInfOrNanReal(nK) ? "stiffness" : "mass", (double)ctx->opt.E, (double)ctx->opt.rho);
+  {
+    PetscReal mmin;
+    Vec       d;
+    PetscCall(MatCreateVecs(ctx->op.M, &d, NULL));
+    PetscCall(MatGetDiagonal(ctx->op.M, d));
+    PetscCall(VecMin(d, NULL, &mmin));
+    PetscCall(VecDestroy(&d));
+    /* the mass of the smallest node (M is positive definite: every diagonal entry is a node's) */
+    PetscCheck(mmin >= DBL_MIN, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "The mass matrix underflows with -E %.6g, -rho %.6g on this mesh (a node's mass is %.3g, below the smallest normal double %.3g): use consistent units (for steel in SI units, -E 2.1e11 -rho 7850)", (double)ctx->opt.E, (double)ctx->opt.rho, (double)mmin, DBL_MIN);
+  }
   PetscFunctionReturn(0);
 }
 

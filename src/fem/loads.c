@@ -52,14 +52,17 @@ static PetscReal AmplitudeTable(const MMAmplitude *a, PetscReal t)
 }
 
 /* The table's rows, read on rank 0: "time,factor" per line; blank lines and lines starting with #
- * are skipped, and a first line that is not two numbers is taken for a header. Returns a message
- * in msg (empty: fine). */
+ * are skipped, and a first line that does not start with a number is taken for a header. A first
+ * line that starts with a number is data, refused if it is not two numbers ("0;1", "0,1,2"):
+ * skipped, the load would start at the second row's factor. A UTF-8 byte order mark (some
+ * Windows editors write one) is refused as the options and mesh readers do: before a first row
+ * of numbers it made that row look like a header. Returns a message in msg (empty: fine). */
 static void ReadTableRows(const char file[], PetscInt *n, PetscReal **t, PetscReal **f, char msg[], size_t len)
 {
   FILE    *fp = fopen(file, "r");
   char     line[1024];
   PetscInt cap = 0, lineno = 0;
-  PetscBool first = PETSC_TRUE;
+  PetscBool first = PETSC_TRUE, numeric;
 
   *n   = 0;
   *t   = *f = NULL;
@@ -73,10 +76,15 @@ static void ReadTableRows(const char file[], PetscInt *n, PetscReal **t, PetscRe
     double x, y;
 
     ++lineno;
+    if (lineno == 1 && (unsigned char)p[0] == 0xEF && (unsigned char)p[1] == 0xBB && (unsigned char)p[2] == 0xBF) {
+      snprintf(msg, len, "starts with a UTF-8 byte order mark (bytes EF BB BF): save it as UTF-8 without a byte order mark (or plain ASCII)");
+      break;
+    }
     while (*p == ' ' || *p == '\t') ++p;
     if (!*p || *p == '\n' || *p == '\r' || *p == '#') continue;
     x = strtod(p, &end);
-    if (end != p) {
+    numeric = (PetscBool)(end != p);
+    if (numeric) {
       p = end;
       while (*p == ' ' || *p == '\t') ++p;
       if (*p == ',') {
@@ -108,7 +116,7 @@ static void ReadTableRows(const char file[], PetscInt *n, PetscReal **t, PetscRe
         }
       }
     }
-    if (first) { /* a header */
+    if (first && !numeric) { /* a header */
       first = PETSC_FALSE;
       continue;
     }

@@ -229,7 +229,8 @@ PetscErrorCode MMProgressMassLine(MMCtx *ctx)
     } else if (ctx->op.mass_bounded) PetscCall(PetscStrncpy(bounded, "; bounded correction", sizeof(bounded)));
     PetscCall(PetscSNPrintf(moments, sizeof(moments), "; M*'s %s equal M's to %.1e (largest node correction %.3g of its mass%s)%s", which, (double)ctx->op.mass_moment_mismatch, (double)ctx->op.mass_correction, bounded, unreachable));
   }
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  mass: total of M %.10g; of M* along %s%s\n", (double)ctx->op.mass_M, star, moments));
+  /* M is over the free dofs: a node held by -dirichlet is the support's, outside the system */
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  mass: total of M %.10g%s; of M* along %s%s\n", (double)ctx->op.mass_M, ctx->opt.n_dirichlet ? " (without the dofs held by -dirichlet)" : "", star, moments));
   PetscFunctionReturn(0);
 }
 

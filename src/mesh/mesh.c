@@ -22,8 +22,9 @@ PetscBool MMMeshIsPhysicalGroup(const char name[])
   return (PetscBool)!IsInternalLabel(name);
 }
 
-/* Gets the label of a physical group by name; an unknown name lists the ones the mesh has. */
-PetscErrorCode MMMeshGetLabel(DM dm, const char name[], DMLabel *label)
+/* Gets the label of a physical group by name; an unknown name lists the ones the mesh has, and
+ * names where it came from when the caller says (option: "-contact_boundary", or a default). */
+PetscErrorCode MMMeshGetLabelFor(DM dm, const char name[], const char option[], DMLabel *label)
 {
   PetscBool has;
 
@@ -42,9 +43,16 @@ PetscErrorCode MMMeshGetLabel(DM dm, const char name[], DMLabel *label)
       PetscCall(PetscStrlcat(known, lname, sizeof(known)));
       PetscCall(PetscStrlcat(known, "\"", sizeof(known)));
     }
-    SETERRQ(PetscObjectComm((PetscObject)dm), PETSC_ERR_USER_INPUT, "The mesh has no physical group named \"%s\". Its physical names are:%s. Fix the option or add the Physical group to the .geo", name, known[0] ? known : " (none: name the groups with Physical Curve/Surface/Volume(\"name\") in the .geo)");
+    SETERRQ(PetscObjectComm((PetscObject)dm), PETSC_ERR_USER_INPUT, "The mesh has no physical group named \"%s\"%s%s%s. Its physical names are:%s. Fix the option or add the Physical group to the .geo", name, option ? " (" : "", option ? option : "", option ? ")" : "", known[0] ? known : " (none: name the groups with Physical Curve/Surface/Volume(\"name\") in the .geo)");
   }
   PetscCall(DMGetLabel(dm, name, label));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMMeshGetLabel(DM dm, const char name[], DMLabel *label)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMMeshGetLabelFor(dm, name, NULL, label));
   PetscFunctionReturn(0);
 }
 

@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #include "mesh.h"
 
 /* Before the reader: the path is a readable file without a byte order mark. */
@@ -38,6 +39,12 @@ PetscErrorCode MMMeshCheckFile(MPI_Comm comm, const char file[])
   PetscCallMPI(MPI_Bcast(&isdir, 1, MPI_INT, 0, comm));
   PetscCallMPI(MPI_Bcast(&bom, 1, MPI_INT, 0, comm));
   PetscCheck(!isdir, comm, PETSC_ERR_USER_INPUT, "-mesh %s is a directory: give the .msh file in it (make meshes writes meshes/NAME.msh from meshes/NAME.geo)", file);
+  if (err == ENOENT && file[0] != '/') {
+    /* a relative path is the current directory's, not the options file's: say which file was tried */
+    char cwd[PETSC_MAX_PATH_LEN] = "?";
+    if (!getcwd(cwd, sizeof(cwd))) PetscCall(PetscStrncpy(cwd, "(the current directory)", sizeof(cwd)));
+    SETERRQ(comm, PETSC_ERR_FILE_OPEN, "Mesh file \"%s\" (-mesh) does not exist: a relative path is taken from the current directory, not from the options file's, so the file tried was %s/%s. Run from the directory the path is relative to, give an absolute path, or generate the mesh from its .geo (make meshes, or gmsh -2/-3 file.geo)", file, cwd, file);
+  }
   PetscCheck(err != ENOENT, comm, PETSC_ERR_FILE_OPEN, "Mesh file \"%s\" (-mesh) does not exist. Generate it from its .geo (make meshes, or gmsh -2/-3 file.geo) or fix the path", file);
   PetscCheck(!err, comm, PETSC_ERR_FILE_OPEN, "Mesh file \"%s\" (-mesh) cannot be read: %s. Fix its permissions or the path", file, strerror(err));
   PetscCheck(!bom, comm, PETSC_ERR_USER_INPUT, "Mesh file \"%s\" (-mesh) starts with a UTF-8 byte order mark (bytes EF BB BF), which gmsh never writes and PETSc's reader cannot read: save it without one, or regenerate it with gmsh", file);

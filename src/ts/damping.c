@@ -105,6 +105,14 @@ PetscErrorCode MMDampingDestroy(MMDamping *d)
   PetscFunctionReturn(0);
 }
 
+/* The coefficients of K~ = ck K + cm M* as far as the arithmetic is concerned: ck = 1 + 2 beta/dt
+ * (B is K or K with the massless dofs condensed out, no larger), cm = 4/dt^2 + 2 alpha/dt. */
+void MMDampingStepCoefficients(const MMCtx *ctx, PetscReal dt, PetscReal *ck, PetscReal *cm)
+{
+  *ck = 1.0 + 2.0 * ctx->damping.beta / dt;
+  *cm = 4.0 / (dt * dt) + 2.0 * ctx->damping.alpha / dt;
+}
+
 /* K~ from A = K (a copy, K's pattern): K + 2 beta/dt B + cm M*, cm = 4/dt^2 + 2 alpha/dt
  * (docs/method.md section 3). Every formulation's K~ is built here. Undamped, K + 4/dt^2 M*
  * exactly; with B = K, (1 + 2 beta/dt) K as one scaling. */

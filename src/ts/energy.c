@@ -221,6 +221,7 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
              h->step, (double)h->time, (double)h->balance_residual, (double)ctx->opt.audit_tol, AuditAdvice(ctx, h->balance_residual));
   h->cfl              = ctx->contact.enabled ? ctx->op.c_p * s->dt / ctx->contact.h_c : 0;
   PetscCall(MMContactDiagnostics(ctx, s->u, s->react, s->v, h));
+  PetscCall(MMContactAudit(ctx, h));
   PetscCall(MMFrictionGetConvergence(ctx->friction, &h->friction_its, NULL, NULL, &h->contraction));
   h->max_penetration_run = PetscMax(h->max_penetration_run, h->max_penetration);
   PetscCall(MMRigidBodyDiagnostics(ctx, h));

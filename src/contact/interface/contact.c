@@ -89,6 +89,55 @@ PetscErrorCode MMContactSwapKeptOperator(MMContact *ct, KSP *ksp)
   PetscFunctionReturn(0);
 }
 
+/* What the arithmetic cannot carry in K~ = ck K + cm M*, refused before a factorization fails on it
+ * with a raw trace (-rho 1e-300 and -ts_dt 1e-300 stopped in pc_schursplit.c with status 56):
+ * - 4/dt^2 M* overflows (dt below about 1e-150);
+ * - the mass term, which alone holds the rigid motions (K's kernel), below the round-off of the
+ *   stiffness: K~ is then singular in floating point. ck k / (cm m) is about (c_p dt / h)^2 / 4,
+ *   so this is c_p dt / h_c' beyond about 1e7 (the factorization broke at 9e8 on D1, and from 1e5 on
+ *   the energy audit already stops the run: the solves lose digits to the conditioning);
+ * - the stiffness below the round-off of the mass term (c_p dt / h_c' below about 1e-7): the
+ *   elastic forces would not enter the step.
+ * k and m are the largest diagonal entries of ck K and cm M*, m_min the smallest positive one of
+ * cm M* (the contact normals have none). */
+static PetscErrorCode CheckStepMatrixArithmetic(MMCtx *ctx, PetscReal dt, PetscReal ck, PetscReal cm)
+{
+  MPI_Comm           comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  const PetscReal    room = 1e2 * PETSC_MACHINE_EPSILON; /* a factor 100 from where the round-off takes all */
+  Vec                d;
+  const PetscScalar *a;
+  PetscInt           n;
+  PetscReal          k[2] = {0, 0}, m_min = PETSC_MAX_REAL, cfl = ctx->contact.enabled ? ctx->op.c_p * dt / ctx->contact.h_c : -1;
+  char               ratio[64] = "";
+
+  PetscFunctionBeginUser;
+  PetscCall(MatCreateVecs(ctx->op.K, &d, NULL));
+  PetscCall(VecGetLocalSize(d, &n));
+  PetscCall(MatGetDiagonal(ctx->op.K, d));
+  PetscCall(VecGetArrayRead(d, &a));
+  for (PetscInt i = 0; i < n; ++i) k[0] = PetscMax(k[0], PetscAbsReal(PetscRealPart(a[i])));
+  PetscCall(VecRestoreArrayRead(d, &a));
+  PetscCall(MatGetDiagonal(ctx->op.Mstar, d));
+  PetscCall(VecGetArrayRead(d, &a));
+  for (PetscInt i = 0; i < n; ++i) {
+    const PetscReal mi = PetscRealPart(a[i]);
+    k[1] = PetscMax(k[1], mi);
+    if (mi > 0) m_min = PetscMin(m_min, mi);
+  }
+  PetscCall(VecRestoreArrayRead(d, &a));
+  PetscCall(VecDestroy(&d));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, k, 2, MPIU_REAL, MPIU_MAX, comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &m_min, 1, MPIU_REAL, MPIU_MIN, comm));
+  if (cfl >= 0) PetscCall(PetscSNPrintf(ratio, sizeof(ratio), " (c_p dt / h_c' = %.3g)", (double)cfl));
+  /* -E 1e308 and -rho 1e308 (overflow) and -rho 1e-310 (underflow) were refused with the operators (fem.c) */
+  PetscCheck(!PetscIsInfOrNanReal(cm) && !PetscIsInfOrNanReal(cm * k[1]), comm, PETSC_ERR_USER_INPUT, "-ts_dt %.6g is too small for double precision: the step matrix's mass term 4/dt^2 M overflows%s. Give a dt near h_c' / c_p, the time a wave takes to cross a contact cell", (double)dt, ratio);
+  PetscCheck(ck * k[0] <= cm * m_min / room, comm, PETSC_ERR_USER_INPUT, "The step matrix K + 4/dt^2 M cannot be formed in double precision with dt = %.6g, -E %.6g, -rho %.6g%s: the mass term, which alone holds the rigid motions, is %.2g of the stiffness, below its round-off, and K + 4/dt^2 M is singular in floating point. Check the units (SI throughout: the mesh in metres, -E in Pa, -rho in kg/m^3), or reduce -ts_dt to about h_c' / c_p",
+             (double)dt, (double)ctx->opt.E, (double)ctx->opt.rho, ratio, (double)(cm * m_min / (ck * k[0])));
+  PetscCheck(ck * k[0] >= room * cm * k[1], comm, PETSC_ERR_USER_INPUT, "The step matrix K + 4/dt^2 M cannot be formed in double precision with dt = %.6g, -E %.6g, -rho %.6g%s: the stiffness is %.2g of the mass term, below its round-off, so the elastic forces would not enter the step. Check the units (SI throughout: the mesh in metres, -E in Pa, -rho in kg/m^3), or give a dt near h_c' / c_p",
+             (double)dt, (double)ctx->opt.E, (double)ctx->opt.rho, ratio, (double)(ck * k[0] / (cm * k[1])));
+  PetscFunctionReturn(0);
+}
+
 /* K~ = K + 4/dt^2 M* (with Rayleigh damping K + 2 beta/dt B + (4/dt^2 + 2 alpha/dt) M*, built by
  * MMDampingStepMatrix), assembled only when dt changes; the formulation then
  * builds on it what it needs (a factor and the Delassus operator, a PC, nothing). */
@@ -114,6 +163,11 @@ PetscErrorCode MMContactSetStepMatrix(MMCtx *ctx, PetscReal dt)
     if (ct->ops->setup) PetscCall((*ct->ops->setup)(ctx));
   } else if (!ct->qp.A) PetscCall(MatDuplicate(ctx->op.K, MAT_COPY_VALUES, &ct->qp.A));
   else PetscCall(MatCopy(ctx->op.K, ct->qp.A, SAME_NONZERO_PATTERN));
+  {
+    PetscReal ck, cm;
+    MMDampingStepCoefficients(ctx, dt, &ck, &cm);
+    PetscCall(CheckStepMatrixArithmetic(ctx, dt, ck, cm));
+  }
   PetscCall(MMDampingStepMatrix(ctx, dt, ct->qp.A));
   /* K~ is SPD for every dt: K is semi-definite with the rigid motions as its kernel, and M* is
    * positive on every rigid motion (docs/method.md, "Mass redistribution": G(M*) = G(M)). Said

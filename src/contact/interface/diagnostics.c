@@ -3,12 +3,14 @@
  * the contact boundary. */
 #include "../contactimpl.h"
 #include "obstacle.h"
+#include "errors.h"
 
 /* Per-node contact statistics of a state (w, react, sigma): sigma holds the velocity, whose
  * tangential components at a contact node are its slip velocity. */
 typedef struct {
   PetscInt  active, switched, slipping, sticking;
   PetscReal force_normal, force_t[MM_MAX_DIM], max_penetration, coulomb;
+  PetscReal penetration_free; /* the part of max_penetration into obstacles without a row for the node */
 } ContactStats;
 /* force_t: in 2D the sum of the tangential reactions along each node's tangent (the tangents turn
  * with the normals, so the sum does not depend on the orientation of the mesh); in 3D the
@@ -123,7 +125,7 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
   const PetscInt    *in;
   const PetscScalar *wa, *fa, *ga, *va, *ra = NULL, *rh = NULL, *uo = NULL, *vo = NULL;
   const PetscInt     nr = ct->ncomp;
-  PetscReal          sums[1 + MM_MAX_DIM] = {0, 0, 0, 0}, loc[2] = {0, 0}, rmax = 0, fscale;
+  PetscReal          sums[1 + MM_MAX_DIM] = {0, 0, 0, 0}, loc[3] = {0, 0, 0}, rmax = 0, fscale;
   MPI_Comm           comm = PetscObjectComm((PetscObject)ctx->op.dm);
 
   PetscFunctionBeginUser;
@@ -215,7 +217,7 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
     loc[0] = PetscMax(loc[0], res);
     loc[1] = PetscMax(loc[1], rs.un - rs.g);
     /* a pair's slave node: its w are relative displacements (it is on no rigid obstacle's surface) */
-    if (ct->all_gap0 && ct->obstacle[k] < ctx->opt.n_rigid && !ct->second[k]) loc[1] = PetscMax(loc[1], OtherObstaclesPenetration(ctx, k, &wa[i], cob));
+    if (ct->all_gap0 && ct->obstacle[k] < ctx->opt.n_rigid && !ct->second[k]) loc[2] = PetscMax(loc[2], OtherObstaclesPenetration(ctx, k, &wa[i], cob));
   }
   if (nr > 1) {
     PetscCall(VecRestoreArrayRead(ct->rho, &ra));
@@ -235,7 +237,7 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
   PetscCall(ISRestoreIndices(ct->is_normal, &in));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cnt, 4, MPIU_INT, MPI_SUM, comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums, 1 + MM_MAX_DIM, MPIU_REAL, MPIU_SUM, comm));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, loc, 2, MPIU_REAL, MPIU_MAX, comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, loc, 3, MPIU_REAL, MPIU_MAX, comm));
   st->active          = cnt[0];
   st->switched        = cnt[1];
   st->slipping        = cnt[2];
@@ -243,7 +245,8 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
   st->force_normal    = sums[0];
   for (PetscInt d = 0; d < MM_MAX_DIM; ++d) st->force_t[d] = sums[1 + d];
   st->coulomb         = PetscMax(loc[0], 0.0);
-  st->max_penetration = PetscMax(loc[1], 0.0);
+  st->max_penetration  = PetscMax(PetscMax(loc[1], loc[2]), 0.0);
+  st->penetration_free = PetscMax(loc[2], 0.0);
   PetscFunctionReturn(0);
 }
 
@@ -274,6 +277,7 @@ PetscErrorCode MMContactDiagnostics(MMCtx *ctx, Vec w, Vec react, Vec v, MMHisto
   h->force_tangential = ctx->op.dim == 2 ? st.force_t[0] : PetscSqrtReal(PetscSqr(st.force_t[0]) + PetscSqr(st.force_t[1]) + PetscSqr(st.force_t[2]));
   h->max_penetration  = st.max_penetration;
   h->coulomb_residual = st.coulomb;
+  ctx->contact.penetration_free = st.penetration_free;
   h->vi_its           = ctx->contact.vi_its;
   h->candidates       = ctx->contact.cand.n_set;
   h->resolves         = ctx->contact.cand.resolves; /* over the run so far */
@@ -355,5 +359,31 @@ PetscErrorCode MMContactObstacleField(MMCtx *ctx, Vec field)
     for (PetscInt k = 0; k < ct->n_local; ++k) PetscCall(VecSetValue(field, ct->scalar_index[k], (PetscScalar)ct->obstacle[k], INSERT_VALUES));
   PetscCall(VecAssemblyBegin(field));
   PetscCall(VecAssemblyEnd(field));
+  PetscFunctionReturn(0);
+}
+
+/* The contact audit of an accepted step, like the energy audit: a node inside an obstacle, or a
+ * Coulomb residual (docs/method.md section 6) past its tolerance, stops the run (exit 65) before
+ * the step is written. The contact solves hold both to round-off; a run that breaks them is
+ * wrong, usually from values the arithmetic cannot carry (-E 1e-30 on D1 crosses the plane by a
+ * third of h_c' with an exact energy balance), and its history would say so only to a reader. */
+PetscErrorCode MMContactAudit(MMCtx *ctx, const MMHistory *h)
+{
+  const MMContact *ct   = &ctx->contact;
+  MPI_Comm         comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  const char      *advice = "The usual cause is inconsistent units (SI throughout: the mesh in metres, -E in Pa, -rho in kg/m^3, loads in N/m^2 and m/s^2) or material values far from what was meant";
+
+  PetscFunctionBeginUser;
+  if (!ct->enabled) PetscFunctionReturn(0);
+  /* a node tied to one obstacle may cross another it has no row for: say so, not the units */
+  PetscCheck(ct->penetration_free <= ctx->opt.audit_penetration_tol * ct->h_c, comm, MM_ERR_PHYSICS,
+             "Contact audit failed at step %" PetscInt_FMT " (t = %.6g): a contact node is %.3g inside an obstacle it has no contact row for, %.3g h_c', above -audit_penetration_tol %.6g. Each contact node is constrained against its nearest obstacle at t = 0, and against a second one only when that one is within h_c' of it and the run is frictionless (README \"Several, curved and moving obstacles\"): this node met an obstacle it has no row for (a corner with friction, or an obstacle it was not near at t = 0). The output up to the previous step is intact",
+             h->step, (double)h->time, (double)ct->penetration_free, (double)(ct->penetration_free / ct->h_c), (double)ctx->opt.audit_penetration_tol);
+  PetscCheck(h->max_penetration <= ctx->opt.audit_penetration_tol * ct->h_c, comm, MM_ERR_PHYSICS,
+             "Contact audit failed at step %" PetscInt_FMT " (t = %.6g): a contact node is %.3g inside an obstacle, %.3g h_c', above -audit_penetration_tol %.6g (-E %.6g, -rho %.6g). %s. The output up to the previous step is intact",
+             h->step, (double)h->time, (double)h->max_penetration, (double)(h->max_penetration / ct->h_c), (double)ctx->opt.audit_penetration_tol, (double)ctx->opt.E, (double)ctx->opt.rho, advice);
+  PetscCheck(h->coulomb_residual <= ctx->opt.audit_coulomb_tol, comm, MM_ERR_PHYSICS,
+             "Contact audit failed at step %" PetscInt_FMT " (t = %.6g): the discrete Coulomb residual (history column coulomb_residual) is %.3g, above -audit_coulomb_tol %.6g (-E %.6g, -rho %.6g). %s. The output up to the previous step is intact",
+             h->step, (double)h->time, (double)h->coulomb_residual, (double)ctx->opt.audit_coulomb_tol, (double)ctx->opt.E, (double)ctx->opt.rho, advice);
   PetscFunctionReturn(0);
 }

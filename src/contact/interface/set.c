@@ -183,7 +183,14 @@ static PetscErrorCode MarkContactVertices(MMCtx *ctx, PetscInt **mark, Vec area)
   PetscCall(DMGetLocalVector(ctx->out.dm_scalar, &aloc));
   PetscCall(VecZeroEntries(aloc));
   PetscCall(VecGetArray(aloc, &aa));
-  if (ctx->opt.n_rigid) PetscCall(MarkSurface(ctx, ctx->opt.contact_name, 1, *mark, aa));
+  if (ctx->opt.n_rigid) {
+    DMLabel   label;
+    PetscBool given;
+    /* a missing group says whether its name is the default one, tried because the option was not given */
+    PetscCall(PetscOptionsHasName(NULL, NULL, "-contact_boundary", &given));
+    PetscCall(MMMeshGetLabelFor(dm, ctx->opt.contact_name, given ? "-contact_boundary" : "the default of -contact_boundary, which was not given: name the mesh's contact boundary with -contact_boundary NAME", &label));
+    PetscCall(MarkSurface(ctx, ctx->opt.contact_name, 1, *mark, aa));
+  }
   for (PetscInt b = ctx->opt.n_rigid; b < ctx->opt.n_obstacles; ++b) PetscCall(MarkSurface(ctx, ctx->opt.obstacles[b].slave, 2 + b - ctx->opt.n_rigid, *mark, aa));
   PetscCall(VecRestoreArray(aloc, &aa));
   PetscCall(VecZeroEntries(area));
