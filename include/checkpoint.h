@@ -6,3 +6,4 @@ PETSC_EXTERN PetscErrorCode MMCheckpointDestroy(MMCheckpoint *);
 PETSC_EXTERN PetscErrorCode MMCheckpointLoad(MMCtx *, TS);
 PETSC_EXTERN PetscErrorCode MMCheckpointRestoreHistory(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMCheckpointSnapshots(MMCtx *, PetscInt *, PetscReal **);
+PETSC_EXTERN PetscInt       MMCheckpointSnapshotCount(const MMCtx *);

@@ -9,11 +9,19 @@ PETSC_EXTERN PetscErrorCode MMOutputUnlock(void);
 PETSC_EXTERN PetscErrorCode MMOutputCheckHDF5Path(MPI_Comm, const char[], const char[], const char[]);
 PETSC_EXTERN PetscErrorCode MMOutputSyncIndex(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMOutputCopySnapshots(MMCtx *);
-/* What a run will write (output_plan.c, for -check_input): its snapshots, the bytes of each and of
- * the mesh in solution.h5 and of each one's grid in solution.xmf, its history rows and the most
- * bytes a row takes in history.csv. */
+/* -probes (src/io/probes.c): set up by the output, and by the data check, whose plan counts their
+ * history columns and which refuses a group the mesh lacks as a run does */
+PETSC_EXTERN PetscErrorCode MMProbesSetUp(MMCtx *);
+PETSC_EXTERN PetscErrorCode MMProbesDestroy(MMProbes *);
+/* What a run will write (src/io/output_plan.c, for -check_input and the large-output warning): its
+ * steps from step0 at t0, each dt, to t_last (by_steps: -ts_max_steps ends it before -ts_max_time);
+ * its snapshots, the bytes of each (with its views) and of the mesh, and solution.h5's and
+ * solution.xmf's bytes; its history rows, the most bytes a row takes, the header's, and at most
+ * history.csv's bytes. */
 typedef struct {
-  PetscReal snapshots, snapshot_bytes, mesh_bytes, index_grid_bytes;
-  PetscReal rows, row_bytes, header_bytes;
+  PetscReal step0, steps, t0, dt, t_last;
+  PetscBool by_steps;
+  PetscReal snapshots, snapshot_bytes, mesh_bytes, h5_bytes, xmf_bytes;
+  PetscReal rows, row_bytes, header_bytes, csv_bytes;
 } MMOutputPlan;
-PETSC_EXTERN PetscErrorCode MMOutputPlanSize(MMCtx *, PetscReal, PetscReal, MMOutputPlan *);
+PETSC_EXTERN PetscErrorCode MMOutputPlanMake(MMCtx *, TS, MMOutputPlan *);

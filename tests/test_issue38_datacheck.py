@@ -117,12 +117,84 @@ def test_plan_output_size_and_first_contact_are_a_runs(tmp_path, case, extra, np
     assert int(out[6]) == len(h)
     size = lambda name: os.path.getsize(os.path.join(r.outdir, name))
     assert abs(size("solution.h5") / number(out[2], out[3]) - 1) <= 0.03, (size("solution.h5"), out[0])
-    # the index's grids; its opening and closing lines (300 bytes) are left out
+    # the index's grids and, since the views (item 8), its opening and closing lines (300 bytes)
     assert abs(size("solution.xmf") - number(out[4], out[5])) <= 0.01 * size("solution.xmf") + 300, (size("solution.xmf"), out[0])
     assert 0.5 * number(out[7], out[8]) <= size("history.csv") <= number(out[7], out[8]) * 1.005
     active = np.flatnonzero(h["active"] > 0)
     assert ("(-ts_max_steps ends the run before -ts_max_time)" in c.output) == ("-ts_max_steps" in extra)
     assert len(active) and int(first[1]) == int(h["step"][active[0]]) == contact_step, (first[0], h["step"][active[:1]])
+
+
+OUTPUT = re.compile(r"output: (\d+) snapshots \((.*?)\) of (\S+) (\w+) each: (\S+) (\w+) in solution.h5 with the mesh, (\S+) (\w+) in solution.xmf; (\d+) history rows: at most (\S+) (\w+) in history.csv")
+
+
+def printed(size, text, unit):
+    """Whether size in bytes, written as the data check writes sizes (3 significant digits, or whole
+    bytes), is the printed text."""
+    scaled = size / number(1, unit)
+    return (f"{scaled:.0f}" if unit == "B" else f"{scaled:.3g}") == text
+
+
+@pytest.mark.parametrize("case,extra,np_,cadence", [
+    # T not a multiple of dt (snapshots at steps 0, 4, 7, 11, 14, 18 and the last, 20); rows 0, 3, ..., 18, 20
+    ("d1_disk", ["-ts_max_steps", 20, "-history_every", 3, "-output_interval", 0.007, "-probes", "contact"], 1, "at t = k 0.007 and the last"),
+    # T = 5 dt (t = k T to round-off), the last step on both cadences, two probes, 2 ranks
+    ("d1_disk", ["-ts_max_time", 0.05, "-history_every", 5, "-output_interval", 0.01, "-probes", "contact,upper"], 2, "at t = k 0.01 and the last"),
+    # 3D: the last step (16) off the history's cadence, -output_every with -history_every
+    ("cube_groove", ["-ts_max_time", 0.032, "-history_every", 5, "-output_every", 3, "-probes", "top"], 1, "every 3 steps and the last"),
+])
+def test_plan_follows_history_every_output_interval_and_probes(tmp_path, case, extra, np_, cadence):
+    """Item 11's output options in the plan: the snapshots by time (-output_interval, by the run's own
+    rule) or by steps, the rows of -history_every (0, N, 2N, ... and the last) are the run's; the
+    index is the run's solution.xmf to the digits printed; the history's bound is the run's header
+    and, for each row, 24 bytes for each of the run's columns, the probes' included; solution.h5
+    within 3% of its plan."""
+    c = check_input(case, tmp_path, *extra, np_=np_)
+    out = OUTPUT.search(c.output)
+    assert out and out[2] == cadence, c.output[-2000:]
+    every = extra[extra.index("-history_every") + 1]
+    assert f"history.csv (every {every} steps and the last)" in c.output, c.output[-2000:]
+    r = run(case, tmp_path, *extra, np_=np_)
+    h = r.history
+    with r.fields() as f:
+        assert int(out[1]) == f["time"].shape[0], (out[0], f["time"][:, 0])
+    steps = [int(s) for s in h["step"]]
+    assert int(out[9]) == len(h) and steps == sorted(set(range(0, steps[-1] + 1, every)) | {steps[-1]}), (out[0], steps)
+    size = lambda name: os.path.getsize(os.path.join(r.outdir, name))
+    assert printed(size("solution.xmf"), out[7], out[8]), (size("solution.xmf"), out[0])
+    header = open(os.path.join(r.outdir, "history.csv")).readline()
+    columns = header.count(",") + 1
+    probes = extra[extra.index("-probes") + 1].split(",")
+    assert len([c for c in header.split(",") if c.startswith("probe_")]) == 2 * len(probes) * (3 if case == "cube_groove" else 2)
+    assert printed(len(header) + len(h) * 24 * columns, out[10], out[11]), (len(header), len(h), columns, out[0])
+    assert size("history.csv") <= number(out[10], out[11]) * 1.005
+    assert abs(size("solution.h5") / number(out[5], out[6]) - 1) <= 0.03, (size("solution.h5"), out[0])
+
+
+def test_large_output_warning_is_the_plan(tmp_path):
+    """The run's large-output warning (item 11) and the data check's plan are one computation
+    (MMOutputPlanMake): on a run of 1.25e6 steps with -history_every 10 and a probe, the steps, rows,
+    history bytes and snapshots of the warning are the plan's."""
+    from conftest import stop
+    extra = ["-ts_max_time", 2500, "-output_every", 0, "-history_every", 10, "-probes", "contact"]
+    c = check_input("d1_disk", tmp_path, *extra)
+    plan = re.search(r"plan: (\d+) steps", c.output)
+    out = OUTPUT.search(c.output)
+    assert plan and out, c.output[-2000:]
+    args = MPIEXEC + ["-n", "1", EXE, "-options_file", os.path.join(ROOT, "options", "d1_disk.opts"), *extra,
+                      "-output_dir", str(tmp_path / "out"), "-quiet"]
+    proc = subprocess.Popen(list(map(str, args)), cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    try:
+        line = proc.stdout.readline()
+    finally:
+        stop(proc)
+    w = re.match(r"mmcontact warning: this run plans (\S+) steps, (\S+) GB of history.csv \((\S+) rows\) and (\S+) GB of snapshots in solution.h5 \((\S+)\)", line)
+    assert w, line
+    assert float(w[1]) == int(plan[1]) == 1250000
+    assert int(out[9]) == 125001 and w[3] == f"{125001:.4g}"  # the warning's %.4g
+    assert float(w[2]) * 1e9 == pytest.approx(number(out[10], out[11]), rel=5e-3), (line, out[0])
+    assert float(w[5]) == int(out[1]) == 2
+    assert float(w[4]) * 1e9 == pytest.approx(2 * number(out[3], out[4]), rel=5e-3), (line, out[0])
 
 
 def first_error(args):
@@ -137,6 +209,7 @@ def first_error(args):
     ("d1_disk", ["-dirichlet", "upper"], "is also on a Dirichlet boundary"),                  # ... at the groups' common ends
     ("two_bars", ["-contact_pair_p_master", "a_right"], "master node cannot carry a constraint"),  # overlapping surfaces
     ("d1_disk", ["-traction", "nowhere", "-traction_nowhere_value", "0,1"], 'no physical group named "nowhere"'),
+    ("d1_disk", ["-probes", "contact,nowhere"], 'no physical group named "nowhere"'),             # a probe on a missing group
 ])
 def test_refused_as_a_run_is(tmp_path, case, extra, message):
     """What a run refuses, -check_input refuses with the same status (64) and the same first line of

@@ -154,56 +154,36 @@ static PetscErrorCode ReportGroups(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
-/* The steps the run will take from where it starts (t0, step0: a restart's checkpoint): to
- * -ts_max_time, the last one shortened onto it (matchstep) or taken whole (stepover), unless
- * -ts_max_steps ends the run first. A time within 1e-10 of the final time is the final time, as the
- * stepper has it (src/ts/newmark.c, FinalTimeTolerance). */
-static PetscErrorCode PlannedSteps(TS ts, PetscReal *step0, PetscReal *steps, PetscReal *t_last, PetscBool *by_steps)
+/* How the run writes its snapshots and rows, for the output line. */
+static PetscErrorCode CadenceText(const MMOptions *opt, char snap[], char rows[], size_t len)
 {
-  PetscReal              t0, t_end, dt;
-  PetscInt               max_steps, s0;
-  TSExactFinalTimeOption eft;
-
   PetscFunctionBeginUser;
-  PetscCall(TSGetTime(ts, &t0));
-  PetscCall(TSGetMaxTime(ts, &t_end));
-  PetscCall(TSGetTimeStep(ts, &dt));
-  PetscCall(TSGetMaxSteps(ts, &max_steps));
-  PetscCall(TSGetStepNumber(ts, &s0));
-  PetscCall(TSGetExactFinalTime(ts, &eft));
-  *step0    = (PetscReal)s0;
-  *steps    = PetscMax(0, PetscCeilReal((t_end - 1e-10 * t_end - t0) / dt));
-  *by_steps = (PetscBool)(max_steps < PETSC_MAX_INT && (PetscReal)(max_steps - s0) < *steps);
-  if (*by_steps) *steps = PetscMax(0, (PetscReal)(max_steps - s0));
-  *t_last = *by_steps || eft == TS_EXACTFINALTIME_STEPOVER ? t0 + *steps * dt : t_end;
+  if (opt->output_interval > 0) PetscCall(PetscSNPrintf(snap, len, "at t = k %g and the last", (double)opt->output_interval));
+  else if (opt->output_every > 0) PetscCall(PetscSNPrintf(snap, len, "every %" PetscInt_FMT " steps and the last", opt->output_every));
+  else PetscCall(PetscStrncpy(snap, "the first and the last", len));
+  if (opt->history_every > 1) PetscCall(PetscSNPrintf(rows, len, " (every %" PetscInt_FMT " steps and the last)", opt->history_every));
+  else rows[0] = 0;
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode ReportPlan(MMCtx *ctx, TS ts, PetscReal *step0, PetscReal *steps)
+/* The planned steps and output, as the run's large-output warning has them (MMOutputPlanMake). */
+static PetscErrorCode ReportPlan(MMCtx *ctx, TS ts, PetscReal *step0)
 {
   MMOutputPlan plan;
-  PetscReal    t0, dt, t_last = 0, h5, csv, xmf;
-  PetscBool    by_steps = PETSC_FALSE;
-  char         snap[32], h5_text[32], csv_text[32], xmf_text[32], total[32], every[64];
+  char         snap[32], h5_text[32], csv_text[32], xmf_text[32], total[32], every[96], rows[96];
 
   PetscFunctionBeginUser;
-  PetscCall(TSGetTime(ts, &t0));
-  PetscCall(TSGetTimeStep(ts, &dt));
-  PetscCall(PlannedSteps(ts, step0, steps, &t_last, &by_steps));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  plan: %.0f steps of dt = %.6g from t = %.6g (step %.0f) to t = %.6g%s\n", (double)*steps, (double)dt, (double)t0, (double)*step0, (double)t_last, by_steps ? " (-ts_max_steps ends the run before -ts_max_time)" : ""));
-  PetscCall(MMOutputPlanSize(ctx, *step0, *steps, &plan));
-  h5  = plan.mesh_bytes + plan.snapshots * plan.snapshot_bytes;
-  csv = plan.header_bytes + plan.rows * plan.row_bytes;
-  xmf = plan.snapshots * plan.index_grid_bytes;
+  PetscCall(MMOutputPlanMake(ctx, ts, &plan));
+  *step0 = plan.step0;
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  plan: %.0f steps of dt = %.6g from t = %.6g (step %.0f) to t = %.6g%s\n", (double)plan.steps, (double)plan.dt, (double)plan.t0, (double)plan.step0, (double)plan.t_last, plan.by_steps ? " (-ts_max_steps ends the run before -ts_max_time)" : ""));
   PetscCall(BytesText(plan.snapshot_bytes, snap, sizeof(snap)));
-  PetscCall(BytesText(h5, h5_text, sizeof(h5_text)));
-  PetscCall(BytesText(csv, csv_text, sizeof(csv_text)));
-  PetscCall(BytesText(xmf, xmf_text, sizeof(xmf_text)));
+  PetscCall(BytesText(plan.h5_bytes, h5_text, sizeof(h5_text)));
+  PetscCall(BytesText(plan.csv_bytes, csv_text, sizeof(csv_text)));
+  PetscCall(BytesText(plan.xmf_bytes, xmf_text, sizeof(xmf_text)));
   /* at a checkpoint solution.h5 is copied beside it (checkpoint_snapshots.h5, src/io/output.c) */
-  PetscCall(BytesText(2 * h5 + csv + xmf, total, sizeof(total)));
-  if (ctx->opt.output_every > 0) PetscCall(PetscSNPrintf(every, sizeof(every), "every %" PetscInt_FMT " steps and the last", ctx->opt.output_every));
-  else PetscCall(PetscStrncpy(every, "the first and the last", sizeof(every)));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  output: %.0f snapshots (%s) of %s each: %s in solution.h5 with the mesh, %s in solution.xmf; %.0f history rows: at most %s in history.csv; at most %s in %s with the checkpoint's copy of solution.h5%s (-check_input writes nothing)\n", (double)plan.snapshots, every, snap, h5_text, xmf_text, (double)plan.rows, csv_text, total, ctx->opt.output_dir, ctx->ckpt.restarted ? ", beyond what the restart continues from its checkpoint's directory" : ""));
+  PetscCall(BytesText(2 * plan.h5_bytes + plan.csv_bytes + plan.xmf_bytes, total, sizeof(total)));
+  PetscCall(CadenceText(&ctx->opt, every, rows, sizeof(every)));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  output: %.0f snapshots (%s) of %s each: %s in solution.h5 with the mesh, %s in solution.xmf; %.0f history rows: at most %s in history.csv%s; at most %s in %s with the checkpoint's copy of solution.h5%s (-check_input writes nothing)\n", (double)plan.snapshots, every, snap, h5_text, xmf_text, (double)plan.rows, csv_text, rows, total, ctx->opt.output_dir, ctx->ckpt.restarted ? ", beyond what the restart continues from its checkpoint's directory" : ""));
   PetscFunctionReturn(0);
 }
 
@@ -302,22 +282,27 @@ static PetscErrorCode ReportFirstContact(MMCtx *ctx, TS ts, PetscReal step0)
 /* The data check's report, after the start-up report: the case was built and every check passed. */
 PetscErrorCode MMDataCheckReport(MMCtx *ctx, TS ts)
 {
-  PetscReal step0, steps;
+  PetscReal step0;
 
   PetscFunctionBeginUser;
+  /* as the output does when it opens: a group the mesh lacks is refused, and the plan counts the
+   * probes' history columns */
+  PetscCall(MMProbesSetUp(ctx));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "mmcontact data check (-check_input): the physical groups of %s\n", ctx->opt.mesh_file));
   PetscCall(ReportGroups(ctx));
   PetscCall(ReportObstacles(ctx, ts));
-  PetscCall(ReportPlan(ctx, ts, &step0, &steps));
+  PetscCall(ReportPlan(ctx, ts, &step0));
   PetscCall(ReportFirstContact(ctx, ts, step0));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "mmcontact data check: the case is valid; no step was taken and nothing was written\n"));
   PetscFunctionReturn(0);
 }
 
-/* What the output would have freed: its scalar DM is made with the operators (src/fem/fem.c). */
+/* What the output would have freed: its scalar DM is made with the operators (src/fem/fem.c), and
+ * the probes. */
 PetscErrorCode MMDataCheckDestroy(MMCtx *ctx)
 {
   PetscFunctionBeginUser;
+  PetscCall(MMProbesDestroy(&ctx->out.probes));
   PetscCall(DMDestroy(&ctx->out.dm_scalar));
   PetscFunctionReturn(0);
 }

@@ -697,6 +697,13 @@ PetscErrorCode MMCheckpointRestoreHistory(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
+/* The snapshots of the checkpoint a restart continues (0 without one): the output plan numbers this
+ * run's from there (output_plan.c). */
+PetscInt MMCheckpointSnapshotCount(const MMCtx *ctx)
+{
+  return ctx->ckpt.restarted ? (PetscInt)ctx->ckpt.run[MM_RUN_SNAPSHOTS] : 0;
+}
+
 /* The snapshot count and times of the checkpoint, read with the state: the caller takes them. */
 PetscErrorCode MMCheckpointSnapshots(MMCtx *ctx, PetscInt *n, PetscReal **times)
 {

@@ -257,9 +257,10 @@ void MMOutputSnapshotFields(MMOutput *o, PetscInt dim, MMSnapshotField f[MM_SNAP
   for (PetscInt i = 0; i < MM_SNAPSHOT_FIELDS; ++i) f[i] = all[i];
 }
 
-/* rank 0: the newest snapshot's grid, added to the index text kept in memory. Each field is the
- * snapshot's view of it (output_views.c), a dataset that both of ParaView's XDMF readers read. */
-PetscErrorCode MMOutputIndexAddGrid(MMOutput *o, PetscInt dim, PetscInt k)
+/* rank 0: the grid of snapshot k, at time t, added to the index text kept in memory. Each field is
+ * the snapshot's view of it (output_views.c), a dataset that both of ParaView's XDMF readers read.
+ * The output plan measures a grid with it (output_plan.c). */
+PetscErrorCode MMOutputIndexAddGrid(MMOutput *o, PetscInt dim, PetscInt k, PetscReal t)
 {
   const char    *h5base     = "solution.h5";
   const PetscInt nv = o->nv, nc = o->nc;
@@ -268,7 +269,7 @@ PetscErrorCode MMOutputIndexAddGrid(MMOutput *o, PetscInt dim, PetscInt k)
 
   PetscFunctionBeginUser;
   MMOutputSnapshotFields(o, dim, f);
-  PetscCall(MMOutputLineAdd(&l, "<Grid Name=\"step %" PetscInt_FMT "\" GridType=\"Uniform\">\n<Time Value=\"%.16e\"/>\n", k, (double)o->times[k]));
+  PetscCall(MMOutputLineAdd(&l, "<Grid Name=\"step %" PetscInt_FMT "\" GridType=\"Uniform\">\n<Time Value=\"%.16e\"/>\n", k, (double)t));
   PetscCall(MMOutputLineAdd(&l, "<Topology TopologyType=\"%s\" NumberOfElements=\"%" PetscInt_FMT "\">\n<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Int\" Format=\"HDF\">%s:/viz/topology/cells</DataItem>\n</Topology>\n", dim == 2 ? "Triangle" : "Tetrahedron", nc, nc, dim + 1, h5base));
   PetscCall(MMOutputLineAdd(&l, "<Geometry GeometryType=\"%s\">\n<DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n</Geometry>\n", dim == 2 ? "XY" : "XYZ", nv, dim, h5base));
   for (PetscInt i = 0; i < MM_SNAPSHOT_FIELDS; ++i) {
@@ -292,13 +293,23 @@ PetscErrorCode MMOutputIndexAddGrid(MMOutput *o, PetscInt dim, PetscInt k)
   PetscFunctionReturn(0);
 }
 
+/* The index text around its grids */
+static const char MMIndexHead[] = "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf xmlns:xi=\"http://www.w3.org/2001/XInclude\" Version=\"2.99\">\n<Domain>\n"
+                                  "<Grid Name=\"mmcontact\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+static const char MMIndexTail[] = "</Grid>\n</Domain>\n</Xdmf>\n";
+
+/* The bytes of the index text around its grids, for the output plan (output_plan.c). */
+size_t MMOutputIndexFrameBytes(void)
+{
+  return sizeof(MMIndexHead) - 1 + sizeof(MMIndexTail) - 1;
+}
+
 /* rank 0: the index text. Errors are collected by the stream (ferror). */
 static void IndexPrint(FILE *f, const MMOutput *o)
 {
-  fputs("<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf xmlns:xi=\"http://www.w3.org/2001/XInclude\" Version=\"2.99\">\n<Domain>\n", f);
-  fputs("<Grid Name=\"mmcontact\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", f);
+  fputs(MMIndexHead, f);
   (void)fwrite(o->index, 1, o->index_len, f);
-  fputs("</Grid>\n</Domain>\n</Xdmf>\n", f);
+  fputs(MMIndexTail, f);
 }
 
 /* The XDMF index, rewritten on rank 0: whole to solution.xmf.tmp, then renamed over solution.xmf.
@@ -346,7 +357,7 @@ static PetscErrorCode WriteIndex(MMCtx *ctx)
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
-  if (rank == 0) PetscCall(MMOutputIndexAddGrid(o, ctx->op.dim, o->n_written - 1));
+  if (rank == 0) PetscCall(MMOutputIndexAddGrid(o, ctx->op.dim, o->n_written - 1, o->times[o->n_written - 1]));
   if (o->n_written >= 2 * o->n_indexed) PetscCall(MMOutputWriteIndexFile(ctx));
   PetscFunctionReturn(0);
 }
@@ -862,9 +873,7 @@ PetscErrorCode MMOutputMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void
 
   PetscFunctionBeginUser;
   if (!ctx->out.planned) {
-    MMLine header;
-    PetscCall(MMOutputCSVHeaderLine(ctx, &header));
-    PetscCall(MMOutputPlanCheck(ctx, ts, &header));
+    PetscCall(MMOutputPlanCheck(ctx, ts));
     ctx->out.planned = PETSC_TRUE;
   }
   /* -restart: the row and snapshot of the checkpoint's step are on disk already */

@@ -294,7 +294,7 @@ PetscErrorCode MMOutputRestartFields(MMCtx *ctx)
   o->times     = times;
   o->n_written = n;
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
-  for (PetscInt k = 0; !rank && k < n; ++k) PetscCall(MMOutputIndexAddGrid(o, dim, k));
+  for (PetscInt k = 0; !rank && k < n; ++k) PetscCall(MMOutputIndexAddGrid(o, dim, k, times[k]));
   if (n) PetscCall(MMOutputWriteIndexFile(ctx));
   if (!rank && rename(tmp, o->h5_name)) PetscCall(MMOutputFailed(&st, "rename %s to %s", tmp, o->h5_name));
   PetscCall(MMOutputCheckRank0(&st));

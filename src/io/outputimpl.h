@@ -24,7 +24,8 @@ PETSC_INTERN PetscErrorCode MMOutputHDF5Begin(void);
 PETSC_INTERN PetscErrorCode MMOutputHDF5End(PetscErrorCode, const char[], const char[]);
 PETSC_INTERN PetscErrorCode MMOutputLineAdd(MMLine *, const char[], ...);
 PETSC_INTERN PetscErrorCode MMOutputCSVHeaderLine(MMCtx *, MMLine *);
-PETSC_INTERN PetscErrorCode MMOutputIndexAddGrid(MMOutput *, PetscInt, PetscInt);
+PETSC_INTERN PetscErrorCode MMOutputIndexAddGrid(MMOutput *, PetscInt, PetscInt, PetscReal);
+PETSC_INTERN size_t         MMOutputIndexFrameBytes(void);
 PETSC_INTERN PetscErrorCode MMOutputWriteIndexFile(MMCtx *);
 PETSC_INTERN PetscErrorCode MMOutputFlushFields(MMOutput *);
 PETSC_INTERN PetscErrorCode MMOutputWriteDataset(PetscViewer, Vec, PetscInt, const char[]);
@@ -47,14 +48,13 @@ PETSC_INTERN void MMOutputSnapshotFields(MMOutput *, PetscInt, MMSnapshotField[M
 PETSC_INTERN PetscErrorCode MMOutputCreateViews(PetscViewer, const MMSnapshotField[MM_SNAPSHOT_FIELDS], PetscInt);
 PETSC_INTERN PetscInt       MMOutputViewComponents(PetscInt);
 PETSC_INTERN PetscErrorCode MMOutputViewPath(PetscInt, const char[], char[], size_t);
+PETSC_INTERN PetscErrorCode MMOutputViewBytes(const MMSnapshotField[MM_SNAPSHOT_FIELDS], PetscInt, PetscInt, PetscInt, PetscReal *);
 /* output_schedule.c: which steps write a row or a snapshot; the planned output's size */
 PETSC_INTERN PetscBool      MMOutputHistoryDue(const MMOptions *, PetscInt);
 PETSC_INTERN PetscBool      MMOutputSnapshotDue(const MMOptions *, PetscInt, PetscReal, PetscReal);
-PETSC_INTERN PetscErrorCode MMOutputPlanCheck(MMCtx *, TS, const MMLine *);
+PETSC_INTERN PetscErrorCode MMOutputPlanCheck(MMCtx *, TS);
 /* probes.c: -probes, the groups' mean displacement and velocity */
-PETSC_INTERN PetscErrorCode MMProbesSetUp(MMCtx *);
 PETSC_INTERN PetscErrorCode MMProbesEvaluate(MMCtx *);
-PETSC_INTERN PetscErrorCode MMProbesDestroy(MMProbes *);
 PETSC_INTERN PetscErrorCode MMOutputWholeState(MMCtx *);
 /* stress.c: the nodal stress and von Mises of each snapshot */
 PETSC_INTERN PetscErrorCode MMStressCreate(MMCtx *);
