@@ -28,5 +28,3 @@ static inline PetscBool MMFEHasMasslessDofs(const MMCtx *ctx)
 }
 PETSC_EXTERN PetscErrorCode MMFEAddTraction(MMCtx *, PetscInt, Vec);
 PETSC_EXTERN PetscErrorCode MMFEVertexMasses(MMCtx *, Vec);
-/* det of the dim x dim matrix a, and its inverse into inv when inv is not NULL and det != 0 */
-PETSC_EXTERN PetscReal MMDetInverse(PetscInt, const PetscReal[MM_MAX_DIM][MM_MAX_DIM], PetscReal[MM_MAX_DIM][MM_MAX_DIM]);

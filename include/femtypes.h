@@ -2,6 +2,7 @@
 #pragma once
 #include "mmbase.h"
 #include "insertmap.h"
+#include "mesh.h"
 
 /* Physical parameters, also passed to the pointwise kernels as constants[]. */
 typedef enum {
@@ -41,15 +42,6 @@ typedef struct {
   PetscReal  c_p_max;     /* the largest pressure wave speed: the CFL number's */
   PetscReal  E_max;       /* the largest Young's modulus: the contact solvers' force scales */
 } MMMaterial;
-
-/* The local cells as simplices, tabulated once (src/mesh/cells.c), indexed by c - cStart of the
- * mesh and of its clones, which share its points. */
-typedef struct {
-  PetscInt   cStart, ncells, nv; /* local cells; vertices per cell, dim + 1 */
-  PetscInt  *vertex;   /* nv per cell: its vertices' local point numbers */
-  PetscReal *volume;   /* per cell: its area (2D) or volume (3D) */
-  PetscReal *centroid; /* MM_MAX_DIM per cell: the mean of its vertices */
-} MMCells;
 
 /* Finite element operators in the contact frame (w-dofs). */
 typedef struct {

@@ -1,6 +1,7 @@
+/* The mesh (src/mesh/): the gmsh file read and checked, distributed, its physical groups as labels,
+ * and its cells tabulated once. */
 #pragma once
-#include "mmcontact.h"
-PETSC_EXTERN PetscErrorCode MMMeshLoad(MPI_Comm, MMOptions *, DM *, PetscInt **, PetscInt **);
+#include "mmbase.h"
 PETSC_EXTERN PetscErrorCode MMMeshCheckFile(MPI_Comm, const char[]);
 PETSC_EXTERN PetscErrorCode MMMeshFileNodes(MPI_Comm, DM, const char[], PetscInt **, PetscInt **);
 
@@ -9,7 +10,10 @@ typedef struct {
   PetscInt ngroups;
   char   (*name)[256];
   PetscInt *tag;
+  PetscBool read;  /* the file was read by src/mesh/facets.c: MMMeshDistribute labels the vertices */
 } MMMeshFacets;
+PETSC_EXTERN PetscErrorCode MMMeshRead(MPI_Comm comm, const char file[], DM *dm, MMMeshFacets *facets, PetscInt **vertex_file);
+PETSC_EXTERN PetscErrorCode MMMeshDistribute(const PetscReal rotation[], const PetscReal center[], MMMeshFacets *facets, DM *dm, PetscInt **vertex_orig);
 PETSC_EXTERN PetscErrorCode MMMeshFacetsRead(MPI_Comm, DM, const char[], const PetscInt[], MMMeshFacets *, PetscBool *);
 PETSC_EXTERN PetscErrorCode MMMeshFacetsLabelVertices(MMMeshFacets *, DM);
 PETSC_EXTERN PetscErrorCode MMMeshPointGroupsRead(MPI_Comm, DM, const char[], const PetscInt[]);
@@ -38,5 +42,16 @@ PETSC_EXTERN PetscErrorCode MMMeshGetSizes(DM, PetscInt *, PetscInt *);
 PETSC_EXTERN PetscErrorCode MMMeshCellCentroid(DM, PetscInt, PetscReal[]);
 PETSC_EXTERN PetscErrorCode MMMeshCellGroups(DM, char[], size_t);
 PETSC_EXTERN PetscErrorCode MMMeshCellVertices(DM, PetscInt, PetscInt, PetscInt, PetscInt[]);
+
+/* The local cells as simplices, tabulated once (src/mesh/cells.c), indexed by c - cStart of the
+ * mesh and of its clones, which share its points. */
+typedef struct {
+  PetscInt   cStart, ncells, nv; /* local cells; vertices per cell, dim + 1 */
+  PetscInt  *vertex;   /* nv per cell: its vertices' local point numbers */
+  PetscReal *volume;   /* per cell: its area (2D) or volume (3D) */
+  PetscReal *centroid; /* MM_MAX_DIM per cell: the mean of its vertices */
+} MMCells;
 PETSC_EXTERN PetscErrorCode MMCellsCreate(DM, MMCells *);
 PETSC_EXTERN PetscErrorCode MMCellsDestroy(MMCells *);
+/* det of the dim x dim matrix a, and its inverse into inv when inv is not NULL and det != 0 */
+PETSC_EXTERN PetscReal MMDetInverse(PetscInt, const PetscReal[MM_MAX_DIM][MM_MAX_DIM], PetscReal[MM_MAX_DIM][MM_MAX_DIM]);

@@ -40,6 +40,21 @@ static char help[] = "mmcontact: elastic bodies hitting and sliding on rigid obs
     PetscCall(PetscLogEventEnd((event), 0, 0, 0, 0)); \
   } while (0)
 
+/* The mesh: read, the options that depend on its dimension checked, then rotated and distributed. */
+static PetscErrorCode LoadMesh(MPI_Comm comm, MMCtx *ctx)
+{
+  MMMeshFacets facets;
+  PetscInt     dim;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMMeshRead(comm, ctx->opt.mesh_file, &ctx->op.dm, &facets, &ctx->ckpt.vertex_file));
+  /* the vector options' lengths, the rotation's among them, need the dimension */
+  PetscCall(DMGetDimension(ctx->op.dm, &dim));
+  PetscCall(MMOptionsCheckDimension(comm, &ctx->opt, dim));
+  PetscCall(MMMeshDistribute(ctx->opt.mesh_rotation, ctx->opt.mesh_rotation_center, &facets, &ctx->op.dm, &ctx->ckpt.vertex_orig));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
 {
   MPI_Comm  comm = PETSC_COMM_WORLD;
@@ -53,7 +68,7 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   /* before anything in the output directory is read or moved: one run per directory. A data check
    * writes nothing, and takes no lock */
   if (!ctx->opt.check_input) PetscCall(MMOutputLock(ctx->opt.output_dir));
-  MMPhase(ctx->log.mesh_load, MMMeshLoad(comm, &ctx->opt, &ctx->op.dm, &ctx->ckpt.vertex_orig, &ctx->ckpt.vertex_file));
+  MMPhase(ctx->log.mesh_load, LoadMesh(comm, ctx));
   PetscCall(DMGetDimension(ctx->op.dm, &ctx->op.dim));
   MMPhase(ctx->log.fe_setup, MMFESetUp(ctx));
   MMPhase(ctx->log.contact_setup, MMContactSetUp(ctx));
