@@ -28,3 +28,7 @@ static inline PetscBool MMFEHasMasslessDofs(const MMCtx *ctx)
 }
 PETSC_EXTERN PetscErrorCode MMFEAddTraction(MMCtx *, PetscInt, Vec);
 PETSC_EXTERN PetscErrorCode MMFEVertexMasses(MMCtx *, Vec);
+/* stress.c: the stress of a displacement, for the output */
+PETSC_EXTERN PetscErrorCode MMStressCreate(const MMOperators *op, MMStress *st);
+PETSC_EXTERN PetscErrorCode MMStressCompute(MMStress *st, const MMOperators *op, const MMMaterial *mat, DM dm_u, Vec u, PetscBool nodal);
+PETSC_EXTERN PetscErrorCode MMStressDestroy(MMStress *st);

@@ -46,6 +46,7 @@ typedef struct {
 /* Finite element operators in the contact frame (w-dofs). */
 typedef struct {
   DM        dm;
+  DM        dm_scalar; /* one P1 scalar per vertex, no constraints: lumped masses, contact pressure and gap, von Mises */
   MMCells   cells;
   PetscInt  dim;
   Mat       K;      /* stiffness A */
@@ -70,6 +71,16 @@ typedef struct {
   PetscReal energy_dirichlet; /* elastic energy of the Dirichlet data alone, 1/2 u_D.A_DD u_D */
   Vec       work;
 } MMOperators;
+
+/* The stress of a displacement (src/fem/stress.c, docs/method.md section 5, "Stress"): constant per
+ * cell, and its lumped L2 projection per vertex, each with its von Mises value. */
+typedef struct {
+  DM         dm;                   /* 6 components per vertex: xx, xy, xz, yy, yz, zz (XDMF's Tensor6) */
+  Vec        nodal, von_mises;     /* the nodal stress (dm) and its von Mises (MMOperators.dm_scalar) */
+  Vec        weight;               /* each vertex's lumped weight sum_T |T| (dm_scalar) */
+  Vec        cell, von_mises_cell; /* per local cell, in local order (no DM) */
+  PetscReal *geom;                 /* per local cell its inverse edge matrix and volume, computed once */
+} MMStress;
 
 /* An amplitude in time (src/fem/loads.c): a(t) of a registered kind, docs/method.md section 10. */
 typedef struct _MMAmplitude MMAmplitude;

@@ -297,12 +297,10 @@ PetscErrorCode MMDataCheckReport(MMCtx *ctx, TS ts)
   PetscFunctionReturn(0);
 }
 
-/* What the output would have freed: its scalar DM is made with the operators (src/fem/fem.c), and
- * the probes. */
+/* What the output would have freed: the probes. */
 PetscErrorCode MMDataCheckDestroy(MMCtx *ctx)
 {
   PetscFunctionBeginUser;
   PetscCall(MMProbesDestroy(&ctx->out.probes));
-  PetscCall(DMDestroy(&ctx->out.dm_scalar));
   PetscFunctionReturn(0);
 }

@@ -157,7 +157,7 @@ PetscErrorCode MMFESetUp(MMCtx *ctx)
     PetscCall(DMSetField(dms, 0, NULL, (PetscObject)fes));
     PetscCall(PetscFEDestroy(&fes));
     PetscCall(DMCreateDS(dms));
-    ctx->out.dm_scalar = dms;
+    ctx->op.dm_scalar = dms;
   }
   PetscFunctionReturn(0);
 }
@@ -166,7 +166,7 @@ PetscErrorCode MMFESetUp(MMCtx *ctx)
  * mass, Dirichlet columns included. */
 static PetscErrorCode VertexMasses(MMCtx *ctx, Vec mloc)
 {
-  DM             dms   = ctx->out.dm_scalar;
+  DM             dms   = ctx->op.dm_scalar;
   const MMCells *cells = &ctx->op.cells;
   PetscInt       dim   = ctx->op.dim;
   Vec            mglob;
@@ -222,7 +222,7 @@ static PetscErrorCode SpreadVertexScalar(MMCtx *ctx, Vec sloc, const PetscReal f
     const PetscInt *cidx;
     PetscCall(PetscSectionGetOffset(gs, v, &goff));
     if (goff < 0) continue;
-    PetscCall(DMPlexGetPointLocal(ctx->out.dm_scalar, v, &soff, NULL));
+    PetscCall(DMPlexGetPointLocal(ctx->op.dm_scalar, v, &soff, NULL));
     PetscCall(PetscSectionGetConstraintDof(ls, v, &ncdof));
     PetscCall(PetscSectionGetConstraintIndices(ls, v, &cidx));
     for (PetscInt c = 0, k = 0; c < dim; ++c) {
@@ -528,12 +528,12 @@ PetscErrorCode MMFEAssembleOperators(MMCtx *ctx)
   PetscCall(VecDuplicate(ctx->op.load, &ctx->op.mass_lumped_cart));
   PetscCall(VecDuplicate(ctx->op.load, &Lcart));
   PetscCall(VecDuplicate(ctx->op.load, &tmp));
-  PetscCall(DMGetLocalVector(ctx->out.dm_scalar, &mloc));
+  PetscCall(DMGetLocalVector(ctx->op.dm_scalar, &mloc));
   PetscCall(VertexMasses(ctx, mloc));
   PetscCall(SpreadVertexScalar(ctx, mloc, ones, ctx->op.mass_lumped_cart));
   /* body force: int rho g phi_i = m_i g, exactly, for constant g */
   PetscCall(SpreadVertexScalar(ctx, mloc, ctx->opt.gravity, Lcart));
-  PetscCall(DMRestoreLocalVector(ctx->out.dm_scalar, &mloc));
+  PetscCall(DMRestoreLocalVector(ctx->op.dm_scalar, &mloc));
   PetscCall(AddTractions(ctx, Lcart));
   PetscCall(MatMultTranspose(ctx->op.Q, Lcart, ctx->op.load));
   PetscCall(DirichletLift(ctx, tmp));
@@ -712,5 +712,6 @@ PetscErrorCode MMFEDestroy(MMOperators *op)
   PetscCall(VecDestroy(&op->lift));
   PetscCall(VecDestroy(&op->mass_lumped_cart));
   PetscCall(VecDestroy(&op->work));
+  PetscCall(DMDestroy(&op->dm_scalar));
   PetscFunctionReturn(0);
 }

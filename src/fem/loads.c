@@ -480,7 +480,7 @@ static PetscErrorCode LoadPartFull(MMCtx *ctx, PetscInt k, Vec full)
     PetscScalar       *f;
     PetscInt           vStart, vEnd;
 
-    PetscCall(DMGetLocalVector(ctx->out.dm_scalar, &mloc));
+    PetscCall(DMGetLocalVector(ctx->op.dm_scalar, &mloc));
     PetscCall(MMFEVertexMasses(ctx, mloc));
     PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
     PetscCall(VecGetArrayRead(mloc, &m));
@@ -488,12 +488,12 @@ static PetscErrorCode LoadPartFull(MMCtx *ctx, PetscInt k, Vec full)
     for (PetscInt v = vStart; v < vEnd; ++v) {
       PetscInt off, soff;
       PetscCall(DMPlexGetPointLocal(dm, v, &off, NULL));
-      PetscCall(DMPlexGetPointLocal(ctx->out.dm_scalar, v, &soff, NULL));
+      PetscCall(DMPlexGetPointLocal(ctx->op.dm_scalar, v, &soff, NULL));
       for (PetscInt c = 0; c < ctx->op.dim; ++c) f[off + c] = m[soff] * ctx->opt.gravity[c];
     }
     PetscCall(VecRestoreArray(floc, &f));
     PetscCall(VecRestoreArrayRead(mloc, &m));
-    PetscCall(DMRestoreLocalVector(ctx->out.dm_scalar, &mloc));
+    PetscCall(DMRestoreLocalVector(ctx->op.dm_scalar, &mloc));
     /* the vertex masses are summed over ranks already */
     PetscCall(DMLocalToGlobal(ctx->loads.dm_full, floc, INSERT_VALUES, full));
   } else {

@@ -80,7 +80,7 @@ static PetscErrorCode Gram(Mat A, PetscInt nr, Vec R[], PetscReal G[MM_MAX_RIGID
 static PetscErrorCode VertexKinds(MMCtx *ctx, Vec *kind, Vec n[])
 {
   MMContact     *ct = &ctx->contact;
-  DM             dms = ctx->out.dm_scalar;
+  DM             dms = ctx->op.dm_scalar;
   const PetscInt dim = ctx->op.dim;
   PetscSection   ls;
   PetscInt       vStart, vEnd, sstart;
@@ -129,7 +129,7 @@ static PetscErrorCode VertexGlobalDof(PetscSection gs, PetscInt v, PetscInt *g)
  * Cartesian frame, which is the w-frame of a non-contact node (docs/method.md section 8). */
 static PetscErrorCode AddCellShares(MMCtx *ctx, Vec kind, Vec normal[], const PetscInt vgroup[], PetscInt group, PetscReal sign, Mat A)
 {
-  DM                 dm = ctx->op.dm, dms = ctx->out.dm_scalar;
+  DM                 dm = ctx->op.dm, dms = ctx->op.dm_scalar;
   const PetscInt     dim = ctx->op.dim;
   PetscSection       gs;
   PetscInt           cStart, cEnd, vStart, vEnd;
@@ -204,7 +204,7 @@ static PetscErrorCode SmallestEigenvalue(PetscInt dim, PetscReal D[MM_MAX_DIM][M
  * A_j = T_j^T P_j T_j: an nr^2 system, summed over the ranks. */
 static PetscErrorCode AddMomentCorrection(MMCtx *ctx, Vec kind, const PetscInt vgroup[], PetscInt group, const PetscReal x0[], PetscReal ell, PetscReal dG[MM_MAX_RIGID][MM_MAX_RIGID], Mat A, PetscBool *exceeded)
 {
-  DM                 dm = ctx->op.dm, dms = ctx->out.dm_scalar;
+  DM                 dm = ctx->op.dm, dms = ctx->op.dm_scalar;
   MMContact         *ct  = &ctx->contact;
   const PetscInt     dim = ctx->op.dim, nr = MMFENumRigidModes(dim), n2 = nr * nr;
   MPI_Comm           comm = PetscObjectComm((PetscObject)dm);
@@ -336,7 +336,7 @@ typedef struct {
 
 static PetscErrorCode CollectMassNodes(MMCtx *ctx, Vec kind, const PetscInt vgroup[], PetscInt group, const PetscReal x0[], PetscReal ell, PetscInt *n, MassNode **nodes)
 {
-  DM                 dm = ctx->op.dm, dms = ctx->out.dm_scalar;
+  DM                 dm = ctx->op.dm, dms = ctx->op.dm_scalar;
   MMContact         *ct  = &ctx->contact;
   const PetscInt     dim = ctx->op.dim, nr = MMFENumRigidModes(dim);
   PetscSection       gs, cs;
@@ -612,7 +612,7 @@ static PetscErrorCode CountInnerNodes(MMCtx *ctx, Vec kind, const PetscInt vgrou
   for (PetscInt v = vStart; v < vEnd; ++v) {
     PetscInt goff, soff;
     PetscCall(PetscSectionGetOffset(gs, v, &goff));
-    PetscCall(DMPlexGetPointLocal(ctx->out.dm_scalar, v, &soff, NULL));
+    PetscCall(DMPlexGetPointLocal(ctx->op.dm_scalar, v, &soff, NULL));
     if (goff >= 0 && PetscAbsReal(PetscRealPart(k[soff])) < 0.5 && vgroup[v - vStart] == group) ++*count;
   }
   PetscCall(VecRestoreArrayRead(kind, &k));
