@@ -10,21 +10,6 @@ typedef enum {
 } MMInitialState;
 PETSC_EXTERN const char *const MMInitialStates[];
 
-typedef enum {
-  MM_MASS_MODIFIED,
-  MM_MASS_STANDARD,
-  MM_MASS_REDISTRIBUTED /* modified, its removed mass given to the other nodes (docs/method.md section 2) */
-} MMMassType;
-PETSC_EXTERN const char *const MMMassTypes[];
-
-/* How K and M are assembled: closed-form P1 element matrices in one pass over the cells, or the
- * PetscFE quadrature (DMPlexSNESComputeJacobianFEM), kept to cross-check the first. */
-typedef enum {
-  MM_ASSEMBLY_CLOSED_FORM,
-  MM_ASSEMBLY_FE
-} MMAssemblyType;
-PETSC_EXTERN const char *const MMAssemblyTypes[];
-
 /* An amplitude in time as the user gave it (-traction_NAME_amplitude..., -gravity_amplitude...): its
  * kind, a name registered in src/fem/loads.c, and its data; checked there. */
 typedef struct {
@@ -119,10 +104,6 @@ typedef struct {
   MMInitialState initial_state;
   PetscReal    obstacle_point[MM_MAX_DIM], obstacle_normal[MM_MAX_DIM];
   PetscReal    mesh_rotation[MM_MAX_DIM], mesh_rotation_center[MM_MAX_DIM];
-  MMMassType   mass_type;
-  PetscBool    lumped;
-  MMAssemblyType assembly;
-  PetscBool    assembly_check; /* assemble K and M both ways and stop if they differ */
   PetscBool    contact;
   char         contact_formulation[MM_TYPE_LEN]; /* a registered contact formulation, or auto */
   PetscInt     iterative_dofs;                   /* 3D problems this large default to the iterative path */

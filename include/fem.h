@@ -1,5 +1,6 @@
 #pragma once
 #include "mmcontact.h"
+PETSC_EXTERN PetscErrorCode MMFESetFromOptions(MPI_Comm comm, MMOperators *op);
 PETSC_EXTERN PetscErrorCode MMFESetUp(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMFEAssembleOperators(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMFECreateMatrix(MMCtx *, DM, Mat *);
@@ -24,7 +25,7 @@ PETSC_EXTERN PetscErrorCode MMFERigidModesCartesian(MMCtx *, const PetscReal[], 
 /* The modified and the redistributed mass leave the contact-normal dofs without inertia. */
 static inline PetscBool MMFEHasMasslessDofs(const MMCtx *ctx)
 {
-  return (PetscBool)(ctx->contact.enabled && ctx->opt.mass_type != MM_MASS_STANDARD);
+  return (PetscBool)(ctx->contact.enabled && ctx->op.mass_type != MM_MASS_STANDARD);
 }
 PETSC_EXTERN PetscErrorCode MMFEAddTraction(MMCtx *, PetscInt, Vec);
 PETSC_EXTERN PetscErrorCode MMFEVertexMasses(MMCtx *, Vec);

@@ -4,6 +4,23 @@
 #include "insertmap.h"
 #include "mesh.h"
 
+/* The mass in time stepping (-mass, src/fem/fem_options.c): the modified mass drops the contact
+ * nodes' normal mass, the redistributed one gives it back to the other nodes. */
+typedef enum {
+  MM_MASS_MODIFIED,
+  MM_MASS_STANDARD,
+  MM_MASS_REDISTRIBUTED /* modified, its removed mass given to the other nodes (docs/method.md section 2) */
+} MMMassType;
+PETSC_EXTERN const char *const MMMassTypes[];
+
+/* How K and M are assembled: closed-form P1 element matrices in one pass over the cells, or the
+ * PetscFE quadrature (DMPlexSNESComputeJacobianFEM), kept to cross-check the first. */
+typedef enum {
+  MM_ASSEMBLY_CLOSED_FORM,
+  MM_ASSEMBLY_FE
+} MMAssemblyType;
+PETSC_EXTERN const char *const MMAssemblyTypes[];
+
 /* Physical parameters, also passed to the pointwise kernels as constants[]. */
 typedef enum {
   MM_C_LAMBDA,
@@ -67,6 +84,10 @@ typedef struct {
   PetscBool mass_bounded;          /* -mass redistributed: the bounded correction (a coarse mesh: docs/method.md section 2) */
   PetscInt  mass_moments;          /* the moments matched: all (nr), or (dim) the masses and first moments alone */
   PetscReal mass_inertia_mismatch; /* then max |second moments of M* - of M| / total mass */
+  MMMassType     mass_type;      /* -mass */
+  PetscBool      lumped;         /* -mass_lumped */
+  MMAssemblyType assembly;       /* -assembly */
+  PetscBool      assembly_check; /* -assembly_check: assemble K and M both ways and stop if they differ */
   PetscReal c_p;    /* pressure wave speed */
   PetscReal energy_dirichlet; /* elastic energy of the Dirichlet data alone, 1/2 u_D.A_DD u_D */
   Vec       work;

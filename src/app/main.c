@@ -64,6 +64,7 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscCall(MMOptionsProcess(comm, &ctx->opt));
   PetscCall(MMOptionsHelpWithoutMesh(comm, help_only));
   if (*help_only) PetscFunctionReturn(0);
+  PetscCall(MMFESetFromOptions(comm, &ctx->op));
   PetscCall(MMOutputCheckOptions(comm, &ctx->opt));
   /* before anything in the output directory is read or moved: one run per directory. A data check
    * writes nothing, and takes no lock */

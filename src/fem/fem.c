@@ -349,7 +349,7 @@ static PetscErrorCode DirichletLift(MMCtx *ctx, Vec lift)
   PetscCall(VecZeroEntries(floc));
   PetscCall(DMPlexInsertBoundaryValues(dm, PETSC_TRUE, xloc, 0.0, NULL, NULL, NULL));
   /* in PETSc 3.18 both vectors of the FEM residual are local */
-  if (ctx->opt.assembly == MM_ASSEMBLY_FE) PetscCall(DMPlexSNESComputeResidualFEM(dm, xloc, floc, NULL));
+  if (ctx->op.assembly == MM_ASSEMBLY_FE) PetscCall(DMPlexSNESComputeResidualFEM(dm, xloc, floc, NULL));
   else PetscCall(MMApplyP1(dm, &ctx->material, xloc, floc, NULL));
   PetscCall(VecZeroEntries(lift));
   PetscCall(DMLocalToGlobal(dm, floc, ADD_VALUES, lift));
@@ -391,7 +391,7 @@ static PetscErrorCode RelativeMaxDifference(Mat A, Mat B, PetscReal *diff)
  * the quadrature are both exact for P1, so they agree to rounding. */
 static PetscErrorCode CheckAssembly(MMCtx *ctx, Mat K, Mat M)
 {
-  const MMAssemblyType other = ctx->opt.assembly == MM_ASSEMBLY_FE ? MM_ASSEMBLY_CLOSED_FORM : MM_ASSEMBLY_FE;
+  const MMAssemblyType other = ctx->op.assembly == MM_ASSEMBLY_FE ? MM_ASSEMBLY_CLOSED_FORM : MM_ASSEMBLY_FE;
   MPI_Comm             comm  = PetscObjectComm((PetscObject)ctx->op.dm);
   Mat                  K2, M2 = NULL;
   PetscReal            dK, dM = 0;
@@ -407,8 +407,8 @@ static PetscErrorCode CheckAssembly(MMCtx *ctx, Mat K, Mat M)
   if (M) PetscCall(RelativeMaxDifference(M, M2, &dM));
   PetscCall(MatDestroy(&K2));
   PetscCall(MatDestroy(&M2));
-  PetscCall(PetscPrintf(comm, "Assembly check, %s against %s: K max|diff|/max|entry| = %.3e, M %.3e (%s); %s took %.3f s\n", MMAssemblyTypes[ctx->opt.assembly], MMAssemblyTypes[other], (double)dK, (double)dM, M ? "consistent" : "lumped, not compared", MMAssemblyTypes[other], (double)(t1 - t0)));
-  PetscCheck(dK <= 1e-12 && dM <= 1e-12, comm, PETSC_ERR_PLIB, "-assembly_check: the %s and %s assemblies differ by %.3e in K and %.3e in M (relative to the largest entry), above 1e-12", MMAssemblyTypes[ctx->opt.assembly], MMAssemblyTypes[other], (double)dK, (double)dM);
+  PetscCall(PetscPrintf(comm, "Assembly check, %s against %s: K max|diff|/max|entry| = %.3e, M %.3e (%s); %s took %.3f s\n", MMAssemblyTypes[ctx->op.assembly], MMAssemblyTypes[other], (double)dK, (double)dM, M ? "consistent" : "lumped, not compared", MMAssemblyTypes[other], (double)(t1 - t0)));
+  PetscCheck(dK <= 1e-12 && dM <= 1e-12, comm, PETSC_ERR_PLIB, "-assembly_check: the %s and %s assemblies differ by %.3e in K and %.3e in M (relative to the largest entry), above 1e-12", MMAssemblyTypes[ctx->op.assembly], MMAssemblyTypes[other], (double)dK, (double)dM);
   PetscFunctionReturn(0);
 }
 
@@ -418,7 +418,7 @@ static PetscErrorCode CheckAssembly(MMCtx *ctx, Mat K, Mat M)
 PetscErrorCode MMFECreateMatrix(MMCtx *ctx, DM dm, Mat *A)
 {
   PetscFunctionBeginUser;
-  if (ctx->opt.assembly == MM_ASSEMBLY_CLOSED_FORM) {
+  if (ctx->op.assembly == MM_ASSEMBLY_CLOSED_FORM) {
     PetscCall(MMCreateMatrixP1(dm, A));
     PetscFunctionReturn(0);
   }
@@ -514,12 +514,12 @@ PetscErrorCode MMFEAssembleOperators(MMCtx *ctx)
   /* a lumped mass is built from vertex masses below: no consistent mass to assemble. M has K's
    * pattern, and duplicating it skips a second DMPlex preallocation, which alone costs several
    * assemblies (README "Assembly of K and M") */
-  if (!ctx->opt.lumped) PetscCall(MatDuplicate(Kc, MAT_DO_NOT_COPY_VALUES, &Mc));
+  if (!ctx->op.lumped) PetscCall(MatDuplicate(Kc, MAT_DO_NOT_COPY_VALUES, &Mc));
   PetscCall(PetscDSSetJacobian(ds, 0, 0, g0_mass_uu, NULL, NULL, g3_elas_uu));
   PetscCall(PetscLogEventBegin(MM_AssembleKM, 0, 0, 0, 0));
-  PetscCall(AssembleKM(ctx, ctx->opt.assembly, Kc, Mc));
+  PetscCall(AssembleKM(ctx, ctx->op.assembly, Kc, Mc));
   PetscCall(PetscLogEventEnd(MM_AssembleKM, 0, 0, 0, 0));
-  if (ctx->opt.assembly_check) PetscCall(CheckAssembly(ctx, Kc, Mc));
+  if (ctx->op.assembly_check) PetscCall(CheckAssembly(ctx, Kc, Mc));
   PetscCall(RotateToContactFrame(ctx, Kc, Mc));
   ctx->op.K = Kc;
 
@@ -541,7 +541,7 @@ PetscErrorCode MMFEAssembleOperators(MMCtx *ctx)
   PetscCall(DirichletEnergy(ctx));
   PetscCall(VecDuplicate(ctx->op.load, &ctx->op.work));
 
-  if (ctx->opt.lumped) {
+  if (ctx->op.lumped) {
     /* equal per component at each node, so the frame rotation leaves it diagonal and unchanged */
     PetscCall(MatDuplicate(ctx->op.K, MAT_DO_NOT_COPY_VALUES, &ctx->op.M));
     PetscCall(MatZeroEntries(ctx->op.M));
@@ -550,7 +550,7 @@ PetscErrorCode MMFEAssembleOperators(MMCtx *ctx)
   PetscCall(CheckFiniteOperators(ctx));
   PetscCall(MatDuplicate(ctx->op.M, MAT_COPY_VALUES, &ctx->op.Mstar));
   if (MMFEHasMasslessDofs(ctx)) PetscCall(MatZeroRowsColumnsIS(ctx->op.Mstar, ctx->contact.is_massless, 0.0, NULL, NULL));
-  if (MMFEHasMasslessDofs(ctx) && ctx->opt.mass_type == MM_MASS_REDISTRIBUTED) {
+  if (MMFEHasMasslessDofs(ctx) && ctx->op.mass_type == MM_MASS_REDISTRIBUTED) {
     PetscCall(PetscLogEventBegin(MM_MassRedistribute, 0, 0, 0, 0));
     PetscCall(MMFERedistributeMass(ctx));
     PetscCall(PetscLogEventEnd(MM_MassRedistribute, 0, 0, 0, 0));
@@ -648,7 +648,7 @@ static PetscErrorCode ElasticEnergyIntegral(MMCtx *ctx, Vec ucart, PetscReal *en
   Vec         xloc;
 
   PetscFunctionBeginUser;
-  if (ctx->opt.assembly == MM_ASSEMBLY_FE) {
+  if (ctx->op.assembly == MM_ASSEMBLY_FE) {
     PetscCall(DMPlexComputeIntegralFEM(dm, ucart, integral, NULL));
     *energy = PetscRealPart(integral[0]);
     PetscFunctionReturn(0);

@@ -387,7 +387,7 @@ static PetscErrorCode AssembleRowsD(MMCtx *ctx)
   PetscCall(MMCreateMatrixP1(ld->dm_full, &K));
   PetscCall(MatDuplicate(K, MAT_DO_NOT_COPY_VALUES, &M));
   PetscCall(MMAssembleP1(ld->dm_full, &ctx->material, K, M));
-  if (ctx->opt.lumped) {
+  if (ctx->op.lumped) {
     Vec rs;
     PetscCall(MatCreateVecs(M, NULL, &rs));
     PetscCall(MatGetRowSum(M, rs));
@@ -634,7 +634,7 @@ static PetscErrorCode DirichletAmplitudes(MMCtx *ctx)
     PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "-dirichlet_%s", bc->name));
     PetscCall(AmplitudeCreate(comm, prefix, &bc->amplitude, &ld->bc_amp[b]));
     if (ld->bc_amp[b].constant) continue;
-    PetscCheck(opt->lumped, comm, PETSC_ERR_SUP, "%s_amplitude %s needs -mass_lumped: with the consistent mass the boundary's acceleration drives the free dofs through M_fD, which is not in the scheme (a constant -dirichlet_%s_velocity works with either mass)", prefix, bc->amplitude.kind, bc->name);
+    PetscCheck(ctx->op.lumped, comm, PETSC_ERR_SUP, "%s_amplitude %s needs -mass_lumped: with the consistent mass the boundary's acceleration drives the free dofs through M_fD, which is not in the scheme (a constant -dirichlet_%s_velocity works with either mass)", prefix, bc->amplitude.kind, bc->name);
     PetscCheck(opt->damping_mass <= 0 && opt->damping_stiffness <= 0 && opt->damping_ratio <= 0, comm, PETSC_ERR_SUP, "%s_amplitude with Rayleigh damping is not supported: the damping force of a moving boundary is not in the scheme. Drop one of the two", prefix);
     bc->amp                 = &ld->bc_amp[b];
     ld->dirichlet_amplitude = PETSC_TRUE;

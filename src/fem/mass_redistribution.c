@@ -215,7 +215,7 @@ static PetscErrorCode AddMomentCorrection(MMCtx *ctx, Vec kind, const PetscInt v
   PetscReal          S[MM_MAX_RIGID * MM_MAX_RIGID * MM_MAX_RIGID * MM_MAX_RIGID] = {0}, lam[MM_MAX_RIGID * MM_MAX_RIGID], worst = 0;
   /* the consistent mass is at least 1/(d+2) of the lumped one (the P1 element matrix is
    * rho |T| (I + 1 1^T) / ((d+1)(d+2))): a block above -0.9 of that keeps M* positive definite */
-  const PetscReal    floor = 0.9 / (ctx->opt.lumped ? 1.0 : (PetscReal)(dim + 2));
+  const PetscReal    floor = 0.9 / (ctx->op.lumped ? 1.0 : (PetscReal)(dim + 2));
   PetscBLASInt       bn, one = 1, info;
 
   PetscFunctionBeginUser;
@@ -499,7 +499,7 @@ static PetscErrorCode AddBoundedCorrection(MMCtx *ctx, Vec kind, const PetscInt 
   const PetscInt dim = ctx->op.dim, nr = MMFENumRigidModes(dim);
   MPI_Comm       comm = PetscObjectComm((PetscObject)ctx->op.dm);
   /* the bound of AddMomentCorrection: 0.9 of the consistent mass's margin 1/(d+2), or of all of a lumped one */
-  const PetscReal c = 0.9 / (ctx->opt.lumped ? 1.0 : (PetscReal)(dim + 2));
+  const PetscReal c = 0.9 / (ctx->op.lumped ? 1.0 : (PetscReal)(dim + 2));
   PetscInt        n = 0, np = 0, pa[MM_MAX_RIGID * (MM_MAX_RIGID + 1) / 2], pb[MM_MAX_RIGID * (MM_MAX_RIGID + 1) / 2], it;
   PetscReal       dG[MM_MAX_RIGID][MM_MAX_RIGID], lam[MM_MAX_RIGID * (MM_MAX_RIGID + 1) / 2] = {0}, psi, smax, res = PETSC_MAX_REAL, worst = 0;
   MassNode       *nodes;
@@ -867,7 +867,7 @@ PetscErrorCode MMFEMassMoments(MMCtx *ctx)
     if (axes[0]) {
       char faster[96] = "the body has no inertia along the contact normal";
       if (worst > 1e-6) PetscCall(PetscSNPrintf(faster, sizeof(faster), "the body falls up to %.3g times faster than g along the contact normal", (double)(1 / worst)));
-      PetscCall(PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "mmcontact warning: -mass %s keeps only %s of M's mass: %s and hits with that share of its momentum; the default -mass redistributed keeps all of it (README \"The mass\")\n", MMMassTypes[ctx->opt.mass_type], axes, faster));
+      PetscCall(PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "mmcontact warning: -mass %s keeps only %s of M's mass: %s and hits with that share of its momentum; the default -mass redistributed keeps all of it (README \"The mass\")\n", MMMassTypes[ctx->op.mass_type], axes, faster));
     }
   }
   for (PetscInt k = 0; k < nr; ++k) PetscCall(VecDestroy(&R[k]));

@@ -280,7 +280,7 @@ static PetscErrorCode CheckSupported(MMCtx *ctx, MPI_Comm comm)
   PetscFunctionBeginUser;
   PetscCheck(!mat->named || ctx->opt.initial_state != MM_INITIAL_STATIC_SLIDING, comm, PETSC_ERR_SUP, "-initial_state static_sliding with -bodies is not supported: the sliding state is built for one body of one material sliding with -v0. Drop -bodies (give the material with -E, -nu, -rho and the velocity with -v0)");
   /* the PetscFE path takes the material from the PetscDS constants, one for every cell */
-  PetscCheck(mat->uniform || (ctx->opt.assembly != MM_ASSEMBLY_FE && !ctx->opt.assembly_check), comm, PETSC_ERR_SUP, "-assembly fe%s with bodies of different materials is not supported: the PetscFE quadrature takes one material for the whole mesh. Use -assembly closed_form (the default), which assembles each cell with its body's material", ctx->opt.assembly_check ? " (and -assembly_check, which runs it)" : "");
+  PetscCheck(mat->uniform || (ctx->op.assembly != MM_ASSEMBLY_FE && !ctx->op.assembly_check), comm, PETSC_ERR_SUP, "-assembly fe%s with bodies of different materials is not supported: the PetscFE quadrature takes one material for the whole mesh. Use -assembly closed_form (the default), which assembles each cell with its body's material", ctx->op.assembly_check ? " (and -assembly_check, which runs it)" : "");
   PetscFunctionReturn(0);
 }
 

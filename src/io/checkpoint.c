@@ -235,7 +235,7 @@ static PetscErrorCode RunRecord(MMCtx *ctx, TS ts, PetscReal run[])
   run[MM_RUN_E]               = ctx->opt.E;
   run[MM_RUN_NU]              = ctx->opt.nu;
   run[MM_RUN_RHO]             = ctx->opt.rho;
-  run[MM_RUN_MASS]            = ctx->opt.mass_type + (ctx->opt.lumped ? 3 : 0);
+  run[MM_RUN_MASS]            = ctx->op.mass_type + (ctx->op.lumped ? 3 : 0);
   run[MM_RUN_DT_USER]         = ctx->state.dt_user;
   run[MM_RUN_WORK_DAMPING]    = h->work_damping;
   run[MM_RUN_DAMPING_ALPHA]   = ctx->damping.alpha;
