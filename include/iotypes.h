@@ -1,8 +1,7 @@
 /* Output, progress lines and checkpoints (src/io/). */
 #pragma once
 #include "mmbase.h"
-#include "insertmap.h"
-#include "femtypes.h"
+#include "fem.h"
 
 /* The progress line (src/io/progress.c): what it keeps between two lines. The references are taken at the
  * first monitor call, the start of TSSolve, so that the rates are those of this run's time loop. */

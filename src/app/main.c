@@ -28,8 +28,6 @@ static char help[] = "mmcontact: elastic bodies hitting and sliding on rigid obs
 #include "errors.h"
 #include "deformation.h"
 #include "damping.h"
-#include "loads.h"
-#include "material.h"
 #include "datacheck.h"
 
 /* A set-up phase under its own event (MMLog), so that -log_view shows where the set-up goes */
@@ -57,8 +55,10 @@ static PetscErrorCode LoadMesh(MPI_Comm comm, MMCtx *ctx)
 
 static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
 {
-  MPI_Comm  comm = PETSC_COMM_WORLD;
-  PetscReal dt;
+  MPI_Comm       comm = PETSC_COMM_WORLD;
+  PetscReal      dt;
+  MMFEProblem    pb;
+  MMMassBoundary mb;
 
   PetscFunctionBeginUser;
   PetscCall(MMOptionsProcess(comm, &ctx->opt));
@@ -71,10 +71,14 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   if (!ctx->opt.check_input) PetscCall(MMOutputLock(ctx->opt.output_dir));
   MMPhase(ctx->log.mesh_load, LoadMesh(comm, ctx));
   PetscCall(DMGetDimension(ctx->op.dm, &ctx->op.dim));
-  MMPhase(ctx->log.fe_setup, MMFESetUp(ctx));
+  PetscCall(MMOptionsGetFEProblem(&ctx->opt, &pb));
+  MMPhase(ctx->log.fe_setup, MMFESetUp(&ctx->op, &ctx->material, &pb));
   MMPhase(ctx->log.contact_setup, MMContactSetUp(ctx));
-  PetscCall(MMFEAssembleOperators(ctx));
-  MMPhase(ctx->log.loads_setup, MMLoadsSetUp(ctx));
+  PetscCall(MMContactGetMassBoundary(&ctx->contact, &mb));
+  PetscCall(MMFEAssembleOperators(&ctx->op, &ctx->material, &pb, &mb));
+  PetscCall(MMContactPairsTransformOperators(ctx));
+  PetscCall(MMFEAssembleOperatorsEnd(&ctx->op));
+  MMPhase(ctx->log.loads_setup, MMLoadsSetUp(&ctx->loads, &ctx->op, &ctx->material, &pb));
   MMPhase(ctx->log.initial_state, MMNewmarkInitialState(ctx));
   MMPhase(ctx->log.friction_setup, MMFrictionSetUp(ctx));
   PetscCall(MMNewmarkCreateTS(ctx, ts));

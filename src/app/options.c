@@ -817,3 +817,29 @@ int MMOptionsCheckFiles(int argc, char **argv)
   }
   return 0;
 }
+
+/* The problem as fem reads it: plain data, the arrays borrowed from opt for the set-up. */
+PetscErrorCode MMOptionsGetFEProblem(const MMOptions *opt, MMFEProblem *pb)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(pb, sizeof(*pb)));
+  pb->E                 = opt->E;
+  pb->nu                = opt->nu;
+  pb->rho               = opt->rho;
+  pb->v0                = opt->v0;
+  pb->n_bodies          = opt->n_bodies;
+  pb->bodies            = opt->bodies;
+  pb->gravity           = opt->gravity;
+  pb->gravity_amplitude = &opt->gravity_amplitude;
+  pb->n_dirichlet       = opt->n_dirichlet;
+  pb->dirichlet         = opt->dirichlet;
+  pb->n_traction        = opt->n_traction;
+  pb->traction          = opt->traction;
+  pb->n_pressure        = opt->n_pressure;
+  pb->pressure          = opt->pressure;
+  pb->n_point_force     = opt->n_point_force;
+  pb->point_force       = opt->point_force;
+  pb->static_sliding    = (PetscBool)(opt->initial_state == MM_INITIAL_STATIC_SLIDING);
+  pb->damped            = (PetscBool)!(opt->damping_mass <= 0 && opt->damping_stiffness <= 0 && opt->damping_ratio <= 0);
+  PetscFunctionReturn(0);
+}

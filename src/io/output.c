@@ -27,7 +27,6 @@
 #include "contact.h"
 #include "fem.h"
 #include "deformation.h"
-#include "loads.h"
 
 /* the files a run writes (checkpoint.h5 by checkpoint.c): an earlier run's move to previous/ together */
 static const char *const MMOutputFiles[] = {"history.csv", "solution.h5", "solution.xmf", "checkpoint.h5", MM_SNAPSHOT_COPY};
@@ -380,10 +379,10 @@ static PetscErrorCode WholeField(MMCtx *ctx, Vec w, PetscBool with_bc, Vec whole
   PetscFunctionBeginUser;
   PetscCall(DMGetGlobalVector(dm, &g));
   PetscCall(DMGetLocalVector(dm, &l));
-  PetscCall(MMFEToCartesian(ctx, w, g));
+  PetscCall(MMFEToCartesian(&ctx->op, w, g));
   PetscCall(VecZeroEntries(l));
   PetscCall(DMGlobalToLocal(dm, g, INSERT_VALUES, l));
-  if (with_bc) PetscCall(MMLoadsInsertBoundaryValues(ctx, l, ctx->hist.time));
+  if (with_bc) PetscCall(MMLoadsInsertBoundaryValues(&ctx->loads, l, ctx->hist.time));
   PetscCall(MMInsertMapLocalToGlobal(ctx->out.dm_out, &ctx->out.to_out, l, whole));
   PetscCall(DMRestoreLocalVector(dm, &l));
   PetscCall(DMRestoreGlobalVector(dm, &g));
@@ -399,7 +398,7 @@ PetscErrorCode MMOutputWholeState(MMCtx *ctx)
   PetscFunctionBeginUser;
   PetscCall(WholeField(ctx, ctx->state.u, PETSC_TRUE, o->disp_cart));
   PetscCall(WholeField(ctx, ctx->state.v, PETSC_FALSE, o->vel_cart));
-  PetscCall(MMLoadsInsertDirichletVelocity(ctx, o->vel_cart));
+  PetscCall(MMLoadsInsertDirichletVelocity(&ctx->loads, o->vel_cart));
   PetscFunctionReturn(0);
 }
 

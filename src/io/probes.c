@@ -109,7 +109,7 @@ PetscErrorCode MMProbesSetUp(MMCtx *ctx)
   pr->weight = NULL;
   PetscCall(DMGetGlobalVector(ctx->op.dm_scalar, &flags));
   PetscCall(DMGetLocalVector(ctx->op.dm_scalar, &mloc));
-  PetscCall(MMFEVertexMasses(ctx, mloc));
+  PetscCall(MMFEVertexMasses(&ctx->op, &ctx->material, mloc));
   for (PetscInt g = 0; g < n; ++g) {
     PetscCheck(names[g][0], comm, PETSC_ERR_USER_INPUT, "-probes %s has an empty name: give physical group names separated by commas", ctx->opt.probes);
     for (PetscInt h = 0; h < g; ++h) PetscCheck(strcmp(names[g], names[h]), comm, PETSC_ERR_USER_INPUT, "-probes names the group %s twice: its columns would be repeated", names[g]);

@@ -179,7 +179,7 @@ static PetscErrorCode HeaderPhysics(MMCtx *ctx, TS ts)
 {
   MPI_Comm        comm = PETSC_COMM_WORLD;
   const MMOptions *opt = &ctx->opt;
-  const PetscReal c_s  = PetscSqrtReal(PetscRealPart(ctx->constants[MM_C_MU]) / opt->rho), h_c = ctx->contact.h_c;
+  const PetscReal c_s  = PetscSqrtReal(PetscRealPart(ctx->op.constants[MM_C_MU]) / opt->rho), h_c = ctx->contact.h_c;
   PetscReal       dt, t_end;
   PetscInt        max_steps;
   char            steps[64] = "", cfl[128];
@@ -219,7 +219,7 @@ PetscErrorCode MMProgressMassLine(MMCtx *ctx)
     PetscCall(PetscSNPrintf(star + len, sizeof(star) - len, "%s%c %.10g", d ? ", " : "", "xyz"[d], (double)ctx->op.mass_star[d * dim + d]));
   }
   if (ctx->op.mass_moment_unreachable > 1e-14) PetscCall(PetscSNPrintf(unreachable, sizeof(unreachable), " (and %.1e in the trace of the translation-rotation block, out of reach: docs/method.md section 2)", (double)ctx->op.mass_moment_unreachable));
-  if (MMFEHasMasslessDofs(ctx) && ctx->op.mass_type == MM_MASS_REDISTRIBUTED) {
+  if (MMFEHasMasslessDofs(&ctx->op) && ctx->op.mass_type == MM_MASS_REDISTRIBUTED) {
     const char *which = "moments";
     char        bounded[160] = "";
     /* a coarse mesh: the bounded correction, and perhaps the inertia left (docs/method.md section 2) */
