@@ -1,7 +1,7 @@
 /* Run options: everything the user sets (src/app/options.c), and the enums they choose from. */
 #pragma once
 #include "mmbase.h"
-#include "obstacletypes.h"
+#include "obstacle.h"
 #include "fem.h"
 
 typedef enum {

@@ -269,6 +269,8 @@ PETSC_EXTERN PetscErrorCode MMFEForceFromCartesian(const MMOperators *op, Vec fc
 PETSC_EXTERN PetscErrorCode MMFEVertexMasses(const MMOperators *op, const MMMaterial *mat, Vec mloc);
 PETSC_EXTERN PetscErrorCode MMFEAddTraction(const MMOperators *op, const MMTraction *tr, Vec floc);
 PETSC_EXTERN PetscErrorCode MMFEDestroy(MMOperators *op);
+/* assembly_p1.c: the damping stiffness with the dofs marked in qmark (w-frame) condensed cell by cell */
+PETSC_EXTERN PetscErrorCode MMAssembleP1DampingStiffness(DM dm, const MMMaterial *mat, Mat Q, Vec qmark, Mat B);
 /* M* without inertia on some dofs: the modified and the redistributed mass with contact */
 static inline PetscBool MMFEHasMasslessDofs(const MMOperators *op)
 {

@@ -3,7 +3,7 @@
 #pragma once
 #include "mmbase.h"
 #include "apptypes.h"
-#include "obstacletypes.h"
+#include "obstacle.h"
 #include "fem.h"
 #include "contacttypes.h"
 #include "frictiontypes.h"

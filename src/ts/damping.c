@@ -9,7 +9,6 @@
  * turned into a contact force alternating at rest, issue 38). With alpha = beta = 0 none of this
  * runs, so an undamped run is bitwise what it was. */
 #include "damping.h"
-#include "assembly_p1.h"
 #include "fem.h"
 
 /* The options as given: nothing contradictory, nothing negative, frequencies where a ratio needs
