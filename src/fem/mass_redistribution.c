@@ -741,7 +741,7 @@ static PetscReal MomentMismatch(PetscInt nr, PetscInt moments, PetscReal GM[MM_M
  * (docs/method.md section 2). */
 PetscErrorCode MMFERedistributeMass(MMOperators *op, const MMMaterial *mat, const MMMassBoundary *mb)
 {
-  MassRedist      rd = {op, mat, mb}, *r = &rd;
+  MassRedist     rd = {op, mat, mb}, *r = &rd;
   const PetscInt nr   = MMFENumRigidModes(r->op->dim);
   MPI_Comm       comm = PetscObjectComm((PetscObject)r->op->dm);
   PetscReal      x0[MM_MAX_DIM], ell = 1, GM[MM_MAX_RIGID][MM_MAX_RIGID], Gs[MM_MAX_RIGID][MM_MAX_RIGID], dG[MM_MAX_RIGID][MM_MAX_RIGID];
@@ -839,7 +839,7 @@ PetscErrorCode MMFERedistributeMass(MMOperators *op, const MMMaterial *mat, cons
  * matrix: the modified mass lacks the normal masses, so it is not m I) and its inverse. */
 PetscErrorCode MMFEMassMoments(MMOperators *op)
 {
-  MassRedist      rd = {op, NULL, NULL}, *r = &rd;
+  MassRedist     rd = {op, NULL, NULL}, *r = &rd;
   const PetscInt dim = r->op->dim, nr = MMFENumRigidModes(dim);
   PetscReal      zero[MM_MAX_DIM] = {0, 0, 0}, GM[MM_MAX_RIGID][MM_MAX_RIGID], Gs[MM_MAX_RIGID][MM_MAX_RIGID];
   Vec            R[MM_MAX_RIGID];
