@@ -1,7 +1,8 @@
 /* Run options: everything the user sets (src/app/options.c), and the enums they choose from. */
 #pragma once
 #include "mmbase.h"
-#include "obstacletypes.h"
+#include "obstacle.h"
+#include "fem.h"
 
 typedef enum {
   MM_INITIAL_GIVEN,
@@ -9,80 +10,6 @@ typedef enum {
   MM_INITIAL_STATIC /* the static contact problem under the loads at t = 0 (src/contact/interface/static.c) */
 } MMInitialState;
 PETSC_EXTERN const char *const MMInitialStates[];
-
-typedef enum {
-  MM_MASS_MODIFIED,
-  MM_MASS_STANDARD,
-  MM_MASS_REDISTRIBUTED /* modified, its removed mass given to the other nodes (docs/method.md section 2) */
-} MMMassType;
-PETSC_EXTERN const char *const MMMassTypes[];
-
-/* How K and M are assembled: closed-form P1 element matrices in one pass over the cells, or the
- * PetscFE quadrature (DMPlexSNESComputeJacobianFEM), kept to cross-check the first. */
-typedef enum {
-  MM_ASSEMBLY_CLOSED_FORM,
-  MM_ASSEMBLY_FE
-} MMAssemblyType;
-PETSC_EXTERN const char *const MMAssemblyTypes[];
-
-/* An amplitude in time as the user gave it (-traction_NAME_amplitude..., -gravity_amplitude...): its
- * kind, a name registered in src/fem/loads.c, and its data; checked there. */
-typedef struct {
-  char      kind[MM_TYPE_LEN];         /* "constant" (the default), "ramp", "halfsine", "table" */
-  PetscReal time;                      /* T of ramp and halfsine */
-  PetscBool time_set;
-  char      table[PETSC_MAX_PATH_LEN]; /* the two-column CSV of table, empty if not given */
-} MMAmplitudeOptions;
-
-/* A Dirichlet boundary: fixes the listed components to value a(t) + velocity t, a its amplitude. */
-struct _MMAmplitude;
-typedef struct {
-  char      *name;
-  PetscInt   ncomp;   /* -1 until the dimension is known: then all components (a clamp) */
-  PetscInt   comps[MM_MAX_DIM];
-  PetscReal  values[MM_MAX_DIM];
-  PetscInt   nvalues; /* entries given to -dirichlet_NAME_value, -1 if not set */
-  PetscReal  velocity[MM_MAX_DIM];
-  PetscInt   nvelocity; /* entries given to -dirichlet_NAME_velocity, -1 if not set */
-  MMAmplitudeOptions amplitude;     /* -dirichlet_NAME_amplitude... of the value */
-  const struct _MMAmplitude *amp;   /* its a(t), set by src/fem/loads.c; NULL: constant */
-} MMDirichlet;
-
-/* A Neumann boundary carrying a traction (force per unit area) times an amplitude in time. */
-typedef struct {
-  char     *name;
-  PetscReal traction[MM_MAX_DIM];
-  PetscInt  nvalues; /* entries given to -traction_NAME_value, -1 if not set */
-  MMAmplitudeOptions amplitude;
-} MMTraction;
-
-/* A pressure on a boundary group (README "Loads in time"): the traction -p n along each facet's
- * outward normal n of the reference configuration (p > 0 pushes in), times an amplitude in time. */
-typedef struct {
-  char     *name;
-  PetscReal p;       /* force per unit area (per unit length in 2D, per unit thickness) */
-  PetscBool set;     /* -pressure_NAME_value was given */
-  MMAmplitudeOptions amplitude;
-} MMPressure;
-
-/* A concentrated force on each node of a Physical Point group, times an amplitude in time. */
-typedef struct {
-  char     *name;
-  PetscReal force[MM_MAX_DIM]; /* force (per unit thickness in 2D) on each node of the group */
-  PetscInt  nvalues; /* entries given to -point_force_NAME_value, -1 if not set */
-  MMAmplitudeOptions amplitude;
-} MMPointForce;
-
-/* A body of -bodies (docs/method.md section 2, "Bodies"): a physical group of cells with its own
- * material and initial velocity, each defaulting to the whole mesh's -E, -nu, -rho and -v0. */
-typedef struct {
-  char     *name;
-  char      group[256]; /* -body_NAME_group: a Physical Surface (2D) or Volume (3D) */
-  PetscBool group_set;
-  PetscReal E, nu, rho;
-  PetscReal v0[MM_MAX_DIM];
-  PetscInt  nv0; /* entries given to -body_NAME_v0, -1 if not set */
-} MMBodyOptions;
 
 /* The vector options, whose lengths can only be checked once the mesh gives the dimension. */
 typedef enum {
@@ -119,10 +46,6 @@ typedef struct {
   MMInitialState initial_state;
   PetscReal    obstacle_point[MM_MAX_DIM], obstacle_normal[MM_MAX_DIM];
   PetscReal    mesh_rotation[MM_MAX_DIM], mesh_rotation_center[MM_MAX_DIM];
-  MMMassType   mass_type;
-  PetscBool    lumped;
-  MMAssemblyType assembly;
-  PetscBool    assembly_check; /* assemble K and M both ways and stop if they differ */
   PetscBool    contact;
   char         contact_formulation[MM_TYPE_LEN]; /* a registered contact formulation, or auto */
   PetscInt     iterative_dofs;                   /* 3D problems this large default to the iterative path */

@@ -21,6 +21,8 @@ PETSC_EXTERN PetscErrorCode MMFactorReadOptions(MPI_Comm, const char[], MatSolve
 PETSC_EXTERN PetscErrorCode MMContactRegister(const char[], PetscErrorCode (*)(MMContact *));
 PETSC_EXTERN PetscErrorCode MMContactRegisterAll(void);
 PETSC_EXTERN PetscErrorCode MMContactSetUp(MMCtx *);
+/* mass_boundary.c: what fem needs of the contact boundary to build M* */
+PETSC_EXTERN PetscErrorCode MMContactGetMassBoundary(const MMContact *ct, MMMassBoundary *mb);
 PETSC_EXTERN PetscErrorCode MMContactSetType(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMContactSummary(MMCtx *);
 PETSC_EXTERN PetscErrorCode MMContactSetTime(MMCtx *, PetscReal, PetscReal);

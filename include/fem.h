@@ -1,32 +1,310 @@
+/* fem: P1 elasticity on the mesh (src/fem/): the material of each cell, the operators K, M, M* and
+ * the loads in the contact frame, the loads in time and the support reactions, the stress. What the
+ * user describes (the bodies, boundary conditions and loads) comes in as plain data (MMFEProblem). */
 #pragma once
-#include "mmcontact.h"
-PETSC_EXTERN PetscErrorCode MMFESetUp(MMCtx *);
-PETSC_EXTERN PetscErrorCode MMFEAssembleOperators(MMCtx *);
-PETSC_EXTERN PetscErrorCode MMFECreateMatrix(MMCtx *, DM, Mat *);
-PETSC_EXTERN PetscErrorCode MMFEInterpolate(MMCtx *, PetscErrorCode (*)(PetscInt, PetscReal, const PetscReal[], PetscInt, PetscScalar *, void *), void *, Vec);
-PETSC_EXTERN PetscErrorCode MMFEElasticEnergy(MMCtx *, Vec, PetscReal *);
-PETSC_EXTERN PetscErrorCode MMFECheckElasticEnergy(MMCtx *, Vec);
-PETSC_EXTERN PetscErrorCode MMFEToCartesian(MMCtx *, Vec, Vec);
-PETSC_EXTERN PetscErrorCode MMFEFromCartesian(MMCtx *, Vec, Vec);
-PETSC_EXTERN PetscErrorCode MMFEForceToCartesian(MMCtx *, Vec, Vec);
-PETSC_EXTERN PetscErrorCode MMFEForceFromCartesian(MMCtx *, Vec, Vec);
-PETSC_EXTERN PetscErrorCode MMFEDestroy(MMOperators *);
-PETSC_EXTERN PetscErrorCode MMFERedistributeMass(MMCtx *);
-PETSC_EXTERN PetscErrorCode MMFEMassMoments(MMCtx *);
+#include "mmbase.h"
+#include "mesh.h"
+
+/* insertmap.c: DMLocalToGlobal(dm, l, INSERT_VALUES, g) as a list of (local, global) dof pairs built once per
+ * DM (src/fem/insertmap.c). */
+typedef struct {
+  DM        dm;         /* the DM the map was built for (not referenced) */
+  PetscBool transform;  /* the DM has a basis transform: PETSc's own DMLocalToGlobal */
+  PetscInt  n;
+  PetscInt *loc, *glob; /* local offset, global offset from this rank's first */
+} MMInsertMap;
+
+PETSC_EXTERN PetscErrorCode MMInsertMapLocalToGlobal(DM dm, MMInsertMap *map, Vec l, Vec g);
+PETSC_EXTERN PetscErrorCode MMInsertMapDestroy(MMInsertMap *map);
+
+/* The mass in time stepping (-mass, src/fem/fem_options.c): the modified mass drops the contact
+ * nodes' normal mass, the redistributed one gives it back to the other nodes. */
+typedef enum {
+  MM_MASS_MODIFIED,
+  MM_MASS_STANDARD,
+  MM_MASS_REDISTRIBUTED /* modified, its removed mass given to the other nodes (docs/method.md section 2) */
+} MMMassType;
+PETSC_EXTERN const char *const MMMassTypes[];
+
+/* How K and M are assembled: closed-form P1 element matrices in one pass over the cells, or the
+ * PetscFE quadrature (DMPlexSNESComputeJacobianFEM), kept to cross-check the first. */
+typedef enum {
+  MM_ASSEMBLY_CLOSED_FORM,
+  MM_ASSEMBLY_FE
+} MMAssemblyType;
+PETSC_EXTERN const char *const MMAssemblyTypes[];
+
+/* An amplitude in time as the user gave it (-traction_NAME_amplitude..., -gravity_amplitude...): its
+ * kind, a name registered in src/fem/loads.c, and its data; checked there. */
+typedef struct {
+  char      kind[MM_TYPE_LEN];         /* "constant" (the default), "ramp", "halfsine", "table" */
+  PetscReal time;                      /* T of ramp and halfsine */
+  PetscBool time_set;
+  char      table[PETSC_MAX_PATH_LEN]; /* the two-column CSV of table, empty if not given */
+} MMAmplitudeOptions;
+
+/* A Dirichlet boundary: fixes the listed components to value a(t) + velocity t, a its amplitude. */
+typedef struct {
+  char      *name;
+  PetscInt   ncomp;   /* -1 until the dimension is known: then all components (a clamp) */
+  PetscInt   comps[MM_MAX_DIM];
+  PetscReal  values[MM_MAX_DIM];
+  PetscInt   nvalues; /* entries given to -dirichlet_NAME_value, -1 if not set */
+  PetscReal  velocity[MM_MAX_DIM];
+  PetscInt   nvelocity; /* entries given to -dirichlet_NAME_velocity, -1 if not set */
+  MMAmplitudeOptions amplitude;     /* -dirichlet_NAME_amplitude... of the value */
+  const struct _MMAmplitude *amp;   /* its a(t), set by src/fem/loads.c; NULL: constant */
+} MMDirichlet;
+
+/* A Neumann boundary carrying a traction (force per unit area) times an amplitude in time. */
+typedef struct {
+  char     *name;
+  PetscReal traction[MM_MAX_DIM];
+  PetscInt  nvalues; /* entries given to -traction_NAME_value, -1 if not set */
+  MMAmplitudeOptions amplitude;
+} MMTraction;
+
+/* A pressure on a boundary group (README "Loads in time"): the traction -p n along each facet's
+ * outward normal n of the reference configuration (p > 0 pushes in), times an amplitude in time. */
+typedef struct {
+  char     *name;
+  PetscReal p;       /* force per unit area (per unit length in 2D, per unit thickness) */
+  PetscBool set;     /* -pressure_NAME_value was given */
+  MMAmplitudeOptions amplitude;
+} MMPressure;
+
+/* A concentrated force on each node of a Physical Point group, times an amplitude in time. */
+typedef struct {
+  char     *name;
+  PetscReal force[MM_MAX_DIM]; /* force (per unit thickness in 2D) on each node of the group */
+  PetscInt  nvalues; /* entries given to -point_force_NAME_value, -1 if not set */
+  MMAmplitudeOptions amplitude;
+} MMPointForce;
+
+/* A body of -bodies (docs/method.md section 2, "Bodies"): a physical group of cells with its own
+ * material and initial velocity, each defaulting to the whole mesh's -E, -nu, -rho and -v0. */
+typedef struct {
+  char     *name;
+  char      group[256]; /* -body_NAME_group: a Physical Surface (2D) or Volume (3D) */
+  PetscBool group_set;
+  PetscReal E, nu, rho;
+  PetscReal v0[MM_MAX_DIM];
+  PetscInt  nv0; /* entries given to -body_NAME_v0, -1 if not set */
+} MMBodyOptions;
+
+/* The problem fem discretizes, as the user described it (app's MMOptions, borrowed for the set-up):
+ * the bodies' material, gravity, the boundary conditions and the loads (docs/method.md sections 2, 10). */
+typedef struct {
+  PetscReal            E, nu, rho;    /* the whole mesh's material without -bodies */
+  const PetscReal     *v0;            /* MM_MAX_DIM: its initial velocity */
+  PetscInt             n_bodies;      /* -bodies, 0 without it */
+  const MMBodyOptions *bodies;
+  const PetscReal     *gravity;       /* MM_MAX_DIM */
+  const MMAmplitudeOptions *gravity_amplitude;
+  PetscInt             n_dirichlet, n_traction, n_pressure, n_point_force;
+  MMDirichlet         *dirichlet;     /* the loads set each one's amplitude (MMDirichlet.amp) */
+  const MMTraction    *traction;
+  const MMPressure    *pressure;
+  const MMPointForce  *point_force;
+  PetscBool            static_sliding; /* -initial_state static_sliding: one body and constant loads */
+  PetscBool            damped;         /* Rayleigh damping is on: a Dirichlet value's amplitude is refused */
+} MMFEProblem;
+
+/* The contact boundary as the mass sees it (handed down by contact, MMContactGetMassBoundary): the
+ * dofs M* drops, and each owned contact row's vertex and frame, for -mass redistributed. */
+typedef struct {
+  IS               massless;     /* the contact-normal dofs (w-frame), NULL without contact */
+  PetscInt         n;            /* owned contact rows */
+  const PetscInt  *vertex;       /* per row: its mesh point */
+  const PetscInt  *scalar_index; /* per row: its vertex's global index on MMOperators.dm_scalar */
+  const PetscBool *second;       /* per row: a corner node's second row */
+  const PetscReal *frame;        /* per row, 9 reals: its node's frame, rows nu, tau_1, tau_2 */
+  const PetscInt  *fc_obstacle;  /* per row: a friction corner's second obstacle, or -1; NULL: none */
+} MMMassBoundary;
+
+/* Physical parameters, also passed to the pointwise kernels as constants[]. */
+typedef enum {
+  MM_C_LAMBDA,
+  MM_C_MU,
+  MM_C_RHO,
+  MM_C_WEIGHT_K, /* weights of the stiffness and mass kernels in an assembly */
+  MM_C_WEIGHT_M,
+  MM_C_GRAVITY,  /* MM_MAX_DIM entries */
+  MM_C_NUM = MM_C_GRAVITY + MM_MAX_DIM
+} MMConstantIndex;
+
+/* One body's material and initial velocity (src/fem/material.c, docs/method.md section 2 "Bodies"). */
+typedef struct {
+  const char *name;    /* the -bodies name; "body" for the whole mesh without -bodies */
+  const char *group;   /* its physical group of cells; NULL: the whole mesh */
+  PetscReal   E, nu, rho;
+  PetscReal   lambda, mu; /* Lame parameters (plane strain in 2D) */
+  PetscReal   c_p, c_s;   /* its pressure and shear wave speeds */
+  PetscReal   v0[MM_MAX_DIM];
+  PetscInt    ncells;  /* over all ranks */
+  PetscReal   volume, mass;
+} MMBody;
+
+/* The material of each cell, built once at set-up: one body (the whole mesh, -E -nu -rho -v0)
+ * without -bodies, or the bodies of -bodies, every cell in exactly one. The per-cell arrays are
+ * indexed by the local cell number c - cStart of the mesh (and of its clones, which share it). */
+typedef struct {
+  PetscInt   n_bodies;
+  MMBody    *body;
+  PetscBool  named;       /* -bodies was given */
+  PetscBool  uniform;     /* every cell has the same E, nu, rho: the PetscDS constants hold it */
+  PetscInt   cStart, ncells; /* local cells */
+  PetscInt  *cell_body;   /* per local cell, its body */
+  PetscReal *lambda, *mu, *rho; /* per local cell */
+  PetscReal *vertex_v0;   /* -bodies: per local vertex (dim entries), the v0 of the body of its cells */
+  PetscReal  c_p_max;     /* the largest pressure wave speed: the CFL number's */
+  PetscReal  E_max;       /* the largest Young's modulus: the contact solvers' force scales */
+} MMMaterial;
+
+/* Finite element operators in the contact frame (w-dofs). */
+typedef struct {
+  DM        dm;
+  DM        dm_scalar; /* one P1 scalar per vertex, no constraints: lumped masses, contact pressure and gap, von Mises */
+  MMCells   cells;
+  PetscInt  dim;
+  Mat       K;      /* stiffness A */
+  Mat       M;      /* standard mass (consistent or lumped): set-up only, NULL once M* is built */
+  Mat       Mstar;  /* mass used in time stepping: M with the contact-normal rows/columns removed, or M */
+  Mat       Q;      /* frame rotation, u_cart = Q w without contact pairs */
+  Mat       N, Ninv; /* contact pairs: the slave nodes' relative variables, u_cart = Q N w (NULL without pairs) */
+  Vec       pair_work; /* scratch for Q N w */
+  Vec       load;   /* L: body force + traction (w-frame), constant in time */
+  Vec       lift;   /* K_fD u_D: the Dirichlet data's elastic force on the free dofs (w-frame) */
+  Vec       mass_lumped_cart; /* lumped standard mass per Cartesian dof */
+  PetscReal mass_M;           /* total mass of M */
+  PetscReal mass_star[MM_MAX_DIM * MM_MAX_DIM]; /* M*'s mass for rigid translations, dim x dim (m I for M) */
+  PetscReal mass_star_inv[MM_MAX_DIM * MM_MAX_DIM]; /* its inverse (zero without mass), for ucm and vcm */
+  PetscReal mass_correction;      /* -mass redistributed: the largest negative eigenvalue of a node's moment correction over its mass */
+  PetscReal mass_moment_unreachable; /* 3D: |trace of G's translation-rotation block| left, / total mass (mass_redistribution.c) */
+  PetscReal mass_moment_mismatch; /* -mass redistributed: max |rigid-mode Gram of M* - of M| / total mass */
+  PetscBool mass_bounded;          /* -mass redistributed: the bounded correction (a coarse mesh: docs/method.md section 2) */
+  PetscInt  mass_moments;          /* the moments matched: all (nr), or (dim) the masses and first moments alone */
+  PetscReal mass_inertia_mismatch; /* then max |second moments of M* - of M| / total mass */
+  MMMassType     mass_type;      /* -mass */
+  PetscBool      lumped;         /* -mass_lumped */
+  MMAssemblyType assembly;       /* -assembly */
+  PetscBool      assembly_check; /* -assembly_check: assemble K and M both ways and stop if they differ */
+  PetscReal c_p;    /* pressure wave speed */
+  PetscReal constants[MM_C_NUM]; /* the PetscDS constants of the kernels (MMConstantIndex) */
+  IS        massless; /* the dofs without inertia in M* (the contact-normal ones), NULL if none (a reference) */
+  PetscReal energy_dirichlet; /* elastic energy of the Dirichlet data alone, 1/2 u_D.A_DD u_D */
+  Vec       work;
+} MMOperators;
+
+/* The stress of a displacement (src/fem/stress.c, docs/method.md section 5, "Stress"): constant per
+ * cell, and its lumped L2 projection per vertex, each with its von Mises value. */
+typedef struct {
+  DM         dm;                   /* 6 components per vertex: xx, xy, xz, yy, yz, zz (XDMF's Tensor6) */
+  Vec        nodal, von_mises;     /* the nodal stress (dm) and its von Mises (MMOperators.dm_scalar) */
+  Vec        weight;               /* each vertex's lumped weight sum_T |T| (dm_scalar) */
+  Vec        cell, von_mises_cell; /* per local cell, in local order (no DM) */
+  PetscReal *geom;                 /* per local cell its inverse edge matrix and volume, computed once */
+} MMStress;
+
+/* An amplitude in time (src/fem/loads.c): a(t) of a registered kind, docs/method.md section 10. */
+typedef struct _MMAmplitude MMAmplitude;
+struct _MMAmplitude {
+  PetscReal (*value)(const MMAmplitude *, PetscReal);
+  PetscReal  T;          /* ramp, halfsine */
+  PetscInt   n;          /* table: rows, times t[] increasing, factors f[] */
+  PetscReal *t, *f;
+  PetscBool  constant;   /* a(t) = 1 */
+};
+
+/* Loads in time, moving Dirichlet data and the support reactions (src/fem/loads.c, docs/method.md
+ * section 10). The load is a sum of parts, each a fixed vector times its amplitude,
+ * L(t) = sum_k a_k(t) L_k: gravity is one part, each traction one. Nothing is reassembled per step. */
+typedef struct {
+  MMOperators       *op;       /* borrowed at MMLoadsSetUp: the operators the loads are set on */
+  const MMMaterial  *material; /* borrowed at MMLoadsSetUp */
+  PetscInt     nparts;
+  MMAmplitude *amp;        /* per part */
+  Vec         *part;       /* per part: w-frame, free dofs */
+  PetscBool    in_time;    /* some amplitude is not constant: op.load is set at each step's time */
+  Vec          load_old;   /* L(t0), the step's start; op.load holds L(t1) */
+  PetscReal    t0, t1;     /* the times of the step being taken (both the current time between steps) */
+  /* the constrained dofs (all Dirichlet boundaries): rows of the Cartesian K and M on a copy of the
+   * mesh without constraints, and the load parts there */
+  DM           dm_full;
+  MMInsertMap  to_full, to_free; /* DMLocalToGlobal(INSERT) on dm_full and on the constrained DM, as maps */
+  IS           isD;        /* the owned constrained dofs in dm_full's global numbering */
+  PetscInt     nD;         /* how many (this rank) */
+  PetscInt    *Dbc;        /* per owned constrained dof: the boundary whose reaction it counts in */
+  PetscInt    *Dcomp;      /* and its Cartesian component */
+  Mat          KD, MD;     /* rows D of the Cartesian stiffness and mass (M*: a is zero on the massless dofs) */
+  Vec         *partD;      /* per part: its values on D */
+  Vec          full, full2, rD, rD0, uD0, uD1, vD; /* scratch on dm_full and D; vD the boundary velocity */
+  PetscBool    moving;     /* some -dirichlet_NAME_velocity is nonzero, or some value has an amplitude */
+  PetscBool    dirichlet_amplitude; /* some value has an amplitude: u_D is not affine in t (lumped mass only) */
+  MMAmplitude *bc_amp;     /* per Dirichlet boundary (n_bc of them), its value's amplitude */
+  PetscInt     n_bc;
+  PetscReal    vMv_DD;     /* vD . M_DD vD */
+  PetscReal   *reaction;   /* per boundary, MM_MAX_DIM Cartesian components of the support's force on the body */
+  /* the Dirichlet data of dm's local vectors, u_D(t) = bv0 + t bv1 at local dofs bv_idx, when no value
+   * has an amplitude (MMLoadsInsertBoundaryValues); bv_n < 0: not tabulated */
+  PetscInt     bv_n;
+  PetscInt    *bv_idx;
+  PetscReal   *bv0, *bv1;
+} MMLoads;
+
+/* fem.c and fem_options.c: the discretization, the operators, the frame transforms */
+PETSC_EXTERN PetscErrorCode MMFEInitializePackage(void);
+PETSC_EXTERN PetscErrorCode MMFESetFromOptions(MPI_Comm comm, MMOperators *op);
+PETSC_EXTERN PetscErrorCode MMFESetUp(MMOperators *op, MMMaterial *mat, const MMFEProblem *pb);
+PETSC_EXTERN PetscErrorCode MMFEAssembleOperators(MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb, const MMMassBoundary *mb);
+PETSC_EXTERN PetscErrorCode MMFEAssembleOperatorsEnd(MMOperators *op);
+PETSC_EXTERN PetscErrorCode MMFECreateMatrix(const MMOperators *op, DM dm, Mat *A);
+PETSC_EXTERN PetscErrorCode MMFEInterpolate(const MMOperators *op, PetscErrorCode (*f)(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt nc, PetscScalar *u, void *fctx), void *fctx, Vec u);
+PETSC_EXTERN PetscErrorCode MMFEElasticEnergy(const MMOperators *op, Vec w, PetscReal *energy);
+PETSC_EXTERN PetscErrorCode MMFECheckElasticEnergy(const MMOperators *op, const MMMaterial *mat, Vec w);
+PETSC_EXTERN PetscErrorCode MMFEToCartesian(const MMOperators *op, Vec w, Vec ucart);
+PETSC_EXTERN PetscErrorCode MMFEFromCartesian(const MMOperators *op, Vec ucart, Vec w);
+PETSC_EXTERN PetscErrorCode MMFEForceToCartesian(const MMOperators *op, Vec fw, Vec fcart);
+PETSC_EXTERN PetscErrorCode MMFEForceFromCartesian(const MMOperators *op, Vec fcart, Vec fw);
+PETSC_EXTERN PetscErrorCode MMFEVertexMasses(const MMOperators *op, const MMMaterial *mat, Vec mloc);
+PETSC_EXTERN PetscErrorCode MMFEAddTraction(const MMOperators *op, const MMTraction *tr, Vec floc);
+PETSC_EXTERN PetscErrorCode MMFEDestroy(MMOperators *op);
+/* assembly_p1.c: the damping stiffness with the dofs marked in qmark (w-frame) condensed cell by cell */
+PETSC_EXTERN PetscErrorCode MMAssembleP1DampingStiffness(DM dm, const MMMaterial *mat, Mat Q, Vec qmark, Mat B);
+/* M* without inertia on some dofs: the modified and the redistributed mass with contact */
+static inline PetscBool MMFEHasMasslessDofs(const MMOperators *op)
+{
+  return (PetscBool)(op->massless != NULL);
+}
+/* mass_redistribution.c: -mass redistributed, and the moments of M* */
+PETSC_EXTERN PetscErrorCode MMFERedistributeMass(MMOperators *op, const MMMaterial *mat, const MMMassBoundary *mb);
+PETSC_EXTERN PetscErrorCode MMFEMassMoments(MMOperators *op);
 /* rigid_modes.c: the rigid-body modes, translations then rotations */
 #define MM_MAX_RIGID 6
 static inline PetscInt MMFENumRigidModes(PetscInt dim)
 {
   return dim == 2 ? 3 : 6;
 }
-PETSC_EXTERN void           MMFERigidModeMatrix(PetscInt, const PetscReal[], PetscReal[MM_MAX_DIM][MM_MAX_RIGID]);
-PETSC_EXTERN PetscErrorCode MMFERigidModesCartesian(MMCtx *, const PetscReal[], PetscReal, PetscInt, Vec[]);
-/* The modified and the redistributed mass leave the contact-normal dofs without inertia. */
-static inline PetscBool MMFEHasMasslessDofs(const MMCtx *ctx)
-{
-  return (PetscBool)(ctx->contact.enabled && ctx->opt.mass_type != MM_MASS_STANDARD);
-}
-PETSC_EXTERN PetscErrorCode MMFEAddTraction(MMCtx *, PetscInt, Vec);
-PETSC_EXTERN PetscErrorCode MMFEVertexMasses(MMCtx *, Vec);
-/* det of the dim x dim matrix a, and its inverse into inv when inv is not NULL and det != 0 */
-PETSC_EXTERN PetscReal MMDetInverse(PetscInt, const PetscReal[MM_MAX_DIM][MM_MAX_DIM], PetscReal[MM_MAX_DIM][MM_MAX_DIM]);
+PETSC_EXTERN void           MMFERigidModeMatrix(PetscInt dim, const PetscReal x[], PetscReal T[MM_MAX_DIM][MM_MAX_RIGID]);
+PETSC_EXTERN PetscErrorCode MMFERigidModesCartesian(const MMOperators *op, const PetscReal x0[], PetscReal ell, PetscInt nmodes, Vec modes[]);
+/* stress.c: the stress of a displacement, for the output */
+PETSC_EXTERN PetscErrorCode MMStressCreate(const MMOperators *op, MMStress *st);
+PETSC_EXTERN PetscErrorCode MMStressCompute(MMStress *st, const MMOperators *op, const MMMaterial *mat, DM dm_u, Vec u, PetscBool nodal);
+PETSC_EXTERN PetscErrorCode MMStressDestroy(MMStress *st);
+/* loads.c: the loads in time, moving Dirichlet data and the reactions (after MMLoadsSetUp) */
+PETSC_EXTERN PetscErrorCode MMLoadsSetUp(MMLoads *ld, MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb);
+PETSC_EXTERN PetscErrorCode MMLoadsSetTime(MMLoads *ld, PetscReal t0, PetscReal t1);
+PETSC_EXTERN PetscErrorCode MMLoadsReactions(MMLoads *ld, Vec u, Vec a);
+PETSC_EXTERN PetscErrorCode MMLoadsStepWork(MMLoads *ld, Vec u, Vec a, Vec u_old, Vec a_old, PetscReal *w_ext_D, PetscReal *w_D);
+PETSC_EXTERN PetscErrorCode MMLoadsDirichletKinetic(MMLoads *ld, Vec v, PetscReal *ek);
+PETSC_EXTERN PetscErrorCode MMLoadsInsertDirichletVelocity(MMLoads *ld, Vec whole);
+PETSC_EXTERN PetscErrorCode MMLoadsInsertBoundaryValues(MMLoads *ld, Vec l, PetscReal t);
+PETSC_EXTERN PetscErrorCode MMLoadsDestroy(MMLoads *ld);
+PETSC_EXTERN PetscReal      MMAmplitudeValue(const MMAmplitude *a, PetscReal t);
+/* loads_nodal.c: the pressures' and point forces' nodal forces */
+PETSC_EXTERN PetscErrorCode MMFEAddPressure(const MMOperators *op, const MMPressure *pr, Vec floc);
+PETSC_EXTERN PetscErrorCode MMFEAddPointForce(const MMOperators *op, const MMPointForce *pf, Vec floc);
+/* material.c: each cell's material */
+PETSC_EXTERN PetscErrorCode MMMaterialSetUp(MMMaterial *mat, const MMOperators *op, const MMFEProblem *pb);
+PETSC_EXTERN PetscErrorCode MMMaterialChecksum(const MMMaterial *mat, const MMOperators *op, PetscReal sum[3]);
+PETSC_EXTERN PetscErrorCode MMMaterialDestroy(MMMaterial *mat);

@@ -1,7 +1,7 @@
 /* Output, progress lines and checkpoints (src/io/). */
 #pragma once
 #include "mmbase.h"
-#include "insertmap.h"
+#include "fem.h"
 
 /* The progress line (src/io/progress.c): what it keeps between two lines. The references are taken at the
  * first monitor call, the start of TSSolve, so that the rates are those of this run's time loop. */
@@ -39,16 +39,13 @@ typedef struct {
   DM            dm_out;                /* the displacement field without constraints: output of whole fields */
   MMInsertMap   to_out;                /* DMLocalToGlobal(INSERT) on dm_out, as a map */
   Vec           disp_cart, vel_cart;   /* Cartesian output fields on dm_out */
-  DM            dm_scalar;             /* one scalar per vertex: pressure, gap */
+  DM            dm_scalar;             /* borrowed from fem (MMOperators.dm_scalar) by MMOutputOpen: one scalar per vertex */
   Vec           pressure, gap;
   Vec           obstacle;              /* each contact node's obstacle (index in -obstacles), -1 elsewhere: written once */
   Vec           serial;                /* each vertex's number in the serial mesh: written once */
   PetscBool     static_written;        /* obstacle and serial are in solution.h5 */
   Vec           traction_t, slip;      /* tangential traction and slip velocity on the contact boundary (dm_out) */
-  DM            dm_stress;             /* 6 components per vertex: the symmetric stress xx, xy, xz, yy, yz, zz */
-  Vec           stress, von_mises, stress_weight; /* nodal stress (dm_stress), von Mises and lumped weights (dm_scalar) */
-  PetscReal    *cell_geom;             /* per local cell its inverse edge matrix and volume, computed once */
-  Vec           stress_cell, von_mises_cell; /* per cell, in the XDMF topology's order (no DM) */
+  MMStress      stress;                /* nodal and cell stress and von Mises (fem: src/fem/stress.c) */
   MMProbes      probes;                /* -probes: groups' mean displacement and velocity in the history */
   PetscBool     planned;               /* the planned output's size has been checked (output_schedule.c) */
 } MMOutput;

@@ -1,15 +1,9 @@
 #pragma once
 #include "mmcontact.h"
 PETSC_EXTERN PetscErrorCode MMLogRegister(MMLog *);
-/* The Cartesian stiffness and mass alone (fem.c), by the selected -assembly path: a global, as
- * PETSc's own events are, so the MMLog context type stays as it is. */
-PETSC_EXTERN PetscLogEvent MM_AssembleKM;
 /* MUMPS's solve of the candidate columns on several ranks, and their move to PETSc's rows (src/contact/impls/condensed/mumps_columns.c) */
 PETSC_EXTERN PetscLogEvent MM_ColumnsSolve, MM_ColumnsMove;
 /* schursplit's apply: the interface's sum and dense solve (with the wait for the other ranks), the own backward sweep */
 PETSC_EXTERN PetscLogEvent MM_SplitInterface, MM_SplitBackward;
 /* the active-set CG's block copy of K~, made or refilled (src/contact/impls/active_set/block_operator.c) */
 PETSC_EXTERN PetscLogEvent MM_BlockOperator;
-/* Their rotation into the contact frame, K <- Q^T K Q and M <- Q^T M Q (fem.c) */
-PETSC_EXTERN PetscLogEvent MM_RotateKM;
-PETSC_EXTERN PetscLogEvent MM_MassRedistribute; /* -mass redistributed's construction, in set-up */

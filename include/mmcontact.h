@@ -3,8 +3,8 @@
 #pragma once
 #include "mmbase.h"
 #include "apptypes.h"
-#include "obstacletypes.h"
-#include "femtypes.h"
+#include "obstacle.h"
+#include "fem.h"
 #include "contacttypes.h"
 #include "frictiontypes.h"
 #include "tstypes.h"
@@ -14,7 +14,6 @@
 /* Everything the stepper needs; the TS type "newmark" holds a pointer to it. */
 typedef struct {
   MMOptions   opt;
-  PetscReal   constants[MM_C_NUM];
   MMMaterial  material;
   MMOperators op;
   MMLoads     loads;

@@ -1,4 +1,4 @@
-"""Stress output (src/io/stress.c, docs/method.md section 5): the nodal stress (stored as 6 components xx, xy,
+"""Stress output (src/fem/stress.c, docs/method.md section 5): the nodal stress (stored as 6 components xx, xy,
 xz, yy, yz, zz) and von Mises of every snapshot. A uniform strain gives the exact stress at every
 vertex, in 3D and in 2D plane strain; a run on 2 ranks writes the stress of 1 rank."""
 import numpy as np

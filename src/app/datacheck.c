@@ -204,12 +204,12 @@ static PetscErrorCode AccelerationEstimate(MMCtx *ctx, Vec a)
   PetscCall(VecDuplicate(ctx->op.mass_lumped_cart, &f));
   PetscCall(MatMult(ctx->op.K, s->u, r));
   PetscCall(VecAXPY(r, 1.0, ctx->op.lift));
-  if (MMFEHasMasslessDofs(ctx)) PetscCall(VecISSet(r, ctx->contact.is_normal, 0.0));
+  if (MMFEHasMasslessDofs(&ctx->op)) PetscCall(VecISSet(r, ctx->contact.is_normal, 0.0));
   PetscCall(VecAYPX(r, -1.0, ctx->op.load));
   PetscCall(MMDampingAddForce(ctx, s->v, -1.0, r));
-  PetscCall(MMFEForceToCartesian(ctx, r, f));
+  PetscCall(MMFEForceToCartesian(&ctx->op, r, f));
   PetscCall(VecPointwiseDivide(f, f, ctx->op.mass_lumped_cart));
-  PetscCall(MMFEFromCartesian(ctx, f, a));
+  PetscCall(MMFEFromCartesian(&ctx->op, f, a));
   PetscCall(VecDestroy(&f));
   PetscCall(VecDestroy(&r));
   PetscFunctionReturn(0);
@@ -297,12 +297,10 @@ PetscErrorCode MMDataCheckReport(MMCtx *ctx, TS ts)
   PetscFunctionReturn(0);
 }
 
-/* What the output would have freed: its scalar DM is made with the operators (src/fem/fem.c), and
- * the probes. */
+/* What the output would have freed: the probes. */
 PetscErrorCode MMDataCheckDestroy(MMCtx *ctx)
 {
   PetscFunctionBeginUser;
   PetscCall(MMProbesDestroy(&ctx->out.probes));
-  PetscCall(DMDestroy(&ctx->out.dm_scalar));
   PetscFunctionReturn(0);
 }

@@ -28,8 +28,6 @@ static char help[] = "mmcontact: elastic bodies hitting and sliding on rigid obs
 #include "errors.h"
 #include "deformation.h"
 #include "damping.h"
-#include "loads.h"
-#include "material.h"
 #include "datacheck.h"
 
 /* A set-up phase under its own event (MMLog), so that -log_view shows where the set-up goes */
@@ -40,25 +38,47 @@ static char help[] = "mmcontact: elastic bodies hitting and sliding on rigid obs
     PetscCall(PetscLogEventEnd((event), 0, 0, 0, 0)); \
   } while (0)
 
+/* The mesh: read, the options that depend on its dimension checked, then rotated and distributed. */
+static PetscErrorCode LoadMesh(MPI_Comm comm, MMCtx *ctx)
+{
+  MMMeshFacets facets;
+  PetscInt     dim;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMMeshRead(comm, ctx->opt.mesh_file, &ctx->op.dm, &facets, &ctx->ckpt.vertex_file));
+  /* the vector options' lengths, the rotation's among them, need the dimension */
+  PetscCall(DMGetDimension(ctx->op.dm, &dim));
+  PetscCall(MMOptionsCheckDimension(comm, &ctx->opt, dim));
+  PetscCall(MMMeshDistribute(ctx->opt.mesh_rotation, ctx->opt.mesh_rotation_center, &facets, &ctx->op.dm, &ctx->ckpt.vertex_orig));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
 {
-  MPI_Comm  comm = PETSC_COMM_WORLD;
-  PetscReal dt;
+  MPI_Comm       comm = PETSC_COMM_WORLD;
+  PetscReal      dt;
+  MMFEProblem    pb;
+  MMMassBoundary mb;
 
   PetscFunctionBeginUser;
   PetscCall(MMOptionsProcess(comm, &ctx->opt));
   PetscCall(MMOptionsHelpWithoutMesh(comm, help_only));
   if (*help_only) PetscFunctionReturn(0);
+  PetscCall(MMFESetFromOptions(comm, &ctx->op));
   PetscCall(MMOutputCheckOptions(comm, &ctx->opt));
   /* before anything in the output directory is read or moved: one run per directory. A data check
    * writes nothing, and takes no lock */
   if (!ctx->opt.check_input) PetscCall(MMOutputLock(ctx->opt.output_dir));
-  MMPhase(ctx->log.mesh_load, MMMeshLoad(comm, &ctx->opt, &ctx->op.dm, &ctx->ckpt.vertex_orig, &ctx->ckpt.vertex_file));
+  MMPhase(ctx->log.mesh_load, LoadMesh(comm, ctx));
   PetscCall(DMGetDimension(ctx->op.dm, &ctx->op.dim));
-  MMPhase(ctx->log.fe_setup, MMFESetUp(ctx));
+  PetscCall(MMOptionsGetFEProblem(&ctx->opt, &pb));
+  MMPhase(ctx->log.fe_setup, MMFESetUp(&ctx->op, &ctx->material, &pb));
   MMPhase(ctx->log.contact_setup, MMContactSetUp(ctx));
-  PetscCall(MMFEAssembleOperators(ctx));
-  MMPhase(ctx->log.loads_setup, MMLoadsSetUp(ctx));
+  PetscCall(MMContactGetMassBoundary(&ctx->contact, &mb));
+  PetscCall(MMFEAssembleOperators(&ctx->op, &ctx->material, &pb, &mb));
+  PetscCall(MMContactPairsTransformOperators(ctx));
+  PetscCall(MMFEAssembleOperatorsEnd(&ctx->op));
+  MMPhase(ctx->log.loads_setup, MMLoadsSetUp(&ctx->loads, &ctx->op, &ctx->material, &pb));
   MMPhase(ctx->log.initial_state, MMNewmarkInitialState(ctx));
   MMPhase(ctx->log.friction_setup, MMFrictionSetUp(ctx));
   PetscCall(MMNewmarkCreateTS(ctx, ts));

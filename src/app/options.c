@@ -7,9 +7,7 @@
 #include "errors.h"
 #include "damping.h"
 
-const char *const MMMassTypes[] = {"modified", "standard", "redistributed", "MMMassType", "MM_MASS_", NULL};
 const char *const MMInitialStates[] = {"given", "static_sliding", "static", "MMInitialState", "MM_INITIAL_", NULL};
-const char *const MMAssemblyTypes[] = {"closed_form", "fe", "MMAssemblyType", "MM_ASSEMBLY_", NULL};
 
 /* What a vector option's length must be, once the dimension d is known. */
 typedef enum {
@@ -605,14 +603,6 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_MESH_ROTATION, "Rigid rotation applied to the mesh when it is read: an angle (2D) or a rotation vector (3D), in radians", opt->mesh_rotation));
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_MESH_ROTATION_CENTER, "Centre of the -mesh_rotation, d entries", opt->mesh_rotation_center));
 
-  opt->mass_type = MM_MASS_REDISTRIBUTED;
-  PetscCall(OptionsEnum(PetscOptionsObject, comm, "-mass", "Mass matrix in time stepping: modified (normal mass of contact nodes removed), redistributed (modified, with the removed mass given to the other nodes so that the total mass, centre of gravity and inertia are those of the standard mass) or standard", MMMassTypes, (PetscEnum *)&opt->mass_type));
-  opt->lumped = PETSC_FALSE;
-  PetscCall(OptionsBool(PetscOptionsObject, comm, "-mass_lumped", "Use the row-sum lumped mass instead of the consistent mass", &opt->lumped));
-  opt->assembly = MM_ASSEMBLY_CLOSED_FORM;
-  PetscCall(OptionsEnum(PetscOptionsObject, comm, "-assembly", "How the stiffness and mass are assembled: closed_form (P1 element matrices in closed form, one pass over the cells) or fe (PetscFE quadrature, the slower reference)", MMAssemblyTypes, (PetscEnum *)&opt->assembly));
-  opt->assembly_check = PETSC_FALSE;
-  PetscCall(OptionsBool(PetscOptionsObject, comm, "-assembly_check", "Also assemble the stiffness and mass the other -assembly way, print the relative difference of each, and stop if one exceeds 1e-12", &opt->assembly_check));
   PetscCall(ProcessDamping(PetscOptionsObject, comm, opt));
   opt->contact = PETSC_TRUE;
   PetscCall(OptionsBool(PetscOptionsObject, comm, "-contact", "Enforce unilateral contact; 0 gives linear elastodynamics on the same mesh (the contact boundary is then unused)", &opt->contact));
@@ -826,4 +816,30 @@ int MMOptionsCheckFiles(int argc, char **argv)
     }
   }
   return 0;
+}
+
+/* The problem as fem reads it: plain data, the arrays borrowed from opt for the set-up. */
+PetscErrorCode MMOptionsGetFEProblem(const MMOptions *opt, MMFEProblem *pb)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(pb, sizeof(*pb)));
+  pb->E                 = opt->E;
+  pb->nu                = opt->nu;
+  pb->rho               = opt->rho;
+  pb->v0                = opt->v0;
+  pb->n_bodies          = opt->n_bodies;
+  pb->bodies            = opt->bodies;
+  pb->gravity           = opt->gravity;
+  pb->gravity_amplitude = &opt->gravity_amplitude;
+  pb->n_dirichlet       = opt->n_dirichlet;
+  pb->dirichlet         = opt->dirichlet;
+  pb->n_traction        = opt->n_traction;
+  pb->traction          = opt->traction;
+  pb->n_pressure        = opt->n_pressure;
+  pb->pressure          = opt->pressure;
+  pb->n_point_force     = opt->n_point_force;
+  pb->point_force       = opt->point_force;
+  pb->static_sliding    = (PetscBool)(opt->initial_state == MM_INITIAL_STATIC_SLIDING);
+  pb->damped            = (PetscBool)!(opt->damping_mass <= 0 && opt->damping_stiffness <= 0 && opt->damping_ratio <= 0);
+  PetscFunctionReturn(0);
 }

@@ -10,6 +10,7 @@
 #include "options.h"
 #include "newmark.h"
 #include "contact.h"
+#include "fem.h"
 
 /* Options that PETSc reads at start-up or after the time loop (TSSolve's -ts_view, PetscFinalize's
  * -options_left): valid, but not yet read when the check runs. */
@@ -117,6 +118,20 @@ static PetscErrorCode SolverObjectsFromOptions(MPI_Comm comm)
   PetscFunctionReturn(0);
 }
 
+/* Every component that reads its own options, read from the options on scratch objects: with -help
+ * set this prints their options, and the replay learns their names. */
+static PetscErrorCode ComponentsFromOptions(MPI_Comm comm)
+{
+  PetscFunctionBeginUser;
+  {
+    MMOperators op;
+    PetscCall(PetscMemzero(&op, sizeof(op)));
+    PetscCall(MMFESetFromOptions(comm, &op));
+    PetscCall(MMFEDestroy(&op));
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MMOptionsHelpWithoutMesh(MPI_Comm comm, PetscBool *done)
 {
   PetscBool help, mesh;
@@ -126,6 +141,7 @@ PetscErrorCode MMOptionsHelpWithoutMesh(MPI_Comm comm, PetscBool *done)
   PetscCall(PetscOptionsHasHelp(NULL, &help));
   PetscCall(PetscOptionsHasName(NULL, NULL, "-mesh", &mesh));
   if (!help || mesh) PetscFunctionReturn(0);
+  PetscCall(ComponentsFromOptions(comm));
   PetscCall(SolverObjectsFromOptions(comm));
   PetscCall(PetscPrintf(comm, "\nThe options of the mesh (-dm_*, -petscpartitioner_type) are listed when -help is given with -mesh FILE.\n"));
   *done = PETSC_TRUE;
@@ -170,6 +186,7 @@ static PetscErrorCode CollectValidNames(MPI_Comm comm, DM dm)
   stdout       = mem;
   PetscCall(MMOptionsProcess(comm, &scratch));
   PetscCall(MMOptionsDestroy(&scratch));
+  PetscCall(ComponentsFromOptions(comm));
   PetscCall(SolverObjectsFromOptions(comm));
   /* the run stops after the unused-option report: the mesh's options may be replayed on its DM */
   if (dm) PetscCall(DMSetFromOptions(dm));

@@ -1,12 +1,28 @@
 /* P1 elasticity: discretization, boundary conditions, and the operators K, M, L in the contact frame. */
 #include <float.h>
 #include "fem.h"
-#include "loads.h"
-#include "mesh.h"
-#include "contact.h"
 #include "assembly_p1.h"
-#include "log.h"
-#include "material.h"
+
+/* fem's events (MMFEInitializePackage): the operators' assembly, the Cartesian K and M alone by the
+ * selected -assembly path, their rotation into the contact frame, -mass redistributed's construction */
+static PetscLogEvent MM_FEAssemble, MM_FEAssembleKM, MM_FERotate, MM_FEMassRedistribute;
+
+/* fem's class and events, registered once (as KSPInitializePackage) */
+PetscErrorCode MMFEInitializePackage(void)
+{
+  static PetscBool initialized = PETSC_FALSE;
+  PetscClassId     id;
+
+  PetscFunctionBeginUser;
+  if (initialized) PetscFunctionReturn(0);
+  initialized = PETSC_TRUE;
+  PetscCall(PetscClassIdRegister("MMFE", &id));
+  PetscCall(PetscLogEventRegister("MMFEAssemble", id, &MM_FEAssemble));
+  PetscCall(PetscLogEventRegister("MMAssembleKM", id, &MM_FEAssembleKM));
+  PetscCall(PetscLogEventRegister("MMRotateKM", id, &MM_FERotate));
+  PetscCall(PetscLogEventRegister("MMMassRedist", id, &MM_FEMassRedistribute));
+  PetscFunctionReturn(0);
+}
 
 /* Field layout of every kernel: one field u (displacement), dim components, P1.
  * constants[] = {lambda, mu, rho, w_K, w_M, g_x, g_y, g_z} (MMConstantIndex). The weights select
@@ -50,7 +66,7 @@ static void obj_elastic_energy(PetscInt dim, PetscInt Nf, PetscInt NfAux, const 
   obj[0] = mu * ee + 0.5 * lambda * tr * tr;
 }
 
-static PetscErrorCode DirichletEnergy(MMCtx *);
+static PetscErrorCode DirichletEnergy(MMOperators *op, const MMMaterial *mat);
 
 /* Dirichlet data: value a(t) + velocity t per fixed component (docs/method.md section 10); ctx is
  * the MMDirichlet. Without an amplitude or a velocity the value is exactly the constant one. */
@@ -81,13 +97,13 @@ static PetscErrorCode LabelValue(DM dm, DMLabel label, PetscInt *value)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SetUpDirichlet(MMCtx *ctx)
+static PetscErrorCode SetUpDirichlet(MMOperators *op, const MMFEProblem *pb)
 {
-  DM dm = ctx->op.dm;
+  DM dm = op->dm;
 
   PetscFunctionBeginUser;
-  for (PetscInt b = 0; b < ctx->opt.n_dirichlet; ++b) {
-    MMDirichlet *bc = &ctx->opt.dirichlet[b];
+  for (PetscInt b = 0; b < pb->n_dirichlet; ++b) {
+    MMDirichlet *bc = &pb->dirichlet[b];
     DMLabel      label;
     PetscInt     value;
 
@@ -101,26 +117,25 @@ static PetscErrorCode SetUpDirichlet(MMCtx *ctx)
 /* The PetscDS constants: the material of the first body, which is every cell's when the material is
  * uniform (the PetscFE kernels then hold it; otherwise they are not used for it, src/fem/material.c),
  * and the wave speed of the CFL number, the largest of the bodies'. */
-static PetscErrorCode SetConstants(MMCtx *ctx)
+static PetscErrorCode SetConstants(MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb)
 {
-  const MMOptions *o = &ctx->opt;
-  const MMBody    *b = &ctx->material.body[0];
+  const MMBody *b = &mat->body[0];
 
   PetscFunctionBeginUser;
-  ctx->constants[MM_C_LAMBDA] = b->lambda;
-  ctx->constants[MM_C_MU]     = b->mu;
-  ctx->constants[MM_C_RHO]    = b->rho;
-  ctx->constants[MM_C_WEIGHT_K] = 1.0;
-  ctx->constants[MM_C_WEIGHT_M] = 0.0;
-  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) ctx->constants[MM_C_GRAVITY + d] = o->gravity[d];
-  ctx->op.c_p = ctx->material.c_p_max;
+  op->constants[MM_C_LAMBDA] = b->lambda;
+  op->constants[MM_C_MU]     = b->mu;
+  op->constants[MM_C_RHO]    = b->rho;
+  op->constants[MM_C_WEIGHT_K] = 1.0;
+  op->constants[MM_C_WEIGHT_M] = 0.0;
+  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) op->constants[MM_C_GRAVITY + d] = pb->gravity[d];
+  op->c_p = mat->c_p_max;
   PetscFunctionReturn(0);
 }
 
 /* Creates the P1 vector field, the Dirichlet constraints and the scalar vertex DM used for masses and output. */
-PetscErrorCode MMFESetUp(MMCtx *ctx)
+PetscErrorCode MMFESetUp(MMOperators *op, MMMaterial *mat, const MMFEProblem *pb)
 {
-  DM           dm = ctx->op.dm;
+  DM           dm = op->dm;
   PetscFE      fe;
   PetscDS      ds;
   PetscInt     dim;
@@ -129,20 +144,21 @@ PetscErrorCode MMFESetUp(MMCtx *ctx)
 
   PetscFunctionBeginUser;
   PetscCall(DMGetDimension(dm, &dim));
-  ctx->op.dim = dim;
-  PetscCall(MMCellsCreate(dm, &ctx->op.cells));
-  PetscCall(MMMaterialSetUp(ctx));
-  PetscCall(SetConstants(ctx));
+  op->dim = dim;
+  PetscCall(MMCellsCreate(dm, &op->cells));
+  PetscCall(MMFEInitializePackage());
+  PetscCall(MMMaterialSetUp(mat, op, pb));
+  PetscCall(SetConstants(op, mat, pb));
   PetscCall(PetscFECreateLagrange(PetscObjectComm((PetscObject)dm), dim, dim, PETSC_TRUE, 1, PETSC_DETERMINE, &fe));
   PetscCall(PetscObjectSetName((PetscObject)fe, "displacement"));
   PetscCall(DMSetField(dm, 0, NULL, (PetscObject)fe));
   PetscCall(PetscFEDestroy(&fe));
   PetscCall(DMCreateDS(dm));
   PetscCall(DMGetDS(dm, &ds));
-  PetscCall(PetscDSSetConstants(ds, MM_C_NUM, ctx->constants));
+  PetscCall(PetscDSSetConstants(ds, MM_C_NUM, op->constants));
   PetscCall(PetscDSSetResidual(ds, 0, NULL, f1_elas_u));
   PetscCall(PetscDSSetObjective(ds, 0, obj_elastic_energy));
-  PetscCall(SetUpDirichlet(ctx));
+  PetscCall(SetUpDirichlet(op, pb));
   PetscCall(DMGetLocalSection(dm, &s));
   for (PetscInt c = 0; c < dim; ++c) PetscCall(PetscSectionSetComponentName(s, 0, c, names[c]));
 
@@ -157,18 +173,18 @@ PetscErrorCode MMFESetUp(MMCtx *ctx)
     PetscCall(DMSetField(dms, 0, NULL, (PetscObject)fes));
     PetscCall(PetscFEDestroy(&fes));
     PetscCall(DMCreateDS(dms));
-    ctx->out.dm_scalar = dms;
+    op->dm_scalar = dms;
   }
   PetscFunctionReturn(0);
 }
 
 /* Lumped mass per vertex, int rho phi_i = sum_T rho_T |T| / (d+1): exact row sums of the consistent
  * mass, Dirichlet columns included. */
-static PetscErrorCode VertexMasses(MMCtx *ctx, Vec mloc)
+static PetscErrorCode VertexMasses(const MMOperators *op, const MMMaterial *mat, Vec mloc)
 {
-  DM             dms   = ctx->out.dm_scalar;
-  const MMCells *cells = &ctx->op.cells;
-  PetscInt       dim   = ctx->op.dim;
+  DM             dms   = op->dm_scalar;
+  const MMCells *cells = &op->cells;
+  PetscInt       dim   = op->dim;
   Vec            mglob;
   PetscScalar   *m;
 
@@ -176,7 +192,7 @@ static PetscErrorCode VertexMasses(MMCtx *ctx, Vec mloc)
   PetscCall(VecZeroEntries(mloc));
   PetscCall(VecGetArray(mloc, &m));
   for (PetscInt c = 0; c < cells->ncells; ++c) {
-    const PetscReal mv = ctx->material.rho[c] * cells->volume[c] / (dim + 1);
+    const PetscReal mv = mat->rho[c] * cells->volume[c] / (dim + 1);
     for (PetscInt a = 0; a < cells->nv; ++a) {
       PetscInt off, end;
       PetscCall(DMPlexGetPointLocal(dms, cells->vertex[cells->nv * c + a], &off, &end));
@@ -193,19 +209,19 @@ static PetscErrorCode VertexMasses(MMCtx *ctx, Vec mloc)
 }
 
 /* The lumped mass per vertex on the scalar DM's local vector (gravity's load part, src/fem/loads.c). */
-PetscErrorCode MMFEVertexMasses(MMCtx *ctx, Vec mloc)
+PetscErrorCode MMFEVertexMasses(const MMOperators *op, const MMMaterial *mat, Vec mloc)
 {
   PetscFunctionBeginUser;
-  PetscCall(VertexMasses(ctx, mloc));
+  PetscCall(VertexMasses(op, mat, mloc));
   PetscFunctionReturn(0);
 }
 
 /* Spreads a per-vertex scalar onto every free dof of that vertex, times a per-component factor. */
-static PetscErrorCode SpreadVertexScalar(MMCtx *ctx, Vec sloc, const PetscReal factor[], Vec g)
+static PetscErrorCode SpreadVertexScalar(const MMOperators *op, Vec sloc, const PetscReal factor[], Vec g)
 {
-  DM                 dm = ctx->op.dm;
+  DM                 dm = op->dm;
   PetscSection       gs, ls;
-  PetscInt           vStart, vEnd, dim = ctx->op.dim;
+  PetscInt           vStart, vEnd, dim = op->dim;
   const PetscScalar *s;
   PetscScalar       *a;
   PetscInt           rstart;
@@ -222,7 +238,7 @@ static PetscErrorCode SpreadVertexScalar(MMCtx *ctx, Vec sloc, const PetscReal f
     const PetscInt *cidx;
     PetscCall(PetscSectionGetOffset(gs, v, &goff));
     if (goff < 0) continue;
-    PetscCall(DMPlexGetPointLocal(ctx->out.dm_scalar, v, &soff, NULL));
+    PetscCall(DMPlexGetPointLocal(op->dm_scalar, v, &soff, NULL));
     PetscCall(PetscSectionGetConstraintDof(ls, v, &ncdof));
     PetscCall(PetscSectionGetConstraintIndices(ls, v, &cidx));
     for (PetscInt c = 0, k = 0; c < dim; ++c) {
@@ -256,37 +272,37 @@ static PetscErrorCode CheckTractionGroup(DM dm, const char name[], DMLabel label
 /* Nodal loads of traction b: int_F t phi_i = t |F| / d on each vertex of a boundary face F, added
  * to the local vector floc (each facet is listed on one rank: summed over ranks by a
  * DMLocalToGlobal with ADD). */
-PetscErrorCode MMFEAddTraction(MMCtx *ctx, PetscInt b, Vec floc)
+PetscErrorCode MMFEAddTraction(const MMOperators *op, const MMTraction *tr, Vec floc)
 {
-  DM          dm = ctx->op.dm;
+  DM          dm = op->dm;
   DMLabel     label;
   MMFacetList fl;
   PetscScalar *f;
 
   PetscFunctionBeginUser;
-  PetscCall(MMMeshGetLabel(dm, ctx->opt.traction[b].name, &label));
-  PetscCall(MMMeshGetFacets(dm, ctx->opt.traction[b].name, &fl));
-  PetscCall(CheckTractionGroup(dm, ctx->opt.traction[b].name, label, &fl));
+  PetscCall(MMMeshGetLabel(dm, tr->name, &label));
+  PetscCall(MMMeshGetFacets(dm, tr->name, &fl));
+  PetscCall(CheckTractionGroup(dm, tr->name, label, &fl));
   PetscCall(VecGetArray(floc, &f));
-  PetscCall(MMMeshFacetsAddNodal(dm, &fl, dm, ctx->op.dim, ctx->opt.traction[b].traction, f));
+  PetscCall(MMMeshFacetsAddNodal(dm, &fl, dm, op->dim, tr->traction, f));
   PetscCall(VecRestoreArray(floc, &f));
   PetscCall(MMFacetListDestroy(&fl));
   PetscFunctionReturn(0);
 }
 
 /* Nodal loads of the tractions, pressures and point forces at amplitude 1. */
-static PetscErrorCode AddTractions(MMCtx *ctx, Vec Lcart)
+static PetscErrorCode AddTractions(const MMOperators *op, const MMFEProblem *pb, Vec Lcart)
 {
-  DM  dm = ctx->op.dm;
+  DM  dm = op->dm;
   Vec floc;
 
   PetscFunctionBeginUser;
-  if (!ctx->opt.n_traction && !ctx->opt.n_pressure && !ctx->opt.n_point_force) PetscFunctionReturn(0);
+  if (!pb->n_traction && !pb->n_pressure && !pb->n_point_force) PetscFunctionReturn(0);
   PetscCall(DMGetLocalVector(dm, &floc));
   PetscCall(VecZeroEntries(floc));
-  for (PetscInt b = 0; b < ctx->opt.n_traction; ++b) PetscCall(MMFEAddTraction(ctx, b, floc));
-  for (PetscInt b = 0; b < ctx->opt.n_pressure; ++b) PetscCall(MMFEAddPressure(ctx, b, floc));
-  for (PetscInt b = 0; b < ctx->opt.n_point_force; ++b) PetscCall(MMFEAddPointForce(ctx, b, floc));
+  for (PetscInt b = 0; b < pb->n_traction; ++b) PetscCall(MMFEAddTraction(op, &pb->traction[b], floc));
+  for (PetscInt b = 0; b < pb->n_pressure; ++b) PetscCall(MMFEAddPressure(op, &pb->pressure[b], floc));
+  for (PetscInt b = 0; b < pb->n_point_force; ++b) PetscCall(MMFEAddPointForce(op, &pb->point_force[b], floc));
   /* traction loads on Dirichlet-constrained components are dropped, as the reaction absorbs them */
   PetscCall(DMLocalToGlobal(dm, floc, ADD_VALUES, Lcart));
   PetscCall(DMRestoreLocalVector(dm, &floc));
@@ -294,25 +310,25 @@ static PetscErrorCode AddTractions(MMCtx *ctx, Vec Lcart)
 }
 
 /* Assembles w_K K + w_M M. */
-static PetscErrorCode AssembleMatrix(MMCtx *ctx, PetscReal wK, PetscReal wM, Mat A)
+static PetscErrorCode AssembleMatrix(MMOperators *op, PetscReal wK, PetscReal wM, Mat A)
 {
-  DM      dm = ctx->op.dm;
+  DM      dm = op->dm;
   PetscDS ds;
   Vec     xloc;
 
   PetscFunctionBeginUser;
-  ctx->constants[MM_C_WEIGHT_K] = wK;
-  ctx->constants[MM_C_WEIGHT_M] = wM;
+  op->constants[MM_C_WEIGHT_K] = wK;
+  op->constants[MM_C_WEIGHT_M] = wM;
   PetscCall(DMGetDS(dm, &ds));
-  PetscCall(PetscDSSetConstants(ds, MM_C_NUM, ctx->constants));
+  PetscCall(PetscDSSetConstants(ds, MM_C_NUM, op->constants));
   PetscCall(DMGetLocalVector(dm, &xloc));
   PetscCall(VecZeroEntries(xloc));
   PetscCall(MatZeroEntries(A));
   PetscCall(DMPlexSNESComputeJacobianFEM(dm, xloc, A, A, NULL));
   PetscCall(DMRestoreLocalVector(dm, &xloc));
-  ctx->constants[MM_C_WEIGHT_K] = 1.0;
-  ctx->constants[MM_C_WEIGHT_M] = 0.0;
-  PetscCall(PetscDSSetConstants(ds, MM_C_NUM, ctx->constants));
+  op->constants[MM_C_WEIGHT_K] = 1.0;
+  op->constants[MM_C_WEIGHT_M] = 0.0;
+  PetscCall(PetscDSSetConstants(ds, MM_C_NUM, op->constants));
   PetscFunctionReturn(0);
 }
 
@@ -333,9 +349,9 @@ static PetscErrorCode HasDirichlet(DM dm, PetscBool *has)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode DirichletLift(MMCtx *ctx, Vec lift)
+static PetscErrorCode DirichletLift(const MMOperators *op, const MMMaterial *mat, Vec lift)
 {
-  DM        dm = ctx->op.dm;
+  DM        dm = op->dm;
   Vec       xloc, floc;
   PetscBool has;
 
@@ -349,8 +365,8 @@ static PetscErrorCode DirichletLift(MMCtx *ctx, Vec lift)
   PetscCall(VecZeroEntries(floc));
   PetscCall(DMPlexInsertBoundaryValues(dm, PETSC_TRUE, xloc, 0.0, NULL, NULL, NULL));
   /* in PETSc 3.18 both vectors of the FEM residual are local */
-  if (ctx->opt.assembly == MM_ASSEMBLY_FE) PetscCall(DMPlexSNESComputeResidualFEM(dm, xloc, floc, NULL));
-  else PetscCall(MMApplyP1(dm, &ctx->material, xloc, floc, NULL));
+  if (op->assembly == MM_ASSEMBLY_FE) PetscCall(DMPlexSNESComputeResidualFEM(dm, xloc, floc, NULL));
+  else PetscCall(MMApplyP1(dm, mat, xloc, floc, NULL));
   PetscCall(VecZeroEntries(lift));
   PetscCall(DMLocalToGlobal(dm, floc, ADD_VALUES, lift));
   PetscCall(DMRestoreLocalVector(dm, &floc));
@@ -359,14 +375,14 @@ static PetscErrorCode DirichletLift(MMCtx *ctx, Vec lift)
 }
 
 /* The Cartesian stiffness into K and, unless M is NULL, the consistent mass into M, by either path. */
-static PetscErrorCode AssembleKM(MMCtx *ctx, MMAssemblyType type, Mat K, Mat M)
+static PetscErrorCode AssembleKM(MMOperators *op, const MMMaterial *mat, MMAssemblyType type, Mat K, Mat M)
 {
   PetscFunctionBeginUser;
   if (type == MM_ASSEMBLY_CLOSED_FORM) {
-    PetscCall(MMAssembleP1(ctx->op.dm, &ctx->material, K, M));
+    PetscCall(MMAssembleP1(op->dm, mat, K, M));
   } else {
-    PetscCall(AssembleMatrix(ctx, 1.0, 0.0, K));
-    if (M) PetscCall(AssembleMatrix(ctx, 0.0, 1.0, M));
+    PetscCall(AssembleMatrix(op, 1.0, 0.0, K));
+    if (M) PetscCall(AssembleMatrix(op, 0.0, 1.0, M));
   }
   PetscFunctionReturn(0);
 }
@@ -389,10 +405,10 @@ static PetscErrorCode RelativeMaxDifference(Mat A, Mat B, PetscReal *diff)
 
 /* -assembly_check: K and M again by the other path, compared entry by entry. The closed form and
  * the quadrature are both exact for P1, so they agree to rounding. */
-static PetscErrorCode CheckAssembly(MMCtx *ctx, Mat K, Mat M)
+static PetscErrorCode CheckAssembly(MMOperators *op, const MMMaterial *mat, Mat K, Mat M)
 {
-  const MMAssemblyType other = ctx->opt.assembly == MM_ASSEMBLY_FE ? MM_ASSEMBLY_CLOSED_FORM : MM_ASSEMBLY_FE;
-  MPI_Comm             comm  = PetscObjectComm((PetscObject)ctx->op.dm);
+  const MMAssemblyType other = op->assembly == MM_ASSEMBLY_FE ? MM_ASSEMBLY_CLOSED_FORM : MM_ASSEMBLY_FE;
+  MPI_Comm             comm  = PetscObjectComm((PetscObject)op->dm);
   Mat                  K2, M2 = NULL;
   PetscReal            dK, dM = 0;
   PetscLogDouble       t0, t1;
@@ -401,24 +417,24 @@ static PetscErrorCode CheckAssembly(MMCtx *ctx, Mat K, Mat M)
   PetscCall(MatDuplicate(K, MAT_DO_NOT_COPY_VALUES, &K2));
   if (M) PetscCall(MatDuplicate(K, MAT_DO_NOT_COPY_VALUES, &M2));
   PetscCall(PetscTime(&t0));
-  PetscCall(AssembleKM(ctx, other, K2, M2));
+  PetscCall(AssembleKM(op, mat, other, K2, M2));
   PetscCall(PetscTime(&t1));
   PetscCall(RelativeMaxDifference(K, K2, &dK));
   if (M) PetscCall(RelativeMaxDifference(M, M2, &dM));
   PetscCall(MatDestroy(&K2));
   PetscCall(MatDestroy(&M2));
-  PetscCall(PetscPrintf(comm, "Assembly check, %s against %s: K max|diff|/max|entry| = %.3e, M %.3e (%s); %s took %.3f s\n", MMAssemblyTypes[ctx->opt.assembly], MMAssemblyTypes[other], (double)dK, (double)dM, M ? "consistent" : "lumped, not compared", MMAssemblyTypes[other], (double)(t1 - t0)));
-  PetscCheck(dK <= 1e-12 && dM <= 1e-12, comm, PETSC_ERR_PLIB, "-assembly_check: the %s and %s assemblies differ by %.3e in K and %.3e in M (relative to the largest entry), above 1e-12", MMAssemblyTypes[ctx->opt.assembly], MMAssemblyTypes[other], (double)dK, (double)dM);
+  PetscCall(PetscPrintf(comm, "Assembly check, %s against %s: K max|diff|/max|entry| = %.3e, M %.3e (%s); %s took %.3f s\n", MMAssemblyTypes[op->assembly], MMAssemblyTypes[other], (double)dK, (double)dM, M ? "consistent" : "lumped, not compared", MMAssemblyTypes[other], (double)(t1 - t0)));
+  PetscCheck(dK <= 1e-12 && dM <= 1e-12, comm, PETSC_ERR_PLIB, "-assembly_check: the %s and %s assemblies differ by %.3e in K and %.3e in M (relative to the largest entry), above 1e-12", MMAssemblyTypes[op->assembly], MMAssemblyTypes[other], (double)dK, (double)dM);
   PetscFunctionReturn(0);
 }
 
 /* The matrix K and M are assembled into: for the closed form, with the P1 edge pattern built
  * directly (MMCreateMatrixP1, several times faster than DMCreateMatrix's point adjacency); for
  * -assembly fe, DMCreateMatrix's, which the PetscFE path fills. The patterns are the same. */
-PetscErrorCode MMFECreateMatrix(MMCtx *ctx, DM dm, Mat *A)
+PetscErrorCode MMFECreateMatrix(const MMOperators *op, DM dm, Mat *A)
 {
   PetscFunctionBeginUser;
-  if (ctx->opt.assembly == MM_ASSEMBLY_CLOSED_FORM) {
+  if (op->assembly == MM_ASSEMBLY_CLOSED_FORM) {
     PetscCall(MMCreateMatrixP1(dm, A));
     PetscFunctionReturn(0);
   }
@@ -430,10 +446,10 @@ PetscErrorCode MMFECreateMatrix(MMCtx *ctx, DM dm, Mat *A)
 /* The P1 interpolant of f (f's signature is DMProjectFunction's) into the Cartesian global vector u:
  * f at each vertex, which is what DMProjectFunction computes for P1 through the dual basis, at a
  * fraction of its cost; the Dirichlet dofs drop out in the local-to-global map. */
-PetscErrorCode MMFEInterpolate(MMCtx *ctx, PetscErrorCode (*f)(PetscInt, PetscReal, const PetscReal[], PetscInt, PetscScalar *, void *), void *fctx, Vec u)
+PetscErrorCode MMFEInterpolate(const MMOperators *op, PetscErrorCode (*f)(PetscInt, PetscReal, const PetscReal[], PetscInt, PetscScalar *, void *), void *fctx, Vec u)
 {
-  DM                 dm = ctx->op.dm;
-  const PetscInt     dim = ctx->op.dim;
+  DM                 dm = op->dm;
+  const PetscInt     dim = op->dim;
   PetscSection       ls, cs;
   Vec                uloc, coords;
   const PetscScalar *xc;
@@ -467,188 +483,203 @@ PetscErrorCode MMFEInterpolate(MMCtx *ctx, PetscErrorCode (*f)(PetscInt, PetscRe
  * section 2). Q is block diagonal by vertex, so the pattern stays: MatPtAP would build new matrices,
  * through a symbolic product that costs more than the closed-form assembly (README "Assembly of K
  * and M"). */
-static PetscErrorCode RotateToContactFrame(MMCtx *ctx, Mat K, Mat M)
+static PetscErrorCode RotateToContactFrame(const MMOperators *op, Mat K, Mat M)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(MM_RotateKM, 0, 0, 0, 0));
-  PetscCall(MMRotateP1(ctx->op.Q, K, M));
-  PetscCall(PetscLogEventEnd(MM_RotateKM, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(MM_FERotate, 0, 0, 0, 0));
+  PetscCall(MMRotateP1(op->Q, K, M));
+  PetscCall(PetscLogEventEnd(MM_FERotate, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
 /* -E 1e308 overflows the stiffness, -rho 1e-310 underflows the mass (its entries subnormal or 0):
  * say so before a solve fails on it. */
-static PetscErrorCode CheckFiniteOperators(MMCtx *ctx)
+static PetscErrorCode CheckFiniteOperators(const MMOperators *op, const MMFEProblem *pb)
 {
   PetscReal nK, nM;
 
   PetscFunctionBeginUser;
-  PetscCall(MatNorm(ctx->op.K, NORM_FROBENIUS, &nK));
-  PetscCall(MatNorm(ctx->op.M, NORM_FROBENIUS, &nM));
-  PetscCheck(!PetscIsInfOrNanReal(nK) && !PetscIsInfOrNanReal(nM), PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "The %s matrix overflows with -E %g, -rho %g on this mesh: use consistent units (for steel in SI units, -E 2.1e11 -rho 7850)", PetscIsInfOrNanReal(nK) ? "stiffness" : "mass", (double)ctx->opt.E, (double)ctx->opt.rho);
+  PetscCall(MatNorm(op->K, NORM_FROBENIUS, &nK));
+  PetscCall(MatNorm(op->M, NORM_FROBENIUS, &nM));
+  PetscCheck(!PetscIsInfOrNanReal(nK) && !PetscIsInfOrNanReal(nM), PetscObjectComm((PetscObject)op->dm), PETSC_ERR_USER_INPUT, "The %s matrix overflows with -E %g, -rho %g on this mesh: use consistent units (for steel in SI units, -E 2.1e11 -rho 7850)", PetscIsInfOrNanReal(nK) ? "stiffness" : "mass", (double)pb->E, (double)pb->rho);
   {
     PetscReal mmin;
     Vec       d;
-    PetscCall(MatCreateVecs(ctx->op.M, &d, NULL));
-    PetscCall(MatGetDiagonal(ctx->op.M, d));
+    PetscCall(MatCreateVecs(op->M, &d, NULL));
+    PetscCall(MatGetDiagonal(op->M, d));
     PetscCall(VecMin(d, NULL, &mmin));
     PetscCall(VecDestroy(&d));
     /* the mass of the smallest node (M is positive definite: every diagonal entry is a node's) */
-    PetscCheck(mmin >= DBL_MIN, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "The mass matrix underflows with -E %.6g, -rho %.6g on this mesh (a node's mass is %.3g, below the smallest normal double %.3g): use consistent units (for steel in SI units, -E 2.1e11 -rho 7850)", (double)ctx->opt.E, (double)ctx->opt.rho, (double)mmin, DBL_MIN);
+    PetscCheck(mmin >= DBL_MIN, PetscObjectComm((PetscObject)op->dm), PETSC_ERR_USER_INPUT, "The mass matrix underflows with -E %.6g, -rho %.6g on this mesh (a node's mass is %.3g, below the smallest normal double %.3g): use consistent units (for steel in SI units, -E 2.1e11 -rho 7850)", (double)pb->E, (double)pb->rho, (double)mmin, DBL_MIN);
   }
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMFEAssembleOperators(MMCtx *ctx)
+/* K, M*, the load and the lift in the contact frame (w-dofs), Q being set (by contact); mb the contact
+ * boundary whose normal dofs M* drops (NULL: no contact). The contact pairs' transform of K, M and
+ * M* (N^T A N) comes between this and MMFEAssembleOperatorsEnd. */
+PetscErrorCode MMFEAssembleOperators(MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb, const MMMassBoundary *mb)
 {
-  DM          dm = ctx->op.dm;
+  DM          dm = op->dm;
   PetscDS     ds;
   Mat         Kc, Mc = NULL;
   Vec         mloc, Lcart, tmp;
   PetscReal   ones[MM_MAX_DIM] = {1, 1, 1};
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(ctx->log.assemble, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(MM_FEAssemble, 0, 0, 0, 0));
   PetscCall(DMGetDS(dm, &ds));
-  PetscCall(MMFECreateMatrix(ctx, dm, &Kc));
+  PetscCall(MMFECreateMatrix(op, dm, &Kc));
   /* a lumped mass is built from vertex masses below: no consistent mass to assemble. M has K's
    * pattern, and duplicating it skips a second DMPlex preallocation, which alone costs several
    * assemblies (README "Assembly of K and M") */
-  if (!ctx->opt.lumped) PetscCall(MatDuplicate(Kc, MAT_DO_NOT_COPY_VALUES, &Mc));
+  if (!op->lumped) PetscCall(MatDuplicate(Kc, MAT_DO_NOT_COPY_VALUES, &Mc));
   PetscCall(PetscDSSetJacobian(ds, 0, 0, g0_mass_uu, NULL, NULL, g3_elas_uu));
-  PetscCall(PetscLogEventBegin(MM_AssembleKM, 0, 0, 0, 0));
-  PetscCall(AssembleKM(ctx, ctx->opt.assembly, Kc, Mc));
-  PetscCall(PetscLogEventEnd(MM_AssembleKM, 0, 0, 0, 0));
-  if (ctx->opt.assembly_check) PetscCall(CheckAssembly(ctx, Kc, Mc));
-  PetscCall(RotateToContactFrame(ctx, Kc, Mc));
-  ctx->op.K = Kc;
+  PetscCall(PetscLogEventBegin(MM_FEAssembleKM, 0, 0, 0, 0));
+  PetscCall(AssembleKM(op, mat, op->assembly, Kc, Mc));
+  PetscCall(PetscLogEventEnd(MM_FEAssembleKM, 0, 0, 0, 0));
+  if (op->assembly_check) PetscCall(CheckAssembly(op, mat, Kc, Mc));
+  PetscCall(RotateToContactFrame(op, Kc, Mc));
+  op->K = Kc;
 
-  PetscCall(DMCreateGlobalVector(dm, &ctx->op.load));
-  PetscCall(VecDuplicate(ctx->op.load, &ctx->op.lift));
-  PetscCall(VecDuplicate(ctx->op.load, &ctx->op.mass_lumped_cart));
-  PetscCall(VecDuplicate(ctx->op.load, &Lcart));
-  PetscCall(VecDuplicate(ctx->op.load, &tmp));
-  PetscCall(DMGetLocalVector(ctx->out.dm_scalar, &mloc));
-  PetscCall(VertexMasses(ctx, mloc));
-  PetscCall(SpreadVertexScalar(ctx, mloc, ones, ctx->op.mass_lumped_cart));
+  PetscCall(DMCreateGlobalVector(dm, &op->load));
+  PetscCall(VecDuplicate(op->load, &op->lift));
+  PetscCall(VecDuplicate(op->load, &op->mass_lumped_cart));
+  PetscCall(VecDuplicate(op->load, &Lcart));
+  PetscCall(VecDuplicate(op->load, &tmp));
+  PetscCall(DMGetLocalVector(op->dm_scalar, &mloc));
+  PetscCall(VertexMasses(op, mat, mloc));
+  PetscCall(SpreadVertexScalar(op, mloc, ones, op->mass_lumped_cart));
   /* body force: int rho g phi_i = m_i g, exactly, for constant g */
-  PetscCall(SpreadVertexScalar(ctx, mloc, ctx->opt.gravity, Lcart));
-  PetscCall(DMRestoreLocalVector(ctx->out.dm_scalar, &mloc));
-  PetscCall(AddTractions(ctx, Lcart));
-  PetscCall(MatMultTranspose(ctx->op.Q, Lcart, ctx->op.load));
-  PetscCall(DirichletLift(ctx, tmp));
-  PetscCall(MatMultTranspose(ctx->op.Q, tmp, ctx->op.lift));
-  PetscCall(DirichletEnergy(ctx));
-  PetscCall(VecDuplicate(ctx->op.load, &ctx->op.work));
+  PetscCall(SpreadVertexScalar(op, mloc, pb->gravity, Lcart));
+  PetscCall(DMRestoreLocalVector(op->dm_scalar, &mloc));
+  PetscCall(AddTractions(op, pb, Lcart));
+  PetscCall(MatMultTranspose(op->Q, Lcart, op->load));
+  PetscCall(DirichletLift(op, mat, tmp));
+  PetscCall(MatMultTranspose(op->Q, tmp, op->lift));
+  PetscCall(DirichletEnergy(op, mat));
+  PetscCall(VecDuplicate(op->load, &op->work));
 
-  if (ctx->opt.lumped) {
+  if (op->lumped) {
     /* equal per component at each node, so the frame rotation leaves it diagonal and unchanged */
-    PetscCall(MatDuplicate(ctx->op.K, MAT_DO_NOT_COPY_VALUES, &ctx->op.M));
-    PetscCall(MatZeroEntries(ctx->op.M));
-    PetscCall(MatDiagonalSet(ctx->op.M, ctx->op.mass_lumped_cart, INSERT_VALUES));
-  } else ctx->op.M = Mc;
-  PetscCall(CheckFiniteOperators(ctx));
-  PetscCall(MatDuplicate(ctx->op.M, MAT_COPY_VALUES, &ctx->op.Mstar));
-  if (MMFEHasMasslessDofs(ctx)) PetscCall(MatZeroRowsColumnsIS(ctx->op.Mstar, ctx->contact.is_massless, 0.0, NULL, NULL));
-  if (MMFEHasMasslessDofs(ctx) && ctx->opt.mass_type == MM_MASS_REDISTRIBUTED) {
-    PetscCall(PetscLogEventBegin(MM_MassRedistribute, 0, 0, 0, 0));
-    PetscCall(MMFERedistributeMass(ctx));
-    PetscCall(PetscLogEventEnd(MM_MassRedistribute, 0, 0, 0, 0));
+    PetscCall(MatDuplicate(op->K, MAT_DO_NOT_COPY_VALUES, &op->M));
+    PetscCall(MatZeroEntries(op->M));
+    PetscCall(MatDiagonalSet(op->M, op->mass_lumped_cart, INSERT_VALUES));
+  } else op->M = Mc;
+  PetscCall(CheckFiniteOperators(op, pb));
+  PetscCall(MatDuplicate(op->M, MAT_COPY_VALUES, &op->Mstar));
+  /* the modified and the redistributed mass leave the contact-normal dofs without inertia */
+  if (mb && mb->massless && op->mass_type != MM_MASS_STANDARD) {
+    PetscCall(PetscObjectReference((PetscObject)mb->massless));
+    op->massless = mb->massless;
   }
-  PetscCall(MMFEMassMoments(ctx));
-  if (ctx->op.N) PetscCall(VecDuplicate(ctx->op.load, &ctx->op.pair_work));
-  PetscCall(MMContactPairsTransformOperators(ctx));
-  PetscCall(MatViewFromOptions(ctx->op.K, NULL, "-stiffness_view"));
-  PetscCall(MatViewFromOptions(ctx->op.M, NULL, "-mass_view"));
+  if (MMFEHasMasslessDofs(op)) PetscCall(MatZeroRowsColumnsIS(op->Mstar, op->massless, 0.0, NULL, NULL));
+  if (MMFEHasMasslessDofs(op) && op->mass_type == MM_MASS_REDISTRIBUTED) {
+    PetscCall(PetscLogEventBegin(MM_FEMassRedistribute, 0, 0, 0, 0));
+    PetscCall(MMFERedistributeMass(op, mat, mb));
+    PetscCall(PetscLogEventEnd(MM_FEMassRedistribute, 0, 0, 0, 0));
+  }
+  PetscCall(MMFEMassMoments(op));
+  if (op->N) PetscCall(VecDuplicate(op->load, &op->pair_work));
+  PetscCall(VecDestroy(&Lcart));
+  PetscCall(VecDestroy(&tmp));
+  PetscFunctionReturn(0);
+}
+
+/* After the contact pairs' transform: the views of K and M, and M released (M* replaces it); the
+ * end of the assembly's event, begun in MMFEAssembleOperators. */
+PetscErrorCode MMFEAssembleOperatorsEnd(MMOperators *op)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MatViewFromOptions(op->K, NULL, "-stiffness_view"));
+  PetscCall(MatViewFromOptions(op->M, NULL, "-mass_view"));
   /* M served only to build M* and to check M*'s moments against it: the steps, the audit and the
    * diagnostics use M*. Freed here, before any factorization, it leaves the run's peak memory: one
    * matrix of K's pattern (56 MiB on the 113k-dof D2 ball, about 0.5 GiB at 1M dofs) */
-  PetscCall(MatDestroy(&ctx->op.M));
-  PetscCall(VecDestroy(&Lcart));
-  PetscCall(VecDestroy(&tmp));
-  PetscCall(PetscLogEventEnd(ctx->log.assemble, 0, 0, 0, 0));
+  PetscCall(MatDestroy(&op->M));
+  PetscCall(PetscLogEventEnd(MM_FEAssemble, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
 /* Displacements and velocities: u = Q N w, w = N^{-1} Q^T u (N = I without contact pairs or corners,
  * Q orthogonal). Forces, their duals: f = Q N^{-T} f_w, f_w = N^T Q^T f (docs/method.md section 11).
  * One pass of each: to Cartesian, N (or N^{-T}) then Q; from it, Q^T then N^{-1} (or N^T). */
-static PetscErrorCode FrameTransform(MMCtx *ctx, PetscBool to_cartesian, Mat Nmat, PetscBool n_transpose, Vec x, Vec y)
+static PetscErrorCode FrameTransform(const MMOperators *op, PetscBool to_cartesian, Mat Nmat, PetscBool n_transpose, Vec x, Vec y)
 {
-  Vec t = ctx->op.pair_work;
+  Vec t = op->pair_work;
 
   PetscFunctionBeginUser;
-  if (!ctx->op.N) {
-    if (to_cartesian) PetscCall(MatMult(ctx->op.Q, x, y));
-    else PetscCall(MatMultTranspose(ctx->op.Q, x, y));
+  if (!op->N) {
+    if (to_cartesian) PetscCall(MatMult(op->Q, x, y));
+    else PetscCall(MatMultTranspose(op->Q, x, y));
     PetscFunctionReturn(0);
   }
   if (to_cartesian) {
     if (n_transpose) PetscCall(MatMultTranspose(Nmat, x, t));
     else PetscCall(MatMult(Nmat, x, t));
-    PetscCall(MatMult(ctx->op.Q, t, y));
+    PetscCall(MatMult(op->Q, t, y));
   } else {
-    PetscCall(MatMultTranspose(ctx->op.Q, x, t));
+    PetscCall(MatMultTranspose(op->Q, x, t));
     if (n_transpose) PetscCall(MatMultTranspose(Nmat, t, y));
     else PetscCall(MatMult(Nmat, t, y));
   }
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMFEToCartesian(MMCtx *ctx, Vec w, Vec ucart)
+PetscErrorCode MMFEToCartesian(const MMOperators *op, Vec w, Vec ucart)
 {
   PetscFunctionBeginUser;
-  PetscCall(FrameTransform(ctx, PETSC_TRUE, ctx->op.N, PETSC_FALSE, w, ucart));
+  PetscCall(FrameTransform(op, PETSC_TRUE, op->N, PETSC_FALSE, w, ucart));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMFEFromCartesian(MMCtx *ctx, Vec ucart, Vec w)
+PetscErrorCode MMFEFromCartesian(const MMOperators *op, Vec ucart, Vec w)
 {
   PetscFunctionBeginUser;
-  PetscCall(FrameTransform(ctx, PETSC_FALSE, ctx->op.Ninv, PETSC_FALSE, ucart, w));
+  PetscCall(FrameTransform(op, PETSC_FALSE, op->Ninv, PETSC_FALSE, ucart, w));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMFEForceToCartesian(MMCtx *ctx, Vec fw, Vec fcart)
+PetscErrorCode MMFEForceToCartesian(const MMOperators *op, Vec fw, Vec fcart)
 {
   PetscFunctionBeginUser;
-  PetscCall(FrameTransform(ctx, PETSC_TRUE, ctx->op.Ninv, PETSC_TRUE, fw, fcart));
+  PetscCall(FrameTransform(op, PETSC_TRUE, op->Ninv, PETSC_TRUE, fw, fcart));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMFEForceFromCartesian(MMCtx *ctx, Vec fcart, Vec fw)
+PetscErrorCode MMFEForceFromCartesian(const MMOperators *op, Vec fcart, Vec fw)
 {
   PetscFunctionBeginUser;
-  PetscCall(FrameTransform(ctx, PETSC_FALSE, ctx->op.N, PETSC_TRUE, fcart, fw));
+  PetscCall(FrameTransform(op, PETSC_FALSE, op->N, PETSC_TRUE, fcart, fw));
   PetscFunctionReturn(0);
 }
 
 /* Elastic energy of the whole field, Dirichlet data included: with u = (w, u_D),
  * 1/2 u.A u = 1/2 w.K w + w.lift + 1/2 u_D.A_DD u_D. One MatMult per call, where the FE
  * integral of 1/2 sigma:eps would cost an assembly. */
-PetscErrorCode MMFEElasticEnergy(MMCtx *ctx, Vec w, PetscReal *energy)
+PetscErrorCode MMFEElasticEnergy(const MMOperators *op, Vec w, PetscReal *energy)
 {
   PetscScalar wKw, wl;
 
   PetscFunctionBeginUser;
-  PetscCall(MatMult(ctx->op.K, w, ctx->op.work));
-  PetscCall(VecDot(w, ctx->op.work, &wKw));
-  PetscCall(VecDot(w, ctx->op.lift, &wl));
-  *energy = 0.5 * PetscRealPart(wKw) + PetscRealPart(wl) + ctx->op.energy_dirichlet;
+  PetscCall(MatMult(op->K, w, op->work));
+  PetscCall(VecDot(w, op->work, &wKw));
+  PetscCall(VecDot(w, op->lift, &wl));
+  *energy = 0.5 * PetscRealPart(wKw) + PetscRealPart(wl) + op->energy_dirichlet;
   PetscFunctionReturn(0);
 }
 
 /* 1/2 int sigma(u):eps(u) of a Cartesian global vector u with the Dirichlet data of t = 0 inserted:
  * cell by cell in closed form with each cell's material (assembly_p1.c), or by the PetscDS's
  * quadrature with -assembly fe (one material). */
-static PetscErrorCode ElasticEnergyIntegral(MMCtx *ctx, Vec ucart, PetscReal *energy)
+static PetscErrorCode ElasticEnergyIntegral(const MMOperators *op, const MMMaterial *mat, Vec ucart, PetscReal *energy)
 {
-  DM          dm = ctx->op.dm;
+  DM          dm = op->dm;
   PetscScalar integral[1];
   Vec         xloc;
 
   PetscFunctionBeginUser;
-  if (ctx->opt.assembly == MM_ASSEMBLY_FE) {
+  if (op->assembly == MM_ASSEMBLY_FE) {
     PetscCall(DMPlexComputeIntegralFEM(dm, ucart, integral, NULL));
     *energy = PetscRealPart(integral[0]);
     PetscFunctionReturn(0);
@@ -657,43 +688,42 @@ static PetscErrorCode ElasticEnergyIntegral(MMCtx *ctx, Vec ucart, PetscReal *en
   PetscCall(VecZeroEntries(xloc));
   PetscCall(DMGlobalToLocal(dm, ucart, INSERT_VALUES, xloc));
   PetscCall(DMPlexInsertBoundaryValues(dm, PETSC_TRUE, xloc, 0.0, NULL, NULL, NULL));
-  PetscCall(MMApplyP1(dm, &ctx->material, xloc, NULL, energy));
+  PetscCall(MMApplyP1(dm, mat, xloc, NULL, energy));
   PetscCall(DMRestoreLocalVector(dm, &xloc));
   PetscFunctionReturn(0);
 }
 
 /* 1/2 int sigma(u_D):eps(u_D), once: the free dofs zero, the Dirichlet data inserted. */
-static PetscErrorCode DirichletEnergy(MMCtx *ctx)
+static PetscErrorCode DirichletEnergy(MMOperators *op, const MMMaterial *mat)
 {
   Vec       zero;
   PetscBool has;
 
   PetscFunctionBeginUser;
-  ctx->op.energy_dirichlet = 0;
-  PetscCall(HasDirichlet(ctx->op.dm, &has));
+  op->energy_dirichlet = 0;
+  PetscCall(HasDirichlet(op->dm, &has));
   if (!has) PetscFunctionReturn(0);
-  PetscCall(DMGetGlobalVector(ctx->op.dm, &zero));
+  PetscCall(DMGetGlobalVector(op->dm, &zero));
   PetscCall(VecZeroEntries(zero));
-  PetscCall(ElasticEnergyIntegral(ctx, zero, &ctx->op.energy_dirichlet));
-  PetscCall(DMRestoreGlobalVector(ctx->op.dm, &zero));
+  PetscCall(ElasticEnergyIntegral(op, mat, zero, &op->energy_dirichlet));
+  PetscCall(DMRestoreGlobalVector(op->dm, &zero));
   PetscFunctionReturn(0);
 }
 
-/* Start-up audit: the matrix form of the elastic energy against its quadrature on the state w. */
-PetscErrorCode MMFECheckElasticEnergy(MMCtx *ctx, Vec w)
+/* Start-up audit: the matrix form of the elastic energy against its quadrature on the state w. The
+ * quadrature inserts the Dirichlet data of t = 0: the caller skips it when the data have moved since. */
+PetscErrorCode MMFECheckElasticEnergy(const MMOperators *op, const MMMaterial *mat, Vec w)
 {
   PetscReal e, integral[1];
   Vec       ucart;
 
   PetscFunctionBeginUser;
-  /* the quadrature inserts the Dirichlet data of t = 0: a restarted run's moving boundary is elsewhere */
-  if (ctx->loads.moving && ctx->ckpt.restarted) PetscFunctionReturn(0);
-  PetscCall(MMFEElasticEnergy(ctx, w, &e));
-  PetscCall(DMGetGlobalVector(ctx->op.dm, &ucart));
-  PetscCall(MMFEToCartesian(ctx, w, ucart));
-  PetscCall(ElasticEnergyIntegral(ctx, ucart, &integral[0]));
-  PetscCall(DMRestoreGlobalVector(ctx->op.dm, &ucart));
-  PetscCheck(PetscAbsReal(e - integral[0]) <= 1e-10 * PetscMax(PetscAbsReal(e), PETSC_SMALL), PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_PLIB, "Elastic energy audit failed: matrix form %.16e, %s %.16e", (double)e, ctx->material.uniform ? "quadrature" : "cell by cell", (double)integral[0]);
+  PetscCall(MMFEElasticEnergy(op, w, &e));
+  PetscCall(DMGetGlobalVector(op->dm, &ucart));
+  PetscCall(MMFEToCartesian(op, w, ucart));
+  PetscCall(ElasticEnergyIntegral(op, mat, ucart, &integral[0]));
+  PetscCall(DMRestoreGlobalVector(op->dm, &ucart));
+  PetscCheck(PetscAbsReal(e - integral[0]) <= 1e-10 * PetscMax(PetscAbsReal(e), PETSC_SMALL), PetscObjectComm((PetscObject)op->dm), PETSC_ERR_PLIB, "Elastic energy audit failed: matrix form %.16e, %s %.16e", (double)e, mat->uniform ? "quadrature" : "cell by cell", (double)integral[0]);
   PetscFunctionReturn(0);
 }
 
@@ -712,30 +742,7 @@ PetscErrorCode MMFEDestroy(MMOperators *op)
   PetscCall(VecDestroy(&op->lift));
   PetscCall(VecDestroy(&op->mass_lumped_cart));
   PetscCall(VecDestroy(&op->work));
+  PetscCall(DMDestroy(&op->dm_scalar));
+  PetscCall(ISDestroy(&op->massless));
   PetscFunctionReturn(0);
-}
-
-/* det of the dim x dim matrix a, and its inverse when wanted. */
-PetscReal MMDetInverse(PetscInt dim, const PetscReal a[MM_MAX_DIM][MM_MAX_DIM], PetscReal inv[MM_MAX_DIM][MM_MAX_DIM])
-{
-  PetscReal det;
-
-  if (dim == 2) {
-    det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
-    if (inv && det != 0) {
-      inv[0][0] = a[1][1] / det;
-      inv[0][1] = -a[0][1] / det;
-      inv[1][0] = -a[1][0] / det;
-      inv[1][1] = a[0][0] / det;
-    }
-    return det;
-  }
-  det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
-  if (inv && det != 0)
-    for (PetscInt i = 0; i < 3; ++i)
-      for (PetscInt j = 0; j < 3; ++j) {
-        const PetscInt i1 = (j + 1) % 3, i2 = (j + 2) % 3, j1 = (i + 1) % 3, j2 = (i + 2) % 3;
-        inv[i][j] = (a[i1][j1] * a[i2][j2] - a[i1][j2] * a[i2][j1]) / det;
-      }
-  return det;
 }

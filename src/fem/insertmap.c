@@ -8,7 +8,7 @@
  * global offsets, in PETSc's order and with its rules: off-rank points and points without global
  * dofs are skipped, and a constrained dof is dropped when the global section drops it. */
 #include <petscsection.h>
-#include "insertmap.h"
+#include "fem.h"
 
 static PetscErrorCode Build(DM dm, MMInsertMap *m, Vec g)
 {

@@ -11,7 +11,6 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
-#include "loads.h"
 #include "fem.h"
 #include "mesh.h"
 #include "assembly_p1.h"
@@ -270,7 +269,7 @@ static PetscErrorCode CheckAmplitudeNamesOf(MPI_Comm comm, const char option[], 
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode CheckAmplitudeNames(MPI_Comm comm, const MMOptions *opt)
+static PetscErrorCode CheckAmplitudeNames(MPI_Comm comm, const MMFEProblem *opt)
 {
   const PetscInt n = PetscMax(PetscMax(opt->n_traction, opt->n_pressure), opt->n_point_force);
   const char   **names;
@@ -291,28 +290,27 @@ static PetscErrorCode CheckAmplitudeNames(MPI_Comm comm, const MMOptions *opt)
 
 /* The displacement field on a copy of the mesh without constraints: every dof is in its global
  * vectors, in the same local layout as the constrained DM (as the output's). */
-static PetscErrorCode CreateFullDM(MMCtx *ctx)
+static PetscErrorCode CreateFullDM(MMLoads *ld)
 {
   PetscFE fe;
 
   PetscFunctionBeginUser;
-  PetscCall(DMClone(ctx->op.dm, &ctx->loads.dm_full));
-  PetscCall(PetscFECreateLagrange(PetscObjectComm((PetscObject)ctx->op.dm), ctx->op.dim, ctx->op.dim, PETSC_TRUE, 1, PETSC_DETERMINE, &fe));
+  PetscCall(DMClone(ld->op->dm, &ld->dm_full));
+  PetscCall(PetscFECreateLagrange(PetscObjectComm((PetscObject)ld->op->dm), ld->op->dim, ld->op->dim, PETSC_TRUE, 1, PETSC_DETERMINE, &fe));
   PetscCall(PetscObjectSetName((PetscObject)fe, "displacement"));
-  PetscCall(DMSetField(ctx->loads.dm_full, 0, NULL, (PetscObject)fe));
+  PetscCall(DMSetField(ld->dm_full, 0, NULL, (PetscObject)fe));
   PetscCall(PetscFEDestroy(&fe));
-  PetscCall(DMCreateDS(ctx->loads.dm_full));
+  PetscCall(DMCreateDS(ld->dm_full));
   PetscFunctionReturn(0);
 }
 
 /* The owned constrained dofs, in dm_full's global numbering, and for each the boundary it counts in:
  * a dof that two boundaries constrain (a corner node of both) counts once, in the first listed in
  * -dirichlet. */
-static PetscErrorCode ConstrainedDofs(MMCtx *ctx)
+static PetscErrorCode ConstrainedDofs(MMLoads *ld, const MMFEProblem *pb)
 {
-  MMLoads        *ld = &ctx->loads;
-  DM              dm = ctx->op.dm;
-  const PetscInt  dim = ctx->op.dim;
+  DM              dm = ld->op->dm;
+  const PetscInt  dim = ld->op->dim;
   PetscSection    ls, gsf;
   PetscInt        vStart, vEnd, *owner, n = 0, *idx;
 
@@ -322,8 +320,8 @@ static PetscErrorCode ConstrainedDofs(MMCtx *ctx)
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
   PetscCall(PetscMalloc1(dim * (vEnd - vStart), &owner));
   for (PetscInt i = 0; i < dim * (vEnd - vStart); ++i) owner[i] = -1;
-  for (PetscInt b = 0; b < ctx->opt.n_dirichlet; ++b) {
-    const MMDirichlet *bc = &ctx->opt.dirichlet[b];
+  for (PetscInt b = 0; b < pb->n_dirichlet; ++b) {
+    const MMDirichlet *bc = &pb->dirichlet[b];
     DMLabel            label;
     PetscInt           np, *pts, *vals;
 
@@ -376,9 +374,8 @@ static PetscErrorCode ConstrainedDofs(MMCtx *ctx)
 }
 
 /* The rows D of the Cartesian K and M (M lumped by row sums when -mass_lumped), all columns. */
-static PetscErrorCode AssembleRowsD(MMCtx *ctx)
+static PetscErrorCode AssembleRowsD(MMLoads *ld)
 {
-  MMLoads *ld = &ctx->loads;
   Mat      K, M;
   IS       cols;
   PetscInt rstart, rend;
@@ -386,8 +383,8 @@ static PetscErrorCode AssembleRowsD(MMCtx *ctx)
   PetscFunctionBeginUser;
   PetscCall(MMCreateMatrixP1(ld->dm_full, &K));
   PetscCall(MatDuplicate(K, MAT_DO_NOT_COPY_VALUES, &M));
-  PetscCall(MMAssembleP1(ld->dm_full, &ctx->material, K, M));
-  if (ctx->opt.lumped) {
+  PetscCall(MMAssembleP1(ld->dm_full, ld->material, K, M));
+  if (ld->op->lumped) {
     Vec rs;
     PetscCall(MatCreateVecs(M, NULL, &rs));
     PetscCall(MatGetRowSum(M, rs));
@@ -413,38 +410,38 @@ static PetscErrorCode AssembleRowsD(MMCtx *ctx)
 
 /* The Cartesian field on every dof (dm_full) from the free dofs w, with the Dirichlet data of time t
  * on the constrained dofs when with_bc, zero there otherwise. w may be NULL (zero). */
-static PetscErrorCode FullField(MMCtx *ctx, Vec w, PetscReal t, PetscBool with_bc, Vec full)
+static PetscErrorCode FullField(MMLoads *ld, Vec w, PetscReal t, PetscBool with_bc, Vec full)
 {
-  DM  dm = ctx->op.dm;
+  DM  dm = ld->op->dm;
   Vec g, l;
 
   PetscFunctionBeginUser;
   PetscCall(DMGetGlobalVector(dm, &g));
   PetscCall(DMGetLocalVector(dm, &l));
-  if (w) PetscCall(MMFEToCartesian(ctx, w, g));
+  if (w) PetscCall(MMFEToCartesian(ld->op, w, g));
   else PetscCall(VecZeroEntries(g));
   PetscCall(VecZeroEntries(l));
   PetscCall(DMGlobalToLocal(dm, g, INSERT_VALUES, l));
-  if (with_bc) PetscCall(MMLoadsInsertBoundaryValues(ctx, l, t));
-  PetscCall(MMInsertMapLocalToGlobal(ctx->loads.dm_full, &ctx->loads.to_full, l, full));
+  if (with_bc) PetscCall(MMLoadsInsertBoundaryValues(ld, l, t));
+  PetscCall(MMInsertMapLocalToGlobal(ld->dm_full, &ld->to_full, l, full));
   PetscCall(DMRestoreLocalVector(dm, &l));
   PetscCall(DMRestoreGlobalVector(dm, &g));
   PetscFunctionReturn(0);
 }
 
 /* The free dofs of a dm_full vector of forces, in the w-frame. */
-static PetscErrorCode FreePart(MMCtx *ctx, Vec full, Vec w)
+static PetscErrorCode FreePart(MMLoads *ld, Vec full, Vec w)
 {
-  DM  dm = ctx->op.dm;
+  DM  dm = ld->op->dm;
   Vec g, l;
 
   PetscFunctionBeginUser;
   PetscCall(DMGetGlobalVector(dm, &g));
   PetscCall(DMGetLocalVector(dm, &l));
-  PetscCall(DMGlobalToLocal(ctx->loads.dm_full, full, INSERT_VALUES, l));
+  PetscCall(DMGlobalToLocal(ld->dm_full, full, INSERT_VALUES, l));
   PetscCall(VecZeroEntries(g));
-  PetscCall(MMInsertMapLocalToGlobal(dm, &ctx->loads.to_free, l, g));
-  PetscCall(MMFEForceFromCartesian(ctx, g, w));
+  PetscCall(MMInsertMapLocalToGlobal(dm, &ld->to_free, l, g));
+  PetscCall(MMFEForceFromCartesian(ld->op, g, w));
   PetscCall(DMRestoreLocalVector(dm, &l));
   PetscCall(DMRestoreGlobalVector(dm, &g));
   PetscFunctionReturn(0);
@@ -452,11 +449,11 @@ static PetscErrorCode FreePart(MMCtx *ctx, Vec full, Vec w)
 
 /* A copy of the w-frame vector x with the massless (contact-normal) dofs zeroed: M* has no entries
  * there, in the rows D too. */
-static PetscErrorCode WithInertia(MMCtx *ctx, Vec x, Vec y)
+static PetscErrorCode WithInertia(MMLoads *ld, Vec x, Vec y)
 {
   PetscFunctionBeginUser;
   PetscCall(VecCopy(x, y));
-  if (MMFEHasMasslessDofs(ctx)) PetscCall(VecISSet(y, ctx->contact.is_massless, 0.0));
+  if (MMFEHasMasslessDofs(ld->op)) PetscCall(VecISSet(y, ld->op->massless, 0.0));
   PetscFunctionReturn(0);
 }
 
@@ -465,9 +462,9 @@ static PetscErrorCode WithInertia(MMCtx *ctx, Vec x, Vec y)
 /* Part k at amplitude 1 on every dof (dm_full, Cartesian) into full: k = 0 gravity, m_i g at each
  * vertex (the lumped mass is exact for a constant g), then the tractions, pressures and point forces
  * (PartName). */
-static PetscErrorCode LoadPartFull(MMCtx *ctx, PetscInt k, Vec full)
+static PetscErrorCode LoadPartFull(MMLoads *ld, const MMFEProblem *pb, PetscInt k, Vec full)
 {
-  DM       dm = ctx->op.dm;
+  DM       dm = ld->op->dm;
   Vec      floc;
 
   PetscFunctionBeginUser;
@@ -480,28 +477,28 @@ static PetscErrorCode LoadPartFull(MMCtx *ctx, PetscInt k, Vec full)
     PetscScalar       *f;
     PetscInt           vStart, vEnd;
 
-    PetscCall(DMGetLocalVector(ctx->out.dm_scalar, &mloc));
-    PetscCall(MMFEVertexMasses(ctx, mloc));
+    PetscCall(DMGetLocalVector(ld->op->dm_scalar, &mloc));
+    PetscCall(MMFEVertexMasses(ld->op, ld->material, mloc));
     PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
     PetscCall(VecGetArrayRead(mloc, &m));
     PetscCall(VecGetArray(floc, &f));
     for (PetscInt v = vStart; v < vEnd; ++v) {
       PetscInt off, soff;
       PetscCall(DMPlexGetPointLocal(dm, v, &off, NULL));
-      PetscCall(DMPlexGetPointLocal(ctx->out.dm_scalar, v, &soff, NULL));
-      for (PetscInt c = 0; c < ctx->op.dim; ++c) f[off + c] = m[soff] * ctx->opt.gravity[c];
+      PetscCall(DMPlexGetPointLocal(ld->op->dm_scalar, v, &soff, NULL));
+      for (PetscInt c = 0; c < ld->op->dim; ++c) f[off + c] = m[soff] * pb->gravity[c];
     }
     PetscCall(VecRestoreArray(floc, &f));
     PetscCall(VecRestoreArrayRead(mloc, &m));
-    PetscCall(DMRestoreLocalVector(ctx->out.dm_scalar, &mloc));
+    PetscCall(DMRestoreLocalVector(ld->op->dm_scalar, &mloc));
     /* the vertex masses are summed over ranks already */
-    PetscCall(DMLocalToGlobal(ctx->loads.dm_full, floc, INSERT_VALUES, full));
+    PetscCall(DMLocalToGlobal(ld->dm_full, floc, INSERT_VALUES, full));
   } else {
-    const PetscInt nt = ctx->opt.n_traction, np = ctx->opt.n_pressure;
-    if (k <= nt) PetscCall(MMFEAddTraction(ctx, k - 1, floc));
-    else if (k <= nt + np) PetscCall(MMFEAddPressure(ctx, k - 1 - nt, floc));
-    else PetscCall(MMFEAddPointForce(ctx, k - 1 - nt - np, floc));
-    PetscCall(DMLocalToGlobal(ctx->loads.dm_full, floc, ADD_VALUES, full));
+    const PetscInt nt = pb->n_traction, np = pb->n_pressure;
+    if (k <= nt) PetscCall(MMFEAddTraction(ld->op, &pb->traction[k - 1], floc));
+    else if (k <= nt + np) PetscCall(MMFEAddPressure(ld->op, &pb->pressure[k - 1 - nt], floc));
+    else PetscCall(MMFEAddPointForce(ld->op, &pb->point_force[k - 1 - nt - np], floc));
+    PetscCall(DMLocalToGlobal(ld->dm_full, floc, ADD_VALUES, full));
   }
   PetscCall(DMRestoreLocalVector(dm, &floc));
   PetscFunctionReturn(0);
@@ -509,14 +506,14 @@ static PetscErrorCode LoadPartFull(MMCtx *ctx, PetscInt k, Vec full)
 
 /* Part k's option prefix (-gravity, -traction_NAME, -pressure_NAME, -point_force_NAME) and its
  * amplitude's options. */
-static PetscErrorCode PartName(MMOptions *opt, PetscInt k, char option[], size_t len, MMAmplitudeOptions **amp)
+static PetscErrorCode PartName(const MMFEProblem *opt, PetscInt k, char option[], size_t len, const MMAmplitudeOptions **amp)
 {
   const PetscInt nt = opt->n_traction, np = opt->n_pressure;
 
   PetscFunctionBeginUser;
   if (k == 0) {
     PetscCall(PetscStrncpy(option, "-gravity", len));
-    *amp = &opt->gravity_amplitude;
+    *amp = opt->gravity_amplitude;
   } else if (k <= nt) {
     PetscCall(PetscSNPrintf(option, len, "-traction_%s", opt->traction[k - 1].name));
     *amp = &opt->traction[k - 1].amplitude;
@@ -530,39 +527,38 @@ static PetscErrorCode PartName(MMOptions *opt, PetscInt k, char option[], size_t
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode CreateParts(MMCtx *ctx)
+static PetscErrorCode CreateParts(MMLoads *ld, const MMFEProblem *pb)
 {
-  MMLoads *ld   = &ctx->loads;
-  MPI_Comm comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  MPI_Comm comm = PetscObjectComm((PetscObject)ld->op->dm);
 
   PetscFunctionBeginUser;
-  ld->nparts = 1 + ctx->opt.n_traction + ctx->opt.n_pressure + ctx->opt.n_point_force;
+  ld->nparts = 1 + pb->n_traction + pb->n_pressure + pb->n_point_force;
   PetscCall(PetscCalloc1(ld->nparts, &ld->amp));
   for (PetscInt k = 0; k < ld->nparts; ++k) {
     char                option[300];
-    MMAmplitudeOptions *amp = NULL;
-    PetscCall(PartName(&ctx->opt, k, option, sizeof(option), &amp));
+    const MMAmplitudeOptions *amp = NULL;
+    PetscCall(PartName(pb, k, option, sizeof(option), &amp));
     PetscCall(AmplitudeCreate(comm, option, amp, &ld->amp[k]));
   }
   for (PetscInt k = 0; k < ld->nparts; ++k) ld->in_time = (PetscBool)(ld->in_time || !ld->amp[k].constant);
-  PetscCheck(!ld->in_time || ctx->opt.initial_state != MM_INITIAL_STATIC_SLIDING, comm, PETSC_ERR_USER_INPUT, "-initial_state static_sliding balances the loads of t = 0 for all time: it needs constant loads. Drop the -gravity_amplitude, -traction_NAME_amplitude, -pressure_NAME_amplitude and -point_force_NAME_amplitude options, or use -initial_state given");
-  if (!ld->in_time && !ctx->opt.n_dirichlet) PetscFunctionReturn(0);
+  PetscCheck(!ld->in_time || !pb->static_sliding, comm, PETSC_ERR_USER_INPUT, "-initial_state static_sliding balances the loads of t = 0 for all time: it needs constant loads. Drop the -gravity_amplitude, -traction_NAME_amplitude, -pressure_NAME_amplitude and -point_force_NAME_amplitude options, or use -initial_state given");
+  if (!ld->in_time && !pb->n_dirichlet) PetscFunctionReturn(0);
   if (ld->in_time) {
     PetscCall(PetscMalloc1(ld->nparts, &ld->part));
-    PetscCall(VecDuplicate(ctx->op.load, &ld->load_old));
+    PetscCall(VecDuplicate(ld->op->load, &ld->load_old));
   }
-  if (ctx->opt.n_dirichlet) PetscCall(PetscMalloc1(ld->nparts, &ld->partD));
+  if (pb->n_dirichlet) PetscCall(PetscMalloc1(ld->nparts, &ld->partD));
   /* a load in time on a body without Dirichlet boundaries still builds its parts on dm_full */
-  if (!ld->dm_full) PetscCall(CreateFullDM(ctx));
+  if (!ld->dm_full) PetscCall(CreateFullDM(ld));
   for (PetscInt k = 0; k < ld->nparts; ++k) {
     Vec full;
     PetscCall(DMGetGlobalVector(ld->dm_full, &full));
-    PetscCall(LoadPartFull(ctx, k, full));
+    PetscCall(LoadPartFull(ld, pb, k, full));
     if (ld->in_time) {
-      PetscCall(VecDuplicate(ctx->op.load, &ld->part[k]));
-      PetscCall(FreePart(ctx, full, ld->part[k]));
+      PetscCall(VecDuplicate(ld->op->load, &ld->part[k]));
+      PetscCall(FreePart(ld, full, ld->part[k]));
     }
-    if (ctx->opt.n_dirichlet) {
+    if (pb->n_dirichlet) {
       Vec sub;
       PetscCall(VecDuplicate(ld->rD, &ld->partD[k]));
       PetscCall(VecGetSubVector(full, ld->isD, &sub));
@@ -575,9 +571,8 @@ static PetscErrorCode CreateParts(MMCtx *ctx)
 }
 
 /* L_D(t) = sum_k a_k(t) L_k on D, into y. */
-static PetscErrorCode LoadD(MMCtx *ctx, PetscReal t, Vec y)
+static PetscErrorCode LoadD(MMLoads *ld, PetscReal t, Vec y)
 {
-  MMLoads *ld = &ctx->loads;
 
   PetscFunctionBeginUser;
   PetscCall(VecZeroEntries(y));
@@ -586,22 +581,21 @@ static PetscErrorCode LoadD(MMCtx *ctx, PetscReal t, Vec y)
 }
 
 /* The boundary velocity on D, uD(1) - uD(0), and vD . M_DD vD for the kinetic energy. */
-static PetscErrorCode SetUpMoving(MMCtx *ctx)
+static PetscErrorCode SetUpMoving(MMLoads *ld, const MMFEProblem *pb)
 {
-  MMLoads    *ld = &ctx->loads;
   Vec         sub, y;
   PetscScalar vMv;
 
   PetscFunctionBeginUser;
-  for (PetscInt b = 0; b < ctx->opt.n_dirichlet; ++b)
-    for (PetscInt c = 0; c < ctx->opt.dirichlet[b].nvelocity; ++c) ld->moving = (PetscBool)(ld->moving || ctx->opt.dirichlet[b].velocity[c] != 0);
+  for (PetscInt b = 0; b < pb->n_dirichlet; ++b)
+    for (PetscInt c = 0; c < pb->dirichlet[b].nvelocity; ++c) ld->moving = (PetscBool)(ld->moving || pb->dirichlet[b].velocity[c] != 0);
   ld->moving = (PetscBool)(ld->moving || ld->dirichlet_amplitude);
   if (!ld->moving) PetscFunctionReturn(0);
-  PetscCall(FullField(ctx, NULL, 1.0, PETSC_TRUE, ld->full));
+  PetscCall(FullField(ld, NULL, 1.0, PETSC_TRUE, ld->full));
   PetscCall(VecGetSubVector(ld->full, ld->isD, &sub));
   PetscCall(VecCopy(sub, ld->vD));
   PetscCall(VecRestoreSubVector(ld->full, ld->isD, &sub));
-  PetscCall(FullField(ctx, NULL, 0.0, PETSC_TRUE, ld->full));
+  PetscCall(FullField(ld, NULL, 0.0, PETSC_TRUE, ld->full));
   PetscCall(VecGetSubVector(ld->full, ld->isD, &sub));
   PetscCall(VecAXPY(ld->vD, -1.0, sub));
   PetscCall(VecRestoreSubVector(ld->full, ld->isD, &sub));
@@ -619,11 +613,9 @@ static PetscErrorCode SetUpMoving(MMCtx *ctx)
  * the lumped mass (M_fD = 0) it reaches the free dofs only through K_fD u_D(t), and the boundary
  * nodes' own inertia is left out of the system, their motion being the support's (docs/method.md
  * section 10); the consistent mass would need a_D in M*_fD a_D, which is not carried. */
-static PetscErrorCode DirichletAmplitudes(MMCtx *ctx)
+static PetscErrorCode DirichletAmplitudes(MMLoads *ld, const MMFEProblem *opt)
 {
-  MMLoads  *ld   = &ctx->loads;
-  MMOptions *opt = &ctx->opt;
-  MPI_Comm  comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  MPI_Comm  comm = PetscObjectComm((PetscObject)ld->op->dm);
   char      prefix[PETSC_MAX_PATH_LEN];
 
   PetscFunctionBeginUser;
@@ -634,8 +626,8 @@ static PetscErrorCode DirichletAmplitudes(MMCtx *ctx)
     PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "-dirichlet_%s", bc->name));
     PetscCall(AmplitudeCreate(comm, prefix, &bc->amplitude, &ld->bc_amp[b]));
     if (ld->bc_amp[b].constant) continue;
-    PetscCheck(opt->lumped, comm, PETSC_ERR_SUP, "%s_amplitude %s needs -mass_lumped: with the consistent mass the boundary's acceleration drives the free dofs through M_fD, which is not in the scheme (a constant -dirichlet_%s_velocity works with either mass)", prefix, bc->amplitude.kind, bc->name);
-    PetscCheck(opt->damping_mass <= 0 && opt->damping_stiffness <= 0 && opt->damping_ratio <= 0, comm, PETSC_ERR_SUP, "%s_amplitude with Rayleigh damping is not supported: the damping force of a moving boundary is not in the scheme. Drop one of the two", prefix);
+    PetscCheck(ld->op->lumped, comm, PETSC_ERR_SUP, "%s_amplitude %s needs -mass_lumped: with the consistent mass the boundary's acceleration drives the free dofs through M_fD, which is not in the scheme (a constant -dirichlet_%s_velocity works with either mass)", prefix, bc->amplitude.kind, bc->name);
+    PetscCheck(!opt->damped, comm, PETSC_ERR_SUP, "%s_amplitude with Rayleigh damping is not supported: the damping force of a moving boundary is not in the scheme. Drop one of the two", prefix);
     bc->amp                 = &ld->bc_amp[b];
     ld->dirichlet_amplitude = PETSC_TRUE;
   }
@@ -647,10 +639,9 @@ static PetscErrorCode DirichletAmplitudes(MMCtx *ctx)
  * t. DMPlexInsertBoundaryValues projects the data point by point, one small MatMult per point: with
  * 21k constrained vertices (the slab of the surface bench) its 5 calls per step took 38 s of a
  * 104 s run on 2 ranks. The table is read off two such projections, at t = 0 and t = 1. */
-static PetscErrorCode TabulateBoundaryValues(MMCtx *ctx)
+static PetscErrorCode TabulateBoundaryValues(MMLoads *ld, const MMFEProblem *pb)
 {
-  MMLoads           *ld = &ctx->loads;
-  DM                 dm = ctx->op.dm;
+  DM                 dm = ld->op->dm;
   PetscSection       sec;
   PetscInt           pStart, pEnd, n = 0;
   Vec                l0, l1;
@@ -658,7 +649,7 @@ static PetscErrorCode TabulateBoundaryValues(MMCtx *ctx)
 
   PetscFunctionBeginUser;
   ld->bv_n = -1;
-  if (!ctx->opt.n_dirichlet || ld->dirichlet_amplitude) PetscFunctionReturn(0);
+  if (!pb->n_dirichlet || ld->dirichlet_amplitude) PetscFunctionReturn(0);
   PetscCall(DMGetLocalSection(dm, &sec));
   PetscCall(PetscSectionGetChart(sec, &pStart, &pEnd));
   for (PetscInt p = pStart; p < pEnd; ++p) {
@@ -697,16 +688,16 @@ static PetscErrorCode TabulateBoundaryValues(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
-/* The Dirichlet data of time t into the constrained dofs of a local vector of dm: from the table
- * where the data are affine in t, else (amplitudes, or before MMLoadsSetUp) by DMPlex's projection. */
-PetscErrorCode MMLoadsInsertBoundaryValues(MMCtx *ctx, Vec l, PetscReal t)
+/* The Dirichlet data of time t into the constrained dofs of a local vector of the operators' DM: from
+ * the table where the data are affine in t, else (amplitudes, or during MMLoadsSetUp) by DMPlex's
+ * projection. */
+PetscErrorCode MMLoadsInsertBoundaryValues(MMLoads *ld, Vec l, PetscReal t)
 {
-  MMLoads     *ld = &ctx->loads;
   PetscScalar *a;
 
   PetscFunctionBeginUser;
   if (ld->bv_n < 0 || !ld->bv_idx) {
-    PetscCall(DMPlexInsertBoundaryValues(ctx->op.dm, PETSC_TRUE, l, t, NULL, NULL, NULL));
+    PetscCall(DMPlexInsertBoundaryValues(ld->op->dm, PETSC_TRUE, l, t, NULL, NULL, NULL));
     PetscFunctionReturn(0);
   }
   PetscCall(VecGetArray(l, &a));
@@ -715,23 +706,26 @@ PetscErrorCode MMLoadsInsertBoundaryValues(MMCtx *ctx, Vec l, PetscReal t)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMLoadsSetUp(MMCtx *ctx)
+/* The loads' parts and the Dirichlet data's rows on the operators op (borrowed), after
+ * MMFEAssembleOperators. */
+PetscErrorCode MMLoadsSetUp(MMLoads *ld, MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb)
 {
-  MMLoads *ld = &ctx->loads;
 
   PetscFunctionBeginUser;
-  PetscCall(CheckAmplitudeNames(PetscObjectComm((PetscObject)ctx->op.dm), &ctx->opt));
-  if (ctx->opt.n_dirichlet) PetscCall(DirichletAmplitudes(ctx));
-  PetscCall(TabulateBoundaryValues(ctx));
-  if (ctx->opt.n_dirichlet) {
-    PetscCall(CreateFullDM(ctx));
-    PetscCall(ConstrainedDofs(ctx));
-    PetscCall(AssembleRowsD(ctx));
-    PetscCall(PetscCalloc1(MM_MAX_DIM * ctx->opt.n_dirichlet, &ld->reaction));
+  ld->op       = op;
+  ld->material = mat;
+  PetscCall(CheckAmplitudeNames(PetscObjectComm((PetscObject)ld->op->dm), pb));
+  if (pb->n_dirichlet) PetscCall(DirichletAmplitudes(ld, pb));
+  PetscCall(TabulateBoundaryValues(ld, pb));
+  if (pb->n_dirichlet) {
+    PetscCall(CreateFullDM(ld));
+    PetscCall(ConstrainedDofs(ld, pb));
+    PetscCall(AssembleRowsD(ld));
+    PetscCall(PetscCalloc1(MM_MAX_DIM * pb->n_dirichlet, &ld->reaction));
   }
-  PetscCall(CreateParts(ctx));
-  if (ctx->opt.n_dirichlet) PetscCall(SetUpMoving(ctx));
-  PetscCall(MMLoadsSetTime(ctx, 0.0, 0.0));
+  PetscCall(CreateParts(ld, pb));
+  if (pb->n_dirichlet) PetscCall(SetUpMoving(ld, pb));
+  PetscCall(MMLoadsSetTime(ld, 0.0, 0.0));
   PetscFunctionReturn(0);
 }
 
@@ -741,120 +735,115 @@ PetscErrorCode MMLoadsSetUp(MMCtx *ctx)
  * load_old = L(t0); with moving Dirichlet data op.lift = K_fD u_D(t1) and op.energy_dirichlet =
  * 1/2 u_D.A_DD u_D at t1, both from the rows D of K, the operator the reaction uses, so that the
  * energy identity closes with the reaction's work (docs/method.md section 10). */
-PetscErrorCode MMLoadsSetTime(MMCtx *ctx, PetscReal t0, PetscReal t1)
+PetscErrorCode MMLoadsSetTime(MMLoads *ld, PetscReal t0, PetscReal t1)
 {
-  MMLoads *ld = &ctx->loads;
 
   PetscFunctionBeginUser;
   ld->t0 = t0;
   ld->t1 = t1;
   if (ld->in_time) {
-    PetscCall(VecZeroEntries(ctx->op.load));
+    PetscCall(VecZeroEntries(ld->op->load));
     PetscCall(VecZeroEntries(ld->load_old));
     for (PetscInt k = 0; k < ld->nparts; ++k) {
-      PetscCall(VecAXPY(ctx->op.load, MMAmplitudeValue(&ld->amp[k], t1), ld->part[k]));
+      PetscCall(VecAXPY(ld->op->load, MMAmplitudeValue(&ld->amp[k], t1), ld->part[k]));
       PetscCall(VecAXPY(ld->load_old, MMAmplitudeValue(&ld->amp[k], t0), ld->part[k]));
     }
   }
   if (ld->moving) {
     Vec         sub;
     PetscScalar e;
-    PetscCall(FullField(ctx, NULL, t1, PETSC_TRUE, ld->full));
+    PetscCall(FullField(ld, NULL, t1, PETSC_TRUE, ld->full));
     PetscCall(VecGetSubVector(ld->full, ld->isD, &sub));
     PetscCall(VecCopy(sub, ld->uD1));
     PetscCall(VecRestoreSubVector(ld->full, ld->isD, &sub));
     PetscCall(MatMult(ld->KD, ld->full, ld->rD));
     PetscCall(VecDot(ld->uD1, ld->rD, &e));
-    ctx->op.energy_dirichlet = 0.5 * PetscRealPart(e);
+    ld->op->energy_dirichlet = 0.5 * PetscRealPart(e);
     PetscCall(MatMultTranspose(ld->KD, ld->uD1, ld->full2));
-    PetscCall(FreePart(ctx, ld->full2, ctx->op.lift));
+    PetscCall(FreePart(ld, ld->full2, ld->op->lift));
   }
   PetscFunctionReturn(0);
 }
 
 /* R_D = (M* a + K u - L)_D at time t, the support's force on the body on each constrained dof. */
-static PetscErrorCode Reaction(MMCtx *ctx, Vec u, Vec a, PetscReal t, Vec R)
+static PetscErrorCode Reaction(MMLoads *ld, Vec u, Vec a, PetscReal t, Vec R)
 {
-  MMLoads *ld = &ctx->loads;
   Vec      aw;
 
   PetscFunctionBeginUser;
-  PetscCall(FullField(ctx, u, t, PETSC_TRUE, ld->full));
+  PetscCall(FullField(ld, u, t, PETSC_TRUE, ld->full));
   PetscCall(MatMult(ld->KD, ld->full, R));
   PetscCall(VecDuplicate(a, &aw));
-  PetscCall(WithInertia(ctx, a, aw));
+  PetscCall(WithInertia(ld, a, aw));
   /* the data are affine in t: their acceleration is zero */
-  PetscCall(FullField(ctx, aw, t, PETSC_FALSE, ld->full2));
+  PetscCall(FullField(ld, aw, t, PETSC_FALSE, ld->full2));
   PetscCall(VecDestroy(&aw));
   PetscCall(MatMultAdd(ld->MD, ld->full2, R, R));
-  PetscCall(LoadD(ctx, t, ld->rD0));
+  PetscCall(LoadD(ld, t, ld->rD0));
   PetscCall(VecAXPY(R, -1.0, ld->rD0));
   PetscFunctionReturn(0);
 }
 
 /* The resultant of R per boundary and Cartesian component, over all ranks. */
-static PetscErrorCode SumReactions(MMCtx *ctx, Vec R)
+static PetscErrorCode SumReactions(MMLoads *ld, Vec R)
 {
-  MMLoads           *ld = &ctx->loads;
   const PetscScalar *r;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscArrayzero(ld->reaction, MM_MAX_DIM * ctx->opt.n_dirichlet));
+  PetscCall(PetscArrayzero(ld->reaction, MM_MAX_DIM * ld->n_bc));
   PetscCall(VecGetArrayRead(R, &r));
   for (PetscInt i = 0; i < ld->nD; ++i) ld->reaction[MM_MAX_DIM * ld->Dbc[i] + ld->Dcomp[i]] += PetscRealPart(r[i]);
   PetscCall(VecRestoreArrayRead(R, &r));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, ld->reaction, MM_MAX_DIM * ctx->opt.n_dirichlet, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)ctx->op.dm)));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, ld->reaction, MM_MAX_DIM * ld->n_bc, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)ld->op->dm)));
   PetscFunctionReturn(0);
 }
 
-/* The reactions of the current state, at the current time (the initial row, a restart's). */
-PetscErrorCode MMLoadsReactions(MMCtx *ctx)
+/* The reactions of the current state u, a, at the current time (the initial row, a restart's). */
+PetscErrorCode MMLoadsReactions(MMLoads *ld, Vec u, Vec a)
 {
-  MMLoads *ld = &ctx->loads;
   Vec      R;
 
   PetscFunctionBeginUser;
-  if (!ctx->opt.n_dirichlet) PetscFunctionReturn(0);
+  if (!ld->n_bc) PetscFunctionReturn(0);
   PetscCall(VecDuplicate(ld->rD, &R));
-  PetscCall(Reaction(ctx, ctx->state.u, ctx->state.a, ld->t1, R));
-  PetscCall(SumReactions(ctx, R));
+  PetscCall(Reaction(ld, u, a, ld->t1, R));
+  PetscCall(SumReactions(ld, R));
   PetscCall(VecDestroy(&R));
   PetscFunctionReturn(0);
 }
 
-/* The accepted step's works on the constrained dofs, and the reactions at its end: with the data
+/* The accepted step's works on the constrained dofs, and the reactions at its end (the state u, a at
+ * its end, u_old, a_old at its start): with the data
  * moving by du_D = u_D(t1) - u_D(t0), the loads there do 1/2 (L_D^n + L_D^{n+1}).du_D (part of
  * W_ext) and the support 1/2 (R_D^n + R_D^{n+1}).du_D (W_D). R_D^n is recomputed from the step's
  * start, so nothing but the running sum is carried between steps (or in a checkpoint). */
-PetscErrorCode MMLoadsStepWork(MMCtx *ctx, PetscReal *w_ext_D, PetscReal *w_D)
+PetscErrorCode MMLoadsStepWork(MMLoads *ld, Vec u, Vec a, Vec u_old, Vec a_old, PetscReal *w_ext_D, PetscReal *w_D)
 {
-  MMLoads    *ld = &ctx->loads;
-  MMState    *s  = &ctx->state;
   Vec         R1, R0, L0, du, sub;
   PetscScalar wr, wl;
 
   PetscFunctionBeginUser;
   *w_ext_D = *w_D = 0;
-  if (!ctx->opt.n_dirichlet) PetscFunctionReturn(0);
+  if (!ld->n_bc) PetscFunctionReturn(0);
   PetscCall(VecDuplicate(ld->rD, &R1));
-  PetscCall(Reaction(ctx, s->u, s->a, ld->t1, R1));
-  PetscCall(SumReactions(ctx, R1));
+  PetscCall(Reaction(ld, u, a, ld->t1, R1));
+  PetscCall(SumReactions(ld, R1));
   if (ld->moving) {
     PetscCall(VecDuplicate(ld->rD, &R0));
     PetscCall(VecDuplicate(ld->rD, &L0));
     PetscCall(VecDuplicate(ld->rD, &du));
-    PetscCall(FullField(ctx, NULL, ld->t0, PETSC_TRUE, ld->full));
+    PetscCall(FullField(ld, NULL, ld->t0, PETSC_TRUE, ld->full));
     PetscCall(VecGetSubVector(ld->full, ld->isD, &sub));
     PetscCall(VecCopy(sub, ld->uD0));
     PetscCall(VecRestoreSubVector(ld->full, ld->isD, &sub));
     PetscCall(VecWAXPY(du, -1.0, ld->uD0, ld->uD1));
     /* with amplitudes the boundary's velocity changes: the output shows the step's mean */
     if (ld->dirichlet_amplitude && ld->t1 > ld->t0) PetscCall(VecAXPBY(ld->vD, 1.0 / (ld->t1 - ld->t0), 0.0, du));
-    PetscCall(Reaction(ctx, s->u_old, s->a_old, ld->t0, R0));
+    PetscCall(Reaction(ld, u_old, a_old, ld->t0, R0));
     PetscCall(VecAXPY(R0, 1.0, R1));
     PetscCall(VecDot(R0, du, &wr));
-    PetscCall(LoadD(ctx, ld->t0, L0));
-    PetscCall(LoadD(ctx, ld->t1, R0));
+    PetscCall(LoadD(ld, ld->t0, L0));
+    PetscCall(LoadD(ld, ld->t1, R0));
     PetscCall(VecAXPY(L0, 1.0, R0));
     PetscCall(VecDot(L0, du, &wl));
     *w_D     = 0.5 * PetscRealPart(wr);
@@ -869,9 +858,8 @@ PetscErrorCode MMLoadsStepWork(MMCtx *ctx, PetscReal *w_ext_D, PetscReal *w_D)
 
 /* The kinetic energy the constrained dofs add to 1/2 v_f.M*_ff v_f: with v = (v_f, v_D),
  * 1/2 v.M* v = 1/2 v_f.M*_ff v_f + v_D.M_Df v_f + 1/2 v_D.M_DD v_D = ... + v_D.(M_D v) - 1/2 v_D.M_DD v_D. */
-PetscErrorCode MMLoadsDirichletKinetic(MMCtx *ctx, Vec v, PetscReal *ek)
+PetscErrorCode MMLoadsDirichletKinetic(MMLoads *ld, Vec v, PetscReal *ek)
 {
-  MMLoads    *ld = &ctx->loads;
   Vec         vw;
   PetscScalar vMv;
 
@@ -881,8 +869,8 @@ PetscErrorCode MMLoadsDirichletKinetic(MMCtx *ctx, Vec v, PetscReal *ek)
    * M_fD = 0, so nothing couples them to the free dofs) */
   if (!ld->moving || ld->dirichlet_amplitude) PetscFunctionReturn(0);
   PetscCall(VecDuplicate(v, &vw));
-  PetscCall(WithInertia(ctx, v, vw));
-  PetscCall(FullField(ctx, vw, 0.0, PETSC_FALSE, ld->full2));
+  PetscCall(WithInertia(ld, v, vw));
+  PetscCall(FullField(ld, vw, 0.0, PETSC_FALSE, ld->full2));
   PetscCall(VecDestroy(&vw));
   PetscCall(VecISCopy(ld->full2, ld->isD, SCATTER_FORWARD, ld->vD));
   PetscCall(MatMult(ld->MD, ld->full2, ld->rD0));
@@ -893,10 +881,10 @@ PetscErrorCode MMLoadsDirichletKinetic(MMCtx *ctx, Vec v, PetscReal *ek)
 
 /* The whole velocity field's constrained dofs (the output's dm_out shares dm_full's layout): the
  * boundary's velocity. */
-PetscErrorCode MMLoadsInsertDirichletVelocity(MMCtx *ctx, Vec whole)
+PetscErrorCode MMLoadsInsertDirichletVelocity(MMLoads *ld, Vec whole)
 {
   PetscFunctionBeginUser;
-  if (ctx->loads.moving) PetscCall(VecISCopy(whole, ctx->loads.isD, SCATTER_FORWARD, ctx->loads.vD));
+  if (ld->moving) PetscCall(VecISCopy(whole, ld->isD, SCATTER_FORWARD, ld->vD));
   PetscFunctionReturn(0);
 }
 

@@ -6,7 +6,7 @@
  * int_F -p n phi_i = -p n |F| / d on each of F's d vertices (P1 on a simplex facet), the same rule
  * as a traction's (MMMeshFacetsAddNodal). A point force is added once, on the rank that owns its
  * vertex. The callers sum over ranks by a DMLocalToGlobal with ADD, as for the tractions. */
-#include "loads.h"
+#include "fem.h"
 #include "mesh.h"
 
 /* A pressure acts on boundary faces: a group of cells or of nodes would load nothing, and a face
@@ -57,13 +57,12 @@ static PetscErrorCode FacetOutwardNormal(DM dm, const MMFacetList *fl, PetscInt 
   PetscFunctionReturn(0);
 }
 
-/* Nodal forces of pressure b at amplitude 1: -p n |F| / d on each vertex of each facet F, added to
- * the local vector floc of ctx->op.dm (Cartesian). */
-PetscErrorCode MMFEAddPressure(MMCtx *ctx, PetscInt b, Vec floc)
+/* Nodal forces of pressure pr at amplitude 1: -p n |F| / d on each vertex of each facet F, added to
+ * the local vector floc of op->dm (Cartesian). */
+PetscErrorCode MMFEAddPressure(const MMOperators *op, const MMPressure *pr, Vec floc)
 {
-  DM                 dm  = ctx->op.dm;
-  const MMPressure  *pr  = &ctx->opt.pressure[b];
-  const PetscInt     dim = ctx->op.dim;
+  DM                 dm  = op->dm;
+  const PetscInt     dim = op->dim;
   DMLabel            label;
   MMFacetList        fl;
   PetscSection       cs;
@@ -117,13 +116,12 @@ static PetscErrorCode CheckPointGroup(DM dm, const char name[], DMLabel label, P
   PetscFunctionReturn(0);
 }
 
-/* Nodal forces of point force b at amplitude 1: its vector on each node of the group, added to
+/* Nodal forces of point force pf at amplitude 1: its vector on each node of the group, added to
  * floc on the rank that owns the node only (a shared node is in several ranks' local vectors). */
-PetscErrorCode MMFEAddPointForce(MMCtx *ctx, PetscInt b, Vec floc)
+PetscErrorCode MMFEAddPointForce(const MMOperators *op, const MMPointForce *pf, Vec floc)
 {
-  DM                  dm  = ctx->op.dm;
-  const MMPointForce *pf  = &ctx->opt.point_force[b];
-  const PetscInt      dim = ctx->op.dim;
+  DM                  dm  = op->dm;
+  const PetscInt      dim = op->dim;
   DMLabel             label;
   PetscSection        gs;
   PetscInt            np, *pts, *vals, vStart, vEnd, nnodes = 0;

@@ -21,15 +21,23 @@
 #include "fem.h"
 #include <petscblaslapack.h>
 
+/* What the redistribution reads and builds: the operators (M, M*, the lumped masses), the material
+ * and the contact boundary. */
+typedef struct {
+  MMOperators          *op;
+  const MMMaterial     *material;
+  const MMMassBoundary *mb;
+} MassRedist;
+
 /* The centre and half-diagonal of the mesh's bounding box: rigid modes about it, scaled by it, keep
  * the Gram matrices of order one whatever the units and the position of the body. */
-static PetscErrorCode RigidFrame(MMCtx *ctx, PetscReal x0[], PetscReal *ell)
+static PetscErrorCode RigidFrame(MassRedist *r, PetscReal x0[], PetscReal *ell)
 {
-  const PetscInt dim = ctx->op.dim;
+  const PetscInt dim = r->op->dim;
   PetscReal      lo[MM_MAX_DIM], hi[MM_MAX_DIM], d2 = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetBoundingBox(ctx->op.dm, lo, hi));
+  PetscCall(DMGetBoundingBox(r->op->dm, lo, hi));
   for (PetscInt d = 0; d < MM_MAX_DIM; ++d) x0[d] = 0;
   for (PetscInt d = 0; d < dim; ++d) {
     x0[d] = 0.5 * (lo[d] + hi[d]);
@@ -40,20 +48,20 @@ static PetscErrorCode RigidFrame(MMCtx *ctx, PetscReal x0[], PetscReal *ell)
 }
 
 /* The rigid modes as w-frame vectors on the free dofs, about x0 and scaled by 1/ell. */
-static PetscErrorCode RigidModes(MMCtx *ctx, const PetscReal x0[], PetscReal ell, Vec R[])
+static PetscErrorCode RigidModes(MassRedist *r, const PetscReal x0[], PetscReal ell, Vec R[])
 {
-  const PetscInt nr = MMFENumRigidModes(ctx->op.dim);
+  const PetscInt nr = MMFENumRigidModes(r->op->dim);
   Vec            cart;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalVector(ctx->op.dm, &cart));
+  PetscCall(DMGetGlobalVector(r->op->dm, &cart));
   for (PetscInt k = 0; k < nr; ++k) PetscCall(VecDuplicate(cart, &R[k]));
-  PetscCall(MMFERigidModesCartesian(ctx, x0, ell, nr, R));
+  PetscCall(MMFERigidModesCartesian(r->op, x0, ell, nr, R));
   for (PetscInt k = 0; k < nr; ++k) {
-    PetscCall(MatMultTranspose(ctx->op.Q, R[k], cart)); /* to the w-frame */
+    PetscCall(MatMultTranspose(r->op->Q, R[k], cart)); /* to the w-frame */
     PetscCall(VecCopy(cart, R[k]));
   }
-  PetscCall(DMRestoreGlobalVector(ctx->op.dm, &cart));
+  PetscCall(DMRestoreGlobalVector(r->op->dm, &cart));
   PetscFunctionReturn(0);
 }
 
@@ -77,11 +85,11 @@ static PetscErrorCode Gram(Mat A, PetscInt nr, Vec R[], PetscReal G[MM_MAX_RIGID
 /* Each local vertex's kind, ghosts included: 1 a contact node, 0 a free node, -1 a node with a
  * Dirichlet component; and each contact node's normal, component by component (n[d], all on the
  * scalar vertex DM: the set-up has no vector one yet). */
-static PetscErrorCode VertexKinds(MMCtx *ctx, Vec *kind, Vec n[])
+static PetscErrorCode VertexKinds(MassRedist *r, Vec *kind, Vec n[])
 {
-  MMContact     *ct = &ctx->contact;
-  DM             dms = ctx->out.dm_scalar;
-  const PetscInt dim = ctx->op.dim;
+  const MMMassBoundary *ct = r->mb;
+  DM             dms = r->op->dm_scalar;
+  const PetscInt dim = r->op->dim;
   PetscSection   ls;
   PetscInt       vStart, vEnd, sstart;
   Vec            g;
@@ -95,15 +103,15 @@ static PetscErrorCode VertexKinds(MMCtx *ctx, Vec *kind, Vec n[])
     PetscCall(VecZeroEntries(g));
     PetscCall(VecGetArray(g, &k));
     /* row 0 of a node's frame is its normal */
-    for (PetscInt c = 0; c < ct->n_local; ++c)
-      if (!ct->second[c]) k[ct->scalar_index[c] - sstart] = d < 0 ? 1.0 : ct->node_frame[9 * c + d];
+    for (PetscInt c = 0; c < ct->n; ++c)
+      if (!ct->second[c]) k[ct->scalar_index[c] - sstart] = d < 0 ? 1.0 : ct->frame[9 * c + d];
     PetscCall(VecRestoreArray(g, &k));
     PetscCall(DMCreateLocalVector(dms, out));
     PetscCall(DMGlobalToLocal(dms, g, INSERT_VALUES, *out));
   }
   PetscCall(DMRestoreGlobalVector(dms, &g));
   /* the Dirichlet nodes, known on every rank from the local section */
-  PetscCall(DMGetLocalSection(ctx->op.dm, &ls));
+  PetscCall(DMGetLocalSection(r->op->dm, &ls));
   PetscCall(DMPlexGetDepthStratum(dms, 0, &vStart, &vEnd));
   PetscCall(VecGetArray(*kind, &k));
   for (PetscInt v = vStart; v < vEnd; ++v) {
@@ -127,10 +135,10 @@ static PetscErrorCode VertexGlobalDof(PetscSection gs, PetscInt v, PetscInt *g)
 
 /* Step 1: each cell's lost normal mass to its free non-contact vertices. The blocks go in the
  * Cartesian frame, which is the w-frame of a non-contact node (docs/method.md section 8). */
-static PetscErrorCode AddCellShares(MMCtx *ctx, Vec kind, Vec normal[], const PetscInt vgroup[], PetscInt group, PetscReal sign, Mat A)
+static PetscErrorCode AddCellShares(MassRedist *r, Vec kind, Vec normal[], const PetscInt vgroup[], PetscInt group, PetscReal sign, Mat A)
 {
-  DM                 dm = ctx->op.dm, dms = ctx->out.dm_scalar;
-  const PetscInt     dim = ctx->op.dim;
+  DM                 dm = r->op->dm, dms = r->op->dm_scalar;
+  const PetscInt     dim = r->op->dim;
   PetscSection       gs;
   PetscInt           cStart, cEnd, vStart, vEnd;
   const PetscScalar *k, *n[MM_MAX_DIM];
@@ -142,7 +150,7 @@ static PetscErrorCode AddCellShares(MMCtx *ctx, Vec kind, Vec normal[], const Pe
   PetscCall(VecGetArrayRead(kind, &k));
   for (PetscInt d = 0; d < dim; ++d) PetscCall(VecGetArrayRead(normal[d], &n[d]));
   for (PetscInt c = cStart; c < cEnd; ++c) {
-    const MMCells *cells = &ctx->op.cells;
+    const MMCells *cells = &r->op->cells;
     PetscInt       contact[MM_MAX_DIM + 1], others[MM_MAX_DIM + 1], nc = 0, nf = 0;
     PetscReal      vol, B[MM_MAX_DIM][MM_MAX_DIM] = {{0}};
     PetscScalar    vals[MM_MAX_DIM * MM_MAX_DIM];
@@ -161,7 +169,7 @@ static PetscErrorCode AddCellShares(MMCtx *ctx, Vec kind, Vec normal[], const Pe
       PetscInt off;
       PetscCall(DMPlexGetPointLocal(dms, contact[i], &off, NULL));
       for (PetscInt a = 0; a < dim; ++a)
-        for (PetscInt b = 0; b < dim; ++b) B[a][b] += sign * ctx->material.rho[c - cStart] * vol / (dim + 1) / nf * PetscRealPart(n[a][off] * n[b][off]);
+        for (PetscInt b = 0; b < dim; ++b) B[a][b] += sign * r->material->rho[c - cStart] * vol / (dim + 1) / nf * PetscRealPart(n[a][off] * n[b][off]);
     }
     for (PetscInt a = 0; a < dim; ++a)
       for (PetscInt b = 0; b < dim; ++b) vals[a * dim + b] = B[a][b];
@@ -202,11 +210,11 @@ static PetscErrorCode SmallestEigenvalue(PetscInt dim, PetscReal D[MM_MAX_DIM][M
  * inertia with small blocks). Minimizing sum_j |D_j|^2 / m_j under sum_j T_j^T D_j T_j = dG gives
  * D_j = m_j P_j T_j Lambda T_j^T P_j, Lambda solving sum_j m_j A_j Lambda A_j = dG with
  * A_j = T_j^T P_j T_j: an nr^2 system, summed over the ranks. */
-static PetscErrorCode AddMomentCorrection(MMCtx *ctx, Vec kind, const PetscInt vgroup[], PetscInt group, const PetscReal x0[], PetscReal ell, PetscReal dG[MM_MAX_RIGID][MM_MAX_RIGID], Mat A, PetscBool *exceeded)
+static PetscErrorCode AddMomentCorrection(MassRedist *r, Vec kind, const PetscInt vgroup[], PetscInt group, const PetscReal x0[], PetscReal ell, PetscReal dG[MM_MAX_RIGID][MM_MAX_RIGID], Mat A, PetscBool *exceeded)
 {
-  DM                 dm = ctx->op.dm, dms = ctx->out.dm_scalar;
-  MMContact         *ct  = &ctx->contact;
-  const PetscInt     dim = ctx->op.dim, nr = MMFENumRigidModes(dim), n2 = nr * nr;
+  DM                 dm = r->op->dm, dms = r->op->dm_scalar;
+  const MMMassBoundary *ct = r->mb;
+  const PetscInt     dim = r->op->dim, nr = MMFENumRigidModes(dim), n2 = nr * nr;
   MPI_Comm           comm = PetscObjectComm((PetscObject)dm);
   PetscSection       gs, cs;
   PetscInt           vStart, vEnd, rstart, *node;
@@ -215,7 +223,7 @@ static PetscErrorCode AddMomentCorrection(MMCtx *ctx, Vec kind, const PetscInt v
   PetscReal          S[MM_MAX_RIGID * MM_MAX_RIGID * MM_MAX_RIGID * MM_MAX_RIGID] = {0}, lam[MM_MAX_RIGID * MM_MAX_RIGID], worst = 0;
   /* the consistent mass is at least 1/(d+2) of the lumped one (the P1 element matrix is
    * rho |T| (I + 1 1^T) / ((d+1)(d+2))): a block above -0.9 of that keeps M* positive definite */
-  const PetscReal    floor = 0.9 / (ctx->opt.lumped ? 1.0 : (PetscReal)(dim + 2));
+  const PetscReal    floor = 0.9 / (r->op->lumped ? 1.0 : (PetscReal)(dim + 2));
   PetscBLASInt       bn, one = 1, info;
 
   PetscFunctionBeginUser;
@@ -225,18 +233,18 @@ static PetscErrorCode AddMomentCorrection(MMCtx *ctx, Vec kind, const PetscInt v
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
   PetscCall(PetscMalloc1(vEnd - vStart, &node));
   for (PetscInt v = 0; v < vEnd - vStart; ++v) node[v] = -1;
-  for (PetscInt c = 0; c < ct->n_local; ++c)
+  for (PetscInt c = 0; c < ct->n; ++c)
     if (!ct->second[c]) node[ct->vertex[c] - vStart] = c;
-  PetscCall(VecGetOwnershipRange(ctx->op.mass_lumped_cart, &rstart, NULL));
+  PetscCall(VecGetOwnershipRange(r->op->mass_lumped_cart, &rstart, NULL));
   PetscCall(VecGetArrayRead(X, &x));
   PetscCall(VecGetArrayRead(kind, &k));
-  PetscCall(VecGetArrayRead(ctx->op.mass_lumped_cart, &m));
+  PetscCall(VecGetArrayRead(r->op->mass_lumped_cart, &m));
   *exceeded = PETSC_FALSE;
   /* pass 0 sums the system, pass 1 measures the blocks, pass 2 adds them if they keep M* definite */
   for (PetscInt pass = 0; pass < 3; ++pass) {
     if (pass == 2) {
       PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &worst, 1, MPIU_REAL, MPIU_MAX, comm));
-      ctx->op.mass_correction = worst;
+      r->op->mass_correction = worst;
       if (worst > floor) { /* the bounded correction's (AddBoundedCorrection) */
         *exceeded = PETSC_TRUE;
         break;
@@ -245,9 +253,9 @@ static PetscErrorCode AddMomentCorrection(MMCtx *ctx, Vec kind, const PetscInt v
     for (PetscInt v = vStart; v < vEnd; ++v) {
       PetscInt         goff, xoff, soff;
       PetscReal        xh[MM_MAX_DIM] = {0, 0, 0}, T[MM_MAX_DIM][MM_MAX_RIGID], PT[MM_MAX_DIM][MM_MAX_RIGID] = {{0}}, Aj[MM_MAX_RIGID][MM_MAX_RIGID] = {{0}}, mj;
-      const PetscReal *F = node[v - vStart] >= 0 ? &ct->node_frame[9 * node[v - vStart]] : NULL;
+      const PetscReal *F = node[v - vStart] >= 0 ? &ct->frame[9 * node[v - vStart]] : NULL;
       /* a corner node (its row followed by a second row, or a friction corner) is massless along tau_1 too */
-      const PetscBool  corner = (PetscBool)(F && ((node[v - vStart] + 1 < ct->n_local && ct->second[node[v - vStart] + 1]) || (ct->fc_obstacle && ct->fc_obstacle[node[v - vStart]] >= 0)));
+      const PetscBool  corner = (PetscBool)(F && ((node[v - vStart] + 1 < ct->n && ct->second[node[v - vStart] + 1]) || (ct->fc_obstacle && ct->fc_obstacle[node[v - vStart]] >= 0)));
 
       PetscCall(PetscSectionGetOffset(gs, v, &goff));
       PetscCall(DMPlexGetPointLocal(dms, v, &soff, NULL));
@@ -318,7 +326,7 @@ static PetscErrorCode AddMomentCorrection(MMCtx *ctx, Vec kind, const PetscInt v
       PetscCheck(info == 0, comm, PETSC_ERR_LIB, "-mass redistributed: LAPACK gelss failed with info %d", (int)info);
     }
   }
-  PetscCall(VecRestoreArrayRead(ctx->op.mass_lumped_cart, &m));
+  PetscCall(VecRestoreArrayRead(r->op->mass_lumped_cart, &m));
   PetscCall(VecRestoreArrayRead(kind, &k));
   PetscCall(VecRestoreArrayRead(X, &x));
   PetscCall(PetscFree(node));
@@ -334,11 +342,11 @@ typedef struct {
   PetscReal m, B[MM_MAX_DIM][MM_MAX_RIGID];
 } MassNode;
 
-static PetscErrorCode CollectMassNodes(MMCtx *ctx, Vec kind, const PetscInt vgroup[], PetscInt group, const PetscReal x0[], PetscReal ell, PetscInt *n, MassNode **nodes)
+static PetscErrorCode CollectMassNodes(MassRedist *r, Vec kind, const PetscInt vgroup[], PetscInt group, const PetscReal x0[], PetscReal ell, PetscInt *n, MassNode **nodes)
 {
-  DM                 dm = ctx->op.dm, dms = ctx->out.dm_scalar;
-  MMContact         *ct  = &ctx->contact;
-  const PetscInt     dim = ctx->op.dim, nr = MMFENumRigidModes(dim);
+  DM                 dm = r->op->dm, dms = r->op->dm_scalar;
+  const MMMassBoundary *ct = r->mb;
+  const PetscInt     dim = r->op->dim, nr = MMFENumRigidModes(dim);
   PetscSection       gs, cs;
   PetscInt           vStart, vEnd, rstart, *node;
   Vec                X;
@@ -352,18 +360,18 @@ static PetscErrorCode CollectMassNodes(MMCtx *ctx, Vec kind, const PetscInt vgro
   PetscCall(PetscMalloc1(vEnd - vStart, &node));
   PetscCall(PetscMalloc1(vEnd - vStart, nodes));
   for (PetscInt v = 0; v < vEnd - vStart; ++v) node[v] = -1;
-  for (PetscInt c = 0; c < ct->n_local; ++c)
+  for (PetscInt c = 0; c < ct->n; ++c)
     if (!ct->second[c]) node[ct->vertex[c] - vStart] = c;
-  PetscCall(VecGetOwnershipRange(ctx->op.mass_lumped_cart, &rstart, NULL));
+  PetscCall(VecGetOwnershipRange(r->op->mass_lumped_cart, &rstart, NULL));
   PetscCall(VecGetArrayRead(X, &x));
   PetscCall(VecGetArrayRead(kind, &k));
-  PetscCall(VecGetArrayRead(ctx->op.mass_lumped_cart, &m));
+  PetscCall(VecGetArrayRead(r->op->mass_lumped_cart, &m));
   *n = 0;
   for (PetscInt v = vStart; v < vEnd; ++v) {
     PetscInt         goff, xoff, soff, first;
     PetscReal        xh[MM_MAX_DIM] = {0, 0, 0}, T[MM_MAX_DIM][MM_MAX_RIGID];
-    const PetscReal *F      = node[v - vStart] >= 0 ? &ct->node_frame[9 * node[v - vStart]] : NULL;
-    const PetscBool  corner = (PetscBool)(F && node[v - vStart] + 1 < ct->n_local && ct->second[node[v - vStart] + 1]);
+    const PetscReal *F      = node[v - vStart] >= 0 ? &ct->frame[9 * node[v - vStart]] : NULL;
+    const PetscBool  corner = (PetscBool)(F && node[v - vStart] + 1 < ct->n && ct->second[node[v - vStart] + 1]);
     MassNode        *nd     = &(*nodes)[*n];
 
     PetscCall(PetscSectionGetOffset(gs, v, &goff));
@@ -387,7 +395,7 @@ static PetscErrorCode CollectMassNodes(MMCtx *ctx, Vec kind, const PetscInt vgro
       }
     ++*n;
   }
-  PetscCall(VecRestoreArrayRead(ctx->op.mass_lumped_cart, &m));
+  PetscCall(VecRestoreArrayRead(r->op->mass_lumped_cart, &m));
   PetscCall(VecRestoreArrayRead(kind, &k));
   PetscCall(VecRestoreArrayRead(X, &x));
   PetscCall(PetscFree(node));
@@ -494,12 +502,12 @@ static PetscErrorCode BoundedDual(MPI_Comm comm, PetscInt n, const MassNode node
  * the smallest correction (AddMomentCorrection). moments: MM_MAX_RIGID matches every moment, dim
  * only the total masses and first moments (the pairs with a translation). *matched is false, and
  * nothing is added, when Newton's method finds no Lambda: the moments are out of the bound's reach. */
-static PetscErrorCode AddBoundedCorrection(MMCtx *ctx, Vec kind, const PetscInt vgroup[], PetscInt group, const PetscReal x0[], PetscReal ell, PetscReal dG0[MM_MAX_RIGID][MM_MAX_RIGID], PetscInt moments, PetscReal mass, Mat A, PetscBool *matched)
+static PetscErrorCode AddBoundedCorrection(MassRedist *r, Vec kind, const PetscInt vgroup[], PetscInt group, const PetscReal x0[], PetscReal ell, PetscReal dG0[MM_MAX_RIGID][MM_MAX_RIGID], PetscInt moments, PetscReal mass, Mat A, PetscBool *matched)
 {
-  const PetscInt dim = ctx->op.dim, nr = MMFENumRigidModes(dim);
-  MPI_Comm       comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  const PetscInt dim = r->op->dim, nr = MMFENumRigidModes(dim);
+  MPI_Comm       comm = PetscObjectComm((PetscObject)r->op->dm);
   /* the bound of AddMomentCorrection: 0.9 of the consistent mass's margin 1/(d+2), or of all of a lumped one */
-  const PetscReal c = 0.9 / (ctx->opt.lumped ? 1.0 : (PetscReal)(dim + 2));
+  const PetscReal c = 0.9 / (r->op->lumped ? 1.0 : (PetscReal)(dim + 2));
   PetscInt        n = 0, np = 0, pa[MM_MAX_RIGID * (MM_MAX_RIGID + 1) / 2], pb[MM_MAX_RIGID * (MM_MAX_RIGID + 1) / 2], it;
   PetscReal       dG[MM_MAX_RIGID][MM_MAX_RIGID], lam[MM_MAX_RIGID * (MM_MAX_RIGID + 1) / 2] = {0}, psi, smax, res = PETSC_MAX_REAL, worst = 0;
   MassNode       *nodes;
@@ -521,7 +529,7 @@ static PetscErrorCode AddBoundedCorrection(MMCtx *ctx, Vec kind, const PetscInt 
   for (PetscInt a = 0; a < nr; ++a)
     for (PetscInt b = a; b < nr; ++b)
       if (a < moments) pa[np] = a, pb[np] = b, ++np;
-  PetscCall(CollectMassNodes(ctx, kind, vgroup, group, x0, ell, &n, &nodes));
+  PetscCall(CollectMassNodes(r, kind, vgroup, group, x0, ell, &n, &nodes));
   for (it = 0; it < 60; ++it) {
     PetscReal    g[MM_MAX_RIGID * (MM_MAX_RIGID + 1) / 2], H[MM_MAX_RIGID * MM_MAX_RIGID * (MM_MAX_RIGID + 1) * (MM_MAX_RIGID + 1) / 4], step[MM_MAX_RIGID * (MM_MAX_RIGID + 1) / 2], slope = 0, t = 1;
     PetscReal    sv[MM_MAX_RIGID * (MM_MAX_RIGID + 1) / 2], work[8 * MM_MAX_RIGID * MM_MAX_RIGID], rcond = 1e-15;
@@ -590,7 +598,7 @@ static PetscErrorCode AddBoundedCorrection(MMCtx *ctx, Vec kind, const PetscInt 
       PetscCall(MatSetValues(A, nd->k, idx, nd->k, idx, vals, ADD_VALUES));
     }
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &worst, 1, MPIU_REAL, MPIU_MAX, comm));
-    ctx->op.mass_correction = worst;
+    r->op->mass_correction = worst;
   }
   PetscCall(PetscFree(nodes));
   PetscFunctionReturn(0);
@@ -598,25 +606,25 @@ static PetscErrorCode AddBoundedCorrection(MMCtx *ctx, Vec kind, const PetscInt 
 
 /* The nodes of a group off the contact boundary and free of Dirichlet data, over all ranks: the only
  * ones that can carry mass along a contact normal, for the refusal's message. */
-static PetscErrorCode CountInnerNodes(MMCtx *ctx, Vec kind, const PetscInt vgroup[], PetscInt group, PetscInt *count)
+static PetscErrorCode CountInnerNodes(MassRedist *r, Vec kind, const PetscInt vgroup[], PetscInt group, PetscInt *count)
 {
   PetscSection       gs;
   PetscInt           vStart, vEnd;
   const PetscScalar *k;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalSection(ctx->op.dm, &gs));
-  PetscCall(DMPlexGetDepthStratum(ctx->op.dm, 0, &vStart, &vEnd));
+  PetscCall(DMGetGlobalSection(r->op->dm, &gs));
+  PetscCall(DMPlexGetDepthStratum(r->op->dm, 0, &vStart, &vEnd));
   PetscCall(VecGetArrayRead(kind, &k));
   *count = 0;
   for (PetscInt v = vStart; v < vEnd; ++v) {
     PetscInt goff, soff;
     PetscCall(PetscSectionGetOffset(gs, v, &goff));
-    PetscCall(DMPlexGetPointLocal(ctx->out.dm_scalar, v, &soff, NULL));
+    PetscCall(DMPlexGetPointLocal(r->op->dm_scalar, v, &soff, NULL));
     if (goff >= 0 && PetscAbsReal(PetscRealPart(k[soff])) < 0.5 && vgroup[v - vStart] == group) ++*count;
   }
   PetscCall(VecRestoreArrayRead(kind, &k));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, count, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ctx->op.dm)));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, count, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)r->op->dm)));
   PetscFunctionReturn(0);
 }
 
@@ -624,10 +632,10 @@ static PetscErrorCode CountInnerNodes(MMCtx *ctx, Vec kind, const PetscInt vgrou
  * (glued) counted as one, so that every body keeps its own mass, centre of gravity and inertia and no
  * mass moves from one body to another (docs/method.md section 11). Per local vertex its group, the
  * smallest body index of its class; *ngroups the bodies (a group number is a body index). */
-static PetscErrorCode VertexGroups(MMCtx *ctx, PetscInt **vgroup)
+static PetscErrorCode VertexGroups(MassRedist *r, PetscInt **vgroup)
 {
-  const MMMaterial *mat = &ctx->material;
-  DM                dm  = ctx->op.dm;
+  const MMMaterial *mat = r->material;
+  DM                dm  = r->op->dm;
   const PetscInt    nb  = PetscMax(mat->n_bodies, 1);
   PetscInt          vStart, vEnd, cStart, cEnd, *link;
 
@@ -639,7 +647,7 @@ static PetscErrorCode VertexGroups(MMCtx *ctx, PetscInt **vgroup)
   for (PetscInt v = 0; v < vEnd - vStart; ++v) (*vgroup)[v] = -1;
   for (PetscInt c = cStart; c < cEnd; ++c) {
     const PetscInt b     = mat->cell_body ? mat->cell_body[c - cStart] : 0;
-    const MMCells *cells = &ctx->op.cells;
+    const MMCells *cells = &r->op->cells;
     for (PetscInt a = 0; a < cells->nv; ++a) {
       const PetscInt v = cells->vertex[cells->nv * (c - cStart) + a];
       if ((*vgroup)[v - vStart] >= 0 && (*vgroup)[v - vStart] != b) link[(*vgroup)[v - vStart] * nb + b] = link[b * nb + (*vgroup)[v - vStart]] = 1;
@@ -668,9 +676,9 @@ static PetscErrorCode VertexGroups(MMCtx *ctx, PetscInt **vgroup)
 }
 
 /* The rigid modes restricted to one group's dofs (all of them with one group: unchanged). */
-static PetscErrorCode GroupModes(MMCtx *ctx, const PetscInt vgroup[], PetscInt group, PetscInt nr, Vec R[], Vec Rg[])
+static PetscErrorCode GroupModes(MassRedist *r, const PetscInt vgroup[], PetscInt group, PetscInt nr, Vec R[], Vec Rg[])
 {
-  DM           dm = ctx->op.dm;
+  DM           dm = r->op->dm;
   PetscSection gs, ls;
   PetscInt     vStart, vEnd, rstart;
   Vec          mask;
@@ -731,30 +739,31 @@ static PetscReal MomentMismatch(PetscInt nr, PetscInt moments, PetscReal GM[MM_M
 /* -mass redistributed: M* (already without its contact-normal rows and columns) gets the lost
  * moments back on the other nodes, and is checked: its Gram matrix equals M's to 1e-12 of the mass
  * (docs/method.md section 2). */
-PetscErrorCode MMFERedistributeMass(MMCtx *ctx)
+PetscErrorCode MMFERedistributeMass(MMOperators *op, const MMMaterial *mat, const MMMassBoundary *mb)
 {
-  const PetscInt nr   = MMFENumRigidModes(ctx->op.dim);
-  MPI_Comm       comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  MassRedist     rd = {op, mat, mb}, *r = &rd;
+  const PetscInt nr   = MMFENumRigidModes(r->op->dim);
+  MPI_Comm       comm = PetscObjectComm((PetscObject)r->op->dm);
   PetscReal      x0[MM_MAX_DIM], ell = 1, GM[MM_MAX_RIGID][MM_MAX_RIGID], Gs[MM_MAX_RIGID][MM_MAX_RIGID], dG[MM_MAX_RIGID][MM_MAX_RIGID];
   PetscReal      mismatch = 0, unreachable = 0, correction = 0, inertia = 0;
   Vec            R[MM_MAX_RIGID], Rg[MM_MAX_RIGID], kind, normal[MM_MAX_DIM];
   PetscInt      *vgroup, matched_moments = nr;
 
   PetscFunctionBeginUser;
-  PetscCall(RigidFrame(ctx, x0, &ell));
-  PetscCall(RigidModes(ctx, x0, ell, R));
-  PetscCall(VertexKinds(ctx, &kind, normal));
-  PetscCall(VertexGroups(ctx, &vgroup));
-  PetscCall(MatSetOption(ctx->op.Mstar, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
-  PetscCall(AddCellShares(ctx, kind, normal, NULL, 0, 1.0, ctx->op.Mstar));
-  PetscCall(MatAssemblyBegin(ctx->op.Mstar, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(ctx->op.Mstar, MAT_FINAL_ASSEMBLY));
+  PetscCall(RigidFrame(r, x0, &ell));
+  PetscCall(RigidModes(r, x0, ell, R));
+  PetscCall(VertexKinds(r, &kind, normal));
+  PetscCall(VertexGroups(r, &vgroup));
+  PetscCall(MatSetOption(r->op->Mstar, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  PetscCall(AddCellShares(r, kind, normal, NULL, 0, 1.0, r->op->Mstar));
+  PetscCall(MatAssemblyBegin(r->op->Mstar, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(r->op->Mstar, MAT_FINAL_ASSEMBLY));
   /* each body (group) on its own: its moments matched by corrections on its own nodes */
-  for (PetscInt g = 0; g < PetscMax(ctx->material.n_bodies, 1); ++g) {
-    PetscCall(GroupModes(ctx, vgroup, g, nr, R, Rg));
-    PetscCall(Gram(ctx->op.M, nr, Rg, GM));
+  for (PetscInt g = 0; g < PetscMax(r->material->n_bodies, 1); ++g) {
+    PetscCall(GroupModes(r, vgroup, g, nr, R, Rg));
+    PetscCall(Gram(r->op->M, nr, Rg, GM));
     if (GM[0][0] > 0) {
-      PetscCall(Gram(ctx->op.Mstar, nr, Rg, Gs));
+      PetscCall(Gram(r->op->Mstar, nr, Rg, Gs));
       for (PetscInt a = 0; a < nr; ++a)
         for (PetscInt b = 0; b < nr; ++b) dG[a][b] = GM[a][b] - Gs[a][b];
       PetscInt  moments = nr;         /* the moments matched: all, or the masses and first moments */
@@ -765,7 +774,7 @@ PetscErrorCode MMFERedistributeMass(MMCtx *ctx)
       for (PetscInt it = 0; it < 3; ++it) {
         PetscReal mm, un, ri;
         PetscBool exceeded = PETSC_FALSE, matched = PETSC_TRUE;
-        if (!bounded) PetscCall(AddMomentCorrection(ctx, kind, vgroup, g, x0, ell, dG, ctx->op.Mstar, &exceeded));
+        if (!bounded) PetscCall(AddMomentCorrection(r, kind, vgroup, g, x0, ell, dG, r->op->Mstar, &exceeded));
         if (exceeded) {
           /* the smallest correction would leave M* indefinite (coarse meshes whose contact boundary
            * holds much of the mass): the bounded one, every moment if it can, else the masses and
@@ -774,27 +783,27 @@ PetscErrorCode MMFERedistributeMass(MMCtx *ctx)
           /* the cell shares taken back first: the bound then applies to the modified mass, whose
            * every node keeps 1/(d+2) of its lumped mass, and the correction may place the mass
            * where the moments need it (a wider set of corrections than on top of the shares) */
-          PetscCall(AddCellShares(ctx, kind, normal, vgroup, g, -1.0, ctx->op.Mstar));
-          PetscCall(MatAssemblyBegin(ctx->op.Mstar, MAT_FINAL_ASSEMBLY));
-          PetscCall(MatAssemblyEnd(ctx->op.Mstar, MAT_FINAL_ASSEMBLY));
-          PetscCall(Gram(ctx->op.Mstar, nr, Rg, Gs));
+          PetscCall(AddCellShares(r, kind, normal, vgroup, g, -1.0, r->op->Mstar));
+          PetscCall(MatAssemblyBegin(r->op->Mstar, MAT_FINAL_ASSEMBLY));
+          PetscCall(MatAssemblyEnd(r->op->Mstar, MAT_FINAL_ASSEMBLY));
+          PetscCall(Gram(r->op->Mstar, nr, Rg, Gs));
           for (PetscInt a = 0; a < nr; ++a)
             for (PetscInt b = 0; b < nr; ++b) dG[a][b] = GM[a][b] - Gs[a][b];
-          PetscCall(AddBoundedCorrection(ctx, kind, vgroup, g, x0, ell, dG, nr, GM[0][0], ctx->op.Mstar, &matched));
+          PetscCall(AddBoundedCorrection(r, kind, vgroup, g, x0, ell, dG, nr, GM[0][0], r->op->Mstar, &matched));
           if (!matched) {
-            moments = ctx->op.dim;
-            PetscCall(AddBoundedCorrection(ctx, kind, vgroup, g, x0, ell, dG, moments, GM[0][0], ctx->op.Mstar, &matched));
+            moments = r->op->dim;
+            PetscCall(AddBoundedCorrection(r, kind, vgroup, g, x0, ell, dG, moments, GM[0][0], r->op->Mstar, &matched));
           }
           if (!matched) {
             PetscInt inner;
-            PetscCall(CountInnerNodes(ctx, kind, vgroup, g, &inner));
+            PetscCall(CountInnerNodes(r, kind, vgroup, g, &inner));
             SETERRQ(comm, PETSC_ERR_USER_INPUT, "-mass redistributed cannot give the contact nodes' normal mass back on this mesh without making M* indefinite: %" PetscInt_FMT " node%s off the contact boundary and free of Dirichlet data cannot carry it at the centre of gravity. Name as -contact_boundary only the surface that can touch an obstacle, or mesh the body finer (more nodes inside); -mass modified runs, but falls faster than g along the contact normals", inner, inner == 1 ? "" : "s");
           }
-        } else if (bounded) PetscCall(AddBoundedCorrection(ctx, kind, vgroup, g, x0, ell, dG, moments, GM[0][0], ctx->op.Mstar, &matched));
-        largest = PetscMax(largest, ctx->op.mass_correction);
-        PetscCall(MatAssemblyBegin(ctx->op.Mstar, MAT_FINAL_ASSEMBLY));
-        PetscCall(MatAssemblyEnd(ctx->op.Mstar, MAT_FINAL_ASSEMBLY));
-        PetscCall(Gram(ctx->op.Mstar, nr, Rg, Gs));
+        } else if (bounded) PetscCall(AddBoundedCorrection(r, kind, vgroup, g, x0, ell, dG, moments, GM[0][0], r->op->Mstar, &matched));
+        largest = PetscMax(largest, r->op->mass_correction);
+        PetscCall(MatAssemblyBegin(r->op->Mstar, MAT_FINAL_ASSEMBLY));
+        PetscCall(MatAssemblyEnd(r->op->Mstar, MAT_FINAL_ASSEMBLY));
+        PetscCall(Gram(r->op->Mstar, nr, Rg, Gs));
         mm = MomentMismatch(nr, moments, GM, Gs, &un, &ri) / PetscMax(GM[0][0], PETSC_SMALL);
         if (it == 2 || mm <= 1e-14) {
           mismatch    = PetscMax(mismatch, mm);
@@ -807,50 +816,51 @@ PetscErrorCode MMFERedistributeMass(MMCtx *ctx)
       }
       correction = PetscMax(correction, largest);
       matched_moments = PetscMin(matched_moments, moments);
-      if (bounded) ctx->op.mass_bounded = PETSC_TRUE;
+      if (bounded) r->op->mass_bounded = PETSC_TRUE;
     }
     for (PetscInt k = 0; k < nr; ++k) PetscCall(VecDestroy(&Rg[k]));
   }
-  ctx->op.mass_correction         = correction;
-  ctx->op.mass_moment_mismatch    = mismatch;
-  ctx->op.mass_moment_unreachable = unreachable;
-  ctx->op.mass_moments            = matched_moments;
-  ctx->op.mass_inertia_mismatch   = inertia;
+  r->op->mass_correction         = correction;
+  r->op->mass_moment_mismatch    = mismatch;
+  r->op->mass_moment_unreachable = unreachable;
+  r->op->mass_moments            = matched_moments;
+  r->op->mass_inertia_mismatch   = inertia;
   PetscCall(PetscFree(vgroup));
   /* what no node-block correction can reach: a body whose every node is on the contact boundary or
    * held by Dirichlet data (one cell across), or whose free nodes are too few to carry the moments */
-  PetscCheck(ctx->op.mass_moment_mismatch <= 1e-12, comm, PETSC_ERR_USER_INPUT, "-mass redistributed cannot give the contact nodes' normal mass back: after the redistribution the moments of M* still differ from those of M by %.3g of the mass, because too few nodes are off the contact boundary and free of Dirichlet data to carry it (a body one cell across has none). Mesh the body with more cells across, or use -mass modified", (double)ctx->op.mass_moment_mismatch);
+  PetscCheck(r->op->mass_moment_mismatch <= 1e-12, comm, PETSC_ERR_USER_INPUT, "-mass redistributed cannot give the contact nodes' normal mass back: after the redistribution the moments of M* still differ from those of M by %.3g of the mass, because too few nodes are off the contact boundary and free of Dirichlet data to carry it (a body one cell across has none). Mesh the body with more cells across, or use -mass modified", (double)r->op->mass_moment_mismatch);
   PetscCall(VecDestroy(&kind));
-  for (PetscInt d = 0; d < ctx->op.dim; ++d) PetscCall(VecDestroy(&normal[d]));
+  for (PetscInt d = 0; d < r->op->dim; ++d) PetscCall(VecDestroy(&normal[d]));
   for (PetscInt k = 0; k < nr; ++k) PetscCall(VecDestroy(&R[k]));
   PetscFunctionReturn(0);
 }
 
 /* The masses the diagnostics need: M's total mass, and M*'s mass for rigid translations (a dim x dim
  * matrix: the modified mass lacks the normal masses, so it is not m I) and its inverse. */
-PetscErrorCode MMFEMassMoments(MMCtx *ctx)
+PetscErrorCode MMFEMassMoments(MMOperators *op)
 {
-  const PetscInt dim = ctx->op.dim, nr = MMFENumRigidModes(dim);
+  MassRedist     rd = {op, NULL, NULL}, *r = &rd;
+  const PetscInt dim = r->op->dim, nr = MMFENumRigidModes(dim);
   PetscReal      zero[MM_MAX_DIM] = {0, 0, 0}, GM[MM_MAX_RIGID][MM_MAX_RIGID], Gs[MM_MAX_RIGID][MM_MAX_RIGID];
   Vec            R[MM_MAX_RIGID];
 
   PetscFunctionBeginUser;
-  PetscCall(RigidModes(ctx, zero, 1.0, R));
-  PetscCall(Gram(ctx->op.M, nr, R, GM));
-  PetscCall(Gram(ctx->op.Mstar, nr, R, Gs));
-  ctx->op.mass_M = GM[0][0];
+  PetscCall(RigidModes(r, zero, 1.0, R));
+  PetscCall(Gram(r->op->M, nr, R, GM));
+  PetscCall(Gram(r->op->Mstar, nr, R, Gs));
+  r->op->mass_M = GM[0][0];
   for (PetscInt a = 0; a < dim; ++a)
-    for (PetscInt b = 0; b < dim; ++b) ctx->op.mass_star[a * dim + b] = Gs[a][b];
+    for (PetscInt b = 0; b < dim; ++b) r->op->mass_star[a * dim + b] = Gs[a][b];
   /* its inverse, for the centre-of-mass columns of every step (zero for a body without mass) */
   {
     PetscReal m[MM_MAX_DIM][MM_MAX_DIM] = {{0}}, inv[MM_MAX_DIM][MM_MAX_DIM] = {{0}};
     for (PetscInt a = 0; a < dim; ++a)
       for (PetscInt b = 0; b < dim; ++b) m[a][b] = Gs[a][b];
-    if (PetscAbsReal(MMDetInverse(dim, m, inv)) <= PETSC_SMALL * PetscPowRealInt(PetscMax(ctx->op.mass_M, PETSC_SMALL), dim))
+    if (PetscAbsReal(MMDetInverse(dim, m, inv)) <= PETSC_SMALL * PetscPowRealInt(PetscMax(r->op->mass_M, PETSC_SMALL), dim))
       for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
         for (PetscInt b = 0; b < MM_MAX_DIM; ++b) inv[a][b] = 0;
     for (PetscInt a = 0; a < dim; ++a)
-      for (PetscInt b = 0; b < dim; ++b) ctx->op.mass_star_inv[a * dim + b] = inv[a][b];
+      for (PetscInt b = 0; b < dim; ++b) r->op->mass_star_inv[a * dim + b] = inv[a][b];
   }
   /* M* that lost more than a tenth of M along an axis: the body falls faster than g along it, by
    * M/M*, and hits with that share of its momentum (README "The mass"). One line, on stderr. */
@@ -867,7 +877,7 @@ PetscErrorCode MMFEMassMoments(MMCtx *ctx)
     if (axes[0]) {
       char faster[96] = "the body has no inertia along the contact normal";
       if (worst > 1e-6) PetscCall(PetscSNPrintf(faster, sizeof(faster), "the body falls up to %.3g times faster than g along the contact normal", (double)(1 / worst)));
-      PetscCall(PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "mmcontact warning: -mass %s keeps only %s of M's mass: %s and hits with that share of its momentum; the default -mass redistributed keeps all of it (README \"The mass\")\n", MMMassTypes[ctx->opt.mass_type], axes, faster));
+      PetscCall(PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "mmcontact warning: -mass %s keeps only %s of M's mass: %s and hits with that share of its momentum; the default -mass redistributed keeps all of it (README \"The mass\")\n", MMMassTypes[r->op->mass_type], axes, faster));
     }
   }
   for (PetscInt k = 0; k < nr; ++k) PetscCall(VecDestroy(&R[k]));

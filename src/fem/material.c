@@ -7,7 +7,7 @@
  * Without -bodies every cell gets the one material, computed by the same expressions as before it
  * had a per-cell form, so that the single-body path is bitwise what it was. */
 #include <petscsf.h>
-#include "material.h"
+#include "fem.h"
 #include "mesh.h"
 
 /* E, nu -> Lame (plane strain in 2D, so the same in both dimensions) and the wave speeds. The
@@ -21,10 +21,8 @@ static void BodyConstants(MMBody *b)
 }
 
 /* The bodies as the options give them: one, the whole mesh, without -bodies. */
-static PetscErrorCode CreateBodies(MMCtx *ctx)
+static PetscErrorCode CreateBodies(MMMaterial *mat, const MMFEProblem *o)
 {
-  const MMOptions *o   = &ctx->opt;
-  MMMaterial      *mat = &ctx->material;
 
   PetscFunctionBeginUser;
   mat->named    = (PetscBool)(o->n_bodies > 0);
@@ -86,10 +84,9 @@ static PetscErrorCode SharedCentroid(DM dm, PetscBool found, PetscInt c, PetscIn
 
 /* -bodies: each local cell's body from the physical groups of the bodies, every cell in exactly
  * one; a group without cells, a cell in none and a cell in two are refused, with where. */
-static PetscErrorCode AssignCells(MMCtx *ctx, DM dm)
+static PetscErrorCode AssignCells(MMMaterial *mat, DM dm, PetscInt dim)
 {
   MPI_Comm        comm = PetscObjectComm((PetscObject)dm);
-  MMMaterial     *mat  = &ctx->material;
   const PetscInt  nb   = mat->n_bodies;
   DMLabel        *label;
   PetscInt       *def, *count, bad[2] = {0, 0}, first[2] = {-1, -1}, pair[2] = {-1, -1}, ncells = mat->ncells;
@@ -125,7 +122,7 @@ static PetscErrorCode AssignCells(MMCtx *ctx, DM dm)
   for (PetscInt b = 0; b < nb; ++b) {
     if (count[b]) continue;
     PetscCall(MMMeshCellGroups(dm, groups, sizeof(groups)));
-    SETERRQ(comm, PETSC_ERR_USER_INPUT, "-body_%s_group %s: the physical group \"%s\" holds no cells; a body is a group of cells, a Physical %s. The mesh's groups of cells are:%s", mat->body[b].name, mat->body[b].group, mat->body[b].group, ctx->op.dim == 2 ? "Surface in 2D" : "Volume in 3D", groups);
+    SETERRQ(comm, PETSC_ERR_USER_INPUT, "-body_%s_group %s: the physical group \"%s\" holds no cells; a body is a group of cells, a Physical %s. The mesh's groups of cells are:%s", mat->body[b].name, mat->body[b].group, mat->body[b].group, dim == 2 ? "Surface in 2D" : "Volume in 3D", groups);
   }
   if (bad[1]) {
     PetscCall(SharedCentroid(dm, (PetscBool)(first[1] >= 0), first[1], pair, where, sizeof(where)));
@@ -143,9 +140,8 @@ static PetscErrorCode AssignCells(MMCtx *ctx, DM dm)
 }
 
 /* The per-cell Lame parameters and density, and each body's volume and mass. */
-static PetscErrorCode CellMaterial(MMCtx *ctx, DM dm)
+static PetscErrorCode CellMaterial(MMMaterial *mat, const MMCells *cells, DM dm)
 {
-  MMMaterial *mat = &ctx->material;
   PetscReal  *vol;
 
   PetscFunctionBeginUser;
@@ -155,7 +151,7 @@ static PetscErrorCode CellMaterial(MMCtx *ctx, DM dm)
     mat->lambda[c] = body->lambda;
     mat->mu[c]     = body->mu;
     mat->rho[c]    = body->rho;
-    vol[mat->cell_body[c]] += ctx->op.cells.volume[c];
+    vol[mat->cell_body[c]] += cells->volume[c];
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, vol, mat->n_bodies, MPIU_REAL, MPI_SUM, PetscObjectComm((PetscObject)dm)));
   for (PetscInt b = 0; b < mat->n_bodies; ++b) {
@@ -194,11 +190,9 @@ static PetscErrorCode PointReduce(DM dm, MPI_Op op, PetscReal a[])
  * separate components of the mesh; a vertex in cells of two bodies takes their v0 if they agree,
  * and is refused if they differ (the body would tear at t = 0). Exact: the componentwise min and
  * max of v0 over the vertex's cells, on all ranks, must be equal. */
-static PetscErrorCode VertexVelocities(MMCtx *ctx, DM dm)
+static PetscErrorCode VertexVelocities(MMMaterial *mat, const MMCells *cells, PetscInt dim, DM dm)
 {
   MPI_Comm       comm = PetscObjectComm((PetscObject)dm);
-  MMMaterial    *mat  = &ctx->material;
-  const PetscInt dim  = ctx->op.dim;
   PetscInt       pStart, pEnd, vStart, vEnd, first = -1, nbad;
   PetscReal     *lo[MM_MAX_DIM], *hi[MM_MAX_DIM], info[3 * MM_MAX_DIM] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
   PetscMPIInt    rank, size, root;
@@ -215,8 +209,7 @@ static PetscErrorCode VertexVelocities(MMCtx *ctx, DM dm)
     }
   }
   for (PetscInt c = 0; c < mat->ncells; ++c) {
-    const PetscReal *v     = mat->body[mat->cell_body[c]].v0;
-    const MMCells   *cells = &ctx->op.cells;
+    const PetscReal *v = mat->body[mat->cell_body[c]].v0;
     for (PetscInt a = 0; a < cells->nv; ++a) {
       const PetscInt p = cells->vertex[cells->nv * c + a] - pStart;
       for (PetscInt d = 0; d < dim; ++d) {
@@ -273,51 +266,49 @@ static PetscErrorCode VertexVelocities(MMCtx *ctx, DM dm)
 }
 
 /* What cannot take several bodies, refused before anything is built. */
-static PetscErrorCode CheckSupported(MMCtx *ctx, MPI_Comm comm)
+static PetscErrorCode CheckSupported(const MMMaterial *mat, const MMOperators *op, const MMFEProblem *pb, MPI_Comm comm)
 {
-  const MMMaterial *mat = &ctx->material;
 
   PetscFunctionBeginUser;
-  PetscCheck(!mat->named || ctx->opt.initial_state != MM_INITIAL_STATIC_SLIDING, comm, PETSC_ERR_SUP, "-initial_state static_sliding with -bodies is not supported: the sliding state is built for one body of one material sliding with -v0. Drop -bodies (give the material with -E, -nu, -rho and the velocity with -v0)");
+  PetscCheck(!mat->named || !pb->static_sliding, comm, PETSC_ERR_SUP, "-initial_state static_sliding with -bodies is not supported: the sliding state is built for one body of one material sliding with -v0. Drop -bodies (give the material with -E, -nu, -rho and the velocity with -v0)");
   /* the PetscFE path takes the material from the PetscDS constants, one for every cell */
-  PetscCheck(mat->uniform || (ctx->opt.assembly != MM_ASSEMBLY_FE && !ctx->opt.assembly_check), comm, PETSC_ERR_SUP, "-assembly fe%s with bodies of different materials is not supported: the PetscFE quadrature takes one material for the whole mesh. Use -assembly closed_form (the default), which assembles each cell with its body's material", ctx->opt.assembly_check ? " (and -assembly_check, which runs it)" : "");
+  PetscCheck(mat->uniform || (op->assembly != MM_ASSEMBLY_FE && !op->assembly_check), comm, PETSC_ERR_SUP, "-assembly fe%s with bodies of different materials is not supported: the PetscFE quadrature takes one material for the whole mesh. Use -assembly closed_form (the default), which assembles each cell with its body's material", op->assembly_check ? " (and -assembly_check, which runs it)" : "");
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMMaterialSetUp(MMCtx *ctx)
+/* The material of each local cell of op's mesh (its cells tabulated) from the problem's bodies. */
+PetscErrorCode MMMaterialSetUp(MMMaterial *mat, const MMOperators *op, const MMFEProblem *pb)
 {
-  DM          dm   = ctx->op.dm;
+  DM          dm   = op->dm;
   MPI_Comm    comm = PetscObjectComm((PetscObject)dm);
-  MMMaterial *mat  = &ctx->material;
   PetscInt    cEnd;
 
   PetscFunctionBeginUser;
   /* the cells' geometry reads the local coordinates, which a -mesh_rotation has reset (collective) */
   PetscCall(DMGetCoordinatesLocalSetUp(dm));
-  PetscCall(CreateBodies(ctx));
-  PetscCall(CheckSupported(ctx, comm));
+  PetscCall(CreateBodies(mat, pb));
+  PetscCall(CheckSupported(mat, op, pb, comm));
   PetscCall(DMPlexGetHeightStratum(dm, 0, &mat->cStart, &cEnd));
   mat->ncells = cEnd - mat->cStart;
   PetscCall(PetscMalloc4(mat->ncells, &mat->cell_body, mat->ncells, &mat->lambda, mat->ncells, &mat->mu, mat->ncells, &mat->rho));
-  if (mat->named) PetscCall(AssignCells(ctx, dm));
+  if (mat->named) PetscCall(AssignCells(mat, dm, op->dim));
   else {
     PetscInt n = mat->ncells;
     for (PetscInt c = 0; c < mat->ncells; ++c) mat->cell_body[c] = 0;
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_INT, MPI_SUM, comm));
     mat->body[0].ncells = n;
   }
-  PetscCall(CellMaterial(ctx, dm));
-  if (mat->named) PetscCall(VertexVelocities(ctx, dm));
+  PetscCall(CellMaterial(mat, &op->cells, dm));
+  if (mat->named) PetscCall(VertexVelocities(mat, &op->cells, op->dim, dm));
   PetscFunctionReturn(0);
 }
 
 /* The material's part of a checkpoint's fingerprint (docs/method.md section 9): sum_T |T| w(x_T) q_T
  * for q = lambda, mu, rho, w = 1 + the centroid's place in the bounding box, so that bodies that
  * trade materials change it too. Summed over ranks: equal up to rounding on any partition. */
-PetscErrorCode MMMaterialChecksum(MMCtx *ctx, PetscReal sum[3])
+PetscErrorCode MMMaterialChecksum(const MMMaterial *mat, const MMOperators *op, PetscReal sum[3])
 {
-  const MMMaterial *mat = &ctx->material;
-  DM                dm  = ctx->op.dm;
+  DM                dm  = op->dm;
   PetscReal         lo[MM_MAX_DIM], hi[MM_MAX_DIM];
   PetscInt          dim;
 
@@ -326,7 +317,7 @@ PetscErrorCode MMMaterialChecksum(MMCtx *ctx, PetscReal sum[3])
   PetscCall(DMGetBoundingBox(dm, lo, hi));
   sum[0] = sum[1] = sum[2] = 0;
   for (PetscInt c = 0; c < mat->ncells; ++c) {
-    const PetscReal vol = ctx->op.cells.volume[c], *x = &ctx->op.cells.centroid[MM_MAX_DIM * c];
+    const PetscReal vol = op->cells.volume[c], *x = &op->cells.centroid[MM_MAX_DIM * c];
     PetscReal       w   = 1;
     for (PetscInt d = 0; d < dim; ++d) w += (d + 1) * (x[d] - lo[d]) / (hi[d] > lo[d] ? hi[d] - lo[d] : 1.0);
     sum[0] += vol * w * mat->lambda[c];

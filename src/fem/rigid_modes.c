@@ -24,10 +24,10 @@ void MMFERigidModeMatrix(PetscInt dim, const PetscReal x[], PetscReal T[MM_MAX_D
 /* The rigid-body modes of the free dofs, Cartesian, about x0 and scaled by 1/ell (x0 = 0, ell = 1:
  * the plain modes), into the given global vectors of the displacement DM: the global section lists
  * each owned vertex's free components (Dirichlet-constrained ones dropped). */
-PetscErrorCode MMFERigidModesCartesian(MMCtx *ctx, const PetscReal x0[], PetscReal ell, PetscInt nmodes, Vec modes[])
+PetscErrorCode MMFERigidModesCartesian(const MMOperators *op, const PetscReal x0[], PetscReal ell, PetscInt nmodes, Vec modes[])
 {
-  DM                 dm  = ctx->op.dm;
-  const PetscInt     dim = ctx->op.dim;
+  DM                 dm  = op->dm;
+  const PetscInt     dim = op->dim;
   PetscSection       gs, ls, cs;
   PetscInt           vStart, vEnd, rstart;
   Vec                X;

@@ -11,8 +11,7 @@
 #include "contact.h"
 #include "newmark.h"
 #include "damping.h"
-#include "loads.h"
-#include "material.h"
+#include "fem.h"
 #include "outputimpl.h"
 
 #define MM_CKPT_FILE "checkpoint.h5"
@@ -235,14 +234,14 @@ static PetscErrorCode RunRecord(MMCtx *ctx, TS ts, PetscReal run[])
   run[MM_RUN_E]               = ctx->opt.E;
   run[MM_RUN_NU]              = ctx->opt.nu;
   run[MM_RUN_RHO]             = ctx->opt.rho;
-  run[MM_RUN_MASS]            = ctx->opt.mass_type + (ctx->opt.lumped ? 3 : 0);
+  run[MM_RUN_MASS]            = ctx->op.mass_type + (ctx->op.lumped ? 3 : 0);
   run[MM_RUN_DT_USER]         = ctx->state.dt_user;
   run[MM_RUN_WORK_DAMPING]    = h->work_damping;
   run[MM_RUN_DAMPING_ALPHA]   = ctx->damping.alpha;
   run[MM_RUN_DAMPING_BETA]    = ctx->damping.beta;
   PetscCall(MMAdaptGrowBackGetState(ts, &run[MM_RUN_ADAPT]));
   run[MM_RUN_WORK_DIRICHLET]  = h->work_dirichlet;
-  PetscCall(MMMaterialChecksum(ctx, &run[MM_RUN_MATERIAL]));
+  PetscCall(MMMaterialChecksum(&ctx->material, &ctx->op, &run[MM_RUN_MATERIAL]));
   run[MM_RUN_BODIES]          = ctx->material.n_bodies;
   PetscFunctionReturn(0);
 }
@@ -652,7 +651,7 @@ PetscErrorCode MMCheckpointLoad(MMCtx *ctx, TS ts)
   /* the gaps of moving obstacles at the checkpoint's time, for the initial diagnostics */
   if (ctx->contact.enabled) PetscCall(MMContactSetTime(ctx, c->run[MM_RUN_TIME], s->dt));
   /* the loads and Dirichlet data of the checkpoint's time, for the energy of the restored state */
-  PetscCall(MMLoadsSetTime(ctx, c->run[MM_RUN_TIME], c->run[MM_RUN_TIME]));
+  PetscCall(MMLoadsSetTime(&ctx->loads, c->run[MM_RUN_TIME], c->run[MM_RUN_TIME]));
   if (!ctx->opt.quiet) {
     PetscReal dt;
     PetscCall(TSGetTimeStep(ts, &dt));

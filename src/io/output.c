@@ -27,7 +27,6 @@
 #include "contact.h"
 #include "fem.h"
 #include "deformation.h"
-#include "loads.h"
 
 /* the files a run writes (checkpoint.h5 by checkpoint.c): an earlier run's move to previous/ together */
 static const char *const MMOutputFiles[] = {"history.csv", "solution.h5", "solution.xmf", "checkpoint.h5", MM_SNAPSHOT_COPY};
@@ -249,10 +248,10 @@ void MMOutputSnapshotFields(MMOutput *o, PetscInt dim, MMSnapshotField f[MM_SNAP
     {"gap", "gap_nodal", 1, o->gap, o->dm_scalar},
     {"tangential_traction", "tangential_traction_displacement", dim, o->traction_t, o->dm_out},
     {"slip_velocity", "slip_velocity_displacement", dim, o->slip, o->dm_out},
-    {"stress", "stress_stress", 6, o->stress, o->dm_stress},
-    {"von_mises", "von_mises_nodal", 1, o->von_mises, o->dm_scalar},
-    {"stress_cell", "stress_cell", 6, o->stress_cell, NULL},
-    {"von_mises_cell", "von_mises_cell", 1, o->von_mises_cell, NULL},
+    {"stress", "stress_stress", 6, o->stress.nodal, o->stress.dm},
+    {"von_mises", "von_mises_nodal", 1, o->stress.von_mises, o->dm_scalar},
+    {"stress_cell", "stress_cell", 6, o->stress.cell, NULL},
+    {"von_mises_cell", "von_mises_cell", 1, o->stress.von_mises_cell, NULL},
   };
   for (PetscInt i = 0; i < MM_SNAPSHOT_FIELDS; ++i) f[i] = all[i];
 }
@@ -380,10 +379,10 @@ static PetscErrorCode WholeField(MMCtx *ctx, Vec w, PetscBool with_bc, Vec whole
   PetscFunctionBeginUser;
   PetscCall(DMGetGlobalVector(dm, &g));
   PetscCall(DMGetLocalVector(dm, &l));
-  PetscCall(MMFEToCartesian(ctx, w, g));
+  PetscCall(MMFEToCartesian(&ctx->op, w, g));
   PetscCall(VecZeroEntries(l));
   PetscCall(DMGlobalToLocal(dm, g, INSERT_VALUES, l));
-  if (with_bc) PetscCall(MMLoadsInsertBoundaryValues(ctx, l, ctx->hist.time));
+  if (with_bc) PetscCall(MMLoadsInsertBoundaryValues(&ctx->loads, l, ctx->hist.time));
   PetscCall(MMInsertMapLocalToGlobal(ctx->out.dm_out, &ctx->out.to_out, l, whole));
   PetscCall(DMRestoreLocalVector(dm, &l));
   PetscCall(DMRestoreGlobalVector(dm, &g));
@@ -399,7 +398,7 @@ PetscErrorCode MMOutputWholeState(MMCtx *ctx)
   PetscFunctionBeginUser;
   PetscCall(WholeField(ctx, ctx->state.u, PETSC_TRUE, o->disp_cart));
   PetscCall(WholeField(ctx, ctx->state.v, PETSC_FALSE, o->vel_cart));
-  PetscCall(MMLoadsInsertDirichletVelocity(ctx, o->vel_cart));
+  PetscCall(MMLoadsInsertDirichletVelocity(&ctx->loads, o->vel_cart));
   PetscFunctionReturn(0);
 }
 
@@ -507,8 +506,8 @@ static PetscErrorCode SerialVertexField(MMCtx *ctx, Vec f)
   PetscScalar *a;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalSection(ctx->out.dm_scalar, &gs));
-  PetscCall(DMPlexGetDepthStratum(ctx->out.dm_scalar, 0, &vStart, &vEnd));
+  PetscCall(DMGetGlobalSection(ctx->op.dm_scalar, &gs));
+  PetscCall(DMPlexGetDepthStratum(ctx->op.dm_scalar, 0, &vStart, &vEnd));
   PetscCall(VecGetOwnershipRange(f, &rstart, NULL));
   PetscCall(VecGetArray(f, &a));
   for (PetscInt v = vStart; v < vEnd; ++v) {
@@ -612,7 +611,7 @@ static PetscErrorCode WriteFields(MMCtx *ctx)
   PetscCall(PetscLogStagePush(ctx->log.output));
   PetscCall(MMOutputWholeState(ctx));
   PetscCall(MMContactBoundaryFields(ctx, o));
-  PetscCall(MMStressCompute(ctx, PETSC_TRUE));
+  PetscCall(MMStressCompute(&o->stress, &ctx->op, &ctx->material, o->dm_out, o->disp_cart, PETSC_TRUE));
   if (!o->static_written) PetscCall(MMOutputWriteStaticFields(ctx));
   /* /time is written ahead of the fields: the index, not /time, says what is complete */
   PetscCall(MMOutputHDF5Begin());
@@ -800,7 +799,7 @@ static PetscErrorCode CreateFieldVectors(MMCtx *ctx)
   PetscCall(PetscObjectSetName((PetscObject)o->obstacle, "contact_obstacle"));
   PetscCall(DMCreateGlobalVector(o->dm_scalar, &o->serial));
   PetscCall(PetscObjectSetName((PetscObject)o->serial, "serial_vertex"));
-  PetscCall(MMStressCreate(ctx));
+  PetscCall(MMStressCreate(&ctx->op, &o->stress));
   PetscFunctionReturn(0);
 }
 
@@ -843,6 +842,7 @@ PetscErrorCode MMOutputOpen(MMCtx *ctx)
   const char *dir = ctx->opt.output_dir;
 
   PetscFunctionBeginUser;
+  o->dm_scalar = ctx->op.dm_scalar;
   PetscCall(PetscLogEventRegister("MMOutputFlush", PETSC_VIEWER_CLASSID, &o->ev_flush));
   PetscCall(PetscLogEventRegister("MMOutputIndex", PETSC_VIEWER_CLASSID, &o->ev_index));
   PetscCall(PetscLogEventRegister("MMOutputCopy", PETSC_VIEWER_CLASSID, &o->ev_copy));
@@ -927,7 +927,7 @@ PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wa
     PetscCall(MMDeformationSummary(ctx));
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  output: %s, %s (%" PetscInt_FMT " snapshots), %s\n", o->csv_name, o->h5_name, o->n_written, o->xmf_name));
   }
-  PetscCall(MMStressDestroy(o));
+  PetscCall(MMStressDestroy(&o->stress));
   PetscCall(MMProbesDestroy(&o->probes));
   PetscCall(VecDestroy(&o->disp_cart));
   PetscCall(VecDestroy(&o->vel_cart));
@@ -937,7 +937,6 @@ PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wa
   PetscCall(VecDestroy(&o->gap));
   PetscCall(VecDestroy(&o->traction_t));
   PetscCall(VecDestroy(&o->slip));
-  PetscCall(DMDestroy(&o->dm_scalar));
   PetscCall(DMDestroy(&o->dm_out));
   PetscCall(MMInsertMapDestroy(&o->to_out));
   PetscCall(PetscFree(o->times));

@@ -152,7 +152,7 @@ PetscErrorCode MMOutputPlanMake(MMCtx *ctx, TS ts, MMOutputPlan *plan)
   /* the output's DMs exist only once it is open: any DM marks a vertex field in the table, NULL a
    * cell field */
   PetscCall(PetscMemzero(&stand_in, sizeof(stand_in)));
-  stand_in.dm_out = stand_in.dm_scalar = stand_in.dm_stress = ctx->op.dm;
+  stand_in.dm_out = stand_in.dm_scalar = stand_in.stress.dm = ctx->op.dm;
   PetscCall(MMMeshGetSizes(ctx->op.dm, &stand_in.nc, &stand_in.nv));
   PetscCall(SnapshotBytes(&stand_in, dim, k0, &plan->snapshot_bytes));
   /* once: the coordinates, the cells, each vertex's obstacle and serial number (MMOutputWriteMesh,

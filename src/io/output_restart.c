@@ -23,6 +23,7 @@
 #include "output.h"
 #include "outputimpl.h"
 #include "checkpoint.h"
+#include "fem.h"
 
 #define MM_TMP ".tmp"
 
@@ -282,7 +283,7 @@ PetscErrorCode MMOutputRestartFields(MMCtx *ctx)
       PetscCall(OldFieldsRead(&of, path, k, f[i].ncomp));
       PetscCall(FillFromOld(ctx, &of, f[i].dm, f[i].ncomp, f[i].vec));
     }
-    PetscCall(MMStressCompute(ctx, PETSC_FALSE));
+    PetscCall(MMStressCompute(&o->stress, &ctx->op, &ctx->material, o->dm_out, o->disp_cart, PETSC_FALSE));
     if (!o->static_written) PetscCall(MMOutputWriteStaticFields(ctx));
     PetscCall(MMOutputHDF5Begin());
     ierr = MMOutputViewSnapshot(o, o->h5, k, times[k]);

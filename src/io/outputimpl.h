@@ -56,10 +56,6 @@ PETSC_INTERN PetscErrorCode MMOutputPlanCheck(MMCtx *, TS);
 /* probes.c: -probes, the groups' mean displacement and velocity */
 PETSC_INTERN PetscErrorCode MMProbesEvaluate(MMCtx *);
 PETSC_INTERN PetscErrorCode MMOutputWholeState(MMCtx *);
-/* stress.c: the nodal stress and von Mises of each snapshot */
-PETSC_INTERN PetscErrorCode MMStressCreate(MMCtx *);
-PETSC_INTERN PetscErrorCode MMStressCompute(MMCtx *, PetscBool);
-PETSC_INTERN PetscErrorCode MMStressDestroy(MMOutput *);
 /* output_restart.c: -restart continues the history and the snapshots up to the checkpoint */
 PETSC_INTERN PetscErrorCode MMOutputRestartHistory(MMCtx *, MMFileStatus *);
 PETSC_INTERN PetscErrorCode MMOutputRestartFields(MMCtx *);

@@ -19,7 +19,7 @@
  * them: a vertex this rank owns may be marked only through another rank's cell. */
 static PetscErrorCode GroupVertexFlags(MMCtx *ctx, const char name[], Vec flags)
 {
-  DM           dm = ctx->op.dm, dms = ctx->out.dm_scalar;
+  DM           dm = ctx->op.dm, dms = ctx->op.dm_scalar;
   DMLabel      label;
   Vec          loc;
   PetscScalar *f;
@@ -56,7 +56,7 @@ static PetscErrorCode GroupVertexFlags(MMCtx *ctx, const char name[], Vec flags)
 static PetscErrorCode AddGroup(MMCtx *ctx, PetscInt g, Vec flags, Vec mloc, PetscInt *cap)
 {
   MMProbes          *pr  = &ctx->out.probes;
-  DM                 dms = ctx->out.dm_scalar;
+  DM                 dms = ctx->op.dm_scalar;
   PetscSection       gs;
   const PetscScalar *f, *m;
   PetscInt           vStart, vEnd, rstart, k = pr->start[g];
@@ -107,9 +107,9 @@ PetscErrorCode MMProbesSetUp(MMCtx *ctx)
   PetscCall(PetscCalloc4(n, &pr->name, n + 1, &pr->start, n, &pr->mass, 2 * MM_MAX_DIM * n, &pr->mean));
   pr->vertex = NULL; /* grown by AddGroup */
   pr->weight = NULL;
-  PetscCall(DMGetGlobalVector(ctx->out.dm_scalar, &flags));
-  PetscCall(DMGetLocalVector(ctx->out.dm_scalar, &mloc));
-  PetscCall(MMFEVertexMasses(ctx, mloc));
+  PetscCall(DMGetGlobalVector(ctx->op.dm_scalar, &flags));
+  PetscCall(DMGetLocalVector(ctx->op.dm_scalar, &mloc));
+  PetscCall(MMFEVertexMasses(&ctx->op, &ctx->material, mloc));
   for (PetscInt g = 0; g < n; ++g) {
     PetscCheck(names[g][0], comm, PETSC_ERR_USER_INPUT, "-probes %s has an empty name: give physical group names separated by commas", ctx->opt.probes);
     for (PetscInt h = 0; h < g; ++h) PetscCheck(strcmp(names[g], names[h]), comm, PETSC_ERR_USER_INPUT, "-probes names the group %s twice: its columns would be repeated", names[g]);
@@ -117,8 +117,8 @@ PetscErrorCode MMProbesSetUp(MMCtx *ctx)
     PetscCall(GroupVertexFlags(ctx, names[g], flags));
     PetscCall(AddGroup(ctx, g, flags, mloc, &cap));
   }
-  PetscCall(DMRestoreLocalVector(ctx->out.dm_scalar, &mloc));
-  PetscCall(DMRestoreGlobalVector(ctx->out.dm_scalar, &flags));
+  PetscCall(DMRestoreLocalVector(ctx->op.dm_scalar, &mloc));
+  PetscCall(DMRestoreGlobalVector(ctx->op.dm_scalar, &flags));
   PetscCall(PetscStrToArrayDestroy(n, names));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, pr->mass, n, MPIU_REAL, MPIU_SUM, comm));
   for (PetscInt g = 0; g < n; ++g) PetscCheck(pr->mass[g] > 0, comm, PETSC_ERR_USER_INPUT, "-probes: the group %s has no nodes with mass", pr->name[g]);

@@ -179,7 +179,7 @@ static PetscErrorCode HeaderPhysics(MMCtx *ctx, TS ts)
 {
   MPI_Comm        comm = PETSC_COMM_WORLD;
   const MMOptions *opt = &ctx->opt;
-  const PetscReal c_s  = PetscSqrtReal(PetscRealPart(ctx->constants[MM_C_MU]) / opt->rho), h_c = ctx->contact.h_c;
+  const PetscReal c_s  = PetscSqrtReal(PetscRealPart(ctx->op.constants[MM_C_MU]) / opt->rho), h_c = ctx->contact.h_c;
   PetscReal       dt, t_end;
   PetscInt        max_steps;
   char            steps[64] = "", cfl[128];
@@ -219,7 +219,7 @@ PetscErrorCode MMProgressMassLine(MMCtx *ctx)
     PetscCall(PetscSNPrintf(star + len, sizeof(star) - len, "%s%c %.10g", d ? ", " : "", "xyz"[d], (double)ctx->op.mass_star[d * dim + d]));
   }
   if (ctx->op.mass_moment_unreachable > 1e-14) PetscCall(PetscSNPrintf(unreachable, sizeof(unreachable), " (and %.1e in the trace of the translation-rotation block, out of reach: docs/method.md section 2)", (double)ctx->op.mass_moment_unreachable));
-  if (MMFEHasMasslessDofs(ctx) && ctx->opt.mass_type == MM_MASS_REDISTRIBUTED) {
+  if (MMFEHasMasslessDofs(&ctx->op) && ctx->op.mass_type == MM_MASS_REDISTRIBUTED) {
     const char *which = "moments";
     char        bounded[160] = "";
     /* a coarse mesh: the bounded correction, and perhaps the inertia left (docs/method.md section 2) */
@@ -250,14 +250,14 @@ static PetscErrorCode HeaderContact(MMCtx *ctx)
   /* the active-set CG's products (src/contact/impls/active_set/block_operator.c) */
   if (ctx->contact.as.ksp) products = ctx->contact.as.Kb ? "; CG products with K~ in symmetric block storage (SBAIJ)" : (opt->active_set_block ? "; CG products with K~'s AIJ (its pattern is not in whole blocks)" : "");
   if (opt->progress_every > 0) PetscCall(PetscSNPrintf(progress, sizeof(progress), "progress every %.6g s", (double)opt->progress_every));
-  if (ctx->contact.enabled && ctx->contact.n_corners) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes (%" PetscInt_FMT " of them against two obstacles: %" PetscInt_FMT " rows) against %s; %s %s mass; %s\n", ctx->contact.n_global - ctx->contact.n_corners, ctx->contact.n_corners, ctx->contact.n_global, obstacles, opt->lumped ? "lumped" : "consistent", MMMassTypes[opt->mass_type], friction));
-  else if (ctx->contact.enabled && ctx->contact.n_fc) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes (%" PetscInt_FMT " of them against two obstacles, each with its own Coulomb law) against %s; %s %s mass; %s\n", ctx->contact.n_global, ctx->contact.n_fc, obstacles, opt->lumped ? "lumped" : "consistent", MMMassTypes[opt->mass_type], friction));
-  else if (ctx->contact.enabled) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes against %s; %s %s mass; %s\n", ctx->contact.n_global, obstacles, opt->lumped ? "lumped" : "consistent", MMMassTypes[opt->mass_type], friction));
+  if (ctx->contact.enabled && ctx->contact.n_corners) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes (%" PetscInt_FMT " of them against two obstacles: %" PetscInt_FMT " rows) against %s; %s %s mass; %s\n", ctx->contact.n_global - ctx->contact.n_corners, ctx->contact.n_corners, ctx->contact.n_global, obstacles, ctx->op.lumped ? "lumped" : "consistent", MMMassTypes[ctx->op.mass_type], friction));
+  else if (ctx->contact.enabled && ctx->contact.n_fc) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes (%" PetscInt_FMT " of them against two obstacles, each with its own Coulomb law) against %s; %s %s mass; %s\n", ctx->contact.n_global, ctx->contact.n_fc, obstacles, ctx->op.lumped ? "lumped" : "consistent", MMMassTypes[ctx->op.mass_type], friction));
+  else if (ctx->contact.enabled) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes against %s; %s %s mass; %s\n", ctx->contact.n_global, obstacles, ctx->op.lumped ? "lumped" : "consistent", MMMassTypes[ctx->op.mass_type], friction));
   for (PetscInt p = 0; ctx->contact.enabled && p < ctx->contact.pairs.n; ++p) {
     const MMObstacle *ob = &opt->obstacles[opt->n_rigid + p];
     PetscCall(PetscPrintf(comm, "  pair %s: slave %s, %" PetscInt_FMT " nodes (%" PetscInt_FMT " facing a master node: node to node), on %" PetscInt_FMT " facets of master %s; mu = %g\n", ob->name, ob->slave, ctx->contact.pairs.count[2 * p], ctx->contact.pairs.count[2 * p + 1], ctx->contact.pairs.nf[p], ob->master, (double)ob->mu));
   }
-  if (!ctx->contact.enabled) PetscCall(PetscPrintf(comm, "  contact: off (-contact 0), 0 contact nodes: linear elastodynamics; %s mass\n", opt->lumped ? "lumped" : "consistent"));
+  if (!ctx->contact.enabled) PetscCall(PetscPrintf(comm, "  contact: off (-contact 0), 0 contact nodes: linear elastodynamics; %s mass\n", ctx->op.lumped ? "lumped" : "consistent"));
   PetscCall(PetscPrintf(comm, "  solvers: contact formulation %s%s; K~ by %s%s; %s\n", ctx->contact.type, ctx->contact.auto_type && ctx->contact.enabled ? (ctx->contact.prefer_iterative ? " (auto: 3D, at least -iterative_dofs dofs)" : " (auto)") : "", solver, products, progress));
   PetscCall(MMProgressMassLine(ctx));
   PetscFunctionReturn(0);

@@ -5,7 +5,6 @@
  * face and edge and looks up each point's type in a label: at 1M dofs that cost seconds per loop,
  * and the set-up had a dozen such loops. */
 #include "mesh.h"
-#include "fem.h"
 
 #define MM_NV_MAX (MM_MAX_DIM + 1)
 
@@ -120,4 +119,29 @@ PetscErrorCode MMCellsDestroy(MMCells *cells)
   PetscCall(PetscFree3(cells->vertex, cells->volume, cells->centroid));
   cells->ncells = 0;
   PetscFunctionReturn(0);
+}
+
+/* det of the dim x dim matrix a, and its inverse when wanted. */
+PetscReal MMDetInverse(PetscInt dim, const PetscReal a[MM_MAX_DIM][MM_MAX_DIM], PetscReal inv[MM_MAX_DIM][MM_MAX_DIM])
+{
+  PetscReal det;
+
+  if (dim == 2) {
+    det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+    if (inv && det != 0) {
+      inv[0][0] = a[1][1] / det;
+      inv[0][1] = -a[0][1] / det;
+      inv[1][0] = -a[1][0] / det;
+      inv[1][1] = a[0][0] / det;
+    }
+    return det;
+  }
+  det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  if (inv && det != 0)
+    for (PetscInt i = 0; i < 3; ++i)
+      for (PetscInt j = 0; j < 3; ++j) {
+        const PetscInt i1 = (j + 1) % 3, i2 = (j + 2) % 3, j1 = (i + 1) % 3, j2 = (i + 2) % 3;
+        inv[i][j] = (a[i1][j1] * a[i2][j2] - a[i1][j2] * a[i2][j1]) / det;
+      }
+  return det;
 }

@@ -1,8 +1,6 @@
 /* Reading a gmsh mesh into DMPlex, naming its physical groups, and distributing it. */
 #include <petscsf.h>
 #include "mesh.h"
-#include "fem.h"
-#include "options.h"
 #include "partition_metis.h"
 
 /* Labels DMPlex makes itself, and our facet marks: not physical groups the user named. */
@@ -426,50 +424,58 @@ static PetscErrorCode OriginalVertexNumbers(MPI_Comm comm, DM dist, PetscSF migr
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMMeshLoad(MPI_Comm comm, MMOptions *opt, DM *dm, PetscInt **vertex_orig, PetscInt **vertex_file)
+/* The serial mesh of file, checked (cell types, linear geometry, orientation), with its facet
+ * groups read (facets, for MMMeshDistribute) and each vertex's position among the file's nodes. */
+PetscErrorCode MMMeshRead(MPI_Comm comm, const char file[], DM *dm, MMMeshFacets *facets, PetscInt **vertex_file)
 {
-  PetscBool rotate = PETSC_FALSE;
-  DM        dist;
-  PetscSF   migration = NULL;
-  PetscInt  vStart0, vEnd0, *vtag = NULL;
-  MMMeshFacets facets = {0};
-  PetscBool    facets_read = PETSC_FALSE, failed;
+  PetscInt  *vtag = NULL;
+  PetscBool  failed;
 
   PetscFunctionBeginUser;
-  PetscCheck(opt->mesh_file[0], comm, PETSC_ERR_USER_INPUT, "No mesh given: set -mesh FILE.msh (a gmsh mesh with named physical groups; `make meshes` builds the ones in meshes/)");
-  PetscCall(MMMeshCheckFile(comm, opt->mesh_file));
+  PetscCall(PetscMemzero(facets, sizeof(*facets)));
+  PetscCheck(file[0], comm, PETSC_ERR_USER_INPUT, "No mesh given: set -mesh FILE.msh (a gmsh mesh with named physical groups; `make meshes` builds the ones in meshes/)");
+  PetscCall(MMMeshCheckFile(comm, file));
   /* physical names become label names, so every option can refer to groups by name */
   PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_use_regions", "true"));
   /* without faces and edges, never interpolated: P1 needs cells and vertices, and the facet groups
    * are read here and carried by their cells (src/mesh/facets.c) */
-  PetscCall(ReadGmsh(comm, opt->mesh_file, PETSC_FALSE, dm, &failed));
+  PetscCall(ReadGmsh(comm, file, PETSC_FALSE, dm, &failed));
   /* a second-order mesh needs the reader's interpolation, which then leads to its refusal below */
-  if (failed) PetscCall(ReadGmsh(comm, opt->mesh_file, PETSC_TRUE, dm, NULL));
+  if (failed) PetscCall(ReadGmsh(comm, file, PETSC_TRUE, dm, NULL));
   /* on the serial mesh, before distribution: the first bad cell is named by its file order */
-  PetscCall(CheckCellTypes(comm, *dm, opt->mesh_file));
-  PetscCall(CheckLinearGeometry(comm, *dm, opt->mesh_file));
+  PetscCall(CheckCellTypes(comm, *dm, file));
+  PetscCall(CheckLinearGeometry(comm, *dm, file));
   /* before the orientation check, which would call a cell with a NaN vertex inverted */
-  PetscCall(MMMeshFileNodes(comm, *dm, opt->mesh_file, vertex_file, &vtag));
-  if (!failed) PetscCall(MMMeshFacetsRead(comm, *dm, opt->mesh_file, vtag, &facets, &facets_read));
+  PetscCall(MMMeshFileNodes(comm, *dm, file, vertex_file, &vtag));
+  if (!failed) PetscCall(MMMeshFacetsRead(comm, *dm, file, vtag, facets, &facets->read));
   /* the Physical Points (-point_force), labelled on the serial mesh: the distribution carries them */
-  if (!failed && facets_read) PetscCall(MMMeshPointGroupsRead(comm, *dm, opt->mesh_file, vtag));
+  if (!failed && facets->read) PetscCall(MMMeshPointGroupsRead(comm, *dm, file, vtag));
   PetscCall(PetscFree(vtag));
-  if (!failed && !facets_read) {
+  if (!failed && !facets->read) {
     /* a file read here cannot be (binary): PETSc's reader labels the facets, interpolating on rank 0.
      * The vertices are the same, in the same order. */
     PetscCall(DMDestroy(dm));
-    PetscCall(ReadGmsh(comm, opt->mesh_file, PETSC_TRUE, dm, NULL));
+    PetscCall(ReadGmsh(comm, file, PETSC_TRUE, dm, NULL));
   }
-  PetscCall(CheckOrientation(comm, *dm, opt->mesh_file));
+  PetscCall(CheckOrientation(comm, *dm, file));
   PetscCall(PetscObjectSetName((PetscObject)*dm, "mesh"));
-  {
-    PetscInt dim;
-    /* the vector options' lengths, the rotation's among them, need the dimension */
-    PetscCall(DMGetDimension(*dm, &dim));
-    PetscCall(MMOptionsCheckDimension(comm, opt, dim));
-  }
-  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) rotate = (PetscBool)(rotate || opt->mesh_rotation[d] != 0);
-  if (rotate) PetscCall(RotateCoordinates(*dm, opt->mesh_rotation, opt->mesh_rotation_center));
+  PetscFunctionReturn(0);
+}
+
+/* The serial mesh read by MMMeshRead rotated by rotation (MM_MAX_DIM angles, about center) and
+ * distributed by METIS, its facet groups labelled on the vertices; each vertex's number in the
+ * serial mesh into vertex_orig. Frees facets. */
+PetscErrorCode MMMeshDistribute(const PetscReal rotation[], const PetscReal center[], MMMeshFacets *facets, DM *dm, PetscInt **vertex_orig)
+{
+  MPI_Comm  comm   = PetscObjectComm((PetscObject)*dm);
+  PetscBool rotate = PETSC_FALSE;
+  DM        dist;
+  PetscSF   migration = NULL;
+  PetscInt  vStart0, vEnd0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) rotate = (PetscBool)(rotate || rotation[d] != 0);
+  if (rotate) PetscCall(RotateCoordinates(*dm, rotation, center));
 
   PetscCall(MMPartitionerRegisterMetis());
   {
@@ -487,8 +493,8 @@ PetscErrorCode MMMeshLoad(MPI_Comm comm, MMOptions *opt, DM *dm, PetscInt **vert
   }
   PetscCall(OriginalVertexNumbers(comm, *dm, migration, vStart0, vertex_orig));
   PetscCall(PetscSFDestroy(&migration));
-  if (facets_read) PetscCall(MMMeshFacetsLabelVertices(&facets, *dm));
-  PetscCall(MMMeshFacetsDestroy(&facets));
+  if (facets->read) PetscCall(MMMeshFacetsLabelVertices(facets, *dm));
+  PetscCall(MMMeshFacetsDestroy(facets));
   /* DMSetFromOptions would distribute the mesh a second time, moving every vertex away from the
    * numbers just computed: the METIS partition above is the one wanted */
   PetscCall(DMPlexDistributeSetDefault(*dm, PETSC_FALSE));

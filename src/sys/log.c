@@ -1,7 +1,7 @@
 /* Log stages and events, registered together so -log_view shows where time goes. */
 #include "log.h"
 
-PetscLogEvent MM_AssembleKM, MM_RotateKM, MM_MassRedistribute, MM_ColumnsSolve, MM_ColumnsMove, MM_SplitInterface, MM_SplitBackward, MM_BlockOperator;
+PetscLogEvent MM_ColumnsSolve, MM_ColumnsMove, MM_SplitInterface, MM_SplitBackward, MM_BlockOperator;
 
 PetscErrorCode MMLogRegister(MMLog *log)
 {
@@ -13,9 +13,6 @@ PetscErrorCode MMLogRegister(MMLog *log)
   PetscCall(PetscLogStageRegister("MM time steps", &log->solve));
   PetscCall(PetscLogStageRegister("MM output", &log->output));
   PetscCall(PetscLogEventRegister("MMAssemble", id, &log->assemble));
-  PetscCall(PetscLogEventRegister("MMAssembleKM", id, &MM_AssembleKM));
-  PetscCall(PetscLogEventRegister("MMRotateKM", id, &MM_RotateKM));
-  PetscCall(PetscLogEventRegister("MMMassRedist", id, &MM_MassRedistribute));
   PetscCall(PetscLogEventRegister("MMContactSolve", id, &log->contact_solve));
   PetscCall(PetscLogEventRegister("MMContactRecover", id, &log->contact_recover));
   PetscCall(PetscLogEventRegister("MMFrictionLoop", id, &log->friction));

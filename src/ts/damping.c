@@ -9,7 +9,6 @@
  * turned into a contact force alternating at rest, issue 38). With alpha = beta = 0 none of this
  * runs, so an undamped run is bitwise what it was. */
 #include "damping.h"
-#include "assembly_p1.h"
 #include "fem.h"
 
 /* The options as given: nothing contradictory, nothing negative, frequencies where a ratio needs
@@ -59,7 +58,7 @@ static PetscErrorCode CondensedDampingStiffness(MMCtx *ctx, Mat *B)
   Vec mark;
 
   PetscFunctionBeginUser;
-  PetscCall(MMFECreateMatrix(ctx, ctx->op.dm, B));
+  PetscCall(MMFECreateMatrix(&ctx->op, ctx->op.dm, B));
   PetscCall(DMCreateGlobalVector(ctx->op.dm, &mark));
   PetscCall(VecZeroEntries(mark));
   PetscCall(VecISSet(mark, ctx->contact.is_massless, 1.0));
@@ -87,7 +86,7 @@ PetscErrorCode MMDampingSetUp(MMCtx *ctx)
   PetscCall(VecDuplicate(ctx->state.v, &d->work));
   PetscCall(VecDuplicate(ctx->state.v, &d->x));
   PetscCall(VecCopy(ctx->state.v, d->vC));
-  if (d->beta != 0 && MMFEHasMasslessDofs(ctx)) PetscCall(CondensedDampingStiffness(ctx, &d->B));
+  if (d->beta != 0 && MMFEHasMasslessDofs(&ctx->op)) PetscCall(CondensedDampingStiffness(ctx, &d->B));
   else {
     PetscCall(PetscObjectReference((PetscObject)ctx->op.K));
     d->B = ctx->op.K;

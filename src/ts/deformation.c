@@ -10,7 +10,6 @@
  * One pass over the cells with a few dozen flops each, on the displacement already in memory. */
 #include "deformation.h"
 #include "fem.h"
-#include "loads.h"
 #include "errors.h"
 
 /* The strain's largest principal value in magnitude: the spectral norm of the symmetric e. */
@@ -224,12 +223,12 @@ PetscErrorCode MMDeformationCheck(MMCtx *ctx)
   PetscCall(PetscLogEventBegin(d->ev, 0, 0, 0, 0));
   PetscCall(DMGetGlobalVector(dm, &g));
   PetscCall(DMGetLocalVector(dm, &l));
-  PetscCall(MMFEToCartesian(ctx, ctx->state.u, g));
+  PetscCall(MMFEToCartesian(&ctx->op, ctx->state.u, g));
   PetscCall(VecZeroEntries(l));
   PetscCall(DMGlobalToLocal(dm, g, INSERT_VALUES, l));
   /* the constrained dofs are zero in l: only nonzero Dirichlet data need inserting (a projection) */
   /* the data of the state's time: loads.t1, which a restart sets before the history's time */
-  if (NonzeroDirichlet(&ctx->opt)) PetscCall(MMLoadsInsertBoundaryValues(ctx, l, ctx->loads.t1));
+  if (NonzeroDirichlet(&ctx->opt)) PetscCall(MMLoadsInsertBoundaryValues(&ctx->loads, l, ctx->loads.t1));
   PetscCall(ScanCells(ctx, l, &w));
   PetscCall(DMRestoreLocalVector(dm, &l));
   PetscCall(DMRestoreGlobalVector(dm, &g));

@@ -31,7 +31,7 @@ static PetscErrorCode MomentaWeights(MMCtx *ctx, Vec e[], Vec p[], Vec a[])
   PetscScalar       *pw[MM_MAX_DIM], *aw[3];
 
   PetscFunctionBeginUser;
-  PetscCall(MMFERigidModesCartesian(ctx, origin, 1.0, dim, e));
+  PetscCall(MMFERigidModesCartesian(&ctx->op, origin, 1.0, dim, e));
   PetscCall(DMGetGlobalSection(dm, &gs));
   PetscCall(DMGetLocalSection(dm, &ls));
   PetscCall(DMGetCoordinateSection(dm, &cs));
@@ -86,7 +86,7 @@ static PetscErrorCode MomentaSetUp(MMCtx *ctx)
   PetscCall(VecDuplicate(w[0], &t));
   for (PetscInt k = 0; k < mo->ng; ++k) {
     PetscCall(VecDuplicate(w[0], &mo->g[k]));
-    PetscCall(MMFEFromCartesian(ctx, w[k], t));
+    PetscCall(MMFEFromCartesian(&ctx->op, w[k], t));
     PetscCall(MatMult(ctx->op.Mstar, t, mo->g[k]));
   }
   PetscCall(VecDestroy(&t));
@@ -114,8 +114,8 @@ static PetscErrorCode AngularMomentum(MMCtx *ctx, MMHistory *h)
   PetscFunctionBeginUser;
   PetscCall(DMGetGlobalVector(dm, &uc));
   PetscCall(DMGetGlobalVector(dm, &vc));
-  PetscCall(MMFEToCartesian(ctx, ctx->state.u, uc));
-  PetscCall(MMFEToCartesian(ctx, ctx->state.v, vc));
+  PetscCall(MMFEToCartesian(&ctx->op, ctx->state.u, uc));
+  PetscCall(MMFEToCartesian(&ctx->op, ctx->state.v, vc));
   PetscCall(DMGetCoordinatesLocal(dm, &X));
   PetscCall(VecGetArrayRead(uc, &u));
   PetscCall(VecGetArrayRead(vc, &v));
@@ -162,7 +162,7 @@ static PetscErrorCode LoadResultant(MMCtx *ctx, MMHistory *h)
 
   PetscFunctionBeginUser;
   PetscCall(DMGetGlobalVector(ctx->op.dm, &lc));
-  PetscCall(MMFEForceToCartesian(ctx, ctx->op.load, lc));
+  PetscCall(MMFEForceToCartesian(&ctx->op, ctx->op.load, lc));
   PetscCall(VecMDot(lc, ctx->op.dim, mo->sel, r));
   for (PetscInt d = 0; d < MM_MAX_DIM; ++d) h->load[d] = d < ctx->op.dim ? PetscRealPart(r[d]) : 0;
   PetscCall(DMRestoreGlobalVector(ctx->op.dm, &lc));

@@ -12,7 +12,6 @@
 #include "friction.h"
 #include "sliding.h"
 #include "damping.h"
-#include "loads.h"
 
 typedef struct {
   MMCtx *ctx;
@@ -21,7 +20,7 @@ typedef struct {
 /* The dofs without inertia: the contact-normal dofs under the modified mass, none otherwise. */
 static PetscBool HasMasslessDofs(MMCtx *ctx)
 {
-  return MMFEHasMasslessDofs(ctx);
+  return MMFEHasMasslessDofs(&ctx->op);
 }
 
 /* b = L(t^{n+1}) - lift(t^{n+1}) + M* (4/dt^2 u^n + 4/dt v^n + a^n) [+ C (2/dt u^n + vC^n) with damping] */
@@ -169,7 +168,7 @@ static PetscErrorCode TSStep_Newmark(TS ts)
     dt = ts->time_step;
     PetscCall(MMContactSetStepMatrix(ctx, dt));
     PetscCall(MMContactSetTime(ctx, ts->ptime + dt, dt));
-    PetscCall(MMLoadsSetTime(ctx, ts->ptime, ts->ptime + dt)); /* L^{n+1} and the lift of u_D(t^{n+1}) */
+    PetscCall(MMLoadsSetTime(&ctx->loads, ts->ptime, ts->ptime + dt)); /* L^{n+1} and the lift of u_D(t^{n+1}) */
     PetscCall(StepRHS(ctx, dt, ctx->contact.qp.b));
     /* predictor u + dt v + dt^2/4 a: exact for constant acceleration */
     PetscCall(VecAXPBYPCZ(w, dt, 0.25 * dt * dt, 0.0, s->v, s->a));
@@ -384,8 +383,8 @@ static PetscErrorCode ProjectInitialField(MMCtx *ctx, PetscErrorCode (*f)(PetscI
 
   PetscFunctionBeginUser;
   PetscCall(DMGetGlobalVector(ctx->op.dm, &ucart));
-  PetscCall(MMFEInterpolate(ctx, f, fctx, ucart));
-  PetscCall(MMFEFromCartesian(ctx, ucart, w));
+  PetscCall(MMFEInterpolate(&ctx->op, f, fctx, ucart));
+  PetscCall(MMFEFromCartesian(&ctx->op, ucart, w));
   PetscCall(DMRestoreGlobalVector(ctx->op.dm, &ucart));
   PetscFunctionReturn(0);
 }
@@ -409,7 +408,7 @@ static PetscErrorCode BodiesInitialVelocity(MMCtx *ctx, Vec w)
   PetscCall(DMGetGlobalVector(dm, &ucart));
   PetscCall(DMGetGlobalVector(dm, &tglob));
   PetscCall(DMGetLocalVector(dm, &tloc));
-  PetscCall(MMFEInterpolate(ctx, f, fctx, ucart));
+  PetscCall(MMFEInterpolate(&ctx->op, f, fctx, ucart));
   PetscCall(DMGetLocalSection(dm, &ls));
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
   PetscCall(VecGetArray(tloc, &a));
@@ -421,7 +420,7 @@ static PetscErrorCode BodiesInitialVelocity(MMCtx *ctx, Vec w)
   PetscCall(VecRestoreArray(tloc, &a));
   PetscCall(DMLocalToGlobal(dm, tloc, INSERT_VALUES, tglob)); /* the Dirichlet dofs drop out */
   PetscCall(VecAXPY(ucart, 1.0, tglob));
-  PetscCall(MMFEFromCartesian(ctx, ucart, w));
+  PetscCall(MMFEFromCartesian(&ctx->op, ucart, w));
   PetscCall(DMRestoreLocalVector(dm, &tloc));
   PetscCall(DMRestoreGlobalVector(dm, &tglob));
   PetscCall(DMRestoreGlobalVector(dm, &ucart));

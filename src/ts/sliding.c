@@ -30,7 +30,7 @@ static PetscErrorCode SlidingLoads(MMCtx *ctx, PetscReal e[], PetscReal *Fe, Pet
 
   PetscFunctionBeginUser;
   PetscCall(DMGetGlobalVector(ctx->op.dm, &Lc));
-  PetscCall(MMFEForceToCartesian(ctx, ctx->op.load, Lc));
+  PetscCall(MMFEForceToCartesian(&ctx->op, ctx->op.load, Lc));
   PetscCall(VecGetBlockSize(Lc, &bs));
   PetscCheck(bs == dim, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_SUP, "-initial_state static_sliding needs a body without Dirichlet boundaries");
   for (PetscInt d = 0; d < dim; ++d) PetscCall(VecStrideSum(Lc, d, (PetscScalar *)&F[d]));
@@ -225,7 +225,7 @@ PetscErrorCode MMInitialStaticSliding(MMCtx *ctx, Vec w, Vec react)
   PetscCall(VecDuplicate(w, &rhs));
   PetscCall(VecDuplicate(ctx->op.mass_lumped_cart, &me));
   for (PetscInt d = 0; d < dim; ++d) PetscCall(VecStrideSet(me, d, -a * e[d]));
-  PetscCall(MMFEForceFromCartesian(ctx, me, rhs));
+  PetscCall(MMFEForceFromCartesian(&ctx->op, me, rhs));
   PetscCall(MatMult(ctx->op.Mstar, rhs, f));
   PetscCall(VecAXPY(f, 1.0, ctx->op.load));
   PetscCall(SlidingSystem(ctx, et, f, &A, rhs));

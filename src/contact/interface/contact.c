@@ -456,7 +456,7 @@ PetscErrorCode MMContactProjectInitial(MMCtx *ctx, Vec w)
 
   PetscFunctionBeginUser;
   if (ct->enabled) PetscCall(CheckInitialPenetration(ctx, w));
-  if (!MMFEHasMasslessDofs(ctx)) PetscFunctionReturn(0);
+  if (!MMFEHasMasslessDofs(&ctx->op)) PetscFunctionReturn(0);
   PetscCall(MatCreateSubMatrix(ctx->op.K, ct->is_massless, ct->is_massless, MAT_INITIAL_MATRIX, &ct->qp0.A));
   PetscCall(MatCreateVecs(ct->qp0.A, &ct->qp0.b, NULL));
   PetscCall(VecDuplicate(ct->qp0.b, &ct->lower0));

@@ -18,9 +18,9 @@ static PetscErrorCode RigidBodyModes(MMCtx *ctx, MatNullSpace *sp)
     PetscCall(DMGetGlobalVector(ctx->op.dm, &ucart[m]));
     PetscCall(VecDuplicate(ctx->contact.qp.b, &modes[m]));
   }
-  PetscCall(MMFERigidModesCartesian(ctx, (PetscReal[MM_MAX_DIM]){0, 0, 0}, 1.0, nmodes, ucart));
+  PetscCall(MMFERigidModesCartesian(&ctx->op, (PetscReal[MM_MAX_DIM]){0, 0, 0}, 1.0, nmodes, ucart));
   for (PetscInt m = 0; m < nmodes; ++m) {
-    PetscCall(MMFEFromCartesian(ctx, ucart[m], modes[m]));
+    PetscCall(MMFEFromCartesian(&ctx->op, ucart[m], modes[m]));
     PetscCall(DMRestoreGlobalVector(ctx->op.dm, &ucart[m]));
   }
   /* modified Gram-Schmidt; a mode the Dirichlet data remove entirely is still harmless to GAMG */

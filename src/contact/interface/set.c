@@ -159,7 +159,7 @@ static PetscErrorCode MarkSurface(MMCtx *ctx, const char name[], PetscInt value,
   PetscCall(PetscFree2(pts, vals));
   /* int_F phi_i for P1 on each facet F: the contact nodes' areas */
   PetscCall(MMMeshGetFacets(dm, name, &fl));
-  PetscCall(MMMeshFacetsAddNodal(dm, &fl, ctx->out.dm_scalar, 1, &one, aa));
+  PetscCall(MMMeshFacetsAddNodal(dm, &fl, ctx->op.dm_scalar, 1, &one, aa));
   PetscCall(MMFacetListDestroy(&fl));
   PetscFunctionReturn(0);
 }
@@ -180,7 +180,7 @@ static PetscErrorCode MarkContactVertices(MMCtx *ctx, PetscInt **mark, Vec area)
   PetscCall(DMPlexGetChart(dm, &pStart, &pEnd));
   PetscCall(PetscCalloc1(pEnd - pStart, mark));
   PetscCall(PetscCalloc1(pEnd - pStart, &root));
-  PetscCall(DMGetLocalVector(ctx->out.dm_scalar, &aloc));
+  PetscCall(DMGetLocalVector(ctx->op.dm_scalar, &aloc));
   PetscCall(VecZeroEntries(aloc));
   PetscCall(VecGetArray(aloc, &aa));
   if (ctx->opt.n_rigid) {
@@ -194,8 +194,8 @@ static PetscErrorCode MarkContactVertices(MMCtx *ctx, PetscInt **mark, Vec area)
   for (PetscInt b = ctx->opt.n_rigid; b < ctx->opt.n_obstacles; ++b) PetscCall(MarkSurface(ctx, ctx->opt.obstacles[b].slave, 2 + b - ctx->opt.n_rigid, *mark, aa));
   PetscCall(VecRestoreArray(aloc, &aa));
   PetscCall(VecZeroEntries(area));
-  PetscCall(DMLocalToGlobal(ctx->out.dm_scalar, aloc, ADD_VALUES, area));
-  PetscCall(DMRestoreLocalVector(ctx->out.dm_scalar, &aloc));
+  PetscCall(DMLocalToGlobal(ctx->op.dm_scalar, aloc, ADD_VALUES, area));
+  PetscCall(DMRestoreLocalVector(ctx->op.dm_scalar, &aloc));
   PetscCall(DMGetPointSF(dm, &sf));
   PetscCall(PetscArraycpy(root, *mark, pEnd - pStart));
   PetscCall(PetscSFReduceBegin(sf, MPIU_INT, *mark, root, MPI_MAX));
@@ -353,7 +353,7 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
     for (PetscInt r = 0; r < (b2 >= 0 ? 2 : 1); ++r) {
       PetscInt sstart, send;
       in[nc] = goff + r;
-      PetscCall(DMPlexGetPointGlobal(ctx->out.dm_scalar, v, &sstart, &send));
+      PetscCall(DMPlexGetPointGlobal(ctx->op.dm_scalar, v, &sstart, &send));
       ct->scalar_index[nc] = sstart;
       ct->vertex[nc]       = v;
       nodal_area[nc]       = PetscRealPart(av[sstart - astart]);
@@ -495,7 +495,7 @@ PetscErrorCode MMContactSetUp(MMCtx *ctx)
     PetscCall(BuildNoContact(ctx));
     PetscFunctionReturn(0);
   }
-  PetscCall(DMCreateGlobalVector(ctx->out.dm_scalar, &area));
+  PetscCall(DMCreateGlobalVector(ctx->op.dm_scalar, &area));
   PetscCall(MarkContactVertices(ctx, &mark, area));
   {
     PetscInt vStart, vEnd;

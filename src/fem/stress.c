@@ -8,46 +8,43 @@
  * stress itself, and its von Mises value, are written too (cell fields, in the order of the cells
  * of the XDMF topology: each rank's cells in local order, the mesh being distributed without
  * overlap). */
-#include "output.h"
-#include "outputimpl.h"
 #include "fem.h"
 
 #define MM_SYM 6
 #define MM_GEOM (MM_MAX_DIM * MM_MAX_DIM + 1) /* per cell: J^{-1} (row-major, MM_MAX_DIM wide), then |T| */
 
-static PetscErrorCode StressGeometry(MMCtx *);
+static PetscErrorCode StressGeometry(MMStress *st, const MMOperators *op);
 
 /* Once: the stress DM (6 components per vertex, no constraints), its vectors, each cell's geometry. */
-PetscErrorCode MMStressCreate(MMCtx *ctx)
+PetscErrorCode MMStressCreate(const MMOperators *op, MMStress *st)
 {
-  MMOutput      *o   = &ctx->out;
-  const PetscInt dim = ctx->op.dim;
+  const PetscInt dim = op->dim;
   const char    *names[MM_SYM] = {"stress_xx", "stress_xy", "stress_xz", "stress_yy", "stress_yz", "stress_zz"};
   PetscFE        fe;
   PetscSection   s;
   PetscInt       cStart, cEnd;
 
   PetscFunctionBeginUser;
-  PetscCall(DMClone(ctx->op.dm, &o->dm_stress));
+  PetscCall(DMClone(op->dm, &st->dm));
   PetscCall(PetscFECreateLagrange(PETSC_COMM_WORLD, dim, MM_SYM, PETSC_TRUE, 1, PETSC_DETERMINE, &fe));
   PetscCall(PetscObjectSetName((PetscObject)fe, "stress"));
-  PetscCall(DMSetField(o->dm_stress, 0, NULL, (PetscObject)fe));
+  PetscCall(DMSetField(st->dm, 0, NULL, (PetscObject)fe));
   PetscCall(PetscFEDestroy(&fe));
-  PetscCall(DMCreateDS(o->dm_stress));
-  PetscCall(DMGetLocalSection(o->dm_stress, &s));
+  PetscCall(DMCreateDS(st->dm));
+  PetscCall(DMGetLocalSection(st->dm, &s));
   for (PetscInt c = 0; c < MM_SYM; ++c) PetscCall(PetscSectionSetComponentName(s, 0, c, names[c]));
-  PetscCall(DMCreateGlobalVector(o->dm_stress, &o->stress));
-  PetscCall(PetscObjectSetName((PetscObject)o->stress, "stress"));
-  PetscCall(DMCreateGlobalVector(o->dm_scalar, &o->von_mises));
-  PetscCall(PetscObjectSetName((PetscObject)o->von_mises, "von_mises"));
-  PetscCall(DMCreateGlobalVector(o->dm_scalar, &o->stress_weight));
-  PetscCall(DMPlexGetHeightStratum(ctx->op.dm, 0, &cStart, &cEnd));
-  PetscCall(VecCreateMPI(PETSC_COMM_WORLD, MM_SYM * (cEnd - cStart), PETSC_DETERMINE, &o->stress_cell));
-  PetscCall(VecSetBlockSize(o->stress_cell, MM_SYM));
-  PetscCall(PetscObjectSetName((PetscObject)o->stress_cell, "stress_cell"));
-  PetscCall(VecCreateMPI(PETSC_COMM_WORLD, cEnd - cStart, PETSC_DETERMINE, &o->von_mises_cell));
-  PetscCall(PetscObjectSetName((PetscObject)o->von_mises_cell, "von_mises_cell"));
-  PetscCall(StressGeometry(ctx));
+  PetscCall(DMCreateGlobalVector(st->dm, &st->nodal));
+  PetscCall(PetscObjectSetName((PetscObject)st->nodal, "stress"));
+  PetscCall(DMCreateGlobalVector(op->dm_scalar, &st->von_mises));
+  PetscCall(PetscObjectSetName((PetscObject)st->von_mises, "von_mises"));
+  PetscCall(DMCreateGlobalVector(op->dm_scalar, &st->weight));
+  PetscCall(DMPlexGetHeightStratum(op->dm, 0, &cStart, &cEnd));
+  PetscCall(VecCreateMPI(PETSC_COMM_WORLD, MM_SYM * (cEnd - cStart), PETSC_DETERMINE, &st->cell));
+  PetscCall(VecSetBlockSize(st->cell, MM_SYM));
+  PetscCall(PetscObjectSetName((PetscObject)st->cell, "stress_cell"));
+  PetscCall(VecCreateMPI(PETSC_COMM_WORLD, cEnd - cStart, PETSC_DETERMINE, &st->von_mises_cell));
+  PetscCall(PetscObjectSetName((PetscObject)st->von_mises_cell, "von_mises_cell"));
+  PetscCall(StressGeometry(st, op));
   PetscFunctionReturn(0);
 }
 
@@ -86,12 +83,11 @@ static PetscReal VonMises(const PetscScalar s[MM_SYM])
   return PetscSqrtReal(0.5 * (PetscSqr(PetscRealPart(s[0] - s[3])) + PetscSqr(PetscRealPart(s[3] - s[5])) + PetscSqr(PetscRealPart(s[5] - s[0]))) + 3 * (PetscSqr(PetscRealPart(s[1])) + PetscSqr(PetscRealPart(s[2])) + PetscSqr(PetscRealPart(s[4]))));
 }
 
-/* Geometry only, computed once: each cell's inverse edge matrix and volume (o->cell_geom), and the
+/* Geometry only, computed once: each cell's inverse edge matrix and volume (st->geom), and the
  * lumped weights sum_T |T| of each vertex. */
-static PetscErrorCode StressGeometry(MMCtx *ctx)
+static PetscErrorCode StressGeometry(MMStress *st, const MMOperators *op)
 {
-  MMOutput          *o   = &ctx->out;
-  const PetscInt     dim = ctx->op.dim;
+  const PetscInt     dim = op->dim;
   DM                 cdm;
   PetscSection       sw, sx;
   Vec                lw, X;
@@ -100,19 +96,19 @@ static PetscErrorCode StressGeometry(MMCtx *ctx)
   PetscInt           cStart, cEnd;
 
   PetscFunctionBeginUser;
-  PetscCall(DMPlexGetHeightStratum(ctx->op.dm, 0, &cStart, &cEnd));
-  PetscCall(PetscMalloc1(MM_GEOM * (cEnd - cStart), &o->cell_geom));
-  PetscCall(DMGetLocalVector(o->dm_scalar, &lw));
+  PetscCall(DMPlexGetHeightStratum(op->dm, 0, &cStart, &cEnd));
+  PetscCall(PetscMalloc1(MM_GEOM * (cEnd - cStart), &st->geom));
+  PetscCall(DMGetLocalVector(op->dm_scalar, &lw));
   PetscCall(VecZeroEntries(lw));
-  PetscCall(DMGetLocalSection(o->dm_scalar, &sw));
-  PetscCall(DMGetCoordinateDM(ctx->op.dm, &cdm));
+  PetscCall(DMGetLocalSection(op->dm_scalar, &sw));
+  PetscCall(DMGetCoordinateDM(op->dm, &cdm));
   PetscCall(DMGetLocalSection(cdm, &sx));
-  PetscCall(DMGetCoordinatesLocal(ctx->op.dm, &X));
+  PetscCall(DMGetCoordinatesLocal(op->dm, &X));
   PetscCall(VecGetArrayRead(X, &xa));
   PetscCall(VecGetArray(lw, &wa));
   for (PetscInt c = 0; c < cEnd - cStart; ++c) {
-    const PetscInt *v = &ctx->op.cells.vertex[(dim + 1) * c]; /* simplices: MMCellsCreate checked */
-    PetscReal      *g = &o->cell_geom[MM_GEOM * c];
+    const PetscInt *v = &op->cells.vertex[(dim + 1) * c]; /* simplices: MMCellsCreate checked */
+    PetscReal      *g = &st->geom[MM_GEOM * c];
     PetscReal       x[MM_MAX_DIM + 1][MM_MAX_DIM] = {{0}}, J[MM_MAX_DIM][MM_MAX_DIM] = {{0}}, Ji[MM_MAX_DIM][MM_MAX_DIM] = {{0}};
     for (PetscInt a = 0; a <= dim; ++a) {
       PetscInt ox;
@@ -131,19 +127,18 @@ static PetscErrorCode StressGeometry(MMCtx *ctx)
   }
   PetscCall(VecRestoreArray(lw, &wa));
   PetscCall(VecRestoreArrayRead(X, &xa));
-  PetscCall(VecZeroEntries(o->stress_weight));
-  PetscCall(DMLocalToGlobal(o->dm_scalar, lw, ADD_VALUES, o->stress_weight));
-  PetscCall(DMRestoreLocalVector(o->dm_scalar, &lw));
+  PetscCall(VecZeroEntries(st->weight));
+  PetscCall(DMLocalToGlobal(op->dm_scalar, lw, ADD_VALUES, st->weight));
+  PetscCall(DMRestoreLocalVector(op->dm_scalar, &lw));
   PetscFunctionReturn(0);
 }
 
-/* The cell stress and von Mises of the displacement in o->disp_cart (whole, Cartesian, on dm_out),
- * and with nodal, the nodal ones (a restart copies those from the old file). */
-PetscErrorCode MMStressCompute(MMCtx *ctx, PetscBool nodal)
+/* The cell stress and von Mises of the displacement u (whole, Cartesian, a global vector of dm_u: a
+ * clone of op->dm without constraints), and with nodal, the nodal ones (a restart copies those from
+ * the old file). */
+PetscErrorCode MMStressCompute(MMStress *st, const MMOperators *op, const MMMaterial *mat, DM dm_u, Vec u, PetscBool nodal)
 {
-  MMOutput          *o   = &ctx->out;
-  const PetscInt     dim = ctx->op.dim;
-  const MMMaterial  *mat = &ctx->material;
+  const PetscInt     dim = op->dim;
   PetscSection       su, ss;
   Vec                lu, ls;
   const PetscScalar *ua;
@@ -151,20 +146,20 @@ PetscErrorCode MMStressCompute(MMCtx *ctx, PetscBool nodal)
   PetscInt           cStart, cEnd, n;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetLocalVector(o->dm_out, &lu));
-  PetscCall(DMGlobalToLocal(o->dm_out, o->disp_cart, INSERT_VALUES, lu));
-  PetscCall(DMGetLocalVector(o->dm_stress, &ls));
+  PetscCall(DMGetLocalVector(dm_u, &lu));
+  PetscCall(DMGlobalToLocal(dm_u, u, INSERT_VALUES, lu));
+  PetscCall(DMGetLocalVector(st->dm, &ls));
   PetscCall(VecZeroEntries(ls));
-  PetscCall(DMGetLocalSection(o->dm_out, &su));
-  PetscCall(DMGetLocalSection(o->dm_stress, &ss));
-  PetscCall(DMPlexGetHeightStratum(ctx->op.dm, 0, &cStart, &cEnd));
+  PetscCall(DMGetLocalSection(dm_u, &su));
+  PetscCall(DMGetLocalSection(st->dm, &ss));
+  PetscCall(DMPlexGetHeightStratum(op->dm, 0, &cStart, &cEnd));
   PetscCall(VecGetArrayRead(lu, &ua));
   PetscCall(VecGetArray(ls, &sa));
-  PetscCall(VecGetArray(o->stress_cell, &sc));
-  PetscCall(VecGetArray(o->von_mises_cell, &vc));
+  PetscCall(VecGetArray(st->cell, &sc));
+  PetscCall(VecGetArray(st->von_mises_cell, &vc));
   for (PetscInt c = 0; c < cEnd - cStart; ++c) {
-    const PetscInt *v = &ctx->op.cells.vertex[(dim + 1) * c]; /* simplices: MMCellsCreate checked */
-    const PetscReal *g   = &o->cell_geom[MM_GEOM * c], vol = g[MM_GEOM - 1];
+    const PetscInt *v = &op->cells.vertex[(dim + 1) * c]; /* simplices: MMCellsCreate checked */
+    const PetscReal *g   = &st->geom[MM_GEOM * c], vol = g[MM_GEOM - 1];
     PetscReal        u[MM_MAX_DIM + 1][MM_MAX_DIM] = {{0}}, s[MM_SYM];
     for (PetscInt a = 0; a <= dim; ++a) {
       PetscInt ou;
@@ -180,44 +175,44 @@ PetscErrorCode MMStressCompute(MMCtx *ctx, PetscBool nodal)
       for (PetscInt k = 0; k < MM_SYM; ++k) sa[os + k] += vol * s[k];
     }
   }
-  PetscCall(VecRestoreArray(o->von_mises_cell, &vc));
-  PetscCall(VecRestoreArray(o->stress_cell, &sc));
+  PetscCall(VecRestoreArray(st->von_mises_cell, &vc));
+  PetscCall(VecRestoreArray(st->cell, &sc));
   PetscCall(VecRestoreArray(ls, &sa));
   PetscCall(VecRestoreArrayRead(lu, &ua));
   if (!nodal) {
-    PetscCall(DMRestoreLocalVector(o->dm_stress, &ls));
-    PetscCall(DMRestoreLocalVector(o->dm_out, &lu));
+    PetscCall(DMRestoreLocalVector(st->dm, &ls));
+    PetscCall(DMRestoreLocalVector(dm_u, &lu));
     PetscFunctionReturn(0);
   }
-  PetscCall(VecZeroEntries(o->stress));
-  PetscCall(DMLocalToGlobal(o->dm_stress, ls, ADD_VALUES, o->stress));
-  PetscCall(DMRestoreLocalVector(o->dm_stress, &ls));
-  PetscCall(DMRestoreLocalVector(o->dm_out, &lu));
+  PetscCall(VecZeroEntries(st->nodal));
+  PetscCall(DMLocalToGlobal(st->dm, ls, ADD_VALUES, st->nodal));
+  PetscCall(DMRestoreLocalVector(st->dm, &ls));
+  PetscCall(DMRestoreLocalVector(dm_u, &lu));
   /* the two DMs number the owned vertices alike: block i of the stress is vertex i of the weights */
-  PetscCall(VecGetLocalSize(o->stress_weight, &n));
-  PetscCall(VecGetArray(o->stress, &sa));
-  PetscCall(VecGetArrayRead(o->stress_weight, (const PetscScalar **)&wa));
-  PetscCall(VecGetArray(o->von_mises, &vm));
+  PetscCall(VecGetLocalSize(st->weight, &n));
+  PetscCall(VecGetArray(st->nodal, &sa));
+  PetscCall(VecGetArrayRead(st->weight, (const PetscScalar **)&wa));
+  PetscCall(VecGetArray(st->von_mises, &vm));
   for (PetscInt i = 0; i < n; ++i) {
     PetscScalar *s = sa + MM_SYM * i;
     for (PetscInt k = 0; k < MM_SYM; ++k) s[k] /= wa[i];
     vm[i] = VonMises(s);
   }
-  PetscCall(VecRestoreArray(o->von_mises, &vm));
-  PetscCall(VecRestoreArrayRead(o->stress_weight, (const PetscScalar **)&wa));
-  PetscCall(VecRestoreArray(o->stress, &sa));
+  PetscCall(VecRestoreArray(st->von_mises, &vm));
+  PetscCall(VecRestoreArrayRead(st->weight, (const PetscScalar **)&wa));
+  PetscCall(VecRestoreArray(st->nodal, &sa));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMStressDestroy(MMOutput *o)
+PetscErrorCode MMStressDestroy(MMStress *st)
 {
   PetscFunctionBeginUser;
-  PetscCall(VecDestroy(&o->stress));
-  PetscCall(VecDestroy(&o->von_mises));
-  PetscCall(VecDestroy(&o->stress_weight));
-  PetscCall(VecDestroy(&o->stress_cell));
-  PetscCall(VecDestroy(&o->von_mises_cell));
-  PetscCall(DMDestroy(&o->dm_stress));
-  PetscCall(PetscFree(o->cell_geom));
+  PetscCall(VecDestroy(&st->nodal));
+  PetscCall(VecDestroy(&st->von_mises));
+  PetscCall(VecDestroy(&st->weight));
+  PetscCall(VecDestroy(&st->cell));
+  PetscCall(VecDestroy(&st->von_mises_cell));
+  PetscCall(DMDestroy(&st->dm));
+  PetscCall(PetscFree(st->geom));
   PetscFunctionReturn(0);
 }
