@@ -425,8 +425,8 @@ static PetscErrorCode SetUpVIFactor(SNES snes)
 
 /* The full formulation's VI (vinewtonrsls) factors K~ on the free dofs once per iteration, and the
  * free dofs change from step to step. As submatrices, each would be a new matrix whose ordering and
- * MUMPS analysis (sequential, on its host) ran every time: 2.3 of the 115k-dof D1 disk's 9.4 s on
- * two ranks, which is why 2D used the approximate minimum fill ordering (ICNTL(7) = 2), cheap to
+ * MUMPS analysis (sequential, on its host) ran every time (docs/scaling.md, "The full formulation's
+ * factor"), which is why 2D used the approximate minimum fill ordering (ICNTL(7) = 2), cheap to
  * compute but with more fill. The default PC vifactor (pc_vifactor.c) factors the whole K~ with the
  * active rows the identity's: one pattern, ordered and analysed once, so MUMPS's automatic choice
  * (a nested dissection) pays for itself in 2D too: 0.161 -> 0.140 s/step on that disk on two ranks,
