@@ -429,8 +429,8 @@ static PetscErrorCode SetUpVIFactor(SNES snes)
  * factor"), which is why 2D used the approximate minimum fill ordering (ICNTL(7) = 2), cheap to
  * compute but with more fill. The default PC vifactor (pc_vifactor.c) factors the whole K~ with the
  * active rows the identity's: one pattern, ordered and analysed once, so MUMPS's automatic choice
- * (a nested dissection) pays for itself in 2D too: 0.161 -> 0.140 s/step on that disk on two ranks,
- * 0.245 -> 0.221 on one. K~'s block is SPD, so MUMPS's Cholesky, half the factor of its LU.
+ * (a nested dissection) pays for itself in 2D too (the orderings measured: docs/scaling.md, the same
+ * section). K~'s block is SPD, so MUMPS's Cholesky, half the factor of its LU.
  * vinewtonssls's semismooth Jacobian is not symmetric and keeps LU; options given stay. */
 PetscErrorCode MMQPSetFactorSPD(SNES snes)
 {
