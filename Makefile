@@ -63,7 +63,7 @@ build/%.o: src/%.c $(HDR) | build petsc-found
 build:
 	@mkdir -p build
 
-# MUMPS with SCOTCH's nested dissection (docs/scaling.md, "The factorization is the wall").
+# MUMPS with SCOTCH's nested dissection (docs/scaling.md, "Libraries: BLAS, threads and the MUMPS ordering").
 # Debian builds MUMPS 5.5 twice with one ABI: libdmumps, with the PORD ordering only, which PETSc
 # links, and libdmumps_ptscotch, with SCOTCH and PT-SCOTCH (package libmumps-ptscotch-5.5). Linked
 # ahead of PETSc, the second's dmumps_c is the one PETSc's MUMPS interface calls, and MUMPS's automatic

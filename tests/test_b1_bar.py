@@ -71,8 +71,8 @@ def test_consistent_initial_state(b1):
 def test_redistributed_mass_rings_within_its_measured_bound(tmp_path):
     """B1 is exact with the paper's modified mass (options/b1_bar.opts sets it, the tests above). The
     redistributed mass, the default elsewhere, moves the end node's mass one cell into the bar: the
-    contact stress plateau then rings, measured at 2.2% (README "The mass"), and the energy balance
-    still closes. Bound 3%, and the ringing is there (above 1%): what the README says it gives."""
+    contact stress plateau then rings, measured at 2.2% (docs/validation.md, "The mass"), and the energy balance
+    still closes. Bound 3%, and the ringing is there (above 1%): what docs/validation.md says it gives."""
     from conftest import run
     h = run("b1_bar", tmp_path, "-mass", "redistributed", "-output_every", 0).history
     t, stress = h["time"], h["force_normal"] / W

@@ -1,6 +1,6 @@
 """Issue 38, items 12 and 13: the loads users apply (a pressure on a boundary group, a concentrated
 force on a Physical Point group; README "Loads in time") and the static start
-(-initial_state static; README "Initial state", docs/method.md section 10).
+(-initial_state static; README "Loads in time", "A static start", docs/method.md section 10).
 
 Every number is compared to the physical scale of its case (tests/README.md): a resultant to the
 load's own p x area, a momentum to the impulse of the force, energies to the run's energy scale."""

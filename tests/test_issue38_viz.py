@@ -178,7 +178,7 @@ def test_history_every_and_output_interval(mm):
 def test_history_cadence_continues_after_a_restart(mm, tmp_path):
     """-history_every 3 with probes, stopped at step 10 (its checkpoint) and restarted to step 20 in
     the same directory: the rows are 0, 3, 6, 9, the first run's last (10), then 12, 15, 18 and 20,
-    the uninterrupted run's rows at the same steps bit for bit (1 rank, README "Checkpoint")."""
+    the uninterrupted run's rows at the same steps bit for bit (1 rank, README "Checkpoint and restart")."""
     opts = ("-history_every", 3, "-probes", "contact", "-quiet")
     full = mm("d1_disk", "-ts_max_steps", 20, *opts, name="full")
     mm("d1_disk", "-ts_max_steps", 10, *opts, name="cont")

@@ -1,4 +1,4 @@
-"""The study and plot scripts (README "Plots" and "Convergence in dt"): each runs the real
+"""The study and plot scripts (README "Plots", docs/validation.md "Convergence in dt"): each runs the real
 executable through mpiexec, or reads what it wrote, and the tests assert their numbers."""
 import csv
 import os

@@ -676,7 +676,7 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsString(PetscOptionsObject, comm, "-probes", "Comma-separated physical groups whose mean displacement and velocity (weighted by the nodes' lumped mass) go to history.csv as probe_NAME_ux, ..., probe_NAME_vx, ...", opt->probes, sizeof(opt->probes), NULL));
   opt->quiet = PETSC_FALSE;
   PetscCall(OptionsBool(PetscOptionsObject, comm, "-quiet", "Do not print the start-up report, progress lines and closing summary", &opt->quiet));
-  /* a data check (abaqus datacheck, MOOSE --check-input): src/app/datacheck.c, README "Data check" */
+  /* a data check (abaqus datacheck, MOOSE --check-input): src/app/datacheck.c, README "Checking a case before a batch job" */
   opt->check_input = PETSC_FALSE;
   PetscCall(OptionsBool(PetscOptionsObject, comm, "-check_input", "Check the case and exit: read the options and the mesh, build everything a run builds and refuse what a run would refuse, print the start-up report with each physical group's node and element counts, the planned steps and output size and a first-contact estimate, then exit 0 without stepping or writing anything (no output directory). -quiet does not apply", &opt->check_input));
   if (opt->check_input) opt->quiet = PETSC_FALSE; /* the report is what the check is for */

@@ -455,8 +455,8 @@ static PetscErrorCode VertexNeighbours(DM dm, PetscInt depth, PetscInt dim, Pets
 /* The matrix the closed-form assembly fills (MMAssembleP1): an AIJ matrix on the DM's global
  * section whose pattern, filled with zeros and assembled, couples exactly the vertices that share
  * an edge, with each vertex's free dofs; what DMCreateMatrix builds for P1, which gets it from the
- * DMPlex point adjacency at several times the cost of the assembly itself (README "Assembly of K
- * and M"). Here the couplings are the cells' vertex pairs, each marked once per row (the mesh has no
+ * DMPlex point adjacency at several times the cost of the assembly itself (docs/scaling.md, "Assembly of K
+ * and M, measured"). Here the couplings are the cells' vertex pairs, each marked once per row (the mesh has no
  * edges: src/mesh/facets.c), and MATPREALLOCATOR merges them across ranks. */
 PetscErrorCode MMCreateMatrixP1(DM dm, Mat *A)
 {

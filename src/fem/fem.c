@@ -481,8 +481,8 @@ PetscErrorCode MMFEInterpolate(const MMOperators *op, PetscErrorCode (*f)(PetscI
 
 /* The w-frame operators from the Cartesian ones, K <- Q^T K Q and M <- Q^T M Q, in place (docs/method.md
  * section 2). Q is block diagonal by vertex, so the pattern stays: MatPtAP would build new matrices,
- * through a symbolic product that costs more than the closed-form assembly (README "Assembly of K
- * and M"). */
+ * through a symbolic product that costs more than the closed-form assembly (docs/scaling.md, "Assembly of K
+ * and M, measured"). */
 static PetscErrorCode RotateToContactFrame(const MMOperators *op, Mat K, Mat M)
 {
   PetscFunctionBeginUser;
@@ -532,7 +532,7 @@ PetscErrorCode MMFEAssembleOperators(MMOperators *op, const MMMaterial *mat, con
   PetscCall(MMFECreateMatrix(op, dm, &Kc));
   /* a lumped mass is built from vertex masses below: no consistent mass to assemble. M has K's
    * pattern, and duplicating it skips a second DMPlex preallocation, which alone costs several
-   * assemblies (README "Assembly of K and M") */
+   * assemblies (docs/scaling.md, "Assembly of K and M, measured") */
   if (!op->lumped) PetscCall(MatDuplicate(Kc, MAT_DO_NOT_COPY_VALUES, &Mc));
   PetscCall(PetscDSSetJacobian(ds, 0, 0, g0_mass_uu, NULL, NULL, g3_elas_uu));
   PetscCall(PetscLogEventBegin(MM_FEAssembleKM, 0, 0, 0, 0));

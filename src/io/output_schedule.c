@@ -30,7 +30,7 @@ PetscBool MMOutputSnapshotDue(const MMOptions *opt, PetscInt step, PetscReal t, 
 
 /* One "mmcontact warning:" line, at the first step, when the run plans more than 1e6 steps, or more
  * than 1 GB of history or of snapshots: the figures, and the options that set them. The figures
- * are the data check's (MMOutputPlanMake, README "Large output is announced"). */
+ * are the data check's (MMOutputPlanMake, README "Output"). */
 PetscErrorCode MMOutputPlanCheck(MMCtx *ctx, TS ts)
 {
   MMOutputPlan plan;

@@ -62,8 +62,8 @@ static PetscErrorCode FrictionText(const MMOptions *opt, char text[], size_t len
 }
 
 /* The ordering MUMPS used for a factor it computed (INFOG(7)), e.g. ", SCOTCH ordering": the
- * ordering packages of the MUMPS library loaded at run time decide the fill (docs/scaling.md, "The
- * factorization is the wall"), so the header says which one ran. Empty for another package or
+ * ordering packages of the MUMPS library loaded at run time decide the fill (docs/scaling.md,
+ * "Libraries: BLAS, threads and the MUMPS ordering"), so the header says which one ran. Empty for another package or
  * before the analysis. */
 static PetscErrorCode MumpsFactorOrderingText(Mat F, MatSolverType package, char text[], size_t len)
 {

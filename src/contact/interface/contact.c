@@ -33,10 +33,9 @@ PetscErrorCode MMContactRegisterAll(void)
 }
 
 /* Whether the problem defaults to the iterative path (active_set, CG for K~): 3D with at least
- * -iterative_dofs dofs. There K~'s factor costs more than the CG solves it saves: on the 113k-dof D2
- * ball, the factor is 2.1 GB and 23 s of set-up (MUMPS with PORD, the ordering Debian's MUMPS
- * has), and a frictionless step costs 0.25 s by the active set against 0.41 s condensed, with a
- * set-up of 9 s against 34 s (README "Large meshes"); in 2D the factor is cheap. */
+ * -iterative_dofs dofs. There K~'s factor costs more than the CG solves it saves, in memory, set-up
+ * and step (README "Large meshes"; the figures: docs/scaling.md, "The figures behind the code's
+ * choices"); in 2D the factor is cheap. */
 static PetscErrorCode PrefersIterative(MMCtx *ctx, PetscBool *iterative)
 {
   PetscSection gs;

@@ -4,8 +4,8 @@
  *
  * The VI solves K~(I, I) y_I = f_I on its inactive set I at each iteration, with a new submatrix
  * each time, so a factor PC orders and analyses it anew every time: MUMPS's analysis, sequential
- * on its host, was 1.6 of the 115k-dof D1 disk's 13.3 s on one rank and 2.3 of 9.4 s on two
- * (30 steps, 26 factorizations), and slower on two ranks than on one. Here the factored matrix is
+ * on its host, was a large share of the run, and slower on two ranks than on one (the figures:
+ * docs/scaling.md, "The figures behind the code's choices"). Here the factored matrix is
  *   K~_A = K~ with the rows and columns of the active set A zeroed and d on their diagonal,
  * whose nonzero pattern is K~'s for every A: ordered and analysed once, refactored numerically
  * when A or K~ changes. K~_A = [K~(I, I) 0; 0 d 1] up to a permutation, so with zero right-hand

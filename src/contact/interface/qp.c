@@ -144,9 +144,8 @@ PetscErrorCode MMKSPSetDirect(KSP ksp)
 /* The exact solve of a well-conditioned SPD matrix (M* on the dofs with inertia: its condition number
  * with the Jacobi PC does not grow with the mesh): CG with Jacobi to the tight tolerance, by default.
  * A factorization by options (-mass_pc_type lu or cholesky with -mass_ksp_type preonly) is still
- * accepted; anything MMKSPCheckDirect refuses stops the run when it solves. Against the MUMPS LU that
- * was the default: 21 s and 1.2 GiB less set-up on the 113k-dof D2 ball (measured when CG became the
- * default; README "Options" lists the choices). */
+ * accepted; anything MMKSPCheckDirect refuses stops the run when it solves. Cheaper to set up than the
+ * MUMPS LU it replaced (the figures: docs/scaling.md, "The figures behind the code's choices"). */
 PetscErrorCode MMKSPSetExactCG(KSP ksp)
 {
   PC pc;
@@ -160,23 +159,17 @@ PetscErrorCode MMKSPSetExactCG(KSP ksp)
 }
 
 /* The default factorization of a symmetric positive definite matrix (K~), chosen by measurement
- * (README "Options", the contact_K_ solve).
- * - 2D: PETSc's own Cholesky with nested-dissection ordering (115k-dof frictional D1: a step 2.2
- *   times faster than with MUMPS LU, set-up faster too),
+ * (README "Options"; the figures: docs/scaling.md, "The figures behind the code's choices").
+ * - 2D: PETSc's own Cholesky with nested-dissection ordering, faster than MUMPS LU,
  *   - on up to 8 ranks split at the ranks' interface (schursplit, pc_schursplit.c: each rank
- *     factors its interior, the interface's Schur complement is dense on every rank). On one rank
- *     there is no interface, and it is that factor with a faster backward sweep than PETSc's
- *     MatSolve (115k-dof disk: solve 11.0 against 13.6 ms); the linear step is 1.79 times faster on
- *     2 ranks than on 1, where the whole factor on every rank gained 1.11 to 1.23;
+ *     factors its interior, the interface's Schur complement is dense on every rank); on one rank
+ *     there is no interface, and it is that factor with a faster backward sweep than MatSolve;
  *   - on more ranks, where the dense interface grows with the ranks, held whole on every rank
- *     (PCREDUNDANT: PETSc's factorizations are serial, and MUMPS's distributed solve took 45 to
- *     65 ms per right-hand side where this one takes 17 ms; a 2D factor is small, N log N).
- * - 3D, where that factorization and the Delassus columns cost more than MUMPS's (12k-dof D2: 6.1
- *   against 3.4 s, and 29 against 22 s): MUMPS's Cholesky (LDL^T), half the factor of its LU (the
- *   113k-dof D2 ball's frictional row: set-up 29 -> 21 s and peak memory 3.6 -> 2.4 GiB on one
- *   rank, 26 -> 14 s and 4.7 -> 3.1 GiB over two). Its ordering is MUMPS's automatic choice,
- *   SCOTCH with the MUMPS build the Makefile links (docs/scaling.md, "The factorization is the
- *   wall"): 3.4e11 flops against 4.7e11 with PORD on that ball.
+ *     (PCREDUNDANT: PETSc's factorizations are serial, MUMPS's distributed solve is slower, and a
+ *     2D factor is small, N log N).
+ * - 3D, where that factorization and the Delassus columns cost more than MUMPS's: MUMPS's Cholesky
+ *   (LDL^T), half the factor of its LU, ordered by MUMPS's automatic choice, SCOTCH with the MUMPS
+ *   build the Makefile links.
  * Options still apply on top; nothing is checked here (kt.c also accepts iterative PCs). */
 PetscErrorCode MMKSPSetFactorSPD(KSP ksp, PetscInt dim)
 {
@@ -432,12 +425,12 @@ static PetscErrorCode SetUpVIFactor(SNES snes)
 
 /* The full formulation's VI (vinewtonrsls) factors K~ on the free dofs once per iteration, and the
  * free dofs change from step to step. As submatrices, each would be a new matrix whose ordering and
- * MUMPS analysis (sequential, on its host) ran every time: 2.3 of the 115k-dof D1 disk's 9.4 s on
- * two ranks, which is why 2D used the approximate minimum fill ordering (ICNTL(7) = 2), cheap to
+ * MUMPS analysis (sequential, on its host) ran every time (docs/scaling.md, "The full formulation's
+ * factor"), which is why 2D used the approximate minimum fill ordering (ICNTL(7) = 2), cheap to
  * compute but with more fill. The default PC vifactor (pc_vifactor.c) factors the whole K~ with the
  * active rows the identity's: one pattern, ordered and analysed once, so MUMPS's automatic choice
- * (a nested dissection) pays for itself in 2D too: 0.161 -> 0.140 s/step on that disk on two ranks,
- * 0.245 -> 0.221 on one. K~'s block is SPD, so MUMPS's Cholesky, half the factor of its LU.
+ * (a nested dissection) pays for itself in 2D too (the orderings measured: docs/scaling.md, the same
+ * section). K~'s block is SPD, so MUMPS's Cholesky, half the factor of its LU.
  * vinewtonssls's semismooth Jacobian is not symmetric and keeps LU; options given stay. */
 PetscErrorCode MMQPSetFactorSPD(SNES snes)
 {

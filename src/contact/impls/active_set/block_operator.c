@@ -3,12 +3,10 @@
  * dof of a vertex to every dof of its neighbours, so K~'s AIJ pattern is made of full dim x dim
  * blocks; AIJ stores a column index per entry, block storage one per block, and K~ being symmetric
  * (SPD for every dt), the upper triangle of blocks holds all of it. A product is bound by the bytes
- * it reads: BAIJ's 8 + 4/bs^2 per entry instead of AIJ's 12 took the 113k-dof D2 ball's friction CG
- * from 1.43 to 0.90 s on 2 ranks; SBAIJ reads about half of BAIJ's and took the 1.02M-dof ball's
- * products from 15.5 to 12.6 s, 20 steps on 2 ranks (docs/scaling.md, "Products in block
- * storage"). PETSc 3.18's MatConvert from MPIAIJ inserts entry by entry (2.7 s for that K~ on 2
- * ranks to BAIJ, about the cost of the whole run's solves), so the block matrix is preallocated
- * from the AIJ pattern and filled a block row at a time here; a new dt refills its values in place. */
+ * it reads, and SBAIJ reads about half of BAIJ's, which reads less than AIJ. PETSc 3.18's MatConvert
+ * from MPIAIJ inserts entry by entry, too slow, so the block matrix is preallocated from the AIJ
+ * pattern and filled a block row at a time here; a new dt refills its values in place. The figures:
+ * docs/scaling.md, "The figures behind the code's choices" and "Products in block storage". */
 #include "../../contactimpl.h"
 
 /* The local CSR of K~'s diagonal (d) and off-diagonal (o) parts, and the o part's global columns. */

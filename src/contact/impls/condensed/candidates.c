@@ -170,8 +170,7 @@ static PetscErrorCode ReserveSlots(MMCtx *ctx, PetscInt n)
   if (c->n_cached + n > c->cap || (c->full_ok && !c->full)) {
     /* doubling, but never allocating past the cap. The arrays are slot-major, so a larger one keeps
      * the cached slots where they are: realloc remaps a large block instead of copying it into
-     * fresh pages, whose faults cost 0.43 s of the 3.3 s of candidate columns on 2 ranks (113k-dof
-     * D2 ball with friction, 5 growths; docs/scaling.md, "Where issue 21 ends") */
+     * fresh pages, whose faults are slow (docs/scaling.md, "The figures behind the code's choices") */
     const PetscInt fit = (PetscInt)(c->memory_cap / (per_node + (c->full_ok ? per_node_full : 0)));
     const PetscInt cap = PetscMax(PetscMin(2 * c->cap, fit), c->n_cached + n);
 

@@ -1,11 +1,11 @@
 /* Columns of K~^{-1} for unit right-hand sides, solved by PETSc's own MUMPS factor of K~ on several
  * ranks, with the map from MUMPS's distributed solution to PETSc's rows built once per factorization
- * (docs/scaling.md, "The Delassus columns").
+ * (docs/scaling.md, "What the exponents say", the Delassus columns).
  *
  * Why not MatMatTransposeSolve: PETSc 3.18's MUMPS interface builds a new VecScatter from MUMPS's
- * solution rows to the dense X on every multi-column solve, (local rows) x (columns) indices long.
- * On the 113k-dof D2 ball on 2 ranks that was 1.2 s of the 3.9 s of the candidate columns' solves,
- * so that they gained nothing from the second rank though MUMPS's own solve gained 1.7. MUMPS
+ * solution rows to the dense X on every multi-column solve, (local rows) x (columns) indices long,
+ * so that the columns gained nothing from a second rank though MUMPS's own solve did (the figures:
+ * docs/scaling.md, "The figures behind the code's choices"). MUMPS
  * returns the same rows on each rank after every solve with one factorization (ISOL_loc), so one
  * PetscSF moves every column.
  *
