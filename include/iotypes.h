@@ -11,6 +11,7 @@ typedef struct {
   PetscReal      t_start;               /* simulated time at the start of the time loop */
   PetscInt       step_start, step_last; /* the step then, and the last step counted */
   PetscInt       friction_its, steps;   /* friction iterations and steps since the last line */
+  PetscReal      every;                 /* -progress_every: seconds of wall time between lines, 0: none */
 } MMProgress;
 
 /* -probes (src/io/probes.c): each group's owned vertices with their lumped masses, and the group's mass. */
@@ -26,6 +27,11 @@ typedef struct {
 
 /* Output files. Rank 0 alone writes history.csv and solution.xmf; solution.h5 is written by all. */
 typedef struct {
+  char          dir[PETSC_MAX_PATH_LEN]; /* -output_dir */
+  PetscInt      every;                 /* -output_every: snapshots every so many steps, 0: the first and last */
+  PetscReal     interval;              /* -output_interval: snapshots at t = k T instead, 0: by steps */
+  PetscInt      history_every;         /* -history_every: a history row every N steps and the last */
+  char          probe_list[PETSC_MAX_PATH_LEN]; /* -probes: groups whose mean u and v go to the history, empty: none */
   int           csv_fd;                /* history.csv, on rank 0 (-1 elsewhere and once closed) */
   char          csv_name[PETSC_MAX_PATH_LEN], h5_name[PETSC_MAX_PATH_LEN], xmf_name[PETSC_MAX_PATH_LEN];
   PetscViewer   h5;                    /* solution.h5, open from MMOutputOpen to MMOutputClose */
@@ -57,6 +63,7 @@ typedef struct {
   PetscInt *vertex_file; /* per serial-mesh vertex, its position among the mesh file's nodes (mesh_file.c) */
   PetscInt  nv_global;   /* vertices of the whole mesh */
   PetscInt  every;       /* -checkpoint_every: steps between checkpoints, 0 only at the end */
+  char      restart[PETSC_MAX_PATH_LEN]; /* -restart: the checkpoint, or its directory, to continue; empty: none */
   PetscInt  written;     /* checkpoints written by this run */
   PetscInt  last_step;   /* step of the last one written */
   /* -restart */
@@ -67,5 +74,4 @@ typedef struct {
   PetscReal    run[40];                        /* its run record */
   PetscScalar *node;                           /* its per-node records of the owned contact nodes */
   PetscReal   *snapshot_times;                 /* the times of its snapshots, until the output takes them */
-  int          stop_signal;                    /* the signal that stopped the run (signals.c), 0: none */
 } MMCheckpoint;

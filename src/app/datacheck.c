@@ -10,7 +10,7 @@
 #include "fem.h"
 #include "contact.h"
 #include "damping.h"
-#include "output.h"
+#include "io.h"
 
 /* A size in bytes, in decimal units: "61.2 kB". */
 static PetscErrorCode BytesText(PetscReal b, char text[], size_t len)
@@ -155,13 +155,13 @@ static PetscErrorCode ReportGroups(MMCtx *ctx)
 }
 
 /* How the run writes its snapshots and rows, for the output line. */
-static PetscErrorCode CadenceText(const MMOptions *opt, char snap[], char rows[], size_t len)
+static PetscErrorCode CadenceText(const MMOutput *o, char snap[], char rows[], size_t len)
 {
   PetscFunctionBeginUser;
-  if (opt->output_interval > 0) PetscCall(PetscSNPrintf(snap, len, "at t = k %g and the last", (double)opt->output_interval));
-  else if (opt->output_every > 0) PetscCall(PetscSNPrintf(snap, len, "every %" PetscInt_FMT " steps and the last", opt->output_every));
+  if (o->interval > 0) PetscCall(PetscSNPrintf(snap, len, "at t = k %g and the last", (double)o->interval));
+  else if (o->every > 0) PetscCall(PetscSNPrintf(snap, len, "every %" PetscInt_FMT " steps and the last", o->every));
   else PetscCall(PetscStrncpy(snap, "the first and the last", len));
-  if (opt->history_every > 1) PetscCall(PetscSNPrintf(rows, len, " (every %" PetscInt_FMT " steps and the last)", opt->history_every));
+  if (o->history_every > 1) PetscCall(PetscSNPrintf(rows, len, " (every %" PetscInt_FMT " steps and the last)", o->history_every));
   else rows[0] = 0;
   PetscFunctionReturn(0);
 }
@@ -182,8 +182,8 @@ static PetscErrorCode ReportPlan(MMCtx *ctx, TS ts, PetscReal *step0)
   PetscCall(BytesText(plan.xmf_bytes, xmf_text, sizeof(xmf_text)));
   /* at a checkpoint solution.h5 is copied beside it (checkpoint_snapshots.h5, src/io/output.c) */
   PetscCall(BytesText(2 * plan.h5_bytes + plan.csv_bytes + plan.xmf_bytes, total, sizeof(total)));
-  PetscCall(CadenceText(&ctx->opt, every, rows, sizeof(every)));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  output: %.0f snapshots (%s) of %s each: %s in solution.h5 with the mesh, %s in solution.xmf; %.0f history rows: at most %s in history.csv%s; at most %s in %s with the checkpoint's copy of solution.h5%s (-check_input writes nothing)\n", (double)plan.snapshots, every, snap, h5_text, xmf_text, (double)plan.rows, csv_text, rows, total, ctx->opt.output_dir, ctx->ckpt.restarted ? ", beyond what the restart continues from its checkpoint's directory" : ""));
+  PetscCall(CadenceText(&ctx->out, every, rows, sizeof(every)));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  output: %.0f snapshots (%s) of %s each: %s in solution.h5 with the mesh, %s in solution.xmf; %.0f history rows: at most %s in history.csv%s; at most %s in %s with the checkpoint's copy of solution.h5%s (-check_input writes nothing)\n", (double)plan.snapshots, every, snap, h5_text, xmf_text, (double)plan.rows, csv_text, rows, total, ctx->out.dir, ctx->ckpt.restarted ? ", beyond what the restart continues from its checkpoint's directory" : ""));
   PetscFunctionReturn(0);
 }
 

@@ -20,12 +20,9 @@ static char help[] = "mmcontact: elastic bodies hitting and sliding on rigid obs
 #include "friction.h"
 #include "energy.h"
 #include "momenta.h"
-#include "output.h"
+#include "io.h"
 #include "log.h"
-#include "checkpoint.h"
-#include "progress.h"
-#include "signals.h"
-#include "errors.h"
+#include "sys.h"
 #include "deformation.h"
 #include "damping.h"
 #include "datacheck.h"
@@ -65,10 +62,12 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscCall(MMOptionsHelpWithoutMesh(comm, help_only));
   if (*help_only) PetscFunctionReturn(0);
   PetscCall(MMFESetFromOptions(comm, &ctx->op));
-  PetscCall(MMOutputCheckOptions(comm, &ctx->opt));
+  PetscCall(MMOutputSetFromOptions(comm, &ctx->out));
+  PetscCall(MMCheckpointSetFromOptions(comm, &ctx->ckpt));
+  PetscCall(MMProgressSetFromOptions(comm, &ctx->progress));
   /* before anything in the output directory is read or moved: one run per directory. A data check
    * writes nothing, and takes no lock */
-  if (!ctx->opt.check_input) PetscCall(MMOutputLock(ctx->opt.output_dir));
+  if (!ctx->opt.check_input) PetscCall(MMOutputLock(ctx->out.dir));
   MMPhase(ctx->log.mesh_load, LoadMesh(comm, ctx));
   PetscCall(DMGetDimension(ctx->op.dm, &ctx->op.dim));
   PetscCall(MMOptionsGetFEProblem(&ctx->opt, &pb));
@@ -82,7 +81,7 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   MMPhase(ctx->log.initial_state, MMNewmarkInitialState(ctx));
   MMPhase(ctx->log.friction_setup, MMFrictionSetUp(ctx));
   PetscCall(MMNewmarkCreateTS(ctx, ts));
-  if (ctx->opt.restart[0]) PetscCall(MMCheckpointLoad(ctx, *ts));
+  if (ctx->ckpt.restart[0]) PetscCall(MMCheckpointLoad(ctx, *ts));
   PetscCall(TSGetTimeStep(*ts, &dt));
   MMPhase(ctx->log.step_matrix, MMContactSetStepMatrix(ctx, dt));
   ctx->hist.dt = dt;
@@ -105,7 +104,7 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscCall(TSMonitorSet(*ts, MMOutputMonitor, ctx, NULL));
   PetscCall(TSMonitorSet(*ts, MMCheckpointMonitor, ctx, NULL));
   PetscCall(MMProgressSetUp(ctx, *ts));
-  PetscCall(MMSignalsSetUp(ctx, *ts));
+  PetscCall(MMSignalsSetUp(*ts));
   PetscFunctionReturn(0);
 }
 
@@ -179,9 +178,9 @@ int main(int argc, char **argv)
   if (ctx.ckpt.last_step != ctx.hist.step || !ctx.ckpt.written) PetscCall(MMCheckpointWrite(&ctx, ts));
 
   PetscCall(MMOutputClose(&ctx, t0 - ts0, t1 - t0));
-  PetscCall(MMSignalsReport(&ctx));
+  PetscCall(MMSignalsReport(PETSC_COMM_WORLD, ctx.hist.step, ctx.hist.time, ctx.out.dir));
   PetscCall(MMOutputUnlock());
-  stopped = ctx.ckpt.stop_signal;
+  PetscCall(MMSignalsGetStop(&stopped));
   PetscCall(Destroy(&ctx, &ts));
   PetscCall(PetscFinalize());
   return stopped ? MM_EXIT_RESTARTABLE : 0;

@@ -5,9 +5,8 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <petscviewerhdf5.h>
-#include "checkpoint.h"
 #include "friction.h"
-#include "output.h"
+#include "io.h"
 #include "contact.h"
 #include "newmark.h"
 #include "damping.h"
@@ -333,7 +332,7 @@ PetscErrorCode MMCheckpointWrite(MMCtx *ctx, TS ts)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ctx->log.checkpoint, 0, 0, 0, 0));
   if (!ctx->ckpt.nv_global) PetscCall(CountVertices(ctx));
-  PetscCall(PetscSNPrintf(name, sizeof(name), "%s/%s", ctx->opt.output_dir, MM_CKPT_FILE));
+  PetscCall(PetscSNPrintf(name, sizeof(name), "%s/%s", ctx->out.dir, MM_CKPT_FILE));
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s%s", name, MM_CKPT_TMP));
   PetscCall(RunRecord(ctx, ts, run));
   PetscCall(MMOutputCopySnapshots(ctx)); /* before the checkpoint that counts on it */
@@ -352,11 +351,25 @@ PetscErrorCode MMCheckpointWrite(MMCtx *ctx, TS ts)
   PetscFunctionReturn(0);
 }
 
+/* The checkpoints' options (docs/method.md section 9), each with its check. */
+PetscErrorCode MMCheckpointSetFromOptions(MPI_Comm comm, MMCheckpoint *c)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, NULL, "mmcontact checkpoints", "MMCheckpoint");
+  c->every = 0;
+  PetscCall(MMOptionsInt(PetscOptionsObject, comm, "-checkpoint_every", "Write the complete state to OUTPUT_DIR/checkpoint.h5 every k steps, replacing the previous one atomically (0: only at the end of the run)", &c->every));
+  c->restart[0] = 0;
+  PetscCall(MMOptionsString(PetscOptionsObject, comm, "-restart", "Continue the run of a checkpoint: its checkpoint.h5, or the output directory that holds it, on any number of ranks. The history.csv and solution.h5/.xmf of that directory, cut at the checkpoint's step, are continued in -output_dir. Give the options of the run that wrote it: another mesh, contact boundary, dimension, -mu, material or mass is refused", c->restart, sizeof(c->restart), NULL));
+  PetscOptionsEnd();
+  PetscCheck(c->every >= 0, comm, PETSC_ERR_USER_INPUT, "-checkpoint_every %" PetscInt_FMT " must be >= 0 (0: a checkpoint at the end only)", c->every);
+  PetscFunctionReturn(0);
+}
+
 /* TS monitor: a checkpoint every -checkpoint_every steps (the final one is written by main). */
 PetscErrorCode MMCheckpointMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ptr)
 {
   MMCtx         *ctx   = (MMCtx *)ptr;
-  const PetscInt every = ctx->opt.checkpoint_every;
+  const PetscInt every = ctx->ckpt.every;
 
   PetscFunctionBeginUser;
   if (every > 0 && step > 0 && step % every == 0 && step != ctx->ckpt.last_step) PetscCall(MMCheckpointWrite(ctx, ts));
@@ -386,15 +399,15 @@ static PetscErrorCode ResolveRestartPath(MMCtx *ctx)
   char         *slash;
 
   PetscFunctionBeginUser;
-  if (!stat(ctx->opt.restart, &st)) {
+  if (!stat(ctx->ckpt.restart, &st)) {
     exists = 1;
     isdir  = S_ISDIR(st.st_mode);
   }
-  if (isdir) PetscCall(PetscSNPrintf(c->file, sizeof(c->file), "%s/%s", ctx->opt.restart, MM_CKPT_FILE));
-  else PetscCall(PetscStrncpy(c->file, ctx->opt.restart, sizeof(c->file)));
+  if (isdir) PetscCall(PetscSNPrintf(c->file, sizeof(c->file), "%s/%s", ctx->ckpt.restart, MM_CKPT_FILE));
+  else PetscCall(PetscStrncpy(c->file, ctx->ckpt.restart, sizeof(c->file)));
   PetscCall(MMOutputCheckHDF5Path(comm, "-restart", c->file, ""));
   if (isdir) exists = !stat(c->file, &st);
-  PetscCheck(exists, comm, PETSC_ERR_FILE_OPEN, "-restart %s: %s does not exist. Give the checkpoint file, or the output directory of the run to continue (its checkpoint.h5 is written every -checkpoint_every steps and at the end)", ctx->opt.restart, c->file);
+  PetscCheck(exists, comm, PETSC_ERR_FILE_OPEN, "-restart %s: %s does not exist. Give the checkpoint file, or the output directory of the run to continue (its checkpoint.h5 is written every -checkpoint_every steps and at the end)", ctx->ckpt.restart, c->file);
   PetscCall(PetscStrncpy(c->source_dir, c->file, sizeof(c->source_dir)));
   slash = strrchr(c->source_dir, '/');
   if (slash) *slash = 0;

@@ -21,8 +21,7 @@
 #include <unistd.h>
 #include <petscsf.h>
 #include <petscviewerhdf5.h>
-#include "output.h"
-#include "progress.h"
+#include "io.h"
 #include "outputimpl.h"
 #include "contact.h"
 #include "fem.h"
@@ -474,7 +473,7 @@ PetscErrorCode MMOutputCopySnapshots(MMCtx *ctx)
   PetscCall(PetscLogEventBegin(o->ev_copy, 0, 0, 0, 0));
   PetscCall(MMOutputFlushFields(o));
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
-  PetscCall(PetscSNPrintf(dst, sizeof(dst), "%s/%s", ctx->opt.output_dir, MM_SNAPSHOT_COPY));
+  PetscCall(PetscSNPrintf(dst, sizeof(dst), "%s/%s", ctx->out.dir, MM_SNAPSHOT_COPY));
   if (!rank) PetscCall(CopyFile(o->h5_name, dst, &st));
   PetscCall(MMOutputCheckRank0(&st));
   PetscCall(PetscLogEventEnd(o->ev_copy, 0, 0, 0, 0));
@@ -491,7 +490,7 @@ static PetscErrorCode DropSnapshotCopy(MMCtx *ctx)
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   if (rank || !ctx->ckpt.written || ctx->ckpt.last_step != ctx->hist.step) PetscFunctionReturn(0);
-  PetscCall(PetscSNPrintf(dst, sizeof(dst), "%s/%s", ctx->opt.output_dir, MM_SNAPSHOT_COPY));
+  PetscCall(PetscSNPrintf(dst, sizeof(dst), "%s/%s", ctx->out.dir, MM_SNAPSHOT_COPY));
   (void)unlink(dst);
   PetscFunctionReturn(0);
 }
@@ -712,9 +711,9 @@ static PetscErrorCode OpenDirectoryAndHistory(MMCtx *ctx)
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   o->csv_fd = -1;
   if (rank == 0) {
-    PetscCall(MMOutputMakeDirectories(ctx->opt.output_dir, &st));
+    PetscCall(MMOutputMakeDirectories(ctx->out.dir, &st));
     /* a restart continues the files of its checkpoint's directory: only another run's move away */
-    if (!st.err && !(ctx->ckpt.restarted && SameDirectory(ctx->opt.output_dir, ctx->ckpt.source_dir))) PetscCall(MMOutputKeepPrevious(ctx->opt.output_dir, &st));
+    if (!st.err && !(ctx->ckpt.restarted && SameDirectory(ctx->out.dir, ctx->ckpt.source_dir))) PetscCall(MMOutputKeepPrevious(ctx->out.dir, &st));
     if (!st.err && ctx->ckpt.restarted) PetscCall(MMOutputRestartHistory(ctx, &st));
     else if (!st.err && (o->csv_fd = open(o->csv_name, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666)) < 0) PetscCall(MMOutputFailed(&st, "create %s", o->csv_name));
   }
@@ -821,17 +820,41 @@ PetscErrorCode MMOutputCheckHDF5Path(MPI_Comm comm, const char option[], const c
   PetscFunctionReturn(0);
 }
 
-/* Checked with the other options, long before the output is opened. */
-PetscErrorCode MMOutputCheckOptions(MPI_Comm comm, const MMOptions *opt)
+/* -output_dir must name a directory whose files' names fit: checked with the options, long before
+ * the output is opened. */
+static PetscErrorCode CheckDirectory(MPI_Comm comm, const char dir[])
 {
   size_t len;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscStrlen(opt->output_dir, &len));
+  PetscCall(PetscStrlen(dir, &len));
   PetscCheck(len > 0, comm, PETSC_ERR_USER_INPUT, "-output_dir is empty: name the directory for history.csv, solution.h5 and solution.xmf (\".\" for the current one)");
   /* room for the longest name written under it, and for Open MPI's file open (MMOutputCheckHDF5Path) */
-  PetscCheck(len + sizeof("/" MM_PREVIOUS "/solution.xmf" MM_XMF_TMP) <= PETSC_MAX_PATH_LEN, comm, PETSC_ERR_USER_INPUT, "-output_dir %s is too long (%d characters at most)", opt->output_dir, (int)(PETSC_MAX_PATH_LEN - sizeof("/" MM_PREVIOUS "/solution.xmf" MM_XMF_TMP)));
-  PetscCall(MMOutputCheckHDF5Path(comm, "-output_dir", opt->output_dir, "/checkpoint.h5.tmp"));
+  PetscCheck(len + sizeof("/" MM_PREVIOUS "/solution.xmf" MM_XMF_TMP) <= PETSC_MAX_PATH_LEN, comm, PETSC_ERR_USER_INPUT, "-output_dir %s is too long (%d characters at most)", dir, (int)(PETSC_MAX_PATH_LEN - sizeof("/" MM_PREVIOUS "/solution.xmf" MM_XMF_TMP)));
+  PetscCall(MMOutputCheckHDF5Path(comm, "-output_dir", dir, "/checkpoint.h5.tmp"));
+  PetscFunctionReturn(0);
+}
+
+/* The output's options (README "Output"), each with its check. */
+PetscErrorCode MMOutputSetFromOptions(MPI_Comm comm, MMOutput *o)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, NULL, "mmcontact output", "MMOutput");
+  PetscCall(PetscStrcpy(o->dir, "output"));
+  PetscCall(MMOptionsString(PetscOptionsObject, comm, "-output_dir", "Directory for history.csv, solution.h5 and solution.xmf (created if missing; not empty)", o->dir, sizeof(o->dir), NULL));
+  o->every = 10;
+  PetscCall(MMOptionsInt(PetscOptionsObject, comm, "-output_every", "Write the HDF5 fields every k steps (0: only the initial and final state)", &o->every));
+  o->interval = 0;
+  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-output_interval", "Write the HDF5 fields at t = 0, T, 2T, ... (at the first step whose time reaches k T, to 1e-9 dt) and the final state; T > 0 replaces -output_every (0: by steps)", &o->interval));
+  o->history_every = 1;
+  PetscCall(MMOptionsInt(PetscOptionsObject, comm, "-history_every", "Write a history.csv row every N steps (step 0, N, 2N, ...) and at the last step, >= 1", &o->history_every));
+  o->probe_list[0] = 0;
+  PetscCall(MMOptionsString(PetscOptionsObject, comm, "-probes", "Comma-separated physical groups whose mean displacement and velocity (weighted by the nodes' lumped mass) go to history.csv as probe_NAME_ux, ..., probe_NAME_vx, ...", o->probe_list, sizeof(o->probe_list), NULL));
+  PetscOptionsEnd();
+  PetscCheck(o->every >= 0, comm, PETSC_ERR_USER_INPUT, "-output_every %" PetscInt_FMT " must be >= 0", o->every);
+  PetscCheck(o->interval >= 0, comm, PETSC_ERR_USER_INPUT, "-output_interval %g must be >= 0: it is the simulated time between snapshots (0: every -output_every steps)", (double)o->interval);
+  PetscCheck(o->history_every >= 1, comm, PETSC_ERR_USER_INPUT, "-history_every %" PetscInt_FMT " must be >= 1: it is the number of steps between history rows", o->history_every);
+  PetscCall(CheckDirectory(comm, o->dir));
   PetscFunctionReturn(0);
 }
 
@@ -839,7 +862,7 @@ PetscErrorCode MMOutputCheckOptions(MPI_Comm comm, const MMOptions *opt)
 PetscErrorCode MMOutputOpen(MMCtx *ctx)
 {
   MMOutput   *o   = &ctx->out;
-  const char *dir = ctx->opt.output_dir;
+  const char *dir = ctx->out.dir;
 
   PetscFunctionBeginUser;
   o->dm_scalar = ctx->op.dm_scalar;
@@ -878,8 +901,8 @@ PetscErrorCode MMOutputMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void
   }
   /* -restart: the row and snapshot of the checkpoint's step are on disk already */
   if (ctx->ckpt.restarted && step == ctx->ckpt.restart_step) PetscFunctionReturn(0);
-  if (MMOutputHistoryDue(&ctx->opt, step)) PetscCall(CSVRow(ctx));
-  if (step == 0 || MMOutputSnapshotDue(&ctx->opt, step, time, ctx->hist.dt)) PetscCall(WriteFields(ctx));
+  if (MMOutputHistoryDue(&ctx->out, step)) PetscCall(CSVRow(ctx));
+  if (step == 0 || MMOutputSnapshotDue(&ctx->out, step, time, ctx->hist.dt)) PetscCall(WriteFields(ctx));
   PetscFunctionReturn(0);
 }
 
@@ -908,7 +931,7 @@ PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wa
 
   PetscFunctionBeginUser;
   /* the last step's row, if the cadence missed it (a restart that made no step has it on disk) */
-  if (!MMOutputHistoryDue(&ctx->opt, h->step) && !(ctx->ckpt.restarted && h->step == ctx->ckpt.restart_step)) PetscCall(CSVRow(ctx));
+  if (!MMOutputHistoryDue(&ctx->out, h->step) && !(ctx->ckpt.restarted && h->step == ctx->ckpt.restart_step)) PetscCall(CSVRow(ctx));
   if (o->n_written && o->times[o->n_written - 1] != h->time) PetscCall(WriteFields(ctx));
   PetscCall(MMOutputSyncIndex(ctx));
   PetscCall(CloseFiles(o));

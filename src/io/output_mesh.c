@@ -4,7 +4,7 @@
  * with PETSC_VIEWER_HDF5_XDMF writes, from the cell table (src/mesh/cells.c) instead of a
  * transitive closure per cell and a numbering of every face and edge: at 1M dofs DMView took 9 s
  * of the set-up on 2 ranks. */
-#include "output.h"
+#include "io.h"
 #include <petscviewerhdf5.h>
 #include "outputimpl.h"
 #include "fem.h"

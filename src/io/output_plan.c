@@ -5,9 +5,8 @@
  * (MMOutputSnapshotFields), their views measured by output_views.c's own code, the index's grids by
  * MMOutputIndexAddGrid, the history's columns from its header, and the steps that write a row or a
  * snapshot from the rules the run applies (MMOutputHistoryDue, MMOutputSnapshotDue). */
-#include "output.h"
+#include "io.h"
 #include "outputimpl.h"
-#include "checkpoint.h"
 #include "mesh.h"
 
 /* Above this many steps the schedule is walked over the first ones only and scaled (about a second
@@ -62,8 +61,8 @@ static PetscErrorCode PlanSchedule(MMCtx *ctx, TS ts, MMOutputPlan *plan)
     if (eft == TS_EXACTFINALTIME_MATCHSTEP && t + h > t_end + tol) h = t_end - t;
     t += h;
     if (PetscAbsReal(t - t_end) <= tol) t = t_end;
-    row_due  = MMOutputHistoryDue(&ctx->opt, step);
-    snap_due = MMOutputSnapshotDue(&ctx->opt, step, t, h);
+    row_due  = MMOutputHistoryDue(&ctx->out, step);
+    snap_due = MMOutputSnapshotDue(&ctx->out, step, t, h);
     rows += row_due;
     snaps += snap_due;
   }

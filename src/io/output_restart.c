@@ -20,9 +20,8 @@
 #include <string.h>
 #include <unistd.h>
 #include <petscviewerhdf5.h>
-#include "output.h"
+#include "io.h"
 #include "outputimpl.h"
-#include "checkpoint.h"
 #include "fem.h"
 
 #define MM_TMP ".tmp"
@@ -52,7 +51,7 @@ PetscErrorCode MMOutputRestartHistory(MMCtx *ctx, MMFileStatus *st)
   ssize_t        len;
   MMLine         header;
   FILE          *f;
-  const PetscInt every = ctx->opt.history_every;
+  const PetscInt every = ctx->out.history_every;
   PetscInt       due = 0, prev = -1; /* the next step of the cadence; the last row kept */
   int            fd;
 

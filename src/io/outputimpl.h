@@ -2,6 +2,7 @@
 #pragma once
 #include <stdio.h>
 #include "mmcontact.h"
+#include "sys.h"
 
 #define MM_SNAPSHOT_COPY "checkpoint_snapshots.h5" /* solution.h5 as of the last checkpoint */
 
@@ -50,8 +51,8 @@ PETSC_INTERN PetscInt       MMOutputViewComponents(PetscInt);
 PETSC_INTERN PetscErrorCode MMOutputViewPath(PetscInt, const char[], char[], size_t);
 PETSC_INTERN PetscErrorCode MMOutputViewBytes(const MMSnapshotField[MM_SNAPSHOT_FIELDS], PetscInt, PetscInt, PetscInt, PetscReal *);
 /* output_schedule.c: which steps write a row or a snapshot; the planned output's size */
-PETSC_INTERN PetscBool      MMOutputHistoryDue(const MMOptions *, PetscInt);
-PETSC_INTERN PetscBool      MMOutputSnapshotDue(const MMOptions *, PetscInt, PetscReal, PetscReal);
+PETSC_INTERN PetscBool      MMOutputHistoryDue(const MMOutput *o, PetscInt step);
+PETSC_INTERN PetscBool      MMOutputSnapshotDue(const MMOutput *o, PetscInt step, PetscReal t, PetscReal dt);
 PETSC_INTERN PetscErrorCode MMOutputPlanCheck(MMCtx *, TS);
 /* probes.c: -probes, the groups' mean displacement and velocity */
 PETSC_INTERN PetscErrorCode MMProbesEvaluate(MMCtx *);

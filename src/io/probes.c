@@ -101,8 +101,8 @@ PetscErrorCode MMProbesSetUp(MMCtx *ctx)
   Vec       flags, mloc;
 
   PetscFunctionBeginUser;
-  if (!ctx->opt.probes[0]) PetscFunctionReturn(0);
-  PetscCall(PetscStrToArray(ctx->opt.probes, ',', &n, &names));
+  if (!ctx->out.probe_list[0]) PetscFunctionReturn(0);
+  PetscCall(PetscStrToArray(ctx->out.probe_list, ',', &n, &names));
   pr->n = n;
   PetscCall(PetscCalloc4(n, &pr->name, n + 1, &pr->start, n, &pr->mass, 2 * MM_MAX_DIM * n, &pr->mean));
   pr->vertex = NULL; /* grown by AddGroup */
@@ -111,7 +111,7 @@ PetscErrorCode MMProbesSetUp(MMCtx *ctx)
   PetscCall(DMGetLocalVector(ctx->op.dm_scalar, &mloc));
   PetscCall(MMFEVertexMasses(&ctx->op, &ctx->material, mloc));
   for (PetscInt g = 0; g < n; ++g) {
-    PetscCheck(names[g][0], comm, PETSC_ERR_USER_INPUT, "-probes %s has an empty name: give physical group names separated by commas", ctx->opt.probes);
+    PetscCheck(names[g][0], comm, PETSC_ERR_USER_INPUT, "-probes %s has an empty name: give physical group names separated by commas", ctx->out.probe_list);
     for (PetscInt h = 0; h < g; ++h) PetscCheck(strcmp(names[g], names[h]), comm, PETSC_ERR_USER_INPUT, "-probes names the group %s twice: its columns would be repeated", names[g]);
     PetscCall(PetscStrncpy(pr->name[g], names[g], sizeof(pr->name[g])));
     PetscCall(GroupVertexFlags(ctx, names[g], flags));

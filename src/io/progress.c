@@ -4,7 +4,8 @@
  * Both go to rank 0 through PetscPrintf; -quiet turns both off. */
 #include <stdlib.h>
 #include <petsc/private/pcimpl.h> /* pc->setupcalled */
-#include "progress.h"
+#include "io.h"
+#include "sys.h"
 #include "contact.h"
 #include "mesh.h"
 #include "fem.h"
@@ -249,7 +250,7 @@ static PetscErrorCode HeaderContact(MMCtx *ctx)
   PetscCall(SolverText(ctx, solver, sizeof(solver)));
   /* the active-set CG's products (src/contact/impls/active_set/block_operator.c) */
   if (ctx->contact.as.ksp) products = ctx->contact.as.Kb ? "; CG products with K~ in symmetric block storage (SBAIJ)" : (opt->active_set_block ? "; CG products with K~'s AIJ (its pattern is not in whole blocks)" : "");
-  if (opt->progress_every > 0) PetscCall(PetscSNPrintf(progress, sizeof(progress), "progress every %.6g s", (double)opt->progress_every));
+  if (ctx->progress.every > 0) PetscCall(PetscSNPrintf(progress, sizeof(progress), "progress every %.6g s", (double)ctx->progress.every));
   if (ctx->contact.enabled && ctx->contact.n_corners) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes (%" PetscInt_FMT " of them against two obstacles: %" PetscInt_FMT " rows) against %s; %s %s mass; %s\n", ctx->contact.n_global - ctx->contact.n_corners, ctx->contact.n_corners, ctx->contact.n_global, obstacles, ctx->op.lumped ? "lumped" : "consistent", MMMassTypes[ctx->op.mass_type], friction));
   else if (ctx->contact.enabled && ctx->contact.n_fc) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes (%" PetscInt_FMT " of them against two obstacles, each with its own Coulomb law) against %s; %s %s mass; %s\n", ctx->contact.n_global, ctx->contact.n_fc, obstacles, ctx->op.lumped ? "lumped" : "consistent", MMMassTypes[ctx->op.mass_type], friction));
   else if (ctx->contact.enabled) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes against %s; %s %s mass; %s\n", ctx->contact.n_global, obstacles, ctx->op.lumped ? "lumped" : "consistent", MMMassTypes[ctx->op.mass_type], friction));
@@ -366,11 +367,23 @@ PetscErrorCode MMProgressMonitor(TS ts, PetscInt step, PetscReal time, Vec u, vo
   p->step_last = step;
   p->friction_its += ctx->hist.friction_its;
   p->steps++;
-  if (now - p->wall_last < ctx->opt.progress_every) PetscFunctionReturn(0);
+  if (now - p->wall_last < ctx->progress.every) PetscFunctionReturn(0);
   PetscCall(PrintLine(ctx, ts, (PetscReal)(now - p->wall_start)));
   p->wall_last    = now;
   p->friction_its = 0;
   p->steps        = 0;
+  PetscFunctionReturn(0);
+}
+
+/* The progress line's option, with its check. */
+PetscErrorCode MMProgressSetFromOptions(MPI_Comm comm, MMProgress *p)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, NULL, "mmcontact progress", "MMProgress");
+  p->every = 5;
+  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-progress_every", "Print a progress line (time, wall time and ETA, energy balance, contact and friction) every this many seconds of wall time, >= 0 (0: none)", &p->every));
+  PetscOptionsEnd();
+  PetscCheck(p->every >= 0, comm, PETSC_ERR_USER_INPUT, "-progress_every %.6g must be >= 0: it is the wall time in seconds between progress lines (0 turns them off)", (double)p->every);
   PetscFunctionReturn(0);
 }
 
@@ -379,7 +392,7 @@ PetscErrorCode MMProgressMonitor(TS ts, PetscInt step, PetscReal time, Vec u, vo
 PetscErrorCode MMProgressSetUp(MMCtx *ctx, TS ts)
 {
   PetscFunctionBeginUser;
-  if (ctx->opt.quiet || ctx->opt.progress_every == 0) PetscFunctionReturn(0);
+  if (ctx->opt.quiet || ctx->progress.every == 0) PetscFunctionReturn(0);
   PetscCall(TSMonitorSet(ts, MMProgressMonitor, ctx, NULL));
   PetscFunctionReturn(0);
 }

@@ -1,0 +1,49 @@
+/* io: the run's output (history.csv, solution.h5 and its XDMF index), checkpoints and restart, and the
+ * progress lines (src/io/). Their structs are in iotypes.h, part of the run's context. */
+#pragma once
+#include "mmcontact.h"
+
+/* output.c: the files of a run, from set-up to close */
+PETSC_EXTERN PetscErrorCode MMOutputSetFromOptions(MPI_Comm comm, MMOutput *o);
+PETSC_EXTERN PetscErrorCode MMOutputOpen(MMCtx *ctx);
+PETSC_EXTERN PetscErrorCode MMOutputMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ctx);
+PETSC_EXTERN PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wall);
+PETSC_EXTERN PetscErrorCode MMOutputCheckHDF5Path(MPI_Comm comm, const char option[], const char path[], const char longest[]);
+PETSC_EXTERN PetscErrorCode MMOutputSyncIndex(MMCtx *ctx);
+PETSC_EXTERN PetscErrorCode MMOutputCopySnapshots(MMCtx *ctx);
+/* output_lock.c: one run per output directory */
+PETSC_EXTERN PetscErrorCode MMOutputLock(const char dir[]);
+PETSC_EXTERN PetscErrorCode MMOutputUnlock(void);
+/* -probes (src/io/probes.c): set up by the output, and by the data check, whose plan counts their
+ * history columns and which refuses a group the mesh lacks as a run does */
+PETSC_EXTERN PetscErrorCode MMProbesSetUp(MMCtx *ctx);
+PETSC_EXTERN PetscErrorCode MMProbesDestroy(MMProbes *probes);
+/* What a run will write (src/io/output_plan.c, for -check_input and the large-output warning): its
+ * steps from step0 at t0, each dt, to t_last (by_steps: -ts_max_steps ends it before -ts_max_time);
+ * its snapshots, the bytes of each (with its views) and of the mesh, and solution.h5's and
+ * solution.xmf's bytes; its history rows, the most bytes a row takes, the header's, and at most
+ * history.csv's bytes. */
+typedef struct {
+  PetscReal step0, steps, t0, dt, t_last;
+  PetscBool by_steps;
+  PetscReal snapshots, snapshot_bytes, mesh_bytes, h5_bytes, xmf_bytes;
+  PetscReal rows, row_bytes, header_bytes, csv_bytes;
+} MMOutputPlan;
+PETSC_EXTERN PetscErrorCode MMOutputPlanMake(MMCtx *ctx, TS ts, MMOutputPlan *plan);
+
+/* checkpoint.c: checkpoints and -restart (docs/method.md section 9) */
+PETSC_EXTERN PetscErrorCode MMCheckpointSetFromOptions(MPI_Comm comm, MMCheckpoint *c);
+PETSC_EXTERN PetscErrorCode MMCheckpointWrite(MMCtx *ctx, TS ts);
+PETSC_EXTERN PetscErrorCode MMCheckpointMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ctx);
+PETSC_EXTERN PetscErrorCode MMCheckpointDestroy(MMCheckpoint *c);
+PETSC_EXTERN PetscErrorCode MMCheckpointLoad(MMCtx *ctx, TS ts);
+PETSC_EXTERN PetscErrorCode MMCheckpointRestoreHistory(MMCtx *ctx);
+PETSC_EXTERN PetscErrorCode MMCheckpointSnapshots(MMCtx *ctx, PetscInt *n, PetscReal **times);
+PETSC_EXTERN PetscInt       MMCheckpointSnapshotCount(const MMCtx *ctx);
+
+/* progress.c: the start-up report and the progress lines */
+PETSC_EXTERN PetscErrorCode MMProgressSetFromOptions(MPI_Comm comm, MMProgress *p);
+PETSC_EXTERN PetscErrorCode MMProgressHeader(MMCtx *ctx, TS ts);
+PETSC_EXTERN PetscErrorCode MMProgressMassLine(MMCtx *ctx);
+PETSC_EXTERN PetscErrorCode MMProgressSetUp(MMCtx *ctx, TS ts);
+PETSC_EXTERN PetscErrorCode MMProgressMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ctx);
