@@ -7,9 +7,12 @@
 PETSC_EXTERN PetscErrorCode MMOutputSetFromOptions(MPI_Comm comm, MMOutput *o);
 PETSC_EXTERN PetscErrorCode MMOutputOpen(MMCtx *ctx);
 PETSC_EXTERN PetscErrorCode MMOutputMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ctx);
-PETSC_EXTERN PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wall);
+PETSC_EXTERN PetscErrorCode MMOutputWriteFinal(MMCtx *ctx);
+PETSC_EXTERN PetscErrorCode MMOutputClose(MMOutput *o, const MMCheckpoint *c, PetscInt step);
+PETSC_EXTERN PetscErrorCode MMOutputView(const MMOutput *o, PetscViewer viewer);
+PETSC_EXTERN PetscErrorCode MMOutputDestroy(MMOutput *o);
 PETSC_EXTERN PetscErrorCode MMOutputCheckHDF5Path(MPI_Comm comm, const char option[], const char path[], const char longest[]);
-PETSC_EXTERN PetscErrorCode MMOutputSyncIndex(MMCtx *ctx);
+PETSC_EXTERN PetscErrorCode MMOutputSyncIndex(MMOutput *o);
 PETSC_EXTERN PetscErrorCode MMOutputCopySnapshots(MMCtx *ctx);
 /* output_lock.c: one run per output directory */
 PETSC_EXTERN PetscErrorCode MMOutputLock(const char dir[]);

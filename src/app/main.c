@@ -26,6 +26,7 @@ static char help[] = "mmcontact: elastic bodies hitting and sliding on rigid obs
 #include "deformation.h"
 #include "damping.h"
 #include "datacheck.h"
+#include <sys/resource.h>
 
 /* A set-up phase under its own event (MMLog), so that -log_view shows where the set-up goes */
 #define MMPhase(event, call) \
@@ -108,6 +109,38 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscFunctionReturn(0);
 }
 
+/* The run's own line of the report: its set-up and time loop, memory, and the audits' extremes. */
+static PetscErrorCode RunView(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wall, PetscViewer viewer)
+{
+  const MMHistory *h = &ctx->hist;
+  const PetscInt   steps = h->step - (ctx->ckpt.restarted ? ctx->ckpt.restart_step : 0); /* this run's */
+  struct rusage    ru;
+  PetscReal        peak, total;
+
+  PetscFunctionBeginUser;
+  getrusage(RUSAGE_SELF, &ru);
+  peak = ru.ru_maxrss / 1024.0; /* kB on Linux */
+  PetscCall(MPIU_Allreduce(&peak, &total, 1, MPIU_REAL, MPIU_SUM, PETSC_COMM_WORLD));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &peak, 1, MPIU_REAL, MPIU_MAX, PETSC_COMM_WORLD));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "mmcontact summary: setup %.3f s; %" PetscInt_FMT " steps to t = %g in %.3f s wall (%.4f s/step); peak memory %.1f MiB/rank (%.1f MiB over all ranks); largest balance residual %.3e; largest penetration %.3e (h_c' %.3e)\n", (double)setup, steps, (double)h->time, (double)wall, steps ? (double)(wall / steps) : 0.0, (double)peak, (double)total, (double)h->max_balance, (double)h->max_penetration_run, (double)ctx->contact.h_c));
+  PetscFunctionReturn(0);
+}
+
+/* The run report: each component's view, in the order of the set-up. */
+static PetscErrorCode Report(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wall)
+{
+  PetscViewer viewer = PETSC_VIEWER_STDOUT_WORLD;
+
+  PetscFunctionBeginUser;
+  if (ctx->opt.quiet) PetscFunctionReturn(0);
+  PetscCall(RunView(ctx, setup, wall, viewer));
+  PetscCall(MMProgressMassLine(ctx));   /* the mass's view (fem) */
+  PetscCall(MMContactSummary(ctx));     /* MMContactView (contact) */
+  PetscCall(MMDeformationSummary(ctx)); /* MMDeformationView (ts) */
+  PetscCall(MMOutputView(&ctx->out, viewer));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Destroy(MMCtx *ctx, TS *ts)
 {
   MMState *s = &ctx->state;
@@ -177,7 +210,10 @@ int main(int argc, char **argv)
   PetscCall(PetscTime(&t1));
   if (ctx.ckpt.last_step != ctx.hist.step || !ctx.ckpt.written) PetscCall(MMCheckpointWrite(&ctx, ts));
 
-  PetscCall(MMOutputClose(&ctx, t0 - ts0, t1 - t0));
+  PetscCall(MMOutputWriteFinal(&ctx));
+  PetscCall(MMOutputClose(&ctx.out, &ctx.ckpt, ctx.hist.step));
+  PetscCall(Report(&ctx, t0 - ts0, t1 - t0));
+  PetscCall(MMOutputDestroy(&ctx.out));
   PetscCall(MMSignalsReport(PETSC_COMM_WORLD, ctx.hist.step, ctx.hist.time, ctx.out.dir));
   PetscCall(MMOutputUnlock());
   PetscCall(MMSignalsGetStop(&stopped));

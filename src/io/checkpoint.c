@@ -347,7 +347,7 @@ PetscErrorCode MMCheckpointWrite(MMCtx *ctx, TS ts)
   ctx->ckpt.last_step = ctx->hist.step;
   PetscCall(PetscLogEventEnd(ctx->log.checkpoint, 0, 0, 0, 0));
   /* a restart continues from here: the index lists every snapshot up to it */
-  PetscCall(MMOutputSyncIndex(ctx));
+  PetscCall(MMOutputSyncIndex(&ctx->out));
   PetscFunctionReturn(0);
 }
 

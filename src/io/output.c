@@ -16,7 +16,6 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <petscsf.h>
@@ -25,7 +24,6 @@
 #include "outputimpl.h"
 #include "contact.h"
 #include "fem.h"
-#include "deformation.h"
 
 /* the files a run writes (checkpoint.h5 by checkpoint.c): an earlier run's move to previous/ together */
 static const char *const MMOutputFiles[] = {"history.csv", "solution.h5", "solution.xmf", "checkpoint.h5", MM_SNAPSHOT_COPY};
@@ -312,9 +310,8 @@ static void IndexPrint(FILE *f, const MMOutput *o)
 
 /* The XDMF index, rewritten on rank 0: whole to solution.xmf.tmp, then renamed over solution.xmf.
  * Not fsync'd: this guards against the process dying, not the machine. */
-PetscErrorCode MMOutputWriteIndexFile(MMCtx *ctx)
+PetscErrorCode MMOutputWriteIndexFile(MMOutput *o)
 {
-  MMOutput    *o  = &ctx->out;
   MMFileStatus st = {0};
   char         tmp[PETSC_MAX_PATH_LEN];
   PetscMPIInt  rank;
@@ -356,15 +353,15 @@ static PetscErrorCode WriteIndex(MMCtx *ctx)
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   if (rank == 0) PetscCall(MMOutputIndexAddGrid(o, ctx->op.dim, o->n_written - 1, o->times[o->n_written - 1]));
-  if (o->n_written >= 2 * o->n_indexed) PetscCall(MMOutputWriteIndexFile(ctx));
+  if (o->n_written >= 2 * o->n_indexed) PetscCall(MMOutputWriteIndexFile(o));
   PetscFunctionReturn(0);
 }
 
 /* The index lists every snapshot written: at checkpoints and at the end of the run. */
-PetscErrorCode MMOutputSyncIndex(MMCtx *ctx)
+PetscErrorCode MMOutputSyncIndex(MMOutput *o)
 {
   PetscFunctionBeginUser;
-  if (ctx->out.n_indexed < ctx->out.n_written) PetscCall(MMOutputWriteIndexFile(ctx));
+  if (o->n_indexed < o->n_written) PetscCall(MMOutputWriteIndexFile(o));
   PetscFunctionReturn(0);
 }
 
@@ -481,16 +478,16 @@ PetscErrorCode MMOutputCopySnapshots(MMCtx *ctx)
 }
 
 /* After a clean close solution.h5 is whole and holds every snapshot of the last checkpoint: the copy
- * is not needed any more. */
-static PetscErrorCode DropSnapshotCopy(MMCtx *ctx)
+ * is not needed any more, once that checkpoint c is of the last step. */
+static PetscErrorCode DropSnapshotCopy(const MMOutput *o, const MMCheckpoint *c, PetscInt step)
 {
   char        dst[PETSC_MAX_PATH_LEN];
   PetscMPIInt rank;
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
-  if (rank || !ctx->ckpt.written || ctx->ckpt.last_step != ctx->hist.step) PetscFunctionReturn(0);
-  PetscCall(PetscSNPrintf(dst, sizeof(dst), "%s/%s", ctx->out.dir, MM_SNAPSHOT_COPY));
+  if (rank || !c->written || c->last_step != step) PetscFunctionReturn(0);
+  PetscCall(PetscSNPrintf(dst, sizeof(dst), "%s/%s", o->dir, MM_SNAPSHOT_COPY));
   (void)unlink(dst);
   PetscFunctionReturn(0);
 }
@@ -923,34 +920,42 @@ static PetscErrorCode CloseFiles(MMOutput *o)
   PetscFunctionReturn(0);
 }
 
-/* Writes the final state if the cadence missed it, closes the files and prints the summary. */
-PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wall)
+/* The last step's row and snapshot, if the cadence missed them (a restart that made no step has
+ * them on disk). */
+PetscErrorCode MMOutputWriteFinal(MMCtx *ctx)
 {
   MMOutput  *o = &ctx->out;
   MMHistory *h = &ctx->hist;
 
   PetscFunctionBeginUser;
-  /* the last step's row, if the cadence missed it (a restart that made no step has it on disk) */
-  if (!MMOutputHistoryDue(&ctx->out, h->step) && !(ctx->ckpt.restarted && h->step == ctx->ckpt.restart_step)) PetscCall(CSVRow(ctx));
+  if (!MMOutputHistoryDue(o, h->step) && !(ctx->ckpt.restarted && h->step == ctx->ckpt.restart_step)) PetscCall(CSVRow(ctx));
   if (o->n_written && o->times[o->n_written - 1] != h->time) PetscCall(WriteFields(ctx));
-  PetscCall(MMOutputSyncIndex(ctx));
+  PetscFunctionReturn(0);
+}
+
+/* Flushes and closes the files: the index lists every snapshot, and the checkpoint's copy of
+ * solution.h5 goes once the checkpoint c of the last step (step) no longer needs it. */
+PetscErrorCode MMOutputClose(MMOutput *o, const MMCheckpoint *c, PetscInt step)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMOutputSyncIndex(o));
   PetscCall(CloseFiles(o));
-  PetscCall(DropSnapshotCopy(ctx));
-  if (!ctx->opt.quiet) {
-    struct rusage ru;
-    PetscReal     peak, total;
-    getrusage(RUSAGE_SELF, &ru);
-    peak = ru.ru_maxrss / 1024.0; /* kB on Linux */
-    PetscCall(MPIU_Allreduce(&peak, &total, 1, MPIU_REAL, MPIU_SUM, PETSC_COMM_WORLD));
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &peak, 1, MPIU_REAL, MPIU_MAX, PETSC_COMM_WORLD));
-    const PetscInt steps = h->step - (ctx->ckpt.restarted ? ctx->ckpt.restart_step : 0); /* this run's */
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "mmcontact summary: setup %.3f s; %" PetscInt_FMT " steps to t = %g in %.3f s wall (%.4f s/step); peak memory %.1f MiB/rank (%.1f MiB over all ranks); largest balance residual %.3e; largest penetration %.3e (h_c' %.3e)\n", (double)setup, steps, (double)h->time, (double)wall, steps ? (double)(wall / steps) : 0.0, (double)peak, (double)total, (double)h->max_balance, (double)h->max_penetration_run, (double)ctx->contact.h_c));
-    PetscCall(MMProgressMassLine(ctx));
-    PetscCall(MMContactSummary(ctx));
-    PetscCall(MMDeformationSummary(ctx));
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  output: %s, %s (%" PetscInt_FMT " snapshots), %s\n", o->csv_name, o->h5_name, o->n_written, o->xmf_name));
-  }
-  PetscCall(MMStressDestroy(&o->stress));
+  PetscCall(DropSnapshotCopy(o, c, step));
+  PetscFunctionReturn(0);
+}
+
+/* The output's line of the run report: the files and the snapshots written. */
+PetscErrorCode MMOutputView(const MMOutput *o, PetscViewer viewer)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  output: %s, %s (%" PetscInt_FMT " snapshots), %s\n", o->csv_name, o->h5_name, o->n_written, o->xmf_name));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMOutputDestroy(MMOutput *o)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMStressDestroy(&o->stress)); /* fem's stress fields */
   PetscCall(MMProbesDestroy(&o->probes));
   PetscCall(VecDestroy(&o->disp_cart));
   PetscCall(VecDestroy(&o->vel_cart));

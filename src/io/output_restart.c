@@ -295,7 +295,7 @@ PetscErrorCode MMOutputRestartFields(MMCtx *ctx)
   o->n_written = n;
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   for (PetscInt k = 0; !rank && k < n; ++k) PetscCall(MMOutputIndexAddGrid(o, dim, k, times[k]));
-  if (n) PetscCall(MMOutputWriteIndexFile(ctx));
+  if (n) PetscCall(MMOutputWriteIndexFile(o));
   if (!rank && rename(tmp, o->h5_name)) PetscCall(MMOutputFailed(&st, "rename %s to %s", tmp, o->h5_name));
   PetscCall(MMOutputCheckRank0(&st));
   PetscCall(MMOutputCopySnapshots(ctx)); /* the checkpoint this run continues now counts on this file */

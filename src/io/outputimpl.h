@@ -27,7 +27,7 @@ PETSC_INTERN PetscErrorCode MMOutputLineAdd(MMLine *, const char[], ...);
 PETSC_INTERN PetscErrorCode MMOutputCSVHeaderLine(MMCtx *, MMLine *);
 PETSC_INTERN PetscErrorCode MMOutputIndexAddGrid(MMOutput *, PetscInt, PetscInt, PetscReal);
 PETSC_INTERN size_t         MMOutputIndexFrameBytes(void);
-PETSC_INTERN PetscErrorCode MMOutputWriteIndexFile(MMCtx *);
+PETSC_INTERN PetscErrorCode MMOutputWriteIndexFile(MMOutput *o);
 PETSC_INTERN PetscErrorCode MMOutputFlushFields(MMOutput *);
 PETSC_INTERN PetscErrorCode MMOutputWriteDataset(PetscViewer, Vec, PetscInt, const char[]);
 PETSC_INTERN PetscErrorCode MMOutputWriteStaticFields(MMCtx *);
