@@ -3,6 +3,9 @@
 #pragma once
 #include "mmcontact.h"
 
+/* iopackage.c: io's log stage and events, registered once */
+PETSC_EXTERN PetscErrorCode MMIOInitializePackage(void);
+
 /* output.c: the files of a run, from set-up to close */
 PETSC_EXTERN PetscErrorCode MMOutputSetFromOptions(MPI_Comm comm, MMOutput *o);
 PETSC_EXTERN PetscErrorCode MMOutputOpen(MMCtx *ctx);

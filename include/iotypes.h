@@ -2,6 +2,9 @@
 #pragma once
 #include "mmbase.h"
 #include "fem.h"
+#include "apptypes.h"
+#include "contacttypes.h"
+#include "tstypes.h"
 
 /* The progress line (src/io/progress.c): what it keeps between two lines. The references are taken at the
  * first monitor call, the start of TSSolve, so that the rates are those of this run's time loop. */
@@ -25,37 +28,6 @@ typedef struct {
   PetscReal *mean;             /* per group, 2 dim values: the mean u, then the mean v, of the current row */
 } MMProbes;
 
-/* Output files. Rank 0 alone writes history.csv and solution.xmf; solution.h5 is written by all. */
-typedef struct {
-  char          dir[PETSC_MAX_PATH_LEN]; /* -output_dir */
-  PetscInt      every;                 /* -output_every: snapshots every so many steps, 0: the first and last */
-  PetscReal     interval;              /* -output_interval: snapshots at t = k T instead, 0: by steps */
-  PetscInt      history_every;         /* -history_every: a history row every N steps and the last */
-  char          probe_list[PETSC_MAX_PATH_LEN]; /* -probes: groups whose mean u and v go to the history, empty: none */
-  int           csv_fd;                /* history.csv, on rank 0 (-1 elsewhere and once closed) */
-  char          csv_name[PETSC_MAX_PATH_LEN], h5_name[PETSC_MAX_PATH_LEN], xmf_name[PETSC_MAX_PATH_LEN];
-  PetscViewer   h5;                    /* solution.h5, open from MMOutputOpen to MMOutputClose */
-  PetscInt      n_written;             /* snapshots on disk and flushed */
-  PetscInt      n_indexed;             /* the ones the XDMF index on disk lists */
-  PetscReal    *times;                 /* time of each snapshot */
-  PetscInt      nv, nc;                /* global vertex and cell counts, for the XDMF index */
-  char         *index;                 /* rank 0: the index's grids, written out at every snapshot */
-  size_t        index_len, index_cap;
-  PetscLogEvent ev_flush, ev_index, ev_copy; /* HDF5 flush, XDMF rewrite, the checkpoint's copy of solution.h5 */
-  DM            dm_out;                /* the displacement field without constraints: output of whole fields */
-  MMInsertMap   to_out;                /* DMLocalToGlobal(INSERT) on dm_out, as a map */
-  Vec           disp_cart, vel_cart;   /* Cartesian output fields on dm_out */
-  DM            dm_scalar;             /* borrowed from fem (MMOperators.dm_scalar) by MMOutputOpen: one scalar per vertex */
-  Vec           pressure, gap;
-  Vec           obstacle;              /* each contact node's obstacle (index in -obstacles), -1 elsewhere: written once */
-  Vec           serial;                /* each vertex's number in the serial mesh: written once */
-  PetscBool     static_written;        /* obstacle and serial are in solution.h5 */
-  Vec           traction_t, slip;      /* tangential traction and slip velocity on the contact boundary (dm_out) */
-  MMStress      stress;                /* nodal and cell stress and von Mises (fem: src/fem/stress.c) */
-  MMProbes      probes;                /* -probes: groups' mean displacement and velocity in the history */
-  PetscBool     planned;               /* the planned output's size has been checked (output_schedule.c) */
-} MMOutput;
-
 /* Checkpoints (src/io/checkpoint.c, docs/method.md section 9): the state keyed by the serial mesh's vertex
  * numbers, so that a run can continue on any number of ranks. */
 typedef struct {
@@ -75,3 +47,41 @@ typedef struct {
   PetscScalar *node;                           /* its per-node records of the owned contact nodes */
   PetscReal   *snapshot_times;                 /* the times of its snapshots, until the output takes them */
 } MMCheckpoint;
+
+/* Output files. Rank 0 alone writes history.csv and solution.xmf; solution.h5 is written by all. */
+typedef struct {
+  /* borrowed at MMOutputSetUp: what the output writes from */
+  const MMOptions    *opt;     /* the problem: the obstacles' and Dirichlet boundaries' names, the history's columns */
+  const MMOperators  *op;      /* the mesh, its dimension and cells */
+  const MMHistory    *hist;    /* the stepper's history row */
+  const MMContact    *contact; /* each obstacle's force, in the history */
+  const MMLoads      *loads;   /* each Dirichlet boundary's reaction, in the history */
+  const MMCheckpoint *ckpt;    /* the restart the run continues, the serial vertex numbers */
+  char          dir[PETSC_MAX_PATH_LEN]; /* -output_dir */
+  PetscInt      every;                 /* -output_every: snapshots every so many steps, 0: the first and last */
+  PetscReal     interval;              /* -output_interval: snapshots at t = k T instead, 0: by steps */
+  PetscInt      history_every;         /* -history_every: a history row every N steps and the last */
+  char          probe_list[PETSC_MAX_PATH_LEN]; /* -probes: groups whose mean u and v go to the history, empty: none */
+  int           csv_fd;                /* history.csv, on rank 0 (-1 elsewhere and once closed) */
+  char          csv_name[PETSC_MAX_PATH_LEN], h5_name[PETSC_MAX_PATH_LEN], xmf_name[PETSC_MAX_PATH_LEN];
+  PetscViewer   h5;                    /* solution.h5, open from MMOutputOpen to MMOutputClose */
+  PetscInt      n_written;             /* snapshots on disk and flushed */
+  PetscInt      n_indexed;             /* the ones the XDMF index on disk lists */
+  PetscReal    *times;                 /* time of each snapshot */
+  PetscInt      nv, nc;                /* global vertex and cell counts, for the XDMF index */
+  char         *index;                 /* rank 0: the index's grids, written out at every snapshot */
+  size_t        index_len, index_cap;
+  DM            dm_out;                /* the displacement field without constraints: output of whole fields */
+  MMInsertMap   to_out;                /* DMLocalToGlobal(INSERT) on dm_out, as a map */
+  Vec           disp_cart, vel_cart;   /* Cartesian output fields on dm_out */
+  DM            dm_scalar;             /* borrowed from fem (MMOperators.dm_scalar) by MMOutputOpen: one scalar per vertex */
+  Vec           pressure, gap;
+  Vec           obstacle;              /* each contact node's obstacle (index in -obstacles), -1 elsewhere: written once */
+  Vec           serial;                /* each vertex's number in the serial mesh: written once */
+  PetscBool     static_written;        /* obstacle and serial are in solution.h5 */
+  Vec           traction_t, slip;      /* tangential traction and slip velocity on the contact boundary (dm_out) */
+  MMStress      stress;                /* nodal and cell stress and von Mises (fem: src/fem/stress.c) */
+  MMProbes      probes;                /* -probes: groups' mean displacement and velocity in the history */
+  PetscBool     planned;               /* the planned output's size has been checked (output_schedule.c) */
+} MMOutput;
+

@@ -26,9 +26,10 @@ static char help[] = "mmcontact: elastic bodies hitting and sliding on rigid obs
 #include "deformation.h"
 #include "damping.h"
 #include "datacheck.h"
+#include "appimpl.h"
 #include <sys/resource.h>
 
-/* A set-up phase under its own event (MMLog), so that -log_view shows where the set-up goes */
+/* A set-up phase under its own event (MMAppEvents), so that -log_view shows where the set-up goes */
 #define MMPhase(event, call) \
   do { \
     PetscCall(PetscLogEventBegin((event), 0, 0, 0, 0)); \
@@ -69,25 +70,25 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   /* before anything in the output directory is read or moved: one run per directory. A data check
    * writes nothing, and takes no lock */
   if (!ctx->opt.check_input) PetscCall(MMOutputLock(ctx->out.dir));
-  MMPhase(ctx->log.mesh_load, LoadMesh(comm, ctx));
+  MMPhase(MMAppEvents.mesh_load, LoadMesh(comm, ctx));
   PetscCall(DMGetDimension(ctx->op.dm, &ctx->op.dim));
   PetscCall(MMOptionsGetFEProblem(&ctx->opt, &pb));
-  MMPhase(ctx->log.fe_setup, MMFESetUp(&ctx->op, &ctx->material, &pb));
-  MMPhase(ctx->log.contact_setup, MMContactSetUp(ctx));
+  MMPhase(MMAppEvents.fe_setup, MMFESetUp(&ctx->op, &ctx->material, &pb));
+  MMPhase(MMAppEvents.contact_setup, MMContactSetUp(ctx));
   PetscCall(MMContactGetMassBoundary(&ctx->contact, &mb));
   PetscCall(MMFEAssembleOperators(&ctx->op, &ctx->material, &pb, &mb));
   PetscCall(MMContactPairsTransformOperators(ctx));
   PetscCall(MMFEAssembleOperatorsEnd(&ctx->op));
-  MMPhase(ctx->log.loads_setup, MMLoadsSetUp(&ctx->loads, &ctx->op, &ctx->material, &pb));
-  MMPhase(ctx->log.initial_state, MMNewmarkInitialState(ctx));
-  MMPhase(ctx->log.friction_setup, MMFrictionSetUp(ctx));
+  MMPhase(MMAppEvents.loads_setup, MMLoadsSetUp(&ctx->loads, &ctx->op, &ctx->material, &pb));
+  MMPhase(MMAppEvents.initial_state, MMNewmarkInitialState(ctx));
+  MMPhase(MMAppEvents.friction_setup, MMFrictionSetUp(ctx));
   PetscCall(MMNewmarkCreateTS(ctx, ts));
   if (ctx->ckpt.restart[0]) PetscCall(MMCheckpointLoad(ctx, *ts));
   PetscCall(TSGetTimeStep(*ts, &dt));
-  MMPhase(ctx->log.step_matrix, MMContactSetStepMatrix(ctx, dt));
+  MMPhase(MMAppEvents.step_matrix, MMContactSetStepMatrix(ctx, dt));
   ctx->hist.dt = dt;
-  MMPhase(ctx->log.energy_initial, MMEnergyInitial(ctx));
-  MMPhase(ctx->log.deformation_check, MMDeformationCheck(ctx));
+  MMPhase(MMAppEvents.energy_initial, MMEnergyInitial(ctx));
+  MMPhase(MMAppEvents.deformation_check, MMDeformationCheck(ctx));
   if (ctx->ckpt.restarted) PetscCall(MMCheckpointRestoreHistory(ctx));
   /* every object has read its options: refuse the unread ones before any output is touched, and
    * before the start-up report, which would otherwise announce a run that is then refused */
@@ -101,7 +102,7 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
     PetscFunctionReturn(0);
   }
   /* last: the earlier results in the output directory are set aside only once the input is valid */
-  MMPhase(ctx->log.output_open, MMOutputOpen(ctx));
+  MMPhase(MMAppEvents.output_open, MMOutputOpen(ctx));
   PetscCall(TSMonitorSet(*ts, MMOutputMonitor, ctx, NULL));
   PetscCall(TSMonitorSet(*ts, MMCheckpointMonitor, ctx, NULL));
   PetscCall(MMProgressSetUp(ctx, *ts));
@@ -184,11 +185,13 @@ int main(int argc, char **argv)
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(MMErrorsSetUp());
   PetscCall(PetscMemzero(&ctx, sizeof(ctx)));
+  PetscCall(MMAppInitializePackage());
+  PetscCall(MMIOInitializePackage());
   PetscCall(MMLogRegister(&ctx.log));
   PetscCall(MMNewmarkRegister());
 
   PetscCall(PetscTime(&ts0));
-  PetscCall(PetscLogStagePush(ctx.log.setup));
+  PetscCall(PetscLogStagePush(MMAppEvents.setup));
   PetscCall(SetupProblem(&ctx, &ts, &help_only));
   PetscCall(PetscLogStagePop());
   if (help_only) {
@@ -204,7 +207,7 @@ int main(int argc, char **argv)
   }
 
   PetscCall(PetscTime(&t0));
-  PetscCall(PetscLogStagePush(ctx.log.solve));
+  PetscCall(PetscLogStagePush(MMAppEvents.solve));
   PetscCall(TSSolve(ts, ctx.state.u_next));
   PetscCall(PetscLogStagePop());
   PetscCall(PetscTime(&t1));

@@ -330,7 +330,7 @@ PetscErrorCode MMCheckpointWrite(MMCtx *ctx, TS ts)
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(ctx->log.checkpoint, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(MMIOEvents.checkpoint, 0, 0, 0, 0));
   if (!ctx->ckpt.nv_global) PetscCall(CountVertices(ctx));
   PetscCall(PetscSNPrintf(name, sizeof(name), "%s/%s", ctx->out.dir, MM_CKPT_FILE));
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s%s", name, MM_CKPT_TMP));
@@ -345,7 +345,7 @@ PetscErrorCode MMCheckpointWrite(MMCtx *ctx, TS ts)
   PetscCheck(!err, comm, PETSC_ERR_FILE_WRITE, "Could not rename %s to %s: %s. The previous checkpoint, if any, is intact", tmp, name, strerror(err));
   ctx->ckpt.written++;
   ctx->ckpt.last_step = ctx->hist.step;
-  PetscCall(PetscLogEventEnd(ctx->log.checkpoint, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(MMIOEvents.checkpoint, 0, 0, 0, 0));
   /* a restart continues from here: the index lists every snapshot up to it */
   PetscCall(MMOutputSyncIndex(&ctx->out));
   PetscFunctionReturn(0);
@@ -633,7 +633,7 @@ PetscErrorCode MMCheckpointLoad(MMCtx *ctx, TS ts)
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(ctx->log.checkpoint, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(MMIOEvents.checkpoint, 0, 0, 0, 0));
   PetscCall(ResolveRestartPath(ctx));
   if (!c->nv_global) PetscCall(CountVertices(ctx));
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
@@ -671,7 +671,7 @@ PetscErrorCode MMCheckpointLoad(MMCtx *ctx, TS ts)
     PetscCall(PetscPrintf(comm, "Restart from %s: step %" PetscInt_FMT ", t = %.10g, next dt %g (written on %d rank%s, continued on %d)\n", c->file, c->restart_step, (double)c->run[MM_RUN_TIME], (double)dt, (int)c->run[MM_RUN_RANKS], c->run[MM_RUN_RANKS] > 1 ? "s" : "", PetscGlobalSize));
     if (c->run[MM_RUN_DT_USER] != s->dt_user) PetscCall(PetscPrintf(comm, "  -ts_dt %g here, %g in the checkpoint's run: the steps from here on are of the new dt\n", (double)s->dt_user, (double)c->run[MM_RUN_DT_USER]));
   }
-  PetscCall(PetscLogEventEnd(ctx->log.checkpoint, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(MMIOEvents.checkpoint, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

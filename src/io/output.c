@@ -317,7 +317,7 @@ PetscErrorCode MMOutputWriteIndexFile(MMOutput *o)
   PetscMPIInt  rank;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(o->ev_index, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(MMIOEvents.index, 0, 0, 0, 0));
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s%s", o->xmf_name, MM_XMF_TMP));
   if (rank == 0) {
@@ -336,7 +336,7 @@ PetscErrorCode MMOutputWriteIndexFile(MMOutput *o)
   }
   PetscCall(MMOutputCheckRank0(&st));
   o->n_indexed = o->n_written;
-  PetscCall(PetscLogEventEnd(o->ev_index, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(MMIOEvents.index, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -405,7 +405,7 @@ PetscErrorCode MMOutputFlushFields(MMOutput *o)
   herr_t status;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(o->ev_flush, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(MMIOEvents.flush, 0, 0, 0, 0));
   PetscCall(PetscViewerHDF5GetFileId(o->h5, &fid));
   errno  = 0;
   status = H5Fflush(fid, H5F_SCOPE_GLOBAL);
@@ -413,7 +413,7 @@ PetscErrorCode MMOutputFlushFields(MMOutput *o)
     int err = errno ? errno : SystemReason(o->h5_name);
     SETERRQ(PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not flush %s: %s (H5Fflush failed)", o->h5_name, err ? strerror(err) : "the system gave no reason");
   }
-  PetscCall(PetscLogEventEnd(o->ev_flush, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(MMIOEvents.flush, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -467,13 +467,13 @@ PetscErrorCode MMOutputCopySnapshots(MMCtx *ctx)
   PetscMPIInt  rank;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(o->ev_copy, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(MMIOEvents.copy, 0, 0, 0, 0));
   PetscCall(MMOutputFlushFields(o));
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   PetscCall(PetscSNPrintf(dst, sizeof(dst), "%s/%s", ctx->out.dir, MM_SNAPSHOT_COPY));
   if (!rank) PetscCall(CopyFile(o->h5_name, dst, &st));
   PetscCall(MMOutputCheckRank0(&st));
-  PetscCall(PetscLogEventEnd(o->ev_copy, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(MMIOEvents.copy, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -604,7 +604,7 @@ static PetscErrorCode WriteFields(MMCtx *ctx)
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogStagePush(ctx->log.output));
+  PetscCall(PetscLogStagePush(MMIOEvents.output));
   PetscCall(MMOutputWholeState(ctx));
   PetscCall(MMContactBoundaryFields(ctx, o));
   PetscCall(MMStressCompute(&o->stress, &ctx->op, &ctx->material, o->dm_out, o->disp_cart, PETSC_TRUE));
@@ -863,20 +863,17 @@ PetscErrorCode MMOutputOpen(MMCtx *ctx)
 
   PetscFunctionBeginUser;
   o->dm_scalar = ctx->op.dm_scalar;
-  PetscCall(PetscLogEventRegister("MMOutputFlush", PETSC_VIEWER_CLASSID, &o->ev_flush));
-  PetscCall(PetscLogEventRegister("MMOutputIndex", PETSC_VIEWER_CLASSID, &o->ev_index));
-  PetscCall(PetscLogEventRegister("MMOutputCopy", PETSC_VIEWER_CLASSID, &o->ev_copy));
   PetscCall(PetscSNPrintf(o->csv_name, sizeof(o->csv_name), "%s/%s", dir, MMOutputFiles[0]));
   PetscCall(PetscSNPrintf(o->h5_name, sizeof(o->h5_name), "%s/%s", dir, MMOutputFiles[1]));
   PetscCall(PetscSNPrintf(o->xmf_name, sizeof(o->xmf_name), "%s/%s", dir, MMOutputFiles[2]));
   PetscCall(MMProbesSetUp(ctx)); /* a group the mesh lacks is refused before any file is touched */
-  if (ctx->ckpt.restarted) PetscCall(PetscLogEventBegin(ctx->log.restart_output, 0, 0, 0, 0));
+  if (ctx->ckpt.restarted) PetscCall(PetscLogEventBegin(MMIOEvents.restart_output, 0, 0, 0, 0));
   PetscCall(OpenDirectoryAndHistory(ctx));
   if (ctx->ckpt.restarted) {
     PetscCall(CountMesh(ctx));
     PetscCall(CreateFieldVectors(ctx));
     PetscCall(MMOutputRestartFields(ctx));
-    PetscCall(PetscLogEventEnd(ctx->log.restart_output, 0, 0, 0, 0));
+    PetscCall(PetscLogEventEnd(MMIOEvents.restart_output, 0, 0, 0, 0));
   } else {
     PetscCall(CSVHeader(ctx));
     PetscCall(OpenFields(ctx));

@@ -6,6 +6,15 @@
 
 #define MM_SNAPSHOT_COPY "checkpoint_snapshots.h5" /* solution.h5 as of the last checkpoint */
 
+/* io's log stage and events (iopackage.c, MMIOInitializePackage) */
+typedef struct {
+  PetscLogStage output;               /* writing a snapshot */
+  PetscLogEvent flush, index, copy;   /* HDF5 flush, XDMF rewrite, the checkpoint's copy of solution.h5 */
+  PetscLogEvent checkpoint;           /* a checkpoint written or read */
+  PetscLogEvent restart_output;       /* -restart: the history cut and the earlier snapshots copied */
+} MMIOLog;
+PETSC_INTERN MMIOLog MMIOEvents;
+
 /* A file system call that failed on rank 0: what was tried on which file, and errno. */
 typedef struct {
   int  err;
