@@ -8,7 +8,10 @@ PETSC_EXTERN PetscErrorCode MMIOInitializePackage(void);
 
 /* output.c: the files of a run, from set-up to close */
 PETSC_EXTERN PetscErrorCode MMOutputSetFromOptions(MPI_Comm comm, MMOutput *o);
+PETSC_EXTERN PetscErrorCode MMOutputSetUp(MMOutput *o, const MMOptions *opt, const MMOperators *op, const MMHistory *hist, const MMContact *contact, const MMLoads *loads, const MMCheckpoint *ckpt);
+/* output_monitor.c: the glue that gathers each snapshot's fields from the components below */
 PETSC_EXTERN PetscErrorCode MMOutputOpen(MMCtx *ctx);
+PETSC_EXTERN PetscErrorCode MMOutputSetUpProbes(MMCtx *ctx);
 PETSC_EXTERN PetscErrorCode MMOutputMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ctx);
 PETSC_EXTERN PetscErrorCode MMOutputWriteFinal(MMCtx *ctx);
 PETSC_EXTERN PetscErrorCode MMOutputClose(MMOutput *o, const MMCheckpoint *c, PetscInt step);
@@ -16,13 +19,10 @@ PETSC_EXTERN PetscErrorCode MMOutputView(const MMOutput *o, PetscViewer viewer);
 PETSC_EXTERN PetscErrorCode MMOutputDestroy(MMOutput *o);
 PETSC_EXTERN PetscErrorCode MMOutputCheckHDF5Path(MPI_Comm comm, const char option[], const char path[], const char longest[]);
 PETSC_EXTERN PetscErrorCode MMOutputSyncIndex(MMOutput *o);
-PETSC_EXTERN PetscErrorCode MMOutputCopySnapshots(MMCtx *ctx);
+PETSC_EXTERN PetscErrorCode MMOutputCopySnapshots(MMOutput *o);
 /* output_lock.c: one run per output directory */
 PETSC_EXTERN PetscErrorCode MMOutputLock(const char dir[]);
 PETSC_EXTERN PetscErrorCode MMOutputUnlock(void);
-/* -probes (src/io/probes.c): set up by the output, and by the data check, whose plan counts their
- * history columns and which refuses a group the mesh lacks as a run does */
-PETSC_EXTERN PetscErrorCode MMProbesSetUp(MMCtx *ctx);
 PETSC_EXTERN PetscErrorCode MMProbesDestroy(MMProbes *probes);
 /* What a run will write (src/io/output_plan.c, for -check_input and the large-output warning): its
  * steps from step0 at t0, each dt, to t_last (by_steps: -ts_max_steps ends it before -ts_max_time);
@@ -35,7 +35,7 @@ typedef struct {
   PetscReal snapshots, snapshot_bytes, mesh_bytes, h5_bytes, xmf_bytes;
   PetscReal rows, row_bytes, header_bytes, csv_bytes;
 } MMOutputPlan;
-PETSC_EXTERN PetscErrorCode MMOutputPlanMake(MMCtx *ctx, TS ts, MMOutputPlan *plan);
+PETSC_EXTERN PetscErrorCode MMOutputPlanMake(const MMOutput *o, TS ts, MMOutputPlan *plan);
 
 /* checkpoint.c: checkpoints and -restart (docs/method.md section 9) */
 PETSC_EXTERN PetscErrorCode MMCheckpointSetFromOptions(MPI_Comm comm, MMCheckpoint *c);
@@ -44,8 +44,8 @@ PETSC_EXTERN PetscErrorCode MMCheckpointMonitor(TS ts, PetscInt step, PetscReal 
 PETSC_EXTERN PetscErrorCode MMCheckpointDestroy(MMCheckpoint *c);
 PETSC_EXTERN PetscErrorCode MMCheckpointLoad(MMCtx *ctx, TS ts);
 PETSC_EXTERN PetscErrorCode MMCheckpointRestoreHistory(MMCtx *ctx);
-PETSC_EXTERN PetscErrorCode MMCheckpointSnapshots(MMCtx *ctx, PetscInt *n, PetscReal **times);
-PETSC_EXTERN PetscInt       MMCheckpointSnapshotCount(const MMCtx *ctx);
+PETSC_EXTERN PetscErrorCode MMCheckpointSnapshots(MMCheckpoint *c, PetscInt *n, PetscReal **times);
+PETSC_EXTERN PetscInt       MMCheckpointSnapshotCount(const MMCheckpoint *c);
 
 /* progress.c: the start-up report and the progress lines */
 PETSC_EXTERN PetscErrorCode MMProgressSetFromOptions(MPI_Comm comm, MMProgress *p);

@@ -173,7 +173,7 @@ static PetscErrorCode ReportPlan(MMCtx *ctx, TS ts, PetscReal *step0)
   char         snap[32], h5_text[32], csv_text[32], xmf_text[32], total[32], every[96], rows[96];
 
   PetscFunctionBeginUser;
-  PetscCall(MMOutputPlanMake(ctx, ts, &plan));
+  PetscCall(MMOutputPlanMake(&ctx->out, ts, &plan));
   *step0 = plan.step0;
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  plan: %.0f steps of dt = %.6g from t = %.6g (step %.0f) to t = %.6g%s\n", (double)plan.steps, (double)plan.dt, (double)plan.t0, (double)plan.step0, (double)plan.t_last, plan.by_steps ? " (-ts_max_steps ends the run before -ts_max_time)" : ""));
   PetscCall(BytesText(plan.snapshot_bytes, snap, sizeof(snap)));
@@ -287,7 +287,7 @@ PetscErrorCode MMDataCheckReport(MMCtx *ctx, TS ts)
   PetscFunctionBeginUser;
   /* as the output does when it opens: a group the mesh lacks is refused, and the plan counts the
    * probes' history columns */
-  PetscCall(MMProbesSetUp(ctx));
+  PetscCall(MMOutputSetUpProbes(ctx));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "mmcontact data check (-check_input): the physical groups of %s\n", ctx->opt.mesh_file));
   PetscCall(ReportGroups(ctx));
   PetscCall(ReportObstacles(ctx, ts));

@@ -335,7 +335,7 @@ PetscErrorCode MMCheckpointWrite(MMCtx *ctx, TS ts)
   PetscCall(PetscSNPrintf(name, sizeof(name), "%s/%s", ctx->out.dir, MM_CKPT_FILE));
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s%s", name, MM_CKPT_TMP));
   PetscCall(RunRecord(ctx, ts, run));
-  PetscCall(MMOutputCopySnapshots(ctx)); /* before the checkpoint that counts on it */
+  PetscCall(MMOutputCopySnapshots(&ctx->out)); /* before the checkpoint that counts on it */
   PetscCall(MMOutputHDF5Begin());
   ierr = WriteCheckpointFile(ctx, tmp, run);
   PetscCall(MMOutputHDF5End(ierr, "write", tmp));
@@ -711,17 +711,17 @@ PetscErrorCode MMCheckpointRestoreHistory(MMCtx *ctx)
 
 /* The snapshots of the checkpoint a restart continues (0 without one): the output plan numbers this
  * run's from there (output_plan.c). */
-PetscInt MMCheckpointSnapshotCount(const MMCtx *ctx)
+PetscInt MMCheckpointSnapshotCount(const MMCheckpoint *c)
 {
-  return ctx->ckpt.restarted ? (PetscInt)ctx->ckpt.run[MM_RUN_SNAPSHOTS] : 0;
+  return c->restarted ? (PetscInt)c->run[MM_RUN_SNAPSHOTS] : 0;
 }
 
 /* The snapshot count and times of the checkpoint, read with the state: the caller takes them. */
-PetscErrorCode MMCheckpointSnapshots(MMCtx *ctx, PetscInt *n, PetscReal **times)
+PetscErrorCode MMCheckpointSnapshots(MMCheckpoint *c, PetscInt *n, PetscReal **times)
 {
   PetscFunctionBeginUser;
-  *n                       = (PetscInt)ctx->ckpt.run[MM_RUN_SNAPSHOTS];
-  *times                   = ctx->ckpt.snapshot_times;
-  ctx->ckpt.snapshot_times = NULL;
+  *n                = (PetscInt)c->run[MM_RUN_SNAPSHOTS];
+  *times            = c->snapshot_times;
+  c->snapshot_times = NULL;
   PetscFunctionReturn(0);
 }

@@ -22,8 +22,6 @@
 #include <petscviewerhdf5.h>
 #include "io.h"
 #include "outputimpl.h"
-#include "contact.h"
-#include "fem.h"
 
 /* the files a run writes (checkpoint.h5 by checkpoint.c): an earlier run's move to previous/ together */
 static const char *const MMOutputFiles[] = {"history.csv", "solution.h5", "solution.xmf", "checkpoint.h5", MM_SNAPSHOT_COPY};
@@ -161,10 +159,11 @@ static PetscErrorCode CSVWrite(MMOutput *o, const MMLine *l)
 }
 
 /* The header of history.csv: its columns depend on the dimension and the obstacles. */
-PetscErrorCode MMOutputCSVHeaderLine(MMCtx *ctx, MMLine *lp)
+PetscErrorCode MMOutputCSVHeaderLine(const MMOutput *o, MMLine *lp)
 {
-  const char *axes = "xyz";
-  PetscInt    dim  = ctx->op.dim;
+  const MMOptions *opt  = o->opt;
+  const char      *axes = "xyz";
+  PetscInt         dim  = o->op->dim;
   MMLine      l    = {.n = 0, .s = ""};
 
   PetscFunctionBeginUser;
@@ -178,38 +177,40 @@ PetscErrorCode MMOutputCSVHeaderLine(MMCtx *ctx, MMLine *lp)
   else PetscCall(MMOutputLineAdd(&l, ",J_x,J_y,J_z"));
   for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",load_%c", axes[d]));
   PetscCall(MMOutputLineAdd(&l, ",switched,contraction,candidates,candidate_resolves,work_obstacle"));
-  for (PetscInt b = 0; b < ctx->opt.n_obstacles; ++b)
-    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",force_%s_%c", ctx->opt.obstacles[b].name, axes[d]));
+  for (PetscInt b = 0; b < opt->n_obstacles; ++b)
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",force_%s_%c", opt->obstacles[b].name, axes[d]));
   PetscCall(MMOutputLineAdd(&l, ",work_damping"));
   /* with Dirichlet boundaries: their work and each one's reaction (docs/method.md section 10) */
-  if (ctx->opt.n_dirichlet) PetscCall(MMOutputLineAdd(&l, ",work_dirichlet"));
-  for (PetscInt b = 0; b < ctx->opt.n_dirichlet; ++b)
-    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",reaction_%s_%c", ctx->opt.dirichlet[b].name, axes[d]));
+  if (opt->n_dirichlet) PetscCall(MMOutputLineAdd(&l, ",work_dirichlet"));
+  for (PetscInt b = 0; b < opt->n_dirichlet; ++b)
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",reaction_%s_%c", opt->dirichlet[b].name, axes[d]));
   /* -probes: each group's mean displacement, then velocity (probes.c) */
-  for (PetscInt g = 0; g < ctx->out.probes.n; ++g) {
-    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",probe_%s_u%c", ctx->out.probes.name[g], axes[d]));
-    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",probe_%s_v%c", ctx->out.probes.name[g], axes[d]));
+  for (PetscInt g = 0; g < o->probes.n; ++g) {
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",probe_%s_u%c", o->probes.name[g], axes[d]));
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",probe_%s_v%c", o->probes.name[g], axes[d]));
   }
   PetscCall(MMOutputLineAdd(&l, "\n"));
   *lp = l;
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode CSVHeader(MMCtx *ctx)
+static PetscErrorCode CSVHeader(MMOutput *o)
 {
   MMLine l;
 
   PetscFunctionBeginUser;
-  PetscCall(MMOutputCSVHeaderLine(ctx, &l));
-  PetscCall(CSVWrite(&ctx->out, &l));
+  PetscCall(MMOutputCSVHeaderLine(o, &l));
+  PetscCall(CSVWrite(o, &l));
   PetscFunctionReturn(0);
 }
 
-/* A row on disk is a row the user keeps, whatever happens next: written whole, not buffered. */
-static PetscErrorCode CSVRow(MMCtx *ctx)
+/* A row on disk is a row the user keeps, whatever happens next: written whole, not buffered. The
+ * probes' means are of the whole fields in disp_cart and vel_cart, which the caller filled. */
+PetscErrorCode MMOutputWriteRow(MMOutput *o)
 {
-  const MMHistory *h   = &ctx->hist;
-  PetscInt         dim = ctx->op.dim;
+  const MMHistory *h   = o->hist;
+  const MMOptions *opt = o->opt;
+  PetscInt         dim = o->op->dim;
   MMLine           l   = {.n = 0, .s = ""};
 
   PetscFunctionBeginUser;
@@ -223,16 +224,16 @@ static PetscErrorCode CSVRow(MMCtx *ctx)
   else PetscCall(MMOutputLineAdd(&l, ",%.16e,%.16e,%.16e", (double)h->J[0], (double)h->J[1], (double)h->J[2]));
   for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->load[d]));
   PetscCall(MMOutputLineAdd(&l, ",%" PetscInt_FMT ",%.6e,%" PetscInt_FMT ",%" PetscInt_FMT ",%.16e", h->switched, (double)h->contraction, h->candidates, h->resolves, (double)h->work_obstacle));
-  for (PetscInt b = 0; b < ctx->opt.n_obstacles; ++b)
-    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", ctx->contact.enabled ? (double)ctx->contact.force_obstacle[MM_MAX_DIM * b + d] : 0.0));
+  for (PetscInt b = 0; b < opt->n_obstacles; ++b)
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", o->contact->enabled ? (double)o->contact->force_obstacle[MM_MAX_DIM * b + d] : 0.0));
   PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->work_damping));
-  if (ctx->opt.n_dirichlet) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->work_dirichlet));
-  for (PetscInt b = 0; b < ctx->opt.n_dirichlet; ++b)
-    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)ctx->loads.reaction[MM_MAX_DIM * b + d]));
-  PetscCall(MMProbesEvaluate(ctx));
-  for (PetscInt k = 0; k < 2 * dim * ctx->out.probes.n; ++k) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)ctx->out.probes.mean[k]));
+  if (opt->n_dirichlet) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->work_dirichlet));
+  for (PetscInt b = 0; b < opt->n_dirichlet; ++b)
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)o->loads->reaction[MM_MAX_DIM * b + d]));
+  PetscCall(MMProbesEvaluate(o));
+  for (PetscInt k = 0; k < 2 * dim * o->probes.n; ++k) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)o->probes.mean[k]));
   PetscCall(MMOutputLineAdd(&l, "\n"));
-  PetscCall(CSVWrite(&ctx->out, &l));
+  PetscCall(CSVWrite(o, &l));
   PetscFunctionReturn(0);
 }
 
@@ -345,14 +346,13 @@ PetscErrorCode MMOutputWriteIndexFile(MMOutput *o)
  * last time (O(N) bytes in all), and by MMOutputSyncIndex at every checkpoint and at the end of the
  * run: while the run goes on it lists at least half of the snapshots written, all of them up to the
  * last checkpoint (README "Output"). */
-static PetscErrorCode WriteIndex(MMCtx *ctx)
+static PetscErrorCode WriteIndex(MMOutput *o)
 {
-  MMOutput   *o = &ctx->out;
   PetscMPIInt rank;
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
-  if (rank == 0) PetscCall(MMOutputIndexAddGrid(o, ctx->op.dim, o->n_written - 1, o->times[o->n_written - 1]));
+  if (rank == 0) PetscCall(MMOutputIndexAddGrid(o, o->op->dim, o->n_written - 1, o->times[o->n_written - 1]));
   if (o->n_written >= 2 * o->n_indexed) PetscCall(MMOutputWriteIndexFile(o));
   PetscFunctionReturn(0);
 }
@@ -362,39 +362,6 @@ PetscErrorCode MMOutputSyncIndex(MMOutput *o)
 {
   PetscFunctionBeginUser;
   if (o->n_indexed < o->n_written) PetscCall(MMOutputWriteIndexFile(o));
-  PetscFunctionReturn(0);
-}
-
-/* The Cartesian field on every node, from the free dofs w: the Dirichlet data on constrained dofs for
- * the displacement, zero for the velocity (the data are constant in time). */
-static PetscErrorCode WholeField(MMCtx *ctx, Vec w, PetscBool with_bc, Vec whole)
-{
-  DM  dm = ctx->op.dm;
-  Vec g, l;
-
-  PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalVector(dm, &g));
-  PetscCall(DMGetLocalVector(dm, &l));
-  PetscCall(MMFEToCartesian(&ctx->op, w, g));
-  PetscCall(VecZeroEntries(l));
-  PetscCall(DMGlobalToLocal(dm, g, INSERT_VALUES, l));
-  if (with_bc) PetscCall(MMLoadsInsertBoundaryValues(&ctx->loads, l, ctx->hist.time));
-  PetscCall(MMInsertMapLocalToGlobal(ctx->out.dm_out, &ctx->out.to_out, l, whole));
-  PetscCall(DMRestoreLocalVector(dm, &l));
-  PetscCall(DMRestoreGlobalVector(dm, &g));
-  PetscFunctionReturn(0);
-}
-
-/* The Cartesian displacement and velocity on every node, Dirichlet data included: the snapshot's and
- * the probes' */
-PetscErrorCode MMOutputWholeState(MMCtx *ctx)
-{
-  MMOutput *o = &ctx->out;
-
-  PetscFunctionBeginUser;
-  PetscCall(WholeField(ctx, ctx->state.u, PETSC_TRUE, o->disp_cart));
-  PetscCall(WholeField(ctx, ctx->state.v, PETSC_FALSE, o->vel_cart));
-  PetscCall(MMLoadsInsertDirichletVelocity(&ctx->loads, o->vel_cart));
   PetscFunctionReturn(0);
 }
 
@@ -459,9 +426,8 @@ static PetscErrorCode CopyFile(const char src[], const char dst[], MMFileStatus 
  * writes a snapshot can leave the whole file unreadable. So a checkpoint keeps a copy of it, taken
  * when every snapshot up to the checkpoint is on disk; -restart reads the earlier snapshots from
  * the copy (docs/method.md section 9). Collective. */
-PetscErrorCode MMOutputCopySnapshots(MMCtx *ctx)
+PetscErrorCode MMOutputCopySnapshots(MMOutput *o)
 {
-  MMOutput    *o  = &ctx->out;
   MMFileStatus st = {0};
   char         dst[PETSC_MAX_PATH_LEN];
   PetscMPIInt  rank;
@@ -470,7 +436,7 @@ PetscErrorCode MMOutputCopySnapshots(MMCtx *ctx)
   PetscCall(PetscLogEventBegin(MMIOEvents.copy, 0, 0, 0, 0));
   PetscCall(MMOutputFlushFields(o));
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
-  PetscCall(PetscSNPrintf(dst, sizeof(dst), "%s/%s", ctx->out.dir, MM_SNAPSHOT_COPY));
+  PetscCall(PetscSNPrintf(dst, sizeof(dst), "%s/%s", o->dir, MM_SNAPSHOT_COPY));
   if (!rank) PetscCall(CopyFile(o->h5_name, dst, &st));
   PetscCall(MMOutputCheckRank0(&st));
   PetscCall(PetscLogEventEnd(MMIOEvents.copy, 0, 0, 0, 0));
@@ -495,21 +461,22 @@ static PetscErrorCode DropSnapshotCopy(const MMOutput *o, const MMCheckpoint *c,
 /* Each vertex's position among the mesh file's nodes (from 0): PETSc writes the vertices in the
  * partition's order, so this is what matches a vertex across runs on other rank counts, to the
  * file (and -restart's copy of the earlier snapshots). */
-static PetscErrorCode SerialVertexField(MMCtx *ctx, Vec f)
+static PetscErrorCode SerialVertexField(const MMOutput *o, Vec f)
 {
+  const MMCheckpoint *c = o->ckpt;
   PetscSection gs;
   PetscInt     vStart, vEnd, rstart;
   PetscScalar *a;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalSection(ctx->op.dm_scalar, &gs));
-  PetscCall(DMPlexGetDepthStratum(ctx->op.dm_scalar, 0, &vStart, &vEnd));
+  PetscCall(DMGetGlobalSection(o->dm_scalar, &gs));
+  PetscCall(DMPlexGetDepthStratum(o->dm_scalar, 0, &vStart, &vEnd));
   PetscCall(VecGetOwnershipRange(f, &rstart, NULL));
   PetscCall(VecGetArray(f, &a));
   for (PetscInt v = vStart; v < vEnd; ++v) {
     PetscInt goff;
     PetscCall(PetscSectionGetOffset(gs, v, &goff));
-    if (goff >= 0) a[goff - rstart] = (PetscScalar)ctx->ckpt.vertex_file[ctx->ckpt.vertex_orig[v - vStart]];
+    if (goff >= 0) a[goff - rstart] = (PetscScalar)c->vertex_file[c->vertex_orig[v - vStart]];
   }
   PetscCall(VecRestoreArray(f, &a));
   PetscFunctionReturn(0);
@@ -578,16 +545,14 @@ PetscErrorCode MMOutputViewSnapshot(MMOutput *o, PetscViewer viewer, PetscInt st
 }
 
 /* The fields without a time index, written once with the first snapshot: each contact node's
- * obstacle, fixed at set-up (docs/method.md section 8), which every snapshot's grid refers to, and
- * each vertex's serial number. */
-PetscErrorCode MMOutputWriteStaticFields(MMCtx *ctx)
+ * obstacle, fixed at set-up (docs/method.md section 8) and filled when the output opens, which every
+ * snapshot's grid refers to, and each vertex's serial number. */
+PetscErrorCode MMOutputWriteStaticFields(MMOutput *o)
 {
-  MMOutput      *o = &ctx->out;
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
-  PetscCall(MMContactObstacleField(ctx, o->obstacle));
-  PetscCall(SerialVertexField(ctx, o->serial));
+  PetscCall(SerialVertexField(o, o->serial));
   PetscCall(MMOutputHDF5Begin());
   ierr = ViewDataset(o->h5, "/vertex_fields", "contact_obstacle_nodal", o->obstacle, 1, -1);
   if (!ierr) ierr = ViewDataset(o->h5, "/vertex_fields", "serial_vertex_nodal", o->serial, 1, -1);
@@ -596,19 +561,14 @@ PetscErrorCode MMOutputWriteStaticFields(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
-/* Writes the current fields as snapshot n_written, flushes them, and only then indexes them. */
-static PetscErrorCode WriteFields(MMCtx *ctx)
+/* Writes the fields the caller filled as snapshot n_written at time t, flushes them, and only then
+ * indexes them. */
+PetscErrorCode MMOutputWriteSnapshot(MMOutput *o, PetscReal t)
 {
-  MMOutput      *o = &ctx->out;
-  PetscReal      t = ctx->hist.time;
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogStagePush(MMIOEvents.output));
-  PetscCall(MMOutputWholeState(ctx));
-  PetscCall(MMContactBoundaryFields(ctx, o));
-  PetscCall(MMStressCompute(&o->stress, &ctx->op, &ctx->material, o->dm_out, o->disp_cart, PETSC_TRUE));
-  if (!o->static_written) PetscCall(MMOutputWriteStaticFields(ctx));
+  if (!o->static_written) PetscCall(MMOutputWriteStaticFields(o));
   /* /time is written ahead of the fields: the index, not /time, says what is complete */
   PetscCall(MMOutputHDF5Begin());
   ierr = MMOutputViewSnapshot(o, o->h5, o->n_written, t);
@@ -616,8 +576,7 @@ static PetscErrorCode WriteFields(MMCtx *ctx)
   PetscCall(MMOutputFlushFields(o));
   PetscCall(PetscRealloc(sizeof(PetscReal) * (o->n_written + 1), &o->times));
   o->times[o->n_written++] = t;
-  PetscCall(WriteIndex(ctx));
-  PetscCall(PetscLogStagePop());
+  PetscCall(WriteIndex(o));
   PetscFunctionReturn(0);
 }
 
@@ -698,20 +657,20 @@ static PetscBool SameDirectory(const char a[], const char b[])
 
 /* The output directory exists, holds none of this run's names (or, on -restart, the files it
  * continues), and history.csv is open on rank 0. */
-static PetscErrorCode OpenDirectoryAndHistory(MMCtx *ctx)
+static PetscErrorCode OpenDirectoryAndHistory(MMOutput *o)
 {
-  MMOutput    *o  = &ctx->out;
-  MMFileStatus st = {0};
+  const MMCheckpoint *c  = o->ckpt;
+  MMFileStatus        st = {0};
   PetscMPIInt  rank;
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   o->csv_fd = -1;
   if (rank == 0) {
-    PetscCall(MMOutputMakeDirectories(ctx->out.dir, &st));
+    PetscCall(MMOutputMakeDirectories(o->dir, &st));
     /* a restart continues the files of its checkpoint's directory: only another run's move away */
-    if (!st.err && !(ctx->ckpt.restarted && SameDirectory(ctx->out.dir, ctx->ckpt.source_dir))) PetscCall(MMOutputKeepPrevious(ctx->out.dir, &st));
-    if (!st.err && ctx->ckpt.restarted) PetscCall(MMOutputRestartHistory(ctx, &st));
+    if (!st.err && !(c->restarted && SameDirectory(o->dir, c->source_dir))) PetscCall(MMOutputKeepPrevious(o->dir, &st));
+    if (!st.err && c->restarted) PetscCall(MMOutputRestartHistory(o, &st));
     else if (!st.err && (o->csv_fd = open(o->csv_name, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666)) < 0) PetscCall(MMOutputFailed(&st, "create %s", o->csv_name));
   }
   PetscCall(MMOutputCheckRank0(&st));
@@ -719,9 +678,9 @@ static PetscErrorCode OpenDirectoryAndHistory(MMCtx *ctx)
 }
 
 /* Global vertex and cell counts, for the XDMF index. */
-static PetscErrorCode CountMesh(MMCtx *ctx)
+static PetscErrorCode CountMesh(MMOutput *o)
 {
-  DM              dm = ctx->op.dm;
+  DM              dm = o->op->dm;
   PetscSF         sf;
   PetscInt        vStart, vEnd, cStart, cEnd, nleaves, loc[2], glob[2];
   const PetscInt *leaves;
@@ -738,15 +697,14 @@ static PetscErrorCode CountMesh(MMCtx *ctx)
   }
   loc[1] = cEnd - cStart;
   PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)dm)));
-  ctx->out.nv = glob[0];
-  ctx->out.nc = glob[1];
+  o->nv = glob[0];
+  o->nc = glob[1];
   PetscFunctionReturn(0);
 }
 
 /* solution.h5 with the mesh, on disk; the viewer stays open for the snapshots. */
-static PetscErrorCode OpenFields(MMCtx *ctx)
+static PetscErrorCode OpenFields(MMOutput *o)
 {
-  MMOutput      *o = &ctx->out;
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
@@ -755,30 +713,30 @@ static PetscErrorCode OpenFields(MMCtx *ctx)
   PetscCall(MMOutputHDF5End(ierr, "create", o->h5_name));
   PetscCall(PetscViewerPushFormat(o->h5, PETSC_VIEWER_HDF5_XDMF));
   PetscCall(MMOutputHDF5Begin());
-  ierr = MMOutputWriteMesh(ctx, o->h5);
+  ierr = MMOutputWriteMesh(o->op, o->h5);
   PetscCall(MMOutputHDF5End(ierr, "write", o->h5_name));
   PetscCall(MMOutputFlushFields(o));
-  PetscCall(CountMesh(ctx));
+  PetscCall(CountMesh(o));
   PetscFunctionReturn(0);
 }
 
 /* The output vectors: Cartesian fields on a copy of the mesh without constraints, scalars per vertex. */
-static PetscErrorCode CreateFieldVectors(MMCtx *ctx)
+static PetscErrorCode CreateFieldVectors(MMOutput *o)
 {
-  MMOutput    *o = &ctx->out;
+  const MMOperators *op = o->op;
   PetscFE      fe;
   PetscSection s;
   const char  *names[] = {"displacement_x", "displacement_y", "displacement_z"};
 
   PetscFunctionBeginUser;
-  PetscCall(DMClone(ctx->op.dm, &o->dm_out));
-  PetscCall(PetscFECreateLagrange(PETSC_COMM_WORLD, ctx->op.dim, ctx->op.dim, PETSC_TRUE, 1, PETSC_DETERMINE, &fe));
+  PetscCall(DMClone(op->dm, &o->dm_out));
+  PetscCall(PetscFECreateLagrange(PETSC_COMM_WORLD, op->dim, op->dim, PETSC_TRUE, 1, PETSC_DETERMINE, &fe));
   PetscCall(PetscObjectSetName((PetscObject)fe, "displacement"));
   PetscCall(DMSetField(o->dm_out, 0, NULL, (PetscObject)fe));
   PetscCall(PetscFEDestroy(&fe));
   PetscCall(DMCreateDS(o->dm_out));
   PetscCall(DMGetLocalSection(o->dm_out, &s));
-  for (PetscInt c = 0; c < ctx->op.dim; ++c) PetscCall(PetscSectionSetComponentName(s, 0, c, names[c]));
+  for (PetscInt c = 0; c < op->dim; ++c) PetscCall(PetscSectionSetComponentName(s, 0, c, names[c]));
   PetscCall(DMCreateGlobalVector(o->dm_out, &o->disp_cart));
   PetscCall(DMCreateGlobalVector(o->dm_out, &o->vel_cart));
   PetscCall(DMCreateGlobalVector(o->dm_out, &o->traction_t));
@@ -795,7 +753,6 @@ static PetscErrorCode CreateFieldVectors(MMCtx *ctx)
   PetscCall(PetscObjectSetName((PetscObject)o->obstacle, "contact_obstacle"));
   PetscCall(DMCreateGlobalVector(o->dm_scalar, &o->serial));
   PetscCall(PetscObjectSetName((PetscObject)o->serial, "serial_vertex"));
-  PetscCall(MMStressCreate(&ctx->op, &o->stress));
   PetscFunctionReturn(0);
 }
 
@@ -855,48 +812,40 @@ PetscErrorCode MMOutputSetFromOptions(MPI_Comm comm, MMOutput *o)
   PetscFunctionReturn(0);
 }
 
-/* Called last in set-up, once all input is valid: from here on the earlier results are in previous/. */
-PetscErrorCode MMOutputOpen(MMCtx *ctx)
+/* The output's borrowed references: what it writes from (like KSPSetOperators). */
+PetscErrorCode MMOutputSetUp(MMOutput *o, const MMOptions *opt, const MMOperators *op, const MMHistory *hist, const MMContact *contact, const MMLoads *loads, const MMCheckpoint *ckpt)
 {
-  MMOutput   *o   = &ctx->out;
-  const char *dir = ctx->out.dir;
-
   PetscFunctionBeginUser;
-  o->dm_scalar = ctx->op.dm_scalar;
-  PetscCall(PetscSNPrintf(o->csv_name, sizeof(o->csv_name), "%s/%s", dir, MMOutputFiles[0]));
-  PetscCall(PetscSNPrintf(o->h5_name, sizeof(o->h5_name), "%s/%s", dir, MMOutputFiles[1]));
-  PetscCall(PetscSNPrintf(o->xmf_name, sizeof(o->xmf_name), "%s/%s", dir, MMOutputFiles[2]));
-  PetscCall(MMProbesSetUp(ctx)); /* a group the mesh lacks is refused before any file is touched */
-  if (ctx->ckpt.restarted) PetscCall(PetscLogEventBegin(MMIOEvents.restart_output, 0, 0, 0, 0));
-  PetscCall(OpenDirectoryAndHistory(ctx));
-  if (ctx->ckpt.restarted) {
-    PetscCall(CountMesh(ctx));
-    PetscCall(CreateFieldVectors(ctx));
-    PetscCall(MMOutputRestartFields(ctx));
-    PetscCall(PetscLogEventEnd(MMIOEvents.restart_output, 0, 0, 0, 0));
-  } else {
-    PetscCall(CSVHeader(ctx));
-    PetscCall(OpenFields(ctx));
-    PetscCall(CreateFieldVectors(ctx));
-  }
+  o->opt     = opt;
+  o->op      = op;
+  o->hist    = hist;
+  o->contact = contact;
+  o->loads   = loads;
+  o->ckpt      = ckpt;
+  o->dm_scalar = op->dm_scalar; /* fem's: one scalar per vertex */
   PetscFunctionReturn(0);
 }
 
-/* TS monitor: a history row every -history_every steps, the fields every -output_every steps or
- * -output_interval (output_schedule.c). */
-PetscErrorCode MMOutputMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ptr)
+/* Called last in set-up, once all input is valid: from here on the earlier results are in previous/.
+ * history.csv is open and, unless the run restarts (output_restart.c), solution.h5 holds the mesh;
+ * the field vectors exist. */
+PetscErrorCode MMOutputOpenFiles(MMOutput *o)
 {
-  MMCtx *ctx = (MMCtx *)ptr;
+  const char *dir = o->dir;
 
   PetscFunctionBeginUser;
-  if (!ctx->out.planned) {
-    PetscCall(MMOutputPlanCheck(ctx, ts));
-    ctx->out.planned = PETSC_TRUE;
+  PetscCall(PetscSNPrintf(o->csv_name, sizeof(o->csv_name), "%s/%s", dir, MMOutputFiles[0]));
+  PetscCall(PetscSNPrintf(o->h5_name, sizeof(o->h5_name), "%s/%s", dir, MMOutputFiles[1]));
+  PetscCall(PetscSNPrintf(o->xmf_name, sizeof(o->xmf_name), "%s/%s", dir, MMOutputFiles[2]));
+  PetscCall(OpenDirectoryAndHistory(o));
+  if (o->ckpt->restarted) {
+    PetscCall(CountMesh(o));
+    PetscCall(CreateFieldVectors(o));
+  } else {
+    PetscCall(CSVHeader(o));
+    PetscCall(OpenFields(o));
+    PetscCall(CreateFieldVectors(o));
   }
-  /* -restart: the row and snapshot of the checkpoint's step are on disk already */
-  if (ctx->ckpt.restarted && step == ctx->ckpt.restart_step) PetscFunctionReturn(0);
-  if (MMOutputHistoryDue(&ctx->out, step)) PetscCall(CSVRow(ctx));
-  if (step == 0 || MMOutputSnapshotDue(&ctx->out, step, time, ctx->hist.dt)) PetscCall(WriteFields(ctx));
   PetscFunctionReturn(0);
 }
 
@@ -914,19 +863,6 @@ static PetscErrorCode CloseFiles(MMOutput *o)
   PetscCall(MMOutputHDF5Begin());
   ierr = PetscViewerDestroy(&o->h5);
   PetscCall(MMOutputHDF5End(ierr, "close", o->h5_name));
-  PetscFunctionReturn(0);
-}
-
-/* The last step's row and snapshot, if the cadence missed them (a restart that made no step has
- * them on disk). */
-PetscErrorCode MMOutputWriteFinal(MMCtx *ctx)
-{
-  MMOutput  *o = &ctx->out;
-  MMHistory *h = &ctx->hist;
-
-  PetscFunctionBeginUser;
-  if (!MMOutputHistoryDue(o, h->step) && !(ctx->ckpt.restarted && h->step == ctx->ckpt.restart_step)) PetscCall(CSVRow(ctx));
-  if (o->n_written && o->times[o->n_written - 1] != h->time) PetscCall(WriteFields(ctx));
   PetscFunctionReturn(0);
 }
 

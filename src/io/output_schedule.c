@@ -31,13 +31,13 @@ PetscBool MMOutputSnapshotDue(const MMOutput *o, PetscInt step, PetscReal t, Pet
 /* One "mmcontact warning:" line, at the first step, when the run plans more than 1e6 steps, or more
  * than 1 GB of history or of snapshots: the figures, and the options that set them. The figures
  * are the data check's (MMOutputPlanMake, README "Output"). */
-PetscErrorCode MMOutputPlanCheck(MMCtx *ctx, TS ts)
+PetscErrorCode MMOutputPlanCheck(const MMOutput *o, TS ts)
 {
   MMOutputPlan plan;
   PetscReal    snap_bytes;
 
   PetscFunctionBeginUser;
-  PetscCall(MMOutputPlanMake(ctx, ts, &plan));
+  PetscCall(MMOutputPlanMake(o, ts, &plan));
   snap_bytes = plan.snapshots * plan.snapshot_bytes;
   if (plan.steps <= MM_PLAN_STEPS && plan.csv_bytes <= MM_PLAN_BYTES && snap_bytes <= MM_PLAN_BYTES) PetscFunctionReturn(0);
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "mmcontact warning: this run plans %.4g steps, %.3g GB of history.csv (%.4g rows) and %.3g GB of snapshots in solution.h5 (%.4g); above 1e6 steps or 1 GB, check -ts_dt and -ts_max_time, and thin the output with -history_every, -output_every or -output_interval\n", (double)plan.steps, (double)(plan.csv_bytes / 1e9), (double)plan.rows, (double)(snap_bytes / 1e9), (double)plan.snapshots));

@@ -33,13 +33,13 @@ PETSC_INTERN int            MMOutputWriteAll(int, const char *, size_t);
 PETSC_INTERN PetscErrorCode MMOutputHDF5Begin(void);
 PETSC_INTERN PetscErrorCode MMOutputHDF5End(PetscErrorCode, const char[], const char[]);
 PETSC_INTERN PetscErrorCode MMOutputLineAdd(MMLine *, const char[], ...);
-PETSC_INTERN PetscErrorCode MMOutputCSVHeaderLine(MMCtx *, MMLine *);
+PETSC_INTERN PetscErrorCode MMOutputCSVHeaderLine(const MMOutput *o, MMLine *line);
 PETSC_INTERN PetscErrorCode MMOutputIndexAddGrid(MMOutput *, PetscInt, PetscInt, PetscReal);
 PETSC_INTERN size_t         MMOutputIndexFrameBytes(void);
 PETSC_INTERN PetscErrorCode MMOutputWriteIndexFile(MMOutput *o);
 PETSC_INTERN PetscErrorCode MMOutputFlushFields(MMOutput *);
 PETSC_INTERN PetscErrorCode MMOutputWriteDataset(PetscViewer, Vec, PetscInt, const char[]);
-PETSC_INTERN PetscErrorCode MMOutputWriteStaticFields(MMCtx *);
+PETSC_INTERN PetscErrorCode MMOutputWriteStaticFields(MMOutput *o);
 PETSC_INTERN PetscErrorCode MMOutputMakeDirectories(const char[], MMFileStatus *);
 PETSC_INTERN PetscErrorCode MMOutputKeepPrevious(const char[], MMFileStatus *);
 /* The fields of each snapshot, in one table for the writer, the XDMF index and the restart's copy:
@@ -62,11 +62,15 @@ PETSC_INTERN PetscErrorCode MMOutputViewBytes(const MMSnapshotField[MM_SNAPSHOT_
 /* output_schedule.c: which steps write a row or a snapshot; the planned output's size */
 PETSC_INTERN PetscBool      MMOutputHistoryDue(const MMOutput *o, PetscInt step);
 PETSC_INTERN PetscBool      MMOutputSnapshotDue(const MMOutput *o, PetscInt step, PetscReal t, PetscReal dt);
-PETSC_INTERN PetscErrorCode MMOutputPlanCheck(MMCtx *, TS);
+PETSC_INTERN PetscErrorCode MMOutputPlanCheck(const MMOutput *o, TS ts);
 /* probes.c: -probes, the groups' mean displacement and velocity */
-PETSC_INTERN PetscErrorCode MMProbesEvaluate(MMCtx *);
-PETSC_INTERN PetscErrorCode MMOutputWholeState(MMCtx *);
+PETSC_INTERN PetscErrorCode MMProbesSetUp(MMOutput *o, Vec vertex_masses);
+PETSC_INTERN PetscErrorCode MMProbesEvaluate(MMOutput *o);
+/* output.c: the writer, from the fields the glue (output_monitor.c) filled */
+PETSC_INTERN PetscErrorCode MMOutputOpenFiles(MMOutput *o);
+PETSC_INTERN PetscErrorCode MMOutputWriteRow(MMOutput *o);
+PETSC_INTERN PetscErrorCode MMOutputWriteSnapshot(MMOutput *o, PetscReal t);
 /* output_restart.c: -restart continues the history and the snapshots up to the checkpoint */
-PETSC_INTERN PetscErrorCode MMOutputRestartHistory(MMCtx *, MMFileStatus *);
-PETSC_INTERN PetscErrorCode MMOutputRestartFields(MMCtx *);
-PETSC_INTERN PetscErrorCode MMOutputWriteMesh(MMCtx *, PetscViewer);
+PETSC_INTERN PetscErrorCode MMOutputRestartHistory(MMOutput *o, MMFileStatus *st);
+PETSC_INTERN PetscErrorCode MMOutputRestartFields(MMCtx *ctx);
+PETSC_INTERN PetscErrorCode MMOutputWriteMesh(const MMOperators *op, PetscViewer viewer);
