@@ -39,11 +39,14 @@ PETSC_EXTERN PetscErrorCode MMOutputPlanMake(const MMOutput *o, TS ts, MMOutputP
 
 /* checkpoint.c: checkpoints and -restart (docs/method.md section 9) */
 PETSC_EXTERN PetscErrorCode MMCheckpointSetFromOptions(MPI_Comm comm, MMCheckpoint *c);
-PETSC_EXTERN PetscErrorCode MMCheckpointWrite(MMCtx *ctx, TS ts);
+PETSC_EXTERN PetscErrorCode MMCheckpointSetUp(MMCheckpoint *c, const MMOptions *opt, const MMOperators *op, const MMMaterial *material, MMHistory *hist, MMState *state, MMDamping *damping, MMContact *contact, MMFriction friction, MMOutput *out);
+PETSC_EXTERN PetscErrorCode MMCheckpointWrite(MMCheckpoint *c, TS ts);
 PETSC_EXTERN PetscErrorCode MMCheckpointMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ctx);
 PETSC_EXTERN PetscErrorCode MMCheckpointDestroy(MMCheckpoint *c);
-PETSC_EXTERN PetscErrorCode MMCheckpointLoad(MMCtx *ctx, TS ts);
-PETSC_EXTERN PetscErrorCode MMCheckpointRestoreHistory(MMCtx *ctx);
+PETSC_EXTERN PetscErrorCode MMCheckpointLoad(MMCheckpoint *c, TS ts);
+PETSC_EXTERN PetscErrorCode MMCheckpointGetRestartTime(const MMCheckpoint *c, PetscReal *time);
+PETSC_EXTERN PetscErrorCode MMCheckpointView(const MMCheckpoint *c, PetscViewer viewer);
+PETSC_EXTERN PetscErrorCode MMCheckpointRestoreHistory(MMCheckpoint *c);
 PETSC_EXTERN PetscErrorCode MMCheckpointSnapshots(MMCheckpoint *c, PetscInt *n, PetscReal **times);
 PETSC_EXTERN PetscInt       MMCheckpointSnapshotCount(const MMCheckpoint *c);
 

@@ -5,6 +5,7 @@
 #include "apptypes.h"
 #include "contacttypes.h"
 #include "tstypes.h"
+#include "frictiontypes.h"
 
 /* The progress line (src/io/progress.c): what it keeps between two lines. The references are taken at the
  * first monitor call, the start of TSSolve, so that the rates are those of this run's time loop. */
@@ -28,9 +29,22 @@ typedef struct {
   PetscReal *mean;             /* per group, 2 dim values: the mean u, then the mean v, of the current row */
 } MMProbes;
 
+typedef struct _MMOutput MMOutput;
+
 /* Checkpoints (src/io/checkpoint.c, docs/method.md section 9): the state keyed by the serial mesh's vertex
  * numbers, so that a run can continue on any number of ranks. */
 typedef struct {
+  /* borrowed at MMCheckpointSetUp: what a checkpoint holds, and what a restart restores */
+  const MMOptions   *opt;      /* the problem: its fingerprint (mesh, contact boundary, mu, material, mass) */
+  const MMOperators *op;       /* the mesh and its dimension */
+  const MMMaterial  *material; /* the bodies */
+  MMHistory         *hist;     /* the running sums and maxima */
+  MMState           *state;    /* u, v, a and the reactions, dt */
+  MMDamping         *damping;  /* alpha, beta and vC */
+  MMContact         *contact;  /* the contact nodes' states: the solvers' warm starts */
+  MMFriction         friction; /* its thresholds */
+  MMOutput          *out;      /* the snapshots: their count and times, their copy */
+  PetscReal          dt_next;  /* -restart: the dt the run continues with */
   PetscInt *vertex_orig; /* per local vertex (from vStart), its number in the serial mesh */
   PetscInt *vertex_file; /* per serial-mesh vertex, its position among the mesh file's nodes (mesh_file.c) */
   PetscInt  nv_global;   /* vertices of the whole mesh */
@@ -49,7 +63,7 @@ typedef struct {
 } MMCheckpoint;
 
 /* Output files. Rank 0 alone writes history.csv and solution.xmf; solution.h5 is written by all. */
-typedef struct {
+struct _MMOutput {
   /* borrowed at MMOutputSetUp: what the output writes from */
   const MMOptions    *opt;     /* the problem: the obstacles' and Dirichlet boundaries' names, the history's columns */
   const MMOperators  *op;      /* the mesh, its dimension and cells */
@@ -83,5 +97,5 @@ typedef struct {
   MMStress      stress;                /* nodal and cell stress and von Mises (fem: src/fem/stress.c) */
   MMProbes      probes;                /* -probes: groups' mean displacement and velocity in the history */
   PetscBool     planned;               /* the planned output's size has been checked (output_schedule.c) */
-} MMOutput;
+};
 

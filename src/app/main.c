@@ -52,6 +52,21 @@ static PetscErrorCode LoadMesh(MPI_Comm comm, MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
+/* -restart: the checkpoint's state, and the obstacles and loads at its time (for the initial
+ * diagnostics and the energy of the restored state). */
+static PetscErrorCode Restart(MMCtx *ctx, TS ts)
+{
+  PetscReal t;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMCheckpointLoad(&ctx->ckpt, ts));
+  PetscCall(MMCheckpointGetRestartTime(&ctx->ckpt, &t));
+  if (ctx->contact.enabled) PetscCall(MMContactSetTime(ctx, t, ctx->state.dt));
+  PetscCall(MMLoadsSetTime(&ctx->loads, t, t));
+  if (!ctx->opt.quiet) PetscCall(MMCheckpointView(&ctx->ckpt, PETSC_VIEWER_STDOUT_WORLD));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
 {
   MPI_Comm       comm = PETSC_COMM_WORLD;
@@ -83,13 +98,14 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   MMPhase(MMAppEvents.initial_state, MMNewmarkInitialState(ctx));
   MMPhase(MMAppEvents.friction_setup, MMFrictionSetUp(ctx));
   PetscCall(MMNewmarkCreateTS(ctx, ts));
-  if (ctx->ckpt.restart[0]) PetscCall(MMCheckpointLoad(ctx, *ts));
+  PetscCall(MMCheckpointSetUp(&ctx->ckpt, &ctx->opt, &ctx->op, &ctx->material, &ctx->hist, &ctx->state, &ctx->damping, &ctx->contact, ctx->friction, &ctx->out));
+  if (ctx->ckpt.restart[0]) PetscCall(Restart(ctx, *ts));
   PetscCall(TSGetTimeStep(*ts, &dt));
   MMPhase(MMAppEvents.step_matrix, MMContactSetStepMatrix(ctx, dt));
   ctx->hist.dt = dt;
   MMPhase(MMAppEvents.energy_initial, MMEnergyInitial(ctx));
   MMPhase(MMAppEvents.deformation_check, MMDeformationCheck(ctx));
-  if (ctx->ckpt.restarted) PetscCall(MMCheckpointRestoreHistory(ctx));
+  if (ctx->ckpt.restarted) PetscCall(MMCheckpointRestoreHistory(&ctx->ckpt));
   PetscCall(MMOutputSetUp(&ctx->out, &ctx->opt, &ctx->op, &ctx->hist, &ctx->contact, &ctx->loads, &ctx->ckpt));
   /* every object has read its options: refuse the unread ones before any output is touched, and
    * before the start-up report, which would otherwise announce a run that is then refused */
@@ -105,7 +121,7 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   /* last: the earlier results in the output directory are set aside only once the input is valid */
   MMPhase(MMAppEvents.output_open, MMOutputOpen(ctx));
   PetscCall(TSMonitorSet(*ts, MMOutputMonitor, ctx, NULL));
-  PetscCall(TSMonitorSet(*ts, MMCheckpointMonitor, ctx, NULL));
+  PetscCall(TSMonitorSet(*ts, MMCheckpointMonitor, &ctx->ckpt, NULL));
   PetscCall(MMProgressSetUp(ctx, *ts));
   PetscCall(MMSignalsSetUp(*ts));
   PetscFunctionReturn(0);
@@ -212,7 +228,7 @@ int main(int argc, char **argv)
   PetscCall(TSSolve(ts, ctx.state.u_next));
   PetscCall(PetscLogStagePop());
   PetscCall(PetscTime(&t1));
-  if (ctx.ckpt.last_step != ctx.hist.step || !ctx.ckpt.written) PetscCall(MMCheckpointWrite(&ctx, ts));
+  if (ctx.ckpt.last_step != ctx.hist.step || !ctx.ckpt.written) PetscCall(MMCheckpointWrite(&ctx.ckpt, ts));
 
   PetscCall(MMOutputWriteFinal(&ctx));
   PetscCall(MMOutputClose(&ctx.out, &ctx.ckpt, ctx.hist.step));
