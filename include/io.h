@@ -52,7 +52,8 @@ PETSC_EXTERN PetscInt       MMCheckpointSnapshotCount(const MMCheckpoint *c);
 
 /* progress.c: the start-up report and the progress lines */
 PETSC_EXTERN PetscErrorCode MMProgressSetFromOptions(MPI_Comm comm, MMProgress *p);
-PETSC_EXTERN PetscErrorCode MMProgressHeader(MMCtx *ctx, TS ts);
-PETSC_EXTERN PetscErrorCode MMProgressMassLine(MMCtx *ctx);
-PETSC_EXTERN PetscErrorCode MMProgressSetUp(MMCtx *ctx, TS ts);
+PETSC_EXTERN PetscErrorCode MMProgressSetUp(MMProgress *p, const MMOptions *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, const MMContact *contact, const MMDamping *damping);
+PETSC_EXTERN PetscErrorCode MMProgressHeader(MMProgress *p, TS ts, KSP krylov, KSP pc_ksp);
+PETSC_EXTERN PetscErrorCode MMProgressMassLine(const MMProgress *p);
+PETSC_EXTERN PetscErrorCode MMProgressMonitorSet(MMProgress *p, TS ts);
 PETSC_EXTERN PetscErrorCode MMProgressMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ctx);

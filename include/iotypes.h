@@ -10,6 +10,14 @@
 /* The progress line (src/io/progress.c): what it keeps between two lines. The references are taken at the
  * first monitor call, the start of TSSolve, so that the rates are those of this run's time loop. */
 typedef struct {
+  /* borrowed at MMProgressSetUp: what the start-up report and the progress lines describe */
+  const MMOptions   *opt;
+  const MMOperators *op;
+  const MMMaterial  *material;
+  const MMHistory   *hist;
+  const MMState     *state;
+  const MMContact   *contact;
+  const MMDamping   *damping;
   PetscBool      started;
   PetscLogDouble wall_start, wall_last; /* wall time at the start of the time loop and at the last line */
   PetscReal      t_start;               /* simulated time at the start of the time loop */

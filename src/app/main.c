@@ -112,7 +112,12 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscCall(MMOptionsCheckUnused(comm, &ctx->opt, ctx->op.dm));
   /* after: its replay of the help text reads every option */
   PetscCall(MMOptionsCheckValueless(comm));
-  PetscCall(MMProgressHeader(ctx, *ts));
+  PetscCall(MMProgressSetUp(&ctx->progress, &ctx->opt, &ctx->op, &ctx->material, &ctx->hist, &ctx->state, &ctx->contact, &ctx->damping));
+  if (!ctx->opt.quiet) {
+    KSP krylov, pc_ksp;
+    PetscCall(MMContactGetStepKSP(ctx, &krylov, &pc_ksp));
+    PetscCall(MMProgressHeader(&ctx->progress, *ts, krylov, pc_ksp));
+  }
   /* -check_input: the case is built and valid; its report, and a stop before any output is touched */
   if (ctx->opt.check_input) {
     PetscCall(MMDataCheckReport(ctx, *ts));
@@ -122,7 +127,7 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   MMPhase(MMAppEvents.output_open, MMOutputOpen(ctx));
   PetscCall(TSMonitorSet(*ts, MMOutputMonitor, ctx, NULL));
   PetscCall(TSMonitorSet(*ts, MMCheckpointMonitor, &ctx->ckpt, NULL));
-  PetscCall(MMProgressSetUp(ctx, *ts));
+  if (!ctx->opt.quiet) PetscCall(MMProgressMonitorSet(&ctx->progress, *ts));
   PetscCall(MMSignalsSetUp(*ts));
   PetscFunctionReturn(0);
 }
@@ -152,7 +157,7 @@ static PetscErrorCode Report(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wa
   PetscFunctionBeginUser;
   if (ctx->opt.quiet) PetscFunctionReturn(0);
   PetscCall(RunView(ctx, setup, wall, viewer));
-  PetscCall(MMProgressMassLine(ctx));   /* the mass's view (fem) */
+  PetscCall(MMProgressMassLine(&ctx->progress)); /* the mass's view (fem) */
   PetscCall(MMContactSummary(ctx));     /* MMContactView (contact) */
   PetscCall(MMDeformationSummary(ctx)); /* MMDeformationView (ts) */
   PetscCall(MMOutputView(&ctx->out, viewer));
