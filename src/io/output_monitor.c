@@ -7,16 +7,18 @@
 #include "contact.h"
 #include "fem.h"
 
-/* The Cartesian displacement and velocity on every node, Dirichlet data included, from the free dofs
- * of u and v (the velocity's data are the moving boundaries' own): the snapshot's and the probes'. */
-static PetscErrorCode WholeState(MMCtx *ctx)
+/* The history row and (snapshot) the fields of the current state. Both need the Cartesian
+ * displacement and velocity on every node, Dirichlet data included (the row for its probes), from
+ * the free dofs of u and v; the velocity's data are the moving boundaries' own. */
+static PetscErrorCode Write(MMCtx *ctx, PetscBool row, PetscBool snapshot)
 {
-  MMOutput *o     = &ctx->out;
-  DM        dm    = ctx->op.dm;
-  Vec       w[2]  = {ctx->state.u, ctx->state.v}, whole[2] = {o->disp_cart, o->vel_cart};
+  MMOutput *o    = &ctx->out;
+  DM        dm   = ctx->op.dm;
+  Vec       w[2] = {ctx->state.u, ctx->state.v}, whole[2] = {o->disp_cart, o->vel_cart};
 
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < 2; ++i) {
+  if (snapshot) PetscCall(PetscLogStagePush(MMIOEvents.output));
+  for (PetscInt i = 0; i < 2 && (snapshot || (row && o->probes.n)); ++i) {
     Vec g, l;
     PetscCall(DMGetGlobalVector(dm, &g));
     PetscCall(DMGetLocalVector(dm, &l));
@@ -28,24 +30,10 @@ static PetscErrorCode WholeState(MMCtx *ctx)
     PetscCall(MMInsertMapLocalToGlobal(o->dm_out, &o->to_out, l, whole[i]));
     PetscCall(DMRestoreLocalVector(dm, &l));
     PetscCall(DMRestoreGlobalVector(dm, &g));
+    if (i == 1) PetscCall(MMLoadsInsertDirichletVelocity(&ctx->loads, o->vel_cart));
   }
-  PetscCall(MMLoadsInsertDirichletVelocity(&ctx->loads, o->vel_cart));
-  PetscFunctionReturn(0);
-}
-
-/* The history row and (snapshot) the fields of the current state. */
-static PetscErrorCode Write(MMCtx *ctx, PetscBool row, PetscBool snapshot)
-{
-  MMOutput *o = &ctx->out;
-
-  PetscFunctionBeginUser;
-  if (row) {
-    if (o->probes.n) PetscCall(WholeState(ctx));
-    PetscCall(MMOutputWriteRow(o));
-  }
+  if (row) PetscCall(MMOutputWriteRow(o));
   if (!snapshot) PetscFunctionReturn(0);
-  PetscCall(PetscLogStagePush(MMIOEvents.output));
-  PetscCall(WholeState(ctx));
   PetscCall(MMContactBoundaryFields(ctx, o));
   PetscCall(MMStressCompute(&o->stress, &ctx->op, &ctx->material, o->dm_out, o->disp_cart, PETSC_TRUE));
   PetscCall(MMOutputWriteSnapshot(o, ctx->hist.time));
@@ -115,7 +103,6 @@ PetscErrorCode MMOutputWriteFinal(MMCtx *ctx)
   const MMHistory *h = &ctx->hist;
 
   PetscFunctionBeginUser;
-  PetscCall(Write(ctx, (PetscBool)(!MMOutputHistoryDue(o, h->step) && !(ctx->ckpt.restarted && h->step == ctx->ckpt.restart_step)), PETSC_FALSE));
-  PetscCall(Write(ctx, PETSC_FALSE, (PetscBool)(o->n_written && o->times[o->n_written - 1] != h->time)));
+  PetscCall(Write(ctx, (PetscBool)(!MMOutputHistoryDue(o, h->step) && !(ctx->ckpt.restarted && h->step == ctx->ckpt.restart_step)), (PetscBool)(o->n_written && o->times[o->n_written - 1] != h->time)));
   PetscFunctionReturn(0);
 }
