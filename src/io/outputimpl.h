@@ -1,4 +1,4 @@
-/* The output's own helpers, shared by output.c and output_restart.c. */
+/* io's private declarations: the output's own helpers, shared by its files, and io's log events. */
 #pragma once
 #include <stdio.h>
 #include "mmcontact.h"
@@ -27,21 +27,21 @@ typedef struct {
   size_t n;
 } MMLine;
 
-PETSC_INTERN PetscErrorCode MMOutputFailed(MMFileStatus *, const char[], ...);
-PETSC_INTERN PetscErrorCode MMOutputCheckRank0(MMFileStatus *);
-PETSC_INTERN int            MMOutputWriteAll(int, const char *, size_t);
+PETSC_INTERN PetscErrorCode MMOutputFailed(MMFileStatus *st, const char fmt[], ...);
+PETSC_INTERN PetscErrorCode MMOutputCheckRank0(MMFileStatus *st);
+PETSC_INTERN int            MMOutputWriteAll(int fd, const char *buf, size_t len);
 PETSC_INTERN PetscErrorCode MMOutputHDF5Begin(void);
-PETSC_INTERN PetscErrorCode MMOutputHDF5End(PetscErrorCode, const char[], const char[]);
-PETSC_INTERN PetscErrorCode MMOutputLineAdd(MMLine *, const char[], ...);
+PETSC_INTERN PetscErrorCode MMOutputHDF5End(PetscErrorCode ierr, const char action[], const char name[]);
+PETSC_INTERN PetscErrorCode MMOutputLineAdd(MMLine *l, const char fmt[], ...);
 PETSC_INTERN PetscErrorCode MMOutputCSVHeaderLine(const MMOutput *o, MMLine *line);
-PETSC_INTERN PetscErrorCode MMOutputIndexAddGrid(MMOutput *, PetscInt, PetscInt, PetscReal);
+PETSC_INTERN PetscErrorCode MMOutputIndexAddGrid(MMOutput *o, PetscInt dim, PetscInt k, PetscReal t);
 PETSC_INTERN size_t         MMOutputIndexFrameBytes(void);
 PETSC_INTERN PetscErrorCode MMOutputWriteIndexFile(MMOutput *o);
-PETSC_INTERN PetscErrorCode MMOutputFlushFields(MMOutput *);
-PETSC_INTERN PetscErrorCode MMOutputWriteDataset(PetscViewer, Vec, PetscInt, const char[]);
+PETSC_INTERN PetscErrorCode MMOutputFlushFields(MMOutput *o);
+PETSC_INTERN PetscErrorCode MMOutputWriteDataset(PetscViewer viewer, Vec v, PetscInt step, const char field_type[]);
 PETSC_INTERN PetscErrorCode MMOutputWriteStaticFields(MMOutput *o);
-PETSC_INTERN PetscErrorCode MMOutputMakeDirectories(const char[], MMFileStatus *);
-PETSC_INTERN PetscErrorCode MMOutputKeepPrevious(const char[], MMFileStatus *);
+PETSC_INTERN PetscErrorCode MMOutputMakeDirectories(const char path[], MMFileStatus *st);
+PETSC_INTERN PetscErrorCode MMOutputKeepPrevious(const char dir[], MMFileStatus *st);
 /* The fields of each snapshot, in one table for the writer, the XDMF index and the restart's copy:
  * the XDMF name, the dataset under /vertex_fields (or /cell_fields), components, the vector and its
  * DM (NULL: a cell field, a plain vector in the topology's cell order). */
@@ -52,13 +52,13 @@ typedef struct {
   Vec         vec;
   DM          dm;
 } MMSnapshotField;
-PETSC_INTERN PetscErrorCode MMOutputViewSnapshot(MMOutput *, PetscViewer, PetscInt, PetscReal);
-PETSC_INTERN void MMOutputSnapshotFields(MMOutput *, PetscInt, MMSnapshotField[MM_SNAPSHOT_FIELDS]);
+PETSC_INTERN PetscErrorCode MMOutputViewSnapshot(MMOutput *o, PetscViewer viewer, PetscInt step, PetscReal t);
+PETSC_INTERN void MMOutputSnapshotFields(MMOutput *o, PetscInt dim, MMSnapshotField f[MM_SNAPSHOT_FIELDS]);
 /* output_views.c: each snapshot's fields as datasets of their own, for the XDMF index */
-PETSC_INTERN PetscErrorCode MMOutputCreateViews(PetscViewer, const MMSnapshotField[MM_SNAPSHOT_FIELDS], PetscInt);
-PETSC_INTERN PetscInt       MMOutputViewComponents(PetscInt);
-PETSC_INTERN PetscErrorCode MMOutputViewPath(PetscInt, const char[], char[], size_t);
-PETSC_INTERN PetscErrorCode MMOutputViewBytes(const MMSnapshotField[MM_SNAPSHOT_FIELDS], PetscInt, PetscInt, PetscInt, PetscReal *);
+PETSC_INTERN PetscErrorCode MMOutputCreateViews(PetscViewer viewer, const MMSnapshotField f[MM_SNAPSHOT_FIELDS], PetscInt k);
+PETSC_INTERN PetscInt       MMOutputViewComponents(PetscInt ncomp);
+PETSC_INTERN PetscErrorCode MMOutputViewPath(PetscInt k, const char name[], char path[], size_t len);
+PETSC_INTERN PetscErrorCode MMOutputViewBytes(const MMSnapshotField f[MM_SNAPSHOT_FIELDS], PetscInt nv, PetscInt nc, PetscInt k0, PetscReal *bytes);
 /* output_schedule.c: which steps write a row or a snapshot; the planned output's size */
 PETSC_INTERN PetscBool      MMOutputHistoryDue(const MMOutput *o, PetscInt step);
 PETSC_INTERN PetscBool      MMOutputSnapshotDue(const MMOutput *o, PetscInt step, PetscReal t, PetscReal dt);
