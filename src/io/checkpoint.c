@@ -7,9 +7,7 @@
 #include <petscviewerhdf5.h>
 #include "friction.h"
 #include "io.h"
-#include "contact.h"
 #include "newmark.h"
-#include "damping.h"
 #include "fem.h"
 #include "outputimpl.h"
 

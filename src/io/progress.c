@@ -9,7 +9,6 @@
 #include "contact.h"
 #include "mesh.h"
 #include "fem.h"
-#include "damping.h"
 
 /* Rayleigh damping is on. */
 static PetscBool DampingOn(const MMProgress *pg)
