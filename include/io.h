@@ -8,10 +8,10 @@ PETSC_EXTERN PetscErrorCode MMIOInitializePackage(void);
 
 /* output.c: the files of a run, from set-up to close */
 PETSC_EXTERN PetscErrorCode MMOutputSetFromOptions(MPI_Comm comm, MMOutput *o);
-PETSC_EXTERN PetscErrorCode MMOutputSetUp(MMOutput *o, const MMOptions *opt, const MMOperators *op, const MMHistory *hist, const MMContact *contact, const MMLoads *loads, const MMCheckpoint *ckpt);
+PETSC_EXTERN PetscErrorCode MMOutputSetUp(MMOutput *o, const MMOptions *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, const MMContact *contact, MMLoads *loads, MMCheckpoint *ckpt);
 /* output_monitor.c: the glue that gathers each snapshot's fields from the components below */
 PETSC_EXTERN PetscErrorCode MMOutputOpen(MMCtx *ctx);
-PETSC_EXTERN PetscErrorCode MMOutputSetUpProbes(MMCtx *ctx);
+PETSC_EXTERN PetscErrorCode MMOutputSetUpProbes(MMOutput *o);
 PETSC_EXTERN PetscErrorCode MMOutputMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ctx);
 PETSC_EXTERN PetscErrorCode MMOutputWriteFinal(MMCtx *ctx);
 PETSC_EXTERN PetscErrorCode MMOutputClose(MMOutput *o, const MMCheckpoint *c, PetscInt step);

@@ -74,11 +74,13 @@ typedef struct {
 struct _MMOutput {
   /* borrowed at MMOutputSetUp: what the output writes from */
   const MMOptions    *opt;     /* the problem: the obstacles' and Dirichlet boundaries' names, the history's columns */
-  const MMOperators  *op;      /* the mesh, its dimension and cells */
-  const MMHistory    *hist;    /* the stepper's history row */
+  const MMOperators  *op;       /* the mesh, its dimension and cells, the frames */
+  const MMMaterial   *material; /* each cell's material: the stress */
+  const MMHistory    *hist;     /* the stepper's history row */
+  const MMState      *state;    /* the stepper's u and v */
   const MMContact    *contact; /* each obstacle's force, in the history */
-  const MMLoads      *loads;   /* each Dirichlet boundary's reaction, in the history */
-  const MMCheckpoint *ckpt;    /* the restart the run continues, the serial vertex numbers */
+  MMLoads            *loads;   /* each Dirichlet boundary's reaction, in the history; the Dirichlet data of the whole fields */
+  MMCheckpoint       *ckpt;    /* the restart the run continues (its snapshots taken over), the serial vertex numbers */
   char          dir[PETSC_MAX_PATH_LEN]; /* -output_dir */
   PetscInt      every;                 /* -output_every: snapshots every so many steps, 0: the first and last */
   PetscReal     interval;              /* -output_interval: snapshots at t = k T instead, 0: by steps */

@@ -287,7 +287,7 @@ PetscErrorCode MMDataCheckReport(MMCtx *ctx, TS ts)
   PetscFunctionBeginUser;
   /* as the output does when it opens: a group the mesh lacks is refused, and the plan counts the
    * probes' history columns */
-  PetscCall(MMOutputSetUpProbes(ctx));
+  PetscCall(MMOutputSetUpProbes(&ctx->out));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "mmcontact data check (-check_input): the physical groups of %s\n", ctx->opt.mesh_file));
   PetscCall(ReportGroups(ctx));
   PetscCall(ReportObstacles(ctx, ts));

@@ -106,7 +106,7 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   MMPhase(MMAppEvents.energy_initial, MMEnergyInitial(ctx));
   MMPhase(MMAppEvents.deformation_check, MMDeformationCheck(ctx));
   if (ctx->ckpt.restarted) PetscCall(MMCheckpointRestoreHistory(&ctx->ckpt));
-  PetscCall(MMOutputSetUp(&ctx->out, &ctx->opt, &ctx->op, &ctx->hist, &ctx->contact, &ctx->loads, &ctx->ckpt));
+  PetscCall(MMOutputSetUp(&ctx->out, &ctx->opt, &ctx->op, &ctx->material, &ctx->hist, &ctx->state, &ctx->contact, &ctx->loads, &ctx->ckpt));
   /* every object has read its options: refuse the unread ones before any output is touched, and
    * before the start-up report, which would otherwise announce a run that is then refused */
   PetscCall(MMOptionsCheckUnused(comm, &ctx->opt, ctx->op.dm));

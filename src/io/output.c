@@ -813,12 +813,14 @@ PetscErrorCode MMOutputSetFromOptions(MPI_Comm comm, MMOutput *o)
 }
 
 /* The output's borrowed references: what it writes from (like KSPSetOperators). */
-PetscErrorCode MMOutputSetUp(MMOutput *o, const MMOptions *opt, const MMOperators *op, const MMHistory *hist, const MMContact *contact, const MMLoads *loads, const MMCheckpoint *ckpt)
+PetscErrorCode MMOutputSetUp(MMOutput *o, const MMOptions *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, const MMContact *contact, MMLoads *loads, MMCheckpoint *ckpt)
 {
   PetscFunctionBeginUser;
-  o->opt     = opt;
-  o->op      = op;
-  o->hist    = hist;
+  o->opt      = opt;
+  o->op       = op;
+  o->material = material;
+  o->hist     = hist;
+  o->state    = state;
   o->contact = contact;
   o->loads   = loads;
   o->ckpt      = ckpt;

@@ -7,51 +7,60 @@
 #include "contact.h"
 #include "fem.h"
 
-/* The history row and (snapshot) the fields of the current state. Both need the Cartesian
- * displacement and velocity on every node, Dirichlet data included (the row for its probes), from
- * the free dofs of u and v; the velocity's data are the moving boundaries' own. */
-static PetscErrorCode Write(MMCtx *ctx, PetscBool row, PetscBool snapshot)
+/* The Cartesian displacement and velocity on every node, Dirichlet data included (the snapshot's, and
+ * the row's for its probes), from the free dofs of the stepper's u and v; the velocity's data are
+ * the moving boundaries' own. */
+static PetscErrorCode WholeState(MMOutput *o)
 {
-  MMOutput *o    = &ctx->out;
-  DM        dm   = ctx->op.dm;
-  Vec       w[2] = {ctx->state.u, ctx->state.v}, whole[2] = {o->disp_cart, o->vel_cart};
+  DM  dm   = o->op->dm;
+  Vec w[2] = {o->state->u, o->state->v}, whole[2] = {o->disp_cart, o->vel_cart};
 
   PetscFunctionBeginUser;
-  if (snapshot) PetscCall(PetscLogStagePush(MMIOEvents.output));
-  for (PetscInt i = 0; i < 2 && (snapshot || (row && o->probes.n)); ++i) {
+  for (PetscInt i = 0; i < 2; ++i) {
     Vec g, l;
     PetscCall(DMGetGlobalVector(dm, &g));
     PetscCall(DMGetLocalVector(dm, &l));
-    PetscCall(MMFEToCartesian(&ctx->op, w[i], g));
+    PetscCall(MMFEToCartesian(o->op, w[i], g));
     PetscCall(VecZeroEntries(l));
     PetscCall(DMGlobalToLocal(dm, g, INSERT_VALUES, l));
     /* the displacement's Dirichlet data; zero velocity there but the moving boundaries' (below) */
-    if (i == 0) PetscCall(MMLoadsInsertBoundaryValues(&ctx->loads, l, ctx->hist.time));
+    if (i == 0) PetscCall(MMLoadsInsertBoundaryValues(o->loads, l, o->hist->time));
     PetscCall(MMInsertMapLocalToGlobal(o->dm_out, &o->to_out, l, whole[i]));
     PetscCall(DMRestoreLocalVector(dm, &l));
     PetscCall(DMRestoreGlobalVector(dm, &g));
-    if (i == 1) PetscCall(MMLoadsInsertDirichletVelocity(&ctx->loads, o->vel_cart));
   }
+  PetscCall(MMLoadsInsertDirichletVelocity(o->loads, o->vel_cart));
+  PetscFunctionReturn(0);
+}
+
+/* The history row and (snapshot) the fields of the current state: the stepper's state, fem's frames
+ * and stress, contact's boundary fields. */
+static PetscErrorCode Write(MMCtx *ctx, PetscBool row, PetscBool snapshot)
+{
+  MMOutput *o = &ctx->out;
+
+  PetscFunctionBeginUser;
+  if (snapshot) PetscCall(PetscLogStagePush(MMIOEvents.output));
+  if (snapshot || (row && o->probes.n)) PetscCall(WholeState(o));
   if (row) PetscCall(MMOutputWriteRow(o));
   if (!snapshot) PetscFunctionReturn(0);
   PetscCall(MMContactBoundaryFields(ctx, o));
-  PetscCall(MMStressCompute(&o->stress, &ctx->op, &ctx->material, o->dm_out, o->disp_cart, PETSC_TRUE));
-  PetscCall(MMOutputWriteSnapshot(o, ctx->hist.time));
+  PetscCall(MMStressCompute(&o->stress, o->op, o->material, o->dm_out, o->disp_cart, PETSC_TRUE));
+  PetscCall(MMOutputWriteSnapshot(o, o->hist->time));
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(0);
 }
 
 /* The -probes groups, with their nodes' lumped masses from fem: also for the data check, whose plan
  * counts their history columns and which refuses a group the mesh lacks as a run does. */
-PetscErrorCode MMOutputSetUpProbes(MMCtx *ctx)
+PetscErrorCode MMOutputSetUpProbes(MMOutput *o)
 {
-  MMOutput *o = &ctx->out;
-  Vec       mloc;
+  Vec mloc;
 
   PetscFunctionBeginUser;
   if (!o->probe_list[0]) PetscFunctionReturn(0);
   PetscCall(DMGetLocalVector(o->dm_scalar, &mloc));
-  PetscCall(MMFEVertexMasses(&ctx->op, &ctx->material, mloc));
+  PetscCall(MMFEVertexMasses(o->op, o->material, mloc));
   PetscCall(MMProbesSetUp(o, mloc));
   PetscCall(DMRestoreLocalVector(o->dm_scalar, &mloc));
   PetscFunctionReturn(0);
@@ -65,13 +74,13 @@ PetscErrorCode MMOutputOpen(MMCtx *ctx)
   MMOutput *o = &ctx->out;
 
   PetscFunctionBeginUser;
-  PetscCall(MMOutputSetUpProbes(ctx));
+  PetscCall(MMOutputSetUpProbes(o));
   if (ctx->ckpt.restarted) PetscCall(PetscLogEventBegin(MMIOEvents.restart_output, 0, 0, 0, 0));
   PetscCall(MMOutputOpenFiles(o));
-  PetscCall(MMStressCreate(&ctx->op, &o->stress));
+  PetscCall(MMStressCreate(o->op, &o->stress));
   PetscCall(MMContactObstacleField(ctx, o->obstacle));
   if (ctx->ckpt.restarted) {
-    PetscCall(MMOutputRestartFields(ctx));
+    PetscCall(MMOutputRestartFields(o));
     PetscCall(PetscLogEventEnd(MMIOEvents.restart_output, 0, 0, 0, 0));
   }
   PetscFunctionReturn(0);

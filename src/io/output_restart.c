@@ -246,10 +246,9 @@ static PetscErrorCode CheckOldTimes(const MMOutput *o, MMOldFields *of, PetscInt
 }
 
 /* solution.h5 of this run: the mesh, then the checkpoint's snapshots copied from the old file. */
-PetscErrorCode MMOutputRestartFields(MMCtx *ctx)
+PetscErrorCode MMOutputRestartFields(MMOutput *o)
 {
-  MMOutput      *o         = &ctx->out;
-  const PetscInt dim       = ctx->op.dim;
+  const PetscInt dim       = o->op->dim;
   MMSnapshotField f[MM_SNAPSHOT_FIELDS];
   MMOldFields    of        = {0};
   MMFileStatus   st        = {0};
@@ -261,7 +260,7 @@ PetscErrorCode MMOutputRestartFields(MMCtx *ctx)
 
   PetscFunctionBeginUser;
   MMOutputSnapshotFields(o, dim, f);
-  PetscCall(MMCheckpointSnapshots(&ctx->ckpt, &n, &times));
+  PetscCall(MMCheckpointSnapshots(o->ckpt, &n, &times));
   PetscCall(OldFieldsOpen(o, &of));
   PetscCall(CheckOldTimes(o, &of, n, times));
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s%s", o->h5_name, MM_TMP));
@@ -270,7 +269,7 @@ PetscErrorCode MMOutputRestartFields(MMCtx *ctx)
   PetscCall(MMOutputHDF5End(ierr, "create", tmp));
   PetscCall(PetscViewerPushFormat(o->h5, PETSC_VIEWER_HDF5_XDMF));
   PetscCall(MMOutputHDF5Begin());
-  ierr = DMView(ctx->op.dm, o->h5);
+  ierr = DMView(o->op->dm, o->h5);
   PetscCall(MMOutputHDF5End(ierr, "write", tmp));
   for (PetscInt k = 0; k < n; ++k) {
     /* the vertex fields by the vertices' serial numbers; the cells of this partition are not the
@@ -283,7 +282,7 @@ PetscErrorCode MMOutputRestartFields(MMCtx *ctx)
       PetscCall(OldFieldsRead(&of, path, k, f[i].ncomp));
       PetscCall(FillFromOld(o, &of, f[i].dm, f[i].ncomp, f[i].vec));
     }
-    PetscCall(MMStressCompute(&o->stress, &ctx->op, &ctx->material, o->dm_out, o->disp_cart, PETSC_FALSE));
+    PetscCall(MMStressCompute(&o->stress, o->op, o->material, o->dm_out, o->disp_cart, PETSC_FALSE));
     if (!o->static_written) PetscCall(MMOutputWriteStaticFields(o));
     PetscCall(MMOutputHDF5Begin());
     ierr = MMOutputViewSnapshot(o, o->h5, k, times[k]);
