@@ -171,6 +171,7 @@ static PetscErrorCode ReportPlan(MMCtx *ctx, TS ts, PetscReal *step0)
 {
   MMOutputPlan plan;
   char         snap[32], h5_text[32], csv_text[32], xmf_text[32], total[32], every[96], rows[96];
+  PetscBool    restarted;
 
   PetscFunctionBeginUser;
   PetscCall(MMOutputPlanMake(&ctx->out, ts, &plan));
@@ -183,7 +184,8 @@ static PetscErrorCode ReportPlan(MMCtx *ctx, TS ts, PetscReal *step0)
   /* at a checkpoint solution.h5 is copied beside it (checkpoint_snapshots.h5, src/io/output.c) */
   PetscCall(BytesText(2 * plan.h5_bytes + plan.csv_bytes + plan.xmf_bytes, total, sizeof(total)));
   PetscCall(CadenceText(&ctx->out, every, rows, sizeof(every)));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  output: %.0f snapshots (%s) of %s each: %s in solution.h5 with the mesh, %s in solution.xmf; %.0f history rows: at most %s in history.csv%s; at most %s in %s with the checkpoint's copy of solution.h5%s (-check_input writes nothing)\n", (double)plan.snapshots, every, snap, h5_text, xmf_text, (double)plan.rows, csv_text, rows, total, ctx->out.dir, ctx->ckpt.restarted ? ", beyond what the restart continues from its checkpoint's directory" : ""));
+  PetscCall(MMCheckpointGetRestart(&ctx->ckpt, &restarted, NULL, NULL));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  output: %.0f snapshots (%s) of %s each: %s in solution.h5 with the mesh, %s in solution.xmf; %.0f history rows: at most %s in history.csv%s; at most %s in %s with the checkpoint's copy of solution.h5%s (-check_input writes nothing)\n", (double)plan.snapshots, every, snap, h5_text, xmf_text, (double)plan.rows, csv_text, rows, total, ctx->out.dir, restarted ? ", beyond what the restart continues from its checkpoint's directory" : ""));
   PetscFunctionReturn(0);
 }
 

@@ -56,11 +56,13 @@ static PetscErrorCode LoadMesh(MPI_Comm comm, MMCtx *ctx)
  * diagnostics and the energy of the restored state). */
 static PetscErrorCode Restart(MMCtx *ctx, TS ts)
 {
+  PetscBool restarted;
   PetscReal t;
 
   PetscFunctionBeginUser;
   PetscCall(MMCheckpointLoad(&ctx->ckpt, ts));
-  PetscCall(MMCheckpointGetRestartTime(&ctx->ckpt, &t));
+  PetscCall(MMCheckpointGetRestart(&ctx->ckpt, &restarted, NULL, &t));
+  if (!restarted) PetscFunctionReturn(0);
   if (ctx->contact.enabled) PetscCall(MMContactSetTime(ctx, t, ctx->state.dt));
   PetscCall(MMLoadsSetTime(&ctx->loads, t, t));
   if (!ctx->opt.quiet) PetscCall(MMCheckpointView(&ctx->ckpt, PETSC_VIEWER_STDOUT_WORLD));
@@ -99,13 +101,13 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   MMPhase(MMAppEvents.friction_setup, MMFrictionSetUp(ctx));
   PetscCall(MMNewmarkCreateTS(ctx, ts));
   PetscCall(MMCheckpointSetUp(&ctx->ckpt, &ctx->opt, &ctx->op, &ctx->material, &ctx->hist, &ctx->state, &ctx->damping, &ctx->contact, ctx->friction, &ctx->out));
-  if (ctx->ckpt.restart[0]) PetscCall(Restart(ctx, *ts));
+  PetscCall(Restart(ctx, *ts));
   PetscCall(TSGetTimeStep(*ts, &dt));
   MMPhase(MMAppEvents.step_matrix, MMContactSetStepMatrix(ctx, dt));
   ctx->hist.dt = dt;
   MMPhase(MMAppEvents.energy_initial, MMEnergyInitial(ctx));
   MMPhase(MMAppEvents.deformation_check, MMDeformationCheck(ctx));
-  if (ctx->ckpt.restarted) PetscCall(MMCheckpointRestoreHistory(&ctx->ckpt));
+  PetscCall(MMCheckpointRestoreHistory(&ctx->ckpt));
   PetscCall(MMOutputSetUp(&ctx->out, &ctx->opt, &ctx->op, &ctx->material, &ctx->hist, &ctx->state, &ctx->contact, &ctx->loads, &ctx->ckpt));
   /* every object has read its options: refuse the unread ones before any output is touched, and
    * before the start-up report, which would otherwise announce a run that is then refused */
@@ -136,11 +138,13 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
 static PetscErrorCode RunView(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wall, PetscViewer viewer)
 {
   const MMHistory *h = &ctx->hist;
-  const PetscInt   steps = h->step - (ctx->ckpt.restarted ? ctx->ckpt.restart_step : 0); /* this run's */
+  PetscInt         steps, step0;
   struct rusage    ru;
   PetscReal        peak, total;
 
   PetscFunctionBeginUser;
+  PetscCall(MMCheckpointGetRestart(&ctx->ckpt, NULL, &step0, NULL));
+  steps = h->step - step0; /* this run's */
   getrusage(RUSAGE_SELF, &ru);
   peak = ru.ru_maxrss / 1024.0; /* kB on Linux */
   PetscCall(MPIU_Allreduce(&peak, &total, 1, MPIU_REAL, MPIU_SUM, PETSC_COMM_WORLD));
@@ -233,7 +237,7 @@ int main(int argc, char **argv)
   PetscCall(TSSolve(ts, ctx.state.u_next));
   PetscCall(PetscLogStagePop());
   PetscCall(PetscTime(&t1));
-  if (ctx.ckpt.last_step != ctx.hist.step || !ctx.ckpt.written) PetscCall(MMCheckpointWrite(&ctx.ckpt, ts));
+  PetscCall(MMCheckpointWriteFinal(&ctx.ckpt, ts));
 
   PetscCall(MMOutputWriteFinal(&ctx));
   PetscCall(MMOutputClose(&ctx.out, &ctx.ckpt, ctx.hist.step));

@@ -653,6 +653,7 @@ PetscErrorCode MMCheckpointLoad(MMCheckpoint *ck, TS ts)
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
+  if (!c->restart[0]) PetscFunctionReturn(0); /* no -restart */
   PetscCall(PetscLogEventBegin(MMIOEvents.checkpoint, 0, 0, 0, 0));
   PetscCall(ResolveRestartPath(ck));
   if (!c->nv_global) PetscCall(CountVertices(ck));
@@ -686,11 +687,21 @@ PetscErrorCode MMCheckpointLoad(MMCheckpoint *ck, TS ts)
   PetscFunctionReturn(0);
 }
 
-/* The time of the checkpoint a restart continues from (MMCheckpointLoad). */
-PetscErrorCode MMCheckpointGetRestartTime(const MMCheckpoint *c, PetscReal *time)
+/* Whether the run continues a checkpoint (MMCheckpointLoad), and its step and time. */
+PetscErrorCode MMCheckpointGetRestart(const MMCheckpoint *c, PetscBool *restarted, PetscInt *step, PetscReal *time)
 {
   PetscFunctionBeginUser;
-  *time = c->run[MM_RUN_TIME];
+  if (restarted) *restarted = c->restarted;
+  if (step) *step = c->restarted ? c->restart_step : 0;
+  if (time) *time = c->restarted ? c->run[MM_RUN_TIME] : 0;
+  PetscFunctionReturn(0);
+}
+
+/* The end of the run: its last step's checkpoint, unless the cadence wrote it. */
+PetscErrorCode MMCheckpointWriteFinal(MMCheckpoint *c, TS ts)
+{
+  PetscFunctionBeginUser;
+  if (c->last_step != c->hist->step || !c->written) PetscCall(MMCheckpointWrite(c, ts));
   PetscFunctionReturn(0);
 }
 
@@ -717,6 +728,7 @@ PetscErrorCode MMCheckpointRestoreHistory(MMCheckpoint *ck)
   const PetscReal *run = c->run;
 
   PetscFunctionBeginUser;
+  if (!c->restarted) PetscFunctionReturn(0);
   h->step                = c->restart_step;
   h->time                = run[MM_RUN_TIME];
   h->dt                  = run[MM_RUN_DT_LAST];
