@@ -2,6 +2,7 @@
  * snapshot's fields from the components that compute them (the stepper's u and v, fem's Cartesian
  * frame and stress, the loads' Dirichlet data, contact's boundary fields), then hand them to the
  * writer (output.c), which takes the output alone. The data path goes down once and comes back. */
+#include "mmcontact.h" /* MMCtx: the glue still reaches contact through it */
 #include "io.h"
 #include "outputimpl.h"
 #include "contact.h"

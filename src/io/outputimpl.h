@@ -1,7 +1,7 @@
 /* io's private declarations: the output's own helpers, shared by its files, and io's log events. */
 #pragma once
 #include <stdio.h>
-#include "mmcontact.h"
+#include "io.h"
 #include "sys.h"
 
 #define MM_SNAPSHOT_COPY "checkpoint_snapshots.h5" /* solution.h5 as of the last checkpoint */
