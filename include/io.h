@@ -134,7 +134,6 @@ PETSC_EXTERN PetscErrorCode MMOutputCopySnapshots(MMOutput *o);
 /* output_lock.c: one run per output directory */
 PETSC_EXTERN PetscErrorCode MMOutputLock(const char dir[]);
 PETSC_EXTERN PetscErrorCode MMOutputUnlock(void);
-PETSC_EXTERN PetscErrorCode MMProbesDestroy(MMProbes *probes);
 /* What a run will write (src/io/output_plan.c, for -check_input and the large-output warning): its
  * steps from step0 at t0, each dt, to t_last (by_steps: -ts_max_steps ends it before -ts_max_time);
  * its snapshots, the bytes of each (with its views) and of the mesh, and solution.h5's and

@@ -299,10 +299,10 @@ PetscErrorCode MMDataCheckReport(MMCtx *ctx, TS ts)
   PetscFunctionReturn(0);
 }
 
-/* What the output would have freed: the probes. */
+/* What the output would have freed: its probes, the only part of it a data check sets up. */
 PetscErrorCode MMDataCheckDestroy(MMCtx *ctx)
 {
   PetscFunctionBeginUser;
-  PetscCall(MMProbesDestroy(&ctx->out.probes));
+  PetscCall(MMOutputDestroy(&ctx->out));
   PetscFunctionReturn(0);
 }

@@ -66,6 +66,7 @@ PETSC_INTERN PetscErrorCode MMOutputPlanCheck(const MMOutput *o, TS ts);
 /* probes.c: -probes, the groups' mean displacement and velocity */
 PETSC_INTERN PetscErrorCode MMProbesSetUp(MMOutput *o, Vec vertex_masses);
 PETSC_INTERN PetscErrorCode MMProbesEvaluate(MMOutput *o);
+PETSC_INTERN PetscErrorCode MMProbesDestroy(MMProbes *probes);
 /* output.c: the writer, from the fields the glue (output_monitor.c) filled */
 PETSC_INTERN PetscErrorCode MMOutputOpenFiles(MMOutput *o);
 PETSC_INTERN PetscErrorCode MMOutputWriteRow(MMOutput *o);
