@@ -410,24 +410,23 @@ PetscErrorCode MMCheckpointDestroy(MMCheckpoint *c)
 
 /* -restart names the file or the output directory that holds checkpoint.h5; the directory of the
  * file is where the history and the snapshots to continue are read from. */
-static PetscErrorCode ResolveRestartPath(MMCheckpoint *ck)
+static PetscErrorCode ResolveRestartPath(MMCheckpoint *c)
 {
-  MMCheckpoint *c    = ck;
-  MPI_Comm      comm = PetscObjectComm((PetscObject)ck->op->dm);
+  MPI_Comm      comm = PetscObjectComm((PetscObject)c->op->dm);
   struct stat   st;
   int           isdir = 0, exists = 0;
   char         *slash;
 
   PetscFunctionBeginUser;
-  if (!stat(ck->restart, &st)) {
+  if (!stat(c->restart, &st)) {
     exists = 1;
     isdir  = S_ISDIR(st.st_mode);
   }
-  if (isdir) PetscCall(PetscSNPrintf(c->file, sizeof(c->file), "%s/%s", ck->restart, MM_CKPT_FILE));
-  else PetscCall(PetscStrncpy(c->file, ck->restart, sizeof(c->file)));
+  if (isdir) PetscCall(PetscSNPrintf(c->file, sizeof(c->file), "%s/%s", c->restart, MM_CKPT_FILE));
+  else PetscCall(PetscStrncpy(c->file, c->restart, sizeof(c->file)));
   PetscCall(MMOutputCheckHDF5Path(comm, "-restart", c->file, ""));
   if (isdir) exists = !stat(c->file, &st);
-  PetscCheck(exists, comm, PETSC_ERR_FILE_OPEN, "-restart %s: %s does not exist. Give the checkpoint file, or the output directory of the run to continue (its checkpoint.h5 is written every -checkpoint_every steps and at the end)", ck->restart, c->file);
+  PetscCheck(exists, comm, PETSC_ERR_FILE_OPEN, "-restart %s: %s does not exist. Give the checkpoint file, or the output directory of the run to continue (its checkpoint.h5 is written every -checkpoint_every steps and at the end)", c->restart, c->file);
   PetscCall(PetscStrncpy(c->source_dir, c->file, sizeof(c->source_dir)));
   slash = strrchr(c->source_dir, '/');
   if (slash) *slash = 0;
@@ -612,10 +611,9 @@ static PetscErrorCode RestoreContactState(MMCheckpoint *ck)
 }
 
 /* The times of the snapshots up to the checkpoint, on every rank. */
-static PetscErrorCode LoadSnapshotTimes(MMCheckpoint *ck, PetscViewer viewer)
+static PetscErrorCode LoadSnapshotTimes(MMCheckpoint *c, PetscViewer viewer)
 {
-  MMCheckpoint      *c    = ck;
-  MPI_Comm           comm = PetscObjectComm((PetscObject)ck->op->dm);
+  MPI_Comm           comm = PetscObjectComm((PetscObject)c->op->dm);
   const PetscInt     n    = (PetscInt)c->run[MM_RUN_SNAPSHOTS];
   Vec                tv, all;
   VecScatter         sc;
@@ -626,7 +624,7 @@ static PetscErrorCode LoadSnapshotTimes(MMCheckpoint *ck, PetscViewer viewer)
   PetscCall(PetscMalloc1(PetscMax(n, 1), &c->snapshot_times));
   if (!n) PetscFunctionReturn(0);
   PetscCall(VecCreate(comm, &tv));
-  PetscCall(LoadVector(ck, viewer, "snapshot_times", tv));
+  PetscCall(LoadVector(c, viewer, "snapshot_times", tv));
   PetscCall(VecGetSize(tv, &N));
   PetscCheck(N == n, comm, PETSC_ERR_FILE_UNEXPECTED, "The checkpoint %s lists %" PetscInt_FMT " snapshot times for %" PetscInt_FMT " snapshots: the file is damaged", c->file, N, n);
   PetscCall(VecScatterCreateToAll(tv, &sc, &all));
@@ -644,32 +642,31 @@ static PetscErrorCode LoadSnapshotTimes(MMCheckpoint *ck, PetscViewer viewer)
 /* -restart: the state, the stepper's time, step and dt, and the solvers' warm starts from the
  * checkpoint, after the fingerprint is checked. Called once the TS exists, before the step matrix
  * is factored (for the restored dt) and the initial energy is taken (of the restored state). */
-PetscErrorCode MMCheckpointLoad(MMCheckpoint *ck, TS ts)
+PetscErrorCode MMCheckpointLoad(MMCheckpoint *c, TS ts)
 {
-  MPI_Comm       comm = PetscObjectComm((PetscObject)ck->op->dm);
-  MMCheckpoint  *c    = ck;
-  MMState       *s    = ck->state;
+  MPI_Comm       comm = PetscObjectComm((PetscObject)c->op->dm);
+  MMState       *s    = c->state;
   PetscViewer    viewer;
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
   if (!c->restart[0]) PetscFunctionReturn(0); /* no -restart */
   PetscCall(PetscLogEventBegin(MMIOEvents.checkpoint, 0, 0, 0, 0));
-  PetscCall(ResolveRestartPath(ck));
-  if (!c->nv_global) PetscCall(CountVertices(ck));
+  PetscCall(ResolveRestartPath(c));
+  if (!c->nv_global) PetscCall(CountVertices(c));
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
   ierr = PetscViewerHDF5Open(comm, c->file, FILE_MODE_READ, &viewer);
   PetscCall(PetscPopErrorHandler());
   PetscCheck(!ierr, comm, PETSC_ERR_FILE_OPEN, "Could not open the checkpoint %s: it is not a complete HDF5 file. A checkpoint is written to checkpoint.h5.tmp and renamed only when whole: give the directory's checkpoint.h5, or the directory itself", c->file);
-  PetscCall(LoadRunRecord(ck, viewer, c->run));
-  PetscCall(CheckFingerprint(ck, ts, c->run));
-  PetscCall(LoadContactRecords(ck, viewer));
-  PetscCall(LoadDofs(ck, viewer, "u", s->u));
-  PetscCall(LoadDofs(ck, viewer, "v", s->v));
-  PetscCall(LoadDofs(ck, viewer, "a", s->a));
-  if (DampingOn(ck)) PetscCall(LoadDofs(ck, viewer, "vC", ck->damping->vC));
-  PetscCall(LoadDofs(ck, viewer, "react", s->react));
-  PetscCall(LoadSnapshotTimes(ck, viewer));
+  PetscCall(LoadRunRecord(c, viewer, c->run));
+  PetscCall(CheckFingerprint(c, ts, c->run));
+  PetscCall(LoadContactRecords(c, viewer));
+  PetscCall(LoadDofs(c, viewer, "u", s->u));
+  PetscCall(LoadDofs(c, viewer, "v", s->v));
+  PetscCall(LoadDofs(c, viewer, "a", s->a));
+  if (DampingOn(c)) PetscCall(LoadDofs(c, viewer, "vC", c->damping->vC));
+  PetscCall(LoadDofs(c, viewer, "react", s->react));
+  PetscCall(LoadSnapshotTimes(c, viewer));
   PetscCall(PetscViewerDestroy(&viewer));
   PetscCall(VecCopy(s->u, s->u_next));
   s->dt           = c->run[MM_RUN_DT_LAST];
@@ -720,11 +717,10 @@ PetscErrorCode MMCheckpointView(const MMCheckpoint *c, PetscViewer viewer)
 /* After the step matrix and the initial energy of the restored state: the history's running sums
  * and maxima, the last active set (for the switched count) and the contact solvers' warm starts,
  * as at the checkpoint. */
-PetscErrorCode MMCheckpointRestoreHistory(MMCheckpoint *ck)
+PetscErrorCode MMCheckpointRestoreHistory(MMCheckpoint *c)
 {
-  MMCheckpoint   *c   = ck;
-  MMHistory      *h   = ck->hist;
-  MMContact      *ct  = ck->contact;
+  MMHistory      *h   = c->hist;
+  MMContact      *ct  = c->contact;
   const PetscReal *run = c->run;
 
   PetscFunctionBeginUser;
@@ -732,7 +728,7 @@ PetscErrorCode MMCheckpointRestoreHistory(MMCheckpoint *ck)
   h->step                = c->restart_step;
   h->time                = run[MM_RUN_TIME];
   h->dt                  = run[MM_RUN_DT_LAST];
-  h->cfl                 = ct->enabled ? ck->op->c_p * h->dt / ct->h_c : 0;
+  h->cfl                 = ct->enabled ? c->op->c_p * h->dt / ct->h_c : 0;
   h->work_ext            = run[MM_RUN_WORK_EXT];
   h->work_contact        = run[MM_RUN_WORK_CONTACT];
   h->work_friction       = run[MM_RUN_WORK_FRICTION];
@@ -746,7 +742,7 @@ PetscErrorCode MMCheckpointRestoreHistory(MMCheckpoint *ck)
   for (PetscInt k = 0; ct->enabled && k < ct->n_local; ++k) ct->was_active[k] = (PetscBool)(PetscRealPart(c->node[MM_CKPT_NODE * k + (ct->second[k] ? MM_CKPT_SECOND_ACTIVE : 3)]) != 0);
   /* here, not at the load: the condensed reactions and the active-set states are created with the
    * step matrix, and the initial diagnostics would overwrite the states */
-  PetscCall(RestoreContactState(ck));
+  PetscCall(RestoreContactState(c));
   c->last_step = c->restart_step;
   c->written   = 1; /* the checkpoint of this step exists */
   PetscFunctionReturn(0);
