@@ -69,16 +69,8 @@ typedef struct {
   PetscBool    friction_type_set;
   PetscBool    friction_monitor;
   char         friction_dump[PETSC_MAX_PATH_LEN]; /* -friction_dump: directory for the step problems, empty: none */
-  char         output_dir[PETSC_MAX_PATH_LEN];
-  PetscInt     output_every;
-  PetscReal    output_interval;  /* -output_interval: snapshots at t = k T instead of every output_every steps, 0: by steps */
-  PetscInt     history_every;    /* -history_every: a history row every N steps and the last */
-  char         probes[PETSC_MAX_PATH_LEN]; /* -probes: physical groups whose mean u and v go to the history, empty: none */
-  PetscInt     checkpoint_every; /* steps between checkpoints, 0: only at the end */
-  char         restart[PETSC_MAX_PATH_LEN]; /* -restart: the checkpoint, or its directory, to continue; empty: none */
   PetscBool    quiet;
   PetscBool    check_input;         /* -check_input: set up, report and exit without stepping or writing */
-  PetscReal    progress_every;      /* seconds of wall time between progress lines, 0: none */
   PetscBool    allow_unused;
   PetscBool    deformation_audit;       /* the deformation audit (src/ts/deformation.c) and its thresholds */
   PetscReal    strain_warn, max_strain;

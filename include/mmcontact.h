@@ -8,11 +8,11 @@
 #include "contacttypes.h"
 #include "frictiontypes.h"
 #include "tstypes.h"
-#include "iotypes.h"
+#include "io.h"
 #include "systypes.h"
 
 /* Everything the stepper needs; the TS type "newmark" holds a pointer to it. */
-typedef struct {
+typedef struct _MMCtx {
   MMOptions   opt;
   MMMaterial  material;
   MMOperators op;

@@ -10,7 +10,7 @@
 #include "fem.h"
 #include "contact.h"
 #include "damping.h"
-#include "output.h"
+#include "io.h"
 
 /* A size in bytes, in decimal units: "61.2 kB". */
 static PetscErrorCode BytesText(PetscReal b, char text[], size_t len)
@@ -155,13 +155,13 @@ static PetscErrorCode ReportGroups(MMCtx *ctx)
 }
 
 /* How the run writes its snapshots and rows, for the output line. */
-static PetscErrorCode CadenceText(const MMOptions *opt, char snap[], char rows[], size_t len)
+static PetscErrorCode CadenceText(const MMOutput *o, char snap[], char rows[], size_t len)
 {
   PetscFunctionBeginUser;
-  if (opt->output_interval > 0) PetscCall(PetscSNPrintf(snap, len, "at t = k %g and the last", (double)opt->output_interval));
-  else if (opt->output_every > 0) PetscCall(PetscSNPrintf(snap, len, "every %" PetscInt_FMT " steps and the last", opt->output_every));
+  if (o->interval > 0) PetscCall(PetscSNPrintf(snap, len, "at t = k %g and the last", (double)o->interval));
+  else if (o->every > 0) PetscCall(PetscSNPrintf(snap, len, "every %" PetscInt_FMT " steps and the last", o->every));
   else PetscCall(PetscStrncpy(snap, "the first and the last", len));
-  if (opt->history_every > 1) PetscCall(PetscSNPrintf(rows, len, " (every %" PetscInt_FMT " steps and the last)", opt->history_every));
+  if (o->history_every > 1) PetscCall(PetscSNPrintf(rows, len, " (every %" PetscInt_FMT " steps and the last)", o->history_every));
   else rows[0] = 0;
   PetscFunctionReturn(0);
 }
@@ -171,9 +171,10 @@ static PetscErrorCode ReportPlan(MMCtx *ctx, TS ts, PetscReal *step0)
 {
   MMOutputPlan plan;
   char         snap[32], h5_text[32], csv_text[32], xmf_text[32], total[32], every[96], rows[96];
+  PetscBool    restarted;
 
   PetscFunctionBeginUser;
-  PetscCall(MMOutputPlanMake(ctx, ts, &plan));
+  PetscCall(MMOutputPlanMake(&ctx->out, ts, &plan));
   *step0 = plan.step0;
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  plan: %.0f steps of dt = %.6g from t = %.6g (step %.0f) to t = %.6g%s\n", (double)plan.steps, (double)plan.dt, (double)plan.t0, (double)plan.step0, (double)plan.t_last, plan.by_steps ? " (-ts_max_steps ends the run before -ts_max_time)" : ""));
   PetscCall(BytesText(plan.snapshot_bytes, snap, sizeof(snap)));
@@ -182,8 +183,9 @@ static PetscErrorCode ReportPlan(MMCtx *ctx, TS ts, PetscReal *step0)
   PetscCall(BytesText(plan.xmf_bytes, xmf_text, sizeof(xmf_text)));
   /* at a checkpoint solution.h5 is copied beside it (checkpoint_snapshots.h5, src/io/output.c) */
   PetscCall(BytesText(2 * plan.h5_bytes + plan.csv_bytes + plan.xmf_bytes, total, sizeof(total)));
-  PetscCall(CadenceText(&ctx->opt, every, rows, sizeof(every)));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  output: %.0f snapshots (%s) of %s each: %s in solution.h5 with the mesh, %s in solution.xmf; %.0f history rows: at most %s in history.csv%s; at most %s in %s with the checkpoint's copy of solution.h5%s (-check_input writes nothing)\n", (double)plan.snapshots, every, snap, h5_text, xmf_text, (double)plan.rows, csv_text, rows, total, ctx->opt.output_dir, ctx->ckpt.restarted ? ", beyond what the restart continues from its checkpoint's directory" : ""));
+  PetscCall(CadenceText(&ctx->out, every, rows, sizeof(every)));
+  PetscCall(MMCheckpointGetRestart(&ctx->ckpt, &restarted, NULL, NULL));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  output: %.0f snapshots (%s) of %s each: %s in solution.h5 with the mesh, %s in solution.xmf; %.0f history rows: at most %s in history.csv%s; at most %s in %s with the checkpoint's copy of solution.h5%s (-check_input writes nothing)\n", (double)plan.snapshots, every, snap, h5_text, xmf_text, (double)plan.rows, csv_text, rows, total, ctx->out.dir, restarted ? ", beyond what the restart continues from its checkpoint's directory" : ""));
   PetscFunctionReturn(0);
 }
 
@@ -287,7 +289,7 @@ PetscErrorCode MMDataCheckReport(MMCtx *ctx, TS ts)
   PetscFunctionBeginUser;
   /* as the output does when it opens: a group the mesh lacks is refused, and the plan counts the
    * probes' history columns */
-  PetscCall(MMProbesSetUp(ctx));
+  PetscCall(MMOutputSetUpProbes(&ctx->out));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "mmcontact data check (-check_input): the physical groups of %s\n", ctx->opt.mesh_file));
   PetscCall(ReportGroups(ctx));
   PetscCall(ReportObstacles(ctx, ts));
@@ -297,10 +299,10 @@ PetscErrorCode MMDataCheckReport(MMCtx *ctx, TS ts)
   PetscFunctionReturn(0);
 }
 
-/* What the output would have freed: the probes. */
+/* What the output would have freed: its probes, the only part of it a data check sets up. */
 PetscErrorCode MMDataCheckDestroy(MMCtx *ctx)
 {
   PetscFunctionBeginUser;
-  PetscCall(MMProbesDestroy(&ctx->out.probes));
+  PetscCall(MMOutputDestroy(&ctx->out));
   PetscFunctionReturn(0);
 }

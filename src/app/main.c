@@ -20,17 +20,16 @@ static char help[] = "mmcontact: elastic bodies hitting and sliding on rigid obs
 #include "friction.h"
 #include "energy.h"
 #include "momenta.h"
-#include "output.h"
+#include "io.h"
 #include "log.h"
-#include "checkpoint.h"
-#include "progress.h"
-#include "signals.h"
-#include "errors.h"
+#include "sys.h"
 #include "deformation.h"
 #include "damping.h"
 #include "datacheck.h"
+#include "appimpl.h"
+#include <sys/resource.h>
 
-/* A set-up phase under its own event (MMLog), so that -log_view shows where the set-up goes */
+/* A set-up phase under its own event (MMAppEvents), so that -log_view shows where the set-up goes */
 #define MMPhase(event, call) \
   do { \
     PetscCall(PetscLogEventBegin((event), 0, 0, 0, 0)); \
@@ -53,6 +52,23 @@ static PetscErrorCode LoadMesh(MPI_Comm comm, MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
+/* -restart: the checkpoint's state, and the obstacles and loads at its time (for the initial
+ * diagnostics and the energy of the restored state). */
+static PetscErrorCode Restart(MMCtx *ctx, TS ts)
+{
+  PetscBool restarted;
+  PetscReal t;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMCheckpointLoad(&ctx->ckpt, ts));
+  PetscCall(MMCheckpointGetRestart(&ctx->ckpt, &restarted, NULL, &t));
+  if (!restarted) PetscFunctionReturn(0);
+  if (ctx->contact.enabled) PetscCall(MMContactSetTime(ctx, t, ctx->state.dt));
+  PetscCall(MMLoadsSetTime(&ctx->loads, t, t));
+  if (!ctx->opt.quiet) PetscCall(MMCheckpointView(&ctx->ckpt, PETSC_VIEWER_STDOUT_WORLD));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
 {
   MPI_Comm       comm = PETSC_COMM_WORLD;
@@ -65,47 +81,90 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscCall(MMOptionsHelpWithoutMesh(comm, help_only));
   if (*help_only) PetscFunctionReturn(0);
   PetscCall(MMFESetFromOptions(comm, &ctx->op));
-  PetscCall(MMOutputCheckOptions(comm, &ctx->opt));
+  PetscCall(MMOutputSetFromOptions(comm, &ctx->out));
+  PetscCall(MMCheckpointSetFromOptions(comm, &ctx->ckpt));
+  PetscCall(MMProgressSetFromOptions(comm, &ctx->progress));
   /* before anything in the output directory is read or moved: one run per directory. A data check
    * writes nothing, and takes no lock */
-  if (!ctx->opt.check_input) PetscCall(MMOutputLock(ctx->opt.output_dir));
-  MMPhase(ctx->log.mesh_load, LoadMesh(comm, ctx));
+  if (!ctx->opt.check_input) PetscCall(MMOutputLock(ctx->out.dir));
+  MMPhase(MMAppEvents.mesh_load, LoadMesh(comm, ctx));
   PetscCall(DMGetDimension(ctx->op.dm, &ctx->op.dim));
   PetscCall(MMOptionsGetFEProblem(&ctx->opt, &pb));
-  MMPhase(ctx->log.fe_setup, MMFESetUp(&ctx->op, &ctx->material, &pb));
-  MMPhase(ctx->log.contact_setup, MMContactSetUp(ctx));
+  MMPhase(MMAppEvents.fe_setup, MMFESetUp(&ctx->op, &ctx->material, &pb));
+  MMPhase(MMAppEvents.contact_setup, MMContactSetUp(ctx));
   PetscCall(MMContactGetMassBoundary(&ctx->contact, &mb));
   PetscCall(MMFEAssembleOperators(&ctx->op, &ctx->material, &pb, &mb));
   PetscCall(MMContactPairsTransformOperators(ctx));
   PetscCall(MMFEAssembleOperatorsEnd(&ctx->op));
-  MMPhase(ctx->log.loads_setup, MMLoadsSetUp(&ctx->loads, &ctx->op, &ctx->material, &pb));
-  MMPhase(ctx->log.initial_state, MMNewmarkInitialState(ctx));
-  MMPhase(ctx->log.friction_setup, MMFrictionSetUp(ctx));
+  MMPhase(MMAppEvents.loads_setup, MMLoadsSetUp(&ctx->loads, &ctx->op, &ctx->material, &pb));
+  MMPhase(MMAppEvents.initial_state, MMNewmarkInitialState(ctx));
+  MMPhase(MMAppEvents.friction_setup, MMFrictionSetUp(ctx));
   PetscCall(MMNewmarkCreateTS(ctx, ts));
-  if (ctx->opt.restart[0]) PetscCall(MMCheckpointLoad(ctx, *ts));
+  PetscCall(MMCheckpointSetUp(&ctx->ckpt, &ctx->opt, &ctx->op, &ctx->material, &ctx->hist, &ctx->state, &ctx->damping, &ctx->contact, ctx->friction, &ctx->out));
+  PetscCall(Restart(ctx, *ts));
   PetscCall(TSGetTimeStep(*ts, &dt));
-  MMPhase(ctx->log.step_matrix, MMContactSetStepMatrix(ctx, dt));
+  MMPhase(MMAppEvents.step_matrix, MMContactSetStepMatrix(ctx, dt));
   ctx->hist.dt = dt;
-  MMPhase(ctx->log.energy_initial, MMEnergyInitial(ctx));
-  MMPhase(ctx->log.deformation_check, MMDeformationCheck(ctx));
-  if (ctx->ckpt.restarted) PetscCall(MMCheckpointRestoreHistory(ctx));
+  MMPhase(MMAppEvents.energy_initial, MMEnergyInitial(ctx));
+  MMPhase(MMAppEvents.deformation_check, MMDeformationCheck(ctx));
+  PetscCall(MMCheckpointRestoreHistory(&ctx->ckpt));
+  PetscCall(MMOutputSetUp(&ctx->out, &ctx->opt, &ctx->op, &ctx->material, &ctx->hist, &ctx->state, &ctx->contact, &ctx->loads, &ctx->ckpt));
   /* every object has read its options: refuse the unread ones before any output is touched, and
    * before the start-up report, which would otherwise announce a run that is then refused */
   PetscCall(MMOptionsCheckUnused(comm, &ctx->opt, ctx->op.dm));
   /* after: its replay of the help text reads every option */
   PetscCall(MMOptionsCheckValueless(comm));
-  PetscCall(MMProgressHeader(ctx, *ts));
+  PetscCall(MMProgressSetUp(&ctx->progress, &ctx->opt, &ctx->op, &ctx->material, &ctx->hist, &ctx->state, &ctx->contact, &ctx->damping));
+  if (!ctx->opt.quiet) {
+    KSP krylov, pc_ksp;
+    PetscCall(MMContactGetStepKSP(ctx, &krylov, &pc_ksp));
+    PetscCall(MMProgressHeader(&ctx->progress, *ts, krylov, pc_ksp));
+  }
   /* -check_input: the case is built and valid; its report, and a stop before any output is touched */
   if (ctx->opt.check_input) {
     PetscCall(MMDataCheckReport(ctx, *ts));
     PetscFunctionReturn(0);
   }
   /* last: the earlier results in the output directory are set aside only once the input is valid */
-  MMPhase(ctx->log.output_open, MMOutputOpen(ctx));
+  MMPhase(MMAppEvents.output_open, MMOutputOpen(ctx));
   PetscCall(TSMonitorSet(*ts, MMOutputMonitor, ctx, NULL));
-  PetscCall(TSMonitorSet(*ts, MMCheckpointMonitor, ctx, NULL));
-  PetscCall(MMProgressSetUp(ctx, *ts));
-  PetscCall(MMSignalsSetUp(ctx, *ts));
+  PetscCall(TSMonitorSet(*ts, MMCheckpointMonitor, &ctx->ckpt, NULL));
+  if (!ctx->opt.quiet) PetscCall(MMProgressMonitorSet(&ctx->progress, *ts));
+  PetscCall(MMSignalsSetUp(*ts));
+  PetscFunctionReturn(0);
+}
+
+/* The run's own line of the report: its set-up and time loop, memory, and the audits' extremes. */
+static PetscErrorCode RunView(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wall, PetscViewer viewer)
+{
+  const MMHistory *h = &ctx->hist;
+  PetscInt         steps, step0;
+  struct rusage    ru;
+  PetscReal        peak, total;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMCheckpointGetRestart(&ctx->ckpt, NULL, &step0, NULL));
+  steps = h->step - step0; /* this run's */
+  getrusage(RUSAGE_SELF, &ru);
+  peak = ru.ru_maxrss / 1024.0; /* kB on Linux */
+  PetscCall(MPIU_Allreduce(&peak, &total, 1, MPIU_REAL, MPIU_SUM, PETSC_COMM_WORLD));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &peak, 1, MPIU_REAL, MPIU_MAX, PETSC_COMM_WORLD));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "mmcontact summary: setup %.3f s; %" PetscInt_FMT " steps to t = %g in %.3f s wall (%.4f s/step); peak memory %.1f MiB/rank (%.1f MiB over all ranks); largest balance residual %.3e; largest penetration %.3e (h_c' %.3e)\n", (double)setup, steps, (double)h->time, (double)wall, steps ? (double)(wall / steps) : 0.0, (double)peak, (double)total, (double)h->max_balance, (double)h->max_penetration_run, (double)ctx->contact.h_c));
+  PetscFunctionReturn(0);
+}
+
+/* The run report: each component's view, in the order of the set-up. */
+static PetscErrorCode Report(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wall)
+{
+  PetscViewer viewer = PETSC_VIEWER_STDOUT_WORLD;
+
+  PetscFunctionBeginUser;
+  if (ctx->opt.quiet) PetscFunctionReturn(0);
+  PetscCall(RunView(ctx, setup, wall, viewer));
+  PetscCall(MMProgressMassLine(&ctx->progress)); /* the mass's view (fem) */
+  PetscCall(MMContactSummary(ctx));     /* MMContactView (contact) */
+  PetscCall(MMDeformationSummary(ctx)); /* MMDeformationView (ts) */
+  PetscCall(MMOutputView(&ctx->out, viewer));
   PetscFunctionReturn(0);
 }
 
@@ -152,11 +211,13 @@ int main(int argc, char **argv)
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(MMErrorsSetUp());
   PetscCall(PetscMemzero(&ctx, sizeof(ctx)));
+  PetscCall(MMAppInitializePackage());
+  PetscCall(MMIOInitializePackage());
   PetscCall(MMLogRegister(&ctx.log));
   PetscCall(MMNewmarkRegister());
 
   PetscCall(PetscTime(&ts0));
-  PetscCall(PetscLogStagePush(ctx.log.setup));
+  PetscCall(PetscLogStagePush(MMAppEvents.setup));
   PetscCall(SetupProblem(&ctx, &ts, &help_only));
   PetscCall(PetscLogStagePop());
   if (help_only) {
@@ -172,16 +233,19 @@ int main(int argc, char **argv)
   }
 
   PetscCall(PetscTime(&t0));
-  PetscCall(PetscLogStagePush(ctx.log.solve));
+  PetscCall(PetscLogStagePush(MMAppEvents.solve));
   PetscCall(TSSolve(ts, ctx.state.u_next));
   PetscCall(PetscLogStagePop());
   PetscCall(PetscTime(&t1));
-  if (ctx.ckpt.last_step != ctx.hist.step || !ctx.ckpt.written) PetscCall(MMCheckpointWrite(&ctx, ts));
+  PetscCall(MMCheckpointWriteFinal(&ctx.ckpt, ts));
 
-  PetscCall(MMOutputClose(&ctx, t0 - ts0, t1 - t0));
-  PetscCall(MMSignalsReport(&ctx));
+  PetscCall(MMOutputWriteFinal(&ctx));
+  PetscCall(MMOutputClose(&ctx.out, &ctx.ckpt, ctx.hist.step));
+  PetscCall(Report(&ctx, t0 - ts0, t1 - t0));
+  PetscCall(MMOutputDestroy(&ctx.out));
+  PetscCall(MMSignalsReport(PETSC_COMM_WORLD, ctx.hist.step, ctx.hist.time, ctx.out.dir));
   PetscCall(MMOutputUnlock());
-  stopped = ctx.ckpt.stop_signal;
+  PetscCall(MMSignalsGetStop(&stopped));
   PetscCall(Destroy(&ctx, &ts));
   PetscCall(PetscFinalize());
   return stopped ? MM_EXIT_RESTARTABLE : 0;

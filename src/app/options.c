@@ -2,9 +2,8 @@
 #include "options.h"
 #include <errno.h>
 #include <stdlib.h>
-#include <strings.h> /* strcasecmp */
 #include "obstacle.h"
-#include "errors.h"
+#include "sys.h"
 #include "damping.h"
 
 const char *const MMInitialStates[] = {"given", "static_sliding", "static", "MMInitialState", "MM_INITIAL_", NULL};
@@ -19,133 +18,14 @@ typedef enum {
 static const char *const VectorName[MM_V_NUM] = {"-gravity", "-u0_offset", "-u0_gradient", "-v0", "-omega", "-omega_center", "-obstacle_point", "-obstacle_normal", "-mesh_rotation", "-mesh_rotation_center"};
 static const MMVectorLength VectorLength[MM_V_NUM] = {MM_LEN_DIM, MM_LEN_DIM, MM_LEN_TENSOR, MM_LEN_DIM, MM_LEN_ROTATION, MM_LEN_DIM, MM_LEN_DIM, MM_LEN_DIM, MM_LEN_ROTATION, MM_LEN_DIM};
 
-/* What an option's value must be, checked before PETSc parses it: PETSc's own message for "-E 1e3Pa"
- * names the string, not the option, and an option given without a value ("-E" followed by another
- * option, or last) silently keeps its default, even over the options file's value. */
-typedef enum {
-  MM_VALUE_REAL, /* comma-separated numbers */
-  MM_VALUE_INT,  /* comma-separated integers */
-  MM_VALUE_TEXT  /* any non-empty text: a name, a path, a choice */
-} MMValueKind;
-
-/* Whether text (up to len characters) is one number of the kind, all of it. */
-static PetscBool IsNumber(const char text[], size_t len, MMValueKind kind)
-{
-  char  buf[128], *end;
-  char *p;
-
-  if (!len || len >= sizeof(buf)) return PETSC_FALSE;
-  memcpy(buf, text, len);
-  buf[len] = 0;
-  for (p = buf; *p == ' '; ++p) {}
-  errno = 0;
-  if (kind == MM_VALUE_INT) (void)strtoll(p, &end, 10);
-  else (void)strtod(p, &end);
-  while (*end == ' ') ++end;
-  return (PetscBool)(end != p && !*end);
-}
-
-static PetscErrorCode MMOptionsCheckValue(MPI_Comm comm, const char name[], MMValueKind kind)
-{
-  const char *value;
-  PetscBool   set;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscOptionsFindPair(NULL, NULL, name, &value, &set));
-  if (!set) PetscFunctionReturn(0);
-  PetscCheck(value, comm, PETSC_ERR_USER_INPUT, "%s was given without a value: write \"%s VALUE\", or leave the option out for its default", name, name);
-  /* an empty text ("") is for the option's own check to name: -output_dir "" is refused there */
-  if (kind == MM_VALUE_TEXT) PetscFunctionReturn(0);
-  PetscCheck(value[0], comm, PETSC_ERR_USER_INPUT, "%s is given an empty value: give %s", name, kind == MM_VALUE_INT ? "an integer" : "a number");
-  for (const char *p = value; p;) {
-    const char  *comma = strchr(p, ',');
-    const size_t len   = comma ? (size_t)(comma - p) : strlen(p);
-    PetscCheck(IsNumber(p, len, kind), comm, PETSC_ERR_USER_INPUT, "%s %s: \"%.*s\" is not %s. Give %s%s", name, value, (int)len, p, kind == MM_VALUE_INT ? "an integer" : "a number", kind == MM_VALUE_INT ? "whole numbers" : "plain numbers, in SI units, without a unit (1e3, not 1e3Pa)", strchr(value, ',') ? ", separated by commas without blanks" : "");
-    p = comma ? comma + 1 : NULL;
-  }
-  PetscFunctionReturn(0);
-}
-
-/* PETSc parses "nan" and "inf" as numbers: every real option is checked here, by name. */
-static PetscErrorCode CheckFinite(MPI_Comm comm, const char name[], const PetscReal v[], PetscInt n)
-{
-  PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < n; ++i) PetscCheck(!PetscIsInfOrNanReal(v[i]), comm, PETSC_ERR_USER_INPUT, "%s: entry %" PetscInt_FMT " is %s; every value must be a finite number", name, i, PetscIsNanReal(v[i]) ? "NaN" : "infinite");
-  PetscFunctionReturn(0);
-}
-
-/* A real option, refused unless finite. */
-static PetscErrorCode OptionsReal(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], PetscReal *v)
-{
-  PetscFunctionBeginUser;
-  PetscCall(MMOptionsCheckValue(comm, name, MM_VALUE_REAL));
-  PetscCall(PetscOptionsReal(name, help, NULL, *v, v, NULL));
-  PetscCall(CheckFinite(comm, name, v, 1));
-  PetscFunctionReturn(0);
-}
-
-/* A real array option of at most nmax finite entries; *count is how many were given, -1 if none.
- * One slot more is read, so that too many entries are refused rather than cut off. */
-static PetscErrorCode OptionsRealArray(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], PetscInt nmax, PetscReal v[], PetscInt *count)
-{
-  PetscReal buf[MM_MAX_DIM * MM_MAX_DIM + 1];
-  PetscInt  n = nmax + 1;
-  PetscBool set;
-
-  PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < nmax; ++i) buf[i] = v[i];
-  PetscCall(MMOptionsCheckValue(comm, name, MM_VALUE_REAL));
-  PetscCall(PetscOptionsRealArray(name, help, NULL, buf, &n, &set));
-  *count = set ? n : -1;
-  if (!set) PetscFunctionReturn(0);
-  PetscCheck(n <= nmax, comm, PETSC_ERR_USER_INPUT, "%s has more than %" PetscInt_FMT " entries", name, nmax);
-  PetscCall(CheckFinite(comm, name, buf, n));
-  for (PetscInt i = 0; i < nmax; ++i) v[i] = i < n ? buf[i] : 0;
-  PetscFunctionReturn(0);
-}
-
-/* An integer option. */
-static PetscErrorCode OptionsInt(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], PetscInt *v)
-{
-  PetscFunctionBeginUser;
-  PetscCall(MMOptionsCheckValue(comm, name, MM_VALUE_INT));
-  PetscCall(PetscOptionsInt(name, help, NULL, *v, v, NULL));
-  PetscFunctionReturn(0);
-}
-
-/* A switch: given alone it is on; given a value, that value must be one PETSc reads as a logical
- * (its own error does not name the option). */
-static PetscErrorCode OptionsBool(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], PetscBool *v)
-{
-  static const char *const words[] = {"1", "0", "true", "false", "yes", "no", "on", "off"};
-  const char              *value;
-  PetscBool                set, known = PETSC_FALSE;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscOptionsFindPair(NULL, NULL, name, &value, &set));
-  for (size_t i = 0; set && value && value[0] && i < PETSC_STATIC_ARRAY_LENGTH(words); ++i) known = (PetscBool)(known || !strcasecmp(value, words[i]));
-  PetscCheck(!set || !value || !value[0] || known, comm, PETSC_ERR_USER_INPUT, "%s %s: give 1 or 0 (also true/false, yes/no, on/off), or %s alone for 1", name, value, name);
-  PetscCall(PetscOptionsBool(name, help, NULL, *v, v, NULL));
-  PetscFunctionReturn(0);
-}
-
-/* A text option: a name, a list of names, a path. */
-static PetscErrorCode OptionsString(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], char v[], size_t len, PetscBool *set)
-{
-  PetscFunctionBeginUser;
-  PetscCall(MMOptionsCheckValue(comm, name, MM_VALUE_TEXT));
-  PetscCall(PetscOptionsString(name, help, NULL, v, v, len, set));
-  PetscFunctionReturn(0);
-}
-
-/* An enumerated option. */
-static PetscErrorCode OptionsEnum(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], const char *const list[], PetscEnum *v)
-{
-  PetscFunctionBeginUser;
-  PetscCall(MMOptionsCheckValue(comm, name, MM_VALUE_TEXT));
-  PetscCall(PetscOptionsEnum(name, help, NULL, list, *v, v, NULL));
-  PetscFunctionReturn(0);
-}
+/* The checked option readers of src/sys/option_values.c, under this file's short names. */
+#define CheckFinite      MMOptionsCheckFinite
+#define OptionsReal      MMOptionsReal
+#define OptionsRealArray MMOptionsRealArray
+#define OptionsInt       MMOptionsInt
+#define OptionsBool      MMOptionsBool
+#define OptionsString    MMOptionsString
+#define OptionsEnum      MMOptionsEnum
 
 /* A vector option; its length is checked against the dimension once the mesh is read. */
 static PetscErrorCode OptionsVector(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt, MMVectorOption which, const char help[], PetscReal v[])
@@ -547,11 +427,6 @@ static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
   PetscCheck(opt->iterative_dofs >= 0, comm, PETSC_ERR_USER_INPUT, "-iterative_dofs %" PetscInt_FMT " must be >= 0 (0: never the iterative path by default)", opt->iterative_dofs);
   PetscCheck(opt->active_set_max_it >= 1, comm, PETSC_ERR_USER_INPUT, "-active_set_max_it %" PetscInt_FMT " must be >= 1", opt->active_set_max_it);
   PetscCheck(opt->active_set_inexact_rtol >= 0 && opt->active_set_inexact_rtol < 1, comm, PETSC_ERR_USER_INPUT, "-active_set_inexact_rtol %g must be in [0, 1): it is CG's relative residual reduction while nodes change set (0: every solve to -contact_tol)", (double)opt->active_set_inexact_rtol);
-  PetscCheck(opt->progress_every >= 0, comm, PETSC_ERR_USER_INPUT, "-progress_every %.6g must be >= 0: it is the wall time in seconds between progress lines (0 turns them off)", (double)opt->progress_every);
-  PetscCheck(opt->output_every >= 0, comm, PETSC_ERR_USER_INPUT, "-output_every %" PetscInt_FMT " must be >= 0", opt->output_every);
-  PetscCheck(opt->output_interval >= 0, comm, PETSC_ERR_USER_INPUT, "-output_interval %g must be >= 0: it is the simulated time between snapshots (0: every -output_every steps)", (double)opt->output_interval);
-  PetscCheck(opt->history_every >= 1, comm, PETSC_ERR_USER_INPUT, "-history_every %" PetscInt_FMT " must be >= 1: it is the number of steps between history rows", opt->history_every);
-  PetscCheck(opt->checkpoint_every >= 0, comm, PETSC_ERR_USER_INPUT, "-checkpoint_every %" PetscInt_FMT " must be >= 0 (0: a checkpoint at the end only)", opt->checkpoint_every);
   PetscCall(MMDampingCheckOptions(comm, opt));
   PetscFunctionReturn(0);
 }
@@ -660,28 +535,12 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-max_strain", "Stop the run when a cell's strain exceeds this, >= -strain_warn: the small-strain model's result is then meaningless (a cell turned inside out always stops the run)", &opt->max_strain));
   opt->initial_penetration_tol = 1e-6;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-initial_penetration_tol", "Refuse an initial state whose contact nodes penetrate the obstacle deeper than this times h_c' (>= 0)", &opt->initial_penetration_tol));
-  PetscCall(PetscStrcpy(opt->output_dir, "output"));
-  PetscCall(OptionsString(PetscOptionsObject, comm, "-output_dir", "Directory for history.csv, solution.h5 and solution.xmf (created if missing; not empty)", opt->output_dir, sizeof(opt->output_dir), NULL));
-  opt->output_every = 10;
-  opt->checkpoint_every = 0;
-  PetscCall(OptionsInt(PetscOptionsObject, comm, "-checkpoint_every", "Write the complete state to OUTPUT_DIR/checkpoint.h5 every k steps, replacing the previous one atomically (0: only at the end of the run)", &opt->checkpoint_every));
-  opt->restart[0] = 0;
-  PetscCall(OptionsString(PetscOptionsObject, comm, "-restart", "Continue the run of a checkpoint: its checkpoint.h5, or the output directory that holds it, on any number of ranks. The history.csv and solution.h5/.xmf of that directory, cut at the checkpoint's step, are continued in -output_dir. Give the options of the run that wrote it: another mesh, contact boundary, dimension, -mu, material or mass is refused", opt->restart, sizeof(opt->restart), NULL));
-  PetscCall(OptionsInt(PetscOptionsObject, comm, "-output_every", "Write the HDF5 fields every k steps (0: only the initial and final state)", &opt->output_every));
-  opt->output_interval = 0;
-  PetscCall(OptionsReal(PetscOptionsObject, comm, "-output_interval", "Write the HDF5 fields at t = 0, T, 2T, ... (at the first step whose time reaches k T, to 1e-9 dt) and the final state; T > 0 replaces -output_every (0: by steps)", &opt->output_interval));
-  opt->history_every = 1;
-  PetscCall(OptionsInt(PetscOptionsObject, comm, "-history_every", "Write a history.csv row every N steps (step 0, N, 2N, ...) and at the last step, >= 1", &opt->history_every));
-  opt->probes[0] = 0;
-  PetscCall(OptionsString(PetscOptionsObject, comm, "-probes", "Comma-separated physical groups whose mean displacement and velocity (weighted by the nodes' lumped mass) go to history.csv as probe_NAME_ux, ..., probe_NAME_vx, ...", opt->probes, sizeof(opt->probes), NULL));
   opt->quiet = PETSC_FALSE;
   PetscCall(OptionsBool(PetscOptionsObject, comm, "-quiet", "Do not print the start-up report, progress lines and closing summary", &opt->quiet));
   /* a data check (abaqus datacheck, MOOSE --check-input): src/app/datacheck.c, README "Checking a case before a batch job" */
   opt->check_input = PETSC_FALSE;
   PetscCall(OptionsBool(PetscOptionsObject, comm, "-check_input", "Check the case and exit: read the options and the mesh, build everything a run builds and refuse what a run would refuse, print the start-up report with each physical group's node and element counts, the planned steps and output size and a first-contact estimate, then exit 0 without stepping or writing anything (no output directory). -quiet does not apply", &opt->check_input));
   if (opt->check_input) opt->quiet = PETSC_FALSE; /* the report is what the check is for */
-  opt->progress_every = 5;
-  PetscCall(OptionsReal(PetscOptionsObject, comm, "-progress_every", "Print a progress line (time, wall time and ETA, energy balance, contact and friction) every this many seconds of wall time, >= 0 (0: none)", &opt->progress_every));
   opt->debug = PETSC_FALSE;
   PetscCall(OptionsBool(PetscOptionsObject, comm, "-debug", "On an error, print PETSc's full trace on every rank (by default an error a user can act on prints its message alone; README \"Exit status\")", &opt->debug));
   opt->allow_unused = PETSC_FALSE;

@@ -11,6 +11,7 @@
 #include "newmark.h"
 #include "contact.h"
 #include "fem.h"
+#include "io.h"
 
 /* Options that PETSc reads at start-up or after the time loop (TSSolve's -ts_view, PetscFinalize's
  * -options_left): valid, but not yet read when the check runs. */
@@ -128,6 +129,18 @@ static PetscErrorCode ComponentsFromOptions(MPI_Comm comm)
     PetscCall(PetscMemzero(&op, sizeof(op)));
     PetscCall(MMFESetFromOptions(comm, &op));
     PetscCall(MMFEDestroy(&op));
+  }
+  {
+    MMOutput     out;
+    MMCheckpoint ckpt;
+    MMProgress   progress;
+    PetscCall(PetscMemzero(&out, sizeof(out)));
+    PetscCall(PetscMemzero(&ckpt, sizeof(ckpt)));
+    PetscCall(PetscMemzero(&progress, sizeof(progress)));
+    PetscCall(MMOutputSetFromOptions(comm, &out));
+    PetscCall(MMCheckpointSetFromOptions(comm, &ckpt));
+    PetscCall(MMProgressSetFromOptions(comm, &progress));
+    PetscCall(MMCheckpointDestroy(&ckpt));
   }
   PetscFunctionReturn(0);
 }

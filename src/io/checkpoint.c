@@ -5,12 +5,9 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <petscviewerhdf5.h>
-#include "checkpoint.h"
 #include "friction.h"
-#include "output.h"
-#include "contact.h"
+#include "io.h"
 #include "newmark.h"
-#include "damping.h"
 #include "fem.h"
 #include "outputimpl.h"
 
@@ -66,20 +63,42 @@ typedef enum {
 } MMRunEntry;
 _Static_assert(MM_RUN_NUM <= sizeof(((MMCheckpoint *)0)->run) / sizeof(PetscReal), "MMCheckpoint.run holds the run record");
 
+/* Rayleigh damping is on: its trapezoidal velocity vC is part of the state. */
+static PetscBool DampingOn(const MMCheckpoint *ck)
+{
+  return (PetscBool)(ck->damping->alpha != 0 || ck->damping->beta != 0);
+}
+
+/* The checkpoint's borrowed references: what it holds and restores (like KSPSetOperators). */
+PetscErrorCode MMCheckpointSetUp(MMCheckpoint *c, const MMOptions *opt, const MMOperators *op, const MMMaterial *material, MMHistory *hist, MMState *state, MMDamping *damping, MMContact *contact, MMFriction friction, MMOutput *out)
+{
+  PetscFunctionBeginUser;
+  c->opt      = opt;
+  c->op       = op;
+  c->material = material;
+  c->hist     = hist;
+  c->state    = state;
+  c->damping  = damping;
+  c->contact  = contact;
+  c->friction = friction;
+  c->out      = out;
+  PetscFunctionReturn(0);
+}
+
 /* Where each owned vertex's dofs are: its serial-mesh number, and per component its index in the
  * local part of a global vector, -1 for a Dirichlet (constrained) component. Packing and loading
  * share it, so that the two stay each other's inverse. */
-static PetscErrorCode OwnedDofMap(MMCtx *ctx, PetscInt *n, PetscInt **serial, PetscInt **loc)
+static PetscErrorCode OwnedDofMap(MMCheckpoint *ck, PetscInt *n, PetscInt **serial, PetscInt **loc)
 {
-  const PetscInt dim = ctx->op.dim;
+  const PetscInt dim = ck->op->dim;
   PetscSection   gs, ls;
   PetscInt       vStart, vEnd, rstart;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalSection(ctx->op.dm, &gs));
-  PetscCall(DMGetLocalSection(ctx->op.dm, &ls));
-  PetscCall(DMPlexGetDepthStratum(ctx->op.dm, 0, &vStart, &vEnd));
-  PetscCall(VecGetOwnershipRange(ctx->state.u, &rstart, NULL));
+  PetscCall(DMGetGlobalSection(ck->op->dm, &gs));
+  PetscCall(DMGetLocalSection(ck->op->dm, &ls));
+  PetscCall(DMPlexGetDepthStratum(ck->op->dm, 0, &vStart, &vEnd));
+  PetscCall(VecGetOwnershipRange(ck->state->u, &rstart, NULL));
   PetscCall(PetscMalloc2(vEnd - vStart, serial, dim * (vEnd - vStart), loc));
   *n = 0;
   for (PetscInt v = vStart; v < vEnd; ++v) {
@@ -92,7 +111,7 @@ static PetscErrorCode OwnedDofMap(MMCtx *ctx, PetscInt *n, PetscInt **serial, Pe
     PetscCall(PetscSectionGetConstraintIndices(ls, v, &cind));
     for (PetscInt c = 0; c < cdof; ++c) fixed[cind[c]] = PETSC_TRUE;
     for (PetscInt d = 0; d < dim; ++d) l[d] = fixed[d] ? -1 : goff - rstart + j++;
-    (*serial)[(*n)++] = ctx->ckpt.vertex_orig[v - vStart];
+    (*serial)[(*n)++] = ck->vertex_orig[v - vStart];
   }
   PetscFunctionReturn(0);
 }
@@ -100,14 +119,14 @@ static PetscErrorCode OwnedDofMap(MMCtx *ctx, PetscInt *n, PetscInt **serial, Pe
 /* w (the free dofs, in each node's frame) into packed, dim entries per serial-mesh vertex. The
  * frames are functions of the reference geometry, so frame components are the same on any
  * partition, and no rotation rounds them. */
-static PetscErrorCode PackDofs(MMCtx *ctx, Vec w, Vec packed)
+static PetscErrorCode PackDofs(MMCheckpoint *ck, Vec w, Vec packed)
 {
-  const PetscInt     dim = ctx->op.dim;
+  const PetscInt     dim = ck->op->dim;
   const PetscScalar *wa;
   PetscInt           n, *serial, *loc;
 
   PetscFunctionBeginUser;
-  PetscCall(OwnedDofMap(ctx, &n, &serial, &loc));
+  PetscCall(OwnedDofMap(ck, &n, &serial, &loc));
   PetscCall(VecGetArrayRead(w, &wa));
   for (PetscInt i = 0; i < n; ++i)
     for (PetscInt d = 0; d < dim; ++d)
@@ -121,22 +140,22 @@ static PetscErrorCode PackDofs(MMCtx *ctx, Vec w, Vec packed)
 
 /* The per-node contact state: the friction thresholds, the 3D stick/slip states and slip
  * directions, the last active set and the condensed reactions, which warm-start the next step. */
-static PetscErrorCode PackContact(MMCtx *ctx, Vec packed)
+static PetscErrorCode PackContact(MMCheckpoint *ck, Vec packed)
 {
-  MMContact         *ct = &ctx->contact;
+  MMContact         *ct = ck->contact;
   const PetscScalar *sa = NULL, *ra = NULL;
   PetscInt           vStart, vEnd;
   Vec                thresholds;
 
   PetscFunctionBeginUser;
-  PetscCall(DMPlexGetDepthStratum(ctx->op.dm, 0, &vStart, &vEnd));
-  PetscCall(MMFrictionGetThresholds(ctx->friction, &thresholds));
+  PetscCall(DMPlexGetDepthStratum(ck->op->dm, 0, &vStart, &vEnd));
+  PetscCall(MMFrictionGetThresholds(ck->friction, &thresholds));
   if (ct->enabled) {
     if (thresholds) PetscCall(VecGetArrayRead(thresholds, &sa));
     if (ct->rho) PetscCall(VecGetArrayRead(ct->rho, &ra));
     for (PetscInt k = 0; k < ct->n_local; ++k) {
       PetscScalar    rec[MM_CKPT_NODE] = {0};
-      const PetscInt base = MM_CKPT_NODE * ctx->ckpt.vertex_orig[ct->vertex[k] - vStart];
+      const PetscInt base = MM_CKPT_NODE * ck->vertex_orig[ct->vertex[k] - vStart];
       if (ct->second[k]) {
         /* a corner's second row (frictionless): its states in its vertex's unused friction slots */
         PetscCall(VecSetValue(packed, base + MM_CKPT_SECOND_ACTIVE, (PetscScalar)ct->was_active[k], INSERT_VALUES));
@@ -156,9 +175,9 @@ static PetscErrorCode PackContact(MMCtx *ctx, Vec packed)
       if (ct->as.active) {
         rec[9]  = (PetscScalar)ct->as.active[k];
         rec[10] = (PetscScalar)ct->as.stick[k];
-        for (PetscInt j = 0; j < ctx->op.dim - 1; ++j) rec[11 + j] = ct->as.dir[k * (ctx->op.dim - 1) + j];
+        for (PetscInt j = 0; j < ck->op->dim - 1; ++j) rec[11 + j] = ct->as.dir[k * (ck->op->dim - 1) + j];
       } else if (ct->fc_obstacle && ct->fc_obstacle[k] >= 0)
-        for (PetscInt c = 0; c < ctx->op.dim; ++c) rec[MM_CKPT_CORNER_R + c] = ct->fc_r[ctx->op.dim * k + c];
+        for (PetscInt c = 0; c < ck->op->dim; ++c) rec[MM_CKPT_CORNER_R + c] = ct->fc_r[ck->op->dim * k + c];
       for (PetscInt c = 0; c < MM_CKPT_NODE; ++c)
         if (!(k + 1 < ct->n_local && ct->second[k + 1] && (c == MM_CKPT_SECOND_ACTIVE || c == MM_CKPT_SECOND_RHO || c == MM_CKPT_SECOND_AS))) PetscCall(VecSetValue(packed, base + c, rec[c], INSERT_VALUES));
     }
@@ -171,7 +190,7 @@ static PetscErrorCode PackContact(MMCtx *ctx, Vec packed)
 }
 
 /* A checksum of the geometry that does not depend on the partition (up to rounding). */
-static PetscErrorCode CoordinateChecksum(MMCtx *ctx, PetscReal *sum)
+static PetscErrorCode CoordinateChecksum(MMCheckpoint *ck, PetscReal *sum)
 {
   PetscSection       gs, cs;
   Vec                X;
@@ -180,47 +199,47 @@ static PetscErrorCode CoordinateChecksum(MMCtx *ctx, PetscReal *sum)
 
   PetscFunctionBeginUser;
   *sum = 0;
-  PetscCall(DMGetGlobalSection(ctx->op.dm, &gs));
-  PetscCall(DMGetCoordinateSection(ctx->op.dm, &cs));
-  PetscCall(DMGetCoordinatesLocal(ctx->op.dm, &X));
-  PetscCall(DMPlexGetDepthStratum(ctx->op.dm, 0, &vStart, &vEnd));
+  PetscCall(DMGetGlobalSection(ck->op->dm, &gs));
+  PetscCall(DMGetCoordinateSection(ck->op->dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(ck->op->dm, &X));
+  PetscCall(DMPlexGetDepthStratum(ck->op->dm, 0, &vStart, &vEnd));
   PetscCall(VecGetArrayRead(X, &x));
   for (PetscInt v = vStart; v < vEnd; ++v) {
     PetscInt goff, xoff;
     PetscCall(PetscSectionGetOffset(gs, v, &goff));
     if (goff < 0) continue;
     PetscCall(PetscSectionGetOffset(cs, v, &xoff));
-    for (PetscInt d = 0; d < ctx->op.dim; ++d) *sum += (d + 1) * PetscRealPart(x[xoff + d]) * (1 + ctx->ckpt.vertex_orig[v - vStart] % 97);
+    for (PetscInt d = 0; d < ck->op->dim; ++d) *sum += (d + 1) * PetscRealPart(x[xoff + d]) * (1 + ck->vertex_orig[v - vStart] % 97);
   }
   PetscCall(VecRestoreArrayRead(X, &x));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, 1, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)ctx->op.dm)));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, 1, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)ck->op->dm)));
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode RunRecord(MMCtx *ctx, TS ts, PetscReal run[])
+static PetscErrorCode RunRecord(MMCheckpoint *ck, TS ts, PetscReal run[])
 {
-  const MMHistory *h = &ctx->hist;
+  const MMHistory *h = ck->hist;
   PetscMPIInt      size;
   PetscInt         cStart, cEnd, ncells;
   PetscReal        dt;
 
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)ctx->op.dm), &size));
-  PetscCall(DMPlexGetHeightStratum(ctx->op.dm, 0, &cStart, &cEnd));
+  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)ck->op->dm), &size));
+  PetscCall(DMPlexGetHeightStratum(ck->op->dm, 0, &cStart, &cEnd));
   ncells = cEnd - cStart; /* no overlap: every cell is on one rank */
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ncells, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ctx->op.dm)));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ncells, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ck->op->dm)));
   PetscCall(TSGetTimeStep(ts, &dt));
   run[MM_RUN_VERSION]         = MM_CKPT_VERSION;
-  run[MM_RUN_DIM]             = ctx->op.dim;
-  run[MM_RUN_VERTICES]        = ctx->ckpt.nv_global;
+  run[MM_RUN_DIM]             = ck->op->dim;
+  run[MM_RUN_VERTICES]        = ck->nv_global;
   run[MM_RUN_CELLS]           = ncells;
-  run[MM_RUN_CONTACT_NODES]   = ctx->contact.enabled ? ctx->contact.n_global : 0;
-  PetscCall(CoordinateChecksum(ctx, &run[MM_RUN_COORDINATES]));
-  run[MM_RUN_MU]              = ctx->opt.mu;
+  run[MM_RUN_CONTACT_NODES]   = ck->contact->enabled ? ck->contact->n_global : 0;
+  PetscCall(CoordinateChecksum(ck, &run[MM_RUN_COORDINATES]));
+  run[MM_RUN_MU]              = ck->opt->mu;
   run[MM_RUN_RANKS]           = size;
   run[MM_RUN_TIME]            = h->time;
   run[MM_RUN_DT_NEXT]         = dt;
-  run[MM_RUN_DT_LAST]         = ctx->state.dt;
+  run[MM_RUN_DT_LAST]         = ck->state->dt;
   run[MM_RUN_STEP]            = h->step;
   run[MM_RUN_WORK_EXT]        = h->work_ext;
   run[MM_RUN_WORK_CONTACT]    = h->work_contact;
@@ -230,19 +249,19 @@ static PetscErrorCode RunRecord(MMCtx *ctx, TS ts, PetscReal run[])
   run[MM_RUN_MAX_PENETRATION] = h->max_penetration_run;
   run[MM_RUN_ENERGY_SCALE]    = h->energy_scale;
   run[MM_RUN_RESOLVES]        = h->resolves;
-  run[MM_RUN_SNAPSHOTS]       = ctx->out.n_written;
-  run[MM_RUN_E]               = ctx->opt.E;
-  run[MM_RUN_NU]              = ctx->opt.nu;
-  run[MM_RUN_RHO]             = ctx->opt.rho;
-  run[MM_RUN_MASS]            = ctx->op.mass_type + (ctx->op.lumped ? 3 : 0);
-  run[MM_RUN_DT_USER]         = ctx->state.dt_user;
+  run[MM_RUN_SNAPSHOTS]       = ck->out->n_written;
+  run[MM_RUN_E]               = ck->opt->E;
+  run[MM_RUN_NU]              = ck->opt->nu;
+  run[MM_RUN_RHO]             = ck->opt->rho;
+  run[MM_RUN_MASS]            = ck->op->mass_type + (ck->op->lumped ? 3 : 0);
+  run[MM_RUN_DT_USER]         = ck->state->dt_user;
   run[MM_RUN_WORK_DAMPING]    = h->work_damping;
-  run[MM_RUN_DAMPING_ALPHA]   = ctx->damping.alpha;
-  run[MM_RUN_DAMPING_BETA]    = ctx->damping.beta;
+  run[MM_RUN_DAMPING_ALPHA]   = ck->damping->alpha;
+  run[MM_RUN_DAMPING_BETA]    = ck->damping->beta;
   PetscCall(MMAdaptGrowBackGetState(ts, &run[MM_RUN_ADAPT]));
   run[MM_RUN_WORK_DIRICHLET]  = h->work_dirichlet;
-  PetscCall(MMMaterialChecksum(&ctx->material, &ctx->op, &run[MM_RUN_MATERIAL]));
-  run[MM_RUN_BODIES]          = ctx->material.n_bodies;
+  PetscCall(MMMaterialChecksum(ck->material, ck->op, &run[MM_RUN_MATERIAL]));
+  run[MM_RUN_BODIES]          = ck->material->n_bodies;
   PetscFunctionReturn(0);
 }
 
@@ -264,39 +283,39 @@ static PetscErrorCode RootVector(MPI_Comm comm, const char name[], PetscInt n, c
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode ViewPacked(MMCtx *ctx, PetscViewer viewer, const char name[], PetscInt bs, Vec src, PetscBool contact)
+static PetscErrorCode ViewPacked(MMCheckpoint *ck, PetscViewer viewer, const char name[], PetscInt bs, Vec src, PetscBool contact)
 {
   Vec packed;
 
   PetscFunctionBeginUser;
-  PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)ctx->op.dm), PETSC_DECIDE, bs * ctx->ckpt.nv_global, &packed));
+  PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)ck->op->dm), PETSC_DECIDE, bs * ck->nv_global, &packed));
   PetscCall(PetscObjectSetName((PetscObject)packed, name));
   PetscCall(VecZeroEntries(packed));
-  if (contact) PetscCall(PackContact(ctx, packed));
-  else PetscCall(PackDofs(ctx, src, packed));
+  if (contact) PetscCall(PackContact(ck, packed));
+  else PetscCall(PackDofs(ck, src, packed));
   PetscCall(VecView(packed, viewer));
   PetscCall(VecDestroy(&packed));
   PetscFunctionReturn(0);
 }
 
 /* The vertices of the whole mesh, counted once. */
-static PetscErrorCode CountVertices(MMCtx *ctx)
+static PetscErrorCode CountVertices(MMCheckpoint *ck)
 {
   PetscInt vStart, vEnd, n = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(DMPlexGetDepthStratum(ctx->op.dm, 0, &vStart, &vEnd));
-  for (PetscInt v = vStart; v < vEnd; ++v) n = PetscMax(n, ctx->ckpt.vertex_orig[v - vStart] + 1);
-  PetscCall(MPIU_Allreduce(&n, &ctx->ckpt.nv_global, 1, MPIU_INT, MPI_MAX, PetscObjectComm((PetscObject)ctx->op.dm)));
+  PetscCall(DMPlexGetDepthStratum(ck->op->dm, 0, &vStart, &vEnd));
+  for (PetscInt v = vStart; v < vEnd; ++v) n = PetscMax(n, ck->vertex_orig[v - vStart] + 1);
+  PetscCall(MPIU_Allreduce(&n, &ck->nv_global, 1, MPIU_INT, MPI_MAX, PetscObjectComm((PetscObject)ck->op->dm)));
   PetscFunctionReturn(0);
 }
 
 /* The checkpoint's datasets into the file tmp. A failed write returns its error, for the caller's
  * MMOutputHDF5End to name the file. */
-static PetscErrorCode WriteCheckpointFile(MMCtx *ctx, const char tmp[], const PetscReal run[])
+static PetscErrorCode WriteCheckpointFile(MMCheckpoint *ck, const char tmp[], const PetscReal run[])
 {
-  MPI_Comm    comm = PetscObjectComm((PetscObject)ctx->op.dm);
-  MMState    *s    = &ctx->state;
+  MPI_Comm    comm = PetscObjectComm((PetscObject)ck->op->dm);
+  MMState    *s    = ck->state;
   PetscViewer viewer;
   Vec         rv, tv;
 
@@ -305,15 +324,15 @@ static PetscErrorCode WriteCheckpointFile(MMCtx *ctx, const char tmp[], const Pe
   PetscCall(RootVector(comm, "run", MM_RUN_NUM, run, &rv));
   PetscCall(VecView(rv, viewer));
   PetscCall(VecDestroy(&rv));
-  PetscCall(RootVector(comm, "snapshot_times", PetscMax(ctx->out.n_written, 1), ctx->out.n_written ? ctx->out.times : run, &tv));
+  PetscCall(RootVector(comm, "snapshot_times", PetscMax(ck->out->n_written, 1), ck->out->n_written ? ck->out->times : run, &tv));
   PetscCall(VecView(tv, viewer));
   PetscCall(VecDestroy(&tv));
-  PetscCall(ViewPacked(ctx, viewer, "u", ctx->op.dim, s->u, PETSC_FALSE));
-  PetscCall(ViewPacked(ctx, viewer, "v", ctx->op.dim, s->v, PETSC_FALSE));
-  PetscCall(ViewPacked(ctx, viewer, "a", ctx->op.dim, s->a, PETSC_FALSE));
-  if (MMDampingOn(ctx)) PetscCall(ViewPacked(ctx, viewer, "vC", ctx->op.dim, ctx->damping.vC, PETSC_FALSE));
-  PetscCall(ViewPacked(ctx, viewer, "react", ctx->op.dim, s->react, PETSC_FALSE));
-  PetscCall(ViewPacked(ctx, viewer, "contact", MM_CKPT_NODE, NULL, PETSC_TRUE));
+  PetscCall(ViewPacked(ck, viewer, "u", ck->op->dim, s->u, PETSC_FALSE));
+  PetscCall(ViewPacked(ck, viewer, "v", ck->op->dim, s->v, PETSC_FALSE));
+  PetscCall(ViewPacked(ck, viewer, "a", ck->op->dim, s->a, PETSC_FALSE));
+  if (DampingOn(ck)) PetscCall(ViewPacked(ck, viewer, "vC", ck->op->dim, ck->damping->vC, PETSC_FALSE));
+  PetscCall(ViewPacked(ck, viewer, "react", ck->op->dim, s->react, PETSC_FALSE));
+  PetscCall(ViewPacked(ck, viewer, "contact", MM_CKPT_NODE, NULL, PETSC_TRUE));
   PetscCall(PetscViewerDestroy(&viewer));
   PetscFunctionReturn(0);
 }
@@ -321,9 +340,9 @@ static PetscErrorCode WriteCheckpointFile(MMCtx *ctx, const char tmp[], const Pe
 /* The state after the current step, to OUTPUT_DIR/checkpoint.h5: written whole to a temporary file
  * and renamed over the last one, so that a crash while writing leaves the last good checkpoint. A
  * failed write (a full disk) stops the run naming the temporary file, exit status 74. */
-PetscErrorCode MMCheckpointWrite(MMCtx *ctx, TS ts)
+PetscErrorCode MMCheckpointWrite(MMCheckpoint *ck, TS ts)
 {
-  MPI_Comm       comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  MPI_Comm       comm = PetscObjectComm((PetscObject)ck->op->dm);
   PetscReal      run[MM_RUN_NUM];
   char           name[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN];
   PetscMPIInt    rank;
@@ -331,35 +350,49 @@ PetscErrorCode MMCheckpointWrite(MMCtx *ctx, TS ts)
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(ctx->log.checkpoint, 0, 0, 0, 0));
-  if (!ctx->ckpt.nv_global) PetscCall(CountVertices(ctx));
-  PetscCall(PetscSNPrintf(name, sizeof(name), "%s/%s", ctx->opt.output_dir, MM_CKPT_FILE));
+  PetscCall(PetscLogEventBegin(MMIOEvents.checkpoint, 0, 0, 0, 0));
+  if (!ck->nv_global) PetscCall(CountVertices(ck));
+  PetscCall(PetscSNPrintf(name, sizeof(name), "%s/%s", ck->out->dir, MM_CKPT_FILE));
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s%s", name, MM_CKPT_TMP));
-  PetscCall(RunRecord(ctx, ts, run));
-  PetscCall(MMOutputCopySnapshots(ctx)); /* before the checkpoint that counts on it */
+  PetscCall(RunRecord(ck, ts, run));
+  PetscCall(MMOutputCopySnapshots(ck->out)); /* before the checkpoint that counts on it */
   PetscCall(MMOutputHDF5Begin());
-  ierr = WriteCheckpointFile(ctx, tmp, run);
+  ierr = WriteCheckpointFile(ck, tmp, run);
   PetscCall(MMOutputHDF5End(ierr, "write", tmp));
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (!rank && rename(tmp, name)) err = errno;
   PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
   PetscCheck(!err, comm, PETSC_ERR_FILE_WRITE, "Could not rename %s to %s: %s. The previous checkpoint, if any, is intact", tmp, name, strerror(err));
-  ctx->ckpt.written++;
-  ctx->ckpt.last_step = ctx->hist.step;
-  PetscCall(PetscLogEventEnd(ctx->log.checkpoint, 0, 0, 0, 0));
+  ck->written++;
+  ck->last_step = ck->hist->step;
+  PetscCall(PetscLogEventEnd(MMIOEvents.checkpoint, 0, 0, 0, 0));
   /* a restart continues from here: the index lists every snapshot up to it */
-  PetscCall(MMOutputSyncIndex(ctx));
+  PetscCall(MMOutputSyncIndex(ck->out));
+  PetscFunctionReturn(0);
+}
+
+/* The checkpoints' options (docs/method.md section 9), each with its check. */
+PetscErrorCode MMCheckpointSetFromOptions(MPI_Comm comm, MMCheckpoint *c)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, NULL, "mmcontact checkpoints", "MMCheckpoint");
+  c->every = 0;
+  PetscCall(MMOptionsInt(PetscOptionsObject, comm, "-checkpoint_every", "Write the complete state to OUTPUT_DIR/checkpoint.h5 every k steps, replacing the previous one atomically (0: only at the end of the run)", &c->every));
+  c->restart[0] = 0;
+  PetscCall(MMOptionsString(PetscOptionsObject, comm, "-restart", "Continue the run of a checkpoint: its checkpoint.h5, or the output directory that holds it, on any number of ranks. The history.csv and solution.h5/.xmf of that directory, cut at the checkpoint's step, are continued in -output_dir. Give the options of the run that wrote it: another mesh, contact boundary, dimension, -mu, material or mass is refused", c->restart, sizeof(c->restart), NULL));
+  PetscOptionsEnd();
+  PetscCheck(c->every >= 0, comm, PETSC_ERR_USER_INPUT, "-checkpoint_every %" PetscInt_FMT " must be >= 0 (0: a checkpoint at the end only)", c->every);
   PetscFunctionReturn(0);
 }
 
 /* TS monitor: a checkpoint every -checkpoint_every steps (the final one is written by main). */
 PetscErrorCode MMCheckpointMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ptr)
 {
-  MMCtx         *ctx   = (MMCtx *)ptr;
-  const PetscInt every = ctx->opt.checkpoint_every;
+  MMCheckpoint  *ck    = (MMCheckpoint *)ptr;
+  const PetscInt every = ck->every;
 
   PetscFunctionBeginUser;
-  if (every > 0 && step > 0 && step % every == 0 && step != ctx->ckpt.last_step) PetscCall(MMCheckpointWrite(ctx, ts));
+  if (every > 0 && step > 0 && step % every == 0 && step != ck->last_step) PetscCall(MMCheckpointWrite(ck, ts));
   PetscFunctionReturn(0);
 }
 
@@ -377,24 +410,23 @@ PetscErrorCode MMCheckpointDestroy(MMCheckpoint *c)
 
 /* -restart names the file or the output directory that holds checkpoint.h5; the directory of the
  * file is where the history and the snapshots to continue are read from. */
-static PetscErrorCode ResolveRestartPath(MMCtx *ctx)
+static PetscErrorCode ResolveRestartPath(MMCheckpoint *c)
 {
-  MMCheckpoint *c    = &ctx->ckpt;
-  MPI_Comm      comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  MPI_Comm      comm = PetscObjectComm((PetscObject)c->op->dm);
   struct stat   st;
   int           isdir = 0, exists = 0;
   char         *slash;
 
   PetscFunctionBeginUser;
-  if (!stat(ctx->opt.restart, &st)) {
+  if (!stat(c->restart, &st)) {
     exists = 1;
     isdir  = S_ISDIR(st.st_mode);
   }
-  if (isdir) PetscCall(PetscSNPrintf(c->file, sizeof(c->file), "%s/%s", ctx->opt.restart, MM_CKPT_FILE));
-  else PetscCall(PetscStrncpy(c->file, ctx->opt.restart, sizeof(c->file)));
+  if (isdir) PetscCall(PetscSNPrintf(c->file, sizeof(c->file), "%s/%s", c->restart, MM_CKPT_FILE));
+  else PetscCall(PetscStrncpy(c->file, c->restart, sizeof(c->file)));
   PetscCall(MMOutputCheckHDF5Path(comm, "-restart", c->file, ""));
   if (isdir) exists = !stat(c->file, &st);
-  PetscCheck(exists, comm, PETSC_ERR_FILE_OPEN, "-restart %s: %s does not exist. Give the checkpoint file, or the output directory of the run to continue (its checkpoint.h5 is written every -checkpoint_every steps and at the end)", ctx->opt.restart, c->file);
+  PetscCheck(exists, comm, PETSC_ERR_FILE_OPEN, "-restart %s: %s does not exist. Give the checkpoint file, or the output directory of the run to continue (its checkpoint.h5 is written every -checkpoint_every steps and at the end)", c->restart, c->file);
   PetscCall(PetscStrncpy(c->source_dir, c->file, sizeof(c->source_dir)));
   slash = strrchr(c->source_dir, '/');
   if (slash) *slash = 0;
@@ -403,7 +435,7 @@ static PetscErrorCode ResolveRestartPath(MMCtx *ctx)
 }
 
 /* A dataset of the checkpoint into v (named). A file cut short or not HDF5 stops with its name. */
-static PetscErrorCode LoadVector(MMCtx *ctx, PetscViewer viewer, const char name[], Vec v)
+static PetscErrorCode LoadVector(MMCheckpoint *ck, PetscViewer viewer, const char name[], Vec v)
 {
   PetscErrorCode ierr;
 
@@ -412,14 +444,14 @@ static PetscErrorCode LoadVector(MMCtx *ctx, PetscViewer viewer, const char name
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
   ierr = VecLoad(v, viewer);
   PetscCall(PetscPopErrorHandler());
-  PetscCheck(!ierr, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_FILE_READ, "Could not read \"%s\" from the checkpoint %s: the file is incomplete or not a checkpoint of mmcontact. The checkpoint is written to checkpoint.h5.tmp and renamed only when whole, so an earlier checkpoint.h5 of the run is intact", name, ctx->ckpt.file);
+  PetscCheck(!ierr, PetscObjectComm((PetscObject)ck->op->dm), PETSC_ERR_FILE_READ, "Could not read \"%s\" from the checkpoint %s: the file is incomplete or not a checkpoint of mmcontact. The checkpoint is written to checkpoint.h5.tmp and renamed only when whole, so an earlier checkpoint.h5 of the run is intact", name, ck->file);
   PetscFunctionReturn(0);
 }
 
 /* The run's scalars, on every rank. */
-static PetscErrorCode LoadRunRecord(MMCtx *ctx, PetscViewer viewer, PetscReal run[])
+static PetscErrorCode LoadRunRecord(MMCheckpoint *ck, PetscViewer viewer, PetscReal run[])
 {
-  MPI_Comm           comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  MPI_Comm           comm = PetscObjectComm((PetscObject)ck->op->dm);
   Vec                rv, all;
   VecScatter         sc;
   PetscInt           n;
@@ -427,13 +459,13 @@ static PetscErrorCode LoadRunRecord(MMCtx *ctx, PetscViewer viewer, PetscReal ru
 
   PetscFunctionBeginUser;
   PetscCall(VecCreate(comm, &rv));
-  PetscCall(LoadVector(ctx, viewer, "run", rv));
+  PetscCall(LoadVector(ck, viewer, "run", rv));
   PetscCall(VecGetSize(rv, &n));
   PetscCall(VecScatterCreateToAll(rv, &sc, &all));
   PetscCall(VecScatterBegin(sc, rv, all, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecScatterEnd(sc, rv, all, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecGetArrayRead(all, &a));
-  PetscCheck(n >= 1 && PetscRealPart(a[MM_RUN_VERSION]) == MM_CKPT_VERSION && n == MM_RUN_NUM, comm, PETSC_ERR_FILE_UNEXPECTED, "The checkpoint %s is of format %d with %" PetscInt_FMT " run entries; this mmcontact reads format %d with %d. Continue it with the mmcontact that wrote it", ctx->ckpt.file, n ? (int)PetscRealPart(a[0]) : 0, n, MM_CKPT_VERSION, (int)MM_RUN_NUM);
+  PetscCheck(n >= 1 && PetscRealPart(a[MM_RUN_VERSION]) == MM_CKPT_VERSION && n == MM_RUN_NUM, comm, PETSC_ERR_FILE_UNEXPECTED, "The checkpoint %s is of format %d with %" PetscInt_FMT " run entries; this mmcontact reads format %d with %d. Continue it with the mmcontact that wrote it", ck->file, n ? (int)PetscRealPart(a[0]) : 0, n, MM_CKPT_VERSION, (int)MM_RUN_NUM);
   for (PetscInt i = 0; i < MM_RUN_NUM; ++i) run[i] = PetscRealPart(a[i]);
   PetscCall(VecRestoreArrayRead(all, &a));
   PetscCall(VecScatterDestroy(&sc));
@@ -444,35 +476,35 @@ static PetscErrorCode LoadRunRecord(MMCtx *ctx, PetscViewer viewer, PetscReal ru
 
 /* The checkpoint must be of this problem: the same mesh (vertices, cells, coordinates), the same
  * contact boundary, dimension, friction coefficient, material and mass. Each difference is named. */
-static PetscErrorCode CheckFingerprint(MMCtx *ctx, TS ts, const PetscReal ck[])
+static PetscErrorCode CheckFingerprint(MMCheckpoint *ck, TS ts, const PetscReal rec[])
 {
-  MPI_Comm    comm = PetscObjectComm((PetscObject)ctx->op.dm);
-  const char *f    = ctx->ckpt.file;
+  MPI_Comm    comm = PetscObjectComm((PetscObject)ck->op->dm);
+  const char *f    = ck->file;
   PetscReal   me[MM_RUN_NUM];
 
   PetscFunctionBeginUser;
-  PetscCall(RunRecord(ctx, ts, me));
-  PetscCheck(ck[MM_RUN_DIM] == me[MM_RUN_DIM], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of a %dD problem, this mesh %s is %dD: another dimension. Restart with the mesh and options of the run that wrote it", f, (int)ck[MM_RUN_DIM], ctx->opt.mesh_file, (int)me[MM_RUN_DIM]);
-  PetscCheck(ck[MM_RUN_VERTICES] == me[MM_RUN_VERTICES] && ck[MM_RUN_CELLS] == me[MM_RUN_CELLS], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another mesh: %d vertices and %d cells, this mesh %s has %d and %d. Restart with the mesh of the run that wrote it", f, (int)ck[MM_RUN_VERTICES], (int)ck[MM_RUN_CELLS], ctx->opt.mesh_file, (int)me[MM_RUN_VERTICES], (int)me[MM_RUN_CELLS]);
-  PetscCheck(PetscAbsReal(ck[MM_RUN_COORDINATES] - me[MM_RUN_COORDINATES]) <= 1e-10 * PetscMax(PetscAbsReal(me[MM_RUN_COORDINATES]), 1.0), comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another mesh: it has as many vertices and cells as %s, but other coordinates (checksums %.15g and %.15g). Restart with the mesh, and -mesh_rotation, of the run that wrote it", f, ctx->opt.mesh_file, (double)ck[MM_RUN_COORDINATES], (double)me[MM_RUN_COORDINATES]);
-  PetscCheck(ck[MM_RUN_CONTACT_NODES] == me[MM_RUN_CONTACT_NODES], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another contact boundary: %d contact nodes, this run has %d (-contact_boundary %s, -contact %s). Restart with the contact options of the run that wrote it", f, (int)ck[MM_RUN_CONTACT_NODES], (int)me[MM_RUN_CONTACT_NODES], ctx->opt.contact_name, ctx->opt.contact ? "1" : "0");
-  PetscCheck(ck[MM_RUN_MU] == me[MM_RUN_MU], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with -mu %.10g, this run has -mu %.10g: a different friction law. Restart with -mu %.10g", f, (double)ck[MM_RUN_MU], (double)me[MM_RUN_MU], (double)ck[MM_RUN_MU]);
-  PetscCheck(ck[MM_RUN_E] == me[MM_RUN_E] && ck[MM_RUN_NU] == me[MM_RUN_NU] && ck[MM_RUN_RHO] == me[MM_RUN_RHO], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with -E %.10g -nu %.10g -rho %.10g, this run has -E %.10g -nu %.10g -rho %.10g: another material. Restart with the material of the run that wrote it", f, (double)ck[MM_RUN_E], (double)ck[MM_RUN_NU], (double)ck[MM_RUN_RHO], (double)me[MM_RUN_E], (double)me[MM_RUN_NU], (double)me[MM_RUN_RHO]);
+  PetscCall(RunRecord(ck, ts, me));
+  PetscCheck(rec[MM_RUN_DIM] == me[MM_RUN_DIM], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of a %dD problem, this mesh %s is %dD: another dimension. Restart with the mesh and options of the run that wrote it", f, (int)rec[MM_RUN_DIM], ck->opt->mesh_file, (int)me[MM_RUN_DIM]);
+  PetscCheck(rec[MM_RUN_VERTICES] == me[MM_RUN_VERTICES] && rec[MM_RUN_CELLS] == me[MM_RUN_CELLS], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another mesh: %d vertices and %d cells, this mesh %s has %d and %d. Restart with the mesh of the run that wrote it", f, (int)rec[MM_RUN_VERTICES], (int)rec[MM_RUN_CELLS], ck->opt->mesh_file, (int)me[MM_RUN_VERTICES], (int)me[MM_RUN_CELLS]);
+  PetscCheck(PetscAbsReal(rec[MM_RUN_COORDINATES] - me[MM_RUN_COORDINATES]) <= 1e-10 * PetscMax(PetscAbsReal(me[MM_RUN_COORDINATES]), 1.0), comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another mesh: it has as many vertices and cells as %s, but other coordinates (checksums %.15g and %.15g). Restart with the mesh, and -mesh_rotation, of the run that wrote it", f, ck->opt->mesh_file, (double)rec[MM_RUN_COORDINATES], (double)me[MM_RUN_COORDINATES]);
+  PetscCheck(rec[MM_RUN_CONTACT_NODES] == me[MM_RUN_CONTACT_NODES], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another contact boundary: %d contact nodes, this run has %d (-contact_boundary %s, -contact %s). Restart with the contact options of the run that wrote it", f, (int)rec[MM_RUN_CONTACT_NODES], (int)me[MM_RUN_CONTACT_NODES], ck->opt->contact_name, ck->opt->contact ? "1" : "0");
+  PetscCheck(rec[MM_RUN_MU] == me[MM_RUN_MU], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with -mu %.10g, this run has -mu %.10g: a different friction law. Restart with -mu %.10g", f, (double)rec[MM_RUN_MU], (double)me[MM_RUN_MU], (double)rec[MM_RUN_MU]);
+  PetscCheck(rec[MM_RUN_E] == me[MM_RUN_E] && rec[MM_RUN_NU] == me[MM_RUN_NU] && rec[MM_RUN_RHO] == me[MM_RUN_RHO], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with -E %.10g -nu %.10g -rho %.10g, this run has -E %.10g -nu %.10g -rho %.10g: another material. Restart with the material of the run that wrote it", f, (double)rec[MM_RUN_E], (double)rec[MM_RUN_NU], (double)rec[MM_RUN_RHO], (double)me[MM_RUN_E], (double)me[MM_RUN_NU], (double)me[MM_RUN_RHO]);
   {
-    PetscBool same = (PetscBool)(ck[MM_RUN_BODIES] == me[MM_RUN_BODIES]);
-    for (PetscInt k = 0; k < 3; ++k) same = (PetscBool)(same && PetscAbsReal(ck[MM_RUN_MATERIAL + k] - me[MM_RUN_MATERIAL + k]) <= 1e-10 * PetscAbsReal(me[MM_RUN_MATERIAL + k]));
-    PetscCheck(same, comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with another material in the cells: %d bod%s, and the checksums of lambda, mu, rho over the cells %.10g, %.10g, %.10g; this run has %d bod%s and %.10g, %.10g, %.10g: another material. Restart with the -bodies, -body_NAME_group, -body_NAME_E, -body_NAME_nu and -body_NAME_rho of the run that wrote it", f, (int)ck[MM_RUN_BODIES], (int)ck[MM_RUN_BODIES] == 1 ? "y" : "ies", (double)ck[MM_RUN_MATERIAL], (double)ck[MM_RUN_MATERIAL + 1], (double)ck[MM_RUN_MATERIAL + 2], (int)me[MM_RUN_BODIES], (int)me[MM_RUN_BODIES] == 1 ? "y" : "ies", (double)me[MM_RUN_MATERIAL], (double)me[MM_RUN_MATERIAL + 1], (double)me[MM_RUN_MATERIAL + 2]);
+    PetscBool same = (PetscBool)(rec[MM_RUN_BODIES] == me[MM_RUN_BODIES]);
+    for (PetscInt k = 0; k < 3; ++k) same = (PetscBool)(same && PetscAbsReal(rec[MM_RUN_MATERIAL + k] - me[MM_RUN_MATERIAL + k]) <= 1e-10 * PetscAbsReal(me[MM_RUN_MATERIAL + k]));
+    PetscCheck(same, comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with another material in the cells: %d bod%s, and the checksums of lambda, mu, rho over the cells %.10g, %.10g, %.10g; this run has %d bod%s and %.10g, %.10g, %.10g: another material. Restart with the -bodies, -body_NAME_group, -body_NAME_E, -body_NAME_nu and -body_NAME_rho of the run that wrote it", f, (int)rec[MM_RUN_BODIES], (int)rec[MM_RUN_BODIES] == 1 ? "y" : "ies", (double)rec[MM_RUN_MATERIAL], (double)rec[MM_RUN_MATERIAL + 1], (double)rec[MM_RUN_MATERIAL + 2], (int)me[MM_RUN_BODIES], (int)me[MM_RUN_BODIES] == 1 ? "y" : "ies", (double)me[MM_RUN_MATERIAL], (double)me[MM_RUN_MATERIAL + 1], (double)me[MM_RUN_MATERIAL + 2]);
   }
-  PetscCheck(ck[MM_RUN_MASS] == me[MM_RUN_MASS], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with the %s%s mass, this run has the %s%s mass. Restart with the -mass and -mass_lumped of the run that wrote it", f, MMMassTypes[(int)ck[MM_RUN_MASS] % 3], (int)ck[MM_RUN_MASS] / 3 ? " lumped" : "", MMMassTypes[(int)me[MM_RUN_MASS] % 3], (int)me[MM_RUN_MASS] / 3 ? " lumped" : "");
-  PetscCheck(ck[MM_RUN_DAMPING_ALPHA] == me[MM_RUN_DAMPING_ALPHA] && ck[MM_RUN_DAMPING_BETA] == me[MM_RUN_DAMPING_BETA], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with the Rayleigh damping alpha = %.10g, beta = %.10g, this run has alpha = %.10g, beta = %.10g: another damping. Restart with the -damping_mass and -damping_stiffness (or -damping_ratio and -damping_frequencies) of the run that wrote it", f, (double)ck[MM_RUN_DAMPING_ALPHA], (double)ck[MM_RUN_DAMPING_BETA], (double)me[MM_RUN_DAMPING_ALPHA], (double)me[MM_RUN_DAMPING_BETA]);
+  PetscCheck(rec[MM_RUN_MASS] == me[MM_RUN_MASS], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with the %s%s mass, this run has the %s%s mass. Restart with the -mass and -mass_lumped of the run that wrote it", f, MMMassTypes[(int)rec[MM_RUN_MASS] % 3], (int)rec[MM_RUN_MASS] / 3 ? " lumped" : "", MMMassTypes[(int)me[MM_RUN_MASS] % 3], (int)me[MM_RUN_MASS] / 3 ? " lumped" : "");
+  PetscCheck(rec[MM_RUN_DAMPING_ALPHA] == me[MM_RUN_DAMPING_ALPHA] && rec[MM_RUN_DAMPING_BETA] == me[MM_RUN_DAMPING_BETA], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with the Rayleigh damping alpha = %.10g, beta = %.10g, this run has alpha = %.10g, beta = %.10g: another damping. Restart with the -damping_mass and -damping_stiffness (or -damping_ratio and -damping_frequencies) of the run that wrote it", f, (double)rec[MM_RUN_DAMPING_ALPHA], (double)rec[MM_RUN_DAMPING_BETA], (double)me[MM_RUN_DAMPING_ALPHA], (double)me[MM_RUN_DAMPING_BETA]);
   PetscFunctionReturn(0);
 }
 
 /* From the packed dataset NAME (bs entries per serial-mesh vertex), the blocks of the n vertices
  * serial[] into vals (n bs entries): one scatter, whatever the partition that wrote the file. */
-static PetscErrorCode LoadPacked(MMCtx *ctx, PetscViewer viewer, const char name[], PetscInt bs, PetscInt n, const PetscInt serial[], PetscScalar vals[])
+static PetscErrorCode LoadPacked(MMCheckpoint *ck, PetscViewer viewer, const char name[], PetscInt bs, PetscInt n, const PetscInt serial[], PetscScalar vals[])
 {
-  MPI_Comm   comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  MPI_Comm   comm = PetscObjectComm((PetscObject)ck->op->dm);
   Vec        packed, local;
   IS         from;
   VecScatter sc;
@@ -480,9 +512,9 @@ static PetscErrorCode LoadPacked(MMCtx *ctx, PetscViewer viewer, const char name
 
   PetscFunctionBeginUser;
   PetscCall(VecCreate(comm, &packed));
-  PetscCall(LoadVector(ctx, viewer, name, packed));
+  PetscCall(LoadVector(ck, viewer, name, packed));
   PetscCall(VecGetSize(packed, &N));
-  PetscCheck(N == bs * ctx->ckpt.nv_global, comm, PETSC_ERR_FILE_UNEXPECTED, "The checkpoint %s has %" PetscInt_FMT " entries in \"%s\", expected %" PetscInt_FMT ": the file is damaged", ctx->ckpt.file, N, name, bs * ctx->ckpt.nv_global);
+  PetscCheck(N == bs * ck->nv_global, comm, PETSC_ERR_FILE_UNEXPECTED, "The checkpoint %s has %" PetscInt_FMT " entries in \"%s\", expected %" PetscInt_FMT ": the file is damaged", ck->file, N, name, bs * ck->nv_global);
   PetscCall(PetscMalloc1(n * bs, &idx));
   for (PetscInt i = 0; i < n; ++i)
     for (PetscInt c = 0; c < bs; ++c) idx[i * bs + c] = serial[i] * bs + c;
@@ -499,16 +531,16 @@ static PetscErrorCode LoadPacked(MMCtx *ctx, PetscViewer viewer, const char name
 }
 
 /* The inverse of PackDofs: the free dofs of the owned vertices from their serial-mesh blocks. */
-static PetscErrorCode LoadDofs(MMCtx *ctx, PetscViewer viewer, const char name[], Vec w)
+static PetscErrorCode LoadDofs(MMCheckpoint *ck, PetscViewer viewer, const char name[], Vec w)
 {
-  const PetscInt dim = ctx->op.dim;
+  const PetscInt dim = ck->op->dim;
   PetscInt       n, *serial, *loc;
   PetscScalar   *vals, *wa;
 
   PetscFunctionBeginUser;
-  PetscCall(OwnedDofMap(ctx, &n, &serial, &loc));
+  PetscCall(OwnedDofMap(ck, &n, &serial, &loc));
   PetscCall(PetscMalloc1(dim * n, &vals));
-  PetscCall(LoadPacked(ctx, viewer, name, dim, n, serial, vals));
+  PetscCall(LoadPacked(ck, viewer, name, dim, n, serial, vals));
   PetscCall(VecGetArray(w, &wa));
   for (PetscInt i = 0; i < n * dim; ++i)
     if (loc[i] >= 0) wa[loc[i]] = vals[i];
@@ -520,40 +552,40 @@ static PetscErrorCode LoadDofs(MMCtx *ctx, PetscViewer viewer, const char name[]
 
 /* The per-contact-node records, kept until the history is restored (was_active is recomputed by
  * the initial diagnostics in between); each of this run's contact nodes must be one in the file. */
-static PetscErrorCode LoadContactRecords(MMCtx *ctx, PetscViewer viewer)
+static PetscErrorCode LoadContactRecords(MMCheckpoint *ck, PetscViewer viewer)
 {
-  MMContact *ct = &ctx->contact;
+  MMContact *ct = ck->contact;
   PetscInt   vStart, vEnd, *serial, bad = 0;
 
   PetscFunctionBeginUser;
   if (!ct->enabled) PetscFunctionReturn(0);
-  PetscCall(DMPlexGetDepthStratum(ctx->op.dm, 0, &vStart, &vEnd));
+  PetscCall(DMPlexGetDepthStratum(ck->op->dm, 0, &vStart, &vEnd));
   PetscCall(PetscMalloc1(ct->n_local, &serial));
-  PetscCall(PetscMalloc1(MM_CKPT_NODE * ct->n_local, &ctx->ckpt.node));
-  for (PetscInt k = 0; k < ct->n_local; ++k) serial[k] = ctx->ckpt.vertex_orig[ct->vertex[k] - vStart];
-  PetscCall(LoadPacked(ctx, viewer, "contact", MM_CKPT_NODE, ct->n_local, serial, ctx->ckpt.node));
-  for (PetscInt k = 0; k < ct->n_local; ++k) bad += PetscRealPart(ctx->ckpt.node[MM_CKPT_NODE * k]) != 1;
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ctx->op.dm)));
-  PetscCheck(!bad, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "The checkpoint %s is of another contact boundary: %" PetscInt_FMT " of this run's %" PetscInt_FMT " contact nodes are not contact nodes there (-contact_boundary %s). Restart with the contact boundary of the run that wrote it", ctx->ckpt.file, bad, ct->n_global, ctx->opt.contact_name);
+  PetscCall(PetscMalloc1(MM_CKPT_NODE * ct->n_local, &ck->node));
+  for (PetscInt k = 0; k < ct->n_local; ++k) serial[k] = ck->vertex_orig[ct->vertex[k] - vStart];
+  PetscCall(LoadPacked(ck, viewer, "contact", MM_CKPT_NODE, ct->n_local, serial, ck->node));
+  for (PetscInt k = 0; k < ct->n_local; ++k) bad += PetscRealPart(ck->node[MM_CKPT_NODE * k]) != 1;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ck->op->dm)));
+  PetscCheck(!bad, PetscObjectComm((PetscObject)ck->op->dm), PETSC_ERR_USER_INPUT, "The checkpoint %s is of another contact boundary: %" PetscInt_FMT " of this run's %" PetscInt_FMT " contact nodes are not contact nodes there (-contact_boundary %s). Restart with the contact boundary of the run that wrote it", ck->file, bad, ct->n_global, ck->opt->contact_name);
   PetscCall(PetscFree(serial));
   PetscFunctionReturn(0);
 }
 
 /* The friction thresholds, 3D slip states and directions, condensed reactions and the active-set
  * warm start: what the next step's solvers start from. */
-static PetscErrorCode RestoreContactState(MMCtx *ctx)
+static PetscErrorCode RestoreContactState(MMCheckpoint *ck)
 {
-  MMContact   *ct = &ctx->contact;
+  MMContact   *ct = ck->contact;
   PetscScalar *sa = NULL, *ra = NULL;
   Vec          thresholds;
 
   PetscFunctionBeginUser;
   if (!ct->enabled) PetscFunctionReturn(0);
-  PetscCall(MMFrictionGetThresholds(ctx->friction, &thresholds));
+  PetscCall(MMFrictionGetThresholds(ck->friction, &thresholds));
   if (thresholds) PetscCall(VecGetArray(thresholds, &sa));
   if (ct->rho) PetscCall(VecGetArray(ct->rho, &ra));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
-    const PetscScalar *rec = &ctx->ckpt.node[MM_CKPT_NODE * k];
+    const PetscScalar *rec = &ck->node[MM_CKPT_NODE * k];
     if (ct->second[k]) {
       if (ra) ra[k] = rec[MM_CKPT_SECOND_RHO];
       if (ct->as.active) ct->as.active[k] = (PetscBool)(PetscRealPart(rec[MM_CKPT_SECOND_AS]) != 0);
@@ -569,9 +601,9 @@ static PetscErrorCode RestoreContactState(MMCtx *ctx)
     if (ct->as.active) {
       ct->as.active[k] = (PetscBool)(PetscRealPart(rec[9]) != 0);
       ct->as.stick[k]  = (PetscBool)(PetscRealPart(rec[10]) != 0);
-      for (PetscInt j = 0; j < ctx->op.dim - 1; ++j) ct->as.dir[k * (ctx->op.dim - 1) + j] = PetscRealPart(rec[11 + j]);
+      for (PetscInt j = 0; j < ck->op->dim - 1; ++j) ct->as.dir[k * (ck->op->dim - 1) + j] = PetscRealPart(rec[11 + j]);
     } else if (ct->fc_obstacle && ct->fc_obstacle[k] >= 0)
-      for (PetscInt c = 0; c < ctx->op.dim; ++c) ct->fc_r[ctx->op.dim * k + c] = PetscRealPart(rec[MM_CKPT_CORNER_R + c]);
+      for (PetscInt c = 0; c < ck->op->dim; ++c) ct->fc_r[ck->op->dim * k + c] = PetscRealPart(rec[MM_CKPT_CORNER_R + c]);
   }
   if (ra) PetscCall(VecRestoreArray(ct->rho, &ra));
   if (sa) PetscCall(VecRestoreArray(thresholds, &sa));
@@ -579,10 +611,9 @@ static PetscErrorCode RestoreContactState(MMCtx *ctx)
 }
 
 /* The times of the snapshots up to the checkpoint, on every rank. */
-static PetscErrorCode LoadSnapshotTimes(MMCtx *ctx, PetscViewer viewer)
+static PetscErrorCode LoadSnapshotTimes(MMCheckpoint *c, PetscViewer viewer)
 {
-  MMCheckpoint      *c    = &ctx->ckpt;
-  MPI_Comm           comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  MPI_Comm           comm = PetscObjectComm((PetscObject)c->op->dm);
   const PetscInt     n    = (PetscInt)c->run[MM_RUN_SNAPSHOTS];
   Vec                tv, all;
   VecScatter         sc;
@@ -593,7 +624,7 @@ static PetscErrorCode LoadSnapshotTimes(MMCtx *ctx, PetscViewer viewer)
   PetscCall(PetscMalloc1(PetscMax(n, 1), &c->snapshot_times));
   if (!n) PetscFunctionReturn(0);
   PetscCall(VecCreate(comm, &tv));
-  PetscCall(LoadVector(ctx, viewer, "snapshot_times", tv));
+  PetscCall(LoadVector(c, viewer, "snapshot_times", tv));
   PetscCall(VecGetSize(tv, &N));
   PetscCheck(N == n, comm, PETSC_ERR_FILE_UNEXPECTED, "The checkpoint %s lists %" PetscInt_FMT " snapshot times for %" PetscInt_FMT " snapshots: the file is damaged", c->file, N, n);
   PetscCall(VecScatterCreateToAll(tv, &sc, &all));
@@ -611,31 +642,31 @@ static PetscErrorCode LoadSnapshotTimes(MMCtx *ctx, PetscViewer viewer)
 /* -restart: the state, the stepper's time, step and dt, and the solvers' warm starts from the
  * checkpoint, after the fingerprint is checked. Called once the TS exists, before the step matrix
  * is factored (for the restored dt) and the initial energy is taken (of the restored state). */
-PetscErrorCode MMCheckpointLoad(MMCtx *ctx, TS ts)
+PetscErrorCode MMCheckpointLoad(MMCheckpoint *c, TS ts)
 {
-  MPI_Comm       comm = PetscObjectComm((PetscObject)ctx->op.dm);
-  MMCheckpoint  *c    = &ctx->ckpt;
-  MMState       *s    = &ctx->state;
+  MPI_Comm       comm = PetscObjectComm((PetscObject)c->op->dm);
+  MMState       *s    = c->state;
   PetscViewer    viewer;
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(ctx->log.checkpoint, 0, 0, 0, 0));
-  PetscCall(ResolveRestartPath(ctx));
-  if (!c->nv_global) PetscCall(CountVertices(ctx));
+  if (!c->restart[0]) PetscFunctionReturn(0); /* no -restart */
+  PetscCall(PetscLogEventBegin(MMIOEvents.checkpoint, 0, 0, 0, 0));
+  PetscCall(ResolveRestartPath(c));
+  if (!c->nv_global) PetscCall(CountVertices(c));
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
   ierr = PetscViewerHDF5Open(comm, c->file, FILE_MODE_READ, &viewer);
   PetscCall(PetscPopErrorHandler());
   PetscCheck(!ierr, comm, PETSC_ERR_FILE_OPEN, "Could not open the checkpoint %s: it is not a complete HDF5 file. A checkpoint is written to checkpoint.h5.tmp and renamed only when whole: give the directory's checkpoint.h5, or the directory itself", c->file);
-  PetscCall(LoadRunRecord(ctx, viewer, c->run));
-  PetscCall(CheckFingerprint(ctx, ts, c->run));
-  PetscCall(LoadContactRecords(ctx, viewer));
-  PetscCall(LoadDofs(ctx, viewer, "u", s->u));
-  PetscCall(LoadDofs(ctx, viewer, "v", s->v));
-  PetscCall(LoadDofs(ctx, viewer, "a", s->a));
-  if (MMDampingOn(ctx)) PetscCall(LoadDofs(ctx, viewer, "vC", ctx->damping.vC));
-  PetscCall(LoadDofs(ctx, viewer, "react", s->react));
-  PetscCall(LoadSnapshotTimes(ctx, viewer));
+  PetscCall(LoadRunRecord(c, viewer, c->run));
+  PetscCall(CheckFingerprint(c, ts, c->run));
+  PetscCall(LoadContactRecords(c, viewer));
+  PetscCall(LoadDofs(c, viewer, "u", s->u));
+  PetscCall(LoadDofs(c, viewer, "v", s->v));
+  PetscCall(LoadDofs(c, viewer, "a", s->a));
+  if (DampingOn(c)) PetscCall(LoadDofs(c, viewer, "vC", c->damping->vC));
+  PetscCall(LoadDofs(c, viewer, "react", s->react));
+  PetscCall(LoadSnapshotTimes(c, viewer));
   PetscCall(PetscViewerDestroy(&viewer));
   PetscCall(VecCopy(s->u, s->u_next));
   s->dt           = c->run[MM_RUN_DT_LAST];
@@ -648,35 +679,56 @@ PetscErrorCode MMCheckpointLoad(MMCtx *ctx, TS ts)
     PetscCall(TSSetTimeStep(ts, c->run[MM_RUN_DT_NEXT]));
     PetscCall(MMAdaptGrowBackSetState(ts, &c->run[MM_RUN_ADAPT]));
   }
-  /* the gaps of moving obstacles at the checkpoint's time, for the initial diagnostics */
-  if (ctx->contact.enabled) PetscCall(MMContactSetTime(ctx, c->run[MM_RUN_TIME], s->dt));
-  /* the loads and Dirichlet data of the checkpoint's time, for the energy of the restored state */
-  PetscCall(MMLoadsSetTime(&ctx->loads, c->run[MM_RUN_TIME], c->run[MM_RUN_TIME]));
-  if (!ctx->opt.quiet) {
-    PetscReal dt;
-    PetscCall(TSGetTimeStep(ts, &dt));
-    PetscCall(PetscPrintf(comm, "Restart from %s: step %" PetscInt_FMT ", t = %.10g, next dt %g (written on %d rank%s, continued on %d)\n", c->file, c->restart_step, (double)c->run[MM_RUN_TIME], (double)dt, (int)c->run[MM_RUN_RANKS], c->run[MM_RUN_RANKS] > 1 ? "s" : "", PetscGlobalSize));
-    if (c->run[MM_RUN_DT_USER] != s->dt_user) PetscCall(PetscPrintf(comm, "  -ts_dt %g here, %g in the checkpoint's run: the steps from here on are of the new dt\n", (double)s->dt_user, (double)c->run[MM_RUN_DT_USER]));
-  }
-  PetscCall(PetscLogEventEnd(ctx->log.checkpoint, 0, 0, 0, 0));
+  PetscCall(TSGetTimeStep(ts, &c->dt_next));
+  PetscCall(PetscLogEventEnd(MMIOEvents.checkpoint, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* Whether the run continues a checkpoint (MMCheckpointLoad), and its step and time. */
+PetscErrorCode MMCheckpointGetRestart(const MMCheckpoint *c, PetscBool *restarted, PetscInt *step, PetscReal *time)
+{
+  PetscFunctionBeginUser;
+  if (restarted) *restarted = c->restarted;
+  if (step) *step = c->restarted ? c->restart_step : 0;
+  if (time) *time = c->restarted ? c->run[MM_RUN_TIME] : 0;
+  PetscFunctionReturn(0);
+}
+
+/* The end of the run: its last step's checkpoint, unless the cadence wrote it. */
+PetscErrorCode MMCheckpointWriteFinal(MMCheckpoint *c, TS ts)
+{
+  PetscFunctionBeginUser;
+  if (c->last_step != c->hist->step || !c->written) PetscCall(MMCheckpointWrite(c, ts));
+  PetscFunctionReturn(0);
+}
+
+/* After -restart: what was read and how the run continues. */
+PetscErrorCode MMCheckpointView(const MMCheckpoint *c, PetscViewer viewer)
+{
+  const MMState *s = c->state;
+
+  PetscFunctionBeginUser;
+  if (!c->restarted) PetscFunctionReturn(0);
+  PetscCall(PetscViewerASCIIPrintf(viewer, "Restart from %s: step %" PetscInt_FMT ", t = %.10g, next dt %g (written on %d rank%s, continued on %d)\n", c->file, c->restart_step, (double)c->run[MM_RUN_TIME], (double)c->dt_next, (int)c->run[MM_RUN_RANKS], c->run[MM_RUN_RANKS] > 1 ? "s" : "", PetscGlobalSize));
+  if (c->run[MM_RUN_DT_USER] != s->dt_user) PetscCall(PetscViewerASCIIPrintf(viewer, "  -ts_dt %g here, %g in the checkpoint's run: the steps from here on are of the new dt\n", (double)s->dt_user, (double)c->run[MM_RUN_DT_USER]));
   PetscFunctionReturn(0);
 }
 
 /* After the step matrix and the initial energy of the restored state: the history's running sums
  * and maxima, the last active set (for the switched count) and the contact solvers' warm starts,
  * as at the checkpoint. */
-PetscErrorCode MMCheckpointRestoreHistory(MMCtx *ctx)
+PetscErrorCode MMCheckpointRestoreHistory(MMCheckpoint *c)
 {
-  MMCheckpoint   *c   = &ctx->ckpt;
-  MMHistory      *h   = &ctx->hist;
-  MMContact      *ct  = &ctx->contact;
+  MMHistory      *h   = c->hist;
+  MMContact      *ct  = c->contact;
   const PetscReal *run = c->run;
 
   PetscFunctionBeginUser;
+  if (!c->restarted) PetscFunctionReturn(0);
   h->step                = c->restart_step;
   h->time                = run[MM_RUN_TIME];
   h->dt                  = run[MM_RUN_DT_LAST];
-  h->cfl                 = ct->enabled ? ctx->op.c_p * h->dt / ct->h_c : 0;
+  h->cfl                 = ct->enabled ? c->op->c_p * h->dt / ct->h_c : 0;
   h->work_ext            = run[MM_RUN_WORK_EXT];
   h->work_contact        = run[MM_RUN_WORK_CONTACT];
   h->work_friction       = run[MM_RUN_WORK_FRICTION];
@@ -690,7 +742,7 @@ PetscErrorCode MMCheckpointRestoreHistory(MMCtx *ctx)
   for (PetscInt k = 0; ct->enabled && k < ct->n_local; ++k) ct->was_active[k] = (PetscBool)(PetscRealPart(c->node[MM_CKPT_NODE * k + (ct->second[k] ? MM_CKPT_SECOND_ACTIVE : 3)]) != 0);
   /* here, not at the load: the condensed reactions and the active-set states are created with the
    * step matrix, and the initial diagnostics would overwrite the states */
-  PetscCall(RestoreContactState(ctx));
+  PetscCall(RestoreContactState(c));
   c->last_step = c->restart_step;
   c->written   = 1; /* the checkpoint of this step exists */
   PetscFunctionReturn(0);
@@ -698,17 +750,17 @@ PetscErrorCode MMCheckpointRestoreHistory(MMCtx *ctx)
 
 /* The snapshots of the checkpoint a restart continues (0 without one): the output plan numbers this
  * run's from there (output_plan.c). */
-PetscInt MMCheckpointSnapshotCount(const MMCtx *ctx)
+PetscInt MMCheckpointSnapshotCount(const MMCheckpoint *c)
 {
-  return ctx->ckpt.restarted ? (PetscInt)ctx->ckpt.run[MM_RUN_SNAPSHOTS] : 0;
+  return c->restarted ? (PetscInt)c->run[MM_RUN_SNAPSHOTS] : 0;
 }
 
 /* The snapshot count and times of the checkpoint, read with the state: the caller takes them. */
-PetscErrorCode MMCheckpointSnapshots(MMCtx *ctx, PetscInt *n, PetscReal **times)
+PetscErrorCode MMCheckpointSnapshots(MMCheckpoint *c, PetscInt *n, PetscReal **times)
 {
   PetscFunctionBeginUser;
-  *n                       = (PetscInt)ctx->ckpt.run[MM_RUN_SNAPSHOTS];
-  *times                   = ctx->ckpt.snapshot_times;
-  ctx->ckpt.snapshot_times = NULL;
+  *n                = (PetscInt)c->run[MM_RUN_SNAPSHOTS];
+  *times            = c->snapshot_times;
+  c->snapshot_times = NULL;
   PetscFunctionReturn(0);
 }

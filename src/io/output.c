@@ -16,17 +16,12 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <petscsf.h>
 #include <petscviewerhdf5.h>
-#include "output.h"
-#include "progress.h"
+#include "io.h"
 #include "outputimpl.h"
-#include "contact.h"
-#include "fem.h"
-#include "deformation.h"
 
 /* the files a run writes (checkpoint.h5 by checkpoint.c): an earlier run's move to previous/ together */
 static const char *const MMOutputFiles[] = {"history.csv", "solution.h5", "solution.xmf", "checkpoint.h5", MM_SNAPSHOT_COPY};
@@ -164,10 +159,11 @@ static PetscErrorCode CSVWrite(MMOutput *o, const MMLine *l)
 }
 
 /* The header of history.csv: its columns depend on the dimension and the obstacles. */
-PetscErrorCode MMOutputCSVHeaderLine(MMCtx *ctx, MMLine *lp)
+PetscErrorCode MMOutputCSVHeaderLine(const MMOutput *o, MMLine *lp)
 {
-  const char *axes = "xyz";
-  PetscInt    dim  = ctx->op.dim;
+  const MMOptions *opt  = o->opt;
+  const char      *axes = "xyz";
+  PetscInt         dim  = o->op->dim;
   MMLine      l    = {.n = 0, .s = ""};
 
   PetscFunctionBeginUser;
@@ -181,38 +177,40 @@ PetscErrorCode MMOutputCSVHeaderLine(MMCtx *ctx, MMLine *lp)
   else PetscCall(MMOutputLineAdd(&l, ",J_x,J_y,J_z"));
   for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",load_%c", axes[d]));
   PetscCall(MMOutputLineAdd(&l, ",switched,contraction,candidates,candidate_resolves,work_obstacle"));
-  for (PetscInt b = 0; b < ctx->opt.n_obstacles; ++b)
-    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",force_%s_%c", ctx->opt.obstacles[b].name, axes[d]));
+  for (PetscInt b = 0; b < opt->n_obstacles; ++b)
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",force_%s_%c", opt->obstacles[b].name, axes[d]));
   PetscCall(MMOutputLineAdd(&l, ",work_damping"));
   /* with Dirichlet boundaries: their work and each one's reaction (docs/method.md section 10) */
-  if (ctx->opt.n_dirichlet) PetscCall(MMOutputLineAdd(&l, ",work_dirichlet"));
-  for (PetscInt b = 0; b < ctx->opt.n_dirichlet; ++b)
-    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",reaction_%s_%c", ctx->opt.dirichlet[b].name, axes[d]));
+  if (opt->n_dirichlet) PetscCall(MMOutputLineAdd(&l, ",work_dirichlet"));
+  for (PetscInt b = 0; b < opt->n_dirichlet; ++b)
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",reaction_%s_%c", opt->dirichlet[b].name, axes[d]));
   /* -probes: each group's mean displacement, then velocity (probes.c) */
-  for (PetscInt g = 0; g < ctx->out.probes.n; ++g) {
-    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",probe_%s_u%c", ctx->out.probes.name[g], axes[d]));
-    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",probe_%s_v%c", ctx->out.probes.name[g], axes[d]));
+  for (PetscInt g = 0; g < o->probes.n; ++g) {
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",probe_%s_u%c", o->probes.name[g], axes[d]));
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",probe_%s_v%c", o->probes.name[g], axes[d]));
   }
   PetscCall(MMOutputLineAdd(&l, "\n"));
   *lp = l;
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode CSVHeader(MMCtx *ctx)
+static PetscErrorCode CSVHeader(MMOutput *o)
 {
   MMLine l;
 
   PetscFunctionBeginUser;
-  PetscCall(MMOutputCSVHeaderLine(ctx, &l));
-  PetscCall(CSVWrite(&ctx->out, &l));
+  PetscCall(MMOutputCSVHeaderLine(o, &l));
+  PetscCall(CSVWrite(o, &l));
   PetscFunctionReturn(0);
 }
 
-/* A row on disk is a row the user keeps, whatever happens next: written whole, not buffered. */
-static PetscErrorCode CSVRow(MMCtx *ctx)
+/* A row on disk is a row the user keeps, whatever happens next: written whole, not buffered. The
+ * probes' means are of the whole fields in disp_cart and vel_cart, which the caller filled. */
+PetscErrorCode MMOutputWriteRow(MMOutput *o)
 {
-  const MMHistory *h   = &ctx->hist;
-  PetscInt         dim = ctx->op.dim;
+  const MMHistory *h   = o->hist;
+  const MMOptions *opt = o->opt;
+  PetscInt         dim = o->op->dim;
   MMLine           l   = {.n = 0, .s = ""};
 
   PetscFunctionBeginUser;
@@ -226,16 +224,16 @@ static PetscErrorCode CSVRow(MMCtx *ctx)
   else PetscCall(MMOutputLineAdd(&l, ",%.16e,%.16e,%.16e", (double)h->J[0], (double)h->J[1], (double)h->J[2]));
   for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->load[d]));
   PetscCall(MMOutputLineAdd(&l, ",%" PetscInt_FMT ",%.6e,%" PetscInt_FMT ",%" PetscInt_FMT ",%.16e", h->switched, (double)h->contraction, h->candidates, h->resolves, (double)h->work_obstacle));
-  for (PetscInt b = 0; b < ctx->opt.n_obstacles; ++b)
-    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", ctx->contact.enabled ? (double)ctx->contact.force_obstacle[MM_MAX_DIM * b + d] : 0.0));
+  for (PetscInt b = 0; b < opt->n_obstacles; ++b)
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", o->contact->enabled ? (double)o->contact->force_obstacle[MM_MAX_DIM * b + d] : 0.0));
   PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->work_damping));
-  if (ctx->opt.n_dirichlet) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->work_dirichlet));
-  for (PetscInt b = 0; b < ctx->opt.n_dirichlet; ++b)
-    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)ctx->loads.reaction[MM_MAX_DIM * b + d]));
-  PetscCall(MMProbesEvaluate(ctx));
-  for (PetscInt k = 0; k < 2 * dim * ctx->out.probes.n; ++k) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)ctx->out.probes.mean[k]));
+  if (opt->n_dirichlet) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->work_dirichlet));
+  for (PetscInt b = 0; b < opt->n_dirichlet; ++b)
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)o->loads->reaction[MM_MAX_DIM * b + d]));
+  PetscCall(MMProbesEvaluate(o));
+  for (PetscInt k = 0; k < 2 * dim * o->probes.n; ++k) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)o->probes.mean[k]));
   PetscCall(MMOutputLineAdd(&l, "\n"));
-  PetscCall(CSVWrite(&ctx->out, &l));
+  PetscCall(CSVWrite(o, &l));
   PetscFunctionReturn(0);
 }
 
@@ -313,15 +311,14 @@ static void IndexPrint(FILE *f, const MMOutput *o)
 
 /* The XDMF index, rewritten on rank 0: whole to solution.xmf.tmp, then renamed over solution.xmf.
  * Not fsync'd: this guards against the process dying, not the machine. */
-PetscErrorCode MMOutputWriteIndexFile(MMCtx *ctx)
+PetscErrorCode MMOutputWriteIndexFile(MMOutput *o)
 {
-  MMOutput    *o  = &ctx->out;
   MMFileStatus st = {0};
   char         tmp[PETSC_MAX_PATH_LEN];
   PetscMPIInt  rank;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(o->ev_index, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(MMIOEvents.index, 0, 0, 0, 0));
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s%s", o->xmf_name, MM_XMF_TMP));
   if (rank == 0) {
@@ -340,7 +337,7 @@ PetscErrorCode MMOutputWriteIndexFile(MMCtx *ctx)
   }
   PetscCall(MMOutputCheckRank0(&st));
   o->n_indexed = o->n_written;
-  PetscCall(PetscLogEventEnd(o->ev_index, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(MMIOEvents.index, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -349,56 +346,22 @@ PetscErrorCode MMOutputWriteIndexFile(MMCtx *ctx)
  * last time (O(N) bytes in all), and by MMOutputSyncIndex at every checkpoint and at the end of the
  * run: while the run goes on it lists at least half of the snapshots written, all of them up to the
  * last checkpoint (README "Output"). */
-static PetscErrorCode WriteIndex(MMCtx *ctx)
+static PetscErrorCode WriteIndex(MMOutput *o)
 {
-  MMOutput   *o = &ctx->out;
   PetscMPIInt rank;
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
-  if (rank == 0) PetscCall(MMOutputIndexAddGrid(o, ctx->op.dim, o->n_written - 1, o->times[o->n_written - 1]));
-  if (o->n_written >= 2 * o->n_indexed) PetscCall(MMOutputWriteIndexFile(ctx));
+  if (rank == 0) PetscCall(MMOutputIndexAddGrid(o, o->op->dim, o->n_written - 1, o->times[o->n_written - 1]));
+  if (o->n_written >= 2 * o->n_indexed) PetscCall(MMOutputWriteIndexFile(o));
   PetscFunctionReturn(0);
 }
 
 /* The index lists every snapshot written: at checkpoints and at the end of the run. */
-PetscErrorCode MMOutputSyncIndex(MMCtx *ctx)
+PetscErrorCode MMOutputSyncIndex(MMOutput *o)
 {
   PetscFunctionBeginUser;
-  if (ctx->out.n_indexed < ctx->out.n_written) PetscCall(MMOutputWriteIndexFile(ctx));
-  PetscFunctionReturn(0);
-}
-
-/* The Cartesian field on every node, from the free dofs w: the Dirichlet data on constrained dofs for
- * the displacement, zero for the velocity (the data are constant in time). */
-static PetscErrorCode WholeField(MMCtx *ctx, Vec w, PetscBool with_bc, Vec whole)
-{
-  DM  dm = ctx->op.dm;
-  Vec g, l;
-
-  PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalVector(dm, &g));
-  PetscCall(DMGetLocalVector(dm, &l));
-  PetscCall(MMFEToCartesian(&ctx->op, w, g));
-  PetscCall(VecZeroEntries(l));
-  PetscCall(DMGlobalToLocal(dm, g, INSERT_VALUES, l));
-  if (with_bc) PetscCall(MMLoadsInsertBoundaryValues(&ctx->loads, l, ctx->hist.time));
-  PetscCall(MMInsertMapLocalToGlobal(ctx->out.dm_out, &ctx->out.to_out, l, whole));
-  PetscCall(DMRestoreLocalVector(dm, &l));
-  PetscCall(DMRestoreGlobalVector(dm, &g));
-  PetscFunctionReturn(0);
-}
-
-/* The Cartesian displacement and velocity on every node, Dirichlet data included: the snapshot's and
- * the probes' */
-PetscErrorCode MMOutputWholeState(MMCtx *ctx)
-{
-  MMOutput *o = &ctx->out;
-
-  PetscFunctionBeginUser;
-  PetscCall(WholeField(ctx, ctx->state.u, PETSC_TRUE, o->disp_cart));
-  PetscCall(WholeField(ctx, ctx->state.v, PETSC_FALSE, o->vel_cart));
-  PetscCall(MMLoadsInsertDirichletVelocity(&ctx->loads, o->vel_cart));
+  if (o->n_indexed < o->n_written) PetscCall(MMOutputWriteIndexFile(o));
   PetscFunctionReturn(0);
 }
 
@@ -409,7 +372,7 @@ PetscErrorCode MMOutputFlushFields(MMOutput *o)
   herr_t status;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(o->ev_flush, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(MMIOEvents.flush, 0, 0, 0, 0));
   PetscCall(PetscViewerHDF5GetFileId(o->h5, &fid));
   errno  = 0;
   status = H5Fflush(fid, H5F_SCOPE_GLOBAL);
@@ -417,7 +380,7 @@ PetscErrorCode MMOutputFlushFields(MMOutput *o)
     int err = errno ? errno : SystemReason(o->h5_name);
     SETERRQ(PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not flush %s: %s (H5Fflush failed)", o->h5_name, err ? strerror(err) : "the system gave no reason");
   }
-  PetscCall(PetscLogEventEnd(o->ev_flush, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(MMIOEvents.flush, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -463,35 +426,34 @@ static PetscErrorCode CopyFile(const char src[], const char dst[], MMFileStatus 
  * writes a snapshot can leave the whole file unreadable. So a checkpoint keeps a copy of it, taken
  * when every snapshot up to the checkpoint is on disk; -restart reads the earlier snapshots from
  * the copy (docs/method.md section 9). Collective. */
-PetscErrorCode MMOutputCopySnapshots(MMCtx *ctx)
+PetscErrorCode MMOutputCopySnapshots(MMOutput *o)
 {
-  MMOutput    *o  = &ctx->out;
   MMFileStatus st = {0};
   char         dst[PETSC_MAX_PATH_LEN];
   PetscMPIInt  rank;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(o->ev_copy, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(MMIOEvents.copy, 0, 0, 0, 0));
   PetscCall(MMOutputFlushFields(o));
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
-  PetscCall(PetscSNPrintf(dst, sizeof(dst), "%s/%s", ctx->opt.output_dir, MM_SNAPSHOT_COPY));
+  PetscCall(PetscSNPrintf(dst, sizeof(dst), "%s/%s", o->dir, MM_SNAPSHOT_COPY));
   if (!rank) PetscCall(CopyFile(o->h5_name, dst, &st));
   PetscCall(MMOutputCheckRank0(&st));
-  PetscCall(PetscLogEventEnd(o->ev_copy, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(MMIOEvents.copy, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
 /* After a clean close solution.h5 is whole and holds every snapshot of the last checkpoint: the copy
- * is not needed any more. */
-static PetscErrorCode DropSnapshotCopy(MMCtx *ctx)
+ * is not needed any more, once that checkpoint c is of the last step. */
+static PetscErrorCode DropSnapshotCopy(const MMOutput *o, const MMCheckpoint *c, PetscInt step)
 {
   char        dst[PETSC_MAX_PATH_LEN];
   PetscMPIInt rank;
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
-  if (rank || !ctx->ckpt.written || ctx->ckpt.last_step != ctx->hist.step) PetscFunctionReturn(0);
-  PetscCall(PetscSNPrintf(dst, sizeof(dst), "%s/%s", ctx->opt.output_dir, MM_SNAPSHOT_COPY));
+  if (rank || !c->written || c->last_step != step) PetscFunctionReturn(0);
+  PetscCall(PetscSNPrintf(dst, sizeof(dst), "%s/%s", o->dir, MM_SNAPSHOT_COPY));
   (void)unlink(dst);
   PetscFunctionReturn(0);
 }
@@ -499,21 +461,22 @@ static PetscErrorCode DropSnapshotCopy(MMCtx *ctx)
 /* Each vertex's position among the mesh file's nodes (from 0): PETSc writes the vertices in the
  * partition's order, so this is what matches a vertex across runs on other rank counts, to the
  * file (and -restart's copy of the earlier snapshots). */
-static PetscErrorCode SerialVertexField(MMCtx *ctx, Vec f)
+static PetscErrorCode SerialVertexField(const MMOutput *o, Vec f)
 {
+  const MMCheckpoint *c = o->ckpt;
   PetscSection gs;
   PetscInt     vStart, vEnd, rstart;
   PetscScalar *a;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalSection(ctx->op.dm_scalar, &gs));
-  PetscCall(DMPlexGetDepthStratum(ctx->op.dm_scalar, 0, &vStart, &vEnd));
+  PetscCall(DMGetGlobalSection(o->dm_scalar, &gs));
+  PetscCall(DMPlexGetDepthStratum(o->dm_scalar, 0, &vStart, &vEnd));
   PetscCall(VecGetOwnershipRange(f, &rstart, NULL));
   PetscCall(VecGetArray(f, &a));
   for (PetscInt v = vStart; v < vEnd; ++v) {
     PetscInt goff;
     PetscCall(PetscSectionGetOffset(gs, v, &goff));
-    if (goff >= 0) a[goff - rstart] = (PetscScalar)ctx->ckpt.vertex_file[ctx->ckpt.vertex_orig[v - vStart]];
+    if (goff >= 0) a[goff - rstart] = (PetscScalar)c->vertex_file[c->vertex_orig[v - vStart]];
   }
   PetscCall(VecRestoreArray(f, &a));
   PetscFunctionReturn(0);
@@ -582,16 +545,14 @@ PetscErrorCode MMOutputViewSnapshot(MMOutput *o, PetscViewer viewer, PetscInt st
 }
 
 /* The fields without a time index, written once with the first snapshot: each contact node's
- * obstacle, fixed at set-up (docs/method.md section 8), which every snapshot's grid refers to, and
- * each vertex's serial number. */
-PetscErrorCode MMOutputWriteStaticFields(MMCtx *ctx)
+ * obstacle, fixed at set-up (docs/method.md section 8) and filled when the output opens, which every
+ * snapshot's grid refers to, and each vertex's serial number. */
+PetscErrorCode MMOutputWriteStaticFields(MMOutput *o)
 {
-  MMOutput      *o = &ctx->out;
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
-  PetscCall(MMContactObstacleField(ctx, o->obstacle));
-  PetscCall(SerialVertexField(ctx, o->serial));
+  PetscCall(SerialVertexField(o, o->serial));
   PetscCall(MMOutputHDF5Begin());
   ierr = ViewDataset(o->h5, "/vertex_fields", "contact_obstacle_nodal", o->obstacle, 1, -1);
   if (!ierr) ierr = ViewDataset(o->h5, "/vertex_fields", "serial_vertex_nodal", o->serial, 1, -1);
@@ -600,19 +561,14 @@ PetscErrorCode MMOutputWriteStaticFields(MMCtx *ctx)
   PetscFunctionReturn(0);
 }
 
-/* Writes the current fields as snapshot n_written, flushes them, and only then indexes them. */
-static PetscErrorCode WriteFields(MMCtx *ctx)
+/* Writes the fields the caller filled as snapshot n_written at time t, flushes them, and only then
+ * indexes them. */
+PetscErrorCode MMOutputWriteSnapshot(MMOutput *o, PetscReal t)
 {
-  MMOutput      *o = &ctx->out;
-  PetscReal      t = ctx->hist.time;
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogStagePush(ctx->log.output));
-  PetscCall(MMOutputWholeState(ctx));
-  PetscCall(MMContactBoundaryFields(ctx, o));
-  PetscCall(MMStressCompute(&o->stress, &ctx->op, &ctx->material, o->dm_out, o->disp_cart, PETSC_TRUE));
-  if (!o->static_written) PetscCall(MMOutputWriteStaticFields(ctx));
+  if (!o->static_written) PetscCall(MMOutputWriteStaticFields(o));
   /* /time is written ahead of the fields: the index, not /time, says what is complete */
   PetscCall(MMOutputHDF5Begin());
   ierr = MMOutputViewSnapshot(o, o->h5, o->n_written, t);
@@ -620,8 +576,7 @@ static PetscErrorCode WriteFields(MMCtx *ctx)
   PetscCall(MMOutputFlushFields(o));
   PetscCall(PetscRealloc(sizeof(PetscReal) * (o->n_written + 1), &o->times));
   o->times[o->n_written++] = t;
-  PetscCall(WriteIndex(ctx));
-  PetscCall(PetscLogStagePop());
+  PetscCall(WriteIndex(o));
   PetscFunctionReturn(0);
 }
 
@@ -702,20 +657,20 @@ static PetscBool SameDirectory(const char a[], const char b[])
 
 /* The output directory exists, holds none of this run's names (or, on -restart, the files it
  * continues), and history.csv is open on rank 0. */
-static PetscErrorCode OpenDirectoryAndHistory(MMCtx *ctx)
+static PetscErrorCode OpenDirectoryAndHistory(MMOutput *o)
 {
-  MMOutput    *o  = &ctx->out;
-  MMFileStatus st = {0};
+  const MMCheckpoint *c  = o->ckpt;
+  MMFileStatus        st = {0};
   PetscMPIInt  rank;
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   o->csv_fd = -1;
   if (rank == 0) {
-    PetscCall(MMOutputMakeDirectories(ctx->opt.output_dir, &st));
+    PetscCall(MMOutputMakeDirectories(o->dir, &st));
     /* a restart continues the files of its checkpoint's directory: only another run's move away */
-    if (!st.err && !(ctx->ckpt.restarted && SameDirectory(ctx->opt.output_dir, ctx->ckpt.source_dir))) PetscCall(MMOutputKeepPrevious(ctx->opt.output_dir, &st));
-    if (!st.err && ctx->ckpt.restarted) PetscCall(MMOutputRestartHistory(ctx, &st));
+    if (!st.err && !(c->restarted && SameDirectory(o->dir, c->source_dir))) PetscCall(MMOutputKeepPrevious(o->dir, &st));
+    if (!st.err && c->restarted) PetscCall(MMOutputRestartHistory(o, &st));
     else if (!st.err && (o->csv_fd = open(o->csv_name, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666)) < 0) PetscCall(MMOutputFailed(&st, "create %s", o->csv_name));
   }
   PetscCall(MMOutputCheckRank0(&st));
@@ -723,9 +678,9 @@ static PetscErrorCode OpenDirectoryAndHistory(MMCtx *ctx)
 }
 
 /* Global vertex and cell counts, for the XDMF index. */
-static PetscErrorCode CountMesh(MMCtx *ctx)
+static PetscErrorCode CountMesh(MMOutput *o)
 {
-  DM              dm = ctx->op.dm;
+  DM              dm = o->op->dm;
   PetscSF         sf;
   PetscInt        vStart, vEnd, cStart, cEnd, nleaves, loc[2], glob[2];
   const PetscInt *leaves;
@@ -742,15 +697,14 @@ static PetscErrorCode CountMesh(MMCtx *ctx)
   }
   loc[1] = cEnd - cStart;
   PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)dm)));
-  ctx->out.nv = glob[0];
-  ctx->out.nc = glob[1];
+  o->nv = glob[0];
+  o->nc = glob[1];
   PetscFunctionReturn(0);
 }
 
 /* solution.h5 with the mesh, on disk; the viewer stays open for the snapshots. */
-static PetscErrorCode OpenFields(MMCtx *ctx)
+static PetscErrorCode OpenFields(MMOutput *o)
 {
-  MMOutput      *o = &ctx->out;
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
@@ -759,30 +713,30 @@ static PetscErrorCode OpenFields(MMCtx *ctx)
   PetscCall(MMOutputHDF5End(ierr, "create", o->h5_name));
   PetscCall(PetscViewerPushFormat(o->h5, PETSC_VIEWER_HDF5_XDMF));
   PetscCall(MMOutputHDF5Begin());
-  ierr = MMOutputWriteMesh(ctx, o->h5);
+  ierr = MMOutputWriteMesh(o->op, o->h5);
   PetscCall(MMOutputHDF5End(ierr, "write", o->h5_name));
   PetscCall(MMOutputFlushFields(o));
-  PetscCall(CountMesh(ctx));
+  PetscCall(CountMesh(o));
   PetscFunctionReturn(0);
 }
 
 /* The output vectors: Cartesian fields on a copy of the mesh without constraints, scalars per vertex. */
-static PetscErrorCode CreateFieldVectors(MMCtx *ctx)
+static PetscErrorCode CreateFieldVectors(MMOutput *o)
 {
-  MMOutput    *o = &ctx->out;
+  const MMOperators *op = o->op;
   PetscFE      fe;
   PetscSection s;
   const char  *names[] = {"displacement_x", "displacement_y", "displacement_z"};
 
   PetscFunctionBeginUser;
-  PetscCall(DMClone(ctx->op.dm, &o->dm_out));
-  PetscCall(PetscFECreateLagrange(PETSC_COMM_WORLD, ctx->op.dim, ctx->op.dim, PETSC_TRUE, 1, PETSC_DETERMINE, &fe));
+  PetscCall(DMClone(op->dm, &o->dm_out));
+  PetscCall(PetscFECreateLagrange(PETSC_COMM_WORLD, op->dim, op->dim, PETSC_TRUE, 1, PETSC_DETERMINE, &fe));
   PetscCall(PetscObjectSetName((PetscObject)fe, "displacement"));
   PetscCall(DMSetField(o->dm_out, 0, NULL, (PetscObject)fe));
   PetscCall(PetscFEDestroy(&fe));
   PetscCall(DMCreateDS(o->dm_out));
   PetscCall(DMGetLocalSection(o->dm_out, &s));
-  for (PetscInt c = 0; c < ctx->op.dim; ++c) PetscCall(PetscSectionSetComponentName(s, 0, c, names[c]));
+  for (PetscInt c = 0; c < op->dim; ++c) PetscCall(PetscSectionSetComponentName(s, 0, c, names[c]));
   PetscCall(DMCreateGlobalVector(o->dm_out, &o->disp_cart));
   PetscCall(DMCreateGlobalVector(o->dm_out, &o->vel_cart));
   PetscCall(DMCreateGlobalVector(o->dm_out, &o->traction_t));
@@ -799,7 +753,6 @@ static PetscErrorCode CreateFieldVectors(MMCtx *ctx)
   PetscCall(PetscObjectSetName((PetscObject)o->obstacle, "contact_obstacle"));
   PetscCall(DMCreateGlobalVector(o->dm_scalar, &o->serial));
   PetscCall(PetscObjectSetName((PetscObject)o->serial, "serial_vertex"));
-  PetscCall(MMStressCreate(&ctx->op, &o->stress));
   PetscFunctionReturn(0);
 }
 
@@ -821,65 +774,80 @@ PetscErrorCode MMOutputCheckHDF5Path(MPI_Comm comm, const char option[], const c
   PetscFunctionReturn(0);
 }
 
-/* Checked with the other options, long before the output is opened. */
-PetscErrorCode MMOutputCheckOptions(MPI_Comm comm, const MMOptions *opt)
+/* -output_dir must name a directory whose files' names fit: checked with the options, long before
+ * the output is opened. */
+static PetscErrorCode CheckDirectory(MPI_Comm comm, const char dir[])
 {
   size_t len;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscStrlen(opt->output_dir, &len));
+  PetscCall(PetscStrlen(dir, &len));
   PetscCheck(len > 0, comm, PETSC_ERR_USER_INPUT, "-output_dir is empty: name the directory for history.csv, solution.h5 and solution.xmf (\".\" for the current one)");
   /* room for the longest name written under it, and for Open MPI's file open (MMOutputCheckHDF5Path) */
-  PetscCheck(len + sizeof("/" MM_PREVIOUS "/solution.xmf" MM_XMF_TMP) <= PETSC_MAX_PATH_LEN, comm, PETSC_ERR_USER_INPUT, "-output_dir %s is too long (%d characters at most)", opt->output_dir, (int)(PETSC_MAX_PATH_LEN - sizeof("/" MM_PREVIOUS "/solution.xmf" MM_XMF_TMP)));
-  PetscCall(MMOutputCheckHDF5Path(comm, "-output_dir", opt->output_dir, "/checkpoint.h5.tmp"));
+  PetscCheck(len + sizeof("/" MM_PREVIOUS "/solution.xmf" MM_XMF_TMP) <= PETSC_MAX_PATH_LEN, comm, PETSC_ERR_USER_INPUT, "-output_dir %s is too long (%d characters at most)", dir, (int)(PETSC_MAX_PATH_LEN - sizeof("/" MM_PREVIOUS "/solution.xmf" MM_XMF_TMP)));
+  PetscCall(MMOutputCheckHDF5Path(comm, "-output_dir", dir, "/checkpoint.h5.tmp"));
   PetscFunctionReturn(0);
 }
 
-/* Called last in set-up, once all input is valid: from here on the earlier results are in previous/. */
-PetscErrorCode MMOutputOpen(MMCtx *ctx)
+/* The output's options (README "Output"), each with its check. */
+PetscErrorCode MMOutputSetFromOptions(MPI_Comm comm, MMOutput *o)
 {
-  MMOutput   *o   = &ctx->out;
-  const char *dir = ctx->opt.output_dir;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, NULL, "mmcontact output", "MMOutput");
+  PetscCall(PetscStrcpy(o->dir, "output"));
+  PetscCall(MMOptionsString(PetscOptionsObject, comm, "-output_dir", "Directory for history.csv, solution.h5 and solution.xmf (created if missing; not empty)", o->dir, sizeof(o->dir), NULL));
+  o->every = 10;
+  PetscCall(MMOptionsInt(PetscOptionsObject, comm, "-output_every", "Write the HDF5 fields every k steps (0: only the initial and final state)", &o->every));
+  o->interval = 0;
+  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-output_interval", "Write the HDF5 fields at t = 0, T, 2T, ... (at the first step whose time reaches k T, to 1e-9 dt) and the final state; T > 0 replaces -output_every (0: by steps)", &o->interval));
+  o->history_every = 1;
+  PetscCall(MMOptionsInt(PetscOptionsObject, comm, "-history_every", "Write a history.csv row every N steps (step 0, N, 2N, ...) and at the last step, >= 1", &o->history_every));
+  o->probe_list[0] = 0;
+  PetscCall(MMOptionsString(PetscOptionsObject, comm, "-probes", "Comma-separated physical groups whose mean displacement and velocity (weighted by the nodes' lumped mass) go to history.csv as probe_NAME_ux, ..., probe_NAME_vx, ...", o->probe_list, sizeof(o->probe_list), NULL));
+  PetscOptionsEnd();
+  PetscCheck(o->every >= 0, comm, PETSC_ERR_USER_INPUT, "-output_every %" PetscInt_FMT " must be >= 0", o->every);
+  PetscCheck(o->interval >= 0, comm, PETSC_ERR_USER_INPUT, "-output_interval %g must be >= 0: it is the simulated time between snapshots (0: every -output_every steps)", (double)o->interval);
+  PetscCheck(o->history_every >= 1, comm, PETSC_ERR_USER_INPUT, "-history_every %" PetscInt_FMT " must be >= 1: it is the number of steps between history rows", o->history_every);
+  PetscCall(CheckDirectory(comm, o->dir));
+  PetscFunctionReturn(0);
+}
+
+/* The output's borrowed references: what it writes from (like KSPSetOperators). */
+PetscErrorCode MMOutputSetUp(MMOutput *o, const MMOptions *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, const MMContact *contact, MMLoads *loads, MMCheckpoint *ckpt)
+{
+  PetscFunctionBeginUser;
+  o->opt      = opt;
+  o->op       = op;
+  o->material = material;
+  o->hist     = hist;
+  o->state    = state;
+  o->contact = contact;
+  o->loads   = loads;
+  o->ckpt      = ckpt;
+  o->dm_scalar = op->dm_scalar; /* fem's: one scalar per vertex */
+  PetscFunctionReturn(0);
+}
+
+/* Called last in set-up, once all input is valid: from here on the earlier results are in previous/.
+ * history.csv is open and, unless the run restarts (output_restart.c), solution.h5 holds the mesh;
+ * the field vectors exist. */
+PetscErrorCode MMOutputOpenFiles(MMOutput *o)
+{
+  const char *dir = o->dir;
 
   PetscFunctionBeginUser;
-  o->dm_scalar = ctx->op.dm_scalar;
-  PetscCall(PetscLogEventRegister("MMOutputFlush", PETSC_VIEWER_CLASSID, &o->ev_flush));
-  PetscCall(PetscLogEventRegister("MMOutputIndex", PETSC_VIEWER_CLASSID, &o->ev_index));
-  PetscCall(PetscLogEventRegister("MMOutputCopy", PETSC_VIEWER_CLASSID, &o->ev_copy));
   PetscCall(PetscSNPrintf(o->csv_name, sizeof(o->csv_name), "%s/%s", dir, MMOutputFiles[0]));
   PetscCall(PetscSNPrintf(o->h5_name, sizeof(o->h5_name), "%s/%s", dir, MMOutputFiles[1]));
   PetscCall(PetscSNPrintf(o->xmf_name, sizeof(o->xmf_name), "%s/%s", dir, MMOutputFiles[2]));
-  PetscCall(MMProbesSetUp(ctx)); /* a group the mesh lacks is refused before any file is touched */
-  if (ctx->ckpt.restarted) PetscCall(PetscLogEventBegin(ctx->log.restart_output, 0, 0, 0, 0));
-  PetscCall(OpenDirectoryAndHistory(ctx));
-  if (ctx->ckpt.restarted) {
-    PetscCall(CountMesh(ctx));
-    PetscCall(CreateFieldVectors(ctx));
-    PetscCall(MMOutputRestartFields(ctx));
-    PetscCall(PetscLogEventEnd(ctx->log.restart_output, 0, 0, 0, 0));
+  PetscCall(OpenDirectoryAndHistory(o));
+  if (o->ckpt->restarted) {
+    PetscCall(CountMesh(o));
+    PetscCall(CreateFieldVectors(o));
   } else {
-    PetscCall(CSVHeader(ctx));
-    PetscCall(OpenFields(ctx));
-    PetscCall(CreateFieldVectors(ctx));
+    PetscCall(CSVHeader(o));
+    PetscCall(OpenFields(o));
+    PetscCall(CreateFieldVectors(o));
   }
-  PetscFunctionReturn(0);
-}
-
-/* TS monitor: a history row every -history_every steps, the fields every -output_every steps or
- * -output_interval (output_schedule.c). */
-PetscErrorCode MMOutputMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ptr)
-{
-  MMCtx *ctx = (MMCtx *)ptr;
-
-  PetscFunctionBeginUser;
-  if (!ctx->out.planned) {
-    PetscCall(MMOutputPlanCheck(ctx, ts));
-    ctx->out.planned = PETSC_TRUE;
-  }
-  /* -restart: the row and snapshot of the checkpoint's step are on disk already */
-  if (ctx->ckpt.restarted && step == ctx->ckpt.restart_step) PetscFunctionReturn(0);
-  if (MMOutputHistoryDue(&ctx->opt, step)) PetscCall(CSVRow(ctx));
-  if (step == 0 || MMOutputSnapshotDue(&ctx->opt, step, time, ctx->hist.dt)) PetscCall(WriteFields(ctx));
   PetscFunctionReturn(0);
 }
 
@@ -900,34 +868,29 @@ static PetscErrorCode CloseFiles(MMOutput *o)
   PetscFunctionReturn(0);
 }
 
-/* Writes the final state if the cadence missed it, closes the files and prints the summary. */
-PetscErrorCode MMOutputClose(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wall)
+/* Flushes and closes the files: the index lists every snapshot, and the checkpoint's copy of
+ * solution.h5 goes once the checkpoint c of the last step (step) no longer needs it. */
+PetscErrorCode MMOutputClose(MMOutput *o, const MMCheckpoint *c, PetscInt step)
 {
-  MMOutput  *o = &ctx->out;
-  MMHistory *h = &ctx->hist;
-
   PetscFunctionBeginUser;
-  /* the last step's row, if the cadence missed it (a restart that made no step has it on disk) */
-  if (!MMOutputHistoryDue(&ctx->opt, h->step) && !(ctx->ckpt.restarted && h->step == ctx->ckpt.restart_step)) PetscCall(CSVRow(ctx));
-  if (o->n_written && o->times[o->n_written - 1] != h->time) PetscCall(WriteFields(ctx));
-  PetscCall(MMOutputSyncIndex(ctx));
+  PetscCall(MMOutputSyncIndex(o));
   PetscCall(CloseFiles(o));
-  PetscCall(DropSnapshotCopy(ctx));
-  if (!ctx->opt.quiet) {
-    struct rusage ru;
-    PetscReal     peak, total;
-    getrusage(RUSAGE_SELF, &ru);
-    peak = ru.ru_maxrss / 1024.0; /* kB on Linux */
-    PetscCall(MPIU_Allreduce(&peak, &total, 1, MPIU_REAL, MPIU_SUM, PETSC_COMM_WORLD));
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &peak, 1, MPIU_REAL, MPIU_MAX, PETSC_COMM_WORLD));
-    const PetscInt steps = h->step - (ctx->ckpt.restarted ? ctx->ckpt.restart_step : 0); /* this run's */
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "mmcontact summary: setup %.3f s; %" PetscInt_FMT " steps to t = %g in %.3f s wall (%.4f s/step); peak memory %.1f MiB/rank (%.1f MiB over all ranks); largest balance residual %.3e; largest penetration %.3e (h_c' %.3e)\n", (double)setup, steps, (double)h->time, (double)wall, steps ? (double)(wall / steps) : 0.0, (double)peak, (double)total, (double)h->max_balance, (double)h->max_penetration_run, (double)ctx->contact.h_c));
-    PetscCall(MMProgressMassLine(ctx));
-    PetscCall(MMContactSummary(ctx));
-    PetscCall(MMDeformationSummary(ctx));
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  output: %s, %s (%" PetscInt_FMT " snapshots), %s\n", o->csv_name, o->h5_name, o->n_written, o->xmf_name));
-  }
-  PetscCall(MMStressDestroy(&o->stress));
+  PetscCall(DropSnapshotCopy(o, c, step));
+  PetscFunctionReturn(0);
+}
+
+/* The output's line of the run report: the files and the snapshots written. */
+PetscErrorCode MMOutputView(const MMOutput *o, PetscViewer viewer)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  output: %s, %s (%" PetscInt_FMT " snapshots), %s\n", o->csv_name, o->h5_name, o->n_written, o->xmf_name));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMOutputDestroy(MMOutput *o)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMStressDestroy(&o->stress)); /* fem's stress fields */
   PetscCall(MMProbesDestroy(&o->probes));
   PetscCall(VecDestroy(&o->disp_cart));
   PetscCall(VecDestroy(&o->vel_cart));

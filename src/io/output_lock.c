@@ -22,9 +22,9 @@
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#include "output.h"
+#include "io.h"
 #include "outputimpl.h"
-#include "errors.h"
+#include "sys.h"
 
 #define MM_LOCK_NAME ".mmcontact.lock"
 

@@ -4,7 +4,7 @@
  * with PETSC_VIEWER_HDF5_XDMF writes, from the cell table (src/mesh/cells.c) instead of a
  * transitive closure per cell and a numbering of every face and edge: at 1M dofs DMView took 9 s
  * of the set-up on 2 ranks. */
-#include "output.h"
+#include "io.h"
 #include <petscviewerhdf5.h>
 #include "outputimpl.h"
 #include "fem.h"
@@ -43,11 +43,11 @@ static PetscBool Negative(PetscInt dim, const PetscReal x[][MM_MAX_DIM])
   return (PetscBool)(MMDetInverse(dim, e, NULL) < 0);
 }
 
-static PetscErrorCode WriteCells(MMCtx *ctx, PetscViewer viewer)
+static PetscErrorCode WriteCells(const MMOperators *op, PetscViewer viewer)
 {
-  DM                 dm    = ctx->op.dm;
-  const MMCells     *cells = &ctx->op.cells;
-  const PetscInt     dim = ctx->op.dim, nv = cells->nv;
+  DM                 dm    = op->dm;
+  const MMCells     *cells = &op->cells;
+  const PetscInt     dim = op->dim, nv = cells->nv;
   PetscSection       cs;
   Vec                X;
   IS                 vnum, cellIS;
@@ -92,10 +92,10 @@ static PetscErrorCode WriteCells(MMCtx *ctx, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMOutputWriteMesh(MMCtx *ctx, PetscViewer viewer)
+PetscErrorCode MMOutputWriteMesh(const MMOperators *op, PetscViewer viewer)
 {
   PetscFunctionBeginUser;
-  PetscCall(WriteVertices(ctx->op.dm, viewer));
-  PetscCall(WriteCells(ctx, viewer));
+  PetscCall(WriteVertices(op->dm, viewer));
+  PetscCall(WriteCells(op, viewer));
   PetscFunctionReturn(0);
 }

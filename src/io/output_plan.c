@@ -5,9 +5,8 @@
  * (MMOutputSnapshotFields), their views measured by output_views.c's own code, the index's grids by
  * MMOutputIndexAddGrid, the history's columns from its header, and the steps that write a row or a
  * snapshot from the rules the run applies (MMOutputHistoryDue, MMOutputSnapshotDue). */
-#include "output.h"
+#include "io.h"
 #include "outputimpl.h"
-#include "checkpoint.h"
 #include "mesh.h"
 
 /* Above this many steps the schedule is walked over the first ones only and scaled (about a second
@@ -45,7 +44,7 @@ static PetscErrorCode PlanSteps(TS ts, MMOutputPlan *plan)
  * -ts_max_time shortened onto it under matchstep and a time within 1e-10 of it snapped to it
  * (src/ts/newmark.c, MatchFinalTime and TSStep_Newmark), so that -output_interval's snapshots fall on
  * the run's steps. dt is taken constant: steps a run rejects and retries are not foreseen. */
-static PetscErrorCode PlanSchedule(MMCtx *ctx, TS ts, MMOutputPlan *plan)
+static PetscErrorCode PlanSchedule(const MMOutput *o, TS ts, MMOutputPlan *plan)
 {
   const PetscReal        walk = PetscMin(plan->steps, MM_PLAN_WALK_MAX);
   PetscReal              t = plan->t0, t_end, tol, rows = 0, snaps = 0;
@@ -62,8 +61,8 @@ static PetscErrorCode PlanSchedule(MMCtx *ctx, TS ts, MMOutputPlan *plan)
     if (eft == TS_EXACTFINALTIME_MATCHSTEP && t + h > t_end + tol) h = t_end - t;
     t += h;
     if (PetscAbsReal(t - t_end) <= tol) t = t_end;
-    row_due  = MMOutputHistoryDue(&ctx->opt, step);
-    snap_due = MMOutputSnapshotDue(&ctx->opt, step, t, h);
+    row_due  = MMOutputHistoryDue(o, step);
+    snap_due = MMOutputSnapshotDue(o, step, t, h);
     rows += row_due;
     snaps += snap_due;
   }
@@ -71,8 +70,8 @@ static PetscErrorCode PlanSchedule(MMCtx *ctx, TS ts, MMOutputPlan *plan)
     rows *= plan->steps / walk;
     snaps *= plan->steps / walk;
   }
-  plan->rows      = rows + (ctx->ckpt.restarted ? 0 : 1) + (plan->steps > 0 && !row_due ? 1 : 0);
-  plan->snapshots = snaps + (ctx->ckpt.restarted ? 0 : 1) + (plan->steps > 0 && !snap_due ? 1 : 0);
+  plan->rows      = rows + (o->ckpt->restarted ? 0 : 1) + (plan->steps > 0 && !row_due ? 1 : 0);
+  plan->snapshots = snaps + (o->ckpt->restarted ? 0 : 1) + (plan->steps > 0 && !snap_due ? 1 : 0);
   PetscFunctionReturn(0);
 }
 
@@ -124,13 +123,13 @@ static PetscErrorCode IndexBytes(MMOutput *o, PetscInt dim, PetscReal k0, PetscR
 /* The bytes of history.csv: its header, and each row at most 24 characters a value with its comma
  * (%.16e, the widest format of a row), the probes' columns included (MMOutputCSVHeaderLine names
  * them once -probes is set up). */
-static PetscErrorCode HistoryBytes(MMCtx *ctx, MMOutputPlan *plan)
+static PetscErrorCode HistoryBytes(const MMOutput *o, MMOutputPlan *plan)
 {
   MMLine   header;
   PetscInt ncol = 1;
 
   PetscFunctionBeginUser;
-  PetscCall(MMOutputCSVHeaderLine(ctx, &header));
+  PetscCall(MMOutputCSVHeaderLine(o, &header));
   for (size_t i = 0; i < header.n; ++i) ncol += header.s[i] == ',';
   plan->header_bytes = (PetscReal)header.n;
   plan->row_bytes    = 24.0 * ncol;
@@ -139,21 +138,21 @@ static PetscErrorCode HistoryBytes(MMCtx *ctx, MMOutputPlan *plan)
 }
 
 /* The plan of the run about to start from ts's time and step. Collective (the mesh's sizes). */
-PetscErrorCode MMOutputPlanMake(MMCtx *ctx, TS ts, MMOutputPlan *plan)
+PetscErrorCode MMOutputPlanMake(const MMOutput *o, TS ts, MMOutputPlan *plan)
 {
-  const PetscInt dim = ctx->op.dim;
-  const PetscInt k0  = MMCheckpointSnapshotCount(ctx); /* this run's first snapshot's number */
+  const PetscInt dim = o->op->dim;
+  const PetscInt k0  = MMCheckpointSnapshotCount(o->ckpt); /* this run's first snapshot's number */
   MMOutput       stand_in;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(plan, sizeof(*plan)));
   PetscCall(PlanSteps(ts, plan));
-  PetscCall(PlanSchedule(ctx, ts, plan));
+  PetscCall(PlanSchedule(o, ts, plan));
   /* the output's DMs exist only once it is open: any DM marks a vertex field in the table, NULL a
    * cell field */
   PetscCall(PetscMemzero(&stand_in, sizeof(stand_in)));
-  stand_in.dm_out = stand_in.dm_scalar = stand_in.stress.dm = ctx->op.dm;
-  PetscCall(MMMeshGetSizes(ctx->op.dm, &stand_in.nc, &stand_in.nv));
+  stand_in.dm_out = stand_in.dm_scalar = stand_in.stress.dm = o->op->dm;
+  PetscCall(MMMeshGetSizes(o->op->dm, &stand_in.nc, &stand_in.nv));
   PetscCall(SnapshotBytes(&stand_in, dim, k0, &plan->snapshot_bytes));
   /* once: the coordinates, the cells, each vertex's obstacle and serial number (MMOutputWriteMesh,
    * MMOutputWriteStaticFields) */
@@ -164,6 +163,6 @@ PetscErrorCode MMOutputPlanMake(MMCtx *ctx, TS ts, MMOutputPlan *plan)
   plan->mesh_bytes += (MM_SNAPSHOT_FIELDS + 5) * 3.6e3;
   plan->h5_bytes = plan->mesh_bytes + plan->snapshots * plan->snapshot_bytes;
   PetscCall(IndexBytes(&stand_in, dim, (PetscReal)k0, plan->snapshots, plan->t0, &plan->xmf_bytes));
-  PetscCall(HistoryBytes(ctx, plan));
+  PetscCall(HistoryBytes(o, plan));
   PetscFunctionReturn(0);
 }

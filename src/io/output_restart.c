@@ -20,9 +20,8 @@
 #include <string.h>
 #include <unistd.h>
 #include <petscviewerhdf5.h>
-#include "output.h"
+#include "io.h"
 #include "outputimpl.h"
-#include "checkpoint.h"
 #include "fem.h"
 
 #define MM_TMP ".tmp"
@@ -43,22 +42,22 @@ static long long RowStep(const char *line, ssize_t len)
  * Its header must be this run's and its rows every step 0, e, 2e, ... up to N in order, e =
  * -history_every, with at most the last step of an earlier run in between (a row written at its end,
  * output.c): otherwise it is another run's history, and the restart is refused. */
-PetscErrorCode MMOutputRestartHistory(MMCtx *ctx, MMFileStatus *st)
+PetscErrorCode MMOutputRestartHistory(MMOutput *o, MMFileStatus *st)
 {
-  MMOutput      *o    = &ctx->out;
-  const PetscInt last = ctx->ckpt.restart_step;
+  const MMCheckpoint *c = o->ckpt;
+  const PetscInt last = c->restart_step;
   char           src[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN], *line = NULL;
   size_t         cap = 0;
   ssize_t        len;
   MMLine         header;
   FILE          *f;
-  const PetscInt every = ctx->opt.history_every;
+  const PetscInt every = o->history_every;
   PetscInt       due = 0, prev = -1; /* the next step of the cadence; the last row kept */
   int            fd;
 
   PetscFunctionBeginUser;
-  PetscCall(MMOutputCSVHeaderLine(ctx, &header));
-  PetscCall(PetscSNPrintf(src, sizeof(src), "%s/history.csv", ctx->ckpt.source_dir));
+  PetscCall(MMOutputCSVHeaderLine(o, &header));
+  PetscCall(PetscSNPrintf(src, sizeof(src), "%s/history.csv", c->source_dir));
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s%s", o->csv_name, MM_TMP));
   if (!(f = fopen(src, "r"))) {
     PetscCall(MMOutputFailed(st, "read %s, the history the restart continues", src));
@@ -72,7 +71,7 @@ PetscErrorCode MMOutputRestartHistory(MMCtx *ctx, MMFileStatus *st)
   len = getline(&line, &cap, f);
   if (len != (ssize_t)header.n || memcmp(line, header.s, header.n)) {
     st->err = -1;
-    PetscCall(PetscSNPrintf(st->what, sizeof(st->what), "The history %s has other columns than this run's: it is not of the run that wrote %s (another dimension or other obstacles)", src, ctx->ckpt.file));
+    PetscCall(PetscSNPrintf(st->what, sizeof(st->what), "The history %s has other columns than this run's: it is not of the run that wrote %s (another dimension or other obstacles)", src, c->file));
   } else if (MMOutputWriteAll(fd, line, (size_t)len)) PetscCall(MMOutputFailed(st, "write %s", tmp));
   while (!st->err && due <= last && (len = getline(&line, &cap, f)) > 0) {
     const long long step = RowStep(line, len);
@@ -92,7 +91,7 @@ PetscErrorCode MMOutputRestartHistory(MMCtx *ctx, MMFileStatus *st)
   (void)fclose(f);
   if (!st->err && due <= last) {
     st->err = -1;
-    PetscCall(PetscSNPrintf(st->what, sizeof(st->what), "The history %s has no row for step %" PetscInt_FMT " (its rows in order end at step %" PetscInt_FMT "; the checkpoint %s is at step %" PetscInt_FMT ", -history_every %" PetscInt_FMT "): it is not the history of the run that wrote the checkpoint, or that run had another -history_every", src, due, prev, ctx->ckpt.file, last, every));
+    PetscCall(PetscSNPrintf(st->what, sizeof(st->what), "The history %s has no row for step %" PetscInt_FMT " (its rows in order end at step %" PetscInt_FMT "; the checkpoint %s is at step %" PetscInt_FMT ", -history_every %" PetscInt_FMT "): it is not the history of the run that wrote the checkpoint, or that run had another -history_every", src, due, prev, c->file, last, every));
   }
   if (close(fd) && !st->err) PetscCall(MMOutputFailed(st, "close %s", tmp));
   if (st->err) {
@@ -133,8 +132,9 @@ static PetscErrorCode DatasetShape(MPI_Comm comm, MMOldFields *of, const char pa
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode OldFieldsOpen(MMCtx *ctx, MMOldFields *of)
+static PetscErrorCode OldFieldsOpen(const MMOutput *o, MMOldFields *of)
 {
+  const MMCheckpoint *c = o->ckpt;
   MPI_Comm  comm = PETSC_COMM_WORLD;
   hid_t     dset;
   PetscInt  n, per;
@@ -142,15 +142,15 @@ static PetscErrorCode OldFieldsOpen(MMCtx *ctx, MMOldFields *of)
 
   PetscFunctionBeginUser;
   /* the checkpoint's copy while there is one: solution.h5 itself may have been spoiled by a kill */
-  PetscCall(PetscSNPrintf(of->name, sizeof(of->name), "%s/%s", ctx->ckpt.source_dir, MM_SNAPSHOT_COPY));
-  if (access(of->name, R_OK)) PetscCall(PetscSNPrintf(of->name, sizeof(of->name), "%s/solution.h5", ctx->ckpt.source_dir));
+  PetscCall(PetscSNPrintf(of->name, sizeof(of->name), "%s/%s", c->source_dir, MM_SNAPSHOT_COPY));
+  if (access(of->name, R_OK)) PetscCall(PetscSNPrintf(of->name, sizeof(of->name), "%s/solution.h5", c->source_dir));
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL)); /* HDF5's own printing stays on */
   of->file = H5Fopen(of->name, H5F_ACC_RDONLY, H5P_DEFAULT);
   PetscCall(PetscPopErrorHandler());
   PetscCheck(of->file >= 0, comm, PETSC_ERR_FILE_OPEN, "Could not open %s, the snapshots the restart continues: it is missing or not an HDF5 file", of->name);
   PetscCall(DatasetShape(comm, of, "/vertex_fields/serial_vertex_nodal", &dset, &n, &per));
   of->nv = n;
-  PetscCheck(n == ctx->ckpt.nv_global && per == 1, comm, PETSC_ERR_FILE_UNEXPECTED, "%s has %" PetscInt_FMT " vertices, the mesh has %" PetscInt_FMT ": it is not the output of the run that wrote the checkpoint", of->name, n, ctx->ckpt.nv_global);
+  PetscCheck(n == c->nv_global && per == 1, comm, PETSC_ERR_FILE_UNEXPECTED, "%s has %" PetscInt_FMT " vertices, the mesh has %" PetscInt_FMT ": it is not the output of the run that wrote the checkpoint", of->name, n, c->nv_global);
   PetscCall(PetscMalloc1(n, &serial));
   PetscCall(PetscMalloc2(n, &of->row, n * 6, &of->slab)); /* the widest field: the stress tensor */
   PetscCheck(H5Dread(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, serial) >= 0, comm, PETSC_ERR_FILE_READ, "Could not read the serial vertex numbers of %s", of->name);
@@ -158,10 +158,10 @@ static PetscErrorCode OldFieldsOpen(MMCtx *ctx, MMOldFields *of)
   /* the field holds each vertex's position in the mesh file: back to serial-mesh numbers */
   {
     PetscInt nfile = 0, *serial_of;
-    for (PetscInt k = 0; k < n; ++k) nfile = PetscMax(nfile, ctx->ckpt.vertex_file[k] + 1);
+    for (PetscInt k = 0; k < n; ++k) nfile = PetscMax(nfile, c->vertex_file[k] + 1);
     PetscCall(PetscMalloc1(nfile, &serial_of));
     for (PetscInt p = 0; p < nfile; ++p) serial_of[p] = -1;
-    for (PetscInt k = 0; k < n; ++k) serial_of[ctx->ckpt.vertex_file[k]] = k;
+    for (PetscInt k = 0; k < n; ++k) serial_of[c->vertex_file[k]] = k;
     for (PetscInt i = 0; i < n; ++i) of->row[i] = -1;
     for (PetscInt i = 0; i < n; ++i) {
       const PetscInt p = (PetscInt)serial[i], s = p >= 0 && p < nfile ? serial_of[p] : -1;
@@ -204,7 +204,7 @@ static PetscErrorCode OldFieldsRead(MMOldFields *of, const char path[], PetscInt
 }
 
 /* The old snapshot in of->slab into this run's vector on dm (nc values per vertex), vertex by vertex. */
-static PetscErrorCode FillFromOld(MMCtx *ctx, MMOldFields *of, DM dm, PetscInt nc, Vec f)
+static PetscErrorCode FillFromOld(const MMOutput *o, MMOldFields *of, DM dm, PetscInt nc, Vec f)
 {
   PetscSection gs;
   PetscInt     vStart, vEnd, rstart;
@@ -219,7 +219,7 @@ static PetscErrorCode FillFromOld(MMCtx *ctx, MMOldFields *of, DM dm, PetscInt n
     PetscInt goff, row;
     PetscCall(PetscSectionGetOffset(gs, v, &goff));
     if (goff < 0) continue;
-    row = of->row[ctx->ckpt.vertex_orig[v - vStart]];
+    row = of->row[o->ckpt->vertex_orig[v - vStart]];
     for (PetscInt c = 0; c < nc; ++c) a[goff - rstart + c] = of->slab[row * nc + c];
   }
   PetscCall(VecRestoreArray(f, &a));
@@ -227,7 +227,7 @@ static PetscErrorCode FillFromOld(MMCtx *ctx, MMOldFields *of, DM dm, PetscInt n
 }
 
 /* The checkpoint's times against the old file's: the snapshots are of the checkpoint's run. */
-static PetscErrorCode CheckOldTimes(MMCtx *ctx, MMOldFields *of, PetscInt n, const PetscReal times[])
+static PetscErrorCode CheckOldTimes(const MMOutput *o, MMOldFields *of, PetscInt n, const PetscReal times[])
 {
   hid_t    dset;
   PetscInt ntime, per;
@@ -236,20 +236,19 @@ static PetscErrorCode CheckOldTimes(MMCtx *ctx, MMOldFields *of, PetscInt n, con
   PetscFunctionBeginUser;
   if (!n) PetscFunctionReturn(0);
   PetscCall(DatasetShape(PETSC_COMM_WORLD, of, "/time", &dset, &ntime, &per));
-  PetscCheck(ntime >= n && per == 1, PETSC_COMM_WORLD, PETSC_ERR_FILE_UNEXPECTED, "%s holds %" PetscInt_FMT " snapshot times, the checkpoint %s counts %" PetscInt_FMT ": it is not the output of the run that wrote the checkpoint", of->name, ntime, ctx->ckpt.file, n);
+  PetscCheck(ntime >= n && per == 1, PETSC_COMM_WORLD, PETSC_ERR_FILE_UNEXPECTED, "%s holds %" PetscInt_FMT " snapshot times, the checkpoint %s counts %" PetscInt_FMT ": it is not the output of the run that wrote the checkpoint", of->name, ntime, o->ckpt->file, n);
   PetscCall(PetscMalloc1(ntime, &t));
   PetscCheck(H5Dread(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, t) >= 0, PETSC_COMM_WORLD, PETSC_ERR_FILE_READ, "Could not read /time from %s", of->name);
   (void)H5Dclose(dset);
-  for (PetscInt k = 0; k < n; ++k) PetscCheck(t[k] == times[k], PETSC_COMM_WORLD, PETSC_ERR_FILE_UNEXPECTED, "Snapshot %" PetscInt_FMT " of %s is at t = %.16g, the checkpoint %s has it at t = %.16g: it is not the output of the run that wrote the checkpoint", k, of->name, (double)t[k], ctx->ckpt.file, (double)times[k]);
+  for (PetscInt k = 0; k < n; ++k) PetscCheck(t[k] == times[k], PETSC_COMM_WORLD, PETSC_ERR_FILE_UNEXPECTED, "Snapshot %" PetscInt_FMT " of %s is at t = %.16g, the checkpoint %s has it at t = %.16g: it is not the output of the run that wrote the checkpoint", k, of->name, (double)t[k], o->ckpt->file, (double)times[k]);
   PetscCall(PetscFree(t));
   PetscFunctionReturn(0);
 }
 
 /* solution.h5 of this run: the mesh, then the checkpoint's snapshots copied from the old file. */
-PetscErrorCode MMOutputRestartFields(MMCtx *ctx)
+PetscErrorCode MMOutputRestartFields(MMOutput *o)
 {
-  MMOutput      *o         = &ctx->out;
-  const PetscInt dim       = ctx->op.dim;
+  const PetscInt dim       = o->op->dim;
   MMSnapshotField f[MM_SNAPSHOT_FIELDS];
   MMOldFields    of        = {0};
   MMFileStatus   st        = {0};
@@ -261,16 +260,16 @@ PetscErrorCode MMOutputRestartFields(MMCtx *ctx)
 
   PetscFunctionBeginUser;
   MMOutputSnapshotFields(o, dim, f);
-  PetscCall(MMCheckpointSnapshots(ctx, &n, &times));
-  PetscCall(OldFieldsOpen(ctx, &of));
-  PetscCall(CheckOldTimes(ctx, &of, n, times));
+  PetscCall(MMCheckpointSnapshots(o->ckpt, &n, &times));
+  PetscCall(OldFieldsOpen(o, &of));
+  PetscCall(CheckOldTimes(o, &of, n, times));
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s%s", o->h5_name, MM_TMP));
   PetscCall(MMOutputHDF5Begin());
   ierr = PetscViewerHDF5Open(PETSC_COMM_WORLD, tmp, FILE_MODE_WRITE, &o->h5);
   PetscCall(MMOutputHDF5End(ierr, "create", tmp));
   PetscCall(PetscViewerPushFormat(o->h5, PETSC_VIEWER_HDF5_XDMF));
   PetscCall(MMOutputHDF5Begin());
-  ierr = DMView(ctx->op.dm, o->h5);
+  ierr = DMView(o->op->dm, o->h5);
   PetscCall(MMOutputHDF5End(ierr, "write", tmp));
   for (PetscInt k = 0; k < n; ++k) {
     /* the vertex fields by the vertices' serial numbers; the cells of this partition are not the
@@ -281,10 +280,10 @@ PetscErrorCode MMOutputRestartFields(MMCtx *ctx)
       if (!f[i].dm) continue;
       PetscCall(PetscSNPrintf(path, sizeof(path), "/vertex_fields/%s", f[i].dataset));
       PetscCall(OldFieldsRead(&of, path, k, f[i].ncomp));
-      PetscCall(FillFromOld(ctx, &of, f[i].dm, f[i].ncomp, f[i].vec));
+      PetscCall(FillFromOld(o, &of, f[i].dm, f[i].ncomp, f[i].vec));
     }
-    PetscCall(MMStressCompute(&o->stress, &ctx->op, &ctx->material, o->dm_out, o->disp_cart, PETSC_FALSE));
-    if (!o->static_written) PetscCall(MMOutputWriteStaticFields(ctx));
+    PetscCall(MMStressCompute(&o->stress, o->op, o->material, o->dm_out, o->disp_cart, PETSC_FALSE));
+    if (!o->static_written) PetscCall(MMOutputWriteStaticFields(o));
     PetscCall(MMOutputHDF5Begin());
     ierr = MMOutputViewSnapshot(o, o->h5, k, times[k]);
     PetscCall(MMOutputHDF5End(ierr, "write", tmp));
@@ -296,9 +295,9 @@ PetscErrorCode MMOutputRestartFields(MMCtx *ctx)
   o->n_written = n;
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   for (PetscInt k = 0; !rank && k < n; ++k) PetscCall(MMOutputIndexAddGrid(o, dim, k, times[k]));
-  if (n) PetscCall(MMOutputWriteIndexFile(ctx));
+  if (n) PetscCall(MMOutputWriteIndexFile(o));
   if (!rank && rename(tmp, o->h5_name)) PetscCall(MMOutputFailed(&st, "rename %s to %s", tmp, o->h5_name));
   PetscCall(MMOutputCheckRank0(&st));
-  PetscCall(MMOutputCopySnapshots(ctx)); /* the checkpoint this run continues now counts on this file */
+  PetscCall(MMOutputCopySnapshots(o)); /* the checkpoint this run continues now counts on this file */
   PetscFunctionReturn(0);
 }

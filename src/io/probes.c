@@ -12,14 +12,13 @@
  * columns when the run's M* is M (-mass standard); they are M*'s otherwise (README "History
  * columns"). */
 #include "outputimpl.h"
-#include "fem.h"
 #include "mesh.h"
 
 /* 1 on the group's vertices (the closure of the points its label marks), on every rank that has
  * them: a vertex this rank owns may be marked only through another rank's cell. */
-static PetscErrorCode GroupVertexFlags(MMCtx *ctx, const char name[], Vec flags)
+static PetscErrorCode GroupVertexFlags(const MMOutput *o, const char name[], Vec flags)
 {
-  DM           dm = ctx->op.dm, dms = ctx->op.dm_scalar;
+  DM           dm = o->op->dm, dms = o->dm_scalar;
   DMLabel      label;
   Vec          loc;
   PetscScalar *f;
@@ -53,10 +52,10 @@ static PetscErrorCode GroupVertexFlags(MMCtx *ctx, const char name[], Vec flags)
 }
 
 /* Group g's owned vertices and their masses appended to the tables. */
-static PetscErrorCode AddGroup(MMCtx *ctx, PetscInt g, Vec flags, Vec mloc, PetscInt *cap)
+static PetscErrorCode AddGroup(MMOutput *o, PetscInt g, Vec flags, Vec mloc, PetscInt *cap)
 {
-  MMProbes          *pr  = &ctx->out.probes;
-  DM                 dms = ctx->op.dm_scalar;
+  MMProbes          *pr  = &o->probes;
+  DM                 dms = o->dm_scalar;
   PetscSection       gs;
   const PetscScalar *f, *m;
   PetscInt           vStart, vEnd, rstart, k = pr->start[g];
@@ -89,58 +88,56 @@ static PetscErrorCode AddGroup(MMCtx *ctx, PetscInt g, Vec flags, Vec mloc, Pets
   PetscFunctionReturn(0);
 }
 
-/* Reads -probes and finds each group's nodes: before the output is opened, so that a group the mesh
- * lacks is refused with the other input. */
-PetscErrorCode MMProbesSetUp(MMCtx *ctx)
+/* Finds each -probes group's nodes and their lumped masses (mloc, local on dm_scalar; the caller's
+ * MMFEVertexMasses): before the output is opened, so that a group the mesh lacks is refused with the
+ * other input. */
+PetscErrorCode MMProbesSetUp(MMOutput *o, Vec mloc)
 {
-  MMProbes *pr   = &ctx->out.probes;
+  MMProbes *pr   = &o->probes;
   MPI_Comm  comm = PETSC_COMM_WORLD;
   char    **names;
   int       n;
   PetscInt  cap = 0;
-  Vec       flags, mloc;
+  Vec       flags;
 
   PetscFunctionBeginUser;
-  if (!ctx->opt.probes[0]) PetscFunctionReturn(0);
-  PetscCall(PetscStrToArray(ctx->opt.probes, ',', &n, &names));
+  if (!o->probe_list[0]) PetscFunctionReturn(0);
+  PetscCall(PetscStrToArray(o->probe_list, ',', &n, &names));
   pr->n = n;
   PetscCall(PetscCalloc4(n, &pr->name, n + 1, &pr->start, n, &pr->mass, 2 * MM_MAX_DIM * n, &pr->mean));
   pr->vertex = NULL; /* grown by AddGroup */
   pr->weight = NULL;
-  PetscCall(DMGetGlobalVector(ctx->op.dm_scalar, &flags));
-  PetscCall(DMGetLocalVector(ctx->op.dm_scalar, &mloc));
-  PetscCall(MMFEVertexMasses(&ctx->op, &ctx->material, mloc));
+  PetscCall(DMGetGlobalVector(o->dm_scalar, &flags));
   for (PetscInt g = 0; g < n; ++g) {
-    PetscCheck(names[g][0], comm, PETSC_ERR_USER_INPUT, "-probes %s has an empty name: give physical group names separated by commas", ctx->opt.probes);
+    PetscCheck(names[g][0], comm, PETSC_ERR_USER_INPUT, "-probes %s has an empty name: give physical group names separated by commas", o->probe_list);
     for (PetscInt h = 0; h < g; ++h) PetscCheck(strcmp(names[g], names[h]), comm, PETSC_ERR_USER_INPUT, "-probes names the group %s twice: its columns would be repeated", names[g]);
     PetscCall(PetscStrncpy(pr->name[g], names[g], sizeof(pr->name[g])));
-    PetscCall(GroupVertexFlags(ctx, names[g], flags));
-    PetscCall(AddGroup(ctx, g, flags, mloc, &cap));
+    PetscCall(GroupVertexFlags(o, names[g], flags));
+    PetscCall(AddGroup(o, g, flags, mloc, &cap));
   }
-  PetscCall(DMRestoreLocalVector(ctx->op.dm_scalar, &mloc));
-  PetscCall(DMRestoreGlobalVector(ctx->op.dm_scalar, &flags));
+  PetscCall(DMRestoreGlobalVector(o->dm_scalar, &flags));
   PetscCall(PetscStrToArrayDestroy(n, names));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, pr->mass, n, MPIU_REAL, MPIU_SUM, comm));
   for (PetscInt g = 0; g < n; ++g) PetscCheck(pr->mass[g] > 0, comm, PETSC_ERR_USER_INPUT, "-probes: the group %s has no nodes with mass", pr->name[g]);
   PetscFunctionReturn(0);
 }
 
-/* The means of the current state, from the whole Cartesian fields (MMOutputWholeState). Collective. */
-PetscErrorCode MMProbesEvaluate(MMCtx *ctx)
+/* The means of the current state, from the whole Cartesian fields in disp_cart and vel_cart.
+ * Collective. */
+PetscErrorCode MMProbesEvaluate(MMOutput *o)
 {
-  MMProbes          *pr  = &ctx->out.probes;
-  const PetscInt     dim = ctx->op.dim;
+  MMProbes          *pr  = &o->probes;
+  const PetscInt     dim = o->op->dim;
   PetscSection       gs;
   const PetscScalar *u, *v;
   PetscInt           rstart;
 
   PetscFunctionBeginUser;
   if (!pr->n) PetscFunctionReturn(0);
-  PetscCall(MMOutputWholeState(ctx));
-  PetscCall(DMGetGlobalSection(ctx->out.dm_out, &gs));
-  PetscCall(VecGetOwnershipRange(ctx->out.disp_cart, &rstart, NULL));
-  PetscCall(VecGetArrayRead(ctx->out.disp_cart, &u));
-  PetscCall(VecGetArrayRead(ctx->out.vel_cart, &v));
+  PetscCall(DMGetGlobalSection(o->dm_out, &gs));
+  PetscCall(VecGetOwnershipRange(o->disp_cart, &rstart, NULL));
+  PetscCall(VecGetArrayRead(o->disp_cart, &u));
+  PetscCall(VecGetArrayRead(o->vel_cart, &v));
   for (PetscInt g = 0; g < pr->n; ++g) {
     PetscReal *s = pr->mean + 2 * dim * g;
     for (PetscInt d = 0; d < 2 * dim; ++d) s[d] = 0;
@@ -153,8 +150,8 @@ PetscErrorCode MMProbesEvaluate(MMCtx *ctx)
       }
     }
   }
-  PetscCall(VecRestoreArrayRead(ctx->out.vel_cart, &v));
-  PetscCall(VecRestoreArrayRead(ctx->out.disp_cart, &u));
+  PetscCall(VecRestoreArrayRead(o->vel_cart, &v));
+  PetscCall(VecRestoreArrayRead(o->disp_cart, &u));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, pr->mean, 2 * dim * pr->n, MPIU_REAL, MPIU_SUM, PETSC_COMM_WORLD));
   for (PetscInt g = 0; g < pr->n; ++g)
     for (PetscInt d = 0; d < 2 * dim; ++d) pr->mean[2 * dim * g + d] /= pr->mass[g];

@@ -4,11 +4,31 @@
  * Both go to rank 0 through PetscPrintf; -quiet turns both off. */
 #include <stdlib.h>
 #include <petsc/private/pcimpl.h> /* pc->setupcalled */
-#include "progress.h"
+#include "io.h"
+#include "sys.h"
 #include "contact.h"
 #include "mesh.h"
 #include "fem.h"
-#include "damping.h"
+
+/* Rayleigh damping is on. */
+static PetscBool DampingOn(const MMProgress *pg)
+{
+  return (PetscBool)(pg->damping->alpha != 0 || pg->damping->beta != 0);
+}
+
+/* The progress's borrowed references: what the start-up report and the progress lines describe. */
+PetscErrorCode MMProgressSetUp(MMProgress *pg, const MMOptions *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, const MMContact *contact, const MMDamping *damping)
+{
+  PetscFunctionBeginUser;
+  pg->opt       = opt;
+  pg->op        = op;
+  pg->material  = material;
+  pg->hist      = hist;
+  pg->state     = state;
+  pg->contact   = contact;
+  pg->damping   = damping;
+  PetscFunctionReturn(0);
+}
 
 /* The options files of the run, as given on the command line. PETSc reads -options_file while it
  * starts and keeps only the options inside, not the option itself, so the arguments are read
@@ -100,9 +120,8 @@ static PetscErrorCode MumpsOrderingText(PC pc, MatSolverType package, char text[
 /* The K~ solver as the objects have it after set-up, e.g. "preonly + cholesky (mumps, SCOTCH
  * ordering), prefix contact_K_": the Krylov method, the PC and, for a factorization, the package
  * that computes it. */
-static PetscErrorCode SolverText(MMCtx *ctx, char text[], size_t len)
+static PetscErrorCode SolverText(KSP krylov, KSP pc_ksp, char text[], size_t len)
 {
-  KSP           krylov, pc_ksp;
   PC            pc;
   KSPType       ktype;
   PCType        ptype;
@@ -113,7 +132,6 @@ static PetscErrorCode SolverText(MMCtx *ctx, char text[], size_t len)
   PetscMPIInt   size;
 
   PetscFunctionBeginUser;
-  PetscCall(MMContactGetStepKSP(ctx, &krylov, &pc_ksp));
   PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)krylov), &size));
   PetscCall(KSPGetType(krylov, &ktype));
   PetscCall(KSPGetOptionsPrefix(krylov, &kprefix));
@@ -141,7 +159,7 @@ static PetscErrorCode SolverText(MMCtx *ctx, char text[], size_t len)
 
 /* Line 1, the case and the mesh: cells, vertices, dofs (the free ones, the unknowns of the steps)
  * and ranks. */
-static PetscErrorCode HeaderMesh(MMCtx *ctx)
+static PetscErrorCode HeaderMesh(MMProgress *pg)
 {
   MPI_Comm    comm = PETSC_COMM_WORLD;
   char        name[PETSC_MAX_PATH_LEN], fixed[64] = "";
@@ -150,19 +168,19 @@ static PetscErrorCode HeaderMesh(MMCtx *ctx)
 
   PetscFunctionBeginUser;
   PetscCall(CaseName(name, sizeof(name)));
-  PetscCall(MMMeshGetSizes(ctx->op.dm, &ncells, &nvertices));
-  PetscCall(VecGetSize(ctx->state.u, &ndofs));
+  PetscCall(MMMeshGetSizes(pg->op->dm, &ncells, &nvertices));
+  PetscCall(VecGetSize(pg->state->u, &ndofs));
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  if (ndofs < ctx->op.dim * nvertices) PetscCall(PetscSNPrintf(fixed, sizeof(fixed), " (and %" PetscInt_FMT " fixed by -dirichlet)", ctx->op.dim * nvertices - ndofs));
-  PetscCall(PetscPrintf(comm, "mmcontact: case %s; mesh %s, %" PetscInt_FMT "D: %" PetscInt_FMT " cells, %" PetscInt_FMT " vertices, %" PetscInt_FMT " dofs%s; %d rank%s\n", name, ctx->opt.mesh_file, ctx->op.dim, ncells, nvertices, ndofs, fixed, size, size == 1 ? "" : "s"));
+  if (ndofs < pg->op->dim * nvertices) PetscCall(PetscSNPrintf(fixed, sizeof(fixed), " (and %" PetscInt_FMT " fixed by -dirichlet)", pg->op->dim * nvertices - ndofs));
+  PetscCall(PetscPrintf(comm, "mmcontact: case %s; mesh %s, %" PetscInt_FMT "D: %" PetscInt_FMT " cells, %" PetscInt_FMT " vertices, %" PetscInt_FMT " dofs%s; %d rank%s\n", name, pg->opt->mesh_file, pg->op->dim, ncells, nvertices, ndofs, fixed, size, size == 1 ? "" : "s"));
   PetscFunctionReturn(0);
 }
 
 /* -bodies: one line per body, its cells, material, wave speeds and mass; the CFL number takes the
  * largest c_p (docs/method.md section 2, "Bodies"). */
-static PetscErrorCode HeaderBodies(MMCtx *ctx)
+static PetscErrorCode HeaderBodies(MMProgress *pg)
 {
-  const MMMaterial *mat = &ctx->material;
+  const MMMaterial *mat = pg->material;
 
   PetscFunctionBeginUser;
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  material: %" PetscInt_FMT " bod%s (-bodies); the largest wave speed, c_p = %.4g, sets c_p dt / h_c'\n", mat->n_bodies, mat->n_bodies > 1 ? "ies" : "y", (double)mat->c_p_max));
@@ -175,11 +193,11 @@ static PetscErrorCode HeaderBodies(MMCtx *ctx)
 
 /* Lines 2 and 3, the material and the time step: the wave speeds and the contact CFL number of
  * Theorem 4.2, c_p dt / h_c'; and the Rayleigh damping when there is one. */
-static PetscErrorCode HeaderPhysics(MMCtx *ctx, TS ts)
+static PetscErrorCode HeaderPhysics(MMProgress *pg, TS ts)
 {
   MPI_Comm        comm = PETSC_COMM_WORLD;
-  const MMOptions *opt = &ctx->opt;
-  const PetscReal c_s  = PetscSqrtReal(PetscRealPart(ctx->op.constants[MM_C_MU]) / opt->rho), h_c = ctx->contact.h_c;
+  const MMOptions *opt = pg->opt;
+  const PetscReal c_s  = PetscSqrtReal(PetscRealPart(pg->op->constants[MM_C_MU]) / opt->rho), h_c = pg->contact->h_c;
   PetscReal       dt, t_end;
   PetscInt        max_steps;
   char            steps[64] = "", cfl[128];
@@ -189,17 +207,17 @@ static PetscErrorCode HeaderPhysics(MMCtx *ctx, TS ts)
   PetscCall(TSGetMaxTime(ts, &t_end));
   PetscCall(TSGetMaxSteps(ts, &max_steps));
   if (max_steps < PETSC_MAX_INT) PetscCall(PetscSNPrintf(steps, sizeof(steps), " or %" PetscInt_FMT " steps", max_steps));
-  if (h_c > 0) PetscCall(PetscSNPrintf(cfl, sizeof(cfl), "h_c' = %.4g, c_p dt / h_c' = %.3g", (double)h_c, (double)(ctx->op.c_p * dt / h_c)));
+  if (h_c > 0) PetscCall(PetscSNPrintf(cfl, sizeof(cfl), "h_c' = %.4g, c_p dt / h_c' = %.3g", (double)h_c, (double)(pg->op->c_p * dt / h_c)));
   else PetscCall(PetscStrncpy(cfl, "no contact boundary", sizeof(cfl)));
-  if (!ctx->material.named) PetscCall(PetscPrintf(comm, "  material: E = %.6g, nu = %.6g, rho = %.6g; waves c_p = %.4g, c_s = %.4g\n", (double)opt->E, (double)opt->nu, (double)opt->rho, (double)ctx->op.c_p, (double)c_s));
-  else PetscCall(HeaderBodies(ctx));
+  if (!pg->material->named) PetscCall(PetscPrintf(comm, "  material: E = %.6g, nu = %.6g, rho = %.6g; waves c_p = %.4g, c_s = %.4g\n", (double)opt->E, (double)opt->nu, (double)opt->rho, (double)pg->op->c_p, (double)c_s));
+  else PetscCall(HeaderBodies(pg));
   PetscCall(PetscPrintf(comm, "  time: dt = %.6g to t = %.6g%s; %s\n", (double)dt, (double)t_end, steps, cfl));
-  if (MMDampingOn(ctx)) {
+  if (DampingOn(pg)) {
     char ratio[128] = "";
     if (opt->damping_ratio_set) PetscCall(PetscSNPrintf(ratio, sizeof(ratio), " (-damping_ratio %.6g at %.6g and %.6g Hz)", (double)opt->damping_ratio, (double)opt->damping_freq[0], (double)opt->damping_freq[1]));
     /* B is K unless the massless dofs were condensed out of it (docs/method.md section 3) */
-    const char *B = (ctx->damping.B && ctx->damping.B != ctx->op.K) ? "B (K without the massless contact-normal dofs)" : "K";
-    PetscCall(PetscPrintf(comm, "  damping: Rayleigh C = alpha M* + beta %s, alpha = %.10g 1/s, beta = %.10g s%s\n", B, (double)ctx->damping.alpha, (double)ctx->damping.beta, ratio));
+    const char *B = (pg->damping->B && pg->damping->B != pg->op->K) ? "B (K without the massless contact-normal dofs)" : "K";
+    PetscCall(PetscPrintf(comm, "  damping: Rayleigh C = alpha M* + beta %s, alpha = %.10g 1/s, beta = %.10g s%s\n", B, (double)pg->damping->alpha, (double)pg->damping->beta, ratio));
   }
   PetscFunctionReturn(0);
 }
@@ -207,70 +225,69 @@ static PetscErrorCode HeaderPhysics(MMCtx *ctx, TS ts)
 /* Line 6 of the start-up report, and a line of the closing summary: the masses, M's total, and M*'s for a rigid translation along each axis (the modified
  * mass lacks the contact nodes' normal masses; the redistributed one has them back, and its moments
  * are M's, docs/method.md section 2). */
-PetscErrorCode MMProgressMassLine(MMCtx *ctx)
+PetscErrorCode MMProgressMassLine(const MMProgress *pg)
 {
-  const PetscInt dim = ctx->op.dim;
+  const PetscInt dim = pg->op->dim;
   char           star[128] = "", moments[512] = "", unreachable[160] = "";
 
   PetscFunctionBeginUser;
   for (PetscInt d = 0; d < dim; ++d) {
     size_t len;
     PetscCall(PetscStrlen(star, &len));
-    PetscCall(PetscSNPrintf(star + len, sizeof(star) - len, "%s%c %.10g", d ? ", " : "", "xyz"[d], (double)ctx->op.mass_star[d * dim + d]));
+    PetscCall(PetscSNPrintf(star + len, sizeof(star) - len, "%s%c %.10g", d ? ", " : "", "xyz"[d], (double)pg->op->mass_star[d * dim + d]));
   }
-  if (ctx->op.mass_moment_unreachable > 1e-14) PetscCall(PetscSNPrintf(unreachable, sizeof(unreachable), " (and %.1e in the trace of the translation-rotation block, out of reach: docs/method.md section 2)", (double)ctx->op.mass_moment_unreachable));
-  if (MMFEHasMasslessDofs(&ctx->op) && ctx->op.mass_type == MM_MASS_REDISTRIBUTED) {
+  if (pg->op->mass_moment_unreachable > 1e-14) PetscCall(PetscSNPrintf(unreachable, sizeof(unreachable), " (and %.1e in the trace of the translation-rotation block, out of reach: docs/method.md section 2)", (double)pg->op->mass_moment_unreachable));
+  if (MMFEHasMasslessDofs(pg->op) && pg->op->mass_type == MM_MASS_REDISTRIBUTED) {
     const char *which = "moments";
     char        bounded[160] = "";
     /* a coarse mesh: the bounded correction, and perhaps the inertia left (docs/method.md section 2) */
-    if (ctx->op.mass_moments < MMFENumRigidModes(dim)) {
+    if (pg->op->mass_moments < MMFENumRigidModes(dim)) {
       which = "total mass and first moments";
-      PetscCall(PetscSNPrintf(bounded, sizeof(bounded), "; bounded correction, the inertia off by %.2g of the mass", (double)ctx->op.mass_inertia_mismatch));
-    } else if (ctx->op.mass_bounded) PetscCall(PetscStrncpy(bounded, "; bounded correction", sizeof(bounded)));
-    PetscCall(PetscSNPrintf(moments, sizeof(moments), "; M*'s %s equal M's to %.1e (largest node correction %.3g of its mass%s)%s", which, (double)ctx->op.mass_moment_mismatch, (double)ctx->op.mass_correction, bounded, unreachable));
+      PetscCall(PetscSNPrintf(bounded, sizeof(bounded), "; bounded correction, the inertia off by %.2g of the mass", (double)pg->op->mass_inertia_mismatch));
+    } else if (pg->op->mass_bounded) PetscCall(PetscStrncpy(bounded, "; bounded correction", sizeof(bounded)));
+    PetscCall(PetscSNPrintf(moments, sizeof(moments), "; M*'s %s equal M's to %.1e (largest node correction %.3g of its mass%s)%s", which, (double)pg->op->mass_moment_mismatch, (double)pg->op->mass_correction, bounded, unreachable));
   }
   /* M is over the free dofs: a node held by -dirichlet is the support's, outside the system */
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  mass: total of M %.10g%s; of M* along %s%s\n", (double)ctx->op.mass_M, ctx->opt.n_dirichlet ? " (without the dofs held by -dirichlet)" : "", star, moments));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  mass: total of M %.10g%s; of M* along %s%s\n", (double)pg->op->mass_M, pg->opt->n_dirichlet ? " (without the dofs held by -dirichlet)" : "", star, moments));
   PetscFunctionReturn(0);
 }
 
 /* Lines 4 and 5, contact and solvers: the contact nodes and obstacles, the mass, friction, the
  * contact formulation and the K~ solver. */
-static PetscErrorCode HeaderContact(MMCtx *ctx)
+static PetscErrorCode HeaderContact(MMProgress *pg, KSP krylov, KSP pc_ksp)
 {
   MPI_Comm         comm = PETSC_COMM_WORLD;
-  const MMOptions *opt  = &ctx->opt;
+  const MMOptions *opt  = pg->opt;
   char             obstacles[512], friction[128], solver[256], progress[64] = "no progress lines";
   const char      *products = "";
 
   PetscFunctionBeginUser;
   PetscCall(ObstacleList(opt, obstacles, sizeof(obstacles)));
   PetscCall(FrictionText(opt, friction, sizeof(friction)));
-  PetscCall(SolverText(ctx, solver, sizeof(solver)));
+  PetscCall(SolverText(krylov, pc_ksp, solver, sizeof(solver)));
   /* the active-set CG's products (src/contact/impls/active_set/block_operator.c) */
-  if (ctx->contact.as.ksp) products = ctx->contact.as.Kb ? "; CG products with K~ in symmetric block storage (SBAIJ)" : (opt->active_set_block ? "; CG products with K~'s AIJ (its pattern is not in whole blocks)" : "");
-  if (opt->progress_every > 0) PetscCall(PetscSNPrintf(progress, sizeof(progress), "progress every %.6g s", (double)opt->progress_every));
-  if (ctx->contact.enabled && ctx->contact.n_corners) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes (%" PetscInt_FMT " of them against two obstacles: %" PetscInt_FMT " rows) against %s; %s %s mass; %s\n", ctx->contact.n_global - ctx->contact.n_corners, ctx->contact.n_corners, ctx->contact.n_global, obstacles, ctx->op.lumped ? "lumped" : "consistent", MMMassTypes[ctx->op.mass_type], friction));
-  else if (ctx->contact.enabled && ctx->contact.n_fc) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes (%" PetscInt_FMT " of them against two obstacles, each with its own Coulomb law) against %s; %s %s mass; %s\n", ctx->contact.n_global, ctx->contact.n_fc, obstacles, ctx->op.lumped ? "lumped" : "consistent", MMMassTypes[ctx->op.mass_type], friction));
-  else if (ctx->contact.enabled) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes against %s; %s %s mass; %s\n", ctx->contact.n_global, obstacles, ctx->op.lumped ? "lumped" : "consistent", MMMassTypes[ctx->op.mass_type], friction));
-  for (PetscInt p = 0; ctx->contact.enabled && p < ctx->contact.pairs.n; ++p) {
+  if (pg->contact->as.ksp) products = pg->contact->as.Kb ? "; CG products with K~ in symmetric block storage (SBAIJ)" : (opt->active_set_block ? "; CG products with K~'s AIJ (its pattern is not in whole blocks)" : "");
+  if (pg->every > 0) PetscCall(PetscSNPrintf(progress, sizeof(progress), "progress every %.6g s", (double)pg->every));
+  if (pg->contact->enabled && pg->contact->n_corners) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes (%" PetscInt_FMT " of them against two obstacles: %" PetscInt_FMT " rows) against %s; %s %s mass; %s\n", pg->contact->n_global - pg->contact->n_corners, pg->contact->n_corners, pg->contact->n_global, obstacles, pg->op->lumped ? "lumped" : "consistent", MMMassTypes[pg->op->mass_type], friction));
+  else if (pg->contact->enabled && pg->contact->n_fc) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes (%" PetscInt_FMT " of them against two obstacles, each with its own Coulomb law) against %s; %s %s mass; %s\n", pg->contact->n_global, pg->contact->n_fc, obstacles, pg->op->lumped ? "lumped" : "consistent", MMMassTypes[pg->op->mass_type], friction));
+  else if (pg->contact->enabled) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes against %s; %s %s mass; %s\n", pg->contact->n_global, obstacles, pg->op->lumped ? "lumped" : "consistent", MMMassTypes[pg->op->mass_type], friction));
+  for (PetscInt p = 0; pg->contact->enabled && p < pg->contact->pairs.n; ++p) {
     const MMObstacle *ob = &opt->obstacles[opt->n_rigid + p];
-    PetscCall(PetscPrintf(comm, "  pair %s: slave %s, %" PetscInt_FMT " nodes (%" PetscInt_FMT " facing a master node: node to node), on %" PetscInt_FMT " facets of master %s; mu = %g\n", ob->name, ob->slave, ctx->contact.pairs.count[2 * p], ctx->contact.pairs.count[2 * p + 1], ctx->contact.pairs.nf[p], ob->master, (double)ob->mu));
+    PetscCall(PetscPrintf(comm, "  pair %s: slave %s, %" PetscInt_FMT " nodes (%" PetscInt_FMT " facing a master node: node to node), on %" PetscInt_FMT " facets of master %s; mu = %g\n", ob->name, ob->slave, pg->contact->pairs.count[2 * p], pg->contact->pairs.count[2 * p + 1], pg->contact->pairs.nf[p], ob->master, (double)ob->mu));
   }
-  if (!ctx->contact.enabled) PetscCall(PetscPrintf(comm, "  contact: off (-contact 0), 0 contact nodes: linear elastodynamics; %s mass\n", ctx->op.lumped ? "lumped" : "consistent"));
-  PetscCall(PetscPrintf(comm, "  solvers: contact formulation %s%s; K~ by %s%s; %s\n", ctx->contact.type, ctx->contact.auto_type && ctx->contact.enabled ? (ctx->contact.prefer_iterative ? " (auto: 3D, at least -iterative_dofs dofs)" : " (auto)") : "", solver, products, progress));
-  PetscCall(MMProgressMassLine(ctx));
+  if (!pg->contact->enabled) PetscCall(PetscPrintf(comm, "  contact: off (-contact 0), 0 contact nodes: linear elastodynamics; %s mass\n", pg->op->lumped ? "lumped" : "consistent"));
+  PetscCall(PetscPrintf(comm, "  solvers: contact formulation %s%s; K~ by %s%s; %s\n", pg->contact->type, pg->contact->auto_type && pg->contact->enabled ? (pg->contact->prefer_iterative ? " (auto: 3D, at least -iterative_dofs dofs)" : " (auto)") : "", solver, products, progress));
+  PetscCall(MMProgressMassLine(pg));
   PetscFunctionReturn(0);
 }
 
 /* The start-up report, once everything is set up and before the first step. */
-PetscErrorCode MMProgressHeader(MMCtx *ctx, TS ts)
+PetscErrorCode MMProgressHeader(MMProgress *pg, TS ts, KSP krylov, KSP pc_ksp)
 {
   PetscFunctionBeginUser;
-  if (ctx->opt.quiet) PetscFunctionReturn(0);
-  PetscCall(HeaderMesh(ctx));
-  PetscCall(HeaderPhysics(ctx, ts));
-  PetscCall(HeaderContact(ctx));
+  PetscCall(HeaderMesh(pg));
+  PetscCall(HeaderPhysics(pg, ts));
+  PetscCall(HeaderContact(pg, krylov, pc_ksp));
   PetscFunctionReturn(0);
 }
 
@@ -304,10 +321,10 @@ static void Estimate(const MMProgress *p, PetscReal t_end, PetscInt max_steps, P
  * The percentage is of the whole run: with -ts_max_steps it follows the step count ("step 60 of
  * 100 (60.0%)") if that ends the run first. The friction iterations are the mean over the steps
  * since the previous line. */
-static PetscErrorCode PrintLine(MMCtx *ctx, TS ts, PetscReal wall)
+static PetscErrorCode PrintLine(MMProgress *pg, TS ts, PetscReal wall)
 {
-  const MMHistory  *h = &ctx->hist;
-  const MMProgress *p = &ctx->progress;
+  const MMHistory  *h = pg->hist;
+  const MMProgress *p = pg;
   PetscReal         t_end, done, eta;
   PetscInt          max_steps;
   char              where[128], wall_text[32], eta_text[32], friction[64] = "";
@@ -320,7 +337,7 @@ static PetscErrorCode PrintLine(MMCtx *ctx, TS ts, PetscReal wall)
   else PetscCall(PetscSNPrintf(where, sizeof(where), "t = %.6g of %.6g (%.1f%%), step %" PetscInt_FMT, (double)h->time, (double)t_end, (double)(100 * done), h->step));
   PetscCall(Duration(wall, wall_text, sizeof(wall_text)));
   PetscCall(Duration(eta, eta_text, sizeof(eta_text)));
-  if (ctx->opt.mu_max > 0) PetscCall(PetscSNPrintf(friction, sizeof(friction), ", friction its %.1f", p->steps ? (double)p->friction_its / p->steps : 0.0));
+  if (pg->opt->mu_max > 0) PetscCall(PetscSNPrintf(friction, sizeof(friction), ", friction its %.1f", p->steps ? (double)p->friction_its / p->steps : 0.0));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  %s | wall %s, ETA %s | energy %.10e, balance %.2e | active %" PetscInt_FMT ", slipping %" PetscInt_FMT "%s\n", where, wall_text, eta_text, (double)h->total, (double)h->balance_residual, h->active, h->slipping, friction));
   PetscFunctionReturn(0);
 }
@@ -349,8 +366,7 @@ static PetscErrorCode ProgressClock(PetscInt step, PetscLogDouble *now)
  * same history row (the monitor runs after MMEnergyStep has filled it). */
 PetscErrorCode MMProgressMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ptr)
 {
-  MMCtx         *ctx = (MMCtx *)ptr;
-  MMProgress    *p   = &ctx->progress;
+  MMProgress    *p   = (MMProgress *)ptr;
   PetscLogDouble now;
 
   PetscFunctionBeginUser;
@@ -364,22 +380,34 @@ PetscErrorCode MMProgressMonitor(TS ts, PetscInt step, PetscReal time, Vec u, vo
   }
   if (step <= p->step_last) PetscFunctionReturn(0);
   p->step_last = step;
-  p->friction_its += ctx->hist.friction_its;
+  p->friction_its += p->hist->friction_its;
   p->steps++;
-  if (now - p->wall_last < ctx->opt.progress_every) PetscFunctionReturn(0);
-  PetscCall(PrintLine(ctx, ts, (PetscReal)(now - p->wall_start)));
+  if (now - p->wall_last < p->every) PetscFunctionReturn(0);
+  PetscCall(PrintLine(p, ts, (PetscReal)(now - p->wall_start)));
   p->wall_last    = now;
   p->friction_its = 0;
   p->steps        = 0;
   PetscFunctionReturn(0);
 }
 
-/* The progress line, unless -quiet or -progress_every 0: a TS monitor after the others (after
- * -ts_monitor, which still works, and after the history row). */
-PetscErrorCode MMProgressSetUp(MMCtx *ctx, TS ts)
+/* The progress line's option, with its check. */
+PetscErrorCode MMProgressSetFromOptions(MPI_Comm comm, MMProgress *p)
 {
   PetscFunctionBeginUser;
-  if (ctx->opt.quiet || ctx->opt.progress_every == 0) PetscFunctionReturn(0);
-  PetscCall(TSMonitorSet(ts, MMProgressMonitor, ctx, NULL));
+  PetscOptionsBegin(comm, NULL, "mmcontact progress", "MMProgress");
+  p->every = 5;
+  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-progress_every", "Print a progress line (time, wall time and ETA, energy balance, contact and friction) every this many seconds of wall time, >= 0 (0: none)", &p->every));
+  PetscOptionsEnd();
+  PetscCheck(p->every >= 0, comm, PETSC_ERR_USER_INPUT, "-progress_every %.6g must be >= 0: it is the wall time in seconds between progress lines (0 turns them off)", (double)p->every);
+  PetscFunctionReturn(0);
+}
+
+/* The progress line, unless -progress_every 0 (the caller leaves it out under -quiet): a TS monitor after the others (after
+ * -ts_monitor, which still works, and after the history row). */
+PetscErrorCode MMProgressMonitorSet(MMProgress *pg, TS ts)
+{
+  PetscFunctionBeginUser;
+  if (pg->every == 0) PetscFunctionReturn(0);
+  PetscCall(TSMonitorSet(ts, MMProgressMonitor, pg, NULL));
   PetscFunctionReturn(0);
 }

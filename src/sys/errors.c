@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-#include "errors.h"
+#include "sys.h"
 
 static PetscBool debug_trace = PETSC_FALSE;
 static void (*at_abort)(void) = NULL; /* what exit() would run through atexit, on the MPI_Abort path */

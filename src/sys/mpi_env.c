@@ -1,6 +1,6 @@
 /* The MPI environment the run needs, set before MPI starts. */
 #include <stdlib.h>
-#include "signals.h"
+#include "sys.h"
 
 /* Open MPI's MPI-IO, and what the output needs of it (docs/full_disk.md). HDF5 never uses shared
  * file pointers, yet Open MPI 4.1's own MPI-IO (ompio) opens every file with a shared-file-pointer

@@ -10,9 +10,10 @@
 #include <string.h>
 #include <sys/prctl.h>
 #include <unistd.h>
-#include "signals.h"
+#include "sys.h"
 
 static volatile sig_atomic_t mm_signal = 0;
+static int                   stopped_by = 0; /* the signal the run stopped on, the same on every rank; 0: none */
 
 static void RecordSignal(int sig)
 {
@@ -22,17 +23,15 @@ static void RecordSignal(int sig)
 /* TS post-step: stop after this step if any rank has been signalled. */
 static PetscErrorCode StopOnSignal(TS ts)
 {
-  MMCtx *ctx;
-  int    sig = (int)mm_signal, any;
+  int sig = (int)mm_signal, any;
 
   PetscFunctionBeginUser;
-  PetscCall(TSGetApplicationContext(ts, &ctx));
   PetscCallMPI(MPI_Allreduce(&sig, &any, 1, MPI_INT, MPI_MAX, PetscObjectComm((PetscObject)ts)));
   if (any) {
     TSConvergedReason reason;
     PetscCall(TSGetConvergedReason(ts, &reason));
     if (reason == TS_CONVERGED_ITERATING) {
-      ctx->ckpt.stop_signal = any;
+      stopped_by = any;
       PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
     }
   }
@@ -40,7 +39,7 @@ static PetscErrorCode StopOnSignal(TS ts)
 }
 
 /* After PETSc's initialization, whose own handlers would abort the run on these signals. */
-PetscErrorCode MMSignalsSetUp(MMCtx *ctx, TS ts)
+PetscErrorCode MMSignalsSetUp(TS ts)
 {
   struct sigaction sa;
 
@@ -50,17 +49,24 @@ PetscErrorCode MMSignalsSetUp(MMCtx *ctx, TS ts)
   sa.sa_flags   = SA_RESETHAND | SA_RESTART;
   sigemptyset(&sa.sa_mask);
   PetscCheck(!sigaction(SIGTERM, &sa, NULL) && !sigaction(SIGINT, &sa, NULL), PETSC_COMM_SELF, PETSC_ERR_SYS, "Could not install the SIGTERM and SIGINT handlers");
-  PetscCall(TSSetApplicationContext(ts, ctx));
   PetscCall(TSSetPostStep(ts, StopOnSignal));
   PetscFunctionReturn(0);
 }
 
-/* The run stopped on a signal: where its state is and the command that continues it. */
-PetscErrorCode MMSignalsReport(MMCtx *ctx)
+/* The signal that stopped the run after a step (the same on every rank), 0 if none did. */
+PetscErrorCode MMSignalsGetStop(int *signal_number)
 {
   PetscFunctionBeginUser;
-  if (!ctx->ckpt.stop_signal) PetscFunctionReturn(0);
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "mmcontact: stopped by %s after step %" PetscInt_FMT " (t = %.10g). The state is in %s/checkpoint.h5 and the output up to this step is complete. Continue the run, on any number of ranks, with the same options and\n  -restart %s\n", ctx->ckpt.stop_signal == SIGTERM ? "SIGTERM" : ctx->ckpt.stop_signal == SIGINT ? "SIGINT" : "a signal", ctx->hist.step, (double)ctx->hist.time, ctx->opt.output_dir, ctx->opt.output_dir));
+  *signal_number = stopped_by;
+  PetscFunctionReturn(0);
+}
+
+/* The run stopped on a signal after step at time: where its state is and the command that continues it. */
+PetscErrorCode MMSignalsReport(MPI_Comm comm, PetscInt step, PetscReal time, const char output_dir[])
+{
+  PetscFunctionBeginUser;
+  if (!stopped_by) PetscFunctionReturn(0);
+  PetscCall(PetscPrintf(comm, "mmcontact: stopped by %s after step %" PetscInt_FMT " (t = %.10g). The state is in %s/checkpoint.h5 and the output up to this step is complete. Continue the run, on any number of ranks, with the same options and\n  -restart %s\n", stopped_by == SIGTERM ? "SIGTERM" : stopped_by == SIGINT ? "SIGINT" : "a signal", step, (double)time, output_dir, output_dir));
   PetscFunctionReturn(0);
 }
 

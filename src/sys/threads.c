@@ -8,7 +8,7 @@
  * runtimes' own calls instead, looked up in the process so that a build without them links. */
 #include <dlfcn.h>
 #include <stdlib.h>
-#include "signals.h"
+#include "sys.h"
 
 PetscErrorCode MMThreadsSetDefault(void)
 {

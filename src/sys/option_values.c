@@ -1,0 +1,127 @@
+/* Option readers that check the value before PETSc parses it, shared by every component's
+ * SetFromOptions: PETSc's own message for "-E 1e3Pa" names the string, not the option, and an option
+ * given without a value ("-E" followed by another option, or last) silently keeps its default, even
+ * over the options file's value. */
+#include <errno.h>
+#include <stdlib.h>
+#include <strings.h> /* strcasecmp */
+#include "sys.h"
+
+/* Whether text (up to len characters) is one number of the kind, all of it. */
+static PetscBool IsNumber(const char text[], size_t len, MMValueKind kind)
+{
+  char  buf[128], *end;
+  char *p;
+
+  if (!len || len >= sizeof(buf)) return PETSC_FALSE;
+  memcpy(buf, text, len);
+  buf[len] = 0;
+  for (p = buf; *p == ' '; ++p) {}
+  errno = 0;
+  if (kind == MM_VALUE_INT) (void)strtoll(p, &end, 10);
+  else (void)strtod(p, &end);
+  while (*end == ' ') ++end;
+  return (PetscBool)(end != p && !*end);
+}
+
+PetscErrorCode MMOptionsCheckValue(MPI_Comm comm, const char name[], MMValueKind kind)
+{
+  const char *value;
+  PetscBool   set;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsFindPair(NULL, NULL, name, &value, &set));
+  if (!set) PetscFunctionReturn(0);
+  PetscCheck(value, comm, PETSC_ERR_USER_INPUT, "%s was given without a value: write \"%s VALUE\", or leave the option out for its default", name, name);
+  /* an empty text ("") is for the option's own check to name: -output_dir "" is refused there */
+  if (kind == MM_VALUE_TEXT) PetscFunctionReturn(0);
+  PetscCheck(value[0], comm, PETSC_ERR_USER_INPUT, "%s is given an empty value: give %s", name, kind == MM_VALUE_INT ? "an integer" : "a number");
+  for (const char *p = value; p;) {
+    const char  *comma = strchr(p, ',');
+    const size_t len   = comma ? (size_t)(comma - p) : strlen(p);
+    PetscCheck(IsNumber(p, len, kind), comm, PETSC_ERR_USER_INPUT, "%s %s: \"%.*s\" is not %s. Give %s%s", name, value, (int)len, p, kind == MM_VALUE_INT ? "an integer" : "a number", kind == MM_VALUE_INT ? "whole numbers" : "plain numbers, in SI units, without a unit (1e3, not 1e3Pa)", strchr(value, ',') ? ", separated by commas without blanks" : "");
+    p = comma ? comma + 1 : NULL;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* PETSc parses "nan" and "inf" as numbers: every real option is checked here, by name. */
+PetscErrorCode MMOptionsCheckFinite(MPI_Comm comm, const char name[], const PetscReal v[], PetscInt n)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < n; ++i) PetscCheck(!PetscIsInfOrNanReal(v[i]), comm, PETSC_ERR_USER_INPUT, "%s: entry %" PetscInt_FMT " is %s; every value must be a finite number", name, i, PetscIsNanReal(v[i]) ? "NaN" : "infinite");
+  PetscFunctionReturn(0);
+}
+
+/* A real option, refused unless finite. */
+PetscErrorCode MMOptionsReal(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], PetscReal *v)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMOptionsCheckValue(comm, name, MM_VALUE_REAL));
+  PetscCall(PetscOptionsReal(name, help, NULL, *v, v, NULL));
+  PetscCall(MMOptionsCheckFinite(comm, name, v, 1));
+  PetscFunctionReturn(0);
+}
+
+/* A real array option of at most nmax finite entries; *count is how many were given, -1 if none.
+ * One slot more is read, so that too many entries are refused rather than cut off. */
+PetscErrorCode MMOptionsRealArray(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], PetscInt nmax, PetscReal v[], PetscInt *count)
+{
+  PetscReal buf[MM_MAX_DIM * MM_MAX_DIM + 1];
+  PetscInt  n = nmax + 1;
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < nmax; ++i) buf[i] = v[i];
+  PetscCall(MMOptionsCheckValue(comm, name, MM_VALUE_REAL));
+  PetscCall(PetscOptionsRealArray(name, help, NULL, buf, &n, &set));
+  *count = set ? n : -1;
+  if (!set) PetscFunctionReturn(0);
+  PetscCheck(n <= nmax, comm, PETSC_ERR_USER_INPUT, "%s has more than %" PetscInt_FMT " entries", name, nmax);
+  PetscCall(MMOptionsCheckFinite(comm, name, buf, n));
+  for (PetscInt i = 0; i < nmax; ++i) v[i] = i < n ? buf[i] : 0;
+  PetscFunctionReturn(0);
+}
+
+/* An integer option. */
+PetscErrorCode MMOptionsInt(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], PetscInt *v)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMOptionsCheckValue(comm, name, MM_VALUE_INT));
+  PetscCall(PetscOptionsInt(name, help, NULL, *v, v, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* A switch: given alone it is on; given a value, that value must be one PETSc reads as a logical
+ * (its own error does not name the option). */
+PetscErrorCode MMOptionsBool(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], PetscBool *v)
+{
+  static const char *const words[] = {"1", "0", "true", "false", "yes", "no", "on", "off"};
+  const char              *value;
+  PetscBool                set, known = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsFindPair(NULL, NULL, name, &value, &set));
+  for (size_t i = 0; set && value && value[0] && i < PETSC_STATIC_ARRAY_LENGTH(words); ++i) known = (PetscBool)(known || !strcasecmp(value, words[i]));
+  PetscCheck(!set || !value || !value[0] || known, comm, PETSC_ERR_USER_INPUT, "%s %s: give 1 or 0 (also true/false, yes/no, on/off), or %s alone for 1", name, value, name);
+  PetscCall(PetscOptionsBool(name, help, NULL, *v, v, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* A text option: a name, a list of names, a path. */
+PetscErrorCode MMOptionsString(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], char v[], size_t len, PetscBool *set)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMOptionsCheckValue(comm, name, MM_VALUE_TEXT));
+  PetscCall(PetscOptionsString(name, help, NULL, v, v, len, set));
+  PetscFunctionReturn(0);
+}
+
+/* An enumerated option. */
+PetscErrorCode MMOptionsEnum(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], const char *const list[], PetscEnum *v)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMOptionsCheckValue(comm, name, MM_VALUE_TEXT));
+  PetscCall(PetscOptionsEnum(name, help, NULL, list, *v, v, NULL));
+  PetscFunctionReturn(0);
+}
