@@ -82,6 +82,15 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscCall(MMOptionsHelpWithoutMesh(comm, help_only));
   if (*help_only) PetscFunctionReturn(0);
   PetscCall(MMFESetFromOptions(comm, &ctx->op));
+  PetscCall(MMContactCreate(comm, &ctx->contact));
+  PetscCall(MMContactSetFromOptions(ctx->contact));
+  PetscCall(MMFrictionCreate(comm, &ctx->friction));
+  PetscCall(MMFrictionSetFromOptions(ctx->friction));
+  {
+    PetscReal tol;
+    PetscCall(MMFrictionGetCoulombTolerance(ctx->friction, &tol));
+    PetscCall(MMContactSetCoulombTolerance(ctx->contact, tol));
+  }
   PetscCall(MMOutputSetFromOptions(comm, &ctx->out));
   PetscCall(MMCheckpointSetFromOptions(comm, &ctx->ckpt));
   PetscCall(MMProgressSetFromOptions(comm, &ctx->progress));
@@ -92,17 +101,6 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscCall(DMGetDimension(ctx->op.dm, &ctx->op.dim));
   PetscCall(MMOptionsGetFEProblem(&ctx->opt, &pb));
   MMPhase(MMAppEvents.fe_setup, MMFESetUp(&ctx->op, &ctx->material, &pb));
-  /* contact and friction read their options here: created before the mesh is read, the 2-rank
-   * ball_vgroove history varied at round-off from run to run (unexplained; see the issue 39 report) */
-  PetscCall(MMContactCreate(comm, &ctx->contact));
-  PetscCall(MMContactSetFromOptions(ctx->contact));
-  PetscCall(MMFrictionCreate(comm, &ctx->friction));
-  PetscCall(MMFrictionSetFromOptions(ctx->friction));
-  {
-    PetscReal tol;
-    PetscCall(MMFrictionGetCoulombTolerance(ctx->friction, &tol));
-    PetscCall(MMContactSetCoulombTolerance(ctx->contact, tol));
-  }
   PetscCall(MMOptionsGetContactProblem(&ctx->opt, &cp));
   MMPhase(MMAppEvents.contact_setup, MMContactSetUp(ctx->contact, &ctx->op, &ctx->material, &cp));
   /* the static sliding state's plane is the single obstacle's (src/ts/sliding.c reads it) */
