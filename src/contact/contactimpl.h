@@ -55,7 +55,7 @@ typedef struct {
   PetscInt  *count;    /* per pair, 2: its slave nodes, and those facing a master node (node to node) */
 } MMContactPairs;
 
-/* The contact options (MMContactSetFromOptions) and the problem data contact reads, given at set-up */
+/* The contact options (MMContactSetFromOptions) */
 typedef struct {
   PetscBool         contact;                 /* -contact */
   char              contact_formulation[MM_TYPE_LEN];
@@ -68,14 +68,7 @@ typedef struct {
   PetscReal         active_set_inexact_rtol;
   PetscBool         active_set_block, active_set_monitor;
   PetscReal         audit_penetration_tol, audit_coulomb_tol, initial_penetration_tol;
-  /* the problem: its obstacles (rigid first, then the pairs), the material's values the messages name */
-  const MMObstacle *obstacles;
-  PetscInt          n_obstacles, n_rigid;
-  PetscReal         mu_max, E, rho, friction_coulomb_tol;
-  char              contact_name[256];
-  PetscBool         static_sliding;          /* -initial_state static_sliding: one fixed plane */
-  PetscReal         obstacle_point[MM_MAX_DIM], obstacle_normal[MM_MAX_DIM];
-  PetscBool         quiet;
+  PetscReal         friction_coulomb_tol; /* the friction solver's (MMContactSetCoulombTolerance) */
 } MMContactOptions;
 
 /* The contact object: the contact set, gaps, bounds and the step matrix, shared by every formulation;
@@ -84,6 +77,7 @@ struct _p_MMContact {
   MPI_Comm   comm;
   PetscInt   dim;                 /* the mesh's */
   MMContactOptions  opt;
+  MMContactProblem  pb;           /* the problem's data (MMContactSetUp): obstacles borrowed */
   MMOperators      *op;           /* borrowed at set-up: fem's operators (K, M*, Q, the DM) */
   const MMMaterial *material;     /* borrowed: E_max, the force scale of the audits */
   Vec               u_old, v_old; /* borrowed: the state at the start of the step (MMContactSetPreviousState) */

@@ -149,9 +149,9 @@ static PetscErrorCode CheckStepMatrixArithmetic(MMContact ct, PetscReal dt, Pets
   /* -E 1e308 and -rho 1e308 (overflow) and -rho 1e-310 (underflow) were refused with the operators (fem.c) */
   PetscCheck(!PetscIsInfOrNanReal(cm) && !PetscIsInfOrNanReal(cm * k[1]), comm, PETSC_ERR_USER_INPUT, "-ts_dt %.6g is too small for double precision: the step matrix's mass term 4/dt^2 M overflows%s. Give a dt near h_c' / c_p, the time a wave takes to cross a contact cell", (double)dt, ratio);
   PetscCheck(ck * k[0] <= cm * m_min / room, comm, PETSC_ERR_USER_INPUT, "The step matrix K + 4/dt^2 M cannot be formed in double precision with dt = %.6g, -E %.6g, -rho %.6g%s: the mass term, which alone holds the rigid motions, is %.2g of the stiffness, below its round-off, and K + 4/dt^2 M is singular in floating point. Check the units (SI throughout: the mesh in metres, -E in Pa, -rho in kg/m^3), or reduce -ts_dt to about h_c' / c_p",
-             (double)dt, (double)ct->opt.E, (double)ct->opt.rho, ratio, (double)(cm * m_min / (ck * k[0])));
+             (double)dt, (double)ct->pb.E, (double)ct->pb.rho, ratio, (double)(cm * m_min / (ck * k[0])));
   PetscCheck(ck * k[0] >= room * cm * k[1], comm, PETSC_ERR_USER_INPUT, "The step matrix K + 4/dt^2 M cannot be formed in double precision with dt = %.6g, -E %.6g, -rho %.6g%s: the stiffness is %.2g of the mass term, below its round-off, so the elastic forces would not enter the step. Check the units (SI throughout: the mesh in metres, -E in Pa, -rho in kg/m^3), or give a dt near h_c' / c_p",
-             (double)dt, (double)ct->opt.E, (double)ct->opt.rho, ratio, (double)(ck * k[0] / (cm * k[1])));
+             (double)dt, (double)ct->pb.E, (double)ct->pb.rho, ratio, (double)(ck * k[0] / (cm * k[1])));
   PetscFunctionReturn(0);
 }
 
@@ -448,7 +448,7 @@ static PetscErrorCode CheckInitialPenetration(MMContact ct, Vec w)
   if (dim == 2) snprintf(where, sizeof(where), "(%g, %g)", (double)x[0], (double)x[1]);
   else snprintf(where, sizeof(where), "(%g, %g, %g)", (double)x[0], (double)x[1], (double)x[2]);
   SETERRQ(comm, PETSC_ERR_USER_INPUT, "The initial state penetrates the obstacle \"%s\": the deepest contact node, at %s, is %g inside it (-initial_penetration_tol %g h_c' = %g). Check that obstacle's position, its -obstacle_..._side, the direction of a plane's normal (it points out of the obstacle, towards the body), and -u0_offset/-u0_gradient",
-          ct->opt.obstacles[glob_obstacle].name, where, glob.depth, (double)ct->opt.initial_penetration_tol, (double)(ct->opt.initial_penetration_tol * ct->h_c));
+          ct->pb.obstacles[glob_obstacle].name, where, glob.depth, (double)ct->opt.initial_penetration_tol, (double)(ct->opt.initial_penetration_tol * ct->h_c));
 }
 
 /* The initial projection's upper bounds on the massless dofs: the gaps on the normal ones, none on a

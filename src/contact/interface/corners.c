@@ -77,7 +77,7 @@ PetscErrorCode MMContactCornersSetUpVecs(MMContact ct)
     if (ct->fc_obstacle[k] < 0) continue;
     ga[ct->ncomp * k]     = ct->fc_ab[2 * k + 1];
     ga[ct->ncomp * k + 1] = ct->fc_ab[2 * k];
-    ma[ct->ncomp * k]     = ct->opt.obstacles[ct->fc_obstacle[k]].mu;
+    ma[ct->ncomp * k]     = ct->pb.obstacles[ct->fc_obstacle[k]].mu;
   }
   PetscCall(VecRestoreArray(ct->fc_mu, &ma));
   PetscCall(VecRestoreArray(ct->fc_geom, &ga));
@@ -268,7 +268,7 @@ PetscErrorCode MMContactCornersWork(MMContact ct, PetscReal t0, PetscReal t1, Ve
   PetscCall(ISGetIndices(ct->is_normal, &in));
   PetscCall(VecGetArrayRead(du, &da));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
-    const MMObstacle *ob1 = &ct->opt.obstacles[ct->obstacle[k]];
+    const MMObstacle *ob1 = &ct->pb.obstacles[ct->obstacle[k]];
     PetscReal         r2[MM_MAX_DIM], f2[MM_MAX_DIM], g2[MM_MAX_DIM], d[MM_MAX_DIM], Td[MM_MAX_DIM], c0[MM_MAX_DIM] = {0, 0, 0}, c1[MM_MAX_DIM] = {0, 0, 0}, e0[MM_MAX_DIM] = {0, 0, 0}, e1[MM_MAX_DIM] = {0, 0, 0}, dc1[MM_MAX_DIM], dc2[MM_MAX_DIM], Tdc2[MM_MAX_DIM];
     const PetscReal  *F1 = &ct->node_frame[9 * k];
     if (ct->fc_obstacle[k] < 0) continue;
@@ -285,8 +285,8 @@ PetscErrorCode MMContactCornersWork(MMContact ct, PetscReal t0, PetscReal t1, Ve
     if (!ct->moving) continue;
     MMObstacleDisplacement(ob1, dim, t0, c0);
     MMObstacleDisplacement(ob1, dim, t1, c1);
-    MMObstacleDisplacement(&ct->opt.obstacles[ct->fc_obstacle[k]], dim, t0, e0);
-    MMObstacleDisplacement(&ct->opt.obstacles[ct->fc_obstacle[k]], dim, t1, e1);
+    MMObstacleDisplacement(&ct->pb.obstacles[ct->fc_obstacle[k]], dim, t0, e0);
+    MMObstacleDisplacement(&ct->pb.obstacles[ct->fc_obstacle[k]], dim, t1, e1);
     for (PetscInt c = 0; c < dim; ++c) {
       dc1[c] = dc2[c] = 0;
       for (PetscInt e = 0; e < dim; ++e) {

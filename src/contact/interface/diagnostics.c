@@ -24,7 +24,7 @@ typedef struct {
  * summary report it. */
 static PetscReal OtherObstaclesPenetration(MMContact ct, PetscInt k, const PetscScalar w[], const PetscReal cob[])
 {
-  const PetscInt   dim = ct->op->dim, nob = ct->opt.n_rigid;
+  const PetscInt   dim = ct->op->dim, nob = ct->pb.n_rigid;
   const PetscReal *F   = &ct->node_frame[9 * k];
   PetscReal        u[MM_MAX_DIM] = {0, 0, 0}, worst = PETSC_MIN_REAL;
 
@@ -96,7 +96,7 @@ static void SecondObstacleRow(MMContact ct, PetscInt k, const PetscScalar w[], c
   for (PetscInt e = 0; e < dim; ++e) rs->un += T[0][e] * PetscRealPart(w[e]);
   rs->g        = ct->fc_gap[k];
   rs->r        = r2[0];
-  rs->mu       = ct->opt.obstacles[ct->fc_obstacle[k]].mu;
+  rs->mu       = ct->pb.obstacles[ct->fc_obstacle[k]].mu;
   rs->friction = PETSC_TRUE;
   for (PetscInt j = 1; j < dim; ++j) {
     rs->ft[j] = -r2[j];
@@ -113,7 +113,7 @@ static void SecondObstacleRow(MMContact ct, PetscInt k, const PetscScalar w[], c
 static PetscErrorCode ContactStatistics(MMContact ct, PetscReal t, Vec w, Vec react, Vec sigma, PetscBool record_switches, ContactStats *st)
 {
   const PetscReal    dt = ct->Kt_dt;
-  const PetscInt     nob = ct->opt.n_obstacles;
+  const PetscInt     nob = ct->pb.n_obstacles;
   const PetscScalar *mua;
   PetscReal         *fob, *cob;
   /* slip is judged by the step's slip increment sigma dt/2 against h_c', like penetration */
@@ -130,7 +130,7 @@ static PetscErrorCode ContactStatistics(MMContact ct, PetscReal t, Vec w, Vec re
   if (!ct->enabled) PetscFunctionReturn(0);
   PetscCall(PetscCalloc1(MM_MAX_DIM * nob, &fob));
   PetscCall(PetscCalloc1(MM_MAX_DIM * nob, &cob));
-  for (PetscInt b = 0; b < ct->opt.n_rigid && ct->all_gap0; ++b) MMObstacleDisplacement(&ct->opt.obstacles[b], dim, t, &cob[MM_MAX_DIM * b]);
+  for (PetscInt b = 0; b < ct->pb.n_rigid && ct->all_gap0; ++b) MMObstacleDisplacement(&ct->pb.obstacles[b], dim, t, &cob[MM_MAX_DIM * b]);
   PetscCall(VecGetArrayRead(ct->mu, &mua));
   PetscCall(VecGetOwnershipRange(w, &rstart, NULL));
   PetscCall(ISGetIndices(ct->is_normal, &in));
@@ -214,7 +214,7 @@ static PetscErrorCode ContactStatistics(MMContact ct, PetscReal t, Vec w, Vec re
     loc[0] = PetscMax(loc[0], res);
     loc[1] = PetscMax(loc[1], rs.un - rs.g);
     /* a pair's slave node: its w are relative displacements (it is on no rigid obstacle's surface) */
-    if (ct->all_gap0 && ct->obstacle[k] < ct->opt.n_rigid && !ct->second[k]) loc[2] = PetscMax(loc[2], OtherObstaclesPenetration(ct, k, &wa[i], cob));
+    if (ct->all_gap0 && ct->obstacle[k] < ct->pb.n_rigid && !ct->second[k]) loc[2] = PetscMax(loc[2], OtherObstaclesPenetration(ct, k, &wa[i], cob));
   }
   if (nr > 1) {
     PetscCall(VecRestoreArrayRead(ct->rho, &ra));
@@ -374,9 +374,9 @@ PetscErrorCode MMContactAudit(MMContact ct, PetscInt step, PetscReal t, const MM
              step, (double)t, (double)ct->penetration_free, (double)(ct->penetration_free / ct->h_c), (double)ct->opt.audit_penetration_tol);
   PetscCheck(h->max_penetration <= ct->opt.audit_penetration_tol * ct->h_c, comm, MM_ERR_PHYSICS,
              "Contact audit failed at step %" PetscInt_FMT " (t = %.6g): a contact node is %.3g inside an obstacle, %.3g h_c', above -audit_penetration_tol %.6g (-E %.6g, -rho %.6g). %s. The output up to the previous step is intact",
-             step, (double)t, (double)h->max_penetration, (double)(h->max_penetration / ct->h_c), (double)ct->opt.audit_penetration_tol, (double)ct->opt.E, (double)ct->opt.rho, advice);
+             step, (double)t, (double)h->max_penetration, (double)(h->max_penetration / ct->h_c), (double)ct->opt.audit_penetration_tol, (double)ct->pb.E, (double)ct->pb.rho, advice);
   PetscCheck(h->coulomb_residual <= ct->opt.audit_coulomb_tol, comm, MM_ERR_PHYSICS,
              "Contact audit failed at step %" PetscInt_FMT " (t = %.6g): the discrete Coulomb residual (history column coulomb_residual) is %.3g, above -audit_coulomb_tol %.6g (-E %.6g, -rho %.6g). %s. The output up to the previous step is intact",
-             step, (double)t, (double)h->coulomb_residual, (double)ct->opt.audit_coulomb_tol, (double)ct->opt.E, (double)ct->opt.rho, advice);
+             step, (double)t, (double)h->coulomb_residual, (double)ct->opt.audit_coulomb_tol, (double)ct->pb.E, (double)ct->pb.rho, advice);
   PetscFunctionReturn(0);
 }

@@ -101,7 +101,7 @@ PetscErrorCode MMContactFirstContact(MMContact ct, Vec u, Vec v, Vec a, PetscRea
   PetscCall(VecGetArrayRead(a, &aa));
   PetscCall(VecGetArrayRead(ct->gap0, &ga));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
-    const MMObstacle *ob = &ct->opt.obstacles[ct->obstacle[k]];
+    const MMObstacle *ob = &ct->pb.obstacles[ct->obstacle[k]];
     const PetscReal  *nu = &ct->node_frame[9 * k];
     const PetscInt    i  = in[k] - rstart;
     PetscReal         cn, vn, t;
@@ -125,7 +125,7 @@ PetscErrorCode MMContactFirstContact(MMContact ct, Vec u, Vec v, Vec a, PetscRea
     const PetscScalar *xa;
     PetscReal          cn, vn;
 
-    ObstacleNormalMotion(&ct->opt.obstacles[ct->obstacle[first]], dim, &ct->node_frame[9 * first], t0, &cn, &vn);
+    ObstacleNormalMotion(&ct->pb.obstacles[ct->obstacle[first]], dim, &ct->node_frame[9 * first], t0, &cn, &vn);
     info[0] = PetscRealPart(ga[first]) + cn - PetscRealPart(ua[i]);
     info[1] = PetscRealPart(va[i]) - vn;
     info[2] = PetscRealPart(aa[i]);
@@ -161,7 +161,7 @@ PetscErrorCode MMContactFirstContact(MMContact ct, Vec u, Vec v, Vec a, PetscRea
  * n_obstacles entries, x of MM_MAX_DIM each; a gap is PETSC_MAX_REAL for an obstacle without rows. */
 PetscErrorCode MMContactObstacleGaps(MMContact ct, Vec u, PetscReal t0, PetscInt count[], PetscReal gap[], PetscReal x[])
 {
-  const PetscInt     dim = ct->op->dim, nob = ct->opt.n_obstacles;
+  const PetscInt     dim = ct->op->dim, nob = ct->pb.n_obstacles;
   const PetscScalar *ua, *ga, *xa;
   const PetscInt    *in;
   PetscInt           rstart, *best;
@@ -194,7 +194,7 @@ PetscErrorCode MMContactObstacleGaps(MMContact ct, Vec u, PetscReal t0, PetscInt
     const PetscInt b = ct->obstacle[k];
     PetscReal      cn, vn, g;
 
-    ObstacleNormalMotion(&ct->opt.obstacles[b], dim, &ct->node_frame[9 * k], t0, &cn, &vn);
+    ObstacleNormalMotion(&ct->pb.obstacles[b], dim, &ct->node_frame[9 * k], t0, &cn, &vn);
     g = PetscRealPart(ga[k]) + cn - PetscRealPart(ua[in[k] - rstart]);
     if (!ct->second[k]) ++count[b];
     if (g < loc[b].g) {

@@ -109,7 +109,7 @@ static PetscErrorCode LocalMasterFacets(MMContact ct, const MMObstacle *ob, cons
 static PetscErrorCode GatherMasterSurface(MMContact ct, PetscInt p, const PetscInt mark[])
 {
   MMContactPairs *pr   = &ct->pairs;
-  const MMObstacle *ob = &ct->opt.obstacles[ct->opt.n_rigid + p];
+  const MMObstacle *ob = &ct->pb.obstacles[ct->pb.n_rigid + p];
   MPI_Comm        comm = PetscObjectComm((PetscObject)ct->op->dm);
   PetscMPIInt     size, nl, *cnt, *dsp, *cntd, *dspd;
   PetscInt        nf = 0, ntot = 0;
@@ -145,7 +145,7 @@ static PetscErrorCode GatherMasterSurface(MMContact ct, PetscInt p, const PetscI
 PetscErrorCode MMContactPairsSetUp(MMContact ct, const PetscInt mark[], PetscInt n_vertex_bound)
 {
   MMContactPairs *pr = &ct->pairs;
-  const PetscInt  np = ct->opt.n_obstacles - ct->opt.n_rigid;
+  const PetscInt  np = ct->pb.n_obstacles - ct->pb.n_rigid;
 
   PetscFunctionBeginUser;
   pr->n = np;
@@ -287,7 +287,7 @@ PetscErrorCode MMContactPairsBuildTransform(MMContact ct)
   ct->n_corners = corners;
   /* per pair its slave nodes, and those that face a master node (one weight 1: node to node) */
   for (PetscInt k = 0; k < ct->n_local; ++k) {
-    const PetscInt p = ct->obstacle[k] - ct->opt.n_rigid;
+    const PetscInt p = ct->obstacle[k] - ct->pb.n_rigid;
     PetscBool      facing = PETSC_FALSE;
     if (p < 0 || ct->second[k]) continue;
     for (PetscInt j = 0; j < dim; ++j) facing = (PetscBool)(facing || pr->phi[MM_MAX_DIM * k + j] == 1.0);
@@ -313,7 +313,7 @@ PetscErrorCode MMContactPairsBuildTransform(MMContact ct)
         PetscCall(MatSetValue(N[s], in[k], in[k], s ? b : 1 / b, INSERT_VALUES));
         continue;
       }
-      if (ct->obstacle[k] < ct->opt.n_rigid) continue;
+      if (ct->obstacle[k] < ct->pb.n_rigid) continue;
       for (PetscInt a = 0; a < nr; ++a)
         for (PetscInt j = 0; j < dim; ++j) {
           const PetscInt m = pr->mdof[MM_MAX_DIM * k + j];

@@ -38,7 +38,7 @@ static void FrameFromNormal(PetscInt dim, const PetscReal n[], PetscReal F[MM_MA
 static PetscErrorCode BuildFrame(MMContact ct)
 {
   PetscFunctionBeginUser;
-  FrameFromNormal(ct->op->dim, ct->opt.obstacle_normal, ct->frame);
+  FrameFromNormal(ct->op->dim, ct->pb.obstacle_normal, ct->frame);
   PetscFunctionReturn(0);
 }
 
@@ -52,8 +52,8 @@ static PetscErrorCode NearestObstacle(MMContact ct, const PetscReal x[], PetscIn
 
   PetscFunctionBeginUser;
   *which = -1;
-  for (PetscInt b = 0; b < ct->opt.n_rigid; ++b) {
-    const MMObstacle *ob = &ct->opt.obstacles[b];
+  for (PetscInt b = 0; b < ct->pb.n_rigid; ++b) {
+    const MMObstacle *ob = &ct->pb.obstacles[b];
     PetscReal         g, nb[MM_MAX_DIM] = {0, 0, 0}, len = 0;
     PetscCall((*ob->distance)(ob, dim, x, &g, nb));
     for (PetscInt d = 0; d < dim; ++d) len += nb[d] * nb[d];
@@ -75,8 +75,8 @@ static PetscErrorCode SecondObstacle(MMContact ct, const PetscReal x[], PetscInt
 
   PetscFunctionBeginUser;
   *which = -1;
-  for (PetscInt b = 0; b < ct->opt.n_rigid; ++b) {
-    const MMObstacle *ob = &ct->opt.obstacles[b];
+  for (PetscInt b = 0; b < ct->pb.n_rigid; ++b) {
+    const MMObstacle *ob = &ct->pb.obstacles[b];
     PetscReal         g, nb[MM_MAX_DIM] = {0, 0, 0}, c = 0;
     if (b == first) continue;
     PetscCall((*ob->distance)(ob, dim, x, &g, nb));
@@ -117,12 +117,12 @@ static void CornerFrame(PetscInt dim, const PetscReal n1[], const PetscReal n2[]
  * of the one it is constrained against (docs/method.md section 8). */
 static PetscErrorCode AllObstacleGaps(MMContact ct, const PetscReal x[], PetscInt k)
 {
-  const PetscInt dim = ct->op->dim, nob = ct->opt.n_rigid;
+  const PetscInt dim = ct->op->dim, nob = ct->pb.n_rigid;
 
   PetscFunctionBeginUser;
   if (nob < 2) PetscFunctionReturn(0);
   for (PetscInt b = 0; b < nob; ++b) {
-    const MMObstacle *ob = &ct->opt.obstacles[b];
+    const MMObstacle *ob = &ct->pb.obstacles[b];
     PetscReal         n[MM_MAX_DIM] = {0, 0, 0};
     PetscCall((*ob->distance)(ob, dim, x, &ct->all_gap0[k * nob + b], n));
     for (PetscInt d = 0; d < 3; ++d) ct->all_nu[3 * (k * nob + b) + d] = -n[d];
@@ -182,15 +182,15 @@ static PetscErrorCode MarkContactVertices(MMContact ct, PetscInt **mark, Vec are
   PetscCall(DMGetLocalVector(ct->op->dm_scalar, &aloc));
   PetscCall(VecZeroEntries(aloc));
   PetscCall(VecGetArray(aloc, &aa));
-  if (ct->opt.n_rigid) {
+  if (ct->pb.n_rigid) {
     DMLabel   label;
     PetscBool given;
     /* a missing group says whether its name is the default one, tried because the option was not given */
     PetscCall(PetscOptionsHasName(NULL, NULL, "-contact_boundary", &given));
-    PetscCall(MMMeshGetLabelFor(dm, ct->opt.contact_name, given ? "-contact_boundary" : "the default of -contact_boundary, which was not given: name the mesh's contact boundary with -contact_boundary NAME", &label));
-    PetscCall(MarkSurface(ct, ct->opt.contact_name, 1, *mark, aa));
+    PetscCall(MMMeshGetLabelFor(dm, ct->pb.contact_name, given ? "-contact_boundary" : "the default of -contact_boundary, which was not given: name the mesh's contact boundary with -contact_boundary NAME", &label));
+    PetscCall(MarkSurface(ct, ct->pb.contact_name, 1, *mark, aa));
   }
-  for (PetscInt b = ct->opt.n_rigid; b < ct->opt.n_obstacles; ++b) PetscCall(MarkSurface(ct, ct->opt.obstacles[b].slave, 2 + b - ct->opt.n_rigid, *mark, aa));
+  for (PetscInt b = ct->pb.n_rigid; b < ct->pb.n_obstacles; ++b) PetscCall(MarkSurface(ct, ct->pb.obstacles[b].slave, 2 + b - ct->pb.n_rigid, *mark, aa));
   PetscCall(VecRestoreArray(aloc, &aa));
   PetscCall(VecZeroEntries(area));
   PetscCall(DMLocalToGlobal(ct->op->dm_scalar, aloc, ADD_VALUES, area));
@@ -299,7 +299,7 @@ static PetscErrorCode BuildContactDofs(MMContact ct, const PetscInt mark[], Vec 
   PetscCall(PetscCalloc2(n, &ct->second, 2 * (size_t)n, &ct->corner_ab));
   if (ct->ncomp > 1) PetscCall(FrictionCornersAllocate(ct, dim, n));
   PetscCall(PetscMalloc1(9 * (size_t)n, &ct->node_frame));
-  if (ct->opt.n_rigid > 1) PetscCall(PetscMalloc2((size_t)n * ct->opt.n_rigid, &ct->all_gap0, 3 * (size_t)n * ct->opt.n_rigid, &ct->all_nu));
+  if (ct->pb.n_rigid > 1) PetscCall(PetscMalloc2((size_t)n * ct->pb.n_rigid, &ct->all_gap0, 3 * (size_t)n * ct->pb.n_rigid, &ct->all_nu));
   PetscCall(VecGetOwnershipRange(area, &astart, NULL));
   PetscCall(VecGetArrayRead(area, &av));
   PetscCall(MatCreateAIJ(comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, dim, NULL, 0, NULL, &ct->op->Q));
@@ -312,14 +312,14 @@ static PetscErrorCode BuildContactDofs(MMContact ct, const PetscInt mark[], Vec 
     PetscCall(PetscSectionGetConstraintDof(ls, v, &cdof));
     PetscCall(PetscSectionGetOffset(cs, v, &xoff));
     b2 = bf = -1;
-    PetscCheck(cdof == 0, comm, PETSC_ERR_USER_INPUT, "A node of the contact boundary \"%s\" at (%g, %g) is also on a Dirichlet boundary. Contact dofs must be free: separate the two physical groups", mark[v - pStart] >= 2 ? ct->opt.obstacles[ct->opt.n_rigid + mark[v - pStart] - 2].slave : ct->opt.contact_name, (double)PetscRealPart(x[xoff]), (double)PetscRealPart(x[xoff + 1]));
+    PetscCheck(cdof == 0, comm, PETSC_ERR_USER_INPUT, "A node of the contact boundary \"%s\" at (%g, %g) is also on a Dirichlet boundary. Contact dofs must be free: separate the two physical groups", mark[v - pStart] >= 2 ? ct->pb.obstacles[ct->pb.n_rigid + mark[v - pStart] - 2].slave : ct->pb.contact_name, (double)PetscRealPart(x[xoff]), (double)PetscRealPart(x[xoff + 1]));
     {
       PetscReal xv[MM_MAX_DIM] = {0, 0, 0}, n[MM_MAX_DIM] = {0, 0, 0}, F[MM_MAX_DIM][MM_MAX_DIM];
       for (PetscInt d = 0; d < dim; ++d) xv[d] = PetscRealPart(x[xoff + d]);
       if (mark[v - pStart] >= 2) {
         const PetscInt p = mark[v - pStart] - 2;
         PetscCall(MMContactPairsProject(ct, p, nc, xv, &gap[nc], n));
-        ct->obstacle[nc] = ct->opt.n_rigid + p;
+        ct->obstacle[nc] = ct->pb.n_rigid + p;
       } else {
         PetscCall(NearestObstacle(ct, xv, &ct->obstacle[nc], &gap[nc], n));
         PetscCall(AllObstacleGaps(ct, xv, nc));
@@ -365,9 +365,9 @@ static PetscErrorCode BuildContactDofs(MMContact ct, const PetscInt mark[], Vec 
         for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
           for (PetscInt b = 0; b < MM_MAX_DIM; ++b) ct->node_frame[9 * nc + 3 * a + b] = F2[a][b];
         if (ct->all_gap0)
-          for (PetscInt b = 0; b < ct->opt.n_rigid; ++b) {
-            ct->all_gap0[nc * ct->opt.n_rigid + b] = ct->all_gap0[(nc - 1) * ct->opt.n_rigid + b];
-            for (PetscInt d = 0; d < 3; ++d) ct->all_nu[3 * (nc * ct->opt.n_rigid + b) + d] = ct->all_nu[3 * ((nc - 1) * ct->opt.n_rigid + b) + d];
+          for (PetscInt b = 0; b < ct->pb.n_rigid; ++b) {
+            ct->all_gap0[nc * ct->pb.n_rigid + b] = ct->all_gap0[(nc - 1) * ct->pb.n_rigid + b];
+            for (PetscInt d = 0; d < 3; ++d) ct->all_nu[3 * (nc * ct->pb.n_rigid + b) + d] = ct->all_nu[3 * ((nc - 1) * ct->pb.n_rigid + b) + d];
           }
       }
       ++nc;
@@ -410,7 +410,7 @@ static PetscErrorCode BuildContactDofs(MMContact ct, const PetscInt mark[], Vec 
     for (PetscInt k = 0; k < nc; ++k) {
       ga[k] = gap[k];
       aa[k] = nodal_area[k];
-      ma[k] = ct->opt.obstacles[ct->obstacle[k]].mu;
+      ma[k] = ct->pb.obstacles[ct->obstacle[k]].mu;
     }
     PetscCall(VecRestoreArray(ct->mu, &ma));
     PetscCall(VecRestoreArray(ct->gap, &ga));
@@ -471,19 +471,19 @@ static PetscErrorCode SetUp(MMContact ct)
   PetscFunctionBeginUser;
   ct->enabled     = ct->opt.contact;
   ct->tol         = ct->opt.contact_tol;
-  ct->ncomp       = ct->opt.mu_max > 0 ? ct->op->dim : 1;
+  ct->ncomp       = ct->pb.mu_max > 0 ? ct->op->dim : 1;
   ct->dim         = ct->op->dim;
-  PetscCall(PetscCalloc1(MM_MAX_DIM * ct->opt.n_obstacles, &ct->force_obstacle));
-  for (PetscInt b = 0; b < ct->opt.n_obstacles; ++b)
-    for (PetscInt d = 0; d < ct->op->dim; ++d) ct->moving = (PetscBool)(ct->moving || ct->opt.obstacles[b].velocity[d] != 0);
-  if (ct->opt.static_sliding) {
-    const MMObstacle *ob = &ct->opt.obstacles[0];
+  PetscCall(PetscCalloc1(MM_MAX_DIM * ct->pb.n_obstacles, &ct->force_obstacle));
+  for (PetscInt b = 0; b < ct->pb.n_obstacles; ++b)
+    for (PetscInt d = 0; d < ct->op->dim; ++d) ct->moving = (PetscBool)(ct->moving || ct->pb.obstacles[b].velocity[d] != 0);
+  if (ct->pb.static_sliding) {
+    const MMObstacle *ob = &ct->pb.obstacles[0];
     PetscBool         plane;
     PetscCall(PetscStrcmp(ob->type, "plane", &plane));
-    PetscCheck(ct->opt.n_obstacles == 1 && plane && !ct->moving, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_USER_INPUT, "-initial_state static_sliding needs a single fixed plane obstacle: the sliding state is built on one plane");
+    PetscCheck(ct->pb.n_obstacles == 1 && plane && !ct->moving, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_USER_INPUT, "-initial_state static_sliding needs a single fixed plane obstacle: the sliding state is built on one plane");
     for (PetscInt d = 0; d < MM_MAX_DIM; ++d) {
-      ct->opt.obstacle_point[d]  = ob->point[d];
-      ct->opt.obstacle_normal[d] = ob->normal[d];
+      ct->pb.obstacle_point[d]  = ob->point[d];
+      ct->pb.obstacle_normal[d] = ob->normal[d];
     }
   }
   PetscCall(MMContactSetType(ct));
@@ -505,39 +505,17 @@ static PetscErrorCode SetUp(MMContact ct)
   PetscCall(PetscFree(mark));
   PetscCall(VecDestroy(&area));
   /* a friction corner's two Coulomb laws on one node's dofs are solved in contact space only */
-  PetscCheck(!ct->n_fc || ct->ops->solvecoulomb, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_SUP, "%" PetscInt_FMT " contact nodes are within h_c' of two obstacles with friction (-mu %g), and -contact_formulation %s%s cannot carry both obstacles' Coulomb laws on one node: use -contact_formulation condensed", ct->n_fc, (double)ct->opt.mu_max, ct->type, ct->auto_type ? " (auto's choice for a mesh this size)" : "");
-  PetscCheck(ct->ncomp == 1 || ct->ops->solvecontactdofs, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_SUP, "Friction (-mu %g) needs a contact formulation that solves the contact dofs alone, and -contact_formulation %s cannot: use condensed or active_set", (double)ct->opt.mu_max, ct->type);
-  PetscCheck(ct->n_global > 0, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_USER_INPUT, "The contact boundary \"%s\" has no nodes", ct->opt.contact_name);
+  PetscCheck(!ct->n_fc || ct->ops->solvecoulomb, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_SUP, "%" PetscInt_FMT " contact nodes are within h_c' of two obstacles with friction (-mu %g), and -contact_formulation %s%s cannot carry both obstacles' Coulomb laws on one node: use -contact_formulation condensed", ct->n_fc, (double)ct->pb.mu_max, ct->type, ct->auto_type ? " (auto's choice for a mesh this size)" : "");
+  PetscCheck(ct->ncomp == 1 || ct->ops->solvecontactdofs, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_SUP, "Friction (-mu %g) needs a contact formulation that solves the contact dofs alone, and -contact_formulation %s cannot: use condensed or active_set", (double)ct->pb.mu_max, ct->type);
+  PetscCheck(ct->n_global > 0, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_USER_INPUT, "The contact boundary \"%s\" has no nodes", ct->pb.contact_name);
   PetscFunctionReturn(0);
 }
 
-
-/* The problem's data contact keeps: the obstacles (borrowed), the values its messages name */
-static PetscErrorCode SetProblem(MMContact ct, const MMContactProblem *pb)
-{
-  MMContactOptions *o = &ct->opt;
-
-  PetscFunctionBeginUser;
-  o->obstacles      = pb->obstacles;
-  o->n_obstacles    = pb->n_obstacles;
-  o->n_rigid        = pb->n_rigid;
-  o->mu_max         = pb->mu_max;
-  o->E              = pb->E;
-  o->rho            = pb->rho;
-  o->static_sliding = pb->static_sliding;
-  o->quiet          = pb->quiet;
-  PetscCall(PetscStrncpy(o->contact_name, pb->contact_name, sizeof(o->contact_name)));
-  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) {
-    o->obstacle_point[d]  = pb->obstacle_point[d];
-    o->obstacle_normal[d] = pb->obstacle_normal[d];
-  }
-  PetscFunctionReturn(0);
-}
 
 PetscErrorCode MMContactSetUp(MMContact ct, MMOperators *op, const MMMaterial *material, const MMContactProblem *pb)
 {
   PetscFunctionBeginUser;
-  PetscCall(SetProblem(ct, pb));
+  ct->pb = *pb; /* the obstacles and the contact boundary's name are the caller's, kept until destroy */
   ct->op       = op;
   ct->material = material;
   PetscCall(SetUp(ct));
@@ -548,8 +526,8 @@ PetscErrorCode MMContactGetPlane(MMContact ct, PetscReal point[], PetscReal norm
 {
   PetscFunctionBeginUser;
   for (PetscInt d = 0; d < MM_MAX_DIM; ++d) {
-    point[d]  = ct->opt.obstacle_point[d];
-    normal[d] = ct->opt.obstacle_normal[d];
+    point[d]  = ct->pb.obstacle_point[d];
+    normal[d] = ct->pb.obstacle_normal[d];
   }
   PetscFunctionReturn(0);
 }
@@ -559,7 +537,7 @@ PetscErrorCode MMContactGetPlane(MMContact ct, PetscReal point[], PetscReal norm
 static void FrictionCornerSetTime(MMContact ct, PetscInt k, PetscReal t, PetscReal dt)
 {
   const PetscInt    dim = ct->op->dim;
-  const MMObstacle *ob  = &ct->opt.obstacles[ct->fc_obstacle[k]];
+  const MMObstacle *ob  = &ct->pb.obstacles[ct->fc_obstacle[k]];
   PetscReal         c[MM_MAX_DIM] = {0, 0, 0}, V[MM_MAX_DIM] = {0, 0, 0}, F2[MM_MAX_DIM][MM_MAX_DIM];
 
   MMObstacleDisplacement(ob, dim, t, c);
@@ -590,7 +568,7 @@ PetscErrorCode MMContactSetTime(MMContact ct, PetscReal t, PetscReal dt)
   PetscCall(VecGetArrayRead(ct->gap0, &g0));
   PetscCall(VecGetArray(ct->gap, &g));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
-    const MMObstacle *ob = &ct->opt.obstacles[ct->obstacle[k]];
+    const MMObstacle *ob = &ct->pb.obstacles[ct->obstacle[k]];
     const PetscReal  *F  = &ct->node_frame[9 * k];
     PetscReal         c[MM_MAX_DIM] = {0, 0, 0}, V[MM_MAX_DIM] = {0, 0, 0}, cn = 0;
     MMObstacleDisplacement(ob, dim, t, c);

@@ -114,7 +114,7 @@ PetscErrorCode MMContactSolveStatic(MMContact ct, Vec w, Vec react)
     PetscCall(VecISSet(react, ct->is_interior, 0.0));
     PetscCall(VecISSet(react, ct->is_tangent, 0.0));
   } else PetscCall(VecZeroEntries(react));
-  if (!ct->opt.quiet) PetscCall(PetscPrintf(comm, "mmcontact: -initial_state static: the static contact problem at t = 0 solved in %" PetscInt_FMT " VI iteration%s\n", its, its == 1 ? "" : "s"));
+  if (!ct->pb.quiet) PetscCall(PetscPrintf(comm, "mmcontact: -initial_state static: the static contact problem at t = 0 solved in %" PetscInt_FMT " VI iteration%s\n", its, its == 1 ? "" : "s"));
   PetscCall(SNESDestroy(&snes));
   PetscCall(VecDestroy(&lower));
   PetscCall(VecDestroy(&upper));

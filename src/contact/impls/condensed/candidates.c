@@ -28,7 +28,7 @@ static PetscErrorCode CreateSetSolver(MMContact ct)
   PetscCall(MatAssemblyEnd(W0, MAT_FINAL_ASSEMBLY));
   c->qp.A      = W0;
   c->qp.rtol_b = ct->tol;
-  PetscCall(MMQPCreate(PETSC_COMM_SELF, "contact_", &c->qp, ct->ncomp > 1 ? ct->opt.mu_max : 0, &c->snes));
+  PetscCall(MMQPCreate(PETSC_COMM_SELF, "contact_", &c->qp, ct->ncomp > 1 ? ct->pb.mu_max : 0, &c->snes));
   PetscCall(MatDestroy(&W0));
   c->qp.A = NULL;
   PetscFunctionReturn(0);
@@ -510,7 +510,7 @@ static PetscErrorCode BuildSetOperator(MMContact ct)
   c->qp.rtol_b = ct->tol;
   /* a new solver for the new size: SNESReset leaves the semismooth method's work vectors behind */
   PetscCall(SNESDestroy(&c->snes));
-  PetscCall(MMQPCreate(PETSC_COMM_SELF, "contact_", &c->qp, nr > 1 ? ct->opt.mu_max : 0, &c->snes));
+  PetscCall(MMQPCreate(PETSC_COMM_SELF, "contact_", &c->qp, nr > 1 ? ct->pb.mu_max : 0, &c->snes));
   PetscCall(SNESVISetVariableBounds(c->snes, c->lo, c->hi));
   PetscCall(PetscLogEventEnd(MMCONTACT_CandidateOperator, 0, 0, 0, 0));
   PetscFunctionReturn(0);
