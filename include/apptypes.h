@@ -46,29 +46,9 @@ typedef struct {
   MMInitialState initial_state;
   PetscReal    obstacle_point[MM_MAX_DIM], obstacle_normal[MM_MAX_DIM];
   PetscReal    mesh_rotation[MM_MAX_DIM], mesh_rotation_center[MM_MAX_DIM];
-  PetscBool    contact;
-  char         contact_formulation[MM_TYPE_LEN]; /* a registered contact formulation, or auto */
-  PetscInt     iterative_dofs;                   /* 3D problems this large default to the iterative path */
-  PetscReal    contact_tol;
-  PetscReal    candidate_margin;  /* candidate set: predicted gap within this times the deepest predicted penetration */
-  PetscReal    candidate_memory;  /* candidate set: MiB of cached operator columns, over all ranks */
-  PetscBool    keep_factor;       /* keep K~'s factor (and its columns) for the previous dt */
-  PetscBool    candidate_all;     /* candidate set: every contact node, every step (the reference) */
-  PetscInt     active_set_max_it;   /* active-set iterations per contact solve */
-  PetscReal    active_set_inexact_rtol; /* CG's relative tolerance while nodes change set (0: every solve tight) */
-  PetscBool    active_set_monitor;
-  PetscBool    active_set_block;  /* the CG's products with K~ in block (BAIJ) storage */
   PetscReal    audit_tol;
   PetscReal    contact_work_tol;
-  PetscReal    initial_penetration_tol;
-  PetscReal    audit_penetration_tol; /* the contact audit of every step (src/contact/interface/diagnostics.c) */
-  PetscReal    audit_coulomb_tol;
   PetscReal    mu;
-  PetscReal    friction_coulomb_tol;
-  char         friction_type[64];   /* -friction_type: a name registered in src/friction/ */
-  PetscBool    friction_type_set;
-  PetscBool    friction_monitor;
-  char         friction_dump[PETSC_MAX_PATH_LEN]; /* -friction_dump: directory for the step problems, empty: none */
   PetscBool    quiet;
   PetscBool    check_input;         /* -check_input: set up, report and exit without stepping or writing */
   PetscBool    allow_unused;

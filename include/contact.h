@@ -1,38 +1,105 @@
+/* The contact component (src/contact/): the contact object MMContact, its life cycle, the step's
+ * contact solve in the chosen formulation, and what the other components read of the contact set. */
 #pragma once
-#include "mmcontact.h"
-PETSC_EXTERN PetscErrorCode MMKSPSetDirect(KSP);
-PETSC_EXTERN PetscErrorCode MMKSPSetExactCG(KSP);
-PETSC_EXTERN PetscErrorCode MMKSPCheckFactored(KSP);
-PETSC_EXTERN PetscErrorCode MMKSPSetFailureCheck(KSP);
-PETSC_EXTERN PetscErrorCode MMKSPSetDirectSPD(KSP, PetscInt);
-PETSC_EXTERN PetscErrorCode MMKSPGetFactorPC(KSP, PC *, PetscBool *);
-/* The exact solve of K~ split at the ranks' interface (src/contact/interface/pc_schursplit.c): the
- * default for K~ in 2D on 2 to 8 ranks, -contact_K_pc_type schursplit */
-#define MMPCSCHURSPLIT "schursplit"
-PETSC_EXTERN PetscErrorCode MMPCRegisterSchurSplit(void);
-/* The full formulation's Newton solves by one factor of the whole K~, its active rows and columns
- * the identity's (src/contact/interface/pc_vifactor.c): the default, -contact_pc_type vifactor */
-#define MMPCVIFACTOR "vifactor"
-PETSC_EXTERN PetscErrorCode MMPCRegisterVIFactor(void);
-PETSC_EXTERN PetscErrorCode MMPCVIFactorSetSNES(PC, SNES);
-PETSC_EXTERN PetscErrorCode MMPCVIFactorAnalyse(PC, Mat);
-PETSC_EXTERN PetscErrorCode MMPCVIFactorGetFactor(PC, Mat *, const char **);
-PETSC_EXTERN PetscErrorCode MMFactorReadOptions(MPI_Comm, const char[], MatSolverType, MatFactorType);
-PETSC_EXTERN PetscErrorCode MMContactRegister(const char[], PetscErrorCode (*)(MMContact *));
+#include "fem.h"
+#include "obstacle.h"
+
+/* The contact object: the contact set, gaps and the chosen formulation's state; its struct is
+ * private (src/contact/contactimpl.h) */
+typedef struct _p_MMContact *MMContact;
+
+/* Life cycle */
+PETSC_EXTERN PetscErrorCode MMContactInitializePackage(void);
+PETSC_EXTERN PetscErrorCode MMContactCreate(MPI_Comm comm, MMContact *ct);
+PETSC_EXTERN PetscErrorCode MMContactSetFromOptions(MMContact ct);
+PETSC_EXTERN PetscErrorCode MMContactSetCoulombTolerance(MMContact ct, PetscReal tol);
+PETSC_EXTERN PetscErrorCode MMContactGetTolerance(MMContact ct, PetscReal *tol);
+/* What contact reads of the problem, given at set-up (src/app fills it from the options): the
+ * obstacles (rigid ones first, then the contact pairs), the contact boundary's physical name, the
+ * material's values its messages name, the single plane (-obstacle_point, -obstacle_normal) */
+typedef struct {
+  const MMObstacle *obstacles;
+  PetscInt          n_obstacles, n_rigid;
+  PetscReal         mu_max;           /* the largest friction coefficient: 0 frictionless */
+  PetscReal         E, rho;
+  const char       *contact_name;     /* -contact_boundary */
+  PetscBool         static_sliding;   /* -initial_state static_sliding: one fixed plane */
+  PetscBool         quiet;
+  PetscReal         obstacle_point[MM_MAX_DIM], obstacle_normal[MM_MAX_DIM];
+} MMContactProblem;
+/* Finds the contact nodes and builds Q, before fem assembles the operators; op and material are
+ * borrowed (kept until destroy) */
+PETSC_EXTERN PetscErrorCode MMContactSetUp(MMContact ct, MMOperators *op, const MMMaterial *material, const MMContactProblem *pb);
+/* The plane of the static sliding state (-initial_state static_sliding: the single obstacle's) */
+PETSC_EXTERN PetscErrorCode MMContactGetPlane(MMContact ct, PetscReal point[], PetscReal normal[]);
+PETSC_EXTERN PetscErrorCode MMContactView(MMContact ct, PetscViewer viewer);
+PETSC_EXTERN PetscErrorCode MMContactDestroy(MMContact *ct);
+PETSC_EXTERN PetscErrorCode MMContactRegister(const char name[], PetscErrorCode (*create)(MMContact ct));
 PETSC_EXTERN PetscErrorCode MMContactRegisterAll(void);
-PETSC_EXTERN PetscErrorCode MMContactSetUp(MMCtx *);
-/* mass_boundary.c: what fem needs of the contact boundary to build M* */
-PETSC_EXTERN PetscErrorCode MMContactGetMassBoundary(const MMContact *ct, MMMassBoundary *mb);
-PETSC_EXTERN PetscErrorCode MMContactSetType(MMCtx *);
-PETSC_EXTERN PetscErrorCode MMContactSummary(MMCtx *);
-PETSC_EXTERN PetscErrorCode MMContactSetTime(MMCtx *, PetscReal, PetscReal);
-PETSC_EXTERN PetscErrorCode MMContactSetStepMatrix(MMCtx *, PetscReal);
-PETSC_EXTERN PetscErrorCode MMContactGetStepKSP(MMCtx *, KSP *, KSP *);
-PETSC_EXTERN PetscErrorCode MMContactSolve(MMCtx *, Vec, Vec, Vec);
-PETSC_EXTERN PetscErrorCode MMContactSolveContactDofs(MMCtx *, Vec, Vec, Vec);
-PETSC_EXTERN PetscErrorCode MMContactRecover(MMCtx *, Vec, Vec, Vec);
-PETSC_EXTERN PetscErrorCode MMContactGetNormalReactions(MMCtx *, Vec);
-PETSC_EXTERN PetscErrorCode MMContactSetFrictionThresholds(MMCtx *, Vec);
+/* What fem needs of the contact boundary to build M* (MMFEAssembleOperators) */
+PETSC_EXTERN PetscErrorCode MMContactGetMassBoundary(MMContact ct, MMMassBoundary *mb);
+
+/* What the other components read of the contact set, as it is when asked (MMContactGetNodes): its
+ * dofs, per owned contact row its frame, obstacle and mesh point; arrays and objects are the
+ * contact object's, valid until it is destroyed. */
+typedef struct {
+  PetscBool        enabled;    /* -contact */
+  PetscBool        moving;     /* some obstacle moves: gaps follow it every step */
+  PetscInt         dim;        /* the mesh's */
+  PetscInt         n_local, n_global; /* contact rows owned here / in total */
+  PetscInt         ncomp;      /* reaction components per row: 1 (normal), or dim with friction */
+  PetscInt         n_corners, n_fc; /* second rows; friction corners (over all ranks) */
+  PetscReal        h_c;        /* h_c': the smallest diameter of the cells touching the contact boundary */
+  PetscReal        dt;         /* the dt of the step matrix K~ */
+  IS               is_normal, is_tangent, is_star, is_interior, is_massless; /* owned global dofs */
+  Vec              gap;        /* g_i on the normal dofs, layout of is_normal */
+  Vec              mu;         /* per row, the friction coefficient of its obstacle (layout of gap) */
+  PetscReal        frame[MM_MAX_DIM][MM_MAX_DIM]; /* the single plane's frame (static sliding): rows nu, tau_1, tau_2 */
+  const PetscReal *node_frame; /* per row its frame, 9 reals: rows nu, tau_1, tau_2 */
+  const PetscInt  *obstacle;   /* per row, the obstacle it is constrained against */
+  const PetscInt  *vertex;     /* per row, its mesh point */
+  const PetscInt  *scalar_index; /* per row, its global index in the scalar vertex DM */
+  const PetscBool *second;     /* per row: a corner node's second row (the row before is its first) */
+  const PetscInt  *fc_obstacle; /* per row: a friction corner's second obstacle, or -1; NULL without friction */
+} MMContactNodes;
+PETSC_EXTERN PetscErrorCode MMContactGetNodes(MMContact ct, MMContactNodes *nodes);
+/* The step problem's right-hand side b, a vector of the contact object that the stepper fills */
+PETSC_EXTERN PetscErrorCode MMContactGetRHS(MMContact ct, Vec *b);
+/* The contact force on obstacle b at the last step (Cartesian, MM_MAX_DIM components) */
+PETSC_EXTERN PetscErrorCode MMContactGetObstacleForce(MMContact ct, PetscInt b, PetscReal force[]);
+/* For the start-up report: the formulation, why it was chosen ("" or " (auto...)"), how the CG
+ * multiplies by K~ ("" without CG); pair p's slave nodes, those facing a master node and its facets */
+PETSC_EXTERN PetscErrorCode MMContactGetSolverText(MMContact ct, const char **type, const char **choice, const char **products);
+PETSC_EXTERN PetscErrorCode MMContactGetPairCounts(MMContact ct, PetscInt p, PetscInt *slave_nodes, PetscInt *node_to_node, PetscInt *master_facets);
+/* The candidate set's size at the last step and its re-solves over the run (0 without one) */
+PETSC_EXTERN PetscErrorCode MMContactGetCandidateCounts(MMContact ct, PetscInt *n_set, PetscInt *resolves);
+PETSC_EXTERN PetscErrorCode MMContactSetCandidateResolves(MMContact ct, PetscInt resolves);
+
+/* A contact row's state in a checkpoint (src/io/checkpoint.c): MM_CONTACT_NODE_STATE reals per mesh
+ * vertex, 0: 1 (a contact node), 1: the friction threshold (the friction solver's), 2: slipping,
+ * 3: last active, 4-5: slip direction, 6-8: reactions, 9-12: the formulation's warm start (the
+ * active set's states, a friction corner's second reactions). A corner node's second row keeps its
+ * states in slots its first row leaves free: owned[c] says which slots row k writes. */
+#define MM_CONTACT_NODE_STATE 13
+PETSC_EXTERN PetscErrorCode MMContactGetNodeState(MMContact ct, PetscInt k, PetscInt *vertex, PetscScalar state[], PetscBool owned[]);
+PETSC_EXTERN PetscErrorCode MMContactSetNodeState(MMContact ct, PetscInt k, const PetscScalar state[], PetscBool *second);
+
+/* The step */
+PETSC_EXTERN PetscErrorCode MMContactSetTime(MMContact ct, PetscReal t, PetscReal dt);
+/* K~ = ck K + cb B + cm M* for one dt, its coefficients computed by the stepper (src/ts/damping.c) */
+typedef struct {
+  PetscReal dt, ck, cb, cm;
+  Mat       B; /* NULL when cb = 0; B == K allowed */
+} MMStepMatrix;
+PETSC_EXTERN PetscErrorCode MMContactSetStepMatrix(MMContact ct, const MMStepMatrix *sm);
+/* The state at the start of each step (u^n, v^n), borrowed: the stepper updates them in place */
+PETSC_EXTERN PetscErrorCode MMContactSetPreviousState(MMContact ct, Vec u_old, Vec v_old);
+PETSC_EXTERN PetscErrorCode MMContactGetStepKSP(MMContact ct, KSP *krylov, KSP *pc_ksp);
+PETSC_EXTERN PetscErrorCode MMContactSolve(MMContact ct, Vec b, Vec w, Vec react);
+PETSC_EXTERN PetscErrorCode MMContactSolveContactDofs(MMContact ct, Vec b, Vec w, Vec react);
+PETSC_EXTERN PetscErrorCode MMContactRecover(MMContact ct, Vec b, Vec w, Vec react);
+PETSC_EXTERN PetscErrorCode MMContactGetNormalReactions(MMContact ct, Vec s);
+PETSC_EXTERN PetscErrorCode MMContactSetFrictionThresholds(MMContact ct, Vec s);
 /* The step's contact problem in contact space, on the condensed formulation's candidate set, for a
  * friction solver: n nodes of nc components (normal, then the tangents of the node's frame); the
  * set's Delassus block W (column-major, symmetric), the right-hand side q with u = W r - q (u_n: the
@@ -44,20 +111,28 @@ typedef struct {
   const PetscReal   *mu;
   PetscBool          redundant; /* some nodes act on the same dofs (friction corners): W is singular */
 } MMContactSetProblem;
-typedef PetscErrorCode (*MMContactSetSolver)(void *, const MMContactSetProblem *, PetscScalar[], PetscBool *);
-PETSC_EXTERN PetscErrorCode MMContactHasDelassus(MMCtx *, PetscBool *);
-PETSC_EXTERN PetscErrorCode MMContactSolveCoulomb(MMCtx *, Vec, Vec, Vec, MMContactSetSolver, void *, PetscBool *);
-PETSC_EXTERN PetscErrorCode MMContactHasCoulombDofs(MMCtx *, PetscBool *);
-PETSC_EXTERN PetscErrorCode MMContactSolveCoulombDofs(MMCtx *, Vec, Vec, Vec, Vec, PetscReal, PetscInt *, PetscBool *);
-PETSC_EXTERN PetscErrorCode MMContactProjectInitial(MMCtx *, Vec);
-PETSC_EXTERN PetscErrorCode MMContactSolveStatic(MMCtx *, Vec, Vec);
-PETSC_EXTERN PetscErrorCode MMContactDiagnostics(MMCtx *, Vec, Vec, Vec, MMHistory *);
-PETSC_EXTERN PetscErrorCode MMContactCoulomb(MMCtx *, Vec, Vec, Vec, PetscReal *, PetscInt *, PetscInt *);
-PETSC_EXTERN PetscErrorCode MMContactAudit(MMCtx *, const MMHistory *);
-PETSC_EXTERN PetscErrorCode MMContactBoundaryFields(MMCtx *, MMOutput *);
-PETSC_EXTERN PetscErrorCode MMContactObstacleField(MMCtx *, Vec);
-PETSC_EXTERN PetscErrorCode MMContactDestroy(MMContact *);
-PETSC_EXTERN PetscErrorCode MMContactPairsTransformOperators(MMCtx *);
+typedef PetscErrorCode (*MMContactSetSolver)(void *fctx, const MMContactSetProblem *problem, PetscScalar x[], PetscBool *ok);
+PETSC_EXTERN PetscErrorCode MMContactHasDelassus(MMContact ct, PetscBool *has);
+PETSC_EXTERN PetscErrorCode MMContactSolveCoulomb(MMContact ct, Vec b, Vec w, Vec react, MMContactSetSolver fn, void *fctx, PetscBool *ok);
+PETSC_EXTERN PetscErrorCode MMContactHasCoulombDofs(MMContact ct, PetscBool *has);
+PETSC_EXTERN PetscErrorCode MMContactSolveCoulombDofs(MMContact ct, Vec b, Vec w, Vec react, Vec s, PetscReal rtol, PetscInt *its, PetscBool *ok);
+PETSC_EXTERN PetscErrorCode MMContactProjectInitial(MMContact ct, Vec w);
+PETSC_EXTERN PetscErrorCode MMContactSolveStatic(MMContact ct, Vec u, Vec react);
+/* The contact quantities of an accepted state (docs/method.md sections 5-6), for the history */
+typedef struct {
+  PetscInt  active, switched, slipping; /* contact rows in contact, that changed state, slipping */
+  PetscReal force_normal, force_tangential, max_penetration, coulomb_residual;
+  PetscInt  vi_its;                     /* Newton iterations of the last contact solve */
+  PetscInt  candidates, resolves;       /* the step's candidate-set size; VI re-solves over the run */
+} MMContactStats;
+PETSC_EXTERN PetscErrorCode MMContactDiagnostics(MMContact ct, PetscReal t, Vec u, Vec react, Vec v, MMContactStats *st);
+PETSC_EXTERN PetscErrorCode MMContactCoulomb(MMContact ct, PetscReal t, Vec w, Vec react, Vec sigma, PetscReal *coulomb, PetscInt *nslip, PetscInt *nstick);
+PETSC_EXTERN PetscErrorCode MMContactAudit(MMContact ct, PetscInt step, PetscReal t, const MMContactStats *st);
+/* The contact fields of a snapshot from the state (u, v, react): nodal pressure and gap (scalar vertex
+ * vectors), tangential traction and slip velocity (Cartesian, on dm_out) */
+PETSC_EXTERN PetscErrorCode MMContactBoundaryFields(MMContact ct, Vec u, Vec v, Vec react, DM dm_out, Vec pressure, Vec gap, Vec traction_t, Vec slip);
+PETSC_EXTERN PetscErrorCode MMContactObstacleField(MMContact ct, Vec field);
+PETSC_EXTERN PetscErrorCode MMContactPairsTransformOperators(MMContact ct);
 /* The data check's first-contact estimate (interface/first_contact.c): the earliest time a contact
  * row closes at the nodes' initial velocity and acceleration, its node (reference position), its
  * obstacle (index in the options' obstacles, -1 if none closes before the end), its gap, approach
@@ -67,7 +142,27 @@ typedef struct {
   PetscReal x[MM_MAX_DIM];
   PetscInt  obstacle, touching;
 } MMFirstContact;
-PETSC_EXTERN PetscErrorCode MMContactFirstContact(MMCtx *, Vec, Vec, Vec, PetscReal, PetscReal, MMFirstContact *);
-PETSC_EXTERN PetscErrorCode MMContactObstacleGaps(MMCtx *, Vec, PetscReal, PetscInt[], PetscReal[], PetscReal[]);
-PETSC_EXTERN PetscErrorCode MMContactCornersAccept(MMCtx *);
-PETSC_EXTERN PetscErrorCode MMContactCornersWork(MMCtx *, PetscReal, PetscReal, Vec, PetscReal *, PetscReal *, PetscReal *);
+PETSC_EXTERN PetscErrorCode MMContactFirstContact(MMContact ct, Vec u, Vec v, Vec a, PetscReal t0, PetscReal t_end, MMFirstContact *fc);
+PETSC_EXTERN PetscErrorCode MMContactObstacleGaps(MMContact ct, Vec u, PetscReal t, PetscInt count[], PetscReal gap[], PetscReal x[]);
+PETSC_EXTERN PetscErrorCode MMContactCornersAccept(MMContact ct);
+PETSC_EXTERN PetscErrorCode MMContactCornersWork(MMContact ct, PetscReal t0, PetscReal t1, Vec work, PetscReal *wc, PetscReal *wn, PetscReal *wt);
+
+/* Linear solvers of K~ (interface/qp.c, pc_schursplit.c, pc_vifactor.c) */
+PETSC_EXTERN PetscErrorCode MMKSPSetDirect(KSP ksp);
+PETSC_EXTERN PetscErrorCode MMKSPSetExactCG(KSP ksp);
+PETSC_EXTERN PetscErrorCode MMKSPCheckFactored(KSP ksp);
+PETSC_EXTERN PetscErrorCode MMKSPSetFailureCheck(KSP ksp);
+PETSC_EXTERN PetscErrorCode MMKSPSetDirectSPD(KSP ksp, PetscInt dim);
+PETSC_EXTERN PetscErrorCode MMKSPGetFactorPC(KSP ksp, PC *fpc, PetscBool *redundant);
+/* The exact solve of K~ split at the ranks' interface (src/contact/interface/pc_schursplit.c): the
+ * default for K~ in 2D on 2 to 8 ranks, -contact_K_pc_type schursplit */
+#define MMPCSCHURSPLIT "schursplit"
+PETSC_EXTERN PetscErrorCode MMPCRegisterSchurSplit(void);
+/* The full formulation's Newton solves by one factor of the whole K~, its active rows and columns
+ * the identity's (src/contact/interface/pc_vifactor.c): the default, -contact_pc_type vifactor */
+#define MMPCVIFACTOR "vifactor"
+PETSC_EXTERN PetscErrorCode MMPCRegisterVIFactor(void);
+PETSC_EXTERN PetscErrorCode MMPCVIFactorSetSNES(PC pc, SNES snes);
+PETSC_EXTERN PetscErrorCode MMPCVIFactorAnalyse(PC pc, Mat A);
+PETSC_EXTERN PetscErrorCode MMPCVIFactorGetFactor(PC pc, Mat *F, const char **solver);
+PETSC_EXTERN PetscErrorCode MMFactorReadOptions(MPI_Comm comm, const char prefix[], MatSolverType solver, MatFactorType ftype);

@@ -4,8 +4,8 @@
 #include "mmbase.h"
 #include "fem.h"
 #include "apptypes.h"
-#include "contacttypes.h"
-#include "frictiontypes.h"
+#include "contact.h"
+#include "friction.h"
 #include "tstypes.h"
 
 /* The run's context (include/mmcontact.h), which the output's glue to the components below still
@@ -21,7 +21,7 @@ typedef struct {
   const MMMaterial  *material;
   const MMHistory   *hist;
   const MMState     *state;
-  const MMContact   *contact;
+  MMContact          contact;
   const MMDamping   *damping;
   PetscBool      started;
   PetscLogDouble wall_start, wall_last; /* wall time at the start of the time loop and at the last line */
@@ -54,7 +54,7 @@ typedef struct {
   MMHistory         *hist;     /* the running sums and maxima */
   MMState           *state;    /* u, v, a and the reactions, dt */
   MMDamping         *damping;  /* alpha, beta and vC */
-  MMContact         *contact;  /* the contact nodes' states: the solvers' warm starts */
+  MMContact          contact;  /* the contact nodes' states: the solvers' warm starts */
   MMFriction         friction; /* its thresholds */
   MMOutput          *out;      /* the snapshots: their count and times, their copy */
   PetscReal          dt_next;  /* -restart: the dt the run continues with */
@@ -83,7 +83,7 @@ struct _MMOutput {
   const MMMaterial   *material; /* each cell's material: the stress */
   const MMHistory    *hist;     /* the stepper's history row */
   const MMState      *state;    /* the stepper's u and v */
-  const MMContact    *contact; /* each obstacle's force, in the history */
+  MMContact           contact; /* each obstacle's force, in the history */
   MMLoads            *loads;   /* each Dirichlet boundary's reaction, in the history; the Dirichlet data of the whole fields */
   MMCheckpoint       *ckpt;    /* the restart the run continues (its snapshots taken over), the serial vertex numbers */
   char          dir[PETSC_MAX_PATH_LEN]; /* -output_dir */
@@ -119,7 +119,7 @@ PETSC_EXTERN PetscErrorCode MMIOInitializePackage(void);
 
 /* output.c: the files of a run, from set-up to close */
 PETSC_EXTERN PetscErrorCode MMOutputSetFromOptions(MPI_Comm comm, MMOutput *o);
-PETSC_EXTERN PetscErrorCode MMOutputSetUp(MMOutput *o, const MMOptions *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, const MMContact *contact, MMLoads *loads, MMCheckpoint *ckpt);
+PETSC_EXTERN PetscErrorCode MMOutputSetUp(MMOutput *o, const MMOptions *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, MMContact contact, MMLoads *loads, MMCheckpoint *ckpt);
 /* output_monitor.c: the glue that gathers each snapshot's fields from the components below */
 PETSC_EXTERN PetscErrorCode MMOutputOpen(MMCtx *ctx);
 PETSC_EXTERN PetscErrorCode MMOutputSetUpProbes(MMOutput *o);
@@ -149,7 +149,7 @@ PETSC_EXTERN PetscErrorCode MMOutputPlanMake(const MMOutput *o, TS ts, MMOutputP
 
 /* checkpoint.c: checkpoints and -restart (docs/method.md section 9) */
 PETSC_EXTERN PetscErrorCode MMCheckpointSetFromOptions(MPI_Comm comm, MMCheckpoint *c);
-PETSC_EXTERN PetscErrorCode MMCheckpointSetUp(MMCheckpoint *c, const MMOptions *opt, const MMOperators *op, const MMMaterial *material, MMHistory *hist, MMState *state, MMDamping *damping, MMContact *contact, MMFriction friction, MMOutput *out);
+PETSC_EXTERN PetscErrorCode MMCheckpointSetUp(MMCheckpoint *c, const MMOptions *opt, const MMOperators *op, const MMMaterial *material, MMHistory *hist, MMState *state, MMDamping *damping, MMContact contact, MMFriction friction, MMOutput *out);
 PETSC_EXTERN PetscErrorCode MMCheckpointWrite(MMCheckpoint *c, TS ts);
 PETSC_EXTERN PetscErrorCode MMCheckpointMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ctx);
 PETSC_EXTERN PetscErrorCode MMCheckpointDestroy(MMCheckpoint *c);
@@ -163,7 +163,7 @@ PETSC_EXTERN PetscInt       MMCheckpointSnapshotCount(const MMCheckpoint *c);
 
 /* progress.c: the start-up report and the progress lines */
 PETSC_EXTERN PetscErrorCode MMProgressSetFromOptions(MPI_Comm comm, MMProgress *p);
-PETSC_EXTERN PetscErrorCode MMProgressSetUp(MMProgress *p, const MMOptions *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, const MMContact *contact, const MMDamping *damping);
+PETSC_EXTERN PetscErrorCode MMProgressSetUp(MMProgress *p, const MMOptions *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, MMContact contact, const MMDamping *damping);
 PETSC_EXTERN PetscErrorCode MMProgressHeader(MMProgress *p, TS ts, KSP krylov, KSP pc_ksp);
 PETSC_EXTERN PetscErrorCode MMProgressMassLine(const MMProgress *p);
 PETSC_EXTERN PetscErrorCode MMProgressMonitorSet(MMProgress *p, TS ts);

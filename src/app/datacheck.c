@@ -83,13 +83,15 @@ static PetscErrorCode GroupSizes(DM dm, const char name[], PetscInt sizes[3])
 /* The options that name a group, e.g. " (-contact_boundary, -dirichlet)"; empty if none of these. */
 static PetscErrorCode GroupRoles(MMCtx *ctx, const char name[], char text[], size_t len)
 {
+  MMContactNodes cn;
   const MMOptions *opt = &ctx->opt;
   char             roles[512] = "";
   PetscBool        same;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetNodes(ctx->contact, &cn));
   PetscCall(PetscStrcmp(name, opt->contact_name, &same));
-  if (same && ctx->contact.enabled && opt->n_rigid > 0) PetscCall(PetscStrlcat(roles, ", -contact_boundary", sizeof(roles)));
+  if (same && cn.enabled && opt->n_rigid > 0) PetscCall(PetscStrlcat(roles, ", -contact_boundary", sizeof(roles)));
   for (PetscInt b = 0; b < opt->n_dirichlet; ++b) {
     PetscCall(PetscStrcmp(name, opt->dirichlet[b].name, &same));
     if (same) PetscCall(PetscStrlcat(roles, ", -dirichlet", sizeof(roles)));
@@ -113,7 +115,7 @@ static PetscErrorCode GroupRoles(MMCtx *ctx, const char name[], char text[], siz
       PetscCall(PetscStrlcat(roles, opt->bodies[b].name, sizeof(roles)));
     }
   }
-  for (PetscInt p = opt->n_rigid; ctx->contact.enabled && p < opt->n_obstacles; ++p) {
+  for (PetscInt p = opt->n_rigid; cn.enabled && p < opt->n_obstacles; ++p) {
     const MMObstacle *ob = &opt->obstacles[p];
     PetscBool         slave, master;
     PetscCall(PetscStrcmp(name, ob->slave, &slave));
@@ -198,15 +200,17 @@ static PetscErrorCode ReportPlan(MMCtx *ctx, TS ts, PetscReal *step0)
  * gravity). */
 static PetscErrorCode AccelerationEstimate(MMCtx *ctx, Vec a)
 {
+  MMContactNodes cn;
   const MMState *s = &ctx->state;
   Vec            r, f;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetNodes(ctx->contact, &cn));
   PetscCall(VecDuplicate(s->u, &r));
   PetscCall(VecDuplicate(ctx->op.mass_lumped_cart, &f));
   PetscCall(MatMult(ctx->op.K, s->u, r));
   PetscCall(VecAXPY(r, 1.0, ctx->op.lift));
-  if (MMFEHasMasslessDofs(&ctx->op)) PetscCall(VecISSet(r, ctx->contact.is_normal, 0.0));
+  if (MMFEHasMasslessDofs(&ctx->op)) PetscCall(VecISSet(r, cn.is_normal, 0.0));
   PetscCall(VecAYPX(r, -1.0, ctx->op.load));
   PetscCall(MMDampingAddForce(ctx, s->v, -1.0, r));
   PetscCall(MMFEForceToCartesian(&ctx->op, r, f));
@@ -228,15 +232,17 @@ static void PointText(PetscInt dim, const PetscReal x[], char text[], size_t len
  * reference position, as the contact_obstacle field shows) and its smallest gap at the start. */
 static PetscErrorCode ReportObstacles(MMCtx *ctx, TS ts)
 {
+  MMContactNodes cn;
   const MMOptions *opt = &ctx->opt;
   PetscInt        *count;
   PetscReal       *gap, *x, t0;
 
   PetscFunctionBeginUser;
-  if (!ctx->contact.enabled) PetscFunctionReturn(0);
+  PetscCall(MMContactGetNodes(ctx->contact, &cn));
+  if (!cn.enabled) PetscFunctionReturn(0);
   PetscCall(TSGetTime(ts, &t0));
   PetscCall(PetscMalloc3(opt->n_obstacles, &count, opt->n_obstacles, &gap, MM_MAX_DIM * opt->n_obstacles, &x));
-  PetscCall(MMContactObstacleGaps(ctx, ctx->state.u, t0, count, gap, x));
+  PetscCall(MMContactObstacleGaps(ctx->contact, ctx->state.u, t0, count, gap, x));
   for (PetscInt b = 0; b < opt->n_obstacles; ++b) {
     const PetscBool pair = (PetscBool)(b >= opt->n_rigid);
     char            where[128];
@@ -253,13 +259,15 @@ static PetscErrorCode ReportObstacles(MMCtx *ctx, TS ts)
 
 static PetscErrorCode ReportFirstContact(MMCtx *ctx, TS ts, PetscReal step0)
 {
+  MMContactNodes cn;
   MMFirstContact fc;
   PetscReal      t0, t_end, dt;
   Vec            a;
   char           where[128], touching[160] = "";
 
   PetscFunctionBeginUser;
-  if (!ctx->contact.enabled) {
+  PetscCall(MMContactGetNodes(ctx->contact, &cn));
+  if (!cn.enabled) {
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  first contact: none, -contact 0\n"));
     PetscFunctionReturn(0);
   }
@@ -268,7 +276,7 @@ static PetscErrorCode ReportFirstContact(MMCtx *ctx, TS ts, PetscReal step0)
   PetscCall(TSGetTimeStep(ts, &dt));
   PetscCall(VecDuplicate(ctx->state.u, &a));
   PetscCall(AccelerationEstimate(ctx, a));
-  PetscCall(MMContactFirstContact(ctx, ctx->state.u, ctx->state.v, a, t0, t_end, &fc));
+  PetscCall(MMContactFirstContact(ctx->contact, ctx->state.u, ctx->state.v, a, t0, t_end, &fc));
   PetscCall(VecDestroy(&a));
   if (fc.touching) PetscCall(PetscSNPrintf(touching, sizeof(touching), "%" PetscInt_FMT " contact row%s touch%s at the start; of the others, ", fc.touching, fc.touching > 1 ? "s" : "", fc.touching > 1 ? "" : "es"));
   if (fc.obstacle < 0) {

@@ -63,7 +63,7 @@ static PetscErrorCode Restart(MMCtx *ctx, TS ts)
   PetscCall(MMCheckpointLoad(&ctx->ckpt, ts));
   PetscCall(MMCheckpointGetRestart(&ctx->ckpt, &restarted, NULL, &t));
   if (!restarted) PetscFunctionReturn(0);
-  if (ctx->contact.enabled) PetscCall(MMContactSetTime(ctx, t, ctx->state.dt));
+  PetscCall(MMContactSetTime(ctx->contact, t, ctx->state.dt)); /* nothing without contact */
   PetscCall(MMLoadsSetTime(&ctx->loads, t, t));
   if (!ctx->opt.quiet) PetscCall(MMCheckpointView(&ctx->ckpt, PETSC_VIEWER_STDOUT_WORLD));
   PetscFunctionReturn(0);
@@ -71,16 +71,26 @@ static PetscErrorCode Restart(MMCtx *ctx, TS ts)
 
 static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
 {
-  MPI_Comm       comm = PETSC_COMM_WORLD;
-  PetscReal      dt;
-  MMFEProblem    pb;
-  MMMassBoundary mb;
+  MPI_Comm         comm = PETSC_COMM_WORLD;
+  PetscReal        dt;
+  MMFEProblem      pb;
+  MMMassBoundary   mb;
+  MMContactProblem cp;
 
   PetscFunctionBeginUser;
   PetscCall(MMOptionsProcess(comm, &ctx->opt));
   PetscCall(MMOptionsHelpWithoutMesh(comm, help_only));
   if (*help_only) PetscFunctionReturn(0);
   PetscCall(MMFESetFromOptions(comm, &ctx->op));
+  PetscCall(MMContactCreate(comm, &ctx->contact));
+  PetscCall(MMContactSetFromOptions(ctx->contact));
+  PetscCall(MMFrictionCreate(comm, &ctx->friction));
+  PetscCall(MMFrictionSetFromOptions(ctx->friction));
+  {
+    PetscReal tol;
+    PetscCall(MMFrictionGetCoulombTolerance(ctx->friction, &tol));
+    PetscCall(MMContactSetCoulombTolerance(ctx->contact, tol));
+  }
   PetscCall(MMOutputSetFromOptions(comm, &ctx->out));
   PetscCall(MMCheckpointSetFromOptions(comm, &ctx->ckpt));
   PetscCall(MMProgressSetFromOptions(comm, &ctx->progress));
@@ -91,33 +101,40 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscCall(DMGetDimension(ctx->op.dm, &ctx->op.dim));
   PetscCall(MMOptionsGetFEProblem(&ctx->opt, &pb));
   MMPhase(MMAppEvents.fe_setup, MMFESetUp(&ctx->op, &ctx->material, &pb));
-  MMPhase(MMAppEvents.contact_setup, MMContactSetUp(ctx));
-  PetscCall(MMContactGetMassBoundary(&ctx->contact, &mb));
+  PetscCall(MMOptionsGetContactProblem(&ctx->opt, &cp));
+  MMPhase(MMAppEvents.contact_setup, MMContactSetUp(ctx->contact, &ctx->op, &ctx->material, &cp));
+  /* the static sliding state's plane is the single obstacle's (src/ts/sliding.c reads it) */
+  PetscCall(MMContactGetPlane(ctx->contact, ctx->opt.obstacle_point, ctx->opt.obstacle_normal));
+  PetscCall(MMContactGetMassBoundary(ctx->contact, &mb));
   PetscCall(MMFEAssembleOperators(&ctx->op, &ctx->material, &pb, &mb));
-  PetscCall(MMContactPairsTransformOperators(ctx));
+  PetscCall(MMContactPairsTransformOperators(ctx->contact));
   PetscCall(MMFEAssembleOperatorsEnd(&ctx->op));
   MMPhase(MMAppEvents.loads_setup, MMLoadsSetUp(&ctx->loads, &ctx->op, &ctx->material, &pb));
   MMPhase(MMAppEvents.initial_state, MMNewmarkInitialState(ctx));
-  MMPhase(MMAppEvents.friction_setup, MMFrictionSetUp(ctx));
+  MMPhase(MMAppEvents.friction_setup, MMFrictionSetUp(ctx->friction, ctx->contact, ctx->opt.mu_max, ctx->material.E_max, ctx->state.u_old, ctx->state.v_old, ctx->state.react));
   PetscCall(MMNewmarkCreateTS(ctx, ts));
-  PetscCall(MMCheckpointSetUp(&ctx->ckpt, &ctx->opt, &ctx->op, &ctx->material, &ctx->hist, &ctx->state, &ctx->damping, &ctx->contact, ctx->friction, &ctx->out));
+  PetscCall(MMCheckpointSetUp(&ctx->ckpt, &ctx->opt, &ctx->op, &ctx->material, &ctx->hist, &ctx->state, &ctx->damping, ctx->contact, ctx->friction, &ctx->out));
   PetscCall(Restart(ctx, *ts));
   PetscCall(TSGetTimeStep(*ts, &dt));
-  MMPhase(MMAppEvents.step_matrix, MMContactSetStepMatrix(ctx, dt));
+  {
+    MMStepMatrix sm;
+    PetscCall(MMDampingGetStepMatrix(&ctx->damping, ctx->op.K, dt, &sm));
+    MMPhase(MMAppEvents.step_matrix, MMContactSetStepMatrix(ctx->contact, &sm));
+  }
   ctx->hist.dt = dt;
   MMPhase(MMAppEvents.energy_initial, MMEnergyInitial(ctx));
   MMPhase(MMAppEvents.deformation_check, MMDeformationCheck(ctx));
   PetscCall(MMCheckpointRestoreHistory(&ctx->ckpt));
-  PetscCall(MMOutputSetUp(&ctx->out, &ctx->opt, &ctx->op, &ctx->material, &ctx->hist, &ctx->state, &ctx->contact, &ctx->loads, &ctx->ckpt));
+  PetscCall(MMOutputSetUp(&ctx->out, &ctx->opt, &ctx->op, &ctx->material, &ctx->hist, &ctx->state, ctx->contact, &ctx->loads, &ctx->ckpt));
   /* every object has read its options: refuse the unread ones before any output is touched, and
    * before the start-up report, which would otherwise announce a run that is then refused */
   PetscCall(MMOptionsCheckUnused(comm, &ctx->opt, ctx->op.dm));
   /* after: its replay of the help text reads every option */
   PetscCall(MMOptionsCheckValueless(comm));
-  PetscCall(MMProgressSetUp(&ctx->progress, &ctx->opt, &ctx->op, &ctx->material, &ctx->hist, &ctx->state, &ctx->contact, &ctx->damping));
+  PetscCall(MMProgressSetUp(&ctx->progress, &ctx->opt, &ctx->op, &ctx->material, &ctx->hist, &ctx->state, ctx->contact, &ctx->damping));
   if (!ctx->opt.quiet) {
     KSP krylov, pc_ksp;
-    PetscCall(MMContactGetStepKSP(ctx, &krylov, &pc_ksp));
+    PetscCall(MMContactGetStepKSP(ctx->contact, &krylov, &pc_ksp));
     PetscCall(MMProgressHeader(&ctx->progress, *ts, krylov, pc_ksp));
   }
   /* -check_input: the case is built and valid; its report, and a stop before any output is touched */
@@ -141,15 +158,17 @@ static PetscErrorCode RunView(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble w
   PetscInt         steps, step0;
   struct rusage    ru;
   PetscReal        peak, total;
+  MMContactNodes   cn;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetNodes(ctx->contact, &cn));
   PetscCall(MMCheckpointGetRestart(&ctx->ckpt, NULL, &step0, NULL));
   steps = h->step - step0; /* this run's */
   getrusage(RUSAGE_SELF, &ru);
   peak = ru.ru_maxrss / 1024.0; /* kB on Linux */
   PetscCall(MPIU_Allreduce(&peak, &total, 1, MPIU_REAL, MPIU_SUM, PETSC_COMM_WORLD));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &peak, 1, MPIU_REAL, MPIU_MAX, PETSC_COMM_WORLD));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "mmcontact summary: setup %.3f s; %" PetscInt_FMT " steps to t = %g in %.3f s wall (%.4f s/step); peak memory %.1f MiB/rank (%.1f MiB over all ranks); largest balance residual %.3e; largest penetration %.3e (h_c' %.3e)\n", (double)setup, steps, (double)h->time, (double)wall, steps ? (double)(wall / steps) : 0.0, (double)peak, (double)total, (double)h->max_balance, (double)h->max_penetration_run, (double)ctx->contact.h_c));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "mmcontact summary: setup %.3f s; %" PetscInt_FMT " steps to t = %g in %.3f s wall (%.4f s/step); peak memory %.1f MiB/rank (%.1f MiB over all ranks); largest balance residual %.3e; largest penetration %.3e (h_c' %.3e)\n", (double)setup, steps, (double)h->time, (double)wall, steps ? (double)(wall / steps) : 0.0, (double)peak, (double)total, (double)h->max_balance, (double)h->max_penetration_run, (double)cn.h_c));
   PetscFunctionReturn(0);
 }
 
@@ -162,7 +181,7 @@ static PetscErrorCode Report(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wa
   if (ctx->opt.quiet) PetscFunctionReturn(0);
   PetscCall(RunView(ctx, setup, wall, viewer));
   PetscCall(MMProgressMassLine(&ctx->progress)); /* the mass's view (fem) */
-  PetscCall(MMContactSummary(ctx));     /* MMContactView (contact) */
+  PetscCall(MMContactView(ctx->contact, viewer));
   PetscCall(MMDeformationSummary(ctx)); /* MMDeformationView (ts) */
   PetscCall(MMOutputView(&ctx->out, viewer));
   PetscFunctionReturn(0);

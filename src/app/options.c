@@ -1,5 +1,6 @@
 /* Every run option of mmcontact, declared in one place with its help string. */
 #include "options.h"
+#include "contact.h"
 #include <errno.h>
 #include <stdlib.h>
 #include "obstacle.h"
@@ -413,20 +414,10 @@ static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
     PetscCheck(body->rho > 0, comm, PETSC_ERR_USER_INPUT, "Density -body_%s_rho %g must be > 0", body->name, (double)body->rho);
   }
   PetscCheck(opt->mu >= 0, comm, PETSC_ERR_USER_INPUT, "Friction coefficient -mu %g must be >= 0", (double)opt->mu);
-  PetscCheck(opt->contact_tol > 0 && opt->contact_tol < 1, comm, PETSC_ERR_USER_INPUT, "-contact_tol %g must lie in (0, 1): it is a relative residual", (double)opt->contact_tol);
-  PetscCheck(opt->friction_coulomb_tol > 0 && opt->friction_coulomb_tol < 1, comm, PETSC_ERR_USER_INPUT, "-friction_coulomb_tol %g must lie in (0, 1): it is a normalized residual", (double)opt->friction_coulomb_tol);
   PetscCheck(opt->audit_tol > 0, comm, PETSC_ERR_USER_INPUT, "-audit_tol %g must be > 0: it is a relative energy-balance residual", (double)opt->audit_tol);
-  PetscCheck(opt->candidate_margin >= -1, comm, PETSC_ERR_USER_INPUT, "-contact_candidate_margin %g must be >= -1: it is a multiple of the deepest predicted penetration (-1 starts each step from the deepest node alone)", (double)opt->candidate_margin);
-  PetscCheck(opt->candidate_memory > 0, comm, PETSC_ERR_USER_INPUT, "-contact_candidate_memory %g must be > 0 (MiB)", (double)opt->candidate_memory);
   PetscCheck(opt->contact_work_tol > 0, comm, PETSC_ERR_USER_INPUT, "-contact_work_tol %g must be > 0: it is a fraction of the run's energy scale", (double)opt->contact_work_tol);
   PetscCheck(opt->strain_warn > 0, comm, PETSC_ERR_USER_INPUT, "-strain_warn %g must be > 0: it is a strain", (double)opt->strain_warn);
   PetscCheck(opt->max_strain >= opt->strain_warn, comm, PETSC_ERR_USER_INPUT, "-max_strain %g must be >= -strain_warn %g", (double)opt->max_strain, (double)opt->strain_warn);
-  PetscCheck(opt->audit_penetration_tol > 0, comm, PETSC_ERR_USER_INPUT, "-audit_penetration_tol %.6g must be > 0: it is a fraction of h_c'", (double)opt->audit_penetration_tol);
-  PetscCheck(opt->audit_coulomb_tol > 0, comm, PETSC_ERR_USER_INPUT, "-audit_coulomb_tol %.6g must be > 0: it is a normalized residual (the history's coulomb_residual)", (double)opt->audit_coulomb_tol);
-  PetscCheck(opt->initial_penetration_tol >= 0, comm, PETSC_ERR_USER_INPUT, "-initial_penetration_tol %g must be >= 0: it is a fraction of h_c'", (double)opt->initial_penetration_tol);
-  PetscCheck(opt->iterative_dofs >= 0, comm, PETSC_ERR_USER_INPUT, "-iterative_dofs %" PetscInt_FMT " must be >= 0 (0: never the iterative path by default)", opt->iterative_dofs);
-  PetscCheck(opt->active_set_max_it >= 1, comm, PETSC_ERR_USER_INPUT, "-active_set_max_it %" PetscInt_FMT " must be >= 1", opt->active_set_max_it);
-  PetscCheck(opt->active_set_inexact_rtol >= 0 && opt->active_set_inexact_rtol < 1, comm, PETSC_ERR_USER_INPUT, "-active_set_inexact_rtol %g must be in [0, 1): it is CG's relative residual reduction while nodes change set (0: every solve to -contact_tol)", (double)opt->active_set_inexact_rtol);
   PetscCall(MMDampingCheckOptions(comm, opt));
   PetscFunctionReturn(0);
 }
@@ -479,52 +470,12 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_MESH_ROTATION_CENTER, "Centre of the -mesh_rotation, d entries", opt->mesh_rotation_center));
 
   PetscCall(ProcessDamping(PetscOptionsObject, comm, opt));
-  opt->contact = PETSC_TRUE;
-  PetscCall(OptionsBool(PetscOptionsObject, comm, "-contact", "Enforce unilateral contact; 0 gives linear elastodynamics on the same mesh (the contact boundary is then unused)", &opt->contact));
 
   opt->mu = 0.0;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-mu", "Coulomb friction coefficient, >= 0 (0: frictionless, the friction loop is skipped); the default of each -obstacle_NAME_mu and -contact_pair_NAME_mu (refused when each of them is given: it would be used nowhere)", &opt->mu));
   PetscCall(ProcessObstacles(PetscOptionsObject, comm, opt));
-  opt->friction_coulomb_tol = 1e-8;
-  PetscCall(OptionsReal(PetscOptionsObject, comm, "-friction_coulomb_tol", "The Coulomb audit of every friction solve, in (0, 1): the step's discrete Coulomb residual (penetration and gap over h_c', tension, complementarity, the cone and the slip direction over the force scale) must be below this; a solve that met its own -friction_snes_rtol but not this is polished with a 100 times tighter test, at most twice, and then the step is rejected and retried with a smaller dt", &opt->friction_coulomb_tol));
-  PetscCall(PetscStrncpy(opt->friction_type, "newton", sizeof(opt->friction_type)));
-  PetscCall(OptionsString(PetscOptionsObject, comm, "-friction_type", "Coulomb friction solver: newton (the default: semismooth Newton, on Alart-Curnier's function in contact space with -contact_formulation condensed, on all dofs with the thresholds following the iterate with active_set) or fixedpoint (the paper's fixed point on the thresholds, each Tresca problem solved exactly)", opt->friction_type, sizeof(opt->friction_type), &opt->friction_type_set));
-  opt->friction_dump[0] = 0;
-  PetscCall(OptionsString(PetscOptionsObject, comm, "-friction_dump", "Directory (created if missing) for each step's Coulomb problem on the candidate set, in the Friction Contact Library's form u = W r + q (docs/method.md section 6), with our reactions and solve time: step_NNNNNN.h5. scripts/fclib_compare.py solves them with Siconos. Needs the condensed formulation", opt->friction_dump, sizeof(opt->friction_dump), NULL));
-  opt->friction_monitor = PETSC_FALSE;
-  PetscCall(OptionsBool(PetscOptionsObject, comm, "-friction_monitor", "Print each friction iteration: threshold change, Coulomb residual, contraction factor, slipping and sticking node counts", &opt->friction_monitor));
-  PetscCall(PetscStrncpy(opt->contact_formulation, "auto", sizeof(opt->contact_formulation)));
-  opt->iterative_dofs = 50000;
-  PetscCall(OptionsInt(PetscOptionsObject, comm, "-iterative_dofs", "3D problems with at least this many dofs take the iterative path by default: -contact_formulation auto is active_set, and without contact K~ is solved by CG with Jacobi rather than factored (0: never). Below it, and in 2D, K~ is factored", &opt->iterative_dofs));
-  PetscCall(OptionsString(PetscOptionsObject, comm, "-contact_formulation", "Contact formulation: auto (the default: active_set for 3D problems of at least -iterative_dofs dofs, else condensed), condensed (the VI on the contact dofs through the Delassus operator, K~ factored once per dt), full (the VI on all dofs, a factorization per VI iteration, frictionless), or active_set (the primal-dual active-set method on all dofs: CG on the free dofs with the contact_K_ PC, default Jacobi, -contact_K_pc_type gamg or hypre for c_p dt / h_c' above about 10, set up once per dt; for large 3D meshes)", opt->contact_formulation, sizeof(opt->contact_formulation), NULL));
-  opt->active_set_max_it = 100;
-  PetscCall(OptionsInt(PetscOptionsObject, comm, "-active_set_max_it", "Active-set formulation: iterations per contact solve before the run stops (each is one projected CG solve)", &opt->active_set_max_it));
-  opt->active_set_inexact_rtol = 1e-1;
-  PetscCall(OptionsReal(PetscOptionsObject, comm, "-active_set_inexact_rtol", "Active-set formulation: while nodes still change set, CG reduces the residual by this factor only; the last solves, which confirm the sets, go to -contact_tol (0: every solve to -contact_tol)", &opt->active_set_inexact_rtol));
-  opt->active_set_block = PETSC_TRUE;
-  PetscCall(OptionsBool(PetscOptionsObject, comm, "-active_set_block_matrix", "Active-set formulation: the CG's products with K~ from a copy of it in symmetric block storage (SBAIJ, one block per pair of vertices, the upper triangle only: about 0.4 of the bytes an AIJ product reads, and the copy's memory, about 0.4 of K~'s); 0 keeps K~'s AIJ", &opt->active_set_block));
-  opt->active_set_monitor = PETSC_FALSE;
-  PetscCall(OptionsBool(PetscOptionsObject, comm, "-active_set_monitor", "Active-set formulation: print each iteration, the nodes that changed set and the CG iterations", &opt->active_set_monitor));
-  opt->contact_tol = 1e-11;
-  PetscCall(OptionsReal(PetscOptionsObject, comm, "-contact_tol", "Contact solves stop when ||K~ w - b - f_c|| <= contact_tol ||b|| (on top of -contact_snes_rtol/atol), in (0, 1)", &opt->contact_tol));
-  opt->candidate_margin = 1.0;
-  PetscCall(OptionsReal(PetscOptionsObject, comm, "-contact_candidate_margin", "Condensed formulation: a contact node joins the step's candidate set when its contact-free predicted gap is below this times the deepest predicted penetration (>= -1; negative values start from a set smaller than the contact, which the growth completes: the set grows and the step is re-solved whenever a node outside it would penetrate, so this changes the cost, not the answer)", &opt->candidate_margin));
-  opt->keep_factor = PETSC_TRUE;
-  PetscCall(OptionsBool(PetscOptionsObject, comm, "-contact_K_keep", "Keep K~ for the previous dt with its factor and cached columns (condensed) or its PC (active_set), so that dt growing back after a rejected step costs no factorization (the memory of a second factor)", &opt->keep_factor));
-  opt->candidate_all = PETSC_FALSE;
-  PetscCall(OptionsBool(PetscOptionsObject, comm, "-contact_candidate_all", "Condensed formulation: every contact node in every step's candidate set (the full Delassus operator: the reference the candidate set is checked against)", &opt->candidate_all));
-  opt->candidate_memory = 2048;
-  PetscCall(OptionsReal(PetscOptionsObject, comm, "-contact_candidate_memory", "Condensed formulation: MiB (over all ranks) of cached columns of K~^{-1} E; columns of nodes outside the step's set are dropped beyond it (> 0)", &opt->candidate_memory));
   opt->audit_tol = 1e-6;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-audit_tol", "Stop the run when a step's relative energy-balance residual exceeds this (> 0): the scheme's identity no longer holds", &opt->audit_tol));
-  /* The contact audit's tolerances, far above what correct runs reach: penetration at most 3e-14
-   * h_c' over options/'s cases and the solver variants, the Coulomb residual at most 4e-5 (with
-   * -mass standard, at dt down to 1/1024 of -ts_dt, where the reactions carry the round-off of
-   * 4/dt^2 M), 1e-12 to 1e-10 otherwise (README "What is checked before the run") */
-  opt->audit_penetration_tol = 1e-6;
-  PetscCall(OptionsReal(PetscOptionsObject, comm, "-audit_penetration_tol", "Stop the run when, after a step, a contact node lies inside an obstacle deeper than this times h_c' (> 0): the contact solve did not hold the constraint", &opt->audit_penetration_tol));
-  opt->audit_coulomb_tol = 1e-2;
-  PetscCall(OptionsReal(PetscOptionsObject, comm, "-audit_coulomb_tol", "Stop the run when a step's discrete Coulomb residual (the history's coulomb_residual: penetration and open gap over h_c', tension, complementarity and the friction law over the force scale) exceeds this (> 0)", &opt->audit_coulomb_tol));
   opt->contact_work_tol = 1e-3;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-contact_work_tol", "Reject and retry with a smaller dt a step whose contact work W_c creates more energy than this times the run's energy scale (> 0): a release that dt does not resolve", &opt->contact_work_tol));
   opt->deformation_audit = PETSC_TRUE;
@@ -533,8 +484,6 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-strain_warn", "Warn once when a cell's strain (its largest principal strain, in magnitude) exceeds this, > 0: beyond it the small-strain model is an approximation", &opt->strain_warn));
   opt->max_strain = 1.0;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-max_strain", "Stop the run when a cell's strain exceeds this, >= -strain_warn: the small-strain model's result is then meaningless (a cell turned inside out always stops the run)", &opt->max_strain));
-  opt->initial_penetration_tol = 1e-6;
-  PetscCall(OptionsReal(PetscOptionsObject, comm, "-initial_penetration_tol", "Refuse an initial state whose contact nodes penetrate the obstacle deeper than this times h_c' (>= 0)", &opt->initial_penetration_tol));
   opt->quiet = PETSC_FALSE;
   PetscCall(OptionsBool(PetscOptionsObject, comm, "-quiet", "Do not print the start-up report, progress lines and closing summary", &opt->quiet));
   /* a data check (abaqus datacheck, MOOSE --check-input): src/app/datacheck.c, README "Checking a case before a batch job" */
@@ -678,6 +627,26 @@ int MMOptionsCheckFiles(int argc, char **argv)
 }
 
 /* The problem as fem reads it: plain data, the arrays borrowed from opt for the set-up. */
+PetscErrorCode MMOptionsGetContactProblem(const MMOptions *opt, MMContactProblem *pb)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(pb, sizeof(*pb)));
+  pb->obstacles      = opt->obstacles;
+  pb->n_obstacles    = opt->n_obstacles;
+  pb->n_rigid        = opt->n_rigid;
+  pb->mu_max         = opt->mu_max;
+  pb->E              = opt->E;
+  pb->rho            = opt->rho;
+  pb->contact_name   = opt->contact_name;
+  pb->static_sliding = (PetscBool)(opt->initial_state == MM_INITIAL_STATIC_SLIDING);
+  pb->quiet          = opt->quiet;
+  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) {
+    pb->obstacle_point[d]  = opt->obstacle_point[d];
+    pb->obstacle_normal[d] = opt->obstacle_normal[d];
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MMOptionsGetFEProblem(const MMOptions *opt, MMFEProblem *pb)
 {
   PetscFunctionBeginUser;

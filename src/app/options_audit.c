@@ -10,6 +10,7 @@
 #include "options.h"
 #include "newmark.h"
 #include "contact.h"
+#include "friction.h"
 #include "fem.h"
 #include "io.h"
 
@@ -141,6 +142,16 @@ static PetscErrorCode ComponentsFromOptions(MPI_Comm comm)
     PetscCall(MMCheckpointSetFromOptions(comm, &ckpt));
     PetscCall(MMProgressSetFromOptions(comm, &progress));
     PetscCall(MMCheckpointDestroy(&ckpt));
+  }
+  {
+    MMContact  ct;
+    MMFriction fr;
+    PetscCall(MMContactCreate(comm, &ct));
+    PetscCall(MMContactSetFromOptions(ct));
+    PetscCall(MMContactDestroy(&ct));
+    PetscCall(MMFrictionCreate(comm, &fr));
+    PetscCall(MMFrictionSetFromOptions(fr));
+    PetscCall(MMFrictionDestroy(&fr));
   }
   PetscFunctionReturn(0);
 }

@@ -1,96 +1,227 @@
 /* Internals of the contact component, shared by its files (src/contact/) and by no one else. */
 #pragma once
 #include "contact.h"
+#include "sys.h"
+
+/* How each step's contact problem is solved, a contact formulation (impls/<type>/, chosen by
+ * -contact_formulation from the registry MMContactRegister): condensed, full, active_set, or none
+ * (no contact: one K~ solve per step). */
+typedef struct _MMContactOps MMContactOps;
+
+/* Slots of a contact row's checkpoint state (MMContactGetNodeState): a corner's second row
+ * (frictionless) keeps its states in slots the friction law leaves free; a friction corner (condensed
+ * formulation only) its second obstacle's reactions in the active set's slots */
+#define MM_CONTACT_STATE_CORNER_R      9
+#define MM_CONTACT_STATE_SECOND_ACTIVE 4
+#define MM_CONTACT_STATE_SECOND_RHO    7
+#define MM_CONTACT_STATE_SECOND_AS     11
+
+/* A bound-constrained quadratic problem A x = b, x <= upper, as the SNESVI residual context. */
+typedef struct {
+  Mat       A;
+  Vec       b;
+  PetscReal bnorm; /* ||b||, the scale of the absolute convergence test */
+  PetscReal rtol_b;
+} MMBoundQP;
+
+/* K~ and its factor (or PC) for the previous dt (-contact_K_keep); what the formulation built on it
+ * (the condensed columns, the active set's diag(K~)) it keeps in its own data. */
+typedef struct {
+  Mat       A;
+  KSP       ksp;
+  PetscReal dt;
+} MMKtKept;
+
+/* The K~ solver of the paths that build no Delassus operator (-contact 0 and the active-set
+ * formulation): a factorization, or CG with an algebraic multigrid PC, prefix contact_K_. Its PC is
+ * set up once per dt. */
+typedef struct {
+  KSP          ksp;
+  PetscBool    iterative; /* its PC is not a complete factorization */
+  MatNullSpace rigid;     /* rigid-body modes in the w-frame: GAMG's near-null space */
+  PetscInt     its;       /* linear iterations since the step began */
+} MMStepSolver;
+
+/* The contact pairs between surfaces of the mesh (src/contact/interface/pairs.c): each pair's master
+ * surface gathered on every rank, and per owned contact node the master vertices' first global dofs
+ * (-1: held or absent) and weights of its constraint. */
+typedef struct {
+  PetscInt   n;        /* pairs */
+  PetscInt  *nf;       /* per pair: master facets */
+  PetscReal **xf;      /* per pair and facet: vertex coordinates, outward normal, centroid */
+  PetscInt  **df;      /* per pair and facet: each vertex's first global dof, -1 if held */
+  PetscReal *phi;      /* per contact node, MM_MAX_DIM: weights phi_j of its master vertices */
+  PetscInt  *mdof;     /* per contact node, MM_MAX_DIM: their first global dofs */
+  PetscInt  *count;    /* per pair, 2: its slave nodes, and those facing a master node (node to node) */
+} MMContactPairs;
+
+/* The contact options (MMContactSetFromOptions) */
+typedef struct {
+  PetscBool         contact;                 /* -contact */
+  char              contact_formulation[MM_TYPE_LEN];
+  PetscReal         contact_tol;
+  PetscInt          iterative_dofs;
+  PetscBool         keep_factor;             /* -contact_K_keep */
+  PetscReal         candidate_margin, candidate_memory;
+  PetscBool         candidate_all;
+  PetscInt          active_set_max_it;
+  PetscReal         active_set_inexact_rtol;
+  PetscBool         active_set_block, active_set_monitor;
+  PetscReal         audit_penetration_tol, audit_coulomb_tol, initial_penetration_tol;
+  PetscReal         friction_coulomb_tol; /* the friction solver's (MMContactSetCoulombTolerance) */
+} MMContactOptions;
+
+/* The contact object: the contact set, gaps, bounds and the step matrix, shared by every formulation;
+ * the formulation's own state in data (impls/<type>/<type>impl.h). Friction wraps MMContactSolve. */
+struct _p_MMContact {
+  MPI_Comm   comm;
+  PetscInt   dim;                 /* the mesh's */
+  MMContactOptions  opt;
+  MMContactProblem  pb;           /* the problem's data (MMContactSetUp): obstacles borrowed */
+  MMOperators      *op;           /* borrowed at set-up: fem's operators (K, M*, Q, the DM) */
+  const MMMaterial *material;     /* borrowed: E_max, the force scale of the audits */
+  Vec               u_old, v_old; /* borrowed: the state at the start of the step (MMContactSetPreviousState) */
+  PetscBool  enabled;
+  PetscBool  prefer_iterative; /* 3D with at least -iterative_dofs dofs: active_set and CG for K~ by default */
+  PetscBool  auto_type;        /* the formulation was chosen by -contact_formulation auto */
+  PetscInt   n_local, n_global;   /* contact nodes owned here / in total */
+  IS         is_normal;           /* global indices of the contact-normal dofs (owned) */
+  IS         is_tangent;          /* global indices of the contact-tangential dofs (owned) */
+  IS         is_star;             /* every other dof (owned) */
+  IS         is_interior;         /* the dofs of the nodes off the contact boundary (owned) */
+  Vec        gap;                 /* g_i on the normal dofs, layout of is_normal */
+  Vec        lower, upper;        /* SNESVI bounds on the full w vector */
+  MMBoundQP  qp;                  /* the step problem: K~ w = b, K~ = K + 4/dt^2 M* */
+  MMBoundQP  qp0;                 /* the initial projection of the contact dofs */
+  Vec        lower0, upper0;
+  PetscReal  Kt_dt;               /* dt for which Kt was assembled */
+  char       type[MM_TYPE_LEN]; /* the formulation, or "none" without contact */
+  const MMContactOps *ops;        /* the formulation's operations */
+  void      *data;                /* the formulation's state, freed by ops->destroy */
+  MMKtKept   kept;                /* the previous dt's K~ and its KSP (-contact_K_keep) */
+  PetscInt   ncomp;               /* condensed dofs per contact node: 1 (normal), or dim with friction */
+  IS         is_cond;             /* the condensed dofs, node by node */
+  Vec        rho, rho_lo, rho_hi; /* contact reactions (lambda_n, -t) per node and their bounds */
+  Vec        z;                   /* the step's contact-free solution (condensed; friction corners read it) */
+  SNES       snes0;               /* quasi-static projection of the contact dofs, prefix contact0_ */
+  PetscReal  frame[MM_MAX_DIM][MM_MAX_DIM]; /* the single plane's frame (static sliding); rows: nu, tau_1, tau_2 */
+  PetscReal *node_frame;          /* per owned contact node its frame, 9 reals: rows nu, tau_1, tau_2 */
+  PetscInt  *obstacle;            /* per owned contact node, the obstacle it is constrained against */
+  PetscBool *second;              /* per row: a corner node's second row, on its dof 1 (the row before is its first) */
+  PetscReal *corner_ab;           /* per row, 2: a second row's nu_2 = a nu_1 + b tau_1 in its node's frame */
+  PetscInt   n_corners;           /* second rows over all ranks */
+  /* Friction corners (docs/method.md section 12): with friction, a node within h_c' of a second
+   * obstacle keeps one row, its tau_1 in the plane of both normals, and carries the second
+   * obstacle's own Coulomb law on the same dofs; NULL without friction. Per row: */
+  PetscInt  *fc_obstacle;         /* the second obstacle, or -1 */
+  PetscReal *fc_ab;               /* 2: nu_2 = a nu_1 + b tau_1 (b > 0) */
+  PetscReal *fc_gap0, *fc_gap;    /* g_2 at the reference position, and at the step's time */
+  PetscReal *fc_slide;            /* dim - 1: dt/2 V_2.tau'_j, the second obstacle's sliding */
+  PetscReal *fc_r, *fc_r_old;     /* dim: the second obstacle's reactions (normal, tangents of its frame), the
+                                     last solve's and the last accepted step's */
+  PetscInt   n_fc;                /* friction corners over all ranks */
+  Vec        fc_geom, fc_mu, fc_q, fc_x; /* layout of rho, for the candidate set's gathers: (b, a), mu_2, the second
+                                     row's q and reactions (zero off the friction corners) */
+  IS         is_massless;         /* the dofs M* drops: the normal dofs and the friction corners' tau_1 */
+  Vec        gap0;                /* g_i at time 0, layout of gap */
+  Vec        mu;                  /* per owned contact node, the friction coefficient of its obstacle */
+  PetscReal *slide_ref;           /* per owned contact node and tangent, dt/2 V.tau_j: the obstacle's sliding */
+  PetscBool  moving;              /* some obstacle moves: gaps follow it every step */
+  PetscReal *force_obstacle;      /* per obstacle, MM_MAX_DIM: the contact force on it (Cartesian), last step */
+  PetscReal  h_c;                 /* smallest diameter of cells touching the contact boundary */
+  PetscReal  penetration_free;    /* last accepted step: the deepest penetration of an obstacle a node has no row for */
+  PetscReal  tol;                 /* -contact_tol */
+  PetscBool *was_active;          /* per owned contact node, at the previous step */
+  PetscBool *slipping;            /* friction: per owned contact node, slipping (on the rim of its disk) */
+  PetscReal *slip_dir;            /* 3D friction: per owned contact node, its slip direction in the tangent plane (checkpointed) */
+  PetscInt  *scalar_index;        /* per owned contact node, its global index in the scalar vertex DM */
+  PetscInt  *vertex;              /* per owned contact node, its mesh point */
+  PetscReal *all_gap0, *all_nu;   /* several obstacles: per owned contact node and obstacle b, the reference gap
+                                     g_b(X) and normal nu_b (3 entries): every node is checked against every obstacle */
+  Vec        area;                /* per owned contact node, int_Gc phi_i: force to pressure */
+  PetscInt   vi_its;              /* Newton iterations of the last solve */
+  MMStepSolver kt;                /* K~ solver without a Delassus operator (-contact 0, active set) */
+  MMContactPairs pairs;           /* contact between two bodies of the mesh */
+};
+
 
 /* A contact formulation's operations (docs/method.md section 3). A NULL entry is a capability the
  * formulation lacks: solvecontactdofs (a friction loop over it), setthresholds (Tresca solves with
  * given thresholds), solvecoulomb (the Delassus operator, for a contact-space Coulomb solver),
  * solvecoulombdofs (the formulation's own Coulomb solve on all dofs, for formulations without it). */
 struct _MMContactOps {
-  PetscErrorCode (*setup)(MMCtx *);                         /* its solvers, before the first K~ */
-  PetscErrorCode (*setoperator)(MMCtx *);                   /* after K~ is assembled for a new dt */
-  PetscErrorCode (*solve)(MMCtx *, Vec, Vec, Vec);          /* the step: b in; w (warm start in) and react out */
-  PetscErrorCode (*solvecontactdofs)(MMCtx *, Vec, Vec, Vec); /* at least the contact dofs of w and react */
-  PetscErrorCode (*recover)(MMCtx *, Vec, Vec, Vec);        /* the whole w and react after solvecontactdofs */
-  PetscErrorCode (*setthresholds)(MMCtx *, Vec);
-  PetscErrorCode (*solvecoulomb)(MMCtx *, Vec, Vec, Vec, MMContactSetSolver, void *, PetscBool *);
-  PetscErrorCode (*solvecoulombdofs)(MMCtx *, Vec, Vec, Vec, Vec, PetscReal, PetscInt *, PetscBool *); /* b, w, react, thresholds (in and out), rtol */
-  PetscErrorCode (*getstepksp)(MMCtx *, KSP *, KSP *);      /* the K~ solvers, for the start-up report */
-  PetscErrorCode (*swapkept)(MMCtx *, PetscReal, PetscBool *); /* swap K~ and its factor with the kept ones; true if those are for dt */
-  PetscErrorCode (*summary)(MMCtx *);                       /* its lines of the closing summary */
+  PetscErrorCode (*setfromoptions)(MMContact ct, PetscOptionItems *PetscOptionsObject); /* its own options */
+  PetscErrorCode (*setup)(MMContact ct);                        /* its solvers, before the first K~ */
+  PetscErrorCode (*setoperator)(MMContact ct);                  /* after K~ is assembled for a new dt */
+  PetscErrorCode (*solve)(MMContact ct, Vec b, Vec w, Vec react); /* the step: b in; w (warm start in) and react out */
+  PetscErrorCode (*solvecontactdofs)(MMContact ct, Vec b, Vec w, Vec react); /* at least the contact dofs of w and react */
+  PetscErrorCode (*recover)(MMContact ct, Vec b, Vec w, Vec react); /* the whole w and react after solvecontactdofs */
+  PetscErrorCode (*setthresholds)(MMContact ct, Vec s);         /* Tresca thresholds per contact node */
+  PetscErrorCode (*solvecoulomb)(MMContact ct, Vec b, Vec w, Vec react, MMContactSetSolver fn, void *fctx, PetscBool *ok);
+  PetscErrorCode (*solvecoulombdofs)(MMContact ct, Vec b, Vec w, Vec react, Vec s, PetscReal rtol, PetscInt *its, PetscBool *ok); /* s: thresholds in and out */
+  PetscErrorCode (*getnormalreactions)(MMContact ct, Vec s);    /* s = rho_n per contact node (a threshold loop's) */
+  PetscErrorCode (*getstepksp)(MMContact ct, KSP *krylov, KSP *pc_ksp); /* the K~ solvers, for the start-up report */
+  PetscErrorCode (*swapkept)(MMContact ct, PetscReal dt, PetscBool *hit); /* swap K~ and its factor with the kept ones; hit: those are for dt */
+  PetscErrorCode (*getnodestate)(MMContact ct, PetscInt k, PetscBool second, PetscScalar state[]); /* row k's warm start, slots 9-12 (second: its slot) */
+  PetscErrorCode (*setnodestate)(MMContact ct, PetscInt k, PetscBool second, const PetscScalar state[]);
+  PetscErrorCode (*getcandidatecounts)(MMContact ct, PetscInt *n_set, PetscInt *resolves); /* NULL: no candidate set */
+  PetscErrorCode (*setcandidateresolves)(MMContact ct, PetscInt resolves);
+  PetscErrorCode (*getproducts)(MMContact ct, const char **products); /* how its CG multiplies by K~; NULL: no CG */
+  PetscErrorCode (*view)(MMContact ct, PetscViewer viewer);     /* its lines of the closing summary */
+  PetscErrorCode (*destroy)(MMContact ct);                      /* frees data */
 };
 
+/* The component's class and log events (interface/package.c) */
+PETSC_INTERN PetscClassId  MMCONTACT_CLASSID;
+PETSC_INTERN PetscLogEvent MMCONTACT_Assemble, MMCONTACT_Solve, MMCONTACT_Recover, MMCONTACT_KtReuse, MMCONTACT_KtSetUp, MMCONTACT_KtSolve;
+PETSC_INTERN PetscLogEvent MMCONTACT_CandidateColumns, MMCONTACT_CandidateOperator, MMCONTACT_ColumnsSolve, MMCONTACT_ColumnsMove;
+PETSC_INTERN PetscLogEvent MMCONTACT_SplitInterface, MMCONTACT_SplitBackward, MMCONTACT_ActiveSetIterate, MMCONTACT_ActiveSetCG, MMCONTACT_BlockOperator;
+
+/* The formulation of -contact_formulation (auto resolved by the problem's size), or "none" (contact.c) */
+PETSC_INTERN PetscErrorCode MMContactSetType(MMContact ct);
 /* The registry: each formulation's create function sets ct->ops. */
-PETSC_INTERN PetscErrorCode MMContactCreate_Condensed(MMContact *);
-PETSC_INTERN PetscErrorCode MMContactCreate_Full(MMContact *);
-PETSC_INTERN PetscErrorCode MMContactCreate_ActiveSet(MMContact *);
-PETSC_INTERN PetscErrorCode MMContactCreate_None(MMContact *);
+PETSC_INTERN PetscErrorCode MMContactCreate_Condensed(MMContact ct);
+PETSC_INTERN PetscErrorCode MMContactCreate_Full(MMContact ct);
+PETSC_INTERN PetscErrorCode MMContactCreate_ActiveSet(MMContact ct);
+PETSC_INTERN PetscErrorCode MMContactCreate_None(MMContact ct);
 /* K~, its KSP and dt swapped with the kept ones (contact.c) */
-PETSC_INTERN PetscErrorCode MMContactSwapKeptOperator(MMContact *, KSP *);
+PETSC_INTERN PetscErrorCode MMContactSwapKeptOperator(MMContact ct, KSP *ksp);
 /* react = K~ w - b on the contact dofs (contact.c) */
-PETSC_INTERN PetscErrorCode MMContactForce(MMCtx *, Vec, Vec, Vec);
+PETSC_INTERN PetscErrorCode MMContactForce(MMContact ct, Vec b, Vec w, Vec react);
 
 /* interface/corners.c: friction corners, a second obstacle's Coulomb law on a node's dofs */
-PETSC_INTERN void           MMContactCornerT2(PetscInt, const PetscReal[2], PetscReal[MM_MAX_DIM][MM_MAX_DIM]);
-PETSC_INTERN void           MMContactCornerFrame2(PetscInt, const PetscReal[], const PetscReal[2], PetscReal[MM_MAX_DIM][MM_MAX_DIM]);
-PETSC_INTERN void           MMContactCornerSplit(const MMContact *, PetscInt, PetscInt, const PetscScalar[], PetscReal[], PetscReal[]);
-PETSC_INTERN PetscBool      MMContactCornerCrosses(const MMContact *, PetscInt, PetscInt, const PetscScalar[], PetscReal);
-PETSC_INTERN PetscErrorCode MMContactCornersSetUpVecs(MMCtx *);
-PETSC_INTERN PetscErrorCode MMContactCornersRHS(MMCtx *, const PetscInt[]);
-PETSC_INTERN PetscErrorCode MMContactCornersExpand(PetscInt, PetscInt, const PetscScalar[], const PetscScalar[], const PetscReal[], const PetscScalar[], const PetscScalar[], const PetscScalar[], const PetscScalar[], const PetscScalar[], PetscInt *, PetscInt **, PetscScalar **, PetscScalar **, PetscReal **, PetscScalar **);
-PETSC_INTERN PetscErrorCode MMContactCornersContract(PetscInt, PetscInt, PetscInt, const PetscInt[], const PetscScalar[], const PetscScalar[], PetscScalar[], PetscScalar[]);
-PETSC_INTERN PetscErrorCode MMContactCornersStore(MMCtx *);
+PETSC_INTERN void           MMContactCornerT2(PetscInt dim, const PetscReal ab[2], PetscReal T[MM_MAX_DIM][MM_MAX_DIM]);
+PETSC_INTERN void           MMContactCornerFrame2(PetscInt dim, const PetscReal F1[], const PetscReal ab[2], PetscReal F2[MM_MAX_DIM][MM_MAX_DIM]);
+PETSC_INTERN void           MMContactCornerSplit(MMContact ct, PetscInt dim, PetscInt k, const PetscScalar rho[], PetscReal r1[], PetscReal r2[]);
+PETSC_INTERN PetscBool      MMContactCornerCrosses(MMContact ct, PetscInt dim, PetscInt k, const PetscScalar wc[], PetscReal tol);
+PETSC_INTERN PetscErrorCode MMContactCornersSetUpVecs(MMContact ct);
+PETSC_INTERN PetscErrorCode MMContactCornersRHS(MMContact ct, const PetscInt row[]);
+PETSC_INTERN PetscErrorCode MMContactCornersExpand(PetscInt n, PetscInt nc, const PetscScalar W[], const PetscScalar q[], const PetscReal mu[], const PetscScalar x[], const PetscScalar geom[], const PetscScalar mu2[], const PetscScalar q2[], const PetscScalar x2[], PetscInt *ne, PetscInt **of, PetscScalar **We, PetscScalar **qe, PetscReal **mue, PetscScalar **xe);
+PETSC_INTERN PetscErrorCode MMContactCornersContract(PetscInt n, PetscInt nc, PetscInt ne, const PetscInt of[], const PetscScalar geom[], const PetscScalar xe[], PetscScalar x[], PetscScalar x2[]);
+PETSC_INTERN PetscErrorCode MMContactCornersStore(MMContact ct);
 
 /* interface/pairs.c: contact pairs between two bodies, node to segment or facet */
-PETSC_INTERN PetscErrorCode MMContactPairsSetUp(MMCtx *, const PetscInt[], PetscInt);
-PETSC_INTERN PetscErrorCode MMContactPairsProject(MMCtx *, PetscInt, PetscInt, const PetscReal[], PetscReal *, PetscReal[]);
-PETSC_INTERN PetscErrorCode MMContactPairsBuildTransform(MMCtx *);
-PETSC_INTERN PetscErrorCode MMContactPairsDestroy(MMContactPairs *);
+PETSC_INTERN PetscErrorCode MMContactPairsSetUp(MMContact ct, const PetscInt mark[], PetscInt n_vertex_bound);
+PETSC_INTERN PetscErrorCode MMContactPairsProject(MMContact ct, PetscInt p, PetscInt k, const PetscReal x[], PetscReal *gap, PetscReal n[]);
+PETSC_INTERN PetscErrorCode MMContactPairsBuildTransform(MMContact ct);
+PETSC_INTERN PetscErrorCode MMContactPairsDestroy(MMContactPairs *pr);
 
 /* interface/qp.c: bound-constrained QPs as SNESVI solves; exact linear solves */
-PETSC_EXTERN PetscErrorCode MMKSPCheckDirect(KSP);
-PETSC_EXTERN PetscErrorCode MMQPCreate(MPI_Comm, const char[], MMBoundQP *, PetscReal, SNES *);
-PETSC_EXTERN PetscErrorCode MMQPSetFactorSPD(SNES);
-PETSC_EXTERN PetscErrorCode MMQPSetOperator(SNES, MMBoundQP *);
-PETSC_EXTERN PetscErrorCode MMQPSolve(SNES, MMBoundQP *, Vec, PetscInt *);
-PETSC_EXTERN PetscErrorCode MMKSPSetFactorSPD(KSP, PetscInt);
+PETSC_EXTERN PetscErrorCode MMKSPCheckDirect(KSP ksp);
+PETSC_EXTERN PetscErrorCode MMQPCreate(MPI_Comm comm, const char prefix[], MMBoundQP *qp, PetscReal mu, SNES *snes);
+PETSC_EXTERN PetscErrorCode MMQPSetFactorSPD(SNES snes);
+PETSC_EXTERN PetscErrorCode MMQPSetOperator(SNES snes, MMBoundQP *qp);
+PETSC_EXTERN PetscErrorCode MMQPSolve(SNES snes, MMBoundQP *qp, Vec x, PetscInt *its);
+PETSC_EXTERN PetscErrorCode MMKSPSetFactorSPD(KSP ksp, PetscInt dim);
 PETSC_EXTERN PetscErrorCode MMPCRegisterSchurSplit(void);
 
 /* interface/kt.c: K~ without a Delassus operator, by a factorization or preconditioned CG */
-PETSC_EXTERN PetscErrorCode MMKtCreate(MMCtx *, PetscBool);
-PETSC_EXTERN PetscErrorCode MMKtSetOperator(MMCtx *, Mat);
-PETSC_EXTERN PetscErrorCode MMKtSolveToTolerance(KSP, PetscReal, Vec, Vec, Vec, PetscReal *);
-PETSC_EXTERN PetscErrorCode MMKtSolve(MMCtx *, Vec, Vec);
-PETSC_EXTERN PetscErrorCode MMKtDestroy(MMStepSolver *);
-PETSC_EXTERN PetscErrorCode MMKtGetLocalBlocks(Mat, const char[], Mat *, Mat *, const PetscInt **);
+PETSC_EXTERN PetscErrorCode MMKtCreate(MMContact ct, PetscBool iterative);
+PETSC_EXTERN PetscErrorCode MMKtSetOperator(MMContact ct, Mat Kt);
+PETSC_EXTERN PetscErrorCode MMKtSolveToTolerance(KSP ksp, PetscReal tol, Vec b, Vec rhs, Vec x, PetscReal *atol_used);
+PETSC_EXTERN PetscErrorCode MMKtSolve(MMContact ct, Vec b, Vec w);
+PETSC_EXTERN PetscErrorCode MMKtDestroy(MMStepSolver *kt);
+PETSC_EXTERN PetscErrorCode MMKtGetLocalBlocks(Mat K, const char who[], Mat *Ad, Mat *Ao, const PetscInt **colmap);
 
-/* impls/active_set/: the primal-dual active-set formulation */
-PETSC_EXTERN PetscErrorCode MMActiveSetSetUp(MMCtx *);
-PETSC_EXTERN PetscErrorCode MMActiveSetSetOperator(MMCtx *);
-PETSC_EXTERN PetscErrorCode MMActiveSetBlockOperator(Mat, PetscInt, Mat *);
-PETSC_EXTERN PetscErrorCode MMActiveSetSetThresholds(MMCtx *, Vec);
-PETSC_EXTERN PetscErrorCode MMActiveSetSolve(MMCtx *, Vec, Vec, PetscBool *);
-PETSC_EXTERN PetscErrorCode MMActiveSetDestroy(MMActiveSet *);
-
-/* impls/condensed/condensed.c: the Delassus operator and the condensed VI */
-PETSC_EXTERN PetscErrorCode MMCondensedFactor(MMCtx *);
-PETSC_EXTERN PetscErrorCode MMContactCreateReactions(MMCtx *);
-PETSC_EXTERN PetscErrorCode MMCondensedCreateSolver(MMCtx *);
-PETSC_EXTERN PetscErrorCode MMCondensedSolveReactions(MMCtx *, Vec);
-PETSC_EXTERN PetscErrorCode MMCondensedContactDofs(MMCtx *, Vec, Vec);
-PETSC_EXTERN PetscErrorCode MMCondensedRecover(MMCtx *, Vec);
-PETSC_EXTERN PetscErrorCode MMCondensedSolveCoulomb(MMCtx *, Vec, Vec, Vec, MMContactSetSolver, void *, PetscBool *);
-
-/* impls/condensed/candidates.c: the candidate set, its cached columns of K~^{-1} E and its dense block */
-PETSC_EXTERN PetscErrorCode MMCandidatesSetUp(MMCtx *);
-PETSC_EXTERN PetscErrorCode MMCandidatesInvalidate(MMContact *);
-PETSC_EXTERN PetscErrorCode MMCandidatesSwapCache(MMContact *, MMColumnCache *);
-PETSC_EXTERN PetscErrorCode MMCandidatesSelect(MMCtx *);
-PETSC_EXTERN PetscErrorCode MMCandidatesGrow(MMCtx *, const PetscScalar[], PetscBool *);
-PETSC_EXTERN PetscErrorCode MMCandidatesMult(MMContact *, Vec, PetscScalar[]);
-PETSC_EXTERN PetscErrorCode MMCandidatesRecover(MMContact *, Vec);
-PETSC_EXTERN PetscErrorCode MMCandidatesDestroy(MMCandidates *);
-/* impls/condensed/mumps_columns.c: columns of K~^{-1} for unit right-hand sides on a MUMPS factor on
- * several ranks (done false: not such a factor, use MatMatTransposeSolve) */
-PETSC_INTERN PetscErrorCode MMMumpsColumnsSolve(MMMumpsColumns *, Mat, PetscInt, const PetscInt[], PetscScalar[], PetscInt, PetscBool *);
-PETSC_INTERN PetscErrorCode MMMumpsColumnsDestroy(MMMumpsColumns *);
+/* interface/contact.c: the reactions rho and their bounds, one block of ncomp per contact node */
+PETSC_EXTERN PetscErrorCode MMContactCreateReactions(MMContact ct);

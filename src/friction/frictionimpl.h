@@ -3,6 +3,10 @@
 #pragma once
 #include "friction.h"
 #include "contact.h"
+#include "sys.h"
+
+/* The friction loop's event (MMFrictionInitializePackage) */
+PETSC_INTERN PetscLogEvent MMFRICTION_Loop;
 
 /* The step's Coulomb problem on a set of n contact nodes, nc = dim components each (normal first,
  * then the tangents of the node's frame), in the condensed formulation's variables: with u = W r - q
@@ -37,8 +41,8 @@ typedef struct {
   PetscBool converged;
 } MMCoulombResult;
 
-PETSC_INTERN PetscErrorCode MMCoulombNewton(const MMCoulombProblem *, MMCoulombWork *, PetscReal, PetscInt, PetscScalar[], MMCoulombResult *);
-PETSC_INTERN PetscErrorCode MMCoulombWorkDestroy(MMCoulombWork *);
+PETSC_INTERN PetscErrorCode MMCoulombNewton(const MMCoulombProblem *p, MMCoulombWork *wk, PetscReal rtol, PetscInt maxit, PetscScalar r[], MMCoulombResult *res);
+PETSC_INTERN PetscErrorCode MMCoulombWorkDestroy(MMCoulombWork *wk);
 
 typedef struct _MMFrictionOps *MMFrictionOps;
 struct _MMFrictionOps {
@@ -53,9 +57,17 @@ struct _MMFrictionOps {
 };
 
 struct _p_MMFriction {
-  char               type[64];
+  MPI_Comm           comm;
+  char               type[MM_TYPE_LEN];
   struct _MMFrictionOps ops;
-  MMCtx             *ctx;      /* borrowed: the step problem's state and the contact module */
+  MMContact          contact;  /* borrowed: the contact it wraps */
+  Vec                u_old, v_old; /* borrowed: the step's start, for the slip velocities */
+  PetscInt           step;     /* the last accepted step and its time: the audit's obstacles, the dump's names */
+  PetscReal          time;
+  /* options (MMFrictionSetFromOptions) */
+  char               type_name[MM_TYPE_LEN]; /* -friction_type */
+  PetscBool          type_set;
+  char               dump[PETSC_MAX_PATH_LEN]; /* -friction_dump: directory for the step problems, empty: none */
   SNES               snes;     /* prefix friction_: a shell whose solve is the type's */
   Vec                s, s_new; /* thresholds mu r_n per contact node (the threshold loop) */
   Vec                sigma;    /* velocity of the current iterate */
@@ -69,10 +81,10 @@ struct _p_MMFriction {
   PetscBool          monitor;
 };
 
-PETSC_INTERN PetscErrorCode MMFrictionCreate_Newton(MMFriction);
-PETSC_INTERN PetscErrorCode MMFrictionCreate_FixedPoint(MMFriction);
-PETSC_INTERN PetscErrorCode MMFrictionThresholdLoop(MMFriction, Vec, Vec, Vec);
-PETSC_INTERN PetscErrorCode MMFrictionSolveDofs(MMFriction, Vec, Vec, Vec);
-PETSC_INTERN PetscErrorCode MMFrictionDumpSetUp(MMFriction);
-PETSC_INTERN PetscErrorCode MMFrictionDump(MMFriction, const MMCoulombProblem *, const PetscScalar[], const PetscScalar[], const MMCoulombResult *, PetscLogDouble);
-PETSC_INTERN PetscErrorCode MMFrictionCoulombResidual(MMFriction, PetscReal *, PetscInt *, PetscInt *);
+PETSC_INTERN PetscErrorCode MMFrictionCreate_Newton(MMFriction fr);
+PETSC_INTERN PetscErrorCode MMFrictionCreate_FixedPoint(MMFriction fr);
+PETSC_INTERN PetscErrorCode MMFrictionThresholdLoop(MMFriction fr, Vec b, Vec w, Vec react);
+PETSC_INTERN PetscErrorCode MMFrictionSolveDofs(MMFriction fr, Vec b, Vec w, Vec react);
+PETSC_INTERN PetscErrorCode MMFrictionDumpSetUp(MMFriction fr);
+PETSC_INTERN PetscErrorCode MMFrictionDump(MMFriction fr, const MMCoulombProblem *p, const PetscScalar x0[], const PetscScalar x[], const MMCoulombResult *res, PetscLogDouble seconds);
+PETSC_INTERN PetscErrorCode MMFrictionCoulombResidual(MMFriction fr, PetscReal *coulomb, PetscInt *nslip, PetscInt *nstick);

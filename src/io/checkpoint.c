@@ -13,14 +13,7 @@
 
 #define MM_CKPT_FILE "checkpoint.h5"
 #define MM_CKPT_TMP  ".tmp" /* written whole, then renamed over the last good one */
-#define MM_CKPT_NODE 13     /* per vertex: contact, s, slipping, was_active, slip_dir[2], rho[3], and the
-                               * active-set formulation's warm start: active, stick, dir[2] */
-/* a corner node's second row, frictionless, keeps its states in slots the friction law leaves free;
- * a friction corner (condensed formulation only) its second obstacle's reactions in the active-set slots */
-#define MM_CKPT_CORNER_R 9
-#define MM_CKPT_SECOND_ACTIVE 4
-#define MM_CKPT_SECOND_RHO    7
-#define MM_CKPT_SECOND_AS     11
+#define MM_CKPT_NODE MM_CONTACT_NODE_STATE /* per vertex: the contact row's state (MMContactGetNodeState) */
 #define MM_CKPT_VERSION 5 /* 4: the redistributed mass (mass type + 3 if lumped); the Rayleigh damping (alpha, beta, W_d and vC);
                            * 5: the per-cell material's checksums (-bodies) */
 
@@ -70,7 +63,7 @@ static PetscBool DampingOn(const MMCheckpoint *ck)
 }
 
 /* The checkpoint's borrowed references: what it holds and restores (like KSPSetOperators). */
-PetscErrorCode MMCheckpointSetUp(MMCheckpoint *c, const MMOptions *opt, const MMOperators *op, const MMMaterial *material, MMHistory *hist, MMState *state, MMDamping *damping, MMContact *contact, MMFriction friction, MMOutput *out)
+PetscErrorCode MMCheckpointSetUp(MMCheckpoint *c, const MMOptions *opt, const MMOperators *op, const MMMaterial *material, MMHistory *hist, MMState *state, MMDamping *damping, MMContact contact, MMFriction friction, MMOutput *out)
 {
   PetscFunctionBeginUser;
   c->opt      = opt;
@@ -138,50 +131,31 @@ static PetscErrorCode PackDofs(MMCheckpoint *ck, Vec w, Vec packed)
   PetscFunctionReturn(0);
 }
 
-/* The per-node contact state: the friction thresholds, the 3D stick/slip states and slip
- * directions, the last active set and the condensed reactions, which warm-start the next step. */
+/* The per-node contact state: the friction thresholds, and what the contact object keeps per row
+ * (MMContactGetNodeState: the 3D stick/slip states and slip directions, the last active set and
+ * the condensed reactions, which warm-start the next step). */
 static PetscErrorCode PackContact(MMCheckpoint *ck, Vec packed)
 {
-  MMContact         *ct = ck->contact;
-  const PetscScalar *sa = NULL, *ra = NULL;
+  const PetscScalar *sa = NULL;
   PetscInt           vStart, vEnd;
   Vec                thresholds;
+  MMContactNodes     cn;
 
   PetscFunctionBeginUser;
   PetscCall(DMPlexGetDepthStratum(ck->op->dm, 0, &vStart, &vEnd));
   PetscCall(MMFrictionGetThresholds(ck->friction, &thresholds));
-  if (ct->enabled) {
+  PetscCall(MMContactGetNodes(ck->contact, &cn));
+  if (cn.enabled) {
     if (thresholds) PetscCall(VecGetArrayRead(thresholds, &sa));
-    if (ct->rho) PetscCall(VecGetArrayRead(ct->rho, &ra));
-    for (PetscInt k = 0; k < ct->n_local; ++k) {
-      PetscScalar    rec[MM_CKPT_NODE] = {0};
-      const PetscInt base = MM_CKPT_NODE * ck->vertex_orig[ct->vertex[k] - vStart];
-      if (ct->second[k]) {
-        /* a corner's second row (frictionless): its states in its vertex's unused friction slots */
-        PetscCall(VecSetValue(packed, base + MM_CKPT_SECOND_ACTIVE, (PetscScalar)ct->was_active[k], INSERT_VALUES));
-        if (ra) PetscCall(VecSetValue(packed, base + MM_CKPT_SECOND_RHO, ra[k], INSERT_VALUES));
-        if (ct->as.active) PetscCall(VecSetValue(packed, base + MM_CKPT_SECOND_AS, (PetscScalar)ct->as.active[k], INSERT_VALUES));
-        continue;
-      }
-      rec[0] = 1;
+    for (PetscInt k = 0; k < cn.n_local; ++k) {
+      PetscScalar rec[MM_CKPT_NODE];
+      PetscBool   owned[MM_CKPT_NODE];
+      PetscInt    vertex;
+      PetscCall(MMContactGetNodeState(ck->contact, k, &vertex, rec, owned));
       rec[1] = sa ? sa[k] : 0;
-      rec[2] = ct->slipping ? (PetscScalar)ct->slipping[k] : 0;
-      rec[3] = (PetscScalar)ct->was_active[k];
-      if (ct->slip_dir) {
-        rec[4] = ct->slip_dir[2 * k];
-        rec[5] = ct->slip_dir[2 * k + 1];
-      }
-      for (PetscInt c = 0; ra && c < ct->ncomp; ++c) rec[6 + c] = ra[k * ct->ncomp + c];
-      if (ct->as.active) {
-        rec[9]  = (PetscScalar)ct->as.active[k];
-        rec[10] = (PetscScalar)ct->as.stick[k];
-        for (PetscInt j = 0; j < ck->op->dim - 1; ++j) rec[11 + j] = ct->as.dir[k * (ck->op->dim - 1) + j];
-      } else if (ct->fc_obstacle && ct->fc_obstacle[k] >= 0)
-        for (PetscInt c = 0; c < ck->op->dim; ++c) rec[MM_CKPT_CORNER_R + c] = ct->fc_r[ck->op->dim * k + c];
       for (PetscInt c = 0; c < MM_CKPT_NODE; ++c)
-        if (!(k + 1 < ct->n_local && ct->second[k + 1] && (c == MM_CKPT_SECOND_ACTIVE || c == MM_CKPT_SECOND_RHO || c == MM_CKPT_SECOND_AS))) PetscCall(VecSetValue(packed, base + c, rec[c], INSERT_VALUES));
+        if (owned[c]) PetscCall(VecSetValue(packed, MM_CKPT_NODE * ck->vertex_orig[vertex - vStart] + c, rec[c], INSERT_VALUES));
     }
-    if (ra) PetscCall(VecRestoreArrayRead(ct->rho, &ra));
     if (sa) PetscCall(VecRestoreArrayRead(thresholds, &sa));
   }
   PetscCall(VecAssemblyBegin(packed));
@@ -222,8 +196,10 @@ static PetscErrorCode RunRecord(MMCheckpoint *ck, TS ts, PetscReal run[])
   PetscMPIInt      size;
   PetscInt         cStart, cEnd, ncells;
   PetscReal        dt;
+  MMContactNodes   cn;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetNodes(ck->contact, &cn));
   PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)ck->op->dm), &size));
   PetscCall(DMPlexGetHeightStratum(ck->op->dm, 0, &cStart, &cEnd));
   ncells = cEnd - cStart; /* no overlap: every cell is on one rank */
@@ -233,7 +209,7 @@ static PetscErrorCode RunRecord(MMCheckpoint *ck, TS ts, PetscReal run[])
   run[MM_RUN_DIM]             = ck->op->dim;
   run[MM_RUN_VERTICES]        = ck->nv_global;
   run[MM_RUN_CELLS]           = ncells;
-  run[MM_RUN_CONTACT_NODES]   = ck->contact->enabled ? ck->contact->n_global : 0;
+  run[MM_RUN_CONTACT_NODES]   = cn.enabled ? cn.n_global : 0;
   PetscCall(CoordinateChecksum(ck, &run[MM_RUN_COORDINATES]));
   run[MM_RUN_MU]              = ck->opt->mu;
   run[MM_RUN_RANKS]           = size;
@@ -481,13 +457,15 @@ static PetscErrorCode CheckFingerprint(MMCheckpoint *ck, TS ts, const PetscReal 
   MPI_Comm    comm = PetscObjectComm((PetscObject)ck->op->dm);
   const char *f    = ck->file;
   PetscReal   me[MM_RUN_NUM];
+  MMContactNodes cn;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetNodes(ck->contact, &cn));
   PetscCall(RunRecord(ck, ts, me));
   PetscCheck(rec[MM_RUN_DIM] == me[MM_RUN_DIM], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of a %dD problem, this mesh %s is %dD: another dimension. Restart with the mesh and options of the run that wrote it", f, (int)rec[MM_RUN_DIM], ck->opt->mesh_file, (int)me[MM_RUN_DIM]);
   PetscCheck(rec[MM_RUN_VERTICES] == me[MM_RUN_VERTICES] && rec[MM_RUN_CELLS] == me[MM_RUN_CELLS], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another mesh: %d vertices and %d cells, this mesh %s has %d and %d. Restart with the mesh of the run that wrote it", f, (int)rec[MM_RUN_VERTICES], (int)rec[MM_RUN_CELLS], ck->opt->mesh_file, (int)me[MM_RUN_VERTICES], (int)me[MM_RUN_CELLS]);
   PetscCheck(PetscAbsReal(rec[MM_RUN_COORDINATES] - me[MM_RUN_COORDINATES]) <= 1e-10 * PetscMax(PetscAbsReal(me[MM_RUN_COORDINATES]), 1.0), comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another mesh: it has as many vertices and cells as %s, but other coordinates (checksums %.15g and %.15g). Restart with the mesh, and -mesh_rotation, of the run that wrote it", f, ck->opt->mesh_file, (double)rec[MM_RUN_COORDINATES], (double)me[MM_RUN_COORDINATES]);
-  PetscCheck(rec[MM_RUN_CONTACT_NODES] == me[MM_RUN_CONTACT_NODES], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another contact boundary: %d contact nodes, this run has %d (-contact_boundary %s, -contact %s). Restart with the contact options of the run that wrote it", f, (int)rec[MM_RUN_CONTACT_NODES], (int)me[MM_RUN_CONTACT_NODES], ck->opt->contact_name, ck->opt->contact ? "1" : "0");
+  PetscCheck(rec[MM_RUN_CONTACT_NODES] == me[MM_RUN_CONTACT_NODES], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another contact boundary: %d contact nodes, this run has %d (-contact_boundary %s, -contact %s). Restart with the contact options of the run that wrote it", f, (int)rec[MM_RUN_CONTACT_NODES], (int)me[MM_RUN_CONTACT_NODES], ck->opt->contact_name, cn.enabled ? "1" : "0");
   PetscCheck(rec[MM_RUN_MU] == me[MM_RUN_MU], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with -mu %.10g, this run has -mu %.10g: a different friction law. Restart with -mu %.10g", f, (double)rec[MM_RUN_MU], (double)me[MM_RUN_MU], (double)rec[MM_RUN_MU]);
   PetscCheck(rec[MM_RUN_E] == me[MM_RUN_E] && rec[MM_RUN_NU] == me[MM_RUN_NU] && rec[MM_RUN_RHO] == me[MM_RUN_RHO], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with -E %.10g -nu %.10g -rho %.10g, this run has -E %.10g -nu %.10g -rho %.10g: another material. Restart with the material of the run that wrote it", f, (double)rec[MM_RUN_E], (double)rec[MM_RUN_NU], (double)rec[MM_RUN_RHO], (double)me[MM_RUN_E], (double)me[MM_RUN_NU], (double)me[MM_RUN_RHO]);
   {
@@ -554,10 +532,11 @@ static PetscErrorCode LoadDofs(MMCheckpoint *ck, PetscViewer viewer, const char 
  * the initial diagnostics in between); each of this run's contact nodes must be one in the file. */
 static PetscErrorCode LoadContactRecords(MMCheckpoint *ck, PetscViewer viewer)
 {
-  MMContact *ct = ck->contact;
-  PetscInt   vStart, vEnd, *serial, bad = 0;
+  MMContactNodes nodes, *ct = &nodes;
+  PetscInt       vStart, vEnd, *serial, bad = 0;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetNodes(ck->contact, &nodes));
   if (!ct->enabled) PetscFunctionReturn(0);
   PetscCall(DMPlexGetDepthStratum(ck->op->dm, 0, &vStart, &vEnd));
   PetscCall(PetscMalloc1(ct->n_local, &serial));
@@ -571,41 +550,26 @@ static PetscErrorCode LoadContactRecords(MMCheckpoint *ck, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
-/* The friction thresholds, 3D slip states and directions, condensed reactions and the active-set
- * warm start: what the next step's solvers start from. */
+/* The friction thresholds, and the contact object's per-row state (the last active set, 3D slip
+ * states and directions, condensed reactions and the active-set warm start): what the next step's
+ * solvers start from. */
 static PetscErrorCode RestoreContactState(MMCheckpoint *ck)
 {
-  MMContact   *ct = ck->contact;
-  PetscScalar *sa = NULL, *ra = NULL;
-  Vec          thresholds;
+  PetscScalar   *sa = NULL;
+  Vec            thresholds;
+  MMContactNodes cn;
 
   PetscFunctionBeginUser;
-  if (!ct->enabled) PetscFunctionReturn(0);
+  PetscCall(MMContactGetNodes(ck->contact, &cn));
+  if (!cn.enabled) PetscFunctionReturn(0);
   PetscCall(MMFrictionGetThresholds(ck->friction, &thresholds));
   if (thresholds) PetscCall(VecGetArray(thresholds, &sa));
-  if (ct->rho) PetscCall(VecGetArray(ct->rho, &ra));
-  for (PetscInt k = 0; k < ct->n_local; ++k) {
+  for (PetscInt k = 0; k < cn.n_local; ++k) {
     const PetscScalar *rec = &ck->node[MM_CKPT_NODE * k];
-    if (ct->second[k]) {
-      if (ra) ra[k] = rec[MM_CKPT_SECOND_RHO];
-      if (ct->as.active) ct->as.active[k] = (PetscBool)(PetscRealPart(rec[MM_CKPT_SECOND_AS]) != 0);
-      continue;
-    }
-    if (sa) sa[k] = rec[1];
-    if (ct->slipping) ct->slipping[k] = (PetscBool)(PetscRealPart(rec[2]) != 0);
-    if (ct->slip_dir) {
-      ct->slip_dir[2 * k]     = PetscRealPart(rec[4]);
-      ct->slip_dir[2 * k + 1] = PetscRealPart(rec[5]);
-    }
-    for (PetscInt c = 0; ra && c < ct->ncomp; ++c) ra[k * ct->ncomp + c] = rec[6 + c];
-    if (ct->as.active) {
-      ct->as.active[k] = (PetscBool)(PetscRealPart(rec[9]) != 0);
-      ct->as.stick[k]  = (PetscBool)(PetscRealPart(rec[10]) != 0);
-      for (PetscInt j = 0; j < ck->op->dim - 1; ++j) ct->as.dir[k * (ck->op->dim - 1) + j] = PetscRealPart(rec[11 + j]);
-    } else if (ct->fc_obstacle && ct->fc_obstacle[k] >= 0)
-      for (PetscInt c = 0; c < ck->op->dim; ++c) ct->fc_r[ck->op->dim * k + c] = PetscRealPart(rec[MM_CKPT_CORNER_R + c]);
+    PetscBool          second;
+    PetscCall(MMContactSetNodeState(ck->contact, k, rec, &second));
+    if (sa && !second) sa[k] = rec[1];
   }
-  if (ra) PetscCall(VecRestoreArray(ct->rho, &ra));
   if (sa) PetscCall(VecRestoreArray(thresholds, &sa));
   PetscFunctionReturn(0);
 }
@@ -720,15 +684,16 @@ PetscErrorCode MMCheckpointView(const MMCheckpoint *c, PetscViewer viewer)
 PetscErrorCode MMCheckpointRestoreHistory(MMCheckpoint *c)
 {
   MMHistory      *h   = c->hist;
-  MMContact      *ct  = c->contact;
+  MMContactNodes  cn;
   const PetscReal *run = c->run;
 
   PetscFunctionBeginUser;
   if (!c->restarted) PetscFunctionReturn(0);
+  PetscCall(MMContactGetNodes(c->contact, &cn));
   h->step                = c->restart_step;
   h->time                = run[MM_RUN_TIME];
   h->dt                  = run[MM_RUN_DT_LAST];
-  h->cfl                 = ct->enabled ? c->op->c_p * h->dt / ct->h_c : 0;
+  h->cfl                 = cn.enabled ? c->op->c_p * h->dt / cn.h_c : 0;
   h->work_ext            = run[MM_RUN_WORK_EXT];
   h->work_contact        = run[MM_RUN_WORK_CONTACT];
   h->work_friction       = run[MM_RUN_WORK_FRICTION];
@@ -738,10 +703,10 @@ PetscErrorCode MMCheckpointRestoreHistory(MMCheckpoint *c)
   h->max_balance         = run[MM_RUN_MAX_BALANCE];
   h->max_penetration_run = run[MM_RUN_MAX_PENETRATION];
   h->energy_scale        = run[MM_RUN_ENERGY_SCALE];
-  h->resolves = ct->cand.resolves = (PetscInt)run[MM_RUN_RESOLVES];
-  for (PetscInt k = 0; ct->enabled && k < ct->n_local; ++k) ct->was_active[k] = (PetscBool)(PetscRealPart(c->node[MM_CKPT_NODE * k + (ct->second[k] ? MM_CKPT_SECOND_ACTIVE : 3)]) != 0);
+  h->resolves            = (PetscInt)run[MM_RUN_RESOLVES];
+  PetscCall(MMContactSetCandidateResolves(c->contact, h->resolves));
   /* here, not at the load: the condensed reactions and the active-set states are created with the
-   * step matrix, and the initial diagnostics would overwrite the states */
+   * step matrix, and the initial diagnostics would overwrite the states (the last active set among them) */
   PetscCall(RestoreContactState(c));
   c->last_step = c->restart_step;
   c->written   = 1; /* the checkpoint of this step exists */

@@ -225,7 +225,11 @@ PetscErrorCode MMOutputWriteRow(MMOutput *o)
   for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->load[d]));
   PetscCall(MMOutputLineAdd(&l, ",%" PetscInt_FMT ",%.6e,%" PetscInt_FMT ",%" PetscInt_FMT ",%.16e", h->switched, (double)h->contraction, h->candidates, h->resolves, (double)h->work_obstacle));
   for (PetscInt b = 0; b < opt->n_obstacles; ++b)
-    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", o->contact->enabled ? (double)o->contact->force_obstacle[MM_MAX_DIM * b + d] : 0.0));
+  {
+    PetscReal force[MM_MAX_DIM];
+    PetscCall(MMContactGetObstacleForce(o->contact, b, force));
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)force[d]));
+  }
   PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->work_damping));
   if (opt->n_dirichlet) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->work_dirichlet));
   for (PetscInt b = 0; b < opt->n_dirichlet; ++b)
@@ -813,7 +817,7 @@ PetscErrorCode MMOutputSetFromOptions(MPI_Comm comm, MMOutput *o)
 }
 
 /* The output's borrowed references: what it writes from (like KSPSetOperators). */
-PetscErrorCode MMOutputSetUp(MMOutput *o, const MMOptions *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, const MMContact *contact, MMLoads *loads, MMCheckpoint *ckpt)
+PetscErrorCode MMOutputSetUp(MMOutput *o, const MMOptions *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, MMContact contact, MMLoads *loads, MMCheckpoint *ckpt)
 {
   PetscFunctionBeginUser;
   o->opt      = opt;

@@ -45,7 +45,7 @@ static PetscErrorCode Write(MMCtx *ctx, PetscBool row, PetscBool snapshot)
   if (snapshot || (row && o->probes.n)) PetscCall(WholeState(o));
   if (row) PetscCall(MMOutputWriteRow(o));
   if (!snapshot) PetscFunctionReturn(0);
-  PetscCall(MMContactBoundaryFields(ctx, o));
+  PetscCall(MMContactBoundaryFields(ctx->contact, ctx->state.u, ctx->state.v, ctx->state.react, o->dm_out, o->pressure, o->gap, o->traction_t, o->slip));
   PetscCall(MMStressCompute(&o->stress, o->op, o->material, o->dm_out, o->disp_cart, PETSC_TRUE));
   PetscCall(MMOutputWriteSnapshot(o, o->hist->time));
   PetscCall(PetscLogStagePop());
@@ -79,7 +79,7 @@ PetscErrorCode MMOutputOpen(MMCtx *ctx)
   if (ctx->ckpt.restarted) PetscCall(PetscLogEventBegin(MMIOEvents.restart_output, 0, 0, 0, 0));
   PetscCall(MMOutputOpenFiles(o));
   PetscCall(MMStressCreate(o->op, &o->stress));
-  PetscCall(MMContactObstacleField(ctx, o->obstacle));
+  PetscCall(MMContactObstacleField(ctx->contact, o->obstacle));
   if (ctx->ckpt.restarted) {
     PetscCall(MMOutputRestartFields(o));
     PetscCall(PetscLogEventEnd(MMIOEvents.restart_output, 0, 0, 0, 0));

@@ -17,7 +17,7 @@ static PetscBool DampingOn(const MMProgress *pg)
 }
 
 /* The progress's borrowed references: what the start-up report and the progress lines describe. */
-PetscErrorCode MMProgressSetUp(MMProgress *pg, const MMOptions *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, const MMContact *contact, const MMDamping *damping)
+PetscErrorCode MMProgressSetUp(MMProgress *pg, const MMOptions *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, MMContact contact, const MMDamping *damping)
 {
   PetscFunctionBeginUser;
   pg->opt       = opt;
@@ -197,12 +197,15 @@ static PetscErrorCode HeaderPhysics(MMProgress *pg, TS ts)
 {
   MPI_Comm        comm = PETSC_COMM_WORLD;
   const MMOptions *opt = pg->opt;
-  const PetscReal c_s  = PetscSqrtReal(PetscRealPart(pg->op->constants[MM_C_MU]) / opt->rho), h_c = pg->contact->h_c;
-  PetscReal       dt, t_end;
+  const PetscReal c_s  = PetscSqrtReal(PetscRealPart(pg->op->constants[MM_C_MU]) / opt->rho);
+  PetscReal       dt, t_end, h_c;
   PetscInt        max_steps;
   char            steps[64] = "", cfl[128];
+  MMContactNodes  cn;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetNodes(pg->contact, &cn));
+  h_c = cn.h_c;
   PetscCall(TSGetTimeStep(ts, &dt));
   PetscCall(TSGetMaxTime(ts, &t_end));
   PetscCall(TSGetMaxSteps(ts, &max_steps));
@@ -259,24 +262,28 @@ static PetscErrorCode HeaderContact(MMProgress *pg, KSP krylov, KSP pc_ksp)
   MPI_Comm         comm = PETSC_COMM_WORLD;
   const MMOptions *opt  = pg->opt;
   char             obstacles[512], friction[128], solver[256], progress[64] = "no progress lines";
-  const char      *products = "";
+  const char      *type, *choice, *products;
+  MMContactNodes   cn;
 
   PetscFunctionBeginUser;
   PetscCall(ObstacleList(opt, obstacles, sizeof(obstacles)));
   PetscCall(FrictionText(opt, friction, sizeof(friction)));
   PetscCall(SolverText(krylov, pc_ksp, solver, sizeof(solver)));
+  PetscCall(MMContactGetNodes(pg->contact, &cn));
   /* the active-set CG's products (src/contact/impls/active_set/block_operator.c) */
-  if (pg->contact->as.ksp) products = pg->contact->as.Kb ? "; CG products with K~ in symmetric block storage (SBAIJ)" : (opt->active_set_block ? "; CG products with K~'s AIJ (its pattern is not in whole blocks)" : "");
+  PetscCall(MMContactGetSolverText(pg->contact, &type, &choice, &products));
   if (pg->every > 0) PetscCall(PetscSNPrintf(progress, sizeof(progress), "progress every %.6g s", (double)pg->every));
-  if (pg->contact->enabled && pg->contact->n_corners) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes (%" PetscInt_FMT " of them against two obstacles: %" PetscInt_FMT " rows) against %s; %s %s mass; %s\n", pg->contact->n_global - pg->contact->n_corners, pg->contact->n_corners, pg->contact->n_global, obstacles, pg->op->lumped ? "lumped" : "consistent", MMMassTypes[pg->op->mass_type], friction));
-  else if (pg->contact->enabled && pg->contact->n_fc) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes (%" PetscInt_FMT " of them against two obstacles, each with its own Coulomb law) against %s; %s %s mass; %s\n", pg->contact->n_global, pg->contact->n_fc, obstacles, pg->op->lumped ? "lumped" : "consistent", MMMassTypes[pg->op->mass_type], friction));
-  else if (pg->contact->enabled) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes against %s; %s %s mass; %s\n", pg->contact->n_global, obstacles, pg->op->lumped ? "lumped" : "consistent", MMMassTypes[pg->op->mass_type], friction));
-  for (PetscInt p = 0; pg->contact->enabled && p < pg->contact->pairs.n; ++p) {
+  if (cn.enabled && cn.n_corners) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes (%" PetscInt_FMT " of them against two obstacles: %" PetscInt_FMT " rows) against %s; %s %s mass; %s\n", cn.n_global - cn.n_corners, cn.n_corners, cn.n_global, obstacles, pg->op->lumped ? "lumped" : "consistent", MMMassTypes[pg->op->mass_type], friction));
+  else if (cn.enabled && cn.n_fc) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes (%" PetscInt_FMT " of them against two obstacles, each with its own Coulomb law) against %s; %s %s mass; %s\n", cn.n_global, cn.n_fc, obstacles, pg->op->lumped ? "lumped" : "consistent", MMMassTypes[pg->op->mass_type], friction));
+  else if (cn.enabled) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes against %s; %s %s mass; %s\n", cn.n_global, obstacles, pg->op->lumped ? "lumped" : "consistent", MMMassTypes[pg->op->mass_type], friction));
+  for (PetscInt p = 0; cn.enabled && p < opt->n_obstacles - opt->n_rigid; ++p) {
     const MMObstacle *ob = &opt->obstacles[opt->n_rigid + p];
-    PetscCall(PetscPrintf(comm, "  pair %s: slave %s, %" PetscInt_FMT " nodes (%" PetscInt_FMT " facing a master node: node to node), on %" PetscInt_FMT " facets of master %s; mu = %g\n", ob->name, ob->slave, pg->contact->pairs.count[2 * p], pg->contact->pairs.count[2 * p + 1], pg->contact->pairs.nf[p], ob->master, (double)ob->mu));
+    PetscInt          nodes, n2n, facets;
+    PetscCall(MMContactGetPairCounts(pg->contact, p, &nodes, &n2n, &facets));
+    PetscCall(PetscPrintf(comm, "  pair %s: slave %s, %" PetscInt_FMT " nodes (%" PetscInt_FMT " facing a master node: node to node), on %" PetscInt_FMT " facets of master %s; mu = %g\n", ob->name, ob->slave, nodes, n2n, facets, ob->master, (double)ob->mu));
   }
-  if (!pg->contact->enabled) PetscCall(PetscPrintf(comm, "  contact: off (-contact 0), 0 contact nodes: linear elastodynamics; %s mass\n", pg->op->lumped ? "lumped" : "consistent"));
-  PetscCall(PetscPrintf(comm, "  solvers: contact formulation %s%s; K~ by %s%s; %s\n", pg->contact->type, pg->contact->auto_type && pg->contact->enabled ? (pg->contact->prefer_iterative ? " (auto: 3D, at least -iterative_dofs dofs)" : " (auto)") : "", solver, products, progress));
+  if (!cn.enabled) PetscCall(PetscPrintf(comm, "  contact: off (-contact 0), 0 contact nodes: linear elastodynamics; %s mass\n", pg->op->lumped ? "lumped" : "consistent"));
+  PetscCall(PetscPrintf(comm, "  solvers: contact formulation %s%s; K~ by %s%s; %s\n", type, choice, solver, products, progress));
   PetscCall(MMProgressMassLine(pg));
   PetscFunctionReturn(0);
 }

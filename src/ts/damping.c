@@ -1,7 +1,7 @@
 /* Rayleigh damping C = alpha M* + beta B in the trapezoidal scheme (docs/method.md sections 3, 4).
  *
  * The step equation gains C (2/dt u^n + vC^n) on its right-hand side and K~ becomes
- * K + 2 beta/dt B + (4/dt^2 + 2 alpha/dt) M* (MMDampingStepMatrix, the one place that builds K~).
+ * K + 2 beta/dt B + (4/dt^2 + 2 alpha/dt) M* (MMDampingGetStepMatrix gives its coefficients to contact, which builds K~).
  * vC is the trapezoidal velocity on all dofs, kept apart from the state's v. B is K, except with
  * the modified mass: there the massless contact-normal dofs are condensed out of each cell's
  * stiffness, so that C has no row or column on them (docs/method.md, "Rayleigh damping of the
@@ -10,6 +10,7 @@
  * runs, so an undamped run is bitwise what it was. */
 #include "damping.h"
 #include "fem.h"
+#include "contact.h"
 
 /* The options as given: nothing contradictory, nothing negative, frequencies where a ratio needs
  * them. Called with the other range checks, before the mesh is read. */
@@ -55,13 +56,15 @@ PetscBool MMDampingOn(const MMCtx *ctx)
  * rows and columns are then set to zero exactly, against the condensation's round-off. */
 static PetscErrorCode CondensedDampingStiffness(MMCtx *ctx, Mat *B)
 {
+  MMContactNodes cn;
   Vec mark;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetNodes(ctx->contact, &cn));
   PetscCall(MMFECreateMatrix(&ctx->op, ctx->op.dm, B));
   PetscCall(DMCreateGlobalVector(ctx->op.dm, &mark));
   PetscCall(VecZeroEntries(mark));
-  PetscCall(VecISSet(mark, ctx->contact.is_massless, 1.0));
+  PetscCall(VecISSet(mark, cn.is_massless, 1.0));
   PetscCall(MMAssembleP1DampingStiffness(ctx->op.dm, &ctx->material, ctx->op.Q, mark, *B));
   PetscCall(VecDestroy(&mark));
   if (ctx->op.N) {
@@ -70,7 +73,7 @@ static PetscErrorCode CondensedDampingStiffness(MMCtx *ctx, Mat *B)
     PetscCall(MatDestroy(B));
     *B = BN;
   }
-  PetscCall(MatZeroRowsColumnsIS(*B, ctx->contact.is_massless, 0.0, NULL, NULL));
+  PetscCall(MatZeroRowsColumnsIS(*B, cn.is_massless, 0.0, NULL, NULL));
   PetscFunctionReturn(0);
 }
 
@@ -104,27 +107,18 @@ PetscErrorCode MMDampingDestroy(MMDamping *d)
   PetscFunctionReturn(0);
 }
 
-/* The coefficients of K~ = ck K + cm M* as far as the arithmetic is concerned: ck = 1 + 2 beta/dt
- * (B is K or K with the massless dofs condensed out, no larger), cm = 4/dt^2 + 2 alpha/dt. */
-void MMDampingStepCoefficients(const MMCtx *ctx, PetscReal dt, PetscReal *ck, PetscReal *cm)
+/* The coefficients of K~ = ck K + cb B + cm M* for dt (docs/method.md section 3), for the contact
+ * component that builds it: ck = 1, cb = 2 beta/dt with B (NULL undamped), cm = 4/dt^2 + 2 alpha/dt. */
+PetscErrorCode MMDampingGetStepMatrix(MMDamping *d, Mat K, PetscReal dt, MMStepMatrix *sm)
 {
-  *ck = 1.0 + 2.0 * ctx->damping.beta / dt;
-  *cm = 4.0 / (dt * dt) + 2.0 * ctx->damping.alpha / dt;
-}
-
-/* K~ from A = K (a copy, K's pattern): K + 2 beta/dt B + cm M*, cm = 4/dt^2 + 2 alpha/dt
- * (docs/method.md section 3). Every formulation's K~ is built here. Undamped, K + 4/dt^2 M*
- * exactly; with B = K, (1 + 2 beta/dt) K as one scaling. */
-PetscErrorCode MMDampingStepMatrix(MMCtx *ctx, PetscReal dt, Mat A)
-{
-  const MMDamping *d  = &ctx->damping;
-  PetscReal        cm = 4.0 / (dt * dt);
-
   PetscFunctionBeginUser;
-  if (d->alpha != 0) cm += 2.0 * d->alpha / dt;
-  if (d->beta != 0 && d->B == ctx->op.K) PetscCall(MatScale(A, 1.0 + 2.0 * d->beta / dt));
-  else if (d->beta != 0) PetscCall(MatAXPY(A, 2.0 * d->beta / dt, d->B, SUBSET_NONZERO_PATTERN));
-  PetscCall(MatAXPY(A, cm, ctx->op.Mstar, SUBSET_NONZERO_PATTERN));
+  (void)K; /* B is K itself, or K with the massless dofs condensed out */
+  sm->dt = dt;
+  sm->ck = 1.0;
+  sm->cm = 4.0 / (dt * dt);
+  if (d->alpha != 0) sm->cm += 2.0 * d->alpha / dt;
+  sm->cb = d->beta != 0 ? 2.0 * d->beta / dt : 0;
+  sm->B  = d->beta != 0 ? d->B : NULL;
   PetscFunctionReturn(0);
 }
 

@@ -59,7 +59,7 @@ static PetscErrorCode TrapezoidalWork(MMCtx *ctx, IS is, Vec du, PetscReal *work
  * tangential parts. Zero when nothing moves. */
 static PetscErrorCode ObstacleWork(MMCtx *ctx, PetscReal t0, PetscReal t1, PetscReal *wn, PetscReal *wt)
 {
-  MMContact         *ct  = &ctx->contact;
+  MMContactNodes    nodes, *ct = &nodes;
   const PetscInt     dim = ctx->op.dim;
   const PetscInt    *in;
   const PetscScalar *f1, *f0;
@@ -67,6 +67,7 @@ static PetscErrorCode ObstacleWork(MMCtx *ctx, PetscReal t0, PetscReal t1, Petsc
   PetscReal          w[2] = {0, 0};
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetNodes(ctx->contact, &nodes));
   *wn = *wt = 0;
   if (!ct->enabled || !ct->moving) PetscFunctionReturn(0);
   PetscCall(VecGetOwnershipRange(ctx->state.react, &rstart, NULL));
@@ -100,20 +101,44 @@ static PetscErrorCode ObstacleWork(MMCtx *ctx, PetscReal t0, PetscReal t1, Petsc
  * the moving obstacles' normal work, which is not the method's doing. */
 PetscErrorCode MMEnergyContactWork(MMCtx *ctx, Vec w, PetscReal *w_c)
 {
+  MMContactNodes cn;
   MMState *s = &ctx->state;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetNodes(ctx->contact, &cn));
   *w_c = 0;
-  if (!ctx->contact.enabled) PetscFunctionReturn(0);
+  if (!cn.enabled) PetscFunctionReturn(0);
   PetscCall(VecWAXPY(s->work, -1.0, s->u, w));
-  PetscCall(TrapezoidalWork(ctx, ctx->contact.is_normal, s->work, w_c));
+  PetscCall(TrapezoidalWork(ctx, cn.is_normal, s->work, w_c));
   {
     PetscReal wn, wt, dwc, dwn, dwt;
-    PetscCall(ObstacleWork(ctx, ctx->hist.time, ctx->hist.time + ctx->contact.Kt_dt, &wn, &wt));
+    PetscCall(ObstacleWork(ctx, ctx->hist.time, ctx->hist.time + cn.dt, &wn, &wt));
     /* a friction corner's two obstacles, each its own normal (docs/method.md section 12) */
-    PetscCall(MMContactCornersWork(ctx, ctx->hist.time, ctx->hist.time + ctx->contact.Kt_dt, s->work, &dwc, &dwn, &dwt));
+    PetscCall(MMContactCornersWork(ctx->contact, ctx->hist.time, ctx->hist.time + cn.dt, s->work, &dwc, &dwn, &dwt));
     *w_c += dwc - (wn + dwn);
   }
+  PetscFunctionReturn(0);
+}
+
+
+/* The contact quantities of the accepted state into the history, and (audit) the contact audit */
+static PetscErrorCode ContactDiagnostics(MMCtx *ctx, Vec u, Vec react, Vec v, PetscBool audit, MMHistory *h)
+{
+  MMContactStats st;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMContactDiagnostics(ctx->contact, ctx->hist.time, u, react, v, &st));
+  h->active           = st.active;
+  h->switched         = st.switched;
+  h->slipping         = st.slipping;
+  h->force_normal     = st.force_normal;
+  h->force_tangential = st.force_tangential;
+  h->max_penetration  = st.max_penetration;
+  h->coulomb_residual = st.coulomb_residual;
+  h->vi_its           = st.vi_its;
+  h->candidates       = st.candidates;
+  h->resolves         = st.resolves;
+  if (audit) PetscCall(MMContactAudit(ctx->contact, h->step, h->time, &st));
   PetscFunctionReturn(0);
 }
 
@@ -133,22 +158,24 @@ static PetscErrorCode CheckFinite(MMCtx *ctx, const MMHistory *h, PetscReal w_ex
 
 PetscErrorCode MMEnergyInitial(MMCtx *ctx)
 {
+  MMContactNodes cn;
   MMHistory *h = &ctx->hist;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetNodes(ctx->contact, &cn));
   h->step = 0;
   h->time = 0;
   h->work_ext = h->work_contact = h->work_friction = h->work_obstacle = 0;
   h->work_damping = 0;
   h->work_dirichlet = 0;
   h->balance_residual = h->max_balance = h->max_penetration_run = 0;
-  h->cfl = ctx->contact.enabled ? ctx->op.c_p * h->dt / ctx->contact.h_c : 0;
+  h->cfl = cn.enabled ? ctx->op.c_p * h->dt / cn.h_c : 0;
   /* the quadrature inserts the Dirichlet data of t = 0: a restarted run's moving boundary is elsewhere */
   if (!(ctx->loads.moving && ctx->ckpt.restarted)) PetscCall(MMFECheckElasticEnergy(&ctx->op, &ctx->material, ctx->state.u));
   PetscCall(TotalEnergy(ctx, h));
   PetscCall(CheckFinite(ctx, h, 0, 0, 0));
   h->energy_scale = PetscAbsReal(h->total);
-  PetscCall(MMContactDiagnostics(ctx, ctx->state.u, ctx->state.react, ctx->state.v, h));
+  PetscCall(ContactDiagnostics(ctx, ctx->state.u, ctx->state.react, ctx->state.v, PETSC_FALSE, h));
   h->switched = 0;
   h->vi_its   = 0;
   h->max_penetration_run = h->max_penetration;
@@ -161,9 +188,9 @@ PetscErrorCode MMEnergyInitial(MMCtx *ctx)
  * a residual near it is a loose solve, and tighter tolerances fix it; one orders of magnitude above
  * it is not, and the usual cause is inconsistent units (a mesh in millimetres with E in Pa, a
  * density in g/cm^3), which leave K~ so ill-conditioned that no solve is exact. */
-static const char *AuditAdvice(MMCtx *ctx, PetscReal residual)
+static const char *AuditAdvice(PetscReal contact_tol, PetscReal residual)
 {
-  if (residual > 1e4 * ctx->opt.contact_tol) return "A residual this far above the solver tolerance is not a loose solve: check that the units are consistent (SI throughout: the mesh in metres, -E in Pa, -rho in kg/m^3, loads in N/m^2 and m/s^2) and that the material values are what you meant; tightening the tolerances will not help.";
+  if (residual > 1e4 * contact_tol) return "A residual this far above the solver tolerance is not a loose solve: check that the units are consistent (SI throughout: the mesh in metres, -E in Pa, -rho in kg/m^3, loads in N/m^2 and m/s^2) and that the material values are what you meant; tightening the tolerances will not help.";
   return "The step was not solved exactly: tighten -contact_tol or the -contact_snes tolerances (and check that the units are consistent, SI throughout).";
 }
 
@@ -171,12 +198,16 @@ static const char *AuditAdvice(MMCtx *ctx, PetscReal residual)
  * scheme's identity. */
 PetscErrorCode MMEnergyStep(MMCtx *ctx)
 {
+  MMContactNodes cn;
   MMHistory  *h = &ctx->hist;
   MMState    *s = &ctx->state;
   PetscReal   E_old = h->total, w_ext, w_c = s->work_contact, w_f = 0, w_obs = 0, w_d, w_ext_D, w_D;
   PetscScalar Ldu;
+  PetscReal   contact_tol;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetTolerance(ctx->contact, &contact_tol));
+  PetscCall(MMContactGetNodes(ctx->contact, &cn));
   PetscCall(PetscLogEventBegin(ctx->log.energy, 0, 0, 0, 0));
   PetscCall(VecWAXPY(s->work, -1.0, s->u_old, s->u));
   PetscCall(VecDot(ctx->op.load, s->work, &Ldu)); /* L^{n+1}: L^n too when the loads are constant */
@@ -191,13 +222,13 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
   w_ext += w_ext_D;
   PetscCall(MMDampingWork(ctx, s->work, s->dt, &w_d));
   /* W_c was computed on this very state by the contact-work guard (MMEnergyContactWork) */
-  if (ctx->contact.enabled) PetscCall(TrapezoidalWork(ctx, ctx->contact.is_tangent, s->work, &w_f));
+  if (cn.enabled) PetscCall(TrapezoidalWork(ctx, cn.is_tangent, s->work, &w_f));
   {
     PetscReal wn, wt, dwc, dwn, dwt;
     /* h->time is already t^{n+1} */
     PetscCall(ObstacleWork(ctx, h->time - s->dt, h->time, &wn, &wt));
     /* W_c took the friction corners' share from W_f (MMEnergyContactWork) */
-    PetscCall(MMContactCornersWork(ctx, h->time - s->dt, h->time, s->work, &dwc, &dwn, &dwt));
+    PetscCall(MMContactCornersWork(ctx->contact, h->time - s->dt, h->time, s->work, &dwc, &dwn, &dwt));
     wn += dwn;
     wt += dwt;
     w_f -= wt + dwc;
@@ -218,10 +249,9 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
   h->max_balance      = PetscMax(h->max_balance, h->balance_residual);
   PetscCheck(h->balance_residual <= ctx->opt.audit_tol, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_NOT_CONVERGED,
              "Energy audit failed at step %" PetscInt_FMT " (t = %g): balance residual %.3e > -audit_tol %.1e. %s The output up to the previous step is intact",
-             h->step, (double)h->time, (double)h->balance_residual, (double)ctx->opt.audit_tol, AuditAdvice(ctx, h->balance_residual));
-  h->cfl              = ctx->contact.enabled ? ctx->op.c_p * s->dt / ctx->contact.h_c : 0;
-  PetscCall(MMContactDiagnostics(ctx, s->u, s->react, s->v, h));
-  PetscCall(MMContactAudit(ctx, h));
+             h->step, (double)h->time, (double)h->balance_residual, (double)ctx->opt.audit_tol, AuditAdvice(contact_tol, h->balance_residual));
+  h->cfl              = cn.enabled ? ctx->op.c_p * s->dt / cn.h_c : 0;
+  PetscCall(ContactDiagnostics(ctx, s->u, s->react, s->v, PETSC_TRUE, h));
   PetscCall(MMFrictionGetConvergence(ctx->friction, &h->friction_its, NULL, NULL, &h->contraction));
   h->max_penetration_run = PetscMax(h->max_penetration_run, h->max_penetration);
   PetscCall(MMRigidBodyDiagnostics(ctx, h));

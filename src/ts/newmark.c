@@ -51,13 +51,15 @@ static PetscErrorCode UpdateKinematics(MMCtx *ctx, PetscReal dt, Vec w)
   PetscCall(VecWAXPY(s->v, 1.0, s->a_old, s->a));
   PetscCall(VecAYPX(s->v, 0.5 * dt, s->v_old));
   if (HasMasslessDofs(ctx)) {
-    Vec vc, dc;
-    PetscCall(VecISSet(s->a, ctx->contact.is_normal, 0.0));
-    PetscCall(VecGetSubVector(s->v, ctx->contact.is_normal, &vc));
-    PetscCall(VecGetSubVector(s->work, ctx->contact.is_normal, &dc));
+    Vec            vc, dc;
+    MMContactNodes cn;
+    PetscCall(MMContactGetNodes(ctx->contact, &cn));
+    PetscCall(VecISSet(s->a, cn.is_normal, 0.0));
+    PetscCall(VecGetSubVector(s->v, cn.is_normal, &vc));
+    PetscCall(VecGetSubVector(s->work, cn.is_normal, &dc));
     PetscCall(VecAXPBY(vc, 1.0 / dt, 0.0, dc));
-    PetscCall(VecRestoreSubVector(s->work, ctx->contact.is_normal, &dc));
-    PetscCall(VecRestoreSubVector(s->v, ctx->contact.is_normal, &vc));
+    PetscCall(VecRestoreSubVector(s->work, cn.is_normal, &dc));
+    PetscCall(VecRestoreSubVector(s->v, cn.is_normal, &vc));
   }
   PetscCall(VecCopy(w, s->u));
   PetscFunctionReturn(0);
@@ -83,7 +85,9 @@ typedef enum {
  * -ts_adapt_dt_min and at most -ts_max_reject times; past those the run stops and says why. */
 static PetscErrorCode RejectStep(TS ts, MMCtx *ctx, PetscInt rejections, MMRejectReason why, PetscReal w_c, PetscReal scale)
 {
-  const PetscReal dt = ts->time_step, cfl = ctx->op.c_p * dt / ctx->contact.h_c;
+  const PetscReal dt = ts->time_step;
+  PetscReal       h_c, cfl;
+  MMContactNodes  cn;
   PetscReal       contraction;
   const PetscReal new_dt = dt * ts->adapt->scale_solve_failed;
   MPI_Comm        comm   = PetscObjectComm((PetscObject)ts);
@@ -91,6 +95,9 @@ static PetscErrorCode RejectStep(TS ts, MMCtx *ctx, PetscInt rejections, MMRejec
   PetscBool       can_retry;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetNodes(ctx->contact, &cn));
+  h_c = cn.h_c;
+  cfl = ctx->op.c_p * dt / h_c;
   PetscCall(TSAdaptGetStepLimits(ts->adapt, &hmin, &hmax));
   PetscCall(MMFrictionGetConvergence(ctx->friction, NULL, NULL, &contraction, NULL));
   ts->reject++;
@@ -106,7 +113,7 @@ static PetscErrorCode RejectStep(TS ts, MMCtx *ctx, PetscInt rejections, MMRejec
   } else {
     PetscCheck(can_retry, comm, PETSC_ERR_NOT_CONVERGED,
                "A contact release at t = %g creates energy that dt does not resolve: the step's contact work W_c = %g is %.3g of the energy scale, above -contact_work_tol %g, with dt = %g (c_p dt / h_c' = %.3g). The next dt %g would be below -ts_adapt_dt_min %g (or past -ts_max_reject %" PetscInt_FMT "). Use a -ts_dt near h_c' / c_p = %g, so that the contact pressure is resolved in time. The output up to t = %g is intact",
-               (double)ts->ptime, (double)w_c, (double)(w_c / scale), (double)ctx->opt.contact_work_tol, (double)dt, (double)cfl, (double)new_dt, (double)hmin, ts->max_reject, (double)(ctx->contact.h_c / ctx->op.c_p), (double)ts->ptime);
+               (double)ts->ptime, (double)w_c, (double)(w_c / scale), (double)ctx->opt.contact_work_tol, (double)dt, (double)cfl, (double)new_dt, (double)hmin, ts->max_reject, (double)(h_c / ctx->op.c_p), (double)ts->ptime);
     if (!ctx->opt.quiet) PetscCall(PetscPrintf(comm, "  step rejected at t = %g: its contact work W_c = %g would create %.3g of the energy scale (-contact_work_tol %g) with dt = %g (c_p dt / h_c' = %.3g); retrying with dt = %g\n", (double)ts->ptime, (double)w_c, (double)(w_c / scale), (double)ctx->opt.contact_work_tol, (double)dt, (double)cfl, (double)new_dt));
   }
   ts->time_step = new_dt;
@@ -159,21 +166,25 @@ static PetscErrorCode TSStep_Newmark(TS ts)
 
   PetscFunctionBeginUser;
   PetscCall(SaveOldState(s));
-  PetscCall(MMContactCornersAccept(ctx));
+  PetscCall(MMContactCornersAccept(ctx->contact));
   PetscCall(MatchFinalTime(ts));
   while (!solved) {
     PetscReal w_c, scale;
-    PetscBool too_large = PETSC_FALSE;
+    PetscBool    too_large = PETSC_FALSE;
+    Vec          b;
+    MMStepMatrix sm;
 
     dt = ts->time_step;
-    PetscCall(MMContactSetStepMatrix(ctx, dt));
-    PetscCall(MMContactSetTime(ctx, ts->ptime + dt, dt));
+    PetscCall(MMDampingGetStepMatrix(&ctx->damping, ctx->op.K, dt, &sm));
+    PetscCall(MMContactSetStepMatrix(ctx->contact, &sm));
+    PetscCall(MMContactSetTime(ctx->contact, ts->ptime + dt, dt));
     PetscCall(MMLoadsSetTime(&ctx->loads, ts->ptime, ts->ptime + dt)); /* L^{n+1} and the lift of u_D(t^{n+1}) */
-    PetscCall(StepRHS(ctx, dt, ctx->contact.qp.b));
+    PetscCall(MMContactGetRHS(ctx->contact, &b));
+    PetscCall(StepRHS(ctx, dt, b));
     /* predictor u + dt v + dt^2/4 a: exact for constant acceleration */
     PetscCall(VecAXPBYPCZ(w, dt, 0.25 * dt * dt, 0.0, s->v, s->a));
     PetscCall(VecAXPY(w, 1.0, s->u));
-    PetscCall(MMFrictionSolve(ctx, ctx->contact.qp.b, w, s->react, &solved));
+    PetscCall(MMFrictionSolve(ctx->friction, ctx->hist.step, ctx->hist.time, b, w, s->react, &solved));
     if (!solved) {
       PetscCall(RejectStep(ts, ctx, ++rejections, MM_REJECT_FRICTION, 0, 0));
       continue;
@@ -287,14 +298,16 @@ static PetscErrorCode CheckTimeOptions(TS ts)
 static PetscErrorCode WarnUnresolvedContact(MMCtx *ctx, PetscReal dt)
 {
   const PetscReal limit = 10;
+  MMContactNodes  cn;
 
   PetscFunctionBeginUser;
-  if (!ctx->contact.enabled || ctx->contact.h_c <= 0) PetscFunctionReturn(0);
-  const PetscReal cfl = ctx->op.c_p * dt / ctx->contact.h_c;
+  PetscCall(MMContactGetNodes(ctx->contact, &cn));
+  if (!cn.enabled || cn.h_c <= 0) PetscFunctionReturn(0);
+  const PetscReal cfl = ctx->op.c_p * dt / cn.h_c;
   PetscCheck(!PetscIsInfOrNanReal(cfl), PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "The wave speed c_p = %g from -E %g, -nu %g, -rho %g is not a finite number", (double)ctx->op.c_p, (double)ctx->opt.E, (double)ctx->opt.nu, (double)ctx->opt.rho);
   if (cfl > limit)
     PetscCall(PetscPrintf(PetscObjectComm((PetscObject)ctx->op.dm), "WARNING: c_p dt / h_c' = %.3g is far above 1 (c_p = %g, h_c' = %g, dt = %g): the time step does not resolve the contact pressure. A release may create energy; steps that create more than -contact_work_tol %g of the energy scale are retried with smaller dt. A -ts_dt near h_c' / c_p = %g resolves the contact\n",
-                          (double)cfl, (double)ctx->op.c_p, (double)ctx->contact.h_c, (double)dt, (double)ctx->opt.contact_work_tol, (double)(ctx->contact.h_c / ctx->op.c_p)));
+                          (double)cfl, (double)ctx->op.c_p, (double)cn.h_c, (double)dt, (double)ctx->opt.contact_work_tol, (double)(cn.h_c / ctx->op.c_p)));
   PetscFunctionReturn(0);
 }
 
@@ -430,13 +443,16 @@ static PetscErrorCode BodiesInitialVelocity(MMCtx *ctx, Vec w)
 /* a0 from M* a0 = L - lift - K u0 - C v0 + f_c0 on the dofs with inertia. */
 static PetscErrorCode InitialAcceleration(MMCtx *ctx)
 {
-  MMState *s = &ctx->state;
-  IS       is = ctx->contact.is_star, all = NULL;
-  Mat      Mss;
-  Vec      r, rs, as;
-  KSP      ksp;
+  MMState       *s = &ctx->state;
+  IS             is, all = NULL;
+  Mat            Mss;
+  Vec            r, rs, as;
+  KSP            ksp;
+  MMContactNodes cn;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetNodes(ctx->contact, &cn));
+  is = cn.is_star;
   if (!HasMasslessDofs(ctx)) {
     PetscInt n, rstart;
     PetscCall(VecGetLocalSize(s->u, &n));
@@ -505,6 +521,7 @@ PetscErrorCode MMNewmarkInitialState(MMCtx *ctx)
   {
     Vec *copies[] = {&s->v, &s->a, &s->u_old, &s->v_old, &s->a_old, &s->react, &s->react_old, &s->work, &s->u_next};
     for (size_t i = 0; i < sizeof(copies) / sizeof(copies[0]); ++i) PetscCall(VecDuplicate(s->u, copies[i]));
+    PetscCall(MMContactSetPreviousState(ctx->contact, s->u_old, s->v_old)); /* the start of each step, for the contact solves */
   }
   if (ctx->opt.initial_state == MM_INITIAL_STATIC_SLIDING) PetscCall(TangentialInitialVelocity(ctx));
   if (ctx->material.named) PetscCall(BodiesInitialVelocity(ctx, s->v));
@@ -515,23 +532,25 @@ PetscErrorCode MMNewmarkInitialState(MMCtx *ctx)
   else if (ctx->opt.initial_state == MM_INITIAL_STATIC) {
     /* u0 is the static solution: an affine u0 given with it would be ignored */
     PetscCheck(ctx->opt.vec_count[MM_V_U0_OFFSET] < 0 && ctx->opt.vec_count[MM_V_U0_GRADIENT] < 0, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "-initial_state static computes u0 from the loads at t = 0: drop -u0_offset and -u0_gradient, or use -initial_state given");
-    PetscCall(MMContactSolveStatic(ctx, s->u, s->react));
+    PetscCall(MMContactSolveStatic(ctx->contact, s->u, s->react));
   } else {
     PetscCall(ProjectInitialField(ctx, InitialDisplacement, s->u));
-    PetscCall(MMContactProjectInitial(ctx, s->u));
+    PetscCall(MMContactProjectInitial(ctx->contact, s->u));
   }
   /* f_c0 = K u0 + lift - L (+ C v0) on the massless dofs: their quasi-static equation */
   if (HasMasslessDofs(ctx) && ctx->opt.initial_state == MM_INITIAL_GIVEN) {
-    Vec rc, fc;
+    Vec            rc, fc;
+    MMContactNodes cn;
+    PetscCall(MMContactGetNodes(ctx->contact, &cn));
     PetscCall(MatMult(ctx->op.K, s->u, s->work));
     PetscCall(VecAXPY(s->work, 1.0, ctx->op.lift));
     PetscCall(VecAXPY(s->work, -1.0, ctx->op.load));
     PetscCall(MMDampingAddForce(ctx, s->v, 1.0, s->work));
-    PetscCall(VecGetSubVector(s->work, ctx->contact.is_massless, &fc));
-    PetscCall(VecGetSubVector(s->react, ctx->contact.is_massless, &rc));
+    PetscCall(VecGetSubVector(s->work, cn.is_massless, &fc));
+    PetscCall(VecGetSubVector(s->react, cn.is_massless, &rc));
     PetscCall(VecCopy(fc, rc));
-    PetscCall(VecRestoreSubVector(s->react, ctx->contact.is_massless, &rc));
-    PetscCall(VecRestoreSubVector(s->work, ctx->contact.is_massless, &fc));
+    PetscCall(VecRestoreSubVector(s->react, cn.is_massless, &rc));
+    PetscCall(VecRestoreSubVector(s->work, cn.is_massless, &fc));
   }
   PetscCall(InitialAcceleration(ctx));
   PetscCall(VecCopy(s->u, s->u_next));

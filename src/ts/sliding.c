@@ -53,15 +53,17 @@ static PetscErrorCode SlidingLoads(MMCtx *ctx, PetscReal e[], PetscReal *Fe, Pet
 /* The contact node with the smallest normal-dof index (global), and its coordinates, on every rank. */
 static PetscErrorCode ContactNodeCoordinates(MMCtx *ctx, PetscInt k, PetscReal x[])
 {
+  MMContactNodes cn;
   PetscSection       cs;
   Vec                X;
   const PetscScalar *xa;
   PetscInt           off;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetNodes(ctx->contact, &cn));
   PetscCall(DMGetCoordinateSection(ctx->op.dm, &cs));
   PetscCall(DMGetCoordinatesLocal(ctx->op.dm, &X));
-  PetscCall(PetscSectionGetOffset(cs, ctx->contact.vertex[k], &off));
+  PetscCall(PetscSectionGetOffset(cs, cn.vertex[k], &off));
   PetscCall(VecGetArrayRead(X, &xa));
   for (PetscInt d = 0; d < ctx->op.dim; ++d) x[d] = PetscRealPart(xa[off + d]);
   PetscCall(VecRestoreArrayRead(X, &xa));
@@ -73,7 +75,7 @@ static PetscErrorCode ContactNodeCoordinates(MMCtx *ctx, PetscInt k, PetscReal x
  * the contact node B farthest from A that an in-plane rotation about A moves most. */
 static PetscErrorCode RigidPins(MMCtx *ctx, PetscInt pins[], PetscInt *npins)
 {
-  MMContact      *ct  = &ctx->contact;
+  MMContactNodes nodes, *ct = &nodes;
   const PetscInt  dim = ctx->op.dim;
   MPI_Comm        comm = PetscObjectComm((PetscObject)ctx->op.dm);
   const PetscInt *in;
@@ -81,6 +83,7 @@ static PetscErrorCode RigidPins(MMCtx *ctx, PetscInt pins[], PetscInt *npins)
   PetscReal       xA[MM_MAX_DIM] = {0, 0, 0}, xB[MM_MAX_DIM] = {0, 0, 0}, dmax = -1, gmax;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetNodes(ctx->contact, &nodes));
   PetscCall(ISGetIndices(ct->is_normal, &in));
   if (ct->n_local) kA = 0;
   mine = ct->n_local ? in[0] : PETSC_MAX_INT;
@@ -130,7 +133,7 @@ static PetscErrorCode RigidPins(MMCtx *ctx, PetscInt pins[], PetscInt *npins)
 /* Rows of the base nodes: u_n = g, and (K u - f)_tj - mu e_tj (K u - f)_n = 0 (t = -mu r e_t). */
 static PetscErrorCode SlidingSystem(MMCtx *ctx, const PetscReal et[], Vec f, Mat *A, Vec rhs)
 {
-  MMContact         *ct  = &ctx->contact;
+  MMContactNodes    nodes, *ct = &nodes;
   const PetscReal    mu  = ctx->opt.mu;
   const PetscInt     dim = ctx->op.dim;
   const PetscInt    *in;
@@ -139,6 +142,7 @@ static PetscErrorCode SlidingSystem(MMCtx *ctx, const PetscReal et[], Vec f, Mat
   PetscInt           rstart, rend, pins[3], npins, *rows, nr = 0;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetNodes(ctx->contact, &nodes));
   PetscCall(MatDuplicate(ctx->op.K, MAT_COPY_VALUES, A));
   PetscCall(VecCopy(f, rhs));
   PetscCall(VecGetOwnershipRange(f, &rstart, &rend));
@@ -200,7 +204,7 @@ static PetscErrorCode SlidingSystem(MMCtx *ctx, const PetscReal et[], Vec f, Mat
 /* w = u_qs, and react = K w - f, the contact forces of the sliding state (normal and friction). */
 PetscErrorCode MMInitialStaticSliding(MMCtx *ctx, Vec w, Vec react)
 {
-  MMContact *ct = &ctx->contact;
+  MMContactNodes nodes, *ct = &nodes;
   MPI_Comm   comm = PetscObjectComm((PetscObject)ctx->op.dm);
   PetscReal  e[MM_MAX_DIM] = {0, 0, 0}, Fe = 0, P = 0, m = 0, a, et[2] = {0, 0}, rmin;
   PetscInt   dim = ctx->op.dim;
@@ -210,6 +214,7 @@ PetscErrorCode MMInitialStaticSliding(MMCtx *ctx, Vec w, Vec react)
   KSP        ksp;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetNodes(ctx->contact, &nodes));
   PetscCheck(ct->enabled && ctx->opt.n_dirichlet == 0, comm, PETSC_ERR_SUP, "-initial_state static_sliding needs contact on and no Dirichlet boundary");
   PetscCall(SlidingLoads(ctx, e, &Fe, &P, &m, &from_rest));
   a = (Fe - ctx->opt.mu * P) / m;

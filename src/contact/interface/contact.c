@@ -1,20 +1,30 @@
-/* The contact component's interface: the registry of contact formulations, the step matrix K~ for a
- * dt, the step's contact solve in the chosen formulation (through its ops table, contactimpl.h),
- * and the consistent initial contact dofs.
+/* The contact object's interface: its life cycle (create, view, destroy), the registry of contact
+ * formulations, the step matrix K~ for a dt, the step's contact solve in the chosen formulation
+ * (through its ops table, contactimpl.h), and the consistent initial contact dofs.
  *
  * Each step solves the bound-constrained QP  min 1/2 w.K~w - b.w  s.t.  w_c <= g: with SNESVI
  * (vinewtonrsls by default, prefix -contact_), condensed on the contact dofs (the default,
  * impls/condensed/) or on all dofs (impls/full/), or by the active-set method on all dofs
- * (impls/active_set/). Without contact each step is one K~ solve (kt.c, the "none" ops). */
+ * (impls/active_set/). Without contact each step is one K~ solve (impls/none/, through kt.c). */
 #include "../contactimpl.h"
 #include "fem.h"
-#include "damping.h"
 
-static PetscFunctionList MMContactList              = NULL;
+PetscFunctionList        MMContactList              = NULL; /* options.c reads every formulation's options */
 static PetscBool         MMContactRegisterAllCalled = PETSC_FALSE;
 
+/* An empty contact object: MMContactSetFromOptions reads its options, MMContactSetUp builds the
+ * contact set and the formulation. */
+PetscErrorCode MMContactCreate(MPI_Comm comm, MMContact *ct)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMContactInitializePackage());
+  PetscCall(PetscNew(ct));
+  (*ct)->comm = comm;
+  PetscFunctionReturn(0);
+}
+
 /* Adds a contact formulation: create sets the ops table of the MMContact it is given. */
-PetscErrorCode MMContactRegister(const char name[], PetscErrorCode (*create)(MMContact *))
+PetscErrorCode MMContactRegister(const char name[], PetscErrorCode (*create)(MMContact))
 {
   PetscFunctionBeginUser;
   PetscCall(PetscFunctionListAdd(&MMContactList, name, create));
@@ -36,42 +46,50 @@ PetscErrorCode MMContactRegisterAll(void)
  * -iterative_dofs dofs. There K~'s factor costs more than the CG solves it saves, in memory, set-up
  * and step (README "Large meshes"; the figures: docs/scaling.md, "The figures behind the code's
  * choices"); in 2D the factor is cheap. */
-static PetscErrorCode PrefersIterative(MMCtx *ctx, PetscBool *iterative)
+static PetscErrorCode PrefersIterative(MMContact ct, PetscBool *iterative)
 {
   PetscSection gs;
   PetscInt     n;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalSection(ctx->op.dm, &gs));
+  PetscCall(DMGetGlobalSection(ct->op->dm, &gs));
   PetscCall(PetscSectionGetConstrainedStorageSize(gs, &n));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ctx->op.dm)));
-  *iterative = (PetscBool)(ctx->op.dim == 3 && ctx->opt.iterative_dofs > 0 && n >= ctx->opt.iterative_dofs);
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ct->op->dm)));
+  *iterative = (PetscBool)(ct->op->dim == 3 && ct->opt.iterative_dofs > 0 && n >= ct->opt.iterative_dofs);
   PetscFunctionReturn(0);
 }
 
 /* ct->ops of -contact_formulation (auto resolved here, by the problem's size), or of "none" (K~
  * solves alone) without contact. */
-PetscErrorCode MMContactSetType(MMCtx *ctx)
+PetscErrorCode MMContactSetType(MMContact ct)
 {
-  MMContact *ct = &ctx->contact;
-  PetscErrorCode (*create)(MMContact *) = NULL;
+  PetscErrorCode (*create)(MMContact) = NULL;
 
   PetscFunctionBeginUser;
   PetscCall(MMContactRegisterAll());
-  PetscCall(PrefersIterative(ctx, &ct->prefer_iterative));
-  PetscCall(PetscStrcmp(ctx->opt.contact_formulation, "auto", &ct->auto_type));
-  if (ct->auto_type) PetscCall(PetscStrncpy(ctx->opt.contact_formulation, ct->prefer_iterative ? "active_set" : "condensed", sizeof(ctx->opt.contact_formulation)));
-  PetscCall(PetscFunctionListFind(MMContactList, ctx->opt.contact_formulation, &create));
-  PetscCheck(create, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "-contact_formulation %s is not a contact formulation: use auto (the default), condensed, full or active_set", ctx->opt.contact_formulation);
+  PetscCall(PrefersIterative(ct, &ct->prefer_iterative));
+  PetscCall(PetscStrcmp(ct->opt.contact_formulation, "auto", &ct->auto_type));
+  if (ct->auto_type) PetscCall(PetscStrncpy(ct->opt.contact_formulation, ct->prefer_iterative ? "active_set" : "condensed", sizeof(ct->opt.contact_formulation)));
+  PetscCall(PetscFunctionListFind(MMContactList, ct->opt.contact_formulation, &create));
+  PetscCheck(create, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_USER_INPUT, "-contact_formulation %s is not a contact formulation: use auto (the default), condensed, full or active_set", ct->opt.contact_formulation);
   if (!ct->enabled) create = MMContactCreate_None;
-  PetscCall(PetscStrncpy(ct->type, ct->enabled ? ctx->opt.contact_formulation : "none", sizeof(ct->type)));
+  PetscCall(PetscStrncpy(ct->type, ct->enabled ? ct->opt.contact_formulation : "none", sizeof(ct->type)));
   PetscCall((*create)(ct));
+  PetscFunctionReturn(0);
+}
+
+/* s = the normal reactions rho_n of the last solve, one per contact node (a threshold loop's) */
+PetscErrorCode MMContactGetNormalReactions(MMContact ct, Vec s)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(ct->ops->getnormalreactions, ct->comm, PETSC_ERR_SUP, "The contact formulation %s keeps no reactions", ct->type);
+  PetscCall((*ct->ops->getnormalreactions)(ct, s));
   PetscFunctionReturn(0);
 }
 
 /* K~, the KSP that holds its factor or PC (ksp: the formulation's own) and its dt swapped with the
  * kept ones (-contact_K_keep); what else the formulation built on K~ it swaps itself. */
-PetscErrorCode MMContactSwapKeptOperator(MMContact *ct, KSP *ksp)
+PetscErrorCode MMContactSwapKeptOperator(MMContact ct, KSP *ksp)
 {
   MMKtKept *k = &ct->kept;
   Mat       A = ct->qp.A;
@@ -99,24 +117,24 @@ PetscErrorCode MMContactSwapKeptOperator(MMContact *ct, KSP *ksp)
  *   elastic forces would not enter the step.
  * k and m are the largest diagonal entries of ck K and cm M*, m_min the smallest positive one of
  * cm M* (the contact normals have none). */
-static PetscErrorCode CheckStepMatrixArithmetic(MMCtx *ctx, PetscReal dt, PetscReal ck, PetscReal cm)
+static PetscErrorCode CheckStepMatrixArithmetic(MMContact ct, PetscReal dt, PetscReal ck, PetscReal cm)
 {
-  MPI_Comm           comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  MPI_Comm           comm = PetscObjectComm((PetscObject)ct->op->dm);
   const PetscReal    room = 1e2 * PETSC_MACHINE_EPSILON; /* a factor 100 from where the round-off takes all */
   Vec                d;
   const PetscScalar *a;
   PetscInt           n;
-  PetscReal          k[2] = {0, 0}, m_min = PETSC_MAX_REAL, cfl = ctx->contact.enabled ? ctx->op.c_p * dt / ctx->contact.h_c : -1;
+  PetscReal          k[2] = {0, 0}, m_min = PETSC_MAX_REAL, cfl = ct->enabled ? ct->op->c_p * dt / ct->h_c : -1;
   char               ratio[64] = "";
 
   PetscFunctionBeginUser;
-  PetscCall(MatCreateVecs(ctx->op.K, &d, NULL));
+  PetscCall(MatCreateVecs(ct->op->K, &d, NULL));
   PetscCall(VecGetLocalSize(d, &n));
-  PetscCall(MatGetDiagonal(ctx->op.K, d));
+  PetscCall(MatGetDiagonal(ct->op->K, d));
   PetscCall(VecGetArrayRead(d, &a));
   for (PetscInt i = 0; i < n; ++i) k[0] = PetscMax(k[0], PetscAbsReal(PetscRealPart(a[i])));
   PetscCall(VecRestoreArrayRead(d, &a));
-  PetscCall(MatGetDiagonal(ctx->op.Mstar, d));
+  PetscCall(MatGetDiagonal(ct->op->Mstar, d));
   PetscCall(VecGetArrayRead(d, &a));
   for (PetscInt i = 0; i < n; ++i) {
     const PetscReal mi = PetscRealPart(a[i]);
@@ -131,43 +149,54 @@ static PetscErrorCode CheckStepMatrixArithmetic(MMCtx *ctx, PetscReal dt, PetscR
   /* -E 1e308 and -rho 1e308 (overflow) and -rho 1e-310 (underflow) were refused with the operators (fem.c) */
   PetscCheck(!PetscIsInfOrNanReal(cm) && !PetscIsInfOrNanReal(cm * k[1]), comm, PETSC_ERR_USER_INPUT, "-ts_dt %.6g is too small for double precision: the step matrix's mass term 4/dt^2 M overflows%s. Give a dt near h_c' / c_p, the time a wave takes to cross a contact cell", (double)dt, ratio);
   PetscCheck(ck * k[0] <= cm * m_min / room, comm, PETSC_ERR_USER_INPUT, "The step matrix K + 4/dt^2 M cannot be formed in double precision with dt = %.6g, -E %.6g, -rho %.6g%s: the mass term, which alone holds the rigid motions, is %.2g of the stiffness, below its round-off, and K + 4/dt^2 M is singular in floating point. Check the units (SI throughout: the mesh in metres, -E in Pa, -rho in kg/m^3), or reduce -ts_dt to about h_c' / c_p",
-             (double)dt, (double)ctx->opt.E, (double)ctx->opt.rho, ratio, (double)(cm * m_min / (ck * k[0])));
+             (double)dt, (double)ct->pb.E, (double)ct->pb.rho, ratio, (double)(cm * m_min / (ck * k[0])));
   PetscCheck(ck * k[0] >= room * cm * k[1], comm, PETSC_ERR_USER_INPUT, "The step matrix K + 4/dt^2 M cannot be formed in double precision with dt = %.6g, -E %.6g, -rho %.6g%s: the stiffness is %.2g of the mass term, below its round-off, so the elastic forces would not enter the step. Check the units (SI throughout: the mesh in metres, -E in Pa, -rho in kg/m^3), or give a dt near h_c' / c_p",
-             (double)dt, (double)ctx->opt.E, (double)ctx->opt.rho, ratio, (double)(ck * k[0] / (cm * k[1])));
+             (double)dt, (double)ct->pb.E, (double)ct->pb.rho, ratio, (double)(ck * k[0] / (cm * k[1])));
   PetscFunctionReturn(0);
 }
 
-/* K~ = K + 4/dt^2 M* (with Rayleigh damping K + 2 beta/dt B + (4/dt^2 + 2 alpha/dt) M*, built by
- * MMDampingStepMatrix), assembled only when dt changes; the formulation then
- * builds on it what it needs (a factor and the Delassus operator, a PC, nothing). */
-PetscErrorCode MMContactSetStepMatrix(MMCtx *ctx, PetscReal dt)
+/* K~ = ck K + cb B + cm M* from A = K (a copy, K's pattern); with B = K, (ck + cb) K as one
+ * scaling (docs/method.md section 3). Every formulation's K~ is built here. */
+static PetscErrorCode StepMatrixAssemble(MMContact ct, const MMStepMatrix *sm, Mat A)
 {
-  MMContact *ct = &ctx->contact;
+  PetscFunctionBeginUser;
+  if (sm->B && sm->B == ct->op->K) PetscCall(MatScale(A, sm->ck + sm->cb));
+  else {
+    if (sm->ck != 1) PetscCall(MatScale(A, sm->ck));
+    if (sm->B) PetscCall(MatAXPY(A, sm->cb, sm->B, SUBSET_NONZERO_PATTERN));
+  }
+  PetscCall(MatAXPY(A, sm->cm, ct->op->Mstar, SUBSET_NONZERO_PATTERN));
+  PetscFunctionReturn(0);
+}
+
+/* K~ for sm->dt, its coefficients the stepper's (MMDampingGetStepMatrix), assembled only when dt
+ * changes; the formulation then builds on it what it needs (a factor and the Delassus operator, a
+ * PC, nothing). */
+PetscErrorCode MMContactSetStepMatrix(MMContact ct, const MMStepMatrix *sm)
+{
+  const PetscReal dt = sm->dt;
 
   PetscFunctionBeginUser;
   if (ct->qp.A && ct->Kt_dt == dt) PetscFunctionReturn(0);
-  if (ct->qp.A && ct->ops->swapkept && ctx->opt.keep_factor) {
+  if (ct->qp.A && ct->ops->swapkept && ct->opt.keep_factor) {
     PetscBool hit;
-    PetscCall(PetscLogEventBegin(ctx->log.kt_reuse, 0, 0, 0, 0));
-    PetscCall((*ct->ops->swapkept)(ctx, dt, &hit));
-    PetscCall(PetscLogEventEnd(ctx->log.kt_reuse, 0, 0, 0, 0));
+    PetscCall(PetscLogEventBegin(MMCONTACT_KtReuse, 0, 0, 0, 0));
+    PetscCall((*ct->ops->swapkept)(ct, dt, &hit));
+    PetscCall(PetscLogEventEnd(MMCONTACT_KtReuse, 0, 0, 0, 0));
     if (hit) PetscFunctionReturn(0);
     /* else the current buffers are the older kept ones, or none yet: K~ for dt is built in them */
   }
-  PetscCall(PetscLogEventBegin(ctx->log.assemble, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(MMCONTACT_Assemble, 0, 0, 0, 0));
   if (!ct->qp.b) {
-    PetscCall(MatDuplicate(ctx->op.K, MAT_COPY_VALUES, &ct->qp.A));
+    PetscCall(MatDuplicate(ct->op->K, MAT_COPY_VALUES, &ct->qp.A));
     PetscCall(MatCreateVecs(ct->qp.A, &ct->qp.b, NULL));
     ct->qp.rtol_b = ct->tol;
-    if (ct->ops->setup) PetscCall((*ct->ops->setup)(ctx));
-  } else if (!ct->qp.A) PetscCall(MatDuplicate(ctx->op.K, MAT_COPY_VALUES, &ct->qp.A));
-  else PetscCall(MatCopy(ctx->op.K, ct->qp.A, SAME_NONZERO_PATTERN));
-  {
-    PetscReal ck, cm;
-    MMDampingStepCoefficients(ctx, dt, &ck, &cm);
-    PetscCall(CheckStepMatrixArithmetic(ctx, dt, ck, cm));
-  }
-  PetscCall(MMDampingStepMatrix(ctx, dt, ct->qp.A));
+    if (ct->ops->setup) PetscCall((*ct->ops->setup)(ct));
+  } else if (!ct->qp.A) PetscCall(MatDuplicate(ct->op->K, MAT_COPY_VALUES, &ct->qp.A));
+  else PetscCall(MatCopy(ct->op->K, ct->qp.A, SAME_NONZERO_PATTERN));
+  /* B is K or K with the massless dofs condensed out, no larger: ck + cb bounds the stiffness */
+  PetscCall(CheckStepMatrixArithmetic(ct, dt, sm->ck + sm->cb, sm->cm));
+  PetscCall(StepMatrixAssemble(ct, sm, ct->qp.A));
   /* K~ is SPD for every dt: K is semi-definite with the rigid motions as its kernel, and M* is
    * positive on every rigid motion (docs/method.md, "Mass redistribution": G(M*) = G(M)). Said
    * once and for all, so that MUMPS factors it as SPD (SYM = 1: LDL^T without pivoting), 6%
@@ -175,16 +204,23 @@ PetscErrorCode MMContactSetStepMatrix(MMCtx *ctx, PetscReal dt)
   PetscCall(MatSetOption(ct->qp.A, MAT_SPD, PETSC_TRUE));
   PetscCall(MatSetOption(ct->qp.A, MAT_SPD_ETERNAL, PETSC_TRUE));
   ct->Kt_dt = dt;
-  if (ct->ops->setoperator) PetscCall((*ct->ops->setoperator)(ctx));
-  PetscCall(PetscLogEventEnd(ctx->log.assemble, 0, 0, 0, 0));
+  if (ct->ops->setoperator) PetscCall((*ct->ops->setoperator)(ct));
+  PetscCall(PetscLogEventEnd(MMCONTACT_Assemble, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMContactSetPreviousState(MMContact ct, Vec u_old, Vec v_old)
+{
+  PetscFunctionBeginUser;
+  ct->u_old = u_old;
+  ct->v_old = v_old;
   PetscFunctionReturn(0);
 }
 
 /* react = K~ w - b on the contact dofs: recomputed from w whatever the formulation, so that the
  * energy audit checks the solve. */
-PetscErrorCode MMContactForce(MMCtx *ctx, Vec b, Vec w, Vec react)
+PetscErrorCode MMContactForce(MMContact ct, Vec b, Vec w, Vec react)
 {
-  MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
   PetscCall(MatMult(ct->qp.A, w, react));
@@ -198,12 +234,11 @@ PetscErrorCode MMContactForce(MMCtx *ctx, Vec b, Vec w, Vec react)
 /* The reactions rho and their bounds, one block of ncomp per contact node: the layout the friction
  * loop and the diagnostics read, whatever the formulation. Frictionless until thresholds are set:
  * rho_t in [0, 0]. */
-PetscErrorCode MMContactCreateReactions(MMCtx *ctx)
+PetscErrorCode MMContactCreateReactions(MMContact ct)
 {
-  MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
-  PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)ctx->op.dm), ct->ncomp * ct->n_local, PETSC_DETERMINE, &ct->rho));
+  PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)ct->op->dm), ct->ncomp * ct->n_local, PETSC_DETERMINE, &ct->rho));
   PetscCall(VecSetBlockSize(ct->rho, ct->ncomp));
   PetscCall(VecZeroEntries(ct->rho));
   PetscCall(VecDuplicate(ct->rho, &ct->rho_lo));
@@ -216,87 +251,82 @@ PetscErrorCode MMContactCreateReactions(MMCtx *ctx)
 
 /* Solves the step problem K~ w = b + f_c with w_c <= g; w holds the initial guess on entry.
  * react returns f_c, the obstacle's force on the body (w-frame), on the contact dofs only. */
-PetscErrorCode MMContactSolve(MMCtx *ctx, Vec b, Vec w, Vec react)
+PetscErrorCode MMContactSolve(MMContact ct, Vec b, Vec w, Vec react)
 {
-  MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(ctx->log.contact_solve, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(MMCONTACT_Solve, 0, 0, 0, 0));
   ct->kt.its = 0;
-  PetscCall((*ct->ops->solve)(ctx, b, w, react));
-  PetscCall(PetscLogEventEnd(ctx->log.contact_solve, 0, 0, 0, 0));
+  PetscCall((*ct->ops->solve)(ct, b, w, react));
+  PetscCall(PetscLogEventEnd(MMCONTACT_Solve, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
 /* The friction loop's solve: at least the contact dofs of w and react are updated, exactly. The
  * condensed formulation updates only those, with no full-size solve, and MMContactRecover completes
  * w once the loop has converged; the active-set formulation solves on all dofs, warm-started. */
-PetscErrorCode MMContactSolveContactDofs(MMCtx *ctx, Vec b, Vec w, Vec react)
+PetscErrorCode MMContactSolveContactDofs(MMContact ct, Vec b, Vec w, Vec react)
 {
-  MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
-  PetscCheck(ct->ops->solvecontactdofs, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_PLIB, "The contact formulation %s cannot solve the contact dofs alone", ct->type);
-  PetscCall(PetscLogEventBegin(ctx->log.contact_solve, 0, 0, 0, 0));
-  PetscCall((*ct->ops->solvecontactdofs)(ctx, b, w, react));
-  PetscCall(PetscLogEventEnd(ctx->log.contact_solve, 0, 0, 0, 0));
+  PetscCheck(ct->ops->solvecontactdofs, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_PLIB, "The contact formulation %s cannot solve the contact dofs alone", ct->type);
+  PetscCall(PetscLogEventBegin(MMCONTACT_Solve, 0, 0, 0, 0));
+  PetscCall((*ct->ops->solvecontactdofs)(ct, b, w, react));
+  PetscCall(PetscLogEventEnd(MMCONTACT_Solve, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
 /* The whole step solution and contact force from the last contact-dof solve. */
-PetscErrorCode MMContactRecover(MMCtx *ctx, Vec b, Vec w, Vec react)
+PetscErrorCode MMContactRecover(MMContact ct, Vec b, Vec w, Vec react)
 {
-  MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(ctx->log.contact_recover, 0, 0, 0, 0));
-  PetscCall((*ct->ops->recover)(ctx, b, w, react));
-  PetscCall(PetscLogEventEnd(ctx->log.contact_recover, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(MMCONTACT_Recover, 0, 0, 0, 0));
+  PetscCall((*ct->ops->recover)(ct, b, w, react));
+  PetscCall(PetscLogEventEnd(MMCONTACT_Recover, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
 /* Friction thresholds s (one per contact node) for the next Tresca solves of a threshold loop: the
  * formulation's own Tresca conditions (active set). The condensed formulation solves Coulomb's
  * problem in contact space instead (MMContactSolveCoulomb). */
-PetscErrorCode MMContactSetFrictionThresholds(MMCtx *ctx, Vec s)
+PetscErrorCode MMContactSetFrictionThresholds(MMContact ct, Vec s)
 {
-  MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
-  PetscCheck(ct->ops->setthresholds, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_PLIB, "The contact formulation %s has no threshold solves", ct->type);
-  PetscCall((*ct->ops->setthresholds)(ctx, s));
+  PetscCheck(ct->ops->setthresholds, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_PLIB, "The contact formulation %s has no threshold solves", ct->type);
+  PetscCall((*ct->ops->setthresholds)(ct, s));
   PetscFunctionReturn(0);
 }
 
 /* Whether the formulation builds the Delassus operator on a candidate set, so that a friction
  * solver can work in contact space. */
-PetscErrorCode MMContactHasDelassus(MMCtx *ctx, PetscBool *has)
+PetscErrorCode MMContactHasDelassus(MMContact ct, PetscBool *has)
 {
   PetscFunctionBeginUser;
-  *has = (PetscBool)(ctx->contact.ops && ctx->contact.ops->solvecoulomb);
+  *has = (PetscBool)(ct->ops && ct->ops->solvecoulomb);
   PetscFunctionReturn(0);
 }
 
 /* The step's Coulomb problem solved in contact space by fn: the contact dofs of w and react,
  * exactly (MMContactRecover completes w). *ok is fn's verdict. */
-PetscErrorCode MMContactSolveCoulomb(MMCtx *ctx, Vec b, Vec w, Vec react, MMContactSetSolver fn, void *fctx, PetscBool *ok)
+PetscErrorCode MMContactSolveCoulomb(MMContact ct, Vec b, Vec w, Vec react, MMContactSetSolver fn, void *fctx, PetscBool *ok)
 {
-  MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
-  PetscCheck(ct->ops->solvecoulomb, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_PLIB, "The contact formulation %s has no Delassus operator for a contact-space solve", ct->type);
-  PetscCall(PetscLogEventBegin(ctx->log.contact_solve, 0, 0, 0, 0));
-  PetscCall((*ct->ops->solvecoulomb)(ctx, b, w, react, fn, fctx, ok));
-  PetscCall(PetscLogEventEnd(ctx->log.contact_solve, 0, 0, 0, 0));
+  PetscCheck(ct->ops->solvecoulomb, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_PLIB, "The contact formulation %s has no Delassus operator for a contact-space solve", ct->type);
+  PetscCall(PetscLogEventBegin(MMCONTACT_Solve, 0, 0, 0, 0));
+  PetscCall((*ct->ops->solvecoulomb)(ct, b, w, react, fn, fctx, ok));
+  PetscCall(PetscLogEventEnd(MMCONTACT_Solve, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
 /* Whether the formulation solves the step's Coulomb problem itself on all dofs (no Delassus
  * operator: the active-set formulation). */
-PetscErrorCode MMContactHasCoulombDofs(MMCtx *ctx, PetscBool *has)
+PetscErrorCode MMContactHasCoulombDofs(MMContact ct, PetscBool *has)
 {
   PetscFunctionBeginUser;
-  *has = (PetscBool)(ctx->contact.ops && ctx->contact.ops->solvecoulombdofs);
+  *has = (PetscBool)(ct->ops && ct->ops->solvecoulombdofs);
   PetscFunctionReturn(0);
 }
 
@@ -304,24 +334,22 @@ PetscErrorCode MMContactHasCoulombDofs(MMCtx *ctx, PetscBool *has)
  * thresholds, a warm start on entry) mu r_n of the answer on return, to rtol of the force scale;
  * *its the solver's iterations,
  * *ok false when it did not converge. */
-PetscErrorCode MMContactSolveCoulombDofs(MMCtx *ctx, Vec b, Vec w, Vec react, Vec s, PetscReal rtol, PetscInt *its, PetscBool *ok)
+PetscErrorCode MMContactSolveCoulombDofs(MMContact ct, Vec b, Vec w, Vec react, Vec s, PetscReal rtol, PetscInt *its, PetscBool *ok)
 {
-  MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
-  PetscCheck(ct->ops->solvecoulombdofs, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_PLIB, "The contact formulation %s has no Coulomb solve of its own", ct->type);
-  PetscCall(PetscLogEventBegin(ctx->log.contact_solve, 0, 0, 0, 0));
-  PetscCall((*ct->ops->solvecoulombdofs)(ctx, b, w, react, s, rtol, its, ok));
-  PetscCall(PetscLogEventEnd(ctx->log.contact_solve, 0, 0, 0, 0));
+  PetscCheck(ct->ops->solvecoulombdofs, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_PLIB, "The contact formulation %s has no Coulomb solve of its own", ct->type);
+  PetscCall(PetscLogEventBegin(MMCONTACT_Solve, 0, 0, 0, 0));
+  PetscCall((*ct->ops->solvecoulombdofs)(ct, b, w, react, s, rtol, its, ok));
+  PetscCall(PetscLogEventEnd(MMCONTACT_Solve, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
 /* The corner nodes (docs/method.md section 8): how many carry a row per obstacle, and on how many
  * both rows were active at the last step, each wall taking its share of the force. */
-static PetscErrorCode CornerSummary(MMCtx *ctx)
+static PetscErrorCode CornerView(MMContact ct, PetscViewer viewer)
 {
-  MMContact *ct      = &ctx->contact;
-  PetscInt   both[2] = {0, 0};
+  PetscInt both[2] = {0, 0};
 
   PetscFunctionBeginUser;
   if (!ct->n_corners) PetscFunctionReturn(0);
@@ -330,48 +358,46 @@ static PetscErrorCode CornerSummary(MMCtx *ctx)
       both[0] += ct->was_active[k] && ct->was_active[k - 1];
       both[1] += ct->was_active[k];
     }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, both, 2, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ctx->op.dm)));
-  PetscCall(PetscPrintf(PetscObjectComm((PetscObject)ctx->op.dm), "  corners: %" PetscInt_FMT " contact nodes constrained against two obstacles, a row for each; at the last step %" PetscInt_FMT " in contact with both, %" PetscInt_FMT " with the second\n", ct->n_corners, both[0], both[1]));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, both, 2, MPIU_INT, MPI_SUM, ct->comm));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  corners: %" PetscInt_FMT " contact nodes constrained against two obstacles, a row for each; at the last step %" PetscInt_FMT " in contact with both, %" PetscInt_FMT " with the second\n", ct->n_corners, both[0], both[1]));
   PetscFunctionReturn(0);
 }
 
 /* The friction corners (docs/method.md section 12): how many, and on how many the second obstacle
  * pushed at the last step (with the first too, or alone). */
-static PetscErrorCode FrictionCornerSummary(MMCtx *ctx)
+static PetscErrorCode FrictionCornerView(MMContact ct, PetscViewer viewer)
 {
-  MMContact *ct      = &ctx->contact;
-  PetscInt   both[2] = {0, 0};
+  PetscInt both[2] = {0, 0};
 
   PetscFunctionBeginUser;
   if (!ct->n_fc) PetscFunctionReturn(0);
   for (PetscInt k = 0; k < ct->n_local; ++k)
-    if (ct->fc_obstacle[k] >= 0 && ct->fc_r[ctx->op.dim * k] > 0) {
+    if (ct->fc_obstacle[k] >= 0 && ct->fc_r[ct->dim * k] > 0) {
       both[0] += ct->was_active[k];
       both[1] += 1;
     }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, both, 2, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ctx->op.dm)));
-  PetscCall(PetscPrintf(PetscObjectComm((PetscObject)ctx->op.dm), "  friction corners: %" PetscInt_FMT " contact nodes against two obstacles, each obstacle with its own Coulomb law; at the last step %" PetscInt_FMT " in contact with both, %" PetscInt_FMT " pushed by the second\n", ct->n_fc, both[0], both[1]));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, both, 2, MPIU_INT, MPI_SUM, ct->comm));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  friction corners: %" PetscInt_FMT " contact nodes against two obstacles, each obstacle with its own Coulomb law; at the last step %" PetscInt_FMT " in contact with both, %" PetscInt_FMT " pushed by the second\n", ct->n_fc, both[0], both[1]));
   PetscFunctionReturn(0);
 }
 
-/* The formulation's lines of the closing summary. */
-PetscErrorCode MMContactSummary(MMCtx *ctx)
+/* The contact lines of the closing summary: the formulation's, then the corners'. */
+PetscErrorCode MMContactView(MMContact ct, PetscViewer viewer)
 {
   PetscFunctionBeginUser;
-  if (ctx->contact.ops->summary) PetscCall((*ctx->contact.ops->summary)(ctx));
-  if (ctx->contact.enabled) PetscCall(CornerSummary(ctx));
-  if (ctx->contact.enabled) PetscCall(FrictionCornerSummary(ctx));
+  if (ct->ops && ct->ops->view) PetscCall((*ct->ops->view)(ct, viewer));
+  if (ct->enabled) PetscCall(CornerView(ct, viewer));
+  if (ct->enabled) PetscCall(FrictionCornerView(ct, viewer));
   PetscFunctionReturn(0);
 }
 
 /* A given initial state that penetrates the obstacle is a wrong case (a plane on the wrong side, a
  * body placed inside it): projecting it would store elastic energy that launches the body. Refuse a
  * penetration deeper than -initial_penetration_tol h_c', naming the deepest node. */
-static PetscErrorCode CheckInitialPenetration(MMCtx *ctx, Vec w)
+static PetscErrorCode CheckInitialPenetration(MMContact ct, Vec w)
 {
-  MMContact         *ct  = &ctx->contact;
-  DM                 dm  = ctx->op.dm;
-  PetscInt           dim = ctx->op.dim, rstart, deepest = -1;
+  DM                 dm  = ct->op->dm;
+  PetscInt           dim = ct->op->dim, rstart, deepest = -1;
   const PetscInt    *in;
   const PetscScalar *wa, *ga;
   struct {
@@ -401,7 +427,7 @@ static PetscErrorCode CheckInitialPenetration(MMCtx *ctx, Vec w)
   PetscCall(VecRestoreArrayRead(w, &wa));
   PetscCall(ISRestoreIndices(ct->is_normal, &in));
   PetscCallMPI(MPI_Allreduce(&loc, &glob, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm));
-  if (glob.depth <= ctx->opt.initial_penetration_tol * ct->h_c) PetscFunctionReturn(0);
+  if (glob.depth <= ct->opt.initial_penetration_tol * ct->h_c) PetscFunctionReturn(0);
   if (rank == glob.rank) {
     PetscSection cs;
     Vec          X;
@@ -422,12 +448,12 @@ static PetscErrorCode CheckInitialPenetration(MMCtx *ctx, Vec w)
   if (dim == 2) snprintf(where, sizeof(where), "(%g, %g)", (double)x[0], (double)x[1]);
   else snprintf(where, sizeof(where), "(%g, %g, %g)", (double)x[0], (double)x[1], (double)x[2]);
   SETERRQ(comm, PETSC_ERR_USER_INPUT, "The initial state penetrates the obstacle \"%s\": the deepest contact node, at %s, is %g inside it (-initial_penetration_tol %g h_c' = %g). Check that obstacle's position, its -obstacle_..._side, the direction of a plane's normal (it points out of the obstacle, towards the body), and -u0_offset/-u0_gradient",
-          ctx->opt.obstacles[glob_obstacle].name, where, glob.depth, (double)ctx->opt.initial_penetration_tol, (double)(ctx->opt.initial_penetration_tol * ct->h_c));
+          ct->pb.obstacles[glob_obstacle].name, where, glob.depth, (double)ct->opt.initial_penetration_tol, (double)(ct->opt.initial_penetration_tol * ct->h_c));
 }
 
 /* The initial projection's upper bounds on the massless dofs: the gaps on the normal ones, none on a
  * friction corner's tau_1 (docs/method.md section 12), in the order set.c lists them. */
-static PetscErrorCode MasslessUpperBounds(MMContact *ct, Vec upper)
+static PetscErrorCode MasslessUpperBounds(MMContact ct, Vec upper)
 {
   const PetscScalar *ga;
   PetscScalar       *ua;
@@ -447,23 +473,22 @@ static PetscErrorCode MasslessUpperBounds(MMContact *ct, Vec upper)
 
 /* Consistent initial contact dofs (docs/method.md section 3, Initial state): with the other dofs fixed, the
  * massless dofs solve the quasi-static problem A_cc u_c = L_c - A_c* u*, u_c <= g on the normal ones. */
-PetscErrorCode MMContactProjectInitial(MMCtx *ctx, Vec w)
+PetscErrorCode MMContactProjectInitial(MMContact ct, Vec w)
 {
-  MMContact *ct = &ctx->contact;
   Vec        r, rc, wc;
   PetscInt   its;
 
   PetscFunctionBeginUser;
-  if (ct->enabled) PetscCall(CheckInitialPenetration(ctx, w));
-  if (!MMFEHasMasslessDofs(&ctx->op)) PetscFunctionReturn(0);
-  PetscCall(MatCreateSubMatrix(ctx->op.K, ct->is_massless, ct->is_massless, MAT_INITIAL_MATRIX, &ct->qp0.A));
+  if (ct->enabled) PetscCall(CheckInitialPenetration(ct, w));
+  if (!MMFEHasMasslessDofs(ct->op)) PetscFunctionReturn(0);
+  PetscCall(MatCreateSubMatrix(ct->op->K, ct->is_massless, ct->is_massless, MAT_INITIAL_MATRIX, &ct->qp0.A));
   PetscCall(MatCreateVecs(ct->qp0.A, &ct->qp0.b, NULL));
   PetscCall(VecDuplicate(ct->qp0.b, &ct->lower0));
   PetscCall(VecDuplicate(ct->qp0.b, &ct->upper0));
   PetscCall(VecSet(ct->lower0, PETSC_NINFINITY));
   PetscCall(MasslessUpperBounds(ct, ct->upper0));
   ct->qp0.rtol_b = ct->tol;
-  PetscCall(MMQPCreate(PetscObjectComm((PetscObject)ctx->op.dm), "contact0_", &ct->qp0, 0, &ct->snes0));
+  PetscCall(MMQPCreate(PetscObjectComm((PetscObject)ct->op->dm), "contact0_", &ct->qp0, 0, &ct->snes0));
   PetscCall(SNESVISetVariableBounds(ct->snes0, ct->lower0, ct->upper0));
 
   /* b0 = (L - lift - K w*)_c with the contact dofs zeroed in w* */
@@ -471,9 +496,9 @@ PetscErrorCode MMContactProjectInitial(MMCtx *ctx, Vec w)
   PetscCall(VecCopy(w, r));
   PetscCall(VecISSet(r, ct->is_massless, 0.0));
   PetscCall(VecDuplicate(w, &rc));
-  PetscCall(MatMult(ctx->op.K, r, rc));
-  PetscCall(VecAYPX(rc, -1.0, ctx->op.load));
-  PetscCall(VecAXPY(rc, -1.0, ctx->op.lift));
+  PetscCall(MatMult(ct->op->K, r, rc));
+  PetscCall(VecAYPX(rc, -1.0, ct->op->load));
+  PetscCall(VecAXPY(rc, -1.0, ct->op->lift));
   PetscCall(VecGetSubVector(rc, ct->is_massless, &wc));
   PetscCall(VecCopy(wc, ct->qp0.b));
   PetscCall(VecRestoreSubVector(rc, ct->is_massless, &wc));
@@ -487,31 +512,25 @@ PetscErrorCode MMContactProjectInitial(MMCtx *ctx, Vec w)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMContactDestroy(MMContact *ct)
+/* The formulation frees its data (ops->destroy), then the contact set's own. */
+PetscErrorCode MMContactDestroy(MMContact *pct)
 {
+  MMContact ct = *pct;
+
   PetscFunctionBeginUser;
-  PetscCall(SNESDestroy(&ct->snes));
+  if (!ct) PetscFunctionReturn(0);
+  if (ct->ops && ct->ops->destroy) PetscCall((*ct->ops->destroy)(ct));
   PetscCall(SNESDestroy(&ct->snes0));
-  PetscCall(KSPDestroy(&ct->ksp_K));
-  PetscCall(MMCandidatesDestroy(&ct->cand));
-  PetscCall(MatDestroy(&ct->kept.A));
-  PetscCall(VecDestroy(&ct->kept.diag));
   PetscCall(KSPDestroy(&ct->kept.ksp));
-  PetscCall(PetscFree(ct->kept.cache.cols));
-  PetscCall(PetscFree(ct->kept.cache.full));
-  PetscCall(PetscFree(ct->kept.cache.slot_node));
-  PetscCall(VecDestroy(&ct->q));
-  PetscCall(VecDestroy(&ct->mu_c));
+  PetscCall(SNESDestroy(&ct->snes0));
+  PetscCall(MatDestroy(&ct->kept.A));
+  PetscCall(KSPDestroy(&ct->kept.ksp));
   PetscCall(MMKtDestroy(&ct->kt));
-  PetscCall(MMActiveSetDestroy(&ct->as));
   PetscCall(VecDestroy(&ct->rho));
   PetscCall(VecDestroy(&ct->rho_lo));
   PetscCall(VecDestroy(&ct->rho_hi));
-  PetscCall(VecDestroy(&ct->offset));
-  PetscCall(VecDestroy(&ct->Wdiag));
   PetscCall(ISDestroy(&ct->is_cond));
   PetscCall(VecDestroy(&ct->z));
-  PetscCall(VecDestroy(&ct->rhs_c));
   PetscCall(MatDestroy(&ct->qp.A));
   PetscCall(VecDestroy(&ct->qp.b));
   PetscCall(MatDestroy(&ct->qp0.A));
@@ -547,14 +566,15 @@ PetscErrorCode MMContactDestroy(MMContact *ct)
   PetscCall(PetscFree2(ct->slipping, ct->slip_dir));
   PetscCall(PetscFree(ct->scalar_index));
   PetscCall(PetscFree(ct->vertex));
+  PetscCall(PetscFree(*pct));
   PetscFunctionReturn(0);
 }
 
 /* The solvers of K~, for the start-up report: krylov is the KSP whose method solves with K~, pc_ksp
  * the one whose PC does (the formulation's getstepksp). */
-PetscErrorCode MMContactGetStepKSP(MMCtx *ctx, KSP *krylov, KSP *pc_ksp)
+PetscErrorCode MMContactGetStepKSP(MMContact ct, KSP *krylov, KSP *pc_ksp)
 {
   PetscFunctionBeginUser;
-  PetscCall((*ctx->contact.ops->getstepksp)(ctx, krylov, pc_ksp));
+  PetscCall((*ct->ops->getstepksp)(ct, krylov, pc_ksp));
   PetscFunctionReturn(0);
 }

@@ -46,7 +46,7 @@ static void ApplyT2(PetscInt dim, const PetscReal ab[2], const PetscReal x[], Pe
 
 /* Row k's two obstacles' reactions from the node's total rho_k (ncomp = dim components): r_2 is
  * kept (ct->fc_r), r_1 = rho - T2 r_2. Not a friction corner: r_1 = rho, r_2 = 0. */
-void MMContactCornerSplit(const MMContact *ct, PetscInt dim, PetscInt k, const PetscScalar rho[], PetscReal r1[], PetscReal r2[])
+void MMContactCornerSplit(MMContact ct, PetscInt dim, PetscInt k, const PetscScalar rho[], PetscReal r1[], PetscReal r2[])
 {
   PetscReal t[MM_MAX_DIM] = {0, 0, 0};
 
@@ -59,9 +59,8 @@ void MMContactCornerSplit(const MMContact *ct, PetscInt dim, PetscInt k, const P
 }
 
 /* The candidate set's gathers of the corners' data: (b, a) and mu_2 (fixed), q_2 and r_2 (per step). */
-PetscErrorCode MMContactCornersSetUpVecs(MMCtx *ctx)
+PetscErrorCode MMContactCornersSetUpVecs(MMContact ct)
 {
-  MMContact   *ct = &ctx->contact;
   PetscScalar *ga, *ma;
 
   PetscFunctionBeginUser;
@@ -78,7 +77,7 @@ PetscErrorCode MMContactCornersSetUpVecs(MMCtx *ctx)
     if (ct->fc_obstacle[k] < 0) continue;
     ga[ct->ncomp * k]     = ct->fc_ab[2 * k + 1];
     ga[ct->ncomp * k + 1] = ct->fc_ab[2 * k];
-    ma[ct->ncomp * k]     = ctx->opt.obstacles[ct->fc_obstacle[k]].mu;
+    ma[ct->ncomp * k]     = ct->pb.obstacles[ct->fc_obstacle[k]].mu;
   }
   PetscCall(VecRestoreArray(ct->fc_mu, &ma));
   PetscCall(VecRestoreArray(ct->fc_geom, &ga));
@@ -88,19 +87,18 @@ PetscErrorCode MMContactCornersSetUpVecs(MMCtx *ctx)
 /* The second rows' right-hand side, q_2 = T2 z_c - offset_2 with offset_2 = (g_2, T2 (u^n + dt/2
  * v^n) + dt/2 V_2.tau'), as CondensedRHS does for the first (docs/method.md section 12), and their
  * warm start r_2 from the last solve. row: each condensed slot's local dof. */
-PetscErrorCode MMContactCornersRHS(MMCtx *ctx, const PetscInt row[])
+PetscErrorCode MMContactCornersRHS(MMContact ct, const PetscInt row[])
 {
-  MMContact         *ct  = &ctx->contact;
-  const PetscInt     dim = ctx->op.dim;
+  const PetscInt     dim = ct->op->dim;
   const PetscScalar *za, *ua, *va;
   PetscScalar       *qa, *xa;
 
   PetscFunctionBeginUser;
   if (!ct->n_fc) PetscFunctionReturn(0);
-  PetscCall(MMContactCornersSetUpVecs(ctx));
+  PetscCall(MMContactCornersSetUpVecs(ct));
   PetscCall(VecGetArrayRead(ct->z, &za));
-  PetscCall(VecGetArrayRead(ctx->state.u_old, &ua));
-  PetscCall(VecGetArrayRead(ctx->state.v_old, &va));
+  PetscCall(VecGetArrayRead(ct->u_old, &ua));
+  PetscCall(VecGetArrayRead(ct->v_old, &va));
   PetscCall(VecGetArray(ct->fc_q, &qa));
   PetscCall(VecGetArray(ct->fc_x, &xa));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
@@ -119,15 +117,15 @@ PetscErrorCode MMContactCornersRHS(MMCtx *ctx, const PetscInt row[])
   }
   PetscCall(VecRestoreArray(ct->fc_x, &xa));
   PetscCall(VecRestoreArray(ct->fc_q, &qa));
-  PetscCall(VecRestoreArrayRead(ctx->state.v_old, &va));
-  PetscCall(VecRestoreArrayRead(ctx->state.u_old, &ua));
+  PetscCall(VecRestoreArrayRead(ct->v_old, &va));
+  PetscCall(VecRestoreArrayRead(ct->u_old, &ua));
   PetscCall(VecRestoreArrayRead(ct->z, &za));
   PetscFunctionReturn(0);
 }
 
 /* Whether row k's second obstacle is crossed by the owned condensed solution wc (nc per row), beyond
  * tol: the candidate set grows by such nodes as by those crossing their first. */
-PetscBool MMContactCornerCrosses(const MMContact *ct, PetscInt dim, PetscInt k, const PetscScalar wc[], PetscReal tol)
+PetscBool MMContactCornerCrosses(MMContact ct, PetscInt dim, PetscInt k, const PetscScalar wc[], PetscReal tol)
 {
   PetscReal w[MM_MAX_DIM], Tw[MM_MAX_DIM];
 
@@ -223,9 +221,8 @@ PetscErrorCode MMContactCornersContract(PetscInt n, PetscInt nc, PetscInt ne, co
 }
 
 /* The last solve's r_2 into ct->fc_r, from fc_x (global, layout of rho). */
-PetscErrorCode MMContactCornersStore(MMCtx *ctx)
+PetscErrorCode MMContactCornersStore(MMContact ct)
 {
-  MMContact         *ct = &ctx->contact;
   const PetscScalar *xa;
 
   PetscFunctionBeginUser;
@@ -239,12 +236,11 @@ PetscErrorCode MMContactCornersStore(MMCtx *ctx)
 }
 
 /* An accepted step's r_2 becomes the next step's old one (the trapezoidal works of section 12). */
-PetscErrorCode MMContactCornersAccept(MMCtx *ctx)
+PetscErrorCode MMContactCornersAccept(MMContact ct)
 {
-  MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
-  if (ct->fc_r) PetscCall(PetscArraycpy(ct->fc_r_old, ct->fc_r, (size_t)ct->n_local * ctx->op.dim));
+  if (ct->fc_r) PetscCall(PetscArraycpy(ct->fc_r_old, ct->fc_r, (size_t)ct->n_local * ct->op->dim));
   PetscFunctionReturn(0);
 }
 
@@ -257,10 +253,9 @@ PetscErrorCode MMContactCornersAccept(MMCtx *ctx)
  * move between the terms only: the energy balance is unchanged, its split is each obstacle's. dwn,
  * dwt: the corrections of the obstacles' normal and tangential works. Uses the trapezoidal
  * averages of r_2 (this solve's and the accepted step's). */
-PetscErrorCode MMContactCornersWork(MMCtx *ctx, PetscReal t0, PetscReal t1, Vec du, PetscReal *dwc, PetscReal *dwn, PetscReal *dwt)
+PetscErrorCode MMContactCornersWork(MMContact ct, PetscReal t0, PetscReal t1, Vec du, PetscReal *dwc, PetscReal *dwn, PetscReal *dwt)
 {
-  MMContact         *ct  = &ctx->contact;
-  const PetscInt     dim = ctx->op.dim;
+  const PetscInt     dim = ct->op->dim;
   const PetscInt    *in;
   const PetscScalar *da;
   PetscInt           rstart;
@@ -273,7 +268,7 @@ PetscErrorCode MMContactCornersWork(MMCtx *ctx, PetscReal t0, PetscReal t1, Vec 
   PetscCall(ISGetIndices(ct->is_normal, &in));
   PetscCall(VecGetArrayRead(du, &da));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
-    const MMObstacle *ob1 = &ctx->opt.obstacles[ct->obstacle[k]];
+    const MMObstacle *ob1 = &ct->pb.obstacles[ct->obstacle[k]];
     PetscReal         r2[MM_MAX_DIM], f2[MM_MAX_DIM], g2[MM_MAX_DIM], d[MM_MAX_DIM], Td[MM_MAX_DIM], c0[MM_MAX_DIM] = {0, 0, 0}, c1[MM_MAX_DIM] = {0, 0, 0}, e0[MM_MAX_DIM] = {0, 0, 0}, e1[MM_MAX_DIM] = {0, 0, 0}, dc1[MM_MAX_DIM], dc2[MM_MAX_DIM], Tdc2[MM_MAX_DIM];
     const PetscReal  *F1 = &ct->node_frame[9 * k];
     if (ct->fc_obstacle[k] < 0) continue;
@@ -290,8 +285,8 @@ PetscErrorCode MMContactCornersWork(MMCtx *ctx, PetscReal t0, PetscReal t1, Vec 
     if (!ct->moving) continue;
     MMObstacleDisplacement(ob1, dim, t0, c0);
     MMObstacleDisplacement(ob1, dim, t1, c1);
-    MMObstacleDisplacement(&ctx->opt.obstacles[ct->fc_obstacle[k]], dim, t0, e0);
-    MMObstacleDisplacement(&ctx->opt.obstacles[ct->fc_obstacle[k]], dim, t1, e1);
+    MMObstacleDisplacement(&ct->pb.obstacles[ct->fc_obstacle[k]], dim, t0, e0);
+    MMObstacleDisplacement(&ct->pb.obstacles[ct->fc_obstacle[k]], dim, t1, e1);
     for (PetscInt c = 0; c < dim; ++c) {
       dc1[c] = dc2[c] = 0;
       for (PetscInt e = 0; e < dim; ++e) {
@@ -306,7 +301,7 @@ PetscErrorCode MMContactCornersWork(MMCtx *ctx, PetscReal t0, PetscReal t1, Vec 
   }
   PetscCall(VecRestoreArrayRead(du, &da));
   PetscCall(ISRestoreIndices(ct->is_normal, &in));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, w, 3, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)ctx->op.dm)));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, w, 3, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)ct->op->dm)));
   *dwc = w[0];
   *dwn = w[1];
   *dwt = w[2];

@@ -22,10 +22,9 @@ typedef struct {
  * (docs/method.md section 8); w the node's frame components, cob the obstacles' displacements. A
  * node tied to one obstacle may cross another (a corner between two walls): the history and the
  * summary report it. */
-static PetscReal OtherObstaclesPenetration(MMCtx *ctx, PetscInt k, const PetscScalar w[], const PetscReal cob[])
+static PetscReal OtherObstaclesPenetration(MMContact ct, PetscInt k, const PetscScalar w[], const PetscReal cob[])
 {
-  MMContact       *ct  = &ctx->contact;
-  const PetscInt   dim = ctx->op.dim, nob = ctx->opt.n_rigid;
+  const PetscInt   dim = ct->op->dim, nob = ct->pb.n_rigid;
   const PetscReal *F   = &ct->node_frame[9 * k];
   PetscReal        u[MM_MAX_DIM] = {0, 0, 0}, worst = PETSC_MIN_REAL;
 
@@ -84,10 +83,9 @@ static PetscReal RowResidual(const RowState *rs, PetscInt dim, PetscReal h_c, Pe
  * w (its frame components), its slip sigma = 2/dt (w - u^n) - v^n (the one its law is solved with:
  * the node's normal velocity is the massless dofs' backward difference in v, not this) and r_2;
  * its force on the obstacle added to fob. uo, vo: u^n, v^n at the node (NULL at t = 0: v). */
-static void SecondObstacleRow(MMCtx *ctx, PetscInt k, const PetscScalar w[], const PetscScalar v[], const PetscScalar uo[], const PetscScalar vo[], PetscReal fob[], RowState *rs)
+static void SecondObstacleRow(MMContact ct, PetscInt k, const PetscScalar w[], const PetscScalar v[], const PetscScalar uo[], const PetscScalar vo[], PetscReal fob[], RowState *rs)
 {
-  MMContact       *ct  = &ctx->contact;
-  const PetscInt   dim = ctx->op.dim;
+  const PetscInt   dim = ct->op->dim;
   const PetscReal *r2  = &ct->fc_r[dim * k], dt = ct->Kt_dt;
   PetscReal        F2[MM_MAX_DIM][MM_MAX_DIM], T[MM_MAX_DIM][MM_MAX_DIM], rt = 0, sigma[MM_MAX_DIM];
 
@@ -98,7 +96,7 @@ static void SecondObstacleRow(MMCtx *ctx, PetscInt k, const PetscScalar w[], con
   for (PetscInt e = 0; e < dim; ++e) rs->un += T[0][e] * PetscRealPart(w[e]);
   rs->g        = ct->fc_gap[k];
   rs->r        = r2[0];
-  rs->mu       = ctx->opt.obstacles[ct->fc_obstacle[k]].mu;
+  rs->mu       = ct->pb.obstacles[ct->fc_obstacle[k]].mu;
   rs->friction = PETSC_TRUE;
   for (PetscInt j = 1; j < dim; ++j) {
     rs->ft[j] = -r2[j];
@@ -112,28 +110,27 @@ static void SecondObstacleRow(MMCtx *ctx, PetscInt k, const PetscScalar w[], con
     for (PetscInt c = 0; c < dim; ++c) fob[MM_MAX_DIM * ct->fc_obstacle[k] + c] += r2[j] * F2[j][c];
 }
 
-static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma, PetscBool record_switches, ContactStats *st)
+static PetscErrorCode ContactStatistics(MMContact ct, PetscReal t, Vec w, Vec react, Vec sigma, PetscBool record_switches, ContactStats *st)
 {
-  MMContact         *ct = &ctx->contact;
   const PetscReal    dt = ct->Kt_dt;
-  const PetscInt     nob = ctx->opt.n_obstacles;
+  const PetscInt     nob = ct->pb.n_obstacles;
   const PetscScalar *mua;
   PetscReal         *fob, *cob;
   /* slip is judged by the step's slip increment sigma dt/2 against h_c', like penetration */
   const PetscReal    vtol = 1e-9 * 2 * ct->h_c / dt;
-  PetscInt           dim = ctx->op.dim, nc = ct->n_local, cnt[4] = {0, 0, 0, 0}, rstart;
+  PetscInt           dim = ct->op->dim, nc = ct->n_local, cnt[4] = {0, 0, 0, 0}, rstart;
   const PetscInt    *in;
   const PetscScalar *wa, *fa, *ga, *va, *ra = NULL, *rh = NULL, *uo = NULL, *vo = NULL;
   const PetscInt     nr = ct->ncomp;
   PetscReal          sums[1 + MM_MAX_DIM] = {0, 0, 0, 0}, loc[3] = {0, 0, 0}, rmax = 0, fscale;
-  MPI_Comm           comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  MPI_Comm           comm = PetscObjectComm((PetscObject)ct->op->dm);
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(st, sizeof(*st)));
   if (!ct->enabled) PetscFunctionReturn(0);
   PetscCall(PetscCalloc1(MM_MAX_DIM * nob, &fob));
   PetscCall(PetscCalloc1(MM_MAX_DIM * nob, &cob));
-  for (PetscInt b = 0; b < ctx->opt.n_rigid && ct->all_gap0; ++b) MMObstacleDisplacement(&ctx->opt.obstacles[b], dim, ctx->hist.time, &cob[MM_MAX_DIM * b]);
+  for (PetscInt b = 0; b < ct->pb.n_rigid && ct->all_gap0; ++b) MMObstacleDisplacement(&ct->pb.obstacles[b], dim, t, &cob[MM_MAX_DIM * b]);
   PetscCall(VecGetArrayRead(ct->mu, &mua));
   PetscCall(VecGetOwnershipRange(w, &rstart, NULL));
   PetscCall(ISGetIndices(ct->is_normal, &in));
@@ -142,8 +139,8 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
   PetscCall(VecGetArrayRead(sigma, &va));
   PetscCall(VecGetArrayRead(ct->gap, &ga));
   if (ct->n_fc) {
-    PetscCall(VecGetArrayRead(ctx->state.u_old, &uo));
-    PetscCall(VecGetArrayRead(ctx->state.v_old, &vo));
+    PetscCall(VecGetArrayRead(ct->u_old, &uo));
+    PetscCall(VecGetArrayRead(ct->v_old, &vo));
   }
   if (nr > 1) {
     PetscCall(VecGetArrayRead(ct->rho, &ra));
@@ -153,7 +150,7 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &rmax, 1, MPIU_REAL, MPIU_MAX, comm));
   /* force scale of the normalized residuals: the largest reaction, but at least the nodal force of a
    * 1e-3 strain on the contact layer, so that solver noise on a free boundary is not normalized by itself */
-  fscale = PetscMax(rmax, 1e-3 * ctx->material.E_max * PetscPowReal(ct->h_c, dim - 1));
+  fscale = PetscMax(rmax, 1e-3 * ct->material->E_max * PetscPowReal(ct->h_c, dim - 1));
   for (PetscInt k = 0; k < nc; ++k) {
     const PetscInt  i = in[k] - rstart;
     const PetscReal *F = &ct->node_frame[9 * k];
@@ -204,7 +201,7 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
     if (corner) {
       RowState rs2;
       PetscReal res2;
-      SecondObstacleRow(ctx, k, &wa[i], &va[i], uo ? &uo[i] : NULL, vo ? &vo[i] : NULL, fob, &rs2);
+      SecondObstacleRow(ct, k, &wa[i], &va[i], uo ? &uo[i] : NULL, vo ? &vo[i] : NULL, fob, &rs2);
       res2 = RowResidual(&rs2, dim, ct->h_c, dt, fscale, vtol, cnt); /* once: it counts (PetscMax evaluates twice) */
       res  = PetscMax(res, res2);
       sums[0] += rs2.r;
@@ -217,15 +214,15 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
     loc[0] = PetscMax(loc[0], res);
     loc[1] = PetscMax(loc[1], rs.un - rs.g);
     /* a pair's slave node: its w are relative displacements (it is on no rigid obstacle's surface) */
-    if (ct->all_gap0 && ct->obstacle[k] < ctx->opt.n_rigid && !ct->second[k]) loc[2] = PetscMax(loc[2], OtherObstaclesPenetration(ctx, k, &wa[i], cob));
+    if (ct->all_gap0 && ct->obstacle[k] < ct->pb.n_rigid && !ct->second[k]) loc[2] = PetscMax(loc[2], OtherObstaclesPenetration(ct, k, &wa[i], cob));
   }
   if (nr > 1) {
     PetscCall(VecRestoreArrayRead(ct->rho, &ra));
     PetscCall(VecRestoreArrayRead(ct->rho_hi, &rh));
   }
   PetscCall(VecRestoreArrayRead(ct->gap, &ga));
-  if (uo) PetscCall(VecRestoreArrayRead(ctx->state.u_old, &uo));
-  if (vo) PetscCall(VecRestoreArrayRead(ctx->state.v_old, &vo));
+  if (uo) PetscCall(VecRestoreArrayRead(ct->u_old, &uo));
+  if (vo) PetscCall(VecRestoreArrayRead(ct->v_old, &vo));
   PetscCall(VecRestoreArrayRead(ct->mu, &mua));
   /* the obstacle forces are recorded for accepted steps only: no reduction inside the friction loop */
   if (record_switches) PetscCall(MPIU_Allreduce(fob, ct->force_obstacle, MM_MAX_DIM * nob, MPIU_REAL, MPIU_SUM, comm));
@@ -251,12 +248,12 @@ static PetscErrorCode ContactStatistics(MMCtx *ctx, Vec w, Vec react, Vec sigma,
 }
 
 /* The discrete Coulomb residual (docs/method.md section 6) of a state, and its slipping/sticking counts. */
-PetscErrorCode MMContactCoulomb(MMCtx *ctx, Vec w, Vec react, Vec sigma, PetscReal *residual, PetscInt *nslip, PetscInt *nstick)
+PetscErrorCode MMContactCoulomb(MMContact ct, PetscReal t, Vec w, Vec react, Vec sigma, PetscReal *residual, PetscInt *nslip, PetscInt *nstick)
 {
   ContactStats st;
 
   PetscFunctionBeginUser;
-  PetscCall(ContactStatistics(ctx, w, react, sigma, PETSC_FALSE, &st));
+  PetscCall(ContactStatistics(ct, t, w, react, sigma, PETSC_FALSE, &st));
   *residual = st.coulomb;
   *nslip    = st.slipping;
   *nstick   = st.sticking;
@@ -264,34 +261,32 @@ PetscErrorCode MMContactCoulomb(MMCtx *ctx, Vec w, Vec react, Vec sigma, PetscRe
 }
 
 /* Per-step contact quantities (docs/method.md sections 5-6) of the accepted state. */
-PetscErrorCode MMContactDiagnostics(MMCtx *ctx, Vec w, Vec react, Vec v, MMHistory *h)
+PetscErrorCode MMContactDiagnostics(MMContact ct, PetscReal t, Vec w, Vec react, Vec v, MMContactStats *h)
 {
   ContactStats st;
 
   PetscFunctionBeginUser;
-  PetscCall(ContactStatistics(ctx, w, react, v, PETSC_TRUE, &st));
+  PetscCall(ContactStatistics(ct, t, w, react, v, PETSC_TRUE, &st));
   h->active           = st.active;
   h->switched         = st.switched;
   h->slipping         = st.slipping;
   h->force_normal     = st.force_normal;
-  h->force_tangential = ctx->op.dim == 2 ? st.force_t[0] : PetscSqrtReal(PetscSqr(st.force_t[0]) + PetscSqr(st.force_t[1]) + PetscSqr(st.force_t[2]));
+  h->force_tangential = ct->op->dim == 2 ? st.force_t[0] : PetscSqrtReal(PetscSqr(st.force_t[0]) + PetscSqr(st.force_t[1]) + PetscSqr(st.force_t[2]));
   h->max_penetration  = st.max_penetration;
   h->coulomb_residual = st.coulomb;
-  ctx->contact.penetration_free = st.penetration_free;
-  h->vi_its           = ctx->contact.vi_its;
-  h->candidates       = ctx->contact.cand.n_set;
-  h->resolves         = ctx->contact.cand.resolves; /* over the run so far */
+  ct->penetration_free = st.penetration_free;
+  h->vi_its           = ct->vi_its;
+  PetscCall(MMContactGetCandidateCounts(ct, &h->candidates, &h->resolves)); /* resolves: over the run so far */
   PetscFunctionReturn(0);
 }
 
 /* The contact fields of the output, zero off the contact boundary: nodal pressure r_i / int phi_i and
  * current gap g_i - u.nu (scalars), tangential traction and slip velocity (Cartesian vectors on dm_out,
  * the frame's tangential components mapped back). */
-PetscErrorCode MMContactBoundaryFields(MMCtx *ctx, MMOutput *o)
+PetscErrorCode MMContactBoundaryFields(MMContact ct, Vec u, Vec v, Vec react, DM dm_out, Vec pressure, Vec gap, Vec traction_t, Vec slip)
 {
-  MMContact         *ct  = &ctx->contact;
-  const PetscInt     dim = ctx->op.dim;
-  Vec                out[] = {o->pressure, o->gap, o->traction_t, o->slip};
+  const PetscInt     dim = ct->op->dim;
+  Vec                out[] = {pressure, gap, traction_t, slip};
   const PetscInt    *in;
   const PetscScalar *wa, *fa, *va, *ga, *aa;
   PetscInt           rstart;
@@ -299,11 +294,11 @@ PetscErrorCode MMContactBoundaryFields(MMCtx *ctx, MMOutput *o)
   PetscFunctionBeginUser;
   for (size_t i = 0; i < sizeof(out) / sizeof(out[0]); ++i) PetscCall(VecZeroEntries(out[i]));
   if (ct->enabled) {
-    PetscCall(VecGetOwnershipRange(ctx->state.u, &rstart, NULL));
+    PetscCall(VecGetOwnershipRange(u, &rstart, NULL));
     PetscCall(ISGetIndices(ct->is_normal, &in));
-    PetscCall(VecGetArrayRead(ctx->state.u, &wa));
-    PetscCall(VecGetArrayRead(ctx->state.react, &fa));
-    PetscCall(VecGetArrayRead(ctx->state.v, &va));
+    PetscCall(VecGetArrayRead(u, &wa));
+    PetscCall(VecGetArrayRead(react, &fa));
+    PetscCall(VecGetArrayRead(v, &va));
     PetscCall(VecGetArrayRead(ct->gap, &ga));
     PetscCall(VecGetArrayRead(ct->area, &aa));
     for (PetscInt k = 0; k < ct->n_local; ++k) {
@@ -317,26 +312,26 @@ PetscErrorCode MMContactBoundaryFields(MMCtx *ctx, MMOutput *o)
       for (PetscInt d = 0; d < dim; ++d) f1[d] = -fa[i + d];
       MMContactCornerSplit(ct, dim, k, f1, r1, r2);
       for (PetscInt d = 0; d < dim; ++d) f1[d] = ct->ncomp > 1 ? -r1[d] : fa[i + d];
-      PetscCall(VecSetValue(o->pressure, ct->scalar_index[k], (-f1[0] + r2[0]) / aa[k], ADD_VALUES));
+      PetscCall(VecSetValue(pressure, ct->scalar_index[k], (-f1[0] + r2[0]) / aa[k], ADD_VALUES));
       if (ct->second[k]) continue;
-      PetscCall(VecSetValue(o->gap, ct->scalar_index[k], ga[k] - wa[i], INSERT_VALUES));
+      PetscCall(VecSetValue(gap, ct->scalar_index[k], ga[k] - wa[i], INSERT_VALUES));
       for (PetscInt d = 1; d < dim; ++d)
         for (PetscInt c = 0; c < dim; ++c) {
           const PetscReal Vt = ct->Kt_dt > 0 ? 2 * ct->slide_ref[k * (dim - 1) + d - 1] / ct->Kt_dt : 0;
           tc[c] += f1[d] * ct->node_frame[9 * k + 3 * d + c] / aa[k];
           sc[c] += (va[i + d] - Vt) * ct->node_frame[9 * k + 3 * d + c];
         }
-      PetscCall(DMPlexGetPointGlobal(o->dm_out, ct->vertex[k], &start, &end));
+      PetscCall(DMPlexGetPointGlobal(dm_out, ct->vertex[k], &start, &end));
       for (PetscInt c = 0; c < dim; ++c) {
-        PetscCall(VecSetValue(o->traction_t, start + c, tc[c], INSERT_VALUES));
-        PetscCall(VecSetValue(o->slip, start + c, sc[c], INSERT_VALUES));
+        PetscCall(VecSetValue(traction_t, start + c, tc[c], INSERT_VALUES));
+        PetscCall(VecSetValue(slip, start + c, sc[c], INSERT_VALUES));
       }
     }
     PetscCall(VecRestoreArrayRead(ct->area, &aa));
     PetscCall(VecRestoreArrayRead(ct->gap, &ga));
-    PetscCall(VecRestoreArrayRead(ctx->state.v, &va));
-    PetscCall(VecRestoreArrayRead(ctx->state.react, &fa));
-    PetscCall(VecRestoreArrayRead(ctx->state.u, &wa));
+    PetscCall(VecRestoreArrayRead(v, &va));
+    PetscCall(VecRestoreArrayRead(react, &fa));
+    PetscCall(VecRestoreArrayRead(u, &wa));
     PetscCall(ISRestoreIndices(ct->is_normal, &in));
   }
   for (size_t i = 0; i < sizeof(out) / sizeof(out[0]); ++i) {
@@ -349,9 +344,8 @@ PetscErrorCode MMContactBoundaryFields(MMCtx *ctx, MMOutput *o)
 
 /* The output field of each contact node's obstacle (its index in -obstacles), -1 off the contact
  * boundary. */
-PetscErrorCode MMContactObstacleField(MMCtx *ctx, Vec field)
+PetscErrorCode MMContactObstacleField(MMContact ct, Vec field)
 {
-  MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
   PetscCall(VecSet(field, -1.0));
@@ -367,23 +361,22 @@ PetscErrorCode MMContactObstacleField(MMCtx *ctx, Vec field)
  * the step is written. The contact solves hold both to round-off; a run that breaks them is
  * wrong, usually from values the arithmetic cannot carry (-E 1e-30 on D1 crosses the plane by a
  * third of h_c' with an exact energy balance), and its history would say so only to a reader. */
-PetscErrorCode MMContactAudit(MMCtx *ctx, const MMHistory *h)
+PetscErrorCode MMContactAudit(MMContact ct, PetscInt step, PetscReal t, const MMContactStats *h)
 {
-  const MMContact *ct   = &ctx->contact;
-  MPI_Comm         comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  MPI_Comm         comm = PetscObjectComm((PetscObject)ct->op->dm);
   const char      *advice = "The usual cause is inconsistent units (SI throughout: the mesh in metres, -E in Pa, -rho in kg/m^3, loads in N/m^2 and m/s^2) or material values far from what was meant";
 
   PetscFunctionBeginUser;
   if (!ct->enabled) PetscFunctionReturn(0);
   /* a node tied to one obstacle may cross another it has no row for: say so, not the units */
-  PetscCheck(ct->penetration_free <= ctx->opt.audit_penetration_tol * ct->h_c, comm, MM_ERR_PHYSICS,
+  PetscCheck(ct->penetration_free <= ct->opt.audit_penetration_tol * ct->h_c, comm, MM_ERR_PHYSICS,
              "Contact audit failed at step %" PetscInt_FMT " (t = %.6g): a contact node is %.3g inside an obstacle it has no contact row for, %.3g h_c', above -audit_penetration_tol %.6g. Each contact node is constrained against its nearest obstacle at t = 0, and against a second one only when that one is within h_c' of it and the run is frictionless (README \"Several, curved and moving obstacles\"): this node met an obstacle it has no row for (a corner with friction, or an obstacle it was not near at t = 0). The output up to the previous step is intact",
-             h->step, (double)h->time, (double)ct->penetration_free, (double)(ct->penetration_free / ct->h_c), (double)ctx->opt.audit_penetration_tol);
-  PetscCheck(h->max_penetration <= ctx->opt.audit_penetration_tol * ct->h_c, comm, MM_ERR_PHYSICS,
+             step, (double)t, (double)ct->penetration_free, (double)(ct->penetration_free / ct->h_c), (double)ct->opt.audit_penetration_tol);
+  PetscCheck(h->max_penetration <= ct->opt.audit_penetration_tol * ct->h_c, comm, MM_ERR_PHYSICS,
              "Contact audit failed at step %" PetscInt_FMT " (t = %.6g): a contact node is %.3g inside an obstacle, %.3g h_c', above -audit_penetration_tol %.6g (-E %.6g, -rho %.6g). %s. The output up to the previous step is intact",
-             h->step, (double)h->time, (double)h->max_penetration, (double)(h->max_penetration / ct->h_c), (double)ctx->opt.audit_penetration_tol, (double)ctx->opt.E, (double)ctx->opt.rho, advice);
-  PetscCheck(h->coulomb_residual <= ctx->opt.audit_coulomb_tol, comm, MM_ERR_PHYSICS,
+             step, (double)t, (double)h->max_penetration, (double)(h->max_penetration / ct->h_c), (double)ct->opt.audit_penetration_tol, (double)ct->pb.E, (double)ct->pb.rho, advice);
+  PetscCheck(h->coulomb_residual <= ct->opt.audit_coulomb_tol, comm, MM_ERR_PHYSICS,
              "Contact audit failed at step %" PetscInt_FMT " (t = %.6g): the discrete Coulomb residual (history column coulomb_residual) is %.3g, above -audit_coulomb_tol %.6g (-E %.6g, -rho %.6g). %s. The output up to the previous step is intact",
-             h->step, (double)h->time, (double)h->coulomb_residual, (double)ctx->opt.audit_coulomb_tol, (double)ctx->opt.E, (double)ctx->opt.rho, advice);
+             step, (double)t, (double)h->coulomb_residual, (double)ct->opt.audit_coulomb_tol, (double)ct->pb.E, (double)ct->pb.rho, advice);
   PetscFunctionReturn(0);
 }

@@ -73,15 +73,14 @@ static PetscReal RowFirstContact(const MMObstacle *ob, PetscInt dim, const Petsc
 
 /* The earliest row to close, over all ranks, from the state (u, v, a) at t0 (w-frame vectors); rows
  * closed at t0 already (within 1e-12 h_c') are counted apart, as touching. */
-PetscErrorCode MMContactFirstContact(MMCtx *ctx, Vec u, Vec v, Vec a, PetscReal t0, PetscReal t_end, MMFirstContact *fc)
+PetscErrorCode MMContactFirstContact(MMContact ct, Vec u, Vec v, Vec a, PetscReal t0, PetscReal t_end, MMFirstContact *fc)
 {
-  MMContact         *ct  = &ctx->contact;
-  const PetscInt     dim = ctx->op.dim;
+  const PetscInt     dim = ct->op->dim;
   const PetscScalar *ua, *va, *aa, *ga;
   const PetscInt    *in;
   PetscInt           rstart, first = -1;
   PetscMPIInt        rank;
-  MPI_Comm           comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  MPI_Comm           comm = PetscObjectComm((PetscObject)ct->op->dm);
   struct {
     double t;
     int    rank;
@@ -102,7 +101,7 @@ PetscErrorCode MMContactFirstContact(MMCtx *ctx, Vec u, Vec v, Vec a, PetscReal 
   PetscCall(VecGetArrayRead(a, &aa));
   PetscCall(VecGetArrayRead(ct->gap0, &ga));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
-    const MMObstacle *ob = &ctx->opt.obstacles[ct->obstacle[k]];
+    const MMObstacle *ob = &ct->pb.obstacles[ct->obstacle[k]];
     const PetscReal  *nu = &ct->node_frame[9 * k];
     const PetscInt    i  = in[k] - rstart;
     PetscReal         cn, vn, t;
@@ -126,12 +125,12 @@ PetscErrorCode MMContactFirstContact(MMCtx *ctx, Vec u, Vec v, Vec a, PetscReal 
     const PetscScalar *xa;
     PetscReal          cn, vn;
 
-    ObstacleNormalMotion(&ctx->opt.obstacles[ct->obstacle[first]], dim, &ct->node_frame[9 * first], t0, &cn, &vn);
+    ObstacleNormalMotion(&ct->pb.obstacles[ct->obstacle[first]], dim, &ct->node_frame[9 * first], t0, &cn, &vn);
     info[0] = PetscRealPart(ga[first]) + cn - PetscRealPart(ua[i]);
     info[1] = PetscRealPart(va[i]) - vn;
     info[2] = PetscRealPart(aa[i]);
-    PetscCall(DMGetCoordinateSection(ctx->op.dm, &cs));
-    PetscCall(DMGetCoordinatesLocal(ctx->op.dm, &X));
+    PetscCall(DMGetCoordinateSection(ct->op->dm, &cs));
+    PetscCall(DMGetCoordinatesLocal(ct->op->dm, &X));
     PetscCall(PetscSectionGetOffset(cs, ct->vertex[first], &off));
     PetscCall(VecGetArrayRead(X, &xa));
     for (PetscInt d = 0; d < dim; ++d) info[3 + d] = PetscRealPart(xa[off + d]);
@@ -160,17 +159,16 @@ PetscErrorCode MMContactFirstContact(MMCtx *ctx, Vec u, Vec v, Vec a, PetscReal 
  * row, as the contact_obstacle field has them) and the smallest gap of its rows at t0, g_k(t0) - w_k,
  * with that row's node (reference position; the first of equal gaps on the lowest rank). Arrays of
  * n_obstacles entries, x of MM_MAX_DIM each; a gap is PETSC_MAX_REAL for an obstacle without rows. */
-PetscErrorCode MMContactObstacleGaps(MMCtx *ctx, Vec u, PetscReal t0, PetscInt count[], PetscReal gap[], PetscReal x[])
+PetscErrorCode MMContactObstacleGaps(MMContact ct, Vec u, PetscReal t0, PetscInt count[], PetscReal gap[], PetscReal x[])
 {
-  MMContact         *ct  = &ctx->contact;
-  const PetscInt     dim = ctx->op.dim, nob = ctx->opt.n_obstacles;
+  const PetscInt     dim = ct->op->dim, nob = ct->pb.n_obstacles;
   const PetscScalar *ua, *ga, *xa;
   const PetscInt    *in;
   PetscInt           rstart, *best;
   PetscMPIInt        rank;
   PetscSection       cs;
   Vec                X;
-  MPI_Comm           comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  MPI_Comm           comm = PetscObjectComm((PetscObject)ct->op->dm);
   struct {
     double g;
     int    rank;
@@ -196,7 +194,7 @@ PetscErrorCode MMContactObstacleGaps(MMCtx *ctx, Vec u, PetscReal t0, PetscInt c
     const PetscInt b = ct->obstacle[k];
     PetscReal      cn, vn, g;
 
-    ObstacleNormalMotion(&ctx->opt.obstacles[b], dim, &ct->node_frame[9 * k], t0, &cn, &vn);
+    ObstacleNormalMotion(&ct->pb.obstacles[b], dim, &ct->node_frame[9 * k], t0, &cn, &vn);
     g = PetscRealPart(ga[k]) + cn - PetscRealPart(ua[in[k] - rstart]);
     if (!ct->second[k]) ++count[b];
     if (g < loc[b].g) {
@@ -210,8 +208,8 @@ PetscErrorCode MMContactObstacleGaps(MMCtx *ctx, Vec u, PetscReal t0, PetscInt c
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, count, nob, MPIU_INT, MPI_SUM, comm));
   PetscCallMPI(MPI_Allreduce(loc, glob, (PetscMPIInt)nob, MPI_DOUBLE_INT, MPI_MINLOC, comm));
   /* the winner's node: its coordinates, zeros elsewhere, summed */
-  PetscCall(DMGetCoordinateSection(ctx->op.dm, &cs));
-  PetscCall(DMGetCoordinatesLocal(ctx->op.dm, &X));
+  PetscCall(DMGetCoordinateSection(ct->op->dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(ct->op->dm, &X));
   PetscCall(VecGetArrayRead(X, &xa));
   for (PetscInt b = 0; b < nob; ++b) {
     PetscInt off;

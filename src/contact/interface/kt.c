@@ -8,20 +8,20 @@
 
 /* The rigid-body modes of the free dofs in the w-frame (rotated by Q^T at the contact nodes),
  * orthonormalized: GAMG's near-null space. */
-static PetscErrorCode RigidBodyModes(MMCtx *ctx, MatNullSpace *sp)
+static PetscErrorCode RigidBodyModes(MMContact ct, MatNullSpace *sp)
 {
-  const PetscInt nmodes = ctx->op.dim == 2 ? 3 : 6;
+  const PetscInt nmodes = ct->op->dim == 2 ? 3 : 6;
   Vec            modes[6], ucart[6];
 
   PetscFunctionBeginUser;
   for (PetscInt m = 0; m < nmodes; ++m) {
-    PetscCall(DMGetGlobalVector(ctx->op.dm, &ucart[m]));
-    PetscCall(VecDuplicate(ctx->contact.qp.b, &modes[m]));
+    PetscCall(DMGetGlobalVector(ct->op->dm, &ucart[m]));
+    PetscCall(VecDuplicate(ct->qp.b, &modes[m]));
   }
-  PetscCall(MMFERigidModesCartesian(&ctx->op, (PetscReal[MM_MAX_DIM]){0, 0, 0}, 1.0, nmodes, ucart));
+  PetscCall(MMFERigidModesCartesian(ct->op, (PetscReal[MM_MAX_DIM]){0, 0, 0}, 1.0, nmodes, ucart));
   for (PetscInt m = 0; m < nmodes; ++m) {
-    PetscCall(MMFEFromCartesian(&ctx->op, ucart[m], modes[m]));
-    PetscCall(DMRestoreGlobalVector(ctx->op.dm, &ucart[m]));
+    PetscCall(MMFEFromCartesian(ct->op, ucart[m], modes[m]));
+    PetscCall(DMRestoreGlobalVector(ct->op->dm, &ucart[m]));
   }
   /* modified Gram-Schmidt; a mode the Dirichlet data remove entirely is still harmless to GAMG */
   for (PetscInt i = 0; i < nmodes; ++i) {
@@ -33,7 +33,7 @@ static PetscErrorCode RigidBodyModes(MMCtx *ctx, MatNullSpace *sp)
     }
     PetscCall(VecNormalize(modes[i], &nrm));
   }
-  PetscCall(MatNullSpaceCreate(PetscObjectComm((PetscObject)ctx->op.dm), PETSC_FALSE, nmodes, modes, sp));
+  PetscCall(MatNullSpaceCreate(PetscObjectComm((PetscObject)ct->op->dm), PETSC_FALSE, nmodes, modes, sp));
   for (PetscInt m = 0; m < nmodes; ++m) PetscCall(VecDestroy(&modes[m]));
   PetscFunctionReturn(0);
 }
@@ -77,14 +77,14 @@ static PetscErrorCode KtClassify(MMStepSolver *kt)
 }
 
 /* iterative: CG by default (the active-set formulation), else a factorization. */
-PetscErrorCode MMKtCreate(MMCtx *ctx, PetscBool iterative)
+PetscErrorCode MMKtCreate(MMContact ct, PetscBool iterative)
 {
-  MMStepSolver *kt = &ctx->contact.kt;
+  MMStepSolver *kt = &ct->kt;
 
   PetscFunctionBeginUser;
-  PetscCall(KSPCreate(PetscObjectComm((PetscObject)ctx->op.dm), &kt->ksp));
+  PetscCall(KSPCreate(PetscObjectComm((PetscObject)ct->op->dm), &kt->ksp));
   PetscCall(KSPSetOptionsPrefix(kt->ksp, "contact_K_"));
-  PetscCall(KtSetDefaults(kt->ksp, iterative, ctx->op.dim));
+  PetscCall(KtSetDefaults(kt->ksp, iterative, ct->op->dim));
   PetscCall(KSPSetFromOptions(kt->ksp));
   PetscCall(KtClassify(kt));
   if (!kt->iterative) PetscFunctionReturn(0);
@@ -95,20 +95,20 @@ PetscErrorCode MMKtCreate(MMCtx *ctx, PetscBool iterative)
 }
 
 /* A new K~ (a new dt): the PC is set up here, once, and serves every solve until dt changes. */
-PetscErrorCode MMKtSetOperator(MMCtx *ctx, Mat Kt)
+PetscErrorCode MMKtSetOperator(MMContact ct, Mat Kt)
 {
-  MMStepSolver *kt = &ctx->contact.kt;
+  MMStepSolver *kt = &ct->kt;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(ctx->log.kt_setup, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(MMCONTACT_KtSetUp, 0, 0, 0, 0));
   if (kt->iterative) {
-    if (!kt->rigid) PetscCall(RigidBodyModes(ctx, &kt->rigid));
+    if (!kt->rigid) PetscCall(RigidBodyModes(ct, &kt->rigid));
     PetscCall(MatSetNearNullSpace(Kt, kt->rigid));
   }
   PetscCall(KSPSetOperators(kt->ksp, Kt, Kt));
   PetscCall(KSPSetUp(kt->ksp));
   PetscCall(MMKSPCheckFactored(kt->ksp));
-  PetscCall(PetscLogEventEnd(ctx->log.kt_setup, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(MMCONTACT_KtSetUp, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -132,18 +132,18 @@ PetscErrorCode MMKtSolveToTolerance(KSP ksp, PetscReal tol, Vec b, Vec rhs, Vec 
 }
 
 /* w = K~^{-1} b, w the initial guess on entry (the Newmark predictor) when the solve is iterative. */
-PetscErrorCode MMKtSolve(MMCtx *ctx, Vec b, Vec w)
+PetscErrorCode MMKtSolve(MMContact ct, Vec b, Vec w)
 {
-  MMStepSolver *kt = &ctx->contact.kt;
+  MMStepSolver *kt = &ct->kt;
   PetscInt      its;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(ctx->log.kt_solve, 0, 0, 0, 0));
-  if (kt->iterative) PetscCall(MMKtSolveToTolerance(kt->ksp, ctx->contact.tol, b, b, w, NULL));
+  PetscCall(PetscLogEventBegin(MMCONTACT_KtSolve, 0, 0, 0, 0));
+  if (kt->iterative) PetscCall(MMKtSolveToTolerance(kt->ksp, ct->tol, b, b, w, NULL));
   else PetscCall(KSPSolve(kt->ksp, b, w));
   PetscCall(KSPGetIterationNumber(kt->ksp, &its));
   kt->its += its;
-  PetscCall(PetscLogEventEnd(ctx->log.kt_solve, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(MMCONTACT_KtSolve, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -152,53 +152,6 @@ PetscErrorCode MMKtDestroy(MMStepSolver *kt)
   PetscFunctionBeginUser;
   PetscCall(KSPDestroy(&kt->ksp));
   PetscCall(MatNullSpaceDestroy(&kt->rigid));
-  PetscFunctionReturn(0);
-}
-
-/* ---- "none": no contact boundary (-contact 0); each step is one K~ solve ---- */
-
-static PetscErrorCode NoneSetUp(MMCtx *ctx)
-{
-  PetscFunctionBeginUser;
-  /* large 3D problems: CG with Jacobi, 4.6 times faster per step than the triangular solves of the
-   * factor on the 113k-dof ball, with a quarter of the set-up (contact.c, PrefersIterative) */
-  PetscCall(MMKtCreate(ctx, ctx->contact.prefer_iterative));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode NoneSetOperator(MMCtx *ctx)
-{
-  PetscFunctionBeginUser;
-  PetscCall(MMKtSetOperator(ctx, ctx->contact.qp.A));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode NoneSolve(MMCtx *ctx, Vec b, Vec w, Vec react)
-{
-  PetscFunctionBeginUser;
-  PetscCall(MMKtSolve(ctx, b, w));
-  PetscCall(MMContactForce(ctx, b, w, react));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode NoneGetStepKSP(MMCtx *ctx, KSP *krylov, KSP *pc_ksp)
-{
-  PetscFunctionBeginUser;
-  *krylov = *pc_ksp = ctx->contact.kt.ksp;
-  PetscFunctionReturn(0);
-}
-
-static const MMContactOps NoneOps = {
-  .setup       = NoneSetUp,
-  .setoperator = NoneSetOperator,
-  .solve       = NoneSolve,
-  .getstepksp  = NoneGetStepKSP,
-};
-
-PetscErrorCode MMContactCreate_None(MMContact *ct)
-{
-  PetscFunctionBeginUser;
-  ct->ops = &NoneOps;
   PetscFunctionReturn(0);
 }
 

@@ -1,9 +1,8 @@
 /* The contact boundary handed down to fem for the mass (MMFEAssembleOperators): the dofs M* drops
- * and each owned contact row's vertex and frame (docs/method.md section 2), read from fem's own
- * struct rather than from the contact's state. */
-#include "contact.h"
+ * and each owned contact row's vertex and frame (docs/method.md section 2). */
+#include "../contactimpl.h"
 
-PetscErrorCode MMContactGetMassBoundary(const MMContact *ct, MMMassBoundary *mb)
+PetscErrorCode MMContactGetMassBoundary(MMContact ct, MMMassBoundary *mb)
 {
   PetscFunctionBeginUser;
   mb->massless     = ct->enabled ? ct->is_massless : NULL;

@@ -28,10 +28,10 @@
 /* The facets of pair p's master surface owned or seen here: vertex coordinates, outward normal
  * (away from the master body's cell), and the global index of each vertex's first dof, -1 for a
  * vertex held by Dirichlet data (it does not move). */
-static PetscErrorCode LocalMasterFacets(MMCtx *ctx, const MMObstacle *ob, const PetscInt mark[], PetscInt *nf, PetscReal **xf, PetscInt **df)
+static PetscErrorCode LocalMasterFacets(MMContact ct, const MMObstacle *ob, const PetscInt mark[], PetscInt *nf, PetscReal **xf, PetscInt **df)
 {
-  DM                 dm = ctx->op.dm;
-  const PetscInt     dim = ctx->op.dim;
+  DM                 dm = ct->op->dm;
+  const PetscInt     dim = ct->op->dim;
   DMLabel            label;
   MMFacetList        fl;
   PetscInt           pStart, counts[3] = {0, 0, 0}; /* facets, cells in the group, interior facets */
@@ -106,11 +106,11 @@ static PetscErrorCode LocalMasterFacets(MMCtx *ctx, const MMObstacle *ob, const 
 }
 
 /* Pair p's master surface gathered on every rank (each facet once). */
-static PetscErrorCode GatherMasterSurface(MMCtx *ctx, PetscInt p, const PetscInt mark[])
+static PetscErrorCode GatherMasterSurface(MMContact ct, PetscInt p, const PetscInt mark[])
 {
-  MMContactPairs *pr   = &ctx->contact.pairs;
-  const MMObstacle *ob = &ctx->opt.obstacles[ctx->opt.n_rigid + p];
-  MPI_Comm        comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  MMContactPairs *pr   = &ct->pairs;
+  const MMObstacle *ob = &ct->pb.obstacles[ct->pb.n_rigid + p];
+  MPI_Comm        comm = PetscObjectComm((PetscObject)ct->op->dm);
   PetscMPIInt     size, nl, *cnt, *dsp, *cntd, *dspd;
   PetscInt        nf = 0, ntot = 0;
   PetscReal      *xf;
@@ -118,7 +118,7 @@ static PetscErrorCode GatherMasterSurface(MMCtx *ctx, PetscInt p, const PetscInt
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCall(LocalMasterFacets(ctx, ob, mark, &nf, &xf, &df));
+  PetscCall(LocalMasterFacets(ct, ob, mark, &nf, &xf, &df));
   PetscCall(PetscMalloc4(size, &cnt, size, &dsp, size, &cntd, size, &dspd));
   PetscCall(PetscMPIIntCast(nf, &nl));
   PetscCallMPI(MPI_Allgather(&nl, 1, MPI_INT, cnt, 1, MPI_INT, comm));
@@ -142,16 +142,16 @@ static PetscErrorCode GatherMasterSurface(MMCtx *ctx, PetscInt p, const PetscInt
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMContactPairsSetUp(MMCtx *ctx, const PetscInt mark[], PetscInt n_vertex_bound)
+PetscErrorCode MMContactPairsSetUp(MMContact ct, const PetscInt mark[], PetscInt n_vertex_bound)
 {
-  MMContactPairs *pr = &ctx->contact.pairs;
-  const PetscInt  np = ctx->opt.n_obstacles - ctx->opt.n_rigid;
+  MMContactPairs *pr = &ct->pairs;
+  const PetscInt  np = ct->pb.n_obstacles - ct->pb.n_rigid;
 
   PetscFunctionBeginUser;
   pr->n = np;
   if (!np) PetscFunctionReturn(0);
   PetscCall(PetscCalloc4(np, &pr->nf, np, &pr->xf, np, &pr->df, 2 * np, &pr->count));
-  for (PetscInt p = 0; p < np; ++p) PetscCall(GatherMasterSurface(ctx, p, mark));
+  for (PetscInt p = 0; p < np; ++p) PetscCall(GatherMasterSurface(ct, p, mark));
   /* per contact node (an upper bound: the owned vertices) its master vertices' dofs and weights */
   PetscCall(PetscMalloc2(MM_MAX_DIM * n_vertex_bound, &pr->phi, MM_MAX_DIM * n_vertex_bound, &pr->mdof));
   PetscFunctionReturn(0);
@@ -223,10 +223,10 @@ static PetscReal ClosestOnFacet(PetscInt dim, const PetscReal f[], const PetscRe
  * dofs of its constraint, its gap and the facet's outward normal n. Equidistant facets (a node
  * facing a master vertex) are told apart by their centroids, so the choice does not depend on the
  * partition. */
-PetscErrorCode MMContactPairsProject(MMCtx *ctx, PetscInt p, PetscInt k, const PetscReal x[], PetscReal *gap, PetscReal n[])
+PetscErrorCode MMContactPairsProject(MMContact ct, PetscInt p, PetscInt k, const PetscReal x[], PetscReal *gap, PetscReal n[])
 {
-  MMContactPairs *pr  = &ctx->contact.pairs;
-  const PetscInt  dim = ctx->op.dim;
+  MMContactPairs *pr  = &ct->pairs;
+  const PetscInt  dim = ct->op->dim;
   PetscInt        fb  = -1;
   PetscReal       db  = PETSC_MAX_REAL, phib[MM_MAX_DIM] = {0, 0, 0}, scale;
 
@@ -272,15 +272,14 @@ PetscErrorCode MMContactPairsProject(MMCtx *ctx, PetscInt p, PetscInt k, const P
  * normal; the tangents too with friction, for the relative slip) and its master vertices m_j. A
  * corner node's second row (a node against two obstacles, set.c) is its own 2x2 block of N, with
  * its explicit inverse: N stays the identity where there are neither pairs nor corners. */
-PetscErrorCode MMContactPairsBuildTransform(MMCtx *ctx)
+PetscErrorCode MMContactPairsBuildTransform(MMContact ct)
 {
-  MMContact      *ct  = &ctx->contact;
   MMContactPairs *pr  = &ct->pairs;
-  const PetscInt  dim = ctx->op.dim, nr = ct->ncomp;
+  const PetscInt  dim = ct->op->dim, nr = ct->ncomp;
   const PetscInt *in;
   PetscInt        n, rstart, corners = 0;
   Mat             N[2];
-  MPI_Comm        comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  MPI_Comm        comm = PetscObjectComm((PetscObject)ct->op->dm);
 
   PetscFunctionBeginUser;
   for (PetscInt k = 0; k < ct->n_local; ++k) corners += ct->second[k];
@@ -288,7 +287,7 @@ PetscErrorCode MMContactPairsBuildTransform(MMCtx *ctx)
   ct->n_corners = corners;
   /* per pair its slave nodes, and those that face a master node (one weight 1: node to node) */
   for (PetscInt k = 0; k < ct->n_local; ++k) {
-    const PetscInt p = ct->obstacle[k] - ctx->opt.n_rigid;
+    const PetscInt p = ct->obstacle[k] - ct->pb.n_rigid;
     PetscBool      facing = PETSC_FALSE;
     if (p < 0 || ct->second[k]) continue;
     for (PetscInt j = 0; j < dim; ++j) facing = (PetscBool)(facing || pr->phi[MM_MAX_DIM * k + j] == 1.0);
@@ -297,8 +296,8 @@ PetscErrorCode MMContactPairsBuildTransform(MMCtx *ctx)
   }
   if (pr->n) PetscCall(MPIU_Allreduce(MPI_IN_PLACE, pr->count, 2 * pr->n, MPIU_INT, MPI_SUM, comm));
   if (!pr->n && !corners) PetscFunctionReturn(0);
-  PetscCall(MatGetLocalSize(ctx->op.Q, &n, NULL));
-  PetscCall(MatGetOwnershipRange(ctx->op.Q, &rstart, NULL));
+  PetscCall(MatGetLocalSize(ct->op->Q, &n, NULL));
+  PetscCall(MatGetOwnershipRange(ct->op->Q, &rstart, NULL));
   PetscCall(ISGetIndices(ct->is_normal, &in));
   for (PetscInt s = 0; s < 2; ++s) {
     const PetscScalar sign = s ? -1.0 : 1.0;
@@ -314,7 +313,7 @@ PetscErrorCode MMContactPairsBuildTransform(MMCtx *ctx)
         PetscCall(MatSetValue(N[s], in[k], in[k], s ? b : 1 / b, INSERT_VALUES));
         continue;
       }
-      if (ct->obstacle[k] < ctx->opt.n_rigid) continue;
+      if (ct->obstacle[k] < ct->pb.n_rigid) continue;
       for (PetscInt a = 0; a < nr; ++a)
         for (PetscInt j = 0; j < dim; ++j) {
           const PetscInt m = pr->mdof[MM_MAX_DIM * k + j];
@@ -326,17 +325,17 @@ PetscErrorCode MMContactPairsBuildTransform(MMCtx *ctx)
     PetscCall(MatAssemblyEnd(N[s], MAT_FINAL_ASSEMBLY));
   }
   PetscCall(ISRestoreIndices(ct->is_normal, &in));
-  ctx->op.N    = N[0];
-  ctx->op.Ninv = N[1];
+  ct->op->N    = N[0];
+  ct->op->Ninv = N[1];
   PetscFunctionReturn(0);
 }
 
 /* The w-frame operators and loads of the pairs' relative variables, from the contact-frame ones:
  * K <- N^T K N, M <- N^T M N, M* <- N^T M* N, and the loads L <- N^T L (docs/method.md section 11).
  * Runs after M* is built and its moments taken, which N leaves unchanged. */
-PetscErrorCode MMContactPairsTransformOperators(MMCtx *ctx)
+PetscErrorCode MMContactPairsTransformOperators(MMContact ct)
 {
-  MMOperators *op = &ctx->op;
+  MMOperators *op = ct->op;
   Mat         *A[3] = {&op->K, &op->M, &op->Mstar}, B;
   Vec          t;
 

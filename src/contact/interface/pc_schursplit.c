@@ -19,7 +19,6 @@
  * interface column for W_r. */
 #include <petsc/private/pcimpl.h>
 #include "../contactimpl.h"
-#include "log.h"
 
 typedef struct {
   PetscInt  nI, ng, ns, gstart; /* interior rows here; interface rows here; in all; our first in the interface numbering */
@@ -528,7 +527,7 @@ static PetscErrorCode PCApply_SchurSplit(PC pc, Vec b, Vec x)
   PetscCall(VecRestoreArrayWrite(sp->bI, &bia));
   PetscCall(MatForwardSolve(sp->F, sp->bI, sp->z));
   if (sp->ns) {
-    PetscCall(PetscLogEventBegin(MM_SplitInterface, pc, 0, 0, 0));
+    PetscCall(PetscLogEventBegin(MMCONTACT_SplitInterface, pc, 0, 0, 0));
     PetscCall(MatMult(sp->Wt, sp->z, sp->g));
     PetscCall(VecGetArray(sp->g, &ra));
     for (PetscInt i = 0; i < sp->ns; ++i) ra[i] = -ra[i];
@@ -537,22 +536,22 @@ static PetscErrorCode PCApply_SchurSplit(PC pc, Vec b, Vec x)
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, ra, count, MPIU_SCALAR, MPIU_SUM, PetscObjectComm((PetscObject)pc)));
     PetscCall(VecRestoreArray(sp->g, &ra));
     PetscCall(MatSolve(sp->S, sp->g, sp->xg));
-    PetscCall(PetscLogEventEnd(MM_SplitInterface, pc, 0, 0, 0));
+    PetscCall(PetscLogEventEnd(MMCONTACT_SplitInterface, pc, 0, 0, 0));
     if (sp->fast) {
-      PetscCall(PetscLogEventBegin(MM_SplitBackward, pc, 0, 0, 0));
+      PetscCall(PetscLogEventBegin(MMCONTACT_SplitBackward, pc, 0, 0, 0));
       PetscCall(MatMultTranspose(sp->Wt, sp->xg, sp->v));
       PetscCall(VecAYPX(sp->v, -1.0, sp->z));
       PetscCall(BackwardSweep(sp, sp->v, sp->xI));
-      PetscCall(PetscLogEventEnd(MM_SplitBackward, pc, 0, 0, 0));
+      PetscCall(PetscLogEventEnd(MMCONTACT_SplitBackward, pc, 0, 0, 0));
     } else {
       PetscCall(MatMult(sp->B, sp->xg, sp->v));
       PetscCall(VecAYPX(sp->v, -1.0, sp->bI));
       PetscCall(MatSolve(sp->F, sp->v, sp->xI));
     }
   } else if (sp->fast) {
-    PetscCall(PetscLogEventBegin(MM_SplitBackward, pc, 0, 0, 0));
+    PetscCall(PetscLogEventBegin(MMCONTACT_SplitBackward, pc, 0, 0, 0));
     PetscCall(BackwardSweep(sp, sp->z, sp->xI));
-    PetscCall(PetscLogEventEnd(MM_SplitBackward, pc, 0, 0, 0));
+    PetscCall(PetscLogEventEnd(MMCONTACT_SplitBackward, pc, 0, 0, 0));
   }
   else PetscCall(MatBackwardSolve(sp->F, sp->z, sp->xI));
   PetscCall(VecRestoreArrayRead(b, &ba));

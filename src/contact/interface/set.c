@@ -35,10 +35,10 @@ static void FrameFromNormal(PetscInt dim, const PetscReal n[], PetscReal F[MM_MA
 }
 
 /* The single plane's frame, which the static sliding state uses (sliding.c). */
-static PetscErrorCode BuildFrame(MMCtx *ctx)
+static PetscErrorCode BuildFrame(MMContact ct)
 {
   PetscFunctionBeginUser;
-  FrameFromNormal(ctx->op.dim, ctx->opt.obstacle_normal, ctx->contact.frame);
+  FrameFromNormal(ct->op->dim, ct->pb.obstacle_normal, ct->frame);
   PetscFunctionReturn(0);
 }
 
@@ -46,14 +46,14 @@ static PetscErrorCode BuildFrame(MMCtx *ctx)
  * reference position x (docs/method.md section 8), ties to the one listed first; its gap and normal
  * n there. The assignment and the frame are fixed for the run: M* removes the mass of each node's
  * normal dof, so a frame that turned would change M* and K~ and break the energy identity. */
-static PetscErrorCode NearestObstacle(MMCtx *ctx, const PetscReal x[], PetscInt *which, PetscReal *gap, PetscReal n[])
+static PetscErrorCode NearestObstacle(MMContact ct, const PetscReal x[], PetscInt *which, PetscReal *gap, PetscReal n[])
 {
-  const PetscInt dim = ctx->op.dim;
+  const PetscInt dim = ct->op->dim;
 
   PetscFunctionBeginUser;
   *which = -1;
-  for (PetscInt b = 0; b < ctx->opt.n_rigid; ++b) {
-    const MMObstacle *ob = &ctx->opt.obstacles[b];
+  for (PetscInt b = 0; b < ct->pb.n_rigid; ++b) {
+    const MMObstacle *ob = &ct->pb.obstacles[b];
     PetscReal         g, nb[MM_MAX_DIM] = {0, 0, 0}, len = 0;
     PetscCall((*ob->distance)(ob, dim, x, &g, nb));
     for (PetscInt d = 0; d < dim; ++d) len += nb[d] * nb[d];
@@ -69,19 +69,19 @@ static PetscErrorCode NearestObstacle(MMCtx *ctx, const PetscReal x[], PetscInt 
 
 /* A corner (docs/method.md section 8): besides its nearest obstacle (normal n1), the nearest other
  * obstacle within h_c' of the node and not parallel to the first, which gets a second row; -1 if none. */
-static PetscErrorCode SecondObstacle(MMCtx *ctx, const PetscReal x[], PetscInt first, const PetscReal n1[], PetscInt *which, PetscReal *gap, PetscReal n[])
+static PetscErrorCode SecondObstacle(MMContact ct, const PetscReal x[], PetscInt first, const PetscReal n1[], PetscInt *which, PetscReal *gap, PetscReal n[])
 {
-  const PetscInt dim = ctx->op.dim;
+  const PetscInt dim = ct->op->dim;
 
   PetscFunctionBeginUser;
   *which = -1;
-  for (PetscInt b = 0; b < ctx->opt.n_rigid; ++b) {
-    const MMObstacle *ob = &ctx->opt.obstacles[b];
+  for (PetscInt b = 0; b < ct->pb.n_rigid; ++b) {
+    const MMObstacle *ob = &ct->pb.obstacles[b];
     PetscReal         g, nb[MM_MAX_DIM] = {0, 0, 0}, c = 0;
     if (b == first) continue;
     PetscCall((*ob->distance)(ob, dim, x, &g, nb));
     for (PetscInt d = 0; d < dim; ++d) c += nb[d] * n1[d];
-    if (g > ctx->contact.h_c || PetscAbsReal(c) > 1 - 1e-6 || (*which >= 0 && g >= *gap)) continue;
+    if (g > ct->h_c || PetscAbsReal(c) > 1 - 1e-6 || (*which >= 0 && g >= *gap)) continue;
     *which = b;
     *gap   = g;
     for (PetscInt d = 0; d < MM_MAX_DIM; ++d) n[d] = nb[d];
@@ -115,15 +115,14 @@ static void CornerFrame(PetscInt dim, const PetscReal n1[], const PetscReal n2[]
 /* With several obstacles, contact node k's reference gap and normal (frame convention: nu = -n, the
  * body's outward normal) to every obstacle, so that its penetration of any of them is seen, not only
  * of the one it is constrained against (docs/method.md section 8). */
-static PetscErrorCode AllObstacleGaps(MMCtx *ctx, const PetscReal x[], PetscInt k)
+static PetscErrorCode AllObstacleGaps(MMContact ct, const PetscReal x[], PetscInt k)
 {
-  MMContact     *ct  = &ctx->contact;
-  const PetscInt dim = ctx->op.dim, nob = ctx->opt.n_rigid;
+  const PetscInt dim = ct->op->dim, nob = ct->pb.n_rigid;
 
   PetscFunctionBeginUser;
   if (nob < 2) PetscFunctionReturn(0);
   for (PetscInt b = 0; b < nob; ++b) {
-    const MMObstacle *ob = &ctx->opt.obstacles[b];
+    const MMObstacle *ob = &ct->pb.obstacles[b];
     PetscReal         n[MM_MAX_DIM] = {0, 0, 0};
     PetscCall((*ob->distance)(ob, dim, x, &ct->all_gap0[k * nob + b], n));
     for (PetscInt d = 0; d < 3; ++d) ct->all_nu[3 * (k * nob + b) + d] = -n[d];
@@ -132,9 +131,9 @@ static PetscErrorCode AllObstacleGaps(MMCtx *ctx, const PetscReal x[], PetscInt 
 }
 
 /* Marks the points of one contact surface with value, and adds int_F phi_i to each vertex's area. */
-static PetscErrorCode MarkSurface(MMCtx *ctx, const char name[], PetscInt value, PetscInt mark[], PetscScalar aa[])
+static PetscErrorCode MarkSurface(MMContact ct, const char name[], PetscInt value, PetscInt mark[], PetscScalar aa[])
 {
-  DM          dm = ctx->op.dm;
+  DM          dm = ct->op->dm;
   DMLabel     label;
   MMFacetList fl;
   PetscInt    pStart, n, *pts, *vals;
@@ -159,7 +158,7 @@ static PetscErrorCode MarkSurface(MMCtx *ctx, const char name[], PetscInt value,
   PetscCall(PetscFree2(pts, vals));
   /* int_F phi_i for P1 on each facet F: the contact nodes' areas */
   PetscCall(MMMeshGetFacets(dm, name, &fl));
-  PetscCall(MMMeshFacetsAddNodal(dm, &fl, ctx->op.dm_scalar, 1, &one, aa));
+  PetscCall(MMMeshFacetsAddNodal(dm, &fl, ct->op->dm_scalar, 1, &one, aa));
   PetscCall(MMFacetListDestroy(&fl));
   PetscFunctionReturn(0);
 }
@@ -167,11 +166,11 @@ static PetscErrorCode MarkSurface(MMCtx *ctx, const char name[], PetscInt value,
 /* Marks the vertices of the contact faces, agreed over ranks through the point SF: a vertex can
  * sit on a rank that does not hold the face it belongs to. The mark is 1 on -contact_boundary (the
  * rigid obstacles') and 2 + p on pair p's slave surface. */
-static PetscErrorCode MarkContactVertices(MMCtx *ctx, PetscInt **mark, Vec area)
+static PetscErrorCode MarkContactVertices(MMContact ct, PetscInt **mark, Vec area)
 {
   Vec          aloc;
   PetscScalar *aa;
-  DM           dm = ctx->op.dm;
+  DM           dm = ct->op->dm;
   PetscInt     pStart, pEnd;
   PetscInt    *root;
   PetscSF      sf;
@@ -180,22 +179,22 @@ static PetscErrorCode MarkContactVertices(MMCtx *ctx, PetscInt **mark, Vec area)
   PetscCall(DMPlexGetChart(dm, &pStart, &pEnd));
   PetscCall(PetscCalloc1(pEnd - pStart, mark));
   PetscCall(PetscCalloc1(pEnd - pStart, &root));
-  PetscCall(DMGetLocalVector(ctx->op.dm_scalar, &aloc));
+  PetscCall(DMGetLocalVector(ct->op->dm_scalar, &aloc));
   PetscCall(VecZeroEntries(aloc));
   PetscCall(VecGetArray(aloc, &aa));
-  if (ctx->opt.n_rigid) {
+  if (ct->pb.n_rigid) {
     DMLabel   label;
     PetscBool given;
     /* a missing group says whether its name is the default one, tried because the option was not given */
     PetscCall(PetscOptionsHasName(NULL, NULL, "-contact_boundary", &given));
-    PetscCall(MMMeshGetLabelFor(dm, ctx->opt.contact_name, given ? "-contact_boundary" : "the default of -contact_boundary, which was not given: name the mesh's contact boundary with -contact_boundary NAME", &label));
-    PetscCall(MarkSurface(ctx, ctx->opt.contact_name, 1, *mark, aa));
+    PetscCall(MMMeshGetLabelFor(dm, ct->pb.contact_name, given ? "-contact_boundary" : "the default of -contact_boundary, which was not given: name the mesh's contact boundary with -contact_boundary NAME", &label));
+    PetscCall(MarkSurface(ct, ct->pb.contact_name, 1, *mark, aa));
   }
-  for (PetscInt b = ctx->opt.n_rigid; b < ctx->opt.n_obstacles; ++b) PetscCall(MarkSurface(ctx, ctx->opt.obstacles[b].slave, 2 + b - ctx->opt.n_rigid, *mark, aa));
+  for (PetscInt b = ct->pb.n_rigid; b < ct->pb.n_obstacles; ++b) PetscCall(MarkSurface(ct, ct->pb.obstacles[b].slave, 2 + b - ct->pb.n_rigid, *mark, aa));
   PetscCall(VecRestoreArray(aloc, &aa));
   PetscCall(VecZeroEntries(area));
-  PetscCall(DMLocalToGlobal(ctx->op.dm_scalar, aloc, ADD_VALUES, area));
-  PetscCall(DMRestoreLocalVector(ctx->op.dm_scalar, &aloc));
+  PetscCall(DMLocalToGlobal(ct->op->dm_scalar, aloc, ADD_VALUES, area));
+  PetscCall(DMRestoreLocalVector(ct->op->dm_scalar, &aloc));
   PetscCall(DMGetPointSF(dm, &sf));
   PetscCall(PetscArraycpy(root, *mark, pEnd - pStart));
   PetscCall(PetscSFReduceBegin(sf, MPIU_INT, *mark, root, MPI_MAX));
@@ -208,9 +207,9 @@ static PetscErrorCode MarkContactVertices(MMCtx *ctx, PetscInt **mark, Vec area)
 }
 
 /* h_c': the smallest diameter of the cells touching a contact node (Theorem 4.2). */
-static PetscErrorCode ContactLayerDiameter(MMCtx *ctx, const PetscInt mark[])
+static PetscErrorCode ContactLayerDiameter(MMContact ct, const PetscInt mark[])
 {
-  DM        dm = ctx->op.dm;
+  DM        dm = ct->op->dm;
   PetscInt  cStart, cEnd, pStart, cdim;
   PetscReal hmin = PETSC_MAX_REAL;
   Vec       X;
@@ -221,7 +220,7 @@ static PetscErrorCode ContactLayerDiameter(MMCtx *ctx, const PetscInt mark[])
   PetscCall(DMGetCoordinatesLocal(dm, &X));
   PetscCall(DMGetCoordinateDim(dm, &cdim));
   for (PetscInt c = cStart; c < cEnd; ++c) {
-    const MMCells *cells = &ctx->op.cells;
+    const MMCells *cells = &ct->op->cells;
     PetscScalar   *xc    = NULL;
     PetscInt       nx;
     PetscBool      touches = PETSC_FALSE;
@@ -239,12 +238,12 @@ static PetscErrorCode ContactLayerDiameter(MMCtx *ctx, const PetscInt mark[])
     PetscCall(DMPlexVecRestoreClosure(dm, NULL, X, c, &nx, &xc));
     hmin = PetscMin(hmin, diam);
   }
-  PetscCall(MPIU_Allreduce(&hmin, &ctx->contact.h_c, 1, MPIU_REAL, MPIU_MIN, PetscObjectComm((PetscObject)dm)));
+  PetscCall(MPIU_Allreduce(&hmin, &ct->h_c, 1, MPIU_REAL, MPIU_MIN, PetscObjectComm((PetscObject)dm)));
   PetscFunctionReturn(0);
 }
 
 /* The friction corners' arrays, per row (docs/method.md section 12). */
-static PetscErrorCode FrictionCornersAllocate(MMContact *ct, PetscInt dim, PetscInt n)
+static PetscErrorCode FrictionCornersAllocate(MMContact ct, PetscInt dim, PetscInt n)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc1(n, &ct->fc_obstacle));
@@ -255,9 +254,8 @@ static PetscErrorCode FrictionCornersAllocate(MMContact *ct, PetscInt dim, Petsc
 }
 
 /* Row k, with friction, against a second obstacle b at gap g: nu_2 = a nu_1 + b tau_1 in its frame. */
-static void FrictionCornerSet(MMCtx *ctx, PetscInt k, PetscInt b, PetscReal g, const PetscReal ab[2])
+static void FrictionCornerSet(MMContact ct, PetscInt k, PetscInt b, PetscReal g, const PetscReal ab[2])
 {
-  MMContact *ct = &ctx->contact;
 
   ct->fc_obstacle[k]   = b;
   ct->fc_ab[2 * k]     = ab[0];
@@ -266,15 +264,14 @@ static void FrictionCornerSet(MMCtx *ctx, PetscInt k, PetscInt b, PetscReal g, c
 }
 
 /* Index sets of the owned contact dofs, the gaps, and the rotation Q (identity off the contact set). */
-static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec area)
+static PetscErrorCode BuildContactDofs(MMContact ct, const PetscInt mark[], Vec area)
 {
   PetscInt           astart;
   const PetscScalar *av;
   PetscReal         *nodal_area;
-  DM           dm = ctx->op.dm;
-  MMContact   *ct = &ctx->contact;
+  DM           dm = ct->op->dm;
   PetscSection gs, ls, cs;
-  PetscInt     vStart, vEnd, pStart, dim = ctx->op.dim, n, rstart, rend, nc = 0, nt = 0, nm = 0, *in, *it, *is, *im, b2, bf;
+  PetscInt     vStart, vEnd, pStart, dim = ct->op->dim, n, rstart, rend, nc = 0, nt = 0, nm = 0, *in, *it, *is, *im, b2, bf;
   PetscReal    ab[2] = {0, 0}, n2[MM_MAX_DIM] = {0, 0, 0}, g2 = 0;
   PetscReal   *gap;
   Vec          X, g;
@@ -302,10 +299,10 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
   PetscCall(PetscCalloc2(n, &ct->second, 2 * (size_t)n, &ct->corner_ab));
   if (ct->ncomp > 1) PetscCall(FrictionCornersAllocate(ct, dim, n));
   PetscCall(PetscMalloc1(9 * (size_t)n, &ct->node_frame));
-  if (ctx->opt.n_rigid > 1) PetscCall(PetscMalloc2((size_t)n * ctx->opt.n_rigid, &ct->all_gap0, 3 * (size_t)n * ctx->opt.n_rigid, &ct->all_nu));
+  if (ct->pb.n_rigid > 1) PetscCall(PetscMalloc2((size_t)n * ct->pb.n_rigid, &ct->all_gap0, 3 * (size_t)n * ct->pb.n_rigid, &ct->all_nu));
   PetscCall(VecGetOwnershipRange(area, &astart, NULL));
   PetscCall(VecGetArrayRead(area, &av));
-  PetscCall(MatCreateAIJ(comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, dim, NULL, 0, NULL, &ctx->op.Q));
+  PetscCall(MatCreateAIJ(comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, dim, NULL, 0, NULL, &ct->op->Q));
   PetscCall(VecGetArrayRead(X, &x));
   for (PetscInt v = vStart; v < vEnd; ++v) {
     PetscInt goff, cdof, xoff;
@@ -315,20 +312,20 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
     PetscCall(PetscSectionGetConstraintDof(ls, v, &cdof));
     PetscCall(PetscSectionGetOffset(cs, v, &xoff));
     b2 = bf = -1;
-    PetscCheck(cdof == 0, comm, PETSC_ERR_USER_INPUT, "A node of the contact boundary \"%s\" at (%g, %g) is also on a Dirichlet boundary. Contact dofs must be free: separate the two physical groups", mark[v - pStart] >= 2 ? ctx->opt.obstacles[ctx->opt.n_rigid + mark[v - pStart] - 2].slave : ctx->opt.contact_name, (double)PetscRealPart(x[xoff]), (double)PetscRealPart(x[xoff + 1]));
+    PetscCheck(cdof == 0, comm, PETSC_ERR_USER_INPUT, "A node of the contact boundary \"%s\" at (%g, %g) is also on a Dirichlet boundary. Contact dofs must be free: separate the two physical groups", mark[v - pStart] >= 2 ? ct->pb.obstacles[ct->pb.n_rigid + mark[v - pStart] - 2].slave : ct->pb.contact_name, (double)PetscRealPart(x[xoff]), (double)PetscRealPart(x[xoff + 1]));
     {
       PetscReal xv[MM_MAX_DIM] = {0, 0, 0}, n[MM_MAX_DIM] = {0, 0, 0}, F[MM_MAX_DIM][MM_MAX_DIM];
       for (PetscInt d = 0; d < dim; ++d) xv[d] = PetscRealPart(x[xoff + d]);
       if (mark[v - pStart] >= 2) {
         const PetscInt p = mark[v - pStart] - 2;
-        PetscCall(MMContactPairsProject(ctx, p, nc, xv, &gap[nc], n));
-        ct->obstacle[nc] = ctx->opt.n_rigid + p;
+        PetscCall(MMContactPairsProject(ct, p, nc, xv, &gap[nc], n));
+        ct->obstacle[nc] = ct->pb.n_rigid + p;
       } else {
-        PetscCall(NearestObstacle(ctx, xv, &ct->obstacle[nc], &gap[nc], n));
-        PetscCall(AllObstacleGaps(ctx, xv, nc));
+        PetscCall(NearestObstacle(ct, xv, &ct->obstacle[nc], &gap[nc], n));
+        PetscCall(AllObstacleGaps(ct, xv, nc));
         /* a node near two walls: frictionless, a row for each; with friction one row whose dofs
          * carry both obstacles' Coulomb laws (docs/method.md section 12) */
-        PetscCall(SecondObstacle(ctx, xv, ct->obstacle[nc], n, &b2, &g2, n2));
+        PetscCall(SecondObstacle(ct, xv, ct->obstacle[nc], n, &b2, &g2, n2));
         if (b2 >= 0 && ct->ncomp == 1) gap[nc + 1] = g2;
         if (b2 >= 0 && ct->ncomp > 1) {
           bf = b2;
@@ -342,18 +339,18 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
     }
     for (PetscInt d = 0; d < dim; ++d) {
       is_contact_dof[goff - rstart + d] = 1;
-      for (PetscInt e = 0; e < dim; ++e) PetscCall(MatSetValue(ctx->op.Q, goff + d, goff + e, ct->node_frame[9 * nc + 3 * e + d], INSERT_VALUES));
+      for (PetscInt e = 0; e < dim; ++e) PetscCall(MatSetValue(ct->op->Q, goff + d, goff + e, ct->node_frame[9 * nc + 3 * e + d], INSERT_VALUES));
     }
     /* the tangential dofs: all but the normals (a corner's second normal is its first tangent) */
     for (PetscInt d = b2 >= 0 ? 2 : 1; d < dim; ++d) it[nt++] = goff + d;
     /* the massless dofs: the normals, and a friction corner's tau_1 (its second normal lies in the
      * plane of nu_1 and tau_1) */
     for (PetscInt r = 0; r < (b2 >= 0 || bf >= 0 ? 2 : 1); ++r) im[nm++] = goff + r;
-    if (bf >= 0) FrictionCornerSet(ctx, nc, bf, g2, ab);
+    if (bf >= 0) FrictionCornerSet(ct, nc, bf, g2, ab);
     for (PetscInt r = 0; r < (b2 >= 0 ? 2 : 1); ++r) {
       PetscInt sstart, send;
       in[nc] = goff + r;
-      PetscCall(DMPlexGetPointGlobal(ctx->op.dm_scalar, v, &sstart, &send));
+      PetscCall(DMPlexGetPointGlobal(ct->op->dm_scalar, v, &sstart, &send));
       ct->scalar_index[nc] = sstart;
       ct->vertex[nc]       = v;
       nodal_area[nc]       = PetscRealPart(av[sstart - astart]);
@@ -368,9 +365,9 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
         for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
           for (PetscInt b = 0; b < MM_MAX_DIM; ++b) ct->node_frame[9 * nc + 3 * a + b] = F2[a][b];
         if (ct->all_gap0)
-          for (PetscInt b = 0; b < ctx->opt.n_rigid; ++b) {
-            ct->all_gap0[nc * ctx->opt.n_rigid + b] = ct->all_gap0[(nc - 1) * ctx->opt.n_rigid + b];
-            for (PetscInt d = 0; d < 3; ++d) ct->all_nu[3 * (nc * ctx->opt.n_rigid + b) + d] = ct->all_nu[3 * ((nc - 1) * ctx->opt.n_rigid + b) + d];
+          for (PetscInt b = 0; b < ct->pb.n_rigid; ++b) {
+            ct->all_gap0[nc * ct->pb.n_rigid + b] = ct->all_gap0[(nc - 1) * ct->pb.n_rigid + b];
+            for (PetscInt d = 0; d < 3; ++d) ct->all_nu[3 * (nc * ct->pb.n_rigid + b) + d] = ct->all_nu[3 * ((nc - 1) * ct->pb.n_rigid + b) + d];
           }
       }
       ++nc;
@@ -381,7 +378,7 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
   {
     PetscInt ns = 0;
     for (PetscInt i = 0; i < n; ++i)
-      if (!is_contact_dof[i]) PetscCall(MatSetValue(ctx->op.Q, rstart + i, rstart + i, 1.0, INSERT_VALUES));
+      if (!is_contact_dof[i]) PetscCall(MatSetValue(ct->op->Q, rstart + i, rstart + i, 1.0, INSERT_VALUES));
     /* the star dofs: all but the massless ones (tangential contact dofs keep their mass, but for a
      * friction corner's tau_1) */
     for (PetscInt k = 0; k < nm; ++k) is_contact_dof[im[k] - rstart] = 2;
@@ -393,8 +390,8 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
       if (!is_contact_dof[i]) is[ns++] = rstart + i;
     PetscCall(ISCreateGeneral(comm, ns, is, PETSC_COPY_VALUES, &ct->is_interior));
   }
-  PetscCall(MatAssemblyBegin(ctx->op.Q, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(ctx->op.Q, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyBegin(ct->op->Q, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(ct->op->Q, MAT_FINAL_ASSEMBLY));
   PetscCall(ISCreateGeneral(comm, nc, in, PETSC_COPY_VALUES, &ct->is_normal));
   PetscCall(ISCreateGeneral(comm, nm, im, PETSC_COPY_VALUES, &ct->is_massless));
   PetscCall(ISCreateGeneral(comm, nt, it, PETSC_COPY_VALUES, &ct->is_tangent));
@@ -413,7 +410,7 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
     for (PetscInt k = 0; k < nc; ++k) {
       ga[k] = gap[k];
       aa[k] = nodal_area[k];
-      ma[k] = ctx->opt.obstacles[ct->obstacle[k]].mu;
+      ma[k] = ct->pb.obstacles[ct->obstacle[k]].mu;
     }
     PetscCall(VecRestoreArray(ct->mu, &ma));
     PetscCall(VecRestoreArray(ct->gap, &ga));
@@ -438,90 +435,109 @@ static PetscErrorCode BuildContactDofs(MMCtx *ctx, const PetscInt mark[], Vec ar
 }
 
 /* Without contact: Q = I and every dof is a star dof. */
-static PetscErrorCode BuildNoContact(MMCtx *ctx)
+static PetscErrorCode BuildNoContact(MMContact ct)
 {
   Vec      g;
   PetscInt n, rstart;
-  MPI_Comm comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  MPI_Comm comm = PetscObjectComm((PetscObject)ct->op->dm);
 
   PetscFunctionBeginUser;
-  PetscCall(DMCreateGlobalVector(ctx->op.dm, &g));
+  PetscCall(DMCreateGlobalVector(ct->op->dm, &g));
   PetscCall(VecGetLocalSize(g, &n));
   PetscCall(VecGetOwnershipRange(g, &rstart, NULL));
-  PetscCall(MatCreateAIJ(comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, 1, NULL, 0, NULL, &ctx->op.Q));
-  for (PetscInt i = rstart; i < rstart + n; ++i) PetscCall(MatSetValue(ctx->op.Q, i, i, 1.0, INSERT_VALUES));
-  PetscCall(MatAssemblyBegin(ctx->op.Q, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(ctx->op.Q, MAT_FINAL_ASSEMBLY));
-  PetscCall(ISCreateStride(comm, 0, 0, 1, &ctx->contact.is_normal));
-  PetscCall(ISCreateStride(comm, 0, 0, 1, &ctx->contact.is_massless));
-  PetscCall(ISCreateStride(comm, 0, 0, 1, &ctx->contact.is_tangent));
-  PetscCall(ISCreateStride(comm, 0, 0, 1, &ctx->contact.is_cond));
-  PetscCall(ISCreateStride(comm, n, rstart, 1, &ctx->contact.is_star));
-  PetscCall(ISCreateStride(comm, n, rstart, 1, &ctx->contact.is_interior));
-  PetscCall(VecCreateMPI(comm, 0, PETSC_DETERMINE, &ctx->contact.gap));
-  PetscCall(PetscCalloc1(1, &ctx->contact.slide_ref));
+  PetscCall(MatCreateAIJ(comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, 1, NULL, 0, NULL, &ct->op->Q));
+  for (PetscInt i = rstart; i < rstart + n; ++i) PetscCall(MatSetValue(ct->op->Q, i, i, 1.0, INSERT_VALUES));
+  PetscCall(MatAssemblyBegin(ct->op->Q, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(ct->op->Q, MAT_FINAL_ASSEMBLY));
+  PetscCall(ISCreateStride(comm, 0, 0, 1, &ct->is_normal));
+  PetscCall(ISCreateStride(comm, 0, 0, 1, &ct->is_massless));
+  PetscCall(ISCreateStride(comm, 0, 0, 1, &ct->is_tangent));
+  PetscCall(ISCreateStride(comm, 0, 0, 1, &ct->is_cond));
+  PetscCall(ISCreateStride(comm, n, rstart, 1, &ct->is_star));
+  PetscCall(ISCreateStride(comm, n, rstart, 1, &ct->is_interior));
+  PetscCall(VecCreateMPI(comm, 0, PETSC_DETERMINE, &ct->gap));
+  PetscCall(PetscCalloc1(1, &ct->slide_ref));
   PetscCall(VecDestroy(&g));
-  ctx->contact.h_c = 0;
+  ct->h_c = 0;
   PetscFunctionReturn(0);
 }
 
 /* Finds the contact nodes and builds Q; runs before the operators are assembled. */
-PetscErrorCode MMContactSetUp(MMCtx *ctx)
+static PetscErrorCode SetUp(MMContact ct)
 {
-  MMContact *ct = &ctx->contact;
   PetscInt  *mark;
   Vec        area;
 
   PetscFunctionBeginUser;
-  ct->enabled     = ctx->opt.contact;
-  ct->tol         = ctx->opt.contact_tol;
-  ct->ncomp       = ctx->opt.mu_max > 0 ? ctx->op.dim : 1;
-  PetscCall(PetscCalloc1(MM_MAX_DIM * ctx->opt.n_obstacles, &ct->force_obstacle));
-  for (PetscInt b = 0; b < ctx->opt.n_obstacles; ++b)
-    for (PetscInt d = 0; d < ctx->op.dim; ++d) ct->moving = (PetscBool)(ct->moving || ctx->opt.obstacles[b].velocity[d] != 0);
-  if (ctx->opt.initial_state == MM_INITIAL_STATIC_SLIDING) {
-    const MMObstacle *ob = &ctx->opt.obstacles[0];
+  ct->enabled     = ct->opt.contact;
+  ct->tol         = ct->opt.contact_tol;
+  ct->ncomp       = ct->pb.mu_max > 0 ? ct->op->dim : 1;
+  ct->dim         = ct->op->dim;
+  PetscCall(PetscCalloc1(MM_MAX_DIM * ct->pb.n_obstacles, &ct->force_obstacle));
+  for (PetscInt b = 0; b < ct->pb.n_obstacles; ++b)
+    for (PetscInt d = 0; d < ct->op->dim; ++d) ct->moving = (PetscBool)(ct->moving || ct->pb.obstacles[b].velocity[d] != 0);
+  if (ct->pb.static_sliding) {
+    const MMObstacle *ob = &ct->pb.obstacles[0];
     PetscBool         plane;
     PetscCall(PetscStrcmp(ob->type, "plane", &plane));
-    PetscCheck(ctx->opt.n_obstacles == 1 && plane && !ct->moving, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "-initial_state static_sliding needs a single fixed plane obstacle: the sliding state is built on one plane");
+    PetscCheck(ct->pb.n_obstacles == 1 && plane && !ct->moving, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_USER_INPUT, "-initial_state static_sliding needs a single fixed plane obstacle: the sliding state is built on one plane");
     for (PetscInt d = 0; d < MM_MAX_DIM; ++d) {
-      ctx->opt.obstacle_point[d]  = ob->point[d];
-      ctx->opt.obstacle_normal[d] = ob->normal[d];
+      ct->pb.obstacle_point[d]  = ob->point[d];
+      ct->pb.obstacle_normal[d] = ob->normal[d];
     }
   }
-  PetscCall(MMContactSetType(ctx));
-  PetscCall(BuildFrame(ctx));
+  PetscCall(MMContactSetType(ct));
+  PetscCall(BuildFrame(ct));
   if (!ct->enabled) {
-    PetscCall(BuildNoContact(ctx));
+    PetscCall(BuildNoContact(ct));
     PetscFunctionReturn(0);
   }
-  PetscCall(DMCreateGlobalVector(ctx->op.dm_scalar, &area));
-  PetscCall(MarkContactVertices(ctx, &mark, area));
+  PetscCall(DMCreateGlobalVector(ct->op->dm_scalar, &area));
+  PetscCall(MarkContactVertices(ct, &mark, area));
   {
     PetscInt vStart, vEnd;
-    PetscCall(DMPlexGetDepthStratum(ctx->op.dm, 0, &vStart, &vEnd));
-    PetscCall(MMContactPairsSetUp(ctx, mark, vEnd - vStart));
+    PetscCall(DMPlexGetDepthStratum(ct->op->dm, 0, &vStart, &vEnd));
+    PetscCall(MMContactPairsSetUp(ct, mark, vEnd - vStart));
   }
-  PetscCall(ContactLayerDiameter(ctx, mark)); /* before the rows: h_c' is the reach of a second obstacle */
-  PetscCall(BuildContactDofs(ctx, mark, area));
-  PetscCall(MMContactPairsBuildTransform(ctx));
+  PetscCall(ContactLayerDiameter(ct, mark)); /* before the rows: h_c' is the reach of a second obstacle */
+  PetscCall(BuildContactDofs(ct, mark, area));
+  PetscCall(MMContactPairsBuildTransform(ct));
   PetscCall(PetscFree(mark));
   PetscCall(VecDestroy(&area));
   /* a friction corner's two Coulomb laws on one node's dofs are solved in contact space only */
-  PetscCheck(!ct->n_fc || ct->ops->solvecoulomb, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_SUP, "%" PetscInt_FMT " contact nodes are within h_c' of two obstacles with friction (-mu %g), and -contact_formulation %s%s cannot carry both obstacles' Coulomb laws on one node: use -contact_formulation condensed", ct->n_fc, (double)ctx->opt.mu_max, ct->type, ct->auto_type ? " (auto's choice for a mesh this size)" : "");
-  PetscCheck(ct->ncomp == 1 || ct->ops->solvecontactdofs, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_SUP, "Friction (-mu %g) needs a contact formulation that solves the contact dofs alone, and -contact_formulation %s cannot: use condensed or active_set", (double)ctx->opt.mu_max, ct->type);
-  PetscCheck(ct->n_global > 0, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "The contact boundary \"%s\" has no nodes", ctx->opt.contact_name);
+  PetscCheck(!ct->n_fc || ct->ops->solvecoulomb, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_SUP, "%" PetscInt_FMT " contact nodes are within h_c' of two obstacles with friction (-mu %g), and -contact_formulation %s%s cannot carry both obstacles' Coulomb laws on one node: use -contact_formulation condensed", ct->n_fc, (double)ct->pb.mu_max, ct->type, ct->auto_type ? " (auto's choice for a mesh this size)" : "");
+  PetscCheck(ct->ncomp == 1 || ct->ops->solvecontactdofs, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_SUP, "Friction (-mu %g) needs a contact formulation that solves the contact dofs alone, and -contact_formulation %s cannot: use condensed or active_set", (double)ct->pb.mu_max, ct->type);
+  PetscCheck(ct->n_global > 0, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_USER_INPUT, "The contact boundary \"%s\" has no nodes", ct->pb.contact_name);
   PetscFunctionReturn(0);
 }
 
 
+PetscErrorCode MMContactSetUp(MMContact ct, MMOperators *op, const MMMaterial *material, const MMContactProblem *pb)
+{
+  PetscFunctionBeginUser;
+  ct->pb = *pb; /* the obstacles and the contact boundary's name are the caller's, kept until destroy */
+  ct->op       = op;
+  ct->material = material;
+  PetscCall(SetUp(ct));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMContactGetPlane(MMContact ct, PetscReal point[], PetscReal normal[])
+{
+  PetscFunctionBeginUser;
+  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) {
+    point[d]  = ct->pb.obstacle_point[d];
+    normal[d] = ct->pb.obstacle_normal[d];
+  }
+  PetscFunctionReturn(0);
+}
+
 /* A friction corner's second obstacle at time t: its gap g_2(t) = g_2(0) + c_2(t).nu_2 and its
  * sliding dt/2 V_2.tau'_j along the second row's tangents (docs/method.md section 12). */
-static void FrictionCornerSetTime(MMCtx *ctx, PetscInt k, PetscReal t, PetscReal dt)
+static void FrictionCornerSetTime(MMContact ct, PetscInt k, PetscReal t, PetscReal dt)
 {
-  MMContact        *ct  = &ctx->contact;
-  const PetscInt    dim = ctx->op.dim;
-  const MMObstacle *ob  = &ctx->opt.obstacles[ct->fc_obstacle[k]];
+  const PetscInt    dim = ct->op->dim;
+  const MMObstacle *ob  = &ct->pb.obstacles[ct->fc_obstacle[k]];
   PetscReal         c[MM_MAX_DIM] = {0, 0, 0}, V[MM_MAX_DIM] = {0, 0, 0}, F2[MM_MAX_DIM][MM_MAX_DIM];
 
   MMObstacleDisplacement(ob, dim, t, c);
@@ -541,10 +557,9 @@ static void FrictionCornerSetTime(MMCtx *ctx, PetscInt k, PetscReal t, PetscReal
  * for a curved obstacle, exact while the node stays on its normal line, docs/method.md section 8),
  * and the friction law measures slip relative to the obstacle's velocity V, through
  * slide_ref = dt/2 V.tau_j. */
-PetscErrorCode MMContactSetTime(MMCtx *ctx, PetscReal t, PetscReal dt)
+PetscErrorCode MMContactSetTime(MMContact ct, PetscReal t, PetscReal dt)
 {
-  MMContact         *ct  = &ctx->contact;
-  const PetscInt     dim = ctx->op.dim;
+  const PetscInt     dim = ct->op->dim;
   const PetscScalar *g0;
   PetscScalar       *g;
 
@@ -553,14 +568,14 @@ PetscErrorCode MMContactSetTime(MMCtx *ctx, PetscReal t, PetscReal dt)
   PetscCall(VecGetArrayRead(ct->gap0, &g0));
   PetscCall(VecGetArray(ct->gap, &g));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
-    const MMObstacle *ob = &ctx->opt.obstacles[ct->obstacle[k]];
+    const MMObstacle *ob = &ct->pb.obstacles[ct->obstacle[k]];
     const PetscReal  *F  = &ct->node_frame[9 * k];
     PetscReal         c[MM_MAX_DIM] = {0, 0, 0}, V[MM_MAX_DIM] = {0, 0, 0}, cn = 0;
     MMObstacleDisplacement(ob, dim, t, c);
     MMObstacleVelocity(ob, dim, t, V);
     for (PetscInt d = 0; d < dim; ++d) cn += c[d] * F[d];
     g[k] = g0[k] + cn;
-    if (ct->fc_obstacle && ct->fc_obstacle[k] >= 0) FrictionCornerSetTime(ctx, k, t, dt);
+    if (ct->fc_obstacle && ct->fc_obstacle[k] >= 0) FrictionCornerSetTime(ct, k, t, dt);
     for (PetscInt j = 1; j < dim; ++j) {
       PetscReal vt = 0;
       for (PetscInt d = 0; d < dim; ++d) vt += V[d] * F[3 * j + d];

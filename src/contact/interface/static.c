@@ -68,9 +68,8 @@ static PetscErrorCode StaticSolverSetUp(SNES snes, Mat K)
 }
 
 /* The bounds of the whole w vector: w_n <= g on the contact-normal dofs, free elsewhere. */
-static PetscErrorCode StaticBounds(MMCtx *ctx, Vec lower, Vec upper)
+static PetscErrorCode StaticBounds(MMContact ct, Vec lower, Vec upper)
 {
-  MMContact *ct = &ctx->contact;
   Vec        sub;
 
   PetscFunctionBeginUser;
@@ -85,10 +84,9 @@ static PetscErrorCode StaticBounds(MMCtx *ctx, Vec lower, Vec upper)
 
 /* w: the static state; react: K w - b on the contact-normal dofs, the contact forces (zero
  * elsewhere: the tangential ones of a frictionless solve, and the noise off the contact). */
-PetscErrorCode MMContactSolveStatic(MMCtx *ctx, Vec w, Vec react)
+PetscErrorCode MMContactSolveStatic(MMContact ct, Vec w, Vec react)
 {
-  MMContact *ct   = &ctx->contact;
-  MPI_Comm   comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  MPI_Comm   comm = PetscObjectComm((PetscObject)ct->op->dm);
   MMBoundQP  qp;
   SNES       snes;
   Vec        lower, upper;
@@ -96,15 +94,15 @@ PetscErrorCode MMContactSolveStatic(MMCtx *ctx, Vec w, Vec react)
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(&qp, sizeof(qp)));
-  qp.A      = ctx->op.K;
-  qp.rtol_b = ctx->opt.contact_tol;
+  qp.A      = ct->op->K;
+  qp.rtol_b = ct->opt.contact_tol;
   PetscCall(VecDuplicate(w, &qp.b));
-  PetscCall(VecWAXPY(qp.b, -1.0, ctx->op.lift, ctx->op.load));
+  PetscCall(VecWAXPY(qp.b, -1.0, ct->op->lift, ct->op->load));
   PetscCall(MMQPCreate(comm, "static_", &qp, 0, &snes));
   PetscCall(StaticSolverSetUp(snes, qp.A));
   PetscCall(VecDuplicate(w, &lower));
   PetscCall(VecDuplicate(w, &upper));
-  PetscCall(StaticBounds(ctx, lower, upper));
+  PetscCall(StaticBounds(ct, lower, upper));
   PetscCall(SNESVISetVariableBounds(snes, lower, upper));
   /* from rest: the nodes touching the obstacles at t = 0 start in the active set */
   PetscCall(VecZeroEntries(w));
@@ -116,7 +114,7 @@ PetscErrorCode MMContactSolveStatic(MMCtx *ctx, Vec w, Vec react)
     PetscCall(VecISSet(react, ct->is_interior, 0.0));
     PetscCall(VecISSet(react, ct->is_tangent, 0.0));
   } else PetscCall(VecZeroEntries(react));
-  if (!ctx->opt.quiet) PetscCall(PetscPrintf(comm, "mmcontact: -initial_state static: the static contact problem at t = 0 solved in %" PetscInt_FMT " VI iteration%s\n", its, its == 1 ? "" : "s"));
+  if (!ct->pb.quiet) PetscCall(PetscPrintf(comm, "mmcontact: -initial_state static: the static contact problem at t = 0 solved in %" PetscInt_FMT " VI iteration%s\n", its, its == 1 ? "" : "s"));
   PetscCall(SNESDestroy(&snes));
   PetscCall(VecDestroy(&lower));
   PetscCall(VecDestroy(&upper));

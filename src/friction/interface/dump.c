@@ -44,7 +44,7 @@ static herr_t Dataset(hid_t f, const char name[], int rank, const hsize_t dims[]
 /* The directory, created if missing, at set-up: a wrong path stops the run before its first step. */
 PetscErrorCode MMFrictionDumpSetUp(MMFriction fr)
 {
-  const char *dir = fr->ctx->opt.friction_dump;
+  const char *dir = fr->dump;
   PetscMPIInt rank;
   int         err = 0;
   struct stat s;
@@ -61,17 +61,20 @@ PetscErrorCode MMFrictionDumpSetUp(MMFriction fr)
 
 PetscErrorCode MMFrictionDump(MMFriction fr, const MMCoulombProblem *p, const PetscScalar x0[], const PetscScalar x[], const MMCoulombResult *res, PetscLogDouble seconds)
 {
-  MMCtx          *ctx = fr->ctx;
   const PetscInt  m   = p->nc * p->n;
-  const PetscReal dt  = ctx->contact.Kt_dt, scale = 2.0 / dt;
+  PetscReal       dt, scale;
   char            name[PETSC_MAX_PATH_LEN];
   PetscReal      *W, *q, *mu, *r, *r0;
   PetscMPIInt     rank;
   hid_t           f;
   herr_t          st = 0;
   hsize_t         dW[2] = {(hsize_t)m, (hsize_t)m}, dq = (hsize_t)m, dmu = (hsize_t)p->n;
+  MMContactNodes  cn;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetNodes(fr->contact, &cn));
+  dt    = cn.dt;
+  scale = 2.0 / dt;
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   if (rank || !m) PetscFunctionReturn(0);
   PetscCall(PetscMalloc5((size_t)m * m, &W, m, &q, p->n, &mu, m, &r, m, &r0));
@@ -83,7 +86,7 @@ PetscErrorCode MMFrictionDump(MMFriction fr, const MMCoulombProblem *p, const Pe
     r0[k] = PetscRealPart(x0[k]);
   }
   for (PetscInt k = 0; k < p->n; ++k) mu[k] = p->mu[k];
-  PetscCall(PetscSNPrintf(name, sizeof(name), "%s/step_%06" PetscInt_FMT ".h5", ctx->opt.friction_dump, ctx->hist.step + 1));
+  PetscCall(PetscSNPrintf(name, sizeof(name), "%s/step_%06" PetscInt_FMT ".h5", fr->dump, fr->step + 1));
   f = H5Fcreate(name, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
   PetscCheck(f >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "-friction_dump: could not create %s", name);
   st |= Dataset(f, "W", 2, dW, W);
@@ -93,8 +96,8 @@ PetscErrorCode MMFrictionDump(MMFriction fr, const MMCoulombProblem *p, const Pe
   st |= Dataset(f, "r0", 1, &dq, r0);
   AttrReal(f, "spacedim", (double)p->nc);
   AttrReal(f, "n", (double)p->n);
-  AttrReal(f, "step", (double)(ctx->hist.step + 1));
-  AttrReal(f, "time", (double)(ctx->hist.time + dt));
+  AttrReal(f, "step", (double)(fr->step + 1));
+  AttrReal(f, "time", (double)(fr->time + dt));
   AttrReal(f, "dt", (double)dt);
   AttrReal(f, "its", (double)res->its);
   AttrReal(f, "solve_time", (double)seconds);

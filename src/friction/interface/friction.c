@@ -29,14 +29,14 @@ PetscErrorCode MMFrictionRegisterAll(void)
 }
 
 /* sigma = 2/dt (w - u^n) - v^n: the velocity of w; on the tangential contact dofs, the slip velocity. */
-static PetscErrorCode SlipVelocity(MMCtx *ctx, Vec w, Vec sigma)
+static PetscErrorCode SlipVelocity(MMFriction fr, Vec w, Vec sigma)
 {
-  MMState  *s  = &ctx->state;
-  PetscReal dt = ctx->contact.Kt_dt;
+  MMContactNodes cn;
 
   PetscFunctionBeginUser;
-  PetscCall(VecWAXPY(sigma, -1.0, s->u_old, w));
-  PetscCall(VecAXPBY(sigma, -1.0, 2.0 / dt, s->v_old));
+  PetscCall(MMContactGetNodes(fr->contact, &cn));
+  PetscCall(VecWAXPY(sigma, -1.0, fr->u_old, w));
+  PetscCall(VecAXPBY(sigma, -1.0, 2.0 / cn.dt, fr->v_old));
   PetscFunctionReturn(0);
 }
 
@@ -45,8 +45,8 @@ static PetscErrorCode SlipVelocity(MMCtx *ctx, Vec w, Vec sigma)
 PetscErrorCode MMFrictionCoulombResidual(MMFriction fr, PetscReal *coulomb, PetscInt *nslip, PetscInt *nstick)
 {
   PetscFunctionBeginUser;
-  PetscCall(SlipVelocity(fr->ctx, fr->w, fr->sigma));
-  PetscCall(MMContactCoulomb(fr->ctx, fr->w, fr->react, fr->sigma, coulomb, nslip, nstick));
+  PetscCall(SlipVelocity(fr, fr->w, fr->sigma));
+  PetscCall(MMContactCoulomb(fr->contact, fr->time, fr->w, fr->react, fr->sigma, coulomb, nslip, nstick));
   PetscFunctionReturn(0);
 }
 
@@ -57,7 +57,7 @@ static PetscErrorCode SolveSetAdaptor(void *ptr, const MMContactSetProblem *sp, 
   MMCoulombResult  res;
   PetscLogDouble   t0, t1;
   PetscScalar     *x0 = NULL;
-  const PetscBool  dump = (PetscBool)(fr->ctx->opt.friction_dump[0] != 0);
+  const PetscBool  dump = (PetscBool)(fr->dump[0] != 0);
 
   PetscFunctionBeginUser;
   if (dump) { /* the warm start, for the dump */
@@ -102,7 +102,7 @@ static PetscErrorCode SolveContactSpace(MMFriction fr, SNES snes)
 
   PetscFunctionBeginUser;
   for (PetscInt polish = 0;; ++polish) {
-    PetscCall(MMContactSolveCoulomb(fr->ctx, fr->b, fr->w, fr->react, SolveSetAdaptor, fr, &ok));
+    PetscCall(MMContactSolveCoulomb(fr->contact, fr->b, fr->w, fr->react, SolveSetAdaptor, fr, &ok));
     if (!ok) break;
     PetscCall(MMFrictionCoulombResidual(fr, &fr->coulomb, &nslip, &nstick));
     if (fr->coulomb <= fr->coulomb_tol || polish == 2) break;
@@ -128,7 +128,7 @@ PetscErrorCode MMFrictionSolveDofs(MMFriction fr, Vec b, Vec w, Vec react)
   PetscInt  its, nslip = 0, nstick = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(MMContactSolveCoulombDofs(fr->ctx, b, w, react, fr->s, fr->rtol, &its, &ok));
+  PetscCall(MMContactSolveCoulombDofs(fr->contact, b, w, react, fr->s, fr->rtol, &its, &ok));
   fr->its = fr->inner_its = its;
   PetscCall(SNESSetIterationNumber(fr->snes, its));
   if (!ok) {
@@ -151,44 +151,102 @@ static PetscErrorCode FrictionShellSolve(SNES snes, Vec unused)
   PetscCall(SNESShellGetContext(snes, &fr));
   fr->its = fr->inner_its = 0;
   fr->contraction = fr->contraction_max = 0;
-  PetscCall(MMContactHasDelassus(fr->ctx, &has));
-  PetscCall(MMContactHasCoulombDofs(fr->ctx, &dofs));
+  PetscCall(MMContactHasDelassus(fr->contact, &has));
+  PetscCall(MMContactHasCoulombDofs(fr->contact, &dofs));
   if (has && fr->ops.solveset) PetscCall(SolveContactSpace(fr, snes));
   else if (dofs && fr->ops.solvedofs) PetscCall(fr->ops.solvedofs(fr, fr->b, fr->w, fr->react));
   else PetscCall(fr->ops.solvethresholds(fr, fr->b, fr->w, fr->react));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMFrictionSetUp(MMCtx *ctx)
+static PetscBool MMFrictionPackageInitialized = PETSC_FALSE;
+PetscLogEvent    MMFRICTION_Loop;
+
+/* The friction component's class and event (-log_view), registered once, by MMFrictionCreate. */
+PetscErrorCode MMFrictionInitializePackage(void)
 {
-  MMFriction fr;
-  PetscErrorCode (*create)(MMFriction) = NULL;
-  PetscBool   has, dofs;
-  const char *type;
-  MPI_Comm    comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  PetscClassId id;
 
   PetscFunctionBeginUser;
+  if (MMFrictionPackageInitialized) PetscFunctionReturn(0);
+  MMFrictionPackageInitialized = PETSC_TRUE;
+  PetscCall(PetscClassIdRegister("MMFriction", &id));
+  PetscCall(PetscLogEventRegister("MMFrictionLoop", id, &MMFRICTION_Loop));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMFrictionCreate(MPI_Comm comm, MMFriction *fr)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMFrictionInitializePackage());
   PetscCall(MMFrictionRegisterAll());
-  PetscCall(PetscNew(&fr));
-  ctx->friction   = fr;
-  fr->ctx         = ctx;
-  fr->coulomb_tol = ctx->opt.friction_coulomb_tol;
-  fr->s_floor     = ctx->opt.mu_max * 1e-3 * ctx->material.E_max * PetscPowReal(ctx->contact.h_c, ctx->op.dim - 1);
-  fr->monitor     = ctx->opt.friction_monitor;
-  PetscCall(MMContactHasDelassus(ctx, &has));
-  PetscCall(MMContactHasCoulombDofs(ctx, &dofs));
+  PetscCall(PetscNew(fr));
+  (*fr)->comm = comm;
+  PetscFunctionReturn(0);
+}
+
+/* The -friction_ options, with their checks. */
+PetscErrorCode MMFrictionSetFromOptions(MMFriction fr)
+{
+  MPI_Comm comm = fr->comm;
+
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, NULL, "mmcontact friction", "MMFriction");
+  fr->coulomb_tol = 1e-8;
+  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-friction_coulomb_tol", "The Coulomb audit of every friction solve, in (0, 1): the step's discrete Coulomb residual (penetration and gap over h_c', tension, complementarity, the cone and the slip direction over the force scale) must be below this; a solve that met its own -friction_snes_rtol but not this is polished with a 100 times tighter test, at most twice, and then the step is rejected and retried with a smaller dt", &fr->coulomb_tol));
+  PetscCall(PetscStrncpy(fr->type_name, "newton", sizeof(fr->type_name)));
+  PetscCall(MMOptionsString(PetscOptionsObject, comm, "-friction_type", "Coulomb friction solver: newton (the default: semismooth Newton, on Alart-Curnier's function in contact space with -contact_formulation condensed, on all dofs with the thresholds following the iterate with active_set) or fixedpoint (the paper's fixed point on the thresholds, each Tresca problem solved exactly)", fr->type_name, sizeof(fr->type_name), &fr->type_set));
+  fr->dump[0] = 0;
+  PetscCall(MMOptionsString(PetscOptionsObject, comm, "-friction_dump", "Directory (created if missing) for each step's Coulomb problem on the candidate set, in the Friction Contact Library's form u = W r + q (docs/method.md section 6), with our reactions and solve time: step_NNNNNN.h5. scripts/fclib_compare.py solves them with Siconos. Needs the condensed formulation", fr->dump, sizeof(fr->dump), NULL));
+  fr->monitor = PETSC_FALSE;
+  PetscCall(MMOptionsBool(PetscOptionsObject, comm, "-friction_monitor", "Print each friction iteration: threshold change, Coulomb residual, contraction factor, slipping and sticking node counts", &fr->monitor));
+  PetscOptionsEnd();
+  PetscCheck(fr->coulomb_tol > 0 && fr->coulomb_tol < 1, comm, PETSC_ERR_USER_INPUT, "-friction_coulomb_tol %g must lie in (0, 1): it is a normalized residual", (double)fr->coulomb_tol);
+  PetscFunctionReturn(0);
+}
+
+/* The Coulomb audit's tolerance (-friction_coulomb_tol), which the contact solves also aim below */
+PetscErrorCode MMFrictionGetCoulombTolerance(MMFriction fr, PetscReal *tol)
+{
+  PetscFunctionBeginUser;
+  *tol = fr->coulomb_tol;
+  PetscFunctionReturn(0);
+}
+
+/* The solver for the contact ct: its type (-friction_type, or the default the formulation calls
+ * for), the shell SNES, and the first thresholds from the initial reactions react. mu_max: the
+ * largest friction coefficient (0: frictionless, the contact solve alone); E_max: the largest
+ * Young's modulus (the force scale); u_old, v_old: the step's start, borrowed (the stepper updates
+ * them in place). */
+PetscErrorCode MMFrictionSetUp(MMFriction fr, MMContact ct, PetscReal mu_max, PetscReal E_max, Vec u_old, Vec v_old, Vec react)
+{
+  PetscErrorCode (*create)(MMFriction) = NULL;
+  PetscBool      has, dofs;
+  const char    *type, *formulation, *choice, *products;
+  MPI_Comm       comm = fr->comm;
+  MMContactNodes cn;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMContactGetNodes(ct, &cn));
+  PetscCall(MMContactGetSolverText(ct, &formulation, &choice, &products));
+  fr->contact = ct;
+  fr->u_old   = u_old;
+  fr->v_old   = v_old;
+  fr->s_floor = mu_max * 1e-3 * E_max * PetscPowReal(cn.h_c, cn.dim - 1);
+  PetscCall(MMContactHasDelassus(ct, &has));
+  PetscCall(MMContactHasCoulombDofs(ct, &dofs));
   /* the default: Newton where the formulation gives the Delassus operator or solves Coulomb itself,
    * else the fixed point */
-  type = ctx->opt.friction_type_set ? ctx->opt.friction_type : (has || dofs || !ctx->contact.enabled ? "newton" : "fixedpoint");
+  type = fr->type_set ? fr->type_name : (has || dofs || !cn.enabled ? "newton" : "fixedpoint");
   PetscCall(PetscFunctionListFind(MMFrictionList, type, &create));
   PetscCheck(create, comm, PETSC_ERR_USER_INPUT, "-friction_type %s is not a friction solver: use newton (semismooth Newton on the Coulomb problem, the default) or fixedpoint (the paper's fixed point on the thresholds)", type);
   PetscCall(PetscStrncpy(fr->type, type, sizeof(fr->type)));
   PetscCall((*create)(fr));
-  PetscCheck(!ctx->opt.friction_dump[0] || (ctx->opt.mu_max > 0 && has && fr->ops.solveset), comm, PETSC_ERR_USER_INPUT, "-friction_dump %s writes the contact-space Coulomb problems, which this run does not solve: it needs -mu > 0, -contact_formulation condensed and a -friction_type that solves them (newton or fixedpoint)", ctx->opt.friction_dump);
+  PetscCheck(!fr->dump[0] || (mu_max > 0 && has && fr->ops.solveset), comm, PETSC_ERR_USER_INPUT, "-friction_dump %s writes the contact-space Coulomb problems, which this run does not solve: it needs -mu > 0, -contact_formulation condensed and a -friction_type that solves them (newton or fixedpoint)", fr->dump);
   PetscCall(MMFrictionDumpSetUp(fr));
-  if (ctx->opt.mu_max == 0 || !ctx->contact.enabled) PetscFunctionReturn(0);
+  if (mu_max == 0 || !cn.enabled) PetscFunctionReturn(0);
   PetscCheck(has ? fr->ops.solveset != NULL : (dofs && fr->ops.solvedofs) || fr->ops.solvethresholds, comm, PETSC_ERR_USER_INPUT,
-             "-friction_type %s cannot solve the Coulomb problem of -contact_formulation %s: use -friction_type fixedpoint", type, ctx->contact.type);
+             "-friction_type %s cannot solve the Coulomb problem of -contact_formulation %s: use -friction_type fixedpoint", type, formulation);
   PetscCall(SNESCreate(comm, &fr->snes));
   PetscCall(SNESSetOptionsPrefix(fr->snes, "friction_"));
   PetscCall(SNESSetType(fr->snes, SNESSHELL));
@@ -197,37 +255,39 @@ PetscErrorCode MMFrictionSetUp(MMCtx *ctx)
   PetscCall(SNESSetTolerances(fr->snes, PETSC_DEFAULT, fr->ops.default_rtol, PETSC_DEFAULT, 100, PETSC_DEFAULT));
   PetscCall(SNESSetFromOptions(fr->snes));
   PetscCall(SNESGetTolerances(fr->snes, NULL, &fr->rtol, NULL, &fr->maxit, NULL));
-  PetscCall(VecDuplicate(ctx->contact.gap, &fr->s));
-  PetscCall(VecDuplicate(ctx->contact.gap, &fr->s_new));
+  PetscCall(VecDuplicate(cn.gap, &fr->s));
+  PetscCall(VecDuplicate(cn.gap, &fr->s_new));
   PetscCall(VecZeroEntries(fr->s_new));
-  PetscCall(VecDuplicate(ctx->state.u, &fr->sigma));
+  PetscCall(VecDuplicate(u_old, &fr->sigma));
   /* the first thresholds of a threshold loop: mu times the initial normal reactions */
   {
     Vec rn;
-    PetscCall(VecGetSubVector(ctx->state.react, ctx->contact.is_normal, &rn));
+    PetscCall(VecGetSubVector(react, cn.is_normal, &rn));
     PetscCall(VecAXPBY(fr->s, -1.0, 0.0, rn));
-    PetscCall(VecPointwiseMult(fr->s, fr->s, ctx->contact.mu));
-    PetscCall(VecRestoreSubVector(ctx->state.react, ctx->contact.is_normal, &rn));
+    PetscCall(VecPointwiseMult(fr->s, fr->s, cn.mu));
+    PetscCall(VecRestoreSubVector(react, cn.is_normal, &rn));
     PetscCall(VecPointwiseMax(fr->s, fr->s, fr->s_new)); /* s_new is zero here: clip tension */
   }
   PetscFunctionReturn(0);
 }
 
 /* The step problem with friction; *ok is false when the solver did not converge (the caller retries
- * with a smaller dt). Without friction it is the contact solve itself. */
-PetscErrorCode MMFrictionSolve(MMCtx *ctx, Vec b, Vec w, Vec react, PetscBool *ok)
+ * with a smaller dt). Without friction it is the contact solve itself. step, t: the last accepted
+ * step and its time (the audit's obstacle positions, the dump's names). */
+PetscErrorCode MMFrictionSolve(MMFriction fr, PetscInt step, PetscReal t, Vec b, Vec w, Vec react, PetscBool *ok)
 {
-  MMFriction          fr = ctx->friction;
   SNESConvergedReason reason;
 
   PetscFunctionBeginUser;
-  *ok     = PETSC_TRUE;
-  fr->its = fr->inner_its = 0;
+  *ok      = PETSC_TRUE;
+  fr->its  = fr->inner_its = 0;
+  fr->step = step;
+  fr->time = t;
   if (!fr->snes) {
-    PetscCall(MMContactSolve(ctx, b, w, react));
+    PetscCall(MMContactSolve(fr->contact, b, w, react));
     PetscFunctionReturn(0);
   }
-  PetscCall(PetscLogEventBegin(ctx->log.friction, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(MMFRICTION_Loop, 0, 0, 0, 0));
   fr->b     = b;
   fr->w     = w;
   fr->react = react;
@@ -236,8 +296,8 @@ PetscErrorCode MMFrictionSolve(MMCtx *ctx, Vec b, Vec w, Vec react, PetscBool *o
   *ok = (PetscBool)(reason > 0);
   /* the solve updated only the contact dofs: one full-size solve completes the step (a rejected
    * step is solved again, so it needs none) */
-  if (*ok) PetscCall(MMContactRecover(ctx, b, w, react));
-  PetscCall(PetscLogEventEnd(ctx->log.friction, 0, 0, 0, 0));
+  if (*ok) PetscCall(MMContactRecover(fr->contact, b, w, react));
+  PetscCall(PetscLogEventEnd(MMFRICTION_Loop, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

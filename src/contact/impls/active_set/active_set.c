@@ -24,15 +24,13 @@
  * tangential rows to its normal row and need GMRES or BiCGStab), and the thresholds converge
  * linearly (docs/method.md section 3, "Coulomb in the active-set iteration"). */
 #include <petsc/private/petscimpl.h> /* PetscObjectStateGet */
-#include "../../contactimpl.h"
-#include "log.h"
+#include "active_setimpl.h"
 
 /* y += kappa_k e_k (e_k.x_t) at every slipping node in 3D, e_k = d_perp: the Newton tangent of the
  * Tresca disk across the slip direction (its tangential dofs are free). */
-static PetscErrorCode AddDiskTangent(MMCtx *ctx, Vec x, Vec y)
+static PetscErrorCode AddDiskTangent(MMContact ct, Vec x, Vec y)
 {
-  MMContact         *ct = &ctx->contact;
-  MMActiveSet       *as = &ct->as;
+  MMActiveSet       *as = MMActiveSetData(ct);
   const PetscInt    *in;
   const PetscScalar *xa;
   PetscScalar       *ya;
@@ -84,15 +82,15 @@ static PetscErrorCode KeepFreeElseCopy(Vec free, Vec x, Vec y)
 /* y = P_F (K~ + S) P_F x + P_D x, with P_F the diagonal 0/1 mask `free` and S the disk tangent. */
 static PetscErrorCode ProjectedOperator(Mat A, Vec x, Vec y)
 {
-  MMCtx       *ctx;
+  MMContact        ct;
   MMActiveSet *as;
 
   PetscFunctionBeginUser;
-  PetscCall(MatShellGetContext(A, &ctx));
-  as = &ctx->contact.as;
+  PetscCall(MatShellGetContext(A, &ct));
+  as = MMActiveSetData(ct);
   PetscCall(VecPointwiseMult(as->t, as->free, x));
-  PetscCall(MatMult(as->Kb ? as->Kb : ctx->contact.qp.A, as->t, y));
-  PetscCall(AddDiskTangent(ctx, as->t, y));
+  PetscCall(MatMult(as->Kb ? as->Kb : ct->qp.A, as->t, y));
+  PetscCall(AddDiskTangent(ct, as->t, y));
   PetscCall(KeepFreeElseCopy(as->free, x, y));
   PetscFunctionReturn(0);
 }
@@ -104,10 +102,9 @@ static PetscErrorCode ProjectedOperator(Mat A, Vec x, Vec y)
  * c (I + beta e e^T). Without it the springs (beta up to 1e6) are as many large, distinct eigenvalues
  * of the preconditioned operator as there are slipping nodes, and CG takes hundreds of iterations
  * per solve once a few thousand nodes slip (docs/method.md section 3). */
-static PetscErrorCode ScaleDiskTangent(MMCtx *ctx, Vec v)
+static PetscErrorCode ScaleDiskTangent(MMContact ct, Vec v)
 {
-  MMContact      *ct = &ctx->contact;
-  MMActiveSet    *as = &ct->as;
+  MMActiveSet    *as = MMActiveSetData(ct);
   const PetscInt *in;
   PetscScalar    *va;
   PetscInt        rstart;
@@ -136,36 +133,35 @@ static PetscErrorCode ScaleDiskTangent(MMCtx *ctx, Vec v)
  * tangent's stiffening S (ScaleDiskTangent) on both sides. */
 static PetscErrorCode ProjectedPC(PC pc, Vec x, Vec y)
 {
-  MMCtx       *ctx;
+  MMContact        ct;
   MMActiveSet *as;
   PC           pcK;
 
   PetscFunctionBeginUser;
-  PetscCall(PCShellGetContext(pc, &ctx));
-  as = &ctx->contact.as;
-  PetscCall(KSPGetPC(ctx->contact.kt.ksp, &pcK));
+  PetscCall(PCShellGetContext(pc, &ct));
+  as = MMActiveSetData(ct);
+  PetscCall(KSPGetPC(ct->kt.ksp, &pcK));
   PetscCall(VecPointwiseMult(as->t, as->free, x));
-  PetscCall(ScaleDiskTangent(ctx, as->t));
+  PetscCall(ScaleDiskTangent(ct, as->t));
   PetscCall(PCApply(pcK, as->t, y));
-  PetscCall(ScaleDiskTangent(ctx, y));
+  PetscCall(ScaleDiskTangent(ct, y));
   PetscCall(KeepFreeElseCopy(as->free, x, y));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMActiveSetSetUp(MMCtx *ctx)
+PetscErrorCode MMActiveSetSetUp(MMContact ct)
 {
-  MMContact   *ct = &ctx->contact;
-  MMActiveSet *as = &ct->as;
-  MPI_Comm     comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  MMActiveSet *as = MMActiveSetData(ct);
+  MPI_Comm     comm = PetscObjectComm((PetscObject)ct->op->dm);
   PetscInt     n, N;
   PC           pc;
 
   PetscFunctionBeginUser;
-  as->max_it  = ctx->opt.active_set_max_it;
-  as->inexact_rtol = ctx->opt.active_set_inexact_rtol;
-  as->monitor = ctx->opt.active_set_monitor;
-  as->block   = ctx->opt.active_set_block;
-  PetscCall(MMKtCreate(ctx, PETSC_TRUE));
+  as->max_it  = ct->opt.active_set_max_it;
+  as->inexact_rtol = ct->opt.active_set_inexact_rtol;
+  as->monitor = ct->opt.active_set_monitor;
+  as->block   = ct->opt.active_set_block;
+  PetscCall(MMKtCreate(ct, PETSC_TRUE));
   PetscCall(VecDuplicate(ct->qp.b, &as->free));
   PetscCall(VecDuplicate(ct->qp.b, &as->x0));
   PetscCall(VecDuplicate(ct->qp.b, &as->r));
@@ -174,13 +170,13 @@ PetscErrorCode MMActiveSetSetUp(MMCtx *ctx)
   PetscCall(VecDuplicate(ct->qp.b, &as->ct_diag));
   PetscCall(VecDuplicate(ct->gap, &as->s));
   PetscCall(VecZeroEntries(as->s));
-  PetscCall(MMContactCreateReactions(ctx));
-  PetscCall(PetscCalloc3(ct->n_local, &as->active, ct->n_local, &as->stick, PetscMax(1, ct->n_local * (ctx->op.dim - 1)), &as->dir));
+  PetscCall(MMContactCreateReactions(ct));
+  PetscCall(PetscCalloc3(ct->n_local, &as->active, ct->n_local, &as->stick, PetscMax(1, ct->n_local * (ct->op->dim - 1)), &as->dir));
   PetscCall(PetscCalloc3(ct->n_local, &as->kappa, ct->n_local, &as->beta, ct->n_local, &as->rperp));
 
   PetscCall(VecGetLocalSize(ct->qp.b, &n));
   PetscCall(VecGetSize(ct->qp.b, &N));
-  PetscCall(MatCreateShell(comm, n, n, N, N, ctx, &as->A));
+  PetscCall(MatCreateShell(comm, n, n, N, N, ct, &as->A));
   PetscCall(MatShellSetOperation(as->A, MATOP_MULT, (void (*)(void))ProjectedOperator));
   PetscCall(KSPCreate(comm, &as->ksp));
   PetscCall(KSPSetOptionsPrefix(as->ksp, "contact_as_"));
@@ -191,7 +187,7 @@ PetscErrorCode MMActiveSetSetUp(MMCtx *ctx)
   PetscCall(KSPSetErrorIfNotConverged(as->ksp, PETSC_TRUE));
   PetscCall(KSPGetPC(as->ksp, &pc));
   PetscCall(PCSetType(pc, PCSHELL));
-  PetscCall(PCShellSetContext(pc, ctx));
+  PetscCall(PCShellSetContext(pc, ct));
   PetscCall(PCShellSetApply(pc, ProjectedPC));
   PetscCall(PCShellSetName(pc, "P_F (contact_K_ PC) P_F + P_D"));
   PetscCall(KSPSetFromOptions(as->ksp));
@@ -200,19 +196,18 @@ PetscErrorCode MMActiveSetSetUp(MMCtx *ctx)
 
 /* Kb made or refilled from the current K~ when K~ changed since (a new dt, or the kept one swapped
  * back); left NULL, and the products on K~'s AIJ, where K~'s pattern is not in whole blocks. */
-static PetscErrorCode RefreshBlockOperator(MMCtx *ctx)
+static PetscErrorCode RefreshBlockOperator(MMContact ct)
 {
-  MMContact       *ct = &ctx->contact;
-  MMActiveSet     *as = &ct->as;
+  MMActiveSet     *as = MMActiveSetData(ct);
   PetscObjectState state;
 
   PetscFunctionBeginUser;
   if (!as->block) PetscFunctionReturn(0);
   PetscCall(PetscObjectStateGet((PetscObject)ct->qp.A, &state));
   if (as->Kb_of == ct->qp.A && as->Kb_state == state) PetscFunctionReturn(0);
-  PetscCall(PetscLogEventBegin(MM_BlockOperator, 0, 0, 0, 0));
-  PetscCall(MMActiveSetBlockOperator(ct->qp.A, ctx->op.dim, &as->Kb));
-  PetscCall(PetscLogEventEnd(MM_BlockOperator, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(MMCONTACT_BlockOperator, 0, 0, 0, 0));
+  PetscCall(MMActiveSetBlockOperator(ct->qp.A, ct->op->dim, &as->Kb));
+  PetscCall(PetscLogEventEnd(MMCONTACT_BlockOperator, 0, 0, 0, 0));
   as->block    = (PetscBool)(as->Kb != NULL);
   as->Kb_of    = ct->qp.A;
   as->Kb_state = state;
@@ -221,26 +216,24 @@ static PetscErrorCode RefreshBlockOperator(MMCtx *ctx)
 
 /* A new K~ (a new dt): its PC, set up once, and the scale c = diag(K~) of the complementarity
  * functions, which keeps force and displacement in the same units. */
-PetscErrorCode MMActiveSetSetOperator(MMCtx *ctx)
+PetscErrorCode MMActiveSetSetOperator(MMContact ct)
 {
-  MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
-  PetscCall(MMKtSetOperator(ctx, ct->qp.A));
-  PetscCall(MatGetDiagonal(ct->qp.A, ct->as.ct_diag));
-  PetscCall(RefreshBlockOperator(ctx)); /* here too, so that the start-up header can tell */
-  PetscCall(KSPSetOperators(ct->as.ksp, ct->as.A, ct->as.A));
+  PetscCall(MMKtSetOperator(ct, ct->qp.A));
+  PetscCall(MatGetDiagonal(ct->qp.A, MMActiveSetData(ct)->ct_diag));
+  PetscCall(RefreshBlockOperator(ct)); /* here too, so that the start-up header can tell */
+  PetscCall(KSPSetOperators(MMActiveSetData(ct)->ksp, MMActiveSetData(ct)->A, MMActiveSetData(ct)->A));
   PetscFunctionReturn(0);
 }
 
 /* Tresca thresholds s, one per contact node, for the next solves; the bounds |rho_t| <= s are
  * also what the diagnostics compare the reactions with. */
-PetscErrorCode MMActiveSetSetThresholds(MMCtx *ctx, Vec s)
+PetscErrorCode MMActiveSetSetThresholds(MMContact ct, Vec s)
 {
-  MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
-  PetscCall(VecCopy(s, ct->as.s));
+  PetscCall(VecCopy(s, MMActiveSetData(ct)->s));
   for (PetscInt c = 1; c < ct->ncomp; ++c) {
     PetscCall(VecStrideScatter(s, c, ct->rho_hi, INSERT_VALUES));
     PetscCall(VecStrideScatter(s, c, ct->rho_lo, INSERT_VALUES));
@@ -258,12 +251,11 @@ typedef struct {
   PetscReal          half_dt;
 } NodeData;
 
-static PetscErrorCode NodeDataGet(MMCtx *ctx, NodeData *nd)
+static PetscErrorCode NodeDataGet(MMContact ct, NodeData *nd)
 {
-  MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
-  nd->dim     = ctx->op.dim;
+  nd->dim     = ct->op->dim;
   nd->nt      = ct->ncomp > 1 ? nd->dim - 1 : 0; /* tangential dofs with friction */
   nd->ncomp   = ct->ncomp;
   nd->half_dt = 0.5 * ct->Kt_dt;
@@ -271,22 +263,21 @@ static PetscErrorCode NodeDataGet(MMCtx *ctx, NodeData *nd)
   PetscCall(VecGetOwnershipRange(ct->qp.b, &nd->rstart, NULL));
   PetscCall(ISGetIndices(ct->is_normal, &nd->in));
   PetscCall(VecGetArrayRead(ct->gap, &nd->g));
-  PetscCall(VecGetArrayRead(ct->as.s, &nd->s));
-  PetscCall(VecGetArrayRead(ctx->state.u_old, &nd->uo));
-  PetscCall(VecGetArrayRead(ctx->state.v_old, &nd->vo));
-  PetscCall(VecGetArrayRead(ct->as.ct_diag, &nd->c));
+  PetscCall(VecGetArrayRead(MMActiveSetData(ct)->s, &nd->s));
+  PetscCall(VecGetArrayRead(ct->u_old, &nd->uo));
+  PetscCall(VecGetArrayRead(ct->v_old, &nd->vo));
+  PetscCall(VecGetArrayRead(MMActiveSetData(ct)->ct_diag, &nd->c));
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode NodeDataRestore(MMCtx *ctx, NodeData *nd)
+static PetscErrorCode NodeDataRestore(MMContact ct, NodeData *nd)
 {
-  MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
-  PetscCall(VecRestoreArrayRead(ct->as.ct_diag, &nd->c));
-  PetscCall(VecRestoreArrayRead(ctx->state.v_old, &nd->vo));
-  PetscCall(VecRestoreArrayRead(ctx->state.u_old, &nd->uo));
-  PetscCall(VecRestoreArrayRead(ct->as.s, &nd->s));
+  PetscCall(VecRestoreArrayRead(MMActiveSetData(ct)->ct_diag, &nd->c));
+  PetscCall(VecRestoreArrayRead(ct->v_old, &nd->vo));
+  PetscCall(VecRestoreArrayRead(ct->u_old, &nd->uo));
+  PetscCall(VecRestoreArrayRead(MMActiveSetData(ct)->s, &nd->s));
   PetscCall(VecRestoreArrayRead(ct->gap, &nd->g));
   PetscCall(ISRestoreIndices(ct->is_normal, &nd->in));
   PetscFunctionReturn(0);
@@ -302,10 +293,9 @@ static inline PetscReal Offset(const NodeData *nd, PetscInt k, PetscInt i, Petsc
 /* The linear problem of the current sets: x0 = w with the fixed dofs at their values (g, off_t),
  * free = the mask of F, and r = P_F (b - E rho_slip - K~ x0), the free dofs' residual, rho_slip the
  * slipping nodes' load s d (3D: minus beta rperp e, the Newton step's part across d). */
-static PetscErrorCode FixSets(MMCtx *ctx, Vec b, Vec w)
+static PetscErrorCode FixSets(MMContact ct, Vec b, Vec w)
 {
-  MMContact   *ct = &ctx->contact;
-  MMActiveSet *as = &ct->as;
+  MMActiveSet *as = MMActiveSetData(ct);
   NodeData     nd;
   PetscScalar *x, *f, *r;
   const PetscScalar *rho;
@@ -314,7 +304,7 @@ static PetscErrorCode FixSets(MMCtx *ctx, Vec b, Vec w)
   PetscCall(VecCopy(w, as->x0));
   PetscCall(VecSet(as->free, 1.0));
   PetscCall(VecCopy(b, as->t)); /* b - E rho_slip */
-  PetscCall(NodeDataGet(ctx, &nd));
+  PetscCall(NodeDataGet(ct, &nd));
   PetscCall(VecGetArray(as->x0, &x));
   PetscCall(VecGetArray(as->free, &f));
   PetscCall(VecGetArray(as->t, &r));
@@ -348,7 +338,7 @@ static PetscErrorCode FixSets(MMCtx *ctx, Vec b, Vec w)
   PetscCall(VecRestoreArray(as->t, &r));
   PetscCall(VecRestoreArray(as->free, &f));
   PetscCall(VecRestoreArray(as->x0, &x));
-  PetscCall(NodeDataRestore(ctx, &nd));
+  PetscCall(NodeDataRestore(ct, &nd));
   PetscCall(MatMult(as->Kb ? as->Kb : ct->qp.A, as->x0, as->r));
   PetscCall(VecAYPX(as->r, -1.0, as->t));
   PetscCall(VecPointwiseMult(as->r, as->free, as->r));
@@ -371,15 +361,14 @@ static void DiskTangent(MMActiveSet *as, PetscInt k, PetscReal sk, PetscReal trn
  * solve stops once CG has reduced r by -active_set_inexact_rtol: its iterate only decides the next
  * sets, which the solves to -contact_tol then confirm (MMActiveSetSolve). *tight: the solve met
  * -contact_tol (a loose one can, when its residual was small to begin with). */
-static PetscErrorCode SolveFree(MMCtx *ctx, Vec b, Vec w, PetscBool loose, PetscBool *tight)
+static PetscErrorCode SolveFree(MMContact ct, Vec b, Vec w, PetscBool loose, PetscBool *tight)
 {
-  MMContact   *ct = &ctx->contact;
-  MMActiveSet *as = &ct->as;
+  MMActiveSet *as = MMActiveSetData(ct);
   PetscInt     its, maxit;
   PetscReal    rtol, atol, dtol, rnorm, tight_atol;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(ctx->log.as_linear, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(MMCONTACT_ActiveSetCG, 0, 0, 0, 0));
   PetscCall(VecZeroEntries(as->dx));
   PetscCall(KSPGetTolerances(as->ksp, &rtol, &atol, &dtol, &maxit));
   if (loose) PetscCall(KSPSetTolerances(as->ksp, PetscMax(rtol, as->inexact_rtol), atol, dtol, maxit));
@@ -393,7 +382,7 @@ static PetscErrorCode SolveFree(MMCtx *ctx, Vec b, Vec w, PetscBool loose, Petsc
     *tight = (PetscBool)(rnorm <= tight_atol);
   }
   PetscCall(VecWAXPY(w, 1.0, as->x0, as->dx));
-  PetscCall(PetscLogEventEnd(ctx->log.as_linear, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(MMCONTACT_ActiveSetCG, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -405,14 +394,13 @@ typedef struct {
   PetscReal len, force, fscale;
 } SetTolerances;
 
-static PetscErrorCode GetSetTolerances(MMCtx *ctx, SetTolerances *tol)
+static PetscErrorCode GetSetTolerances(MMContact ct, SetTolerances *tol)
 {
-  MMContact *ct = &ctx->contact;
   PetscReal  rmax;
 
   PetscFunctionBeginUser;
   PetscCall(VecStrideMax(ct->rho, 0, NULL, &rmax));
-  tol->fscale = PetscMax(rmax, 1e-3 * ctx->material.E_max * PetscPowReal(ct->h_c, ctx->op.dim - 1));
+  tol->fscale = PetscMax(rmax, 1e-3 * ct->material->E_max * PetscPowReal(ct->h_c, ct->op->dim - 1));
   tol->len    = 1e-10 * ct->h_c;
   tol->force  = 1e-9 * tol->fscale;
   PetscFunctionReturn(0);
@@ -420,10 +408,9 @@ static PetscErrorCode GetSetTolerances(MMCtx *ctx, SetTolerances *tol)
 
 /* b - K~ w on the contact dofs only, through K~'s contact rows (a few percent of its nonzeros, where
  * a whole product would cost as much as a CG iteration), extracted again whenever K~ changes. */
-static PetscErrorCode ContactResidual(MMCtx *ctx, Vec b, Vec w)
+static PetscErrorCode ContactResidual(MMContact ct, Vec b, Vec w)
 {
-  MMContact       *ct = &ctx->contact;
-  MMActiveSet     *as = &ct->as;
+  MMActiveSet     *as = MMActiveSetData(ct);
   PetscObjectState state;
   Vec              bc;
 
@@ -446,17 +433,16 @@ static PetscErrorCode ContactResidual(MMCtx *ctx, Vec b, Vec w)
 
 /* From the solution w of the current sets: the reactions rho (res = b - K~ w = E rho on the fixed
  * dofs, the loads on the slipping ones). */
-static PetscErrorCode Reactions(MMCtx *ctx, Vec b, Vec w)
+static PetscErrorCode Reactions(MMContact ct, Vec b, Vec w)
 {
-  MMContact         *ct = &ctx->contact;
-  MMActiveSet       *as = &ct->as;
+  MMActiveSet       *as = MMActiveSetData(ct);
   NodeData           nd;
   const PetscScalar *res, *dx;
   PetscScalar       *rho;
 
   PetscFunctionBeginUser;
-  PetscCall(ContactResidual(ctx, b, w));
-  PetscCall(NodeDataGet(ctx, &nd));
+  PetscCall(ContactResidual(ct, b, w));
+  PetscCall(NodeDataGet(ct, &nd));
   PetscCall(VecGetArrayRead(as->rc, &res));
   PetscCall(VecGetArrayRead(as->dx, &dx));
   PetscCall(VecGetArray(ct->rho, &rho));
@@ -476,7 +462,7 @@ static PetscErrorCode Reactions(MMCtx *ctx, Vec b, Vec w)
   PetscCall(VecRestoreArray(ct->rho, &rho));
   PetscCall(VecRestoreArrayRead(as->dx, &dx));
   PetscCall(VecRestoreArrayRead(as->rc, &res));
-  PetscCall(NodeDataRestore(ctx, &nd));
+  PetscCall(NodeDataRestore(ct, &nd));
   PetscFunctionReturn(0);
 }
 
@@ -484,9 +470,8 @@ static PetscErrorCode Reactions(MMCtx *ctx, Vec b, Vec w)
  * the iterate, s = mu max(rho_n, 0), before the stick/slip sets are updated against them. Returns
  * the largest change of a threshold over the force scale: the iteration has converged only when it
  * vanishes with the set changes, and then s = mu rho_n, the Coulomb law, holds at every node. */
-static PetscErrorCode CoulombThresholds(MMCtx *ctx, PetscReal fscale, PetscReal *ds)
+static PetscErrorCode CoulombThresholds(MMContact ct, PetscReal fscale, PetscReal *ds)
 {
-  MMContact         *ct = &ctx->contact;
   const PetscScalar *rho, *mu;
   PetscScalar       *s;
 
@@ -494,13 +479,13 @@ static PetscErrorCode CoulombThresholds(MMCtx *ctx, PetscReal fscale, PetscReal 
   *ds = 0;
   PetscCall(VecGetArrayRead(ct->rho, &rho));
   PetscCall(VecGetArrayRead(ct->mu, &mu));
-  PetscCall(VecGetArray(ct->as.s, &s));
+  PetscCall(VecGetArray(MMActiveSetData(ct)->s, &s));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
     const PetscReal s_new = PetscRealPart(mu[k]) * PetscMax(PetscRealPart(rho[k * ct->ncomp]), 0.0);
     *ds  = PetscMax(*ds, PetscAbsReal(s_new - PetscRealPart(s[k])) / fscale);
     s[k] = s_new;
   }
-  PetscCall(VecRestoreArray(ct->as.s, &s));
+  PetscCall(VecRestoreArray(MMActiveSetData(ct)->s, &s));
   PetscCall(VecRestoreArrayRead(ct->mu, &mu));
   PetscCall(VecRestoreArrayRead(ct->rho, &rho));
   PetscFunctionReturn(0);
@@ -509,10 +494,9 @@ static PetscErrorCode CoulombThresholds(MMCtx *ctx, PetscReal fscale, PetscReal 
 /* The new sets from w and its reactions rho. Counts the nodes that changed set and the largest
  * change of a slipping node's force over the force scale (its direction, and in 3D its part across
  * the direction). */
-static PetscErrorCode NewSets(MMCtx *ctx, Vec w, const SetTolerances *tol, PetscInt *nch_out, PetscReal *dmax_out)
+static PetscErrorCode NewSets(MMContact ct, Vec w, const SetTolerances *tol, PetscInt *nch_out, PetscReal *dmax_out)
 {
-  MMContact         *ct = &ctx->contact;
-  MMActiveSet       *as = &ct->as;
+  MMActiveSet       *as = MMActiveSetData(ct);
   NodeData           nd;
   const PetscScalar *wa;
   const PetscScalar *rho;
@@ -520,7 +504,7 @@ static PetscErrorCode NewSets(MMCtx *ctx, Vec w, const SetTolerances *tol, Petsc
   PetscReal          dmax = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(NodeDataGet(ctx, &nd));
+  PetscCall(NodeDataGet(ct, &nd));
   PetscCall(VecGetArrayRead(w, &wa));
   PetscCall(VecGetArrayRead(ct->rho, &rho));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
@@ -565,7 +549,7 @@ static PetscErrorCode NewSets(MMCtx *ctx, Vec w, const SetTolerances *tol, Petsc
   }
   PetscCall(VecRestoreArrayRead(ct->rho, &rho));
   PetscCall(VecRestoreArrayRead(w, &wa));
-  PetscCall(NodeDataRestore(ctx, &nd));
+  PetscCall(NodeDataRestore(ct, &nd));
   *nch_out  = nch;
   *dmax_out = dmax;
   PetscFunctionReturn(0);
@@ -574,18 +558,17 @@ static PetscErrorCode NewSets(MMCtx *ctx, Vec w, const SetTolerances *tol, Petsc
 /* One update from the solution w of the current sets: the reactions, with Coulomb the thresholds,
  * then the sets. Returns how many nodes changed set and the largest change of a slip force or a
  * threshold over the force scale. */
-static PetscErrorCode UpdateSets(MMCtx *ctx, Vec b, Vec w, PetscInt *changed, PetscReal *dchange)
+static PetscErrorCode UpdateSets(MMContact ct, Vec b, Vec w, PetscInt *changed, PetscReal *dchange)
 {
-  MMContact    *ct = &ctx->contact;
   SetTolerances tol = {0, 0, 0};
   PetscInt      nch;
   PetscReal     dmax, ds = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(Reactions(ctx, b, w));
-  PetscCall(GetSetTolerances(ctx, &tol));
-  if (ct->as.coulomb) PetscCall(CoulombThresholds(ctx, tol.fscale, &ds));
-  PetscCall(NewSets(ctx, w, &tol, &nch, &dmax));
+  PetscCall(Reactions(ct, b, w));
+  PetscCall(GetSetTolerances(ct, &tol));
+  if (MMActiveSetData(ct)->coulomb) PetscCall(CoulombThresholds(ct, tol.fscale, &ds));
+  PetscCall(NewSets(ct, w, &tol, &nch, &dmax));
   dmax = PetscMax(dmax, ds);
   PetscCall(MPIU_Allreduce(&nch, changed, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)w)));
   PetscCall(MPIU_Allreduce(&dmax, dchange, 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)w)));
@@ -595,31 +578,30 @@ static PetscErrorCode UpdateSets(MMCtx *ctx, Vec b, Vec w, PetscInt *changed, Pe
 /* The step's contact problem K~ w = b - E rho with the conditions above; w is the warm start on entry
  * (with the sets of the last solve) and the whole solution on return, ct->rho its reactions.
  * *converged is false when the sets still change after -active_set_max_it iterations. */
-PetscErrorCode MMActiveSetSolve(MMCtx *ctx, Vec b, Vec w, PetscBool *converged)
+PetscErrorCode MMActiveSetSolve(MMContact ct, Vec b, Vec w, PetscBool *converged)
 {
-  MMContact   *ct = &ctx->contact;
-  MMActiveSet *as = &ct->as;
+  MMActiveSet *as = MMActiveSetData(ct);
   MPI_Comm     comm = PetscObjectComm((PetscObject)w);
   /* with Coulomb the thresholds' change is the friction solver's own test (-friction_snes_rtol) */
-  PetscReal    dtol = as->coulomb ? PetscMin(as->coulomb_rtol, 1e-2 * ctx->opt.friction_coulomb_tol) : 1e-2 * ctx->opt.friction_coulomb_tol;
+  PetscReal    dtol = as->coulomb ? PetscMin(as->coulomb_rtol, 1e-2 * ct->opt.friction_coulomb_tol) : 1e-2 * ct->opt.friction_coulomb_tol;
 
   /* while nodes change set, a solve only has to tell the next sets apart: it is loose; once they
    * stop changing, the solves are tight and the last one, which changes nothing, is the answer */
   PetscBool    loose = (PetscBool)(as->inexact_rtol > 0);
 
   PetscFunctionBeginUser;
-  PetscCall(RefreshBlockOperator(ctx));
+  PetscCall(RefreshBlockOperator(ct));
   as->lin_its = 0;
   for (as->its = 1; as->its <= as->max_it; ++as->its) {
     PetscInt  changed;
     PetscReal dchange;
     PetscBool tight = PETSC_FALSE;
 
-    PetscCall(PetscLogEventBegin(ctx->log.as_iterate, 0, 0, 0, 0));
-    PetscCall(FixSets(ctx, b, w));
-    PetscCall(SolveFree(ctx, b, w, loose, &tight));
-    PetscCall(UpdateSets(ctx, b, w, &changed, &dchange));
-    PetscCall(PetscLogEventEnd(ctx->log.as_iterate, 0, 0, 0, 0));
+    PetscCall(PetscLogEventBegin(MMCONTACT_ActiveSetIterate, 0, 0, 0, 0));
+    PetscCall(FixSets(ct, b, w));
+    PetscCall(SolveFree(ct, b, w, loose, &tight));
+    PetscCall(UpdateSets(ct, b, w, &changed, &dchange));
+    PetscCall(PetscLogEventEnd(MMCONTACT_ActiveSetIterate, 0, 0, 0, 0));
     if (as->monitor) PetscCall(PetscPrintf(comm, "    active set %2" PetscInt_FMT ": %" PetscInt_FMT " nodes changed set, slip forces%s changed by %.3e of the force scale, %" PetscInt_FMT " CG iterations so far%s\n", as->its, changed, as->coulomb ? " and thresholds" : "", (double)dchange, as->lin_its, tight ? "" : " (loose solve)"));
     if (!changed && dchange <= dtol && tight) break;
     loose = (PetscBool)(changed && as->inexact_rtol > 0);
@@ -632,13 +614,13 @@ PetscErrorCode MMActiveSetSolve(MMCtx *ctx, Vec b, Vec w, PetscBool *converged)
 
 /* The frictionless or Tresca step: a solve that does not converge stops the run, as the other
  * formulations' VI does (the sets of a well-posed step settle in a few iterations). */
-static PetscErrorCode ActiveSetSolveOrFail(MMCtx *ctx, Vec b, Vec w)
+static PetscErrorCode ActiveSetSolveOrFail(MMContact ct, Vec b, Vec w)
 {
   PetscBool converged;
 
   PetscFunctionBeginUser;
-  PetscCall(MMActiveSetSolve(ctx, b, w, &converged));
-  PetscCheck(converged, PetscObjectComm((PetscObject)w), PETSC_ERR_NOT_CONVERGED, "The active-set contact solver did not converge in -active_set_max_it %" PetscInt_FMT " iterations: the contact or stick/slip sets keep changing. Run with -active_set_monitor to see how, and raise -active_set_max_it", ctx->contact.as.max_it);
+  PetscCall(MMActiveSetSolve(ct, b, w, &converged));
+  PetscCheck(converged, PetscObjectComm((PetscObject)w), PETSC_ERR_NOT_CONVERGED, "The active-set contact solver did not converge in -active_set_max_it %" PetscInt_FMT " iterations: the contact or stick/slip sets keep changing. Run with -active_set_monitor to see how, and raise -active_set_max_it", MMActiveSetData(ct)->max_it);
   PetscFunctionReturn(0);
 }
 
@@ -668,9 +650,8 @@ PetscErrorCode MMActiveSetDestroy(MMActiveSet *as)
  * value; on its free contact dofs (a node off the obstacle, a slipping node's tangential dofs) rho is
  * the prescribed value and K~ w - b differs from it by the CG residual, which is left to the energy
  * audit, as on the interior dofs, instead of passing for a force. */
-static PetscErrorCode ActiveSetContactForce(MMCtx *ctx, Vec b, Vec w, Vec react)
+static PetscErrorCode ActiveSetContactForce(MMContact ct, Vec b, Vec w, Vec react)
 {
-  MMContact *ct = &ctx->contact;
   Vec        rc;
 
   PetscFunctionBeginUser;
@@ -682,11 +663,11 @@ static PetscErrorCode ActiveSetContactForce(MMCtx *ctx, Vec b, Vec w, Vec react)
 }
 
 /* Every solve gives the whole w: the contact-dof solve is the solve. */
-static PetscErrorCode ActiveSetSolveStep(MMCtx *ctx, Vec b, Vec w, Vec react)
+static PetscErrorCode ActiveSetSolveStep(MMContact ct, Vec b, Vec w, Vec react)
 {
   PetscFunctionBeginUser;
-  PetscCall(ActiveSetSolveOrFail(ctx, b, w));
-  PetscCall(ActiveSetContactForce(ctx, b, w, react));
+  PetscCall(ActiveSetSolveOrFail(ct, b, w));
+  PetscCall(ActiveSetContactForce(ct, b, w, react));
   PetscFunctionReturn(0);
 }
 
@@ -695,52 +676,133 @@ static PetscErrorCode ActiveSetSolveStep(MMCtx *ctx, Vec b, Vec w, Vec react)
  * with mu r_n of the answer; it stops when the thresholds change by at most rtol of the force
  * scale. A solve that does not converge reports it (*converged false): the friction solver rejects
  * the step, and it is retried with a smaller dt. */
-static PetscErrorCode ActiveSetSolveCoulomb(MMCtx *ctx, Vec b, Vec w, Vec react, Vec s, PetscReal rtol, PetscInt *its, PetscBool *converged)
+static PetscErrorCode ActiveSetSolveCoulomb(MMContact ct, Vec b, Vec w, Vec react, Vec s, PetscReal rtol, PetscInt *its, PetscBool *converged)
 {
-  MMActiveSet *as = &ctx->contact.as;
+  MMActiveSet *as = MMActiveSetData(ct);
 
   PetscFunctionBeginUser;
   PetscCall(VecCopy(s, as->s));
   as->coulomb      = PETSC_TRUE;
   as->coulomb_rtol = rtol;
-  PetscCall(MMActiveSetSolve(ctx, b, w, converged));
+  PetscCall(MMActiveSetSolve(ct, b, w, converged));
   as->coulomb = PETSC_FALSE;
   /* the bounds |rho_t| <= s of the diagnostics, at the thresholds of the answer */
-  PetscCall(MMActiveSetSetThresholds(ctx, as->s));
+  PetscCall(MMActiveSetSetThresholds(ct, as->s));
   PetscCall(VecCopy(as->s, s));
-  PetscCall(ActiveSetContactForce(ctx, b, w, react));
+  PetscCall(ActiveSetContactForce(ct, b, w, react));
   *its = as->its;
   PetscFunctionReturn(0);
 }
 
 /* The CG on the free dofs (prefix contact_as_) applies the contact_K_ PC projected on them. */
-static PetscErrorCode ActiveSetGetStepKSP(MMCtx *ctx, KSP *krylov, KSP *pc_ksp)
+static PetscErrorCode ActiveSetGetStepKSP(MMContact ct, KSP *krylov, KSP *pc_ksp)
 {
   PetscFunctionBeginUser;
-  *krylov = ctx->contact.as.ksp;
-  *pc_ksp = ctx->contact.kt.ksp;
+  *krylov = MMActiveSetData(ct)->ksp;
+  *pc_ksp = ct->kt.ksp;
+  PetscFunctionReturn(0);
+}
+
+/* The CG's products (block_operator.c), for the start-up report */
+static PetscErrorCode ActiveSetGetProducts(MMContact ct, const char **products)
+{
+  MMActiveSet *as = MMActiveSetData(ct);
+
+  PetscFunctionBeginUser;
+  *products = "";
+  if (as->ksp) *products = as->Kb ? "; CG products with K~ in symmetric block storage (SBAIJ)" : (ct->opt.active_set_block ? "; CG products with K~'s AIJ (its pattern is not in whole blocks)" : "");
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ActiveSetGetNormalReactions(MMContact ct, Vec lambda)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecStrideGather(ct->rho, 0, lambda, INSERT_VALUES));
+  PetscFunctionReturn(0);
+}
+
+/* The warm start of row k: its normal state; on a first row its stick state and slip direction */
+static PetscErrorCode ActiveSetGetNodeState(MMContact ct, PetscInt k, PetscBool second, PetscScalar state[])
+{
+  MMActiveSet *as = MMActiveSetData(ct);
+
+  PetscFunctionBeginUser;
+  if (!as->active) PetscFunctionReturn(0);
+  if (second) {
+    state[MM_CONTACT_STATE_SECOND_AS] = (PetscScalar)as->active[k];
+    PetscFunctionReturn(0);
+  }
+  state[9]  = (PetscScalar)as->active[k];
+  state[10] = (PetscScalar)as->stick[k];
+  for (PetscInt j = 0; j < ct->dim - 1; ++j) state[11 + j] = as->dir[k * (ct->dim - 1) + j];
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ActiveSetSetNodeState(MMContact ct, PetscInt k, PetscBool second, const PetscScalar state[])
+{
+  MMActiveSet *as = MMActiveSetData(ct);
+
+  PetscFunctionBeginUser;
+  if (!as->active) PetscFunctionReturn(0);
+  if (second) {
+    as->active[k] = (PetscBool)(PetscRealPart(state[MM_CONTACT_STATE_SECOND_AS]) != 0);
+    PetscFunctionReturn(0);
+  }
+  as->active[k] = (PetscBool)(PetscRealPart(state[9]) != 0);
+  as->stick[k]  = (PetscBool)(PetscRealPart(state[10]) != 0);
+  for (PetscInt j = 0; j < ct->dim - 1; ++j) as->dir[k * (ct->dim - 1) + j] = PetscRealPart(state[11 + j]);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ActiveSetSetFromOptions(MMContact ct, PetscOptionItems *PetscOptionsObject)
+{
+  MPI_Comm          comm = ct->comm;
+  MMContactOptions *o    = &ct->opt;
+
+  PetscFunctionBeginUser;
+  o->active_set_max_it = 100;
+  PetscCall(MMOptionsInt(PetscOptionsObject, comm, "-active_set_max_it", "Active-set formulation: iterations per contact solve before the run stops (each is one projected CG solve)", &o->active_set_max_it));
+  o->active_set_inexact_rtol = 1e-1;
+  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-active_set_inexact_rtol", "Active-set formulation: while nodes still change set, CG reduces the residual by this factor only; the last solves, which confirm the sets, go to -contact_tol (0: every solve to -contact_tol)", &o->active_set_inexact_rtol));
+  o->active_set_block = PETSC_TRUE;
+  PetscCall(MMOptionsBool(PetscOptionsObject, comm, "-active_set_block_matrix", "Active-set formulation: the CG's products with K~ from a copy of it in symmetric block storage (SBAIJ, one block per pair of vertices, the upper triangle only: about 0.4 of the bytes an AIJ product reads, and the copy's memory, about 0.4 of K~'s); 0 keeps K~'s AIJ", &o->active_set_block));
+  o->active_set_monitor = PETSC_FALSE;
+  PetscCall(MMOptionsBool(PetscOptionsObject, comm, "-active_set_monitor", "Active-set formulation: print each iteration, the nodes that changed set and the CG iterations", &o->active_set_monitor));
+  PetscCheck(o->active_set_max_it >= 1, comm, PETSC_ERR_USER_INPUT, "-active_set_max_it %" PetscInt_FMT " must be >= 1", o->active_set_max_it);
+  PetscCheck(o->active_set_inexact_rtol >= 0 && o->active_set_inexact_rtol < 1, comm, PETSC_ERR_USER_INPUT, "-active_set_inexact_rtol %g must be in [0, 1): it is CG's relative residual reduction while nodes change set (0: every solve to -contact_tol)", (double)o->active_set_inexact_rtol);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ActiveSetDestroy(MMContact ct)
+{
+  MMActiveSet *as = MMActiveSetData(ct);
+
+  PetscFunctionBeginUser;
+  PetscCall(MMActiveSetDestroy(as));
+  PetscCall(VecDestroy(&as->kept_diag));
+  PetscCall(PetscFree(ct->data));
   PetscFunctionReturn(0);
 }
 
 /* K~, its PC (a factor with -contact_K_pc_type lu) and diag(K~) swapped with the kept ones of the
  * previous dt: going back to it sets nothing up again. */
-static PetscErrorCode ActiveSetSwapKept(MMCtx *ctx, PetscReal dt, PetscBool *hit)
+static PetscErrorCode ActiveSetSwapKept(MMContact ct, PetscReal dt, PetscBool *hit)
 {
-  MMContact *ct   = &ctx->contact;
-  Vec        diag = ct->as.ct_diag;
+  Vec        diag = MMActiveSetData(ct)->ct_diag;
 
   PetscFunctionBeginUser;
   PetscCall(MMContactSwapKeptOperator(ct, &ct->kt.ksp));
-  ct->as.ct_diag = ct->kept.diag;
-  ct->kept.diag  = diag;
+  MMActiveSetData(ct)->ct_diag = MMActiveSetData(ct)->kept_diag;
+  MMActiveSetData(ct)->kept_diag  = diag;
   /* a first swap: the buffers of the new dt are made here, as MMActiveSetSetUp made the first ones */
-  if (!ct->kt.ksp) PetscCall(MMKtCreate(ctx, PETSC_TRUE));
-  if (!ct->as.ct_diag) PetscCall(VecDuplicate(ct->qp.b, &ct->as.ct_diag));
+  if (!ct->kt.ksp) PetscCall(MMKtCreate(ct, PETSC_TRUE));
+  if (!MMActiveSetData(ct)->ct_diag) PetscCall(VecDuplicate(ct->qp.b, &MMActiveSetData(ct)->ct_diag));
   *hit = (PetscBool)(ct->qp.A && ct->Kt_dt == dt);
   PetscFunctionReturn(0);
 }
 
 static const MMContactOps ActiveSetOps = {
+  .setfromoptions   = ActiveSetSetFromOptions,
   .setup            = MMActiveSetSetUp,
   .setoperator      = MMActiveSetSetOperator,
   .solve            = ActiveSetSolveStep,
@@ -748,13 +810,22 @@ static const MMContactOps ActiveSetOps = {
   .recover          = ActiveSetContactForce,
   .setthresholds    = MMActiveSetSetThresholds,
   .solvecoulombdofs = ActiveSetSolveCoulomb,
+  .getnormalreactions = ActiveSetGetNormalReactions,
   .getstepksp       = ActiveSetGetStepKSP,
   .swapkept         = ActiveSetSwapKept,
+  .getnodestate     = ActiveSetGetNodeState,
+  .setnodestate     = ActiveSetSetNodeState,
+  .getproducts      = ActiveSetGetProducts,
+  .destroy          = ActiveSetDestroy,
 };
 
-PetscErrorCode MMContactCreate_ActiveSet(MMContact *ct)
+PetscErrorCode MMContactCreate_ActiveSet(MMContact ct)
 {
+  MMActiveSet *as;
+
   PetscFunctionBeginUser;
-  ct->ops = &ActiveSetOps;
+  PetscCall(PetscNew(&as));
+  ct->data = as;
+  ct->ops  = &ActiveSetOps;
   PetscFunctionReturn(0);
 }

@@ -7,7 +7,7 @@
  * from MPIAIJ inserts entry by entry, too slow, so the block matrix is preallocated from the AIJ
  * pattern and filled a block row at a time here; a new dt refills its values in place. The figures:
  * docs/scaling.md, "The figures behind the code's choices" and "Products in block storage". */
-#include "../../contactimpl.h"
+#include "active_setimpl.h"
 
 /* The local CSR of K~'s diagonal (d) and off-diagonal (o) parts, and the o part's global columns. */
 typedef struct {

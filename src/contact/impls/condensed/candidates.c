@@ -7,18 +7,18 @@
  * and its VI solved there with LAPACK, identically, so no matrix of size (contact dofs)^2 exists.
  * A node outside the set that the recovered step would push into the obstacle joins it, and the
  * step is solved again: the answer is the full-set one. */
-#include "../../contactimpl.h"
+#include "condensedimpl.h"
 
-static PetscBool NodeIsLocal(MMCandidates *c, MMContact *ct, PetscInt g)
+static PetscBool NodeIsLocal(MMCandidates *c, MMContact ct, PetscInt g)
 {
   return (PetscBool)(g >= c->node_start && g < c->node_start + ct->n_local);
 }
 
 /* The set's VI solver, created at set-up on a 1x1 placeholder so that its options (prefix contact_)
  * are read and checked before the first step; each new set gets its own (BuildSetOperator). */
-static PetscErrorCode CreateSetSolver(MMCtx *ctx)
+static PetscErrorCode CreateSetSolver(MMContact ct)
 {
-  MMCandidates *c = &ctx->contact.cand;
+  MMCandidates *c = &MMCondensedData(ct)->cand;
   Mat           W0;
 
   PetscFunctionBeginUser;
@@ -27,18 +27,17 @@ static PetscErrorCode CreateSetSolver(MMCtx *ctx)
   PetscCall(MatAssemblyBegin(W0, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(W0, MAT_FINAL_ASSEMBLY));
   c->qp.A      = W0;
-  c->qp.rtol_b = ctx->contact.tol;
-  PetscCall(MMQPCreate(PETSC_COMM_SELF, "contact_", &c->qp, ctx->contact.ncomp > 1 ? ctx->opt.mu_max : 0, &c->snes));
+  c->qp.rtol_b = ct->tol;
+  PetscCall(MMQPCreate(PETSC_COMM_SELF, "contact_", &c->qp, ct->ncomp > 1 ? ct->pb.mu_max : 0, &c->snes));
   PetscCall(MatDestroy(&W0));
   c->qp.A = NULL;
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMCandidatesSetUp(MMCtx *ctx)
+PetscErrorCode MMCandidatesSetUp(MMContact ct)
 {
-  MMContact   *ct = &ctx->contact;
-  MMCandidates *c = &ct->cand;
-  MPI_Comm     comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  MMCandidates *c = &MMCondensedData(ct)->cand;
+  MPI_Comm     comm = PetscObjectComm((PetscObject)ct->op->dm);
   PetscMPIInt  size, nl;
   const PetscInt *in;
   PetscInt    *mine;
@@ -51,9 +50,10 @@ PetscErrorCode MMCandidatesSetUp(MMCtx *ctx)
   c->full_ok    = PETSC_TRUE;
   PetscCall(MatGetLocalSize(ct->qp.A, &c->n_local, NULL));
   PetscCall(MatGetSize(ct->qp.A, &c->N, NULL));
-  c->margin     = ctx->opt.candidate_margin;
-  c->all        = ctx->opt.candidate_all;
-  c->memory_cap = ctx->opt.candidate_memory * 1024.0 * 1024.0;
+  c->margin     = ct->opt.candidate_margin;
+  c->all        = ct->opt.candidate_all;
+  c->memory_cap = ct->opt.candidate_memory * 1024.0 * 1024.0;
+  c->memory_mib = ct->opt.candidate_memory;
   PetscCall(PetscMalloc2(size, &c->node_counts, size, &c->node_displs));
   PetscCall(PetscMPIIntCast(ct->n_local, &nl));
   PetscCallMPI(MPI_Allgather(&nl, 1, MPI_INT, c->node_counts, 1, MPI_INT, comm));
@@ -81,14 +81,14 @@ PetscErrorCode MMCandidatesSetUp(MMCtx *ctx)
     for (PetscInt r = 0; r < c->nc_local; ++r) c->cond_row[r] = ic[r] - rstart;
     PetscCall(ISRestoreIndices(ct->is_cond, &ic));
   }
-  PetscCall(CreateSetSolver(ctx));
+  PetscCall(CreateSetSolver(ct));
   PetscFunctionReturn(0);
 }
 
 /* K~ was refactored: every cached column is stale. */
-PetscErrorCode MMCandidatesInvalidate(MMContact *ct)
+PetscErrorCode MMCandidatesInvalidate(MMContact ct)
 {
-  MMCandidates *c = &ct->cand;
+  MMCandidates *c = &MMCondensedData(ct)->cand;
 
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < c->n_cached; ++i) c->slot[c->slot_node[i]] = -1;
@@ -100,13 +100,13 @@ PetscErrorCode MMCandidatesInvalidate(MMContact *ct)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode UpdateCompliances(MMContact *);
+static PetscErrorCode UpdateCompliances(MMContact);
 
 /* The cached columns swapped with other's (a kept factor's): the set is emptied, as after a
  * refactorization, and the slots and compliances follow the columns now in place. */
-PetscErrorCode MMCandidatesSwapCache(MMContact *ct, MMColumnCache *other)
+PetscErrorCode MMCandidatesSwapCache(MMContact ct, MMColumnCache *other)
 {
-  MMCandidates *c   = &ct->cand;
+  MMCandidates *c   = &MMCondensedData(ct)->cand;
   MMColumnCache mine = {c->cols, c->full, c->slot_node, c->n_cached, c->cap, c->full_ok};
 
   PetscFunctionBeginUser;
@@ -124,9 +124,9 @@ PetscErrorCode MMCandidatesSwapCache(MMContact *ct, MMColumnCache *other)
 }
 
 /* Keeps only the cached columns of the set's nodes, compacted to the front of the cache. */
-static PetscErrorCode EvictOutsideSet(MMContact *ct)
+static PetscErrorCode EvictOutsideSet(MMContact ct)
 {
-  MMCandidates *c  = &ct->cand;
+  MMCandidates *c  = &MMCondensedData(ct)->cand;
   PetscInt      nb = ct->ncomp * c->nc_local, kept = 0;
 
   PetscFunctionBeginUser;
@@ -150,10 +150,9 @@ static PetscErrorCode EvictOutsideSet(MMContact *ct)
 /* Room for n more cached nodes, within the memory cap: beyond it the nodes outside the set go,
  * then the full columns (the step is then recovered by a solve), and a set that alone does not
  * fit stops the run. */
-static PetscErrorCode ReserveSlots(MMCtx *ctx, PetscInt n)
+static PetscErrorCode ReserveSlots(MMContact ct, PetscInt n)
 {
-  MMContact    *ct = &ctx->contact;
-  MMCandidates *c  = &ct->cand;
+  MMCandidates *c  = &MMCondensedData(ct)->cand;
   const PetscInt nr = ct->ncomp;
   const double  per_node = 8.0 * nr * nr * ct->n_global, per_node_full = 8.0 * nr * c->N; /* bytes over all ranks */
 
@@ -164,9 +163,9 @@ static PetscErrorCode ReserveSlots(MMCtx *ctx, PetscInt n)
     c->full_ok = PETSC_FALSE;
     PetscCall(PetscFree(c->full));
   }
-  PetscCheck((c->n_cached + n) * per_node <= c->memory_cap, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT,
+  PetscCheck((c->n_cached + n) * per_node <= c->memory_cap, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_USER_INPUT,
              "The contact candidate set (%" PetscInt_FMT " nodes) needs %.3g MiB of K~^{-1} E columns, above -contact_candidate_memory %g MiB. Raise it, or use a contact formulation that needs no Delassus operator",
-             c->n_cached + n, (c->n_cached + n) * per_node / 1048576.0, (double)ctx->opt.candidate_memory);
+             c->n_cached + n, (c->n_cached + n) * per_node / 1048576.0, (double)ct->opt.candidate_memory);
   if (c->n_cached + n > c->cap || (c->full_ok && !c->full)) {
     /* doubling, but never allocating past the cap. The arrays are slot-major, so a larger one keeps
      * the cached slots where they are: realloc remaps a large block instead of copying it into
@@ -186,9 +185,9 @@ static PetscErrorCode ReserveSlots(MMCtx *ctx, PetscInt n)
 /* Column i of the new ones (node todo[i / nr], component i % nr) into the cache, from its owned
  * rows xloc (xloc[0] is global row rstart); in order of i, so that a node's slot is taken by its
  * first component. */
-static PetscErrorCode StoreColumn(MMContact *ct, const PetscInt todo[], PetscInt i, const PetscInt ic[], PetscInt rstart, const PetscScalar xloc[])
+static PetscErrorCode StoreColumn(MMContact ct, const PetscInt todo[], PetscInt i, const PetscInt ic[], PetscInt rstart, const PetscScalar xloc[])
 {
-  MMCandidates  *c  = &ct->cand;
+  MMCandidates  *c  = &MMCondensedData(ct)->cand;
   const PetscInt nr = ct->ncomp, g = todo[i / nr], comp = i % nr;
   PetscScalar   *col;
 
@@ -211,11 +210,10 @@ static inline PetscInt ColumnDof(const MMCandidates *c, const PetscInt todo[], P
 
 /* The m new columns through a distributed factor (MUMPS), a block of right-hand sides at a time:
  * every rank takes part in every solve and keeps its rows. */
-static PetscErrorCode SolveColumnsDistributed(MMCtx *ctx, Mat F, const PetscInt todo[], PetscInt m, const PetscInt ic[])
+static PetscErrorCode SolveColumnsDistributed(MMContact ct, Mat F, const PetscInt todo[], PetscInt m, const PetscInt ic[])
 {
-  MMContact     *ct = &ctx->contact;
-  MMCandidates  *c  = &ct->cand;
-  MPI_Comm       comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  MMCandidates  *c  = &MMCondensedData(ct)->cand;
+  MPI_Comm       comm = PetscObjectComm((PetscObject)ct->op->dm);
   const PetscInt nb_max = 96, nr = ct->ncomp;
   PetscInt       n, rstart, *rows = NULL;
   PetscScalar   *xb   = NULL;
@@ -279,11 +277,10 @@ static PetscErrorCode SolveColumnsDistributed(MMCtx *ctx, Mat F, const PetscInt 
 /* The m new columns through a redundant factor (2D on several ranks: every rank holds all of K~'s
  * factor, sequential): rank q solves the columns [m q / P, m (q + 1) / P) whole, and one
  * MPI_Alltoallv gives every rank its rows of all of them. Each rank solves 1/P of the columns. */
-static PetscErrorCode SolveColumnsRedundant(MMCtx *ctx, Mat F, const PetscInt todo[], PetscInt m, const PetscInt ic[])
+static PetscErrorCode SolveColumnsRedundant(MMContact ct, Mat F, const PetscInt todo[], PetscInt m, const PetscInt ic[])
 {
-  MMContact      *ct = &ctx->contact;
-  MMCandidates   *c  = &ct->cand;
-  MPI_Comm        comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  MMCandidates   *c  = &MMCondensedData(ct)->cand;
+  MPI_Comm        comm = PetscObjectComm((PetscObject)ct->op->dm);
   const PetscInt  nb_max = 96, nr = ct->ncomp, N = c->N;
   const PetscInt *ranges;
   PetscMPIInt     rank, size, *scount, *sdispl, *rcount, *rdispl;
@@ -346,10 +343,9 @@ static PetscErrorCode SolveColumnsRedundant(MMCtx *ctx, Mat F, const PetscInt to
  * default: on several ranks each solve is collective and costs each rank a sweep each way of its
  * part of K~'s factor; 6.0 ms a column on the 115k-dof disk on 2 ranks, where the whole factor on
  * every rank divided the columns between the ranks at 13.6 ms each). */
-static PetscErrorCode SolveColumnsByPC(MMCtx *ctx, PC pc, const PetscInt todo[], PetscInt m, const PetscInt ic[])
+static PetscErrorCode SolveColumnsByPC(MMContact ct, PC pc, const PetscInt todo[], PetscInt m, const PetscInt ic[])
 {
-  MMContact         *ct = &ctx->contact;
-  MMCandidates      *c  = &ct->cand;
+  MMCandidates      *c  = &MMCondensedData(ct)->cand;
   const PetscInt     nr = ct->ncomp;
   PetscInt           rstart, rend;
   Vec                e, x;
@@ -381,10 +377,9 @@ static PetscErrorCode SolveColumnsByPC(MMCtx *ctx, PC pc, const PetscInt todo[],
 
 /* Columns of K~^{-1} E for the set's nodes not yet cached, kept on the owned condensed rows (and,
  * under the memory cap, on all owned rows for the recovery of w). */
-static PetscErrorCode ComputeMissingColumns(MMCtx *ctx)
+static PetscErrorCode ComputeMissingColumns(MMContact ct)
 {
-  MMContact      *ct = &ctx->contact;
-  MMCandidates   *c  = &ct->cand;
+  MMCandidates   *c  = &MMCondensedData(ct)->cand;
   PetscInt        nnew = 0, *todo;
   const PetscInt *ic;
   PC              pc;
@@ -399,38 +394,38 @@ static PetscErrorCode ComputeMissingColumns(MMCtx *ctx)
     PetscCall(PetscFree(todo));
     PetscFunctionReturn(0);
   }
-  PetscCall(PetscLogEventBegin(ctx->log.candidate_columns, 0, 0, 0, 0));
-  PetscCall(ReserveSlots(ctx, nnew));
-  PetscCall(MMKSPGetFactorPC(ct->ksp_K, &pc, &redundant));
+  PetscCall(PetscLogEventBegin(MMCONTACT_CandidateColumns, 0, 0, 0, 0));
+  PetscCall(ReserveSlots(ct, nnew));
+  PetscCall(MMKSPGetFactorPC(MMCondensedData(ct)->ksp_K, &pc, &redundant));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, MMPCSCHURSPLIT, &split));
   PetscCall(ISGetIndices(ct->is_cond, &ic));
-  if (split) PetscCall(SolveColumnsByPC(ctx, pc, todo, nnew * ct->ncomp, ic));
+  if (split) PetscCall(SolveColumnsByPC(ct, pc, todo, nnew * ct->ncomp, ic));
   else {
     PetscCall(PCFactorGetMatrix(pc, &F));
-    if (redundant) PetscCall(SolveColumnsRedundant(ctx, F, todo, nnew * ct->ncomp, ic));
-    else PetscCall(SolveColumnsDistributed(ctx, F, todo, nnew * ct->ncomp, ic));
+    if (redundant) PetscCall(SolveColumnsRedundant(ct, F, todo, nnew * ct->ncomp, ic));
+    else PetscCall(SolveColumnsDistributed(ct, F, todo, nnew * ct->ncomp, ic));
   }
   PetscCall(ISRestoreIndices(ct->is_cond, &ic));
   c->columns += nnew * ct->ncomp;
   PetscCall(PetscFree(todo));
-  PetscCall(PetscLogEventEnd(ctx->log.candidate_columns, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(MMCONTACT_CandidateColumns, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
 /* diag(W) of the owned cached nodes: the nodal compliances of the 3D return mapping. */
-static PetscErrorCode UpdateCompliances(MMContact *ct)
+static PetscErrorCode UpdateCompliances(MMContact ct)
 {
-  MMCandidates *c  = &ct->cand;
+  MMCandidates *c  = &MMCondensedData(ct)->cand;
   const PetscInt nr = ct->ncomp;
   PetscScalar  *wd;
 
   PetscFunctionBeginUser;
-  PetscCall(VecGetArray(ct->Wdiag, &wd));
+  PetscCall(VecGetArray(MMCondensedData(ct)->Wdiag, &wd));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
     const PetscInt s = c->slot[c->node_start + k];
     for (PetscInt p = 0; p < nr; ++p) wd[nr * k + p] = s < 0 ? 1.0 : c->cols[((size_t)s * nr + p) * c->nc_local + nr * k + p];
   }
-  PetscCall(VecRestoreArray(ct->Wdiag, &wd));
+  PetscCall(VecRestoreArray(MMCondensedData(ct)->Wdiag, &wd));
   PetscFunctionReturn(0);
 }
 
@@ -451,11 +446,10 @@ static PetscErrorCode DestroySetProblem(MMCandidates *c)
 /* The set's vectors, scatter and dense block W_SS: each rank contributes the rows it owns (the set
  * is sorted, so they are contiguous), every rank receives them all. W is symmetric; its two
  * triangles differ by the solves' round-off, so W_SS is their mean, and Cholesky applies. */
-static PetscErrorCode BuildSetOperator(MMCtx *ctx)
+static PetscErrorCode BuildSetOperator(MMContact ct)
 {
-  MMContact    *ct = &ctx->contact;
-  MMCandidates *c  = &ct->cand;
-  MPI_Comm      comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  MMCandidates *c  = &MMCondensedData(ct)->cand;
+  MPI_Comm      comm = PetscObjectComm((PetscObject)ct->op->dm);
   const PetscInt nr = ct->ncomp;
   PetscMPIInt   size, *cnt, *dsp, mine;
   PetscInt      first = -1, nloc = 0, m;
@@ -464,11 +458,11 @@ static PetscErrorCode BuildSetOperator(MMCtx *ctx)
   PetscInt     *idx;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(ctx->log.candidate_operator, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(MMCONTACT_CandidateOperator, 0, 0, 0, 0));
   m = c->m = nr * c->n_set;
   PetscCall(DestroySetProblem(c));
   if (!m) {
-    PetscCall(PetscLogEventEnd(ctx->log.candidate_operator, 0, 0, 0, 0));
+    PetscCall(PetscLogEventEnd(MMCONTACT_CandidateOperator, 0, 0, 0, 0));
     PetscFunctionReturn(0);
   }
   for (PetscInt i = 0; i < c->n_set; ++i)
@@ -516,18 +510,17 @@ static PetscErrorCode BuildSetOperator(MMCtx *ctx)
   c->qp.rtol_b = ct->tol;
   /* a new solver for the new size: SNESReset leaves the semismooth method's work vectors behind */
   PetscCall(SNESDestroy(&c->snes));
-  PetscCall(MMQPCreate(PETSC_COMM_SELF, "contact_", &c->qp, nr > 1 ? ctx->opt.mu_max : 0, &c->snes));
+  PetscCall(MMQPCreate(PETSC_COMM_SELF, "contact_", &c->qp, nr > 1 ? ct->pb.mu_max : 0, &c->snes));
   PetscCall(SNESVISetVariableBounds(c->snes, c->lo, c->hi));
-  PetscCall(PetscLogEventEnd(ctx->log.candidate_operator, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(MMCONTACT_CandidateOperator, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
 /* Adds the listed nodes (owned here, increasing) of every rank to the set; returns how many. */
-static PetscErrorCode AddToSet(MMCtx *ctx, PetscInt nmine, const PetscInt mine[], PetscInt *added)
+static PetscErrorCode AddToSet(MMContact ct, PetscInt nmine, const PetscInt mine[], PetscInt *added)
 {
-  MMContact    *ct = &ctx->contact;
-  MMCandidates *c  = &ct->cand;
-  MPI_Comm      comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  MMCandidates *c  = &MMCondensedData(ct)->cand;
+  MPI_Comm      comm = PetscObjectComm((PetscObject)ct->op->dm);
   PetscMPIInt   size, n, *cnt, *dsp;
   PetscInt     *news, total = 0, k = 0;
 
@@ -555,12 +548,12 @@ static PetscErrorCode AddToSet(MMCtx *ctx, PetscInt nmine, const PetscInt mine[]
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode CompleteSet(MMCtx *ctx)
+static PetscErrorCode CompleteSet(MMContact ct)
 {
   PetscFunctionBeginUser;
-  PetscCall(ComputeMissingColumns(ctx));
-  PetscCall(UpdateCompliances(&ctx->contact));
-  PetscCall(BuildSetOperator(ctx));
+  PetscCall(ComputeMissingColumns(ct));
+  PetscCall(UpdateCompliances(ct));
+  PetscCall(BuildSetOperator(ct));
   PetscFunctionReturn(0);
 }
 
@@ -570,10 +563,9 @@ static PetscErrorCode CompleteSet(MMCtx *ctx)
  * push and decays away from them (over about c_p dt), so a node farther out than the deepest
  * penetration they undo is not reached; rotations and bulging that do reach one are caught by
  * MMCandidatesGrow. */
-PetscErrorCode MMCandidatesSelect(MMCtx *ctx)
+PetscErrorCode MMCandidatesSelect(MMContact ct)
 {
-  MMContact         *ct = &ctx->contact;
-  MMCandidates      *c  = &ct->cand;
+  MMCandidates      *c  = &MMCondensedData(ct)->cand;
   const PetscInt     nr = ct->ncomp;
   const PetscScalar *qa, *ra, *q2 = NULL, *r2 = NULL;
   PetscReal          deepest = 0;
@@ -582,13 +574,13 @@ PetscErrorCode MMCandidatesSelect(MMCtx *ctx)
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < c->n_set; ++i) c->in_set[c->set[i]] = PETSC_FALSE;
   c->n_set = 0;
-  PetscCall(VecGetArrayRead(ct->q, &qa));
+  PetscCall(VecGetArrayRead(MMCondensedData(ct)->q, &qa));
   PetscCall(VecGetArrayRead(ct->rho, &ra));
   /* a friction corner's second obstacle (zero elsewhere) can bring it into the set too */
   if (ct->fc_q) PetscCall(VecGetArrayRead(ct->fc_q, &q2));
   if (ct->fc_x) PetscCall(VecGetArrayRead(ct->fc_x, &r2));
   for (PetscInt k = 0; k < ct->n_local; ++k) deepest = PetscMax(deepest, PetscMax(PetscRealPart(qa[nr * k]), q2 ? PetscRealPart(q2[nr * k]) : 0.0));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &deepest, 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)ctx->op.dm)));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &deepest, 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)ct->op->dm)));
   PetscCall(PetscMalloc1(ct->n_local, &mine));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
     const PetscBool second = (PetscBool)(q2 && ct->fc_obstacle[k] >= 0 && (PetscRealPart(q2[nr * k]) >= -c->margin * deepest || PetscRealPart(r2[nr * k]) > 0));
@@ -597,20 +589,19 @@ PetscErrorCode MMCandidatesSelect(MMCtx *ctx)
   if (r2) PetscCall(VecRestoreArrayRead(ct->fc_x, &r2));
   if (q2) PetscCall(VecRestoreArrayRead(ct->fc_q, &q2));
   PetscCall(VecRestoreArrayRead(ct->rho, &ra));
-  PetscCall(VecRestoreArrayRead(ct->q, &qa));
-  PetscCall(AddToSet(ctx, n, mine, &added));
+  PetscCall(VecRestoreArrayRead(MMCondensedData(ct)->q, &qa));
+  PetscCall(AddToSet(ct, n, mine, &added));
   PetscCall(PetscFree(mine));
-  PetscCall(CompleteSet(ctx));
+  PetscCall(CompleteSet(ct));
   PetscFunctionReturn(0);
 }
 
 /* After the set's VI: the nodes outside the set that its reactions push into the obstacle (beyond
  * 1e-10 h_c', the diagnostics' own "on the obstacle") join the set, and *grown says the VI must be
  * solved again. wc: the solution on the owned condensed dofs, exact on every contact node. */
-PetscErrorCode MMCandidatesGrow(MMCtx *ctx, const PetscScalar wc[], PetscBool *grown)
+PetscErrorCode MMCandidatesGrow(MMContact ct, const PetscScalar wc[], PetscBool *grown)
 {
-  MMContact         *ct = &ctx->contact;
-  MMCandidates      *c  = &ct->cand;
+  MMCandidates      *c  = &MMCondensedData(ct)->cand;
   const PetscScalar *ga;
   PetscInt          *mine, n = 0, added;
 
@@ -620,21 +611,21 @@ PetscErrorCode MMCandidatesGrow(MMCtx *ctx, const PetscScalar wc[], PetscBool *g
   for (PetscInt k = 0; k < ct->n_local; ++k)
     if (!c->in_set[c->node_start + k] && (PetscRealPart(wc[ct->ncomp * k] - ga[k]) > 1e-10 * ct->h_c || MMContactCornerCrosses(ct, ct->ncomp, k, wc, 1e-10 * ct->h_c))) mine[n++] = c->node_start + k;
   PetscCall(VecRestoreArrayRead(ct->gap, &ga));
-  PetscCall(AddToSet(ctx, n, mine, &added));
+  PetscCall(AddToSet(ct, n, mine, &added));
   PetscCall(PetscFree(mine));
   *grown = (PetscBool)(added > 0);
   if (!*grown) PetscFunctionReturn(0);
   PetscCall(PetscInfo(NULL, "Candidate set grew by %" PetscInt_FMT " nodes to %" PetscInt_FMT ": the VI is solved again\n", added, c->n_set));
   ++c->resolves;
-  PetscCall(CompleteSet(ctx));
+  PetscCall(CompleteSet(ct));
   PetscFunctionReturn(0);
 }
 
 /* y = W_{.,S} x on the owned condensed rows: the displacement of every contact dof owned here
  * under the set's reactions x (frame components). */
-PetscErrorCode MMCandidatesMult(MMContact *ct, Vec x, PetscScalar y[])
+PetscErrorCode MMCandidatesMult(MMContact ct, Vec x, PetscScalar y[])
 {
-  MMCandidates      *c  = &ct->cand;
+  MMCandidates      *c  = &MMCondensedData(ct)->cand;
   const PetscInt     nr = ct->ncomp;
   const PetscScalar *xa;
 
@@ -654,9 +645,9 @@ PetscErrorCode MMCandidatesMult(MMContact *ct, Vec x, PetscScalar y[])
 }
 
 /* w = z - K~^{-1} E_S x from the full columns: the step's solution without a solve. */
-PetscErrorCode MMCandidatesRecover(MMContact *ct, Vec w)
+PetscErrorCode MMCandidatesRecover(MMContact ct, Vec w)
 {
-  MMCandidates      *c  = &ct->cand;
+  MMCandidates      *c  = &MMCondensedData(ct)->cand;
   const PetscInt     nr = ct->ncomp;
   const PetscScalar *xa;
   PetscScalar       *wa;

@@ -1,7 +1,7 @@
 /* The condensed formulation: K~ factored once per dt, the Delassus operator on the contact dofs, and
  * the step's contact VI on the reactions (docs/method.md section 3). */
 #include <petsc/private/petscimpl.h> /* PetscObjectStateGet */
-#include "../../contactimpl.h"
+#include "condensedimpl.h"
 
 /* The condensed dofs are the normal dof of each contact node and, with friction, its tangential
  * dofs. With z = K~^{-1} b and the Delassus operator W = E^T K~^{-1} E on them, the step solution
@@ -13,76 +13,65 @@
  * K~ is factored once per dt; a step costs two solves with that factor and a VI on the candidate
  * set's dofs (candidates.c), whatever the size of the contact boundary. */
 
-PetscErrorCode MMCondensedFactor(MMCtx *ctx)
+PetscErrorCode MMCondensedFactor(MMContact ct)
 {
-  MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
-  if (!ct->z) PetscCall(MatCreateVecs(ct->qp.A, &ct->z, &ct->rhs_c));
-  if (!ct->ksp_K) { /* the first, or a second one for the kept factor */
-    PetscCall(KSPCreate(PetscObjectComm((PetscObject)ctx->op.dm), &ct->ksp_K));
-    PetscCall(KSPSetOptionsPrefix(ct->ksp_K, "contact_K_"));
-    PetscCall(MMKSPSetDirectSPD(ct->ksp_K, ctx->op.dim));
-    PetscCall(KSPSetFromOptions(ct->ksp_K));
+  if (!ct->z) PetscCall(MatCreateVecs(ct->qp.A, &ct->z, &MMCondensedData(ct)->rhs_c));
+  if (!MMCondensedData(ct)->ksp_K) { /* the first, or a second one for the kept factor */
+    PetscCall(KSPCreate(PetscObjectComm((PetscObject)ct->op->dm), &MMCondensedData(ct)->ksp_K));
+    PetscCall(KSPSetOptionsPrefix(MMCondensedData(ct)->ksp_K, "contact_K_"));
+    PetscCall(MMKSPSetDirectSPD(MMCondensedData(ct)->ksp_K, ct->op->dim));
+    PetscCall(KSPSetFromOptions(MMCondensedData(ct)->ksp_K));
     /* now, not at the first solve: the Delassus operator is built from the factor before it */
-    PetscCall(MMKSPCheckDirect(ct->ksp_K));
+    PetscCall(MMKSPCheckDirect(MMCondensedData(ct)->ksp_K));
   }
-  PetscCall(KSPSetOperators(ct->ksp_K, ct->qp.A, ct->qp.A));
-  PetscCall(KSPSetUp(ct->ksp_K));
-  PetscCall(MMKSPCheckFactored(ct->ksp_K));
+  PetscCall(KSPSetOperators(MMCondensedData(ct)->ksp_K, ct->qp.A, ct->qp.A));
+  PetscCall(KSPSetUp(MMCondensedData(ct)->ksp_K));
+  PetscCall(MMKSPCheckFactored(MMCondensedData(ct)->ksp_K));
   if (ct->enabled) PetscCall(MMCandidatesInvalidate(ct));
   PetscFunctionReturn(0);
 }
 
 /* The condensed right-hand side on all contact nodes (global, ncomp per node), and the candidate
  * set that carries the VI. */
-PetscErrorCode MMCondensedCreateSolver(MMCtx *ctx)
+PetscErrorCode MMCondensedCreateSolver(MMContact ct)
 {
-  MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
-  PetscCall(MMContactCreateReactions(ctx));
-  PetscCall(VecDuplicate(ct->rho, &ct->offset));
-  PetscCall(VecDuplicate(ct->rho, &ct->q));
-  PetscCall(VecDuplicate(ct->rho, &ct->Wdiag));
-  PetscCall(VecSet(ct->Wdiag, 1.0));
-  PetscCall(MMCandidatesSetUp(ctx));
-  PetscFunctionReturn(0);
-}
-
-/* The normal reactions lambda_n of the last solve, one per contact node. */
-PetscErrorCode MMContactGetNormalReactions(MMCtx *ctx, Vec lambda)
-{
-  PetscFunctionBeginUser;
-  PetscCall(VecStrideGather(ctx->contact.rho, 0, lambda, INSERT_VALUES));
+  PetscCall(MMContactCreateReactions(ct));
+  PetscCall(VecDuplicate(ct->rho, &MMCondensedData(ct)->offset));
+  PetscCall(VecDuplicate(ct->rho, &MMCondensedData(ct)->q));
+  PetscCall(VecDuplicate(ct->rho, &MMCondensedData(ct)->Wdiag));
+  PetscCall(VecSet(MMCondensedData(ct)->Wdiag, 1.0));
+  PetscCall(MMCandidatesSetUp(ct));
   PetscFunctionReturn(0);
 }
 
 /* q = z_c - offset: the gap on the normal dofs, u_t^n + dt/2 v_t^n on the tangential ones. */
-static PetscErrorCode CondensedRHS(MMCtx *ctx)
+static PetscErrorCode CondensedRHS(MMContact ct)
 {
-  MMContact         *ct = &ctx->contact;
-  const PetscInt    *row = ct->cand.cond_row, nr = ct->ncomp;
+  const PetscInt    *row = MMCondensedData(ct)->cand.cond_row, nr = ct->ncomp;
   const PetscScalar *za, *ua, *va, *ga;
   PetscScalar       *oa, *qa;
 
   PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(ct->z, &za));
-  PetscCall(VecGetArrayRead(ctx->state.u_old, &ua));
-  PetscCall(VecGetArrayRead(ctx->state.v_old, &va));
+  PetscCall(VecGetArrayRead(ct->u_old, &ua));
+  PetscCall(VecGetArrayRead(ct->v_old, &va));
   PetscCall(VecGetArrayRead(ct->gap, &ga));
-  PetscCall(VecGetArray(ct->offset, &oa));
-  PetscCall(VecGetArray(ct->q, &qa));
-  for (PetscInt r = 0; r < ct->cand.nc_local; ++r) {
+  PetscCall(VecGetArray(MMCondensedData(ct)->offset, &oa));
+  PetscCall(VecGetArray(MMCondensedData(ct)->q, &qa));
+  for (PetscInt r = 0; r < MMCondensedData(ct)->cand.nc_local; ++r) {
     /* tangential: relative to the obstacle's own velocity (slide_ref, interface/set.c) */
     oa[r] = r % nr ? ua[row[r]] + 0.5 * ct->Kt_dt * va[row[r]] + ct->slide_ref[(r / nr) * (nr - 1) + r % nr - 1] : ga[r / nr];
     qa[r] = za[row[r]] - oa[r];
   }
-  PetscCall(VecRestoreArray(ct->q, &qa));
-  PetscCall(VecRestoreArray(ct->offset, &oa));
+  PetscCall(VecRestoreArray(MMCondensedData(ct)->q, &qa));
+  PetscCall(VecRestoreArray(MMCondensedData(ct)->offset, &oa));
   PetscCall(VecRestoreArrayRead(ct->gap, &ga));
-  PetscCall(VecRestoreArrayRead(ctx->state.v_old, &va));
-  PetscCall(VecRestoreArrayRead(ctx->state.u_old, &ua));
+  PetscCall(VecRestoreArrayRead(ct->v_old, &va));
+  PetscCall(VecRestoreArrayRead(ct->u_old, &ua));
   PetscCall(VecRestoreArrayRead(ct->z, &za));
   PetscFunctionReturn(0);
 }
@@ -122,13 +111,12 @@ static PetscErrorCode GatherToSet(MMCandidates *c, Vec from, Vec to)
 }
 
 /* The set's VI: W_SS x - q complementary to the box bounds of x (frictionless: rho_t in [0, 0]). */
-static PetscErrorCode SolveSetVI(MMCtx *ctx)
+static PetscErrorCode SolveSetVI(MMContact ct)
 {
-  MMContact    *ct = &ctx->contact;
-  MMCandidates *c  = &ct->cand;
+  MMCandidates *c  = &MMCondensedData(ct)->cand;
 
   PetscFunctionBeginUser;
-  PetscCall(GatherToSet(c, ct->q, c->q));
+  PetscCall(GatherToSet(c, MMCondensedData(ct)->q, c->q));
   PetscCall(GatherToSet(c, ct->rho, c->x));
   PetscCall(GatherToSet(c, ct->rho_lo, c->lo));
   PetscCall(GatherToSet(c, ct->rho_hi, c->hi));
@@ -142,10 +130,9 @@ static PetscErrorCode SolveSetVI(MMCtx *ctx)
 
 /* w_c = z_c - W_{.,S} rho_S on every owned contact dof: exact everywhere, the set's columns
  * carrying the rows of the whole contact boundary. */
-static PetscErrorCode ContactDofValues(MMCtx *ctx)
+static PetscErrorCode ContactDofValues(MMContact ct)
 {
-  MMContact         *ct = &ctx->contact;
-  MMCandidates      *c  = &ct->cand;
+  MMCandidates      *c  = &MMCondensedData(ct)->cand;
   const PetscScalar *za;
 
   PetscFunctionBeginUser;
@@ -158,52 +145,50 @@ static PetscErrorCode ContactDofValues(MMCtx *ctx)
 
 /* z = K~^{-1} b, once per step: the friction solvers solve one step's problem many times. When z
  * is new, so are q and the candidate set (they depend on z, u^n and v^n only). */
-static PetscErrorCode PrepareStep(MMCtx *ctx, Vec b)
+static PetscErrorCode PrepareStep(MMContact ct, Vec b)
 {
-  MMContact       *ct = &ctx->contact;
   PetscObjectState state;
 
   PetscFunctionBeginUser;
   PetscCall(PetscObjectStateGet((PetscObject)b, &state));
-  if (b == ct->z_b && state == ct->z_b_state && ct->z_dt == ct->Kt_dt) PetscFunctionReturn(0);
-  PetscCall(KSPSolve(ct->ksp_K, b, ct->z));
-  ct->z_b       = b;
-  ct->z_b_state = state;
-  ct->z_dt      = ct->Kt_dt;
+  if (b == MMCondensedData(ct)->z_b && state == MMCondensedData(ct)->z_b_state && MMCondensedData(ct)->z_dt == ct->Kt_dt) PetscFunctionReturn(0);
+  PetscCall(KSPSolve(MMCondensedData(ct)->ksp_K, b, ct->z));
+  MMCondensedData(ct)->z_b       = b;
+  MMCondensedData(ct)->z_b_state = state;
+  MMCondensedData(ct)->z_dt      = ct->Kt_dt;
   if (!ct->enabled) PetscFunctionReturn(0);
-  PetscCall(CondensedRHS(ctx));
-  PetscCall(MMContactCornersRHS(ctx, ct->cand.cond_row));
-  PetscCall(MMCandidatesSelect(ctx));
+  PetscCall(CondensedRHS(ct));
+  PetscCall(MMContactCornersRHS(ct, MMCondensedData(ct)->cand.cond_row));
+  PetscCall(MMCandidatesSelect(ct));
   PetscFunctionReturn(0);
 }
 
 /* The set grows, and its problem is solved again, until no node outside it penetrates: then its
  * reactions are the full-set ones (docs/method.md section 3, "Candidate set"). solve() leaves the
  * set's reactions in c->x; *ok false stops the loop (a solver that did not converge). */
-static PetscErrorCode SolveGrowingSet(MMCtx *ctx, PetscErrorCode (*solve)(MMCtx *, void *, PetscBool *), void *sctx, PetscBool *ok)
+static PetscErrorCode SolveGrowingSet(MMContact ct, PetscErrorCode (*solve)(MMContact, void *, PetscBool *), void *sctx, PetscBool *ok)
 {
-  MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
   *ok = PETSC_TRUE;
   for (PetscBool grown = PETSC_TRUE; grown;) {
-    if (ct->cand.m) {
-      PetscCall(solve(ctx, sctx, ok));
+    if (MMCondensedData(ct)->cand.m) {
+      PetscCall(solve(ct, sctx, ok));
       PetscCall(VecZeroEntries(ct->rho));
-      PetscCall(VecScatterBegin(ct->cand.gather, ct->cand.x, ct->rho, INSERT_VALUES, SCATTER_REVERSE));
-      PetscCall(VecScatterEnd(ct->cand.gather, ct->cand.x, ct->rho, INSERT_VALUES, SCATTER_REVERSE));
+      PetscCall(VecScatterBegin(MMCondensedData(ct)->cand.gather, MMCondensedData(ct)->cand.x, ct->rho, INSERT_VALUES, SCATTER_REVERSE));
+      PetscCall(VecScatterEnd(MMCondensedData(ct)->cand.gather, MMCondensedData(ct)->cand.x, ct->rho, INSERT_VALUES, SCATTER_REVERSE));
     } else PetscCall(VecZeroEntries(ct->rho));
     if (!*ok) PetscFunctionReturn(0);
-    PetscCall(ContactDofValues(ctx));
-    PetscCall(MMCandidatesGrow(ctx, ct->cand.wc, &grown));
+    PetscCall(ContactDofValues(ct));
+    PetscCall(MMCandidatesGrow(ct, MMCondensedData(ct)->cand.wc, &grown));
   }
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SolveSetBox(MMCtx *ctx, void *unused, PetscBool *ok)
+static PetscErrorCode SolveSetBox(MMContact ct, void *unused, PetscBool *ok)
 {
   PetscFunctionBeginUser;
-  PetscCall(SolveSetVI(ctx));
+  PetscCall(SolveSetVI(ct));
   *ok = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
@@ -211,16 +196,15 @@ static PetscErrorCode SolveSetBox(MMCtx *ctx, void *unused, PetscBool *ok)
 /* The step's contact reactions rho with the box bounds of rho_lo/rho_hi (frictionless, or 2D
  * Tresca thresholds): z = K~^{-1} b once per step, then the VI on the candidate set. No full-size
  * solve. */
-PetscErrorCode MMCondensedSolveReactions(MMCtx *ctx, Vec b)
+PetscErrorCode MMCondensedSolveReactions(MMContact ct, Vec b)
 {
-  MMContact *ct = &ctx->contact;
   PetscBool  ok;
 
   PetscFunctionBeginUser;
-  PetscCall(PrepareStep(ctx, b));
+  PetscCall(PrepareStep(ct, b));
   ct->vi_its = 0;
   if (!ct->enabled) PetscFunctionReturn(0);
-  PetscCall(SolveGrowingSet(ctx, SolveSetBox, NULL, &ok));
+  PetscCall(SolveGrowingSet(ct, SolveSetBox, NULL, &ok));
   PetscFunctionReturn(0);
 }
 
@@ -232,10 +216,9 @@ typedef struct {
 /* The set's problem with the friction corners' second nodes (docs/method.md section 12): extended,
  * solved by the friction solver, and contracted back to the nodes' reactions x; their r_2 into
  * ct->fc_x. */
-static PetscErrorCode SolveSetCoulombCorners(MMCtx *ctx, const MMContactSetProblem *p, PetscScalar x[], CoulombSetCtx *cc, PetscBool *ok)
+static PetscErrorCode SolveSetCoulombCorners(MMContact ct, const MMContactSetProblem *p, PetscScalar x[], CoulombSetCtx *cc, PetscBool *ok)
 {
-  MMContact          *ct = &ctx->contact;
-  MMCandidates       *c  = &ct->cand;
+  MMCandidates       *c  = &MMCondensedData(ct)->cand;
   Vec                 sv[4], from[4] = {ct->fc_geom, ct->fc_mu, ct->fc_q, ct->fc_x};
   const PetscScalar  *geom, *mu2, *q2;
   PetscScalar        *x2, *We, *qe, *xe;
@@ -275,10 +258,9 @@ static PetscErrorCode SolveSetCoulombCorners(MMCtx *ctx, const MMContactSetProbl
 
 /* The set's Coulomb problem handed to a friction solver: W_SS, q_S, mu per set node, and the warm
  * start (the last reactions) in c->x, all in the nodes' frames. */
-static PetscErrorCode SolveSetCoulomb(MMCtx *ctx, void *sctx, PetscBool *ok)
+static PetscErrorCode SolveSetCoulomb(MMContact ct, void *sctx, PetscBool *ok)
 {
-  MMContact          *ct = &ctx->contact;
-  MMCandidates       *c  = &ct->cand;
+  MMCandidates       *c  = &MMCondensedData(ct)->cand;
   CoulombSetCtx      *cc = (CoulombSetCtx *)sctx;
   MMContactSetProblem p;
   const PetscScalar  *w, *q, *mua;
@@ -286,13 +268,13 @@ static PetscErrorCode SolveSetCoulomb(MMCtx *ctx, void *sctx, PetscBool *ok)
   PetscReal          *mu;
 
   PetscFunctionBeginUser;
-  if (!ct->mu_c) {
-    PetscCall(VecDuplicate(ct->rho, &ct->mu_c));
-    for (PetscInt d = 0; d < ct->ncomp; ++d) PetscCall(VecStrideScatter(ct->mu, d, ct->mu_c, INSERT_VALUES));
+  if (!MMCondensedData(ct)->mu_c) {
+    PetscCall(VecDuplicate(ct->rho, &MMCondensedData(ct)->mu_c));
+    for (PetscInt d = 0; d < ct->ncomp; ++d) PetscCall(VecStrideScatter(ct->mu, d, MMCondensedData(ct)->mu_c, INSERT_VALUES));
   }
-  PetscCall(GatherToSet(c, ct->q, c->q));
+  PetscCall(GatherToSet(c, MMCondensedData(ct)->q, c->q));
   PetscCall(GatherToSet(c, ct->rho, c->x));
-  PetscCall(GatherToSet(c, ct->mu_c, c->lo));
+  PetscCall(GatherToSet(c, MMCondensedData(ct)->mu_c, c->lo));
   PetscCall(PetscMalloc1(c->n_set, &mu));
   PetscCall(VecGetArrayRead(c->lo, &mua));
   for (PetscInt i = 0; i < c->n_set; ++i) mu[i] = PetscRealPart(mua[i * ct->ncomp]);
@@ -306,7 +288,7 @@ static PetscErrorCode SolveSetCoulomb(MMCtx *ctx, void *sctx, PetscBool *ok)
   p.q         = q;
   p.mu        = mu;
   p.redundant = PETSC_FALSE;
-  if (ct->n_fc) PetscCall(SolveSetCoulombCorners(ctx, &p, x, cc, ok));
+  if (ct->n_fc) PetscCall(SolveSetCoulombCorners(ct, &p, x, cc, ok));
   else PetscCall(cc->fn(cc->fctx, &p, x, ok));
   PetscCall(VecRestoreArray(c->x, &x));
   PetscCall(VecRestoreArrayRead(c->q, &q));
@@ -318,9 +300,8 @@ static PetscErrorCode SolveSetCoulomb(MMCtx *ctx, void *sctx, PetscBool *ok)
 /* The thresholds mu r_n of the solution as the reactions' bounds, and each node's state (slipping:
  * on the rim of its disk), so that the diagnostics read a Coulomb solution as they read a Tresca
  * one. */
-static PetscErrorCode StoreCoulombBounds(MMCtx *ctx)
+static PetscErrorCode StoreCoulombBounds(MMContact ct)
 {
-  MMContact         *ct = &ctx->contact;
   const PetscInt     nr = ct->ncomp;
   const PetscScalar *ra, *mua;
   PetscScalar       *lo, *hi;
@@ -351,29 +332,27 @@ static PetscErrorCode StoreCoulombBounds(MMCtx *ctx)
 
 /* The step's Coulomb problem in contact space, solved on the candidate set by fn (a friction
  * solver): rho, and the contact dofs of w and react, exactly; MMContactRecover completes w. */
-PetscErrorCode MMCondensedSolveCoulomb(MMCtx *ctx, Vec b, Vec w, Vec react, MMContactSetSolver fn, void *fctx, PetscBool *ok)
+PetscErrorCode MMCondensedSolveCoulomb(MMContact ct, Vec b, Vec w, Vec react, MMContactSetSolver fn, void *fctx, PetscBool *ok)
 {
-  MMContact    *ct = &ctx->contact;
   CoulombSetCtx cc = {fn, fctx};
 
   PetscFunctionBeginUser;
-  PetscCall(PrepareStep(ctx, b));
+  PetscCall(PrepareStep(ct, b));
   ct->vi_its = 0;
-  PetscCall(SolveGrowingSet(ctx, SolveSetCoulomb, &cc, ok));
+  PetscCall(SolveGrowingSet(ct, SolveSetCoulomb, &cc, ok));
   if (!*ok) PetscFunctionReturn(0);
-  if (!ct->cand.m && ct->fc_x) PetscCall(VecZeroEntries(ct->fc_x)); /* no set, no second obstacle's reaction */
-  PetscCall(MMContactCornersStore(ctx));
-  PetscCall(StoreCoulombBounds(ctx));
-  PetscCall(MMCondensedContactDofs(ctx, w, react));
+  if (!MMCondensedData(ct)->cand.m && ct->fc_x) PetscCall(VecZeroEntries(ct->fc_x)); /* no set, no second obstacle's reaction */
+  PetscCall(MMContactCornersStore(ct));
+  PetscCall(StoreCoulombBounds(ct));
+  PetscCall(MMCondensedContactDofs(ct, w, react));
   PetscFunctionReturn(0);
 }
 
 /* The condensed dofs of the step's solution and of the contact force, exactly, from rho alone:
  * w_c = z_c - W rho and f_c = -rho (K~ w - b = -E rho). What the friction loop needs. */
-PetscErrorCode MMCondensedContactDofs(MMCtx *ctx, Vec w, Vec react)
+PetscErrorCode MMCondensedContactDofs(MMContact ct, Vec w, Vec react)
 {
-  MMContact         *ct = &ctx->contact;
-  const PetscInt    *row = ct->cand.cond_row;
+  const PetscInt    *row = MMCondensedData(ct)->cand.cond_row;
   const PetscScalar *ra;
   PetscScalar       *wa, *fa;
 
@@ -381,8 +360,8 @@ PetscErrorCode MMCondensedContactDofs(MMCtx *ctx, Vec w, Vec react)
   PetscCall(VecGetArray(w, &wa));
   PetscCall(VecGetArray(react, &fa));
   PetscCall(VecGetArrayRead(ct->rho, &ra));
-  for (PetscInt r = 0; r < ct->cand.nc_local; ++r) {
-    wa[row[r]] = ct->cand.wc[r];
+  for (PetscInt r = 0; r < MMCondensedData(ct)->cand.nc_local; ++r) {
+    wa[row[r]] = MMCondensedData(ct)->cand.wc[r];
     fa[row[r]] = -ra[r];
   }
   PetscCall(VecRestoreArrayRead(ct->rho, &ra));
@@ -394,9 +373,8 @@ PetscErrorCode MMCondensedContactDofs(MMCtx *ctx, Vec w, Vec react)
 /* The whole step solution from rho: w = z - K~^{-1} E rho, from the set's full columns while
  * they fit in the cache (a product with the few columns of nonzero reactions), else by one
  * full-size solve. */
-PetscErrorCode MMCondensedRecover(MMCtx *ctx, Vec w)
+PetscErrorCode MMCondensedRecover(MMContact ct, Vec w)
 {
-  MMContact *ct = &ctx->contact;
   Vec        rc;
 
   PetscFunctionBeginUser;
@@ -404,16 +382,16 @@ PetscErrorCode MMCondensedRecover(MMCtx *ctx, Vec w)
     PetscCall(VecCopy(ct->z, w));
     PetscFunctionReturn(0);
   }
-  if (ct->cand.full_ok) {
+  if (MMCondensedData(ct)->cand.full_ok) {
     PetscCall(MMCandidatesRecover(ct, w));
     PetscFunctionReturn(0);
   }
-  ct->cand.recover_solves++;
-  PetscCall(VecZeroEntries(ct->rhs_c));
-  PetscCall(VecGetSubVector(ct->rhs_c, ct->is_cond, &rc));
+  MMCondensedData(ct)->cand.recover_solves++;
+  PetscCall(VecZeroEntries(MMCondensedData(ct)->rhs_c));
+  PetscCall(VecGetSubVector(MMCondensedData(ct)->rhs_c, ct->is_cond, &rc));
   PetscCall(VecAXPY(rc, -1.0, ct->rho));
-  PetscCall(VecRestoreSubVector(ct->rhs_c, ct->is_cond, &rc));
-  PetscCall(KSPSolve(ct->ksp_K, ct->rhs_c, w));
+  PetscCall(VecRestoreSubVector(MMCondensedData(ct)->rhs_c, ct->is_cond, &rc));
+  PetscCall(KSPSolve(MMCondensedData(ct)->ksp_K, MMCondensedData(ct)->rhs_c, w));
   PetscCall(VecAXPY(w, 1.0, ct->z));
   PetscFunctionReturn(0);
 }
@@ -422,85 +400,176 @@ PetscErrorCode MMCondensedRecover(MMCtx *ctx, Vec w)
 /* ---- The formulation's ops ---- */
 
 /* K~ for a new dt: its factor, and on the first one the VI solver on the reactions. */
-static PetscErrorCode CondensedSetOperator(MMCtx *ctx)
+static PetscErrorCode CondensedSetOperator(MMContact ct)
 {
   PetscFunctionBeginUser;
-  PetscCall(MMCondensedFactor(ctx));
-  if (!ctx->contact.rho) PetscCall(MMCondensedCreateSolver(ctx));
+  PetscCall(MMCondensedFactor(ct));
+  if (!ct->rho) PetscCall(MMCondensedCreateSolver(ct));
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode CondensedSolve(MMCtx *ctx, Vec b, Vec w, Vec react)
+static PetscErrorCode CondensedSolve(MMContact ct, Vec b, Vec w, Vec react)
 {
   PetscFunctionBeginUser;
-  PetscCall(MMCondensedSolveReactions(ctx, b));
-  PetscCall(MMCondensedRecover(ctx, w));
-  PetscCall(MMContactForce(ctx, b, w, react));
+  PetscCall(MMCondensedSolveReactions(ct, b));
+  PetscCall(MMCondensedRecover(ct, w));
+  PetscCall(MMContactForce(ct, b, w, react));
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode CondensedSolveContactDofs(MMCtx *ctx, Vec b, Vec w, Vec react)
+static PetscErrorCode CondensedSolveContactDofs(MMContact ct, Vec b, Vec w, Vec react)
 {
   PetscFunctionBeginUser;
-  PetscCall(MMCondensedSolveReactions(ctx, b));
-  PetscCall(MMCondensedContactDofs(ctx, w, react));
+  PetscCall(MMCondensedSolveReactions(ct, b));
+  PetscCall(MMCondensedContactDofs(ct, w, react));
   PetscFunctionReturn(0);
 }
 
 /* One full-size solve completes w once the friction loop has converged on the contact dofs. */
-static PetscErrorCode CondensedRecoverAll(MMCtx *ctx, Vec b, Vec w, Vec react)
+static PetscErrorCode CondensedRecoverAll(MMContact ct, Vec b, Vec w, Vec react)
 {
   PetscFunctionBeginUser;
-  PetscCall(MMCondensedRecover(ctx, w));
-  PetscCall(MMContactForce(ctx, b, w, react));
+  PetscCall(MMCondensedRecover(ct, w));
+  PetscCall(MMContactForce(ct, b, w, react));
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode CondensedGetStepKSP(MMCtx *ctx, KSP *krylov, KSP *pc_ksp)
+static PetscErrorCode CondensedGetStepKSP(MMContact ct, KSP *krylov, KSP *pc_ksp)
 {
   PetscFunctionBeginUser;
-  *krylov = *pc_ksp = ctx->contact.ksp_K;
+  *krylov = *pc_ksp = MMCondensedData(ct)->ksp_K;
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode CondensedSummary(MMCtx *ctx)
+static PetscErrorCode CondensedView(MMContact ct, PetscViewer viewer)
 {
-  const MMCandidates *c = &ctx->contact.cand;
+  const MMCandidates *c = &MMCondensedData(ct)->cand;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  contact candidate set: largest %" PetscInt_FMT " of %" PetscInt_FMT " contact nodes; %" PetscInt_FMT " columns of K~^{-1} E computed; %" PetscInt_FMT " VI re-solves after the set grew\n", c->max_set, ctx->contact.n_global, c->columns, c->resolves));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  contact candidate set: largest %" PetscInt_FMT " of %" PetscInt_FMT " contact nodes; %" PetscInt_FMT " columns of K~^{-1} E computed; %" PetscInt_FMT " VI re-solves after the set grew\n", c->max_set, ct->n_global, c->columns, c->resolves));
   if (c->evicted || c->recover_solves)
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  contact candidate cache at -contact_candidate_memory %g MiB: %" PetscInt_FMT " cached nodes dropped and their columns recomputed when needed; %" PetscInt_FMT " steps recovered by a solve, the whole columns being over the cap\n", (double)ctx->opt.candidate_memory, c->evicted, c->recover_solves));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  contact candidate cache at -contact_candidate_memory %g MiB: %" PetscInt_FMT " cached nodes dropped and their columns recomputed when needed; %" PetscInt_FMT " steps recovered by a solve, the whole columns being over the cap\n", (double)c->memory_mib, c->evicted, c->recover_solves));
+  PetscFunctionReturn(0);
+}
+
+/* The normal reactions lambda_n of the last solve, one per contact node. */
+static PetscErrorCode CondensedGetNormalReactions(MMContact ct, Vec lambda)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecStrideGather(ct->rho, 0, lambda, INSERT_VALUES));
+  PetscFunctionReturn(0);
+}
+
+/* A friction corner's second reactions in the slots the active set's warm start uses elsewhere */
+static PetscErrorCode CondensedGetNodeState(MMContact ct, PetscInt k, PetscBool second, PetscScalar state[])
+{
+  const PetscInt dim = ct->dim;
+
+  PetscFunctionBeginUser;
+  if (!second && ct->fc_obstacle && ct->fc_obstacle[k] >= 0)
+    for (PetscInt c = 0; c < dim; ++c) state[MM_CONTACT_STATE_CORNER_R + c] = ct->fc_r[dim * k + c];
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CondensedSetNodeState(MMContact ct, PetscInt k, PetscBool second, const PetscScalar state[])
+{
+  const PetscInt dim = ct->dim;
+
+  PetscFunctionBeginUser;
+  if (!second && ct->fc_obstacle && ct->fc_obstacle[k] >= 0)
+    for (PetscInt c = 0; c < dim; ++c) ct->fc_r[dim * k + c] = PetscRealPart(state[MM_CONTACT_STATE_CORNER_R + c]);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CondensedGetCandidateCounts(MMContact ct, PetscInt *n_set, PetscInt *resolves)
+{
+  PetscFunctionBeginUser;
+  *n_set    = MMCondensedData(ct)->cand.n_set;
+  *resolves = MMCondensedData(ct)->cand.resolves;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CondensedSetCandidateResolves(MMContact ct, PetscInt resolves)
+{
+  PetscFunctionBeginUser;
+  MMCondensedData(ct)->cand.resolves = resolves;
+  PetscFunctionReturn(0);
+}
+
+/* The candidate set's options (impls/condensed/candidates.c) */
+static PetscErrorCode CondensedSetFromOptions(MMContact ct, PetscOptionItems *PetscOptionsObject)
+{
+  MPI_Comm          comm = ct->comm;
+  MMContactOptions *o    = &ct->opt;
+
+  PetscFunctionBeginUser;
+  o->candidate_margin = 1.0;
+  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-contact_candidate_margin", "Condensed formulation: a contact node joins the step's candidate set when its contact-free predicted gap is below this times the deepest predicted penetration (>= -1; negative values start from a set smaller than the contact, which the growth completes: the set grows and the step is re-solved whenever a node outside it would penetrate, so this changes the cost, not the answer)", &o->candidate_margin));
+  o->candidate_all = PETSC_FALSE;
+  PetscCall(MMOptionsBool(PetscOptionsObject, comm, "-contact_candidate_all", "Condensed formulation: every contact node in every step's candidate set (the full Delassus operator: the reference the candidate set is checked against)", &o->candidate_all));
+  o->candidate_memory = 2048;
+  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-contact_candidate_memory", "Condensed formulation: MiB (over all ranks) of cached columns of K~^{-1} E; columns of nodes outside the step's set are dropped beyond it (> 0)", &o->candidate_memory));
+  PetscCheck(o->candidate_margin >= -1, comm, PETSC_ERR_USER_INPUT, "-contact_candidate_margin %g must be >= -1: it is a multiple of the deepest predicted penetration (-1 starts each step from the deepest node alone)", (double)o->candidate_margin);
+  PetscCheck(o->candidate_memory > 0, comm, PETSC_ERR_USER_INPUT, "-contact_candidate_memory %g must be > 0 (MiB)", (double)o->candidate_memory);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CondensedDestroy(MMContact ct)
+{
+  MMContact_Condensed *cd = MMCondensedData(ct);
+
+  PetscFunctionBeginUser;
+  PetscCall(KSPDestroy(&cd->ksp_K));
+  PetscCall(MMCandidatesDestroy(&cd->cand));
+  PetscCall(PetscFree(cd->kept_cache.cols));
+  PetscCall(PetscFree(cd->kept_cache.full));
+  PetscCall(PetscFree(cd->kept_cache.slot_node));
+  PetscCall(VecDestroy(&cd->q));
+  PetscCall(VecDestroy(&cd->mu_c));
+  PetscCall(VecDestroy(&cd->offset));
+  PetscCall(VecDestroy(&cd->Wdiag));
+  PetscCall(VecDestroy(&cd->rhs_c));
+  PetscCall(PetscFree(ct->data));
   PetscFunctionReturn(0);
 }
 
 /* K~, its factor and its cached columns swapped with the kept ones (those of the previous dt): a
  * step that goes back to that dt, after a rejection, needs no factorization. */
-static PetscErrorCode CondensedSwapKept(MMCtx *ctx, PetscReal dt, PetscBool *hit)
+static PetscErrorCode CondensedSwapKept(MMContact ct, PetscReal dt, PetscBool *hit)
 {
-  MMContact *ct = &ctx->contact;
 
   PetscFunctionBeginUser;
-  PetscCall(MMContactSwapKeptOperator(ct, &ct->ksp_K));
-  PetscCall(MMCandidatesSwapCache(ct, &ct->kept.cache));
+  PetscCall(MMContactSwapKeptOperator(ct, &MMCondensedData(ct)->ksp_K));
+  PetscCall(MMCandidatesSwapCache(ct, &MMCondensedData(ct)->kept_cache));
   *hit = (PetscBool)(ct->qp.A && ct->Kt_dt == dt);
   PetscFunctionReturn(0);
 }
 
 static const MMContactOps CondensedOps = {
+  .setfromoptions   = CondensedSetFromOptions,
   .setoperator      = CondensedSetOperator,
   .solve            = CondensedSolve,
   .solvecontactdofs = CondensedSolveContactDofs,
   .recover          = CondensedRecoverAll,
   .solvecoulomb     = MMCondensedSolveCoulomb,
-  .getstepksp       = CondensedGetStepKSP,
-  .summary          = CondensedSummary,
-  .swapkept         = CondensedSwapKept,
+  .getnormalreactions   = CondensedGetNormalReactions,
+  .getstepksp           = CondensedGetStepKSP,
+  .swapkept             = CondensedSwapKept,
+  .getnodestate         = CondensedGetNodeState,
+  .setnodestate         = CondensedSetNodeState,
+  .getcandidatecounts   = CondensedGetCandidateCounts,
+  .setcandidateresolves = CondensedSetCandidateResolves,
+  .view                 = CondensedView,
+  .destroy              = CondensedDestroy,
 };
 
-PetscErrorCode MMContactCreate_Condensed(MMContact *ct)
+PetscErrorCode MMContactCreate_Condensed(MMContact ct)
 {
+  MMContact_Condensed *cd;
+
   PetscFunctionBeginUser;
-  ct->ops = &CondensedOps;
+  PetscCall(PetscNew(&cd));
+  ct->data = cd;
+  ct->ops  = &CondensedOps;
   PetscFunctionReturn(0);
 }

@@ -16,9 +16,8 @@
  * found it. The instance is the first member of PETSc's private MUMPS context, as in PETSc 3.18; the
  * layout is checked (version, order, solution length) before any use, and any mismatch falls back
  * to MatMatTransposeSolve. */
-#include "../../contactimpl.h"
+#include "condensedimpl.h"
 #include <petscsf.h>
-#include "log.h"
 #include <petsc/private/matimpl.h> /* Mat->data: PETSc's MUMPS context, whose first member is the MUMPS instance */
 
 #if defined(PETSC_HAVE_MUMPS) && !defined(PETSC_USE_COMPLEX) && defined(PETSC_USE_REAL_DOUBLE) && !defined(PETSC_USE_64BIT_INDICES)
@@ -147,9 +146,9 @@ static PetscErrorCode SolveUnitColumns(MMMumpsColumns *mc, DMUMPS_STRUC_C *id, M
   id->sol_loc     = mc->sol;
   id->isol_loc    = mc->isol;
   id->lsol_loc    = (MUMPS_INT)mc->lsol;
-  PetscCall(PetscLogEventBegin(MM_ColumnsSolve, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(MMCONTACT_ColumnsSolve, 0, 0, 0, 0));
   dmumps_c(id);
-  PetscCall(PetscLogEventEnd(MM_ColumnsSolve, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(MMCONTACT_ColumnsSolve, 0, 0, 0, 0));
   info1 = id->INFOG(1);
   info2 = id->INFO(2);
   *id   = saved;
@@ -173,13 +172,13 @@ PetscErrorCode MMMumpsColumnsSolve(MMMumpsColumns *mc, Mat F, PetscInt nb, const
     PetscCall(MatGetLocalSize(F, &n, NULL));
     PetscCheck(ldx >= n, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "Leading dimension %" PetscInt_FMT " below the %" PetscInt_FMT " owned rows", ldx, n);
     PetscCall(SolveUnitColumns(mc, id, PetscObjectComm((PetscObject)F), nb, rows));
-    PetscCall(PetscLogEventBegin(MM_ColumnsMove, 0, 0, 0, 0));
+    PetscCall(PetscLogEventBegin(MMCONTACT_ColumnsMove, 0, 0, 0, 0));
     PetscCall(UpdateSolutionMap(mc, F));
     for (PetscInt j = 0; j < nb; ++j) {
       PetscCall(PetscSFReduceBegin(mc->sf, MPIU_SCALAR, mc->sol + (size_t)j * mc->lsol, X + (size_t)j * ldx, MPI_REPLACE));
       PetscCall(PetscSFReduceEnd(mc->sf, MPIU_SCALAR, mc->sol + (size_t)j * mc->lsol, X + (size_t)j * ldx, MPI_REPLACE));
     }
-    PetscCall(PetscLogEventEnd(MM_ColumnsMove, 0, 0, 0, 0));
+    PetscCall(PetscLogEventEnd(MMCONTACT_ColumnsMove, 0, 0, 0, 0));
     *done = PETSC_TRUE;
   }
 #endif

@@ -66,20 +66,21 @@ static PetscErrorCode SolveSet_FixedPoint(MMFriction fr, const MMCoulombProblem 
  * from the last step's. */
 PetscErrorCode MMFrictionThresholdLoop(MMFriction fr, Vec b, Vec w, Vec react)
 {
-  MMCtx    *ctx = fr->ctx;
+  MMContactNodes cn;
   PetscReal ds_prev = 0, ds_first = 0;
   PetscInt  growing = 0;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetNodes(fr->contact, &cn));
   PetscCall(SNESSetConvergedReason(fr->snes, SNES_CONVERGED_ITERATING));
   for (PetscInt k = 0; k < fr->maxit; ++k) {
     PetscReal ds, snorm, coulomb;
     PetscInt  nslip, nstick;
 
-    PetscCall(MMContactSetFrictionThresholds(ctx, fr->s));
-    PetscCall(MMContactSolveContactDofs(ctx, b, w, react));
-    PetscCall(MMContactGetNormalReactions(ctx, fr->s_new));
-    PetscCall(VecPointwiseMult(fr->s_new, fr->s_new, ctx->contact.mu));
+    PetscCall(MMContactSetFrictionThresholds(fr->contact, fr->s));
+    PetscCall(MMContactSolveContactDofs(fr->contact, b, w, react));
+    PetscCall(MMContactGetNormalReactions(fr->contact, fr->s_new));
+    PetscCall(VecPointwiseMult(fr->s_new, fr->s_new, cn.mu));
     PetscCall(VecNorm(fr->s, NORM_INFINITY, &snorm));
     PetscCall(VecNorm(fr->s_new, NORM_INFINITY, &ds));
     snorm = PetscMax(PetscMax(snorm, ds), fr->s_floor);

@@ -1,0 +1,83 @@
+/* The contact options (-contact, -contact_*, -iterative_dofs, the contact audit's tolerances), read
+ * with their checks into the contact object (MMContactSetFromOptions). */
+#include "../contactimpl.h"
+
+/* Each registered formulation's own options, all of them: the formulation is chosen at set-up
+ * (-contact_formulation auto: by the mesh's size), so an option of another formulation is read, not
+ * refused as unused. A formulation's setfromoptions is found on a scratch object of its type. */
+static PetscErrorCode FormulationsSetFromOptions(MMContact ct, PetscOptionItems *PetscOptionsObject)
+{
+  extern PetscFunctionList MMContactList;
+  const char             **names;
+  int                      n;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMContactRegisterAll());
+  PetscCall(PetscFunctionListGet(MMContactList, &names, &n));
+  for (int i = 0; i < n && names[i]; ++i) { /* the array ends with NULL */
+    PetscErrorCode (*create)(MMContact) = NULL;
+    struct _p_MMContact scratch;
+    PetscCall(PetscMemzero(&scratch, sizeof(scratch)));
+    scratch.comm = ct->comm;
+    PetscCall(PetscFunctionListFind(MMContactList, names[i], &create));
+    PetscCall((*create)(&scratch));
+    if (scratch.ops->setfromoptions) PetscCall((*scratch.ops->setfromoptions)(ct, PetscOptionsObject));
+    if (scratch.ops->destroy) PetscCall((*scratch.ops->destroy)(&scratch));
+  }
+  PetscCall(PetscFree(names));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMContactSetFromOptions(MMContact ct)
+{
+  MPI_Comm          comm = ct->comm;
+  MMContactOptions *o    = &ct->opt;
+
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, NULL, "mmcontact contact", "MMContact");
+  o->contact = PETSC_TRUE;
+  PetscCall(MMOptionsBool(PetscOptionsObject, comm, "-contact", "Enforce unilateral contact; 0 gives linear elastodynamics on the same mesh (the contact boundary is then unused)", &o->contact));
+  PetscCall(PetscStrncpy(o->contact_formulation, "auto", sizeof(o->contact_formulation)));
+  o->iterative_dofs = 50000;
+  PetscCall(MMOptionsInt(PetscOptionsObject, comm, "-iterative_dofs", "3D problems with at least this many dofs take the iterative path by default: -contact_formulation auto is active_set, and without contact K~ is solved by CG with Jacobi rather than factored (0: never). Below it, and in 2D, K~ is factored", &o->iterative_dofs));
+  PetscCall(MMOptionsString(PetscOptionsObject, comm, "-contact_formulation", "Contact formulation: auto (the default: active_set for 3D problems of at least -iterative_dofs dofs, else condensed), condensed (the VI on the contact dofs through the Delassus operator, K~ factored once per dt), full (the VI on all dofs, a factorization per VI iteration, frictionless), or active_set (the primal-dual active-set method on all dofs: CG on the free dofs with the contact_K_ PC, default Jacobi, -contact_K_pc_type gamg or hypre for c_p dt / h_c' above about 10, set up once per dt; for large 3D meshes)", o->contact_formulation, sizeof(o->contact_formulation), NULL));
+  o->contact_tol = 1e-11;
+  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-contact_tol", "Contact solves stop when ||K~ w - b - f_c|| <= contact_tol ||b|| (on top of -contact_snes_rtol/atol), in (0, 1)", &o->contact_tol));
+  o->keep_factor = PETSC_TRUE;
+  PetscCall(MMOptionsBool(PetscOptionsObject, comm, "-contact_K_keep", "Keep K~ for the previous dt with its factor and cached columns (condensed) or its PC (active_set), so that dt growing back after a rejected step costs no factorization (the memory of a second factor)", &o->keep_factor));
+  PetscCall(FormulationsSetFromOptions(ct, PetscOptionsObject));
+  /* The contact audit's tolerances, far above what correct runs reach: penetration at most 3e-14
+   * h_c' over options/'s cases and the solver variants, the Coulomb residual at most 4e-5 (with
+   * -mass standard, at dt down to 1/1024 of -ts_dt, where the reactions carry the round-off of
+   * 4/dt^2 M), 1e-12 to 1e-10 otherwise (README "What is checked before the run") */
+  o->audit_penetration_tol = 1e-6;
+  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-audit_penetration_tol", "Stop the run when, after a step, a contact node lies inside an obstacle deeper than this times h_c' (> 0): the contact solve did not hold the constraint", &o->audit_penetration_tol));
+  o->audit_coulomb_tol = 1e-2;
+  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-audit_coulomb_tol", "Stop the run when a step's discrete Coulomb residual (the history's coulomb_residual: penetration and open gap over h_c', tension, complementarity and the friction law over the force scale) exceeds this (> 0)", &o->audit_coulomb_tol));
+  o->initial_penetration_tol = 1e-6;
+  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-initial_penetration_tol", "Refuse an initial state whose contact nodes penetrate the obstacle deeper than this times h_c' (>= 0)", &o->initial_penetration_tol));
+  PetscOptionsEnd();
+  PetscCheck(o->contact_tol > 0 && o->contact_tol < 1, comm, PETSC_ERR_USER_INPUT, "-contact_tol %g must lie in (0, 1): it is a relative residual", (double)o->contact_tol);
+  PetscCheck(o->audit_penetration_tol > 0, comm, PETSC_ERR_USER_INPUT, "-audit_penetration_tol %.6g must be > 0: it is a fraction of h_c'", (double)o->audit_penetration_tol);
+  PetscCheck(o->audit_coulomb_tol > 0, comm, PETSC_ERR_USER_INPUT, "-audit_coulomb_tol %.6g must be > 0: it is a normalized residual (the history's coulomb_residual)", (double)o->audit_coulomb_tol);
+  PetscCheck(o->initial_penetration_tol >= 0, comm, PETSC_ERR_USER_INPUT, "-initial_penetration_tol %g must be >= 0: it is a fraction of h_c'", (double)o->initial_penetration_tol);
+  PetscCheck(o->iterative_dofs >= 0, comm, PETSC_ERR_USER_INPUT, "-iterative_dofs %" PetscInt_FMT " must be >= 0 (0: never the iterative path by default)", o->iterative_dofs);
+  PetscFunctionReturn(0);
+}
+
+/* The friction solver's Coulomb audit tolerance (-friction_coulomb_tol), which the active set's
+ * Tresca and Coulomb solves aim below */
+PetscErrorCode MMContactSetCoulombTolerance(MMContact ct, PetscReal tol)
+{
+  PetscFunctionBeginUser;
+  ct->opt.friction_coulomb_tol = tol;
+  PetscFunctionReturn(0);
+}
+
+/* -contact_tol, which the stepper's audit advice compares a residual with */
+PetscErrorCode MMContactGetTolerance(MMContact ct, PetscReal *tol)
+{
+  PetscFunctionBeginUser;
+  *tol = ct->opt.contact_tol;
+  PetscFunctionReturn(0);
+}
