@@ -9,7 +9,6 @@
 #include "friction.h"
 #include "tstypes.h"
 #include "io.h"
-#include "systypes.h"
 
 /* Everything the stepper needs; the TS type "newmark" holds a pointer to it. */
 typedef struct _MMCtx {
@@ -19,13 +18,11 @@ typedef struct _MMCtx {
   MMLoads     loads;
   MMContact   contact;
   MMFriction  friction;
-  MMState     state;
-  MMDamping   damping;
-  MMHistory   hist;
+  MMNewmark   nm;       /* the stepper (src/ts/): owns the three below */
+  MMState    *state;    /* borrowed from nm (MMNewmarkGetState), for the components not yet handed it */
+  MMDamping  *damping;  /* borrowed from nm (MMNewmarkGetDamping) */
+  MMHistory  *hist;     /* borrowed from nm (MMNewmarkGetHistory) */
   MMProgress  progress;
   MMOutput    out;
   MMCheckpoint ckpt;
-  MMDeformation deform;
-  MMMomenta   momenta;
-  MMLog       log;
 } MMCtx;

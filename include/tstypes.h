@@ -1,6 +1,19 @@
-/* The time stepper's state, its per-step history row and the deformation audit (src/ts/). */
+/* The stepper's public data (src/ts/): its state, its per-step history row and its damping, owned by
+ * the Newmark context (MMNewmark, include/ts.h) and read by the components above it through
+ * MMNewmarkGetState, MMNewmarkGetHistory and MMNewmarkGetDamping; the problem data it is set up with.
+ * Data only, so that contact's diagnostics can fill a history row without including ts.h. */
 #pragma once
 #include "mmbase.h"
+#include "obstacle.h"
+
+/* The trapezoidal Newmark stepper (src/ts/newmark.c): its context owns the state below. */
+typedef struct _p_MMNewmark *MMNewmark;
+
+typedef enum {
+  MM_INITIAL_GIVEN,
+  MM_INITIAL_STATIC_SLIDING,
+  MM_INITIAL_STATIC /* the static contact problem under the loads at t = 0 (src/contact/interface/static.c) */
+} MMInitialState;
 
 /* The Newmark state and the per-step energy audit. */
 typedef struct {
@@ -35,31 +48,31 @@ typedef struct {
   PetscReal energy_scale;                     /* the largest |E| of the run so far */
 } MMHistory;
 
-/* The deformation audit (src/ts/deformation.c): the largest strain of the run and where it was. */
-typedef struct {
-  PetscReal     max_strain;                /* over the run: the largest principal strain magnitude */
-  PetscReal     where[MM_MAX_DIM];         /* the reference centroid of the cell that had it */
-  PetscInt      step;                      /* the step at which it was reached */
-  PetscBool     warned;                    /* the -strain_warn warning was printed */
-  PetscLogEvent ev;                        /* MMDeformation, in -log_view */
-  PetscInt      ncells;                    /* this rank's cells, and for each its dim+1 vertices' */
-  PetscInt     *cell_u, *cell_x;           /* offsets in the local displacement and coordinate vectors */
-} MMDeformation;
-
-/* The momentum audit's fixed data (src/ts/momenta.c), built on the first diagnostics: each linear
- * momentum functional as one w-frame vector, and the vertices of the angular momentum. */
-typedef struct {
-  PetscInt  ng, nJ;             /* ng = 2 dim + nJ functionals; nJ: J's components, 3 in 3D, 1 (z) in 2D */
-  Vec       g[3 * MM_MAX_DIM];  /* g.x: the sums behind ucm or vcm (dim), P (dim) and J (nJ) for x = u or v */
-  Vec       sel[MM_MAX_DIM];    /* Cartesian: 1 at component d of the vertices with no Dirichlet dof */
-  PetscInt  nv;                 /* this rank's owned vertices with no Dirichlet dof */
-  PetscInt *vert_u, *vert_x;    /* their offsets in the owned part of a global vector and in the local coordinates */
-} MMMomenta;
-
 /* Rayleigh damping C = alpha M* + beta B, B = K or its condensed form (src/ts/damping.c, docs/method.md section 3). */
 typedef struct {
-  PetscReal alpha, beta; /* 1/s and s; both 0: no damping, and nothing below exists */
+  PetscReal mass, stiffness, ratio, freq[2];       /* the options as given: -damping_mass, _stiffness, _ratio, _frequencies */
+  PetscBool mass_set, stiffness_set, ratio_set;
+  PetscInt  nfreq;       /* entries given to -damping_frequencies, -1 if not set */
+  PetscReal alpha, beta; /* 1/s and s, from the options (MMNewmarkSetFromOptions); both 0: no damping, and nothing below exists */
   Vec       vC;          /* the trapezoidal velocity 2/dt (u^{n+1} - u^n) - vC^n, on all dofs */
   Mat       B;           /* the damping stiffness: K, or with massless dofs K with them condensed out cell by cell */
   Vec       work, x;     /* scratch */
+  Mat       Mstar;       /* borrowed: fem's M* */
 } MMDamping;
+
+/* What the stepper needs of the problem (filled by app from its options, MMOptionsGetNewmarkProblem):
+ * the initial state, the obstacles whose work it audits, and the values its messages quote. */
+typedef struct {
+  MMInitialState    initial_state;
+  PetscReal         u0_offset[MM_MAX_DIM], u0_gradient[MM_MAX_DIM * MM_MAX_DIM];
+  PetscBool         u0_given; /* -u0_offset or -u0_gradient was given */
+  PetscReal         v0[MM_MAX_DIM], omega[MM_MAX_DIM], omega_center[MM_MAX_DIM];
+  const MMObstacle *obstacles;  /* the rigid obstacles, then the contact pairs (borrowed) */
+  PetscReal         obstacle_normal[MM_MAX_DIM]; /* -initial_state static_sliding's plane */
+  PetscReal         mu;
+  PetscBool         dirichlet;         /* some Dirichlet boundary */
+  PetscBool         dirichlet_nonzero; /* some Dirichlet value or velocity is nonzero */
+  PetscReal         E, nu, rho;        /* as given: the messages quote them */
+  PetscReal         contact_work_tol;
+  PetscBool         quiet;
+} MMNewmarkProblem;

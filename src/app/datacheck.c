@@ -9,7 +9,7 @@
 #include "mesh.h"
 #include "fem.h"
 #include "contact.h"
-#include "damping.h"
+#include "ts.h"
 #include "io.h"
 
 /* A size in bytes, in decimal units: "61.2 kB". */
@@ -201,7 +201,7 @@ static PetscErrorCode ReportPlan(MMCtx *ctx, TS ts, PetscReal *step0)
 static PetscErrorCode AccelerationEstimate(MMCtx *ctx, Vec a)
 {
   MMContactNodes cn;
-  const MMState *s = &ctx->state;
+  const MMState *s = ctx->state;
   Vec            r, f;
 
   PetscFunctionBeginUser;
@@ -212,7 +212,7 @@ static PetscErrorCode AccelerationEstimate(MMCtx *ctx, Vec a)
   PetscCall(VecAXPY(r, 1.0, ctx->op.lift));
   if (MMFEHasMasslessDofs(&ctx->op)) PetscCall(VecISSet(r, cn.is_normal, 0.0));
   PetscCall(VecAYPX(r, -1.0, ctx->op.load));
-  PetscCall(MMDampingAddForce(ctx, s->v, -1.0, r));
+  PetscCall(MMDampingAddForce(ctx->damping, s->v, -1.0, r));
   PetscCall(MMFEForceToCartesian(&ctx->op, r, f));
   PetscCall(VecPointwiseDivide(f, f, ctx->op.mass_lumped_cart));
   PetscCall(MMFEFromCartesian(&ctx->op, f, a));
@@ -242,7 +242,7 @@ static PetscErrorCode ReportObstacles(MMCtx *ctx, TS ts)
   if (!cn.enabled) PetscFunctionReturn(0);
   PetscCall(TSGetTime(ts, &t0));
   PetscCall(PetscMalloc3(opt->n_obstacles, &count, opt->n_obstacles, &gap, MM_MAX_DIM * opt->n_obstacles, &x));
-  PetscCall(MMContactObstacleGaps(ctx->contact, ctx->state.u, t0, count, gap, x));
+  PetscCall(MMContactObstacleGaps(ctx->contact, ctx->state->u, t0, count, gap, x));
   for (PetscInt b = 0; b < opt->n_obstacles; ++b) {
     const PetscBool pair = (PetscBool)(b >= opt->n_rigid);
     char            where[128];
@@ -274,9 +274,9 @@ static PetscErrorCode ReportFirstContact(MMCtx *ctx, TS ts, PetscReal step0)
   PetscCall(TSGetTime(ts, &t0));
   PetscCall(TSGetMaxTime(ts, &t_end));
   PetscCall(TSGetTimeStep(ts, &dt));
-  PetscCall(VecDuplicate(ctx->state.u, &a));
+  PetscCall(VecDuplicate(ctx->state->u, &a));
   PetscCall(AccelerationEstimate(ctx, a));
-  PetscCall(MMContactFirstContact(ctx->contact, ctx->state.u, ctx->state.v, a, t0, t_end, &fc));
+  PetscCall(MMContactFirstContact(ctx->contact, ctx->state->u, ctx->state->v, a, t0, t_end, &fc));
   PetscCall(VecDestroy(&a));
   if (fc.touching) PetscCall(PetscSNPrintf(touching, sizeof(touching), "%" PetscInt_FMT " contact row%s touch%s at the start; of the others, ", fc.touching, fc.touching > 1 ? "s" : "", fc.touching > 1 ? "" : "es"));
   if (fc.obstacle < 0) {
