@@ -18,10 +18,7 @@ typedef struct _MMCtx {
   MMLoads     loads;
   MMContact   contact;
   MMFriction  friction;
-  MMNewmark   nm;       /* the stepper (src/ts/): owns the three below */
-  MMState    *state;    /* borrowed from nm (MMNewmarkGetState), for the components not yet handed it */
-  MMDamping  *damping;  /* borrowed from nm (MMNewmarkGetDamping) */
-  MMHistory  *hist;     /* borrowed from nm (MMNewmarkGetHistory) */
+  MMNewmark   nm; /* the stepper (src/ts/): its state, history and damping through MMNewmarkGet* */
   MMProgress  progress;
   MMOutput    out;
   MMCheckpoint ckpt;
