@@ -3,7 +3,7 @@
 #include "mmbase.h"
 #include "obstacle.h"
 #include "fem.h"
-#include "tstypes.h"
+#include "ts.h"
 
 PETSC_EXTERN const char *const MMInitialStates[];
 

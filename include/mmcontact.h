@@ -7,7 +7,7 @@
 #include "fem.h"
 #include "contact.h"
 #include "friction.h"
-#include "tstypes.h"
+#include "ts.h"
 #include "io.h"
 
 /* Everything the stepper needs; the TS type "newmark" holds a pointer to it. */

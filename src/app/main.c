@@ -18,7 +18,6 @@ static char help[] = "mmcontact: elastic bodies hitting and sliding on rigid obs
 #include "contact.h"
 #include "ts.h"
 #include "friction.h"
-#include "ts.h"
 #include "io.h"
 #include "sys.h"
 #include "datacheck.h"

@@ -1,7 +1,6 @@
 /* The Newmark context's struct (include/ts.h): private to src/ts/. */
 #pragma once
 #include "ts.h"
-#include "friction.h"
 
 /* The deformation audit (deformation.c): the largest strain of the run and where it was. */
 typedef struct {
