@@ -43,6 +43,12 @@ struct _p_MMNewmark {
   MMMomenta     momenta;
 };
 
+/* The dofs without inertia: the contact-normal dofs under the modified mass, none otherwise. */
+static inline PetscBool MMNewmarkHasMasslessDofs(MMNewmark nm)
+{
+  return MMFEHasMasslessDofs(nm->op);
+}
+
 /* ts's events (MMTSInitializePackage) */
 PETSC_INTERN PetscLogEvent MM_TS_Energy, MM_TS_Momenta, MM_TS_Deformation;
 
