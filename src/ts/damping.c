@@ -1,7 +1,8 @@
 /* Rayleigh damping C = alpha M* + beta B in the trapezoidal scheme (docs/method.md sections 3, 4).
  *
  * The step equation gains C (2/dt u^n + vC^n) on its right-hand side and K~ becomes
- * K + 2 beta/dt B + (4/dt^2 + 2 alpha/dt) M* (MMDampingStepMatrix, the one place that builds K~).
+ * K + 2 beta/dt B + (4/dt^2 + 2 alpha/dt) M*: MMDampingGetStepMatrix gives its coefficients to contact,
+ * which builds it (MMContactSetStepMatrix).
  * vC is the trapezoidal velocity on all dofs, kept apart from the state's v. B is K, except with
  * the modified mass: there the massless contact-normal dofs are condensed out of each cell's
  * stiffness, so that C has no row or column on them (docs/method.md, "Rayleigh damping of the
