@@ -3,12 +3,8 @@
 #include "mmbase.h"
 #include "obstacle.h"
 #include "fem.h"
+#include "ts.h"
 
-typedef enum {
-  MM_INITIAL_GIVEN,
-  MM_INITIAL_STATIC_SLIDING,
-  MM_INITIAL_STATIC /* the static contact problem under the loads at t = 0 (src/contact/interface/static.c) */
-} MMInitialState;
 PETSC_EXTERN const char *const MMInitialStates[];
 
 /* The vector options, whose lengths can only be checked once the mesh gives the dimension. */
@@ -46,14 +42,11 @@ typedef struct {
   MMInitialState initial_state;
   PetscReal    obstacle_point[MM_MAX_DIM], obstacle_normal[MM_MAX_DIM];
   PetscReal    mesh_rotation[MM_MAX_DIM], mesh_rotation_center[MM_MAX_DIM];
-  PetscReal    audit_tol;
   PetscReal    contact_work_tol;
   PetscReal    mu;
   PetscBool    quiet;
   PetscBool    check_input;         /* -check_input: set up, report and exit without stepping or writing */
   PetscBool    allow_unused;
-  PetscBool    deformation_audit;       /* the deformation audit (src/ts/deformation.c) and its thresholds */
-  PetscReal    strain_warn, max_strain;
   PetscBool    debug; /* -debug: full PETSc traces (read again by errors.c before the options) */
   PetscInt     vec_count[MM_V_NUM]; /* entries given to each vector option, -1 if not set */
   PetscInt     n_obstacles;         /* the rigid obstacles, then the contact pairs */
@@ -61,9 +54,4 @@ typedef struct {
   MMObstacle  *obstacles;
   PetscBool    obstacles_named;     /* -obstacles was given */
   PetscReal    mu_max;              /* the largest friction coefficient of the obstacles */
-  PetscReal    damping_mass, damping_stiffness; /* Rayleigh alpha (1/s) and beta (s), as given */
-  PetscReal    damping_ratio;       /* target damping ratio at -damping_frequencies, as given */
-  PetscReal    damping_freq[2];     /* -damping_frequencies f1,f2 (Hz) */
-  PetscBool    damping_mass_set, damping_stiffness_set, damping_ratio_set;
-  PetscInt     damping_nfreq;       /* entries given to -damping_frequencies, -1 if not set */
 } MMOptions;

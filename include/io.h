@@ -6,7 +6,7 @@
 #include "apptypes.h"
 #include "contact.h"
 #include "friction.h"
-#include "tstypes.h"
+#include "ts.h"
 
 /* The run's context (include/mmcontact.h), which the output's glue to the components below still
  * takes (src/io/output_monitor.c) */

@@ -7,9 +7,8 @@
 #include "fem.h"
 #include "contact.h"
 #include "friction.h"
-#include "tstypes.h"
+#include "ts.h"
 #include "io.h"
-#include "systypes.h"
 
 /* Everything the stepper needs; the TS type "newmark" holds a pointer to it. */
 typedef struct _MMCtx {
@@ -19,13 +18,8 @@ typedef struct _MMCtx {
   MMLoads     loads;
   MMContact   contact;
   MMFriction  friction;
-  MMState     state;
-  MMDamping   damping;
-  MMHistory   hist;
+  MMNewmark   nm; /* the stepper (src/ts/): its state, history and damping through MMNewmarkGet* */
   MMProgress  progress;
   MMOutput    out;
   MMCheckpoint ckpt;
-  MMDeformation deform;
-  MMMomenta   momenta;
-  MMLog       log;
 } MMCtx;

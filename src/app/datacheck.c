@@ -9,7 +9,7 @@
 #include "mesh.h"
 #include "fem.h"
 #include "contact.h"
-#include "damping.h"
+#include "ts.h"
 #include "io.h"
 
 /* A size in bytes, in decimal units: "61.2 kB". */
@@ -200,11 +200,16 @@ static PetscErrorCode ReportPlan(MMCtx *ctx, TS ts, PetscReal *step0)
  * gravity). */
 static PetscErrorCode AccelerationEstimate(MMCtx *ctx, Vec a)
 {
+  MMState       *state;
+  MMDamping     *damping;
   MMContactNodes cn;
-  const MMState *s = &ctx->state;
+  const MMState *s;
   Vec            r, f;
 
   PetscFunctionBeginUser;
+  PetscCall(MMNewmarkGetState(ctx->nm, &state));
+  PetscCall(MMNewmarkGetDamping(ctx->nm, &damping));
+  s = state;
   PetscCall(MMContactGetNodes(ctx->contact, &cn));
   PetscCall(VecDuplicate(s->u, &r));
   PetscCall(VecDuplicate(ctx->op.mass_lumped_cart, &f));
@@ -212,7 +217,7 @@ static PetscErrorCode AccelerationEstimate(MMCtx *ctx, Vec a)
   PetscCall(VecAXPY(r, 1.0, ctx->op.lift));
   if (MMFEHasMasslessDofs(&ctx->op)) PetscCall(VecISSet(r, cn.is_normal, 0.0));
   PetscCall(VecAYPX(r, -1.0, ctx->op.load));
-  PetscCall(MMDampingAddForce(ctx, s->v, -1.0, r));
+  PetscCall(MMDampingAddForce(damping, s->v, -1.0, r));
   PetscCall(MMFEForceToCartesian(&ctx->op, r, f));
   PetscCall(VecPointwiseDivide(f, f, ctx->op.mass_lumped_cart));
   PetscCall(MMFEFromCartesian(&ctx->op, f, a));
@@ -232,17 +237,19 @@ static void PointText(PetscInt dim, const PetscReal x[], char text[], size_t len
  * reference position, as the contact_obstacle field shows) and its smallest gap at the start. */
 static PetscErrorCode ReportObstacles(MMCtx *ctx, TS ts)
 {
-  MMContactNodes cn;
+  MMState         *state;
+  MMContactNodes   cn;
   const MMOptions *opt = &ctx->opt;
   PetscInt        *count;
   PetscReal       *gap, *x, t0;
 
   PetscFunctionBeginUser;
+  PetscCall(MMNewmarkGetState(ctx->nm, &state));
   PetscCall(MMContactGetNodes(ctx->contact, &cn));
   if (!cn.enabled) PetscFunctionReturn(0);
   PetscCall(TSGetTime(ts, &t0));
   PetscCall(PetscMalloc3(opt->n_obstacles, &count, opt->n_obstacles, &gap, MM_MAX_DIM * opt->n_obstacles, &x));
-  PetscCall(MMContactObstacleGaps(ctx->contact, ctx->state.u, t0, count, gap, x));
+  PetscCall(MMContactObstacleGaps(ctx->contact, state->u, t0, count, gap, x));
   for (PetscInt b = 0; b < opt->n_obstacles; ++b) {
     const PetscBool pair = (PetscBool)(b >= opt->n_rigid);
     char            where[128];
@@ -259,6 +266,7 @@ static PetscErrorCode ReportObstacles(MMCtx *ctx, TS ts)
 
 static PetscErrorCode ReportFirstContact(MMCtx *ctx, TS ts, PetscReal step0)
 {
+  MMState       *state;
   MMContactNodes cn;
   MMFirstContact fc;
   PetscReal      t0, t_end, dt;
@@ -266,6 +274,7 @@ static PetscErrorCode ReportFirstContact(MMCtx *ctx, TS ts, PetscReal step0)
   char           where[128], touching[160] = "";
 
   PetscFunctionBeginUser;
+  PetscCall(MMNewmarkGetState(ctx->nm, &state));
   PetscCall(MMContactGetNodes(ctx->contact, &cn));
   if (!cn.enabled) {
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  first contact: none, -contact 0\n"));
@@ -274,9 +283,9 @@ static PetscErrorCode ReportFirstContact(MMCtx *ctx, TS ts, PetscReal step0)
   PetscCall(TSGetTime(ts, &t0));
   PetscCall(TSGetMaxTime(ts, &t_end));
   PetscCall(TSGetTimeStep(ts, &dt));
-  PetscCall(VecDuplicate(ctx->state.u, &a));
+  PetscCall(VecDuplicate(state->u, &a));
   PetscCall(AccelerationEstimate(ctx, a));
-  PetscCall(MMContactFirstContact(ctx->contact, ctx->state.u, ctx->state.v, a, t0, t_end, &fc));
+  PetscCall(MMContactFirstContact(ctx->contact, state->u, state->v, a, t0, t_end, &fc));
   PetscCall(VecDestroy(&a));
   if (fc.touching) PetscCall(PetscSNPrintf(touching, sizeof(touching), "%" PetscInt_FMT " contact row%s touch%s at the start; of the others, ", fc.touching, fc.touching > 1 ? "s" : "", fc.touching > 1 ? "" : "es"));
   if (fc.obstacle < 0) {

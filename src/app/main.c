@@ -16,15 +16,10 @@ static char help[] = "mmcontact: elastic bodies hitting and sliding on rigid obs
 #include "mesh.h"
 #include "fem.h"
 #include "contact.h"
-#include "newmark.h"
+#include "ts.h"
 #include "friction.h"
-#include "energy.h"
-#include "momenta.h"
 #include "io.h"
-#include "log.h"
 #include "sys.h"
-#include "deformation.h"
-#include "damping.h"
 #include "datacheck.h"
 #include "appimpl.h"
 #include <sys/resource.h>
@@ -40,14 +35,16 @@ static char help[] = "mmcontact: elastic bodies hitting and sliding on rigid obs
 /* The mesh: read, the options that depend on its dimension checked, then rotated and distributed. */
 static PetscErrorCode LoadMesh(MPI_Comm comm, MMCtx *ctx)
 {
+  MMDamping   *damping;
   MMMeshFacets facets;
   PetscInt     dim;
 
   PetscFunctionBeginUser;
+  PetscCall(MMNewmarkGetDamping(ctx->nm, &damping));
   PetscCall(MMMeshRead(comm, ctx->opt.mesh_file, &ctx->op.dm, &facets, &ctx->ckpt.vertex_file));
   /* the vector options' lengths, the rotation's among them, need the dimension */
   PetscCall(DMGetDimension(ctx->op.dm, &dim));
-  PetscCall(MMOptionsCheckDimension(comm, &ctx->opt, dim));
+  PetscCall(MMOptionsCheckDimension(comm, &ctx->opt, dim, MMDampingOn(damping))); /* Rayleigh damping refuses a moving boundary */
   PetscCall(MMMeshDistribute(ctx->opt.mesh_rotation, ctx->opt.mesh_rotation_center, &facets, &ctx->op.dm, &ctx->ckpt.vertex_orig));
   PetscFunctionReturn(0);
 }
@@ -56,14 +53,16 @@ static PetscErrorCode LoadMesh(MPI_Comm comm, MMCtx *ctx)
  * diagnostics and the energy of the restored state). */
 static PetscErrorCode Restart(MMCtx *ctx, TS ts)
 {
+  MMState  *state;
   PetscBool restarted;
   PetscReal t;
 
   PetscFunctionBeginUser;
+  PetscCall(MMNewmarkGetState(ctx->nm, &state));
   PetscCall(MMCheckpointLoad(&ctx->ckpt, ts));
   PetscCall(MMCheckpointGetRestart(&ctx->ckpt, &restarted, NULL, &t));
   if (!restarted) PetscFunctionReturn(0);
-  PetscCall(MMContactSetTime(ctx->contact, t, ctx->state.dt)); /* nothing without contact */
+  PetscCall(MMContactSetTime(ctx->contact, t, state->dt)); /* nothing without contact */
   PetscCall(MMLoadsSetTime(&ctx->loads, t, t));
   if (!ctx->opt.quiet) PetscCall(MMCheckpointView(&ctx->ckpt, PETSC_VIEWER_STDOUT_WORLD));
   PetscFunctionReturn(0);
@@ -71,6 +70,9 @@ static PetscErrorCode Restart(MMCtx *ctx, TS ts)
 
 static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
 {
+  MMState         *state;
+  MMHistory       *hist;
+  MMDamping       *damping;
   MPI_Comm         comm = PETSC_COMM_WORLD;
   PetscReal        dt;
   MMFEProblem      pb;
@@ -78,6 +80,9 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   MMContactProblem cp;
 
   PetscFunctionBeginUser;
+  PetscCall(MMNewmarkGetState(ctx->nm, &state));
+  PetscCall(MMNewmarkGetHistory(ctx->nm, &hist));
+  PetscCall(MMNewmarkGetDamping(ctx->nm, &damping));
   PetscCall(MMOptionsProcess(comm, &ctx->opt));
   PetscCall(MMOptionsHelpWithoutMesh(comm, help_only));
   if (*help_only) PetscFunctionReturn(0);
@@ -91,6 +96,7 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
     PetscCall(MMFrictionGetCoulombTolerance(ctx->friction, &tol));
     PetscCall(MMContactSetCoulombTolerance(ctx->contact, tol));
   }
+  PetscCall(MMNewmarkSetFromOptions(ctx->nm));
   PetscCall(MMOutputSetFromOptions(comm, &ctx->out));
   PetscCall(MMCheckpointSetFromOptions(comm, &ctx->ckpt));
   PetscCall(MMProgressSetFromOptions(comm, &ctx->progress));
@@ -100,6 +106,7 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   MMPhase(MMAppEvents.mesh_load, LoadMesh(comm, ctx));
   PetscCall(DMGetDimension(ctx->op.dm, &ctx->op.dim));
   PetscCall(MMOptionsGetFEProblem(&ctx->opt, &pb));
+  pb.damped = MMDampingOn(damping); /* a Dirichlet value's amplitude is refused with damping */
   MMPhase(MMAppEvents.fe_setup, MMFESetUp(&ctx->op, &ctx->material, &pb));
   PetscCall(MMOptionsGetContactProblem(&ctx->opt, &cp));
   MMPhase(MMAppEvents.contact_setup, MMContactSetUp(ctx->contact, &ctx->op, &ctx->material, &cp));
@@ -110,28 +117,39 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscCall(MMContactPairsTransformOperators(ctx->contact));
   PetscCall(MMFEAssembleOperatorsEnd(&ctx->op));
   MMPhase(MMAppEvents.loads_setup, MMLoadsSetUp(&ctx->loads, &ctx->op, &ctx->material, &pb));
-  MMPhase(MMAppEvents.initial_state, MMNewmarkInitialState(ctx));
-  MMPhase(MMAppEvents.friction_setup, MMFrictionSetUp(ctx->friction, ctx->contact, ctx->opt.mu_max, ctx->material.E_max, ctx->state.u_old, ctx->state.v_old, ctx->state.react));
-  PetscCall(MMNewmarkCreateTS(ctx, ts));
-  PetscCall(MMCheckpointSetUp(&ctx->ckpt, &ctx->opt, &ctx->op, &ctx->material, &ctx->hist, &ctx->state, &ctx->damping, ctx->contact, ctx->friction, &ctx->out));
+  {
+    MMNewmarkProblem tp;
+    PetscCall(MMOptionsGetNewmarkProblem(&ctx->opt, &tp));
+    PetscCall(MMNewmarkSetProblem(ctx->nm, &tp));
+  }
+  PetscCall(MMNewmarkSetUp(ctx->nm, &ctx->op, &ctx->material, &ctx->loads, ctx->contact));
+  MMPhase(MMAppEvents.initial_state, MMNewmarkInitialState(ctx->nm));
+  MMPhase(MMAppEvents.friction_setup, MMFrictionSetUp(ctx->friction, ctx->contact, ctx->opt.mu_max, ctx->material.E_max, state->u_old, state->v_old, state->react));
+  PetscCall(MMNewmarkSetFriction(ctx->nm, ctx->friction));
+  PetscCall(MMNewmarkCreateTS(ctx->nm, ts));
+  PetscCall(MMCheckpointSetUp(&ctx->ckpt, &ctx->opt, &ctx->op, &ctx->material, hist, state, damping, ctx->contact, ctx->friction, &ctx->out));
   PetscCall(Restart(ctx, *ts));
   PetscCall(TSGetTimeStep(*ts, &dt));
   {
     MMStepMatrix sm;
-    PetscCall(MMDampingGetStepMatrix(&ctx->damping, ctx->op.K, dt, &sm));
+    PetscCall(MMDampingGetStepMatrix(damping, ctx->op.K, dt, &sm));
     MMPhase(MMAppEvents.step_matrix, MMContactSetStepMatrix(ctx->contact, &sm));
   }
-  ctx->hist.dt = dt;
-  MMPhase(MMAppEvents.energy_initial, MMEnergyInitial(ctx));
-  MMPhase(MMAppEvents.deformation_check, MMDeformationCheck(ctx));
+  hist->dt = dt;
+  {
+    PetscBool restarted;
+    PetscCall(MMCheckpointGetRestart(&ctx->ckpt, &restarted, NULL, NULL));
+    MMPhase(MMAppEvents.energy_initial, MMEnergyInitial(ctx->nm, restarted));
+  }
+  MMPhase(MMAppEvents.deformation_check, MMDeformationCheck(ctx->nm));
   PetscCall(MMCheckpointRestoreHistory(&ctx->ckpt));
-  PetscCall(MMOutputSetUp(&ctx->out, &ctx->opt, &ctx->op, &ctx->material, &ctx->hist, &ctx->state, ctx->contact, &ctx->loads, &ctx->ckpt));
+  PetscCall(MMOutputSetUp(&ctx->out, &ctx->opt, &ctx->op, &ctx->material, hist, state, ctx->contact, &ctx->loads, &ctx->ckpt));
   /* every object has read its options: refuse the unread ones before any output is touched, and
    * before the start-up report, which would otherwise announce a run that is then refused */
   PetscCall(MMOptionsCheckUnused(comm, &ctx->opt, ctx->op.dm));
   /* after: its replay of the help text reads every option */
   PetscCall(MMOptionsCheckValueless(comm));
-  PetscCall(MMProgressSetUp(&ctx->progress, &ctx->opt, &ctx->op, &ctx->material, &ctx->hist, &ctx->state, ctx->contact, &ctx->damping));
+  PetscCall(MMProgressSetUp(&ctx->progress, &ctx->opt, &ctx->op, &ctx->material, hist, state, ctx->contact, damping));
   if (!ctx->opt.quiet) {
     KSP krylov, pc_ksp;
     PetscCall(MMContactGetStepKSP(ctx->contact, &krylov, &pc_ksp));
@@ -154,13 +172,14 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
 /* The run's own line of the report: its set-up and time loop, memory, and the audits' extremes. */
 static PetscErrorCode RunView(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wall, PetscViewer viewer)
 {
-  const MMHistory *h = &ctx->hist;
+  MMHistory       *h;
   PetscInt         steps, step0;
   struct rusage    ru;
   PetscReal        peak, total;
   MMContactNodes   cn;
 
   PetscFunctionBeginUser;
+  PetscCall(MMNewmarkGetHistory(ctx->nm, &h));
   PetscCall(MMContactGetNodes(ctx->contact, &cn));
   PetscCall(MMCheckpointGetRestart(&ctx->ckpt, NULL, &step0, NULL));
   steps = h->step - step0; /* this run's */
@@ -182,22 +201,16 @@ static PetscErrorCode Report(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wa
   PetscCall(RunView(ctx, setup, wall, viewer));
   PetscCall(MMProgressMassLine(&ctx->progress)); /* the mass's view (fem) */
   PetscCall(MMContactView(ctx->contact, viewer));
-  PetscCall(MMDeformationSummary(ctx)); /* MMDeformationView (ts) */
+  PetscCall(MMDeformationView(ctx->nm, viewer));
   PetscCall(MMOutputView(&ctx->out, viewer));
   PetscFunctionReturn(0);
 }
 
 static PetscErrorCode Destroy(MMCtx *ctx, TS *ts)
 {
-  MMState *s = &ctx->state;
-
   PetscFunctionBeginUser;
   PetscCall(TSDestroy(ts));
-  {
-    Vec *vecs[] = {&s->u, &s->v, &s->a, &s->u_old, &s->v_old, &s->a_old, &s->react, &s->react_old, &s->work, &s->u_next};
-    for (size_t i = 0; i < sizeof(vecs) / sizeof(vecs[0]); ++i) PetscCall(VecDestroy(vecs[i]));
-  }
-  PetscCall(MMDampingDestroy(&ctx->damping));
+  PetscCall(MMNewmarkDestroy(&ctx->nm));
   PetscCall(MMFrictionDestroy(&ctx->friction));
   PetscCall(MMContactDestroy(&ctx->contact));
   PetscCall(MMLoadsDestroy(&ctx->loads));
@@ -206,14 +219,14 @@ static PetscErrorCode Destroy(MMCtx *ctx, TS *ts)
   PetscCall(DMDestroy(&ctx->op.dm));
   PetscCall(MMOptionsDestroy(&ctx->opt));
   PetscCall(MMCheckpointDestroy(&ctx->ckpt));
-  PetscCall(MMDeformationDestroy(&ctx->deform));
-  PetscCall(MMMomentaDestroy(&ctx->momenta));
   PetscFunctionReturn(0);
 }
 
 int main(int argc, char **argv)
 {
   MMCtx          ctx;
+  MMState       *state;
+  MMHistory     *hist;
   TS             ts;
   PetscLogDouble ts0, t0, t1;
   PetscBool      help_only;
@@ -232,14 +245,17 @@ int main(int argc, char **argv)
   PetscCall(PetscMemzero(&ctx, sizeof(ctx)));
   PetscCall(MMAppInitializePackage());
   PetscCall(MMIOInitializePackage());
-  PetscCall(MMLogRegister(&ctx.log));
-  PetscCall(MMNewmarkRegister());
+  PetscCall(MMTSInitializePackage());
+  PetscCall(MMNewmarkCreate(PETSC_COMM_WORLD, &ctx.nm));
+  PetscCall(MMNewmarkGetState(ctx.nm, &state));
+  PetscCall(MMNewmarkGetHistory(ctx.nm, &hist));
 
   PetscCall(PetscTime(&ts0));
   PetscCall(PetscLogStagePush(MMAppEvents.setup));
   PetscCall(SetupProblem(&ctx, &ts, &help_only));
   PetscCall(PetscLogStagePop());
   if (help_only) {
+    PetscCall(MMNewmarkDestroy(&ctx.nm));
     PetscCall(MMOptionsDestroy(&ctx.opt));
     PetscCall(PetscFinalize());
     return 0;
@@ -253,16 +269,16 @@ int main(int argc, char **argv)
 
   PetscCall(PetscTime(&t0));
   PetscCall(PetscLogStagePush(MMAppEvents.solve));
-  PetscCall(TSSolve(ts, ctx.state.u_next));
+  PetscCall(TSSolve(ts, state->u_next));
   PetscCall(PetscLogStagePop());
   PetscCall(PetscTime(&t1));
   PetscCall(MMCheckpointWriteFinal(&ctx.ckpt, ts));
 
   PetscCall(MMOutputWriteFinal(&ctx));
-  PetscCall(MMOutputClose(&ctx.out, &ctx.ckpt, ctx.hist.step));
+  PetscCall(MMOutputClose(&ctx.out, &ctx.ckpt, hist->step));
   PetscCall(Report(&ctx, t0 - ts0, t1 - t0));
   PetscCall(MMOutputDestroy(&ctx.out));
-  PetscCall(MMSignalsReport(PETSC_COMM_WORLD, ctx.hist.step, ctx.hist.time, ctx.out.dir));
+  PetscCall(MMSignalsReport(PETSC_COMM_WORLD, hist->step, hist->time, ctx.out.dir));
   PetscCall(MMOutputUnlock());
   PetscCall(MMSignalsGetStop(&stopped));
   PetscCall(Destroy(&ctx, &ts));

@@ -5,7 +5,6 @@
 #include <stdlib.h>
 #include "obstacle.h"
 #include "sys.h"
-#include "damping.h"
 
 const char *const MMInitialStates[] = {"given", "static_sliding", "static", "MMInitialState", "MM_INITIAL_", NULL};
 
@@ -379,24 +378,6 @@ static PetscErrorCode ProcessBodies(PetscOptionItems *PetscOptionsObject, MPI_Co
   PetscFunctionReturn(0);
 }
 
-/* Rayleigh damping C = alpha M* + beta K: alpha and beta, or a ratio at two frequencies
- * (src/ts/damping.c checks them together and turns a ratio into alpha and beta). */
-static PetscErrorCode ProcessDamping(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt)
-{
-  PetscFunctionBeginUser;
-  PetscCall(MMOptionsCheckValue(comm, "-damping_mass", MM_VALUE_REAL));
-  PetscCall(PetscOptionsReal("-damping_mass", "Rayleigh damping C = alpha M* + beta K: alpha (1/s), >= 0 (default 0: no damping)", NULL, opt->damping_mass, &opt->damping_mass, &opt->damping_mass_set));
-  PetscCall(CheckFinite(comm, "-damping_mass", &opt->damping_mass, 1));
-  PetscCall(MMOptionsCheckValue(comm, "-damping_stiffness", MM_VALUE_REAL));
-  PetscCall(PetscOptionsReal("-damping_stiffness", "Rayleigh damping C = alpha M* + beta K: beta (s), >= 0 (default 0: no damping)", NULL, opt->damping_stiffness, &opt->damping_stiffness, &opt->damping_stiffness_set));
-  PetscCall(CheckFinite(comm, "-damping_stiffness", &opt->damping_stiffness, 1));
-  PetscCall(MMOptionsCheckValue(comm, "-damping_ratio", MM_VALUE_REAL));
-  PetscCall(PetscOptionsReal("-damping_ratio", "Rayleigh damping by its ratio to critical, >= 0, reached at the two -damping_frequencies: sets alpha = 2 zeta w1 w2/(w1 + w2) and beta = 2 zeta/(w1 + w2), w = 2 pi f (not with -damping_mass or -damping_stiffness)", NULL, opt->damping_ratio, &opt->damping_ratio, &opt->damping_ratio_set));
-  PetscCall(CheckFinite(comm, "-damping_ratio", &opt->damping_ratio, 1));
-  PetscCall(OptionsRealArray(PetscOptionsObject, comm, "-damping_frequencies", "The two frequencies f1,f2 (Hz, > 0) at which -damping_ratio holds; between them the damping ratio is lower, outside higher", 2, opt->damping_freq, &opt->damping_nfreq));
-  PetscFunctionReturn(0);
-}
-
 /* The ranges of the scalar options, each refused with its range. */
 static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
 {
@@ -414,11 +395,7 @@ static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
     PetscCheck(body->rho > 0, comm, PETSC_ERR_USER_INPUT, "Density -body_%s_rho %g must be > 0", body->name, (double)body->rho);
   }
   PetscCheck(opt->mu >= 0, comm, PETSC_ERR_USER_INPUT, "Friction coefficient -mu %g must be >= 0", (double)opt->mu);
-  PetscCheck(opt->audit_tol > 0, comm, PETSC_ERR_USER_INPUT, "-audit_tol %g must be > 0: it is a relative energy-balance residual", (double)opt->audit_tol);
   PetscCheck(opt->contact_work_tol > 0, comm, PETSC_ERR_USER_INPUT, "-contact_work_tol %g must be > 0: it is a fraction of the run's energy scale", (double)opt->contact_work_tol);
-  PetscCheck(opt->strain_warn > 0, comm, PETSC_ERR_USER_INPUT, "-strain_warn %g must be > 0: it is a strain", (double)opt->strain_warn);
-  PetscCheck(opt->max_strain >= opt->strain_warn, comm, PETSC_ERR_USER_INPUT, "-max_strain %g must be >= -strain_warn %g", (double)opt->max_strain, (double)opt->strain_warn);
-  PetscCall(MMDampingCheckOptions(comm, opt));
   PetscFunctionReturn(0);
 }
 
@@ -469,21 +446,12 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_MESH_ROTATION, "Rigid rotation applied to the mesh when it is read: an angle (2D) or a rotation vector (3D), in radians", opt->mesh_rotation));
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_MESH_ROTATION_CENTER, "Centre of the -mesh_rotation, d entries", opt->mesh_rotation_center));
 
-  PetscCall(ProcessDamping(PetscOptionsObject, comm, opt));
 
   opt->mu = 0.0;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-mu", "Coulomb friction coefficient, >= 0 (0: frictionless, the friction loop is skipped); the default of each -obstacle_NAME_mu and -contact_pair_NAME_mu (refused when each of them is given: it would be used nowhere)", &opt->mu));
   PetscCall(ProcessObstacles(PetscOptionsObject, comm, opt));
-  opt->audit_tol = 1e-6;
-  PetscCall(OptionsReal(PetscOptionsObject, comm, "-audit_tol", "Stop the run when a step's relative energy-balance residual exceeds this (> 0): the scheme's identity no longer holds", &opt->audit_tol));
   opt->contact_work_tol = 1e-3;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-contact_work_tol", "Reject and retry with a smaller dt a step whose contact work W_c creates more energy than this times the run's energy scale (> 0): a release that dt does not resolve", &opt->contact_work_tol));
-  opt->deformation_audit = PETSC_TRUE;
-  PetscCall(OptionsBool(PetscOptionsObject, comm, "-deformation_audit", "After every step, check each cell's deformation: a cell turned inside out or a strain above -max_strain stops the run, one above -strain_warn is warned (0: no check, for nondimensional verification cases whose strains are large by design)", &opt->deformation_audit));
-  opt->strain_warn = 0.1;
-  PetscCall(OptionsReal(PetscOptionsObject, comm, "-strain_warn", "Warn once when a cell's strain (its largest principal strain, in magnitude) exceeds this, > 0: beyond it the small-strain model is an approximation", &opt->strain_warn));
-  opt->max_strain = 1.0;
-  PetscCall(OptionsReal(PetscOptionsObject, comm, "-max_strain", "Stop the run when a cell's strain exceeds this, >= -strain_warn: the small-strain model's result is then meaningless (a cell turned inside out always stops the run)", &opt->max_strain));
   opt->quiet = PETSC_FALSE;
   PetscCall(OptionsBool(PetscOptionsObject, comm, "-quiet", "Do not print the start-up report, progress lines and closing summary", &opt->quiet));
   /* a data check (abaqus datacheck, MOOSE --check-input): src/app/datacheck.c, README "Checking a case before a batch job" */
@@ -514,7 +482,7 @@ static PetscInt ExpectedLength(MMVectorOption which, PetscInt dim)
 
 /* Checks what depends on the mesh dimension, once the mesh is read: every vector option has exactly
  * its length (a missing component would silently become 0), and the obstacle normal is a unit vector. */
-PetscErrorCode MMOptionsCheckDimension(MPI_Comm comm, MMOptions *opt, PetscInt dim)
+PetscErrorCode MMOptionsCheckDimension(MPI_Comm comm, MMOptions *opt, PetscInt dim, PetscBool damped)
 {
   PetscReal nrm = 0;
 
@@ -556,7 +524,7 @@ PetscErrorCode MMOptionsCheckDimension(MPI_Comm comm, MMOptions *opt, PetscInt d
     PetscCheck(bc->nvelocity < 0 || bc->nvelocity == bc->ncomp, comm, PETSC_ERR_USER_INPUT, "-dirichlet_%s_velocity has %" PetscInt_FMT " entries but the boundary fixes %" PetscInt_FMT " components (-dirichlet_%s_components, default all %" PetscInt_FMT "): give one velocity per fixed component", bc->name, bc->nvelocity, bc->ncomp, bc->name, dim);
     /* the damping force of the moving boundary's velocity on the free dofs, C_fD v_D, is not in the
      * scheme (docs/method.md section 10): refuse rather than let the energy audit stop the run */
-    PetscCheck(bc->nvelocity < 0 || (opt->damping_mass <= 0 && opt->damping_stiffness <= 0 && opt->damping_ratio <= 0), comm, PETSC_ERR_SUP, "-dirichlet_%s_velocity with Rayleigh damping (-damping_mass, -damping_stiffness or -damping_ratio) is not supported: the damping force of a moving boundary is not in the scheme. Drop one of the two", bc->name);
+    PetscCheck(bc->nvelocity < 0 || !damped, comm, PETSC_ERR_SUP, "-dirichlet_%s_velocity with Rayleigh damping (-damping_mass, -damping_stiffness or -damping_ratio) is not supported: the damping force of a moving boundary is not in the scheme. Drop one of the two", bc->name);
   }
   for (PetscInt b = 0; b < opt->n_bodies; ++b) {
     const MMBodyOptions *body = &opt->bodies[b];
@@ -668,6 +636,38 @@ PetscErrorCode MMOptionsGetFEProblem(const MMOptions *opt, MMFEProblem *pb)
   pb->n_point_force     = opt->n_point_force;
   pb->point_force       = opt->point_force;
   pb->static_sliding    = (PetscBool)(opt->initial_state == MM_INITIAL_STATIC_SLIDING);
-  pb->damped            = (PetscBool)!(opt->damping_mass <= 0 && opt->damping_stiffness <= 0 && opt->damping_ratio <= 0);
+  PetscFunctionReturn(0);
+}
+
+/* The problem as the stepper reads it: the initial state, the obstacles (borrowed from opt), the
+ * audits' thresholds and the values its messages quote. */
+PetscErrorCode MMOptionsGetNewmarkProblem(const MMOptions *opt, MMNewmarkProblem *pb)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(pb, sizeof(*pb)));
+  pb->initial_state = opt->initial_state;
+  pb->u0_given      = (PetscBool)(opt->vec_count[MM_V_U0_OFFSET] >= 0 || opt->vec_count[MM_V_U0_GRADIENT] >= 0);
+  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) {
+    pb->u0_offset[d]       = opt->u0_offset[d];
+    pb->v0[d]              = opt->v0[d];
+    pb->omega[d]           = opt->omega[d];
+    pb->omega_center[d]    = opt->omega_center[d];
+    pb->obstacle_normal[d] = opt->obstacle_normal[d];
+  }
+  for (PetscInt d = 0; d < MM_MAX_DIM * MM_MAX_DIM; ++d) pb->u0_gradient[d] = opt->u0_gradient[d];
+  pb->obstacles = opt->obstacles;
+  pb->mu        = opt->mu;
+  pb->dirichlet = (PetscBool)(opt->n_dirichlet > 0);
+  for (PetscInt b = 0; b < opt->n_dirichlet; ++b) {
+    for (PetscInt c = 0; c < opt->dirichlet[b].nvalues; ++c)
+      if (opt->dirichlet[b].values[c] != 0) pb->dirichlet_nonzero = PETSC_TRUE;
+    for (PetscInt c = 0; c < opt->dirichlet[b].nvelocity; ++c)
+      if (opt->dirichlet[b].velocity[c] != 0) pb->dirichlet_nonzero = PETSC_TRUE;
+  }
+  pb->E                 = opt->E;
+  pb->nu                = opt->nu;
+  pb->rho               = opt->rho;
+  pb->contact_work_tol  = opt->contact_work_tol;
+  pb->quiet             = opt->quiet;
   PetscFunctionReturn(0);
 }

@@ -8,7 +8,7 @@
 #include <strings.h>
 #include <stdarg.h>
 #include "options.h"
-#include "newmark.h"
+#include "ts.h"
 #include "contact.h"
 #include "friction.h"
 #include "fem.h"
@@ -152,6 +152,12 @@ static PetscErrorCode ComponentsFromOptions(MPI_Comm comm)
     PetscCall(MMFrictionCreate(comm, &fr));
     PetscCall(MMFrictionSetFromOptions(fr));
     PetscCall(MMFrictionDestroy(&fr));
+  }
+  {
+    MMNewmark nm;
+    PetscCall(MMNewmarkCreate(comm, &nm));
+    PetscCall(MMNewmarkSetFromOptions(nm));
+    PetscCall(MMNewmarkDestroy(&nm));
   }
   PetscFunctionReturn(0);
 }

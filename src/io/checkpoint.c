@@ -7,7 +7,7 @@
 #include <petscviewerhdf5.h>
 #include "friction.h"
 #include "io.h"
-#include "newmark.h"
+#include "ts.h"
 #include "fem.h"
 #include "outputimpl.h"
 

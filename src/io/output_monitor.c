@@ -45,7 +45,7 @@ static PetscErrorCode Write(MMCtx *ctx, PetscBool row, PetscBool snapshot)
   if (snapshot || (row && o->probes.n)) PetscCall(WholeState(o));
   if (row) PetscCall(MMOutputWriteRow(o));
   if (!snapshot) PetscFunctionReturn(0);
-  PetscCall(MMContactBoundaryFields(ctx->contact, ctx->state.u, ctx->state.v, ctx->state.react, o->dm_out, o->pressure, o->gap, o->traction_t, o->slip));
+  PetscCall(MMContactBoundaryFields(ctx->contact, o->state->u, o->state->v, o->state->react, o->dm_out, o->pressure, o->gap, o->traction_t, o->slip));
   PetscCall(MMStressCompute(&o->stress, o->op, o->material, o->dm_out, o->disp_cart, PETSC_TRUE));
   PetscCall(MMOutputWriteSnapshot(o, o->hist->time));
   PetscCall(PetscLogStagePop());
@@ -101,7 +101,7 @@ PetscErrorCode MMOutputMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void
   }
   /* -restart: the row and snapshot of the checkpoint's step are on disk already */
   if (ctx->ckpt.restarted && step == ctx->ckpt.restart_step) PetscFunctionReturn(0);
-  PetscCall(Write(ctx, MMOutputHistoryDue(o, step), (PetscBool)(step == 0 || MMOutputSnapshotDue(o, step, time, ctx->hist.dt))));
+  PetscCall(Write(ctx, MMOutputHistoryDue(o, step), (PetscBool)(step == 0 || MMOutputSnapshotDue(o, step, time, o->hist->dt))));
   PetscFunctionReturn(0);
 }
 
@@ -110,7 +110,7 @@ PetscErrorCode MMOutputMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void
 PetscErrorCode MMOutputWriteFinal(MMCtx *ctx)
 {
   MMOutput        *o = &ctx->out;
-  const MMHistory *h = &ctx->hist;
+  const MMHistory *h = o->hist;
 
   PetscFunctionBeginUser;
   PetscCall(Write(ctx, (PetscBool)(!MMOutputHistoryDue(o, h->step) && !(ctx->ckpt.restarted && h->step == ctx->ckpt.restart_step)), (PetscBool)(o->n_written && o->times[o->n_written - 1] != h->time)));

@@ -12,7 +12,7 @@
  * chatters, e.g. -mass standard, by 100). No error estimate is used: the scheme's energy identity
  * holds at every dt. */
 #include <petsc/private/tsimpl.h>
-#include "newmark.h"
+#include "newmarkimpl.h"
 
 typedef struct {
   PetscInt wait, wait0, wait_max; /* accepted steps before dt grows; its start and cap */

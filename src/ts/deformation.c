@@ -8,7 +8,7 @@
  * - its largest principal strain |eps|, eps = sym(grad u), above -max_strain: the run stops;
  * - above -strain_warn: one warning, with the step, the cell and the value.
  * One pass over the cells with a few dozen flops each, on the displacement already in memory. */
-#include "deformation.h"
+#include "newmarkimpl.h"
 #include "fem.h"
 #include "errors.h"
 
@@ -44,11 +44,11 @@ typedef struct {
 } Worst;
 
 /* Once: where each cell's vertices are in the local displacement and coordinate vectors. */
-static PetscErrorCode CellTable(MMCtx *ctx)
+static PetscErrorCode CellTable(MMNewmark nm)
 {
-  MMDeformation *d  = &ctx->deform;
-  DM             dm = ctx->op.dm, cdm;
-  const PetscInt dim = ctx->op.dim;
+  MMDeformation *d  = &nm->deform;
+  DM             dm = nm->op->dm, cdm;
+  const PetscInt dim = nm->op->dim;
   PetscSection   ls, cs;
   PetscInt       cStart, cEnd;
 
@@ -61,7 +61,7 @@ static PetscErrorCode CellTable(MMCtx *ctx)
   PetscCall(PetscMalloc2((dim + 1) * d->ncells, &d->cell_u, (dim + 1) * d->ncells, &d->cell_x));
   for (PetscInt c = cStart; c < cEnd; ++c) {
     /* any vertex order: det F and the strain do not depend on it (simplices: MMCellsCreate checked) */
-    const PetscInt *v = &ctx->op.cells.vertex[(dim + 1) * (c - cStart)];
+    const PetscInt *v = &nm->op->cells.vertex[(dim + 1) * (c - cStart)];
     for (PetscInt a = 0; a <= dim; ++a) {
       PetscCall(PetscSectionGetOffset(ls, v[a], &d->cell_u[(dim + 1) * (c - cStart) + a]));
       PetscCall(PetscSectionGetOffset(cs, v[a], &d->cell_x[(dim + 1) * (c - cStart) + a]));
@@ -149,9 +149,9 @@ static inline void ScanCellsDim(const PetscInt dim, const MMDeformation *d, cons
   }
 }
 
-static PetscErrorCode ScanCells(MMCtx *ctx, Vec ucart_local, Worst *w)
+static PetscErrorCode ScanCells(MMNewmark nm, Vec ucart_local, Worst *w)
 {
-  MMDeformation     *d = &ctx->deform;
+  MMDeformation     *d = &nm->deform;
   Vec                xl;
   const PetscScalar *u, *x;
 
@@ -159,26 +159,15 @@ static PetscErrorCode ScanCells(MMCtx *ctx, Vec ucart_local, Worst *w)
   PetscCall(PetscMemzero(w, sizeof(*w))); /* the places too: a body at rest has no cell above strain 0 */
   w->detF   = PETSC_MAX_REAL;
   w->strain = 0;
-  if (!d->cell_u) PetscCall(CellTable(ctx));
-  PetscCall(DMGetCoordinatesLocal(ctx->op.dm, &xl));
+  if (!d->cell_u) PetscCall(CellTable(nm));
+  PetscCall(DMGetCoordinatesLocal(nm->op->dm, &xl));
   PetscCall(VecGetArrayRead(ucart_local, &u));
   PetscCall(VecGetArrayRead(xl, &x));
-  if (ctx->op.dim == 2) ScanCellsDim(2, d, u, x, w);
+  if (nm->op->dim == 2) ScanCellsDim(2, d, u, x, w);
   else ScanCellsDim(3, d, u, x, w);
   PetscCall(VecRestoreArrayRead(xl, &x));
   PetscCall(VecRestoreArrayRead(ucart_local, &u));
   PetscFunctionReturn(0);
-}
-
-static PetscBool NonzeroDirichlet(const MMOptions *opt)
-{
-  for (PetscInt b = 0; b < opt->n_dirichlet; ++b)
-    for (PetscInt c = 0; c < opt->dirichlet[b].nvalues; ++c)
-      if (opt->dirichlet[b].values[c] != 0) return PETSC_TRUE;
-  for (PetscInt b = 0; b < opt->n_dirichlet; ++b)
-    for (PetscInt c = 0; c < opt->dirichlet[b].nvelocity; ++c)
-      if (opt->dirichlet[b].velocity[c] != 0) return PETSC_TRUE;
-  return PETSC_FALSE;
 }
 
 /* The place of the worst value over all ranks: the rank with the extreme sends its place. */
@@ -207,59 +196,61 @@ static PetscErrorCode FormatPlace(PetscInt dim, const PetscReal at[], char s[], 
 }
 
 /* After each accepted step (and on the initial state): stop, warn once, or record. */
-PetscErrorCode MMDeformationCheck(MMCtx *ctx)
+PetscErrorCode MMDeformationCheck(MMNewmark nm)
 {
-  DM             dm   = ctx->op.dm;
+  DM             dm   = nm->op->dm;
   MPI_Comm       comm = PetscObjectComm((PetscObject)dm);
-  MMDeformation *d    = &ctx->deform;
-  const MMHistory *h  = &ctx->hist;
+  MMDeformation *d    = &nm->deform;
+  const MMHistory *h  = &nm->hist;
   Vec            g, l;
   Worst          w;
   char           place[96];
 
   PetscFunctionBeginUser;
-  if (!ctx->opt.deformation_audit) PetscFunctionReturn(0);
-  if (!d->ev) PetscCall(PetscLogEventRegister("MMDeformation", DM_CLASSID, &d->ev));
-  PetscCall(PetscLogEventBegin(d->ev, 0, 0, 0, 0));
+  if (!nm->deformation_audit) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(MM_TS_Deformation, 0, 0, 0, 0));
   PetscCall(DMGetGlobalVector(dm, &g));
   PetscCall(DMGetLocalVector(dm, &l));
-  PetscCall(MMFEToCartesian(&ctx->op, ctx->state.u, g));
+  PetscCall(MMFEToCartesian(nm->op, nm->state.u, g));
   PetscCall(VecZeroEntries(l));
   PetscCall(DMGlobalToLocal(dm, g, INSERT_VALUES, l));
   /* the constrained dofs are zero in l: only nonzero Dirichlet data need inserting (a projection) */
   /* the data of the state's time: loads.t1, which a restart sets before the history's time */
-  if (NonzeroDirichlet(&ctx->opt)) PetscCall(MMLoadsInsertBoundaryValues(&ctx->loads, l, ctx->loads.t1));
-  PetscCall(ScanCells(ctx, l, &w));
+  if (nm->pb.dirichlet_nonzero) PetscCall(MMLoadsInsertBoundaryValues(nm->loads, l, nm->loads->t1));
+  PetscCall(ScanCells(nm, l, &w));
   PetscCall(DMRestoreLocalVector(dm, &l));
   PetscCall(DMRestoreGlobalVector(dm, &g));
   PetscCall(GlobalWorst(comm, &w.detF, w.at_det, PETSC_TRUE));
   PetscCall(GlobalWorst(comm, &w.strain, w.at_strain, PETSC_FALSE));
-  PetscCall(PetscLogEventEnd(d->ev, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(MM_TS_Deformation, 0, 0, 0, 0));
   if (w.strain > d->max_strain) {
     d->max_strain = w.strain;
     d->step       = h->step;
     for (PetscInt i = 0; i < MM_MAX_DIM; ++i) d->where[i] = w.at_strain[i];
   }
-  PetscCall(FormatPlace(ctx->op.dim, w.at_det, place, sizeof(place)));
+  PetscCall(FormatPlace(nm->op->dim, w.at_det, place, sizeof(place)));
   PetscCheck(w.detF > 0, comm, MM_ERR_PHYSICS, "At step %" PetscInt_FMT " (t = %g) the cell at %s has turned inside out (det F = %.3g): the body passes through itself, and the result is meaningless. The impact or the load is far too strong for a small-strain model: check -v0, the loads and the units (SI). The output up to the previous step is intact", h->step, (double)h->time, place, (double)w.detF);
-  PetscCall(FormatPlace(ctx->op.dim, w.at_strain, place, sizeof(place)));
-  PetscCheck(w.strain <= ctx->opt.max_strain, comm, MM_ERR_PHYSICS, "At step %" PetscInt_FMT " (t = %g) the cell at %s has a strain of %.3g, above -max_strain %g: a small-strain model means nothing there. Check -v0, the loads and the units (SI), or raise -max_strain. The output up to the previous step is intact", h->step, (double)h->time, place, (double)w.strain, (double)ctx->opt.max_strain);
-  if (w.strain > ctx->opt.strain_warn && !d->warned) {
+  PetscCall(FormatPlace(nm->op->dim, w.at_strain, place, sizeof(place)));
+  PetscCheck(w.strain <= nm->max_strain, comm, MM_ERR_PHYSICS, "At step %" PetscInt_FMT " (t = %g) the cell at %s has a strain of %.3g, above -max_strain %g: a small-strain model means nothing there. Check -v0, the loads and the units (SI), or raise -max_strain. The output up to the previous step is intact", h->step, (double)h->time, place, (double)w.strain, (double)nm->max_strain);
+  if (w.strain > nm->strain_warn && !d->warned) {
     d->warned = PETSC_TRUE;
-    PetscCall(PetscPrintf(comm, "mmcontact warning: at step %" PetscInt_FMT " (t = %g) the cell at %s has a strain of %.4g, above -strain_warn %g: from here on the small-strain model is an approximation (warned once; the summary gives the largest)\n", h->step, (double)h->time, place, (double)w.strain, (double)ctx->opt.strain_warn));
+    PetscCall(PetscPrintf(comm, "mmcontact warning: at step %" PetscInt_FMT " (t = %g) the cell at %s has a strain of %.4g, above -strain_warn %g: from here on the small-strain model is an approximation (warned once; the summary gives the largest)\n", h->step, (double)h->time, place, (double)w.strain, (double)nm->strain_warn));
   }
   PetscFunctionReturn(0);
 }
 
-/* A line of the closing summary: the largest strain of the run. */
-PetscErrorCode MMDeformationSummary(MMCtx *ctx)
+/* The closing summary's line: the largest strain of the run (nothing with -deformation_audit 0). */
+PetscErrorCode MMDeformationView(MMNewmark nm, PetscViewer viewer)
 {
-  char place[96];
+  const MMDeformation *d = &nm->deform;
+  char                 place[96];
+  PetscBool            ascii;
 
   PetscFunctionBeginUser;
-  if (!ctx->opt.deformation_audit) PetscFunctionReturn(0);
-  PetscCall(FormatPlace(ctx->op.dim, ctx->deform.where, place, sizeof(place)));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  largest strain %.3e at step %" PetscInt_FMT ", in the cell at %s (-strain_warn %g, -max_strain %g)\n", (double)ctx->deform.max_strain, ctx->deform.step, place, (double)ctx->opt.strain_warn, (double)ctx->opt.max_strain));
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
+  if (!nm->deformation_audit || !ascii) PetscFunctionReturn(0);
+  PetscCall(FormatPlace(nm->op->dim, d->where, place, sizeof(place)));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  largest strain %.3e at step %" PetscInt_FMT ", in the cell at %s (-strain_warn %g, -max_strain %g)\n", (double)d->max_strain, d->step, place, (double)nm->strain_warn, (double)nm->max_strain));
   PetscFunctionReturn(0);
 }
 

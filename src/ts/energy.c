@@ -1,41 +1,38 @@
 /* The energy audit of every step (docs/method.md section 4) and rigid-body diagnostics. */
-#include "energy.h"
-#include "momenta.h"
-#include "contact.h"
+#include "newmarkimpl.h"
 #include "fem.h"
 #include "obstacle.h"
 #include "friction.h"
-#include "damping.h"
 
-static PetscErrorCode KineticEnergy(MMCtx *ctx, Vec v, PetscReal *ek)
+static PetscErrorCode KineticEnergy(MMNewmark nm, Vec v, PetscReal *ek)
 {
   PetscScalar vMv;
 
   PetscFunctionBeginUser;
-  PetscCall(MatMult(ctx->op.Mstar, v, ctx->state.work));
-  PetscCall(VecDot(v, ctx->state.work, &vMv));
+  PetscCall(MatMult(nm->op->Mstar, v, nm->state.work));
+  PetscCall(VecDot(v, nm->state.work, &vMv));
   *ek = 0.5 * PetscRealPart(vMv);
-  if (ctx->loads.moving) {
+  if (nm->loads->moving) {
     PetscReal ekD;
-    PetscCall(MMLoadsDirichletKinetic(&ctx->loads, v, &ekD)); /* the moving boundary's nodes (docs/method.md section 10) */
+    PetscCall(MMLoadsDirichletKinetic(nm->loads, v, &ekD)); /* the moving boundary's nodes (docs/method.md section 10) */
     *ek += ekD;
   }
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode TotalEnergy(MMCtx *ctx, MMHistory *h)
+static PetscErrorCode TotalEnergy(MMNewmark nm, MMHistory *h)
 {
   PetscFunctionBeginUser;
-  PetscCall(KineticEnergy(ctx, ctx->state.v, &h->kinetic));
-  PetscCall(MMFEElasticEnergy(&ctx->op, ctx->state.u, &h->elastic));
+  PetscCall(KineticEnergy(nm, nm->state.v, &h->kinetic));
+  PetscCall(MMFEElasticEnergy(nm->op, nm->state.u, &h->elastic));
   h->total = h->kinetic + h->elastic;
   PetscFunctionReturn(0);
 }
 
 /* 1/2 (f^n + f^{n+1}).du over the dofs of is: the trapezoidal work of a nodal force. */
-static PetscErrorCode TrapezoidalWork(MMCtx *ctx, IS is, Vec du, PetscReal *work)
+static PetscErrorCode TrapezoidalWork(MMNewmark nm, IS is, Vec du, PetscReal *work)
 {
-  MMState    *s = &ctx->state;
+  MMState    *s = &nm->state;
   Vec         f, fo, d;
   PetscScalar w1, w0;
 
@@ -57,25 +54,25 @@ static PetscErrorCode TrapezoidalWork(MMCtx *ctx, IS is, Vec du, PetscReal *work
  * displacement in the node's frame (docs/method.md section 8). The contact and friction works on
  * the body split into this and the method's own remainder; wn and wt are the normal and
  * tangential parts. Zero when nothing moves. */
-static PetscErrorCode ObstacleWork(MMCtx *ctx, PetscReal t0, PetscReal t1, PetscReal *wn, PetscReal *wt)
+static PetscErrorCode ObstacleWork(MMNewmark nm, PetscReal t0, PetscReal t1, PetscReal *wn, PetscReal *wt)
 {
-  MMContactNodes    nodes, *ct = &nodes;
-  const PetscInt     dim = ctx->op.dim;
+  MMContactNodes     nodes, *ct = &nodes;
+  const PetscInt     dim = nm->op->dim;
   const PetscInt    *in;
   const PetscScalar *f1, *f0;
   PetscInt           rstart;
   PetscReal          w[2] = {0, 0};
 
   PetscFunctionBeginUser;
-  PetscCall(MMContactGetNodes(ctx->contact, &nodes));
+  PetscCall(MMContactGetNodes(nm->contact, &nodes));
   *wn = *wt = 0;
   if (!ct->enabled || !ct->moving) PetscFunctionReturn(0);
-  PetscCall(VecGetOwnershipRange(ctx->state.react, &rstart, NULL));
+  PetscCall(VecGetOwnershipRange(nm->state.react, &rstart, NULL));
   PetscCall(ISGetIndices(ct->is_normal, &in));
-  PetscCall(VecGetArrayRead(ctx->state.react, &f1));
-  PetscCall(VecGetArrayRead(ctx->state.react_old, &f0));
+  PetscCall(VecGetArrayRead(nm->state.react, &f1));
+  PetscCall(VecGetArrayRead(nm->state.react_old, &f0));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
-    const MMObstacle *ob = &ctx->opt.obstacles[ct->obstacle[k]];
+    const MMObstacle *ob = &nm->pb.obstacles[ct->obstacle[k]];
     const PetscReal  *F  = &ct->node_frame[9 * k];
     PetscReal         c0[MM_MAX_DIM] = {0, 0, 0}, c1[MM_MAX_DIM] = {0, 0, 0};
     MMObstacleDisplacement(ob, dim, t0, c0);
@@ -87,10 +84,10 @@ static PetscErrorCode ObstacleWork(MMCtx *ctx, PetscReal t0, PetscReal t1, Petsc
       w[j ? 1 : 0] += 0.5 * PetscRealPart(f1[i] + f0[i]) * dc;
     }
   }
-  PetscCall(VecRestoreArrayRead(ctx->state.react_old, &f0));
-  PetscCall(VecRestoreArrayRead(ctx->state.react, &f1));
+  PetscCall(VecRestoreArrayRead(nm->state.react_old, &f0));
+  PetscCall(VecRestoreArrayRead(nm->state.react, &f1));
   PetscCall(ISRestoreIndices(ct->is_normal, &in));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, w, 2, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)ctx->op.dm)));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, w, 2, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)nm->op->dm)));
   *wn = w[0];
   *wt = w[1];
   PetscFunctionReturn(0);
@@ -99,35 +96,34 @@ static PetscErrorCode ObstacleWork(MMCtx *ctx, PetscReal t0, PetscReal t1, Petsc
 /* W_c of a candidate step w (not yet accepted: u still holds u^n), for the contact-work guard; the
  * stepper keeps the accepted step's value in state.work_contact for the energy audit. It excludes
  * the moving obstacles' normal work, which is not the method's doing. */
-PetscErrorCode MMEnergyContactWork(MMCtx *ctx, Vec w, PetscReal *w_c)
+PetscErrorCode MMEnergyContactWork(MMNewmark nm, Vec w, PetscReal *w_c)
 {
+  MMState       *s = &nm->state;
   MMContactNodes cn;
-  MMState *s = &ctx->state;
 
   PetscFunctionBeginUser;
-  PetscCall(MMContactGetNodes(ctx->contact, &cn));
+  PetscCall(MMContactGetNodes(nm->contact, &cn));
   *w_c = 0;
   if (!cn.enabled) PetscFunctionReturn(0);
   PetscCall(VecWAXPY(s->work, -1.0, s->u, w));
-  PetscCall(TrapezoidalWork(ctx, cn.is_normal, s->work, w_c));
+  PetscCall(TrapezoidalWork(nm, cn.is_normal, s->work, w_c));
   {
     PetscReal wn, wt, dwc, dwn, dwt;
-    PetscCall(ObstacleWork(ctx, ctx->hist.time, ctx->hist.time + cn.dt, &wn, &wt));
+    PetscCall(ObstacleWork(nm, nm->hist.time, nm->hist.time + cn.dt, &wn, &wt));
     /* a friction corner's two obstacles, each its own normal (docs/method.md section 12) */
-    PetscCall(MMContactCornersWork(ctx->contact, ctx->hist.time, ctx->hist.time + cn.dt, s->work, &dwc, &dwn, &dwt));
+    PetscCall(MMContactCornersWork(nm->contact, nm->hist.time, nm->hist.time + cn.dt, s->work, &dwc, &dwn, &dwt));
     *w_c += dwc - (wn + dwn);
   }
   PetscFunctionReturn(0);
 }
 
-
-/* The contact quantities of the accepted state into the history, and (audit) the contact audit */
-static PetscErrorCode ContactDiagnostics(MMCtx *ctx, Vec u, Vec react, Vec v, PetscBool audit, MMHistory *h)
+/* The contact's part of the history row, and its audit after a step. */
+static PetscErrorCode ContactDiagnostics(MMNewmark nm, Vec u, Vec react, Vec v, PetscBool audit, MMHistory *h)
 {
   MMContactStats st;
 
   PetscFunctionBeginUser;
-  PetscCall(MMContactDiagnostics(ctx->contact, ctx->hist.time, u, react, v, &st));
+  PetscCall(MMContactDiagnostics(nm->contact, nm->hist.time, u, react, v, &st));
   h->active           = st.active;
   h->switched         = st.switched;
   h->slipping         = st.slipping;
@@ -138,49 +134,49 @@ static PetscErrorCode ContactDiagnostics(MMCtx *ctx, Vec u, Vec react, Vec v, Pe
   h->vi_its           = st.vi_its;
   h->candidates       = st.candidates;
   h->resolves         = st.resolves;
-  if (audit) PetscCall(MMContactAudit(ctx->contact, h->step, h->time, &st));
+  if (audit) PetscCall(MMContactAudit(nm->contact, h->step, h->time, &st));
   PetscFunctionReturn(0);
 }
 
 /* A NaN or inf anywhere in the state shows in its energies and works: stop before it is recorded. */
-static PetscErrorCode CheckFinite(MMCtx *ctx, const MMHistory *h, PetscReal w_ext, PetscReal w_c, PetscReal w_f)
+static PetscErrorCode CheckFinite(MMNewmark nm, const MMHistory *h, PetscReal w_ext, PetscReal w_c, PetscReal w_f)
 {
   const char *name[] = {"kinetic energy", "elastic energy", "external work", "contact work", "friction work"};
   PetscReal   val[]  = {h->kinetic, h->elastic, w_ext, w_c, w_f};
 
   PetscFunctionBeginUser;
   for (size_t i = 0; i < sizeof(val) / sizeof(val[0]); ++i)
-    PetscCheck(!PetscIsInfOrNanReal(val[i]), PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_FP,
+    PetscCheck(!PetscIsInfOrNanReal(val[i]), PetscObjectComm((PetscObject)nm->op->dm), PETSC_ERR_FP,
                "The %s is %s at step %" PetscInt_FMT " (t = %g): the state overflowed or a solve failed. Check the units of the material (-E %g, -rho %g), the loads and the initial velocity. The output up to the previous step is intact",
-               name[i], PetscIsNanReal(val[i]) ? "NaN" : "infinite", h->step, (double)h->time, (double)ctx->opt.E, (double)ctx->opt.rho);
+               name[i], PetscIsNanReal(val[i]) ? "NaN" : "infinite", h->step, (double)h->time, (double)nm->pb.E, (double)nm->pb.rho);
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMEnergyInitial(MMCtx *ctx)
+PetscErrorCode MMEnergyInitial(MMNewmark nm, PetscBool restarted)
 {
+  MMHistory     *h = &nm->hist;
   MMContactNodes cn;
-  MMHistory *h = &ctx->hist;
 
   PetscFunctionBeginUser;
-  PetscCall(MMContactGetNodes(ctx->contact, &cn));
+  PetscCall(MMContactGetNodes(nm->contact, &cn));
   h->step = 0;
   h->time = 0;
   h->work_ext = h->work_contact = h->work_friction = h->work_obstacle = 0;
   h->work_damping = 0;
   h->work_dirichlet = 0;
   h->balance_residual = h->max_balance = h->max_penetration_run = 0;
-  h->cfl = cn.enabled ? ctx->op.c_p * h->dt / cn.h_c : 0;
+  h->cfl = cn.enabled ? nm->op->c_p * h->dt / cn.h_c : 0;
   /* the quadrature inserts the Dirichlet data of t = 0: a restarted run's moving boundary is elsewhere */
-  if (!(ctx->loads.moving && ctx->ckpt.restarted)) PetscCall(MMFECheckElasticEnergy(&ctx->op, &ctx->material, ctx->state.u));
-  PetscCall(TotalEnergy(ctx, h));
-  PetscCall(CheckFinite(ctx, h, 0, 0, 0));
+  if (!(nm->loads->moving && restarted)) PetscCall(MMFECheckElasticEnergy(nm->op, nm->material, nm->state.u));
+  PetscCall(TotalEnergy(nm, h));
+  PetscCall(CheckFinite(nm, h, 0, 0, 0));
   h->energy_scale = PetscAbsReal(h->total);
-  PetscCall(ContactDiagnostics(ctx, ctx->state.u, ctx->state.react, ctx->state.v, PETSC_FALSE, h));
+  PetscCall(ContactDiagnostics(nm, nm->state.u, nm->state.react, nm->state.v, PETSC_FALSE, h));
   h->switched = 0;
   h->vi_its   = 0;
   h->max_penetration_run = h->max_penetration;
-  PetscCall(MMRigidBodyDiagnostics(ctx, h));
-  PetscCall(MMLoadsReactions(&ctx->loads, ctx->state.u, ctx->state.a));
+  PetscCall(MMRigidBodyDiagnostics(nm, h));
+  PetscCall(MMLoadsReactions(nm->loads, nm->state.u, nm->state.a));
   PetscFunctionReturn(0);
 }
 
@@ -196,39 +192,39 @@ static const char *AuditAdvice(PetscReal contact_tol, PetscReal residual)
 
 /* E^{n+1} - E^n = W_ext + W_c + W_f (+ W_obstacle + W_d), each term recorded; the residual is the
  * scheme's identity. */
-PetscErrorCode MMEnergyStep(MMCtx *ctx)
+PetscErrorCode MMEnergyStep(MMNewmark nm)
 {
-  MMContactNodes cn;
-  MMHistory  *h = &ctx->hist;
-  MMState    *s = &ctx->state;
+  MMHistory  *h = &nm->hist;
+  MMState    *s = &nm->state;
   PetscReal   E_old = h->total, w_ext, w_c = s->work_contact, w_f = 0, w_obs = 0, w_d, w_ext_D, w_D;
   PetscScalar Ldu;
   PetscReal   contact_tol;
+  MMContactNodes cn;
 
   PetscFunctionBeginUser;
-  PetscCall(MMContactGetTolerance(ctx->contact, &contact_tol));
-  PetscCall(MMContactGetNodes(ctx->contact, &cn));
-  PetscCall(PetscLogEventBegin(ctx->log.energy, 0, 0, 0, 0));
+  PetscCall(MMContactGetTolerance(nm->contact, &contact_tol));
+  PetscCall(MMContactGetNodes(nm->contact, &cn));
+  PetscCall(PetscLogEventBegin(MM_TS_Energy, 0, 0, 0, 0));
   PetscCall(VecWAXPY(s->work, -1.0, s->u_old, s->u));
-  PetscCall(VecDot(ctx->op.load, s->work, &Ldu)); /* L^{n+1}: L^n too when the loads are constant */
+  PetscCall(VecDot(nm->op->load, s->work, &Ldu)); /* L^{n+1}: L^n too when the loads are constant */
   w_ext = PetscRealPart(Ldu);
-  if (ctx->loads.in_time) { /* 1/2 (L^n + L^{n+1}).du (docs/method.md section 10) */
+  if (nm->loads->in_time) { /* 1/2 (L^n + L^{n+1}).du (docs/method.md section 10) */
     PetscScalar L0du;
-    PetscCall(VecDot(ctx->loads.load_old, s->work, &L0du));
+    PetscCall(VecDot(nm->loads->load_old, s->work, &L0du));
     w_ext = 0.5 * (PetscRealPart(L0du) + w_ext);
   }
   /* the loads' and the support's work on the moving Dirichlet dofs, and the reactions at t^{n+1} */
-  PetscCall(MMLoadsStepWork(&ctx->loads, s->u, s->a, s->u_old, s->a_old, &w_ext_D, &w_D));
+  PetscCall(MMLoadsStepWork(nm->loads, s->u, s->a, s->u_old, s->a_old, &w_ext_D, &w_D));
   w_ext += w_ext_D;
-  PetscCall(MMDampingWork(ctx, s->work, s->dt, &w_d));
+  PetscCall(MMDampingWork(&nm->damping, s->work, s->dt, &w_d));
   /* W_c was computed on this very state by the contact-work guard (MMEnergyContactWork) */
-  if (cn.enabled) PetscCall(TrapezoidalWork(ctx, cn.is_tangent, s->work, &w_f));
+  if (cn.enabled) PetscCall(TrapezoidalWork(nm, cn.is_tangent, s->work, &w_f));
   {
     PetscReal wn, wt, dwc, dwn, dwt;
     /* h->time is already t^{n+1} */
-    PetscCall(ObstacleWork(ctx, h->time - s->dt, h->time, &wn, &wt));
+    PetscCall(ObstacleWork(nm, h->time - s->dt, h->time, &wn, &wt));
     /* W_c took the friction corners' share from W_f (MMEnergyContactWork) */
-    PetscCall(MMContactCornersWork(ctx->contact, h->time - s->dt, h->time, s->work, &dwc, &dwn, &dwt));
+    PetscCall(MMContactCornersWork(nm->contact, h->time - s->dt, h->time, s->work, &dwc, &dwn, &dwt));
     wn += dwn;
     wt += dwt;
     w_f -= wt + dwc;
@@ -236,8 +232,8 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
     w_obs = wn + wt;
   }
   h->dt = s->dt;
-  PetscCall(TotalEnergy(ctx, h));
-  PetscCall(CheckFinite(ctx, h, w_ext, w_c, w_f));
+  PetscCall(TotalEnergy(nm, h));
+  PetscCall(CheckFinite(nm, h, w_ext, w_c, w_f));
   h->work_ext += w_ext;
   h->work_contact += w_c;
   h->work_friction += w_f;
@@ -247,14 +243,14 @@ PetscErrorCode MMEnergyStep(MMCtx *ctx)
   h->energy_scale     = PetscMax(h->energy_scale, PetscAbsReal(h->total));
   h->balance_residual = PetscAbsReal(h->total - E_old - w_ext - w_c - w_f - w_obs - w_d - w_D) / PetscMax(h->energy_scale, PETSC_SMALL * PETSC_SMALL);
   h->max_balance      = PetscMax(h->max_balance, h->balance_residual);
-  PetscCheck(h->balance_residual <= ctx->opt.audit_tol, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_NOT_CONVERGED,
+  PetscCheck(h->balance_residual <= nm->audit_tol, PetscObjectComm((PetscObject)nm->op->dm), PETSC_ERR_NOT_CONVERGED,
              "Energy audit failed at step %" PetscInt_FMT " (t = %g): balance residual %.3e > -audit_tol %.1e. %s The output up to the previous step is intact",
-             h->step, (double)h->time, (double)h->balance_residual, (double)ctx->opt.audit_tol, AuditAdvice(contact_tol, h->balance_residual));
-  h->cfl              = cn.enabled ? ctx->op.c_p * s->dt / cn.h_c : 0;
-  PetscCall(ContactDiagnostics(ctx, s->u, s->react, s->v, PETSC_TRUE, h));
-  PetscCall(MMFrictionGetConvergence(ctx->friction, &h->friction_its, NULL, NULL, &h->contraction));
+             h->step, (double)h->time, (double)h->balance_residual, (double)nm->audit_tol, AuditAdvice(contact_tol, h->balance_residual));
+  h->cfl              = cn.enabled ? nm->op->c_p * s->dt / cn.h_c : 0;
+  PetscCall(ContactDiagnostics(nm, s->u, s->react, s->v, PETSC_TRUE, h));
+  PetscCall(MMFrictionGetConvergence(nm->friction, &h->friction_its, NULL, NULL, &h->contraction));
   h->max_penetration_run = PetscMax(h->max_penetration_run, h->max_penetration);
-  PetscCall(MMRigidBodyDiagnostics(ctx, h));
-  PetscCall(PetscLogEventEnd(ctx->log.energy, 0, 0, 0, 0));
+  PetscCall(MMRigidBodyDiagnostics(nm, h));
+  PetscCall(PetscLogEventEnd(MM_TS_Energy, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

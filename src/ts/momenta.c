@@ -7,7 +7,7 @@
  * e.(T M* x) = (M* T^T e).x, and T^T = N^{-1} Q^T is the map of displacements from Cartesian. So
  * each functional is a vector g = M* (from Cartesian)(e), built once, and a step costs one
  * multiple dot product on u and v: no product with M* and no Cartesian copy of them. */
-#include "momenta.h"
+#include "newmarkimpl.h"
 #include "fem.h"
 
 /* The Cartesian weights, on this rank's owned vertices. They are rigid-body modes about the
@@ -18,11 +18,11 @@
  *   with no Dirichlet dof only: P, the loads' resultant, and J_k = sum_i (X_i x q_i)_k = sum_i
  *   q_i . (e_k x X_i);
  * and the table of those vertices for the angular momentum. */
-static PetscErrorCode MomentaWeights(MMCtx *ctx, Vec e[], Vec p[], Vec a[])
+static PetscErrorCode MomentaWeights(MMNewmark nm, Vec e[], Vec p[], Vec a[])
 {
-  MMMomenta         *mo  = &ctx->momenta;
-  DM                 dm  = ctx->op.dm;
-  const PetscInt     dim = ctx->op.dim;
+  MMMomenta         *mo  = &nm->momenta;
+  DM                 dm  = nm->op->dm;
+  const PetscInt     dim = nm->op->dim;
   const PetscReal    origin[MM_MAX_DIM] = {0, 0, 0};
   PetscSection       gs, ls, cs;
   PetscInt           vStart, vEnd, rstart, nv = 0;
@@ -31,7 +31,7 @@ static PetscErrorCode MomentaWeights(MMCtx *ctx, Vec e[], Vec p[], Vec a[])
   PetscScalar       *pw[MM_MAX_DIM], *aw[3];
 
   PetscFunctionBeginUser;
-  PetscCall(MMFERigidModesCartesian(&ctx->op, origin, 1.0, dim, e));
+  PetscCall(MMFERigidModesCartesian(nm->op, origin, 1.0, dim, e));
   PetscCall(DMGetGlobalSection(dm, &gs));
   PetscCall(DMGetLocalSection(dm, &ls));
   PetscCall(DMGetCoordinateSection(dm, &cs));
@@ -69,25 +69,25 @@ static PetscErrorCode MomentaWeights(MMCtx *ctx, Vec e[], Vec p[], Vec a[])
 }
 
 /* Once, on the final M* (after the mass redistribution): the functionals g and the selectors of P. */
-static PetscErrorCode MomentaSetUp(MMCtx *ctx)
+static PetscErrorCode MomentaSetUp(MMNewmark nm)
 {
-  MMMomenta     *mo  = &ctx->momenta;
-  const PetscInt dim = ctx->op.dim;
+  MMMomenta     *mo  = &nm->momenta;
+  const PetscInt dim = nm->op->dim;
   Vec            w[3 * MM_MAX_DIM], t;
 
   PetscFunctionBeginUser;
   mo->nJ = dim == 3 ? 3 : 1;
   mo->ng = 2 * dim + mo->nJ;
   for (PetscInt k = 0; k < mo->ng; ++k) {
-    PetscCall(DMCreateGlobalVector(ctx->op.dm, &w[k]));
+    PetscCall(DMCreateGlobalVector(nm->op->dm, &w[k]));
     PetscCall(VecZeroEntries(w[k]));
   }
-  PetscCall(MomentaWeights(ctx, w, &w[dim], &w[2 * dim]));
+  PetscCall(MomentaWeights(nm, w, &w[dim], &w[2 * dim]));
   PetscCall(VecDuplicate(w[0], &t));
   for (PetscInt k = 0; k < mo->ng; ++k) {
     PetscCall(VecDuplicate(w[0], &mo->g[k]));
-    PetscCall(MMFEFromCartesian(&ctx->op, w[k], t));
-    PetscCall(MatMult(ctx->op.Mstar, t, mo->g[k]));
+    PetscCall(MMFEFromCartesian(nm->op, w[k], t));
+    PetscCall(MatMult(nm->op->Mstar, t, mo->g[k]));
   }
   PetscCall(VecDestroy(&t));
   for (PetscInt d = 0; d < dim; ++d) mo->sel[d] = w[dim + d]; /* kept, for the loads' resultant */
@@ -101,11 +101,11 @@ static PetscErrorCode MomentaSetUp(MMCtx *ctx)
  * free. It stays the standard mass's: the modified mass lacks the contact nodes' normal masses, so
  * it has no single centre, and its rigid translation would carry an angular momentum. The scheme's
  * own (M*) momenta are P and J. Quadratic in the state, so a pass over the vertex table. */
-static PetscErrorCode AngularMomentum(MMCtx *ctx, MMHistory *h)
+static PetscErrorCode AngularMomentum(MMNewmark nm, MMHistory *h)
 {
-  MMMomenta         *mo = &ctx->momenta;
-  DM                 dm = ctx->op.dm;
-  const PetscInt     dim = ctx->op.dim;
+  MMMomenta         *mo = &nm->momenta;
+  DM                 dm = nm->op->dm;
+  const PetscInt     dim = nm->op->dim;
   Vec                uc, vc, X;
   const PetscScalar *u, *v, *m, *x;
   PetscReal          sum[1 + MM_MAX_DIM] = {0}, cm[MM_MAX_DIM], L[3] = {0, 0, 0};
@@ -114,12 +114,12 @@ static PetscErrorCode AngularMomentum(MMCtx *ctx, MMHistory *h)
   PetscFunctionBeginUser;
   PetscCall(DMGetGlobalVector(dm, &uc));
   PetscCall(DMGetGlobalVector(dm, &vc));
-  PetscCall(MMFEToCartesian(&ctx->op, ctx->state.u, uc));
-  PetscCall(MMFEToCartesian(&ctx->op, ctx->state.v, vc));
+  PetscCall(MMFEToCartesian(nm->op, nm->state.u, uc));
+  PetscCall(MMFEToCartesian(nm->op, nm->state.v, vc));
   PetscCall(DMGetCoordinatesLocal(dm, &X));
   PetscCall(VecGetArrayRead(uc, &u));
   PetscCall(VecGetArrayRead(vc, &v));
-  PetscCall(VecGetArrayRead(ctx->op.mass_lumped_cart, &m));
+  PetscCall(VecGetArrayRead(nm->op->mass_lumped_cart, &m));
   PetscCall(VecGetArrayRead(X, &x));
   /* first pass: mass and first moment of the current position */
   for (PetscInt n = 0; n < mo->nv; ++n) {
@@ -144,7 +144,7 @@ static PetscErrorCode AngularMomentum(MMCtx *ctx, MMHistory *h)
   }
   PetscCall(MPIU_Allreduce(L, h->L, 3, MPIU_REAL, MPIU_SUM, comm));
   PetscCall(VecRestoreArrayRead(X, &x));
-  PetscCall(VecRestoreArrayRead(ctx->op.mass_lumped_cart, &m));
+  PetscCall(VecRestoreArrayRead(nm->op->mass_lumped_cart, &m));
   PetscCall(VecRestoreArrayRead(vc, &v));
   PetscCall(VecRestoreArrayRead(uc, &u));
   PetscCall(DMRestoreGlobalVector(dm, &vc));
@@ -154,18 +154,18 @@ static PetscErrorCode AngularMomentum(MMCtx *ctx, MMHistory *h)
 
 /* The resultant of the loads L, Cartesian, over the vertices with no Dirichlet dof: a constant L's
  * on the initial state only, L(t)'s at every step. */
-static PetscErrorCode LoadResultant(MMCtx *ctx, MMHistory *h)
+static PetscErrorCode LoadResultant(MMNewmark nm, MMHistory *h)
 {
-  MMMomenta  *mo = &ctx->momenta;
+  MMMomenta  *mo = &nm->momenta;
   Vec         lc;
   PetscScalar r[MM_MAX_DIM];
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalVector(ctx->op.dm, &lc));
-  PetscCall(MMFEForceToCartesian(&ctx->op, ctx->op.load, lc));
-  PetscCall(VecMDot(lc, ctx->op.dim, mo->sel, r));
-  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) h->load[d] = d < ctx->op.dim ? PetscRealPart(r[d]) : 0;
-  PetscCall(DMRestoreGlobalVector(ctx->op.dm, &lc));
+  PetscCall(DMGetGlobalVector(nm->op->dm, &lc));
+  PetscCall(MMFEForceToCartesian(nm->op, nm->op->load, lc));
+  PetscCall(VecMDot(lc, nm->op->dim, mo->sel, r));
+  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) h->load[d] = d < nm->op->dim ? PetscRealPart(r[d]) : 0;
+  PetscCall(DMRestoreGlobalVector(nm->op->dm, &lc));
   PetscFunctionReturn(0);
 }
 
@@ -176,25 +176,25 @@ static PetscErrorCode LoadResultant(MMCtx *ctx, MMHistory *h)
  * over the vertices with no Dirichlet dof: rigid translations and infinitesimal rotations are in
  * the kernel of the stiffness, so P and J change over a step by dt times the trapezoidal mean of
  * the resultant (and moment) of L and the contact forces, whatever the deformation. */
-PetscErrorCode MMRigidBodyDiagnostics(MMCtx *ctx, MMHistory *h)
+PetscErrorCode MMRigidBodyDiagnostics(MMNewmark nm, MMHistory *h)
 {
-  MMMomenta     *mo  = &ctx->momenta;
-  const PetscInt dim = ctx->op.dim;
+  MMMomenta     *mo  = &nm->momenta;
+  const PetscInt dim = nm->op->dim;
   PetscScalar    su[MM_MAX_DIM], sv[3 * MM_MAX_DIM];
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(ctx->log.momenta, 0, 0, 0, 0));
-  if (!mo->ng) PetscCall(MomentaSetUp(ctx));
+  PetscCall(PetscLogEventBegin(MM_TS_Momenta, 0, 0, 0, 0));
+  if (!mo->ng) PetscCall(MomentaSetUp(nm));
   /* one reduction for both */
-  PetscCall(VecMDotBegin(ctx->state.u, dim, mo->g, su));
-  PetscCall(VecMDotBegin(ctx->state.v, mo->ng, mo->g, sv));
-  PetscCall(VecMDotEnd(ctx->state.u, dim, mo->g, su));
-  PetscCall(VecMDotEnd(ctx->state.v, mo->ng, mo->g, sv));
+  PetscCall(VecMDotBegin(nm->state.u, dim, mo->g, su));
+  PetscCall(VecMDotBegin(nm->state.v, mo->ng, mo->g, sv));
+  PetscCall(VecMDotEnd(nm->state.u, dim, mo->g, su));
+  PetscCall(VecMDotEnd(nm->state.v, mo->ng, mo->g, sv));
   for (PetscInt a = 0; a < dim; ++a) {
     h->ucm[a] = h->vcm[a] = 0;
     for (PetscInt b = 0; b < dim; ++b) {
-      h->ucm[a] += ctx->op.mass_star_inv[a * dim + b] * PetscRealPart(su[b]);
-      h->vcm[a] += ctx->op.mass_star_inv[a * dim + b] * PetscRealPart(sv[b]);
+      h->ucm[a] += nm->op->mass_star_inv[a * dim + b] * PetscRealPart(su[b]);
+      h->vcm[a] += nm->op->mass_star_inv[a * dim + b] * PetscRealPart(sv[b]);
     }
   }
   for (PetscInt d = 0; d < MM_MAX_DIM; ++d) h->P[d] = d < dim ? PetscRealPart(sv[dim + d]) : 0;
@@ -202,9 +202,9 @@ PetscErrorCode MMRigidBodyDiagnostics(MMCtx *ctx, MMHistory *h)
   if (dim == 3)
     for (PetscInt k = 0; k < 3; ++k) h->J[k] = PetscRealPart(sv[2 * dim + k]);
   else h->J[2] = PetscRealPart(sv[2 * dim]);
-  if (h->step == 0 || ctx->loads.in_time) PetscCall(LoadResultant(ctx, h));
-  PetscCall(AngularMomentum(ctx, h));
-  PetscCall(PetscLogEventEnd(ctx->log.momenta, 0, 0, 0, 0));
+  if (h->step == 0 || nm->loads->in_time) PetscCall(LoadResultant(nm, h));
+  PetscCall(AngularMomentum(nm, h));
+  PetscCall(PetscLogEventEnd(MM_TS_Momenta, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

@@ -4,45 +4,35 @@
  * TSAdapt. Each step solves the one contact problem of docs/method.md section 3 for u^{n+1}; the
  * massless contact-normal dofs carry no inertia, so their equation is quasi-static. */
 #include <petsc/private/tsimpl.h>
-#include "newmark.h"
-#include "deformation.h"
-#include "contact.h"
-#include "energy.h"
+#include "newmarkimpl.h"
 #include "fem.h"
 #include "friction.h"
-#include "sliding.h"
-#include "damping.h"
 
+/* The TS type's data: the context it steps */
 typedef struct {
-  MMCtx *ctx;
+  MMNewmark nm;
 } TS_Newmark;
 
-/* The dofs without inertia: the contact-normal dofs under the modified mass, none otherwise. */
-static PetscBool HasMasslessDofs(MMCtx *ctx)
-{
-  return MMFEHasMasslessDofs(&ctx->op);
-}
-
 /* b = L(t^{n+1}) - lift(t^{n+1}) + M* (4/dt^2 u^n + 4/dt v^n + a^n) [+ C (2/dt u^n + vC^n) with damping] */
-static PetscErrorCode StepRHS(MMCtx *ctx, PetscReal dt, Vec b)
+static PetscErrorCode StepRHS(MMNewmark nm, PetscReal dt, Vec b)
 {
-  MMState *s = &ctx->state;
+  MMState *s = &nm->state;
 
   PetscFunctionBeginUser;
   PetscCall(VecAXPBYPCZ(s->work, 4.0 / (dt * dt), 4.0 / dt, 0.0, s->u, s->v));
   PetscCall(VecAXPY(s->work, 1.0, s->a));
-  PetscCall(MatMult(ctx->op.Mstar, s->work, b));
-  PetscCall(VecAXPY(b, 1.0, ctx->op.load));
-  PetscCall(VecAXPY(b, -1.0, ctx->op.lift));
-  PetscCall(MMDampingAddStepRHS(ctx, dt, b));
+  PetscCall(MatMult(nm->op->Mstar, s->work, b));
+  PetscCall(VecAXPY(b, 1.0, nm->op->load));
+  PetscCall(VecAXPY(b, -1.0, nm->op->lift));
+  PetscCall(MMDampingAddStepRHS(&nm->damping, s->u, dt, b));
   PetscFunctionReturn(0);
 }
 
 /* a^{n+1}, v^{n+1} from u^{n+1} by the trapezoidal rule; the massless dofs get a = 0 and the
  * backward-difference velocity, which enter neither the dynamics nor the energy. */
-static PetscErrorCode UpdateKinematics(MMCtx *ctx, PetscReal dt, Vec w)
+static PetscErrorCode UpdateKinematics(MMNewmark nm, PetscReal dt, Vec w)
 {
-  MMState *s = &ctx->state;
+  MMState *s = &nm->state;
 
   PetscFunctionBeginUser;
   PetscCall(VecWAXPY(s->work, -1.0, s->u_old, w));
@@ -50,10 +40,10 @@ static PetscErrorCode UpdateKinematics(MMCtx *ctx, PetscReal dt, Vec w)
   PetscCall(VecAXPY(s->a, -1.0, s->a_old));
   PetscCall(VecWAXPY(s->v, 1.0, s->a_old, s->a));
   PetscCall(VecAYPX(s->v, 0.5 * dt, s->v_old));
-  if (HasMasslessDofs(ctx)) {
+  if (MMNewmarkHasMasslessDofs(nm)) {
     Vec            vc, dc;
     MMContactNodes cn;
-    PetscCall(MMContactGetNodes(ctx->contact, &cn));
+    PetscCall(MMContactGetNodes(nm->contact, &cn));
     PetscCall(VecISSet(s->a, cn.is_normal, 0.0));
     PetscCall(VecGetSubVector(s->v, cn.is_normal, &vc));
     PetscCall(VecGetSubVector(s->work, cn.is_normal, &dc));
@@ -83,7 +73,7 @@ typedef enum {
 
 /* A rejected step is retried with dt times TSAdapt's -ts_adapt_scale_solve_failed, down to
  * -ts_adapt_dt_min and at most -ts_max_reject times; past those the run stops and says why. */
-static PetscErrorCode RejectStep(TS ts, MMCtx *ctx, PetscInt rejections, MMRejectReason why, PetscReal w_c, PetscReal scale)
+static PetscErrorCode RejectStep(TS ts, MMNewmark nm, PetscInt rejections, MMRejectReason why, PetscReal w_c, PetscReal scale)
 {
   const PetscReal dt = ts->time_step;
   PetscReal       h_c, cfl;
@@ -95,26 +85,26 @@ static PetscErrorCode RejectStep(TS ts, MMCtx *ctx, PetscInt rejections, MMRejec
   PetscBool       can_retry;
 
   PetscFunctionBeginUser;
-  PetscCall(MMContactGetNodes(ctx->contact, &cn));
+  PetscCall(MMContactGetNodes(nm->contact, &cn));
   h_c = cn.h_c;
-  cfl = ctx->op.c_p * dt / h_c;
+  cfl = nm->op->c_p * dt / h_c;
   PetscCall(TSAdaptGetStepLimits(ts->adapt, &hmin, &hmax));
-  PetscCall(MMFrictionGetConvergence(ctx->friction, NULL, NULL, &contraction, NULL));
+  PetscCall(MMFrictionGetConvergence(nm->friction, NULL, NULL, &contraction, NULL));
   ts->reject++;
   ts->num_snes_failures++;
   PetscCall(MMAdaptGrowBackRejected(ts, (PetscBool)(why == MM_REJECT_FRICTION)));
-  PetscCall(VecCopy(ctx->state.react_old, ctx->state.react));
+  PetscCall(VecCopy(nm->state.react_old, nm->state.react));
   can_retry = (PetscBool)(new_dt >= hmin && (ts->max_reject < 0 || rejections <= ts->max_reject));
   if (why == MM_REJECT_FRICTION) {
     PetscCheck(can_retry, comm, PETSC_ERR_NOT_CONVERGED,
                "The friction loop does not converge at t = %g: last dt = %g, observed contraction factor %.3f, c_p dt / h_c' = %.3f. The next dt %g would be below -ts_adapt_dt_min %g (or past -ts_max_reject %" PetscInt_FMT "). The paper's fixed point (Theorem 4.2) needs c_p dt / h_c' small enough for mu = %g: use -friction_type newton, or lower -ts_dt or -mu, or raise -friction_snes_max_it. The output up to t = %g is intact",
-               (double)ts->ptime, (double)dt, (double)contraction, (double)cfl, (double)new_dt, (double)hmin, ts->max_reject, (double)ctx->opt.mu, (double)ts->ptime);
-    if (!ctx->opt.quiet) PetscCall(PetscPrintf(comm, "  step rejected at t = %g: the friction loop did not converge with dt = %g (contraction factor %.3f, c_p dt / h_c' = %.3f); retrying with dt = %g\n", (double)ts->ptime, (double)dt, (double)contraction, (double)cfl, (double)new_dt));
+               (double)ts->ptime, (double)dt, (double)contraction, (double)cfl, (double)new_dt, (double)hmin, ts->max_reject, (double)nm->pb.mu, (double)ts->ptime);
+    if (!nm->pb.quiet) PetscCall(PetscPrintf(comm, "  step rejected at t = %g: the friction loop did not converge with dt = %g (contraction factor %.3f, c_p dt / h_c' = %.3f); retrying with dt = %g\n", (double)ts->ptime, (double)dt, (double)contraction, (double)cfl, (double)new_dt));
   } else {
     PetscCheck(can_retry, comm, PETSC_ERR_NOT_CONVERGED,
                "A contact release at t = %g creates energy that dt does not resolve: the step's contact work W_c = %g is %.3g of the energy scale, above -contact_work_tol %g, with dt = %g (c_p dt / h_c' = %.3g). The next dt %g would be below -ts_adapt_dt_min %g (or past -ts_max_reject %" PetscInt_FMT "). Use a -ts_dt near h_c' / c_p = %g, so that the contact pressure is resolved in time. The output up to t = %g is intact",
-               (double)ts->ptime, (double)w_c, (double)(w_c / scale), (double)ctx->opt.contact_work_tol, (double)dt, (double)cfl, (double)new_dt, (double)hmin, ts->max_reject, (double)(h_c / ctx->op.c_p), (double)ts->ptime);
-    if (!ctx->opt.quiet) PetscCall(PetscPrintf(comm, "  step rejected at t = %g: its contact work W_c = %g would create %.3g of the energy scale (-contact_work_tol %g) with dt = %g (c_p dt / h_c' = %.3g); retrying with dt = %g\n", (double)ts->ptime, (double)w_c, (double)(w_c / scale), (double)ctx->opt.contact_work_tol, (double)dt, (double)cfl, (double)new_dt));
+               (double)ts->ptime, (double)w_c, (double)(w_c / scale), (double)nm->pb.contact_work_tol, (double)dt, (double)cfl, (double)new_dt, (double)hmin, ts->max_reject, (double)(h_c / nm->op->c_p), (double)ts->ptime);
+    if (!nm->pb.quiet) PetscCall(PetscPrintf(comm, "  step rejected at t = %g: its contact work W_c = %g would create %.3g of the energy scale (-contact_work_tol %g) with dt = %g (c_p dt / h_c' = %.3g); retrying with dt = %g\n", (double)ts->ptime, (double)w_c, (double)(w_c / scale), (double)nm->pb.contact_work_tol, (double)dt, (double)cfl, (double)new_dt));
   }
   ts->time_step = new_dt;
   PetscFunctionReturn(0);
@@ -124,13 +114,13 @@ static PetscErrorCode RejectStep(TS ts, MMCtx *ctx, PetscInt rejections, MMRejec
  * solver error, so the balance audit cannot see energy created at a release that dt does not
  * resolve (docs/method.md section 4, "Energy at contact release"). A step that creates more than
  * -contact_work_tol of the run's energy scale is refused. */
-static PetscErrorCode ContactWorkTooLarge(MMCtx *ctx, Vec w, PetscBool *too_large, PetscReal *w_c, PetscReal *scale)
+static PetscErrorCode ContactWorkTooLarge(MMNewmark nm, Vec w, PetscBool *too_large, PetscReal *w_c, PetscReal *scale)
 {
   PetscFunctionBeginUser;
-  *scale = PetscMax(ctx->hist.energy_scale, PetscAbsReal(ctx->hist.work_ext));
-  PetscCall(MMEnergyContactWork(ctx, w, w_c));
+  *scale = PetscMax(nm->hist.energy_scale, PetscAbsReal(nm->hist.work_ext));
+  PetscCall(MMEnergyContactWork(nm, w, w_c));
   /* with no energy in the run yet there is nothing to compare with */
-  *too_large = (PetscBool)(*scale > 0 && *w_c > ctx->opt.contact_work_tol * *scale);
+  *too_large = (PetscBool)(*scale > 0 && *w_c > nm->pb.contact_work_tol * *scale);
   PetscFunctionReturn(0);
 }
 
@@ -157,8 +147,8 @@ static PetscErrorCode MatchFinalTime(TS ts)
  * adapt_growback.c) then chooses the next dt. */
 static PetscErrorCode TSStep_Newmark(TS ts)
 {
-  MMCtx    *ctx = ((TS_Newmark *)ts->data)->ctx;
-  MMState  *s   = &ctx->state;
+  MMNewmark nm  = ((TS_Newmark *)ts->data)->nm;
+  MMState  *s   = &nm->state;
   PetscReal dt = ts->time_step, next_dt;
   PetscBool accept, solved = PETSC_FALSE;
   PetscInt  rejections = 0;
@@ -166,7 +156,7 @@ static PetscErrorCode TSStep_Newmark(TS ts)
 
   PetscFunctionBeginUser;
   PetscCall(SaveOldState(s));
-  PetscCall(MMContactCornersAccept(ctx->contact));
+  PetscCall(MMContactCornersAccept(nm->contact));
   PetscCall(MatchFinalTime(ts));
   while (!solved) {
     PetscReal w_c, scale;
@@ -175,29 +165,29 @@ static PetscErrorCode TSStep_Newmark(TS ts)
     MMStepMatrix sm;
 
     dt = ts->time_step;
-    PetscCall(MMDampingGetStepMatrix(&ctx->damping, ctx->op.K, dt, &sm));
-    PetscCall(MMContactSetStepMatrix(ctx->contact, &sm));
-    PetscCall(MMContactSetTime(ctx->contact, ts->ptime + dt, dt));
-    PetscCall(MMLoadsSetTime(&ctx->loads, ts->ptime, ts->ptime + dt)); /* L^{n+1} and the lift of u_D(t^{n+1}) */
-    PetscCall(MMContactGetRHS(ctx->contact, &b));
-    PetscCall(StepRHS(ctx, dt, b));
+    PetscCall(MMDampingGetStepMatrix(&nm->damping, nm->op->K, dt, &sm));
+    PetscCall(MMContactSetStepMatrix(nm->contact, &sm));
+    PetscCall(MMContactSetTime(nm->contact, ts->ptime + dt, dt));
+    PetscCall(MMLoadsSetTime(nm->loads, ts->ptime, ts->ptime + dt)); /* L^{n+1} and the lift of u_D(t^{n+1}) */
+    PetscCall(MMContactGetRHS(nm->contact, &b));
+    PetscCall(StepRHS(nm, dt, b));
     /* predictor u + dt v + dt^2/4 a: exact for constant acceleration */
     PetscCall(VecAXPBYPCZ(w, dt, 0.25 * dt * dt, 0.0, s->v, s->a));
     PetscCall(VecAXPY(w, 1.0, s->u));
-    PetscCall(MMFrictionSolve(ctx->friction, ctx->hist.step, ctx->hist.time, b, w, s->react, &solved));
+    PetscCall(MMFrictionSolve(nm->friction, nm->hist.step, nm->hist.time, b, w, s->react, &solved));
     if (!solved) {
-      PetscCall(RejectStep(ts, ctx, ++rejections, MM_REJECT_FRICTION, 0, 0));
+      PetscCall(RejectStep(ts, nm, ++rejections, MM_REJECT_FRICTION, 0, 0));
       continue;
     }
-    PetscCall(ContactWorkTooLarge(ctx, w, &too_large, &w_c, &scale));
+    PetscCall(ContactWorkTooLarge(nm, w, &too_large, &w_c, &scale));
     s->work_contact = w_c;
     if (too_large) {
       solved = PETSC_FALSE;
-      PetscCall(RejectStep(ts, ctx, ++rejections, MM_REJECT_CONTACT_WORK, w_c, scale));
+      PetscCall(RejectStep(ts, nm, ++rejections, MM_REJECT_CONTACT_WORK, w_c, scale));
     }
   }
-  PetscCall(UpdateKinematics(ctx, dt, w));
-  PetscCall(MMDampingUpdateVelocity(ctx, dt));
+  PetscCall(UpdateKinematics(nm, dt, w));
+  PetscCall(MMDampingUpdateVelocity(&nm->damping, s->u, s->u_old, dt));
   s->dt   = dt;
   next_dt = dt;
   PetscCall(TSAdaptChoose(ts->adapt, ts, dt, NULL, &next_dt, &accept));
@@ -213,10 +203,10 @@ static PetscErrorCode TSStep_Newmark(TS ts)
    * so the run ends there instead of taking one more step past it */
   if (PetscAbsReal(ts->ptime - ts->max_time) <= FinalTimeTolerance(ts)) ts->ptime = ts->max_time;
   ts->time_step = next_dt;
-  ctx->hist.step = ts->steps + 1;
-  ctx->hist.time = ts->ptime;
-  PetscCall(MMEnergyStep(ctx));
-  PetscCall(MMDeformationCheck(ctx));
+  nm->hist.step = ts->steps + 1;
+  nm->hist.time = ts->ptime;
+  PetscCall(MMEnergyStep(nm));
+  PetscCall(MMDeformationCheck(nm));
   PetscFunctionReturn(0);
 }
 
@@ -295,19 +285,19 @@ static PetscErrorCode CheckTimeOptions(TS ts)
 
 /* c_p dt / h_c' >> 1: the contact pressure is not resolved in time, releases may create energy
  * (the contact-work guard then cuts dt), and Theorem 4.2's friction condition is far off. */
-static PetscErrorCode WarnUnresolvedContact(MMCtx *ctx, PetscReal dt)
+static PetscErrorCode WarnUnresolvedContact(MMNewmark nm, PetscReal dt)
 {
   const PetscReal limit = 10;
   MMContactNodes  cn;
 
   PetscFunctionBeginUser;
-  PetscCall(MMContactGetNodes(ctx->contact, &cn));
+  PetscCall(MMContactGetNodes(nm->contact, &cn));
   if (!cn.enabled || cn.h_c <= 0) PetscFunctionReturn(0);
-  const PetscReal cfl = ctx->op.c_p * dt / cn.h_c;
-  PetscCheck(!PetscIsInfOrNanReal(cfl), PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "The wave speed c_p = %g from -E %g, -nu %g, -rho %g is not a finite number", (double)ctx->op.c_p, (double)ctx->opt.E, (double)ctx->opt.nu, (double)ctx->opt.rho);
+  const PetscReal cfl = nm->op->c_p * dt / cn.h_c;
+  PetscCheck(!PetscIsInfOrNanReal(cfl), PetscObjectComm((PetscObject)nm->op->dm), PETSC_ERR_USER_INPUT, "The wave speed c_p = %g from -E %g, -nu %g, -rho %g is not a finite number", (double)nm->op->c_p, (double)nm->pb.E, (double)nm->pb.nu, (double)nm->pb.rho);
   if (cfl > limit)
-    PetscCall(PetscPrintf(PetscObjectComm((PetscObject)ctx->op.dm), "WARNING: c_p dt / h_c' = %.3g is far above 1 (c_p = %g, h_c' = %g, dt = %g): the time step does not resolve the contact pressure. A release may create energy; steps that create more than -contact_work_tol %g of the energy scale are retried with smaller dt. A -ts_dt near h_c' / c_p = %g resolves the contact\n",
-                          (double)cfl, (double)ctx->op.c_p, (double)cn.h_c, (double)dt, (double)ctx->opt.contact_work_tol, (double)(cn.h_c / ctx->op.c_p)));
+    PetscCall(PetscPrintf(PetscObjectComm((PetscObject)nm->op->dm), "WARNING: c_p dt / h_c' = %.3g is far above 1 (c_p = %g, h_c' = %g, dt = %g): the time step does not resolve the contact pressure. A release may create energy; steps that create more than -contact_work_tol %g of the energy scale are retried with smaller dt. A -ts_dt near h_c' / c_p = %g resolves the contact\n",
+                          (double)cfl, (double)nm->op->c_p, (double)cn.h_c, (double)dt, (double)nm->pb.contact_work_tol, (double)(cn.h_c / nm->op->c_p)));
   PetscFunctionReturn(0);
 }
 
@@ -336,9 +326,9 @@ static PetscErrorCode SetUpAdapt(TS ts, PetscReal dt)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMNewmarkCreateTS(MMCtx *ctx, TS *ts)
+PetscErrorCode MMNewmarkCreateTS(MMNewmark nm, TS *ts)
 {
-  MPI_Comm  comm = PetscObjectComm((PetscObject)ctx->op.dm);
+  MPI_Comm  comm = PetscObjectComm((PetscObject)nm->op->dm);
   PetscReal dt;
   TSType    type;
   PetscBool isnewmark;
@@ -350,209 +340,12 @@ PetscErrorCode MMNewmarkCreateTS(MMCtx *ctx, TS *ts)
   PetscCall(TSGetType(*ts, &type));
   PetscCall(PetscStrcmp(type, TSNEWMARK, &isnewmark));
   PetscCheck(isnewmark, comm, PETSC_ERR_USER_INPUT, "-ts_type %s is not supported: mmcontact steps with its own -ts_type newmark", type);
-  ((TS_Newmark *)(*ts)->data)->ctx = ctx;
+  ((TS_Newmark *)(*ts)->data)->nm = nm;
   PetscCall(CheckTimeOptions(*ts));
   PetscCall(TSGetTimeStep(*ts, &dt));
-  ctx->state.dt_user = dt;
+  nm->state.dt_user = dt;
   PetscCall(SetUpAdapt(*ts, dt));
-  PetscCall(WarnUnresolvedContact(ctx, dt));
-  PetscCall(TSSetSolution(*ts, ctx->state.u_next));
-  PetscFunctionReturn(0);
-}
-
-/* Affine initial displacement u0 = a + B x */
-static PetscErrorCode InitialDisplacement(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar *u, void *ptr)
-{
-  const MMOptions *o = (const MMOptions *)ptr;
-  for (PetscInt c = 0; c < dim; ++c) {
-    u[c] = o->u0_offset[c];
-    for (PetscInt d = 0; d < dim; ++d) u[c] += o->u0_gradient[c * dim + d] * x[d];
-  }
-  return 0;
-}
-
-/* Initial velocity: translation plus rigid rotation omega x (x - c) */
-static PetscErrorCode InitialVelocity(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar *v, void *ptr)
-{
-  const MMOptions *o = (const MMOptions *)ptr;
-  const PetscReal *w = o->omega, *c = o->omega_center;
-  const PetscReal  r[3] = {x[0] - c[0], x[1] - c[1], dim == 3 ? x[2] - c[2] : 0};
-
-  if (dim == 2) {
-    v[0] = o->v0[0] - w[0] * r[1];
-    v[1] = o->v0[1] + w[0] * r[0];
-  } else {
-    v[0] = o->v0[0] + w[1] * r[2] - w[2] * r[1];
-    v[1] = o->v0[1] + w[2] * r[0] - w[0] * r[2];
-    v[2] = o->v0[2] + w[0] * r[1] - w[1] * r[0];
-  }
-  return 0;
-}
-
-static PetscErrorCode ProjectInitialField(MMCtx *ctx, PetscErrorCode (*f)(PetscInt, PetscReal, const PetscReal[], PetscInt, PetscScalar *, void *), Vec w)
-{
-  Vec   ucart;
-  void *fctx = &ctx->opt;
-
-  PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalVector(ctx->op.dm, &ucart));
-  PetscCall(MMFEInterpolate(&ctx->op, f, fctx, ucart));
-  PetscCall(MMFEFromCartesian(&ctx->op, ucart, w));
-  PetscCall(DMRestoreGlobalVector(ctx->op.dm, &ucart));
-  PetscFunctionReturn(0);
-}
-
-/* -bodies: each vertex's translation is the v0 of its body (src/fem/material.c), and -omega's rigid
- * rotation is added to every body. */
-static PetscErrorCode BodiesInitialVelocity(MMCtx *ctx, Vec w)
-{
-  DM             dm  = ctx->op.dm;
-  const PetscInt dim = ctx->op.dim;
-  PetscErrorCode (*f)(PetscInt, PetscReal, const PetscReal[], PetscInt, PetscScalar *, void *) = InitialVelocity;
-  MMOptions      rotation = ctx->opt; /* the rotation alone: InitialVelocity without -v0 */
-  void          *fctx     = &rotation;
-  PetscSection   ls;
-  PetscInt       vStart, vEnd;
-  PetscScalar   *a;
-  Vec            ucart, tloc, tglob;
-
-  PetscFunctionBeginUser;
-  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) rotation.v0[d] = 0;
-  PetscCall(DMGetGlobalVector(dm, &ucart));
-  PetscCall(DMGetGlobalVector(dm, &tglob));
-  PetscCall(DMGetLocalVector(dm, &tloc));
-  PetscCall(MMFEInterpolate(&ctx->op, f, fctx, ucart));
-  PetscCall(DMGetLocalSection(dm, &ls));
-  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
-  PetscCall(VecGetArray(tloc, &a));
-  for (PetscInt v = vStart; v < vEnd; ++v) {
-    PetscInt off;
-    PetscCall(PetscSectionGetOffset(ls, v, &off));
-    for (PetscInt d = 0; d < dim; ++d) a[off + d] = ctx->material.vertex_v0[(v - vStart) * dim + d];
-  }
-  PetscCall(VecRestoreArray(tloc, &a));
-  PetscCall(DMLocalToGlobal(dm, tloc, INSERT_VALUES, tglob)); /* the Dirichlet dofs drop out */
-  PetscCall(VecAXPY(ucart, 1.0, tglob));
-  PetscCall(MMFEFromCartesian(&ctx->op, ucart, w));
-  PetscCall(DMRestoreLocalVector(dm, &tloc));
-  PetscCall(DMRestoreGlobalVector(dm, &tglob));
-  PetscCall(DMRestoreGlobalVector(dm, &ucart));
-  PetscFunctionReturn(0);
-}
-
-/* a0 from M* a0 = L - lift - K u0 - C v0 + f_c0 on the dofs with inertia. */
-static PetscErrorCode InitialAcceleration(MMCtx *ctx)
-{
-  MMState       *s = &ctx->state;
-  IS             is, all = NULL;
-  Mat            Mss;
-  Vec            r, rs, as;
-  KSP            ksp;
-  MMContactNodes cn;
-
-  PetscFunctionBeginUser;
-  PetscCall(MMContactGetNodes(ctx->contact, &cn));
-  is = cn.is_star;
-  if (!HasMasslessDofs(ctx)) {
-    PetscInt n, rstart;
-    PetscCall(VecGetLocalSize(s->u, &n));
-    PetscCall(VecGetOwnershipRange(s->u, &rstart, NULL));
-    PetscCall(ISCreateStride(PetscObjectComm((PetscObject)s->u), n, rstart, 1, &all));
-    is = all;
-  }
-  PetscCall(VecDuplicate(s->u, &r));
-  PetscCall(MatMult(ctx->op.K, s->u, r));
-  PetscCall(VecAYPX(r, -1.0, ctx->op.load));
-  PetscCall(VecAXPY(r, -1.0, ctx->op.lift));
-  PetscCall(VecAXPY(r, 1.0, s->react));
-  PetscCall(MMDampingAddForce(ctx, s->v, -1.0, r));
-  PetscCall(MatCreateSubMatrix(ctx->op.Mstar, is, is, MAT_INITIAL_MATRIX, &Mss));
-  PetscCall(KSPCreate(PetscObjectComm((PetscObject)s->u), &ksp));
-  PetscCall(KSPSetOptionsPrefix(ksp, "mass_"));
-  PetscCall(KSPSetOperators(ksp, Mss, Mss));
-  PetscCall(MMKSPSetExactCG(ksp));
-  PetscCall(KSPSetFromOptions(ksp));
-  PetscCall(VecZeroEntries(s->a));
-  PetscCall(VecGetSubVector(r, is, &rs));
-  PetscCall(VecGetSubVector(s->a, is, &as));
-  {
-    /* CG's norms square the right-hand side: solved for r/|r|_inf, so that loads near the overflow
-     * limit still give a0 (and the run stops later, where the state itself overflows) */
-    PetscReal scale;
-    PetscCall(VecNorm(rs, NORM_INFINITY, &scale));
-    if (scale > 0 && !PetscIsInfOrNanReal(scale)) PetscCall(VecScale(rs, 1.0 / scale));
-    PetscCall(KSPSolve(ksp, rs, as));
-    if (scale > 0 && !PetscIsInfOrNanReal(scale)) PetscCall(VecScale(as, scale));
-  }
-  PetscCall(VecRestoreSubVector(s->a, is, &as));
-  PetscCall(VecRestoreSubVector(r, is, &rs));
-  PetscCall(KSPDestroy(&ksp));
-  PetscCall(MatDestroy(&Mss));
-  PetscCall(VecDestroy(&r));
-  PetscCall(ISDestroy(&all));
-  PetscFunctionReturn(0);
-}
-
-/* The consistent initial state: u0, v0 from the options, the contact dofs projected by the
- * quasi-static contact problem, the initial reaction, and a0 from the equation of motion. */
-/* -initial_state static_sliding: the body rests on the plane, its base on it, so it slides along the
- * plane with the tangential part of -v0; a normal part would lift it off or push it in at once
- * (README "Options"). The normal part is dropped, and said. */
-static PetscErrorCode TangentialInitialVelocity(MMCtx *ctx)
-{
-  const PetscReal *n   = ctx->opt.obstacles[0].normal; /* the single plane static_sliding needs */
-  const PetscInt   dim = ctx->op.dim;
-  PetscReal        vn  = 0;
-
-  PetscFunctionBeginUser;
-  for (PetscInt d = 0; d < dim; ++d) vn += ctx->opt.v0[d] * n[d];
-  if (vn == 0) PetscFunctionReturn(0);
-  for (PetscInt d = 0; d < dim; ++d) ctx->opt.v0[d] -= vn * n[d];
-  if (!ctx->opt.quiet) PetscCall(PetscPrintf(PetscObjectComm((PetscObject)ctx->op.dm), "mmcontact: -initial_state static_sliding slides along the plane: the normal part %g of -v0 is dropped\n", (double)vn));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode MMNewmarkInitialState(MMCtx *ctx)
-{
-  MMState *s = &ctx->state;
-
-  PetscFunctionBeginUser;
-  PetscCall(DMCreateGlobalVector(ctx->op.dm, &s->u));
-  {
-    Vec *copies[] = {&s->v, &s->a, &s->u_old, &s->v_old, &s->a_old, &s->react, &s->react_old, &s->work, &s->u_next};
-    for (size_t i = 0; i < sizeof(copies) / sizeof(copies[0]); ++i) PetscCall(VecDuplicate(s->u, copies[i]));
-    PetscCall(MMContactSetPreviousState(ctx->contact, s->u_old, s->v_old)); /* the start of each step, for the contact solves */
-  }
-  if (ctx->opt.initial_state == MM_INITIAL_STATIC_SLIDING) PetscCall(TangentialInitialVelocity(ctx));
-  if (ctx->material.named) PetscCall(BodiesInitialVelocity(ctx, s->v));
-  else PetscCall(ProjectInitialField(ctx, InitialVelocity, s->v));
-  PetscCall(MMDampingSetUp(ctx));
-  PetscCall(VecZeroEntries(s->react));
-  if (ctx->opt.initial_state == MM_INITIAL_STATIC_SLIDING) PetscCall(MMInitialStaticSliding(ctx, s->u, s->react));
-  else if (ctx->opt.initial_state == MM_INITIAL_STATIC) {
-    /* u0 is the static solution: an affine u0 given with it would be ignored */
-    PetscCheck(ctx->opt.vec_count[MM_V_U0_OFFSET] < 0 && ctx->opt.vec_count[MM_V_U0_GRADIENT] < 0, PetscObjectComm((PetscObject)ctx->op.dm), PETSC_ERR_USER_INPUT, "-initial_state static computes u0 from the loads at t = 0: drop -u0_offset and -u0_gradient, or use -initial_state given");
-    PetscCall(MMContactSolveStatic(ctx->contact, s->u, s->react));
-  } else {
-    PetscCall(ProjectInitialField(ctx, InitialDisplacement, s->u));
-    PetscCall(MMContactProjectInitial(ctx->contact, s->u));
-  }
-  /* f_c0 = K u0 + lift - L (+ C v0) on the massless dofs: their quasi-static equation */
-  if (HasMasslessDofs(ctx) && ctx->opt.initial_state == MM_INITIAL_GIVEN) {
-    Vec            rc, fc;
-    MMContactNodes cn;
-    PetscCall(MMContactGetNodes(ctx->contact, &cn));
-    PetscCall(MatMult(ctx->op.K, s->u, s->work));
-    PetscCall(VecAXPY(s->work, 1.0, ctx->op.lift));
-    PetscCall(VecAXPY(s->work, -1.0, ctx->op.load));
-    PetscCall(MMDampingAddForce(ctx, s->v, 1.0, s->work));
-    PetscCall(VecGetSubVector(s->work, cn.is_massless, &fc));
-    PetscCall(VecGetSubVector(s->react, cn.is_massless, &rc));
-    PetscCall(VecCopy(fc, rc));
-    PetscCall(VecRestoreSubVector(s->react, cn.is_massless, &rc));
-    PetscCall(VecRestoreSubVector(s->work, cn.is_massless, &fc));
-  }
-  PetscCall(InitialAcceleration(ctx));
-  PetscCall(VecCopy(s->u, s->u_next));
+  PetscCall(WarnUnresolvedContact(nm, dt));
+  PetscCall(TSSetSolution(*ts, nm->state.u_next));
   PetscFunctionReturn(0);
 }

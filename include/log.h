@@ -1,3 +1,0 @@
-#pragma once
-#include "systypes.h"
-PETSC_EXTERN PetscErrorCode MMLogRegister(MMLog *log);

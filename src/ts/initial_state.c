@@ -1,0 +1,202 @@
+/* The consistent initial state of the stepper (docs/method.md section 3): u0 and v0 from the
+ * problem, the contact dofs projected by the quasi-static contact problem (or the static or static
+ * sliding state), the initial reaction, and a0 from the equation of motion. */
+#include "newmarkimpl.h"
+#include "fem.h"
+
+/* Affine initial displacement u0 = a + B x */
+static PetscErrorCode InitialDisplacement(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar *u, void *ptr)
+{
+  const MMNewmarkProblem *o = (const MMNewmarkProblem *)ptr;
+  for (PetscInt c = 0; c < dim; ++c) {
+    u[c] = o->u0_offset[c];
+    for (PetscInt d = 0; d < dim; ++d) u[c] += o->u0_gradient[c * dim + d] * x[d];
+  }
+  return 0;
+}
+
+/* Initial velocity: translation plus rigid rotation omega x (x - c) */
+static PetscErrorCode InitialVelocity(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar *v, void *ptr)
+{
+  const MMNewmarkProblem *o = (const MMNewmarkProblem *)ptr;
+  const PetscReal *w = o->omega, *c = o->omega_center;
+  const PetscReal  r[3] = {x[0] - c[0], x[1] - c[1], dim == 3 ? x[2] - c[2] : 0};
+
+  if (dim == 2) {
+    v[0] = o->v0[0] - w[0] * r[1];
+    v[1] = o->v0[1] + w[0] * r[0];
+  } else {
+    v[0] = o->v0[0] + w[1] * r[2] - w[2] * r[1];
+    v[1] = o->v0[1] + w[2] * r[0] - w[0] * r[2];
+    v[2] = o->v0[2] + w[0] * r[1] - w[1] * r[0];
+  }
+  return 0;
+}
+
+static PetscErrorCode ProjectInitialField(MMNewmark nm, PetscErrorCode (*f)(PetscInt, PetscReal, const PetscReal[], PetscInt, PetscScalar *, void *), Vec w)
+{
+  Vec   ucart;
+  void *fctx = &nm->pb;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalVector(nm->op->dm, &ucart));
+  PetscCall(MMFEInterpolate(nm->op, f, fctx, ucart));
+  PetscCall(MMFEFromCartesian(nm->op, ucart, w));
+  PetscCall(DMRestoreGlobalVector(nm->op->dm, &ucart));
+  PetscFunctionReturn(0);
+}
+
+/* -bodies: each vertex's translation is the v0 of its body (src/fem/material.c), and -omega's rigid
+ * rotation is added to every body. */
+static PetscErrorCode BodiesInitialVelocity(MMNewmark nm, Vec w)
+{
+  DM             dm  = nm->op->dm;
+  const PetscInt dim = nm->op->dim;
+  PetscErrorCode (*f)(PetscInt, PetscReal, const PetscReal[], PetscInt, PetscScalar *, void *) = InitialVelocity;
+  MMNewmarkProblem rotation = nm->pb; /* the rotation alone: InitialVelocity without -v0 */
+  void          *fctx     = &rotation;
+  PetscSection   ls;
+  PetscInt       vStart, vEnd;
+  PetscScalar   *a;
+  Vec            ucart, tloc, tglob;
+
+  PetscFunctionBeginUser;
+  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) rotation.v0[d] = 0;
+  PetscCall(DMGetGlobalVector(dm, &ucart));
+  PetscCall(DMGetGlobalVector(dm, &tglob));
+  PetscCall(DMGetLocalVector(dm, &tloc));
+  PetscCall(MMFEInterpolate(nm->op, f, fctx, ucart));
+  PetscCall(DMGetLocalSection(dm, &ls));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(VecGetArray(tloc, &a));
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(ls, v, &off));
+    for (PetscInt d = 0; d < dim; ++d) a[off + d] = nm->material->vertex_v0[(v - vStart) * dim + d];
+  }
+  PetscCall(VecRestoreArray(tloc, &a));
+  PetscCall(DMLocalToGlobal(dm, tloc, INSERT_VALUES, tglob)); /* the Dirichlet dofs drop out */
+  PetscCall(VecAXPY(ucart, 1.0, tglob));
+  PetscCall(MMFEFromCartesian(nm->op, ucart, w));
+  PetscCall(DMRestoreLocalVector(dm, &tloc));
+  PetscCall(DMRestoreGlobalVector(dm, &tglob));
+  PetscCall(DMRestoreGlobalVector(dm, &ucart));
+  PetscFunctionReturn(0);
+}
+
+/* a0 from M* a0 = L - lift - K u0 - C v0 + f_c0 on the dofs with inertia. */
+static PetscErrorCode InitialAcceleration(MMNewmark nm)
+{
+  MMState *s = &nm->state;
+  IS       is, all = NULL;
+  Mat      Mss;
+  Vec      r, rs, as;
+  KSP      ksp;
+  MMContactNodes cn;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMContactGetNodes(nm->contact, &cn));
+  is = cn.is_star;
+  if (!MMNewmarkHasMasslessDofs(nm)) {
+    PetscInt n, rstart;
+    PetscCall(VecGetLocalSize(s->u, &n));
+    PetscCall(VecGetOwnershipRange(s->u, &rstart, NULL));
+    PetscCall(ISCreateStride(PetscObjectComm((PetscObject)s->u), n, rstart, 1, &all));
+    is = all;
+  }
+  PetscCall(VecDuplicate(s->u, &r));
+  PetscCall(MatMult(nm->op->K, s->u, r));
+  PetscCall(VecAYPX(r, -1.0, nm->op->load));
+  PetscCall(VecAXPY(r, -1.0, nm->op->lift));
+  PetscCall(VecAXPY(r, 1.0, s->react));
+  PetscCall(MMDampingAddForce(&nm->damping, s->v, -1.0, r));
+  PetscCall(MatCreateSubMatrix(nm->op->Mstar, is, is, MAT_INITIAL_MATRIX, &Mss));
+  PetscCall(KSPCreate(PetscObjectComm((PetscObject)s->u), &ksp));
+  PetscCall(KSPSetOptionsPrefix(ksp, "mass_"));
+  PetscCall(KSPSetOperators(ksp, Mss, Mss));
+  PetscCall(MMKSPSetExactCG(ksp));
+  PetscCall(KSPSetFromOptions(ksp));
+  PetscCall(VecZeroEntries(s->a));
+  PetscCall(VecGetSubVector(r, is, &rs));
+  PetscCall(VecGetSubVector(s->a, is, &as));
+  {
+    /* CG's norms square the right-hand side: solved for r/|r|_inf, so that loads near the overflow
+     * limit still give a0 (and the run stops later, where the state itself overflows) */
+    PetscReal scale;
+    PetscCall(VecNorm(rs, NORM_INFINITY, &scale));
+    if (scale > 0 && !PetscIsInfOrNanReal(scale)) PetscCall(VecScale(rs, 1.0 / scale));
+    PetscCall(KSPSolve(ksp, rs, as));
+    if (scale > 0 && !PetscIsInfOrNanReal(scale)) PetscCall(VecScale(as, scale));
+  }
+  PetscCall(VecRestoreSubVector(s->a, is, &as));
+  PetscCall(VecRestoreSubVector(r, is, &rs));
+  PetscCall(KSPDestroy(&ksp));
+  PetscCall(MatDestroy(&Mss));
+  PetscCall(VecDestroy(&r));
+  PetscCall(ISDestroy(&all));
+  PetscFunctionReturn(0);
+}
+
+/* -initial_state static_sliding: the body rests on the plane, its base on it, so it slides along the
+ * plane with the tangential part of -v0; a normal part would lift it off or push it in at once
+ * (README "Options"). The normal part is dropped, and said. */
+static PetscErrorCode TangentialInitialVelocity(MMNewmark nm)
+{
+  const PetscReal *n   = nm->pb.obstacles[0].normal; /* the single plane static_sliding needs */
+  const PetscInt   dim = nm->op->dim;
+  PetscReal        vn  = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt d = 0; d < dim; ++d) vn += nm->pb.v0[d] * n[d];
+  if (vn == 0) PetscFunctionReturn(0);
+  for (PetscInt d = 0; d < dim; ++d) nm->pb.v0[d] -= vn * n[d];
+  if (!nm->pb.quiet) PetscCall(PetscPrintf(PetscObjectComm((PetscObject)nm->op->dm), "mmcontact: -initial_state static_sliding slides along the plane: the normal part %g of -v0 is dropped\n", (double)vn));
+  PetscFunctionReturn(0);
+}
+
+/* The consistent initial state: u0, v0 from the problem, the contact dofs projected by the
+ * quasi-static contact problem, the initial reaction, and a0 from the equation of motion. */
+PetscErrorCode MMNewmarkInitialState(MMNewmark nm)
+{
+  MMState       *s = &nm->state;
+  MMContactNodes cn;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMCreateGlobalVector(nm->op->dm, &s->u));
+  {
+    Vec *copies[] = {&s->v, &s->a, &s->u_old, &s->v_old, &s->a_old, &s->react, &s->react_old, &s->work, &s->u_next};
+    for (size_t i = 0; i < sizeof(copies) / sizeof(copies[0]); ++i) PetscCall(VecDuplicate(s->u, copies[i]));
+    PetscCall(MMContactSetPreviousState(nm->contact, s->u_old, s->v_old)); /* the start of each step, for the contact solves */
+  }
+  PetscCall(MMContactGetNodes(nm->contact, &cn));
+  if (nm->pb.initial_state == MM_INITIAL_STATIC_SLIDING) PetscCall(TangentialInitialVelocity(nm));
+  if (nm->material->named) PetscCall(BodiesInitialVelocity(nm, s->v));
+  else PetscCall(ProjectInitialField(nm, InitialVelocity, s->v));
+  PetscCall(MMDampingSetUp(&nm->damping, nm->op, nm->material, cn.is_massless, s->v));
+  PetscCall(VecZeroEntries(s->react));
+  if (nm->pb.initial_state == MM_INITIAL_STATIC_SLIDING) PetscCall(MMInitialStaticSliding(nm, s->u, s->react));
+  else if (nm->pb.initial_state == MM_INITIAL_STATIC) {
+    /* u0 is the static solution: an affine u0 given with it would be ignored */
+    PetscCheck(!nm->pb.u0_given, PetscObjectComm((PetscObject)nm->op->dm), PETSC_ERR_USER_INPUT, "-initial_state static computes u0 from the loads at t = 0: drop -u0_offset and -u0_gradient, or use -initial_state given");
+    PetscCall(MMContactSolveStatic(nm->contact, s->u, s->react));
+  } else {
+    PetscCall(ProjectInitialField(nm, InitialDisplacement, s->u));
+    PetscCall(MMContactProjectInitial(nm->contact, s->u));
+  }
+  /* f_c0 = K u0 + lift - L (+ C v0) on the massless dofs: their quasi-static equation */
+  if (MMNewmarkHasMasslessDofs(nm) && nm->pb.initial_state == MM_INITIAL_GIVEN) {
+    Vec rc, fc;
+    PetscCall(MatMult(nm->op->K, s->u, s->work));
+    PetscCall(VecAXPY(s->work, 1.0, nm->op->lift));
+    PetscCall(VecAXPY(s->work, -1.0, nm->op->load));
+    PetscCall(MMDampingAddForce(&nm->damping, s->v, 1.0, s->work));
+    PetscCall(VecGetSubVector(s->work, cn.is_massless, &fc));
+    PetscCall(VecGetSubVector(s->react, cn.is_massless, &rc));
+    PetscCall(VecCopy(fc, rc));
+    PetscCall(VecRestoreSubVector(s->react, cn.is_massless, &rc));
+    PetscCall(VecRestoreSubVector(s->work, cn.is_massless, &fc));
+  }
+  PetscCall(InitialAcceleration(nm));
+  PetscCall(VecCopy(s->u, s->u_next));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,68 @@
+/* The Newmark context's struct (include/ts.h): private to src/ts/. */
+#pragma once
+#include "ts.h"
+
+/* The deformation audit (deformation.c): the largest strain of the run and where it was. */
+typedef struct {
+  PetscReal max_strain;        /* over the run: the largest principal strain magnitude */
+  PetscReal where[MM_MAX_DIM]; /* the reference centroid of the cell that had it */
+  PetscInt  step;              /* the step at which it was reached */
+  PetscBool warned;            /* the -strain_warn warning was printed */
+  PetscInt  ncells;            /* this rank's cells, and for each its dim+1 vertices' */
+  PetscInt *cell_u, *cell_x;   /* offsets in the local displacement and coordinate vectors */
+} MMDeformation;
+
+/* The momentum audit's fixed data (momenta.c), built on the first diagnostics: each linear
+ * momentum functional as one w-frame vector, and the vertices of the angular momentum. */
+typedef struct {
+  PetscInt  ng, nJ;             /* ng = 2 dim + nJ functionals; nJ: J's components, 3 in 3D, 1 (z) in 2D */
+  Vec       g[3 * MM_MAX_DIM];  /* g.x: the sums behind ucm or vcm (dim), P (dim) and J (nJ) for x = u or v */
+  Vec       sel[MM_MAX_DIM];    /* Cartesian: 1 at component d of the vertices with no Dirichlet dof */
+  PetscInt  nv;                 /* this rank's owned vertices with no Dirichlet dof */
+  PetscInt *vert_u, *vert_x;    /* their offsets in the owned part of a global vector and in the local coordinates */
+} MMMomenta;
+
+struct _p_MMNewmark {
+  MPI_Comm         comm;
+  MMNewmarkProblem pb;
+  /* the lower components, borrowed (MMNewmarkSetUp) */
+  MMOperators *op;
+  MMMaterial  *material;
+  MMLoads     *loads;
+  MMContact    contact;
+  MMFriction   friction; /* set once friction is set up (MMNewmarkSetFriction) */
+  /* the audits' options (MMNewmarkSetFromOptions) */
+  PetscReal audit_tol;         /* -audit_tol: the energy audit's */
+  PetscBool deformation_audit; /* -deformation_audit, -strain_warn, -max_strain */
+  PetscReal strain_warn, max_strain;
+  /* owned */
+  MMState       state;
+  MMHistory     hist;
+  MMDamping     damping;
+  MMDeformation deform;
+  MMMomenta     momenta;
+};
+
+/* The dofs without inertia: the contact-normal dofs under the modified mass, none otherwise. */
+static inline PetscBool MMNewmarkHasMasslessDofs(MMNewmark nm)
+{
+  return MMFEHasMasslessDofs(nm->op);
+}
+
+/* ts's events (MMTSInitializePackage) */
+PETSC_INTERN PetscLogEvent MM_TS_Energy, MM_TS_Momenta, MM_TS_Deformation;
+
+/* The parts of the stepper, each in its file */
+PETSC_INTERN PetscErrorCode MMEnergyContactWork(MMNewmark nm, Vec w, PetscReal *w_c);
+PETSC_INTERN PetscErrorCode MMEnergyStep(MMNewmark nm);
+PETSC_INTERN PetscErrorCode MMRigidBodyDiagnostics(MMNewmark nm, MMHistory *h);
+PETSC_INTERN PetscErrorCode MMMomentaDestroy(MMMomenta *mo);
+PETSC_INTERN PetscErrorCode MMDeformationDestroy(MMDeformation *d);
+PETSC_INTERN PetscErrorCode MMInitialStaticSliding(MMNewmark nm, Vec w, Vec react);
+PETSC_INTERN PetscErrorCode MMDampingSetFromOptions(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMDamping *d);
+PETSC_INTERN PetscErrorCode MMDampingSetUp(MMDamping *d, MMOperators *op, MMMaterial *material, IS is_massless, Vec v0);
+PETSC_INTERN PetscErrorCode MMDampingAddStepRHS(MMDamping *d, Vec u, PetscReal dt, Vec b);
+PETSC_INTERN PetscErrorCode MMDampingUpdateVelocity(MMDamping *d, Vec u, Vec u_old, PetscReal dt);
+PETSC_INTERN PetscErrorCode MMDampingWork(MMDamping *d, Vec du, PetscReal dt, PetscReal *w);
+PETSC_INTERN PetscErrorCode MMNewmarkRegister(void);
+PETSC_INTERN PetscErrorCode MMAdaptGrowBackRegister(void);

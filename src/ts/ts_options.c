@@ -1,0 +1,28 @@
+/* The stepper's options: the energy audit's tolerance, the deformation audit and the Rayleigh
+ * damping, read by ts in MMNewmarkSetFromOptions with their checks beside them (sys's readers refuse
+ * a value of the wrong kind, naming the option). */
+#include "newmarkimpl.h"
+#include "sys.h"
+
+/* The energy audit's tolerance, the deformation audit's switch and thresholds, and the damping. */
+PetscErrorCode MMNewmarkSetFromOptions(MMNewmark nm)
+{
+  MPI_Comm comm = nm->comm;
+
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, NULL, "mmcontact: the time stepper's audits and damping", "MMNewmark");
+  nm->audit_tol = 1e-6;
+  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-audit_tol", "Stop the run when a step's relative energy-balance residual exceeds this (> 0): the scheme's identity no longer holds", &nm->audit_tol));
+  nm->deformation_audit = PETSC_TRUE;
+  PetscCall(MMOptionsBool(PetscOptionsObject, comm, "-deformation_audit", "After every step, check each cell's deformation: a cell turned inside out or a strain above -max_strain stops the run, one above -strain_warn is warned (0: no check, for nondimensional verification cases whose strains are large by design)", &nm->deformation_audit));
+  nm->strain_warn = 0.1;
+  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-strain_warn", "Warn once when a cell's strain (its largest principal strain, in magnitude) exceeds this, > 0: beyond it the small-strain model is an approximation", &nm->strain_warn));
+  nm->max_strain = 1.0;
+  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-max_strain", "Stop the run when a cell's strain exceeds this, >= -strain_warn: the small-strain model's result is then meaningless (a cell turned inside out always stops the run)", &nm->max_strain));
+  PetscCall(MMDampingSetFromOptions(PetscOptionsObject, comm, &nm->damping));
+  PetscOptionsEnd();
+  PetscCheck(nm->audit_tol > 0, comm, PETSC_ERR_USER_INPUT, "-audit_tol %g must be > 0: it is a relative energy-balance residual", (double)nm->audit_tol);
+  PetscCheck(nm->strain_warn > 0, comm, PETSC_ERR_USER_INPUT, "-strain_warn %g must be > 0: it is a strain", (double)nm->strain_warn);
+  PetscCheck(nm->max_strain >= nm->strain_warn, comm, PETSC_ERR_USER_INPUT, "-max_strain %g must be >= -strain_warn %g", (double)nm->max_strain, (double)nm->strain_warn);
+  PetscFunctionReturn(0);
+}
