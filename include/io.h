@@ -3,20 +3,27 @@
 #pragma once
 #include "mmbase.h"
 #include "fem.h"
-#include "apptypes.h"
 #include "contact.h"
 #include "friction.h"
 #include "ts.h"
 
-/* The run's context (include/mmcontact.h), which the output's glue to the components below still
- * takes (src/io/output_monitor.c) */
-typedef struct _MMCtx MMCtx;
+/* The problem as io reads it, filled by app (MMOptionsGetIOProblem): the names the history's columns and
+ * the start-up report quote, and the fingerprint a checkpoint keeps (mesh, contact boundary, mu,
+ * material). Borrowed: the strings and arrays are app's options. */
+typedef struct {
+  const char       *mesh_file, *contact_name;
+  PetscReal         E, nu, rho, mu, mu_max;
+  PetscInt          n_obstacles, n_rigid; /* the rigid obstacles, then the contact pairs */
+  const MMObstacle *obstacles;
+  PetscInt          n_dirichlet;
+  const MMDirichlet *dirichlet;
+} MMIOProblem;
 
 /* The progress line (src/io/progress.c): what it keeps between two lines. The references are taken at the
  * first monitor call, the start of TSSolve, so that the rates are those of this run's time loop. */
 typedef struct {
   /* borrowed at MMProgressSetUp: what the start-up report and the progress lines describe */
-  const MMOptions   *opt;
+  const MMIOProblem   *opt;
   const MMOperators *op;
   const MMMaterial  *material;
   const MMHistory   *hist;
@@ -48,7 +55,7 @@ typedef struct _MMOutput MMOutput;
  * numbers, so that a run can continue on any number of ranks. */
 typedef struct {
   /* borrowed at MMCheckpointSetUp: what a checkpoint holds, and what a restart restores */
-  const MMOptions   *opt;      /* the problem: its fingerprint (mesh, contact boundary, mu, material, mass) */
+  const MMIOProblem   *opt;      /* the problem: its fingerprint (mesh, contact boundary, mu, material, mass) */
   const MMOperators *op;       /* the mesh and its dimension */
   const MMMaterial  *material; /* the bodies */
   MMHistory         *hist;     /* the running sums and maxima */
@@ -78,7 +85,7 @@ typedef struct {
 /* Output files. Rank 0 alone writes history.csv and solution.xmf; solution.h5 is written by all. */
 struct _MMOutput {
   /* borrowed at MMOutputSetUp: what the output writes from */
-  const MMOptions    *opt;     /* the problem: the obstacles' and Dirichlet boundaries' names, the history's columns */
+  const MMIOProblem    *opt;     /* the problem: the obstacles' and Dirichlet boundaries' names, the history's columns */
   const MMOperators  *op;       /* the mesh, its dimension and cells, the frames */
   const MMMaterial   *material; /* each cell's material: the stress */
   const MMHistory    *hist;     /* the stepper's history row */
@@ -119,12 +126,12 @@ PETSC_EXTERN PetscErrorCode MMIOInitializePackage(void);
 
 /* output.c: the files of a run, from set-up to close */
 PETSC_EXTERN PetscErrorCode MMOutputSetFromOptions(MPI_Comm comm, MMOutput *o);
-PETSC_EXTERN PetscErrorCode MMOutputSetUp(MMOutput *o, const MMOptions *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, MMContact contact, MMLoads *loads, MMCheckpoint *ckpt);
+PETSC_EXTERN PetscErrorCode MMOutputSetUp(MMOutput *o, const MMIOProblem *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, MMContact contact, MMLoads *loads, MMCheckpoint *ckpt);
 /* output_monitor.c: the glue that gathers each snapshot's fields from the components below */
-PETSC_EXTERN PetscErrorCode MMOutputOpen(MMCtx *ctx);
+PETSC_EXTERN PetscErrorCode MMOutputOpen(MMOutput *o);
 PETSC_EXTERN PetscErrorCode MMOutputSetUpProbes(MMOutput *o);
 PETSC_EXTERN PetscErrorCode MMOutputMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ctx);
-PETSC_EXTERN PetscErrorCode MMOutputWriteFinal(MMCtx *ctx);
+PETSC_EXTERN PetscErrorCode MMOutputWriteFinal(MMOutput *o);
 PETSC_EXTERN PetscErrorCode MMOutputClose(MMOutput *o, const MMCheckpoint *c, PetscInt step);
 PETSC_EXTERN PetscErrorCode MMOutputView(const MMOutput *o, PetscViewer viewer);
 PETSC_EXTERN PetscErrorCode MMOutputDestroy(MMOutput *o);
@@ -149,7 +156,7 @@ PETSC_EXTERN PetscErrorCode MMOutputPlanMake(const MMOutput *o, TS ts, MMOutputP
 
 /* checkpoint.c: checkpoints and -restart (docs/method.md section 9) */
 PETSC_EXTERN PetscErrorCode MMCheckpointSetFromOptions(MPI_Comm comm, MMCheckpoint *c);
-PETSC_EXTERN PetscErrorCode MMCheckpointSetUp(MMCheckpoint *c, const MMOptions *opt, const MMOperators *op, const MMMaterial *material, MMHistory *hist, MMState *state, MMDamping *damping, MMContact contact, MMFriction friction, MMOutput *out);
+PETSC_EXTERN PetscErrorCode MMCheckpointSetUp(MMCheckpoint *c, const MMIOProblem *opt, const MMOperators *op, const MMMaterial *material, MMHistory *hist, MMState *state, MMDamping *damping, MMContact contact, MMFriction friction, MMOutput *out);
 PETSC_EXTERN PetscErrorCode MMCheckpointWrite(MMCheckpoint *c, TS ts);
 PETSC_EXTERN PetscErrorCode MMCheckpointMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ctx);
 PETSC_EXTERN PetscErrorCode MMCheckpointDestroy(MMCheckpoint *c);
@@ -163,7 +170,7 @@ PETSC_EXTERN PetscInt       MMCheckpointSnapshotCount(const MMCheckpoint *c);
 
 /* progress.c: the start-up report and the progress lines */
 PETSC_EXTERN PetscErrorCode MMProgressSetFromOptions(MPI_Comm comm, MMProgress *p);
-PETSC_EXTERN PetscErrorCode MMProgressSetUp(MMProgress *p, const MMOptions *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, MMContact contact, const MMDamping *damping);
+PETSC_EXTERN PetscErrorCode MMProgressSetUp(MMProgress *p, const MMIOProblem *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, MMContact contact, const MMDamping *damping);
 PETSC_EXTERN PetscErrorCode MMProgressHeader(MMProgress *p, TS ts, KSP krylov, KSP pc_ksp);
 PETSC_EXTERN PetscErrorCode MMProgressMassLine(const MMProgress *p);
 PETSC_EXTERN PetscErrorCode MMProgressMonitorSet(MMProgress *p, TS ts);

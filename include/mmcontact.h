@@ -1,5 +1,5 @@
-/* The run's context, MMCtx: one struct per concern, each defined by its component's types header
- * (include/<component>types.h). */
+/* The run's context, MMCtx (src/app/): the problem as the user gave it, and each component's object or
+ * data, created, set up and destroyed by main.c. Only src/app/ includes this header. */
 #pragma once
 #include "mmbase.h"
 #include "apptypes.h"
@@ -10,9 +10,9 @@
 #include "ts.h"
 #include "io.h"
 
-/* Everything the stepper needs; the TS type "newmark" holds a pointer to it. */
 typedef struct _MMCtx {
   MMOptions   opt;
+  MMIOProblem iopb; /* the part of opt the output, checkpoint and progress read (MMOptionsGetIOProblem) */
   MMMaterial  material;
   MMOperators op;
   MMLoads     loads;

@@ -127,7 +127,8 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   MMPhase(MMAppEvents.friction_setup, MMFrictionSetUp(ctx->friction, ctx->contact, ctx->opt.mu_max, ctx->material.E_max, state->u_old, state->v_old, state->react));
   PetscCall(MMNewmarkSetFriction(ctx->nm, ctx->friction));
   PetscCall(MMNewmarkCreateTS(ctx->nm, ts));
-  PetscCall(MMCheckpointSetUp(&ctx->ckpt, &ctx->opt, &ctx->op, &ctx->material, hist, state, damping, ctx->contact, ctx->friction, &ctx->out));
+  PetscCall(MMOptionsGetIOProblem(&ctx->opt, &ctx->iopb));
+  PetscCall(MMCheckpointSetUp(&ctx->ckpt, &ctx->iopb, &ctx->op, &ctx->material, hist, state, damping, ctx->contact, ctx->friction, &ctx->out));
   PetscCall(Restart(ctx, *ts));
   PetscCall(TSGetTimeStep(*ts, &dt));
   {
@@ -143,13 +144,13 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   }
   MMPhase(MMAppEvents.deformation_check, MMDeformationCheck(ctx->nm));
   PetscCall(MMCheckpointRestoreHistory(&ctx->ckpt));
-  PetscCall(MMOutputSetUp(&ctx->out, &ctx->opt, &ctx->op, &ctx->material, hist, state, ctx->contact, &ctx->loads, &ctx->ckpt));
+  PetscCall(MMOutputSetUp(&ctx->out, &ctx->iopb, &ctx->op, &ctx->material, hist, state, ctx->contact, &ctx->loads, &ctx->ckpt));
   /* every object has read its options: refuse the unread ones before any output is touched, and
    * before the start-up report, which would otherwise announce a run that is then refused */
   PetscCall(MMOptionsCheckUnused(comm, &ctx->opt, ctx->op.dm));
   /* after: its replay of the help text reads every option */
   PetscCall(MMOptionsCheckValueless(comm));
-  PetscCall(MMProgressSetUp(&ctx->progress, &ctx->opt, &ctx->op, &ctx->material, hist, state, ctx->contact, damping));
+  PetscCall(MMProgressSetUp(&ctx->progress, &ctx->iopb, &ctx->op, &ctx->material, hist, state, ctx->contact, damping));
   if (!ctx->opt.quiet) {
     KSP krylov, pc_ksp;
     PetscCall(MMContactGetStepKSP(ctx->contact, &krylov, &pc_ksp));
@@ -161,8 +162,8 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
     PetscFunctionReturn(0);
   }
   /* last: the earlier results in the output directory are set aside only once the input is valid */
-  MMPhase(MMAppEvents.output_open, MMOutputOpen(ctx));
-  PetscCall(TSMonitorSet(*ts, MMOutputMonitor, ctx, NULL));
+  MMPhase(MMAppEvents.output_open, MMOutputOpen(&ctx->out));
+  PetscCall(TSMonitorSet(*ts, MMOutputMonitor, &ctx->out, NULL));
   PetscCall(TSMonitorSet(*ts, MMCheckpointMonitor, &ctx->ckpt, NULL));
   if (!ctx->opt.quiet) PetscCall(MMProgressMonitorSet(&ctx->progress, *ts));
   PetscCall(MMSignalsSetUp(*ts));
@@ -274,7 +275,7 @@ int main(int argc, char **argv)
   PetscCall(PetscTime(&t1));
   PetscCall(MMCheckpointWriteFinal(&ctx.ckpt, ts));
 
-  PetscCall(MMOutputWriteFinal(&ctx));
+  PetscCall(MMOutputWriteFinal(&ctx.out));
   PetscCall(MMOutputClose(&ctx.out, &ctx.ckpt, hist->step));
   PetscCall(Report(&ctx, t0 - ts0, t1 - t0));
   PetscCall(MMOutputDestroy(&ctx.out));

@@ -639,6 +639,26 @@ PetscErrorCode MMOptionsGetFEProblem(const MMOptions *opt, MMFEProblem *pb)
   PetscFunctionReturn(0);
 }
 
+/* The problem as io reads it: the names its columns and report quote, a checkpoint's fingerprint. */
+PetscErrorCode MMOptionsGetIOProblem(const MMOptions *opt, MMIOProblem *pb)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(pb, sizeof(*pb)));
+  pb->mesh_file    = opt->mesh_file;
+  pb->contact_name = opt->contact_name;
+  pb->E            = opt->E;
+  pb->nu           = opt->nu;
+  pb->rho          = opt->rho;
+  pb->mu           = opt->mu;
+  pb->mu_max       = opt->mu_max;
+  pb->n_obstacles  = opt->n_obstacles;
+  pb->n_rigid      = opt->n_rigid;
+  pb->obstacles    = opt->obstacles;
+  pb->n_dirichlet  = opt->n_dirichlet;
+  pb->dirichlet    = opt->dirichlet;
+  PetscFunctionReturn(0);
+}
+
 /* The problem as the stepper reads it: the initial state, the obstacles (borrowed from opt), the
  * audits' thresholds and the values its messages quote. */
 PetscErrorCode MMOptionsGetNewmarkProblem(const MMOptions *opt, MMNewmarkProblem *pb)

@@ -63,7 +63,7 @@ static PetscBool DampingOn(const MMCheckpoint *ck)
 }
 
 /* The checkpoint's borrowed references: what it holds and restores (like KSPSetOperators). */
-PetscErrorCode MMCheckpointSetUp(MMCheckpoint *c, const MMOptions *opt, const MMOperators *op, const MMMaterial *material, MMHistory *hist, MMState *state, MMDamping *damping, MMContact contact, MMFriction friction, MMOutput *out)
+PetscErrorCode MMCheckpointSetUp(MMCheckpoint *c, const MMIOProblem *opt, const MMOperators *op, const MMMaterial *material, MMHistory *hist, MMState *state, MMDamping *damping, MMContact contact, MMFriction friction, MMOutput *out)
 {
   PetscFunctionBeginUser;
   c->opt      = opt;

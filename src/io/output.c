@@ -161,7 +161,7 @@ static PetscErrorCode CSVWrite(MMOutput *o, const MMLine *l)
 /* The header of history.csv: its columns depend on the dimension and the obstacles. */
 PetscErrorCode MMOutputCSVHeaderLine(const MMOutput *o, MMLine *lp)
 {
-  const MMOptions *opt  = o->opt;
+  const MMIOProblem *opt  = o->opt;
   const char      *axes = "xyz";
   PetscInt         dim  = o->op->dim;
   MMLine      l    = {.n = 0, .s = ""};
@@ -209,7 +209,7 @@ static PetscErrorCode CSVHeader(MMOutput *o)
 PetscErrorCode MMOutputWriteRow(MMOutput *o)
 {
   const MMHistory *h   = o->hist;
-  const MMOptions *opt = o->opt;
+  const MMIOProblem *opt = o->opt;
   PetscInt         dim = o->op->dim;
   MMLine           l   = {.n = 0, .s = ""};
 
@@ -817,7 +817,7 @@ PetscErrorCode MMOutputSetFromOptions(MPI_Comm comm, MMOutput *o)
 }
 
 /* The output's borrowed references: what it writes from (like KSPSetOperators). */
-PetscErrorCode MMOutputSetUp(MMOutput *o, const MMOptions *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, MMContact contact, MMLoads *loads, MMCheckpoint *ckpt)
+PetscErrorCode MMOutputSetUp(MMOutput *o, const MMIOProblem *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, MMContact contact, MMLoads *loads, MMCheckpoint *ckpt)
 {
   PetscFunctionBeginUser;
   o->opt      = opt;

@@ -2,7 +2,6 @@
  * snapshot's fields from the components that compute them (the stepper's u and v, fem's Cartesian
  * frame and stress, the loads' Dirichlet data, contact's boundary fields), then hand them to the
  * writer (output.c), which takes the output alone. The data path goes down once and comes back. */
-#include "mmcontact.h" /* MMCtx: the glue still reaches contact through it */
 #include "io.h"
 #include "outputimpl.h"
 #include "contact.h"
@@ -36,16 +35,14 @@ static PetscErrorCode WholeState(MMOutput *o)
 
 /* The history row and (snapshot) the fields of the current state: the stepper's state, fem's frames
  * and stress, contact's boundary fields. */
-static PetscErrorCode Write(MMCtx *ctx, PetscBool row, PetscBool snapshot)
+static PetscErrorCode Write(MMOutput *o, PetscBool row, PetscBool snapshot)
 {
-  MMOutput *o = &ctx->out;
-
   PetscFunctionBeginUser;
   if (snapshot) PetscCall(PetscLogStagePush(MMIOEvents.output));
   if (snapshot || (row && o->probes.n)) PetscCall(WholeState(o));
   if (row) PetscCall(MMOutputWriteRow(o));
   if (!snapshot) PetscFunctionReturn(0);
-  PetscCall(MMContactBoundaryFields(ctx->contact, o->state->u, o->state->v, o->state->react, o->dm_out, o->pressure, o->gap, o->traction_t, o->slip));
+  PetscCall(MMContactBoundaryFields(o->contact, o->state->u, o->state->v, o->state->react, o->dm_out, o->pressure, o->gap, o->traction_t, o->slip));
   PetscCall(MMStressCompute(&o->stress, o->op, o->material, o->dm_out, o->disp_cart, PETSC_TRUE));
   PetscCall(MMOutputWriteSnapshot(o, o->hist->time));
   PetscCall(PetscLogStagePop());
@@ -70,17 +67,15 @@ PetscErrorCode MMOutputSetUpProbes(MMOutput *o)
 /* Called last in set-up, once all input is valid: the probes (a group the mesh lacks is refused
  * before any file is touched), the files, the fields fixed at set-up, and on -restart the earlier
  * snapshots. */
-PetscErrorCode MMOutputOpen(MMCtx *ctx)
+PetscErrorCode MMOutputOpen(MMOutput *o)
 {
-  MMOutput *o = &ctx->out;
-
   PetscFunctionBeginUser;
   PetscCall(MMOutputSetUpProbes(o));
-  if (ctx->ckpt.restarted) PetscCall(PetscLogEventBegin(MMIOEvents.restart_output, 0, 0, 0, 0));
+  if (o->ckpt->restarted) PetscCall(PetscLogEventBegin(MMIOEvents.restart_output, 0, 0, 0, 0));
   PetscCall(MMOutputOpenFiles(o));
   PetscCall(MMStressCreate(o->op, &o->stress));
-  PetscCall(MMContactObstacleField(ctx->contact, o->obstacle));
-  if (ctx->ckpt.restarted) {
+  PetscCall(MMContactObstacleField(o->contact, o->obstacle));
+  if (o->ckpt->restarted) {
     PetscCall(MMOutputRestartFields(o));
     PetscCall(PetscLogEventEnd(MMIOEvents.restart_output, 0, 0, 0, 0));
   }
@@ -91,8 +86,7 @@ PetscErrorCode MMOutputOpen(MMCtx *ctx)
  * -output_interval (output_schedule.c). */
 PetscErrorCode MMOutputMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ptr)
 {
-  MMCtx    *ctx = (MMCtx *)ptr;
-  MMOutput *o   = &ctx->out;
+  MMOutput *o = (MMOutput *)ptr;
 
   PetscFunctionBeginUser;
   if (!o->planned) {
@@ -100,19 +94,18 @@ PetscErrorCode MMOutputMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void
     o->planned = PETSC_TRUE;
   }
   /* -restart: the row and snapshot of the checkpoint's step are on disk already */
-  if (ctx->ckpt.restarted && step == ctx->ckpt.restart_step) PetscFunctionReturn(0);
-  PetscCall(Write(ctx, MMOutputHistoryDue(o, step), (PetscBool)(step == 0 || MMOutputSnapshotDue(o, step, time, o->hist->dt))));
+  if (o->ckpt->restarted && step == o->ckpt->restart_step) PetscFunctionReturn(0);
+  PetscCall(Write(o, MMOutputHistoryDue(o, step), (PetscBool)(step == 0 || MMOutputSnapshotDue(o, step, time, o->hist->dt))));
   PetscFunctionReturn(0);
 }
 
 /* The last step's row and snapshot, if the cadence missed them (a restart that made no step has
  * them on disk). */
-PetscErrorCode MMOutputWriteFinal(MMCtx *ctx)
+PetscErrorCode MMOutputWriteFinal(MMOutput *o)
 {
-  MMOutput        *o = &ctx->out;
   const MMHistory *h = o->hist;
 
   PetscFunctionBeginUser;
-  PetscCall(Write(ctx, (PetscBool)(!MMOutputHistoryDue(o, h->step) && !(ctx->ckpt.restarted && h->step == ctx->ckpt.restart_step)), (PetscBool)(o->n_written && o->times[o->n_written - 1] != h->time)));
+  PetscCall(Write(o, (PetscBool)(!MMOutputHistoryDue(o, h->step) && !(o->ckpt->restarted && h->step == o->ckpt->restart_step)), (PetscBool)(o->n_written && o->times[o->n_written - 1] != h->time)));
   PetscFunctionReturn(0);
 }

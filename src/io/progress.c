@@ -17,7 +17,7 @@ static PetscBool DampingOn(const MMProgress *pg)
 }
 
 /* The progress's borrowed references: what the start-up report and the progress lines describe. */
-PetscErrorCode MMProgressSetUp(MMProgress *pg, const MMOptions *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, MMContact contact, const MMDamping *damping)
+PetscErrorCode MMProgressSetUp(MMProgress *pg, const MMIOProblem *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, MMContact contact, const MMDamping *damping)
 {
   PetscFunctionBeginUser;
   pg->opt       = opt;
@@ -55,7 +55,7 @@ static PetscErrorCode CaseName(char name[], size_t len)
 }
 
 /* The obstacles by name and shape, e.g. "2 obstacles: floor (plane), bowl (sphere)". */
-static PetscErrorCode ObstacleList(const MMOptions *opt, char list[], size_t len)
+static PetscErrorCode ObstacleList(const MMIOProblem *opt, char list[], size_t len)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(list, len, "%" PetscInt_FMT " obstacle%s:", opt->n_obstacles, opt->n_obstacles == 1 ? "" : "s"));
@@ -69,7 +69,7 @@ static PetscErrorCode ObstacleList(const MMOptions *opt, char list[], size_t len
 }
 
 /* "frictionless", or the Coulomb coefficient, or its range when the obstacles have their own. */
-static PetscErrorCode FrictionText(const MMOptions *opt, char text[], size_t len)
+static PetscErrorCode FrictionText(const MMIOProblem *opt, char text[], size_t len)
 {
   PetscReal lo = opt->mu_max;
 
@@ -196,7 +196,7 @@ static PetscErrorCode HeaderBodies(MMProgress *pg)
 static PetscErrorCode HeaderPhysics(MMProgress *pg, TS ts)
 {
   MPI_Comm        comm = PETSC_COMM_WORLD;
-  const MMOptions *opt = pg->opt;
+  const MMIOProblem *opt = pg->opt;
   const PetscReal c_s  = PetscSqrtReal(PetscRealPart(pg->op->constants[MM_C_MU]) / opt->rho);
   PetscReal       dt, t_end, h_c;
   PetscInt        max_steps;
@@ -260,7 +260,7 @@ PetscErrorCode MMProgressMassLine(const MMProgress *pg)
 static PetscErrorCode HeaderContact(MMProgress *pg, KSP krylov, KSP pc_ksp)
 {
   MPI_Comm         comm = PETSC_COMM_WORLD;
-  const MMOptions *opt  = pg->opt;
+  const MMIOProblem *opt  = pg->opt;
   char             obstacles[512], friction[128], solver[256], progress[64] = "no progress lines";
   const char      *type, *choice, *products;
   MMContactNodes   cn;
