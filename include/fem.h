@@ -209,7 +209,7 @@ typedef struct {
 /* An amplitude in time (src/fem/loads.c): a(t) of a registered kind, docs/method.md section 10. */
 typedef struct _MMAmplitude MMAmplitude;
 struct _MMAmplitude {
-  PetscReal (*value)(const MMAmplitude *, PetscReal);
+  PetscReal (*value)(const MMAmplitude *a, PetscReal t);
   PetscReal  T;          /* ramp, halfsine */
   PetscInt   n;          /* table: rows, times t[] increasing, factors f[] */
   PetscReal *t, *f;

@@ -76,7 +76,6 @@ typedef struct {
   PetscBool         dirichlet;         /* some Dirichlet boundary */
   PetscBool         dirichlet_nonzero; /* some Dirichlet value or velocity is nonzero */
   PetscReal         E, nu, rho;        /* as given: the messages quote them */
-  PetscReal         contact_work_tol;
   PetscBool         quiet;
 } MMNewmarkProblem;
 

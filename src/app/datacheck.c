@@ -5,8 +5,8 @@
  * check adds to the start-up report is here: each physical group's node and element counts, the
  * planned steps and output size, and a first-contact estimate. */
 #include <petscsf.h>
-#include "datacheck.h"
 #include "mesh.h"
+#include "appimpl.h"
 #include "fem.h"
 #include "contact.h"
 #include "ts.h"

@@ -12,7 +12,6 @@ static char help[] = "mmcontact: elastic bodies hitting and sliding on rigid obs
                      "  mpiexec -n 2 ./mmcontact -options_file options/d1_friction.opts\n"
                      "README.md describes every option, the output and the exit status.\n\n";
 
-#include "options.h"
 #include "mesh.h"
 #include "fem.h"
 #include "contact.h"
@@ -20,7 +19,6 @@ static char help[] = "mmcontact: elastic bodies hitting and sliding on rigid obs
 #include "friction.h"
 #include "io.h"
 #include "sys.h"
-#include "datacheck.h"
 #include "appimpl.h"
 #include <sys/resource.h>
 

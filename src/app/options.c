@@ -1,6 +1,6 @@
 /* Every run option of mmcontact, declared in one place with its help string. */
-#include "options.h"
 #include "contact.h"
+#include "appimpl.h"
 #include <errno.h>
 #include <stdlib.h>
 #include "obstacle.h"
@@ -395,7 +395,6 @@ static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
     PetscCheck(body->rho > 0, comm, PETSC_ERR_USER_INPUT, "Density -body_%s_rho %g must be > 0", body->name, (double)body->rho);
   }
   PetscCheck(opt->mu >= 0, comm, PETSC_ERR_USER_INPUT, "Friction coefficient -mu %g must be >= 0", (double)opt->mu);
-  PetscCheck(opt->contact_work_tol > 0, comm, PETSC_ERR_USER_INPUT, "-contact_work_tol %g must be > 0: it is a fraction of the run's energy scale", (double)opt->contact_work_tol);
   PetscFunctionReturn(0);
 }
 
@@ -450,8 +449,6 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   opt->mu = 0.0;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-mu", "Coulomb friction coefficient, >= 0 (0: frictionless, the friction loop is skipped); the default of each -obstacle_NAME_mu and -contact_pair_NAME_mu (refused when each of them is given: it would be used nowhere)", &opt->mu));
   PetscCall(ProcessObstacles(PetscOptionsObject, comm, opt));
-  opt->contact_work_tol = 1e-3;
-  PetscCall(OptionsReal(PetscOptionsObject, comm, "-contact_work_tol", "Reject and retry with a smaller dt a step whose contact work W_c creates more energy than this times the run's energy scale (> 0): a release that dt does not resolve", &opt->contact_work_tol));
   opt->quiet = PETSC_FALSE;
   PetscCall(OptionsBool(PetscOptionsObject, comm, "-quiet", "Do not print the start-up report, progress lines and closing summary", &opt->quiet));
   /* a data check (abaqus datacheck, MOOSE --check-input): src/app/datacheck.c, README "Checking a case before a batch job" */
@@ -687,7 +684,6 @@ PetscErrorCode MMOptionsGetNewmarkProblem(const MMOptions *opt, MMNewmarkProblem
   pb->E                 = opt->E;
   pb->nu                = opt->nu;
   pb->rho               = opt->rho;
-  pb->contact_work_tol  = opt->contact_work_tol;
   pb->quiet             = opt->quiet;
   PetscFunctionReturn(0);
 }

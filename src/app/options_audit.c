@@ -7,8 +7,8 @@
 #include <ctype.h>
 #include <strings.h>
 #include <stdarg.h>
-#include "options.h"
 #include "ts.h"
+#include "appimpl.h"
 #include "contact.h"
 #include "friction.h"
 #include "fem.h"

@@ -44,22 +44,24 @@ typedef struct {
 PETSC_INTERN PetscErrorCode MMCoulombNewton(const MMCoulombProblem *p, MMCoulombWork *wk, PetscReal rtol, PetscInt maxit, PetscScalar r[], MMCoulombResult *res);
 PETSC_INTERN PetscErrorCode MMCoulombWorkDestroy(MMCoulombWork *wk);
 
-typedef struct _MMFrictionOps *MMFrictionOps;
+/* A friction solver's operations, a static const table per type (impls/<type>/): a NULL entry is a
+ * capability the type lacks. */
+typedef struct _MMFrictionOps MMFrictionOps;
 struct _MMFrictionOps {
   /* the contact-space problem on the candidate set; NULL: the type needs no Delassus operator */
-  PetscErrorCode (*solveset)(MMFriction, const MMCoulombProblem *, PetscScalar[], MMCoulombResult *);
+  PetscErrorCode (*solveset)(MMFriction fr, const MMCoulombProblem *p, PetscScalar r[], MMCoulombResult *res);
   /* the formulation's own Tresca solve inside a threshold loop (no Delassus operator); NULL: none */
-  PetscErrorCode (*solvethresholds)(MMFriction, Vec, Vec, Vec);
+  PetscErrorCode (*solvethresholds)(MMFriction fr, Vec b, Vec w, Vec react);
   /* the formulation's own Coulomb solve on all dofs (no Delassus operator); NULL: none */
-  PetscErrorCode (*solvedofs)(MMFriction, Vec, Vec, Vec);
-  PetscReal default_rtol;
-  const char *rtol_meaning;
+  PetscErrorCode (*solvedofs)(MMFriction fr, Vec b, Vec w, Vec react);
+  PetscReal   default_rtol; /* -friction_rtol's default */
+  const char *rtol_meaning; /* what that tolerance measures, for its help */
 };
 
 struct _p_MMFriction {
   MPI_Comm           comm;
   char               type[MM_TYPE_LEN];
-  struct _MMFrictionOps ops;
+  const MMFrictionOps   *ops;
   MMContact          contact;  /* borrowed: the contact it wraps */
   Vec                u_old, v_old; /* borrowed: the step's start, for the slip velocities */
   PetscInt           step;     /* the last accepted step and its time: the audit's obstacles, the dump's names */

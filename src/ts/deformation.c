@@ -10,7 +10,7 @@
  * One pass over the cells with a few dozen flops each, on the displacement already in memory. */
 #include "newmarkimpl.h"
 #include "fem.h"
-#include "errors.h"
+#include "sys.h"
 
 /* The strain's largest principal value in magnitude: the spectral norm of the symmetric e. */
 static PetscReal PrincipalStrain(PetscInt dim, const PetscReal e[MM_MAX_DIM][MM_MAX_DIM])

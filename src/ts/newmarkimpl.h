@@ -33,6 +33,7 @@ struct _p_MMNewmark {
   MMFriction   friction; /* set once friction is set up (MMNewmarkSetFriction) */
   /* the audits' options (MMNewmarkSetFromOptions) */
   PetscReal audit_tol;         /* -audit_tol: the energy audit's */
+  PetscReal contact_work_tol;  /* -contact_work_tol: a step whose contact work creates more energy is rejected */
   PetscBool deformation_audit; /* -deformation_audit, -strain_warn, -max_strain */
   PetscReal strain_warn, max_strain;
   /* owned */

@@ -4,7 +4,7 @@
 #include "newmarkimpl.h"
 #include "sys.h"
 
-/* The energy audit's tolerance, the deformation audit's switch and thresholds, and the damping. */
+/* The energy audit's tolerances (the balance, and the contact work that rejects a step), the deformation audit's switch and thresholds, and the damping. */
 PetscErrorCode MMNewmarkSetFromOptions(MMNewmark nm)
 {
   MPI_Comm comm = nm->comm;
@@ -13,6 +13,8 @@ PetscErrorCode MMNewmarkSetFromOptions(MMNewmark nm)
   PetscOptionsBegin(comm, NULL, "mmcontact: the time stepper's audits and damping", "MMNewmark");
   nm->audit_tol = 1e-6;
   PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-audit_tol", "Stop the run when a step's relative energy-balance residual exceeds this (> 0): the scheme's identity no longer holds", &nm->audit_tol));
+  nm->contact_work_tol = 1e-3;
+  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-contact_work_tol", "Reject and retry with a smaller dt a step whose contact work W_c creates more energy than this times the run's energy scale (> 0): a release that dt does not resolve", &nm->contact_work_tol));
   nm->deformation_audit = PETSC_TRUE;
   PetscCall(MMOptionsBool(PetscOptionsObject, comm, "-deformation_audit", "After every step, check each cell's deformation: a cell turned inside out or a strain above -max_strain stops the run, one above -strain_warn is warned (0: no check, for nondimensional verification cases whose strains are large by design)", &nm->deformation_audit));
   nm->strain_warn = 0.1;
@@ -22,6 +24,7 @@ PetscErrorCode MMNewmarkSetFromOptions(MMNewmark nm)
   PetscCall(MMDampingSetFromOptions(PetscOptionsObject, comm, &nm->damping));
   PetscOptionsEnd();
   PetscCheck(nm->audit_tol > 0, comm, PETSC_ERR_USER_INPUT, "-audit_tol %g must be > 0: it is a relative energy-balance residual", (double)nm->audit_tol);
+  PetscCheck(nm->contact_work_tol > 0, comm, PETSC_ERR_USER_INPUT, "-contact_work_tol %g must be > 0: it is a fraction of the run's energy scale", (double)nm->contact_work_tol);
   PetscCheck(nm->strain_warn > 0, comm, PETSC_ERR_USER_INPUT, "-strain_warn %g must be > 0: it is a strain", (double)nm->strain_warn);
   PetscCheck(nm->max_strain >= nm->strain_warn, comm, PETSC_ERR_USER_INPUT, "-max_strain %g must be >= -strain_warn %g", (double)nm->max_strain, (double)nm->strain_warn);
   PetscFunctionReturn(0);

@@ -3,7 +3,7 @@
  * the contact boundary. */
 #include "../contactimpl.h"
 #include "obstacle.h"
-#include "errors.h"
+#include "sys.h"
 
 /* Per-node contact statistics of a state (w, react, sigma): sigma holds the velocity, whose
  * tangential components at a contact node are its slip velocity. */

@@ -65,7 +65,7 @@ static PetscErrorCode SolveSetAdaptor(void *ptr, const MMContactSetProblem *sp, 
     PetscCall(PetscArraycpy(x0, x, sp->n * sp->nc));
   }
   PetscCall(PetscTime(&t0));
-  PetscCall(fr->ops.solveset(fr, &p, x, &res));
+  PetscCall(fr->ops->solveset(fr, &p, x, &res));
   PetscCall(PetscTime(&t1));
   if (dump) PetscCall(MMFrictionDump(fr, &p, x0, x, &res, t1 - t0));
   PetscCall(PetscFree(x0));
@@ -153,9 +153,9 @@ static PetscErrorCode FrictionShellSolve(SNES snes, Vec unused)
   fr->contraction = fr->contraction_max = 0;
   PetscCall(MMContactHasDelassus(fr->contact, &has));
   PetscCall(MMContactHasCoulombDofs(fr->contact, &dofs));
-  if (has && fr->ops.solveset) PetscCall(SolveContactSpace(fr, snes));
-  else if (dofs && fr->ops.solvedofs) PetscCall(fr->ops.solvedofs(fr, fr->b, fr->w, fr->react));
-  else PetscCall(fr->ops.solvethresholds(fr, fr->b, fr->w, fr->react));
+  if (has && fr->ops->solveset) PetscCall(SolveContactSpace(fr, snes));
+  else if (dofs && fr->ops->solvedofs) PetscCall(fr->ops->solvedofs(fr, fr->b, fr->w, fr->react));
+  else PetscCall(fr->ops->solvethresholds(fr, fr->b, fr->w, fr->react));
   PetscFunctionReturn(0);
 }
 
@@ -242,17 +242,17 @@ PetscErrorCode MMFrictionSetUp(MMFriction fr, MMContact ct, PetscReal mu_max, Pe
   PetscCheck(create, comm, PETSC_ERR_USER_INPUT, "-friction_type %s is not a friction solver: use newton (semismooth Newton on the Coulomb problem, the default) or fixedpoint (the paper's fixed point on the thresholds)", type);
   PetscCall(PetscStrncpy(fr->type, type, sizeof(fr->type)));
   PetscCall((*create)(fr));
-  PetscCheck(!fr->dump[0] || (mu_max > 0 && has && fr->ops.solveset), comm, PETSC_ERR_USER_INPUT, "-friction_dump %s writes the contact-space Coulomb problems, which this run does not solve: it needs -mu > 0, -contact_formulation condensed and a -friction_type that solves them (newton or fixedpoint)", fr->dump);
+  PetscCheck(!fr->dump[0] || (mu_max > 0 && has && fr->ops->solveset), comm, PETSC_ERR_USER_INPUT, "-friction_dump %s writes the contact-space Coulomb problems, which this run does not solve: it needs -mu > 0, -contact_formulation condensed and a -friction_type that solves them (newton or fixedpoint)", fr->dump);
   PetscCall(MMFrictionDumpSetUp(fr));
   if (mu_max == 0 || !cn.enabled) PetscFunctionReturn(0);
-  PetscCheck(has ? fr->ops.solveset != NULL : (dofs && fr->ops.solvedofs) || fr->ops.solvethresholds, comm, PETSC_ERR_USER_INPUT,
+  PetscCheck(has ? fr->ops->solveset != NULL : (dofs && fr->ops->solvedofs) || fr->ops->solvethresholds, comm, PETSC_ERR_USER_INPUT,
              "-friction_type %s cannot solve the Coulomb problem of -contact_formulation %s: use -friction_type fixedpoint", type, formulation);
   PetscCall(SNESCreate(comm, &fr->snes));
   PetscCall(SNESSetOptionsPrefix(fr->snes, "friction_"));
   PetscCall(SNESSetType(fr->snes, SNESSHELL));
   PetscCall(SNESShellSetContext(fr->snes, fr));
   PetscCall(SNESShellSetSolve(fr->snes, FrictionShellSolve));
-  PetscCall(SNESSetTolerances(fr->snes, PETSC_DEFAULT, fr->ops.default_rtol, PETSC_DEFAULT, 100, PETSC_DEFAULT));
+  PetscCall(SNESSetTolerances(fr->snes, PETSC_DEFAULT, fr->ops->default_rtol, PETSC_DEFAULT, 100, PETSC_DEFAULT));
   PetscCall(SNESSetFromOptions(fr->snes));
   PetscCall(SNESGetTolerances(fr->snes, NULL, &fr->rtol, NULL, &fr->maxit, NULL));
   PetscCall(VecDuplicate(cn.gap, &fr->s));

@@ -113,13 +113,17 @@ PetscErrorCode MMFrictionThresholdLoop(MMFriction fr, Vec b, Vec w, Vec react)
   PetscFunctionReturn(0);
 }
 
+/* no Coulomb solve on all dofs: without a Delassus operator it loops over the formulation's Tresca solves */
+static const MMFrictionOps FixedPointOps = {
+  .solveset        = SolveSet_FixedPoint,
+  .solvethresholds = MMFrictionThresholdLoop,
+  .default_rtol    = 1e-10,
+  .rtol_meaning    = "relative change of the thresholds",
+};
+
 PetscErrorCode MMFrictionCreate_FixedPoint(MMFriction fr)
 {
   PetscFunctionBeginUser;
-  fr->ops.solveset        = SolveSet_FixedPoint;
-  fr->ops.solvethresholds = MMFrictionThresholdLoop;
-  fr->ops.solvedofs       = NULL;
-  fr->ops.default_rtol    = 1e-10;
-  fr->ops.rtol_meaning    = "relative change of the thresholds";
+  fr->ops = &FixedPointOps;
   PetscFunctionReturn(0);
 }

@@ -16,14 +16,17 @@ static PetscErrorCode SolveSet_Newton(MMFriction fr, const MMCoulombProblem *p, 
   PetscFunctionReturn(0);
 }
 
+/* no threshold loop of its own: it solves the Coulomb law at once */
+static const MMFrictionOps NewtonOps = {
+  .solveset     = SolveSet_Newton,
+  .solvedofs    = MMFrictionSolveDofs,
+  .default_rtol = 1e-12, /* |Phi|_inf over the force scale: quadratic convergence makes a tight default cheap */
+  .rtol_meaning = "Alart-Curnier residual over the force scale",
+};
+
 PetscErrorCode MMFrictionCreate_Newton(MMFriction fr)
 {
   PetscFunctionBeginUser;
-  fr->ops.solveset        = SolveSet_Newton;
-  fr->ops.solvethresholds = NULL;
-  fr->ops.solvedofs       = MMFrictionSolveDofs;
-  /* |Phi|_inf relative to the force scale: quadratic convergence makes a tight default cheap */
-  fr->ops.default_rtol = 1e-12;
-  fr->ops.rtol_meaning = "Alart-Curnier residual over the force scale";
+  fr->ops = &NewtonOps;
   PetscFunctionReturn(0);
 }
