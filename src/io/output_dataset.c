@@ -2,8 +2,8 @@
  * shape, chunks and attributes), so that VecLoad, the restart's reader, the XDMF index and ParaView
  * read it unchanged, without the two costs PETSc 3.18's VecView_MPI_HDF5 pays on every call:
  *   - an H5Fflush after each dataset, which MPI-IO turns into an fsync of the file. A snapshot has
- *     a dozen datasets, and the fsyncs are serial: on the 115k-dof D1 disk they were 27 ms of
- *     every snapshot on 1 rank and on 2 alike, as much as five time steps on 2 ranks. The snapshot
+ *     a dozen datasets, and the fsyncs are serial, as much as several time steps per snapshot
+ *     (docs/scaling.md, "The figures behind the code's choices"). The snapshot
  *     is flushed once, whole, before the index lists it (MMOutputFlushFields), which is what the
  *     index's promise needs (docs/method.md section 9);
  *   - the fill values parallel HDF5 writes into each new chunk before the data overwrite them.

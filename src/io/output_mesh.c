@@ -2,8 +2,8 @@
  * the order of the global vertex numbering) and /viz/topology/cells (each cell's dim + 1 global
  * vertex numbers, positively oriented as VTK's triangles and tetrahedra are). This is what DMView
  * with PETSC_VIEWER_HDF5_XDMF writes, from the cell table (src/mesh/cells.c) instead of a
- * transitive closure per cell and a numbering of every face and edge: at 1M dofs DMView took 9 s
- * of the set-up on 2 ranks. */
+ * transitive closure per cell and a numbering of every face and edge, a large part of the set-up at
+ * a million dofs (docs/scaling.md, "The figures behind the code's choices"). */
 #include "io.h"
 #include <petscviewerhdf5.h>
 #include "outputimpl.h"

@@ -3,8 +3,8 @@
  * P1 elements need cells and vertices only; the facet groups (contact surfaces, tractions,
  * Dirichlet boundaries) need their facets' vertices, areas and cells. PETSc's gmsh reader finds the
  * face of a facet element (a Physical Curve in 2D, Surface in 3D) only on a mesh it interpolates,
- * and DMPlexInterpolate, creating every face and edge, was the largest part of the set-up (13 of
- * 38 s at 1M dofs on 2 ranks, and the memory of the faces and edges). So the mesh is read without
+ * and DMPlexInterpolate, creating every face and edge, was the largest part of the set-up and of its
+ * memory at a million dofs (docs/scaling.md, "The figures behind the code's choices"). So the mesh is read without
  * faces and edges, and the facet elements are read from the file here (ASCII gmsh 2.2 and 4.1). On
  * rank 0 each one marks one cell it bounds: per group, a cell label whose value has bit k set when
  * the cell's face opposite its k-th vertex (cone position) is in the group, and bit

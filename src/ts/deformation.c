@@ -73,8 +73,7 @@ static PetscErrorCode CellTable(MMNewmark nm)
 /* A cell's grad u = D J^{-1} and det F = det(I + grad u), with J = [X_k - X_0] and D = [U_k - U_0]
  * (columns k = 1..dim); false for a degenerate cell (refused when the mesh is read). Inlined with
  * dim a constant (ScanCellsDim), so that its small loops unroll: this runs on every cell after
- * every step (the 115k-dof disk's audit: 3.6 ms a step, 4.8 with the generic loops and a full
- * inverse). The inverse of J is its adjugate over det J: one division per cell. */
+ * every step (docs/scaling.md, "The figures behind the code's choices"). The inverse of J is its adjugate over det J: one division per cell. */
 static inline PetscBool CellGradient(const PetscInt dim, const PetscScalar *u, const PetscScalar *x, const PetscInt *uo, const PetscInt *xo, PetscReal G[MM_MAX_DIM][MM_MAX_DIM], PetscReal *detF)
 {
   PetscReal J[MM_MAX_DIM][MM_MAX_DIM], D[MM_MAX_DIM][MM_MAX_DIM], A[MM_MAX_DIM][MM_MAX_DIM], detJ, s;

@@ -40,10 +40,8 @@ static PetscErrorCode RigidBodyModes(MMContact ct, MatNullSpace *sp)
 
 /* The defaults, before the options: the linear runs keep the exact factorization they always had;
  * the active-set formulation, made for large meshes, CG with Jacobi. At the c_p dt / h_c' near 1
- * that resolves the contact, K~ = K + 4/dt^2 M* is dominated by the mass and Jacobi needs about 15
- * iterations: measured (README "Large meshes"), it is 3 times faster per step than GAMG, whose
- * cycle costs about 12 matrix products; GAMG (with the rigid-body modes) wins from c_p dt / h_c'
- * of about 10 up. */
+ * that resolves the contact, K~ = K + 4/dt^2 M* is dominated by the mass, so Jacobi needs few
+ * iterations and beats GAMG's costly cycle; GAMG wins at much larger dt (docs/scaling.md, "The figures behind the code's choices"). */
 static PetscErrorCode KtSetDefaults(KSP ksp, PetscBool iterative, PetscInt dim)
 {
   PC pc;

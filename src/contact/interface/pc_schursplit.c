@@ -11,12 +11,11 @@
  * 2D), summed over the ranks and factored on each. A solve is exact:
  *   z_r = G^{-1} P b_r;  S x_G = b_G - sum_r W_r^T z_r;  x_r = P^T G^{-T} (z_r - W_r x_G),
  * one forward sweep, one MPI_Allreduce of |Gamma| numbers and one backward sweep, ours
- * (BackwardSweep: PETSc 3.18's MatBackwardSolve took 8.0 ms on the 115k-dof disk's half against
- * 2.9 ms for the forward sweep; ours about 3). So each rank sweeps its half-size factor once each
- * way, where PCREDUNDANT's whole factor costs each rank a full solve of twice the size: 6.0 against
- * 13.6 ms. Where the factor's layout is not the one the sweep expects, x_r = A_r^{-1} (b_r -
- * K~(I_r, Gamma) x_G) by the factor's MatSolve (10.9 ms). The set-up pays one forward sweep per
- * interface column for W_r. */
+ * (BackwardSweep, faster than PETSc 3.18's MatBackwardSolve). So each rank sweeps its half-size
+ * factor once each way, where PCREDUNDANT's whole factor costs each rank a full solve of twice the
+ * size. Where the factor's layout is not the one the sweep expects, x_r = A_r^{-1} (b_r -
+ * K~(I_r, Gamma) x_G) by the factor's MatSolve. The set-up pays one forward sweep per interface
+ * column for W_r. The timings: docs/scaling.md, "The figures behind the code's choices". */
 #include <petsc/private/pcimpl.h>
 #include "../contactimpl.h"
 
@@ -216,8 +215,8 @@ static PetscErrorCode FactorInterior(PC pc, Mat Ad)
 /* x = P^T G^{-T} b, the factor's backward sweep, as MatBackwardSolve computes it (PETSc's non-in-place
  * Cholesky layout: row k of U holds its off-diagonal entries, negated, then 1/D(k)), but with each
  * row's dot product read downwards, as the rows are, in four partial sums. PETSc 3.18's version
- * reads each row upwards while the rows go down (8.0 ms against 2.9 for the forward sweep on the 2D
- * disk's half), as its MatSolve's backward half does not. The sum's order differs: round-off only. */
+ * reads each row upwards while the rows go down, nearly three times the forward sweep's time
+ * (docs/scaling.md, "The figures behind the code's choices"). The sum's order differs: round-off only. */
 static PetscErrorCode BackwardSweep(PC_SchurSplit *sp, Vec b, Vec x)
 {
   const PetscScalar *ba;
@@ -417,7 +416,7 @@ static PetscErrorCode BuildW(PC pc, Mat B)
 
 /* s -= W_r^T W_r, into the dense S (column-major, ns x ns): row by row of W_r (an interior row's
  * few interface couplings), each pair once and mirrored. PETSc's sparse MatMatTransposeMult built
- * a sparse matrix that is all but dense (0.86 of 1.9 s of the 2D disk's split set-up). */
+ * a sparse matrix that is all but dense, half of the split's set-up (docs/scaling.md, "The figures behind the code's choices"). */
 static PetscErrorCode SubtractWtW(PC_SchurSplit *sp, PetscScalar s[])
 {
   Mat                W;

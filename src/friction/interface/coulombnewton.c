@@ -112,7 +112,7 @@ BLAS_EXTERN void MMLAPACKgelsy_(const PetscBLASInt *, const PetscBLASInt *, cons
  * with both obstacles: the split of its force between them is free, docs/method.md section 12):
  * the least-norm solution, so that the step does not move along the free split and the answer
  * does not depend on the rounding of W (1 rank against 2). J is overwritten. QR with column
- * pivoting, not the SVD: a few times an LU, where the SVD of the 3D groove's sets took 77% of the run. */
+ * pivoting, not the SVD: a few times an LU, where the SVD took most of the run (docs/scaling.md, "The figures behind the code's choices"). */
 static PetscErrorCode LeastNormSolve(PetscBLASInt ma, PetscReal J[], PetscReal rhs[], PetscBLASInt *info)
 {
   PetscBLASInt    one = 1, rank, lwork = -1, *jpvt;

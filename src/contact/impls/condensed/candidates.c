@@ -222,8 +222,8 @@ static PetscErrorCode SolveColumnsDistributed(MMContact ct, Mat F, const PetscIn
 
   PetscFunctionBeginUser;
   {
-    /* MUMPS: unit right-hand sides as a sparse B^T cut the column cost by a third (12k-dof D2
-     * with friction: 0.31 s to 0.21 s, the same columns to 1e-14). MUMPS takes a sparse
+    /* MUMPS: unit right-hand sides as a sparse B^T cut the column cost by a third, the same
+     * columns to 1e-14 (docs/scaling.md, "The figures behind the code's choices"). MUMPS takes a sparse
      * right-hand side only centralized on its host, so B^T lives on rank 0 whole (a distributed
      * one fails with INFOG(1) = -27); every rank knows every contact node's normal dof. */
     MatSolverType type;
@@ -341,8 +341,7 @@ static PetscErrorCode SolveColumnsRedundant(MMContact ct, Mat F, const PetscInt 
 
 /* The m new columns through a PC that solves exactly but holds no factor matrix (schursplit, the 2D
  * default: on several ranks each solve is collective and costs each rank a sweep each way of its
- * part of K~'s factor; 6.0 ms a column on the 115k-dof disk on 2 ranks, where the whole factor on
- * every rank divided the columns between the ranks at 13.6 ms each). */
+ * part of K~'s factor, less than half of a whole factor's solve on every rank (docs/scaling.md, "The figures behind the code's choices"). */
 static PetscErrorCode SolveColumnsByPC(MMContact ct, PC pc, const PetscInt todo[], PetscInt m, const PetscInt ic[])
 {
   MMCandidates      *c  = &MMCondensedData(ct)->cand;

@@ -8,8 +8,8 @@
 static PetscErrorCode NoneSetUp(MMContact ct)
 {
   PetscFunctionBeginUser;
-  /* large 3D problems: CG with Jacobi, 4.6 times faster per step than the triangular solves of the
-   * factor on the 113k-dof ball, with a quarter of the set-up (contact.c, PrefersIterative) */
+  /* large 3D problems: CG with Jacobi, faster per step than the factor's triangular solves and with
+   * a fraction of its set-up (contact.c, PrefersIterative; docs/scaling.md, "The figures behind the code's choices") */
   PetscCall(MMKtCreate(ct, ct->prefer_iterative));
   PetscFunctionReturn(0);
 }
