@@ -82,7 +82,7 @@ FRICTION_AS = dict(case="friction_as", options="-contact_formulation active_set 
 # from t = 0.01, step 5 of dt 2e-3 (c_p dt / h_c' = 1.3 at H = 0.057), and it lasts about 0.3, so
 # 25 of the 30 steps are in contact. Its contact_over_linear is against the D2 ball's linear row
 # (112,605 dofs against 116,520): the cost of contact at about the same size, not on the same mesh.
-TWO_BODY = dict(case="two_body", options="-contact_formulation condensed -mu 0", options_file="options/two_balls.opts",
+TWO_BODY = dict(case="two_body", options="-contact_formulation condensed", options_file="options/two_balls.opts",
                 problem="two balls", mesh="meshes/two_balls_bench.msh", dt=2e-3)
 USERS = (LINEAR, CONTACT) + tuple(dict(case=f"fric_{mu}_{ft}", options=f"-contact_formulation condensed -mu {mu} -friction_type {ft}")
                           for mu in (0.2, 0.5) for ft in ("newton", "fixedpoint"))
