@@ -1,10 +1,49 @@
 /* The contact frame (docs/method.md section 2): the w-frame operators from fem's Cartesian ones.
- * Each contact node's dofs are rotated into its frame (nu, tau_1, tau_2) by Q, built with the contact
- * set (interface/set.c): K <- Q^T K Q, M <- Q^T M Q, L <- Q^T L; then M* for -mass (mass_star.c) and
+ * Each contact node's dofs are rotated into its frame (nu, tau_1, tau_2) by Q, built here from the
+ * frames the contact set chose (interface/set.c): K <- Q^T K Q, M <- Q^T M Q, L <- Q^T L; then M* for -mass (mass_star.c) and
  * the contact pairs' relative variables, A <- N^T A N (interface/pairs.c, docs/method.md section 11).
  * The results stay in fem's MMOperators, which app hands in: the stepper, the output and the
  * audits read them there. */
 #include "../contactimpl.h"
+
+/* Q, u_cart = Q w: per contact node the block of its frame, F^T (the columns nu, tau_1, tau_2), the
+ * identity elsewhere; a corner's block is its first row's frame. Q is op's, for fem's frame
+ * transforms (MMFEToCartesian), the damping and the output. */
+PetscErrorCode MMContactFrameBuildRotation(MMContact ct, MMOperators *op)
+{
+  const PetscInt  dim = op->dim;
+  PetscInt        n, rstart, nrow = 0;
+  const PetscInt *in = NULL;
+  PetscBool      *rotated;
+  Vec             g;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalVector(op->dm, &g));
+  PetscCall(VecGetLocalSize(g, &n));
+  PetscCall(VecGetOwnershipRange(g, &rstart, NULL));
+  PetscCall(DMRestoreGlobalVector(op->dm, &g));
+  PetscCall(MatCreateAIJ(ct->comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, ct->enabled ? dim : 1, NULL, 0, NULL, &op->Q));
+  PetscCall(PetscCalloc1(n, &rotated));
+  if (ct->enabled) {
+    PetscCall(ISGetLocalSize(ct->is_normal, &nrow));
+    PetscCall(ISGetIndices(ct->is_normal, &in));
+  }
+  for (PetscInt k = 0; k < nrow; ++k) {
+    const PetscReal *F = &ct->node_frame[9 * k];
+    if (ct->second[k]) continue; /* in[k] is the node's dof 1: its block starts at the row before */
+    for (PetscInt d = 0; d < dim; ++d) {
+      rotated[in[k] - rstart + d] = PETSC_TRUE;
+      for (PetscInt e = 0; e < dim; ++e) PetscCall(MatSetValue(op->Q, in[k] + d, in[k] + e, F[3 * e + d], INSERT_VALUES));
+    }
+  }
+  if (ct->enabled) PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  for (PetscInt i = 0; i < n; ++i)
+    if (!rotated[i]) PetscCall(MatSetValue(op->Q, rstart + i, rstart + i, 1.0, INSERT_VALUES));
+  PetscCall(PetscFree(rotated));
+  PetscCall(MatAssemblyBegin(op->Q, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(op->Q, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
 
 /* K <- Q^T K Q and M <- Q^T M Q in place. Q is block diagonal by vertex, so the pattern stays:
  * MatPtAP would build new matrices, through a symbolic product that costs more than the closed-form

@@ -30,6 +30,8 @@ typedef struct {
   PetscReal  inertia_mismatch;    /* then max |second moments of M* - of M| / total mass */
 } MMContactMass;
 
+/* frame.c: Q from the contact nodes' frames (MMContactSetUp, before fem assembles) */
+PETSC_INTERN PetscErrorCode MMContactFrameBuildRotation(MMContact ct, MMOperators *op);
 /* mass_star.c: -mass, M* from M, its view */
 PETSC_INTERN PetscErrorCode MMContactMassSetFromOptions(MPI_Comm comm, MMContactMass *mass);
 PETSC_INTERN PetscErrorCode MMContactMassStar(MMContactMass *mass, MMOperators *op, const MMMaterial *material, const MMMassBoundary *mb);
