@@ -207,7 +207,7 @@ PETSC_INTERN PetscErrorCode MMContactCornersStore(MMContact ct);
 PETSC_INTERN PetscErrorCode MMContactPairsSetUp(MMContact ct, const PetscInt mark[], PetscInt n_vertex_bound);
 PETSC_INTERN PetscErrorCode MMContactPairsProject(MMContact ct, PetscInt p, PetscInt k, const PetscReal x[], PetscReal *gap, PetscReal n[]);
 PETSC_INTERN PetscErrorCode MMContactPairsBuildTransform(MMContact ct);
-PETSC_INTERN PetscErrorCode MMContactPairsTransformOperators(MMContact ct, MMOperators *op);
+PETSC_INTERN PetscErrorCode MMContactPairsTransformOperators(MMOperators *op);
 PETSC_INTERN PetscErrorCode MMContactPairsDestroy(MMContactPairs *pr);
 
 /* interface/qp.c: bound-constrained QPs as SNESVI solves; exact linear solves */

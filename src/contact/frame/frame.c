@@ -83,6 +83,9 @@ static void MassBoundary(MMContact ct, MMMassBoundary *mb)
   mb->fc_obstacle  = ct->fc_obstacle;
 }
 
+/* Rotation first, then M* (its massless dofs are the frame's normal dofs, and its moments are taken
+ * in the contact frame), then the pairs' N^T A N, which leaves those moments unchanged
+ * (docs/method.md sections 2 and 11). */
 PetscErrorCode MMContactSetUpFrame(MMContact ct, MMOperators *op, const MMMaterial *material)
 {
   MMMassBoundary mb;
@@ -95,6 +98,6 @@ PetscErrorCode MMContactSetUpFrame(MMContact ct, MMOperators *op, const MMMateri
   MassBoundary(ct, &mb);
   PetscCall(MMContactMassStar(&ct->mass, op, material, &mb));
   if (op->N) PetscCall(VecDuplicate(op->load, &op->pair_work));
-  PetscCall(MMContactPairsTransformOperators(ct, op));
+  PetscCall(MMContactPairsTransformOperators(op));
   PetscFunctionReturn(0);
 }
