@@ -154,8 +154,8 @@ typedef struct {
   Mat       Q;      /* frame rotation, u_cart = Q w without contact pairs (contact's) */
   Mat       N, Ninv; /* contact pairs: the slave nodes' relative variables, u_cart = Q N w (NULL without pairs; contact's) */
   Vec       pair_work; /* scratch for Q N w */
-  Vec       load;   /* L: body force + traction (w-frame), constant in time */
-  Vec       lift;   /* K_fD u_D: the Dirichlet data's elastic force on the free dofs (w-frame) */
+  Vec       load;   /* L: body force + traction, constant in time (Cartesian from fem, then w-frame: contact's frame) */
+  Vec       lift;   /* K_fD u_D: the Dirichlet data's elastic force on the free dofs (likewise) */
   Vec       mass_lumped_cart; /* lumped standard mass per Cartesian dof */
   PetscReal mass_star[MM_MAX_DIM * MM_MAX_DIM]; /* M*'s mass for rigid translations, dim x dim (m I for M) */
   PetscReal mass_star_inv[MM_MAX_DIM * MM_MAX_DIM]; /* its inverse (zero without mass), for ucm and vcm */
