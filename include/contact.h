@@ -36,8 +36,22 @@ PETSC_EXTERN PetscErrorCode MMContactView(MMContact ct, PetscViewer viewer);
 PETSC_EXTERN PetscErrorCode MMContactDestroy(MMContact *ct);
 PETSC_EXTERN PetscErrorCode MMContactRegister(const char name[], PetscErrorCode (*create)(MMContact ct));
 PETSC_EXTERN PetscErrorCode MMContactRegisterAll(void);
-/* What fem needs of the contact boundary to build M* (MMFEAssembleOperators) */
-PETSC_EXTERN PetscErrorCode MMContactGetMassBoundary(MMContact ct, MMMassBoundary *mb);
+/* The contact frame (src/contact/frame/, docs/method.md section 2): fem's Cartesian K, M, load and
+ * lift (MMFEAssembleOperators) turned into the w-frame ones in place in op, which must be the
+ * operators given to MMContactSetUp: Q^T A Q, M* for -mass, and the contact pairs' N^T A N. */
+PETSC_EXTERN PetscErrorCode MMContactSetUpFrame(MMContact ct, MMOperators *op, const MMMaterial *material);
+/* The mass in time stepping (-mass, src/contact/frame/mass_star.c): the modified mass drops the
+ * contact nodes' normal mass, the redistributed one gives it back to the other nodes. */
+typedef enum {
+  MM_MASS_MODIFIED,
+  MM_MASS_STANDARD,
+  MM_MASS_REDISTRIBUTED /* modified, its removed mass given to the other nodes (docs/method.md section 2) */
+} MMMassType;
+PETSC_EXTERN const char *const MMMassTypes[];
+PETSC_EXTERN PetscErrorCode MMContactGetMassType(MMContact ct, MMMassType *type);
+/* The mass's line of the reports: M's total, M*'s along each axis, and how well -mass redistributed
+ * kept M's moments */
+PETSC_EXTERN PetscErrorCode MMContactMassView(MMContact ct, PetscViewer viewer);
 
 /* What the other components read of the contact set, as it is when asked (MMContactGetNodes): its
  * dofs, per owned contact row its frame, obstacle and mesh point; arrays and objects are the
@@ -132,7 +146,6 @@ PETSC_EXTERN PetscErrorCode MMContactAudit(MMContact ct, PetscInt step, PetscRea
  * vectors), tangential traction and slip velocity (Cartesian, on dm_out) */
 PETSC_EXTERN PetscErrorCode MMContactBoundaryFields(MMContact ct, Vec u, Vec v, Vec react, DM dm_out, Vec pressure, Vec gap, Vec traction_t, Vec slip);
 PETSC_EXTERN PetscErrorCode MMContactObstacleField(MMContact ct, Vec field);
-PETSC_EXTERN PetscErrorCode MMContactPairsTransformOperators(MMContact ct);
 /* The data check's first-contact estimate (interface/first_contact.c): the earliest time a contact
  * row closes at the nodes' initial velocity and acceleration, its node (reference position), its
  * obstacle (index in the options' obstacles, -1 if none closes before the end), its gap, approach

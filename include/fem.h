@@ -1,5 +1,5 @@
-/* fem: P1 elasticity on the mesh (src/fem/): the material of each cell, the operators K, M, M* and
- * the loads in the contact frame, the loads in time and the support reactions, the stress. What the
+/* fem: P1 elasticity on the mesh (src/fem/): the material of each cell, the operators K, M and the
+ * loads (Cartesian: contact's frame rotates them), the loads in time and the support reactions, the stress. What the
  * user describes (the bodies, boundary conditions and loads) comes in as plain data (MMFEProblem). */
 #pragma once
 #include "mmbase.h"
@@ -16,15 +16,6 @@ typedef struct {
 
 PETSC_EXTERN PetscErrorCode MMInsertMapLocalToGlobal(DM dm, MMInsertMap *map, Vec l, Vec g);
 PETSC_EXTERN PetscErrorCode MMInsertMapDestroy(MMInsertMap *map);
-
-/* The mass in time stepping (-mass, src/fem/fem_options.c): the modified mass drops the contact
- * nodes' normal mass, the redistributed one gives it back to the other nodes. */
-typedef enum {
-  MM_MASS_MODIFIED,
-  MM_MASS_STANDARD,
-  MM_MASS_REDISTRIBUTED /* modified, its removed mass given to the other nodes (docs/method.md section 2) */
-} MMMassType;
-PETSC_EXTERN const char *const MMMassTypes[];
 
 /* How K and M are assembled: closed-form P1 element matrices in one pass over the cells, or the
  * PetscFE quadrature (DMPlexSNESComputeJacobianFEM), kept to cross-check the first. */
@@ -110,18 +101,6 @@ typedef struct {
   PetscBool            damped;         /* Rayleigh damping is on: a Dirichlet value's amplitude is refused */
 } MMFEProblem;
 
-/* The contact boundary as the mass sees it (handed down by contact, MMContactGetMassBoundary): the
- * dofs M* drops, and each owned contact row's vertex and frame, for -mass redistributed. */
-typedef struct {
-  IS               massless;     /* the contact-normal dofs (w-frame), NULL without contact */
-  PetscInt         n;            /* owned contact rows */
-  const PetscInt  *vertex;       /* per row: its mesh point */
-  const PetscInt  *scalar_index; /* per row: its vertex's global index on MMOperators.dm_scalar */
-  const PetscBool *second;       /* per row: a corner node's second row */
-  const PetscReal *frame;        /* per row, 9 reals: its node's frame, rows nu, tau_1, tau_2 */
-  const PetscInt  *fc_obstacle;  /* per row: a friction corner's second obstacle, or -1; NULL: none */
-} MMMassBoundary;
-
 /* Physical parameters, also passed to the pointwise kernels as constants[]. */
 typedef enum {
   MM_C_LAMBDA,
@@ -161,31 +140,25 @@ typedef struct {
   PetscReal  E_max;       /* the largest Young's modulus: the contact solvers' force scales */
 } MMMaterial;
 
-/* Finite element operators in the contact frame (w-dofs). */
+/* The finite element operators: fem assembles K, M, the load and the lift on the Cartesian dofs
+ * (MMFEAssembleOperators); contact's frame (src/contact/frame/, MMContactSetUpFrame) turns them into
+ * the w-frame ones in place, and builds Q, M*, N and the masses of M* (docs/method.md section 2). */
 typedef struct {
   DM        dm;
   DM        dm_scalar; /* one P1 scalar per vertex, no constraints: lumped masses, contact pressure and gap, von Mises */
   MMCells   cells;
   PetscInt  dim;
-  Mat       K;      /* stiffness A */
+  Mat       K;      /* stiffness A: Cartesian from fem, w-frame once contact's frame has rotated it */
   Mat       M;      /* standard mass (consistent or lumped): set-up only, NULL once M* is built */
-  Mat       Mstar;  /* mass used in time stepping: M with the contact-normal rows/columns removed, or M */
-  Mat       Q;      /* frame rotation, u_cart = Q w without contact pairs */
-  Mat       N, Ninv; /* contact pairs: the slave nodes' relative variables, u_cart = Q N w (NULL without pairs) */
+  Mat       Mstar;  /* mass used in time stepping (contact's frame, -mass): M with the contact-normal rows/columns removed, or M */
+  Mat       Q;      /* frame rotation, u_cart = Q w without contact pairs (contact's) */
+  Mat       N, Ninv; /* contact pairs: the slave nodes' relative variables, u_cart = Q N w (NULL without pairs; contact's) */
   Vec       pair_work; /* scratch for Q N w */
-  Vec       load;   /* L: body force + traction (w-frame), constant in time */
-  Vec       lift;   /* K_fD u_D: the Dirichlet data's elastic force on the free dofs (w-frame) */
+  Vec       load;   /* L: body force + traction, constant in time (Cartesian from fem, then w-frame: contact's frame) */
+  Vec       lift;   /* K_fD u_D: the Dirichlet data's elastic force on the free dofs (likewise) */
   Vec       mass_lumped_cart; /* lumped standard mass per Cartesian dof */
-  PetscReal mass_M;           /* total mass of M */
   PetscReal mass_star[MM_MAX_DIM * MM_MAX_DIM]; /* M*'s mass for rigid translations, dim x dim (m I for M) */
   PetscReal mass_star_inv[MM_MAX_DIM * MM_MAX_DIM]; /* its inverse (zero without mass), for ucm and vcm */
-  PetscReal mass_correction;      /* -mass redistributed: the largest negative eigenvalue of a node's moment correction over its mass */
-  PetscReal mass_moment_unreachable; /* 3D: |trace of G's translation-rotation block| left, / total mass (mass_redistribution.c) */
-  PetscReal mass_moment_mismatch; /* -mass redistributed: max |rigid-mode Gram of M* - of M| / total mass */
-  PetscBool mass_bounded;          /* -mass redistributed: the bounded correction (a coarse mesh: docs/method.md section 2) */
-  PetscInt  mass_moments;          /* the moments matched: all (nr), or (dim) the masses and first moments alone */
-  PetscReal mass_inertia_mismatch; /* then max |second moments of M* - of M| / total mass */
-  MMMassType     mass_type;      /* -mass */
   PetscBool      lumped;         /* -mass_lumped */
   MMAssemblyType assembly;       /* -assembly */
   PetscBool      assembly_check; /* -assembly_check: assemble K and M both ways and stop if they differ */
@@ -252,11 +225,11 @@ typedef struct {
   PetscReal   *bv0, *bv1;
 } MMLoads;
 
-/* fem.c and fem_options.c: the discretization, the operators, the frame transforms */
+/* fem.c and fem_options.c: the discretization, the Cartesian operators, the frame transforms (Q and N set by contact) */
 PETSC_EXTERN PetscErrorCode MMFEInitializePackage(void);
 PETSC_EXTERN PetscErrorCode MMFESetFromOptions(MPI_Comm comm, MMOperators *op);
 PETSC_EXTERN PetscErrorCode MMFESetUp(MMOperators *op, MMMaterial *mat, const MMFEProblem *pb);
-PETSC_EXTERN PetscErrorCode MMFEAssembleOperators(MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb, const MMMassBoundary *mb);
+PETSC_EXTERN PetscErrorCode MMFEAssembleOperators(MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb);
 PETSC_EXTERN PetscErrorCode MMFEAssembleOperatorsEnd(MMOperators *op);
 PETSC_EXTERN PetscErrorCode MMFECreateMatrix(const MMOperators *op, DM dm, Mat *A);
 PETSC_EXTERN PetscErrorCode MMFEInterpolate(const MMOperators *op, PetscErrorCode (*f)(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt nc, PetscScalar *u, void *fctx), void *fctx, Vec u);
@@ -276,9 +249,9 @@ static inline PetscBool MMFEHasMasslessDofs(const MMOperators *op)
 {
   return (PetscBool)(op->massless != NULL);
 }
-/* mass_redistribution.c: -mass redistributed, and the moments of M* */
-PETSC_EXTERN PetscErrorCode MMFERedistributeMass(MMOperators *op, const MMMaterial *mat, const MMMassBoundary *mb);
-PETSC_EXTERN PetscErrorCode MMFEMassMoments(MMOperators *op);
+/* assembly_p1.c: K <- Q^T K Q and M <- Q^T M Q in place on the P1 pattern, Q block diagonal by vertex (M
+ * may be NULL); the contact frame's rotation (src/contact/frame/frame.c) */
+PETSC_EXTERN PetscErrorCode MMRotateP1(Mat Q, Mat K, Mat M);
 /* rigid_modes.c: the rigid-body modes, translations then rotations */
 #define MM_MAX_RIGID 6
 static inline PetscInt MMFENumRigidModes(PetscInt dim)

@@ -172,6 +172,5 @@ PETSC_EXTERN PetscInt       MMCheckpointSnapshotCount(const MMCheckpoint *c);
 PETSC_EXTERN PetscErrorCode MMProgressSetFromOptions(MPI_Comm comm, MMProgress *p);
 PETSC_EXTERN PetscErrorCode MMProgressSetUp(MMProgress *p, const MMIOProblem *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, MMContact contact, const MMDamping *damping);
 PETSC_EXTERN PetscErrorCode MMProgressHeader(MMProgress *p, TS ts, KSP krylov, KSP pc_ksp);
-PETSC_EXTERN PetscErrorCode MMProgressMassLine(const MMProgress *p);
 PETSC_EXTERN PetscErrorCode MMProgressMonitorSet(MMProgress *p, TS ts);
 PETSC_EXTERN PetscErrorCode MMProgressMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ctx);

@@ -74,7 +74,6 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   MPI_Comm         comm = PETSC_COMM_WORLD;
   PetscReal        dt;
   MMFEProblem      pb;
-  MMMassBoundary   mb;
   MMContactProblem cp;
 
   PetscFunctionBeginUser;
@@ -110,9 +109,8 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   MMPhase(MMAppEvents.contact_setup, MMContactSetUp(ctx->contact, &ctx->op, &ctx->material, &cp));
   /* the static sliding state's plane is the single obstacle's (src/ts/sliding.c reads it) */
   PetscCall(MMContactGetPlane(ctx->contact, ctx->opt.obstacle_point, ctx->opt.obstacle_normal));
-  PetscCall(MMContactGetMassBoundary(ctx->contact, &mb));
-  PetscCall(MMFEAssembleOperators(&ctx->op, &ctx->material, &pb, &mb));
-  PetscCall(MMContactPairsTransformOperators(ctx->contact));
+  PetscCall(MMFEAssembleOperators(&ctx->op, &ctx->material, &pb));
+  PetscCall(MMContactSetUpFrame(ctx->contact, &ctx->op, &ctx->material)); /* w-frame K, M*, loads */
   PetscCall(MMFEAssembleOperatorsEnd(&ctx->op));
   MMPhase(MMAppEvents.loads_setup, MMLoadsSetUp(&ctx->loads, &ctx->op, &ctx->material, &pb));
   {
@@ -198,7 +196,7 @@ static PetscErrorCode Report(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wa
   PetscFunctionBeginUser;
   if (ctx->opt.quiet) PetscFunctionReturn(0);
   PetscCall(RunView(ctx, setup, wall, viewer));
-  PetscCall(MMProgressMassLine(&ctx->progress)); /* the mass's view (fem) */
+  PetscCall(MMContactMassView(ctx->contact, viewer));
   PetscCall(MMContactView(ctx->contact, viewer));
   PetscCall(MMDeformationView(ctx->nm, viewer));
   PetscCall(MMOutputView(&ctx->out, viewer));

@@ -2,6 +2,7 @@
 #pragma once
 #include "contact.h"
 #include "sys.h"
+#include "frame/frameimpl.h"
 
 /* How each step's contact problem is solved, a contact formulation (impls/<type>/, chosen by
  * -contact_formulation from the registry MMContactRegister): condensed, full, active_set, or none
@@ -77,6 +78,7 @@ struct _p_MMContact {
   MPI_Comm   comm;
   PetscInt   dim;                 /* the mesh's */
   MMContactOptions  opt;
+  MMContactMass     mass;         /* -mass and what M*'s construction found (frame/mass_star.c) */
   MMContactProblem  pb;           /* the problem's data (MMContactSetUp): obstacles borrowed */
   MMOperators      *op;           /* borrowed at set-up: fem's operators (K, M*, Q, the DM) */
   const MMMaterial *material;     /* borrowed: E_max, the force scale of the audits */
@@ -176,6 +178,7 @@ PETSC_INTERN PetscClassId  MMCONTACT_CLASSID;
 PETSC_INTERN PetscLogEvent MMCONTACT_Assemble, MMCONTACT_Solve, MMCONTACT_Recover, MMCONTACT_KtReuse, MMCONTACT_KtSetUp, MMCONTACT_KtSolve;
 PETSC_INTERN PetscLogEvent MMCONTACT_CandidateColumns, MMCONTACT_CandidateOperator, MMCONTACT_ColumnsSolve, MMCONTACT_ColumnsMove;
 PETSC_INTERN PetscLogEvent MMCONTACT_SplitInterface, MMCONTACT_SplitBackward, MMCONTACT_ActiveSetIterate, MMCONTACT_ActiveSetCG, MMCONTACT_BlockOperator;
+PETSC_INTERN PetscLogEvent MMCONTACT_FrameRotate, MMCONTACT_MassRedistribute;
 
 /* The formulation of -contact_formulation (auto resolved by the problem's size), or "none" (contact.c) */
 PETSC_INTERN PetscErrorCode MMContactSetType(MMContact ct);
@@ -204,6 +207,7 @@ PETSC_INTERN PetscErrorCode MMContactCornersStore(MMContact ct);
 PETSC_INTERN PetscErrorCode MMContactPairsSetUp(MMContact ct, const PetscInt mark[], PetscInt n_vertex_bound);
 PETSC_INTERN PetscErrorCode MMContactPairsProject(MMContact ct, PetscInt p, PetscInt k, const PetscReal x[], PetscReal *gap, PetscReal n[]);
 PETSC_INTERN PetscErrorCode MMContactPairsBuildTransform(MMContact ct);
+PETSC_INTERN PetscErrorCode MMContactPairsTransformOperators(MMOperators *op);
 PETSC_INTERN PetscErrorCode MMContactPairsDestroy(MMContactPairs *pr);
 
 /* interface/qp.c: bound-constrained QPs as SNESVI solves; exact linear solves */

@@ -4,4 +4,3 @@
 PETSC_INTERN PetscErrorCode MMCreateMatrixP1(DM dm, Mat *A);
 PETSC_INTERN PetscErrorCode MMAssembleP1(DM dm, const MMMaterial *mat, Mat K, Mat M);
 PETSC_INTERN PetscErrorCode MMApplyP1(DM dm, const MMMaterial *mat, Vec x, Vec f, PetscReal *energy);
-PETSC_INTERN PetscErrorCode MMRotateP1(Mat Q, Mat K, Mat M);

@@ -1,11 +1,13 @@
-/* P1 elasticity: discretization, boundary conditions, and the operators K, M, L in the contact frame. */
+/* P1 elasticity: discretization, boundary conditions, and the Cartesian operators K, M, L and the lift
+ * (contact's frame, src/contact/frame/, turns them into the w-frame ones). */
 #include <float.h>
 #include "fem.h"
 #include "assembly_p1.h"
 
-/* fem's events (MMFEInitializePackage): the operators' assembly, the Cartesian K and M alone by the
- * selected -assembly path, their rotation into the contact frame, -mass redistributed's construction */
-static PetscLogEvent MM_FEAssemble, MM_FEAssembleKM, MM_FERotate, MM_FEMassRedistribute;
+/* fem's events (MMFEInitializePackage): the operators' assembly (from MMFEAssembleOperators to
+ * MMFEAssembleOperatorsEnd, contact's frame included), the Cartesian K and M alone by the selected
+ * -assembly path */
+static PetscLogEvent MM_FEAssemble, MM_FEAssembleKM;
 
 /* fem's class and events, registered once (as KSPInitializePackage) */
 PetscErrorCode MMFEInitializePackage(void)
@@ -19,8 +21,6 @@ PetscErrorCode MMFEInitializePackage(void)
   PetscCall(PetscClassIdRegister("MMFE", &id));
   PetscCall(PetscLogEventRegister("MMFEAssemble", id, &MM_FEAssemble));
   PetscCall(PetscLogEventRegister("MMAssembleKM", id, &MM_FEAssembleKM));
-  PetscCall(PetscLogEventRegister("MMRotateKM", id, &MM_FERotate));
-  PetscCall(PetscLogEventRegister("MMMassRedist", id, &MM_FEMassRedistribute));
   PetscFunctionReturn(0);
 }
 
@@ -479,19 +479,6 @@ PetscErrorCode MMFEInterpolate(const MMOperators *op, PetscErrorCode (*f)(PetscI
   PetscFunctionReturn(0);
 }
 
-/* The w-frame operators from the Cartesian ones, K <- Q^T K Q and M <- Q^T M Q, in place (docs/method.md
- * section 2). Q is block diagonal by vertex, so the pattern stays: MatPtAP would build new matrices,
- * through a symbolic product that costs more than the closed-form assembly (docs/scaling.md, "Assembly of K
- * and M, measured"). */
-static PetscErrorCode RotateToContactFrame(const MMOperators *op, Mat K, Mat M)
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(MM_FERotate, 0, 0, 0, 0));
-  PetscCall(MMRotateP1(op->Q, K, M));
-  PetscCall(PetscLogEventEnd(MM_FERotate, 0, 0, 0, 0));
-  PetscFunctionReturn(0);
-}
-
 /* -E 1e308 overflows the stiffness, -rho 1e-310 underflows the mass (its entries subnormal or 0):
  * say so before a solve fails on it. */
 static PetscErrorCode CheckFiniteOperators(const MMOperators *op, const MMFEProblem *pb)
@@ -515,15 +502,15 @@ static PetscErrorCode CheckFiniteOperators(const MMOperators *op, const MMFEProb
   PetscFunctionReturn(0);
 }
 
-/* K, M*, the load and the lift in the contact frame (w-dofs), Q being set (by contact); mb the contact
- * boundary whose normal dofs M* drops (NULL: no contact). The contact pairs' transform of K, M and
- * M* (N^T A N) comes between this and MMFEAssembleOperatorsEnd. */
-PetscErrorCode MMFEAssembleOperators(MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb, const MMMassBoundary *mb)
+/* K, M, the load and the lift on the Cartesian dofs (free dofs only); contact's frame
+ * (MMContactSetUpFrame) turns them into the w-frame ones and builds M* between this and
+ * MMFEAssembleOperatorsEnd. */
+PetscErrorCode MMFEAssembleOperators(MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb)
 {
   DM          dm = op->dm;
   PetscDS     ds;
   Mat         Kc, Mc = NULL;
-  Vec         mloc, Lcart, tmp;
+  Vec         mloc;
   PetscReal   ones[MM_MAX_DIM] = {1, 1, 1};
 
   PetscFunctionBeginUser;
@@ -539,55 +526,35 @@ PetscErrorCode MMFEAssembleOperators(MMOperators *op, const MMMaterial *mat, con
   PetscCall(AssembleKM(op, mat, op->assembly, Kc, Mc));
   PetscCall(PetscLogEventEnd(MM_FEAssembleKM, 0, 0, 0, 0));
   if (op->assembly_check) PetscCall(CheckAssembly(op, mat, Kc, Mc));
-  PetscCall(RotateToContactFrame(op, Kc, Mc));
   op->K = Kc;
 
   PetscCall(DMCreateGlobalVector(dm, &op->load));
   PetscCall(VecDuplicate(op->load, &op->lift));
   PetscCall(VecDuplicate(op->load, &op->mass_lumped_cart));
-  PetscCall(VecDuplicate(op->load, &Lcart));
-  PetscCall(VecDuplicate(op->load, &tmp));
   PetscCall(DMGetLocalVector(op->dm_scalar, &mloc));
   PetscCall(VertexMasses(op, mat, mloc));
   PetscCall(SpreadVertexScalar(op, mloc, ones, op->mass_lumped_cart));
   /* body force: int rho g phi_i = m_i g, exactly, for constant g */
-  PetscCall(SpreadVertexScalar(op, mloc, pb->gravity, Lcart));
+  PetscCall(SpreadVertexScalar(op, mloc, pb->gravity, op->load));
   PetscCall(DMRestoreLocalVector(op->dm_scalar, &mloc));
-  PetscCall(AddTractions(op, pb, Lcart));
-  PetscCall(MatMultTranspose(op->Q, Lcart, op->load));
-  PetscCall(DirichletLift(op, mat, tmp));
-  PetscCall(MatMultTranspose(op->Q, tmp, op->lift));
+  PetscCall(AddTractions(op, pb, op->load));
+  PetscCall(DirichletLift(op, mat, op->lift));
   PetscCall(DirichletEnergy(op, mat));
   PetscCall(VecDuplicate(op->load, &op->work));
 
   if (op->lumped) {
-    /* equal per component at each node, so the frame rotation leaves it diagonal and unchanged */
+    /* equal per component at each node: contact's frame rotation leaves it diagonal and unchanged */
     PetscCall(MatDuplicate(op->K, MAT_DO_NOT_COPY_VALUES, &op->M));
     PetscCall(MatZeroEntries(op->M));
     PetscCall(MatDiagonalSet(op->M, op->mass_lumped_cart, INSERT_VALUES));
   } else op->M = Mc;
   PetscCall(CheckFiniteOperators(op, pb));
-  PetscCall(MatDuplicate(op->M, MAT_COPY_VALUES, &op->Mstar));
-  /* the modified and the redistributed mass leave the contact-normal dofs without inertia */
-  if (mb && mb->massless && op->mass_type != MM_MASS_STANDARD) {
-    PetscCall(PetscObjectReference((PetscObject)mb->massless));
-    op->massless = mb->massless;
-  }
-  if (MMFEHasMasslessDofs(op)) PetscCall(MatZeroRowsColumnsIS(op->Mstar, op->massless, 0.0, NULL, NULL));
-  if (MMFEHasMasslessDofs(op) && op->mass_type == MM_MASS_REDISTRIBUTED) {
-    PetscCall(PetscLogEventBegin(MM_FEMassRedistribute, 0, 0, 0, 0));
-    PetscCall(MMFERedistributeMass(op, mat, mb));
-    PetscCall(PetscLogEventEnd(MM_FEMassRedistribute, 0, 0, 0, 0));
-  }
-  PetscCall(MMFEMassMoments(op));
-  if (op->N) PetscCall(VecDuplicate(op->load, &op->pair_work));
-  PetscCall(VecDestroy(&Lcart));
-  PetscCall(VecDestroy(&tmp));
   PetscFunctionReturn(0);
 }
 
-/* After the contact pairs' transform: the views of K and M, and M released (M* replaces it); the
- * end of the assembly's event, begun in MMFEAssembleOperators. */
+/* After contact's frame (MMContactSetUpFrame: the rotation, M* and the pairs' transform): the views
+ * of K and M, and M released (M* replaces it); the end of the assembly's event, begun in
+ * MMFEAssembleOperators. */
 PetscErrorCode MMFEAssembleOperatorsEnd(MMOperators *op)
 {
   PetscFunctionBeginUser;

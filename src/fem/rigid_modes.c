@@ -1,5 +1,5 @@
 /* The rigid-body modes of the free dofs: GAMG's near-null space (src/contact/interface/kt.c) and
- * the moments of the mass (src/fem/mass_redistribution.c, docs/method.md section 2). */
+ * the moments of the mass (src/contact/frame/mass_redistribution.c, docs/method.md section 2). */
 #include "fem.h"
 
 /* Component c of rigid-body mode m at x: translations e_0..e_{d-1}, then rotations (2D: one, 3D:

@@ -197,9 +197,11 @@ static PetscErrorCode RunRecord(MMCheckpoint *ck, TS ts, PetscReal run[])
   PetscInt         cStart, cEnd, ncells;
   PetscReal        dt;
   MMContactNodes   cn;
+  MMMassType       mass_type; /* -mass, the contact frame's */
 
   PetscFunctionBeginUser;
   PetscCall(MMContactGetNodes(ck->contact, &cn));
+  PetscCall(MMContactGetMassType(ck->contact, &mass_type));
   PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)ck->op->dm), &size));
   PetscCall(DMPlexGetHeightStratum(ck->op->dm, 0, &cStart, &cEnd));
   ncells = cEnd - cStart; /* no overlap: every cell is on one rank */
@@ -229,7 +231,7 @@ static PetscErrorCode RunRecord(MMCheckpoint *ck, TS ts, PetscReal run[])
   run[MM_RUN_E]               = ck->opt->E;
   run[MM_RUN_NU]              = ck->opt->nu;
   run[MM_RUN_RHO]             = ck->opt->rho;
-  run[MM_RUN_MASS]            = ck->op->mass_type + (ck->op->lumped ? 3 : 0);
+  run[MM_RUN_MASS]            = mass_type + (ck->op->lumped ? 3 : 0);
   run[MM_RUN_DT_USER]         = ck->state->dt_user;
   run[MM_RUN_WORK_DAMPING]    = h->work_damping;
   run[MM_RUN_DAMPING_ALPHA]   = ck->damping->alpha;

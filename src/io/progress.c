@@ -225,36 +225,6 @@ static PetscErrorCode HeaderPhysics(MMProgress *pg, TS ts)
   PetscFunctionReturn(0);
 }
 
-/* Line 6 of the start-up report, and a line of the closing summary: the masses, M's total, and M*'s for a rigid translation along each axis (the modified
- * mass lacks the contact nodes' normal masses; the redistributed one has them back, and its moments
- * are M's, docs/method.md section 2). */
-PetscErrorCode MMProgressMassLine(const MMProgress *pg)
-{
-  const PetscInt dim = pg->op->dim;
-  char           star[128] = "", moments[512] = "", unreachable[160] = "";
-
-  PetscFunctionBeginUser;
-  for (PetscInt d = 0; d < dim; ++d) {
-    size_t len;
-    PetscCall(PetscStrlen(star, &len));
-    PetscCall(PetscSNPrintf(star + len, sizeof(star) - len, "%s%c %.10g", d ? ", " : "", "xyz"[d], (double)pg->op->mass_star[d * dim + d]));
-  }
-  if (pg->op->mass_moment_unreachable > 1e-14) PetscCall(PetscSNPrintf(unreachable, sizeof(unreachable), " (and %.1e in the trace of the translation-rotation block, out of reach: docs/method.md section 2)", (double)pg->op->mass_moment_unreachable));
-  if (MMFEHasMasslessDofs(pg->op) && pg->op->mass_type == MM_MASS_REDISTRIBUTED) {
-    const char *which = "moments";
-    char        bounded[160] = "";
-    /* a coarse mesh: the bounded correction, and perhaps the inertia left (docs/method.md section 2) */
-    if (pg->op->mass_moments < MMFENumRigidModes(dim)) {
-      which = "total mass and first moments";
-      PetscCall(PetscSNPrintf(bounded, sizeof(bounded), "; bounded correction, the inertia off by %.2g of the mass", (double)pg->op->mass_inertia_mismatch));
-    } else if (pg->op->mass_bounded) PetscCall(PetscStrncpy(bounded, "; bounded correction", sizeof(bounded)));
-    PetscCall(PetscSNPrintf(moments, sizeof(moments), "; M*'s %s equal M's to %.1e (largest node correction %.3g of its mass%s)%s", which, (double)pg->op->mass_moment_mismatch, (double)pg->op->mass_correction, bounded, unreachable));
-  }
-  /* M is over the free dofs: a node held by -dirichlet is the support's, outside the system */
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  mass: total of M %.10g%s; of M* along %s%s\n", (double)pg->op->mass_M, pg->opt->n_dirichlet ? " (without the dofs held by -dirichlet)" : "", star, moments));
-  PetscFunctionReturn(0);
-}
-
 /* Lines 4 and 5, contact and solvers: the contact nodes and obstacles, the mass, friction, the
  * contact formulation and the K~ solver. */
 static PetscErrorCode HeaderContact(MMProgress *pg, KSP krylov, KSP pc_ksp)
@@ -264,6 +234,7 @@ static PetscErrorCode HeaderContact(MMProgress *pg, KSP krylov, KSP pc_ksp)
   char             obstacles[512], friction[128], solver[256], progress[64] = "no progress lines";
   const char      *type, *choice, *products;
   MMContactNodes   cn;
+  MMMassType       mass_type;
 
   PetscFunctionBeginUser;
   PetscCall(ObstacleList(opt, obstacles, sizeof(obstacles)));
@@ -272,10 +243,11 @@ static PetscErrorCode HeaderContact(MMProgress *pg, KSP krylov, KSP pc_ksp)
   PetscCall(MMContactGetNodes(pg->contact, &cn));
   /* the active-set CG's products (src/contact/impls/active_set/block_operator.c) */
   PetscCall(MMContactGetSolverText(pg->contact, &type, &choice, &products));
+  PetscCall(MMContactGetMassType(pg->contact, &mass_type));
   if (pg->every > 0) PetscCall(PetscSNPrintf(progress, sizeof(progress), "progress every %.6g s", (double)pg->every));
-  if (cn.enabled && cn.n_corners) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes (%" PetscInt_FMT " of them against two obstacles: %" PetscInt_FMT " rows) against %s; %s %s mass; %s\n", cn.n_global - cn.n_corners, cn.n_corners, cn.n_global, obstacles, pg->op->lumped ? "lumped" : "consistent", MMMassTypes[pg->op->mass_type], friction));
-  else if (cn.enabled && cn.n_fc) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes (%" PetscInt_FMT " of them against two obstacles, each with its own Coulomb law) against %s; %s %s mass; %s\n", cn.n_global, cn.n_fc, obstacles, pg->op->lumped ? "lumped" : "consistent", MMMassTypes[pg->op->mass_type], friction));
-  else if (cn.enabled) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes against %s; %s %s mass; %s\n", cn.n_global, obstacles, pg->op->lumped ? "lumped" : "consistent", MMMassTypes[pg->op->mass_type], friction));
+  if (cn.enabled && cn.n_corners) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes (%" PetscInt_FMT " of them against two obstacles: %" PetscInt_FMT " rows) against %s; %s %s mass; %s\n", cn.n_global - cn.n_corners, cn.n_corners, cn.n_global, obstacles, pg->op->lumped ? "lumped" : "consistent", MMMassTypes[mass_type], friction));
+  else if (cn.enabled && cn.n_fc) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes (%" PetscInt_FMT " of them against two obstacles, each with its own Coulomb law) against %s; %s %s mass; %s\n", cn.n_global, cn.n_fc, obstacles, pg->op->lumped ? "lumped" : "consistent", MMMassTypes[mass_type], friction));
+  else if (cn.enabled) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes against %s; %s %s mass; %s\n", cn.n_global, obstacles, pg->op->lumped ? "lumped" : "consistent", MMMassTypes[mass_type], friction));
   for (PetscInt p = 0; cn.enabled && p < opt->n_obstacles - opt->n_rigid; ++p) {
     const MMObstacle *ob = &opt->obstacles[opt->n_rigid + p];
     PetscInt          nodes, n2n, facets;
@@ -284,7 +256,7 @@ static PetscErrorCode HeaderContact(MMProgress *pg, KSP krylov, KSP pc_ksp)
   }
   if (!cn.enabled) PetscCall(PetscPrintf(comm, "  contact: off (-contact 0), 0 contact nodes: linear elastodynamics; %s mass\n", pg->op->lumped ? "lumped" : "consistent"));
   PetscCall(PetscPrintf(comm, "  solvers: contact formulation %s%s; K~ by %s%s; %s\n", type, choice, solver, products, progress));
-  PetscCall(MMProgressMassLine(pg));
+  PetscCall(MMContactMassView(pg->contact, PETSC_VIEWER_STDOUT_(comm))); /* line 6: the mass */
   PetscFunctionReturn(0);
 }
 

@@ -1,4 +1,4 @@
-/* The contact options (-contact, -contact_*, -iterative_dofs, the contact audit's tolerances), read
+/* The contact options (-contact, -contact_*, -iterative_dofs, the contact audit's tolerances, -mass), read
  * with their checks into the contact object (MMContactSetFromOptions). */
 #include "../contactimpl.h"
 
@@ -34,6 +34,7 @@ PetscErrorCode MMContactSetFromOptions(MMContact ct)
   MMContactOptions *o    = &ct->opt;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactMassSetFromOptions(comm, &ct->mass)); /* -mass: M*, the frame's (frame/mass_star.c) */
   PetscOptionsBegin(comm, NULL, "mmcontact contact", "MMContact");
   o->contact = PETSC_TRUE;
   PetscCall(MMOptionsBool(PetscOptionsObject, comm, "-contact", "Enforce unilateral contact; 0 gives linear elastodynamics on the same mesh (the contact boundary is then unused)", &o->contact));

@@ -332,10 +332,9 @@ PetscErrorCode MMContactPairsBuildTransform(MMContact ct)
 
 /* The w-frame operators and loads of the pairs' relative variables, from the contact-frame ones:
  * K <- N^T K N, M <- N^T M N, M* <- N^T M* N, and the loads L <- N^T L (docs/method.md section 11).
- * Runs after M* is built and its moments taken, which N leaves unchanged. */
-PetscErrorCode MMContactPairsTransformOperators(MMContact ct)
+ * Runs after M* is built and its moments taken, which N leaves unchanged (frame/frame.c). */
+PetscErrorCode MMContactPairsTransformOperators(MMOperators *op)
 {
-  MMOperators *op = ct->op;
   Mat         *A[3] = {&op->K, &op->M, &op->Mstar}, B;
   Vec          t;
 

@@ -1,5 +1,5 @@
-/* The contact set against a rigid plane: the contact nodes, their frames and gaps, the rotation Q
- * to frame dofs, the index sets of the dofs, and h_c'. */
+/* The contact set against a rigid plane: the contact nodes, their frames and gaps, the index sets of
+ * the dofs, and h_c'; the rotation Q to frame dofs is built from the frames by frame/frame.c. */
 #include <petscsf.h>
 #include "mesh.h"
 #include "../contactimpl.h"
@@ -263,7 +263,7 @@ static void FrictionCornerSet(MMContact ct, PetscInt k, PetscInt b, PetscReal g,
   ct->fc_gap0[k] = ct->fc_gap[k] = g;
 }
 
-/* Index sets of the owned contact dofs, the gaps, and the rotation Q (identity off the contact set). */
+/* Index sets of the owned contact dofs, the gaps, and each contact node's frame (Q's block: frame/frame.c). */
 static PetscErrorCode BuildContactDofs(MMContact ct, const PetscInt mark[], Vec area)
 {
   PetscInt           astart;
@@ -302,7 +302,6 @@ static PetscErrorCode BuildContactDofs(MMContact ct, const PetscInt mark[], Vec 
   if (ct->pb.n_rigid > 1) PetscCall(PetscMalloc2((size_t)n * ct->pb.n_rigid, &ct->all_gap0, 3 * (size_t)n * ct->pb.n_rigid, &ct->all_nu));
   PetscCall(VecGetOwnershipRange(area, &astart, NULL));
   PetscCall(VecGetArrayRead(area, &av));
-  PetscCall(MatCreateAIJ(comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, dim, NULL, 0, NULL, &ct->op->Q));
   PetscCall(VecGetArrayRead(X, &x));
   for (PetscInt v = vStart; v < vEnd; ++v) {
     PetscInt goff, cdof, xoff;
@@ -337,10 +336,7 @@ static PetscErrorCode BuildContactDofs(MMContact ct, const PetscInt mark[], Vec 
       for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
         for (PetscInt b = 0; b < MM_MAX_DIM; ++b) ct->node_frame[9 * nc + 3 * a + b] = F[a][b];
     }
-    for (PetscInt d = 0; d < dim; ++d) {
-      is_contact_dof[goff - rstart + d] = 1;
-      for (PetscInt e = 0; e < dim; ++e) PetscCall(MatSetValue(ct->op->Q, goff + d, goff + e, ct->node_frame[9 * nc + 3 * e + d], INSERT_VALUES));
-    }
+    for (PetscInt d = 0; d < dim; ++d) is_contact_dof[goff - rstart + d] = 1;
     /* the tangential dofs: all but the normals (a corner's second normal is its first tangent) */
     for (PetscInt d = b2 >= 0 ? 2 : 1; d < dim; ++d) it[nt++] = goff + d;
     /* the massless dofs: the normals, and a friction corner's tau_1 (its second normal lies in the
@@ -377,8 +373,6 @@ static PetscErrorCode BuildContactDofs(MMContact ct, const PetscInt mark[], Vec 
   PetscCall(VecRestoreArrayRead(area, &av));
   {
     PetscInt ns = 0;
-    for (PetscInt i = 0; i < n; ++i)
-      if (!is_contact_dof[i]) PetscCall(MatSetValue(ct->op->Q, rstart + i, rstart + i, 1.0, INSERT_VALUES));
     /* the star dofs: all but the massless ones (tangential contact dofs keep their mass, but for a
      * friction corner's tau_1) */
     for (PetscInt k = 0; k < nm; ++k) is_contact_dof[im[k] - rstart] = 2;
@@ -390,8 +384,6 @@ static PetscErrorCode BuildContactDofs(MMContact ct, const PetscInt mark[], Vec 
       if (!is_contact_dof[i]) is[ns++] = rstart + i;
     PetscCall(ISCreateGeneral(comm, ns, is, PETSC_COPY_VALUES, &ct->is_interior));
   }
-  PetscCall(MatAssemblyBegin(ct->op->Q, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(ct->op->Q, MAT_FINAL_ASSEMBLY));
   PetscCall(ISCreateGeneral(comm, nc, in, PETSC_COPY_VALUES, &ct->is_normal));
   PetscCall(ISCreateGeneral(comm, nm, im, PETSC_COPY_VALUES, &ct->is_massless));
   PetscCall(ISCreateGeneral(comm, nt, it, PETSC_COPY_VALUES, &ct->is_tangent));
@@ -434,7 +426,7 @@ static PetscErrorCode BuildContactDofs(MMContact ct, const PetscInt mark[], Vec 
   PetscFunctionReturn(0);
 }
 
-/* Without contact: Q = I and every dof is a star dof. */
+/* Without contact: every dof is a star dof (and Q = I, frame/frame.c). */
 static PetscErrorCode BuildNoContact(MMContact ct)
 {
   Vec      g;
@@ -445,10 +437,6 @@ static PetscErrorCode BuildNoContact(MMContact ct)
   PetscCall(DMCreateGlobalVector(ct->op->dm, &g));
   PetscCall(VecGetLocalSize(g, &n));
   PetscCall(VecGetOwnershipRange(g, &rstart, NULL));
-  PetscCall(MatCreateAIJ(comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, 1, NULL, 0, NULL, &ct->op->Q));
-  for (PetscInt i = rstart; i < rstart + n; ++i) PetscCall(MatSetValue(ct->op->Q, i, i, 1.0, INSERT_VALUES));
-  PetscCall(MatAssemblyBegin(ct->op->Q, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(ct->op->Q, MAT_FINAL_ASSEMBLY));
   PetscCall(ISCreateStride(comm, 0, 0, 1, &ct->is_normal));
   PetscCall(ISCreateStride(comm, 0, 0, 1, &ct->is_massless));
   PetscCall(ISCreateStride(comm, 0, 0, 1, &ct->is_tangent));
@@ -490,6 +478,7 @@ static PetscErrorCode SetUp(MMContact ct)
   PetscCall(BuildFrame(ct));
   if (!ct->enabled) {
     PetscCall(BuildNoContact(ct));
+    PetscCall(MMContactFrameBuildRotation(ct, ct->op));
     PetscFunctionReturn(0);
   }
   PetscCall(DMCreateGlobalVector(ct->op->dm_scalar, &area));
@@ -501,6 +490,7 @@ static PetscErrorCode SetUp(MMContact ct)
   }
   PetscCall(ContactLayerDiameter(ct, mark)); /* before the rows: h_c' is the reach of a second obstacle */
   PetscCall(BuildContactDofs(ct, mark, area));
+  PetscCall(MMContactFrameBuildRotation(ct, ct->op));
   PetscCall(MMContactPairsBuildTransform(ct));
   PetscCall(PetscFree(mark));
   PetscCall(VecDestroy(&area));

@@ -18,15 +18,16 @@
  *     matched on its own nodes, so that no mass moves from one body to another.
  * Both steps visit each cell and each node on exactly one rank, so M* is the same on any number
  * of ranks (to the order of the sums). */
-#include "fem.h"
+#include "frameimpl.h"
 #include <petscblaslapack.h>
 
 /* What the redistribution reads and builds: the operators (M, M*, the lumped masses), the material
- * and the contact boundary. */
+ * and the contact boundary; what it finds goes to mass, for the mass's view. */
 typedef struct {
   MMOperators          *op;
   const MMMaterial     *material;
   const MMMassBoundary *mb;
+  MMContactMass        *mass;
 } MassRedist;
 
 /* The centre and half-diagonal of the mesh's bounding box: rigid modes about it, scaled by it, keep
@@ -244,7 +245,7 @@ static PetscErrorCode AddMomentCorrection(MassRedist *r, Vec kind, const PetscIn
   for (PetscInt pass = 0; pass < 3; ++pass) {
     if (pass == 2) {
       PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &worst, 1, MPIU_REAL, MPIU_MAX, comm));
-      r->op->mass_correction = worst;
+      r->mass->correction = worst;
       if (worst > floor) { /* the bounded correction's (AddBoundedCorrection) */
         *exceeded = PETSC_TRUE;
         break;
@@ -598,7 +599,7 @@ static PetscErrorCode AddBoundedCorrection(MassRedist *r, Vec kind, const PetscI
       PetscCall(MatSetValues(A, nd->k, idx, nd->k, idx, vals, ADD_VALUES));
     }
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &worst, 1, MPIU_REAL, MPIU_MAX, comm));
-    r->op->mass_correction = worst;
+    r->mass->correction = worst;
   }
   PetscCall(PetscFree(nodes));
   PetscFunctionReturn(0);
@@ -739,9 +740,9 @@ static PetscReal MomentMismatch(PetscInt nr, PetscInt moments, PetscReal GM[MM_M
 /* -mass redistributed: M* (already without its contact-normal rows and columns) gets the lost
  * moments back on the other nodes, and is checked: its Gram matrix equals M's to 1e-12 of the mass
  * (docs/method.md section 2). */
-PetscErrorCode MMFERedistributeMass(MMOperators *op, const MMMaterial *mat, const MMMassBoundary *mb)
+PetscErrorCode MMContactRedistributeMass(MMContactMass *mass, MMOperators *op, const MMMaterial *material, const MMMassBoundary *mb)
 {
-  MassRedist     rd = {op, mat, mb}, *r = &rd;
+  MassRedist     rd = {op, material, mb, mass}, *r = &rd;
   const PetscInt nr   = MMFENumRigidModes(r->op->dim);
   MPI_Comm       comm = PetscObjectComm((PetscObject)r->op->dm);
   PetscReal      x0[MM_MAX_DIM], ell = 1, GM[MM_MAX_RIGID][MM_MAX_RIGID], Gs[MM_MAX_RIGID][MM_MAX_RIGID], dG[MM_MAX_RIGID][MM_MAX_RIGID];
@@ -800,7 +801,7 @@ PetscErrorCode MMFERedistributeMass(MMOperators *op, const MMMaterial *mat, cons
             SETERRQ(comm, PETSC_ERR_USER_INPUT, "-mass redistributed cannot give the contact nodes' normal mass back on this mesh without making M* indefinite: %" PetscInt_FMT " node%s off the contact boundary and free of Dirichlet data cannot carry it at the centre of gravity. Name as -contact_boundary only the surface that can touch an obstacle, or mesh the body finer (more nodes inside); -mass modified runs, but falls faster than g along the contact normals", inner, inner == 1 ? "" : "s");
           }
         } else if (bounded) PetscCall(AddBoundedCorrection(r, kind, vgroup, g, x0, ell, dG, moments, GM[0][0], r->op->Mstar, &matched));
-        largest = PetscMax(largest, r->op->mass_correction);
+        largest = PetscMax(largest, r->mass->correction);
         PetscCall(MatAssemblyBegin(r->op->Mstar, MAT_FINAL_ASSEMBLY));
         PetscCall(MatAssemblyEnd(r->op->Mstar, MAT_FINAL_ASSEMBLY));
         PetscCall(Gram(r->op->Mstar, nr, Rg, Gs));
@@ -816,19 +817,19 @@ PetscErrorCode MMFERedistributeMass(MMOperators *op, const MMMaterial *mat, cons
       }
       correction = PetscMax(correction, largest);
       matched_moments = PetscMin(matched_moments, moments);
-      if (bounded) r->op->mass_bounded = PETSC_TRUE;
+      if (bounded) r->mass->bounded = PETSC_TRUE;
     }
     for (PetscInt k = 0; k < nr; ++k) PetscCall(VecDestroy(&Rg[k]));
   }
-  r->op->mass_correction         = correction;
-  r->op->mass_moment_mismatch    = mismatch;
-  r->op->mass_moment_unreachable = unreachable;
-  r->op->mass_moments            = matched_moments;
-  r->op->mass_inertia_mismatch   = inertia;
+  r->mass->correction         = correction;
+  r->mass->moment_mismatch    = mismatch;
+  r->mass->moment_unreachable = unreachable;
+  r->mass->moments            = matched_moments;
+  r->mass->inertia_mismatch   = inertia;
   PetscCall(PetscFree(vgroup));
   /* what no node-block correction can reach: a body whose every node is on the contact boundary or
    * held by Dirichlet data (one cell across), or whose free nodes are too few to carry the moments */
-  PetscCheck(r->op->mass_moment_mismatch <= 1e-12, comm, PETSC_ERR_USER_INPUT, "-mass redistributed cannot give the contact nodes' normal mass back: after the redistribution the moments of M* still differ from those of M by %.3g of the mass, because too few nodes are off the contact boundary and free of Dirichlet data to carry it (a body one cell across has none). Mesh the body with more cells across, or use -mass modified", (double)r->op->mass_moment_mismatch);
+  PetscCheck(r->mass->moment_mismatch <= 1e-12, comm, PETSC_ERR_USER_INPUT, "-mass redistributed cannot give the contact nodes' normal mass back: after the redistribution the moments of M* still differ from those of M by %.3g of the mass, because too few nodes are off the contact boundary and free of Dirichlet data to carry it (a body one cell across has none). Mesh the body with more cells across, or use -mass modified", (double)r->mass->moment_mismatch);
   PetscCall(VecDestroy(&kind));
   for (PetscInt d = 0; d < r->op->dim; ++d) PetscCall(VecDestroy(&normal[d]));
   for (PetscInt k = 0; k < nr; ++k) PetscCall(VecDestroy(&R[k]));
@@ -837,9 +838,9 @@ PetscErrorCode MMFERedistributeMass(MMOperators *op, const MMMaterial *mat, cons
 
 /* The masses the diagnostics need: M's total mass, and M*'s mass for rigid translations (a dim x dim
  * matrix: the modified mass lacks the normal masses, so it is not m I) and its inverse. */
-PetscErrorCode MMFEMassMoments(MMOperators *op)
+PetscErrorCode MMContactMassMoments(MMContactMass *mass, MMOperators *op)
 {
-  MassRedist     rd = {op, NULL, NULL}, *r = &rd;
+  MassRedist     rd = {op, NULL, NULL, mass}, *r = &rd;
   const PetscInt dim = r->op->dim, nr = MMFENumRigidModes(dim);
   PetscReal      zero[MM_MAX_DIM] = {0, 0, 0}, GM[MM_MAX_RIGID][MM_MAX_RIGID], Gs[MM_MAX_RIGID][MM_MAX_RIGID];
   Vec            R[MM_MAX_RIGID];
@@ -848,7 +849,7 @@ PetscErrorCode MMFEMassMoments(MMOperators *op)
   PetscCall(RigidModes(r, zero, 1.0, R));
   PetscCall(Gram(r->op->M, nr, R, GM));
   PetscCall(Gram(r->op->Mstar, nr, R, Gs));
-  r->op->mass_M = GM[0][0];
+  r->mass->total = GM[0][0];
   for (PetscInt a = 0; a < dim; ++a)
     for (PetscInt b = 0; b < dim; ++b) r->op->mass_star[a * dim + b] = Gs[a][b];
   /* its inverse, for the centre-of-mass columns of every step (zero for a body without mass) */
@@ -856,7 +857,7 @@ PetscErrorCode MMFEMassMoments(MMOperators *op)
     PetscReal m[MM_MAX_DIM][MM_MAX_DIM] = {{0}}, inv[MM_MAX_DIM][MM_MAX_DIM] = {{0}};
     for (PetscInt a = 0; a < dim; ++a)
       for (PetscInt b = 0; b < dim; ++b) m[a][b] = Gs[a][b];
-    if (PetscAbsReal(MMDetInverse(dim, m, inv)) <= PETSC_SMALL * PetscPowRealInt(PetscMax(r->op->mass_M, PETSC_SMALL), dim))
+    if (PetscAbsReal(MMDetInverse(dim, m, inv)) <= PETSC_SMALL * PetscPowRealInt(PetscMax(r->mass->total, PETSC_SMALL), dim))
       for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
         for (PetscInt b = 0; b < MM_MAX_DIM; ++b) inv[a][b] = 0;
     for (PetscInt a = 0; a < dim; ++a)
@@ -877,7 +878,7 @@ PetscErrorCode MMFEMassMoments(MMOperators *op)
     if (axes[0]) {
       char faster[96] = "the body has no inertia along the contact normal";
       if (worst > 1e-6) PetscCall(PetscSNPrintf(faster, sizeof(faster), "the body falls up to %.3g times faster than g along the contact normal", (double)(1 / worst)));
-      PetscCall(PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "mmcontact warning: -mass %s keeps only %s of M's mass: %s and hits with that share of its momentum; the default -mass redistributed keeps all of it (README \"The mass\")\n", MMMassTypes[r->op->mass_type], axes, faster));
+      PetscCall(PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "mmcontact warning: -mass %s keeps only %s of M's mass: %s and hits with that share of its momentum; the default -mass redistributed keeps all of it (README \"The mass\")\n", MMMassTypes[r->mass->type], axes, faster));
     }
   }
   for (PetscInt k = 0; k < nr; ++k) PetscCall(VecDestroy(&R[k]));

@@ -1,0 +1,103 @@
+/* The contact frame (docs/method.md section 2): the w-frame operators from fem's Cartesian ones.
+ * Each contact node's dofs are rotated into its frame (nu, tau_1, tau_2) by Q, built here from the
+ * frames the contact set chose (interface/set.c): K <- Q^T K Q, M <- Q^T M Q, L <- Q^T L; then M* for -mass (mass_star.c) and
+ * the contact pairs' relative variables, A <- N^T A N (interface/pairs.c, docs/method.md section 11).
+ * The results stay in fem's MMOperators, which app hands in: the stepper, the output and the
+ * audits read them there. */
+#include "../contactimpl.h"
+
+/* Q, u_cart = Q w: per contact node the block of its frame, F^T (the columns nu, tau_1, tau_2), the
+ * identity elsewhere; a corner's block is its first row's frame. Q is op's, for fem's frame
+ * transforms (MMFEToCartesian), the damping and the output. */
+PetscErrorCode MMContactFrameBuildRotation(MMContact ct, MMOperators *op)
+{
+  const PetscInt  dim = op->dim;
+  PetscInt        n, rstart, nrow = 0;
+  const PetscInt *in = NULL;
+  PetscBool      *rotated;
+  Vec             g;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalVector(op->dm, &g));
+  PetscCall(VecGetLocalSize(g, &n));
+  PetscCall(VecGetOwnershipRange(g, &rstart, NULL));
+  PetscCall(DMRestoreGlobalVector(op->dm, &g));
+  PetscCall(MatCreateAIJ(ct->comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, ct->enabled ? dim : 1, NULL, 0, NULL, &op->Q));
+  PetscCall(PetscCalloc1(n, &rotated));
+  if (ct->enabled) {
+    PetscCall(ISGetLocalSize(ct->is_normal, &nrow));
+    PetscCall(ISGetIndices(ct->is_normal, &in));
+  }
+  for (PetscInt k = 0; k < nrow; ++k) {
+    const PetscReal *F = &ct->node_frame[9 * k];
+    if (ct->second[k]) continue; /* in[k] is the node's dof 1: its block starts at the row before */
+    for (PetscInt d = 0; d < dim; ++d) {
+      rotated[in[k] - rstart + d] = PETSC_TRUE;
+      for (PetscInt e = 0; e < dim; ++e) PetscCall(MatSetValue(op->Q, in[k] + d, in[k] + e, F[3 * e + d], INSERT_VALUES));
+    }
+  }
+  if (ct->enabled) PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  for (PetscInt i = 0; i < n; ++i)
+    if (!rotated[i]) PetscCall(MatSetValue(op->Q, rstart + i, rstart + i, 1.0, INSERT_VALUES));
+  PetscCall(PetscFree(rotated));
+  PetscCall(MatAssemblyBegin(op->Q, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(op->Q, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+/* K <- Q^T K Q and M <- Q^T M Q in place. Q is block diagonal by vertex, so the pattern stays:
+ * MatPtAP would build new matrices, through a symbolic product that costs more than the closed-form
+ * assembly (docs/scaling.md, "Assembly of K and M, measured"). A lumped M is m I at each node, which
+ * the rotation leaves unchanged: it is not rotated, so that no round-off enters it. */
+static PetscErrorCode RotateOperators(MMOperators *op)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(MMCONTACT_FrameRotate, 0, 0, 0, 0));
+  PetscCall(MMRotateP1(op->Q, op->K, op->lumped ? NULL : op->M));
+  PetscCall(PetscLogEventEnd(MMCONTACT_FrameRotate, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* v <- Q^T v for a force on the free dofs (the load, the lift): v keeps its layout and DM. */
+static PetscErrorCode RotateForce(Mat Q, Vec v)
+{
+  Vec cart;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(v, &cart));
+  PetscCall(VecCopy(v, cart));
+  PetscCall(MatMultTranspose(Q, cart, v));
+  PetscCall(VecDestroy(&cart));
+  PetscFunctionReturn(0);
+}
+
+/* The contact boundary as M* sees it: without contact, no dof loses its mass. */
+static void MassBoundary(MMContact ct, MMMassBoundary *mb)
+{
+  mb->massless     = ct->enabled ? ct->is_massless : NULL;
+  mb->n            = ct->n_local;
+  mb->vertex       = ct->vertex;
+  mb->scalar_index = ct->scalar_index;
+  mb->second       = ct->second;
+  mb->frame        = ct->node_frame;
+  mb->fc_obstacle  = ct->fc_obstacle;
+}
+
+/* Rotation first, then M* (its massless dofs are the frame's normal dofs, and its moments are taken
+ * in the contact frame), then the pairs' N^T A N, which leaves those moments unchanged
+ * (docs/method.md sections 2 and 11). */
+PetscErrorCode MMContactSetUpFrame(MMContact ct, MMOperators *op, const MMMaterial *material)
+{
+  MMMassBoundary mb;
+
+  PetscFunctionBeginUser;
+  PetscCheck(op == ct->op, ct->comm, PETSC_ERR_ARG_WRONG, "The contact frame rotates the operators given to MMContactSetUp, whose Q it built");
+  PetscCall(RotateOperators(op));
+  PetscCall(RotateForce(op->Q, op->load));
+  PetscCall(RotateForce(op->Q, op->lift));
+  MassBoundary(ct, &mb);
+  PetscCall(MMContactMassStar(&ct->mass, op, material, &mb));
+  if (op->N) PetscCall(VecDuplicate(op->load, &op->pair_work));
+  PetscCall(MMContactPairsTransformOperators(op));
+  PetscFunctionReturn(0);
+}

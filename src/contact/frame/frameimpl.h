@@ -1,0 +1,40 @@
+/* Private to contact: the contact frame (src/contact/frame/, docs/method.md section 2). fem assembles
+ * K, M, the load and the lift on the Cartesian dofs; the frame turns them into the w-frame ones in
+ * fem's MMOperators, which app hands it (frame.c), builds M* for -mass (mass_star.c) and, for -mass
+ * redistributed, gives the removed mass back (mass_redistribution.c). */
+#pragma once
+#include "contact.h"
+
+/* The contact boundary as the mass sees it: the dofs M* drops, and each owned contact row's vertex
+ * and frame, for -mass redistributed (filled from the contact set by mass_star.c). */
+typedef struct {
+  IS               massless;     /* the contact-normal dofs (w-frame), NULL without contact */
+  PetscInt         n;            /* owned contact rows */
+  const PetscInt  *vertex;       /* per row: its mesh point */
+  const PetscInt  *scalar_index; /* per row: its vertex's global index on MMOperators.dm_scalar */
+  const PetscBool *second;       /* per row: a corner node's second row */
+  const PetscReal *frame;        /* per row, 9 reals: its node's frame, rows nu, tau_1, tau_2 */
+  const PetscInt  *fc_obstacle;  /* per row: a friction corner's second obstacle, or -1; NULL: none */
+} MMMassBoundary;
+
+/* The mass in time stepping: -mass, and what M*'s construction found, for its view (MMContactMassView).
+ * M*'s masses for the translations, which the stepper reads, stay in MMOperators (mass_star, mass_star_inv). */
+typedef struct {
+  MMMassType type;                /* -mass */
+  PetscReal  total;               /* total mass of M */
+  PetscReal  correction;          /* -mass redistributed: the largest negative eigenvalue of a node's moment correction over its mass */
+  PetscReal  moment_unreachable;  /* 3D: |trace of G's translation-rotation block| left, / total mass (mass_redistribution.c) */
+  PetscReal  moment_mismatch;     /* -mass redistributed: max |rigid-mode Gram of M* - of M| / total mass */
+  PetscBool  bounded;             /* -mass redistributed: the bounded correction (a coarse mesh: docs/method.md section 2) */
+  PetscInt   moments;             /* the moments matched: all (nr), or (dim) the masses and first moments alone */
+  PetscReal  inertia_mismatch;    /* then max |second moments of M* - of M| / total mass */
+} MMContactMass;
+
+/* frame.c: Q from the contact nodes' frames (MMContactSetUp, before fem assembles) */
+PETSC_INTERN PetscErrorCode MMContactFrameBuildRotation(MMContact ct, MMOperators *op);
+/* mass_star.c: -mass, M* from M, its view */
+PETSC_INTERN PetscErrorCode MMContactMassSetFromOptions(MPI_Comm comm, MMContactMass *mass);
+PETSC_INTERN PetscErrorCode MMContactMassStar(MMContactMass *mass, MMOperators *op, const MMMaterial *material, const MMMassBoundary *mb);
+/* mass_redistribution.c: -mass redistributed, and the moments of M* */
+PETSC_INTERN PetscErrorCode MMContactRedistributeMass(MMContactMass *mass, MMOperators *op, const MMMaterial *material, const MMMassBoundary *mb);
+PETSC_INTERN PetscErrorCode MMContactMassMoments(MMContactMass *mass, MMOperators *op);

@@ -1,0 +1,88 @@
+/* The mass in time stepping, M* (docs/method.md section 2): -mass, M* from the w-frame M, and the
+ * mass's view. The modified mass drops the contact nodes' normal mass (their rows and columns), so
+ * that the contact-normal dofs carry no inertia; the redistributed one gives that mass back to the
+ * other nodes (mass_redistribution.c); the standard one is M. */
+#include "../contactimpl.h"
+
+const char *const MMMassTypes[] = {"modified", "standard", "redistributed", "MMMassType", "MM_MASS_", NULL};
+
+PetscErrorCode MMContactMassSetFromOptions(MPI_Comm comm, MMContactMass *mass)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, NULL, "mmcontact: the mass in time stepping", "MMContact");
+  mass->type = MM_MASS_REDISTRIBUTED;
+  PetscCall(MMOptionsEnum(PetscOptionsObject, comm, "-mass", "Mass matrix in time stepping: modified (normal mass of contact nodes removed), redistributed (modified, with the removed mass given to the other nodes so that the total mass, centre of gravity and inertia are those of the standard mass) or standard", MMMassTypes, (PetscEnum *)&mass->type));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMContactGetMassType(MMContact ct, MMMassType *type)
+{
+  PetscFunctionBeginUser;
+  *type = ct->mass.type;
+  PetscFunctionReturn(0);
+}
+
+/* M* from op's w-frame M, with the masses of its translations (MMOperators.mass_star, read by the
+ * stepper); the modified and the redistributed mass leave mb's massless dofs without inertia. */
+PetscErrorCode MMContactMassStar(MMContactMass *mass, MMOperators *op, const MMMaterial *material, const MMMassBoundary *mb)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MatDuplicate(op->M, MAT_COPY_VALUES, &op->Mstar));
+  if (mb->massless && mass->type != MM_MASS_STANDARD) {
+    PetscCall(PetscObjectReference((PetscObject)mb->massless));
+    op->massless = mb->massless;
+  }
+  if (MMFEHasMasslessDofs(op)) PetscCall(MatZeroRowsColumnsIS(op->Mstar, op->massless, 0.0, NULL, NULL));
+  if (MMFEHasMasslessDofs(op) && mass->type == MM_MASS_REDISTRIBUTED) {
+    PetscCall(PetscLogEventBegin(MMCONTACT_MassRedistribute, 0, 0, 0, 0));
+    PetscCall(MMContactRedistributeMass(mass, op, material, mb));
+    PetscCall(PetscLogEventEnd(MMCONTACT_MassRedistribute, 0, 0, 0, 0));
+  }
+  PetscCall(MMContactMassMoments(mass, op));
+  PetscFunctionReturn(0);
+}
+
+/* -mass redistributed's account: the moments matched and how well, and the correction's size
+ * (a coarse mesh: the bounded correction, perhaps the inertia left; docs/method.md section 2). */
+static PetscErrorCode RedistributionText(const MMContactMass *mass, PetscInt dim, char text[], size_t len)
+{
+  const char *which = "moments";
+  char        bounded[160] = "", unreachable[160] = "";
+
+  PetscFunctionBeginUser;
+  if (mass->moment_unreachable > 1e-14) PetscCall(PetscSNPrintf(unreachable, sizeof(unreachable), " (and %.1e in the trace of the translation-rotation block, out of reach: docs/method.md section 2)", (double)mass->moment_unreachable));
+  if (mass->moments < MMFENumRigidModes(dim)) {
+    which = "total mass and first moments";
+    PetscCall(PetscSNPrintf(bounded, sizeof(bounded), "; bounded correction, the inertia off by %.2g of the mass", (double)mass->inertia_mismatch));
+  } else if (mass->bounded) PetscCall(PetscStrncpy(bounded, "; bounded correction", sizeof(bounded)));
+  PetscCall(PetscSNPrintf(text, len, "; M*'s %s equal M's to %.1e (largest node correction %.3g of its mass%s)%s", which, (double)mass->moment_mismatch, (double)mass->correction, bounded, unreachable));
+  PetscFunctionReturn(0);
+}
+
+/* One line: M's total mass, M*'s along each axis, and -mass redistributed's account. */
+PetscErrorCode MMContactMassView(MMContact ct, PetscViewer viewer)
+{
+  const MMOperators *op  = ct->op;
+  const PetscInt     dim = op->dim;
+  char               star[128] = "", moments[512] = "";
+  PetscDS            ds;
+  PetscInt           n_dirichlet;
+  PetscBool          ascii;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
+  if (!ascii) PetscFunctionReturn(0);
+  for (PetscInt d = 0; d < dim; ++d) {
+    size_t len;
+    PetscCall(PetscStrlen(star, &len));
+    PetscCall(PetscSNPrintf(star + len, sizeof(star) - len, "%s%c %.10g", d ? ", " : "", "xyz"[d], (double)op->mass_star[d * dim + d]));
+  }
+  if (MMFEHasMasslessDofs(op) && ct->mass.type == MM_MASS_REDISTRIBUTED) PetscCall(RedistributionText(&ct->mass, dim, moments, sizeof(moments)));
+  /* M is over the free dofs: a node held by -dirichlet (one boundary of the DS each) is the
+   * support's, outside the system */
+  PetscCall(DMGetDS(op->dm, &ds));
+  PetscCall(PetscDSGetNumBoundary(ds, &n_dirichlet));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  mass: total of M %.10g%s; of M* along %s%s\n", (double)ct->mass.total, n_dirichlet ? " (without the dofs held by -dirichlet)" : "", star, moments));
+  PetscFunctionReturn(0);
+}
