@@ -66,20 +66,11 @@ static PetscErrorCode Restart(MMCtx *ctx, TS ts)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
+/* Every component created and set from its options, before the mesh is read: an option error comes
+ * first, as it always did. -help without a mesh stops here. */
+static PetscErrorCode SetFromOptions(MPI_Comm comm, MMCtx *ctx, PetscBool *help_only)
 {
-  MMState         *state;
-  MMHistory       *hist;
-  MMDamping       *damping;
-  MPI_Comm         comm = PETSC_COMM_WORLD;
-  PetscReal        dt;
-  MMFEProblem      pb;
-  MMContactProblem cp;
-
   PetscFunctionBeginUser;
-  PetscCall(MMNewmarkGetState(ctx->nm, &state));
-  PetscCall(MMNewmarkGetHistory(ctx->nm, &hist));
-  PetscCall(MMNewmarkGetDamping(ctx->nm, &damping));
   PetscCall(MMOptionsProcess(comm, &ctx->opt));
   PetscCall(MMOptionsHelpWithoutMesh(comm, help_only));
   if (*help_only) PetscFunctionReturn(0);
@@ -97,9 +88,18 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscCall(MMOutputSetFromOptions(comm, &ctx->out));
   PetscCall(MMCheckpointSetFromOptions(comm, &ctx->ckpt));
   PetscCall(MMProgressSetFromOptions(comm, &ctx->progress));
-  /* before anything in the output directory is read or moved: one run per directory. A data check
-   * writes nothing, and takes no lock */
-  if (!ctx->opt.check_input) PetscCall(MMOutputLock(ctx->out.dir));
+  PetscFunctionReturn(0);
+}
+
+/* The mesh, fem's Cartesian operators and loads, the contact set and its frame (the w-frame K, M*). */
+static PetscErrorCode SetUpOperators(MPI_Comm comm, MMCtx *ctx)
+{
+  MMDamping       *damping;
+  MMFEProblem      pb;
+  MMContactProblem cp;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMNewmarkGetDamping(ctx->nm, &damping));
   MMPhase(MMAppEvents.mesh_load, LoadMesh(comm, ctx));
   PetscCall(DMGetDimension(ctx->op.dm, &ctx->op.dim));
   PetscCall(MMOptionsGetFEProblem(&ctx->opt, &pb));
@@ -113,6 +113,22 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscCall(MMContactSetUpFrame(ctx->contact, &ctx->op, &ctx->material)); /* w-frame K, M*, loads */
   PetscCall(MMFEAssembleOperatorsEnd(&ctx->op));
   MMPhase(MMAppEvents.loads_setup, MMLoadsSetUp(&ctx->loads, &ctx->op, &ctx->material, &pb));
+  PetscFunctionReturn(0);
+}
+
+/* The stepper and its initial state, friction, the TS, -restart, the step matrix for the first dt
+ * (its coefficients from the stepper, K~ built by contact), the initial audits. */
+static PetscErrorCode SetUpStepper(MMCtx *ctx, TS *ts)
+{
+  MMState   *state;
+  MMHistory *hist;
+  MMDamping *damping;
+  PetscReal  dt;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMNewmarkGetState(ctx->nm, &state));
+  PetscCall(MMNewmarkGetHistory(ctx->nm, &hist));
+  PetscCall(MMNewmarkGetDamping(ctx->nm, &damping));
   {
     MMNewmarkProblem tp;
     PetscCall(MMOptionsGetNewmarkProblem(&ctx->opt, &tp));
@@ -140,6 +156,20 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   }
   MMPhase(MMAppEvents.deformation_check, MMDeformationCheck(ctx->nm));
   PetscCall(MMCheckpointRestoreHistory(&ctx->ckpt));
+  PetscFunctionReturn(0);
+}
+
+/* The output and progress set up, the unread options refused, and the start-up report. */
+static PetscErrorCode SetUpReport(MPI_Comm comm, MMCtx *ctx, TS ts)
+{
+  MMState   *state;
+  MMHistory *hist;
+  MMDamping *damping;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMNewmarkGetState(ctx->nm, &state));
+  PetscCall(MMNewmarkGetHistory(ctx->nm, &hist));
+  PetscCall(MMNewmarkGetDamping(ctx->nm, &damping));
   PetscCall(MMOutputSetUp(&ctx->out, &ctx->iopb, &ctx->op, &ctx->material, hist, state, ctx->contact, &ctx->loads, &ctx->ckpt));
   /* every object has read its options: refuse the unread ones before any output is touched, and
    * before the start-up report, which would otherwise announce a run that is then refused */
@@ -150,19 +180,44 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   if (!ctx->opt.quiet) {
     KSP krylov, pc_ksp;
     PetscCall(MMContactGetStepKSP(ctx->contact, &krylov, &pc_ksp));
-    PetscCall(MMProgressHeader(&ctx->progress, *ts, krylov, pc_ksp));
+    PetscCall(MMProgressHeader(&ctx->progress, ts, krylov, pc_ksp));
   }
+  PetscFunctionReturn(0);
+}
+
+/* The output files opened (the earlier results set aside only once the input is valid) and the
+ * per-step monitors. */
+static PetscErrorCode SetUpOutput(MMCtx *ctx, TS ts)
+{
+  PetscFunctionBeginUser;
+  MMPhase(MMAppEvents.output_open, MMOutputOpen(&ctx->out));
+  PetscCall(TSMonitorSet(ts, MMOutputMonitor, &ctx->out, NULL));
+  PetscCall(TSMonitorSet(ts, MMCheckpointMonitor, &ctx->ckpt, NULL));
+  if (!ctx->opt.quiet) PetscCall(MMProgressMonitorSet(&ctx->progress, ts));
+  PetscCall(MMSignalsSetUp(ts));
+  PetscFunctionReturn(0);
+}
+
+/* The run's set-up, in the order of docs/developer.md ("Components"). */
+static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
+{
+  MPI_Comm comm = PETSC_COMM_WORLD;
+
+  PetscFunctionBeginUser;
+  PetscCall(SetFromOptions(comm, ctx, help_only));
+  if (*help_only) PetscFunctionReturn(0);
+  /* before anything in the output directory is read or moved: one run per directory. A data check
+   * writes nothing, and takes no lock */
+  if (!ctx->opt.check_input) PetscCall(MMOutputLock(ctx->out.dir));
+  PetscCall(SetUpOperators(comm, ctx));
+  PetscCall(SetUpStepper(ctx, ts));
+  PetscCall(SetUpReport(comm, ctx, *ts));
   /* -check_input: the case is built and valid; its report, and a stop before any output is touched */
   if (ctx->opt.check_input) {
     PetscCall(MMDataCheckReport(ctx, *ts));
     PetscFunctionReturn(0);
   }
-  /* last: the earlier results in the output directory are set aside only once the input is valid */
-  MMPhase(MMAppEvents.output_open, MMOutputOpen(&ctx->out));
-  PetscCall(TSMonitorSet(*ts, MMOutputMonitor, &ctx->out, NULL));
-  PetscCall(TSMonitorSet(*ts, MMCheckpointMonitor, &ctx->ckpt, NULL));
-  if (!ctx->opt.quiet) PetscCall(MMProgressMonitorSet(&ctx->progress, *ts));
-  PetscCall(MMSignalsSetUp(*ts));
+  PetscCall(SetUpOutput(ctx, *ts));
   PetscFunctionReturn(0);
 }
 
