@@ -161,7 +161,6 @@ struct _MMContactOps {
   PetscErrorCode (*setthresholds)(MMContact ct, Vec s);         /* Tresca thresholds per contact node */
   PetscErrorCode (*solvecoulomb)(MMContact ct, Vec b, Vec w, Vec react, MMContactSetSolver fn, void *fctx, PetscBool *ok);
   PetscErrorCode (*solvecoulombdofs)(MMContact ct, Vec b, Vec w, Vec react, Vec s, PetscReal rtol, PetscInt *its, PetscBool *ok); /* s: thresholds in and out */
-  PetscErrorCode (*getnormalreactions)(MMContact ct, Vec s);    /* s = rho_n per contact node (a threshold loop's) */
   PetscErrorCode (*getstepksp)(MMContact ct, KSP *krylov, KSP *pc_ksp); /* the K~ solvers, for the start-up report */
   PetscErrorCode (*swapkept)(MMContact ct, PetscReal dt, PetscBool *hit); /* swap K~ and its factor with the kept ones; hit: those are for dt */
   PetscErrorCode (*getnodestate)(MMContact ct, PetscInt k, PetscBool second, PetscScalar state[]); /* row k's warm start, slots 9-12 (second: its slot) */

@@ -78,12 +78,13 @@ PetscErrorCode MMContactSetType(MMContact ct)
   PetscFunctionReturn(0);
 }
 
-/* s = the normal reactions rho_n of the last solve, one per contact node (a threshold loop's) */
+/* s = the normal reactions rho_n of the last solve, one per contact node (a threshold loop's), from the
+ * reactions every formulation that solves for them keeps in ct->rho */
 PetscErrorCode MMContactGetNormalReactions(MMContact ct, Vec s)
 {
   PetscFunctionBeginUser;
-  PetscCheck(ct->ops->getnormalreactions, ct->comm, PETSC_ERR_SUP, "The contact formulation %s keeps no reactions", ct->type);
-  PetscCall((*ct->ops->getnormalreactions)(ct, s));
+  PetscCheck(ct->rho, ct->comm, PETSC_ERR_SUP, "The contact formulation %s keeps no reactions", ct->type);
+  PetscCall(VecStrideGather(ct->rho, 0, s, INSERT_VALUES));
   PetscFunctionReturn(0);
 }
 

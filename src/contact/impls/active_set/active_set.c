@@ -714,13 +714,6 @@ static PetscErrorCode ActiveSetGetProducts(MMContact ct, const char **products)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode ActiveSetGetNormalReactions(MMContact ct, Vec lambda)
-{
-  PetscFunctionBeginUser;
-  PetscCall(VecStrideGather(ct->rho, 0, lambda, INSERT_VALUES));
-  PetscFunctionReturn(0);
-}
-
 /* The warm start of row k: its normal state; on a first row its stick state and slip direction */
 static PetscErrorCode ActiveSetGetNodeState(MMContact ct, PetscInt k, PetscBool second, PetscScalar state[])
 {
@@ -810,7 +803,6 @@ static const MMContactOps ActiveSetOps = {
   .recover          = ActiveSetContactForce,
   .setthresholds    = MMActiveSetSetThresholds,
   .solvecoulombdofs = ActiveSetSolveCoulomb,
-  .getnormalreactions = ActiveSetGetNormalReactions,
   .getstepksp       = ActiveSetGetStepKSP,
   .swapkept         = ActiveSetSwapKept,
   .getnodestate     = ActiveSetGetNodeState,

@@ -452,14 +452,6 @@ static PetscErrorCode CondensedView(MMContact ct, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
-/* The normal reactions lambda_n of the last solve, one per contact node. */
-static PetscErrorCode CondensedGetNormalReactions(MMContact ct, Vec lambda)
-{
-  PetscFunctionBeginUser;
-  PetscCall(VecStrideGather(ct->rho, 0, lambda, INSERT_VALUES));
-  PetscFunctionReturn(0);
-}
-
 /* A friction corner's second reactions in the slots the active set's warm start uses elsewhere */
 static PetscErrorCode CondensedGetNodeState(MMContact ct, PetscInt k, PetscBool second, PetscScalar state[])
 {
@@ -552,7 +544,6 @@ static const MMContactOps CondensedOps = {
   .solvecontactdofs = CondensedSolveContactDofs,
   .recover          = CondensedRecoverAll,
   .solvecoulomb     = MMCondensedSolveCoulomb,
-  .getnormalreactions   = CondensedGetNormalReactions,
   .getstepksp           = CondensedGetStepKSP,
   .swapkept             = CondensedSwapKept,
   .getnodestate         = CondensedGetNodeState,
