@@ -104,6 +104,8 @@ PETSC_EXTERN PetscErrorCode MMContactSetTime(MMContact ct, PetscReal t, PetscRea
 typedef struct {
   PetscReal dt, ck, cb, cm;
   Mat       B; /* NULL when cb = 0; B == K allowed */
+  Mat       K;       /* the stiffness in K~: NULL for fem's K; a finite-strain tangent (K's pattern) otherwise */
+  PetscInt  version; /* K's version: K~ is rebuilt when it changes, even at the same dt */
 } MMStepMatrix;
 PETSC_EXTERN PetscErrorCode MMContactSetStepMatrix(MMContact ct, const MMStepMatrix *sm);
 /* The state at the start of each step (u^n, v^n), borrowed: the stepper updates them in place */

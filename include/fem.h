@@ -72,6 +72,16 @@ typedef struct {
   MMAmplitudeOptions amplitude;
 } MMPointForce;
 
+/* The elasticity law (-elasticity, -body_NAME_elasticity; src/fem/elasticity_laws.c, docs/method.md
+ * section 13): the paper's linear small-strain model, or a finite-strain hyperelastic law with the
+ * same E and nu in the small-strain limit. */
+typedef enum {
+  MM_ELASTICITY_LINEAR,
+  MM_ELASTICITY_SVK,       /* St. Venant-Kirchhoff */
+  MM_ELASTICITY_NEOHOOKEAN /* compressible neo-Hookean */
+} MMElasticityType;
+PETSC_EXTERN const char *const MMElasticityTypes[];
+
 /* A body of -bodies (docs/method.md section 2, "Bodies"): a physical group of cells with its own
  * material and initial velocity, each defaulting to the whole mesh's -E, -nu, -rho and -v0. */
 typedef struct {
@@ -81,12 +91,14 @@ typedef struct {
   PetscReal E, nu, rho;
   PetscReal v0[MM_MAX_DIM];
   PetscInt  nv0; /* entries given to -body_NAME_v0, -1 if not set */
+  MMElasticityType elasticity; /* -body_NAME_elasticity (default -elasticity) */
 } MMBodyOptions;
 
 /* The problem fem discretizes, as the user described it (app's MMOptions, borrowed for the set-up):
  * the bodies' material, gravity, the boundary conditions and the loads (docs/method.md sections 2, 10). */
 typedef struct {
   PetscReal            E, nu, rho;    /* the whole mesh's material without -bodies */
+  MMElasticityType     elasticity;    /* -elasticity: the whole mesh's law without -bodies */
   const PetscReal     *v0;            /* MM_MAX_DIM: its initial velocity */
   PetscInt             n_bodies;      /* -bodies, 0 without it */
   const MMBodyOptions *bodies;
@@ -118,6 +130,7 @@ typedef struct {
   const char *group;   /* its physical group of cells; NULL: the whole mesh */
   PetscReal   E, nu, rho;
   PetscReal   lambda, mu; /* Lame parameters (plane strain in 2D) */
+  MMElasticityType elasticity;
   PetscReal   c_p, c_s;   /* its pressure and shear wave speeds */
   PetscReal   v0[MM_MAX_DIM];
   PetscInt    ncells;  /* over all ranks */
@@ -138,6 +151,7 @@ typedef struct {
   PetscReal *vertex_v0;   /* -bodies: per local vertex (dim entries), the v0 of the body of its cells */
   PetscReal  c_p_max;     /* the largest pressure wave speed: the CFL number's */
   PetscReal  E_max;       /* the largest Young's modulus: the contact solvers' force scales */
+  PetscBool  finite;      /* some body has a finite-strain law (-elasticity svk or neohookean) */
 } MMMaterial;
 
 /* The finite element operators: fem assembles K, M, the load and the lift on the Cartesian dofs
@@ -281,3 +295,21 @@ PETSC_EXTERN PetscErrorCode MMFEAddPointForce(const MMOperators *op, const MMPoi
 PETSC_EXTERN PetscErrorCode MMMaterialSetUp(MMMaterial *mat, const MMOperators *op, const MMFEProblem *pb);
 PETSC_EXTERN PetscErrorCode MMMaterialChecksum(const MMMaterial *mat, const MMOperators *op, PetscReal sum[3]);
 PETSC_EXTERN PetscErrorCode MMMaterialDestroy(MMMaterial *mat);
+
+/* elasticity.c: the total Lagrangian P1 internal force of the finite-strain laws (docs/method.md
+ * section 13), on local Cartesian vectors of op->dm with their Dirichlet data inserted */
+typedef struct {
+  Vec       l0, l1, lf; /* local scratch */
+  Vec       g;          /* global Cartesian scratch */
+  PetscReal detF_min;   /* the last evaluation's smallest det F over the mesh */
+} MMElasticity;
+PETSC_EXTERN PetscErrorCode MMElasticitySetUp(MMElasticity *el, const MMOperators *op);
+/* l: the Cartesian local vector of the w-frame w with the Dirichlet data of time t */
+PETSC_EXTERN PetscErrorCode MMElasticityLocal(MMElasticity *el, const MMOperators *op, MMLoads *ld, Vec w, PetscReal t, Vec l);
+/* fw (w-frame, free dofs) = the algorithmic internal force of the step from l0 to l1 */
+PETSC_EXTERN PetscErrorCode MMElasticityForce(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l0, Vec l1, Vec fw);
+PETSC_EXTERN PetscErrorCode MMElasticityEnergy(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, PetscReal *energy);
+/* Kw (the pattern of op->K) = the tangent dP/dF at l, in the w-frame */
+PETSC_EXTERN PetscErrorCode MMElasticityTangent(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, Mat Kw);
+PETSC_EXTERN PetscErrorCode MMElasticityCauchy(const MMMaterial *mat, PetscInt c, PetscInt dim, const PetscReal F[MM_MAX_DIM][MM_MAX_DIM], PetscReal sigma[MM_MAX_DIM][MM_MAX_DIM]);
+PETSC_EXTERN PetscErrorCode MMElasticityDestroy(MMElasticity *el);

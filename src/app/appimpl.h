@@ -40,6 +40,7 @@ typedef struct {
   MMPressure   *pressure;
   MMPointForce *point_force;
   PetscReal    E, nu, rho;
+  MMElasticityType elasticity; /* -elasticity */
   PetscInt     n_bodies;            /* -bodies, 0 without it: one body, the whole mesh, of -E -nu -rho -v0 */
   MMBodyOptions *bodies;
   PetscReal    gravity[MM_MAX_DIM];

@@ -364,6 +364,9 @@ static PetscErrorCode ProcessBodies(PetscOptionItems *PetscOptionsObject, MPI_Co
     body->E   = opt->E;
     body->nu  = opt->nu;
     body->rho = opt->rho;
+    body->elasticity = opt->elasticity;
+    PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_elasticity", body->name));
+    PetscCall(OptionsEnum(PetscOptionsObject, comm, key, "This body's elasticity law: linear, svk or neohookean (default -elasticity)", MMElasticityTypes, (PetscEnum *)&body->elasticity));
     PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_E", body->name));
     PetscCall(OptionsReal(PetscOptionsObject, comm, key, "This body's Young's modulus (Pa), > 0 (default -E)", &body->E));
     PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_nu", body->name));
@@ -428,6 +431,8 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-nu", "Poisson ratio, in (-1, 0.5)", &opt->nu));
   opt->rho = 1.0;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-rho", "Mass density (kg/m^d), > 0", &opt->rho));
+  opt->elasticity = MM_ELASTICITY_LINEAR;
+  PetscCall(OptionsEnum(PetscOptionsObject, comm, "-elasticity", "Elasticity law: linear (the small-strain model, rotations strain the body), svk (St. Venant-Kirchhoff) or neohookean (compressible neo-Hookean), both finite strain with the same E and nu, energy and momentum exact per step (docs/method.md section 13)", MMElasticityTypes, (PetscEnum *)&opt->elasticity));
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_GRAVITY, "Body-force acceleration gx,gy[,gz] (m/s^2), d entries, times -gravity_amplitude", opt->gravity));
   PetscCall(ProcessAmplitude(PetscOptionsObject, comm, "-gravity", &opt->gravity_amplitude));
 
@@ -619,6 +624,7 @@ PetscErrorCode MMOptionsGetFEProblem(const MMOptions *opt, MMFEProblem *pb)
   pb->E                 = opt->E;
   pb->nu                = opt->nu;
   pb->rho               = opt->rho;
+  pb->elasticity        = opt->elasticity;
   pb->v0                = opt->v0;
   pb->n_bodies          = opt->n_bodies;
   pb->bodies            = opt->bodies;

@@ -97,6 +97,7 @@ struct _p_MMContact {
   MMBoundQP  qp0;                 /* the initial projection of the contact dofs */
   Vec        lower0, upper0;
   PetscReal  Kt_dt;               /* dt for which Kt was assembled */
+  PetscInt   Kt_version;          /* and the version of its stiffness (MMStepMatrix) */
   char       type[MM_TYPE_LEN]; /* the formulation, or "none" without contact */
   const MMContactOps *ops;        /* the formulation's operations */
   void      *data;                /* the formulation's state, freed by ops->destroy */

@@ -348,6 +348,67 @@ static PetscErrorCode AddCell(DM dm, PetscInt depth, const VertexTable *vt, cons
   PetscFunctionReturn(0);
 }
 
+/* Adds the element matrix that element() computes for cell c to K (its owned rows in place, the
+ * others through MatSetValues): the finite-strain tangent's path (src/fem/elasticity.c). */
+static PetscErrorCode AddCellElement(DM dm, PetscInt depth, const VertexTable *vt, const CSRTarget *t, Mat K, PetscInt c, MMP1ElementFn element, void *ctx)
+{
+  const PetscInt dim = vt->dim, nv = dim + 1;
+  PetscInt       v[MM_NV_MAX], idx[MM_NDOF_MAX];
+  PetscReal      x[MM_NV_MAX][MM_MAX_DIM], g[MM_NV_MAX][MM_MAX_DIM], vol;
+  PetscScalar    Ke[MM_NDOF_MAX * MM_NDOF_MAX];
+
+  PetscFunctionBeginUser;
+  PetscCall(MMMeshCellVertices(dm, depth, dim, c, v));
+  for (PetscInt a = 0; a < nv; ++a)
+    for (PetscInt i = 0; i < dim; ++i) {
+      x[a][i]          = vt->x[(v[a] - vt->vStart) * dim + i];
+      idx[a * dim + i] = vt->dof[(v[a] - vt->vStart) * dim + i];
+    }
+  PetscCall(SimplexGradients(dim, (const PetscReal(*)[MM_MAX_DIM])x, g, &vol));
+  PetscCall((*element)(ctx, c, v, (const PetscReal(*)[MM_MAX_DIM])g, vol, Ke));
+  for (PetscInt a = 0; a < nv; ++a) {
+    PetscInt r = -1;
+    for (PetscInt i = 0; i < dim && r < 0; ++i) r = idx[a * dim + i];
+    if (r < 0) continue;
+    if (r < t->rstart || r >= t->rend) {
+      PetscCall(AddGhostRows(K, NULL, dim, idx, a, Ke, NULL));
+      continue;
+    }
+    for (PetscInt b = 0; b < nv; ++b) PetscCall(AddVertexPair(t, dim, &idx[a * dim], &idx[b * dim], a, b, Ke, 0));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* K = sum_T K_T with K_T from element(): K from DMCreateMatrix on dm (or a matrix of its pattern, such as
+ * the rotated stiffness), its entries replaced. */
+PetscErrorCode MMAssembleP1Elements(DM dm, Mat K, MMP1ElementFn element, void *ctx)
+{
+  VertexTable vt;
+  CSRTarget   t;
+  PetscInt    depth, cStart, cEnd;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetDepth(dm, &depth));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  PetscCall(VertexTableCreate(dm, &vt));
+  PetscCall(MatZeroEntries(K));
+  PetscCall(CSRTargetGet(K, NULL, &t));
+  for (PetscInt c = cStart; c < cEnd; ++c) PetscCall(AddCellElement(dm, depth, &vt, &t, K, c, element, ctx));
+  PetscCall(CSRTargetRestore(&t));
+  PetscCall(VertexTableDestroy(&vt));
+  PetscCall(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+/* The P1 basis gradients and volume of cell c (coordinates from the local coordinate vector) */
+PetscErrorCode MMP1CellGradients(PetscInt dim, const PetscReal x[][MM_MAX_DIM], PetscReal g[][MM_MAX_DIM], PetscReal *vol)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SimplexGradients(dim, x, g, vol));
+  PetscFunctionReturn(0);
+}
+
 /* Assembles the stiffness (each cell's Lame lambda, mu from mat; plane strain in 2D) into K and the
  * consistent mass (its density rho) into M, one pass over the cells: K = sum_T K_T(lambda_T, mu_T),
  * M = sum_T rho_T M_T (docs/method.md section 2, "Bodies"). M may be NULL (a lumped mass needs

@@ -37,15 +37,18 @@ static PetscErrorCode CreateBodies(MMMaterial *mat, const MMFEProblem *o)
       body->E     = bo->E;
       body->nu    = bo->nu;
       body->rho   = bo->rho;
+      body->elasticity = bo->elasticity;
       for (PetscInt d = 0; d < MM_MAX_DIM; ++d) body->v0[d] = bo->v0[d];
     } else {
       body->name = "body";
       body->E    = o->E;
       body->nu   = o->nu;
       body->rho  = o->rho;
+      body->elasticity = o->elasticity;
       for (PetscInt d = 0; d < MM_MAX_DIM; ++d) body->v0[d] = o->v0[d];
     }
     BodyConstants(body);
+    if (body->elasticity != MM_ELASTICITY_LINEAR) mat->finite = PETSC_TRUE;
   }
   mat->uniform = PETSC_TRUE;
   mat->c_p_max = mat->body[0].c_p;

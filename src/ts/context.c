@@ -91,6 +91,7 @@ PetscErrorCode MMNewmarkDestroy(MMNewmark *nm)
   PetscCall(MMDampingDestroy(&(*nm)->damping));
   PetscCall(MMDeformationDestroy(&(*nm)->deform));
   PetscCall(MMMomentaDestroy(&(*nm)->momenta));
+  PetscCall(MMNonlinearDestroy(&(*nm)->nl));
   PetscCall(PetscFree(*nm));
   PetscFunctionReturn(0);
 }

@@ -135,6 +135,7 @@ PetscErrorCode MMDampingGetStepMatrix(MMDamping *d, Mat K, PetscReal dt, MMStepM
 {
   PetscFunctionBeginUser;
   (void)K; /* B is already K or its condensed form (MMDampingSetUp) */
+  PetscCall(PetscMemzero(sm, sizeof(*sm)));
   sm->dt = dt;
   sm->ck = 1.0;
   sm->cm = 4.0 / (dt * dt);

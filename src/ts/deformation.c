@@ -121,7 +121,7 @@ static inline void RecordPlace(const PetscInt dim, const PetscScalar *x, const P
 
 /* The pass over this rank's cells, dim a constant once inlined: the smallest det F and the largest
  * strain, each with its cell's reference centroid. */
-static inline void ScanCellsDim(const PetscInt dim, const MMDeformation *d, const PetscScalar *u, const PetscScalar *x, Worst *w)
+static inline void ScanCellsDim(const PetscInt dim, const PetscBool finite, const MMDeformation *d, const PetscScalar *u, const PetscScalar *x, Worst *w)
 {
   for (PetscInt c = 0; c < d->ncells; ++c) {
     const PetscInt *uo = &d->cell_u[(dim + 1) * c], *xo = &d->cell_x[(dim + 1) * c];
@@ -131,6 +131,9 @@ static inline void ScanCellsDim(const PetscInt dim, const MMDeformation *d, cons
     for (PetscInt i = 0; i < dim; ++i)
       for (PetscInt j = 0; j < dim; ++j) {
         e[i][j] = 0.5 * (G[i][j] + G[j][i]);
+        /* the finite-strain laws: the Green strain E = (F^T F - I)/2, which a rotation leaves zero */
+        if (finite)
+          for (PetscInt k = 0; k < dim; ++k) e[i][j] += 0.5 * G[k][i] * G[k][j];
         strain += e[i][j] * e[i][j];
       }
     /* the largest principal value is at most the Frobenius norm: the eigenvalues (with their
@@ -162,8 +165,8 @@ static PetscErrorCode ScanCells(MMNewmark nm, Vec ucart_local, Worst *w)
   PetscCall(DMGetCoordinatesLocal(nm->op->dm, &xl));
   PetscCall(VecGetArrayRead(ucart_local, &u));
   PetscCall(VecGetArrayRead(xl, &x));
-  if (nm->op->dim == 2) ScanCellsDim(2, d, u, x, w);
-  else ScanCellsDim(3, d, u, x, w);
+  if (nm->op->dim == 2) ScanCellsDim(2, nm->material->finite, d, u, x, w);
+  else ScanCellsDim(3, nm->material->finite, d, u, x, w);
   PetscCall(VecRestoreArrayRead(xl, &x));
   PetscCall(VecRestoreArrayRead(ucart_local, &u));
   PetscFunctionReturn(0);
@@ -193,6 +196,9 @@ static PetscErrorCode FormatPlace(PetscInt dim, const PetscReal at[], char s[], 
   else PetscCall(PetscSNPrintf(s, len, "(%.4g, %.4g, %.4g)", (double)at[0], (double)at[1], (double)at[2]));
   PetscFunctionReturn(0);
 }
+
+static PetscErrorCode CheckFiniteStrain(MMNewmark nm, const Worst *w, char place[]);
+static PetscErrorCode CheckSmallStrain(MMNewmark nm, const Worst *w);
 
 /* After each accepted step (and on the initial state): stop, warn once, or record. */
 PetscErrorCode MMDeformationCheck(MMNewmark nm)
@@ -229,6 +235,35 @@ PetscErrorCode MMDeformationCheck(MMNewmark nm)
   }
   PetscCall(FormatPlace(nm->op->dim, w.at_det, place, sizeof(place)));
   PetscCheck(w.detF > 0, comm, MM_ERR_PHYSICS, "At step %" PetscInt_FMT " (t = %g) the cell at %s has turned inside out (det F = %.3g): the body passes through itself, and the result is meaningless. The impact or the load is far too strong for a small-strain model: check -v0, the loads and the units (SI). The output up to the previous step is intact", h->step, (double)h->time, place, (double)w.detF);
+  if (nm->material->finite) PetscCall(CheckFiniteStrain(nm, &w, place));
+  else PetscCall(CheckSmallStrain(nm, &w));
+  PetscFunctionReturn(0);
+}
+
+/* The finite-strain laws hold at any strain, but are sensible only while a cell keeps at least half
+ * its volume: below, SVK softens to a collapse under compression and neither law is a material */
+static PetscErrorCode CheckFiniteStrain(MMNewmark nm, const Worst *w, char place[])
+{
+  MMDeformation *d = &nm->deform;
+
+  PetscFunctionBeginUser;
+  if (w->detF < 0.5 && !d->warned) {
+    d->warned = PETSC_TRUE;
+    PetscCall(PetscPrintf(nm->comm, "mmcontact warning: at step %" PetscInt_FMT " (t = %g) the cell at %s is compressed to J = det F = %.4g of its volume, below 0.5: a St. Venant-Kirchhoff material softens there towards collapse, and no elasticity law is a good model of a real material (warned once)\n", nm->hist.step, (double)nm->hist.time, place, (double)w->detF));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The linear law: its strain is the small-strain model's */
+static PetscErrorCode CheckSmallStrain(MMNewmark nm, const Worst *wp)
+{
+  MMDeformation   *d    = &nm->deform;
+  const MMHistory *h    = &nm->hist;
+  MPI_Comm         comm = nm->comm;
+  Worst            w    = *wp;
+  char             place[96];
+
+  PetscFunctionBeginUser;
   PetscCall(FormatPlace(nm->op->dim, w.at_strain, place, sizeof(place)));
   PetscCheck(w.strain <= nm->max_strain, comm, MM_ERR_PHYSICS, "At step %" PetscInt_FMT " (t = %g) the cell at %s has a strain of %.3g, above -max_strain %g: a small-strain model means nothing there. Check -v0, the loads and the units (SI), or raise -max_strain. The output up to the previous step is intact", h->step, (double)h->time, place, (double)w.strain, (double)nm->max_strain);
   if (w.strain > nm->strain_warn && !d->warned) {

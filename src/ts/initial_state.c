@@ -4,6 +4,21 @@
 #include "newmarkimpl.h"
 #include "fem.h"
 
+/* The internal force of the state u at t = 0: K u + lift, or the finite-strain law's P(F) (docs/method.md section 13) */
+static PetscErrorCode InternalForce(MMNewmark nm, Vec u, Vec f)
+{
+  PetscFunctionBeginUser;
+  if (nm->material->finite) {
+    MMElasticity *el = &nm->nl.el;
+    PetscCall(MMElasticityLocal(el, nm->op, nm->loads, u, 0.0, el->l1));
+    PetscCall(MMElasticityForce(el, nm->op, nm->material, el->l1, el->l1, f));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(MatMult(nm->op->K, u, f));
+  PetscCall(VecAXPY(f, 1.0, nm->op->lift));
+  PetscFunctionReturn(0);
+}
+
 /* Affine initial displacement u0 = a + B x */
 static PetscErrorCode InitialDisplacement(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar *u, void *ptr)
 {
@@ -105,9 +120,8 @@ static PetscErrorCode InitialAcceleration(MMNewmark nm)
     is = all;
   }
   PetscCall(VecDuplicate(s->u, &r));
-  PetscCall(MatMult(nm->op->K, s->u, r));
+  PetscCall(InternalForce(nm, s->u, r));
   PetscCall(VecAYPX(r, -1.0, nm->op->load));
-  PetscCall(VecAXPY(r, -1.0, nm->op->lift));
   PetscCall(VecAXPY(r, 1.0, s->react));
   PetscCall(MMDampingAddForce(&nm->damping, s->v, -1.0, r));
   PetscCall(MatCreateSubMatrix(nm->op->Mstar, is, is, MAT_INITIAL_MATRIX, &Mss));
@@ -169,6 +183,10 @@ PetscErrorCode MMNewmarkInitialState(MMNewmark nm)
     PetscCall(MMContactSetPreviousState(nm->contact, s->u_old, s->v_old)); /* the start of each step, for the contact solves */
   }
   PetscCall(MMContactGetNodes(nm->contact, &cn));
+  if (nm->material->finite) {
+    PetscCheck(nm->pb.initial_state == MM_INITIAL_GIVEN, nm->comm, PETSC_ERR_SUP, "-initial_state static and static_sliding solve a linear static problem: with -elasticity svk or neohookean only -initial_state given is supported yet");
+    PetscCall(MMNonlinearSetUp(nm));
+  }
   if (nm->pb.initial_state == MM_INITIAL_STATIC_SLIDING) PetscCall(TangentialInitialVelocity(nm));
   if (nm->material->named) PetscCall(BodiesInitialVelocity(nm, s->v));
   else PetscCall(ProjectInitialField(nm, InitialVelocity, s->v));
@@ -186,8 +204,7 @@ PetscErrorCode MMNewmarkInitialState(MMNewmark nm)
   /* f_c0 = K u0 + lift - L (+ C v0) on the massless dofs: their quasi-static equation */
   if (MMNewmarkHasMasslessDofs(nm) && nm->pb.initial_state == MM_INITIAL_GIVEN) {
     Vec rc, fc;
-    PetscCall(MatMult(nm->op->K, s->u, s->work));
-    PetscCall(VecAXPY(s->work, 1.0, nm->op->lift));
+    PetscCall(InternalForce(nm, s->u, s->work));
     PetscCall(VecAXPY(s->work, -1.0, nm->op->load));
     PetscCall(MMDampingAddForce(&nm->damping, s->v, 1.0, s->work));
     PetscCall(VecGetSubVector(s->work, cn.is_massless, &fc));

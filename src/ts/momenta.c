@@ -108,7 +108,7 @@ static PetscErrorCode AngularMomentum(MMNewmark nm, MMHistory *h)
   const PetscInt     dim = nm->op->dim;
   Vec                uc, vc, X;
   const PetscScalar *u, *v, *m, *x;
-  PetscReal          sum[1 + MM_MAX_DIM] = {0}, cm[MM_MAX_DIM], L[3] = {0, 0, 0};
+  PetscReal          sum[1 + MM_MAX_DIM] = {0}, cm[MM_MAX_DIM] = {0, 0, 0}, L[3] = {0, 0, 0};
   MPI_Comm           comm = PetscObjectComm((PetscObject)dm);
 
   PetscFunctionBeginUser;
@@ -129,8 +129,9 @@ static PetscErrorCode AngularMomentum(MMNewmark nm, MMHistory *h)
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, 1 + MM_MAX_DIM, MPIU_REAL, MPIU_SUM, comm));
   for (PetscInt d = 0; d < dim; ++d) cm[d] = sum[1 + d] / PetscMax(sum[0], PETSC_SMALL);
-  /* second pass: sum m (x + u - x_cm) x v */
-  for (PetscInt n = 0; n < mo->nv; ++n) {
+  /* the finite-strain laws: the scheme's own J about the current positions (CurrentPositionMoment), moved to
+   * x_cm, is conserved exactly; the lumped masses' L would drift by the lumping error */
+  for (PetscInt n = 0; n < mo->nv && !nm->material->finite; ++n) {
     const PetscInt i = mo->vert_u[n], xo = mo->vert_x[n];
     const PetscReal mp = PetscRealPart(m[i]);
     PetscReal       r[3] = {0, 0, 0}, w[3] = {0, 0, 0};
@@ -143,6 +144,12 @@ static PetscErrorCode AngularMomentum(MMNewmark nm, MMHistory *h)
     L[2] += mp * (r[0] * w[1] - r[1] * w[0]);
   }
   PetscCall(MPIU_Allreduce(L, h->L, 3, MPIU_REAL, MPIU_SUM, comm));
+  if (nm->material->finite) {
+    const PetscReal *P = h->P;
+    h->L[0] = h->J[0] - (cm[1] * P[2] - cm[2] * P[1]);
+    h->L[1] = h->J[1] - (cm[2] * P[0] - cm[0] * P[2]);
+    h->L[2] = h->J[2] - (cm[0] * P[1] - cm[1] * P[0]);
+  }
   PetscCall(VecRestoreArrayRead(X, &x));
   PetscCall(VecRestoreArrayRead(nm->op->mass_lumped_cart, &m));
   PetscCall(VecRestoreArrayRead(vc, &v));
@@ -166,6 +173,46 @@ static PetscErrorCode LoadResultant(MMNewmark nm, MMHistory *h)
   PetscCall(VecMDot(lc, nm->op->dim, mo->sel, r));
   for (PetscInt d = 0; d < MM_MAX_DIM; ++d) h->load[d] = d < nm->op->dim ? PetscRealPart(r[d]) : 0;
   PetscCall(DMRestoreGlobalVector(nm->op->dm, &lc));
+  PetscFunctionReturn(0);
+}
+
+/* The finite-strain laws: their algorithmic force has no moment about the mean position of the step
+ * (docs/method.md section 13), so the scheme's angular momentum is J = sum_i (X_i + u_i) x (M* v)_i,
+ * about the current positions: J gets sum_i u_i x (M* v)_i, over the same vertices. */
+static PetscErrorCode CurrentPositionMoment(MMNewmark nm, MMHistory *h)
+{
+  MMMomenta         *mo  = &nm->momenta;
+  DM                 dm  = nm->op->dm;
+  const PetscInt     dim = nm->op->dim;
+  Vec                uc, fc;
+  const PetscScalar *u, *f;
+  PetscReal          J[3] = {0, 0, 0};
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalVector(dm, &uc));
+  PetscCall(DMGetGlobalVector(dm, &fc));
+  PetscCall(MMFEToCartesian(nm->op, nm->state.u, uc));
+  PetscCall(MatMult(nm->op->Mstar, nm->state.v, nm->state.work));
+  PetscCall(MMFEForceToCartesian(nm->op, nm->state.work, fc));
+  PetscCall(VecGetArrayRead(uc, &u));
+  PetscCall(VecGetArrayRead(fc, &f));
+  for (PetscInt n = 0; n < mo->nv; ++n) {
+    const PetscInt i = mo->vert_u[n];
+    PetscReal      r[3] = {0, 0, 0}, p[3] = {0, 0, 0};
+    for (PetscInt d = 0; d < dim; ++d) {
+      r[d] = PetscRealPart(u[i + d]);
+      p[d] = PetscRealPart(f[i + d]);
+    }
+    J[0] += r[1] * p[2] - r[2] * p[1];
+    J[1] += r[2] * p[0] - r[0] * p[2];
+    J[2] += r[0] * p[1] - r[1] * p[0];
+  }
+  PetscCall(VecRestoreArrayRead(fc, &f));
+  PetscCall(VecRestoreArrayRead(uc, &u));
+  PetscCall(DMRestoreGlobalVector(dm, &fc));
+  PetscCall(DMRestoreGlobalVector(dm, &uc));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, J, 3, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)dm)));
+  for (PetscInt k = 0; k < 3; ++k) h->J[k] += J[k];
   PetscFunctionReturn(0);
 }
 
@@ -202,6 +249,7 @@ PetscErrorCode MMRigidBodyDiagnostics(MMNewmark nm, MMHistory *h)
   if (dim == 3)
     for (PetscInt k = 0; k < 3; ++k) h->J[k] = PetscRealPart(sv[2 * dim + k]);
   else h->J[2] = PetscRealPart(sv[2 * dim]);
+  if (nm->material->finite) PetscCall(CurrentPositionMoment(nm, h));
   if (h->step == 0 || nm->loads->in_time) PetscCall(LoadResultant(nm, h));
   PetscCall(AngularMomentum(nm, h));
   PetscCall(PetscLogEventEnd(MM_TS_Momenta, 0, 0, 0, 0));

@@ -68,7 +68,8 @@ static PetscErrorCode SaveOldState(MMState *s)
 /* Why a step is rejected and retried with a smaller dt. */
 typedef enum {
   MM_REJECT_FRICTION,    /* the friction loop did not converge (Theorem 4.2's condition fails) */
-  MM_REJECT_CONTACT_WORK /* a release the step does not resolve creates energy */
+  MM_REJECT_CONTACT_WORK, /* a release the step does not resolve creates energy */
+  MM_REJECT_NONLINEAR     /* the finite-strain step's iteration did not converge */
 } MMRejectReason;
 
 /* A rejected step is retried with dt times TSAdapt's -ts_adapt_scale_solve_failed, down to
@@ -100,6 +101,10 @@ static PetscErrorCode RejectStep(TS ts, MMNewmark nm, PetscInt rejections, MMRej
                "The friction loop does not converge at t = %g: last dt = %g, observed contraction factor %.3f, c_p dt / h_c' = %.3f. The next dt %g would be below -ts_adapt_dt_min %g (or past -ts_max_reject %" PetscInt_FMT "). The paper's fixed point (Theorem 4.2) needs c_p dt / h_c' small enough for mu = %g: use -friction_type newton, or lower -ts_dt or -mu, or raise -friction_snes_max_it. The output up to t = %g is intact",
                (double)ts->ptime, (double)dt, (double)contraction, (double)cfl, (double)new_dt, (double)hmin, ts->max_reject, (double)nm->pb.mu, (double)ts->ptime);
     if (!nm->pb.quiet) PetscCall(PetscPrintf(comm, "  step rejected at t = %g: the friction loop did not converge with dt = %g (contraction factor %.3f, c_p dt / h_c' = %.3f); retrying with dt = %g\n", (double)ts->ptime, (double)dt, (double)contraction, (double)cfl, (double)new_dt));
+  } else if (why == MM_REJECT_NONLINEAR) {
+    PetscCheck(can_retry, comm, PETSC_ERR_NOT_CONVERGED, "The finite-strain step does not converge at t = %g: after %" PetscInt_FMT " iterations (-nonlinear_max_it) its residual is %.3g of the internal force (-nonlinear_rtol %g), with dt = %g. The next dt %g would be below -ts_adapt_dt_min %g (or past -ts_max_reject %" PetscInt_FMT "). Lower -ts_dt, raise -nonlinear_max_it, or use -nonlinear_tangent step. The output up to t = %g is intact",
+               (double)ts->ptime, nm->nl.max_it, (double)nm->nl.residual, (double)nm->nl.rtol, (double)dt, (double)new_dt, (double)hmin, ts->max_reject, (double)ts->ptime);
+    if (!nm->pb.quiet) PetscCall(PetscPrintf(comm, "  step rejected at t = %g: the finite-strain step did not converge with dt = %g (residual %.3g after %" PetscInt_FMT " iterations); retrying with dt = %g\n", (double)ts->ptime, (double)dt, (double)nm->nl.residual, nm->nl.max_it, (double)new_dt));
   } else {
     PetscCheck(can_retry, comm, PETSC_ERR_NOT_CONVERGED,
                "A contact release at t = %g creates energy that dt does not resolve: the step's contact work W_c = %g is %.3g of the energy scale, above -contact_work_tol %g, with dt = %g (c_p dt / h_c' = %.3g). The next dt %g would be below -ts_adapt_dt_min %g (or past -ts_max_reject %" PetscInt_FMT "). Use a -ts_dt near h_c' / c_p = %g, so that the contact pressure is resolved in time. The output up to t = %g is intact",
@@ -165,16 +170,25 @@ static PetscErrorCode TSStep_Newmark(TS ts)
     MMStepMatrix sm;
 
     dt = ts->time_step;
-    PetscCall(MMDampingGetStepMatrix(&nm->damping, nm->op->K, dt, &sm));
+    if (nm->material->finite) PetscCall(MMNonlinearStepMatrix(nm, dt, &sm));
+    else PetscCall(MMDampingGetStepMatrix(&nm->damping, nm->op->K, dt, &sm));
     PetscCall(MMContactSetStepMatrix(nm->contact, &sm));
     PetscCall(MMContactSetTime(nm->contact, ts->ptime + dt, dt));
     PetscCall(MMLoadsSetTime(nm->loads, ts->ptime, ts->ptime + dt)); /* L^{n+1} and the lift of u_D(t^{n+1}) */
     PetscCall(MMContactGetRHS(nm->contact, &b));
-    PetscCall(StepRHS(nm, dt, b));
     /* predictor u + dt v + dt^2/4 a: exact for constant acceleration */
     PetscCall(VecAXPBYPCZ(w, dt, 0.25 * dt * dt, 0.0, s->v, s->a));
     PetscCall(VecAXPY(w, 1.0, s->u));
-    PetscCall(MMFrictionSolve(nm->friction, nm->hist.step, nm->hist.time, b, w, s->react, &solved));
+    if (nm->material->finite) {
+      PetscCall(MMNonlinearSolve(nm, ts->ptime, dt, b, w, &solved));
+      if (!solved) {
+        PetscCall(RejectStep(ts, nm, ++rejections, MM_REJECT_NONLINEAR, 0, 0));
+        continue;
+      }
+    } else {
+      PetscCall(StepRHS(nm, dt, b));
+      PetscCall(MMFrictionSolve(nm->friction, nm->hist.step, nm->hist.time, b, w, s->react, &solved));
+    }
     if (!solved) {
       PetscCall(RejectStep(ts, nm, ++rejections, MM_REJECT_FRICTION, 0, 0));
       continue;

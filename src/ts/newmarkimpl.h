@@ -22,6 +22,29 @@ typedef struct {
   PetscInt *vert_u, *vert_x;    /* their offsets in the owned part of a global vector and in the local coordinates */
 } MMMomenta;
 
+/* The finite-strain step (nonlinear.c, docs/method.md section 13): a modified Newton iteration on the
+ * algorithmic internal force, each iterate one contact (and friction) solve of the step matrix
+ * K_s + 4/dt^2 M*, K_s the reference stiffness or a tangent rebuilt when it stops paying. */
+typedef enum {
+  MM_TANGENT_AUTO,      /* K_s kept while the iteration contracts fast, rebuilt at the iterate when not */
+  MM_TANGENT_REFERENCE, /* K_s = K, the reference stiffness, all run: one factor */
+  MM_TANGENT_STEP       /* K_s rebuilt at u^n every step */
+} MMTangentPolicy;
+PETSC_INTERN const char *const MMTangentPolicies[];
+typedef struct {
+  MMElasticity    el;
+  MMTangentPolicy policy;      /* -nonlinear_tangent */
+  PetscReal       rtol;        /* -nonlinear_rtol: the force residual, relative to the internal force */
+  PetscInt        max_it;      /* -nonlinear_max_it */
+  PetscReal       refresh;     /* -nonlinear_refresh_ratio: auto rebuilds K_s when an iteration contracts less */
+  Mat             Ks;          /* the iteration stiffness when not K (w-frame, K's pattern) */
+  PetscInt        version;     /* counts the rebuilds of Ks: contact rebuilds K~ when it changes */
+  PetscBool       use_tangent; /* Ks, not K, is in K~ */
+  Vec             bnl, f, c, c_prev; /* the step's fixed right-hand side; 2 f_alg; K_s w - 2 f_alg at this iterate and the last */
+  PetscInt        its, its_total, rebuilds; /* the last step's iterations; over the run */
+  PetscReal       residual;    /* the last step's final relative residual */
+} MMNonlinear;
+
 struct _p_MMNewmark {
   MPI_Comm         comm;
   MMNewmarkProblem pb;
@@ -42,6 +65,7 @@ struct _p_MMNewmark {
   MMDamping     damping;
   MMDeformation deform;
   MMMomenta     momenta;
+  MMNonlinear   nl;     /* the finite-strain laws' step (material->finite) */
 };
 
 /* The dofs without inertia: the contact-normal dofs under the modified mass, none otherwise. */
@@ -66,4 +90,10 @@ PETSC_INTERN PetscErrorCode MMDampingAddStepRHS(MMDamping *d, Vec u, PetscReal d
 PETSC_INTERN PetscErrorCode MMDampingUpdateVelocity(MMDamping *d, Vec u, Vec u_old, PetscReal dt);
 PETSC_INTERN PetscErrorCode MMDampingWork(MMDamping *d, Vec du, PetscReal dt, PetscReal *w);
 PETSC_INTERN PetscErrorCode MMNewmarkRegister(void);
+PETSC_INTERN PetscErrorCode MMNonlinearSetFromOptions(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMNonlinear *nl);
+PETSC_INTERN PetscErrorCode MMNonlinearSetUp(MMNewmark nm);
+PETSC_INTERN PetscErrorCode MMNonlinearStepMatrix(MMNewmark nm, PetscReal dt, MMStepMatrix *sm);
+PETSC_INTERN PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b, Vec w, PetscBool *solved);
+PETSC_INTERN PetscErrorCode MMNonlinearElasticEnergy(MMNewmark nm, Vec u, PetscReal t, PetscReal *energy);
+PETSC_INTERN PetscErrorCode MMNonlinearDestroy(MMNonlinear *nl);
 PETSC_INTERN PetscErrorCode MMAdaptGrowBackRegister(void);

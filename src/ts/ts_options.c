@@ -22,6 +22,7 @@ PetscErrorCode MMNewmarkSetFromOptions(MMNewmark nm)
   nm->max_strain = 1.0;
   PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-max_strain", "Stop the run when a cell's strain exceeds this, >= -strain_warn: the small-strain model's result is then meaningless (a cell turned inside out always stops the run)", &nm->max_strain));
   PetscCall(MMDampingSetFromOptions(PetscOptionsObject, comm, &nm->damping));
+  PetscCall(MMNonlinearSetFromOptions(PetscOptionsObject, comm, &nm->nl));
   PetscOptionsEnd();
   PetscCheck(nm->audit_tol > 0, comm, PETSC_ERR_USER_INPUT, "-audit_tol %g must be > 0: it is a relative energy-balance residual", (double)nm->audit_tol);
   PetscCheck(nm->contact_work_tol > 0, comm, PETSC_ERR_USER_INPUT, "-contact_work_tol %g must be > 0: it is a fraction of the run's energy scale", (double)nm->contact_work_tol);

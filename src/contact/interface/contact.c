@@ -176,10 +176,12 @@ static PetscErrorCode StepMatrixAssemble(MMContact ct, const MMStepMatrix *sm, M
 PetscErrorCode MMContactSetStepMatrix(MMContact ct, const MMStepMatrix *sm)
 {
   const PetscReal dt = sm->dt;
+  const Mat       K  = sm->K ? sm->K : ct->op->K;
 
   PetscFunctionBeginUser;
-  if (ct->qp.A && ct->Kt_dt == dt) PetscFunctionReturn(0);
-  if (ct->qp.A && ct->ops->swapkept && ct->opt.keep_factor) {
+  if (ct->qp.A && ct->Kt_dt == dt && ct->Kt_version == sm->version) PetscFunctionReturn(0);
+  /* the kept factors are of fem's K: a tangent's K~ is built anew */
+  if (ct->qp.A && ct->ops->swapkept && ct->opt.keep_factor && !sm->K) {
     PetscBool hit;
     PetscCall(PetscLogEventBegin(MMCONTACT_KtReuse, 0, 0, 0, 0));
     PetscCall((*ct->ops->swapkept)(ct, dt, &hit));
@@ -189,12 +191,12 @@ PetscErrorCode MMContactSetStepMatrix(MMContact ct, const MMStepMatrix *sm)
   }
   PetscCall(PetscLogEventBegin(MMCONTACT_Assemble, 0, 0, 0, 0));
   if (!ct->qp.b) {
-    PetscCall(MatDuplicate(ct->op->K, MAT_COPY_VALUES, &ct->qp.A));
+    PetscCall(MatDuplicate(K, MAT_COPY_VALUES, &ct->qp.A));
     PetscCall(MatCreateVecs(ct->qp.A, &ct->qp.b, NULL));
     ct->qp.rtol_b = ct->tol;
     if (ct->ops->setup) PetscCall((*ct->ops->setup)(ct));
-  } else if (!ct->qp.A) PetscCall(MatDuplicate(ct->op->K, MAT_COPY_VALUES, &ct->qp.A));
-  else PetscCall(MatCopy(ct->op->K, ct->qp.A, SAME_NONZERO_PATTERN));
+  } else if (!ct->qp.A) PetscCall(MatDuplicate(K, MAT_COPY_VALUES, &ct->qp.A));
+  else PetscCall(MatCopy(K, ct->qp.A, SAME_NONZERO_PATTERN));
   /* B is K or K with the massless dofs condensed out, no larger: ck + cb bounds the stiffness */
   PetscCall(CheckStepMatrixArithmetic(ct, dt, sm->ck + sm->cb, sm->cm));
   PetscCall(StepMatrixAssemble(ct, sm, ct->qp.A));
@@ -204,7 +206,8 @@ PetscErrorCode MMContactSetStepMatrix(MMContact ct, const MMStepMatrix *sm)
    * faster than as symmetric indefinite on the 113k-dof D2 ball, with a 1% smaller factor */
   PetscCall(MatSetOption(ct->qp.A, MAT_SPD, PETSC_TRUE));
   PetscCall(MatSetOption(ct->qp.A, MAT_SPD_ETERNAL, PETSC_TRUE));
-  ct->Kt_dt = dt;
+  ct->Kt_dt      = dt;
+  ct->Kt_version = sm->version;
   if (ct->ops->setoperator) PetscCall((*ct->ops->setoperator)(ct));
   PetscCall(PetscLogEventEnd(MMCONTACT_Assemble, 0, 0, 0, 0));
   PetscFunctionReturn(0);

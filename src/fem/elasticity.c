@@ -1,0 +1,227 @@
+/* The total Lagrangian P1 internal force of the finite-strain laws (docs/method.md section 13).
+ *
+ * On the reference mesh, F = Ii + grad u is constant per cell; a cell's algorithmic force on its
+ * vertex a is |T| P_alg grad phi_a, with P_alg the law's algorithmic stress of the step
+ * (src/fem/elasticity_laws.c). The vectors are local Cartesian vectors of the operators' DM with the
+ * Dirichlet data inserted, so the boundary's motion enters the force as any other; the force is
+ * returned on the free dofs in the w-frame, as the linear K w + lift is. */
+#include "elasticityimpl.h"
+#include "assembly_p1.h"
+#include "mesh.h"
+
+#define MM_NV_MAX (MM_MAX_DIM + 1)
+
+PetscErrorCode MMElasticitySetUp(MMElasticity *el, const MMOperators *op)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(!op->N, PetscObjectComm((PetscObject)op->dm), PETSC_ERR_SUP, "-elasticity svk and neohookean do not yet support contact pairs (a second elastic body as obstacle): use -elasticity linear for two-body contact");
+  PetscCall(DMCreateLocalVector(op->dm, &el->l0));
+  PetscCall(VecDuplicate(el->l0, &el->l1));
+  PetscCall(VecDuplicate(el->l0, &el->lf));
+  PetscCall(DMCreateGlobalVector(op->dm, &el->g));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMElasticityDestroy(MMElasticity *el)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecDestroy(&el->l0));
+  PetscCall(VecDestroy(&el->l1));
+  PetscCall(VecDestroy(&el->lf));
+  PetscCall(VecDestroy(&el->g));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMElasticityLocal(MMElasticity *el, const MMOperators *op, MMLoads *ld, Vec w, PetscReal t, Vec l)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMFEToCartesian(op, w, el->g));
+  PetscCall(VecZeroEntries(l));
+  PetscCall(DMGlobalToLocal(op->dm, el->g, INSERT_VALUES, l));
+  PetscCall(MMLoadsInsertBoundaryValues(ld, l, t));
+  PetscFunctionReturn(0);
+}
+
+/* What the cell loops read: the local section, the coordinates, and the displacement arrays */
+typedef struct {
+  const MMOperators *op;
+  const MMMaterial  *mat;
+  PetscSection       ls, cs;
+  const PetscScalar *xc, *u0, *u1;
+} CellData;
+
+static PetscErrorCode CellDataGet(const MMOperators *op, const MMMaterial *mat, CellData *cd)
+{
+  Vec coords;
+
+  PetscFunctionBeginUser;
+  cd->op  = op;
+  cd->mat = mat;
+  PetscCall(DMGetLocalSection(op->dm, &cd->ls));
+  PetscCall(DMGetCoordinateSection(op->dm, &cd->cs));
+  PetscCall(DMGetCoordinatesLocal(op->dm, &coords));
+  PetscCall(VecGetArrayRead(coords, &cd->xc));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CellDataRestore(CellData *cd)
+{
+  Vec coords;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetCoordinatesLocal(cd->op->dm, &coords));
+  PetscCall(VecRestoreArrayRead(coords, &cd->xc));
+  PetscFunctionReturn(0);
+}
+
+/* Cell c's vertices' offsets in the local vectors, its P1 gradients and volume */
+static PetscErrorCode CellGeometry(const CellData *cd, PetscInt c, PetscInt off[], PetscReal g[][MM_MAX_DIM], PetscReal *vol)
+{
+  const PetscInt  dim = cd->op->dim;
+  const PetscInt *v   = &cd->op->cells.vertex[(dim + 1) * (c - cd->op->cells.cStart)];
+  PetscReal       X[MM_NV_MAX][MM_MAX_DIM];
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a <= dim; ++a) {
+    PetscInt xo;
+    PetscCall(PetscSectionGetOffset(cd->cs, v[a], &xo));
+    PetscCall(PetscSectionGetOffset(cd->ls, v[a], &off[a]));
+    for (PetscInt i = 0; i < dim; ++i) X[a][i] = PetscRealPart(cd->xc[xo + i]);
+  }
+  PetscCall(MMP1CellGradients(dim, (const PetscReal(*)[MM_MAX_DIM])X, g, vol));
+  PetscFunctionReturn(0);
+}
+
+/* F = Ii + sum_a u_a (x) grad phi_a */
+static void DeformationGradient(PetscInt dim, const PetscScalar *u, const PetscInt off[], const PetscReal g[][MM_MAX_DIM], PetscReal F[MM_MAX_DIM][MM_MAX_DIM])
+{
+  for (PetscInt i = 0; i < dim; ++i)
+    for (PetscInt J = 0; J < dim; ++J) {
+      F[i][J] = (i == J) ? 1 : 0;
+      for (PetscInt a = 0; a <= dim; ++a) F[i][J] += PetscRealPart(u[off[a] + i]) * g[a][J];
+    }
+}
+
+static inline const MMElasticityOps *CellLaw(const MMMaterial *mat, PetscInt cl)
+{
+  return MMElasticityGetOps(mat->body[mat->cell_body[cl]].elasticity);
+}
+
+/* The smallest det F over the mesh (all ranks) */
+static PetscErrorCode ReduceDetF(MPI_Comm comm, PetscReal *detF)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, detF, 1, MPIU_REAL, MPIU_MIN, comm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMElasticityForce(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l0, Vec l1, Vec fw)
+{
+  const PetscInt dim = op->dim;
+  CellData       cd;
+  PetscScalar   *f;
+  PetscReal      detF = PETSC_MAX_REAL;
+
+  PetscFunctionBeginUser;
+  PetscCall(CellDataGet(op, mat, &cd));
+  PetscCall(VecGetArrayRead(l0, &cd.u0));
+  PetscCall(VecGetArrayRead(l1, &cd.u1));
+  PetscCall(VecZeroEntries(el->lf));
+  PetscCall(VecGetArray(el->lf, &f));
+  for (PetscInt cl = 0; cl < op->cells.ncells; ++cl) {
+    const MMElasticityOps *law = CellLaw(mat, cl);
+    PetscInt               off[MM_NV_MAX];
+    PetscReal              g[MM_NV_MAX][MM_MAX_DIM], vol, F0[MM_MAX_DIM][MM_MAX_DIM], F1[MM_MAX_DIM][MM_MAX_DIM], P[MM_MAX_DIM][MM_MAX_DIM];
+
+    PetscCall(CellGeometry(&cd, cl + op->cells.cStart, off, g, &vol));
+    DeformationGradient(dim, cd.u0, off, (const PetscReal(*)[MM_MAX_DIM])g, F0);
+    DeformationGradient(dim, cd.u1, off, (const PetscReal(*)[MM_MAX_DIM])g, F1);
+    detF = PetscMin(detF, MMDetInverse(dim, (const PetscReal(*)[MM_MAX_DIM])F1, NULL));
+    law->stress_alg(dim, mat->lambda[cl], mat->mu[cl], (const PetscReal(*)[MM_MAX_DIM])F0, (const PetscReal(*)[MM_MAX_DIM])F1, P);
+    for (PetscInt a = 0; a <= dim; ++a)
+      for (PetscInt i = 0; i < dim; ++i) {
+        PetscReal r = 0;
+        for (PetscInt J = 0; J < dim; ++J) r += P[i][J] * g[a][J];
+        f[off[a] + i] += vol * r;
+      }
+  }
+  PetscCall(VecRestoreArray(el->lf, &f));
+  PetscCall(VecRestoreArrayRead(l1, &cd.u1));
+  PetscCall(VecRestoreArrayRead(l0, &cd.u0));
+  PetscCall(CellDataRestore(&cd));
+  PetscCall(ReduceDetF(PetscObjectComm((PetscObject)op->dm), &detF));
+  el->detF_min = detF;
+  PetscCall(VecZeroEntries(el->g));
+  PetscCall(DMLocalToGlobal(op->dm, el->lf, ADD_VALUES, el->g)); /* the Dirichlet dofs drop out */
+  PetscCall(MMFEForceFromCartesian(op, el->g, fw));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMElasticityEnergy(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, PetscReal *energy)
+{
+  const PetscInt dim = op->dim;
+  CellData       cd;
+  PetscReal      e = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(CellDataGet(op, mat, &cd));
+  PetscCall(VecGetArrayRead(l, &cd.u1));
+  for (PetscInt cl = 0; cl < op->cells.ncells; ++cl) {
+    PetscInt  off[MM_NV_MAX];
+    PetscReal g[MM_NV_MAX][MM_MAX_DIM], vol, F[MM_MAX_DIM][MM_MAX_DIM];
+
+    PetscCall(CellGeometry(&cd, cl + op->cells.cStart, off, g, &vol));
+    DeformationGradient(dim, cd.u1, off, (const PetscReal(*)[MM_MAX_DIM])g, F);
+    e += vol * CellLaw(mat, cl)->energy(dim, mat->lambda[cl], mat->mu[cl], (const PetscReal(*)[MM_MAX_DIM])F);
+  }
+  PetscCall(VecRestoreArrayRead(l, &cd.u1));
+  PetscCall(CellDataRestore(&cd));
+  PetscCall(MPIU_Allreduce(&e, energy, 1, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)op->dm)));
+  PetscFunctionReturn(0);
+}
+
+/* The tangent's element matrix: K_e[a i][b k] = |T| grad phi_a,J A_iJkL grad phi_b,L */
+static PetscErrorCode TangentElement(void *ctx, PetscInt c, const PetscInt v[], const PetscReal g[][MM_MAX_DIM], PetscReal vol, PetscScalar Ke[])
+{
+  const CellData *cd  = (const CellData *)ctx;
+  const PetscInt  dim = cd->op->dim, n = (dim + 1) * dim, cl = c - cd->op->cells.cStart;
+  PetscInt        off[MM_NV_MAX];
+  PetscReal       F[MM_MAX_DIM][MM_MAX_DIM];
+  MMTangent       A;
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a <= dim; ++a) PetscCall(PetscSectionGetOffset(cd->ls, v[a], &off[a]));
+  DeformationGradient(dim, cd->u1, off, g, F);
+  CellLaw(cd->mat, cl)->tangent(dim, cd->mat->lambda[cl], cd->mat->mu[cl], (const PetscReal(*)[MM_MAX_DIM])F, A);
+  for (PetscInt a = 0; a <= dim; ++a)
+    for (PetscInt i = 0; i < dim; ++i)
+      for (PetscInt b = 0; b <= dim; ++b)
+        for (PetscInt k = 0; k < dim; ++k) {
+          PetscReal s = 0;
+          for (PetscInt J = 0; J < dim; ++J)
+            for (PetscInt L = 0; L < dim; ++L) s += g[a][J] * A[i][J][k][L] * g[b][L];
+          Ke[(a * dim + i) * n + b * dim + k] = vol * s;
+        }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMElasticityTangent(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, Mat Kw)
+{
+  CellData cd;
+
+  PetscFunctionBeginUser;
+  PetscCall(CellDataGet(op, mat, &cd));
+  PetscCall(VecGetArrayRead(l, &cd.u1));
+  PetscCall(MMAssembleP1Elements(op->dm, Kw, TangentElement, &cd));
+  PetscCall(VecRestoreArrayRead(l, &cd.u1));
+  PetscCall(CellDataRestore(&cd));
+  if (op->Q) PetscCall(MMRotateP1(op->Q, Kw, NULL)); /* into the contact nodes' frames, as K is */
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMElasticityCauchy(const MMMaterial *mat, PetscInt cl, PetscInt dim, const PetscReal F[MM_MAX_DIM][MM_MAX_DIM], PetscReal sigma[MM_MAX_DIM][MM_MAX_DIM])
+{
+  PetscFunctionBeginUser;
+  CellLaw(mat, cl)->cauchy(dim, mat->lambda[cl], mat->mu[cl], F, sigma);
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,187 @@
+/* The step of the finite-strain laws (docs/method.md section 13): the energy-momentum scheme
+ *
+ *   M* (v^{n+1} - v^n) = dt [ (L^n + L^{n+1})/2 - (r^n + r^{n+1})/2 - f_alg(u^n, u^{n+1}) ],
+ *   u^{n+1} - u^n = dt/2 (v^n + v^{n+1}),
+ *
+ * with f_alg the algorithmic internal force (src/fem/elasticity.c), r the contact reactions, and the
+ * contact and friction laws at t^{n+1} as in the linear scheme. Eliminating v^{n+1}, one problem for
+ * w = u^{n+1}:
+ *
+ *   4/dt^2 M* w + 2 f_alg(u^n, w) + r^{n+1} = b_nl = M* (4/dt^2 u^n + 4/dt v^n) + L^n + L^{n+1} - r^n.
+ *
+ * For the linear law 2 f_alg = K (u^n + w) + 2 lift, and this is the trapezoidal step exactly.
+ *
+ * It is solved by a modified Newton iteration whose every iterate is one linear contact problem of
+ * the step matrix K~ = K_s + 4/dt^2 M*: K~ w^{k+1} + r = b_nl + K_s w^k - 2 f_alg(u^n, w^k), solved by the
+ * contact formulation and the friction solver exactly as a linear step. At its fixed point the
+ * nonlinear step holds with the contact and Coulomb laws exact. K_s is the reference stiffness K
+ * (whose factor and Delassus columns serve the whole run) until an iteration contracts too slowly,
+ * large rotations for instance; then the tangent at the iterate replaces it. */
+#include "newmarkimpl.h"
+#include "fem.h"
+#include "friction.h"
+#include "sys.h"
+
+const char *const MMTangentPolicies[] = {"auto", "reference", "step", "MMTangentPolicy", "MM_TANGENT_", NULL};
+
+PetscErrorCode MMNonlinearSetFromOptions(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMNonlinear *nl)
+{
+  PetscFunctionBeginUser;
+  nl->policy = MM_TANGENT_AUTO;
+  PetscCall(MMOptionsEnum(PetscOptionsObject, comm, "-nonlinear_tangent", "The iteration matrix of the finite-strain step (-elasticity svk, neohookean): auto (the reference stiffness K until an iteration contracts by less than -nonlinear_refresh_ratio, then the tangent at the iterate), reference (K all run) or step (the tangent at the step's start, every step)", MMTangentPolicies, (PetscEnum *)&nl->policy));
+  nl->rtol = 1e-10;
+  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-nonlinear_rtol", "The finite-strain step's iteration stops when the change of its force correction is below this times the internal force (> 0)", &nl->rtol));
+  nl->max_it = 30;
+  PetscCall(MMOptionsInt(PetscOptionsObject, comm, "-nonlinear_max_it", "Most iterations of the finite-strain step (>= 1); past them the step is rejected and retried with a smaller dt", &nl->max_it));
+  nl->refresh = 0.1;
+  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-nonlinear_refresh_ratio", "-nonlinear_tangent auto: rebuild the iteration matrix at the iterate when an iteration reduces the residual by less than this factor (in (0, 1))", &nl->refresh));
+  PetscCheck(nl->rtol > 0, comm, PETSC_ERR_USER_INPUT, "-nonlinear_rtol %g must be > 0", (double)nl->rtol);
+  PetscCheck(nl->max_it >= 1, comm, PETSC_ERR_USER_INPUT, "-nonlinear_max_it %" PetscInt_FMT " must be >= 1", nl->max_it);
+  PetscCheck(nl->refresh > 0 && nl->refresh < 1, comm, PETSC_ERR_USER_INPUT, "-nonlinear_refresh_ratio %g must be in (0, 1)", (double)nl->refresh);
+  PetscFunctionReturn(0);
+}
+
+/* What the finite-strain step does not support yet, refused before the run starts */
+static PetscErrorCode CheckSupported(MMNewmark nm)
+{
+  MPI_Comm comm = nm->comm;
+
+  PetscFunctionBeginUser;
+  PetscCheck(!MMDampingOn(&nm->damping), comm, PETSC_ERR_SUP, "-elasticity svk and neohookean do not take Rayleigh damping yet (-damping_*): its stiffness part, beta K, would damp rigid rotations. Use -elasticity linear with damping");
+  PetscCheck(!nm->loads->moving, comm, PETSC_ERR_SUP, "-elasticity svk and neohookean do not take moving Dirichlet boundaries yet (a -dirichlet_NAME_velocity or a value with an amplitude): fix the boundary, or use -elasticity linear");
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMNonlinearSetUp(MMNewmark nm)
+{
+  MMNonlinear *nl = &nm->nl;
+
+  PetscFunctionBeginUser;
+  PetscCall(CheckSupported(nm));
+  PetscCall(MMElasticitySetUp(&nl->el, nm->op));
+  PetscCall(VecDuplicate(nm->state.u, &nl->bnl));
+  PetscCall(VecDuplicate(nm->state.u, &nl->f));
+  PetscCall(VecDuplicate(nm->state.u, &nl->c));
+  PetscCall(VecDuplicate(nm->state.u, &nl->c_prev));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMNonlinearDestroy(MMNonlinear *nl)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMElasticityDestroy(&nl->el));
+  PetscCall(MatDestroy(&nl->Ks));
+  PetscCall(VecDestroy(&nl->bnl));
+  PetscCall(VecDestroy(&nl->f));
+  PetscCall(VecDestroy(&nl->c));
+  PetscCall(VecDestroy(&nl->c_prev));
+  PetscFunctionReturn(0);
+}
+
+/* The stored energy of the state u (w-frame) with the Dirichlet data of time t */
+PetscErrorCode MMNonlinearElasticEnergy(MMNewmark nm, Vec u, PetscReal t, PetscReal *energy)
+{
+  MMElasticity *el = &nm->nl.el;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMElasticityLocal(el, nm->op, nm->loads, u, t, el->l1));
+  PetscCall(MMElasticityEnergy(el, nm->op, nm->material, el->l1, energy));
+  PetscFunctionReturn(0);
+}
+
+/* K~ = K_s + 4/dt^2 M*, with K_s the current iteration stiffness */
+PetscErrorCode MMNonlinearStepMatrix(MMNewmark nm, PetscReal dt, MMStepMatrix *sm)
+{
+  MMNonlinear *nl = &nm->nl;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMDampingGetStepMatrix(&nm->damping, nm->op->K, dt, sm));
+  sm->K       = nl->use_tangent ? nl->Ks : NULL;
+  sm->version = nl->use_tangent ? nl->version : 0;
+  PetscFunctionReturn(0);
+}
+
+/* K_s <- the tangent at the local state l, and K~ rebuilt on it */
+static PetscErrorCode RebuildTangent(MMNewmark nm, PetscReal dt, Vec l)
+{
+  MMNonlinear *nl = &nm->nl;
+  MMStepMatrix sm;
+
+  PetscFunctionBeginUser;
+  if (!nl->Ks) PetscCall(MatDuplicate(nm->op->K, MAT_DO_NOT_COPY_VALUES, &nl->Ks));
+  PetscCall(MMElasticityTangent(&nl->el, nm->op, nm->material, l, nl->Ks));
+  nl->use_tangent = PETSC_TRUE;
+  nl->version++;
+  nl->rebuilds++;
+  PetscCall(MMNonlinearStepMatrix(nm, dt, &sm));
+  PetscCall(MMContactSetStepMatrix(nm->contact, &sm));
+  PetscFunctionReturn(0);
+}
+
+/* b_nl = M* (4/dt^2 u^n + 4/dt v^n) + L^n + L^{n+1} - r^n */
+static PetscErrorCode FixedRHS(MMNewmark nm, PetscReal dt, Vec bnl)
+{
+  MMState *s = &nm->state;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecAXPBYPCZ(s->work, 4.0 / (dt * dt), 4.0 / dt, 0.0, s->u, s->v));
+  PetscCall(MatMult(nm->op->Mstar, s->work, bnl));
+  PetscCall(VecAXPY(bnl, 1.0, nm->op->load));
+  PetscCall(VecAXPY(bnl, 1.0, nm->loads->in_time ? nm->loads->load_old : nm->op->load));
+  PetscCall(VecAXPY(bnl, -1.0, s->react_old));
+  PetscFunctionReturn(0);
+}
+
+/* c = K_s w - 2 f_alg(u^n, w), from the local u^n in el.l0; *scale = |2 f_alg| */
+static PetscErrorCode Correction(MMNewmark nm, PetscReal t1, Vec w, Vec c, PetscReal *scale)
+{
+  MMNonlinear  *nl = &nm->nl;
+  MMElasticity *el = &nl->el;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMElasticityLocal(el, nm->op, nm->loads, w, t1, el->l1));
+  PetscCall(MMElasticityForce(el, nm->op, nm->material, el->l0, el->l1, nl->f));
+  PetscCall(VecScale(nl->f, 2.0));
+  PetscCall(VecNorm(nl->f, NORM_2, scale));
+  PetscCall(MatMult(nl->use_tangent ? nl->Ks : nm->op->K, w, c));
+  PetscCall(VecAXPY(c, -1.0, nl->f));
+  PetscFunctionReturn(0);
+}
+
+/* One step: w holds the predictor on entry, u^{n+1} on success; b is contact's right-hand side vector.
+ * *solved false: the friction solver or the iteration did not converge (the caller rejects the step). */
+PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b, Vec w, PetscBool *solved)
+{
+  MMNonlinear *nl = &nm->nl;
+  MMState     *s  = &nm->state;
+  PetscReal    scale, res = PETSC_MAX_REAL, res_prev = PETSC_MAX_REAL;
+
+  PetscFunctionBeginUser;
+  *solved = PETSC_FALSE;
+  PetscCall(FixedRHS(nm, dt, nl->bnl));
+  PetscCall(MMElasticityLocal(&nl->el, nm->op, nm->loads, s->u, t0, nl->el.l0));
+  if (nl->policy == MM_TANGENT_STEP) PetscCall(RebuildTangent(nm, dt, nl->el.l0));
+  PetscCall(Correction(nm, t0 + dt, w, nl->c, &scale));
+  for (nl->its = 1; nl->its <= nl->max_it; ++nl->its) {
+    PetscCall(VecWAXPY(b, 1.0, nl->bnl, nl->c));
+    PetscCall(MMFrictionSolve(nm->friction, nm->hist.step, nm->hist.time, b, w, s->react, solved));
+    if (!*solved) PetscFunctionReturn(0);
+    PetscCall(VecCopy(nl->c, nl->c_prev));
+    PetscCall(Correction(nm, t0 + dt, w, nl->c, &scale));
+    /* the residual of the nonlinear step at w: the change of the correction */
+    PetscCall(VecAXPY(nl->c_prev, -1.0, nl->c));
+    PetscCall(VecNorm(nl->c_prev, NORM_2, &res));
+    res /= PetscMax(scale, PETSC_SMALL * PETSC_SMALL);
+    nl->residual = res;
+    if (res <= nl->rtol) break;
+    /* a slow contraction: the iteration matrix is far from the tangent (large rotations) */
+    if (nl->policy == MM_TANGENT_AUTO && res > nl->refresh * res_prev) {
+      PetscCall(RebuildTangent(nm, dt, nl->el.l1));
+      PetscCall(Correction(nm, t0 + dt, w, nl->c, &scale));
+    }
+    res_prev = res;
+  }
+  nl->its_total += PetscMin(nl->its, nl->max_it);
+  *solved = (PetscBool)(res <= nl->rtol);
+  PetscFunctionReturn(0);
+}
