@@ -163,7 +163,7 @@ static PetscErrorCode CellMaterial(MMMaterial *mat, const MMCells *cells, DM dm)
 }
 
 /* -omega0: each body's rigid rotation, -body_NAME_omega0 or the whole mesh's -omega0; a body
- * without one adds nothing (README "Initial state"). */
+ * without one adds nothing (docs/method.md section 2, "Bodies"). */
 static void BodySpins(MMMaterial *mat, const MMFEProblem *o)
 {
   for (PetscInt b = 0; b < mat->n_bodies; ++b) {

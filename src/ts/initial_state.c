@@ -85,7 +85,7 @@ static PetscErrorCode BodiesInitialVelocity(MMNewmark nm, Vec w)
 }
 
 /* -omega0: adds each vertex's omega0 x (x - x_cm) of its body (src/fem/material.c) to w; only when
- * given, so that a run without it keeps every bit (README "Initial state"). */
+ * given, so that a run without it keeps every bit (docs/method.md section 2, "Bodies"). */
 static PetscErrorCode AddRotationAboutCentres(MMNewmark nm, Vec w)
 {
   DM             dm  = nm->op->dm;
