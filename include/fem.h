@@ -88,6 +88,9 @@ typedef struct {
   char     *name;
   char      group[256]; /* -body_NAME_group: a Physical Surface (2D) or Volume (3D) */
   PetscBool group_set;
+  PetscReal omega0[MM_MAX_DIM]; /* -body_NAME_omega0 (default -omega0): a rigid rotation about its centre of mass */
+  PetscInt  nomega0;            /* entries given to -body_NAME_omega0, -1 if not set */
+  PetscBool omega0_set;         /* it or -omega0 was given: without it nothing is added */
   PetscReal E, nu, rho;
   PetscReal v0[MM_MAX_DIM];
   PetscInt  nv0; /* entries given to -body_NAME_v0, -1 if not set */
@@ -102,6 +105,8 @@ typedef struct {
   const PetscReal     *v0;            /* MM_MAX_DIM: its initial velocity */
   PetscInt             n_bodies;      /* -bodies, 0 without it */
   const MMBodyOptions *bodies;
+  const PetscReal     *omega0;        /* MM_MAX_DIM: -omega0 of the whole mesh without -bodies */
+  PetscBool            omega0_set;    /* -omega0 was given */
   const PetscReal     *gravity;       /* MM_MAX_DIM */
   const MMAmplitudeOptions *gravity_amplitude;
   PetscInt             n_dirichlet, n_traction, n_pressure, n_point_force;
@@ -135,6 +140,9 @@ typedef struct {
   PetscReal   v0[MM_MAX_DIM];
   PetscInt    ncells;  /* over all ranks */
   PetscReal   volume, mass;
+  PetscReal   omega0[MM_MAX_DIM]; /* -omega0: its rigid rotation about x_cm, only when omega0_set */
+  PetscBool   omega0_set;
+  PetscReal   x_cm[MM_MAX_DIM];   /* its centre of mass, computed only when omega0_set */
 } MMBody;
 
 /* The material of each cell, built once at set-up: one body (the whole mesh, -E -nu -rho -v0)
@@ -149,6 +157,8 @@ typedef struct {
   PetscInt  *cell_body;   /* per local cell, its body */
   PetscReal *lambda, *mu, *rho; /* per local cell */
   PetscReal *vertex_v0;   /* -bodies: per local vertex (dim entries), the v0 of the body of its cells */
+  PetscReal *vertex_omega0; /* -omega0: per local vertex (dim entries), omega0 x (x - x_cm) of its body; NULL without */
+  PetscBool  spin;        /* some body has an -omega0 */
   PetscReal  c_p_max;     /* the largest pressure wave speed: the CFL number's */
   PetscReal  E_max;       /* the largest Young's modulus: the contact solvers' force scales */
   PetscBool  finite;      /* some body has a finite-strain law (-elasticity svk or neohookean) */

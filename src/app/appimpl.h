@@ -24,6 +24,7 @@ typedef enum {
   MM_V_OBSTACLE_NORMAL,
   MM_V_MESH_ROTATION,
   MM_V_MESH_ROTATION_CENTER,
+  MM_V_OMEGA0,
   MM_V_NUM
 } MMVectorOption;
 
@@ -47,6 +48,7 @@ typedef struct {
   MMAmplitudeOptions gravity_amplitude;
   PetscReal    u0_offset[MM_MAX_DIM], u0_gradient[MM_MAX_DIM * MM_MAX_DIM];
   PetscReal    v0[MM_MAX_DIM], omega[MM_MAX_DIM], omega_center[MM_MAX_DIM];
+  PetscReal    omega0[MM_MAX_DIM]; /* -omega0: a rigid rotation about each body's centre of mass */
   MMInitialState initial_state;
   PetscReal    obstacle_point[MM_MAX_DIM], obstacle_normal[MM_MAX_DIM];
   PetscReal    mesh_rotation[MM_MAX_DIM], mesh_rotation_center[MM_MAX_DIM];

@@ -15,8 +15,8 @@ typedef enum {
   MM_LEN_ROTATION /* 1 entry in 2D (an angle), 3 in 3D (a vector) */
 } MMVectorLength;
 
-static const char *const VectorName[MM_V_NUM] = {"-gravity", "-u0_offset", "-u0_gradient", "-v0", "-omega", "-omega_center", "-obstacle_point", "-obstacle_normal", "-mesh_rotation", "-mesh_rotation_center"};
-static const MMVectorLength VectorLength[MM_V_NUM] = {MM_LEN_DIM, MM_LEN_DIM, MM_LEN_TENSOR, MM_LEN_DIM, MM_LEN_ROTATION, MM_LEN_DIM, MM_LEN_DIM, MM_LEN_DIM, MM_LEN_ROTATION, MM_LEN_DIM};
+static const char *const VectorName[MM_V_NUM] = {"-gravity", "-u0_offset", "-u0_gradient", "-v0", "-omega", "-omega_center", "-obstacle_point", "-obstacle_normal", "-mesh_rotation", "-mesh_rotation_center", "-omega0"};
+static const MMVectorLength VectorLength[MM_V_NUM] = {MM_LEN_DIM, MM_LEN_DIM, MM_LEN_TENSOR, MM_LEN_DIM, MM_LEN_ROTATION, MM_LEN_DIM, MM_LEN_DIM, MM_LEN_DIM, MM_LEN_ROTATION, MM_LEN_DIM, MM_LEN_ROTATION};
 
 /* The checked option readers of src/sys/option_values.c, under this file's short names. */
 #define CheckFinite      MMOptionsCheckFinite
@@ -376,6 +376,10 @@ static PetscErrorCode ProcessBodies(PetscOptionItems *PetscOptionsObject, MPI_Co
     for (PetscInt d = 0; d < MM_MAX_DIM; ++d) body->v0[d] = opt->v0[d];
     PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_v0", body->name));
     PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "This body's initial translation velocity, d entries (default -v0); -omega adds the same rigid rotation to every body", MM_MAX_DIM, body->v0, &body->nv0));
+    for (PetscInt d = 0; d < MM_MAX_DIM; ++d) body->omega0[d] = opt->omega0[d];
+    PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_omega0", body->name));
+    PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "This body's initial rigid angular velocity (rad/s) about its own centre of mass, added to its _v0: a scalar in 2D, a vector in 3D (default -omega0)", MM_MAX_DIM, body->omega0, &body->nomega0));
+    body->omega0_set = (PetscBool)(body->nomega0 >= 0 || opt->vec_count[MM_V_OMEGA0] >= 0);
   }
   PetscCall(PetscStrToArrayDestroy((int)n, names));
   PetscFunctionReturn(0);
@@ -441,6 +445,7 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_V0, "Initial translation velocity vx,vy[,vz], d entries", opt->v0));
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OMEGA, "Initial rigid angular velocity (rad/s): a scalar in 2D, a vector in 3D", opt->omega));
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OMEGA_CENTER, "Centre of the initial rigid rotation, d entries", opt->omega_center));
+  PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OMEGA0, "Initial rigid angular velocity (rad/s) about the centre of mass, of each body with -bodies, added to -v0 and -omega: a scalar in 2D, a vector in 3D", opt->omega0));
   opt->initial_state = MM_INITIAL_GIVEN;
   PetscCall(OptionsEnum(PetscOptionsObject, comm, "-initial_state", "Initial displacement: given (-u0_offset, -u0_gradient, contact dofs projected), static_sliding (the body sliding along the tangential part of -v0 on the obstacle under its loads, with friction -mu; the normal part of -v0 is dropped) or static (the static, frictionless contact problem K u0 = L(0) under the loads at t = 0, then the dynamics from u0 with -v0)", MMInitialStates, (PetscEnum *)&opt->initial_state));
   PetscCall(ProcessBodies(PetscOptionsObject, comm, opt));
@@ -531,6 +536,7 @@ PetscErrorCode MMOptionsCheckDimension(MPI_Comm comm, MMOptions *opt, PetscInt d
   for (PetscInt b = 0; b < opt->n_bodies; ++b) {
     const MMBodyOptions *body = &opt->bodies[b];
     PetscCheck(body->nv0 < 0 || body->nv0 == dim, comm, PETSC_ERR_USER_INPUT, "-body_%s_v0 has %" PetscInt_FMT " entries; the mesh is %" PetscInt_FMT "D, so it needs exactly %" PetscInt_FMT, body->name, body->nv0, dim, dim);
+    PetscCheck(body->nomega0 < 0 || body->nomega0 == (dim == 2 ? 1 : 3), comm, PETSC_ERR_USER_INPUT, "-body_%s_omega0 has %" PetscInt_FMT " entries; the mesh is %" PetscInt_FMT "D, so it needs exactly %d (an angular velocity is a scalar in 2D, a vector in 3D)", body->name, body->nomega0, dim, dim == 2 ? 1 : 3);
   }
   for (PetscInt b = 0; b < opt->n_traction; ++b) {
     const MMTraction *tr = &opt->traction[b];
@@ -628,6 +634,8 @@ PetscErrorCode MMOptionsGetFEProblem(const MMOptions *opt, MMFEProblem *pb)
   pb->v0                = opt->v0;
   pb->n_bodies          = opt->n_bodies;
   pb->bodies            = opt->bodies;
+  pb->omega0            = opt->omega0;
+  pb->omega0_set        = (PetscBool)(opt->vec_count[MM_V_OMEGA0] >= 0);
   pb->gravity           = opt->gravity;
   pb->gravity_amplitude = &opt->gravity_amplitude;
   pb->n_dirichlet       = opt->n_dirichlet;

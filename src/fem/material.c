@@ -165,6 +165,63 @@ static PetscErrorCode CellMaterial(MMMaterial *mat, const MMCells *cells, DM dm)
   PetscFunctionReturn(0);
 }
 
+/* -omega0: each body's rigid rotation, -body_NAME_omega0 or the whole mesh's -omega0; a body
+ * without one adds nothing (docs/method.md section 2, "Bodies"). */
+static void BodySpins(MMMaterial *mat, const MMFEProblem *o)
+{
+  for (PetscInt b = 0; b < mat->n_bodies; ++b) {
+    MMBody          *body = &mat->body[b];
+    const PetscReal *w    = mat->named ? o->bodies[b].omega0 : o->omega0;
+    body->omega0_set      = mat->named ? o->bodies[b].omega0_set : o->omega0_set;
+    for (PetscInt d = 0; d < MM_MAX_DIM; ++d) body->omega0[d] = body->omega0_set ? w[d] : 0;
+    if (body->omega0_set) mat->spin = PETSC_TRUE;
+  }
+}
+
+/* -omega0: the centre of mass of each body, sum_T rho_T |T| x_T / sum_T rho_T |T| over its cells
+ * on all ranks (x_T the centroid: exact for P1's consistent mass). */
+static PetscErrorCode BodyCentres(MMMaterial *mat, const MMCells *cells, DM dm)
+{
+  const PetscInt n = mat->n_bodies * (MM_MAX_DIM + 1); /* per body: the first moment, the mass */
+  PetscReal     *sum;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscCalloc1(n, &sum));
+  for (PetscInt c = 0; c < mat->ncells; ++c) {
+    const PetscReal m = mat->rho[c] * cells->volume[c], *x = &cells->centroid[MM_MAX_DIM * c];
+    PetscReal      *s = &sum[mat->cell_body[c] * (MM_MAX_DIM + 1)];
+    for (PetscInt d = 0; d < MM_MAX_DIM; ++d) s[d] += m * x[d];
+    s[MM_MAX_DIM] += m;
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, n, MPIU_REAL, MPI_SUM, PetscObjectComm((PetscObject)dm)));
+  for (PetscInt b = 0; b < mat->n_bodies; ++b)
+    for (PetscInt d = 0; d < MM_MAX_DIM; ++d) mat->body[b].x_cm[d] = sum[b * (MM_MAX_DIM + 1) + d] / sum[b * (MM_MAX_DIM + 1) + MM_MAX_DIM];
+  PetscCall(PetscFree(sum));
+  PetscFunctionReturn(0);
+}
+
+/* The velocity a cell of body b gives its vertex at x: the body's v0, or (spin) the rigid rotation
+ * omega0 x (x - x_cm) of its -omega0, zero for a body without one. */
+static void CellVertexVelocity(const MMBody *b, PetscBool spin, PetscInt dim, const PetscScalar x[], PetscReal v[])
+{
+  const PetscReal *w = b->omega0;
+  PetscReal        r[3] = {0, 0, 0};
+
+  if (!spin) {
+    for (PetscInt d = 0; d < dim; ++d) v[d] = b->v0[d];
+    return;
+  }
+  for (PetscInt d = 0; d < dim; ++d) r[d] = PetscRealPart(x[d]) - b->x_cm[d];
+  if (dim == 2) {
+    v[0] = -w[0] * r[1];
+    v[1] = w[0] * r[0];
+  } else {
+    v[0] = w[1] * r[2] - w[2] * r[1];
+    v[1] = w[2] * r[0] - w[0] * r[2];
+    v[2] = w[0] * r[1] - w[1] * r[0];
+  }
+}
+
 /* On every copy of each point, the min (op MPI_MIN) or max of a over its copies, through the point
  * SF: reduced to the owner, then sent back. a has one entry per point of the chart. */
 static PetscErrorCode PointReduce(DM dm, MPI_Op op, PetscReal a[])
@@ -189,21 +246,31 @@ static PetscErrorCode PointReduce(DM dm, MPI_Op op, PetscReal a[])
   PetscFunctionReturn(0);
 }
 
-/* -bodies: each vertex's initial velocity, the v0 of the body of its cells. Bodies are normally
+/* -bodies: each vertex's initial velocity, the v0 of the body of its cells (spin: the rotation of
+ * its -omega0 instead, into vertex_omega0). Bodies are normally
  * separate components of the mesh; a vertex in cells of two bodies takes their v0 if they agree,
  * and is refused if they differ (the body would tear at t = 0). Exact: the componentwise min and
  * max of v0 over the vertex's cells, on all ranks, must be equal. */
-static PetscErrorCode VertexVelocities(MMMaterial *mat, const MMCells *cells, PetscInt dim, DM dm)
+static PetscErrorCode VertexVelocities(MMMaterial *mat, const MMCells *cells, PetscInt dim, DM dm, PetscBool spin)
 {
   MPI_Comm       comm = PetscObjectComm((PetscObject)dm);
   PetscInt       pStart, pEnd, vStart, vEnd, first = -1, nbad;
   PetscReal     *lo[MM_MAX_DIM], *hi[MM_MAX_DIM], info[3 * MM_MAX_DIM] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  PetscReal     *out;
   PetscMPIInt    rank, size, root;
+  PetscSection   cs;
+  Vec            X;
+  const PetscScalar *xa;
 
   PetscFunctionBeginUser;
   PetscCall(DMPlexGetChart(dm, &pStart, &pEnd));
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
-  PetscCall(PetscMalloc1(dim * (vEnd - vStart), &mat->vertex_v0));
+  PetscCall(PetscMalloc1(dim * (vEnd - vStart), &out));
+  if (spin) mat->vertex_omega0 = out;
+  else mat->vertex_v0 = out;
+  PetscCall(DMGetCoordinateSection(dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  PetscCall(VecGetArrayRead(X, &xa));
   for (PetscInt d = 0; d < dim; ++d) {
     PetscCall(PetscMalloc2(pEnd - pStart, &lo[d], pEnd - pStart, &hi[d]));
     for (PetscInt p = 0; p < pEnd - pStart; ++p) {
@@ -212,9 +279,12 @@ static PetscErrorCode VertexVelocities(MMMaterial *mat, const MMCells *cells, Pe
     }
   }
   for (PetscInt c = 0; c < mat->ncells; ++c) {
-    const PetscReal *v = mat->body[mat->cell_body[c]].v0;
     for (PetscInt a = 0; a < cells->nv; ++a) {
       const PetscInt p = cells->vertex[cells->nv * c + a] - pStart;
+      PetscReal      v[MM_MAX_DIM];
+      PetscInt       off;
+      PetscCall(PetscSectionGetOffset(cs, p + pStart, &off));
+      CellVertexVelocity(&mat->body[mat->cell_body[c]], spin, dim, &xa[off], v);
       for (PetscInt d = 0; d < dim; ++d) {
         lo[d][p] = PetscMin(lo[d][p], v[d]);
         hi[d][p] = PetscMax(hi[d][p], v[d]);
@@ -227,25 +297,19 @@ static PetscErrorCode VertexVelocities(MMMaterial *mat, const MMCells *cells, Pe
   }
   for (PetscInt v = vStart; v < vEnd; ++v)
     for (PetscInt d = 0; d < dim; ++d) {
-      mat->vertex_v0[(v - vStart) * dim + d] = lo[d][v - pStart];
+      out[(v - vStart) * dim + d] = lo[d][v - pStart];
       if (first < 0 && lo[d][v - pStart] != hi[d][v - pStart]) first = v;
     }
   if (first >= 0) { /* its place, and the range of v0 over its cells */
-    PetscSection       cs;
-    Vec                X;
-    const PetscScalar *xa;
-    PetscInt           off;
-    PetscCall(DMGetCoordinateSection(dm, &cs));
-    PetscCall(DMGetCoordinatesLocal(dm, &X));
+    PetscInt off;
     PetscCall(PetscSectionGetOffset(cs, first, &off));
-    PetscCall(VecGetArrayRead(X, &xa));
     for (PetscInt d = 0; d < dim; ++d) {
       info[d]                  = PetscRealPart(xa[off + d]);
       info[MM_MAX_DIM + d]     = lo[d][first - pStart];
       info[2 * MM_MAX_DIM + d] = hi[d][first - pStart];
     }
-    PetscCall(VecRestoreArrayRead(X, &xa));
   }
+  PetscCall(VecRestoreArrayRead(X, &xa));
   for (PetscInt d = 0; d < dim; ++d) PetscCall(PetscFree2(lo[d], hi[d]));
   nbad = first >= 0;
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nbad, 1, MPIU_INT, MPI_SUM, comm));
@@ -264,6 +328,7 @@ static PetscErrorCode VertexVelocities(MMMaterial *mat, const MMCells *cells, Pe
       PetscCall(PetscSNPrintf(where, sizeof(where), "(%g, %g, %g)", (double)info[0], (double)info[1], (double)info[2]));
       PetscCall(PetscSNPrintf(range, sizeof(range), "x from %g to %g, y from %g to %g, z from %g to %g", (double)info[3], (double)info[6], (double)info[4], (double)info[7], (double)info[5], (double)info[8]));
     }
+    PetscCheck(!spin, comm, PETSC_ERR_USER_INPUT, "The vertex at %s is shared by cells of bodies with different initial rotations (-omega0 or -body_NAME_omega0, each about its own body's centre of mass: %s): the bodies are glued there and would tear apart at t = 0. Give -body_NAME_omega0 only to bodies that share no node with another, or give the glued bodies one rotation with -omega and -omega_center", where, range);
     SETERRQ(comm, PETSC_ERR_USER_INPUT, "The vertex at %s is shared by cells of bodies with different initial velocities (-body_NAME_v0: %s): the bodies are glued there and would tear apart at t = 0. Give the bodies that touch the same -body_NAME_v0, or mesh them as separate parts that share no node", where, range);
   }
 }
@@ -290,6 +355,7 @@ PetscErrorCode MMMaterialSetUp(MMMaterial *mat, const MMOperators *op, const MMF
   /* the cells' geometry reads the local coordinates, which a -mesh_rotation has reset (collective) */
   PetscCall(DMGetCoordinatesLocalSetUp(dm));
   PetscCall(CreateBodies(mat, pb));
+  BodySpins(mat, pb);
   PetscCall(CheckSupported(mat, op, pb, comm));
   PetscCall(DMPlexGetHeightStratum(dm, 0, &mat->cStart, &cEnd));
   mat->ncells = cEnd - mat->cStart;
@@ -302,7 +368,11 @@ PetscErrorCode MMMaterialSetUp(MMMaterial *mat, const MMOperators *op, const MMF
     mat->body[0].ncells = n;
   }
   PetscCall(CellMaterial(mat, &op->cells, dm));
-  if (mat->named) PetscCall(VertexVelocities(mat, &op->cells, op->dim, dm));
+  if (mat->named) PetscCall(VertexVelocities(mat, &op->cells, op->dim, dm, PETSC_FALSE));
+  if (mat->spin) {
+    PetscCall(BodyCentres(mat, &op->cells, dm));
+    PetscCall(VertexVelocities(mat, &op->cells, op->dim, dm, PETSC_TRUE));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -337,5 +407,6 @@ PetscErrorCode MMMaterialDestroy(MMMaterial *mat)
   PetscCall(PetscFree(mat->body));
   PetscCall(PetscFree4(mat->cell_body, mat->lambda, mat->mu, mat->rho));
   PetscCall(PetscFree(mat->vertex_v0));
+  PetscCall(PetscFree(mat->vertex_omega0));
   PetscFunctionReturn(0);
 }

@@ -99,6 +99,39 @@ static PetscErrorCode BodiesInitialVelocity(MMNewmark nm, Vec w)
   PetscFunctionReturn(0);
 }
 
+/* -omega0: adds each vertex's omega0 x (x - x_cm) of its body (src/fem/material.c) to w; only when
+ * given, so that a run without it keeps every bit (docs/method.md section 2, "Bodies"). */
+static PetscErrorCode AddRotationAboutCentres(MMNewmark nm, Vec w)
+{
+  DM             dm  = nm->op->dm;
+  const PetscInt dim = nm->op->dim;
+  PetscSection   ls;
+  PetscInt       vStart, vEnd;
+  PetscScalar   *a;
+  Vec            tloc, tglob, tw;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalVector(dm, &tglob));
+  PetscCall(DMGetLocalVector(dm, &tloc));
+  PetscCall(VecDuplicate(w, &tw));
+  PetscCall(DMGetLocalSection(dm, &ls));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(VecGetArray(tloc, &a));
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(ls, v, &off));
+    for (PetscInt d = 0; d < dim; ++d) a[off + d] = nm->material->vertex_omega0[(v - vStart) * dim + d];
+  }
+  PetscCall(VecRestoreArray(tloc, &a));
+  PetscCall(DMLocalToGlobal(dm, tloc, INSERT_VALUES, tglob)); /* the Dirichlet dofs drop out */
+  PetscCall(MMFEFromCartesian(nm->op, tglob, tw));
+  PetscCall(VecAXPY(w, 1.0, tw));
+  PetscCall(VecDestroy(&tw));
+  PetscCall(DMRestoreLocalVector(dm, &tloc));
+  PetscCall(DMRestoreGlobalVector(dm, &tglob));
+  PetscFunctionReturn(0);
+}
+
 /* a0 from M* a0 = L - lift - K u0 - C v0 + f_c0 on the dofs with inertia. */
 static PetscErrorCode InitialAcceleration(MMNewmark nm)
 {
@@ -190,6 +223,7 @@ PetscErrorCode MMNewmarkInitialState(MMNewmark nm)
   if (nm->pb.initial_state == MM_INITIAL_STATIC_SLIDING) PetscCall(TangentialInitialVelocity(nm));
   if (nm->material->named) PetscCall(BodiesInitialVelocity(nm, s->v));
   else PetscCall(ProjectInitialField(nm, InitialVelocity, s->v));
+  if (nm->material->spin) PetscCall(AddRotationAboutCentres(nm, s->v));
   PetscCall(MMDampingSetUp(&nm->damping, nm->op, nm->material, cn.is_massless, s->v));
   PetscCall(VecZeroEntries(s->react));
   if (nm->pb.initial_state == MM_INITIAL_STATIC_SLIDING) PetscCall(MMInitialStaticSliding(nm, s->u, s->react));
