@@ -254,6 +254,7 @@ static PetscErrorCode Report(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wa
   PetscCall(MMContactMassView(ctx->contact, viewer));
   PetscCall(MMContactView(ctx->contact, viewer));
   PetscCall(MMDeformationView(ctx->nm, viewer));
+  PetscCall(MMNonlinearView(ctx->nm, viewer));
   PetscCall(MMOutputView(&ctx->out, viewer));
   PetscFunctionReturn(0);
 }

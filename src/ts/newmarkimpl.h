@@ -41,7 +41,7 @@ typedef struct {
   PetscInt        version;     /* counts the rebuilds of Ks: contact rebuilds K~ when it changes */
   PetscBool       use_tangent; /* Ks, not K, is in K~ */
   Vec             bnl, f, c, c_prev; /* the step's fixed right-hand side; 2 f_alg; K_s w - 2 f_alg at this iterate and the last */
-  PetscInt        its, its_total, rebuilds; /* the last step's iterations; over the run */
+  PetscInt        its, its_total, rebuilds, steps; /* the last step's iterations; over the run, and the solved steps */
   PetscReal       residual;    /* the last step's final relative residual */
 } MMNonlinear;
 

@@ -30,7 +30,7 @@ PetscErrorCode MMNonlinearSetFromOptions(PetscOptionItems *PetscOptionsObject, M
   nl->policy = MM_TANGENT_AUTO;
   PetscCall(MMOptionsEnum(PetscOptionsObject, comm, "-nonlinear_tangent", "The iteration matrix of the finite-strain step (-elasticity svk, neohookean): auto (the reference stiffness K until an iteration contracts by less than -nonlinear_refresh_ratio, then the tangent at the iterate), reference (K all run) or step (the tangent at the step's start, every step)", MMTangentPolicies, (PetscEnum *)&nl->policy));
   nl->rtol = 1e-10;
-  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-nonlinear_rtol", "The finite-strain step's iteration stops when the change of its force correction is below this times the internal force (> 0)", &nl->rtol));
+  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-nonlinear_rtol", "The finite-strain step's iteration stops when its force residual is below this times the step's force scale (the internal force, the loads, the reactions, 2/dt M* v), > 0", &nl->rtol));
   nl->max_it = 30;
   PetscCall(MMOptionsInt(PetscOptionsObject, comm, "-nonlinear_max_it", "Most iterations of the finite-strain step (>= 1); past them the step is rejected and retried with a smaller dt", &nl->max_it));
   nl->refresh = 0.1;
@@ -118,17 +118,26 @@ static PetscErrorCode RebuildTangent(MMNewmark nm, PetscReal dt, Vec l)
   PetscFunctionReturn(0);
 }
 
-/* b_nl = M* (4/dt^2 u^n + 4/dt v^n) + L^n + L^{n+1} - r^n */
-static PetscErrorCode FixedRHS(MMNewmark nm, PetscReal dt, Vec bnl)
+/* b_nl = M* (4/dt^2 u^n + 4/dt v^n) + L^n + L^{n+1} - r^n (= + f_c^n, the stored reaction), and the step's force scale: the largest of
+ * |L^n + L^{n+1}|, |r^n| and 2/dt |M* v^n| (the force that would stop the body in one step), so that a
+ * body in free flight, whose internal force is zero, still has a scale for its residual */
+static PetscErrorCode FixedRHS(MMNewmark nm, PetscReal dt, Vec bnl, PetscReal *fscale)
 {
-  MMState *s = &nm->state;
+  MMState  *s = &nm->state;
+  PetscReal n[3];
 
   PetscFunctionBeginUser;
+  PetscCall(MatMult(nm->op->Mstar, s->v, s->work));
+  PetscCall(VecNorm(s->work, NORM_2, &n[0]));
+  PetscCall(VecNorm(s->react_old, NORM_2, &n[1]));
+  PetscCall(VecWAXPY(s->work, 1.0, nm->op->load, nm->loads->in_time ? nm->loads->load_old : nm->op->load));
+  PetscCall(VecNorm(s->work, NORM_2, &n[2]));
+  *fscale = PetscMax(2.0 / dt * n[0], PetscMax(n[1], n[2]));
   PetscCall(VecAXPBYPCZ(s->work, 4.0 / (dt * dt), 4.0 / dt, 0.0, s->u, s->v));
   PetscCall(MatMult(nm->op->Mstar, s->work, bnl));
   PetscCall(VecAXPY(bnl, 1.0, nm->op->load));
   PetscCall(VecAXPY(bnl, 1.0, nm->loads->in_time ? nm->loads->load_old : nm->op->load));
-  PetscCall(VecAXPY(bnl, -1.0, s->react_old));
+  PetscCall(VecAXPY(bnl, 1.0, s->react_old)); /* react: the obstacle's force on the body, f_c = -r */
   PetscFunctionReturn(0);
 }
 
@@ -154,11 +163,11 @@ PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b,
 {
   MMNonlinear *nl = &nm->nl;
   MMState     *s  = &nm->state;
-  PetscReal    scale, res = PETSC_MAX_REAL, res_prev = PETSC_MAX_REAL;
+  PetscReal    scale, fscale = 0, res = PETSC_MAX_REAL, res_prev = PETSC_MAX_REAL;
 
   PetscFunctionBeginUser;
   *solved = PETSC_FALSE;
-  PetscCall(FixedRHS(nm, dt, nl->bnl));
+  PetscCall(FixedRHS(nm, dt, nl->bnl, &fscale));
   PetscCall(MMElasticityLocal(&nl->el, nm->op, nm->loads, s->u, t0, nl->el.l0));
   if (nl->policy == MM_TANGENT_STEP) PetscCall(RebuildTangent(nm, dt, nl->el.l0));
   PetscCall(Correction(nm, t0 + dt, w, nl->c, &scale));
@@ -171,7 +180,7 @@ PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b,
     /* the residual of the nonlinear step at w: the change of the correction */
     PetscCall(VecAXPY(nl->c_prev, -1.0, nl->c));
     PetscCall(VecNorm(nl->c_prev, NORM_2, &res));
-    res /= PetscMax(scale, PETSC_SMALL * PETSC_SMALL);
+    res /= PetscMax(PetscMax(scale, fscale), PETSC_SMALL * PETSC_SMALL);
     nl->residual = res;
     if (res <= nl->rtol) break;
     /* a slow contraction: the iteration matrix is far from the tangent (large rotations) */
@@ -182,6 +191,20 @@ PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b,
     res_prev = res;
   }
   nl->its_total += PetscMin(nl->its, nl->max_it);
+  nl->steps++;
   *solved = (PetscBool)(res <= nl->rtol);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMNonlinearView(MMNewmark nm, PetscViewer viewer)
+{
+  const MMNonlinear *nl = &nm->nl;
+  PetscBool          ascii;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
+  if (!nm->material->finite || !ascii) PetscFunctionReturn(0);
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  finite strain: %.2f iterations per step (%" PetscInt_FMT " over %" PetscInt_FMT " steps), iteration matrix %s, %" PetscInt_FMT " tangent rebuilds\n", (double)nl->its_total / (double)PetscMax(nl->steps, 1), nl->its_total, nl->steps,
+                                   MMTangentPolicies[nl->policy], nl->rebuilds));
   PetscFunctionReturn(0);
 }
