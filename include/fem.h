@@ -321,5 +321,6 @@ PETSC_EXTERN PetscErrorCode MMElasticityForce(MMElasticity *el, const MMOperator
 PETSC_EXTERN PetscErrorCode MMElasticityEnergy(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, PetscReal *energy);
 /* Kw (the pattern of op->K) = the tangent dP/dF at l, in the w-frame */
 PETSC_EXTERN PetscErrorCode MMElasticityTangent(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, Mat Kw);
-PETSC_EXTERN PetscErrorCode MMElasticityCauchy(const MMMaterial *mat, PetscInt c, PetscInt dim, const PetscReal F[MM_MAX_DIM][MM_MAX_DIM], PetscReal sigma[MM_MAX_DIM][MM_MAX_DIM]);
+/* the Cauchy stress of cell c (local) at the displacement gradient G */
+PETSC_EXTERN PetscErrorCode MMElasticityCauchy(const MMMaterial *mat, PetscInt c, PetscInt dim, const PetscReal G[MM_MAX_DIM][MM_MAX_DIM], PetscReal sigma[MM_MAX_DIM][MM_MAX_DIM]);
 PETSC_EXTERN PetscErrorCode MMElasticityDestroy(MMElasticity *el);

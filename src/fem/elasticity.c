@@ -1,6 +1,6 @@
 /* The total Lagrangian P1 internal force of the finite-strain laws (docs/method.md section 13).
  *
- * On the reference mesh, F = Ii + grad u is constant per cell; a cell's algorithmic force on its
+ * On the reference mesh, F = I + grad u is constant per cell; a cell's algorithmic force on its
  * vertex a is |T| P_alg grad phi_a, with P_alg the law's algorithmic stress of the step
  * (src/fem/elasticity_laws.c). The vectors are local Cartesian vectors of the operators' DM with the
  * Dirichlet data inserted, so the boundary's motion enters the force as any other; the force is
@@ -92,14 +92,22 @@ static PetscErrorCode CellGeometry(const CellData *cd, PetscInt c, PetscInt off[
   PetscFunctionReturn(0);
 }
 
-/* F = Ii + sum_a u_a (x) grad phi_a */
-static void DeformationGradient(PetscInt dim, const PetscScalar *u, const PetscInt off[], const PetscReal g[][MM_MAX_DIM], PetscReal F[MM_MAX_DIM][MM_MAX_DIM])
+/* G = grad u = sum_a u_a (x) grad phi_a (the laws take G, not F = I + G: src/fem/elasticity_laws.c) */
+static void DisplacementGradient(PetscInt dim, const PetscScalar *u, const PetscInt off[], const PetscReal g[][MM_MAX_DIM], PetscReal G[MM_MAX_DIM][MM_MAX_DIM])
 {
   for (PetscInt i = 0; i < dim; ++i)
     for (PetscInt J = 0; J < dim; ++J) {
-      F[i][J] = (i == J) ? 1 : 0;
-      for (PetscInt a = 0; a <= dim; ++a) F[i][J] += PetscRealPart(u[off[a] + i]) * g[a][J];
+      G[i][J] = 0;
+      for (PetscInt a = 0; a <= dim; ++a) G[i][J] += PetscRealPart(u[off[a] + i]) * g[a][J];
     }
+}
+
+static PetscReal DetF(PetscInt dim, const PetscReal G[MM_MAX_DIM][MM_MAX_DIM])
+{
+  PetscReal F[MM_MAX_DIM][MM_MAX_DIM];
+  for (PetscInt i = 0; i < dim; ++i)
+    for (PetscInt j = 0; j < dim; ++j) F[i][j] = (i == j ? 1 : 0) + G[i][j];
+  return MMDetInverse(dim, (const PetscReal(*)[MM_MAX_DIM])F, NULL);
 }
 
 static inline const MMElasticityOps *CellLaw(const MMMaterial *mat, PetscInt cl)
@@ -131,13 +139,13 @@ PetscErrorCode MMElasticityForce(MMElasticity *el, const MMOperators *op, const 
   for (PetscInt cl = 0; cl < op->cells.ncells; ++cl) {
     const MMElasticityOps *law = CellLaw(mat, cl);
     PetscInt               off[MM_NV_MAX];
-    PetscReal              g[MM_NV_MAX][MM_MAX_DIM], vol, F0[MM_MAX_DIM][MM_MAX_DIM], F1[MM_MAX_DIM][MM_MAX_DIM], P[MM_MAX_DIM][MM_MAX_DIM];
+    PetscReal              g[MM_NV_MAX][MM_MAX_DIM], vol, G0[MM_MAX_DIM][MM_MAX_DIM], G1[MM_MAX_DIM][MM_MAX_DIM], P[MM_MAX_DIM][MM_MAX_DIM];
 
     PetscCall(CellGeometry(&cd, cl + op->cells.cStart, off, g, &vol));
-    DeformationGradient(dim, cd.u0, off, (const PetscReal(*)[MM_MAX_DIM])g, F0);
-    DeformationGradient(dim, cd.u1, off, (const PetscReal(*)[MM_MAX_DIM])g, F1);
-    detF = PetscMin(detF, MMDetInverse(dim, (const PetscReal(*)[MM_MAX_DIM])F1, NULL));
-    law->stress_alg(dim, mat->lambda[cl], mat->mu[cl], (const PetscReal(*)[MM_MAX_DIM])F0, (const PetscReal(*)[MM_MAX_DIM])F1, P);
+    DisplacementGradient(dim, cd.u0, off, (const PetscReal(*)[MM_MAX_DIM])g, G0);
+    DisplacementGradient(dim, cd.u1, off, (const PetscReal(*)[MM_MAX_DIM])g, G1);
+    detF = PetscMin(detF, DetF(dim, (const PetscReal(*)[MM_MAX_DIM])G1));
+    law->stress_alg(dim, mat->lambda[cl], mat->mu[cl], (const PetscReal(*)[MM_MAX_DIM])G0, (const PetscReal(*)[MM_MAX_DIM])G1, P);
     for (PetscInt a = 0; a <= dim; ++a)
       for (PetscInt i = 0; i < dim; ++i) {
         PetscReal r = 0;
@@ -168,11 +176,11 @@ PetscErrorCode MMElasticityEnergy(MMElasticity *el, const MMOperators *op, const
   PetscCall(VecGetArrayRead(l, &cd.u1));
   for (PetscInt cl = 0; cl < op->cells.ncells; ++cl) {
     PetscInt  off[MM_NV_MAX];
-    PetscReal g[MM_NV_MAX][MM_MAX_DIM], vol, F[MM_MAX_DIM][MM_MAX_DIM];
+    PetscReal g[MM_NV_MAX][MM_MAX_DIM], vol, G[MM_MAX_DIM][MM_MAX_DIM];
 
     PetscCall(CellGeometry(&cd, cl + op->cells.cStart, off, g, &vol));
-    DeformationGradient(dim, cd.u1, off, (const PetscReal(*)[MM_MAX_DIM])g, F);
-    e += vol * CellLaw(mat, cl)->energy(dim, mat->lambda[cl], mat->mu[cl], (const PetscReal(*)[MM_MAX_DIM])F);
+    DisplacementGradient(dim, cd.u1, off, (const PetscReal(*)[MM_MAX_DIM])g, G);
+    e += vol * CellLaw(mat, cl)->energy(dim, mat->lambda[cl], mat->mu[cl], (const PetscReal(*)[MM_MAX_DIM])G);
   }
   PetscCall(VecRestoreArrayRead(l, &cd.u1));
   PetscCall(CellDataRestore(&cd));
@@ -186,13 +194,13 @@ static PetscErrorCode TangentElement(void *ctx, PetscInt c, const PetscInt v[], 
   const CellData *cd  = (const CellData *)ctx;
   const PetscInt  dim = cd->op->dim, n = (dim + 1) * dim, cl = c - cd->op->cells.cStart;
   PetscInt        off[MM_NV_MAX];
-  PetscReal       F[MM_MAX_DIM][MM_MAX_DIM];
+  PetscReal       G[MM_MAX_DIM][MM_MAX_DIM];
   MMTangent       A;
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a <= dim; ++a) PetscCall(PetscSectionGetOffset(cd->ls, v[a], &off[a]));
-  DeformationGradient(dim, cd->u1, off, g, F);
-  CellLaw(cd->mat, cl)->tangent(dim, cd->mat->lambda[cl], cd->mat->mu[cl], (const PetscReal(*)[MM_MAX_DIM])F, A);
+  DisplacementGradient(dim, cd->u1, off, g, G);
+  CellLaw(cd->mat, cl)->tangent(dim, cd->mat->lambda[cl], cd->mat->mu[cl], (const PetscReal(*)[MM_MAX_DIM])G, A);
   for (PetscInt a = 0; a <= dim; ++a)
     for (PetscInt i = 0; i < dim; ++i)
       for (PetscInt b = 0; b <= dim; ++b)
@@ -219,9 +227,9 @@ PetscErrorCode MMElasticityTangent(MMElasticity *el, const MMOperators *op, cons
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMElasticityCauchy(const MMMaterial *mat, PetscInt cl, PetscInt dim, const PetscReal F[MM_MAX_DIM][MM_MAX_DIM], PetscReal sigma[MM_MAX_DIM][MM_MAX_DIM])
+PetscErrorCode MMElasticityCauchy(const MMMaterial *mat, PetscInt cl, PetscInt dim, const PetscReal G[MM_MAX_DIM][MM_MAX_DIM], PetscReal sigma[MM_MAX_DIM][MM_MAX_DIM])
 {
   PetscFunctionBeginUser;
-  CellLaw(mat, cl)->cauchy(dim, mat->lambda[cl], mat->mu[cl], F, sigma);
+  CellLaw(mat, cl)->cauchy(dim, mat->lambda[cl], mat->mu[cl], G, sigma);
   PetscFunctionReturn(0);
 }

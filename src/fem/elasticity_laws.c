@@ -1,23 +1,19 @@
 /* The elasticity laws of -elasticity (docs/method.md section 13): each a table of pointwise
- * functions of the deformation gradient F, per unit reference volume, in plane strain in 2D.
- * - linear: the paper's small-strain model, sigma(eps) with eps = sym(F - Ii);
- * - svk: St. Venant-Kirchhoff, W = lambda/2 (tr E)^2 + mu E:E with E = (C - Ii)/2;
- * - neohookean: W = mu/2 (tr C - 3) - mu ln J + lambda/2 (ln J)^2 (tr C - 3 = tr C_2D - 2 in plane strain).
- * The algorithmic stress of a step from F0 to F1 makes its work on the step equal the energy change
+ * functions of the displacement gradient G = grad u (F = I + G), per unit reference volume, in plane
+ * strain in 2D.
+ * - linear: the paper's small-strain model, sigma(eps) with eps = sym(G);
+ * - svk: St. Venant-Kirchhoff, W = lambda/2 (tr E)^2 + mu E:E, E = (G + G^T + G^T G)/2;
+ * - neohookean: W = mu (tr E - ln J) + lambda/2 (ln J)^2, J = det F (mu/2 (tr C - 3) - mu ln J + ...).
+ * The algorithmic stress of a step from G0 to G1 makes its work on the step equal the energy change
  * exactly: the stress at the mean strain (linear and svk, whose energies are quadratic in the strain),
- * and Gonzalez's discrete gradient for neo-Hookean (docs/method.md section 13, "The step's stress"). */
+ * and Gonzalez's discrete gradient for neo-Hookean (docs/method.md section 13).
+ *
+ * Everything is formed from G, never from F or C minus the identity: at the strains of 1e-7 of a
+ * small-amplitude run, C - I would keep 9 digits and the neo-Hookean energy, a difference of O(eps)
+ * terms, none. */
 #include "elasticityimpl.h"
 
 typedef PetscReal Mat3[MM_MAX_DIM][MM_MAX_DIM];
-
-static void RightCauchyGreen(PetscInt dim, const Mat3 F, Mat3 C)
-{
-  for (PetscInt Ii = 0; Ii < dim; ++Ii)
-    for (PetscInt J = 0; J < dim; ++J) {
-      C[Ii][J] = 0;
-      for (PetscInt k = 0; k < dim; ++k) C[Ii][J] += F[k][Ii] * F[k][J];
-    }
-}
 
 static PetscReal Contract(PetscInt dim, const Mat3 A, const Mat3 B)
 {
@@ -34,71 +30,126 @@ static PetscReal Trace(PetscInt dim, const Mat3 A)
   return s;
 }
 
-/* ---------------------------------------------------------------- the laws on C: W, S = 2 dW/dC, D = dS/dE */
-
-static PetscReal SVKEnergyC(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 C)
+/* E = (G + G^T + G^T G)/2 */
+static void GreenStrain(PetscInt dim, const Mat3 G, Mat3 E)
 {
-  Mat3 E;
   for (PetscInt i = 0; i < dim; ++i)
-    for (PetscInt j = 0; j < dim; ++j) E[i][j] = 0.5 * (C[i][j] - (i == j ? 1 : 0));
+    for (PetscInt j = 0; j < dim; ++j) {
+      E[i][j] = 0.5 * (G[i][j] + G[j][i]);
+      for (PetscInt k = 0; k < dim; ++k) E[i][j] += 0.5 * G[k][i] * G[k][j];
+    }
+}
+
+/* det(I + A) - 1 from the invariants of A, without cancelling against 1 */
+static PetscReal DetIPlusMinusOne(PetscInt dim, const Mat3 A)
+{
+  if (dim == 2) return A[0][0] + A[1][1] + A[0][0] * A[1][1] - A[0][1] * A[1][0];
+  {
+    const PetscReal tr = A[0][0] + A[1][1] + A[2][2];
+    const PetscReal i2 = A[0][0] * A[1][1] - A[0][1] * A[1][0] + A[1][1] * A[2][2] - A[1][2] * A[2][1] + A[0][0] * A[2][2] - A[0][2] * A[2][0];
+    const PetscReal i3 = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) + A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+    return tr + i2 + i3;
+  }
+}
+
+/* x - log(1 + x), by its series where the difference would cancel */
+static PetscReal XMinusLog1p(PetscReal x)
+{
+  if (PetscAbsReal(x) > 1e-2) return x - log1p(x);
+  {
+    PetscReal s = 0, p = x;
+    for (PetscInt k = 2; k <= 10; ++k) {
+      p *= x;
+      s += ((k % 2) ? -1.0 : 1.0) * p / k;
+    }
+    return s;
+  }
+}
+
+/* ---------------------------------------------------------------- the laws on E: W, S = dW/dE, D = dS/dE */
+
+static PetscReal SVKEnergyE(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 E)
+{
   return 0.5 * lam * PetscSqr(Trace(dim, E)) + mu * Contract(dim, E, E);
 }
 
-static void SVKStressC(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 C, Mat3 S)
+static void SVKStressE(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 E, Mat3 S)
 {
-  PetscReal trE = 0;
-  for (PetscInt i = 0; i < dim; ++i) trE += 0.5 * (C[i][i] - 1);
+  const PetscReal trE = Trace(dim, E);
   for (PetscInt i = 0; i < dim; ++i)
-    for (PetscInt j = 0; j < dim; ++j) S[i][j] = mu * (C[i][j] - (i == j ? 1 : 0)) + (i == j ? lam * trE : 0);
+    for (PetscInt j = 0; j < dim; ++j) S[i][j] = 2 * mu * E[i][j] + (i == j ? lam * trE : 0);
 }
 
-static void SVKModuli(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 C, PetscReal D[MM_MAX_DIM][MM_MAX_DIM][MM_MAX_DIM][MM_MAX_DIM])
+static void SVKModuli(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 E, MMTangent D)
 {
-  for (PetscInt Ii = 0; Ii < dim; ++Ii)
-    for (PetscInt J = 0; J < dim; ++J)
-      for (PetscInt K = 0; K < dim; ++K)
-        for (PetscInt L = 0; L < dim; ++L) D[Ii][J][K][L] = (Ii == J && K == L ? lam : 0) + ((Ii == K && J == L) ? mu : 0) + ((Ii == L && J == K) ? mu : 0);
-}
-
-/* ln J = 1/2 ln det C and C^{-1} */
-static PetscReal LogJInverse(PetscInt dim, const Mat3 C, Mat3 Ci)
-{
-  const PetscReal det = MMDetInverse(dim, C, Ci);
-  return 0.5 * PetscLogReal(det);
-}
-
-static PetscReal NHEnergyC(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 C)
-{
-  Mat3            Ci;
-  const PetscReal lnJ = LogJInverse(dim, C, Ci);
-  return 0.5 * mu * (Trace(dim, C) - dim) - mu * lnJ + 0.5 * lam * lnJ * lnJ;
-}
-
-static void NHStressC(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 C, Mat3 S)
-{
-  Mat3            Ci;
-  const PetscReal lnJ = LogJInverse(dim, C, Ci);
+  (void)E;
   for (PetscInt i = 0; i < dim; ++i)
-    for (PetscInt j = 0; j < dim; ++j) S[i][j] = mu * ((i == j ? 1 : 0) - Ci[i][j]) + lam * lnJ * Ci[i][j];
+    for (PetscInt j = 0; j < dim; ++j)
+      for (PetscInt k = 0; k < dim; ++k)
+        for (PetscInt l = 0; l < dim; ++l) D[i][j][k][l] = (i == j && k == l ? lam : 0) + ((i == k && j == l) ? mu : 0) + ((i == l && j == k) ? mu : 0);
 }
 
-static void NHModuli(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 C, PetscReal D[MM_MAX_DIM][MM_MAX_DIM][MM_MAX_DIM][MM_MAX_DIM])
+/* C = I + 2E: its inverse, and ln J = 1/2 ln det C with det C - 1 formed from 2E */
+static PetscReal LogJInverse(PetscInt dim, const Mat3 E, Mat3 Ci)
+{
+  Mat3 C, E2;
+  for (PetscInt i = 0; i < dim; ++i)
+    for (PetscInt j = 0; j < dim; ++j) {
+      E2[i][j] = 2 * E[i][j];
+      C[i][j]  = (i == j ? 1 : 0) + E2[i][j];
+    }
+  (void)MMDetInverse(dim, (const PetscReal(*)[MM_MAX_DIM])C, Ci);
+  return 0.5 * log1p(DetIPlusMinusOne(dim, E2));
+}
+
+/* W = mu (tr E - ln J) + lambda/2 (ln J)^2. With x = det C - 1 = tr 2E + i2(2E) + i3(2E) and
+ * ln J = log1p(x)/2: tr E - ln J = -(i2 + i3)/2 + (x - log1p x)/2, no O(eps) terms cancelling */
+static PetscReal NHEnergyE(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 E)
+{
+  Mat3            E2;
+  PetscReal       x, lnJ, trE_minus_lnJ;
+  for (PetscInt i = 0; i < dim; ++i)
+    for (PetscInt j = 0; j < dim; ++j) E2[i][j] = 2 * E[i][j];
+  x   = DetIPlusMinusOne(dim, E2); /* tr 2E + the higher invariants */
+  lnJ = 0.5 * log1p(x);
+  if (dim == 2) trE_minus_lnJ = -0.5 * (E2[0][0] * E2[1][1] - E2[0][1] * E2[1][0]) + 0.5 * XMinusLog1p(x);
+  else {
+    const PetscReal i2 = E2[0][0] * E2[1][1] - E2[0][1] * E2[1][0] + E2[1][1] * E2[2][2] - E2[1][2] * E2[2][1] + E2[0][0] * E2[2][2] - E2[0][2] * E2[2][0];
+    const PetscReal i3 = E2[0][0] * (E2[1][1] * E2[2][2] - E2[1][2] * E2[2][1]) - E2[0][1] * (E2[1][0] * E2[2][2] - E2[1][2] * E2[2][0]) + E2[0][2] * (E2[1][0] * E2[2][1] - E2[1][1] * E2[2][0]);
+    trE_minus_lnJ = -0.5 * (i2 + i3) + 0.5 * XMinusLog1p(x);
+  }
+  return mu * trE_minus_lnJ + 0.5 * lam * lnJ * lnJ;
+}
+
+/* S = mu (I - C^{-1}) + lambda ln J C^{-1}, with I - C^{-1} = C^{-1} 2E */
+static void NHStressE(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 E, Mat3 S)
 {
   Mat3            Ci;
-  const PetscReal lnJ = LogJInverse(dim, C, Ci), m = mu - lam * lnJ;
-  for (PetscInt Ii = 0; Ii < dim; ++Ii)
-    for (PetscInt J = 0; J < dim; ++J)
-      for (PetscInt K = 0; K < dim; ++K)
-        for (PetscInt L = 0; L < dim; ++L) D[Ii][J][K][L] = lam * Ci[Ii][J] * Ci[K][L] + m * (Ci[Ii][K] * Ci[J][L] + Ci[Ii][L] * Ci[J][K]);
+  const PetscReal lnJ = LogJInverse(dim, E, Ci);
+  for (PetscInt i = 0; i < dim; ++i)
+    for (PetscInt j = 0; j < dim; ++j) {
+      PetscReal ce = 0;
+      for (PetscInt k = 0; k < dim; ++k) ce += Ci[i][k] * 2 * E[k][j];
+      S[i][j] = mu * ce + lam * lnJ * Ci[i][j];
+    }
 }
 
-/* det(A + B) - det(A), without the cancellation of the two determinants: the expansion in B */
+static void NHModuli(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 E, MMTangent D)
+{
+  Mat3            Ci;
+  const PetscReal lnJ = LogJInverse(dim, E, Ci), m = mu - lam * lnJ;
+  for (PetscInt i = 0; i < dim; ++i)
+    for (PetscInt j = 0; j < dim; ++j)
+      for (PetscInt k = 0; k < dim; ++k)
+        for (PetscInt l = 0; l < dim; ++l) D[i][j][k][l] = lam * Ci[i][j] * Ci[k][l] + m * (Ci[i][k] * Ci[j][l] + Ci[i][l] * Ci[j][k]);
+}
+
+/* det(A + B) - det(A) without the cancellation of the two determinants: the expansion in B's columns */
 static PetscReal DetIncrement(PetscInt dim, const Mat3 A, const Mat3 B)
 {
   if (dim == 2) return A[0][0] * B[1][1] + B[0][0] * A[1][1] - A[0][1] * B[1][0] - B[0][1] * A[1][0] + B[0][0] * B[1][1] - B[0][1] * B[1][0];
   {
     PetscReal d = 0;
-    /* det is multilinear in the columns: the sum over the 7 mixes of columns of A and B with at least one of B */
     for (PetscInt mask = 1; mask < 8; ++mask) {
       Mat3 M;
       for (PetscInt j = 0; j < 3; ++j)
@@ -109,85 +160,90 @@ static PetscReal DetIncrement(PetscInt dim, const Mat3 A, const Mat3 B)
   }
 }
 
-/* W(C1) - W(C0) - S(C_m) : dE for neo-Hookean, each term a difference of O(|dE|) quantities formed
- * without cancelling the energies themselves, whose round-off would swamp the O(|dE|^3) result */
-static PetscReal NHRemainder(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 C0, const Mat3 C1, const Mat3 Cm, const Mat3 dE)
+/* W(E1) - W(E0) - S(E_m) : dE for neo-Hookean, each term a difference of O(|dE|) quantities formed
+ * without cancelling the energies themselves */
+static PetscReal NHRemainder(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 E0, const Mat3 E1, const Mat3 Em, const Mat3 dE)
 {
-  Mat3            Ci, C2dE;
-  const PetscReal lm = LogJInverse(dim, Cm, Ci), l0 = 0.5 * PetscLogReal(MMDetInverse(dim, C0, NULL)), l1 = 0.5 * PetscLogReal(MMDetInverse(dim, C1, NULL));
+  Mat3            Ci, C0, dC;
+  const PetscReal lm = LogJInverse(dim, Em, Ci);
+  Mat3            Cdummy;
+  const PetscReal l0 = LogJInverse(dim, E0, Cdummy), l1 = LogJInverse(dim, E1, Cdummy);
   PetscReal       X, dl;
 
   for (PetscInt i = 0; i < dim; ++i)
-    for (PetscInt j = 0; j < dim; ++j) C2dE[i][j] = 2 * dE[i][j];
-  dl = 0.5 * log1p(DetIncrement(dim, C0, C2dE) / MMDetInverse(dim, C0, NULL));
+    for (PetscInt j = 0; j < dim; ++j) {
+      C0[i][j] = (i == j ? 1 : 0) + 2 * E0[i][j];
+      dC[i][j] = 2 * dE[i][j];
+    }
+  dl = 0.5 * log1p(DetIncrement(dim, C0, dC) / MMDetInverse(dim, (const PetscReal(*)[MM_MAX_DIM])C0, NULL));
   X  = Contract(dim, Ci, dE);
+  /* W1 - W0 = mu (tr dE - dl) + lambda/2 dl (l1 + l0); S_m : dE = mu (tr dE - X) + lambda lm X */
   return mu * (X - dl) + lam * (0.5 * dl * (l1 + l0) - lm * X);
 }
 
-/* A hyperelastic law on C */
+/* A hyperelastic law on E */
 typedef struct {
-  PetscBool quadratic; /* W quadratic in E: the stress at the mean strain is already exact */
-  PetscReal (*remainder)(PetscInt, PetscReal, PetscReal, const Mat3, const Mat3, const Mat3, const Mat3); /* W1 - W0 - S(C_m) : dE */
+  PetscReal (*remainder)(PetscInt, PetscReal, PetscReal, const Mat3, const Mat3, const Mat3, const Mat3); /* NULL: W quadratic in E, the mean strain's stress is exact */
   PetscReal (*energy)(PetscInt, PetscReal, PetscReal, const Mat3);
   void (*stress)(PetscInt, PetscReal, PetscReal, const Mat3, Mat3);
-  void (*moduli)(PetscInt, PetscReal, PetscReal, const Mat3, PetscReal[MM_MAX_DIM][MM_MAX_DIM][MM_MAX_DIM][MM_MAX_DIM]);
+  void (*moduli)(PetscInt, PetscReal, PetscReal, const Mat3, MMTangent);
 } HyperLaw;
 
-static const HyperLaw SVKLaw = {PETSC_TRUE, NULL, SVKEnergyC, SVKStressC, SVKModuli};
-static const HyperLaw NHLaw  = {PETSC_FALSE, NHRemainder, NHEnergyC, NHStressC, NHModuli};
+static const HyperLaw SVKLaw = {NULL, SVKEnergyE, SVKStressE, SVKModuli};
+static const HyperLaw NHLaw  = {NHRemainder, NHEnergyE, NHStressE, NHModuli};
 
 /* Below |E1 - E0| = 1e-5 the discrete gradient's correction, O(|E1 - E0|) in stress, is dropped: its
  * quotient carries a round-off of about 1e-16 / |E1 - E0| of the stress, which would stall the step's
  * iteration, and the work it leaves out is O(mu |E1 - E0|^3), below 1e-16 mu per unit volume. */
 #define MM_GONZALEZ_DROP 1e-10
 
-/* The algorithmic second Piola-Kirchhoff stress of a step: S(C_m) with C_m = (C0 + C1)/2, plus for a
- * non-quadratic W Gonzalez's correction so that S_alg : (E1 - E0) = W(C1) - W(C0) exactly. */
-static void HyperStressAlg(const HyperLaw *law, PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 F0, const Mat3 F1, Mat3 P)
+/* The algorithmic second Piola-Kirchhoff stress of a step: S(E_m) with E_m = (E0 + E1)/2, plus for a
+ * non-quadratic W Gonzalez's correction so that S_alg : (E1 - E0) = W(E1) - W(E0) exactly; then
+ * P = F_m S_alg, F_m = I + (G0 + G1)/2, for which P : (F1 - F0) = S_alg : (E1 - E0). */
+static void HyperStressAlg(const HyperLaw *law, PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G0, const Mat3 G1, Mat3 P)
 {
-  Mat3 C0, C1, Cm, S, dE, Fm;
+  Mat3 E0, E1, Em, S, dE;
 
-  RightCauchyGreen(dim, F0, C0);
-  RightCauchyGreen(dim, F1, C1);
+  GreenStrain(dim, G0, E0);
+  GreenStrain(dim, G1, E1);
   for (PetscInt i = 0; i < dim; ++i)
     for (PetscInt j = 0; j < dim; ++j) {
-      Cm[i][j] = 0.5 * (C0[i][j] + C1[i][j]);
-      dE[i][j] = 0.5 * (C1[i][j] - C0[i][j]);
-      Fm[i][j] = 0.5 * (F0[i][j] + F1[i][j]);
+      Em[i][j] = 0.5 * (E0[i][j] + E1[i][j]);
+      dE[i][j] = E1[i][j] - E0[i][j];
     }
-  law->stress(dim, lam, mu, Cm, S);
-  if (!law->quadratic) {
+  law->stress(dim, lam, mu, Em, S);
+  if (law->remainder) {
     const PetscReal n2 = Contract(dim, dE, dE);
     if (n2 > MM_GONZALEZ_DROP) {
-      const PetscReal k = law->remainder(dim, lam, mu, C0, C1, Cm, dE) / n2;
+      const PetscReal k = law->remainder(dim, lam, mu, E0, E1, Em, dE) / n2;
       for (PetscInt i = 0; i < dim; ++i)
         for (PetscInt j = 0; j < dim; ++j) S[i][j] += k * dE[i][j];
     }
   }
-  /* P = F_m S_alg: with E1 - E0 = sym(F_m^T (F1 - F0)), P : (F1 - F0) = S_alg : (E1 - E0) */
   for (PetscInt i = 0; i < dim; ++i)
     for (PetscInt J = 0; J < dim; ++J) {
-      P[i][J] = 0;
-      for (PetscInt K = 0; K < dim; ++K) P[i][J] += Fm[i][K] * S[K][J];
+      P[i][J] = S[i][J];
+      for (PetscInt K = 0; K < dim; ++K) P[i][J] += 0.5 * (G0[i][K] + G1[i][K]) * S[K][J];
     }
 }
 
 /* A_iJkL = dP_iJ / dF_kL = delta_ik S_JL + F_iI D_IJKL F_kK */
-static void HyperTangent(const HyperLaw *law, PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 F, MMTangent A)
+static void HyperTangent(const HyperLaw *law, PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G, MMTangent A)
 {
-  Mat3      C, S;
-  PetscReal D[MM_MAX_DIM][MM_MAX_DIM][MM_MAX_DIM][MM_MAX_DIM], FD[MM_MAX_DIM][MM_MAX_DIM][MM_MAX_DIM][MM_MAX_DIM];
+  Mat3      E, S, F;
+  MMTangent D, FD;
 
-  RightCauchyGreen(dim, F, C);
-  law->stress(dim, lam, mu, C, S);
-  law->moduli(dim, lam, mu, C, D);
-  /* FD_iJKL = F_iI D_IJKL, then A_iJkL = FD_iJKL F_kK */
+  GreenStrain(dim, G, E);
+  law->stress(dim, lam, mu, E, S);
+  law->moduli(dim, lam, mu, E, D);
+  for (PetscInt i = 0; i < dim; ++i)
+    for (PetscInt j = 0; j < dim; ++j) F[i][j] = (i == j ? 1 : 0) + G[i][j];
   for (PetscInt i = 0; i < dim; ++i)
     for (PetscInt J = 0; J < dim; ++J)
       for (PetscInt K = 0; K < dim; ++K)
         for (PetscInt L = 0; L < dim; ++L) {
           FD[i][J][K][L] = 0;
-          for (PetscInt Ii = 0; Ii < dim; ++Ii) FD[i][J][K][L] += F[i][Ii] * D[Ii][J][K][L];
+          for (PetscInt M = 0; M < dim; ++M) FD[i][J][K][L] += F[i][M] * D[M][J][K][L];
         }
   for (PetscInt i = 0; i < dim; ++i)
     for (PetscInt J = 0; J < dim; ++J)
@@ -200,17 +256,20 @@ static void HyperTangent(const HyperLaw *law, PetscInt dim, PetscReal lam, Petsc
 }
 
 /* sigma = F S F^T / J */
-static void HyperCauchy(const HyperLaw *law, PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 F, Mat3 sigma)
+static void HyperCauchy(const HyperLaw *law, PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G, Mat3 sigma)
 {
-  Mat3            C, S, FS;
-  const PetscReal J = MMDetInverse(dim, F, NULL);
+  Mat3      E, S, F, FS;
+  PetscReal J;
 
-  RightCauchyGreen(dim, F, C);
-  law->stress(dim, lam, mu, C, S);
+  GreenStrain(dim, G, E);
+  law->stress(dim, lam, mu, E, S);
   for (PetscInt i = 0; i < dim; ++i)
-    for (PetscInt J2 = 0; J2 < dim; ++J2) {
-      FS[i][J2] = 0;
-      for (PetscInt K = 0; K < dim; ++K) FS[i][J2] += F[i][K] * S[K][J2];
+    for (PetscInt j = 0; j < dim; ++j) F[i][j] = (i == j ? 1 : 0) + G[i][j];
+  J = MMDetInverse(dim, (const PetscReal(*)[MM_MAX_DIM])F, NULL);
+  for (PetscInt i = 0; i < dim; ++i)
+    for (PetscInt j = 0; j < dim; ++j) {
+      FS[i][j] = 0;
+      for (PetscInt K = 0; K < dim; ++K) FS[i][j] += F[i][K] * S[K][j];
     }
   for (PetscInt i = 0; i < dim; ++i)
     for (PetscInt j = 0; j < dim; ++j) {
@@ -220,94 +279,65 @@ static void HyperCauchy(const HyperLaw *law, PetscInt dim, PetscReal lam, PetscR
     }
 }
 
-/* ---------------------------------------------------------------- the linear law on F */
-
-static void LinearStrain(PetscInt dim, const Mat3 F, Mat3 e)
+static PetscReal HyperEnergy(const HyperLaw *law, PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G)
 {
+  Mat3 E;
+  GreenStrain(dim, G, E);
+  return law->energy(dim, lam, mu, E);
+}
+
+/* ---------------------------------------------------------------- the linear law */
+
+static void LinearSigma(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G, Mat3 s)
+{
+  const PetscReal tr = Trace(dim, G);
   for (PetscInt i = 0; i < dim; ++i)
-    for (PetscInt j = 0; j < dim; ++j) e[i][j] = 0.5 * (F[i][j] + F[j][i]) - (i == j ? 1 : 0);
+    for (PetscInt j = 0; j < dim; ++j) s[i][j] = mu * (G[i][j] + G[j][i]) + (i == j ? lam * tr : 0);
 }
 
-static void LinearSigma(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 e, Mat3 s)
+static PetscReal LinearEnergy(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G)
 {
-  const PetscReal tr = Trace(dim, e);
+  Mat3 s;
+  LinearSigma(dim, lam, mu, G, s);
+  return 0.5 * Contract(dim, s, G); /* s symmetric: s : G = s : eps */
+}
+
+static void LinearStressAlg(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G0, const Mat3 G1, Mat3 P)
+{
+  Mat3 Gm;
   for (PetscInt i = 0; i < dim; ++i)
-    for (PetscInt j = 0; j < dim; ++j) s[i][j] = 2 * mu * e[i][j] + (i == j ? lam * tr : 0);
+    for (PetscInt j = 0; j < dim; ++j) Gm[i][j] = 0.5 * (G0[i][j] + G1[i][j]);
+  LinearSigma(dim, lam, mu, Gm, P);
 }
 
-static PetscReal LinearEnergy(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 F)
+static void LinearTangent(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G, MMTangent A)
 {
-  Mat3 e;
-  LinearStrain(dim, F, e);
-  return 0.5 * lam * PetscSqr(Trace(dim, e)) + mu * Contract(dim, e, e);
-}
-
-static void LinearStressAlg(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 F0, const Mat3 F1, Mat3 P)
-{
-  Mat3 e0, e1;
-  LinearStrain(dim, F0, e0);
-  LinearStrain(dim, F1, e1);
-  for (PetscInt i = 0; i < dim; ++i)
-    for (PetscInt j = 0; j < dim; ++j) e0[i][j] = 0.5 * (e0[i][j] + e1[i][j]);
-  LinearSigma(dim, lam, mu, e0, P);
-}
-
-static void LinearTangent(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 F, MMTangent A)
-{
-  (void)F;
-  for (PetscInt i = 0; i < dim; ++i)
-    for (PetscInt J = 0; J < dim; ++J)
-      for (PetscInt k = 0; k < dim; ++k)
-        for (PetscInt L = 0; L < dim; ++L) A[i][J][k][L] = (i == J && k == L ? lam : 0) + ((i == k && J == L) ? mu : 0) + ((i == L && J == k) ? mu : 0);
-}
-
-static void LinearCauchy(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 F, Mat3 sigma)
-{
-  Mat3 e;
-  LinearStrain(dim, F, e);
-  LinearSigma(dim, lam, mu, e, sigma);
+  SVKModuli(dim, lam, mu, G, A); /* the same isotropic moduli, on grad u */
 }
 
 /* ---------------------------------------------------------------- the tables */
 
-static PetscReal SVKEnergy(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 F)
-{
-  Mat3 C;
-  RightCauchyGreen(dim, F, C);
-  return SVKEnergyC(dim, lam, mu, C);
-}
-static void SVKStressAlg(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 F0, const Mat3 F1, Mat3 P)
-{
-  HyperStressAlg(&SVKLaw, dim, lam, mu, F0, F1, P);
-}
-static void SVKTangent(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 F, MMTangent A)
-{
-  HyperTangent(&SVKLaw, dim, lam, mu, F, A);
-}
-static void SVKCauchy(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 F, Mat3 s)
-{
-  HyperCauchy(&SVKLaw, dim, lam, mu, F, s);
-}
-static PetscReal NHEnergy(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 F)
-{
-  Mat3 C;
-  RightCauchyGreen(dim, F, C);
-  return NHEnergyC(dim, lam, mu, C);
-}
-static void NHStressAlg(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 F0, const Mat3 F1, Mat3 P)
-{
-  HyperStressAlg(&NHLaw, dim, lam, mu, F0, F1, P);
-}
-static void NHTangent(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 F, MMTangent A)
-{
-  HyperTangent(&NHLaw, dim, lam, mu, F, A);
-}
-static void NHCauchy(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 F, Mat3 s)
-{
-  HyperCauchy(&NHLaw, dim, lam, mu, F, s);
-}
+#define MM_HYPER_OPS(Name, law) \
+  static PetscReal Name##Energy(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G) \
+  { \
+    return HyperEnergy(&law, dim, lam, mu, G); \
+  } \
+  static void Name##StressAlg(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G0, const Mat3 G1, Mat3 P) \
+  { \
+    HyperStressAlg(&law, dim, lam, mu, G0, G1, P); \
+  } \
+  static void Name##Tangent(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G, MMTangent A) \
+  { \
+    HyperTangent(&law, dim, lam, mu, G, A); \
+  } \
+  static void Name##Cauchy(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G, Mat3 s) \
+  { \
+    HyperCauchy(&law, dim, lam, mu, G, s); \
+  }
+MM_HYPER_OPS(SVK, SVKLaw)
+MM_HYPER_OPS(NH, NHLaw)
 
-static const MMElasticityOps LinearOps     = {.energy = LinearEnergy, .stress_alg = LinearStressAlg, .tangent = LinearTangent, .cauchy = LinearCauchy, .finite = PETSC_FALSE};
+static const MMElasticityOps LinearOps     = {.energy = LinearEnergy, .stress_alg = LinearStressAlg, .tangent = LinearTangent, .cauchy = LinearSigma, .finite = PETSC_FALSE};
 static const MMElasticityOps SVKOps        = {.energy = SVKEnergy, .stress_alg = SVKStressAlg, .tangent = SVKTangent, .cauchy = SVKCauchy, .finite = PETSC_TRUE};
 static const MMElasticityOps NeoHookeanOps = {.energy = NHEnergy, .stress_alg = NHStressAlg, .tangent = NHTangent, .cauchy = NHCauchy, .finite = PETSC_TRUE};
 

@@ -7,7 +7,8 @@
  * gives the exact stress at every vertex: the projection of a constant is that constant. The cell
  * stress itself, and its von Mises value, are written too (cell fields, in the order of the cells
  * of the XDMF topology: each rank's cells in local order, the mesh being distributed without
- * overlap). */
+ * overlap). With a finite-strain law (-elasticity svk, neohookean) it is the Cauchy stress of the
+ * current configuration, plotted on the reference mesh (ParaView's Warp By Vector shows it deformed). */
 #include "fem.h"
 
 #define MM_SYM 6
@@ -76,6 +77,26 @@ static void CellStress(PetscInt dim, const PetscReal Ji[], const PetscReal u[][M
   s[3] = lambda * tr + 2 * mu * e[1][1];
   s[4] = 2 * mu * e[1][2];
   s[5] = lambda * tr + 2 * mu * e[2][2]; /* 2D: plane strain, e_zz = 0 */
+}
+
+/* The finite-strain laws: the Cauchy stress of the current configuration, from F = I + grad u
+ * (docs/method.md section 13); plane strain in 2D, with sigma_zz from F_zz = 1 */
+static PetscErrorCode CellCauchy(PetscInt dim, const PetscReal Ji[], const PetscReal u[][MM_MAX_DIM], const MMMaterial *mat, PetscInt c, PetscReal s[MM_SYM])
+{
+  PetscReal G[MM_MAX_DIM][MM_MAX_DIM] = {{0}}, sig[MM_MAX_DIM][MM_MAX_DIM];
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < dim; ++i)
+    for (PetscInt j = 0; j < dim; ++j)
+      for (PetscInt k = 0; k < dim; ++k) G[i][j] += (u[k + 1][i] - u[0][i]) * Ji[MM_MAX_DIM * k + j];
+  PetscCall(MMElasticityCauchy(mat, c, MM_MAX_DIM, (const PetscReal(*)[MM_MAX_DIM])G, sig));
+  s[0] = sig[0][0];
+  s[1] = sig[0][1];
+  s[2] = sig[0][2];
+  s[3] = sig[1][1];
+  s[4] = sig[1][2];
+  s[5] = sig[2][2];
+  PetscFunctionReturn(0);
 }
 
 static PetscReal VonMises(const PetscScalar s[MM_SYM])
@@ -166,7 +187,8 @@ PetscErrorCode MMStressCompute(MMStress *st, const MMOperators *op, const MMMate
       PetscCall(PetscSectionGetOffset(su, v[a], &ou));
       for (PetscInt d = 0; d < dim; ++d) u[a][d] = PetscRealPart(ua[ou + d]);
     }
-    CellStress(dim, g, u, mat->lambda[c], mat->mu[c], s); /* each cell with its body's material */
+    if (mat->finite) PetscCall(CellCauchy(dim, g, u, mat, c, s));
+    else CellStress(dim, g, u, mat->lambda[c], mat->mu[c], s); /* each cell with its body's material */
     for (PetscInt k = 0; k < MM_SYM; ++k) sc[MM_SYM * c + k] = s[k];
     vc[c] = VonMises(&sc[MM_SYM * c]);
     for (PetscInt a = 0; a <= dim; ++a) {
