@@ -31,11 +31,25 @@ typedef enum {
   MM_TANGENT_STEP       /* K_s rebuilt at u^n every step */
 } MMTangentPolicy;
 PETSC_INTERN const char *const MMTangentPolicies[];
+/* Anderson acceleration of the step's fixed point on the force correction (anderson.c) */
+#define MM_ANDERSON_MAX 16
+typedef struct {
+  PetscInt  m, n;       /* depth, stored differences (oldest first) */
+  PetscBool first;      /* no previous iterate yet */
+  Vec      *dF, *dH;    /* differences of the residuals f = H - c and of the maps H */
+  Vec       f, f_prev, H_prev;
+} MMAnderson;
+PETSC_INTERN PetscErrorCode MMAndersonSetUp(MMAnderson *aa, PetscInt m, Vec tmpl);
+PETSC_INTERN PetscErrorCode MMAndersonReset(MMAnderson *aa);
+PETSC_INTERN PetscErrorCode MMAndersonUpdate(MMAnderson *aa, Vec c, Vec H);
+PETSC_INTERN PetscErrorCode MMAndersonDestroy(MMAnderson *aa);
 typedef struct {
   MMElasticity    el;
+  MMAnderson      aa;          /* -nonlinear_anderson m */
   MMTangentPolicy policy;      /* -nonlinear_tangent */
   PetscReal       rtol;        /* -nonlinear_rtol: the force residual, relative to the internal force */
   PetscInt        max_it;      /* -nonlinear_max_it */
+  PetscInt        anderson;    /* -nonlinear_anderson: its depth */
   PetscReal       refresh;     /* -nonlinear_refresh_ratio: auto rebuilds K_s when an iteration contracts less */
   Mat             Ks;          /* the iteration stiffness when not K (w-frame, K's pattern) */
   PetscInt        version;     /* counts the rebuilds of Ks: contact rebuilds K~ when it changes */

@@ -33,6 +33,9 @@ PetscErrorCode MMNonlinearSetFromOptions(PetscOptionItems *PetscOptionsObject, M
   PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-nonlinear_rtol", "The finite-strain step's iteration stops when its force residual is below this times the step's force scale (the internal force, the loads, the reactions, 2/dt M* v), > 0", &nl->rtol));
   nl->max_it = 30;
   PetscCall(MMOptionsInt(PetscOptionsObject, comm, "-nonlinear_max_it", "Most iterations of the finite-strain step (>= 1); past them the step is rejected and retried with a smaller dt", &nl->max_it));
+  nl->anderson = 5;
+  PetscCall(MMOptionsInt(PetscOptionsObject, comm, "-nonlinear_anderson", "Anderson acceleration of the finite-strain step's iteration: how many past iterates it mixes (0: none, plain modified Newton; at most 16)", &nl->anderson));
+  PetscCheck(nl->anderson >= 0 && nl->anderson <= MM_ANDERSON_MAX, comm, PETSC_ERR_USER_INPUT, "-nonlinear_anderson %" PetscInt_FMT " must be in [0, %d]", nl->anderson, MM_ANDERSON_MAX);
   nl->refresh = 0.1;
   PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-nonlinear_refresh_ratio", "-nonlinear_tangent auto: rebuild the iteration matrix at the iterate when an iteration reduces the residual by less than this factor (in (0, 1))", &nl->refresh));
   PetscCheck(nl->rtol > 0, comm, PETSC_ERR_USER_INPUT, "-nonlinear_rtol %g must be > 0", (double)nl->rtol);
@@ -63,6 +66,7 @@ PetscErrorCode MMNonlinearSetUp(MMNewmark nm)
   PetscCall(VecDuplicate(nm->state.u, &nl->f));
   PetscCall(VecDuplicate(nm->state.u, &nl->c));
   PetscCall(VecDuplicate(nm->state.u, &nl->c_prev));
+  PetscCall(MMAndersonSetUp(&nl->aa, nl->anderson, nm->state.u));
   PetscFunctionReturn(0);
 }
 
@@ -75,6 +79,7 @@ PetscErrorCode MMNonlinearDestroy(MMNonlinear *nl)
   PetscCall(VecDestroy(&nl->f));
   PetscCall(VecDestroy(&nl->c));
   PetscCall(VecDestroy(&nl->c_prev));
+  PetscCall(MMAndersonDestroy(&nl->aa));
   PetscFunctionReturn(0);
 }
 
@@ -171,23 +176,30 @@ PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b,
   PetscCall(MMElasticityLocal(&nl->el, nm->op, nm->loads, s->u, t0, nl->el.l0));
   if (nl->policy == MM_TANGENT_STEP) PetscCall(RebuildTangent(nm, dt, nl->el.l0));
   PetscCall(Correction(nm, t0 + dt, w, nl->c, &scale));
+  PetscCall(MMAndersonReset(&nl->aa));
   for (nl->its = 1; nl->its <= nl->max_it; ++nl->its) {
+    Vec H = nl->c_prev;
     PetscCall(VecWAXPY(b, 1.0, nl->bnl, nl->c));
     PetscCall(MMFrictionSolve(nm->friction, nm->hist.step, nm->hist.time, b, w, s->react, solved));
     if (!*solved) PetscFunctionReturn(0);
-    PetscCall(VecCopy(nl->c, nl->c_prev));
-    PetscCall(Correction(nm, t0 + dt, w, nl->c, &scale));
-    /* the residual of the nonlinear step at w: the change of the correction */
-    PetscCall(VecAXPY(nl->c_prev, -1.0, nl->c));
-    PetscCall(VecNorm(nl->c_prev, NORM_2, &res));
+    PetscCall(Correction(nm, t0 + dt, w, H, &scale));
+    /* the residual of the nonlinear step at w: the correction there, H(c), less the one its solve used, c */
+    PetscCall(VecAXPY(nl->c, -1.0, H));
+    PetscCall(VecNorm(nl->c, NORM_2, &res));
+    PetscCall(VecAXPY(nl->c, 1.0, H));
     res /= PetscMax(PetscMax(scale, fscale), PETSC_SMALL * PETSC_SMALL);
     nl->residual = res;
+    PetscCall(PetscInfo(NULL, "finite-strain step %" PetscInt_FMT " iteration %" PetscInt_FMT ": residual %.3e\n", nm->hist.step + 1, nl->its, (double)res));
     if (res <= nl->rtol) break;
-    /* a slow contraction: the iteration matrix is far from the tangent (large rotations) */
     if (nl->policy == MM_TANGENT_AUTO && res > nl->refresh * res_prev) {
+      /* a slow contraction: the iteration matrix is far from the tangent (large rotations) */
       PetscCall(RebuildTangent(nm, dt, nl->el.l1));
       PetscCall(Correction(nm, t0 + dt, w, nl->c, &scale));
+      PetscCall(MMAndersonReset(&nl->aa));
+      res_prev = PETSC_MAX_REAL;
+      continue;
     }
+    PetscCall(MMAndersonUpdate(&nl->aa, nl->c, H));
     res_prev = res;
   }
   nl->its_total += PetscMin(nl->its, nl->max_it);
