@@ -14,6 +14,7 @@ PETSC_EXTERN PetscErrorCode MMContactCreate(MPI_Comm comm, MMContact *ct);
 PETSC_EXTERN PetscErrorCode MMContactSetFromOptions(MMContact ct);
 PETSC_EXTERN PetscErrorCode MMContactSetCoulombTolerance(MMContact ct, PetscReal tol);
 PETSC_EXTERN PetscErrorCode MMContactGetTolerance(MMContact ct, PetscReal *tol);
+PETSC_EXTERN PetscErrorCode MMContactStepIsIterative(MMContact ct, PetscBool *iterative);
 /* What contact reads of the problem, given at set-up (src/app fills it from the options): the
  * obstacles (rigid ones first, then the contact pairs), the contact boundary's physical name, the
  * material's values its messages name, the single plane (-obstacle_point, -obstacle_normal) */

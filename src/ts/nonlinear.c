@@ -162,13 +162,30 @@ static PetscErrorCode Correction(MMNewmark nm, PetscReal t1, Vec w, Vec c, Petsc
   PetscFunctionReturn(0);
 }
 
+/* The step's tolerance: -nonlinear_rtol, or with iterative K~ solves, which stop at contact_tol ||b||,
+ * ten times the residual that leaves in the force scale S: no iteration can go below it */
+static PetscErrorCode Tolerance(MMNewmark nm, Vec b, PetscReal S, PetscReal *tol)
+{
+  PetscBool iterative;
+  PetscReal ctol, bnorm;
+
+  PetscFunctionBeginUser;
+  *tol = nm->nl.rtol;
+  PetscCall(MMContactStepIsIterative(nm->contact, &iterative));
+  if (!iterative) PetscFunctionReturn(0);
+  PetscCall(MMContactGetTolerance(nm->contact, &ctol));
+  PetscCall(VecNorm(b, NORM_2, &bnorm));
+  *tol = PetscMax(*tol, 10 * ctol * bnorm / S);
+  PetscFunctionReturn(0);
+}
+
 /* One step: w holds the predictor on entry, u^{n+1} on success; b is contact's right-hand side vector.
  * *solved false: the friction solver or the iteration did not converge (the caller rejects the step). */
 PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b, Vec w, PetscBool *solved)
 {
   MMNonlinear *nl = &nm->nl;
   MMState     *s  = &nm->state;
-  PetscReal    scale, fscale = 0, res = PETSC_MAX_REAL, res_prev = PETSC_MAX_REAL;
+  PetscReal    scale, fscale = 0, res = PETSC_MAX_REAL, res_prev = PETSC_MAX_REAL, tol = nl->rtol;
 
   PetscFunctionBeginUser;
   *solved = PETSC_FALSE;
@@ -189,8 +206,9 @@ PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b,
     PetscCall(VecAXPY(nl->c, 1.0, H));
     res /= PetscMax(PetscMax(scale, fscale), PETSC_SMALL * PETSC_SMALL);
     nl->residual = res;
+    if (nl->its == 1) PetscCall(Tolerance(nm, b, PetscMax(PetscMax(scale, fscale), PETSC_SMALL * PETSC_SMALL), &tol));
     PetscCall(PetscInfo(NULL, "finite-strain step %" PetscInt_FMT " iteration %" PetscInt_FMT ": residual %.3e\n", nm->hist.step + 1, nl->its, (double)res));
-    if (res <= nl->rtol) break;
+    if (res <= tol) break;
     if (nl->policy == MM_TANGENT_AUTO && res > nl->refresh * res_prev) {
       /* a slow contraction: the iteration matrix is far from the tangent (large rotations) */
       PetscCall(RebuildTangent(nm, dt, nl->el.l1));
@@ -204,7 +222,7 @@ PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b,
   }
   nl->its_total += PetscMin(nl->its, nl->max_it);
   nl->steps++;
-  *solved = (PetscBool)(res <= nl->rtol);
+  *solved = (PetscBool)(res <= tol);
   PetscFunctionReturn(0);
 }
 

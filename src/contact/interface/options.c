@@ -82,3 +82,11 @@ PetscErrorCode MMContactGetTolerance(MMContact ct, PetscReal *tol)
   *tol = ct->opt.contact_tol;
   PetscFunctionReturn(0);
 }
+
+/* Whether the step's K~ solves are iterative (CG): their error is then contact_tol ||b||, not round-off */
+PetscErrorCode MMContactStepIsIterative(MMContact ct, PetscBool *iterative)
+{
+  PetscFunctionBeginUser;
+  *iterative = ct->kt.ksp ? ct->kt.iterative : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
