@@ -312,7 +312,10 @@ typedef struct {
   Vec       l0, l1, lf; /* local scratch */
   Vec       g;          /* global Cartesian scratch */
   PetscReal detF_min;   /* the last evaluation's smallest det F over the mesh */
+  PetscInt *cell_off;   /* per local cell, its dim + 1 vertices' offsets in the local vectors */
+  PetscReal *cell_geom; /* per local cell, its P1 gradients (dim + 1 by dim) and volume */
 } MMElasticity;
+#define MM_ELASTICITY_GEOM ((MM_MAX_DIM + 1) * MM_MAX_DIM + 1)
 PETSC_EXTERN PetscErrorCode MMElasticitySetUp(MMElasticity *el, const MMOperators *op);
 /* l: the Cartesian local vector of the w-frame w with the Dirichlet data of time t */
 PETSC_EXTERN PetscErrorCode MMElasticityLocal(MMElasticity *el, const MMOperators *op, MMLoads *ld, Vec w, PetscReal t, Vec l);

@@ -11,6 +11,40 @@
 
 #define MM_NV_MAX (MM_MAX_DIM + 1)
 
+/* Once: each local cell's vertex offsets in the local vectors, P1 gradients and volume (the force is
+ * evaluated several times per step: reading the sections and inverting the edge matrix each time
+ * cost a third of it) */
+static PetscErrorCode CellCache(MMElasticity *el, const MMOperators *op)
+{
+  const PetscInt     dim = op->dim, nc = op->cells.ncells;
+  PetscSection       ls, cs;
+  Vec                coords;
+  const PetscScalar *xc;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc2((dim + 1) * nc, &el->cell_off, MM_ELASTICITY_GEOM * nc, &el->cell_geom));
+  PetscCall(DMGetLocalSection(op->dm, &ls));
+  PetscCall(DMGetCoordinateSection(op->dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(op->dm, &coords));
+  PetscCall(VecGetArrayRead(coords, &xc));
+  for (PetscInt cl = 0; cl < nc; ++cl) {
+    const PetscInt *v = &op->cells.vertex[(dim + 1) * cl];
+    PetscReal       X[MM_NV_MAX][MM_MAX_DIM], g[MM_NV_MAX][MM_MAX_DIM], vol;
+    for (PetscInt a = 0; a <= dim; ++a) {
+      PetscInt xo;
+      PetscCall(PetscSectionGetOffset(cs, v[a], &xo));
+      PetscCall(PetscSectionGetOffset(ls, v[a], &el->cell_off[(dim + 1) * cl + a]));
+      for (PetscInt i = 0; i < dim; ++i) X[a][i] = PetscRealPart(xc[xo + i]);
+    }
+    PetscCall(MMP1CellGradients(dim, (const PetscReal(*)[MM_MAX_DIM])X, g, &vol));
+    for (PetscInt a = 0; a <= dim; ++a)
+      for (PetscInt i = 0; i < dim; ++i) el->cell_geom[MM_ELASTICITY_GEOM * cl + a * dim + i] = g[a][i];
+    el->cell_geom[MM_ELASTICITY_GEOM * cl + (dim + 1) * dim] = vol;
+  }
+  PetscCall(VecRestoreArrayRead(coords, &xc));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MMElasticitySetUp(MMElasticity *el, const MMOperators *op)
 {
   PetscFunctionBeginUser;
@@ -19,6 +53,7 @@ PetscErrorCode MMElasticitySetUp(MMElasticity *el, const MMOperators *op)
   PetscCall(VecDuplicate(el->l0, &el->l1));
   PetscCall(VecDuplicate(el->l0, &el->lf));
   PetscCall(DMCreateGlobalVector(op->dm, &el->g));
+  PetscCall(CellCache(el, op));
   PetscFunctionReturn(0);
 }
 
@@ -29,6 +64,7 @@ PetscErrorCode MMElasticityDestroy(MMElasticity *el)
   PetscCall(VecDestroy(&el->l1));
   PetscCall(VecDestroy(&el->lf));
   PetscCall(VecDestroy(&el->g));
+  PetscCall(PetscFree2(el->cell_off, el->cell_geom));
   PetscFunctionReturn(0);
 }
 
@@ -74,22 +110,17 @@ static PetscErrorCode CellDataRestore(CellData *cd)
   PetscFunctionReturn(0);
 }
 
-/* Cell c's vertices' offsets in the local vectors, its P1 gradients and volume */
-static PetscErrorCode CellGeometry(const CellData *cd, PetscInt c, PetscInt off[], PetscReal g[][MM_MAX_DIM], PetscReal *vol)
+/* Cell cl's vertices' offsets in the local vectors, its P1 gradients and volume, from the cache */
+static inline void CellGeometry(const MMElasticity *el, PetscInt dim, PetscInt cl, PetscInt off[], PetscReal g[][MM_MAX_DIM], PetscReal *vol)
 {
-  const PetscInt  dim = cd->op->dim;
-  const PetscInt *v   = &cd->op->cells.vertex[(dim + 1) * (c - cd->op->cells.cStart)];
-  PetscReal       X[MM_NV_MAX][MM_MAX_DIM];
+  const PetscInt  *o = &el->cell_off[(dim + 1) * cl];
+  const PetscReal *q = &el->cell_geom[MM_ELASTICITY_GEOM * cl];
 
-  PetscFunctionBeginUser;
   for (PetscInt a = 0; a <= dim; ++a) {
-    PetscInt xo;
-    PetscCall(PetscSectionGetOffset(cd->cs, v[a], &xo));
-    PetscCall(PetscSectionGetOffset(cd->ls, v[a], &off[a]));
-    for (PetscInt i = 0; i < dim; ++i) X[a][i] = PetscRealPart(cd->xc[xo + i]);
+    off[a] = o[a];
+    for (PetscInt i = 0; i < dim; ++i) g[a][i] = q[a * dim + i];
   }
-  PetscCall(MMP1CellGradients(dim, (const PetscReal(*)[MM_MAX_DIM])X, g, vol));
-  PetscFunctionReturn(0);
+  *vol = q[(dim + 1) * dim];
 }
 
 /* G = grad u = sum_a u_a (x) grad phi_a (the laws take G, not F = I + G: src/fem/elasticity_laws.c) */
@@ -131,6 +162,7 @@ PetscErrorCode MMElasticityForce(MMElasticity *el, const MMOperators *op, const 
   PetscReal      detF = PETSC_MAX_REAL;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(MM_FE_ElasticForce, 0, 0, 0, 0));
   PetscCall(CellDataGet(op, mat, &cd));
   PetscCall(VecGetArrayRead(l0, &cd.u0));
   PetscCall(VecGetArrayRead(l1, &cd.u1));
@@ -141,7 +173,7 @@ PetscErrorCode MMElasticityForce(MMElasticity *el, const MMOperators *op, const 
     PetscInt               off[MM_NV_MAX];
     PetscReal              g[MM_NV_MAX][MM_MAX_DIM], vol, G0[MM_MAX_DIM][MM_MAX_DIM], G1[MM_MAX_DIM][MM_MAX_DIM], P[MM_MAX_DIM][MM_MAX_DIM];
 
-    PetscCall(CellGeometry(&cd, cl + op->cells.cStart, off, g, &vol));
+    CellGeometry(el, dim, cl, off, g, &vol);
     DisplacementGradient(dim, cd.u0, off, (const PetscReal(*)[MM_MAX_DIM])g, G0);
     DisplacementGradient(dim, cd.u1, off, (const PetscReal(*)[MM_MAX_DIM])g, G1);
     detF = PetscMin(detF, DetF(dim, (const PetscReal(*)[MM_MAX_DIM])G1));
@@ -162,6 +194,7 @@ PetscErrorCode MMElasticityForce(MMElasticity *el, const MMOperators *op, const 
   PetscCall(VecZeroEntries(el->g));
   PetscCall(DMLocalToGlobal(op->dm, el->lf, ADD_VALUES, el->g)); /* the Dirichlet dofs drop out */
   PetscCall(MMFEForceFromCartesian(op, el->g, fw));
+  PetscCall(PetscLogEventEnd(MM_FE_ElasticForce, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -172,19 +205,21 @@ PetscErrorCode MMElasticityEnergy(MMElasticity *el, const MMOperators *op, const
   PetscReal      e = 0;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(MM_FE_ElasticEnergy, 0, 0, 0, 0));
   PetscCall(CellDataGet(op, mat, &cd));
   PetscCall(VecGetArrayRead(l, &cd.u1));
   for (PetscInt cl = 0; cl < op->cells.ncells; ++cl) {
     PetscInt  off[MM_NV_MAX];
     PetscReal g[MM_NV_MAX][MM_MAX_DIM], vol, G[MM_MAX_DIM][MM_MAX_DIM];
 
-    PetscCall(CellGeometry(&cd, cl + op->cells.cStart, off, g, &vol));
+    CellGeometry(el, dim, cl, off, g, &vol);
     DisplacementGradient(dim, cd.u1, off, (const PetscReal(*)[MM_MAX_DIM])g, G);
     e += vol * CellLaw(mat, cl)->energy(dim, mat->lambda[cl], mat->mu[cl], (const PetscReal(*)[MM_MAX_DIM])G);
   }
   PetscCall(VecRestoreArrayRead(l, &cd.u1));
   PetscCall(CellDataRestore(&cd));
   PetscCall(MPIU_Allreduce(&e, energy, 1, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)op->dm)));
+  PetscCall(PetscLogEventEnd(MM_FE_ElasticEnergy, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -218,12 +253,14 @@ PetscErrorCode MMElasticityTangent(MMElasticity *el, const MMOperators *op, cons
   CellData cd;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(MM_FE_ElasticTangent, 0, 0, 0, 0));
   PetscCall(CellDataGet(op, mat, &cd));
   PetscCall(VecGetArrayRead(l, &cd.u1));
   PetscCall(MMAssembleP1Elements(op->dm, Kw, TangentElement, &cd));
   PetscCall(VecRestoreArrayRead(l, &cd.u1));
   PetscCall(CellDataRestore(&cd));
   if (op->Q) PetscCall(MMRotateP1(op->Q, Kw, NULL)); /* into the contact nodes' frames, as K is */
+  PetscCall(PetscLogEventEnd(MM_FE_ElasticTangent, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

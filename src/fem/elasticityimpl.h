@@ -18,3 +18,6 @@ typedef struct {
 } MMElasticityOps;
 
 PETSC_INTERN const MMElasticityOps *MMElasticityGetOps(MMElasticityType type);
+
+/* fem's events of the finite-strain laws (src/fem/fem.c registers them) */
+PETSC_INTERN PetscLogEvent MM_FE_ElasticForce, MM_FE_ElasticEnergy, MM_FE_ElasticTangent;

@@ -3,11 +3,14 @@
 #include <float.h>
 #include "fem.h"
 #include "assembly_p1.h"
+#include "elasticityimpl.h"
 
 /* fem's events (MMFEInitializePackage): the operators' assembly (from MMFEAssembleOperators to
  * MMFEAssembleOperatorsEnd, contact's frame included), the Cartesian K and M alone by the selected
  * -assembly path */
 static PetscLogEvent MM_FEAssemble, MM_FEAssembleKM;
+/* the finite-strain laws' force, energy and tangent (elasticity.c) */
+PetscLogEvent MM_FE_ElasticForce, MM_FE_ElasticEnergy, MM_FE_ElasticTangent;
 
 /* fem's class and events, registered once (as KSPInitializePackage) */
 PetscErrorCode MMFEInitializePackage(void)
@@ -21,6 +24,9 @@ PetscErrorCode MMFEInitializePackage(void)
   PetscCall(PetscClassIdRegister("MMFE", &id));
   PetscCall(PetscLogEventRegister("MMFEAssemble", id, &MM_FEAssemble));
   PetscCall(PetscLogEventRegister("MMAssembleKM", id, &MM_FEAssembleKM));
+  PetscCall(PetscLogEventRegister("MMElasticForce", id, &MM_FE_ElasticForce));
+  PetscCall(PetscLogEventRegister("MMElasticEnergy", id, &MM_FE_ElasticEnergy));
+  PetscCall(PetscLogEventRegister("MMElasticTangent", id, &MM_FE_ElasticTangent));
   PetscFunctionReturn(0);
 }
 
