@@ -236,15 +236,23 @@ static PetscErrorCode TangentElement(void *ctx, PetscInt c, const PetscInt v[], 
   for (PetscInt a = 0; a <= dim; ++a) PetscCall(PetscSectionGetOffset(cd->ls, v[a], &off[a]));
   DisplacementGradient(dim, cd->u1, off, g, G);
   CellLaw(cd->mat, cl)->tangent(dim, cd->mat->lambda[cl], cd->mat->mu[cl], (const PetscReal(*)[MM_MAX_DIM])G, A);
-  for (PetscInt a = 0; a <= dim; ++a)
+  for (PetscInt a = 0; a <= dim; ++a) {
+    PetscReal ga[MM_MAX_DIM][MM_MAX_DIM][MM_MAX_DIM]; /* vol g_a,J A_iJkL, then contracted with each g_b */
     for (PetscInt i = 0; i < dim; ++i)
-      for (PetscInt b = 0; b <= dim; ++b)
-        for (PetscInt k = 0; k < dim; ++k) {
-          PetscReal s = 0;
-          for (PetscInt J = 0; J < dim; ++J)
-            for (PetscInt L = 0; L < dim; ++L) s += g[a][J] * A[i][J][k][L] * g[b][L];
-          Ke[(a * dim + i) * n + b * dim + k] = vol * s;
+      for (PetscInt k = 0; k < dim; ++k)
+        for (PetscInt L = 0; L < dim; ++L) {
+          PetscReal t = 0;
+          for (PetscInt J = 0; J < dim; ++J) t += g[a][J] * A[i][J][k][L];
+          ga[i][k][L] = vol * t;
         }
+    for (PetscInt b = 0; b <= dim; ++b)
+      for (PetscInt i = 0; i < dim; ++i)
+        for (PetscInt k = 0; k < dim; ++k) {
+          PetscReal t = 0;
+          for (PetscInt L = 0; L < dim; ++L) t += ga[i][k][L] * g[b][L];
+          Ke[(a * dim + i) * n + b * dim + k] = t;
+        }
+  }
   PetscFunctionReturn(0);
 }
 
