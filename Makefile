@@ -34,6 +34,8 @@ MSH  += meshes/cube_drop.msh
 MSH  += meshes/bimaterial.msh meshes/side_bars.msh
 # Pressures and concentrated forces (README "Loads in time"): a square plate with Physical Points
 MSH  += meshes/plate.msh
+# A ball whose whole sphere is contact boundary, resting on a plane: it slides, then rolls (issue 40)
+MSH  += meshes/ball_roll.msh
 # Bench meshes: the 2D D1 disk (115k dofs), the 3D D2 ball (H 0.045: 113k dofs, 3.8k contact nodes)
 # and the large D2 ball of `make bench-large` (H 0.021: about 1M dofs), generated when first needed;
 # the two balls of the 3d suite's two_body row at H 0.057 (116,520 dofs for both, as the D2 ball's 113k).
@@ -100,6 +102,8 @@ meshes/ball.msh: meshes/ball.geo
 meshes/ball10.msh: meshes/ball.geo
 	gmsh -3 $< -setnumber H 0.1 -o $@ -v 2
 meshes/ball_bowl.msh: meshes/ball_bowl.geo
+	gmsh -3 $< -o $@ -v 2
+meshes/ball_roll.msh: meshes/ball_roll.geo
 	gmsh -3 $< -o $@ -v 2
 meshes/disk_rail.msh: meshes/disk_rail.geo
 	gmsh -2 $< -o $@ -v 2
