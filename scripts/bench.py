@@ -15,17 +15,28 @@ Suites (the table SUITES below):
          and 8e-3 (c_p dt / h_c' = 2.1 and 4.2; suites users4, users8), linear, and friction with
          mu = 0.2 and 0.5 by each friction solver (-friction_type newton, the default, and
          fixedpoint, the paper's); 1 rank, 20 steps through the impact.  -> bench/results.csv
+  finite issue 40's cost target of the finite-strain step: friction mu = 0.2 with -elasticity linear
+         and svk, run as pairs back to back (the same options but -elasticity), in the formulation
+         -contact_formulation auto picks. Suite finite07: the D2 ball at H = 0.07 (meshes/ball07.msh,
+         33k dofs, condensed), dt = 4e-3, 20 steps, 1 rank; suite finite3d: the 3d suite's 113k-dof ball
+         (meshes/ball_bench.msh, active_set), dt = 1e-3, 30 steps, 2 ranks. The svk row gives
+         svk_over_linear (its s/step over the linear row's), nonlinear_its_per_step and
+         tangent_rebuilds (the run summary's "finite strain:" line) and finite_target: "met" when
+         svk_over_linear <= 2.5 and nonlinear_its_per_step <= 4 (issue 40), else "missed".
+                                                                          -> bench/results.csv
   large  D2 ball, about 1M dofs (meshes/ball_large.msh): linear, contact, friction mu = 0.2 on 2
          ranks, contact solved with LARGE_OPTS.                           -> bench/results_large.csv
 
-`make bench` runs 2d, 3d, surface and users, `make bench-large` runs large. Each suite's rows are written to its
+`make bench` runs 2d, 3d, surface and users (`BENCH_CASES=finite make bench` the finite suites),
+`make bench-large` runs large. Each suite's rows are written to its
 CSV (one common header) and printed as a table. Absolute times on a shared machine are noise: the
 figures are the ratios within one run (contact/linear on the same ranks and mesh, 1-rank over
 2-rank time for the 2-rank speed-up).
 
 Environment (all optional):
   BENCH_CASES       suites or suite:case to run, comma-separated (e.g. 2d,3d or 3d:linear,3d:friction);
-                    the command-line arguments, if any, take precedence. Default: 2d,3d,surface,users.
+                    the command-line arguments, if any, take precedence. Default: 2d,3d,surface,users
+                    (finite is not in the default: BENCH_CASES=finite make bench).
   BENCH_STEPS       steps per run for every suite (default: each suite's own, see SUITES)
   BENCH_RANKS       ranks to run, comma-separated (e.g. 2); ratios need both rows present
   BENCH_MESH_<SUITE> another mesh for that suite (e.g. BENCH_MESH_3D=meshes/ball.msh), to try rows quickly;
@@ -47,6 +58,9 @@ wall time on 1 rank in its first run (the 2d rows but full, the 3d linear row, t
 on a quiet machine: 1 to 5 s, where one busy second moves the speed-up by 20 to 50%) runs
 PAIR_REPEATS pairs in turn, and each row's s/step
 and set-up are the medians over its runs (column repeats); the other columns come from the first.
+The finite suites' pairs are their two rows (linear, then svk) back to back instead, repeated the same
+way when the linear row's stepping is that short; svk_over_linear is the median of the pairs' ratios.
+Every row gives max_balance, the largest energy-balance residual of the run (its summary).
 
 Peak memory: the program's summary prints the largest peak RSS over the ranks ("MiB/rank" is the
 max over ranks, src/io/output.c); to get the total, every rank runs under this script's --rank-rss
@@ -86,6 +100,15 @@ TWO_BODY = dict(case="two_body", options="-contact_formulation condensed", optio
                 problem="two balls", mesh="meshes/two_balls_bench.msh", dt=2e-3)
 USERS = (LINEAR, CONTACT) + tuple(dict(case=f"fric_{mu}_{ft}", options=f"-contact_formulation condensed -mu {mu} -friction_type {ft}")
                           for mu in (0.2, 0.5) for ft in ("newton", "fixedpoint"))
+# Finite strain (issue 40): the friction row with -elasticity linear and with svk, the same options
+# otherwise; in the formulation -contact_formulation auto picks at each size (written out, so that the
+# CSV says it): condensed on the 33k-dof ball, active_set on the 113k-dof one. The svk row's case is the
+# linear row's case and "_svk" (FINITE_TARGET: its s/step over the linear row's, its iterations).
+FINITE_TARGET = dict(ratio=2.5, its=4.0)
+FINITE07 = (dict(case="friction", options="-contact_formulation condensed -mu 0.2 -elasticity linear"),
+            dict(case="friction_svk", options="-contact_formulation condensed -mu 0.2 -elasticity svk"))
+FINITE3D = (dict(case="friction", options="-contact_formulation active_set -mu 0.2 -elasticity linear"),
+            dict(case="friction_svk", options="-contact_formulation active_set -mu 0.2 -elasticity svk"))
 
 # One row per (suite, variant, ranks). dt and steps go through the impact: the D1 disk touches the
 # plane after 1 ms (gap 0.001, v = -1; step 5), the D2 ball after 10 ms (gap 0.01; step 10).
@@ -109,6 +132,11 @@ SUITES = [
          dt=4e-3, steps=20, ranks=(1,), variants=USERS, csv="bench/results.csv"),
     dict(suite="users8", group="users", problem="D2 ball", dim=3, options_file="options/d2_ball.opts", mesh="meshes/ball07.msh",
          dt=8e-3, steps=20, ranks=(1,), variants=USERS, csv="bench/results.csv"),
+    # Issue 40's cost target: the D2 ball at H = 0.07 as users4 (1 rank) and the 3d suite's ball (2 ranks).
+    dict(suite="finite07", group="finite", problem="D2 ball", dim=3, options_file="options/d2_ball.opts", mesh="meshes/ball07.msh",
+         dt=4e-3, steps=20, ranks=(1,), variants=FINITE07, pairs=True, csv="bench/results.csv"),
+    dict(suite="finite3d", group="finite", problem="D2 ball", dim=3, options_file="options/d2_ball.opts", mesh="meshes/ball_bench.msh",
+         dt=1e-3, steps=30, ranks=(2,), variants=FINITE3D, pairs=True, csv="bench/results.csv"),
     dict(suite="large", problem="D2 ball", dim=3, options_file="options/d2_ball.opts", mesh="meshes/ball_large.msh",
          dt=1e-3, steps=30, ranks=(2,),
          variants=(dict(case="linear", options=f"-contact 0 {LARGE_SOLVERS}"), dict(case="contact", options=f"-mu 0 {LARGE_SOLVERS} {LARGE_OPTS}"),
@@ -119,10 +147,14 @@ SUITES = [
 FIELDS = ["suite", "problem", "dim", "ranks", "case", "formulation", "mu", "friction_type", "cfl", "dofs", "contact_nodes", "steps", "setup_s",
           "s_per_step", "contact_over_linear", "speedup_2_ranks", "peak_mib_max_rank", "peak_mib_total", "candidates",
           "max_active", "mean_vi_its", "mean_friction_its_in_contact", "max_friction_its", "rejections", "stream_ratio",
-          "speedup_over_stream", "speedup_target", "repeats", "status"]
+          "speedup_over_stream", "speedup_target", "max_balance", "elasticity", "svk_over_linear", "nonlinear_its_per_step",
+          "tangent_rebuilds", "finite_target", "repeats", "status"]
 SUMMARY = re.compile(r"mmcontact summary: setup ([\d.]+) s; (\d+) steps .* \(([\d.]+) s/step\); peak memory ([\d.]+) MiB/rank")
 DOFS = re.compile(r"(\d+) dofs[ ;(]")
 CONTACT_NODES = re.compile(r"(\d+) contact nodes")
+BALANCE = re.compile(r"largest balance residual ([-+\d.eE]+)")
+NONLINEAR = re.compile(r"finite strain: ([\d.]+) iterations per step")
+REBUILDS = re.compile(r"(\d+) tangent rebuilds")
 RANK_RSS = re.compile(r"bench rank peak rss (\d+) kB")
 STREAM = re.compile(r"stream ranks (\d+) triad_mbs ([\d.]+)")
 STREAM_EXE = "build/stream"
@@ -166,6 +198,7 @@ def run(suite, variant, ranks, steps):
                formulation=option_value(options, "-contact_formulation", "default") if contact else "-",
                mu=float(option_value(options, "-mu", "0")), steps=steps, status="ok")
     row["friction_type"] = option_value(options, "-friction_type", "newton") if contact and row["mu"] > 0 else "-"
+    row["elasticity"] = option_value(options, "-elasticity", "linear")
     print(f"  {suite['suite']} {variant['case']} on {ranks} rank(s): {' '.join(cmd[cmd.index('./mmcontact'):])}", flush=True)
     proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
     summary, dofs, nodes = SUMMARY.search(proc.stdout), DOFS.search(proc.stdout), CONTACT_NODES.search(proc.stdout)
@@ -174,6 +207,9 @@ def run(suite, variant, ranks, steps):
         print(f"    failed (exit {proc.returncode}):", *(lines if len(lines) <= 16 else lines[:10] + ["..."] + lines[-5:]), sep="\n    ", flush=True)
         return dict(row, status="failed", **{k: "-" for k in FIELDS if k not in row})
     rss = [int(kb) / 1024 for kb in RANK_RSS.findall(proc.stderr)]
+    balance, nonlinear, rebuilds = BALANCE.search(proc.stdout), NONLINEAR.search(proc.stdout), REBUILDS.search(proc.stdout)
+    row.update(max_balance=float(balance.group(1)) if balance else "-", nonlinear_its_per_step=float(nonlinear.group(1)) if nonlinear else "-",
+               tangent_rebuilds=int(rebuilds.group(1)) if nonlinear and rebuilds else "-")
     return dict(row, dofs=int(dofs.group(1)), contact_nodes=int(nodes.group(1)), setup_s=float(summary.group(1)),
                 s_per_step=float(summary.group(3)), peak_mib_max_rank=float(summary.group(4)),
                 peak_mib_total=round(sum(rss), 1) if len(rss) == ranks else "-", rejections=proc.stdout.count("step rejected"),
@@ -203,6 +239,31 @@ def run_case(suite, variant, ranks, steps):
         elif len(ok) > 1:
             row.update(s_per_step=round(median(r["s_per_step"] for r in ok), 4), setup_s=round(median(r["setup_s"] for r in ok), 3))
         rows.append(row)
+    return rows
+
+
+def run_pairs(suite, ranks, steps):
+    """A finite suite on one rank count: its variants (linear, then svk) back to back, PAIR_REPEATS
+    times in turn when the first linear row's stepping is under SHORT_STEPPING_S; each row's s/step
+    and set-up the medians, svk_over_linear on the svk row the median of the pairs' ratios."""
+    linear, svk = suite["variants"]
+    runs = [(run(suite, linear, ranks, steps), run(suite, svk, ranks, steps))]
+    first = runs[0]
+    short = all(r["status"] == "ok" for r in first) and first[0]["s_per_step"] * steps < SHORT_STEPPING_S
+    for _ in range(PAIR_REPEATS - 1 if short else 0):
+        runs.append((run(suite, linear, ranks, steps), run(suite, svk, ranks, steps)))
+    rows = [dict(first[0], repeats=len(runs)), dict(first[1], repeats=len(runs))]
+    if any(r["status"] != "ok" for pair in runs for r in pair):  # a repeat that fails fails both rows
+        return [dict(r, status="failed", svk_over_linear="-", finite_target="-") for r in rows]
+    for i, row in enumerate(rows):
+        if len(runs) > 1:
+            row.update(s_per_step=round(median(pair[i]["s_per_step"] for pair in runs), 4),
+                       setup_s=round(median(pair[i]["setup_s"] for pair in runs), 3))
+        row.update(svk_over_linear="-", finite_target="-")
+    ratio = round(median(svk_row["s_per_step"] / lin["s_per_step"] for lin, svk_row in runs), 3)
+    its = rows[1]["nonlinear_its_per_step"]
+    met = its != "-" and ratio <= FINITE_TARGET["ratio"] and its <= FINITE_TARGET["its"]
+    rows[1].update(svk_over_linear=ratio, finite_target="met" if met else "missed")
     return rows
 
 
@@ -261,7 +322,8 @@ def print_table(rows):
             ("steps", 5), ("setup_s", 8), ("s_per_step", 10), ("contact_over_linear", 19), ("speedup_2_ranks", 15),
             ("peak_mib_max_rank", 17), ("peak_mib_total", 14), ("candidates", 10), ("max_active", 10), ("mean_vi_its", 11),
             ("mean_friction_its_in_contact", 28), ("max_friction_its", 16), ("rejections", 10), ("stream_ratio", 12), ("speedup_over_stream", 19),
-            ("speedup_target", 14), ("repeats", 7), ("status", 6)]
+            ("speedup_target", 14), ("max_balance", 11), ("elasticity", 10), ("svk_over_linear", 15), ("nonlinear_its_per_step", 22),
+            ("tangent_rebuilds", 16), ("finite_target", 13), ("repeats", 7), ("status", 6)]
     print(" ".join(f"{name:>{width}}" for name, width in cols))
     for r in rows:
         print(" ".join(f"{r[name]:>{width}}" for name, width in cols))
@@ -290,11 +352,19 @@ def main(args):
         for variant in suite["variants"]:
             chosen = suite["suite"] in selected or suite.get("group") in selected or f"{suite['suite']}:{variant['case']}" in selected
             on = [n for n in suite["ranks"] if ranks is None or n in ranks]
-            if chosen and on:
+            if chosen and on and not suite.get("pairs"):
                 suite_rows += run_case(suite, variant, on, steps)
+        chosen = (suite["suite"] in selected or suite.get("group") in selected
+                  or any(f"{suite['suite']}:{v['case']}" in selected for v in suite["variants"]))
+        if suite.get("pairs") and chosen:  # the finite suites: a pair of rows, not a case over ranks
+            for n in [n for n in suite["ranks"] if ranks is None or n in ranks]:
+                suite_rows += run_pairs(suite, n, steps)
         rows += sorted(suite_rows, key=lambda r: r["ranks"])  # by ranks, then the variants' order (stable)
     add_ratios(rows)
     add_stream(rows, stream_ratio)
+    for r in rows:
+        r.setdefault("svk_over_linear", "-")
+        r.setdefault("finite_target", "-")
     for path in dict.fromkeys(suite["csv"] for suite in SUITES):
         written = [r for suite in SUITES if suite["csv"] == path for r in rows if r["suite"] == suite["suite"]]
         if written:

@@ -2,6 +2,7 @@
 executable through mpiexec, or reads what it wrote, and the tests assert their numbers."""
 import csv
 import os
+import re
 import subprocess
 import sys
 
@@ -158,3 +159,26 @@ def test_compare_mass_standard_mass_chatters(tmp_path):
         osc[m] = np.abs(np.diff(f)).sum() / (2 * f.max())
         assert f"{m} mass: force oscillation {osc[m]:.3f}" in r.stdout
     assert osc["modified"] < 1.05 and osc["standard"] > 5, osc
+
+
+def test_bench_reads_the_finite_strain_summary(mm):
+    """scripts/bench.py's finite suites (issue 40) read the run summary: its s/step, largest balance
+    residual and the "finite strain:" line's iterations per step and tangent rebuilds. A D2 ball with
+    svk and friction through first contact (ball10, dt 4e-3: contact from step 3); the iterations per
+    step the bench reads are the line's total over its steps."""
+    import bench
+    r = mm("d2_ball", "-mesh", "meshes/ball10.msh", "-ts_dt", 4e-3, "-ts_max_steps", 4, "-ts_max_time", 1, "-output_every", 0,
+           "-mu", 0.2, "-elasticity", "svk", np_=1)
+    summary, balance = bench.SUMMARY.search(r.output), bench.BALANCE.search(r.output)
+    nonlinear, rebuilds = bench.NONLINEAR.search(r.output), bench.REBUILDS.search(r.output)
+    assert summary and balance and nonlinear and rebuilds, r.output[-2000:]
+    assert float(summary.group(3)) > 0 and 0 <= float(balance.group(1)) <= 1e-10
+    total = re.search(r"finite strain: [\d.]+ iterations per step \((\d+) over (\d+) steps\)", r.output)
+    assert total and int(total.group(2)) == 4, r.output[-2000:]
+    assert float(nonlinear.group(1)) == pytest.approx(int(total.group(1)) / 4, abs=0.005)
+    assert float(nonlinear.group(1)) > 1  # the contact steps iterate
+    assert int(rebuilds.group(1)) >= 0
+    # a linear run has no finite-strain line: the bench leaves those columns "-"
+    lin = mm("d2_ball", "-mesh", "meshes/ball10.msh", "-ts_dt", 4e-3, "-ts_max_steps", 2, "-ts_max_time", 1, "-output_every", 0,
+             np_=1, name="lin")
+    assert bench.BALANCE.search(lin.output) and not bench.NONLINEAR.search(lin.output)
