@@ -311,7 +311,7 @@ PETSC_EXTERN PetscErrorCode MMMaterialDestroy(MMMaterial *mat);
 typedef struct {
   Vec       l0, l1, lf; /* local scratch */
   Vec       g;          /* global Cartesian scratch */
-  PetscReal detF_min;   /* the last evaluation's smallest det F over the mesh */
+  PetscReal *G0;        /* per local cell, grad u at the step's start (MMElasticitySetStepStart) */
   PetscInt *cell_off;   /* per local cell, its dim + 1 vertices' offsets in the local vectors */
   PetscReal *cell_geom; /* per local cell, its P1 gradients (dim + 1 by dim) and volume */
 } MMElasticity;
@@ -319,8 +319,10 @@ typedef struct {
 PETSC_EXTERN PetscErrorCode MMElasticitySetUp(MMElasticity *el, const MMOperators *op);
 /* l: the Cartesian local vector of the w-frame w with the Dirichlet data of time t */
 PETSC_EXTERN PetscErrorCode MMElasticityLocal(MMElasticity *el, const MMOperators *op, MMLoads *ld, Vec w, PetscReal t, Vec l);
-/* fw (w-frame, free dofs) = the algorithmic internal force of the step from l0 to l1 */
-PETSC_EXTERN PetscErrorCode MMElasticityForce(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l0, Vec l1, Vec fw);
+/* the step's start l0 (its grad u kept per cell), then fw (w-frame, free dofs) = the algorithmic internal
+ * force of the step from l0 to l1 */
+PETSC_EXTERN PetscErrorCode MMElasticitySetStepStart(MMElasticity *el, const MMOperators *op, Vec l0);
+PETSC_EXTERN PetscErrorCode MMElasticityForce(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l1, Vec fw);
 PETSC_EXTERN PetscErrorCode MMElasticityEnergy(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, PetscReal *energy);
 /* Kw (the pattern of op->K) = the tangent dP/dF at l, in the w-frame */
 PETSC_EXTERN PetscErrorCode MMElasticityTangent(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, Mat Kw);

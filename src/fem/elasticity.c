@@ -65,6 +65,7 @@ PetscErrorCode MMElasticityDestroy(MMElasticity *el)
   PetscCall(VecDestroy(&el->lf));
   PetscCall(VecDestroy(&el->g));
   PetscCall(PetscFree2(el->cell_off, el->cell_geom));
+  PetscCall(PetscFree(el->G0));
   PetscFunctionReturn(0);
 }
 
@@ -133,64 +134,74 @@ static void DisplacementGradient(PetscInt dim, const PetscScalar *u, const Petsc
     }
 }
 
-static PetscReal DetF(PetscInt dim, const PetscReal G[MM_MAX_DIM][MM_MAX_DIM])
-{
-  PetscReal F[MM_MAX_DIM][MM_MAX_DIM];
-  for (PetscInt i = 0; i < dim; ++i)
-    for (PetscInt j = 0; j < dim; ++j) F[i][j] = (i == j ? 1 : 0) + G[i][j];
-  return MMDetInverse(dim, (const PetscReal(*)[MM_MAX_DIM])F, NULL);
-}
 
 static inline const MMElasticityOps *CellLaw(const MMMaterial *mat, PetscInt cl)
 {
   return MMElasticityGetOps(mat->body[mat->cell_body[cl]].elasticity);
 }
 
-/* The smallest det F over the mesh (all ranks) */
-static PetscErrorCode ReduceDetF(MPI_Comm comm, PetscReal *detF)
+
+/* G0 of every local cell at the step's start, kept for the step's iterations (elasticity.c) */
+PetscErrorCode MMElasticitySetStepStart(MMElasticity *el, const MMOperators *op, Vec l0)
 {
+  const PetscInt     dim = op->dim;
+  const PetscScalar *u;
+
   PetscFunctionBeginUser;
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, detF, 1, MPIU_REAL, MPIU_MIN, comm));
+  if (!el->G0) PetscCall(PetscMalloc1(MM_MAX_DIM * MM_MAX_DIM * op->cells.ncells, &el->G0));
+  PetscCall(VecGetArrayRead(l0, &u));
+  for (PetscInt cl = 0; cl < op->cells.ncells; ++cl) {
+    PetscInt  off[MM_NV_MAX];
+    PetscReal g[MM_NV_MAX][MM_MAX_DIM], vol;
+    CellGeometry(el, dim, cl, off, g, &vol);
+    DisplacementGradient(dim, u, off, (const PetscReal(*)[MM_MAX_DIM])g, (PetscReal(*)[MM_MAX_DIM])&el->G0[MM_MAX_DIM * MM_MAX_DIM * cl]);
+  }
+  PetscCall(VecRestoreArrayRead(l0, &u));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMElasticityForce(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l0, Vec l1, Vec fw)
+/* The cells' forces into the local array f, dim a constant once inlined so that the small loops unroll */
+static inline void ForceCells(const PetscInt dim, const MMElasticity *el, const MMMaterial *mat, PetscInt ncells, const PetscScalar *u1, PetscScalar *f)
 {
-  const PetscInt dim = op->dim;
-  CellData       cd;
-  PetscScalar   *f;
-  PetscReal      detF = PETSC_MAX_REAL;
+  for (PetscInt cl = 0; cl < ncells; ++cl) {
+    const PetscInt  *off = &el->cell_off[(dim + 1) * cl];
+    const PetscReal *q = &el->cell_geom[MM_ELASTICITY_GEOM * cl], vol = q[(dim + 1) * dim];
+    const PetscReal *g0 = &el->G0[MM_MAX_DIM * MM_MAX_DIM * cl];
+    PetscReal        G0[MM_MAX_DIM][MM_MAX_DIM], G1[MM_MAX_DIM][MM_MAX_DIM], P[MM_MAX_DIM][MM_MAX_DIM];
 
-  PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(MM_FE_ElasticForce, 0, 0, 0, 0));
-  PetscCall(CellDataGet(op, mat, &cd));
-  PetscCall(VecGetArrayRead(l0, &cd.u0));
-  PetscCall(VecGetArrayRead(l1, &cd.u1));
-  PetscCall(VecZeroEntries(el->lf));
-  PetscCall(VecGetArray(el->lf, &f));
-  for (PetscInt cl = 0; cl < op->cells.ncells; ++cl) {
-    const MMElasticityOps *law = CellLaw(mat, cl);
-    PetscInt               off[MM_NV_MAX];
-    PetscReal              g[MM_NV_MAX][MM_MAX_DIM], vol, G0[MM_MAX_DIM][MM_MAX_DIM], G1[MM_MAX_DIM][MM_MAX_DIM], P[MM_MAX_DIM][MM_MAX_DIM];
-
-    CellGeometry(el, dim, cl, off, g, &vol);
-    DisplacementGradient(dim, cd.u0, off, (const PetscReal(*)[MM_MAX_DIM])g, G0);
-    DisplacementGradient(dim, cd.u1, off, (const PetscReal(*)[MM_MAX_DIM])g, G1);
-    detF = PetscMin(detF, DetF(dim, (const PetscReal(*)[MM_MAX_DIM])G1));
-    law->stress_alg(dim, mat->lambda[cl], mat->mu[cl], (const PetscReal(*)[MM_MAX_DIM])G0, (const PetscReal(*)[MM_MAX_DIM])G1, P);
+    for (PetscInt i = 0; i < dim; ++i)
+      for (PetscInt J = 0; J < dim; ++J) {
+        PetscReal t = 0;
+        for (PetscInt a = 0; a <= dim; ++a) t += PetscRealPart(u1[off[a] + i]) * q[a * dim + J];
+        G1[i][J] = t;
+        G0[i][J] = g0[MM_MAX_DIM * i + J];
+      }
+    CellLaw(mat, cl)->stress_alg(dim, mat->lambda[cl], mat->mu[cl], (const PetscReal(*)[MM_MAX_DIM])G0, (const PetscReal(*)[MM_MAX_DIM])G1, P);
     for (PetscInt a = 0; a <= dim; ++a)
       for (PetscInt i = 0; i < dim; ++i) {
         PetscReal r = 0;
-        for (PetscInt J = 0; J < dim; ++J) r += P[i][J] * g[a][J];
+        for (PetscInt J = 0; J < dim; ++J) r += P[i][J] * q[a * dim + J];
         f[off[a] + i] += vol * r;
       }
   }
+}
+
+/* fw = the algorithmic force of the step from the start set by MMElasticitySetStepStart to l1 */
+PetscErrorCode MMElasticityForce(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l1, Vec fw)
+{
+  const PetscScalar *u1;
+  PetscScalar       *f;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(MM_FE_ElasticForce, 0, 0, 0, 0));
+  PetscCheck(el->G0, PETSC_COMM_SELF, PETSC_ERR_ORDER, "MMElasticitySetStepStart() must come first");
+  PetscCall(VecGetArrayRead(l1, &u1));
+  PetscCall(VecZeroEntries(el->lf));
+  PetscCall(VecGetArray(el->lf, &f));
+  if (op->dim == 2) ForceCells(2, el, mat, op->cells.ncells, u1, f);
+  else ForceCells(3, el, mat, op->cells.ncells, u1, f);
   PetscCall(VecRestoreArray(el->lf, &f));
-  PetscCall(VecRestoreArrayRead(l1, &cd.u1));
-  PetscCall(VecRestoreArrayRead(l0, &cd.u0));
-  PetscCall(CellDataRestore(&cd));
-  PetscCall(ReduceDetF(PetscObjectComm((PetscObject)op->dm), &detF));
-  el->detF_min = detF;
+  PetscCall(VecRestoreArrayRead(l1, &u1));
   PetscCall(VecZeroEntries(el->g));
   PetscCall(DMLocalToGlobal(op->dm, el->lf, ADD_VALUES, el->g)); /* the Dirichlet dofs drop out */
   PetscCall(MMFEForceFromCartesian(op, el->g, fw));

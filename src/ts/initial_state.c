@@ -11,7 +11,8 @@ static PetscErrorCode InternalForce(MMNewmark nm, Vec u, Vec f)
   if (nm->material->finite) {
     MMElasticity *el = &nm->nl.el;
     PetscCall(MMElasticityLocal(el, nm->op, nm->loads, u, 0.0, el->l1));
-    PetscCall(MMElasticityForce(el, nm->op, nm->material, el->l1, el->l1, f));
+    PetscCall(MMElasticitySetStepStart(el, nm->op, el->l1));
+    PetscCall(MMElasticityForce(el, nm->op, nm->material, el->l1, f));
     PetscFunctionReturn(0);
   }
   PetscCall(MatMult(nm->op->K, u, f));

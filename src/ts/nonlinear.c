@@ -36,11 +36,11 @@ PetscErrorCode MMNonlinearSetFromOptions(PetscOptionItems *PetscOptionsObject, M
   nl->anderson = 5;
   PetscCall(MMOptionsInt(PetscOptionsObject, comm, "-nonlinear_anderson", "Anderson acceleration of the finite-strain step's iteration: how many past iterates it mixes (0: none, plain modified Newton; at most 16)", &nl->anderson));
   PetscCheck(nl->anderson >= 0 && nl->anderson <= MM_ANDERSON_MAX, comm, PETSC_ERR_USER_INPUT, "-nonlinear_anderson %" PetscInt_FMT " must be in [0, %d]", nl->anderson, MM_ANDERSON_MAX);
-  nl->refresh = 0.1;
-  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-nonlinear_refresh_ratio", "-nonlinear_tangent auto: rebuild the iteration matrix at the iterate when an iteration reduces the residual by less than this factor (in (0, 1))", &nl->refresh));
+  nl->refresh = PETSC_DEFAULT;
+  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-nonlinear_refresh_ratio", "-nonlinear_tangent auto: rebuild the iteration matrix at the iterate when an iteration reduces the residual by less than this factor, in (0, 1) (default 0.5 for the condensed formulation, whose rebuild refactors K~ and recomputes every Delassus column, 0.1 otherwise)", &nl->refresh));
   PetscCheck(nl->rtol > 0, comm, PETSC_ERR_USER_INPUT, "-nonlinear_rtol %g must be > 0", (double)nl->rtol);
   PetscCheck(nl->max_it >= 1, comm, PETSC_ERR_USER_INPUT, "-nonlinear_max_it %" PetscInt_FMT " must be >= 1", nl->max_it);
-  PetscCheck(nl->refresh > 0 && nl->refresh < 1, comm, PETSC_ERR_USER_INPUT, "-nonlinear_refresh_ratio %g must be in (0, 1)", (double)nl->refresh);
+  PetscCheck(nl->refresh == PETSC_DEFAULT || (nl->refresh > 0 && nl->refresh < 1), comm, PETSC_ERR_USER_INPUT, "-nonlinear_refresh_ratio %g must be in (0, 1)", (double)nl->refresh);
   PetscFunctionReturn(0);
 }
 
@@ -61,6 +61,13 @@ PetscErrorCode MMNonlinearSetUp(MMNewmark nm)
 
   PetscFunctionBeginUser;
   PetscCall(CheckSupported(nm));
+  if (nl->refresh == PETSC_DEFAULT) {
+    PetscBool delassus;
+    /* a rebuild costs the condensed formulation about 13 linear steps (a refactor and every candidate
+     * column), the others a tangent assembly: measured on the D2 ball, docs/method.md section 13 */
+    PetscCall(MMContactHasDelassus(nm->contact, &delassus));
+    nl->refresh = delassus ? 0.5 : 0.1;
+  }
   PetscCall(MMElasticitySetUp(&nl->el, nm->op));
   PetscCall(VecDuplicate(nm->state.u, &nl->bnl));
   PetscCall(VecDuplicate(nm->state.u, &nl->f));
@@ -154,7 +161,7 @@ static PetscErrorCode Correction(MMNewmark nm, PetscReal t1, Vec w, Vec c, Petsc
 
   PetscFunctionBeginUser;
   PetscCall(MMElasticityLocal(el, nm->op, nm->loads, w, t1, el->l1));
-  PetscCall(MMElasticityForce(el, nm->op, nm->material, el->l0, el->l1, nl->f));
+  PetscCall(MMElasticityForce(el, nm->op, nm->material, el->l1, nl->f));
   PetscCall(VecScale(nl->f, 2.0));
   PetscCall(VecNorm(nl->f, NORM_2, scale));
   PetscCall(MatMult(nl->use_tangent ? nl->Ks : nm->op->K, w, c));
@@ -191,6 +198,7 @@ PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b,
   *solved = PETSC_FALSE;
   PetscCall(FixedRHS(nm, dt, nl->bnl, &fscale));
   PetscCall(MMElasticityLocal(&nl->el, nm->op, nm->loads, s->u, t0, nl->el.l0));
+  PetscCall(MMElasticitySetStepStart(&nl->el, nm->op, nl->el.l0));
   if (nl->policy == MM_TANGENT_STEP) PetscCall(RebuildTangent(nm, dt, nl->el.l0));
   PetscCall(Correction(nm, t0 + dt, w, nl->c, &scale));
   PetscCall(MMAndersonReset(&nl->aa));
