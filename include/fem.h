@@ -312,6 +312,7 @@ typedef struct {
   Vec       l0, l1, lf; /* local scratch */
   Vec       g;          /* global Cartesian scratch */
   PetscReal *G0;        /* per local cell, grad u at the step's start (MMElasticitySetStepStart) */
+  Mat        Kp, KpN;   /* contact pairs: the tangent on the P1 pattern, and its N^T Kp N */
   PetscInt *cell_off;   /* per local cell, its dim + 1 vertices' offsets in the local vectors */
   PetscReal *cell_geom; /* per local cell, its P1 gradients (dim + 1 by dim) and volume */
 } MMElasticity;

@@ -161,3 +161,17 @@ def test_finite_strain_refuses_what_it_does_not_support(tmp_path):
     bad = run(os.path.join(ROOT, "options", "d1_disk.opts"), tmp_path, "-elasticity", "svk", "-initial_state", "static",
               "-ts_max_steps", 1, name="static", check=False)
     assert bad.returncode != 0 and "-initial_state" in bad.output
+
+
+@pytest.mark.parametrize("np_", [1, 2])
+def test_two_balls_svk_contact_pairs(tmp_path, np_):
+    """Two svk balls against each other through a contact pair (options/two_balls.opts, the tangent rebuilt every
+    step so that the pairs' N^T K_t N path runs): the momentum stays zero to 1e-12 of the scale, the balance at
+    1e-10, no penetration beyond 1e-10 h_c'; the master points are those of the reference mesh (small sliding)"""
+    r = run("two_balls", tmp_path, "-elasticity", "svk", "-nonlinear_tangent", "step", "-ts_max_time", 0.2, "-output_every", 0, np_=np_)
+    h = r.history
+    h_c = float(r.output.split("(h_c' ")[1].split(")")[0])
+    scales = physical_scales(r.outdir, "two_balls", h)
+    assert h["force_normal"].max() > 0.1 * scales["force"]
+    assert np.abs(np.c_[h["P_x"], h["P_y"], h["P_z"]]).max() <= 1e-12 * scales["momentum"]
+    assert h["balance_residual"].max() <= 1e-10 and h["max_penetration"].max() <= 1e-10 * h_c

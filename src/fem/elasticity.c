@@ -48,7 +48,6 @@ static PetscErrorCode CellCache(MMElasticity *el, const MMOperators *op)
 PetscErrorCode MMElasticitySetUp(MMElasticity *el, const MMOperators *op)
 {
   PetscFunctionBeginUser;
-  PetscCheck(!op->N, PetscObjectComm((PetscObject)op->dm), PETSC_ERR_SUP, "-elasticity svk and neohookean do not yet support contact pairs (a second elastic body as obstacle): use -elasticity linear for two-body contact");
   PetscCall(DMCreateLocalVector(op->dm, &el->l0));
   PetscCall(VecDuplicate(el->l0, &el->l1));
   PetscCall(VecDuplicate(el->l0, &el->lf));
@@ -66,6 +65,8 @@ PetscErrorCode MMElasticityDestroy(MMElasticity *el)
   PetscCall(VecDestroy(&el->g));
   PetscCall(PetscFree2(el->cell_off, el->cell_geom));
   PetscCall(PetscFree(el->G0));
+  PetscCall(MatDestroy(&el->Kp));
+  PetscCall(MatDestroy(&el->KpN));
   PetscFunctionReturn(0);
 }
 
@@ -275,10 +276,20 @@ PetscErrorCode MMElasticityTangent(MMElasticity *el, const MMOperators *op, cons
   PetscCall(PetscLogEventBegin(MM_FE_ElasticTangent, 0, 0, 0, 0));
   PetscCall(CellDataGet(op, mat, &cd));
   PetscCall(VecGetArrayRead(l, &cd.u1));
-  PetscCall(MMAssembleP1Elements(op->dm, Kw, TangentElement, &cd));
+  if (!op->N) {
+    PetscCall(MMAssembleP1Elements(op->dm, Kw, TangentElement, &cd));
+    if (op->Q) PetscCall(MMRotateP1(op->Q, Kw, NULL)); /* into the contact nodes' frames, as K is */
+  } else {
+    /* contact pairs: the P1 tangent rotated, then N^T A N as K (docs/method.md section 11), its product
+     * kept so that later tangents reuse its pattern */
+    if (!el->Kp) PetscCall(MMFECreateMatrix(op, op->dm, &el->Kp));
+    PetscCall(MMAssembleP1Elements(op->dm, el->Kp, TangentElement, &cd));
+    PetscCall(MMRotateP1(op->Q, el->Kp, NULL));
+    PetscCall(MatPtAP(el->Kp, op->N, el->KpN ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, 2.0, &el->KpN));
+    PetscCall(MatCopy(el->KpN, Kw, SAME_NONZERO_PATTERN));
+  }
   PetscCall(VecRestoreArrayRead(l, &cd.u1));
   PetscCall(CellDataRestore(&cd));
-  if (op->Q) PetscCall(MMRotateP1(op->Q, Kw, NULL)); /* into the contact nodes' frames, as K is */
   PetscCall(PetscLogEventEnd(MM_FE_ElasticTangent, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
