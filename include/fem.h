@@ -218,6 +218,7 @@ struct _MMAmplitude {
  * L(t) = sum_k a_k(t) L_k: gravity is one part, each traction one. Nothing is reassembled per step. */
 typedef struct {
   MMOperators       *op;       /* borrowed at MMLoadsSetUp: the operators the loads are set on */
+  struct _MMElasticity *el;     /* the finite-strain laws' force for the reactions (MMLoadsSetElasticity), or NULL: K_D */
   const MMMaterial  *material; /* borrowed at MMLoadsSetUp */
   PetscInt     nparts;
   MMAmplitude *amp;        /* per part */
@@ -308,7 +309,7 @@ PETSC_EXTERN PetscErrorCode MMMaterialDestroy(MMMaterial *mat);
 
 /* elasticity.c: the total Lagrangian P1 internal force of the finite-strain laws (docs/method.md
  * section 13), on local Cartesian vectors of op->dm with their Dirichlet data inserted */
-typedef struct {
+typedef struct _MMElasticity {
   Vec       l0, l1, lf; /* local scratch */
   Vec       g;          /* global Cartesian scratch */
   PetscReal *G0;        /* per local cell, grad u at the step's start (MMElasticitySetStepStart) */
@@ -324,6 +325,10 @@ PETSC_EXTERN PetscErrorCode MMElasticityLocal(MMElasticity *el, const MMOperator
  * force of the step from l0 to l1 */
 PETSC_EXTERN PetscErrorCode MMElasticitySetStepStart(MMElasticity *el, const MMOperators *op, Vec l0);
 PETSC_EXTERN PetscErrorCode MMElasticityForce(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l1, Vec fw);
+/* el->lf (local, Cartesian, unassembled: the constrained dofs' rows too) = the internal force P(F) at l */
+PETSC_EXTERN PetscErrorCode MMElasticityForceLocal(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l);
+/* the reactions of the Dirichlet supports from the finite-strain force instead of K_D (el borrowed) */
+PETSC_EXTERN PetscErrorCode MMLoadsSetElasticity(MMLoads *ld, MMElasticity *el);
 PETSC_EXTERN PetscErrorCode MMElasticityEnergy(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, PetscReal *energy);
 /* Kw (the pattern of op->K) = the tangent dP/dF at l, in the w-frame */
 PETSC_EXTERN PetscErrorCode MMElasticityTangent(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, Mat Kw);

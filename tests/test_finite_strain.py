@@ -175,3 +175,19 @@ def test_two_balls_svk_contact_pairs(tmp_path, np_):
     assert h["force_normal"].max() > 0.1 * scales["force"]
     assert np.abs(np.c_[h["P_x"], h["P_y"], h["P_z"]]).max() <= 1e-12 * scales["momentum"]
     assert h["balance_residual"].max() <= 1e-10 and h["max_penetration"].max() <= 1e-10 * h_c
+
+
+def test_support_reaction_of_a_stretched_bar_is_its_load(tmp_path):
+    """A bar (nu = 0, E = 1) held by a roller at x = 0 and stretched by 10% (F = diag(1.1, 1)) under the dead
+    traction that svk needs there, t = P_xx = s (s^2 - 1)/2 = 0.1155: a static state. It stays at rest, and
+    the roller's reaction, from the svk force on the held dofs, balances the traction's resultant exactly
+    (to 1e-10 of it); K_D u would give the linear 0.1 instead, 13% off"""
+    s = 1.1
+    t = s * (s * s - 1) / 2
+    r = run("b2_bar", tmp_path, "-elasticity", "svk", "-contact", 0, "-v0", "0,0", "-E", 1, "-nu", 0, "-dirichlet", "left",
+            "-dirichlet_left_components", 0, "-traction", "right", "-traction_right_value", f"{t},0",
+            "-u0_gradient", f"{s - 1},0,0,0", "-ts_max_steps", 20, "-output_every", 0)
+    h = r.history
+    load = h["load_x"][0]
+    assert load > 0 and np.abs(h["reaction_left_x"] + load).max() <= 1e-10 * load
+    assert h["kinetic"].max() <= 1e-20 * h["elastic"][0]

@@ -187,14 +187,13 @@ static inline void ForceCells(const PetscInt dim, const MMElasticity *el, const 
   }
 }
 
-/* fw = the algorithmic force of the step from the start set by MMElasticitySetStepStart to l1 */
-PetscErrorCode MMElasticityForce(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l1, Vec fw)
+/* el->lf = the cells' forces, unassembled */
+static PetscErrorCode LocalForce(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l1)
 {
   const PetscScalar *u1;
   PetscScalar       *f;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(MM_FE_ElasticForce, 0, 0, 0, 0));
   PetscCheck(el->G0, PETSC_COMM_SELF, PETSC_ERR_ORDER, "MMElasticitySetStepStart() must come first");
   PetscCall(VecGetArrayRead(l1, &u1));
   PetscCall(VecZeroEntries(el->lf));
@@ -203,6 +202,26 @@ PetscErrorCode MMElasticityForce(MMElasticity *el, const MMOperators *op, const 
   else ForceCells(3, el, mat, op->cells.ncells, u1, f);
   PetscCall(VecRestoreArray(el->lf, &f));
   PetscCall(VecRestoreArrayRead(l1, &u1));
+  PetscFunctionReturn(0);
+}
+
+/* The force P(F) of the state l itself (the step from l to l): for the Dirichlet supports' reactions */
+PetscErrorCode MMElasticityForceLocal(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(MM_FE_ElasticForce, 0, 0, 0, 0));
+  PetscCall(MMElasticitySetStepStart(el, op, l));
+  PetscCall(LocalForce(el, op, mat, l));
+  PetscCall(PetscLogEventEnd(MM_FE_ElasticForce, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* fw = the algorithmic force of the step from the start set by MMElasticitySetStepStart to l1 */
+PetscErrorCode MMElasticityForce(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l1, Vec fw)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(MM_FE_ElasticForce, 0, 0, 0, 0));
+  PetscCall(LocalForce(el, op, mat, l1));
   PetscCall(VecZeroEntries(el->g));
   PetscCall(DMLocalToGlobal(op->dm, el->lf, ADD_VALUES, el->g)); /* the Dirichlet dofs drop out */
   PetscCall(MMFEForceFromCartesian(op, el->g, fw));

@@ -766,13 +766,40 @@ PetscErrorCode MMLoadsSetTime(MMLoads *ld, PetscReal t0, PetscReal t1)
 }
 
 /* R_D = (M* a + K u - L)_D at time t, the support's force on the body on each constrained dof. */
+/* The finite-strain laws' internal force P(F) on the constrained dofs, the state's own (not the step's
+ * algorithmic force: the reaction reported at a time, exact at rest; docs/method.md section 13) */
+static PetscErrorCode FiniteStrainForceD(MMLoads *ld, Vec u, PetscReal t, Vec RD)
+{
+  Vec sub;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMElasticityLocal(ld->el, ld->op, ld, u, t, ld->el->l1));
+  PetscCall(MMElasticityForceLocal(ld->el, ld->op, ld->material, ld->el->l1));
+  PetscCall(VecZeroEntries(ld->full));
+  PetscCall(DMLocalToGlobal(ld->dm_full, ld->el->lf, ADD_VALUES, ld->full));
+  PetscCall(VecGetSubVector(ld->full, ld->isD, &sub));
+  PetscCall(VecCopy(sub, RD));
+  PetscCall(VecRestoreSubVector(ld->full, ld->isD, &sub));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMLoadsSetElasticity(MMLoads *ld, MMElasticity *el)
+{
+  PetscFunctionBeginUser;
+  ld->el = el;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Reaction(MMLoads *ld, Vec u, Vec a, PetscReal t, Vec R)
 {
   Vec      aw;
 
   PetscFunctionBeginUser;
-  PetscCall(FullField(ld, u, t, PETSC_TRUE, ld->full));
-  PetscCall(MatMult(ld->KD, ld->full, R));
+  if (ld->el) PetscCall(FiniteStrainForceD(ld, u, t, R));
+  else {
+    PetscCall(FullField(ld, u, t, PETSC_TRUE, ld->full));
+    PetscCall(MatMult(ld->KD, ld->full, R));
+  }
   PetscCall(VecDuplicate(a, &aw));
   PetscCall(WithInertia(ld, a, aw));
   /* the data are affine in t: their acceleration is zero */

@@ -69,6 +69,7 @@ PetscErrorCode MMNonlinearSetUp(MMNewmark nm)
     nl->refresh = delassus ? 0.5 : 0.1;
   }
   PetscCall(MMElasticitySetUp(&nl->el, nm->op));
+  if (nm->loads->n_bc) PetscCall(MMLoadsSetElasticity(nm->loads, &nl->el));
   PetscCall(VecDuplicate(nm->state.u, &nl->bnl));
   PetscCall(VecDuplicate(nm->state.u, &nl->f));
   PetscCall(VecDuplicate(nm->state.u, &nl->c));
