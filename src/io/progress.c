@@ -176,6 +176,13 @@ static PetscErrorCode HeaderMesh(MMProgress *pg)
   PetscFunctionReturn(0);
 }
 
+/* The material line's mention of a finite-strain law (nothing for the linear model's) */
+static const char *LawText(MMElasticityType law)
+{
+  static const char *const text[] = {"", "; St. Venant-Kirchhoff (-elasticity svk, finite strain)", "; neo-Hookean (-elasticity neohookean, finite strain)"};
+  return text[law];
+}
+
 /* -bodies: one line per body, its cells, material, wave speeds and mass; the CFL number takes the
  * largest c_p (docs/method.md section 2, "Bodies"). */
 static PetscErrorCode HeaderBodies(MMProgress *pg)
@@ -186,7 +193,7 @@ static PetscErrorCode HeaderBodies(MMProgress *pg)
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  material: %" PetscInt_FMT " bod%s (-bodies); the largest wave speed, c_p = %.4g, sets c_p dt / h_c'\n", mat->n_bodies, mat->n_bodies > 1 ? "ies" : "y", (double)mat->c_p_max));
   for (PetscInt b = 0; b < mat->n_bodies; ++b) {
     const MMBody *body = &mat->body[b];
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    body %s (group %s): %" PetscInt_FMT " cells; E = %.6g, nu = %.6g, rho = %.6g; waves c_p = %.4g, c_s = %.4g; mass %.10g\n", body->name, body->group, body->ncells, (double)body->E, (double)body->nu, (double)body->rho, (double)body->c_p, (double)body->c_s, (double)body->mass));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    body %s (group %s): %" PetscInt_FMT " cells; E = %.6g, nu = %.6g, rho = %.6g; waves c_p = %.4g, c_s = %.4g; mass %.10g%s\n", body->name, body->group, body->ncells, (double)body->E, (double)body->nu, (double)body->rho, (double)body->c_p, (double)body->c_s, (double)body->mass, LawText(body->elasticity)));
   }
   PetscFunctionReturn(0);
 }
@@ -212,7 +219,7 @@ static PetscErrorCode HeaderPhysics(MMProgress *pg, TS ts)
   if (max_steps < PETSC_MAX_INT) PetscCall(PetscSNPrintf(steps, sizeof(steps), " or %" PetscInt_FMT " steps", max_steps));
   if (h_c > 0) PetscCall(PetscSNPrintf(cfl, sizeof(cfl), "h_c' = %.4g, c_p dt / h_c' = %.3g", (double)h_c, (double)(pg->op->c_p * dt / h_c)));
   else PetscCall(PetscStrncpy(cfl, "no contact boundary", sizeof(cfl)));
-  if (!pg->material->named) PetscCall(PetscPrintf(comm, "  material: E = %.6g, nu = %.6g, rho = %.6g; waves c_p = %.4g, c_s = %.4g\n", (double)opt->E, (double)opt->nu, (double)opt->rho, (double)pg->op->c_p, (double)c_s));
+  if (!pg->material->named) PetscCall(PetscPrintf(comm, "  material: E = %.6g, nu = %.6g, rho = %.6g; waves c_p = %.4g, c_s = %.4g%s\n", (double)opt->E, (double)opt->nu, (double)opt->rho, (double)pg->op->c_p, (double)c_s, LawText(pg->material->body[0].elasticity)));
   else PetscCall(HeaderBodies(pg));
   PetscCall(PetscPrintf(comm, "  time: dt = %.6g to t = %.6g%s; %s\n", (double)dt, (double)t_end, steps, cfl));
   if (DampingOn(pg)) {
