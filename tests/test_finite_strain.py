@@ -190,4 +190,4 @@ def test_support_reaction_of_a_stretched_bar_is_its_load(tmp_path):
     h = r.history
     load = h["load_x"][0]
     assert load > 0 and np.abs(h["reaction_left_x"] + load).max() <= 1e-10 * load
-    assert h["kinetic"].max() <= 1e-20 * h["elastic"][0]
+    assert h["kinetic"].max() <= 1e-12 * h["elastic"][0]  # at rest: no motion beyond 1e-6 of the strain's wave velocity

@@ -265,3 +265,50 @@ PetscErrorCode MMMomentaDestroy(MMMomenta *mo)
   mo->ng = 0;
   PetscFunctionReturn(0);
 }
+
+/* The resultant F and the moment T about the origin, at the current positions X + u, of the w-frame force
+ * f over the vertices with no Dirichlet dof: what f changes of P and J in a step, per unit time (the
+ * finite-strain step's stop, nonlinear.c) */
+PetscErrorCode MMMomentaOfForce(MMNewmark nm, Vec u, Vec f, PetscReal F[3], PetscReal T[3])
+{
+  MMMomenta         *mo  = &nm->momenta;
+  DM                 dm  = nm->op->dm;
+  const PetscInt     dim = nm->op->dim;
+  Vec                uc, fc, X;
+  const PetscScalar *ua, *fa, *x;
+  PetscReal          s[6] = {0, 0, 0, 0, 0, 0};
+
+  PetscFunctionBeginUser;
+  if (!mo->ng) PetscCall(MomentaSetUp(nm));
+  PetscCall(DMGetGlobalVector(dm, &uc));
+  PetscCall(DMGetGlobalVector(dm, &fc));
+  PetscCall(MMFEToCartesian(nm->op, u, uc));
+  PetscCall(MMFEForceToCartesian(nm->op, f, fc));
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  PetscCall(VecGetArrayRead(uc, &ua));
+  PetscCall(VecGetArrayRead(fc, &fa));
+  PetscCall(VecGetArrayRead(X, &x));
+  for (PetscInt n = 0; n < mo->nv; ++n) {
+    const PetscInt i = mo->vert_u[n], xo = mo->vert_x[n];
+    PetscReal      r[3] = {0, 0, 0}, q[3] = {0, 0, 0};
+    for (PetscInt d = 0; d < dim; ++d) {
+      r[d] = PetscRealPart(x[xo + d] + ua[i + d]);
+      q[d] = PetscRealPart(fa[i + d]);
+      s[d] += q[d];
+    }
+    s[3] += r[1] * q[2] - r[2] * q[1];
+    s[4] += r[2] * q[0] - r[0] * q[2];
+    s[5] += r[0] * q[1] - r[1] * q[0];
+  }
+  PetscCall(VecRestoreArrayRead(X, &x));
+  PetscCall(VecRestoreArrayRead(fc, &fa));
+  PetscCall(VecRestoreArrayRead(uc, &ua));
+  PetscCall(DMRestoreGlobalVector(dm, &fc));
+  PetscCall(DMRestoreGlobalVector(dm, &uc));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 6, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)dm)));
+  for (PetscInt k = 0; k < 3; ++k) {
+    F[k] = s[k];
+    T[k] = s[3 + k];
+  }
+  PetscFunctionReturn(0);
+}

@@ -48,6 +48,7 @@ typedef struct {
   MMAnderson      aa;          /* -nonlinear_anderson m */
   MMTangentPolicy policy;      /* -nonlinear_tangent */
   PetscReal       rtol;        /* -nonlinear_rtol: the force residual, relative to the internal force */
+  PetscReal       rtol_audit;  /* -nonlinear_audit_rtol: below it, a residual the audits cannot see also ends the step */
   PetscInt        max_it;      /* -nonlinear_max_it */
   PetscInt        anderson;    /* -nonlinear_anderson: its depth */
   PetscReal       refresh;     /* -nonlinear_refresh_ratio: auto rebuilds K_s when an iteration contracts less */
@@ -95,6 +96,7 @@ PETSC_INTERN PetscLogEvent MM_TS_Energy, MM_TS_Momenta, MM_TS_Deformation;
 PETSC_INTERN PetscErrorCode MMEnergyContactWork(MMNewmark nm, Vec w, PetscReal *w_c);
 PETSC_INTERN PetscErrorCode MMEnergyStep(MMNewmark nm);
 PETSC_INTERN PetscErrorCode MMRigidBodyDiagnostics(MMNewmark nm, MMHistory *h);
+PETSC_INTERN PetscErrorCode MMMomentaOfForce(MMNewmark nm, Vec u, Vec f, PetscReal F[3], PetscReal T[3]);
 PETSC_INTERN PetscErrorCode MMMomentaDestroy(MMMomenta *mo);
 PETSC_INTERN PetscErrorCode MMDeformationDestroy(MMDeformation *d);
 PETSC_INTERN PetscErrorCode MMInitialStaticSliding(MMNewmark nm, Vec w, Vec react);
