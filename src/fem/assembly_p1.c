@@ -314,6 +314,41 @@ static PetscErrorCode AddGhostRows(Mat K, Mat M, PetscInt dim, const PetscInt id
   PetscFunctionReturn(0);
 }
 
+/* Cell c's vertices, their coordinates and global dof indices from the vertex table */
+static PetscErrorCode GatherCell(DM dm, PetscInt depth, const VertexTable *vt, PetscInt c, PetscInt v[], PetscReal x[][MM_MAX_DIM], PetscInt idx[])
+{
+  const PetscInt dim = vt->dim;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMMeshCellVertices(dm, depth, dim, c, v));
+  for (PetscInt a = 0; a <= dim; ++a)
+    for (PetscInt i = 0; i < dim; ++i) {
+      x[a][i]          = vt->x[(v[a] - vt->vStart) * dim + i];
+      idx[a * dim + i] = vt->dof[(v[a] - vt->vStart) * dim + i];
+    }
+  PetscFunctionReturn(0);
+}
+
+/* Adds a cell's element matrices to K and M (M and Me may be NULL): its owned rows in place, the
+ * others through MatSetValues */
+static PetscErrorCode AddElement(const CSRTarget *t, Mat K, Mat M, PetscInt dim, const PetscInt idx[], const PetscScalar Ke[], const PetscScalar Me[])
+{
+  const PetscInt nv = dim + 1;
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < nv; ++a) {
+    PetscInt r = -1;
+    for (PetscInt i = 0; i < dim && r < 0; ++i) r = idx[a * dim + i];
+    if (r < 0) continue;
+    if (r < t->rstart || r >= t->rend) {
+      PetscCall(AddGhostRows(K, M, dim, idx, a, Ke, Me));
+      continue;
+    }
+    for (PetscInt b = 0; b < nv; ++b) PetscCall(AddVertexPair(t, dim, &idx[a * dim], &idx[b * dim], a, b, Ke, Me ? Me[a * nv + b] : 0));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* Computes the element matrices of cell c and adds them to K and M. */
 static PetscErrorCode AddCell(DM dm, PetscInt depth, const VertexTable *vt, const CSRTarget *t, PetscReal lambda, PetscReal mu, PetscReal rho, Mat K, Mat M, PetscInt c)
 {
@@ -325,26 +360,12 @@ static PetscErrorCode AddCell(DM dm, PetscInt depth, const VertexTable *vt, cons
   PetscScalar     Ke[MM_NDOF_MAX * MM_NDOF_MAX], Me[MM_NV_MAX * MM_NV_MAX];
 
   PetscFunctionBeginUser;
-  PetscCall(MMMeshCellVertices(dm, depth, dim, c, v));
-  for (PetscInt a = 0; a < nv; ++a)
-    for (PetscInt i = 0; i < dim; ++i) {
-      x[a][i]          = vt->x[(v[a] - vt->vStart) * dim + i];
-      idx[a * dim + i] = vt->dof[(v[a] - vt->vStart) * dim + i];
-    }
+  PetscCall(GatherCell(dm, depth, vt, c, v, x, idx));
   PetscCall(SimplexGradients(dim, (const PetscReal(*)[MM_MAX_DIM])x, g, &vol));
   ElementStiffness(dim, lambda, mu, vol, (const PetscReal(*)[MM_MAX_DIM])g, Ke);
   for (PetscInt a = 0; a < nv; ++a)
     for (PetscInt b = 0; b < nv; ++b) Me[a * nv + b] = mscale * vol * (a == b ? 2 : 1);
-  for (PetscInt a = 0; a < nv; ++a) {
-    PetscInt r = -1;
-    for (PetscInt i = 0; i < dim && r < 0; ++i) r = idx[a * dim + i];
-    if (r < 0) continue;
-    if (r < t->rstart || r >= t->rend) {
-      PetscCall(AddGhostRows(K, M, dim, idx, a, Ke, Me));
-      continue;
-    }
-    for (PetscInt b = 0; b < nv; ++b) PetscCall(AddVertexPair(t, dim, &idx[a * dim], &idx[b * dim], a, b, Ke, Me[a * nv + b]));
-  }
+  PetscCall(AddElement(t, K, M, dim, idx, Ke, Me));
   PetscFunctionReturn(0);
 }
 
@@ -352,30 +373,16 @@ static PetscErrorCode AddCell(DM dm, PetscInt depth, const VertexTable *vt, cons
  * others through MatSetValues): the finite-strain tangent's path (src/fem/elasticity.c). */
 static PetscErrorCode AddCellElement(DM dm, PetscInt depth, const VertexTable *vt, const CSRTarget *t, Mat K, PetscInt c, MMP1ElementFn element, void *ctx)
 {
-  const PetscInt dim = vt->dim, nv = dim + 1;
+  const PetscInt dim = vt->dim;
   PetscInt       v[MM_NV_MAX], idx[MM_NDOF_MAX];
   PetscReal      x[MM_NV_MAX][MM_MAX_DIM], g[MM_NV_MAX][MM_MAX_DIM], vol;
   PetscScalar    Ke[MM_NDOF_MAX * MM_NDOF_MAX];
 
   PetscFunctionBeginUser;
-  PetscCall(MMMeshCellVertices(dm, depth, dim, c, v));
-  for (PetscInt a = 0; a < nv; ++a)
-    for (PetscInt i = 0; i < dim; ++i) {
-      x[a][i]          = vt->x[(v[a] - vt->vStart) * dim + i];
-      idx[a * dim + i] = vt->dof[(v[a] - vt->vStart) * dim + i];
-    }
+  PetscCall(GatherCell(dm, depth, vt, c, v, x, idx));
   PetscCall(SimplexGradients(dim, (const PetscReal(*)[MM_MAX_DIM])x, g, &vol));
   PetscCall((*element)(ctx, c, v, (const PetscReal(*)[MM_MAX_DIM])g, vol, Ke));
-  for (PetscInt a = 0; a < nv; ++a) {
-    PetscInt r = -1;
-    for (PetscInt i = 0; i < dim && r < 0; ++i) r = idx[a * dim + i];
-    if (r < 0) continue;
-    if (r < t->rstart || r >= t->rend) {
-      PetscCall(AddGhostRows(K, NULL, dim, idx, a, Ke, NULL));
-      continue;
-    }
-    for (PetscInt b = 0; b < nv; ++b) PetscCall(AddVertexPair(t, dim, &idx[a * dim], &idx[b * dim], a, b, Ke, 0));
-  }
+  PetscCall(AddElement(t, K, NULL, dim, idx, Ke, NULL));
   PetscFunctionReturn(0);
 }
 

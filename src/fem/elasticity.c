@@ -80,37 +80,13 @@ PetscErrorCode MMElasticityLocal(MMElasticity *el, const MMOperators *op, MMLoad
   PetscFunctionReturn(0);
 }
 
-/* What the cell loops read: the local section, the coordinates, and the displacement arrays */
+/* What the tangent's element callback reads: the cell cache, the material and the displacement */
 typedef struct {
-  const MMOperators *op;
-  const MMMaterial  *mat;
-  PetscSection       ls, cs;
-  const PetscScalar *xc, *u0, *u1;
-} CellData;
-
-static PetscErrorCode CellDataGet(const MMOperators *op, const MMMaterial *mat, CellData *cd)
-{
-  Vec coords;
-
-  PetscFunctionBeginUser;
-  cd->op  = op;
-  cd->mat = mat;
-  PetscCall(DMGetLocalSection(op->dm, &cd->ls));
-  PetscCall(DMGetCoordinateSection(op->dm, &cd->cs));
-  PetscCall(DMGetCoordinatesLocal(op->dm, &coords));
-  PetscCall(VecGetArrayRead(coords, &cd->xc));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode CellDataRestore(CellData *cd)
-{
-  Vec coords;
-
-  PetscFunctionBeginUser;
-  PetscCall(DMGetCoordinatesLocal(cd->op->dm, &coords));
-  PetscCall(VecRestoreArrayRead(coords, &cd->xc));
-  PetscFunctionReturn(0);
-}
+  const MMElasticity *el;
+  const MMOperators  *op;
+  const MMMaterial   *mat;
+  const PetscScalar  *u;
+} TangentData;
 
 /* Cell cl's vertices' offsets in the local vectors, its P1 gradients and volume, from the cache */
 static inline void CellGeometry(const MMElasticity *el, PetscInt dim, PetscInt cl, PetscInt off[], PetscReal g[][MM_MAX_DIM], PetscReal *vol)
@@ -231,42 +207,44 @@ PetscErrorCode MMElasticityForce(MMElasticity *el, const MMOperators *op, const 
 
 PetscErrorCode MMElasticityEnergy(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, PetscReal *energy)
 {
-  const PetscInt dim = op->dim;
-  CellData       cd;
-  PetscReal      e = 0;
+  const PetscInt     dim = op->dim;
+  const PetscScalar *u;
+  PetscReal          e = 0;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(MM_FE_ElasticEnergy, 0, 0, 0, 0));
-  PetscCall(CellDataGet(op, mat, &cd));
-  PetscCall(VecGetArrayRead(l, &cd.u1));
+  PetscCall(VecGetArrayRead(l, &u));
   for (PetscInt cl = 0; cl < op->cells.ncells; ++cl) {
     PetscInt  off[MM_NV_MAX];
     PetscReal g[MM_NV_MAX][MM_MAX_DIM], vol, G[MM_MAX_DIM][MM_MAX_DIM];
 
     CellGeometry(el, dim, cl, off, g, &vol);
-    DisplacementGradient(dim, cd.u1, off, (const PetscReal(*)[MM_MAX_DIM])g, G);
+    DisplacementGradient(dim, u, off, (const PetscReal(*)[MM_MAX_DIM])g, G);
     e += vol * CellLaw(mat, cl)->energy(dim, mat->lambda[cl], mat->mu[cl], (const PetscReal(*)[MM_MAX_DIM])G);
   }
-  PetscCall(VecRestoreArrayRead(l, &cd.u1));
-  PetscCall(CellDataRestore(&cd));
+  PetscCall(VecRestoreArrayRead(l, &u));
   PetscCall(MPIU_Allreduce(&e, energy, 1, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)op->dm)));
   PetscCall(PetscLogEventEnd(MM_FE_ElasticEnergy, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
-/* The tangent's element matrix: K_e[a i][b k] = |T| grad phi_a,J A_iJkL grad phi_b,L */
-static PetscErrorCode TangentElement(void *ctx, PetscInt c, const PetscInt v[], const PetscReal g[][MM_MAX_DIM], PetscReal vol, PetscScalar Ke[])
+/* The tangent's element matrix: K_e[a i][b k] = |T| grad phi_a,J A_iJkL grad phi_b,L, with the cell's
+ * offsets and gradients from the cache (the assembler's own g and vol are the same) */
+static PetscErrorCode TangentElement(void *ctx, PetscInt c, const PetscInt v[], const PetscReal g_unused[][MM_MAX_DIM], PetscReal vol_unused, PetscScalar Ke[])
 {
-  const CellData *cd  = (const CellData *)ctx;
-  const PetscInt  dim = cd->op->dim, n = (dim + 1) * dim, cl = c - cd->op->cells.cStart;
-  PetscInt        off[MM_NV_MAX];
-  PetscReal       G[MM_MAX_DIM][MM_MAX_DIM];
-  MMTangent       A;
+  const TangentData *td  = (const TangentData *)ctx;
+  const PetscInt     dim = td->op->dim, n = (dim + 1) * dim, cl = c - td->op->cells.cStart;
+  PetscInt           off[MM_NV_MAX];
+  PetscReal          g[MM_NV_MAX][MM_MAX_DIM], vol, G[MM_MAX_DIM][MM_MAX_DIM];
+  MMTangent          A;
 
   PetscFunctionBeginUser;
-  for (PetscInt a = 0; a <= dim; ++a) PetscCall(PetscSectionGetOffset(cd->ls, v[a], &off[a]));
-  DisplacementGradient(dim, cd->u1, off, g, G);
-  CellLaw(cd->mat, cl)->tangent(dim, cd->mat->lambda[cl], cd->mat->mu[cl], (const PetscReal(*)[MM_MAX_DIM])G, A);
+  (void)v;
+  (void)g_unused;
+  (void)vol_unused;
+  CellGeometry(td->el, dim, cl, off, g, &vol);
+  DisplacementGradient(dim, td->u, off, (const PetscReal(*)[MM_MAX_DIM])g, G);
+  CellLaw(td->mat, cl)->tangent(dim, td->mat->lambda[cl], td->mat->mu[cl], (const PetscReal(*)[MM_MAX_DIM])G, A);
   for (PetscInt a = 0; a <= dim; ++a) {
     PetscReal ga[MM_MAX_DIM][MM_MAX_DIM][MM_MAX_DIM]; /* vol g_a,J A_iJkL, then contracted with each g_b */
     for (PetscInt i = 0; i < dim; ++i)
@@ -289,26 +267,24 @@ static PetscErrorCode TangentElement(void *ctx, PetscInt c, const PetscInt v[], 
 
 PetscErrorCode MMElasticityTangent(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, Mat Kw)
 {
-  CellData cd;
+  TangentData td = {.el = el, .op = op, .mat = mat};
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(MM_FE_ElasticTangent, 0, 0, 0, 0));
-  PetscCall(CellDataGet(op, mat, &cd));
-  PetscCall(VecGetArrayRead(l, &cd.u1));
+  PetscCall(VecGetArrayRead(l, &td.u));
   if (!op->N) {
-    PetscCall(MMAssembleP1Elements(op->dm, Kw, TangentElement, &cd));
+    PetscCall(MMAssembleP1Elements(op->dm, Kw, TangentElement, &td));
     if (op->Q) PetscCall(MMRotateP1(op->Q, Kw, NULL)); /* into the contact nodes' frames, as K is */
   } else {
     /* contact pairs: the P1 tangent rotated, then N^T A N as K (docs/method.md section 11), its product
      * kept so that later tangents reuse its pattern */
     if (!el->Kp) PetscCall(MMFECreateMatrix(op, op->dm, &el->Kp));
-    PetscCall(MMAssembleP1Elements(op->dm, el->Kp, TangentElement, &cd));
+    PetscCall(MMAssembleP1Elements(op->dm, el->Kp, TangentElement, &td));
     PetscCall(MMRotateP1(op->Q, el->Kp, NULL));
     PetscCall(MatPtAP(el->Kp, op->N, el->KpN ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, 2.0, &el->KpN));
     PetscCall(MatCopy(el->KpN, Kw, SAME_NONZERO_PATTERN));
   }
-  PetscCall(VecRestoreArrayRead(l, &cd.u1));
-  PetscCall(CellDataRestore(&cd));
+  PetscCall(VecRestoreArrayRead(l, &td.u));
   PetscCall(PetscLogEventEnd(MM_FE_ElasticTangent, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

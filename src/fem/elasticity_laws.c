@@ -134,10 +134,13 @@ static void NHStressE(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 E, M
     }
 }
 
+/* The moduli of the iteration matrix, kept positive semi-definite: mu - lambda ln J is clipped at 0 (a
+ * cell stretched past J = exp(mu/lambda)), so that K_t + 4/dt^2 M* stays SPD; the step's force, and
+ * so its solution, do not depend on it */
 static void NHModuli(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 E, MMTangent D)
 {
   Mat3            Ci;
-  const PetscReal lnJ = LogJInverse(dim, E, Ci), m = mu - lam * lnJ;
+  const PetscReal lnJ = LogJInverse(dim, E, Ci), m = PetscMax(mu - lam * lnJ, 0);
   for (PetscInt i = 0; i < dim; ++i)
     for (PetscInt j = 0; j < dim; ++j)
       for (PetscInt k = 0; k < dim; ++k)
@@ -227,15 +230,31 @@ static void HyperStressAlg(const HyperLaw *law, PetscInt dim, PetscReal lam, Pet
     }
 }
 
-/* A_iJkL = dP_iJ / dF_kL = delta_ik S_JL + F_iI D_IJKL F_kK */
+/* Whether the symmetric S is positive semi-definite: all its principal minors non-negative */
+static PetscBool SemiDefinite(PetscInt dim, const Mat3 S)
+{
+  for (PetscInt i = 0; i < dim; ++i)
+    if (S[i][i] < 0) return PETSC_FALSE;
+  for (PetscInt i = 0; i < dim; ++i)
+    for (PetscInt j = i + 1; j < dim; ++j)
+      if (S[i][i] * S[j][j] - S[i][j] * S[j][i] < 0) return PETSC_FALSE;
+  return (PetscBool)(dim == 2 || MMDetInverse(3, S, NULL) >= 0);
+}
+
+/* The iteration matrix's A_iJkL = delta_ik S_JL + F_iI D_IJKL F_kK (dP_iJ / dF_kL), with the geometric
+ * term delta_ik S_JL only where S is positive semi-definite: under compression it is indefinite, and
+ * K_t + 4/dt^2 M* could lose definiteness, which the factorizations of K~ need. The iteration converges
+ * to the same step either way (docs/method.md section 13). */
 static void HyperTangent(const HyperLaw *law, PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G, MMTangent A)
 {
   Mat3      E, S, F;
   MMTangent D, FD;
+  PetscBool geometric;
 
   GreenStrain(dim, G, E);
   law->stress(dim, lam, mu, E, S);
   law->moduli(dim, lam, mu, E, D);
+  geometric = SemiDefinite(dim, S);
   for (PetscInt i = 0; i < dim; ++i)
     for (PetscInt j = 0; j < dim; ++j) F[i][j] = (i == j ? 1 : 0) + G[i][j];
   for (PetscInt i = 0; i < dim; ++i)
@@ -249,7 +268,7 @@ static void HyperTangent(const HyperLaw *law, PetscInt dim, PetscReal lam, Petsc
     for (PetscInt J = 0; J < dim; ++J)
       for (PetscInt k = 0; k < dim; ++k)
         for (PetscInt L = 0; L < dim; ++L) {
-          PetscReal a = (i == k) ? S[J][L] : 0;
+          PetscReal a = (i == k && geometric) ? S[J][L] : 0;
           for (PetscInt K = 0; K < dim; ++K) a += FD[i][J][K][L] * F[k][K];
           A[i][J][k][L] = a;
         }

@@ -62,39 +62,49 @@ static PetscErrorCode ProjectInitialField(MMNewmark nm, PetscErrorCode (*f)(Pets
   PetscFunctionReturn(0);
 }
 
+/* A per-vertex table of dim values (local vertex order, src/fem/material.c) as a Cartesian global
+ * vector: the Dirichlet dofs drop out */
+static PetscErrorCode VertexTableCartesian(MMNewmark nm, const PetscReal table[], Vec g)
+{
+  DM             dm  = nm->op->dm;
+  const PetscInt dim = nm->op->dim;
+  PetscSection   ls;
+  PetscInt       vStart, vEnd;
+  PetscScalar   *a;
+  Vec            l;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLocalVector(dm, &l));
+  PetscCall(DMGetLocalSection(dm, &ls));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(VecGetArray(l, &a));
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(ls, v, &off));
+    for (PetscInt d = 0; d < dim; ++d) a[off + d] = table[(v - vStart) * dim + d];
+  }
+  PetscCall(VecRestoreArray(l, &a));
+  PetscCall(DMLocalToGlobal(dm, l, INSERT_VALUES, g));
+  PetscCall(DMRestoreLocalVector(dm, &l));
+  PetscFunctionReturn(0);
+}
+
 /* -bodies: each vertex's translation is the v0 of its body (src/fem/material.c), and -omega's rigid
  * rotation is added to every body. */
 static PetscErrorCode BodiesInitialVelocity(MMNewmark nm, Vec w)
 {
-  DM             dm  = nm->op->dm;
-  const PetscInt dim = nm->op->dim;
-  PetscErrorCode (*f)(PetscInt, PetscReal, const PetscReal[], PetscInt, PetscScalar *, void *) = InitialVelocity;
+  DM               dm  = nm->op->dm;
   MMNewmarkProblem rotation = nm->pb; /* the rotation alone: InitialVelocity without -v0 */
-  void          *fctx     = &rotation;
-  PetscSection   ls;
-  PetscInt       vStart, vEnd;
-  PetscScalar   *a;
-  Vec            ucart, tloc, tglob;
+  Vec              ucart, tglob;
 
   PetscFunctionBeginUser;
   for (PetscInt d = 0; d < MM_MAX_DIM; ++d) rotation.v0[d] = 0;
   PetscCall(DMGetGlobalVector(dm, &ucart));
   PetscCall(DMGetGlobalVector(dm, &tglob));
-  PetscCall(DMGetLocalVector(dm, &tloc));
-  PetscCall(MMFEInterpolate(nm->op, f, fctx, ucart));
-  PetscCall(DMGetLocalSection(dm, &ls));
-  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
-  PetscCall(VecGetArray(tloc, &a));
-  for (PetscInt v = vStart; v < vEnd; ++v) {
-    PetscInt off;
-    PetscCall(PetscSectionGetOffset(ls, v, &off));
-    for (PetscInt d = 0; d < dim; ++d) a[off + d] = nm->material->vertex_v0[(v - vStart) * dim + d];
-  }
-  PetscCall(VecRestoreArray(tloc, &a));
-  PetscCall(DMLocalToGlobal(dm, tloc, INSERT_VALUES, tglob)); /* the Dirichlet dofs drop out */
+  PetscCall(MMFEInterpolate(nm->op, InitialVelocity, &rotation, ucart));
+  PetscCall(VertexTableCartesian(nm, nm->material->vertex_v0, tglob));
   PetscCall(VecAXPY(ucart, 1.0, tglob));
   PetscCall(MMFEFromCartesian(nm->op, ucart, w));
-  PetscCall(DMRestoreLocalVector(dm, &tloc));
   PetscCall(DMRestoreGlobalVector(dm, &tglob));
   PetscCall(DMRestoreGlobalVector(dm, &ucart));
   PetscFunctionReturn(0);
@@ -104,32 +114,16 @@ static PetscErrorCode BodiesInitialVelocity(MMNewmark nm, Vec w)
  * given, so that a run without it keeps every bit (docs/method.md section 2, "Bodies"). */
 static PetscErrorCode AddRotationAboutCentres(MMNewmark nm, Vec w)
 {
-  DM             dm  = nm->op->dm;
-  const PetscInt dim = nm->op->dim;
-  PetscSection   ls;
-  PetscInt       vStart, vEnd;
-  PetscScalar   *a;
-  Vec            tloc, tglob, tw;
+  Vec tglob, tw;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalVector(dm, &tglob));
-  PetscCall(DMGetLocalVector(dm, &tloc));
+  PetscCall(DMGetGlobalVector(nm->op->dm, &tglob));
   PetscCall(VecDuplicate(w, &tw));
-  PetscCall(DMGetLocalSection(dm, &ls));
-  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
-  PetscCall(VecGetArray(tloc, &a));
-  for (PetscInt v = vStart; v < vEnd; ++v) {
-    PetscInt off;
-    PetscCall(PetscSectionGetOffset(ls, v, &off));
-    for (PetscInt d = 0; d < dim; ++d) a[off + d] = nm->material->vertex_omega0[(v - vStart) * dim + d];
-  }
-  PetscCall(VecRestoreArray(tloc, &a));
-  PetscCall(DMLocalToGlobal(dm, tloc, INSERT_VALUES, tglob)); /* the Dirichlet dofs drop out */
+  PetscCall(VertexTableCartesian(nm, nm->material->vertex_omega0, tglob));
   PetscCall(MMFEFromCartesian(nm->op, tglob, tw));
   PetscCall(VecAXPY(w, 1.0, tw));
   PetscCall(VecDestroy(&tw));
-  PetscCall(DMRestoreLocalVector(dm, &tloc));
-  PetscCall(DMRestoreGlobalVector(dm, &tglob));
+  PetscCall(DMRestoreGlobalVector(nm->op->dm, &tglob));
   PetscFunctionReturn(0);
 }
 

@@ -176,43 +176,19 @@ static PetscErrorCode LoadResultant(MMNewmark nm, MMHistory *h)
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode ForceMoments(MMNewmark nm, Vec u, Vec f, PetscBool reference, PetscReal F[3], PetscReal T[3]);
+
 /* The finite-strain laws: their algorithmic force has no moment about the mean position of the step
  * (docs/method.md section 13), so the scheme's angular momentum is J = sum_i (X_i + u_i) x (M* v)_i,
  * about the current positions: J gets sum_i u_i x (M* v)_i, over the same vertices. */
 static PetscErrorCode CurrentPositionMoment(MMNewmark nm, MMHistory *h)
 {
-  MMMomenta         *mo  = &nm->momenta;
-  DM                 dm  = nm->op->dm;
-  const PetscInt     dim = nm->op->dim;
-  Vec                uc, fc;
-  const PetscScalar *u, *f;
-  PetscReal          J[3] = {0, 0, 0};
+  PetscReal F[3], T[3];
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalVector(dm, &uc));
-  PetscCall(DMGetGlobalVector(dm, &fc));
-  PetscCall(MMFEToCartesian(nm->op, nm->state.u, uc));
   PetscCall(MatMult(nm->op->Mstar, nm->state.v, nm->state.work));
-  PetscCall(MMFEForceToCartesian(nm->op, nm->state.work, fc));
-  PetscCall(VecGetArrayRead(uc, &u));
-  PetscCall(VecGetArrayRead(fc, &f));
-  for (PetscInt n = 0; n < mo->nv; ++n) {
-    const PetscInt i = mo->vert_u[n];
-    PetscReal      r[3] = {0, 0, 0}, p[3] = {0, 0, 0};
-    for (PetscInt d = 0; d < dim; ++d) {
-      r[d] = PetscRealPart(u[i + d]);
-      p[d] = PetscRealPart(f[i + d]);
-    }
-    J[0] += r[1] * p[2] - r[2] * p[1];
-    J[1] += r[2] * p[0] - r[0] * p[2];
-    J[2] += r[0] * p[1] - r[1] * p[0];
-  }
-  PetscCall(VecRestoreArrayRead(fc, &f));
-  PetscCall(VecRestoreArrayRead(uc, &u));
-  PetscCall(DMRestoreGlobalVector(dm, &fc));
-  PetscCall(DMRestoreGlobalVector(dm, &uc));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, J, 3, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)dm)));
-  for (PetscInt k = 0; k < 3; ++k) h->J[k] += J[k];
+  PetscCall(ForceMoments(nm, nm->state.u, nm->state.work, PETSC_FALSE, F, T));
+  for (PetscInt k = 0; k < 3; ++k) h->J[k] += T[k];
   PetscFunctionReturn(0);
 }
 
@@ -266,10 +242,9 @@ PetscErrorCode MMMomentaDestroy(MMMomenta *mo)
   PetscFunctionReturn(0);
 }
 
-/* The resultant F and the moment T about the origin, at the current positions X + u, of the w-frame force
- * f over the vertices with no Dirichlet dof: what f changes of P and J in a step, per unit time (the
- * finite-strain step's stop, nonlinear.c) */
-PetscErrorCode MMMomentaOfForce(MMNewmark nm, Vec u, Vec f, PetscReal F[3], PetscReal T[3])
+/* The resultant F and the moment T about the origin of the w-frame force f over the vertices with no
+ * Dirichlet dof, at the current positions X + u (reference: with X, else about the displacements u alone) */
+static PetscErrorCode ForceMoments(MMNewmark nm, Vec u, Vec f, PetscBool reference, PetscReal F[3], PetscReal T[3])
 {
   MMMomenta         *mo  = &nm->momenta;
   DM                 dm  = nm->op->dm;
@@ -292,7 +267,7 @@ PetscErrorCode MMMomentaOfForce(MMNewmark nm, Vec u, Vec f, PetscReal F[3], Pets
     const PetscInt i = mo->vert_u[n], xo = mo->vert_x[n];
     PetscReal      r[3] = {0, 0, 0}, q[3] = {0, 0, 0};
     for (PetscInt d = 0; d < dim; ++d) {
-      r[d] = PetscRealPart(x[xo + d] + ua[i + d]);
+      r[d] = reference ? PetscRealPart(x[xo + d] + ua[i + d]) : PetscRealPart(ua[i + d]);
       q[d] = PetscRealPart(fa[i + d]);
       s[d] += q[d];
     }
@@ -310,5 +285,13 @@ PetscErrorCode MMMomentaOfForce(MMNewmark nm, Vec u, Vec f, PetscReal F[3], Pets
     F[k] = s[k];
     T[k] = s[3 + k];
   }
+  PetscFunctionReturn(0);
+}
+
+/* What f changes of P and J in a step, per unit time (the finite-strain step's stop, nonlinear.c) */
+PetscErrorCode MMMomentaOfForce(MMNewmark nm, Vec u, Vec f, PetscReal F[3], PetscReal T[3])
+{
+  PetscFunctionBeginUser;
+  PetscCall(ForceMoments(nm, u, f, PETSC_TRUE, F, T));
   PetscFunctionReturn(0);
 }

@@ -49,6 +49,7 @@ typedef struct {
   MMTangentPolicy policy;      /* -nonlinear_tangent */
   PetscReal       rtol;        /* -nonlinear_rtol: the force residual, relative to the internal force */
   PetscReal       rtol_audit;  /* -nonlinear_audit_rtol: below it, a residual the audits cannot see also ends the step */
+  PetscReal       size;        /* the mesh's bounding-box diagonal: the angular momentum's length scale */
   PetscInt        max_it;      /* -nonlinear_max_it */
   PetscInt        anderson;    /* -nonlinear_anderson: its depth */
   PetscReal       refresh;     /* -nonlinear_refresh_ratio: auto rebuilds K_s when an iteration contracts less */

@@ -41,6 +41,7 @@ PetscErrorCode MMNonlinearSetFromOptions(PetscOptionItems *PetscOptionsObject, M
   nl->refresh = PETSC_DEFAULT;
   PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-nonlinear_refresh_ratio", "-nonlinear_tangent auto: rebuild the iteration matrix at the iterate when an iteration reduces the residual by less than this factor, in (0, 1) (default 0.5 for the condensed formulation, whose rebuild refactors K~ and recomputes every Delassus column, 0.1 otherwise)", &nl->refresh));
   PetscCheck(nl->rtol > 0, comm, PETSC_ERR_USER_INPUT, "-nonlinear_rtol %g must be > 0", (double)nl->rtol);
+  PetscCheck(nl->rtol_audit >= nl->rtol && nl->rtol_audit < 1, comm, PETSC_ERR_USER_INPUT, "-nonlinear_audit_rtol %g must be in [-nonlinear_rtol %g, 1): the residual below which the audits decide whether the finite-strain step is done", (double)nl->rtol_audit, (double)nl->rtol);
   PetscCheck(nl->max_it >= 1, comm, PETSC_ERR_USER_INPUT, "-nonlinear_max_it %" PetscInt_FMT " must be >= 1", nl->max_it);
   PetscCheck(nl->refresh == PETSC_DEFAULT || (nl->refresh > 0 && nl->refresh < 1), comm, PETSC_ERR_USER_INPUT, "-nonlinear_refresh_ratio %g must be in (0, 1)", (double)nl->refresh);
   PetscFunctionReturn(0);
@@ -69,6 +70,12 @@ PetscErrorCode MMNonlinearSetUp(MMNewmark nm)
      * column), the others a tangent assembly: measured on the D2 ball, docs/method.md section 13 */
     PetscCall(MMContactHasDelassus(nm->contact, &delassus));
     nl->refresh = delassus ? 0.5 : 0.1;
+  }
+  {
+    PetscReal lo[MM_MAX_DIM], hi[MM_MAX_DIM], D = 0;
+    PetscCall(DMGetBoundingBox(nm->op->dm, lo, hi)); /* the mesh's size: the angular momentum's length scale */
+    for (PetscInt d = 0; d < nm->op->dim; ++d) D += PetscSqr(hi[d] - lo[d]);
+    nl->size = PetscSqrtReal(D);
   }
   PetscCall(MMElasticitySetUp(&nl->el, nm->op));
   if (nm->loads->n_bc) PetscCall(MMLoadsSetElasticity(nm->loads, &nl->el));
@@ -198,7 +205,7 @@ static PetscErrorCode BelowTheAudits(MMNewmark nm, Vec w, Vec r, PetscReal dt, P
   MMState        *s = &nm->state;
   const PetscReal E = nm->hist.energy_scale, m = nm->op->mass_star[0];
   PetscScalar     work;
-  PetscReal       F[3], T[3], lo[MM_MAX_DIM], hi[MM_MAX_DIM], D = 0, P;
+  PetscReal       F[3], T[3], P;
 
   PetscFunctionBeginUser;
   *below = PETSC_FALSE;
@@ -207,11 +214,8 @@ static PetscErrorCode BelowTheAudits(MMNewmark nm, Vec w, Vec r, PetscReal dt, P
   PetscCall(VecDot(s->work, r, &work));
   if (PetscAbsScalar(work) > 1e-12 * E) PetscFunctionReturn(0);
   PetscCall(MMMomentaOfForce(nm, w, r, F, T));
-  PetscCall(DMGetBoundingBox(nm->op->dm, lo, hi));
-  for (PetscInt d = 0; d < nm->op->dim; ++d) D += PetscSqr(hi[d] - lo[d]);
-  D = PetscSqrtReal(D);
   P = PetscSqrtReal(2 * E * m);
-  *below = (PetscBool)(dt * PetscSqrtReal(PetscSqr(F[0]) + PetscSqr(F[1]) + PetscSqr(F[2])) <= 1e-12 * P && dt * PetscSqrtReal(PetscSqr(T[0]) + PetscSqr(T[1]) + PetscSqr(T[2])) <= 1e-12 * P * D);
+  *below = (PetscBool)(dt * PetscSqrtReal(PetscSqr(F[0]) + PetscSqr(F[1]) + PetscSqr(F[2])) <= 1e-12 * P && dt * PetscSqrtReal(PetscSqr(T[0]) + PetscSqr(T[1]) + PetscSqr(T[2])) <= 1e-12 * P * nm->nl.size);
   PetscFunctionReturn(0);
 }
 
