@@ -316,6 +316,7 @@ typedef struct _MMElasticity {
   Mat        Kp, KpN;   /* contact pairs: the tangent on the P1 pattern, and its N^T Kp N */
   PetscInt *cell_off;   /* per local cell, its dim + 1 vertices' offsets in the local vectors */
   PetscReal *cell_geom; /* per local cell, its P1 gradients (dim + 1 by dim) and volume */
+  PetscReal  visc;      /* beta/dt: the step's viscous stress beta D : dE/dt (Rayleigh's stiffness part), 0 undamped */
 } MMElasticity;
 #define MM_ELASTICITY_GEOM ((MM_MAX_DIM + 1) * MM_MAX_DIM + 1)
 PETSC_EXTERN PetscErrorCode MMElasticitySetUp(MMElasticity *el, const MMOperators *op);
@@ -330,6 +331,8 @@ PETSC_EXTERN PetscErrorCode MMElasticityForceLocal(MMElasticity *el, const MMOpe
 /* the reactions of the Dirichlet supports from the finite-strain force instead of K_D (el borrowed) */
 PETSC_EXTERN PetscErrorCode MMLoadsSetElasticity(MMLoads *ld, MMElasticity *el);
 PETSC_EXTERN PetscErrorCode MMElasticityEnergy(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, PetscReal *energy);
+/* sum over the cells of |T| dE : D : dE for the step from the start set by MMElasticitySetStepStart to l1 */
+PETSC_EXTERN PetscErrorCode MMElasticityDissipation(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l1, PetscReal *d);
 /* Kw (the pattern of op->K) = the tangent dP/dF at l, in the w-frame */
 PETSC_EXTERN PetscErrorCode MMElasticityTangent(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, Mat Kw);
 /* the Cauchy stress of cell c (local) at the displacement gradient G */

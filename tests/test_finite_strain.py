@@ -99,8 +99,10 @@ def test_small_amplitude_limit_is_the_linear_model(tmp_path, law):
     assert len(hl) == len(hf) and hl["force_normal"].max() > 0
     for c in ("kinetic", "elastic", "total", "work_contact"):
         assert np.abs(hf[c] - hl[c]).max() <= 1e-5 * scales["energy"], c
+    # the finite-strain step's contact force is its mean over the step (docs/method.md section 13), the
+    # linear scheme's the end value of the trapezoidal pair: the mean of that pair is the same force
     for c in ("force_normal", "force_tangential"):
-        assert np.abs(hf[c] - hl[c]).max() <= 1e-5 * scales["force"], c
+        assert np.abs(hf[c][1:] - 0.5 * (hl[c][1:] + hl[c][:-1])).max() <= 1e-5 * scales["force"], c
     assert np.abs(hf["vcm_y"] - hl["vcm_y"]).max() <= 1e-5 * scales["velocity"]
 
 
@@ -154,10 +156,7 @@ def test_restart_across_rank_counts_svk(tmp_path, d1_friction):
 
 
 def test_finite_strain_refuses_what_it_does_not_support(tmp_path):
-    """Damping and a static start are linear-only for now: refused with the option named"""
-    bad = run(os.path.join(ROOT, "options", "d1_disk.opts"), tmp_path, "-elasticity", "svk", "-damping_mass", 1,
-              "-ts_max_steps", 1, name="damped", check=False)
-    assert bad.returncode != 0 and "damping" in bad.output
+    """A static start is linear-only for now: refused with the option named"""
     bad = run(os.path.join(ROOT, "options", "d1_disk.opts"), tmp_path, "-elasticity", "svk", "-initial_state", "static",
               "-ts_max_steps", 1, name="static", check=False)
     assert bad.returncode != 0 and "-initial_state" in bad.output

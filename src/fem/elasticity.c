@@ -137,13 +137,14 @@ PetscErrorCode MMElasticitySetStepStart(MMElasticity *el, const MMOperators *op,
   PetscFunctionReturn(0);
 }
 
-/* The cells' forces into the local array f, dim a constant once inlined so that the small loops unroll */
-static inline void ForceCells(const PetscInt dim, const MMElasticity *el, const MMMaterial *mat, PetscInt ncells, const PetscScalar *u1, PetscScalar *f)
+/* The cells' forces into the local array f, dim a constant once inlined so that the small loops unroll:
+ * of the step from the kept G0 (step) or of the state u1 itself (its P(F), no viscous part) */
+static inline void ForceCells(const PetscInt dim, const MMElasticity *el, const MMMaterial *mat, PetscInt ncells, PetscBool step, const PetscScalar *u1, PetscScalar *f)
 {
   for (PetscInt cl = 0; cl < ncells; ++cl) {
     const PetscInt  *off = &el->cell_off[(dim + 1) * cl];
     const PetscReal *q = &el->cell_geom[MM_ELASTICITY_GEOM * cl], vol = q[(dim + 1) * dim];
-    const PetscReal *g0 = &el->G0[MM_MAX_DIM * MM_MAX_DIM * cl];
+    const PetscReal *g0 = step ? &el->G0[MM_MAX_DIM * MM_MAX_DIM * cl] : NULL;
     PetscReal        G0[MM_MAX_DIM][MM_MAX_DIM], G1[MM_MAX_DIM][MM_MAX_DIM], P[MM_MAX_DIM][MM_MAX_DIM];
 
     for (PetscInt i = 0; i < dim; ++i)
@@ -151,9 +152,9 @@ static inline void ForceCells(const PetscInt dim, const MMElasticity *el, const 
         PetscReal t = 0;
         for (PetscInt a = 0; a <= dim; ++a) t += PetscRealPart(u1[off[a] + i]) * q[a * dim + J];
         G1[i][J] = t;
-        G0[i][J] = g0[MM_MAX_DIM * i + J];
+        G0[i][J] = step ? g0[MM_MAX_DIM * i + J] : t;
       }
-    CellLaw(mat, cl)->stress_alg(dim, mat->lambda[cl], mat->mu[cl], (const PetscReal(*)[MM_MAX_DIM])G0, (const PetscReal(*)[MM_MAX_DIM])G1, P);
+    CellLaw(mat, cl)->stress_alg(dim, mat->lambda[cl], mat->mu[cl], step ? el->visc : 0, (const PetscReal(*)[MM_MAX_DIM])G0, (const PetscReal(*)[MM_MAX_DIM])G1, P);
     for (PetscInt a = 0; a <= dim; ++a)
       for (PetscInt i = 0; i < dim; ++i) {
         PetscReal r = 0;
@@ -163,31 +164,31 @@ static inline void ForceCells(const PetscInt dim, const MMElasticity *el, const 
   }
 }
 
-/* el->lf = the cells' forces, unassembled */
-static PetscErrorCode LocalForce(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l1)
+/* el->lf = the cells' forces, unassembled: of the step from the kept start to l1, or of the state l1 */
+static PetscErrorCode LocalForce(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, PetscBool step, Vec l1)
 {
   const PetscScalar *u1;
   PetscScalar       *f;
 
   PetscFunctionBeginUser;
-  PetscCheck(el->G0, PETSC_COMM_SELF, PETSC_ERR_ORDER, "MMElasticitySetStepStart() must come first");
+  PetscCheck(el->G0 || !step, PETSC_COMM_SELF, PETSC_ERR_ORDER, "MMElasticitySetStepStart() must come first");
   PetscCall(VecGetArrayRead(l1, &u1));
   PetscCall(VecZeroEntries(el->lf));
   PetscCall(VecGetArray(el->lf, &f));
-  if (op->dim == 2) ForceCells(2, el, mat, op->cells.ncells, u1, f);
-  else ForceCells(3, el, mat, op->cells.ncells, u1, f);
+  if (op->dim == 2) ForceCells(2, el, mat, op->cells.ncells, step, u1, f);
+  else ForceCells(3, el, mat, op->cells.ncells, step, u1, f);
   PetscCall(VecRestoreArray(el->lf, &f));
   PetscCall(VecRestoreArrayRead(l1, &u1));
   PetscFunctionReturn(0);
 }
 
-/* The force P(F) of the state l itself (the step from l to l): for the Dirichlet supports' reactions */
+/* The force P(F) of the state l itself (the step from l to l): for the Dirichlet supports' reactions,
+ * between the step and its audits, so the step's kept start G0 is left as it is */
 PetscErrorCode MMElasticityForceLocal(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(MM_FE_ElasticForce, 0, 0, 0, 0));
-  PetscCall(MMElasticitySetStepStart(el, op, l));
-  PetscCall(LocalForce(el, op, mat, l));
+  PetscCall(LocalForce(el, op, mat, PETSC_FALSE, l));
   PetscCall(PetscLogEventEnd(MM_FE_ElasticForce, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -197,7 +198,7 @@ PetscErrorCode MMElasticityForce(MMElasticity *el, const MMOperators *op, const 
 {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(MM_FE_ElasticForce, 0, 0, 0, 0));
-  PetscCall(LocalForce(el, op, mat, l1));
+  PetscCall(LocalForce(el, op, mat, PETSC_TRUE, l1));
   PetscCall(VecZeroEntries(el->g));
   PetscCall(DMLocalToGlobal(op->dm, el->lf, ADD_VALUES, el->g)); /* the Dirichlet dofs drop out */
   PetscCall(MMFEForceFromCartesian(op, el->g, fw));
@@ -225,6 +226,28 @@ PetscErrorCode MMElasticityEnergy(MMElasticity *el, const MMOperators *op, const
   PetscCall(VecRestoreArrayRead(l, &u));
   PetscCall(MPIU_Allreduce(&e, energy, 1, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)op->dm)));
   PetscCall(PetscLogEventEnd(MM_FE_ElasticEnergy, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMElasticityDissipation(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l1, PetscReal *d)
+{
+  const PetscInt     dim = op->dim;
+  const PetscScalar *u;
+  PetscReal          e = 0;
+
+  PetscFunctionBeginUser;
+  PetscCheck(el->G0, PETSC_COMM_SELF, PETSC_ERR_ORDER, "MMElasticitySetStepStart() must come first");
+  PetscCall(VecGetArrayRead(l1, &u));
+  for (PetscInt cl = 0; cl < op->cells.ncells; ++cl) {
+    PetscInt  off[MM_NV_MAX];
+    PetscReal g[MM_NV_MAX][MM_MAX_DIM], vol, G[MM_MAX_DIM][MM_MAX_DIM];
+
+    CellGeometry(el, dim, cl, off, g, &vol);
+    DisplacementGradient(dim, u, off, (const PetscReal(*)[MM_MAX_DIM])g, G);
+    e += vol * CellLaw(mat, cl)->dissipation(dim, mat->lambda[cl], mat->mu[cl], (const PetscReal(*)[MM_MAX_DIM]) & el->G0[MM_MAX_DIM * MM_MAX_DIM * cl], (const PetscReal(*)[MM_MAX_DIM])G);
+  }
+  PetscCall(VecRestoreArrayRead(l1, &u));
+  PetscCall(MPIU_Allreduce(&e, d, 1, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)op->dm)));
   PetscFunctionReturn(0);
 }
 

@@ -203,7 +203,7 @@ static const HyperLaw NHLaw  = {NHRemainder, NHEnergyE, NHStressE, NHModuli};
 /* The algorithmic second Piola-Kirchhoff stress of a step: S(E_m) with E_m = (E0 + E1)/2, plus for a
  * non-quadratic W Gonzalez's correction so that S_alg : (E1 - E0) = W(E1) - W(E0) exactly; then
  * P = F_m S_alg, F_m = I + (G0 + G1)/2, for which P : (F1 - F0) = S_alg : (E1 - E0). */
-static void HyperStressAlg(const HyperLaw *law, PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G0, const Mat3 G1, Mat3 P)
+static void HyperStressAlg(const HyperLaw *law, PetscInt dim, PetscReal lam, PetscReal mu, PetscReal visc, const Mat3 G0, const Mat3 G1, Mat3 P)
 {
   Mat3 E0, E1, Em, S, dE;
 
@@ -222,6 +222,12 @@ static void HyperStressAlg(const HyperLaw *law, PetscInt dim, PetscReal lam, Pet
       for (PetscInt i = 0; i < dim; ++i)
         for (PetscInt j = 0; j < dim; ++j) S[i][j] += k * dE[i][j];
     }
+  }
+  if (visc != 0) { /* the viscous stress visc D : dE, with D the moduli at E = 0 (docs/method.md section 13) */
+    Mat3 Sv;
+    SVKStressE(dim, lam, mu, dE, Sv);
+    for (PetscInt i = 0; i < dim; ++i)
+      for (PetscInt j = 0; j < dim; ++j) S[i][j] += visc * Sv[i][j];
   }
   for (PetscInt i = 0; i < dim; ++i)
     for (PetscInt J = 0; J < dim; ++J) {
@@ -298,6 +304,17 @@ static void HyperCauchy(const HyperLaw *law, PetscInt dim, PetscReal lam, PetscR
     }
 }
 
+/* dE : D : dE, dE = E(G1) - E(G0): twice the St. Venant-Kirchhoff energy of dE */
+static PetscReal HyperDissipation(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G0, const Mat3 G1)
+{
+  Mat3 E0, E1;
+  GreenStrain(dim, G0, E0);
+  GreenStrain(dim, G1, E1);
+  for (PetscInt i = 0; i < dim; ++i)
+    for (PetscInt j = 0; j < dim; ++j) E1[i][j] -= E0[i][j];
+  return 2 * SVKEnergyE(dim, lam, mu, E1);
+}
+
 static PetscReal HyperEnergy(const HyperLaw *law, PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G)
 {
   Mat3 E;
@@ -321,12 +338,22 @@ static PetscReal LinearEnergy(PetscInt dim, PetscReal lam, PetscReal mu, const M
   return 0.5 * Contract(dim, s, G); /* s symmetric: s : G = s : eps */
 }
 
-static void LinearStressAlg(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G0, const Mat3 G1, Mat3 P)
+/* sigma(eps_m) + visc sigma(d eps): the trapezoidal stress and beta K du/dt, the linear Rayleigh damping */
+static void LinearStressAlg(PetscInt dim, PetscReal lam, PetscReal mu, PetscReal visc, const Mat3 G0, const Mat3 G1, Mat3 P)
 {
   Mat3 Gm;
   for (PetscInt i = 0; i < dim; ++i)
-    for (PetscInt j = 0; j < dim; ++j) Gm[i][j] = 0.5 * (G0[i][j] + G1[i][j]);
+    for (PetscInt j = 0; j < dim; ++j) Gm[i][j] = 0.5 * (G0[i][j] + G1[i][j]) + visc * (G1[i][j] - G0[i][j]);
   LinearSigma(dim, lam, mu, Gm, P);
+}
+
+/* d eps : D : d eps */
+static PetscReal LinearDissipation(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G0, const Mat3 G1)
+{
+  Mat3 dG;
+  for (PetscInt i = 0; i < dim; ++i)
+    for (PetscInt j = 0; j < dim; ++j) dG[i][j] = G1[i][j] - G0[i][j];
+  return 2 * LinearEnergy(dim, lam, mu, dG);
 }
 
 static void LinearTangent(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G, MMTangent A)
@@ -341,9 +368,9 @@ static void LinearTangent(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 
   { \
     return HyperEnergy(&law, dim, lam, mu, G); \
   } \
-  static void Name##StressAlg(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G0, const Mat3 G1, Mat3 P) \
+  static void Name##StressAlg(PetscInt dim, PetscReal lam, PetscReal mu, PetscReal visc, const Mat3 G0, const Mat3 G1, Mat3 P) \
   { \
-    HyperStressAlg(&law, dim, lam, mu, G0, G1, P); \
+    HyperStressAlg(&law, dim, lam, mu, visc, G0, G1, P); \
   } \
   static void Name##Tangent(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G, MMTangent A) \
   { \
@@ -356,9 +383,9 @@ static void LinearTangent(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 
 MM_HYPER_OPS(SVK, SVKLaw)
 MM_HYPER_OPS(NH, NHLaw)
 
-static const MMElasticityOps LinearOps     = {.energy = LinearEnergy, .stress_alg = LinearStressAlg, .tangent = LinearTangent, .cauchy = LinearSigma, .finite = PETSC_FALSE};
-static const MMElasticityOps SVKOps        = {.energy = SVKEnergy, .stress_alg = SVKStressAlg, .tangent = SVKTangent, .cauchy = SVKCauchy, .finite = PETSC_TRUE};
-static const MMElasticityOps NeoHookeanOps = {.energy = NHEnergy, .stress_alg = NHStressAlg, .tangent = NHTangent, .cauchy = NHCauchy, .finite = PETSC_TRUE};
+static const MMElasticityOps LinearOps     = {.energy = LinearEnergy, .stress_alg = LinearStressAlg, .dissipation = LinearDissipation, .tangent = LinearTangent, .cauchy = LinearSigma, .finite = PETSC_FALSE};
+static const MMElasticityOps SVKOps        = {.energy = SVKEnergy, .stress_alg = SVKStressAlg, .dissipation = HyperDissipation, .tangent = SVKTangent, .cauchy = SVKCauchy, .finite = PETSC_TRUE};
+static const MMElasticityOps NeoHookeanOps = {.energy = NHEnergy, .stress_alg = NHStressAlg, .dissipation = HyperDissipation, .tangent = NHTangent, .cauchy = NHCauchy, .finite = PETSC_TRUE};
 
 const char *const MMElasticityTypes[] = {"linear", "svk", "neohookean", "MMElasticityType", "MM_ELASTICITY_", NULL};
 

@@ -100,7 +100,9 @@ static PetscErrorCode CondensedDampingStiffness(MMOperators *op, MMMaterial *mat
   PetscFunctionReturn(0);
 }
 
-/* After the initial velocity v0 is set: vC^0 = v^0 on all dofs, and B. */
+/* After the initial velocity v0 is set: vC^0 = v^0 on all dofs, and B. The finite-strain step damps
+ * with the viscous stress of its own step (docs/method.md section 13), a function of u^{n+1} - u^n and
+ * not of vC, so the massless dofs carry no undamped mode there: B is K, in its iteration matrix only. */
 PetscErrorCode MMDampingSetUp(MMDamping *d, MMOperators *op, MMMaterial *material, IS is_massless, Vec v0)
 {
   PetscFunctionBeginUser;
@@ -110,7 +112,7 @@ PetscErrorCode MMDampingSetUp(MMDamping *d, MMOperators *op, MMMaterial *materia
   PetscCall(VecDuplicate(v0, &d->work));
   PetscCall(VecDuplicate(v0, &d->x));
   PetscCall(VecCopy(v0, d->vC));
-  if (d->beta != 0 && MMFEHasMasslessDofs(op)) PetscCall(CondensedDampingStiffness(op, material, is_massless, &d->B));
+  if (d->beta != 0 && MMFEHasMasslessDofs(op) && !material->finite) PetscCall(CondensedDampingStiffness(op, material, is_massless, &d->B));
   else {
     PetscCall(PetscObjectReference((PetscObject)op->K));
     d->B = op->K;

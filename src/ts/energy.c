@@ -217,7 +217,8 @@ PetscErrorCode MMEnergyStep(MMNewmark nm)
   /* the loads' and the support's work on the moving Dirichlet dofs, and the reactions at t^{n+1} */
   PetscCall(MMLoadsStepWork(nm->loads, s->u, s->a, s->u_old, s->a_old, &w_ext_D, &w_D));
   w_ext += w_ext_D;
-  PetscCall(MMDampingWork(&nm->damping, s->work, s->dt, &w_d));
+  if (nm->material->finite) PetscCall(MMNonlinearDampingWork(nm, s->work, h->time, s->dt, &w_d));
+  else PetscCall(MMDampingWork(&nm->damping, s->work, s->dt, &w_d));
   /* W_c was computed on this very state by the contact-work guard (MMEnergyContactWork) */
   if (cn.enabled) PetscCall(TrapezoidalWork(nm, cn.is_tangent, s->work, &w_f));
   {

@@ -1,15 +1,20 @@
 /* The step of the finite-strain laws (docs/method.md section 13): the energy-momentum scheme
  *
- *   M* (v^{n+1} - v^n) = dt [ (L^n + L^{n+1})/2 - (r^n + r^{n+1})/2 - f_alg(u^n, u^{n+1}) ],
- *   u^{n+1} - u^n = dt/2 (v^n + v^{n+1}),
+ *   M* (v^{n+1} - v^n) = dt [ (L^n + L^{n+1})/2 + lambda - f_alg(u^n, u^{n+1}) - alpha M* du/dt ],
+ *   u^{n+1} - u^n = du = dt/2 (v^n + v^{n+1}),
  *
- * with f_alg the algorithmic internal force (src/fem/elasticity.c), r the contact reactions, and the
- * contact and friction laws at t^{n+1} as in the linear scheme. Eliminating v^{n+1}, one problem for
- * w = u^{n+1}:
+ * with f_alg the algorithmic internal force (src/fem/elasticity.c, with Rayleigh's beta its viscous
+ * stress too), lambda the step's mean contact force, under the contact and friction laws at t^{n+1} as in
+ * the linear scheme. Eliminating v^{n+1}, one problem for w = u^{n+1}:
  *
- *   4/dt^2 M* w + 2 f_alg(u^n, w) + r^{n+1} = b_nl = M* (4/dt^2 u^n + 4/dt v^n) + L^n + L^{n+1} - r^n.
+ *   (4/dt^2 + 2 alpha/dt) M* w + 2 f_alg(u^n, w) = b_nl + 2 lambda,
+ *   b_nl = M* ((4/dt^2 + 2 alpha/dt) u^n + 4/dt v^n) + L^n + L^{n+1}.
  *
- * For the linear law 2 f_alg = K (u^n + w) + 2 lift, and this is the trapezoidal step exactly.
+ * The mean, not the end value of the linear scheme's trapezoidal pair (f_c^n + f_c^{n+1})/2: on the
+ * massless rows that pair obeys f_c^{n+1} = 2 (f_alg - L_mid) - f_c^n, which for the linear law keeps
+ * the quasi-static equation at every t^n, but for a nonlinear or viscous f_alg carries an undamped
+ * (-1)^n mode in the reactions. For the linear law 2 f_alg = K (u^n + w) + 2 lift, and the motion is
+ * the trapezoidal step's.
  *
  * It is solved by a modified Newton iteration whose every iterate is one linear contact problem of
  * the step matrix K~ = K_s + 4/dt^2 M*: K~ w^{k+1} + r = b_nl + K_s w^k - 2 f_alg(u^n, w^k), solved by the
@@ -53,7 +58,6 @@ static PetscErrorCode CheckSupported(MMNewmark nm)
   MPI_Comm comm = nm->comm;
 
   PetscFunctionBeginUser;
-  PetscCheck(!MMDampingOn(&nm->damping), comm, PETSC_ERR_SUP, "-elasticity svk and neohookean do not take Rayleigh damping yet (-damping_*): its stiffness part, beta K, would damp rigid rotations. Use -elasticity linear with damping");
   PetscCheck(!nm->loads->moving, comm, PETSC_ERR_SUP, "-elasticity svk and neohookean do not take moving Dirichlet boundaries yet (a -dirichlet_NAME_velocity or a value with an amplitude): fix the boundary, or use -elasticity linear");
   PetscFunctionReturn(0);
 }
@@ -118,6 +122,11 @@ PetscErrorCode MMNonlinearStepMatrix(MMNewmark nm, PetscReal dt, MMStepMatrix *s
 
   PetscFunctionBeginUser;
   PetscCall(MMDampingGetStepMatrix(&nm->damping, nm->op->K, dt, sm));
+  /* Rayleigh's beta: the viscous stress's iteration matrix is 2 beta/dt K_s, the iteration stiffness
+   * scaled, so that it turns with the body as K_s does (Correction) */
+  sm->ck += sm->cb;
+  sm->cb      = 0;
+  sm->B       = NULL;
   sm->K       = nl->use_tangent ? nl->Ks : NULL;
   sm->version = nl->use_tangent ? nl->version : 0;
   PetscFunctionReturn(0);
@@ -154,16 +163,17 @@ static PetscErrorCode FixedRHS(MMNewmark nm, PetscReal dt, Vec bnl, PetscReal *f
   PetscCall(VecNorm(s->react_old, NORM_2, &n[1]));
   PetscCall(VecWAXPY(s->work, 1.0, nm->op->load, nm->loads->in_time ? nm->loads->load_old : nm->op->load));
   PetscCall(VecNorm(s->work, NORM_2, &n[2]));
-  *fscale = PetscMax(2.0 / dt * n[0], PetscMax(n[1], n[2]));
-  PetscCall(VecAXPBYPCZ(s->work, 4.0 / (dt * dt), 4.0 / dt, 0.0, s->u, s->v));
+  *fscale = PetscMax(2.0 / dt * n[0], PetscMax(2 * n[1], n[2])); /* 2 lambda^n: the solve's units */
+  /* with Rayleigh's alpha, the damping force alpha M* (w - u^n)/dt, twice: its w part is in K~ */
+  PetscCall(VecAXPBYPCZ(s->work, 4.0 / (dt * dt) + 2.0 * nm->damping.alpha / dt, 4.0 / dt, 0.0, s->u, s->v));
   PetscCall(MatMult(nm->op->Mstar, s->work, bnl));
   PetscCall(VecAXPY(bnl, 1.0, nm->op->load));
   PetscCall(VecAXPY(bnl, 1.0, nm->loads->in_time ? nm->loads->load_old : nm->op->load));
-  PetscCall(VecAXPY(bnl, 1.0, s->react_old)); /* react: the obstacle's force on the body, f_c = -r */
   PetscFunctionReturn(0);
 }
 
-/* c = K_s w - 2 f_alg(u^n, w), from the local u^n in el.l0; *scale = |2 f_alg| */
+/* c = (1 + 2 beta/dt) K_s w - 2 f_alg(u^n, w), from the local u^n in el.l0; *scale = |2 f_alg|. With
+ * Rayleigh's beta, f_alg carries the step's viscous stress and K~ its iteration matrix 2 beta/dt K_s. */
 static PetscErrorCode Correction(MMNewmark nm, PetscReal t1, Vec w, Vec c, PetscReal *scale)
 {
   MMNonlinear  *nl = &nm->nl;
@@ -175,7 +185,7 @@ static PetscErrorCode Correction(MMNewmark nm, PetscReal t1, Vec w, Vec c, Petsc
   PetscCall(VecScale(nl->f, 2.0));
   PetscCall(VecNorm(nl->f, NORM_2, scale));
   PetscCall(MatMult(nl->use_tangent ? nl->Ks : nm->op->K, w, c));
-  PetscCall(VecAXPY(c, -1.0, nl->f));
+  PetscCall(VecAXPBY(c, -1.0, 1.0 + 2.0 * el->visc, nl->f)); /* el->visc = beta/dt of this step */
   PetscFunctionReturn(0);
 }
 
@@ -219,6 +229,17 @@ static PetscErrorCode BelowTheAudits(MMNewmark nm, Vec w, Vec r, PetscReal dt, P
   PetscFunctionReturn(0);
 }
 
+/* The step's contact force is its mean over the step, lambda (docs/method.md section 13, "The contact force
+ * of the step"): the solve's f_c is 2 lambda, in the same cone. Stored as both ends' reaction, so that every
+ * trapezoidal work of the audits, 1/2 (f^n + f^{n+1}).du, is lambda.du, the work the step balanced. */
+static PetscErrorCode KeepMeanContactForce(MMState *s)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecScale(s->react, 0.5));
+  PetscCall(VecCopy(s->react, s->react_old));
+  PetscFunctionReturn(0);
+}
+
 /* One step: w holds the predictor on entry, u^{n+1} on success; b is contact's right-hand side vector.
  * *solved false: the friction solver or the iteration did not converge (the caller rejects the step). */
 PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b, Vec w, PetscBool *solved)
@@ -229,6 +250,7 @@ PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b,
 
   PetscFunctionBeginUser;
   *solved = PETSC_FALSE;
+  nl->el.visc = nm->damping.beta / dt;
   PetscCall(FixedRHS(nm, dt, nl->bnl, &fscale));
   PetscCall(MMElasticityLocal(&nl->el, nm->op, nm->loads, s->u, t0, nl->el.l0));
   PetscCall(MMElasticitySetStepStart(&nl->el, nm->op, nl->el.l0));
@@ -280,6 +302,31 @@ PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b,
   nl->its_total += PetscMin(nl->its, nl->max_it);
   nl->steps++;
   *solved = (PetscBool)(res <= tol);
+  if (*solved) PetscCall(KeepMeanContactForce(s));
+  PetscFunctionReturn(0);
+}
+
+/* W_d = -(alpha du.M* du + beta sum |T| dE : D : dE)/dt <= 0, the damping's work over the step from u_old to u
+ * (docs/method.md section 13): computed from the strains, apart from the force the step balanced */
+PetscErrorCode MMNonlinearDampingWork(MMNewmark nm, Vec du, PetscReal t1, PetscReal dt, PetscReal *w)
+{
+  MMDamping   *d  = &nm->damping;
+  MMElasticity *el = &nm->nl.el;
+  PetscScalar  duMdu = 0;
+  PetscReal    diss  = 0;
+
+  PetscFunctionBeginUser;
+  *w = 0;
+  if (!MMDampingOn(d)) PetscFunctionReturn(0);
+  if (d->alpha != 0) {
+    PetscCall(MatMult(nm->op->Mstar, du, nm->nl.f)); /* du is the state's work vector */
+    PetscCall(VecDot(du, nm->nl.f, &duMdu));
+  }
+  if (d->beta != 0) {
+    PetscCall(MMElasticityLocal(el, nm->op, nm->loads, nm->state.u, t1, el->l1));
+    PetscCall(MMElasticityDissipation(el, nm->op, nm->material, el->l1, &diss));
+  }
+  *w = -(d->alpha * PetscRealPart(duMdu) + d->beta * diss) / dt;
   PetscFunctionReturn(0);
 }
 

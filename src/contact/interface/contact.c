@@ -156,12 +156,13 @@ static PetscErrorCode CheckStepMatrixArithmetic(MMContact ct, PetscReal dt, Pets
   PetscFunctionReturn(0);
 }
 
-/* K~ = ck K + cb B + cm M* from A = K (a copy, K's pattern); with B = K, (ck + cb) K as one
- * scaling (docs/method.md section 3). Every formulation's K~ is built here. */
-static PetscErrorCode StepMatrixAssemble(MMContact ct, const MMStepMatrix *sm, Mat A)
+/* K~ = ck K + cb B + cm M* from A = K (a copy, K's pattern: fem's K or the finite-strain step's
+ * iteration stiffness); with B = K, (ck + cb) K as one scaling (docs/method.md section 3). Every
+ * formulation's K~ is built here. */
+static PetscErrorCode StepMatrixAssemble(MMContact ct, const MMStepMatrix *sm, Mat K, Mat A)
 {
   PetscFunctionBeginUser;
-  if (sm->B && sm->B == ct->op->K) PetscCall(MatScale(A, sm->ck + sm->cb));
+  if (sm->B && sm->B == K) PetscCall(MatScale(A, sm->ck + sm->cb));
   else {
     if (sm->ck != 1) PetscCall(MatScale(A, sm->ck));
     if (sm->B) PetscCall(MatAXPY(A, sm->cb, sm->B, SUBSET_NONZERO_PATTERN));
@@ -199,7 +200,7 @@ PetscErrorCode MMContactSetStepMatrix(MMContact ct, const MMStepMatrix *sm)
   else PetscCall(MatCopy(K, ct->qp.A, SAME_NONZERO_PATTERN));
   /* B is K or K with the massless dofs condensed out, no larger: ck + cb bounds the stiffness */
   PetscCall(CheckStepMatrixArithmetic(ct, dt, sm->ck + sm->cb, sm->cm));
-  PetscCall(StepMatrixAssemble(ct, sm, ct->qp.A));
+  PetscCall(StepMatrixAssemble(ct, sm, K, ct->qp.A));
   /* K~ is SPD for every dt: K is semi-definite with the rigid motions as its kernel, and M* is
    * positive on every rigid motion (docs/method.md, "Mass redistribution": G(M*) = G(M)). Said
    * once and for all, so that MUMPS factors it as SPD (SYM = 1: LDL^T without pivoting), 6%
