@@ -101,6 +101,15 @@ PETSC_EXTERN PetscErrorCode MMContactSetNodeState(MMContact ct, PetscInt k, cons
 
 /* The step */
 PETSC_EXTERN PetscErrorCode MMContactSetTime(MMContact ct, PetscReal t, PetscReal dt);
+/* -contact_frames follow (src/contact/interface/frames.c, docs/method.md section 8): at a step's
+ * start, the frames of the nodes near a curved obstacle follow their position u + dt/2 v (w-frame)
+ * at the step's predicted midpoint, t + dt/2; *turned: how many turned (all ranks). The w-frame K, M*, Q, loads and gaps are contact's
+ * and turn with them; the caller turns its own w-frame vectors by MMContactFramesRotate (x <- R^T x)
+ * and matrices by MMContactFramesRotateMatrix (A <- R^T A R). */
+PETSC_EXTERN PetscErrorCode MMContactFramesFollow(MMContact ct, PetscBool *follow);
+PETSC_EXTERN PetscErrorCode MMContactFramesUpdate(MMContact ct, Vec u, Vec v, PetscReal t, PetscReal dt, PetscInt *turned);
+PETSC_EXTERN PetscErrorCode MMContactFramesRotate(MMContact ct, Vec x);
+PETSC_EXTERN PetscErrorCode MMContactFramesRotateMatrix(MMContact ct, Mat A);
 /* K~ = ck K + cb B + cm M* for one dt, its coefficients computed by the stepper (src/ts/damping.c) */
 typedef struct {
   PetscReal dt, ck, cb, cm;

@@ -28,6 +28,7 @@ typedef struct {
   PetscReal dt;
   PetscReal dt_user;           /* -ts_dt: after a rejected step, dt grows back to it */
   PetscReal work_contact;      /* W_c of the accepted step, computed once by the contact-work guard */
+  PetscReal work_frame;        /* the kinetic energy the contact frames moved at this step's start (-contact_frames follow) */
 } MMState;
 
 /* One row of the history, and its running sums. */
@@ -39,6 +40,7 @@ typedef struct {
   PetscReal work_obstacle;     /* running sum: the work of the moving obstacles' contact forces */
   PetscReal work_damping;      /* running sum: the Rayleigh damping work W_d <= 0 (src/ts/damping.c) */
   PetscReal work_dirichlet;    /* running sum: the work of the moving Dirichlet boundaries' reactions */
+  PetscReal work_frame;        /* running sum: 1/2 v.(M*_new - M*_old) v at the frames' updates (-contact_frames follow) */
   PetscReal balance_residual;
   PetscInt  active, slipping, switched;
   PetscReal force_normal, force_tangential, max_penetration, coulomb_residual;

@@ -113,4 +113,5 @@ PETSC_INTERN PetscErrorCode MMNonlinearStepMatrix(MMNewmark nm, PetscReal dt, MM
 PETSC_INTERN PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b, Vec w, PetscBool *solved);
 PETSC_INTERN PetscErrorCode MMNonlinearElasticEnergy(MMNewmark nm, Vec u, PetscReal t, PetscReal *energy);
 PETSC_INTERN PetscErrorCode MMNonlinearDestroy(MMNonlinear *nl);
+PETSC_INTERN PetscErrorCode MMNonlinearFollowFrames(MMNewmark nm, PetscReal t, PetscReal dt);
 PETSC_INTERN PetscErrorCode MMAdaptGrowBackRegister(void);

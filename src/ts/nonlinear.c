@@ -283,6 +283,43 @@ PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b,
   PetscFunctionReturn(0);
 }
 
+/* -contact_frames follow (docs/method.md section 8, "Frames that follow the contact point"): at the
+ * step's start the frames of the nodes near a curved obstacle follow their current position. The
+ * Cartesian state is unchanged: its frame components turn by R (u, v, a, the reactions, the load
+ * parts), as does the iteration stiffness. M* does not turn with them, it is rebuilt (the massless
+ * dofs lie along the new normals), so the kinetic energy 1/2 v.M* v moves by W_frame =
+ * 1/2 v.(M*_new - M*_old) v: booked in the balance (work_frame), not hidden in its residual. The
+ * elastic energy, a function of the Cartesian displacement, does not move. */
+PetscErrorCode MMNonlinearFollowFrames(MMNewmark nm, PetscReal t, PetscReal dt)
+{
+  MMState  *s = &nm->state;
+  MMLoads  *ld = nm->loads;
+  PetscInt  turned;
+  PetscReal kinetic_old = nm->hist.kinetic; /* 1/2 v.M*_old v of the last accepted step (no moving Dirichlet data here) */
+
+  PetscFunctionBeginUser;
+  PetscCall(MMContactFramesUpdate(nm->contact, s->u, s->v, t, dt, &turned));
+  if (!turned) PetscFunctionReturn(0);
+  {
+    Vec *vecs[] = {&s->u, &s->v, &s->a, &s->react};
+    for (size_t i = 0; i < sizeof(vecs) / sizeof(vecs[0]); ++i) PetscCall(MMContactFramesRotate(nm->contact, *vecs[i]));
+  }
+  if (ld->in_time) { /* the load parts, which give op's load each step (op's load and lift contact turned) */
+    for (PetscInt k = 0; k < ld->nparts; ++k) PetscCall(MMContactFramesRotate(nm->contact, ld->part[k]));
+    PetscCall(MMContactFramesRotate(nm->contact, ld->load_old));
+  }
+  if (nm->nl.Ks) PetscCall(MMContactFramesRotateMatrix(nm->contact, nm->nl.Ks));
+  /* the momentum functionals are M* and Q of the old frames: built again on the next diagnostics */
+  PetscCall(MMMomentaDestroy(&nm->momenta));
+  {
+    PetscScalar vMv;
+    PetscCall(MatMult(nm->op->Mstar, s->v, s->work));
+    PetscCall(VecDot(s->v, s->work, &vMv));
+    s->work_frame += 0.5 * PetscRealPart(vMv) - kinetic_old;
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MMNonlinearView(MMNewmark nm, PetscViewer viewer)
 {
   const MMNonlinear *nl = &nm->nl;
