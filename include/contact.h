@@ -110,6 +110,15 @@ PETSC_EXTERN PetscErrorCode MMContactFramesFollow(MMContact ct, PetscBool *follo
 PETSC_EXTERN PetscErrorCode MMContactFramesUpdate(MMContact ct, Vec u, Vec v, PetscReal t, PetscReal dt, PetscInt *turned);
 PETSC_EXTERN PetscErrorCode MMContactFramesRotate(MMContact ct, Vec x);
 PETSC_EXTERN PetscErrorCode MMContactFramesRotateMatrix(MMContact ct, Mat A);
+/* Checkpoints of a run whose frames follow (frames.c): per following row its normal nu (MM_MAX_DIM)
+ * and gap g_0, MM_CONTACT_FRAME_RECORD reals (*has: the row follows); the run's counters (updates,
+ * frames turned, the largest turn); at -restart each row's frame and gap from its record, contact's
+ * operators turned with them (*turned: how many, all ranks; the caller turns its own set-up w-frame
+ * vectors by MMContactFramesRotate, not the state, read in these frames) */
+#define MM_CONTACT_FRAME_RECORD (MM_MAX_DIM + 1)
+PETSC_EXTERN PetscErrorCode MMContactFramesGetRecord(MMContact ct, PetscInt k, PetscBool *has, PetscScalar rec[]);
+PETSC_EXTERN PetscErrorCode MMContactFramesGetCounters(MMContact ct, PetscReal counters[3]);
+PETSC_EXTERN PetscErrorCode MMContactFramesRestore(MMContact ct, const PetscScalar rec[], const PetscReal counters[3], PetscInt *turned);
 /* K~ = ck K + cb B + cm M* for one dt, its coefficients computed by the stepper (src/ts/damping.c) */
 typedef struct {
   PetscReal dt, ck, cb, cm;

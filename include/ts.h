@@ -99,6 +99,8 @@ PETSC_EXTERN PetscErrorCode MMNewmarkGetState(MMNewmark nm, MMState **state);
 PETSC_EXTERN PetscErrorCode MMNewmarkGetHistory(MMNewmark nm, MMHistory **hist);
 PETSC_EXTERN PetscErrorCode MMNewmarkGetDamping(MMNewmark nm, MMDamping **damping);
 PETSC_EXTERN PetscErrorCode MMNewmarkDestroy(MMNewmark *nm);
+/* -restart of a run whose contact frames followed: the checkpoint's frames (MMCheckpointGetFrames) */
+PETSC_EXTERN PetscErrorCode MMNewmarkRestoreFrames(MMNewmark nm, const PetscScalar rec[], const PetscReal counters[]);
 #define TSNEWMARK "newmark"
 
 /* The audits (energy.c, deformation.c): on the initial state (restarted: it comes from a checkpoint),

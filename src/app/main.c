@@ -61,10 +61,11 @@ static PetscErrorCode Restart(MMCtx *ctx, TS ts)
   PetscCall(MMCheckpointGetRestart(&ctx->ckpt, &restarted, NULL, &t));
   if (!restarted) PetscFunctionReturn(0);
   {
-    PetscBool follow;
-    /* the checkpoint holds frame components, and the frames that follow are not in it */
-    PetscCall(MMContactFramesFollow(ctx->contact, &follow));
-    PetscCheck(!follow, PetscObjectComm((PetscObject)ts), PETSC_ERR_SUP, "-restart does not take -contact_frames follow yet (the default with -elasticity svk and neohookean on curved obstacles): the checkpoint stores the state in the contact frames of the reference positions. Restart with -contact_frames fixed only a run that had them fixed");
+    const PetscScalar *rec;
+    const PetscReal   *counters;
+    /* frames that follow the contact point: the checkpoint's state is in its frames, restored first */
+    PetscCall(MMCheckpointGetFrames(&ctx->ckpt, &rec, &counters));
+    PetscCall(MMNewmarkRestoreFrames(ctx->nm, rec, counters));
   }
   PetscCall(MMContactSetTime(ctx->contact, t, state->dt)); /* nothing without contact */
   PetscCall(MMLoadsSetTime(&ctx->loads, t, t));

@@ -289,29 +289,16 @@ static PetscErrorCode SetNewFrames(MMContact ct)
   PetscFunctionReturn(0);
 }
 
-/* The frames of the rows near a curved obstacle at the state u, v (w-frame) of time t, for a step of dt: the turned rows'
- * frames and gaps, Q, and contact's w-frame operators K, M, M*, the load and the lift turned with
- * them; K~ is rebuilt at the next MMContactSetStepMatrix, the kept one dropped (it is of the old
- * frames). The caller turns its own vectors (the state) with MMContactFramesRotate. */
-PetscErrorCode MMContactFramesUpdate(MMContact ct, Vec u, Vec v, PetscReal t, PetscReal dt, PetscInt *turned)
+/* The selected rows (turn, F_new, their gaps already set) turned: R, contact's w-frame operators K,
+ * M, M*, the load and the lift, Q and the frames; K~ is rebuilt at the next MMContactSetStepMatrix,
+ * the kept one dropped (it is of the old frames). */
+static PetscErrorCode TurnSelectedRows(MMContact ct)
 {
   MMContactFrames *fr = &ct->frames;
   MMOperators     *op = ct->op;
   MMMassBoundary   mb;
-  PetscInt         count;
 
   PetscFunctionBeginUser;
-  *turned = 0;
-  if (!fr->follow) PetscFunctionReturn(0);
-  PetscCall(PetscLogEventBegin(MMCONTACT_FrameFollow, 0, 0, 0, 0));
-  PetscCall(SelectTurningRows(ct, u, v, t, dt, &count));
-  PetscCall(MPIU_Allreduce(&count, turned, 1, MPIU_INT, MPI_SUM, ct->comm));
-  if (!*turned) {
-    PetscCall(PetscLogEventEnd(MMCONTACT_FrameFollow, 0, 0, 0, 0));
-    PetscFunctionReturn(0);
-  }
-  fr->updates++;
-  fr->turned += *turned;
   PetscCall(BuildRotation(ct));
   /* w-frame K and M <- R^T (.) R: a lumped M is m I at each node, which no rotation changes */
   PetscCall(MMRotateP1(fr->R, op->K, op->lumped ? NULL : fr->M));
@@ -323,6 +310,119 @@ PetscErrorCode MMContactFramesUpdate(MMContact ct, Vec u, Vec v, PetscReal t, Pe
   /* K~ (and its factor, the candidate columns, the PC) of the old frames: rebuilt for any dt */
   ct->Kt_dt   = 0;
   ct->kept.dt = 0;
+  PetscFunctionReturn(0);
+}
+
+/* The frames of the rows near a curved obstacle at the state u, v (w-frame) of time t, for a step of
+ * dt: the turned rows' frames and gaps, and contact's operators turned with them (TurnSelectedRows).
+ * The caller turns its own vectors (the state) with MMContactFramesRotate. */
+PetscErrorCode MMContactFramesUpdate(MMContact ct, Vec u, Vec v, PetscReal t, PetscReal dt, PetscInt *turned)
+{
+  MMContactFrames *fr = &ct->frames;
+  PetscInt         count;
+
+  PetscFunctionBeginUser;
+  *turned = 0;
+  if (!fr->follow) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(MMCONTACT_FrameFollow, 0, 0, 0, 0));
+  PetscCall(SelectTurningRows(ct, u, v, t, dt, &count));
+  PetscCall(MPIU_Allreduce(&count, turned, 1, MPIU_INT, MPI_SUM, ct->comm));
+  if (*turned) {
+    fr->updates++;
+    fr->turned += *turned;
+    PetscCall(TurnSelectedRows(ct));
+  }
+  PetscCall(PetscLogEventEnd(MMCONTACT_FrameFollow, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* ---- Checkpoints (src/io/checkpoint.c, docs/method.md section 9): a following row's frame is a
+ * function of its obstacle normal alone (MMContactFrameFromNormal), so its normal nu and its gap
+ * g_0 restore it bit for bit, on any partition; the state is kept in these frames. ---- */
+
+/* Row k's record: nu (MM_MAX_DIM) and g_0; *has: the row follows (the others keep their set-up
+ * frames, and a run with fixed frames writes no records). */
+PetscErrorCode MMContactFramesGetRecord(MMContact ct, PetscInt k, PetscBool *has, PetscScalar rec[])
+{
+  const PetscScalar *g0;
+
+  PetscFunctionBeginUser;
+  *has = (PetscBool)(ct->frames.follow && RowFollows(ct, k));
+  if (!*has) PetscFunctionReturn(0);
+  PetscCall(VecGetArrayRead(ct->gap0, &g0));
+  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) rec[d] = ct->node_frame[9 * k + d];
+  rec[MM_MAX_DIM] = g0[k];
+  PetscCall(VecRestoreArrayRead(ct->gap0, &g0));
+  PetscFunctionReturn(0);
+}
+
+/* The run's counters for the checkpoint: updates, node frames turned, the largest turn (all ranks) */
+PetscErrorCode MMContactFramesGetCounters(MMContact ct, PetscReal counters[3])
+{
+  const MMContactFrames *fr = &ct->frames;
+
+  PetscFunctionBeginUser;
+  counters[0] = (PetscReal)fr->updates;
+  counters[1] = (PetscReal)fr->turned;
+  PetscCall(MPIU_Allreduce(&fr->angle_max, &counters[2], 1, MPIU_REAL, MPIU_MAX, ct->comm));
+  PetscFunctionReturn(0);
+}
+
+/* -restart of a run whose frames followed: each following row (n_local records, as
+ * MMContactFramesGetRecord wrote them) takes its checkpointed frame and gap, and contact's operators
+ * turn with them, from the set-up frames (TurnSelectedRows); *turned: how many turned (all ranks).
+ * The state read from the checkpoint is already in these frames: the caller turns the w-frame
+ * vectors it had from the set-up (the load parts), not the state. */
+PetscErrorCode MMContactFramesRestore(MMContact ct, const PetscScalar rec[], const PetscReal counters[3], PetscInt *turned)
+{
+  MMContactFrames *fr  = &ct->frames;
+  const PetscInt   dim = ct->op->dim, bs = MM_CONTACT_FRAME_RECORD;
+  PetscScalar     *g0, *ga;
+  PetscInt         count = 0, bad = 0;
+
+  PetscFunctionBeginUser;
+  *turned = 0;
+  if (!fr->follow) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(MMCONTACT_FrameFollow, 0, 0, 0, 0));
+  PetscCall(VecGetArray(ct->gap0, &g0));
+  PetscCall(VecGetArray(ct->gap, &ga));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscScalar *r = &rec[bs * k];
+    PetscReal          n[MM_MAX_DIM] = {0, 0, 0}, Fn[MM_MAX_DIM][MM_MAX_DIM], len = 0;
+    PetscBool          same = PETSC_TRUE;
+
+    fr->turn[k] = PETSC_FALSE;
+    if (!RowFollows(ct, k)) continue;
+    for (PetscInt d = 0; d < dim; ++d) {
+      n[d] = -PetscRealPart(r[d]); /* nu = -n exactly: the frame is the one the run built */
+      len += n[d] * n[d];
+    }
+    if (PetscAbsReal(len - 1) > 1e-8) {
+      ++bad;
+      continue;
+    }
+    MMContactFrameFromNormal(dim, n, Fn);
+    for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
+      for (PetscInt b = 0; b < MM_MAX_DIM; ++b) {
+        fr->F_new[9 * k + 3 * a + b] = Fn[a][b];
+        same = (PetscBool)(same && Fn[a][b] == ct->node_frame[9 * k + 3 * a + b]);
+      }
+    /* MMContactSetTime adds a moving obstacle's c(t).nu */
+    g0[k] = ga[k] = r[MM_MAX_DIM];
+    if (same) continue;
+    fr->turn[k] = PETSC_TRUE;
+    ++count;
+  }
+  PetscCall(VecRestoreArray(ct->gap, &ga));
+  PetscCall(VecRestoreArray(ct->gap0, &g0));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_SUM, ct->comm));
+  PetscCheck(!bad, ct->comm, PETSC_ERR_FILE_UNEXPECTED, "The checkpoint's contact frames (-contact_frames follow) have no unit normal at %" PetscInt_FMT " contact nodes whose frames follow here: the file is damaged, or of another contact set-up", bad);
+  PetscCall(MPIU_Allreduce(&count, turned, 1, MPIU_INT, MPI_SUM, ct->comm));
+  if (*turned) PetscCall(TurnSelectedRows(ct));
+  /* the counters go on from the checkpoint's: the restore itself is no update */
+  fr->updates   = (PetscInt)counters[0];
+  fr->turned    = (PetscInt)counters[1];
+  fr->angle_max = counters[2];
   PetscCall(PetscLogEventEnd(MMCONTACT_FrameFollow, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
