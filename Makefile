@@ -36,6 +36,8 @@ MSH  += meshes/bimaterial.msh meshes/side_bars.msh
 MSH  += meshes/plate.msh
 # A ball whose whole sphere is contact boundary, resting on a plane: it slides, then rolls (issue 40)
 MSH  += meshes/ball_roll.msh
+# A disk sliding around the inside of a circular track, svk: frames that follow the contact point (issue 40)
+MSH  += meshes/disk_track.msh
 # Bench meshes: the 2D D1 disk (115k dofs), the 3D D2 ball (H 0.045: 113k dofs, 3.8k contact nodes)
 # and the large D2 ball of `make bench-large` (H 0.021: about 1M dofs), generated when first needed;
 # the two balls of the 3d suite's two_body row at H 0.057 (116,520 dofs for both, as the D2 ball's 113k).
@@ -107,6 +109,8 @@ meshes/ball_roll.msh: meshes/ball_roll.geo
 	gmsh -3 $< -o $@ -v 2
 meshes/disk_rail.msh: meshes/disk_rail.geo
 	gmsh -2 $< -o $@ -v 2
+meshes/disk_track.msh: meshes/disk_rail.geo
+	gmsh -2 $< -setnumber R 0.25 -setnumber G 0 -setnumber H 0.04 -o $@ -v 2
 meshes/block_push.msh: meshes/block_push.geo
 	gmsh -2 $< -o $@ -v 2
 meshes/ball_vgroove.msh: meshes/ball.geo

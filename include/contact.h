@@ -101,6 +101,24 @@ PETSC_EXTERN PetscErrorCode MMContactSetNodeState(MMContact ct, PetscInt k, cons
 
 /* The step */
 PETSC_EXTERN PetscErrorCode MMContactSetTime(MMContact ct, PetscReal t, PetscReal dt);
+/* -contact_frames follow (src/contact/interface/frames.c, docs/method.md section 8): at a step's
+ * start, the frames of the nodes near a curved obstacle follow their position u + dt/2 v (w-frame)
+ * at the step's predicted midpoint, t + dt/2; *turned: how many turned (all ranks). The w-frame K, M*, Q, loads and gaps are contact's
+ * and turn with them; the caller turns its own w-frame vectors by MMContactFramesRotate (x <- R^T x)
+ * and matrices by MMContactFramesRotateMatrix (A <- R^T A R). */
+PETSC_EXTERN PetscErrorCode MMContactFramesFollow(MMContact ct, PetscBool *follow);
+PETSC_EXTERN PetscErrorCode MMContactFramesUpdate(MMContact ct, Vec u, Vec v, PetscReal t, PetscReal dt, PetscInt *turned);
+PETSC_EXTERN PetscErrorCode MMContactFramesRotate(MMContact ct, Vec x);
+PETSC_EXTERN PetscErrorCode MMContactFramesRotateMatrix(MMContact ct, Mat A);
+/* Checkpoints of a run whose frames follow (frames.c): per following row its normal nu (MM_MAX_DIM)
+ * and gap g_0, MM_CONTACT_FRAME_RECORD reals (*has: the row follows); the run's counters (updates,
+ * frames turned, the largest turn); at -restart each row's frame and gap from its record, contact's
+ * operators turned with them (*turned: how many, all ranks; the caller turns its own set-up w-frame
+ * vectors by MMContactFramesRotate, not the state, read in these frames) */
+#define MM_CONTACT_FRAME_RECORD (MM_MAX_DIM + 1)
+PETSC_EXTERN PetscErrorCode MMContactFramesGetRecord(MMContact ct, PetscInt k, PetscBool *has, PetscScalar rec[]);
+PETSC_EXTERN PetscErrorCode MMContactFramesGetCounters(MMContact ct, PetscReal counters[3]);
+PETSC_EXTERN PetscErrorCode MMContactFramesRestore(MMContact ct, const PetscScalar rec[], const PetscReal counters[3], PetscInt *turned);
 /* K~ = ck K + cb B + cm M* for one dt, its coefficients computed by the stepper (src/ts/damping.c) */
 typedef struct {
   PetscReal dt, ck, cb, cm;

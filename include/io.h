@@ -79,6 +79,8 @@ typedef struct {
   char         source_dir[PETSC_MAX_PATH_LEN]; /* its directory: the history and snapshots to continue */
   PetscReal    run[40];                        /* its run record */
   PetscScalar *node;                           /* its per-node records of the owned contact nodes */
+  PetscScalar *frames;                         /* frames that follow: the owned contact nodes' frame records (NULL: none) */
+  PetscReal    frames_run[4];                  /* and the run's W_frame and the frames' counters */
   PetscReal   *snapshot_times;                 /* the times of its snapshots, until the output takes them */
 } MMCheckpoint;
 
@@ -165,6 +167,7 @@ PETSC_EXTERN PetscErrorCode MMCheckpointGetRestart(const MMCheckpoint *c, PetscB
 PETSC_EXTERN PetscErrorCode MMCheckpointWriteFinal(MMCheckpoint *c, TS ts);
 PETSC_EXTERN PetscErrorCode MMCheckpointView(const MMCheckpoint *c, PetscViewer viewer);
 PETSC_EXTERN PetscErrorCode MMCheckpointRestoreHistory(MMCheckpoint *c);
+PETSC_EXTERN PetscErrorCode MMCheckpointGetFrames(const MMCheckpoint *c, const PetscScalar **rec, const PetscReal **counters);
 PETSC_EXTERN PetscErrorCode MMCheckpointSnapshots(MMCheckpoint *c, PetscInt *n, PetscReal **times);
 PETSC_EXTERN PetscInt       MMCheckpointSnapshotCount(const MMCheckpoint *c);
 

@@ -13,6 +13,8 @@ struct _MMObstacle {
   PetscInt  npoint, nnormal, ncenter, naxis, nvelocity; /* entries given, -1 if not set */
   PetscBool radius_set;
   PetscBool inside;                  /* the body is inside the sphere, circle or cylinder */
+  PetscBool curved;                  /* its normal varies along its surface (not a plane): a contact node's
+                                        frame may follow the contact point (-contact_frames follow) */
   PetscReal mu;                      /* friction coefficient against this obstacle */
   PetscReal velocity[MM_MAX_DIM], start, stop; /* moves at velocity for start < t <= stop */
   /* a contact pair between two surfaces of the mesh (-contact_pairs), not a rigid shape: its slave

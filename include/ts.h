@@ -28,6 +28,7 @@ typedef struct {
   PetscReal dt;
   PetscReal dt_user;           /* -ts_dt: after a rejected step, dt grows back to it */
   PetscReal work_contact;      /* W_c of the accepted step, computed once by the contact-work guard */
+  PetscReal work_frame;        /* the kinetic energy the contact frames moved at this step's start (-contact_frames follow) */
 } MMState;
 
 /* One row of the history, and its running sums. */
@@ -39,6 +40,7 @@ typedef struct {
   PetscReal work_obstacle;     /* running sum: the work of the moving obstacles' contact forces */
   PetscReal work_damping;      /* running sum: the Rayleigh damping work W_d <= 0 (src/ts/damping.c) */
   PetscReal work_dirichlet;    /* running sum: the work of the moving Dirichlet boundaries' reactions */
+  PetscReal work_frame;        /* running sum: 1/2 v.(M*_new - M*_old) v at the frames' updates (-contact_frames follow) */
   PetscReal balance_residual;
   PetscInt  active, slipping, switched;
   PetscReal force_normal, force_tangential, max_penetration, coulomb_residual;
@@ -97,6 +99,8 @@ PETSC_EXTERN PetscErrorCode MMNewmarkGetState(MMNewmark nm, MMState **state);
 PETSC_EXTERN PetscErrorCode MMNewmarkGetHistory(MMNewmark nm, MMHistory **hist);
 PETSC_EXTERN PetscErrorCode MMNewmarkGetDamping(MMNewmark nm, MMDamping **damping);
 PETSC_EXTERN PetscErrorCode MMNewmarkDestroy(MMNewmark *nm);
+/* -restart of a run whose contact frames followed: the checkpoint's frames (MMCheckpointGetFrames) */
+PETSC_EXTERN PetscErrorCode MMNewmarkRestoreFrames(MMNewmark nm, const PetscScalar rec[], const PetscReal counters[]);
 #define TSNEWMARK "newmark"
 
 /* The audits (energy.c, deformation.c): on the initial state (restarted: it comes from a checkpoint),

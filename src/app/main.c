@@ -60,6 +60,13 @@ static PetscErrorCode Restart(MMCtx *ctx, TS ts)
   PetscCall(MMCheckpointLoad(&ctx->ckpt, ts));
   PetscCall(MMCheckpointGetRestart(&ctx->ckpt, &restarted, NULL, &t));
   if (!restarted) PetscFunctionReturn(0);
+  {
+    const PetscScalar *rec;
+    const PetscReal   *counters;
+    /* frames that follow the contact point: the checkpoint's state is in its frames, restored first */
+    PetscCall(MMCheckpointGetFrames(&ctx->ckpt, &rec, &counters));
+    PetscCall(MMNewmarkRestoreFrames(ctx->nm, rec, counters));
+  }
   PetscCall(MMContactSetTime(ctx->contact, t, state->dt)); /* nothing without contact */
   PetscCall(MMLoadsSetTime(&ctx->loads, t, t));
   if (!ctx->opt.quiet) PetscCall(MMCheckpointView(&ctx->ckpt, PETSC_VIEWER_STDOUT_WORLD));

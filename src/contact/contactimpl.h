@@ -56,6 +56,29 @@ typedef struct {
   PetscInt  *count;    /* per pair, 2: its slave nodes, and those facing a master node (node to node) */
 } MMContactPairs;
 
+/* -contact_frames: a contact node's frame and gap fixed at its reference position, or following its
+ * contact point on a curved obstacle (interface/frames.c, docs/method.md section 8) */
+typedef enum {
+  MM_FRAMES_FIXED,
+  MM_FRAMES_FOLLOW
+} MMFramesType;
+PETSC_INTERN const char *const MMFramesTypes[];
+
+/* Frames that follow the contact point (interface/frames.c): at each step's start, a node near a
+ * curved obstacle whose normal at its current position turned by more than -contact_frames_angle
+ * gets the frame and the gap of that position; the w-frame operators turn with it by R. */
+typedef struct {
+  PetscBool  follow;          /* resolved at set-up: -contact_frames follow and some curved rigid obstacle */
+  PetscReal  angle;           /* -contact_frames_angle (radians) */
+  Mat        M;               /* the full w-frame mass M, turned with the frames: M* is rebuilt from it */
+  Mat        R;               /* the last update's rotation, w_old = R w_new (block diagonal, identity off the turned nodes) */
+  PetscReal *X;               /* per contact row, MM_MAX_DIM: its reference position */
+  PetscReal *F_new;           /* per contact row, 9: the new frame of a node that turns */
+  PetscBool *turn;            /* per contact row: its frame turns at this update */
+  PetscInt   updates, turned; /* over the run: updates (steps with a turned frame), node frames turned */
+  PetscReal  angle_max;       /* the largest turn of one update */
+} MMContactFrames;
+
 /* The contact options (MMContactSetFromOptions) */
 typedef struct {
   PetscBool         contact;                 /* -contact */
@@ -70,6 +93,9 @@ typedef struct {
   PetscBool         active_set_block, active_set_monitor;
   PetscReal         audit_penetration_tol, audit_coulomb_tol, initial_penetration_tol;
   PetscReal         friction_coulomb_tol; /* the friction solver's (MMContactSetCoulombTolerance) */
+  MMFramesType      frames;                  /* -contact_frames */
+  PetscBool         frames_set;              /* given: else follow for the finite-strain laws, fixed for linear */
+  PetscReal         frames_angle;            /* -contact_frames_angle */
 } MMContactOptions;
 
 /* The contact object: the contact set, gaps, bounds and the step matrix, shared by every formulation;
@@ -133,6 +159,7 @@ struct _p_MMContact {
   PetscReal *force_obstacle;      /* per obstacle, MM_MAX_DIM: the contact force on it (Cartesian), last step */
   PetscReal  h_c;                 /* smallest diameter of cells touching the contact boundary */
   PetscReal  penetration_free;    /* last accepted step: the deepest penetration of an obstacle a node has no row for */
+  PetscReal  penetration_bound;   /* last accepted step: the deepest crossing of a node's own bound (frames that follow: the audit's) */
   PetscReal  tol;                 /* -contact_tol */
   PetscBool *was_active;          /* per owned contact node, at the previous step */
   PetscBool *slipping;            /* friction: per owned contact node, slipping (on the rim of its disk) */
@@ -145,6 +172,7 @@ struct _p_MMContact {
   PetscInt   vi_its;              /* Newton iterations of the last solve */
   MMStepSolver kt;                /* K~ solver without a Delassus operator (-contact 0, active set) */
   MMContactPairs pairs;           /* contact between two bodies of the mesh */
+  MMContactFrames frames;         /* -contact_frames follow */
 };
 
 
@@ -178,7 +206,7 @@ PETSC_INTERN PetscClassId  MMCONTACT_CLASSID;
 PETSC_INTERN PetscLogEvent MMCONTACT_Assemble, MMCONTACT_Solve, MMCONTACT_Recover, MMCONTACT_KtReuse, MMCONTACT_KtSetUp, MMCONTACT_KtSolve;
 PETSC_INTERN PetscLogEvent MMCONTACT_CandidateColumns, MMCONTACT_CandidateOperator, MMCONTACT_ColumnsSolve, MMCONTACT_ColumnsMove;
 PETSC_INTERN PetscLogEvent MMCONTACT_SplitInterface, MMCONTACT_SplitBackward, MMCONTACT_ActiveSetIterate, MMCONTACT_ActiveSetCG, MMCONTACT_BlockOperator;
-PETSC_INTERN PetscLogEvent MMCONTACT_FrameRotate, MMCONTACT_MassRedistribute;
+PETSC_INTERN PetscLogEvent MMCONTACT_FrameRotate, MMCONTACT_MassRedistribute, MMCONTACT_FrameFollow;
 
 /* The formulation of -contact_formulation (auto resolved by the problem's size), or "none" (contact.c) */
 PETSC_INTERN PetscErrorCode MMContactSetType(MMContact ct);
@@ -191,6 +219,14 @@ PETSC_INTERN PetscErrorCode MMContactCreate_None(MMContact ct);
 PETSC_INTERN PetscErrorCode MMContactSwapKeptOperator(MMContact ct, KSP *ksp);
 /* react = K~ w - b on the contact dofs (contact.c) */
 PETSC_INTERN PetscErrorCode MMContactForce(MMContact ct, Vec b, Vec w, Vec react);
+
+/* interface/set.c: the frame (nu, tau_1[, tau_2]) of an obstacle normal n, nu = -n */
+PETSC_INTERN void MMContactFrameFromNormal(PetscInt dim, const PetscReal n[], PetscReal F[MM_MAX_DIM][MM_MAX_DIM]);
+/* interface/frames.c: frames that follow the contact point (docs/method.md section 8) */
+PETSC_INTERN PetscErrorCode MMContactFramesSetUp(MMContact ct);
+PETSC_INTERN PetscErrorCode MMContactFramesPenetration(MMContact ct, PetscInt k, PetscReal t, const PetscScalar w[], PetscReal *own, PetscReal *others);
+PETSC_INTERN PetscErrorCode MMContactFramesView(MMContact ct, PetscViewer viewer);
+PETSC_INTERN PetscErrorCode MMContactFramesDestroy(MMContactFrames *fr);
 
 /* interface/corners.c: friction corners, a second obstacle's Coulomb law on a node's dofs */
 PETSC_INTERN void           MMContactCornerT2(PetscInt dim, const PetscReal ab[2], PetscReal T[MM_MAX_DIM][MM_MAX_DIM]);

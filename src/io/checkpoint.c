@@ -14,6 +14,7 @@
 #define MM_CKPT_FILE "checkpoint.h5"
 #define MM_CKPT_TMP  ".tmp" /* written whole, then renamed over the last good one */
 #define MM_CKPT_NODE MM_CONTACT_NODE_STATE /* per vertex: the contact row's state (MMContactGetNodeState) */
+#define MM_CKPT_FRAMES_RUN 4 /* frames that follow: W_frame, and the frames' counters (MMContactFramesGetCounters) */
 #define MM_CKPT_VERSION 5 /* 4: the redistributed mass (mass type + 3 if lumped); the Rayleigh damping (alpha, beta, W_d and vC);
                            * 5: the per-cell material's checksums (-bodies) */
 
@@ -110,7 +111,8 @@ static PetscErrorCode OwnedDofMap(MMCheckpoint *ck, PetscInt *n, PetscInt **seri
 }
 
 /* w (the free dofs, in each node's frame) into packed, dim entries per serial-mesh vertex. The
- * frames are functions of the reference geometry, so frame components are the same on any
+ * frames are functions of the reference geometry, or (frames that follow the contact point) of the
+ * normal the checkpoint records per node (PackFrames), so frame components are the same on any
  * partition, and no rotation rounds them. */
 static PetscErrorCode PackDofs(MMCheckpoint *ck, Vec w, Vec packed)
 {
@@ -134,7 +136,7 @@ static PetscErrorCode PackDofs(MMCheckpoint *ck, Vec w, Vec packed)
 /* The per-node contact state: the friction thresholds, and what the contact object keeps per row
  * (MMContactGetNodeState: the 3D stick/slip states and slip directions, the last active set and
  * the condensed reactions, which warm-start the next step). */
-static PetscErrorCode PackContact(MMCheckpoint *ck, Vec packed)
+static PetscErrorCode PackContact(MMCheckpoint *ck, Vec src, Vec packed)
 {
   const PetscScalar *sa = NULL;
   PetscInt           vStart, vEnd;
@@ -161,6 +163,37 @@ static PetscErrorCode PackContact(MMCheckpoint *ck, Vec packed)
   PetscCall(VecAssemblyBegin(packed));
   PetscCall(VecAssemblyEnd(packed));
   PetscFunctionReturn(0);
+}
+
+/* Frames that follow the contact point (-contact_frames follow, docs/method.md section 8): each
+ * following contact node's frame normal and gap (MMContactFramesGetRecord). The state is packed in
+ * these frames, which the record restores bit for bit; a run with fixed frames writes none. */
+static PetscErrorCode PackFrames(MMCheckpoint *ck, Vec src, Vec packed)
+{
+  PetscInt       vStart, vEnd;
+  MMContactNodes cn;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetDepthStratum(ck->op->dm, 0, &vStart, &vEnd));
+  PetscCall(MMContactGetNodes(ck->contact, &cn));
+  for (PetscInt k = 0; k < cn.n_local; ++k) {
+    PetscScalar rec[MM_CONTACT_FRAME_RECORD];
+    PetscBool   has;
+    PetscCall(MMContactFramesGetRecord(ck->contact, k, &has, rec));
+    for (PetscInt c = 0; has && c < MM_CONTACT_FRAME_RECORD; ++c) PetscCall(VecSetValue(packed, MM_CONTACT_FRAME_RECORD * ck->vertex_orig[cn.vertex[k] - vStart] + c, rec[c], INSERT_VALUES));
+  }
+  PetscCall(VecAssemblyBegin(packed));
+  PetscCall(VecAssemblyEnd(packed));
+  PetscFunctionReturn(0);
+}
+
+/* The contact frames follow the contact point: the checkpoint has their records. */
+static PetscBool FramesFollow(const MMCheckpoint *ck)
+{
+  PetscBool follow = PETSC_FALSE;
+
+  if (MMContactFramesFollow(ck->contact, &follow)) return PETSC_FALSE;
+  return follow;
 }
 
 /* A checksum of the geometry that does not depend on the partition (up to rounding). */
@@ -261,7 +294,7 @@ static PetscErrorCode RootVector(MPI_Comm comm, const char name[], PetscInt n, c
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode ViewPacked(MMCheckpoint *ck, PetscViewer viewer, const char name[], PetscInt bs, Vec src, PetscBool contact)
+static PetscErrorCode ViewPacked(MMCheckpoint *ck, PetscViewer viewer, const char name[], PetscInt bs, Vec src, PetscErrorCode (*pack)(MMCheckpoint *, Vec, Vec))
 {
   Vec packed;
 
@@ -269,8 +302,7 @@ static PetscErrorCode ViewPacked(MMCheckpoint *ck, PetscViewer viewer, const cha
   PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)ck->op->dm), PETSC_DECIDE, bs * ck->nv_global, &packed));
   PetscCall(PetscObjectSetName((PetscObject)packed, name));
   PetscCall(VecZeroEntries(packed));
-  if (contact) PetscCall(PackContact(ck, packed));
-  else PetscCall(PackDofs(ck, src, packed));
+  PetscCall((*pack)(ck, src, packed));
   PetscCall(VecView(packed, viewer));
   PetscCall(VecDestroy(&packed));
   PetscFunctionReturn(0);
@@ -305,12 +337,23 @@ static PetscErrorCode WriteCheckpointFile(MMCheckpoint *ck, const char tmp[], co
   PetscCall(RootVector(comm, "snapshot_times", PetscMax(ck->out->n_written, 1), ck->out->n_written ? ck->out->times : run, &tv));
   PetscCall(VecView(tv, viewer));
   PetscCall(VecDestroy(&tv));
-  PetscCall(ViewPacked(ck, viewer, "u", ck->op->dim, s->u, PETSC_FALSE));
-  PetscCall(ViewPacked(ck, viewer, "v", ck->op->dim, s->v, PETSC_FALSE));
-  PetscCall(ViewPacked(ck, viewer, "a", ck->op->dim, s->a, PETSC_FALSE));
-  if (DampingOn(ck)) PetscCall(ViewPacked(ck, viewer, "vC", ck->op->dim, ck->damping->vC, PETSC_FALSE));
-  PetscCall(ViewPacked(ck, viewer, "react", ck->op->dim, s->react, PETSC_FALSE));
-  PetscCall(ViewPacked(ck, viewer, "contact", MM_CKPT_NODE, NULL, PETSC_TRUE));
+  PetscCall(ViewPacked(ck, viewer, "u", ck->op->dim, s->u, PackDofs));
+  PetscCall(ViewPacked(ck, viewer, "v", ck->op->dim, s->v, PackDofs));
+  PetscCall(ViewPacked(ck, viewer, "a", ck->op->dim, s->a, PackDofs));
+  if (DampingOn(ck)) PetscCall(ViewPacked(ck, viewer, "vC", ck->op->dim, ck->damping->vC, PackDofs));
+  PetscCall(ViewPacked(ck, viewer, "react", ck->op->dim, s->react, PackDofs));
+  PetscCall(ViewPacked(ck, viewer, "contact", MM_CKPT_NODE, NULL, PackContact));
+  if (FramesFollow(ck)) {
+    /* only then: every other checkpoint keeps its datasets */
+    PetscReal fr[MM_CKPT_FRAMES_RUN];
+    Vec       fv;
+    fr[0] = ck->hist->work_frame;
+    PetscCall(MMContactFramesGetCounters(ck->contact, &fr[1]));
+    PetscCall(ViewPacked(ck, viewer, "frames", MM_CONTACT_FRAME_RECORD, NULL, PackFrames));
+    PetscCall(RootVector(comm, "frames_run", MM_CKPT_FRAMES_RUN, fr, &fv));
+    PetscCall(VecView(fv, viewer));
+    PetscCall(VecDestroy(&fv));
+  }
   PetscCall(PetscViewerDestroy(&viewer));
   PetscFunctionReturn(0);
 }
@@ -380,6 +423,7 @@ PetscErrorCode MMCheckpointDestroy(MMCheckpoint *c)
   PetscCall(PetscFree(c->vertex_orig));
   PetscCall(PetscFree(c->vertex_file));
   PetscCall(PetscFree(c->node));
+  PetscCall(PetscFree(c->frames));
   PetscCall(PetscFree(c->snapshot_times));
   PetscFunctionReturn(0);
 }
@@ -552,6 +596,61 @@ static PetscErrorCode LoadContactRecords(MMCheckpoint *ck, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
+/* Frames that follow the contact point: each contact node's record (PackFrames) and the run's
+ * W_frame and counters, when the checkpoint has them; a checkpoint with them (the state in turned
+ * frames) is refused by a run whose frames stay fixed. A checkpoint of fixed frames continued with
+ * frames that follow starts from the set-up frames, a state of the fixed-frame run. */
+static PetscErrorCode LoadFrameRecords(MMCheckpoint *ck, PetscViewer viewer)
+{
+  MPI_Comm       comm = PetscObjectComm((PetscObject)ck->op->dm);
+  PetscBool      has, follow;
+  PetscInt       vStart, vEnd, *serial;
+  MMContactNodes cn;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5HasDataset(viewer, "frames", &has));
+  PetscCall(MMContactFramesFollow(ck->contact, &follow));
+  PetscCheck(!has || follow, comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with contact frames that follow the contact point (-contact_frames follow, the default with -elasticity svk and neohookean on curved obstacles), and its state is in those frames; this run keeps them fixed. Restart with the -contact_frames and -elasticity of the run that wrote it", ck->file);
+  if (!has) PetscFunctionReturn(0);
+  PetscCall(MMContactGetNodes(ck->contact, &cn));
+  PetscCall(DMPlexGetDepthStratum(ck->op->dm, 0, &vStart, &vEnd));
+  PetscCall(PetscMalloc1(cn.n_local, &serial));
+  PetscCall(PetscMalloc1(MM_CONTACT_FRAME_RECORD * cn.n_local + 1, &ck->frames));
+  for (PetscInt k = 0; k < cn.n_local; ++k) serial[k] = ck->vertex_orig[cn.vertex[k] - vStart];
+  PetscCall(LoadPacked(ck, viewer, "frames", MM_CONTACT_FRAME_RECORD, cn.n_local, serial, ck->frames));
+  PetscCall(PetscFree(serial));
+  {
+    Vec                fv, all;
+    VecScatter         sc;
+    PetscInt           n;
+    const PetscScalar *a;
+    PetscCall(VecCreate(comm, &fv));
+    PetscCall(LoadVector(ck, viewer, "frames_run", fv));
+    PetscCall(VecGetSize(fv, &n));
+    PetscCheck(n == MM_CKPT_FRAMES_RUN, comm, PETSC_ERR_FILE_UNEXPECTED, "The checkpoint %s has %" PetscInt_FMT " entries in \"frames_run\", expected %d: the file is damaged", ck->file, n, MM_CKPT_FRAMES_RUN);
+    PetscCall(VecScatterCreateToAll(fv, &sc, &all));
+    PetscCall(VecScatterBegin(sc, fv, all, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(sc, fv, all, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecGetArrayRead(all, &a));
+    for (PetscInt i = 0; i < MM_CKPT_FRAMES_RUN; ++i) ck->frames_run[i] = PetscRealPart(a[i]);
+    PetscCall(VecRestoreArrayRead(all, &a));
+    PetscCall(VecScatterDestroy(&sc));
+    PetscCall(VecDestroy(&all));
+    PetscCall(VecDestroy(&fv));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The frames' records of the checkpoint a restart read (NULL without them): each owned contact
+ * node's, and the run's W_frame and the frames' counters, for MMNewmarkRestoreFrames. */
+PetscErrorCode MMCheckpointGetFrames(const MMCheckpoint *c, const PetscScalar **rec, const PetscReal **counters)
+{
+  PetscFunctionBeginUser;
+  *rec      = c->restarted ? c->frames : NULL;
+  *counters = c->frames_run + 1;
+  PetscFunctionReturn(0);
+}
+
 /* The friction thresholds, and the contact object's per-row state (the last active set, 3D slip
  * states and directions, condensed reactions and the active-set warm start): what the next step's
  * solvers start from. */
@@ -627,6 +726,7 @@ PetscErrorCode MMCheckpointLoad(MMCheckpoint *c, TS ts)
   PetscCall(LoadRunRecord(c, viewer, c->run));
   PetscCall(CheckFingerprint(c, ts, c->run));
   PetscCall(LoadContactRecords(c, viewer));
+  PetscCall(LoadFrameRecords(c, viewer));
   PetscCall(LoadDofs(c, viewer, "u", s->u));
   PetscCall(LoadDofs(c, viewer, "v", s->v));
   PetscCall(LoadDofs(c, viewer, "a", s->a));
@@ -706,6 +806,7 @@ PetscErrorCode MMCheckpointRestoreHistory(MMCheckpoint *c)
   h->max_penetration_run = run[MM_RUN_MAX_PENETRATION];
   h->energy_scale        = run[MM_RUN_ENERGY_SCALE];
   h->resolves            = (PetscInt)run[MM_RUN_RESOLVES];
+  if (c->frames) h->work_frame = c->frames_run[0]; /* frames that follow: W_frame so far */
   PetscCall(MMContactSetCandidateResolves(c->contact, h->resolves));
   /* here, not at the load: the condensed reactions and the active-set states are created with the
    * step matrix, and the initial diagnostics would overwrite the states (the last active set among them) */

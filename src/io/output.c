@@ -158,6 +158,15 @@ static PetscErrorCode CSVWrite(MMOutput *o, const MMLine *l)
   PetscFunctionReturn(0);
 }
 
+/* Whether the contact frames follow the contact point (-contact_frames follow on curved obstacles) */
+static PetscBool FramesFollow(const MMOutput *o)
+{
+  PetscBool follow = PETSC_FALSE;
+
+  if (o->contact && MMContactFramesFollow(o->contact, &follow)) return PETSC_FALSE;
+  return follow;
+}
+
 /* The header of history.csv: its columns depend on the dimension and the obstacles. */
 PetscErrorCode MMOutputCSVHeaderLine(const MMOutput *o, MMLine *lp)
 {
@@ -184,6 +193,8 @@ PetscErrorCode MMOutputCSVHeaderLine(const MMOutput *o, MMLine *lp)
   if (opt->n_dirichlet) PetscCall(MMOutputLineAdd(&l, ",work_dirichlet"));
   for (PetscInt b = 0; b < opt->n_dirichlet; ++b)
     for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",reaction_%s_%c", opt->dirichlet[b].name, axes[d]));
+  /* contact frames that follow the contact point: the kinetic energy their updates moved (docs/method.md section 8) */
+  if (FramesFollow(o)) PetscCall(MMOutputLineAdd(&l, ",work_frame"));
   /* -probes: each group's mean displacement, then velocity (probes.c) */
   for (PetscInt g = 0; g < o->probes.n; ++g) {
     for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",probe_%s_u%c", o->probes.name[g], axes[d]));
@@ -234,6 +245,7 @@ PetscErrorCode MMOutputWriteRow(MMOutput *o)
   if (opt->n_dirichlet) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->work_dirichlet));
   for (PetscInt b = 0; b < opt->n_dirichlet; ++b)
     for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)o->loads->reaction[MM_MAX_DIM * b + d]));
+  if (FramesFollow(o)) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->work_frame));
   PetscCall(MMProbesEvaluate(o));
   for (PetscInt k = 0; k < 2 * dim * o->probes.n; ++k) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)o->probes.mean[k]));
   PetscCall(MMOutputLineAdd(&l, "\n"));

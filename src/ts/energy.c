@@ -165,6 +165,7 @@ PetscErrorCode MMEnergyInitial(MMNewmark nm, PetscBool restarted)
   h->work_ext = h->work_contact = h->work_friction = h->work_obstacle = 0;
   h->work_damping = 0;
   h->work_dirichlet = 0;
+  h->work_frame = 0;
   h->balance_residual = h->max_balance = h->max_penetration_run = 0;
   h->cfl = cn.enabled ? nm->op->c_p * h->dt / cn.h_c : 0;
   /* the quadrature inserts the Dirichlet data of t = 0: a restarted run's moving boundary is elsewhere */
@@ -221,6 +222,16 @@ PetscErrorCode MMEnergyStep(MMNewmark nm)
   else PetscCall(MMDampingWork(&nm->damping, s->work, s->dt, &w_d));
   /* W_c was computed on this very state by the contact-work guard (MMEnergyContactWork) */
   if (cn.enabled) PetscCall(TrapezoidalWork(nm, cn.is_tangent, s->work, &w_f));
+  if (cn.enabled && cn.ncomp == 1) {
+    PetscBool follow;
+    /* frictionless, frames that follow: the last reaction, turned to the new frame, has a tangential
+     * part, the normal force of the old frame (docs/method.md section 8): its work is contact work */
+    PetscCall(MMContactFramesFollow(nm->contact, &follow));
+    if (follow) {
+      w_c += w_f;
+      w_f = 0;
+    }
+  }
   {
     PetscReal wn, wt, dwc, dwn, dwt;
     /* h->time is already t^{n+1} */
@@ -241,13 +252,15 @@ PetscErrorCode MMEnergyStep(MMNewmark nm)
   h->work_friction += w_f;
   h->work_damping += w_d;
   h->work_dirichlet += w_D;
+  h->work_frame += s->work_frame;
   /* relative to the run's energy scale, so that a body coming to rest does not inflate it */
   h->energy_scale     = PetscMax(h->energy_scale, PetscAbsReal(h->total));
-  h->balance_residual = PetscAbsReal(h->total - E_old - w_ext - w_c - w_f - w_obs - w_d - w_D) / PetscMax(h->energy_scale, PETSC_SMALL * PETSC_SMALL);
+  h->balance_residual = PetscAbsReal(h->total - E_old - s->work_frame - w_ext - w_c - w_f - w_obs - w_d - w_D) / PetscMax(h->energy_scale, PETSC_SMALL * PETSC_SMALL);
   h->max_balance      = PetscMax(h->max_balance, h->balance_residual);
   PetscCheck(h->balance_residual <= nm->audit_tol, PetscObjectComm((PetscObject)nm->op->dm), PETSC_ERR_NOT_CONVERGED,
              "Energy audit failed at step %" PetscInt_FMT " (t = %g): balance residual %.3e > -audit_tol %.1e. %s The output up to the previous step is intact",
              h->step, (double)h->time, (double)h->balance_residual, (double)nm->audit_tol, AuditAdvice(contact_tol, h->balance_residual));
+  s->work_frame      = 0;
   h->cfl              = cn.enabled ? nm->op->c_p * s->dt / cn.h_c : 0;
   PetscCall(ContactDiagnostics(nm, s->u, s->react, s->v, PETSC_TRUE, h));
   PetscCall(MMFrictionGetConvergence(nm->friction, &h->friction_its, NULL, NULL, &h->contraction));

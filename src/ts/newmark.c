@@ -160,9 +160,11 @@ static PetscErrorCode TSStep_Newmark(TS ts)
   Vec       w  = ts->vec_sol;
 
   PetscFunctionBeginUser;
+  /* the contact frames of the nodes near a curved obstacle follow their contact point (docs/method.md section 8) */
+  PetscCall(MatchFinalTime(ts));
+  if (nm->material->finite) PetscCall(MMNonlinearFollowFrames(nm, ts->ptime, ts->time_step));
   PetscCall(SaveOldState(s));
   PetscCall(MMContactCornersAccept(nm->contact));
-  PetscCall(MatchFinalTime(ts));
   while (!solved) {
     PetscReal w_c, scale;
     PetscBool    too_large = PETSC_FALSE;

@@ -330,6 +330,68 @@ PetscErrorCode MMNonlinearDampingWork(MMNewmark nm, Vec du, PetscReal t1, PetscR
   PetscFunctionReturn(0);
 }
 
+/* -contact_frames follow (docs/method.md section 8, "Frames that follow the contact point"): at the
+ * step's start the frames of the nodes near a curved obstacle follow their current position. The
+ * Cartesian state is unchanged: its frame components turn by R (u, v, a, the reactions, the load
+ * parts), as does the iteration stiffness. M* does not turn with them, it is rebuilt (the massless
+ * dofs lie along the new normals), so the kinetic energy 1/2 v.M* v moves by W_frame =
+ * 1/2 v.(M*_new - M*_old) v: booked in the balance (work_frame), not hidden in its residual. The
+ * elastic energy, a function of the Cartesian displacement, does not move. */
+/* The stepper's own w-frame operators, after contact turned its frames: the load parts, which give
+ * op's load each step (op's load and lift contact turned), and the iteration stiffness; the momentum
+ * functionals (M* and Q of the old frames) are built again on the next diagnostics. */
+static PetscErrorCode RotateStepperOperators(MMNewmark nm)
+{
+  MMLoads *ld = nm->loads;
+
+  PetscFunctionBeginUser;
+  if (ld->in_time) {
+    for (PetscInt k = 0; k < ld->nparts; ++k) PetscCall(MMContactFramesRotate(nm->contact, ld->part[k]));
+    PetscCall(MMContactFramesRotate(nm->contact, ld->load_old));
+  }
+  if (nm->nl.Ks) PetscCall(MMContactFramesRotateMatrix(nm->contact, nm->nl.Ks));
+  PetscCall(MMMomentaDestroy(&nm->momenta));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMNonlinearFollowFrames(MMNewmark nm, PetscReal t, PetscReal dt)
+{
+  MMState  *s = &nm->state;
+  PetscInt  turned;
+  PetscReal kinetic_old = nm->hist.kinetic; /* 1/2 v.M*_old v of the last accepted step (no moving Dirichlet data here) */
+
+  PetscFunctionBeginUser;
+  PetscCall(MMContactFramesUpdate(nm->contact, s->u, s->v, t, dt, &turned));
+  if (!turned) PetscFunctionReturn(0);
+  {
+    Vec *vecs[] = {&s->u, &s->v, &s->a, &s->react};
+    for (size_t i = 0; i < sizeof(vecs) / sizeof(vecs[0]); ++i) PetscCall(MMContactFramesRotate(nm->contact, *vecs[i]));
+  }
+  PetscCall(RotateStepperOperators(nm));
+  {
+    PetscScalar vMv;
+    PetscCall(MatMult(nm->op->Mstar, s->v, s->work));
+    PetscCall(VecDot(s->v, s->work, &vMv));
+    s->work_frame += 0.5 * PetscRealPart(vMv) - kinetic_old;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* -restart of a run whose frames followed (docs/method.md section 9): contact takes the checkpoint's
+ * frames and gaps (rec, per owned contact row; NULL: the checkpoint has none, the set-up frames stay)
+ * and turns its operators, the stepper its own. The state, read from the checkpoint, is already in
+ * these frames: it does not turn, and no kinetic energy moves (M* is the checkpointed run's). */
+PetscErrorCode MMNewmarkRestoreFrames(MMNewmark nm, const PetscScalar rec[], const PetscReal counters[])
+{
+  PetscInt turned;
+
+  PetscFunctionBeginUser;
+  if (!rec) PetscFunctionReturn(0);
+  PetscCall(MMContactFramesRestore(nm->contact, rec, counters, &turned));
+  if (turned) PetscCall(RotateStepperOperators(nm));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MMNonlinearView(MMNewmark nm, PetscViewer viewer)
 {
   const MMNonlinear *nl = &nm->nl;

@@ -72,7 +72,7 @@ static PetscErrorCode RotateForce(Mat Q, Vec v)
 }
 
 /* The contact boundary as M* sees it: without contact, no dof loses its mass. */
-static void MassBoundary(MMContact ct, MMMassBoundary *mb)
+void MMContactMassBoundary(MMContact ct, MMMassBoundary *mb)
 {
   mb->massless     = ct->enabled ? ct->is_massless : NULL;
   mb->n            = ct->n_local;
@@ -95,7 +95,9 @@ PetscErrorCode MMContactSetUpFrame(MMContact ct, MMOperators *op, const MMMateri
   PetscCall(RotateOperators(op));
   PetscCall(RotateForce(op->Q, op->load));
   PetscCall(RotateForce(op->Q, op->lift));
-  MassBoundary(ct, &mb);
+  /* frames that follow the contact point rebuild M* from the whole w-frame M, turned with them */
+  if (ct->frames.follow) PetscCall(MatDuplicate(op->M, MAT_COPY_VALUES, &ct->frames.M));
+  MMContactMassBoundary(ct, &mb);
   PetscCall(MMContactMassStar(&ct->mass, op, material, &mb));
   if (op->N) PetscCall(VecDuplicate(op->load, &op->pair_work));
   PetscCall(MMContactPairsTransformOperators(op));

@@ -28,6 +28,7 @@ typedef struct {
   PetscBool  bounded;             /* -mass redistributed: the bounded correction (a coarse mesh: docs/method.md section 2) */
   PetscInt   moments;             /* the moments matched: all (nr), or (dim) the masses and first moments alone */
   PetscReal  inertia_mismatch;    /* then max |second moments of M* - of M| / total mass */
+  PetscBool  warned;              /* the warning of an M* short of M's mass was printed (once a run) */
 } MMContactMass;
 
 /* frame.c: Q from the contact nodes' frames (MMContactSetUp, before fem assembles) */
@@ -35,6 +36,8 @@ PETSC_INTERN PetscErrorCode MMContactFrameBuildRotation(MMContact ct, MMOperator
 /* mass_star.c: -mass, M* from M, its view */
 PETSC_INTERN PetscErrorCode MMContactMassSetFromOptions(MPI_Comm comm, MMContactMass *mass);
 PETSC_INTERN PetscErrorCode MMContactMassStar(MMContactMass *mass, MMOperators *op, const MMMaterial *material, const MMMassBoundary *mb);
+PETSC_INTERN PetscErrorCode MMContactMassRebuild(MMContactMass *mass, MMOperators *op, Mat M, const MMMaterial *material, const MMMassBoundary *mb);
+PETSC_INTERN void           MMContactMassBoundary(MMContact ct, MMMassBoundary *mb);
 /* mass_redistribution.c: -mass redistributed, and the moments of M* */
 PETSC_INTERN PetscErrorCode MMContactRedistributeMass(MMContactMass *mass, MMOperators *op, const MMMaterial *material, const MMMassBoundary *mb);
 PETSC_INTERN PetscErrorCode MMContactMassMoments(MMContactMass *mass, MMOperators *op);

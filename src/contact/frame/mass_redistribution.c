@@ -875,9 +875,10 @@ PetscErrorCode MMContactMassMoments(MMContactMass *mass, MMOperators *op)
         PetscCall(PetscSNPrintf(axes + len, sizeof(axes) - len, "%s%.3g along %c", len ? ", " : "", (double)(Gs[d][d] / GM[d][d]), "xyz"[d]));
         worst = PetscMin(worst, Gs[d][d] / GM[d][d]);
       }
-    if (axes[0]) {
+    if (axes[0] && !r->mass->warned) {
       char faster[96] = "the body has no inertia along the contact normal";
       if (worst > 1e-6) PetscCall(PetscSNPrintf(faster, sizeof(faster), "the body falls up to %.3g times faster than g along the contact normal", (double)(1 / worst)));
+      r->mass->warned = PETSC_TRUE;
       PetscCall(PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "mmcontact warning: -mass %s keeps only %s of M's mass: %s and hits with that share of its momentum; the default -mass redistributed keeps all of it (README \"The mass\")\n", MMMassTypes[r->mass->type], axes, faster));
     }
   }

@@ -43,6 +43,26 @@ PetscErrorCode MMContactMassStar(MMContactMass *mass, MMOperators *op, const MMM
   PetscFunctionReturn(0);
 }
 
+/* M* again from the whole w-frame mass M, after the contact frames turned (-contact_frames follow,
+ * docs/method.md section 8): the massless dofs are the same dofs, now along the new normals, and
+ * -mass redistributed gives their mass back anew. M* keeps its pattern (M's), so the matrices that
+ * borrow it see the new values. */
+PetscErrorCode MMContactMassRebuild(MMContactMass *mass, MMOperators *op, Mat M, const MMMaterial *material, const MMMassBoundary *mb)
+{
+  PetscFunctionBeginUser;
+  op->M = M; /* borrowed: the redistribution and the moments read M */
+  PetscCall(MatCopy(M, op->Mstar, SAME_NONZERO_PATTERN));
+  if (MMFEHasMasslessDofs(op)) PetscCall(MatZeroRowsColumnsIS(op->Mstar, op->massless, 0.0, NULL, NULL));
+  if (MMFEHasMasslessDofs(op) && mass->type == MM_MASS_REDISTRIBUTED) {
+    PetscCall(PetscLogEventBegin(MMCONTACT_MassRedistribute, 0, 0, 0, 0));
+    PetscCall(MMContactRedistributeMass(mass, op, material, mb));
+    PetscCall(PetscLogEventEnd(MMCONTACT_MassRedistribute, 0, 0, 0, 0));
+  }
+  PetscCall(MMContactMassMoments(mass, op));
+  op->M = NULL;
+  PetscFunctionReturn(0);
+}
+
 /* -mass redistributed's account: the moments matched and how well, and the correction's size
  * (a coarse mesh: the bounded correction, perhaps the inertia left; docs/method.md section 2). */
 static PetscErrorCode RedistributionText(const MMContactMass *mass, PetscInt dim, char text[], size_t len)

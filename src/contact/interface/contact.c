@@ -393,6 +393,7 @@ PetscErrorCode MMContactView(MMContact ct, PetscViewer viewer)
   if (ct->ops && ct->ops->view) PetscCall((*ct->ops->view)(ct, viewer));
   if (ct->enabled) PetscCall(CornerView(ct, viewer));
   if (ct->enabled) PetscCall(FrictionCornerView(ct, viewer));
+  if (ct->enabled) PetscCall(MMContactFramesView(ct, viewer));
   PetscFunctionReturn(0);
 }
 
@@ -552,6 +553,7 @@ PetscErrorCode MMContactDestroy(MMContact *pct)
   PetscCall(PetscFree2(ct->all_gap0, ct->all_nu));
   PetscCall(PetscFree(ct->obstacle));
   PetscCall(MMContactPairsDestroy(&ct->pairs));
+  PetscCall(MMContactFramesDestroy(&ct->frames));
   PetscCall(PetscFree2(ct->second, ct->corner_ab));
   PetscCall(PetscFree(ct->force_obstacle));
   PetscCall(VecDestroy(&ct->area));

@@ -57,7 +57,13 @@ PetscErrorCode MMContactSetFromOptions(MMContact ct)
   PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-audit_coulomb_tol", "Stop the run when a step's discrete Coulomb residual (the history's coulomb_residual: penetration and open gap over h_c', tension, complementarity and the friction law over the force scale) exceeds this (> 0)", &o->audit_coulomb_tol));
   o->initial_penetration_tol = 1e-6;
   PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-initial_penetration_tol", "Refuse an initial state whose contact nodes penetrate the obstacle deeper than this times h_c' (>= 0)", &o->initial_penetration_tol));
+  o->frames = MM_FRAMES_FIXED;
+  PetscCall(MMOptionsEnum(PetscOptionsObject, comm, "-contact_frames", "Contact frames on curved obstacles (sphere, circle, cylinder): fixed (each node's normal and gap at its reference position, all run: the small-sliding setting) or follow (at each step's start, a node near the obstacle whose normal at its current position turned by more than -contact_frames_angle takes that normal and the gap there; M* and K~ are rebuilt, and the kinetic energy this moves is booked as work_frame). Default: follow with -elasticity svk or neohookean, fixed with linear", MMFramesTypes, (PetscEnum *)&o->frames));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-contact_frames", &o->frames_set));
+  o->frames_angle = 1e-3;
+  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-contact_frames_angle", "-contact_frames follow: a node's frame turns when its normal has turned by more than this angle (radians, >= 0) since its frame was set; the bound it keeps in between is off by at most R angle^2 / 2 on an obstacle of radius R", &o->frames_angle));
   PetscOptionsEnd();
+  PetscCheck(o->frames_angle >= 0 && o->frames_angle < 1, comm, PETSC_ERR_USER_INPUT, "-contact_frames_angle %g must be in [0, 1): an angle in radians", (double)o->frames_angle);
   PetscCheck(o->contact_tol > 0 && o->contact_tol < 1, comm, PETSC_ERR_USER_INPUT, "-contact_tol %g must lie in (0, 1): it is a relative residual", (double)o->contact_tol);
   PetscCheck(o->audit_penetration_tol > 0, comm, PETSC_ERR_USER_INPUT, "-audit_penetration_tol %.6g must be > 0: it is a fraction of h_c'", (double)o->audit_penetration_tol);
   PetscCheck(o->audit_coulomb_tol > 0, comm, PETSC_ERR_USER_INPUT, "-audit_coulomb_tol %.6g must be > 0: it is a normalized residual (the history's coulomb_residual)", (double)o->audit_coulomb_tol);

@@ -8,7 +8,7 @@
 /* Orthonormal frame (nu, tau_1[, tau_2]) with nu = -n, n the obstacle's outward normal: nu is the
  * body's outward normal. A function of n alone, so a node shared by ranks gets the same frame on
  * each. */
-static void FrameFromNormal(PetscInt dim, const PetscReal n[], PetscReal F[MM_MAX_DIM][MM_MAX_DIM])
+void MMContactFrameFromNormal(PetscInt dim, const PetscReal n[], PetscReal F[MM_MAX_DIM][MM_MAX_DIM])
 {
   for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
     for (PetscInt b = 0; b < MM_MAX_DIM; ++b) F[a][b] = 0;
@@ -38,7 +38,7 @@ static void FrameFromNormal(PetscInt dim, const PetscReal n[], PetscReal F[MM_MA
 static PetscErrorCode BuildFrame(MMContact ct)
 {
   PetscFunctionBeginUser;
-  FrameFromNormal(ct->op->dim, ct->pb.obstacle_normal, ct->frame);
+  MMContactFrameFromNormal(ct->op->dim, ct->pb.obstacle_normal, ct->frame);
   PetscFunctionReturn(0);
 }
 
@@ -95,7 +95,7 @@ static void CornerFrame(PetscInt dim, const PetscReal n1[], const PetscReal n2[]
 {
   PetscReal len = 0;
 
-  FrameFromNormal(dim, n1, F);
+  MMContactFrameFromNormal(dim, n1, F);
   *a = 0;
   for (PetscInt d = 0; d < dim; ++d) *a += -n2[d] * F[0][d];
   for (PetscInt d = 0; d < dim; ++d) {
@@ -332,7 +332,7 @@ static PetscErrorCode BuildContactDofs(MMContact ct, const PetscInt mark[], Vec 
         }
       }
       if (b2 >= 0 || bf >= 0) CornerFrame(dim, n, n2, F, &ab[0], &ab[1]);
-      else FrameFromNormal(dim, n, F);
+      else MMContactFrameFromNormal(dim, n, F);
       for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
         for (PetscInt b = 0; b < MM_MAX_DIM; ++b) ct->node_frame[9 * nc + 3 * a + b] = F[a][b];
     }
@@ -357,7 +357,7 @@ static PetscErrorCode BuildContactDofs(MMContact ct, const PetscInt mark[], Vec 
         ct->obstacle[nc]          = b2;
         ct->corner_ab[2 * nc]     = ab[0];
         ct->corner_ab[2 * nc + 1] = ab[1];
-        FrameFromNormal(dim, n2, F2);
+        MMContactFrameFromNormal(dim, n2, F2);
         for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
           for (PetscInt b = 0; b < MM_MAX_DIM; ++b) ct->node_frame[9 * nc + 3 * a + b] = F2[a][b];
         if (ct->all_gap0)
@@ -494,6 +494,7 @@ static PetscErrorCode SetUp(MMContact ct)
   PetscCall(MMContactPairsBuildTransform(ct));
   PetscCall(PetscFree(mark));
   PetscCall(VecDestroy(&area));
+  PetscCall(MMContactFramesSetUp(ct)); /* -contact_frames */
   /* a friction corner's two Coulomb laws on one node's dofs are solved in contact space only */
   PetscCheck(!ct->n_fc || ct->ops->solvecoulomb, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_SUP, "%" PetscInt_FMT " contact nodes are within h_c' of two obstacles with friction (-mu %g), and -contact_formulation %s%s cannot carry both obstacles' Coulomb laws on one node: use -contact_formulation condensed", ct->n_fc, (double)ct->pb.mu_max, ct->type, ct->auto_type ? " (auto's choice for a mesh this size)" : "");
   PetscCheck(ct->ncomp == 1 || ct->ops->solvecontactdofs, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_SUP, "Friction (-mu %g) needs a contact formulation that solves the contact dofs alone, and -contact_formulation %s cannot: use condensed or active_set", (double)ct->pb.mu_max, ct->type);

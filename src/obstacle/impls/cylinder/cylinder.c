@@ -33,6 +33,7 @@ static PetscErrorCode CylinderDistance(const MMObstacle *ob, PetscInt dim, const
 PetscErrorCode MMObstacleCreate_Cylinder(MMObstacle *ob)
 {
   PetscFunctionBeginUser;
+  ob->curved   = PETSC_TRUE;
   ob->check    = CylinderCheck;
   ob->distance = CylinderDistance;
   PetscFunctionReturn(0);

@@ -24,6 +24,7 @@ static PetscErrorCode PlaneDistance(const MMObstacle *ob, PetscInt dim, const Pe
 PetscErrorCode MMObstacleCreate_Plane(MMObstacle *ob)
 {
   PetscFunctionBeginUser;
+  ob->curved   = PETSC_FALSE;
   ob->check    = PlaneCheck;
   ob->distance = PlaneDistance;
   PetscFunctionReturn(0);

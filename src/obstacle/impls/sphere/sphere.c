@@ -44,6 +44,7 @@ static PetscErrorCode RoundDistance(const MMObstacle *ob, PetscInt dim, const Pe
 PetscErrorCode MMObstacleCreate_Sphere(MMObstacle *ob)
 {
   PetscFunctionBeginUser;
+  ob->curved   = PETSC_TRUE;
   ob->check    = SphereCheck;
   ob->distance = RoundDistance;
   PetscFunctionReturn(0);
@@ -52,6 +53,7 @@ PetscErrorCode MMObstacleCreate_Sphere(MMObstacle *ob)
 PetscErrorCode MMObstacleCreate_Circle(MMObstacle *ob)
 {
   PetscFunctionBeginUser;
+  ob->curved   = PETSC_TRUE;
   ob->check    = CircleCheck;
   ob->distance = RoundDistance;
   PetscFunctionReturn(0);

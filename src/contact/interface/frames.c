@@ -1,0 +1,443 @@
+/* Contact frames that follow the contact point on curved obstacles (-contact_frames follow,
+ * docs/method.md section 8, "Frames that follow the contact point").
+ *
+ * At set-up each contact node gets the frame and the gap of its reference position (set.c). For a
+ * plane that bound is exact for any displacement; on a sphere, circle or cylinder it is exact only
+ * near the reference contact point. With frames that follow, at the start of each step a node near
+ * its curved obstacle whose normal at its current position x = X + u^n has turned by more than
+ * -contact_frames_angle takes the frame of x, nu = -n(x), and the gap along it measured from x:
+ * w_nu^{n+1} <= g(x) + u^n.nu (exact for motion along nu, the distance being linear along the
+ * normal line). Its dofs turn with it: every w-frame quantity x_w = Q^T x_cart becomes R^T x_w,
+ * R = Q_old^T Q_new (block diagonal, identity off the turned nodes), every w-frame matrix R^T A R:
+ * the Cartesian state, loads and stiffness are unchanged. M* is not a rotation of the old one: its
+ * massless dofs now lie along the new normals, so it is rebuilt from the whole mass M (turned) as at
+ * set-up (frame/mass_star.c), and K~ with it. */
+#include "../contactimpl.h"
+#include "fem.h"
+#include "obstacle.h"
+
+const char *const MMFramesTypes[] = {"fixed", "follow", "MMFramesType", "MM_FRAMES_", NULL};
+
+/* Whether contact row k's frame may follow its contact point: a single-row node on a curved rigid
+ * obstacle (a corner's two rows, a friction corner and a pair's slave node keep theirs). */
+static PetscBool RowFollows(MMContact ct, PetscInt k)
+{
+  if (ct->second[k] || (k + 1 < ct->n_local && ct->second[k + 1])) return PETSC_FALSE;
+  if (ct->fc_obstacle && ct->fc_obstacle[k] >= 0) return PETSC_FALSE;
+  if (ct->obstacle[k] >= ct->pb.n_rigid) return PETSC_FALSE;
+  return ct->pb.obstacles[ct->obstacle[k]].curved;
+}
+
+/* -contact_frames resolved (follow by default for the finite-strain laws) and, when the frames
+ * follow, each contact row's reference position. Only curved rigid obstacles make it do anything:
+ * with planes alone the frames stay fixed, and the run is the one of -contact_frames fixed. */
+PetscErrorCode MMContactFramesSetUp(MMContact ct)
+{
+  MMContactFrames *fr  = &ct->frames;
+  const PetscInt   dim = ct->op->dim;
+  PetscBool        follow, curved = PETSC_FALSE;
+  DM               dm = ct->op->dm;
+  PetscSection     cs;
+  Vec              X;
+  const PetscScalar *x;
+
+  PetscFunctionBeginUser;
+  follow = ct->opt.frames_set ? (PetscBool)(ct->opt.frames == MM_FRAMES_FOLLOW) : ct->material->finite;
+  PetscCheck(!(ct->opt.frames_set && follow) || ct->material->finite, ct->comm, PETSC_ERR_SUP, "-contact_frames follow needs a finite-strain law (-elasticity svk or neohookean): the linear model's step uses the acceleration of the last step in its frame, which a turned frame would not balance. Use -contact_frames fixed with -elasticity linear");
+  for (PetscInt b = 0; b < ct->pb.n_rigid; ++b) curved = (PetscBool)(curved || ct->pb.obstacles[b].curved);
+  fr->angle  = ct->opt.frames_angle;
+  fr->follow = (PetscBool)(follow && curved && ct->enabled);
+  if (!fr->follow) PetscFunctionReturn(0);
+  PetscCheck(ct->pb.n_obstacles == ct->pb.n_rigid, ct->comm, PETSC_ERR_SUP, "-contact_frames follow (the default with -elasticity svk and neohookean on curved obstacles) does not take contact pairs (-contact_pairs) yet: their transform N would have to be rebuilt with M*. Use -contact_frames fixed");
+  PetscCall(PetscCalloc3((size_t)MM_MAX_DIM * ct->n_local + 1, &fr->X, 9 * (size_t)ct->n_local + 1, &fr->F_new, ct->n_local + 1, &fr->turn));
+  PetscCall(DMGetCoordinateSection(dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  PetscCall(VecGetArrayRead(X, &x));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    PetscInt xoff;
+    PetscCall(PetscSectionGetOffset(cs, ct->vertex[k], &xoff));
+    for (PetscInt d = 0; d < dim; ++d) fr->X[MM_MAX_DIM * k + d] = PetscRealPart(x[xoff + d]);
+  }
+  PetscCall(VecRestoreArrayRead(X, &x));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMContactFramesDestroy(MMContactFrames *fr)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MatDestroy(&fr->M));
+  PetscCall(MatDestroy(&fr->R));
+  PetscCall(PetscFree3(fr->X, fr->F_new, fr->turn));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMContactFramesFollow(MMContact ct, PetscBool *follow)
+{
+  PetscFunctionBeginUser;
+  *follow = ct->frames.follow;
+  PetscFunctionReturn(0);
+}
+
+/* Row k's Cartesian displacement from its frame components w (a single-row node: u = F^T w). */
+static void RowCartesian(MMContact ct, PetscInt k, const PetscScalar w[], PetscReal u[])
+{
+  const PetscReal *F = &ct->node_frame[9 * k];
+
+  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) u[d] = 0;
+  for (PetscInt e = 0; e < ct->op->dim; ++e)
+    for (PetscInt d = 0; d < ct->op->dim; ++d) u[d] += PetscRealPart(w[e]) * F[3 * e + d];
+}
+
+/* Row k's signed distance g and obstacle normal n at its current position X + u, the obstacle where
+ * it is at time t (translated by c(t)), and c(t). */
+static PetscErrorCode RowDistance(MMContact ct, PetscInt k, PetscInt b, PetscReal t, const PetscReal u[], PetscReal *g, PetscReal n[], PetscReal c[])
+{
+  const PetscInt    dim = ct->op->dim;
+  const MMObstacle *ob  = &ct->pb.obstacles[b];
+  PetscReal         x[MM_MAX_DIM] = {0, 0, 0};
+
+  PetscFunctionBeginUser;
+  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) c[d] = n[d] = 0;
+  MMObstacleDisplacement(ob, dim, t, c);
+  for (PetscInt d = 0; d < dim; ++d) x[d] = ct->frames.X[MM_MAX_DIM * k + d] + u[d] - c[d];
+  PetscCall((*ob->distance)(ob, dim, x, g, n));
+  PetscFunctionReturn(0);
+}
+
+/* The depth of contact row k inside the obstacles, on their true geometry at time t: -g_b(X + u) for
+ * its own obstacle (own) and the deepest of the others (others; PETSC_MIN_REAL if none), w its frame
+ * components; the history's penetration with frames that follow (docs/method.md section 8). */
+PetscErrorCode MMContactFramesPenetration(MMContact ct, PetscInt k, PetscReal t, const PetscScalar w[], PetscReal *own, PetscReal *others)
+{
+  PetscReal u[MM_MAX_DIM];
+
+  PetscFunctionBeginUser;
+  *own = *others = PETSC_MIN_REAL;
+  RowCartesian(ct, k, w, u);
+  for (PetscInt b = 0; b < ct->pb.n_rigid; ++b) {
+    PetscReal g, n[MM_MAX_DIM], c[MM_MAX_DIM];
+    PetscCall(RowDistance(ct, k, b, t, u, &g, n, c));
+    if (b == ct->obstacle[k]) *own = -g;
+    else *others = PetscMax(*others, -g);
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Which rows turn: a row that follows, whose obstacle normal at its current position has turned by
+ * more than -contact_frames_angle from its frame's, and that is near: within h_c' of the obstacle or
+ * of the bound it has now (on a convex obstacle, seen from outside, an old tangent plane can cut
+ * into the free space: a node far from the obstacle may still be held by its old bound). Farther
+ * nodes keep their frames, and the mass they carry, until they come near. Each turning row gets
+ * its new frame in F_new and its new gap (g_0 at time 0 and g at time t) in place. */
+static PetscErrorCode SelectTurningRows(MMContact ct, Vec u, Vec v, PetscReal t, PetscReal dt, PetscInt *count)
+{
+  MMContactFrames   *fr  = &ct->frames;
+  const PetscInt     dim = ct->op->dim;
+  const PetscInt    *in;
+  const PetscScalar *ua, *va;
+  PetscScalar       *g0, *ga;
+  PetscInt           rstart;
+
+  PetscFunctionBeginUser;
+  *count = 0;
+  PetscCall(VecGetOwnershipRange(u, &rstart, NULL));
+  PetscCall(ISGetIndices(ct->is_normal, &in));
+  PetscCall(VecGetArrayRead(u, &ua));
+  PetscCall(VecGetArrayRead(v, &va));
+  PetscCall(VecGetArray(ct->gap0, &g0));
+  PetscCall(VecGetArray(ct->gap, &ga));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscScalar *w = &ua[in[k] - rstart];
+    const PetscReal   *F = &ct->node_frame[9 * k];
+    PetscReal          uc[MM_MAX_DIM], vc[MM_MAX_DIM], n[MM_MAX_DIM], c[MM_MAX_DIM], g, cosa = 0, len = 0, slack, wn = 0, cn = 0, Fn[MM_MAX_DIM][MM_MAX_DIM];
+
+    fr->turn[k] = PETSC_FALSE;
+    if (!RowFollows(ct, k)) continue;
+    /* the step's predicted midpoint u^n + dt/2 v^n: in steady sliding the node then ends on the
+     * obstacle's chord, and the contact force does no work (docs/method.md section 8) */
+    RowCartesian(ct, k, w, uc);
+    RowCartesian(ct, k, &va[in[k] - rstart], vc);
+    for (PetscInt d = 0; d < dim; ++d) uc[d] += 0.5 * dt * vc[d];
+    PetscCall(RowDistance(ct, k, ct->obstacle[k], t + 0.5 * dt, uc, &g, n, c));
+    for (PetscInt d = 0; d < dim; ++d) {
+      cosa -= n[d] * F[d];
+      len += n[d] * n[d];
+    }
+    if (len < 0.5) continue; /* on a sphere's centre or a cylinder's axis: no normal */
+    slack = PetscRealPart(ga[k] - w[0]);
+    if (PetscAcosReal(PetscMin(1.0, cosa)) <= fr->angle || PetscMin(g, slack) > ct->h_c) continue;
+    MMContactFrameFromNormal(dim, n, Fn);
+    for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
+      for (PetscInt b = 0; b < MM_MAX_DIM; ++b) fr->F_new[9 * k + 3 * a + b] = Fn[a][b];
+    fr->angle_max = PetscMax(fr->angle_max, PetscAcosReal(PetscMin(1.0, cosa)));
+    fr->turn[k]   = PETSC_TRUE;
+    ++*count;
+    /* the bound linearized at x_m = X + u_m, u_m = u^n + dt/2 v^n, along nu: w_nu <= g(x_m) + u_m.nu, and
+     * g(t') = g_0 + c(t').nu as for a moving obstacle (MMContactSetTime) */
+    for (PetscInt d = 0; d < dim; ++d) {
+      wn += uc[d] * Fn[0][d];
+      cn += c[d] * Fn[0][d];
+    }
+    ga[k] = g + wn;
+    g0[k] = g + wn - cn;
+  }
+  PetscCall(VecRestoreArray(ct->gap, &ga));
+  PetscCall(VecRestoreArray(ct->gap0, &g0));
+  PetscCall(VecRestoreArrayRead(v, &va));
+  PetscCall(VecRestoreArrayRead(u, &ua));
+  PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  PetscFunctionReturn(0);
+}
+
+/* R = Q_old^T Q_new: at a turning node the block F_old F_new^T (Q's block is F^T), the identity
+ * elsewhere, in Q's layout and pattern (frame.c), so that MMRotateP1 takes it as it takes Q. */
+static PetscErrorCode BuildRotation(MMContact ct)
+{
+  MMContactFrames *fr  = &ct->frames;
+  const PetscInt   dim = ct->op->dim;
+  const PetscInt  *in;
+  PetscInt         n, rstart;
+  PetscBool       *block;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatDestroy(&fr->R));
+  PetscCall(MatGetLocalSize(ct->op->Q, &n, NULL));
+  PetscCall(MatGetOwnershipRange(ct->op->Q, &rstart, NULL));
+  PetscCall(MatCreateAIJ(ct->comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, dim, NULL, 0, NULL, &fr->R));
+  PetscCall(PetscCalloc1(n, &block));
+  PetscCall(ISGetIndices(ct->is_normal, &in));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscReal *Fo = &ct->node_frame[9 * k], *Fn = &fr->F_new[9 * k];
+    if (ct->second[k] || !fr->turn[k]) continue;
+    for (PetscInt a = 0; a < dim; ++a) {
+      block[in[k] - rstart + a] = PETSC_TRUE;
+      for (PetscInt b = 0; b < dim; ++b) {
+        PetscReal r = 0;
+        for (PetscInt d = 0; d < dim; ++d) r += Fo[3 * a + d] * Fn[3 * b + d];
+        PetscCall(MatSetValue(fr->R, in[k] + a, in[k] + b, r, INSERT_VALUES));
+      }
+    }
+  }
+  PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  for (PetscInt i = 0; i < n; ++i)
+    if (!block[i]) PetscCall(MatSetValue(fr->R, rstart + i, rstart + i, 1.0, INSERT_VALUES));
+  PetscCall(PetscFree(block));
+  PetscCall(MatAssemblyBegin(fr->R, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(fr->R, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMContactFramesRotate(MMContact ct, Vec x)
+{
+  Vec y;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(x, &y));
+  PetscCall(MatMultTranspose(ct->frames.R, x, y));
+  PetscCall(VecCopy(y, x));
+  PetscCall(VecDestroy(&y));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMContactFramesRotateMatrix(MMContact ct, Mat A)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMRotateP1(ct->frames.R, A, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* The turned rows' new frames into node_frame and Q's blocks (in place: Q keeps its pattern, and
+ * whoever reads it through MMOperators sees the new one), and the friction warm starts that live in
+ * frame components: the condensed reactions and, in 3D, the slip direction. */
+static PetscErrorCode SetNewFrames(MMContact ct)
+{
+  MMContactFrames *fr  = &ct->frames;
+  const PetscInt   dim = ct->op->dim, nr = ct->ncomp;
+  const PetscInt  *in;
+  PetscScalar     *rho = NULL;
+
+  PetscFunctionBeginUser;
+  PetscCall(ISGetIndices(ct->is_normal, &in));
+  if (ct->rho && nr > 1) PetscCall(VecGetArray(ct->rho, &rho));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    PetscReal *F = &ct->node_frame[9 * k], *Fn = &fr->F_new[9 * k];
+    if (!fr->turn[k]) continue;
+    if (rho) {
+      PetscReal c[MM_MAX_DIM] = {0, 0, 0};
+      for (PetscInt j = 0; j < nr; ++j)
+        for (PetscInt d = 0; d < dim; ++d) c[d] += PetscRealPart(rho[k * nr + j]) * F[3 * j + d];
+      for (PetscInt j = 0; j < nr; ++j) {
+        rho[k * nr + j] = 0;
+        for (PetscInt d = 0; d < dim; ++d) rho[k * nr + j] += c[d] * Fn[3 * j + d];
+      }
+    }
+    if (dim == 3 && nr > 1) {
+      PetscReal c[3], s[2], len;
+      for (PetscInt d = 0; d < 3; ++d) c[d] = ct->slip_dir[2 * k] * F[3 + d] + ct->slip_dir[2 * k + 1] * F[6 + d];
+      for (PetscInt j = 0; j < 2; ++j) s[j] = c[0] * Fn[3 * (j + 1)] + c[1] * Fn[3 * (j + 1) + 1] + c[2] * Fn[3 * (j + 1) + 2];
+      len = PetscSqrtReal(s[0] * s[0] + s[1] * s[1]);
+      for (PetscInt j = 0; j < 2; ++j) ct->slip_dir[2 * k + j] = len > 0 ? s[j] / len : ct->slip_dir[2 * k + j];
+    }
+    for (PetscInt i = 0; i < 9; ++i) F[i] = Fn[i];
+    for (PetscInt d = 0; d < dim; ++d)
+      for (PetscInt e = 0; e < dim; ++e) PetscCall(MatSetValue(ct->op->Q, in[k] + d, in[k] + e, F[3 * e + d], INSERT_VALUES));
+  }
+  if (rho) PetscCall(VecRestoreArray(ct->rho, &rho));
+  PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  PetscCall(MatAssemblyBegin(ct->op->Q, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(ct->op->Q, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+/* The selected rows (turn, F_new, their gaps already set) turned: R, contact's w-frame operators K,
+ * M, M*, the load and the lift, Q and the frames; K~ is rebuilt at the next MMContactSetStepMatrix,
+ * the kept one dropped (it is of the old frames). */
+static PetscErrorCode TurnSelectedRows(MMContact ct)
+{
+  MMContactFrames *fr = &ct->frames;
+  MMOperators     *op = ct->op;
+  MMMassBoundary   mb;
+
+  PetscFunctionBeginUser;
+  PetscCall(BuildRotation(ct));
+  /* w-frame K and M <- R^T (.) R: a lumped M is m I at each node, which no rotation changes */
+  PetscCall(MMRotateP1(fr->R, op->K, op->lumped ? NULL : fr->M));
+  PetscCall(MMContactFramesRotate(ct, op->load));
+  PetscCall(MMContactFramesRotate(ct, op->lift));
+  PetscCall(SetNewFrames(ct));
+  MMContactMassBoundary(ct, &mb);
+  PetscCall(MMContactMassRebuild(&ct->mass, op, fr->M, ct->material, &mb));
+  /* K~ (and its factor, the candidate columns, the PC) of the old frames: rebuilt for any dt */
+  ct->Kt_dt   = 0;
+  ct->kept.dt = 0;
+  PetscFunctionReturn(0);
+}
+
+/* The frames of the rows near a curved obstacle at the state u, v (w-frame) of time t, for a step of
+ * dt: the turned rows' frames and gaps, and contact's operators turned with them (TurnSelectedRows).
+ * The caller turns its own vectors (the state) with MMContactFramesRotate. */
+PetscErrorCode MMContactFramesUpdate(MMContact ct, Vec u, Vec v, PetscReal t, PetscReal dt, PetscInt *turned)
+{
+  MMContactFrames *fr = &ct->frames;
+  PetscInt         count;
+
+  PetscFunctionBeginUser;
+  *turned = 0;
+  if (!fr->follow) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(MMCONTACT_FrameFollow, 0, 0, 0, 0));
+  PetscCall(SelectTurningRows(ct, u, v, t, dt, &count));
+  PetscCall(MPIU_Allreduce(&count, turned, 1, MPIU_INT, MPI_SUM, ct->comm));
+  if (*turned) {
+    fr->updates++;
+    fr->turned += *turned;
+    PetscCall(TurnSelectedRows(ct));
+  }
+  PetscCall(PetscLogEventEnd(MMCONTACT_FrameFollow, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* ---- Checkpoints (src/io/checkpoint.c, docs/method.md section 9): a following row's frame is a
+ * function of its obstacle normal alone (MMContactFrameFromNormal), so its normal nu and its gap
+ * g_0 restore it bit for bit, on any partition; the state is kept in these frames. ---- */
+
+/* Row k's record: nu (MM_MAX_DIM) and g_0; *has: the row follows (the others keep their set-up
+ * frames, and a run with fixed frames writes no records). */
+PetscErrorCode MMContactFramesGetRecord(MMContact ct, PetscInt k, PetscBool *has, PetscScalar rec[])
+{
+  const PetscScalar *g0;
+
+  PetscFunctionBeginUser;
+  *has = (PetscBool)(ct->frames.follow && RowFollows(ct, k));
+  if (!*has) PetscFunctionReturn(0);
+  PetscCall(VecGetArrayRead(ct->gap0, &g0));
+  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) rec[d] = ct->node_frame[9 * k + d];
+  rec[MM_MAX_DIM] = g0[k];
+  PetscCall(VecRestoreArrayRead(ct->gap0, &g0));
+  PetscFunctionReturn(0);
+}
+
+/* The run's counters for the checkpoint: updates, node frames turned, the largest turn (all ranks) */
+PetscErrorCode MMContactFramesGetCounters(MMContact ct, PetscReal counters[3])
+{
+  const MMContactFrames *fr = &ct->frames;
+
+  PetscFunctionBeginUser;
+  counters[0] = (PetscReal)fr->updates;
+  counters[1] = (PetscReal)fr->turned;
+  PetscCall(MPIU_Allreduce(&fr->angle_max, &counters[2], 1, MPIU_REAL, MPIU_MAX, ct->comm));
+  PetscFunctionReturn(0);
+}
+
+/* -restart of a run whose frames followed: each following row (n_local records, as
+ * MMContactFramesGetRecord wrote them) takes its checkpointed frame and gap, and contact's operators
+ * turn with them, from the set-up frames (TurnSelectedRows); *turned: how many turned (all ranks).
+ * The state read from the checkpoint is already in these frames: the caller turns the w-frame
+ * vectors it had from the set-up (the load parts), not the state. */
+PetscErrorCode MMContactFramesRestore(MMContact ct, const PetscScalar rec[], const PetscReal counters[3], PetscInt *turned)
+{
+  MMContactFrames *fr  = &ct->frames;
+  const PetscInt   dim = ct->op->dim, bs = MM_CONTACT_FRAME_RECORD;
+  PetscScalar     *g0, *ga;
+  PetscInt         count = 0, bad = 0;
+
+  PetscFunctionBeginUser;
+  *turned = 0;
+  if (!fr->follow) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(MMCONTACT_FrameFollow, 0, 0, 0, 0));
+  PetscCall(VecGetArray(ct->gap0, &g0));
+  PetscCall(VecGetArray(ct->gap, &ga));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscScalar *r = &rec[bs * k];
+    PetscReal          n[MM_MAX_DIM] = {0, 0, 0}, Fn[MM_MAX_DIM][MM_MAX_DIM], len = 0;
+    PetscBool          same = PETSC_TRUE;
+
+    fr->turn[k] = PETSC_FALSE;
+    if (!RowFollows(ct, k)) continue;
+    for (PetscInt d = 0; d < dim; ++d) {
+      n[d] = -PetscRealPart(r[d]); /* nu = -n exactly: the frame is the one the run built */
+      len += n[d] * n[d];
+    }
+    if (PetscAbsReal(len - 1) > 1e-8) {
+      ++bad;
+      continue;
+    }
+    MMContactFrameFromNormal(dim, n, Fn);
+    for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
+      for (PetscInt b = 0; b < MM_MAX_DIM; ++b) {
+        fr->F_new[9 * k + 3 * a + b] = Fn[a][b];
+        same = (PetscBool)(same && Fn[a][b] == ct->node_frame[9 * k + 3 * a + b]);
+      }
+    /* MMContactSetTime adds a moving obstacle's c(t).nu */
+    g0[k] = ga[k] = r[MM_MAX_DIM];
+    if (same) continue;
+    fr->turn[k] = PETSC_TRUE;
+    ++count;
+  }
+  PetscCall(VecRestoreArray(ct->gap, &ga));
+  PetscCall(VecRestoreArray(ct->gap0, &g0));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_SUM, ct->comm));
+  PetscCheck(!bad, ct->comm, PETSC_ERR_FILE_UNEXPECTED, "The checkpoint's contact frames (-contact_frames follow) have no unit normal at %" PetscInt_FMT " contact nodes whose frames follow here: the file is damaged, or of another contact set-up", bad);
+  PetscCall(MPIU_Allreduce(&count, turned, 1, MPIU_INT, MPI_SUM, ct->comm));
+  if (*turned) PetscCall(TurnSelectedRows(ct));
+  /* the counters go on from the checkpoint's: the restore itself is no update */
+  fr->updates   = (PetscInt)counters[0];
+  fr->turned    = (PetscInt)counters[1];
+  fr->angle_max = counters[2];
+  PetscCall(PetscLogEventEnd(MMCONTACT_FrameFollow, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* Its line of the closing summary. */
+PetscErrorCode MMContactFramesView(MMContact ct, PetscViewer viewer)
+{
+  const MMContactFrames *fr = &ct->frames;
+  PetscBool              ascii;
+  PetscReal              amax;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
+  if (!ascii || !fr->follow) PetscFunctionReturn(0);
+  PetscCall(MPIU_Allreduce(&fr->angle_max, &amax, 1, MPIU_REAL, MPIU_MAX, ct->comm));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  contact frames follow the contact point: %" PetscInt_FMT " updates, %" PetscInt_FMT " node frames turned (largest turn %.3g rad, -contact_frames_angle %g)\n", fr->updates, fr->turned, (double)amax, (double)fr->angle));
+  PetscFunctionReturn(0);
+}
