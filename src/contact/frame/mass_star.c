@@ -23,6 +23,21 @@ PetscErrorCode MMContactGetMassType(MMContact ct, MMMassType *type)
   PetscFunctionReturn(0);
 }
 
+/* Mstar (a copy of the w-frame M) loses the massless dofs' rows and columns; -mass redistributed gives
+ * their mass back to the other nodes; then the masses of M*'s translations and rotations */
+static PetscErrorCode DropMasslessMass(MMContactMass *mass, MMOperators *op, const MMMaterial *material, const MMMassBoundary *mb)
+{
+  PetscFunctionBeginUser;
+  if (MMFEHasMasslessDofs(op)) PetscCall(MatZeroRowsColumnsIS(op->Mstar, op->massless, 0.0, NULL, NULL));
+  if (MMFEHasMasslessDofs(op) && mass->type == MM_MASS_REDISTRIBUTED) {
+    PetscCall(PetscLogEventBegin(MMCONTACT_MassRedistribute, 0, 0, 0, 0));
+    PetscCall(MMContactRedistributeMass(mass, op, material, mb));
+    PetscCall(PetscLogEventEnd(MMCONTACT_MassRedistribute, 0, 0, 0, 0));
+  }
+  PetscCall(MMContactMassMoments(mass, op));
+  PetscFunctionReturn(0);
+}
+
 /* M* from op's w-frame M, with the masses of its translations (MMOperators.mass_star, read by the
  * stepper); the modified and the redistributed mass leave mb's massless dofs without inertia. */
 PetscErrorCode MMContactMassStar(MMContactMass *mass, MMOperators *op, const MMMaterial *material, const MMMassBoundary *mb)
@@ -33,13 +48,7 @@ PetscErrorCode MMContactMassStar(MMContactMass *mass, MMOperators *op, const MMM
     PetscCall(PetscObjectReference((PetscObject)mb->massless));
     op->massless = mb->massless;
   }
-  if (MMFEHasMasslessDofs(op)) PetscCall(MatZeroRowsColumnsIS(op->Mstar, op->massless, 0.0, NULL, NULL));
-  if (MMFEHasMasslessDofs(op) && mass->type == MM_MASS_REDISTRIBUTED) {
-    PetscCall(PetscLogEventBegin(MMCONTACT_MassRedistribute, 0, 0, 0, 0));
-    PetscCall(MMContactRedistributeMass(mass, op, material, mb));
-    PetscCall(PetscLogEventEnd(MMCONTACT_MassRedistribute, 0, 0, 0, 0));
-  }
-  PetscCall(MMContactMassMoments(mass, op));
+  PetscCall(DropMasslessMass(mass, op, material, mb));
   PetscFunctionReturn(0);
 }
 
@@ -52,13 +61,7 @@ PetscErrorCode MMContactMassRebuild(MMContactMass *mass, MMOperators *op, Mat M,
   PetscFunctionBeginUser;
   op->M = M; /* borrowed: the redistribution and the moments read M */
   PetscCall(MatCopy(M, op->Mstar, SAME_NONZERO_PATTERN));
-  if (MMFEHasMasslessDofs(op)) PetscCall(MatZeroRowsColumnsIS(op->Mstar, op->massless, 0.0, NULL, NULL));
-  if (MMFEHasMasslessDofs(op) && mass->type == MM_MASS_REDISTRIBUTED) {
-    PetscCall(PetscLogEventBegin(MMCONTACT_MassRedistribute, 0, 0, 0, 0));
-    PetscCall(MMContactRedistributeMass(mass, op, material, mb));
-    PetscCall(PetscLogEventEnd(MMCONTACT_MassRedistribute, 0, 0, 0, 0));
-  }
-  PetscCall(MMContactMassMoments(mass, op));
+  PetscCall(DropMasslessMass(mass, op, material, mb));
   op->M = NULL;
   PetscFunctionReturn(0);
 }
