@@ -160,6 +160,7 @@ static PetscErrorCode TSStep_Newmark(TS ts)
   Vec       w  = ts->vec_sol;
 
   PetscFunctionBeginUser;
+  if (nm->material->finite) PetscCall(MMNonlinearSlidePairs(nm)); /* contact pairs: the large-sliding pairing on u^n */
   PetscCall(SaveOldState(s));
   PetscCall(MMContactCornersAccept(nm->contact));
   PetscCall(MatchFinalTime(ts));

@@ -5,7 +5,7 @@ PetscClassId  MMCONTACT_CLASSID;
 PetscLogEvent MMCONTACT_Assemble, MMCONTACT_Solve, MMCONTACT_Recover, MMCONTACT_KtReuse, MMCONTACT_KtSetUp, MMCONTACT_KtSolve;
 PetscLogEvent MMCONTACT_CandidateColumns, MMCONTACT_CandidateOperator, MMCONTACT_ColumnsSolve, MMCONTACT_ColumnsMove;
 PetscLogEvent MMCONTACT_SplitInterface, MMCONTACT_SplitBackward, MMCONTACT_ActiveSetIterate, MMCONTACT_ActiveSetCG, MMCONTACT_BlockOperator;
-PetscLogEvent MMCONTACT_FrameRotate, MMCONTACT_MassRedistribute;
+PetscLogEvent MMCONTACT_FrameRotate, MMCONTACT_MassRedistribute, MMCONTACT_PairsSlide;
 
 static PetscBool MMContactPackageInitialized = PETSC_FALSE;
 
@@ -34,5 +34,6 @@ PetscErrorCode MMContactInitializePackage(void)
   /* the frame's rotation of K and M, -mass redistributed's construction (the names fem registered) */
   PetscCall(PetscLogEventRegister("MMRotateKM", MMCONTACT_CLASSID, &MMCONTACT_FrameRotate));
   PetscCall(PetscLogEventRegister("MMMassRedist", MMCONTACT_CLASSID, &MMCONTACT_MassRedistribute));
+  PetscCall(PetscLogEventRegister("MMPairsSlide", MMCONTACT_CLASSID, &MMCONTACT_PairsSlide));
   PetscFunctionReturn(0);
 }
