@@ -88,10 +88,10 @@ PETSC_EXTERN PetscErrorCode MMContactGetObstacleForce(MMContact ct, PetscInt b, 
 PETSC_EXTERN PetscErrorCode MMContactGetSolverText(MMContact ct, const char **type, const char **choice, const char **products);
 PETSC_EXTERN PetscErrorCode MMContactGetPairCounts(MMContact ct, PetscInt p, PetscInt *slave_nodes, PetscInt *node_to_node, PetscInt *master_facets);
 /* Contact pairs with large sliding (-contact_pairs_sliding, docs/method.md section 11): at a step's start,
- * with w = u^n, the pairing found again on the current configuration; when it changed, N, K and M* are
- * rebuilt, K~ with them at the next MMContactSetStepMatrix, and the vectors kin (displacement-like) and
- * force (force-like, w-frame) carried to the new variables. changed: the pairing changed. */
-PETSC_EXTERN PetscErrorCode MMContactSlidePairs(MMContact ct, Vec w, PetscInt nkin, Vec kin[], PetscInt nforce, Vec force[], PetscBool *changed);
+ * u = u^n, the pairing found again on the configuration of up (the step's predictor); when it changed, N,
+ * K and M* are rebuilt, K~ with them at the next MMContactSetStepMatrix, and the vectors kin
+ * (displacement-like) and force (force-like, w-frame) carried to the new variables. changed: it did. */
+PETSC_EXTERN PetscErrorCode MMContactSlidePairs(MMContact ct, Vec u, Vec up, PetscInt nkin, Vec kin[], PetscInt nforce, Vec force[], PetscBool *changed);
 /* The candidate set's size at the last step and its re-solves over the run (0 without one) */
 PETSC_EXTERN PetscErrorCode MMContactGetCandidateCounts(MMContact ct, PetscInt *n_set, PetscInt *resolves);
 PETSC_EXTERN PetscErrorCode MMContactSetCandidateResolves(MMContact ct, PetscInt resolves);

@@ -160,10 +160,10 @@ static PetscErrorCode TSStep_Newmark(TS ts)
   Vec       w  = ts->vec_sol;
 
   PetscFunctionBeginUser;
-  if (nm->material->finite) PetscCall(MMNonlinearSlidePairs(nm)); /* contact pairs: the large-sliding pairing on u^n */
+  PetscCall(MatchFinalTime(ts));
+  if (nm->material->finite) PetscCall(MMNonlinearSlidePairs(nm, ts->time_step)); /* contact pairs: the large-sliding pairing */
   PetscCall(SaveOldState(s));
   PetscCall(MMContactCornersAccept(nm->contact));
-  PetscCall(MatchFinalTime(ts));
   while (!solved) {
     PetscReal w_c, scale;
     PetscBool    too_large = PETSC_FALSE;

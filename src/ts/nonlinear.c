@@ -105,7 +105,7 @@ PetscErrorCode MMNonlinearDestroy(MMNonlinear *nl)
  * matrix); here the state u, v, a, the last reaction (a force: b_nl carries it) and the loads are
  * carried to the new variables, and what the stepper built on N is dropped, to be built again: the
  * tangent (K's pattern follows N), the momentum functionals (M* N^{-1} Q^T e). */
-PetscErrorCode MMNonlinearSlidePairs(MMNewmark nm)
+PetscErrorCode MMNonlinearSlidePairs(MMNewmark nm, PetscReal dt)
 {
   MMState    *s  = &nm->state;
   MMLoads    *ld = nm->loads;
@@ -121,7 +121,10 @@ PetscErrorCode MMNonlinearSlidePairs(MMNewmark nm)
   force[nf++] = nm->op->lift;
   if (ld->load_old) force[nf++] = ld->load_old;
   for (PetscInt k = 0; ld->part && k < ld->nparts; ++k) force[nf++] = ld->part[k];
-  PetscCall(MMContactSlidePairs(nm->contact, s->u, 3, kin, nf, force, &changed));
+  /* the pairing of the step's predictor u + dt v + dt^2/4 a (newmark.c), dt the step's first try */
+  PetscCall(VecAXPBYPCZ(s->u_next, dt, 0.25 * dt * dt, 0.0, s->v, s->a));
+  PetscCall(VecAXPY(s->u_next, 1.0, s->u));
+  PetscCall(MMContactSlidePairs(nm->contact, s->u, s->u_next, 3, kin, nf, force, &changed));
   PetscCall(PetscFree(force));
   if (!changed) PetscFunctionReturn(0);
   PetscCall(MatDestroy(&nl->Ks));

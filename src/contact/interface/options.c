@@ -50,7 +50,7 @@ PetscErrorCode MMContactSetFromOptions(MMContact ct)
   PetscCall(MMOptionsBool(PetscOptionsObject, comm, "-contact_K_keep", "Keep K~ for the previous dt with its factor and cached columns (condensed) or its PC (active_set), so that dt growing back after a rejected step costs no factorization (the memory of a second factor)", &o->keep_factor));
   PetscCall(FormulationsSetFromOptions(ct, PetscOptionsObject));
   o->pairs_sliding = MM_PAIRS_SLIDING_AUTO;
-  PetscCall(MMOptionsEnum(PetscOptionsObject, comm, "-contact_pairs_sliding", "Contact pairs (-contact_pairs): small (each slave node's master facet, weights and gap found once, on the reference mesh), large (found again at each step's start on the current configuration, the pairs' transform N rebuilt; -elasticity svk or neohookean, frictionless pairs), or auto (the default: large with the finite-strain laws and frictionless pairs, small otherwise)", MMPairsSlidings, (PetscEnum *)&o->pairs_sliding));
+  PetscCall(MMOptionsEnum(PetscOptionsObject, comm, "-contact_pairs_sliding", "Contact pairs (-contact_pairs): small (each slave node's master facet, weights and gap found once, on the reference mesh), large (found again at each step's start on the current configuration, the pairs' transform N rebuilt; -elasticity svk or neohookean, frictionless pairs, -contact_formulation condensed), or auto (the default: large where those hold, small otherwise)", MMPairsSlidings, (PetscEnum *)&o->pairs_sliding));
   /* The contact audit's tolerances, far above what correct runs reach: penetration at most 3e-14
    * h_c' over options/'s cases and the solver variants, the Coulomb residual at most 4e-5 (with
    * -mass standard, at dt down to 1/1024 of -ts_dt, where the reactions carry the round-off of

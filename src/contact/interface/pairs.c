@@ -150,20 +150,23 @@ static PetscErrorCode GatherMasterSurface(MMContact ct, PetscInt p, const PetscI
 static PetscErrorCode ResolveSliding(MMContact ct)
 {
   MMContactPairs *pr       = &ct->pairs;
-  PetscBool       friction = PETSC_FALSE;
+  PetscBool       friction = PETSC_FALSE, condensed;
   MPI_Comm        comm     = PetscObjectComm((PetscObject)ct->op->dm);
 
   PetscFunctionBeginUser;
   for (PetscInt p = 0; p < pr->n; ++p) friction = (PetscBool)(friction || ct->pb.obstacles[ct->pb.n_rigid + p].mu > 0);
+  /* the full and active-set formulations keep copies of K~ on its first pattern, which N's changes */
+  PetscCall(PetscStrcmp(ct->type, "condensed", &condensed));
   switch (ct->opt.pairs_sliding) {
   case MM_PAIRS_SLIDING_AUTO:
-    pr->large = (PetscBool)(ct->material->finite && !friction);
+    pr->large = (PetscBool)(ct->material->finite && !friction && condensed);
     break;
   case MM_PAIRS_SLIDING_SMALL:
     pr->large = PETSC_FALSE;
     break;
   case MM_PAIRS_SLIDING_LARGE:
     PetscCheck(ct->material->finite, comm, PETSC_ERR_SUP, "-contact_pairs_sliding large needs a finite-strain law (-elasticity svk or neohookean): the linear model is the small-displacement one, and its step does not carry the transform of the reactions");
+    PetscCheck(condensed, comm, PETSC_ERR_SUP, "-contact_pairs_sliding large needs -contact_formulation condensed (here %s): the others keep K~ on the pattern of the first pairing", ct->type);
     PetscCheck(!friction, comm, PETSC_ERR_SUP, "-contact_pairs_sliding large is frictionless only (every -contact_pair_NAME_mu 0): with friction the slave nodes' tangential dofs are relative too and carry mass, which a new pairing would move. Use -contact_pairs_sliding small");
     pr->large = PETSC_TRUE;
     break;
@@ -558,90 +561,122 @@ static PetscErrorCode RebuildOperators(MMContact ct)
   PetscFunctionReturn(0);
 }
 
-/* At a step's start, with w = u^n: each slave node's current position X_s + u_s projected on its
- * pair's master surface in the current configuration. Where the facet or the weights change, the
- * node's gap becomes g = n.(X_s - sum_j phi_j X_mj), n the outward normal of its (fixed) frame, so
- * that its bound w_n <= g reads n.(x_s - sum_j phi_j x_mj) >= 0 on the current positions, exact for
- * flat master facets; N is rebuilt, and with it K and M*, and the vectors kin (displacements) and
- * force (forces) are carried to the new variables, so that the Cartesian state is unchanged. The
- * ranks find the same pairing: the master surface and its displacements are gathered on each. */
-PetscErrorCode MMContactSlidePairs(MMContact ct, Vec w, PetscInt nkin, Vec kin[], PetscInt nforce, Vec force[], PetscBool *changed)
+/* Pair p's master surface (facets xc) and the slave node k at x: its facet, weights, distance along
+ * the facet's normal n_c, gap g = n_c.(X_s - sum_j phi_j X_mj) (so that w_0 <= g reads
+ * n_c.(x_s - sum_j phi_j x_mj) >= 0) and the cosine c0 = -n_c.nu of the row's direction to the frame's */
+static PetscInt ProjectNode(MMContactPairs *pr, PetscInt dim, PetscInt p, const PetscReal xc[], PetscInt k, const PetscReal F[], const PetscReal x[], PetscReal phi[], PetscReal *dist, PetscReal *g, PetscReal *c0)
+{
+  const PetscInt   fb = ClosestFacet(dim, pr->nf[p], xc, x, phi);
+  const PetscReal *f = &xc[fb * MM_FACET_REALS], *fr = &pr->xf[p][fb * MM_FACET_REALS];
+
+  *dist = *g = *c0 = 0;
+  for (PetscInt d = 0; d < dim; ++d) {
+    PetscReal xp = 0, xr = 0;
+    for (PetscInt j = 0; j < dim; ++j) {
+      xp += phi[j] * f[j * dim + d];
+      xr += phi[j] * fr[j * dim + d];
+    }
+    *dist += f[dim * dim + d] * (x[d] - xp);
+    *g += f[dim * dim + d] * (pr->xs[MM_MAX_DIM * k + d] - xr);
+    *c0 -= f[dim * dim + d] * F[d];
+  }
+  return fb;
+}
+
+/* Every slave node's position X_s + u_s (u: w-frame) and every pair's master surface, current for u */
+static PetscErrorCode Positions(MMContact ct, Vec u, PetscReal **xc, PetscReal x[])
 {
   MMContactPairs    *pr  = &ct->pairs;
   const PetscInt     dim = ct->op->dim;
   const PetscInt    *in;
   const PetscScalar *ya, *um;
-  PetscScalar       *ga, *g0a;
-  PetscReal        **xc, pen = 0;
-  PetscInt           rstart, cnt[2] = {0, 0}; /* slave nodes whose pairing changed, and that changed facet */
-  MPI_Comm           comm = PetscObjectComm((PetscObject)ct->op->dm);
-  Mat                Nold, Ninvold;
+  PetscInt           rstart;
+
+  PetscFunctionBeginUser;
+  PetscCall(GatherMasterDisplacements(ct, u));
+  PetscCall(VecGetArrayRead(pr->um, &um));
+  for (PetscInt p = 0; p < pr->n; ++p) CurrentMasterSurface(pr, dim, p, um, xc[p]);
+  PetscCall(VecRestoreArrayRead(pr->um, &um));
+  /* u_s = F^T y_s, y = N u the contact-frame components */
+  PetscCall(MatMult(ct->op->N, u, pr->y));
+  PetscCall(VecGetOwnershipRange(pr->y, &rstart, NULL));
+  PetscCall(ISGetIndices(ct->is_normal, &in));
+  PetscCall(VecGetArrayRead(pr->y, &ya));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscReal *F = &ct->node_frame[9 * k];
+    if (ct->obstacle[k] < ct->pb.n_rigid || ct->second[k]) continue;
+    for (PetscInt d = 0; d < dim; ++d) {
+      x[MM_MAX_DIM * k + d] = pr->xs[MM_MAX_DIM * k + d];
+      for (PetscInt a = 0; a < dim; ++a) x[MM_MAX_DIM * k + d] += F[3 * a + d] * PetscRealPart(ya[in[k] - rstart + a]);
+    }
+  }
+  PetscCall(VecRestoreArrayRead(pr->y, &ya));
+  PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  PetscFunctionReturn(0);
+}
+
+/* At a step's start: each slave node's deepest penetration of the current master surface (u = u^n),
+ * for the run's summary; then the pairing of its predicted position (up, the step's predictor
+ * u + dt v + dt^2/4 a, on the predicted master surface: the pairing of the step's end to O(dt^2)).
+ * Where the facet, the weights or the facet's normal n_c change, the node's row becomes
+ * w_0 = nu_c.(u_s - sum_j phi_j u_mj) <= g = n_c.(X_s - sum_j phi_j X_mj), nu_c = -n_c: the
+ * non-penetration of the facet's line, exact for a facet that neither turns nor bends in the step. N is
+ * rebuilt, and with it K and M*; the vectors kin (displacements) and force (forces) are carried to the
+ * new variables, so that the Cartesian state is unchanged. The ranks find the same pairing: the master
+ * surface and its displacements are gathered on each. */
+PetscErrorCode MMContactSlidePairs(MMContact ct, Vec u, Vec up, PetscInt nkin, Vec kin[], PetscInt nforce, Vec force[], PetscBool *changed)
+{
+  MMContactPairs *pr  = &ct->pairs;
+  const PetscInt  dim = ct->op->dim;
+  PetscScalar    *ga, *g0a;
+  PetscReal     **xc, *x, pen = 0;
+  PetscInt        cnt[2] = {0, 0}; /* slave nodes whose pairing changed, and that changed facet */
+  MPI_Comm        comm = PetscObjectComm((PetscObject)ct->op->dm);
+  Mat             Nold, Ninvold;
 
   PetscFunctionBeginUser;
   *changed = PETSC_FALSE;
   if (!ct->enabled || !pr->large) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(MMCONTACT_PairsSlide, 0, 0, 0, 0));
-  PetscCall(GatherMasterDisplacements(ct, w));
-  PetscCall(MatMult(ct->op->N, w, pr->y));
-  PetscCall(PetscMalloc1(pr->n, &xc));
-  PetscCall(VecGetArrayRead(pr->um, &um));
-  for (PetscInt p = 0; p < pr->n; ++p) {
-    PetscCall(PetscMalloc1(pr->nf[p] * MM_FACET_REALS, &xc[p]));
-    CurrentMasterSurface(pr, dim, p, um, xc[p]);
+  PetscCall(PetscMalloc2(pr->n, &xc, MM_MAX_DIM * (ct->n_local + 1), &x));
+  for (PetscInt p = 0; p < pr->n; ++p) PetscCall(PetscMalloc1(pr->nf[p] * MM_FACET_REALS, &xc[p]));
+  PetscCall(Positions(ct, u, xc, x));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscInt p = ct->obstacle[k] - ct->pb.n_rigid;
+    PetscReal      phi[MM_MAX_DIM], dist, g, c0;
+    if (p < 0 || ct->second[k]) continue;
+    (void)ProjectNode(pr, dim, p, xc[p], k, &ct->node_frame[9 * k], &x[MM_MAX_DIM * k], phi, &dist, &g, &c0);
+    pen = PetscMax(pen, -dist);
   }
-  PetscCall(VecRestoreArrayRead(pr->um, &um));
-  PetscCall(VecGetOwnershipRange(pr->y, &rstart, NULL));
-  PetscCall(ISGetIndices(ct->is_normal, &in));
-  PetscCall(VecGetArrayRead(pr->y, &ya));
+  PetscCall(Positions(ct, up, xc, x));
   PetscCall(VecGetArray(ct->gap, &ga));
   PetscCall(VecGetArray(ct->gap0, &g0a));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
     const PetscInt   p = ct->obstacle[k] - ct->pb.n_rigid;
-    const PetscReal *F = &ct->node_frame[9 * k];
-    PetscReal        x[MM_MAX_DIM] = {0, 0, 0}, phi[MM_MAX_DIM] = {0, 0, 0}, dist = 0, g = 0, c0 = 0;
+    const PetscReal *F = &ct->node_frame[9 * k], *n;
+    PetscReal        phi[MM_MAX_DIM] = {0, 0, 0}, dist, g, c0;
     PetscInt         fb;
     PetscBool        same;
     if (p < 0 || ct->second[k]) continue;
-    /* the current position: u_s = F^T y_s, y = N w the contact-frame components */
-    for (PetscInt d = 0; d < dim; ++d) {
-      x[d] = pr->xs[MM_MAX_DIM * k + d];
-      for (PetscInt a = 0; a < dim; ++a) x[d] += F[3 * a + d] * PetscRealPart(ya[in[k] - rstart + a]);
-    }
-    fb = ClosestFacet(dim, pr->nf[p], xc[p], x, phi);
-    {
-      const PetscReal *f = &xc[p][fb * MM_FACET_REALS], *fr = &pr->xf[p][fb * MM_FACET_REALS];
-      /* the gap along the current normal: w_0 <= g reads n_c.(x_s - sum_j phi_j x_mj) >= 0 */
-      for (PetscInt d = 0; d < dim; ++d) {
-        PetscReal xp = 0, xr = 0;
-        for (PetscInt j = 0; j < dim; ++j) {
-          xp += phi[j] * f[j * dim + d];
-          xr += phi[j] * fr[j * dim + d];
-        }
-        dist += f[dim * dim + d] * (x[d] - xp); /* along the facet's current normal n_c */
-        g += f[dim * dim + d] * (pr->xs[MM_MAX_DIM * k + d] - xr);
-        c0 -= f[dim * dim + d] * F[d];
-      }
-      /* the row's direction -n_c against the frame's massless nu: a facet turned this far is beyond the
-       * method's setting (the frame is the reference one) */
-      PetscCheck(c0 > 0.5, comm, PETSC_ERR_NOT_CONVERGED, "Contact pair %s: a slave node's master facet has turned by %.3g degrees from the node's reference normal, beyond what large sliding carries (60 degrees): the node's frame is fixed at t = 0", ct->pb.obstacles[ct->obstacle[k]].name, (double)(PetscAcosReal(PetscMin(c0, 1.0)) * 180 / PETSC_PI));
-      pen  = PetscMax(pen, -dist);
-      same = (PetscBool)(fb == pr->facet[k]);
-      for (PetscInt j = 0; j < dim; ++j) same = (PetscBool)(same && phi[j] == pr->phi[MM_MAX_DIM * k + j]);
-      for (PetscInt d = 0; d < dim; ++d) same = (PetscBool)(same && -f[dim * dim + d] == pr->nuc[MM_MAX_DIM * k + d]);
-      if (same) continue;
-      cnt[0]++;
-      cnt[1] += fb != pr->facet[k];
-      SetPairing(pr, dim, p, k, fb, phi);
-      for (PetscInt d = 0; d < dim; ++d) pr->nuc[MM_MAX_DIM * k + d] = -f[dim * dim + d];
-    }
+    fb = ProjectNode(pr, dim, p, xc[p], k, F, &x[MM_MAX_DIM * k], phi, &dist, &g, &c0);
+    n  = &xc[p][fb * MM_FACET_REALS + dim * dim];
+    /* the row's direction against the frame's massless nu: a facet turned this far is beyond the
+     * method's setting (the frame is the reference one) */
+    PetscCheck(c0 > 0.5, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Contact pair %s: a slave node's master facet has turned by %.3g degrees from the node's reference normal, beyond what large sliding carries (60 degrees): the node's frame is fixed at t = 0", ct->pb.obstacles[ct->obstacle[k]].name, (double)(PetscAcosReal(PetscMin(c0, 1.0)) * 180 / PETSC_PI));
+    same = (PetscBool)(fb == pr->facet[k]);
+    for (PetscInt j = 0; j < dim; ++j) same = (PetscBool)(same && phi[j] == pr->phi[MM_MAX_DIM * k + j]);
+    for (PetscInt d = 0; d < dim; ++d) same = (PetscBool)(same && -n[d] == pr->nuc[MM_MAX_DIM * k + d]);
+    if (same) continue;
+    cnt[0]++;
+    cnt[1] += fb != pr->facet[k];
+    SetPairing(pr, dim, p, k, fb, phi);
+    for (PetscInt d = 0; d < dim; ++d) pr->nuc[MM_MAX_DIM * k + d] = -n[d];
     ga[k] = g0a[k] = g;
   }
   PetscCall(VecRestoreArray(ct->gap0, &g0a));
   PetscCall(VecRestoreArray(ct->gap, &ga));
-  PetscCall(VecRestoreArrayRead(pr->y, &ya));
-  PetscCall(ISRestoreIndices(ct->is_normal, &in));
   for (PetscInt p = 0; p < pr->n; ++p) PetscCall(PetscFree(xc[p]));
-  PetscCall(PetscFree(xc));
+  PetscCall(PetscFree2(xc, x));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cnt, 2, MPIU_INT, MPI_SUM, comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &pen, 1, MPIU_REAL, MPIU_MAX, comm));
   pr->penetration = PetscMax(pr->penetration, pen);
