@@ -17,7 +17,11 @@
  * components are relative too, so that the friction law sees the relative slip.
  *
  * The master surface is small next to the mesh: it is gathered on every rank, so that a slave node
- * and its master facet may sit on different ranks. */
+ * and its master facet may sit on different ranks.
+ *
+ * Under large sliding (MMContactSlidePairs, frictionless) the pairing is found again before each step,
+ * and the row's direction is the facet's current normal nu_c: N then differs from I in the slave's row 0
+ * alone (its diagonal and tangential entries too), still where M*_y has no mass, so M*_w = M*_y. */
 #include <petscsf.h>
 #include "mesh.h"
 #include "../contactimpl.h"
