@@ -38,6 +38,8 @@ MSH  += meshes/plate.msh
 MSH  += meshes/ball_roll.msh
 # A disk sliding around the inside of a circular track, svk: frames that follow the contact point (issue 40)
 MSH  += meshes/disk_track.msh
+# A block sliding along a longer one over many master facets (issue 40: contact pairs, large sliding)
+MSH  += meshes/block_slide.msh
 # Bench meshes: the 2D D1 disk (115k dofs), the 3D D2 ball (H 0.045: 113k dofs, 3.8k contact nodes)
 # and the large D2 ball of `make bench-large` (H 0.021: about 1M dofs), generated when first needed;
 # the two balls of the 3d suite's two_body row at H 0.057 (116,520 dofs for both, as the D2 ball's 113k).
@@ -96,6 +98,8 @@ meshes/bar100.msh: meshes/bar.geo
 meshes/disk.msh: meshes/disk.geo
 	gmsh -2 $< -o $@ -v 2
 meshes/block.msh: meshes/block.geo
+	gmsh -2 $< -o $@ -v 2
+meshes/block_slide.msh: meshes/block_slide.geo
 	gmsh -2 $< -o $@ -v 2
 meshes/box.msh: meshes/box.geo
 	gmsh -3 $< -o $@ -v 2

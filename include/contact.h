@@ -76,6 +76,7 @@ typedef struct {
   const PetscInt  *scalar_index; /* per row, its global index in the scalar vertex DM */
   const PetscBool *second;     /* per row: a corner node's second row (the row before is its first) */
   const PetscInt  *fc_obstacle; /* per row: a friction corner's second obstacle, or -1; NULL without friction */
+  PetscBool        pairs_sliding; /* contact pairs with large sliding: a reaction may act on master dofs after a new pairing */
 } MMContactNodes;
 PETSC_EXTERN PetscErrorCode MMContactGetNodes(MMContact ct, MMContactNodes *nodes);
 /* The step problem's right-hand side b, a vector of the contact object that the stepper fills */
@@ -86,6 +87,11 @@ PETSC_EXTERN PetscErrorCode MMContactGetObstacleForce(MMContact ct, PetscInt b, 
  * multiplies by K~ ("" without CG); pair p's slave nodes, those facing a master node and its facets */
 PETSC_EXTERN PetscErrorCode MMContactGetSolverText(MMContact ct, const char **type, const char **choice, const char **products);
 PETSC_EXTERN PetscErrorCode MMContactGetPairCounts(MMContact ct, PetscInt p, PetscInt *slave_nodes, PetscInt *node_to_node, PetscInt *master_facets);
+/* Contact pairs with large sliding (-contact_pairs_sliding, docs/method.md section 11): at a step's start,
+ * u = u^n, the pairing found again on the configuration of up (the step's predictor); when it changed, N,
+ * K and M* are rebuilt, K~ with them at the next MMContactSetStepMatrix, and the vectors kin
+ * (displacement-like) and force (force-like, w-frame) carried to the new variables. changed: it did. */
+PETSC_EXTERN PetscErrorCode MMContactSlidePairs(MMContact ct, Vec u, Vec up, PetscInt nkin, Vec kin[], PetscInt nforce, Vec force[], PetscBool *changed);
 /* The candidate set's size at the last step and its re-solves over the run (0 without one) */
 PETSC_EXTERN PetscErrorCode MMContactGetCandidateCounts(MMContact ct, PetscInt *n_set, PetscInt *resolves);
 PETSC_EXTERN PetscErrorCode MMContactSetCandidateResolves(MMContact ct, PetscInt resolves);

@@ -54,7 +54,28 @@ typedef struct {
   PetscReal *phi;      /* per contact node, MM_MAX_DIM: weights phi_j of its master vertices */
   PetscInt  *mdof;     /* per contact node, MM_MAX_DIM: their first global dofs */
   PetscInt  *count;    /* per pair, 2: its slave nodes, and those facing a master node (node to node) */
+  /* large sliding (-contact_pairs_sliding large, docs/method.md section 11): the pairing found again at
+   * each step's start on the current configuration */
+  PetscBool  large;
+  PetscInt  *facet;    /* per contact node, its master facet (index in its pair's gathered surface) */
+  PetscReal *xs;       /* per contact node, MM_MAX_DIM: its reference position */
+  PetscReal *nuc;      /* per contact node, MM_MAX_DIM: its constraint's direction, -(the current facet normal) */
+  Mat        Ky, My;   /* K and M* in the contact frame, before N: N^T K N and N^T M* N are rebuilt from them */
+  Vec        y;        /* scratch, the layout of w: y = N w */
+  Vec        um;       /* every master facet vertex's displacement, gathered on every rank */
+  VecScatter to_um;
+  PetscInt  *um_off;   /* per pair, its first entry in um */
+  PetscInt   repairs;  /* steps whose pairing changed */
+  PetscInt   facet_changes; /* slave nodes that moved to another facet, over the run */
+  PetscReal  penetration; /* the deepest penetration of the current master surface at a step's start, over the run */
 } MMContactPairs;
+/* -contact_pairs_sliding */
+typedef enum {
+  MM_PAIRS_SLIDING_AUTO,
+  MM_PAIRS_SLIDING_SMALL,
+  MM_PAIRS_SLIDING_LARGE
+} MMPairsSliding;
+PETSC_INTERN const char *const MMPairsSlidings[];
 
 /* -contact_frames: a contact node's frame and gap fixed at its reference position, or following its
  * contact point on a curved obstacle (interface/frames.c, docs/method.md section 8) */
@@ -96,6 +117,7 @@ typedef struct {
   MMFramesType      frames;                  /* -contact_frames */
   PetscBool         frames_set;              /* given: else follow for the finite-strain laws, fixed for linear */
   PetscReal         frames_angle;            /* -contact_frames_angle */
+  MMPairsSliding    pairs_sliding;        /* -contact_pairs_sliding */
 } MMContactOptions;
 
 /* The contact object: the contact set, gaps, bounds and the step matrix, shared by every formulation;
@@ -206,7 +228,7 @@ PETSC_INTERN PetscClassId  MMCONTACT_CLASSID;
 PETSC_INTERN PetscLogEvent MMCONTACT_Assemble, MMCONTACT_Solve, MMCONTACT_Recover, MMCONTACT_KtReuse, MMCONTACT_KtSetUp, MMCONTACT_KtSolve;
 PETSC_INTERN PetscLogEvent MMCONTACT_CandidateColumns, MMCONTACT_CandidateOperator, MMCONTACT_ColumnsSolve, MMCONTACT_ColumnsMove;
 PETSC_INTERN PetscLogEvent MMCONTACT_SplitInterface, MMCONTACT_SplitBackward, MMCONTACT_ActiveSetIterate, MMCONTACT_ActiveSetCG, MMCONTACT_BlockOperator;
-PETSC_INTERN PetscLogEvent MMCONTACT_FrameRotate, MMCONTACT_MassRedistribute, MMCONTACT_FrameFollow;
+PETSC_INTERN PetscLogEvent MMCONTACT_FrameRotate, MMCONTACT_MassRedistribute, MMCONTACT_FrameFollow, MMCONTACT_PairsSlide;
 
 /* The formulation of -contact_formulation (auto resolved by the problem's size), or "none" (contact.c) */
 PETSC_INTERN PetscErrorCode MMContactSetType(MMContact ct);
@@ -243,8 +265,13 @@ PETSC_INTERN PetscErrorCode MMContactCornersStore(MMContact ct);
 PETSC_INTERN PetscErrorCode MMContactPairsSetUp(MMContact ct, const PetscInt mark[], PetscInt n_vertex_bound);
 PETSC_INTERN PetscErrorCode MMContactPairsProject(MMContact ct, PetscInt p, PetscInt k, const PetscReal x[], PetscReal *gap, PetscReal n[]);
 PETSC_INTERN PetscErrorCode MMContactPairsBuildTransform(MMContact ct);
-PETSC_INTERN PetscErrorCode MMContactPairsTransformOperators(MMOperators *op);
+PETSC_INTERN PetscErrorCode MMContactPairsTransformOperators(MMContact ct, MMOperators *op);
 PETSC_INTERN PetscErrorCode MMContactPairsDestroy(MMContactPairs *pr);
+/* The direction of row k's normal reaction: its frame's nu, or under large sliding its facet's current one */
+static inline const PetscReal *MMContactRowNormal(MMContact ct, PetscInt k)
+{
+  return ct->pairs.large && ct->obstacle[k] >= ct->pb.n_rigid && !ct->second[k] ? &ct->pairs.nuc[MM_MAX_DIM * k] : &ct->node_frame[9 * k];
+}
 
 /* interface/qp.c: bound-constrained QPs as SNESVI solves; exact linear solves */
 PETSC_EXTERN PetscErrorCode MMKSPCheckDirect(KSP ksp);

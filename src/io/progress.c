@@ -259,7 +259,7 @@ static PetscErrorCode HeaderContact(MMProgress *pg, KSP krylov, KSP pc_ksp)
     const MMObstacle *ob = &opt->obstacles[opt->n_rigid + p];
     PetscInt          nodes, n2n, facets;
     PetscCall(MMContactGetPairCounts(pg->contact, p, &nodes, &n2n, &facets));
-    PetscCall(PetscPrintf(comm, "  pair %s: slave %s, %" PetscInt_FMT " nodes (%" PetscInt_FMT " facing a master node: node to node), on %" PetscInt_FMT " facets of master %s; mu = %g\n", ob->name, ob->slave, nodes, n2n, facets, ob->master, (double)ob->mu));
+    PetscCall(PetscPrintf(comm, "  pair %s: slave %s, %" PetscInt_FMT " nodes (%" PetscInt_FMT " facing a master node: node to node), on %" PetscInt_FMT " facets of master %s; mu = %g; %s sliding\n", ob->name, ob->slave, nodes, n2n, facets, ob->master, (double)ob->mu, cn.pairs_sliding ? "large" : "small"));
   }
   if (!cn.enabled) PetscCall(PetscPrintf(comm, "  contact: off (-contact 0), 0 contact nodes: linear elastodynamics; %s mass\n", pg->op->lumped ? "lumped" : "consistent"));
   PetscCall(PetscPrintf(comm, "  solvers: contact formulation %s%s; K~ by %s%s; %s\n", type, choice, solver, products, progress));

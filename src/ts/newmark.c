@@ -163,6 +163,7 @@ static PetscErrorCode TSStep_Newmark(TS ts)
   /* the contact frames of the nodes near a curved obstacle follow their contact point (docs/method.md section 8) */
   PetscCall(MatchFinalTime(ts));
   if (nm->material->finite) PetscCall(MMNonlinearFollowFrames(nm, ts->ptime, ts->time_step));
+  if (nm->material->finite) PetscCall(MMNonlinearSlidePairs(nm, ts->time_step)); /* contact pairs: the large-sliding pairing */
   PetscCall(SaveOldState(s));
   PetscCall(MMContactCornersAccept(nm->contact));
   while (!solved) {

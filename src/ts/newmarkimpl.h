@@ -110,6 +110,7 @@ PETSC_INTERN PetscErrorCode MMNewmarkRegister(void);
 PETSC_INTERN PetscErrorCode MMNonlinearSetFromOptions(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMNonlinear *nl);
 PETSC_INTERN PetscErrorCode MMNonlinearSetUp(MMNewmark nm);
 PETSC_INTERN PetscErrorCode MMNonlinearStepMatrix(MMNewmark nm, PetscReal dt, MMStepMatrix *sm);
+PETSC_INTERN PetscErrorCode MMNonlinearSlidePairs(MMNewmark nm, PetscReal dt);
 PETSC_INTERN PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b, Vec w, PetscBool *solved);
 PETSC_INTERN PetscErrorCode MMNonlinearElasticEnergy(MMNewmark nm, Vec u, PetscReal t, PetscReal *energy);
 PETSC_INTERN PetscErrorCode MMNonlinearDestroy(MMNonlinear *nl);

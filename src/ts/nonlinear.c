@@ -104,6 +104,41 @@ PetscErrorCode MMNonlinearDestroy(MMNonlinear *nl)
   PetscFunctionReturn(0);
 }
 
+/* Contact pairs with large sliding (docs/method.md section 11, "Large sliding"): before the step, the
+ * pairing found again on u^n. When it changed, contact rebuilt N, K, M* (and K~ at the next step
+ * matrix); here the state u, v, a, the last reaction (a force: b_nl carries it) and the loads are
+ * carried to the new variables, and what the stepper built on N is dropped, to be built again: the
+ * tangent (K's pattern follows N), the momentum functionals (M* N^{-1} Q^T e). */
+PetscErrorCode MMNonlinearSlidePairs(MMNewmark nm, PetscReal dt)
+{
+  MMState    *s  = &nm->state;
+  MMLoads    *ld = nm->loads;
+  MMNonlinear *nl = &nm->nl;
+  Vec         kin[3] = {s->u, s->v, s->a}, *force;
+  PetscInt    nf = 0;
+  PetscBool   changed;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(4 + (ld->part ? ld->nparts : 0), &force));
+  force[nf++] = s->react;
+  force[nf++] = nm->op->load;
+  force[nf++] = nm->op->lift;
+  if (ld->load_old) force[nf++] = ld->load_old;
+  for (PetscInt k = 0; ld->part && k < ld->nparts; ++k) force[nf++] = ld->part[k];
+  /* the pairing of the step's predictor u + dt v + dt^2/4 a (newmark.c), dt the step's first try */
+  PetscCall(VecAXPBYPCZ(s->u_next, dt, 0.25 * dt * dt, 0.0, s->v, s->a));
+  PetscCall(VecAXPY(s->u_next, 1.0, s->u));
+  PetscCall(MMContactSlidePairs(nm->contact, s->u, s->u_next, 3, kin, nf, force, &changed));
+  PetscCall(PetscFree(force));
+  if (!changed) PetscFunctionReturn(0);
+  PetscCall(MatDestroy(&nl->Ks));
+  PetscCall(MatDestroy(&nl->el.KpN));
+  nl->use_tangent = PETSC_FALSE;
+  nm->damping.Mstar = nm->op->Mstar; /* borrowed (no damping with these laws) */
+  PetscCall(MMMomentaDestroy(&nm->momenta));
+  PetscFunctionReturn(0);
+}
+
 /* The stored energy of the state u (w-frame) with the Dirichlet data of time t */
 PetscErrorCode MMNonlinearElasticEnergy(MMNewmark nm, Vec u, PetscReal t, PetscReal *energy)
 {

@@ -100,6 +100,6 @@ PetscErrorCode MMContactSetUpFrame(MMContact ct, MMOperators *op, const MMMateri
   MMContactMassBoundary(ct, &mb);
   PetscCall(MMContactMassStar(&ct->mass, op, material, &mb));
   if (op->N) PetscCall(VecDuplicate(op->load, &op->pair_work));
-  PetscCall(MMContactPairsTransformOperators(op));
+  PetscCall(MMContactPairsTransformOperators(ct, op));
   PetscFunctionReturn(0);
 }

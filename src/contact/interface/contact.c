@@ -394,6 +394,13 @@ PetscErrorCode MMContactView(MMContact ct, PetscViewer viewer)
   if (ct->enabled) PetscCall(CornerView(ct, viewer));
   if (ct->enabled) PetscCall(FrictionCornerView(ct, viewer));
   if (ct->enabled) PetscCall(MMContactFramesView(ct, viewer));
+  if (ct->enabled && ct->pairs.large) {
+    PetscBool ascii;
+    PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
+    if (ascii)
+      PetscCall(PetscViewerASCIIPrintf(viewer, "  contact pairs, large sliding: pairing changed at %" PetscInt_FMT " step starts, %" PetscInt_FMT " moves of a slave node to another facet; deepest penetration of the current master surface at a step's start %.3e (%.3e h_c')\n", ct->pairs.repairs, ct->pairs.facet_changes,
+                                       (double)ct->pairs.penetration, (double)(ct->pairs.penetration / ct->h_c)));
+  }
   PetscFunctionReturn(0);
 }
 

@@ -184,7 +184,7 @@ static PetscErrorCode ContactStatistics(MMContact ct, PetscReal t, Vec w, Vec re
     }
     /* the force on the obstacle: minus the reaction on the body, back to Cartesian */
     for (PetscInt d = 0; d < nr; ++d)
-      for (PetscInt c = 0; c < dim; ++c) fob[MM_MAX_DIM * ct->obstacle[k] + c] -= f1[d] * F[3 * d + c];
+      for (PetscInt c = 0; c < dim; ++c) fob[MM_MAX_DIM * ct->obstacle[k] + c] -= f1[d] * (d ? F[3 * d + c] : MMContactRowNormal(ct, k)[c]);
     sums[0] += rs.r;
     /* the VI's own stick/slip split: a tangential reaction inside its bound sticks (RSLS holds a
      * variable within 1e-8, absolute, of its bound as active, hence the relative margin) */

@@ -2,6 +2,8 @@
  * with their checks into the contact object (MMContactSetFromOptions). */
 #include "../contactimpl.h"
 
+const char *const MMPairsSlidings[] = {"auto", "small", "large", "MMPairsSliding", "MM_PAIRS_SLIDING_", NULL};
+
 /* Each registered formulation's own options, all of them: the formulation is chosen at set-up
  * (-contact_formulation auto: by the mesh's size), so an option of another formulation is read, not
  * refused as unused. A formulation's setfromoptions is found on a scratch object of its type. */
@@ -47,6 +49,8 @@ PetscErrorCode MMContactSetFromOptions(MMContact ct)
   o->keep_factor = PETSC_TRUE;
   PetscCall(MMOptionsBool(PetscOptionsObject, comm, "-contact_K_keep", "Keep K~ for the previous dt with its factor and cached columns (condensed) or its PC (active_set), so that dt growing back after a rejected step costs no factorization (the memory of a second factor)", &o->keep_factor));
   PetscCall(FormulationsSetFromOptions(ct, PetscOptionsObject));
+  o->pairs_sliding = MM_PAIRS_SLIDING_SMALL; /* large: opt-in, docs/method.md section 11, "Large sliding" */
+  PetscCall(MMOptionsEnum(PetscOptionsObject, comm, "-contact_pairs_sliding", "Contact pairs (-contact_pairs): small (each slave node's master facet, weights and gap found once, on the reference mesh), large (found again at each step's start on the current configuration, the pairs' transform N rebuilt; -elasticity svk or neohookean, frictionless pairs, -contact_formulation condensed), or auto (large where those hold, small otherwise); default small: on curved masters large sliding exchanges energy at each new pairing", MMPairsSlidings, (PetscEnum *)&o->pairs_sliding));
   /* The contact audit's tolerances, far above what correct runs reach: penetration at most 3e-14
    * h_c' over options/'s cases and the solver variants, the Coulomb residual at most 4e-5 (with
    * -mass standard, at dt down to 1/1024 of -ts_dt, where the reactions carry the round-off of

@@ -17,7 +17,11 @@
  * components are relative too, so that the friction law sees the relative slip.
  *
  * The master surface is small next to the mesh: it is gathered on every rank, so that a slave node
- * and its master facet may sit on different ranks. */
+ * and its master facet may sit on different ranks.
+ *
+ * Under large sliding (MMContactSlidePairs, frictionless) the pairing is found again before each step,
+ * and the row's direction is the facet's current normal nu_c: N then differs from I in the slave's row 0
+ * alone (its diagonal and tangential entries too), still where M*_y has no mass, so M*_w = M*_y. */
 #include <petscsf.h>
 #include "mesh.h"
 #include "../contactimpl.h"
@@ -142,6 +146,38 @@ static PetscErrorCode GatherMasterSurface(MMContact ct, PetscInt p, const PetscI
   PetscFunctionReturn(0);
 }
 
+/* -contact_pairs_sliding: large sliding finds the pairing again on the current configuration at each
+ * step (docs/method.md section 11, "Large sliding"). Its transform of the state keeps the energy
+ * identity and the momentum exact for the finite-strain step only, whose right-hand side carries the
+ * last reaction as a force; and it keeps the slave node's frame, so the tangential relative
+ * variables of friction would need M* rebuilt with a moving mass: frictionless pairs only. */
+static PetscErrorCode ResolveSliding(MMContact ct)
+{
+  MMContactPairs *pr       = &ct->pairs;
+  PetscBool       friction = PETSC_FALSE, condensed;
+  MPI_Comm        comm     = PetscObjectComm((PetscObject)ct->op->dm);
+
+  PetscFunctionBeginUser;
+  for (PetscInt p = 0; p < pr->n; ++p) friction = (PetscBool)(friction || ct->pb.obstacles[ct->pb.n_rigid + p].mu > 0);
+  /* the full and active-set formulations keep copies of K~ on its first pattern, which N's changes */
+  PetscCall(PetscStrcmp(ct->type, "condensed", &condensed));
+  switch (ct->opt.pairs_sliding) {
+  case MM_PAIRS_SLIDING_AUTO:
+    pr->large = (PetscBool)(ct->material->finite && !friction && condensed);
+    break;
+  case MM_PAIRS_SLIDING_SMALL:
+    pr->large = PETSC_FALSE;
+    break;
+  case MM_PAIRS_SLIDING_LARGE:
+    PetscCheck(ct->material->finite, comm, PETSC_ERR_SUP, "-contact_pairs_sliding large needs a finite-strain law (-elasticity svk or neohookean): the linear model is the small-displacement one, and its step does not carry the transform of the reactions");
+    PetscCheck(condensed, comm, PETSC_ERR_SUP, "-contact_pairs_sliding large needs -contact_formulation condensed (here %s): the others keep K~ on the pattern of the first pairing", ct->type);
+    PetscCheck(!friction, comm, PETSC_ERR_SUP, "-contact_pairs_sliding large is frictionless only (every -contact_pair_NAME_mu 0): with friction the slave nodes' tangential dofs are relative too and carry mass, which a new pairing would move. Use -contact_pairs_sliding small");
+    pr->large = PETSC_TRUE;
+    break;
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MMContactPairsSetUp(MMContact ct, const PetscInt mark[], PetscInt n_vertex_bound)
 {
   MMContactPairs *pr = &ct->pairs;
@@ -152,8 +188,11 @@ PetscErrorCode MMContactPairsSetUp(MMContact ct, const PetscInt mark[], PetscInt
   if (!np) PetscFunctionReturn(0);
   PetscCall(PetscCalloc4(np, &pr->nf, np, &pr->xf, np, &pr->df, 2 * np, &pr->count));
   for (PetscInt p = 0; p < np; ++p) PetscCall(GatherMasterSurface(ct, p, mark));
-  /* per contact node (an upper bound: the owned vertices) its master vertices' dofs and weights */
+  /* per contact node (an upper bound: the owned vertices) its master vertices' dofs and weights, its
+   * facet and its reference position */
   PetscCall(PetscMalloc2(MM_MAX_DIM * n_vertex_bound, &pr->phi, MM_MAX_DIM * n_vertex_bound, &pr->mdof));
+  PetscCall(PetscMalloc3(n_vertex_bound, &pr->facet, MM_MAX_DIM * n_vertex_bound, &pr->xs, MM_MAX_DIM * n_vertex_bound, &pr->nuc));
+  PetscCall(ResolveSliding(ct));
   PetscFunctionReturn(0);
 }
 
@@ -219,27 +258,22 @@ static PetscReal ClosestOnFacet(PetscInt dim, const PetscReal f[], const PetscRe
   return best;
 }
 
-/* Slave node k (reference position x) of pair p: its closest master facet, the weights and master
- * dofs of its constraint, its gap and the facet's outward normal n. Equidistant facets (a node
- * facing a master vertex) are told apart by their centroids, so the choice does not depend on the
- * partition. */
-PetscErrorCode MMContactPairsProject(MMContact ct, PetscInt p, PetscInt k, const PetscReal x[], PetscReal *gap, PetscReal n[])
+/* The closest of the nf facets xf (MM_FACET_REALS each) to x: its index and weights. Equidistant
+ * facets (a node facing a master vertex) are told apart by their centroid keys, the reference ones,
+ * so the choice does not depend on the partition. */
+static PetscInt ClosestFacet(PetscInt dim, PetscInt nf, const PetscReal xf_all[], const PetscReal x[], PetscReal phib[])
 {
-  MMContactPairs *pr  = &ct->pairs;
-  const PetscInt  dim = ct->op->dim;
-  PetscInt        fb  = -1;
-  PetscReal       db  = PETSC_MAX_REAL, phib[MM_MAX_DIM] = {0, 0, 0}, scale;
+  PetscInt  fb = -1;
+  PetscReal db = PETSC_MAX_REAL;
 
-  PetscFunctionBeginUser;
-  for (PetscInt f = 0; f < pr->nf[p]; ++f) {
-    const PetscReal *xf = &pr->xf[p][f * MM_FACET_REALS];
-    PetscReal        phi[MM_MAX_DIM], d2 = ClosestOnFacet(dim, xf, x, phi);
+  for (PetscInt f = 0; f < nf; ++f) {
+    const PetscReal *xf = &xf_all[f * MM_FACET_REALS];
+    PetscReal        phi[MM_MAX_DIM], d2 = ClosestOnFacet(dim, xf, x, phi), scale = 0;
     PetscBool        take = PETSC_FALSE;
-    scale = 0;
     for (PetscInt d = 0; d < dim; ++d) scale += PetscSqr(xf[d] - xf[dim + d]);
     if (fb < 0 || d2 < db - 1e-13 * scale) take = PETSC_TRUE;
     else if (d2 <= db + 1e-13 * scale) {
-      const PetscReal *c0 = &pr->xf[p][fb * MM_FACET_REALS + dim * dim + dim], *c1 = &xf[dim * dim + dim];
+      const PetscReal *c0 = &xf_all[fb * MM_FACET_REALS + dim * dim + dim], *c1 = &xf[dim * dim + dim];
       for (PetscInt d = 0; d < dim; ++d) {
         if (c1[d] == c0[d]) continue;
         take = (PetscBool)(c1[d] < c0[d]);
@@ -251,19 +285,41 @@ PetscErrorCode MMContactPairsProject(MMContact ct, PetscInt p, PetscInt k, const
     db = d2;
     for (PetscInt j = 0; j < dim; ++j) phib[j] = phi[j];
   }
-  {
-    const PetscReal *xf = &pr->xf[p][fb * MM_FACET_REALS];
-    *gap                = 0;
-    for (PetscInt d = 0; d < MM_MAX_DIM; ++d) n[d] = d < dim ? xf[dim * dim + d] : 0;
-    for (PetscInt d = 0; d < dim; ++d) {
-      PetscReal xp = 0;
-      for (PetscInt j = 0; j < dim; ++j) xp += phib[j] * xf[j * dim + d];
-      *gap += n[d] * (x[d] - xp);
-    }
-    for (PetscInt j = 0; j < MM_MAX_DIM; ++j) {
-      pr->phi[MM_MAX_DIM * k + j]  = j < dim ? phib[j] : 0;
-      pr->mdof[MM_MAX_DIM * k + j] = j < dim ? pr->df[p][fb * MM_MAX_DIM + j] : -1;
-    }
+  return fb;
+}
+
+/* Slave node k's weights and master dofs for facet fb of pair p */
+static void SetPairing(MMContactPairs *pr, PetscInt dim, PetscInt p, PetscInt k, PetscInt fb, const PetscReal phib[])
+{
+  pr->facet[k] = fb;
+  for (PetscInt j = 0; j < MM_MAX_DIM; ++j) {
+    pr->phi[MM_MAX_DIM * k + j]  = j < dim ? phib[j] : 0;
+    pr->mdof[MM_MAX_DIM * k + j] = j < dim ? pr->df[p][fb * MM_MAX_DIM + j] : -1;
+  }
+}
+
+/* Slave node k (reference position x) of pair p: its closest master facet, the weights and master
+ * dofs of its constraint, its gap and the facet's outward normal n. */
+PetscErrorCode MMContactPairsProject(MMContact ct, PetscInt p, PetscInt k, const PetscReal x[], PetscReal *gap, PetscReal n[])
+{
+  MMContactPairs  *pr  = &ct->pairs;
+  const PetscInt   dim = ct->op->dim;
+  PetscReal        phib[MM_MAX_DIM] = {0, 0, 0};
+  const PetscInt   fb = ClosestFacet(dim, pr->nf[p], pr->xf[p], x, phib);
+  const PetscReal *xf = &pr->xf[p][fb * MM_FACET_REALS];
+
+  PetscFunctionBeginUser;
+  *gap = 0;
+  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) n[d] = d < dim ? xf[dim * dim + d] : 0;
+  for (PetscInt d = 0; d < dim; ++d) {
+    PetscReal xp = 0;
+    for (PetscInt j = 0; j < dim; ++j) xp += phib[j] * xf[j * dim + d];
+    *gap += n[d] * (x[d] - xp);
+  }
+  SetPairing(pr, dim, p, k, fb, phib);
+  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) {
+    pr->xs[MM_MAX_DIM * k + d]  = d < dim ? x[d] : 0;
+    pr->nuc[MM_MAX_DIM * k + d] = -n[d]; /* the frame's nu (set.c FrameFromNormal) */
   }
   PetscFunctionReturn(0);
 }
@@ -272,30 +328,16 @@ PetscErrorCode MMContactPairsProject(MMContact ct, PetscInt p, PetscInt k, const
  * normal; the tangents too with friction, for the relative slip) and its master vertices m_j. A
  * corner node's second row (a node against two obstacles, set.c) is its own 2x2 block of N, with
  * its explicit inverse: N stays the identity where there are neither pairs nor corners. */
-PetscErrorCode MMContactPairsBuildTransform(MMContact ct)
+static PetscErrorCode BuildN(MMContact ct)
 {
   MMContactPairs *pr  = &ct->pairs;
   const PetscInt  dim = ct->op->dim, nr = ct->ncomp;
   const PetscInt *in;
-  PetscInt        n, rstart, corners = 0;
+  PetscInt        n, rstart;
   Mat             N[2];
   MPI_Comm        comm = PetscObjectComm((PetscObject)ct->op->dm);
 
   PetscFunctionBeginUser;
-  for (PetscInt k = 0; k < ct->n_local; ++k) corners += ct->second[k];
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &corners, 1, MPIU_INT, MPI_SUM, comm));
-  ct->n_corners = corners;
-  /* per pair its slave nodes, and those that face a master node (one weight 1: node to node) */
-  for (PetscInt k = 0; k < ct->n_local; ++k) {
-    const PetscInt p = ct->obstacle[k] - ct->pb.n_rigid;
-    PetscBool      facing = PETSC_FALSE;
-    if (p < 0 || ct->second[k]) continue;
-    for (PetscInt j = 0; j < dim; ++j) facing = (PetscBool)(facing || pr->phi[MM_MAX_DIM * k + j] == 1.0);
-    pr->count[2 * p] += 1;
-    pr->count[2 * p + 1] += facing;
-  }
-  if (pr->n) PetscCall(MPIU_Allreduce(MPI_IN_PLACE, pr->count, 2 * pr->n, MPIU_INT, MPI_SUM, comm));
-  if (!pr->n && !corners) PetscFunctionReturn(0);
   PetscCall(MatGetLocalSize(ct->op->Q, &n, NULL));
   PetscCall(MatGetOwnershipRange(ct->op->Q, &rstart, NULL));
   PetscCall(ISGetIndices(ct->is_normal, &in));
@@ -314,6 +356,25 @@ PetscErrorCode MMContactPairsBuildTransform(MMContact ct)
         continue;
       }
       if (ct->obstacle[k] < ct->pb.n_rigid) continue;
+      if (pr->large) {
+        /* large sliding (frictionless): the row's dof is w_0 = nu_c.(u_s - sum_j phi_j u_mj), nu_c the current
+         * facet's direction, = c_0 y_0 + sum_e c_e y_e - sum_j phi_j nu_c.u_mj with c_e = nu_c.F_e, so that
+         * y_0 = (w_0 - sum_e c_e y_e + sum_j phi_j nu_c.u_mj) / c_0: N and N^{-1} differ from I in row 0 alone,
+         * where M* has no mass (docs/method.md section 11, "Large sliding") */
+        const PetscReal *nc = &pr->nuc[MM_MAX_DIM * k];
+        PetscReal        c[MM_MAX_DIM] = {0, 0, 0};
+        for (PetscInt e = 0; e < dim; ++e)
+          for (PetscInt d = 0; d < dim; ++d) c[e] += nc[d] * F[3 * e + d];
+        PetscCall(MatSetValue(N[s], in[k], in[k], s ? c[0] : 1 / c[0], INSERT_VALUES));
+        for (PetscInt e = 1; e < dim; ++e)
+          if (c[e] != 0) PetscCall(MatSetValue(N[s], in[k], in[k] + e, s ? c[e] : -c[e] / c[0], INSERT_VALUES));
+        for (PetscInt j = 0; j < dim; ++j) {
+          const PetscInt m = pr->mdof[MM_MAX_DIM * k + j];
+          if (m < 0 || pr->phi[MM_MAX_DIM * k + j] == 0) continue;
+          for (PetscInt d = 0; d < dim; ++d) PetscCall(MatSetValue(N[s], in[k], m + d, s ? -pr->phi[MM_MAX_DIM * k + j] * nc[d] : pr->phi[MM_MAX_DIM * k + j] * nc[d] / c[0], INSERT_VALUES));
+        }
+        continue;
+      }
       for (PetscInt a = 0; a < nr; ++a)
         for (PetscInt j = 0; j < dim; ++j) {
           const PetscInt m = pr->mdof[MM_MAX_DIM * k + j];
@@ -330,16 +391,46 @@ PetscErrorCode MMContactPairsBuildTransform(MMContact ct)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode MMContactPairsBuildTransform(MMContact ct)
+{
+  MMContactPairs *pr  = &ct->pairs;
+  const PetscInt  dim = ct->op->dim;
+  PetscInt        corners = 0;
+  MPI_Comm        comm = PetscObjectComm((PetscObject)ct->op->dm);
+
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < ct->n_local; ++k) corners += ct->second[k];
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &corners, 1, MPIU_INT, MPI_SUM, comm));
+  ct->n_corners = corners;
+  /* per pair its slave nodes, and those that face a master node (one weight 1: node to node) */
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscInt p = ct->obstacle[k] - ct->pb.n_rigid;
+    PetscBool      facing = PETSC_FALSE;
+    if (p < 0 || ct->second[k]) continue;
+    for (PetscInt j = 0; j < dim; ++j) facing = (PetscBool)(facing || pr->phi[MM_MAX_DIM * k + j] == 1.0);
+    pr->count[2 * p] += 1;
+    pr->count[2 * p + 1] += facing;
+  }
+  if (pr->n) PetscCall(MPIU_Allreduce(MPI_IN_PLACE, pr->count, 2 * pr->n, MPIU_INT, MPI_SUM, comm));
+  if (!pr->n && !corners) PetscFunctionReturn(0);
+  PetscCall(BuildN(ct));
+  PetscFunctionReturn(0);
+}
+
 /* The w-frame operators and loads of the pairs' relative variables, from the contact-frame ones:
  * K <- N^T K N, M <- N^T M N, M* <- N^T M* N, and the loads L <- N^T L (docs/method.md section 11).
  * Runs after M* is built and its moments taken, which N leaves unchanged (frame/frame.c). */
-PetscErrorCode MMContactPairsTransformOperators(MMOperators *op)
+PetscErrorCode MMContactPairsTransformOperators(MMContact ct, MMOperators *op)
 {
   Mat         *A[3] = {&op->K, &op->M, &op->Mstar}, B;
   Vec          t;
 
   PetscFunctionBeginUser;
   if (!op->N) PetscFunctionReturn(0);
+  if (ct->pairs.large) { /* the contact-frame K and M*, from which each new pairing's are built */
+    PetscCall(MatDuplicate(op->K, MAT_COPY_VALUES, &ct->pairs.Ky));
+    PetscCall(MatDuplicate(op->Mstar, MAT_COPY_VALUES, &ct->pairs.My));
+  }
   for (PetscInt i = 0; i < 3; ++i) {
     PetscCall(MatPtAP(*A[i], op->N, MAT_INITIAL_MATRIX, 2.0, &B));
     PetscCall(MatDestroy(A[i]));
@@ -360,6 +451,252 @@ PetscErrorCode MMContactPairsDestroy(MMContactPairs *pr)
   for (PetscInt p = 0; p < pr->n; ++p) PetscCall(PetscFree2(pr->xf[p], pr->df[p]));
   if (pr->n) PetscCall(PetscFree4(pr->nf, pr->xf, pr->df, pr->count));
   PetscCall(PetscFree2(pr->phi, pr->mdof));
+  PetscCall(PetscFree3(pr->facet, pr->xs, pr->nuc));
+  PetscCall(MatDestroy(&pr->Ky));
+  PetscCall(MatDestroy(&pr->My));
+  PetscCall(VecDestroy(&pr->y));
+  PetscCall(VecDestroy(&pr->um));
+  PetscCall(VecScatterDestroy(&pr->to_um));
+  PetscCall(PetscFree(pr->um_off));
   pr->n = 0;
+  PetscFunctionReturn(0);
+}
+
+/* Large sliding (docs/method.md section 11, "Large sliding"). Every master facet vertex's displacement,
+ * gathered on every rank from w (a master node is neither a contact node nor a slave: its w is its
+ * Cartesian displacement); a vertex held by Dirichlet data counts as not moving. */
+static PetscErrorCode GatherMasterDisplacements(MMContact ct, Vec w)
+{
+  MMContactPairs *pr  = &ct->pairs;
+  const PetscInt  dim = ct->op->dim;
+
+  PetscFunctionBeginUser;
+  if (!pr->to_um) {
+    PetscInt total = 0, *idx;
+    IS       is;
+    PetscCall(PetscMalloc1(pr->n + 1, &pr->um_off));
+    for (PetscInt p = 0; p < pr->n; ++p) {
+      pr->um_off[p] = total;
+      total += pr->nf[p] * dim * dim;
+    }
+    pr->um_off[pr->n] = total;
+    PetscCall(PetscMalloc1(total, &idx));
+    for (PetscInt p = 0; p < pr->n; ++p)
+      for (PetscInt f = 0; f < pr->nf[p]; ++f)
+        for (PetscInt j = 0; j < dim; ++j)
+          for (PetscInt d = 0; d < dim; ++d) {
+            const PetscInt m = pr->df[p][f * MM_MAX_DIM + j];
+            idx[pr->um_off[p] + (f * dim + j) * dim + d] = m < 0 ? 0 : m + d; /* a held vertex's entry is not read */
+          }
+    PetscCall(ISCreateGeneral(PETSC_COMM_SELF, total, idx, PETSC_OWN_POINTER, &is));
+    PetscCall(VecCreateSeq(PETSC_COMM_SELF, total, &pr->um));
+    PetscCall(VecScatterCreate(w, is, pr->um, NULL, &pr->to_um));
+    PetscCall(ISDestroy(&is));
+    PetscCall(VecDuplicate(w, &pr->y));
+  }
+  PetscCall(VecScatterBegin(pr->to_um, w, pr->um, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(pr->to_um, w, pr->um, INSERT_VALUES, SCATTER_FORWARD));
+  PetscFunctionReturn(0);
+}
+
+/* Pair p's master facets in the current configuration: the reference records (their centroid keys
+ * too, so that ties are broken as at set-up) with each vertex moved, and each facet's current
+ * outward normal (oriented as the reference one). */
+static void CurrentMasterSurface(MMContactPairs *pr, PetscInt dim, PetscInt p, const PetscScalar um[], PetscReal xc[])
+{
+  for (PetscInt f = 0; f < pr->nf[p]; ++f) {
+    const PetscReal *xr = &pr->xf[p][f * MM_FACET_REALS];
+    PetscReal       *x  = &xc[f * MM_FACET_REALS], *n = &x[dim * dim], len = 0, dot = 0;
+    for (PetscInt i = 0; i < MM_FACET_REALS; ++i) x[i] = xr[i];
+    for (PetscInt j = 0; j < dim; ++j) {
+      if (pr->df[p][f * MM_MAX_DIM + j] < 0) continue;
+      for (PetscInt d = 0; d < dim; ++d) x[j * dim + d] += PetscRealPart(um[pr->um_off[p] + (f * dim + j) * dim + d]);
+    }
+    if (dim == 2) {
+      n[0] = x[3] - x[1];
+      n[1] = -(x[2] - x[0]);
+    } else {
+      const PetscReal a[3] = {x[3] - x[0], x[4] - x[1], x[5] - x[2]}, b[3] = {x[6] - x[0], x[7] - x[1], x[8] - x[2]};
+      n[0] = a[1] * b[2] - a[2] * b[1];
+      n[1] = a[2] * b[0] - a[0] * b[2];
+      n[2] = a[0] * b[1] - a[1] * b[0];
+    }
+    for (PetscInt d = 0; d < dim; ++d) {
+      len += n[d] * n[d];
+      dot += n[d] * xr[dim * dim + d];
+    }
+    len = PetscSqrtReal(len) * (dot < 0 ? -1 : 1);
+    for (PetscInt d = 0; d < dim; ++d) n[d] /= len;
+  }
+}
+
+/* x <- N_new^{-1} N_old x (a displacement, velocity or acceleration) or x <- N_new^T N_old^{-T} x (a
+ * force): the same Cartesian field in the new relative variables. */
+static PetscErrorCode ChangeVariables(MMContact ct, Mat Nold, Mat Ninvold, PetscBool force, Vec x)
+{
+  Vec y = ct->pairs.y;
+
+  PetscFunctionBeginUser;
+  if (force) {
+    PetscCall(MatMultTranspose(Ninvold, x, y));
+    PetscCall(MatMultTranspose(ct->op->N, y, x));
+  } else {
+    PetscCall(MatMult(Nold, x, y));
+    PetscCall(MatMult(ct->op->Ninv, y, x));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* K_w = N^T K_y N and M*_w = N^T M*_y N for the new N, and K~ built anew (its pattern follows N's):
+ * the formulation's factor, kept factor and Delassus columns go with it. */
+static PetscErrorCode RebuildOperators(MMContact ct)
+{
+  MMOperators *op = ct->op;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatDestroy(&op->K));
+  PetscCall(MatDestroy(&op->Mstar));
+  PetscCall(MatPtAP(ct->pairs.Ky, op->N, MAT_INITIAL_MATRIX, 2.0, &op->K));
+  PetscCall(MatPtAP(ct->pairs.My, op->N, MAT_INITIAL_MATRIX, 2.0, &op->Mstar));
+  PetscCall(MatDestroy(&ct->qp.A));
+  PetscCall(MatDestroy(&ct->kept.A));
+  ct->kept.dt = -1;
+  ct->Kt_dt   = -1;
+  PetscFunctionReturn(0);
+}
+
+/* Pair p's master surface (facets xc) and the slave node k at x: its facet, weights, distance along
+ * the facet's normal n_c, gap g = n_c.(X_s - sum_j phi_j X_mj) (so that w_0 <= g reads
+ * n_c.(x_s - sum_j phi_j x_mj) >= 0) and the cosine c0 = -n_c.nu of the row's direction to the frame's */
+static PetscInt ProjectNode(MMContactPairs *pr, PetscInt dim, PetscInt p, const PetscReal xc[], PetscInt k, const PetscReal F[], const PetscReal x[], PetscReal phi[], PetscReal *dist, PetscReal *g, PetscReal *c0)
+{
+  const PetscInt   fb = ClosestFacet(dim, pr->nf[p], xc, x, phi);
+  const PetscReal *f = &xc[fb * MM_FACET_REALS], *fr = &pr->xf[p][fb * MM_FACET_REALS];
+
+  *dist = *g = *c0 = 0;
+  for (PetscInt d = 0; d < dim; ++d) {
+    PetscReal xp = 0, xr = 0;
+    for (PetscInt j = 0; j < dim; ++j) {
+      xp += phi[j] * f[j * dim + d];
+      xr += phi[j] * fr[j * dim + d];
+    }
+    *dist += f[dim * dim + d] * (x[d] - xp);
+    *g += f[dim * dim + d] * (pr->xs[MM_MAX_DIM * k + d] - xr);
+    *c0 -= f[dim * dim + d] * F[d];
+  }
+  return fb;
+}
+
+/* Every slave node's position X_s + u_s (u: w-frame) and every pair's master surface, current for u */
+static PetscErrorCode Positions(MMContact ct, Vec u, PetscReal **xc, PetscReal x[])
+{
+  MMContactPairs    *pr  = &ct->pairs;
+  const PetscInt     dim = ct->op->dim;
+  const PetscInt    *in;
+  const PetscScalar *ya, *um;
+  PetscInt           rstart;
+
+  PetscFunctionBeginUser;
+  PetscCall(GatherMasterDisplacements(ct, u));
+  PetscCall(VecGetArrayRead(pr->um, &um));
+  for (PetscInt p = 0; p < pr->n; ++p) CurrentMasterSurface(pr, dim, p, um, xc[p]);
+  PetscCall(VecRestoreArrayRead(pr->um, &um));
+  /* u_s = F^T y_s, y = N u the contact-frame components */
+  PetscCall(MatMult(ct->op->N, u, pr->y));
+  PetscCall(VecGetOwnershipRange(pr->y, &rstart, NULL));
+  PetscCall(ISGetIndices(ct->is_normal, &in));
+  PetscCall(VecGetArrayRead(pr->y, &ya));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscReal *F = &ct->node_frame[9 * k];
+    if (ct->obstacle[k] < ct->pb.n_rigid || ct->second[k]) continue;
+    for (PetscInt d = 0; d < dim; ++d) {
+      x[MM_MAX_DIM * k + d] = pr->xs[MM_MAX_DIM * k + d];
+      for (PetscInt a = 0; a < dim; ++a) x[MM_MAX_DIM * k + d] += F[3 * a + d] * PetscRealPart(ya[in[k] - rstart + a]);
+    }
+  }
+  PetscCall(VecRestoreArrayRead(pr->y, &ya));
+  PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  PetscFunctionReturn(0);
+}
+
+/* At a step's start: each slave node's deepest penetration of the current master surface (u = u^n),
+ * for the run's summary; then the pairing of its predicted position (up, the step's predictor
+ * u + dt v + dt^2/4 a, on the predicted master surface: the pairing of the step's end to O(dt^2)).
+ * Where the facet, the weights or the facet's normal n_c change, the node's row becomes
+ * w_0 = nu_c.(u_s - sum_j phi_j u_mj) <= g = n_c.(X_s - sum_j phi_j X_mj), nu_c = -n_c: the
+ * non-penetration of the facet's line, exact for a facet that neither turns nor bends in the step. N is
+ * rebuilt, and with it K and M*; the vectors kin (displacements) and force (forces) are carried to the
+ * new variables, so that the Cartesian state is unchanged. The ranks find the same pairing: the master
+ * surface and its displacements are gathered on each. */
+PetscErrorCode MMContactSlidePairs(MMContact ct, Vec u, Vec up, PetscInt nkin, Vec kin[], PetscInt nforce, Vec force[], PetscBool *changed)
+{
+  MMContactPairs *pr  = &ct->pairs;
+  const PetscInt  dim = ct->op->dim;
+  PetscScalar    *ga, *g0a;
+  PetscReal     **xc, *x, pen = 0;
+  PetscInt        cnt[2] = {0, 0}; /* slave nodes whose pairing changed, and that changed facet */
+  MPI_Comm        comm = PetscObjectComm((PetscObject)ct->op->dm);
+  Mat             Nold, Ninvold;
+
+  PetscFunctionBeginUser;
+  *changed = PETSC_FALSE;
+  if (!ct->enabled || !pr->large) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(MMCONTACT_PairsSlide, 0, 0, 0, 0));
+  PetscCall(PetscMalloc2(pr->n, &xc, MM_MAX_DIM * (ct->n_local + 1), &x));
+  for (PetscInt p = 0; p < pr->n; ++p) PetscCall(PetscMalloc1(pr->nf[p] * MM_FACET_REALS, &xc[p]));
+  PetscCall(Positions(ct, u, xc, x));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscInt p = ct->obstacle[k] - ct->pb.n_rigid;
+    PetscReal      phi[MM_MAX_DIM], dist, g, c0;
+    if (p < 0 || ct->second[k]) continue;
+    (void)ProjectNode(pr, dim, p, xc[p], k, &ct->node_frame[9 * k], &x[MM_MAX_DIM * k], phi, &dist, &g, &c0);
+    pen = PetscMax(pen, -dist);
+  }
+  PetscCall(Positions(ct, up, xc, x));
+  PetscCall(VecGetArray(ct->gap, &ga));
+  PetscCall(VecGetArray(ct->gap0, &g0a));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscInt   p = ct->obstacle[k] - ct->pb.n_rigid;
+    const PetscReal *F = &ct->node_frame[9 * k], *n;
+    PetscReal        phi[MM_MAX_DIM] = {0, 0, 0}, dist, g, c0;
+    PetscInt         fb;
+    PetscBool        same;
+    if (p < 0 || ct->second[k]) continue;
+    fb = ProjectNode(pr, dim, p, xc[p], k, F, &x[MM_MAX_DIM * k], phi, &dist, &g, &c0);
+    n  = &xc[p][fb * MM_FACET_REALS + dim * dim];
+    /* the row's direction against the frame's massless nu: a facet turned this far is beyond the
+     * method's setting (the frame is the reference one) */
+    PetscCheck(c0 > 0.5, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Contact pair %s: a slave node's master facet has turned by %.3g degrees from the node's reference normal, beyond what large sliding carries (60 degrees): the node's frame is fixed at t = 0", ct->pb.obstacles[ct->obstacle[k]].name, (double)(PetscAcosReal(PetscMin(c0, 1.0)) * 180 / PETSC_PI));
+    same = (PetscBool)(fb == pr->facet[k]);
+    for (PetscInt j = 0; j < dim; ++j) same = (PetscBool)(same && phi[j] == pr->phi[MM_MAX_DIM * k + j]);
+    for (PetscInt d = 0; d < dim; ++d) same = (PetscBool)(same && -n[d] == pr->nuc[MM_MAX_DIM * k + d]);
+    if (same) continue;
+    cnt[0]++;
+    cnt[1] += fb != pr->facet[k];
+    SetPairing(pr, dim, p, k, fb, phi);
+    for (PetscInt d = 0; d < dim; ++d) pr->nuc[MM_MAX_DIM * k + d] = -n[d];
+    ga[k] = g0a[k] = g;
+  }
+  PetscCall(VecRestoreArray(ct->gap0, &g0a));
+  PetscCall(VecRestoreArray(ct->gap, &ga));
+  for (PetscInt p = 0; p < pr->n; ++p) PetscCall(PetscFree(xc[p]));
+  PetscCall(PetscFree2(xc, x));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cnt, 2, MPIU_INT, MPI_SUM, comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &pen, 1, MPIU_REAL, MPIU_MAX, comm));
+  pr->penetration = PetscMax(pr->penetration, pen);
+  if (cnt[0]) {
+    pr->repairs++;
+    pr->facet_changes += cnt[1];
+    Nold    = ct->op->N;
+    Ninvold = ct->op->Ninv;
+    PetscCall(BuildN(ct));
+    for (PetscInt i = 0; i < nkin; ++i) PetscCall(ChangeVariables(ct, Nold, Ninvold, PETSC_FALSE, kin[i]));
+    for (PetscInt i = 0; i < nforce; ++i) PetscCall(ChangeVariables(ct, Nold, Ninvold, PETSC_TRUE, force[i]));
+    PetscCall(MatDestroy(&Nold));
+    PetscCall(MatDestroy(&Ninvold));
+    PetscCall(RebuildOperators(ct));
+    *changed = PETSC_TRUE;
+  }
+  PetscCall(PetscLogEventEnd(MMCONTACT_PairsSlide, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

@@ -28,6 +28,7 @@ PetscErrorCode MMContactGetNodes(MMContact ct, MMContactNodes *nodes)
   nodes->scalar_index = ct->scalar_index;
   nodes->second       = ct->second;
   nodes->fc_obstacle  = ct->fc_obstacle;
+  nodes->pairs_sliding = ct->pairs.large;
   for (PetscInt i = 0; i < MM_MAX_DIM; ++i)
     for (PetscInt j = 0; j < MM_MAX_DIM; ++j) nodes->frame[i][j] = ct->frame[i][j];
   PetscFunctionReturn(0);
