@@ -8,7 +8,7 @@
 /* fem's events (MMFEInitializePackage): the operators' assembly (from MMFEAssembleOperators to
  * MMFEAssembleOperatorsEnd, contact's frame included), the Cartesian K and M alone by the selected
  * -assembly path */
-static PetscLogEvent MM_FEAssemble, MM_FEAssembleKM;
+static PetscLogEvent MM_FEAssemble, MM_FEAssembleKM, MM_FEPreallocate, MM_FELoads;
 /* the finite-strain laws' force, energy and tangent (elasticity.c) */
 PetscLogEvent MM_FE_ElasticForce, MM_FE_ElasticEnergy, MM_FE_ElasticTangent;
 
@@ -23,7 +23,9 @@ PetscErrorCode MMFEInitializePackage(void)
   initialized = PETSC_TRUE;
   PetscCall(PetscClassIdRegister("MMFE", &id));
   PetscCall(PetscLogEventRegister("MMFEAssemble", id, &MM_FEAssemble));
+  PetscCall(PetscLogEventRegister("MMFEPreallocate", id, &MM_FEPreallocate));
   PetscCall(PetscLogEventRegister("MMAssembleKM", id, &MM_FEAssembleKM));
+  PetscCall(PetscLogEventRegister("MMFELoads", id, &MM_FELoads));
   PetscCall(PetscLogEventRegister("MMElasticForce", id, &MM_FE_ElasticForce));
   PetscCall(PetscLogEventRegister("MMElasticEnergy", id, &MM_FE_ElasticEnergy));
   PetscCall(PetscLogEventRegister("MMElasticTangent", id, &MM_FE_ElasticTangent));
@@ -522,11 +524,13 @@ PetscErrorCode MMFEAssembleOperators(MMOperators *op, const MMMaterial *mat, con
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(MM_FEAssemble, 0, 0, 0, 0));
   PetscCall(DMGetDS(dm, &ds));
+  PetscCall(PetscLogEventBegin(MM_FEPreallocate, 0, 0, 0, 0));
   PetscCall(MMFECreateMatrix(op, dm, &Kc));
   /* a lumped mass is built from vertex masses below: no consistent mass to assemble. M has K's
    * pattern, and duplicating it skips a second DMPlex preallocation, which alone costs several
    * assemblies (docs/scaling.md, "Assembly of K and M, measured") */
   if (!op->lumped) PetscCall(MatDuplicate(Kc, MAT_DO_NOT_COPY_VALUES, &Mc));
+  PetscCall(PetscLogEventEnd(MM_FEPreallocate, 0, 0, 0, 0));
   PetscCall(PetscDSSetJacobian(ds, 0, 0, g0_mass_uu, NULL, NULL, g3_elas_uu));
   PetscCall(PetscLogEventBegin(MM_FEAssembleKM, 0, 0, 0, 0));
   PetscCall(AssembleKM(op, mat, op->assembly, Kc, Mc));
@@ -534,6 +538,7 @@ PetscErrorCode MMFEAssembleOperators(MMOperators *op, const MMMaterial *mat, con
   if (op->assembly_check) PetscCall(CheckAssembly(op, mat, Kc, Mc));
   op->K = Kc;
 
+  PetscCall(PetscLogEventBegin(MM_FELoads, 0, 0, 0, 0));
   PetscCall(DMCreateGlobalVector(dm, &op->load));
   PetscCall(VecDuplicate(op->load, &op->lift));
   PetscCall(VecDuplicate(op->load, &op->mass_lumped_cart));
@@ -547,6 +552,7 @@ PetscErrorCode MMFEAssembleOperators(MMOperators *op, const MMMaterial *mat, con
   PetscCall(DirichletLift(op, mat, op->lift));
   PetscCall(DirichletEnergy(op, mat));
   PetscCall(VecDuplicate(op->load, &op->work));
+  PetscCall(PetscLogEventEnd(MM_FELoads, 0, 0, 0, 0));
 
   if (op->lumped) {
     /* equal per component at each node: contact's frame rotation leaves it diagonal and unchanged */

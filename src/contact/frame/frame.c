@@ -92,6 +92,7 @@ PetscErrorCode MMContactSetUpFrame(MMContact ct, MMOperators *op, const MMMateri
 
   PetscFunctionBeginUser;
   PetscCheck(op == ct->op, ct->comm, PETSC_ERR_ARG_WRONG, "The contact frame rotates the operators given to MMContactSetUp, whose Q it built");
+  PetscCall(PetscLogEventBegin(MMCONTACT_FrameSetUp, 0, 0, 0, 0));
   PetscCall(RotateOperators(op));
   PetscCall(RotateForce(op->Q, op->load));
   PetscCall(RotateForce(op->Q, op->lift));
@@ -101,5 +102,6 @@ PetscErrorCode MMContactSetUpFrame(MMContact ct, MMOperators *op, const MMMateri
   PetscCall(MMContactMassStar(&ct->mass, op, material, &mb));
   if (op->N) PetscCall(VecDuplicate(op->load, &op->pair_work));
   PetscCall(MMContactPairsTransformOperators(ct, op));
+  PetscCall(PetscLogEventEnd(MMCONTACT_FrameSetUp, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
