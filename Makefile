@@ -48,7 +48,7 @@ BALL_LARGE_H ?= 0.021
 TWO_BALLS_BENCH_H ?= 0.057
 BENCH_MSH := meshes/disk_bench.msh meshes/ball_bench.msh meshes/ball07.msh meshes/two_balls_bench.msh meshes/slab.msh
 
-.PHONY: all deps deps-tests petsc-found meshes run check bench bench-large clean
+.PHONY: all deps deps-tests petsc-found meshes run check bench bench-large clean getfem-compare
 all: mmcontact
 
 deps:
@@ -177,6 +177,10 @@ build/stream: scripts/stream.c | build petsc-found
 bench: deps
 	$(MAKE) mmcontact meshes build/stream $(BENCH_MSH)
 	$(MM_PYTHON) scripts/bench.py
+
+# mmcontact against GetFEM on the same mesh, whole processes (issue 41): H 0.07, mu 0.2, dt 4e-3, to t = 0.08
+getfem-compare: deps
+	bash scripts/getfem_compare.sh
 
 bench-large: deps
 	$(MAKE) mmcontact build/stream meshes/ball_large.msh
