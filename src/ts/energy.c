@@ -108,15 +108,6 @@ PetscErrorCode MMEnergyContactWork(MMNewmark nm, Vec w, PetscReal *w_c)
   if (!cn.enabled) PetscFunctionReturn(0);
   PetscCall(VecWAXPY(s->work, -1.0, s->u, w));
   PetscCall(TrapezoidalWork(nm, cn.is_normal, s->work, w_c));
-  if (cn.pairs_sliding) {
-    /* a new pairing carried the last reaction to the new variables, where it also acts on the master
-     * dofs and on the slave's tangential ones (docs/method.md section 11, "Large sliding"): its work
-     * there is contact work (these pairs are frictionless) */
-    PetscReal w_m, w_t;
-    PetscCall(TrapezoidalWork(nm, cn.is_interior, s->work, &w_m));
-    PetscCall(TrapezoidalWork(nm, cn.is_tangent, s->work, &w_t));
-    *w_c += w_m + w_t;
-  }
   {
     PetscReal wn, wt, dwc, dwn, dwt;
     PetscCall(ObstacleWork(nm, nm->hist.time, nm->hist.time + cn.dt, &wn, &wt));
@@ -230,17 +221,7 @@ PetscErrorCode MMEnergyStep(MMNewmark nm)
   if (nm->material->finite) PetscCall(MMNonlinearDampingWork(nm, s->work, h->time, s->dt, &w_d));
   else PetscCall(MMDampingWork(&nm->damping, s->work, s->dt, &w_d));
   /* W_c was computed on this very state by the contact-work guard (MMEnergyContactWork) */
-  if (cn.enabled && !cn.pairs_sliding) PetscCall(TrapezoidalWork(nm, cn.is_tangent, s->work, &w_f)); /* else in W_c */
-  if (cn.enabled && cn.ncomp == 1) {
-    PetscBool follow;
-    /* frictionless, frames that follow: the last reaction, turned to the new frame, has a tangential
-     * part, the normal force of the old frame (docs/method.md section 8): its work is contact work */
-    PetscCall(MMContactFramesFollow(nm->contact, &follow));
-    if (follow) {
-      w_c += w_f;
-      w_f = 0;
-    }
-  }
+  if (cn.enabled) PetscCall(TrapezoidalWork(nm, cn.is_tangent, s->work, &w_f));
   {
     PetscReal wn, wt, dwc, dwn, dwt;
     /* h->time is already t^{n+1} */
