@@ -27,6 +27,7 @@ typedef struct {
   PetscBool         static_sliding;   /* -initial_state static_sliding: one fixed plane */
   PetscBool         quiet;
   PetscReal         obstacle_point[MM_MAX_DIM], obstacle_normal[MM_MAX_DIM];
+  PetscReal         dt, steps;        /* the run's plan (-ts_dt, its steps): -contact_formulation auto's cost model */
 } MMContactProblem;
 /* Finds the contact nodes and builds Q, before fem assembles the operators; op and material are
  * borrowed (kept until destroy) */

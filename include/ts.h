@@ -95,6 +95,7 @@ PETSC_EXTERN PetscErrorCode MMNewmarkSetFriction(MMNewmark nm, MMFriction fricti
 PETSC_EXTERN PetscErrorCode MMNewmarkInitialState(MMNewmark nm);
 PETSC_EXTERN PetscErrorCode MMNewmarkCreateTS(MMNewmark nm, TS *ts);
 PETSC_EXTERN PetscErrorCode MMNewmarkSetDefaults(TS ts);
+PETSC_EXTERN PetscErrorCode MMNewmarkGetPlan(MMNewmark nm, PetscReal *dt, PetscReal *steps);
 PETSC_EXTERN PetscErrorCode MMNewmarkGetState(MMNewmark nm, MMState **state);
 PETSC_EXTERN PetscErrorCode MMNewmarkGetHistory(MMNewmark nm, MMHistory **hist);
 PETSC_EXTERN PetscErrorCode MMNewmarkGetDamping(MMNewmark nm, MMDamping **damping);

@@ -2,7 +2,8 @@
 
 Suites (the table SUITES below):
   2d     D1 disk, 115k dofs (meshes/disk_bench.msh): linear, contact, friction mu = 0.2, and
-         contact on all dofs (full); 1 and 2 ranks.                       -> bench/results.csv
+         contact on all dofs (full); contact_as and friction_as in the active-set formulation;
+         1 and 2 ranks.                                                   -> bench/results.csv
   3d     D2 ball, 113k dofs (meshes/ball_bench.msh): linear, contact, friction mu = 0.2 (condensed); and
          two_body, two balls thrown at each other, frictionless (options/two_balls.opts on
          meshes/two_balls_bench.msh, H = 0.057: 117k dofs, its own dt); contact_as and friction_as,
@@ -12,9 +13,11 @@ Suites (the table SUITES below):
          315k dofs, 21,025 contact nodes): linear (the slab squeezed, base clamped), contact, friction
          mu = 0.2; 2 ranks, 20 steps, the default formulation (active_set). -> bench/results.csv
   users  D2 ball at the time steps users choose (meshes/ball07.msh, H = 0.07, 33k dofs): dt = 4e-3
-         and 8e-3 (c_p dt / h_c' = 2.1 and 4.2; suites users4, users8), linear, and friction with
-         mu = 0.2 and 0.5 by each friction solver (-friction_type newton, the default, and
-         fixedpoint, the paper's); 1 rank, 20 steps through the impact.  -> bench/results.csv
+         and 8e-3 (c_p dt / h_c' = 2.1 and 4.2; suites users4, users8), linear; contact and friction
+         with mu = 0.2 and 0.5 as users run them (contact, fric_0.2, fric_0.5: the formulation
+         -contact_formulation auto chooses) and in each formulation (_condensed, _as), and the
+         paper's fixed point (-friction_type fixedpoint, condensed); 1 rank, 20 steps through the
+         impact.                                                          -> bench/results.csv
   finite issue 40's cost target of the finite-strain step: friction mu = 0.2 with -elasticity linear
          and svk, run as pairs back to back (the same options but -elasticity), in the formulation
          -contact_formulation auto picks. Suite finite07: the D2 ball at H = 0.07 (meshes/ball07.msh,
@@ -62,6 +65,13 @@ The finite suites' pairs are their two rows (linear, then svk) back to back inst
 way when the linear row's stepping is that short; svk_over_linear is the median of the pairs' ratios.
 Every row gives max_balance, the largest energy-balance residual of the run (its summary).
 
+The formulation chosen by cost (issue 41): formulation is the one the run used, chosen_by "auto" when
+-contact_formulation auto chose it. For every case run in both the condensed and the active-set
+formulation (same suite, ranks, mu, friction solver and elasticity), auto_choice is what auto
+chooses for it (its own row's, or a -check_input run's) and auto_loss how much longer that
+formulation's whole run (set-up + steps x s/step, its own row) took than the faster one's: issue 41
+asks for at most 10%.
+
 Peak memory: the program's summary prints the largest peak RSS over the ranks ("MiB/rank" is the
 max over ranks, src/io/output.c); to get the total, every rank runs under this script's --rank-rss
 mode, which reports the peak RSS of its mmcontact process, and the column peak_mib_total sums them.
@@ -98,8 +108,11 @@ FRICTION_AS = dict(case="friction_as", options="-contact_formulation active_set 
 # (112,605 dofs against 116,520): the cost of contact at about the same size, not on the same mesh.
 TWO_BODY = dict(case="two_body", options="-contact_formulation condensed", options_file="options/two_balls.opts",
                 problem="two balls", mesh="meshes/two_balls_bench.msh", dt=2e-3)
-USERS = (LINEAR, CONTACT) + tuple(dict(case=f"fric_{mu}_{ft}", options=f"-contact_formulation condensed -mu {mu} -friction_type {ft}")
-                          for mu in (0.2, 0.5) for ft in ("newton", "fixedpoint"))
+USERS = ((LINEAR, dict(case="contact", options="-mu 0"), dict(case="contact_condensed", options="-contact_formulation condensed -mu 0"),
+          dict(case="contact_as", options="-contact_formulation active_set -mu 0"))
+         + tuple(dict(case=f"fric_{mu}{suffix}", options=f"{form}-mu {mu}") for mu in (0.2, 0.5)
+                 for suffix, form in (("", ""), ("_condensed", "-contact_formulation condensed "), ("_as", "-contact_formulation active_set ")))
+         + (dict(case="fric_0.2_fixedpoint", options="-contact_formulation condensed -mu 0.2 -friction_type fixedpoint"),))
 # Finite strain (issue 40): the friction row with -elasticity linear and with svk, the same options
 # otherwise; in the formulation -contact_formulation auto picks at each size (written out, so that the
 # CSV says it): condensed on the 33k-dof ball, active_set on the 113k-dof one. The svk row's case is the
@@ -114,7 +127,7 @@ FINITE3D = (dict(case="friction", options="-contact_formulation active_set -mu 0
 # plane after 1 ms (gap 0.001, v = -1; step 5), the D2 ball after 10 ms (gap 0.01; step 10).
 SUITES = [
     dict(suite="2d", problem="D1 disk", dim=2, options_file="options/d1_disk.opts", mesh="meshes/disk_bench.msh",
-         dt=2e-4, steps=30, ranks=(1, 2), variants=(LINEAR, CONTACT, FRICTION, FULL), csv="bench/results.csv"),
+         dt=2e-4, steps=30, ranks=(1, 2), variants=(LINEAR, CONTACT, FRICTION, FULL, CONTACT_AS, FRICTION_AS), csv="bench/results.csv"),
     dict(suite="3d", problem="D2 ball", dim=3, options_file="options/d2_ball.opts", mesh="meshes/ball_bench.msh",
          dt=1e-3, steps=30, ranks=(1, 2), variants=(LINEAR, CONTACT, FRICTION, TWO_BODY, CONTACT_AS, FRICTION_AS), csv="bench/results.csv"),
     # A large contact surface (issue 21): a slab of 315k dofs pressed flat on a plane over its whole
@@ -148,13 +161,14 @@ FIELDS = ["suite", "problem", "dim", "ranks", "case", "formulation", "mu", "fric
           "s_per_step", "contact_over_linear", "speedup_2_ranks", "peak_mib_max_rank", "peak_mib_total", "candidates",
           "max_active", "mean_vi_its", "mean_friction_its_in_contact", "max_friction_its", "rejections", "stream_ratio",
           "speedup_over_stream", "speedup_target", "max_balance", "elasticity", "svk_over_linear", "nonlinear_its_per_step",
-          "tangent_rebuilds", "finite_target", "repeats", "status"]
+          "tangent_rebuilds", "finite_target", "chosen_by", "auto_choice", "auto_loss", "repeats", "status"]
 SUMMARY = re.compile(r"mmcontact summary: setup ([\d.]+) s; (\d+) steps .* \(([\d.]+) s/step\); peak memory ([\d.]+) MiB/rank")
 DOFS = re.compile(r"(\d+) dofs[ ;(]")
 CONTACT_NODES = re.compile(r"(\d+) contact nodes")
 BALANCE = re.compile(r"largest balance residual ([-+\d.eE]+)")
 NONLINEAR = re.compile(r"finite strain: ([\d.]+) iterations per step")
 REBUILDS = re.compile(r"(\d+) tangent rebuilds")
+FORMULATION = re.compile(r"contact formulation (\w+)( \(auto)?")
 RANK_RSS = re.compile(r"bench rank peak rss (\d+) kB")
 STREAM = re.compile(r"stream ranks (\d+) triad_mbs ([\d.]+)")
 STREAM_EXE = "build/stream"
@@ -183,17 +197,21 @@ def history_stats(path):
                 max_friction_its=max(int(r["friction_its"]) for r in rows), cfl=round(float(rows[-1]["cfl"]), 2))
 
 
+def mmcontact_args(suite, variant, steps, out_dir):
+    """The mmcontact command line of a row (without the launcher)."""
+    mesh_env = f"BENCH_MESH_{suite['suite'].upper()}"  # BENCH_MESH_3D for the suite's mesh, BENCH_MESH_3D_TWO_BODY for a variant's own
+    mesh = os.environ.get(f"{mesh_env}_{variant['case'].upper()}") or variant.get("mesh") or os.environ.get(mesh_env, suite["mesh"])
+    options_file, dt = variant.get("options_file", suite["options_file"]), variant.get("dt", suite["dt"])
+    return (["./mmcontact", "-options_file", options_file, "-mesh", mesh, "-ts_dt", str(dt), "-ts_max_steps", str(steps),
+             "-ts_max_time", "1", "-ts_monitor_cancel", "-output_every", "0", "-output_dir", out_dir] + shlex.split(variant["options"]))
+
+
 def run(suite, variant, ranks, steps):
     """Runs one row; returns its dict (status "ok", or "failed" with the blanks as "-")."""
     options = variant["options"]
     contact = option_value(options, "-contact", "1") != "0"
     out_dir = f"bench/out/{suite['suite']}-{variant['case']}-{ranks}"
-    mesh_env = f"BENCH_MESH_{suite['suite'].upper()}"  # BENCH_MESH_3D for the suite's mesh, BENCH_MESH_3D_TWO_BODY for a variant's own
-    mesh = os.environ.get(f"{mesh_env}_{variant['case'].upper()}") or variant.get("mesh") or os.environ.get(mesh_env, suite["mesh"])
-    options_file, dt = variant.get("options_file", suite["options_file"]), variant.get("dt", suite["dt"])
-    cmd = (MPIEXEC + ["-n", str(ranks)] + PYTHON + [os.path.abspath(__file__), "--rank-rss", "./mmcontact",
-           "-options_file", options_file, "-mesh", mesh, "-ts_dt", str(dt), "-ts_max_steps", str(steps),
-           "-ts_max_time", "1", "-ts_monitor_cancel", "-output_every", "0", "-output_dir", out_dir] + shlex.split(options))
+    cmd = (MPIEXEC + ["-n", str(ranks)] + PYTHON + [os.path.abspath(__file__), "--rank-rss"] + mmcontact_args(suite, variant, steps, out_dir))
     row = dict(suite=suite["suite"], problem=variant.get("problem", suite["problem"]), dim=suite["dim"], ranks=ranks, case=variant["case"],
                formulation=option_value(options, "-contact_formulation", "default") if contact else "-",
                mu=float(option_value(options, "-mu", "0")), steps=steps, status="ok")
@@ -207,6 +225,9 @@ def run(suite, variant, ranks, steps):
         print(f"    failed (exit {proc.returncode}):", *(lines if len(lines) <= 16 else lines[:10] + ["..."] + lines[-5:]), sep="\n    ", flush=True)
         return dict(row, status="failed", **{k: "-" for k in FIELDS if k not in row})
     rss = [int(kb) / 1024 for kb in RANK_RSS.findall(proc.stderr)]
+    form = FORMULATION.search(proc.stdout)
+    if contact and form:
+        row.update(formulation=form.group(1), chosen_by="auto" if form.group(2) else "option")
     balance, nonlinear, rebuilds = BALANCE.search(proc.stdout), NONLINEAR.search(proc.stdout), REBUILDS.search(proc.stdout)
     row.update(max_balance=float(balance.group(1)) if balance else "-", nonlinear_its_per_step=float(nonlinear.group(1)) if nonlinear else "-",
                tangent_rebuilds=int(rebuilds.group(1)) if nonlinear and rebuilds else "-")
@@ -317,13 +338,44 @@ def add_ratios(rows):
         r["speedup_2_ranks"] = ratio((r["suite"], r["case"], 1), key) if r["ranks"] == 2 else "-"
 
 
+def auto_choice(suite, variant, ranks, steps):
+    """What -contact_formulation auto chooses for a row's case (a -check_input run), or "-"."""
+    v = dict(variant, options=" ".join(w for w in shlex.split(variant["options"]) if w not in ("-contact_formulation", "condensed", "active_set")))
+    cmd = MPIEXEC + ["-n", str(ranks)] + mmcontact_args(suite, v, steps, "bench/out/auto-check") + ["-check_input"]
+    m = FORMULATION.search(subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True).stdout)
+    return m.group(1) if m else "-"
+
+
+def add_auto_check(rows, variants):
+    """auto_choice and auto_loss on the rows of each case run in both formulations (see the docstring)."""
+    whole = lambda r: r["setup_s"] + r["steps"] * r["s_per_step"]
+    groups = {}
+    for r in rows:
+        if r["status"] == "ok" and r.get("chosen_by") == "option" and r["formulation"] in ("condensed", "active_set"):
+            key = (r["suite"], r["ranks"], r["mu"], r["friction_type"], r["elasticity"], r["problem"])
+            groups.setdefault(key, {})[r["formulation"]] = r
+    for key, byf in groups.items():
+        if len(byf) < 2:
+            continue
+        auto_rows = [r for r in rows if r.get("chosen_by") == "auto" and (r["suite"], r["ranks"], r["mu"], r["friction_type"], r["elasticity"], r["problem"]) == key]
+        if auto_rows:
+            choice = auto_rows[0]["formulation"]
+        else:
+            suite, variant = variants[(byf["condensed"]["suite"], byf["condensed"]["case"])]
+            choice = auto_choice(suite, variant, key[1], byf["condensed"]["steps"])
+        best = min(whole(r) for r in byf.values())
+        loss = round(whole(byf[choice]) / best - 1, 3) if choice in byf else "-"
+        for r in list(byf.values()) + auto_rows:
+            r.update(auto_choice=choice, auto_loss=loss)
+
+
 def print_table(rows):
     cols = [("suite", 6), ("ranks", 5), ("case", 20), ("formulation", 11), ("mu", 4), ("friction_type", 13), ("cfl", 5), ("dofs", 8), ("contact_nodes", 13),
             ("steps", 5), ("setup_s", 8), ("s_per_step", 10), ("contact_over_linear", 19), ("speedup_2_ranks", 15),
             ("peak_mib_max_rank", 17), ("peak_mib_total", 14), ("candidates", 10), ("max_active", 10), ("mean_vi_its", 11),
             ("mean_friction_its_in_contact", 28), ("max_friction_its", 16), ("rejections", 10), ("stream_ratio", 12), ("speedup_over_stream", 19),
             ("speedup_target", 14), ("max_balance", 11), ("elasticity", 10), ("svk_over_linear", 15), ("nonlinear_its_per_step", 22),
-            ("tangent_rebuilds", 16), ("finite_target", 13), ("repeats", 7), ("status", 6)]
+            ("tangent_rebuilds", 16), ("finite_target", 13), ("chosen_by", 9), ("auto_choice", 11), ("auto_loss", 9), ("repeats", 7), ("status", 6)]
     print(" ".join(f"{name:>{width}}" for name, width in cols))
     for r in rows:
         print(" ".join(f"{r[name]:>{width}}" for name, width in cols))
@@ -362,9 +414,10 @@ def main(args):
         rows += sorted(suite_rows, key=lambda r: r["ranks"])  # by ranks, then the variants' order (stable)
     add_ratios(rows)
     add_stream(rows, stream_ratio)
+    add_auto_check(rows, {(suite["suite"], v["case"]): (suite, v) for suite in SUITES for v in suite["variants"]})
     for r in rows:
-        r.setdefault("svk_over_linear", "-")
-        r.setdefault("finite_target", "-")
+        for k in ("svk_over_linear", "finite_target", "chosen_by", "auto_choice", "auto_loss"):
+            r.setdefault(k, "-")
     for path in dict.fromkeys(suite["csv"] for suite in SUITES):
         written = [r for suite in SUITES if suite["csv"] == path for r in rows if r["suite"] == suite["suite"]]
         if written:

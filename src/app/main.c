@@ -117,6 +117,7 @@ static PetscErrorCode SetUpOperators(MPI_Comm comm, MMCtx *ctx)
   pb.damped = MMDampingOn(damping); /* a Dirichlet value's amplitude is refused with damping */
   MMPhase(MMAppEvents.fe_setup, MMFESetUp(&ctx->op, &ctx->material, &pb));
   PetscCall(MMOptionsGetContactProblem(&ctx->opt, &cp));
+  PetscCall(MMNewmarkGetPlan(ctx->nm, &cp.dt, &cp.steps));
   MMPhase(MMAppEvents.contact_setup, MMContactSetUp(ctx->contact, &ctx->op, &ctx->material, &cp));
   /* the static sliding state's plane is the single obstacle's (src/ts/sliding.c reads it) */
   PetscCall(MMContactGetPlane(ctx->contact, ctx->opt.obstacle_point, ctx->opt.obstacle_normal));

@@ -132,8 +132,9 @@ struct _p_MMContact {
   const MMMaterial *material;     /* borrowed: E_max, the force scale of the audits */
   Vec               u_old, v_old; /* borrowed: the state at the start of the step (MMContactSetPreviousState) */
   PetscBool  enabled;
-  PetscBool  prefer_iterative; /* 3D with at least -iterative_dofs dofs: active_set and CG for K~ by default */
+  PetscBool  prefer_iterative; /* without contact, 3D with at least -iterative_dofs dofs: CG for K~ */
   PetscBool  auto_type;        /* the formulation was chosen by -contact_formulation auto */
+  char       auto_why[160];    /* auto's predicted whole runs, for the start-up report */
   PetscInt   n_local, n_global;   /* contact nodes owned here / in total */
   IS         is_normal;           /* global indices of the contact-normal dofs (owned) */
   IS         is_tangent;          /* global indices of the contact-tangential dofs (owned) */
@@ -198,6 +199,29 @@ struct _p_MMContact {
 };
 
 
+/* What -contact_formulation auto's cost model knows of the problem at set-up (interface/cost.c) */
+typedef struct {
+  PetscInt  dim;
+  PetscReal dofs;     /* global, Dirichlet dofs excluded */
+  PetscReal cfl;      /* c_p dt / h_c' at the plan's dt */
+  PetscReal steps;    /* the plan's */
+  PetscBool friction; /* some obstacle has mu > 0 */
+  PetscInt  n_fc;     /* friction corners (nodes near two obstacles with friction) */
+} MMCostInput;
+
+/* A formulation's predicted times (s); setup PETSC_INFINITY: it cannot carry the problem */
+typedef struct {
+  PetscReal setup, step;
+} MMCost;
+
+/* A fitted model of one formulation in one dimension (docs/scaling.md, "The formulation chosen by
+ * cost"): ln step = s[0] + s[1] ln dofs + s[2] ln(1 + cfl) + f (s[3] + s[4] ln(1 + cfl)), f = 1
+ * with friction, and ln setup = u[0] + u[1] ln dofs. */
+typedef struct {
+  PetscReal s[5], u[2];
+} MMCostModel;
+PETSC_INTERN void MMCostEvaluate(const MMCostModel *m, const MMCostInput *in, MMCost *cost);
+
 /* A contact formulation's operations (docs/method.md section 3). A NULL entry is a capability the
  * formulation lacks: solvecontactdofs (a friction loop over it), setthresholds (Tresca solves with
  * given thresholds), solvecoulomb (the Delassus operator, for a contact-space Coulomb solver),
@@ -220,6 +244,7 @@ struct _MMContactOps {
   PetscErrorCode (*setcandidateresolves)(MMContact ct, PetscInt resolves);
   PetscErrorCode (*getproducts)(MMContact ct, const char **products); /* how its CG multiplies by K~; NULL: no CG */
   PetscErrorCode (*view)(MMContact ct, PetscViewer viewer);     /* its lines of the closing summary */
+  PetscErrorCode (*cost)(MMContact ct, const MMCostInput *in, MMCost *cost); /* its predicted set-up and step; NULL: auto never chooses it */
   PetscErrorCode (*destroy)(MMContact ct);                      /* frees data */
 };
 
@@ -230,8 +255,11 @@ PETSC_INTERN PetscLogEvent MMCONTACT_CandidateColumns, MMCONTACT_CandidateOperat
 PETSC_INTERN PetscLogEvent MMCONTACT_SplitInterface, MMCONTACT_SplitBackward, MMCONTACT_ActiveSetIterate, MMCONTACT_ActiveSetCG, MMCONTACT_BlockOperator;
 PETSC_INTERN PetscLogEvent MMCONTACT_FrameSetUp, MMCONTACT_FrameRotate, MMCONTACT_MassRedistribute, MMCONTACT_FrameFollow, MMCONTACT_PairsSlide;
 
-/* The formulation of -contact_formulation (auto resolved by the problem's size), or "none" (contact.c) */
+/* The formulation of -contact_formulation (auto resolved by the cost model), or "none" (contact.c) */
 PETSC_INTERN PetscErrorCode MMContactSetType(MMContact ct);
+/* -contact_formulation auto: the registered formulation with the cheapest predicted run (cost.c) */
+PETSC_INTERN PetscErrorCode MMContactChooseFormulation(MMContact ct, PetscInt n_dofs);
+PETSC_INTERN PetscErrorCode MMContactPairsResolveSliding(MMContact ct);
 /* The registry: each formulation's create function sets ct->ops. */
 PETSC_INTERN PetscErrorCode MMContactCreate_Condensed(MMContact ct);
 PETSC_INTERN PetscErrorCode MMContactCreate_Full(MMContact ct);

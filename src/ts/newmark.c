@@ -267,15 +267,41 @@ PetscErrorCode MMNewmarkRegister(void)
   PetscFunctionReturn(0);
 }
 
+/* -ts_dt and -ts_max_time when not given */
+static const PetscReal MMDtDefault = 1e-3, MMMaxTimeDefault = 1.0;
+
 /* The stepper and its defaults, before the options (also what -help shows without a mesh). */
 PetscErrorCode MMNewmarkSetDefaults(TS ts)
 {
   PetscFunctionBeginUser;
   PetscCall(TSSetType(ts, TSNEWMARK));
   PetscCall(TSSetProblemType(ts, TS_LINEAR));
-  PetscCall(TSSetTimeStep(ts, 1e-3));
-  PetscCall(TSSetMaxTime(ts, 1.0));
+  PetscCall(TSSetTimeStep(ts, MMDtDefault));
+  PetscCall(TSSetMaxTime(ts, MMMaxTimeDefault));
   PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
+  PetscFunctionReturn(0);
+}
+
+/* The run's plan as the options give it, before the TS exists: dt (-ts_dt) and the number of steps
+ * to -ts_max_time or -ts_max_steps, whichever ends the run first (at least 1). The contact
+ * formulation's cost model weighs its set-up against its steps with it (docs/scaling.md, "The
+ * formulation chosen by cost"); a dt that adaptation changes later is not foreseen. The values are
+ * checked where the TS reads them (CheckTimeOptions). */
+PetscErrorCode MMNewmarkGetPlan(MMNewmark nm, PetscReal *dt, PetscReal *steps)
+{
+  PetscReal tmax = MMMaxTimeDefault;
+  PetscInt  nmax = -1;
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  (void)nm;
+  *dt = MMDtDefault;
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-ts_dt", dt, NULL));
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-ts_max_time", &tmax, NULL));
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-ts_max_steps", &nmax, &set));
+  *steps = *dt > 0 && tmax > 0 && !PetscIsInfOrNanReal(*dt) && !PetscIsInfOrNanReal(tmax) ? PetscCeilReal(tmax / *dt - 1e-10) : 1;
+  if (set && nmax >= 0) *steps = PetscMin(*steps, (PetscReal)nmax);
+  *steps = PetscMax(*steps, 1);
   PetscFunctionReturn(0);
 }
 

@@ -42,36 +42,37 @@ PetscErrorCode MMContactRegisterAll(void)
   PetscFunctionReturn(0);
 }
 
-/* Whether the problem defaults to the iterative path (active_set, CG for K~): 3D with at least
- * -iterative_dofs dofs. There K~'s factor costs more than the CG solves it saves, in memory, set-up
- * and step (README "Large meshes"; the figures: docs/scaling.md, "The figures behind the code's
- * choices"); in 2D the factor is cheap. */
-static PetscErrorCode PrefersIterative(MMContact ct, PetscBool *iterative)
+/* The global dofs, Dirichlet dofs excluded */
+static PetscErrorCode GlobalDofs(MMContact ct, PetscInt *n)
 {
   PetscSection gs;
-  PetscInt     n;
 
   PetscFunctionBeginUser;
   PetscCall(DMGetGlobalSection(ct->op->dm, &gs));
-  PetscCall(PetscSectionGetConstrainedStorageSize(gs, &n));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ct->op->dm)));
-  *iterative = (PetscBool)(ct->op->dim == 3 && ct->opt.iterative_dofs > 0 && n >= ct->opt.iterative_dofs);
+  PetscCall(PetscSectionGetConstrainedStorageSize(gs, n));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, n, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ct->op->dm)));
   PetscFunctionReturn(0);
 }
 
-/* ct->ops of -contact_formulation (auto resolved here, by the problem's size), or of "none" (K~
- * solves alone) without contact. */
+/* ct->ops of -contact_formulation, or of "none" (K~ solves alone) without contact. auto is resolved
+ * by the cost model (cost.c) with contact, and without it by the size: 3D with at least
+ * -iterative_dofs dofs solves K~ by CG, where the factor costs more than the CG solves it saves, in
+ * memory, set-up and step (README "Large meshes"; docs/scaling.md, "The figures behind the code's
+ * choices"); in 2D the factor is cheap. With contact it runs after the contact dofs are built:
+ * the model needs h_c' and the friction corners. */
 PetscErrorCode MMContactSetType(MMContact ct)
 {
   PetscErrorCode (*create)(MMContact) = NULL;
+  PetscInt n;
 
   PetscFunctionBeginUser;
   PetscCall(MMContactRegisterAll());
-  PetscCall(PrefersIterative(ct, &ct->prefer_iterative));
+  PetscCall(GlobalDofs(ct, &n));
+  ct->prefer_iterative = (PetscBool)(ct->op->dim == 3 && ct->opt.iterative_dofs > 0 && n >= ct->opt.iterative_dofs);
   PetscCall(PetscStrcmp(ct->opt.contact_formulation, "auto", &ct->auto_type));
-  if (ct->auto_type) PetscCall(PetscStrncpy(ct->opt.contact_formulation, ct->prefer_iterative ? "active_set" : "condensed", sizeof(ct->opt.contact_formulation)));
+  if (ct->auto_type && ct->enabled) PetscCall(MMContactChooseFormulation(ct, n));
   PetscCall(PetscFunctionListFind(MMContactList, ct->opt.contact_formulation, &create));
-  PetscCheck(create, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_USER_INPUT, "-contact_formulation %s is not a contact formulation: use auto (the default), condensed, full or active_set", ct->opt.contact_formulation);
+  PetscCheck(create || ct->auto_type, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_USER_INPUT, "-contact_formulation %s is not a contact formulation: use auto (the default), condensed, full or active_set", ct->opt.contact_formulation);
   if (!ct->enabled) create = MMContactCreate_None;
   PetscCall(PetscStrncpy(ct->type, ct->enabled ? ct->opt.contact_formulation : "none", sizeof(ct->type)));
   PetscCall((*create)(ct));

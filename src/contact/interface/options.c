@@ -5,7 +5,7 @@
 const char *const MMPairsSlidings[] = {"auto", "small", "large", "MMPairsSliding", "MM_PAIRS_SLIDING_", NULL};
 
 /* Each registered formulation's own options, all of them: the formulation is chosen at set-up
- * (-contact_formulation auto: by the mesh's size), so an option of another formulation is read, not
+ * (-contact_formulation auto: by its cost model, src/contact/interface/cost.c), so an option of another formulation is read, not
  * refused as unused. A formulation's setfromoptions is found on a scratch object of its type. */
 static PetscErrorCode FormulationsSetFromOptions(MMContact ct, PetscOptionItems *PetscOptionsObject)
 {
@@ -42,8 +42,8 @@ PetscErrorCode MMContactSetFromOptions(MMContact ct)
   PetscCall(MMOptionsBool(PetscOptionsObject, comm, "-contact", "Enforce unilateral contact; 0 gives linear elastodynamics on the same mesh (the contact boundary is then unused)", &o->contact));
   PetscCall(PetscStrncpy(o->contact_formulation, "auto", sizeof(o->contact_formulation)));
   o->iterative_dofs = 50000;
-  PetscCall(MMOptionsInt(PetscOptionsObject, comm, "-iterative_dofs", "3D problems with at least this many dofs take the iterative path by default: -contact_formulation auto is active_set, and without contact K~ is solved by CG with Jacobi rather than factored (0: never). Below it, and in 2D, K~ is factored", &o->iterative_dofs));
-  PetscCall(MMOptionsString(PetscOptionsObject, comm, "-contact_formulation", "Contact formulation: auto (the default: active_set for 3D problems of at least -iterative_dofs dofs, else condensed), condensed (the VI on the contact dofs through the Delassus operator, K~ factored once per dt), full (the VI on all dofs, a factorization per VI iteration, frictionless), or active_set (the primal-dual active-set method on all dofs: CG on the free dofs with the contact_K_ PC, default Jacobi, -contact_K_pc_type gamg or hypre for c_p dt / h_c' above about 10, set up once per dt; for large 3D meshes)", o->contact_formulation, sizeof(o->contact_formulation), NULL));
+  PetscCall(MMOptionsInt(PetscOptionsObject, comm, "-iterative_dofs", "Without contact (-contact 0), 3D problems with at least this many dofs solve K~ by CG with Jacobi rather than factoring it (0: never); below it, and in 2D, K~ is factored. With contact, -contact_formulation auto chooses by its cost model instead", &o->iterative_dofs));
+  PetscCall(MMOptionsString(PetscOptionsObject, comm, "-contact_formulation", "Contact formulation: auto (the default: condensed or active_set, whichever a cost model fitted on measured runs predicts cheaper for the whole run, from the dofs, the dimension, c_p dt / h_c', friction and the number of steps to -ts_max_time; the start-up report shows both predictions), condensed (the VI on the contact dofs through the Delassus operator, K~ factored once per dt), full (the VI on all dofs, a factorization per VI iteration, frictionless), or active_set (the primal-dual active-set method on all dofs: CG on the free dofs with the contact_K_ PC, default Jacobi, -contact_K_pc_type gamg or hypre for c_p dt / h_c' above about 10, set up once per dt; for large 3D meshes)", o->contact_formulation, sizeof(o->contact_formulation), NULL));
   o->contact_tol = 1e-11;
   PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-contact_tol", "Contact solves stop when ||K~ w - b - f_c|| <= contact_tol ||b|| (on top of -contact_snes_rtol/atol), in (0, 1)", &o->contact_tol));
   o->keep_factor = PETSC_TRUE;

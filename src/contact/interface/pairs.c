@@ -151,7 +151,7 @@ static PetscErrorCode GatherMasterSurface(MMContact ct, PetscInt p, const PetscI
  * identity and the momentum exact for the finite-strain step only, whose right-hand side carries the
  * last reaction as a force; and it keeps the slave node's frame, so the tangential relative
  * variables of friction would need M* rebuilt with a moving mass: frictionless pairs only. */
-static PetscErrorCode ResolveSliding(MMContact ct)
+PetscErrorCode MMContactPairsResolveSliding(MMContact ct)
 {
   MMContactPairs *pr       = &ct->pairs;
   PetscBool       friction = PETSC_FALSE, condensed;
@@ -192,7 +192,6 @@ PetscErrorCode MMContactPairsSetUp(MMContact ct, const PetscInt mark[], PetscInt
    * facet and its reference position */
   PetscCall(PetscMalloc2(MM_MAX_DIM * n_vertex_bound, &pr->phi, MM_MAX_DIM * n_vertex_bound, &pr->mdof));
   PetscCall(PetscMalloc3(n_vertex_bound, &pr->facet, MM_MAX_DIM * n_vertex_bound, &pr->xs, MM_MAX_DIM * n_vertex_bound, &pr->nuc));
-  PetscCall(ResolveSliding(ct));
   PetscFunctionReturn(0);
 }
 

@@ -52,7 +52,7 @@ PetscErrorCode MMContactGetSolverText(MMContact ct, const char **type, const cha
 {
   PetscFunctionBeginUser;
   *type     = ct->type;
-  *choice   = ct->auto_type && ct->enabled ? (ct->prefer_iterative ? " (auto: 3D, at least -iterative_dofs dofs)" : " (auto)") : "";
+  *choice   = ct->auto_type && ct->enabled ? ct->auto_why : "";
   *products = "";
   if (ct->ops->getproducts) PetscCall((*ct->ops->getproducts)(ct, products));
   PetscFunctionReturn(0);

@@ -474,9 +474,9 @@ static PetscErrorCode SetUp(MMContact ct)
       ct->pb.obstacle_normal[d] = ob->normal[d];
     }
   }
-  PetscCall(MMContactSetType(ct));
   PetscCall(BuildFrame(ct));
   if (!ct->enabled) {
+    PetscCall(MMContactSetType(ct));
     PetscCall(BuildNoContact(ct));
     PetscCall(MMContactFrameBuildRotation(ct, ct->op));
     PetscFunctionReturn(0);
@@ -490,13 +490,15 @@ static PetscErrorCode SetUp(MMContact ct)
   }
   PetscCall(ContactLayerDiameter(ct, mark)); /* before the rows: h_c' is the reach of a second obstacle */
   PetscCall(BuildContactDofs(ct, mark, area));
+  PetscCall(MMContactSetType(ct)); /* auto's cost model needs h_c' and the friction corners */
+  if (ct->pairs.n) PetscCall(MMContactPairsResolveSliding(ct));
   PetscCall(MMContactFrameBuildRotation(ct, ct->op));
   PetscCall(MMContactPairsBuildTransform(ct));
   PetscCall(PetscFree(mark));
   PetscCall(VecDestroy(&area));
   PetscCall(MMContactFramesSetUp(ct)); /* -contact_frames */
   /* a friction corner's two Coulomb laws on one node's dofs are solved in contact space only */
-  PetscCheck(!ct->n_fc || ct->ops->solvecoulomb, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_SUP, "%" PetscInt_FMT " contact nodes are within h_c' of two obstacles with friction (-mu %g), and -contact_formulation %s%s cannot carry both obstacles' Coulomb laws on one node: use -contact_formulation condensed", ct->n_fc, (double)ct->pb.mu_max, ct->type, ct->auto_type ? " (auto's choice for a mesh this size)" : "");
+  PetscCheck(!ct->n_fc || ct->ops->solvecoulomb, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_SUP, "%" PetscInt_FMT " contact nodes are within h_c' of two obstacles with friction (-mu %g), and -contact_formulation %s cannot carry both obstacles' Coulomb laws on one node: use -contact_formulation condensed (or auto, which chooses it here)", ct->n_fc, (double)ct->pb.mu_max, ct->type);
   PetscCheck(ct->ncomp == 1 || ct->ops->solvecontactdofs, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_SUP, "Friction (-mu %g) needs a contact formulation that solves the contact dofs alone, and -contact_formulation %s cannot: use condensed or active_set", (double)ct->pb.mu_max, ct->type);
   PetscCheck(ct->n_global > 0, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_USER_INPUT, "The contact boundary \"%s\" has no nodes", ct->pb.contact_name);
   PetscFunctionReturn(0);
