@@ -110,7 +110,7 @@ typedef struct {
   PetscReal         candidate_margin, candidate_memory;
   PetscBool         candidate_all;
   PetscInt          active_set_max_it;
-  PetscReal         active_set_inexact_rtol;
+  PetscReal         active_set_inexact_rtol, active_set_inexact_coulomb_rtol;
   PetscBool         active_set_block, active_set_monitor;
   PetscReal         audit_penetration_tol, audit_coulomb_tol, initial_penetration_tol;
   PetscReal         friction_coulomb_tol; /* the friction solver's (MMContactSetCoulombTolerance) */

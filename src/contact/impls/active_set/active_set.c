@@ -159,6 +159,7 @@ PetscErrorCode MMActiveSetSetUp(MMContact ct)
   PetscFunctionBeginUser;
   as->max_it  = ct->opt.active_set_max_it;
   as->inexact_rtol = ct->opt.active_set_inexact_rtol;
+  as->inexact_coulomb_rtol = ct->opt.active_set_inexact_coulomb_rtol;
   as->monitor = ct->opt.active_set_monitor;
   as->block   = ct->opt.active_set_block;
   PetscCall(MMKtCreate(ct, PETSC_TRUE));
@@ -358,20 +359,21 @@ static void DiskTangent(MMActiveSet *as, PetscInt k, PetscReal sk, PetscReal trn
 }
 
 /* w = x0 + dx, P_F K~ P_F dx = r by the projected CG from dx = 0 (x0 is the warm start). A loose
- * solve stops once CG has reduced r by -active_set_inexact_rtol: its iterate only decides the next
- * sets, which the solves to -contact_tol then confirm (MMActiveSetSolve). *tight: the solve met
- * -contact_tol (a loose one can, when its residual was small to begin with). */
-static PetscErrorCode SolveFree(MMContact ct, Vec b, Vec w, PetscBool loose, PetscBool *tight)
+ * solve (eta > 0) stops once CG has reduced r by eta: its iterate only decides the next sets or
+ * thresholds, which the solves to -contact_tol then confirm (MMActiveSetSolve). *tight: the solve
+ * met -contact_tol (a loose one can, when its residual was small to begin with). */
+static PetscErrorCode SolveFree(MMContact ct, Vec b, Vec w, PetscReal eta, PetscBool *tight)
 {
-  MMActiveSet *as = MMActiveSetData(ct);
-  PetscInt     its, maxit;
-  PetscReal    rtol, atol, dtol, rnorm, tight_atol;
+  MMActiveSet    *as    = MMActiveSetData(ct);
+  const PetscBool loose = (PetscBool)(eta > 0);
+  PetscInt        its, maxit;
+  PetscReal       rtol, atol, dtol, rnorm, tight_atol;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(MMCONTACT_ActiveSetCG, 0, 0, 0, 0));
   PetscCall(VecZeroEntries(as->dx));
   PetscCall(KSPGetTolerances(as->ksp, &rtol, &atol, &dtol, &maxit));
-  if (loose) PetscCall(KSPSetTolerances(as->ksp, PetscMax(rtol, as->inexact_rtol), atol, dtol, maxit));
+  if (loose) PetscCall(KSPSetTolerances(as->ksp, PetscMax(rtol, eta), atol, dtol, maxit));
   PetscCall(MMKtSolveToTolerance(as->ksp, ct->tol, b, as->r, as->dx, &tight_atol));
   PetscCall(KSPSetTolerances(as->ksp, rtol, atol, dtol, maxit));
   PetscCall(KSPGetIterationNumber(as->ksp, &its));
@@ -585,9 +587,14 @@ PetscErrorCode MMActiveSetSolve(MMContact ct, Vec b, Vec w, PetscBool *converged
   /* with Coulomb the thresholds' change is the friction solver's own test (-friction_snes_rtol) */
   PetscReal    dtol = as->coulomb ? PetscMin(as->coulomb_rtol, 1e-2 * ct->opt.friction_coulomb_tol) : 1e-2 * ct->opt.friction_coulomb_tol;
 
-  /* while nodes change set, a solve only has to tell the next sets apart: it is loose; once they
-   * stop changing, the solves are tight and the last one, which changes nothing, is the answer */
-  PetscBool    loose = (PetscBool)(as->inexact_rtol > 0);
+  /* while nodes change set, a solve only has to tell the next sets apart: it is loose (reduces the
+   * residual by -active_set_inexact_rtol). Once they hold, with Coulomb the slip directions and
+   * thresholds still move, each iteration by about 1e-2 of the last move: a solve then only has to
+   * be more exact than the next move, and stops at -active_set_inexact_coulomb_rtol of its residual
+   * (an inexact Newton; a tight solve took 25 to 40 CG iterations there on the D2 ball at dt 8e-3,
+   * for a move of 1e-4 of the force scale). The last solves are tight, and the last one, which
+   * changes nothing, is the answer. */
+  PetscReal    eta = as->inexact_rtol;
 
   PetscFunctionBeginUser;
   PetscCall(RefreshBlockOperator(ct));
@@ -599,12 +606,12 @@ PetscErrorCode MMActiveSetSolve(MMContact ct, Vec b, Vec w, PetscBool *converged
 
     PetscCall(PetscLogEventBegin(MMCONTACT_ActiveSetIterate, 0, 0, 0, 0));
     PetscCall(FixSets(ct, b, w));
-    PetscCall(SolveFree(ct, b, w, loose, &tight));
+    PetscCall(SolveFree(ct, b, w, eta, &tight));
     PetscCall(UpdateSets(ct, b, w, &changed, &dchange));
     PetscCall(PetscLogEventEnd(MMCONTACT_ActiveSetIterate, 0, 0, 0, 0));
     if (as->monitor) PetscCall(PetscPrintf(comm, "    active set %2" PetscInt_FMT ": %" PetscInt_FMT " nodes changed set, slip forces%s changed by %.3e of the force scale, %" PetscInt_FMT " CG iterations so far%s\n", as->its, changed, as->coulomb ? " and thresholds" : "", (double)dchange, as->lin_its, tight ? "" : " (loose solve)"));
     if (!changed && dchange <= dtol && tight) break;
-    loose = (PetscBool)(changed && as->inexact_rtol > 0);
+    eta = changed ? as->inexact_rtol : dchange > dtol && as->inexact_rtol > 0 ? as->inexact_coulomb_rtol : 0;
   }
   *converged = (PetscBool)(as->its <= as->max_it);
   as->its    = PetscMin(as->its, as->max_it);
@@ -757,10 +764,13 @@ static PetscErrorCode ActiveSetSetFromOptions(MMContact ct, PetscOptionItems *Pe
   PetscCall(MMOptionsInt(PetscOptionsObject, comm, "-active_set_max_it", "Active-set formulation: iterations per contact solve before the run stops (each is one projected CG solve)", &o->active_set_max_it));
   o->active_set_inexact_rtol = 1e-1;
   PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-active_set_inexact_rtol", "Active-set formulation: while nodes still change set, CG reduces the residual by this factor only; the last solves, which confirm the sets, go to -contact_tol (0: every solve to -contact_tol)", &o->active_set_inexact_rtol));
+  o->active_set_inexact_coulomb_rtol = 1e-2;
+  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-active_set_inexact_coulomb_rtol", "Active-set formulation with friction: once the sets hold but the slip directions and thresholds still move, CG reduces the residual by this factor only (an inexact Newton; the last solves go to -contact_tol; 0: every such solve to -contact_tol)", &o->active_set_inexact_coulomb_rtol));
   o->active_set_block = PETSC_TRUE;
   PetscCall(MMOptionsBool(PetscOptionsObject, comm, "-active_set_block_matrix", "Active-set formulation: the CG's products with K~ from a copy of it in symmetric block storage (SBAIJ, one block per pair of vertices, the upper triangle only: about 0.4 of the bytes an AIJ product reads, and the copy's memory, about 0.4 of K~'s); 0 keeps K~'s AIJ", &o->active_set_block));
   o->active_set_monitor = PETSC_FALSE;
   PetscCall(MMOptionsBool(PetscOptionsObject, comm, "-active_set_monitor", "Active-set formulation: print each iteration, the nodes that changed set and the CG iterations", &o->active_set_monitor));
+  PetscCheck(o->active_set_inexact_coulomb_rtol >= 0 && o->active_set_inexact_coulomb_rtol < 1, comm, PETSC_ERR_USER_INPUT, "-active_set_inexact_coulomb_rtol %g must be in [0, 1): it is CG's relative residual reduction while the slip directions and thresholds move (0: every solve to -contact_tol)", (double)o->active_set_inexact_coulomb_rtol);
   PetscCheck(o->active_set_max_it >= 1, comm, PETSC_ERR_USER_INPUT, "-active_set_max_it %" PetscInt_FMT " must be >= 1", o->active_set_max_it);
   PetscCheck(o->active_set_inexact_rtol >= 0 && o->active_set_inexact_rtol < 1, comm, PETSC_ERR_USER_INPUT, "-active_set_inexact_rtol %g must be in [0, 1): it is CG's relative residual reduction while nodes change set (0: every solve to -contact_tol)", (double)o->active_set_inexact_rtol);
   PetscFunctionReturn(0);

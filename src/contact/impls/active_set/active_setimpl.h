@@ -25,6 +25,7 @@ typedef struct {
                                     * w.d_perp), and the reaction across d it corrects (beta rperp) */
   PetscInt   max_it, its, lin_its;
   PetscReal  inexact_rtol; /* CG's relative tolerance while nodes change set (0: always tight) */
+  PetscReal  inexact_coulomb_rtol; /* and while only the slip directions and thresholds move */
   PetscBool  monitor;
   PetscBool  coulomb;   /* the thresholds follow the iterate, s = mu rho_n (a Coulomb solve) */
   PetscReal  coulomb_rtol; /* its test: the thresholds' change over the force scale */
