@@ -592,7 +592,7 @@ PetscErrorCode MMActiveSetSolve(MMContact ct, Vec b, Vec w, PetscBool *converged
    * thresholds still move, each iteration by about 1e-2 of the last move: a solve then only has to
    * be more exact than the next move, and stops at -active_set_inexact_coulomb_rtol of its residual
    * (an inexact Newton; a tight solve took 25 to 40 CG iterations there on the D2 ball at dt 8e-3,
-   * for a move of 1e-4 of the force scale). The last solves are tight, and the last one, which
+   * for a move of 1e-4 of the force scale; docs/method.md section 3). The last solves are tight, and the last one, which
    * changes nothing, is the answer. */
   PetscReal    eta = as->inexact_rtol;
 
@@ -762,9 +762,9 @@ static PetscErrorCode ActiveSetSetFromOptions(MMContact ct, PetscOptionItems *Pe
   PetscFunctionBeginUser;
   o->active_set_max_it = 100;
   PetscCall(MMOptionsInt(PetscOptionsObject, comm, "-active_set_max_it", "Active-set formulation: iterations per contact solve before the run stops (each is one projected CG solve)", &o->active_set_max_it));
-  o->active_set_inexact_rtol = 1e-1;
+  o->active_set_inexact_rtol = 0.3;
   PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-active_set_inexact_rtol", "Active-set formulation: while nodes still change set, CG reduces the residual by this factor only; the last solves, which confirm the sets, go to -contact_tol (0: every solve to -contact_tol)", &o->active_set_inexact_rtol));
-  o->active_set_inexact_coulomb_rtol = 1e-2;
+  o->active_set_inexact_coulomb_rtol = 3e-2;
   PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-active_set_inexact_coulomb_rtol", "Active-set formulation with friction: once the sets hold but the slip directions and thresholds still move, CG reduces the residual by this factor only (an inexact Newton; the last solves go to -contact_tol; 0: every such solve to -contact_tol)", &o->active_set_inexact_coulomb_rtol));
   o->active_set_block = PETSC_TRUE;
   PetscCall(MMOptionsBool(PetscOptionsObject, comm, "-active_set_block_matrix", "Active-set formulation: the CG's products with K~ from a copy of it in symmetric block storage (SBAIJ, one block per pair of vertices, the upper triangle only: about 0.4 of the bytes an AIJ product reads, and the copy's memory, about 0.4 of K~'s); 0 keeps K~'s AIJ", &o->active_set_block));
