@@ -159,6 +159,7 @@ PETSC_EXTERN PetscErrorCode MMContactSolveCoulomb(MMContact ct, Vec b, Vec w, Ve
 PETSC_EXTERN PetscErrorCode MMContactHasCoulombDofs(MMContact ct, PetscBool *has);
 PETSC_EXTERN PetscErrorCode MMContactSolveCoulombDofs(MMContact ct, Vec b, Vec w, Vec react, Vec s, PetscReal rtol, PetscInt *its, PetscBool *ok);
 PETSC_EXTERN PetscErrorCode MMContactProjectInitial(MMContact ct, Vec w);
+PETSC_EXTERN PetscErrorCode MMContactProjectInitialCorrect(MMContact ct, Vec w, Vec res, PetscReal *change);
 PETSC_EXTERN PetscErrorCode MMContactSolveStatic(MMContact ct, Vec u, Vec react);
 /* The contact quantities of an accepted state (docs/method.md sections 5-6), for the history */
 typedef struct {

@@ -43,3 +43,5 @@ PETSC_EXTERN PetscErrorCode MMOptionsInt(PetscOptionItems *PetscOptionsObject, M
 PETSC_EXTERN PetscErrorCode MMOptionsBool(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], PetscBool *v);
 PETSC_EXTERN PetscErrorCode MMOptionsString(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], char v[], size_t len, PetscBool *set);
 PETSC_EXTERN PetscErrorCode MMOptionsEnum(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], const char *const list[], PetscEnum *v);
+/* option_order.c: which of two options was given later (PETSC_OPTIONS, the command line, options files in place) */
+PETSC_EXTERN PetscErrorCode MMOptionsOrder(const char a[], const char b[], PetscInt *order);

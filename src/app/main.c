@@ -251,7 +251,9 @@ static PetscErrorCode RunView(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble w
   peak = ru.ru_maxrss / 1024.0; /* kB on Linux */
   PetscCall(MPIU_Allreduce(&peak, &total, 1, MPIU_REAL, MPIU_SUM, PETSC_COMM_WORLD));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &peak, 1, MPIU_REAL, MPIU_MAX, PETSC_COMM_WORLD));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "mmcontact summary: setup %.3f s; %" PetscInt_FMT " steps to t = %g in %.3f s wall (%.4f s/step); peak memory %.1f MiB/rank (%.1f MiB over all ranks); largest balance residual %.3e; largest penetration %.3e (h_c' %.3e)\n", (double)setup, steps, (double)h->time, (double)wall, steps ? (double)(wall / steps) : 0.0, (double)peak, (double)total, (double)h->max_balance, (double)h->max_penetration_run, (double)cn.h_c));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "mmcontact summary: setup %.3f s; %" PetscInt_FMT " steps to t = %g in %.3f s wall (%.4f s/step); peak memory %.1f MiB/rank (%.1f MiB over all ranks); largest balance residual %.3e%s", (double)setup, steps, (double)h->time, (double)wall, steps ? (double)(wall / steps) : 0.0, (double)peak, (double)total, (double)h->max_balance, cn.enabled ? "; " : "\n"));
+  /* without contact (-contact 0) there is no penetration to report */
+  if (cn.enabled) PetscCall(PetscViewerASCIIPrintf(viewer, "largest penetration %.3e (h_c' %.3e)\n", (double)h->max_penetration_run, (double)cn.h_c));
   PetscFunctionReturn(0);
 }
 

@@ -3,6 +3,7 @@
 #include "appimpl.h"
 #include <errno.h>
 #include <stdlib.h>
+#include <sys/stat.h>
 #include "obstacle.h"
 #include "sys.h"
 
@@ -62,6 +63,34 @@ static PetscErrorCode SplitNames(MPI_Comm comm, const char option[], const char 
   PetscFunctionReturn(0);
 }
 
+/* A later amplitude replaces an earlier one, as a later value of one option replaces an earlier
+ * value: -gravity_amplitude table on the command line over an options file's -gravity_amplitude
+ * ramp and -gravity_amplitude_time 0.1 drops that time, which belonged to the ramp. Data given after
+ * the kind, or with it in no order, stay and are checked against it (src/fem/loads.c). A table
+ * given after the kind replaces the kind. */
+static PetscErrorCode DropReplacedAmplitudeData(const char prefix[], PetscBool *kind_set, MMAmplitudeOptions *a)
+{
+  char      kind[512], time[512], table[512];
+  PetscInt  table_vs_kind = 0, time_vs_kind = 0, time_vs_table = 0;
+  PetscBool is_table, timed;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(kind, sizeof(kind), "%s_amplitude", prefix));
+  PetscCall(PetscSNPrintf(time, sizeof(time), "%s_amplitude_time", prefix));
+  PetscCall(PetscSNPrintf(table, sizeof(table), "%s_amplitude_table", prefix));
+  if (*kind_set && a->table[0]) PetscCall(MMOptionsOrder(table, kind, &table_vs_kind));
+  if (table_vs_kind > 0) *kind_set = PETSC_FALSE; /* the table came last: the table kind */
+  PetscCall(PetscStrcmp(a->kind, "table", &is_table));
+  if (*kind_set && !is_table && a->table[0] && table_vs_kind < 0) a->table[0] = 0; /* a table replaced by a later kind */
+  timed = (PetscBool)(*kind_set && !is_table && strcmp(a->kind, "constant"));
+  if (a->time_set && !timed) {
+    if (*kind_set) PetscCall(MMOptionsOrder(time, kind, &time_vs_kind));
+    else if (a->table[0]) PetscCall(MMOptionsOrder(time, table, &time_vs_table));
+    if (time_vs_kind < 0 || time_vs_table < 0) a->time_set = PETSC_FALSE; /* the time of a replaced ramp or halfsine */
+  }
+  PetscFunctionReturn(0);
+}
+
 /* The amplitude in time of a load, PREFIX_amplitude KIND, PREFIX_amplitude_time T and
  * PREFIX_amplitude_table FILE (docs/method.md section 10); the kinds and their data are checked in
  * src/fem/loads.c, where they are registered. A table given alone means the table kind. */
@@ -81,6 +110,7 @@ static PetscErrorCode ProcessAmplitude(PetscOptionItems *PetscOptionsObject, MPI
   a->table[0] = 0;
   PetscCall(PetscSNPrintf(key, sizeof(key), "%s_amplitude_table", prefix));
   PetscCall(OptionsString(PetscOptionsObject, comm, key, "Two-column CSV file of the table amplitude: time,factor per line, times increasing, interpolated linearly and constant beyond the ends", a->table, sizeof(a->table), NULL));
+  PetscCall(DropReplacedAmplitudeData(prefix, &set, a));
   if (!set && a->table[0]) PetscCall(PetscStrncpy(a->kind, "table", sizeof(a->kind)));
   PetscFunctionReturn(0);
 }
@@ -568,7 +598,7 @@ PetscErrorCode MMOptionsDestroy(MMOptions *opt)
 
 /* Before PetscInitialize, which reads the options files and would stop with a traceback on their
  * first defect: a file that cannot be opened, or one that starts with a UTF-8 byte order mark (some
- * editors write one; PETSc takes it for the first option's name). Plain C: PETSc is not up yet, so
+ * editors write one; PETSc takes it for the first option's name), or a directory. Plain C: PETSc is not up yet, so
  * the message is printed by the first rank alone (the launcher's rank variable), and every rank
  * exits with MM_EXIT_USAGE. Returns 0 when the files are fine. */
 int MMOptionsCheckFiles(int argc, char **argv)
@@ -578,6 +608,7 @@ int MMOptionsCheckFiles(int argc, char **argv)
 
   for (int i = 1; i < argc; ++i) {
     FILE         *f;
+    struct stat   st;
     unsigned char head[3] = {0, 0, 0};
     const char   *name;
     size_t        n;
@@ -586,6 +617,10 @@ int MMOptionsCheckFiles(int argc, char **argv)
     name = i + 1 < argc ? argv[i + 1] : NULL;
     if (!name || name[0] == '-' || !name[0]) {
       if (first) fprintf(stderr, "mmcontact error: %s was given without a file name: write \"%s FILE\"\n", argv[i], argv[i]);
+      return MM_EXIT_USAGE;
+    }
+    if (!stat(name, &st) && S_ISDIR(st.st_mode)) {
+      if (first) fprintf(stderr, "mmcontact error: the options file %s is a directory: name a file of options in it, e.g. %s/case.opts\n", name, name);
       return MM_EXIT_USAGE;
     }
     if (!(f = fopen(name, "rb"))) {

@@ -167,6 +167,15 @@ static PetscBool FramesFollow(const MMOutput *o)
   return follow;
 }
 
+/* The obstacles with a force column: none without contact (-contact 0), where no obstacle is there. */
+static PetscInt ObstacleColumns(const MMOutput *o)
+{
+  MMContactNodes cn;
+
+  if (!o->contact || MMContactGetNodes(o->contact, &cn) || !cn.enabled) return 0;
+  return o->opt->n_obstacles;
+}
+
 /* The header of history.csv: its columns depend on the dimension and the obstacles. */
 PetscErrorCode MMOutputCSVHeaderLine(const MMOutput *o, MMLine *lp)
 {
@@ -186,7 +195,7 @@ PetscErrorCode MMOutputCSVHeaderLine(const MMOutput *o, MMLine *lp)
   else PetscCall(MMOutputLineAdd(&l, ",J_x,J_y,J_z"));
   for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",load_%c", axes[d]));
   PetscCall(MMOutputLineAdd(&l, ",switched,contraction,candidates,candidate_resolves,work_obstacle"));
-  for (PetscInt b = 0; b < opt->n_obstacles; ++b)
+  for (PetscInt b = 0; b < ObstacleColumns(o); ++b)
     for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",force_%s_%c", opt->obstacles[b].name, axes[d]));
   PetscCall(MMOutputLineAdd(&l, ",work_damping"));
   /* with Dirichlet boundaries: their work and each one's reaction (docs/method.md section 10) */
@@ -235,8 +244,7 @@ PetscErrorCode MMOutputWriteRow(MMOutput *o)
   else PetscCall(MMOutputLineAdd(&l, ",%.16e,%.16e,%.16e", (double)h->J[0], (double)h->J[1], (double)h->J[2]));
   for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->load[d]));
   PetscCall(MMOutputLineAdd(&l, ",%" PetscInt_FMT ",%.6e,%" PetscInt_FMT ",%" PetscInt_FMT ",%.16e", h->switched, (double)h->contraction, h->candidates, h->resolves, (double)h->work_obstacle));
-  for (PetscInt b = 0; b < opt->n_obstacles; ++b)
-  {
+  for (PetscInt b = 0; b < ObstacleColumns(o); ++b) {
     PetscReal force[MM_MAX_DIM];
     PetscCall(MMContactGetObstacleForce(o->contact, b, force));
     for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)force[d]));

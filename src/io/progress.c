@@ -284,7 +284,8 @@ static PetscErrorCode Duration(PetscReal s, char text[], size_t len)
   if (s < 0 || s >= PETSC_MAX_REAL) PetscCall(PetscStrncpy(text, "?", len));
   else if (s < 60) PetscCall(PetscSNPrintf(text, len, "%.1f s", (double)s));
   else if (s < 3600) PetscCall(PetscSNPrintf(text, len, "%dm%02ds", (int)(s / 60), (int)s % 60));
-  else PetscCall(PetscSNPrintf(text, len, "%dh%02dm", (int)(s / 3600), (int)(s / 60) % 60));
+  else if (s < 3600 * 1e6) PetscCall(PetscSNPrintf(text, len, "%lldh%02dm", (long long)(s / 3600), (int)((long long)(s / 60) % 60)));
+  else PetscCall(PetscSNPrintf(text, len, "%.3g h", (double)(s / 3600))); /* beyond a million hours an int would wrap */
   PetscFunctionReturn(0);
 }
 
@@ -313,7 +314,8 @@ static PetscErrorCode PrintLine(MMProgress *pg, TS ts, PetscReal wall)
   const MMProgress *p = pg;
   PetscReal         t_end, done, eta;
   PetscInt          max_steps;
-  char              where[128], wall_text[32], eta_text[32], friction[64] = "";
+  char              where[128], wall_text[32], eta_text[32], friction[64] = "", contact[160] = "";
+  MMContactNodes    cn;
 
   PetscFunctionBeginUser;
   PetscCall(TSGetMaxTime(ts, &t_end));
@@ -323,8 +325,11 @@ static PetscErrorCode PrintLine(MMProgress *pg, TS ts, PetscReal wall)
   else PetscCall(PetscSNPrintf(where, sizeof(where), "t = %.6g of %.6g (%.1f%%), step %" PetscInt_FMT, (double)h->time, (double)t_end, (double)(100 * done), h->step));
   PetscCall(Duration(wall, wall_text, sizeof(wall_text)));
   PetscCall(Duration(eta, eta_text, sizeof(eta_text)));
+  PetscCall(MMContactGetNodes(pg->contact, &cn));
   if (pg->opt->mu_max > 0) PetscCall(PetscSNPrintf(friction, sizeof(friction), ", friction its %.1f", p->steps ? (double)p->friction_its / p->steps : 0.0));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  %s | wall %s, ETA %s | energy %.10e, balance %.2e | active %" PetscInt_FMT ", slipping %" PetscInt_FMT "%s\n", where, wall_text, eta_text, (double)h->total, (double)h->balance_residual, h->active, h->slipping, friction));
+  /* without contact (-contact 0) there is no contact set to report */
+  if (cn.enabled) PetscCall(PetscSNPrintf(contact, sizeof(contact), " | active %" PetscInt_FMT ", slipping %" PetscInt_FMT "%s", h->active, h->slipping, friction));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  %s | wall %s, ETA %s | energy %.10e, balance %.2e%s\n", where, wall_text, eta_text, (double)h->total, (double)h->balance_residual, contact));
   PetscFunctionReturn(0);
 }
 

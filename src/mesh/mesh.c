@@ -448,15 +448,15 @@ PetscErrorCode MMMeshRead(MPI_Comm comm, const char file[], DM *dm, MMMeshFacets
   /* before the orientation check, which would call a cell with a NaN vertex inverted */
   PetscCall(MMMeshFileNodes(comm, *dm, file, vertex_file, &vtag));
   if (!failed) PetscCall(MMMeshFacetsRead(comm, *dm, file, vtag, facets, &facets->read));
-  /* the Physical Points (-point_force), labelled on the serial mesh: the distribution carries them */
-  if (!failed && facets->read) PetscCall(MMMeshPointGroupsRead(comm, *dm, file, vtag));
-  PetscCall(PetscFree(vtag));
   if (!failed && !facets->read) {
     /* a file read here cannot be (binary): PETSc's reader labels the facets, interpolating on rank 0.
      * The vertices are the same, in the same order. */
     PetscCall(DMDestroy(dm));
     PetscCall(ReadGmsh(comm, file, PETSC_TRUE, dm, NULL));
   }
+  /* the Physical Points (-point_force), labelled on the serial mesh: the distribution carries them */
+  if (!failed) PetscCall(MMMeshPointGroupsRead(comm, *dm, file, vtag));
+  PetscCall(PetscFree(vtag));
   PetscCall(CheckOrientation(comm, *dm, file));
   PetscCall(PetscObjectSetName((PetscObject)*dm, "mesh"));
   PetscFunctionReturn(0);

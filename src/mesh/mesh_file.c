@@ -8,6 +8,7 @@
  *   file's node k: the positions are found by walking both lists (same coordinates, same order).
  *   The reader of gmsh 2 files keeps every node, and an unused one has no mass: refused, named. */
 #include <errno.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -51,8 +52,65 @@ PetscErrorCode MMMeshCheckFile(MPI_Comm comm, const char file[])
   PetscFunctionReturn(0);
 }
 
-/* The file's nodes, in file order, from an ASCII .msh (format 2.2 or 4.1): coordinates and tags.
- * *n = -1 when the file is binary or not understood: nothing to compare then. */
+/* One value of a binary .msh: a 4-byte int, or a size_t of the file's data size (8). */
+static int BinaryLong(FILE *f, size_t bytes, long *v)
+{
+  int32_t  i4;
+  uint64_t u8;
+
+  if (bytes == 4) {
+    if (fread(&i4, 4, 1, f) != 1) return 0;
+    *v = i4;
+  } else {
+    if (fread(&u8, 8, 1, f) != 1) return 0;
+    *v = (long)u8;
+  }
+  return 1;
+}
+
+/* The nodes of a binary .msh 2.2 (after "$Nodes": the count in ASCII, then per node an int tag and
+ * three doubles) or 4.1 (size_t counts, then per entity block its int header and size_t count, the
+ * size_t tags, then the coordinates); the file's data size must be 8, its byte order this machine's.
+ * Returns the number of nodes read; *total the number announced. */
+static long ReadBinaryNodes(FILE *f, double version, long *total, PetscReal **xyz, PetscInt **tag)
+{
+  char line[256];
+  long k = 0, blocks = 0, lo, hi;
+
+  if (version < 4) {
+    if (!fgets(line, sizeof(line), f) || sscanf(line, "%ld", total) != 1 || *total < 0) return -1;
+  } else if (!BinaryLong(f, 8, &blocks) || !BinaryLong(f, 8, total) || !BinaryLong(f, 8, &lo) || !BinaryLong(f, 8, &hi) || *total < 0) return -1;
+  if (PetscMalloc2(3 * *total, xyz, *total, tag)) return -1;
+  if (version < 4) {
+    for (k = 0; k < *total; ++k) {
+      long   t;
+      double x[3];
+      if (!BinaryLong(f, 4, &t) || fread(x, sizeof(double), 3, f) != 3) break;
+      (*tag)[k] = (PetscInt)t;
+      for (int d = 0; d < 3; ++d) (*xyz)[3 * k + d] = x[d];
+    }
+    return k;
+  }
+  for (long b = 0; b < blocks; ++b) {
+    long edim, etag, param, nb;
+    if (!BinaryLong(f, 4, &edim) || !BinaryLong(f, 4, &etag) || !BinaryLong(f, 4, &param) || !BinaryLong(f, 8, &nb) || param || k + nb > *total) return k;
+    for (long i = 0; i < nb; ++i) {
+      long t;
+      if (!BinaryLong(f, 8, &t)) return k;
+      (*tag)[k + i] = (PetscInt)t;
+    }
+    for (long i = 0; i < nb; ++i) {
+      double x[3];
+      if (fread(x, sizeof(double), 3, f) != 3) return k;
+      for (int d = 0; d < 3; ++d) (*xyz)[3 * (k + i) + d] = x[d];
+    }
+    k += nb;
+  }
+  return k;
+}
+
+/* The file's nodes, in file order, from a .msh (format 2.2 or 4.1, ASCII or binary): coordinates and
+ * tags. *n = -1 when the file is not understood: nothing to compare then. */
 static PetscErrorCode ReadNodes(const char file[], PetscInt *n, PetscReal **xyz, PetscInt **tag)
 {
   FILE  *f = fopen(file, "r");
@@ -71,7 +129,11 @@ static PetscErrorCode ReadNodes(const char file[], PetscInt *n, PetscReal **xyz,
       if (!fgets(line, sizeof(line), f) || sscanf(line, "%lf %d", &version, &binary) != 2) break;
     } else if (!strncmp(line, "$Nodes", 6)) {
       long blocks = 0;
-      if (binary || !fgets(line, sizeof(line), f)) break;
+      if (binary) {
+        k = ReadBinaryNodes(f, version, &total, xyz, tag);
+        break;
+      }
+      if (!fgets(line, sizeof(line), f)) break;
       if (version < 4 ? sscanf(line, "%ld", &total) != 1 : sscanf(line, "%ld %ld", &blocks, &total) != 2) break;
       PetscCall(PetscMalloc2(3 * total, xyz, total, tag));
       if (version < 4) {
@@ -101,7 +163,7 @@ static PetscErrorCode ReadNodes(const char file[], PetscInt *n, PetscReal **xyz,
   }
   (void)fclose(f);
   if (total >= 0 && k == total) *n = (PetscInt)total;
-  else PetscCall(PetscFree2(*xyz, *tag));
+  else if (*xyz) PetscCall(PetscFree2(*xyz, *tag));
   PetscFunctionReturn(0);
 }
 

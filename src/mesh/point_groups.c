@@ -3,9 +3,11 @@
  *
  * The mesh is read without faces (src/mesh/facets.c), and PETSc's reader labels a Physical Point's
  * vertex only with -dm_plex_gmsh_mark_vertices, which would also put every node of every facet and
- * cell group in its label. So the point elements (gmsh type 15) are read here, on rank 0, from an
- * ASCII 2.2 or 4.1 file, and each group's vertices labelled on the serial mesh, before the
- * distribution carries the labels to the ranks. */
+ * cell group in its label. So the point elements (gmsh type 15) are read here, on rank 0, from a
+ * 2.2 or 4.1 file, ASCII or binary (gmsh -bin: data size 8, this machine's byte order), and each
+ * group's vertices labelled on the serial mesh, before the distribution carries the labels to the
+ * ranks. */
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -72,6 +74,70 @@ static void ReadPointEntities(FILE *in, const PointGroups *g, long **pairs, long
   }
 }
 
+/* One value of a binary .msh: a 4-byte int, or a size_t of the file's data size (8). */
+static int BinaryLong(FILE *in, size_t bytes, long *v)
+{
+  int32_t  i4;
+  uint64_t u8;
+
+  if (bytes == 4) {
+    if (fread(&i4, 4, 1, in) != 1) return 0;
+    *v = i4;
+  } else {
+    if (fread(&u8, 8, 1, in) != 1) return 0;
+    *v = (long)u8;
+  }
+  return 1;
+}
+
+/* The nodes of each gmsh element type (the first-order and second-order ones a .msh may hold);
+ * 0 for a type this does not know, which ends the reading. */
+static long NodesOfType(long type)
+{
+  static const long n[] = {0, 2, 3, 4, 4, 8, 6, 5, 3, 6, 9, 10, 27, 18, 14, 1, 8, 20, 15, 13};
+  return type > 0 && type < (long)(sizeof(n) / sizeof(n[0])) ? n[type] : 0;
+}
+
+/* Binary $Entities (4.1): the point entities' named groups, as ReadPointEntities. */
+static void ReadBinaryPointEntities(FILE *in, const PointGroups *g, long **pairs, long *npairs)
+{
+  long np, rest;
+
+  if (!BinaryLong(in, 8, &np)) return;
+  for (int k = 0; k < 3; ++k)
+    if (!BinaryLong(in, 8, &rest)) return;
+  for (long i = 0; i < np; ++i) {
+    long   etag, nphys;
+    double x[3];
+    if (!BinaryLong(in, 4, &etag) || fread(x, sizeof(double), 3, in) != 3 || !BinaryLong(in, 8, &nphys)) return;
+    for (long k = 0; k < nphys; ++k) {
+      long tag;
+      if (!BinaryLong(in, 4, &tag)) return;
+      if (GroupOf(g, tag) < 0) continue;
+      *pairs                    = (long *)realloc(*pairs, 2 * (*npairs + 1) * sizeof(long));
+      (*pairs)[2 * *npairs]     = etag;
+      (*pairs)[2 * *npairs + 1] = GroupOf(g, tag);
+      ++*npairs;
+    }
+  }
+}
+
+/* Binary $Nodes, passed over (their tags are known from the mesh's reading): 1 when done. */
+static int SkipBinaryNodes(FILE *in, double version)
+{
+  char line[256];
+  long total, blocks, lo, hi;
+
+  if (version < 4) return fgets(line, sizeof(line), in) && sscanf(line, "%ld", &total) == 1 && !fseek(in, total * (4 + 3 * (long)sizeof(double)), SEEK_CUR);
+  if (!BinaryLong(in, 8, &blocks) || !BinaryLong(in, 8, &total) || !BinaryLong(in, 8, &lo) || !BinaryLong(in, 8, &hi)) return 0;
+  for (long b = 0; b < blocks; ++b) {
+    long edim, etag, param, nb;
+    if (!BinaryLong(in, 4, &edim) || !BinaryLong(in, 4, &etag) || !BinaryLong(in, 4, &param) || !BinaryLong(in, 8, &nb) || param) return 0;
+    if (fseek(in, nb * (8 + 3 * (long)sizeof(double)), SEEK_CUR)) return 0;
+  }
+  return 1;
+}
+
 /* Labels serial vertex of file node `node` with group gi (rank 0). */
 static PetscErrorCode LabelNode(DM dm, const PointGroups *g, PetscInt gi, long node, const PetscInt vtag[], PetscInt nv)
 {
@@ -121,9 +187,51 @@ static PetscErrorCode ReadPointElements(FILE *in, DM dm, double version, const P
   PetscFunctionReturn(0);
 }
 
+/* Binary $Elements: the point elements of the named groups, as ReadPointElements. 4.1: size_t
+ * counts, per entity block an int header and a size_t count, per element size_t tag and nodes; 2.2:
+ * the count in ASCII, then per run of one type an int header (type, count, tags) and per element
+ * ints (number, tags, nodes). */
+static PetscErrorCode ReadBinaryPointElements(FILE *in, DM dm, double version, const PointGroups *g, const long *pairs, long npairs, const PetscInt vtag[], PetscInt nv)
+{
+  PetscFunctionBeginUser;
+  if (version == 4.1) {
+    long nblocks, nelem, lo, hi;
+    if (!BinaryLong(in, 8, &nblocks) || !BinaryLong(in, 8, &nelem) || !BinaryLong(in, 8, &lo) || !BinaryLong(in, 8, &hi)) PetscFunctionReturn(0);
+    for (long b = 0; b < nblocks; ++b) {
+      long edim, etag, type, n, nn, rec[2];
+      if (!BinaryLong(in, 4, &edim) || !BinaryLong(in, 4, &etag) || !BinaryLong(in, 4, &type) || !BinaryLong(in, 8, &n) || !(nn = NodesOfType(type))) PetscFunctionReturn(0);
+      if (edim != 0 || type != 15) {
+        if (fseek(in, n * (1 + nn) * 8, SEEK_CUR)) PetscFunctionReturn(0);
+        continue;
+      }
+      for (long i = 0; i < n; ++i) {
+        if (!BinaryLong(in, 8, &rec[0]) || !BinaryLong(in, 8, &rec[1])) PetscFunctionReturn(0);
+        for (long k = 0; k < npairs; ++k)
+          if (pairs[2 * k] == etag) PetscCall(LabelNode(dm, g, (PetscInt)pairs[2 * k + 1], rec[1], vtag, nv));
+      }
+    }
+  } else {
+    char line[256];
+    long nelem, done = 0;
+    if (!fgets(line, sizeof(line), in) || sscanf(line, "%ld", &nelem) != 1) PetscFunctionReturn(0);
+    while (done < nelem) {
+      long type, n, ntags, nn;
+      if (!BinaryLong(in, 4, &type) || !BinaryLong(in, 4, &n) || !BinaryLong(in, 4, &ntags) || !(nn = NodesOfType(type)) || ntags < 0 || ntags > 64) PetscFunctionReturn(0);
+      for (long i = 0; i < n; ++i) {
+        long rec[66];
+        for (long k = 0; k < 1 + ntags + nn; ++k)
+          if (!BinaryLong(in, 4, &rec[PetscMin(k, 65)])) PetscFunctionReturn(0);
+        if (type == 15 && ntags >= 1 && GroupOf(g, rec[1]) >= 0) PetscCall(LabelNode(dm, g, GroupOf(g, rec[1]), rec[1 + ntags], vtag, nv));
+      }
+      done += n;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
 /* On the serial mesh (rank 0 holds it; vtag its vertices' node tags in the file, NULL when they
  * could not be read): a label per named Physical Point group on its vertices, value its physical
- * tag. A file this cannot read (binary) has no point labels. */
+ * tag. A file this cannot read has no point labels (the options naming them are refused later). */
 PetscErrorCode MMMeshPointGroupsRead(MPI_Comm comm, DM dm, const char file[], const PetscInt vtag[])
 {
   PetscMPIInt rank;
@@ -145,11 +253,17 @@ PetscErrorCode MMMeshPointGroupsRead(MPI_Comm comm, DM dm, const char file[], co
     PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
     while (in && getline(&line, &len, in) > 0) {
       if (!strncmp(line, "$MeshFormat", 11)) {
-        if (getline(&line, &len, in) <= 0 || sscanf(line, "%lf %d", &version, &binary) != 2 || binary) break;
+        if (getline(&line, &len, in) <= 0 || sscanf(line, "%lf %d", &version, &binary) != 2) break;
       } else if (!strncmp(line, "$PhysicalNames", 14)) ReadNames(in, &g, &line, &len);
-      else if (!strncmp(line, "$Entities", 9)) ReadPointEntities(in, &g, &pairs, &npairs, &line, &len);
-      else if (!strncmp(line, "$Elements", 9)) {
-        if (g.n) PetscCall(ReadPointElements(in, dm, version, &g, pairs, npairs, vtag, vEnd - vStart, &line, &len));
+      else if (!strncmp(line, "$Entities", 9)) {
+        if (!binary) ReadPointEntities(in, &g, &pairs, &npairs, &line, &len);
+        else if (g.n) ReadBinaryPointEntities(in, &g, &pairs, &npairs);
+        else break; /* no named point groups: nothing to read */
+      } else if (binary && !strncmp(line, "$Nodes", 6)) {
+        if (!SkipBinaryNodes(in, version)) break;
+      } else if (!strncmp(line, "$Elements", 9)) {
+        if (g.n && binary) PetscCall(ReadBinaryPointElements(in, dm, version, &g, pairs, npairs, vtag, vEnd - vStart));
+        else if (g.n) PetscCall(ReadPointElements(in, dm, version, &g, pairs, npairs, vtag, vEnd - vStart, &line, &len));
         break;
       }
     }

@@ -24,6 +24,21 @@ static PetscBool IsNumber(const char text[], size_t len, MMValueKind kind)
   return (PetscBool)(end != p && !*end);
 }
 
+/* Whether an integer's text (up to len characters) fits a PetscInt: PETSc's own parser wraps a value
+ * beyond it silently (-ts_max_steps 3000000000 became -1294967296). */
+static PetscBool FitsInt(const char text[], size_t len)
+{
+  char      buf[128];
+  long long n;
+
+  if (!len || len >= sizeof(buf)) return PETSC_FALSE;
+  memcpy(buf, text, len);
+  buf[len] = 0;
+  errno = 0;
+  n     = strtoll(buf, NULL, 10);
+  return (PetscBool)(errno != ERANGE && n <= PETSC_MAX_INT && n >= PETSC_MIN_INT);
+}
+
 PetscErrorCode MMOptionsCheckValue(MPI_Comm comm, const char name[], MMValueKind kind)
 {
   const char *value;
@@ -40,6 +55,7 @@ PetscErrorCode MMOptionsCheckValue(MPI_Comm comm, const char name[], MMValueKind
     const char  *comma = strchr(p, ',');
     const size_t len   = comma ? (size_t)(comma - p) : strlen(p);
     PetscCheck(IsNumber(p, len, kind), comm, PETSC_ERR_USER_INPUT, "%s %s: \"%.*s\" is not %s. Give %s%s", name, value, (int)len, p, kind == MM_VALUE_INT ? "an integer" : "a number", kind == MM_VALUE_INT ? "whole numbers" : "plain numbers, in SI units, without a unit (1e3, not 1e3Pa)", strchr(value, ',') ? ", separated by commas without blanks" : "");
+    PetscCheck(kind != MM_VALUE_INT || FitsInt(p, len), comm, PETSC_ERR_USER_INPUT, "%s %.*s is beyond the integers a run can count (%lld to %lld)", name, (int)len, p, (long long)PETSC_MIN_INT, (long long)PETSC_MAX_INT);
     p = comma ? comma + 1 : NULL;
   }
   PetscFunctionReturn(0);
@@ -117,11 +133,40 @@ PetscErrorCode MMOptionsString(PetscOptionItems *PetscOptionsObject, MPI_Comm co
   PetscFunctionReturn(0);
 }
 
-/* An enumerated option. */
+/* The valid values of a PETSc enum list (names, then the type name, the prefix and a NULL), as
+ * "a, b or c" into buf. */
+static void EnumChoices(const char *const list[], char buf[], size_t len)
+{
+  PetscInt n = 0;
+
+  while (list[n]) ++n;
+  n -= 2; /* the names are followed by the enum's type name and its prefix (then NULL) */
+  buf[0] = 0;
+  for (PetscInt i = 0; i < n; ++i) {
+    size_t used = strlen(buf);
+    snprintf(buf + used, len - used, "%s%s", i == 0 ? "" : (i == n - 1 ? " or " : ", "), list[i]);
+  }
+}
+
+/* An enumerated option. The value is checked here, by option name, because PETSc's own refusal
+ * (PETSC_ERR_USER) is not an input error to the exit statuses: a trace and status 83, where every
+ * other refused option gives one line and 64 (docs/developer.md, "Exit statuses"). */
 PetscErrorCode MMOptionsEnum(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], const char *const list[], PetscEnum *v)
 {
+  const char *value;
+  PetscBool   set, known = PETSC_FALSE;
+  char        choices[512];
+
   PetscFunctionBeginUser;
   PetscCall(MMOptionsCheckValue(comm, name, MM_VALUE_TEXT));
+  PetscCall(PetscOptionsFindPair(NULL, NULL, name, &value, &set));
+  if (set && value) {
+    PetscInt n = 0;
+    while (list[n]) ++n;
+    for (PetscInt i = 0; i < n - 2; ++i) known = (PetscBool)(known || !strcasecmp(value, list[i]));
+    EnumChoices(list, choices, sizeof(choices));
+    PetscCheck(known, comm, PETSC_ERR_USER_INPUT, "%s %s is not a valid value: use %s", name, value, choices);
+  }
   PetscCall(PetscOptionsEnum(name, help, NULL, list, *v, v, NULL));
   PetscFunctionReturn(0);
 }

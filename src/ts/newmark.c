@@ -5,6 +5,7 @@
  * massless contact-normal dofs carry no inertia, so their equation is quasi-static. */
 #include <petsc/private/tsimpl.h>
 #include "newmarkimpl.h"
+#include "sys.h"
 #include "fem.h"
 #include "friction.h"
 
@@ -302,6 +303,24 @@ PetscErrorCode MMNewmarkGetPlan(MMNewmark nm, PetscReal *dt, PetscReal *steps)
   *steps = *dt > 0 && tmax > 0 && !PetscIsInfOrNanReal(*dt) && !PetscIsInfOrNanReal(tmax) ? PetscCeilReal(tmax / *dt - 1e-10) : 1;
   if (set && nmax >= 0) *steps = PetscMin(*steps, (PetscReal)nmax);
   *steps = PetscMax(*steps, 1);
+  PetscFunctionReturn(0);
+}
+
+/* The run's step count must fit the TS's step counter (a PetscInt): PETSc reads -ts_max_steps
+ * 3000000000 as -1294967296, and -ts_max_time 1e30 at dt 1e-3 plans 1e33 steps, which the counter,
+ * the progress line and the output schedule cannot count. Refused before anything is set up, with
+ * the values as given. */
+PetscErrorCode MMNewmarkCheckStepCount(MPI_Comm comm)
+{
+  PetscReal dt, steps, tmax = MMMaxTimeDefault;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMOptionsCheckValue(comm, "-ts_dt", MM_VALUE_REAL));
+  PetscCall(MMOptionsCheckValue(comm, "-ts_max_time", MM_VALUE_REAL));
+  PetscCall(MMOptionsCheckValue(comm, "-ts_max_steps", MM_VALUE_INT));
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-ts_max_time", &tmax, NULL));
+  PetscCall(MMNewmarkGetPlan(NULL, &dt, &steps));
+  PetscCheck(steps < (PetscReal)PETSC_MAX_INT, comm, PETSC_ERR_USER_INPUT, "-ts_max_time %g at -ts_dt %g is %.3g steps, beyond the %lld steps a run can count: give a shorter -ts_max_time, a larger -ts_dt, or a -ts_max_steps below %lld", (double)tmax, (double)dt, (double)steps, (long long)PETSC_MAX_INT, (long long)PETSC_MAX_INT);
   PetscFunctionReturn(0);
 }
 

@@ -43,6 +43,7 @@ PETSC_INTERN PetscErrorCode MMAndersonSetUp(MMAnderson *aa, PetscInt m, Vec tmpl
 PETSC_INTERN PetscErrorCode MMAndersonReset(MMAnderson *aa);
 PETSC_INTERN PetscErrorCode MMAndersonUpdate(MMAnderson *aa, Vec c, Vec H);
 PETSC_INTERN PetscErrorCode MMAndersonDestroy(MMAnderson *aa);
+PETSC_INTERN PetscErrorCode MMNewmarkCheckStepCount(MPI_Comm comm);
 typedef struct {
   MMElasticity    el;
   MMAnderson      aa;          /* -nonlinear_anderson m */

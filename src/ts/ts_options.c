@@ -10,6 +10,7 @@ PetscErrorCode MMNewmarkSetFromOptions(MMNewmark nm)
   MPI_Comm comm = nm->comm;
 
   PetscFunctionBeginUser;
+  PetscCall(MMNewmarkCheckStepCount(comm));
   PetscOptionsBegin(comm, NULL, "mmcontact: the time stepper's audits and damping", "MMNewmark");
   nm->audit_tol = 1e-6;
   PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-audit_tol", "Stop the run when a step's relative energy-balance residual exceeds this (> 0): the scheme's identity no longer holds", &nm->audit_tol));

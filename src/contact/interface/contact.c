@@ -526,6 +526,40 @@ PetscErrorCode MMContactProjectInitial(MMContact ct, Vec w)
   PetscFunctionReturn(0);
 }
 
+/* A finite-strain law's correction of the projection above: the massless rows' quasi-static equation
+ * is f(w) = L there, with f the law's internal force, not K w. Given its residual res = f(w) - L (all
+ * dofs), one chord step with the reference stiffness K, for the increment d: the bound-constrained
+ * solve of K_cc d = -res_c, w_c + d <= the gap. Solved for the increment, so that the solver's
+ * tolerance is relative to the residual left, not to K w; its fixed point has res_c = 0 off contact
+ * and the reaction on the bound. *change is the largest |d|. */
+PetscErrorCode MMContactProjectInitialCorrect(MMContact ct, Vec w, Vec res, PetscReal *change)
+{
+  Vec      wc, rc, d, upper;
+  PetscInt its;
+
+  PetscFunctionBeginUser;
+  *change = 0;
+  if (!MMFEHasMasslessDofs(ct->op) || !ct->qp0.A) PetscFunctionReturn(0);
+  PetscCall(VecGetSubVector(w, ct->is_massless, &wc));
+  PetscCall(VecGetSubVector(res, ct->is_massless, &rc));
+  PetscCall(VecAXPBY(ct->qp0.b, -1.0, 0.0, rc));
+  PetscCall(VecRestoreSubVector(res, ct->is_massless, &rc));
+  PetscCall(VecDuplicate(wc, &d));
+  PetscCall(VecDuplicate(wc, &upper));
+  PetscCall(VecWAXPY(upper, -1.0, wc, ct->upper0));
+  PetscCall(SNESVISetVariableBounds(ct->snes0, ct->lower0, upper));
+  PetscCall(VecZeroEntries(d));
+  PetscCall(VecPointwiseMin(d, d, upper));
+  PetscCall(MMQPSolve(ct->snes0, &ct->qp0, d, &its));
+  PetscCall(SNESVISetVariableBounds(ct->snes0, ct->lower0, ct->upper0));
+  PetscCall(VecNorm(d, NORM_INFINITY, change));
+  PetscCall(VecAXPY(wc, 1.0, d));
+  PetscCall(VecDestroy(&d));
+  PetscCall(VecDestroy(&upper));
+  PetscCall(VecRestoreSubVector(w, ct->is_massless, &wc));
+  PetscFunctionReturn(0);
+}
+
 /* The formulation frees its data (ops->destroy), then the contact set's own. */
 PetscErrorCode MMContactDestroy(MMContact *pct)
 {

@@ -311,7 +311,12 @@ static PetscErrorCode BuildContactDofs(MMContact ct, const PetscInt mark[], Vec 
     PetscCall(PetscSectionGetConstraintDof(ls, v, &cdof));
     PetscCall(PetscSectionGetOffset(cs, v, &xoff));
     b2 = bf = -1;
-    PetscCheck(cdof == 0, comm, PETSC_ERR_USER_INPUT, "A node of the contact boundary \"%s\" at (%g, %g) is also on a Dirichlet boundary. Contact dofs must be free: separate the two physical groups", mark[v - pStart] >= 2 ? ct->pb.obstacles[ct->pb.n_rigid + mark[v - pStart] - 2].slave : ct->pb.contact_name, (double)PetscRealPart(x[xoff]), (double)PetscRealPart(x[xoff + 1]));
+    if (cdof) {
+      char at[128];
+      if (dim == 2) PetscCall(PetscSNPrintf(at, sizeof(at), "(%g, %g)", (double)PetscRealPart(x[xoff]), (double)PetscRealPart(x[xoff + 1])));
+      else PetscCall(PetscSNPrintf(at, sizeof(at), "(%g, %g, %g)", (double)PetscRealPart(x[xoff]), (double)PetscRealPart(x[xoff + 1]), (double)PetscRealPart(x[xoff + 2])));
+      SETERRQ(comm, PETSC_ERR_USER_INPUT, "A node of the contact boundary \"%s\" at %s is also on a Dirichlet boundary. Contact dofs must be free: separate the two physical groups", mark[v - pStart] >= 2 ? ct->pb.obstacles[ct->pb.n_rigid + mark[v - pStart] - 2].slave : ct->pb.contact_name, at);
+    }
     {
       PetscReal xv[MM_MAX_DIM] = {0, 0, 0}, n[MM_MAX_DIM] = {0, 0, 0}, F[MM_MAX_DIM][MM_MAX_DIM];
       for (PetscInt d = 0; d < dim; ++d) xv[d] = PetscRealPart(x[xoff + d]);
