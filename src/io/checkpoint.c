@@ -2,6 +2,7 @@
  * (docs/method.md section 9). Every field is keyed by the serial mesh's vertex numbers, so the file
  * does not depend on the number of ranks that wrote it. */
 #include <errno.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <petscviewerhdf5.h>
@@ -356,14 +357,27 @@ static PetscErrorCode PhysicsAddNamed(MMPhysics *ph, const char fmt[], const cha
   PetscFunctionReturn(0);
 }
 
-/* n reals, comma-separated, each to the last bit (%.17g): a value that differs anywhere is another value */
+/* x in the fewest digits that read back as x: a value that differs in any bit is another value, and
+ * the message quotes 0.3 as the user wrote it */
+static PetscErrorCode ExactReal(PetscReal x, char buf[], size_t len)
+{
+  PetscFunctionBeginUser;
+  for (int digits = 15; digits <= 17; ++digits) {
+    PetscCall(PetscSNPrintf(buf, len, "%.*g", digits, (double)x));
+    if (strtod(buf, NULL) == (double)x) break;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* n reals, comma-separated, each exactly (ExactReal) */
 static PetscErrorCode PhysicsAddReals(MMPhysics *ph, const char fmt[], const char name[], PetscInt n, const PetscReal x[])
 {
   char value[MM_PHYS_LEN] = "", one[64];
 
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < n; ++i) {
-    PetscCall(PetscSNPrintf(one, sizeof(one), "%s%.17g", i ? "," : "", (double)x[i]));
+    if (i) PetscCall(PetscStrlcat(value, ",", sizeof(value)));
+    PetscCall(ExactReal(x[i], one, sizeof(one)));
     PetscCall(PetscStrlcat(value, one, sizeof(value)));
   }
   PetscCall(PhysicsAddNamed(ph, fmt, name, value));
@@ -819,9 +833,10 @@ static PetscErrorCode LoadRunRecord(MMCheckpoint *ck, PetscViewer viewer, PetscR
   PetscFunctionReturn(0);
 }
 
-/* The checkpoint must be of this problem: the same mesh (vertices, cells, coordinates), the same
- * contact boundary, dimension, friction coefficient, material and mass. Each difference is named. */
-static PetscErrorCode CheckFingerprint(MMCheckpoint *ck, TS ts, const PetscReal rec[])
+/* The checkpoint must be of this problem: the same mesh (vertices, cells, coordinates), then the same
+ * physics (CheckPhysics: law, material, mass, damping, Dirichlet and contact data, per option), and
+ * from the run record the contact boundary, friction coefficient, material and mass. Each difference is named. */
+static PetscErrorCode CheckFingerprint(MMCheckpoint *ck, TS ts, PetscViewer viewer, const PetscReal rec[])
 {
   MPI_Comm    comm = PetscObjectComm((PetscObject)ck->op->dm);
   const char *f    = ck->file;
@@ -834,6 +849,8 @@ static PetscErrorCode CheckFingerprint(MMCheckpoint *ck, TS ts, const PetscReal 
   PetscCheck(rec[MM_RUN_DIM] == me[MM_RUN_DIM], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of a %dD problem, this mesh %s is %dD: another dimension. Restart with the mesh and options of the run that wrote it", f, (int)rec[MM_RUN_DIM], ck->opt->mesh_file, (int)me[MM_RUN_DIM]);
   PetscCheck(rec[MM_RUN_VERTICES] == me[MM_RUN_VERTICES] && rec[MM_RUN_CELLS] == me[MM_RUN_CELLS], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another mesh: %d vertices and %d cells, this mesh %s has %d and %d. Restart with the mesh of the run that wrote it", f, (int)rec[MM_RUN_VERTICES], (int)rec[MM_RUN_CELLS], ck->opt->mesh_file, (int)me[MM_RUN_VERTICES], (int)me[MM_RUN_CELLS]);
   PetscCheck(PetscAbsReal(rec[MM_RUN_COORDINATES] - me[MM_RUN_COORDINATES]) <= 1e-10 * PetscMax(PetscAbsReal(me[MM_RUN_COORDINATES]), 1.0), comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another mesh: it has as many vertices and cells as %s, but other coordinates (checksums %.15g and %.15g). Restart with the mesh, and -mesh_rotation, of the run that wrote it", f, ck->opt->mesh_file, (double)rec[MM_RUN_COORDINATES], (double)me[MM_RUN_COORDINATES]);
+  /* the physics, each option named; what follows checks a checkpoint that does not record it */
+  PetscCall(CheckPhysics(ck, viewer));
   PetscCheck(rec[MM_RUN_CONTACT_NODES] == me[MM_RUN_CONTACT_NODES], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another contact boundary: %d contact nodes, this run has %d (-contact_boundary %s, -contact %s). Restart with the contact options of the run that wrote it", f, (int)rec[MM_RUN_CONTACT_NODES], (int)me[MM_RUN_CONTACT_NODES], ck->opt->contact_name, cn.enabled ? "1" : "0");
   PetscCheck(rec[MM_RUN_MU] == me[MM_RUN_MU], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with -mu %.10g, this run has -mu %.10g: a different friction law. Restart with -mu %.10g", f, (double)rec[MM_RUN_MU], (double)me[MM_RUN_MU], (double)rec[MM_RUN_MU]);
   PetscCheck(rec[MM_RUN_E] == me[MM_RUN_E] && rec[MM_RUN_NU] == me[MM_RUN_NU] && rec[MM_RUN_RHO] == me[MM_RUN_RHO], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with -E %.10g -nu %.10g -rho %.10g, this run has -E %.10g -nu %.10g -rho %.10g: another material. Restart with the material of the run that wrote it", f, (double)rec[MM_RUN_E], (double)rec[MM_RUN_NU], (double)rec[MM_RUN_RHO], (double)me[MM_RUN_E], (double)me[MM_RUN_NU], (double)me[MM_RUN_RHO]);
@@ -1141,8 +1158,7 @@ PetscErrorCode MMCheckpointLoad(MMCheckpoint *c, TS ts)
   PetscCall(PetscPopErrorHandler());
   PetscCheck(!ierr, comm, PETSC_ERR_FILE_OPEN, "Could not open the checkpoint %s: it is not a complete HDF5 file. A checkpoint is written to checkpoint.h5.tmp and renamed only when whole: give the directory's checkpoint.h5, or the directory itself", c->file);
   PetscCall(LoadRunRecord(c, viewer, c->run));
-  PetscCall(CheckFingerprint(c, ts, c->run));
-  PetscCall(CheckPhysics(c, viewer));
+  PetscCall(CheckFingerprint(c, ts, viewer, c->run));
   PetscCall(LoadContactRecords(c, viewer));
   PetscCall(LoadFrameRecords(c, viewer));
   PetscCall(LoadDofs(c, viewer, "u", s->u));
