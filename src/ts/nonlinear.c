@@ -293,11 +293,12 @@ PetscErrorCode MMNewmarkRestoreTangent(MMNewmark nm, Vec at, PetscReal t)
   PetscFunctionReturn(0);
 }
 
-/* The step matrix for dt as the stepper has it: the finite-strain iteration matrix once K_s is a tangent */
+/* The step matrix for dt as each step builds it (newmark.c): with a finite-strain law the iteration
+ * matrix (K_s, the tangent of a restart's checkpoint too), else the (damped) K~ */
 PetscErrorCode MMNewmarkGetStepMatrix(MMNewmark nm, PetscReal dt, MMStepMatrix *sm)
 {
   PetscFunctionBeginUser;
-  if (nm->material->finite && nm->nl.use_tangent) PetscCall(MMNonlinearStepMatrix(nm, dt, sm));
+  if (nm->material->finite) PetscCall(MMNonlinearStepMatrix(nm, dt, sm));
   else PetscCall(MMDampingGetStepMatrix(&nm->damping, nm->op->K, dt, sm));
   PetscFunctionReturn(0);
 }
