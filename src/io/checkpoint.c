@@ -735,7 +735,7 @@ PetscErrorCode MMCheckpointSetFromOptions(MPI_Comm comm, MMCheckpoint *c)
   c->every = 0;
   PetscCall(MMOptionsInt(PetscOptionsObject, comm, "-checkpoint_every", "Write the complete state to OUTPUT_DIR/checkpoint.h5 every k steps, replacing the previous one atomically (0: only at the end of the run)", &c->every));
   c->restart[0] = 0;
-  PetscCall(MMOptionsString(PetscOptionsObject, comm, "-restart", "Continue the run of a checkpoint: its checkpoint.h5, or the output directory that holds it, on any number of ranks. The history.csv and solution.h5/.xmf of that directory, cut at the checkpoint's step, are continued in -output_dir. Give the options of the run that wrote it: another mesh, contact boundary, dimension, -mu, material or mass is refused", c->restart, sizeof(c->restart), NULL));
+  PetscCall(MMOptionsString(PetscOptionsObject, comm, "-restart", "Continue the run of a checkpoint: its checkpoint.h5, or the output directory that holds it, on any number of ranks. The history.csv and solution.h5/.xmf of that directory, cut at the checkpoint's step, are continued in -output_dir. Give the options of the run that wrote it: another mesh, or another law, material, mass, damping, Dirichlet or contact data (the checkpoint records them) is refused", c->restart, sizeof(c->restart), NULL));
   PetscOptionsEnd();
   PetscCheck(c->every >= 0, comm, PETSC_ERR_USER_INPUT, "-checkpoint_every %" PetscInt_FMT " must be >= 0 (0: a checkpoint at the end only)", c->every);
   PetscFunctionReturn(0);
