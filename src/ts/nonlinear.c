@@ -285,7 +285,8 @@ PetscErrorCode MMNewmarkRestoreTangent(MMNewmark nm, Vec at, PetscReal t)
   MMElasticity *el = &nm->nl.el;
 
   PetscFunctionBeginUser;
-  if (!at || !nm->material->finite) PetscFunctionReturn(0);
+  /* -nonlinear_tangent reference or step at the restart: K, or each step's own tangent */
+  if (!at || !nm->material->finite || nm->nl.policy != MM_TANGENT_AUTO) PetscFunctionReturn(0);
   PetscCall(VecZeroEntries(el->l1));
   PetscCall(DMGlobalToLocal(nm->op->dm, at, INSERT_VALUES, el->l1));
   PetscCall(MMLoadsInsertBoundaryValues(nm->loads, el->l1, t));
