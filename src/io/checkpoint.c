@@ -346,13 +346,14 @@ static PetscErrorCode PhysicsAdd(MMPhysics *ph, const char option[], const char 
   PetscFunctionReturn(0);
 }
 
-/* option = NAME's option: fmt with one %s for the name (-body_%s_E) */
+/* option = NAME's option: fmt with one %s for the name (-body_%s_E), or fmt itself without a name (-E) */
 static PetscErrorCode PhysicsAddNamed(MMPhysics *ph, const char fmt[], const char name[], const char value[])
 {
   char option[MM_PHYS_LEN];
 
   PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(option, sizeof(option), fmt, name));
+  if (name) PetscCall(PetscSNPrintf(option, sizeof(option), fmt, name));
+  else PetscCall(PetscStrncpy(option, fmt, sizeof(option)));
   PetscCall(PhysicsAdd(ph, option, value));
   PetscFunctionReturn(0);
 }
@@ -394,9 +395,9 @@ static PetscErrorCode PhysicsMaterial(MMCheckpoint *ck, MMPhysics *ph)
   if (!m->named) {
     const MMBody *b = &m->body[0];
     PetscCall(PhysicsAdd(ph, "-elasticity", MMElasticityTypes[b->elasticity]));
-    PetscCall(PhysicsAddReals(ph, "-E%s", "", 1, &b->E));
-    PetscCall(PhysicsAddReals(ph, "-nu%s", "", 1, &b->nu));
-    PetscCall(PhysicsAddReals(ph, "-rho%s", "", 1, &b->rho));
+    PetscCall(PhysicsAddReals(ph, "-E", NULL, 1, &b->E));
+    PetscCall(PhysicsAddReals(ph, "-nu", NULL, 1, &b->nu));
+    PetscCall(PhysicsAddReals(ph, "-rho", NULL, 1, &b->rho));
     PetscFunctionReturn(0);
   }
   for (PetscInt k = 0; k < m->n_bodies; ++k) {
@@ -426,8 +427,8 @@ static PetscErrorCode PhysicsMassDampingDirichlet(MMCheckpoint *ck, MMPhysics *p
   PetscCall(MMContactGetMassType(ck->contact, &mass));
   PetscCall(PhysicsAdd(ph, "-mass", MMMassTypes[mass]));
   PetscCall(PhysicsAdd(ph, "-mass_lumped", ck->op->lumped ? "true" : "false"));
-  PetscCall(PhysicsAddReals(ph, "-damping_mass%s", "", 1, &ck->damping->alpha));
-  PetscCall(PhysicsAddReals(ph, "-damping_stiffness%s", "", 1, &ck->damping->beta));
+  PetscCall(PhysicsAddReals(ph, "-damping_mass", NULL, 1, &ck->damping->alpha));
+  PetscCall(PhysicsAddReals(ph, "-damping_stiffness", NULL, 1, &ck->damping->beta));
   for (PetscInt k = 0; k < o->n_dirichlet; ++k) {
     if (k) PetscCall(PetscStrlcat(list, ",", sizeof(list)));
     PetscCall(PetscStrlcat(list, o->dirichlet[k].name, sizeof(list)));
@@ -496,9 +497,9 @@ static PetscErrorCode PhysicsContact(MMCheckpoint *ck, MMPhysics *ph)
     } else if (o->obstacles_named) PetscCall(PhysicsObstacle(ck, ph, ob));
     else {
       /* the plane of -obstacle_point and -obstacle_normal, with -mu */
-      PetscCall(PhysicsAddReals(ph, "-obstacle_point%s", "", ck->op->dim, ob->point));
-      PetscCall(PhysicsAddReals(ph, "-obstacle_normal%s", "", ck->op->dim, ob->normal));
-      PetscCall(PhysicsAddReals(ph, "-mu%s", "", 1, &ob->mu));
+      PetscCall(PhysicsAddReals(ph, "-obstacle_point", NULL, ck->op->dim, ob->point));
+      PetscCall(PhysicsAddReals(ph, "-obstacle_normal", NULL, ck->op->dim, ob->normal));
+      PetscCall(PhysicsAddReals(ph, "-mu", NULL, 1, &ob->mu));
     }
   }
   /* the pairing's meaning: found once on the reference mesh, or again at each step (the state is relative to it) */
