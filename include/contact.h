@@ -93,6 +93,14 @@ PETSC_EXTERN PetscErrorCode MMContactGetPairCounts(MMContact ct, PetscInt p, Pet
  * K and M* are rebuilt, K~ with them at the next MMContactSetStepMatrix, and the vectors kin
  * (displacement-like) and force (force-like, w-frame) carried to the new variables. changed: it did. */
 PETSC_EXTERN PetscErrorCode MMContactSlidePairs(MMContact ct, Vec u, Vec up, PetscInt nkin, Vec kin[], PetscInt nforce, Vec force[], PetscBool *changed);
+/* A checkpoint of large sliding (docs/method.md section 9): per owned contact row its pairing, MM_CONTACT_PAIR_RECORD
+ * reals (the facet's reference centroid, the weights, the row's direction, the gap; *has: the row is a sliding
+ * pair's), restored by -restart with N, K and M* rebuilt (*changed); the run's counters of new pairings */
+#define MM_CONTACT_PAIR_RECORD (3 * MM_MAX_DIM + 1)
+PETSC_EXTERN PetscErrorCode MMContactPairsGetRecord(MMContact ct, PetscInt k, PetscBool *has, PetscScalar rec[]);
+PETSC_EXTERN PetscErrorCode MMContactPairsRestore(MMContact ct, const PetscScalar rec[], PetscBool *changed);
+PETSC_EXTERN PetscErrorCode MMContactPairsGetCounters(MMContact ct, PetscReal c[3]);
+PETSC_EXTERN PetscErrorCode MMContactPairsSetCounters(MMContact ct, const PetscReal c[3]);
 /* The candidate set's size at the last step and its re-solves over the run (0 without one) */
 PETSC_EXTERN PetscErrorCode MMContactGetCandidateCounts(MMContact ct, PetscInt *n_set, PetscInt *resolves);
 PETSC_EXTERN PetscErrorCode MMContactSetCandidateResolves(MMContact ct, PetscInt resolves);

@@ -15,6 +15,7 @@ typedef struct {
   PetscReal         E, nu, rho, mu, mu_max;
   PetscInt          n_obstacles, n_rigid; /* the rigid obstacles, then the contact pairs */
   const MMObstacle *obstacles;
+  PetscBool         obstacles_named; /* -obstacles was given (else the rigid obstacle is the plane of -obstacle_point, -obstacle_normal) */
   PetscInt          n_dirichlet;
   const MMDirichlet *dirichlet;
 } MMIOProblem;
@@ -81,6 +82,10 @@ typedef struct {
   PetscScalar *node;                           /* its per-node records of the owned contact nodes */
   PetscScalar *frames;                         /* frames that follow: the owned contact nodes' frame records (NULL: none) */
   PetscReal    frames_run[4];                  /* and the run's W_frame and the frames' counters */
+  PetscScalar *pairs;                          /* large sliding: the owned contact nodes' pairing records (NULL: none) */
+  PetscReal    pairs_run[3];                   /* and the run's counters of new pairings */
+  Vec          tangent;                        /* finite strain: the point of the iteration matrix (NULL: K) */
+  PetscReal    tangent_time;                   /* and its time */
   PetscReal   *snapshot_times;                 /* the times of its snapshots, until the output takes them */
 } MMCheckpoint;
 
@@ -168,6 +173,8 @@ PETSC_EXTERN PetscErrorCode MMCheckpointWriteFinal(MMCheckpoint *c, TS ts);
 PETSC_EXTERN PetscErrorCode MMCheckpointView(const MMCheckpoint *c, PetscViewer viewer);
 PETSC_EXTERN PetscErrorCode MMCheckpointRestoreHistory(MMCheckpoint *c);
 PETSC_EXTERN PetscErrorCode MMCheckpointGetFrames(const MMCheckpoint *c, const PetscScalar **rec, const PetscReal **counters);
+PETSC_EXTERN PetscErrorCode MMCheckpointGetPairs(const MMCheckpoint *c, const PetscScalar **rec, const PetscReal **counters);
+PETSC_EXTERN PetscErrorCode MMCheckpointGetTangent(const MMCheckpoint *c, Vec *at, PetscReal *t);
 PETSC_EXTERN PetscErrorCode MMCheckpointSnapshots(MMCheckpoint *c, PetscInt *n, PetscReal **times);
 PETSC_EXTERN PetscInt       MMCheckpointSnapshotCount(const MMCheckpoint *c);
 

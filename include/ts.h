@@ -102,6 +102,16 @@ PETSC_EXTERN PetscErrorCode MMNewmarkGetDamping(MMNewmark nm, MMDamping **dampin
 PETSC_EXTERN PetscErrorCode MMNewmarkDestroy(MMNewmark *nm);
 /* -restart of a run whose contact frames followed: the checkpoint's frames (MMCheckpointGetFrames) */
 PETSC_EXTERN PetscErrorCode MMNewmarkRestoreFrames(MMNewmark nm, const PetscScalar rec[], const PetscReal counters[]);
+/* The finite-strain iteration matrix's point (NULL: K itself), kept by a checkpoint and rebuilt by -restart
+ * (docs/method.md section 9); the step matrix as the stepper has it; the stepper from its TS */
+PETSC_EXTERN PetscErrorCode MMNewmarkGetTangentPoint(MMNewmark nm, Vec *at, PetscReal *t);
+PETSC_EXTERN PetscErrorCode MMNewmarkRestoreTangent(MMNewmark nm, Vec at, PetscReal t);
+PETSC_EXTERN PetscErrorCode MMNewmarkGetStepMatrix(MMNewmark nm, PetscReal dt, MMStepMatrix *sm);
+PETSC_EXTERN PetscErrorCode MMNewmarkFromTS(TS ts, MMNewmark *nm);
+/* Large sliding's checkpoint: the forces carried across pairings, and the pairing restored (docs/method.md section 9) */
+PETSC_EXTERN PetscErrorCode MMNewmarkGetCarriedForces(MMNewmark nm, PetscInt *n, Vec f[]);
+PETSC_EXTERN PetscInt       MMNewmarkCountCarriedForces(MMNewmark nm);
+PETSC_EXTERN PetscErrorCode MMNewmarkRestorePairs(MMNewmark nm, const PetscScalar rec[], const char file[]);
 #define TSNEWMARK "newmark"
 
 /* The audits (energy.c, deformation.c): on the initial state (restarted: it comes from a checkpoint),

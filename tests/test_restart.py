@@ -172,13 +172,13 @@ def short_checkpoint(tmp_path_factory):
 
 
 @pytest.mark.parametrize("extra,message", [
-    (["-mu", 0.3], "was written with -mu 0.2, this run has -mu 0.3: a different friction law"),
-    (["-E", 2000], "was written with -E 1000 -nu 0.3 -rho 1, this run has -E 2000 -nu 0.3 -rho 1: another material"),
+    (["-mu", 0.3], "was written with -mu 0.2, this run has -mu 0.3: its state would mean another problem. Restart with -mu 0.2"),
+    (["-E", 2000], "was written with -E 1000, this run has -E 2000: its state would mean another problem"),
     (["-mesh_rotation", 0.001], "is of another mesh: it has as many vertices and cells as meshes/disk.msh, but other coordinates"),
     (["-mesh", "meshes/disk_rail.msh"], "is of another contact boundary: 33 contact nodes, this run has 64"),
-    (["-contact", 0], "is of another contact boundary: 33 contact nodes, this run has 0"),
-    (["-mass", "standard"], "was written with the redistributed mass, this run has the standard mass"),
-    (["-damping_mass", 1], "was written with the Rayleigh damping alpha = 0, beta = 0, this run has alpha = 1, beta = 0: another damping"),
+    (["-contact", 0], "was written with -contact 1, this run has -contact 0"),
+    (["-mass", "standard"], "was written with -mass redistributed, this run has -mass standard"),
+    (["-damping_mass", 1], "was written with -damping_mass 0, this run has -damping_mass 1"),
 ])
 def test_mismatched_restart_is_refused(tmp_path, short_checkpoint, extra, message):
     before = open(os.path.join(short_checkpoint.outdir, "history.csv")).read()

@@ -61,15 +61,20 @@ static PetscErrorCode Restart(MMCtx *ctx, TS ts)
   PetscCall(MMCheckpointGetRestart(&ctx->ckpt, &restarted, NULL, &t));
   if (!restarted) PetscFunctionReturn(0);
   {
-    MMContactNodes     cn;
     const PetscScalar *rec;
     const PetscReal   *counters;
-    /* the checkpoint's w-frame state is relative to the pairing of its step, which it does not hold */
-    PetscCall(MMContactGetNodes(ctx->contact, &cn));
-    PetscCheck(!(cn.enabled && cn.pairs_sliding), PETSC_COMM_WORLD, PETSC_ERR_SUP, "-restart with contact pairs under large sliding is not supported yet: the checkpoint does not hold the pairing its state is relative to. Restart with -contact_pairs_sliding small, or run without -restart");
+    Vec                at;
+    PetscReal          t_at;
     /* frames that follow the contact point: the checkpoint's state is in its frames, restored first */
     PetscCall(MMCheckpointGetFrames(&ctx->ckpt, &rec, &counters));
     PetscCall(MMNewmarkRestoreFrames(ctx->nm, rec, counters));
+    /* large sliding: the state is relative to the checkpoint's pairing, N, K and M* built for it */
+    PetscCall(MMCheckpointGetPairs(&ctx->ckpt, &rec, &counters));
+    PetscCall(MMNewmarkRestorePairs(ctx->nm, rec, ctx->ckpt.file));
+    if (rec) PetscCall(MMContactPairsSetCounters(ctx->contact, counters));
+    /* finite strain: the iteration matrix the next steps start from, in the restored variables */
+    PetscCall(MMCheckpointGetTangent(&ctx->ckpt, &at, &t_at));
+    PetscCall(MMNewmarkRestoreTangent(ctx->nm, at, t_at));
   }
   PetscCall(MMContactSetTime(ctx->contact, t, state->dt)); /* nothing without contact */
   PetscCall(MMLoadsSetTime(&ctx->loads, t, t));
@@ -157,7 +162,7 @@ static PetscErrorCode SetUpStepper(MMCtx *ctx, TS *ts)
   PetscCall(TSGetTimeStep(*ts, &dt));
   {
     MMStepMatrix sm;
-    PetscCall(MMDampingGetStepMatrix(damping, ctx->op.K, dt, &sm));
+    PetscCall(MMNewmarkGetStepMatrix(ctx->nm, dt, &sm)); /* after -restart, its iteration matrix */
     MMPhase(MMAppEvents.step_matrix, MMContactSetStepMatrix(ctx->contact, &sm));
   }
   hist->dt = dt;

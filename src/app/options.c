@@ -700,6 +700,7 @@ PetscErrorCode MMOptionsGetIOProblem(const MMOptions *opt, MMIOProblem *pb)
   pb->n_obstacles  = opt->n_obstacles;
   pb->n_rigid      = opt->n_rigid;
   pb->obstacles    = opt->obstacles;
+  pb->obstacles_named = opt->obstacles_named;
   pb->n_dirichlet  = opt->n_dirichlet;
   pb->dirichlet    = opt->dirichlet;
   PetscFunctionReturn(0);

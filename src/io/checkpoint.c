@@ -2,6 +2,7 @@
  * (docs/method.md section 9). Every field is keyed by the serial mesh's vertex numbers, so the file
  * does not depend on the number of ranks that wrote it. */
 #include <errno.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <petscviewerhdf5.h>
@@ -187,6 +188,36 @@ static PetscErrorCode PackFrames(MMCheckpoint *ck, Vec src, Vec packed)
   PetscFunctionReturn(0);
 }
 
+/* Large sliding (docs/method.md section 11): each sliding slave node's pairing (MMContactPairsGetRecord),
+ * which the state w is relative to. */
+static PetscErrorCode PackPairs(MMCheckpoint *ck, Vec src, Vec packed)
+{
+  PetscInt       vStart, vEnd;
+  MMContactNodes cn;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetDepthStratum(ck->op->dm, 0, &vStart, &vEnd));
+  PetscCall(MMContactGetNodes(ck->contact, &cn));
+  for (PetscInt k = 0; k < cn.n_local; ++k) {
+    PetscScalar rec[MM_CONTACT_PAIR_RECORD];
+    PetscBool   has;
+    PetscCall(MMContactPairsGetRecord(ck->contact, k, &has, rec));
+    for (PetscInt c = 0; has && c < MM_CONTACT_PAIR_RECORD; ++c) PetscCall(VecSetValue(packed, MM_CONTACT_PAIR_RECORD * ck->vertex_orig[cn.vertex[k] - vStart] + c, rec[c], INSERT_VALUES));
+  }
+  PetscCall(VecAssemblyBegin(packed));
+  PetscCall(VecAssemblyEnd(packed));
+  PetscFunctionReturn(0);
+}
+
+/* Contact pairs under large sliding: the checkpoint has their pairing and the forces the stepper carries. */
+static PetscBool PairsSlide(const MMCheckpoint *ck)
+{
+  MMContactNodes cn;
+
+  if (MMContactGetNodes(ck->contact, &cn)) return PETSC_FALSE;
+  return (PetscBool)(cn.enabled && cn.pairs_sliding);
+}
+
 /* The contact frames follow the contact point: the checkpoint has their records. */
 static PetscBool FramesFollow(const MMCheckpoint *ck)
 {
@@ -276,6 +307,271 @@ static PetscErrorCode RunRecord(MMCheckpoint *ck, TS ts, PetscReal run[])
   PetscFunctionReturn(0);
 }
 
+/* ---- What the state means: the physics a checkpoint records (docs/reference.md, "Checkpoint and restart") ----
+ * The run's law and material per body, mass, damping, Dirichlet data and contact data (obstacles,
+ * contact boundary, pairs, the pairs' sliding, friction coefficients), each as the option that sets
+ * it and its value, stored as string attributes of the "run" dataset. A restart refuses any
+ * difference, naming the option and both values. The solvers, the contact formulation and their
+ * tolerances change how a step is solved, not what the state is, and may change at a restart; so
+ * may -ts_dt and -ts_max_time; the loads (gravity, tractions, pressures, point forces) are not
+ * recorded either: the state u, v, a is the same in any of them, and a continuation under other
+ * loads is a new question the energy audit books from the restart on. */
+#define MM_PHYS_LEN 512
+#define MM_PHYS_COUNT "physics_entries" /* the attribute that says a checkpoint records its physics */
+
+typedef struct {
+  char option[MM_PHYS_LEN];
+  char value[MM_PHYS_LEN];
+} MMPhysicsEntry;
+
+typedef struct {
+  PetscInt        n, cap;
+  MMPhysicsEntry *e;
+} MMPhysics;
+
+static PetscErrorCode PhysicsAdd(MMPhysics *ph, const char option[], const char value[])
+{
+  PetscFunctionBeginUser;
+  if (ph->n == ph->cap) {
+    MMPhysicsEntry *e;
+    ph->cap = PetscMax(2 * ph->cap, 32);
+    PetscCall(PetscMalloc1(ph->cap, &e));
+    if (ph->n) PetscCall(PetscArraycpy(e, ph->e, ph->n));
+    PetscCall(PetscFree(ph->e));
+    ph->e = e;
+  }
+  PetscCall(PetscStrncpy(ph->e[ph->n].option, option, MM_PHYS_LEN));
+  PetscCall(PetscStrncpy(ph->e[ph->n].value, value[0] ? value : "(none)", MM_PHYS_LEN)); /* HDF5 holds no empty string */
+  ph->n++;
+  PetscFunctionReturn(0);
+}
+
+/* option = NAME's option: fmt with one %s for the name (-body_%s_E), or fmt itself without a name (-E) */
+static PetscErrorCode PhysicsAddNamed(MMPhysics *ph, const char fmt[], const char name[], const char value[])
+{
+  char option[MM_PHYS_LEN];
+
+  PetscFunctionBeginUser;
+  if (name) PetscCall(PetscSNPrintf(option, sizeof(option), fmt, name));
+  else PetscCall(PetscStrncpy(option, fmt, sizeof(option)));
+  PetscCall(PhysicsAdd(ph, option, value));
+  PetscFunctionReturn(0);
+}
+
+/* x in the fewest digits that read back as x: a value that differs in any bit is another value, and
+ * the message quotes 0.3 as the user wrote it */
+static PetscErrorCode ExactReal(PetscReal x, char buf[], size_t len)
+{
+  PetscFunctionBeginUser;
+  for (int digits = 15; digits <= 17; ++digits) {
+    PetscCall(PetscSNPrintf(buf, len, "%.*g", digits, (double)x));
+    if (strtod(buf, NULL) == (double)x) break;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* n reals, comma-separated, each exactly (ExactReal) */
+static PetscErrorCode PhysicsAddReals(MMPhysics *ph, const char fmt[], const char name[], PetscInt n, const PetscReal x[])
+{
+  char value[MM_PHYS_LEN] = "", one[64];
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < n; ++i) {
+    if (i) PetscCall(PetscStrlcat(value, ",", sizeof(value)));
+    PetscCall(ExactReal(x[i], one, sizeof(one)));
+    PetscCall(PetscStrlcat(value, one, sizeof(value)));
+  }
+  PetscCall(PhysicsAddNamed(ph, fmt, name, value));
+  PetscFunctionReturn(0);
+}
+
+/* The law and material per body: -elasticity -E -nu -rho, or with -bodies each body's */
+static PetscErrorCode PhysicsMaterial(MMCheckpoint *ck, MMPhysics *ph)
+{
+  const MMMaterial *m = ck->material;
+  char              list[MM_PHYS_LEN] = "";
+
+  PetscFunctionBeginUser;
+  if (!m->named) {
+    const MMBody *b = &m->body[0];
+    PetscCall(PhysicsAdd(ph, "-elasticity", MMElasticityTypes[b->elasticity]));
+    PetscCall(PhysicsAddReals(ph, "-E", NULL, 1, &b->E));
+    PetscCall(PhysicsAddReals(ph, "-nu", NULL, 1, &b->nu));
+    PetscCall(PhysicsAddReals(ph, "-rho", NULL, 1, &b->rho));
+    PetscFunctionReturn(0);
+  }
+  for (PetscInt k = 0; k < m->n_bodies; ++k) {
+    if (k) PetscCall(PetscStrlcat(list, ",", sizeof(list)));
+    PetscCall(PetscStrlcat(list, m->body[k].name, sizeof(list)));
+  }
+  PetscCall(PhysicsAdd(ph, "-bodies", list));
+  for (PetscInt k = 0; k < m->n_bodies; ++k) {
+    const MMBody *b = &m->body[k];
+    PetscCall(PhysicsAddNamed(ph, "-body_%s_group", b->name, b->group ? b->group : ""));
+    PetscCall(PhysicsAddNamed(ph, "-body_%s_elasticity", b->name, MMElasticityTypes[b->elasticity]));
+    PetscCall(PhysicsAddReals(ph, "-body_%s_E", b->name, 1, &b->E));
+    PetscCall(PhysicsAddReals(ph, "-body_%s_nu", b->name, 1, &b->nu));
+    PetscCall(PhysicsAddReals(ph, "-body_%s_rho", b->name, 1, &b->rho));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The mass, the damping and the Dirichlet boundaries (which dofs the state holds, and their data) */
+static PetscErrorCode PhysicsMassDampingDirichlet(MMCheckpoint *ck, MMPhysics *ph)
+{
+  const MMIOProblem *o = ck->opt;
+  MMMassType         mass;
+  char               list[MM_PHYS_LEN] = "";
+
+  PetscFunctionBeginUser;
+  PetscCall(MMContactGetMassType(ck->contact, &mass));
+  PetscCall(PhysicsAdd(ph, "-mass", MMMassTypes[mass]));
+  PetscCall(PhysicsAdd(ph, "-mass_lumped", ck->op->lumped ? "true" : "false"));
+  PetscCall(PhysicsAddReals(ph, "-damping_mass", NULL, 1, &ck->damping->alpha));
+  PetscCall(PhysicsAddReals(ph, "-damping_stiffness", NULL, 1, &ck->damping->beta));
+  for (PetscInt k = 0; k < o->n_dirichlet; ++k) {
+    if (k) PetscCall(PetscStrlcat(list, ",", sizeof(list)));
+    PetscCall(PetscStrlcat(list, o->dirichlet[k].name, sizeof(list)));
+  }
+  PetscCall(PhysicsAdd(ph, "-dirichlet", list));
+  for (PetscInt k = 0; k < o->n_dirichlet; ++k) {
+    const MMDirichlet *bc = &o->dirichlet[k];
+    PetscReal          comps[MM_MAX_DIM];
+    char               amp[MM_PHYS_LEN];
+    for (PetscInt c = 0; c < bc->ncomp; ++c) comps[c] = bc->comps[c];
+    PetscCall(PhysicsAddReals(ph, "-dirichlet_%s_components", bc->name, bc->ncomp, comps));
+    PetscCall(PhysicsAddReals(ph, "-dirichlet_%s_value", bc->name, bc->ncomp, bc->values));
+    PetscCall(PhysicsAddReals(ph, "-dirichlet_%s_velocity", bc->name, bc->ncomp, bc->velocity));
+    PetscCall(PetscSNPrintf(amp, sizeof(amp), "%s %.17g %s", bc->amplitude.kind, (double)bc->amplitude.time, bc->amplitude.table));
+    PetscCall(PhysicsAddNamed(ph, "-dirichlet_%s_amplitude", bc->name, amp));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* One rigid obstacle of -obstacles: its shape, position, motion and friction coefficient */
+static PetscErrorCode PhysicsObstacle(MMCheckpoint *ck, MMPhysics *ph, const MMObstacle *ob)
+{
+  const PetscInt dim = ck->op->dim;
+
+  PetscFunctionBeginUser;
+  PetscCall(PhysicsAddNamed(ph, "-obstacle_%s_type", ob->name, ob->type));
+  PetscCall(PhysicsAddReals(ph, "-obstacle_%s_point", ob->name, dim, ob->point));
+  PetscCall(PhysicsAddReals(ph, "-obstacle_%s_normal", ob->name, dim, ob->normal));
+  PetscCall(PhysicsAddReals(ph, "-obstacle_%s_center", ob->name, dim, ob->center));
+  PetscCall(PhysicsAddReals(ph, "-obstacle_%s_axis", ob->name, dim, ob->axis));
+  PetscCall(PhysicsAddReals(ph, "-obstacle_%s_radius", ob->name, 1, &ob->radius));
+  PetscCall(PhysicsAddNamed(ph, "-obstacle_%s_side", ob->name, ob->inside ? "inside" : "outside"));
+  PetscCall(PhysicsAddReals(ph, "-obstacle_%s_mu", ob->name, 1, &ob->mu));
+  PetscCall(PhysicsAddReals(ph, "-obstacle_%s_velocity", ob->name, dim, ob->velocity));
+  PetscCall(PhysicsAddReals(ph, "-obstacle_%s_start", ob->name, 1, &ob->start));
+  PetscCall(PhysicsAddReals(ph, "-obstacle_%s_stop", ob->name, 1, &ob->stop));
+  PetscFunctionReturn(0);
+}
+
+/* The contact data: on or off, the contact boundary, the rigid obstacles, the pairs and their sliding */
+static PetscErrorCode PhysicsContact(MMCheckpoint *ck, MMPhysics *ph)
+{
+  const MMIOProblem *o = ck->opt;
+  MMContactNodes     cn;
+  char               list[MM_PHYS_LEN] = "", plist[MM_PHYS_LEN] = "";
+
+  PetscFunctionBeginUser;
+  PetscCall(MMContactGetNodes(ck->contact, &cn));
+  PetscCall(PhysicsAdd(ph, "-contact", cn.enabled ? "1" : "0"));
+  if (!cn.enabled) PetscFunctionReturn(0);
+  PetscCall(PhysicsAdd(ph, "-contact_boundary", o->contact_name));
+  for (PetscInt b = 0; b < o->n_obstacles; ++b) {
+    char *l = b < o->n_rigid ? list : plist;
+    if (b < o->n_rigid && !o->obstacles_named) continue;
+    if (l[0]) PetscCall(PetscStrlcat(l, ",", MM_PHYS_LEN));
+    PetscCall(PetscStrlcat(l, o->obstacles[b].name, MM_PHYS_LEN));
+  }
+  PetscCall(PhysicsAdd(ph, "-obstacles", list));
+  PetscCall(PhysicsAdd(ph, "-contact_pairs", plist));
+  for (PetscInt b = 0; b < o->n_obstacles; ++b) {
+    const MMObstacle *ob = &o->obstacles[b];
+    if (ob->pair) {
+      PetscCall(PhysicsAddNamed(ph, "-contact_pair_%s_slave", ob->name, ob->slave));
+      PetscCall(PhysicsAddNamed(ph, "-contact_pair_%s_master", ob->name, ob->master));
+      PetscCall(PhysicsAddReals(ph, "-contact_pair_%s_mu", ob->name, 1, &ob->mu));
+    } else if (o->obstacles_named) PetscCall(PhysicsObstacle(ck, ph, ob));
+    else {
+      /* the plane of -obstacle_point and -obstacle_normal, with -mu */
+      PetscCall(PhysicsAddReals(ph, "-obstacle_point", NULL, ck->op->dim, ob->point));
+      PetscCall(PhysicsAddReals(ph, "-obstacle_normal", NULL, ck->op->dim, ob->normal));
+      PetscCall(PhysicsAddReals(ph, "-mu", NULL, 1, &ob->mu));
+    }
+  }
+  /* the pairing's meaning: found once on the reference mesh, or again at each step (the state is relative to it) */
+  if (plist[0]) PetscCall(PhysicsAdd(ph, "-contact_pairs_sliding", cn.pairs_sliding ? "large" : "small"));
+  PetscFunctionReturn(0);
+}
+
+/* This run's physics, in the order a restart compares it: each list (-bodies, -obstacles ...) before its members */
+static PetscErrorCode PhysicsList(MMCheckpoint *ck, MMPhysics *ph)
+{
+  PetscFunctionBeginUser;
+  ph->n = ph->cap = 0;
+  ph->e = NULL;
+  PetscCall(PhysicsMaterial(ck, ph));
+  PetscCall(PhysicsMassDampingDirichlet(ck, ph));
+  PetscCall(PhysicsContact(ck, ph));
+  PetscFunctionReturn(0);
+}
+
+/* The physics as attributes of the "run" dataset, and their count */
+static PetscErrorCode WritePhysics(MMCheckpoint *ck, PetscViewer viewer)
+{
+  MMPhysics ph;
+  PetscInt  n;
+
+  PetscFunctionBeginUser;
+  PetscCall(PhysicsList(ck, &ph));
+  for (PetscInt i = 0; i < ph.n; ++i) PetscCall(PetscViewerHDF5WriteAttribute(viewer, "run", ph.e[i].option, PETSC_STRING, ph.e[i].value));
+  n = ph.n;
+  PetscCall(PetscViewerHDF5WriteAttribute(viewer, "run", MM_PHYS_COUNT, PETSC_INT, &n));
+  PetscCall(PetscFree(ph.e));
+  PetscFunctionReturn(0);
+}
+
+/* -restart: the checkpoint's physics against this run's, each difference refused naming the option
+ * and both values. A checkpoint without them (written before they were recorded) is continued with a
+ * warning: its run record still checks the mesh, E, nu, rho, the cells' material, mass, damping and -mu. */
+static PetscErrorCode CheckPhysics(MMCheckpoint *ck, PetscViewer viewer)
+{
+  MPI_Comm  comm = PetscObjectComm((PetscObject)ck->op->dm);
+  MMPhysics ph;
+  PetscBool recorded;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5HasAttribute(viewer, "run", MM_PHYS_COUNT, &recorded));
+  if (!recorded) {
+    PetscCall(PetscPrintf(comm, "mmcontact warning: the checkpoint %s does not record its elasticity law, obstacles, contact pairs and Dirichlet data (written by an older mmcontact): continued with this run's, which must be those of the run that wrote it\n", ck->file));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PhysicsList(ck, &ph));
+  for (PetscInt i = 0; i < ph.n; ++i) {
+    const MMPhysicsEntry *e = &ph.e[i];
+    char                 *theirs = NULL, given[MM_PHYS_LEN];
+    PetscBool             has, same;
+    PetscCall(PetscViewerHDF5HasAttribute(viewer, "run", e->option, &has));
+    if (has) PetscCall(PetscViewerHDF5ReadAttribute(viewer, "run", e->option, PETSC_STRING, NULL, &theirs));
+    else PetscCall(PetscStrallocpy("(not set)", &theirs));
+    PetscCall(PetscStrcmp(theirs, e->value, &same));
+    if (!same) {
+      char written[MM_PHYS_LEN];
+      PetscCall(PetscStrncpy(written, theirs, sizeof(written)));
+      PetscCall(PetscStrncpy(given, e->value, sizeof(given)));
+      PetscCall(PetscFree(theirs));
+      PetscCall(PetscFree(ph.e));
+      SETERRQ(comm, PETSC_ERR_USER_INPUT, "-restart %s: the checkpoint was written with %s %s, this run has %s %s: its state would mean another problem. Restart with %s %s, as the run that wrote it", ck->file, e->option, written, e->option, given, e->option, written);
+    }
+    PetscCall(PetscFree(theirs));
+  }
+  PetscCall(PetscFree(ph.e));
+  PetscFunctionReturn(0);
+}
+
 /* A vector held on rank 0, for the run's scalars and the snapshot times. */
 static PetscErrorCode RootVector(MPI_Comm comm, const char name[], PetscInt n, const PetscReal vals[], Vec *v)
 {
@@ -322,7 +618,45 @@ static PetscErrorCode CountVertices(MMCheckpoint *ck)
 
 /* The checkpoint's datasets into the file tmp. A failed write returns its error, for the caller's
  * MMOutputHDF5End to name the file. */
-static PetscErrorCode WriteCheckpointFile(MMCheckpoint *ck, const char tmp[], const PetscReal run[])
+/* The state of the stepper besides u, v, a: the finite-strain iteration matrix's point, and under large
+ * sliding the pairing, its counters and the forces carried across pairings (docs/method.md section 9). */
+static PetscErrorCode WriteStepperState(MMCheckpoint *ck, TS ts, PetscViewer viewer)
+{
+  MPI_Comm  comm = PetscObjectComm((PetscObject)ck->op->dm);
+  MMNewmark nm;
+  Vec       at;
+  PetscReal t;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMNewmarkFromTS(ts, &nm));
+  PetscCall(MMNewmarkGetTangentPoint(nm, &at, &t));
+  if (at) {
+    PetscCall(ViewPacked(ck, viewer, "tangent_point", ck->op->dim, at, PackDofs));
+    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "tangent_point", "time", PETSC_REAL, &t));
+  }
+  if (PairsSlide(ck)) {
+    Vec      *f;
+    PetscInt  n;
+    PetscReal counters[3];
+    Vec       cv;
+    PetscCall(PetscMalloc1(MMNewmarkCountCarriedForces(nm), &f));
+    PetscCall(MMNewmarkGetCarriedForces(nm, &n, f));
+    PetscCall(ViewPacked(ck, viewer, "pairs", MM_CONTACT_PAIR_RECORD, NULL, PackPairs));
+    for (PetscInt i = 0; i < n; ++i) {
+      char name[32];
+      PetscCall(PetscSNPrintf(name, sizeof(name), "pairs_force_%" PetscInt_FMT, i));
+      PetscCall(ViewPacked(ck, viewer, name, ck->op->dim, f[i], PackDofs));
+    }
+    PetscCall(PetscFree(f));
+    PetscCall(MMContactPairsGetCounters(ck->contact, counters));
+    PetscCall(RootVector(comm, "pairs_run", 3, counters, &cv));
+    PetscCall(VecView(cv, viewer));
+    PetscCall(VecDestroy(&cv));
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode WriteCheckpointFile(MMCheckpoint *ck, TS ts, const char tmp[], const PetscReal run[])
 {
   MPI_Comm    comm = PetscObjectComm((PetscObject)ck->op->dm);
   MMState    *s    = ck->state;
@@ -334,6 +668,7 @@ static PetscErrorCode WriteCheckpointFile(MMCheckpoint *ck, const char tmp[], co
   PetscCall(RootVector(comm, "run", MM_RUN_NUM, run, &rv));
   PetscCall(VecView(rv, viewer));
   PetscCall(VecDestroy(&rv));
+  PetscCall(WritePhysics(ck, viewer));
   PetscCall(RootVector(comm, "snapshot_times", PetscMax(ck->out->n_written, 1), ck->out->n_written ? ck->out->times : run, &tv));
   PetscCall(VecView(tv, viewer));
   PetscCall(VecDestroy(&tv));
@@ -354,6 +689,7 @@ static PetscErrorCode WriteCheckpointFile(MMCheckpoint *ck, const char tmp[], co
     PetscCall(VecView(fv, viewer));
     PetscCall(VecDestroy(&fv));
   }
+  PetscCall(WriteStepperState(ck, ts, viewer));
   PetscCall(PetscViewerDestroy(&viewer));
   PetscFunctionReturn(0);
 }
@@ -378,7 +714,7 @@ PetscErrorCode MMCheckpointWrite(MMCheckpoint *ck, TS ts)
   PetscCall(RunRecord(ck, ts, run));
   PetscCall(MMOutputCopySnapshots(ck->out)); /* before the checkpoint that counts on it */
   PetscCall(MMOutputHDF5Begin());
-  ierr = WriteCheckpointFile(ck, tmp, run);
+  ierr = WriteCheckpointFile(ck, ts, tmp, run);
   PetscCall(MMOutputHDF5End(ierr, "write", tmp));
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (!rank && rename(tmp, name)) err = errno;
@@ -400,7 +736,7 @@ PetscErrorCode MMCheckpointSetFromOptions(MPI_Comm comm, MMCheckpoint *c)
   c->every = 0;
   PetscCall(MMOptionsInt(PetscOptionsObject, comm, "-checkpoint_every", "Write the complete state to OUTPUT_DIR/checkpoint.h5 every k steps, replacing the previous one atomically (0: only at the end of the run)", &c->every));
   c->restart[0] = 0;
-  PetscCall(MMOptionsString(PetscOptionsObject, comm, "-restart", "Continue the run of a checkpoint: its checkpoint.h5, or the output directory that holds it, on any number of ranks. The history.csv and solution.h5/.xmf of that directory, cut at the checkpoint's step, are continued in -output_dir. Give the options of the run that wrote it: another mesh, contact boundary, dimension, -mu, material or mass is refused", c->restart, sizeof(c->restart), NULL));
+  PetscCall(MMOptionsString(PetscOptionsObject, comm, "-restart", "Continue the run of a checkpoint: its checkpoint.h5, or the output directory that holds it, on any number of ranks. The history.csv and solution.h5/.xmf of that directory, cut at the checkpoint's step, are continued in -output_dir. Give the options of the run that wrote it: another mesh, or another law, material, mass, damping, Dirichlet or contact data (the checkpoint records them) is refused", c->restart, sizeof(c->restart), NULL));
   PetscOptionsEnd();
   PetscCheck(c->every >= 0, comm, PETSC_ERR_USER_INPUT, "-checkpoint_every %" PetscInt_FMT " must be >= 0 (0: a checkpoint at the end only)", c->every);
   PetscFunctionReturn(0);
@@ -424,6 +760,8 @@ PetscErrorCode MMCheckpointDestroy(MMCheckpoint *c)
   PetscCall(PetscFree(c->vertex_file));
   PetscCall(PetscFree(c->node));
   PetscCall(PetscFree(c->frames));
+  PetscCall(PetscFree(c->pairs));
+  PetscCall(VecDestroy(&c->tangent));
   PetscCall(PetscFree(c->snapshot_times));
   PetscFunctionReturn(0);
 }
@@ -496,9 +834,10 @@ static PetscErrorCode LoadRunRecord(MMCheckpoint *ck, PetscViewer viewer, PetscR
   PetscFunctionReturn(0);
 }
 
-/* The checkpoint must be of this problem: the same mesh (vertices, cells, coordinates), the same
- * contact boundary, dimension, friction coefficient, material and mass. Each difference is named. */
-static PetscErrorCode CheckFingerprint(MMCheckpoint *ck, TS ts, const PetscReal rec[])
+/* The checkpoint must be of this problem: the same mesh (vertices, cells, coordinates), then the same
+ * physics (CheckPhysics: law, material, mass, damping, Dirichlet and contact data, per option), and
+ * from the run record the contact boundary, friction coefficient, material and mass. Each difference is named. */
+static PetscErrorCode CheckFingerprint(MMCheckpoint *ck, TS ts, PetscViewer viewer, const PetscReal rec[])
 {
   MPI_Comm    comm = PetscObjectComm((PetscObject)ck->op->dm);
   const char *f    = ck->file;
@@ -511,6 +850,8 @@ static PetscErrorCode CheckFingerprint(MMCheckpoint *ck, TS ts, const PetscReal 
   PetscCheck(rec[MM_RUN_DIM] == me[MM_RUN_DIM], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of a %dD problem, this mesh %s is %dD: another dimension. Restart with the mesh and options of the run that wrote it", f, (int)rec[MM_RUN_DIM], ck->opt->mesh_file, (int)me[MM_RUN_DIM]);
   PetscCheck(rec[MM_RUN_VERTICES] == me[MM_RUN_VERTICES] && rec[MM_RUN_CELLS] == me[MM_RUN_CELLS], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another mesh: %d vertices and %d cells, this mesh %s has %d and %d. Restart with the mesh of the run that wrote it", f, (int)rec[MM_RUN_VERTICES], (int)rec[MM_RUN_CELLS], ck->opt->mesh_file, (int)me[MM_RUN_VERTICES], (int)me[MM_RUN_CELLS]);
   PetscCheck(PetscAbsReal(rec[MM_RUN_COORDINATES] - me[MM_RUN_COORDINATES]) <= 1e-10 * PetscMax(PetscAbsReal(me[MM_RUN_COORDINATES]), 1.0), comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another mesh: it has as many vertices and cells as %s, but other coordinates (checksums %.15g and %.15g). Restart with the mesh, and -mesh_rotation, of the run that wrote it", f, ck->opt->mesh_file, (double)rec[MM_RUN_COORDINATES], (double)me[MM_RUN_COORDINATES]);
+  /* the physics, each option named; what follows checks a checkpoint that does not record it */
+  PetscCall(CheckPhysics(ck, viewer));
   PetscCheck(rec[MM_RUN_CONTACT_NODES] == me[MM_RUN_CONTACT_NODES], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another contact boundary: %d contact nodes, this run has %d (-contact_boundary %s, -contact %s). Restart with the contact options of the run that wrote it", f, (int)rec[MM_RUN_CONTACT_NODES], (int)me[MM_RUN_CONTACT_NODES], ck->opt->contact_name, cn.enabled ? "1" : "0");
   PetscCheck(rec[MM_RUN_MU] == me[MM_RUN_MU], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with -mu %.10g, this run has -mu %.10g: a different friction law. Restart with -mu %.10g", f, (double)rec[MM_RUN_MU], (double)me[MM_RUN_MU], (double)rec[MM_RUN_MU]);
   PetscCheck(rec[MM_RUN_E] == me[MM_RUN_E] && rec[MM_RUN_NU] == me[MM_RUN_NU] && rec[MM_RUN_RHO] == me[MM_RUN_RHO], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with -E %.10g -nu %.10g -rho %.10g, this run has -E %.10g -nu %.10g -rho %.10g: another material. Restart with the material of the run that wrote it", f, (double)rec[MM_RUN_E], (double)rec[MM_RUN_NU], (double)rec[MM_RUN_RHO], (double)me[MM_RUN_E], (double)me[MM_RUN_NU], (double)me[MM_RUN_RHO]);
@@ -641,6 +982,100 @@ static PetscErrorCode LoadFrameRecords(MMCheckpoint *ck, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
+/* A vector of n reals held on rank 0 in the file, on every rank */
+static PetscErrorCode LoadSmallVector(MMCheckpoint *ck, PetscViewer viewer, const char name[], PetscInt n, PetscReal vals[])
+{
+  MPI_Comm           comm = PetscObjectComm((PetscObject)ck->op->dm);
+  Vec                v, all;
+  VecScatter         sc;
+  PetscInt           N;
+  const PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecCreate(comm, &v));
+  PetscCall(LoadVector(ck, viewer, name, v));
+  PetscCall(VecGetSize(v, &N));
+  PetscCheck(N == n, comm, PETSC_ERR_FILE_UNEXPECTED, "The checkpoint %s has %" PetscInt_FMT " entries in \"%s\", expected %" PetscInt_FMT ": the file is damaged", ck->file, N, name, n);
+  PetscCall(VecScatterCreateToAll(v, &sc, &all));
+  PetscCall(VecScatterBegin(sc, v, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(sc, v, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGetArrayRead(all, &a));
+  for (PetscInt i = 0; i < n; ++i) vals[i] = PetscRealPart(a[i]);
+  PetscCall(VecRestoreArrayRead(all, &a));
+  PetscCall(VecScatterDestroy(&sc));
+  PetscCall(VecDestroy(&all));
+  PetscCall(VecDestroy(&v));
+  PetscFunctionReturn(0);
+}
+
+/* The finite-strain iteration matrix's point, when the checkpoint has one (MMNewmarkRestoreTangent
+ * builds the matrix once the pairing and frames are restored) */
+static PetscErrorCode LoadTangentPoint(MMCheckpoint *ck, PetscViewer viewer)
+{
+  PetscBool has;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5HasDataset(viewer, "tangent_point", &has));
+  if (!has || !ck->material->finite) PetscFunctionReturn(0);
+  PetscCall(VecDuplicate(ck->state->u, &ck->tangent));
+  PetscCall(LoadDofs(ck, viewer, "tangent_point", ck->tangent));
+  PetscCall(PetscViewerHDF5ReadAttribute(viewer, "tangent_point", "time", PETSC_REAL, NULL, &ck->tangent_time));
+  PetscFunctionReturn(0);
+}
+
+/* Large sliding: each owned sliding node's pairing record, the run's counters, and the carried forces
+ * straight into the stepper's vectors (they are in the checkpoint's pairing's variables, as the state) */
+static PetscErrorCode LoadPairs(MMCheckpoint *ck, TS ts, PetscViewer viewer)
+{
+  PetscBool      has;
+  PetscInt       vStart, vEnd, *serial, n;
+  MMContactNodes cn;
+  MMNewmark      nm;
+  Vec           *f;
+
+  PetscFunctionBeginUser;
+  if (!PairsSlide(ck)) PetscFunctionReturn(0);
+  PetscCall(PetscViewerHDF5HasDataset(viewer, "pairs", &has));
+  if (!has) PetscFunctionReturn(0); /* refused by MMNewmarkRestorePairs */
+  PetscCall(MMContactGetNodes(ck->contact, &cn));
+  PetscCall(DMPlexGetDepthStratum(ck->op->dm, 0, &vStart, &vEnd));
+  PetscCall(PetscMalloc1(cn.n_local, &serial));
+  PetscCall(PetscMalloc1(MM_CONTACT_PAIR_RECORD * cn.n_local + 1, &ck->pairs));
+  for (PetscInt k = 0; k < cn.n_local; ++k) serial[k] = ck->vertex_orig[cn.vertex[k] - vStart];
+  PetscCall(LoadPacked(ck, viewer, "pairs", MM_CONTACT_PAIR_RECORD, cn.n_local, serial, ck->pairs));
+  PetscCall(PetscFree(serial));
+  PetscCall(LoadSmallVector(ck, viewer, "pairs_run", 3, ck->pairs_run));
+  PetscCall(MMNewmarkFromTS(ts, &nm));
+  PetscCall(PetscMalloc1(MMNewmarkCountCarriedForces(nm), &f));
+  PetscCall(MMNewmarkGetCarriedForces(nm, &n, f));
+  for (PetscInt i = 0; i < n; ++i) {
+    char name[32];
+    PetscCall(PetscSNPrintf(name, sizeof(name), "pairs_force_%" PetscInt_FMT, i));
+    PetscCall(LoadDofs(ck, viewer, name, f[i]));
+  }
+  PetscCall(PetscFree(f));
+  PetscFunctionReturn(0);
+}
+
+/* The pairing records of the checkpoint a restart read (NULL without large sliding) and its counters,
+ * for MMNewmarkRestorePairs */
+PetscErrorCode MMCheckpointGetPairs(const MMCheckpoint *c, const PetscScalar **rec, const PetscReal **counters)
+{
+  PetscFunctionBeginUser;
+  *rec      = c->restarted ? c->pairs : NULL;
+  *counters = c->pairs_run;
+  PetscFunctionReturn(0);
+}
+
+/* The finite-strain iteration matrix's point of the checkpoint a restart read (NULL: K), for MMNewmarkRestoreTangent */
+PetscErrorCode MMCheckpointGetTangent(const MMCheckpoint *c, Vec *at, PetscReal *t)
+{
+  PetscFunctionBeginUser;
+  *at = c->restarted ? c->tangent : NULL;
+  *t  = c->tangent_time;
+  PetscFunctionReturn(0);
+}
+
 /* The frames' records of the checkpoint a restart read (NULL without them): each owned contact
  * node's, and the run's W_frame and the frames' counters, for MMNewmarkRestoreFrames. */
 PetscErrorCode MMCheckpointGetFrames(const MMCheckpoint *c, const PetscScalar **rec, const PetscReal **counters)
@@ -724,7 +1159,7 @@ PetscErrorCode MMCheckpointLoad(MMCheckpoint *c, TS ts)
   PetscCall(PetscPopErrorHandler());
   PetscCheck(!ierr, comm, PETSC_ERR_FILE_OPEN, "Could not open the checkpoint %s: it is not a complete HDF5 file. A checkpoint is written to checkpoint.h5.tmp and renamed only when whole: give the directory's checkpoint.h5, or the directory itself", c->file);
   PetscCall(LoadRunRecord(c, viewer, c->run));
-  PetscCall(CheckFingerprint(c, ts, c->run));
+  PetscCall(CheckFingerprint(c, ts, viewer, c->run));
   PetscCall(LoadContactRecords(c, viewer));
   PetscCall(LoadFrameRecords(c, viewer));
   PetscCall(LoadDofs(c, viewer, "u", s->u));
@@ -732,6 +1167,8 @@ PetscErrorCode MMCheckpointLoad(MMCheckpoint *c, TS ts)
   PetscCall(LoadDofs(c, viewer, "a", s->a));
   if (DampingOn(c)) PetscCall(LoadDofs(c, viewer, "vC", c->damping->vC));
   PetscCall(LoadDofs(c, viewer, "react", s->react));
+  PetscCall(LoadTangentPoint(c, viewer));
+  PetscCall(LoadPairs(c, ts, viewer));
   PetscCall(LoadSnapshotTimes(c, viewer));
   PetscCall(PetscViewerDestroy(&viewer));
   PetscCall(VecCopy(s->u, s->u_next));

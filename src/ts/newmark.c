@@ -149,6 +149,18 @@ static PetscErrorCode MatchFinalTime(TS ts)
   PetscFunctionReturn(0);
 }
 
+/* The stepper of a TS made by MMNewmarkCreateTS (the checkpoint reads its state through it) */
+PetscErrorCode MMNewmarkFromTS(TS ts, MMNewmark *nm)
+{
+  PetscBool is;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSNEWMARK, &is));
+  PetscCheck(is, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONG, "The TS is not mmcontact's stepper");
+  *nm = ((TS_Newmark *)ts->data)->nm;
+  PetscFunctionReturn(0);
+}
+
 /* One step: solve, guard, and on rejection retry with a smaller dt; the adaptor (growback by default,
  * adapt_growback.c) then chooses the next dt. */
 static PetscErrorCode TSStep_Newmark(TS ts)

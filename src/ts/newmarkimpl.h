@@ -57,6 +57,8 @@ typedef struct {
   Mat             Ks;          /* the iteration stiffness when not K (w-frame, K's pattern) */
   PetscInt        version;     /* counts the rebuilds of Ks: contact rebuilds K~ when it changes */
   PetscBool       use_tangent; /* Ks, not K, is in K~ */
+  Vec             Ks_at;       /* the Cartesian displacement Ks is the tangent at, and its time (the Dirichlet data's): */
+  PetscReal       Ks_time;     /* a checkpoint keeps them, so that a restart builds the same Ks (docs/method.md section 9) */
   Vec             bnl, f, c, c_prev; /* the step's fixed right-hand side; 2 f_alg; K_s w - 2 f_alg at this iterate and the last */
   PetscInt        its, its_total, rebuilds, steps; /* the last step's iterations; over the run, and the solved steps */
   PetscReal       residual;    /* the last step's final relative residual */

@@ -96,6 +96,7 @@ PetscErrorCode MMNonlinearDestroy(MMNonlinear *nl)
   PetscFunctionBeginUser;
   PetscCall(MMElasticityDestroy(&nl->el));
   PetscCall(MatDestroy(&nl->Ks));
+  PetscCall(VecDestroy(&nl->Ks_at));
   PetscCall(VecDestroy(&nl->bnl));
   PetscCall(VecDestroy(&nl->f));
   PetscCall(VecDestroy(&nl->c));
@@ -104,38 +105,99 @@ PetscErrorCode MMNonlinearDestroy(MMNonlinear *nl)
   PetscFunctionReturn(0);
 }
 
+/* The forces the stepper carries across a new pairing (besides the reaction): the load, the lift, and
+ * with loads in time the last step's load and the load parts; at most 3 + nparts. A checkpoint of large
+ * sliding keeps them as they are, in the pairing's variables (MMNewmarkGetCarriedForces). */
+static PetscErrorCode CarriedForces(MMNewmark nm, PetscInt *nf, Vec force[])
+{
+  MMLoads *ld = nm->loads;
+
+  PetscFunctionBeginUser;
+  *nf          = 0;
+  force[(*nf)++] = nm->op->load;
+  force[(*nf)++] = nm->op->lift;
+  if (ld->load_old) force[(*nf)++] = ld->load_old;
+  for (PetscInt k = 0; ld->part && k < ld->nparts; ++k) force[(*nf)++] = ld->part[k];
+  PetscFunctionReturn(0);
+}
+
+/* What the stepper built on N, dropped after a new pairing, to be built again: the tangent (K's pattern
+ * follows N), the momentum functionals (M* N^{-1} Q^T e); M* is contact's new one */
+static PetscErrorCode DropPairingOperators(MMNewmark nm)
+{
+  MMNonlinear *nl = &nm->nl;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatDestroy(&nl->Ks));
+  PetscCall(MatDestroy(&nl->el.KpN));
+  nl->use_tangent = PETSC_FALSE;
+  nm->damping.Mstar = nm->op->Mstar; /* borrowed (no damping with these laws) */
+  PetscCall(MMMomentaDestroy(&nm->momenta));
+  PetscFunctionReturn(0);
+}
+
 /* Contact pairs with large sliding (docs/method.md section 11, "Large sliding"): before the step, the
  * pairing found again on u^n. When it changed, contact rebuilt N, K, M* (and K~ at the next step
  * matrix); here the state u, v, a, the last reaction (a force: b_nl carries it) and the loads are
- * carried to the new variables, and what the stepper built on N is dropped, to be built again: the
- * tangent (K's pattern follows N), the momentum functionals (M* N^{-1} Q^T e). */
+ * carried to the new variables, and what the stepper built on N is dropped, to be built again. */
 PetscErrorCode MMNonlinearSlidePairs(MMNewmark nm, PetscReal dt)
 {
   MMState    *s  = &nm->state;
   MMLoads    *ld = nm->loads;
-  MMNonlinear *nl = &nm->nl;
   Vec         kin[3] = {s->u, s->v, s->a}, *force;
   PetscInt    nf = 0;
   PetscBool   changed;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc1(4 + (ld->part ? ld->nparts : 0), &force));
-  force[nf++] = s->react;
-  force[nf++] = nm->op->load;
-  force[nf++] = nm->op->lift;
-  if (ld->load_old) force[nf++] = ld->load_old;
-  for (PetscInt k = 0; ld->part && k < ld->nparts; ++k) force[nf++] = ld->part[k];
+  force[0] = s->react;
+  PetscCall(CarriedForces(nm, &nf, force + 1));
+  nf++;
   /* the pairing of the step's predictor u + dt v + dt^2/4 a (newmark.c), dt the step's first try */
   PetscCall(VecAXPBYPCZ(s->u_next, dt, 0.25 * dt * dt, 0.0, s->v, s->a));
   PetscCall(VecAXPY(s->u_next, 1.0, s->u));
   PetscCall(MMContactSlidePairs(nm->contact, s->u, s->u_next, 3, kin, nf, force, &changed));
   PetscCall(PetscFree(force));
   if (!changed) PetscFunctionReturn(0);
-  PetscCall(MatDestroy(&nl->Ks));
-  PetscCall(MatDestroy(&nl->el.KpN));
-  nl->use_tangent = PETSC_FALSE;
-  nm->damping.Mstar = nm->op->Mstar; /* borrowed (no damping with these laws) */
-  PetscCall(MMMomentaDestroy(&nm->momenta));
+  PetscCall(DropPairingOperators(nm));
+  PetscFunctionReturn(0);
+}
+
+/* For a checkpoint of large sliding: the forces the stepper carries across pairings (CarriedForces), in
+ * the order a restart reads them back; *n = 0 without large sliding, whose forces are the set-up's. f
+ * holds at least 3 + the load parts (MMNewmarkCountCarriedForces). */
+PetscErrorCode MMNewmarkGetCarriedForces(MMNewmark nm, PetscInt *n, Vec f[])
+{
+  MMContactNodes cn;
+
+  PetscFunctionBeginUser;
+  *n = 0;
+  PetscCall(MMContactGetNodes(nm->contact, &cn));
+  if (!cn.enabled || !cn.pairs_sliding) PetscFunctionReturn(0);
+  PetscCall(CarriedForces(nm, n, f));
+  PetscFunctionReturn(0);
+}
+
+PetscInt MMNewmarkCountCarriedForces(MMNewmark nm)
+{
+  return 3 + (nm->loads->part ? nm->loads->nparts : 0);
+}
+
+/* -restart of large sliding (docs/method.md section 9): contact takes the checkpoint's pairing (rec, per
+ * owned contact row; NULL: none, refused when this run slides) and rebuilds N, K and M*; the stepper drops
+ * what it built on the set-up's N. The state and the carried forces are read from the checkpoint in the
+ * new variables: nothing turns. */
+PetscErrorCode MMNewmarkRestorePairs(MMNewmark nm, const PetscScalar rec[], const char file[])
+{
+  MMContactNodes cn;
+  PetscBool      changed;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMContactGetNodes(nm->contact, &cn));
+  if (!cn.enabled || !cn.pairs_sliding) PetscFunctionReturn(0);
+  PetscCheck(rec, nm->comm, PETSC_ERR_USER_INPUT, "-restart %s: the checkpoint has no pairing of the contact pairs (\"pairs\"): it was written by an mmcontact that did not restart large sliding, and its state is relative to a pairing it does not hold. Continue it with that mmcontact, or run again without -restart", file);
+  PetscCall(MMContactPairsRestore(nm->contact, rec, &changed));
+  if (changed) PetscCall(DropPairingOperators(nm));
   PetscFunctionReturn(0);
 }
 
@@ -167,20 +229,78 @@ PetscErrorCode MMNonlinearStepMatrix(MMNewmark nm, PetscReal dt, MMStepMatrix *s
   PetscFunctionReturn(0);
 }
 
-/* K_s <- the tangent at the local state l, and K~ rebuilt on it */
-static PetscErrorCode RebuildTangent(MMNewmark nm, PetscReal dt, Vec l)
+/* K_s <- the tangent at the local state l (Cartesian, with the Dirichlet data of time t), and where it
+ * was taken: the iteration matrix is state the next steps depend on, which a checkpoint keeps */
+static PetscErrorCode BuildTangent(MMNewmark nm, Vec l, PetscReal t)
+{
+  MMNonlinear *nl = &nm->nl;
+
+  PetscFunctionBeginUser;
+  if (!nl->Ks) PetscCall(MatDuplicate(nm->op->K, MAT_DO_NOT_COPY_VALUES, &nl->Ks));
+  PetscCall(MMElasticityTangent(&nl->el, nm->op, nm->material, l, nl->Ks));
+  if (!nl->Ks_at) PetscCall(DMCreateGlobalVector(nm->op->dm, &nl->Ks_at));
+  PetscCall(DMLocalToGlobal(nm->op->dm, l, INSERT_VALUES, nl->Ks_at)); /* the owned values, exactly */
+  nl->Ks_time     = t;
+  nl->use_tangent = PETSC_TRUE;
+  nl->version++;
+  PetscFunctionReturn(0);
+}
+
+/* K_s <- the tangent at the local state l of time t, and K~ rebuilt on it */
+static PetscErrorCode RebuildTangent(MMNewmark nm, PetscReal dt, Vec l, PetscReal t)
 {
   MMNonlinear *nl = &nm->nl;
   MMStepMatrix sm;
 
   PetscFunctionBeginUser;
-  if (!nl->Ks) PetscCall(MatDuplicate(nm->op->K, MAT_DO_NOT_COPY_VALUES, &nl->Ks));
-  PetscCall(MMElasticityTangent(&nl->el, nm->op, nm->material, l, nl->Ks));
-  nl->use_tangent = PETSC_TRUE;
-  nl->version++;
+  PetscCall(BuildTangent(nm, l, t));
   nl->rebuilds++;
   PetscCall(MMNonlinearStepMatrix(nm, dt, &sm));
   PetscCall(MMContactSetStepMatrix(nm->contact, &sm));
+  PetscFunctionReturn(0);
+}
+
+/* For a checkpoint (docs/method.md section 9): where the iteration matrix K_s is the tangent, the
+ * Cartesian displacement and time it was taken at; NULL while K_s is the reference K, and with
+ * -nonlinear_tangent step, whose every step builds its own */
+PetscErrorCode MMNewmarkGetTangentPoint(MMNewmark nm, Vec *at, PetscReal *t)
+{
+  const MMNonlinear *nl = &nm->nl;
+
+  PetscFunctionBeginUser;
+  *at = NULL;
+  *t  = 0;
+  if (!nm->material->finite || !nl->use_tangent || nl->policy == MM_TANGENT_STEP) PetscFunctionReturn(0);
+  *at = nl->Ks_at;
+  *t  = nl->Ks_time;
+  PetscFunctionReturn(0);
+}
+
+/* -restart: K_s the tangent at the checkpoint's point (MMNewmarkGetTangentPoint), built as the run
+ * that wrote it built it, so that the steps that follow iterate with the same matrix; K~ is built on
+ * it with the step matrix of the first step (MMNewmarkGetStepMatrix). Call after the pairing and the
+ * frames are restored: K_s is in their variables. */
+PetscErrorCode MMNewmarkRestoreTangent(MMNewmark nm, Vec at, PetscReal t)
+{
+  MMElasticity *el = &nm->nl.el;
+
+  PetscFunctionBeginUser;
+  /* -nonlinear_tangent reference or step at the restart: K, or each step's own tangent */
+  if (!at || !nm->material->finite || nm->nl.policy != MM_TANGENT_AUTO) PetscFunctionReturn(0);
+  PetscCall(VecZeroEntries(el->l1));
+  PetscCall(DMGlobalToLocal(nm->op->dm, at, INSERT_VALUES, el->l1));
+  PetscCall(MMLoadsInsertBoundaryValues(nm->loads, el->l1, t));
+  PetscCall(BuildTangent(nm, el->l1, t));
+  PetscFunctionReturn(0);
+}
+
+/* The step matrix for dt as each step builds it (newmark.c): with a finite-strain law the iteration
+ * matrix (K_s, the tangent of a restart's checkpoint too), else the (damped) K~ */
+PetscErrorCode MMNewmarkGetStepMatrix(MMNewmark nm, PetscReal dt, MMStepMatrix *sm)
+{
+  PetscFunctionBeginUser;
+  if (nm->material->finite) PetscCall(MMNonlinearStepMatrix(nm, dt, sm));
+  else PetscCall(MMDampingGetStepMatrix(&nm->damping, nm->op->K, dt, sm));
   PetscFunctionReturn(0);
 }
 
@@ -289,7 +409,7 @@ PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b,
   PetscCall(FixedRHS(nm, dt, nl->bnl, &fscale));
   PetscCall(MMElasticityLocal(&nl->el, nm->op, nm->loads, s->u, t0, nl->el.l0));
   PetscCall(MMElasticitySetStepStart(&nl->el, nm->op, nl->el.l0));
-  if (nl->policy == MM_TANGENT_STEP) PetscCall(RebuildTangent(nm, dt, nl->el.l0));
+  if (nl->policy == MM_TANGENT_STEP) PetscCall(RebuildTangent(nm, dt, nl->el.l0, t0));
   PetscCall(Correction(nm, t0 + dt, w, nl->c, &scale));
   PetscCall(MMAndersonReset(&nl->aa));
   for (nl->its = 1; nl->its <= nl->max_it; ++nl->its) {
@@ -325,7 +445,7 @@ PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b,
     }
     if (nl->policy == MM_TANGENT_AUTO && res > nl->refresh * res_prev) {
       /* a slow contraction: the iteration matrix is far from the tangent (large rotations) */
-      PetscCall(RebuildTangent(nm, dt, nl->el.l1));
+      PetscCall(RebuildTangent(nm, dt, nl->el.l1, t0 + dt));
       PetscCall(Correction(nm, t0 + dt, w, nl->c, &scale));
       PetscCall(MMAndersonReset(&nl->aa));
       res_prev = PETSC_MAX_REAL;

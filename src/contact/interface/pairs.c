@@ -699,3 +699,120 @@ PetscErrorCode MMContactSlidePairs(MMContact ct, Vec u, Vec up, PetscInt nkin, V
   PetscCall(PetscLogEventEnd(MMCONTACT_PairsSlide, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
+
+/* ---- Checkpoints of large sliding (docs/method.md section 9 and section 11, "Large sliding") ----
+ * The state w is relative to the pairing of its step: the checkpoint keeps, per slave node, its facet
+ * (by the facet's reference centroid key, which does not depend on the partition), weights, row
+ * direction nu_c and gap, MM_CONTACT_PAIR_RECORD reals. */
+static PetscBool PairSlides(MMContact ct, PetscInt k)
+{
+  return (PetscBool)(ct->enabled && ct->pairs.large && ct->obstacle[k] >= ct->pb.n_rigid && !ct->second[k]);
+}
+
+PetscErrorCode MMContactPairsGetRecord(MMContact ct, PetscInt k, PetscBool *has, PetscScalar rec[])
+{
+  MMContactPairs    *pr  = &ct->pairs;
+  const PetscInt     dim = ct->op->dim;
+  const PetscScalar *ga;
+
+  PetscFunctionBeginUser;
+  *has = PairSlides(ct, k);
+  if (!*has) PetscFunctionReturn(0);
+  {
+    const PetscInt   p   = ct->obstacle[k] - ct->pb.n_rigid;
+    const PetscReal *key = &pr->xf[p][pr->facet[k] * MM_FACET_REALS + dim * dim + dim];
+    for (PetscInt d = 0; d < MM_MAX_DIM; ++d) {
+      rec[d]                  = d < dim ? key[d] : 0;
+      rec[MM_MAX_DIM + d]     = pr->phi[MM_MAX_DIM * k + d];
+      rec[2 * MM_MAX_DIM + d] = pr->nuc[MM_MAX_DIM * k + d];
+    }
+  }
+  PetscCall(VecGetArrayRead(ct->gap, &ga));
+  rec[3 * MM_MAX_DIM] = ga[k];
+  PetscCall(VecRestoreArrayRead(ct->gap, &ga));
+  PetscFunctionReturn(0);
+}
+
+/* Pair p's facet whose reference centroid key is key, -1 if none */
+static PetscInt FacetOfKey(MMContactPairs *pr, PetscInt dim, PetscInt p, const PetscScalar key[])
+{
+  for (PetscInt f = 0; f < pr->nf[p]; ++f) {
+    const PetscReal *c    = &pr->xf[p][f * MM_FACET_REALS + dim * dim + dim];
+    PetscBool        same = PETSC_TRUE;
+    for (PetscInt d = 0; d < dim; ++d) same = (PetscBool)(same && c[d] == PetscRealPart(key[d]));
+    if (same) return f;
+  }
+  return -1;
+}
+
+/* -restart: each slave node (rec: n_local records, as MMContactPairsGetRecord wrote them) takes the
+ * checkpoint's pairing, and N, K and M* are built for it as a new pairing builds them
+ * (MMContactSlidePairs); *changed: the pairing differs from the set-up's (all ranks). The state and the
+ * forces the stepper carries are read from the checkpoint in these variables: nothing is transformed. */
+PetscErrorCode MMContactPairsRestore(MMContact ct, const PetscScalar rec[], PetscBool *changed)
+{
+  MMContactPairs *pr  = &ct->pairs;
+  const PetscInt  dim = ct->op->dim, bs = MM_CONTACT_PAIR_RECORD;
+  PetscInt        cnt[2] = {0, 0}; /* changed, not found */
+  PetscScalar    *ga, *g0a;
+  MPI_Comm        comm = PetscObjectComm((PetscObject)ct->op->dm);
+
+  PetscFunctionBeginUser;
+  *changed = PETSC_FALSE;
+  if (!ct->enabled || !pr->large) PetscFunctionReturn(0);
+  PetscCall(VecGetArray(ct->gap, &ga));
+  PetscCall(VecGetArray(ct->gap0, &g0a));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscScalar *r = &rec[bs * k];
+    const PetscInt     p = ct->obstacle[k] - ct->pb.n_rigid;
+    PetscReal          phi[MM_MAX_DIM];
+    PetscInt           fb;
+    PetscBool          same;
+    if (!PairSlides(ct, k)) continue;
+    fb = FacetOfKey(pr, dim, p, r);
+    if (fb < 0) {
+      cnt[1]++;
+      continue;
+    }
+    same = (PetscBool)(fb == pr->facet[k] && ga[k] == PetscRealPart(r[3 * MM_MAX_DIM]));
+    for (PetscInt d = 0; d < dim; ++d) {
+      phi[d] = PetscRealPart(r[MM_MAX_DIM + d]);
+      same   = (PetscBool)(same && phi[d] == pr->phi[MM_MAX_DIM * k + d] && PetscRealPart(r[2 * MM_MAX_DIM + d]) == pr->nuc[MM_MAX_DIM * k + d]);
+    }
+    if (same) continue;
+    cnt[0]++;
+    SetPairing(pr, dim, p, k, fb, phi);
+    for (PetscInt d = 0; d < dim; ++d) pr->nuc[MM_MAX_DIM * k + d] = PetscRealPart(r[2 * MM_MAX_DIM + d]);
+    ga[k] = g0a[k] = PetscRealPart(r[3 * MM_MAX_DIM]);
+  }
+  PetscCall(VecRestoreArray(ct->gap0, &g0a));
+  PetscCall(VecRestoreArray(ct->gap, &ga));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cnt, 2, MPIU_INT, MPI_SUM, comm));
+  PetscCheck(!cnt[1], comm, PETSC_ERR_FILE_UNEXPECTED, "The checkpoint pairs %" PetscInt_FMT " slave nodes with master facets this mesh does not have: it is of another mesh, or damaged. Restart with the mesh and -contact_pairs of the run that wrote it", cnt[1]);
+  if (!cnt[0]) PetscFunctionReturn(0);
+  PetscCall(MatDestroy(&ct->op->N));
+  PetscCall(MatDestroy(&ct->op->Ninv));
+  PetscCall(BuildN(ct));
+  PetscCall(RebuildOperators(ct));
+  *changed = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* The run's large-sliding counters (the summary's): steps that paired anew, facet changes, the deepest penetration */
+PetscErrorCode MMContactPairsGetCounters(MMContact ct, PetscReal c[3])
+{
+  PetscFunctionBeginUser;
+  c[0] = ct->pairs.repairs;
+  c[1] = ct->pairs.facet_changes;
+  c[2] = ct->pairs.penetration;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMContactPairsSetCounters(MMContact ct, const PetscReal c[3])
+{
+  PetscFunctionBeginUser;
+  ct->pairs.repairs       = (PetscInt)c[0];
+  ct->pairs.facet_changes = (PetscInt)c[1];
+  ct->pairs.penetration   = c[2];
+  PetscFunctionReturn(0);
+}
