@@ -385,6 +385,30 @@ static PetscErrorCode ProcessBodies(PetscOptionItems *PetscOptionsObject, MPI_Co
   PetscFunctionReturn(0);
 }
 
+/* A nearly incompressible material (docs/reference.md, "Material"): P1 elements lock volumetrically,
+ * and K~ holds a volumetric stiffness lambda above the shear one mu, lambda/mu = 2 nu / (1 - 2 nu).
+ * The linear law's energy balance then sums terms lambda/mu times larger than the energy it checks:
+ * on the D1 disk its residual is 60 to 120 eps lambda/mu from lambda/mu = 5e4 to 5e7, and the audit
+ * (-audit_tol 1e-6) stops the run at 5e8; nu <= 0.49999995 (lambda/mu <= 1e7) keeps the residual at
+ * 2.6e-7 at most. The finite-strain laws fail earlier, not by round-off: under the pressures of an
+ * impact (of order lambda times the locked volume change) the neo-Hookean tangent loses its
+ * definiteness and K~'s Cholesky factor stops ("Diagonal must be real and nonnegative", D1 at
+ * lambda/mu = 2.5e3), and the svk step's Newton iteration diverges (D1 at 1e4); both hold their
+ * audits at lambda/mu = 999, nu = 0.4995 (tests/test_issue48_physics.py, docs/validation.md). */
+#define MM_NU_MAX_LINEAR 0.49999995
+#define MM_NU_MAX_FINITE 0.4995
+
+static PetscErrorCode CheckNearlyIncompressible(MPI_Comm comm, const char option[], PetscReal nu, MMElasticityType law)
+{
+  const PetscBool finite = (PetscBool)(law != MM_ELASTICITY_LINEAR);
+  const PetscReal numax  = finite ? MM_NU_MAX_FINITE : MM_NU_MAX_LINEAR;
+
+  PetscFunctionBeginUser;
+  PetscCheck(nu <= numax, comm, PETSC_ERR_USER_INPUT, "Poisson ratio %s %.10g is too close to 0.5 for -elasticity %s: lambda/mu = 2 nu/(1 - 2 nu) = %.3g, P1 elements lock volumetrically and K~'s conditioning grows as lambda/mu, %s. The largest accepted value with -elasticity %s is %g (lambda/mu %.3g; docs/reference.md, \"Large rotations and finite strain\")", option, (double)nu, MMElasticityTypes[law], (double)(2 * nu / (1 - 2 * nu)),
+             finite ? "and under contact pressures the finite-strain step's tangent turns indefinite or its Newton iteration diverges" : "and the energy audit's round-off (about 100 eps lambda/mu) reaches -audit_tol", MMElasticityTypes[law], (double)numax, (double)(2 * numax / (1 - 2 * numax)));
+  PetscFunctionReturn(0);
+}
+
 /* The ranges of the scalar options, each refused with its range. */
 static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
 {
@@ -393,6 +417,7 @@ static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
   PetscCheck(opt->nu > -1.0, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -nu %.6g must lie in (-1, 0.5): nu <= -1 makes the shear modulus E / (2 (1 + nu)) infinite or negative, an unstable material", (double)opt->nu);
   PetscCheck(opt->nu < 0.5, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -nu %.6g must lie in (-1, 0.5): nu >= 0.5 is incompressible, which P1 elements cannot represent", (double)opt->nu);
   PetscCheck(opt->rho > 0, comm, PETSC_ERR_USER_INPUT, "Density -rho %g must be > 0", (double)opt->rho);
+  if (!opt->n_bodies) PetscCall(CheckNearlyIncompressible(comm, "-nu", opt->nu, opt->elasticity));
   for (PetscInt b = 0; b < opt->n_bodies; ++b) {
     const MMBodyOptions *body = &opt->bodies[b];
     PetscCheck(body->group_set && body->group[0], comm, PETSC_ERR_USER_INPUT, "-bodies: body %s has no cells: give -body_%s_group GROUP, the physical group (a Physical %s) of its cells", body->name, body->name, "Surface in 2D, Volume in 3D");
@@ -400,6 +425,12 @@ static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
     PetscCheck(body->nu > -1.0, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -body_%s_nu %.6g must lie in (-1, 0.5): nu <= -1 makes the shear modulus E / (2 (1 + nu)) infinite or negative, an unstable material", body->name, (double)body->nu);
     PetscCheck(body->nu < 0.5, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -body_%s_nu %.6g must lie in (-1, 0.5): nu >= 0.5 is incompressible, which P1 elements cannot represent", body->name, (double)body->nu);
     PetscCheck(body->rho > 0, comm, PETSC_ERR_USER_INPUT, "Density -body_%s_rho %g must be > 0", body->name, (double)body->rho);
+    {
+      char key[512];
+
+      PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_nu", body->name));
+      PetscCall(CheckNearlyIncompressible(comm, key, body->nu, body->elasticity));
+    }
   }
   PetscCheck(opt->mu >= 0, comm, PETSC_ERR_USER_INPUT, "Friction coefficient -mu %g must be >= 0", (double)opt->mu);
   PetscFunctionReturn(0);
