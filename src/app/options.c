@@ -370,7 +370,7 @@ static PetscErrorCode ProcessBodies(PetscOptionItems *PetscOptionsObject, MPI_Co
     PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_E", body->name));
     PetscCall(OptionsReal(PetscOptionsObject, comm, key, "This body's Young's modulus (Pa), > 0 (default -E)", &body->E));
     PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_nu", body->name));
-    PetscCall(OptionsReal(PetscOptionsObject, comm, key, "This body's Poisson ratio, in (-1, 0.5) (default -nu)", &body->nu));
+    PetscCall(OptionsReal(PetscOptionsObject, comm, key, "This body's Poisson ratio, in (-1, 0.5), at most 0.4995 with a finite-strain law and 0.49999995 with linear (default -nu)", &body->nu));
     PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_rho", body->name));
     PetscCall(OptionsReal(PetscOptionsObject, comm, key, "This body's mass density (kg/m^d), > 0 (default -rho)", &body->rho));
     for (PetscInt d = 0; d < MM_MAX_DIM; ++d) body->v0[d] = opt->v0[d];
@@ -463,7 +463,7 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   opt->E = 1.0;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-E", "Young's modulus (Pa), > 0", &opt->E));
   opt->nu = 0.3;
-  PetscCall(OptionsReal(PetscOptionsObject, comm, "-nu", "Poisson ratio, in (-1, 0.5)", &opt->nu));
+  PetscCall(OptionsReal(PetscOptionsObject, comm, "-nu", "Poisson ratio, in (-1, 0.5): at most 0.4995 with -elasticity svk or neohookean, 0.49999995 with linear (P1 volumetric locking)", &opt->nu));
   opt->rho = 1.0;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-rho", "Mass density (kg/m^d), > 0", &opt->rho));
   opt->elasticity = MM_ELASTICITY_LINEAR;

@@ -202,7 +202,13 @@ static PetscErrorCode AuditAdvice(MMNewmark nm, PetscReal residual, char advice[
   PetscCall(MMContactGetSolverText(nm->contact, &type, &choice, &products));
   PetscCall(MMContactStepIsIterative(nm->contact, &iterative));
   PetscCall(PetscStrcmp(type, "active_set", &active_set));
-  if (active_set || iterative) {
+  if (nm->material->finite) {
+    /* the step is the finite-strain iteration, each of its solves by the formulation: it met
+     * -nonlinear_rtol, so the state, not a tolerance, is at fault (D1 neo-Hookean at E = 1 thrown at
+     * 5 times the pressure wave speed fails so with any -nonlinear_rtol, -ts_dt or formulation) */
+    PetscCall(PetscSNPrintf(advice, len, "The step's finite-strain iteration (contact formulation %s) met -nonlinear_rtol %.1e, so this is not a loose solve and tightening the tolerances will not help: %scheck that the units are consistent (SI throughout) and that the material values and -v0 are what you meant.", type, (double)nm->nl.rtol,
+                           nm->deform.warned ? "cells were compressed below half their volume (warned above); " : ""));
+  } else if (active_set || iterative) {
     PetscCall(PetscSNPrintf(advice, len, "The step's solve (contact formulation %s: %s) is iterative and stops at -contact_tol %.1e of ||b||; its residual is what the balance shows. Rerun with -contact_formulation condensed (exact factorizations) or a tighter -contact_tol (%.0e: 100 times tighter; the balance residual falls with it).", type, active_set ? "projected CG on the free dofs" : "CG on K~", (double)tol, (double)(1e-2 * tol)));
   } else if (residual > 1e4 * tol) {
     PetscCall(PetscSNPrintf(advice, len, "The step's solve (contact formulation %s) factors K~ exactly, so a residual this far above the solver tolerance -contact_tol %.1e is not a loose solve: check that the units are consistent (SI throughout: the mesh in metres, -E in Pa, -rho in kg/m^3, loads in N/m^2 and m/s^2) and that the material values are what you meant; tightening the tolerances will not help.", type, (double)tol));
