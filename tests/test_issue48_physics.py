@@ -99,8 +99,8 @@ def test_static_deflection_is_beam_theory(mm_nocase):
 
 def test_start_up_energy_check_is_at_round_off_of_its_terms(mm_nocase):
     """The matrix form and the quadrature of the slender cantilever's elastic energy differ by a few
-    hundredths of eps times the terms' absolute sum (5.5e6 against the energy 1.1e-2 at E = 1e5): the
-    check's tolerance, 64 eps of that sum, is 1000 times the round-off seen, and 7e-6 of the energy."""
+    hundredths of eps times the terms' absolute sum (5e8 times the energy): the check's tolerance,
+    4 sqrt(N) eps of that sum (N = 1.6e3 dofs), is 1000 times the round-off seen."""
     r = mm_nocase("-mesh", "meshes/cantilever_t02.msh", *CANT, "-info", ":sys")
     line = next(l for l in r.output.splitlines() if "they differ by" in l)
     ratio = float(line.split("they differ by ")[1].split()[0])
