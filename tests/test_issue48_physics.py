@@ -52,6 +52,21 @@ def test_nearly_incompressible_runs_where_accepted(mm, law, nu):
     assert h["balance_residual"].max() <= bound, h["balance_residual"].max()
 
 
+@pytest.mark.parametrize("np_", [1, 2])
+def test_indefinite_step_matrix_is_one_line_and_a_shorter_step_runs(mm, np_):
+    """At an accepted -nu 0.4995 a harder impact (D1 thrown at 10, v/c_s = 0.5) still turns the
+    neo-Hookean tangent indefinite at dt = 2e-3: one line and 65 (main: PETSc's trace, 56, "Diagonal
+    must be real and nonnegative"); with the -ts_dt it advises lowered 4 times it runs, balance 5e-13."""
+    hard = ("-elasticity", "neohookean", "-nu", 0.4995, "-v0", "0,-10", "-output_every", 0, "-ts_max_time", 0.04)
+    r = mm(*D1, *hard, np_=np_, check=False)
+    line = first_error(r)
+    assert r.returncode == PHYSICS and "not positive definite" in line and "-ts_dt" in line, r.output[-2000:]
+    assert "PETSC ERROR" not in r.output
+    if np_ == 1:
+        r = mm(*D1, *hard, "-ts_dt", 5e-4, name="short")
+        assert r.history["balance_residual"].max() < 1e-10
+
+
 # Item 7. The clamped cantilever [0,1] x [0,t] under its weight (rho g t per unit length), plane
 # strain: Euler-Bernoulli's deflection w(x) = q x^2 (6 L^2 - 4 L x + x^2) / (24 E' I), E' = E/(1-nu^2),
 # I = t^3/12, whose mean over the length, the centre of mass's, is q L^4 / (20 E' I).
