@@ -152,6 +152,15 @@ def test_linear_rotation_is_warned_once_naming_svk(mm_nocase, np_):
     # the strain warning names the finite-strain laws too (largest strain 0.012 by t = 0.1)
     if np_ == 2:
         return
+    # what the warning says: the linear law swells the cube by theta^2 (53% at t = 0.182)
+    r = mm_nocase(*CUBE[:-2], "-ts_max_time", 0.182, "-output_every", 1000, name="swell")
+    with r.fields() as f:
+        X, c = f["geometry/vertices"][:], f["viz/topology/cells"][:].astype(int)
+        u, t = f["vertex_fields/displacement_displacement"][-1], float(f["time"][-1][0])
+
+    def volume(Y):
+        return np.abs(np.linalg.det(np.stack([Y[c[:, k + 1]] - Y[c[:, 0]] for k in range(3)], axis=2))).sum() / 6
+    assert abs(volume(X + u) / volume(X) - (1 + (4 * t) ** 2)) < 1e-3 and (4 * t) ** 2 > 0.5
     r = mm_nocase(*CUBE, "-ts_max_time", 0.02, "-strain_warn", 1e-4, name="strain")
     line = next(l for l in r.output.splitlines() if "above -strain_warn" in l)
     assert "-elasticity svk" in line, line
