@@ -385,7 +385,8 @@ static PetscErrorCode ProcessBodies(PetscOptionItems *PetscOptionsObject, MPI_Co
   PetscFunctionReturn(0);
 }
 
-/* A nearly incompressible material (docs/reference.md, "Material"): P1 elements lock volumetrically,
+/* A nearly incompressible material (docs/reference.md, "Large rotations and finite strain", "Nearly
+ * incompressible materials"): P1 elements lock volumetrically,
  * and K~ holds a volumetric stiffness lambda above the shear one mu, lambda/mu = 2 nu / (1 - 2 nu).
  * The linear law's energy balance then sums terms lambda/mu times larger than the energy it checks:
  * on the D1 disk its residual is 60 to 120 eps lambda/mu from lambda/mu = 5e4 to 5e7, and the audit
@@ -394,7 +395,8 @@ static PetscErrorCode ProcessBodies(PetscOptionItems *PetscOptionsObject, MPI_Co
  * impact (of order lambda times the locked volume change) the neo-Hookean tangent loses its
  * definiteness and K~'s Cholesky factor stops ("Diagonal must be real and nonnegative", D1 at
  * lambda/mu = 2.5e3), and the svk step's Newton iteration diverges (D1 at 1e4); both hold their
- * audits at lambda/mu = 999, nu = 0.4995 (tests/test_issue48_physics.py, docs/validation.md). */
+ * audits at lambda/mu = 999, nu = 0.4995 (tests/test_issue48_physics.py). A harder impact can still
+ * turn the tangent indefinite there: the run then stops naming -ts_dt (src/contact/interface/pc_schursplit.c). */
 #define MM_NU_MAX_LINEAR 0.49999995
 #define MM_NU_MAX_FINITE 0.4995
 

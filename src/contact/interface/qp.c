@@ -280,8 +280,6 @@ PetscErrorCode MMQPSetOperator(SNES snes, MMBoundQP *qp)
   PetscFunctionReturn(0);
 }
 
-/* Warm-started solves start near the answer, where a relative test cannot be met: also accept
- * ||F|| <= rtol_b ||b||, which is the solver's accuracy on this linear problem. */
 /* The residual r = A x - b of an exact solve is round-off: each entry sums a row's products, so
  * |r| <= gamma (|A| |x| + |b|), and in norm ||r||_2 <= gamma (||A||_inf ||x||_2 + ||b||_2) (|A| is
  * symmetric). On a slender part A's condition number brings ||A|| ||x|| far above ||b||, and no
@@ -290,10 +288,12 @@ PetscErrorCode MMQPSetOperator(SNES snes, MMBoundQP *qp)
  * too, N the unknowns: the product's rounding grows as sqrt(N) (N at worst), and the factor covers
  * the factorization's backward error beside it (measured on the slender cantilevers of
  * tests/test_issue48_physics.py, N = 1.6e3 to 2e3: the first Newton step's residual is at 0.22 to
- * 0.25 eps (||A|| ||x|| + ||b||), 700 times below); a step that is not exact (a wrong active set)
+ * 0.25 eps (||A|| ||x|| + ||b||), 600 times below); a step that is not exact (a wrong active set)
  * leaves a residual of the size of the reactions it misses, orders of magnitude above. */
 #define MM_QP_ROUNDOFF 4
 
+/* Warm-started solves start near the answer, where a relative test cannot be met: also accept
+ * ||F|| <= rtol_b ||b||, which is the solver's accuracy on this linear problem. */
 static PetscErrorCode QPConverged(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm, SNESConvergedReason *reason, void *ptr)
 {
   MMBoundQP *qp = (MMBoundQP *)ptr;
