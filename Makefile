@@ -28,6 +28,8 @@ MSH  += meshes/two_bars.msh meshes/two_bars_conf.msh meshes/two_balls.msh meshes
 MSH  += meshes/cube_groove.msh
 # A cantilever settling on a plane under Rayleigh damping (issue 38)
 MSH  += meshes/cantilever.msh
+# Slender clamped cantilevers, t/L = 0.02 and 0.05, for the static start and beam theory (issue 48)
+MSH  += meshes/cantilever_t02.msh meshes/cantilever_t05.msh meshes/cantilever_t05_fine.msh
 # A coarse cube whose whole skin is contact boundary (issue 38: the redistributed mass on coarse meshes)
 MSH  += meshes/cube_drop.msh
 # Bodies of their own material (README "Bodies"): a strip of two glued halves, two separate bars
@@ -134,6 +136,12 @@ meshes/ball_block.msh: meshes/ball_block.geo
 	gmsh -3 $< -o $@ -v 2
 meshes/cantilever.msh: meshes/cantilever.geo
 	gmsh -2 $< -o $@ -v 2
+meshes/cantilever_t02.msh: meshes/cantilever.geo
+	gmsh -2 $< -setnumber H 0.02 -setnumber NX 200 -setnumber NY 4 -o $@ -v 2
+meshes/cantilever_t05.msh: meshes/cantilever.geo
+	gmsh -2 $< -setnumber H 0.05 -setnumber NX 80 -setnumber NY 4 -o $@ -v 2
+meshes/cantilever_t05_fine.msh: meshes/cantilever.geo
+	gmsh -2 $< -setnumber H 0.05 -setnumber NX 160 -setnumber NY 8 -o $@ -v 2
 meshes/cube_groove.msh: meshes/cube_groove.geo
 	gmsh -3 $< -o $@ -v 2
 meshes/cube_drop.msh: meshes/cube_drop.geo

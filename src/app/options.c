@@ -400,7 +400,7 @@ static PetscErrorCode ProcessBodies(PetscOptionItems *PetscOptionsObject, MPI_Co
     PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_E", body->name));
     PetscCall(OptionsReal(PetscOptionsObject, comm, key, "This body's Young's modulus (Pa), > 0 (default -E)", &body->E));
     PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_nu", body->name));
-    PetscCall(OptionsReal(PetscOptionsObject, comm, key, "This body's Poisson ratio, in (-1, 0.5) (default -nu)", &body->nu));
+    PetscCall(OptionsReal(PetscOptionsObject, comm, key, "This body's Poisson ratio, in (-1, 0.5), at most 0.4995 with a finite-strain law and 0.49999995 with linear (default -nu)", &body->nu));
     PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_rho", body->name));
     PetscCall(OptionsReal(PetscOptionsObject, comm, key, "This body's mass density (kg/m^d), > 0 (default -rho)", &body->rho));
     for (PetscInt d = 0; d < MM_MAX_DIM; ++d) body->v0[d] = opt->v0[d];
@@ -415,6 +415,32 @@ static PetscErrorCode ProcessBodies(PetscOptionItems *PetscOptionsObject, MPI_Co
   PetscFunctionReturn(0);
 }
 
+/* A nearly incompressible material (docs/reference.md, "Large rotations and finite strain", "Nearly
+ * incompressible materials"): P1 elements lock volumetrically,
+ * and K~ holds a volumetric stiffness lambda above the shear one mu, lambda/mu = 2 nu / (1 - 2 nu).
+ * The linear law's energy balance then sums terms lambda/mu times larger than the energy it checks:
+ * on the D1 disk its residual is 60 to 120 eps lambda/mu from lambda/mu = 5e4 to 5e7, and the audit
+ * (-audit_tol 1e-6) stops the run at 5e8; nu <= 0.49999995 (lambda/mu <= 1e7) keeps the residual at
+ * 2.6e-7 at most. The finite-strain laws fail earlier, not by round-off: under the pressures of an
+ * impact (of order lambda times the locked volume change) the neo-Hookean tangent loses its
+ * definiteness and K~'s Cholesky factor stops ("Diagonal must be real and nonnegative", D1 at
+ * lambda/mu = 2.5e3), and the svk step's Newton iteration diverges (D1 at 1e4); both hold their
+ * audits at lambda/mu = 999, nu = 0.4995 (tests/test_issue48_physics.py). A harder impact can still
+ * turn the tangent indefinite there: the run then stops naming -ts_dt (src/contact/interface/pc_schursplit.c). */
+#define MM_NU_MAX_LINEAR 0.49999995
+#define MM_NU_MAX_FINITE 0.4995
+
+static PetscErrorCode CheckNearlyIncompressible(MPI_Comm comm, const char option[], PetscReal nu, MMElasticityType law)
+{
+  const PetscBool finite = (PetscBool)(law != MM_ELASTICITY_LINEAR);
+  const PetscReal numax  = finite ? MM_NU_MAX_FINITE : MM_NU_MAX_LINEAR;
+
+  PetscFunctionBeginUser;
+  PetscCheck(nu <= numax, comm, PETSC_ERR_USER_INPUT, "Poisson ratio %s %.10g is too close to 0.5 for -elasticity %s: lambda/mu = 2 nu/(1 - 2 nu) = %.3g, P1 elements lock volumetrically and K~'s conditioning grows as lambda/mu, %s. The largest accepted value with -elasticity %s is %.10g (lambda/mu %.3g; docs/reference.md, \"Large rotations and finite strain\")", option, (double)nu, MMElasticityTypes[law], (double)(2 * nu / (1 - 2 * nu)),
+             finite ? "and under contact pressures the finite-strain step's tangent turns indefinite or its Newton iteration diverges" : "and the energy audit's round-off (about 100 eps lambda/mu) reaches -audit_tol", MMElasticityTypes[law], (double)numax, (double)(2 * numax / (1 - 2 * numax)));
+  PetscFunctionReturn(0);
+}
+
 /* The ranges of the scalar options, each refused with its range. */
 static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
 {
@@ -423,6 +449,7 @@ static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
   PetscCheck(opt->nu > -1.0, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -nu %.6g must lie in (-1, 0.5): nu <= -1 makes the shear modulus E / (2 (1 + nu)) infinite or negative, an unstable material", (double)opt->nu);
   PetscCheck(opt->nu < 0.5, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -nu %.6g must lie in (-1, 0.5): nu >= 0.5 is incompressible, which P1 elements cannot represent", (double)opt->nu);
   PetscCheck(opt->rho > 0, comm, PETSC_ERR_USER_INPUT, "Density -rho %g must be > 0", (double)opt->rho);
+  if (!opt->n_bodies) PetscCall(CheckNearlyIncompressible(comm, "-nu", opt->nu, opt->elasticity));
   for (PetscInt b = 0; b < opt->n_bodies; ++b) {
     const MMBodyOptions *body = &opt->bodies[b];
     PetscCheck(body->group_set && body->group[0], comm, PETSC_ERR_USER_INPUT, "-bodies: body %s has no cells: give -body_%s_group GROUP, the physical group (a Physical %s) of its cells", body->name, body->name, "Surface in 2D, Volume in 3D");
@@ -430,6 +457,12 @@ static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
     PetscCheck(body->nu > -1.0, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -body_%s_nu %.6g must lie in (-1, 0.5): nu <= -1 makes the shear modulus E / (2 (1 + nu)) infinite or negative, an unstable material", body->name, (double)body->nu);
     PetscCheck(body->nu < 0.5, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -body_%s_nu %.6g must lie in (-1, 0.5): nu >= 0.5 is incompressible, which P1 elements cannot represent", body->name, (double)body->nu);
     PetscCheck(body->rho > 0, comm, PETSC_ERR_USER_INPUT, "Density -body_%s_rho %g must be > 0", body->name, (double)body->rho);
+    {
+      char key[512];
+
+      PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_nu", body->name));
+      PetscCall(CheckNearlyIncompressible(comm, key, body->nu, body->elasticity));
+    }
   }
   PetscCheck(opt->mu >= 0, comm, PETSC_ERR_USER_INPUT, "Friction coefficient -mu %g must be >= 0", (double)opt->mu);
   PetscFunctionReturn(0);
@@ -462,7 +495,7 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   opt->E = 1.0;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-E", "Young's modulus (Pa), > 0", &opt->E));
   opt->nu = 0.3;
-  PetscCall(OptionsReal(PetscOptionsObject, comm, "-nu", "Poisson ratio, in (-1, 0.5)", &opt->nu));
+  PetscCall(OptionsReal(PetscOptionsObject, comm, "-nu", "Poisson ratio, in (-1, 0.5): at most 0.4995 with -elasticity svk or neohookean, 0.49999995 with linear (P1 volumetric locking)", &opt->nu));
   opt->rho = 1.0;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-rho", "Mass density (kg/m^d), > 0", &opt->rho));
   opt->elasticity = MM_ELASTICITY_LINEAR;

@@ -23,6 +23,7 @@ typedef struct {
   Vec       b;
   PetscReal bnorm; /* ||b||, the scale of the absolute convergence test */
   PetscReal rtol_b;
+  PetscReal Anorm; /* ||A||_inf when > 0: a residual at the round-off of computing it also converges */
 } MMBoundQP;
 
 /* K~ and its factor (or PC) for the previous dt (-contact_K_keep); what the formulation built on it

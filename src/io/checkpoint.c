@@ -254,6 +254,25 @@ static PetscErrorCode CoordinateChecksum(MMCheckpoint *ck, PetscReal *sum)
   PetscFunctionReturn(0);
 }
 
+/* How far two checksums of one geometry may differ: summed in another order (another partition),
+ * the N terms' sum moves by at most gamma_N = N eps times the sum of their magnitudes. A fixed
+ * relative tolerance would not do: the terms cancel on a mesh centred at the origin, and their
+ * magnitudes scale with the units. */
+static PetscErrorCode CoordinateChecksumTolerance(MMCheckpoint *ck, PetscReal *tol)
+{
+  Vec       X;
+  PetscReal abssum = 0;
+  PetscInt  n;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetCoordinates(ck->op->dm, &X));
+  PetscCall(VecGetSize(X, &n));
+  PetscCall(VecNorm(X, NORM_1, &abssum));
+  /* each term is (d + 1) x (1 + v % 97) <= 3 * 97 |x| */
+  *tol = (PetscReal)n * PETSC_MACHINE_EPSILON * 3 * 97 * abssum;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode RunRecord(MMCheckpoint *ck, TS ts, PetscReal run[])
 {
   const MMHistory *h = ck->hist;
@@ -841,7 +860,7 @@ static PetscErrorCode CheckFingerprint(MMCheckpoint *ck, TS ts, PetscViewer view
 {
   MPI_Comm    comm = PetscObjectComm((PetscObject)ck->op->dm);
   const char *f    = ck->file;
-  PetscReal   me[MM_RUN_NUM];
+  PetscReal   me[MM_RUN_NUM], tol = 0;
   MMContactNodes cn;
 
   PetscFunctionBeginUser;
@@ -849,7 +868,8 @@ static PetscErrorCode CheckFingerprint(MMCheckpoint *ck, TS ts, PetscViewer view
   PetscCall(RunRecord(ck, ts, me));
   PetscCheck(rec[MM_RUN_DIM] == me[MM_RUN_DIM], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of a %dD problem, this mesh %s is %dD: another dimension. Restart with the mesh and options of the run that wrote it", f, (int)rec[MM_RUN_DIM], ck->opt->mesh_file, (int)me[MM_RUN_DIM]);
   PetscCheck(rec[MM_RUN_VERTICES] == me[MM_RUN_VERTICES] && rec[MM_RUN_CELLS] == me[MM_RUN_CELLS], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another mesh: %d vertices and %d cells, this mesh %s has %d and %d. Restart with the mesh of the run that wrote it", f, (int)rec[MM_RUN_VERTICES], (int)rec[MM_RUN_CELLS], ck->opt->mesh_file, (int)me[MM_RUN_VERTICES], (int)me[MM_RUN_CELLS]);
-  PetscCheck(PetscAbsReal(rec[MM_RUN_COORDINATES] - me[MM_RUN_COORDINATES]) <= 1e-10 * PetscMax(PetscAbsReal(me[MM_RUN_COORDINATES]), 1.0), comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another mesh: it has as many vertices and cells as %s, but other coordinates (checksums %.15g and %.15g). Restart with the mesh, and -mesh_rotation, of the run that wrote it", f, ck->opt->mesh_file, (double)rec[MM_RUN_COORDINATES], (double)me[MM_RUN_COORDINATES]);
+  PetscCall(CoordinateChecksumTolerance(ck, &tol));
+  PetscCheck(PetscAbsReal(rec[MM_RUN_COORDINATES] - me[MM_RUN_COORDINATES]) <= tol, comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another mesh: it has as many vertices and cells as %s, but other coordinates (checksums %.15g and %.15g). Restart with the mesh, and -mesh_rotation, of the run that wrote it", f, ck->opt->mesh_file, (double)rec[MM_RUN_COORDINATES], (double)me[MM_RUN_COORDINATES]);
   /* the physics, each option named; what follows checks a checkpoint that does not record it */
   PetscCall(CheckPhysics(ck, viewer));
   PetscCheck(rec[MM_RUN_CONTACT_NODES] == me[MM_RUN_CONTACT_NODES], comm, PETSC_ERR_USER_INPUT, "The checkpoint %s is of another contact boundary: %d contact nodes, this run has %d (-contact_boundary %s, -contact %s). Restart with the contact options of the run that wrote it", f, (int)rec[MM_RUN_CONTACT_NODES], (int)me[MM_RUN_CONTACT_NODES], ck->opt->contact_name, cn.enabled ? "1" : "0");

@@ -1,5 +1,6 @@
 /* The deformation audit: the model is linear, small-strain elasticity (docs/method.md section 1),
- * and its answer means nothing for a body turned inside out or strained far beyond a few percent.
+ * and its answer means nothing for a body turned inside out or strained far beyond a few percent,
+ * nor for a body turned by a large rotation (below).
  * Nothing else would say so: the contact audit checks the contact nodes, which may stay put while
  * the rest of the body passes through the obstacle, and the energy identity holds for any
  * displacement. So after every step each cell's deformation gradient F = I + grad u (constant on a
@@ -39,8 +40,8 @@ static PetscReal PrincipalStrain(PetscInt dim, const PetscReal e[MM_MAX_DIM][MM_
 
 /* The worst cell of this rank: the smallest det F (relative) and the largest strain, with places. */
 typedef struct {
-  PetscReal detF, strain;
-  PetscReal at_det[MM_MAX_DIM], at_strain[MM_MAX_DIM];
+  PetscReal detF, strain, rotation; /* rotation: the largest |W|^2, W = skew(grad u) (linear law) */
+  PetscReal at_det[MM_MAX_DIM], at_strain[MM_MAX_DIM], at_rotation[MM_MAX_DIM];
 } Worst;
 
 /* Once: where each cell's vertices are in the local displacement and coordinate vectors. */
@@ -125,9 +126,18 @@ static inline void ScanCellsDim(const PetscInt dim, const PetscBool finite, cons
 {
   for (PetscInt c = 0; c < d->ncells; ++c) {
     const PetscInt *uo = &d->cell_u[(dim + 1) * c], *xo = &d->cell_x[(dim + 1) * c];
-    PetscReal       G[MM_MAX_DIM][MM_MAX_DIM], e[MM_MAX_DIM][MM_MAX_DIM], detF, strain = 0;
+    PetscReal       G[MM_MAX_DIM][MM_MAX_DIM], e[MM_MAX_DIM][MM_MAX_DIM], detF, strain = 0, rot = 0;
 
     if (!CellGradient(dim, u, x, uo, xo, G, &detF)) continue;
+    /* the linear law: |W|^2 = sum_{i<j} W_ij^2 of the skew part, the square of the rotation angle,
+     * and exactly the volume change det(I + W) - 1 that the law makes of a rotation it keeps unstrained */
+    if (!finite)
+      for (PetscInt i = 0; i < dim; ++i)
+        for (PetscInt j = i + 1; j < dim; ++j) rot += 0.25 * PetscSqr(G[i][j] - G[j][i]);
+    if (rot > w->rotation) {
+      w->rotation = rot;
+      RecordPlace(dim, x, xo, w->at_rotation);
+    }
     for (PetscInt i = 0; i < dim; ++i)
       for (PetscInt j = 0; j < dim; ++j) {
         e[i][j] = 0.5 * (G[i][j] + G[j][i]);
@@ -198,6 +208,7 @@ static PetscErrorCode FormatPlace(PetscInt dim, const PetscReal at[], char s[], 
 }
 
 static PetscErrorCode CheckFiniteStrain(MMNewmark nm, const Worst *w, char place[]);
+static PetscErrorCode CheckInsideOutFinite(MMNewmark nm, const Worst *w, const char place[]);
 static PetscErrorCode CheckSmallStrain(MMNewmark nm, const Worst *w);
 
 /* After each accepted step (and on the initial state): stop, warn once, or record. */
@@ -227,6 +238,7 @@ PetscErrorCode MMDeformationCheck(MMNewmark nm)
   PetscCall(DMRestoreGlobalVector(dm, &g));
   PetscCall(GlobalWorst(comm, &w.detF, w.at_det, PETSC_TRUE));
   PetscCall(GlobalWorst(comm, &w.strain, w.at_strain, PETSC_FALSE));
+  if (!nm->material->finite) PetscCall(GlobalWorst(comm, &w.rotation, w.at_rotation, PETSC_FALSE));
   PetscCall(PetscLogEventEnd(MM_TS_Deformation, 0, 0, 0, 0));
   if (w.strain > d->max_strain) {
     d->max_strain = w.strain;
@@ -234,7 +246,8 @@ PetscErrorCode MMDeformationCheck(MMNewmark nm)
     for (PetscInt i = 0; i < MM_MAX_DIM; ++i) d->where[i] = w.at_strain[i];
   }
   PetscCall(FormatPlace(nm->op->dim, w.at_det, place, sizeof(place)));
-  PetscCheck(w.detF > 0, comm, MM_ERR_PHYSICS, "At step %" PetscInt_FMT " (t = %g) the cell at %s has turned inside out (det F = %.3g): the body passes through itself, and the result is meaningless. The impact or the load is far too strong for a small-strain model: check -v0, the loads and the units (SI). The output up to the previous step is intact", h->step, (double)h->time, place, (double)w.detF);
+  if (nm->material->finite) PetscCall(CheckInsideOutFinite(nm, &w, place));
+  PetscCheck(w.detF > 0, comm, MM_ERR_PHYSICS, "At step %" PetscInt_FMT " (t = %g) the cell at %s has turned inside out (det F = %.3g): the body passes through itself, and the result is meaningless. The impact or the load is far too strong for a small-strain model: check -v0, the loads and the units (SI), or use a finite-strain law (-elasticity svk or neohookean). The output up to the previous step is intact", h->step, (double)h->time, place, (double)w.detF);
   if (nm->material->finite) PetscCall(CheckFiniteStrain(nm, &w, place));
   else PetscCall(CheckSmallStrain(nm, &w));
   PetscFunctionReturn(0);
@@ -254,6 +267,43 @@ static PetscErrorCode CheckFiniteStrain(MMNewmark nm, const Worst *w, char place
   PetscFunctionReturn(0);
 }
 
+/* A finite-strain cell crushed flat or inside out (det F <= 0) is not a small-strain model's failure
+ * but its law's limit (docs/reference.md, "Large rotations and finite strain"): St. Venant-Kirchhoff's
+ * stress stays bounded as J = det F -> 0 (its energy is of the Green strain, finite at J = 0), so a
+ * hard enough landing crushes a cell flat; the neo-Hookean energy grows without bound as J -> 0
+ * and holds the cell open where svk is crushed, so it reaches J <= 0 only through a step too long
+ * for the impact. */
+static PetscErrorCode CheckInsideOutFinite(MMNewmark nm, const Worst *w, const char place[])
+{
+  const MMMaterial *mat = nm->material;
+  PetscBool         svk = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  if (w->detF > 0) PetscFunctionReturn(0);
+  for (PetscInt b = 0; b < mat->n_bodies; ++b) svk = (PetscBool)(svk || mat->body[b].elasticity == MM_ELASTICITY_SVK);
+  if (svk) SETERRQ(nm->comm, MM_ERR_PHYSICS, "At step %" PetscInt_FMT " (t = %g) the cell at %s is crushed flat or inside out (det F = %.3g): this is the St. Venant-Kirchhoff law's limit, not a small strain's: its stress stays finite as a cell's volume goes to zero, so a hard impact can flatten it. Use -elasticity neohookean, whose energy grows without bound as det F -> 0 (or a gentler -v0 or load). The output up to the previous step is intact", nm->hist.step, (double)nm->hist.time, place, (double)w->detF);
+  SETERRQ(nm->comm, MM_ERR_PHYSICS, "At step %" PetscInt_FMT " (t = %g) the cell at %s is crushed flat or inside out (det F = %.3g): the neo-Hookean energy grows without bound as det F -> 0, so the cell got there within one step: the step is too long for this impact (a smaller -ts_dt follows it further), or the impact is far beyond the material: check -v0 against the wave speeds, the loads and the units (SI). The output up to the previous step is intact", nm->hist.step, (double)nm->hist.time, place, (double)w->detF);
+}
+
+/* The linear law: its strain is the small-strain model's, and it strains a rotated body: a rigid
+ * rotation by theta has sym(grad u) = (cos theta - 1) I, so the law pulls the body back towards
+ * sym(grad u) = 0, grad u = W skew, and swells it by det(I + W) - 1 = |W|^2 = theta^2 (a cube spun
+ * at |omega0| 4 grows 53% in volume by t = 0.18). The strain audit cannot see it (the strain stays
+ * small): the rotation is warned of once, where theta^2, the volume change it makes, passes
+ * -strain_warn. */
+static PetscErrorCode WarnRotation(MMNewmark nm, const Worst *w)
+{
+  MMDeformation *d = &nm->deform;
+  char           place[96];
+
+  PetscFunctionBeginUser;
+  if (d->warned_rotation || w->rotation <= nm->strain_warn) PetscFunctionReturn(0);
+  d->warned_rotation = PETSC_TRUE;
+  PetscCall(FormatPlace(nm->op->dim, w->at_rotation, place, sizeof(place)));
+  PetscCall(PetscPrintf(nm->comm, "mmcontact warning: at step %" PetscInt_FMT " (t = %g) the cell at %s has turned by %.3g rad: the linear law strains a rotated body and swells it by the square of the angle, here a volume change of %.3g, above -strain_warn %g. For large rotations use -elasticity svk (or neohookean), finite strain, which a rotation leaves unstrained (warned once)\n", nm->hist.step, (double)nm->hist.time, place, (double)PetscSqrtReal(w->rotation), (double)w->rotation, (double)nm->strain_warn));
+  PetscFunctionReturn(0);
+}
+
 /* The linear law: its strain is the small-strain model's */
 static PetscErrorCode CheckSmallStrain(MMNewmark nm, const Worst *wp)
 {
@@ -265,11 +315,12 @@ static PetscErrorCode CheckSmallStrain(MMNewmark nm, const Worst *wp)
 
   PetscFunctionBeginUser;
   PetscCall(FormatPlace(nm->op->dim, w.at_strain, place, sizeof(place)));
-  PetscCheck(w.strain <= nm->max_strain, comm, MM_ERR_PHYSICS, "At step %" PetscInt_FMT " (t = %g) the cell at %s has a strain of %.3g, above -max_strain %g: a small-strain model means nothing there. Check -v0, the loads and the units (SI), or raise -max_strain. The output up to the previous step is intact", h->step, (double)h->time, place, (double)w.strain, (double)nm->max_strain);
+  PetscCheck(w.strain <= nm->max_strain, comm, MM_ERR_PHYSICS, "At step %" PetscInt_FMT " (t = %g) the cell at %s has a strain of %.3g, above -max_strain %g: a small-strain model means nothing there. Check -v0, the loads and the units (SI), use a finite-strain law (-elasticity svk or neohookean), or raise -max_strain. The output up to the previous step is intact", h->step, (double)h->time, place, (double)w.strain, (double)nm->max_strain);
   if (w.strain > nm->strain_warn && !d->warned) {
     d->warned = PETSC_TRUE;
-    PetscCall(PetscPrintf(comm, "mmcontact warning: at step %" PetscInt_FMT " (t = %g) the cell at %s has a strain of %.4g, above -strain_warn %g: from here on the small-strain model is an approximation (warned once; the summary gives the largest)\n", h->step, (double)h->time, place, (double)w.strain, (double)nm->strain_warn));
+    PetscCall(PetscPrintf(comm, "mmcontact warning: at step %" PetscInt_FMT " (t = %g) the cell at %s has a strain of %.4g, above -strain_warn %g: from here on the small-strain model is an approximation; -elasticity svk (or neohookean) holds at finite strain (warned once; the summary gives the largest)\n", h->step, (double)h->time, place, (double)w.strain, (double)nm->strain_warn));
   }
+  PetscCall(WarnRotation(nm, &w));
   PetscFunctionReturn(0);
 }
 
@@ -284,7 +335,9 @@ PetscErrorCode MMDeformationView(MMNewmark nm, PetscViewer viewer)
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
   if (!nm->deformation_audit || !ascii) PetscFunctionReturn(0);
   PetscCall(FormatPlace(nm->op->dim, d->where, place, sizeof(place)));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  largest strain %.3e at step %" PetscInt_FMT ", in the cell at %s (-strain_warn %g, -max_strain %g)\n", (double)d->max_strain, d->step, place, (double)nm->strain_warn, (double)nm->max_strain));
+  /* -strain_warn and -max_strain apply to the linear law only: a finite-strain run's strain is the Green strain */
+  if (nm->material->finite) PetscCall(PetscViewerASCIIPrintf(viewer, "  largest strain %.3e (Green strain) at step %" PetscInt_FMT ", in the cell at %s\n", (double)d->max_strain, d->step, place));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "  largest strain %.3e at step %" PetscInt_FMT ", in the cell at %s (-strain_warn %g, -max_strain %g)\n", (double)d->max_strain, d->step, place, (double)nm->strain_warn, (double)nm->max_strain));
   PetscFunctionReturn(0);
 }
 

@@ -8,6 +8,7 @@ typedef struct {
   PetscReal where[MM_MAX_DIM]; /* the reference centroid of the cell that had it */
   PetscInt  step;              /* the step at which it was reached */
   PetscBool warned;            /* the -strain_warn warning was printed */
+  PetscBool warned_rotation;   /* the linear law's rotation warning was printed */
   PetscInt  ncells;            /* this rank's cells, and for each its dim+1 vertices' */
   PetscInt *cell_u, *cell_x;   /* offsets in the local displacement and coordinate vectors */
 } MMDeformation;

@@ -279,7 +279,20 @@ static PetscErrorCode SetUpBackwardSweep(PC_SchurSplit *sp)
     for (PetscInt k = 0; k < sp->nI; ++k) ya[k] = PetscSinReal((PetscReal)(k + 1));
     PetscCall(VecRestoreArrayWrite(y, &ya));
   }
-  PetscCall(MatBackwardSolve(sp->F, y, x1));
+  {
+    /* PETSc's Cholesky factors an indefinite matrix without complaint (its pivots need only be
+     * nonzero), and its backward solve, which takes their square roots, is where a negative pivot
+     * shows: K~ = K_t + 4/dt^2 M* is then not positive definite, which the finite-strain tangent
+     * can make it (docs/reference.md, "Large rotations and finite strain"). Said in one line,
+     * where PETSc's trace would name the square root (issue 48, item 6). */
+    PetscErrorCode ierr;
+
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    ierr = MatBackwardSolve(sp->F, y, x1);
+    PetscCall(PetscPopErrorHandler());
+    PetscCheck(ierr != PETSC_ERR_SUP, PETSC_COMM_SELF, MM_ERR_PHYSICS, "The step matrix K~ = K + 4/dt^2 M* is not positive definite: its Cholesky factor has a negative pivot. The finite-strain tangent K loses its definiteness under strong compression, or under contact pressure with a nearly incompressible -nu (lambda/mu large); lower -ts_dt (the mass term 4/dt^2 M* restores it) or -nu. The output up to the previous step is intact");
+    PetscCall(ierr);
+  }
   PetscCall(BackwardSweep(sp, y, x2));
   PetscCall(VecNorm(x1, NORM_INFINITY, &scale));
   PetscCall(VecAXPY(x2, -1.0, x1));
