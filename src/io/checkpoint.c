@@ -322,15 +322,13 @@ static PetscErrorCode CountVertices(MMCheckpoint *ck)
 
 /* The checkpoint's datasets into the file tmp. A failed write returns its error, for the caller's
  * MMOutputHDF5End to name the file. */
-static PetscErrorCode WriteCheckpointFile(MMCheckpoint *ck, const char tmp[], const PetscReal run[])
+static PetscErrorCode WriteCheckpointFile(MMCheckpoint *ck, PetscViewer viewer, const PetscReal run[])
 {
   MPI_Comm    comm = PetscObjectComm((PetscObject)ck->op->dm);
   MMState    *s    = ck->state;
-  PetscViewer viewer;
   Vec         rv, tv;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerHDF5Open(comm, tmp, FILE_MODE_WRITE, &viewer));
   PetscCall(RootVector(comm, "run", MM_RUN_NUM, run, &rv));
   PetscCall(VecView(rv, viewer));
   PetscCall(VecDestroy(&rv));
@@ -354,8 +352,20 @@ static PetscErrorCode WriteCheckpointFile(MMCheckpoint *ck, const char tmp[], co
     PetscCall(VecView(fv, viewer));
     PetscCall(VecDestroy(&fv));
   }
-  PetscCall(PetscViewerDestroy(&viewer));
   PetscFunctionReturn(0);
+}
+
+/* The bytes WriteCheckpointFile writes: its datasets' values, and HDF5's own at the output plan's
+ * 3.6 kB a dataset (src/io/output_plan.c) */
+static PetscReal CheckpointBytes(MMCheckpoint *ck)
+{
+  const PetscBool frames = FramesFollow(ck);
+  const PetscReal nv = (PetscReal)ck->nv_global, dim = (PetscReal)ck->op->dim;
+  const PetscReal datasets = 7 + (DampingOn(ck) ? 1 : 0) + (frames ? 2 : 0);
+  PetscReal       values   = MM_RUN_NUM + PetscMax(ck->out->n_written, 1) + nv * ((4 + (DampingOn(ck) ? 1 : 0)) * dim + MM_CKPT_NODE);
+
+  if (frames) values += nv * MM_CONTACT_FRAME_RECORD + MM_CKPT_FRAMES_RUN;
+  return values * sizeof(PetscScalar) + datasets * 3.6e3;
 }
 
 /* The state after the current step, to OUTPUT_DIR/checkpoint.h5: written whole to a temporary file
@@ -368,6 +378,7 @@ PetscErrorCode MMCheckpointWrite(MMCheckpoint *ck, TS ts)
   char           name[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN];
   PetscMPIInt    rank;
   int            err = 0;
+  PetscViewer    viewer;
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
@@ -377,9 +388,12 @@ PetscErrorCode MMCheckpointWrite(MMCheckpoint *ck, TS ts)
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s%s", name, MM_CKPT_TMP));
   PetscCall(RunRecord(ck, ts, run));
   PetscCall(MMOutputCopySnapshots(ck->out)); /* before the checkpoint that counts on it */
+  PetscCall(MMOutputCheckSpace(ck->out->dir, tmp, "the checkpoint", CheckpointBytes(ck)));
+  PetscCall(MMOutputHDF5Create(comm, tmp, &viewer));
   PetscCall(MMOutputHDF5Begin());
-  ierr = WriteCheckpointFile(ck, tmp, run);
+  ierr = WriteCheckpointFile(ck, viewer, run);
   PetscCall(MMOutputHDF5End(ierr, "write", tmp));
+  PetscCall(MMOutputHDF5Close(&viewer, tmp));
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (!rank && rename(tmp, name)) err = errno;
   PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
