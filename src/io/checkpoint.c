@@ -388,7 +388,7 @@ PetscErrorCode MMCheckpointWrite(MMCheckpoint *ck, TS ts)
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s%s", name, MM_CKPT_TMP));
   PetscCall(RunRecord(ck, ts, run));
   PetscCall(MMOutputCopySnapshots(ck->out)); /* before the checkpoint that counts on it */
-  PetscCall(MMOutputCheckSpace(ck->out->dir, tmp, "the checkpoint", CheckpointBytes(ck)));
+  PetscCall(MMOutputCheckSpace(ck->out->dir, tmp, "the checkpoint", CheckpointBytes(ck) + MMOutputIndexRoom(ck->out)));
   PetscCall(MMOutputHDF5Create(comm, tmp, &viewer));
   PetscCall(MMOutputHDF5Begin());
   ierr = WriteCheckpointFile(ck, viewer, run);

@@ -4,8 +4,8 @@
  * - history.csv gets each row in one write(), so the rows on disk are whole rows;
  * - solution.h5 stays open for the whole run and is flushed after each snapshot; each checkpoint
  *   keeps a copy of it (checkpoint_snapshots.h5), since a kill while HDF5 writes can spoil the file;
- * - solution.xmf lists only snapshots flushed (at least half of them, all at checkpoints and at the
- *   end). It is written beside the old one and renamed over it, so a reader, or a kill in between,
+ * - solution.xmf lists only snapshots flushed (at least half of them, all at checkpoints, at the end
+ *   and when an error stops the run). It is written beside the old one and renamed over it, so a reader, or a kill in between,
  *   sees the old index or the new one, never part of one.
  * Any failed write, flush or close stops the run with the file's name and the system's reason.
  * Opening the output (at the end of set-up) first moves the last run's files into previous/. */
@@ -469,11 +469,22 @@ static void IndexAtStop(void)
   if (!IndexReplace(o, tmp, &what)) o->n_indexed = o->n_written;
 }
 
+/* rank 0: the bytes of an index that lists one more snapshot, written beside the one on disk. Each
+ * check of the free space before a write of solution.h5 or the checkpoint (MMOutputCheckSpace)
+ * counts it, so that the index listing every snapshot that write completes still fits, even when
+ * the next check stops the run (IndexAtStop writes it then). A grid's text is the same but for
+ * its number's digits: twice the mean grid covers one more. */
+PetscReal MMOutputIndexRoom(const MMOutput *o)
+{
+  const PetscReal grid = o->n_written ? (PetscReal)o->index_len / (PetscReal)o->n_written : 4096;
+  return (PetscReal)(o->index_len + MMOutputIndexFrameBytes()) + 2 * grid;
+}
+
 /* The index gains the snapshot just flushed. The file is rewritten whole and renamed into place,
  * so that a reader never sees part of it: after every snapshot that would be O(N^2) bytes over a run of N snapshots. It is rewritten when the snapshots have doubled since the
- * last time (O(N) bytes in all), and by MMOutputSyncIndex at every checkpoint and at the end of the
- * run: while the run goes on it lists at least half of the snapshots written, all of them up to the
- * last checkpoint (README "Output"). */
+ * last time (O(N) bytes in all), by MMOutputSyncIndex at every checkpoint and at the end of the
+ * run, and by IndexAtStop when an error stops it: while the run goes on it lists at least half of
+ * the snapshots written, all of them up to the last checkpoint (README "Output"). */
 static PetscErrorCode WriteIndex(MMOutput *o)
 {
   PetscMPIInt rank;
@@ -700,7 +711,7 @@ PetscErrorCode MMOutputWriteSnapshot(MMOutput *o, PetscReal t)
     char what[64];
     PetscCall(PetscSNPrintf(what, sizeof(what), "snapshot %" PetscInt_FMT, o->n_written));
     /* the first also writes the fields written once, counted with the mesh */
-    PetscCall(MMOutputCheckSpace(o->dir, o->h5_name, what, o->snapshot_bytes + (o->static_written ? 0 : o->mesh_bytes)));
+    PetscCall(MMOutputCheckSpace(o->dir, o->h5_name, what, o->snapshot_bytes + (o->static_written ? 0 : o->mesh_bytes) + MMOutputIndexRoom(o)));
   }
   if (!o->static_written) PetscCall(MMOutputWriteStaticFields(o));
   /* /time is written ahead of the fields: the index, not /time, says what is complete */

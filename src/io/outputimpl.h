@@ -39,6 +39,7 @@ PETSC_INTERN PetscErrorCode MMOutputLineAdd(MMLine *l, const char fmt[], ...);
 PETSC_INTERN PetscErrorCode MMOutputCSVHeaderLine(const MMOutput *o, MMLine *line);
 PETSC_INTERN PetscErrorCode MMOutputIndexAddGrid(MMOutput *o, PetscInt dim, PetscInt k, PetscReal t);
 PETSC_INTERN size_t         MMOutputIndexFrameBytes(void);
+PETSC_INTERN PetscReal      MMOutputIndexRoom(const MMOutput *o);
 PETSC_INTERN PetscErrorCode MMOutputWriteIndexFile(MMOutput *o);
 PETSC_INTERN PetscErrorCode MMOutputFlushFields(MMOutput *o);
 PETSC_INTERN PetscErrorCode MMOutputWriteDataset(PetscViewer viewer, Vec v, PetscInt step, const char field_type[]);
