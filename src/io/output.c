@@ -5,8 +5,8 @@
  * - solution.h5 stays open for the whole run and is flushed after each snapshot; each checkpoint
  *   keeps a copy of it (checkpoint_snapshots.h5), since a kill while HDF5 writes can spoil the file;
  * - solution.xmf lists only snapshots flushed (at least half of them, all at checkpoints, at the end
- *   and when an error stops the run). It is written beside the old one and renamed over it, so a reader, or a kill in between,
- *   sees the old index or the new one, never part of one.
+ *   and when an error stops the run). It is written beside the old one and renamed over it, so a
+ *   reader, or a kill in between, sees the old index or the new one, never part of one.
  * Any failed write, flush or close stops the run with the file's name and the system's reason.
  * Opening the output (at the end of set-up) first moves the last run's files into previous/. */
 #define _GNU_SOURCE /* copy_file_range */
@@ -183,7 +183,6 @@ PetscErrorCode MMOutputCheckSpace(const char dir[], const char name[], const cha
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   if (rank == 0 && statvfs(dir, &fs) == 0) { /* a file system that cannot say is not checked */
     const double need = MM_SPACE_FACTOR * bytes + MM_SPACE_EXTRA, avail = (double)fs.f_bavail * (double)fs.f_frsize;
-    if (getenv("MM_SPACE_DEBUG")) { struct stat sb; (void)stat(name, &sb); fprintf(stderr, "SPACE %s %s bytes=%.0f avail=%.0f size=%ld\n", name, what, bytes, avail, (long)sb.st_size); }
     if (avail < need) {
       errno = ENOSPC;
       PetscCall(MMOutputFailed(&st, "write %s (%s needs about %.0f kB with HDF5's own data, the file system has %.0f kB free; nothing of it was written)", name, what, need / 1024, avail / 1024));
@@ -455,9 +454,10 @@ PetscErrorCode MMOutputWriteIndexFile(MMOutput *o)
 static MMOutput *index_at_stop = NULL;
 
 /* Whatever error stops the run (status 64, 65, 74, src/sys/errors.c), the index lists every snapshot
- * flushed: between its rewrites (WriteIndex) it may list as few as half of them. The snapshots it
- * adds are whole on disk: each is listed only once flushed (MMOutputWriteSnapshot), and a later
- * write that failed is at the end of the file (docs/full_disk.md). */
+ * flushed: between its rewrites (WriteIndex) it may list as few as half of them. Each is listed
+ * only once flushed (MMOutputWriteSnapshot), and a full disk stops the run before the next write
+ * of solution.h5 starts (MMOutputCheckSpace), with the room for this index kept
+ * (MMOutputIndexRoom). Plain C, run by the error handler on rank 0. */
 static void IndexAtStop(void)
 {
   MMOutput   *o = index_at_stop;
@@ -467,6 +467,18 @@ static void IndexAtStop(void)
   if (!o || o->n_indexed >= o->n_written) return;
   if (snprintf(tmp, sizeof(tmp), "%s%s", o->xmf_name, MM_XMF_TMP) >= (int)sizeof(tmp)) return;
   if (!IndexReplace(o, tmp, &what)) o->n_indexed = o->n_written;
+}
+
+/* From here on an error stop writes o's index (on rank 0, which holds its text). */
+static PetscErrorCode IndexAtStopSet(MMOutput *o)
+{
+  PetscMPIInt rank;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
+  if (!rank) index_at_stop = o;
+  PetscCall(MMErrorsAtStop(IndexAtStop));
+  PetscFunctionReturn(0);
 }
 
 /* rank 0: the bytes of an index that lists one more snapshot, written beside the one on disk. Each
@@ -700,6 +712,18 @@ PetscErrorCode MMOutputWriteStaticFields(MMOutput *o)
   PetscFunctionReturn(0);
 }
 
+/* Room for snapshot n_written, and for the index that will list it; the first also writes the
+ * fields written once, counted with the mesh. */
+static PetscErrorCode CheckSnapshotSpace(const MMOutput *o)
+{
+  char what[64];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(what, sizeof(what), "snapshot %" PetscInt_FMT, o->n_written));
+  PetscCall(MMOutputCheckSpace(o->dir, o->h5_name, what, o->snapshot_bytes + (o->static_written ? 0 : o->mesh_bytes) + MMOutputIndexRoom(o)));
+  PetscFunctionReturn(0);
+}
+
 /* Writes the fields the caller filled as snapshot n_written at time t, flushes them, and only then
  * indexes them. */
 PetscErrorCode MMOutputWriteSnapshot(MMOutput *o, PetscReal t)
@@ -707,12 +731,7 @@ PetscErrorCode MMOutputWriteSnapshot(MMOutput *o, PetscReal t)
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
-  {
-    char what[64];
-    PetscCall(PetscSNPrintf(what, sizeof(what), "snapshot %" PetscInt_FMT, o->n_written));
-    /* the first also writes the fields written once, counted with the mesh */
-    PetscCall(MMOutputCheckSpace(o->dir, o->h5_name, what, o->snapshot_bytes + (o->static_written ? 0 : o->mesh_bytes) + MMOutputIndexRoom(o)));
-  }
+  PetscCall(CheckSnapshotSpace(o));
   if (!o->static_written) PetscCall(MMOutputWriteStaticFields(o));
   /* /time is written ahead of the fields: the index, not /time, says what is complete */
   PetscCall(MMOutputHDF5Begin());
@@ -993,12 +1012,7 @@ PetscErrorCode MMOutputOpenFiles(MMOutput *o)
     PetscCall(OpenFields(o));
     PetscCall(CreateFieldVectors(o));
   }
-  {
-    PetscMPIInt rank;
-    PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
-    if (!rank) index_at_stop = o;
-    PetscCall(MMErrorsAtStop(IndexAtStop));
-  }
+  PetscCall(IndexAtStopSet(o));
   PetscFunctionReturn(0);
 }
 
