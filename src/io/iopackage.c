@@ -18,6 +18,7 @@ PetscErrorCode MMIOInitializePackage(void)
   PetscCall(PetscLogEventRegister("MMOutputFlush", id, &MMIOEvents.flush));
   PetscCall(PetscLogEventRegister("MMOutputIndex", id, &MMIOEvents.index));
   PetscCall(PetscLogEventRegister("MMOutputCopy", id, &MMIOEvents.copy));
+  PetscCall(PetscLogEventRegister("MMOutputSpace", id, &MMIOEvents.space));
   PetscCall(PetscLogEventRegister("MMCheckpoint", id, &MMIOEvents.checkpoint));
   PetscCall(PetscLogEventRegister("MMRestartOutput", id, &MMIOEvents.restart_output));
   /* every failed HDF5 call of ours is reported by us, naming the file, in one line (PetscCallHDF5,

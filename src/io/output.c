@@ -180,6 +180,7 @@ PetscErrorCode MMOutputCheckSpace(const char dir[], const char name[], const cha
   PetscMPIInt    rank;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(MMIOEvents.space, 0, 0, 0, 0));
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   if (rank == 0 && statvfs(dir, &fs) == 0) { /* a file system that cannot say is not checked */
     const double need = MM_SPACE_FACTOR * bytes + MM_SPACE_EXTRA, avail = (double)fs.f_bavail * (double)fs.f_frsize;
@@ -189,6 +190,7 @@ PetscErrorCode MMOutputCheckSpace(const char dir[], const char name[], const cha
     }
   }
   PetscCall(MMOutputCheckRank0(&st));
+  PetscCall(PetscLogEventEnd(MMIOEvents.space, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

@@ -10,6 +10,7 @@
 typedef struct {
   PetscLogStage output;               /* writing a snapshot */
   PetscLogEvent flush, index, copy;   /* HDF5 flush, XDMF rewrite, the checkpoint's copy of solution.h5 */
+  PetscLogEvent space;                /* the free space checked before an HDF5 write */
   PetscLogEvent checkpoint;           /* a checkpoint written or read */
   PetscLogEvent restart_output;       /* -restart: the history cut and the earlier snapshots copied */
 } MMIOLog;
