@@ -170,13 +170,15 @@ static void MPIIOFailed(MPI_File *fh, int *code, ...)
 {
   const int err = errno;
   char      reason[MPI_MAX_ERROR_STRING], mess[2 * PETSC_MAX_PATH_LEN + MPI_MAX_ERROR_STRING];
-  const char *name = mpiio_opening[0] ? mpiio_opening : "an HDF5 file";
+  const char *name = mpiio_opening[0] ? mpiio_opening : NULL;
 
   if (*fh == MPI_FILE_NULL) return;
   for (int i = 0; i < MM_MPIIO_FILES; ++i)
     if (mpiio_files[i].name[0] && mpiio_files[i].fh == *fh) name = mpiio_files[i].name;
   MPIIOReason(*code, err, reason, (int)sizeof(reason));
-  (void)snprintf(mess, sizeof(mess), "Could not write %s: %s", name, reason);
+  /* a file not named by the writer is one being read (a checkpoint, on -restart) */
+  if (name) (void)snprintf(mess, sizeof(mess), "Could not write %s: %s", name, reason);
+  else (void)snprintf(mess, sizeof(mess), "Could not read an HDF5 file through MPI-IO: %s", reason);
   PrintAndExit(MPI_COMM_SELF, mess, MM_EXIT_IO);
 }
 
