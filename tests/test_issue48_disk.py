@@ -4,8 +4,8 @@ every stop leaves an index that lists every intact snapshot and only those.
 Item 1: a sweep of 2-rank runs on real tmpfs file systems (root only; mounted for the test,
 unmounted in a finally) at sizes from 8k to 2M that hit every write of a run: the mesh, each
 snapshot (its datasets and flush), the copy of solution.h5 and the checkpoint at a checkpoint, the
-history and the index. Each ends with status 74 and the file's name within 10 s; a hang is a
-timeout, which fails the test. A write that fails although the free space was checked (a
+history (the index's room is part of every check: see SWEEP). Each ends with status 74 and the
+file's name within 10 s; a hang is a timeout, which fails the test. A write that fails although the free space was checked (a
 file-size limit, as another process filling the disk would) ends the job from inside the MPI-IO
 call. On 1 rank the same disk gives one line.
 
