@@ -126,6 +126,7 @@ struct _MMOutput {
   MMStress      stress;                /* nodal and cell stress and von Mises (fem: src/fem/stress.c) */
   MMProbes      probes;                /* -probes: groups' mean displacement and velocity in the history */
   PetscBool     planned;               /* the planned output's size has been checked (output_schedule.c) */
+  PetscReal     mesh_bytes, snapshot_bytes; /* the plan's bytes of solution.h5's mesh and of a snapshot: the room each write needs */
 };
 
 /* iopackage.c: io's log stage and events, registered once */

@@ -14,9 +14,12 @@
 #define MM_ERR_LOCKED  (PETSC_ERR_MAX_VALUE + 1) /* the output directory is another run's */
 #define MM_ERR_PHYSICS (PETSC_ERR_MAX_VALUE + 2) /* the result is meaningless: a check of the physics failed */
 
-/* errors.c: the error handler of the exit statuses, and a clean-up for the MPI_Abort path */
+/* errors.c: the error handler of the exit statuses, a clean-up for the MPI_Abort path, what a stopped
+ * run still writes, and the names of the MPI-IO files written (for a failed write's message) */
 PETSC_EXTERN PetscErrorCode MMErrorsSetUp(void);
 PETSC_EXTERN PetscErrorCode MMErrorsAtAbort(void (*fn)(void));
+PETSC_EXTERN PetscErrorCode MMErrorsAtStop(void (*fn)(void));
+PETSC_EXTERN PetscErrorCode MMErrorsNameMPIIOFile(MPI_File fh, const char name[]);
 
 /* signals.c: SIGTERM and SIGINT stop the run after the step; the report says how to continue */
 PETSC_EXTERN PetscErrorCode MMSignalsSetUp(TS ts);

@@ -675,15 +675,13 @@ static PetscErrorCode WriteStepperState(MMCheckpoint *ck, TS ts, PetscViewer vie
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode WriteCheckpointFile(MMCheckpoint *ck, TS ts, const char tmp[], const PetscReal run[])
+static PetscErrorCode WriteCheckpointFile(MMCheckpoint *ck, TS ts, PetscViewer viewer, const PetscReal run[])
 {
   MPI_Comm    comm = PetscObjectComm((PetscObject)ck->op->dm);
   MMState    *s    = ck->state;
-  PetscViewer viewer;
   Vec         rv, tv;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerHDF5Open(comm, tmp, FILE_MODE_WRITE, &viewer));
   PetscCall(RootVector(comm, "run", MM_RUN_NUM, run, &rv));
   PetscCall(VecView(rv, viewer));
   PetscCall(VecDestroy(&rv));
@@ -709,7 +707,36 @@ static PetscErrorCode WriteCheckpointFile(MMCheckpoint *ck, TS ts, const char tm
     PetscCall(VecDestroy(&fv));
   }
   PetscCall(WriteStepperState(ck, ts, viewer));
-  PetscCall(PetscViewerDestroy(&viewer));
+  PetscFunctionReturn(0);
+}
+
+/* The bytes WriteCheckpointFile writes: its datasets' values, and HDF5's own at the output plan's
+ * 3.6 kB a dataset (src/io/output_plan.c); the physics' attributes (WritePhysics) are counted as
+ * one dataset's overhead, the stepper's state (WriteStepperState) at its sizes. */
+static PetscErrorCode CheckpointBytes(MMCheckpoint *ck, TS ts, PetscReal *bytes)
+{
+  const PetscBool frames = FramesFollow(ck);
+  const PetscReal nv = (PetscReal)ck->nv_global, dim = (PetscReal)ck->op->dim;
+  PetscReal       datasets = 8 + (DampingOn(ck) ? 1 : 0) + (frames ? 2 : 0);
+  PetscReal       values   = MM_RUN_NUM + PetscMax(ck->out->n_written, 1) + nv * ((4 + (DampingOn(ck) ? 1 : 0)) * dim + MM_CKPT_NODE);
+  MMNewmark       nm;
+  Vec             at;
+  PetscReal       t;
+
+  PetscFunctionBeginUser;
+  if (frames) values += nv * MM_CONTACT_FRAME_RECORD + MM_CKPT_FRAMES_RUN;
+  PetscCall(MMNewmarkFromTS(ts, &nm));
+  PetscCall(MMNewmarkGetTangentPoint(nm, &at, &t));
+  if (at) {
+    values += nv * dim;
+    datasets += 1;
+  }
+  if (PairsSlide(ck)) {
+    const PetscInt nf = MMNewmarkCountCarriedForces(nm);
+    values += nv * (MM_CONTACT_PAIR_RECORD + nf * dim) + 3;
+    datasets += 2 + nf;
+  }
+  *bytes = values * sizeof(PetscScalar) + datasets * 3.6e3;
   PetscFunctionReturn(0);
 }
 
@@ -723,6 +750,8 @@ PetscErrorCode MMCheckpointWrite(MMCheckpoint *ck, TS ts)
   char           name[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN];
   PetscMPIInt    rank;
   int            err = 0;
+  PetscViewer    viewer;
+  PetscReal      bytes;
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
@@ -732,9 +761,13 @@ PetscErrorCode MMCheckpointWrite(MMCheckpoint *ck, TS ts)
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s%s", name, MM_CKPT_TMP));
   PetscCall(RunRecord(ck, ts, run));
   PetscCall(MMOutputCopySnapshots(ck->out)); /* before the checkpoint that counts on it */
+  PetscCall(CheckpointBytes(ck, ts, &bytes));
+  PetscCall(MMOutputCheckSpace(ck->out->dir, tmp, "the checkpoint", bytes + MMOutputIndexRoom(ck->out)));
+  PetscCall(MMOutputHDF5Create(comm, tmp, &viewer));
   PetscCall(MMOutputHDF5Begin());
-  ierr = WriteCheckpointFile(ck, ts, tmp, run);
+  ierr = WriteCheckpointFile(ck, ts, viewer, run);
   PetscCall(MMOutputHDF5End(ierr, "write", tmp));
+  PetscCall(MMOutputHDF5Close(&viewer, tmp));
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (!rank && rename(tmp, name)) err = errno;
   PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));

@@ -4,9 +4,9 @@
  * - history.csv gets each row in one write(), so the rows on disk are whole rows;
  * - solution.h5 stays open for the whole run and is flushed after each snapshot; each checkpoint
  *   keeps a copy of it (checkpoint_snapshots.h5), since a kill while HDF5 writes can spoil the file;
- * - solution.xmf lists only snapshots flushed (at least half of them, all at checkpoints and at the
- *   end). It is written beside the old one and renamed over it, so a reader, or a kill in between,
- *   sees the old index or the new one, never part of one.
+ * - solution.xmf lists only snapshots flushed (at least half of them, all at checkpoints, at the end
+ *   and when an error stops the run). It is written beside the old one and renamed over it, so a
+ *   reader, or a kill in between, sees the old index or the new one, never part of one.
  * Any failed write, flush or close stops the run with the file's name and the system's reason.
  * Opening the output (at the end of set-up) first moves the last run's files into previous/. */
 #define _GNU_SOURCE /* copy_file_range */
@@ -17,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 #include <petscsf.h>
 #include <petscviewerhdf5.h>
@@ -120,6 +121,77 @@ PetscErrorCode MMOutputHDF5End(PetscErrorCode ierr, const char action[], const c
   if (!err) err = SystemReason(name);
   PetscCall(PetscErrorMessage(ierr, &text, &specific));
   SETERRQ(PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not %s %s: %s (%s)", action, name, err ? strerror(err) : "the system gave no reason", specific && specific[0] ? specific : text);
+}
+
+/* An HDF5 file of the run created for writing, its name known to the handler of failed MPI-IO calls
+ * (src/sys/errors.c), which stops the job from inside the call that failed. */
+PetscErrorCode MMOutputHDF5Create(MPI_Comm comm, const char name[], PetscViewer *viewer)
+{
+  hid_t          fid;
+  MPI_File      *fh = NULL;
+  PetscErrorCode ierr;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMErrorsNameMPIIOFile(MPI_FILE_NULL, name));
+  PetscCall(MMOutputHDF5Begin());
+  ierr = PetscViewerHDF5Open(comm, name, FILE_MODE_WRITE, viewer);
+  PetscCall(MMOutputHDF5End(ierr, "create", name));
+  PetscCall(PetscViewerHDF5GetFileId(*viewer, &fid));
+  if (H5Fget_vfd_handle(fid, H5P_DEFAULT, (void **)&fh) >= 0 && fh) PetscCall(MMErrorsNameMPIIOFile(*fh, name));
+  PetscCall(MMErrorsNameMPIIOFile(MPI_FILE_NULL, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* Closes what MMOutputHDF5Create opened (a close can be where a deferred write fails). */
+PetscErrorCode MMOutputHDF5Close(PetscViewer *viewer, const char name[])
+{
+  hid_t          fid;
+  MPI_File      *fh = NULL, handle = MPI_FILE_NULL;
+  PetscErrorCode ierr;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5GetFileId(*viewer, &fid));
+  if (H5Fget_vfd_handle(fid, H5P_DEFAULT, (void **)&fh) >= 0 && fh) handle = *fh;
+  PetscCall(MMOutputHDF5Begin());
+  ierr = PetscViewerDestroy(viewer);
+  PetscCall(MMOutputHDF5End(ierr, "close", name));
+  if (handle != MPI_FILE_NULL) PetscCall(MMErrorsNameMPIIOFile(handle, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* The room asked of the file system beyond the output plan's bytes of a write: HDF5 places
+ * metadata (chunk indices, heaps, object headers) in blocks of its own beyond the plan's
+ * per-dataset average, and a page of tmpfs holds no two files' tails. Measured in
+ * docs/full_disk.md. */
+#define MM_SPACE_FACTOR 1.25
+#define MM_SPACE_EXTRA  (64.0 * 1024)
+
+/* Whether the output directory's file system has room for the next write to name (what: the
+ * write, bytes: its size in the output plan, output_plan.c), asked by rank 0 before any rank starts
+ * it: when it has not, every rank stops together with status 74, naming the file, and nothing of
+ * the write is started. The HDF5 files are written by all ranks at once, inside collective HDF5
+ * calls; a write that fails there anyway (another process filled the disk) ends the job from the
+ * rank it failed on (src/sys/errors.c), without a hang but with Open MPI's abort banner. This
+ * check makes the usual case, a disk this run fills, the collective stop. docs/full_disk.md */
+PetscErrorCode MMOutputCheckSpace(const char dir[], const char name[], const char what[], PetscReal bytes)
+{
+  MMFileStatus   st = {0};
+  struct statvfs fs;
+  PetscMPIInt    rank;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(MMIOEvents.space, 0, 0, 0, 0));
+  PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
+  if (rank == 0 && statvfs(dir, &fs) == 0) { /* a file system that cannot say is not checked */
+    const double need = MM_SPACE_FACTOR * bytes + MM_SPACE_EXTRA, avail = (double)fs.f_bavail * (double)fs.f_frsize;
+    if (avail < need) {
+      errno = ENOSPC;
+      PetscCall(MMOutputFailed(&st, "write %s (%s needs about %.0f kB with HDF5's own data, the file system has %.0f kB free; nothing of it was written)", name, what, need / 1024, avail / 1024));
+    }
+  }
+  PetscCall(MMOutputCheckRank0(&st));
+  PetscCall(PetscLogEventEnd(MMIOEvents.space, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode MMOutputLineAdd(MMLine *l, const char fmt[], ...)
@@ -333,8 +405,37 @@ static void IndexPrint(FILE *f, const MMOutput *o)
   fputs(MMIndexTail, f);
 }
 
-/* The XDMF index, rewritten on rank 0: whole to solution.xmf.tmp, then renamed over solution.xmf.
- * Not fsync'd: this guards against the process dying, not the machine. */
+/* rank 0: the index text whole to tmp, renamed over solution.xmf: 0, or the errno of the step that
+ * failed (*what: "create", "write", "close" or "rename"), tmp removed (part of an index, or none: of
+ * no use to anyone). Plain C: the error handler runs it too (IndexAtStop). Not fsync'd: this guards
+ * against the process dying, not the machine. */
+static int IndexReplace(const MMOutput *o, const char tmp[], const char **what)
+{
+  FILE *f;
+  int   err = 0;
+
+  errno = 0;
+  *what = "create";
+  if (!(f = fopen(tmp, "w"))) err = errno ? errno : EIO;
+  else {
+    IndexPrint(f, o);
+    if (ferror(f) || fflush(f)) {
+      err   = errno ? errno : EIO;
+      *what = "write";
+      (void)fclose(f);
+    } else if (fclose(f)) {
+      err   = errno ? errno : EIO;
+      *what = "close";
+    } else if (rename(tmp, o->xmf_name)) {
+      err   = errno ? errno : EIO;
+      *what = "rename";
+    }
+  }
+  if (err) (void)unlink(tmp);
+  return err;
+}
+
+/* The XDMF index, rewritten on rank 0: whole to solution.xmf.tmp, then renamed over solution.xmf. */
 PetscErrorCode MMOutputWriteIndexFile(MMOutput *o)
 {
   MMFileStatus st = {0};
@@ -346,18 +447,11 @@ PetscErrorCode MMOutputWriteIndexFile(MMOutput *o)
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s%s", o->xmf_name, MM_XMF_TMP));
   if (rank == 0) {
-    FILE *f;
-
-    if (!(f = fopen(tmp, "w"))) PetscCall(MMOutputFailed(&st, "create %s", tmp));
-    else {
-      IndexPrint(f, o);
-      if (ferror(f) || fflush(f)) {
-        PetscCall(MMOutputFailed(&st, "write %s", tmp));
-        (void)fclose(f);
-      } else if (fclose(f)) PetscCall(MMOutputFailed(&st, "close %s", tmp));
-      else if (rename(tmp, o->xmf_name)) PetscCall(MMOutputFailed(&st, "rename %s to %s", tmp, o->xmf_name));
+    const char *what;
+    if ((errno = IndexReplace(o, tmp, &what))) {
+      if (!strcmp(what, "rename")) PetscCall(MMOutputFailed(&st, "rename %s to %s", tmp, o->xmf_name));
+      else PetscCall(MMOutputFailed(&st, "%s %s", what, tmp));
     }
-    if (st.err) (void)unlink(tmp); /* part of an index, or none (a full disk): of no use to anyone */
   }
   PetscCall(MMOutputCheckRank0(&st));
   o->n_indexed = o->n_written;
@@ -365,11 +459,54 @@ PetscErrorCode MMOutputWriteIndexFile(MMOutput *o)
   PetscFunctionReturn(0);
 }
 
+/* The output whose index a run stopped by an error still writes: set on rank 0 while the files are
+ * open (MMOutputOpenFiles to MMOutputDestroy). */
+static MMOutput *index_at_stop = NULL;
+
+/* Whatever error stops the run (status 64, 65, 74, src/sys/errors.c), the index lists every snapshot
+ * flushed: between its rewrites (WriteIndex) it may list as few as half of them. Each is listed
+ * only once flushed (MMOutputWriteSnapshot), and a full disk stops the run before the next write
+ * of solution.h5 starts (MMOutputCheckSpace), with the room for this index kept
+ * (MMOutputIndexRoom). Plain C, run by the error handler on rank 0. */
+static void IndexAtStop(void)
+{
+  MMOutput   *o = index_at_stop;
+  char        tmp[PETSC_MAX_PATH_LEN];
+  const char *what;
+
+  if (!o || o->n_indexed >= o->n_written) return;
+  if (snprintf(tmp, sizeof(tmp), "%s%s", o->xmf_name, MM_XMF_TMP) >= (int)sizeof(tmp)) return;
+  if (!IndexReplace(o, tmp, &what)) o->n_indexed = o->n_written;
+}
+
+/* From here on an error stop writes o's index (on rank 0, which holds its text). */
+static PetscErrorCode IndexAtStopSet(MMOutput *o)
+{
+  PetscMPIInt rank;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
+  if (!rank) index_at_stop = o;
+  PetscCall(MMErrorsAtStop(IndexAtStop));
+  PetscFunctionReturn(0);
+}
+
+/* rank 0: the bytes of an index that lists one more snapshot, written beside the one on disk. Each
+ * check of the free space before a write of solution.h5 or the checkpoint (MMOutputCheckSpace)
+ * counts it, so that the index listing every snapshot that write completes still fits, even when
+ * the next check stops the run (IndexAtStop writes it then). A grid's text is the same but for
+ * its number's digits: twice the mean grid covers one more. */
+PetscReal MMOutputIndexRoom(const MMOutput *o)
+{
+  const PetscReal grid = o->n_written ? (PetscReal)o->index_len / (PetscReal)o->n_written : 4096;
+  return (PetscReal)(o->index_len + MMOutputIndexFrameBytes()) + 2 * grid;
+}
+
 /* The index gains the snapshot just flushed. The file is rewritten whole and renamed into place,
  * so that a reader never sees part of it: after every snapshot that would be O(N^2) bytes over a run of N snapshots. It is rewritten when the snapshots have doubled since the
- * last time (O(N) bytes in all), and by MMOutputSyncIndex at every checkpoint and at the end of the
- * run: while the run goes on it lists at least half of the snapshots written, all of them up to the
- * last checkpoint (README "Output"). */
+ * last time (O(N) bytes in all), by MMOutputSyncIndex at every checkpoint and at the end of the
+ * run, and by IndexAtStop when an error stops it: while the run goes on it lists at least half of
+ * the snapshots written, all of them up to the last checkpoint (README "Output"). */
 static PetscErrorCode WriteIndex(MMOutput *o)
 {
   PetscMPIInt rank;
@@ -585,6 +722,18 @@ PetscErrorCode MMOutputWriteStaticFields(MMOutput *o)
   PetscFunctionReturn(0);
 }
 
+/* Room for snapshot n_written, and for the index that will list it; the first also writes the
+ * fields written once, counted with the mesh. */
+static PetscErrorCode CheckSnapshotSpace(const MMOutput *o)
+{
+  char what[64];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(what, sizeof(what), "snapshot %" PetscInt_FMT, o->n_written));
+  PetscCall(MMOutputCheckSpace(o->dir, o->h5_name, what, o->snapshot_bytes + (o->static_written ? 0 : o->mesh_bytes) + MMOutputIndexRoom(o)));
+  PetscFunctionReturn(0);
+}
+
 /* Writes the fields the caller filled as snapshot n_written at time t, flushes them, and only then
  * indexes them. */
 PetscErrorCode MMOutputWriteSnapshot(MMOutput *o, PetscReal t)
@@ -592,6 +741,7 @@ PetscErrorCode MMOutputWriteSnapshot(MMOutput *o, PetscReal t)
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
+  PetscCall(CheckSnapshotSpace(o));
   if (!o->static_written) PetscCall(MMOutputWriteStaticFields(o));
   /* /time is written ahead of the fields: the index, not /time, says what is complete */
   PetscCall(MMOutputHDF5Begin());
@@ -732,9 +882,8 @@ static PetscErrorCode OpenFields(MMOutput *o)
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
-  PetscCall(MMOutputHDF5Begin());
-  ierr = PetscViewerHDF5Open(PETSC_COMM_WORLD, o->h5_name, FILE_MODE_WRITE, &o->h5);
-  PetscCall(MMOutputHDF5End(ierr, "create", o->h5_name));
+  PetscCall(MMOutputCheckSpace(o->dir, o->h5_name, "the mesh", o->mesh_bytes));
+  PetscCall(MMOutputHDF5Create(PETSC_COMM_WORLD, o->h5_name, &o->h5));
   PetscCall(PetscViewerPushFormat(o->h5, PETSC_VIEWER_HDF5_XDMF));
   PetscCall(MMOutputHDF5Begin());
   ierr = MMOutputWriteMesh(o->op, o->h5);
@@ -864,6 +1013,7 @@ PetscErrorCode MMOutputOpenFiles(MMOutput *o)
   PetscCall(PetscSNPrintf(o->h5_name, sizeof(o->h5_name), "%s/%s", dir, MMOutputFiles[1]));
   PetscCall(PetscSNPrintf(o->xmf_name, sizeof(o->xmf_name), "%s/%s", dir, MMOutputFiles[2]));
   PetscCall(OpenDirectoryAndHistory(o));
+  PetscCall(MMOutputPlanWrites(o));
   if (o->ckpt->restarted) {
     PetscCall(CountMesh(o));
     PetscCall(CreateFieldVectors(o));
@@ -872,23 +1022,21 @@ PetscErrorCode MMOutputOpenFiles(MMOutput *o)
     PetscCall(OpenFields(o));
     PetscCall(CreateFieldVectors(o));
   }
+  PetscCall(IndexAtStopSet(o));
   PetscFunctionReturn(0);
 }
 
 /* Closing reports errors too: a close can be where a deferred write fails. */
 static PetscErrorCode CloseFiles(MMOutput *o)
 {
-  MMFileStatus   st = {0};
-  PetscErrorCode ierr;
+  MMFileStatus st = {0};
 
   PetscFunctionBeginUser;
   if (o->csv_fd >= 0 && close(o->csv_fd)) PetscCall(MMOutputFailed(&st, "close %s", o->csv_name));
   o->csv_fd = -1;
   PetscCall(MMOutputCheckRank0(&st));
   PetscCall(PetscViewerPopFormat(o->h5));
-  PetscCall(MMOutputHDF5Begin());
-  ierr = PetscViewerDestroy(&o->h5);
-  PetscCall(MMOutputHDF5End(ierr, "close", o->h5_name));
+  PetscCall(MMOutputHDF5Close(&o->h5, o->h5_name));
   PetscFunctionReturn(0);
 }
 
@@ -914,6 +1062,7 @@ PetscErrorCode MMOutputView(const MMOutput *o, PetscViewer viewer)
 PetscErrorCode MMOutputDestroy(MMOutput *o)
 {
   PetscFunctionBeginUser;
+  if (index_at_stop == o) index_at_stop = NULL;
   PetscCall(MMStressDestroy(&o->stress)); /* fem's stress fields */
   PetscCall(MMProbesDestroy(&o->probes));
   PetscCall(VecDestroy(&o->disp_cart));

@@ -264,9 +264,8 @@ PetscErrorCode MMOutputRestartFields(MMOutput *o)
   PetscCall(OldFieldsOpen(o, &of));
   PetscCall(CheckOldTimes(o, &of, n, times));
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s%s", o->h5_name, MM_TMP));
-  PetscCall(MMOutputHDF5Begin());
-  ierr = PetscViewerHDF5Open(PETSC_COMM_WORLD, tmp, FILE_MODE_WRITE, &o->h5);
-  PetscCall(MMOutputHDF5End(ierr, "create", tmp));
+  PetscCall(MMOutputCheckSpace(o->dir, tmp, "the snapshots up to the checkpoint", o->mesh_bytes + n * o->snapshot_bytes));
+  PetscCall(MMOutputHDF5Create(PETSC_COMM_WORLD, tmp, &o->h5));
   PetscCall(PetscViewerPushFormat(o->h5, PETSC_VIEWER_HDF5_XDMF));
   PetscCall(MMOutputHDF5Begin());
   ierr = DMView(o->op->dm, o->h5);
@@ -298,6 +297,12 @@ PetscErrorCode MMOutputRestartFields(MMOutput *o)
   if (n) PetscCall(MMOutputWriteIndexFile(o));
   if (!rank && rename(tmp, o->h5_name)) PetscCall(MMOutputFailed(&st, "rename %s to %s", tmp, o->h5_name));
   PetscCall(MMOutputCheckRank0(&st));
+  { /* a failed write names the file by its new name */
+    hid_t     fid;
+    MPI_File *fh = NULL;
+    PetscCall(PetscViewerHDF5GetFileId(o->h5, &fid));
+    if (H5Fget_vfd_handle(fid, H5P_DEFAULT, (void **)&fh) >= 0 && fh) PetscCall(MMErrorsNameMPIIOFile(*fh, o->h5_name));
+  }
   PetscCall(MMOutputCopySnapshots(o)); /* the checkpoint this run continues now counts on this file */
   PetscFunctionReturn(0);
 }

@@ -10,6 +10,7 @@
 typedef struct {
   PetscLogStage output;               /* writing a snapshot */
   PetscLogEvent flush, index, copy;   /* HDF5 flush, XDMF rewrite, the checkpoint's copy of solution.h5 */
+  PetscLogEvent space;                /* the free space checked before an HDF5 write */
   PetscLogEvent checkpoint;           /* a checkpoint written or read */
   PetscLogEvent restart_output;       /* -restart: the history cut and the earlier snapshots copied */
 } MMIOLog;
@@ -32,10 +33,14 @@ PETSC_INTERN PetscErrorCode MMOutputCheckRank0(MMFileStatus *st);
 PETSC_INTERN int            MMOutputWriteAll(int fd, const char *buf, size_t len);
 PETSC_INTERN PetscErrorCode MMOutputHDF5Begin(void);
 PETSC_INTERN PetscErrorCode MMOutputHDF5End(PetscErrorCode ierr, const char action[], const char name[]);
+PETSC_INTERN PetscErrorCode MMOutputHDF5Create(MPI_Comm comm, const char name[], PetscViewer *viewer);
+PETSC_INTERN PetscErrorCode MMOutputHDF5Close(PetscViewer *viewer, const char name[]);
+PETSC_INTERN PetscErrorCode MMOutputCheckSpace(const char dir[], const char name[], const char what[], PetscReal bytes);
 PETSC_INTERN PetscErrorCode MMOutputLineAdd(MMLine *l, const char fmt[], ...);
 PETSC_INTERN PetscErrorCode MMOutputCSVHeaderLine(const MMOutput *o, MMLine *line);
 PETSC_INTERN PetscErrorCode MMOutputIndexAddGrid(MMOutput *o, PetscInt dim, PetscInt k, PetscReal t);
 PETSC_INTERN size_t         MMOutputIndexFrameBytes(void);
+PETSC_INTERN PetscReal      MMOutputIndexRoom(const MMOutput *o);
 PETSC_INTERN PetscErrorCode MMOutputWriteIndexFile(MMOutput *o);
 PETSC_INTERN PetscErrorCode MMOutputFlushFields(MMOutput *o);
 PETSC_INTERN PetscErrorCode MMOutputWriteDataset(PetscViewer viewer, Vec v, PetscInt step, const char field_type[]);
@@ -63,6 +68,7 @@ PETSC_INTERN PetscErrorCode MMOutputViewBytes(const MMSnapshotField f[MM_SNAPSHO
 PETSC_INTERN PetscBool      MMOutputHistoryDue(const MMOutput *o, PetscInt step);
 PETSC_INTERN PetscBool      MMOutputSnapshotDue(const MMOutput *o, PetscInt step, PetscReal t, PetscReal dt);
 PETSC_INTERN PetscErrorCode MMOutputPlanCheck(const MMOutput *o, TS ts);
+PETSC_INTERN PetscErrorCode MMOutputPlanWrites(MMOutput *o);
 /* probes.c: -probes, the groups' mean displacement and velocity */
 PETSC_INTERN PetscErrorCode MMProbesSetUp(MMOutput *o, Vec vertex_masses);
 PETSC_INTERN PetscErrorCode MMProbesEvaluate(MMOutput *o);

@@ -6,7 +6,9 @@
  * stopped by a check of its physics) print their message alone, once, as the first line of stderr,
  * and the run exits with a documented status. Any other error is a bug of ours or of a library: it
  * keeps PETSc's full trace, and so does every error under -debug. */
+#include <errno.h>
 #include <signal.h>
+#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -14,6 +16,7 @@
 
 static PetscBool debug_trace = PETSC_FALSE;
 static void (*at_abort)(void) = NULL; /* what exit() would run through atexit, on the MPI_Abort path */
+static void (*at_stop)(void)  = NULL; /* what a run stopped by an error still writes (the output's index) */
 
 /* Our own sources are compiled as "src/...", PETSc's as "./src/...": an unsupported combination of
  * options is the user's to fix when we raise it, a bug when PETSc does. */
@@ -106,6 +109,7 @@ static void PrintAndExit(MPI_Comm comm, const char mess[], int status)
   (void)MPI_Comm_size(MPI_COMM_WORLD, &wsize);
   (void)MPI_Comm_rank(MPI_COMM_WORLD, &wrank);
   (void)fflush(stdout);
+  if (at_stop) at_stop();
   if (wsize == 1) {
     Print(mess, -1);
     if (status == MM_EXIT_IO) EndWithFilesOpen(status);
@@ -130,6 +134,75 @@ static void PrintAndExit(MPI_Comm comm, const char mess[], int status)
   exit(status);
 }
 
+/* MPI-IO files being written, by handle, so that a failed write can name its file: registered by
+ * the writer once HDF5 has opened the file; `opening` names the file being created, whose first
+ * writes come before its handle is known. */
+#define MM_MPIIO_FILES 4
+static struct {
+  MPI_File fh;
+  char     name[PETSC_MAX_PATH_LEN];
+} mpiio_files[MM_MPIIO_FILES];
+static char mpiio_opening[PETSC_MAX_PATH_LEN];
+
+/* The system's reason for a failed MPI-IO call: ROMIO keeps errno's meaning in the error class for a
+ * full disk and a quota, and leaves errno set by the write that failed otherwise. */
+static void MPIIOReason(int code, int err, char reason[], int len)
+{
+  int cls = MPI_ERR_OTHER, n = 0;
+
+  (void)MPI_Error_class(code, &cls);
+  if (cls == MPI_ERR_NO_SPACE) err = ENOSPC;
+  else if (cls == MPI_ERR_QUOTA) err = EDQUOT;
+  if (err) {
+    (void)snprintf(reason, (size_t)len, "%s", strerror(err));
+    return;
+  }
+  if (MPI_Error_string(code, reason, &n) != MPI_SUCCESS) (void)snprintf(reason, (size_t)len, "MPI-IO error %d", code);
+}
+
+/* A failed MPI-IO call on an open file ends the job at once, from inside the call: the collective
+ * HDF5 call it came from would go on along a different path on each rank (one rank in H5AC's
+ * barrier, another in H5FD_truncate's broadcast, for ever: docs/full_disk.md), at whatever size
+ * the disk fills. HDF5 never sees the error, so no rank can leave the collective call unmatched.
+ * A failed open returns as before: ROMIO's open agrees on its outcome across the ranks, and the
+ * caller reports it collectively. */
+static void MPIIOFailed(MPI_File *fh, int *code, ...)
+{
+  const int err = errno;
+  char      reason[MPI_MAX_ERROR_STRING], mess[2 * PETSC_MAX_PATH_LEN + MPI_MAX_ERROR_STRING];
+  const char *name = mpiio_opening[0] ? mpiio_opening : NULL;
+
+  if (*fh == MPI_FILE_NULL) return;
+  for (int i = 0; i < MM_MPIIO_FILES; ++i)
+    if (mpiio_files[i].name[0] && mpiio_files[i].fh == *fh) name = mpiio_files[i].name;
+  MPIIOReason(*code, err, reason, (int)sizeof(reason));
+  /* a file not named by the writer is one being read (a checkpoint, on -restart) */
+  if (name) (void)snprintf(mess, sizeof(mess), "Could not write %s: %s", name, reason);
+  else (void)snprintf(mess, sizeof(mess), "Could not read an HDF5 file through MPI-IO: %s", reason);
+  PrintAndExit(MPI_COMM_SELF, mess, MM_EXIT_IO);
+}
+
+/* The writer names the file it is about to create (MPI_FILE_NULL) or has open (its handle); NULL
+ * forgets the handle once the file is closed. Not collective. */
+PetscErrorCode MMErrorsNameMPIIOFile(MPI_File fh, const char name[])
+{
+  PetscFunctionBeginUser;
+  if (fh == MPI_FILE_NULL) {
+    PetscCall(PetscStrncpy(mpiio_opening, name ? name : "", sizeof(mpiio_opening)));
+    PetscFunctionReturn(0);
+  }
+  for (int i = 0; i < MM_MPIIO_FILES; ++i)
+    if (mpiio_files[i].name[0] && mpiio_files[i].fh == fh) mpiio_files[i].name[0] = 0;
+  if (!name) PetscFunctionReturn(0);
+  for (int i = 0; i < MM_MPIIO_FILES; ++i) {
+    if (mpiio_files[i].name[0]) continue;
+    mpiio_files[i].fh = fh;
+    PetscCall(PetscStrncpy(mpiio_files[i].name, name, sizeof(mpiio_files[i].name)));
+    PetscFunctionReturn(0);
+  }
+  SETERRQ(PETSC_COMM_SELF, PETSC_ERR_PLIB, "More than %d MPI-IO files open for writing", MM_MPIIO_FILES);
+}
+
 static PetscErrorCode MMErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
 {
   const int status = p == PETSC_ERROR_INITIAL && mess && mess[0] ? ExitStatus(n, fun, file) : 0;
@@ -147,6 +220,15 @@ PetscErrorCode MMErrorsAtAbort(void (*fn)(void))
   PetscFunctionReturn(0);
 }
 
+/* What every rank runs when an error a user can act on stops the run, before the job ends (no MPI,
+ * no PETSc error handling in it: it runs inside the handler, on the ranks that raised the error). */
+PetscErrorCode MMErrorsAtStop(void (*fn)(void))
+{
+  PetscFunctionBeginUser;
+  at_stop = fn;
+  PetscFunctionReturn(0);
+}
+
 /* Right after PetscInitialize: -debug is read here, before any option can fail. A write beyond the
  * file-size limit (ulimit -f) raises SIGXFSZ, which kills the process without a word and can leave a
  * row of history.csv cut mid-number: ignored, the write fails with EFBIG instead and the run stops
@@ -158,5 +240,12 @@ PetscErrorCode MMErrorsSetUp(void)
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-debug", &debug_trace, NULL));
   PetscCallMPI(MPI_Comm_dup(MPI_COMM_WORLD, &end_comm));
   PetscCall(PetscPushErrorHandler(MMErrorHandler, NULL));
+  {
+    /* every file MPI-IO opens from now on takes it (MPI_FILE_NULL's handler is the default) */
+    MPI_Errhandler eh;
+    PetscCallMPI(MPI_File_create_errhandler(MPIIOFailed, &eh));
+    PetscCallMPI(MPI_File_set_errhandler(MPI_FILE_NULL, eh));
+    PetscCallMPI(MPI_Errhandler_free(&eh));
+  }
   PetscFunctionReturn(0);
 }
