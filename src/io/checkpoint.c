@@ -751,7 +751,7 @@ PetscErrorCode MMCheckpointWrite(MMCheckpoint *ck, TS ts)
   PetscMPIInt    rank;
   int            err = 0;
   PetscViewer    viewer;
-  PetscReal      bytes;
+  PetscReal      bytes = 0;
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
