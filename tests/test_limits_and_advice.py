@@ -86,7 +86,7 @@ def static_cantilever(runner, mesh, t, np_=1, name="out"):
 def mm_nocase(tmp_path):
     from conftest import run
     empty = tmp_path / "empty.opts"
-    empty.write_text("# tests/test_issue48_physics.py: every option on the command line\n")
+    empty.write_text("# tests/test_limits_and_advice.py: every option on the command line\n")
     return lambda *extra, **kw: run(str(empty), tmp_path, *extra, **kw)
 
 
