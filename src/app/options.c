@@ -425,7 +425,7 @@ static PetscErrorCode ProcessBodies(PetscOptionItems *PetscOptionsObject, MPI_Co
  * impact (of order lambda times the locked volume change) the neo-Hookean tangent loses its
  * definiteness and K~'s Cholesky factor stops ("Diagonal must be real and nonnegative", D1 at
  * lambda/mu = 2.5e3), and the svk step's Newton iteration diverges (D1 at 1e4); both hold their
- * audits at lambda/mu = 999, nu = 0.4995 (tests/test_issue48_physics.py). A harder impact can still
+ * audits at lambda/mu = 999, nu = 0.4995 (tests/test_limits_and_advice.py). A harder impact can still
  * turn the tangent indefinite there: the run then stops naming -ts_dt (src/contact/interface/pc_schursplit.c). */
 #define MM_NU_MAX_LINEAR 0.49999995
 #define MM_NU_MAX_FINITE 0.4995

@@ -737,7 +737,7 @@ static PetscErrorCode ElasticEnergyRoundoffScale(const MMOperators *op, Vec w, P
  * Measured on every case of options/ at its start (and -initial_state static) and on the slender
  * cantilevers: 0.002 to 2.7 eps of the absolute sum, N = 10^3 to 10^4 dofs; 4 sqrt(N) eps is 40
  * times the largest. A wrong assembly (a wrong entry, a missed cell, a material mixed up) differs
- * by a fraction of the energy (tests/test_issue48_physics.py). */
+ * by a fraction of the energy (tests/test_limits_and_advice.py). */
 #define MM_ENERGY_ROUNDOFF 4
 
 /* Start-up audit: the matrix form of the elastic energy against its quadrature on the state w. The

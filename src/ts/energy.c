@@ -187,7 +187,7 @@ PetscErrorCode MMEnergyInitial(MMNewmark nm, PetscBool restarted)
  * that solve is iterative (the active-set formulation's projected CG, or CG on K~), it stops at
  * -contact_tol of ||b||, and its residual is what the audit sees: the linear cube spinning onto a
  * plane with -mass standard ends at 1.7e-6 under active_set, 5.2e-8 with -contact_tol 1e-13, 2.1e-9
- * with 1e-14, 5.7e-11 under condensed and 1.1e-10 under full (tests/test_issue48_physics.py). Where
+ * with 1e-14, 5.7e-11 under condensed and 1.1e-10 under full (tests/test_limits_and_advice.py). Where
  * the solves are exact factorizations, a residual far above -contact_tol is no solver's: the usual
  * cause is inconsistent units (a mesh in millimetres with E in Pa), which leave K~ so
  * ill-conditioned that no solve is exact. */
