@@ -55,7 +55,7 @@ all: mmcontact
 
 deps:
 	@bash scripts/install-deps
-# what only the tests need besides (ParaView's pvbatch, tests/test_issue38_viz.py)
+# what only the tests need besides (ParaView's pvbatch, tests/test_paraview_and_history.py)
 deps-tests:
 	@bash scripts/install-deps tests
 

@@ -1,4 +1,4 @@
-"""Run by ParaView's pvbatch for tests/test_issue38_viz.py: opens each XDMF index given with each of
+"""Run by ParaView's pvbatch for tests/test_paraview_and_history.py: opens each XDMF index given with each of
 ParaView's XDMF readers (the legacy XDMFReader and the Xdmf3 readers), reads every snapshot, and
 saves every point and cell array each reader gives, with its components, to an .npz file:
     pvbatch tests/paraview_fields.py OUT.npz A/solution.xmf [B/solution.xmf ...]

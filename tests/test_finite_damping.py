@@ -68,7 +68,7 @@ def test_damped_svk_cantilever_rests_with_a_steady_contact_force(tmp_path, np_):
     f = h["force_normal"][rest]
     assert np.abs(np.diff(f)).max() < 1e-8 * force
     assert np.abs(f + h["reaction_clamp_y"][rest] - weight).max() < 1e-6 * weight
-    assert f[-1] == pytest.approx(0.112904, rel=1e-3)  # the linear model's (tests/test_issue38_damping.py: 0.1129)
+    assert f[-1] == pytest.approx(0.112904, rel=1e-3)  # the linear model's (tests/test_damping_at_rest.py: 0.1129)
     assert h["balance_residual"].max() <= 1e-10
     assert np.diff(h["work_damping"]).max() <= 1e-14 * scale
 

@@ -138,7 +138,7 @@ SWEEP = [("8k", SHORT), ("100k", SHORT), ("250k", SHORT), ("368k", SHORT), ("464
 # The index is not in it: each check before a write of solution.h5 or the checkpoint counts the
 # room of the index that will list it (MMOutputIndexRoom), so on a disk the run fills itself the
 # index is never the write that fails. Its failed write (74, solution.xmf.tmp named and removed)
-# is tested on /dev/full in test_issue38_disk.py.
+# is tested on /dev/full in test_full_disk.py.
 MUST_HIT = {"the mesh", "the checkpoint", "the copy", "the history"} | {f"snapshot {k}" for k in range(6)}
 
 
