@@ -574,7 +574,7 @@ PetscErrorCode MMFEAssembleOperatorsEnd(MMOperators *op)
   PetscCall(MatViewFromOptions(op->M, NULL, "-mass_view"));
   /* M served only to build M* and to check M*'s moments against it: the steps, the audit and the
    * diagnostics use M*. Freed here, before any factorization, it leaves the run's peak memory: one
-   * matrix of K's pattern (56 MiB on the 113k-dof D2 ball, about 0.5 GiB at 1M dofs) */
+   * matrix of K's pattern (its size: docs/scaling.md, "The figures behind the code's choices") */
   PetscCall(MatDestroy(&op->M));
   PetscCall(PetscLogEventEnd(MM_FEAssemble, 0, 0, 0, 0));
   PetscFunctionReturn(0);

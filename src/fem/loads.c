@@ -636,9 +636,10 @@ static PetscErrorCode DirichletAmplitudes(MMLoads *ld, const MMFEProblem *opt)
 
 /* The Dirichlet data on dm's local vectors as a table, u_D(t) = bv0 + t bv1 on the constrained local
  * dofs, when no value has an amplitude: each boundary's data value + velocity t (fem.c) is affine in
- * t. DMPlexInsertBoundaryValues projects the data point by point, one small MatMult per point: with
- * 21k constrained vertices (the slab of the surface bench) its 5 calls per step took 38 s of a
- * 104 s run on 2 ranks. The table is read off two such projections, at t = 0 and t = 1. */
+ * t. DMPlexInsertBoundaryValues projects the data point by point, one small MatMult per point, several
+ * calls a step: a large share of a run with many constrained vertices (the figures: docs/scaling.md,
+ * "The figures behind the code's choices"). The table is read off two such projections, at t = 0
+ * and t = 1. */
 static PetscErrorCode TabulateBoundaryValues(MMLoads *ld, const MMFEProblem *pb)
 {
   DM                 dm = ld->op->dm;

@@ -2,8 +2,8 @@
  * (local point numbers), volume and centroid. The set-up's loops over cells (lumped masses,
  * materials, the mass redistribution, the contact set, the stress output, checksums) read them
  * here. Asking DMPlex per cell for a transitive closure and an FVM geometry instead walks every
- * face and edge and looks up each point's type in a label: at 1M dofs that cost seconds per loop,
- * and the set-up had a dozen such loops. */
+ * face and edge and looks up each point's type in a label, in each of the set-up's dozen loops
+ * (the figures: docs/scaling.md, "The figures behind the code's choices"). */
 #include "mesh.h"
 
 #define MM_NV_MAX (MM_MAX_DIM + 1)

@@ -13,8 +13,9 @@
    The cell graph (cells sharing a face) is built here from the cells' vertices
    (MMPartitionerMetisSetDM), not by PETSc: the mesh is never interpolated
    (src/mesh/facets.c), and PETSc's graph of a mesh without faces
-   (DMPlexCreateNeighborCSR, a meet per pair of cells sharing a vertex) took 120 s
-   of the 1M-dof set-up, where sorting the faces by their vertices takes about 2. */
+   (DMPlexCreateNeighborCSR, a meet per pair of cells sharing a vertex) was most of a
+   large mesh's set-up, sorting the faces by their vertices a small part of it (the figures:
+   docs/scaling.md, "The figures behind the code's choices"). */
 #include <petsc/private/partitionerimpl.h>
 #include <metis.h>
 #include "partition_metis.h"

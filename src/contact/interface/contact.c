@@ -204,8 +204,8 @@ PetscErrorCode MMContactSetStepMatrix(MMContact ct, const MMStepMatrix *sm)
   PetscCall(StepMatrixAssemble(ct, sm, K, ct->qp.A));
   /* K~ is SPD for every dt: K is semi-definite with the rigid motions as its kernel, and M* is
    * positive on every rigid motion (docs/method.md, "Mass redistribution": G(M*) = G(M)). Said
-   * once and for all, so that MUMPS factors it as SPD (SYM = 1: LDL^T without pivoting), 6%
-   * faster than as symmetric indefinite on the 113k-dof D2 ball, with a 1% smaller factor */
+   * once and for all, so that MUMPS factors it as SPD (SYM = 1: LDL^T without pivoting), faster
+   * and smaller than as symmetric indefinite (the figures: docs/scaling.md, "The figures behind the code's choices") */
   PetscCall(MatSetOption(ct->qp.A, MAT_SPD, PETSC_TRUE));
   PetscCall(MatSetOption(ct->qp.A, MAT_SPD_ETERNAL, PETSC_TRUE));
   ct->Kt_dt      = dt;

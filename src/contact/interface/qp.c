@@ -286,10 +286,9 @@ PetscErrorCode MMQPSetOperator(SNES snes, MMBoundQP *qp)
  * relative tolerance on ||b|| alone is reachable (docs/method.md section 10, "The static start"):
  * with qp->Anorm set, a residual below MM_QP_ROUNDOFF sqrt(N) eps (||A|| ||x|| + ||b||) has converged
  * too, N the unknowns: the product's rounding grows as sqrt(N) (N at worst), and the factor covers
- * the factorization's backward error beside it (measured on the slender cantilevers of
- * tests/test_limits_and_advice.py, N = 1.6e3 to 2e3: the first Newton step's residual is at 0.22 to
- * 0.25 eps (||A|| ||x|| + ||b||), 600 times below); a step that is not exact (a wrong active set)
- * leaves a residual of the size of the reactions it misses, orders of magnitude above. */
+ * the factorization's backward error beside it (the residuals measured on slender cantilevers:
+ * docs/method.md section 10, "Convergence on a slender part"); a step that is not exact (a wrong
+ * active set) leaves a residual of the size of the reactions it misses, orders of magnitude above. */
 #define MM_QP_ROUNDOFF 4
 
 /* Warm-started solves start near the answer, where a relative test cannot be met: also accept

@@ -658,9 +658,9 @@ PetscErrorCode MMCandidatesRecover(MMContact ct, Vec w)
   PetscCall(VecGetArrayRead(c->x, &xa));
   {
     /* the columns of nonzero reactions, eight to a pass over w: the product is bound by the bytes it
-     * moves, and w is read and written once per pass instead of once per column (1.44 -> 0.98 ms a
-     * step on the 47k-dof disk with friction). Each entry still subtracts the columns one after the
-     * other, in the set's order: the same rounding. */
+     * moves, and w is read and written once per pass instead of once per column (the figures:
+     * docs/scaling.md, "The figures behind the code's choices"). Each entry still subtracts the
+     * columns one after the other, in the set's order: the same rounding. */
     const PetscScalar *col[8];
     PetscScalar        xs[8];
     PetscInt           k = 0;
