@@ -35,6 +35,8 @@ PETSC_EXTERN PetscErrorCode MMContactSetUp(MMContact ct, MMOperators *op, const 
 /* The plane of the static sliding state (-initial_state static_sliding: the single obstacle's) */
 PETSC_EXTERN PetscErrorCode MMContactGetPlane(MMContact ct, PetscReal point[], PetscReal normal[]);
 PETSC_EXTERN PetscErrorCode MMContactView(MMContact ct, PetscViewer viewer);
+/* -contact_view: the configuration once set up (src/contact/interface/view.c) */
+PETSC_EXTERN PetscErrorCode MMContactSetUpView(MMContact ct, PetscViewer viewer);
 PETSC_EXTERN PetscErrorCode MMContactDestroy(MMContact *ct);
 PETSC_EXTERN PetscErrorCode MMContactRegister(const char name[], PetscErrorCode (*create)(MMContact ct));
 PETSC_EXTERN PetscErrorCode MMContactRegisterAll(void);

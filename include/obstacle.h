@@ -32,6 +32,7 @@ PETSC_EXTERN PetscErrorCode MMObstacleRegisterAll(void);
 PETSC_EXTERN PetscErrorCode MMObstacleSetType(MMObstacle *ob, MPI_Comm comm, const char type[]);
 PETSC_EXTERN PetscErrorCode MMObstacleTypesList(char buf[], size_t len);
 PETSC_EXTERN PetscErrorCode MMObstacleCheck(MMObstacle *ob, MPI_Comm comm, PetscInt dim);
+PETSC_EXTERN PetscErrorCode MMObstacleView(const MMObstacle *ob, PetscViewer viewer); /* -obstacle_view */
 PETSC_EXTERN void           MMObstacleDisplacement(const MMObstacle *ob, PetscInt dim, PetscReal t, PetscReal c[]);
 PETSC_EXTERN void           MMObstacleVelocity(const MMObstacle *ob, PetscInt dim, PetscReal t, PetscReal V[]);
 PETSC_EXTERN PetscErrorCode MMObstacleFinalize(void);

@@ -202,6 +202,56 @@ static PetscErrorCode SetUpReport(MPI_Comm comm, MMCtx *ctx, TS ts)
   PetscFunctionReturn(0);
 }
 
+/* The viewer an option -NAME_view names (ascii, ascii:FILE, ...), its format pushed, as
+ * PetscObjectViewFromOptions reads it for PETSc's objects; NULL when the option is not given. */
+static PetscErrorCode ViewerFromOptions(const char option[], PetscViewer *viewer)
+{
+  PetscViewerFormat format;
+  PetscBool         set;
+
+  PetscFunctionBeginUser;
+  *viewer = NULL;
+  PetscCall(PetscOptionsGetViewer(PETSC_COMM_WORLD, NULL, NULL, option, viewer, &format, &set));
+  if (set) PetscCall(PetscViewerPushFormat(*viewer, format));
+  else *viewer = NULL;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ViewerEnd(PetscViewer *viewer)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerFlush(*viewer));
+  PetscCall(PetscViewerPopFormat(*viewer));
+  PetscCall(PetscViewerDestroy(viewer));
+  PetscFunctionReturn(0);
+}
+
+/* -contact_view, -friction_view, -obstacle_view, -ts_view: each object's configuration once the
+ * run is set up, before the first step (docs/reference.md, "Viewing the set-up"). */
+static PetscErrorCode ViewSetUp(MMCtx *ctx, TS ts)
+{
+  PetscViewer viewer;
+
+  PetscFunctionBeginUser;
+  PetscCall(ViewerFromOptions("-obstacle_view", &viewer));
+  if (viewer) {
+    for (PetscInt b = 0; b < ctx->opt.n_obstacles; ++b) PetscCall(MMObstacleView(&ctx->opt.obstacles[b], viewer));
+    PetscCall(ViewerEnd(&viewer));
+  }
+  PetscCall(ViewerFromOptions("-contact_view", &viewer));
+  if (viewer) {
+    PetscCall(MMContactSetUpView(ctx->contact, viewer));
+    PetscCall(ViewerEnd(&viewer));
+  }
+  PetscCall(ViewerFromOptions("-friction_view", &viewer));
+  if (viewer) {
+    PetscCall(MMFrictionView(ctx->friction, viewer));
+    PetscCall(ViewerEnd(&viewer));
+  }
+  PetscCall(TSViewFromOptions(ts, NULL, "-ts_view")); /* TSSolve views it again when it ends, as PETSc does */
+  PetscFunctionReturn(0);
+}
+
 /* The output files opened (the earlier results set aside only once the input is valid) and the
  * per-step monitors. */
 static PetscErrorCode SetUpOutput(MMCtx *ctx, TS ts)
@@ -229,6 +279,7 @@ static PetscErrorCode SetupProblem(MMCtx *ctx, TS *ts, PetscBool *help_only)
   PetscCall(SetUpOperators(comm, ctx));
   PetscCall(SetUpStepper(ctx, ts));
   PetscCall(SetUpReport(comm, ctx, *ts));
+  PetscCall(ViewSetUp(ctx, *ts));
   /* -check_input: the case is built and valid; its report, and a stop before any output is touched */
   if (ctx->opt.check_input) {
     PetscCall(MMDataCheckReport(ctx, *ts));

@@ -368,6 +368,10 @@ static PetscErrorCode ProcessObstacles(PetscOptionItems *PetscOptionsObject, MPI
   }
   PetscCall(PetscStrToArrayDestroy((int)n, names));
   PetscCall(CheckMuUsed(comm, opt));
+  {
+    PetscBool view; /* viewed in main.c once set up (MMObstacleView), as PETSc's -ksp_view */
+    PetscCall(PetscOptionsName("-obstacle_view", "Print each obstacle and contact pair as set up, before the first step (shape, parameters, side, friction coefficient, motion): -obstacle_view, or -obstacle_view ascii:FILE to write it to FILE", "None", &view));
+  }
   PetscFunctionReturn(0);
 }
 

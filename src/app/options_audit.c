@@ -14,9 +14,9 @@
 #include "fem.h"
 #include "io.h"
 
-/* Options that PETSc reads at start-up or after the time loop (TSSolve's -ts_view, PetscFinalize's
- * -options_left): valid, but not yet read when the check runs. */
-static const char *const LateOptions[] = {"-ts_view", "-ts_view_solution", "-options_left", "-options_view", "-malloc_dump", "-malloc_view", "-memory_view", "-objects_dump", "-log_view", "-log_view_memory", "-log_summary", "-log_trace", "-info", "-history", "-help", "-version", "-options_file", "-options_file_yaml", "-malloc_debug", "-on_error_abort", "-start_in_debugger", "-on_error_attach_debugger", "-check_pointer_intensity", "-viewer_binary_skip_info"};
+/* Options that PETSc reads at start-up or after the time loop (TSSolve's -ts_view_solution,
+ * PetscFinalize's -options_left): valid, but not yet read when the check runs. */
+static const char *const LateOptions[] = {"-ts_view_solution", "-options_left", "-options_view", "-malloc_dump", "-malloc_view", "-memory_view", "-objects_dump", "-log_view", "-log_view_memory", "-log_summary", "-log_trace", "-info", "-history", "-help", "-version", "-options_file", "-options_file_yaml", "-malloc_debug", "-on_error_abort", "-start_in_debugger", "-on_error_attach_debugger", "-check_pointer_intensity", "-viewer_binary_skip_info"};
 
 /* The viewers PETSc reads when a solve ends (KSPSolve's -ksp_converged_reason and -ksp_view, SNESSolve's
  * -snes_converged_reason and -snes_view), for each solver's prefix: valid, but the first solve comes

@@ -247,13 +247,11 @@ static PetscErrorCode TSDestroy_Newmark(TS ts)
   PetscFunctionReturn(0);
 }
 
+/* TSView's type part: the stepper's configuration (ts_view.c) */
 static PetscErrorCode TSView_Newmark(TS ts, PetscViewer viewer)
 {
-  PetscBool iascii;
-
   PetscFunctionBeginUser;
-  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &iascii));
-  if (iascii) PetscCall(PetscViewerASCIIPrintf(viewer, "  Trapezoidal Newmark (beta = 1/4, gamma = 1/2), contact exact at t^{n+1}\n"));
+  PetscCall(MMNewmarkView(((TS_Newmark *)ts->data)->nm, ts->time_step, viewer));
   PetscFunctionReturn(0);
 }
 

@@ -111,6 +111,7 @@ PETSC_INTERN PetscErrorCode MMDampingAddStepRHS(MMDamping *d, Vec u, PetscReal d
 PETSC_INTERN PetscErrorCode MMDampingUpdateVelocity(MMDamping *d, Vec u, Vec u_old, PetscReal dt);
 PETSC_INTERN PetscErrorCode MMDampingWork(MMDamping *d, Vec du, PetscReal dt, PetscReal *w);
 PETSC_INTERN PetscErrorCode MMNewmarkRegister(void);
+PETSC_INTERN PetscErrorCode MMNewmarkView(MMNewmark nm, PetscReal dt, PetscViewer viewer);
 PETSC_INTERN PetscErrorCode MMNonlinearSetFromOptions(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMNonlinear *nl);
 PETSC_INTERN PetscErrorCode MMNonlinearSetUp(MMNewmark nm);
 PETSC_INTERN PetscErrorCode MMNonlinearStepMatrix(MMNewmark nm, PetscReal dt, MMStepMatrix *sm);

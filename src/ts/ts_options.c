@@ -24,6 +24,10 @@ PetscErrorCode MMNewmarkSetFromOptions(MMNewmark nm)
   PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-max_strain", "Stop the run when a cell's strain exceeds this, >= -strain_warn: the small-strain model's result is then meaningless (a cell turned inside out always stops the run)", &nm->max_strain));
   PetscCall(MMDampingSetFromOptions(PetscOptionsObject, comm, &nm->damping));
   PetscCall(MMNonlinearSetFromOptions(PetscOptionsObject, comm, &nm->nl));
+  {
+    PetscBool view; /* viewed by app once set up (TSView, whose type's view op is MMNewmarkView); TSSolve views it again at its end */
+    PetscCall(PetscOptionsName("-ts_view", "Print the time stepper's configuration once set up, before the first step (PETSc's TS lines, then the scheme, the elasticity law, the damping, the step matrix's coefficients, the finite-strain iteration, the audits), and again when TSSolve ends: -ts_view, or -ts_view ascii:FILE to write it to FILE", "TSView", &view));
+  }
   PetscOptionsEnd();
   PetscCheck(nm->audit_tol > 0, comm, PETSC_ERR_USER_INPUT, "-audit_tol %g must be > 0: it is a relative energy-balance residual", (double)nm->audit_tol);
   PetscCheck(nm->contact_work_tol > 0, comm, PETSC_ERR_USER_INPUT, "-contact_work_tol %g must be > 0: it is a fraction of the run's energy scale", (double)nm->contact_work_tol);

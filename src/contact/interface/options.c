@@ -66,6 +66,10 @@ PetscErrorCode MMContactSetFromOptions(MMContact ct)
   PetscCall(PetscOptionsHasName(NULL, NULL, "-contact_frames", &o->frames_set));
   o->frames_angle = 1e-3;
   PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-contact_frames_angle", "-contact_frames follow: a node's frame turns when its normal has turned by more than this angle (radians, >= 0) since its frame was set; the bound it keeps in between is off by at most R angle^2 / 2 on an obstacle of radius R", &o->frames_angle));
+  {
+    PetscBool view; /* viewed by app once set up (MMContactSetUpView), as PETSc's -ksp_view */
+    PetscCall(PetscOptionsName("-contact_view", "Print the contact object's configuration once set up, before the first step (formulation, contact set, frames, mass, tolerances, K~'s solver): -contact_view, or -contact_view ascii:FILE to write it to FILE", "MMContactSetUpView", &view));
+  }
   PetscOptionsEnd();
   PetscCheck(o->frames_angle >= 0 && o->frames_angle < 1, comm, PETSC_ERR_USER_INPUT, "-contact_frames_angle %g must be in [0, 1): an angle in radians", (double)o->frames_angle);
   PetscCheck(o->contact_tol > 0 && o->contact_tol < 1, comm, PETSC_ERR_USER_INPUT, "-contact_tol %g must lie in (0, 1): it is a relative residual", (double)o->contact_tol);

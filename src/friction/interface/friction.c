@@ -200,6 +200,10 @@ PetscErrorCode MMFrictionSetFromOptions(MMFriction fr)
   PetscCall(MMOptionsString(PetscOptionsObject, comm, "-friction_dump", "Directory (created if missing) for each step's Coulomb problem on the candidate set, in the Friction Contact Library's form u = W r + q (docs/method.md section 6), with our reactions and solve time: step_NNNNNN.h5. scripts/fclib_compare.py solves them with Siconos. Needs the condensed formulation", fr->dump, sizeof(fr->dump), NULL));
   fr->monitor = PETSC_FALSE;
   PetscCall(MMOptionsBool(PetscOptionsObject, comm, "-friction_monitor", "Print each friction iteration: threshold change, Coulomb residual, contraction factor, slipping and sticking node counts", &fr->monitor));
+  {
+    PetscBool view; /* viewed by app once set up (MMFrictionView), as PETSc's -ksp_view */
+    PetscCall(PetscOptionsName("-friction_view", "Print the friction solver's configuration once set up, before the first step (type, tolerances, iterations): -friction_view, or -friction_view ascii:FILE to write it to FILE", "MMFrictionView", &view));
+  }
   PetscOptionsEnd();
   PetscCheck(fr->coulomb_tol > 0 && fr->coulomb_tol < 1, comm, PETSC_ERR_USER_INPUT, "-friction_coulomb_tol %g must lie in (0, 1): it is a normalized residual", (double)fr->coulomb_tol);
   PetscFunctionReturn(0);

@@ -115,3 +115,57 @@ PetscErrorCode MMObstacleRefuseUnused(const MMObstacle *ob, MPI_Comm comm, Petsc
   PetscCheck(side || !ob->inside, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_side inside does not apply to an obstacle of type %s: the body is on the side its normal points to", ob->name, ob->type);
   PetscFunctionReturn(0);
 }
+
+/* "(x, y[, z])" of n entries into buf. */
+static PetscErrorCode VectorText(const PetscReal v[], PetscInt n, char buf[], size_t len)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(buf, "(", len));
+  for (PetscInt d = 0; d < n; ++d) {
+    size_t used;
+    PetscCall(PetscStrlen(buf, &used));
+    PetscCall(PetscSNPrintf(buf + used, len - used, "%s%g", d ? ", " : "", (double)v[d]));
+  }
+  PetscCall(PetscStrlcat(buf, ")", len));
+  PetscFunctionReturn(0);
+}
+
+/* -obstacle_view: one obstacle as set up (docs/reference.md, "Viewing the set-up"). Its parameters
+ * are the ones given: each shape's check refuses the others and completes the single plane's, so
+ * what is set is the shape's own. ASCII viewers only; printed once, by the viewer's first rank. */
+PetscErrorCode MMObstacleView(const MMObstacle *ob, PetscViewer viewer)
+{
+  PetscBool ascii;
+  char      v[3][128];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
+  if (!ascii) PetscFunctionReturn(0);
+  if (ob->pair) {
+    PetscCall(PetscViewerASCIIPrintf(viewer, "MMObstacle %s: contact pair, slave surface %s, master surface %s; friction coefficient %g\n", ob->name, ob->slave, ob->master, (double)ob->mu));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscViewerASCIIPrintf(viewer, "MMObstacle %s: %s%s, the body %s; friction coefficient %g\n", ob->name, ob->type, ob->curved ? " (curved)" : "", ob->inside ? "inside" : "outside", (double)ob->mu));
+  PetscCall(PetscViewerASCIIPushTab(viewer));
+  if (ob->npoint > 0 || ob->nnormal > 0) {
+    PetscCall(VectorText(ob->point, ob->npoint, v[0], sizeof(v[0])));
+    PetscCall(VectorText(ob->normal, ob->nnormal, v[1], sizeof(v[1])));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "%s%s%s%s\n", ob->npoint > 0 ? "point " : "", ob->npoint > 0 ? v[0] : "", ob->nnormal > 0 ? (ob->npoint > 0 ? ", normal " : "normal ") : "", ob->nnormal > 0 ? v[1] : ""));
+  }
+  if (ob->ncenter > 0) {
+    PetscCall(VectorText(ob->center, ob->ncenter, v[0], sizeof(v[0])));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "center %s\n", v[0]));
+  }
+  if (ob->naxis > 0) {
+    PetscCall(VectorText(ob->axis, ob->naxis, v[0], sizeof(v[0])));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "axis %s\n", v[0]));
+  }
+  if (ob->radius_set) PetscCall(PetscViewerASCIIPrintf(viewer, "radius %g\n", (double)ob->radius));
+  if (ob->nvelocity > 0) {
+    PetscCall(VectorText(ob->velocity, ob->nvelocity, v[2], sizeof(v[2])));
+    if (ob->stop < PETSC_MAX_REAL) PetscCall(PetscViewerASCIIPrintf(viewer, "moves at velocity %s for %g < t <= %g\n", v[2], (double)ob->start, (double)ob->stop));
+    else PetscCall(PetscViewerASCIIPrintf(viewer, "moves at velocity %s from t = %g\n", v[2], (double)ob->start));
+  } else PetscCall(PetscViewerASCIIPrintf(viewer, "fixed\n"));
+  PetscCall(PetscViewerASCIIPopTab(viewer));
+  PetscFunctionReturn(0);
+}
