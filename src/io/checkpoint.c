@@ -64,7 +64,28 @@ static PetscBool DampingOn(const MMCheckpoint *ck)
   return (PetscBool)(ck->damping->alpha != 0 || ck->damping->beta != 0);
 }
 
-/* The checkpoint's borrowed references: what it holds and restores (like KSPSetOperators). */
+/*@
+  MMCheckpointSetUp - Gives the checkpoint the objects it writes and restores, borrowed until it is
+  destroyed (as KSPSetOperators() does)
+
+  Logically collective
+
+  Input Parameters:
++ c        - the checkpoint object
+. opt      - the problem as io needs it (MMOptionsGetIOProblem())
+. op       - fem's operators
+. material - the bodies' material
+. hist     - the stepper's history row
+. state    - the stepper's state
+. damping  - the stepper's damping
+. contact  - the contact object
+. friction - the friction solver
+- out      - the output object
+
+  Level: intermediate
+
+.seealso: `MMCheckpointSetFromOptions()`, `MMCheckpointLoad()`, `MMCheckpointWrite()`
+@*/
 PetscErrorCode MMCheckpointSetUp(MMCheckpoint *c, const MMIOProblem *opt, const MMOperators *op, const MMMaterial *material, MMHistory *hist, MMState *state, MMDamping *damping, MMContact contact, MMFriction friction, MMOutput *out)
 {
   PetscFunctionBeginUser;
@@ -740,9 +761,25 @@ static PetscErrorCode CheckpointBytes(MMCheckpoint *ck, TS ts, PetscReal *bytes)
   PetscFunctionReturn(0);
 }
 
-/* The state after the current step, to OUTPUT_DIR/checkpoint.h5: written whole to a temporary file
- * and renamed over the last one, so that a crash while writing leaves the last good checkpoint. A
- * failed write (a full disk) stops the run naming the temporary file, exit status 74. */
+/*@
+  MMCheckpointWrite - Writes the state after the current step to OUTPUT_DIR/checkpoint.h5,
+  atomically
+
+  Collective
+
+  Input Parameters:
++ c  - the checkpoint object, set up
+- ts - the time stepper
+
+  Note:
+  The state after the current step, to OUTPUT_DIR/checkpoint.h5: written whole to a temporary file
+  and renamed over the last one, so that a crash while writing leaves the last good checkpoint. A
+  failed write (a full disk) stops the run naming the temporary file, exit status 74.
+
+  Level: intermediate
+
+.seealso: `MMCheckpointMonitor()`, `MMCheckpointWriteFinal()`, `MMCheckpointLoad()`
+@*/
 PetscErrorCode MMCheckpointWrite(MMCheckpoint *ck, TS ts)
 {
   MPI_Comm       comm = PetscObjectComm((PetscObject)ck->op->dm);
@@ -780,7 +817,20 @@ PetscErrorCode MMCheckpointWrite(MMCheckpoint *ck, TS ts)
   PetscFunctionReturn(0);
 }
 
-/* The checkpoints' options (docs/method.md section 9), each with its check. */
+/*@
+  MMCheckpointSetFromOptions - Reads the checkpoints' options (docs/method.md section 9), each with
+  its check
+
+  Collective
+
+  Input Parameters:
++ comm - the run's communicator
+- c    - the checkpoint object, zeroed
+
+  Level: intermediate
+
+.seealso: `MMCheckpointSetUp()`, `MMCheckpointDestroy()`
+@*/
 PetscErrorCode MMCheckpointSetFromOptions(MPI_Comm comm, MMCheckpoint *c)
 {
   PetscFunctionBeginUser;
@@ -794,7 +844,22 @@ PetscErrorCode MMCheckpointSetFromOptions(MPI_Comm comm, MMCheckpoint *c)
   PetscFunctionReturn(0);
 }
 
-/* TS monitor: a checkpoint every -checkpoint_every steps (the final one is written by main). */
+/*@
+  MMCheckpointMonitor - TS monitor that writes a checkpoint every -checkpoint_every steps
+
+  Collective
+
+  Input Parameters:
++ ts   - the time stepper
+. step - the step just taken
+. time - its time
+. u    - the solution vector (unused)
+- ctx  - the checkpoint object (MMCheckpoint *)
+
+  Level: intermediate
+
+.seealso: `MMCheckpointWrite()`, `MMCheckpointWriteFinal()`, `TSMonitorSet()`
+@*/
 PetscErrorCode MMCheckpointMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ptr)
 {
   MMCheckpoint  *ck    = (MMCheckpoint *)ptr;
@@ -805,6 +870,18 @@ PetscErrorCode MMCheckpointMonitor(TS ts, PetscInt step, PetscReal time, Vec u, 
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMCheckpointDestroy - Frees what the checkpoint object holds
+
+  Collective
+
+  Input Parameter:
+. c - the checkpoint object
+
+  Level: intermediate
+
+.seealso: `MMCheckpointSetFromOptions()`
+@*/
 PetscErrorCode MMCheckpointDestroy(MMCheckpoint *c)
 {
   PetscFunctionBeginUser;
@@ -1110,8 +1187,22 @@ static PetscErrorCode LoadPairs(MMCheckpoint *ck, TS ts, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
-/* The pairing records of the checkpoint a restart read (NULL without large sliding) and its counters,
- * for MMNewmarkRestorePairs */
+/*@
+  MMCheckpointGetPairs - Gives the contact pairing's records of the checkpoint a restart read
+
+  Not collective
+
+  Input Parameter:
+. c - the checkpoint object, loaded
+
+  Output Parameters:
++ rec      - per owned contact row its record, or NULL without large sliding (owned by the checkpoint)
+- counters - the pairing's counters
+
+  Level: developer
+
+.seealso: `MMNewmarkRestorePairs()`, `MMCheckpointGetFrames()`
+@*/
 PetscErrorCode MMCheckpointGetPairs(const MMCheckpoint *c, const PetscScalar **rec, const PetscReal **counters)
 {
   PetscFunctionBeginUser;
@@ -1120,7 +1211,23 @@ PetscErrorCode MMCheckpointGetPairs(const MMCheckpoint *c, const PetscScalar **r
   PetscFunctionReturn(0);
 }
 
-/* The finite-strain iteration matrix's point of the checkpoint a restart read (NULL: K), for MMNewmarkRestoreTangent */
+/*@
+  MMCheckpointGetTangent - Gives the point at which the checkpointed run's finite-strain iteration
+  matrix was the tangent
+
+  Not collective
+
+  Input Parameter:
+. c - the checkpoint object, loaded
+
+  Output Parameters:
++ at - the Cartesian displacement, or NULL when the iteration matrix was K (owned by the checkpoint)
+- t  - the time of its Dirichlet data
+
+  Level: developer
+
+.seealso: `MMNewmarkRestoreTangent()`, `MMNewmarkGetTangentPoint()`
+@*/
 PetscErrorCode MMCheckpointGetTangent(const MMCheckpoint *c, Vec *at, PetscReal *t)
 {
   PetscFunctionBeginUser;
@@ -1129,8 +1236,22 @@ PetscErrorCode MMCheckpointGetTangent(const MMCheckpoint *c, Vec *at, PetscReal 
   PetscFunctionReturn(0);
 }
 
-/* The frames' records of the checkpoint a restart read (NULL without them): each owned contact
- * node's, and the run's W_frame and the frames' counters, for MMNewmarkRestoreFrames. */
+/*@
+  MMCheckpointGetFrames - Gives the contact frames' records of the checkpoint a restart read
+
+  Not collective
+
+  Input Parameter:
+. c - the checkpoint object, loaded
+
+  Output Parameters:
++ rec      - per owned contact node its record, or NULL without them (owned by the checkpoint)
+- counters - the run's W_frame and the frames' counters
+
+  Level: developer
+
+.seealso: `MMNewmarkRestoreFrames()`, `MMCheckpointGetPairs()`
+@*/
 PetscErrorCode MMCheckpointGetFrames(const MMCheckpoint *c, const PetscScalar **rec, const PetscReal **counters)
 {
   PetscFunctionBeginUser;
@@ -1192,9 +1313,25 @@ static PetscErrorCode LoadSnapshotTimes(MMCheckpoint *c, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
-/* -restart: the state, the stepper's time, step and dt, and the solvers' warm starts from the
- * checkpoint, after the fingerprint is checked. Called once the TS exists, before the step matrix
- * is factored (for the restored dt) and the initial energy is taken (of the restored state). */
+/*@
+  MMCheckpointLoad - Restores the run from the checkpoint of -restart: the state, the stepper's
+  time, step and dt, and the solvers' warm starts
+
+  Collective
+
+  Input Parameters:
++ c  - the checkpoint object, set up
+- ts - the time stepper, created
+
+  Note:
+  -restart: the state, the stepper's time, step and dt, and the solvers' warm starts from the
+  checkpoint, after the fingerprint is checked. Called once the TS exists, before the step matrix is
+  factored (for the restored dt) and the initial energy is taken (of the restored state).
+
+  Level: intermediate
+
+.seealso: `MMCheckpointGetRestart()`, `MMCheckpointRestoreHistory()`, `MMCheckpointWrite()`
+@*/
 PetscErrorCode MMCheckpointLoad(MMCheckpoint *c, TS ts)
 {
   MPI_Comm       comm = PetscObjectComm((PetscObject)c->op->dm);
@@ -1240,7 +1377,24 @@ PetscErrorCode MMCheckpointLoad(MMCheckpoint *c, TS ts)
   PetscFunctionReturn(0);
 }
 
-/* Whether the run continues a checkpoint (MMCheckpointLoad), and its step and time. */
+/*@
+  MMCheckpointGetRestart - Tells whether the run continues a checkpoint, and from which step and
+  time
+
+  Not collective
+
+  Input Parameter:
+. c - the checkpoint object
+
+  Output Parameters:
++ restarted - PETSC_TRUE after MMCheckpointLoad() read a checkpoint (or NULL)
+. step      - its step (or NULL)
+- time      - its time (or NULL)
+
+  Level: intermediate
+
+.seealso: `MMCheckpointLoad()`
+@*/
 PetscErrorCode MMCheckpointGetRestart(const MMCheckpoint *c, PetscBool *restarted, PetscInt *step, PetscReal *time)
 {
   PetscFunctionBeginUser;
@@ -1250,7 +1404,20 @@ PetscErrorCode MMCheckpointGetRestart(const MMCheckpoint *c, PetscBool *restarte
   PetscFunctionReturn(0);
 }
 
-/* The end of the run: its last step's checkpoint, unless the cadence wrote it. */
+/*@
+  MMCheckpointWriteFinal - Writes the last step's checkpoint at the end of the run, unless the
+  cadence wrote it
+
+  Collective
+
+  Input Parameters:
++ c  - the checkpoint object
+- ts - the time stepper
+
+  Level: intermediate
+
+.seealso: `MMCheckpointWrite()`, `MMCheckpointMonitor()`
+@*/
 PetscErrorCode MMCheckpointWriteFinal(MMCheckpoint *c, TS ts)
 {
   PetscFunctionBeginUser;
@@ -1258,7 +1425,19 @@ PetscErrorCode MMCheckpointWriteFinal(MMCheckpoint *c, TS ts)
   PetscFunctionReturn(0);
 }
 
-/* After -restart: what was read and how the run continues. */
+/*@
+  MMCheckpointView - Prints, after -restart, what was read and how the run continues
+
+  Collective
+
+  Input Parameters:
++ c      - the checkpoint object
+- viewer - an ASCII viewer
+
+  Level: intermediate
+
+.seealso: `MMCheckpointLoad()`
+@*/
 PetscErrorCode MMCheckpointView(const MMCheckpoint *c, PetscViewer viewer)
 {
   const MMState *s = c->state;
@@ -1270,9 +1449,24 @@ PetscErrorCode MMCheckpointView(const MMCheckpoint *c, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
-/* After the step matrix and the initial energy of the restored state: the history's running sums
- * and maxima, the last active set (for the switched count) and the contact solvers' warm starts,
- * as at the checkpoint. */
+/*@
+  MMCheckpointRestoreHistory - Restores the history's running sums and maxima, the last active set
+  and the contact solvers' warm starts as at the checkpoint
+
+  Collective
+
+  Input Parameter:
+. c - the checkpoint object, loaded
+
+  Note:
+  After the step matrix and the initial energy of the restored state: the history's running sums and
+  maxima, the last active set (for the switched count) and the contact solvers' warm starts, as at
+  the checkpoint.
+
+  Level: developer
+
+.seealso: `MMCheckpointLoad()`, `MMEnergyInitial()`
+@*/
 PetscErrorCode MMCheckpointRestoreHistory(MMCheckpoint *c)
 {
   MMHistory      *h   = c->hist;
@@ -1306,14 +1500,44 @@ PetscErrorCode MMCheckpointRestoreHistory(MMCheckpoint *c)
   PetscFunctionReturn(0);
 }
 
-/* The snapshots of the checkpoint a restart continues (0 without one): the output plan numbers this
- * run's from there (output_plan.c). */
+/*@
+  MMCheckpointSnapshotCount - Returns the number of snapshots of the checkpoint a restart continues
+  (0 without one)
+
+  Not collective
+
+  Input Parameter:
+. c - the checkpoint object
+
+  Note:
+  The snapshots of the checkpoint a restart continues (0 without one): the output plan numbers this
+  run's from there (output_plan.c).
+
+  Level: developer
+
+.seealso: `MMCheckpointSnapshots()`, `MMOutputPlanMake()`
+@*/
 PetscInt MMCheckpointSnapshotCount(const MMCheckpoint *c)
 {
   return c->restarted ? (PetscInt)c->run[MM_RUN_SNAPSHOTS] : 0;
 }
 
-/* The snapshot count and times of the checkpoint, read with the state: the caller takes them. */
+/*@
+  MMCheckpointSnapshots - Gives the snapshot count and times of the checkpoint, read with the state
+
+  Not collective
+
+  Input Parameter:
+. c - the checkpoint object, loaded
+
+  Output Parameters:
++ n     - the number of snapshots
+- times - their times; the caller takes the array and frees it with PetscFree()
+
+  Level: developer
+
+.seealso: `MMCheckpointSnapshotCount()`, `MMOutputOpen()`
+@*/
 PetscErrorCode MMCheckpointSnapshots(MMCheckpoint *c, PetscInt *n, PetscReal **times)
 {
   PetscFunctionBeginUser;

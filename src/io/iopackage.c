@@ -5,6 +5,16 @@
 
 MMIOLog MMIOEvents;
 
+/*@
+  MMIOInitializePackage - Registers io's log stage and events, once, and turns HDF5's own error
+  printing off
+
+  Not collective
+
+  Level: developer
+
+.seealso: `MMTSInitializePackage()`, `MMOutputSetFromOptions()`
+@*/
 PetscErrorCode MMIOInitializePackage(void)
 {
   static PetscBool done = PETSC_FALSE;

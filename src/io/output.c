@@ -518,7 +518,18 @@ static PetscErrorCode WriteIndex(MMOutput *o)
   PetscFunctionReturn(0);
 }
 
-/* The index lists every snapshot written: at checkpoints and at the end of the run. */
+/*@
+  MMOutputSyncIndex - Rewrites the XDMF index so that it lists every snapshot written
+
+  Collective
+
+  Input Parameter:
+. o - the output object
+
+  Level: developer
+
+.seealso: `MMOutputCopySnapshots()`, `MMCheckpointWrite()`
+@*/
 PetscErrorCode MMOutputSyncIndex(MMOutput *o)
 {
   PetscFunctionBeginUser;
@@ -583,10 +594,25 @@ static PetscErrorCode CopyFile(const char src[], const char dst[], MMFileStatus 
   PetscFunctionReturn(0);
 }
 
-/* solution.h5 is written in place, and HDF5 rewrites its index as it grows: a run killed while it
- * writes a snapshot can leave the whole file unreadable. So a checkpoint keeps a copy of it, taken
- * when every snapshot up to the checkpoint is on disk; -restart reads the earlier snapshots from
- * the copy (docs/method.md section 9). Collective. */
+/*@
+  MMOutputCopySnapshots - Copies solution.h5 for the checkpoint, once every snapshot up to it is on
+  disk
+
+  Collective
+
+  Input Parameter:
+. o - the output object
+
+  Note:
+  solution.h5 is written in place, and HDF5 rewrites its index as it grows: a run killed while it
+  writes a snapshot can leave the whole file unreadable. So a checkpoint keeps a copy of it, taken
+  when every snapshot up to the checkpoint is on disk; -restart reads the earlier snapshots from the
+  copy (docs/method.md section 9). Collective.
+
+  Level: developer
+
+.seealso: `MMCheckpointWrite()`, `MMOutputSyncIndex()`
+@*/
 PetscErrorCode MMOutputCopySnapshots(MMOutput *o)
 {
   MMFileStatus st = {0};
@@ -936,6 +962,21 @@ static PetscErrorCode CreateFieldVectors(MMOutput *o)
  * given (a relative name reaches MPI-IO relative), with a margin for the suffix. */
 #define MM_MPIIO_NAME_MAX 220
 
+/*@
+  MMOutputCheckHDF5Path - Refuses a path too long for the HDF5 files opened under it through MPI-IO
+
+  Collective
+
+  Input Parameters:
++ comm    - the run's communicator
+. option  - the option that named the path, for the message
+. path    - the path as given
+- longest - the longest name that will be appended to it
+
+  Level: developer
+
+.seealso: `MMOutputSetFromOptions()`, `MMCheckpointSetFromOptions()`
+@*/
 PetscErrorCode MMOutputCheckHDF5Path(MPI_Comm comm, const char option[], const char path[], const char longest[])
 {
   size_t len, extra;
@@ -962,7 +1003,19 @@ static PetscErrorCode CheckDirectory(MPI_Comm comm, const char dir[])
   PetscFunctionReturn(0);
 }
 
-/* The output's options (README "Output"), each with its check. */
+/*@
+  MMOutputSetFromOptions - Reads the output's options (README "Output"), each with its check
+
+  Collective
+
+  Input Parameters:
++ comm - the run's communicator
+- o    - the output object, zeroed
+
+  Level: intermediate
+
+.seealso: `MMOutputSetUp()`, `MMOutputOpen()`, `MMOutputDestroy()`
+@*/
 PetscErrorCode MMOutputSetFromOptions(MPI_Comm comm, MMOutput *o)
 {
   PetscFunctionBeginUser;
@@ -985,7 +1038,27 @@ PetscErrorCode MMOutputSetFromOptions(MPI_Comm comm, MMOutput *o)
   PetscFunctionReturn(0);
 }
 
-/* The output's borrowed references: what it writes from (like KSPSetOperators). */
+/*@
+  MMOutputSetUp - Gives the output the objects it writes from, borrowed until it is destroyed (as
+  KSPSetOperators() does)
+
+  Logically collective
+
+  Input Parameters:
++ o        - the output object
+. opt      - the problem as io needs it (MMOptionsGetIOProblem())
+. op       - fem's operators
+. material - the bodies' material
+. hist     - the stepper's history row
+. state    - the stepper's state
+. contact  - the contact object
+. loads    - the loads
+- ckpt     - the checkpoint, whose copy of solution.h5 a restart reads
+
+  Level: intermediate
+
+.seealso: `MMOutputSetFromOptions()`, `MMOutputOpen()`, `MMOutputMonitor()`
+@*/
 PetscErrorCode MMOutputSetUp(MMOutput *o, const MMIOProblem *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, MMContact contact, MMLoads *loads, MMCheckpoint *ckpt)
 {
   PetscFunctionBeginUser;
@@ -1040,8 +1113,24 @@ static PetscErrorCode CloseFiles(MMOutput *o)
   PetscFunctionReturn(0);
 }
 
-/* Flushes and closes the files: the index lists every snapshot, and the checkpoint's copy of
- * solution.h5 goes once the checkpoint c of the last step (step) no longer needs it. */
+/*@
+  MMOutputClose - Flushes and closes the output files at the end of the run
+
+  Collective
+
+  Input Parameters:
++ o    - the output object
+. c    - the checkpoint of the last step
+- step - the last step
+
+  Note:
+  Flushes and closes the files: the index lists every snapshot, and the checkpoint's copy of
+  solution.h5 goes once the checkpoint c of the last step (step) no longer needs it.
+
+  Level: intermediate
+
+.seealso: `MMOutputOpen()`, `MMOutputWriteFinal()`, `MMOutputDestroy()`
+@*/
 PetscErrorCode MMOutputClose(MMOutput *o, const MMCheckpoint *c, PetscInt step)
 {
   PetscFunctionBeginUser;
@@ -1051,7 +1140,19 @@ PetscErrorCode MMOutputClose(MMOutput *o, const MMCheckpoint *c, PetscInt step)
   PetscFunctionReturn(0);
 }
 
-/* The output's line of the run report: the files and the snapshots written. */
+/*@
+  MMOutputView - Prints the output's line of the run report: the files and the snapshots written
+
+  Collective
+
+  Input Parameters:
++ o      - the output object
+- viewer - an ASCII viewer
+
+  Level: intermediate
+
+.seealso: `MMContactView()`, `MMDeformationView()`
+@*/
 PetscErrorCode MMOutputView(const MMOutput *o, PetscViewer viewer)
 {
   PetscFunctionBeginUser;
@@ -1059,6 +1160,18 @@ PetscErrorCode MMOutputView(const MMOutput *o, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMOutputDestroy - Frees what the output object holds
+
+  Collective
+
+  Input Parameter:
+. o - the output object
+
+  Level: intermediate
+
+.seealso: `MMOutputSetFromOptions()`, `MMOutputClose()`
+@*/
 PetscErrorCode MMOutputDestroy(MMOutput *o)
 {
   PetscFunctionBeginUser;

@@ -193,8 +193,23 @@ static void ReleaseAtExit(void)
   RemoveMadeDirectories();
 }
 
-/* Early in set-up, before anything in the directory is read or moved: creates the directory and
- * takes its lock on rank 0; every rank stops if another run holds it. */
+/*@
+  MMOutputLock - Creates the output directory and takes its lock, so that one run writes there at a
+  time
+
+  Collective
+
+  Input Parameter:
+. dir - the output directory (-output_dir)
+
+  Note:
+  Early in set-up, before anything in the directory is read or moved: creates the directory and
+  takes its lock on rank 0; every rank stops if another run holds it.
+
+  Level: intermediate
+
+.seealso: `MMOutputUnlock()`, `MMOutputOpen()`
+@*/
 PetscErrorCode MMOutputLock(const char dir[])
 {
   MMFileStatus st = {0};
@@ -224,7 +239,15 @@ PetscErrorCode MMOutputLock(const char dir[])
   PetscFunctionReturn(0);
 }
 
-/* The run's output is closed: the directory is free for the next run. */
+/*@
+  MMOutputUnlock - Releases the output directory's lock once the run's output is closed
+
+  Not collective
+
+  Level: intermediate
+
+.seealso: `MMOutputLock()`, `MMOutputClose()`
+@*/
 PetscErrorCode MMOutputUnlock(void)
 {
   PetscFunctionBeginUser;

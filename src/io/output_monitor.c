@@ -49,8 +49,22 @@ static PetscErrorCode Write(MMOutput *o, PetscBool row, PetscBool snapshot)
   PetscFunctionReturn(0);
 }
 
-/* The -probes groups, with their nodes' lumped masses from fem: also for the data check, whose plan
- * counts their history columns and which refuses a group the mesh lacks as a run does. */
+/*@
+  MMOutputSetUpProbes - Finds the nodes of the -probes groups and their lumped masses
+
+  Collective
+
+  Input Parameter:
+. o - the output object, set up
+
+  Note:
+  The -probes groups, with their nodes' lumped masses from fem: also for the data check, whose plan
+  counts their history columns and which refuses a group the mesh lacks as a run does.
+
+  Level: developer
+
+.seealso: `MMOutputOpen()`, `MMOutputPlanMake()`
+@*/
 PetscErrorCode MMOutputSetUpProbes(MMOutput *o)
 {
   Vec mloc;
@@ -64,9 +78,24 @@ PetscErrorCode MMOutputSetUpProbes(MMOutput *o)
   PetscFunctionReturn(0);
 }
 
-/* Called last in set-up, once all input is valid: the probes (a group the mesh lacks is refused
- * before any file is touched), the files, the fields fixed at set-up, and on -restart the earlier
- * snapshots. */
+/*@
+  MMOutputOpen - Opens the output once all input is valid: the probes, the files, the fields fixed
+  at set-up, and on -restart the earlier snapshots
+
+  Collective
+
+  Input Parameter:
+. o - the output object, set up
+
+  Note:
+  Called last in set-up, once all input is valid: the probes (a group the mesh lacks is refused
+  before any file is touched), the files, the fields fixed at set-up, and on -restart the earlier
+  snapshots.
+
+  Level: intermediate
+
+.seealso: `MMOutputSetUp()`, `MMOutputSetUpProbes()`, `MMOutputClose()`, `MMOutputLock()`
+@*/
 PetscErrorCode MMOutputOpen(MMOutput *o)
 {
   PetscFunctionBeginUser;
@@ -82,8 +111,27 @@ PetscErrorCode MMOutputOpen(MMOutput *o)
   PetscFunctionReturn(0);
 }
 
-/* TS monitor: a history row every -history_every steps, the fields every -output_every steps or
- * -output_interval (output_schedule.c). */
+/*@
+  MMOutputMonitor - TS monitor that writes a history row and the fields at the cadence the options
+  set
+
+  Collective
+
+  Input Parameters:
++ ts   - the time stepper
+. step - the step just taken
+. time - its time
+. u    - the solution vector (unused: the state is the stepper's)
+- ctx  - the output object (MMOutput *)
+
+  Note:
+  TS monitor: a history row every -history_every steps, the fields every -output_every steps or
+  -output_interval (output_schedule.c).
+
+  Level: intermediate
+
+.seealso: `MMOutputWriteFinal()`, `TSMonitorSet()`, `MMCheckpointMonitor()`
+@*/
 PetscErrorCode MMOutputMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ptr)
 {
   MMOutput *o = (MMOutput *)ptr;
@@ -99,8 +147,22 @@ PetscErrorCode MMOutputMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void
   PetscFunctionReturn(0);
 }
 
-/* The last step's row and snapshot, if the cadence missed them (a restart that made no step has
- * them on disk). */
+/*@
+  MMOutputWriteFinal - Writes the last step's history row and snapshot if the cadence missed them
+
+  Collective
+
+  Input Parameter:
+. o - the output object
+
+  Note:
+  The last step's row and snapshot, if the cadence missed them (a restart that made no step has them
+  on disk).
+
+  Level: intermediate
+
+.seealso: `MMOutputMonitor()`, `MMOutputClose()`
+@*/
 PetscErrorCode MMOutputWriteFinal(MMOutput *o)
 {
   const MMHistory *h = o->hist;

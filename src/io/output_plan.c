@@ -175,7 +175,23 @@ PetscErrorCode MMOutputPlanWrites(MMOutput *o)
   PetscFunctionReturn(0);
 }
 
-/* The plan of the run about to start from ts's time and step. Collective (the mesh's sizes). */
+/*@
+  MMOutputPlanMake - Plans the output of the run about to start: steps, snapshots, history rows and
+  their sizes
+
+  Collective
+
+  Input Parameters:
++ o  - the output object, set up
+- ts - the time stepper, at the run's first step
+
+  Output Parameter:
+. plan - the plan
+
+  Level: intermediate
+
+.seealso: `MMOutputSetUpProbes()`, `MMCheckpointSnapshotCount()`
+@*/
 PetscErrorCode MMOutputPlanMake(const MMOutput *o, TS ts, MMOutputPlan *plan)
 {
   const PetscInt dim = o->op->dim;

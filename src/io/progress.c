@@ -16,7 +16,26 @@ static PetscBool DampingOn(const MMProgress *pg)
   return (PetscBool)(pg->damping->alpha != 0 || pg->damping->beta != 0);
 }
 
-/* The progress's borrowed references: what the start-up report and the progress lines describe. */
+/*@
+  MMProgressSetUp - Gives the progress object what the start-up report and the progress lines
+  describe, borrowed
+
+  Logically collective
+
+  Input Parameters:
++ p        - the progress object
+. opt      - the problem as io needs it (MMOptionsGetIOProblem())
+. op       - fem's operators
+. material - the bodies' material
+. hist     - the stepper's history row
+. state    - the stepper's state
+. contact  - the contact object
+- damping  - the stepper's damping
+
+  Level: intermediate
+
+.seealso: `MMProgressSetFromOptions()`, `MMProgressHeader()`, `MMProgressMonitorSet()`
+@*/
 PetscErrorCode MMProgressSetUp(MMProgress *pg, const MMIOProblem *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, MMContact contact, const MMDamping *damping)
 {
   PetscFunctionBeginUser;
@@ -267,7 +286,21 @@ static PetscErrorCode HeaderContact(MMProgress *pg, KSP krylov, KSP pc_ksp)
   PetscFunctionReturn(0);
 }
 
-/* The start-up report, once everything is set up and before the first step. */
+/*@
+  MMProgressHeader - Prints the start-up report, once everything is set up and before the first step
+
+  Collective
+
+  Input Parameters:
++ p      - the progress object, set up
+. ts     - the time stepper
+. krylov - the K~ solver (MMContactGetStepKSP())
+- pc_ksp - the KSP whose PC factors or preconditions K~
+
+  Level: intermediate
+
+.seealso: `MMProgressSetUp()`, `MMContactSetUpView()`
+@*/
 PetscErrorCode MMProgressHeader(MMProgress *pg, TS ts, KSP krylov, KSP pc_ksp)
 {
   PetscFunctionBeginUser;
@@ -352,9 +385,28 @@ static PetscErrorCode ProgressClock(PetscInt step, PetscLogDouble *now)
   PetscFunctionReturn(0);
 }
 
-/* TS monitor: counts the step, and prints a line when -progress_every seconds of wall time have
- * passed since the last one. Nothing is communicated: only rank 0 prints, and every rank holds the
- * same history row (the monitor runs after MMEnergyStep has filled it). */
+/*@
+  MMProgressMonitor - TS monitor that counts the steps and prints a progress line every
+  -progress_every seconds of wall time
+
+  Not collective
+
+  Input Parameters:
++ ts   - the time stepper
+. step - the step just taken
+. time - its time
+. u    - the solution vector (unused)
+- ctx  - the progress object (MMProgress *)
+
+  Note:
+  TS monitor: counts the step, and prints a line when -progress_every seconds of wall time have
+  passed since the last one. Nothing is communicated: only rank 0 prints, and every rank holds the
+  same history row (the monitor runs after MMEnergyStep has filled it).
+
+  Level: intermediate
+
+.seealso: `MMProgressMonitorSet()`
+@*/
 PetscErrorCode MMProgressMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ptr)
 {
   MMProgress    *p   = (MMProgress *)ptr;
@@ -381,7 +433,19 @@ PetscErrorCode MMProgressMonitor(TS ts, PetscInt step, PetscReal time, Vec u, vo
   PetscFunctionReturn(0);
 }
 
-/* The progress line's option, with its check. */
+/*@
+  MMProgressSetFromOptions - Reads -progress_every, with its check
+
+  Collective
+
+  Input Parameters:
++ comm - the run's communicator
+- p    - the progress object, zeroed
+
+  Level: intermediate
+
+.seealso: `MMProgressSetUp()`, `MMProgressMonitorSet()`
+@*/
 PetscErrorCode MMProgressSetFromOptions(MPI_Comm comm, MMProgress *p)
 {
   PetscFunctionBeginUser;
@@ -393,8 +457,24 @@ PetscErrorCode MMProgressSetFromOptions(MPI_Comm comm, MMProgress *p)
   PetscFunctionReturn(0);
 }
 
-/* The progress line, unless -progress_every 0 (the caller leaves it out under -quiet): a TS monitor after the others (after
- * -ts_monitor, which still works, and after the history row). */
+/*@
+  MMProgressMonitorSet - Adds the progress line's TS monitor, after the others, unless
+  -progress_every 0
+
+  Collective
+
+  Input Parameters:
++ p  - the progress object, set up
+- ts - the time stepper
+
+  Note:
+  The progress line, unless -progress_every 0 (the caller leaves it out under -quiet): a TS monitor
+  after the others (after -ts_monitor, which still works, and after the history row).
+
+  Level: intermediate
+
+.seealso: `MMProgressMonitor()`, `TSMonitorSet()`
+@*/
 PetscErrorCode MMProgressMonitorSet(MMProgress *pg, TS ts)
 {
   PetscFunctionBeginUser;

@@ -115,8 +115,19 @@ static PetscErrorCode TSAdaptCreate_GrowBack(TSAdapt adapt)
   PetscFunctionReturn(0);
 }
 
-/* The stepper's note of a rejection: regime (its cause lasts over steps, as a friction solve that
- * does not converge at this dt) or event (a release within the step). */
+/*@
+  MMAdaptGrowBackRejected - Notes a rejected step for the TSAdapt growback: a regime or an event
+
+  Logically collective
+
+  Input Parameters:
++ ts     - the TS
+- regime - PETSC_TRUE when the cause lasts over steps (a friction solve that does not converge at this dt), PETSC_FALSE for an event within the step (a release)
+
+  Level: developer
+
+.seealso: `MMAdaptGrowBackGetState()`
+@*/
 PetscErrorCode MMAdaptGrowBackRejected(TS ts, PetscBool regime)
 {
   TSAdapt   adapt;
@@ -136,8 +147,25 @@ PetscErrorCode MMAdaptGrowBackRegister(void)
   PetscFunctionReturn(0);
 }
 
-/* The adaptor's state, for a checkpoint: the dt sequence after a restart continues as it would
- * have (0s for another adaptor). */
+/*@
+  MMAdaptGrowBackGetState - Gives the TSAdapt growback's state, for a checkpoint
+
+  Not collective
+
+  Input Parameter:
+. ts - the TS
+
+  Output Parameter:
+. state - the wait, the accepted steps, the steps since the last growth and the event flag (0s for another adaptor)
+
+  Note:
+  The adaptor's state, for a checkpoint: the dt sequence after a restart continues as it would have
+  (0s for another adaptor).
+
+  Level: developer
+
+.seealso: `MMAdaptGrowBackSetState()`, `MMCheckpointWrite()`
+@*/
 PetscErrorCode MMAdaptGrowBackGetState(TS ts, PetscReal state[MM_ADAPT_STATE])
 {
   TSAdapt   adapt;
@@ -155,6 +183,20 @@ PetscErrorCode MMAdaptGrowBackGetState(TS ts, PetscReal state[MM_ADAPT_STATE])
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMAdaptGrowBackSetState - Restores the TSAdapt growback's state from a checkpoint, so that dt
+  continues as it would have
+
+  Logically collective
+
+  Input Parameters:
++ ts    - the TS
+- state - the state MMAdaptGrowBackGetState() gave
+
+  Level: developer
+
+.seealso: `MMAdaptGrowBackGetState()`, `MMCheckpointLoad()`
+@*/
 PetscErrorCode MMAdaptGrowBackSetState(TS ts, const PetscReal state[MM_ADAPT_STATE])
 {
   TSAdapt           adapt;

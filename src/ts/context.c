@@ -4,6 +4,16 @@
 
 PetscLogEvent MM_TS_Energy, MM_TS_Momenta, MM_TS_Deformation;
 
+/*@
+  MMTSInitializePackage - Registers the TS type newmark, the TSAdapt type growback and ts's log
+  events, once
+
+  Not collective
+
+  Level: developer
+
+.seealso: `MMNewmarkCreate()`, `MMIOInitializePackage()`
+@*/
 PetscErrorCode MMTSInitializePackage(void)
 {
   static PetscBool initialized = PETSC_FALSE;
@@ -20,6 +30,22 @@ PetscErrorCode MMTSInitializePackage(void)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMNewmarkCreate - Creates the Newmark stepper's context, which owns the state, the history row,
+  the damping and the audits
+
+  Collective
+
+  Input Parameter:
+. comm - the run's communicator
+
+  Output Parameter:
+. nm - the new context
+
+  Level: beginner
+
+.seealso: `MMNewmarkSetFromOptions()`, `MMNewmarkSetUp()`, `MMNewmarkCreateTS()`, `MMNewmarkDestroy()`
+@*/
 PetscErrorCode MMNewmarkCreate(MPI_Comm comm, MMNewmark *nm)
 {
   PetscFunctionBeginUser;
@@ -29,7 +55,20 @@ PetscErrorCode MMNewmarkCreate(MPI_Comm comm, MMNewmark *nm)
   PetscFunctionReturn(0);
 }
 
-/* The problem's data, copied: the initial state, the obstacles (borrowed), the audits' thresholds. */
+/*@
+  MMNewmarkSetProblem - Gives the stepper the problem's data: the initial state, the obstacles
+  (borrowed) and the values its messages quote
+
+  Logically collective
+
+  Input Parameters:
++ nm - the stepper's context
+- pb - the problem, copied (MMOptionsGetNewmarkProblem())
+
+  Level: intermediate
+
+.seealso: `MMNewmarkSetUp()`, `MMNewmarkInitialState()`
+@*/
 PetscErrorCode MMNewmarkSetProblem(MMNewmark nm, const MMNewmarkProblem *pb)
 {
   PetscFunctionBeginUser;
@@ -37,7 +76,23 @@ PetscErrorCode MMNewmarkSetProblem(MMNewmark nm, const MMNewmarkProblem *pb)
   PetscFunctionReturn(0);
 }
 
-/* The lower components, borrowed until MMNewmarkDestroy. */
+/*@
+  MMNewmarkSetUp - Gives the stepper the lower components it steps, borrowed until
+  MMNewmarkDestroy()
+
+  Logically collective
+
+  Input Parameters:
++ nm       - the stepper's context
+. op       - fem's operators, in the contact frame
+. material - the bodies' material
+. loads    - the loads
+- contact  - the contact object, set up
+
+  Level: intermediate
+
+.seealso: `MMNewmarkSetProblem()`, `MMNewmarkInitialState()`, `MMNewmarkSetFriction()`
+@*/
 PetscErrorCode MMNewmarkSetUp(MMNewmark nm, MMOperators *op, MMMaterial *material, MMLoads *loads, MMContact contact)
 {
   PetscFunctionBeginUser;
@@ -48,7 +103,20 @@ PetscErrorCode MMNewmarkSetUp(MMNewmark nm, MMOperators *op, MMMaterial *materia
   PetscFunctionReturn(0);
 }
 
-/* Friction is set up after the initial state, on its reaction: handed over then. */
+/*@
+  MMNewmarkSetFriction - Gives the stepper the friction solver, set up after the initial state on
+  its reaction
+
+  Logically collective
+
+  Input Parameters:
++ nm       - the stepper's context
+- friction - the friction solver, set up (borrowed)
+
+  Level: intermediate
+
+.seealso: `MMNewmarkInitialState()`, `MMFrictionSetUp()`
+@*/
 PetscErrorCode MMNewmarkSetFriction(MMNewmark nm, MMFriction friction)
 {
   PetscFunctionBeginUser;
@@ -56,6 +124,22 @@ PetscErrorCode MMNewmarkSetFriction(MMNewmark nm, MMFriction friction)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMNewmarkGetState - Gives the stepper's state: u, v, a and the reactions, at the step and at the
+  previous one
+
+  Not collective
+
+  Input Parameter:
+. nm - the stepper's context
+
+  Output Parameter:
+. state - the state, owned by the context
+
+  Level: intermediate
+
+.seealso: `MMNewmarkGetHistory()`, `MMNewmarkGetDamping()`
+@*/
 PetscErrorCode MMNewmarkGetState(MMNewmark nm, MMState **state)
 {
   PetscFunctionBeginUser;
@@ -63,6 +147,21 @@ PetscErrorCode MMNewmarkGetState(MMNewmark nm, MMState **state)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMNewmarkGetHistory - Gives the stepper's history row and its running sums
+
+  Not collective
+
+  Input Parameter:
+. nm - the stepper's context
+
+  Output Parameter:
+. hist - the history row, owned by the context
+
+  Level: intermediate
+
+.seealso: `MMNewmarkGetState()`, `MMOutputMonitor()`
+@*/
 PetscErrorCode MMNewmarkGetHistory(MMNewmark nm, MMHistory **hist)
 {
   PetscFunctionBeginUser;
@@ -70,6 +169,21 @@ PetscErrorCode MMNewmarkGetHistory(MMNewmark nm, MMHistory **hist)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMNewmarkGetDamping - Gives the stepper's Rayleigh damping
+
+  Not collective
+
+  Input Parameter:
+. nm - the stepper's context
+
+  Output Parameter:
+. damping - the damping, owned by the context
+
+  Level: intermediate
+
+.seealso: `MMDampingOn()`, `MMDampingGetStepMatrix()`
+@*/
 PetscErrorCode MMNewmarkGetDamping(MMNewmark nm, MMDamping **damping)
 {
   PetscFunctionBeginUser;
@@ -77,6 +191,18 @@ PetscErrorCode MMNewmarkGetDamping(MMNewmark nm, MMDamping **damping)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMNewmarkDestroy - Destroys the stepper's context and what it owns
+
+  Collective
+
+  Input Parameter:
+. nm - the stepper's context
+
+  Level: beginner
+
+.seealso: `MMNewmarkCreate()`
+@*/
 PetscErrorCode MMNewmarkDestroy(MMNewmark *nm)
 {
   MMState *s;

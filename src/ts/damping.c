@@ -69,6 +69,18 @@ PetscErrorCode MMDampingSetFromOptions(PetscOptionItems *PetscOptionsObject, MPI
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMDampingOn - Tells whether Rayleigh damping is on (alpha or beta nonzero)
+
+  Not collective
+
+  Input Parameter:
+. d - the damping
+
+  Level: intermediate
+
+.seealso: `MMNewmarkGetDamping()`, `MMDampingGetStepMatrix()`
+@*/
 PetscBool MMDampingOn(const MMDamping *d)
 {
   return (PetscBool)(d->alpha != 0 || d->beta != 0);
@@ -120,6 +132,18 @@ PetscErrorCode MMDampingSetUp(MMDamping *d, MMOperators *op, MMMaterial *materia
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMDampingDestroy - Frees what the damping holds
+
+  Collective
+
+  Input Parameter:
+. d - the damping
+
+  Level: developer
+
+.seealso: `MMNewmarkDestroy()`
+@*/
 PetscErrorCode MMDampingDestroy(MMDamping *d)
 {
   PetscFunctionBeginUser;
@@ -130,9 +154,29 @@ PetscErrorCode MMDampingDestroy(MMDamping *d)
   PetscFunctionReturn(0);
 }
 
-/* The coefficients of K~ = ck K + cb B + cm M* for dt (docs/method.md section 3), for the contact
- * component that builds it: ck = 1, cb = 2 beta/dt with B (NULL undamped), cm = 4/dt^2 + 2 alpha/dt.
- * B is K itself, or K with the massless dofs condensed out: with B == K contact scales K by ck + cb. */
+/*@
+  MMDampingGetStepMatrix - Computes the coefficients of K~ = ck K + cb B + cm M* for dt under
+  Rayleigh damping
+
+  Not collective
+
+  Input Parameters:
++ d  - the damping
+. K  - the stiffness (unused: B is set up already)
+- dt - the time step
+
+  Output Parameter:
+. sm - the coefficients and B (NULL undamped)
+
+  Note:
+  The coefficients of K~ = ck K + cb B + cm M* for dt (docs/method.md section 3), for the contact
+  component that builds it: ck = 1, cb = 2 beta/dt with B (NULL undamped), cm = 4/dt^2 + 2 alpha/dt.
+  B is K itself, or K with the massless dofs condensed out: with B == K contact scales K by ck + cb.
+
+  Level: developer
+
+.seealso: `MMNewmarkGetStepMatrix()`, `MMDampingOn()`
+@*/
 PetscErrorCode MMDampingGetStepMatrix(MMDamping *d, Mat K, PetscReal dt, MMStepMatrix *sm)
 {
   PetscFunctionBeginUser;
@@ -147,7 +191,26 @@ PetscErrorCode MMDampingGetStepMatrix(MMDamping *d, Mat K, PetscReal dt, MMStepM
   PetscFunctionReturn(0);
 }
 
-/* r += a C v: the damping force of a velocity in an equation of motion (the initial one). */
+/*@
+  MMDampingAddForce - Adds a C v, the damping force of a velocity, to a vector
+
+  Collective
+
+  Input Parameters:
++ d - the damping
+. v - the velocity
+- a - the factor
+
+  Output Parameter:
+. r - the vector added to
+
+  Note:
+  r += a C v: the damping force of a velocity in an equation of motion (the initial one).
+
+  Level: developer
+
+.seealso: `MMDampingOn()`
+@*/
 PetscErrorCode MMDampingAddForce(MMDamping *d, Vec v, PetscReal a, Vec r)
 {
   PetscFunctionBeginUser;

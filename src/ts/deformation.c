@@ -211,7 +211,19 @@ static PetscErrorCode CheckFiniteStrain(MMNewmark nm, const Worst *w, char place
 static PetscErrorCode CheckInsideOutFinite(MMNewmark nm, const Worst *w, const char place[]);
 static PetscErrorCode CheckSmallStrain(MMNewmark nm, const Worst *w);
 
-/* After each accepted step (and on the initial state): stop, warn once, or record. */
+/*@
+  MMDeformationCheck - Audits each cell's deformation after a step (and on the initial state):
+  stops, warns once, or records the largest strain
+
+  Collective
+
+  Input Parameter:
+. nm - the stepper's context
+
+  Level: intermediate
+
+.seealso: `MMDeformationView()`
+@*/
 PetscErrorCode MMDeformationCheck(MMNewmark nm)
 {
   DM             dm   = nm->op->dm;
@@ -324,7 +336,20 @@ static PetscErrorCode CheckSmallStrain(MMNewmark nm, const Worst *wp)
   PetscFunctionReturn(0);
 }
 
-/* The closing summary's line: the largest strain of the run (nothing with -deformation_audit 0). */
+/*@
+  MMDeformationView - Prints the closing summary's line of the deformation audit: the largest strain
+  of the run
+
+  Collective
+
+  Input Parameters:
++ nm     - the stepper's context
+- viewer - an ASCII viewer
+
+  Level: intermediate
+
+.seealso: `MMDeformationCheck()`, `MMNonlinearView()`
+@*/
 PetscErrorCode MMDeformationView(MMNewmark nm, PetscViewer viewer)
 {
   const MMDeformation *d = &nm->deform;

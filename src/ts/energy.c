@@ -153,6 +153,20 @@ static PetscErrorCode CheckFinite(MMNewmark nm, const MMHistory *h, PetscReal w_
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMEnergyInitial - Fills the history's first row from the initial state: its energy (checked
+  finite), the contact diagnostics, the momenta and the reactions
+
+  Collective
+
+  Input Parameters:
++ nm        - the stepper's context, with its initial state
+- restarted - the state comes from a checkpoint
+
+  Level: intermediate
+
+.seealso: `MMNewmarkInitialState()`, `MMCheckpointRestoreHistory()`
+@*/
 PetscErrorCode MMEnergyInitial(MMNewmark nm, PetscBool restarted)
 {
   MMHistory     *h = &nm->hist;

@@ -219,8 +219,23 @@ static PetscErrorCode ProjectInitialFinite(MMNewmark nm)
   PetscFunctionReturn(0);
 }
 
-/* The consistent initial state: u0, v0 from the problem, the contact dofs projected by the
- * quasi-static contact problem, the initial reaction, and a0 from the equation of motion. */
+/*@
+  MMNewmarkInitialState - Computes the consistent initial state: u0 and v0, the contact dofs
+  projected, the initial reaction and a0
+
+  Collective
+
+  Input Parameter:
+. nm - the stepper's context, set up
+
+  Note:
+  The consistent initial state: u0, v0 from the problem, the contact dofs projected by the
+  quasi-static contact problem, the initial reaction, and a0 from the equation of motion.
+
+  Level: intermediate
+
+.seealso: `MMNewmarkSetUp()`, `MMEnergyInitial()`, `MMNewmarkCreateTS()`
+@*/
 PetscErrorCode MMNewmarkInitialState(MMNewmark nm)
 {
   MMState       *s = &nm->state;

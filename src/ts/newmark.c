@@ -149,7 +149,21 @@ static PetscErrorCode MatchFinalTime(TS ts)
   PetscFunctionReturn(0);
 }
 
-/* The stepper of a TS made by MMNewmarkCreateTS (the checkpoint reads its state through it) */
+/*@
+  MMNewmarkFromTS - Gives the stepper's context of a TS made by MMNewmarkCreateTS()
+
+  Not collective
+
+  Input Parameter:
+. ts - the TS
+
+  Output Parameter:
+. nm - its context
+
+  Level: developer
+
+.seealso: `MMNewmarkCreateTS()`
+@*/
 PetscErrorCode MMNewmarkFromTS(TS ts, MMNewmark *nm)
 {
   PetscBool is;
@@ -281,7 +295,21 @@ PetscErrorCode MMNewmarkRegister(void)
 /* -ts_dt and -ts_max_time when not given */
 static const PetscReal MMDtDefault = 1e-3, MMMaxTimeDefault = 1.0;
 
-/* The stepper and its defaults, before the options (also what -help shows without a mesh). */
+/*@
+  MMNewmarkSetDefaults - Sets a TS's type to newmark and its defaults, before the options are read
+
+  Logically collective
+
+  Input Parameter:
+. ts - the TS
+
+  Note:
+  The stepper and its defaults, before the options (also what -help shows without a mesh).
+
+  Level: developer
+
+.seealso: `MMNewmarkCreateTS()`
+@*/
 PetscErrorCode MMNewmarkSetDefaults(TS ts)
 {
   PetscFunctionBeginUser;
@@ -293,11 +321,30 @@ PetscErrorCode MMNewmarkSetDefaults(TS ts)
   PetscFunctionReturn(0);
 }
 
-/* The run's plan as the options give it, before the TS exists: dt (-ts_dt) and the number of steps
- * to -ts_max_time or -ts_max_steps, whichever ends the run first (at least 1). The contact
- * formulation's cost model weighs its set-up against its steps with it (docs/scaling.md, "The
- * formulation chosen by cost"); a dt that adaptation changes later is not foreseen. The values are
- * checked where the TS reads them (CheckTimeOptions). */
+/*@
+  MMNewmarkGetPlan - Gives the run's plan as the options give it, before the TS exists: dt and the
+  number of steps
+
+  Not collective
+
+  Input Parameter:
+. nm - the stepper's context
+
+  Output Parameters:
++ dt    - -ts_dt
+- steps - the steps to -ts_max_time or -ts_max_steps, whichever ends the run first (at least 1)
+
+  Note:
+  The run's plan as the options give it, before the TS exists: dt (-ts_dt) and the number of steps
+  to -ts_max_time or -ts_max_steps, whichever ends the run first (at least 1). The contact
+  formulation's cost model weighs its set-up against its steps with it (docs/scaling.md, "The
+  formulation chosen by cost"); a dt that adaptation changes later is not foreseen. The values are
+  checked where the TS reads them (CheckTimeOptions).
+
+  Level: developer
+
+.seealso: `MMNewmarkCreateTS()`, `MMContactSetUp()`
+@*/
 PetscErrorCode MMNewmarkGetPlan(MMNewmark nm, PetscReal *dt, PetscReal *steps)
 {
   PetscReal tmax = MMMaxTimeDefault;
@@ -398,6 +445,22 @@ static PetscErrorCode SetUpAdapt(TS ts, PetscReal dt)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMNewmarkCreateTS - Creates the TS of type newmark that steps the context, set from the options
+  (-ts_*) and checked
+
+  Collective
+
+  Input Parameter:
+. nm - the stepper's context, with its initial state
+
+  Output Parameter:
+. ts - the new TS
+
+  Level: beginner
+
+.seealso: `MMNewmarkSetDefaults()`, `MMNewmarkFromTS()`, `TSSolve()`, `TSView()`
+@*/
 PetscErrorCode MMNewmarkCreateTS(MMNewmark nm, TS *ts)
 {
   MPI_Comm  comm = PetscObjectComm((PetscObject)nm->op->dm);

@@ -163,9 +163,28 @@ PetscErrorCode MMNonlinearSlidePairs(MMNewmark nm, PetscReal dt)
   PetscFunctionReturn(0);
 }
 
-/* For a checkpoint of large sliding: the forces the stepper carries across pairings (CarriedForces), in
- * the order a restart reads them back; *n = 0 without large sliding, whose forces are the set-up's. f
- * holds at least 3 + the load parts (MMNewmarkCountCarriedForces). */
+/*@
+  MMNewmarkGetCarriedForces - Gives, for a checkpoint of large sliding, the forces the stepper
+  carries across pairings
+
+  Not collective
+
+  Input Parameter:
+. nm - the stepper's context
+
+  Output Parameters:
++ n - their number, 0 without large sliding
+- f - the forces, in the order a restart reads them back; room for MMNewmarkCountCarriedForces() vectors
+
+  Note:
+  For a checkpoint of large sliding: the forces the stepper carries across pairings (CarriedForces),
+  in the order a restart reads them back; *n = 0 without large sliding, whose forces are the
+  set-up's. f holds at least 3 + the load parts (MMNewmarkCountCarriedForces).
+
+  Level: developer
+
+.seealso: `MMNewmarkCountCarriedForces()`, `MMNewmarkRestorePairs()`
+@*/
 PetscErrorCode MMNewmarkGetCarriedForces(MMNewmark nm, PetscInt *n, Vec f[])
 {
   MMContactNodes cn;
@@ -178,15 +197,43 @@ PetscErrorCode MMNewmarkGetCarriedForces(MMNewmark nm, PetscInt *n, Vec f[])
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMNewmarkCountCarriedForces - Returns how many forces MMNewmarkGetCarriedForces() may give
+
+  Not collective
+
+  Input Parameter:
+. nm - the stepper's context
+
+  Level: developer
+
+.seealso: `MMNewmarkGetCarriedForces()`
+@*/
 PetscInt MMNewmarkCountCarriedForces(MMNewmark nm)
 {
   return 3 + (nm->loads->part ? nm->loads->nparts : 0);
 }
 
-/* -restart of large sliding (docs/method.md section 9): contact takes the checkpoint's pairing (rec, per
- * owned contact row; NULL: none, refused when this run slides) and rebuilds N, K and M*; the stepper drops
- * what it built on the set-up's N. The state and the carried forces are read from the checkpoint in the
- * new variables: nothing turns. */
+/*@
+  MMNewmarkRestorePairs - Restores, on -restart of large sliding, the checkpoint's contact pairing
+
+  Collective
+
+  Input Parameters:
++ nm   - the stepper's context
+. rec  - per owned contact row the pairing record, or NULL (MMCheckpointGetPairs())
+- file - the checkpoint file, for the messages
+
+  Note:
+  -restart of large sliding (docs/method.md section 9): contact takes the checkpoint's pairing (rec,
+  per owned contact row; NULL: none, refused when this run slides) and rebuilds N, K and M*; the
+  stepper drops what it built on the set-up's N. The state and the carried forces are read from the
+  checkpoint in the new variables: nothing turns.
+
+  Level: developer
+
+.seealso: `MMCheckpointGetPairs()`, `MMNewmarkGetCarriedForces()`, `MMNewmarkRestoreFrames()`
+@*/
 PetscErrorCode MMNewmarkRestorePairs(MMNewmark nm, const PetscScalar rec[], const char file[])
 {
   MMContactNodes cn;
@@ -260,9 +307,28 @@ static PetscErrorCode RebuildTangent(MMNewmark nm, PetscReal dt, Vec l, PetscRea
   PetscFunctionReturn(0);
 }
 
-/* For a checkpoint (docs/method.md section 9): where the iteration matrix K_s is the tangent, the
- * Cartesian displacement and time it was taken at; NULL while K_s is the reference K, and with
- * -nonlinear_tangent step, whose every step builds its own */
+/*@
+  MMNewmarkGetTangentPoint - Gives where the finite-strain iteration matrix K_s is the tangent, for
+  a checkpoint
+
+  Not collective
+
+  Input Parameter:
+. nm - the stepper's context
+
+  Output Parameters:
++ at - the Cartesian displacement, or NULL while K_s is K (owned by the context)
+- t  - the time of its Dirichlet data
+
+  Note:
+  For a checkpoint (docs/method.md section 9): where the iteration matrix K_s is the tangent, the
+  Cartesian displacement and time it was taken at; NULL while K_s is the reference K, and with
+  -nonlinear_tangent step, whose every step builds its own
+
+  Level: developer
+
+.seealso: `MMNewmarkRestoreTangent()`, `MMCheckpointGetTangent()`
+@*/
 PetscErrorCode MMNewmarkGetTangentPoint(MMNewmark nm, Vec *at, PetscReal *t)
 {
   const MMNonlinear *nl = &nm->nl;
@@ -276,10 +342,27 @@ PetscErrorCode MMNewmarkGetTangentPoint(MMNewmark nm, Vec *at, PetscReal *t)
   PetscFunctionReturn(0);
 }
 
-/* -restart: K_s the tangent at the checkpoint's point (MMNewmarkGetTangentPoint), built as the run
- * that wrote it built it, so that the steps that follow iterate with the same matrix; K~ is built on
- * it with the step matrix of the first step (MMNewmarkGetStepMatrix). Call after the pairing and the
- * frames are restored: K_s is in their variables. */
+/*@
+  MMNewmarkRestoreTangent - Rebuilds, on -restart, the finite-strain iteration matrix at the
+  checkpoint's point
+
+  Collective
+
+  Input Parameters:
++ nm - the stepper's context
+. at - the checkpoint's point, or NULL (MMCheckpointGetTangent())
+- t  - its time
+
+  Note:
+  -restart: K_s the tangent at the checkpoint's point (MMNewmarkGetTangentPoint), built as the run
+  that wrote it built it, so that the steps that follow iterate with the same matrix; K~ is built on
+  it with the step matrix of the first step (MMNewmarkGetStepMatrix). Call after the pairing and the
+  frames are restored: K_s is in their variables.
+
+  Level: developer
+
+.seealso: `MMNewmarkGetTangentPoint()`, `MMNewmarkGetStepMatrix()`
+@*/
 PetscErrorCode MMNewmarkRestoreTangent(MMNewmark nm, Vec at, PetscReal t)
 {
   MMElasticity *el = &nm->nl.el;
@@ -294,8 +377,27 @@ PetscErrorCode MMNewmarkRestoreTangent(MMNewmark nm, Vec at, PetscReal t)
   PetscFunctionReturn(0);
 }
 
-/* The step matrix for dt as each step builds it (newmark.c): with a finite-strain law the iteration
- * matrix (K_s, the tangent of a restart's checkpoint too), else the (damped) K~ */
+/*@
+  MMNewmarkGetStepMatrix - Computes the coefficients of the step matrix K~ = ck K + cb B + cm M* for
+  dt, as each step builds it
+
+  Not collective
+
+  Input Parameters:
++ nm - the stepper's context
+- dt - the time step
+
+  Output Parameter:
+. sm - the coefficients, B and the stiffness in K~ (NULL: fem's K)
+
+  Note:
+  The step matrix for dt as each step builds it (newmark.c): with a finite-strain law the iteration
+  matrix (K_s, the tangent of a restart's checkpoint too), else the (damped) K~
+
+  Level: intermediate
+
+.seealso: `MMDampingGetStepMatrix()`, `MMContactSetStepMatrix()`
+@*/
 PetscErrorCode MMNewmarkGetStepMatrix(MMNewmark nm, PetscReal dt, MMStepMatrix *sm)
 {
   PetscFunctionBeginUser;
@@ -532,10 +634,28 @@ PetscErrorCode MMNonlinearFollowFrames(MMNewmark nm, PetscReal t, PetscReal dt)
   PetscFunctionReturn(0);
 }
 
-/* -restart of a run whose frames followed (docs/method.md section 9): contact takes the checkpoint's
- * frames and gaps (rec, per owned contact row; NULL: the checkpoint has none, the set-up frames stay)
- * and turns its operators, the stepper its own. The state, read from the checkpoint, is already in
- * these frames: it does not turn, and no kinetic energy moves (M* is the checkpointed run's). */
+/*@
+  MMNewmarkRestoreFrames - Restores, on -restart, the contact frames of a run whose frames followed
+  the contact point
+
+  Collective
+
+  Input Parameters:
++ nm       - the stepper's context
+. rec      - per owned contact row the checkpoint's frame record, or NULL (MMCheckpointGetFrames())
+- counters - the frames' counters
+
+  Note:
+  -restart of a run whose frames followed (docs/method.md section 9): contact takes the checkpoint's
+  frames and gaps (rec, per owned contact row; NULL: the checkpoint has none, the set-up frames
+  stay) and turns its operators, the stepper its own. The state, read from the checkpoint, is
+  already in these frames: it does not turn, and no kinetic energy moves (M* is the checkpointed
+  run's).
+
+  Level: developer
+
+.seealso: `MMCheckpointGetFrames()`, `MMNewmarkRestorePairs()`, `MMNewmarkRestoreTangent()`
+@*/
 PetscErrorCode MMNewmarkRestoreFrames(MMNewmark nm, const PetscScalar rec[], const PetscReal counters[])
 {
   PetscInt turned;
@@ -547,6 +667,20 @@ PetscErrorCode MMNewmarkRestoreFrames(MMNewmark nm, const PetscScalar rec[], con
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMNonlinearView - Prints the closing summary's line of the finite-strain step: iterations per step
+  and iteration-matrix rebuilds
+
+  Collective
+
+  Input Parameters:
++ nm     - the stepper's context
+- viewer - an ASCII viewer
+
+  Level: intermediate
+
+.seealso: `MMDeformationView()`, `TSView()`
+@*/
 PetscErrorCode MMNonlinearView(MMNewmark nm, PetscViewer viewer)
 {
   const MMNonlinear *nl = &nm->nl;

@@ -4,7 +4,23 @@
 #include "newmarkimpl.h"
 #include "sys.h"
 
-/* The energy audit's tolerances (the balance, and the contact work that rejects a step), the deformation audit's switch and thresholds, and the damping. */
+/*@
+  MMNewmarkSetFromOptions - Reads the stepper's options: the energy and deformation audits, Rayleigh
+  damping, the finite-strain iteration, -ts_view
+
+  Collective
+
+  Input Parameter:
+. nm - the stepper's context
+
+  Note:
+  The energy audit's tolerances (the balance, and the contact work that rejects a step), the
+  deformation audit's switch and thresholds, and the damping.
+
+  Level: beginner
+
+.seealso: `MMNewmarkCreate()`, `MMNewmarkSetUp()`
+@*/
 PetscErrorCode MMNewmarkSetFromOptions(MMNewmark nm)
 {
   MPI_Comm comm = nm->comm;
