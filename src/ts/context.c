@@ -92,6 +92,7 @@ PetscErrorCode MMNewmarkDestroy(MMNewmark *nm)
   PetscCall(MMDeformationDestroy(&(*nm)->deform));
   PetscCall(MMMomentaDestroy(&(*nm)->momenta));
   PetscCall(MMNonlinearDestroy(&(*nm)->nl));
+  PetscCall(MMNewmarkSchemeDestroy(*nm));
   PetscCall(PetscFree(*nm));
   PetscFunctionReturn(0);
 }

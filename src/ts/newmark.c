@@ -183,12 +183,9 @@ static PetscErrorCode TSStep_Newmark(TS ts)
     PetscReal w_c, scale;
     PetscBool    too_large = PETSC_FALSE;
     Vec          b;
-    MMStepMatrix sm;
 
     dt = ts->time_step;
-    if (nm->material->finite) PetscCall(MMNonlinearStepMatrix(nm, dt, &sm));
-    else PetscCall(MMDampingGetStepMatrix(&nm->damping, nm->op->K, dt, &sm));
-    PetscCall(MMContactSetStepMatrix(nm->contact, &sm));
+    PetscCall(MMNewmarkSetStep(nm, dt)); /* K~, and the step's offset and scale (scheme.c) */
     PetscCall(MMContactSetTime(nm->contact, ts->ptime + dt, dt));
     PetscCall(MMLoadsSetTime(nm->loads, ts->ptime, ts->ptime + dt)); /* L^{n+1} and the lift of u_D(t^{n+1}) */
     PetscCall(MMContactGetRHS(nm->contact, &b));

@@ -86,6 +86,7 @@ struct _p_MMNewmark {
   MMDeformation deform;
   MMMomenta     momenta;
   MMNonlinear   nl;     /* the finite-strain laws' step (material->finite) */
+  MMStepOffset  scheme; /* the step's offset and scale, handed to contact (scheme.c) */
 };
 
 /* The dofs without inertia: the contact-normal dofs under the modified mass, none otherwise. */
@@ -121,3 +122,5 @@ PETSC_INTERN PetscErrorCode MMNonlinearDestroy(MMNonlinear *nl);
 PETSC_INTERN PetscErrorCode MMNonlinearDampingWork(MMNewmark nm, Vec du, PetscReal t1, PetscReal dt, PetscReal *w);
 PETSC_INTERN PetscErrorCode MMNonlinearFollowFrames(MMNewmark nm, PetscReal t, PetscReal dt);
 PETSC_INTERN PetscErrorCode MMAdaptGrowBackRegister(void);
+PETSC_INTERN PetscErrorCode MMNewmarkSchemeSetUp(MMNewmark nm);
+PETSC_INTERN PetscErrorCode MMNewmarkSchemeDestroy(MMNewmark nm);
