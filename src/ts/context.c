@@ -45,6 +45,7 @@ PetscErrorCode MMNewmarkSetUp(MMNewmark nm, MMOperators *op, MMMaterial *materia
   nm->material = material;
   nm->loads    = loads;
   nm->contact  = contact;
+  nm->law      = MMStepLawGetOps(material); /* the step's law (step_laws.c) */
   PetscFunctionReturn(0);
 }
 
