@@ -152,7 +152,7 @@ typedef struct {
   Vec       offset;
   PetscReal scale;
   PetscErrorCode (*velocity)(void *ctx, Vec w, Vec sigma);
-  void *ctx;
+  void     *ctx;
 } MMStepOffset;
 PETSC_EXTERN PetscErrorCode MMContactSetStepOffset(MMContact ct, const MMStepOffset *so);
 PETSC_EXTERN PetscErrorCode MMContactGetStepOffset(MMContact ct, MMStepOffset *so);
