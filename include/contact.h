@@ -144,8 +144,21 @@ typedef struct {
   PetscInt  version; /* K's version: K~ is rebuilt when it changes, even at the same dt */
 } MMStepMatrix;
 PETSC_EXTERN PetscErrorCode MMContactSetStepMatrix(MMContact ct, const MMStepMatrix *sm);
-/* The state at the start of each step (u^n, v^n), borrowed: the stepper updates them in place */
-PETSC_EXTERN PetscErrorCode MMContactSetPreviousState(MMContact ct, Vec u_old, Vec v_old);
+/* The time scheme's share of a step, which the stepper hands down with the step matrix (src/ts/scheme.c,
+ * docs/developer.md "The step's data flow"): contact and friction never see u^n or v^n. offset: the
+ * displacement at which w has zero velocity over the step, u^n + dt/2 v^n (w-frame, borrowed: the
+ * stepper recomputes it in place at each try of a step), which the tangential bounds are taken from;
+ * scale: the velocity per displacement, 2/dt; velocity: sigma = 2/dt (w - u^n) - v^n, the velocity of
+ * w over the step (the slip velocity on the tangential contact dofs), computed by the stepper. */
+typedef struct {
+  Vec       offset;
+  PetscReal scale;
+  PetscErrorCode (*velocity)(void *ctx, Vec w, Vec sigma);
+  void     *ctx;
+} MMStepOffset;
+PETSC_EXTERN PetscErrorCode MMContactSetStepOffset(MMContact ct, const MMStepOffset *so);
+PETSC_EXTERN PetscErrorCode MMContactGetStepOffset(MMContact ct, MMStepOffset *so);
+PETSC_EXTERN PetscErrorCode MMContactStepVelocity(MMContact ct, Vec w, Vec sigma);
 PETSC_EXTERN PetscErrorCode MMContactGetStepKSP(MMContact ct, KSP *krylov, KSP *pc_ksp);
 PETSC_EXTERN PetscErrorCode MMContactSolve(MMContact ct, Vec b, Vec w, Vec react);
 PETSC_EXTERN PetscErrorCode MMContactSolveContactDofs(MMContact ct, Vec b, Vec w, Vec react);

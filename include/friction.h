@@ -14,7 +14,7 @@ PETSC_EXTERN PetscErrorCode MMFrictionRegisterAll(void);
 PETSC_EXTERN PetscErrorCode MMFrictionCreate(MPI_Comm comm, MMFriction *fr);
 PETSC_EXTERN PetscErrorCode MMFrictionSetFromOptions(MMFriction fr);
 PETSC_EXTERN PetscErrorCode MMFrictionGetCoulombTolerance(MMFriction fr, PetscReal *tol);
-PETSC_EXTERN PetscErrorCode MMFrictionSetUp(MMFriction fr, MMContact ct, PetscReal mu_max, PetscReal E_max, Vec u_old, Vec v_old, Vec react);
+PETSC_EXTERN PetscErrorCode MMFrictionSetUp(MMFriction fr, MMContact ct, PetscReal mu_max, PetscReal E_max, Vec react);
 PETSC_EXTERN PetscErrorCode MMFrictionSolve(MMFriction fr, PetscInt step, PetscReal t, Vec b, Vec w, Vec react, PetscBool *ok);
 PETSC_EXTERN PetscErrorCode MMFrictionGetType(MMFriction fr, const char **type);
 PETSC_EXTERN PetscErrorCode MMFrictionGetConvergence(MMFriction fr, PetscInt *its, PetscInt *inner_its, PetscReal *contraction, PetscReal *contraction_max);

@@ -107,6 +107,8 @@ PETSC_EXTERN PetscErrorCode MMNewmarkRestoreFrames(MMNewmark nm, const PetscScal
 PETSC_EXTERN PetscErrorCode MMNewmarkGetTangentPoint(MMNewmark nm, Vec *at, PetscReal *t);
 PETSC_EXTERN PetscErrorCode MMNewmarkRestoreTangent(MMNewmark nm, Vec at, PetscReal t);
 PETSC_EXTERN PetscErrorCode MMNewmarkGetStepMatrix(MMNewmark nm, PetscReal dt, MMStepMatrix *sm);
+/* The step of dt handed to contact: its matrix, and the scheme's offset and scale (scheme.c) */
+PETSC_EXTERN PetscErrorCode MMNewmarkSetStep(MMNewmark nm, PetscReal dt);
 PETSC_EXTERN PetscErrorCode MMNewmarkFromTS(TS ts, MMNewmark *nm);
 /* Large sliding's checkpoint: the forces carried across pairings, and the pairing restored (docs/method.md section 9) */
 PETSC_EXTERN PetscErrorCode MMNewmarkGetCarriedForces(MMNewmark nm, PetscInt *n, Vec f[]);

@@ -153,18 +153,14 @@ static PetscErrorCode SetUpStepper(MMCtx *ctx, TS *ts)
   }
   PetscCall(MMNewmarkSetUp(ctx->nm, &ctx->op, &ctx->material, &ctx->loads, ctx->contact));
   MMPhase(MMAppEvents.initial_state, MMNewmarkInitialState(ctx->nm));
-  MMPhase(MMAppEvents.friction_setup, MMFrictionSetUp(ctx->friction, ctx->contact, ctx->opt.mu_max, ctx->material.E_max, state->u_old, state->v_old, state->react));
+  MMPhase(MMAppEvents.friction_setup, MMFrictionSetUp(ctx->friction, ctx->contact, ctx->opt.mu_max, ctx->material.E_max, state->react));
   PetscCall(MMNewmarkSetFriction(ctx->nm, ctx->friction));
   PetscCall(MMNewmarkCreateTS(ctx->nm, ts));
   PetscCall(MMOptionsGetIOProblem(&ctx->opt, &ctx->iopb));
   PetscCall(MMCheckpointSetUp(&ctx->ckpt, &ctx->iopb, &ctx->op, &ctx->material, hist, state, damping, ctx->contact, ctx->friction, &ctx->out));
   PetscCall(Restart(ctx, *ts));
   PetscCall(TSGetTimeStep(*ts, &dt));
-  {
-    MMStepMatrix sm;
-    PetscCall(MMNewmarkGetStepMatrix(ctx->nm, dt, &sm)); /* after -restart, its iteration matrix */
-    MMPhase(MMAppEvents.step_matrix, MMContactSetStepMatrix(ctx->contact, &sm));
-  }
+  MMPhase(MMAppEvents.step_matrix, MMNewmarkSetStep(ctx->nm, dt)); /* after -restart, its iteration matrix */
   hist->dt = dt;
   {
     PetscBool restarted;

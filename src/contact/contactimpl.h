@@ -131,7 +131,7 @@ struct _p_MMContact {
   MMContactProblem  pb;           /* the problem's data (MMContactSetUp): obstacles borrowed */
   MMOperators      *op;           /* borrowed at set-up: fem's operators (K, M*, Q, the DM) */
   const MMMaterial *material;     /* borrowed: E_max, the force scale of the audits */
-  Vec               u_old, v_old; /* borrowed: the state at the start of the step (MMContactSetPreviousState) */
+  MMStepOffset      step;         /* the step's offset and scale, the stepper's (MMContactSetStepOffset) */
   PetscBool  enabled;
   PetscBool  prefer_iterative; /* without contact, 3D with at least -iterative_dofs dofs: CG for K~ */
   PetscBool  auto_type;        /* the formulation was chosen by -contact_formulation auto */

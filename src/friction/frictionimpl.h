@@ -63,7 +63,6 @@ struct _p_MMFriction {
   char               type[MM_TYPE_LEN];
   const MMFrictionOps   *ops;
   MMContact          contact;  /* borrowed: the contact it wraps */
-  Vec                u_old, v_old; /* borrowed: the step's start, for the slip velocities */
   PetscInt           step;     /* the last accepted step and its time: the audit's obstacles, the dump's names */
   PetscReal          time;
   /* options (MMFrictionSetFromOptions) */

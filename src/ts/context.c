@@ -100,6 +100,7 @@ PetscErrorCode MMNewmarkSetUp(MMNewmark nm, MMOperators *op, MMMaterial *materia
   nm->material = material;
   nm->loads    = loads;
   nm->contact  = contact;
+  nm->law      = MMStepLawGetOps(material); /* the step's law (step_laws.c) */
   PetscFunctionReturn(0);
 }
 
@@ -218,6 +219,7 @@ PetscErrorCode MMNewmarkDestroy(MMNewmark *nm)
   PetscCall(MMDeformationDestroy(&(*nm)->deform));
   PetscCall(MMMomentaDestroy(&(*nm)->momenta));
   PetscCall(MMNonlinearDestroy(&(*nm)->nl));
+  PetscCall(MMNewmarkSchemeDestroy(*nm));
   PetscCall(PetscFree(*nm));
   PetscFunctionReturn(0);
 }

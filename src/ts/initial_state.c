@@ -246,7 +246,7 @@ PetscErrorCode MMNewmarkInitialState(MMNewmark nm)
   {
     Vec *copies[] = {&s->v, &s->a, &s->u_old, &s->v_old, &s->a_old, &s->react, &s->react_old, &s->work, &s->u_next};
     for (size_t i = 0; i < sizeof(copies) / sizeof(copies[0]); ++i) PetscCall(VecDuplicate(s->u, copies[i]));
-    PetscCall(MMContactSetPreviousState(nm->contact, s->u_old, s->v_old)); /* the start of each step, for the contact solves */
+    PetscCall(MMNewmarkSchemeSetUp(nm)); /* the step's offset, for the contact solves */
   }
   PetscCall(MMContactGetNodes(nm->contact, &cn));
   if (nm->material->finite) {

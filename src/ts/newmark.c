@@ -14,21 +14,6 @@ typedef struct {
   MMNewmark nm;
 } TS_Newmark;
 
-/* b = L(t^{n+1}) - lift(t^{n+1}) + M* (4/dt^2 u^n + 4/dt v^n + a^n) [+ C (2/dt u^n + vC^n) with damping] */
-static PetscErrorCode StepRHS(MMNewmark nm, PetscReal dt, Vec b)
-{
-  MMState *s = &nm->state;
-
-  PetscFunctionBeginUser;
-  PetscCall(VecAXPBYPCZ(s->work, 4.0 / (dt * dt), 4.0 / dt, 0.0, s->u, s->v));
-  PetscCall(VecAXPY(s->work, 1.0, s->a));
-  PetscCall(MatMult(nm->op->Mstar, s->work, b));
-  PetscCall(VecAXPY(b, 1.0, nm->op->load));
-  PetscCall(VecAXPY(b, -1.0, nm->op->lift));
-  PetscCall(MMDampingAddStepRHS(&nm->damping, s->u, dt, b));
-  PetscFunctionReturn(0);
-}
-
 /* a^{n+1}, v^{n+1} from u^{n+1} by the trapezoidal rule; the massless dofs get a = 0 and the
  * backward-difference velocity, which enter neither the dynamics nor the energy. */
 static PetscErrorCode UpdateKinematics(MMNewmark nm, PetscReal dt, Vec w)
@@ -65,13 +50,6 @@ static PetscErrorCode SaveOldState(MMState *s)
   PetscCall(VecCopy(s->react, s->react_old));
   PetscFunctionReturn(0);
 }
-
-/* Why a step is rejected and retried with a smaller dt. */
-typedef enum {
-  MM_REJECT_FRICTION,    /* the friction loop did not converge (Theorem 4.2's condition fails) */
-  MM_REJECT_CONTACT_WORK, /* a release the step does not resolve creates energy */
-  MM_REJECT_NONLINEAR     /* the finite-strain step's iteration did not converge */
-} MMRejectReason;
 
 /* A rejected step is retried with dt times TSAdapt's -ts_adapt_scale_solve_failed, down to
  * -ts_adapt_dt_min and at most -ts_max_reject times; past those the run stops and says why. */
@@ -176,7 +154,8 @@ PetscErrorCode MMNewmarkFromTS(TS ts, MMNewmark *nm)
 }
 
 /* One step: solve, guard, and on rejection retry with a smaller dt; the adaptor (growback by default,
- * adapt_growback.c) then chooses the next dt. */
+ * adapt_growback.c) then chooses the next dt. The linear and finite-strain steps differ by their law's
+ * ops alone (step_laws.c, docs/developer.md "The step's data flow"). */
 static PetscErrorCode TSStep_Newmark(TS ts)
 {
   MMNewmark nm  = ((TS_Newmark *)ts->data)->nm;
@@ -187,40 +166,26 @@ static PetscErrorCode TSStep_Newmark(TS ts)
   Vec       w  = ts->vec_sol;
 
   PetscFunctionBeginUser;
-  /* the contact frames of the nodes near a curved obstacle follow their contact point (docs/method.md section 8) */
   PetscCall(MatchFinalTime(ts));
-  if (nm->material->finite) PetscCall(MMNonlinearFollowFrames(nm, ts->ptime, ts->time_step));
-  if (nm->material->finite) PetscCall(MMNonlinearSlidePairs(nm, ts->time_step)); /* contact pairs: the large-sliding pairing */
+  if (nm->law->begin) PetscCall((*nm->law->begin)(nm, ts->ptime, ts->time_step)); /* frames and pairs that follow the body */
   PetscCall(SaveOldState(s));
   PetscCall(MMContactCornersAccept(nm->contact));
   while (!solved) {
     PetscReal w_c, scale;
     PetscBool    too_large = PETSC_FALSE;
     Vec          b;
-    MMStepMatrix sm;
 
     dt = ts->time_step;
-    if (nm->material->finite) PetscCall(MMNonlinearStepMatrix(nm, dt, &sm));
-    else PetscCall(MMDampingGetStepMatrix(&nm->damping, nm->op->K, dt, &sm));
-    PetscCall(MMContactSetStepMatrix(nm->contact, &sm));
+    PetscCall(MMNewmarkSetStep(nm, dt)); /* K~, and the step's offset and scale (scheme.c) */
     PetscCall(MMContactSetTime(nm->contact, ts->ptime + dt, dt));
     PetscCall(MMLoadsSetTime(nm->loads, ts->ptime, ts->ptime + dt)); /* L^{n+1} and the lift of u_D(t^{n+1}) */
     PetscCall(MMContactGetRHS(nm->contact, &b));
     /* predictor u + dt v + dt^2/4 a: exact for constant acceleration */
     PetscCall(VecAXPBYPCZ(w, dt, 0.25 * dt * dt, 0.0, s->v, s->a));
     PetscCall(VecAXPY(w, 1.0, s->u));
-    if (nm->material->finite) {
-      PetscCall(MMNonlinearSolve(nm, ts->ptime, dt, b, w, &solved));
-      if (!solved) {
-        PetscCall(RejectStep(ts, nm, ++rejections, MM_REJECT_NONLINEAR, 0, 0));
-        continue;
-      }
-    } else {
-      PetscCall(StepRHS(nm, dt, b));
-      PetscCall(MMFrictionSolve(nm->friction, nm->hist.step, nm->hist.time, b, w, s->react, &solved));
-    }
+    PetscCall((*nm->law->solve)(nm, ts->ptime, dt, b, w, &solved));
     if (!solved) {
-      PetscCall(RejectStep(ts, nm, ++rejections, MM_REJECT_FRICTION, 0, 0));
+      PetscCall(RejectStep(ts, nm, ++rejections, nm->law->failure, 0, 0));
       continue;
     }
     PetscCall(ContactWorkTooLarge(nm, w, &too_large, &w_c, &scale));

@@ -65,6 +65,25 @@ typedef struct {
   PetscReal       residual;    /* the last step's final relative residual */
 } MMNonlinear;
 
+/* Why a step is rejected and retried with a smaller dt. */
+typedef enum {
+  MM_REJECT_FRICTION,     /* the friction loop did not converge (Theorem 4.2's condition fails) */
+  MM_REJECT_CONTACT_WORK, /* a release the step does not resolve creates energy */
+  MM_REJECT_NONLINEAR     /* the finite-strain step's iteration did not converge */
+} MMRejectReason;
+
+/* The step's law (step_laws.c): what the linear and the finite-strain steps do differently in
+ * TSStep_Newmark's one skeleton. begin: before the step's start is saved (NULL: nothing);
+ * stepmatrix: K~'s coefficients for dt; solve: w = u^{n+1} from the predictor in w and contact's
+ * right-hand side b (*solved: converged); failure: why a step whose solve failed is rejected. */
+typedef struct {
+  PetscErrorCode (*begin)(MMNewmark nm, PetscReal t, PetscReal dt);
+  PetscErrorCode (*stepmatrix)(MMNewmark nm, PetscReal dt, MMStepMatrix *sm);
+  PetscErrorCode (*solve)(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b, Vec w, PetscBool *solved);
+  MMRejectReason failure;
+} MMStepLawOps;
+PETSC_INTERN const MMStepLawOps *MMStepLawGetOps(const MMMaterial *material);
+
 struct _p_MMNewmark {
   MPI_Comm         comm;
   MMNewmarkProblem pb;
@@ -86,6 +105,8 @@ struct _p_MMNewmark {
   MMDeformation deform;
   MMMomenta     momenta;
   MMNonlinear   nl;     /* the finite-strain laws' step (material->finite) */
+  MMStepOffset  scheme; /* the step's offset and scale, handed to contact (scheme.c) */
+  const MMStepLawOps *law; /* the step's law: linear or finite strain (step_laws.c) */
 };
 
 /* The dofs without inertia: the contact-normal dofs under the modified mass, none otherwise. */
@@ -122,3 +143,5 @@ PETSC_INTERN PetscErrorCode MMNonlinearDestroy(MMNonlinear *nl);
 PETSC_INTERN PetscErrorCode MMNonlinearDampingWork(MMNewmark nm, Vec du, PetscReal t1, PetscReal dt, PetscReal *w);
 PETSC_INTERN PetscErrorCode MMNonlinearFollowFrames(MMNewmark nm, PetscReal t, PetscReal dt);
 PETSC_INTERN PetscErrorCode MMAdaptGrowBackRegister(void);
+PETSC_INTERN PetscErrorCode MMNewmarkSchemeSetUp(MMNewmark nm);
+PETSC_INTERN PetscErrorCode MMNewmarkSchemeDestroy(MMNewmark nm);

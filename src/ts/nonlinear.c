@@ -377,35 +377,6 @@ PetscErrorCode MMNewmarkRestoreTangent(MMNewmark nm, Vec at, PetscReal t)
   PetscFunctionReturn(0);
 }
 
-/*@
-  MMNewmarkGetStepMatrix - Computes the coefficients of the step matrix K~ = ck K + cb B + cm M* for
-  dt, as each step builds it
-
-  Not collective
-
-  Input Parameters:
-+ nm - the stepper's context
-- dt - the time step
-
-  Output Parameter:
-. sm - the coefficients, B and the stiffness in K~ (NULL: fem's K)
-
-  Note:
-  The step matrix for dt as each step builds it (newmark.c): with a finite-strain law the iteration
-  matrix (K_s, the tangent of a restart's checkpoint too), else the (damped) K~
-
-  Level: intermediate
-
-.seealso: `MMDampingGetStepMatrix()`, `MMContactSetStepMatrix()`
-@*/
-PetscErrorCode MMNewmarkGetStepMatrix(MMNewmark nm, PetscReal dt, MMStepMatrix *sm)
-{
-  PetscFunctionBeginUser;
-  if (nm->material->finite) PetscCall(MMNonlinearStepMatrix(nm, dt, sm));
-  else PetscCall(MMDampingGetStepMatrix(&nm->damping, nm->op->K, dt, sm));
-  PetscFunctionReturn(0);
-}
-
 /* b_nl = M* (4/dt^2 u^n + 4/dt v^n) + L^n + L^{n+1} - r^n (= + f_c^n, the stored reaction), and the step's force scale: the largest of
  * |L^n + L^{n+1}|, |r^n| and 2/dt |M* v^n| (the force that would stop the body in one step), so that a
  * body in free flight, whose internal force is zero, still has a scale for its residual */

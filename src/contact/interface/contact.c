@@ -215,11 +215,28 @@ PetscErrorCode MMContactSetStepMatrix(MMContact ct, const MMStepMatrix *sm)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMContactSetPreviousState(MMContact ct, Vec u_old, Vec v_old)
+/* The step's offset and scale from the stepper (include/contact.h): the trapezoidal scheme is the
+ * stepper's, and contact takes the tangential bounds and slip velocities from these alone. */
+PetscErrorCode MMContactSetStepOffset(MMContact ct, const MMStepOffset *so)
 {
   PetscFunctionBeginUser;
-  ct->u_old = u_old;
-  ct->v_old = v_old;
+  ct->step = *so;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMContactGetStepOffset(MMContact ct, MMStepOffset *so)
+{
+  PetscFunctionBeginUser;
+  *so = ct->step;
+  PetscFunctionReturn(0);
+}
+
+/* sigma = the velocity of w over the step, as the stepper computes it */
+PetscErrorCode MMContactStepVelocity(MMContact ct, Vec w, Vec sigma)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(ct->step.velocity, PetscObjectComm((PetscObject)w), PETSC_ERR_ORDER, "The stepper has not handed contact the step's offset (MMContactSetStepOffset)");
+  PetscCall((*ct->step.velocity)(ct->step.ctx, w, sigma));
   PetscFunctionReturn(0);
 }
 

@@ -84,21 +84,21 @@ PetscErrorCode MMContactCornersSetUpVecs(MMContact ct)
   PetscFunctionReturn(0);
 }
 
-/* The second rows' right-hand side, q_2 = T2 z_c - offset_2 with offset_2 = (g_2, T2 (u^n + dt/2
- * v^n) + dt/2 V_2.tau'), as CondensedRHS does for the first (docs/method.md section 12), and their
- * warm start r_2 from the last solve. row: each condensed slot's local dof. */
+/* The second rows' right-hand side, q_2 = T2 z_c - offset_2 with offset_2 = (g_2, T2 o + dt/2
+ * V_2.tau'), o = u^n + dt/2 v^n the step's offset (MMContactSetStepOffset), as CondensedRHS does for
+ * the first (docs/method.md section 12), and their warm start r_2 from the last solve. row: each
+ * condensed slot's local dof. */
 PetscErrorCode MMContactCornersRHS(MMContact ct, const PetscInt row[])
 {
   const PetscInt     dim = ct->op->dim;
-  const PetscScalar *za, *ua, *va;
+  const PetscScalar *za, *sa;
   PetscScalar       *qa, *xa;
 
   PetscFunctionBeginUser;
   if (!ct->n_fc) PetscFunctionReturn(0);
   PetscCall(MMContactCornersSetUpVecs(ct));
   PetscCall(VecGetArrayRead(ct->z, &za));
-  PetscCall(VecGetArrayRead(ct->u_old, &ua));
-  PetscCall(VecGetArrayRead(ct->v_old, &va));
+  PetscCall(VecGetArrayRead(ct->step.offset, &sa));
   PetscCall(VecGetArray(ct->fc_q, &qa));
   PetscCall(VecGetArray(ct->fc_x, &xa));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
@@ -107,7 +107,7 @@ PetscErrorCode MMContactCornersRHS(MMContact ct, const PetscInt row[])
     for (PetscInt c = 0; c < dim; ++c) {
       const PetscInt i = row[dim * k + c];
       z[c] = PetscRealPart(za[i]);
-      o[c] = PetscRealPart(ua[i] + 0.5 * ct->Kt_dt * va[i]);
+      o[c] = PetscRealPart(sa[i]);
     }
     ApplyT2(dim, &ct->fc_ab[2 * k], z, Tz);
     ApplyT2(dim, &ct->fc_ab[2 * k], o, To);
@@ -117,8 +117,7 @@ PetscErrorCode MMContactCornersRHS(MMContact ct, const PetscInt row[])
   }
   PetscCall(VecRestoreArray(ct->fc_x, &xa));
   PetscCall(VecRestoreArray(ct->fc_q, &qa));
-  PetscCall(VecRestoreArrayRead(ct->v_old, &va));
-  PetscCall(VecRestoreArrayRead(ct->u_old, &ua));
+  PetscCall(VecRestoreArrayRead(ct->step.offset, &sa));
   PetscCall(VecRestoreArrayRead(ct->z, &za));
   PetscFunctionReturn(0);
 }

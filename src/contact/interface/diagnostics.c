@@ -83,8 +83,9 @@ static PetscReal RowResidual(const RowState *rs, PetscInt dim, PetscReal h_c, Pe
 /* A friction corner's second obstacle (docs/method.md section 12): its row state from the node's
  * w (its frame components), its slip sigma = 2/dt (w - u^n) - v^n (the one its law is solved with:
  * the node's normal velocity is the massless dofs' backward difference in v, not this) and r_2;
- * its force on the obstacle added to fob. uo, vo: u^n, v^n at the node (NULL at t = 0: v). */
-static void SecondObstacleRow(MMContact ct, PetscInt k, const PetscScalar w[], const PetscScalar v[], const PetscScalar uo[], const PetscScalar vo[], PetscReal fob[], RowState *rs)
+ * its force on the obstacle added to fob. sg: sigma at the node, the stepper's velocity of w
+ * (MMContactStepVelocity; NULL before the stepper hands it: v). */
+static void SecondObstacleRow(MMContact ct, PetscInt k, const PetscScalar w[], const PetscScalar v[], const PetscScalar sg[], PetscReal fob[], RowState *rs)
 {
   const PetscInt   dim = ct->op->dim;
   const PetscReal *r2  = &ct->fc_r[dim * k], dt = ct->Kt_dt;
@@ -93,7 +94,7 @@ static void SecondObstacleRow(MMContact ct, PetscInt k, const PetscScalar w[], c
   MMContactCornerFrame2(dim, &ct->node_frame[9 * k], &ct->fc_ab[2 * k], F2);
   MMContactCornerT2(dim, &ct->fc_ab[2 * k], T);
   PetscMemzero(rs, sizeof(*rs));
-  for (PetscInt e = 0; e < dim; ++e) sigma[e] = uo && dt > 0 ? PetscRealPart(2 / dt * (w[e] - uo[e]) - vo[e]) : PetscRealPart(v[e]);
+  for (PetscInt e = 0; e < dim; ++e) sigma[e] = sg ? PetscRealPart(sg[e]) : PetscRealPart(v[e]);
   for (PetscInt e = 0; e < dim; ++e) rs->un += T[0][e] * PetscRealPart(w[e]);
   rs->g        = ct->fc_gap[k];
   rs->r        = r2[0];
@@ -121,7 +122,8 @@ static PetscErrorCode ContactStatistics(MMContact ct, PetscReal t, Vec w, Vec re
   const PetscReal    vtol = 1e-9 * 2 * ct->h_c / dt;
   PetscInt           dim = ct->op->dim, nc = ct->n_local, cnt[4] = {0, 0, 0, 0}, rstart;
   const PetscInt    *in;
-  const PetscScalar *wa, *fa, *ga, *va, *ra = NULL, *rh = NULL, *uo = NULL, *vo = NULL;
+  const PetscScalar *wa, *fa, *ga, *va, *ra = NULL, *rh = NULL, *sga = NULL;
+  Vec                sigma2 = NULL; /* friction corners: the velocity of w over the step, for their second rows */
   const PetscInt     nr = ct->ncomp;
   PetscReal          sums[1 + MM_MAX_DIM] = {0, 0, 0, 0}, loc[4] = {0, 0, 0, 0}, rmax = 0, fscale;
   MPI_Comm           comm = PetscObjectComm((PetscObject)ct->op->dm);
@@ -139,9 +141,10 @@ static PetscErrorCode ContactStatistics(MMContact ct, PetscReal t, Vec w, Vec re
   PetscCall(VecGetArrayRead(react, &fa));
   PetscCall(VecGetArrayRead(sigma, &va));
   PetscCall(VecGetArrayRead(ct->gap, &ga));
-  if (ct->n_fc) {
-    PetscCall(VecGetArrayRead(ct->u_old, &uo));
-    PetscCall(VecGetArrayRead(ct->v_old, &vo));
+  if (ct->n_fc && ct->step.velocity && dt > 0) {
+    PetscCall(VecDuplicate(w, &sigma2));
+    PetscCall(MMContactStepVelocity(ct, w, sigma2));
+    PetscCall(VecGetArrayRead(sigma2, &sga));
   }
   if (nr > 1) {
     PetscCall(VecGetArrayRead(ct->rho, &ra));
@@ -202,7 +205,7 @@ static PetscErrorCode ContactStatistics(MMContact ct, PetscReal t, Vec w, Vec re
     if (corner) {
       RowState rs2;
       PetscReal res2;
-      SecondObstacleRow(ct, k, &wa[i], &va[i], uo ? &uo[i] : NULL, vo ? &vo[i] : NULL, fob, &rs2);
+      SecondObstacleRow(ct, k, &wa[i], &va[i], sga ? &sga[i] : NULL, fob, &rs2);
       res2 = RowResidual(&rs2, dim, ct->h_c, dt, fscale, vtol, cnt); /* once: it counts (PetscMax evaluates twice) */
       res  = PetscMax(res, res2);
       sums[0] += rs2.r;
@@ -228,8 +231,8 @@ static PetscErrorCode ContactStatistics(MMContact ct, PetscReal t, Vec w, Vec re
     PetscCall(VecRestoreArrayRead(ct->rho_hi, &rh));
   }
   PetscCall(VecRestoreArrayRead(ct->gap, &ga));
-  if (uo) PetscCall(VecRestoreArrayRead(ct->u_old, &uo));
-  if (vo) PetscCall(VecRestoreArrayRead(ct->v_old, &vo));
+  if (sigma2) PetscCall(VecRestoreArrayRead(sigma2, &sga));
+  PetscCall(VecDestroy(&sigma2));
   PetscCall(VecRestoreArrayRead(ct->mu, &mua));
   /* the obstacle forces are recorded for accepted steps only: no reduction inside the friction loop */
   if (record_switches) PetscCall(MPIU_Allreduce(fob, ct->force_obstacle, MM_MAX_DIM * nob, MPIU_REAL, MPIU_SUM, comm));

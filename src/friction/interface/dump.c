@@ -70,11 +70,13 @@ PetscErrorCode MMFrictionDump(MMFriction fr, const MMCoulombProblem *p, const Pe
   herr_t          st = 0;
   hsize_t         dW[2] = {(hsize_t)m, (hsize_t)m}, dq = (hsize_t)m, dmu = (hsize_t)p->n;
   MMContactNodes  cn;
+  MMStepOffset    so;
 
   PetscFunctionBeginUser;
   PetscCall(MMContactGetNodes(fr->contact, &cn));
+  PetscCall(MMContactGetStepOffset(fr->contact, &so));
   dt    = cn.dt;
-  scale = 2.0 / dt;
+  scale = so.scale; /* 2/dt: the FCLib form's velocities from our displacements */
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   if (rank || !m) PetscFunctionReturn(0);
   PetscCall(PetscMalloc5((size_t)m * m, &W, m, &q, p->n, &mu, m, &r, m, &r0));

@@ -28,24 +28,13 @@ PetscErrorCode MMFrictionRegisterAll(void)
   PetscFunctionReturn(0);
 }
 
-/* sigma = 2/dt (w - u^n) - v^n: the velocity of w; on the tangential contact dofs, the slip velocity. */
-static PetscErrorCode SlipVelocity(MMFriction fr, Vec w, Vec sigma)
-{
-  MMContactNodes cn;
-
-  PetscFunctionBeginUser;
-  PetscCall(MMContactGetNodes(fr->contact, &cn));
-  PetscCall(VecWAXPY(sigma, -1.0, fr->u_old, w));
-  PetscCall(VecAXPBY(sigma, -1.0, 2.0 / cn.dt, fr->v_old));
-  PetscFunctionReturn(0);
-}
-
 /* The discrete Coulomb residual of the iterate (docs/method.md section 6): the audit every type's
  * answer must pass, whatever its own stopping test. */
 PetscErrorCode MMFrictionCoulombResidual(MMFriction fr, PetscReal *coulomb, PetscInt *nslip, PetscInt *nstick)
 {
   PetscFunctionBeginUser;
-  PetscCall(SlipVelocity(fr, fr->w, fr->sigma));
+  /* sigma: the velocity of w over the step, the stepper's; on the tangential contact dofs, the slip velocity */
+  PetscCall(MMContactStepVelocity(fr->contact, fr->w, fr->sigma));
   PetscCall(MMContactCoulomb(fr->contact, fr->time, fr->w, fr->react, fr->sigma, coulomb, nslip, nstick));
   PetscFunctionReturn(0);
 }
@@ -220,9 +209,9 @@ PetscErrorCode MMFrictionGetCoulombTolerance(MMFriction fr, PetscReal *tol)
 /* The solver for the contact ct: its type (-friction_type, or the default the formulation calls
  * for), the shell SNES, and the first thresholds from the initial reactions react. mu_max: the
  * largest friction coefficient (0: frictionless, the contact solve alone); E_max: the largest
- * Young's modulus (the force scale); u_old, v_old: the step's start, borrowed (the stepper updates
- * them in place). */
-PetscErrorCode MMFrictionSetUp(MMFriction fr, MMContact ct, PetscReal mu_max, PetscReal E_max, Vec u_old, Vec v_old, Vec react)
+ * Young's modulus (the force scale); react: the initial reactions (w-frame). The slip velocities are
+ * the stepper's velocities of w, through contact (MMContactStepVelocity). */
+PetscErrorCode MMFrictionSetUp(MMFriction fr, MMContact ct, PetscReal mu_max, PetscReal E_max, Vec react)
 {
   PetscErrorCode (*create)(MMFriction) = NULL;
   PetscBool      has, dofs;
@@ -234,8 +223,6 @@ PetscErrorCode MMFrictionSetUp(MMFriction fr, MMContact ct, PetscReal mu_max, Pe
   PetscCall(MMContactGetNodes(ct, &cn));
   PetscCall(MMContactGetSolverText(ct, &formulation, &choice, &products));
   fr->contact = ct;
-  fr->u_old   = u_old;
-  fr->v_old   = v_old;
   fr->s_floor = mu_max * 1e-3 * E_max * PetscPowReal(cn.h_c, cn.dim - 1);
   PetscCall(MMContactHasDelassus(ct, &has));
   PetscCall(MMContactHasCoulombDofs(ct, &dofs));
@@ -262,7 +249,7 @@ PetscErrorCode MMFrictionSetUp(MMFriction fr, MMContact ct, PetscReal mu_max, Pe
   PetscCall(VecDuplicate(cn.gap, &fr->s));
   PetscCall(VecDuplicate(cn.gap, &fr->s_new));
   PetscCall(VecZeroEntries(fr->s_new));
-  PetscCall(VecDuplicate(u_old, &fr->sigma));
+  PetscCall(VecDuplicate(react, &fr->sigma));
   /* the first thresholds of a threshold loop: mu times the initial normal reactions */
   {
     Vec rn;

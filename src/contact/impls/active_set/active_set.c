@@ -247,9 +247,8 @@ PetscErrorCode MMActiveSetSetThresholds(MMContact ct, Vec s)
 typedef struct {
   PetscInt           dim, nt, ncomp, rstart;
   const PetscInt    *in;    /* normal dof of each contact node; its tangential dofs follow */
-  const PetscScalar *g, *s, *uo, *vo, *c;
-  const PetscReal   *slide; /* per node and tangent: dt/2 times the obstacle's tangential velocity */
-  PetscReal          half_dt;
+  const PetscScalar *g, *s, *off, *c; /* off: the step's offset u^n + dt/2 v^n (MMContactSetStepOffset) */
+  const PetscReal   *slide;            /* per node and tangent: dt/2 times the obstacle's tangential velocity */
 } NodeData;
 
 static PetscErrorCode NodeDataGet(MMContact ct, NodeData *nd)
@@ -259,14 +258,12 @@ static PetscErrorCode NodeDataGet(MMContact ct, NodeData *nd)
   nd->dim     = ct->op->dim;
   nd->nt      = ct->ncomp > 1 ? nd->dim - 1 : 0; /* tangential dofs with friction */
   nd->ncomp   = ct->ncomp;
-  nd->half_dt = 0.5 * ct->Kt_dt;
   nd->slide   = ct->slide_ref;
   PetscCall(VecGetOwnershipRange(ct->qp.b, &nd->rstart, NULL));
   PetscCall(ISGetIndices(ct->is_normal, &nd->in));
   PetscCall(VecGetArrayRead(ct->gap, &nd->g));
   PetscCall(VecGetArrayRead(MMActiveSetData(ct)->s, &nd->s));
-  PetscCall(VecGetArrayRead(ct->u_old, &nd->uo));
-  PetscCall(VecGetArrayRead(ct->v_old, &nd->vo));
+  PetscCall(VecGetArrayRead(ct->step.offset, &nd->off));
   PetscCall(VecGetArrayRead(MMActiveSetData(ct)->ct_diag, &nd->c));
   PetscFunctionReturn(0);
 }
@@ -276,19 +273,18 @@ static PetscErrorCode NodeDataRestore(MMContact ct, NodeData *nd)
 
   PetscFunctionBeginUser;
   PetscCall(VecRestoreArrayRead(MMActiveSetData(ct)->ct_diag, &nd->c));
-  PetscCall(VecRestoreArrayRead(ct->v_old, &nd->vo));
-  PetscCall(VecRestoreArrayRead(ct->u_old, &nd->uo));
+  PetscCall(VecRestoreArrayRead(ct->step.offset, &nd->off));
   PetscCall(VecRestoreArrayRead(MMActiveSetData(ct)->s, &nd->s));
   PetscCall(VecRestoreArrayRead(ct->gap, &nd->g));
   PetscCall(ISRestoreIndices(ct->is_normal, &nd->in));
   PetscFunctionReturn(0);
 }
 
-/* off_t = u_t^n + dt/2 (v_t^n + V_t): w_t - off_t is dt/2 times the slip velocity relative to the
- * obstacle, V its velocity (impls/condensed/). */
+/* off_t = u_t^n + dt/2 (v_t^n + V_t), the step's offset plus the obstacle's sliding: w_t - off_t is
+ * dt/2 times the slip velocity relative to the obstacle, V its velocity (impls/condensed/). */
 static inline PetscReal Offset(const NodeData *nd, PetscInt k, PetscInt i, PetscInt j)
 {
-  return PetscRealPart(nd->uo[i + 1 + j]) + nd->half_dt * PetscRealPart(nd->vo[i + 1 + j]) + nd->slide[k * (nd->dim - 1) + j];
+  return PetscRealPart(nd->off[i + 1 + j]) + nd->slide[k * (nd->dim - 1) + j];
 }
 
 /* The linear problem of the current sets: x0 = w with the fixed dofs at their values (g, off_t),

@@ -8,8 +8,9 @@
  * is w = z - K~^{-1} E rho for contact reactions rho = (lambda_n, -t): lambda_n >= 0 the normal
  * reaction, t the tangential force on the body. The step problem is the box-constrained VI
  *   W rho - q  complementary to  lambda_n >= 0,  |rho_t| <= s,
- * with q_n = z_n - g (the gap left) and q_t = z_t - (u_t^n + dt/2 v_t^n), which makes the
- * tangential residual -dt/2 times the slip velocity: Tresca friction with thresholds s, exactly.
+ * with q_n = z_n - g (the gap left) and q_t = z_t - (u_t^n + dt/2 v_t^n), the step's offset that
+ * the stepper hands down (MMContactSetStepOffset), which makes the tangential residual -dt/2 times
+ * the slip velocity: Tresca friction with thresholds s, exactly.
  * K~ is factored once per dt; a step costs two solves with that factor and a VI on the candidate
  * set's dofs (candidates.c), whatever the size of the contact boundary. */
 
@@ -48,30 +49,29 @@ PetscErrorCode MMCondensedCreateSolver(MMContact ct)
   PetscFunctionReturn(0);
 }
 
-/* q = z_c - offset: the gap on the normal dofs, u_t^n + dt/2 v_t^n on the tangential ones. */
+/* q = z_c - offset: the gap on the normal dofs, the step's offset u_t^n + dt/2 v_t^n (the stepper's,
+ * MMContactSetStepOffset) on the tangential ones. */
 static PetscErrorCode CondensedRHS(MMContact ct)
 {
   const PetscInt    *row = MMCondensedData(ct)->cand.cond_row, nr = ct->ncomp;
-  const PetscScalar *za, *ua, *va, *ga;
+  const PetscScalar *za, *sa, *ga;
   PetscScalar       *oa, *qa;
 
   PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(ct->z, &za));
-  PetscCall(VecGetArrayRead(ct->u_old, &ua));
-  PetscCall(VecGetArrayRead(ct->v_old, &va));
+  PetscCall(VecGetArrayRead(ct->step.offset, &sa));
   PetscCall(VecGetArrayRead(ct->gap, &ga));
   PetscCall(VecGetArray(MMCondensedData(ct)->offset, &oa));
   PetscCall(VecGetArray(MMCondensedData(ct)->q, &qa));
   for (PetscInt r = 0; r < MMCondensedData(ct)->cand.nc_local; ++r) {
     /* tangential: relative to the obstacle's own velocity (slide_ref, interface/set.c) */
-    oa[r] = r % nr ? ua[row[r]] + 0.5 * ct->Kt_dt * va[row[r]] + ct->slide_ref[(r / nr) * (nr - 1) + r % nr - 1] : ga[r / nr];
+    oa[r] = r % nr ? sa[row[r]] + ct->slide_ref[(r / nr) * (nr - 1) + r % nr - 1] : ga[r / nr];
     qa[r] = za[row[r]] - oa[r];
   }
   PetscCall(VecRestoreArray(MMCondensedData(ct)->q, &qa));
   PetscCall(VecRestoreArray(MMCondensedData(ct)->offset, &oa));
   PetscCall(VecRestoreArrayRead(ct->gap, &ga));
-  PetscCall(VecRestoreArrayRead(ct->v_old, &va));
-  PetscCall(VecRestoreArrayRead(ct->u_old, &ua));
+  PetscCall(VecRestoreArrayRead(ct->step.offset, &sa));
   PetscCall(VecRestoreArrayRead(ct->z, &za));
   PetscFunctionReturn(0);
 }

@@ -1,0 +1,73 @@
+/* The trapezoidal scheme's share of a step that the solvers beneath the stepper need (docs/developer.md,
+ * "The step's data flow"): the step's offset u^n + dt/2 v^n, the scale 2/dt and the velocity of a
+ * displacement over the step, handed to contact (and through it to friction) with the step matrix.
+ * Contact and friction never see u^n or v^n: the scheme is the stepper's alone (docs/method.md
+ * section 3). */
+#include "newmarkimpl.h"
+
+/* sigma = 2/dt (w - u^n) - v^n: the velocity of w over the step (MMStepOffset's velocity) */
+static PetscErrorCode StepVelocity(void *ctx, Vec w, Vec sigma)
+{
+  MMNewmark nm = (MMNewmark)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecWAXPY(sigma, -1.0, nm->state.u_old, w));
+  PetscCall(VecAXPBY(sigma, -1.0, nm->scheme.scale, nm->state.v_old));
+  PetscFunctionReturn(0);
+}
+
+/* offset = u^n + dt/2 v^n, entry by entry in this order: the rounding the contact rows' tangential
+ * bounds have always had (a BLAS axpy may fuse the multiply and the add) */
+static PetscErrorCode StepOffset(MMNewmark nm, PetscReal dt)
+{
+  const PetscScalar *ua, *va;
+  PetscScalar       *oa;
+  PetscInt           n;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(nm->scheme.offset, &n));
+  PetscCall(VecGetArrayRead(nm->state.u_old, &ua));
+  PetscCall(VecGetArrayRead(nm->state.v_old, &va));
+  PetscCall(VecGetArrayWrite(nm->scheme.offset, &oa));
+  for (PetscInt i = 0; i < n; ++i) oa[i] = ua[i] + 0.5 * dt * va[i];
+  PetscCall(VecRestoreArrayWrite(nm->scheme.offset, &oa));
+  PetscCall(VecRestoreArrayRead(nm->state.v_old, &va));
+  PetscCall(VecRestoreArrayRead(nm->state.u_old, &ua));
+  PetscFunctionReturn(0);
+}
+
+/* Before any contact solve: the offset of a state at rest at the origin (u^n = v^n = 0 until the
+ * first step saves its start), no scale yet (MMNewmarkSetStep gives it with the first dt). */
+PetscErrorCode MMNewmarkSchemeSetUp(MMNewmark nm)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(nm->state.u, &nm->scheme.offset));
+  PetscCall(VecZeroEntries(nm->scheme.offset));
+  nm->scheme.scale    = 0;
+  nm->scheme.velocity = StepVelocity;
+  nm->scheme.ctx      = nm;
+  PetscCall(MMContactSetStepOffset(nm->contact, &nm->scheme));
+  PetscFunctionReturn(0);
+}
+
+/* The step of dt handed to contact: its matrix (the law's, MMNewmarkGetStepMatrix), and the offset
+ * and scale of the step from the saved start u^n, v^n. At each try of a step, and once at set-up. */
+PetscErrorCode MMNewmarkSetStep(MMNewmark nm, PetscReal dt)
+{
+  MMStepMatrix sm;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMNewmarkGetStepMatrix(nm, dt, &sm));
+  PetscCall(MMContactSetStepMatrix(nm->contact, &sm));
+  PetscCall(StepOffset(nm, dt));
+  nm->scheme.scale = 2.0 / dt;
+  PetscCall(MMContactSetStepOffset(nm->contact, &nm->scheme));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMNewmarkSchemeDestroy(MMNewmark nm)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecDestroy(&nm->scheme.offset));
+  PetscFunctionReturn(0);
+}

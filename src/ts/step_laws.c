@@ -1,0 +1,88 @@
+/* The step's laws: what the linear and the finite-strain steps do differently in TSStep_Newmark's one
+ * skeleton (newmark.c), as an ops table, as the elasticity laws have theirs (src/fem/elasticity_laws.c).
+ * The linear law's step is one contact (and friction) solve of K~ w = b with the trapezoidal
+ * right-hand side (docs/method.md section 3); the finite-strain law's is the iteration of
+ * nonlinear.c (docs/method.md section 13), whose frames and pairs follow the body at the step's
+ * start. The table is chosen once, at set-up (MMNewmarkSetUp). */
+#include "newmarkimpl.h"
+#include "friction.h"
+
+/* b = L(t^{n+1}) - lift(t^{n+1}) + M* (4/dt^2 u^n + 4/dt v^n + a^n) [+ C (2/dt u^n + vC^n) with damping] */
+static PetscErrorCode StepRHS(MMNewmark nm, PetscReal dt, Vec b)
+{
+  MMState *s = &nm->state;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecAXPBYPCZ(s->work, 4.0 / (dt * dt), 4.0 / dt, 0.0, s->u, s->v));
+  PetscCall(VecAXPY(s->work, 1.0, s->a));
+  PetscCall(MatMult(nm->op->Mstar, s->work, b));
+  PetscCall(VecAXPY(b, 1.0, nm->op->load));
+  PetscCall(VecAXPY(b, -1.0, nm->op->lift));
+  PetscCall(MMDampingAddStepRHS(&nm->damping, s->u, dt, b));
+  PetscFunctionReturn(0);
+}
+
+/* K~ = K + 2 beta/dt B + (4/dt^2 + 2 alpha/dt) M* (damping.c) */
+static PetscErrorCode LinearStepMatrix(MMNewmark nm, PetscReal dt, MMStepMatrix *sm)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMDampingGetStepMatrix(&nm->damping, nm->op->K, dt, sm));
+  PetscFunctionReturn(0);
+}
+
+/* b completed with the step's right-hand side, and the one contact (and friction) solve */
+static PetscErrorCode LinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b, Vec w, PetscBool *solved)
+{
+  PetscFunctionBeginUser;
+  (void)t0;
+  PetscCall(StepRHS(nm, dt, b));
+  PetscCall(MMFrictionSolve(nm->friction, nm->hist.step, nm->hist.time, b, w, nm->state.react, solved));
+  PetscFunctionReturn(0);
+}
+
+/* The contact frames of the nodes near a curved obstacle follow their contact point (docs/method.md
+ * section 8), then the contact pairs' large-sliding pairing */
+static PetscErrorCode FiniteBegin(MMNewmark nm, PetscReal t, PetscReal dt)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMNonlinearFollowFrames(nm, t, dt));
+  PetscCall(MMNonlinearSlidePairs(nm, dt));
+  PetscFunctionReturn(0);
+}
+
+static const MMStepLawOps LinearLaw = {.begin = NULL, .stepmatrix = LinearStepMatrix, .solve = LinearSolve, .failure = MM_REJECT_FRICTION};
+static const MMStepLawOps FiniteLaw = {.begin = FiniteBegin, .stepmatrix = MMNonlinearStepMatrix, .solve = MMNonlinearSolve, .failure = MM_REJECT_NONLINEAR};
+
+/* The step's law of the elasticity law: the finite-strain step for the finite-strain laws */
+const MMStepLawOps *MMStepLawGetOps(const MMMaterial *material)
+{
+  return material->finite ? &FiniteLaw : &LinearLaw;
+}
+
+/*@
+  MMNewmarkGetStepMatrix - Computes the coefficients of the step matrix K~ = ck K + cb B + cm M* for
+  dt, as each step builds it
+
+  Not collective
+
+  Input Parameters:
++ nm - the stepper's context
+- dt - the time step
+
+  Output Parameter:
+. sm - the coefficients, B and the stiffness in K~ (NULL: fem's K)
+
+  Note:
+  The step law's stepmatrix op: with a finite-strain law the iteration matrix (K_s, the tangent of a
+  restart's checkpoint too), else the (damped) K~
+
+  Level: intermediate
+
+.seealso: `MMDampingGetStepMatrix()`, `MMContactSetStepMatrix()`
+@*/
+PetscErrorCode MMNewmarkGetStepMatrix(MMNewmark nm, PetscReal dt, MMStepMatrix *sm)
+{
+  PetscFunctionBeginUser;
+  PetscCall((*nm->law->stepmatrix)(nm, dt, sm));
+  PetscFunctionReturn(0);
+}
