@@ -34,12 +34,7 @@ typedef enum {
 typedef struct {
   char         mesh_file[PETSC_MAX_PATH_LEN];
   char         contact_name[256];
-  PetscInt     n_dirichlet, n_traction;
-  MMDirichlet *dirichlet;
-  MMTraction  *traction;
-  PetscInt      n_pressure, n_point_force; /* -pressure and -point_force (src/fem/loads_nodal.c) */
-  MMPressure   *pressure;
-  MMPointForce *point_force;
+  MMLoadGroups loads;               /* -dirichlet, -traction, -pressure, -point_force: fem's reader */
   PetscReal    E, nu, rho;
   MMElasticityType elasticity; /* -elasticity */
   PetscInt     n_bodies;            /* -bodies, 0 without it: one body, the whole mesh, of -E -nu -rho -v0 */
@@ -62,6 +57,7 @@ typedef struct {
   PetscInt     n_rigid;             /* -obstacles, or the one plane of -obstacle_point/_normal (0 with pairs alone) */
   MMObstacle  *obstacles;
   PetscBool    obstacles_named;     /* -obstacles was given */
+  char         obstacle_list[PETSC_MAX_PATH_LEN], pair_list[PETSC_MAX_PATH_LEN]; /* -obstacles, -contact_pairs */
   PetscReal    mu_max;              /* the largest friction coefficient of the obstacles */
 } MMOptions;
 

@@ -38,271 +38,6 @@ static PetscErrorCode OptionsVector(PetscOptionItems *PetscOptionsObject, MPI_Co
   PetscFunctionReturn(0);
 }
 
-/* Splits a comma-separated list of physical names into a freshly allocated array. PetscStrToArray
- * would skip an empty name ("floor,,wall"), a typo that would drop an obstacle or a boundary. */
-static PetscErrorCode SplitNames(MPI_Comm comm, const char option[], const char list[], PetscInt *n, char ***names)
-{
-  int    argc;
-  size_t len = strlen(list);
-
-  PetscFunctionBeginUser;
-  *n     = 0;
-  *names = NULL;
-  if (!list[0]) PetscFunctionReturn(0);
-  PetscCheck(list[0] != ',' && list[len - 1] != ',' && !strstr(list, ",,"), comm, PETSC_ERR_USER_INPUT, "%s %s has an empty name: give the names separated by single commas", option, list);
-  for (const char *p = list; *p; ++p) PetscCheck(*p != ' ' && *p != '\t', comm, PETSC_ERR_USER_INPUT, "%s \"%s\" has a blank: give the names separated by commas, without blanks", option, list);
-  PetscCall(PetscStrToArray(list, ',', &argc, names));
-  *n = argc;
-  /* a name given twice would make two objects of one name (two force columns, two bodies) */
-  for (PetscInt b = 0; b < *n; ++b)
-    for (PetscInt a = 0; a < b; ++a) {
-      PetscBool same;
-      PetscCall(PetscStrcmp((*names)[a], (*names)[b], &same));
-      PetscCheck(!same, comm, PETSC_ERR_USER_INPUT, "%s %s names %s twice", option, list, (*names)[b]);
-    }
-  PetscFunctionReturn(0);
-}
-
-/* A later amplitude replaces an earlier one, as a later value of one option replaces an earlier
- * value: -gravity_amplitude table on the command line over an options file's -gravity_amplitude
- * ramp and -gravity_amplitude_time 0.1 drops that time, which belonged to the ramp. Data given after
- * the kind, or with it in no order, stay and are checked against it (src/fem/loads.c). A table
- * given after the kind replaces the kind. */
-static PetscErrorCode DropReplacedAmplitudeData(const char prefix[], PetscBool *kind_set, MMAmplitudeOptions *a)
-{
-  char      kind[512], time[512], table[512];
-  PetscInt  table_vs_kind = 0, time_vs_kind = 0, time_vs_table = 0;
-  PetscBool is_table, timed;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(kind, sizeof(kind), "%s_amplitude", prefix));
-  PetscCall(PetscSNPrintf(time, sizeof(time), "%s_amplitude_time", prefix));
-  PetscCall(PetscSNPrintf(table, sizeof(table), "%s_amplitude_table", prefix));
-  if (*kind_set && a->table[0]) PetscCall(MMOptionsOrder(table, kind, &table_vs_kind));
-  if (table_vs_kind > 0) *kind_set = PETSC_FALSE; /* the table came last: the table kind */
-  PetscCall(PetscStrcmp(a->kind, "table", &is_table));
-  if (*kind_set && !is_table && a->table[0] && table_vs_kind < 0) a->table[0] = 0; /* a table replaced by a later kind */
-  timed = (PetscBool)(*kind_set && !is_table && strcmp(a->kind, "constant"));
-  if (a->time_set && !timed) {
-    if (*kind_set) PetscCall(MMOptionsOrder(time, kind, &time_vs_kind));
-    else if (a->table[0]) PetscCall(MMOptionsOrder(time, table, &time_vs_table));
-    if (time_vs_kind < 0 || time_vs_table < 0) a->time_set = PETSC_FALSE; /* the time of a replaced ramp or halfsine */
-  }
-  PetscFunctionReturn(0);
-}
-
-/* The amplitude in time of a load, PREFIX_amplitude KIND, PREFIX_amplitude_time T and
- * PREFIX_amplitude_table FILE (docs/method.md section 10); the kinds and their data are checked in
- * src/fem/loads.c, where they are registered. A table given alone means the table kind. */
-static PetscErrorCode ProcessAmplitude(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char prefix[], MMAmplitudeOptions *a)
-{
-  char      key[512];
-  PetscBool set;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscStrncpy(a->kind, "constant", sizeof(a->kind)));
-  PetscCall(PetscSNPrintf(key, sizeof(key), "%s_amplitude", prefix));
-  PetscCall(OptionsString(PetscOptionsObject, comm, key, "Amplitude in time multiplying this load: constant (1, the default), ramp (0 at t = 0 to 1 at _amplitude_time, then 1), halfsine (sin(pi t/T) for t in [0, T], then 0) or table (_amplitude_table)", a->kind, sizeof(a->kind), &set));
-  PetscCall(PetscSNPrintf(key, sizeof(key), "%s_amplitude_time", prefix));
-  PetscCall(MMOptionsCheckValue(comm, key, MM_VALUE_REAL));
-  PetscCall(PetscOptionsReal(key, "The time T of the ramp or halfsine amplitude, > 0", NULL, a->time, &a->time, &a->time_set));
-  PetscCall(CheckFinite(comm, key, &a->time, 1));
-  a->table[0] = 0;
-  PetscCall(PetscSNPrintf(key, sizeof(key), "%s_amplitude_table", prefix));
-  PetscCall(OptionsString(PetscOptionsObject, comm, key, "Two-column CSV file of the table amplitude: time,factor per line, times increasing, interpolated linearly and constant beyond the ends", a->table, sizeof(a->table), NULL));
-  PetscCall(DropReplacedAmplitudeData(prefix, &set, a));
-  if (!set && a->table[0]) PetscCall(PetscStrncpy(a->kind, "table", sizeof(a->kind)));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode ProcessDirichlet(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt, const char list[])
-{
-  char   **names;
-  PetscInt n;
-
-  PetscFunctionBeginUser;
-  PetscCall(SplitNames(comm, "-dirichlet", list, &n, &names));
-  opt->n_dirichlet = n;
-  PetscCall(PetscCalloc1(n, &opt->dirichlet));
-  for (PetscInt b = 0; b < n; ++b) {
-    MMDirichlet *bc = &opt->dirichlet[b];
-    char         key[512];
-    PetscInt     nc = MM_MAX_DIM + 1, comps[MM_MAX_DIM + 1];
-    PetscBool    set;
-
-    PetscCall(PetscStrallocpy(names[b], &bc->name));
-    /* default: a clamp, fixing every component to zero */
-    bc->ncomp = -1;
-    PetscCall(PetscSNPrintf(key, sizeof(key), "-dirichlet_%s_components", bc->name));
-    PetscCall(MMOptionsCheckValue(comm, key, MM_VALUE_INT));
-    PetscCall(PetscOptionsIntArray(key, "Displacement components fixed on this Dirichlet boundary (0=x,1=y,2=z), each at most once; default all (a clamp)", NULL, comps, &nc, &set));
-    if (set) {
-      PetscCheck(nc <= MM_MAX_DIM, comm, PETSC_ERR_USER_INPUT, "%s lists %" PetscInt_FMT " or more components; a node has at most %d", key, nc, MM_MAX_DIM);
-      bc->ncomp = nc;
-      for (PetscInt c = 0; c < nc; ++c) {
-        bc->comps[c] = comps[c];
-        for (PetscInt e = 0; e < c; ++e) PetscCheck(comps[e] != comps[c], comm, PETSC_ERR_USER_INPUT, "%s lists component %" PetscInt_FMT " twice: give each fixed component once", key, comps[c]);
-      }
-    }
-    PetscCall(PetscSNPrintf(key, sizeof(key), "-dirichlet_%s_value", bc->name));
-    PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "Displacement value of each fixed component, in the order of _components, times its _amplitude (default constant); default 0", MM_MAX_DIM, bc->values, &bc->nvalues));
-    PetscCall(PetscSNPrintf(key, sizeof(key), "-dirichlet_%s_velocity", bc->name));
-    PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "Constant velocity of each fixed component, in the order of _components: the boundary moves as value a(t) + velocity t; default 0", MM_MAX_DIM, bc->velocity, &bc->nvelocity));
-    PetscCall(PetscSNPrintf(key, sizeof(key), "-dirichlet_%s", bc->name));
-    PetscCall(ProcessAmplitude(PetscOptionsObject, comm, key, &bc->amplitude));
-  }
-  PetscCall(PetscStrToArrayDestroy((int)n, names));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode ProcessTraction(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt, const char list[])
-{
-  char   **names;
-  PetscInt n;
-
-  PetscFunctionBeginUser;
-  PetscCall(SplitNames(comm, "-traction", list, &n, &names));
-  opt->n_traction = n;
-  PetscCall(PetscCalloc1(n, &opt->traction));
-  for (PetscInt b = 0; b < n; ++b) {
-    MMTraction *tr = &opt->traction[b];
-    char        key[512];
-
-    PetscCall(PetscStrallocpy(names[b], &tr->name));
-    PetscCall(PetscSNPrintf(key, sizeof(key), "-traction_%s_value", names[b]));
-    PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "Traction vector (force per unit area) on this boundary, d entries, times its _amplitude", MM_MAX_DIM, tr->traction, &tr->nvalues));
-    PetscCall(PetscSNPrintf(key, sizeof(key), "-traction_%s", names[b]));
-    PetscCall(ProcessAmplitude(PetscOptionsObject, comm, key, &tr->amplitude));
-  }
-  PetscCall(PetscStrToArrayDestroy((int)n, names));
-  PetscFunctionReturn(0);
-}
-
-/* -pressure NAME,...: each a boundary group with its pressure and amplitude (src/fem/loads_nodal.c). */
-static PetscErrorCode ProcessPressure(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt, const char list[])
-{
-  char   **names;
-  PetscInt n;
-
-  PetscFunctionBeginUser;
-  PetscCall(SplitNames(comm, "-pressure", list, &n, &names));
-  opt->n_pressure = n;
-  PetscCall(PetscCalloc1(n, &opt->pressure));
-  for (PetscInt b = 0; b < n; ++b) {
-    MMPressure *pr = &opt->pressure[b];
-    char        key[512];
-
-    PetscCall(PetscStrallocpy(names[b], &pr->name));
-    PetscCall(PetscSNPrintf(key, sizeof(key), "-pressure_%s_value", names[b]));
-    PetscCall(MMOptionsCheckValue(comm, key, MM_VALUE_REAL));
-    PetscCall(PetscOptionsReal(key, "Pressure p on this boundary (force per unit area, Pa; per unit length in 2D): the traction -p n along the facets' outward normal n, p > 0 pushing in, times its _amplitude", NULL, pr->p, &pr->p, &pr->set));
-    PetscCall(CheckFinite(comm, key, &pr->p, 1));
-    PetscCheck(pr->set, comm, PETSC_ERR_USER_INPUT, "-pressure lists %s but %s is not given: give the pressure (force per unit area, > 0 pushing in), or drop %s from -pressure", names[b], key, names[b]);
-    PetscCall(PetscSNPrintf(key, sizeof(key), "-pressure_%s", names[b]));
-    PetscCall(ProcessAmplitude(PetscOptionsObject, comm, key, &pr->amplitude));
-  }
-  PetscCall(PetscStrToArrayDestroy((int)n, names));
-  PetscFunctionReturn(0);
-}
-
-/* -point_force NAME,...: each a Physical Point group with its nodal force and amplitude. */
-static PetscErrorCode ProcessPointForce(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt, const char list[])
-{
-  char   **names;
-  PetscInt n;
-
-  PetscFunctionBeginUser;
-  PetscCall(SplitNames(comm, "-point_force", list, &n, &names));
-  opt->n_point_force = n;
-  PetscCall(PetscCalloc1(n, &opt->point_force));
-  for (PetscInt b = 0; b < n; ++b) {
-    MMPointForce *pf = &opt->point_force[b];
-    char          key[512];
-
-    PetscCall(PetscStrallocpy(names[b], &pf->name));
-    PetscCall(PetscSNPrintf(key, sizeof(key), "-point_force_%s_value", names[b]));
-    PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "Force on each node of this Physical Point group (N; per unit thickness in 2D), d entries, times its _amplitude", MM_MAX_DIM, pf->force, &pf->nvalues));
-    PetscCheck(pf->nvalues >= 0, comm, PETSC_ERR_USER_INPUT, "-point_force lists %s but %s is not given: give the force fx,fy[,fz] on each node of the group, or drop %s from -point_force", names[b], key, names[b]);
-    PetscCall(PetscSNPrintf(key, sizeof(key), "-point_force_%s", names[b]));
-    PetscCall(ProcessAmplitude(PetscOptionsObject, comm, key, &pf->amplitude));
-  }
-  PetscCall(PetscStrToArrayDestroy((int)n, names));
-  PetscFunctionReturn(0);
-}
-
-/* One named obstacle of -obstacles: its type and every shape parameter (each type checks the ones
- * it needs, and refuses the others, in MMObstacleCheck once the dimension is known). */
-static PetscErrorCode ProcessObstacle(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt, MMObstacle *ob)
-{
-  char      key[512], type[32] = "plane", side[32] = "outside", types[128], help[256];
-  PetscBool set;
-
-  PetscFunctionBeginUser;
-  PetscCall(MMObstacleTypesList(types, sizeof(types)));
-  PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_type", ob->name));
-  PetscCall(PetscSNPrintf(help, sizeof(help), "Shape of this obstacle: %s (default plane)", types));
-  PetscCall(OptionsString(PetscOptionsObject, comm, key, help, type, sizeof(type), NULL));
-  PetscCall(MMObstacleSetType(ob, comm, type));
-  PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_point", ob->name));
-  PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "plane: a point of the plane; cylinder: a point on the axis; d entries", MM_MAX_DIM, ob->point, &ob->npoint));
-  PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_normal", ob->name));
-  PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "plane: normal pointing out of the obstacle, towards the body (normalized), d entries", MM_MAX_DIM, ob->normal, &ob->nnormal));
-  PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_center", ob->name));
-  PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "sphere, circle: the centre, d entries", MM_MAX_DIM, ob->center, &ob->ncenter));
-  PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_axis", ob->name));
-  PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "cylinder: the axis direction (normalized), 3 entries", MM_MAX_DIM, ob->axis, &ob->naxis));
-  PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_radius", ob->name));
-  PetscCall(MMOptionsCheckValue(comm, key, MM_VALUE_REAL));
-  PetscCall(PetscOptionsReal(key, "sphere, circle, cylinder: the radius, > 0", NULL, ob->radius, &ob->radius, &ob->radius_set));
-  PetscCall(CheckFinite(comm, key, &ob->radius, 1));
-  PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_side", ob->name));
-  PetscCall(OptionsString(PetscOptionsObject, comm, key, "sphere, circle, cylinder: outside (the body outside the shape: a bump) or inside (the body inside it: a bowl, a rail, a cavity)", side, sizeof(side), &set));
-  {
-    PetscBool out, in;
-    PetscCall(PetscStrcmp(side, "outside", &out));
-    PetscCall(PetscStrcmp(side, "inside", &in));
-    PetscCheck(out || in, comm, PETSC_ERR_USER_INPUT, "%s %s: use outside or inside", key, side);
-    ob->inside = in;
-  }
-  ob->mu = opt->mu;
-  PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_mu", ob->name));
-  PetscCall(OptionsReal(PetscOptionsObject, comm, key, "Coulomb friction coefficient against this obstacle, >= 0 (default -mu)", &ob->mu));
-  PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_velocity", ob->name));
-  PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "Constant translation velocity of the obstacle between -obstacle_NAME_start and -obstacle_NAME_stop, d entries (default 0: fixed)", MM_MAX_DIM, ob->velocity, &ob->nvelocity));
-  PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_start", ob->name));
-  PetscCall(OptionsReal(PetscOptionsObject, comm, key, "Time at which the obstacle starts moving, >= 0 (default 0)", &ob->start));
-  PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_stop", ob->name));
-  PetscCall(OptionsReal(PetscOptionsObject, comm, key, "Time at which the obstacle stops, after -obstacle_NAME_start (default: never)", &ob->stop));
-  PetscFunctionReturn(0);
-}
-
-/* Contact pair p of -contact_pairs, kept after the rigid obstacles in opt->obstacles so that each
- * contact node's constraint has one index, force column and mu (docs/method.md section 11): its
- * slave and master surfaces (physical names) and its friction coefficient. */
-static PetscErrorCode ProcessPair(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt, char **names, PetscInt p)
-{
-  MMObstacle *ob = &opt->obstacles[opt->n_rigid + p];
-  char        key[512];
-  PetscBool   set;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscStrncpy(ob->name, names[p], sizeof(ob->name)));
-  PetscCall(PetscStrncpy(ob->type, "pair", sizeof(ob->type)));
-  ob->pair = PETSC_TRUE;
-  ob->stop = PETSC_MAX_REAL;
-  ob->mu   = opt->mu;
-  PetscCall(PetscSNPrintf(key, sizeof(key), "-contact_pair_%s_slave", ob->name));
-  PetscCall(OptionsString(PetscOptionsObject, comm, key, "Physical name of the pair's slave surface (a Physical Curve in 2D, Surface in 3D): its nodes carry the constraints and lose their normal mass", ob->slave, sizeof(ob->slave), &set));
-  PetscCheck(set, comm, PETSC_ERR_USER_INPUT, "Contact pair %s has no slave surface: give -contact_pair_%s_slave NAME, a physical group of the mesh (the finer of the two surfaces)", ob->name, ob->name);
-  PetscCall(PetscSNPrintf(key, sizeof(key), "-contact_pair_%s_master", ob->name));
-  PetscCall(OptionsString(PetscOptionsObject, comm, key, "Physical name of the pair's master surface: the facets the slave nodes are projected on", ob->master, sizeof(ob->master), &set));
-  PetscCheck(set, comm, PETSC_ERR_USER_INPUT, "Contact pair %s has no master surface: give -contact_pair_%s_master NAME, a physical group of the mesh on the other body", ob->name, ob->name);
-  PetscCall(PetscSNPrintf(key, sizeof(key), "-contact_pair_%s_mu", ob->name));
-  PetscCall(OptionsReal(PetscOptionsObject, comm, key, "Coulomb friction coefficient between the pair's surfaces, >= 0 (default -mu)", &ob->mu));
-  PetscCheck(ob->mu >= 0, comm, PETSC_ERR_USER_INPUT, "-contact_pair_%s_mu %g: a friction coefficient is >= 0", ob->name, (double)ob->mu);
-  PetscFunctionReturn(0);
-}
-
 /* -mu is the default of every obstacle's and pair's own _mu: given while each of them sets its own,
  * it would be read and used nowhere, and the user would believe it applies. Refused, naming them. */
 static PetscErrorCode CheckMuUsed(MPI_Comm comm, const MMOptions *opt)
@@ -326,20 +61,29 @@ static PetscErrorCode CheckMuUsed(MPI_Comm comm, const MMOptions *opt)
   PetscFunctionReturn(0);
 }
 
-/* -obstacles NAME,... or, without it, the single plane of -obstacle_point and -obstacle_normal
- * (completed once the dimension is known). */
-static PetscErrorCode ProcessObstacles(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt)
+/* -obstacles NAME,... and -contact_pairs NAME,...: the lists, in app's block. */
+static PetscErrorCode ReadObstacleLists(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt)
 {
-  char     list[PETSC_MAX_PATH_LEN] = "", plist[PETSC_MAX_PATH_LEN] = "", **names, **pnames;
-  PetscInt n, np;
+  PetscFunctionBeginUser;
+  PetscCall(OptionsString(PetscOptionsObject, comm, "-obstacles", "Comma-separated names of the rigid obstacles; each takes -obstacle_NAME_type plane|sphere|circle|cylinder and its parameters. Each contact node is constrained against the one nearest to it in the reference configuration (default: one plane, -obstacle_point and -obstacle_normal)", opt->obstacle_list, sizeof(opt->obstacle_list), NULL));
+  PetscCall(OptionsString(PetscOptionsObject, comm, "-contact_pairs", "Comma-separated names of contact pairs between two surfaces of the mesh (two elastic bodies); each takes -contact_pair_NAME_slave, -contact_pair_NAME_master and -contact_pair_NAME_mu. Without -obstacles, a run with pairs has no rigid obstacle", opt->pair_list, sizeof(opt->pair_list), NULL));
+  PetscFunctionReturn(0);
+}
+
+/* The obstacles of -obstacles, each reading its own options, or, without it, the single plane of
+ * -obstacle_point and -obstacle_normal (completed once the dimension is known); then the contact
+ * pairs, each reading its own. */
+static PetscErrorCode CreateObstacles(MPI_Comm comm, MMOptions *opt)
+{
+  const char *list = opt->obstacle_list, *plist = opt->pair_list;
+  char      **names, **pnames;
+  PetscInt    n, np;
 
   PetscFunctionBeginUser;
-  PetscCall(OptionsString(PetscOptionsObject, comm, "-obstacles", "Comma-separated names of the rigid obstacles; each takes -obstacle_NAME_type plane|sphere|circle|cylinder and its parameters. Each contact node is constrained against the one nearest to it in the reference configuration (default: one plane, -obstacle_point and -obstacle_normal)", list, sizeof(list), NULL));
-  PetscCall(SplitNames(comm, "-obstacles", list, &n, &names));
+  PetscCall(MMOptionsSplitNames(comm, "-obstacles", list, &n, &names));
   opt->obstacles_named = (PetscBool)(n > 0);
   PetscCheck(!n || (opt->vec_count[MM_V_OBSTACLE_POINT] < 0 && opt->vec_count[MM_V_OBSTACLE_NORMAL] < 0), comm, PETSC_ERR_USER_INPUT, "-obstacles %s and -obstacle_point/-obstacle_normal were both given: give the plane as one of the named obstacles (-obstacle_NAME_type plane -obstacle_NAME_point ... -obstacle_NAME_normal ...)", list);
-  PetscCall(OptionsString(PetscOptionsObject, comm, "-contact_pairs", "Comma-separated names of contact pairs between two surfaces of the mesh (two elastic bodies); each takes -contact_pair_NAME_slave, -contact_pair_NAME_master and -contact_pair_NAME_mu. Without -obstacles, a run with pairs has no rigid obstacle", plist, sizeof(plist), NULL));
-  PetscCall(SplitNames(comm, "-contact_pairs", plist, &np, &pnames));
+  PetscCall(MMOptionsSplitNames(comm, "-contact_pairs", plist, &np, &pnames));
   /* pairs alone: no default plane, unless one was given by -obstacle_point/-obstacle_normal */
   opt->n_rigid     = n ? n : (np && opt->vec_count[MM_V_OBSTACLE_POINT] < 0 && opt->vec_count[MM_V_OBSTACLE_NORMAL] < 0 ? 0 : 1);
   opt->n_obstacles = opt->n_rigid + np;
@@ -350,21 +94,12 @@ static PetscErrorCode ProcessObstacles(PetscOptionItems *PetscOptionsObject, MPI
       PetscCall(PetscStrcmp(names[b], pnames[p], &same));
       PetscCheck(!same, comm, PETSC_ERR_USER_INPUT, "-contact_pairs %s and -obstacles %s both name %s: each obstacle and pair has its own force columns (force_NAME_x ...), so give them different names", plist, list, pnames[p]);
     }
-    PetscCall(ProcessPair(PetscOptionsObject, comm, opt, pnames, p));
+    PetscCall(MMObstacleSetPairFromOptions(&opt->obstacles[opt->n_rigid + p], comm, pnames[p], opt->mu));
   }
   PetscCall(PetscStrToArrayDestroy((int)np, pnames));
   for (PetscInt b = 0; b < opt->n_rigid; ++b) {
-    MMObstacle *ob = &opt->obstacles[b];
-    ob->npoint = ob->nnormal = ob->ncenter = ob->naxis = ob->nvelocity = -1;
-    ob->stop = PETSC_MAX_REAL;
-    if (!n) {
-      PetscCall(PetscStrncpy(ob->name, "plane", sizeof(ob->name)));
-      PetscCall(MMObstacleSetType(ob, comm, "plane"));
-      ob->mu = opt->mu;
-      continue;
-    }
-    PetscCall(PetscStrncpy(ob->name, names[b], sizeof(ob->name)));
-    PetscCall(ProcessObstacle(PetscOptionsObject, comm, opt, ob));
+    if (n) PetscCall(MMObstacleSetFromOptions(&opt->obstacles[b], comm, names[b], opt->mu));
+    else PetscCall(MMObstacleCreatePlane(&opt->obstacles[b], comm, "plane", opt->mu));
   }
   PetscCall(PetscStrToArrayDestroy((int)n, names));
   PetscCall(CheckMuUsed(comm, opt));
@@ -381,7 +116,7 @@ static PetscErrorCode ProcessBodies(PetscOptionItems *PetscOptionsObject, MPI_Co
 
   PetscFunctionBeginUser;
   PetscCall(OptionsString(PetscOptionsObject, comm, "-bodies", "Comma-separated names of the bodies, each a physical group of cells (-body_NAME_group) with its own -body_NAME_E, _nu, _rho and _v0; every cell must be in exactly one body (default: one body, the whole mesh, of -E, -nu, -rho and -v0)", list, sizeof(list), NULL));
-  PetscCall(SplitNames(comm, "-bodies", list, &n, &names));
+  PetscCall(MMOptionsSplitNames(comm, "-bodies", list, &n, &names));
   opt->n_bodies = n;
   PetscCall(PetscCalloc1(n, &opt->bodies));
   for (PetscInt b = 0; b < n; ++b) {
@@ -470,8 +205,6 @@ static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
 
 PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
 {
-  char list[PETSC_MAX_PATH_LEN];
-
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(opt, sizeof(*opt)));
   PetscOptionsBegin(comm, NULL, "mmcontact: modified-mass dynamic contact", "MMContact");
@@ -479,18 +212,6 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsString(PetscOptionsObject, comm, "-mesh", "gmsh mesh file (.msh, format 2.2 or 4.1) with named physical groups; first-order triangles give plane strain, first-order tetrahedra 3D", opt->mesh_file, sizeof(opt->mesh_file), NULL));
   PetscCall(PetscStrcpy(opt->contact_name, "contact"));
   PetscCall(OptionsString(PetscOptionsObject, comm, "-contact_boundary", "Physical name of the contact boundary (a Physical Curve in 2D, Surface in 3D)", opt->contact_name, sizeof(opt->contact_name), NULL));
-  list[0] = 0;
-  PetscCall(OptionsString(PetscOptionsObject, comm, "-dirichlet", "Comma-separated physical names of Dirichlet boundaries; each takes -dirichlet_NAME_components, -dirichlet_NAME_value and -dirichlet_NAME_velocity", list, sizeof(list), NULL));
-  PetscCall(ProcessDirichlet(PetscOptionsObject, comm, opt, list));
-  list[0] = 0;
-  PetscCall(OptionsString(PetscOptionsObject, comm, "-traction", "Comma-separated physical names of traction (Neumann) boundaries, boundary faces only; each takes -traction_NAME_value and -traction_NAME_amplitude", list, sizeof(list), NULL));
-  PetscCall(ProcessTraction(PetscOptionsObject, comm, opt, list));
-  list[0] = 0;
-  PetscCall(OptionsString(PetscOptionsObject, comm, "-pressure", "Comma-separated physical names of boundary groups under a pressure (a Physical Curve in 2D, Surface in 3D); each takes -pressure_NAME_value p and -pressure_NAME_amplitude", list, sizeof(list), NULL));
-  PetscCall(ProcessPressure(PetscOptionsObject, comm, opt, list));
-  list[0] = 0;
-  PetscCall(OptionsString(PetscOptionsObject, comm, "-point_force", "Comma-separated physical names of Physical Point groups carrying a concentrated force on each of their nodes; each takes -point_force_NAME_value and -point_force_NAME_amplitude", list, sizeof(list), NULL));
-  PetscCall(ProcessPointForce(PetscOptionsObject, comm, opt, list));
 
   opt->E = 1.0;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-E", "Young's modulus (Pa), > 0", &opt->E));
@@ -501,7 +222,7 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   opt->elasticity = MM_ELASTICITY_LINEAR;
   PetscCall(OptionsEnum(PetscOptionsObject, comm, "-elasticity", "Elasticity law: linear (the small-strain model, rotations strain the body), svk (St. Venant-Kirchhoff) or neohookean (compressible neo-Hookean), both finite strain with the same E and nu, energy and momentum exact per step (docs/method.md section 13)", MMElasticityTypes, (PetscEnum *)&opt->elasticity));
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_GRAVITY, "Body-force acceleration gx,gy[,gz] (m/s^2), d entries, times -gravity_amplitude", opt->gravity));
-  PetscCall(ProcessAmplitude(PetscOptionsObject, comm, "-gravity", &opt->gravity_amplitude));
+  PetscCall(MMAmplitudeOptionsRead(PetscOptionsObject, comm, "-gravity", &opt->gravity_amplitude));
 
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_U0_OFFSET, "Initial displacement u0 = a + B x: the vector a, d entries", opt->u0_offset));
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_U0_GRADIENT, "Initial displacement u0 = a + B x: the matrix B, row-major, d*d entries", opt->u0_gradient));
@@ -521,7 +242,7 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
 
   opt->mu = 0.0;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-mu", "Coulomb friction coefficient, >= 0 (0: frictionless, the friction loop is skipped); the default of each -obstacle_NAME_mu and -contact_pair_NAME_mu (refused when each of them is given: it would be used nowhere)", &opt->mu));
-  PetscCall(ProcessObstacles(PetscOptionsObject, comm, opt));
+  PetscCall(ReadObstacleLists(PetscOptionsObject, comm, opt));
   opt->quiet = PETSC_FALSE;
   PetscCall(OptionsBool(PetscOptionsObject, comm, "-quiet", "Do not print the start-up report, progress lines and closing summary", &opt->quiet));
   /* a data check (abaqus datacheck, MOOSE --check-input): src/app/datacheck.c, README "Checking a case before a batch job" */
@@ -533,6 +254,8 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   opt->allow_unused = PETSC_FALSE;
   PetscCall(OptionsBool(PetscOptionsObject, comm, "-allow_unused_options", "Run even if an option is set that nothing reads (by default such an option, usually a typo, stops the run before the first step)", &opt->allow_unused));
   PetscOptionsEnd();
+  PetscCall(MMLoadGroupsSetFromOptions(comm, &opt->loads));
+  PetscCall(CreateObstacles(comm, opt));
   PetscCall(CheckRanges(comm, opt));
   PetscFunctionReturn(0);
 }
@@ -570,44 +293,17 @@ PetscErrorCode MMOptionsCheckDimension(MPI_Comm comm, MMOptions *opt, PetscInt d
   nrm = PetscSqrtReal(nrm);
   PetscCheck(PetscAbsReal(nrm - 1.0) < 1e-6, comm, PETSC_ERR_USER_INPUT, "-obstacle_normal must be a unit vector, its norm is %g", (double)nrm);
   for (PetscInt d = 0; d < dim; ++d) opt->obstacle_normal[d] /= nrm;
-  if (!opt->obstacles_named && opt->n_rigid) {
-    MMObstacle *ob = &opt->obstacles[0];
-    for (PetscInt d = 0; d < MM_MAX_DIM; ++d) {
-      ob->point[d]  = opt->obstacle_point[d];
-      ob->normal[d] = opt->obstacle_normal[d];
-    }
-    ob->npoint = ob->nnormal = dim;
-  }
+  if (!opt->obstacles_named && opt->n_rigid) PetscCall(MMObstacleSetPlane(&opt->obstacles[0], dim, opt->obstacle_point, opt->obstacle_normal));
   opt->mu_max = 0;
   for (PetscInt b = 0; b < opt->n_obstacles; ++b) {
     if (b < opt->n_rigid) PetscCall(MMObstacleCheck(&opt->obstacles[b], comm, dim));
     opt->mu_max = PetscMax(opt->mu_max, opt->obstacles[b].mu);
   }
-  for (PetscInt b = 0; b < opt->n_dirichlet; ++b) {
-    MMDirichlet *bc = &opt->dirichlet[b];
-    if (bc->ncomp < 0) {
-      bc->ncomp = dim;
-      for (PetscInt c = 0; c < dim; ++c) bc->comps[c] = c;
-    }
-    for (PetscInt c = 0; c < bc->ncomp; ++c) PetscCheck(bc->comps[c] >= 0 && bc->comps[c] < dim, comm, PETSC_ERR_USER_INPUT, "-dirichlet_%s_components: component %" PetscInt_FMT " is not in [0, %" PetscInt_FMT ")", bc->name, bc->comps[c], dim);
-    PetscCheck(bc->nvalues < 0 || bc->nvalues == bc->ncomp, comm, PETSC_ERR_USER_INPUT, "-dirichlet_%s_value has %" PetscInt_FMT " entries but the boundary fixes %" PetscInt_FMT " components (-dirichlet_%s_components, default all %" PetscInt_FMT "): give one value per fixed component", bc->name, bc->nvalues, bc->ncomp, bc->name, dim);
-    PetscCheck(bc->nvelocity < 0 || bc->nvelocity == bc->ncomp, comm, PETSC_ERR_USER_INPUT, "-dirichlet_%s_velocity has %" PetscInt_FMT " entries but the boundary fixes %" PetscInt_FMT " components (-dirichlet_%s_components, default all %" PetscInt_FMT "): give one velocity per fixed component", bc->name, bc->nvelocity, bc->ncomp, bc->name, dim);
-    /* the damping force of the moving boundary's velocity on the free dofs, C_fD v_D, is not in the
-     * scheme (docs/method.md section 10): refuse rather than let the energy audit stop the run */
-    PetscCheck(bc->nvelocity < 0 || !damped, comm, PETSC_ERR_SUP, "-dirichlet_%s_velocity with Rayleigh damping (-damping_mass, -damping_stiffness or -damping_ratio) is not supported: the damping force of a moving boundary is not in the scheme. Drop one of the two", bc->name);
-  }
+  PetscCall(MMLoadGroupsCheckDimension(comm, &opt->loads, dim, damped));
   for (PetscInt b = 0; b < opt->n_bodies; ++b) {
     const MMBodyOptions *body = &opt->bodies[b];
     PetscCheck(body->nv0 < 0 || body->nv0 == dim, comm, PETSC_ERR_USER_INPUT, "-body_%s_v0 has %" PetscInt_FMT " entries; the mesh is %" PetscInt_FMT "D, so it needs exactly %" PetscInt_FMT, body->name, body->nv0, dim, dim);
     PetscCheck(body->nomega0 < 0 || body->nomega0 == (dim == 2 ? 1 : 3), comm, PETSC_ERR_USER_INPUT, "-body_%s_omega0 has %" PetscInt_FMT " entries; the mesh is %" PetscInt_FMT "D, so it needs exactly %d (an angular velocity is a scalar in 2D, a vector in 3D)", body->name, body->nomega0, dim, dim == 2 ? 1 : 3);
-  }
-  for (PetscInt b = 0; b < opt->n_traction; ++b) {
-    const MMTraction *tr = &opt->traction[b];
-    PetscCheck(tr->nvalues < 0 || tr->nvalues == dim, comm, PETSC_ERR_USER_INPUT, "-traction_%s_value has %" PetscInt_FMT " entries; the mesh is %" PetscInt_FMT "D, so it needs exactly %" PetscInt_FMT, tr->name, tr->nvalues, dim, dim);
-  }
-  for (PetscInt b = 0; b < opt->n_point_force; ++b) {
-    const MMPointForce *pf = &opt->point_force[b];
-    PetscCheck(pf->nvalues == dim, comm, PETSC_ERR_USER_INPUT, "-point_force_%s_value has %" PetscInt_FMT " entries; the mesh is %" PetscInt_FMT "D, so it needs exactly %" PetscInt_FMT, pf->name, pf->nvalues, dim, dim);
   }
   PetscFunctionReturn(0);
 }
@@ -615,16 +311,10 @@ PetscErrorCode MMOptionsCheckDimension(MPI_Comm comm, MMOptions *opt, PetscInt d
 PetscErrorCode MMOptionsDestroy(MMOptions *opt)
 {
   PetscFunctionBeginUser;
-  for (PetscInt b = 0; b < opt->n_dirichlet; ++b) PetscCall(PetscFree(opt->dirichlet[b].name));
-  for (PetscInt b = 0; b < opt->n_traction; ++b) PetscCall(PetscFree(opt->traction[b].name));
-  for (PetscInt b = 0; b < opt->n_pressure; ++b) PetscCall(PetscFree(opt->pressure[b].name));
-  for (PetscInt b = 0; b < opt->n_point_force; ++b) PetscCall(PetscFree(opt->point_force[b].name));
-  PetscCall(PetscFree(opt->pressure));
-  PetscCall(PetscFree(opt->point_force));
+  PetscCall(MMLoadGroupsDestroy(&opt->loads));
   for (PetscInt b = 0; b < opt->n_bodies; ++b) PetscCall(PetscFree(opt->bodies[b].name));
   PetscCall(PetscFree(opt->bodies));
-  PetscCall(PetscFree(opt->dirichlet));
-  PetscCall(PetscFree(opt->traction));
+  for (PetscInt b = 0; b < opt->n_obstacles; ++b) PetscCall(MMObstacleDestroy(&opt->obstacles[b]));
   PetscCall(PetscFree(opt->obstacles));
   PetscFunctionReturn(0);
 }
@@ -706,14 +396,14 @@ PetscErrorCode MMOptionsGetFEProblem(const MMOptions *opt, MMFEProblem *pb)
   pb->omega0_set        = (PetscBool)(opt->vec_count[MM_V_OMEGA0] >= 0);
   pb->gravity           = opt->gravity;
   pb->gravity_amplitude = &opt->gravity_amplitude;
-  pb->n_dirichlet       = opt->n_dirichlet;
-  pb->dirichlet         = opt->dirichlet;
-  pb->n_traction        = opt->n_traction;
-  pb->traction          = opt->traction;
-  pb->n_pressure        = opt->n_pressure;
-  pb->pressure          = opt->pressure;
-  pb->n_point_force     = opt->n_point_force;
-  pb->point_force       = opt->point_force;
+  pb->n_dirichlet       = opt->loads.n_dirichlet;
+  pb->dirichlet         = opt->loads.dirichlet;
+  pb->n_traction        = opt->loads.n_traction;
+  pb->traction          = opt->loads.traction;
+  pb->n_pressure        = opt->loads.n_pressure;
+  pb->pressure          = opt->loads.pressure;
+  pb->n_point_force     = opt->loads.n_point_force;
+  pb->point_force       = opt->loads.point_force;
   pb->static_sliding    = (PetscBool)(opt->initial_state == MM_INITIAL_STATIC_SLIDING);
   PetscFunctionReturn(0);
 }
@@ -734,8 +424,8 @@ PetscErrorCode MMOptionsGetIOProblem(const MMOptions *opt, MMIOProblem *pb)
   pb->n_rigid      = opt->n_rigid;
   pb->obstacles    = opt->obstacles;
   pb->obstacles_named = opt->obstacles_named;
-  pb->n_dirichlet  = opt->n_dirichlet;
-  pb->dirichlet    = opt->dirichlet;
+  pb->n_dirichlet  = opt->loads.n_dirichlet;
+  pb->dirichlet    = opt->loads.dirichlet;
   PetscFunctionReturn(0);
 }
 
@@ -757,12 +447,12 @@ PetscErrorCode MMOptionsGetNewmarkProblem(const MMOptions *opt, MMNewmarkProblem
   for (PetscInt d = 0; d < MM_MAX_DIM * MM_MAX_DIM; ++d) pb->u0_gradient[d] = opt->u0_gradient[d];
   pb->obstacles = opt->obstacles;
   pb->mu        = opt->mu;
-  pb->dirichlet = (PetscBool)(opt->n_dirichlet > 0);
-  for (PetscInt b = 0; b < opt->n_dirichlet; ++b) {
-    for (PetscInt c = 0; c < opt->dirichlet[b].nvalues; ++c)
-      if (opt->dirichlet[b].values[c] != 0) pb->dirichlet_nonzero = PETSC_TRUE;
-    for (PetscInt c = 0; c < opt->dirichlet[b].nvelocity; ++c)
-      if (opt->dirichlet[b].velocity[c] != 0) pb->dirichlet_nonzero = PETSC_TRUE;
+  pb->dirichlet = (PetscBool)(opt->loads.n_dirichlet > 0);
+  for (PetscInt b = 0; b < opt->loads.n_dirichlet; ++b) {
+    for (PetscInt c = 0; c < opt->loads.dirichlet[b].nvalues; ++c)
+      if (opt->loads.dirichlet[b].values[c] != 0) pb->dirichlet_nonzero = PETSC_TRUE;
+    for (PetscInt c = 0; c < opt->loads.dirichlet[b].nvelocity; ++c)
+      if (opt->loads.dirichlet[b].velocity[c] != 0) pb->dirichlet_nonzero = PETSC_TRUE;
   }
   pb->E                 = opt->E;
   pb->nu                = opt->nu;
