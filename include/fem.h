@@ -296,6 +296,12 @@ PETSC_EXTERN PetscErrorCode MMLoadsInsertDirichletVelocity(MMLoads *ld, Vec whol
 PETSC_EXTERN PetscErrorCode MMLoadsInsertBoundaryValues(MMLoads *ld, Vec l, PetscReal t);
 PETSC_EXTERN PetscErrorCode MMLoadsDestroy(MMLoads *ld);
 PETSC_EXTERN PetscReal      MMAmplitudeValue(const MMAmplitude *a, PetscReal t);
+/* bodies.c: the bodies read from their options (whole: the whole mesh's material, their defaults) */
+PETSC_EXTERN PetscErrorCode MMBodiesSetFromOptions(MPI_Comm comm, const MMBodyOptions *whole, PetscInt *n, MMBodyOptions **bodies);
+PETSC_EXTERN PetscErrorCode MMBodiesCheck(MPI_Comm comm, PetscInt n, const MMBodyOptions bodies[]);
+PETSC_EXTERN PetscErrorCode MMBodiesCheckDimension(MPI_Comm comm, PetscInt n, const MMBodyOptions bodies[], PetscInt dim);
+PETSC_EXTERN PetscErrorCode MMBodiesDestroy(PetscInt *n, MMBodyOptions **bodies);
+PETSC_EXTERN PetscErrorCode MMMaterialCheckNearlyIncompressible(MPI_Comm comm, const char option[], PetscReal nu, MMElasticityType law);
 /* load_groups.c: the boundary conditions and load groups read from their options */
 PETSC_EXTERN PetscErrorCode MMLoadGroupsSetFromOptions(MPI_Comm comm, MMLoadGroups *lg);
 PETSC_EXTERN PetscErrorCode MMLoadGroupsCheckDimension(MPI_Comm comm, MMLoadGroups *lg, PetscInt dim, PetscBool damped);

@@ -10,7 +10,7 @@ def test_every_help_option_is_in_readme():
     out = subprocess.run([EXE, "-options_file", "options/b1_bar.opts", "-traction", "sides", "-bodies", "body", "-body_body_group", "body", "-help", "-ts_max_steps", "0",
                           "-output_dir", "/tmp/mmcontact-help"], cwd=ROOT, capture_output=True).stdout.decode(errors="replace")  # PETSc 3.18 prints an uninitialized buffer for -dm_plex_boundary_label
     # the application's own options, and those of the objects it reads the problem into
-    headings = ("mmcontact: modified-mass dynamic contact", "mmcontact: boundary conditions and loads")
+    headings = ("mmcontact: modified-mass dynamic contact", "mmcontact: bodies", "mmcontact: boundary conditions and loads")
     section = "".join(out.split(h)[1].split("-------")[0] for h in headings)
     options = set(re.findall(r"^\s+(-[a-z_0-9A-Z]+)", section, re.M))
     assert len(options) >= 25

@@ -1,9 +1,8 @@
-/* Every run option of mmcontact, declared in one place with its help string. */
-#include "contact.h"
+/* The problem as the user gives it (README "Options"): the mesh, the whole mesh's material, the
+ * initial state, -mu and app's run controls, in app's block; then the objects that read their own
+ * options, each in its own block: the bodies and the load groups (fem, src/fem/bodies.c,
+ * src/fem/load_groups.c) and the obstacles (src/obstacle/interface/options.c). */
 #include "appimpl.h"
-#include <errno.h>
-#include <stdlib.h>
-#include <sys/stat.h>
 #include "obstacle.h"
 #include "sys.h"
 
@@ -106,73 +105,23 @@ static PetscErrorCode CreateObstacles(MPI_Comm comm, MMOptions *opt)
   PetscFunctionReturn(0);
 }
 
-/* -bodies NAME,...: each body a physical group of cells with its own material and initial velocity,
- * each defaulting to the whole mesh's (so -E, -nu, -rho and -v0 must be read first). The cells and
- * the groups are checked against the mesh in src/fem/material.c. */
-static PetscErrorCode ProcessBodies(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt)
+/* -bodies: fem reads them, each body defaulting to the whole mesh's material and initial velocity. */
+static PetscErrorCode ReadBodies(MPI_Comm comm, MMOptions *opt)
 {
-  char     list[PETSC_MAX_PATH_LEN] = "", **names;
-  PetscInt n;
+  MMBodyOptions whole;
 
   PetscFunctionBeginUser;
-  PetscCall(OptionsString(PetscOptionsObject, comm, "-bodies", "Comma-separated names of the bodies, each a physical group of cells (-body_NAME_group) with its own -body_NAME_E, _nu, _rho and _v0; every cell must be in exactly one body (default: one body, the whole mesh, of -E, -nu, -rho and -v0)", list, sizeof(list), NULL));
-  PetscCall(MMOptionsSplitNames(comm, "-bodies", list, &n, &names));
-  opt->n_bodies = n;
-  PetscCall(PetscCalloc1(n, &opt->bodies));
-  for (PetscInt b = 0; b < n; ++b) {
-    MMBodyOptions *body = &opt->bodies[b];
-    char           key[512];
-
-    PetscCall(PetscStrallocpy(names[b], &body->name));
-    PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_group", body->name));
-    PetscCall(OptionsString(PetscOptionsObject, comm, key, "Physical group of this body's cells: a Physical Surface (2D) or Physical Volume (3D) of the mesh; required", body->group, sizeof(body->group), &body->group_set));
-    body->E   = opt->E;
-    body->nu  = opt->nu;
-    body->rho = opt->rho;
-    body->elasticity = opt->elasticity;
-    PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_elasticity", body->name));
-    PetscCall(OptionsEnum(PetscOptionsObject, comm, key, "This body's elasticity law: linear, svk or neohookean (default -elasticity)", MMElasticityTypes, (PetscEnum *)&body->elasticity));
-    PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_E", body->name));
-    PetscCall(OptionsReal(PetscOptionsObject, comm, key, "This body's Young's modulus (Pa), > 0 (default -E)", &body->E));
-    PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_nu", body->name));
-    PetscCall(OptionsReal(PetscOptionsObject, comm, key, "This body's Poisson ratio, in (-1, 0.5), at most 0.4995 with a finite-strain law and 0.49999995 with linear (default -nu)", &body->nu));
-    PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_rho", body->name));
-    PetscCall(OptionsReal(PetscOptionsObject, comm, key, "This body's mass density (kg/m^d), > 0 (default -rho)", &body->rho));
-    for (PetscInt d = 0; d < MM_MAX_DIM; ++d) body->v0[d] = opt->v0[d];
-    PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_v0", body->name));
-    PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "This body's initial translation velocity, d entries (default -v0); -omega adds the same rigid rotation to every body", MM_MAX_DIM, body->v0, &body->nv0));
-    for (PetscInt d = 0; d < MM_MAX_DIM; ++d) body->omega0[d] = opt->omega0[d];
-    PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_omega0", body->name));
-    PetscCall(OptionsRealArray(PetscOptionsObject, comm, key, "This body's initial rigid angular velocity (rad/s) about its own centre of mass, added to its _v0: a scalar in 2D, a vector in 3D (default -omega0)", MM_MAX_DIM, body->omega0, &body->nomega0));
-    body->omega0_set = (PetscBool)(body->nomega0 >= 0 || opt->vec_count[MM_V_OMEGA0] >= 0);
+  PetscCall(PetscMemzero(&whole, sizeof(whole)));
+  whole.E          = opt->E;
+  whole.nu         = opt->nu;
+  whole.rho        = opt->rho;
+  whole.elasticity = opt->elasticity;
+  whole.omega0_set = (PetscBool)(opt->vec_count[MM_V_OMEGA0] >= 0);
+  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) {
+    whole.v0[d]     = opt->v0[d];
+    whole.omega0[d] = opt->omega0[d];
   }
-  PetscCall(PetscStrToArrayDestroy((int)n, names));
-  PetscFunctionReturn(0);
-}
-
-/* A nearly incompressible material (docs/reference.md, "Large rotations and finite strain", "Nearly
- * incompressible materials"): P1 elements lock volumetrically,
- * and K~ holds a volumetric stiffness lambda above the shear one mu, lambda/mu = 2 nu / (1 - 2 nu).
- * The linear law's energy balance then sums terms lambda/mu times larger than the energy it checks:
- * on the D1 disk its residual is 60 to 120 eps lambda/mu from lambda/mu = 5e4 to 5e7, and the audit
- * (-audit_tol 1e-6) stops the run at 5e8; nu <= 0.49999995 (lambda/mu <= 1e7) keeps the residual at
- * 2.6e-7 at most. The finite-strain laws fail earlier, not by round-off: under the pressures of an
- * impact (of order lambda times the locked volume change) the neo-Hookean tangent loses its
- * definiteness and K~'s Cholesky factor stops ("Diagonal must be real and nonnegative", D1 at
- * lambda/mu = 2.5e3), and the svk step's Newton iteration diverges (D1 at 1e4); both hold their
- * audits at lambda/mu = 999, nu = 0.4995 (tests/test_limits_and_advice.py). A harder impact can still
- * turn the tangent indefinite there: the run then stops naming -ts_dt (src/contact/interface/pc_schursplit.c). */
-#define MM_NU_MAX_LINEAR 0.49999995
-#define MM_NU_MAX_FINITE 0.4995
-
-static PetscErrorCode CheckNearlyIncompressible(MPI_Comm comm, const char option[], PetscReal nu, MMElasticityType law)
-{
-  const PetscBool finite = (PetscBool)(law != MM_ELASTICITY_LINEAR);
-  const PetscReal numax  = finite ? MM_NU_MAX_FINITE : MM_NU_MAX_LINEAR;
-
-  PetscFunctionBeginUser;
-  PetscCheck(nu <= numax, comm, PETSC_ERR_USER_INPUT, "Poisson ratio %s %.10g is too close to 0.5 for -elasticity %s: lambda/mu = 2 nu/(1 - 2 nu) = %.3g, P1 elements lock volumetrically and K~'s conditioning grows as lambda/mu, %s. The largest accepted value with -elasticity %s is %.10g (lambda/mu %.3g; docs/reference.md, \"Large rotations and finite strain\")", option, (double)nu, MMElasticityTypes[law], (double)(2 * nu / (1 - 2 * nu)),
-             finite ? "and under contact pressures the finite-strain step's tangent turns indefinite or its Newton iteration diverges" : "and the energy audit's round-off (about 100 eps lambda/mu) reaches -audit_tol", MMElasticityTypes[law], (double)numax, (double)(2 * numax / (1 - 2 * numax)));
+  PetscCall(MMBodiesSetFromOptions(comm, &whole, &opt->n_bodies, &opt->bodies));
   PetscFunctionReturn(0);
 }
 
@@ -184,21 +133,8 @@ static PetscErrorCode CheckRanges(MPI_Comm comm, const MMOptions *opt)
   PetscCheck(opt->nu > -1.0, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -nu %.6g must lie in (-1, 0.5): nu <= -1 makes the shear modulus E / (2 (1 + nu)) infinite or negative, an unstable material", (double)opt->nu);
   PetscCheck(opt->nu < 0.5, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -nu %.6g must lie in (-1, 0.5): nu >= 0.5 is incompressible, which P1 elements cannot represent", (double)opt->nu);
   PetscCheck(opt->rho > 0, comm, PETSC_ERR_USER_INPUT, "Density -rho %g must be > 0", (double)opt->rho);
-  if (!opt->n_bodies) PetscCall(CheckNearlyIncompressible(comm, "-nu", opt->nu, opt->elasticity));
-  for (PetscInt b = 0; b < opt->n_bodies; ++b) {
-    const MMBodyOptions *body = &opt->bodies[b];
-    PetscCheck(body->group_set && body->group[0], comm, PETSC_ERR_USER_INPUT, "-bodies: body %s has no cells: give -body_%s_group GROUP, the physical group (a Physical %s) of its cells", body->name, body->name, "Surface in 2D, Volume in 3D");
-    PetscCheck(body->E > 0, comm, PETSC_ERR_USER_INPUT, "Young's modulus -body_%s_E %g must be > 0", body->name, (double)body->E);
-    PetscCheck(body->nu > -1.0, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -body_%s_nu %.6g must lie in (-1, 0.5): nu <= -1 makes the shear modulus E / (2 (1 + nu)) infinite or negative, an unstable material", body->name, (double)body->nu);
-    PetscCheck(body->nu < 0.5, comm, PETSC_ERR_USER_INPUT, "Poisson ratio -body_%s_nu %.6g must lie in (-1, 0.5): nu >= 0.5 is incompressible, which P1 elements cannot represent", body->name, (double)body->nu);
-    PetscCheck(body->rho > 0, comm, PETSC_ERR_USER_INPUT, "Density -body_%s_rho %g must be > 0", body->name, (double)body->rho);
-    {
-      char key[512];
-
-      PetscCall(PetscSNPrintf(key, sizeof(key), "-body_%s_nu", body->name));
-      PetscCall(CheckNearlyIncompressible(comm, key, body->nu, body->elasticity));
-    }
-  }
+  if (!opt->n_bodies) PetscCall(MMMaterialCheckNearlyIncompressible(comm, "-nu", opt->nu, opt->elasticity));
+  PetscCall(MMBodiesCheck(comm, opt->n_bodies, opt->bodies));
   PetscCheck(opt->mu >= 0, comm, PETSC_ERR_USER_INPUT, "Friction coefficient -mu %g must be >= 0", (double)opt->mu);
   PetscFunctionReturn(0);
 }
@@ -232,7 +168,6 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OMEGA0, "Initial rigid angular velocity (rad/s) about the centre of mass, of each body with -bodies, added to -v0 and -omega: a scalar in 2D, a vector in 3D", opt->omega0));
   opt->initial_state = MM_INITIAL_GIVEN;
   PetscCall(OptionsEnum(PetscOptionsObject, comm, "-initial_state", "Initial displacement: given (-u0_offset, -u0_gradient, contact dofs projected), static_sliding (the body sliding along the tangential part of -v0 on the obstacle under its loads, with friction -mu; the normal part of -v0 is dropped) or static (the static, frictionless contact problem K u0 = L(0) under the loads at t = 0, then the dynamics from u0 with -v0)", MMInitialStates, (PetscEnum *)&opt->initial_state));
-  PetscCall(ProcessBodies(PetscOptionsObject, comm, opt));
 
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OBSTACLE_POINT, "A point of the rigid obstacle plane, d entries", opt->obstacle_point));
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_OBSTACLE_NORMAL, "Unit normal of the obstacle plane, pointing out of the obstacle towards the body, d entries (default +y in 2D, +z in 3D)", opt->obstacle_normal));
@@ -254,6 +189,7 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   opt->allow_unused = PETSC_FALSE;
   PetscCall(OptionsBool(PetscOptionsObject, comm, "-allow_unused_options", "Run even if an option is set that nothing reads (by default such an option, usually a typo, stops the run before the first step)", &opt->allow_unused));
   PetscOptionsEnd();
+  PetscCall(ReadBodies(comm, opt));
   PetscCall(MMLoadGroupsSetFromOptions(comm, &opt->loads));
   PetscCall(CreateObstacles(comm, opt));
   PetscCall(CheckRanges(comm, opt));
@@ -300,11 +236,7 @@ PetscErrorCode MMOptionsCheckDimension(MPI_Comm comm, MMOptions *opt, PetscInt d
     opt->mu_max = PetscMax(opt->mu_max, opt->obstacles[b].mu);
   }
   PetscCall(MMLoadGroupsCheckDimension(comm, &opt->loads, dim, damped));
-  for (PetscInt b = 0; b < opt->n_bodies; ++b) {
-    const MMBodyOptions *body = &opt->bodies[b];
-    PetscCheck(body->nv0 < 0 || body->nv0 == dim, comm, PETSC_ERR_USER_INPUT, "-body_%s_v0 has %" PetscInt_FMT " entries; the mesh is %" PetscInt_FMT "D, so it needs exactly %" PetscInt_FMT, body->name, body->nv0, dim, dim);
-    PetscCheck(body->nomega0 < 0 || body->nomega0 == (dim == 2 ? 1 : 3), comm, PETSC_ERR_USER_INPUT, "-body_%s_omega0 has %" PetscInt_FMT " entries; the mesh is %" PetscInt_FMT "D, so it needs exactly %d (an angular velocity is a scalar in 2D, a vector in 3D)", body->name, body->nomega0, dim, dim == 2 ? 1 : 3);
-  }
+  PetscCall(MMBodiesCheckDimension(comm, opt->n_bodies, opt->bodies, dim));
   PetscFunctionReturn(0);
 }
 
@@ -312,151 +244,8 @@ PetscErrorCode MMOptionsDestroy(MMOptions *opt)
 {
   PetscFunctionBeginUser;
   PetscCall(MMLoadGroupsDestroy(&opt->loads));
-  for (PetscInt b = 0; b < opt->n_bodies; ++b) PetscCall(PetscFree(opt->bodies[b].name));
-  PetscCall(PetscFree(opt->bodies));
+  PetscCall(MMBodiesDestroy(&opt->n_bodies, &opt->bodies));
   for (PetscInt b = 0; b < opt->n_obstacles; ++b) PetscCall(MMObstacleDestroy(&opt->obstacles[b]));
   PetscCall(PetscFree(opt->obstacles));
-  PetscFunctionReturn(0);
-}
-
-/* Before PetscInitialize, which reads the options files and would stop with a traceback on their
- * first defect: a file that cannot be opened, or one that starts with a UTF-8 byte order mark (some
- * editors write one; PETSc takes it for the first option's name), or a directory. Plain C: PETSc is not up yet, so
- * the message is printed by the first rank alone (the launcher's rank variable), and every rank
- * exits with MM_EXIT_USAGE. Returns 0 when the files are fine. */
-int MMOptionsCheckFiles(int argc, char **argv)
-{
-  const char *rank = getenv("OMPI_COMM_WORLD_RANK");
-  const int   first = !rank || !strcmp(rank, "0");
-
-  for (int i = 1; i < argc; ++i) {
-    FILE         *f;
-    struct stat   st;
-    unsigned char head[3] = {0, 0, 0};
-    const char   *name;
-    size_t        n;
-
-    if (strcmp(argv[i], "-options_file") && strcmp(argv[i], "-options_file_yaml")) continue;
-    name = i + 1 < argc ? argv[i + 1] : NULL;
-    if (!name || name[0] == '-' || !name[0]) {
-      if (first) fprintf(stderr, "mmcontact error: %s was given without a file name: write \"%s FILE\"\n", argv[i], argv[i]);
-      return MM_EXIT_USAGE;
-    }
-    if (!stat(name, &st) && S_ISDIR(st.st_mode)) {
-      if (first) fprintf(stderr, "mmcontact error: the options file %s is a directory: name a file of options in it, e.g. %s/case.opts\n", name, name);
-      return MM_EXIT_USAGE;
-    }
-    if (!(f = fopen(name, "rb"))) {
-      if (first) fprintf(stderr, "mmcontact error: the options file %s cannot be read: %s\n", name, strerror(errno));
-      return MM_EXIT_USAGE;
-    }
-    n = fread(head, 1, sizeof(head), f);
-    fclose(f);
-    if (n == 3 && head[0] == 0xEF && head[1] == 0xBB && head[2] == 0xBF) {
-      if (first) fprintf(stderr, "mmcontact error: the options file %s starts with a UTF-8 byte order mark (bytes EF BB BF), which PETSc reads as part of the first option: save it as UTF-8 without a byte order mark (or plain ASCII)\n", name);
-      return MM_EXIT_USAGE;
-    }
-  }
-  return 0;
-}
-
-/* The problem as fem reads it: plain data, the arrays borrowed from opt for the set-up. */
-PetscErrorCode MMOptionsGetContactProblem(const MMOptions *opt, MMContactProblem *pb)
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscMemzero(pb, sizeof(*pb)));
-  pb->obstacles      = opt->obstacles;
-  pb->n_obstacles    = opt->n_obstacles;
-  pb->n_rigid        = opt->n_rigid;
-  pb->mu_max         = opt->mu_max;
-  pb->E              = opt->E;
-  pb->rho            = opt->rho;
-  pb->contact_name   = opt->contact_name;
-  pb->static_sliding = (PetscBool)(opt->initial_state == MM_INITIAL_STATIC_SLIDING);
-  pb->quiet          = opt->quiet;
-  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) {
-    pb->obstacle_point[d]  = opt->obstacle_point[d];
-    pb->obstacle_normal[d] = opt->obstacle_normal[d];
-  }
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode MMOptionsGetFEProblem(const MMOptions *opt, MMFEProblem *pb)
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscMemzero(pb, sizeof(*pb)));
-  pb->E                 = opt->E;
-  pb->nu                = opt->nu;
-  pb->rho               = opt->rho;
-  pb->elasticity        = opt->elasticity;
-  pb->v0                = opt->v0;
-  pb->n_bodies          = opt->n_bodies;
-  pb->bodies            = opt->bodies;
-  pb->omega0            = opt->omega0;
-  pb->omega0_set        = (PetscBool)(opt->vec_count[MM_V_OMEGA0] >= 0);
-  pb->gravity           = opt->gravity;
-  pb->gravity_amplitude = &opt->gravity_amplitude;
-  pb->n_dirichlet       = opt->loads.n_dirichlet;
-  pb->dirichlet         = opt->loads.dirichlet;
-  pb->n_traction        = opt->loads.n_traction;
-  pb->traction          = opt->loads.traction;
-  pb->n_pressure        = opt->loads.n_pressure;
-  pb->pressure          = opt->loads.pressure;
-  pb->n_point_force     = opt->loads.n_point_force;
-  pb->point_force       = opt->loads.point_force;
-  pb->static_sliding    = (PetscBool)(opt->initial_state == MM_INITIAL_STATIC_SLIDING);
-  PetscFunctionReturn(0);
-}
-
-/* The problem as io reads it: the names its columns and report quote, a checkpoint's fingerprint. */
-PetscErrorCode MMOptionsGetIOProblem(const MMOptions *opt, MMIOProblem *pb)
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscMemzero(pb, sizeof(*pb)));
-  pb->mesh_file    = opt->mesh_file;
-  pb->contact_name = opt->contact_name;
-  pb->E            = opt->E;
-  pb->nu           = opt->nu;
-  pb->rho          = opt->rho;
-  pb->mu           = opt->mu;
-  pb->mu_max       = opt->mu_max;
-  pb->n_obstacles  = opt->n_obstacles;
-  pb->n_rigid      = opt->n_rigid;
-  pb->obstacles    = opt->obstacles;
-  pb->obstacles_named = opt->obstacles_named;
-  pb->n_dirichlet  = opt->loads.n_dirichlet;
-  pb->dirichlet    = opt->loads.dirichlet;
-  PetscFunctionReturn(0);
-}
-
-/* The problem as the stepper reads it: the initial state, the obstacles (borrowed from opt), the
- * audits' thresholds and the values its messages quote. */
-PetscErrorCode MMOptionsGetNewmarkProblem(const MMOptions *opt, MMNewmarkProblem *pb)
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscMemzero(pb, sizeof(*pb)));
-  pb->initial_state = opt->initial_state;
-  pb->u0_given      = (PetscBool)(opt->vec_count[MM_V_U0_OFFSET] >= 0 || opt->vec_count[MM_V_U0_GRADIENT] >= 0);
-  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) {
-    pb->u0_offset[d]       = opt->u0_offset[d];
-    pb->v0[d]              = opt->v0[d];
-    pb->omega[d]           = opt->omega[d];
-    pb->omega_center[d]    = opt->omega_center[d];
-    pb->obstacle_normal[d] = opt->obstacle_normal[d];
-  }
-  for (PetscInt d = 0; d < MM_MAX_DIM * MM_MAX_DIM; ++d) pb->u0_gradient[d] = opt->u0_gradient[d];
-  pb->obstacles = opt->obstacles;
-  pb->mu        = opt->mu;
-  pb->dirichlet = (PetscBool)(opt->loads.n_dirichlet > 0);
-  for (PetscInt b = 0; b < opt->loads.n_dirichlet; ++b) {
-    for (PetscInt c = 0; c < opt->loads.dirichlet[b].nvalues; ++c)
-      if (opt->loads.dirichlet[b].values[c] != 0) pb->dirichlet_nonzero = PETSC_TRUE;
-    for (PetscInt c = 0; c < opt->loads.dirichlet[b].nvelocity; ++c)
-      if (opt->loads.dirichlet[b].velocity[c] != 0) pb->dirichlet_nonzero = PETSC_TRUE;
-  }
-  pb->E                 = opt->E;
-  pb->nu                = opt->nu;
-  pb->rho               = opt->rho;
-  pb->quiet             = opt->quiet;
   PetscFunctionReturn(0);
 }
