@@ -63,8 +63,12 @@ static PetscErrorCode CheckMuUsed(MPI_Comm comm, const MMOptions *opt)
 /* -obstacles NAME,... and -contact_pairs NAME,...: the lists, in app's block. */
 static PetscErrorCode ReadObstacleLists(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMOptions *opt)
 {
+  char types[256], help[1024];
+
   PetscFunctionBeginUser;
-  PetscCall(OptionsString(PetscOptionsObject, comm, "-obstacles", "Comma-separated names of the rigid obstacles; each takes -obstacle_NAME_type plane|sphere|circle|cylinder and its parameters. Each contact node is constrained against the one nearest to it in the reference configuration (default: one plane, -obstacle_point and -obstacle_normal)", opt->obstacle_list, sizeof(opt->obstacle_list), NULL));
+  PetscCall(MMObstacleTypesList(types, sizeof(types)));
+  PetscCall(PetscSNPrintf(help, sizeof(help), "Comma-separated names of the rigid obstacles; each takes -obstacle_NAME_type %s and its parameters. Each contact node is constrained against the one nearest to it in the reference configuration (default: one plane, -obstacle_point and -obstacle_normal)", types));
+  PetscCall(OptionsString(PetscOptionsObject, comm, "-obstacles", help, opt->obstacle_list, sizeof(opt->obstacle_list), NULL));
   PetscCall(OptionsString(PetscOptionsObject, comm, "-contact_pairs", "Comma-separated names of contact pairs between two surfaces of the mesh (two elastic bodies); each takes -contact_pair_NAME_slave, -contact_pair_NAME_master and -contact_pair_NAME_mu. Without -obstacles, a run with pairs has no rigid obstacle", opt->pair_list, sizeof(opt->pair_list), NULL));
   PetscFunctionReturn(0);
 }

@@ -1,5 +1,5 @@
 /* Internals of the obstacle component: the ops table a shape fills (its parameters, its data's
- * size, its signed distance) and each shape's create function, registered in interface/obstacle.c. */
+ * size, its signed distance); each shape's create function is registered in interface/obstacle.c. */
 #pragma once
 #include "obstacle.h"
 
@@ -34,13 +34,11 @@ struct _MMObstacleOps {
   PetscBool                  sided;    /* the body may be inside it (-obstacle_NAME_side inside) */
   PetscInt                   dim;      /* the one dimension it exists in, 0: any */
   const char                *other;    /* dim given: the shape to use in the other dimension */
+  /* the shape's own checks beyond its parameters' (NULL: none), once they are given */
+  PetscErrorCode (*check)(MMObstacle *ob, MPI_Comm comm, PetscInt dim);
   /* signed distance g of x (positive outside the obstacle) and n = grad g, in the obstacle's
    * position at time 0 */
   PetscErrorCode (*distance)(const MMObstacle *ob, PetscInt dim, const PetscReal x[], PetscReal *g, PetscReal n[]);
 };
 
-PETSC_EXTERN PetscErrorCode MMObstacleCreate_Plane(MMObstacle *ob);
-PETSC_EXTERN PetscErrorCode MMObstacleCreate_Sphere(MMObstacle *ob);
-PETSC_EXTERN PetscErrorCode MMObstacleCreate_Circle(MMObstacle *ob);
-PETSC_EXTERN PetscErrorCode MMObstacleCreate_Cylinder(MMObstacle *ob);
 PETSC_EXTERN PetscErrorCode MMObstacleSetType(MMObstacle *ob, MPI_Comm comm, const char type[]);

@@ -13,14 +13,22 @@ PetscErrorCode MMObstacleRegister(const char type[], PetscErrorCode (*create)(MM
   PetscFunctionReturn(0);
 }
 
+/* One shape: its create function (impls/<type>/) declared and registered, in one line. */
+#define MM_OBSTACLE_REGISTER(type, create) \
+  do { \
+    PetscErrorCode create(MMObstacle *); \
+    PetscCall(MMObstacleRegister(type, create)); \
+  } while (0)
+
 PetscErrorCode MMObstacleRegisterAll(void)
 {
   PetscFunctionBeginUser;
   if (ObstacleList) PetscFunctionReturn(0);
-  PetscCall(MMObstacleRegister("plane", MMObstacleCreate_Plane));
-  PetscCall(MMObstacleRegister("sphere", MMObstacleCreate_Sphere));
-  PetscCall(MMObstacleRegister("circle", MMObstacleCreate_Circle));
-  PetscCall(MMObstacleRegister("cylinder", MMObstacleCreate_Cylinder));
+  MM_OBSTACLE_REGISTER("plane", MMObstacleCreate_Plane);
+  MM_OBSTACLE_REGISTER("sphere", MMObstacleCreate_Sphere);
+  MM_OBSTACLE_REGISTER("circle", MMObstacleCreate_Circle);
+  MM_OBSTACLE_REGISTER("cylinder", MMObstacleCreate_Cylinder);
+  MM_OBSTACLE_REGISTER("box", MMObstacleCreate_Box);
   PetscFunctionReturn(0);
 }
 
@@ -157,7 +165,7 @@ static PetscErrorCode RequireParameter(const MMObstacle *ob, MPI_Comm comm, Pets
   PetscCheck(val->n >= 0, comm, PETSC_ERR_USER_INPUT, "Obstacle %s (type %s) needs -obstacle_%s_%s, %" PetscInt_FMT " entries", ob->name, ob->type, ob->name, what, dim);
   PetscCheck(val->n == dim, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_%s has %" PetscInt_FMT " entries; the mesh is %" PetscInt_FMT "D, so it needs exactly %" PetscInt_FMT, ob->name, what, val->n, dim, dim);
   if (p->kind == MM_OBSTACLE_LENGTHS)
-    for (PetscInt d = 0; d < dim; ++d) PetscCheck(val->v[d] > 0, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_%s: entry %" PetscInt_FMT " is %g; each must be > 0", ob->name, what, d, (double)val->v[d]);
+    for (PetscInt d = 0; d < dim; ++d) PetscCheck(val->v[d] > 0, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_%s entry %" PetscInt_FMT " is %g: each must be > 0", ob->name, what, d, (double)val->v[d]);
   if (p->kind != MM_OBSTACLE_DIRECTION) PetscFunctionReturn(0);
   for (PetscInt d = 0; d < dim; ++d) nrm += PetscSqr(val->v[d]);
   nrm = PetscSqrtReal(nrm);
@@ -213,6 +221,7 @@ PetscErrorCode MMObstacleCheck(MMObstacle *ob, MPI_Comm comm, PetscInt dim)
   PetscCheck(!ops->dim || dim == ops->dim, comm, PETSC_ERR_USER_INPUT, "Obstacle %s is a %s, a %" PetscInt_FMT "D shape, but the mesh is %" PetscInt_FMT "D: use type %s", ob->name, ob->type, ops->dim, dim, ops->other);
   PetscCall(RefuseOthers(ob, comm));
   for (PetscInt i = 0; i < ops->nparams; ++i) PetscCall(RequireParameter(ob, comm, dim, &ops->params[i], Value(ob, i)));
+  if (ops->check) PetscCall((*ops->check)(ob, comm, dim));
   PetscFunctionReturn(0);
 }
 
