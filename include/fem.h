@@ -61,9 +61,12 @@ typedef struct {
 } MMLoadGroup;
 typedef MMLoadGroup MMTraction, MMPressure, MMPointForce;
 
-/* The boundary conditions and loads as the user names them (-dirichlet, -traction, -pressure,
- * -point_force), read by MMLoadGroupsSetFromOptions (src/fem/load_groups.c). */
+/* The loads and boundary conditions as the user gives them (-gravity, -dirichlet, -traction,
+ * -pressure, -point_force), read by MMLoadGroupsSetFromOptions (src/fem/load_groups.c). */
 typedef struct {
+  PetscReal          gravity[MM_MAX_DIM];
+  PetscInt           ngravity; /* entries given to -gravity, -1 if not set */
+  MMAmplitudeOptions gravity_amplitude;
   PetscInt     n_dirichlet, n_traction, n_pressure, n_point_force;
   MMDirichlet *dirichlet;
   MMLoadGroup *traction, *pressure, *point_force;

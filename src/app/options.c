@@ -15,8 +15,8 @@ typedef enum {
   MM_LEN_ROTATION /* 1 entry in 2D (an angle), 3 in 3D (a vector) */
 } MMVectorLength;
 
-static const char *const VectorName[MM_V_NUM] = {"-gravity", "-u0_offset", "-u0_gradient", "-v0", "-omega", "-omega_center", "-obstacle_point", "-obstacle_normal", "-mesh_rotation", "-mesh_rotation_center", "-omega0"};
-static const MMVectorLength VectorLength[MM_V_NUM] = {MM_LEN_DIM, MM_LEN_DIM, MM_LEN_TENSOR, MM_LEN_DIM, MM_LEN_ROTATION, MM_LEN_DIM, MM_LEN_DIM, MM_LEN_DIM, MM_LEN_ROTATION, MM_LEN_DIM, MM_LEN_ROTATION};
+static const char *const VectorName[MM_V_NUM] = {"-u0_offset", "-u0_gradient", "-v0", "-omega", "-omega_center", "-obstacle_point", "-obstacle_normal", "-mesh_rotation", "-mesh_rotation_center", "-omega0"};
+static const MMVectorLength VectorLength[MM_V_NUM] = {MM_LEN_DIM, MM_LEN_TENSOR, MM_LEN_DIM, MM_LEN_ROTATION, MM_LEN_DIM, MM_LEN_DIM, MM_LEN_DIM, MM_LEN_ROTATION, MM_LEN_DIM, MM_LEN_ROTATION};
 
 /* The checked option readers of src/sys/option_values.c, under this file's short names. */
 #define CheckFinite      MMOptionsCheckFinite
@@ -50,7 +50,7 @@ static PetscErrorCode CheckMuUsed(MPI_Comm comm, const MMOptions *opt)
   for (PetscInt b = 0; b < opt->n_obstacles && own; ++b) {
     const MMObstacle *ob = &opt->obstacles[b];
     PetscCall(PetscSNPrintf(key, sizeof(key), ob->pair ? "-contact_pair_%s_mu" : "-obstacle_%s_mu", ob->name));
-    PetscCall(PetscOptionsHasName(NULL, NULL, key, &own));
+    own = ob->mu_given;
     if (own) {
       if (names[0]) PetscCall(PetscStrlcat(names, ", ", sizeof(names)));
       PetscCall(PetscStrlcat(names, key, sizeof(names)));
@@ -161,8 +161,6 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-rho", "Mass density (kg/m^d), > 0", &opt->rho));
   opt->elasticity = MM_ELASTICITY_LINEAR;
   PetscCall(OptionsEnum(PetscOptionsObject, comm, "-elasticity", "Elasticity law: linear (the small-strain model, rotations strain the body), svk (St. Venant-Kirchhoff) or neohookean (compressible neo-Hookean), both finite strain with the same E and nu, energy and momentum exact per step (docs/method.md section 13)", MMElasticityTypes, (PetscEnum *)&opt->elasticity));
-  PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_GRAVITY, "Body-force acceleration gx,gy[,gz] (m/s^2), d entries, times -gravity_amplitude", opt->gravity));
-  PetscCall(MMAmplitudeOptionsRead(PetscOptionsObject, comm, "-gravity", &opt->gravity_amplitude));
 
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_U0_OFFSET, "Initial displacement u0 = a + B x: the vector a, d entries", opt->u0_offset));
   PetscCall(OptionsVector(PetscOptionsObject, comm, opt, MM_V_U0_GRADIENT, "Initial displacement u0 = a + B x: the matrix B, row-major, d*d entries", opt->u0_gradient));

@@ -37,8 +37,8 @@ PetscErrorCode MMOptionsGetFEProblem(const MMOptions *opt, MMFEProblem *pb)
   pb->bodies            = opt->bodies;
   pb->omega0            = opt->omega0;
   pb->omega0_set        = (PetscBool)(opt->vec_count[MM_V_OMEGA0] >= 0);
-  pb->gravity           = opt->gravity;
-  pb->gravity_amplitude = &opt->gravity_amplitude;
+  pb->gravity           = opt->loads.gravity;
+  pb->gravity_amplitude = &opt->loads.gravity_amplitude;
   pb->n_dirichlet       = opt->loads.n_dirichlet;
   pb->dirichlet         = opt->loads.dirichlet;
   pb->n_traction        = opt->loads.n_traction;

@@ -1,6 +1,6 @@
-/* The boundary conditions and load groups as the user names them (README "Loads in time"): each
- * named group of -dirichlet, -traction, -pressure and -point_force with its value and amplitude in
- * time (docs/method.md section 10). The three load kinds are one reader: a kind differs only by its
+/* The loads and boundary conditions as the user gives them (README "Loads in time"): gravity and
+ * each named group of -dirichlet, -traction, -pressure and -point_force with its value and amplitude
+ * in time (docs/method.md section 10). The three load kinds are one reader: a kind differs only by its
  * option, its help strings, whether its value is a scalar, and its refusal when the value is missing.
  * The groups are checked against the mesh where the loads are built (loads.c, loads_nodal.c). */
 #include "fem.h"
@@ -161,6 +161,8 @@ PetscErrorCode MMLoadGroupsSetFromOptions(MPI_Comm comm, MMLoadGroups *lg)
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(lg, sizeof(*lg)));
   PetscOptionsBegin(comm, NULL, "mmcontact: boundary conditions and loads", "MMLoadGroups");
+  PetscCall(MMOptionsRealArray(PetscOptionsObject, comm, "-gravity", "Body-force acceleration gx,gy[,gz] (m/s^2), d entries, times -gravity_amplitude", MM_MAX_DIM, lg->gravity, &lg->ngravity));
+  PetscCall(MMAmplitudeOptionsRead(PetscOptionsObject, comm, "-gravity", &lg->gravity_amplitude));
   PetscCall(MMOptionsString(PetscOptionsObject, comm, "-dirichlet", "Comma-separated physical names of Dirichlet boundaries; each takes -dirichlet_NAME_components, -dirichlet_NAME_value and -dirichlet_NAME_velocity", list, sizeof(list), NULL));
   PetscCall(ReadDirichlet(PetscOptionsObject, comm, lg, list));
   PetscCall(ReadGroups(PetscOptionsObject, comm, &Traction, &lg->n_traction, &lg->traction));
@@ -170,8 +172,8 @@ PetscErrorCode MMLoadGroupsSetFromOptions(MPI_Comm comm, MMLoadGroups *lg)
   PetscFunctionReturn(0);
 }
 
-/* What depends on the mesh dimension: each Dirichlet boundary's components (default all: a clamp),
- * its values and velocities one per component; each vector load d entries. */
+/* What depends on the mesh dimension: gravity and each vector load d entries; each Dirichlet
+ * boundary's components (default all: a clamp), its values and velocities one per component. */
 PetscErrorCode MMLoadGroupsCheckDimension(MPI_Comm comm, MMLoadGroups *opt, PetscInt dim, PetscBool damped)
 {
   const struct {
@@ -184,6 +186,7 @@ PetscErrorCode MMLoadGroupsCheckDimension(MPI_Comm comm, MMLoadGroups *opt, Pets
   };
 
   PetscFunctionBeginUser;
+  PetscCheck(opt->ngravity < 0 || opt->ngravity == dim, comm, PETSC_ERR_USER_INPUT, "-gravity has %" PetscInt_FMT " entries; the mesh is %" PetscInt_FMT "D, so it needs exactly %" PetscInt_FMT, opt->ngravity, dim, dim);
   for (PetscInt b = 0; b < opt->n_dirichlet; ++b) {
     MMDirichlet *bc = &opt->dirichlet[b];
     if (bc->ncomp < 0) {

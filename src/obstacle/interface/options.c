@@ -66,6 +66,7 @@ PetscErrorCode MMObstacleSetFromOptions(MMObstacle *ob, MPI_Comm comm, const cha
   PetscCall(ReadParameters(PetscOptionsObject, comm, ob));
   PetscCall(ReadSide(PetscOptionsObject, comm, ob));
   PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-mu", "Coulomb friction coefficient against this obstacle, >= 0 (default -mu)", &ob->mu));
+  PetscCall(PetscOptionsHasName(NULL, prefix, "-mu", &ob->mu_given));
   PetscCall(MMOptionsRealArray(PetscOptionsObject, comm, "-velocity", "Constant translation velocity of the obstacle between -obstacle_NAME_start and -obstacle_NAME_stop, d entries (default 0: fixed)", MM_MAX_DIM, ob->velocity, &ob->nvelocity));
   PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-start", "Time at which the obstacle starts moving, >= 0 (default 0)", &ob->start));
   PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-stop", "Time at which the obstacle stops, after -obstacle_NAME_start (default: never)", &ob->stop));
@@ -95,6 +96,7 @@ PetscErrorCode MMObstacleSetPairFromOptions(MMObstacle *ob, MPI_Comm comm, const
   PetscCall(MMOptionsString(PetscOptionsObject, comm, "-master", "Physical name of the pair's master surface: the facets the slave nodes are projected on", ob->master, sizeof(ob->master), &set));
   PetscCheck(set, comm, PETSC_ERR_USER_INPUT, "Contact pair %s has no master surface: give -contact_pair_%s_master NAME, a physical group of the mesh on the other body", ob->name, ob->name);
   PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-mu", "Coulomb friction coefficient between the pair's surfaces, >= 0 (default -mu)", &ob->mu));
+  PetscCall(PetscOptionsHasName(NULL, prefix, "-mu", &ob->mu_given));
   PetscCheck(ob->mu >= 0, comm, PETSC_ERR_USER_INPUT, "-contact_pair_%s_mu %g: a friction coefficient is >= 0", ob->name, (double)ob->mu);
   PetscOptionsEnd();
   PetscFunctionReturn(0);
