@@ -33,6 +33,7 @@ typedef enum {
 typedef struct {
   char         mesh_file[PETSC_MAX_PATH_LEN];
   char         contact_name[256];
+  PetscBool    contact_name_given; /* -contact_boundary was given */
   MMLoadGroups loads;               /* -gravity, -dirichlet, -traction, -pressure, -point_force: fem's reader */
   PetscReal    E, nu, rho;
   MMElasticityType elasticity; /* -elasticity */

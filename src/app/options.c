@@ -151,7 +151,7 @@ PetscErrorCode MMOptionsProcess(MPI_Comm comm, MMOptions *opt)
   opt->mesh_file[0] = 0;
   PetscCall(OptionsString(PetscOptionsObject, comm, "-mesh", "gmsh mesh file (.msh, format 2.2 or 4.1) with named physical groups; first-order triangles give plane strain, first-order tetrahedra 3D", opt->mesh_file, sizeof(opt->mesh_file), NULL));
   PetscCall(PetscStrcpy(opt->contact_name, "contact"));
-  PetscCall(OptionsString(PetscOptionsObject, comm, "-contact_boundary", "Physical name of the contact boundary (a Physical Curve in 2D, Surface in 3D)", opt->contact_name, sizeof(opt->contact_name), NULL));
+  PetscCall(OptionsString(PetscOptionsObject, comm, "-contact_boundary", "Physical name of the contact boundary (a Physical Curve in 2D, Surface in 3D)", opt->contact_name, sizeof(opt->contact_name), &opt->contact_name_given));
 
   opt->E = 1.0;
   PetscCall(OptionsReal(PetscOptionsObject, comm, "-E", "Young's modulus (Pa), > 0", &opt->E));

@@ -14,6 +14,7 @@ PetscErrorCode MMOptionsGetContactProblem(const MMOptions *opt, MMContactProblem
   pb->E              = opt->E;
   pb->rho            = opt->rho;
   pb->contact_name   = opt->contact_name;
+  pb->contact_name_given = opt->contact_name_given;
   pb->static_sliding = (PetscBool)(opt->initial_state == MM_INITIAL_STATIC_SLIDING);
   pb->quiet          = opt->quiet;
   for (PetscInt d = 0; d < MM_MAX_DIM; ++d) {

@@ -183,11 +183,9 @@ static PetscErrorCode MarkContactVertices(MMContact ct, PetscInt **mark, Vec are
   PetscCall(VecZeroEntries(aloc));
   PetscCall(VecGetArray(aloc, &aa));
   if (ct->pb.n_rigid) {
-    DMLabel   label;
-    PetscBool given;
+    DMLabel label;
     /* a missing group says whether its name is the default one, tried because the option was not given */
-    PetscCall(PetscOptionsHasName(NULL, NULL, "-contact_boundary", &given));
-    PetscCall(MMMeshGetLabelFor(dm, ct->pb.contact_name, given ? "-contact_boundary" : "the default of -contact_boundary, which was not given: name the mesh's contact boundary with -contact_boundary NAME", &label));
+    PetscCall(MMMeshGetLabelFor(dm, ct->pb.contact_name, ct->pb.contact_name_given ? "-contact_boundary" : "the default of -contact_boundary, which was not given: name the mesh's contact boundary with -contact_boundary NAME", &label));
     PetscCall(MarkSurface(ct, ct->pb.contact_name, 1, *mark, aa));
   }
   for (PetscInt b = ct->pb.n_rigid; b < ct->pb.n_obstacles; ++b) PetscCall(MarkSurface(ct, ct->pb.obstacles[b].slave, 2 + b - ct->pb.n_rigid, *mark, aa));
