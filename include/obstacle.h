@@ -26,19 +26,31 @@ struct _MMObstacle {
   void                *data;         /* the shape's parameters */
 };
 
+/* The registry (src/obstacle/interface/obstacle.c): the shapes, a new one added by
+ * MMObstacleRegister; MMObstacleTypesList gives "plane|sphere|..." for help strings and refusals. */
 PETSC_EXTERN PetscErrorCode MMObstacleRegisterAll(void);
 PETSC_EXTERN PetscErrorCode MMObstacleRegister(const char type[], PetscErrorCode (*create)(MMObstacle *));
 PETSC_EXTERN PetscErrorCode MMObstacleTypesList(char buf[], size_t len);
+PETSC_EXTERN PetscErrorCode MMObstacleFinalize(void);
+/* From the options (src/obstacle/interface/options.c): obstacle NAME of -obstacles under its prefix
+ * -obstacle_NAME_, contact pair NAME of -contact_pairs under -contact_pair_NAME_; mu, the default of
+ * their own _mu. MMObstacleCreatePlane makes the single plane of -obstacle_point/-obstacle_normal,
+ * whose point and normal MMObstacleSetPlane gives once the dimension is known. */
 PETSC_EXTERN PetscErrorCode MMObstacleSetFromOptions(MMObstacle *ob, MPI_Comm comm, const char name[], PetscReal mu);
 PETSC_EXTERN PetscErrorCode MMObstacleSetPairFromOptions(MMObstacle *ob, MPI_Comm comm, const char name[], PetscReal mu);
 PETSC_EXTERN PetscErrorCode MMObstacleCreatePlane(MMObstacle *ob, MPI_Comm comm, const char name[], PetscReal mu);
 PETSC_EXTERN PetscErrorCode MMObstacleSetPlane(MMObstacle *ob, PetscInt dim, const PetscReal point[], const PetscReal normal[]);
+/* Once the dimension is known: the motion and mu checked, the shape's parameters required, another
+ * shape's refused. */
+PETSC_EXTERN PetscErrorCode MMObstacleCheck(MMObstacle *ob, MPI_Comm comm, PetscInt dim);
+/* What the rest of the program asks of one: a plane's point and normal (plane false for another
+ * shape), a parameter's first n values by its option suffix (0 where the shape has none), the
+ * parameters' names, the signed distance and normal at x, the motion at time t. */
 PETSC_EXTERN PetscErrorCode MMObstacleGetPlane(const MMObstacle *ob, PetscReal point[], PetscReal normal[], PetscBool *plane);
 PETSC_EXTERN PetscErrorCode MMObstacleGetParameter(const MMObstacle *ob, const char name[], PetscInt n, PetscReal v[], PetscBool *has);
-PETSC_EXTERN PetscErrorCode MMObstacleGetParameterNames(const MMObstacle *ob, PetscInt *n, const char *names[]);
-PETSC_EXTERN PetscErrorCode MMObstacleCheck(MMObstacle *ob, MPI_Comm comm, PetscInt dim);
+PETSC_EXTERN PetscErrorCode MMObstacleGetParameterNames(const MMObstacle *ob, PetscInt max, PetscInt *n, const char *names[]);
 PETSC_EXTERN PetscErrorCode MMObstacleDistance(const MMObstacle *ob, PetscInt dim, const PetscReal x[], PetscReal *g, PetscReal n[]);
 PETSC_EXTERN void           MMObstacleDisplacement(const MMObstacle *ob, PetscInt dim, PetscReal t, PetscReal c[]);
 PETSC_EXTERN void           MMObstacleVelocity(const MMObstacle *ob, PetscInt dim, PetscReal t, PetscReal V[]);
+/* Frees the shape's data. */
 PETSC_EXTERN PetscErrorCode MMObstacleDestroy(MMObstacle *ob);
-PETSC_EXTERN PetscErrorCode MMObstacleFinalize(void);

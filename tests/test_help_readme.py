@@ -23,6 +23,23 @@ def test_every_help_option_is_in_readme():
     assert section.count("(None)") == len(options)
 
 
+def test_every_obstacle_option_is_in_readme():
+    """Each obstacle reads its options under its prefix -obstacle_NAME_, in its own -help heading: for
+    every registered shape, every option that heading lists is in README.md as -obstacle_NAME_...,
+    and the -obstacles help names every shape."""
+    readme = open(os.path.join(ROOT, "README.md")).read()
+    types = ("plane", "sphere", "circle", "cylinder", "box")
+    for t in types:
+        out = subprocess.run([EXE, "-options_file", "options/ball_bowl.opts", "-obstacles", "o", "-obstacle_o_type", t, "-help", "-ts_max_steps", "0",
+                              "-output_dir", "/tmp/mmcontact-help"], cwd=ROOT, capture_output=True).stdout.decode(errors="replace")
+        section = out.split("mmcontact: obstacle o:")[1].split("-------")[0]
+        options = set(re.findall(r"^\s+(-[a-z_0-9A-Z]+)", section, re.M))
+        assert "-obstacle_o_type" in options and len(options) >= 6, (t, options)
+        for opt in options:
+            assert opt.replace("-obstacle_o_", "-obstacle_NAME_") in readme, (t, opt)
+        assert "-obstacle_NAME_type %s" % "|".join(types) in out
+
+
 def test_help_intro_is_the_readmes():
     """`-help intro` describes the program from the same text as README.md's "-help intro" block:
     the two are identical, line for line (issue 38: it still described the fixed point alone)."""

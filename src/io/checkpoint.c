@@ -486,7 +486,7 @@ static PetscErrorCode PhysicsObstacle(MMCheckpoint *ck, MMPhysics *ph, const MMO
     PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%%s_%s", legacy[i]));
     PetscCall(PhysicsAddReals(ph, key, ob->name, m, v));
   }
-  PetscCall(MMObstacleGetParameterNames(ob, &n, names));
+  PetscCall(MMObstacleGetParameterNames(ob, PETSC_STATIC_ARRAY_LENGTH(names), &n, names));
   for (PetscInt i = 0; i < n; ++i) {
     PetscBool old = PETSC_FALSE;
     for (size_t k = 0; k < PETSC_STATIC_ARRAY_LENGTH(legacy); ++k) old = (PetscBool)(old || !strcmp(names[i], legacy[k]));

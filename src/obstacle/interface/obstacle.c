@@ -92,11 +92,12 @@ static PetscInt FindParameter(const MMObstacleOps *ops, const char name[])
   return -1;
 }
 
-/* The shape's parameters, for a checkpoint's record of the physics. */
-PetscErrorCode MMObstacleGetParameterNames(const MMObstacle *ob, PetscInt *n, const char *names[])
+/* The shape's parameters (at most max), for a checkpoint's record of the physics. */
+PetscErrorCode MMObstacleGetParameterNames(const MMObstacle *ob, PetscInt max, PetscInt *n, const char *names[])
 {
   PetscFunctionBeginUser;
   *n = ob->ops ? ob->ops->nparams : 0;
+  PetscCheck(*n <= max, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "Obstacle type %s has %" PetscInt_FMT " parameters, more than %" PetscInt_FMT, ob->type, *n, max);
   for (PetscInt i = 0; i < *n; ++i) names[i] = ob->ops->params[i].name;
   PetscFunctionReturn(0);
 }
