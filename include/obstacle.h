@@ -16,6 +16,7 @@ struct _MMObstacle {
                                         frame may follow the contact point (-contact_frames follow) */
   PetscReal mu;                      /* friction coefficient against this obstacle */
   PetscBool mu_given;                /* its own _mu was given (else it took -mu) */
+  PetscBool prefixed;                /* it read its options under -obstacle_NAME_ (not the plane of -obstacle_point) */
   PetscReal velocity[MM_MAX_DIM], start, stop; /* moves at velocity for start < t <= stop */
   PetscInt  nvelocity;               /* entries given to -obstacle_NAME_velocity, -1 if not set */
   /* a contact pair between two surfaces of the mesh (-contact_pairs), not a rigid shape: its slave

@@ -220,7 +220,7 @@ PetscErrorCode MMObstacleCheck(MMObstacle *ob, MPI_Comm comm, PetscInt dim)
   PetscCheck(ob->start >= 0, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_start %g must be >= 0 (a time)", ob->name, (double)ob->start);
   PetscCheck(ob->stop > ob->start, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_stop %g must be after -obstacle_%s_start %g", ob->name, (double)ob->stop, ob->name, (double)ob->start);
   PetscCheck(!ops->dim || dim == ops->dim, comm, PETSC_ERR_USER_INPUT, "Obstacle %s is a %s, a %" PetscInt_FMT "D shape, but the mesh is %" PetscInt_FMT "D: use type %s", ob->name, ob->type, ops->dim, dim, ops->other);
-  PetscCall(RefuseOthers(ob, comm));
+  if (ob->prefixed) PetscCall(RefuseOthers(ob, comm)); /* the plane of -obstacle_point reads no -obstacle_plane_* */
   for (PetscInt i = 0; i < ops->nparams; ++i) PetscCall(RequireParameter(ob, comm, dim, &ops->params[i], Value(ob, i)));
   if (ops->check) PetscCall((*ops->check)(ob, comm, dim));
   PetscFunctionReturn(0);

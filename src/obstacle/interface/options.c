@@ -56,6 +56,7 @@ PetscErrorCode MMObstacleSetFromOptions(MMObstacle *ob, MPI_Comm comm, const cha
   ob->nvelocity = -1;
   ob->stop      = PETSC_MAX_REAL;
   ob->mu        = mu;
+  ob->prefixed  = PETSC_TRUE;
   PetscCall(MMObstacleTypesList(types, sizeof(types)));
   PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "obstacle_%s_", name));
   PetscCall(PetscSNPrintf(title, sizeof(title), "mmcontact: obstacle %s", name));
