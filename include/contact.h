@@ -24,6 +24,7 @@ typedef struct {
   PetscReal         mu_max;           /* the largest friction coefficient: 0 frictionless */
   PetscReal         E, rho;
   const char       *contact_name;     /* -contact_boundary */
+  PetscBool         contact_name_given; /* -contact_boundary was given (else contact_name is its default) */
   PetscBool         static_sliding;   /* -initial_state static_sliding: one fixed plane */
   PetscBool         quiet;
   PetscReal         obstacle_point[MM_MAX_DIM], obstacle_normal[MM_MAX_DIM];

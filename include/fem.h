@@ -47,30 +47,30 @@ typedef struct {
   const struct _MMAmplitude *amp;   /* its a(t), set by src/fem/loads.c; NULL: constant */
 } MMDirichlet;
 
-/* A Neumann boundary carrying a traction (force per unit area) times an amplitude in time. */
+/* A load group (src/fem/load_groups.c): a physical group carrying a value times an amplitude in
+ * time. A traction (-traction): a force per unit area on the group's boundary faces, d entries. A
+ * pressure (-pressure, README "Loads in time"): value[0] = p, the traction -p n along each facet's
+ * outward normal n of the reference configuration (p > 0 pushes in; per unit length in 2D). A point
+ * force (-point_force): the force on each node of a Physical Point group, d entries (per unit
+ * thickness in 2D). */
 typedef struct {
   char     *name;
-  PetscReal traction[MM_MAX_DIM];
-  PetscInt  nvalues; /* entries given to -traction_NAME_value, -1 if not set */
+  PetscReal value[MM_MAX_DIM];
+  PetscInt  nvalues; /* entries given to -KIND_NAME_value, -1 if not set */
   MMAmplitudeOptions amplitude;
-} MMTraction;
+} MMLoadGroup;
+typedef MMLoadGroup MMTraction, MMPressure, MMPointForce;
 
-/* A pressure on a boundary group (README "Loads in time"): the traction -p n along each facet's
- * outward normal n of the reference configuration (p > 0 pushes in), times an amplitude in time. */
+/* The loads and boundary conditions as the user gives them (-gravity, -dirichlet, -traction,
+ * -pressure, -point_force), read by MMLoadGroupsSetFromOptions (src/fem/load_groups.c). */
 typedef struct {
-  char     *name;
-  PetscReal p;       /* force per unit area (per unit length in 2D, per unit thickness) */
-  PetscBool set;     /* -pressure_NAME_value was given */
-  MMAmplitudeOptions amplitude;
-} MMPressure;
-
-/* A concentrated force on each node of a Physical Point group, times an amplitude in time. */
-typedef struct {
-  char     *name;
-  PetscReal force[MM_MAX_DIM]; /* force (per unit thickness in 2D) on each node of the group */
-  PetscInt  nvalues; /* entries given to -point_force_NAME_value, -1 if not set */
-  MMAmplitudeOptions amplitude;
-} MMPointForce;
+  PetscReal          gravity[MM_MAX_DIM];
+  PetscInt           ngravity; /* entries given to -gravity, -1 if not set */
+  MMAmplitudeOptions gravity_amplitude;
+  PetscInt     n_dirichlet, n_traction, n_pressure, n_point_force;
+  MMDirichlet *dirichlet;
+  MMLoadGroup *traction, *pressure, *point_force;
+} MMLoadGroups;
 
 /* The elasticity law (-elasticity, -body_NAME_elasticity; src/fem/elasticity_laws.c, docs/method.md
  * section 13): the paper's linear small-strain model, or a finite-strain hyperelastic law with the
@@ -299,6 +299,17 @@ PETSC_EXTERN PetscErrorCode MMLoadsInsertDirichletVelocity(MMLoads *ld, Vec whol
 PETSC_EXTERN PetscErrorCode MMLoadsInsertBoundaryValues(MMLoads *ld, Vec l, PetscReal t);
 PETSC_EXTERN PetscErrorCode MMLoadsDestroy(MMLoads *ld);
 PETSC_EXTERN PetscReal      MMAmplitudeValue(const MMAmplitude *a, PetscReal t);
+/* bodies.c: the bodies read from their options (whole: the whole mesh's material, their defaults) */
+PETSC_EXTERN PetscErrorCode MMBodiesSetFromOptions(MPI_Comm comm, const MMBodyOptions *whole, PetscInt *n, MMBodyOptions **bodies);
+PETSC_EXTERN PetscErrorCode MMBodiesCheck(MPI_Comm comm, PetscInt n, const MMBodyOptions bodies[]);
+PETSC_EXTERN PetscErrorCode MMBodiesCheckDimension(MPI_Comm comm, PetscInt n, const MMBodyOptions bodies[], PetscInt dim);
+PETSC_EXTERN PetscErrorCode MMBodiesDestroy(PetscInt *n, MMBodyOptions **bodies);
+PETSC_EXTERN PetscErrorCode MMMaterialCheckNearlyIncompressible(MPI_Comm comm, const char option[], PetscReal nu, MMElasticityType law);
+/* load_groups.c: the boundary conditions and load groups read from their options */
+PETSC_EXTERN PetscErrorCode MMLoadGroupsSetFromOptions(MPI_Comm comm, MMLoadGroups *lg);
+PETSC_EXTERN PetscErrorCode MMLoadGroupsCheckDimension(MPI_Comm comm, MMLoadGroups *lg, PetscInt dim, PetscBool damped);
+PETSC_EXTERN PetscErrorCode MMLoadGroupsDestroy(MMLoadGroups *lg);
+PETSC_EXTERN PetscErrorCode MMAmplitudeOptionsRead(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char prefix[], MMAmplitudeOptions *a);
 /* loads_nodal.c: the pressures' and point forces' nodal forces */
 PETSC_EXTERN PetscErrorCode MMFEAddPressure(const MMOperators *op, const MMPressure *pr, Vec floc);
 PETSC_EXTERN PetscErrorCode MMFEAddPointForce(const MMOperators *op, const MMPointForce *pf, Vec floc);

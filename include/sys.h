@@ -46,5 +46,7 @@ PETSC_EXTERN PetscErrorCode MMOptionsInt(PetscOptionItems *PetscOptionsObject, M
 PETSC_EXTERN PetscErrorCode MMOptionsBool(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], PetscBool *v);
 PETSC_EXTERN PetscErrorCode MMOptionsString(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], char v[], size_t len, PetscBool *set);
 PETSC_EXTERN PetscErrorCode MMOptionsEnum(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], const char *const list[], PetscEnum *v);
+/* a named group's list, -obstacles NAME,NAME: the names, refused if one is empty, has a blank or comes twice */
+PETSC_EXTERN PetscErrorCode MMOptionsSplitNames(MPI_Comm comm, const char option[], const char list[], PetscInt *n, char ***names);
 /* option_order.c: which of two options was given later (PETSC_OPTIONS, the command line, options files in place) */
 PETSC_EXTERN PetscErrorCode MMOptionsOrder(const char a[], const char b[], PetscInt *order);

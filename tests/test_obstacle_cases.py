@@ -1,4 +1,4 @@
-"""The five obstacle cases of options/ (README "Cases"): balance laws every step, 1 rank against 2,
+"""The six obstacle cases of options/ (README "Cases"): balance laws every step, 1 rank against 2,
 the physics each case is there to show, and the shapes the cases do not cover (docs/method.md
 section 8)."""
 import os
@@ -9,8 +9,8 @@ import pytest
 
 from conftest import ROOT, assert_close, column_scale, options_without_plane, physical_scales, run
 
-CASES = ["ball_bowl", "disk_rail", "block_push", "ball_vgroove", "block_squeeze"]
-HC_MIN = 0.0707  # the smallest h_c' of the five meshes
+CASES = ["ball_bowl", "disk_rail", "block_push", "ball_vgroove", "block_squeeze", "ball_box"]
+HC_MIN = 0.0707  # the smallest h_c' of the meshes
 
 
 @pytest.fixture(scope="module")
@@ -109,6 +109,17 @@ def test_squeezed_block_reactions_balance_at_rest(runs):
     # no net sideways force: the block bulges symmetrically
     assert np.abs(h["force_top_x"][held] + h["force_bottom_x"][held]).max() <= 1e-9 * top
     assert h["kinetic"][held].max() <= 1e-2 * h["elastic"][-1]
+
+
+def test_ball_box_is_pushed_off_the_rounded_corner(runs):
+    """The ball lands on the box's rounded corner (type box, 3D), whose normal leans towards +x and +y:
+    the box pushes it up and sideways, so it leaves with a velocity along +y it did not have, and the
+    force on the box points down and towards -y (never +y or +z)."""
+    h = runs("ball_box", 1).history
+    fscale = h["force_normal"].max()
+    assert h["force_box_z"].min() < -0.5 * fscale and h["force_box_z"].max() <= 1e-9 * fscale
+    assert h["force_box_y"].min() < -0.05 * fscale and h["force_box_y"].max() <= 1e-9 * fscale
+    assert h["vcm_y"][-1] > 0.05 and abs(h["vcm_y"][0]) <= 1e-12
 
 
 def test_vgroove_assignment_is_the_nearest_plane_at_set_up(runs):

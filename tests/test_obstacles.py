@@ -59,14 +59,47 @@ def test_circle_inside_and_outside(mm, disk_opts, shape):
     assert h["force_rail_y"].min() < -0.5 * h["force_normal"].max()
 
 
+# a rounded rectangle whose top face is the plane y = 0 left of x = -0.2, where its rounded corner
+# (radius 0.5, centre (-0.2, -0.5)) begins: the disk lands on the rounding
+BOX = ("-obstacle_block_type", "box", "-obstacle_block_center", "-1.2,-1", "-obstacle_block_half_sizes", "1.5,1", "-obstacle_block_radius", 0.5)
+
+
+def test_disk_on_a_rounded_box_corner(mm, disk_opts):
+    """The disk thrown onto the rounded corner of a box (type box, 2D: a rounded rectangle): no
+    penetration along each node's own normal, the energy balance at round-off, the Coulomb residual at
+    solver level; the rounding pushes the disk down and to the right (its normal leans to +x there),
+    and 1 rank and 2 give the same history."""
+    a = run_opts(mm, disk_opts, "-obstacles", "block", *BOX, *TIGHT, np_=1, name="one").history
+    b = run_opts(mm, disk_opts, "-obstacles", "block", *BOX, *TIGHT, np_=2, name="two").history
+    fscale = a["force_normal"].max()
+    assert a["active"].max() >= 3 and a["slipping"].max() > 0
+    assert a["max_penetration"].max() <= 1e-10 * 0.08
+    assert a["balance_residual"].max() <= 1e-12
+    escale = np.abs(a["total"]).max()
+    works = a["work_ext"] + a["work_contact"] + a["work_friction"]
+    assert np.abs(a["total"] - a["total"][0] - works).max() <= 1e-10 * escale
+    assert a["coulomb_residual"].max() <= 1e-9
+    assert a["force_block_y"].min() < -0.5 * fscale and a["force_block_x"].min() < -0.05 * fscale
+    for c in ["kinetic", "elastic", "total", "work_contact", "work_friction"]:
+        assert np.abs(a[c] - b[c]).max() <= 1e-8 * escale, c
+    for c in ["force_normal", "force_tangential", "force_block_x", "force_block_y"]:
+        assert np.abs(a[c] - b[c]).max() <= 1e-8 * fscale, c
+    assert np.array_equal(a["active"], b["active"])
+
+
 @pytest.mark.parametrize("extra,message", [
     (("-obstacles", "bowl", "-obstacle_bowl_type", "circle", "-obstacle_bowl_center", "0,3", "-obstacle_bowl_radius", 0), "-obstacle_bowl_radius 0. must be > 0"),
     (("-obstacles", "floor", "-obstacle_floor_point", "0,0", "-obstacle_floor_normal", "0,0"), "-obstacle_floor_normal is the zero vector"),
-    (("-obstacles", "floor", "-obstacle_floor_type", "cone"), "-obstacle_floor_type cone is not a known obstacle type: use plane|sphere|circle|cylinder"),
+    (("-obstacles", "floor", "-obstacle_floor_type", "cone"), "-obstacle_floor_type cone is not a known obstacle type: use plane|sphere|circle|cylinder|box"),
     (("-obstacles", "ball", "-obstacle_ball_type", "sphere", "-obstacle_ball_center", "0,0", "-obstacle_ball_radius", 1), "Obstacle ball is a sphere, a 3D shape, but the mesh is 2D: use type circle"),
     (("-obstacles", "floor", "-obstacle_floor_point", "0,0", "-obstacle_floor_normal", "0,1", "-obstacle_floor_radius", 1), "-obstacle_floor_radius does not apply to an obstacle of type plane"),
     (("-obstacles", "rail", "-obstacle_rail_type", "circle", "-obstacle_rail_center", "0,0", "-obstacle_rail_radius", 0.5), "The initial state penetrates the obstacle \"rail\""),
     (("-obstacles", "rail", "-obstacle_rail_type", "circle", "-obstacle_rail_center", "0,1", "-obstacle_rail_radius", 3, "-obstacle_rail_side", "middle"), "-obstacle_rail_side middle: use outside or inside"),
+    (("-obstacles", "block", *BOX[:-2], "-obstacle_block_radius", 2), "-obstacle_block_radius 2. is larger than the smallest of -obstacle_block_half_sizes (1.): the rounding must fit inside the box"),
+    (("-obstacles", "block", *BOX, "-obstacle_block_side", "inside"), "-obstacle_block_side inside does not apply to an obstacle of type box"),
+    (("-obstacles", "block", *BOX, "-obstacle_block_normal", "0,1"), "-obstacle_block_normal does not apply to an obstacle of type box"),
+    (("-obstacles", "block", *BOX, "-obstacle_block_half_sizes", "1,0"), "-obstacle_block_half_sizes entry 1 is 0.: each must be > 0"),
+    (("-obstacles", "block", *BOX[:4], *BOX[6:]), "Obstacle block (type box) needs -obstacle_block_half_sizes, 2 entries"),
 ])
 def test_bad_obstacles_are_refused_by_name(mm, disk_opts, extra, message):
     r = run_opts(mm, disk_opts, *extra, np_=0, check=False)

@@ -14,7 +14,6 @@ PETSC_INTERN const char *const MMInitialStates[];
 
 /* The vector options, whose lengths can only be checked once the mesh gives the dimension. */
 typedef enum {
-  MM_V_GRAVITY,
   MM_V_U0_OFFSET,
   MM_V_U0_GRADIENT,
   MM_V_V0,
@@ -34,18 +33,12 @@ typedef enum {
 typedef struct {
   char         mesh_file[PETSC_MAX_PATH_LEN];
   char         contact_name[256];
-  PetscInt     n_dirichlet, n_traction;
-  MMDirichlet *dirichlet;
-  MMTraction  *traction;
-  PetscInt      n_pressure, n_point_force; /* -pressure and -point_force (src/fem/loads_nodal.c) */
-  MMPressure   *pressure;
-  MMPointForce *point_force;
+  PetscBool    contact_name_given; /* -contact_boundary was given */
+  MMLoadGroups loads;               /* -gravity, -dirichlet, -traction, -pressure, -point_force: fem's reader */
   PetscReal    E, nu, rho;
   MMElasticityType elasticity; /* -elasticity */
   PetscInt     n_bodies;            /* -bodies, 0 without it: one body, the whole mesh, of -E -nu -rho -v0 */
   MMBodyOptions *bodies;
-  PetscReal    gravity[MM_MAX_DIM];
-  MMAmplitudeOptions gravity_amplitude;
   PetscReal    u0_offset[MM_MAX_DIM], u0_gradient[MM_MAX_DIM * MM_MAX_DIM];
   PetscReal    v0[MM_MAX_DIM], omega[MM_MAX_DIM], omega_center[MM_MAX_DIM];
   PetscReal    omega0[MM_MAX_DIM]; /* -omega0: a rigid rotation about each body's centre of mass */
@@ -62,6 +55,7 @@ typedef struct {
   PetscInt     n_rigid;             /* -obstacles, or the one plane of -obstacle_point/_normal (0 with pairs alone) */
   MMObstacle  *obstacles;
   PetscBool    obstacles_named;     /* -obstacles was given */
+  char         obstacle_list[PETSC_MAX_PATH_LEN], pair_list[PETSC_MAX_PATH_LEN]; /* -obstacles, -contact_pairs */
   PetscReal    mu_max;              /* the largest friction coefficient of the obstacles */
 } MMOptions;
 

@@ -92,20 +92,20 @@ static PetscErrorCode GroupRoles(MMCtx *ctx, const char name[], char text[], siz
   PetscCall(MMContactGetNodes(ctx->contact, &cn));
   PetscCall(PetscStrcmp(name, opt->contact_name, &same));
   if (same && cn.enabled && opt->n_rigid > 0) PetscCall(PetscStrlcat(roles, ", -contact_boundary", sizeof(roles)));
-  for (PetscInt b = 0; b < opt->n_dirichlet; ++b) {
-    PetscCall(PetscStrcmp(name, opt->dirichlet[b].name, &same));
+  for (PetscInt b = 0; b < opt->loads.n_dirichlet; ++b) {
+    PetscCall(PetscStrcmp(name, opt->loads.dirichlet[b].name, &same));
     if (same) PetscCall(PetscStrlcat(roles, ", -dirichlet", sizeof(roles)));
   }
-  for (PetscInt b = 0; b < opt->n_traction; ++b) {
-    PetscCall(PetscStrcmp(name, opt->traction[b].name, &same));
+  for (PetscInt b = 0; b < opt->loads.n_traction; ++b) {
+    PetscCall(PetscStrcmp(name, opt->loads.traction[b].name, &same));
     if (same) PetscCall(PetscStrlcat(roles, ", -traction", sizeof(roles)));
   }
-  for (PetscInt b = 0; b < opt->n_pressure; ++b) {
-    PetscCall(PetscStrcmp(name, opt->pressure[b].name, &same));
+  for (PetscInt b = 0; b < opt->loads.n_pressure; ++b) {
+    PetscCall(PetscStrcmp(name, opt->loads.pressure[b].name, &same));
     if (same) PetscCall(PetscStrlcat(roles, ", -pressure", sizeof(roles)));
   }
-  for (PetscInt b = 0; b < opt->n_point_force; ++b) {
-    PetscCall(PetscStrcmp(name, opt->point_force[b].name, &same));
+  for (PetscInt b = 0; b < opt->loads.n_point_force; ++b) {
+    PetscCall(PetscStrcmp(name, opt->loads.point_force[b].name, &same));
     if (same) PetscCall(PetscStrlcat(roles, ", -point_force", sizeof(roles)));
   }
   for (PetscInt b = 0; b < opt->n_bodies; ++b) {

@@ -292,7 +292,7 @@ PetscErrorCode MMFEAddTraction(const MMOperators *op, const MMTraction *tr, Vec 
   PetscCall(MMMeshGetFacets(dm, tr->name, &fl));
   PetscCall(CheckTractionGroup(dm, tr->name, label, &fl));
   PetscCall(VecGetArray(floc, &f));
-  PetscCall(MMMeshFacetsAddNodal(dm, &fl, dm, op->dim, tr->traction, f));
+  PetscCall(MMMeshFacetsAddNodal(dm, &fl, dm, op->dim, tr->value, f));
   PetscCall(VecRestoreArray(floc, &f));
   PetscCall(MMFacetListDestroy(&fl));
   PetscFunctionReturn(0);

@@ -86,7 +86,7 @@ PetscErrorCode MMFEAddPressure(const MMOperators *op, const MMPressure *pr, Vec 
     for (PetscInt k = 0; k < dim; ++k) {
       PetscInt off, end;
       PetscCall(DMPlexGetPointLocal(dm, v[k], &off, &end));
-      for (PetscInt c = 0; c < dim; ++c) f[off + c] += -pr->p * n[c] * measure / dim;
+      for (PetscInt c = 0; c < dim; ++c) f[off + c] += -pr->value[0] * n[c] * measure / dim;
     }
   }
   PetscCall(VecRestoreArray(floc, &f));
@@ -139,7 +139,7 @@ PetscErrorCode MMFEAddPointForce(const MMOperators *op, const MMPointForce *pf, 
     PetscCall(PetscSectionGetOffset(gs, pts[i], &goff));
     if (goff < 0) continue; /* another rank's */
     PetscCall(DMPlexGetPointLocal(dm, pts[i], &off, &end));
-    for (PetscInt c = 0; c < dim; ++c) f[off + c] += pf->force[c];
+    for (PetscInt c = 0; c < dim; ++c) f[off + c] += pf->value[c];
     ++nnodes;
   }
   PetscCall(VecRestoreArray(floc, &f));

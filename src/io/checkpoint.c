@@ -492,14 +492,30 @@ static PetscErrorCode PhysicsMassDampingDirichlet(MMCheckpoint *ck, MMPhysics *p
 static PetscErrorCode PhysicsObstacle(MMCheckpoint *ck, MMPhysics *ph, const MMObstacle *ob)
 {
   const PetscInt dim = ck->op->dim;
+  /* the parameters of the first shapes, every one for every shape (0 where it has none), as
+   * checkpoints have always held them; then those of a later shape, its own */
+  const char *legacy[] = {"point", "normal", "center", "axis", "radius"}, *names[16];
+  PetscInt    n;
+  char        key[64];
+  PetscReal   v[MM_MAX_DIM];
 
   PetscFunctionBeginUser;
   PetscCall(PhysicsAddNamed(ph, "-obstacle_%s_type", ob->name, ob->type));
-  PetscCall(PhysicsAddReals(ph, "-obstacle_%s_point", ob->name, dim, ob->point));
-  PetscCall(PhysicsAddReals(ph, "-obstacle_%s_normal", ob->name, dim, ob->normal));
-  PetscCall(PhysicsAddReals(ph, "-obstacle_%s_center", ob->name, dim, ob->center));
-  PetscCall(PhysicsAddReals(ph, "-obstacle_%s_axis", ob->name, dim, ob->axis));
-  PetscCall(PhysicsAddReals(ph, "-obstacle_%s_radius", ob->name, 1, &ob->radius));
+  for (size_t i = 0; i < PETSC_STATIC_ARRAY_LENGTH(legacy); ++i) {
+    const PetscInt m = i == 4 ? 1 : dim;
+    PetscCall(MMObstacleGetParameter(ob, legacy[i], m, v, NULL));
+    PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%%s_%s", legacy[i]));
+    PetscCall(PhysicsAddReals(ph, key, ob->name, m, v));
+  }
+  PetscCall(MMObstacleGetParameterNames(ob, PETSC_STATIC_ARRAY_LENGTH(names), &n, names));
+  for (PetscInt i = 0; i < n; ++i) {
+    PetscBool old = PETSC_FALSE;
+    for (size_t k = 0; k < PETSC_STATIC_ARRAY_LENGTH(legacy); ++k) old = (PetscBool)(old || !strcmp(names[i], legacy[k]));
+    if (old) continue;
+    PetscCall(MMObstacleGetParameter(ob, names[i], dim, v, NULL));
+    PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%%s_%s", names[i]));
+    PetscCall(PhysicsAddReals(ph, key, ob->name, dim, v));
+  }
   PetscCall(PhysicsAddNamed(ph, "-obstacle_%s_side", ob->name, ob->inside ? "inside" : "outside"));
   PetscCall(PhysicsAddReals(ph, "-obstacle_%s_mu", ob->name, 1, &ob->mu));
   PetscCall(PhysicsAddReals(ph, "-obstacle_%s_velocity", ob->name, dim, ob->velocity));
@@ -537,8 +553,11 @@ static PetscErrorCode PhysicsContact(MMCheckpoint *ck, MMPhysics *ph)
     } else if (o->obstacles_named) PetscCall(PhysicsObstacle(ck, ph, ob));
     else {
       /* the plane of -obstacle_point and -obstacle_normal, with -mu */
-      PetscCall(PhysicsAddReals(ph, "-obstacle_point", NULL, ck->op->dim, ob->point));
-      PetscCall(PhysicsAddReals(ph, "-obstacle_normal", NULL, ck->op->dim, ob->normal));
+      PetscReal point[MM_MAX_DIM], normal[MM_MAX_DIM];
+      PetscBool plane;
+      PetscCall(MMObstacleGetPlane(ob, point, normal, &plane));
+      PetscCall(PhysicsAddReals(ph, "-obstacle_point", NULL, ck->op->dim, point));
+      PetscCall(PhysicsAddReals(ph, "-obstacle_normal", NULL, ck->op->dim, normal));
       PetscCall(PhysicsAddReals(ph, "-mu", NULL, 1, &ob->mu));
     }
   }

@@ -1,11 +1,44 @@
-/* Internals of the obstacle component: each shape's create function (registered in
- * interface/obstacle.c) and the checks the shapes share on their options. */
+/* Internals of the obstacle component: the ops table a shape fills (its parameters, its data's
+ * size, its signed distance); each shape's create function is registered in interface/obstacle.c. */
 #pragma once
 #include "obstacle.h"
-PETSC_EXTERN PetscErrorCode MMObstacleCreate_Plane(MMObstacle *ob);
-PETSC_EXTERN PetscErrorCode MMObstacleCreate_Sphere(MMObstacle *ob);
-PETSC_EXTERN PetscErrorCode MMObstacleCreate_Circle(MMObstacle *ob);
-PETSC_EXTERN PetscErrorCode MMObstacleCreate_Cylinder(MMObstacle *ob);
-PETSC_EXTERN PetscErrorCode MMObstacleRequireVector(const MMObstacle *ob, MPI_Comm comm, PetscInt dim, const char what[], PetscInt count, PetscReal v[], PetscBool direction);
-PETSC_EXTERN PetscErrorCode MMObstacleRequireRadius(const MMObstacle *ob, MPI_Comm comm);
-PETSC_EXTERN PetscErrorCode MMObstacleRefuseUnused(const MMObstacle *ob, MPI_Comm comm, PetscBool point, PetscBool normal, PetscBool center, PetscBool axis, PetscBool radius, PetscBool side);
+
+/* A shape's parameter -obstacle_NAME_<name>: read by the interface under the obstacle's prefix into
+ * the shape's data at offset, required once the dimension is known; a parameter of another shape
+ * given to this one is refused ("does not apply"). */
+typedef enum {
+  MM_OBSTACLE_POINT,     /* d entries */
+  MM_OBSTACLE_DIRECTION, /* d entries, nonzero, made unit */
+  MM_OBSTACLE_LENGTH,    /* one value, > 0 */
+  MM_OBSTACLE_LENGTHS    /* d entries, each > 0 */
+} MMObstacleParameterKind;
+
+/* A parameter's values in the shape's data: n entries given, -1 if not set. */
+typedef struct {
+  PetscReal v[MM_MAX_DIM];
+  PetscInt  n;
+} MMObstacleValue;
+
+typedef struct {
+  const char             *name; /* the option's suffix */
+  MMObstacleParameterKind kind;
+  const char             *help;
+  size_t                  offset; /* of its MMObstacleValue in the shape's data */
+} MMObstacleParameter;
+
+struct _MMObstacleOps {
+  const MMObstacleParameter *params; /* what the shape reads, in the order it requires them */
+  PetscInt                   nparams;
+  size_t                     datasize; /* its data: a struct of MMObstacleValue */
+  PetscBool                  curved;   /* its normal varies along its surface */
+  PetscBool                  sided;    /* the body may be inside it (-obstacle_NAME_side inside) */
+  PetscInt                   dim;      /* the one dimension it exists in, 0: any */
+  const char                *other;    /* dim given: the shape to use in the other dimension */
+  /* the shape's own checks beyond its parameters' (NULL: none), once they are given */
+  PetscErrorCode (*check)(MMObstacle *ob, MPI_Comm comm, PetscInt dim);
+  /* signed distance g of x (positive outside the obstacle) and n = grad g, in the obstacle's
+   * position at time 0 */
+  PetscErrorCode (*distance)(const MMObstacle *ob, PetscInt dim, const PetscReal x[], PetscReal *g, PetscReal n[]);
+};
+
+PETSC_EXTERN PetscErrorCode MMObstacleSetType(MMObstacle *ob, MPI_Comm comm, const char type[]);

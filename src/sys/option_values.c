@@ -69,13 +69,24 @@ PetscErrorCode MMOptionsCheckFinite(MPI_Comm comm, const char name[], const Pets
   PetscFunctionReturn(0);
 }
 
+/* The full name of option name in the block's options prefix (PetscOptionsBegin's prefix, as an
+ * object's -PREFIX_name): the name the checks look up and their messages quote. */
+static const char *FullName(PetscOptionItems *PetscOptionsObject, const char name[], char full[], size_t len)
+{
+  if (!PetscOptionsObject || !PetscOptionsObject->prefix || name[0] != '-') return name;
+  snprintf(full, len, "-%s%s", PetscOptionsObject->prefix, name + 1);
+  return full;
+}
+
 /* A real option, refused unless finite. */
 PetscErrorCode MMOptionsReal(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], PetscReal *v)
 {
+  char        fullbuf[PETSC_MAX_OPTION_NAME];
+  const char *full = FullName(PetscOptionsObject, name, fullbuf, sizeof(fullbuf));
   PetscFunctionBeginUser;
-  PetscCall(MMOptionsCheckValue(comm, name, MM_VALUE_REAL));
+  PetscCall(MMOptionsCheckValue(comm, full, MM_VALUE_REAL));
   PetscCall(PetscOptionsReal(name, help, NULL, *v, v, NULL));
-  PetscCall(MMOptionsCheckFinite(comm, name, v, 1));
+  PetscCall(MMOptionsCheckFinite(comm, full, v, 1));
   PetscFunctionReturn(0);
 }
 
@@ -83,18 +94,20 @@ PetscErrorCode MMOptionsReal(PetscOptionItems *PetscOptionsObject, MPI_Comm comm
  * One slot more is read, so that too many entries are refused rather than cut off. */
 PetscErrorCode MMOptionsRealArray(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], PetscInt nmax, PetscReal v[], PetscInt *count)
 {
+  char        fullbuf[PETSC_MAX_OPTION_NAME];
+  const char *full = FullName(PetscOptionsObject, name, fullbuf, sizeof(fullbuf));
   PetscReal buf[MM_MAX_DIM * MM_MAX_DIM + 1];
   PetscInt  n = nmax + 1;
   PetscBool set;
 
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < nmax; ++i) buf[i] = v[i];
-  PetscCall(MMOptionsCheckValue(comm, name, MM_VALUE_REAL));
+  PetscCall(MMOptionsCheckValue(comm, full, MM_VALUE_REAL));
   PetscCall(PetscOptionsRealArray(name, help, NULL, buf, &n, &set));
   *count = set ? n : -1;
   if (!set) PetscFunctionReturn(0);
-  PetscCheck(n <= nmax, comm, PETSC_ERR_USER_INPUT, "%s has more than %" PetscInt_FMT " entries", name, nmax);
-  PetscCall(MMOptionsCheckFinite(comm, name, buf, n));
+  PetscCheck(n <= nmax, comm, PETSC_ERR_USER_INPUT, "%s has more than %" PetscInt_FMT " entries", full, nmax);
+  PetscCall(MMOptionsCheckFinite(comm, full, buf, n));
   for (PetscInt i = 0; i < nmax; ++i) v[i] = i < n ? buf[i] : 0;
   PetscFunctionReturn(0);
 }
@@ -102,8 +115,10 @@ PetscErrorCode MMOptionsRealArray(PetscOptionItems *PetscOptionsObject, MPI_Comm
 /* An integer option. */
 PetscErrorCode MMOptionsInt(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], PetscInt *v)
 {
+  char        fullbuf[PETSC_MAX_OPTION_NAME];
+  const char *full = FullName(PetscOptionsObject, name, fullbuf, sizeof(fullbuf));
   PetscFunctionBeginUser;
-  PetscCall(MMOptionsCheckValue(comm, name, MM_VALUE_INT));
+  PetscCall(MMOptionsCheckValue(comm, full, MM_VALUE_INT));
   PetscCall(PetscOptionsInt(name, help, NULL, *v, v, NULL));
   PetscFunctionReturn(0);
 }
@@ -112,14 +127,16 @@ PetscErrorCode MMOptionsInt(PetscOptionItems *PetscOptionsObject, MPI_Comm comm,
  * (its own error does not name the option). */
 PetscErrorCode MMOptionsBool(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], PetscBool *v)
 {
+  char        fullbuf[PETSC_MAX_OPTION_NAME];
+  const char *full = FullName(PetscOptionsObject, name, fullbuf, sizeof(fullbuf));
   static const char *const words[] = {"1", "0", "true", "false", "yes", "no", "on", "off"};
   const char              *value;
   PetscBool                set, known = PETSC_FALSE;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsFindPair(NULL, NULL, name, &value, &set));
+  PetscCall(PetscOptionsFindPair(NULL, NULL, full, &value, &set));
   for (size_t i = 0; set && value && value[0] && i < PETSC_STATIC_ARRAY_LENGTH(words); ++i) known = (PetscBool)(known || !strcasecmp(value, words[i]));
-  PetscCheck(!set || !value || !value[0] || known, comm, PETSC_ERR_USER_INPUT, "%s %s: give 1 or 0 (also true/false, yes/no, on/off), or %s alone for 1", name, value, name);
+  PetscCheck(!set || !value || !value[0] || known, comm, PETSC_ERR_USER_INPUT, "%s %s: give 1 or 0 (also true/false, yes/no, on/off), or %s alone for 1", full, value, full);
   PetscCall(PetscOptionsBool(name, help, NULL, *v, v, NULL));
   PetscFunctionReturn(0);
 }
@@ -127,8 +144,10 @@ PetscErrorCode MMOptionsBool(PetscOptionItems *PetscOptionsObject, MPI_Comm comm
 /* A text option: a name, a list of names, a path. */
 PetscErrorCode MMOptionsString(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], char v[], size_t len, PetscBool *set)
 {
+  char        fullbuf[PETSC_MAX_OPTION_NAME];
+  const char *full = FullName(PetscOptionsObject, name, fullbuf, sizeof(fullbuf));
   PetscFunctionBeginUser;
-  PetscCall(MMOptionsCheckValue(comm, name, MM_VALUE_TEXT));
+  PetscCall(MMOptionsCheckValue(comm, full, MM_VALUE_TEXT));
   PetscCall(PetscOptionsString(name, help, NULL, v, v, len, set));
   PetscFunctionReturn(0);
 }
@@ -153,20 +172,47 @@ static void EnumChoices(const char *const list[], char buf[], size_t len)
  * other refused option gives one line and 64 (docs/developer.md, "Exit statuses"). */
 PetscErrorCode MMOptionsEnum(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], const char *const list[], PetscEnum *v)
 {
+  char        fullbuf[PETSC_MAX_OPTION_NAME];
+  const char *full = FullName(PetscOptionsObject, name, fullbuf, sizeof(fullbuf));
   const char *value;
   PetscBool   set, known = PETSC_FALSE;
   char        choices[512];
 
   PetscFunctionBeginUser;
-  PetscCall(MMOptionsCheckValue(comm, name, MM_VALUE_TEXT));
-  PetscCall(PetscOptionsFindPair(NULL, NULL, name, &value, &set));
+  PetscCall(MMOptionsCheckValue(comm, full, MM_VALUE_TEXT));
+  PetscCall(PetscOptionsFindPair(NULL, NULL, full, &value, &set));
   if (set && value) {
     PetscInt n = 0;
     while (list[n]) ++n;
     for (PetscInt i = 0; i < n - 2; ++i) known = (PetscBool)(known || !strcasecmp(value, list[i]));
     EnumChoices(list, choices, sizeof(choices));
-    PetscCheck(known, comm, PETSC_ERR_USER_INPUT, "%s %s is not a valid value: use %s", name, value, choices);
+    PetscCheck(known, comm, PETSC_ERR_USER_INPUT, "%s %s is not a valid value: use %s", full, value, choices);
   }
   PetscCall(PetscOptionsEnum(name, help, NULL, list, *v, v, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* Splits a comma-separated list of physical names into a freshly allocated array. PetscStrToArray
+ * would skip an empty name ("floor,,wall"), a typo that would drop an obstacle or a boundary. */
+PetscErrorCode MMOptionsSplitNames(MPI_Comm comm, const char option[], const char list[], PetscInt *n, char ***names)
+{
+  int    argc;
+  size_t len = strlen(list);
+
+  PetscFunctionBeginUser;
+  *n     = 0;
+  *names = NULL;
+  if (!list[0]) PetscFunctionReturn(0);
+  PetscCheck(list[0] != ',' && list[len - 1] != ',' && !strstr(list, ",,"), comm, PETSC_ERR_USER_INPUT, "%s %s has an empty name: give the names separated by single commas", option, list);
+  for (const char *p = list; *p; ++p) PetscCheck(*p != ' ' && *p != '\t', comm, PETSC_ERR_USER_INPUT, "%s \"%s\" has a blank: give the names separated by commas, without blanks", option, list);
+  PetscCall(PetscStrToArray(list, ',', &argc, names));
+  *n = argc;
+  /* a name given twice would make two objects of one name (two force columns, two bodies) */
+  for (PetscInt b = 0; b < *n; ++b)
+    for (PetscInt a = 0; a < b; ++a) {
+      PetscBool same;
+      PetscCall(PetscStrcmp((*names)[a], (*names)[b], &same));
+      PetscCheck(!same, comm, PETSC_ERR_USER_INPUT, "%s %s names %s twice", option, list, (*names)[b]);
+    }
   PetscFunctionReturn(0);
 }

@@ -184,11 +184,12 @@ static PetscErrorCode InitialAcceleration(MMNewmark nm)
  * (README "Options"). The normal part is dropped, and said. */
 static PetscErrorCode TangentialInitialVelocity(MMNewmark nm)
 {
-  const PetscReal *n   = nm->pb.obstacles[0].normal; /* the single plane static_sliding needs */
-  const PetscInt   dim = nm->op->dim;
-  PetscReal        vn  = 0;
+  const PetscInt dim = nm->op->dim;
+  PetscReal      vn  = 0, p[MM_MAX_DIM], n[MM_MAX_DIM];
+  PetscBool      plane;
 
   PetscFunctionBeginUser;
+  PetscCall(MMObstacleGetPlane(&nm->pb.obstacles[0], p, n, &plane)); /* the single plane static_sliding needs */
   for (PetscInt d = 0; d < dim; ++d) vn += nm->pb.v0[d] * n[d];
   if (vn == 0) PetscFunctionReturn(0);
   for (PetscInt d = 0; d < dim; ++d) nm->pb.v0[d] -= vn * n[d];

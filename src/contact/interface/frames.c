@@ -100,7 +100,7 @@ static PetscErrorCode RowDistance(MMContact ct, PetscInt k, PetscInt b, PetscRea
   for (PetscInt d = 0; d < MM_MAX_DIM; ++d) c[d] = n[d] = 0;
   MMObstacleDisplacement(ob, dim, t, c);
   for (PetscInt d = 0; d < dim; ++d) x[d] = ct->frames.X[MM_MAX_DIM * k + d] + u[d] - c[d];
-  PetscCall((*ob->distance)(ob, dim, x, g, n));
+  PetscCall(MMObstacleDistance(ob, dim, x, g, n));
   PetscFunctionReturn(0);
 }
 

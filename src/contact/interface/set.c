@@ -55,7 +55,7 @@ static PetscErrorCode NearestObstacle(MMContact ct, const PetscReal x[], PetscIn
   for (PetscInt b = 0; b < ct->pb.n_rigid; ++b) {
     const MMObstacle *ob = &ct->pb.obstacles[b];
     PetscReal         g, nb[MM_MAX_DIM] = {0, 0, 0}, len = 0;
-    PetscCall((*ob->distance)(ob, dim, x, &g, nb));
+    PetscCall(MMObstacleDistance(ob, dim, x, &g, nb));
     for (PetscInt d = 0; d < dim; ++d) len += nb[d] * nb[d];
     if (*which >= 0 && g >= *gap) continue;
     /* a point on a sphere's centre or a cylinder's axis has no normal */
@@ -79,7 +79,7 @@ static PetscErrorCode SecondObstacle(MMContact ct, const PetscReal x[], PetscInt
     const MMObstacle *ob = &ct->pb.obstacles[b];
     PetscReal         g, nb[MM_MAX_DIM] = {0, 0, 0}, c = 0;
     if (b == first) continue;
-    PetscCall((*ob->distance)(ob, dim, x, &g, nb));
+    PetscCall(MMObstacleDistance(ob, dim, x, &g, nb));
     for (PetscInt d = 0; d < dim; ++d) c += nb[d] * n1[d];
     if (g > ct->h_c || PetscAbsReal(c) > 1 - 1e-6 || (*which >= 0 && g >= *gap)) continue;
     *which = b;
@@ -124,7 +124,7 @@ static PetscErrorCode AllObstacleGaps(MMContact ct, const PetscReal x[], PetscIn
   for (PetscInt b = 0; b < nob; ++b) {
     const MMObstacle *ob = &ct->pb.obstacles[b];
     PetscReal         n[MM_MAX_DIM] = {0, 0, 0};
-    PetscCall((*ob->distance)(ob, dim, x, &ct->all_gap0[k * nob + b], n));
+    PetscCall(MMObstacleDistance(ob, dim, x, &ct->all_gap0[k * nob + b], n));
     for (PetscInt d = 0; d < 3; ++d) ct->all_nu[3 * (k * nob + b) + d] = -n[d];
   }
   PetscFunctionReturn(0);
@@ -183,11 +183,9 @@ static PetscErrorCode MarkContactVertices(MMContact ct, PetscInt **mark, Vec are
   PetscCall(VecZeroEntries(aloc));
   PetscCall(VecGetArray(aloc, &aa));
   if (ct->pb.n_rigid) {
-    DMLabel   label;
-    PetscBool given;
+    DMLabel label;
     /* a missing group says whether its name is the default one, tried because the option was not given */
-    PetscCall(PetscOptionsHasName(NULL, NULL, "-contact_boundary", &given));
-    PetscCall(MMMeshGetLabelFor(dm, ct->pb.contact_name, given ? "-contact_boundary" : "the default of -contact_boundary, which was not given: name the mesh's contact boundary with -contact_boundary NAME", &label));
+    PetscCall(MMMeshGetLabelFor(dm, ct->pb.contact_name, ct->pb.contact_name_given ? "-contact_boundary" : "the default of -contact_boundary, which was not given: name the mesh's contact boundary with -contact_boundary NAME", &label));
     PetscCall(MarkSurface(ct, ct->pb.contact_name, 1, *mark, aa));
   }
   for (PetscInt b = ct->pb.n_rigid; b < ct->pb.n_obstacles; ++b) PetscCall(MarkSurface(ct, ct->pb.obstacles[b].slave, 2 + b - ct->pb.n_rigid, *mark, aa));
@@ -470,14 +468,9 @@ static PetscErrorCode SetUp(MMContact ct)
   for (PetscInt b = 0; b < ct->pb.n_obstacles; ++b)
     for (PetscInt d = 0; d < ct->op->dim; ++d) ct->moving = (PetscBool)(ct->moving || ct->pb.obstacles[b].velocity[d] != 0);
   if (ct->pb.static_sliding) {
-    const MMObstacle *ob = &ct->pb.obstacles[0];
-    PetscBool         plane;
-    PetscCall(PetscStrcmp(ob->type, "plane", &plane));
+    PetscBool plane;
+    PetscCall(MMObstacleGetPlane(&ct->pb.obstacles[0], ct->pb.obstacle_point, ct->pb.obstacle_normal, &plane));
     PetscCheck(ct->pb.n_obstacles == 1 && plane && !ct->moving, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_USER_INPUT, "-initial_state static_sliding needs a single fixed plane obstacle: the sliding state is built on one plane");
-    for (PetscInt d = 0; d < MM_MAX_DIM; ++d) {
-      ct->pb.obstacle_point[d]  = ob->point[d];
-      ct->pb.obstacle_normal[d] = ob->normal[d];
-    }
   }
   PetscCall(BuildFrame(ct));
   if (!ct->enabled) {

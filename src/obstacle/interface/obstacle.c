@@ -1,17 +1,34 @@
-/* The registry of rigid obstacle shapes: each type sets the check of its parameters and its signed
- * distance (docs/method.md section 8). A new shape is one file and one line in MMObstacleRegisterAll. */
+/* The registry of rigid obstacle shapes (docs/method.md section 8) and what every shape shares: its
+ * type, its motion, its parameters' checks once the dimension is known, its signed distance. A
+ * shape declares its parameters and distance in its ops table (obstacleimpl.h); a new shape is one
+ * folder impls/<type>/ and one line in MMObstacleRegisterAll. */
 #include "../obstacleimpl.h"
 
 static PetscFunctionList ObstacleList = NULL;
+
+PetscErrorCode MMObstacleRegister(const char type[], PetscErrorCode (*create)(MMObstacle *))
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFunctionListAdd(&ObstacleList, type, create));
+  PetscFunctionReturn(0);
+}
+
+/* One shape: its create function (impls/<type>/) declared and registered, in one line. */
+#define MM_OBSTACLE_REGISTER(type, create) \
+  do { \
+    PetscErrorCode create(MMObstacle *); \
+    PetscCall(MMObstacleRegister(type, create)); \
+  } while (0)
 
 PetscErrorCode MMObstacleRegisterAll(void)
 {
   PetscFunctionBeginUser;
   if (ObstacleList) PetscFunctionReturn(0);
-  PetscCall(PetscFunctionListAdd(&ObstacleList, "plane", MMObstacleCreate_Plane));
-  PetscCall(PetscFunctionListAdd(&ObstacleList, "sphere", MMObstacleCreate_Sphere));
-  PetscCall(PetscFunctionListAdd(&ObstacleList, "circle", MMObstacleCreate_Circle));
-  PetscCall(PetscFunctionListAdd(&ObstacleList, "cylinder", MMObstacleCreate_Cylinder));
+  MM_OBSTACLE_REGISTER("plane", MMObstacleCreate_Plane);
+  MM_OBSTACLE_REGISTER("sphere", MMObstacleCreate_Sphere);
+  MM_OBSTACLE_REGISTER("circle", MMObstacleCreate_Circle);
+  MM_OBSTACLE_REGISTER("cylinder", MMObstacleCreate_Cylinder);
+  MM_OBSTACLE_REGISTER("box", MMObstacleCreate_Box);
   PetscFunctionReturn(0);
 }
 
@@ -22,24 +39,30 @@ PetscErrorCode MMObstacleFinalize(void)
   PetscFunctionReturn(0);
 }
 
-/* "plane|sphere|circle|cylinder", for help strings and refusals. */
+/* "plane|sphere|circle|cylinder": the registered types, for help strings and refusals. */
 PetscErrorCode MMObstacleTypesList(char buf[], size_t len)
 {
-  const char *types[] = {"plane", "sphere", "circle", "cylinder"};
+  const char **types;
+  int          n;
 
   PetscFunctionBeginUser;
+  PetscCall(MMObstacleRegisterAll());
+  PetscCall(PetscFunctionListGet(ObstacleList, &types, &n));
   buf[0] = 0;
-  for (size_t i = 0; i < sizeof(types) / sizeof(types[0]); ++i) {
-    if (i) PetscCall(PetscStrlcat(buf, "|", len));
+  for (int i = 0; i < n; ++i) {
+    if (!types[i] || !types[i][0]) continue;
+    if (buf[0]) PetscCall(PetscStrlcat(buf, "|", len));
     PetscCall(PetscStrlcat(buf, types[i], len));
   }
+  PetscCall(PetscFree(types));
   PetscFunctionReturn(0);
 }
 
+/* The shape's ops and its (zeroed) data, every parameter not set. */
 PetscErrorCode MMObstacleSetType(MMObstacle *ob, MPI_Comm comm, const char type[])
 {
   PetscErrorCode (*create)(MMObstacle *) = NULL;
-  char types[128];
+  char types[256];
 
   PetscFunctionBeginUser;
   PetscCall(MMObstacleRegisterAll());
@@ -47,23 +70,169 @@ PetscErrorCode MMObstacleSetType(MMObstacle *ob, MPI_Comm comm, const char type[
   PetscCall(MMObstacleTypesList(types, sizeof(types)));
   PetscCheck(create, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_type %s is not a known obstacle type: use %s", ob->name, type, types);
   PetscCall(PetscStrncpy(ob->type, type, sizeof(ob->type)));
+  PetscCall(PetscFree(ob->data));
   PetscCall((*create)(ob));
+  ob->curved = ob->ops->curved;
+  PetscCall(PetscMalloc(ob->ops->datasize, &ob->data));
+  PetscCall(PetscMemzero(ob->data, ob->ops->datasize));
+  for (PetscInt i = 0; i < ob->ops->nparams; ++i) ((MMObstacleValue *)((char *)ob->data + ob->ops->params[i].offset))->n = -1;
   PetscFunctionReturn(0);
 }
 
-/* The parameters common to every shape, then the shape's own. */
+static MMObstacleValue *Value(const MMObstacle *ob, PetscInt i)
+{
+  return (MMObstacleValue *)((char *)ob->data + ob->ops->params[i].offset);
+}
+
+/* The index of parameter name in the shape's table, -1 if the shape has none of that name. */
+static PetscInt FindParameter(const MMObstacleOps *ops, const char name[])
+{
+  for (PetscInt i = 0; ops && i < ops->nparams; ++i)
+    if (!strcmp(ops->params[i].name, name)) return i;
+  return -1;
+}
+
+/* The shape's parameters (at most max), for a checkpoint's record of the physics. */
+PetscErrorCode MMObstacleGetParameterNames(const MMObstacle *ob, PetscInt max, PetscInt *n, const char *names[])
+{
+  PetscFunctionBeginUser;
+  *n = ob->ops ? ob->ops->nparams : 0;
+  PetscCheck(*n <= max, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "Obstacle type %s has %" PetscInt_FMT " parameters, more than %" PetscInt_FMT, ob->type, *n, max);
+  for (PetscInt i = 0; i < *n; ++i) names[i] = ob->ops->params[i].name;
+  PetscFunctionReturn(0);
+}
+
+/* The first n values of parameter name (zeros if the shape has none of that name). */
+PetscErrorCode MMObstacleGetParameter(const MMObstacle *ob, const char name[], PetscInt n, PetscReal v[], PetscBool *has)
+{
+  const PetscInt i = FindParameter(ob->ops, name);
+
+  PetscFunctionBeginUser;
+  for (PetscInt d = 0; d < n; ++d) v[d] = i < 0 ? 0 : Value(ob, i)->v[d];
+  if (has) *has = (PetscBool)(i >= 0);
+  PetscFunctionReturn(0);
+}
+
+/* The single plane of -obstacle_point and -obstacle_normal (without -obstacles), type plane. */
+PetscErrorCode MMObstacleCreatePlane(MMObstacle *ob, MPI_Comm comm, const char name[], PetscReal mu)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(ob->name, name, sizeof(ob->name)));
+  ob->nvelocity = -1;
+  ob->stop      = PETSC_MAX_REAL;
+  ob->mu        = mu;
+  PetscCall(MMObstacleSetType(ob, comm, "plane"));
+  PetscFunctionReturn(0);
+}
+
+/* Sets a plane's point and normal, dim entries each (checked by MMObstacleCheck). */
+PetscErrorCode MMObstacleSetPlane(MMObstacle *ob, PetscInt dim, const PetscReal point[], const PetscReal normal[])
+{
+  const PetscInt ip = FindParameter(ob->ops, "point"), in = FindParameter(ob->ops, "normal");
+
+  PetscFunctionBeginUser;
+  PetscCheck(ip >= 0 && in >= 0, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "Obstacle %s is not a plane", ob->name);
+  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) {
+    Value(ob, ip)->v[d] = point[d];
+    Value(ob, in)->v[d] = normal[d];
+  }
+  Value(ob, ip)->n = Value(ob, in)->n = dim;
+  PetscFunctionReturn(0);
+}
+
+/* A plane's point and normal (-initial_state static_sliding builds on one plane); *plane false for another shape. */
+PetscErrorCode MMObstacleGetPlane(const MMObstacle *ob, PetscReal point[], PetscReal normal[], PetscBool *plane)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrcmp(ob->type, "plane", plane));
+  if (!*plane) PetscFunctionReturn(0);
+  PetscCall(MMObstacleGetParameter(ob, "point", MM_MAX_DIM, point, NULL));
+  PetscCall(MMObstacleGetParameter(ob, "normal", MM_MAX_DIM, normal, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* A parameter of the shape: given, with its entries, a direction nonzero (then made unit), a length > 0. */
+static PetscErrorCode RequireParameter(const MMObstacle *ob, MPI_Comm comm, PetscInt dim, const MMObstacleParameter *p, MMObstacleValue *val)
+{
+  const char *what = p->name;
+  PetscReal   nrm  = 0;
+
+  PetscFunctionBeginUser;
+  if (p->kind == MM_OBSTACLE_LENGTH) {
+    PetscCheck(val->n >= 0, comm, PETSC_ERR_USER_INPUT, "Obstacle %s (type %s) needs -obstacle_%s_%s", ob->name, ob->type, ob->name, what);
+    PetscCheck(val->v[0] > 0, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_%s %g must be > 0", ob->name, what, (double)val->v[0]);
+    PetscFunctionReturn(0);
+  }
+  PetscCheck(val->n >= 0, comm, PETSC_ERR_USER_INPUT, "Obstacle %s (type %s) needs -obstacle_%s_%s, %" PetscInt_FMT " entries", ob->name, ob->type, ob->name, what, dim);
+  PetscCheck(val->n == dim, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_%s has %" PetscInt_FMT " entries; the mesh is %" PetscInt_FMT "D, so it needs exactly %" PetscInt_FMT, ob->name, what, val->n, dim, dim);
+  if (p->kind == MM_OBSTACLE_LENGTHS)
+    for (PetscInt d = 0; d < dim; ++d) PetscCheck(val->v[d] > 0, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_%s entry %" PetscInt_FMT " is %g: each must be > 0", ob->name, what, d, (double)val->v[d]);
+  if (p->kind != MM_OBSTACLE_DIRECTION) PetscFunctionReturn(0);
+  for (PetscInt d = 0; d < dim; ++d) nrm += PetscSqr(val->v[d]);
+  nrm = PetscSqrtReal(nrm);
+  PetscCheck(nrm > 0, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_%s is the zero vector: it must give a direction", ob->name, what);
+  for (PetscInt d = 0; d < dim; ++d) val->v[d] /= nrm;
+  PetscFunctionReturn(0);
+}
+
+/* A parameter of another registered shape, given to this one, is refused rather than ignored; so
+ * is the inside of a shape that has none. */
+static PetscErrorCode RefuseOthers(const MMObstacle *ob, MPI_Comm comm)
+{
+  const char **types;
+  int          n;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscFunctionListGet(ObstacleList, &types, &n));
+  for (int t = 0; t < n; ++t) {
+    MMObstacle other;
+    PetscErrorCode (*create)(MMObstacle *) = NULL;
+
+    if (!types[t] || !types[t][0]) continue;
+    PetscCall(PetscMemzero(&other, sizeof(other)));
+    PetscCall(PetscFunctionListFind(ObstacleList, types[t], &create));
+    PetscCall((*create)(&other));
+    for (PetscInt i = 0; i < other.ops->nparams; ++i) {
+      const char *what = other.ops->params[i].name;
+      char        key[512];
+      PetscBool   given;
+
+      if (FindParameter(ob->ops, what) >= 0) continue;
+      PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_%s", ob->name, what));
+      PetscCall(PetscOptionsHasName(NULL, NULL, key, &given));
+      PetscCheck(!given, comm, PETSC_ERR_USER_INPUT, "%s does not apply to an obstacle of type %s", key, ob->type);
+    }
+  }
+  PetscCall(PetscFree(types));
+  PetscCheck(ob->ops->sided || !ob->inside, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_side inside does not apply to an obstacle of type %s: the body is on the side its normal points to", ob->name, ob->type);
+  PetscFunctionReturn(0);
+}
+
+/* The parameters common to every shape, then the shape's own: its dimension, the others' refused,
+ * its own required. */
 PetscErrorCode MMObstacleCheck(MMObstacle *ob, MPI_Comm comm, PetscInt dim)
 {
+  const MMObstacleOps *ops = ob->ops;
+
   PetscFunctionBeginUser;
   PetscCheck(ob->nvelocity < 0 || ob->nvelocity == dim, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_velocity has %" PetscInt_FMT " entries; the mesh is %" PetscInt_FMT "D, so it needs exactly %" PetscInt_FMT, ob->name, ob->nvelocity, dim, dim);
   PetscCheck(ob->mu >= 0, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_mu %g must be >= 0", ob->name, (double)ob->mu);
   PetscCheck(ob->start >= 0, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_start %g must be >= 0 (a time)", ob->name, (double)ob->start);
   PetscCheck(ob->stop > ob->start, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_stop %g must be after -obstacle_%s_start %g", ob->name, (double)ob->stop, ob->name, (double)ob->start);
-  PetscCall((*ob->check)(ob, comm, dim));
+  PetscCheck(!ops->dim || dim == ops->dim, comm, PETSC_ERR_USER_INPUT, "Obstacle %s is a %s, a %" PetscInt_FMT "D shape, but the mesh is %" PetscInt_FMT "D: use type %s", ob->name, ob->type, ops->dim, dim, ops->other);
+  if (ob->prefixed) PetscCall(RefuseOthers(ob, comm)); /* the plane of -obstacle_point reads no -obstacle_plane_* */
+  for (PetscInt i = 0; i < ops->nparams; ++i) PetscCall(RequireParameter(ob, comm, dim, &ops->params[i], Value(ob, i)));
+  if (ops->check) PetscCall((*ops->check)(ob, comm, dim));
   PetscFunctionReturn(0);
 }
 
-/* c(t) = V (min(t, t_stop) - t_start)^+: how far the obstacle has moved at time t. */
+PetscErrorCode MMObstacleDistance(const MMObstacle *ob, PetscInt dim, const PetscReal x[], PetscReal *g, PetscReal n[])
+{
+  PetscFunctionBeginUser;
+  PetscCall((*ob->ops->distance)(ob, dim, x, g, n));
+  PetscFunctionReturn(0);
+}
+
 /* The obstacle's velocity at time t (the left limit at the start and stop times, as a step to t sees it). */
 void MMObstacleVelocity(const MMObstacle *ob, PetscInt dim, PetscReal t, PetscReal V[])
 {
@@ -71,48 +240,17 @@ void MMObstacleVelocity(const MMObstacle *ob, PetscInt dim, PetscReal t, PetscRe
   for (PetscInt d = 0; d < dim; ++d) V[d] = on ? ob->velocity[d] : 0;
 }
 
+/* c(t) = V (min(t, t_stop) - t_start)^+: how far the obstacle has moved at time t. */
 void MMObstacleDisplacement(const MMObstacle *ob, PetscInt dim, PetscReal t, PetscReal c[])
 {
   const PetscReal s = PetscMax(0.0, PetscMin(t, ob->stop) - ob->start);
   for (PetscInt d = 0; d < dim; ++d) c[d] = ob->velocity[d] * s;
 }
 
-/* A vector parameter -obstacle_NAME_<what> the shape needs: given, with dim entries, and, for a
- * direction, nonzero (then made unit). */
-PetscErrorCode MMObstacleRequireVector(const MMObstacle *ob, MPI_Comm comm, PetscInt dim, const char what[], PetscInt count, PetscReal v[], PetscBool direction)
-{
-  PetscReal nrm = 0;
-
-  PetscFunctionBeginUser;
-  PetscCheck(count >= 0, comm, PETSC_ERR_USER_INPUT, "Obstacle %s (type %s) needs -obstacle_%s_%s, %" PetscInt_FMT " entries", ob->name, ob->type, ob->name, what, dim);
-  PetscCheck(count == dim, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_%s has %" PetscInt_FMT " entries; the mesh is %" PetscInt_FMT "D, so it needs exactly %" PetscInt_FMT, ob->name, what, count, dim, dim);
-  if (!direction) PetscFunctionReturn(0);
-  for (PetscInt d = 0; d < dim; ++d) nrm += PetscSqr(v[d]);
-  nrm = PetscSqrtReal(nrm);
-  PetscCheck(nrm > 0, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_%s is the zero vector: it must give a direction", ob->name, what);
-  for (PetscInt d = 0; d < dim; ++d) v[d] /= nrm;
-  PetscFunctionReturn(0);
-}
-
-/* A radius the shape needs: given and positive. */
-PetscErrorCode MMObstacleRequireRadius(const MMObstacle *ob, MPI_Comm comm)
+PetscErrorCode MMObstacleDestroy(MMObstacle *ob)
 {
   PetscFunctionBeginUser;
-  PetscCheck(ob->radius_set, comm, PETSC_ERR_USER_INPUT, "Obstacle %s (type %s) needs -obstacle_%s_radius", ob->name, ob->type, ob->name);
-  PetscCheck(ob->radius > 0, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_radius %g must be > 0", ob->name, (double)ob->radius);
-  PetscFunctionReturn(0);
-}
-
-/* Parameters a shape does not read are refused rather than ignored. */
-PetscErrorCode MMObstacleRefuseUnused(const MMObstacle *ob, MPI_Comm comm, PetscBool point, PetscBool normal, PetscBool center, PetscBool axis, PetscBool radius, PetscBool side)
-{
-  PetscFunctionBeginUser;
-  PetscCheck(point || ob->npoint < 0, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_point does not apply to an obstacle of type %s", ob->name, ob->type);
-  PetscCheck(normal || ob->nnormal < 0, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_normal does not apply to an obstacle of type %s", ob->name, ob->type);
-  PetscCheck(center || ob->ncenter < 0, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_center does not apply to an obstacle of type %s", ob->name, ob->type);
-  PetscCheck(axis || ob->naxis < 0, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_axis does not apply to an obstacle of type %s", ob->name, ob->type);
-  PetscCheck(radius || !ob->radius_set, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_radius does not apply to an obstacle of type %s", ob->name, ob->type);
-  PetscCheck(side || !ob->inside, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_side inside does not apply to an obstacle of type %s: the body is on the side its normal points to", ob->name, ob->type);
+  PetscCall(PetscFree(ob->data));
   PetscFunctionReturn(0);
 }
 
@@ -147,20 +285,13 @@ PetscErrorCode MMObstacleView(const MMObstacle *ob, PetscViewer viewer)
   }
   PetscCall(PetscViewerASCIIPrintf(viewer, "MMObstacle %s: %s%s, the body %s; friction coefficient %g\n", ob->name, ob->type, ob->curved ? " (curved)" : "", ob->inside ? "inside" : "outside", (double)ob->mu));
   PetscCall(PetscViewerASCIIPushTab(viewer));
-  if (ob->npoint > 0 || ob->nnormal > 0) {
-    PetscCall(VectorText(ob->point, ob->npoint, v[0], sizeof(v[0])));
-    PetscCall(VectorText(ob->normal, ob->nnormal, v[1], sizeof(v[1])));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "%s%s%s%s\n", ob->npoint > 0 ? "point " : "", ob->npoint > 0 ? v[0] : "", ob->nnormal > 0 ? (ob->npoint > 0 ? ", normal " : "normal ") : "", ob->nnormal > 0 ? v[1] : ""));
+  for (PetscInt i = 0; ob->ops && i < ob->ops->nparams; ++i) {
+    const MMObstacleValue *val = Value(ob, i);
+    if (val->n <= 0) continue;
+    if (val->n == 1) PetscCall(PetscSNPrintf(v[0], sizeof(v[0]), "%g", (double)val->v[0]));
+    else PetscCall(VectorText(val->v, val->n, v[0], sizeof(v[0])));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "%s %s\n", ob->ops->params[i].name, v[0]));
   }
-  if (ob->ncenter > 0) {
-    PetscCall(VectorText(ob->center, ob->ncenter, v[0], sizeof(v[0])));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "center %s\n", v[0]));
-  }
-  if (ob->naxis > 0) {
-    PetscCall(VectorText(ob->axis, ob->naxis, v[0], sizeof(v[0])));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "axis %s\n", v[0]));
-  }
-  if (ob->radius_set) PetscCall(PetscViewerASCIIPrintf(viewer, "radius %g\n", (double)ob->radius));
   if (ob->nvelocity > 0) {
     PetscCall(VectorText(ob->velocity, ob->nvelocity, v[2], sizeof(v[2])));
     if (ob->stop < PETSC_MAX_REAL) PetscCall(PetscViewerASCIIPrintf(viewer, "moves at velocity %s for %g < t <= %g\n", v[2], (double)ob->start, (double)ob->stop));

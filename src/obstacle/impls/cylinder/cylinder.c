@@ -2,39 +2,49 @@
  * rail, a roller) or inside it (a pipe). */
 #include "../../obstacleimpl.h"
 
-static PetscErrorCode CylinderCheck(MMObstacle *ob, MPI_Comm comm, PetscInt dim)
-{
-  PetscFunctionBeginUser;
-  PetscCheck(dim == 3, comm, PETSC_ERR_USER_INPUT, "Obstacle %s is a cylinder, a 3D shape, but the mesh is 2D: use type circle", ob->name);
-  PetscCall(MMObstacleRefuseUnused(ob, comm, PETSC_TRUE, PETSC_FALSE, PETSC_FALSE, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE));
-  PetscCall(MMObstacleRequireVector(ob, comm, dim, "point", ob->npoint, ob->point, PETSC_FALSE));
-  PetscCall(MMObstacleRequireVector(ob, comm, dim, "axis", ob->naxis, ob->axis, PETSC_TRUE));
-  PetscCall(MMObstacleRequireRadius(ob, comm));
-  PetscFunctionReturn(0);
-}
+typedef struct {
+  MMObstacleValue point, axis, radius;
+} Cylinder;
+
+static const MMObstacleParameter CylinderParameters[] = {
+  {"point",  MM_OBSTACLE_POINT,     "cylinder: a point on the axis, d entries",           offsetof(Cylinder, point) },
+  {"axis",   MM_OBSTACLE_DIRECTION, "cylinder: the axis direction (normalized), 3 entries", offsetof(Cylinder, axis)  },
+  {"radius", MM_OBSTACLE_LENGTH,    "cylinder: the radius, > 0",                          offsetof(Cylinder, radius)},
+};
 
 /* r = the part of x - p across the axis; g = |r| - R outside, R - |r| inside; n = +-r/|r|. */
 static PetscErrorCode CylinderDistance(const MMObstacle *ob, PetscInt dim, const PetscReal x[], PetscReal *g, PetscReal n[])
 {
-  PetscReal r[3], along = 0, len = 0, s = ob->inside ? -1.0 : 1.0;
+  const Cylinder  *cy = (const Cylinder *)ob->data;
+  const PetscReal *p = cy->point.v, *a = cy->axis.v;
+  PetscReal        r[3], along = 0, len = 0, s = ob->inside ? -1.0 : 1.0;
 
   PetscFunctionBeginUser;
-  for (PetscInt d = 0; d < 3; ++d) along += (x[d] - ob->point[d]) * ob->axis[d];
+  for (PetscInt d = 0; d < 3; ++d) along += (x[d] - p[d]) * a[d];
   for (PetscInt d = 0; d < 3; ++d) {
-    r[d] = x[d] - ob->point[d] - along * ob->axis[d];
+    r[d] = x[d] - p[d] - along * a[d];
     len += PetscSqr(r[d]);
   }
   len = PetscSqrtReal(len);
-  *g  = s * (len - ob->radius);
+  *g  = s * (len - cy->radius.v[0]);
   for (PetscInt d = 0; d < 3; ++d) n[d] = len > 0 ? s * r[d] / len : 0;
   PetscFunctionReturn(0);
 }
 
+static const MMObstacleOps CylinderOps = {
+  .params   = CylinderParameters,
+  .nparams  = PETSC_STATIC_ARRAY_LENGTH(CylinderParameters),
+  .datasize = sizeof(Cylinder),
+  .curved   = PETSC_TRUE,
+  .sided    = PETSC_TRUE,
+  .dim      = 3,
+  .other    = "circle",
+  .distance = CylinderDistance,
+};
+
 PetscErrorCode MMObstacleCreate_Cylinder(MMObstacle *ob)
 {
   PetscFunctionBeginUser;
-  ob->curved   = PETSC_TRUE;
-  ob->check    = CylinderCheck;
-  ob->distance = CylinderDistance;
+  ob->ops = &CylinderOps;
   PetscFunctionReturn(0);
 }

@@ -1,31 +1,40 @@
 /* A plane through a point with a unit normal pointing out of the obstacle, towards the body. */
 #include "../../obstacleimpl.h"
 
-static PetscErrorCode PlaneCheck(MMObstacle *ob, MPI_Comm comm, PetscInt dim)
-{
-  PetscFunctionBeginUser;
-  PetscCall(MMObstacleRefuseUnused(ob, comm, PETSC_TRUE, PETSC_TRUE, PETSC_FALSE, PETSC_FALSE, PETSC_FALSE, PETSC_FALSE));
-  PetscCall(MMObstacleRequireVector(ob, comm, dim, "point", ob->npoint, ob->point, PETSC_FALSE));
-  PetscCall(MMObstacleRequireVector(ob, comm, dim, "normal", ob->nnormal, ob->normal, PETSC_TRUE));
-  PetscFunctionReturn(0);
-}
+typedef struct {
+  MMObstacleValue point, normal;
+} Plane;
+
+static const MMObstacleParameter PlaneParameters[] = {
+  {"point",  MM_OBSTACLE_POINT,     "plane: a point of the plane, d entries",                                          offsetof(Plane, point) },
+  {"normal", MM_OBSTACLE_DIRECTION, "plane: normal pointing out of the obstacle, towards the body (normalized), d entries", offsetof(Plane, normal)},
+};
 
 static PetscErrorCode PlaneDistance(const MMObstacle *ob, PetscInt dim, const PetscReal x[], PetscReal *g, PetscReal n[])
 {
+  const Plane *pl = (const Plane *)ob->data;
+
   PetscFunctionBeginUser;
   *g = 0;
   for (PetscInt d = 0; d < dim; ++d) {
-    *g += (x[d] - ob->point[d]) * ob->normal[d];
-    n[d] = ob->normal[d];
+    *g += (x[d] - pl->point.v[d]) * pl->normal.v[d];
+    n[d] = pl->normal.v[d];
   }
   PetscFunctionReturn(0);
 }
 
+static const MMObstacleOps PlaneOps = {
+  .params   = PlaneParameters,
+  .nparams  = PETSC_STATIC_ARRAY_LENGTH(PlaneParameters),
+  .datasize = sizeof(Plane),
+  .curved   = PETSC_FALSE,
+  .sided    = PETSC_FALSE,
+  .distance = PlaneDistance,
+};
+
 PetscErrorCode MMObstacleCreate_Plane(MMObstacle *ob)
 {
   PetscFunctionBeginUser;
-  ob->curved   = PETSC_FALSE;
-  ob->check    = PlaneCheck;
-  ob->distance = PlaneDistance;
+  ob->ops = &PlaneOps;
   PetscFunctionReturn(0);
 }
