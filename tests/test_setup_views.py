@@ -24,7 +24,7 @@ def test_each_view_prints_its_objects_settings_once_before_the_first_step(tmp_pa
     out = r.output
     # obstacles: the single plane of -obstacle_point, -obstacle_normal and its friction coefficient
     assert out.count("MMObstacle plane: plane, the body outside; friction coefficient 0.2\n") == 1, out[-3000:]
-    assert "  point (0., 0.), normal (0., 1.)\n  fixed\n" in out
+    assert "  point (0., 0.)\n  normal (0., 1.)\n  fixed\n" in out
     # contact: the formulation, the contact set, the frames, the mass, the tolerances, K~'s solver
     assert out.count("MMContact: formulation condensed") == 1
     for line in ("33 contact rows", "2 reaction components per row", "obstacles: 1 rigid, 0 contact pairs; largest friction coefficient 0.2",
