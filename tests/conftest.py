@@ -1,9 +1,11 @@
 """Shared helpers: run mmcontact through mpiexec and read what it writes.
 
 Every test runs the real executable on a real mesh and asserts numbers with tolerances."""
+import contextlib
 import os
 import signal
 import subprocess
+import tempfile
 import time
 
 import h5py
@@ -201,3 +203,22 @@ def stage_event_count(output, stage, event):
         elif inside and line.split()[:1] == [event]:
             count += int(line.split()[1])
     return count
+
+
+@contextlib.contextmanager
+def small_fs(size):
+    """A real full disk: a tmpfs of `size` (mount's syntax: 8k, 1m) on a fresh directory, unmounted
+    however the test ends (root only; skipped where mount is not permitted)."""
+    if os.geteuid() != 0:
+        pytest.skip("mounting a small tmpfs needs root")
+    d = tempfile.mkdtemp(prefix="mm_fulldisk_")
+    proc = subprocess.run(["mount", "-t", "tmpfs", "-o", f"size={size}", "tmpfs", d], capture_output=True, text=True)
+    if proc.returncode != 0:
+        os.rmdir(d)
+        pytest.skip(f"mount -t tmpfs not permitted here: {proc.stderr.strip()}")
+    try:
+        yield d
+    finally:
+        if subprocess.run(["umount", d]).returncode != 0:
+            subprocess.run(["umount", "-l", d])
+        os.rmdir(d)

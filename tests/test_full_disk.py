@@ -5,40 +5,20 @@ run, no empty output directory after a refused -restart.
 
 The full disks are real: a small tmpfs mounted for the test (root only), unmounted in a finally.
 Every run has a subprocess timeout, so a hang fails its test instead of hanging the suite."""
-import contextlib
 import os
 import re
 import shutil
 import subprocess
-import tempfile
 import time
 
 import pytest
 
-from conftest import EXE, MPIEXEC, ROOT
+from conftest import small_fs, EXE, MPIEXEC, ROOT
 
 D1 = os.path.join(ROOT, "options", "d1_disk.opts")
 SHORT = ("-ts_max_time", 0.01, "-output_every", 1, "-checkpoint_every", 3)  # 6 steps, 6 snapshots, 2 checkpoints
 HANG = 60  # seconds: a run past it hangs (each of these takes 1.5 to 5 s on a loaded 2-core machine)
 ERROR = re.compile(r"mmcontact error(?: \(rank \d\))?: Could not (?:write|copy|create|close|flush) ([^ :]+)")
-
-
-@contextlib.contextmanager
-def small_fs(size):
-    """A tmpfs of `size` (mount's syntax: 8k, 1m) on a fresh directory, unmounted however the test ends."""
-    if os.geteuid() != 0:
-        pytest.skip("mounting a small tmpfs needs root")
-    d = tempfile.mkdtemp(prefix="mm_fulldisk_")
-    proc = subprocess.run(["mount", "-t", "tmpfs", "-o", f"size={size}", "tmpfs", d], capture_output=True, text=True)
-    if proc.returncode != 0:
-        os.rmdir(d)
-        pytest.skip(f"mount -t tmpfs not permitted here: {proc.stderr.strip()}")
-    try:
-        yield d
-    finally:
-        if subprocess.run(["umount", d]).returncode != 0:
-            subprocess.run(["umount", "-l", d])
-        os.rmdir(d)
 
 
 def mm(outdir, *extra, np_=2, env=None):

@@ -11,41 +11,21 @@ call. On 1 rank the same disk gives one line.
 
 Item 4: a run stopped by the energy audit (65), by SIGTERM (75) or by a full disk (74, in the
 sweep) leaves solution.xmf listing every snapshot complete in solution.h5, each readable."""
-import contextlib
 import os
 import re
 import signal
 import subprocess
-import tempfile
 import time
 import xml.etree.ElementTree as ET
 
 import h5py
 import pytest
 
-from conftest import EXE, MPIEXEC, ROOT, history_rows, signal_ranks
+from conftest import small_fs, EXE, MPIEXEC, ROOT, history_rows, signal_ranks
 
 HANG = 60   # seconds: a run past it hangs
 PROMPT = 10  # seconds: a full disk ends the run within it (each takes 1.5 to 3 s on the shared 2-core machine)
 ERROR = re.compile(r"^mmcontact error(?: \(rank \d\))?: Could not (write|copy|create|close|flush|rename) ([^ :]+)(.*)$", re.M)
-
-
-@contextlib.contextmanager
-def small_fs(size):
-    """A tmpfs of `size` (mount's syntax: 8k, 1m) on a fresh directory, unmounted however the test ends."""
-    if os.geteuid() != 0:
-        pytest.skip("mounting a small tmpfs needs root")
-    d = tempfile.mkdtemp(prefix="mm_fulldisk48_")
-    proc = subprocess.run(["mount", "-t", "tmpfs", "-o", f"size={size}", "tmpfs", d], capture_output=True, text=True)
-    if proc.returncode != 0:
-        os.rmdir(d)
-        pytest.skip(f"mount -t tmpfs not permitted here: {proc.stderr.strip()}")
-    try:
-        yield d
-    finally:
-        if subprocess.run(["umount", d]).returncode != 0:
-            subprocess.run(["umount", "-l", d])
-        os.rmdir(d)
 
 
 def launch(case, out, extra, np_=2, wrap=None, mca=()):

@@ -187,25 +187,35 @@ static PetscErrorCode PackContact(MMCheckpoint *ck, Vec src, Vec packed)
   PetscFunctionReturn(0);
 }
 
+/* A per-contact-node record of len entries (get: the node's, when it has one) packed by the node's
+ * serial vertex, as the checkpoint keeps it whatever the partition. */
+static PetscErrorCode PackNodeRecords(MMCheckpoint *ck, Vec packed, PetscInt len, PetscErrorCode (*get)(MMContact, PetscInt, PetscBool *, PetscScalar[]))
+{
+  PetscInt       vStart, vEnd;
+  MMContactNodes cn;
+  PetscScalar    rec[64];
+
+  PetscFunctionBeginUser;
+  PetscCheck(len <= 64, PETSC_COMM_SELF, PETSC_ERR_PLIB, "A contact node record of %" PetscInt_FMT " entries", len);
+  PetscCall(DMPlexGetDepthStratum(ck->op->dm, 0, &vStart, &vEnd));
+  PetscCall(MMContactGetNodes(ck->contact, &cn));
+  for (PetscInt k = 0; k < cn.n_local; ++k) {
+    PetscBool has;
+    PetscCall(get(ck->contact, k, &has, rec));
+    for (PetscInt c = 0; has && c < len; ++c) PetscCall(VecSetValue(packed, len * ck->vertex_orig[cn.vertex[k] - vStart] + c, rec[c], INSERT_VALUES));
+  }
+  PetscCall(VecAssemblyBegin(packed));
+  PetscCall(VecAssemblyEnd(packed));
+  PetscFunctionReturn(0);
+}
+
 /* Frames that follow the contact point (-contact_frames follow, docs/method.md section 8): each
  * following contact node's frame normal and gap (MMContactFramesGetRecord). The state is packed in
  * these frames, which the record restores bit for bit; a run with fixed frames writes none. */
 static PetscErrorCode PackFrames(MMCheckpoint *ck, Vec src, Vec packed)
 {
-  PetscInt       vStart, vEnd;
-  MMContactNodes cn;
-
   PetscFunctionBeginUser;
-  PetscCall(DMPlexGetDepthStratum(ck->op->dm, 0, &vStart, &vEnd));
-  PetscCall(MMContactGetNodes(ck->contact, &cn));
-  for (PetscInt k = 0; k < cn.n_local; ++k) {
-    PetscScalar rec[MM_CONTACT_FRAME_RECORD];
-    PetscBool   has;
-    PetscCall(MMContactFramesGetRecord(ck->contact, k, &has, rec));
-    for (PetscInt c = 0; has && c < MM_CONTACT_FRAME_RECORD; ++c) PetscCall(VecSetValue(packed, MM_CONTACT_FRAME_RECORD * ck->vertex_orig[cn.vertex[k] - vStart] + c, rec[c], INSERT_VALUES));
-  }
-  PetscCall(VecAssemblyBegin(packed));
-  PetscCall(VecAssemblyEnd(packed));
+  PetscCall(PackNodeRecords(ck, packed, MM_CONTACT_FRAME_RECORD, MMContactFramesGetRecord));
   PetscFunctionReturn(0);
 }
 
@@ -213,20 +223,8 @@ static PetscErrorCode PackFrames(MMCheckpoint *ck, Vec src, Vec packed)
  * which the state w is relative to. */
 static PetscErrorCode PackPairs(MMCheckpoint *ck, Vec src, Vec packed)
 {
-  PetscInt       vStart, vEnd;
-  MMContactNodes cn;
-
   PetscFunctionBeginUser;
-  PetscCall(DMPlexGetDepthStratum(ck->op->dm, 0, &vStart, &vEnd));
-  PetscCall(MMContactGetNodes(ck->contact, &cn));
-  for (PetscInt k = 0; k < cn.n_local; ++k) {
-    PetscScalar rec[MM_CONTACT_PAIR_RECORD];
-    PetscBool   has;
-    PetscCall(MMContactPairsGetRecord(ck->contact, k, &has, rec));
-    for (PetscInt c = 0; has && c < MM_CONTACT_PAIR_RECORD; ++c) PetscCall(VecSetValue(packed, MM_CONTACT_PAIR_RECORD * ck->vertex_orig[cn.vertex[k] - vStart] + c, rec[c], INSERT_VALUES));
-  }
-  PetscCall(VecAssemblyBegin(packed));
-  PetscCall(VecAssemblyEnd(packed));
+  PetscCall(PackNodeRecords(ck, packed, MM_CONTACT_PAIR_RECORD, MMContactPairsGetRecord));
   PetscFunctionReturn(0);
 }
 

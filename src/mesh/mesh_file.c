@@ -15,6 +15,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include "mesh.h"
+#include "msh_binary.h"
 
 /* Before the reader: the path is a readable file without a byte order mark. */
 PetscErrorCode MMMeshCheckFile(MPI_Comm comm, const char file[])
@@ -52,22 +53,6 @@ PetscErrorCode MMMeshCheckFile(MPI_Comm comm, const char file[])
   PetscFunctionReturn(0);
 }
 
-/* One value of a binary .msh: a 4-byte int, or a size_t of the file's data size (8). */
-static int BinaryLong(FILE *f, size_t bytes, long *v)
-{
-  int32_t  i4;
-  uint64_t u8;
-
-  if (bytes == 4) {
-    if (fread(&i4, 4, 1, f) != 1) return 0;
-    *v = i4;
-  } else {
-    if (fread(&u8, 8, 1, f) != 1) return 0;
-    *v = (long)u8;
-  }
-  return 1;
-}
-
 /* The nodes of a binary .msh 2.2 (after "$Nodes": the count in ASCII, then per node an int tag and
  * three doubles) or 4.1 (size_t counts, then per entity block its int header and size_t count, the
  * size_t tags, then the coordinates); the file's data size must be 8, its byte order this machine's.
@@ -79,13 +64,13 @@ static long ReadBinaryNodes(FILE *f, double version, long *total, PetscReal **xy
 
   if (version < 4) {
     if (!fgets(line, sizeof(line), f) || sscanf(line, "%ld", total) != 1 || *total < 0) return -1;
-  } else if (!BinaryLong(f, 8, &blocks) || !BinaryLong(f, 8, total) || !BinaryLong(f, 8, &lo) || !BinaryLong(f, 8, &hi) || *total < 0) return -1;
+  } else if (!MMMshBinaryLong(f, 8, &blocks) || !MMMshBinaryLong(f, 8, total) || !MMMshBinaryLong(f, 8, &lo) || !MMMshBinaryLong(f, 8, &hi) || *total < 0) return -1;
   if (PetscMalloc2(3 * *total, xyz, *total, tag)) return -1;
   if (version < 4) {
     for (k = 0; k < *total; ++k) {
       long   t;
       double x[3];
-      if (!BinaryLong(f, 4, &t) || fread(x, sizeof(double), 3, f) != 3) break;
+      if (!MMMshBinaryLong(f, 4, &t) || fread(x, sizeof(double), 3, f) != 3) break;
       (*tag)[k] = (PetscInt)t;
       for (int d = 0; d < 3; ++d) (*xyz)[3 * k + d] = x[d];
     }
@@ -93,10 +78,10 @@ static long ReadBinaryNodes(FILE *f, double version, long *total, PetscReal **xy
   }
   for (long b = 0; b < blocks; ++b) {
     long edim, etag, param, nb;
-    if (!BinaryLong(f, 4, &edim) || !BinaryLong(f, 4, &etag) || !BinaryLong(f, 4, &param) || !BinaryLong(f, 8, &nb) || param || k + nb > *total) return k;
+    if (!MMMshBinaryLong(f, 4, &edim) || !MMMshBinaryLong(f, 4, &etag) || !MMMshBinaryLong(f, 4, &param) || !MMMshBinaryLong(f, 8, &nb) || param || k + nb > *total) return k;
     for (long i = 0; i < nb; ++i) {
       long t;
-      if (!BinaryLong(f, 8, &t)) return k;
+      if (!MMMshBinaryLong(f, 8, &t)) return k;
       (*tag)[k + i] = (PetscInt)t;
     }
     for (long i = 0; i < nb; ++i) {

@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "mesh.h"
+#include "msh_binary.h"
 
 #define MM_POINT_GROUP_MAX 64 /* named Physical Point groups read; more are left unlabelled */
 
@@ -74,22 +75,6 @@ static void ReadPointEntities(FILE *in, const PointGroups *g, long **pairs, long
   }
 }
 
-/* One value of a binary .msh: a 4-byte int, or a size_t of the file's data size (8). */
-static int BinaryLong(FILE *in, size_t bytes, long *v)
-{
-  int32_t  i4;
-  uint64_t u8;
-
-  if (bytes == 4) {
-    if (fread(&i4, 4, 1, in) != 1) return 0;
-    *v = i4;
-  } else {
-    if (fread(&u8, 8, 1, in) != 1) return 0;
-    *v = (long)u8;
-  }
-  return 1;
-}
-
 /* The nodes of each gmsh element type (the first-order and second-order ones a .msh may hold);
  * 0 for a type this does not know, which ends the reading. */
 static long NodesOfType(long type)
@@ -103,16 +88,16 @@ static void ReadBinaryPointEntities(FILE *in, const PointGroups *g, long **pairs
 {
   long np, rest;
 
-  if (!BinaryLong(in, 8, &np)) return;
+  if (!MMMshBinaryLong(in, 8, &np)) return;
   for (int k = 0; k < 3; ++k)
-    if (!BinaryLong(in, 8, &rest)) return;
+    if (!MMMshBinaryLong(in, 8, &rest)) return;
   for (long i = 0; i < np; ++i) {
     long   etag, nphys;
     double x[3];
-    if (!BinaryLong(in, 4, &etag) || fread(x, sizeof(double), 3, in) != 3 || !BinaryLong(in, 8, &nphys)) return;
+    if (!MMMshBinaryLong(in, 4, &etag) || fread(x, sizeof(double), 3, in) != 3 || !MMMshBinaryLong(in, 8, &nphys)) return;
     for (long k = 0; k < nphys; ++k) {
       long tag;
-      if (!BinaryLong(in, 4, &tag)) return;
+      if (!MMMshBinaryLong(in, 4, &tag)) return;
       if (GroupOf(g, tag) < 0) continue;
       *pairs                    = (long *)realloc(*pairs, 2 * (*npairs + 1) * sizeof(long));
       (*pairs)[2 * *npairs]     = etag;
@@ -129,10 +114,10 @@ static int SkipBinaryNodes(FILE *in, double version)
   long total, blocks, lo, hi;
 
   if (version < 4) return fgets(line, sizeof(line), in) && sscanf(line, "%ld", &total) == 1 && !fseek(in, total * (4 + 3 * (long)sizeof(double)), SEEK_CUR);
-  if (!BinaryLong(in, 8, &blocks) || !BinaryLong(in, 8, &total) || !BinaryLong(in, 8, &lo) || !BinaryLong(in, 8, &hi)) return 0;
+  if (!MMMshBinaryLong(in, 8, &blocks) || !MMMshBinaryLong(in, 8, &total) || !MMMshBinaryLong(in, 8, &lo) || !MMMshBinaryLong(in, 8, &hi)) return 0;
   for (long b = 0; b < blocks; ++b) {
     long edim, etag, param, nb;
-    if (!BinaryLong(in, 4, &edim) || !BinaryLong(in, 4, &etag) || !BinaryLong(in, 4, &param) || !BinaryLong(in, 8, &nb) || param) return 0;
+    if (!MMMshBinaryLong(in, 4, &edim) || !MMMshBinaryLong(in, 4, &etag) || !MMMshBinaryLong(in, 4, &param) || !MMMshBinaryLong(in, 8, &nb) || param) return 0;
     if (fseek(in, nb * (8 + 3 * (long)sizeof(double)), SEEK_CUR)) return 0;
   }
   return 1;
@@ -196,16 +181,16 @@ static PetscErrorCode ReadBinaryPointElements(FILE *in, DM dm, double version, c
   PetscFunctionBeginUser;
   if (version == 4.1) {
     long nblocks, nelem, lo, hi;
-    if (!BinaryLong(in, 8, &nblocks) || !BinaryLong(in, 8, &nelem) || !BinaryLong(in, 8, &lo) || !BinaryLong(in, 8, &hi)) PetscFunctionReturn(0);
+    if (!MMMshBinaryLong(in, 8, &nblocks) || !MMMshBinaryLong(in, 8, &nelem) || !MMMshBinaryLong(in, 8, &lo) || !MMMshBinaryLong(in, 8, &hi)) PetscFunctionReturn(0);
     for (long b = 0; b < nblocks; ++b) {
       long edim, etag, type, n, nn, rec[2];
-      if (!BinaryLong(in, 4, &edim) || !BinaryLong(in, 4, &etag) || !BinaryLong(in, 4, &type) || !BinaryLong(in, 8, &n) || !(nn = NodesOfType(type))) PetscFunctionReturn(0);
+      if (!MMMshBinaryLong(in, 4, &edim) || !MMMshBinaryLong(in, 4, &etag) || !MMMshBinaryLong(in, 4, &type) || !MMMshBinaryLong(in, 8, &n) || !(nn = NodesOfType(type))) PetscFunctionReturn(0);
       if (edim != 0 || type != 15) {
         if (fseek(in, n * (1 + nn) * 8, SEEK_CUR)) PetscFunctionReturn(0);
         continue;
       }
       for (long i = 0; i < n; ++i) {
-        if (!BinaryLong(in, 8, &rec[0]) || !BinaryLong(in, 8, &rec[1])) PetscFunctionReturn(0);
+        if (!MMMshBinaryLong(in, 8, &rec[0]) || !MMMshBinaryLong(in, 8, &rec[1])) PetscFunctionReturn(0);
         for (long k = 0; k < npairs; ++k)
           if (pairs[2 * k] == etag) PetscCall(LabelNode(dm, g, (PetscInt)pairs[2 * k + 1], rec[1], vtag, nv));
       }
@@ -216,11 +201,11 @@ static PetscErrorCode ReadBinaryPointElements(FILE *in, DM dm, double version, c
     if (!fgets(line, sizeof(line), in) || sscanf(line, "%ld", &nelem) != 1) PetscFunctionReturn(0);
     while (done < nelem) {
       long type, n, ntags, nn;
-      if (!BinaryLong(in, 4, &type) || !BinaryLong(in, 4, &n) || !BinaryLong(in, 4, &ntags) || !(nn = NodesOfType(type)) || ntags < 0 || ntags > 64) PetscFunctionReturn(0);
+      if (!MMMshBinaryLong(in, 4, &type) || !MMMshBinaryLong(in, 4, &n) || !MMMshBinaryLong(in, 4, &ntags) || !(nn = NodesOfType(type)) || ntags < 0 || ntags > 64) PetscFunctionReturn(0);
       for (long i = 0; i < n; ++i) {
         long rec[66];
         for (long k = 0; k < 1 + ntags + nn; ++k)
-          if (!BinaryLong(in, 4, &rec[PetscMin(k, 65)])) PetscFunctionReturn(0);
+          if (!MMMshBinaryLong(in, 4, &rec[PetscMin(k, 65)])) PetscFunctionReturn(0);
         if (type == 15 && ntags >= 1 && GroupOf(g, rec[1]) >= 0) PetscCall(LabelNode(dm, g, GroupOf(g, rec[1]), rec[1 + ntags], vtag, nv));
       }
       done += n;
