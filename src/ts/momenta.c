@@ -192,6 +192,23 @@ static PetscErrorCode CurrentPositionMoment(MMNewmark nm, MMHistory *h)
   PetscFunctionReturn(0);
 }
 
+/* The functionals of the current frames: built on first use, and again when contact's frames turned
+ * or its pairing changed since (they are M* (from Cartesian)(e), of the frame they were built in) */
+static PetscErrorCode MomentaCurrent(MMNewmark nm)
+{
+  MMMomenta       *mo = &nm->momenta;
+  PetscObjectState frames;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMContactGetFrameState(nm->contact, &frames));
+  if (mo->ng && mo->frames != frames) PetscCall(MMMomentaDestroy(mo));
+  if (!mo->ng) {
+    PetscCall(MomentaSetUp(nm));
+    mo->frames = frames;
+  }
+  PetscFunctionReturn(0);
+}
+
 /* Centre-of-mass displacement and velocity of the discrete system, weighted by M*, whose momentum
  * the scheme conserves: the modified mass lacks the contact nodes' normal masses, so its mass for a
  * rigid translation is a matrix m*, not m I, and ucm = m*^-1 sum_i (M* u)_i, vcm = m*^-1 sum_i
@@ -207,7 +224,7 @@ PetscErrorCode MMRigidBodyDiagnostics(MMNewmark nm, MMHistory *h)
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(MM_TS_Momenta, 0, 0, 0, 0));
-  if (!mo->ng) PetscCall(MomentaSetUp(nm));
+  PetscCall(MomentaCurrent(nm));
   /* one reduction for both */
   PetscCall(VecMDotBegin(nm->state.u, dim, mo->g, su));
   PetscCall(VecMDotBegin(nm->state.v, mo->ng, mo->g, sv));
@@ -254,7 +271,7 @@ static PetscErrorCode ForceMoments(MMNewmark nm, Vec u, Vec f, PetscBool referen
   PetscReal          s[6] = {0, 0, 0, 0, 0, 0};
 
   PetscFunctionBeginUser;
-  if (!mo->ng) PetscCall(MomentaSetUp(nm));
+  PetscCall(MomentaCurrent(nm));
   PetscCall(DMGetGlobalVector(dm, &uc));
   PetscCall(DMGetGlobalVector(dm, &fc));
   PetscCall(MMFEToCartesian(nm->op, u, uc));

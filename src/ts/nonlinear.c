@@ -62,6 +62,27 @@ static PetscErrorCode CheckSupported(MMNewmark nm)
   PetscFunctionReturn(0);
 }
 
+/* The stepper's w-frame data, registered once with contact, which turns it when its frames turn
+ * (-contact_frames follow) and carries it to a new pairing (large sliding): the state u, v, a and
+ * the reaction, the loads' parts in time and the last step's load, and the iteration stiffness
+ * (docs/developer.md, "The contact frame") */
+static PetscErrorCode RegisterFrameData(MMNewmark nm)
+{
+  MMState *s  = &nm->state;
+  MMLoads *ld = nm->loads;
+
+  PetscFunctionBeginUser;
+  {
+    Vec *kin[] = {&s->u, &s->v, &s->a};
+    for (size_t i = 0; i < sizeof(kin) / sizeof(kin[0]); ++i) PetscCall(MMContactFramesAddVec(nm->contact, MM_FRAME_KINEMATIC, kin[i]));
+  }
+  PetscCall(MMContactFramesAddVec(nm->contact, MM_FRAME_FORCE, &s->react));
+  PetscCall(MMContactFramesAddVec(nm->contact, MM_FRAME_SETUP_FORCE, &ld->load_old));
+  for (PetscInt k = 0; ld->part && k < ld->nparts; ++k) PetscCall(MMContactFramesAddVec(nm->contact, MM_FRAME_SETUP_FORCE, &ld->part[k]));
+  PetscCall(MMContactFramesAddMat(nm->contact, &nm->nl.Ks));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MMNonlinearSetUp(MMNewmark nm)
 {
   MMNonlinear *nl = &nm->nl;
@@ -88,6 +109,7 @@ PetscErrorCode MMNonlinearSetUp(MMNewmark nm)
   PetscCall(VecDuplicate(nm->state.u, &nl->c));
   PetscCall(VecDuplicate(nm->state.u, &nl->c_prev));
   PetscCall(MMAndersonSetUp(&nl->aa, nl->anderson, nm->state.u));
+  PetscCall(RegisterFrameData(nm));
   PetscFunctionReturn(0);
 }
 
@@ -122,7 +144,8 @@ static PetscErrorCode CarriedForces(MMNewmark nm, PetscInt *nf, Vec force[])
 }
 
 /* What the stepper built on N, dropped after a new pairing, to be built again: the tangent (K's pattern
- * follows N), the momentum functionals (M* N^{-1} Q^T e); M* is contact's new one */
+ * follows N); M* is contact's new one (the momentum functionals, M* N^{-1} Q^T e, follow the frame
+ * state: momenta.c) */
 static PetscErrorCode DropPairingOperators(MMNewmark nm)
 {
   MMNonlinear *nl = &nm->nl;
@@ -132,32 +155,24 @@ static PetscErrorCode DropPairingOperators(MMNewmark nm)
   PetscCall(MatDestroy(&nl->el.KpN));
   nl->use_tangent = PETSC_FALSE;
   nm->damping.Mstar = nm->op->Mstar; /* borrowed (no damping with these laws) */
-  PetscCall(MMMomentaDestroy(&nm->momenta));
   PetscFunctionReturn(0);
 }
 
 /* Contact pairs with large sliding (docs/method.md section 11, "Large sliding"): before the step, the
  * pairing found again on u^n. When it changed, contact rebuilt N, K, M* (and K~ at the next step
- * matrix); here the state u, v, a, the last reaction (a force: b_nl carries it) and the loads are
- * carried to the new variables, and what the stepper built on N is dropped, to be built again. */
+ * matrix) and carried the stepper's registered vectors (RegisterFrameData: the state, the last
+ * reaction, which b_nl carries, and the loads) to the new variables; what the stepper built on N is
+ * dropped, to be built again. */
 PetscErrorCode MMNonlinearSlidePairs(MMNewmark nm, PetscReal dt)
 {
-  MMState    *s  = &nm->state;
-  MMLoads    *ld = nm->loads;
-  Vec         kin[3] = {s->u, s->v, s->a}, *force;
-  PetscInt    nf = 0;
-  PetscBool   changed;
+  MMState  *s = &nm->state;
+  PetscBool changed;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMalloc1(4 + (ld->part ? ld->nparts : 0), &force));
-  force[0] = s->react;
-  PetscCall(CarriedForces(nm, &nf, force + 1));
-  nf++;
   /* the pairing of the step's predictor u + dt v + dt^2/4 a (newmark.c), dt the step's first try */
   PetscCall(VecAXPBYPCZ(s->u_next, dt, 0.25 * dt * dt, 0.0, s->v, s->a));
   PetscCall(VecAXPY(s->u_next, 1.0, s->u));
-  PetscCall(MMContactSlidePairs(nm->contact, s->u, s->u_next, 3, kin, nf, force, &changed));
-  PetscCall(PetscFree(force));
+  PetscCall(MMContactSlidePairs(nm->contact, s->u, s->u_next, &changed));
   if (!changed) PetscFunctionReturn(0);
   PetscCall(DropPairingOperators(nm));
   PetscFunctionReturn(0);
@@ -560,28 +575,12 @@ PetscErrorCode MMNonlinearDampingWork(MMNewmark nm, Vec du, PetscReal t1, PetscR
 
 /* -contact_frames follow (docs/method.md section 8, "Frames that follow the contact point"): at the
  * step's start the frames of the nodes near a curved obstacle follow their current position. The
- * Cartesian state is unchanged: its frame components turn by R (u, v, a, the reactions, the load
- * parts), as does the iteration stiffness. M* does not turn with them, it is rebuilt (the massless
- * dofs lie along the new normals), so the kinetic energy 1/2 v.M* v moves by W_frame =
+ * Cartesian state is unchanged: contact turns the frame components of the stepper's registered data
+ * by R (RegisterFrameData: u, v, a, the reactions, the load parts, the iteration stiffness); the
+ * momentum functionals follow the frame state (momenta.c). M* does not turn with them, it is rebuilt
+ * (the massless dofs lie along the new normals), so the kinetic energy 1/2 v.M* v moves by W_frame =
  * 1/2 v.(M*_new - M*_old) v: booked in the balance (work_frame), not hidden in its residual. The
  * elastic energy, a function of the Cartesian displacement, does not move. */
-/* The stepper's own w-frame operators, after contact turned its frames: the load parts, which give
- * op's load each step (op's load and lift contact turned), and the iteration stiffness; the momentum
- * functionals (M* and Q of the old frames) are built again on the next diagnostics. */
-static PetscErrorCode RotateStepperOperators(MMNewmark nm)
-{
-  MMLoads *ld = nm->loads;
-
-  PetscFunctionBeginUser;
-  if (ld->in_time) {
-    for (PetscInt k = 0; k < ld->nparts; ++k) PetscCall(MMContactFramesRotate(nm->contact, ld->part[k]));
-    PetscCall(MMContactFramesRotate(nm->contact, ld->load_old));
-  }
-  if (nm->nl.Ks) PetscCall(MMContactFramesRotateMatrix(nm->contact, nm->nl.Ks));
-  PetscCall(MMMomentaDestroy(&nm->momenta));
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode MMNonlinearFollowFrames(MMNewmark nm, PetscReal t, PetscReal dt)
 {
   MMState  *s = &nm->state;
@@ -591,11 +590,6 @@ PetscErrorCode MMNonlinearFollowFrames(MMNewmark nm, PetscReal t, PetscReal dt)
   PetscFunctionBeginUser;
   PetscCall(MMContactFramesUpdate(nm->contact, s->u, s->v, t, dt, &turned));
   if (!turned) PetscFunctionReturn(0);
-  {
-    Vec *vecs[] = {&s->u, &s->v, &s->a, &s->react};
-    for (size_t i = 0; i < sizeof(vecs) / sizeof(vecs[0]); ++i) PetscCall(MMContactFramesRotate(nm->contact, *vecs[i]));
-  }
-  PetscCall(RotateStepperOperators(nm));
   {
     PetscScalar vMv;
     PetscCall(MatMult(nm->op->Mstar, s->v, s->work));
@@ -619,7 +613,8 @@ PetscErrorCode MMNonlinearFollowFrames(MMNewmark nm, PetscReal t, PetscReal dt)
   Note:
   -restart of a run whose frames followed (docs/method.md section 9): contact takes the checkpoint's
   frames and gaps (rec, per owned contact row; NULL: the checkpoint has none, the set-up frames
-  stay) and turns its operators, the stepper its own. The state, read from the checkpoint, is
+  stay) and turns its operators with the stepper's registered set-up data (the load parts, the
+  iteration stiffness). The state, read from the checkpoint, is
   already in these frames: it does not turn, and no kinetic energy moves (M* is the checkpointed
   run's).
 
@@ -634,7 +629,6 @@ PetscErrorCode MMNewmarkRestoreFrames(MMNewmark nm, const PetscScalar rec[], con
   PetscFunctionBeginUser;
   if (!rec) PetscFunctionReturn(0);
   PetscCall(MMContactFramesRestore(nm->contact, rec, counters, &turned));
-  if (turned) PetscCall(RotateStepperOperators(nm));
   PetscFunctionReturn(0);
 }
 

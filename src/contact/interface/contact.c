@@ -613,6 +613,7 @@ PetscErrorCode MMContactDestroy(MMContact *pct)
   PetscCall(PetscFree(ct->obstacle));
   PetscCall(MMContactPairsDestroy(&ct->pairs));
   PetscCall(MMContactFramesDestroy(&ct->frames));
+  PetscCall(MMContactHeldDestroy(&ct->held));
   PetscCall(PetscFree2(ct->second, ct->corner_ab));
   PetscCall(PetscFree(ct->force_obstacle));
   PetscCall(VecDestroy(&ct->area));

@@ -531,9 +531,16 @@ static void CurrentMasterSurface(MMContactPairs *pr, PetscInt dim, PetscInt p, c
 
 /* x <- N_new^{-1} N_old x (a displacement, velocity or acceleration) or x <- N_new^T N_old^{-T} x (a
  * force): the same Cartesian field in the new relative variables. */
-static PetscErrorCode ChangeVariables(MMContact ct, Mat Nold, Mat Ninvold, PetscBool force, Vec x)
+typedef struct {
+  Mat N, Ninv; /* the old pairing's */
+} OldPairing;
+
+/* The one carry of every w-frame vector (held.c) to a new pairing's variables */
+static PetscErrorCode ChangeVariables(MMContact ct, void *fctx, PetscBool force, Vec x)
 {
-  Vec y = ct->pairs.y;
+  Vec y       = ct->pairs.y;
+  Mat Nold    = ((OldPairing *)fctx)->N;
+  Mat Ninvold = ((OldPairing *)fctx)->Ninv;
 
   PetscFunctionBeginUser;
   if (force) {
@@ -624,10 +631,10 @@ static PetscErrorCode Positions(MMContact ct, Vec u, PetscReal **xc, PetscReal x
  * Where the facet, the weights or the facet's normal n_c change, the node's row becomes
  * w_0 = nu_c.(u_s - sum_j phi_j u_mj) <= g = n_c.(X_s - sum_j phi_j X_mj), nu_c = -n_c: the
  * non-penetration of the facet's line, exact for a facet that neither turns nor bends in the step. N is
- * rebuilt, and with it K and M*; the vectors kin (displacements) and force (forces) are carried to the
- * new variables, so that the Cartesian state is unchanged. The ranks find the same pairing: the master
+ * rebuilt, and with it K and M*; every w-frame vector, the load, the lift and the held ones (held.c), is
+ * carried to the new variables, so that the Cartesian state is unchanged. The ranks find the same pairing: the master
  * surface and its displacements are gathered on each. */
-PetscErrorCode MMContactSlidePairs(MMContact ct, Vec u, Vec up, PetscInt nkin, Vec kin[], PetscInt nforce, Vec force[], PetscBool *changed)
+PetscErrorCode MMContactSlidePairs(MMContact ct, Vec u, Vec up, PetscBool *changed)
 {
   MMContactPairs *pr  = &ct->pairs;
   const PetscInt  dim = ct->op->dim;
@@ -635,7 +642,7 @@ PetscErrorCode MMContactSlidePairs(MMContact ct, Vec u, Vec up, PetscInt nkin, V
   PetscReal     **xc, *x, pen = 0;
   PetscInt        cnt[2] = {0, 0}; /* slave nodes whose pairing changed, and that changed facet */
   MPI_Comm        comm = PetscObjectComm((PetscObject)ct->op->dm);
-  Mat             Nold, Ninvold;
+  OldPairing      old;
 
   PetscFunctionBeginUser;
   *changed = PETSC_FALSE;
@@ -686,13 +693,12 @@ PetscErrorCode MMContactSlidePairs(MMContact ct, Vec u, Vec up, PetscInt nkin, V
   if (cnt[0]) {
     pr->repairs++;
     pr->facet_changes += cnt[1];
-    Nold    = ct->op->N;
-    Ninvold = ct->op->Ninv;
+    old.N    = ct->op->N;
+    old.Ninv = ct->op->Ninv;
     PetscCall(BuildN(ct));
-    for (PetscInt i = 0; i < nkin; ++i) PetscCall(ChangeVariables(ct, Nold, Ninvold, PETSC_FALSE, kin[i]));
-    for (PetscInt i = 0; i < nforce; ++i) PetscCall(ChangeVariables(ct, Nold, Ninvold, PETSC_TRUE, force[i]));
-    PetscCall(MatDestroy(&Nold));
-    PetscCall(MatDestroy(&Ninvold));
+    PetscCall(MMContactHeldTransform(ct, PETSC_TRUE, ChangeVariables, &old));
+    PetscCall(MatDestroy(&old.N));
+    PetscCall(MatDestroy(&old.Ninv));
     PetscCall(RebuildOperators(ct));
     *changed = PETSC_TRUE;
   }
@@ -794,6 +800,7 @@ PetscErrorCode MMContactPairsRestore(MMContact ct, const PetscScalar rec[], Pets
   PetscCall(MatDestroy(&ct->op->Ninv));
   PetscCall(BuildN(ct));
   PetscCall(RebuildOperators(ct));
+  PetscCall(MMContactHeldInvalidate(ct));
   *changed = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
