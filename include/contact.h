@@ -44,6 +44,23 @@ PETSC_EXTERN PetscErrorCode MMContactRegisterAll(void);
  * lift (MMFEAssembleOperators) turned into the w-frame ones in place in op, which must be the
  * operators given to MMContactSetUp: Q^T A Q, M* for -mass, and the contact pairs' N^T A N. */
 PETSC_EXTERN PetscErrorCode MMContactSetUpFrame(MMContact ct, MMOperators *op, const MMMaterial *material);
+/* The w-frame operators (src/contact/frame/operators.c), contact's, as they are now: borrowed, and
+ * rebuilt when the frames turn or the pairing changes, so ask for them when they are used rather
+ * than keep them. K, Mstar: the stiffness and the mass in time stepping; load, lift: L and K_fD u_D
+ * on the free dofs; mass_star, mass_star_inv: M*'s mass for rigid translations and its inverse
+ * (dim x dim, zero without mass); massless: M*'s dofs without inertia, NULL if none. */
+typedef struct {
+  Mat              K, Mstar;
+  Vec              load, lift;
+  const PetscReal *mass_star, *mass_star_inv;
+  IS               massless;
+} MMContactOperators;
+PETSC_EXTERN PetscErrorCode MMContactGetOperators(MMContact ct, MMContactOperators *ops);
+/* Whether M* has dofs without inertia (the contact normals under the modified mass) */
+PETSC_EXTERN PetscBool MMContactHasMasslessDofs(MMContact ct);
+/* The Rayleigh damping stiffness B of the linear law in the w-frame, its massless dofs is_massless
+ * condensed cell by cell (docs/method.md section 12); B is new */
+PETSC_EXTERN PetscErrorCode MMContactDampingStiffness(MMContact ct, const MMMaterial *material, IS is_massless, Mat *B);
 /* The mass in time stepping (-mass, src/contact/frame/mass_star.c): the modified mass drops the
  * contact nodes' normal mass, the redistributed one gives it back to the other nodes. */
 typedef enum {

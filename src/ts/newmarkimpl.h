@@ -114,7 +114,7 @@ struct _p_MMNewmark {
 /* The dofs without inertia: the contact-normal dofs under the modified mass, none otherwise. */
 static inline PetscBool MMNewmarkHasMasslessDofs(MMNewmark nm)
 {
-  return MMFEHasMasslessDofs(nm->op);
+  return MMContactHasMasslessDofs(nm->contact);
 }
 
 /* ts's events (MMTSInitializePackage) */
@@ -129,7 +129,7 @@ PETSC_INTERN PetscErrorCode MMMomentaDestroy(MMMomenta *mo);
 PETSC_INTERN PetscErrorCode MMDeformationDestroy(MMDeformation *d);
 PETSC_INTERN PetscErrorCode MMInitialStaticSliding(MMNewmark nm, Vec w, Vec react);
 PETSC_INTERN PetscErrorCode MMDampingSetFromOptions(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMDamping *d);
-PETSC_INTERN PetscErrorCode MMDampingSetUp(MMDamping *d, MMOperators *op, MMMaterial *material, IS is_massless, Vec v0);
+PETSC_INTERN PetscErrorCode MMDampingSetUp(MMDamping *d, MMContact ct, MMMaterial *material, IS is_massless, Vec v0);
 PETSC_INTERN PetscErrorCode MMDampingAddStepRHS(MMDamping *d, Vec u, PetscReal dt, Vec b);
 PETSC_INTERN PetscErrorCode MMDampingUpdateVelocity(MMDamping *d, Vec u, Vec u_old, PetscReal dt);
 PETSC_INTERN PetscErrorCode MMDampingWork(MMDamping *d, Vec du, PetscReal dt, PetscReal *w);

@@ -132,12 +132,14 @@ PetscErrorCode MMNonlinearDestroy(MMNonlinear *nl)
  * sliding keeps them as they are, in the pairing's variables (MMNewmarkGetCarriedForces). */
 static PetscErrorCode CarriedForces(MMNewmark nm, PetscInt *nf, Vec force[])
 {
-  MMLoads *ld = nm->loads;
+  MMContactOperators ops;
+  MMLoads           *ld = nm->loads;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
   *nf          = 0;
-  force[(*nf)++] = nm->op->load;
-  force[(*nf)++] = nm->op->lift;
+  force[(*nf)++] = ops.load;
+  force[(*nf)++] = ops.lift;
   if (ld->load_old) force[(*nf)++] = ld->load_old;
   for (PetscInt k = 0; ld->part && k < ld->nparts; ++k) force[(*nf)++] = ld->part[k];
   PetscFunctionReturn(0);
@@ -148,13 +150,15 @@ static PetscErrorCode CarriedForces(MMNewmark nm, PetscInt *nf, Vec force[])
  * state: momenta.c) */
 static PetscErrorCode DropPairingOperators(MMNewmark nm)
 {
-  MMNonlinear *nl = &nm->nl;
+  MMContactOperators ops;
+  MMNonlinear       *nl = &nm->nl;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
   PetscCall(MatDestroy(&nl->Ks));
   PetscCall(MatDestroy(&nl->el.KpN));
   nl->use_tangent = PETSC_FALSE;
-  nm->damping.Mstar = nm->op->Mstar; /* borrowed (no damping with these laws) */
+  nm->damping.Mstar = ops.Mstar; /* borrowed (no damping with these laws) */
   PetscFunctionReturn(0);
 }
 
@@ -277,10 +281,12 @@ PetscErrorCode MMNonlinearElasticEnergy(MMNewmark nm, Vec u, PetscReal t, PetscR
 /* K~ = K_s + 4/dt^2 M*, with K_s the current iteration stiffness */
 PetscErrorCode MMNonlinearStepMatrix(MMNewmark nm, PetscReal dt, MMStepMatrix *sm)
 {
-  MMNonlinear *nl = &nm->nl;
+  MMContactOperators ops;
+  MMNonlinear       *nl = &nm->nl;
 
   PetscFunctionBeginUser;
-  PetscCall(MMDampingGetStepMatrix(&nm->damping, nm->op->K, dt, sm));
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
+  PetscCall(MMDampingGetStepMatrix(&nm->damping, ops.K, dt, sm));
   /* Rayleigh's beta: the viscous stress's iteration matrix is 2 beta/dt K_s, the iteration stiffness
    * scaled, so that it turns with the body as K_s does (Correction) */
   sm->ck += sm->cb;
@@ -295,10 +301,12 @@ PetscErrorCode MMNonlinearStepMatrix(MMNewmark nm, PetscReal dt, MMStepMatrix *s
  * was taken: the iteration matrix is state the next steps depend on, which a checkpoint keeps */
 static PetscErrorCode BuildTangent(MMNewmark nm, Vec l, PetscReal t)
 {
-  MMNonlinear *nl = &nm->nl;
+  MMContactOperators ops;
+  MMNonlinear       *nl = &nm->nl;
 
   PetscFunctionBeginUser;
-  if (!nl->Ks) PetscCall(MatDuplicate(nm->op->K, MAT_DO_NOT_COPY_VALUES, &nl->Ks));
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
+  if (!nl->Ks) PetscCall(MatDuplicate(ops.K, MAT_DO_NOT_COPY_VALUES, &nl->Ks));
   PetscCall(MMElasticityTangent(&nl->el, nm->op, nm->material, l, nl->Ks));
   if (!nl->Ks_at) PetscCall(DMCreateGlobalVector(nm->op->dm, &nl->Ks_at));
   PetscCall(DMLocalToGlobal(nm->op->dm, l, INSERT_VALUES, nl->Ks_at)); /* the owned values, exactly */
@@ -397,21 +405,23 @@ PetscErrorCode MMNewmarkRestoreTangent(MMNewmark nm, Vec at, PetscReal t)
  * body in free flight, whose internal force is zero, still has a scale for its residual */
 static PetscErrorCode FixedRHS(MMNewmark nm, PetscReal dt, Vec bnl, PetscReal *fscale)
 {
-  MMState  *s = &nm->state;
-  PetscReal n[3];
+  MMContactOperators ops;
+  MMState           *s = &nm->state;
+  PetscReal          n[3];
 
   PetscFunctionBeginUser;
-  PetscCall(MatMult(nm->op->Mstar, s->v, s->work));
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
+  PetscCall(MatMult(ops.Mstar, s->v, s->work));
   PetscCall(VecNorm(s->work, NORM_2, &n[0]));
   PetscCall(VecNorm(s->react_old, NORM_2, &n[1]));
-  PetscCall(VecWAXPY(s->work, 1.0, nm->op->load, nm->loads->in_time ? nm->loads->load_old : nm->op->load));
+  PetscCall(VecWAXPY(s->work, 1.0, ops.load, nm->loads->in_time ? nm->loads->load_old : ops.load));
   PetscCall(VecNorm(s->work, NORM_2, &n[2]));
   *fscale = PetscMax(2.0 / dt * n[0], PetscMax(2 * n[1], n[2])); /* 2 lambda^n: the solve's units */
   /* with Rayleigh's alpha, the damping force alpha M* (w - u^n)/dt, twice: its w part is in K~ */
   PetscCall(VecAXPBYPCZ(s->work, 4.0 / (dt * dt) + 2.0 * nm->damping.alpha / dt, 4.0 / dt, 0.0, s->u, s->v));
-  PetscCall(MatMult(nm->op->Mstar, s->work, bnl));
-  PetscCall(VecAXPY(bnl, 1.0, nm->op->load));
-  PetscCall(VecAXPY(bnl, 1.0, nm->loads->in_time ? nm->loads->load_old : nm->op->load));
+  PetscCall(MatMult(ops.Mstar, s->work, bnl));
+  PetscCall(VecAXPY(bnl, 1.0, ops.load));
+  PetscCall(VecAXPY(bnl, 1.0, nm->loads->in_time ? nm->loads->load_old : ops.load));
   PetscFunctionReturn(0);
 }
 
@@ -419,15 +429,17 @@ static PetscErrorCode FixedRHS(MMNewmark nm, PetscReal dt, Vec bnl, PetscReal *f
  * Rayleigh's beta, f_alg carries the step's viscous stress and K~ its iteration matrix 2 beta/dt K_s. */
 static PetscErrorCode Correction(MMNewmark nm, PetscReal t1, Vec w, Vec c, PetscReal *scale)
 {
-  MMNonlinear  *nl = &nm->nl;
-  MMElasticity *el = &nl->el;
+  MMContactOperators ops;
+  MMNonlinear       *nl = &nm->nl;
+  MMElasticity      *el = &nl->el;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
   PetscCall(MMElasticityLocal(el, nm->op, nm->loads, w, t1, el->l1));
   PetscCall(MMElasticityForce(el, nm->op, nm->material, el->l1, nl->f));
   PetscCall(VecScale(nl->f, 2.0));
   PetscCall(VecNorm(nl->f, NORM_2, scale));
-  PetscCall(MatMult(nl->use_tangent ? nl->Ks : nm->op->K, w, c));
+  PetscCall(MatMult(nl->use_tangent ? nl->Ks : ops.K, w, c));
   PetscCall(VecAXPBY(c, -1.0, 1.0 + 2.0 * el->visc, nl->f)); /* el->visc = beta/dt of this step */
   PetscFunctionReturn(0);
 }
@@ -455,12 +467,15 @@ static PetscErrorCode Tolerance(MMNewmark nm, Vec b, PetscReal S, PetscReal *tol
  * hundreds of steps keep a free body's momenta to 1e-9 */
 static PetscErrorCode BelowTheAudits(MMNewmark nm, Vec w, Vec r, PetscReal dt, PetscBool *below)
 {
-  MMState        *s = &nm->state;
-  const PetscReal E = nm->hist.energy_scale, m = nm->op->mass_star[0];
-  PetscScalar     work;
-  PetscReal       F[3], T[3], P;
+  MMContactOperators ops;
+  MMState           *s = &nm->state;
+  const PetscReal    E = nm->hist.energy_scale;
+  PetscScalar        work;
+  PetscReal          F[3], T[3], P, m;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
+  m = ops.mass_star[0];
   *below = PETSC_FALSE;
   if (!(E > 0 && m > 0)) PetscFunctionReturn(0);
   PetscCall(VecWAXPY(s->work, -1.0, s->u, w));
@@ -553,16 +568,18 @@ PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b,
  * (docs/method.md section 13): computed from the strains, apart from the force the step balanced */
 PetscErrorCode MMNonlinearDampingWork(MMNewmark nm, Vec du, PetscReal t1, PetscReal dt, PetscReal *w)
 {
-  MMDamping   *d  = &nm->damping;
-  MMElasticity *el = &nm->nl.el;
-  PetscScalar  duMdu = 0;
-  PetscReal    diss  = 0;
+  MMContactOperators ops;
+  MMDamping         *d  = &nm->damping;
+  MMElasticity      *el = &nm->nl.el;
+  PetscScalar        duMdu = 0;
+  PetscReal          diss  = 0;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
   *w = 0;
   if (!MMDampingOn(d)) PetscFunctionReturn(0);
   if (d->alpha != 0) {
-    PetscCall(MatMult(nm->op->Mstar, du, nm->nl.f)); /* du is the state's work vector */
+    PetscCall(MatMult(ops.Mstar, du, nm->nl.f)); /* du is the state's work vector */
     PetscCall(VecDot(du, nm->nl.f, &duMdu));
   }
   if (d->beta != 0) {
@@ -583,16 +600,18 @@ PetscErrorCode MMNonlinearDampingWork(MMNewmark nm, Vec du, PetscReal t1, PetscR
  * elastic energy, a function of the Cartesian displacement, does not move. */
 PetscErrorCode MMNonlinearFollowFrames(MMNewmark nm, PetscReal t, PetscReal dt)
 {
-  MMState  *s = &nm->state;
-  PetscInt  turned;
-  PetscReal kinetic_old = nm->hist.kinetic; /* 1/2 v.M*_old v of the last accepted step (no moving Dirichlet data here) */
+  MMContactOperators ops;
+  MMState           *s = &nm->state;
+  PetscInt           turned;
+  PetscReal          kinetic_old = nm->hist.kinetic; /* 1/2 v.M*_old v of the last accepted step (no moving Dirichlet data here) */
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
   PetscCall(MMContactFramesUpdate(nm->contact, s->u, s->v, t, dt, &turned));
   if (!turned) PetscFunctionReturn(0);
   {
     PetscScalar vMv;
-    PetscCall(MatMult(nm->op->Mstar, s->v, s->work));
+    PetscCall(MatMult(ops.Mstar, s->v, s->work));
     PetscCall(VecDot(s->v, s->work, &vMv));
     s->work_frame += 0.5 * PetscRealPart(vMv) - kinetic_old;
   }
