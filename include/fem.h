@@ -166,7 +166,8 @@ typedef struct {
 
 /* The finite element operators: fem assembles K, M, the load and the lift on the Cartesian dofs
  * (MMFEAssembleOperators); contact's frame (src/contact/frame/, MMContactSetUpFrame) turns them into
- * the w-frame ones in place, and builds Q, M*, N and the masses of M* (docs/method.md section 2). */
+ * the w-frame ones in place and builds Q and N (docs/method.md section 2). M* and its masses are
+ * contact's alone, built from M (the other components read them by MMContactGetOperators). */
 typedef struct {
   DM        dm;
   DM        dm_scalar; /* one P1 scalar per vertex, no constraints: lumped masses, contact pressure and gap, von Mises */
@@ -174,15 +175,12 @@ typedef struct {
   PetscInt  dim;
   Mat       K;      /* stiffness A: Cartesian from fem, w-frame once contact's frame has rotated it */
   Mat       M;      /* standard mass (consistent or lumped): set-up only, NULL once M* is built */
-  Mat       Mstar;  /* mass used in time stepping (contact's frame, -mass): M with the contact-normal rows/columns removed, or M */
   Mat       Q;      /* frame rotation, u_cart = Q w without contact pairs (contact's) */
   Mat       N, Ninv; /* contact pairs: the slave nodes' relative variables, u_cart = Q N w (NULL without pairs; contact's) */
   Vec       pair_work; /* scratch for Q N w */
   Vec       load;   /* L: body force + traction, constant in time (Cartesian from fem, then w-frame: contact's frame) */
   Vec       lift;   /* K_fD u_D: the Dirichlet data's elastic force on the free dofs (likewise) */
   Vec       mass_lumped_cart; /* lumped standard mass per Cartesian dof */
-  PetscReal mass_star[MM_MAX_DIM * MM_MAX_DIM]; /* M*'s mass for rigid translations, dim x dim (m I for M) */
-  PetscReal mass_star_inv[MM_MAX_DIM * MM_MAX_DIM]; /* its inverse (zero without mass), for ucm and vcm */
   PetscBool      lumped;         /* -mass_lumped */
   MMAssemblyType assembly;       /* -assembly */
   PetscBool      assembly_check; /* -assembly_check: assemble K and M both ways and stop if they differ */

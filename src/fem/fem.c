@@ -768,7 +768,6 @@ PetscErrorCode MMFEDestroy(MMOperators *op)
   PetscCall(MMCellsDestroy(&op->cells));
   PetscCall(MatDestroy(&op->K));
   PetscCall(MatDestroy(&op->M));
-  PetscCall(MatDestroy(&op->Mstar));
   PetscCall(MatDestroy(&op->Q));
   PetscCall(MatDestroy(&op->N));
   PetscCall(MatDestroy(&op->Ninv));

@@ -10,11 +10,11 @@ PetscErrorCode MMContactGetOperators(MMContact ct, MMContactOperators *ops)
 
   PetscFunctionBeginUser;
   ops->K             = op->K;
-  ops->Mstar         = op->Mstar;
+  ops->Mstar         = ct->mass.Mstar;
   ops->load          = op->load;
   ops->lift          = op->lift;
-  ops->mass_star     = op->mass_star;
-  ops->mass_star_inv = op->mass_star_inv;
+  ops->mass_star     = ct->mass.mass_star;
+  ops->mass_star_inv = ct->mass.mass_star_inv;
   ops->massless      = op->massless;
   PetscFunctionReturn(0);
 }

@@ -136,7 +136,7 @@ static PetscErrorCode CheckStepMatrixArithmetic(MMContact ct, PetscReal dt, Pets
   PetscCall(VecGetArrayRead(d, &a));
   for (PetscInt i = 0; i < n; ++i) k[0] = PetscMax(k[0], PetscAbsReal(PetscRealPart(a[i])));
   PetscCall(VecRestoreArrayRead(d, &a));
-  PetscCall(MatGetDiagonal(ct->op->Mstar, d));
+  PetscCall(MatGetDiagonal(ct->mass.Mstar, d));
   PetscCall(VecGetArrayRead(d, &a));
   for (PetscInt i = 0; i < n; ++i) {
     const PetscReal mi = PetscRealPart(a[i]);
@@ -168,7 +168,7 @@ static PetscErrorCode StepMatrixAssemble(MMContact ct, const MMStepMatrix *sm, M
     if (sm->ck != 1) PetscCall(MatScale(A, sm->ck));
     if (sm->B) PetscCall(MatAXPY(A, sm->cb, sm->B, SUBSET_NONZERO_PATTERN));
   }
-  PetscCall(MatAXPY(A, sm->cm, ct->op->Mstar, SUBSET_NONZERO_PATTERN));
+  PetscCall(MatAXPY(A, sm->cm, ct->mass.Mstar, SUBSET_NONZERO_PATTERN));
   PetscFunctionReturn(0);
 }
 
@@ -614,6 +614,7 @@ PetscErrorCode MMContactDestroy(MMContact *pct)
   PetscCall(MMContactPairsDestroy(&ct->pairs));
   PetscCall(MMContactFramesDestroy(&ct->frames));
   PetscCall(MMContactHeldDestroy(&ct->held));
+  PetscCall(MatDestroy(&ct->mass.Mstar));
   PetscCall(PetscFree2(ct->second, ct->corner_ab));
   PetscCall(PetscFree(ct->force_obstacle));
   PetscCall(VecDestroy(&ct->area));

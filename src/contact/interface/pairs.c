@@ -421,14 +421,14 @@ PetscErrorCode MMContactPairsBuildTransform(MMContact ct)
  * Runs after M* is built and its moments taken, which N leaves unchanged (frame/frame.c). */
 PetscErrorCode MMContactPairsTransformOperators(MMContact ct, MMOperators *op)
 {
-  Mat         *A[3] = {&op->K, &op->M, &op->Mstar}, B;
+  Mat         *A[3] = {&op->K, &op->M, &ct->mass.Mstar}, B;
   Vec          t;
 
   PetscFunctionBeginUser;
   if (!op->N) PetscFunctionReturn(0);
   if (ct->pairs.large) { /* the contact-frame K and M*, from which each new pairing's are built */
     PetscCall(MatDuplicate(op->K, MAT_COPY_VALUES, &ct->pairs.Ky));
-    PetscCall(MatDuplicate(op->Mstar, MAT_COPY_VALUES, &ct->pairs.My));
+    PetscCall(MatDuplicate(ct->mass.Mstar, MAT_COPY_VALUES, &ct->pairs.My));
   }
   for (PetscInt i = 0; i < 3; ++i) {
     PetscCall(MatPtAP(*A[i], op->N, MAT_INITIAL_MATRIX, 2.0, &B));
@@ -561,9 +561,9 @@ static PetscErrorCode RebuildOperators(MMContact ct)
 
   PetscFunctionBeginUser;
   PetscCall(MatDestroy(&op->K));
-  PetscCall(MatDestroy(&op->Mstar));
+  PetscCall(MatDestroy(&ct->mass.Mstar));
   PetscCall(MatPtAP(ct->pairs.Ky, op->N, MAT_INITIAL_MATRIX, 2.0, &op->K));
-  PetscCall(MatPtAP(ct->pairs.My, op->N, MAT_INITIAL_MATRIX, 2.0, &op->Mstar));
+  PetscCall(MatPtAP(ct->pairs.My, op->N, MAT_INITIAL_MATRIX, 2.0, &ct->mass.Mstar));
   PetscCall(MatDestroy(&ct->qp.A));
   PetscCall(MatDestroy(&ct->kept.A));
   ct->kept.dt = -1;
