@@ -186,7 +186,6 @@ typedef struct {
   PetscBool      assembly_check; /* -assembly_check: assemble K and M both ways and stop if they differ */
   PetscReal c_p;    /* pressure wave speed */
   PetscReal constants[MM_C_NUM]; /* the PetscDS constants of the kernels (MMConstantIndex) */
-  IS        massless; /* the dofs without inertia in M* (the contact-normal ones), NULL if none (a reference) */
   PetscReal energy_dirichlet; /* elastic energy of the Dirichlet data alone, 1/2 u_D.A_DD u_D */
   Vec       work;
 } MMOperators;
@@ -218,6 +217,7 @@ typedef struct {
   MMOperators       *op;       /* borrowed at MMLoadsSetUp: the operators the loads are set on */
   struct _MMElasticity *el;     /* the finite-strain laws' force for the reactions (MMLoadsSetElasticity), or NULL: K_D */
   const MMMaterial  *material; /* borrowed at MMLoadsSetUp */
+  IS           massless;   /* borrowed at MMLoadsSetUp: M*'s dofs without inertia (contact's), NULL if none */
   PetscInt     nparts;
   MMAmplitude *amp;        /* per part */
   Vec         *part;       /* per part: w-frame, free dofs */
@@ -267,11 +267,6 @@ PETSC_EXTERN PetscErrorCode MMFEAddTraction(const MMOperators *op, const MMTract
 PETSC_EXTERN PetscErrorCode MMFEDestroy(MMOperators *op);
 /* assembly_p1.c: the damping stiffness with the dofs marked in qmark (w-frame) condensed cell by cell */
 PETSC_EXTERN PetscErrorCode MMAssembleP1DampingStiffness(DM dm, const MMMaterial *mat, Mat Q, Vec qmark, Mat B);
-/* M* without inertia on some dofs: the modified and the redistributed mass with contact */
-static inline PetscBool MMFEHasMasslessDofs(const MMOperators *op)
-{
-  return (PetscBool)(op->massless != NULL);
-}
 /* assembly_p1.c: K <- Q^T K Q and M <- Q^T M Q in place on the P1 pattern, Q block diagonal by vertex (M
  * may be NULL); the contact frame's rotation (src/contact/frame/frame.c) */
 PETSC_EXTERN PetscErrorCode MMRotateP1(Mat Q, Mat K, Mat M);
@@ -288,7 +283,7 @@ PETSC_EXTERN PetscErrorCode MMStressCreate(const MMOperators *op, MMStress *st);
 PETSC_EXTERN PetscErrorCode MMStressCompute(MMStress *st, const MMOperators *op, const MMMaterial *mat, DM dm_u, Vec u, PetscBool nodal);
 PETSC_EXTERN PetscErrorCode MMStressDestroy(MMStress *st);
 /* loads.c: the loads in time, moving Dirichlet data and the reactions (after MMLoadsSetUp) */
-PETSC_EXTERN PetscErrorCode MMLoadsSetUp(MMLoads *ld, MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb);
+PETSC_EXTERN PetscErrorCode MMLoadsSetUp(MMLoads *ld, MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb, IS massless);
 PETSC_EXTERN PetscErrorCode MMLoadsSetTime(MMLoads *ld, PetscReal t0, PetscReal t1);
 PETSC_EXTERN PetscErrorCode MMLoadsReactions(MMLoads *ld, Vec u, Vec a);
 PETSC_EXTERN PetscErrorCode MMLoadsStepWork(MMLoads *ld, Vec u, Vec a, Vec u_old, Vec a_old, PetscReal *w_ext_D, PetscReal *w_D);

@@ -777,6 +777,5 @@ PetscErrorCode MMFEDestroy(MMOperators *op)
   PetscCall(VecDestroy(&op->mass_lumped_cart));
   PetscCall(VecDestroy(&op->work));
   PetscCall(DMDestroy(&op->dm_scalar));
-  PetscCall(ISDestroy(&op->massless));
   PetscFunctionReturn(0);
 }

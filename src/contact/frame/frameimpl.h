@@ -22,6 +22,7 @@ typedef struct {
 typedef struct {
   MMMassType type;                /* -mass */
   Mat        Mstar;               /* M with the massless dofs' rows and columns removed (and their mass given back, redistributed), or M */
+  IS         massless;            /* the dofs without inertia in M* (the contact-normal ones), NULL if none (a reference) */
   PetscReal  mass_star[MM_MAX_DIM * MM_MAX_DIM];     /* M*'s mass for rigid translations, dim x dim (m I for M) */
   PetscReal  mass_star_inv[MM_MAX_DIM * MM_MAX_DIM]; /* its inverse (zero without mass), for ucm and vcm */
   PetscReal  total;               /* total mass of M */

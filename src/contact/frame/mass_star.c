@@ -28,8 +28,8 @@ PetscErrorCode MMContactGetMassType(MMContact ct, MMMassType *type)
 static PetscErrorCode DropMasslessMass(MMContactMass *mass, MMOperators *op, const MMMaterial *material, const MMMassBoundary *mb)
 {
   PetscFunctionBeginUser;
-  if (MMFEHasMasslessDofs(op)) PetscCall(MatZeroRowsColumnsIS(mass->Mstar, op->massless, 0.0, NULL, NULL));
-  if (MMFEHasMasslessDofs(op) && mass->type == MM_MASS_REDISTRIBUTED) {
+  if (mass->massless) PetscCall(MatZeroRowsColumnsIS(mass->Mstar, mass->massless, 0.0, NULL, NULL));
+  if (mass->massless && mass->type == MM_MASS_REDISTRIBUTED) {
     PetscCall(PetscLogEventBegin(MMCONTACT_MassRedistribute, 0, 0, 0, 0));
     PetscCall(MMContactRedistributeMass(mass, op, material, mb));
     PetscCall(PetscLogEventEnd(MMCONTACT_MassRedistribute, 0, 0, 0, 0));
@@ -46,7 +46,7 @@ PetscErrorCode MMContactMassStar(MMContactMass *mass, MMOperators *op, const MMM
   PetscCall(MatDuplicate(op->M, MAT_COPY_VALUES, &mass->Mstar));
   if (mb->massless && mass->type != MM_MASS_STANDARD) {
     PetscCall(PetscObjectReference((PetscObject)mb->massless));
-    op->massless = mb->massless;
+    mass->massless = mb->massless;
   }
   PetscCall(DropMasslessMass(mass, op, material, mb));
   PetscFunctionReturn(0);
@@ -101,7 +101,7 @@ PetscErrorCode MMContactMassView(MMContact ct, PetscViewer viewer)
     PetscCall(PetscStrlen(star, &len));
     PetscCall(PetscSNPrintf(star + len, sizeof(star) - len, "%s%c %.10g", d ? ", " : "", "xyz"[d], (double)ct->mass.mass_star[d * dim + d]));
   }
-  if (MMFEHasMasslessDofs(op) && ct->mass.type == MM_MASS_REDISTRIBUTED) PetscCall(RedistributionText(&ct->mass, dim, moments, sizeof(moments)));
+  if (ct->mass.massless && ct->mass.type == MM_MASS_REDISTRIBUTED) PetscCall(RedistributionText(&ct->mass, dim, moments, sizeof(moments)));
   /* M is over the free dofs: a node held by -dirichlet (one boundary of the DS each) is the
    * support's, outside the system */
   PetscCall(DMGetDS(op->dm, &ds));

@@ -15,13 +15,13 @@ PetscErrorCode MMContactGetOperators(MMContact ct, MMContactOperators *ops)
   ops->lift          = op->lift;
   ops->mass_star     = ct->mass.mass_star;
   ops->mass_star_inv = ct->mass.mass_star_inv;
-  ops->massless      = op->massless;
+  ops->massless      = ct->mass.massless;
   PetscFunctionReturn(0);
 }
 
 PetscBool MMContactHasMasslessDofs(MMContact ct)
 {
-  return MMFEHasMasslessDofs(ct->op);
+  return (PetscBool)(ct->mass.massless != NULL);
 }
 
 /* B with the massless dofs (the contact normals and the friction corners' tau_1, docs/method.md

@@ -511,7 +511,7 @@ PetscErrorCode MMContactProjectInitial(MMContact ct, Vec w)
 
   PetscFunctionBeginUser;
   if (ct->enabled) PetscCall(CheckInitialPenetration(ct, w));
-  if (!MMFEHasMasslessDofs(ct->op)) PetscFunctionReturn(0);
+  if (!ct->mass.massless) PetscFunctionReturn(0);
   PetscCall(MatCreateSubMatrix(ct->op->K, ct->is_massless, ct->is_massless, MAT_INITIAL_MATRIX, &ct->qp0.A));
   PetscCall(MatCreateVecs(ct->qp0.A, &ct->qp0.b, NULL));
   PetscCall(VecDuplicate(ct->qp0.b, &ct->lower0));
@@ -556,7 +556,7 @@ PetscErrorCode MMContactProjectInitialCorrect(MMContact ct, Vec w, Vec res, Pets
 
   PetscFunctionBeginUser;
   *change = 0;
-  if (!MMFEHasMasslessDofs(ct->op) || !ct->qp0.A) PetscFunctionReturn(0);
+  if (!ct->mass.massless || !ct->qp0.A) PetscFunctionReturn(0);
   PetscCall(VecGetSubVector(w, ct->is_massless, &wc));
   PetscCall(VecGetSubVector(res, ct->is_massless, &rc));
   PetscCall(VecAXPBY(ct->qp0.b, -1.0, 0.0, rc));
@@ -615,6 +615,7 @@ PetscErrorCode MMContactDestroy(MMContact *pct)
   PetscCall(MMContactFramesDestroy(&ct->frames));
   PetscCall(MMContactHeldDestroy(&ct->held));
   PetscCall(MatDestroy(&ct->mass.Mstar));
+  PetscCall(ISDestroy(&ct->mass.massless));
   PetscCall(PetscFree2(ct->second, ct->corner_ab));
   PetscCall(PetscFree(ct->force_obstacle));
   PetscCall(VecDestroy(&ct->area));

@@ -529,13 +529,13 @@ static void CurrentMasterSurface(MMContactPairs *pr, PetscInt dim, PetscInt p, c
   }
 }
 
-/* x <- N_new^{-1} N_old x (a displacement, velocity or acceleration) or x <- N_new^T N_old^{-T} x (a
- * force): the same Cartesian field in the new relative variables. */
 typedef struct {
   Mat N, Ninv; /* the old pairing's */
 } OldPairing;
 
-/* The one carry of every w-frame vector (held.c) to a new pairing's variables */
+/* x <- N_new^{-1} N_old x (a displacement, velocity or acceleration) or x <- N_new^T N_old^{-T} x (a
+ * force): the same Cartesian field in the new relative variables. The one carry of every w-frame
+ * vector to a new pairing (held.c); fctx: the OldPairing. */
 static PetscErrorCode ChangeVariables(MMContact ct, void *fctx, PetscBool force, Vec x)
 {
   Vec y       = ct->pairs.y;
