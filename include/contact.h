@@ -56,6 +56,11 @@ typedef struct {
   IS               massless;
 } MMContactOperators;
 PETSC_EXTERN PetscErrorCode MMContactGetOperators(MMContact ct, MMContactOperators *ops);
+/* The elastic energy of the w-frame state w, 1/2 w.K w + w.lift + the Dirichlet data's own
+ * (src/contact/frame/energy.c); the start-up audit of it against fem's quadrature (stops the run when
+ * they differ beyond round-off) */
+PETSC_EXTERN PetscErrorCode MMContactElasticEnergy(MMContact ct, Vec w, PetscReal *energy);
+PETSC_EXTERN PetscErrorCode MMContactCheckElasticEnergy(MMContact ct, const MMMaterial *mat, Vec w);
 /* Whether M* has dofs without inertia (the contact normals under the modified mass) */
 PETSC_EXTERN PetscBool MMContactHasMasslessDofs(MMContact ct);
 /* The Rayleigh damping stiffness B of the linear law in the w-frame, its massless dofs is_massless

@@ -256,8 +256,8 @@ PETSC_EXTERN PetscErrorCode MMFEAssembleOperators(MMOperators *op, const MMMater
 PETSC_EXTERN PetscErrorCode MMFEAssembleOperatorsEnd(MMOperators *op);
 PETSC_EXTERN PetscErrorCode MMFECreateMatrix(const MMOperators *op, DM dm, Mat *A);
 PETSC_EXTERN PetscErrorCode MMFEInterpolate(const MMOperators *op, PetscErrorCode (*f)(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt nc, PetscScalar *u, void *fctx), void *fctx, Vec u);
-PETSC_EXTERN PetscErrorCode MMFEElasticEnergy(const MMOperators *op, Vec w, PetscReal *energy);
-PETSC_EXTERN PetscErrorCode MMFECheckElasticEnergy(const MMOperators *op, const MMMaterial *mat, Vec w);
+/* 1/2 int sigma(u):eps(u) of a Cartesian global vector ucart with the Dirichlet data of t = 0 inserted */
+PETSC_EXTERN PetscErrorCode MMFEElasticEnergyIntegral(const MMOperators *op, const MMMaterial *mat, Vec ucart, PetscReal *energy);
 PETSC_EXTERN PetscErrorCode MMFEToCartesian(const MMOperators *op, Vec w, Vec ucart);
 PETSC_EXTERN PetscErrorCode MMFEFromCartesian(const MMOperators *op, Vec ucart, Vec w);
 PETSC_EXTERN PetscErrorCode MMFEForceToCartesian(const MMOperators *op, Vec fw, Vec fcart);

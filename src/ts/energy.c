@@ -27,7 +27,7 @@ static PetscErrorCode TotalEnergy(MMNewmark nm, MMHistory *h)
   PetscFunctionBeginUser;
   PetscCall(KineticEnergy(nm, nm->state.v, &h->kinetic));
   if (nm->material->finite) PetscCall(MMNonlinearElasticEnergy(nm, nm->state.u, h->time, &h->elastic));
-  else PetscCall(MMFEElasticEnergy(nm->op, nm->state.u, &h->elastic));
+  else PetscCall(MMContactElasticEnergy(nm->contact, nm->state.u, &h->elastic));
   h->total = h->kinetic + h->elastic;
   PetscFunctionReturn(0);
 }
@@ -185,7 +185,7 @@ PetscErrorCode MMEnergyInitial(MMNewmark nm, PetscBool restarted)
   h->balance_residual = h->max_balance = h->max_penetration_run = 0;
   h->cfl = cn.enabled ? nm->op->c_p * h->dt / cn.h_c : 0;
   /* the quadrature inserts the Dirichlet data of t = 0: a restarted run's moving boundary is elsewhere */
-  if (!(nm->loads->moving && restarted) && !nm->material->finite) PetscCall(MMFECheckElasticEnergy(nm->op, nm->material, nm->state.u));
+  if (!(nm->loads->moving && restarted) && !nm->material->finite) PetscCall(MMContactCheckElasticEnergy(nm->contact, nm->material, nm->state.u));
   PetscCall(TotalEnergy(nm, h));
   PetscCall(CheckFinite(nm, h, 0, 0, 0));
   h->energy_scale = PetscAbsReal(h->total);
