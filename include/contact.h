@@ -63,6 +63,11 @@ PETSC_EXTERN PetscErrorCode MMContactElasticEnergy(MMContact ct, Vec w, PetscRea
 PETSC_EXTERN PetscErrorCode MMContactCheckElasticEnergy(MMContact ct, const MMMaterial *mat, Vec w);
 /* Whether M* has dofs without inertia (the contact normals under the modified mass) */
 PETSC_EXTERN PetscBool MMContactHasMasslessDofs(MMContact ct);
+/* A Cartesian P1 stiffness the caller assembles (the finite-strain tangent) into the w-frame as K is:
+ * Begin gives the matrix Kc to assemble into (Kw itself, K's pattern, without contact pairs), End
+ * turns it into Kw */
+PETSC_EXTERN PetscErrorCode MMContactFrameMatrixBegin(MMContact ct, Mat Kw, Mat *Kc);
+PETSC_EXTERN PetscErrorCode MMContactFrameMatrixEnd(MMContact ct, Mat Kc, Mat Kw);
 /* The Rayleigh damping stiffness B of the linear law in the w-frame, its massless dofs is_massless
  * condensed cell by cell (docs/method.md section 12); B is new */
 PETSC_EXTERN PetscErrorCode MMContactDampingStiffness(MMContact ct, const MMMaterial *material, IS is_massless, Mat *B);

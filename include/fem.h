@@ -306,7 +306,6 @@ typedef struct _MMElasticity {
   Vec       l0, l1, lf; /* local scratch */
   Vec       g;          /* global Cartesian scratch */
   PetscReal *G0;        /* per local cell, grad u at the step's start (MMElasticitySetStepStart) */
-  Mat        Kp, KpN;   /* contact pairs: the tangent on the P1 pattern, and its N^T Kp N */
   PetscInt *cell_off;   /* per local cell, its dim + 1 vertices' offsets in the local vectors */
   PetscReal *cell_geom; /* per local cell, its P1 gradients (dim + 1 by dim) and volume */
   PetscReal  visc;      /* beta/dt: the step's viscous stress beta D : dE/dt (Rayleigh's stiffness part), 0 undamped */
@@ -326,8 +325,9 @@ PETSC_EXTERN PetscErrorCode MMLoadsSetElasticity(MMLoads *ld, MMElasticity *el);
 PETSC_EXTERN PetscErrorCode MMElasticityEnergy(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, PetscReal *energy);
 /* sum over the cells of |T| dE : D : dE for the step from the start set by MMElasticitySetStepStart to l1 */
 PETSC_EXTERN PetscErrorCode MMElasticityDissipation(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l1, PetscReal *d);
-/* Kw (the pattern of op->K) = the tangent dP/dF at l, in the w-frame */
-PETSC_EXTERN PetscErrorCode MMElasticityTangent(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, Mat Kw);
+/* Kc (a P1 matrix of op->dm's pattern) = the tangent dP/dF at l on the Cartesian dofs (contact turns it
+ * into the w-frame: MMContactFrameMatrixBegin/End) */
+PETSC_EXTERN PetscErrorCode MMElasticityAssembleTangent(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, Mat Kc);
 /* the Cauchy stress of cell c (local) at the displacement gradient G */
 PETSC_EXTERN PetscErrorCode MMElasticityCauchy(const MMMaterial *mat, PetscInt c, PetscInt dim, const PetscReal G[MM_MAX_DIM][MM_MAX_DIM], PetscReal sigma[MM_MAX_DIM][MM_MAX_DIM]);
 PETSC_EXTERN PetscErrorCode MMElasticityDestroy(MMElasticity *el);

@@ -156,7 +156,6 @@ static PetscErrorCode DropPairingOperators(MMNewmark nm)
   PetscFunctionBeginUser;
   PetscCall(MMContactGetOperators(nm->contact, &ops));
   PetscCall(MatDestroy(&nl->Ks));
-  PetscCall(MatDestroy(&nl->el.KpN));
   nl->use_tangent = PETSC_FALSE;
   nm->damping.Mstar = ops.Mstar; /* borrowed (no damping with these laws) */
   PetscFunctionReturn(0);
@@ -307,7 +306,12 @@ static PetscErrorCode BuildTangent(MMNewmark nm, Vec l, PetscReal t)
   PetscFunctionBeginUser;
   PetscCall(MMContactGetOperators(nm->contact, &ops));
   if (!nl->Ks) PetscCall(MatDuplicate(ops.K, MAT_DO_NOT_COPY_VALUES, &nl->Ks));
-  PetscCall(MMElasticityTangent(&nl->el, nm->op, nm->material, l, nl->Ks));
+  {
+    Mat Kc; /* the Cartesian tangent, turned into the w-frame (and N^T Kc N with contact pairs) by contact */
+    PetscCall(MMContactFrameMatrixBegin(nm->contact, nl->Ks, &Kc));
+    PetscCall(MMElasticityAssembleTangent(&nl->el, nm->op, nm->material, l, Kc));
+    PetscCall(MMContactFrameMatrixEnd(nm->contact, Kc, nl->Ks));
+  }
   if (!nl->Ks_at) PetscCall(DMCreateGlobalVector(nm->op->dm, &nl->Ks_at));
   PetscCall(DMLocalToGlobal(nm->op->dm, l, INSERT_VALUES, nl->Ks_at)); /* the owned values, exactly */
   nl->Ks_time     = t;

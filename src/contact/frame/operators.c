@@ -24,6 +24,37 @@ PetscBool MMContactHasMasslessDofs(MMContact ct)
   return (PetscBool)(ct->mass.massless != NULL);
 }
 
+/* A Cartesian P1 stiffness the caller assembles (the finite-strain tangent), turned into the w-frame
+ * as K is (docs/method.md sections 2 and 11). Begin: the matrix to assemble into, Kw itself (K's
+ * pattern) without contact pairs, else contact's P1 one. End: Q^T Kc Q in place, and with pairs
+ * N^T (.) N into Kw, the product kept so that later ones reuse its pattern (dropped at a new pairing,
+ * pairs.c). */
+PetscErrorCode MMContactFrameMatrixBegin(MMContact ct, Mat Kw, Mat *Kc)
+{
+  PetscFunctionBeginUser;
+  if (!ct->op->N) *Kc = Kw;
+  else {
+    if (!ct->frame_Kp) PetscCall(MMFECreateMatrix(ct->op, ct->op->dm, &ct->frame_Kp));
+    *Kc = ct->frame_Kp;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMContactFrameMatrixEnd(MMContact ct, Mat Kc, Mat Kw)
+{
+  const MMOperators *op = ct->op;
+
+  PetscFunctionBeginUser;
+  if (!op->N) {
+    if (op->Q) PetscCall(MMRotateP1(op->Q, Kw, NULL)); /* into the contact nodes' frames, as K is */
+  } else {
+    PetscCall(MMRotateP1(op->Q, Kc, NULL));
+    PetscCall(MatPtAP(Kc, op->N, ct->frame_KpN ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, 2.0, &ct->frame_KpN));
+    PetscCall(MatCopy(ct->frame_KpN, Kw, SAME_NONZERO_PATTERN));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* B with the massless dofs (the contact normals and the friction corners' tau_1, docs/method.md
  * section 12) condensed cell by cell (MMAssembleP1DampingStiffness), in the w-frame of
  * K: the cells are rotated by Q there, and contact pairs transform it by N as K (N^T B N keeps the

@@ -615,6 +615,8 @@ PetscErrorCode MMContactDestroy(MMContact *pct)
   PetscCall(MMContactFramesDestroy(&ct->frames));
   PetscCall(MMContactHeldDestroy(&ct->held));
   PetscCall(MatDestroy(&ct->mass.Mstar));
+  PetscCall(MatDestroy(&ct->frame_Kp));
+  PetscCall(MatDestroy(&ct->frame_KpN));
   PetscCall(ISDestroy(&ct->mass.massless));
   PetscCall(PetscFree2(ct->second, ct->corner_ab));
   PetscCall(PetscFree(ct->force_obstacle));

@@ -566,6 +566,7 @@ static PetscErrorCode RebuildOperators(MMContact ct)
   PetscCall(MatPtAP(ct->pairs.My, op->N, MAT_INITIAL_MATRIX, 2.0, &ct->mass.Mstar));
   PetscCall(MatDestroy(&ct->qp.A));
   PetscCall(MatDestroy(&ct->kept.A));
+  PetscCall(MatDestroy(&ct->frame_KpN)); /* its pattern follows N */
   ct->kept.dt = -1;
   ct->Kt_dt   = -1;
   PetscFunctionReturn(0);
