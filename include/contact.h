@@ -45,6 +45,33 @@ PETSC_EXTERN PetscErrorCode MMContactRegisterAll(void);
  * lift (MMFEAssembleOperators) turned into the w-frame ones in place in op, which must be the
  * operators given to MMContactSetUp: Q^T A Q, M* for -mass, and the contact pairs' N^T A N. */
 PETSC_EXTERN PetscErrorCode MMContactSetUpFrame(MMContact ct, MMOperators *op, const MMMaterial *material);
+/* The w-frame operators (src/contact/frame/operators.c), contact's, as they are now: borrowed, and
+ * rebuilt when the frames turn or the pairing changes, so ask for them when they are used rather
+ * than keep them. K, Mstar: the stiffness and the mass in time stepping; load, lift: L and K_fD u_D
+ * on the free dofs; mass_star, mass_star_inv: M*'s mass for rigid translations and its inverse
+ * (dim x dim, zero without mass); massless: M*'s dofs without inertia, NULL if none. */
+typedef struct {
+  Mat              K, Mstar;
+  Vec              load, lift;
+  const PetscReal *mass_star, *mass_star_inv;
+  IS               massless;
+} MMContactOperators;
+PETSC_EXTERN PetscErrorCode MMContactGetOperators(MMContact ct, MMContactOperators *ops);
+/* The elastic energy of the w-frame state w, 1/2 w.K w + w.lift + the Dirichlet data's own
+ * (src/contact/frame/energy.c); the start-up audit of it against fem's quadrature (stops the run when
+ * they differ beyond round-off) */
+PETSC_EXTERN PetscErrorCode MMContactElasticEnergy(MMContact ct, Vec w, PetscReal *energy);
+PETSC_EXTERN PetscErrorCode MMContactCheckElasticEnergy(MMContact ct, const MMMaterial *mat, Vec w);
+/* Whether M* has dofs without inertia (the contact normals under the modified mass) */
+PETSC_EXTERN PetscBool MMContactHasMasslessDofs(MMContact ct);
+/* A Cartesian P1 stiffness the caller assembles (the finite-strain tangent) into the w-frame as K is:
+ * Begin gives the matrix Kc to assemble into (Kw itself, K's pattern, without contact pairs), End
+ * turns it into Kw */
+PETSC_EXTERN PetscErrorCode MMContactFrameMatrixBegin(MMContact ct, Mat Kw, Mat *Kc);
+PETSC_EXTERN PetscErrorCode MMContactFrameMatrixEnd(MMContact ct, Mat Kc, Mat Kw);
+/* The Rayleigh damping stiffness B of the linear law in the w-frame, its massless dofs is_massless
+ * condensed cell by cell (docs/method.md section 12); B is new */
+PETSC_EXTERN PetscErrorCode MMContactDampingStiffness(MMContact ct, const MMMaterial *material, IS is_massless, Mat *B);
 /* The mass in time stepping (-mass, src/contact/frame/mass_star.c): the modified mass drops the
  * contact nodes' normal mass, the redistributed one gives it back to the other nodes. */
 typedef enum {
@@ -93,9 +120,10 @@ PETSC_EXTERN PetscErrorCode MMContactGetSolverText(MMContact ct, const char **ty
 PETSC_EXTERN PetscErrorCode MMContactGetPairCounts(MMContact ct, PetscInt p, PetscInt *slave_nodes, PetscInt *node_to_node, PetscInt *master_facets);
 /* Contact pairs with large sliding (-contact_pairs_sliding, docs/method.md section 11): at a step's start,
  * u = u^n, the pairing found again on the configuration of up (the step's predictor); when it changed, N,
- * K and M* are rebuilt, K~ with them at the next MMContactSetStepMatrix, and the vectors kin
- * (displacement-like) and force (force-like, w-frame) carried to the new variables. changed: it did. */
-PETSC_EXTERN PetscErrorCode MMContactSlidePairs(MMContact ct, Vec u, Vec up, PetscInt nkin, Vec kin[], PetscInt nforce, Vec force[], PetscBool *changed);
+ * K and M* are rebuilt, K~ with them at the next MMContactSetStepMatrix, and the w-frame vectors (contact's
+ * and the held ones, MMContactFramesAddVec) carried to the new variables. changed: it did (the holder
+ * drops what it built on N: the held matrices are not carried). */
+PETSC_EXTERN PetscErrorCode MMContactSlidePairs(MMContact ct, Vec u, Vec up, PetscBool *changed);
 /* A checkpoint of large sliding (docs/method.md section 9): per owned contact row its pairing, MM_CONTACT_PAIR_RECORD
  * reals (the facet's reference centroid, the weights, the row's direction, the gap; *has: the row is a sliding
  * pair's), restored by -restart with N, K and M* rebuilt (*changed); the run's counters of new pairings */
@@ -119,20 +147,33 @@ PETSC_EXTERN PetscErrorCode MMContactSetNodeState(MMContact ct, PetscInt k, cons
 
 /* The step */
 PETSC_EXTERN PetscErrorCode MMContactSetTime(MMContact ct, PetscReal t, PetscReal dt);
+/* The w-frame data other components keep (src/contact/interface/held.c, docs/developer.md "The
+ * contact frame"): registered once by their addresses (the holder may replace the object behind
+ * one; a NULL one is skipped), and turned or carried by contact, with its own, whenever its frames turn
+ * or its pairing changes. The type says how a vector transforms and whether a checkpoint holds it:
+ * the state's displacements (u, v, a) and forces (the reaction) are read from a restart's checkpoint
+ * in its frames; a set-up force (a load part) is not. A held matrix (A <- R^T A R) turns with the
+ * frames; a new pairing leaves it to its holder. The frame state counts the turns and new pairings:
+ * what a holder builds on the frame instead (the momentum functionals) is stale when it changed. */
+typedef enum {
+  MM_FRAME_KINEMATIC,  /* a displacement or velocity of the state */
+  MM_FRAME_FORCE,      /* a force of the state */
+  MM_FRAME_SETUP_FORCE /* a force built at set-up, not in a checkpoint of frames */
+} MMFrameVecType;
+PETSC_EXTERN PetscErrorCode MMContactFramesAddVec(MMContact ct, MMFrameVecType type, Vec *x);
+PETSC_EXTERN PetscErrorCode MMContactFramesAddMat(MMContact ct, Mat *A);
+PETSC_EXTERN PetscErrorCode MMContactGetFrameState(MMContact ct, PetscObjectState *state);
 /* -contact_frames follow (src/contact/interface/frames.c, docs/method.md section 8): at a step's
  * start, the frames of the nodes near a curved obstacle follow their position u + dt/2 v (w-frame)
  * at the step's predicted midpoint, t + dt/2; *turned: how many turned (all ranks). The w-frame K, M*, Q, loads and gaps are contact's
- * and turn with them; the caller turns its own w-frame vectors by MMContactFramesRotate (x <- R^T x)
- * and matrices by MMContactFramesRotateMatrix (A <- R^T A R). */
+ * and turn with them, as do the held vectors and matrices (x <- R^T x, A <- R^T A R). */
 PETSC_EXTERN PetscErrorCode MMContactFramesFollow(MMContact ct, PetscBool *follow);
 PETSC_EXTERN PetscErrorCode MMContactFramesUpdate(MMContact ct, Vec u, Vec v, PetscReal t, PetscReal dt, PetscInt *turned);
-PETSC_EXTERN PetscErrorCode MMContactFramesRotate(MMContact ct, Vec x);
-PETSC_EXTERN PetscErrorCode MMContactFramesRotateMatrix(MMContact ct, Mat A);
 /* Checkpoints of a run whose frames follow (frames.c): per following row its normal nu (MM_MAX_DIM)
  * and gap g_0, MM_CONTACT_FRAME_RECORD reals (*has: the row follows); the run's counters (updates,
  * frames turned, the largest turn); at -restart each row's frame and gap from its record, contact's
- * operators turned with them (*turned: how many, all ranks; the caller turns its own set-up w-frame
- * vectors by MMContactFramesRotate, not the state, read in these frames) */
+ * operators and the held set-up vectors and matrices turned with them (*turned: how many, all ranks),
+ * not the state, read in these frames */
 #define MM_CONTACT_FRAME_RECORD (MM_MAX_DIM + 1)
 PETSC_EXTERN PetscErrorCode MMContactFramesGetRecord(MMContact ct, PetscInt k, PetscBool *has, PetscScalar rec[]);
 PETSC_EXTERN PetscErrorCode MMContactFramesGetCounters(MMContact ct, PetscReal counters[3]);

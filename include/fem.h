@@ -166,7 +166,8 @@ typedef struct {
 
 /* The finite element operators: fem assembles K, M, the load and the lift on the Cartesian dofs
  * (MMFEAssembleOperators); contact's frame (src/contact/frame/, MMContactSetUpFrame) turns them into
- * the w-frame ones in place, and builds Q, M*, N and the masses of M* (docs/method.md section 2). */
+ * the w-frame ones in place and builds Q and N (docs/method.md section 2). M* and its masses are
+ * contact's alone, built from M (the other components read them by MMContactGetOperators). */
 typedef struct {
   DM        dm;
   DM        dm_scalar; /* one P1 scalar per vertex, no constraints: lumped masses, contact pressure and gap, von Mises */
@@ -174,21 +175,17 @@ typedef struct {
   PetscInt  dim;
   Mat       K;      /* stiffness A: Cartesian from fem, w-frame once contact's frame has rotated it */
   Mat       M;      /* standard mass (consistent or lumped): set-up only, NULL once M* is built */
-  Mat       Mstar;  /* mass used in time stepping (contact's frame, -mass): M with the contact-normal rows/columns removed, or M */
   Mat       Q;      /* frame rotation, u_cart = Q w without contact pairs (contact's) */
   Mat       N, Ninv; /* contact pairs: the slave nodes' relative variables, u_cart = Q N w (NULL without pairs; contact's) */
   Vec       pair_work; /* scratch for Q N w */
   Vec       load;   /* L: body force + traction, constant in time (Cartesian from fem, then w-frame: contact's frame) */
   Vec       lift;   /* K_fD u_D: the Dirichlet data's elastic force on the free dofs (likewise) */
   Vec       mass_lumped_cart; /* lumped standard mass per Cartesian dof */
-  PetscReal mass_star[MM_MAX_DIM * MM_MAX_DIM]; /* M*'s mass for rigid translations, dim x dim (m I for M) */
-  PetscReal mass_star_inv[MM_MAX_DIM * MM_MAX_DIM]; /* its inverse (zero without mass), for ucm and vcm */
   PetscBool      lumped;         /* -mass_lumped */
   MMAssemblyType assembly;       /* -assembly */
   PetscBool      assembly_check; /* -assembly_check: assemble K and M both ways and stop if they differ */
   PetscReal c_p;    /* pressure wave speed */
   PetscReal constants[MM_C_NUM]; /* the PetscDS constants of the kernels (MMConstantIndex) */
-  IS        massless; /* the dofs without inertia in M* (the contact-normal ones), NULL if none (a reference) */
   PetscReal energy_dirichlet; /* elastic energy of the Dirichlet data alone, 1/2 u_D.A_DD u_D */
   Vec       work;
 } MMOperators;
@@ -220,6 +217,7 @@ typedef struct {
   MMOperators       *op;       /* borrowed at MMLoadsSetUp: the operators the loads are set on */
   struct _MMElasticity *el;     /* the finite-strain laws' force for the reactions (MMLoadsSetElasticity), or NULL: K_D */
   const MMMaterial  *material; /* borrowed at MMLoadsSetUp */
+  IS           massless;   /* borrowed at MMLoadsSetUp: M*'s dofs without inertia (contact's), NULL if none */
   PetscInt     nparts;
   MMAmplitude *amp;        /* per part */
   Vec         *part;       /* per part: w-frame, free dofs */
@@ -258,8 +256,8 @@ PETSC_EXTERN PetscErrorCode MMFEAssembleOperators(MMOperators *op, const MMMater
 PETSC_EXTERN PetscErrorCode MMFEAssembleOperatorsEnd(MMOperators *op);
 PETSC_EXTERN PetscErrorCode MMFECreateMatrix(const MMOperators *op, DM dm, Mat *A);
 PETSC_EXTERN PetscErrorCode MMFEInterpolate(const MMOperators *op, PetscErrorCode (*f)(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt nc, PetscScalar *u, void *fctx), void *fctx, Vec u);
-PETSC_EXTERN PetscErrorCode MMFEElasticEnergy(const MMOperators *op, Vec w, PetscReal *energy);
-PETSC_EXTERN PetscErrorCode MMFECheckElasticEnergy(const MMOperators *op, const MMMaterial *mat, Vec w);
+/* 1/2 int sigma(u):eps(u) of a Cartesian global vector ucart with the Dirichlet data of t = 0 inserted */
+PETSC_EXTERN PetscErrorCode MMFEElasticEnergyIntegral(const MMOperators *op, const MMMaterial *mat, Vec ucart, PetscReal *energy);
 PETSC_EXTERN PetscErrorCode MMFEToCartesian(const MMOperators *op, Vec w, Vec ucart);
 PETSC_EXTERN PetscErrorCode MMFEFromCartesian(const MMOperators *op, Vec ucart, Vec w);
 PETSC_EXTERN PetscErrorCode MMFEForceToCartesian(const MMOperators *op, Vec fw, Vec fcart);
@@ -269,11 +267,6 @@ PETSC_EXTERN PetscErrorCode MMFEAddTraction(const MMOperators *op, const MMTract
 PETSC_EXTERN PetscErrorCode MMFEDestroy(MMOperators *op);
 /* assembly_p1.c: the damping stiffness with the dofs marked in qmark (w-frame) condensed cell by cell */
 PETSC_EXTERN PetscErrorCode MMAssembleP1DampingStiffness(DM dm, const MMMaterial *mat, Mat Q, Vec qmark, Mat B);
-/* M* without inertia on some dofs: the modified and the redistributed mass with contact */
-static inline PetscBool MMFEHasMasslessDofs(const MMOperators *op)
-{
-  return (PetscBool)(op->massless != NULL);
-}
 /* assembly_p1.c: K <- Q^T K Q and M <- Q^T M Q in place on the P1 pattern, Q block diagonal by vertex (M
  * may be NULL); the contact frame's rotation (src/contact/frame/frame.c) */
 PETSC_EXTERN PetscErrorCode MMRotateP1(Mat Q, Mat K, Mat M);
@@ -290,7 +283,7 @@ PETSC_EXTERN PetscErrorCode MMStressCreate(const MMOperators *op, MMStress *st);
 PETSC_EXTERN PetscErrorCode MMStressCompute(MMStress *st, const MMOperators *op, const MMMaterial *mat, DM dm_u, Vec u, PetscBool nodal);
 PETSC_EXTERN PetscErrorCode MMStressDestroy(MMStress *st);
 /* loads.c: the loads in time, moving Dirichlet data and the reactions (after MMLoadsSetUp) */
-PETSC_EXTERN PetscErrorCode MMLoadsSetUp(MMLoads *ld, MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb);
+PETSC_EXTERN PetscErrorCode MMLoadsSetUp(MMLoads *ld, MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb, IS massless);
 PETSC_EXTERN PetscErrorCode MMLoadsSetTime(MMLoads *ld, PetscReal t0, PetscReal t1);
 PETSC_EXTERN PetscErrorCode MMLoadsReactions(MMLoads *ld, Vec u, Vec a);
 PETSC_EXTERN PetscErrorCode MMLoadsStepWork(MMLoads *ld, Vec u, Vec a, Vec u_old, Vec a_old, PetscReal *w_ext_D, PetscReal *w_D);
@@ -324,7 +317,6 @@ typedef struct _MMElasticity {
   Vec       l0, l1, lf; /* local scratch */
   Vec       g;          /* global Cartesian scratch */
   PetscReal *G0;        /* per local cell, grad u at the step's start (MMElasticitySetStepStart) */
-  Mat        Kp, KpN;   /* contact pairs: the tangent on the P1 pattern, and its N^T Kp N */
   PetscInt *cell_off;   /* per local cell, its dim + 1 vertices' offsets in the local vectors */
   PetscReal *cell_geom; /* per local cell, its P1 gradients (dim + 1 by dim) and volume */
   PetscReal  visc;      /* beta/dt: the step's viscous stress beta D : dE/dt (Rayleigh's stiffness part), 0 undamped */
@@ -344,8 +336,9 @@ PETSC_EXTERN PetscErrorCode MMLoadsSetElasticity(MMLoads *ld, MMElasticity *el);
 PETSC_EXTERN PetscErrorCode MMElasticityEnergy(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, PetscReal *energy);
 /* sum over the cells of |T| dE : D : dE for the step from the start set by MMElasticitySetStepStart to l1 */
 PETSC_EXTERN PetscErrorCode MMElasticityDissipation(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l1, PetscReal *d);
-/* Kw (the pattern of op->K) = the tangent dP/dF at l, in the w-frame */
-PETSC_EXTERN PetscErrorCode MMElasticityTangent(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, Mat Kw);
+/* Kc (a P1 matrix of op->dm's pattern) = the tangent dP/dF at l on the Cartesian dofs (contact turns it
+ * into the w-frame: MMContactFrameMatrixBegin/End) */
+PETSC_EXTERN PetscErrorCode MMElasticityAssembleTangent(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, Mat Kc);
 /* the Cauchy stress of cell c (local) at the displacement gradient G */
 PETSC_EXTERN PetscErrorCode MMElasticityCauchy(const MMMaterial *mat, PetscInt c, PetscInt dim, const PetscReal G[MM_MAX_DIM][MM_MAX_DIM], PetscReal sigma[MM_MAX_DIM][MM_MAX_DIM]);
 PETSC_EXTERN PetscErrorCode MMElasticityDestroy(MMElasticity *el);

@@ -62,7 +62,7 @@ typedef struct {
   Vec       vC;          /* the trapezoidal velocity 2/dt (u^{n+1} - u^n) - vC^n, on all dofs */
   Mat       B;           /* the damping stiffness: K, or with massless dofs K with them condensed out cell by cell */
   Vec       work, x;     /* scratch */
-  Mat       Mstar;       /* borrowed: fem's M* */
+  Mat       Mstar;       /* borrowed: contact's M* (MMContactGetOperators) */
 } MMDamping;
 
 /* What the stepper needs of the problem (filled by app from its options, MMOptionsGetNewmarkProblem):

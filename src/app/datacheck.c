@@ -200,23 +200,25 @@ static PetscErrorCode ReportPlan(MMCtx *ctx, TS ts, PetscReal *step0)
  * gravity). */
 static PetscErrorCode AccelerationEstimate(MMCtx *ctx, Vec a)
 {
-  MMState       *state;
-  MMDamping     *damping;
-  MMContactNodes cn;
-  const MMState *s;
-  Vec            r, f;
+  MMContactOperators ops;
+  MMState           *state;
+  MMDamping         *damping;
+  MMContactNodes     cn;
+  const MMState     *s;
+  Vec                r, f;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(ctx->contact, &ops));
   PetscCall(MMNewmarkGetState(ctx->nm, &state));
   PetscCall(MMNewmarkGetDamping(ctx->nm, &damping));
   s = state;
   PetscCall(MMContactGetNodes(ctx->contact, &cn));
   PetscCall(VecDuplicate(s->u, &r));
   PetscCall(VecDuplicate(ctx->op.mass_lumped_cart, &f));
-  PetscCall(MatMult(ctx->op.K, s->u, r));
-  PetscCall(VecAXPY(r, 1.0, ctx->op.lift));
-  if (MMFEHasMasslessDofs(&ctx->op)) PetscCall(VecISSet(r, cn.is_normal, 0.0));
-  PetscCall(VecAYPX(r, -1.0, ctx->op.load));
+  PetscCall(MatMult(ops.K, s->u, r));
+  PetscCall(VecAXPY(r, 1.0, ops.lift));
+  if (ops.massless) PetscCall(VecISSet(r, cn.is_normal, 0.0));
+  PetscCall(VecAYPX(r, -1.0, ops.load));
   PetscCall(MMDampingAddForce(damping, s->v, -1.0, r));
   PetscCall(MMFEForceToCartesian(&ctx->op, r, f));
   PetscCall(VecPointwiseDivide(f, f, ctx->op.mass_lumped_cart));

@@ -129,7 +129,11 @@ static PetscErrorCode SetUpOperators(MPI_Comm comm, MMCtx *ctx)
   PetscCall(MMFEAssembleOperators(&ctx->op, &ctx->material, &pb));
   PetscCall(MMContactSetUpFrame(ctx->contact, &ctx->op, &ctx->material)); /* w-frame K, M*, loads */
   PetscCall(MMFEAssembleOperatorsEnd(&ctx->op));
-  MMPhase(MMAppEvents.loads_setup, MMLoadsSetUp(&ctx->loads, &ctx->op, &ctx->material, &pb));
+  {
+    MMContactOperators ops; /* M*'s massless dofs: the reactions' inertia has none there */
+    PetscCall(MMContactGetOperators(ctx->contact, &ops));
+    MMPhase(MMAppEvents.loads_setup, MMLoadsSetUp(&ctx->loads, &ctx->op, &ctx->material, &pb, ops.massless));
+  }
   PetscFunctionReturn(0);
 }
 

@@ -101,6 +101,17 @@ typedef struct {
   PetscReal  angle_max;       /* the largest turn of one update */
 } MMContactFrames;
 
+/* The w-frame data other components keep, registered once (interface/held.c): the addresses of
+ * their vectors and matrices, turned or carried by contact when its frames turn or its pairing
+ * changes; state counts those changes (MMContactGetFrameState) */
+typedef struct {
+  PetscInt          nvec, nmat;
+  Vec             **vec;
+  MMFrameVecType   *type;
+  Mat             **mat;
+  PetscObjectState  state;
+} MMContactHeld;
+
 /* The contact options (MMContactSetFromOptions) */
 typedef struct {
   PetscBool         contact;                 /* -contact */
@@ -197,6 +208,8 @@ struct _p_MMContact {
   MMStepSolver kt;                /* K~ solver without a Delassus operator (-contact 0, active set) */
   MMContactPairs pairs;           /* contact between two bodies of the mesh */
   MMContactFrames frames;         /* -contact_frames follow */
+  MMContactHeld   held;           /* the w-frame data other components keep */
+  Mat             frame_Kp, frame_KpN; /* MMContactFrameMatrixBegin/End with contact pairs: the P1 matrix, its N^T (.) N */
 };
 
 
@@ -273,6 +286,12 @@ PETSC_INTERN PetscErrorCode MMContactForce(MMContact ct, Vec b, Vec w, Vec react
 
 /* interface/set.c: the frame (nu, tau_1[, tau_2]) of an obstacle normal n, nu = -n */
 PETSC_INTERN void MMContactFrameFromNormal(PetscInt dim, const PetscReal n[], PetscReal F[MM_MAX_DIM][MM_MAX_DIM]);
+/* interface/held.c: the w-frame data other components keep, turned (x <- fn(x)) by one function */
+typedef PetscErrorCode (*MMContactHeldFn)(MMContact ct, void *fctx, PetscBool force, Vec x);
+PETSC_INTERN PetscErrorCode MMContactHeldTransform(MMContact ct, PetscBool state, MMContactHeldFn fn, void *fctx);
+PETSC_INTERN PetscErrorCode MMContactHeldTurnMatrices(MMContact ct, Mat R);
+PETSC_INTERN PetscErrorCode MMContactHeldInvalidate(MMContact ct);
+PETSC_INTERN PetscErrorCode MMContactHeldDestroy(MMContactHeld *h);
 /* interface/frames.c: frames that follow the contact point (docs/method.md section 8) */
 PETSC_INTERN PetscErrorCode MMContactFramesSetUp(MMContact ct);
 PETSC_INTERN PetscErrorCode MMContactFramesPenetration(MMContact ct, PetscInt k, PetscReal t, const PetscScalar w[], PetscReal *own, PetscReal *others);

@@ -65,8 +65,6 @@ PetscErrorCode MMElasticityDestroy(MMElasticity *el)
   PetscCall(VecDestroy(&el->g));
   PetscCall(PetscFree2(el->cell_off, el->cell_geom));
   PetscCall(PetscFree(el->G0));
-  PetscCall(MatDestroy(&el->Kp));
-  PetscCall(MatDestroy(&el->KpN));
   PetscFunctionReturn(0);
 }
 
@@ -288,25 +286,14 @@ static PetscErrorCode TangentElement(void *ctx, PetscInt c, const PetscInt v[], 
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMElasticityTangent(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, Mat Kw)
+PetscErrorCode MMElasticityAssembleTangent(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, Mat Kc)
 {
   TangentData td = {.el = el, .op = op, .mat = mat};
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(MM_FE_ElasticTangent, 0, 0, 0, 0));
   PetscCall(VecGetArrayRead(l, &td.u));
-  if (!op->N) {
-    PetscCall(MMAssembleP1Elements(op->dm, Kw, TangentElement, &td));
-    if (op->Q) PetscCall(MMRotateP1(op->Q, Kw, NULL)); /* into the contact nodes' frames, as K is */
-  } else {
-    /* contact pairs: the P1 tangent rotated, then N^T A N as K (docs/method.md section 11), its product
-     * kept so that later tangents reuse its pattern */
-    if (!el->Kp) PetscCall(MMFECreateMatrix(op, op->dm, &el->Kp));
-    PetscCall(MMAssembleP1Elements(op->dm, el->Kp, TangentElement, &td));
-    PetscCall(MMRotateP1(op->Q, el->Kp, NULL));
-    PetscCall(MatPtAP(el->Kp, op->N, el->KpN ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, 2.0, &el->KpN));
-    PetscCall(MatCopy(el->KpN, Kw, SAME_NONZERO_PATTERN));
-  }
+  PetscCall(MMAssembleP1Elements(op->dm, Kc, TangentElement, &td));
   PetscCall(VecRestoreArrayRead(l, &td.u));
   PetscCall(PetscLogEventEnd(MM_FE_ElasticTangent, 0, 0, 0, 0));
   PetscFunctionReturn(0);

@@ -633,25 +633,10 @@ PetscErrorCode MMFEForceFromCartesian(const MMOperators *op, Vec fcart, Vec fw)
   PetscFunctionReturn(0);
 }
 
-/* Elastic energy of the whole field, Dirichlet data included: with u = (w, u_D),
- * 1/2 u.A u = 1/2 w.K w + w.lift + 1/2 u_D.A_DD u_D. One MatMult per call, where the FE
- * integral of 1/2 sigma:eps would cost an assembly. */
-PetscErrorCode MMFEElasticEnergy(const MMOperators *op, Vec w, PetscReal *energy)
-{
-  PetscScalar wKw, wl;
-
-  PetscFunctionBeginUser;
-  PetscCall(MatMult(op->K, w, op->work));
-  PetscCall(VecDot(w, op->work, &wKw));
-  PetscCall(VecDot(w, op->lift, &wl));
-  *energy = 0.5 * PetscRealPart(wKw) + PetscRealPart(wl) + op->energy_dirichlet;
-  PetscFunctionReturn(0);
-}
-
 /* 1/2 int sigma(u):eps(u) of a Cartesian global vector u with the Dirichlet data of t = 0 inserted:
  * cell by cell in closed form with each cell's material (assembly_p1.c), or by the PetscDS's
  * quadrature with -assembly fe (one material). */
-static PetscErrorCode ElasticEnergyIntegral(const MMOperators *op, const MMMaterial *mat, Vec ucart, PetscReal *energy)
+PetscErrorCode MMFEElasticEnergyIntegral(const MMOperators *op, const MMMaterial *mat, Vec ucart, PetscReal *energy)
 {
   DM          dm = op->dm;
   PetscScalar integral[1];
@@ -684,81 +669,8 @@ static PetscErrorCode DirichletEnergy(MMOperators *op, const MMMaterial *mat)
   if (!has) PetscFunctionReturn(0);
   PetscCall(DMGetGlobalVector(op->dm, &zero));
   PetscCall(VecZeroEntries(zero));
-  PetscCall(ElasticEnergyIntegral(op, mat, zero, &op->energy_dirichlet));
+  PetscCall(MMFEElasticEnergyIntegral(op, mat, zero, &op->energy_dirichlet));
   PetscCall(DMRestoreGlobalVector(op->dm, &zero));
-  PetscFunctionReturn(0);
-}
-
-/* The round-off scale of the elastic energy's matrix form 1/2 w.K w + w.lift + E_D: the same sums
- * of absolute values, 1/2 |w|.|K| |w| + |w|.|lift| + |E_D|. On a slender part in bending, or a body
- * moved rigidly, the terms of w.K w cancel to a small fraction of their sum (2e-9 on the clamped
- * cantilever of t/L = 0.02 under its weight), so the energy's error is eps times this sum, not eps
- * times the energy. Once, at start-up and on a restart: |K| is a copy of K. */
-static PetscErrorCode ElasticEnergyRoundoffScale(const MMOperators *op, Vec w, PetscReal *scale)
-{
-  Mat         A, blocks[2];
-  Vec         aw;
-  PetscScalar wAw, wl;
-  PetscMPIInt size;
-  PetscInt    nb = 1;
-
-  PetscFunctionBeginUser;
-  PetscCall(MatConvert(op->K, MATAIJ, MAT_INITIAL_MATRIX, &A));
-  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)A), &size));
-  if (size > 1) {
-    PetscCall(MatMPIAIJGetSeqAIJ(A, &blocks[0], &blocks[1], NULL));
-    nb = 2;
-  } else blocks[0] = A;
-  for (PetscInt k = 0; k < nb; ++k) {
-    PetscScalar *a;
-    MatInfo      info;
-
-    PetscCall(MatSeqAIJGetArray(blocks[k], &a));
-    PetscCall(MatGetInfo(blocks[k], MAT_LOCAL, &info));
-    for (PetscInt i = 0; i < (PetscInt)info.nz_used; ++i) a[i] = PetscAbsScalar(a[i]);
-    PetscCall(MatSeqAIJRestoreArray(blocks[k], &a));
-  }
-  PetscCall(VecDuplicate(w, &aw));
-  PetscCall(VecCopy(w, aw));
-  PetscCall(VecAbs(aw));
-  PetscCall(MatMult(A, aw, op->work));
-  PetscCall(VecDot(aw, op->work, &wAw));
-  PetscCall(VecCopy(op->lift, op->work));
-  PetscCall(VecAbs(op->work));
-  PetscCall(VecDot(aw, op->work, &wl));
-  *scale = 0.5 * PetscRealPart(wAw) + PetscRealPart(wl) + PetscAbsReal(op->energy_dirichlet);
-  PetscCall(VecDestroy(&aw));
-  PetscCall(MatDestroy(&A));
-  PetscFunctionReturn(0);
-}
-
-/* The matrix form and the quadrature each sum their terms in their own order: they differ by the
- * rounding of sums of N terms, which grows as sqrt(N) eps of the terms' magnitudes (N eps at worst).
- * Measured on every case of options/ at its start (and -initial_state static) and on the slender
- * cantilevers: 0.002 to 2.7 eps of the absolute sum, N = 10^3 to 10^4 dofs; 4 sqrt(N) eps is 40
- * times the largest. A wrong assembly (a wrong entry, a missed cell, a material mixed up) differs
- * by a fraction of the energy (tests/test_limits_and_advice.py). */
-#define MM_ENERGY_ROUNDOFF 4
-
-/* Start-up audit: the matrix form of the elastic energy against its quadrature on the state w. The
- * quadrature inserts the Dirichlet data of t = 0: the caller skips it when the data have moved since. */
-PetscErrorCode MMFECheckElasticEnergy(const MMOperators *op, const MMMaterial *mat, Vec w)
-{
-  PetscReal e, integral[1], scale, tol;
-  PetscInt  n;
-  Vec       ucart;
-
-  PetscFunctionBeginUser;
-  PetscCall(MMFEElasticEnergy(op, w, &e));
-  PetscCall(DMGetGlobalVector(op->dm, &ucart));
-  PetscCall(MMFEToCartesian(op, w, ucart));
-  PetscCall(ElasticEnergyIntegral(op, mat, ucart, &integral[0]));
-  PetscCall(DMRestoreGlobalVector(op->dm, &ucart));
-  PetscCall(ElasticEnergyRoundoffScale(op, w, &scale));
-  PetscCall(VecGetSize(w, &n));
-  tol = MM_ENERGY_ROUNDOFF * PetscSqrtReal((PetscReal)n) * PETSC_MACHINE_EPSILON * scale;
-  PetscCall(PetscInfo(NULL, "elastic energy: matrix form %.16e, integral %.16e: they differ by %g eps of the terms' absolute sum %g\n", (double)e, (double)integral[0], (double)(PetscAbsReal(e - integral[0]) / (PETSC_MACHINE_EPSILON * scale)), (double)scale));
-  PetscCheck(PetscAbsReal(e - integral[0]) <= tol, PetscObjectComm((PetscObject)op->dm), PETSC_ERR_PLIB, "Elastic energy audit failed: matrix form %.16e, %s %.16e, differ by %.3e, above %d sqrt(N) eps of the terms' absolute sum %.3e (N = %" PetscInt_FMT ")", (double)e, mat->uniform ? "quadrature" : "cell by cell", (double)integral[0], (double)PetscAbsReal(e - integral[0]), MM_ENERGY_ROUNDOFF, (double)scale, n);
   PetscFunctionReturn(0);
 }
 
@@ -768,7 +680,6 @@ PetscErrorCode MMFEDestroy(MMOperators *op)
   PetscCall(MMCellsDestroy(&op->cells));
   PetscCall(MatDestroy(&op->K));
   PetscCall(MatDestroy(&op->M));
-  PetscCall(MatDestroy(&op->Mstar));
   PetscCall(MatDestroy(&op->Q));
   PetscCall(MatDestroy(&op->N));
   PetscCall(MatDestroy(&op->Ninv));
@@ -778,6 +689,5 @@ PetscErrorCode MMFEDestroy(MMOperators *op)
   PetscCall(VecDestroy(&op->mass_lumped_cart));
   PetscCall(VecDestroy(&op->work));
   PetscCall(DMDestroy(&op->dm_scalar));
-  PetscCall(ISDestroy(&op->massless));
   PetscFunctionReturn(0);
 }

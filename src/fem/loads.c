@@ -453,7 +453,7 @@ static PetscErrorCode WithInertia(MMLoads *ld, Vec x, Vec y)
 {
   PetscFunctionBeginUser;
   PetscCall(VecCopy(x, y));
-  if (MMFEHasMasslessDofs(ld->op)) PetscCall(VecISSet(y, ld->op->massless, 0.0));
+  if (ld->massless) PetscCall(VecISSet(y, ld->massless, 0.0));
   PetscFunctionReturn(0);
 }
 
@@ -708,13 +708,15 @@ PetscErrorCode MMLoadsInsertBoundaryValues(MMLoads *ld, Vec l, PetscReal t)
 }
 
 /* The loads' parts and the Dirichlet data's rows on the operators op (borrowed), after
- * MMFEAssembleOperators. */
-PetscErrorCode MMLoadsSetUp(MMLoads *ld, MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb)
+ * MMFEAssembleOperators and the contact frame; massless (borrowed): M*'s dofs without inertia,
+ * NULL if none, where the reactions' accelerations are zero. */
+PetscErrorCode MMLoadsSetUp(MMLoads *ld, MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb, IS massless)
 {
 
   PetscFunctionBeginUser;
   ld->op       = op;
   ld->material = mat;
+  ld->massless = massless;
   PetscCall(CheckAmplitudeNames(PetscObjectComm((PetscObject)ld->op->dm), pb));
   if (pb->n_dirichlet) PetscCall(DirichletAmplitudes(ld, pb));
   PetscCall(TabulateBoundaryValues(ld, pb));

@@ -245,7 +245,9 @@ static PetscErrorCode HeaderPhysics(MMProgress *pg, TS ts)
     char ratio[128] = "";
     if (pg->damping->ratio_set) PetscCall(PetscSNPrintf(ratio, sizeof(ratio), " (-damping_ratio %.6g at %.6g and %.6g Hz)", (double)pg->damping->ratio, (double)pg->damping->freq[0], (double)pg->damping->freq[1]));
     /* B is K unless the massless dofs were condensed out of it (docs/method.md section 3) */
-    const char *B = (pg->damping->B && pg->damping->B != pg->op->K) ? "B (K without the massless contact-normal dofs)" : "K";
+    MMContactOperators ops;
+    PetscCall(MMContactGetOperators(pg->contact, &ops));
+    const char *B = (pg->damping->B && pg->damping->B != ops.K) ? "B (K without the massless contact-normal dofs)" : "K";
     PetscCall(PetscPrintf(comm, "  damping: Rayleigh C = alpha M* + beta %s, alpha = %.10g 1/s, beta = %.10g s%s\n", B, (double)pg->damping->alpha, (double)pg->damping->beta, ratio));
   }
   PetscFunctionReturn(0);

@@ -86,48 +86,26 @@ PetscBool MMDampingOn(const MMDamping *d)
   return (PetscBool)(d->alpha != 0 || d->beta != 0);
 }
 
-/* B with the massless dofs (the contact normals and the friction corners' tau_1, docs/method.md
- * section 12) condensed cell by cell (MMAssembleP1DampingStiffness), in the w-frame of
- * K: the cells are rotated by Q there, and contact pairs transform it by N as K (N^T B N keeps the
- * slave-normal rows and columns zero: N's columns of those dofs are unit vectors). Its massless
- * rows and columns are then set to zero exactly, against the condensation's round-off. */
-static PetscErrorCode CondensedDampingStiffness(MMOperators *op, MMMaterial *material, IS is_massless, Mat *B)
-{
-  Vec mark;
-
-  PetscFunctionBeginUser;
-  PetscCall(MMFECreateMatrix(op, op->dm, B));
-  PetscCall(DMCreateGlobalVector(op->dm, &mark));
-  PetscCall(VecZeroEntries(mark));
-  PetscCall(VecISSet(mark, is_massless, 1.0));
-  PetscCall(MMAssembleP1DampingStiffness(op->dm, material, op->Q, mark, *B));
-  PetscCall(VecDestroy(&mark));
-  if (op->N) {
-    Mat BN;
-    PetscCall(MatPtAP(*B, op->N, MAT_INITIAL_MATRIX, 2.0, &BN));
-    PetscCall(MatDestroy(B));
-    *B = BN;
-  }
-  PetscCall(MatZeroRowsColumnsIS(*B, is_massless, 0.0, NULL, NULL));
-  PetscFunctionReturn(0);
-}
-
 /* After the initial velocity v0 is set: vC^0 = v^0 on all dofs, and B. The finite-strain step damps
  * with the viscous stress of its own step (docs/method.md section 13), a function of u^{n+1} - u^n and
  * not of vC, so the massless dofs carry no undamped mode there: B is K, in its iteration matrix only. */
-PetscErrorCode MMDampingSetUp(MMDamping *d, MMOperators *op, MMMaterial *material, IS is_massless, Vec v0)
+PetscErrorCode MMDampingSetUp(MMDamping *d, MMContact ct, MMMaterial *material, IS is_massless, Vec v0)
 {
+  MMContactOperators ops;
+
   PetscFunctionBeginUser;
-  d->Mstar = op->Mstar;
+  PetscCall(MMContactGetOperators(ct, &ops));
+  d->Mstar = ops.Mstar;
   if (!MMDampingOn(d)) PetscFunctionReturn(0);
   PetscCall(VecDuplicate(v0, &d->vC));
   PetscCall(VecDuplicate(v0, &d->work));
   PetscCall(VecDuplicate(v0, &d->x));
   PetscCall(VecCopy(v0, d->vC));
-  if (d->beta != 0 && MMFEHasMasslessDofs(op) && !material->finite) PetscCall(CondensedDampingStiffness(op, material, is_massless, &d->B));
+  /* B with the massless dofs condensed cell by cell, in the w-frame (contact's, docs/method.md section 12) */
+  if (d->beta != 0 && ops.massless && !material->finite) PetscCall(MMContactDampingStiffness(ct, material, is_massless, &d->B));
   else {
-    PetscCall(PetscObjectReference((PetscObject)op->K));
-    d->B = op->K;
+    PetscCall(PetscObjectReference((PetscObject)ops.K));
+    d->B = ops.K;
   }
   PetscFunctionReturn(0);
 }

@@ -6,10 +6,12 @@
 
 static PetscErrorCode KineticEnergy(MMNewmark nm, Vec v, PetscReal *ek)
 {
-  PetscScalar vMv;
+  MMContactOperators ops;
+  PetscScalar        vMv;
 
   PetscFunctionBeginUser;
-  PetscCall(MatMult(nm->op->Mstar, v, nm->state.work));
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
+  PetscCall(MatMult(ops.Mstar, v, nm->state.work));
   PetscCall(VecDot(v, nm->state.work, &vMv));
   *ek = 0.5 * PetscRealPart(vMv);
   if (nm->loads->moving) {
@@ -25,7 +27,7 @@ static PetscErrorCode TotalEnergy(MMNewmark nm, MMHistory *h)
   PetscFunctionBeginUser;
   PetscCall(KineticEnergy(nm, nm->state.v, &h->kinetic));
   if (nm->material->finite) PetscCall(MMNonlinearElasticEnergy(nm, nm->state.u, h->time, &h->elastic));
-  else PetscCall(MMFEElasticEnergy(nm->op, nm->state.u, &h->elastic));
+  else PetscCall(MMContactElasticEnergy(nm->contact, nm->state.u, &h->elastic));
   h->total = h->kinetic + h->elastic;
   PetscFunctionReturn(0);
 }
@@ -183,7 +185,7 @@ PetscErrorCode MMEnergyInitial(MMNewmark nm, PetscBool restarted)
   h->balance_residual = h->max_balance = h->max_penetration_run = 0;
   h->cfl = cn.enabled ? nm->op->c_p * h->dt / cn.h_c : 0;
   /* the quadrature inserts the Dirichlet data of t = 0: a restarted run's moving boundary is elsewhere */
-  if (!(nm->loads->moving && restarted) && !nm->material->finite) PetscCall(MMFECheckElasticEnergy(nm->op, nm->material, nm->state.u));
+  if (!(nm->loads->moving && restarted) && !nm->material->finite) PetscCall(MMContactCheckElasticEnergy(nm->contact, nm->material, nm->state.u));
   PetscCall(TotalEnergy(nm, h));
   PetscCall(CheckFinite(nm, h, 0, 0, 0));
   h->energy_scale = PetscAbsReal(h->total);
@@ -236,17 +238,19 @@ static PetscErrorCode AuditAdvice(MMNewmark nm, PetscReal residual, char advice[
  * scheme's identity. */
 PetscErrorCode MMEnergyStep(MMNewmark nm)
 {
-  MMHistory  *h = &nm->hist;
-  MMState    *s = &nm->state;
-  PetscReal   E_old = h->total, w_ext, w_c = s->work_contact, w_f = 0, w_obs = 0, w_d, w_ext_D, w_D;
-  PetscScalar Ldu;
-  MMContactNodes cn;
+  MMContactOperators ops;
+  MMHistory         *h = &nm->hist;
+  MMState           *s = &nm->state;
+  PetscReal          E_old = h->total, w_ext, w_c = s->work_contact, w_f = 0, w_obs = 0, w_d, w_ext_D, w_D;
+  PetscScalar        Ldu;
+  MMContactNodes     cn;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
   PetscCall(MMContactGetNodes(nm->contact, &cn));
   PetscCall(PetscLogEventBegin(MM_TS_Energy, 0, 0, 0, 0));
   PetscCall(VecWAXPY(s->work, -1.0, s->u_old, s->u));
-  PetscCall(VecDot(nm->op->load, s->work, &Ldu)); /* L^{n+1}: L^n too when the loads are constant */
+  PetscCall(VecDot(ops.load, s->work, &Ldu)); /* L^{n+1}: L^n too when the loads are constant */
   w_ext = PetscRealPart(Ldu);
   if (nm->loads->in_time) { /* 1/2 (L^n + L^{n+1}).du (docs/method.md section 10) */
     PetscScalar L0du;

@@ -7,7 +7,10 @@
 /* The internal force of the state u at t = 0: K u + lift, or the finite-strain law's P(F) (docs/method.md section 13) */
 static PetscErrorCode InternalForce(MMNewmark nm, Vec u, Vec f)
 {
+  MMContactOperators ops;
+
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
   if (nm->material->finite) {
     MMElasticity *el = &nm->nl.el;
     PetscCall(MMElasticityLocal(el, nm->op, nm->loads, u, 0.0, el->l1));
@@ -15,8 +18,8 @@ static PetscErrorCode InternalForce(MMNewmark nm, Vec u, Vec f)
     PetscCall(MMElasticityForce(el, nm->op, nm->material, el->l1, f));
     PetscFunctionReturn(0);
   }
-  PetscCall(MatMult(nm->op->K, u, f));
-  PetscCall(VecAXPY(f, 1.0, nm->op->lift));
+  PetscCall(MatMult(ops.K, u, f));
+  PetscCall(VecAXPY(f, 1.0, ops.lift));
   PetscFunctionReturn(0);
 }
 
@@ -130,14 +133,16 @@ static PetscErrorCode AddRotationAboutCentres(MMNewmark nm, Vec w)
 /* a0 from M* a0 = L - lift - K u0 - C v0 + f_c0 on the dofs with inertia. */
 static PetscErrorCode InitialAcceleration(MMNewmark nm)
 {
-  MMState *s = &nm->state;
-  IS       is, all = NULL;
-  Mat      Mss;
-  Vec      r, rs, as;
-  KSP      ksp;
-  MMContactNodes cn;
+  MMContactOperators ops;
+  MMState           *s = &nm->state;
+  IS                 is, all = NULL;
+  Mat                Mss;
+  Vec                r, rs, as;
+  KSP                ksp;
+  MMContactNodes     cn;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
   PetscCall(MMContactGetNodes(nm->contact, &cn));
   is = cn.is_star;
   if (!MMNewmarkHasMasslessDofs(nm)) {
@@ -149,10 +154,10 @@ static PetscErrorCode InitialAcceleration(MMNewmark nm)
   }
   PetscCall(VecDuplicate(s->u, &r));
   PetscCall(InternalForce(nm, s->u, r));
-  PetscCall(VecAYPX(r, -1.0, nm->op->load));
+  PetscCall(VecAYPX(r, -1.0, ops.load));
   PetscCall(VecAXPY(r, 1.0, s->react));
   PetscCall(MMDampingAddForce(&nm->damping, s->v, -1.0, r));
-  PetscCall(MatCreateSubMatrix(nm->op->Mstar, is, is, MAT_INITIAL_MATRIX, &Mss));
+  PetscCall(MatCreateSubMatrix(ops.Mstar, is, is, MAT_INITIAL_MATRIX, &Mss));
   PetscCall(KSPCreate(PetscObjectComm((PetscObject)s->u), &ksp));
   PetscCall(KSPSetOptionsPrefix(ksp, "mass_"));
   PetscCall(KSPSetOperators(ksp, Mss, Mss));
@@ -203,18 +208,20 @@ static PetscErrorCode TangentialInitialVelocity(MMNewmark nm)
  * round-off: until a step moves the contact dofs by no more than the round-off of u0 and the gaps. */
 static PetscErrorCode ProjectInitialFinite(MMNewmark nm)
 {
-  MMState       *s = &nm->state;
-  MMContactNodes cn;
-  PetscReal      change = PETSC_MAX_REAL, scale;
-  PetscInt       it;
+  MMContactOperators ops;
+  MMState           *s = &nm->state;
+  MMContactNodes     cn;
+  PetscReal          change = PETSC_MAX_REAL, scale;
+  PetscInt           it;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
   PetscCall(MMContactGetNodes(nm->contact, &cn));
   PetscCall(VecNorm(s->u, NORM_INFINITY, &scale));
   scale = PetscMax(scale, cn.h_c); /* a body at rest: the gaps' scale */
   for (it = 0; it < 50 && change > 16 * PETSC_MACHINE_EPSILON * scale; ++it) {
     PetscCall(InternalForce(nm, s->u, s->work));
-    PetscCall(VecAXPY(s->work, -1.0, nm->op->load));
+    PetscCall(VecAXPY(s->work, -1.0, ops.load));
     PetscCall(MMContactProjectInitialCorrect(nm->contact, s->u, s->work, &change));
   }
   PetscFunctionReturn(0);
@@ -239,10 +246,12 @@ static PetscErrorCode ProjectInitialFinite(MMNewmark nm)
 @*/
 PetscErrorCode MMNewmarkInitialState(MMNewmark nm)
 {
-  MMState       *s = &nm->state;
-  MMContactNodes cn;
+  MMContactOperators ops;
+  MMState           *s = &nm->state;
+  MMContactNodes     cn;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
   PetscCall(DMCreateGlobalVector(nm->op->dm, &s->u));
   {
     Vec *copies[] = {&s->v, &s->a, &s->u_old, &s->v_old, &s->a_old, &s->react, &s->react_old, &s->work, &s->u_next};
@@ -258,7 +267,7 @@ PetscErrorCode MMNewmarkInitialState(MMNewmark nm)
   if (nm->material->named) PetscCall(BodiesInitialVelocity(nm, s->v));
   else PetscCall(ProjectInitialField(nm, InitialVelocity, s->v));
   if (nm->material->spin) PetscCall(AddRotationAboutCentres(nm, s->v));
-  PetscCall(MMDampingSetUp(&nm->damping, nm->op, nm->material, cn.is_massless, s->v));
+  PetscCall(MMDampingSetUp(&nm->damping, nm->contact, nm->material, cn.is_massless, s->v));
   PetscCall(VecZeroEntries(s->react));
   if (nm->pb.initial_state == MM_INITIAL_STATIC_SLIDING) PetscCall(MMInitialStaticSliding(nm, s->u, s->react));
   else if (nm->pb.initial_state == MM_INITIAL_STATIC) {
@@ -274,7 +283,7 @@ PetscErrorCode MMNewmarkInitialState(MMNewmark nm)
   if (MMNewmarkHasMasslessDofs(nm) && nm->pb.initial_state == MM_INITIAL_GIVEN) {
     Vec rc, fc;
     PetscCall(InternalForce(nm, s->u, s->work));
-    PetscCall(VecAXPY(s->work, -1.0, nm->op->load));
+    PetscCall(VecAXPY(s->work, -1.0, ops.load));
     PetscCall(MMDampingAddForce(&nm->damping, s->v, 1.0, s->work));
     PetscCall(VecGetSubVector(s->work, cn.is_massless, &fc));
     PetscCall(VecGetSubVector(s->react, cn.is_massless, &rc));

@@ -71,11 +71,13 @@ static PetscErrorCode MomentaWeights(MMNewmark nm, Vec e[], Vec p[], Vec a[])
 /* Once, on the final M* (after the mass redistribution): the functionals g and the selectors of P. */
 static PetscErrorCode MomentaSetUp(MMNewmark nm)
 {
-  MMMomenta     *mo  = &nm->momenta;
-  const PetscInt dim = nm->op->dim;
-  Vec            w[3 * MM_MAX_DIM], t;
+  MMContactOperators ops;
+  MMMomenta         *mo  = &nm->momenta;
+  const PetscInt     dim = nm->op->dim;
+  Vec                w[3 * MM_MAX_DIM], t;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
   mo->nJ = dim == 3 ? 3 : 1;
   mo->ng = 2 * dim + mo->nJ;
   for (PetscInt k = 0; k < mo->ng; ++k) {
@@ -87,7 +89,7 @@ static PetscErrorCode MomentaSetUp(MMNewmark nm)
   for (PetscInt k = 0; k < mo->ng; ++k) {
     PetscCall(VecDuplicate(w[0], &mo->g[k]));
     PetscCall(MMFEFromCartesian(nm->op, w[k], t));
-    PetscCall(MatMult(nm->op->Mstar, t, mo->g[k]));
+    PetscCall(MatMult(ops.Mstar, t, mo->g[k]));
   }
   PetscCall(VecDestroy(&t));
   for (PetscInt d = 0; d < dim; ++d) mo->sel[d] = w[dim + d]; /* kept, for the loads' resultant */
@@ -163,13 +165,15 @@ static PetscErrorCode AngularMomentum(MMNewmark nm, MMHistory *h)
  * on the initial state only, L(t)'s at every step. */
 static PetscErrorCode LoadResultant(MMNewmark nm, MMHistory *h)
 {
-  MMMomenta  *mo = &nm->momenta;
-  Vec         lc;
-  PetscScalar r[MM_MAX_DIM];
+  MMContactOperators ops;
+  MMMomenta         *mo = &nm->momenta;
+  Vec                lc;
+  PetscScalar        r[MM_MAX_DIM];
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
   PetscCall(DMGetGlobalVector(nm->op->dm, &lc));
-  PetscCall(MMFEForceToCartesian(nm->op, nm->op->load, lc));
+  PetscCall(MMFEForceToCartesian(nm->op, ops.load, lc));
   PetscCall(VecMDot(lc, nm->op->dim, mo->sel, r));
   for (PetscInt d = 0; d < MM_MAX_DIM; ++d) h->load[d] = d < nm->op->dim ? PetscRealPart(r[d]) : 0;
   PetscCall(DMRestoreGlobalVector(nm->op->dm, &lc));
@@ -183,12 +187,31 @@ static PetscErrorCode ForceMoments(MMNewmark nm, Vec u, Vec f, PetscBool referen
  * about the current positions: J gets sum_i u_i x (M* v)_i, over the same vertices. */
 static PetscErrorCode CurrentPositionMoment(MMNewmark nm, MMHistory *h)
 {
-  PetscReal F[3], T[3];
+  MMContactOperators ops;
+  PetscReal          F[3], T[3];
 
   PetscFunctionBeginUser;
-  PetscCall(MatMult(nm->op->Mstar, nm->state.v, nm->state.work));
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
+  PetscCall(MatMult(ops.Mstar, nm->state.v, nm->state.work));
   PetscCall(ForceMoments(nm, nm->state.u, nm->state.work, PETSC_FALSE, F, T));
   for (PetscInt k = 0; k < 3; ++k) h->J[k] += T[k];
+  PetscFunctionReturn(0);
+}
+
+/* The functionals of the current frames: built on first use, and again when contact's frames turned
+ * or its pairing changed since (they are M* (from Cartesian)(e), of the frame they were built in) */
+static PetscErrorCode MomentaCurrent(MMNewmark nm)
+{
+  MMMomenta       *mo = &nm->momenta;
+  PetscObjectState frames;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMContactGetFrameState(nm->contact, &frames));
+  if (mo->ng && mo->frames != frames) PetscCall(MMMomentaDestroy(mo));
+  if (!mo->ng) {
+    PetscCall(MomentaSetUp(nm));
+    mo->frames = frames;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -201,13 +224,15 @@ static PetscErrorCode CurrentPositionMoment(MMNewmark nm, MMHistory *h)
  * the resultant (and moment) of L and the contact forces, whatever the deformation. */
 PetscErrorCode MMRigidBodyDiagnostics(MMNewmark nm, MMHistory *h)
 {
-  MMMomenta     *mo  = &nm->momenta;
-  const PetscInt dim = nm->op->dim;
-  PetscScalar    su[MM_MAX_DIM], sv[3 * MM_MAX_DIM];
+  MMContactOperators ops;
+  MMMomenta         *mo  = &nm->momenta;
+  const PetscInt     dim = nm->op->dim;
+  PetscScalar        su[MM_MAX_DIM], sv[3 * MM_MAX_DIM];
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
   PetscCall(PetscLogEventBegin(MM_TS_Momenta, 0, 0, 0, 0));
-  if (!mo->ng) PetscCall(MomentaSetUp(nm));
+  PetscCall(MomentaCurrent(nm));
   /* one reduction for both */
   PetscCall(VecMDotBegin(nm->state.u, dim, mo->g, su));
   PetscCall(VecMDotBegin(nm->state.v, mo->ng, mo->g, sv));
@@ -216,8 +241,8 @@ PetscErrorCode MMRigidBodyDiagnostics(MMNewmark nm, MMHistory *h)
   for (PetscInt a = 0; a < dim; ++a) {
     h->ucm[a] = h->vcm[a] = 0;
     for (PetscInt b = 0; b < dim; ++b) {
-      h->ucm[a] += nm->op->mass_star_inv[a * dim + b] * PetscRealPart(su[b]);
-      h->vcm[a] += nm->op->mass_star_inv[a * dim + b] * PetscRealPart(sv[b]);
+      h->ucm[a] += ops.mass_star_inv[a * dim + b] * PetscRealPart(su[b]);
+      h->vcm[a] += ops.mass_star_inv[a * dim + b] * PetscRealPart(sv[b]);
     }
   }
   for (PetscInt d = 0; d < MM_MAX_DIM; ++d) h->P[d] = d < dim ? PetscRealPart(sv[dim + d]) : 0;
@@ -254,7 +279,7 @@ static PetscErrorCode ForceMoments(MMNewmark nm, Vec u, Vec f, PetscBool referen
   PetscReal          s[6] = {0, 0, 0, 0, 0, 0};
 
   PetscFunctionBeginUser;
-  if (!mo->ng) PetscCall(MomentaSetUp(nm));
+  PetscCall(MomentaCurrent(nm));
   PetscCall(DMGetGlobalVector(dm, &uc));
   PetscCall(DMGetGlobalVector(dm, &fc));
   PetscCall(MMFEToCartesian(nm->op, u, uc));

@@ -13,14 +13,16 @@ typedef struct {
   PetscInt *cell_u, *cell_x;   /* offsets in the local displacement and coordinate vectors */
 } MMDeformation;
 
-/* The momentum audit's fixed data (momenta.c), built on the first diagnostics: each linear
- * momentum functional as one w-frame vector, and the vertices of the angular momentum. */
+/* The momentum audit's fixed data (momenta.c), built on the first diagnostics and again after the
+ * contact frames turned or the pairing changed: each linear momentum functional as one w-frame
+ * vector, and the vertices of the angular momentum. */
 typedef struct {
   PetscInt  ng, nJ;             /* ng = 2 dim + nJ functionals; nJ: J's components, 3 in 3D, 1 (z) in 2D */
   Vec       g[3 * MM_MAX_DIM];  /* g.x: the sums behind ucm or vcm (dim), P (dim) and J (nJ) for x = u or v */
   Vec       sel[MM_MAX_DIM];    /* Cartesian: 1 at component d of the vertices with no Dirichlet dof */
   PetscInt  nv;                 /* this rank's owned vertices with no Dirichlet dof */
   PetscInt *vert_u, *vert_x;    /* their offsets in the owned part of a global vector and in the local coordinates */
+  PetscObjectState frames;      /* contact's frame state they were built in (MMContactGetFrameState): stale once it moves */
 } MMMomenta;
 
 /* The finite-strain step (nonlinear.c, docs/method.md section 13): a modified Newton iteration on the
@@ -112,7 +114,7 @@ struct _p_MMNewmark {
 /* The dofs without inertia: the contact-normal dofs under the modified mass, none otherwise. */
 static inline PetscBool MMNewmarkHasMasslessDofs(MMNewmark nm)
 {
-  return MMFEHasMasslessDofs(nm->op);
+  return MMContactHasMasslessDofs(nm->contact);
 }
 
 /* ts's events (MMTSInitializePackage) */
@@ -127,7 +129,7 @@ PETSC_INTERN PetscErrorCode MMMomentaDestroy(MMMomenta *mo);
 PETSC_INTERN PetscErrorCode MMDeformationDestroy(MMDeformation *d);
 PETSC_INTERN PetscErrorCode MMInitialStaticSliding(MMNewmark nm, Vec w, Vec react);
 PETSC_INTERN PetscErrorCode MMDampingSetFromOptions(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMDamping *d);
-PETSC_INTERN PetscErrorCode MMDampingSetUp(MMDamping *d, MMOperators *op, MMMaterial *material, IS is_massless, Vec v0);
+PETSC_INTERN PetscErrorCode MMDampingSetUp(MMDamping *d, MMContact ct, MMMaterial *material, IS is_massless, Vec v0);
 PETSC_INTERN PetscErrorCode MMDampingAddStepRHS(MMDamping *d, Vec u, PetscReal dt, Vec b);
 PETSC_INTERN PetscErrorCode MMDampingUpdateVelocity(MMDamping *d, Vec u, Vec u_old, PetscReal dt);
 PETSC_INTERN PetscErrorCode MMDampingWork(MMDamping *d, Vec du, PetscReal dt, PetscReal *w);

@@ -62,6 +62,27 @@ static PetscErrorCode CheckSupported(MMNewmark nm)
   PetscFunctionReturn(0);
 }
 
+/* The stepper's w-frame data, registered once with contact, which turns it when its frames turn
+ * (-contact_frames follow) and carries it to a new pairing (large sliding): the state u, v, a and
+ * the reaction, the loads' parts in time and the last step's load, and the iteration stiffness
+ * (docs/developer.md, "The contact frame") */
+static PetscErrorCode RegisterFrameData(MMNewmark nm)
+{
+  MMState *s  = &nm->state;
+  MMLoads *ld = nm->loads;
+
+  PetscFunctionBeginUser;
+  {
+    Vec *kin[] = {&s->u, &s->v, &s->a};
+    for (size_t i = 0; i < sizeof(kin) / sizeof(kin[0]); ++i) PetscCall(MMContactFramesAddVec(nm->contact, MM_FRAME_KINEMATIC, kin[i]));
+  }
+  PetscCall(MMContactFramesAddVec(nm->contact, MM_FRAME_FORCE, &s->react));
+  PetscCall(MMContactFramesAddVec(nm->contact, MM_FRAME_SETUP_FORCE, &ld->load_old));
+  for (PetscInt k = 0; ld->part && k < ld->nparts; ++k) PetscCall(MMContactFramesAddVec(nm->contact, MM_FRAME_SETUP_FORCE, &ld->part[k]));
+  PetscCall(MMContactFramesAddMat(nm->contact, &nm->nl.Ks));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MMNonlinearSetUp(MMNewmark nm)
 {
   MMNonlinear *nl = &nm->nl;
@@ -88,6 +109,7 @@ PetscErrorCode MMNonlinearSetUp(MMNewmark nm)
   PetscCall(VecDuplicate(nm->state.u, &nl->c));
   PetscCall(VecDuplicate(nm->state.u, &nl->c_prev));
   PetscCall(MMAndersonSetUp(&nl->aa, nl->anderson, nm->state.u));
+  PetscCall(RegisterFrameData(nm));
   PetscFunctionReturn(0);
 }
 
@@ -110,54 +132,50 @@ PetscErrorCode MMNonlinearDestroy(MMNonlinear *nl)
  * sliding keeps them as they are, in the pairing's variables (MMNewmarkGetCarriedForces). */
 static PetscErrorCode CarriedForces(MMNewmark nm, PetscInt *nf, Vec force[])
 {
-  MMLoads *ld = nm->loads;
+  MMContactOperators ops;
+  MMLoads           *ld = nm->loads;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
   *nf          = 0;
-  force[(*nf)++] = nm->op->load;
-  force[(*nf)++] = nm->op->lift;
+  force[(*nf)++] = ops.load;
+  force[(*nf)++] = ops.lift;
   if (ld->load_old) force[(*nf)++] = ld->load_old;
   for (PetscInt k = 0; ld->part && k < ld->nparts; ++k) force[(*nf)++] = ld->part[k];
   PetscFunctionReturn(0);
 }
 
 /* What the stepper built on N, dropped after a new pairing, to be built again: the tangent (K's pattern
- * follows N), the momentum functionals (M* N^{-1} Q^T e); M* is contact's new one */
+ * follows N); M* is contact's new one (the momentum functionals, M* N^{-1} Q^T e, follow the frame
+ * state: momenta.c) */
 static PetscErrorCode DropPairingOperators(MMNewmark nm)
 {
-  MMNonlinear *nl = &nm->nl;
+  MMContactOperators ops;
+  MMNonlinear       *nl = &nm->nl;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
   PetscCall(MatDestroy(&nl->Ks));
-  PetscCall(MatDestroy(&nl->el.KpN));
   nl->use_tangent = PETSC_FALSE;
-  nm->damping.Mstar = nm->op->Mstar; /* borrowed (no damping with these laws) */
-  PetscCall(MMMomentaDestroy(&nm->momenta));
+  nm->damping.Mstar = ops.Mstar; /* borrowed (no damping with these laws) */
   PetscFunctionReturn(0);
 }
 
 /* Contact pairs with large sliding (docs/method.md section 11, "Large sliding"): before the step, the
  * pairing found again on u^n. When it changed, contact rebuilt N, K, M* (and K~ at the next step
- * matrix); here the state u, v, a, the last reaction (a force: b_nl carries it) and the loads are
- * carried to the new variables, and what the stepper built on N is dropped, to be built again. */
+ * matrix) and carried the stepper's registered vectors (RegisterFrameData: the state, the last
+ * reaction, which b_nl carries, and the loads) to the new variables; what the stepper built on N is
+ * dropped, to be built again. */
 PetscErrorCode MMNonlinearSlidePairs(MMNewmark nm, PetscReal dt)
 {
-  MMState    *s  = &nm->state;
-  MMLoads    *ld = nm->loads;
-  Vec         kin[3] = {s->u, s->v, s->a}, *force;
-  PetscInt    nf = 0;
-  PetscBool   changed;
+  MMState  *s = &nm->state;
+  PetscBool changed;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMalloc1(4 + (ld->part ? ld->nparts : 0), &force));
-  force[0] = s->react;
-  PetscCall(CarriedForces(nm, &nf, force + 1));
-  nf++;
   /* the pairing of the step's predictor u + dt v + dt^2/4 a (newmark.c), dt the step's first try */
   PetscCall(VecAXPBYPCZ(s->u_next, dt, 0.25 * dt * dt, 0.0, s->v, s->a));
   PetscCall(VecAXPY(s->u_next, 1.0, s->u));
-  PetscCall(MMContactSlidePairs(nm->contact, s->u, s->u_next, 3, kin, nf, force, &changed));
-  PetscCall(PetscFree(force));
+  PetscCall(MMContactSlidePairs(nm->contact, s->u, s->u_next, &changed));
   if (!changed) PetscFunctionReturn(0);
   PetscCall(DropPairingOperators(nm));
   PetscFunctionReturn(0);
@@ -262,10 +280,12 @@ PetscErrorCode MMNonlinearElasticEnergy(MMNewmark nm, Vec u, PetscReal t, PetscR
 /* K~ = K_s + 4/dt^2 M*, with K_s the current iteration stiffness */
 PetscErrorCode MMNonlinearStepMatrix(MMNewmark nm, PetscReal dt, MMStepMatrix *sm)
 {
-  MMNonlinear *nl = &nm->nl;
+  MMContactOperators ops;
+  MMNonlinear       *nl = &nm->nl;
 
   PetscFunctionBeginUser;
-  PetscCall(MMDampingGetStepMatrix(&nm->damping, nm->op->K, dt, sm));
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
+  PetscCall(MMDampingGetStepMatrix(&nm->damping, ops.K, dt, sm));
   /* Rayleigh's beta: the viscous stress's iteration matrix is 2 beta/dt K_s, the iteration stiffness
    * scaled, so that it turns with the body as K_s does (Correction) */
   sm->ck += sm->cb;
@@ -280,11 +300,18 @@ PetscErrorCode MMNonlinearStepMatrix(MMNewmark nm, PetscReal dt, MMStepMatrix *s
  * was taken: the iteration matrix is state the next steps depend on, which a checkpoint keeps */
 static PetscErrorCode BuildTangent(MMNewmark nm, Vec l, PetscReal t)
 {
-  MMNonlinear *nl = &nm->nl;
+  MMContactOperators ops;
+  MMNonlinear       *nl = &nm->nl;
 
   PetscFunctionBeginUser;
-  if (!nl->Ks) PetscCall(MatDuplicate(nm->op->K, MAT_DO_NOT_COPY_VALUES, &nl->Ks));
-  PetscCall(MMElasticityTangent(&nl->el, nm->op, nm->material, l, nl->Ks));
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
+  if (!nl->Ks) PetscCall(MatDuplicate(ops.K, MAT_DO_NOT_COPY_VALUES, &nl->Ks));
+  {
+    Mat Kc; /* the Cartesian tangent, turned into the w-frame (and N^T Kc N with contact pairs) by contact */
+    PetscCall(MMContactFrameMatrixBegin(nm->contact, nl->Ks, &Kc));
+    PetscCall(MMElasticityAssembleTangent(&nl->el, nm->op, nm->material, l, Kc));
+    PetscCall(MMContactFrameMatrixEnd(nm->contact, Kc, nl->Ks));
+  }
   if (!nl->Ks_at) PetscCall(DMCreateGlobalVector(nm->op->dm, &nl->Ks_at));
   PetscCall(DMLocalToGlobal(nm->op->dm, l, INSERT_VALUES, nl->Ks_at)); /* the owned values, exactly */
   nl->Ks_time     = t;
@@ -382,21 +409,23 @@ PetscErrorCode MMNewmarkRestoreTangent(MMNewmark nm, Vec at, PetscReal t)
  * body in free flight, whose internal force is zero, still has a scale for its residual */
 static PetscErrorCode FixedRHS(MMNewmark nm, PetscReal dt, Vec bnl, PetscReal *fscale)
 {
-  MMState  *s = &nm->state;
-  PetscReal n[3];
+  MMContactOperators ops;
+  MMState           *s = &nm->state;
+  PetscReal          n[3];
 
   PetscFunctionBeginUser;
-  PetscCall(MatMult(nm->op->Mstar, s->v, s->work));
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
+  PetscCall(MatMult(ops.Mstar, s->v, s->work));
   PetscCall(VecNorm(s->work, NORM_2, &n[0]));
   PetscCall(VecNorm(s->react_old, NORM_2, &n[1]));
-  PetscCall(VecWAXPY(s->work, 1.0, nm->op->load, nm->loads->in_time ? nm->loads->load_old : nm->op->load));
+  PetscCall(VecWAXPY(s->work, 1.0, ops.load, nm->loads->in_time ? nm->loads->load_old : ops.load));
   PetscCall(VecNorm(s->work, NORM_2, &n[2]));
   *fscale = PetscMax(2.0 / dt * n[0], PetscMax(2 * n[1], n[2])); /* 2 lambda^n: the solve's units */
   /* with Rayleigh's alpha, the damping force alpha M* (w - u^n)/dt, twice: its w part is in K~ */
   PetscCall(VecAXPBYPCZ(s->work, 4.0 / (dt * dt) + 2.0 * nm->damping.alpha / dt, 4.0 / dt, 0.0, s->u, s->v));
-  PetscCall(MatMult(nm->op->Mstar, s->work, bnl));
-  PetscCall(VecAXPY(bnl, 1.0, nm->op->load));
-  PetscCall(VecAXPY(bnl, 1.0, nm->loads->in_time ? nm->loads->load_old : nm->op->load));
+  PetscCall(MatMult(ops.Mstar, s->work, bnl));
+  PetscCall(VecAXPY(bnl, 1.0, ops.load));
+  PetscCall(VecAXPY(bnl, 1.0, nm->loads->in_time ? nm->loads->load_old : ops.load));
   PetscFunctionReturn(0);
 }
 
@@ -404,15 +433,17 @@ static PetscErrorCode FixedRHS(MMNewmark nm, PetscReal dt, Vec bnl, PetscReal *f
  * Rayleigh's beta, f_alg carries the step's viscous stress and K~ its iteration matrix 2 beta/dt K_s. */
 static PetscErrorCode Correction(MMNewmark nm, PetscReal t1, Vec w, Vec c, PetscReal *scale)
 {
-  MMNonlinear  *nl = &nm->nl;
-  MMElasticity *el = &nl->el;
+  MMContactOperators ops;
+  MMNonlinear       *nl = &nm->nl;
+  MMElasticity      *el = &nl->el;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
   PetscCall(MMElasticityLocal(el, nm->op, nm->loads, w, t1, el->l1));
   PetscCall(MMElasticityForce(el, nm->op, nm->material, el->l1, nl->f));
   PetscCall(VecScale(nl->f, 2.0));
   PetscCall(VecNorm(nl->f, NORM_2, scale));
-  PetscCall(MatMult(nl->use_tangent ? nl->Ks : nm->op->K, w, c));
+  PetscCall(MatMult(nl->use_tangent ? nl->Ks : ops.K, w, c));
   PetscCall(VecAXPBY(c, -1.0, 1.0 + 2.0 * el->visc, nl->f)); /* el->visc = beta/dt of this step */
   PetscFunctionReturn(0);
 }
@@ -440,12 +471,15 @@ static PetscErrorCode Tolerance(MMNewmark nm, Vec b, PetscReal S, PetscReal *tol
  * hundreds of steps keep a free body's momenta to 1e-9 */
 static PetscErrorCode BelowTheAudits(MMNewmark nm, Vec w, Vec r, PetscReal dt, PetscBool *below)
 {
-  MMState        *s = &nm->state;
-  const PetscReal E = nm->hist.energy_scale, m = nm->op->mass_star[0];
-  PetscScalar     work;
-  PetscReal       F[3], T[3], P;
+  MMContactOperators ops;
+  MMState           *s = &nm->state;
+  const PetscReal    E = nm->hist.energy_scale;
+  PetscScalar        work;
+  PetscReal          F[3], T[3], P, m;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
+  m = ops.mass_star[0];
   *below = PETSC_FALSE;
   if (!(E > 0 && m > 0)) PetscFunctionReturn(0);
   PetscCall(VecWAXPY(s->work, -1.0, s->u, w));
@@ -538,16 +572,18 @@ PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b,
  * (docs/method.md section 13): computed from the strains, apart from the force the step balanced */
 PetscErrorCode MMNonlinearDampingWork(MMNewmark nm, Vec du, PetscReal t1, PetscReal dt, PetscReal *w)
 {
-  MMDamping   *d  = &nm->damping;
-  MMElasticity *el = &nm->nl.el;
-  PetscScalar  duMdu = 0;
-  PetscReal    diss  = 0;
+  MMContactOperators ops;
+  MMDamping         *d  = &nm->damping;
+  MMElasticity      *el = &nm->nl.el;
+  PetscScalar        duMdu = 0;
+  PetscReal          diss  = 0;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
   *w = 0;
   if (!MMDampingOn(d)) PetscFunctionReturn(0);
   if (d->alpha != 0) {
-    PetscCall(MatMult(nm->op->Mstar, du, nm->nl.f)); /* du is the state's work vector */
+    PetscCall(MatMult(ops.Mstar, du, nm->nl.f)); /* du is the state's work vector */
     PetscCall(VecDot(du, nm->nl.f, &duMdu));
   }
   if (d->beta != 0) {
@@ -560,45 +596,26 @@ PetscErrorCode MMNonlinearDampingWork(MMNewmark nm, Vec du, PetscReal t1, PetscR
 
 /* -contact_frames follow (docs/method.md section 8, "Frames that follow the contact point"): at the
  * step's start the frames of the nodes near a curved obstacle follow their current position. The
- * Cartesian state is unchanged: its frame components turn by R (u, v, a, the reactions, the load
- * parts), as does the iteration stiffness. M* does not turn with them, it is rebuilt (the massless
- * dofs lie along the new normals), so the kinetic energy 1/2 v.M* v moves by W_frame =
+ * Cartesian state is unchanged: contact turns the frame components of the stepper's registered data
+ * by R (RegisterFrameData: u, v, a, the reactions, the load parts, the iteration stiffness); the
+ * momentum functionals follow the frame state (momenta.c). M* does not turn with them, it is rebuilt
+ * (the massless dofs lie along the new normals), so the kinetic energy 1/2 v.M* v moves by W_frame =
  * 1/2 v.(M*_new - M*_old) v: booked in the balance (work_frame), not hidden in its residual. The
  * elastic energy, a function of the Cartesian displacement, does not move. */
-/* The stepper's own w-frame operators, after contact turned its frames: the load parts, which give
- * op's load each step (op's load and lift contact turned), and the iteration stiffness; the momentum
- * functionals (M* and Q of the old frames) are built again on the next diagnostics. */
-static PetscErrorCode RotateStepperOperators(MMNewmark nm)
-{
-  MMLoads *ld = nm->loads;
-
-  PetscFunctionBeginUser;
-  if (ld->in_time) {
-    for (PetscInt k = 0; k < ld->nparts; ++k) PetscCall(MMContactFramesRotate(nm->contact, ld->part[k]));
-    PetscCall(MMContactFramesRotate(nm->contact, ld->load_old));
-  }
-  if (nm->nl.Ks) PetscCall(MMContactFramesRotateMatrix(nm->contact, nm->nl.Ks));
-  PetscCall(MMMomentaDestroy(&nm->momenta));
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode MMNonlinearFollowFrames(MMNewmark nm, PetscReal t, PetscReal dt)
 {
-  MMState  *s = &nm->state;
-  PetscInt  turned;
-  PetscReal kinetic_old = nm->hist.kinetic; /* 1/2 v.M*_old v of the last accepted step (no moving Dirichlet data here) */
+  MMContactOperators ops;
+  MMState           *s = &nm->state;
+  PetscInt           turned;
+  PetscReal          kinetic_old = nm->hist.kinetic; /* 1/2 v.M*_old v of the last accepted step (no moving Dirichlet data here) */
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
   PetscCall(MMContactFramesUpdate(nm->contact, s->u, s->v, t, dt, &turned));
   if (!turned) PetscFunctionReturn(0);
   {
-    Vec *vecs[] = {&s->u, &s->v, &s->a, &s->react};
-    for (size_t i = 0; i < sizeof(vecs) / sizeof(vecs[0]); ++i) PetscCall(MMContactFramesRotate(nm->contact, *vecs[i]));
-  }
-  PetscCall(RotateStepperOperators(nm));
-  {
     PetscScalar vMv;
-    PetscCall(MatMult(nm->op->Mstar, s->v, s->work));
+    PetscCall(MatMult(ops.Mstar, s->v, s->work));
     PetscCall(VecDot(s->v, s->work, &vMv));
     s->work_frame += 0.5 * PetscRealPart(vMv) - kinetic_old;
   }
@@ -619,7 +636,8 @@ PetscErrorCode MMNonlinearFollowFrames(MMNewmark nm, PetscReal t, PetscReal dt)
   Note:
   -restart of a run whose frames followed (docs/method.md section 9): contact takes the checkpoint's
   frames and gaps (rec, per owned contact row; NULL: the checkpoint has none, the set-up frames
-  stay) and turns its operators, the stepper its own. The state, read from the checkpoint, is
+  stay) and turns its operators with the stepper's registered set-up data (the load parts, the
+  iteration stiffness). The state, read from the checkpoint, is
   already in these frames: it does not turn, and no kinetic energy moves (M* is the checkpointed
   run's).
 
@@ -634,7 +652,6 @@ PetscErrorCode MMNewmarkRestoreFrames(MMNewmark nm, const PetscScalar rec[], con
   PetscFunctionBeginUser;
   if (!rec) PetscFunctionReturn(0);
   PetscCall(MMContactFramesRestore(nm->contact, rec, counters, &turned));
-  if (turned) PetscCall(RotateStepperOperators(nm));
   PetscFunctionReturn(0);
 }
 

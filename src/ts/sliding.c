@@ -21,15 +21,17 @@ static PetscReal Tangential(const PetscReal n[], const PetscReal v[], PetscInt d
  * tangential direction of -v0, or from rest that of the load. */
 static PetscErrorCode SlidingLoads(MMNewmark nm, PetscReal e[], PetscReal *Fe, PetscReal *P, PetscReal *m, PetscBool *from_rest)
 {
-  const PetscInt   dim = nm->op->dim;
-  const PetscReal *n = nm->pb.obstacle_normal;
-  PetscReal        ne, F[MM_MAX_DIM] = {0, 0, 0};
-  PetscInt         bs;
-  Vec              Lc;
+  MMContactOperators ops;
+  const PetscInt     dim = nm->op->dim;
+  const PetscReal   *n = nm->pb.obstacle_normal;
+  PetscReal          ne, F[MM_MAX_DIM] = {0, 0, 0};
+  PetscInt           bs;
+  Vec                Lc;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
   PetscCall(DMGetGlobalVector(nm->op->dm, &Lc));
-  PetscCall(MMFEForceToCartesian(nm->op, nm->op->load, Lc));
+  PetscCall(MMFEForceToCartesian(nm->op, ops.load, Lc));
   PetscCall(VecGetBlockSize(Lc, &bs));
   PetscCheck(bs == dim, PetscObjectComm((PetscObject)nm->op->dm), PETSC_ERR_SUP, "-initial_state static_sliding needs a body without Dirichlet boundaries");
   for (PetscInt d = 0; d < dim; ++d) PetscCall(VecStrideSum(Lc, d, (PetscScalar *)&F[d]));
@@ -133,6 +135,7 @@ static PetscErrorCode RigidPins(MMNewmark nm, PetscInt pins[], PetscInt *npins)
 /* Rows of the base nodes: u_n = g, and (K u - f)_tj - mu e_tj (K u - f)_n = 0 (t = -mu r e_t). */
 static PetscErrorCode SlidingSystem(MMNewmark nm, const PetscReal et[], Vec f, Mat *A, Vec rhs)
 {
+  MMContactOperators ops;
   MMContactNodes     nodes, *ct = &nodes;
   const PetscReal    mu  = nm->pb.mu;
   const PetscInt     dim = nm->op->dim;
@@ -142,8 +145,9 @@ static PetscErrorCode SlidingSystem(MMNewmark nm, const PetscReal et[], Vec f, M
   PetscInt           rstart, rend, pins[3], npins, *rows, nr = 0;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
   PetscCall(MMContactGetNodes(nm->contact, &nodes));
-  PetscCall(MatDuplicate(nm->op->K, MAT_COPY_VALUES, A));
+  PetscCall(MatDuplicate(ops.K, MAT_COPY_VALUES, A));
   PetscCall(VecCopy(f, rhs));
   PetscCall(VecGetOwnershipRange(f, &rstart, &rend));
   PetscCall(ISGetIndices(ct->is_normal, &in));
@@ -161,19 +165,19 @@ static PetscErrorCode SlidingSystem(MMNewmark nm, const PetscReal et[], Vec f, M
 
     /* a parallel matrix lends one row at a time: keep a copy of the normal row */
     PetscInt           nnormal;
-    PetscCall(MatGetRow(nm->op->K, i, &nn, &cn, &vn));
+    PetscCall(MatGetRow(ops.K, i, &nn, &cn, &vn));
     nnormal = nn; /* MatRestoreRow zeroes the count */
     PetscCall(PetscMalloc2(nn, &row, nn, &normal));
     PetscCall(PetscArraycpy(normal, vn, nn));
-    PetscCall(MatRestoreRow(nm->op->K, i, &nn, &cn, &vn));
+    PetscCall(MatRestoreRow(ops.K, i, &nn, &cn, &vn));
     nn = nnormal;
     for (PetscInt d = 1; d < dim; ++d) {
       const PetscInt it = i + d;
-      PetscCall(MatGetRow(nm->op->K, it, &nt, &ctt, &vt));
+      PetscCall(MatGetRow(ops.K, it, &nt, &ctt, &vt));
       PetscCheck(nn == nt, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Rows of one node with different patterns");
       for (PetscInt j = 0; j < nt; ++j) row[j] = vt[j] - mu * et[d - 1] * normal[j];
       PetscCall(MatSetValues(*A, 1, &it, nt, ctt, row, INSERT_VALUES));
-      PetscCall(MatRestoreRow(nm->op->K, it, &nt, &ctt, &vt));
+      PetscCall(MatRestoreRow(ops.K, it, &nt, &ctt, &vt));
       ra[it - rstart] = fa[it - rstart] - mu * et[d - 1] * fa[i - rstart];
     }
     PetscCall(PetscFree2(row, normal));
@@ -204,16 +208,18 @@ static PetscErrorCode SlidingSystem(MMNewmark nm, const PetscReal et[], Vec f, M
 /* w = u_qs, and react = K w - f, the contact forces of the sliding state (normal and friction). */
 PetscErrorCode MMInitialStaticSliding(MMNewmark nm, Vec w, Vec react)
 {
+  MMContactOperators ops;
   MMContactNodes     nodes, *ct = &nodes;
-  MPI_Comm   comm = PetscObjectComm((PetscObject)nm->op->dm);
-  PetscReal  e[MM_MAX_DIM] = {0, 0, 0}, Fe = 0, P = 0, m = 0, a, et[2] = {0, 0}, rmin;
-  PetscInt   dim = nm->op->dim;
-  PetscBool  from_rest = PETSC_FALSE;
-  Vec        f, rhs, me, rn;
-  Mat        A;
-  KSP        ksp;
+  MPI_Comm           comm = PetscObjectComm((PetscObject)nm->op->dm);
+  PetscReal          e[MM_MAX_DIM] = {0, 0, 0}, Fe = 0, P = 0, m = 0, a, et[2] = {0, 0}, rmin;
+  PetscInt           dim = nm->op->dim;
+  PetscBool          from_rest = PETSC_FALSE;
+  Vec                f, rhs, me, rn;
+  Mat                A;
+  KSP                ksp;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
   PetscCall(MMContactGetNodes(nm->contact, &nodes));
   PetscCheck(ct->enabled && !nm->pb.dirichlet, comm, PETSC_ERR_SUP, "-initial_state static_sliding needs contact on and no Dirichlet boundary");
   PetscCall(SlidingLoads(nm, e, &Fe, &P, &m, &from_rest));
@@ -231,8 +237,8 @@ PetscErrorCode MMInitialStaticSliding(MMNewmark nm, Vec w, Vec react)
   PetscCall(VecDuplicate(nm->op->mass_lumped_cart, &me));
   for (PetscInt d = 0; d < dim; ++d) PetscCall(VecStrideSet(me, d, -a * e[d]));
   PetscCall(MMFEForceFromCartesian(nm->op, me, rhs));
-  PetscCall(MatMult(nm->op->Mstar, rhs, f));
-  PetscCall(VecAXPY(f, 1.0, nm->op->load));
+  PetscCall(MatMult(ops.Mstar, rhs, f));
+  PetscCall(VecAXPY(f, 1.0, ops.load));
   PetscCall(SlidingSystem(nm, et, f, &A, rhs));
   PetscCall(KSPCreate(comm, &ksp));
   PetscCall(KSPSetOptionsPrefix(ksp, "sliding_"));
@@ -240,7 +246,7 @@ PetscErrorCode MMInitialStaticSliding(MMNewmark nm, Vec w, Vec react)
   PetscCall(MMKSPSetDirect(ksp));
   PetscCall(KSPSetFromOptions(ksp));
   PetscCall(KSPSolve(ksp, rhs, w));
-  PetscCall(MatMult(nm->op->K, w, react));
+  PetscCall(MatMult(ops.K, w, react));
   PetscCall(VecAXPY(react, -1.0, f));
   PetscCall(VecISSet(react, ct->is_interior, 0.0));
   PetscCall(VecGetSubVector(react, ct->is_normal, &rn));

@@ -10,14 +10,16 @@
 /* b = L(t^{n+1}) - lift(t^{n+1}) + M* (4/dt^2 u^n + 4/dt v^n + a^n) [+ C (2/dt u^n + vC^n) with damping] */
 static PetscErrorCode StepRHS(MMNewmark nm, PetscReal dt, Vec b)
 {
-  MMState *s = &nm->state;
+  MMContactOperators ops;
+  MMState           *s = &nm->state;
 
   PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
   PetscCall(VecAXPBYPCZ(s->work, 4.0 / (dt * dt), 4.0 / dt, 0.0, s->u, s->v));
   PetscCall(VecAXPY(s->work, 1.0, s->a));
-  PetscCall(MatMult(nm->op->Mstar, s->work, b));
-  PetscCall(VecAXPY(b, 1.0, nm->op->load));
-  PetscCall(VecAXPY(b, -1.0, nm->op->lift));
+  PetscCall(MatMult(ops.Mstar, s->work, b));
+  PetscCall(VecAXPY(b, 1.0, ops.load));
+  PetscCall(VecAXPY(b, -1.0, ops.lift));
   PetscCall(MMDampingAddStepRHS(&nm->damping, s->u, dt, b));
   PetscFunctionReturn(0);
 }
@@ -25,8 +27,11 @@ static PetscErrorCode StepRHS(MMNewmark nm, PetscReal dt, Vec b)
 /* K~ = K + 2 beta/dt B + (4/dt^2 + 2 alpha/dt) M* (damping.c) */
 static PetscErrorCode LinearStepMatrix(MMNewmark nm, PetscReal dt, MMStepMatrix *sm)
 {
+  MMContactOperators ops;
+
   PetscFunctionBeginUser;
-  PetscCall(MMDampingGetStepMatrix(&nm->damping, nm->op->K, dt, sm));
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
+  PetscCall(MMDampingGetStepMatrix(&nm->damping, ops.K, dt, sm));
   PetscFunctionReturn(0);
 }
 

@@ -2,8 +2,8 @@
  * Each contact node's dofs are rotated into its frame (nu, tau_1, tau_2) by Q, built here from the
  * frames the contact set chose (interface/set.c): K <- Q^T K Q, M <- Q^T M Q, L <- Q^T L; then M* for -mass (mass_star.c) and
  * the contact pairs' relative variables, A <- N^T A N (interface/pairs.c, docs/method.md section 11).
- * The results stay in fem's MMOperators, which app hands in: the stepper, the output and the
- * audits read them there. */
+ * The results stay in fem's MMOperators, which app hands in; the stepper, the output and the
+ * audits read them through contact (operators.c, MMContactGetOperators). */
 #include "../contactimpl.h"
 
 /* Q, u_cart = Q w: per contact node the block of its frame, F^T (the columns nu, tau_1, tau_2), the

@@ -17,10 +17,14 @@ typedef struct {
   const PetscInt  *fc_obstacle;  /* per row: a friction corner's second obstacle, or -1; NULL: none */
 } MMMassBoundary;
 
-/* The mass in time stepping: -mass, and what M*'s construction found, for its view (MMContactMassView).
- * M*'s masses for the translations, which the stepper reads, stay in MMOperators (mass_star, mass_star_inv). */
+/* The mass in time stepping: -mass, M* (w-frame) and its masses for the translations, which the stepper
+ * reads through MMContactGetOperators, and what M*'s construction found, for its view (MMContactMassView). */
 typedef struct {
   MMMassType type;                /* -mass */
+  Mat        Mstar;               /* M with the massless dofs' rows and columns removed (and their mass given back, redistributed), or M */
+  IS         massless;            /* the dofs without inertia in M* (the contact-normal ones), NULL if none (a reference) */
+  PetscReal  mass_star[MM_MAX_DIM * MM_MAX_DIM];     /* M*'s mass for rigid translations, dim x dim (m I for M) */
+  PetscReal  mass_star_inv[MM_MAX_DIM * MM_MAX_DIM]; /* its inverse (zero without mass), for ucm and vcm */
   PetscReal  total;               /* total mass of M */
   PetscReal  correction;          /* -mass redistributed: the largest negative eigenvalue of a node's moment correction over its mass */
   PetscReal  moment_unreachable;  /* 3D: |trace of G's translation-rotation block| left, / total mass (mass_redistribution.c) */

@@ -755,16 +755,16 @@ PetscErrorCode MMContactRedistributeMass(MMContactMass *mass, MMOperators *op, c
   PetscCall(RigidModes(r, x0, ell, R));
   PetscCall(VertexKinds(r, &kind, normal));
   PetscCall(VertexGroups(r, &vgroup));
-  PetscCall(MatSetOption(r->op->Mstar, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
-  PetscCall(AddCellShares(r, kind, normal, NULL, 0, 1.0, r->op->Mstar));
-  PetscCall(MatAssemblyBegin(r->op->Mstar, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(r->op->Mstar, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatSetOption(r->mass->Mstar, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  PetscCall(AddCellShares(r, kind, normal, NULL, 0, 1.0, r->mass->Mstar));
+  PetscCall(MatAssemblyBegin(r->mass->Mstar, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(r->mass->Mstar, MAT_FINAL_ASSEMBLY));
   /* each body (group) on its own: its moments matched by corrections on its own nodes */
   for (PetscInt g = 0; g < PetscMax(r->material->n_bodies, 1); ++g) {
     PetscCall(GroupModes(r, vgroup, g, nr, R, Rg));
     PetscCall(Gram(r->op->M, nr, Rg, GM));
     if (GM[0][0] > 0) {
-      PetscCall(Gram(r->op->Mstar, nr, Rg, Gs));
+      PetscCall(Gram(r->mass->Mstar, nr, Rg, Gs));
       for (PetscInt a = 0; a < nr; ++a)
         for (PetscInt b = 0; b < nr; ++b) dG[a][b] = GM[a][b] - Gs[a][b];
       PetscInt  moments = nr;         /* the moments matched: all, or the masses and first moments */
@@ -775,7 +775,7 @@ PetscErrorCode MMContactRedistributeMass(MMContactMass *mass, MMOperators *op, c
       for (PetscInt it = 0; it < 3; ++it) {
         PetscReal mm, un, ri;
         PetscBool exceeded = PETSC_FALSE, matched = PETSC_TRUE;
-        if (!bounded) PetscCall(AddMomentCorrection(r, kind, vgroup, g, x0, ell, dG, r->op->Mstar, &exceeded));
+        if (!bounded) PetscCall(AddMomentCorrection(r, kind, vgroup, g, x0, ell, dG, r->mass->Mstar, &exceeded));
         if (exceeded) {
           /* the smallest correction would leave M* indefinite (coarse meshes whose contact boundary
            * holds much of the mass): the bounded one, every moment if it can, else the masses and
@@ -784,27 +784,27 @@ PetscErrorCode MMContactRedistributeMass(MMContactMass *mass, MMOperators *op, c
           /* the cell shares taken back first: the bound then applies to the modified mass, whose
            * every node keeps 1/(d+2) of its lumped mass, and the correction may place the mass
            * where the moments need it (a wider set of corrections than on top of the shares) */
-          PetscCall(AddCellShares(r, kind, normal, vgroup, g, -1.0, r->op->Mstar));
-          PetscCall(MatAssemblyBegin(r->op->Mstar, MAT_FINAL_ASSEMBLY));
-          PetscCall(MatAssemblyEnd(r->op->Mstar, MAT_FINAL_ASSEMBLY));
-          PetscCall(Gram(r->op->Mstar, nr, Rg, Gs));
+          PetscCall(AddCellShares(r, kind, normal, vgroup, g, -1.0, r->mass->Mstar));
+          PetscCall(MatAssemblyBegin(r->mass->Mstar, MAT_FINAL_ASSEMBLY));
+          PetscCall(MatAssemblyEnd(r->mass->Mstar, MAT_FINAL_ASSEMBLY));
+          PetscCall(Gram(r->mass->Mstar, nr, Rg, Gs));
           for (PetscInt a = 0; a < nr; ++a)
             for (PetscInt b = 0; b < nr; ++b) dG[a][b] = GM[a][b] - Gs[a][b];
-          PetscCall(AddBoundedCorrection(r, kind, vgroup, g, x0, ell, dG, nr, GM[0][0], r->op->Mstar, &matched));
+          PetscCall(AddBoundedCorrection(r, kind, vgroup, g, x0, ell, dG, nr, GM[0][0], r->mass->Mstar, &matched));
           if (!matched) {
             moments = r->op->dim;
-            PetscCall(AddBoundedCorrection(r, kind, vgroup, g, x0, ell, dG, moments, GM[0][0], r->op->Mstar, &matched));
+            PetscCall(AddBoundedCorrection(r, kind, vgroup, g, x0, ell, dG, moments, GM[0][0], r->mass->Mstar, &matched));
           }
           if (!matched) {
             PetscInt inner;
             PetscCall(CountInnerNodes(r, kind, vgroup, g, &inner));
             SETERRQ(comm, PETSC_ERR_USER_INPUT, "-mass redistributed cannot give the contact nodes' normal mass back on this mesh without making M* indefinite: %" PetscInt_FMT " node%s off the contact boundary and free of Dirichlet data cannot carry it at the centre of gravity. Name as -contact_boundary only the surface that can touch an obstacle, or mesh the body finer (more nodes inside); -mass modified runs, but falls faster than g along the contact normals", inner, inner == 1 ? "" : "s");
           }
-        } else if (bounded) PetscCall(AddBoundedCorrection(r, kind, vgroup, g, x0, ell, dG, moments, GM[0][0], r->op->Mstar, &matched));
+        } else if (bounded) PetscCall(AddBoundedCorrection(r, kind, vgroup, g, x0, ell, dG, moments, GM[0][0], r->mass->Mstar, &matched));
         largest = PetscMax(largest, r->mass->correction);
-        PetscCall(MatAssemblyBegin(r->op->Mstar, MAT_FINAL_ASSEMBLY));
-        PetscCall(MatAssemblyEnd(r->op->Mstar, MAT_FINAL_ASSEMBLY));
-        PetscCall(Gram(r->op->Mstar, nr, Rg, Gs));
+        PetscCall(MatAssemblyBegin(r->mass->Mstar, MAT_FINAL_ASSEMBLY));
+        PetscCall(MatAssemblyEnd(r->mass->Mstar, MAT_FINAL_ASSEMBLY));
+        PetscCall(Gram(r->mass->Mstar, nr, Rg, Gs));
         mm = MomentMismatch(nr, moments, GM, Gs, &un, &ri) / PetscMax(GM[0][0], PETSC_SMALL);
         if (it == 2 || mm <= 1e-14) {
           mismatch    = PetscMax(mismatch, mm);
@@ -848,10 +848,10 @@ PetscErrorCode MMContactMassMoments(MMContactMass *mass, MMOperators *op)
   PetscFunctionBeginUser;
   PetscCall(RigidModes(r, zero, 1.0, R));
   PetscCall(Gram(r->op->M, nr, R, GM));
-  PetscCall(Gram(r->op->Mstar, nr, R, Gs));
+  PetscCall(Gram(r->mass->Mstar, nr, R, Gs));
   r->mass->total = GM[0][0];
   for (PetscInt a = 0; a < dim; ++a)
-    for (PetscInt b = 0; b < dim; ++b) r->op->mass_star[a * dim + b] = Gs[a][b];
+    for (PetscInt b = 0; b < dim; ++b) r->mass->mass_star[a * dim + b] = Gs[a][b];
   /* its inverse, for the centre-of-mass columns of every step (zero for a body without mass) */
   {
     PetscReal m[MM_MAX_DIM][MM_MAX_DIM] = {{0}}, inv[MM_MAX_DIM][MM_MAX_DIM] = {{0}};
@@ -861,7 +861,7 @@ PetscErrorCode MMContactMassMoments(MMContactMass *mass, MMOperators *op)
       for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
         for (PetscInt b = 0; b < MM_MAX_DIM; ++b) inv[a][b] = 0;
     for (PetscInt a = 0; a < dim; ++a)
-      for (PetscInt b = 0; b < dim; ++b) r->op->mass_star_inv[a * dim + b] = inv[a][b];
+      for (PetscInt b = 0; b < dim; ++b) r->mass->mass_star_inv[a * dim + b] = inv[a][b];
   }
   /* M* that lost more than a tenth of M along an axis: the body falls faster than g along it, by
    * M/M*, and hits with that share of its momentum (README "The mass"). One line, on stderr. */

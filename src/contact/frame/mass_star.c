@@ -28,8 +28,8 @@ PetscErrorCode MMContactGetMassType(MMContact ct, MMMassType *type)
 static PetscErrorCode DropMasslessMass(MMContactMass *mass, MMOperators *op, const MMMaterial *material, const MMMassBoundary *mb)
 {
   PetscFunctionBeginUser;
-  if (MMFEHasMasslessDofs(op)) PetscCall(MatZeroRowsColumnsIS(op->Mstar, op->massless, 0.0, NULL, NULL));
-  if (MMFEHasMasslessDofs(op) && mass->type == MM_MASS_REDISTRIBUTED) {
+  if (mass->massless) PetscCall(MatZeroRowsColumnsIS(mass->Mstar, mass->massless, 0.0, NULL, NULL));
+  if (mass->massless && mass->type == MM_MASS_REDISTRIBUTED) {
     PetscCall(PetscLogEventBegin(MMCONTACT_MassRedistribute, 0, 0, 0, 0));
     PetscCall(MMContactRedistributeMass(mass, op, material, mb));
     PetscCall(PetscLogEventEnd(MMCONTACT_MassRedistribute, 0, 0, 0, 0));
@@ -38,15 +38,15 @@ static PetscErrorCode DropMasslessMass(MMContactMass *mass, MMOperators *op, con
   PetscFunctionReturn(0);
 }
 
-/* M* from op's w-frame M, with the masses of its translations (MMOperators.mass_star, read by the
- * stepper); the modified and the redistributed mass leave mb's massless dofs without inertia. */
+/* M* from op's w-frame M, with the masses of its translations (read by the stepper through
+ * MMContactGetOperators); the modified and the redistributed mass leave mb's massless dofs without inertia. */
 PetscErrorCode MMContactMassStar(MMContactMass *mass, MMOperators *op, const MMMaterial *material, const MMMassBoundary *mb)
 {
   PetscFunctionBeginUser;
-  PetscCall(MatDuplicate(op->M, MAT_COPY_VALUES, &op->Mstar));
+  PetscCall(MatDuplicate(op->M, MAT_COPY_VALUES, &mass->Mstar));
   if (mb->massless && mass->type != MM_MASS_STANDARD) {
     PetscCall(PetscObjectReference((PetscObject)mb->massless));
-    op->massless = mb->massless;
+    mass->massless = mb->massless;
   }
   PetscCall(DropMasslessMass(mass, op, material, mb));
   PetscFunctionReturn(0);
@@ -60,7 +60,7 @@ PetscErrorCode MMContactMassRebuild(MMContactMass *mass, MMOperators *op, Mat M,
 {
   PetscFunctionBeginUser;
   op->M = M; /* borrowed: the redistribution and the moments read M */
-  PetscCall(MatCopy(M, op->Mstar, SAME_NONZERO_PATTERN));
+  PetscCall(MatCopy(M, mass->Mstar, SAME_NONZERO_PATTERN));
   PetscCall(DropMasslessMass(mass, op, material, mb));
   op->M = NULL;
   PetscFunctionReturn(0);
@@ -99,9 +99,9 @@ PetscErrorCode MMContactMassView(MMContact ct, PetscViewer viewer)
   for (PetscInt d = 0; d < dim; ++d) {
     size_t len;
     PetscCall(PetscStrlen(star, &len));
-    PetscCall(PetscSNPrintf(star + len, sizeof(star) - len, "%s%c %.10g", d ? ", " : "", "xyz"[d], (double)op->mass_star[d * dim + d]));
+    PetscCall(PetscSNPrintf(star + len, sizeof(star) - len, "%s%c %.10g", d ? ", " : "", "xyz"[d], (double)ct->mass.mass_star[d * dim + d]));
   }
-  if (MMFEHasMasslessDofs(op) && ct->mass.type == MM_MASS_REDISTRIBUTED) PetscCall(RedistributionText(&ct->mass, dim, moments, sizeof(moments)));
+  if (ct->mass.massless && ct->mass.type == MM_MASS_REDISTRIBUTED) PetscCall(RedistributionText(&ct->mass, dim, moments, sizeof(moments)));
   /* M is over the free dofs: a node held by -dirichlet (one boundary of the DS each) is the
    * support's, outside the system */
   PetscCall(DMGetDS(op->dm, &ds));

@@ -136,7 +136,7 @@ static PetscErrorCode CheckStepMatrixArithmetic(MMContact ct, PetscReal dt, Pets
   PetscCall(VecGetArrayRead(d, &a));
   for (PetscInt i = 0; i < n; ++i) k[0] = PetscMax(k[0], PetscAbsReal(PetscRealPart(a[i])));
   PetscCall(VecRestoreArrayRead(d, &a));
-  PetscCall(MatGetDiagonal(ct->op->Mstar, d));
+  PetscCall(MatGetDiagonal(ct->mass.Mstar, d));
   PetscCall(VecGetArrayRead(d, &a));
   for (PetscInt i = 0; i < n; ++i) {
     const PetscReal mi = PetscRealPart(a[i]);
@@ -168,7 +168,7 @@ static PetscErrorCode StepMatrixAssemble(MMContact ct, const MMStepMatrix *sm, M
     if (sm->ck != 1) PetscCall(MatScale(A, sm->ck));
     if (sm->B) PetscCall(MatAXPY(A, sm->cb, sm->B, SUBSET_NONZERO_PATTERN));
   }
-  PetscCall(MatAXPY(A, sm->cm, ct->op->Mstar, SUBSET_NONZERO_PATTERN));
+  PetscCall(MatAXPY(A, sm->cm, ct->mass.Mstar, SUBSET_NONZERO_PATTERN));
   PetscFunctionReturn(0);
 }
 
@@ -511,7 +511,7 @@ PetscErrorCode MMContactProjectInitial(MMContact ct, Vec w)
 
   PetscFunctionBeginUser;
   if (ct->enabled) PetscCall(CheckInitialPenetration(ct, w));
-  if (!MMFEHasMasslessDofs(ct->op)) PetscFunctionReturn(0);
+  if (!ct->mass.massless) PetscFunctionReturn(0);
   PetscCall(MatCreateSubMatrix(ct->op->K, ct->is_massless, ct->is_massless, MAT_INITIAL_MATRIX, &ct->qp0.A));
   PetscCall(MatCreateVecs(ct->qp0.A, &ct->qp0.b, NULL));
   PetscCall(VecDuplicate(ct->qp0.b, &ct->lower0));
@@ -556,7 +556,7 @@ PetscErrorCode MMContactProjectInitialCorrect(MMContact ct, Vec w, Vec res, Pets
 
   PetscFunctionBeginUser;
   *change = 0;
-  if (!MMFEHasMasslessDofs(ct->op) || !ct->qp0.A) PetscFunctionReturn(0);
+  if (!ct->mass.massless || !ct->qp0.A) PetscFunctionReturn(0);
   PetscCall(VecGetSubVector(w, ct->is_massless, &wc));
   PetscCall(VecGetSubVector(res, ct->is_massless, &rc));
   PetscCall(VecAXPBY(ct->qp0.b, -1.0, 0.0, rc));
@@ -613,6 +613,11 @@ PetscErrorCode MMContactDestroy(MMContact *pct)
   PetscCall(PetscFree(ct->obstacle));
   PetscCall(MMContactPairsDestroy(&ct->pairs));
   PetscCall(MMContactFramesDestroy(&ct->frames));
+  PetscCall(MMContactHeldDestroy(&ct->held));
+  PetscCall(MatDestroy(&ct->mass.Mstar));
+  PetscCall(MatDestroy(&ct->frame_Kp));
+  PetscCall(MatDestroy(&ct->frame_KpN));
+  PetscCall(ISDestroy(&ct->mass.massless));
   PetscCall(PetscFree2(ct->second, ct->corner_ab));
   PetscCall(PetscFree(ct->force_obstacle));
   PetscCall(VecDestroy(&ct->area));

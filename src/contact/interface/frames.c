@@ -227,22 +227,19 @@ static PetscErrorCode BuildRotation(MMContact ct)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMContactFramesRotate(MMContact ct, Vec x)
+/* x <- R^T x, a w-frame vector of the old frames into the new ones (a force as a displacement: R is
+ * orthogonal); the one turn of every held vector (held.c) */
+static PetscErrorCode RotateVec(MMContact ct, void *fctx, PetscBool force, Vec x)
 {
   Vec y;
 
   PetscFunctionBeginUser;
+  (void)fctx;
+  (void)force;
   PetscCall(VecDuplicate(x, &y));
   PetscCall(MatMultTranspose(ct->frames.R, x, y));
   PetscCall(VecCopy(y, x));
   PetscCall(VecDestroy(&y));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode MMContactFramesRotateMatrix(MMContact ct, Mat A)
-{
-  PetscFunctionBeginUser;
-  PetscCall(MMRotateP1(ct->frames.R, A, NULL));
   PetscFunctionReturn(0);
 }
 
@@ -290,9 +287,10 @@ static PetscErrorCode SetNewFrames(MMContact ct)
 }
 
 /* The selected rows (turn, F_new, their gaps already set) turned: R, contact's w-frame operators K,
- * M, M*, the load and the lift, Q and the frames; K~ is rebuilt at the next MMContactSetStepMatrix,
- * the kept one dropped (it is of the old frames). */
-static PetscErrorCode TurnSelectedRows(MMContact ct)
+ * M, M*, Q and the frames; K~ is rebuilt at the next MMContactSetStepMatrix, the kept one dropped (it
+ * is of the old frames). Then every w-frame vector, the load, the lift and the held ones (with the
+ * state's: state), and the held matrices, by the one function of held.c. */
+static PetscErrorCode TurnSelectedRows(MMContact ct, PetscBool state)
 {
   MMContactFrames *fr = &ct->frames;
   MMOperators     *op = ct->op;
@@ -302,20 +300,20 @@ static PetscErrorCode TurnSelectedRows(MMContact ct)
   PetscCall(BuildRotation(ct));
   /* w-frame K and M <- R^T (.) R: a lumped M is m I at each node, which no rotation changes */
   PetscCall(MMRotateP1(fr->R, op->K, op->lumped ? NULL : fr->M));
-  PetscCall(MMContactFramesRotate(ct, op->load));
-  PetscCall(MMContactFramesRotate(ct, op->lift));
   PetscCall(SetNewFrames(ct));
   MMContactMassBoundary(ct, &mb);
   PetscCall(MMContactMassRebuild(&ct->mass, op, fr->M, ct->material, &mb));
   /* K~ (and its factor, the candidate columns, the PC) of the old frames: rebuilt for any dt */
   ct->Kt_dt   = 0;
   ct->kept.dt = 0;
+  PetscCall(MMContactHeldTransform(ct, state, RotateVec, NULL));
+  PetscCall(MMContactHeldTurnMatrices(ct, fr->R));
   PetscFunctionReturn(0);
 }
 
 /* The frames of the rows near a curved obstacle at the state u, v (w-frame) of time t, for a step of
- * dt: the turned rows' frames and gaps, and contact's operators turned with them (TurnSelectedRows).
- * The caller turns its own vectors (the state) with MMContactFramesRotate. */
+ * dt: the turned rows' frames and gaps, and contact's operators and the held data, the state with
+ * them, turned (TurnSelectedRows). */
 PetscErrorCode MMContactFramesUpdate(MMContact ct, Vec u, Vec v, PetscReal t, PetscReal dt, PetscInt *turned)
 {
   MMContactFrames *fr = &ct->frames;
@@ -330,7 +328,7 @@ PetscErrorCode MMContactFramesUpdate(MMContact ct, Vec u, Vec v, PetscReal t, Pe
   if (*turned) {
     fr->updates++;
     fr->turned += *turned;
-    PetscCall(TurnSelectedRows(ct));
+    PetscCall(TurnSelectedRows(ct, PETSC_TRUE));
   }
   PetscCall(PetscLogEventEnd(MMCONTACT_FrameFollow, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -370,9 +368,9 @@ PetscErrorCode MMContactFramesGetCounters(MMContact ct, PetscReal counters[3])
 
 /* -restart of a run whose frames followed: each following row (n_local records, as
  * MMContactFramesGetRecord wrote them) takes its checkpointed frame and gap, and contact's operators
- * turn with them, from the set-up frames (TurnSelectedRows); *turned: how many turned (all ranks).
- * The state read from the checkpoint is already in these frames: the caller turns the w-frame
- * vectors it had from the set-up (the load parts), not the state. */
+ * and the held set-up data turn with them, from the set-up frames (TurnSelectedRows); *turned: how
+ * many turned (all ranks). The state read from the checkpoint is already in these frames: it does
+ * not turn. */
 PetscErrorCode MMContactFramesRestore(MMContact ct, const PetscScalar rec[], const PetscReal counters[3], PetscInt *turned)
 {
   MMContactFrames *fr  = &ct->frames;
@@ -418,7 +416,7 @@ PetscErrorCode MMContactFramesRestore(MMContact ct, const PetscScalar rec[], con
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_SUM, ct->comm));
   PetscCheck(!bad, ct->comm, PETSC_ERR_FILE_UNEXPECTED, "The checkpoint's contact frames (-contact_frames follow) have no unit normal at %" PetscInt_FMT " contact nodes whose frames follow here: the file is damaged, or of another contact set-up", bad);
   PetscCall(MPIU_Allreduce(&count, turned, 1, MPIU_INT, MPI_SUM, ct->comm));
-  if (*turned) PetscCall(TurnSelectedRows(ct));
+  if (*turned) PetscCall(TurnSelectedRows(ct, PETSC_FALSE));
   /* the counters go on from the checkpoint's: the restore itself is no update */
   fr->updates   = (PetscInt)counters[0];
   fr->turned    = (PetscInt)counters[1];

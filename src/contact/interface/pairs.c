@@ -421,14 +421,14 @@ PetscErrorCode MMContactPairsBuildTransform(MMContact ct)
  * Runs after M* is built and its moments taken, which N leaves unchanged (frame/frame.c). */
 PetscErrorCode MMContactPairsTransformOperators(MMContact ct, MMOperators *op)
 {
-  Mat         *A[3] = {&op->K, &op->M, &op->Mstar}, B;
+  Mat         *A[3] = {&op->K, &op->M, &ct->mass.Mstar}, B;
   Vec          t;
 
   PetscFunctionBeginUser;
   if (!op->N) PetscFunctionReturn(0);
   if (ct->pairs.large) { /* the contact-frame K and M*, from which each new pairing's are built */
     PetscCall(MatDuplicate(op->K, MAT_COPY_VALUES, &ct->pairs.Ky));
-    PetscCall(MatDuplicate(op->Mstar, MAT_COPY_VALUES, &ct->pairs.My));
+    PetscCall(MatDuplicate(ct->mass.Mstar, MAT_COPY_VALUES, &ct->pairs.My));
   }
   for (PetscInt i = 0; i < 3; ++i) {
     PetscCall(MatPtAP(*A[i], op->N, MAT_INITIAL_MATRIX, 2.0, &B));
@@ -529,11 +529,18 @@ static void CurrentMasterSurface(MMContactPairs *pr, PetscInt dim, PetscInt p, c
   }
 }
 
+typedef struct {
+  Mat N, Ninv; /* the old pairing's */
+} OldPairing;
+
 /* x <- N_new^{-1} N_old x (a displacement, velocity or acceleration) or x <- N_new^T N_old^{-T} x (a
- * force): the same Cartesian field in the new relative variables. */
-static PetscErrorCode ChangeVariables(MMContact ct, Mat Nold, Mat Ninvold, PetscBool force, Vec x)
+ * force): the same Cartesian field in the new relative variables. The one carry of every w-frame
+ * vector to a new pairing (held.c); fctx: the OldPairing. */
+static PetscErrorCode ChangeVariables(MMContact ct, void *fctx, PetscBool force, Vec x)
 {
-  Vec y = ct->pairs.y;
+  Vec y       = ct->pairs.y;
+  Mat Nold    = ((OldPairing *)fctx)->N;
+  Mat Ninvold = ((OldPairing *)fctx)->Ninv;
 
   PetscFunctionBeginUser;
   if (force) {
@@ -554,11 +561,12 @@ static PetscErrorCode RebuildOperators(MMContact ct)
 
   PetscFunctionBeginUser;
   PetscCall(MatDestroy(&op->K));
-  PetscCall(MatDestroy(&op->Mstar));
+  PetscCall(MatDestroy(&ct->mass.Mstar));
   PetscCall(MatPtAP(ct->pairs.Ky, op->N, MAT_INITIAL_MATRIX, 2.0, &op->K));
-  PetscCall(MatPtAP(ct->pairs.My, op->N, MAT_INITIAL_MATRIX, 2.0, &op->Mstar));
+  PetscCall(MatPtAP(ct->pairs.My, op->N, MAT_INITIAL_MATRIX, 2.0, &ct->mass.Mstar));
   PetscCall(MatDestroy(&ct->qp.A));
   PetscCall(MatDestroy(&ct->kept.A));
+  PetscCall(MatDestroy(&ct->frame_KpN)); /* its pattern follows N */
   ct->kept.dt = -1;
   ct->Kt_dt   = -1;
   PetscFunctionReturn(0);
@@ -624,10 +632,10 @@ static PetscErrorCode Positions(MMContact ct, Vec u, PetscReal **xc, PetscReal x
  * Where the facet, the weights or the facet's normal n_c change, the node's row becomes
  * w_0 = nu_c.(u_s - sum_j phi_j u_mj) <= g = n_c.(X_s - sum_j phi_j X_mj), nu_c = -n_c: the
  * non-penetration of the facet's line, exact for a facet that neither turns nor bends in the step. N is
- * rebuilt, and with it K and M*; the vectors kin (displacements) and force (forces) are carried to the
- * new variables, so that the Cartesian state is unchanged. The ranks find the same pairing: the master
+ * rebuilt, and with it K and M*; every w-frame vector, the load, the lift and the held ones (held.c), is
+ * carried to the new variables, so that the Cartesian state is unchanged. The ranks find the same pairing: the master
  * surface and its displacements are gathered on each. */
-PetscErrorCode MMContactSlidePairs(MMContact ct, Vec u, Vec up, PetscInt nkin, Vec kin[], PetscInt nforce, Vec force[], PetscBool *changed)
+PetscErrorCode MMContactSlidePairs(MMContact ct, Vec u, Vec up, PetscBool *changed)
 {
   MMContactPairs *pr  = &ct->pairs;
   const PetscInt  dim = ct->op->dim;
@@ -635,7 +643,7 @@ PetscErrorCode MMContactSlidePairs(MMContact ct, Vec u, Vec up, PetscInt nkin, V
   PetscReal     **xc, *x, pen = 0;
   PetscInt        cnt[2] = {0, 0}; /* slave nodes whose pairing changed, and that changed facet */
   MPI_Comm        comm = PetscObjectComm((PetscObject)ct->op->dm);
-  Mat             Nold, Ninvold;
+  OldPairing      old;
 
   PetscFunctionBeginUser;
   *changed = PETSC_FALSE;
@@ -686,13 +694,12 @@ PetscErrorCode MMContactSlidePairs(MMContact ct, Vec u, Vec up, PetscInt nkin, V
   if (cnt[0]) {
     pr->repairs++;
     pr->facet_changes += cnt[1];
-    Nold    = ct->op->N;
-    Ninvold = ct->op->Ninv;
+    old.N    = ct->op->N;
+    old.Ninv = ct->op->Ninv;
     PetscCall(BuildN(ct));
-    for (PetscInt i = 0; i < nkin; ++i) PetscCall(ChangeVariables(ct, Nold, Ninvold, PETSC_FALSE, kin[i]));
-    for (PetscInt i = 0; i < nforce; ++i) PetscCall(ChangeVariables(ct, Nold, Ninvold, PETSC_TRUE, force[i]));
-    PetscCall(MatDestroy(&Nold));
-    PetscCall(MatDestroy(&Ninvold));
+    PetscCall(MMContactHeldTransform(ct, PETSC_TRUE, ChangeVariables, &old));
+    PetscCall(MatDestroy(&old.N));
+    PetscCall(MatDestroy(&old.Ninv));
     PetscCall(RebuildOperators(ct));
     *changed = PETSC_TRUE;
   }
@@ -794,6 +801,7 @@ PetscErrorCode MMContactPairsRestore(MMContact ct, const PetscScalar rec[], Pets
   PetscCall(MatDestroy(&ct->op->Ninv));
   PetscCall(BuildN(ct));
   PetscCall(RebuildOperators(ct));
+  PetscCall(MMContactHeldInvalidate(ct));
   *changed = PETSC_TRUE;
   PetscFunctionReturn(0);
 }

@@ -1,0 +1,98 @@
+/* The w-frame data other components keep (docs/developer.md, "The contact frame"): a holder (the
+ * stepper) registers once the addresses of its w-frame vectors and matrices; when contact's frames
+ * turn (-contact_frames follow, frames.c) or its pairing changes (large sliding, pairs.c), contact
+ * turns or carries them all here, with its own load and lift, in one order: the kinematic vectors,
+ * the state's forces, contact's load and lift, the set-up forces. What a holder builds on the frame
+ * instead of turning (the momentum functionals) it rebuilds when MMContactGetFrameState() changes. */
+#include "../contactimpl.h"
+#include "fem.h"
+
+PetscErrorCode MMContactFramesAddVec(MMContact ct, MMFrameVecType type, Vec *x)
+{
+  MMContactHeld *h = &ct->held;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscRealloc((h->nvec + 1) * sizeof(*h->vec), &h->vec));
+  PetscCall(PetscRealloc((h->nvec + 1) * sizeof(*h->type), &h->type));
+  h->vec[h->nvec]  = x;
+  h->type[h->nvec] = type;
+  h->nvec++;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMContactFramesAddMat(MMContact ct, Mat *A)
+{
+  MMContactHeld *h = &ct->held;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscRealloc((h->nmat + 1) * sizeof(*h->mat), &h->mat));
+  h->mat[h->nmat++] = A;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMContactGetFrameState(MMContact ct, PetscObjectState *state)
+{
+  PetscFunctionBeginUser;
+  *state = ct->held.state;
+  PetscFunctionReturn(0);
+}
+
+/* The held vectors of one type through fn, in their registration order (NULL ones skipped) */
+static PetscErrorCode TransformType(MMContact ct, MMFrameVecType type, MMContactHeldFn fn, void *fctx)
+{
+  MMContactHeld *h = &ct->held;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < h->nvec; ++i)
+    if (h->type[i] == type && *h->vec[i]) PetscCall(fn(ct, fctx, (PetscBool)(type != MM_FRAME_KINEMATIC), *h->vec[i]));
+  PetscFunctionReturn(0);
+}
+
+/* Every w-frame vector, contact's load and lift and the held ones, through fn (force: the vector is
+ * force-like), in the one order of the file's head; state: also the state's vectors (a restore reads
+ * them from its checkpoint, already in the new variables). The held matrices are the frames' alone
+ * (MMContactHeldTurnMatrices). The frame state moves: what was built on the old frame is stale. */
+PetscErrorCode MMContactHeldTransform(MMContact ct, PetscBool state, MMContactHeldFn fn, void *fctx)
+{
+  PetscFunctionBeginUser;
+  if (state) {
+    PetscCall(TransformType(ct, MM_FRAME_KINEMATIC, fn, fctx));
+    PetscCall(TransformType(ct, MM_FRAME_FORCE, fn, fctx));
+  }
+  PetscCall(fn(ct, fctx, PETSC_TRUE, ct->op->load));
+  PetscCall(fn(ct, fctx, PETSC_TRUE, ct->op->lift));
+  PetscCall(TransformType(ct, MM_FRAME_SETUP_FORCE, fn, fctx));
+  ct->held.state++;
+  PetscFunctionReturn(0);
+}
+
+/* The held matrices A <- R^T A R (frames that follow; a new pairing leaves them to their holder,
+ * whose pattern follows N) */
+PetscErrorCode MMContactHeldTurnMatrices(MMContact ct, Mat R)
+{
+  MMContactHeld *h = &ct->held;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < h->nmat; ++i)
+    if (*h->mat[i]) PetscCall(MMRotateP1(R, *h->mat[i], NULL));
+  PetscFunctionReturn(0);
+}
+
+/* A new pairing restored from a checkpoint: nothing turns (the holders read their vectors from the
+ * checkpoint in its variables), but what was built on the old pairing is stale */
+PetscErrorCode MMContactHeldInvalidate(MMContact ct)
+{
+  PetscFunctionBeginUser;
+  ct->held.state++;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MMContactHeldDestroy(MMContactHeld *h)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(h->vec));
+  PetscCall(PetscFree(h->type));
+  PetscCall(PetscFree(h->mat));
+  h->nvec = h->nmat = 0;
+  PetscFunctionReturn(0);
+}
