@@ -40,9 +40,32 @@ static PetscErrorCode SimplexVertices(DM dm, PetscInt p, PetscInt k, PetscInt v[
   PetscFunctionReturn(0);
 }
 
-/* The dim+1 vertices of cell c (depth 1: an uninterpolated mesh, its cone), checked to be a simplex.
- * The order is the walk's, not the closure's: every user builds its element quantities for the
- * order returned. */
+/*@
+  MMMeshCellVertices - Gives the dim + 1 vertices of a simplex cell, refusing a cell that is not a
+  simplex
+
+  Not collective
+
+  Input Parameters:
++ dm    - the mesh
+. depth - the mesh's depth: 1 for a mesh without faces and edges, whose cell's cone is its vertices
+. dim   - the mesh's dimension
+- c     - the cell
+
+  Output Parameter:
+. v - its dim + 1 vertices, local point numbers
+
+  Note:
+  The dim+1 vertices of cell c (depth 1: an uninterpolated mesh, its cone), checked to be a simplex.
+  The order is the walk's, not the closure's: every user builds its element quantities for the order
+  returned.
+
+  On an interpolated mesh the vertices are found through cones only, without a transitive closure.
+
+  Level: developer
+
+.seealso: `MMCellsCreate()`, `MMFacetGeometry()`
+@*/
 PetscErrorCode MMMeshCellVertices(DM dm, PetscInt depth, PetscInt dim, PetscInt c, PetscInt v[])
 {
   PetscInt csize;
@@ -73,6 +96,26 @@ static PetscReal SimplexMeasure(PetscInt dim, PetscInt cdim, const PetscReal x[]
   return PetscAbsReal(MMDetInverse(3, e, NULL)) / 6.0;
 }
 
+/*@
+  MMCellsCreate - Tabulates the local cells once: each cell's vertices, volume and centroid
+
+  Not collective
+
+  Input Parameter:
+. dm - the distributed mesh
+
+  Output Parameter:
+. cells - the table, indexed by c - cStart
+
+  Note:
+  The volume is a triangle's area (in the plane or in space) or a tetrahedron's volume; the centroid
+  is the mean of the vertices. The set-up's loops over cells read them here rather than asking
+  DMPlex per cell (the head comment of this file).
+
+  Level: intermediate
+
+.seealso: `MMCellsDestroy()`, `MMMeshCellVertices()`
+@*/
 PetscErrorCode MMCellsCreate(DM dm, MMCells *cells)
 {
   PetscSection       cs;
@@ -113,6 +156,18 @@ PetscErrorCode MMCellsCreate(DM dm, MMCells *cells)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMCellsDestroy - Frees the table of the local cells
+
+  Not collective
+
+  Input Parameter:
+. cells - the table
+
+  Level: intermediate
+
+.seealso: `MMCellsCreate()`
+@*/
 PetscErrorCode MMCellsDestroy(MMCells *cells)
 {
   PetscFunctionBeginUser;
@@ -121,7 +176,25 @@ PetscErrorCode MMCellsDestroy(MMCells *cells)
   PetscFunctionReturn(0);
 }
 
-/* det of the dim x dim matrix a, and its inverse when wanted. */
+/*@
+  MMDetInverse - Computes the determinant of a 2 x 2 or 3 x 3 matrix, and its inverse when wanted
+
+  Not collective
+
+  Input Parameters:
++ dim - the matrix's size, 2 or 3
+- a   - the matrix
+
+  Output Parameter:
+. inv - its inverse, when inv is not NULL and the determinant is not 0
+
+  Note:
+  Returns the determinant (a PetscReal) rather than an error code.
+
+  Level: developer
+
+.seealso: `MMCellsCreate()`
+@*/
 PetscReal MMDetInverse(PetscInt dim, const PetscReal a[MM_MAX_DIM][MM_MAX_DIM], PetscReal inv[MM_MAX_DIM][MM_MAX_DIM])
 {
   PetscReal det;

@@ -307,10 +307,32 @@ static PetscErrorCode MarkCells(DM dm, PetscInt dim, const FacetFile *f, const P
   PetscFunctionReturn(0);
 }
 
-/* Reads the facet groups of the file and marks their cells on the serial mesh dm, read without faces
- * (rank 0 holds it). vtag: rank 0's node tag of each serial vertex, NULL when the file's nodes could
- * not be read. On every rank: the groups' names and tags in *groups, and *ok false when the file
- * cannot be read here (binary, or another format): the caller reads it with PETSc's reader then. */
+/*@
+  MMMeshFacetsRead - Reads the facet groups of the file and marks their cells on the serial mesh,
+  read without faces
+
+  Collective
+
+  Input Parameters:
++ comm - the communicator of the run
+. dm   - the serial mesh, on rank 0
+. file - the mesh file
+- vtag - rank 0's node tag of each serial vertex, NULL when the file's nodes could not be read
+
+  Output Parameters:
++ groups - on every rank, the groups' names and physical tags
+- ok     - false when the file cannot be read here (binary, or another format)
+
+  Note:
+  Reads the facet groups of the file and marks their cells on the serial mesh dm, read without faces
+  (rank 0 holds it). vtag: rank 0's node tag of each serial vertex, NULL when the file's nodes could
+  not be read. On every rank: the groups' names and tags in *groups, and *ok false when the file
+  cannot be read here (binary, or another format): the caller reads it with PETSc's reader then.
+
+  Level: developer
+
+.seealso: `MMMeshRead()`, `MMMeshFacetsLabelVertices()`, `MMMeshFacetsDestroy()`
+@*/
 PetscErrorCode MMMeshFacetsRead(MPI_Comm comm, DM dm, const char file[], const PetscInt vtag[], MMMeshFacets *groups, PetscBool *ok)
 {
   PetscMPIInt rank;
@@ -384,7 +406,26 @@ static PetscErrorCode FacetsAppend(MMFacetList *fl, PetscInt c, PetscInt k, Pets
   PetscFunctionReturn(0);
 }
 
-/* Every (point, value) pair of a label on this rank, in arrays the caller frees (PetscFree2). */
+/*@
+  MMMeshLabelPoints - Gives every (point, value) pair of a label on this rank
+
+  Not collective
+
+  Input Parameter:
+. label - the label
+
+  Output Parameters:
++ n    - the number of pairs
+. pts  - the points
+- vals - their values
+
+  Note:
+  Free pts and vals together with PetscFree2().
+
+  Level: developer
+
+.seealso: `MMMeshGetFacets()`
+@*/
 PetscErrorCode MMMeshLabelPoints(DMLabel label, PetscInt *n, PetscInt **pts, PetscInt **vals)
 {
   IS              vis;
@@ -438,9 +479,25 @@ static PetscErrorCode FacetsFromMarks(DM dm, DMLabel mark, MMFacetList *fl)
   PetscFunctionReturn(0);
 }
 
-/* On the distributed mesh read without faces: each group's label (its name, its physical tag) on the
- * vertices of its marked facets, completed over ranks (a vertex on the partition may sit on a rank
- * that holds none of its facets). The marks stay: MMMeshGetFacets reads them. */
+/*@
+  MMMeshFacetsLabelVertices - Labels each facet group on the vertices of its marked facets, on the
+  distributed mesh read without faces
+
+  Collective on dm
+
+  Input Parameters:
++ groups - the facet groups MMMeshFacetsRead() gave
+- dm     - the distributed mesh
+
+  Note:
+  On the distributed mesh read without faces: each group's label (its name, its physical tag) on the
+  vertices of its marked facets, completed over ranks (a vertex on the partition may sit on a rank
+  that holds none of its facets). The marks stay: MMMeshGetFacets reads them.
+
+  Level: developer
+
+.seealso: `MMMeshDistribute()`, `MMMeshFacetsRead()`, `MMMeshGetFacets()`
+@*/
 PetscErrorCode MMMeshFacetsLabelVertices(MMMeshFacets *groups, DM dm)
 {
   PetscInt dim;
@@ -502,10 +559,31 @@ static PetscErrorCode FacetsFromFaces(DM dm, DMLabel label, MMFacetList *fl)
   PetscFunctionReturn(0);
 }
 
-/* The facets of physical group name on this rank, each listed once over all ranks (a face between
- * two ranks' cells on one of them): cell, position of the cell's vertex off the facet (in
- * MMMeshCellVertices' order), and whether a second cell shares it. Empty for a group of cells or of
- * nodes. Free with MMFacetListDestroy. */
+/*@
+  MMMeshGetFacets - Lists the facets of a physical group on this rank, each once over all ranks
+
+  Logically collective on dm
+
+  Input Parameters:
++ dm   - the mesh
+- name - the physical group's name
+
+  Output Parameter:
+. fl - the list
+
+  Note:
+  The facets of physical group name on this rank, each listed once over all ranks (a face between
+  two ranks' cells on one of them): cell, position of the cell's vertex off the facet (in
+  MMMeshCellVertices' order), and whether a second cell shares it. Empty for a group of cells or of
+  nodes. Free with MMFacetListDestroy.
+
+  The facets come from the group's cell marks on a mesh read without faces, else from its label's
+  faces; an unknown name of an interpolated mesh is refused by MMMeshGetLabel().
+
+  Level: intermediate
+
+.seealso: `MMFacetListDestroy()`, `MMFacetGeometry()`, `MMMeshFacetsAddNodal()`
+@*/
 PetscErrorCode MMMeshGetFacets(DM dm, const char name[], MMFacetList *fl)
 {
   char      mname[MM_FACET_NAME + 64];
@@ -531,6 +609,18 @@ PetscErrorCode MMMeshGetFacets(DM dm, const char name[], MMFacetList *fl)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMFacetListDestroy - Frees a facet list
+
+  Not collective
+
+  Input Parameter:
+. fl - the list
+
+  Level: intermediate
+
+.seealso: `MMMeshGetFacets()`
+@*/
 PetscErrorCode MMFacetListDestroy(MMFacetList *fl)
 {
   PetscFunctionBeginUser;
@@ -539,9 +629,33 @@ PetscErrorCode MMFacetListDestroy(MMFacetList *fl)
   PetscFunctionReturn(0);
 }
 
-/* Facet i's dim vertices (local points; the cell's, in order, without the one off it), their
- * coordinates x (dim x dim, from the local coordinates xc of the coordinate section cs), and its
- * measure (length in 2D, area in 3D). x may be NULL. */
+/*@
+  MMFacetGeometry - Gives a facet's vertices, their coordinates and its measure
+
+  Not collective
+
+  Input Parameters:
++ dm - the mesh
+. fl - the facet list
+. i  - the facet's index in the list
+. cs - the coordinate section
+- xc - the local coordinates
+
+  Output Parameters:
++ v       - its dim vertices, local points: the cell's, in MMMeshCellVertices() order, without the
+            one off the facet
+. x       - their coordinates, dim x dim, or NULL
+- measure - its length (2D) or area (3D)
+
+  Note:
+  Facet i's dim vertices (local points; the cell's, in order, without the one off it), their
+  coordinates x (dim x dim, from the local coordinates xc of the coordinate section cs), and its
+  measure (length in 2D, area in 3D). x may be NULL.
+
+  Level: developer
+
+.seealso: `MMMeshGetFacets()`, `MMMeshFacetsAddNodal()`, `MMMeshCellVertices()`
+@*/
 PetscErrorCode MMFacetGeometry(DM dm, const MMFacetList *fl, PetscInt i, PetscSection cs, const PetscScalar xc[], PetscInt v[], PetscReal x[], PetscReal *measure)
 {
   const PetscInt dim = fl->dim;
@@ -566,6 +680,18 @@ PetscErrorCode MMFacetGeometry(DM dm, const MMFacetList *fl, PetscInt i, PetscSe
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMMeshFacetsDestroy - Frees the facet groups' names and tags
+
+  Not collective
+
+  Input Parameter:
+. groups - the facet groups
+
+  Level: developer
+
+.seealso: `MMMeshFacetsRead()`, `MMMeshDistribute()`
+@*/
 PetscErrorCode MMMeshFacetsDestroy(MMMeshFacets *groups)
 {
   PetscFunctionBeginUser;
@@ -574,10 +700,32 @@ PetscErrorCode MMMeshFacetsDestroy(MMMeshFacets *groups)
   PetscFunctionReturn(0);
 }
 
-/* a[off(v) + c] += value[c] |F| / dim for every vertex v of every facet F of the list (int_F phi_v
- * for P1 on a simplex facet), off(v) the vertex's offset in dmv's local section: contact areas (a
- * scalar DM, value 1) and traction loads (the displacement DM, the traction). Each facet is listed
- * on one rank: the caller sums a over ranks (DMLocalToGlobal with ADD). */
+/*@
+  MMMeshFacetsAddNodal - Adds value |F| / dim at every vertex of every facet F of a list: a P1
+  surface integral to the nodes
+
+  Not collective
+
+  Input Parameters:
++ dm    - the mesh
+. fl    - the facet list
+. dmv   - the DM whose local section gives each vertex's offset in a
+. ncomp - the number of components
+- value - the ncomp values
+
+  Output Parameter:
+. a - the local array added to
+
+  Note:
+  a[off(v) + c] += value[c] |F| / dim for every vertex v of every facet F of the list (int_F phi_v
+  for P1 on a simplex facet), off(v) the vertex's offset in dmv's local section: contact areas (a
+  scalar DM, value 1) and traction loads (the displacement DM, the traction). Each facet is listed
+  on one rank: the caller sums a over ranks (DMLocalToGlobal with ADD).
+
+  Level: developer
+
+.seealso: `MMMeshGetFacets()`, `MMFacetGeometry()`
+@*/
 PetscErrorCode MMMeshFacetsAddNodal(DM dm, const MMFacetList *fl, DM dmv, PetscInt ncomp, const PetscReal value[], PetscScalar a[])
 {
   PetscSection       cs;

@@ -14,14 +14,52 @@ static PetscBool IsInternalLabel(const char name[])
   return (PetscBool)!strncmp(name, MM_MESH_FACET_MARK, sizeof(MM_MESH_FACET_MARK) - 1); /* our facet groups' cell marks */
 }
 
-/* Whether a label of the mesh is a physical group the user named (the data check lists them). */
+/*@
+  MMMeshIsPhysicalGroup - Tells whether a label of the mesh is a physical group the user named
+
+  Not collective
+
+  Input Parameter:
+. name - the label's name
+
+  Note:
+  Returns the answer (a PetscBool) rather than an error code. False for the labels DMPlex makes
+  itself (depth, celltype, Cell Sets, Face Sets, Vertex Sets, Edge Sets, marker, boundary) and for
+  the facet groups' cell marks (MM_MESH_FACET_MARK).
+
+  Whether a label of the mesh is a physical group the user named (the data check lists them).
+
+  Level: developer
+
+.seealso: `MMMeshGetLabelFor()`, `MMMeshCellGroups()`
+@*/
 PetscBool MMMeshIsPhysicalGroup(const char name[])
 {
   return (PetscBool)!IsInternalLabel(name);
 }
 
-/* Gets the label of a physical group by name; an unknown name lists the ones the mesh has, and
- * names where it came from when the caller says (option: "-contact_boundary", or a default). */
+/*@
+  MMMeshGetLabelFor - Gets the label of a physical group by name, refusing an unknown name with the
+  list of the ones the mesh has
+
+  Logically collective on dm
+
+  Input Parameters:
++ dm     - the mesh
+. name   - the physical group's name
+- option - the option the name came from, for the message, or NULL
+
+  Output Parameter:
+. label - the group's label
+
+  Note:
+  Gets the label of a physical group by name; an unknown name lists the ones the mesh has, and names
+  where it came from when the caller says (option: "-contact_boundary", or a default).
+
+  Level: intermediate
+
+.seealso: `MMMeshGetLabel()`, `MMMeshIsPhysicalGroup()`
+@*/
 PetscErrorCode MMMeshGetLabelFor(DM dm, const char name[], const char option[], DMLabel *label)
 {
   PetscBool has;
@@ -47,6 +85,25 @@ PetscErrorCode MMMeshGetLabelFor(DM dm, const char name[], const char option[], 
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMMeshGetLabel - Gets the label of a physical group by name, refusing an unknown name
+
+  Logically collective on dm
+
+  Input Parameters:
++ dm   - the mesh
+- name - the physical group's name
+
+  Output Parameter:
+. label - the group's label
+
+  Note:
+  MMMeshGetLabelFor() without an option to name in the refusal.
+
+  Level: intermediate
+
+.seealso: `MMMeshGetLabelFor()`
+@*/
 PetscErrorCode MMMeshGetLabel(DM dm, const char name[], DMLabel *label)
 {
   PetscFunctionBeginUser;
@@ -54,7 +111,22 @@ PetscErrorCode MMMeshGetLabel(DM dm, const char name[], DMLabel *label)
   PetscFunctionReturn(0);
 }
 
-/* Whether label marks some cell on this rank (not collective). */
+/*@
+  MMMeshLabelHoldsCells - Tells whether a label marks some cell on this rank
+
+  Not collective
+
+  Input Parameters:
++ dm    - the mesh
+- label - the label
+
+  Output Parameter:
+. holds - whether a local cell has a value other than the label's default
+
+  Level: developer
+
+.seealso: `MMMeshCellGroups()`
+@*/
 PetscErrorCode MMMeshLabelHoldsCells(DM dm, DMLabel label, PetscBool *holds)
 {
   PetscInt cStart, cEnd, def;
@@ -71,8 +143,26 @@ PetscErrorCode MMMeshLabelHoldsCells(DM dm, DMLabel label, PetscBool *holds)
   PetscFunctionReturn(0);
 }
 
-/* The physical groups that hold cells (a Physical Surface in 2D, Volume in 3D), as " \"a\" \"b\"",
- * or " (none)": what a body can be made of. Collective: a group's cells may all be on other ranks. */
+/*@
+  MMMeshCellGroups - Lists the physical groups that hold cells, what a body can be made of
+
+  Collective on dm
+
+  Input Parameters:
++ dm  - the mesh
+- len - the size of list
+
+  Output Parameter:
+. list - the groups as " \"a\" \"b\"", or " (none)"
+
+  Note:
+  The physical groups that hold cells (a Physical Surface in 2D, Volume in 3D), as " \"a\" \"b\"",
+  or " (none)": what a body can be made of. Collective: a group's cells may all be on other ranks.
+
+  Level: developer
+
+.seealso: `MMMeshLabelHoldsCells()`, `MMMeshIsPhysicalGroup()`
+@*/
 PetscErrorCode MMMeshCellGroups(DM dm, char list[], size_t len)
 {
   PetscInt nl;
@@ -250,7 +340,22 @@ static PetscErrorCode CheckLinearGeometry(MPI_Comm comm, DM dm, const char file[
   PetscFunctionReturn(0);
 }
 
-/* The vertex mean of a cell, on the rank that holds it. */
+/*@
+  MMMeshCellCentroid - Computes the mean of a cell's vertices, on the rank that holds it
+
+  Not collective
+
+  Input Parameters:
++ dm - the mesh
+- c  - the cell, a local point
+
+  Output Parameter:
+. centroid - the mean, one entry per coordinate
+
+  Level: developer
+
+.seealso: `MMCellsCreate()`
+@*/
 PetscErrorCode MMMeshCellCentroid(DM dm, PetscInt c, PetscReal centroid[])
 {
   DM           cdm;
@@ -424,8 +529,34 @@ static PetscErrorCode OriginalVertexNumbers(MPI_Comm comm, DM dist, PetscSF migr
   PetscFunctionReturn(0);
 }
 
-/* The serial mesh of file, checked (cell types, linear geometry, orientation), with its facet
- * groups read (facets, for MMMeshDistribute) and each vertex's position among the file's nodes. */
+/*@
+  MMMeshRead - Reads the serial mesh of a gmsh file and checks it (cell types, linear geometry,
+  nodes, orientation), its facet and point groups read
+
+  Collective
+
+  Input Parameters:
++ comm - the communicator of the run
+- file - the mesh file (-mesh)
+
+  Output Parameters:
++ dm          - the serial mesh, on rank 0, named "mesh"
+. facets      - its facet groups, for MMMeshDistribute()
+- vertex_file - each serial vertex's position among the file's nodes (MMMeshFileNodes())
+
+  Note:
+  The serial mesh of file, checked (cell types, linear geometry, orientation), with its facet groups
+  read (facets, for MMMeshDistribute) and each vertex's position among the file's nodes.
+
+  The physical names become label names (-dm_plex_gmsh_use_regions), so every option can refer to
+  groups by name. The mesh is read without faces and edges when this code can read the file's facet
+  groups (MMMeshFacetsRead()); otherwise by PETSc's reader, interpolated, which labels the facets
+  itself. An empty file name is refused.
+
+  Level: intermediate
+
+.seealso: `MMMeshDistribute()`, `MMMeshCheckFile()`, `MMMeshFacetsRead()`, `MMMeshPointGroupsRead()`
+@*/
 PetscErrorCode MMMeshRead(MPI_Comm comm, const char file[], DM *dm, MMMeshFacets *facets, PetscInt **vertex_file)
 {
   PetscInt  *vtag = NULL;
@@ -462,9 +593,34 @@ PetscErrorCode MMMeshRead(MPI_Comm comm, const char file[], DM *dm, MMMeshFacets
   PetscFunctionReturn(0);
 }
 
-/* The serial mesh read by MMMeshRead rotated by rotation (MM_MAX_DIM angles, about center) and
- * distributed by METIS, its facet groups labelled on the vertices; each vertex's number in the
- * serial mesh into vertex_orig. Frees facets. */
+/*@
+  MMMeshDistribute - Rotates the serial mesh and distributes it by METIS, its facet groups labelled
+  on the vertices
+
+  Collective on dm
+
+  Input Parameters:
++ rotation - MM_MAX_DIM angles: an angle in 2D, a rotation vector in 3D; all zero for none
+- center   - the point rotated about
+
+  Output Parameters:
++ facets      - the facet groups MMMeshRead() gave, freed
+. dm          - on input the serial mesh, on output the distributed one
+- vertex_orig - each local vertex's number in the serial mesh, a key that does not depend on the
+                number of ranks
+
+  Note:
+  The serial mesh read by MMMeshRead rotated by rotation (MM_MAX_DIM angles, about center) and
+  distributed by METIS, its facet groups labelled on the vertices; each vertex's number in the
+  serial mesh into vertex_orig. Frees facets.
+
+  DMSetFromOptions() is then called with PETSc's own distribution off, so that the mesh is not
+  distributed a second time, and -dm_view shows it.
+
+  Level: intermediate
+
+.seealso: `MMMeshRead()`, `MMMeshFacetsLabelVertices()`
+@*/
 PetscErrorCode MMMeshDistribute(const PetscReal rotation[], const PetscReal center[], MMMeshFacets *facets, DM *dm, PetscInt **vertex_orig)
 {
   MPI_Comm  comm   = PetscObjectComm((PetscObject)*dm);
@@ -503,8 +659,26 @@ PetscErrorCode MMMeshDistribute(const PetscReal rotation[], const PetscReal cent
   PetscFunctionReturn(0);
 }
 
-/* Global numbers of cells and vertices of the distributed mesh: a point shared by several ranks is
- * a leaf of the point SF on all of them but its owner, so the leaves are left out. */
+/*@
+  MMMeshGetSizes - Gives the global numbers of cells and vertices of the distributed mesh
+
+  Collective on dm
+
+  Input Parameter:
+. dm - the mesh
+
+  Output Parameters:
++ ncells    - the number of cells
+- nvertices - the number of vertices
+
+  Note:
+  Global numbers of cells and vertices of the distributed mesh: a point shared by several ranks is a
+  leaf of the point SF on all of them but its owner, so the leaves are left out.
+
+  Level: intermediate
+
+.seealso: `MMCellsCreate()`
+@*/
 PetscErrorCode MMMeshGetSizes(DM dm, PetscInt *ncells, PetscInt *nvertices)
 {
   PetscSF         sf;

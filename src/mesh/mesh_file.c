@@ -17,7 +17,27 @@
 #include "mesh.h"
 #include "msh_binary.h"
 
-/* Before the reader: the path is a readable file without a byte order mark. */
+/*@
+  MMMeshCheckFile - Refuses a mesh path that is a directory, a missing or unreadable file, or a file
+  that starts with a UTF-8 byte order mark
+
+  Collective
+
+  Input Parameters:
++ comm - the communicator of the run (rank 0 looks at the file)
+- file - the mesh file (-mesh)
+
+  Note:
+  Before the reader: the path is a readable file without a byte order mark.
+
+  Runs before PETSc's reader, which would call a directory a missing file and stop on a byte order
+  mark with a message about sections. A missing file given by a relative path is named with the
+  current directory it was looked for in.
+
+  Level: developer
+
+.seealso: `MMMeshRead()`, `MMMeshFileNodes()`
+@*/
 PetscErrorCode MMMeshCheckFile(MPI_Comm comm, const char file[])
 {
   struct stat   st;
@@ -184,10 +204,38 @@ static PetscErrorCode MatchVertices(DM dm, PetscInt dim, PetscInt nfile, const P
   PetscFunctionReturn(0);
 }
 
-/* On the serial mesh (rank 0 holds it), before any change of its coordinates: refuses non-finite
- * coordinates and unused gmsh 2 nodes, and gives every rank the file position of each serial
- * vertex (*pos, nv entries; the identity when the file cannot be compared), and rank 0 its node tag
- * in the file (*vtag; NULL on the other ranks and when the file cannot be compared). */
+/*@
+  MMMeshFileNodes - Checks the serial mesh's nodes against the file, and finds each serial vertex's
+  position among the file's nodes
+
+  Collective
+
+  Input Parameters:
++ comm - the communicator of the run
+. dm   - the serial mesh, on rank 0, its coordinates unchanged
+- file - the mesh file it was read from
+
+  Output Parameters:
++ pos  - on every rank, the file position of each serial vertex (the identity when the file cannot
+         be compared); free with PetscFree()
+- vtag - on rank 0, each serial vertex's node tag in the file; NULL on the other ranks and when the
+         file cannot be compared
+
+  Note:
+  On the serial mesh (rank 0 holds it), before any change of its coordinates: refuses non-finite
+  coordinates and unused gmsh 2 nodes, and gives every rank the file position of each serial vertex
+  (*pos, nv entries; the identity when the file cannot be compared), and rank 0 its node tag in the
+  file (*vtag; NULL on the other ranks and when the file cannot be compared).
+
+  The reader of gmsh 4 files keeps only the nodes that cells use, in file order, so with an unused
+  node the serial mesh's vertex k is not the file's node k: the positions are found by walking both
+  lists (same coordinates, same order). A refused node is named by its tag in the file when known,
+  else by its position from 1.
+
+  Level: developer
+
+.seealso: `MMMeshRead()`, `MMMeshCheckFile()`
+@*/
 PetscErrorCode MMMeshFileNodes(MPI_Comm comm, DM dm, const char file[], PetscInt **pos, PetscInt **vtag)
 {
   PetscMPIInt rank;

@@ -214,9 +214,27 @@ static PetscErrorCode ReadBinaryPointElements(FILE *in, DM dm, double version, c
   PetscFunctionReturn(0);
 }
 
-/* On the serial mesh (rank 0 holds it; vtag its vertices' node tags in the file, NULL when they
- * could not be read): a label per named Physical Point group on its vertices, value its physical
- * tag. A file this cannot read has no point labels (the options naming them are refused later). */
+/*@
+  MMMeshPointGroupsRead - Labels each named Physical Point group of the file on the serial mesh's
+  vertices, value its physical tag
+
+  Not collective (rank 0 reads the file and labels its mesh; the other ranks return at once)
+
+  Input Parameters:
++ comm - the communicator of the run
+. dm   - the serial mesh, on rank 0
+. file - the mesh file
+- vtag - rank 0's node tag of each serial vertex, NULL when they could not be read
+
+  Note:
+  On the serial mesh (rank 0 holds it; vtag its vertices' node tags in the file, NULL when they
+  could not be read): a label per named Physical Point group on its vertices, value its physical
+  tag. A file this cannot read has no point labels (the options naming them are refused later).
+
+  Level: developer
+
+.seealso: `MMMeshRead()`, `MMMeshDistribute()`
+@*/
 PetscErrorCode MMMeshPointGroupsRead(MPI_Comm comm, DM dm, const char file[], const PetscInt vtag[])
 {
   PetscMPIInt rank;

@@ -182,8 +182,26 @@ static void MPIIOFailed(MPI_File *fh, int *code, ...)
   PrintAndExit(MPI_COMM_SELF, mess, MM_EXIT_IO);
 }
 
-/* The writer names the file it is about to create (MPI_FILE_NULL) or has open (its handle); NULL
- * forgets the handle once the file is closed. Not collective. */
+/*@
+  MMErrorsNameMPIIOFile - Names the MPI-IO file a writer is about to create or has open, so that a
+  failed write's message names it
+
+  Not collective
+
+  Input Parameters:
++ fh   - the file's handle, or MPI_FILE_NULL for a file about to be created
+- name - the file's name, or NULL to forget the handle once the file is closed
+
+  Note:
+  The writer names the file it is about to create (MPI_FILE_NULL) or has open (its handle); NULL
+  forgets the handle once the file is closed.
+
+  At most MM_MPIIO_FILES files may be named at a time; one more is an error (PETSC_ERR_PLIB).
+
+  Level: developer
+
+.seealso: `MMErrorsSetUp()`
+@*/
 PetscErrorCode MMErrorsNameMPIIOFile(MPI_File fh, const char name[])
 {
   PetscFunctionBeginUser;
@@ -212,7 +230,21 @@ static PetscErrorCode MMErrorHandler(MPI_Comm comm, int line, const char *fun, c
   return n;
 }
 
-/* A clean-up that must run also when the job ends by MPI_Abort (atexit handlers do not). */
+/*@
+  MMErrorsAtAbort - Sets the clean-up that runs also when the job ends by MPI_Abort()
+
+  Not collective
+
+  Input Parameter:
+. fn - the clean-up, replacing any set before
+
+  Note:
+  A clean-up that must run also when the job ends by MPI_Abort (atexit handlers do not).
+
+  Level: developer
+
+.seealso: `MMErrorsAtStop()`, `MMErrorsSetUp()`
+@*/
 PetscErrorCode MMErrorsAtAbort(void (*fn)(void))
 {
   PetscFunctionBeginUser;
@@ -220,8 +252,22 @@ PetscErrorCode MMErrorsAtAbort(void (*fn)(void))
   PetscFunctionReturn(0);
 }
 
-/* What every rank runs when an error a user can act on stops the run, before the job ends (no MPI,
- * no PETSc error handling in it: it runs inside the handler, on the ranks that raised the error). */
+/*@
+  MMErrorsAtStop - Sets what every rank runs when an error a user can act on stops the run
+
+  Not collective
+
+  Input Parameter:
+. fn - the function, replacing any set before
+
+  Note:
+  What every rank runs when an error a user can act on stops the run, before the job ends (no MPI,
+  no PETSc error handling in it: it runs inside the handler, on the ranks that raised the error).
+
+  Level: developer
+
+.seealso: `MMErrorsAtAbort()`, `MMErrorsSetUp()`
+@*/
 PetscErrorCode MMErrorsAtStop(void (*fn)(void))
 {
   PetscFunctionBeginUser;
@@ -229,10 +275,26 @@ PetscErrorCode MMErrorsAtStop(void (*fn)(void))
   PetscFunctionReturn(0);
 }
 
-/* Right after PetscInitialize: -debug is read here, before any option can fail. A write beyond the
- * file-size limit (ulimit -f) raises SIGXFSZ, which kills the process without a word and can leave a
- * row of history.csv cut mid-number: ignored, the write fails with EFBIG instead and the run stops
- * naming the file (exit status MM_EXIT_IO). */
+/*@
+  MMErrorsSetUp - Installs the error handler that ends a run with the exit statuses MM_EXIT_*, and
+  the MPI-IO file error handler
+
+  Not collective
+
+  Note:
+  Right after PetscInitialize: -debug is read here, before any option can fail. A write beyond the
+  file-size limit (ulimit -f) raises SIGXFSZ, which kills the process without a word and can leave a
+  row of history.csv cut mid-number: ignored, the write fails with EFBIG instead and the run stops
+  naming the file (exit status MM_EXIT_IO).
+
+  Also duplicates MPI_COMM_WORLD for the handler's own use, and sets an MPI-IO error handler on
+  MPI_FILE_NULL, so that every file opened from then on reports a failed read or write (named by
+  MMErrorsNameMPIIOFile()) and exits with MM_EXIT_IO.
+
+  Level: developer
+
+.seealso: `MMErrorsAtAbort()`, `MMErrorsAtStop()`, `MMErrorsNameMPIIOFile()`
+@*/
 PetscErrorCode MMErrorsSetUp(void)
 {
   PetscFunctionBeginUser;

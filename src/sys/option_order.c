@@ -67,8 +67,23 @@ static void ScanFile(OptionOrder *o, const char file[], int depth)
   (void)fclose(f);
 }
 
-/* *order: 1 if option a was given after option b, -1 if before, 0 if either was not given on the
- * command line, in PETSC_OPTIONS or in an options file. */
+/*@
+  MMOptionsOrder - Tells which of two options was given later: in PETSC_OPTIONS, on the command
+  line, or in an options file in its place
+
+  Not collective
+
+  Input Parameters:
++ a - the first option's name
+- b - the second option's name
+
+  Output Parameter:
+. order - 1 if a was given after b, -1 if before, 0 if either was not given
+
+  Level: developer
+
+.seealso: `MMOptionsString()`
+@*/
 PetscErrorCode MMOptionsOrder(const char a[], const char b[], PetscInt *order)
 {
   OptionOrder o = {a, b, -1, -1, 0};

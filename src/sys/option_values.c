@@ -39,6 +39,30 @@ static PetscBool FitsInt(const char text[], size_t len)
   return (PetscBool)(errno != ERANGE && n <= PETSC_MAX_INT && n >= PETSC_MIN_INT);
 }
 
+/*@
+  MMOptionsCheckValue - Refuses an option given without a value, or whose value is not numbers of
+  the kind, before PETSc parses it
+
+  Collective on comm
+
+  Input Parameters:
++ comm - the communicator a refusal is raised on
+. name - the option's full name
+- kind - MM_VALUE_REAL, MM_VALUE_INT or MM_VALUE_TEXT
+
+  Note:
+  Nothing is checked when the option is not given. A value of MM_VALUE_INT or MM_VALUE_REAL may be a
+  comma-separated list; each entry must be one number, all of it (no unit: 1e3, not 1e3Pa), and an
+  integer must fit a PetscInt. MM_VALUE_TEXT only needs a value: an empty text is left to the
+  option's own check.
+
+  PETSc's own message for "-E 1e3Pa" names the string, not the option, and an option given without a
+  value silently keeps its default, even over the options file's value.
+
+  Level: developer
+
+.seealso: `MMOptionsCheckFinite()`, `MMOptionsReal()`, `MMOptionsInt()`
+@*/
 PetscErrorCode MMOptionsCheckValue(MPI_Comm comm, const char name[], MMValueKind kind)
 {
   const char *value;
@@ -61,7 +85,24 @@ PetscErrorCode MMOptionsCheckValue(MPI_Comm comm, const char name[], MMValueKind
   PetscFunctionReturn(0);
 }
 
-/* PETSc parses "nan" and "inf" as numbers: every real option is checked here, by name. */
+/*@
+  MMOptionsCheckFinite - Refuses a real option's values unless every one is finite
+
+  Collective on comm
+
+  Input Parameters:
++ comm - the communicator a refusal is raised on
+. name - the option's name, for the message
+. v    - the values
+- n    - how many
+
+  Note:
+  PETSc parses "nan" and "inf" as numbers: every real option is checked here, by name.
+
+  Level: developer
+
+.seealso: `MMOptionsCheckValue()`, `MMOptionsReal()`, `MMOptionsRealArray()`
+@*/
 PetscErrorCode MMOptionsCheckFinite(MPI_Comm comm, const char name[], const PetscReal v[], PetscInt n)
 {
   PetscFunctionBeginUser;
@@ -78,7 +119,24 @@ static const char *FullName(PetscOptionItems *PetscOptionsObject, const char nam
   return full;
 }
 
-/* A real option, refused unless finite. */
+/*@
+  MMOptionsReal - Reads a real option, its value checked first and refused unless finite
+
+  Collective on comm
+
+  Input Parameters:
++ PetscOptionsObject - the PetscOptionsBegin() block's options object (its prefix)
+. comm               - the communicator a refusal is raised on
+. name               - the option's name, without the block's prefix
+- help               - its help text
+
+  Output Parameter:
+. v - the value; on input, the default
+
+  Level: intermediate
+
+.seealso: `MMOptionsRealArray()`, `MMOptionsCheckValue()`, `MMOptionsCheckFinite()`
+@*/
 PetscErrorCode MMOptionsReal(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], PetscReal *v)
 {
   char        fullbuf[PETSC_MAX_OPTION_NAME];
@@ -90,8 +148,31 @@ PetscErrorCode MMOptionsReal(PetscOptionItems *PetscOptionsObject, MPI_Comm comm
   PetscFunctionReturn(0);
 }
 
-/* A real array option of at most nmax finite entries; *count is how many were given, -1 if none.
- * One slot more is read, so that too many entries are refused rather than cut off. */
+/*@
+  MMOptionsRealArray - Reads a real array option of at most nmax finite entries
+
+  Collective on comm
+
+  Input Parameters:
++ PetscOptionsObject - the PetscOptionsBegin() block's options object (its prefix)
+. comm               - the communicator a refusal is raised on
+. name               - the option's name, without the block's prefix
+. help               - its help text
+- nmax               - the most entries allowed, at most MM_MAX_DIM * MM_MAX_DIM
+
+  Output Parameters:
++ v     - the nmax values: on input the defaults; when the option is given, its entries and zeros
+          after them
+- count - how many entries were given, -1 if the option was not
+
+  Note:
+  A real array option of at most nmax finite entries; *count is how many were given, -1 if none. One
+  slot more is read, so that too many entries are refused rather than cut off.
+
+  Level: intermediate
+
+.seealso: `MMOptionsReal()`, `MMOptionsCheckValue()`, `MMOptionsCheckFinite()`
+@*/
 PetscErrorCode MMOptionsRealArray(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], PetscInt nmax, PetscReal v[], PetscInt *count)
 {
   char        fullbuf[PETSC_MAX_OPTION_NAME];
@@ -112,7 +193,25 @@ PetscErrorCode MMOptionsRealArray(PetscOptionItems *PetscOptionsObject, MPI_Comm
   PetscFunctionReturn(0);
 }
 
-/* An integer option. */
+/*@
+  MMOptionsInt - Reads an integer option, its value checked first (a whole number that fits a
+  PetscInt)
+
+  Collective on comm
+
+  Input Parameters:
++ PetscOptionsObject - the PetscOptionsBegin() block's options object (its prefix)
+. comm               - the communicator a refusal is raised on
+. name               - the option's name, without the block's prefix
+- help               - its help text
+
+  Output Parameter:
+. v - the value; on input, the default
+
+  Level: intermediate
+
+.seealso: `MMOptionsReal()`, `MMOptionsCheckValue()`
+@*/
 PetscErrorCode MMOptionsInt(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], PetscInt *v)
 {
   char        fullbuf[PETSC_MAX_OPTION_NAME];
@@ -123,8 +222,29 @@ PetscErrorCode MMOptionsInt(PetscOptionItems *PetscOptionsObject, MPI_Comm comm,
   PetscFunctionReturn(0);
 }
 
-/* A switch: given alone it is on; given a value, that value must be one PETSc reads as a logical
- * (its own error does not name the option). */
+/*@
+  MMOptionsBool - Reads a switch: on when given alone, else its value must be one PETSc reads as a
+  logical
+
+  Collective on comm
+
+  Input Parameters:
++ PetscOptionsObject - the PetscOptionsBegin() block's options object (its prefix)
+. comm               - the communicator a refusal is raised on
+. name               - the option's name, without the block's prefix
+- help               - its help text
+
+  Output Parameter:
+. v - the value; on input, the default
+
+  Note:
+  The values taken are 1, 0, true, false, yes, no, on and off, in any case; PETSc's own error for
+  another does not name the option.
+
+  Level: intermediate
+
+.seealso: `MMOptionsEnum()`, `MMOptionsString()`
+@*/
 PetscErrorCode MMOptionsBool(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], PetscBool *v)
 {
   char        fullbuf[PETSC_MAX_OPTION_NAME];
@@ -141,7 +261,27 @@ PetscErrorCode MMOptionsBool(PetscOptionItems *PetscOptionsObject, MPI_Comm comm
   PetscFunctionReturn(0);
 }
 
-/* A text option: a name, a list of names, a path. */
+/*@
+  MMOptionsString - Reads a text option (a name, a list of names, a path), refused when given
+  without a value
+
+  Collective on comm
+
+  Input Parameters:
++ PetscOptionsObject - the PetscOptionsBegin() block's options object (its prefix)
+. comm               - the communicator a refusal is raised on
+. name               - the option's name, without the block's prefix
+. help               - its help text
+- len                - the size of v
+
+  Output Parameters:
++ v   - the value; on input, the default
+- set - whether the option was given
+
+  Level: intermediate
+
+.seealso: `MMOptionsSplitNames()`, `MMOptionsEnum()`
+@*/
 PetscErrorCode MMOptionsString(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], char v[], size_t len, PetscBool *set)
 {
   char        fullbuf[PETSC_MAX_OPTION_NAME];
@@ -167,9 +307,33 @@ static void EnumChoices(const char *const list[], char buf[], size_t len)
   }
 }
 
-/* An enumerated option. The value is checked here, by option name, because PETSc's own refusal
- * (PETSC_ERR_USER) is not an input error to the exit statuses: a trace and status 83, where every
- * other refused option gives one line and 64 (docs/developer.md, "Exit statuses"). */
+/*@
+  MMOptionsEnum - Reads an enumerated option, its value refused by option name unless it is one of
+  the list's
+
+  Collective on comm
+
+  Input Parameters:
++ PetscOptionsObject - the PetscOptionsBegin() block's options object (its prefix)
+. comm               - the communicator a refusal is raised on
+. name               - the option's name, without the block's prefix
+. help               - its help text
+- list               - the PETSc enum list: the names, the type name, the prefix and NULL
+
+  Output Parameter:
+. v - the value; on input, the default
+
+  Note:
+  The value is matched without regard to case; the refusal lists the valid values.
+
+  An enumerated option. The value is checked here, by option name, because PETSc's own refusal
+  (PETSC_ERR_USER) is not an input error to the exit statuses: a trace and status 83, where every
+  other refused option gives one line and 64 (docs/developer.md, "Exit statuses").
+
+  Level: intermediate
+
+.seealso: `MMOptionsBool()`, `MMOptionsString()`
+@*/
 PetscErrorCode MMOptionsEnum(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char name[], const char help[], const char *const list[], PetscEnum *v)
 {
   char        fullbuf[PETSC_MAX_OPTION_NAME];
@@ -192,8 +356,31 @@ PetscErrorCode MMOptionsEnum(PetscOptionItems *PetscOptionsObject, MPI_Comm comm
   PetscFunctionReturn(0);
 }
 
-/* Splits a comma-separated list of physical names into a freshly allocated array. PetscStrToArray
- * would skip an empty name ("floor,,wall"), a typo that would drop an obstacle or a boundary. */
+/*@
+  MMOptionsSplitNames - Splits a comma-separated list of names into a freshly allocated array,
+  refusing an empty name, a blank or a name given twice
+
+  Collective on comm
+
+  Input Parameters:
++ comm   - the communicator a refusal is raised on
+. option - the option's name, for the messages
+- list   - the list
+
+  Output Parameters:
++ n     - how many names, 0 for an empty list
+- names - the names, NULL for an empty list; free with PetscStrToArrayDestroy()
+
+  Note:
+  Splits a comma-separated list of physical names into a freshly allocated array. PetscStrToArray
+  would skip an empty name ("floor,,wall"), a typo that would drop an obstacle or a boundary.
+
+  A name given twice would make two objects of one name (two force columns, two bodies).
+
+  Level: intermediate
+
+.seealso: `MMOptionsString()`
+@*/
 PetscErrorCode MMOptionsSplitNames(MPI_Comm comm, const char option[], const char list[], PetscInt *n, char ***names)
 {
   int    argc;

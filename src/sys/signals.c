@@ -38,7 +38,25 @@ static PetscErrorCode StopOnSignal(TS ts)
   PetscFunctionReturn(0);
 }
 
-/* After PETSc's initialization, whose own handlers would abort the run on these signals. */
+/*@
+  MMSignalsSetUp - Installs the SIGTERM and SIGINT handler and the TS post-step that stops the run
+  after the step in which one arrived
+
+  Logically collective on ts
+
+  Input Parameter:
+. ts - the time stepper
+
+  Note:
+  After PETSc's initialization, whose own handlers would abort the run on these signals.
+
+  The post-step reduces the recorded signal over the TS's communicator, so that every rank stops
+  after the same step (TS_CONVERGED_USER).
+
+  Level: intermediate
+
+.seealso: `MMSignalsGetStop()`, `MMSignalsReport()`
+@*/
 PetscErrorCode MMSignalsSetUp(TS ts)
 {
   struct sigaction sa;
@@ -53,7 +71,18 @@ PetscErrorCode MMSignalsSetUp(TS ts)
   PetscFunctionReturn(0);
 }
 
-/* The signal that stopped the run after a step (the same on every rank), 0 if none did. */
+/*@
+  MMSignalsGetStop - Gives the signal that stopped the run after a step
+
+  Not collective
+
+  Output Parameter:
+. signal_number - the signal, the same on every rank; 0 if none did
+
+  Level: intermediate
+
+.seealso: `MMSignalsSetUp()`, `MMSignalsReport()`
+@*/
 PetscErrorCode MMSignalsGetStop(int *signal_number)
 {
   PetscFunctionBeginUser;
@@ -61,7 +90,25 @@ PetscErrorCode MMSignalsGetStop(int *signal_number)
   PetscFunctionReturn(0);
 }
 
-/* The run stopped on a signal after step at time: where its state is and the command that continues it. */
+/*@
+  MMSignalsReport - Prints, when a signal stopped the run, where its state is and the command that
+  continues it
+
+  Collective
+
+  Input Parameters:
++ comm       - the communicator printed on (rank 0 prints)
+. step       - the last step taken
+. time       - its time
+- output_dir - the output directory, which holds checkpoint.h5
+
+  Note:
+  Prints nothing when no signal stopped the run.
+
+  Level: intermediate
+
+.seealso: `MMSignalsGetStop()`, `MMSignalsSetUp()`
+@*/
 PetscErrorCode MMSignalsReport(MPI_Comm comm, PetscInt step, PetscReal time, const char output_dir[])
 {
   PetscFunctionBeginUser;
@@ -70,11 +117,23 @@ PetscErrorCode MMSignalsReport(MPI_Comm comm, PetscInt step, PetscReal time, con
   PetscFunctionReturn(0);
 }
 
-/* A rank whose launcher dies (SIGKILL to mpiexec, a node daemon lost) would go on for a second or
- * two, still writing its output, before Open MPI notices. Under mpiexec the kernel kills it with its
- * parent instead (PR_SET_PDEATHSIG), so that nothing is written after the job is gone. Only under a
- * launcher: a run started from a shell must outlive that shell (nohup). Called before MPI starts,
- * while the environment is the launcher's. */
+/*@
+  MMSignalsDieWithLauncher - Under an MPI launcher, has the kernel kill the process when its
+  launcher dies
+
+  Not collective
+
+  Note:
+  A rank whose launcher dies (SIGKILL to mpiexec, a node daemon lost) would go on for a second or
+  two, still writing its output, before Open MPI notices. Under mpiexec the kernel kills it with its
+  parent instead (PR_SET_PDEATHSIG), so that nothing is written after the job is gone. Only under a
+  launcher: a run started from a shell must outlive that shell (nohup). Called before MPI starts,
+  while the environment is the launcher's.
+
+  Level: developer
+
+.seealso: `MMSignalsSetUp()`, `MMMPIEnvironmentSet()`
+@*/
 PetscErrorCode MMSignalsDieWithLauncher(void)
 {
   const pid_t parent = getppid();

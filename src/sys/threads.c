@@ -10,6 +10,24 @@
 #include <stdlib.h>
 #include "sys.h"
 
+/*@
+  MMThreadsSetDefault - Gives OpenMP and a threaded OpenBLAS one thread per rank, unless
+  OMP_NUM_THREADS is set
+
+  Not collective
+
+  Note:
+  Called before MPI starts. Sets the counts through omp_set_num_threads() and
+  openblas_set_num_threads(), looked up with dlsym() so that a build without them links; OpenBLAS
+  keeps OPENBLAS_NUM_THREADS when that is set.
+
+  Why one thread per rank: the comment at the head of this file (docs/scaling.md, "The figures
+  behind the code's choices").
+
+  Level: developer
+
+.seealso: `MMMPIEnvironmentSet()`
+@*/
 PetscErrorCode MMThreadsSetDefault(void)
 {
   void (*omp_set)(int)      = NULL;

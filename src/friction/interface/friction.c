@@ -11,6 +11,19 @@
 PetscFunctionList MMFrictionList = NULL;
 static PetscBool  registered     = PETSC_FALSE;
 
+/*@
+  MMFrictionRegister - Adds a friction solver type to the registry, chosen by -friction_type
+
+  Not collective
+
+  Input Parameters:
++ name   - the type's name
+- create - the function that fills the solver's ops table for the type
+
+  Level: developer
+
+.seealso: `MMFrictionRegisterAll()`, `MMFrictionSetUp()`
+@*/
 PetscErrorCode MMFrictionRegister(const char name[], PetscErrorCode (*create)(MMFriction))
 {
   PetscFunctionBeginUser;
@@ -18,6 +31,18 @@ PetscErrorCode MMFrictionRegister(const char name[], PetscErrorCode (*create)(MM
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMFrictionRegisterAll - Registers the built-in friction solver types, newton and fixedpoint, once
+
+  Not collective
+
+  Note:
+  Called by MMFrictionCreate(); a later call does nothing.
+
+  Level: developer
+
+.seealso: `MMFrictionRegister()`, `MMFrictionCreate()`
+@*/
 PetscErrorCode MMFrictionRegisterAll(void)
 {
   PetscFunctionBeginUser;
@@ -151,7 +176,19 @@ static PetscErrorCode FrictionShellSolve(SNES snes, Vec unused)
 static PetscBool MMFrictionPackageInitialized = PETSC_FALSE;
 PetscLogEvent    MMFRICTION_Loop;
 
-/* The friction component's class and event (-log_view), registered once, by MMFrictionCreate. */
+/*@
+  MMFrictionInitializePackage - Registers the friction component's class and its event
+  MMFrictionLoop for -log_view, once
+
+  Not collective
+
+  Note:
+  The friction component's class and event (-log_view), registered once, by MMFrictionCreate.
+
+  Level: developer
+
+.seealso: `MMFrictionCreate()`
+@*/
 PetscErrorCode MMFrictionInitializePackage(void)
 {
   PetscClassId id;
@@ -164,6 +201,25 @@ PetscErrorCode MMFrictionInitializePackage(void)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMFrictionCreate - Creates a friction solver, its type not yet chosen
+
+  Collective
+
+  Input Parameter:
+. comm - the communicator
+
+  Output Parameter:
+. fr - the friction solver
+
+  Note:
+  Initializes the package and registers the built-in types first. The type is chosen by
+  MMFrictionSetUp().
+
+  Level: intermediate
+
+.seealso: `MMFrictionSetFromOptions()`, `MMFrictionSetUp()`, `MMFrictionDestroy()`
+@*/
 PetscErrorCode MMFrictionCreate(MPI_Comm comm, MMFriction *fr)
 {
   PetscFunctionBeginUser;
@@ -174,7 +230,23 @@ PetscErrorCode MMFrictionCreate(MPI_Comm comm, MMFriction *fr)
   PetscFunctionReturn(0);
 }
 
-/* The -friction_ options, with their checks. */
+/*@
+  MMFrictionSetFromOptions - Reads the -friction_ options, with their checks
+
+  Collective
+
+  Input Parameter:
+. fr - the friction solver
+
+  Note:
+  The options: -friction_coulomb_tol (in (0, 1), default 1e-8), -friction_type, -friction_dump,
+  -friction_monitor, and -friction_view, which app acts on once the solver is set up. The shell
+  SNES's own -friction_snes_* options are read by MMFrictionSetUp().
+
+  Level: intermediate
+
+.seealso: `MMFrictionCreate()`, `MMFrictionSetUp()`, `MMFrictionView()`
+@*/
 PetscErrorCode MMFrictionSetFromOptions(MMFriction fr)
 {
   MPI_Comm comm = fr->comm;
@@ -198,7 +270,22 @@ PetscErrorCode MMFrictionSetFromOptions(MMFriction fr)
   PetscFunctionReturn(0);
 }
 
-/* The Coulomb audit's tolerance (-friction_coulomb_tol), which the contact solves also aim below */
+/*@
+  MMFrictionGetCoulombTolerance - Gives the Coulomb audit's tolerance (-friction_coulomb_tol), which
+  the contact solves also aim below
+
+  Not collective
+
+  Input Parameter:
+. fr - the friction solver
+
+  Output Parameter:
+. tol - the tolerance
+
+  Level: intermediate
+
+.seealso: `MMFrictionSetFromOptions()`
+@*/
 PetscErrorCode MMFrictionGetCoulombTolerance(MMFriction fr, PetscReal *tol)
 {
   PetscFunctionBeginUser;
@@ -206,11 +293,35 @@ PetscErrorCode MMFrictionGetCoulombTolerance(MMFriction fr, PetscReal *tol)
   PetscFunctionReturn(0);
 }
 
-/* The solver for the contact ct: its type (-friction_type, or the default the formulation calls
- * for), the shell SNES, and the first thresholds from the initial reactions react. mu_max: the
- * largest friction coefficient (0: frictionless, the contact solve alone); E_max: the largest
- * Young's modulus (the force scale); react: the initial reactions (w-frame). The slip velocities are
- * the stepper's velocities of w, through contact (MMContactStepVelocity). */
+/*@
+  MMFrictionSetUp - Sets up the friction solver for a contact object: its type, the shell SNES and
+  the first thresholds
+
+  Collective
+
+  Input Parameters:
++ fr     - the friction solver
+. ct     - the contact object
+. mu_max - the largest friction coefficient (0: frictionless, the contact solve alone)
+. E_max  - the largest Young's modulus (the force scale)
+- react  - the initial reactions (w-frame)
+
+  Note:
+  The solver for the contact ct: its type (-friction_type, or the default the formulation calls
+  for), the shell SNES, and the first thresholds from the initial reactions react. mu_max: the
+  largest friction coefficient (0: frictionless, the contact solve alone); E_max: the largest
+  Young's modulus (the force scale); react: the initial reactions (w-frame). The slip velocities are
+  the stepper's velocities of w, through contact (MMContactStepVelocity).
+
+  The type defaults to newton where the formulation gives the Delassus operator or solves Coulomb
+  itself, else to fixedpoint; a type that cannot solve the formulation's Coulomb problem, and
+  -friction_dump where no contact-space problem is solved, are refused. The SNES (prefix friction_)
+  and the thresholds mu r_n are made only when mu_max > 0 and contact is on.
+
+  Level: intermediate
+
+.seealso: `MMFrictionCreate()`, `MMFrictionSolve()`, `MMFrictionView()`
+@*/
 PetscErrorCode MMFrictionSetUp(MMFriction fr, MMContact ct, PetscReal mu_max, PetscReal E_max, Vec react)
 {
   PetscErrorCode (*create)(MMFriction) = NULL;
@@ -262,9 +373,35 @@ PetscErrorCode MMFrictionSetUp(MMFriction fr, MMContact ct, PetscReal mu_max, Pe
   PetscFunctionReturn(0);
 }
 
-/* The step problem with friction; *ok is false when the solver did not converge (the caller retries
- * with a smaller dt). Without friction it is the contact solve itself. step, t: the last accepted
- * step and its time (the audit's obstacle positions, the dump's names). */
+/*@
+  MMFrictionSolve - Solves the step problem with friction; without friction, the contact solve
+  itself
+
+  Collective
+
+  Input Parameters:
++ fr   - the friction solver
+. step - the last accepted step
+. t    - its time
+- b    - the step's right-hand side
+
+  Output Parameters:
++ w     - the solution
+. react - the contact reactions
+- ok    - false when the solver did not converge (the caller retries with a smaller dt)
+
+  Note:
+  The step problem with friction; *ok is false when the solver did not converge (the caller retries
+  with a smaller dt). Without friction it is the contact solve itself. step, t: the last accepted
+  step and its time (the audit's obstacle positions, the dump's names).
+
+  A converged friction solve, which updates only the contact dofs, is completed by one full-size
+  solve (MMContactRecover()).
+
+  Level: intermediate
+
+.seealso: `MMFrictionSetUp()`, `MMFrictionGetConvergence()`, `MMContactSolve()`
+@*/
 PetscErrorCode MMFrictionSolve(MMFriction fr, PetscInt step, PetscReal t, Vec b, Vec w, Vec react, PetscBool *ok)
 {
   SNESConvergedReason reason;
@@ -292,6 +429,21 @@ PetscErrorCode MMFrictionSolve(MMFriction fr, PetscInt step, PetscReal t, Vec b,
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMFrictionGetType - Gives the friction solver's type, as chosen by MMFrictionSetUp()
+
+  Not collective
+
+  Input Parameter:
+. fr - the friction solver
+
+  Output Parameter:
+. type - the type's name, empty before set-up
+
+  Level: intermediate
+
+.seealso: `MMFrictionSetUp()`, `MMFrictionView()`
+@*/
 PetscErrorCode MMFrictionGetType(MMFriction fr, const char **type)
 {
   PetscFunctionBeginUser;
@@ -299,8 +451,29 @@ PetscErrorCode MMFrictionGetType(MMFriction fr, const char **type)
   PetscFunctionReturn(0);
 }
 
-/* The last step's iterations (the type's own loop, and Newton steps inside it), the contraction
- * rate of the last threshold loop and its largest over the step (0 for Newton). */
+/*@
+  MMFrictionGetConvergence - Gives the last step's iteration counts and the threshold loop's
+  contraction rates
+
+  Not collective
+
+  Input Parameter:
+. fr - the friction solver, or NULL (every answer 0)
+
+  Output Parameters:
++ its             - the type's own iterations, or NULL
+. inner_its       - the Newton steps inside them, or NULL
+. contraction     - the contraction rate of the last threshold loop, or NULL
+- contraction_max - its largest over the step, or NULL
+
+  Note:
+  The last step's iterations (the type's own loop, and Newton steps inside it), the contraction rate
+  of the last threshold loop and its largest over the step (0 for Newton).
+
+  Level: intermediate
+
+.seealso: `MMFrictionSolve()`
+@*/
 PetscErrorCode MMFrictionGetConvergence(MMFriction fr, PetscInt *its, PetscInt *inner_its, PetscReal *contraction, PetscReal *contraction_max)
 {
   PetscFunctionBeginUser;
@@ -311,7 +484,22 @@ PetscErrorCode MMFrictionGetConvergence(MMFriction fr, PetscInt *its, PetscInt *
   PetscFunctionReturn(0);
 }
 
-/* The thresholds mu r_n of the threshold loop (checkpointed), or NULL without friction. */
+/*@
+  MMFrictionGetThresholds - Gives the thresholds mu r_n of the threshold loop, which the checkpoint
+  saves
+
+  Not collective
+
+  Input Parameter:
+. fr - the friction solver, or NULL
+
+  Output Parameter:
+. s - the thresholds, not a copy; NULL without friction
+
+  Level: intermediate
+
+.seealso: `MMFrictionSetUp()`
+@*/
 PetscErrorCode MMFrictionGetThresholds(MMFriction fr, Vec *s)
 {
   PetscFunctionBeginUser;
@@ -319,6 +507,18 @@ PetscErrorCode MMFrictionGetThresholds(MMFriction fr, Vec *s)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMFrictionDestroy - Destroys a friction solver
+
+  Collective
+
+  Input Parameter:
+. fr - the friction solver; NULL does nothing
+
+  Level: intermediate
+
+.seealso: `MMFrictionCreate()`
+@*/
 PetscErrorCode MMFrictionDestroy(MMFriction *fr)
 {
   PetscFunctionBeginUser;

@@ -2,8 +2,23 @@
  * PETSc's KSPView prints a solver's (docs/reference.md, "Viewing the set-up"). */
 #include "../frictionimpl.h"
 
-/* The type and the contact formulation it solves over, its tolerances and iteration limit, the
- * Coulomb audit, the dump and the monitor. Collective; printed once, by the viewer's first rank. */
+/*@
+  MMFrictionView - Prints the friction solver's configuration once set up (-friction_view)
+
+  Collective
+
+  Input Parameters:
++ fr     - the friction solver
+- viewer - an ASCII viewer; another type prints nothing
+
+  Note:
+  The type and the contact formulation it solves over, its tolerances and iteration limit, the
+  Coulomb audit, the dump and the monitor. Collective; printed once, by the viewer's first rank.
+
+  Level: intermediate
+
+.seealso: `MMFrictionSetUp()`, `MMFrictionSetFromOptions()`
+@*/
 PetscErrorCode MMFrictionView(MMFriction fr, PetscViewer viewer)
 {
   PetscBool   ascii;

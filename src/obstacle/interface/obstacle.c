@@ -6,6 +6,19 @@
 
 static PetscFunctionList ObstacleList = NULL;
 
+/*@
+  MMObstacleRegister - Adds an obstacle shape to the registry, chosen by -obstacle_NAME_type
+
+  Not collective
+
+  Input Parameters:
++ type   - the shape's name
+- create - the function that sets the shape's ops table (impls/<type>/)
+
+  Level: developer
+
+.seealso: `MMObstacleRegisterAll()`, `MMObstacleTypesList()`
+@*/
 PetscErrorCode MMObstacleRegister(const char type[], PetscErrorCode (*create)(MMObstacle *))
 {
   PetscFunctionBeginUser;
@@ -20,6 +33,19 @@ PetscErrorCode MMObstacleRegister(const char type[], PetscErrorCode (*create)(MM
     PetscCall(MMObstacleRegister(type, create)); \
   } while (0)
 
+/*@
+  MMObstacleRegisterAll - Registers the built-in shapes, plane, sphere, circle, cylinder and box,
+  once
+
+  Not collective
+
+  Note:
+  Does nothing while the registry holds shapes; MMObstacleFinalize() empties it.
+
+  Level: developer
+
+.seealso: `MMObstacleRegister()`, `MMObstacleFinalize()`
+@*/
 PetscErrorCode MMObstacleRegisterAll(void)
 {
   PetscFunctionBeginUser;
@@ -32,6 +58,15 @@ PetscErrorCode MMObstacleRegisterAll(void)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMObstacleFinalize - Empties the registry of obstacle shapes
+
+  Not collective
+
+  Level: developer
+
+.seealso: `MMObstacleRegisterAll()`
+@*/
 PetscErrorCode MMObstacleFinalize(void)
 {
   PetscFunctionBeginUser;
@@ -39,7 +74,25 @@ PetscErrorCode MMObstacleFinalize(void)
   PetscFunctionReturn(0);
 }
 
-/* "plane|sphere|circle|cylinder": the registered types, for help strings and refusals. */
+/*@
+  MMObstacleTypesList - Lists the registered shapes as "plane|sphere|circle|cylinder|box", for help
+  strings and refusals
+
+  Not collective
+
+  Input Parameter:
+. len - the size of buf
+
+  Output Parameter:
+. buf - the list, the names separated by |
+
+  Note:
+  Registers the built-in shapes first, if they are not yet.
+
+  Level: developer
+
+.seealso: `MMObstacleRegister()`, `MMObstacleSetFromOptions()`
+@*/
 PetscErrorCode MMObstacleTypesList(char buf[], size_t len)
 {
   const char **types;
@@ -92,7 +145,27 @@ static PetscInt FindParameter(const MMObstacleOps *ops, const char name[])
   return -1;
 }
 
-/* The shape's parameters (at most max), for a checkpoint's record of the physics. */
+/*@
+  MMObstacleGetParameterNames - Gives the names of the shape's parameters, for a checkpoint's record
+  of the physics
+
+  Not collective
+
+  Input Parameters:
++ ob  - the obstacle
+- max - the most names names[] can hold
+
+  Output Parameters:
++ n     - the number of parameters (0 without a shape)
+- names - their names, the shape's own strings
+
+  Note:
+  A shape with more than max parameters is an error (PETSC_ERR_ARG_SIZ).
+
+  Level: developer
+
+.seealso: `MMObstacleGetParameter()`
+@*/
 PetscErrorCode MMObstacleGetParameterNames(const MMObstacle *ob, PetscInt max, PetscInt *n, const char *names[])
 {
   PetscFunctionBeginUser;
@@ -102,7 +175,24 @@ PetscErrorCode MMObstacleGetParameterNames(const MMObstacle *ob, PetscInt max, P
   PetscFunctionReturn(0);
 }
 
-/* The first n values of parameter name (zeros if the shape has none of that name). */
+/*@
+  MMObstacleGetParameter - Gives the first n values of a shape parameter, by its option suffix
+
+  Not collective
+
+  Input Parameters:
++ ob   - the obstacle
+. name - the parameter's name, as in -obstacle_NAME_<name>
+- n    - how many values
+
+  Output Parameters:
++ v   - the n values; zeros if the shape has no parameter of that name
+- has - whether it has one, or NULL
+
+  Level: intermediate
+
+.seealso: `MMObstacleGetParameterNames()`, `MMObstacleGetPlane()`
+@*/
 PetscErrorCode MMObstacleGetParameter(const MMObstacle *ob, const char name[], PetscInt n, PetscReal v[], PetscBool *has)
 {
   const PetscInt i = FindParameter(ob->ops, name);
@@ -113,7 +203,27 @@ PetscErrorCode MMObstacleGetParameter(const MMObstacle *ob, const char name[], P
   PetscFunctionReturn(0);
 }
 
-/* The single plane of -obstacle_point and -obstacle_normal (without -obstacles), type plane. */
+/*@
+  MMObstacleCreatePlane - Makes the single plane of -obstacle_point and -obstacle_normal (without
+  -obstacles), type plane
+
+  Collective
+
+  Input Parameters:
++ comm - the communicator
+. name - the obstacle's name
+- mu   - its friction coefficient
+
+  Output Parameter:
+. ob - the obstacle
+
+  Note:
+  Its point and normal are given by MMObstacleSetPlane() once the dimension is known.
+
+  Level: intermediate
+
+.seealso: `MMObstacleSetPlane()`, `MMObstacleSetFromOptions()`, `MMObstacleCheck()`
+@*/
 PetscErrorCode MMObstacleCreatePlane(MMObstacle *ob, MPI_Comm comm, const char name[], PetscReal mu)
 {
   PetscFunctionBeginUser;
@@ -125,7 +235,25 @@ PetscErrorCode MMObstacleCreatePlane(MMObstacle *ob, MPI_Comm comm, const char n
   PetscFunctionReturn(0);
 }
 
-/* Sets a plane's point and normal, dim entries each (checked by MMObstacleCheck). */
+/*@
+  MMObstacleSetPlane - Sets a plane's point and normal
+
+  Not collective
+
+  Input Parameters:
++ ob     - the obstacle, a plane
+. dim    - the number of entries given
+. point  - a point of the plane, MM_MAX_DIM entries
+- normal - its normal, MM_MAX_DIM entries
+
+  Note:
+  The values are checked, and the normal made unit, by MMObstacleCheck(). An obstacle that is not a
+  plane is an error (PETSC_ERR_ARG_WRONG).
+
+  Level: intermediate
+
+.seealso: `MMObstacleCreatePlane()`, `MMObstacleGetPlane()`, `MMObstacleCheck()`
+@*/
 PetscErrorCode MMObstacleSetPlane(MMObstacle *ob, PetscInt dim, const PetscReal point[], const PetscReal normal[])
 {
   const PetscInt ip = FindParameter(ob->ops, "point"), in = FindParameter(ob->ops, "normal");
@@ -140,7 +268,27 @@ PetscErrorCode MMObstacleSetPlane(MMObstacle *ob, PetscInt dim, const PetscReal 
   PetscFunctionReturn(0);
 }
 
-/* A plane's point and normal (-initial_state static_sliding builds on one plane); *plane false for another shape. */
+/*@
+  MMObstacleGetPlane - Gives a plane's point and normal; plane is false for another shape
+
+  Not collective
+
+  Input Parameter:
+. ob - the obstacle
+
+  Output Parameters:
++ point  - the plane's point, MM_MAX_DIM entries
+. normal - its normal, MM_MAX_DIM entries
+- plane  - whether the obstacle is a plane; point and normal are left untouched when it is not
+
+  Note:
+  A plane's point and normal (-initial_state static_sliding builds on one plane); *plane false for
+  another shape.
+
+  Level: intermediate
+
+.seealso: `MMObstacleSetPlane()`, `MMObstacleGetParameter()`
+@*/
 PetscErrorCode MMObstacleGetPlane(const MMObstacle *ob, PetscReal point[], PetscReal normal[], PetscBool *plane)
 {
   PetscFunctionBeginUser;
@@ -208,8 +356,30 @@ static PetscErrorCode RefuseOthers(const MMObstacle *ob, MPI_Comm comm)
   PetscFunctionReturn(0);
 }
 
-/* The parameters common to every shape, then the shape's own: its dimension, the others' refused,
- * its own required. */
+/*@
+  MMObstacleCheck - Checks an obstacle once the dimension is known: its motion and mu, the shape's
+  parameters required, another shape's refused
+
+  Collective on comm
+
+  Input Parameters:
++ ob   - the obstacle
+. comm - the communicator a refusal is raised on
+- dim  - the mesh's dimension
+
+  Note:
+  The parameters common to every shape, then the shape's own: its dimension, the others' refused,
+  its own required.
+
+  A direction parameter must be nonzero and is made unit; a length must be > 0. Another shape's
+  parameters and an inside side the shape has not are refused only for an obstacle read under
+  -obstacle_NAME_ (the plane of -obstacle_point reads no -obstacle_plane_*). Then the shape's own
+  check, if it has one.
+
+  Level: intermediate
+
+.seealso: `MMObstacleSetFromOptions()`, `MMObstacleCreatePlane()`
+@*/
 PetscErrorCode MMObstacleCheck(MMObstacle *ob, MPI_Comm comm, PetscInt dim)
 {
   const MMObstacleOps *ops = ob->ops;
@@ -226,6 +396,29 @@ PetscErrorCode MMObstacleCheck(MMObstacle *ob, MPI_Comm comm, PetscInt dim)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMObstacleDistance - Computes the signed distance of a point to the obstacle and the outward
+  normal there, by the shape's distance function
+
+  Not collective
+
+  Input Parameters:
++ ob  - the obstacle
+. dim - the dimension
+- x   - the point
+
+  Output Parameters:
++ g - the signed distance
+- n - its gradient, the obstacle's outward normal
+
+  Note:
+  The obstacle in its rest position: for a moving one, the caller subtracts
+  MMObstacleDisplacement() from the point first.
+
+  Level: intermediate
+
+.seealso: `MMObstacleDisplacement()`, `MMObstacleCheck()`
+@*/
 PetscErrorCode MMObstacleDistance(const MMObstacle *ob, PetscInt dim, const PetscReal x[], PetscReal *g, PetscReal n[])
 {
   PetscFunctionBeginUser;
@@ -233,20 +426,78 @@ PetscErrorCode MMObstacleDistance(const MMObstacle *ob, PetscInt dim, const Pets
   PetscFunctionReturn(0);
 }
 
-/* The obstacle's velocity at time t (the left limit at the start and stop times, as a step to t sees it). */
+/*@
+  MMObstacleVelocity - Gives the obstacle's velocity at time t
+
+  Not collective
+
+  Input Parameters:
++ ob  - the obstacle
+. dim - the dimension
+- t   - the time
+
+  Output Parameter:
+. V - the velocity: its velocity for start < t <= stop, else zero
+
+  Note:
+  Returns nothing (void).
+
+  The obstacle's velocity at time t (the left limit at the start and stop times, as a step to t sees
+  it).
+
+  Level: intermediate
+
+.seealso: `MMObstacleDisplacement()`
+@*/
 void MMObstacleVelocity(const MMObstacle *ob, PetscInt dim, PetscReal t, PetscReal V[])
 {
   const PetscBool on = (PetscBool)(t > ob->start && t <= ob->stop);
   for (PetscInt d = 0; d < dim; ++d) V[d] = on ? ob->velocity[d] : 0;
 }
 
-/* c(t) = V (min(t, t_stop) - t_start)^+: how far the obstacle has moved at time t. */
+/*@
+  MMObstacleDisplacement - Gives how far the obstacle has moved at time t
+
+  Not collective
+
+  Input Parameters:
++ ob  - the obstacle
+. dim - the dimension
+- t   - the time
+
+  Output Parameter:
+. c - the displacement
+
+  Note:
+  Returns nothing (void).
+
+  c(t) = V (min(t, t_stop) - t_start)^+: how far the obstacle has moved at time t.
+
+  Level: intermediate
+
+.seealso: `MMObstacleVelocity()`, `MMObstacleDistance()`
+@*/
 void MMObstacleDisplacement(const MMObstacle *ob, PetscInt dim, PetscReal t, PetscReal c[])
 {
   const PetscReal s = PetscMax(0.0, PetscMin(t, ob->stop) - ob->start);
   for (PetscInt d = 0; d < dim; ++d) c[d] = ob->velocity[d] * s;
 }
 
+/*@
+  MMObstacleDestroy - Frees the shape's data
+
+  Not collective
+
+  Input Parameter:
+. ob - the obstacle
+
+  Note:
+  The MMObstacle struct itself is the caller's.
+
+  Level: intermediate
+
+.seealso: `MMObstacleSetFromOptions()`, `MMObstacleCreatePlane()`
+@*/
 PetscErrorCode MMObstacleDestroy(MMObstacle *ob)
 {
   PetscFunctionBeginUser;
@@ -268,9 +519,27 @@ static PetscErrorCode VectorText(const PetscReal v[], PetscInt n, char buf[], si
   PetscFunctionReturn(0);
 }
 
-/* -obstacle_view: one obstacle as set up (docs/reference.md, "Viewing the set-up"). Its parameters
- * are the ones given: each shape's check refuses the others and completes the single plane's, so
- * what is set is the shape's own. ASCII viewers only; printed once, by the viewer's first rank. */
+/*@
+  MMObstacleView - Prints one obstacle as set up (-obstacle_view): its shape, side, mu, the
+  parameters given, its motion
+
+  Collective on viewer
+
+  Input Parameters:
++ ob     - the obstacle
+- viewer - an ASCII viewer; another type prints nothing
+
+  Note:
+  -obstacle_view: one obstacle as set up (docs/reference.md, "Viewing the set-up"). Its parameters
+  are the ones given: each shape's check refuses the others and completes the single plane's, so
+  what is set is the shape's own. ASCII viewers only; printed once, by the viewer's first rank.
+
+  A contact pair prints its slave and master surfaces and mu.
+
+  Level: intermediate
+
+.seealso: `MMObstacleCheck()`, `MMFrictionView()`
+@*/
 PetscErrorCode MMObstacleView(const MMObstacle *ob, PetscViewer viewer)
 {
   PetscBool ascii;

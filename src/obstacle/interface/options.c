@@ -45,8 +45,30 @@ static PetscErrorCode ReadSide(PetscOptionItems *PetscOptionsObject, MPI_Comm co
   PetscFunctionReturn(0);
 }
 
-/* Obstacle NAME of -obstacles: its type and the shape's parameters (checked, and the other shapes'
- * refused, by MMObstacleCheck once the dimension is known), its side, mu (default mu) and motion. */
+/*@
+  MMObstacleSetFromOptions - Reads obstacle NAME of -obstacles under its prefix -obstacle_NAME_
+
+  Collective
+
+  Input Parameters:
++ comm - the communicator
+. name - the obstacle's name
+- mu   - the default of its _mu (-mu)
+
+  Output Parameter:
+. ob - the obstacle
+
+  Note:
+  Obstacle NAME of -obstacles: its type and the shape's parameters (checked, and the other shapes'
+  refused, by MMObstacleCheck once the dimension is known), its side, mu (default mu) and motion.
+
+  Each obstacle has its own heading in -help. -obstacle_NAME_type defaults to plane; an unknown type
+  is refused with the list of the registered ones.
+
+  Level: intermediate
+
+.seealso: `MMObstacleCheck()`, `MMObstacleSetPairFromOptions()`, `MMObstacleCreatePlane()`, `MMObstacleDestroy()`
+@*/
 PetscErrorCode MMObstacleSetFromOptions(MMObstacle *ob, MPI_Comm comm, const char name[], PetscReal mu)
 {
   char type[32] = "plane", types[256], help[512], prefix[128], title[128];
@@ -75,9 +97,31 @@ PetscErrorCode MMObstacleSetFromOptions(MMObstacle *ob, MPI_Comm comm, const cha
   PetscFunctionReturn(0);
 }
 
-/* Contact pair NAME of -contact_pairs, kept after the rigid obstacles so that each contact node's
- * constraint has one index, force column and mu (docs/method.md section 11): its slave and master
- * surfaces (physical names) and its friction coefficient (default mu). */
+/*@
+  MMObstacleSetPairFromOptions - Reads contact pair NAME of -contact_pairs under its prefix
+  -contact_pair_NAME_
+
+  Collective
+
+  Input Parameters:
++ comm - the communicator
+. name - the pair's name
+- mu   - the default of its _mu (-mu)
+
+  Output Parameter:
+. ob - the pair, type "pair"
+
+  Note:
+  Contact pair NAME of -contact_pairs, kept after the rigid obstacles so that each contact node's
+  constraint has one index, force column and mu (docs/method.md section 11): its slave and master
+  surfaces (physical names) and its friction coefficient (default mu).
+
+  Both surfaces are required, and mu must be >= 0.
+
+  Level: intermediate
+
+.seealso: `MMObstacleSetFromOptions()`, `MMObstacleView()`
+@*/
 PetscErrorCode MMObstacleSetPairFromOptions(MMObstacle *ob, MPI_Comm comm, const char name[], PetscReal mu)
 {
   char      prefix[128], title[128];
