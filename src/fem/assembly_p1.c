@@ -738,11 +738,28 @@ static void RotateRows(const CSRBlock *blk, const PetscScalar *cinfo, const Pets
   }
 }
 
-/* K <- Q^T K Q and M <- Q^T M Q in place, for K and M as MMAssembleP1 takes them (M may be NULL) and
- * Q block diagonal with blocks of consecutive dofs, one rank's: the contact frames of
- * docs/method.md section 2. A block of the result is Q_a^T K_ab Q_b, so the pattern stays (DMPlex
- * couples all the dofs of two adjacent vertices) and only the blocks Q rotates change. MatPtAP
- * would compute the same into a new matrix, after a symbolic product. */
+/*@
+  MMRotateP1 - Rotates K and M into the contact frames in place, K <- Q^T K Q and M <- Q^T M Q, on
+  the P1 pattern
+
+  Collective
+
+  Input Parameters:
++ Q - the frames, block diagonal with blocks of consecutive dofs
+. K - the stiffness, rotated on return
+- M - the mass, rotated on return (or NULL)
+
+  Note:
+  K <- Q^T K Q and M <- Q^T M Q in place, for K and M as MMAssembleP1 takes them (M may be NULL) and
+  Q block diagonal with blocks of consecutive dofs, one rank's: the contact frames of
+  docs/method.md section 2. A block of the result is Q_a^T K_ab Q_b, so the pattern stays (DMPlex
+  couples all the dofs of two adjacent vertices) and only the blocks Q rotates change. MatPtAP
+  would compute the same into a new matrix, after a symbolic product.
+
+  Level: developer
+
+.seealso: `MMContactSetUpFrame()`, `MMContactFrameMatrixEnd()`
+@*/
 PetscErrorCode MMRotateP1(Mat Q, Mat K, Mat M)
 {
   CSRTarget          t;
@@ -918,6 +935,23 @@ static PetscErrorCode CondenseCell(PetscInt dim, const PetscInt v[], PetscInt vS
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMAssembleP1DampingStiffness - Assembles the Rayleigh damping stiffness B in the w-frame, each
+  cell's massless dofs condensed out of its stiffness
+
+  Collective
+
+  Input Parameters:
++ dm    - the displacement DM
+. mat   - the bodies' material
+. Q     - the contact frames, block diagonal by vertex
+. qmark - 1 on the massless dofs (w-frame), 0 elsewhere
+- B     - the matrix of K's pattern, assembled on return
+
+  Level: developer
+
+.seealso: `MMContactDampingStiffness()`, `MMRotateP1()`
+@*/
 PetscErrorCode MMAssembleP1DampingStiffness(DM dm, const MMMaterial *mat, Mat Q, Vec qmark, Mat B)
 {
   VertexTable  vt;

@@ -4,9 +4,29 @@
 #include "fem.h"
 #include "sys.h"
 
-/* -bodies NAME,...: each body a physical group of cells with its own material and initial velocity,
- * each defaulting to the whole mesh's (whole: -E, -nu, -rho, -elasticity, -v0, -omega0), in its own
- * options block. The cells and the groups are checked against the mesh in src/fem/material.c. */
+/*@
+  MMBodiesSetFromOptions - Reads the bodies of -bodies, each in its own options block, each value
+  defaulting to the whole mesh's
+
+  Collective
+
+  Input Parameters:
++ comm  - the run's communicator
+- whole - the whole mesh's material and initial velocity, the bodies' defaults
+
+  Output Parameters:
++ nbodies - the number of bodies, 0 without -bodies
+- bodies  - the bodies (freed by MMBodiesDestroy())
+
+  Note:
+  -bodies NAME,...: each body a physical group of cells with its own material and initial velocity,
+  each defaulting to the whole mesh's (whole: -E, -nu, -rho, -elasticity, -v0, -omega0), in its own
+  options block. The cells and the groups are checked against the mesh in src/fem/material.c.
+
+  Level: intermediate
+
+.seealso: `MMBodiesCheck()`, `MMBodiesCheckDimension()`, `MMBodiesDestroy()`
+@*/
 PetscErrorCode MMBodiesSetFromOptions(MPI_Comm comm, const MMBodyOptions *whole, PetscInt *nbodies, MMBodyOptions **bodies)
 {
   char     list[PETSC_MAX_PATH_LEN] = "", **names;
@@ -65,6 +85,22 @@ PetscErrorCode MMBodiesSetFromOptions(MPI_Comm comm, const MMBodyOptions *whole,
 #define MM_NU_MAX_LINEAR 0.49999995
 #define MM_NU_MAX_FINITE 0.4995
 
+/*@
+  MMMaterialCheckNearlyIncompressible - Refuses a Poisson ratio too close to 0.5 for the elasticity
+  law, naming its option
+
+  Collective
+
+  Input Parameters:
++ comm   - the run's communicator
+. option - the option that gave nu
+. nu     - the Poisson ratio
+- law    - the elasticity law
+
+  Level: intermediate
+
+.seealso: `MMBodiesCheck()`
+@*/
 PetscErrorCode MMMaterialCheckNearlyIncompressible(MPI_Comm comm, const char option[], PetscReal nu, MMElasticityType law)
 {
   const PetscBool finite = (PetscBool)(law != MM_ELASTICITY_LINEAR);
@@ -76,7 +112,24 @@ PetscErrorCode MMMaterialCheckNearlyIncompressible(MPI_Comm comm, const char opt
   PetscFunctionReturn(0);
 }
 
-/* Each body's material in its range, refused naming the body's option. */
+/*@
+  MMBodiesCheck - Checks each body's material and group, refusing a wrong one with the body's option
+  named
+
+  Collective
+
+  Input Parameters:
++ comm   - the run's communicator
+. n      - the number of bodies
+- bodies - the bodies
+
+  Note:
+  Each body's material in its range, refused naming the body's option.
+
+  Level: intermediate
+
+.seealso: `MMBodiesSetFromOptions()`, `MMBodiesCheckDimension()`
+@*/
 PetscErrorCode MMBodiesCheck(MPI_Comm comm, PetscInt n, const MMBodyOptions bodies[])
 {
   PetscFunctionBeginUser;
@@ -97,7 +150,25 @@ PetscErrorCode MMBodiesCheck(MPI_Comm comm, PetscInt n, const MMBodyOptions bodi
   PetscFunctionReturn(0);
 }
 
-/* Each body's _v0 and _omega0 has the entries of the dimension. */
+/*@
+  MMBodiesCheckDimension - Checks that each body's _v0 and _omega0 have the entries of the mesh's
+  dimension
+
+  Collective
+
+  Input Parameters:
++ comm   - the run's communicator
+. n      - the number of bodies
+. bodies - the bodies
+- dim    - the mesh's dimension
+
+  Note:
+  Each body's _v0 and _omega0 has the entries of the dimension.
+
+  Level: intermediate
+
+.seealso: `MMBodiesCheck()`
+@*/
 PetscErrorCode MMBodiesCheckDimension(MPI_Comm comm, PetscInt n, const MMBodyOptions bodies[], PetscInt dim)
 {
   PetscFunctionBeginUser;
@@ -109,6 +180,19 @@ PetscErrorCode MMBodiesCheckDimension(MPI_Comm comm, PetscInt n, const MMBodyOpt
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMBodiesDestroy - Frees the bodies read by MMBodiesSetFromOptions()
+
+  Not collective
+
+  Input Parameters:
++ n      - the number of bodies, 0 on return
+- bodies - the bodies, freed
+
+  Level: intermediate
+
+.seealso: `MMBodiesSetFromOptions()`
+@*/
 PetscErrorCode MMBodiesDestroy(PetscInt *n, MMBodyOptions **bodies)
 {
   PetscFunctionBeginUser;

@@ -45,6 +45,20 @@ static PetscErrorCode CellCache(MMElasticity *el, const MMOperators *op)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMElasticitySetUp - Creates the finite-strain force's scratch vectors and caches each local cell's
+  dof offsets and geometry
+
+  Collective
+
+  Input Parameters:
++ el - the finite-strain elasticity
+- op - the operators
+
+  Level: intermediate
+
+.seealso: `MMElasticityDestroy()`, `MMElasticityForce()`
+@*/
 PetscErrorCode MMElasticitySetUp(MMElasticity *el, const MMOperators *op)
 {
   PetscFunctionBeginUser;
@@ -56,6 +70,18 @@ PetscErrorCode MMElasticitySetUp(MMElasticity *el, const MMOperators *op)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMElasticityDestroy - Frees the finite-strain elasticity's vectors and caches
+
+  Collective
+
+  Input Parameter:
+. el - the finite-strain elasticity
+
+  Level: intermediate
+
+.seealso: `MMElasticitySetUp()`
+@*/
 PetscErrorCode MMElasticityDestroy(MMElasticity *el)
 {
   PetscFunctionBeginUser;
@@ -68,6 +94,26 @@ PetscErrorCode MMElasticityDestroy(MMElasticity *el)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMElasticityLocal - Gives the Cartesian local vector of a w-frame state with the Dirichlet data of
+  a time inserted
+
+  Collective
+
+  Input Parameters:
++ el - the finite-strain elasticity
+. op - the operators
+. ld - the loads
+. w  - the w-frame state
+- t  - the Dirichlet data's time
+
+  Output Parameter:
+. l - the local vector
+
+  Level: intermediate
+
+.seealso: `MMElasticityForce()`, `MMLoadsInsertBoundaryValues()`
+@*/
 PetscErrorCode MMElasticityLocal(MMElasticity *el, const MMOperators *op, MMLoads *ld, Vec w, PetscReal t, Vec l)
 {
   PetscFunctionBeginUser;
@@ -116,7 +162,24 @@ static inline const MMElasticityOps *CellLaw(const MMMaterial *mat, PetscInt cl)
 }
 
 
-/* G0 of every local cell at the step's start, kept for the step's iterations (elasticity.c) */
+/*@
+  MMElasticitySetStepStart - Keeps each local cell's displacement gradient at the step's start for
+  the step's iterations
+
+  Not collective
+
+  Input Parameters:
++ el - the finite-strain elasticity
+. op - the operators
+- l0 - the step's start (MMElasticityLocal())
+
+  Note:
+  G0 of every local cell at the step's start, kept for the step's iterations (elasticity.c)
+
+  Level: intermediate
+
+.seealso: `MMElasticityForce()`, `MMElasticityDissipation()`
+@*/
 PetscErrorCode MMElasticitySetStepStart(MMElasticity *el, const MMOperators *op, Vec l0)
 {
   const PetscInt     dim = op->dim;
@@ -180,8 +243,26 @@ static PetscErrorCode LocalForce(MMElasticity *el, const MMOperators *op, const 
   PetscFunctionReturn(0);
 }
 
-/* The force P(F) of the state l itself (the step from l to l): for the Dirichlet supports' reactions,
- * between the step and its audits, so the step's kept start G0 is left as it is */
+/*@
+  MMElasticityForceLocal - Computes the internal force P(F) of a state itself into el->lf,
+  unassembled, leaving the step's start as it is
+
+  Not collective
+
+  Input Parameters:
++ el  - the finite-strain elasticity, el->lf set on return
+. op  - the operators
+. mat - the bodies' material
+- l   - the state (MMElasticityLocal())
+
+  Note:
+  The force P(F) of the state l itself (the step from l to l): for the Dirichlet supports' reactions,
+  between the step and its audits, so the step's kept start G0 is left as it is
+
+  Level: developer
+
+.seealso: `MMElasticityForce()`, `MMLoadsSetElasticity()`
+@*/
 PetscErrorCode MMElasticityForceLocal(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l)
 {
   PetscFunctionBeginUser;
@@ -191,7 +272,28 @@ PetscErrorCode MMElasticityForceLocal(MMElasticity *el, const MMOperators *op, c
   PetscFunctionReturn(0);
 }
 
-/* fw = the algorithmic force of the step from the start set by MMElasticitySetStepStart to l1 */
+/*@
+  MMElasticityForce - Computes the algorithmic internal force of the step from its start to a state,
+  in the w-frame
+
+  Collective
+
+  Input Parameters:
++ el  - the finite-strain elasticity, its step start set
+. op  - the operators
+. mat - the bodies' material
+- l1  - the state (MMElasticityLocal())
+
+  Output Parameter:
+. fw - the force on the free dofs (w-frame)
+
+  Note:
+  fw = the algorithmic force of the step from the start set by MMElasticitySetStepStart to l1
+
+  Level: intermediate
+
+.seealso: `MMElasticitySetStepStart()`, `MMElasticityForceLocal()`, `MMElasticityAssembleTangent()`
+@*/
 PetscErrorCode MMElasticityForce(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l1, Vec fw)
 {
   PetscFunctionBeginUser;
@@ -204,6 +306,24 @@ PetscErrorCode MMElasticityForce(MMElasticity *el, const MMOperators *op, const 
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMElasticityEnergy - Computes the elastic energy of a state with each cell's law
+
+  Collective
+
+  Input Parameters:
++ el  - the finite-strain elasticity
+. op  - the operators
+. mat - the bodies' material
+- l   - the state (MMElasticityLocal())
+
+  Output Parameter:
+. energy - the elastic energy (all ranks)
+
+  Level: intermediate
+
+.seealso: `MMElasticityDissipation()`, `MMElasticityForce()`
+@*/
 PetscErrorCode MMElasticityEnergy(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, PetscReal *energy)
 {
   const PetscInt     dim = op->dim;
@@ -227,6 +347,25 @@ PetscErrorCode MMElasticityEnergy(MMElasticity *el, const MMOperators *op, const
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMElasticityDissipation - Computes the sum over the cells of |T| dE : D : dE, each cell's law's
+  dissipation, for the step from its start to a state
+
+  Collective
+
+  Input Parameters:
++ el  - the finite-strain elasticity, its step start set
+. op  - the operators
+. mat - the bodies' material
+- l1  - the state (MMElasticityLocal())
+
+  Output Parameter:
+. d - the sum (all ranks)
+
+  Level: developer
+
+.seealso: `MMElasticitySetStepStart()`, `MMElasticityEnergy()`
+@*/
 PetscErrorCode MMElasticityDissipation(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l1, PetscReal *d)
 {
   const PetscInt     dim = op->dim;
@@ -286,6 +425,22 @@ static PetscErrorCode TangentElement(void *ctx, PetscInt c, const PetscInt v[], 
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMElasticityAssembleTangent - Assembles the tangent dP/dF at a state on the Cartesian dofs
+
+  Collective
+
+  Input Parameters:
++ el  - the finite-strain elasticity
+. op  - the operators
+. mat - the bodies' material
+. l   - the state (MMElasticityLocal())
+- Kc  - a P1 matrix of op's DM pattern, assembled on return
+
+  Level: intermediate
+
+.seealso: `MMContactFrameMatrixBegin()`, `MMContactFrameMatrixEnd()`, `MMElasticityForce()`
+@*/
 PetscErrorCode MMElasticityAssembleTangent(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, Mat Kc)
 {
   TangentData td = {.el = el, .op = op, .mat = mat};
@@ -299,6 +454,25 @@ PetscErrorCode MMElasticityAssembleTangent(MMElasticity *el, const MMOperators *
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMElasticityCauchy - Computes the Cauchy stress of a cell at a displacement gradient with the
+  cell's law
+
+  Not collective
+
+  Input Parameters:
++ mat - the bodies' material
+. cl  - the local cell
+. dim - the dimension
+- G   - the displacement gradient
+
+  Output Parameter:
+. sigma - the Cauchy stress
+
+  Level: developer
+
+.seealso: `MMStressCompute()`
+@*/
 PetscErrorCode MMElasticityCauchy(const MMMaterial *mat, PetscInt cl, PetscInt dim, const PetscReal G[MM_MAX_DIM][MM_MAX_DIM], PetscReal sigma[MM_MAX_DIM][MM_MAX_DIM])
 {
   PetscFunctionBeginUser;

@@ -12,7 +12,18 @@ static PetscLogEvent MM_FEAssemble, MM_FEAssembleKM, MM_FEPreallocate, MM_FELoad
 /* the finite-strain laws' force, energy and tangent (elasticity.c) */
 PetscLogEvent MM_FE_ElasticForce, MM_FE_ElasticEnergy, MM_FE_ElasticTangent;
 
-/* fem's class and events, registered once (as KSPInitializePackage) */
+/*@
+  MMFEInitializePackage - Registers fem's class and its logging events, once
+
+  Not collective
+
+  Note:
+  fem's class and events, registered once (as KSPInitializePackage)
+
+  Level: developer
+
+.seealso: `MMFESetUp()`, `MMContactInitializePackage()`
+@*/
 PetscErrorCode MMFEInitializePackage(void)
 {
   static PetscBool initialized = PETSC_FALSE;
@@ -140,7 +151,24 @@ static PetscErrorCode SetConstants(MMOperators *op, const MMMaterial *mat, const
   PetscFunctionReturn(0);
 }
 
-/* Creates the P1 vector field, the Dirichlet constraints and the scalar vertex DM used for masses and output. */
+/*@
+  MMFESetUp - Sets up the discretization: the cells, each cell's material, the P1 displacement field
+  with its Dirichlet constraints, and the scalar vertex DM
+
+  Collective
+
+  Input Parameters:
++ op  - the operators, their DM set and options read
+. mat - the material, set up from pb
+- pb  - the problem as the user described it
+
+  Note:
+  Creates the P1 vector field, the Dirichlet constraints and the scalar vertex DM used for masses and output.
+
+  Level: beginner
+
+.seealso: `MMFESetFromOptions()`, `MMFEAssembleOperators()`, `MMMaterialSetUp()`, `MMFEDestroy()`
+@*/
 PetscErrorCode MMFESetUp(MMOperators *op, MMMaterial *mat, const MMFEProblem *pb)
 {
   DM           dm = op->dm;
@@ -216,7 +244,25 @@ static PetscErrorCode VertexMasses(const MMOperators *op, const MMMaterial *mat,
   PetscFunctionReturn(0);
 }
 
-/* The lumped mass per vertex on the scalar DM's local vector (gravity's load part, src/fem/loads.c). */
+/*@
+  MMFEVertexMasses - Computes the lumped mass of each vertex
+
+  Collective
+
+  Input Parameters:
++ op  - the operators
+- mat - the bodies' material
+
+  Output Parameter:
+. mloc - the masses, a local vector of the scalar vertex DM
+
+  Note:
+  The lumped mass per vertex on the scalar DM's local vector (gravity's load part, src/fem/loads.c).
+
+  Level: developer
+
+.seealso: `MMFEAddTraction()`, `MMLoadsSetUp()`
+@*/
 PetscErrorCode MMFEVertexMasses(const MMOperators *op, const MMMaterial *mat, Vec mloc)
 {
   PetscFunctionBeginUser;
@@ -277,9 +323,25 @@ static PetscErrorCode CheckTractionGroup(DM dm, const char name[], DMLabel label
   PetscFunctionReturn(0);
 }
 
-/* Nodal loads of traction b: int_F t phi_i = t |F| / d on each vertex of a boundary face F, added
- * to the local vector floc (each facet is listed on one rank: summed over ranks by a
- * DMLocalToGlobal with ADD). */
+/*@
+  MMFEAddTraction - Adds a traction's nodal loads to a local force vector
+
+  Not collective
+
+  Input Parameters:
++ op   - the operators
+. tr   - the traction group
+- floc - the local Cartesian force vector, added to
+
+  Note:
+  Nodal loads of traction b: int_F t phi_i = t |F| / d on each vertex of a boundary face F, added
+  to the local vector floc (each facet is listed on one rank: summed over ranks by a
+  DMLocalToGlobal with ADD).
+
+  Level: developer
+
+.seealso: `MMFEAddPressure()`, `MMFEAddPointForce()`, `MMLoadsSetUp()`
+@*/
 PetscErrorCode MMFEAddTraction(const MMOperators *op, const MMTraction *tr, Vec floc)
 {
   DM          dm = op->dm;
@@ -436,9 +498,27 @@ static PetscErrorCode CheckAssembly(MMOperators *op, const MMMaterial *mat, Mat 
   PetscFunctionReturn(0);
 }
 
-/* The matrix K and M are assembled into: for the closed form, with the P1 edge pattern built
- * directly (MMCreateMatrixP1, several times faster than DMCreateMatrix's point adjacency); for
- * -assembly fe, DMCreateMatrix's, which the PetscFE path fills. The patterns are the same. */
+/*@
+  MMFECreateMatrix - Creates a matrix of the P1 pattern on which K and M are assembled
+
+  Collective
+
+  Input Parameters:
++ op - the operators (their -assembly)
+- dm - the DM of the matrix
+
+  Output Parameter:
+. A - the new matrix
+
+  Note:
+  The matrix K and M are assembled into: for the closed form, with the P1 edge pattern built
+  directly (MMCreateMatrixP1, several times faster than DMCreateMatrix's point adjacency); for
+  -assembly fe, DMCreateMatrix's, which the PetscFE path fills. The patterns are the same.
+
+  Level: intermediate
+
+.seealso: `MMFEAssembleOperators()`, `MMContactFrameMatrixBegin()`
+@*/
 PetscErrorCode MMFECreateMatrix(const MMOperators *op, DM dm, Mat *A)
 {
   PetscFunctionBeginUser;
@@ -451,9 +531,29 @@ PetscErrorCode MMFECreateMatrix(const MMOperators *op, DM dm, Mat *A)
   PetscFunctionReturn(0);
 }
 
-/* The P1 interpolant of f (f's signature is DMProjectFunction's) into the Cartesian global vector u:
- * f at each vertex, which is what DMProjectFunction computes for P1 through the dual basis, at a
- * fraction of its cost; the Dirichlet dofs drop out in the local-to-global map. */
+/*@
+  MMFEInterpolate - Sets a Cartesian global vector to the P1 interpolant of a function, its value at
+  each vertex
+
+  Collective
+
+  Input Parameters:
++ op   - the operators
+. f    - the function, of DMProjectFunction()'s signature
+- fctx - its context
+
+  Output Parameter:
+. u - the interpolant (Cartesian global vector)
+
+  Note:
+  The P1 interpolant of f (f's signature is DMProjectFunction's) into the Cartesian global vector u:
+  f at each vertex, which is what DMProjectFunction computes for P1 through the dual basis, at a
+  fraction of its cost; the Dirichlet dofs drop out in the local-to-global map.
+
+  Level: intermediate
+
+.seealso: `MMFEToCartesian()`, `MMFEFromCartesian()`
+@*/
 PetscErrorCode MMFEInterpolate(const MMOperators *op, PetscErrorCode (*f)(PetscInt, PetscReal, const PetscReal[], PetscInt, PetscScalar *, void *), void *fctx, Vec u)
 {
   DM                 dm = op->dm;
@@ -510,9 +610,25 @@ static PetscErrorCode CheckFiniteOperators(const MMOperators *op, const MMFEProb
   PetscFunctionReturn(0);
 }
 
-/* K, M, the load and the lift on the Cartesian dofs (free dofs only); contact's frame
- * (MMContactSetUpFrame) turns them into the w-frame ones and builds M* between this and
- * MMFEAssembleOperatorsEnd. */
+/*@
+  MMFEAssembleOperators - Assembles K, M, the load and the lift on the Cartesian free dofs
+
+  Collective
+
+  Input Parameters:
++ op  - the operators, set up
+. mat - the bodies' material
+- pb  - the problem
+
+  Note:
+  K, M, the load and the lift on the Cartesian dofs (free dofs only); contact's frame
+  (MMContactSetUpFrame) turns them into the w-frame ones and builds M* between this and
+  MMFEAssembleOperatorsEnd.
+
+  Level: beginner
+
+.seealso: `MMFEAssembleOperatorsEnd()`, `MMContactSetUpFrame()`, `MMFECreateMatrix()`
+@*/
 PetscErrorCode MMFEAssembleOperators(MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb)
 {
   DM          dm = op->dm;
@@ -564,9 +680,24 @@ PetscErrorCode MMFEAssembleOperators(MMOperators *op, const MMMaterial *mat, con
   PetscFunctionReturn(0);
 }
 
-/* After contact's frame (MMContactSetUpFrame: the rotation, M* and the pairs' transform): the views
- * of K and M, and M released (M* replaces it); the end of the assembly's event, begun in
- * MMFEAssembleOperators. */
+/*@
+  MMFEAssembleOperatorsEnd - Ends the operators' assembly after contact's frame: views K and M
+  (-stiffness_view, -mass_view) and frees M
+
+  Collective
+
+  Input Parameter:
+. op - the operators, turned into the w-frame by MMContactSetUpFrame()
+
+  Note:
+  After contact's frame (MMContactSetUpFrame: the rotation, M* and the pairs' transform): the views
+  of K and M, and M released (M* replaces it); the end of the assembly's event, begun in
+  MMFEAssembleOperators.
+
+  Level: intermediate
+
+.seealso: `MMFEAssembleOperators()`, `MMContactSetUpFrame()`
+@*/
 PetscErrorCode MMFEAssembleOperatorsEnd(MMOperators *op)
 {
   PetscFunctionBeginUser;
@@ -605,6 +736,22 @@ static PetscErrorCode FrameTransform(const MMOperators *op, PetscBool to_cartesi
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMFEToCartesian - Turns a w-frame displacement into the Cartesian one
+
+  Collective
+
+  Input Parameters:
++ op - the operators, their frames set by contact
+- w  - the w-frame vector
+
+  Output Parameter:
+. ucart - the Cartesian vector
+
+  Level: intermediate
+
+.seealso: `MMFEFromCartesian()`, `MMFEForceToCartesian()`
+@*/
 PetscErrorCode MMFEToCartesian(const MMOperators *op, Vec w, Vec ucart)
 {
   PetscFunctionBeginUser;
@@ -612,6 +759,22 @@ PetscErrorCode MMFEToCartesian(const MMOperators *op, Vec w, Vec ucart)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMFEFromCartesian - Turns a Cartesian displacement into the w-frame one
+
+  Collective
+
+  Input Parameters:
++ op    - the operators, their frames set by contact
+- ucart - the Cartesian vector
+
+  Output Parameter:
+. w - the w-frame vector
+
+  Level: intermediate
+
+.seealso: `MMFEToCartesian()`, `MMFEForceFromCartesian()`
+@*/
 PetscErrorCode MMFEFromCartesian(const MMOperators *op, Vec ucart, Vec w)
 {
   PetscFunctionBeginUser;
@@ -619,6 +782,22 @@ PetscErrorCode MMFEFromCartesian(const MMOperators *op, Vec ucart, Vec w)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMFEForceToCartesian - Turns a w-frame force into the Cartesian one
+
+  Collective
+
+  Input Parameters:
++ op - the operators, their frames set by contact
+- fw - the w-frame force
+
+  Output Parameter:
+. fcart - the Cartesian force
+
+  Level: intermediate
+
+.seealso: `MMFEForceFromCartesian()`, `MMFEToCartesian()`
+@*/
 PetscErrorCode MMFEForceToCartesian(const MMOperators *op, Vec fw, Vec fcart)
 {
   PetscFunctionBeginUser;
@@ -626,6 +805,22 @@ PetscErrorCode MMFEForceToCartesian(const MMOperators *op, Vec fw, Vec fcart)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMFEForceFromCartesian - Turns a Cartesian force into the w-frame one
+
+  Collective
+
+  Input Parameters:
++ op    - the operators, their frames set by contact
+- fcart - the Cartesian force
+
+  Output Parameter:
+. fw - the w-frame force
+
+  Level: intermediate
+
+.seealso: `MMFEForceToCartesian()`, `MMFEFromCartesian()`
+@*/
 PetscErrorCode MMFEForceFromCartesian(const MMOperators *op, Vec fcart, Vec fw)
 {
   PetscFunctionBeginUser;
@@ -633,9 +828,29 @@ PetscErrorCode MMFEForceFromCartesian(const MMOperators *op, Vec fcart, Vec fw)
   PetscFunctionReturn(0);
 }
 
-/* 1/2 int sigma(u):eps(u) of a Cartesian global vector u with the Dirichlet data of t = 0 inserted:
- * cell by cell in closed form with each cell's material (assembly_p1.c), or by the PetscDS's
- * quadrature with -assembly fe (one material). */
+/*@
+  MMFEElasticEnergyIntegral - Computes the elastic energy 1/2 int sigma(u):eps(u) of a Cartesian
+  displacement by quadrature, with the Dirichlet data of t = 0
+
+  Collective
+
+  Input Parameters:
++ op    - the operators
+. mat   - the bodies' material
+- ucart - the Cartesian global displacement
+
+  Output Parameter:
+. energy - the elastic energy
+
+  Note:
+  1/2 int sigma(u):eps(u) of a Cartesian global vector u with the Dirichlet data of t = 0 inserted:
+  cell by cell in closed form with each cell's material (assembly_p1.c), or by the PetscDS's
+  quadrature with -assembly fe (one material).
+
+  Level: developer
+
+.seealso: `MMContactElasticEnergy()`, `MMContactCheckElasticEnergy()`
+@*/
 PetscErrorCode MMFEElasticEnergyIntegral(const MMOperators *op, const MMMaterial *mat, Vec ucart, PetscReal *energy)
 {
   DM          dm = op->dm;
@@ -674,6 +889,18 @@ static PetscErrorCode DirichletEnergy(MMOperators *op, const MMMaterial *mat)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMFEDestroy - Frees what the operators hold
+
+  Collective
+
+  Input Parameter:
+. op - the operators
+
+  Level: beginner
+
+.seealso: `MMFESetUp()`
+@*/
 PetscErrorCode MMFEDestroy(MMOperators *op)
 {
   PetscFunctionBeginUser;

@@ -6,7 +6,23 @@
 
 const char *const MMAssemblyTypes[] = {"closed_form", "fe", "MMAssemblyType", "MM_ASSEMBLY_", NULL};
 
-/* The standard mass's kind and the assembly of op, from the options. */
+/*@
+  MMFESetFromOptions - Reads fem's options: the standard mass's kind (-mass_lumped) and the assembly
+  of K and M (-assembly, -assembly_check)
+
+  Collective
+
+  Input Parameters:
++ comm - the run's communicator
+- op   - the operators, whose options are set
+
+  Note:
+  The standard mass's kind and the assembly of op, from the options.
+
+  Level: beginner
+
+.seealso: `MMFESetUp()`, `MMFEAssembleOperators()`
+@*/
 PetscErrorCode MMFESetFromOptions(MPI_Comm comm, MMOperators *op)
 {
   PetscFunctionBeginUser;

@@ -60,8 +60,28 @@ static PetscErrorCode Build(DM dm, MMInsertMap *m, Vec g)
   PetscFunctionReturn(0);
 }
 
-/* g = l on g's owned dofs, as DMLocalToGlobal(dm, l, INSERT_VALUES, g); m is (re)built when it was
- * built for another DM. */
+/*@
+  MMInsertMapLocalToGlobal - Inserts a local vector's owned dofs into a global vector, as
+  DMLocalToGlobal() with INSERT_VALUES does, through a map of dof pairs built once per DM
+
+  Collective
+
+  Input Parameters:
++ dm - the DM of l and g
+. m  - the map, (re)built when it was built for another DM
+- l  - the local vector
+
+  Output Parameter:
+. g - the global vector, its owned dofs set
+
+  Note:
+  g = l on g's owned dofs, as DMLocalToGlobal(dm, l, INSERT_VALUES, g); m is (re)built when it was
+  built for another DM.
+
+  Level: developer
+
+.seealso: `MMInsertMapDestroy()`
+@*/
 PetscErrorCode MMInsertMapLocalToGlobal(DM dm, MMInsertMap *m, Vec l, Vec g)
 {
   const PetscScalar *la;
@@ -81,6 +101,18 @@ PetscErrorCode MMInsertMapLocalToGlobal(DM dm, MMInsertMap *m, Vec l, Vec g)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMInsertMapDestroy - Frees an insertion map and resets it
+
+  Not collective
+
+  Input Parameter:
+. m - the map
+
+  Level: developer
+
+.seealso: `MMInsertMapLocalToGlobal()`
+@*/
 PetscErrorCode MMInsertMapDestroy(MMInsertMap *m)
 {
   PetscFunctionBeginUser;

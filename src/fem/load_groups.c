@@ -34,9 +34,29 @@ static PetscErrorCode DropReplacedAmplitudeData(const char prefix[], PetscBool *
   PetscFunctionReturn(0);
 }
 
-/* The amplitude in time of a load, PREFIX_amplitude KIND, PREFIX_amplitude_time T and
- * PREFIX_amplitude_table FILE (docs/method.md section 10); the kinds and their data are checked in
- * src/fem/loads.c, where they are registered. A table given alone means the table kind. */
+/*@
+  MMAmplitudeOptionsRead - Reads a load's amplitude in time: PREFIX_amplitude, PREFIX_amplitude_time
+  and PREFIX_amplitude_table
+
+  Collective
+
+  Input Parameters:
++ PetscOptionsObject - the options block being read
+. comm               - the run's communicator
+- prefix             - the load's option, e.g. -gravity
+
+  Output Parameter:
+. a - the amplitude as the user gave it
+
+  Note:
+  The amplitude in time of a load, PREFIX_amplitude KIND, PREFIX_amplitude_time T and
+  PREFIX_amplitude_table FILE (docs/method.md section 10); the kinds and their data are checked in
+  src/fem/loads.c, where they are registered. A table given alone means the table kind.
+
+  Level: developer
+
+.seealso: `MMLoadGroupsSetFromOptions()`, `MMAmplitudeValue()`
+@*/
 PetscErrorCode MMAmplitudeOptionsRead(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char prefix[], MMAmplitudeOptions *a)
 {
   char      key[512];
@@ -153,7 +173,25 @@ static PetscErrorCode ReadGroups(PetscOptionItems *PetscOptionsObject, MPI_Comm 
   PetscFunctionReturn(0);
 }
 
-/* Every group, in its own options block (its heading in -help). */
+/*@
+  MMLoadGroupsSetFromOptions - Reads gravity, the Dirichlet boundaries and the load groups from
+  their options, each group in its own options block
+
+  Collective
+
+  Input Parameter:
+. comm - the run's communicator
+
+  Output Parameter:
+. lg - the loads and boundary conditions as the user gave them
+
+  Note:
+  Every group, in its own options block (its heading in -help).
+
+  Level: intermediate
+
+.seealso: `MMLoadGroupsCheckDimension()`, `MMLoadGroupsDestroy()`, `MMAmplitudeOptionsRead()`
+@*/
 PetscErrorCode MMLoadGroupsSetFromOptions(MPI_Comm comm, MMLoadGroups *lg)
 {
   char list[PETSC_MAX_PATH_LEN] = "";
@@ -172,8 +210,26 @@ PetscErrorCode MMLoadGroupsSetFromOptions(MPI_Comm comm, MMLoadGroups *lg)
   PetscFunctionReturn(0);
 }
 
-/* What depends on the mesh dimension: gravity and each vector load d entries; each Dirichlet
- * boundary's components (default all: a clamp), its values and velocities one per component. */
+/*@
+  MMLoadGroupsCheckDimension - Checks what depends on the mesh dimension and completes each
+  Dirichlet boundary's components
+
+  Collective
+
+  Input Parameters:
++ comm   - the run's communicator
+. opt    - the loads and boundary conditions, their default components set on return
+. dim    - the mesh's dimension
+- damped - Rayleigh damping is on (a moving Dirichlet boundary is then refused)
+
+  Note:
+  What depends on the mesh dimension: gravity and each vector load d entries; each Dirichlet
+  boundary's components (default all: a clamp), its values and velocities one per component.
+
+  Level: intermediate
+
+.seealso: `MMLoadGroupsSetFromOptions()`
+@*/
 PetscErrorCode MMLoadGroupsCheckDimension(MPI_Comm comm, MMLoadGroups *opt, PetscInt dim, PetscBool damped)
 {
   const struct {
@@ -208,6 +264,18 @@ PetscErrorCode MMLoadGroupsCheckDimension(MPI_Comm comm, MMLoadGroups *opt, Pets
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMLoadGroupsDestroy - Frees what MMLoadGroupsSetFromOptions() allocated
+
+  Not collective
+
+  Input Parameter:
+. lg - the loads and boundary conditions
+
+  Level: intermediate
+
+.seealso: `MMLoadGroupsSetFromOptions()`
+@*/
 PetscErrorCode MMLoadGroupsDestroy(MMLoadGroups *lg)
 {
   PetscFunctionBeginUser;

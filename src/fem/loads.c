@@ -242,6 +242,19 @@ static PetscErrorCode AmplitudeCreate(MPI_Comm comm, const char option[], const 
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMAmplitudeValue - Returns an amplitude's value at a time
+
+  Not collective
+
+  Input Parameters:
++ a - the amplitude
+- t - the time
+
+  Level: developer
+
+.seealso: `MMAmplitudeOptionsRead()`, `MMLoadsSetTime()`
+@*/
 PetscReal MMAmplitudeValue(const MMAmplitude *a, PetscReal t)
 {
   return a->value(a, t);
@@ -689,9 +702,26 @@ static PetscErrorCode TabulateBoundaryValues(MMLoads *ld, const MMFEProblem *pb)
   PetscFunctionReturn(0);
 }
 
-/* The Dirichlet data of time t into the constrained dofs of a local vector of the operators' DM: from
- * the table where the data are affine in t, else (amplitudes, or during MMLoadsSetUp) by DMPlex's
- * projection. */
+/*@
+  MMLoadsInsertBoundaryValues - Inserts the Dirichlet data of a time into the constrained dofs of a
+  local vector
+
+  Not collective
+
+  Input Parameters:
++ ld - the loads
+. l  - a local vector of the operators' DM, its constrained dofs set on return
+- t  - the time
+
+  Note:
+  The Dirichlet data of time t into the constrained dofs of a local vector of the operators' DM: from
+  the table where the data are affine in t, else (amplitudes, or during MMLoadsSetUp) by DMPlex's
+  projection.
+
+  Level: intermediate
+
+.seealso: `MMLoadsInsertDirichletVelocity()`, `MMElasticityLocal()`
+@*/
 PetscErrorCode MMLoadsInsertBoundaryValues(MMLoads *ld, Vec l, PetscReal t)
 {
   PetscScalar *a;
@@ -707,9 +737,27 @@ PetscErrorCode MMLoadsInsertBoundaryValues(MMLoads *ld, Vec l, PetscReal t)
   PetscFunctionReturn(0);
 }
 
-/* The loads' parts and the Dirichlet data's rows on the operators op (borrowed), after
- * MMFEAssembleOperators and the contact frame; massless (borrowed): M*'s dofs without inertia,
- * NULL if none, where the reactions' accelerations are zero. */
+/*@
+  MMLoadsSetUp - Sets up the loads' parts in time and the Dirichlet data's rows on the operators
+
+  Collective
+
+  Input Parameters:
++ ld       - the loads
+. op       - the operators (borrowed), after the contact frame
+. mat      - the bodies' material
+. pb       - the problem
+- massless - M*'s dofs without inertia (borrowed), or NULL
+
+  Note:
+  The loads' parts and the Dirichlet data's rows on the operators op (borrowed), after
+  MMFEAssembleOperators and the contact frame; massless (borrowed): M*'s dofs without inertia,
+  NULL if none, where the reactions' accelerations are zero.
+
+  Level: intermediate
+
+.seealso: `MMLoadsSetTime()`, `MMLoadsDestroy()`, `MMFEAssembleOperators()`
+@*/
 PetscErrorCode MMLoadsSetUp(MMLoads *ld, MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb, IS massless)
 {
 
@@ -734,10 +782,27 @@ PetscErrorCode MMLoadsSetUp(MMLoads *ld, MMOperators *op, const MMMaterial *mat,
 
 /* ---------------------------------------------------------------- per step */
 
-/* The loads of a step from t0 to t1 (between steps t0 = t1, the current time): op.load = L(t1) and
- * load_old = L(t0); with moving Dirichlet data op.lift = K_fD u_D(t1) and op.energy_dirichlet =
- * 1/2 u_D.A_DD u_D at t1, both from the rows D of K, the operator the reaction uses, so that the
- * energy identity closes with the reaction's work (docs/method.md section 10). */
+/*@
+  MMLoadsSetTime - Sets the loads of a step from t0 to t1: op's load and lift, and the Dirichlet
+  data's energy
+
+  Collective
+
+  Input Parameters:
++ ld - the loads, set up
+. t0 - the step's start time
+- t1 - its end time (t0 = t1 between steps)
+
+  Note:
+  The loads of a step from t0 to t1 (between steps t0 = t1, the current time): op.load = L(t1) and
+  load_old = L(t0); with moving Dirichlet data op.lift = K_fD u_D(t1) and op.energy_dirichlet =
+  1/2 u_D.A_DD u_D at t1, both from the rows D of K, the operator the reaction uses, so that the
+  energy identity closes with the reaction's work (docs/method.md section 10).
+
+  Level: intermediate
+
+.seealso: `MMLoadsSetUp()`, `MMLoadsStepWork()`
+@*/
 PetscErrorCode MMLoadsSetTime(MMLoads *ld, PetscReal t0, PetscReal t1)
 {
 
@@ -786,6 +851,20 @@ static PetscErrorCode FiniteStrainForceD(MMLoads *ld, Vec u, PetscReal t, Vec RD
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMLoadsSetElasticity - Makes the Dirichlet supports' reactions come from the finite-strain force
+  instead of K_D
+
+  Not collective
+
+  Input Parameters:
++ ld - the loads
+- el - the finite-strain elasticity (borrowed)
+
+  Level: intermediate
+
+.seealso: `MMLoadsReactions()`, `MMElasticityForceLocal()`
+@*/
 PetscErrorCode MMLoadsSetElasticity(MMLoads *ld, MMElasticity *el)
 {
   PetscFunctionBeginUser;
@@ -828,7 +907,23 @@ static PetscErrorCode SumReactions(MMLoads *ld, Vec R)
   PetscFunctionReturn(0);
 }
 
-/* The reactions of the current state u, a, at the current time (the initial row, a restart's). */
+/*@
+  MMLoadsReactions - Computes the Dirichlet supports' reactions of the state at the current time
+
+  Collective
+
+  Input Parameters:
++ ld - the loads
+. u  - the displacement
+- a  - the acceleration
+
+  Note:
+  The reactions of the current state u, a, at the current time (the initial row, a restart's).
+
+  Level: intermediate
+
+.seealso: `MMLoadsStepWork()`, `MMLoadsSetElasticity()`
+@*/
 PetscErrorCode MMLoadsReactions(MMLoads *ld, Vec u, Vec a)
 {
   Vec      R;
@@ -842,11 +937,34 @@ PetscErrorCode MMLoadsReactions(MMLoads *ld, Vec u, Vec a)
   PetscFunctionReturn(0);
 }
 
-/* The accepted step's works on the constrained dofs, and the reactions at its end (the state u, a at
- * its end, u_old, a_old at its start): with the data
- * moving by du_D = u_D(t1) - u_D(t0), the loads there do 1/2 (L_D^n + L_D^{n+1}).du_D (part of
- * W_ext) and the support 1/2 (R_D^n + R_D^{n+1}).du_D (W_D). R_D^n is recomputed from the step's
- * start, so nothing but the running sum is carried between steps (or in a checkpoint). */
+/*@
+  MMLoadsStepWork - Computes an accepted step's works on the constrained dofs, and the reactions at
+  its end
+
+  Collective
+
+  Input Parameters:
++ ld    - the loads
+. u     - the displacement at the step's end
+. a     - the acceleration at its end
+. u_old - the displacement at its start
+- a_old - the acceleration at its start
+
+  Output Parameters:
++ w_ext_D - the loads' work on the moving Dirichlet dofs (part of W_ext)
+- w_D     - the supports' work W_D
+
+  Note:
+  The accepted step's works on the constrained dofs, and the reactions at its end (the state u, a at
+  its end, u_old, a_old at its start): with the data
+  moving by du_D = u_D(t1) - u_D(t0), the loads there do 1/2 (L_D^n + L_D^{n+1}).du_D (part of
+  W_ext) and the support 1/2 (R_D^n + R_D^{n+1}).du_D (W_D). R_D^n is recomputed from the step's
+  start, so nothing but the running sum is carried between steps (or in a checkpoint).
+
+  Level: intermediate
+
+.seealso: `MMLoadsReactions()`, `MMLoadsSetTime()`
+@*/
 PetscErrorCode MMLoadsStepWork(MMLoads *ld, Vec u, Vec a, Vec u_old, Vec a_old, PetscReal *w_ext_D, PetscReal *w_D)
 {
   Vec         R1, R0, L0, du, sub;
@@ -886,8 +1004,27 @@ PetscErrorCode MMLoadsStepWork(MMLoads *ld, Vec u, Vec a, Vec u_old, Vec a_old, 
   PetscFunctionReturn(0);
 }
 
-/* The kinetic energy the constrained dofs add to 1/2 v_f.M*_ff v_f: with v = (v_f, v_D),
- * 1/2 v.M* v = 1/2 v_f.M*_ff v_f + v_D.M_Df v_f + 1/2 v_D.M_DD v_D = ... + v_D.(M_D v) - 1/2 v_D.M_DD v_D. */
+/*@
+  MMLoadsDirichletKinetic - Computes the kinetic energy the constrained dofs add to 1/2 v_f.M*_ff
+  v_f
+
+  Collective
+
+  Input Parameters:
++ ld - the loads
+- v  - the velocity
+
+  Output Parameter:
+. ek - the constrained dofs' share of the kinetic energy
+
+  Note:
+  The kinetic energy the constrained dofs add to 1/2 v_f.M*_ff v_f: with v = (v_f, v_D),
+  1/2 v.M* v = 1/2 v_f.M*_ff v_f + v_D.M_Df v_f + 1/2 v_D.M_DD v_D = ... + v_D.(M_D v) - 1/2 v_D.M_DD v_D.
+
+  Level: developer
+
+.seealso: `MMLoadsStepWork()`
+@*/
 PetscErrorCode MMLoadsDirichletKinetic(MMLoads *ld, Vec v, PetscReal *ek)
 {
   Vec         vw;
@@ -909,8 +1046,24 @@ PetscErrorCode MMLoadsDirichletKinetic(MMLoads *ld, Vec v, PetscReal *ek)
   PetscFunctionReturn(0);
 }
 
-/* The whole velocity field's constrained dofs (the output's dm_out shares dm_full's layout): the
- * boundary's velocity. */
+/*@
+  MMLoadsInsertDirichletVelocity - Sets the constrained dofs of a whole velocity field to the
+  boundary's velocity, when the Dirichlet data move
+
+  Collective
+
+  Input Parameters:
++ ld    - the loads
+- whole - the whole velocity field, its constrained dofs set on return
+
+  Note:
+  The whole velocity field's constrained dofs (the output's dm_out shares dm_full's layout): the
+  boundary's velocity.
+
+  Level: developer
+
+.seealso: `MMLoadsInsertBoundaryValues()`
+@*/
 PetscErrorCode MMLoadsInsertDirichletVelocity(MMLoads *ld, Vec whole)
 {
   PetscFunctionBeginUser;
@@ -918,6 +1071,18 @@ PetscErrorCode MMLoadsInsertDirichletVelocity(MMLoads *ld, Vec whole)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMLoadsDestroy - Frees what the loads hold
+
+  Collective
+
+  Input Parameter:
+. ld - the loads
+
+  Level: intermediate
+
+.seealso: `MMLoadsSetUp()`
+@*/
 PetscErrorCode MMLoadsDestroy(MMLoads *ld)
 {
   PetscFunctionBeginUser;

@@ -57,8 +57,24 @@ static PetscErrorCode FacetOutwardNormal(DM dm, const MMFacetList *fl, PetscInt 
   PetscFunctionReturn(0);
 }
 
-/* Nodal forces of pressure pr at amplitude 1: -p n |F| / d on each vertex of each facet F, added to
- * the local vector floc of op->dm (Cartesian). */
+/*@
+  MMFEAddPressure - Adds a pressure's nodal forces at amplitude 1 to a local force vector
+
+  Not collective
+
+  Input Parameters:
++ op   - the operators
+. pr   - the pressure group
+- floc - the local Cartesian force vector of op's DM, added to
+
+  Note:
+  Nodal forces of pressure pr at amplitude 1: -p n |F| / d on each vertex of each facet F, added to
+  the local vector floc of op->dm (Cartesian).
+
+  Level: developer
+
+.seealso: `MMFEAddTraction()`, `MMFEAddPointForce()`
+@*/
 PetscErrorCode MMFEAddPressure(const MMOperators *op, const MMPressure *pr, Vec floc)
 {
   DM                 dm  = op->dm;
@@ -116,8 +132,25 @@ static PetscErrorCode CheckPointGroup(DM dm, const char name[], DMLabel label, P
   PetscFunctionReturn(0);
 }
 
-/* Nodal forces of point force pf at amplitude 1: its vector on each node of the group, added to
- * floc on the rank that owns the node only (a shared node is in several ranks' local vectors). */
+/*@
+  MMFEAddPointForce - Adds a point force's nodal forces at amplitude 1 to a local force vector, on
+  the rank that owns each node
+
+  Not collective
+
+  Input Parameters:
++ op   - the operators
+. pf   - the point force group
+- floc - the local Cartesian force vector, added to
+
+  Note:
+  Nodal forces of point force pf at amplitude 1: its vector on each node of the group, added to
+  floc on the rank that owns the node only (a shared node is in several ranks' local vectors).
+
+  Level: developer
+
+.seealso: `MMFEAddTraction()`, `MMFEAddPressure()`
+@*/
 PetscErrorCode MMFEAddPointForce(const MMOperators *op, const MMPointForce *pf, Vec floc)
 {
   DM                  dm  = op->dm;

@@ -344,7 +344,23 @@ static PetscErrorCode CheckSupported(const MMMaterial *mat, const MMOperators *o
   PetscFunctionReturn(0);
 }
 
-/* The material of each local cell of op's mesh (its cells tabulated) from the problem's bodies. */
+/*@
+  MMMaterialSetUp - Sets the material of each local cell from the problem's bodies
+
+  Collective
+
+  Input Parameters:
++ mat - the material
+. op  - the operators, their cells tabulated
+- pb  - the problem
+
+  Note:
+  The material of each local cell of op's mesh (its cells tabulated) from the problem's bodies.
+
+  Level: intermediate
+
+.seealso: `MMMaterialChecksum()`, `MMMaterialDestroy()`, `MMFESetUp()`
+@*/
 PetscErrorCode MMMaterialSetUp(MMMaterial *mat, const MMOperators *op, const MMFEProblem *pb)
 {
   DM          dm   = op->dm;
@@ -376,9 +392,27 @@ PetscErrorCode MMMaterialSetUp(MMMaterial *mat, const MMOperators *op, const MMF
   PetscFunctionReturn(0);
 }
 
-/* The material's part of a checkpoint's fingerprint (docs/method.md section 9): sum_T |T| w(x_T) q_T
- * for q = lambda, mu, rho, w = 1 + the centroid's place in the bounding box, so that bodies that
- * trade materials change it too. Summed over ranks: equal up to rounding on any partition. */
+/*@
+  MMMaterialChecksum - Computes the material's part of a checkpoint's fingerprint
+
+  Collective
+
+  Input Parameters:
++ mat - the material
+- op  - the operators
+
+  Output Parameter:
+. sum - the weighted integrals of lambda, mu and rho (all ranks)
+
+  Note:
+  The material's part of a checkpoint's fingerprint (docs/method.md section 9): sum_T |T| w(x_T) q_T
+  for q = lambda, mu, rho, w = 1 + the centroid's place in the bounding box, so that bodies that
+  trade materials change it too. Summed over ranks: equal up to rounding on any partition.
+
+  Level: developer
+
+.seealso: `MMMaterialSetUp()`
+@*/
 PetscErrorCode MMMaterialChecksum(const MMMaterial *mat, const MMOperators *op, PetscReal sum[3])
 {
   DM                dm  = op->dm;
@@ -401,6 +435,18 @@ PetscErrorCode MMMaterialChecksum(const MMMaterial *mat, const MMOperators *op, 
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMMaterialDestroy - Frees what the material holds
+
+  Not collective
+
+  Input Parameter:
+. mat - the material
+
+  Level: intermediate
+
+.seealso: `MMMaterialSetUp()`
+@*/
 PetscErrorCode MMMaterialDestroy(MMMaterial *mat)
 {
   PetscFunctionBeginUser;

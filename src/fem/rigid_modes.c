@@ -14,16 +14,55 @@ static PetscReal RigidMode(PetscInt dim, PetscInt m, PetscInt c, const PetscReal
   }
 }
 
-/* T(x): row c, column m, the velocity component c at x of rigid mode m; zero beyond dim. */
+/*@
+  MMFERigidModeMatrix - Gives the rigid-body modes' velocities at a point
+
+  Not collective
+
+  Input Parameters:
++ dim - the dimension
+- x   - the point
+
+  Output Parameter:
+. T - row c, column m: the velocity component c at x of rigid mode m, zero beyond dim
+
+  Note:
+  T(x): row c, column m, the velocity component c at x of rigid mode m; zero beyond dim.
+
+  Level: developer
+
+.seealso: `MMFERigidModesCartesian()`
+@*/
 void MMFERigidModeMatrix(PetscInt dim, const PetscReal x[], PetscReal T[MM_MAX_DIM][MM_MAX_RIGID])
 {
   for (PetscInt c = 0; c < MM_MAX_DIM; ++c)
     for (PetscInt m = 0; m < MM_MAX_RIGID; ++m) T[c][m] = (c < dim && m < MMFENumRigidModes(dim)) ? RigidMode(dim, m, c, x) : 0;
 }
 
-/* The rigid-body modes of the free dofs, Cartesian, about x0 and scaled by 1/ell (x0 = 0, ell = 1:
- * the plain modes), into the given global vectors of the displacement DM: the global section lists
- * each owned vertex's free components (Dirichlet-constrained ones dropped). */
+/*@
+  MMFERigidModesCartesian - Sets the rigid-body modes of the free dofs, Cartesian, about a point and
+  scaled by a length
+
+  Collective
+
+  Input Parameters:
++ op     - the operators
+. x0     - the rotations' centre
+. ell    - the length the modes are divided by
+- nmodes - how many modes
+
+  Output Parameter:
+. modes - the modes, global vectors of the displacement DM
+
+  Note:
+  The rigid-body modes of the free dofs, Cartesian, about x0 and scaled by 1/ell (x0 = 0, ell = 1:
+  the plain modes), into the given global vectors of the displacement DM: the global section lists
+  each owned vertex's free components (Dirichlet-constrained ones dropped).
+
+  Level: developer
+
+.seealso: `MMFERigidModeMatrix()`
+@*/
 PetscErrorCode MMFERigidModesCartesian(const MMOperators *op, const PetscReal x0[], PetscReal ell, PetscInt nmodes, Vec modes[])
 {
   DM                 dm  = op->dm;

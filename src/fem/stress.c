@@ -16,7 +16,24 @@
 
 static PetscErrorCode StressGeometry(MMStress *st, const MMOperators *op);
 
-/* Once: the stress DM (6 components per vertex, no constraints), its vectors, each cell's geometry. */
+/*@
+  MMStressCreate - Creates the stress's DM, its vectors and each cell's geometry
+
+  Collective
+
+  Input Parameter:
+. op - the operators
+
+  Output Parameter:
+. st - the stress, created
+
+  Note:
+  Once: the stress DM (6 components per vertex, no constraints), its vectors, each cell's geometry.
+
+  Level: intermediate
+
+.seealso: `MMStressCompute()`, `MMStressDestroy()`
+@*/
 PetscErrorCode MMStressCreate(const MMOperators *op, MMStress *st)
 {
   const PetscInt dim = op->dim;
@@ -154,9 +171,29 @@ static PetscErrorCode StressGeometry(MMStress *st, const MMOperators *op)
   PetscFunctionReturn(0);
 }
 
-/* The cell stress and von Mises of the displacement u (whole, Cartesian, a global vector of dm_u: a
- * clone of op->dm without constraints), and with nodal, the nodal ones (a restart copies those from
- * the old file). */
+/*@
+  MMStressCompute - Computes the cell stress and von Mises stress of a displacement, and optionally
+  the nodal ones
+
+  Collective
+
+  Input Parameters:
++ st    - the stress, created
+. op    - the operators
+. mat   - the bodies' material
+. dm_u  - the DM of u, a clone of op's DM without constraints
+. u     - the whole Cartesian displacement
+- nodal - also compute the nodal values
+
+  Note:
+  The cell stress and von Mises of the displacement u (whole, Cartesian, a global vector of dm_u: a
+  clone of op->dm without constraints), and with nodal, the nodal ones (a restart copies those from
+  the old file).
+
+  Level: intermediate
+
+.seealso: `MMStressCreate()`, `MMElasticityCauchy()`
+@*/
 PetscErrorCode MMStressCompute(MMStress *st, const MMOperators *op, const MMMaterial *mat, DM dm_u, Vec u, PetscBool nodal)
 {
   const PetscInt     dim = op->dim;
@@ -226,6 +263,18 @@ PetscErrorCode MMStressCompute(MMStress *st, const MMOperators *op, const MMMate
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMStressDestroy - Frees the stress's DM and vectors
+
+  Collective
+
+  Input Parameter:
+. st - the stress
+
+  Level: intermediate
+
+.seealso: `MMStressCreate()`
+@*/
 PetscErrorCode MMStressDestroy(MMStress *st)
 {
   PetscFunctionBeginUser;

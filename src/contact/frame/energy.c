@@ -2,9 +2,28 @@
  * its start-up audit against fem's quadrature of the Cartesian field (MMFEElasticEnergyIntegral). */
 #include "../contactimpl.h"
 
-/* Elastic energy of the whole field, Dirichlet data included: with u = (w, u_D),
- * 1/2 u.A u = 1/2 w.K w + w.lift + 1/2 u_D.A_DD u_D. One MatMult per call, where the FE
- * integral of 1/2 sigma:eps would cost an assembly. */
+/*@
+  MMContactElasticEnergy - Computes the elastic energy of a w-frame state, the Dirichlet data's own
+  included
+
+  Collective
+
+  Input Parameters:
++ ct - the contact object
+- w  - the w-frame state
+
+  Output Parameter:
+. energy - 1/2 w.K w + w.lift + 1/2 u_D.A_DD u_D
+
+  Note:
+  Elastic energy of the whole field, Dirichlet data included: with u = (w, u_D),
+  1/2 u.A u = 1/2 w.K w + w.lift + 1/2 u_D.A_DD u_D. One MatMult per call, where the FE
+  integral of 1/2 sigma:eps would cost an assembly.
+
+  Level: intermediate
+
+.seealso: `MMContactCheckElasticEnergy()`, `MMFEElasticEnergyIntegral()`
+@*/
 PetscErrorCode MMContactElasticEnergy(MMContact ct, Vec w, PetscReal *energy)
 {
   const MMOperators *op = ct->op;
@@ -69,8 +88,25 @@ static PetscErrorCode ElasticEnergyRoundoffScale(const MMOperators *op, Vec w, P
  * by a fraction of the energy (tests/test_limits_and_advice.py). */
 #define MM_ENERGY_ROUNDOFF 4
 
-/* Start-up audit: the matrix form of the elastic energy against its quadrature on the state w. The
- * quadrature inserts the Dirichlet data of t = 0: the caller skips it when the data have moved since. */
+/*@
+  MMContactCheckElasticEnergy - Audits at start-up the matrix form of the elastic energy against
+  fem's quadrature, and stops the run when they differ beyond round-off
+
+  Collective
+
+  Input Parameters:
++ ct  - the contact object
+. mat - the bodies' material
+- w   - the w-frame state
+
+  Note:
+  Start-up audit: the matrix form of the elastic energy against its quadrature on the state w. The
+  quadrature inserts the Dirichlet data of t = 0: the caller skips it when the data have moved since.
+
+  Level: developer
+
+.seealso: `MMContactElasticEnergy()`, `MMFEElasticEnergyIntegral()`
+@*/
 PetscErrorCode MMContactCheckElasticEnergy(MMContact ct, const MMMaterial *mat, Vec w)
 {
   const MMOperators *op = ct->op;

@@ -83,9 +83,26 @@ void MMContactMassBoundary(MMContact ct, MMMassBoundary *mb)
   mb->fc_obstacle  = ct->fc_obstacle;
 }
 
-/* Rotation first, then M* (its massless dofs are the frame's normal dofs, and its moments are taken
- * in the contact frame), then the pairs' N^T A N, which leaves those moments unchanged
- * (docs/method.md sections 2 and 11). */
+/*@
+  MMContactSetUpFrame - Turns fem's Cartesian K, M, load and lift into the w-frame ones in place:
+  Q^T A Q, the mass M* of -mass, and the contact pairs' N^T A N
+
+  Collective
+
+  Input Parameters:
++ ct       - the contact object, set up
+. op       - the operators given to MMContactSetUp(), assembled
+- material - the bodies' material
+
+  Note:
+  Rotation first, then M* (its massless dofs are the frame's normal dofs, and its moments are taken
+  in the contact frame), then the pairs' N^T A N, which leaves those moments unchanged
+  (docs/method.md sections 2 and 11).
+
+  Level: intermediate
+
+.seealso: `MMContactSetUp()`, `MMFEAssembleOperators()`, `MMFEAssembleOperatorsEnd()`, `MMContactGetOperators()`
+@*/
 PetscErrorCode MMContactSetUpFrame(MMContact ct, MMOperators *op, const MMMaterial *material)
 {
   MMMassBoundary mb;

@@ -16,6 +16,21 @@ PetscErrorCode MMContactMassSetFromOptions(MPI_Comm comm, MMContactMass *mass)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMContactGetMassType - Gives the mass in time stepping, -mass
+
+  Not collective
+
+  Input Parameter:
+. ct - the contact object
+
+  Output Parameter:
+. type - the mass type
+
+  Level: intermediate
+
+.seealso: `MMContactMassView()`, `MMContactHasMasslessDofs()`
+@*/
 PetscErrorCode MMContactGetMassType(MMContact ct, MMMassType *type)
 {
   PetscFunctionBeginUser;
@@ -83,7 +98,23 @@ static PetscErrorCode RedistributionText(const MMContactMass *mass, PetscInt dim
   PetscFunctionReturn(0);
 }
 
-/* One line: M's total mass, M*'s along each axis, and -mass redistributed's account. */
+/*@
+  MMContactMassView - Prints the mass's line of the reports: M's total, M*'s along each axis, and
+  what -mass redistributed kept of M's moments
+
+  Collective
+
+  Input Parameters:
++ ct     - the contact object, its frame set up
+- viewer - the viewer: only an ASCII viewer prints
+
+  Note:
+  One line: M's total mass, M*'s along each axis, and -mass redistributed's account.
+
+  Level: intermediate
+
+.seealso: `MMContactGetMassType()`, `MMContactSetUpView()`
+@*/
 PetscErrorCode MMContactMassView(MMContact ct, PetscViewer viewer)
 {
   const MMOperators *op  = ct->op;

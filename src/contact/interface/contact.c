@@ -12,8 +12,25 @@
 PetscFunctionList        MMContactList              = NULL; /* options.c reads every formulation's options */
 static PetscBool         MMContactRegisterAllCalled = PETSC_FALSE;
 
-/* An empty contact object: MMContactSetFromOptions reads its options, MMContactSetUp builds the
- * contact set and the formulation. */
+/*@
+  MMContactCreate - Creates an empty contact object
+
+  Collective
+
+  Input Parameter:
+. comm - the run's communicator
+
+  Output Parameter:
+. ct - the new contact object
+
+  Note:
+  An empty contact object: MMContactSetFromOptions reads its options, MMContactSetUp builds the
+  contact set and the formulation.
+
+  Level: beginner
+
+.seealso: `MMContactSetFromOptions()`, `MMContactSetUp()`, `MMContactDestroy()`
+@*/
 PetscErrorCode MMContactCreate(MPI_Comm comm, MMContact *ct)
 {
   PetscFunctionBeginUser;
@@ -23,7 +40,22 @@ PetscErrorCode MMContactCreate(MPI_Comm comm, MMContact *ct)
   PetscFunctionReturn(0);
 }
 
-/* Adds a contact formulation: create sets the ops table of the MMContact it is given. */
+/*@
+  MMContactRegister - Adds a contact formulation to those -contact_formulation chooses from
+
+  Not collective
+
+  Input Parameters:
++ name   - the formulation's name
+- create - the function that sets the ops table of the MMContact it is given
+
+  Note:
+  Adds a contact formulation: create sets the ops table of the MMContact it is given.
+
+  Level: developer
+
+.seealso: `MMContactRegisterAll()`
+@*/
 PetscErrorCode MMContactRegister(const char name[], PetscErrorCode (*create)(MMContact))
 {
   PetscFunctionBeginUser;
@@ -31,6 +63,15 @@ PetscErrorCode MMContactRegister(const char name[], PetscErrorCode (*create)(MMC
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMContactRegisterAll - Registers the contact formulations condensed, full and active_set, once
+
+  Not collective
+
+  Level: developer
+
+.seealso: `MMContactRegister()`
+@*/
 PetscErrorCode MMContactRegisterAll(void)
 {
   PetscFunctionBeginUser;
@@ -79,8 +120,26 @@ PetscErrorCode MMContactSetType(MMContact ct)
   PetscFunctionReturn(0);
 }
 
-/* s = the normal reactions rho_n of the last solve, one per contact node (a threshold loop's), from the
- * reactions every formulation that solves for them keeps in ct->rho */
+/*@
+  MMContactGetNormalReactions - Gives the normal reactions of the last contact solve, one per
+  contact row
+
+  Collective
+
+  Input Parameter:
+. ct - the contact object
+
+  Output Parameter:
+. s - the normal reactions rho_n
+
+  Note:
+  s = the normal reactions rho_n of the last solve, one per contact node (a threshold loop's), from the
+  reactions every formulation that solves for them keeps in ct->rho
+
+  Level: intermediate
+
+.seealso: `MMContactSetFrictionThresholds()`
+@*/
 PetscErrorCode MMContactGetNormalReactions(MMContact ct, Vec s)
 {
   PetscFunctionBeginUser;
@@ -172,9 +231,25 @@ static PetscErrorCode StepMatrixAssemble(MMContact ct, const MMStepMatrix *sm, M
   PetscFunctionReturn(0);
 }
 
-/* K~ for sm->dt, its coefficients the stepper's (MMDampingGetStepMatrix), assembled only when dt
- * changes; the formulation then builds on it what it needs (a factor and the Delassus operator, a
- * PC, nothing). */
+/*@
+  MMContactSetStepMatrix - Sets the step matrix K~ = ck K + cb B + cm M* for a dt, and the
+  formulation's factor, Delassus operator or PC on it
+
+  Collective
+
+  Input Parameters:
++ ct - the contact object
+- sm - the step matrix's dt, coefficients and stiffness
+
+  Note:
+  K~ for sm->dt, its coefficients the stepper's (MMDampingGetStepMatrix), assembled only when dt
+  changes; the formulation then builds on it what it needs (a factor and the Delassus operator, a
+  PC, nothing).
+
+  Level: intermediate
+
+.seealso: `MMContactSolve()`, `MMContactSetStepOffset()`
+@*/
 PetscErrorCode MMContactSetStepMatrix(MMContact ct, const MMStepMatrix *sm)
 {
   const PetscReal dt = sm->dt;
@@ -215,8 +290,24 @@ PetscErrorCode MMContactSetStepMatrix(MMContact ct, const MMStepMatrix *sm)
   PetscFunctionReturn(0);
 }
 
-/* The step's offset and scale from the stepper (include/contact.h): the trapezoidal scheme is the
- * stepper's, and contact takes the tangential bounds and slip velocities from these alone. */
+/*@
+  MMContactSetStepOffset - Gives contact the time scheme's share of the step: the offset, the scale
+  and the step velocity
+
+  Logically collective
+
+  Input Parameters:
++ ct - the contact object
+- so - the step's offset (copied, its vector and context borrowed)
+
+  Note:
+  The step's offset and scale from the stepper (include/contact.h): the trapezoidal scheme is the
+  stepper's, and contact takes the tangential bounds and slip velocities from these alone.
+
+  Level: intermediate
+
+.seealso: `MMContactGetStepOffset()`, `MMContactStepVelocity()`, `MMContactSetStepMatrix()`
+@*/
 PetscErrorCode MMContactSetStepOffset(MMContact ct, const MMStepOffset *so)
 {
   PetscFunctionBeginUser;
@@ -224,6 +315,21 @@ PetscErrorCode MMContactSetStepOffset(MMContact ct, const MMStepOffset *so)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMContactGetStepOffset - Gives the step's offset the stepper last set
+
+  Not collective
+
+  Input Parameter:
+. ct - the contact object
+
+  Output Parameter:
+. so - the step's offset
+
+  Level: developer
+
+.seealso: `MMContactSetStepOffset()`
+@*/
 PetscErrorCode MMContactGetStepOffset(MMContact ct, MMStepOffset *so)
 {
   PetscFunctionBeginUser;
@@ -231,7 +337,25 @@ PetscErrorCode MMContactGetStepOffset(MMContact ct, MMStepOffset *so)
   PetscFunctionReturn(0);
 }
 
-/* sigma = the velocity of w over the step, as the stepper computes it */
+/*@
+  MMContactStepVelocity - Computes the velocity of w over the step with the stepper's function
+
+  Collective
+
+  Input Parameters:
++ ct - the contact object, its step offset set
+- w  - the w-frame state
+
+  Output Parameter:
+. sigma - its velocity over the step
+
+  Note:
+  sigma = the velocity of w over the step, as the stepper computes it
+
+  Level: developer
+
+.seealso: `MMContactSetStepOffset()`
+@*/
 PetscErrorCode MMContactStepVelocity(MMContact ct, Vec w, Vec sigma)
 {
   PetscFunctionBeginUser;
@@ -272,8 +396,28 @@ PetscErrorCode MMContactCreateReactions(MMContact ct)
   PetscFunctionReturn(0);
 }
 
-/* Solves the step problem K~ w = b + f_c with w_c <= g; w holds the initial guess on entry.
- * react returns f_c, the obstacle's force on the body (w-frame), on the contact dofs only. */
+/*@
+  MMContactSolve - Solves the step's contact problem K~ w = b + f_c, w_c <= g, in the chosen
+  formulation
+
+  Collective
+
+  Input Parameters:
++ ct - the contact object, its step matrix set
+. b  - the right-hand side
+- w  - the initial guess, the solution on return (w-frame)
+
+  Output Parameter:
+. react - the contact force f_c on the contact dofs (w-frame)
+
+  Note:
+  Solves the step problem K~ w = b + f_c with w_c <= g; w holds the initial guess on entry.
+  react returns f_c, the obstacle's force on the body (w-frame), on the contact dofs only.
+
+  Level: beginner
+
+.seealso: `MMContactSetStepMatrix()`, `MMContactSolveContactDofs()`, `MMContactSolveCoulomb()`
+@*/
 PetscErrorCode MMContactSolve(MMContact ct, Vec b, Vec w, Vec react)
 {
 
@@ -285,9 +429,27 @@ PetscErrorCode MMContactSolve(MMContact ct, Vec b, Vec w, Vec react)
   PetscFunctionReturn(0);
 }
 
-/* The friction loop's solve: at least the contact dofs of w and react are updated, exactly. The
- * condensed formulation updates only those, with no full-size solve, and MMContactRecover completes
- * w once the loop has converged; the active-set formulation solves on all dofs, warm-started. */
+/*@
+  MMContactSolveContactDofs - Solves the step's contact problem for the friction loop, at least the
+  contact dofs exactly
+
+  Collective
+
+  Input Parameters:
++ ct    - the contact object
+. b     - the right-hand side
+. w     - the initial guess, updated on return
+- react - the contact force, updated on return
+
+  Note:
+  The friction loop's solve: at least the contact dofs of w and react are updated, exactly. The
+  condensed formulation updates only those, with no full-size solve, and MMContactRecover completes
+  w once the loop has converged; the active-set formulation solves on all dofs, warm-started.
+
+  Level: intermediate
+
+.seealso: `MMContactRecover()`, `MMContactSolve()`, `MMContactSetFrictionThresholds()`
+@*/
 PetscErrorCode MMContactSolveContactDofs(MMContact ct, Vec b, Vec w, Vec react)
 {
 
@@ -299,7 +461,25 @@ PetscErrorCode MMContactSolveContactDofs(MMContact ct, Vec b, Vec w, Vec react)
   PetscFunctionReturn(0);
 }
 
-/* The whole step solution and contact force from the last contact-dof solve. */
+/*@
+  MMContactRecover - Completes the step solution and the contact force from the last contact-dof
+  solve
+
+  Collective
+
+  Input Parameters:
++ ct    - the contact object
+. b     - the right-hand side
+. w     - the solution, completed on return
+- react - the contact force, completed on return
+
+  Note:
+  The whole step solution and contact force from the last contact-dof solve.
+
+  Level: intermediate
+
+.seealso: `MMContactSolveContactDofs()`, `MMContactSolveCoulomb()`
+@*/
 PetscErrorCode MMContactRecover(MMContact ct, Vec b, Vec w, Vec react)
 {
 
@@ -310,9 +490,25 @@ PetscErrorCode MMContactRecover(MMContact ct, Vec b, Vec w, Vec react)
   PetscFunctionReturn(0);
 }
 
-/* Friction thresholds s (one per contact node) for the next Tresca solves of a threshold loop: the
- * formulation's own Tresca conditions (active set). The condensed formulation solves Coulomb's
- * problem in contact space instead (MMContactSolveCoulomb). */
+/*@
+  MMContactSetFrictionThresholds - Sets the friction thresholds of the formulation's next Tresca
+  solves (the active-set formulation)
+
+  Collective
+
+  Input Parameters:
++ ct - the contact object
+- s  - the thresholds, one per contact row
+
+  Note:
+  Friction thresholds s (one per contact node) for the next Tresca solves of a threshold loop: the
+  formulation's own Tresca conditions (active set). The condensed formulation solves Coulomb's
+  problem in contact space instead (MMContactSolveCoulomb).
+
+  Level: intermediate
+
+.seealso: `MMContactGetNormalReactions()`, `MMContactSolveContactDofs()`
+@*/
 PetscErrorCode MMContactSetFrictionThresholds(MMContact ct, Vec s)
 {
 
@@ -322,8 +518,26 @@ PetscErrorCode MMContactSetFrictionThresholds(MMContact ct, Vec s)
   PetscFunctionReturn(0);
 }
 
-/* Whether the formulation builds the Delassus operator on a candidate set, so that a friction
- * solver can work in contact space. */
+/*@
+  MMContactHasDelassus - Tells whether the formulation builds the Delassus operator on a candidate
+  set
+
+  Not collective
+
+  Input Parameter:
+. ct - the contact object
+
+  Output Parameter:
+. has - PETSC_TRUE when a friction solver can work in contact space (MMContactSolveCoulomb())
+
+  Note:
+  Whether the formulation builds the Delassus operator on a candidate set, so that a friction
+  solver can work in contact space.
+
+  Level: intermediate
+
+.seealso: `MMContactSolveCoulomb()`, `MMContactHasCoulombDofs()`
+@*/
 PetscErrorCode MMContactHasDelassus(MMContact ct, PetscBool *has)
 {
   PetscFunctionBeginUser;
@@ -331,8 +545,30 @@ PetscErrorCode MMContactHasDelassus(MMContact ct, PetscBool *has)
   PetscFunctionReturn(0);
 }
 
-/* The step's Coulomb problem solved in contact space by fn: the contact dofs of w and react,
- * exactly (MMContactRecover completes w). *ok is fn's verdict. */
+/*@
+  MMContactSolveCoulomb - Solves the step's Coulomb problem in contact space with a friction solver
+
+  Collective
+
+  Input Parameters:
++ ct    - the contact object
+. b     - the right-hand side
+. w     - the solution, its contact dofs set on return
+. react - the contact force, its contact dofs set on return
+. fn    - the friction solver of the contact-space problem
+- fctx  - its context
+
+  Output Parameter:
+. ok - fn's verdict
+
+  Note:
+  The step's Coulomb problem solved in contact space by fn: the contact dofs of w and react,
+  exactly (MMContactRecover completes w). *ok is fn's verdict.
+
+  Level: intermediate
+
+.seealso: `MMContactHasDelassus()`, `MMContactRecover()`, `MMContactSolveCoulombDofs()`
+@*/
 PetscErrorCode MMContactSolveCoulomb(MMContact ct, Vec b, Vec w, Vec react, MMContactSetSolver fn, void *fctx, PetscBool *ok)
 {
 
@@ -344,8 +580,26 @@ PetscErrorCode MMContactSolveCoulomb(MMContact ct, Vec b, Vec w, Vec react, MMCo
   PetscFunctionReturn(0);
 }
 
-/* Whether the formulation solves the step's Coulomb problem itself on all dofs (no Delassus
- * operator: the active-set formulation). */
+/*@
+  MMContactHasCoulombDofs - Tells whether the formulation solves the step's Coulomb problem itself
+  on all dofs
+
+  Not collective
+
+  Input Parameter:
+. ct - the contact object
+
+  Output Parameter:
+. has - PETSC_TRUE for the active-set formulation
+
+  Note:
+  Whether the formulation solves the step's Coulomb problem itself on all dofs (no Delassus
+  operator: the active-set formulation).
+
+  Level: intermediate
+
+.seealso: `MMContactSolveCoulombDofs()`, `MMContactHasDelassus()`
+@*/
 PetscErrorCode MMContactHasCoulombDofs(MMContact ct, PetscBool *has)
 {
   PetscFunctionBeginUser;
@@ -353,10 +607,34 @@ PetscErrorCode MMContactHasCoulombDofs(MMContact ct, PetscBool *has)
   PetscFunctionReturn(0);
 }
 
-/* The step's Coulomb problem by the formulation's own solve on all dofs: w and react whole, s (the
- * thresholds, a warm start on entry) mu r_n of the answer on return, to rtol of the force scale;
- * *its the solver's iterations,
- * *ok false when it did not converge. */
+/*@
+  MMContactSolveCoulombDofs - Solves the step's Coulomb problem with the formulation's own solve on
+  all dofs
+
+  Collective
+
+  Input Parameters:
++ ct    - the contact object
+. b     - the right-hand side
+. w     - the solution, whole on return
+. react - the contact force, whole on return
+. s     - the thresholds, a warm start on entry, mu r_n of the answer on return
+- rtol  - the tolerance, relative to the force scale
+
+  Output Parameters:
++ its - the solver's iterations
+- ok  - PETSC_FALSE when it did not converge
+
+  Note:
+  The step's Coulomb problem by the formulation's own solve on all dofs: w and react whole, s (the
+  thresholds, a warm start on entry) mu r_n of the answer on return, to rtol of the force scale;
+  *its the solver's iterations,
+  *ok false when it did not converge.
+
+  Level: intermediate
+
+.seealso: `MMContactHasCoulombDofs()`, `MMContactSolveCoulomb()`
+@*/
 PetscErrorCode MMContactSolveCoulombDofs(MMContact ct, Vec b, Vec w, Vec react, Vec s, PetscReal rtol, PetscInt *its, PetscBool *ok)
 {
 
@@ -404,7 +682,22 @@ static PetscErrorCode FrictionCornerView(MMContact ct, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
-/* The contact lines of the closing summary: the formulation's, then the corners'. */
+/*@
+  MMContactView - Prints the contact lines of the closing summary
+
+  Collective
+
+  Input Parameters:
++ ct     - the contact object
+- viewer - the viewer
+
+  Note:
+  The contact lines of the closing summary: the formulation's, then the corners'.
+
+  Level: intermediate
+
+.seealso: `MMContactSetUpView()`, `MMContactMassView()`
+@*/
 PetscErrorCode MMContactView(MMContact ct, PetscViewer viewer)
 {
   PetscFunctionBeginUser;
@@ -502,8 +795,24 @@ static PetscErrorCode MasslessUpperBounds(MMContact ct, Vec upper)
   PetscFunctionReturn(0);
 }
 
-/* Consistent initial contact dofs (docs/method.md section 3, Initial state): with the other dofs fixed, the
- * massless dofs solve the quasi-static problem A_cc u_c = L_c - A_c* u*, u_c <= g on the normal ones. */
+/*@
+  MMContactProjectInitial - Checks the initial penetration and makes the initial massless dofs
+  consistent: their quasi-static problem solved with the other dofs fixed
+
+  Collective
+
+  Input Parameters:
++ ct - the contact object
+- w  - the initial state (w-frame), its massless dofs set on return
+
+  Note:
+  Consistent initial contact dofs (docs/method.md section 3, Initial state): with the other dofs fixed, the
+  massless dofs solve the quasi-static problem A_cc u_c = L_c - A_c* u*, u_c <= g on the normal ones.
+
+  Level: intermediate
+
+.seealso: `MMContactProjectInitialCorrect()`, `MMContactSolveStatic()`
+@*/
 PetscErrorCode MMContactProjectInitial(MMContact ct, Vec w)
 {
   Vec        r, rc, wc;
@@ -543,12 +852,32 @@ PetscErrorCode MMContactProjectInitial(MMContact ct, Vec w)
   PetscFunctionReturn(0);
 }
 
-/* A finite-strain law's correction of the projection above: the massless rows' quasi-static equation
- * is f(w) = L there, with f the law's internal force, not K w. Given its residual res = f(w) - L (all
- * dofs), one chord step with the reference stiffness K, for the increment d: the bound-constrained
- * solve of K_cc d = -res_c, w_c + d <= the gap. Solved for the increment, so that the solver's
- * tolerance is relative to the residual left, not to K w; its fixed point has res_c = 0 off contact
- * and the reaction on the bound. *change is the largest |d|. */
+/*@
+  MMContactProjectInitialCorrect - Corrects the initial projection for a finite-strain law by one
+  bound-constrained chord step with K
+
+  Collective
+
+  Input Parameters:
++ ct  - the contact object, after MMContactProjectInitial()
+. w   - the initial state, its massless dofs corrected on return
+- res - the law's residual f(w) - L
+
+  Output Parameter:
+. change - the largest change of a dof
+
+  Note:
+  A finite-strain law's correction of the projection above: the massless rows' quasi-static equation
+  is f(w) = L there, with f the law's internal force, not K w. Given its residual res = f(w) - L (all
+  dofs), one chord step with the reference stiffness K, for the increment d: the bound-constrained
+  solve of K_cc d = -res_c, w_c + d <= the gap. Solved for the increment, so that the solver's
+  tolerance is relative to the residual left, not to K w; its fixed point has res_c = 0 off contact
+  and the reaction on the bound. *change is the largest |d|.
+
+  Level: intermediate
+
+.seealso: `MMContactProjectInitial()`
+@*/
 PetscErrorCode MMContactProjectInitialCorrect(MMContact ct, Vec w, Vec res, PetscReal *change)
 {
   Vec      wc, rc, d, upper;
@@ -577,7 +906,21 @@ PetscErrorCode MMContactProjectInitialCorrect(MMContact ct, Vec w, Vec res, Pets
   PetscFunctionReturn(0);
 }
 
-/* The formulation frees its data (ops->destroy), then the contact set's own. */
+/*@
+  MMContactDestroy - Destroys a contact object
+
+  Collective
+
+  Input Parameter:
+. pct - the contact object (may be NULL)
+
+  Note:
+  The formulation frees its data (ops->destroy), then the contact set's own.
+
+  Level: beginner
+
+.seealso: `MMContactCreate()`
+@*/
 PetscErrorCode MMContactDestroy(MMContact *pct)
 {
   MMContact ct = *pct;
@@ -641,8 +984,26 @@ PetscErrorCode MMContactDestroy(MMContact *pct)
   PetscFunctionReturn(0);
 }
 
-/* The solvers of K~, for the start-up report: krylov is the KSP whose method solves with K~, pc_ksp
- * the one whose PC does (the formulation's getstepksp). */
+/*@
+  MMContactGetStepKSP - Gives the solvers of K~ for the start-up report
+
+  Not collective
+
+  Input Parameter:
+. ct - the contact object, set up
+
+  Output Parameters:
++ krylov - the KSP whose method solves with K~
+- pc_ksp - the KSP whose PC does
+
+  Note:
+  The solvers of K~, for the start-up report: krylov is the KSP whose method solves with K~, pc_ksp
+  the one whose PC does (the formulation's getstepksp).
+
+  Level: developer
+
+.seealso: `MMContactGetSolverText()`, `MMContactStepIsIterative()`
+@*/
 PetscErrorCode MMContactGetStepKSP(MMContact ct, KSP *krylov, KSP *pc_ksp)
 {
   PetscFunctionBeginUser;

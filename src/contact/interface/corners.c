@@ -234,7 +234,22 @@ PetscErrorCode MMContactCornersStore(MMContact ct)
   PetscFunctionReturn(0);
 }
 
-/* An accepted step's r_2 becomes the next step's old one (the trapezoidal works of section 12). */
+/*@
+  MMContactCornersAccept - Keeps an accepted step's friction-corner reactions r_2 as the next step's
+  old ones
+
+  Not collective
+
+  Input Parameter:
+. ct - the contact object
+
+  Note:
+  An accepted step's r_2 becomes the next step's old one (the trapezoidal works of section 12).
+
+  Level: developer
+
+.seealso: `MMContactCornersWork()`
+@*/
 PetscErrorCode MMContactCornersAccept(MMContact ct)
 {
 
@@ -243,15 +258,37 @@ PetscErrorCode MMContactCornersAccept(MMContact ct)
   PetscFunctionReturn(0);
 }
 
-/* The friction corners' part of the works over the step t0 -> t1 with increment du (w-frame), as
- * corrections to the generic split (energy.c), which puts a node's y_0 force in W_c and its other
- * components in W_f, each with both obstacles' parts, and measures the obstacle's work with the
- * node's first obstacle only. Per obstacle instead (docs/method.md section 12): W_c gets each
- * obstacle's normal force on its own normal displacement, W_f the tangential ones, and each
- * obstacle's work is its own force on its own displacement. dwc + dwf = 0 and the obstacle works
- * move between the terms only: the energy balance is unchanged, its split is each obstacle's. dwn,
- * dwt: the corrections of the obstacles' normal and tangential works. Uses the trapezoidal
- * averages of r_2 (this solve's and the accepted step's). */
+/*@
+  MMContactCornersWork - Computes the friction corners' corrections to the step's split of the works
+
+  Collective
+
+  Input Parameters:
++ ct - the contact object
+. t0 - the step's start time
+. t1 - its end time
+- du - the step's displacement increment (w-frame)
+
+  Output Parameters:
++ dwc - the correction of the contact work W_c
+. dwn - that of the obstacles' normal work
+- dwt - that of the obstacles' tangential work
+
+  Note:
+  The friction corners' part of the works over the step t0 -> t1 with increment du (w-frame), as
+  corrections to the generic split (energy.c), which puts a node's y_0 force in W_c and its other
+  components in W_f, each with both obstacles' parts, and measures the obstacle's work with the
+  node's first obstacle only. Per obstacle instead (docs/method.md section 12): W_c gets each
+  obstacle's normal force on its own normal displacement, W_f the tangential ones, and each
+  obstacle's work is its own force on its own displacement. dwc + dwf = 0 and the obstacle works
+  move between the terms only: the energy balance is unchanged, its split is each obstacle's. dwn,
+  dwt: the corrections of the obstacles' normal and tangential works. Uses the trapezoidal
+  averages of r_2 (this solve's and the accepted step's).
+
+  Level: developer
+
+.seealso: `MMContactCornersAccept()`
+@*/
 PetscErrorCode MMContactCornersWork(MMContact ct, PetscReal t0, PetscReal t1, Vec du, PetscReal *dwc, PetscReal *dwn, PetscReal *dwt)
 {
   const PetscInt     dim = ct->op->dim;

@@ -258,7 +258,31 @@ static PetscErrorCode ContactStatistics(MMContact ct, PetscReal t, Vec w, Vec re
   PetscFunctionReturn(0);
 }
 
-/* The discrete Coulomb residual (docs/method.md section 6) of a state, and its slipping/sticking counts. */
+/*@
+  MMContactCoulomb - Computes the discrete Coulomb residual of a state and its slipping and sticking
+  counts
+
+  Collective
+
+  Input Parameters:
++ ct    - the contact object
+. t     - the state's time
+. w     - the displacement (w-frame)
+. react - the contact force
+- sigma - the slip velocity
+
+  Output Parameters:
++ residual - the discrete Coulomb residual
+. nslip    - the slipping rows
+- nstick   - the sticking rows
+
+  Note:
+  The discrete Coulomb residual (docs/method.md section 6) of a state, and its slipping/sticking counts.
+
+  Level: intermediate
+
+.seealso: `MMContactDiagnostics()`, `MMContactAudit()`
+@*/
 PetscErrorCode MMContactCoulomb(MMContact ct, PetscReal t, Vec w, Vec react, Vec sigma, PetscReal *residual, PetscInt *nslip, PetscInt *nstick)
 {
   ContactStats st;
@@ -271,7 +295,28 @@ PetscErrorCode MMContactCoulomb(MMContact ct, PetscReal t, Vec w, Vec react, Vec
   PetscFunctionReturn(0);
 }
 
-/* Per-step contact quantities (docs/method.md sections 5-6) of the accepted state. */
+/*@
+  MMContactDiagnostics - Computes the contact quantities of an accepted state for the history
+
+  Collective
+
+  Input Parameters:
++ ct    - the contact object
+. t     - the state's time
+. w     - the displacement (w-frame)
+. react - the contact force
+- v     - the velocity
+
+  Output Parameter:
+. h - the contact quantities
+
+  Note:
+  Per-step contact quantities (docs/method.md sections 5-6) of the accepted state.
+
+  Level: intermediate
+
+.seealso: `MMContactAudit()`, `MMContactCoulomb()`
+@*/
 PetscErrorCode MMContactDiagnostics(MMContact ct, PetscReal t, Vec w, Vec react, Vec v, MMContactStats *h)
 {
   ContactStats st;
@@ -292,9 +337,34 @@ PetscErrorCode MMContactDiagnostics(MMContact ct, PetscReal t, Vec w, Vec react,
   PetscFunctionReturn(0);
 }
 
-/* The contact fields of the output, zero off the contact boundary: nodal pressure r_i / int phi_i and
- * current gap g_i - u.nu (scalars), tangential traction and slip velocity (Cartesian vectors on dm_out,
- * the frame's tangential components mapped back). */
+/*@
+  MMContactBoundaryFields - Computes the contact fields of a snapshot: the nodal pressure, the gap,
+  the tangential traction and the slip velocity
+
+  Collective
+
+  Input Parameters:
++ ct     - the contact object
+. u      - the displacement (w-frame)
+. v      - the velocity
+. react  - the contact force
+- dm_out - the output's Cartesian DM
+
+  Output Parameters:
++ pressure   - the nodal pressure (scalar vertex vector)
+. gap        - the current gap (scalar vertex vector)
+. traction_t - the tangential traction (on dm_out)
+- slip       - the slip velocity (on dm_out)
+
+  Note:
+  The contact fields of the output, zero off the contact boundary: nodal pressure r_i / int phi_i and
+  current gap g_i - u.nu (scalars), tangential traction and slip velocity (Cartesian vectors on dm_out,
+  the frame's tangential components mapped back).
+
+  Level: intermediate
+
+.seealso: `MMContactObstacleField()`
+@*/
 PetscErrorCode MMContactBoundaryFields(MMContact ct, Vec u, Vec v, Vec react, DM dm_out, Vec pressure, Vec gap, Vec traction_t, Vec slip)
 {
   const PetscInt     dim = ct->op->dim;
@@ -354,8 +424,25 @@ PetscErrorCode MMContactBoundaryFields(MMContact ct, Vec u, Vec v, Vec react, DM
 }
 
 
-/* The output field of each contact node's obstacle (its index in -obstacles), -1 off the contact
- * boundary. */
+/*@
+  MMContactObstacleField - Sets the output field of each contact node's obstacle
+
+  Collective
+
+  Input Parameter:
+. ct - the contact object
+
+  Output Parameter:
+. field - the obstacle's index per vertex, -1 off the contact boundary
+
+  Note:
+  The output field of each contact node's obstacle (its index in -obstacles), -1 off the contact
+  boundary.
+
+  Level: intermediate
+
+.seealso: `MMContactBoundaryFields()`
+@*/
 PetscErrorCode MMContactObstacleField(MMContact ct, Vec field)
 {
 
@@ -368,11 +455,29 @@ PetscErrorCode MMContactObstacleField(MMContact ct, Vec field)
   PetscFunctionReturn(0);
 }
 
-/* The contact audit of an accepted step, like the energy audit: a node inside an obstacle, or a
- * Coulomb residual (docs/method.md section 6) past its tolerance, stops the run (exit 65) before
- * the step is written. The contact solves hold both to round-off; a run that breaks them is
- * wrong, usually from values the arithmetic cannot carry (-E 1e-30 on D1 crosses the plane by a
- * third of h_c' with an exact energy balance), and its history would say so only to a reader. */
+/*@
+  MMContactAudit - Audits an accepted step: stops the run when a node lies inside an obstacle or the
+  Coulomb residual exceeds its tolerance
+
+  Collective
+
+  Input Parameters:
++ ct   - the contact object
+. step - the step's number
+. t    - its time
+- h    - its contact quantities (MMContactDiagnostics())
+
+  Note:
+  The contact audit of an accepted step, like the energy audit: a node inside an obstacle, or a
+  Coulomb residual (docs/method.md section 6) past its tolerance, stops the run (exit 65) before
+  the step is written. The contact solves hold both to round-off; a run that breaks them is
+  wrong, usually from values the arithmetic cannot carry (-E 1e-30 on D1 crosses the plane by a
+  third of h_c' with an exact energy balance), and its history would say so only to a reader.
+
+  Level: intermediate
+
+.seealso: `MMContactDiagnostics()`
+@*/
 PetscErrorCode MMContactAudit(MMContact ct, PetscInt step, PetscReal t, const MMContactStats *h)
 {
   MPI_Comm         comm = PetscObjectComm((PetscObject)ct->op->dm);

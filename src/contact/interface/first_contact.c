@@ -71,8 +71,31 @@ static PetscReal RowFirstContact(const MMObstacle *ob, PetscInt dim, const Petsc
   return PETSC_MAX_REAL;
 }
 
-/* The earliest row to close, over all ranks, from the state (u, v, a) at t0 (w-frame vectors); rows
- * closed at t0 already (within 1e-12 h_c') are counted apart, as touching. */
+/*@
+  MMContactFirstContact - Estimates for the data check the earliest time a contact row closes, and
+  the rows touching at the start
+
+  Collective
+
+  Input Parameters:
++ ct    - the contact object
+. u     - the displacement (w-frame)
+. v     - the velocity
+. a     - the acceleration
+. t0    - the start time
+- t_end - the end time
+
+  Output Parameter:
+. fc - the estimate
+
+  Note:
+  The earliest row to close, over all ranks, from the state (u, v, a) at t0 (w-frame vectors); rows
+  closed at t0 already (within 1e-12 h_c') are counted apart, as touching.
+
+  Level: intermediate
+
+.seealso: `MMContactObstacleGaps()`
+@*/
 PetscErrorCode MMContactFirstContact(MMContact ct, Vec u, Vec v, Vec a, PetscReal t0, PetscReal t_end, MMFirstContact *fc)
 {
   const PetscInt     dim = ct->op->dim;
@@ -155,10 +178,32 @@ PetscErrorCode MMContactFirstContact(MMContact ct, Vec u, Vec v, Vec a, PetscRea
   PetscFunctionReturn(0);
 }
 
-/* Per obstacle (rigid ones, then the pairs): the contact nodes constrained against it (their first
- * row, as the contact_obstacle field has them) and the smallest gap of its rows at t0, g_k(t0) - w_k,
- * with that row's node (reference position; the first of equal gaps on the lowest rank). Arrays of
- * n_obstacles entries, x of MM_MAX_DIM each; a gap is PETSC_MAX_REAL for an obstacle without rows. */
+/*@
+  MMContactObstacleGaps - Gives per obstacle its contact nodes and the smallest gap of its rows at
+  t0, with that row's node
+
+  Collective
+
+  Input Parameters:
++ ct - the contact object
+. u  - the displacement (w-frame)
+- t0 - the time
+
+  Output Parameters:
++ count - per obstacle, its contact nodes
+. gap   - per obstacle, the smallest gap, PETSC_MAX_REAL without rows
+- x     - per obstacle, that row's node (reference position, MM_MAX_DIM entries)
+
+  Note:
+  Per obstacle (rigid ones, then the pairs): the contact nodes constrained against it (their first
+  row, as the contact_obstacle field has them) and the smallest gap of its rows at t0, g_k(t0) - w_k,
+  with that row's node (reference position; the first of equal gaps on the lowest rank). Arrays of
+  n_obstacles entries, x of MM_MAX_DIM each; a gap is PETSC_MAX_REAL for an obstacle without rows.
+
+  Level: intermediate
+
+.seealso: `MMContactFirstContact()`
+@*/
 PetscErrorCode MMContactObstacleGaps(MMContact ct, Vec u, PetscReal t0, PetscInt count[], PetscReal gap[], PetscReal x[])
 {
   const PetscInt     dim = ct->op->dim, nob = ct->pb.n_obstacles;

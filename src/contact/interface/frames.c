@@ -71,6 +71,21 @@ PetscErrorCode MMContactFramesDestroy(MMContactFrames *fr)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMContactFramesFollow - Tells whether the contact frames follow the contact point
+
+  Not collective
+
+  Input Parameter:
+. ct - the contact object
+
+  Output Parameter:
+. follow - PETSC_TRUE with -contact_frames follow
+
+  Level: intermediate
+
+.seealso: `MMContactFramesUpdate()`
+@*/
 PetscErrorCode MMContactFramesFollow(MMContact ct, PetscBool *follow)
 {
   PetscFunctionBeginUser;
@@ -311,9 +326,31 @@ static PetscErrorCode TurnSelectedRows(MMContact ct, PetscBool state)
   PetscFunctionReturn(0);
 }
 
-/* The frames of the rows near a curved obstacle at the state u, v (w-frame) of time t, for a step of
- * dt: the turned rows' frames and gaps, and contact's operators and the held data, the state with
- * them, turned (TurnSelectedRows). */
+/*@
+  MMContactFramesUpdate - Turns the frames of the rows near a curved obstacle at a step's start, and
+  contact's operators, gaps and held data with them
+
+  Collective
+
+  Input Parameters:
++ ct - the contact object
+. u  - the displacement (w-frame)
+. v  - the velocity (w-frame)
+. t  - the time of the state
+- dt - the step
+
+  Output Parameter:
+. turned - how many frames turned (all ranks)
+
+  Note:
+  The frames of the rows near a curved obstacle at the state u, v (w-frame) of time t, for a step of
+  dt: the turned rows' frames and gaps, and contact's operators and the held data, the state with
+  them, turned (TurnSelectedRows).
+
+  Level: intermediate
+
+.seealso: `MMContactFramesFollow()`, `MMContactFramesAddVec()`, `MMContactFramesRestore()`
+@*/
 PetscErrorCode MMContactFramesUpdate(MMContact ct, Vec u, Vec v, PetscReal t, PetscReal dt, PetscInt *turned)
 {
   MMContactFrames *fr = &ct->frames;
@@ -338,8 +375,27 @@ PetscErrorCode MMContactFramesUpdate(MMContact ct, Vec u, Vec v, PetscReal t, Pe
  * function of its obstacle normal alone (MMContactFrameFromNormal), so its normal nu and its gap
  * g_0 restore it bit for bit, on any partition; the state is kept in these frames. ---- */
 
-/* Row k's record: nu (MM_MAX_DIM) and g_0; *has: the row follows (the others keep their set-up
- * frames, and a run with fixed frames writes no records). */
+/*@
+  MMContactFramesGetRecord - Gives a contact row's frame record for a checkpoint: its normal and g_0
+
+  Not collective
+
+  Input Parameters:
++ ct - the contact object
+- k  - the owned contact row
+
+  Output Parameters:
++ has - the row follows (else rec is not set)
+- rec - its record, MM_CONTACT_FRAME_RECORD reals
+
+  Note:
+  Row k's record: nu (MM_MAX_DIM) and g_0; *has: the row follows (the others keep their set-up
+  frames, and a run with fixed frames writes no records).
+
+  Level: developer
+
+.seealso: `MMContactFramesRestore()`, `MMContactFramesGetCounters()`
+@*/
 PetscErrorCode MMContactFramesGetRecord(MMContact ct, PetscInt k, PetscBool *has, PetscScalar rec[])
 {
   const PetscScalar *g0;
@@ -354,7 +410,24 @@ PetscErrorCode MMContactFramesGetRecord(MMContact ct, PetscInt k, PetscBool *has
   PetscFunctionReturn(0);
 }
 
-/* The run's counters for the checkpoint: updates, node frames turned, the largest turn (all ranks) */
+/*@
+  MMContactFramesGetCounters - Gives the run's frame counters for a checkpoint
+
+  Collective
+
+  Input Parameter:
+. ct - the contact object
+
+  Output Parameter:
+. counters - the updates, the node frames turned and the largest turn (all ranks)
+
+  Note:
+  The run's counters for the checkpoint: updates, node frames turned, the largest turn (all ranks)
+
+  Level: developer
+
+.seealso: `MMContactFramesGetRecord()`, `MMContactFramesRestore()`
+@*/
 PetscErrorCode MMContactFramesGetCounters(MMContact ct, PetscReal counters[3])
 {
   const MMContactFrames *fr = &ct->frames;
@@ -366,11 +439,31 @@ PetscErrorCode MMContactFramesGetCounters(MMContact ct, PetscReal counters[3])
   PetscFunctionReturn(0);
 }
 
-/* -restart of a run whose frames followed: each following row (n_local records, as
- * MMContactFramesGetRecord wrote them) takes its checkpointed frame and gap, and contact's operators
- * and the held set-up data turn with them, from the set-up frames (TurnSelectedRows); *turned: how
- * many turned (all ranks). The state read from the checkpoint is already in these frames: it does
- * not turn. */
+/*@
+  MMContactFramesRestore - Restores the following rows' frames and gaps and the run's frame counters
+  from a checkpoint (-restart), and turns contact's operators and the held set-up data with them
+
+  Collective
+
+  Input Parameters:
++ ct       - the contact object, set up
+. rec      - the owned rows' records, as MMContactFramesGetRecord() wrote them
+- counters - the run's counters, as MMContactFramesGetCounters() gave them
+
+  Output Parameter:
+. turned - how many frames turned (all ranks)
+
+  Note:
+  -restart of a run whose frames followed: each following row (n_local records, as
+  MMContactFramesGetRecord wrote them) takes its checkpointed frame and gap, and contact's operators
+  and the held set-up data turn with them, from the set-up frames (TurnSelectedRows); *turned: how
+  many turned (all ranks). The state read from the checkpoint is already in these frames: it does
+  not turn.
+
+  Level: developer
+
+.seealso: `MMContactFramesGetRecord()`, `MMContactFramesUpdate()`
+@*/
 PetscErrorCode MMContactFramesRestore(MMContact ct, const PetscScalar rec[], const PetscReal counters[3], PetscInt *turned)
 {
   MMContactFrames *fr  = &ct->frames;

@@ -7,6 +7,21 @@
 #include "../contactimpl.h"
 #include "fem.h"
 
+/*@
+  MMContactFramesAddVec - Registers a w-frame vector another component keeps, so that contact turns
+  or carries it with its own
+
+  Not collective
+
+  Input Parameters:
++ ct   - the contact object
+. type - how the vector transforms and whether a checkpoint holds it
+- x    - the address of the holder's vector (the holder may replace the object behind it, a NULL one is skipped)
+
+  Level: developer
+
+.seealso: `MMContactFramesAddMat()`, `MMContactGetFrameState()`
+@*/
 PetscErrorCode MMContactFramesAddVec(MMContact ct, MMFrameVecType type, Vec *x)
 {
   MMContactHeld *h = &ct->held;
@@ -20,6 +35,20 @@ PetscErrorCode MMContactFramesAddVec(MMContact ct, MMFrameVecType type, Vec *x)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMContactFramesAddMat - Registers a w-frame matrix another component keeps, so that it turns with
+  the frames (A <- R^T A R)
+
+  Not collective
+
+  Input Parameters:
++ ct - the contact object
+- A  - the address of the holder's matrix
+
+  Level: developer
+
+.seealso: `MMContactFramesAddVec()`, `MMContactGetFrameState()`
+@*/
 PetscErrorCode MMContactFramesAddMat(MMContact ct, Mat *A)
 {
   MMContactHeld *h = &ct->held;
@@ -30,6 +59,21 @@ PetscErrorCode MMContactFramesAddMat(MMContact ct, Mat *A)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMContactGetFrameState - Gives the frame state, which counts the frames' turns and new pairings
+
+  Not collective
+
+  Input Parameter:
+. ct - the contact object
+
+  Output Parameter:
+. state - the frame state: what a holder built on the frames is stale when it changed
+
+  Level: developer
+
+.seealso: `MMContactFramesAddVec()`, `MMContactFramesAddMat()`
+@*/
 PetscErrorCode MMContactGetFrameState(MMContact ct, PetscObjectState *state)
 {
   PetscFunctionBeginUser;

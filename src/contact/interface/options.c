@@ -30,6 +30,19 @@ static PetscErrorCode FormulationsSetFromOptions(MMContact ct, PetscOptionItems 
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMContactSetFromOptions - Reads the contact options: -contact, -contact_formulation, -contact_tol,
+  -contact_pairs_sliding, -mass, the audits' tolerances and the formulations' own
+
+  Collective
+
+  Input Parameter:
+. ct - the contact object
+
+  Level: beginner
+
+.seealso: `MMContactCreate()`, `MMContactSetUp()`, `MMContactSetUpView()`
+@*/
 PetscErrorCode MMContactSetFromOptions(MMContact ct)
 {
   MPI_Comm          comm = ct->comm;
@@ -80,8 +93,24 @@ PetscErrorCode MMContactSetFromOptions(MMContact ct)
   PetscFunctionReturn(0);
 }
 
-/* The friction solver's Coulomb audit tolerance (-friction_coulomb_tol), which the active set's
- * Tresca and Coulomb solves aim below */
+/*@
+  MMContactSetCoulombTolerance - Gives the contact object the friction solver's Coulomb audit
+  tolerance
+
+  Logically collective
+
+  Input Parameters:
++ ct  - the contact object
+- tol - -friction_coulomb_tol
+
+  Note:
+  The friction solver's Coulomb audit tolerance (-friction_coulomb_tol), which the active set's
+  Tresca and Coulomb solves aim below
+
+  Level: developer
+
+.seealso: `MMContactGetTolerance()`, `MMContactSolveCoulombDofs()`
+@*/
 PetscErrorCode MMContactSetCoulombTolerance(MMContact ct, PetscReal tol)
 {
   PetscFunctionBeginUser;
@@ -89,7 +118,24 @@ PetscErrorCode MMContactSetCoulombTolerance(MMContact ct, PetscReal tol)
   PetscFunctionReturn(0);
 }
 
-/* -contact_tol, which the stepper's audit advice compares a residual with */
+/*@
+  MMContactGetTolerance - Gives the contact solves' tolerance, -contact_tol
+
+  Not collective
+
+  Input Parameter:
+. ct - the contact object
+
+  Output Parameter:
+. tol - -contact_tol
+
+  Note:
+  -contact_tol, which the stepper's audit advice compares a residual with
+
+  Level: developer
+
+.seealso: `MMContactStepIsIterative()`, `MMContactSetCoulombTolerance()`
+@*/
 PetscErrorCode MMContactGetTolerance(MMContact ct, PetscReal *tol)
 {
   PetscFunctionBeginUser;
@@ -97,7 +143,24 @@ PetscErrorCode MMContactGetTolerance(MMContact ct, PetscReal *tol)
   PetscFunctionReturn(0);
 }
 
-/* Whether the step's K~ solves are iterative (CG): their error is then contact_tol ||b||, not round-off */
+/*@
+  MMContactStepIsIterative - Tells whether the step's K~ solves are iterative (CG)
+
+  Not collective
+
+  Input Parameter:
+. ct - the contact object
+
+  Output Parameter:
+. iterative - PETSC_TRUE when K~ is solved by CG, PETSC_FALSE when it is factored or not set up yet
+
+  Note:
+  Whether the step's K~ solves are iterative (CG): their error is then contact_tol ||b||, not round-off
+
+  Level: developer
+
+.seealso: `MMContactGetTolerance()`, `MMContactGetStepKSP()`
+@*/
 PetscErrorCode MMContactStepIsIterative(MMContact ct, PetscBool *iterative)
 {
   PetscFunctionBeginUser;

@@ -9,6 +9,15 @@ PetscLogEvent MMCONTACT_FrameSetUp, MMCONTACT_FrameRotate, MMCONTACT_MassRedistr
 
 static PetscBool MMContactPackageInitialized = PETSC_FALSE;
 
+/*@
+  MMContactInitializePackage - Registers the contact package's class and its logging events, once
+
+  Not collective
+
+  Level: developer
+
+.seealso: `MMContactCreate()`, `MMFEInitializePackage()`
+@*/
 PetscErrorCode MMContactInitializePackage(void)
 {
   PetscFunctionBeginUser;

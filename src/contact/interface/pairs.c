@@ -626,15 +626,35 @@ static PetscErrorCode Positions(MMContact ct, Vec u, PetscReal **xc, PetscReal x
   PetscFunctionReturn(0);
 }
 
-/* At a step's start: each slave node's deepest penetration of the current master surface (u = u^n),
- * for the run's summary; then the pairing of its predicted position (up, the step's predictor
- * u + dt v + dt^2/4 a, on the predicted master surface: the pairing of the step's end to O(dt^2)).
- * Where the facet, the weights or the facet's normal n_c change, the node's row becomes
- * w_0 = nu_c.(u_s - sum_j phi_j u_mj) <= g = n_c.(X_s - sum_j phi_j X_mj), nu_c = -n_c: the
- * non-penetration of the facet's line, exact for a facet that neither turns nor bends in the step. N is
- * rebuilt, and with it K and M*; every w-frame vector, the load, the lift and the held ones (held.c), is
- * carried to the new variables, so that the Cartesian state is unchanged. The ranks find the same pairing: the master
- * surface and its displacements are gathered on each. */
+/*@
+  MMContactSlidePairs - Finds the contact pairs' pairing again at a step's start (large sliding)
+  and, where it changed, rebuilds N, K and M* and carries the w-frame vectors to the new variables
+
+  Collective
+
+  Input Parameters:
++ ct - the contact object
+. u  - the state u^n (w-frame)
+- up - the step's predictor
+
+  Output Parameter:
+. changed - the pairing changed (all ranks)
+
+  Note:
+  At a step's start: each slave node's deepest penetration of the current master surface (u = u^n),
+  for the run's summary; then the pairing of its predicted position (up, the step's predictor
+  u + dt v + dt^2/4 a, on the predicted master surface: the pairing of the step's end to O(dt^2)).
+  Where the facet, the weights or the facet's normal n_c change, the node's row becomes
+  w_0 = nu_c.(u_s - sum_j phi_j u_mj) <= g = n_c.(X_s - sum_j phi_j X_mj), nu_c = -n_c: the
+  non-penetration of the facet's line, exact for a facet that neither turns nor bends in the step. N is
+  rebuilt, and with it K and M*; every w-frame vector, the load, the lift and the held ones (held.c), is
+  carried to the new variables, so that the Cartesian state is unchanged. The ranks find the same pairing: the master
+  surface and its displacements are gathered on each.
+
+  Level: intermediate
+
+.seealso: `MMContactPairsGetRecord()`, `MMContactPairsRestore()`, `MMContactFramesAddVec()`
+@*/
 PetscErrorCode MMContactSlidePairs(MMContact ct, Vec u, Vec up, PetscBool *changed)
 {
   MMContactPairs *pr  = &ct->pairs;
@@ -716,6 +736,23 @@ static PetscBool PairSlides(MMContact ct, PetscInt k)
   return (PetscBool)(ct->enabled && ct->pairs.large && ct->obstacle[k] >= ct->pb.n_rigid && !ct->second[k]);
 }
 
+/*@
+  MMContactPairsGetRecord - Gives a contact row's large-sliding pairing record for a checkpoint
+
+  Not collective
+
+  Input Parameters:
++ ct - the contact object
+- k  - the owned contact row
+
+  Output Parameters:
++ has - the row is a sliding pair's (else rec is not set)
+- rec - its record, MM_CONTACT_PAIR_RECORD reals
+
+  Level: developer
+
+.seealso: `MMContactPairsRestore()`, `MMContactPairsGetCounters()`
+@*/
 PetscErrorCode MMContactPairsGetRecord(MMContact ct, PetscInt k, PetscBool *has, PetscScalar rec[])
 {
   MMContactPairs    *pr  = &ct->pairs;
@@ -752,10 +789,29 @@ static PetscInt FacetOfKey(MMContactPairs *pr, PetscInt dim, PetscInt p, const P
   return -1;
 }
 
-/* -restart: each slave node (rec: n_local records, as MMContactPairsGetRecord wrote them) takes the
- * checkpoint's pairing, and N, K and M* are built for it as a new pairing builds them
- * (MMContactSlidePairs); *changed: the pairing differs from the set-up's (all ranks). The state and the
- * forces the stepper carries are read from the checkpoint in these variables: nothing is transformed. */
+/*@
+  MMContactPairsRestore - Restores each slave node's pairing from a checkpoint's records (-restart)
+  and builds N, K and M* for it
+
+  Collective
+
+  Input Parameters:
++ ct  - the contact object, set up
+- rec - the owned rows' records, as MMContactPairsGetRecord() wrote them
+
+  Output Parameter:
+. changed - the pairing differs from the set-up's (all ranks)
+
+  Note:
+  -restart: each slave node (rec: n_local records, as MMContactPairsGetRecord wrote them) takes the
+  checkpoint's pairing, and N, K and M* are built for it as a new pairing builds them
+  (MMContactSlidePairs); *changed: the pairing differs from the set-up's (all ranks). The state and the
+  forces the stepper carries are read from the checkpoint in these variables: nothing is transformed.
+
+  Level: developer
+
+.seealso: `MMContactPairsGetRecord()`, `MMContactSlidePairs()`
+@*/
 PetscErrorCode MMContactPairsRestore(MMContact ct, const PetscScalar rec[], PetscBool *changed)
 {
   MMContactPairs *pr  = &ct->pairs;
@@ -806,7 +862,25 @@ PetscErrorCode MMContactPairsRestore(MMContact ct, const PetscScalar rec[], Pets
   PetscFunctionReturn(0);
 }
 
-/* The run's large-sliding counters (the summary's): steps that paired anew, facet changes, the deepest penetration */
+/*@
+  MMContactPairsGetCounters - Gives the run's large-sliding counters for the summary and a
+  checkpoint
+
+  Not collective
+
+  Input Parameter:
+. ct - the contact object
+
+  Output Parameter:
+. c - steps that paired anew, facet changes, the deepest penetration
+
+  Note:
+  The run's large-sliding counters (the summary's): steps that paired anew, facet changes, the deepest penetration
+
+  Level: developer
+
+.seealso: `MMContactPairsSetCounters()`
+@*/
 PetscErrorCode MMContactPairsGetCounters(MMContact ct, PetscReal c[3])
 {
   PetscFunctionBeginUser;
@@ -816,6 +890,19 @@ PetscErrorCode MMContactPairsGetCounters(MMContact ct, PetscReal c[3])
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMContactPairsSetCounters - Sets the run's large-sliding counters, from a checkpoint
+
+  Not collective
+
+  Input Parameters:
++ ct - the contact object
+- c  - steps that paired anew, facet changes, the deepest penetration
+
+  Level: developer
+
+.seealso: `MMContactPairsGetCounters()`
+@*/
 PetscErrorCode MMContactPairsSetCounters(MMContact ct, const PetscReal c[3])
 {
   PetscFunctionBeginUser;

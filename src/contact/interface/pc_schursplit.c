@@ -618,6 +618,15 @@ static PetscErrorCode PCCreate_SchurSplit(PC pc)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMPCRegisterSchurSplit - Registers the PC type schursplit (MMPCSCHURSPLIT), once
+
+  Not collective
+
+  Level: developer
+
+.seealso: `MMPCRegisterVIFactor()`
+@*/
 PetscErrorCode MMPCRegisterSchurSplit(void)
 {
   static PetscBool done = PETSC_FALSE;

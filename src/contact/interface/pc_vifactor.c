@@ -201,6 +201,15 @@ static PetscErrorCode PCCreate_VIFactor(PC pc)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMPCRegisterVIFactor - Registers the PC type vifactor (MMPCVIFACTOR), once
+
+  Not collective
+
+  Level: developer
+
+.seealso: `MMPCVIFactorSetSNES()`, `MMPCRegisterSchurSplit()`
+@*/
 PetscErrorCode MMPCRegisterVIFactor(void)
 {
   static PetscBool done = PETSC_FALSE;
@@ -219,8 +228,24 @@ static PetscErrorCode IsVIFactor(PC pc, PetscBool *is)
   PetscFunctionReturn(0);
 }
 
-/* The VI whose Newton steps pc solves (borrowed: the SNES holds the PC), and the factor's package:
- * -PREFIX_pc_factor_mat_solver_type, or MUMPS. */
+/*@
+  MMPCVIFactorSetSNES - Gives a vifactor PC the VI whose Newton steps it solves, and reads its
+  factor package
+
+  Logically collective
+
+  Input Parameters:
++ pc   - the PC (nothing is done for another type)
+- snes - the VI's SNES (borrowed)
+
+  Note:
+  The VI whose Newton steps pc solves (borrowed: the SNES holds the PC), and the factor's package:
+  -PREFIX_pc_factor_mat_solver_type, or MUMPS.
+
+  Level: developer
+
+.seealso: `MMPCVIFactorAnalyse()`, `MMPCVIFactorGetFactor()`
+@*/
 PetscErrorCode MMPCVIFactorSetSNES(PC pc, SNES snes)
 {
   PC_VIFactor *vf = (PC_VIFactor *)pc->data;
@@ -236,8 +261,23 @@ PetscErrorCode MMPCVIFactorSetSNES(PC pc, SNES snes)
   PetscFunctionReturn(0);
 }
 
-/* A new K~ (set-up, a new dt): ordered and analysed now, on first use. The numeric factorization
- * waits for the VI's first active set. */
+/*@
+  MMPCVIFactorAnalyse - Orders and analyses a new K~ in a vifactor PC, once
+
+  Collective
+
+  Input Parameters:
++ pc - the PC (nothing is done for another type, or when a factor exists)
+- K  - the new K~
+
+  Note:
+  A new K~ (set-up, a new dt): ordered and analysed now, on first use. The numeric factorization
+  waits for the VI's first active set.
+
+  Level: developer
+
+.seealso: `MMPCVIFactorSetSNES()`, `MMPCVIFactorGetFactor()`
+@*/
 PetscErrorCode MMPCVIFactorAnalyse(PC pc, Mat K)
 {
   PC_VIFactor *vf = (PC_VIFactor *)pc->data;
@@ -250,8 +290,26 @@ PetscErrorCode MMPCVIFactorAnalyse(PC pc, Mat K)
   PetscFunctionReturn(0);
 }
 
-/* The factor and its package, for the start-up report; F is NULL before the analysis or for another
- * PC type. */
+/*@
+  MMPCVIFactorGetFactor - Gives a vifactor PC's factor and its package, for the start-up report
+
+  Not collective
+
+  Input Parameter:
+. pc - the PC
+
+  Output Parameters:
++ F    - the factor, NULL before the analysis or for another PC type
+- type - the factor's package (or NULL)
+
+  Note:
+  The factor and its package, for the start-up report; F is NULL before the analysis or for another
+  PC type.
+
+  Level: developer
+
+.seealso: `MMPCVIFactorAnalyse()`
+@*/
 PetscErrorCode MMPCVIFactorGetFactor(PC pc, Mat *F, const char **type)
 {
   PetscBool is;

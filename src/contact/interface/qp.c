@@ -86,9 +86,23 @@ static const char *FactorFailureHint(PCFailedReason reason)
   }
 }
 
-/* A factorization that failed (MUMPS out of memory, a zero pivot) does not stop KSPSetUp: its
- * solves would return garbage or nothing. Stop here, on every rank, naming the solve and why. The
- * reason is the factor's own: PCREDUNDANT reports only that its inner PC failed (SUBPC_ERROR). */
+/*@
+  MMKSPCheckFactored - Stops the run when a KSP's factorization failed, naming the solve and why
+
+  Collective
+
+  Input Parameter:
+. ksp - the KSP, set up
+
+  Note:
+  A factorization that failed (MUMPS out of memory, a zero pivot) does not stop KSPSetUp: its
+  solves would return garbage or nothing. Stop here, on every rank, naming the solve and why. The
+  reason is the factor's own: PCREDUNDANT reports only that its inner PC failed (SUBPC_ERROR).
+
+  Level: developer
+
+.seealso: `MMKSPGetFactorPC()`, `MMKSPSetFailureCheck()`
+@*/
 PetscErrorCode MMKSPCheckFactored(KSP ksp)
 {
   PC             pc;
@@ -119,8 +133,23 @@ static PetscErrorCode KSPCheckSolvedPostSolve(KSP ksp, Vec b, Vec x, void *ptr)
   SETERRQ(PetscObjectComm((PetscObject)ksp), PETSC_ERR_NOT_CONVERGED, "The solve -%s failed: %s. Run with -%sksp_converged_reason -%sksp_view to see why", prefix ? prefix : "", KSPConvergedReasons[reason], prefix ? prefix : "", prefix ? prefix : "");
 }
 
-/* A failed factorization or solve stops the run with a message that names the solve (rather than
- * KSPSetErrorIfNotConverged, which stops inside PCSetUp with the factorization package's own code). */
+/*@
+  MMKSPSetFailureCheck - Makes a failed factorization or solve of a KSP stop the run with a message
+  that names the solve
+
+  Logically collective
+
+  Input Parameter:
+. ksp - the KSP
+
+  Note:
+  A failed factorization or solve stops the run with a message that names the solve (rather than
+  KSPSetErrorIfNotConverged, which stops inside PCSetUp with the factorization package's own code).
+
+  Level: developer
+
+.seealso: `MMKSPCheckFactored()`, `MMKSPSetDirect()`
+@*/
 PetscErrorCode MMKSPSetFailureCheck(KSP ksp)
 {
   PetscFunctionBeginUser;
@@ -128,9 +157,24 @@ PetscErrorCode MMKSPSetFailureCheck(KSP ksp)
   PetscFunctionReturn(0);
 }
 
-/* A solve that must be exact: LU with MUMPS by default, and anything else MMKSPCheckDirect does not
- * accept refused when it solves (after KSPSetFromOptions). A CG chosen by options, where accepted,
- * stops at a tight relative residual; a failed factorization or solve stops the run. */
+/*@
+  MMKSPSetDirect - Sets a KSP up for a solve that must be exact: LU with MUMPS by default, checked
+  when it solves
+
+  Logically collective
+
+  Input Parameter:
+. ksp - the KSP
+
+  Note:
+  A solve that must be exact: LU with MUMPS by default, and anything else MMKSPCheckDirect does not
+  accept refused when it solves (after KSPSetFromOptions). A CG chosen by options, where accepted,
+  stops at a tight relative residual; a failed factorization or solve stops the run.
+
+  Level: developer
+
+.seealso: `MMKSPSetExactCG()`, `MMKSPSetDirectSPD()`, `MMKSPSetFailureCheck()`
+@*/
 PetscErrorCode MMKSPSetDirect(KSP ksp)
 {
   PetscFunctionBeginUser;
@@ -141,11 +185,26 @@ PetscErrorCode MMKSPSetDirect(KSP ksp)
   PetscFunctionReturn(0);
 }
 
-/* The exact solve of a well-conditioned SPD matrix (M* on the dofs with inertia: its condition number
- * with the Jacobi PC does not grow with the mesh): CG with Jacobi to the tight tolerance, by default.
- * A factorization by options (-mass_pc_type lu or cholesky with -mass_ksp_type preonly) is still
- * accepted; anything MMKSPCheckDirect refuses stops the run when it solves. Cheaper to set up than the
- * MUMPS LU it replaced (the figures: docs/scaling.md, "The figures behind the code's choices"). */
+/*@
+  MMKSPSetExactCG - Sets a KSP up for an exact solve of a well-conditioned SPD matrix: CG with
+  Jacobi to a tight tolerance by default
+
+  Logically collective
+
+  Input Parameter:
+. ksp - the KSP
+
+  Note:
+  The exact solve of a well-conditioned SPD matrix (M* on the dofs with inertia: its condition number
+  with the Jacobi PC does not grow with the mesh): CG with Jacobi to the tight tolerance, by default.
+  A factorization by options (-mass_pc_type lu or cholesky with -mass_ksp_type preonly) is still
+  accepted; anything MMKSPCheckDirect refuses stops the run when it solves. Cheaper to set up than the
+  MUMPS LU it replaced (the figures: docs/scaling.md, "The figures behind the code's choices").
+
+  Level: developer
+
+.seealso: `MMKSPSetDirect()`
+@*/
 PetscErrorCode MMKSPSetExactCG(KSP ksp)
 {
   PC pc;
@@ -203,8 +262,26 @@ PetscErrorCode MMKSPSetFactorSPD(KSP ksp, PetscInt dim)
   PetscFunctionReturn(0);
 }
 
-/* The PC that holds a KSP's factorization: its own, or with PCREDUNDANT (2D on several ranks) the
- * inner one, a sequential factor of the whole matrix on every rank (*redundant true). */
+/*@
+  MMKSPGetFactorPC - Gives the PC that holds a KSP's factorization
+
+  Not collective
+
+  Input Parameter:
+. ksp - the KSP
+
+  Output Parameters:
++ fpc       - the PC: the KSP's own, or PCREDUNDANT's inner one
+- redundant - PETSC_TRUE for PCREDUNDANT's (or NULL)
+
+  Note:
+  The PC that holds a KSP's factorization: its own, or with PCREDUNDANT (2D on several ranks) the
+  inner one, a sequential factor of the whole matrix on every rank (*redundant true).
+
+  Level: developer
+
+.seealso: `MMKSPCheckFactored()`
+@*/
 PetscErrorCode MMKSPGetFactorPC(KSP ksp, PC *fpc, PetscBool *redundant)
 {
   PC        pc;
@@ -223,8 +300,24 @@ PetscErrorCode MMKSPGetFactorPC(KSP ksp, PC *fpc, PetscBool *redundant)
   PetscFunctionReturn(0);
 }
 
-/* The exact solve of K~ the condensed formulation needs: the default factorization, and anything
- * but a complete factorization refused. */
+/*@
+  MMKSPSetDirectSPD - Sets a KSP up for the exact solve of K~ the condensed formulation needs: a
+  complete factorization, anything else refused
+
+  Logically collective
+
+  Input Parameters:
++ ksp - the KSP
+- dim - the mesh's dimension
+
+  Note:
+  The exact solve of K~ the condensed formulation needs: the default factorization, and anything
+  but a complete factorization refused.
+
+  Level: developer
+
+.seealso: `MMKSPSetDirect()`
+@*/
 PetscErrorCode MMKSPSetDirectSPD(KSP ksp, PetscInt dim)
 {
   PetscFunctionBeginUser;
@@ -355,14 +448,31 @@ static PetscErrorCode DenseFactorDefault(SNES snes, Mat A, const char prefix[])
   PetscFunctionReturn(0);
 }
 
-/* Reads the options of a factor of package type and kind ftype with options prefix prefix, on a
- * stand-in factor of a small matrix: -PREFIX_mat_mumps_icntl_14 and the like are read by the
- * factor only when it is created, which may come after the options audit (a factor made inside
- * the VI's iterations), or never in a run whose help lists the options. The stand-in's analysis
- * runs with the user's options, so it is a connected graph of a few dozen rows per rank, a 1D
- * Laplacian: PORD (-..._mat_mumps_icntl_7 4) ends the process on a graph without edges ("no valid
- * number of stages in multisector"), as a stand-in of unit rows was. A package that cannot factor
- * this matrix type reads nothing (its solve is refused by the solve itself). */
+/*@
+  MMFactorReadOptions - Reads the options of a factor package on a stand-in factor of a small matrix
+
+  Collective
+
+  Input Parameters:
++ comm   - the communicator
+. prefix - the options prefix
+. type   - the factor's package
+- ftype  - the factor's kind
+
+  Note:
+  Reads the options of a factor of package type and kind ftype with options prefix prefix, on a
+  stand-in factor of a small matrix: -PREFIX_mat_mumps_icntl_14 and the like are read by the
+  factor only when it is created, which may come after the options audit (a factor made inside
+  the VI's iterations), or never in a run whose help lists the options. The stand-in's analysis
+  runs with the user's options, so it is a connected graph of a few dozen rows per rank, a 1D
+  Laplacian: PORD (-..._mat_mumps_icntl_7 4) ends the process on a graph without edges ("no valid
+  number of stages in multisector"), as a stand-in of unit rows was. A package that cannot factor
+  this matrix type reads nothing (its solve is refused by the solve itself).
+
+  Level: developer
+
+.seealso: `MMKSPSetDirect()`
+@*/
 PetscErrorCode MMFactorReadOptions(MPI_Comm comm, const char prefix[], MatSolverType type, MatFactorType ftype)
 {
   const PetscInt nlocal = 32;

@@ -2,6 +2,21 @@
  * (src/io/checkpoint.c): each through a function, the formulation's part through its ops. */
 #include "../contactimpl.h"
 
+/*@
+  MMContactGetNodes - Gives what the other components read of the contact set, as it is now
+
+  Not collective
+
+  Input Parameter:
+. ct - the contact object, set up
+
+  Output Parameter:
+. nodes - the contact set: its arrays and objects are the contact object's, valid until it is destroyed
+
+  Level: intermediate
+
+.seealso: `MMContactGetOperators()`, `MMContactGetNodeState()`
+@*/
 PetscErrorCode MMContactGetNodes(MMContact ct, MMContactNodes *nodes)
 {
   PetscFunctionBeginUser;
@@ -34,6 +49,21 @@ PetscErrorCode MMContactGetNodes(MMContact ct, MMContactNodes *nodes)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMContactGetRHS - Gives the vector of the step problem's right-hand side b
+
+  Not collective
+
+  Input Parameter:
+. ct - the contact object
+
+  Output Parameter:
+. b - contact's vector, which the stepper fills (borrowed)
+
+  Level: developer
+
+.seealso: `MMContactSolve()`, `MMContactSetStepMatrix()`
+@*/
 PetscErrorCode MMContactGetRHS(MMContact ct, Vec *b)
 {
   PetscFunctionBeginUser;
@@ -41,6 +71,22 @@ PetscErrorCode MMContactGetRHS(MMContact ct, Vec *b)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMContactGetObstacleForce - Gives the contact force on an obstacle at the last step
+
+  Not collective
+
+  Input Parameters:
++ ct - the contact object
+- b  - the obstacle's index
+
+  Output Parameter:
+. force - its Cartesian components, MM_MAX_DIM entries, zero without contact
+
+  Level: intermediate
+
+.seealso: `MMContactDiagnostics()`
+@*/
 PetscErrorCode MMContactGetObstacleForce(MMContact ct, PetscInt b, PetscReal force[])
 {
   PetscFunctionBeginUser;
@@ -48,6 +94,24 @@ PetscErrorCode MMContactGetObstacleForce(MMContact ct, PetscInt b, PetscReal for
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMContactGetSolverText - Gives the start-up report's strings of the solver: the formulation, why
+  it was chosen and how the CG multiplies by K~
+
+  Not collective
+
+  Input Parameter:
+. ct - the contact object, set up
+
+  Output Parameters:
++ type     - the formulation
+. choice   - "" or why -contact_formulation auto chose it
+- products - how the CG multiplies by K~, "" without CG
+
+  Level: developer
+
+.seealso: `MMContactSetUpView()`, `MMContactGetStepKSP()`
+@*/
 PetscErrorCode MMContactGetSolverText(MMContact ct, const char **type, const char **choice, const char **products)
 {
   PetscFunctionBeginUser;
@@ -58,6 +122,24 @@ PetscErrorCode MMContactGetSolverText(MMContact ct, const char **type, const cha
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMContactGetPairCounts - Gives a contact pair's counts for the start-up report
+
+  Not collective
+
+  Input Parameters:
++ ct - the contact object, set up
+- p  - the pair's index among the contact pairs
+
+  Output Parameters:
++ slave_nodes   - its slave nodes
+. node_to_node  - those facing a master node
+- master_facets - its master facets
+
+  Level: developer
+
+.seealso: `MMContactSetUpView()`
+@*/
 PetscErrorCode MMContactGetPairCounts(MMContact ct, PetscInt p, PetscInt *slave_nodes, PetscInt *node_to_node, PetscInt *master_facets)
 {
   PetscFunctionBeginUser;
@@ -67,6 +149,23 @@ PetscErrorCode MMContactGetPairCounts(MMContact ct, PetscInt p, PetscInt *slave_
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMContactGetCandidateCounts - Gives the candidate set's size at the last step and its re-solves
+  over the run
+
+  Not collective
+
+  Input Parameter:
+. ct - the contact object
+
+  Output Parameters:
++ n_set    - the candidate set's size, 0 without one
+- resolves - the VI re-solves over the run, 0 without a candidate set
+
+  Level: developer
+
+.seealso: `MMContactSetCandidateResolves()`, `MMContactDiagnostics()`
+@*/
 PetscErrorCode MMContactGetCandidateCounts(MMContact ct, PetscInt *n_set, PetscInt *resolves)
 {
   PetscFunctionBeginUser;
@@ -75,6 +174,20 @@ PetscErrorCode MMContactGetCandidateCounts(MMContact ct, PetscInt *n_set, PetscI
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMContactSetCandidateResolves - Sets the run's count of re-solves on the candidate set (a
+  restart's), for a formulation that has one
+
+  Not collective
+
+  Input Parameters:
++ ct       - the contact object
+- resolves - the count
+
+  Level: developer
+
+.seealso: `MMContactGetCandidateCounts()`
+@*/
 PetscErrorCode MMContactSetCandidateResolves(MMContact ct, PetscInt resolves)
 {
   PetscFunctionBeginUser;
@@ -91,6 +204,24 @@ static PetscBool NodeStateOwned(MMContact ct, PetscInt k, PetscInt c)
   return (PetscBool)!(k + 1 < ct->n_local && ct->second[k + 1] && second_slot);
 }
 
+/*@
+  MMContactGetNodeState - Gives a contact row's state for a checkpoint
+
+  Not collective
+
+  Input Parameters:
++ ct - the contact object
+- k  - the owned contact row
+
+  Output Parameters:
++ vertex - its mesh point
+. state  - MM_CONTACT_NODE_STATE values
+- owned  - which of the slots row k writes
+
+  Level: developer
+
+.seealso: `MMContactSetNodeState()`
+@*/
 PetscErrorCode MMContactGetNodeState(MMContact ct, PetscInt k, PetscInt *vertex, PetscScalar state[], PetscBool owned[])
 {
   const PetscScalar *ra = NULL;
@@ -121,6 +252,23 @@ PetscErrorCode MMContactGetNodeState(MMContact ct, PetscInt k, PetscInt *vertex,
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMContactSetNodeState - Restores a contact row's state from a checkpoint
+
+  Not collective
+
+  Input Parameters:
++ ct    - the contact object
+. k     - the owned contact row
+- state - its MM_CONTACT_NODE_STATE values
+
+  Output Parameter:
+. second - the row is a corner node's second row
+
+  Level: developer
+
+.seealso: `MMContactGetNodeState()`
+@*/
 PetscErrorCode MMContactSetNodeState(MMContact ct, PetscInt k, const PetscScalar state[], PetscBool *second)
 {
   PetscScalar *ra = NULL;

@@ -503,6 +503,22 @@ static PetscErrorCode SetUp(MMContact ct)
 }
 
 
+/*@
+  MMContactSetUp - Finds the contact nodes and builds the contact set, the frames Q and the chosen
+  formulation from the problem
+
+  Collective
+
+  Input Parameters:
++ ct       - the contact object, its options read
+. op       - fem's operators (borrowed until destroy)
+. material - the bodies' material (borrowed until destroy)
+- pb       - the problem as contact reads it (copied, its arrays and strings borrowed)
+
+  Level: beginner
+
+.seealso: `MMContactSetFromOptions()`, `MMContactSetUpFrame()`, `MMContactSetUpView()`, `MMContactDestroy()`
+@*/
 PetscErrorCode MMContactSetUp(MMContact ct, MMOperators *op, const MMMaterial *material, const MMContactProblem *pb)
 {
   PetscFunctionBeginUser;
@@ -513,6 +529,23 @@ PetscErrorCode MMContactSetUp(MMContact ct, MMOperators *op, const MMMaterial *m
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMContactGetPlane - Gives the plane of the static sliding state, -obstacle_point and
+  -obstacle_normal
+
+  Not collective
+
+  Input Parameter:
+. ct - the contact object, set up
+
+  Output Parameters:
++ point  - a point of the plane, MM_MAX_DIM entries
+- normal - its normal, MM_MAX_DIM entries
+
+  Level: intermediate
+
+.seealso: `MMContactSolveStatic()`, `MMContactGetNodes()`
+@*/
 PetscErrorCode MMContactGetPlane(MMContact ct, PetscReal point[], PetscReal normal[])
 {
   PetscFunctionBeginUser;
@@ -543,11 +576,28 @@ static void FrictionCornerSetTime(MMContact ct, PetscInt k, PetscReal t, PetscRe
   }
 }
 
-/* The obstacles at time t^{n+1} = t for a step of dt: each node's gap follows its obstacle's
- * translation c(t) along the node's fixed normal, g_i(t) = g_i(0) + c(t).nu_i (exact for a plane;
- * for a curved obstacle, exact while the node stays on its normal line, docs/method.md section 8),
- * and the friction law measures slip relative to the obstacle's velocity V, through
- * slide_ref = dt/2 V.tau_j. */
+/*@
+  MMContactSetTime - Moves the obstacles to the time of a step's end: the gaps follow moving
+  obstacles, and slip is measured relative to their velocity
+
+  Not collective
+
+  Input Parameters:
++ ct - the contact object
+. t  - the step's end time t^{n+1}
+- dt - the step
+
+  Note:
+  The obstacles at time t^{n+1} = t for a step of dt: each node's gap follows its obstacle's
+  translation c(t) along the node's fixed normal, g_i(t) = g_i(0) + c(t).nu_i (exact for a plane;
+  for a curved obstacle, exact while the node stays on its normal line, docs/method.md section 8),
+  and the friction law measures slip relative to the obstacle's velocity V, through
+  slide_ref = dt/2 V.tau_j.
+
+  Level: intermediate
+
+.seealso: `MMContactSetStepMatrix()`, `MMContactSolve()`
+@*/
 PetscErrorCode MMContactSetTime(MMContact ct, PetscReal t, PetscReal dt)
 {
   const PetscInt     dim = ct->op->dim;

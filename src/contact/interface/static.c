@@ -82,8 +82,27 @@ static PetscErrorCode StaticBounds(MMContact ct, Vec lower, Vec upper)
   PetscFunctionReturn(0);
 }
 
-/* w: the static state; react: K w - b on the contact-normal dofs, the contact forces (zero
- * elsewhere: the tangential ones of a frictionless solve, and the noise off the contact). */
+/*@
+  MMContactSolveStatic - Solves the static contact problem with K, from rest, for the static state
+  and its contact forces
+
+  Collective
+
+  Input Parameter:
+. ct - the contact object
+
+  Output Parameters:
++ w     - the static state
+- react - K w - b on the contact-normal dofs, zero elsewhere
+
+  Note:
+  w: the static state; react: K w - b on the contact-normal dofs, the contact forces (zero
+  elsewhere: the tangential ones of a frictionless solve, and the noise off the contact).
+
+  Level: intermediate
+
+.seealso: `MMContactGetPlane()`, `MMContactProjectInitial()`
+@*/
 PetscErrorCode MMContactSolveStatic(MMContact ct, Vec w, Vec react)
 {
   MPI_Comm   comm = PetscObjectComm((PetscObject)ct->op->dm);

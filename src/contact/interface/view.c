@@ -25,9 +25,24 @@ static PetscErrorCode StepSolverView(MMContact ct, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
-/* The formulation (and why, when auto chose it), the contact set, the obstacles, the frames, the
- * mass, the tolerances and audits, and K~'s solver. Collective; printed once, by the viewer's first
- * rank. */
+/*@
+  MMContactSetUpView - Prints the contact configuration once set up (-contact_view)
+
+  Collective
+
+  Input Parameters:
++ ct     - the contact object, set up
+- viewer - the viewer: only an ASCII viewer prints
+
+  Note:
+  The formulation (and why, when auto chose it), the contact set, the obstacles, the frames, the
+  mass, the tolerances and audits, and K~'s solver. Collective; printed once, by the viewer's first
+  rank.
+
+  Level: intermediate
+
+.seealso: `MMContactView()`, `MMContactMassView()`, `MMContactGetSolverText()`
+@*/
 PetscErrorCode MMContactSetUpView(MMContact ct, PetscViewer viewer)
 {
   const MMContactProblem *pb = &ct->pb;
