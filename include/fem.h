@@ -164,9 +164,24 @@ typedef struct {
   PetscBool  finite;      /* some body has a finite-strain law (-elasticity svk or neohookean) */
 } MMMaterial;
 
+/* The contact frame's transforms (docs/method.md sections 2 and 11), an ops table contact installs into
+ * fem's operators at set-up (MMFESetFrame): the frame, Q and N, is contact's (docs/developer.md, "The
+ * contact frame"); fem's MMFEToCartesian family calls these. ctx is contact's. */
+typedef struct {
+  PetscErrorCode (*tocartesian)(void *ctx, Vec w, Vec ucart);        /* u = Q N w */
+  PetscErrorCode (*fromcartesian)(void *ctx, Vec ucart, Vec w);      /* w = N^{-1} Q^T u */
+  PetscErrorCode (*forcetocartesian)(void *ctx, Vec fw, Vec fcart);  /* f = Q N^{-T} f_w */
+  PetscErrorCode (*forcefromcartesian)(void *ctx, Vec fcart, Vec fw); /* f_w = N^T Q^T f */
+} MMFrameOps;
+
+typedef struct {
+  MMFrameOps ops;
+  void      *ctx;
+} MMFrame;
+
 /* The finite element operators: fem assembles K, M, the load and the lift on the Cartesian dofs
  * (MMFEAssembleOperators); contact's frame (src/contact/frame/, MMContactSetUpFrame) turns them into
- * the w-frame ones in place and builds Q and N (docs/method.md section 2). M* and its masses are
+ * the w-frame ones in place; Q and N are contact's, reached through MMFrame (docs/method.md section 2). M* and its masses are
  * contact's alone, built from M (the other components read them by MMContactGetOperators). */
 typedef struct {
   DM        dm;
@@ -175,9 +190,7 @@ typedef struct {
   PetscInt  dim;
   Mat       K;      /* stiffness A: Cartesian from fem, w-frame once contact's frame has rotated it */
   Mat       M;      /* standard mass (consistent or lumped): set-up only, NULL once M* is built */
-  Mat       Q;      /* frame rotation, u_cart = Q w without contact pairs (contact's) */
-  Mat       N, Ninv; /* contact pairs: the slave nodes' relative variables, u_cart = Q N w (NULL without pairs; contact's) */
-  Vec       pair_work; /* scratch for Q N w */
+  MMFrame   frame;  /* the frame's transforms: contact's, installed by MMFESetFrame (fem holds no Q or N) */
   Vec       load;   /* L: body force + traction, constant in time (Cartesian from fem, then w-frame: contact's frame) */
   Vec       lift;   /* K_fD u_D: the Dirichlet data's elastic force on the free dofs (likewise) */
   Vec       mass_lumped_cart; /* lumped standard mass per Cartesian dof */
@@ -248,7 +261,7 @@ typedef struct {
   PetscReal   *bv0, *bv1;
 } MMLoads;
 
-/* fem.c and fem_options.c: the discretization, the Cartesian operators, the frame transforms (Q and N set by contact) */
+/* fem.c and fem_options.c: the discretization, the Cartesian operators, the frame transforms (contact's ops, MMFESetFrame) */
 PETSC_EXTERN PetscErrorCode MMFEInitializePackage(void);
 PETSC_EXTERN PetscErrorCode MMFESetFromOptions(MPI_Comm comm, MMOperators *op);
 PETSC_EXTERN PetscErrorCode MMFESetUp(MMOperators *op, MMMaterial *mat, const MMFEProblem *pb);
@@ -258,6 +271,7 @@ PETSC_EXTERN PetscErrorCode MMFECreateMatrix(const MMOperators *op, DM dm, Mat *
 PETSC_EXTERN PetscErrorCode MMFEInterpolate(const MMOperators *op, PetscErrorCode (*f)(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt nc, PetscScalar *u, void *fctx), void *fctx, Vec u);
 /* 1/2 int sigma(u):eps(u) of a Cartesian global vector ucart with the Dirichlet data of t = 0 inserted */
 PETSC_EXTERN PetscErrorCode MMFEElasticEnergyIntegral(const MMOperators *op, const MMMaterial *mat, Vec ucart, PetscReal *energy);
+PETSC_EXTERN PetscErrorCode MMFESetFrame(MMOperators *op, const MMFrameOps *ops, void *ctx);
 PETSC_EXTERN PetscErrorCode MMFEToCartesian(const MMOperators *op, Vec w, Vec ucart);
 PETSC_EXTERN PetscErrorCode MMFEFromCartesian(const MMOperators *op, Vec ucart, Vec w);
 PETSC_EXTERN PetscErrorCode MMFEForceToCartesian(const MMOperators *op, Vec fw, Vec fcart);

@@ -2,7 +2,8 @@
 are read through contact (MMContactGetOperators), never in fem's MMOperators, by the components
 above contact; no file outside contact turns w-frame data by hand (contact turns what a holder
 registered once, src/contact/interface/held.c); and the stepper's registration is the one file
-outside contact that registers."""
+outside contact that registers. The frame itself, Q and N, is contact's: fem holds none of it
+and turns vectors through the ops table contact installs (MMFESetFrame)."""
 import pathlib
 import re
 
@@ -34,3 +35,22 @@ def test_one_registration_outside_contact():
     reg = re.compile(r"\bMMContactFrames(AddVec|AddMat)\s*\(")
     files = {str(p.relative_to(ROOT)) for p in sources(ABOVE + ("fem",)) if reg.search(p.read_text())}
     assert files <= {"src/ts/nonlinear.c"}, f"w-frame data registered outside the stepper's RegisterFrameData: {sorted(files)}"
+
+
+def test_fem_holds_no_frame():
+    """The frame (Q, the contact pairs' N and N^{-1}, their scratch) is contact's
+    (src/contact/frame/transform.c): fem's MMOperators holds none of it, fem turns vectors through
+    the ops table contact installs (MMFESetFrame), and no file reads them in fem's operators."""
+    header = (ROOT / "include" / "fem.h").read_text()
+    body = header[header.index("typedef struct {\n  DM        dm;"):]
+    body = body[:body.index("} MMOperators;")]
+    body = re.sub(r"/\*.*?\*/", "", body, flags=re.S)  # the fields, not their comments
+    held = [f for f in ("Q", "N", "Ninv", "pair_work") if re.search(r"\b" + f + r"\b\s*[;,]", body)]
+    assert not held, f"fem's MMOperators holds the frame's {held}: contact's MMContactTransform does"
+    assert "MMFrame   frame;" in body, "fem's operators reach the frame through contact's ops table (MMFrame)"
+    field = re.compile(r"\bop(?:->|\.)(Q|N|Ninv|pair_work)\b")
+    bad = [f"{p.relative_to(ROOT)}:{s[:m.start()].count(chr(10)) + 1}: op {m.group(1)}"
+           for p in sources(("fem", "contact") + ABOVE) for s in [p.read_text()] for m in field.finditer(s)]
+    assert not bad, "the frame's Q and N are contact's (ct->transform):\n" + "\n".join(bad)
+    fem = [str(p.relative_to(ROOT)) for p in sources(("fem",)) if re.search(r"\bMat(Mult|MultTranspose)\s*\([^,]*->(Q|N|Ninv)\b", p.read_text())]
+    assert not fem, f"fem multiplies by the frame's matrices itself: {fem}"

@@ -711,28 +711,29 @@ PetscErrorCode MMFEAssembleOperatorsEnd(MMOperators *op)
   PetscFunctionReturn(0);
 }
 
-/* Displacements and velocities: u = Q N w, w = N^{-1} Q^T u (N = I without contact pairs or corners,
- * Q orthogonal). Forces, their duals: f = Q N^{-T} f_w, f_w = N^T Q^T f (docs/method.md section 11).
- * One pass of each: to Cartesian, N (or N^{-T}) then Q; from it, Q^T then N^{-1} (or N^T). */
-static PetscErrorCode FrameTransform(const MMOperators *op, PetscBool to_cartesian, Mat Nmat, PetscBool n_transpose, Vec x, Vec y)
-{
-  Vec t = op->pair_work;
+/*@
+  MMFESetFrame - Installs the contact frame's transforms, which the MMFEToCartesian family calls
 
+  Logically Collective
+
+  Input Parameters:
++ op  - the operators
+. ops - the frame's transforms (copied)
+- ctx - their context (contact's)
+
+  Note:
+  The frame, Q and the contact pairs' N, is contact's (docs/developer.md, "The contact frame"): fem
+  holds no Q or N, it turns vectors through these ops. Contact installs them when it builds Q.
+
+  Level: developer
+
+.seealso: `MMFEToCartesian()`, `MMContactSetUp()`
+@*/
+PetscErrorCode MMFESetFrame(MMOperators *op, const MMFrameOps *ops, void *ctx)
+{
   PetscFunctionBeginUser;
-  if (!op->N) {
-    if (to_cartesian) PetscCall(MatMult(op->Q, x, y));
-    else PetscCall(MatMultTranspose(op->Q, x, y));
-    PetscFunctionReturn(0);
-  }
-  if (to_cartesian) {
-    if (n_transpose) PetscCall(MatMultTranspose(Nmat, x, t));
-    else PetscCall(MatMult(Nmat, x, t));
-    PetscCall(MatMult(op->Q, t, y));
-  } else {
-    PetscCall(MatMultTranspose(op->Q, x, t));
-    if (n_transpose) PetscCall(MatMultTranspose(Nmat, t, y));
-    else PetscCall(MatMult(Nmat, t, y));
-  }
+  op->frame.ops = *ops;
+  op->frame.ctx = ctx;
   PetscFunctionReturn(0);
 }
 
@@ -755,7 +756,7 @@ static PetscErrorCode FrameTransform(const MMOperators *op, PetscBool to_cartesi
 PetscErrorCode MMFEToCartesian(const MMOperators *op, Vec w, Vec ucart)
 {
   PetscFunctionBeginUser;
-  PetscCall(FrameTransform(op, PETSC_TRUE, op->N, PETSC_FALSE, w, ucart));
+  PetscCall(op->frame.ops.tocartesian(op->frame.ctx, w, ucart));
   PetscFunctionReturn(0);
 }
 
@@ -778,7 +779,7 @@ PetscErrorCode MMFEToCartesian(const MMOperators *op, Vec w, Vec ucart)
 PetscErrorCode MMFEFromCartesian(const MMOperators *op, Vec ucart, Vec w)
 {
   PetscFunctionBeginUser;
-  PetscCall(FrameTransform(op, PETSC_FALSE, op->Ninv, PETSC_FALSE, ucart, w));
+  PetscCall(op->frame.ops.fromcartesian(op->frame.ctx, ucart, w));
   PetscFunctionReturn(0);
 }
 
@@ -801,7 +802,7 @@ PetscErrorCode MMFEFromCartesian(const MMOperators *op, Vec ucart, Vec w)
 PetscErrorCode MMFEForceToCartesian(const MMOperators *op, Vec fw, Vec fcart)
 {
   PetscFunctionBeginUser;
-  PetscCall(FrameTransform(op, PETSC_TRUE, op->Ninv, PETSC_TRUE, fw, fcart));
+  PetscCall(op->frame.ops.forcetocartesian(op->frame.ctx, fw, fcart));
   PetscFunctionReturn(0);
 }
 
@@ -824,7 +825,7 @@ PetscErrorCode MMFEForceToCartesian(const MMOperators *op, Vec fw, Vec fcart)
 PetscErrorCode MMFEForceFromCartesian(const MMOperators *op, Vec fcart, Vec fw)
 {
   PetscFunctionBeginUser;
-  PetscCall(FrameTransform(op, PETSC_FALSE, op->N, PETSC_TRUE, fcart, fw));
+  PetscCall(op->frame.ops.forcefromcartesian(op->frame.ctx, fcart, fw));
   PetscFunctionReturn(0);
 }
 
@@ -907,10 +908,6 @@ PetscErrorCode MMFEDestroy(MMOperators *op)
   PetscCall(MMCellsDestroy(&op->cells));
   PetscCall(MatDestroy(&op->K));
   PetscCall(MatDestroy(&op->M));
-  PetscCall(MatDestroy(&op->Q));
-  PetscCall(MatDestroy(&op->N));
-  PetscCall(MatDestroy(&op->Ninv));
-  PetscCall(VecDestroy(&op->pair_work));
   PetscCall(VecDestroy(&op->load));
   PetscCall(VecDestroy(&op->lift));
   PetscCall(VecDestroy(&op->mass_lumped_cart));

@@ -2,13 +2,13 @@
  * Each contact node's dofs are rotated into its frame (nu, tau_1, tau_2) by Q, built here from the
  * frames the contact set chose (interface/set.c): K <- Q^T K Q, M <- Q^T M Q, L <- Q^T L; then M* for -mass (mass_star.c) and
  * the contact pairs' relative variables, A <- N^T A N (interface/pairs.c, docs/method.md section 11).
- * The results stay in fem's MMOperators, which app hands in; the stepper, the output and the
+ * The w-frame K, load and lift stay in fem's MMOperators, which app hands in (Q and N are contact's); the stepper, the output and the
  * audits read them through contact (operators.c, MMContactGetOperators). */
 #include "../contactimpl.h"
 
 /* Q, u_cart = Q w: per contact node the block of its frame, F^T (the columns nu, tau_1, tau_2), the
- * identity elsewhere; a corner's block is its first row's frame. Q is op's, for fem's frame
- * transforms (MMFEToCartesian), the damping and the output. */
+ * identity elsewhere; a corner's block is its first row's frame. Q is contact's (ct->transform), and
+ * fem's frame transforms (MMFEToCartesian) reach it through the ops installed here (transform.c). */
 PetscErrorCode MMContactFrameBuildRotation(MMContact ct, MMOperators *op)
 {
   const PetscInt  dim = op->dim;
@@ -22,7 +22,7 @@ PetscErrorCode MMContactFrameBuildRotation(MMContact ct, MMOperators *op)
   PetscCall(VecGetLocalSize(g, &n));
   PetscCall(VecGetOwnershipRange(g, &rstart, NULL));
   PetscCall(DMRestoreGlobalVector(op->dm, &g));
-  PetscCall(MatCreateAIJ(ct->comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, ct->enabled ? dim : 1, NULL, 0, NULL, &op->Q));
+  PetscCall(MatCreateAIJ(ct->comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, ct->enabled ? dim : 1, NULL, 0, NULL, &ct->transform.Q));
   PetscCall(PetscCalloc1(n, &rotated));
   if (ct->enabled) {
     PetscCall(ISGetLocalSize(ct->is_normal, &nrow));
@@ -33,15 +33,16 @@ PetscErrorCode MMContactFrameBuildRotation(MMContact ct, MMOperators *op)
     if (ct->second[k]) continue; /* in[k] is the node's dof 1: its block starts at the row before */
     for (PetscInt d = 0; d < dim; ++d) {
       rotated[in[k] - rstart + d] = PETSC_TRUE;
-      for (PetscInt e = 0; e < dim; ++e) PetscCall(MatSetValue(op->Q, in[k] + d, in[k] + e, F[3 * e + d], INSERT_VALUES));
+      for (PetscInt e = 0; e < dim; ++e) PetscCall(MatSetValue(ct->transform.Q, in[k] + d, in[k] + e, F[3 * e + d], INSERT_VALUES));
     }
   }
   if (ct->enabled) PetscCall(ISRestoreIndices(ct->is_normal, &in));
   for (PetscInt i = 0; i < n; ++i)
-    if (!rotated[i]) PetscCall(MatSetValue(op->Q, rstart + i, rstart + i, 1.0, INSERT_VALUES));
+    if (!rotated[i]) PetscCall(MatSetValue(ct->transform.Q, rstart + i, rstart + i, 1.0, INSERT_VALUES));
   PetscCall(PetscFree(rotated));
-  PetscCall(MatAssemblyBegin(op->Q, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(op->Q, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyBegin(ct->transform.Q, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(ct->transform.Q, MAT_FINAL_ASSEMBLY));
+  PetscCall(MMContactFrameInstall(ct, op));
   PetscFunctionReturn(0);
 }
 
@@ -49,11 +50,11 @@ PetscErrorCode MMContactFrameBuildRotation(MMContact ct, MMOperators *op)
  * MatPtAP would build new matrices, through a symbolic product that costs more than the closed-form
  * assembly (docs/scaling.md, "Assembly of K and M, measured"). A lumped M is m I at each node, which
  * the rotation leaves unchanged: it is not rotated, so that no round-off enters it. */
-static PetscErrorCode RotateOperators(MMOperators *op)
+static PetscErrorCode RotateOperators(Mat Q, MMOperators *op)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(MMCONTACT_FrameRotate, 0, 0, 0, 0));
-  PetscCall(MMRotateP1(op->Q, op->K, op->lumped ? NULL : op->M));
+  PetscCall(MMRotateP1(Q, op->K, op->lumped ? NULL : op->M));
   PetscCall(PetscLogEventEnd(MMCONTACT_FrameRotate, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -110,14 +111,14 @@ PetscErrorCode MMContactSetUpFrame(MMContact ct, MMOperators *op, const MMMateri
   PetscFunctionBeginUser;
   PetscCheck(op == ct->op, ct->comm, PETSC_ERR_ARG_WRONG, "The contact frame rotates the operators given to MMContactSetUp, whose Q it built");
   PetscCall(PetscLogEventBegin(MMCONTACT_FrameSetUp, 0, 0, 0, 0));
-  PetscCall(RotateOperators(op));
-  PetscCall(RotateForce(op->Q, op->load));
-  PetscCall(RotateForce(op->Q, op->lift));
+  PetscCall(RotateOperators(ct->transform.Q, op));
+  PetscCall(RotateForce(ct->transform.Q, op->load));
+  PetscCall(RotateForce(ct->transform.Q, op->lift));
   /* frames that follow the contact point rebuild M* from the whole w-frame M, turned with them */
   if (ct->frames.follow) PetscCall(MatDuplicate(op->M, MAT_COPY_VALUES, &ct->frames.M));
   MMContactMassBoundary(ct, &mb);
   PetscCall(MMContactMassStar(&ct->mass, op, material, &mb));
-  if (op->N) PetscCall(VecDuplicate(op->load, &op->pair_work));
+  if (ct->transform.N) PetscCall(VecDuplicate(op->load, &ct->transform.pair_work));
   PetscCall(MMContactPairsTransformOperators(ct, op));
   PetscCall(PetscLogEventEnd(MMCONTACT_FrameSetUp, 0, 0, 0, 0));
   PetscFunctionReturn(0);

@@ -33,10 +33,23 @@ typedef struct {
   PetscInt   moments;             /* the moments matched: all (nr), or (dim) the masses and first moments alone */
   PetscReal  inertia_mismatch;    /* then max |second moments of M* - of M| / total mass */
   PetscBool  warned;              /* the warning of an M* short of M's mass was printed (once a run) */
+  Mat        Q;                   /* borrowed: the frame's rotation (contact's), which turns the rigid modes into the w-frame */
 } MMContactMass;
+
+/* The frame's transforms (docs/method.md sections 2 and 11): u_cart = Q N w, Q from the contact nodes'
+ * frames (frame.c, turned by frames.c), N from the contact pairs (pairs.c). Contact's alone: fem reads
+ * them through the ops table transform.c installs into its operators (MMFESetFrame). */
+typedef struct {
+  Mat Q;         /* frame rotation, u_cart = Q w without contact pairs */
+  Mat N, Ninv;   /* contact pairs: the slave nodes' relative variables, u_cart = Q N w (NULL without pairs) */
+  Vec pair_work; /* scratch for Q N w */
+} MMContactTransform;
 
 /* frame.c: Q from the contact nodes' frames (MMContactSetUp, before fem assembles) */
 PETSC_INTERN PetscErrorCode MMContactFrameBuildRotation(MMContact ct, MMOperators *op);
+/* transform.c: the frame's transforms, installed into fem's operators; freed with contact */
+PETSC_INTERN PetscErrorCode MMContactFrameInstall(MMContact ct, MMOperators *op);
+PETSC_INTERN PetscErrorCode MMContactTransformDestroy(MMContactTransform *xf);
 /* mass_star.c: -mass, M* from M, its view */
 PETSC_INTERN PetscErrorCode MMContactMassSetFromOptions(MPI_Comm comm, MMContactMass *mass);
 PETSC_INTERN PetscErrorCode MMContactMassStar(MMContactMass *mass, MMOperators *op, const MMMaterial *material, const MMMassBoundary *mb);

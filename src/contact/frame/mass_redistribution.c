@@ -59,7 +59,7 @@ static PetscErrorCode RigidModes(MassRedist *r, const PetscReal x0[], PetscReal 
   for (PetscInt k = 0; k < nr; ++k) PetscCall(VecDuplicate(cart, &R[k]));
   PetscCall(MMFERigidModesCartesian(r->op, x0, ell, nr, R));
   for (PetscInt k = 0; k < nr; ++k) {
-    PetscCall(MatMultTranspose(r->op->Q, R[k], cart)); /* to the w-frame */
+    PetscCall(MatMultTranspose(r->mass->Q, R[k], cart)); /* to the w-frame */
     PetscCall(VecCopy(cart, R[k]));
   }
   PetscCall(DMRestoreGlobalVector(r->op->dm, &cart));

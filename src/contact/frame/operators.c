@@ -79,7 +79,7 @@ PetscBool MMContactHasMasslessDofs(MMContact ct)
 PetscErrorCode MMContactFrameMatrixBegin(MMContact ct, Mat Kw, Mat *Kc)
 {
   PetscFunctionBeginUser;
-  if (!ct->op->N) *Kc = Kw;
+  if (!ct->transform.N) *Kc = Kw;
   else {
     if (!ct->frame_Kp) PetscCall(MMFECreateMatrix(ct->op, ct->op->dm, &ct->frame_Kp));
     *Kc = ct->frame_Kp;
@@ -104,14 +104,12 @@ PetscErrorCode MMContactFrameMatrixBegin(MMContact ct, Mat Kw, Mat *Kc)
 @*/
 PetscErrorCode MMContactFrameMatrixEnd(MMContact ct, Mat Kc, Mat Kw)
 {
-  const MMOperators *op = ct->op;
-
   PetscFunctionBeginUser;
-  if (!op->N) {
-    if (op->Q) PetscCall(MMRotateP1(op->Q, Kw, NULL)); /* into the contact nodes' frames, as K is */
+  if (!ct->transform.N) {
+    if (ct->transform.Q) PetscCall(MMRotateP1(ct->transform.Q, Kw, NULL)); /* into the contact nodes' frames, as K is */
   } else {
-    PetscCall(MMRotateP1(op->Q, Kc, NULL));
-    PetscCall(MatPtAP(Kc, op->N, ct->frame_KpN ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, 2.0, &ct->frame_KpN));
+    PetscCall(MMRotateP1(ct->transform.Q, Kc, NULL));
+    PetscCall(MatPtAP(Kc, ct->transform.N, ct->frame_KpN ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, 2.0, &ct->frame_KpN));
     PetscCall(MatCopy(ct->frame_KpN, Kw, SAME_NONZERO_PATTERN));
   }
   PetscFunctionReturn(0);
@@ -152,11 +150,11 @@ PetscErrorCode MMContactDampingStiffness(MMContact ct, const MMMaterial *materia
   PetscCall(DMCreateGlobalVector(op->dm, &mark));
   PetscCall(VecZeroEntries(mark));
   PetscCall(VecISSet(mark, is_massless, 1.0));
-  PetscCall(MMAssembleP1DampingStiffness(op->dm, material, op->Q, mark, *B));
+  PetscCall(MMAssembleP1DampingStiffness(op->dm, material, ct->transform.Q, mark, *B));
   PetscCall(VecDestroy(&mark));
-  if (op->N) {
+  if (ct->transform.N) {
     Mat BN;
-    PetscCall(MatPtAP(*B, op->N, MAT_INITIAL_MATRIX, 2.0, &BN));
+    PetscCall(MatPtAP(*B, ct->transform.N, MAT_INITIAL_MATRIX, 2.0, &BN));
     PetscCall(MatDestroy(B));
     *B = BN;
   }

@@ -960,6 +960,7 @@ PetscErrorCode MMContactDestroy(MMContact *pct)
   PetscCall(MatDestroy(&ct->mass.Mstar));
   PetscCall(MatDestroy(&ct->frame_Kp));
   PetscCall(MatDestroy(&ct->frame_KpN));
+  PetscCall(MMContactTransformDestroy(&ct->transform));
   PetscCall(ISDestroy(&ct->mass.massless));
   PetscCall(PetscFree2(ct->second, ct->corner_ab));
   PetscCall(PetscFree(ct->force_obstacle));

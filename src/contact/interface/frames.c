@@ -216,8 +216,8 @@ static PetscErrorCode BuildRotation(MMContact ct)
 
   PetscFunctionBeginUser;
   PetscCall(MatDestroy(&fr->R));
-  PetscCall(MatGetLocalSize(ct->op->Q, &n, NULL));
-  PetscCall(MatGetOwnershipRange(ct->op->Q, &rstart, NULL));
+  PetscCall(MatGetLocalSize(ct->transform.Q, &n, NULL));
+  PetscCall(MatGetOwnershipRange(ct->transform.Q, &rstart, NULL));
   PetscCall(MatCreateAIJ(ct->comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, dim, NULL, 0, NULL, &fr->R));
   PetscCall(PetscCalloc1(n, &block));
   PetscCall(ISGetIndices(ct->is_normal, &in));
@@ -292,12 +292,12 @@ static PetscErrorCode SetNewFrames(MMContact ct)
     }
     for (PetscInt i = 0; i < 9; ++i) F[i] = Fn[i];
     for (PetscInt d = 0; d < dim; ++d)
-      for (PetscInt e = 0; e < dim; ++e) PetscCall(MatSetValue(ct->op->Q, in[k] + d, in[k] + e, F[3 * e + d], INSERT_VALUES));
+      for (PetscInt e = 0; e < dim; ++e) PetscCall(MatSetValue(ct->transform.Q, in[k] + d, in[k] + e, F[3 * e + d], INSERT_VALUES));
   }
   if (rho) PetscCall(VecRestoreArray(ct->rho, &rho));
   PetscCall(ISRestoreIndices(ct->is_normal, &in));
-  PetscCall(MatAssemblyBegin(ct->op->Q, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(ct->op->Q, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyBegin(ct->transform.Q, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(ct->transform.Q, MAT_FINAL_ASSEMBLY));
   PetscFunctionReturn(0);
 }
 

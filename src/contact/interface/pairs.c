@@ -337,8 +337,8 @@ static PetscErrorCode BuildN(MMContact ct)
   MPI_Comm        comm = PetscObjectComm((PetscObject)ct->op->dm);
 
   PetscFunctionBeginUser;
-  PetscCall(MatGetLocalSize(ct->op->Q, &n, NULL));
-  PetscCall(MatGetOwnershipRange(ct->op->Q, &rstart, NULL));
+  PetscCall(MatGetLocalSize(ct->transform.Q, &n, NULL));
+  PetscCall(MatGetOwnershipRange(ct->transform.Q, &rstart, NULL));
   PetscCall(ISGetIndices(ct->is_normal, &in));
   for (PetscInt s = 0; s < 2; ++s) {
     const PetscScalar sign = s ? -1.0 : 1.0;
@@ -385,8 +385,8 @@ static PetscErrorCode BuildN(MMContact ct)
     PetscCall(MatAssemblyEnd(N[s], MAT_FINAL_ASSEMBLY));
   }
   PetscCall(ISRestoreIndices(ct->is_normal, &in));
-  ct->op->N    = N[0];
-  ct->op->Ninv = N[1];
+  ct->transform.N    = N[0];
+  ct->transform.Ninv = N[1];
   PetscFunctionReturn(0);
 }
 
@@ -425,21 +425,21 @@ PetscErrorCode MMContactPairsTransformOperators(MMContact ct, MMOperators *op)
   Vec          t;
 
   PetscFunctionBeginUser;
-  if (!op->N) PetscFunctionReturn(0);
+  if (!ct->transform.N) PetscFunctionReturn(0);
   if (ct->pairs.large) { /* the contact-frame K and M*, from which each new pairing's are built */
     PetscCall(MatDuplicate(op->K, MAT_COPY_VALUES, &ct->pairs.Ky));
     PetscCall(MatDuplicate(ct->mass.Mstar, MAT_COPY_VALUES, &ct->pairs.My));
   }
   for (PetscInt i = 0; i < 3; ++i) {
-    PetscCall(MatPtAP(*A[i], op->N, MAT_INITIAL_MATRIX, 2.0, &B));
+    PetscCall(MatPtAP(*A[i], ct->transform.N, MAT_INITIAL_MATRIX, 2.0, &B));
     PetscCall(MatDestroy(A[i]));
     *A[i] = B;
   }
   PetscCall(VecDuplicate(op->load, &t));
   PetscCall(VecCopy(op->load, t));
-  PetscCall(MatMultTranspose(op->N, t, op->load));
+  PetscCall(MatMultTranspose(ct->transform.N, t, op->load));
   PetscCall(VecCopy(op->lift, t));
-  PetscCall(MatMultTranspose(op->N, t, op->lift));
+  PetscCall(MatMultTranspose(ct->transform.N, t, op->lift));
   PetscCall(VecDestroy(&t));
   PetscFunctionReturn(0);
 }
@@ -545,10 +545,10 @@ static PetscErrorCode ChangeVariables(MMContact ct, void *fctx, PetscBool force,
   PetscFunctionBeginUser;
   if (force) {
     PetscCall(MatMultTranspose(Ninvold, x, y));
-    PetscCall(MatMultTranspose(ct->op->N, y, x));
+    PetscCall(MatMultTranspose(ct->transform.N, y, x));
   } else {
     PetscCall(MatMult(Nold, x, y));
-    PetscCall(MatMult(ct->op->Ninv, y, x));
+    PetscCall(MatMult(ct->transform.Ninv, y, x));
   }
   PetscFunctionReturn(0);
 }
@@ -562,8 +562,8 @@ static PetscErrorCode RebuildOperators(MMContact ct)
   PetscFunctionBeginUser;
   PetscCall(MatDestroy(&op->K));
   PetscCall(MatDestroy(&ct->mass.Mstar));
-  PetscCall(MatPtAP(ct->pairs.Ky, op->N, MAT_INITIAL_MATRIX, 2.0, &op->K));
-  PetscCall(MatPtAP(ct->pairs.My, op->N, MAT_INITIAL_MATRIX, 2.0, &ct->mass.Mstar));
+  PetscCall(MatPtAP(ct->pairs.Ky, ct->transform.N, MAT_INITIAL_MATRIX, 2.0, &op->K));
+  PetscCall(MatPtAP(ct->pairs.My, ct->transform.N, MAT_INITIAL_MATRIX, 2.0, &ct->mass.Mstar));
   PetscCall(MatDestroy(&ct->qp.A));
   PetscCall(MatDestroy(&ct->kept.A));
   PetscCall(MatDestroy(&ct->frame_KpN)); /* its pattern follows N */
@@ -609,7 +609,7 @@ static PetscErrorCode Positions(MMContact ct, Vec u, PetscReal **xc, PetscReal x
   for (PetscInt p = 0; p < pr->n; ++p) CurrentMasterSurface(pr, dim, p, um, xc[p]);
   PetscCall(VecRestoreArrayRead(pr->um, &um));
   /* u_s = F^T y_s, y = N u the contact-frame components */
-  PetscCall(MatMult(ct->op->N, u, pr->y));
+  PetscCall(MatMult(ct->transform.N, u, pr->y));
   PetscCall(VecGetOwnershipRange(pr->y, &rstart, NULL));
   PetscCall(ISGetIndices(ct->is_normal, &in));
   PetscCall(VecGetArrayRead(pr->y, &ya));
@@ -714,8 +714,8 @@ PetscErrorCode MMContactSlidePairs(MMContact ct, Vec u, Vec up, PetscBool *chang
   if (cnt[0]) {
     pr->repairs++;
     pr->facet_changes += cnt[1];
-    old.N    = ct->op->N;
-    old.Ninv = ct->op->Ninv;
+    old.N    = ct->transform.N;
+    old.Ninv = ct->transform.Ninv;
     PetscCall(BuildN(ct));
     PetscCall(MMContactHeldTransform(ct, PETSC_TRUE, ChangeVariables, &old));
     PetscCall(MatDestroy(&old.N));
@@ -853,8 +853,8 @@ PetscErrorCode MMContactPairsRestore(MMContact ct, const PetscScalar rec[], Pets
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cnt, 2, MPIU_INT, MPI_SUM, comm));
   PetscCheck(!cnt[1], comm, PETSC_ERR_FILE_UNEXPECTED, "The checkpoint pairs %" PetscInt_FMT " slave nodes with master facets this mesh does not have: it is of another mesh, or damaged. Restart with the mesh and -contact_pairs of the run that wrote it", cnt[1]);
   if (!cnt[0]) PetscFunctionReturn(0);
-  PetscCall(MatDestroy(&ct->op->N));
-  PetscCall(MatDestroy(&ct->op->Ninv));
+  PetscCall(MatDestroy(&ct->transform.N));
+  PetscCall(MatDestroy(&ct->transform.Ninv));
   PetscCall(BuildN(ct));
   PetscCall(RebuildOperators(ct));
   PetscCall(MMContactHeldInvalidate(ct));
