@@ -180,8 +180,9 @@ typedef struct {
 } MMFrame;
 
 /* The finite element operators: fem assembles K, M, the load and the lift on the Cartesian dofs
- * (MMFEAssembleOperators); contact's frame (src/contact/frame/, MMContactSetUpFrame) turns them into
- * the w-frame ones in place; Q and N are contact's, reached through MMFrame (docs/method.md section 2). M* and its masses are
+ * (MMFEAssembleOperators); contact's frame (src/contact/frame/, MMContactSetUpFrame) turns K and M into
+ * the w-frame ones in place and keeps its own w-frame load and lift (fem's stay Cartesian); Q and N
+ * are contact's, reached through MMFrame (docs/method.md section 2). M* and its masses are
  * contact's alone, built from M (the other components read them by MMContactGetOperators). */
 typedef struct {
   DM        dm;
@@ -191,7 +192,7 @@ typedef struct {
   Mat       K;      /* stiffness A: Cartesian from fem, w-frame once contact's frame has rotated it */
   Mat       M;      /* standard mass (consistent or lumped): set-up only, NULL once M* is built */
   MMFrame   frame;  /* the frame's transforms: contact's, installed by MMFESetFrame (fem holds no Q or N) */
-  Vec       load;   /* L: body force + traction, constant in time (Cartesian from fem, then w-frame: contact's frame) */
+  Vec       load;   /* L: body force + traction, constant in time, Cartesian (contact keeps the w-frame one) */
   Vec       lift;   /* K_fD u_D: the Dirichlet data's elastic force on the free dofs (likewise) */
   Vec       mass_lumped_cart; /* lumped standard mass per Cartesian dof */
   PetscBool      lumped;         /* -mass_lumped */
@@ -231,11 +232,12 @@ typedef struct {
   struct _MMElasticity *el;     /* the finite-strain laws' force for the reactions (MMLoadsSetElasticity), or NULL: K_D */
   const MMMaterial  *material; /* borrowed at MMLoadsSetUp */
   IS           massless;   /* borrowed at MMLoadsSetUp: M*'s dofs without inertia (contact's), NULL if none */
+  Vec          load, lift; /* borrowed at MMLoadsSetUp: the w-frame load and lift (contact's), which the loads in time set */
   PetscInt     nparts;
   MMAmplitude *amp;        /* per part */
   Vec         *part;       /* per part: w-frame, free dofs */
-  PetscBool    in_time;    /* some amplitude is not constant: op.load is set at each step's time */
-  Vec          load_old;   /* L(t0), the step's start; op.load holds L(t1) */
+  PetscBool    in_time;    /* some amplitude is not constant: load is set at each step's time */
+  Vec          load_old;   /* L(t0), the step's start; load holds L(t1) */
   PetscReal    t0, t1;     /* the times of the step being taken (both the current time between steps) */
   /* the constrained dofs (all Dirichlet boundaries): rows of the Cartesian K and M on a copy of the
    * mesh without constraints, and the load parts there */
@@ -297,7 +299,7 @@ PETSC_EXTERN PetscErrorCode MMStressCreate(const MMOperators *op, MMStress *st);
 PETSC_EXTERN PetscErrorCode MMStressCompute(MMStress *st, const MMOperators *op, const MMMaterial *mat, DM dm_u, Vec u, PetscBool nodal);
 PETSC_EXTERN PetscErrorCode MMStressDestroy(MMStress *st);
 /* loads.c: the loads in time, moving Dirichlet data and the reactions (after MMLoadsSetUp) */
-PETSC_EXTERN PetscErrorCode MMLoadsSetUp(MMLoads *ld, MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb, IS massless);
+PETSC_EXTERN PetscErrorCode MMLoadsSetUp(MMLoads *ld, MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb, IS massless, Vec load, Vec lift);
 PETSC_EXTERN PetscErrorCode MMLoadsSetTime(MMLoads *ld, PetscReal t0, PetscReal t1);
 PETSC_EXTERN PetscErrorCode MMLoadsReactions(MMLoads *ld, Vec u, Vec a);
 PETSC_EXTERN PetscErrorCode MMLoadsStepWork(MMLoads *ld, Vec u, Vec a, Vec u_old, Vec a_old, PetscReal *w_ext_D, PetscReal *w_D);

@@ -132,7 +132,7 @@ static PetscErrorCode SetUpOperators(MPI_Comm comm, MMCtx *ctx)
   {
     MMContactOperators ops; /* M*'s massless dofs: the reactions' inertia has none there */
     PetscCall(MMContactGetOperators(ctx->contact, &ops));
-    MMPhase(MMAppEvents.loads_setup, MMLoadsSetUp(&ctx->loads, &ctx->op, &ctx->material, &pb, ops.massless));
+    MMPhase(MMAppEvents.loads_setup, MMLoadsSetUp(&ctx->loads, &ctx->op, &ctx->material, &pb, ops.massless, ops.load, ops.lift));
   }
   PetscFunctionReturn(0);
 }

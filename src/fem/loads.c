@@ -558,7 +558,7 @@ static PetscErrorCode CreateParts(MMLoads *ld, const MMFEProblem *pb)
   if (!ld->in_time && !pb->n_dirichlet) PetscFunctionReturn(0);
   if (ld->in_time) {
     PetscCall(PetscMalloc1(ld->nparts, &ld->part));
-    PetscCall(VecDuplicate(ld->op->load, &ld->load_old));
+    PetscCall(VecDuplicate(ld->load, &ld->load_old));
   }
   if (pb->n_dirichlet) PetscCall(PetscMalloc1(ld->nparts, &ld->partD));
   /* a load in time on a body without Dirichlet boundaries still builds its parts on dm_full */
@@ -568,7 +568,7 @@ static PetscErrorCode CreateParts(MMLoads *ld, const MMFEProblem *pb)
     PetscCall(DMGetGlobalVector(ld->dm_full, &full));
     PetscCall(LoadPartFull(ld, pb, k, full));
     if (ld->in_time) {
-      PetscCall(VecDuplicate(ld->op->load, &ld->part[k]));
+      PetscCall(VecDuplicate(ld->load, &ld->part[k]));
       PetscCall(FreePart(ld, full, ld->part[k]));
     }
     if (pb->n_dirichlet) {
@@ -747,24 +747,30 @@ PetscErrorCode MMLoadsInsertBoundaryValues(MMLoads *ld, Vec l, PetscReal t)
 . op       - the operators (borrowed), after the contact frame
 . mat      - the bodies' material
 . pb       - the problem
-- massless - M*'s dofs without inertia (borrowed), or NULL
+. massless - M*'s dofs without inertia (borrowed), or NULL
+. load     - the w-frame load (contact's, borrowed: MMContactGetOperators), set at each step's time
+- lift     - the w-frame lift (likewise), set at each step's time with moving Dirichlet data
 
   Note:
   The loads' parts and the Dirichlet data's rows on the operators op (borrowed), after
   MMFEAssembleOperators and the contact frame; massless (borrowed): M*'s dofs without inertia,
-  NULL if none, where the reactions' accelerations are zero.
+  NULL if none, where the reactions' accelerations are zero. fem's own load and lift stay
+  Cartesian: the loads in time write L(t) = sum a_k(t) L_k from their w-frame parts into contact's
+  load, which rounds as the parts do (docs/developer.md, "The contact frame").
 
   Level: intermediate
 
 .seealso: `MMLoadsSetTime()`, `MMLoadsDestroy()`, `MMFEAssembleOperators()`
 @*/
-PetscErrorCode MMLoadsSetUp(MMLoads *ld, MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb, IS massless)
+PetscErrorCode MMLoadsSetUp(MMLoads *ld, MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb, IS massless, Vec load, Vec lift)
 {
 
   PetscFunctionBeginUser;
   ld->op       = op;
   ld->material = mat;
   ld->massless = massless;
+  ld->load     = load;
+  ld->lift     = lift;
   PetscCall(CheckAmplitudeNames(PetscObjectComm((PetscObject)ld->op->dm), pb));
   if (pb->n_dirichlet) PetscCall(DirichletAmplitudes(ld, pb));
   PetscCall(TabulateBoundaryValues(ld, pb));
@@ -794,8 +800,8 @@ PetscErrorCode MMLoadsSetUp(MMLoads *ld, MMOperators *op, const MMMaterial *mat,
 - t1 - its end time (t0 = t1 between steps)
 
   Note:
-  The loads of a step from t0 to t1 (between steps t0 = t1, the current time): op.load = L(t1) and
-  load_old = L(t0); with moving Dirichlet data op.lift = K_fD u_D(t1) and op.energy_dirichlet =
+  The loads of a step from t0 to t1 (between steps t0 = t1, the current time): the w-frame load =
+  L(t1) and load_old = L(t0); with moving Dirichlet data the w-frame lift = K_fD u_D(t1) and op.energy_dirichlet =
   1/2 u_D.A_DD u_D at t1, both from the rows D of K, the operator the reaction uses, so that the
   energy identity closes with the reaction's work (docs/method.md section 10).
 
@@ -810,10 +816,10 @@ PetscErrorCode MMLoadsSetTime(MMLoads *ld, PetscReal t0, PetscReal t1)
   ld->t0 = t0;
   ld->t1 = t1;
   if (ld->in_time) {
-    PetscCall(VecZeroEntries(ld->op->load));
+    PetscCall(VecZeroEntries(ld->load));
     PetscCall(VecZeroEntries(ld->load_old));
     for (PetscInt k = 0; k < ld->nparts; ++k) {
-      PetscCall(VecAXPY(ld->op->load, MMAmplitudeValue(&ld->amp[k], t1), ld->part[k]));
+      PetscCall(VecAXPY(ld->load, MMAmplitudeValue(&ld->amp[k], t1), ld->part[k]));
       PetscCall(VecAXPY(ld->load_old, MMAmplitudeValue(&ld->amp[k], t0), ld->part[k]));
     }
   }
@@ -828,7 +834,7 @@ PetscErrorCode MMLoadsSetTime(MMLoads *ld, PetscReal t0, PetscReal t1)
     PetscCall(VecDot(ld->uD1, ld->rD, &e));
     ld->op->energy_dirichlet = 0.5 * PetscRealPart(e);
     PetscCall(MatMultTranspose(ld->KD, ld->uD1, ld->full2));
-    PetscCall(FreePart(ld, ld->full2, ld->op->lift));
+    PetscCall(FreePart(ld, ld->full2, ld->lift));
   }
   PetscFunctionReturn(0);
 }

@@ -32,7 +32,7 @@ PetscErrorCode MMContactElasticEnergy(MMContact ct, Vec w, PetscReal *energy)
   PetscFunctionBeginUser;
   PetscCall(MatMult(op->K, w, op->work));
   PetscCall(VecDot(w, op->work, &wKw));
-  PetscCall(VecDot(w, op->lift, &wl));
+  PetscCall(VecDot(w, ct->lift, &wl));
   *energy = 0.5 * PetscRealPart(wKw) + PetscRealPart(wl) + op->energy_dirichlet;
   PetscFunctionReturn(0);
 }
@@ -42,7 +42,7 @@ PetscErrorCode MMContactElasticEnergy(MMContact ct, Vec w, PetscReal *energy)
  * moved rigidly, the terms of w.K w cancel to a small fraction of their sum (2e-9 on the clamped
  * cantilever of t/L = 0.02 under its weight), so the energy's error is eps times this sum, not eps
  * times the energy. Once, at start-up and on a restart: |K| is a copy of K. */
-static PetscErrorCode ElasticEnergyRoundoffScale(const MMOperators *op, Vec w, PetscReal *scale)
+static PetscErrorCode ElasticEnergyRoundoffScale(const MMOperators *op, Vec lift, Vec w, PetscReal *scale)
 {
   Mat         A, blocks[2];
   Vec         aw;
@@ -71,7 +71,7 @@ static PetscErrorCode ElasticEnergyRoundoffScale(const MMOperators *op, Vec w, P
   PetscCall(VecAbs(aw));
   PetscCall(MatMult(A, aw, op->work));
   PetscCall(VecDot(aw, op->work, &wAw));
-  PetscCall(VecCopy(op->lift, op->work));
+  PetscCall(VecCopy(lift, op->work));
   PetscCall(VecAbs(op->work));
   PetscCall(VecDot(aw, op->work, &wl));
   *scale = 0.5 * PetscRealPart(wAw) + PetscRealPart(wl) + PetscAbsReal(op->energy_dirichlet);
@@ -120,7 +120,7 @@ PetscErrorCode MMContactCheckElasticEnergy(MMContact ct, const MMMaterial *mat, 
   PetscCall(MMFEToCartesian(op, w, ucart));
   PetscCall(MMFEElasticEnergyIntegral(op, mat, ucart, &integral[0]));
   PetscCall(DMRestoreGlobalVector(op->dm, &ucart));
-  PetscCall(ElasticEnergyRoundoffScale(op, w, &scale));
+  PetscCall(ElasticEnergyRoundoffScale(op, ct->lift, w, &scale));
   PetscCall(VecGetSize(w, &n));
   tol = MM_ENERGY_ROUNDOFF * PetscSqrtReal((PetscReal)n) * PETSC_MACHINE_EPSILON * scale;
   PetscCall(PetscInfo(NULL, "elastic energy: matrix form %.16e, integral %.16e: they differ by %g eps of the terms' absolute sum %g\n", (double)e, (double)integral[0], (double)(PetscAbsReal(e - integral[0]) / (PETSC_MACHINE_EPSILON * scale)), (double)scale));

@@ -1,8 +1,9 @@
 /* The contact frame (docs/method.md section 2): the w-frame operators from fem's Cartesian ones.
  * Each contact node's dofs are rotated into its frame (nu, tau_1, tau_2) by Q, built here from the
- * frames the contact set chose (interface/set.c): K <- Q^T K Q, M <- Q^T M Q, L <- Q^T L; then M* for -mass (mass_star.c) and
+ * frames the contact set chose (interface/set.c): K <- Q^T K Q, M <- Q^T M Q, contact's L = Q^T L; then M* for -mass (mass_star.c) and
  * the contact pairs' relative variables, A <- N^T A N (interface/pairs.c, docs/method.md section 11).
- * The w-frame K, load and lift stay in fem's MMOperators, which app hands in (Q and N are contact's); the stepper, the output and the
+ * The w-frame K stays in fem's MMOperators, which app hands in; the w-frame load and lift are contact's
+ * own (fem's stay Cartesian), as are Q and N (transform.c); the stepper, the output and the
  * audits read them through contact (operators.c, MMContactGetOperators). */
 #include "../contactimpl.h"
 
@@ -59,16 +60,13 @@ static PetscErrorCode RotateOperators(Mat Q, MMOperators *op)
   PetscFunctionReturn(0);
 }
 
-/* v <- Q^T v for a force on the free dofs (the load, the lift): v keeps its layout and DM. */
-static PetscErrorCode RotateForce(Mat Q, Vec v)
+/* w = Q^T cart for a force on the free dofs (the load, the lift): contact's w-frame copy, of cart's
+ * layout and DM (VecDuplicate); fem's cart stays Cartesian. */
+static PetscErrorCode RotateForce(Mat Q, Vec cart, Vec *w)
 {
-  Vec cart;
-
   PetscFunctionBeginUser;
-  PetscCall(VecDuplicate(v, &cart));
-  PetscCall(VecCopy(v, cart));
-  PetscCall(MatMultTranspose(Q, cart, v));
-  PetscCall(VecDestroy(&cart));
+  PetscCall(VecDuplicate(cart, w));
+  PetscCall(MatMultTranspose(Q, cart, *w));
   PetscFunctionReturn(0);
 }
 
@@ -85,8 +83,9 @@ void MMContactMassBoundary(MMContact ct, MMMassBoundary *mb)
 }
 
 /*@
-  MMContactSetUpFrame - Turns fem's Cartesian K, M, load and lift into the w-frame ones in place:
-  Q^T A Q, the mass M* of -mass, and the contact pairs' N^T A N
+  MMContactSetUpFrame - Turns fem's Cartesian K and M into the w-frame ones in place and makes
+  contact's own w-frame load and lift (fem's stay Cartesian): Q^T A Q, the mass M* of -mass, and the
+  contact pairs' N^T A N
 
   Collective
 
@@ -112,8 +111,8 @@ PetscErrorCode MMContactSetUpFrame(MMContact ct, MMOperators *op, const MMMateri
   PetscCheck(op == ct->op, ct->comm, PETSC_ERR_ARG_WRONG, "The contact frame rotates the operators given to MMContactSetUp, whose Q it built");
   PetscCall(PetscLogEventBegin(MMCONTACT_FrameSetUp, 0, 0, 0, 0));
   PetscCall(RotateOperators(ct->transform.Q, op));
-  PetscCall(RotateForce(ct->transform.Q, op->load));
-  PetscCall(RotateForce(ct->transform.Q, op->lift));
+  PetscCall(RotateForce(ct->transform.Q, op->load, &ct->load)); /* fem's load and lift stay Cartesian */
+  PetscCall(RotateForce(ct->transform.Q, op->lift, &ct->lift));
   /* frames that follow the contact point rebuild M* from the whole w-frame M, turned with them */
   if (ct->frames.follow) PetscCall(MatDuplicate(op->M, MAT_COPY_VALUES, &ct->frames.M));
   MMContactMassBoundary(ct, &mb);

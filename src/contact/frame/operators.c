@@ -27,8 +27,8 @@ PetscErrorCode MMContactGetOperators(MMContact ct, MMContactOperators *ops)
   PetscFunctionBeginUser;
   ops->K             = op->K;
   ops->Mstar         = ct->mass.Mstar;
-  ops->load          = op->load;
-  ops->lift          = op->lift;
+  ops->load          = ct->load;
+  ops->lift          = ct->lift;
   ops->mass_star     = ct->mass.mass_star;
   ops->mass_star_inv = ct->mass.mass_star_inv;
   ops->massless      = ct->mass.massless;

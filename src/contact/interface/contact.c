@@ -837,8 +837,8 @@ PetscErrorCode MMContactProjectInitial(MMContact ct, Vec w)
   PetscCall(VecISSet(r, ct->is_massless, 0.0));
   PetscCall(VecDuplicate(w, &rc));
   PetscCall(MatMult(ct->op->K, r, rc));
-  PetscCall(VecAYPX(rc, -1.0, ct->op->load));
-  PetscCall(VecAXPY(rc, -1.0, ct->op->lift));
+  PetscCall(VecAYPX(rc, -1.0, ct->load));
+  PetscCall(VecAXPY(rc, -1.0, ct->lift));
   PetscCall(VecGetSubVector(rc, ct->is_massless, &wc));
   PetscCall(VecCopy(wc, ct->qp0.b));
   PetscCall(VecRestoreSubVector(rc, ct->is_massless, &wc));
@@ -961,6 +961,8 @@ PetscErrorCode MMContactDestroy(MMContact *pct)
   PetscCall(MatDestroy(&ct->frame_Kp));
   PetscCall(MatDestroy(&ct->frame_KpN));
   PetscCall(MMContactTransformDestroy(&ct->transform));
+  PetscCall(VecDestroy(&ct->load));
+  PetscCall(VecDestroy(&ct->lift));
   PetscCall(ISDestroy(&ct->mass.massless));
   PetscCall(PetscFree2(ct->second, ct->corner_ab));
   PetscCall(PetscFree(ct->force_obstacle));

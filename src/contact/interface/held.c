@@ -103,8 +103,8 @@ PetscErrorCode MMContactHeldTransform(MMContact ct, PetscBool state, MMContactHe
     PetscCall(TransformType(ct, MM_FRAME_KINEMATIC, fn, fctx));
     PetscCall(TransformType(ct, MM_FRAME_FORCE, fn, fctx));
   }
-  PetscCall(fn(ct, fctx, PETSC_TRUE, ct->op->load));
-  PetscCall(fn(ct, fctx, PETSC_TRUE, ct->op->lift));
+  PetscCall(fn(ct, fctx, PETSC_TRUE, ct->load));
+  PetscCall(fn(ct, fctx, PETSC_TRUE, ct->lift));
   PetscCall(TransformType(ct, MM_FRAME_SETUP_FORCE, fn, fctx));
   ct->held.state++;
   PetscFunctionReturn(0);

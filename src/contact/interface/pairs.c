@@ -435,11 +435,11 @@ PetscErrorCode MMContactPairsTransformOperators(MMContact ct, MMOperators *op)
     PetscCall(MatDestroy(A[i]));
     *A[i] = B;
   }
-  PetscCall(VecDuplicate(op->load, &t));
-  PetscCall(VecCopy(op->load, t));
-  PetscCall(MatMultTranspose(ct->transform.N, t, op->load));
-  PetscCall(VecCopy(op->lift, t));
-  PetscCall(MatMultTranspose(ct->transform.N, t, op->lift));
+  PetscCall(VecDuplicate(ct->load, &t));
+  PetscCall(VecCopy(ct->load, t));
+  PetscCall(MatMultTranspose(ct->transform.N, t, ct->load));
+  PetscCall(VecCopy(ct->lift, t));
+  PetscCall(MatMultTranspose(ct->transform.N, t, ct->lift));
   PetscCall(VecDestroy(&t));
   PetscFunctionReturn(0);
 }

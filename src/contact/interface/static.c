@@ -118,7 +118,7 @@ PetscErrorCode MMContactSolveStatic(MMContact ct, Vec w, Vec react)
   /* K alone is as ill-conditioned as the part is slender: the test also accepts round-off (qp.c) */
   PetscCall(MatNorm(qp.A, NORM_INFINITY, &qp.Anorm));
   PetscCall(VecDuplicate(w, &qp.b));
-  PetscCall(VecWAXPY(qp.b, -1.0, ct->op->lift, ct->op->load));
+  PetscCall(VecWAXPY(qp.b, -1.0, ct->lift, ct->load));
   PetscCall(MMQPCreate(comm, "static_", &qp, 0, &snes));
   PetscCall(StaticSolverSetUp(snes, qp.A));
   PetscCall(VecDuplicate(w, &lower));
