@@ -41,10 +41,10 @@ PETSC_EXTERN PetscErrorCode MMContactSetUpView(MMContact ct, PetscViewer viewer)
 PETSC_EXTERN PetscErrorCode MMContactDestroy(MMContact *ct);
 PETSC_EXTERN PetscErrorCode MMContactRegister(const char name[], PetscErrorCode (*create)(MMContact ct));
 PETSC_EXTERN PetscErrorCode MMContactRegisterAll(void);
-/* The contact frame (src/contact/frame/, docs/method.md section 2): fem's Cartesian K and M
- * (MMFEAssembleOperators) turned into the w-frame ones in place in op, which must be the operators
- * given to MMContactSetUp, and contact's own w-frame load and lift from fem's (which stay
- * Cartesian): Q^T A Q, M* for -mass, and the contact pairs' N^T A N. */
+/* The contact frame (src/contact/frame/, docs/method.md section 2): contact's own w-frame K, load and
+ * lift from fem's Cartesian ones (which stay Cartesian), and fem's M turned in place in op, which
+ * must be the operators given to MMContactSetUp: Q^T A Q, M* for -mass, and the contact pairs'
+ * N^T A N. */
 PETSC_EXTERN PetscErrorCode MMContactSetUpFrame(MMContact ct, MMOperators *op, const MMMaterial *material);
 /* The w-frame operators (src/contact/frame/operators.c), contact's, as they are now: borrowed, and
  * rebuilt when the frames turn or the pairing changes, so ask for them when they are used rather

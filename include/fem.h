@@ -180,17 +180,17 @@ typedef struct {
 } MMFrame;
 
 /* The finite element operators: fem assembles K, M, the load and the lift on the Cartesian dofs
- * (MMFEAssembleOperators); contact's frame (src/contact/frame/, MMContactSetUpFrame) turns K and M into
- * the w-frame ones in place and keeps its own w-frame load and lift (fem's stay Cartesian); Q and N
- * are contact's, reached through MMFrame (docs/method.md section 2). M* and its masses are
+ * (MMFEAssembleOperators); contact's frame (src/contact/frame/, MMContactSetUpFrame) keeps its own
+ * w-frame K, load and lift (fem's stay Cartesian) and turns M, set-up data, in place; Q and N are
+ * contact's, reached through MMFrame (docs/method.md section 2). M* and its masses are
  * contact's alone, built from M (the other components read them by MMContactGetOperators). */
 typedef struct {
   DM        dm;
   DM        dm_scalar; /* one P1 scalar per vertex, no constraints: lumped masses, contact pressure and gap, von Mises */
   MMCells   cells;
   PetscInt  dim;
-  Mat       K;      /* stiffness A: Cartesian from fem, w-frame once contact's frame has rotated it */
-  Mat       M;      /* standard mass (consistent or lumped): set-up only, NULL once M* is built */
+  Mat       K;      /* stiffness A, Cartesian (contact keeps the w-frame one) */
+  Mat       M;      /* standard mass (consistent or lumped): set-up only, turned by contact's frame, NULL once M* is built */
   MMFrame   frame;  /* the frame's transforms: contact's, installed by MMFESetFrame (fem holds no Q or N) */
   Vec       load;   /* L: body force + traction, constant in time, Cartesian (contact keeps the w-frame one) */
   Vec       lift;   /* K_fD u_D: the Dirichlet data's elastic force on the free dofs (likewise) */

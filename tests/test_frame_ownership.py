@@ -56,13 +56,15 @@ def test_fem_holds_no_frame():
     assert not fem, f"fem multiplies by the frame's matrices itself: {fem}"
 
 
-def test_fem_load_and_lift_stay_cartesian():
-    """fem's load and lift stay Cartesian: contact keeps its own w-frame copies (Q^T, then N^T, of
-    fem's: src/contact/frame/frame.c), which the loads in time set (MMLoadsSetUp hands them). Outside
-    fem's assembly (fem.c), fem's load and lift are only read: copied from or duplicated."""
-    use = re.compile(r"\bop(?:->|\.)(load|lift)\b")
-    read = re.compile(r"VecDuplicate\([\w>.-]*op(?:->|\.)(load|lift),|RotateForce\([^,]+, op->(load|lift), &ct->(load|lift)\)")
+def test_fem_k_load_and_lift_stay_cartesian():
+    """fem's K, load and lift stay Cartesian: contact keeps its own w-frame copies (Q^T (.) Q, then
+    N^T (.) N, of fem's: src/contact/frame/frame.c); the loads in time set contact's load and lift
+    (MMLoadsSetUp hands them). Outside fem's assembly (fem.c), fem's K, load and lift are only read:
+    copied from or duplicated."""
+    use = re.compile(r"\bop(?:->|\.)(K|load|lift)\b")
+    read = re.compile(r"VecDuplicate\([\w>.-]*op(?:->|\.)(load|lift),|RotateForce\([^,]+, op->(load|lift), &ct->(load|lift)\)"
+                      r"|MatCopy\(op->K, \*Kw, SAME_NONZERO_PATTERN\)")
     bad = [f"{p.relative_to(ROOT)}:{n}: {line.strip()}"
            for p in sources(("fem", "contact") + ABOVE) if str(p.relative_to(ROOT)) != "src/fem/fem.c"
            for n, line in enumerate(p.read_text().splitlines(), 1) if use.search(line) and not read.search(line)]
-    assert not bad, "the w-frame load and lift are contact's (ct->load, ct->lift):\n" + "\n".join(bad)
+    assert not bad, "the w-frame K, load and lift are contact's (ct->K, ct->load, ct->lift):\n" + "\n".join(bad)

@@ -209,6 +209,7 @@ struct _p_MMContact {
   MMContactPairs pairs;           /* contact between two bodies of the mesh */
   MMContactFrames frames;         /* -contact_frames follow */
   MMContactHeld   held;           /* the w-frame data other components keep */
+  Mat             K;               /* the w-frame stiffness, contact's (fem's stays Cartesian): Q^T K Q then N^T (.) N of fem's */
   Vec             load, lift;      /* the w-frame load and lift, contact's (fem's stay Cartesian): Q^T then N^T of fem's; the loads in time set them (MMLoadsSetUp) */
   MMContactTransform transform;    /* the frame: Q, N and N^{-1}, which fem reads through the ops installed by MMContactFrameInstall */
   Mat             frame_Kp, frame_KpN; /* MMContactFrameMatrixBegin/End with contact pairs: the P1 matrix, its N^T (.) N */

@@ -687,11 +687,12 @@ PetscErrorCode MMFEAssembleOperators(MMOperators *op, const MMMaterial *mat, con
   Collective
 
   Input Parameter:
-. op - the operators, turned into the w-frame by MMContactSetUpFrame()
+. op - the operators, their M turned into the w-frame by MMContactSetUpFrame()
 
   Note:
   After contact's frame (MMContactSetUpFrame: the rotation, M* and the pairs' transform): the views
-  of K and M, and M released (M* replaces it); the end of the assembly's event, begun in
+  of K (fem's, Cartesian: contact keeps the w-frame one) and M (turned), and M released (M*
+  replaces it); the end of the assembly's event, begun in
   MMFEAssembleOperators.
 
   Level: intermediate

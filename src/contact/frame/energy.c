@@ -30,7 +30,7 @@ PetscErrorCode MMContactElasticEnergy(MMContact ct, Vec w, PetscReal *energy)
   PetscScalar        wKw, wl;
 
   PetscFunctionBeginUser;
-  PetscCall(MatMult(op->K, w, op->work));
+  PetscCall(MatMult(ct->K, w, op->work));
   PetscCall(VecDot(w, op->work, &wKw));
   PetscCall(VecDot(w, ct->lift, &wl));
   *energy = 0.5 * PetscRealPart(wKw) + PetscRealPart(wl) + op->energy_dirichlet;
@@ -42,7 +42,7 @@ PetscErrorCode MMContactElasticEnergy(MMContact ct, Vec w, PetscReal *energy)
  * moved rigidly, the terms of w.K w cancel to a small fraction of their sum (2e-9 on the clamped
  * cantilever of t/L = 0.02 under its weight), so the energy's error is eps times this sum, not eps
  * times the energy. Once, at start-up and on a restart: |K| is a copy of K. */
-static PetscErrorCode ElasticEnergyRoundoffScale(const MMOperators *op, Vec lift, Vec w, PetscReal *scale)
+static PetscErrorCode ElasticEnergyRoundoffScale(const MMOperators *op, Mat K, Vec lift, Vec w, PetscReal *scale)
 {
   Mat         A, blocks[2];
   Vec         aw;
@@ -51,7 +51,7 @@ static PetscErrorCode ElasticEnergyRoundoffScale(const MMOperators *op, Vec lift
   PetscInt    nb = 1;
 
   PetscFunctionBeginUser;
-  PetscCall(MatConvert(op->K, MATAIJ, MAT_INITIAL_MATRIX, &A));
+  PetscCall(MatConvert(K, MATAIJ, MAT_INITIAL_MATRIX, &A));
   PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)A), &size));
   if (size > 1) {
     PetscCall(MatMPIAIJGetSeqAIJ(A, &blocks[0], &blocks[1], NULL));
@@ -120,7 +120,7 @@ PetscErrorCode MMContactCheckElasticEnergy(MMContact ct, const MMMaterial *mat, 
   PetscCall(MMFEToCartesian(op, w, ucart));
   PetscCall(MMFEElasticEnergyIntegral(op, mat, ucart, &integral[0]));
   PetscCall(DMRestoreGlobalVector(op->dm, &ucart));
-  PetscCall(ElasticEnergyRoundoffScale(op, ct->lift, w, &scale));
+  PetscCall(ElasticEnergyRoundoffScale(op, ct->K, ct->lift, w, &scale));
   PetscCall(VecGetSize(w, &n));
   tol = MM_ENERGY_ROUNDOFF * PetscSqrtReal((PetscReal)n) * PETSC_MACHINE_EPSILON * scale;
   PetscCall(PetscInfo(NULL, "elastic energy: matrix form %.16e, integral %.16e: they differ by %g eps of the terms' absolute sum %g\n", (double)e, (double)integral[0], (double)(PetscAbsReal(e - integral[0]) / (PETSC_MACHINE_EPSILON * scale)), (double)scale));

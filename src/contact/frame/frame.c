@@ -1,9 +1,9 @@
 /* The contact frame (docs/method.md section 2): the w-frame operators from fem's Cartesian ones.
  * Each contact node's dofs are rotated into its frame (nu, tau_1, tau_2) by Q, built here from the
- * frames the contact set chose (interface/set.c): K <- Q^T K Q, M <- Q^T M Q, contact's L = Q^T L; then M* for -mass (mass_star.c) and
+ * frames the contact set chose (interface/set.c): contact's K = Q^T K Q and L = Q^T L, M <- Q^T M Q; then M* for -mass (mass_star.c) and
  * the contact pairs' relative variables, A <- N^T A N (interface/pairs.c, docs/method.md section 11).
- * The w-frame K stays in fem's MMOperators, which app hands in; the w-frame load and lift are contact's
- * own (fem's stay Cartesian), as are Q and N (transform.c); the stepper, the output and the
+ * The w-frame K, load and lift are contact's own (fem's stay Cartesian), as are Q and N (transform.c);
+ * M, set-up data, is turned in fem's MMOperators, which app hands in; the stepper, the output and the
  * audits read them through contact (operators.c, MMContactGetOperators). */
 #include "../contactimpl.h"
 
@@ -51,11 +51,13 @@ PetscErrorCode MMContactFrameBuildRotation(MMContact ct, MMOperators *op)
  * MatPtAP would build new matrices, through a symbolic product that costs more than the closed-form
  * assembly (docs/scaling.md, "Assembly of K and M, measured"). A lumped M is m I at each node, which
  * the rotation leaves unchanged: it is not rotated, so that no round-off enters it. */
-static PetscErrorCode RotateOperators(Mat Q, MMOperators *op)
+static PetscErrorCode RotateOperators(Mat Q, MMOperators *op, Mat *Kw)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(MMCONTACT_FrameRotate, 0, 0, 0, 0));
-  PetscCall(MMRotateP1(Q, op->K, op->lumped ? NULL : op->M));
+  PetscCall(MMFECreateMatrix(op, op->dm, Kw)); /* contact's, made as fem's: fem's K stays Cartesian */
+  PetscCall(MatCopy(op->K, *Kw, SAME_NONZERO_PATTERN));
+  PetscCall(MMRotateP1(Q, *Kw, op->lumped ? NULL : op->M));
   PetscCall(PetscLogEventEnd(MMCONTACT_FrameRotate, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -83,9 +85,9 @@ void MMContactMassBoundary(MMContact ct, MMMassBoundary *mb)
 }
 
 /*@
-  MMContactSetUpFrame - Turns fem's Cartesian K and M into the w-frame ones in place and makes
-  contact's own w-frame load and lift (fem's stay Cartesian): Q^T A Q, the mass M* of -mass, and the
-  contact pairs' N^T A N
+  MMContactSetUpFrame - Makes contact's own w-frame K, load and lift from fem's Cartesian ones
+  (which stay Cartesian) and turns fem's M in place: Q^T A Q, the mass M* of -mass, and the contact
+  pairs' N^T A N
 
   Collective
 
@@ -110,7 +112,7 @@ PetscErrorCode MMContactSetUpFrame(MMContact ct, MMOperators *op, const MMMateri
   PetscFunctionBeginUser;
   PetscCheck(op == ct->op, ct->comm, PETSC_ERR_ARG_WRONG, "The contact frame rotates the operators given to MMContactSetUp, whose Q it built");
   PetscCall(PetscLogEventBegin(MMCONTACT_FrameSetUp, 0, 0, 0, 0));
-  PetscCall(RotateOperators(ct->transform.Q, op));
+  PetscCall(RotateOperators(ct->transform.Q, op, &ct->K));
   PetscCall(RotateForce(ct->transform.Q, op->load, &ct->load)); /* fem's load and lift stay Cartesian */
   PetscCall(RotateForce(ct->transform.Q, op->lift, &ct->lift));
   /* frames that follow the contact point rebuild M* from the whole w-frame M, turned with them */

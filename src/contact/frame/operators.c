@@ -22,10 +22,8 @@
 @*/
 PetscErrorCode MMContactGetOperators(MMContact ct, MMContactOperators *ops)
 {
-  const MMOperators *op = ct->op;
-
   PetscFunctionBeginUser;
-  ops->K             = op->K;
+  ops->K             = ct->K;
   ops->Mstar         = ct->mass.Mstar;
   ops->load          = ct->load;
   ops->lift          = ct->lift;

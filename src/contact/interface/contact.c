@@ -189,9 +189,9 @@ static PetscErrorCode CheckStepMatrixArithmetic(MMContact ct, PetscReal dt, Pets
   char               ratio[64] = "";
 
   PetscFunctionBeginUser;
-  PetscCall(MatCreateVecs(ct->op->K, &d, NULL));
+  PetscCall(MatCreateVecs(ct->K, &d, NULL));
   PetscCall(VecGetLocalSize(d, &n));
-  PetscCall(MatGetDiagonal(ct->op->K, d));
+  PetscCall(MatGetDiagonal(ct->K, d));
   PetscCall(VecGetArrayRead(d, &a));
   for (PetscInt i = 0; i < n; ++i) k[0] = PetscMax(k[0], PetscAbsReal(PetscRealPart(a[i])));
   PetscCall(VecRestoreArrayRead(d, &a));
@@ -253,7 +253,7 @@ static PetscErrorCode StepMatrixAssemble(MMContact ct, const MMStepMatrix *sm, M
 PetscErrorCode MMContactSetStepMatrix(MMContact ct, const MMStepMatrix *sm)
 {
   const PetscReal dt = sm->dt;
-  const Mat       K  = sm->K ? sm->K : ct->op->K;
+  const Mat       K  = sm->K ? sm->K : ct->K;
 
   PetscFunctionBeginUser;
   if (ct->qp.A && ct->Kt_dt == dt && ct->Kt_version == sm->version) PetscFunctionReturn(0);
@@ -821,7 +821,7 @@ PetscErrorCode MMContactProjectInitial(MMContact ct, Vec w)
   PetscFunctionBeginUser;
   if (ct->enabled) PetscCall(CheckInitialPenetration(ct, w));
   if (!ct->mass.massless) PetscFunctionReturn(0);
-  PetscCall(MatCreateSubMatrix(ct->op->K, ct->is_massless, ct->is_massless, MAT_INITIAL_MATRIX, &ct->qp0.A));
+  PetscCall(MatCreateSubMatrix(ct->K, ct->is_massless, ct->is_massless, MAT_INITIAL_MATRIX, &ct->qp0.A));
   PetscCall(MatCreateVecs(ct->qp0.A, &ct->qp0.b, NULL));
   PetscCall(VecDuplicate(ct->qp0.b, &ct->lower0));
   PetscCall(VecDuplicate(ct->qp0.b, &ct->upper0));
@@ -836,7 +836,7 @@ PetscErrorCode MMContactProjectInitial(MMContact ct, Vec w)
   PetscCall(VecCopy(w, r));
   PetscCall(VecISSet(r, ct->is_massless, 0.0));
   PetscCall(VecDuplicate(w, &rc));
-  PetscCall(MatMult(ct->op->K, r, rc));
+  PetscCall(MatMult(ct->K, r, rc));
   PetscCall(VecAYPX(rc, -1.0, ct->load));
   PetscCall(VecAXPY(rc, -1.0, ct->lift));
   PetscCall(VecGetSubVector(rc, ct->is_massless, &wc));
@@ -961,6 +961,7 @@ PetscErrorCode MMContactDestroy(MMContact *pct)
   PetscCall(MatDestroy(&ct->frame_Kp));
   PetscCall(MatDestroy(&ct->frame_KpN));
   PetscCall(MMContactTransformDestroy(&ct->transform));
+  PetscCall(MatDestroy(&ct->K));
   PetscCall(VecDestroy(&ct->load));
   PetscCall(VecDestroy(&ct->lift));
   PetscCall(ISDestroy(&ct->mass.massless));

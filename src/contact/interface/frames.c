@@ -314,7 +314,7 @@ static PetscErrorCode TurnSelectedRows(MMContact ct, PetscBool state)
   PetscFunctionBeginUser;
   PetscCall(BuildRotation(ct));
   /* w-frame K and M <- R^T (.) R: a lumped M is m I at each node, which no rotation changes */
-  PetscCall(MMRotateP1(fr->R, op->K, op->lumped ? NULL : fr->M));
+  PetscCall(MMRotateP1(fr->R, ct->K, op->lumped ? NULL : fr->M));
   PetscCall(SetNewFrames(ct));
   MMContactMassBoundary(ct, &mb);
   PetscCall(MMContactMassRebuild(&ct->mass, op, fr->M, ct->material, &mb));

@@ -421,13 +421,13 @@ PetscErrorCode MMContactPairsBuildTransform(MMContact ct)
  * Runs after M* is built and its moments taken, which N leaves unchanged (frame/frame.c). */
 PetscErrorCode MMContactPairsTransformOperators(MMContact ct, MMOperators *op)
 {
-  Mat         *A[3] = {&op->K, &op->M, &ct->mass.Mstar}, B;
+  Mat         *A[3] = {&ct->K, &op->M, &ct->mass.Mstar}, B;
   Vec          t;
 
   PetscFunctionBeginUser;
   if (!ct->transform.N) PetscFunctionReturn(0);
   if (ct->pairs.large) { /* the contact-frame K and M*, from which each new pairing's are built */
-    PetscCall(MatDuplicate(op->K, MAT_COPY_VALUES, &ct->pairs.Ky));
+    PetscCall(MatDuplicate(ct->K, MAT_COPY_VALUES, &ct->pairs.Ky));
     PetscCall(MatDuplicate(ct->mass.Mstar, MAT_COPY_VALUES, &ct->pairs.My));
   }
   for (PetscInt i = 0; i < 3; ++i) {
@@ -557,12 +557,10 @@ static PetscErrorCode ChangeVariables(MMContact ct, void *fctx, PetscBool force,
  * the formulation's factor, kept factor and Delassus columns go with it. */
 static PetscErrorCode RebuildOperators(MMContact ct)
 {
-  MMOperators *op = ct->op;
-
   PetscFunctionBeginUser;
-  PetscCall(MatDestroy(&op->K));
+  PetscCall(MatDestroy(&ct->K));
   PetscCall(MatDestroy(&ct->mass.Mstar));
-  PetscCall(MatPtAP(ct->pairs.Ky, ct->transform.N, MAT_INITIAL_MATRIX, 2.0, &op->K));
+  PetscCall(MatPtAP(ct->pairs.Ky, ct->transform.N, MAT_INITIAL_MATRIX, 2.0, &ct->K));
   PetscCall(MatPtAP(ct->pairs.My, ct->transform.N, MAT_INITIAL_MATRIX, 2.0, &ct->mass.Mstar));
   PetscCall(MatDestroy(&ct->qp.A));
   PetscCall(MatDestroy(&ct->kept.A));

@@ -113,7 +113,7 @@ PetscErrorCode MMContactSolveStatic(MMContact ct, Vec w, Vec react)
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(&qp, sizeof(qp)));
-  qp.A      = ct->op->K;
+  qp.A      = ct->K;
   qp.rtol_b = ct->opt.contact_tol;
   /* K alone is as ill-conditioned as the part is slender: the test also accepts round-off (qp.c) */
   PetscCall(MatNorm(qp.A, NORM_INFINITY, &qp.Anorm));
