@@ -36,6 +36,26 @@ def test_index_is_rewritten_log_n_times_and_lists_every_snapshot_at_the_end(tmp_
         assert list(f["time"][:, 0]) == times
 
 
+def frozen_look(proc, out):
+    """With every rank stopped (SIGSTOP): the history's steps, the snapshots the index lists (it must
+    parse, always) and those complete in solution.h5; None when solution.h5 is caught mid-flush."""
+    ranks = children(proc.pid)
+    for p in ranks:
+        os.kill(p, signal.SIGSTOP)
+    try:
+        steps = history_rows(str(out / "history.csv")) - 1
+        listed = len(grids(out / "solution.xmf"))
+        try:
+            with h5py.File(out / "solution.h5", "r") as f:
+                complete = f["time"].shape[0]
+        except OSError:
+            return None
+        return steps, listed, complete
+    finally:
+        for p in ranks:
+            os.kill(p, signal.SIGCONT)
+
+
 def test_index_is_readable_while_the_run_goes_on(tmp_path):
     """Frozen (SIGSTOP) at several moments of a 2-rank run: the index parses, lists at least half of
     the snapshots the history says were written and none that is not complete in solution.h5."""
@@ -50,20 +70,19 @@ def test_index_is_readable_while_the_run_goes_on(tmp_path):
             while history_rows(str(out / "history.csv")) < rows:
                 assert proc.poll() is None and time.time() - t0 < 120, "the run ended early"
                 time.sleep(0.001)
-            ranks = children(proc.pid)
-            for p in ranks:
-                os.kill(p, signal.SIGSTOP)
-            try:
-                steps = history_rows(str(out / "history.csv")) - 1
-                written = steps // 2 + 1  # snapshots at steps 0, 2, 4, ... up to the last row
-                listed = len(grids(out / "solution.xmf"))
-                with h5py.File(out / "solution.h5", "r") as f:
-                    complete = f["time"].shape[0]
-                assert (written - 1) / 2 <= listed <= min(written, complete), (steps, written, listed, complete)
-                seen.append(listed)
-            finally:
-                for p in ranks:
-                    os.kill(p, signal.SIGCONT)
+            # solution.h5 is not a journaled file: frozen inside HDF5's flush it may not open at all
+            # (docs/reference.md, "A run that stops early": the index is what counts). Such a look
+            # proves nothing about the index; it is let go and taken again a moment later.
+            for attempt in range(50):
+                look = frozen_look(proc, out)
+                if look is not None:
+                    break
+                time.sleep(0.01)
+            assert look is not None, "solution.h5 never opened in 50 looks"
+            steps, listed, complete = look
+            written = steps // 2 + 1  # snapshots at steps 0, 2, 4, ... up to the last row
+            assert (written - 1) / 2 <= listed <= min(written, complete), (steps, written, listed, complete)
+            seen.append(listed)
         assert proc.wait(timeout=300) == 0, proc.stderr.read()[-2000:]
     finally:
         stop(proc)

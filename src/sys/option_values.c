@@ -294,12 +294,18 @@ PetscErrorCode MMOptionsString(PetscOptionItems *PetscOptionsObject, MPI_Comm co
 
 /* The valid values of a PETSc enum list (names, then the type name, the prefix and a NULL), as
  * "a, b or c" into buf. */
-static void EnumChoices(const char *const list[], char buf[], size_t len)
+static PetscInt EnumNames(const char *const list[])
 {
   PetscInt n = 0;
 
   while (list[n]) ++n;
-  n -= 2; /* the names are followed by the enum's type name and its prefix (then NULL) */
+  return n - 2; /* the names are followed by the enum's type name and its prefix (then NULL) */
+}
+
+static void EnumChoices(const char *const list[], char buf[], size_t len)
+{
+  const PetscInt n = EnumNames(list);
+
   buf[0] = 0;
   for (PetscInt i = 0; i < n; ++i) {
     size_t used = strlen(buf);
@@ -346,9 +352,7 @@ PetscErrorCode MMOptionsEnum(PetscOptionItems *PetscOptionsObject, MPI_Comm comm
   PetscCall(MMOptionsCheckValue(comm, full, MM_VALUE_TEXT));
   PetscCall(PetscOptionsFindPair(NULL, NULL, full, &value, &set));
   if (set && value) {
-    PetscInt n = 0;
-    while (list[n]) ++n;
-    for (PetscInt i = 0; i < n - 2; ++i) known = (PetscBool)(known || !strcasecmp(value, list[i]));
+    for (PetscInt i = 0; i < EnumNames(list); ++i) known = (PetscBool)(known || !strcasecmp(value, list[i]));
     EnumChoices(list, choices, sizeof(choices));
     PetscCheck(known, comm, PETSC_ERR_USER_INPUT, "%s %s is not a valid value: use %s", full, value, choices);
   }
