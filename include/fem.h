@@ -180,17 +180,18 @@ typedef struct {
 } MMFrame;
 
 /* The finite element operators: fem assembles K, M, the load and the lift on the Cartesian dofs
- * (MMFEAssembleOperators); contact's frame (src/contact/frame/, MMContactSetUpFrame) keeps its own
- * w-frame K, load and lift (fem's stay Cartesian) and turns M, set-up data, in place; Q and N are
- * contact's, reached through MMFrame (docs/method.md section 2). M* and its masses are
- * contact's alone, built from M (the other components read them by MMContactGetOperators). */
+ * (MMFEAssembleOperators) and hands K and M to contact (MMFEHandMatrices), whose frame
+ * (src/contact/frame/, MMContactSetUpFrame) turns them into its own w-frame ones; it keeps its own
+ * w-frame load and lift too (fem's stay Cartesian). Q and N are contact's, reached through MMFrame
+ * (docs/method.md section 2). M* and its masses are contact's alone, built from M (the other
+ * components read them by MMContactGetOperators). fem holds nothing in the w-frame. */
 typedef struct {
   DM        dm;
   DM        dm_scalar; /* one P1 scalar per vertex, no constraints: lumped masses, contact pressure and gap, von Mises */
   MMCells   cells;
   PetscInt  dim;
-  Mat       K;      /* stiffness A, Cartesian (contact keeps the w-frame one) */
-  Mat       M;      /* standard mass (consistent or lumped): set-up only, turned by contact's frame, NULL once M* is built */
+  Mat       K;      /* stiffness A, Cartesian: NULL once handed to contact (MMFEHandMatrices) */
+  Mat       M;      /* standard mass (consistent or lumped), Cartesian: likewise */
   MMFrame   frame;  /* the frame's transforms: contact's, installed by MMFESetFrame (fem holds no Q or N) */
   Vec       load;   /* L: body force + traction, constant in time, Cartesian (contact keeps the w-frame one) */
   Vec       lift;   /* K_fD u_D: the Dirichlet data's elastic force on the free dofs (likewise) */
@@ -274,6 +275,7 @@ PETSC_EXTERN PetscErrorCode MMFEInterpolate(const MMOperators *op, PetscErrorCod
 /* 1/2 int sigma(u):eps(u) of a Cartesian global vector ucart with the Dirichlet data of t = 0 inserted */
 PETSC_EXTERN PetscErrorCode MMFEElasticEnergyIntegral(const MMOperators *op, const MMMaterial *mat, Vec ucart, PetscReal *energy);
 PETSC_EXTERN PetscErrorCode MMFESetFrame(MMOperators *op, const MMFrameOps *ops, void *ctx);
+PETSC_EXTERN PetscErrorCode MMFEHandMatrices(MMOperators *op, Mat *K, Mat *M);
 PETSC_EXTERN PetscErrorCode MMFEToCartesian(const MMOperators *op, Vec w, Vec ucart);
 PETSC_EXTERN PetscErrorCode MMFEFromCartesian(const MMOperators *op, Vec ucart, Vec w);
 PETSC_EXTERN PetscErrorCode MMFEForceToCartesian(const MMOperators *op, Vec fw, Vec fcart);

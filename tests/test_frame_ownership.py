@@ -57,14 +57,20 @@ def test_fem_holds_no_frame():
 
 
 def test_fem_k_load_and_lift_stay_cartesian():
-    """fem's K, load and lift stay Cartesian: contact keeps its own w-frame copies (Q^T (.) Q, then
-    N^T (.) N, of fem's: src/contact/frame/frame.c); the loads in time set contact's load and lift
-    (MMLoadsSetUp hands them). Outside fem's assembly (fem.c), fem's K, load and lift are only read:
-    copied from or duplicated."""
-    use = re.compile(r"\bop(?:->|\.)(K|load|lift)\b")
-    read = re.compile(r"VecDuplicate\([\w>.-]*op(?:->|\.)(load|lift),|RotateForce\([^,]+, op->(load|lift), &ct->(load|lift)\)"
-                      r"|MatCopy\(op->K, \*Kw, SAME_NONZERO_PATTERN\)")
+    """fem holds nothing in the w-frame: it hands its assembled K and M over to contact
+    (MMFEHandMatrices, called once, in src/contact/frame/frame.c), which turns them in place, so no
+    Cartesian copy of K outlives the set-up; fem's load and lift stay Cartesian and contact keeps its
+    own w-frame ones (Q^T, then N^T, of fem's); the loads in time set contact's (MMLoadsSetUp hands
+    them). Outside fem.c, fem's K and M are never named, and its load and lift only read."""
+    use = re.compile(r"\bop(?:->|\.)(K|M|load|lift)\b")
+    read = re.compile(r"VecDuplicate\([\w>.-]*op(?:->|\.)(load|lift),|RotateForce\([^,]+, op->(load|lift), &ct->(load|lift)\)")
     bad = [f"{p.relative_to(ROOT)}:{n}: {line.strip()}"
            for p in sources(("fem", "contact") + ABOVE) if str(p.relative_to(ROOT)) != "src/fem/fem.c"
            for n, line in enumerate(p.read_text().splitlines(), 1) if use.search(line) and not read.search(line)]
-    assert not bad, "the w-frame K, load and lift are contact's (ct->K, ct->load, ct->lift):\n" + "\n".join(bad)
+    assert not bad, "fem's K and M are handed to contact (MMFEHandMatrices); the w-frame K, M, load and lift are contact's:\n" + "\n".join(bad)
+    hand = [str(p.relative_to(ROOT)) for p in sources(("fem", "contact") + ABOVE) if "MMFEHandMatrices(" in p.read_text()]
+    assert hand == ["src/contact/frame/frame.c", "src/fem/fem.c"], hand
+    fem = (ROOT / "src" / "fem" / "fem.c").read_text()
+    body = fem[fem.index("PetscErrorCode MMFEHandMatrices("):]
+    body = body[:body.index("\n}\n")]
+    assert "op->K = NULL;" in body and "op->M = NULL;" in body, "fem keeps no reference to what it hands over"

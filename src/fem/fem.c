@@ -681,19 +681,51 @@ PetscErrorCode MMFEAssembleOperators(MMOperators *op, const MMMaterial *mat, con
 }
 
 /*@
-  MMFEAssembleOperatorsEnd - Ends the operators' assembly after contact's frame: views K and M
-  (-stiffness_view, -mass_view) and frees M
+  MMFEHandMatrices - Hands the assembled Cartesian K and M over to their new owner, contact's frame,
+  after viewing them (-stiffness_view, -mass_view)
 
   Collective
 
   Input Parameter:
-. op - the operators, their M turned into the w-frame by MMContactSetUpFrame()
+. op - the operators, assembled by MMFEAssembleOperators()
+
+  Output Parameters:
++ K - the stiffness, now the caller's to turn and destroy
+- M - the standard mass (consistent or lumped), likewise
 
   Note:
-  After contact's frame (MMContactSetUpFrame: the rotation, M* and the pairs' transform): the views
-  of K (fem's, Cartesian: contact keeps the w-frame one) and M (turned), and M released (M*
-  replaces it); the end of the assembly's event, begun in
-  MMFEAssembleOperators.
+  fem keeps no matrix that a frame could turn: contact turns these into the w-frame in place rather
+  than turning a copy, which would keep a second matrix of K's pattern for the whole run. Called
+  once; fem's K and M are NULL afterwards (docs/developer.md, "The contact frame").
+
+  Level: developer
+
+.seealso: `MMFEAssembleOperators()`, `MMContactSetUpFrame()`
+@*/
+PetscErrorCode MMFEHandMatrices(MMOperators *op, Mat *K, Mat *M)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(op->K && op->M, PetscObjectComm((PetscObject)op->dm), PETSC_ERR_ORDER, "MMFEHandMatrices: K and M were handed over already, or never assembled");
+  PetscCall(MatViewFromOptions(op->K, NULL, "-stiffness_view"));
+  PetscCall(MatViewFromOptions(op->M, NULL, "-mass_view"));
+  *K    = op->K;
+  *M    = op->M;
+  op->K = NULL;
+  op->M = NULL;
+  PetscFunctionReturn(0);
+}
+
+/*@
+  MMFEAssembleOperatorsEnd - Ends the operators' assembly event after contact's frame
+
+  Collective
+
+  Input Parameter:
+. op - the operators, their K and M handed to contact (MMFEHandMatrices())
+
+  Note:
+  After contact's frame (MMContactSetUpFrame: the rotation, M* and the pairs' transform): the end of
+  the assembly's event, begun in MMFEAssembleOperators, so that the frame's set-up is counted in it.
 
   Level: intermediate
 
@@ -702,12 +734,6 @@ PetscErrorCode MMFEAssembleOperators(MMOperators *op, const MMMaterial *mat, con
 PetscErrorCode MMFEAssembleOperatorsEnd(MMOperators *op)
 {
   PetscFunctionBeginUser;
-  PetscCall(MatViewFromOptions(op->K, NULL, "-stiffness_view"));
-  PetscCall(MatViewFromOptions(op->M, NULL, "-mass_view"));
-  /* M served only to build M* and to check M*'s moments against it: the steps, the audit and the
-   * diagnostics use M*. Freed here, before any factorization, it leaves the run's peak memory: one
-   * matrix of K's pattern (its size: docs/scaling.md, "The figures behind the code's choices") */
-  PetscCall(MatDestroy(&op->M));
   PetscCall(PetscLogEventEnd(MM_FEAssemble, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

@@ -1,10 +1,11 @@
 /* The contact frame (docs/method.md section 2): the w-frame operators from fem's Cartesian ones.
  * Each contact node's dofs are rotated into its frame (nu, tau_1, tau_2) by Q, built here from the
- * frames the contact set chose (interface/set.c): contact's K = Q^T K Q and L = Q^T L, M <- Q^T M Q; then M* for -mass (mass_star.c) and
- * the contact pairs' relative variables, A <- N^T A N (interface/pairs.c, docs/method.md section 11).
- * The w-frame K, load and lift are contact's own (fem's stay Cartesian), as are Q and N (transform.c);
- * M, set-up data, is turned in fem's MMOperators, which app hands in; the stepper, the output and the
- * audits read them through contact (operators.c, MMContactGetOperators). */
+ * frames the contact set chose (interface/set.c): K <- Q^T K Q and M <- Q^T M Q on the matrices fem
+ * hands over (MMFEHandMatrices), contact's L = Q^T L (fem's load and lift stay Cartesian); then M*
+ * for -mass (mass_star.c) and the contact pairs' relative variables, A <- N^T A N (interface/pairs.c,
+ * docs/method.md section 11). The w-frame K, M, load and lift are contact's own, as are Q and N
+ * (transform.c); the stepper, the output and the audits read them through contact (operators.c,
+ * MMContactGetOperators). */
 #include "../contactimpl.h"
 
 /* Q, u_cart = Q w: per contact node the block of its frame, F^T (the columns nu, tau_1, tau_2), the
@@ -51,13 +52,14 @@ PetscErrorCode MMContactFrameBuildRotation(MMContact ct, MMOperators *op)
  * MatPtAP would build new matrices, through a symbolic product that costs more than the closed-form
  * assembly (docs/scaling.md, "Assembly of K and M, measured"). A lumped M is m I at each node, which
  * the rotation leaves unchanged: it is not rotated, so that no round-off enters it. */
-static PetscErrorCode RotateOperators(Mat Q, MMOperators *op, Mat *Kw)
+static PetscErrorCode RotateOperators(Mat Q, MMOperators *op, Mat *K, Mat *M)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(MMCONTACT_FrameRotate, 0, 0, 0, 0));
-  PetscCall(MMFECreateMatrix(op, op->dm, Kw)); /* contact's, made as fem's: fem's K stays Cartesian */
-  PetscCall(MatCopy(op->K, *Kw, SAME_NONZERO_PATTERN));
-  PetscCall(MMRotateP1(Q, *Kw, op->lumped ? NULL : op->M));
+  /* fem hands its K and M over rather than keeping a Cartesian copy: one matrix of K's pattern less
+   * for the whole run (at a million dofs, hundreds of MB; docs/scaling.md) */
+  PetscCall(MMFEHandMatrices(op, K, M));
+  PetscCall(MMRotateP1(Q, *K, op->lumped ? NULL : *M));
   PetscCall(PetscLogEventEnd(MMCONTACT_FrameRotate, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -85,9 +87,9 @@ void MMContactMassBoundary(MMContact ct, MMMassBoundary *mb)
 }
 
 /*@
-  MMContactSetUpFrame - Makes contact's own w-frame K, load and lift from fem's Cartesian ones
-  (which stay Cartesian) and turns fem's M in place: Q^T A Q, the mass M* of -mass, and the contact
-  pairs' N^T A N
+  MMContactSetUpFrame - Takes fem's K and M (MMFEHandMatrices) and turns them into contact's
+  w-frame ones, and makes its own w-frame load and lift from fem's (which stay Cartesian): Q^T A Q,
+  the mass M* of -mass, and the contact pairs' N^T A N
 
   Collective
 
@@ -112,15 +114,19 @@ PetscErrorCode MMContactSetUpFrame(MMContact ct, MMOperators *op, const MMMateri
   PetscFunctionBeginUser;
   PetscCheck(op == ct->op, ct->comm, PETSC_ERR_ARG_WRONG, "The contact frame rotates the operators given to MMContactSetUp, whose Q it built");
   PetscCall(PetscLogEventBegin(MMCONTACT_FrameSetUp, 0, 0, 0, 0));
-  PetscCall(RotateOperators(ct->transform.Q, op, &ct->K));
+  PetscCall(RotateOperators(ct->transform.Q, op, &ct->K, &ct->mass.M));
   PetscCall(RotateForce(ct->transform.Q, op->load, &ct->load)); /* fem's load and lift stay Cartesian */
   PetscCall(RotateForce(ct->transform.Q, op->lift, &ct->lift));
   /* frames that follow the contact point rebuild M* from the whole w-frame M, turned with them */
-  if (ct->frames.follow) PetscCall(MatDuplicate(op->M, MAT_COPY_VALUES, &ct->frames.M));
+  if (ct->frames.follow) PetscCall(MatDuplicate(ct->mass.M, MAT_COPY_VALUES, &ct->frames.M));
   MMContactMassBoundary(ct, &mb);
   PetscCall(MMContactMassStar(&ct->mass, op, material, &mb));
   if (ct->transform.N) PetscCall(VecDuplicate(op->load, &ct->transform.pair_work));
   PetscCall(MMContactPairsTransformOperators(ct, op));
+  /* M served only to build M* and to check M*'s moments against it: the steps, the audit and the
+   * diagnostics use M*. Freed here, before any factorization, it leaves the run's peak memory: one
+   * matrix of K's pattern (its size: docs/scaling.md, "The figures behind the code's choices") */
+  PetscCall(MatDestroy(&ct->mass.M));
   PetscCall(PetscLogEventEnd(MMCONTACT_FrameSetUp, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

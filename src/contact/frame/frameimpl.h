@@ -21,6 +21,7 @@ typedef struct {
  * reads through MMContactGetOperators, and what M*'s construction found, for its view (MMContactMassView). */
 typedef struct {
   MMMassType type;                /* -mass */
+  Mat        M;                   /* the w-frame standard mass, handed by fem (MMFEHandMatrices): set-up only, freed once M* and its moments are built */
   Mat        Mstar;               /* M with the massless dofs' rows and columns removed (and their mass given back, redistributed), or M */
   IS         massless;            /* the dofs without inertia in M* (the contact-normal ones), NULL if none (a reference) */
   PetscReal  mass_star[MM_MAX_DIM * MM_MAX_DIM];     /* M*'s mass for rigid translations, dim x dim (m I for M) */

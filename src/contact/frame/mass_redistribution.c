@@ -762,7 +762,7 @@ PetscErrorCode MMContactRedistributeMass(MMContactMass *mass, MMOperators *op, c
   /* each body (group) on its own: its moments matched by corrections on its own nodes */
   for (PetscInt g = 0; g < PetscMax(r->material->n_bodies, 1); ++g) {
     PetscCall(GroupModes(r, vgroup, g, nr, R, Rg));
-    PetscCall(Gram(r->op->M, nr, Rg, GM));
+    PetscCall(Gram(r->mass->M, nr, Rg, GM));
     if (GM[0][0] > 0) {
       PetscCall(Gram(r->mass->Mstar, nr, Rg, Gs));
       for (PetscInt a = 0; a < nr; ++a)
@@ -847,7 +847,7 @@ PetscErrorCode MMContactMassMoments(MMContactMass *mass, MMOperators *op)
 
   PetscFunctionBeginUser;
   PetscCall(RigidModes(r, zero, 1.0, R));
-  PetscCall(Gram(r->op->M, nr, R, GM));
+  PetscCall(Gram(r->mass->M, nr, R, GM));
   PetscCall(Gram(r->mass->Mstar, nr, R, Gs));
   r->mass->total = GM[0][0];
   for (PetscInt a = 0; a < dim; ++a)

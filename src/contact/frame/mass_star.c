@@ -58,7 +58,7 @@ static PetscErrorCode DropMasslessMass(MMContactMass *mass, MMOperators *op, con
 PetscErrorCode MMContactMassStar(MMContactMass *mass, MMOperators *op, const MMMaterial *material, const MMMassBoundary *mb)
 {
   PetscFunctionBeginUser;
-  PetscCall(MatDuplicate(op->M, MAT_COPY_VALUES, &mass->Mstar));
+  PetscCall(MatDuplicate(mass->M, MAT_COPY_VALUES, &mass->Mstar));
   if (mb->massless && mass->type != MM_MASS_STANDARD) {
     PetscCall(PetscObjectReference((PetscObject)mb->massless));
     mass->massless = mb->massless;
@@ -74,10 +74,10 @@ PetscErrorCode MMContactMassStar(MMContactMass *mass, MMOperators *op, const MMM
 PetscErrorCode MMContactMassRebuild(MMContactMass *mass, MMOperators *op, Mat M, const MMMaterial *material, const MMMassBoundary *mb)
 {
   PetscFunctionBeginUser;
-  op->M = M; /* borrowed: the redistribution and the moments read M */
+  mass->M = M; /* borrowed: the redistribution and the moments read M */
   PetscCall(MatCopy(M, mass->Mstar, SAME_NONZERO_PATTERN));
   PetscCall(DropMasslessMass(mass, op, material, mb));
-  op->M = NULL;
+  mass->M = NULL;
   PetscFunctionReturn(0);
 }
 

@@ -421,7 +421,7 @@ PetscErrorCode MMContactPairsBuildTransform(MMContact ct)
  * Runs after M* is built and its moments taken, which N leaves unchanged (frame/frame.c). */
 PetscErrorCode MMContactPairsTransformOperators(MMContact ct, MMOperators *op)
 {
-  Mat         *A[3] = {&ct->K, &op->M, &ct->mass.Mstar}, B;
+  Mat         *A[3] = {&ct->K, &ct->mass.M, &ct->mass.Mstar}, B;
   Vec          t;
 
   PetscFunctionBeginUser;
