@@ -169,7 +169,7 @@ PETSC_EXTERN PetscErrorCode MMContactGetFrameState(MMContact ct, PetscObjectStat
  * at the step's predicted midpoint, t + dt/2; *turned: how many turned (all ranks). The w-frame K, M*, Q, loads and gaps are contact's
  * and turn with them, as do the held vectors and matrices (x <- R^T x, A <- R^T A R). */
 PETSC_EXTERN PetscErrorCode MMContactFramesFollow(MMContact ct, PetscBool *follow);
-PETSC_EXTERN PetscErrorCode MMContactFramesUpdate(MMContact ct, Vec u, Vec v, PetscReal t, PetscReal dt, PetscInt *turned);
+PETSC_EXTERN PetscErrorCode MMContactFramesUpdate(MMContact ct, Vec u, Vec midpoint, PetscReal t_mid, PetscInt *turned);
 /* Checkpoints of a run whose frames follow (frames.c): per following row its normal nu (MM_MAX_DIM)
  * and gap g_0, MM_CONTACT_FRAME_RECORD reals (*has: the row follows); the run's counters (updates,
  * frames turned, the largest turn); at -restart each row's frame and gap from its record, contact's

@@ -146,4 +146,5 @@ PETSC_INTERN PetscErrorCode MMNonlinearDampingWork(MMNewmark nm, Vec du, PetscRe
 PETSC_INTERN PetscErrorCode MMNonlinearFollowFrames(MMNewmark nm, PetscReal t, PetscReal dt);
 PETSC_INTERN PetscErrorCode MMAdaptGrowBackRegister(void);
 PETSC_INTERN PetscErrorCode MMNewmarkSchemeSetUp(MMNewmark nm);
+PETSC_INTERN PetscErrorCode MMNewmarkPredictMidpoint(MMNewmark nm, PetscReal dt, Vec *midpoint);
 PETSC_INTERN PetscErrorCode MMNewmarkSchemeDestroy(MMNewmark nm);

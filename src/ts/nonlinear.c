@@ -608,10 +608,12 @@ PetscErrorCode MMNonlinearFollowFrames(MMNewmark nm, PetscReal t, PetscReal dt)
   MMState           *s = &nm->state;
   PetscInt           turned;
   PetscReal          kinetic_old = nm->hist.kinetic; /* 1/2 v.M*_old v of the last accepted step (no moving Dirichlet data here) */
+  Vec                midpoint;
 
   PetscFunctionBeginUser;
   PetscCall(MMContactGetOperators(nm->contact, &ops));
-  PetscCall(MMContactFramesUpdate(nm->contact, s->u, s->v, t, dt, &turned));
+  PetscCall(MMNewmarkPredictMidpoint(nm, dt, &midpoint));
+  PetscCall(MMContactFramesUpdate(nm->contact, s->u, midpoint, t + 0.5 * dt, &turned));
   if (!turned) PetscFunctionReturn(0);
   {
     PetscScalar vMv;

@@ -16,23 +16,43 @@ static PetscErrorCode StepVelocity(void *ctx, Vec w, Vec sigma)
   PetscFunctionReturn(0);
 }
 
-/* offset = u^n + dt/2 v^n, entry by entry in this order: the rounding the contact rows' tangential
+/* offset = u + dt/2 v, entry by entry in this order: the rounding the contact rows' tangential
  * bounds have always had (a BLAS axpy may fuse the multiply and the add) */
-static PetscErrorCode StepOffset(MMNewmark nm, PetscReal dt)
+static PetscErrorCode Midpoint(Vec u, Vec v, PetscReal dt, Vec offset)
 {
   const PetscScalar *ua, *va;
   PetscScalar       *oa;
   PetscInt           n;
 
   PetscFunctionBeginUser;
-  PetscCall(VecGetLocalSize(nm->scheme.offset, &n));
-  PetscCall(VecGetArrayRead(nm->state.u_old, &ua));
-  PetscCall(VecGetArrayRead(nm->state.v_old, &va));
-  PetscCall(VecGetArrayWrite(nm->scheme.offset, &oa));
+  PetscCall(VecGetLocalSize(offset, &n));
+  PetscCall(VecGetArrayRead(u, &ua));
+  PetscCall(VecGetArrayRead(v, &va));
+  PetscCall(VecGetArrayWrite(offset, &oa));
   for (PetscInt i = 0; i < n; ++i) oa[i] = ua[i] + 0.5 * dt * va[i];
-  PetscCall(VecRestoreArrayWrite(nm->scheme.offset, &oa));
-  PetscCall(VecRestoreArrayRead(nm->state.v_old, &va));
-  PetscCall(VecRestoreArrayRead(nm->state.u_old, &ua));
+  PetscCall(VecRestoreArrayWrite(offset, &oa));
+  PetscCall(VecRestoreArrayRead(v, &va));
+  PetscCall(VecRestoreArrayRead(u, &ua));
+  PetscFunctionReturn(0);
+}
+
+/* The step's offset from its saved start u^n, v^n */
+static PetscErrorCode StepOffset(MMNewmark nm, PetscReal dt)
+{
+  PetscFunctionBeginUser;
+  PetscCall(Midpoint(nm->state.u_old, nm->state.v_old, dt, nm->scheme.offset));
+  PetscFunctionReturn(0);
+}
+
+/* The scheme's prediction of the displacement at the middle of the next step of dt, from the current
+ * state (before the step saves its start): u + dt/2 v, the zero-velocity point of the trapezoidal
+ * step, where the contact frames that follow are taken (MMContactFramesUpdate). In the offset's
+ * storage, which MMNewmarkSetStep fills again for the step itself. */
+PetscErrorCode MMNewmarkPredictMidpoint(MMNewmark nm, PetscReal dt, Vec *midpoint)
+{
+  PetscFunctionBeginUser;
+  PetscCall(Midpoint(nm->state.u, nm->state.v, dt, nm->scheme.offset));
+  *midpoint = nm->scheme.offset;
   PetscFunctionReturn(0);
 }
 

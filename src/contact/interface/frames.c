@@ -144,12 +144,12 @@ PetscErrorCode MMContactFramesPenetration(MMContact ct, PetscInt k, PetscReal t,
  * into the free space: a node far from the obstacle may still be held by its old bound). Farther
  * nodes keep their frames, and the mass they carry, until they come near. Each turning row gets
  * its new frame in F_new and its new gap (g_0 at time 0 and g at time t) in place. */
-static PetscErrorCode SelectTurningRows(MMContact ct, Vec u, Vec v, PetscReal t, PetscReal dt, PetscInt *count)
+static PetscErrorCode SelectTurningRows(MMContact ct, Vec u, Vec midpoint, PetscReal t_mid, PetscInt *count)
 {
   MMContactFrames   *fr  = &ct->frames;
   const PetscInt     dim = ct->op->dim;
   const PetscInt    *in;
-  const PetscScalar *ua, *va;
+  const PetscScalar *ua, *ya;
   PetscScalar       *g0, *ga;
   PetscInt           rstart;
 
@@ -158,22 +158,20 @@ static PetscErrorCode SelectTurningRows(MMContact ct, Vec u, Vec v, PetscReal t,
   PetscCall(VecGetOwnershipRange(u, &rstart, NULL));
   PetscCall(ISGetIndices(ct->is_normal, &in));
   PetscCall(VecGetArrayRead(u, &ua));
-  PetscCall(VecGetArrayRead(v, &va));
+  PetscCall(VecGetArrayRead(midpoint, &ya));
   PetscCall(VecGetArray(ct->gap0, &g0));
   PetscCall(VecGetArray(ct->gap, &ga));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
     const PetscScalar *w = &ua[in[k] - rstart];
     const PetscReal   *F = &ct->node_frame[9 * k];
-    PetscReal          uc[MM_MAX_DIM], vc[MM_MAX_DIM], n[MM_MAX_DIM], c[MM_MAX_DIM], g, cosa = 0, len = 0, slack, wn = 0, cn = 0, Fn[MM_MAX_DIM][MM_MAX_DIM];
+    PetscReal          uc[MM_MAX_DIM], n[MM_MAX_DIM], c[MM_MAX_DIM], g, cosa = 0, len = 0, slack, wn = 0, cn = 0, Fn[MM_MAX_DIM][MM_MAX_DIM];
 
     fr->turn[k] = PETSC_FALSE;
     if (!RowFollows(ct, k)) continue;
-    /* the step's predicted midpoint u^n + dt/2 v^n: in steady sliding the node then ends on the
-     * obstacle's chord, and the contact force does no work (docs/method.md section 8) */
-    RowCartesian(ct, k, w, uc);
-    RowCartesian(ct, k, &va[in[k] - rstart], vc);
-    for (PetscInt d = 0; d < dim; ++d) uc[d] += 0.5 * dt * vc[d];
-    PetscCall(RowDistance(ct, k, ct->obstacle[k], t + 0.5 * dt, uc, &g, n, c));
+    /* at the step's predicted midpoint (the stepper's, u^n + dt/2 v^n): in steady sliding the node
+     * then ends on the obstacle's chord, and the contact force does no work (docs/method.md section 8) */
+    RowCartesian(ct, k, &ya[in[k] - rstart], uc);
+    PetscCall(RowDistance(ct, k, ct->obstacle[k], t_mid, uc, &g, n, c));
     for (PetscInt d = 0; d < dim; ++d) {
       cosa -= n[d] * F[d];
       len += n[d] * n[d];
@@ -198,7 +196,7 @@ static PetscErrorCode SelectTurningRows(MMContact ct, Vec u, Vec v, PetscReal t,
   }
   PetscCall(VecRestoreArray(ct->gap, &ga));
   PetscCall(VecRestoreArray(ct->gap0, &g0));
-  PetscCall(VecRestoreArrayRead(v, &va));
+  PetscCall(VecRestoreArrayRead(midpoint, &ya));
   PetscCall(VecRestoreArrayRead(u, &ua));
   PetscCall(ISRestoreIndices(ct->is_normal, &in));
   PetscFunctionReturn(0);
@@ -334,24 +332,24 @@ static PetscErrorCode TurnSelectedRows(MMContact ct, PetscBool state)
 
   Input Parameters:
 + ct - the contact object
-. u  - the displacement (w-frame)
-. v  - the velocity (w-frame)
-. t  - the time of the state
-- dt - the step
+. u        - the displacement at the step's start (w-frame)
+. midpoint - the stepper's predicted displacement at the step's middle (w-frame; u^n + dt/2 v^n for
+             the trapezoidal scheme, docs/method.md section 8)
+- t_mid    - the time of the step's middle
 
   Output Parameter:
 . turned - how many frames turned (all ranks)
 
   Note:
-  The frames of the rows near a curved obstacle at the state u, v (w-frame) of time t, for a step of
-  dt: the turned rows' frames and gaps, and contact's operators and the held data, the state with
+  The frames of the rows near a curved obstacle, from where the step's scheme predicts them at its
+  middle (contact does not know the scheme: the stepper hands the prediction): the turned rows' frames and gaps, and contact's operators and the held data, the state with
   them, turned (TurnSelectedRows).
 
   Level: intermediate
 
 .seealso: `MMContactFramesFollow()`, `MMContactFramesAddVec()`, `MMContactFramesRestore()`
 @*/
-PetscErrorCode MMContactFramesUpdate(MMContact ct, Vec u, Vec v, PetscReal t, PetscReal dt, PetscInt *turned)
+PetscErrorCode MMContactFramesUpdate(MMContact ct, Vec u, Vec midpoint, PetscReal t_mid, PetscInt *turned)
 {
   MMContactFrames *fr = &ct->frames;
   PetscInt         count;
@@ -360,7 +358,7 @@ PetscErrorCode MMContactFramesUpdate(MMContact ct, Vec u, Vec v, PetscReal t, Pe
   *turned = 0;
   if (!fr->follow) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(MMCONTACT_FrameFollow, 0, 0, 0, 0));
-  PetscCall(SelectTurningRows(ct, u, v, t, dt, &count));
+  PetscCall(SelectTurningRows(ct, u, midpoint, t_mid, &count));
   PetscCall(MPIU_Allreduce(&count, turned, 1, MPIU_INT, MPI_SUM, ct->comm));
   if (*turned) {
     fr->updates++;
