@@ -204,6 +204,11 @@ PETSC_EXTERN PetscErrorCode MMContactGetStepOffset(MMContact ct, MMStepOffset *s
 PETSC_EXTERN PetscErrorCode MMContactStepVelocity(MMContact ct, Vec w, Vec sigma);
 PETSC_EXTERN PetscErrorCode MMContactGetStepKSP(MMContact ct, KSP *krylov, KSP *pc_ksp);
 PETSC_EXTERN PetscErrorCode MMContactSolve(MMContact ct, Vec b, Vec w, Vec react);
+/* The step's certificate (src/contact/interface/step_residual.c): the residual of K~ w = b + f_c, and
+ * the tolerance of the iterative solves, which the stepper tightens when a step needs it */
+PETSC_EXTERN PetscErrorCode MMContactStepResidual(MMContact ct, Vec b, Vec w, Vec react, Vec r, Vec scale);
+PETSC_EXTERN PetscErrorCode MMContactSetSolveTolerance(MMContact ct, PetscReal tol);
+PETSC_EXTERN PetscErrorCode MMContactGetSolveTolerance(MMContact ct, PetscReal *tol, PetscReal *user);
 PETSC_EXTERN PetscErrorCode MMContactSolveContactDofs(MMContact ct, Vec b, Vec w, Vec react);
 PETSC_EXTERN PetscErrorCode MMContactRecover(MMContact ct, Vec b, Vec w, Vec react);
 PETSC_EXTERN PetscErrorCode MMContactGetNormalReactions(MMContact ct, Vec s);

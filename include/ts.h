@@ -123,6 +123,8 @@ PETSC_EXTERN PetscErrorCode MMDeformationCheck(MMNewmark nm);
 PETSC_EXTERN PetscErrorCode MMDeformationView(MMNewmark nm, PetscViewer viewer);
 /* The finite-strain step's closing line: its iterations per step and iteration-matrix rebuilds (nonlinear.c) */
 PETSC_EXTERN PetscErrorCode MMNonlinearView(MMNewmark nm, PetscViewer viewer);
+PETSC_EXTERN PetscErrorCode MMCertificateView(MMNewmark nm, PetscViewer viewer);
+PETSC_EXTERN PetscErrorCode MMNewmarkGetCertificateResidual(MMNewmark nm, Vec *r);
 
 /* Rayleigh damping C = alpha M* + beta B in the trapezoidal scheme (damping.c) */
 PETSC_EXTERN PetscBool      MMDampingOn(const MMDamping *d);

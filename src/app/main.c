@@ -325,6 +325,7 @@ static PetscErrorCode Report(MMCtx *ctx, PetscLogDouble setup, PetscLogDouble wa
   PetscCall(MMContactView(ctx->contact, viewer));
   PetscCall(MMDeformationView(ctx->nm, viewer));
   PetscCall(MMNonlinearView(ctx->nm, viewer));
+  PetscCall(MMCertificateView(ctx->nm, viewer));
   PetscCall(MMOutputView(&ctx->out, viewer));
   PetscFunctionReturn(0);
 }

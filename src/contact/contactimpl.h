@@ -155,6 +155,8 @@ struct _p_MMContact {
   Vec        gap;                 /* g_i on the normal dofs, layout of is_normal */
   Vec        lower, upper;        /* SNESVI bounds on the full w vector */
   MMBoundQP  qp;                  /* the step problem: K~ w = b, K~ = K + 4/dt^2 M* */
+  Vec        Kt_rowabs;           /* sum_j |K~_ij| per row, the round-off scale of K~ w (step_residual.c) */
+  PetscObjectState Kt_rowabs_state; /* K~'s state it was computed at */
   MMBoundQP  qp0;                 /* the initial projection of the contact dofs */
   Vec        lower0, upper0;
   PetscReal  Kt_dt;               /* dt for which Kt was assembled */

@@ -691,6 +691,18 @@ static PetscErrorCode WriteStepperState(MMCheckpoint *ck, TS ts, PetscViewer vie
     PetscCall(ViewPacked(ck, viewer, "tangent_point", ck->op->dim, at, PackDofs));
     PetscCall(PetscViewerHDF5WriteAttribute(viewer, "tangent_point", "time", PETSC_REAL, &t));
   }
+  {
+    /* the step certificate's state: the last residual the next step sums with its own, and the
+     * solves' tolerance it has tightened to (src/ts/certificate.c): the next step as the run's */
+    Vec       r;
+    PetscReal tol;
+    PetscCall(MMNewmarkGetCertificateResidual(nm, &r));
+    if (r) {
+      PetscCall(MMContactGetSolveTolerance(ck->contact, &tol, NULL));
+      PetscCall(ViewPacked(ck, viewer, "certificate_residual", ck->op->dim, r, PackDofs));
+      PetscCall(PetscViewerHDF5WriteAttribute(viewer, "certificate_residual", "contact_tol", PETSC_REAL, &tol));
+    }
+  }
   if (PairsSlide(ck)) {
     Vec      *f;
     PetscInt  n;
@@ -765,6 +777,11 @@ static PetscErrorCode CheckpointBytes(MMCheckpoint *ck, TS ts, PetscReal *bytes)
   if (frames) values += nv * MM_CONTACT_FRAME_RECORD + MM_CKPT_FRAMES_RUN;
   PetscCall(MMNewmarkFromTS(ts, &nm));
   PetscCall(MMNewmarkGetTangentPoint(nm, &at, &t));
+  if (at) {
+    values += nv * dim;
+    datasets += 1;
+  }
+  PetscCall(MMNewmarkGetCertificateResidual(nm, &at));
   if (at) {
     values += nv * dim;
     datasets += 1;
@@ -1170,6 +1187,25 @@ static PetscErrorCode LoadTangentPoint(MMCheckpoint *ck, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
+/* The step certificate's state, when the checkpoint has it and this run certifies its steps */
+static PetscErrorCode LoadCertificate(MMCheckpoint *ck, TS ts, PetscViewer viewer)
+{
+  MMNewmark nm;
+  Vec       r;
+  PetscBool has;
+  PetscReal tol;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMNewmarkFromTS(ts, &nm));
+  PetscCall(MMNewmarkGetCertificateResidual(nm, &r));
+  PetscCall(PetscViewerHDF5HasDataset(viewer, "certificate_residual", &has));
+  if (!has || !r) PetscFunctionReturn(0);
+  PetscCall(LoadDofs(ck, viewer, "certificate_residual", r));
+  PetscCall(PetscViewerHDF5ReadAttribute(viewer, "certificate_residual", "contact_tol", PETSC_REAL, NULL, &tol));
+  PetscCall(MMContactSetSolveTolerance(ck->contact, tol));
+  PetscFunctionReturn(0);
+}
+
 /* Large sliding: each owned sliding node's pairing record, the run's counters, and the carried forces
  * straight into the stepper's vectors (they are in the checkpoint's pairing's variables, as the state) */
 static PetscErrorCode LoadPairs(MMCheckpoint *ck, TS ts, PetscViewer viewer)
@@ -1376,6 +1412,7 @@ PetscErrorCode MMCheckpointLoad(MMCheckpoint *c, TS ts)
   PetscCall(LoadDofs(c, viewer, "react", s->react));
   PetscCall(LoadTangentPoint(c, viewer));
   PetscCall(LoadPairs(c, ts, viewer));
+  PetscCall(LoadCertificate(c, ts, viewer));
   PetscCall(LoadSnapshotTimes(c, viewer));
   PetscCall(PetscViewerDestroy(&viewer));
   PetscCall(VecCopy(s->u, s->u_next));

@@ -2,7 +2,7 @@
  * and borrows the lower components it steps (fem's operators, material and loads, contact, friction). */
 #include "newmarkimpl.h"
 
-PetscLogEvent MM_TS_Energy, MM_TS_Momenta, MM_TS_Deformation;
+PetscLogEvent MM_TS_Energy, MM_TS_Momenta, MM_TS_Deformation, MM_TS_Certificate;
 
 /*@
   MMTSInitializePackage - Registers the TS type newmark, the TSAdapt type growback and ts's log
@@ -26,6 +26,7 @@ PetscErrorCode MMTSInitializePackage(void)
   PetscCall(PetscLogEventRegister("MMEnergy", id, &MM_TS_Energy));
   PetscCall(PetscLogEventRegister("MMMomenta", id, &MM_TS_Momenta));
   PetscCall(PetscLogEventRegister("MMDeformation", id, &MM_TS_Deformation));
+  PetscCall(PetscLogEventRegister("MMStepCertificate", id, &MM_TS_Certificate));
   PetscCall(MMNewmarkRegister());
   PetscFunctionReturn(0);
 }
@@ -220,6 +221,7 @@ PetscErrorCode MMNewmarkDestroy(MMNewmark *nm)
   PetscCall(MMMomentaDestroy(&(*nm)->momenta));
   PetscCall(MMNonlinearDestroy(&(*nm)->nl));
   PetscCall(MMNewmarkSchemeDestroy(*nm));
+  PetscCall(MMCertificateDestroy(&(*nm)->cert));
   PetscCall(PetscFree(*nm));
   PetscFunctionReturn(0);
 }

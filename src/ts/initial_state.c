@@ -258,6 +258,8 @@ PetscErrorCode MMNewmarkInitialState(MMNewmark nm)
     for (size_t i = 0; i < sizeof(copies) / sizeof(copies[0]); ++i) PetscCall(VecDuplicate(s->u, copies[i]));
     PetscCall(MMNewmarkSchemeSetUp(nm)); /* the step's offset, for the contact solves */
   }
+  nm->cert.on = (PetscBool)(nm->cert.on && nm->law->certified);
+  PetscCall(MMCertificateSetUp(nm));
   PetscCall(MMContactGetNodes(nm->contact, &cn));
   if (nm->material->finite) {
     PetscCheck(nm->pb.initial_state == MM_INITIAL_GIVEN, nm->comm, PETSC_ERR_SUP, "-initial_state static and static_sliding solve a linear static problem: with -elasticity svk or neohookean only -initial_state given is supported yet");

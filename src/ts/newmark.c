@@ -184,6 +184,12 @@ static PetscErrorCode TSStep_Newmark(TS ts)
     PetscCall(VecAXPBYPCZ(w, dt, 0.25 * dt * dt, 0.0, s->v, s->a));
     PetscCall(VecAXPY(w, 1.0, s->u));
     PetscCall((*nm->law->solve)(nm, ts->ptime, dt, b, w, &solved));
+    for (PetscInt tries = 1; solved; ++tries) { /* accepted by its certificate (certificate.c) */
+      PetscBool again;
+      PetscCall(MMCertificateCheck(nm, b, w, tries, &again));
+      if (!again) break;
+      PetscCall((*nm->law->solve)(nm, ts->ptime, dt, b, w, &solved));
+    }
     if (!solved) {
       PetscCall(RejectStep(ts, nm, ++rejections, nm->law->failure, 0, 0));
       continue;

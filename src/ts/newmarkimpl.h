@@ -67,6 +67,28 @@ typedef struct {
   PetscReal       residual;    /* the last step's final relative residual */
 } MMNonlinear;
 
+/* The step's certificate (certificate.c, docs/method.md section 3): the defects of a step's solution,
+ * the residual's work over the step, its resultant and its moment, and the round-off of each one's
+ * terms; ratio: the largest defect in round-offs (<= 1: met). */
+typedef struct {
+  PetscReal energy, energy_tol, force, force_tol, torque, torque_tol, ratio;
+} MMStepCertificate;
+typedef struct {
+  PetscBool         on;          /* -step_certificate, with the linear law */
+  PetscInt          max_tries;   /* solves of one step at most */
+  Vec               r, scale, r_old; /* the residual and its entries' round-off scale; the last accepted step's residual */
+  PetscReal         radius;      /* the mesh's farthest extent from the origin: the moments' lever */
+  PetscReal         ratio_prev;  /* the last solve's ratio, this step */
+  MMStepCertificate last;        /* the last step's */
+  PetscReal         ratio_max;   /* over the run, of the steps that met it */
+  PetscInt          resolves;    /* solves again with a tighter tolerance, over the run */
+  PetscInt          floor_steps; /* steps accepted at their residual's round-off floor */
+  PetscReal         floor_max;   /* their largest ratio */
+} MMCertificateData;
+PETSC_INTERN PetscErrorCode MMCertificateSetUp(MMNewmark nm);
+PETSC_INTERN PetscErrorCode MMCertificateCheck(MMNewmark nm, Vec b, Vec w, PetscInt tries, PetscBool *again);
+PETSC_INTERN PetscErrorCode MMCertificateDestroy(MMCertificateData *cd);
+
 /* Why a step is rejected and retried with a smaller dt. */
 typedef enum {
   MM_REJECT_FRICTION,     /* the friction loop did not converge (Theorem 4.2's condition fails) */
@@ -83,6 +105,7 @@ typedef struct {
   PetscErrorCode (*stepmatrix)(MMNewmark nm, PetscReal dt, MMStepMatrix *sm);
   PetscErrorCode (*solve)(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b, Vec w, PetscBool *solved);
   MMRejectReason failure;
+  PetscBool      certified; /* the step is accepted by the certificate of K~ w = b + f_c (certificate.c) */
 } MMStepLawOps;
 PETSC_INTERN const MMStepLawOps *MMStepLawGetOps(const MMMaterial *material);
 
@@ -108,6 +131,7 @@ struct _p_MMNewmark {
   MMMomenta     momenta;
   MMNonlinear   nl;     /* the finite-strain laws' step (material->finite) */
   MMStepOffset  scheme; /* the step's offset and scale, handed to contact (scheme.c) */
+  MMCertificateData cert; /* the step's acceptance rule (certificate.c) */
   const MMStepLawOps *law; /* the step's law: linear or finite strain (step_laws.c) */
 };
 
@@ -118,7 +142,7 @@ static inline PetscBool MMNewmarkHasMasslessDofs(MMNewmark nm)
 }
 
 /* ts's events (MMTSInitializePackage) */
-PETSC_INTERN PetscLogEvent MM_TS_Energy, MM_TS_Momenta, MM_TS_Deformation;
+PETSC_INTERN PetscLogEvent MM_TS_Energy, MM_TS_Momenta, MM_TS_Deformation, MM_TS_Certificate;
 
 /* The parts of the stepper, each in its file */
 PETSC_INTERN PetscErrorCode MMEnergyContactWork(MMNewmark nm, Vec w, PetscReal *w_c);

@@ -55,8 +55,8 @@ static PetscErrorCode FiniteBegin(MMNewmark nm, PetscReal t, PetscReal dt)
   PetscFunctionReturn(0);
 }
 
-static const MMStepLawOps LinearLaw = {.begin = NULL, .stepmatrix = LinearStepMatrix, .solve = LinearSolve, .failure = MM_REJECT_FRICTION};
-static const MMStepLawOps FiniteLaw = {.begin = FiniteBegin, .stepmatrix = MMNonlinearStepMatrix, .solve = MMNonlinearSolve, .failure = MM_REJECT_NONLINEAR};
+static const MMStepLawOps LinearLaw = {.begin = NULL, .stepmatrix = LinearStepMatrix, .solve = LinearSolve, .failure = MM_REJECT_FRICTION, .certified = PETSC_TRUE};
+static const MMStepLawOps FiniteLaw = {.begin = FiniteBegin, .stepmatrix = MMNonlinearStepMatrix, .solve = MMNonlinearSolve, .failure = MM_REJECT_NONLINEAR, .certified = PETSC_FALSE};
 
 /* The step's law of the elasticity law: the finite-strain step for the finite-strain laws */
 const MMStepLawOps *MMStepLawGetOps(const MMMaterial *material)

@@ -959,6 +959,7 @@ PetscErrorCode MMContactDestroy(MMContact *pct)
   PetscCall(MMContactHeldDestroy(&ct->held));
   PetscCall(MatDestroy(&ct->mass.Mstar));
   PetscCall(MatDestroy(&ct->frame_Kp));
+  PetscCall(VecDestroy(&ct->Kt_rowabs));
   PetscCall(MatDestroy(&ct->frame_KpN));
   PetscCall(MMContactTransformDestroy(&ct->transform));
   PetscCall(MatDestroy(&ct->K));
