@@ -10,47 +10,46 @@
  * step is accepted there (and counted), never cut for it. */
 #include "newmarkimpl.h"
 
-/* How many round-offs of its terms a defect may be: sqrt(n) eps-sized errors, summed, stay well
- * below it on every case of the suite (condensed, direct solves: 1e-3 to 2 of it); an inexact solve
- * at -contact_tol 1e-11 gives 1e2 to 1e4 (docs/method.md section 3). */
-#define MM_CERT_ROUNDOFFS 4.0
+/* MM_CERT_ROUNDOFFS (newmarkimpl.h), how many round-offs of its terms a defect may be: the direct
+ * solves of the condensed formulation give at most 0.16 of one over nine cases of the suite; an
+ * inexact solve at -contact_tol 1e-11 gives 20 to 600 (docs/method.md section 3). */
 
-/* The defects of the step's solution w and their round-off scales (all ranks). The scheme's energy
- * identity holds to 1/2 du.(r^n + r^{n+1}) (the trapezoidal rule on the step's two residuals, a^n
- * carrying the last one), so that both this step's defect and its residual's own work, which the
- * next step's defect will carry, are tested. */
-static PetscErrorCode Measure(MMNewmark nm, Vec b, Vec w, MMStepCertificate *c)
+/* The defects of a step's solution w with residual r and round-off scale per entry (all ranks). The
+ * linear scheme's energy identity holds to 1/2 du.(r^n + r^{n+1}) (the trapezoidal rule on the step's
+ * two residuals, a^n carrying the last one: r_old), so that both this step's defect and its
+ * residual's own work, which the next step's defect will carry, are tested; the finite-strain step
+ * carries none (r_old NULL). */
+static PetscErrorCode Defects(MMNewmark nm, Vec w, Vec r, Vec r_old, Vec scale, MMStepCertificate *c)
 {
   MMCertificateData *cd = &nm->cert;
   MMState           *s  = &nm->state;
-  const PetscScalar *ra, *oa, *sa, *ua, *wa;
+  const PetscScalar *ra, *oa = NULL, *sa, *ua, *wa;
   PetscReal          sums[4] = {0, 0, 0, 0}, F[3], T[3], umax = 0;
   PetscInt           n;
 
   PetscFunctionBeginUser;
-  PetscCall(MMContactStepResidual(nm->contact, b, w, s->react, cd->r, cd->scale));
   PetscCall(VecGetLocalSize(w, &n));
-  PetscCall(VecGetArrayRead(cd->r, &ra));
-  PetscCall(VecGetArrayRead(cd->r_old, &oa));
-  PetscCall(VecGetArrayRead(cd->scale, &sa));
+  PetscCall(VecGetArrayRead(r, &ra));
+  if (r_old) PetscCall(VecGetArrayRead(r_old, &oa));
+  PetscCall(VecGetArrayRead(scale, &sa));
   PetscCall(VecGetArrayRead(s->u_old, &ua));
   PetscCall(VecGetArrayRead(w, &wa));
   for (PetscInt i = 0; i < n; ++i) {
     const PetscReal du = PetscRealPart(wa[i] - ua[i]);
     sums[0] += du * PetscRealPart(ra[i]);
-    sums[1] += du * PetscRealPart(oa[i]);
+    if (oa) sums[1] += du * PetscRealPart(oa[i]);
     sums[2] += PetscAbsReal(du) * PetscRealPart(sa[i]);
     sums[3] += PetscRealPart(sa[i]);
     umax = PetscMax(umax, PetscAbsScalar(wa[i]));
   }
   PetscCall(VecRestoreArrayRead(w, &wa));
   PetscCall(VecRestoreArrayRead(s->u_old, &ua));
-  PetscCall(VecRestoreArrayRead(cd->scale, &sa));
-  PetscCall(VecRestoreArrayRead(cd->r_old, &oa));
-  PetscCall(VecRestoreArrayRead(cd->r, &ra));
+  PetscCall(VecRestoreArrayRead(scale, &sa));
+  if (r_old) PetscCall(VecRestoreArrayRead(r_old, &oa));
+  PetscCall(VecRestoreArrayRead(r, &ra));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums, 4, MPIU_REAL, MPIU_SUM, nm->comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &umax, 1, MPIU_REAL, MPIU_MAX, nm->comm));
-  PetscCall(MMMomentaOfForce(nm, w, cd->r, F, T));
+  PetscCall(MMMomentaOfForce(nm, w, r, F, T));
   c->energy     = PetscMax(PetscAbsReal(0.5 * (sums[0] + sums[1])), PetscAbsReal(sums[0]));
   c->energy_tol = MM_CERT_ROUNDOFFS * PETSC_MACHINE_EPSILON * sums[2];
   c->force      = PetscSqrtReal(F[0] * F[0] + F[1] * F[1] + F[2] * F[2]);
@@ -58,6 +57,36 @@ static PetscErrorCode Measure(MMNewmark nm, Vec b, Vec w, MMStepCertificate *c)
   c->torque     = PetscSqrtReal(T[0] * T[0] + T[1] * T[1] + T[2] * T[2]);
   c->torque_tol = c->force_tol * (cd->radius + umax); /* moments about the origin, at X + u */
   c->ratio      = PetscMax(c->energy / PetscMax(c->energy_tol, PETSC_MIN_REAL), PetscMax(c->force / PetscMax(c->force_tol, PETSC_MIN_REAL), c->torque / PetscMax(c->torque_tol, PETSC_MIN_REAL)));
+  PetscFunctionReturn(0);
+}
+
+/* The linear step's: its residual r = b + f_c - K~ w (contact's step residual) */
+static PetscErrorCode Measure(MMNewmark nm, Vec b, Vec w, MMStepCertificate *c)
+{
+  MMCertificateData *cd = &nm->cert;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMContactStepResidual(nm->contact, b, w, nm->state.react, cd->r, cd->scale));
+  PetscCall(Defects(nm, w, cd->r, cd->r_old, cd->scale, c));
+  PetscFunctionReturn(0);
+}
+
+/* The finite-strain step's certificate at the iterate w: its whole residual, b_nl + H + f_c - K~ w
+ * with H = c(w) the correction at w (nonlinear.c: the inner solve's residual and the correction's
+ * change together), against the round-off of its terms. bH: b_nl + H, formed by the caller. */
+PetscErrorCode MMCertificateOfIterate(MMNewmark nm, Vec bH, Vec w, MMStepCertificate *c)
+{
+  MMCertificateData *cd = &nm->cert;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(MM_TS_Certificate, 0, 0, 0, 0));
+  if (!cd->r) {
+    PetscCall(VecDuplicate(nm->state.u, &cd->r));
+    PetscCall(VecDuplicate(nm->state.u, &cd->scale));
+  }
+  PetscCall(MMContactStepResidual(nm->contact, bH, w, nm->state.react, cd->r, cd->scale));
+  PetscCall(Defects(nm, w, cd->r, NULL, cd->scale, c));
+  PetscCall(PetscLogEventEnd(MM_TS_Certificate, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -149,7 +178,11 @@ PetscErrorCode MMCertificateView(MMNewmark nm, PetscViewer viewer)
 
   PetscFunctionBeginUser;
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
-  if (!cd->on || !ascii) PetscFunctionReturn(0);
+  if (!(cd->on || cd->floor_steps) || !ascii) PetscFunctionReturn(0);
+  if (!cd->on) { /* the finite-strain steps, whose iteration accepts a floor by its certificate */
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  step certificate: %" PetscInt_FMT " finite-strain steps accepted at their residual's round-off floor (largest %.3g round-offs of its terms)\n", cd->floor_steps, (double)cd->floor_max));
+    PetscFunctionReturn(0);
+  }
   PetscCall(MMContactGetSolveTolerance(nm->contact, &tol, &user));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  step certificate: every step's residual within %g round-offs of its terms (largest %.2g); %" PetscInt_FMT " solves again with a tighter -contact_tol (%.1e at the end, %.1e given); %" PetscInt_FMT " steps accepted at their residual's floor\n", (double)MM_CERT_ROUNDOFFS,
                                    (double)cd->ratio_max, cd->resolves, (double)tol, (double)user, cd->floor_steps));

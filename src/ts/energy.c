@@ -206,7 +206,8 @@ PetscErrorCode MMEnergyInitial(MMNewmark nm, PetscBool restarted)
  * with 1e-14, 5.7e-11 under condensed and 1.1e-10 under full (tests/test_limits_and_advice.py). Where
  * the solves are exact factorizations, a residual far above -contact_tol is no solver's: the usual
  * cause is inconsistent units (a mesh in millimetres with E in Pa), which leave K~ so
- * ill-conditioned that no solve is exact. */
+ * ill-conditioned that no solve is exact. With the step certificate on (the default, certificate.c)
+ * the iterative solves go on to the round-off of each step's terms, and that cube runs. */
 static PetscErrorCode AuditAdvice(MMNewmark nm, PetscReal residual, char advice[], size_t len)
 {
   const char *type, *choice, *products;
@@ -224,8 +225,10 @@ static PetscErrorCode AuditAdvice(MMNewmark nm, PetscReal residual, char advice[
      * 5 times the pressure wave speed fails so with any -nonlinear_rtol, -ts_dt or formulation) */
     PetscCall(PetscSNPrintf(advice, len, "The step's finite-strain iteration (contact formulation %s) met -nonlinear_rtol %.1e, so this is not a loose solve and tightening the tolerances will not help: %scheck that the units are consistent (SI throughout) and that the material values and -v0 are what you meant.", type, (double)nm->nl.rtol,
                            nm->deform.warned ? "cells were compressed below half their volume (warned above); " : ""));
+  } else if ((active_set || iterative) && !nm->cert.on) {
+    PetscCall(PetscSNPrintf(advice, len, "The step's solve (contact formulation %s: %s) is iterative and, with -step_certificate 0, stops at -contact_tol %.1e of ||b||; its residual is what the balance shows. Rerun without -step_certificate 0 (each step is then solved until its residual is at round-off), with -contact_formulation condensed (exact factorizations) or with a tighter -contact_tol (%.0e: 100 times tighter; the balance residual falls with it).", type, active_set ? "projected CG on the free dofs" : "CG on K~", (double)tol, (double)(1e-2 * tol)));
   } else if (active_set || iterative) {
-    PetscCall(PetscSNPrintf(advice, len, "The step's solve (contact formulation %s: %s) is iterative and stops at -contact_tol %.1e of ||b||; its residual is what the balance shows. Rerun with -contact_formulation condensed (exact factorizations) or a tighter -contact_tol (%.0e: 100 times tighter; the balance residual falls with it).", type, active_set ? "projected CG on the free dofs" : "CG on K~", (double)tol, (double)(1e-2 * tol)));
+    PetscCall(PetscSNPrintf(advice, len, "The step's solve (contact formulation %s: %s) is iterative and its steps were accepted by their certificate (%" PetscInt_FMT " at their residual's round-off floor, the largest %.3g round-offs): rerun with -contact_formulation condensed (exact factorizations), and check that the units are consistent (SI throughout).", type, active_set ? "projected CG on the free dofs" : "CG on K~", nm->cert.floor_steps, (double)nm->cert.floor_max));
   } else if (residual > 1e4 * tol) {
     PetscCall(PetscSNPrintf(advice, len, "The step's solve (contact formulation %s) factors K~ exactly, so a residual this far above the solver tolerance -contact_tol %.1e is not a loose solve: check that the units are consistent (SI throughout: the mesh in metres, -E in Pa, -rho in kg/m^3, loads in N/m^2 and m/s^2) and that the material values are what you meant; tightening the tolerances will not help.", type, (double)tol));
   } else {

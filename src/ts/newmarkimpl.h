@@ -73,6 +73,10 @@ typedef struct {
 typedef struct {
   PetscReal energy, energy_tol, force, force_tol, torque, torque_tol, ratio;
 } MMStepCertificate;
+/* The round-offs of its terms a step's defect may be (certificate.c), and those of an iteration
+ * that stopped falling: its floor, accepted there */
+#define MM_CERT_ROUNDOFFS       4.0
+#define MM_CERT_FLOOR_ROUNDOFFS 1e3
 typedef struct {
   PetscBool         on;          /* -step_certificate, with the linear law */
   PetscInt          max_tries;   /* solves of one step at most */
@@ -88,6 +92,7 @@ typedef struct {
 PETSC_INTERN PetscErrorCode MMCertificateSetUp(MMNewmark nm);
 PETSC_INTERN PetscErrorCode MMCertificateCheck(MMNewmark nm, Vec b, Vec w, PetscInt tries, PetscBool *again);
 PETSC_INTERN PetscErrorCode MMCertificateDestroy(MMCertificateData *cd);
+PETSC_INTERN PetscErrorCode MMCertificateOfIterate(MMNewmark nm, Vec bH, Vec w, MMStepCertificate *c);
 
 /* Why a step is rejected and retried with a smaller dt. */
 typedef enum {

@@ -509,6 +509,7 @@ PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b,
   MMNonlinear *nl = &nm->nl;
   MMState     *s  = &nm->state;
   PetscReal    scale, fscale = 0, res = PETSC_MAX_REAL, res_prev = PETSC_MAX_REAL, tol = nl->rtol;
+  PetscInt     stalls = 0;
 
   PetscFunctionBeginUser;
   *solved = PETSC_FALSE;
@@ -550,12 +551,33 @@ PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b,
       tol = res;
       break;
     }
+    /* stalled farther from it: the step is done when its whole residual meets its certificate
+     * (certificate.c): a slender part's internal force is a small difference of large element forces,
+     * and its relative residual cannot go below their rounding. Flat twice running within a thousand
+     * round-offs, it is at its floor: accepted there (and counted), never cut for it (docs/method.md
+     * section 13, "The step's iteration"); a slow fall still far from it goes on (a new tangent) */
+    stalls = res > 0.5 * res_prev ? stalls + 1 : 0;
+    if (stalls) {
+      MMStepCertificate cert;
+      PetscCall(VecWAXPY(nl->f, 1.0, nl->bnl, H));
+      PetscCall(MMCertificateOfIterate(nm, nl->f, w, &cert));
+      PetscCall(PetscInfo(NULL, "finite-strain step %" PetscInt_FMT " stalled at %.3e: its residual is %.3g round-offs of its terms\n", nm->hist.step + 1, (double)res, (double)cert.ratio));
+      if (cert.ratio <= 1 || (stalls >= 2 && cert.ratio <= MM_CERT_FLOOR_ROUNDOFFS)) {
+        if (cert.ratio > 1) { /* else the step meets its certificate: exact, at a residual -nonlinear_rtol cannot see */
+          nm->cert.floor_steps++;
+          nm->cert.floor_max = PetscMax(nm->cert.floor_max, cert.ratio);
+        }
+        tol = res;
+        break;
+      }
+    }
     if (nl->policy == MM_TANGENT_AUTO && res > nl->refresh * res_prev) {
       /* a slow contraction: the iteration matrix is far from the tangent (large rotations) */
       PetscCall(RebuildTangent(nm, dt, nl->el.l1, t0 + dt));
       PetscCall(Correction(nm, t0 + dt, w, nl->c, &scale));
       PetscCall(MMAndersonReset(&nl->aa));
       res_prev = PETSC_MAX_REAL;
+      stalls   = 0;
       continue;
     }
     PetscCall(MMAndersonUpdate(&nl->aa, nl->c, H));
