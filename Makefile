@@ -30,6 +30,8 @@ MSH  += meshes/cube_groove.msh
 MSH  += meshes/cantilever.msh
 # Slender clamped cantilevers, t/L = 0.02 and 0.05, for the static start and beam theory (issue 48)
 MSH  += meshes/cantilever_t02.msh meshes/cantilever_t05.msh meshes/cantilever_t05_fine.msh
+# Slender cantilevers with a tip point, t/L = 0.02 on 400 x 8 and 0.05 on 160 x 8 (issue 50: large deflection)
+MSH  += meshes/slender_cantilever.msh meshes/slender_cantilever_t05.msh
 # A coarse cube whose whole skin is contact boundary (issue 38: the redistributed mass on coarse meshes)
 MSH  += meshes/cube_drop.msh
 # Bodies of their own material (README "Bodies"): a strip of two glued halves, two separate bars
@@ -142,6 +144,10 @@ meshes/cantilever_t05.msh: meshes/cantilever.geo
 	gmsh -2 $< -setnumber H 0.05 -setnumber NX 80 -setnumber NY 4 -o $@ -v 2
 meshes/cantilever_t05_fine.msh: meshes/cantilever.geo
 	gmsh -2 $< -setnumber H 0.05 -setnumber NX 160 -setnumber NY 8 -o $@ -v 2
+meshes/slender_cantilever.msh: meshes/slender_cantilever.geo
+	gmsh -2 $< -o $@ -v 2
+meshes/slender_cantilever_t05.msh: meshes/slender_cantilever.geo
+	gmsh -2 $< -setnumber H 0.05 -setnumber NX 160 -o $@ -v 2
 meshes/cube_groove.msh: meshes/cube_groove.geo
 	gmsh -3 $< -o $@ -v 2
 meshes/cube_drop.msh: meshes/cube_drop.geo
