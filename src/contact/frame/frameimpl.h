@@ -47,15 +47,15 @@ typedef struct {
 } MMContactTransform;
 
 /* frame.c: Q from the contact nodes' frames (MMContactSetUp, before fem assembles) */
-PETSC_INTERN PetscErrorCode MMContactFrameBuildRotation(MMContact ct, MMOperators *op);
+PETSC_INTERN PetscErrorCode MMContactFrameBuildRotation(MMContact ct, MMOperators op);
 /* transform.c: the frame's transforms, installed into fem's operators; freed with contact */
-PETSC_INTERN PetscErrorCode MMContactFrameInstall(MMContact ct, MMOperators *op);
+PETSC_INTERN PetscErrorCode MMContactFrameInstall(MMContact ct, MMOperators op);
 PETSC_INTERN PetscErrorCode MMContactTransformDestroy(MMContactTransform *xf);
 /* mass_star.c: -mass, M* from M, its view */
 PETSC_INTERN PetscErrorCode MMContactMassSetFromOptions(MPI_Comm comm, MMContactMass *mass);
-PETSC_INTERN PetscErrorCode MMContactMassStar(MMContactMass *mass, MMOperators *op, const MMMaterial *material, const MMMassBoundary *mb);
-PETSC_INTERN PetscErrorCode MMContactMassRebuild(MMContactMass *mass, MMOperators *op, Mat M, const MMMaterial *material, const MMMassBoundary *mb);
+PETSC_INTERN PetscErrorCode MMContactMassStar(MMContactMass *mass, MMOperators op, const MMMaterial *material, const MMMassBoundary *mb);
+PETSC_INTERN PetscErrorCode MMContactMassRebuild(MMContactMass *mass, MMOperators op, Mat M, const MMMaterial *material, const MMMassBoundary *mb);
 PETSC_INTERN void           MMContactMassBoundary(MMContact ct, MMMassBoundary *mb);
 /* mass_redistribution.c: -mass redistributed, and the moments of M* */
-PETSC_INTERN PetscErrorCode MMContactRedistributeMass(MMContactMass *mass, MMOperators *op, const MMMaterial *material, const MMMassBoundary *mb);
-PETSC_INTERN PetscErrorCode MMContactMassMoments(MMContactMass *mass, MMOperators *op);
+PETSC_INTERN PetscErrorCode MMContactRedistributeMass(MMContactMass *mass, MMOperators op, const MMMaterial *material, const MMMassBoundary *mb);
+PETSC_INTERN PetscErrorCode MMContactMassMoments(MMContactMass *mass, MMOperators op);
