@@ -185,7 +185,7 @@ typedef struct _p_MMOperators *MMOperators;
  * cell, and its lumped L2 projection per vertex, each with its von Mises value. */
 typedef struct {
   DM         dm;                   /* 6 components per vertex: xx, xy, xz, yy, yz, zz (XDMF's Tensor6) */
-  Vec        nodal, von_mises;     /* the nodal stress (dm) and its von Mises (MMOperators.dm_scalar) */
+  Vec        nodal, von_mises;     /* the nodal stress (dm) and its von Mises (fem's scalar DM, MMFEGetScalarDM) */
   Vec        weight;               /* each vertex's lumped weight sum_T |T| (dm_scalar) */
   Vec        cell, von_mises_cell; /* per local cell, in local order (no DM) */
   PetscReal *geom;                 /* per local cell its inverse edge matrix and volume, computed once */

@@ -121,7 +121,7 @@ struct _MMOutput {
   DM            dm_out;                /* the displacement field without constraints: output of whole fields */
   MMInsertMap   to_out;                /* DMLocalToGlobal(INSERT) on dm_out, as a map */
   Vec           disp_cart, vel_cart;   /* Cartesian output fields on dm_out */
-  DM            dm_scalar;             /* borrowed from fem (MMOperators.dm_scalar) by MMOutputOpen: one scalar per vertex */
+  DM            dm_scalar;             /* borrowed from fem (MMFEGetScalarDM) by MMOutputSetUp: one scalar per vertex */
   Vec           pressure, gap;
   Vec           obstacle;              /* each contact node's obstacle (index in -obstacles), -1 elsewhere: written once */
   Vec           serial;                /* each vertex's number in the serial mesh: written once */

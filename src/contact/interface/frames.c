@@ -259,7 +259,7 @@ static PetscErrorCode RotateVec(MMContact ct, void *fctx, PetscBool force, Vec x
 }
 
 /* The turned rows' new frames into node_frame and Q's blocks (in place: Q keeps its pattern, and
- * whoever reads it through MMOperators sees the new one), and the friction warm starts that live in
+ * whoever reads it through fem's frame ops sees the new one), and the friction warm starts that live in
  * frame components: the condensed reactions and, in 3D, the slip direction. */
 static PetscErrorCode SetNewFrames(MMContact ct)
 {
