@@ -318,7 +318,7 @@ PETSC_EXTERN PetscErrorCode MMMaterialChecksum(const MMMaterial *mat, MMOperator
 PETSC_EXTERN PetscErrorCode MMMaterialDestroy(MMMaterial *mat);
 
 /* elasticity.c: the total Lagrangian P1 internal force of the finite-strain laws (docs/method.md
- * section 13), on local Cartesian vectors of op->dm with their Dirichlet data inserted */
+ * section 13), on local Cartesian vectors of fem's DM (MMFEGetDM) with their Dirichlet data inserted */
 typedef struct _MMElasticity {
   Vec       l0, l1, lf; /* local scratch */
   Vec       g;          /* global Cartesian scratch */
@@ -342,7 +342,7 @@ PETSC_EXTERN PetscErrorCode MMLoadsSetElasticity(MMLoads *ld, MMElasticity *el);
 PETSC_EXTERN PetscErrorCode MMElasticityEnergy(MMElasticity *el, MMOperators op, const MMMaterial *mat, Vec l, PetscReal *energy);
 /* sum over the cells of |T| dE : D : dE for the step from the start set by MMElasticitySetStepStart to l1 */
 PETSC_EXTERN PetscErrorCode MMElasticityDissipation(MMElasticity *el, MMOperators op, const MMMaterial *mat, Vec l1, PetscReal *d);
-/* Kc (a P1 matrix of op->dm's pattern) = the tangent dP/dF at l on the Cartesian dofs (contact turns it
+/* Kc (a P1 matrix of the pattern of fem's DM) = the tangent dP/dF at l on the Cartesian dofs (contact turns it
  * into the w-frame: MMContactFrameMatrixBegin/End) */
 PETSC_EXTERN PetscErrorCode MMElasticityAssembleTangent(MMElasticity *el, MMOperators op, const MMMaterial *mat, Vec l, Mat Kc);
 /* the Cauchy stress of cell c (local) at the displacement gradient G */

@@ -158,7 +158,7 @@ static PetscErrorCode SetConstants(MMOperators op, const MMMaterial *mat, const 
   Collective
 
   Input Parameters:
-+ op  - the operators, their DM set and options read
++ op  - the operators, their DM set (MMFESetDM()) and options read
 . mat - the material, set up from pb
 - pb  - the problem as the user described it
 
@@ -167,7 +167,7 @@ static PetscErrorCode SetConstants(MMOperators op, const MMMaterial *mat, const 
 
   Level: beginner
 
-.seealso: `MMFESetFromOptions()`, `MMFEAssembleOperators()`, `MMMaterialSetUp()`, `MMFEDestroy()`
+.seealso: `MMFECreate()`, `MMFESetDM()`, `MMFESetFromOptions()`, `MMFEAssembleOperators()`, `MMMaterialSetUp()`, `MMFEDestroy()`
 @*/
 PetscErrorCode MMFESetUp(MMOperators op, MMMaterial *mat, const MMFEProblem *pb)
 {

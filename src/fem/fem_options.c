@@ -20,7 +20,7 @@ const char *const MMAssemblyTypes[] = {"closed_form", "fe", "MMAssemblyType", "M
 
   Level: beginner
 
-.seealso: `MMFESetUp()`, `MMFEAssembleOperators()`
+.seealso: `MMFECreate()`, `MMFESetUp()`, `MMFEAssembleOperators()`
 @*/
 PetscErrorCode MMFESetFromOptions(MMOperators op)
 {
