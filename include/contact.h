@@ -32,7 +32,7 @@ typedef struct {
 } MMContactProblem;
 /* Finds the contact nodes and builds Q, before fem assembles the operators; op and material are
  * borrowed (kept until destroy) */
-PETSC_EXTERN PetscErrorCode MMContactSetUp(MMContact ct, MMOperators *op, const MMMaterial *material, const MMContactProblem *pb);
+PETSC_EXTERN PetscErrorCode MMContactSetUp(MMContact ct, MMOperators op, const MMMaterial *material, const MMContactProblem *pb);
 /* The plane of the static sliding state (-initial_state static_sliding: the single obstacle's) */
 PETSC_EXTERN PetscErrorCode MMContactGetPlane(MMContact ct, PetscReal point[], PetscReal normal[]);
 PETSC_EXTERN PetscErrorCode MMContactView(MMContact ct, PetscViewer viewer);
@@ -45,7 +45,7 @@ PETSC_EXTERN PetscErrorCode MMContactRegisterAll(void);
  * lift from fem's Cartesian ones (which stay Cartesian), and fem's M turned in place in op, which
  * must be the operators given to MMContactSetUp: Q^T A Q, M* for -mass, and the contact pairs'
  * N^T A N. */
-PETSC_EXTERN PetscErrorCode MMContactSetUpFrame(MMContact ct, MMOperators *op, const MMMaterial *material);
+PETSC_EXTERN PetscErrorCode MMContactSetUpFrame(MMContact ct, MMOperators op, const MMMaterial *material);
 /* The w-frame operators (src/contact/frame/operators.c), contact's, as they are now: borrowed, and
  * rebuilt when the frames turn or the pairing changes, so ask for them when they are used rather
  * than keep them. K, Mstar: the stiffness and the mass in time stepping; load, lift: L and K_fD u_D

@@ -174,42 +174,18 @@ typedef struct {
   PetscErrorCode (*forcefromcartesian)(void *ctx, Vec fcart, Vec fw); /* f_w = N^T Q^T f */
 } MMFrameOps;
 
-typedef struct {
-  MMFrameOps ops;
-  void      *ctx;
-} MMFrame;
-
-/* The finite element operators: fem assembles K, M, the load and the lift on the Cartesian dofs
- * (MMFEAssembleOperators) and hands K and M to contact (MMFEHandMatrices), whose frame
- * (src/contact/frame/, MMContactSetUpFrame) turns them into its own w-frame ones; it keeps its own
- * w-frame load and lift too (fem's stay Cartesian). Q and N are contact's, reached through MMFrame
- * (docs/method.md section 2). M* and its masses are contact's alone, built from M (the other
- * components read them by MMContactGetOperators). fem holds nothing in the w-frame. */
-typedef struct {
-  DM        dm;
-  DM        dm_scalar; /* one P1 scalar per vertex, no constraints: lumped masses, contact pressure and gap, von Mises */
-  MMCells   cells;
-  PetscInt  dim;
-  Mat       K;      /* stiffness A, Cartesian: NULL once handed to contact (MMFEHandMatrices) */
-  Mat       M;      /* standard mass (consistent or lumped), Cartesian: likewise */
-  MMFrame   frame;  /* the frame's transforms: contact's, installed by MMFESetFrame (fem holds no Q or N) */
-  Vec       load;   /* L: body force + traction, constant in time, Cartesian (contact keeps the w-frame one) */
-  Vec       lift;   /* K_fD u_D: the Dirichlet data's elastic force on the free dofs (likewise) */
-  Vec       mass_lumped_cart; /* lumped standard mass per Cartesian dof */
-  PetscBool      lumped;         /* -mass_lumped */
-  MMAssemblyType assembly;       /* -assembly */
-  PetscBool      assembly_check; /* -assembly_check: assemble K and M both ways and stop if they differ */
-  PetscReal c_p;    /* pressure wave speed */
-  PetscReal constants[MM_C_NUM]; /* the PetscDS constants of the kernels (MMConstantIndex) */
-  PetscReal energy_dirichlet; /* elastic energy of the Dirichlet data alone, 1/2 u_D.A_DD u_D */
-  Vec       work;
-} MMOperators;
+/* The finite element operators (src/fem/femimpl.h, private to fem): the mesh's DM and its scalar
+ * vertex DM, the cells, the Cartesian K, M, load and lift fem assembles (MMFEAssembleOperators) and
+ * hands to contact (MMFEHandMatrices, MMFEGetLoad, MMFEGetLift), whose frame turns them into its own
+ * w-frame ones; the frame's transforms are contact's, installed by MMFESetFrame (docs/developer.md,
+ * "The contact frame"). Another component reads them through functions (MMFEGetDM, ...). */
+typedef struct _p_MMOperators *MMOperators;
 
 /* The stress of a displacement (src/fem/stress.c, docs/method.md section 5, "Stress"): constant per
  * cell, and its lumped L2 projection per vertex, each with its von Mises value. */
 typedef struct {
   DM         dm;                   /* 6 components per vertex: xx, xy, xz, yy, yz, zz (XDMF's Tensor6) */
-  Vec        nodal, von_mises;     /* the nodal stress (dm) and its von Mises (MMOperators.dm_scalar) */
+  Vec        nodal, von_mises;     /* the nodal stress (dm) and its von Mises (fem's scalar DM, MMFEGetScalarDM) */
   Vec        weight;               /* each vertex's lumped weight sum_T |T| (dm_scalar) */
   Vec        cell, von_mises_cell; /* per local cell, in local order (no DM) */
   PetscReal *geom;                 /* per local cell its inverse edge matrix and volume, computed once */
@@ -229,7 +205,7 @@ struct _MMAmplitude {
  * section 10). The load is a sum of parts, each a fixed vector times its amplitude,
  * L(t) = sum_k a_k(t) L_k: gravity is one part, each traction one. Nothing is reassembled per step. */
 typedef struct {
-  MMOperators       *op;       /* borrowed at MMLoadsSetUp: the operators the loads are set on */
+  MMOperators        op;       /* borrowed at MMLoadsSetUp: the operators the loads are set on */
   struct _MMElasticity *el;     /* the finite-strain laws' force for the reactions (MMLoadsSetElasticity), or NULL: K_D */
   const MMMaterial  *material; /* borrowed at MMLoadsSetUp */
   IS           massless;   /* borrowed at MMLoadsSetUp: M*'s dofs without inertia (contact's), NULL if none */
@@ -266,23 +242,35 @@ typedef struct {
 
 /* fem.c and fem_options.c: the discretization, the Cartesian operators, the frame transforms (contact's ops, MMFESetFrame) */
 PETSC_EXTERN PetscErrorCode MMFEInitializePackage(void);
-PETSC_EXTERN PetscErrorCode MMFESetFromOptions(MPI_Comm comm, MMOperators *op);
-PETSC_EXTERN PetscErrorCode MMFESetUp(MMOperators *op, MMMaterial *mat, const MMFEProblem *pb);
-PETSC_EXTERN PetscErrorCode MMFEAssembleOperators(MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb);
-PETSC_EXTERN PetscErrorCode MMFEAssembleOperatorsEnd(MMOperators *op);
-PETSC_EXTERN PetscErrorCode MMFECreateMatrix(const MMOperators *op, DM dm, Mat *A);
-PETSC_EXTERN PetscErrorCode MMFEInterpolate(const MMOperators *op, PetscErrorCode (*f)(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt nc, PetscScalar *u, void *fctx), void *fctx, Vec u);
+PETSC_EXTERN PetscErrorCode MMFESetFromOptions(MMOperators op);
+PETSC_EXTERN PetscErrorCode MMFESetUp(MMOperators op, MMMaterial *mat, const MMFEProblem *pb);
+PETSC_EXTERN PetscErrorCode MMFEAssembleOperators(MMOperators op, const MMMaterial *mat, const MMFEProblem *pb);
+PETSC_EXTERN PetscErrorCode MMFEAssembleOperatorsEnd(MMOperators op);
+PETSC_EXTERN PetscErrorCode MMFECreateMatrix(MMOperators op, DM dm, Mat *A);
+PETSC_EXTERN PetscErrorCode MMFEInterpolate(MMOperators op, PetscErrorCode (*f)(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt nc, PetscScalar *u, void *fctx), void *fctx, Vec u);
 /* 1/2 int sigma(u):eps(u) of a Cartesian global vector ucart with the Dirichlet data of t = 0 inserted */
-PETSC_EXTERN PetscErrorCode MMFEElasticEnergyIntegral(const MMOperators *op, const MMMaterial *mat, Vec ucart, PetscReal *energy);
-PETSC_EXTERN PetscErrorCode MMFESetFrame(MMOperators *op, const MMFrameOps *ops, void *ctx);
-PETSC_EXTERN PetscErrorCode MMFEHandMatrices(MMOperators *op, Mat *K, Mat *M);
-PETSC_EXTERN PetscErrorCode MMFEToCartesian(const MMOperators *op, Vec w, Vec ucart);
-PETSC_EXTERN PetscErrorCode MMFEFromCartesian(const MMOperators *op, Vec ucart, Vec w);
-PETSC_EXTERN PetscErrorCode MMFEForceToCartesian(const MMOperators *op, Vec fw, Vec fcart);
-PETSC_EXTERN PetscErrorCode MMFEForceFromCartesian(const MMOperators *op, Vec fcart, Vec fw);
-PETSC_EXTERN PetscErrorCode MMFEVertexMasses(const MMOperators *op, const MMMaterial *mat, Vec mloc);
-PETSC_EXTERN PetscErrorCode MMFEAddTraction(const MMOperators *op, const MMTraction *tr, Vec floc);
+PETSC_EXTERN PetscErrorCode MMFEElasticEnergyIntegral(MMOperators op, const MMMaterial *mat, Vec ucart, PetscReal *energy);
+PETSC_EXTERN PetscErrorCode MMFESetFrame(MMOperators op, const MMFrameOps *ops, void *ctx);
+PETSC_EXTERN PetscErrorCode MMFEHandMatrices(MMOperators op, Mat *K, Mat *M);
+PETSC_EXTERN PetscErrorCode MMFEToCartesian(MMOperators op, Vec w, Vec ucart);
+PETSC_EXTERN PetscErrorCode MMFEFromCartesian(MMOperators op, Vec ucart, Vec w);
+PETSC_EXTERN PetscErrorCode MMFEForceToCartesian(MMOperators op, Vec fw, Vec fcart);
+PETSC_EXTERN PetscErrorCode MMFEForceFromCartesian(MMOperators op, Vec fcart, Vec fw);
+PETSC_EXTERN PetscErrorCode MMFEVertexMasses(MMOperators op, const MMMaterial *mat, Vec mloc);
+PETSC_EXTERN PetscErrorCode MMFEAddTraction(MMOperators op, const MMTraction *tr, Vec floc);
 PETSC_EXTERN PetscErrorCode MMFEDestroy(MMOperators *op);
+/* fem_object.c: the object, the mesh app hands it, and what the other components read of it */
+PETSC_EXTERN PetscErrorCode MMFECreate(MPI_Comm comm, MMOperators *op);
+PETSC_EXTERN PetscErrorCode MMFESetDM(MMOperators op, DM dm);
+PETSC_EXTERN PetscErrorCode MMFEGetDM(MMOperators op, DM *dm);
+PETSC_EXTERN PetscErrorCode MMFEGetScalarDM(MMOperators op, DM *dm);
+PETSC_EXTERN PetscErrorCode MMFEGetDimension(MMOperators op, PetscInt *dim);
+PETSC_EXTERN PetscErrorCode MMFEGetCells(MMOperators op, const MMCells **cells);
+PETSC_EXTERN PetscErrorCode MMFEGetLoad(MMOperators op, Vec *load);
+PETSC_EXTERN PetscErrorCode MMFEGetLift(MMOperators op, Vec *lift);
+PETSC_EXTERN PetscErrorCode MMFEGetLumpedMass(MMOperators op, Vec *m);
+PETSC_EXTERN PetscErrorCode MMFEIsMassLumped(MMOperators op, PetscBool *lumped);
+PETSC_EXTERN PetscErrorCode MMFEGetDirichletEnergy(MMOperators op, PetscReal *energy);
 /* assembly_p1.c: the damping stiffness with the dofs marked in qmark (w-frame) condensed cell by cell */
 PETSC_EXTERN PetscErrorCode MMAssembleP1DampingStiffness(DM dm, const MMMaterial *mat, Mat Q, Vec qmark, Mat B);
 /* assembly_p1.c: K <- Q^T K Q and M <- Q^T M Q in place on the P1 pattern, Q block diagonal by vertex (M
@@ -295,13 +283,13 @@ static inline PetscInt MMFENumRigidModes(PetscInt dim)
   return dim == 2 ? 3 : 6;
 }
 PETSC_EXTERN void           MMFERigidModeMatrix(PetscInt dim, const PetscReal x[], PetscReal T[MM_MAX_DIM][MM_MAX_RIGID]);
-PETSC_EXTERN PetscErrorCode MMFERigidModesCartesian(const MMOperators *op, const PetscReal x0[], PetscReal ell, PetscInt nmodes, Vec modes[]);
+PETSC_EXTERN PetscErrorCode MMFERigidModesCartesian(MMOperators op, const PetscReal x0[], PetscReal ell, PetscInt nmodes, Vec modes[]);
 /* stress.c: the stress of a displacement, for the output */
-PETSC_EXTERN PetscErrorCode MMStressCreate(const MMOperators *op, MMStress *st);
-PETSC_EXTERN PetscErrorCode MMStressCompute(MMStress *st, const MMOperators *op, const MMMaterial *mat, DM dm_u, Vec u, PetscBool nodal);
+PETSC_EXTERN PetscErrorCode MMStressCreate(MMOperators op, MMStress *st);
+PETSC_EXTERN PetscErrorCode MMStressCompute(MMStress *st, MMOperators op, const MMMaterial *mat, DM dm_u, Vec u, PetscBool nodal);
 PETSC_EXTERN PetscErrorCode MMStressDestroy(MMStress *st);
 /* loads.c: the loads in time, moving Dirichlet data and the reactions (after MMLoadsSetUp) */
-PETSC_EXTERN PetscErrorCode MMLoadsSetUp(MMLoads *ld, MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb, IS massless, Vec load, Vec lift);
+PETSC_EXTERN PetscErrorCode MMLoadsSetUp(MMLoads *ld, MMOperators op, const MMMaterial *mat, const MMFEProblem *pb, IS massless, Vec load, Vec lift);
 PETSC_EXTERN PetscErrorCode MMLoadsSetTime(MMLoads *ld, PetscReal t0, PetscReal t1);
 PETSC_EXTERN PetscErrorCode MMLoadsReactions(MMLoads *ld, Vec u, Vec a);
 PETSC_EXTERN PetscErrorCode MMLoadsStepWork(MMLoads *ld, Vec u, Vec a, Vec u_old, Vec a_old, PetscReal *w_ext_D, PetscReal *w_D);
@@ -322,15 +310,15 @@ PETSC_EXTERN PetscErrorCode MMLoadGroupsCheckDimension(MPI_Comm comm, MMLoadGrou
 PETSC_EXTERN PetscErrorCode MMLoadGroupsDestroy(MMLoadGroups *lg);
 PETSC_EXTERN PetscErrorCode MMAmplitudeOptionsRead(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char prefix[], MMAmplitudeOptions *a);
 /* loads_nodal.c: the pressures' and point forces' nodal forces */
-PETSC_EXTERN PetscErrorCode MMFEAddPressure(const MMOperators *op, const MMPressure *pr, Vec floc);
-PETSC_EXTERN PetscErrorCode MMFEAddPointForce(const MMOperators *op, const MMPointForce *pf, Vec floc);
+PETSC_EXTERN PetscErrorCode MMFEAddPressure(MMOperators op, const MMPressure *pr, Vec floc);
+PETSC_EXTERN PetscErrorCode MMFEAddPointForce(MMOperators op, const MMPointForce *pf, Vec floc);
 /* material.c: each cell's material */
-PETSC_EXTERN PetscErrorCode MMMaterialSetUp(MMMaterial *mat, const MMOperators *op, const MMFEProblem *pb);
-PETSC_EXTERN PetscErrorCode MMMaterialChecksum(const MMMaterial *mat, const MMOperators *op, PetscReal sum[3]);
+PETSC_EXTERN PetscErrorCode MMMaterialSetUp(MMMaterial *mat, MMOperators op, const MMFEProblem *pb);
+PETSC_EXTERN PetscErrorCode MMMaterialChecksum(const MMMaterial *mat, MMOperators op, PetscReal sum[3]);
 PETSC_EXTERN PetscErrorCode MMMaterialDestroy(MMMaterial *mat);
 
 /* elasticity.c: the total Lagrangian P1 internal force of the finite-strain laws (docs/method.md
- * section 13), on local Cartesian vectors of op->dm with their Dirichlet data inserted */
+ * section 13), on local Cartesian vectors of fem's DM (MMFEGetDM) with their Dirichlet data inserted */
 typedef struct _MMElasticity {
   Vec       l0, l1, lf; /* local scratch */
   Vec       g;          /* global Cartesian scratch */
@@ -340,23 +328,23 @@ typedef struct _MMElasticity {
   PetscReal  visc;      /* beta/dt: the step's viscous stress beta D : dE/dt (Rayleigh's stiffness part), 0 undamped */
 } MMElasticity;
 #define MM_ELASTICITY_GEOM ((MM_MAX_DIM + 1) * MM_MAX_DIM + 1)
-PETSC_EXTERN PetscErrorCode MMElasticitySetUp(MMElasticity *el, const MMOperators *op);
+PETSC_EXTERN PetscErrorCode MMElasticitySetUp(MMElasticity *el, MMOperators op);
 /* l: the Cartesian local vector of the w-frame w with the Dirichlet data of time t */
-PETSC_EXTERN PetscErrorCode MMElasticityLocal(MMElasticity *el, const MMOperators *op, MMLoads *ld, Vec w, PetscReal t, Vec l);
+PETSC_EXTERN PetscErrorCode MMElasticityLocal(MMElasticity *el, MMOperators op, MMLoads *ld, Vec w, PetscReal t, Vec l);
 /* the step's start l0 (its grad u kept per cell), then fw (w-frame, free dofs) = the algorithmic internal
  * force of the step from l0 to l1 */
-PETSC_EXTERN PetscErrorCode MMElasticitySetStepStart(MMElasticity *el, const MMOperators *op, Vec l0);
-PETSC_EXTERN PetscErrorCode MMElasticityForce(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l1, Vec fw);
+PETSC_EXTERN PetscErrorCode MMElasticitySetStepStart(MMElasticity *el, MMOperators op, Vec l0);
+PETSC_EXTERN PetscErrorCode MMElasticityForce(MMElasticity *el, MMOperators op, const MMMaterial *mat, Vec l1, Vec fw);
 /* el->lf (local, Cartesian, unassembled: the constrained dofs' rows too) = the internal force P(F) at l */
-PETSC_EXTERN PetscErrorCode MMElasticityForceLocal(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l);
+PETSC_EXTERN PetscErrorCode MMElasticityForceLocal(MMElasticity *el, MMOperators op, const MMMaterial *mat, Vec l);
 /* the reactions of the Dirichlet supports from the finite-strain force instead of K_D (el borrowed) */
 PETSC_EXTERN PetscErrorCode MMLoadsSetElasticity(MMLoads *ld, MMElasticity *el);
-PETSC_EXTERN PetscErrorCode MMElasticityEnergy(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, PetscReal *energy);
+PETSC_EXTERN PetscErrorCode MMElasticityEnergy(MMElasticity *el, MMOperators op, const MMMaterial *mat, Vec l, PetscReal *energy);
 /* sum over the cells of |T| dE : D : dE for the step from the start set by MMElasticitySetStepStart to l1 */
-PETSC_EXTERN PetscErrorCode MMElasticityDissipation(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l1, PetscReal *d);
-/* Kc (a P1 matrix of op->dm's pattern) = the tangent dP/dF at l on the Cartesian dofs (contact turns it
+PETSC_EXTERN PetscErrorCode MMElasticityDissipation(MMElasticity *el, MMOperators op, const MMMaterial *mat, Vec l1, PetscReal *d);
+/* Kc (a P1 matrix of the pattern of fem's DM) = the tangent dP/dF at l on the Cartesian dofs (contact turns it
  * into the w-frame: MMContactFrameMatrixBegin/End) */
-PETSC_EXTERN PetscErrorCode MMElasticityAssembleTangent(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, Mat Kc);
+PETSC_EXTERN PetscErrorCode MMElasticityAssembleTangent(MMElasticity *el, MMOperators op, const MMMaterial *mat, Vec l, Mat Kc);
 /* the Cauchy stress of cell c (local) at the displacement gradient G */
 PETSC_EXTERN PetscErrorCode MMElasticityCauchy(const MMMaterial *mat, PetscInt c, PetscInt dim, const PetscReal G[MM_MAX_DIM][MM_MAX_DIM], PetscReal sigma[MM_MAX_DIM][MM_MAX_DIM]);
 PETSC_EXTERN PetscErrorCode MMElasticityDestroy(MMElasticity *el);

@@ -25,7 +25,7 @@ typedef struct {
 typedef struct {
   /* borrowed at MMProgressSetUp: what the start-up report and the progress lines describe */
   const MMIOProblem   *opt;
-  const MMOperators *op;
+  MMOperators        op;
   const MMMaterial  *material;
   const MMHistory   *hist;
   const MMState     *state;
@@ -57,7 +57,9 @@ typedef struct _MMOutput MMOutput;
 typedef struct {
   /* borrowed at MMCheckpointSetUp: what a checkpoint holds, and what a restart restores */
   const MMIOProblem   *opt;      /* the problem: its fingerprint (mesh, contact boundary, mu, material, mass) */
-  const MMOperators *op;       /* the mesh and its dimension */
+  MMOperators        op;       /* fem's operators: the mesh and its dimension, fetched at set-up into dm and dim */
+  DM                 dm;       /* fem's (MMFEGetDM) */
+  PetscInt           dim;      /* the mesh's (MMFEGetDimension) */
   const MMMaterial  *material; /* the bodies */
   MMHistory         *hist;     /* the running sums and maxima */
   MMState           *state;    /* u, v, a and the reactions, dt */
@@ -93,7 +95,9 @@ typedef struct {
 struct _MMOutput {
   /* borrowed at MMOutputSetUp: what the output writes from */
   const MMIOProblem    *opt;     /* the problem: the obstacles' and Dirichlet boundaries' names, the history's columns */
-  const MMOperators  *op;       /* the mesh, its dimension and cells, the frames */
+  MMOperators         op;       /* fem's operators: the mesh's cells, the frames */
+  DM                  dm;       /* fem's mesh (MMFEGetDM), borrowed at set-up */
+  PetscInt            dim;      /* its dimension (MMFEGetDimension) */
   const MMMaterial   *material; /* each cell's material: the stress */
   const MMHistory    *hist;     /* the stepper's history row */
   const MMState      *state;    /* the stepper's u and v */
@@ -117,7 +121,7 @@ struct _MMOutput {
   DM            dm_out;                /* the displacement field without constraints: output of whole fields */
   MMInsertMap   to_out;                /* DMLocalToGlobal(INSERT) on dm_out, as a map */
   Vec           disp_cart, vel_cart;   /* Cartesian output fields on dm_out */
-  DM            dm_scalar;             /* borrowed from fem (MMOperators.dm_scalar) by MMOutputOpen: one scalar per vertex */
+  DM            dm_scalar;             /* borrowed from fem (MMFEGetScalarDM) by MMOutputSetUp: one scalar per vertex */
   Vec           pressure, gap;
   Vec           obstacle;              /* each contact node's obstacle (index in -obstacles), -1 elsewhere: written once */
   Vec           serial;                /* each vertex's number in the serial mesh: written once */
@@ -134,7 +138,7 @@ PETSC_EXTERN PetscErrorCode MMIOInitializePackage(void);
 
 /* output.c: the files of a run, from set-up to close */
 PETSC_EXTERN PetscErrorCode MMOutputSetFromOptions(MPI_Comm comm, MMOutput *o);
-PETSC_EXTERN PetscErrorCode MMOutputSetUp(MMOutput *o, const MMIOProblem *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, MMContact contact, MMLoads *loads, MMCheckpoint *ckpt);
+PETSC_EXTERN PetscErrorCode MMOutputSetUp(MMOutput *o, const MMIOProblem *opt, MMOperators op, const MMMaterial *material, const MMHistory *hist, const MMState *state, MMContact contact, MMLoads *loads, MMCheckpoint *ckpt);
 /* output_monitor.c: the glue that gathers each snapshot's fields from the components below */
 PETSC_EXTERN PetscErrorCode MMOutputOpen(MMOutput *o);
 PETSC_EXTERN PetscErrorCode MMOutputSetUpProbes(MMOutput *o);
@@ -164,7 +168,7 @@ PETSC_EXTERN PetscErrorCode MMOutputPlanMake(const MMOutput *o, TS ts, MMOutputP
 
 /* checkpoint.c: checkpoints and -restart (docs/method.md section 9) */
 PETSC_EXTERN PetscErrorCode MMCheckpointSetFromOptions(MPI_Comm comm, MMCheckpoint *c);
-PETSC_EXTERN PetscErrorCode MMCheckpointSetUp(MMCheckpoint *c, const MMIOProblem *opt, const MMOperators *op, const MMMaterial *material, MMHistory *hist, MMState *state, MMDamping *damping, MMContact contact, MMFriction friction, MMOutput *out);
+PETSC_EXTERN PetscErrorCode MMCheckpointSetUp(MMCheckpoint *c, const MMIOProblem *opt, MMOperators op, const MMMaterial *material, MMHistory *hist, MMState *state, MMDamping *damping, MMContact contact, MMFriction friction, MMOutput *out);
 PETSC_EXTERN PetscErrorCode MMCheckpointWrite(MMCheckpoint *c, TS ts);
 PETSC_EXTERN PetscErrorCode MMCheckpointMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ctx);
 PETSC_EXTERN PetscErrorCode MMCheckpointDestroy(MMCheckpoint *c);
@@ -181,7 +185,7 @@ PETSC_EXTERN PetscInt       MMCheckpointSnapshotCount(const MMCheckpoint *c);
 
 /* progress.c: the start-up report and the progress lines */
 PETSC_EXTERN PetscErrorCode MMProgressSetFromOptions(MPI_Comm comm, MMProgress *p);
-PETSC_EXTERN PetscErrorCode MMProgressSetUp(MMProgress *p, const MMIOProblem *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, MMContact contact, const MMDamping *damping);
+PETSC_EXTERN PetscErrorCode MMProgressSetUp(MMProgress *p, const MMIOProblem *opt, MMOperators op, const MMMaterial *material, const MMHistory *hist, const MMState *state, MMContact contact, const MMDamping *damping);
 PETSC_EXTERN PetscErrorCode MMProgressHeader(MMProgress *p, TS ts, KSP krylov, KSP pc_ksp);
 PETSC_EXTERN PetscErrorCode MMProgressMonitorSet(MMProgress *p, TS ts);
 PETSC_EXTERN PetscErrorCode MMProgressMonitor(TS ts, PetscInt step, PetscReal time, Vec u, void *ctx);

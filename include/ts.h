@@ -90,7 +90,7 @@ PETSC_EXTERN PetscErrorCode MMTSInitializePackage(void);
 PETSC_EXTERN PetscErrorCode MMNewmarkCreate(MPI_Comm comm, MMNewmark *nm);
 PETSC_EXTERN PetscErrorCode MMNewmarkSetFromOptions(MMNewmark nm);
 PETSC_EXTERN PetscErrorCode MMNewmarkSetProblem(MMNewmark nm, const MMNewmarkProblem *pb);
-PETSC_EXTERN PetscErrorCode MMNewmarkSetUp(MMNewmark nm, MMOperators *op, MMMaterial *material, MMLoads *loads, MMContact contact);
+PETSC_EXTERN PetscErrorCode MMNewmarkSetUp(MMNewmark nm, MMOperators op, MMMaterial *material, MMLoads *loads, MMContact contact);
 PETSC_EXTERN PetscErrorCode MMNewmarkSetFriction(MMNewmark nm, MMFriction friction);
 PETSC_EXTERN PetscErrorCode MMNewmarkInitialState(MMNewmark nm);
 PETSC_EXTERN PetscErrorCode MMNewmarkCreateTS(MMNewmark nm, TS *ts);

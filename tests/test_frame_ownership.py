@@ -8,7 +8,7 @@ import pathlib
 import re
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-# the w-frame fields of MMOperators (include/fem.h), through any pointer or struct named op
+# the w-frame fields of MMOperators (src/fem/femimpl.h), through any pointer or struct named op
 WFRAME = re.compile(r"\bop(?:->|\.)(K|Mstar|Q|N|Ninv|load|lift|mass_star|mass_star_inv|massless)\b")
 ABOVE = ("friction", "ts", "io", "app")
 
@@ -41,9 +41,9 @@ def test_fem_holds_no_frame():
     """The frame (Q, the contact pairs' N and N^{-1}, their scratch) is contact's
     (src/contact/frame/transform.c): fem's MMOperators holds none of it, fem turns vectors through
     the ops table contact installs (MMFESetFrame), and no file reads them in fem's operators."""
-    header = (ROOT / "include" / "fem.h").read_text()
-    body = header[header.index("typedef struct {\n  DM        dm;"):]
-    body = body[:body.index("} MMOperators;")]
+    header = (ROOT / "src" / "fem" / "femimpl.h").read_text()  # the struct is private to fem
+    body = header[header.index("struct _p_MMOperators {"):]
+    body = body[:body.index("\n};")]
     body = re.sub(r"/\*.*?\*/", "", body, flags=re.S)  # the fields, not their comments
     held = [f for f in ("Q", "N", "Ninv", "pair_work") if re.search(r"\b" + f + r"\b\s*[;,]", body)]
     assert not held, f"fem's MMOperators holds the frame's {held}: contact's MMContactTransform does"
@@ -61,9 +61,11 @@ def test_fem_k_load_and_lift_stay_cartesian():
     (MMFEHandMatrices, called once, in src/contact/frame/frame.c), which turns them in place, so no
     Cartesian copy of K outlives the set-up; fem's load and lift stay Cartesian and contact keeps its
     own w-frame ones (Q^T, then N^T, of fem's); the loads in time set contact's (MMLoadsSetUp hands
-    them). Outside fem.c, fem's K and M are never named, and its load and lift only read."""
+    them). Outside fem.c, fem's K and M are never named, and its load and lift only read (contact
+    takes them through MMFEGetLoad and MMFEGetLift)."""
     use = re.compile(r"\bop(?:->|\.)(K|M|load|lift)\b")
-    read = re.compile(r"VecDuplicate\([\w>.-]*op(?:->|\.)(load|lift),|RotateForce\([^,]+, op->(load|lift), &ct->(load|lift)\)")
+    # a copy's layout, and the read-only handles of MMFEGetLoad and MMFEGetLift (src/fem/fem_object.c)
+    read = re.compile(r"VecDuplicate\([\w>.-]*op(?:->|\.)(load|lift),|^\s*\*(load|lift) = op->(load|lift);$")
     bad = [f"{p.relative_to(ROOT)}:{n}: {line.strip()}"
            for p in sources(("fem", "contact") + ABOVE) if str(p.relative_to(ROOT)) != "src/fem/fem.c"
            for n, line in enumerate(p.read_text().splitlines(), 1) if use.search(line) and not read.search(line)]

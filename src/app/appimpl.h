@@ -65,6 +65,7 @@ typedef struct _MMCtx {
   MMOptions   opt;
   MMIOProblem iopb; /* the part of opt the output, checkpoint and progress read (MMOptionsGetIOProblem) */
   MMMaterial  material;
+  DM          dm; /* the mesh, read and distributed by app (LoadMesh), handed to fem (MMFESetDM) */
   MMOperators op;
   MMLoads     loads;
   MMContact   contact;

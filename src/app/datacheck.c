@@ -135,7 +135,7 @@ static PetscErrorCode GroupRoles(MMCtx *ctx, const char name[], char text[], siz
  * every label, in the same order (DMPlexDistribute), so the loop is collective. */
 static PetscErrorCode ReportGroups(MMCtx *ctx)
 {
-  DM       dm = ctx->op.dm;
+  DM       dm = ctx->dm;
   PetscInt nl;
 
   PetscFunctionBeginUser;
@@ -205,24 +205,25 @@ static PetscErrorCode AccelerationEstimate(MMCtx *ctx, Vec a)
   MMDamping         *damping;
   MMContactNodes     cn;
   const MMState     *s;
-  Vec                r, f;
+  Vec                r, f, m;
 
   PetscFunctionBeginUser;
+  PetscCall(MMFEGetLumpedMass(ctx->op, &m));
   PetscCall(MMContactGetOperators(ctx->contact, &ops));
   PetscCall(MMNewmarkGetState(ctx->nm, &state));
   PetscCall(MMNewmarkGetDamping(ctx->nm, &damping));
   s = state;
   PetscCall(MMContactGetNodes(ctx->contact, &cn));
   PetscCall(VecDuplicate(s->u, &r));
-  PetscCall(VecDuplicate(ctx->op.mass_lumped_cart, &f));
+  PetscCall(VecDuplicate(m, &f));
   PetscCall(MatMult(ops.K, s->u, r));
   PetscCall(VecAXPY(r, 1.0, ops.lift));
   if (ops.massless) PetscCall(VecISSet(r, cn.is_normal, 0.0));
   PetscCall(VecAYPX(r, -1.0, ops.load));
   PetscCall(MMDampingAddForce(damping, s->v, -1.0, r));
-  PetscCall(MMFEForceToCartesian(&ctx->op, r, f));
-  PetscCall(VecPointwiseDivide(f, f, ctx->op.mass_lumped_cart));
-  PetscCall(MMFEFromCartesian(&ctx->op, f, a));
+  PetscCall(MMFEForceToCartesian(ctx->op, r, f));
+  PetscCall(VecPointwiseDivide(f, f, m));
+  PetscCall(MMFEFromCartesian(ctx->op, f, a));
   PetscCall(VecDestroy(&f));
   PetscCall(VecDestroy(&r));
   PetscFunctionReturn(0);
@@ -244,8 +245,10 @@ static PetscErrorCode ReportObstacles(MMCtx *ctx, TS ts)
   const MMOptions *opt = &ctx->opt;
   PetscInt        *count;
   PetscReal       *gap, *x, t0;
+  PetscInt         dim;
 
   PetscFunctionBeginUser;
+  PetscCall(MMFEGetDimension(ctx->op, &dim));
   PetscCall(MMNewmarkGetState(ctx->nm, &state));
   PetscCall(MMContactGetNodes(ctx->contact, &cn));
   if (!cn.enabled) PetscFunctionReturn(0);
@@ -259,7 +262,7 @@ static PetscErrorCode ReportObstacles(MMCtx *ctx, TS ts)
       PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  gap to %s %s: 0 contact nodes\n", pair ? "pair" : "obstacle", opt->obstacles[b].name));
       continue;
     }
-    PointText(ctx->op.dim, &x[MM_MAX_DIM * b], where, sizeof(where));
+    PointText(dim, &x[MM_MAX_DIM * b], where, sizeof(where));
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  gap to %s %s: %" PetscInt_FMT " contact nodes, smallest %.6g at the node %s\n", pair ? "pair" : "obstacle", opt->obstacles[b].name, count[b], (double)gap[b], where));
   }
   PetscCall(PetscFree3(count, gap, x));
@@ -273,9 +276,11 @@ static PetscErrorCode ReportFirstContact(MMCtx *ctx, TS ts, PetscReal step0)
   MMFirstContact fc;
   PetscReal      t0, t_end, dt;
   Vec            a;
+  PetscInt       dim;
   char           where[128], touching[160] = "";
 
   PetscFunctionBeginUser;
+  PetscCall(MMFEGetDimension(ctx->op, &dim));
   PetscCall(MMNewmarkGetState(ctx->nm, &state));
   PetscCall(MMContactGetNodes(ctx->contact, &cn));
   if (!cn.enabled) {
@@ -294,7 +299,7 @@ static PetscErrorCode ReportFirstContact(MMCtx *ctx, TS ts, PetscReal step0)
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  first contact: %snone before t = %.6g (each node at its initial velocity and acceleration)\n", touching, (double)t_end));
     PetscFunctionReturn(0);
   }
-  PointText(ctx->op.dim, fc.x, where, sizeof(where));
+  PointText(dim, fc.x, where, sizeof(where));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  first contact: %st ~ %.4g (step %.0f), the node at %s against %s: gap %.4g, approach speed %.4g and acceleration %.4g (each node at its initial velocity and acceleration)\n", touching, (double)fc.t, (double)(step0 + PetscMax(1, PetscCeilReal((fc.t - t0) / dt - 1e-10))), where,
                          ctx->opt.obstacles[fc.obstacle].name, (double)fc.gap, (double)fc.speed, (double)fc.accel));
   PetscFunctionReturn(0);

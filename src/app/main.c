@@ -39,11 +39,11 @@ static PetscErrorCode LoadMesh(MPI_Comm comm, MMCtx *ctx)
 
   PetscFunctionBeginUser;
   PetscCall(MMNewmarkGetDamping(ctx->nm, &damping));
-  PetscCall(MMMeshRead(comm, ctx->opt.mesh_file, &ctx->op.dm, &facets, &ctx->ckpt.vertex_file));
+  PetscCall(MMMeshRead(comm, ctx->opt.mesh_file, &ctx->dm, &facets, &ctx->ckpt.vertex_file));
   /* the vector options' lengths, the rotation's among them, need the dimension */
-  PetscCall(DMGetDimension(ctx->op.dm, &dim));
+  PetscCall(DMGetDimension(ctx->dm, &dim));
   PetscCall(MMOptionsCheckDimension(comm, &ctx->opt, dim, MMDampingOn(damping))); /* Rayleigh damping refuses a moving boundary */
-  PetscCall(MMMeshDistribute(ctx->opt.mesh_rotation, ctx->opt.mesh_rotation_center, &facets, &ctx->op.dm, &ctx->ckpt.vertex_orig));
+  PetscCall(MMMeshDistribute(ctx->opt.mesh_rotation, ctx->opt.mesh_rotation_center, &facets, &ctx->dm, &ctx->ckpt.vertex_orig));
   PetscFunctionReturn(0);
 }
 
@@ -90,7 +90,8 @@ static PetscErrorCode SetFromOptions(MPI_Comm comm, MMCtx *ctx, PetscBool *help_
   PetscCall(MMOptionsProcess(comm, &ctx->opt));
   PetscCall(MMOptionsHelpWithoutMesh(comm, help_only));
   if (*help_only) PetscFunctionReturn(0);
-  PetscCall(MMFESetFromOptions(comm, &ctx->op));
+  PetscCall(MMFECreate(comm, &ctx->op));
+  PetscCall(MMFESetFromOptions(ctx->op));
   PetscCall(MMContactCreate(comm, &ctx->contact));
   PetscCall(MMContactSetFromOptions(ctx->contact));
   PetscCall(MMFrictionCreate(comm, &ctx->friction));
@@ -117,22 +118,22 @@ static PetscErrorCode SetUpOperators(MPI_Comm comm, MMCtx *ctx)
   PetscFunctionBeginUser;
   PetscCall(MMNewmarkGetDamping(ctx->nm, &damping));
   MMPhase(MMAppEvents.mesh_load, LoadMesh(comm, ctx));
-  PetscCall(DMGetDimension(ctx->op.dm, &ctx->op.dim));
+  PetscCall(MMFESetDM(ctx->op, ctx->dm));
   PetscCall(MMOptionsGetFEProblem(&ctx->opt, &pb));
   pb.damped = MMDampingOn(damping); /* a Dirichlet value's amplitude is refused with damping */
-  MMPhase(MMAppEvents.fe_setup, MMFESetUp(&ctx->op, &ctx->material, &pb));
+  MMPhase(MMAppEvents.fe_setup, MMFESetUp(ctx->op, &ctx->material, &pb));
   PetscCall(MMOptionsGetContactProblem(&ctx->opt, &cp));
   PetscCall(MMNewmarkGetPlan(ctx->nm, &cp.dt, &cp.steps));
-  MMPhase(MMAppEvents.contact_setup, MMContactSetUp(ctx->contact, &ctx->op, &ctx->material, &cp));
+  MMPhase(MMAppEvents.contact_setup, MMContactSetUp(ctx->contact, ctx->op, &ctx->material, &cp));
   /* the static sliding state's plane is the single obstacle's (src/ts/sliding.c reads it) */
   PetscCall(MMContactGetPlane(ctx->contact, ctx->opt.obstacle_point, ctx->opt.obstacle_normal));
-  PetscCall(MMFEAssembleOperators(&ctx->op, &ctx->material, &pb));
-  PetscCall(MMContactSetUpFrame(ctx->contact, &ctx->op, &ctx->material)); /* w-frame K, M*, loads */
-  PetscCall(MMFEAssembleOperatorsEnd(&ctx->op));
+  PetscCall(MMFEAssembleOperators(ctx->op, &ctx->material, &pb));
+  PetscCall(MMContactSetUpFrame(ctx->contact, ctx->op, &ctx->material)); /* w-frame K, M*, loads */
+  PetscCall(MMFEAssembleOperatorsEnd(ctx->op));
   {
     MMContactOperators ops; /* M*'s massless dofs: the reactions' inertia has none there */
     PetscCall(MMContactGetOperators(ctx->contact, &ops));
-    MMPhase(MMAppEvents.loads_setup, MMLoadsSetUp(&ctx->loads, &ctx->op, &ctx->material, &pb, ops.massless, ops.load, ops.lift));
+    MMPhase(MMAppEvents.loads_setup, MMLoadsSetUp(&ctx->loads, ctx->op, &ctx->material, &pb, ops.massless, ops.load, ops.lift));
   }
   PetscFunctionReturn(0);
 }
@@ -155,13 +156,13 @@ static PetscErrorCode SetUpStepper(MMCtx *ctx, TS *ts)
     PetscCall(MMOptionsGetNewmarkProblem(&ctx->opt, &tp));
     PetscCall(MMNewmarkSetProblem(ctx->nm, &tp));
   }
-  PetscCall(MMNewmarkSetUp(ctx->nm, &ctx->op, &ctx->material, &ctx->loads, ctx->contact));
+  PetscCall(MMNewmarkSetUp(ctx->nm, ctx->op, &ctx->material, &ctx->loads, ctx->contact));
   MMPhase(MMAppEvents.initial_state, MMNewmarkInitialState(ctx->nm));
   MMPhase(MMAppEvents.friction_setup, MMFrictionSetUp(ctx->friction, ctx->contact, ctx->opt.mu_max, ctx->material.E_max, state->react));
   PetscCall(MMNewmarkSetFriction(ctx->nm, ctx->friction));
   PetscCall(MMNewmarkCreateTS(ctx->nm, ts));
   PetscCall(MMOptionsGetIOProblem(&ctx->opt, &ctx->iopb));
-  PetscCall(MMCheckpointSetUp(&ctx->ckpt, &ctx->iopb, &ctx->op, &ctx->material, hist, state, damping, ctx->contact, ctx->friction, &ctx->out));
+  PetscCall(MMCheckpointSetUp(&ctx->ckpt, &ctx->iopb, ctx->op, &ctx->material, hist, state, damping, ctx->contact, ctx->friction, &ctx->out));
   PetscCall(Restart(ctx, *ts));
   PetscCall(TSGetTimeStep(*ts, &dt));
   MMPhase(MMAppEvents.step_matrix, MMNewmarkSetStep(ctx->nm, dt)); /* after -restart, its iteration matrix */
@@ -187,13 +188,13 @@ static PetscErrorCode SetUpReport(MPI_Comm comm, MMCtx *ctx, TS ts)
   PetscCall(MMNewmarkGetState(ctx->nm, &state));
   PetscCall(MMNewmarkGetHistory(ctx->nm, &hist));
   PetscCall(MMNewmarkGetDamping(ctx->nm, &damping));
-  PetscCall(MMOutputSetUp(&ctx->out, &ctx->iopb, &ctx->op, &ctx->material, hist, state, ctx->contact, &ctx->loads, &ctx->ckpt));
+  PetscCall(MMOutputSetUp(&ctx->out, &ctx->iopb, ctx->op, &ctx->material, hist, state, ctx->contact, &ctx->loads, &ctx->ckpt));
   /* every object has read its options: refuse the unread ones before any output is touched, and
    * before the start-up report, which would otherwise announce a run that is then refused */
-  PetscCall(MMOptionsCheckUnused(comm, &ctx->opt, ctx->op.dm));
+  PetscCall(MMOptionsCheckUnused(comm, &ctx->opt, ctx->dm));
   /* after: its replay of the help text reads every option */
   PetscCall(MMOptionsCheckValueless(comm));
-  PetscCall(MMProgressSetUp(&ctx->progress, &ctx->iopb, &ctx->op, &ctx->material, hist, state, ctx->contact, damping));
+  PetscCall(MMProgressSetUp(&ctx->progress, &ctx->iopb, ctx->op, &ctx->material, hist, state, ctx->contact, damping));
   if (!ctx->opt.quiet) {
     KSP krylov, pc_ksp;
     PetscCall(MMContactGetStepKSP(ctx->contact, &krylov, &pc_ksp));
@@ -340,7 +341,7 @@ static PetscErrorCode Destroy(MMCtx *ctx, TS *ts)
   PetscCall(MMLoadsDestroy(&ctx->loads));
   PetscCall(MMFEDestroy(&ctx->op));
   PetscCall(MMMaterialDestroy(&ctx->material));
-  PetscCall(DMDestroy(&ctx->op.dm));
+  PetscCall(DMDestroy(&ctx->dm));
   PetscCall(MMOptionsDestroy(&ctx->opt));
   PetscCall(MMCheckpointDestroy(&ctx->ckpt));
   PetscFunctionReturn(0);

@@ -127,8 +127,8 @@ static PetscErrorCode ComponentsFromOptions(MPI_Comm comm)
   PetscFunctionBeginUser;
   {
     MMOperators op;
-    PetscCall(PetscMemzero(&op, sizeof(op)));
-    PetscCall(MMFESetFromOptions(comm, &op));
+    PetscCall(MMFECreate(comm, &op));
+    PetscCall(MMFESetFromOptions(op));
     PetscCall(MMFEDestroy(&op));
   }
   {

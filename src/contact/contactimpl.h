@@ -136,11 +136,12 @@ typedef struct {
  * the formulation's own state in data (impls/<type>/<type>impl.h). Friction wraps MMContactSolve. */
 struct _p_MMContact {
   MPI_Comm   comm;
-  PetscInt   dim;                 /* the mesh's */
+  PetscInt   dim;                 /* the mesh's (MMFEGetDimension) */
   MMContactOptions  opt;
   MMContactMass     mass;         /* -mass and what M*'s construction found (frame/mass_star.c) */
   MMContactProblem  pb;           /* the problem's data (MMContactSetUp): obstacles borrowed */
-  MMOperators      *op;           /* borrowed at set-up: fem's operators (K, M*, Q, the DM) */
+  MMOperators       op;           /* borrowed at set-up: fem's operators (its Cartesian K, M, load and lift; the frame's ops) */
+  DM                dm;           /* fem's (MMFEGetDM), borrowed at set-up: the mesh and the layout of every vector */
   const MMMaterial *material;     /* borrowed: E_max, the force scale of the audits */
   MMStepOffset      step;         /* the step's offset and scale, the stepper's (MMContactSetStepOffset) */
   PetscBool  enabled;
@@ -318,7 +319,7 @@ PETSC_INTERN PetscErrorCode MMContactCornersStore(MMContact ct);
 PETSC_INTERN PetscErrorCode MMContactPairsSetUp(MMContact ct, const PetscInt mark[], PetscInt n_vertex_bound);
 PETSC_INTERN PetscErrorCode MMContactPairsProject(MMContact ct, PetscInt p, PetscInt k, const PetscReal x[], PetscReal *gap, PetscReal n[]);
 PETSC_INTERN PetscErrorCode MMContactPairsBuildTransform(MMContact ct);
-PETSC_INTERN PetscErrorCode MMContactPairsTransformOperators(MMContact ct, MMOperators *op);
+PETSC_INTERN PetscErrorCode MMContactPairsTransformOperators(MMContact ct, MMOperators op);
 PETSC_INTERN PetscErrorCode MMContactPairsDestroy(MMContactPairs *pr);
 /* The direction of row k's normal reaction: its frame's nu, or under large sliding its facet's current one */
 static inline const PetscReal *MMContactRowNormal(MMContact ct, PetscInt k)

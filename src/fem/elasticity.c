@@ -6,6 +6,7 @@
  * Dirichlet data inserted, so the boundary's motion enters the force as any other; the force is
  * returned on the free dofs in the w-frame, as the linear K w + lift is. */
 #include "elasticityimpl.h"
+#include "femimpl.h"
 #include "assembly_p1.h"
 #include "mesh.h"
 
@@ -14,7 +15,7 @@
 /* Once: each local cell's vertex offsets in the local vectors, P1 gradients and volume (the force is
  * evaluated several times per step: reading the sections and inverting the edge matrix each time
  * cost a third of it) */
-static PetscErrorCode CellCache(MMElasticity *el, const MMOperators *op)
+static PetscErrorCode CellCache(MMElasticity *el, MMOperators op)
 {
   const PetscInt     dim = op->dim, nc = op->cells.ncells;
   PetscSection       ls, cs;
@@ -59,7 +60,7 @@ static PetscErrorCode CellCache(MMElasticity *el, const MMOperators *op)
 
 .seealso: `MMElasticityDestroy()`, `MMElasticityForce()`
 @*/
-PetscErrorCode MMElasticitySetUp(MMElasticity *el, const MMOperators *op)
+PetscErrorCode MMElasticitySetUp(MMElasticity *el, MMOperators op)
 {
   PetscFunctionBeginUser;
   PetscCall(DMCreateLocalVector(op->dm, &el->l0));
@@ -114,7 +115,7 @@ PetscErrorCode MMElasticityDestroy(MMElasticity *el)
 
 .seealso: `MMElasticityForce()`, `MMLoadsInsertBoundaryValues()`
 @*/
-PetscErrorCode MMElasticityLocal(MMElasticity *el, const MMOperators *op, MMLoads *ld, Vec w, PetscReal t, Vec l)
+PetscErrorCode MMElasticityLocal(MMElasticity *el, MMOperators op, MMLoads *ld, Vec w, PetscReal t, Vec l)
 {
   PetscFunctionBeginUser;
   PetscCall(MMFEToCartesian(op, w, el->g));
@@ -127,7 +128,7 @@ PetscErrorCode MMElasticityLocal(MMElasticity *el, const MMOperators *op, MMLoad
 /* What the tangent's element callback reads: the cell cache, the material and the displacement */
 typedef struct {
   const MMElasticity *el;
-  const MMOperators  *op;
+  MMOperators         op;
   const MMMaterial   *mat;
   const PetscScalar  *u;
 } TangentData;
@@ -180,7 +181,7 @@ static inline const MMElasticityOps *CellLaw(const MMMaterial *mat, PetscInt cl)
 
 .seealso: `MMElasticityForce()`, `MMElasticityDissipation()`
 @*/
-PetscErrorCode MMElasticitySetStepStart(MMElasticity *el, const MMOperators *op, Vec l0)
+PetscErrorCode MMElasticitySetStepStart(MMElasticity *el, MMOperators op, Vec l0)
 {
   const PetscInt     dim = op->dim;
   const PetscScalar *u;
@@ -226,7 +227,7 @@ static inline void ForceCells(const PetscInt dim, const MMElasticity *el, const 
 }
 
 /* el->lf = the cells' forces, unassembled: of the step from the kept start to l1, or of the state l1 */
-static PetscErrorCode LocalForce(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, PetscBool step, Vec l1)
+static PetscErrorCode LocalForce(MMElasticity *el, MMOperators op, const MMMaterial *mat, PetscBool step, Vec l1)
 {
   const PetscScalar *u1;
   PetscScalar       *f;
@@ -263,7 +264,7 @@ static PetscErrorCode LocalForce(MMElasticity *el, const MMOperators *op, const 
 
 .seealso: `MMElasticityForce()`, `MMLoadsSetElasticity()`
 @*/
-PetscErrorCode MMElasticityForceLocal(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l)
+PetscErrorCode MMElasticityForceLocal(MMElasticity *el, MMOperators op, const MMMaterial *mat, Vec l)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(MM_FE_ElasticForce, 0, 0, 0, 0));
@@ -294,7 +295,7 @@ PetscErrorCode MMElasticityForceLocal(MMElasticity *el, const MMOperators *op, c
 
 .seealso: `MMElasticitySetStepStart()`, `MMElasticityForceLocal()`, `MMElasticityAssembleTangent()`
 @*/
-PetscErrorCode MMElasticityForce(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l1, Vec fw)
+PetscErrorCode MMElasticityForce(MMElasticity *el, MMOperators op, const MMMaterial *mat, Vec l1, Vec fw)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(MM_FE_ElasticForce, 0, 0, 0, 0));
@@ -324,7 +325,7 @@ PetscErrorCode MMElasticityForce(MMElasticity *el, const MMOperators *op, const 
 
 .seealso: `MMElasticityDissipation()`, `MMElasticityForce()`
 @*/
-PetscErrorCode MMElasticityEnergy(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, PetscReal *energy)
+PetscErrorCode MMElasticityEnergy(MMElasticity *el, MMOperators op, const MMMaterial *mat, Vec l, PetscReal *energy)
 {
   const PetscInt     dim = op->dim;
   const PetscScalar *u;
@@ -366,7 +367,7 @@ PetscErrorCode MMElasticityEnergy(MMElasticity *el, const MMOperators *op, const
 
 .seealso: `MMElasticitySetStepStart()`, `MMElasticityEnergy()`
 @*/
-PetscErrorCode MMElasticityDissipation(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l1, PetscReal *d)
+PetscErrorCode MMElasticityDissipation(MMElasticity *el, MMOperators op, const MMMaterial *mat, Vec l1, PetscReal *d)
 {
   const PetscInt     dim = op->dim;
   const PetscScalar *u;
@@ -441,7 +442,7 @@ static PetscErrorCode TangentElement(void *ctx, PetscInt c, const PetscInt v[], 
 
 .seealso: `MMContactFrameMatrixBegin()`, `MMContactFrameMatrixEnd()`, `MMElasticityForce()`
 @*/
-PetscErrorCode MMElasticityAssembleTangent(MMElasticity *el, const MMOperators *op, const MMMaterial *mat, Vec l, Mat Kc)
+PetscErrorCode MMElasticityAssembleTangent(MMElasticity *el, MMOperators op, const MMMaterial *mat, Vec l, Mat Kc)
 {
   TangentData td = {.el = el, .op = op, .mat = mat};
 

@@ -1,7 +1,7 @@
 /* P1 elasticity: discretization, boundary conditions, and the Cartesian operators K, M, L and the lift
  * (contact's frame, src/contact/frame/, turns them into the w-frame ones). */
 #include <float.h>
-#include "fem.h"
+#include "femimpl.h"
 #include "assembly_p1.h"
 #include "elasticityimpl.h"
 
@@ -85,7 +85,7 @@ static void obj_elastic_energy(PetscInt dim, PetscInt Nf, PetscInt NfAux, const 
   obj[0] = mu * ee + 0.5 * lambda * tr * tr;
 }
 
-static PetscErrorCode DirichletEnergy(MMOperators *op, const MMMaterial *mat);
+static PetscErrorCode DirichletEnergy(MMOperators op, const MMMaterial *mat);
 
 /* Dirichlet data: value a(t) + velocity t per fixed component (docs/method.md section 10); ctx is
  * the MMDirichlet. Without an amplitude or a velocity the value is exactly the constant one. */
@@ -116,7 +116,7 @@ static PetscErrorCode LabelValue(DM dm, DMLabel label, PetscInt *value)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SetUpDirichlet(MMOperators *op, const MMFEProblem *pb)
+static PetscErrorCode SetUpDirichlet(MMOperators op, const MMFEProblem *pb)
 {
   DM dm = op->dm;
 
@@ -136,7 +136,7 @@ static PetscErrorCode SetUpDirichlet(MMOperators *op, const MMFEProblem *pb)
 /* The PetscDS constants: the material of the first body, which is every cell's when the material is
  * uniform (the PetscFE kernels then hold it; otherwise they are not used for it, src/fem/material.c),
  * and the wave speed of the CFL number, the largest of the bodies'. */
-static PetscErrorCode SetConstants(MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb)
+static PetscErrorCode SetConstants(MMOperators op, const MMMaterial *mat, const MMFEProblem *pb)
 {
   const MMBody *b = &mat->body[0];
 
@@ -158,7 +158,7 @@ static PetscErrorCode SetConstants(MMOperators *op, const MMMaterial *mat, const
   Collective
 
   Input Parameters:
-+ op  - the operators, their DM set and options read
++ op  - the operators, their DM set (MMFESetDM()) and options read
 . mat - the material, set up from pb
 - pb  - the problem as the user described it
 
@@ -167,9 +167,9 @@ static PetscErrorCode SetConstants(MMOperators *op, const MMMaterial *mat, const
 
   Level: beginner
 
-.seealso: `MMFESetFromOptions()`, `MMFEAssembleOperators()`, `MMMaterialSetUp()`, `MMFEDestroy()`
+.seealso: `MMFECreate()`, `MMFESetDM()`, `MMFESetFromOptions()`, `MMFEAssembleOperators()`, `MMMaterialSetUp()`, `MMFEDestroy()`
 @*/
-PetscErrorCode MMFESetUp(MMOperators *op, MMMaterial *mat, const MMFEProblem *pb)
+PetscErrorCode MMFESetUp(MMOperators op, MMMaterial *mat, const MMFEProblem *pb)
 {
   DM           dm = op->dm;
   PetscFE      fe;
@@ -216,7 +216,7 @@ PetscErrorCode MMFESetUp(MMOperators *op, MMMaterial *mat, const MMFEProblem *pb
 
 /* Lumped mass per vertex, int rho phi_i = sum_T rho_T |T| / (d+1): exact row sums of the consistent
  * mass, Dirichlet columns included. */
-static PetscErrorCode VertexMasses(const MMOperators *op, const MMMaterial *mat, Vec mloc)
+static PetscErrorCode VertexMasses(MMOperators op, const MMMaterial *mat, Vec mloc)
 {
   DM             dms   = op->dm_scalar;
   const MMCells *cells = &op->cells;
@@ -263,7 +263,7 @@ static PetscErrorCode VertexMasses(const MMOperators *op, const MMMaterial *mat,
 
 .seealso: `MMFEAddTraction()`, `MMLoadsSetUp()`
 @*/
-PetscErrorCode MMFEVertexMasses(const MMOperators *op, const MMMaterial *mat, Vec mloc)
+PetscErrorCode MMFEVertexMasses(MMOperators op, const MMMaterial *mat, Vec mloc)
 {
   PetscFunctionBeginUser;
   PetscCall(VertexMasses(op, mat, mloc));
@@ -271,7 +271,7 @@ PetscErrorCode MMFEVertexMasses(const MMOperators *op, const MMMaterial *mat, Ve
 }
 
 /* Spreads a per-vertex scalar onto every free dof of that vertex, times a per-component factor. */
-static PetscErrorCode SpreadVertexScalar(const MMOperators *op, Vec sloc, const PetscReal factor[], Vec g)
+static PetscErrorCode SpreadVertexScalar(MMOperators op, Vec sloc, const PetscReal factor[], Vec g)
 {
   DM                 dm = op->dm;
   PetscSection       gs, ls;
@@ -342,7 +342,7 @@ static PetscErrorCode CheckTractionGroup(DM dm, const char name[], DMLabel label
 
 .seealso: `MMFEAddPressure()`, `MMFEAddPointForce()`, `MMLoadsSetUp()`
 @*/
-PetscErrorCode MMFEAddTraction(const MMOperators *op, const MMTraction *tr, Vec floc)
+PetscErrorCode MMFEAddTraction(MMOperators op, const MMTraction *tr, Vec floc)
 {
   DM          dm = op->dm;
   DMLabel     label;
@@ -361,7 +361,7 @@ PetscErrorCode MMFEAddTraction(const MMOperators *op, const MMTraction *tr, Vec 
 }
 
 /* Nodal loads of the tractions, pressures and point forces at amplitude 1. */
-static PetscErrorCode AddTractions(const MMOperators *op, const MMFEProblem *pb, Vec Lcart)
+static PetscErrorCode AddTractions(MMOperators op, const MMFEProblem *pb, Vec Lcart)
 {
   DM  dm = op->dm;
   Vec floc;
@@ -380,7 +380,7 @@ static PetscErrorCode AddTractions(const MMOperators *op, const MMFEProblem *pb,
 }
 
 /* Assembles w_K K + w_M M. */
-static PetscErrorCode AssembleMatrix(MMOperators *op, PetscReal wK, PetscReal wM, Mat A)
+static PetscErrorCode AssembleMatrix(MMOperators op, PetscReal wK, PetscReal wM, Mat A)
 {
   DM      dm = op->dm;
   PetscDS ds;
@@ -419,7 +419,7 @@ static PetscErrorCode HasDirichlet(DM dm, PetscBool *has)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode DirichletLift(const MMOperators *op, const MMMaterial *mat, Vec lift)
+static PetscErrorCode DirichletLift(MMOperators op, const MMMaterial *mat, Vec lift)
 {
   DM        dm = op->dm;
   Vec       xloc, floc;
@@ -445,7 +445,7 @@ static PetscErrorCode DirichletLift(const MMOperators *op, const MMMaterial *mat
 }
 
 /* The Cartesian stiffness into K and, unless M is NULL, the consistent mass into M, by either path. */
-static PetscErrorCode AssembleKM(MMOperators *op, const MMMaterial *mat, MMAssemblyType type, Mat K, Mat M)
+static PetscErrorCode AssembleKM(MMOperators op, const MMMaterial *mat, MMAssemblyType type, Mat K, Mat M)
 {
   PetscFunctionBeginUser;
   if (type == MM_ASSEMBLY_CLOSED_FORM) {
@@ -475,7 +475,7 @@ static PetscErrorCode RelativeMaxDifference(Mat A, Mat B, PetscReal *diff)
 
 /* -assembly_check: K and M again by the other path, compared entry by entry. The closed form and
  * the quadrature are both exact for P1, so they agree to rounding. */
-static PetscErrorCode CheckAssembly(MMOperators *op, const MMMaterial *mat, Mat K, Mat M)
+static PetscErrorCode CheckAssembly(MMOperators op, const MMMaterial *mat, Mat K, Mat M)
 {
   const MMAssemblyType other = op->assembly == MM_ASSEMBLY_FE ? MM_ASSEMBLY_CLOSED_FORM : MM_ASSEMBLY_FE;
   MPI_Comm             comm  = PetscObjectComm((PetscObject)op->dm);
@@ -519,7 +519,7 @@ static PetscErrorCode CheckAssembly(MMOperators *op, const MMMaterial *mat, Mat 
 
 .seealso: `MMFEAssembleOperators()`, `MMContactFrameMatrixBegin()`
 @*/
-PetscErrorCode MMFECreateMatrix(const MMOperators *op, DM dm, Mat *A)
+PetscErrorCode MMFECreateMatrix(MMOperators op, DM dm, Mat *A)
 {
   PetscFunctionBeginUser;
   if (op->assembly == MM_ASSEMBLY_CLOSED_FORM) {
@@ -554,7 +554,7 @@ PetscErrorCode MMFECreateMatrix(const MMOperators *op, DM dm, Mat *A)
 
 .seealso: `MMFEToCartesian()`, `MMFEFromCartesian()`
 @*/
-PetscErrorCode MMFEInterpolate(const MMOperators *op, PetscErrorCode (*f)(PetscInt, PetscReal, const PetscReal[], PetscInt, PetscScalar *, void *), void *fctx, Vec u)
+PetscErrorCode MMFEInterpolate(MMOperators op, PetscErrorCode (*f)(PetscInt, PetscReal, const PetscReal[], PetscInt, PetscScalar *, void *), void *fctx, Vec u)
 {
   DM                 dm = op->dm;
   const PetscInt     dim = op->dim;
@@ -589,7 +589,7 @@ PetscErrorCode MMFEInterpolate(const MMOperators *op, PetscErrorCode (*f)(PetscI
 
 /* -E 1e308 overflows the stiffness, -rho 1e-310 underflows the mass (its entries subnormal or 0):
  * say so before a solve fails on it. */
-static PetscErrorCode CheckFiniteOperators(const MMOperators *op, const MMFEProblem *pb)
+static PetscErrorCode CheckFiniteOperators(MMOperators op, const MMFEProblem *pb)
 {
   PetscReal nK, nM;
 
@@ -629,7 +629,7 @@ static PetscErrorCode CheckFiniteOperators(const MMOperators *op, const MMFEProb
 
 .seealso: `MMFEAssembleOperatorsEnd()`, `MMContactSetUpFrame()`, `MMFECreateMatrix()`
 @*/
-PetscErrorCode MMFEAssembleOperators(MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb)
+PetscErrorCode MMFEAssembleOperators(MMOperators op, const MMMaterial *mat, const MMFEProblem *pb)
 {
   DM          dm = op->dm;
   PetscDS     ds;
@@ -667,7 +667,6 @@ PetscErrorCode MMFEAssembleOperators(MMOperators *op, const MMMaterial *mat, con
   PetscCall(AddTractions(op, pb, op->load));
   PetscCall(DirichletLift(op, mat, op->lift));
   PetscCall(DirichletEnergy(op, mat));
-  PetscCall(VecDuplicate(op->load, &op->work));
   PetscCall(PetscLogEventEnd(MM_FELoads, 0, 0, 0, 0));
 
   if (op->lumped) {
@@ -702,7 +701,7 @@ PetscErrorCode MMFEAssembleOperators(MMOperators *op, const MMMaterial *mat, con
 
 .seealso: `MMFEAssembleOperators()`, `MMContactSetUpFrame()`
 @*/
-PetscErrorCode MMFEHandMatrices(MMOperators *op, Mat *K, Mat *M)
+PetscErrorCode MMFEHandMatrices(MMOperators op, Mat *K, Mat *M)
 {
   PetscFunctionBeginUser;
   PetscCheck(op->K && op->M, PetscObjectComm((PetscObject)op->dm), PETSC_ERR_ORDER, "MMFEHandMatrices: K and M were handed over already, or never assembled");
@@ -731,7 +730,7 @@ PetscErrorCode MMFEHandMatrices(MMOperators *op, Mat *K, Mat *M)
 
 .seealso: `MMFEAssembleOperators()`, `MMContactSetUpFrame()`
 @*/
-PetscErrorCode MMFEAssembleOperatorsEnd(MMOperators *op)
+PetscErrorCode MMFEAssembleOperatorsEnd(MMOperators op)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventEnd(MM_FEAssemble, 0, 0, 0, 0));
@@ -756,7 +755,7 @@ PetscErrorCode MMFEAssembleOperatorsEnd(MMOperators *op)
 
 .seealso: `MMFEToCartesian()`, `MMContactSetUp()`
 @*/
-PetscErrorCode MMFESetFrame(MMOperators *op, const MMFrameOps *ops, void *ctx)
+PetscErrorCode MMFESetFrame(MMOperators op, const MMFrameOps *ops, void *ctx)
 {
   PetscFunctionBeginUser;
   op->frame.ops = *ops;
@@ -780,7 +779,7 @@ PetscErrorCode MMFESetFrame(MMOperators *op, const MMFrameOps *ops, void *ctx)
 
 .seealso: `MMFEFromCartesian()`, `MMFEForceToCartesian()`
 @*/
-PetscErrorCode MMFEToCartesian(const MMOperators *op, Vec w, Vec ucart)
+PetscErrorCode MMFEToCartesian(MMOperators op, Vec w, Vec ucart)
 {
   PetscFunctionBeginUser;
   PetscCall(op->frame.ops.tocartesian(op->frame.ctx, w, ucart));
@@ -803,7 +802,7 @@ PetscErrorCode MMFEToCartesian(const MMOperators *op, Vec w, Vec ucart)
 
 .seealso: `MMFEToCartesian()`, `MMFEForceFromCartesian()`
 @*/
-PetscErrorCode MMFEFromCartesian(const MMOperators *op, Vec ucart, Vec w)
+PetscErrorCode MMFEFromCartesian(MMOperators op, Vec ucart, Vec w)
 {
   PetscFunctionBeginUser;
   PetscCall(op->frame.ops.fromcartesian(op->frame.ctx, ucart, w));
@@ -826,7 +825,7 @@ PetscErrorCode MMFEFromCartesian(const MMOperators *op, Vec ucart, Vec w)
 
 .seealso: `MMFEForceFromCartesian()`, `MMFEToCartesian()`
 @*/
-PetscErrorCode MMFEForceToCartesian(const MMOperators *op, Vec fw, Vec fcart)
+PetscErrorCode MMFEForceToCartesian(MMOperators op, Vec fw, Vec fcart)
 {
   PetscFunctionBeginUser;
   PetscCall(op->frame.ops.forcetocartesian(op->frame.ctx, fw, fcart));
@@ -849,7 +848,7 @@ PetscErrorCode MMFEForceToCartesian(const MMOperators *op, Vec fw, Vec fcart)
 
 .seealso: `MMFEForceToCartesian()`, `MMFEFromCartesian()`
 @*/
-PetscErrorCode MMFEForceFromCartesian(const MMOperators *op, Vec fcart, Vec fw)
+PetscErrorCode MMFEForceFromCartesian(MMOperators op, Vec fcart, Vec fw)
 {
   PetscFunctionBeginUser;
   PetscCall(op->frame.ops.forcefromcartesian(op->frame.ctx, fcart, fw));
@@ -879,7 +878,7 @@ PetscErrorCode MMFEForceFromCartesian(const MMOperators *op, Vec fcart, Vec fw)
 
 .seealso: `MMContactElasticEnergy()`, `MMContactCheckElasticEnergy()`
 @*/
-PetscErrorCode MMFEElasticEnergyIntegral(const MMOperators *op, const MMMaterial *mat, Vec ucart, PetscReal *energy)
+PetscErrorCode MMFEElasticEnergyIntegral(MMOperators op, const MMMaterial *mat, Vec ucart, PetscReal *energy)
 {
   DM          dm = op->dm;
   PetscScalar integral[1];
@@ -901,7 +900,7 @@ PetscErrorCode MMFEElasticEnergyIntegral(const MMOperators *op, const MMMaterial
 }
 
 /* 1/2 int sigma(u_D):eps(u_D), once: the free dofs zero, the Dirichlet data inserted. */
-static PetscErrorCode DirichletEnergy(MMOperators *op, const MMMaterial *mat)
+static PetscErrorCode DirichletEnergy(MMOperators op, const MMMaterial *mat)
 {
   Vec       zero;
   PetscBool has;
@@ -918,27 +917,31 @@ static PetscErrorCode DirichletEnergy(MMOperators *op, const MMMaterial *mat)
 }
 
 /*@
-  MMFEDestroy - Frees what the operators hold
+  MMFEDestroy - Destroys the operators and what they hold
 
   Collective
 
   Input Parameter:
-. op - the operators
+. op - the operators, NULL on return
 
   Level: beginner
 
-.seealso: `MMFESetUp()`
+.seealso: `MMFECreate()`, `MMFESetUp()`
 @*/
-PetscErrorCode MMFEDestroy(MMOperators *op)
+PetscErrorCode MMFEDestroy(MMOperators *pop)
 {
+  MMOperators op = *pop;
+
   PetscFunctionBeginUser;
+  if (!op) PetscFunctionReturn(0);
   PetscCall(MMCellsDestroy(&op->cells));
   PetscCall(MatDestroy(&op->K));
   PetscCall(MatDestroy(&op->M));
   PetscCall(VecDestroy(&op->load));
   PetscCall(VecDestroy(&op->lift));
   PetscCall(VecDestroy(&op->mass_lumped_cart));
-  PetscCall(VecDestroy(&op->work));
   PetscCall(DMDestroy(&op->dm_scalar));
+  PetscCall(DMDestroy(&op->dm));
+  PetscCall(PetscFree(*pop));
   PetscFunctionReturn(0);
 }

@@ -1,7 +1,7 @@
 /* The discretization's options (-mass_lumped, -assembly, -assembly_check), read by fem in its own
  * SetFromOptions: the names of the assemblies live with them. -mass (M*) is contact's frame's
  * (src/contact/frame/mass_star.c). */
-#include "fem.h"
+#include "femimpl.h"
 #include "sys.h" /* the checked option readers */
 
 const char *const MMAssemblyTypes[] = {"closed_form", "fe", "MMAssemblyType", "MM_ASSEMBLY_", NULL};
@@ -12,19 +12,20 @@ const char *const MMAssemblyTypes[] = {"closed_form", "fe", "MMAssemblyType", "M
 
   Collective
 
-  Input Parameters:
-+ comm - the run's communicator
-- op   - the operators, whose options are set
+  Input Parameter:
+. op - the operators, whose options are set
 
   Note:
   The standard mass's kind and the assembly of op, from the options.
 
   Level: beginner
 
-.seealso: `MMFESetUp()`, `MMFEAssembleOperators()`
+.seealso: `MMFECreate()`, `MMFESetUp()`, `MMFEAssembleOperators()`
 @*/
-PetscErrorCode MMFESetFromOptions(MPI_Comm comm, MMOperators *op)
+PetscErrorCode MMFESetFromOptions(MMOperators op)
 {
+  MPI_Comm comm = op->comm;
+
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, NULL, "mmcontact: the finite elements, their mass and assembly", "MMFE");
   op->lumped = PETSC_FALSE;

@@ -11,7 +11,7 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
-#include "fem.h"
+#include "femimpl.h"
 #include "mesh.h"
 #include "assembly_p1.h"
 
@@ -762,7 +762,7 @@ PetscErrorCode MMLoadsInsertBoundaryValues(MMLoads *ld, Vec l, PetscReal t)
 
 .seealso: `MMLoadsSetTime()`, `MMLoadsDestroy()`, `MMFEAssembleOperators()`
 @*/
-PetscErrorCode MMLoadsSetUp(MMLoads *ld, MMOperators *op, const MMMaterial *mat, const MMFEProblem *pb, IS massless, Vec load, Vec lift)
+PetscErrorCode MMLoadsSetUp(MMLoads *ld, MMOperators op, const MMMaterial *mat, const MMFEProblem *pb, IS massless, Vec load, Vec lift)
 {
 
   PetscFunctionBeginUser;

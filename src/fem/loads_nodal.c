@@ -6,7 +6,7 @@
  * int_F -p n phi_i = -p n |F| / d on each of F's d vertices (P1 on a simplex facet), the same rule
  * as a traction's (MMMeshFacetsAddNodal). A point force is added once, on the rank that owns its
  * vertex. The callers sum over ranks by a DMLocalToGlobal with ADD, as for the tractions. */
-#include "fem.h"
+#include "femimpl.h"
 #include "mesh.h"
 
 /* A pressure acts on boundary faces: a group of cells or of nodes would load nothing, and a face
@@ -75,7 +75,7 @@ static PetscErrorCode FacetOutwardNormal(DM dm, const MMFacetList *fl, PetscInt 
 
 .seealso: `MMFEAddTraction()`, `MMFEAddPointForce()`
 @*/
-PetscErrorCode MMFEAddPressure(const MMOperators *op, const MMPressure *pr, Vec floc)
+PetscErrorCode MMFEAddPressure(MMOperators op, const MMPressure *pr, Vec floc)
 {
   DM                 dm  = op->dm;
   const PetscInt     dim = op->dim;
@@ -151,7 +151,7 @@ static PetscErrorCode CheckPointGroup(DM dm, const char name[], DMLabel label, P
 
 .seealso: `MMFEAddTraction()`, `MMFEAddPressure()`
 @*/
-PetscErrorCode MMFEAddPointForce(const MMOperators *op, const MMPointForce *pf, Vec floc)
+PetscErrorCode MMFEAddPointForce(MMOperators op, const MMPointForce *pf, Vec floc)
 {
   DM                  dm  = op->dm;
   const PetscInt      dim = op->dim;

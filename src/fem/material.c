@@ -7,7 +7,7 @@
  * Without -bodies every cell gets the one material, computed by the same expressions as before it
  * had a per-cell form, so that the single-body path is bitwise what it was. */
 #include <petscsf.h>
-#include "fem.h"
+#include "femimpl.h"
 #include "mesh.h"
 
 /* E, nu -> Lame (plane strain in 2D, so the same in both dimensions) and the wave speeds. The
@@ -334,7 +334,7 @@ static PetscErrorCode VertexVelocities(MMMaterial *mat, const MMCells *cells, Pe
 }
 
 /* What cannot take several bodies, refused before anything is built. */
-static PetscErrorCode CheckSupported(const MMMaterial *mat, const MMOperators *op, const MMFEProblem *pb, MPI_Comm comm)
+static PetscErrorCode CheckSupported(const MMMaterial *mat, MMOperators op, const MMFEProblem *pb, MPI_Comm comm)
 {
 
   PetscFunctionBeginUser;
@@ -361,7 +361,7 @@ static PetscErrorCode CheckSupported(const MMMaterial *mat, const MMOperators *o
 
 .seealso: `MMMaterialChecksum()`, `MMMaterialDestroy()`, `MMFESetUp()`
 @*/
-PetscErrorCode MMMaterialSetUp(MMMaterial *mat, const MMOperators *op, const MMFEProblem *pb)
+PetscErrorCode MMMaterialSetUp(MMMaterial *mat, MMOperators op, const MMFEProblem *pb)
 {
   DM          dm   = op->dm;
   MPI_Comm    comm = PetscObjectComm((PetscObject)dm);
@@ -413,7 +413,7 @@ PetscErrorCode MMMaterialSetUp(MMMaterial *mat, const MMOperators *op, const MMF
 
 .seealso: `MMMaterialSetUp()`
 @*/
-PetscErrorCode MMMaterialChecksum(const MMMaterial *mat, const MMOperators *op, PetscReal sum[3])
+PetscErrorCode MMMaterialChecksum(const MMMaterial *mat, MMOperators op, PetscReal sum[3])
 {
   DM                dm  = op->dm;
   PetscReal         lo[MM_MAX_DIM], hi[MM_MAX_DIM];

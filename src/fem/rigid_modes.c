@@ -1,6 +1,6 @@
 /* The rigid-body modes of the free dofs: GAMG's near-null space (src/contact/interface/kt.c) and
  * the moments of the mass (src/contact/frame/mass_redistribution.c, docs/method.md section 2). */
-#include "fem.h"
+#include "femimpl.h"
 
 /* Component c of rigid-body mode m at x: translations e_0..e_{d-1}, then rotations (2D: one, 3D:
  * three, e_k x x). */
@@ -63,7 +63,7 @@ void MMFERigidModeMatrix(PetscInt dim, const PetscReal x[], PetscReal T[MM_MAX_D
 
 .seealso: `MMFERigidModeMatrix()`
 @*/
-PetscErrorCode MMFERigidModesCartesian(const MMOperators *op, const PetscReal x0[], PetscReal ell, PetscInt nmodes, Vec modes[])
+PetscErrorCode MMFERigidModesCartesian(MMOperators op, const PetscReal x0[], PetscReal ell, PetscInt nmodes, Vec modes[])
 {
   DM                 dm  = op->dm;
   const PetscInt     dim = op->dim;

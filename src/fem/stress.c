@@ -9,12 +9,12 @@
  * of the XDMF topology: each rank's cells in local order, the mesh being distributed without
  * overlap). With a finite-strain law (-elasticity svk, neohookean) it is the Cauchy stress of the
  * current configuration, plotted on the reference mesh (ParaView's Warp By Vector shows it deformed). */
-#include "fem.h"
+#include "femimpl.h"
 
 #define MM_SYM 6
 #define MM_GEOM (MM_MAX_DIM * MM_MAX_DIM + 1) /* per cell: J^{-1} (row-major, MM_MAX_DIM wide), then |T| */
 
-static PetscErrorCode StressGeometry(MMStress *st, const MMOperators *op);
+static PetscErrorCode StressGeometry(MMStress *st, MMOperators op);
 
 /*@
   MMStressCreate - Creates the stress's DM, its vectors and each cell's geometry
@@ -34,7 +34,7 @@ static PetscErrorCode StressGeometry(MMStress *st, const MMOperators *op);
 
 .seealso: `MMStressCompute()`, `MMStressDestroy()`
 @*/
-PetscErrorCode MMStressCreate(const MMOperators *op, MMStress *st)
+PetscErrorCode MMStressCreate(MMOperators op, MMStress *st)
 {
   const PetscInt dim = op->dim;
   const char    *names[MM_SYM] = {"stress_xx", "stress_xy", "stress_xz", "stress_yy", "stress_yz", "stress_zz"};
@@ -123,7 +123,7 @@ static PetscReal VonMises(const PetscScalar s[MM_SYM])
 
 /* Geometry only, computed once: each cell's inverse edge matrix and volume (st->geom), and the
  * lumped weights sum_T |T| of each vertex. */
-static PetscErrorCode StressGeometry(MMStress *st, const MMOperators *op)
+static PetscErrorCode StressGeometry(MMStress *st, MMOperators op)
 {
   const PetscInt     dim = op->dim;
   DM                 cdm;
@@ -194,7 +194,7 @@ static PetscErrorCode StressGeometry(MMStress *st, const MMOperators *op)
 
 .seealso: `MMStressCreate()`, `MMElasticityCauchy()`
 @*/
-PetscErrorCode MMStressCompute(MMStress *st, const MMOperators *op, const MMMaterial *mat, DM dm_u, Vec u, PetscBool nodal)
+PetscErrorCode MMStressCompute(MMStress *st, MMOperators op, const MMMaterial *mat, DM dm_u, Vec u, PetscBool nodal)
 {
   const PetscInt     dim = op->dim;
   PetscSection       su, ss;

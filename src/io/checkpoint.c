@@ -86,12 +86,14 @@ static PetscBool DampingOn(const MMCheckpoint *ck)
 
 .seealso: `MMCheckpointSetFromOptions()`, `MMCheckpointLoad()`, `MMCheckpointWrite()`
 @*/
-PetscErrorCode MMCheckpointSetUp(MMCheckpoint *c, const MMIOProblem *opt, const MMOperators *op, const MMMaterial *material, MMHistory *hist, MMState *state, MMDamping *damping, MMContact contact, MMFriction friction, MMOutput *out)
+PetscErrorCode MMCheckpointSetUp(MMCheckpoint *c, const MMIOProblem *opt, MMOperators op, const MMMaterial *material, MMHistory *hist, MMState *state, MMDamping *damping, MMContact contact, MMFriction friction, MMOutput *out)
 {
   PetscFunctionBeginUser;
   c->opt      = opt;
   c->op       = op;
   c->material = material;
+  PetscCall(MMFEGetDM(op, &c->dm));
+  PetscCall(MMFEGetDimension(op, &c->dim));
   c->hist     = hist;
   c->state    = state;
   c->damping  = damping;
@@ -106,14 +108,14 @@ PetscErrorCode MMCheckpointSetUp(MMCheckpoint *c, const MMIOProblem *opt, const 
  * share it, so that the two stay each other's inverse. */
 static PetscErrorCode OwnedDofMap(MMCheckpoint *ck, PetscInt *n, PetscInt **serial, PetscInt **loc)
 {
-  const PetscInt dim = ck->op->dim;
+  const PetscInt dim = ck->dim;
   PetscSection   gs, ls;
   PetscInt       vStart, vEnd, rstart;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalSection(ck->op->dm, &gs));
-  PetscCall(DMGetLocalSection(ck->op->dm, &ls));
-  PetscCall(DMPlexGetDepthStratum(ck->op->dm, 0, &vStart, &vEnd));
+  PetscCall(DMGetGlobalSection(ck->dm, &gs));
+  PetscCall(DMGetLocalSection(ck->dm, &ls));
+  PetscCall(DMPlexGetDepthStratum(ck->dm, 0, &vStart, &vEnd));
   PetscCall(VecGetOwnershipRange(ck->state->u, &rstart, NULL));
   PetscCall(PetscMalloc2(vEnd - vStart, serial, dim * (vEnd - vStart), loc));
   *n = 0;
@@ -138,7 +140,7 @@ static PetscErrorCode OwnedDofMap(MMCheckpoint *ck, PetscInt *n, PetscInt **seri
  * partition, and no rotation rounds them. */
 static PetscErrorCode PackDofs(MMCheckpoint *ck, Vec w, Vec packed)
 {
-  const PetscInt     dim = ck->op->dim;
+  const PetscInt     dim = ck->dim;
   const PetscScalar *wa;
   PetscInt           n, *serial, *loc;
 
@@ -166,7 +168,7 @@ static PetscErrorCode PackContact(MMCheckpoint *ck, Vec src, Vec packed)
   MMContactNodes     cn;
 
   PetscFunctionBeginUser;
-  PetscCall(DMPlexGetDepthStratum(ck->op->dm, 0, &vStart, &vEnd));
+  PetscCall(DMPlexGetDepthStratum(ck->dm, 0, &vStart, &vEnd));
   PetscCall(MMFrictionGetThresholds(ck->friction, &thresholds));
   PetscCall(MMContactGetNodes(ck->contact, &cn));
   if (cn.enabled) {
@@ -197,7 +199,7 @@ static PetscErrorCode PackNodeRecords(MMCheckpoint *ck, Vec packed, PetscInt len
 
   PetscFunctionBeginUser;
   PetscCheck(len <= 64, PETSC_COMM_SELF, PETSC_ERR_PLIB, "A contact node record of %" PetscInt_FMT " entries", len);
-  PetscCall(DMPlexGetDepthStratum(ck->op->dm, 0, &vStart, &vEnd));
+  PetscCall(DMPlexGetDepthStratum(ck->dm, 0, &vStart, &vEnd));
   PetscCall(MMContactGetNodes(ck->contact, &cn));
   for (PetscInt k = 0; k < cn.n_local; ++k) {
     PetscBool has;
@@ -256,20 +258,20 @@ static PetscErrorCode CoordinateChecksum(MMCheckpoint *ck, PetscReal *sum)
 
   PetscFunctionBeginUser;
   *sum = 0;
-  PetscCall(DMGetGlobalSection(ck->op->dm, &gs));
-  PetscCall(DMGetCoordinateSection(ck->op->dm, &cs));
-  PetscCall(DMGetCoordinatesLocal(ck->op->dm, &X));
-  PetscCall(DMPlexGetDepthStratum(ck->op->dm, 0, &vStart, &vEnd));
+  PetscCall(DMGetGlobalSection(ck->dm, &gs));
+  PetscCall(DMGetCoordinateSection(ck->dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(ck->dm, &X));
+  PetscCall(DMPlexGetDepthStratum(ck->dm, 0, &vStart, &vEnd));
   PetscCall(VecGetArrayRead(X, &x));
   for (PetscInt v = vStart; v < vEnd; ++v) {
     PetscInt goff, xoff;
     PetscCall(PetscSectionGetOffset(gs, v, &goff));
     if (goff < 0) continue;
     PetscCall(PetscSectionGetOffset(cs, v, &xoff));
-    for (PetscInt d = 0; d < ck->op->dim; ++d) *sum += (d + 1) * PetscRealPart(x[xoff + d]) * (1 + ck->vertex_orig[v - vStart] % 97);
+    for (PetscInt d = 0; d < ck->dim; ++d) *sum += (d + 1) * PetscRealPart(x[xoff + d]) * (1 + ck->vertex_orig[v - vStart] % 97);
   }
   PetscCall(VecRestoreArrayRead(X, &x));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, 1, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)ck->op->dm)));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, 1, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)ck->dm)));
   PetscFunctionReturn(0);
 }
 
@@ -284,7 +286,7 @@ static PetscErrorCode CoordinateChecksumTolerance(MMCheckpoint *ck, PetscReal *t
   PetscInt  n;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetCoordinates(ck->op->dm, &X));
+  PetscCall(DMGetCoordinates(ck->dm, &X));
   PetscCall(VecGetSize(X, &n));
   PetscCall(VecNorm(X, NORM_1, &abssum));
   /* each term is (d + 1) x (1 + v % 97) <= 3 * 97 |x| */
@@ -300,17 +302,19 @@ static PetscErrorCode RunRecord(MMCheckpoint *ck, TS ts, PetscReal run[])
   PetscReal        dt;
   MMContactNodes   cn;
   MMMassType       mass_type; /* -mass, the contact frame's */
+  PetscBool        lumped;    /* -mass_lumped, fem's */
 
   PetscFunctionBeginUser;
+  PetscCall(MMFEIsMassLumped(ck->op, &lumped));
   PetscCall(MMContactGetNodes(ck->contact, &cn));
   PetscCall(MMContactGetMassType(ck->contact, &mass_type));
-  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)ck->op->dm), &size));
-  PetscCall(DMPlexGetHeightStratum(ck->op->dm, 0, &cStart, &cEnd));
+  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)ck->dm), &size));
+  PetscCall(DMPlexGetHeightStratum(ck->dm, 0, &cStart, &cEnd));
   ncells = cEnd - cStart; /* no overlap: every cell is on one rank */
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ncells, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ck->op->dm)));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ncells, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ck->dm)));
   PetscCall(TSGetTimeStep(ts, &dt));
   run[MM_RUN_VERSION]         = MM_CKPT_VERSION;
-  run[MM_RUN_DIM]             = ck->op->dim;
+  run[MM_RUN_DIM]             = ck->dim;
   run[MM_RUN_VERTICES]        = ck->nv_global;
   run[MM_RUN_CELLS]           = ncells;
   run[MM_RUN_CONTACT_NODES]   = cn.enabled ? cn.n_global : 0;
@@ -333,7 +337,7 @@ static PetscErrorCode RunRecord(MMCheckpoint *ck, TS ts, PetscReal run[])
   run[MM_RUN_E]               = ck->opt->E;
   run[MM_RUN_NU]              = ck->opt->nu;
   run[MM_RUN_RHO]             = ck->opt->rho;
-  run[MM_RUN_MASS]            = mass_type + (ck->op->lumped ? 3 : 0);
+  run[MM_RUN_MASS]            = mass_type + (lumped ? 3 : 0);
   run[MM_RUN_DT_USER]         = ck->state->dt_user;
   run[MM_RUN_WORK_DAMPING]    = h->work_damping;
   run[MM_RUN_DAMPING_ALPHA]   = ck->damping->alpha;
@@ -459,12 +463,14 @@ static PetscErrorCode PhysicsMassDampingDirichlet(MMCheckpoint *ck, MMPhysics *p
 {
   const MMIOProblem *o = ck->opt;
   MMMassType         mass;
+  PetscBool          lumped;
   char               list[MM_PHYS_LEN] = "";
 
   PetscFunctionBeginUser;
+  PetscCall(MMFEIsMassLumped(ck->op, &lumped));
   PetscCall(MMContactGetMassType(ck->contact, &mass));
   PetscCall(PhysicsAdd(ph, "-mass", MMMassTypes[mass]));
-  PetscCall(PhysicsAdd(ph, "-mass_lumped", ck->op->lumped ? "true" : "false"));
+  PetscCall(PhysicsAdd(ph, "-mass_lumped", lumped ? "true" : "false"));
   PetscCall(PhysicsAddReals(ph, "-damping_mass", NULL, 1, &ck->damping->alpha));
   PetscCall(PhysicsAddReals(ph, "-damping_stiffness", NULL, 1, &ck->damping->beta));
   for (PetscInt k = 0; k < o->n_dirichlet; ++k) {
@@ -489,7 +495,7 @@ static PetscErrorCode PhysicsMassDampingDirichlet(MMCheckpoint *ck, MMPhysics *p
 /* One rigid obstacle of -obstacles: its shape, position, motion and friction coefficient */
 static PetscErrorCode PhysicsObstacle(MMCheckpoint *ck, MMPhysics *ph, const MMObstacle *ob)
 {
-  const PetscInt dim = ck->op->dim;
+  const PetscInt dim = ck->dim;
   /* the parameters of the first shapes, every one for every shape (0 where it has none), as
    * checkpoints have always held them; then those of a later shape, its own */
   const char *legacy[] = {"point", "normal", "center", "axis", "radius"}, *names[16];
@@ -554,8 +560,8 @@ static PetscErrorCode PhysicsContact(MMCheckpoint *ck, MMPhysics *ph)
       PetscReal point[MM_MAX_DIM], normal[MM_MAX_DIM];
       PetscBool plane;
       PetscCall(MMObstacleGetPlane(ob, point, normal, &plane));
-      PetscCall(PhysicsAddReals(ph, "-obstacle_point", NULL, ck->op->dim, point));
-      PetscCall(PhysicsAddReals(ph, "-obstacle_normal", NULL, ck->op->dim, normal));
+      PetscCall(PhysicsAddReals(ph, "-obstacle_point", NULL, ck->dim, point));
+      PetscCall(PhysicsAddReals(ph, "-obstacle_normal", NULL, ck->dim, normal));
       PetscCall(PhysicsAddReals(ph, "-mu", NULL, 1, &ob->mu));
     }
   }
@@ -596,7 +602,7 @@ static PetscErrorCode WritePhysics(MMCheckpoint *ck, PetscViewer viewer)
  * warning: its run record still checks the mesh, E, nu, rho, the cells' material, mass, damping and -mu. */
 static PetscErrorCode CheckPhysics(MMCheckpoint *ck, PetscViewer viewer)
 {
-  MPI_Comm  comm = PetscObjectComm((PetscObject)ck->op->dm);
+  MPI_Comm  comm = PetscObjectComm((PetscObject)ck->dm);
   MMPhysics ph;
   PetscBool recorded;
 
@@ -652,7 +658,7 @@ static PetscErrorCode ViewPacked(MMCheckpoint *ck, PetscViewer viewer, const cha
   Vec packed;
 
   PetscFunctionBeginUser;
-  PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)ck->op->dm), PETSC_DECIDE, bs * ck->nv_global, &packed));
+  PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)ck->dm), PETSC_DECIDE, bs * ck->nv_global, &packed));
   PetscCall(PetscObjectSetName((PetscObject)packed, name));
   PetscCall(VecZeroEntries(packed));
   PetscCall((*pack)(ck, src, packed));
@@ -667,9 +673,9 @@ static PetscErrorCode CountVertices(MMCheckpoint *ck)
   PetscInt vStart, vEnd, n = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(DMPlexGetDepthStratum(ck->op->dm, 0, &vStart, &vEnd));
+  PetscCall(DMPlexGetDepthStratum(ck->dm, 0, &vStart, &vEnd));
   for (PetscInt v = vStart; v < vEnd; ++v) n = PetscMax(n, ck->vertex_orig[v - vStart] + 1);
-  PetscCall(MPIU_Allreduce(&n, &ck->nv_global, 1, MPIU_INT, MPI_MAX, PetscObjectComm((PetscObject)ck->op->dm)));
+  PetscCall(MPIU_Allreduce(&n, &ck->nv_global, 1, MPIU_INT, MPI_MAX, PetscObjectComm((PetscObject)ck->dm)));
   PetscFunctionReturn(0);
 }
 
@@ -679,7 +685,7 @@ static PetscErrorCode CountVertices(MMCheckpoint *ck)
  * sliding the pairing, its counters and the forces carried across pairings (docs/method.md section 9). */
 static PetscErrorCode WriteStepperState(MMCheckpoint *ck, TS ts, PetscViewer viewer)
 {
-  MPI_Comm  comm = PetscObjectComm((PetscObject)ck->op->dm);
+  MPI_Comm  comm = PetscObjectComm((PetscObject)ck->dm);
   MMNewmark nm;
   Vec       at;
   PetscReal t;
@@ -688,7 +694,7 @@ static PetscErrorCode WriteStepperState(MMCheckpoint *ck, TS ts, PetscViewer vie
   PetscCall(MMNewmarkFromTS(ts, &nm));
   PetscCall(MMNewmarkGetTangentPoint(nm, &at, &t));
   if (at) {
-    PetscCall(ViewPacked(ck, viewer, "tangent_point", ck->op->dim, at, PackDofs));
+    PetscCall(ViewPacked(ck, viewer, "tangent_point", ck->dim, at, PackDofs));
     PetscCall(PetscViewerHDF5WriteAttribute(viewer, "tangent_point", "time", PETSC_REAL, &t));
   }
   {
@@ -714,7 +720,7 @@ static PetscErrorCode WriteStepperState(MMCheckpoint *ck, TS ts, PetscViewer vie
     for (PetscInt i = 0; i < n; ++i) {
       char name[32];
       PetscCall(PetscSNPrintf(name, sizeof(name), "pairs_force_%" PetscInt_FMT, i));
-      PetscCall(ViewPacked(ck, viewer, name, ck->op->dim, f[i], PackDofs));
+      PetscCall(ViewPacked(ck, viewer, name, ck->dim, f[i], PackDofs));
     }
     PetscCall(PetscFree(f));
     PetscCall(MMContactPairsGetCounters(ck->contact, counters));
@@ -727,7 +733,7 @@ static PetscErrorCode WriteStepperState(MMCheckpoint *ck, TS ts, PetscViewer vie
 
 static PetscErrorCode WriteCheckpointFile(MMCheckpoint *ck, TS ts, PetscViewer viewer, const PetscReal run[])
 {
-  MPI_Comm    comm = PetscObjectComm((PetscObject)ck->op->dm);
+  MPI_Comm    comm = PetscObjectComm((PetscObject)ck->dm);
   MMState    *s    = ck->state;
   Vec         rv, tv;
 
@@ -739,11 +745,11 @@ static PetscErrorCode WriteCheckpointFile(MMCheckpoint *ck, TS ts, PetscViewer v
   PetscCall(RootVector(comm, "snapshot_times", PetscMax(ck->out->n_written, 1), ck->out->n_written ? ck->out->times : run, &tv));
   PetscCall(VecView(tv, viewer));
   PetscCall(VecDestroy(&tv));
-  PetscCall(ViewPacked(ck, viewer, "u", ck->op->dim, s->u, PackDofs));
-  PetscCall(ViewPacked(ck, viewer, "v", ck->op->dim, s->v, PackDofs));
-  PetscCall(ViewPacked(ck, viewer, "a", ck->op->dim, s->a, PackDofs));
-  if (DampingOn(ck)) PetscCall(ViewPacked(ck, viewer, "vC", ck->op->dim, ck->damping->vC, PackDofs));
-  PetscCall(ViewPacked(ck, viewer, "react", ck->op->dim, s->react, PackDofs));
+  PetscCall(ViewPacked(ck, viewer, "u", ck->dim, s->u, PackDofs));
+  PetscCall(ViewPacked(ck, viewer, "v", ck->dim, s->v, PackDofs));
+  PetscCall(ViewPacked(ck, viewer, "a", ck->dim, s->a, PackDofs));
+  if (DampingOn(ck)) PetscCall(ViewPacked(ck, viewer, "vC", ck->dim, ck->damping->vC, PackDofs));
+  PetscCall(ViewPacked(ck, viewer, "react", ck->dim, s->react, PackDofs));
   PetscCall(ViewPacked(ck, viewer, "contact", MM_CKPT_NODE, NULL, PackContact));
   if (FramesFollow(ck)) {
     /* only then: every other checkpoint keeps its datasets */
@@ -766,7 +772,7 @@ static PetscErrorCode WriteCheckpointFile(MMCheckpoint *ck, TS ts, PetscViewer v
 static PetscErrorCode CheckpointBytes(MMCheckpoint *ck, TS ts, PetscReal *bytes)
 {
   const PetscBool frames = FramesFollow(ck);
-  const PetscReal nv = (PetscReal)ck->nv_global, dim = (PetscReal)ck->op->dim;
+  const PetscReal nv = (PetscReal)ck->nv_global, dim = (PetscReal)ck->dim;
   PetscReal       datasets = 8 + (DampingOn(ck) ? 1 : 0) + (frames ? 2 : 0);
   PetscReal       values   = MM_RUN_NUM + PetscMax(ck->out->n_written, 1) + nv * ((4 + (DampingOn(ck) ? 1 : 0)) * dim + MM_CKPT_NODE);
   MMNewmark       nm;
@@ -816,7 +822,7 @@ static PetscErrorCode CheckpointBytes(MMCheckpoint *ck, TS ts, PetscReal *bytes)
 @*/
 PetscErrorCode MMCheckpointWrite(MMCheckpoint *ck, TS ts)
 {
-  MPI_Comm       comm = PetscObjectComm((PetscObject)ck->op->dm);
+  MPI_Comm       comm = PetscObjectComm((PetscObject)ck->dm);
   PetscReal      run[MM_RUN_NUM];
   char           name[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN];
   PetscMPIInt    rank;
@@ -935,7 +941,7 @@ PetscErrorCode MMCheckpointDestroy(MMCheckpoint *c)
  * file is where the history and the snapshots to continue are read from. */
 static PetscErrorCode ResolveRestartPath(MMCheckpoint *c)
 {
-  MPI_Comm      comm = PetscObjectComm((PetscObject)c->op->dm);
+  MPI_Comm      comm = PetscObjectComm((PetscObject)c->dm);
   struct stat   st;
   int           isdir = 0, exists = 0;
   char         *slash;
@@ -967,14 +973,14 @@ static PetscErrorCode LoadVector(MMCheckpoint *ck, PetscViewer viewer, const cha
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
   ierr = VecLoad(v, viewer);
   PetscCall(PetscPopErrorHandler());
-  PetscCheck(!ierr, PetscObjectComm((PetscObject)ck->op->dm), PETSC_ERR_FILE_READ, "Could not read \"%s\" from the checkpoint %s: the file is incomplete or not a checkpoint of mmcontact. The checkpoint is written to checkpoint.h5.tmp and renamed only when whole, so an earlier checkpoint.h5 of the run is intact", name, ck->file);
+  PetscCheck(!ierr, PetscObjectComm((PetscObject)ck->dm), PETSC_ERR_FILE_READ, "Could not read \"%s\" from the checkpoint %s: the file is incomplete or not a checkpoint of mmcontact. The checkpoint is written to checkpoint.h5.tmp and renamed only when whole, so an earlier checkpoint.h5 of the run is intact", name, ck->file);
   PetscFunctionReturn(0);
 }
 
 /* The run's scalars, on every rank. */
 static PetscErrorCode LoadRunRecord(MMCheckpoint *ck, PetscViewer viewer, PetscReal run[])
 {
-  MPI_Comm           comm = PetscObjectComm((PetscObject)ck->op->dm);
+  MPI_Comm           comm = PetscObjectComm((PetscObject)ck->dm);
   Vec                rv, all;
   VecScatter         sc;
   PetscInt           n;
@@ -1002,7 +1008,7 @@ static PetscErrorCode LoadRunRecord(MMCheckpoint *ck, PetscViewer viewer, PetscR
  * from the run record the contact boundary, friction coefficient, material and mass. Each difference is named. */
 static PetscErrorCode CheckFingerprint(MMCheckpoint *ck, TS ts, PetscViewer viewer, const PetscReal rec[])
 {
-  MPI_Comm    comm = PetscObjectComm((PetscObject)ck->op->dm);
+  MPI_Comm    comm = PetscObjectComm((PetscObject)ck->dm);
   const char *f    = ck->file;
   PetscReal   me[MM_RUN_NUM], tol = 0;
   MMContactNodes cn;
@@ -1033,7 +1039,7 @@ static PetscErrorCode CheckFingerprint(MMCheckpoint *ck, TS ts, PetscViewer view
  * serial[] into vals (n bs entries): one scatter, whatever the partition that wrote the file. */
 static PetscErrorCode LoadPacked(MMCheckpoint *ck, PetscViewer viewer, const char name[], PetscInt bs, PetscInt n, const PetscInt serial[], PetscScalar vals[])
 {
-  MPI_Comm   comm = PetscObjectComm((PetscObject)ck->op->dm);
+  MPI_Comm   comm = PetscObjectComm((PetscObject)ck->dm);
   Vec        packed, local;
   IS         from;
   VecScatter sc;
@@ -1062,7 +1068,7 @@ static PetscErrorCode LoadPacked(MMCheckpoint *ck, PetscViewer viewer, const cha
 /* The inverse of PackDofs: the free dofs of the owned vertices from their serial-mesh blocks. */
 static PetscErrorCode LoadDofs(MMCheckpoint *ck, PetscViewer viewer, const char name[], Vec w)
 {
-  const PetscInt dim = ck->op->dim;
+  const PetscInt dim = ck->dim;
   PetscInt       n, *serial, *loc;
   PetscScalar   *vals, *wa;
 
@@ -1089,14 +1095,14 @@ static PetscErrorCode LoadContactRecords(MMCheckpoint *ck, PetscViewer viewer)
   PetscFunctionBeginUser;
   PetscCall(MMContactGetNodes(ck->contact, &nodes));
   if (!ct->enabled) PetscFunctionReturn(0);
-  PetscCall(DMPlexGetDepthStratum(ck->op->dm, 0, &vStart, &vEnd));
+  PetscCall(DMPlexGetDepthStratum(ck->dm, 0, &vStart, &vEnd));
   PetscCall(PetscMalloc1(ct->n_local, &serial));
   PetscCall(PetscMalloc1(MM_CKPT_NODE * ct->n_local, &ck->node));
   for (PetscInt k = 0; k < ct->n_local; ++k) serial[k] = ck->vertex_orig[ct->vertex[k] - vStart];
   PetscCall(LoadPacked(ck, viewer, "contact", MM_CKPT_NODE, ct->n_local, serial, ck->node));
   for (PetscInt k = 0; k < ct->n_local; ++k) bad += PetscRealPart(ck->node[MM_CKPT_NODE * k]) != 1;
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ck->op->dm)));
-  PetscCheck(!bad, PetscObjectComm((PetscObject)ck->op->dm), PETSC_ERR_USER_INPUT, "The checkpoint %s is of another contact boundary: %" PetscInt_FMT " of this run's %" PetscInt_FMT " contact nodes are not contact nodes there (-contact_boundary %s). Restart with the contact boundary of the run that wrote it", ck->file, bad, ct->n_global, ck->opt->contact_name);
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ck->dm)));
+  PetscCheck(!bad, PetscObjectComm((PetscObject)ck->dm), PETSC_ERR_USER_INPUT, "The checkpoint %s is of another contact boundary: %" PetscInt_FMT " of this run's %" PetscInt_FMT " contact nodes are not contact nodes there (-contact_boundary %s). Restart with the contact boundary of the run that wrote it", ck->file, bad, ct->n_global, ck->opt->contact_name);
   PetscCall(PetscFree(serial));
   PetscFunctionReturn(0);
 }
@@ -1107,7 +1113,7 @@ static PetscErrorCode LoadContactRecords(MMCheckpoint *ck, PetscViewer viewer)
  * frames that follow starts from the set-up frames, a state of the fixed-frame run. */
 static PetscErrorCode LoadFrameRecords(MMCheckpoint *ck, PetscViewer viewer)
 {
-  MPI_Comm       comm = PetscObjectComm((PetscObject)ck->op->dm);
+  MPI_Comm       comm = PetscObjectComm((PetscObject)ck->dm);
   PetscBool      has, follow;
   PetscInt       vStart, vEnd, *serial;
   MMContactNodes cn;
@@ -1118,7 +1124,7 @@ static PetscErrorCode LoadFrameRecords(MMCheckpoint *ck, PetscViewer viewer)
   PetscCheck(!has || follow, comm, PETSC_ERR_USER_INPUT, "The checkpoint %s was written with contact frames that follow the contact point (-contact_frames follow, the default with -elasticity svk and neohookean on curved obstacles), and its state is in those frames; this run keeps them fixed. Restart with the -contact_frames and -elasticity of the run that wrote it", ck->file);
   if (!has) PetscFunctionReturn(0);
   PetscCall(MMContactGetNodes(ck->contact, &cn));
-  PetscCall(DMPlexGetDepthStratum(ck->op->dm, 0, &vStart, &vEnd));
+  PetscCall(DMPlexGetDepthStratum(ck->dm, 0, &vStart, &vEnd));
   PetscCall(PetscMalloc1(cn.n_local, &serial));
   PetscCall(PetscMalloc1(MM_CONTACT_FRAME_RECORD * cn.n_local + 1, &ck->frames));
   for (PetscInt k = 0; k < cn.n_local; ++k) serial[k] = ck->vertex_orig[cn.vertex[k] - vStart];
@@ -1149,7 +1155,7 @@ static PetscErrorCode LoadFrameRecords(MMCheckpoint *ck, PetscViewer viewer)
 /* A vector of n reals held on rank 0 in the file, on every rank */
 static PetscErrorCode LoadSmallVector(MMCheckpoint *ck, PetscViewer viewer, const char name[], PetscInt n, PetscReal vals[])
 {
-  MPI_Comm           comm = PetscObjectComm((PetscObject)ck->op->dm);
+  MPI_Comm           comm = PetscObjectComm((PetscObject)ck->dm);
   Vec                v, all;
   VecScatter         sc;
   PetscInt           N;
@@ -1221,7 +1227,7 @@ static PetscErrorCode LoadPairs(MMCheckpoint *ck, TS ts, PetscViewer viewer)
   PetscCall(PetscViewerHDF5HasDataset(viewer, "pairs", &has));
   if (!has) PetscFunctionReturn(0); /* refused by MMNewmarkRestorePairs */
   PetscCall(MMContactGetNodes(ck->contact, &cn));
-  PetscCall(DMPlexGetDepthStratum(ck->op->dm, 0, &vStart, &vEnd));
+  PetscCall(DMPlexGetDepthStratum(ck->dm, 0, &vStart, &vEnd));
   PetscCall(PetscMalloc1(cn.n_local, &serial));
   PetscCall(PetscMalloc1(MM_CONTACT_PAIR_RECORD * cn.n_local + 1, &ck->pairs));
   for (PetscInt k = 0; k < cn.n_local; ++k) serial[k] = ck->vertex_orig[cn.vertex[k] - vStart];
@@ -1340,7 +1346,7 @@ static PetscErrorCode RestoreContactState(MMCheckpoint *ck)
 /* The times of the snapshots up to the checkpoint, on every rank. */
 static PetscErrorCode LoadSnapshotTimes(MMCheckpoint *c, PetscViewer viewer)
 {
-  MPI_Comm           comm = PetscObjectComm((PetscObject)c->op->dm);
+  MPI_Comm           comm = PetscObjectComm((PetscObject)c->dm);
   const PetscInt     n    = (PetscInt)c->run[MM_RUN_SNAPSHOTS];
   Vec                tv, all;
   VecScatter         sc;
@@ -1387,7 +1393,7 @@ static PetscErrorCode LoadSnapshotTimes(MMCheckpoint *c, PetscViewer viewer)
 @*/
 PetscErrorCode MMCheckpointLoad(MMCheckpoint *c, TS ts)
 {
-  MPI_Comm       comm = PetscObjectComm((PetscObject)c->op->dm);
+  MPI_Comm       comm = PetscObjectComm((PetscObject)c->dm);
   MMState       *s    = c->state;
   PetscViewer    viewer;
   PetscErrorCode ierr;
@@ -1533,7 +1539,7 @@ PetscErrorCode MMCheckpointRestoreHistory(MMCheckpoint *c)
   h->step                = c->restart_step;
   h->time                = run[MM_RUN_TIME];
   h->dt                  = run[MM_RUN_DT_LAST];
-  h->cfl                 = cn.enabled ? c->op->c_p * h->dt / cn.h_c : 0;
+  h->cfl                 = cn.enabled ? c->material->c_p_max * h->dt / cn.h_c : 0;
   h->work_ext            = run[MM_RUN_WORK_EXT];
   h->work_contact        = run[MM_RUN_WORK_CONTACT];
   h->work_friction       = run[MM_RUN_WORK_FRICTION];

@@ -253,7 +253,7 @@ PetscErrorCode MMOutputCSVHeaderLine(const MMOutput *o, MMLine *lp)
 {
   const MMIOProblem *opt  = o->opt;
   const char      *axes = "xyz";
-  PetscInt         dim  = o->op->dim;
+  PetscInt         dim  = o->dim;
   MMLine      l    = {.n = 0, .s = ""};
 
   PetscFunctionBeginUser;
@@ -302,7 +302,7 @@ PetscErrorCode MMOutputWriteRow(MMOutput *o)
 {
   const MMHistory *h   = o->hist;
   const MMIOProblem *opt = o->opt;
-  PetscInt         dim = o->op->dim;
+  PetscInt         dim = o->dim;
   MMLine           l   = {.n = 0, .s = ""};
 
   PetscFunctionBeginUser;
@@ -513,7 +513,7 @@ static PetscErrorCode WriteIndex(MMOutput *o)
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
-  if (rank == 0) PetscCall(MMOutputIndexAddGrid(o, o->op->dim, o->n_written - 1, o->times[o->n_written - 1]));
+  if (rank == 0) PetscCall(MMOutputIndexAddGrid(o, o->dim, o->n_written - 1, o->times[o->n_written - 1]));
   if (o->n_written >= 2 * o->n_indexed) PetscCall(MMOutputWriteIndexFile(o));
   PetscFunctionReturn(0);
 }
@@ -880,7 +880,7 @@ static PetscErrorCode OpenDirectoryAndHistory(MMOutput *o)
 /* Global vertex and cell counts, for the XDMF index. */
 static PetscErrorCode CountMesh(MMOutput *o)
 {
-  DM              dm = o->op->dm;
+  DM              dm = o->dm;
   PetscSF         sf;
   PetscInt        vStart, vEnd, cStart, cEnd, nleaves, loc[2], glob[2];
   const PetscInt *leaves;
@@ -922,20 +922,19 @@ static PetscErrorCode OpenFields(MMOutput *o)
 /* The output vectors: Cartesian fields on a copy of the mesh without constraints, scalars per vertex. */
 static PetscErrorCode CreateFieldVectors(MMOutput *o)
 {
-  const MMOperators *op = o->op;
   PetscFE      fe;
   PetscSection s;
   const char  *names[] = {"displacement_x", "displacement_y", "displacement_z"};
 
   PetscFunctionBeginUser;
-  PetscCall(DMClone(op->dm, &o->dm_out));
-  PetscCall(PetscFECreateLagrange(PETSC_COMM_WORLD, op->dim, op->dim, PETSC_TRUE, 1, PETSC_DETERMINE, &fe));
+  PetscCall(DMClone(o->dm, &o->dm_out));
+  PetscCall(PetscFECreateLagrange(PETSC_COMM_WORLD, o->dim, o->dim, PETSC_TRUE, 1, PETSC_DETERMINE, &fe));
   PetscCall(PetscObjectSetName((PetscObject)fe, "displacement"));
   PetscCall(DMSetField(o->dm_out, 0, NULL, (PetscObject)fe));
   PetscCall(PetscFEDestroy(&fe));
   PetscCall(DMCreateDS(o->dm_out));
   PetscCall(DMGetLocalSection(o->dm_out, &s));
-  for (PetscInt c = 0; c < op->dim; ++c) PetscCall(PetscSectionSetComponentName(s, 0, c, names[c]));
+  for (PetscInt c = 0; c < o->dim; ++c) PetscCall(PetscSectionSetComponentName(s, 0, c, names[c]));
   PetscCall(DMCreateGlobalVector(o->dm_out, &o->disp_cart));
   PetscCall(DMCreateGlobalVector(o->dm_out, &o->vel_cart));
   PetscCall(DMCreateGlobalVector(o->dm_out, &o->traction_t));
@@ -1059,7 +1058,7 @@ PetscErrorCode MMOutputSetFromOptions(MPI_Comm comm, MMOutput *o)
 
 .seealso: `MMOutputSetFromOptions()`, `MMOutputOpen()`, `MMOutputMonitor()`
 @*/
-PetscErrorCode MMOutputSetUp(MMOutput *o, const MMIOProblem *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, MMContact contact, MMLoads *loads, MMCheckpoint *ckpt)
+PetscErrorCode MMOutputSetUp(MMOutput *o, const MMIOProblem *opt, MMOperators op, const MMMaterial *material, const MMHistory *hist, const MMState *state, MMContact contact, MMLoads *loads, MMCheckpoint *ckpt)
 {
   PetscFunctionBeginUser;
   o->opt      = opt;
@@ -1070,7 +1069,9 @@ PetscErrorCode MMOutputSetUp(MMOutput *o, const MMIOProblem *opt, const MMOperat
   o->contact = contact;
   o->loads   = loads;
   o->ckpt      = ckpt;
-  o->dm_scalar = op->dm_scalar; /* fem's: one scalar per vertex */
+  PetscCall(MMFEGetDM(op, &o->dm));
+  PetscCall(MMFEGetDimension(op, &o->dim));
+  PetscCall(MMFEGetScalarDM(op, &o->dm_scalar)); /* fem's: one scalar per vertex */
   PetscFunctionReturn(0);
 }
 

@@ -43,11 +43,9 @@ static PetscBool Negative(PetscInt dim, const PetscReal x[][MM_MAX_DIM])
   return (PetscBool)(MMDetInverse(dim, e, NULL) < 0);
 }
 
-static PetscErrorCode WriteCells(const MMOperators *op, PetscViewer viewer)
+static PetscErrorCode WriteCells(DM dm, PetscInt dim, const MMCells *cells, PetscViewer viewer)
 {
-  DM                 dm    = op->dm;
-  const MMCells     *cells = &op->cells;
-  const PetscInt     dim = op->dim, nv = cells->nv;
+  const PetscInt     nv = cells->nv;
   PetscSection       cs;
   Vec                X;
   IS                 vnum, cellIS;
@@ -92,10 +90,17 @@ static PetscErrorCode WriteCells(const MMOperators *op, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MMOutputWriteMesh(const MMOperators *op, PetscViewer viewer)
+PetscErrorCode MMOutputWriteMesh(MMOperators op, PetscViewer viewer)
 {
+  DM             dm;
+  PetscInt       dim;
+  const MMCells *cells;
+
   PetscFunctionBeginUser;
-  PetscCall(WriteVertices(op->dm, viewer));
-  PetscCall(WriteCells(op, viewer));
+  PetscCall(MMFEGetDM(op, &dm));
+  PetscCall(MMFEGetDimension(op, &dim));
+  PetscCall(MMFEGetCells(op, &cells));
+  PetscCall(WriteVertices(dm, viewer));
+  PetscCall(WriteCells(dm, dim, cells, viewer));
   PetscFunctionReturn(0);
 }

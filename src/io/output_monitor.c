@@ -12,7 +12,7 @@
  * the moving boundaries' own. */
 static PetscErrorCode WholeState(MMOutput *o)
 {
-  DM  dm   = o->op->dm;
+  DM  dm   = o->dm;
   Vec w[2] = {o->state->u, o->state->v}, whole[2] = {o->disp_cart, o->vel_cart};
 
   PetscFunctionBeginUser;

@@ -143,8 +143,8 @@ static PetscErrorCode StandIn(const MMOutput *o, MMOutput *stand_in)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(stand_in, sizeof(*stand_in)));
-  stand_in->dm_out = stand_in->dm_scalar = stand_in->stress.dm = o->op->dm;
-  PetscCall(MMMeshGetSizes(o->op->dm, &stand_in->nc, &stand_in->nv));
+  stand_in->dm_out = stand_in->dm_scalar = stand_in->stress.dm = o->dm;
+  PetscCall(MMMeshGetSizes(o->dm, &stand_in->nc, &stand_in->nv));
   PetscFunctionReturn(0);
 }
 
@@ -171,7 +171,7 @@ PetscErrorCode MMOutputPlanWrites(MMOutput *o)
 
   PetscFunctionBeginUser;
   PetscCall(StandIn(o, &stand_in));
-  PetscCall(WriteBytes(&stand_in, o->op->dim, MMCheckpointSnapshotCount(o->ckpt), &o->mesh_bytes, &o->snapshot_bytes));
+  PetscCall(WriteBytes(&stand_in, o->dim, MMCheckpointSnapshotCount(o->ckpt), &o->mesh_bytes, &o->snapshot_bytes));
   PetscFunctionReturn(0);
 }
 
@@ -194,7 +194,7 @@ PetscErrorCode MMOutputPlanWrites(MMOutput *o)
 @*/
 PetscErrorCode MMOutputPlanMake(const MMOutput *o, TS ts, MMOutputPlan *plan)
 {
-  const PetscInt dim = o->op->dim;
+  const PetscInt dim = o->dim;
   const PetscInt k0  = MMCheckpointSnapshotCount(o->ckpt); /* this run's first snapshot's number */
   MMOutput       stand_in;
 

@@ -248,7 +248,7 @@ static PetscErrorCode CheckOldTimes(const MMOutput *o, MMOldFields *of, PetscInt
 /* solution.h5 of this run: the mesh, then the checkpoint's snapshots copied from the old file. */
 PetscErrorCode MMOutputRestartFields(MMOutput *o)
 {
-  const PetscInt dim       = o->op->dim;
+  const PetscInt dim       = o->dim;
   MMSnapshotField f[MM_SNAPSHOT_FIELDS];
   MMOldFields    of        = {0};
   MMFileStatus   st        = {0};
@@ -268,7 +268,7 @@ PetscErrorCode MMOutputRestartFields(MMOutput *o)
   PetscCall(MMOutputHDF5Create(PETSC_COMM_WORLD, tmp, &o->h5));
   PetscCall(PetscViewerPushFormat(o->h5, PETSC_VIEWER_HDF5_XDMF));
   PetscCall(MMOutputHDF5Begin());
-  ierr = DMView(o->op->dm, o->h5);
+  ierr = DMView(o->dm, o->h5);
   PetscCall(MMOutputHDF5End(ierr, "write", tmp));
   for (PetscInt k = 0; k < n; ++k) {
     /* the vertex fields by the vertices' serial numbers; the cells of this partition are not the

@@ -80,4 +80,4 @@ PETSC_INTERN PetscErrorCode MMOutputWriteSnapshot(MMOutput *o, PetscReal t);
 /* output_restart.c: -restart continues the history and the snapshots up to the checkpoint */
 PETSC_INTERN PetscErrorCode MMOutputRestartHistory(MMOutput *o, MMFileStatus *st);
 PETSC_INTERN PetscErrorCode MMOutputRestartFields(MMOutput *o);
-PETSC_INTERN PetscErrorCode MMOutputWriteMesh(const MMOperators *op, PetscViewer viewer);
+PETSC_INTERN PetscErrorCode MMOutputWriteMesh(MMOperators op, PetscViewer viewer);

@@ -18,7 +18,7 @@
  * them: a vertex this rank owns may be marked only through another rank's cell. */
 static PetscErrorCode GroupVertexFlags(const MMOutput *o, const char name[], Vec flags)
 {
-  DM           dm = o->op->dm, dms = o->dm_scalar;
+  DM           dm = o->dm, dms = o->dm_scalar;
   DMLabel      label;
   Vec          loc;
   PetscScalar *f;
@@ -127,7 +127,7 @@ PetscErrorCode MMProbesSetUp(MMOutput *o, Vec mloc)
 PetscErrorCode MMProbesEvaluate(MMOutput *o)
 {
   MMProbes          *pr  = &o->probes;
-  const PetscInt     dim = o->op->dim;
+  const PetscInt     dim = o->dim;
   PetscSection       gs;
   const PetscScalar *u, *v;
   PetscInt           rstart;

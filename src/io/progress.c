@@ -36,7 +36,7 @@ static PetscBool DampingOn(const MMProgress *pg)
 
 .seealso: `MMProgressSetFromOptions()`, `MMProgressHeader()`, `MMProgressMonitorSet()`
 @*/
-PetscErrorCode MMProgressSetUp(MMProgress *pg, const MMIOProblem *opt, const MMOperators *op, const MMMaterial *material, const MMHistory *hist, const MMState *state, MMContact contact, const MMDamping *damping)
+PetscErrorCode MMProgressSetUp(MMProgress *pg, const MMIOProblem *opt, MMOperators op, const MMMaterial *material, const MMHistory *hist, const MMState *state, MMContact contact, const MMDamping *damping)
 {
   PetscFunctionBeginUser;
   pg->opt       = opt;
@@ -182,16 +182,19 @@ static PetscErrorCode HeaderMesh(MMProgress *pg)
 {
   MPI_Comm    comm = PETSC_COMM_WORLD;
   char        name[PETSC_MAX_PATH_LEN], fixed[64] = "";
-  PetscInt    ncells, nvertices, ndofs;
+  PetscInt    ncells, nvertices, ndofs, dim;
   PetscMPIInt size;
+  DM          dm;
 
   PetscFunctionBeginUser;
+  PetscCall(MMFEGetDM(pg->op, &dm));
+  PetscCall(MMFEGetDimension(pg->op, &dim));
   PetscCall(CaseName(name, sizeof(name)));
-  PetscCall(MMMeshGetSizes(pg->op->dm, &ncells, &nvertices));
+  PetscCall(MMMeshGetSizes(dm, &ncells, &nvertices));
   PetscCall(VecGetSize(pg->state->u, &ndofs));
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  if (ndofs < pg->op->dim * nvertices) PetscCall(PetscSNPrintf(fixed, sizeof(fixed), " (and %" PetscInt_FMT " fixed by -dirichlet)", pg->op->dim * nvertices - ndofs));
-  PetscCall(PetscPrintf(comm, "mmcontact: case %s; mesh %s, %" PetscInt_FMT "D: %" PetscInt_FMT " cells, %" PetscInt_FMT " vertices, %" PetscInt_FMT " dofs%s; %d rank%s\n", name, pg->opt->mesh_file, pg->op->dim, ncells, nvertices, ndofs, fixed, size, size == 1 ? "" : "s"));
+  if (ndofs < dim * nvertices) PetscCall(PetscSNPrintf(fixed, sizeof(fixed), " (and %" PetscInt_FMT " fixed by -dirichlet)", dim * nvertices - ndofs));
+  PetscCall(PetscPrintf(comm, "mmcontact: case %s; mesh %s, %" PetscInt_FMT "D: %" PetscInt_FMT " cells, %" PetscInt_FMT " vertices, %" PetscInt_FMT " dofs%s; %d rank%s\n", name, pg->opt->mesh_file, dim, ncells, nvertices, ndofs, fixed, size, size == 1 ? "" : "s"));
   PetscFunctionReturn(0);
 }
 
@@ -223,7 +226,7 @@ static PetscErrorCode HeaderPhysics(MMProgress *pg, TS ts)
 {
   MPI_Comm        comm = PETSC_COMM_WORLD;
   const MMIOProblem *opt = pg->opt;
-  const PetscReal c_s  = PetscSqrtReal(PetscRealPart(pg->op->constants[MM_C_MU]) / opt->rho);
+  const PetscReal c_s  = PetscSqrtReal(pg->material->body[0].mu / opt->rho); /* fem's PetscDS constant MM_C_MU */
   PetscReal       dt, t_end, h_c;
   PetscInt        max_steps;
   char            steps[64] = "", cfl[128];
@@ -236,9 +239,9 @@ static PetscErrorCode HeaderPhysics(MMProgress *pg, TS ts)
   PetscCall(TSGetMaxTime(ts, &t_end));
   PetscCall(TSGetMaxSteps(ts, &max_steps));
   if (max_steps < PETSC_MAX_INT) PetscCall(PetscSNPrintf(steps, sizeof(steps), " or %" PetscInt_FMT " steps", max_steps));
-  if (h_c > 0) PetscCall(PetscSNPrintf(cfl, sizeof(cfl), "h_c' = %.4g, c_p dt / h_c' = %.3g", (double)h_c, (double)(pg->op->c_p * dt / h_c)));
+  if (h_c > 0) PetscCall(PetscSNPrintf(cfl, sizeof(cfl), "h_c' = %.4g, c_p dt / h_c' = %.3g", (double)h_c, (double)(pg->material->c_p_max * dt / h_c)));
   else PetscCall(PetscStrncpy(cfl, "no contact boundary", sizeof(cfl)));
-  if (!pg->material->named) PetscCall(PetscPrintf(comm, "  material: E = %.6g, nu = %.6g, rho = %.6g; waves c_p = %.4g, c_s = %.4g%s\n", (double)opt->E, (double)opt->nu, (double)opt->rho, (double)pg->op->c_p, (double)c_s, LawText(pg->material->body[0].elasticity)));
+  if (!pg->material->named) PetscCall(PetscPrintf(comm, "  material: E = %.6g, nu = %.6g, rho = %.6g; waves c_p = %.4g, c_s = %.4g%s\n", (double)opt->E, (double)opt->nu, (double)opt->rho, (double)pg->material->c_p_max, (double)c_s, LawText(pg->material->body[0].elasticity)));
   else PetscCall(HeaderBodies(pg));
   PetscCall(PetscPrintf(comm, "  time: dt = %.6g to t = %.6g%s; %s\n", (double)dt, (double)t_end, steps, cfl));
   if (DampingOn(pg)) {
@@ -263,8 +266,10 @@ static PetscErrorCode HeaderContact(MMProgress *pg, KSP krylov, KSP pc_ksp)
   const char      *type, *choice, *products;
   MMContactNodes   cn;
   MMMassType       mass_type;
+  PetscBool        lumped;
 
   PetscFunctionBeginUser;
+  PetscCall(MMFEIsMassLumped(pg->op, &lumped));
   PetscCall(ObstacleList(opt, obstacles, sizeof(obstacles)));
   PetscCall(FrictionText(opt, friction, sizeof(friction)));
   PetscCall(SolverText(krylov, pc_ksp, solver, sizeof(solver)));
@@ -273,16 +278,16 @@ static PetscErrorCode HeaderContact(MMProgress *pg, KSP krylov, KSP pc_ksp)
   PetscCall(MMContactGetSolverText(pg->contact, &type, &choice, &products));
   PetscCall(MMContactGetMassType(pg->contact, &mass_type));
   if (pg->every > 0) PetscCall(PetscSNPrintf(progress, sizeof(progress), "progress every %.6g s", (double)pg->every));
-  if (cn.enabled && cn.n_corners) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes (%" PetscInt_FMT " of them against two obstacles: %" PetscInt_FMT " rows) against %s; %s %s mass; %s\n", cn.n_global - cn.n_corners, cn.n_corners, cn.n_global, obstacles, pg->op->lumped ? "lumped" : "consistent", MMMassTypes[mass_type], friction));
-  else if (cn.enabled && cn.n_fc) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes (%" PetscInt_FMT " of them against two obstacles, each with its own Coulomb law) against %s; %s %s mass; %s\n", cn.n_global, cn.n_fc, obstacles, pg->op->lumped ? "lumped" : "consistent", MMMassTypes[mass_type], friction));
-  else if (cn.enabled) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes against %s; %s %s mass; %s\n", cn.n_global, obstacles, pg->op->lumped ? "lumped" : "consistent", MMMassTypes[mass_type], friction));
+  if (cn.enabled && cn.n_corners) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes (%" PetscInt_FMT " of them against two obstacles: %" PetscInt_FMT " rows) against %s; %s %s mass; %s\n", cn.n_global - cn.n_corners, cn.n_corners, cn.n_global, obstacles, lumped ? "lumped" : "consistent", MMMassTypes[mass_type], friction));
+  else if (cn.enabled && cn.n_fc) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes (%" PetscInt_FMT " of them against two obstacles, each with its own Coulomb law) against %s; %s %s mass; %s\n", cn.n_global, cn.n_fc, obstacles, lumped ? "lumped" : "consistent", MMMassTypes[mass_type], friction));
+  else if (cn.enabled) PetscCall(PetscPrintf(comm, "  contact: %" PetscInt_FMT " contact nodes against %s; %s %s mass; %s\n", cn.n_global, obstacles, lumped ? "lumped" : "consistent", MMMassTypes[mass_type], friction));
   for (PetscInt p = 0; cn.enabled && p < opt->n_obstacles - opt->n_rigid; ++p) {
     const MMObstacle *ob = &opt->obstacles[opt->n_rigid + p];
     PetscInt          nodes, n2n, facets;
     PetscCall(MMContactGetPairCounts(pg->contact, p, &nodes, &n2n, &facets));
     PetscCall(PetscPrintf(comm, "  pair %s: slave %s, %" PetscInt_FMT " nodes (%" PetscInt_FMT " facing a master node: node to node), on %" PetscInt_FMT " facets of master %s; mu = %g; %s sliding\n", ob->name, ob->slave, nodes, n2n, facets, ob->master, (double)ob->mu, cn.pairs_sliding ? "large" : "small"));
   }
-  if (!cn.enabled) PetscCall(PetscPrintf(comm, "  contact: off (-contact 0), 0 contact nodes: linear elastodynamics; %s mass\n", pg->op->lumped ? "lumped" : "consistent"));
+  if (!cn.enabled) PetscCall(PetscPrintf(comm, "  contact: off (-contact 0), 0 contact nodes: linear elastodynamics; %s mass\n", lumped ? "lumped" : "consistent"));
   PetscCall(PetscPrintf(comm, "  solvers: contact formulation %s%s; K~ by %s%s; %s\n", type, choice, solver, products, progress));
   PetscCall(MMContactMassView(pg->contact, PETSC_VIEWER_STDOUT_(comm))); /* line 6: the mass */
   PetscFunctionReturn(0);

@@ -94,11 +94,13 @@ PetscErrorCode MMNewmarkSetProblem(MMNewmark nm, const MMNewmarkProblem *pb)
 
 .seealso: `MMNewmarkSetProblem()`, `MMNewmarkInitialState()`, `MMNewmarkSetFriction()`
 @*/
-PetscErrorCode MMNewmarkSetUp(MMNewmark nm, MMOperators *op, MMMaterial *material, MMLoads *loads, MMContact contact)
+PetscErrorCode MMNewmarkSetUp(MMNewmark nm, MMOperators op, MMMaterial *material, MMLoads *loads, MMContact contact)
 {
   PetscFunctionBeginUser;
   nm->op       = op;
   nm->material = material;
+  PetscCall(MMFEGetDM(op, &nm->dm));
+  PetscCall(MMFEGetDimension(op, &nm->dim));
   nm->loads    = loads;
   nm->contact  = contact;
   nm->law      = MMStepLawGetOps(material); /* the step's law (step_laws.c) */

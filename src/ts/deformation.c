@@ -48,12 +48,14 @@ typedef struct {
 static PetscErrorCode CellTable(MMNewmark nm)
 {
   MMDeformation *d  = &nm->deform;
-  DM             dm = nm->op->dm, cdm;
-  const PetscInt dim = nm->op->dim;
+  DM             dm = nm->dm, cdm;
+  const PetscInt dim = nm->dim;
+  const MMCells *cells;
   PetscSection   ls, cs;
   PetscInt       cStart, cEnd;
 
   PetscFunctionBeginUser;
+  PetscCall(MMFEGetCells(nm->op, &cells));
   PetscCall(DMGetLocalSection(dm, &ls));
   PetscCall(DMGetCoordinateDM(dm, &cdm));
   PetscCall(DMGetLocalSection(cdm, &cs));
@@ -62,7 +64,7 @@ static PetscErrorCode CellTable(MMNewmark nm)
   PetscCall(PetscMalloc2((dim + 1) * d->ncells, &d->cell_u, (dim + 1) * d->ncells, &d->cell_x));
   for (PetscInt c = cStart; c < cEnd; ++c) {
     /* any vertex order: det F and the strain do not depend on it (simplices: MMCellsCreate checked) */
-    const PetscInt *v = &nm->op->cells.vertex[(dim + 1) * (c - cStart)];
+    const PetscInt *v = &cells->vertex[(dim + 1) * (c - cStart)];
     for (PetscInt a = 0; a <= dim; ++a) {
       PetscCall(PetscSectionGetOffset(ls, v[a], &d->cell_u[(dim + 1) * (c - cStart) + a]));
       PetscCall(PetscSectionGetOffset(cs, v[a], &d->cell_x[(dim + 1) * (c - cStart) + a]));
@@ -172,10 +174,10 @@ static PetscErrorCode ScanCells(MMNewmark nm, Vec ucart_local, Worst *w)
   w->detF   = PETSC_MAX_REAL;
   w->strain = 0;
   if (!d->cell_u) PetscCall(CellTable(nm));
-  PetscCall(DMGetCoordinatesLocal(nm->op->dm, &xl));
+  PetscCall(DMGetCoordinatesLocal(nm->dm, &xl));
   PetscCall(VecGetArrayRead(ucart_local, &u));
   PetscCall(VecGetArrayRead(xl, &x));
-  if (nm->op->dim == 2) ScanCellsDim(2, nm->material->finite, d, u, x, w);
+  if (nm->dim == 2) ScanCellsDim(2, nm->material->finite, d, u, x, w);
   else ScanCellsDim(3, nm->material->finite, d, u, x, w);
   PetscCall(VecRestoreArrayRead(xl, &x));
   PetscCall(VecRestoreArrayRead(ucart_local, &u));
@@ -226,7 +228,7 @@ static PetscErrorCode CheckSmallStrain(MMNewmark nm, const Worst *w);
 @*/
 PetscErrorCode MMDeformationCheck(MMNewmark nm)
 {
-  DM             dm   = nm->op->dm;
+  DM             dm   = nm->dm;
   MPI_Comm       comm = PetscObjectComm((PetscObject)dm);
   MMDeformation *d    = &nm->deform;
   const MMHistory *h  = &nm->hist;
@@ -257,7 +259,7 @@ PetscErrorCode MMDeformationCheck(MMNewmark nm)
     d->step       = h->step;
     for (PetscInt i = 0; i < MM_MAX_DIM; ++i) d->where[i] = w.at_strain[i];
   }
-  PetscCall(FormatPlace(nm->op->dim, w.at_det, place, sizeof(place)));
+  PetscCall(FormatPlace(nm->dim, w.at_det, place, sizeof(place)));
   if (nm->material->finite) PetscCall(CheckInsideOutFinite(nm, &w, place));
   PetscCheck(w.detF > 0, comm, MM_ERR_PHYSICS, "At step %" PetscInt_FMT " (t = %g) the cell at %s has turned inside out (det F = %.3g): the body passes through itself, and the result is meaningless. The impact or the load is far too strong for a small-strain model: check -v0, the loads and the units (SI), or use a finite-strain law (-elasticity svk or neohookean). The output up to the previous step is intact", h->step, (double)h->time, place, (double)w.detF);
   if (nm->material->finite) PetscCall(CheckFiniteStrain(nm, &w, place));
@@ -311,7 +313,7 @@ static PetscErrorCode WarnRotation(MMNewmark nm, const Worst *w)
   PetscFunctionBeginUser;
   if (d->warned_rotation || w->rotation <= nm->strain_warn) PetscFunctionReturn(0);
   d->warned_rotation = PETSC_TRUE;
-  PetscCall(FormatPlace(nm->op->dim, w->at_rotation, place, sizeof(place)));
+  PetscCall(FormatPlace(nm->dim, w->at_rotation, place, sizeof(place)));
   PetscCall(PetscPrintf(nm->comm, "mmcontact warning: at step %" PetscInt_FMT " (t = %g) the cell at %s has turned by %.3g rad: the linear law strains a rotated body and swells it by the square of the angle, here a volume change of %.3g, above -strain_warn %g. For large rotations use -elasticity svk (or neohookean), finite strain, which a rotation leaves unstrained (warned once)\n", nm->hist.step, (double)nm->hist.time, place, (double)PetscSqrtReal(w->rotation), (double)w->rotation, (double)nm->strain_warn));
   PetscFunctionReturn(0);
 }
@@ -326,7 +328,7 @@ static PetscErrorCode CheckSmallStrain(MMNewmark nm, const Worst *wp)
   char             place[96];
 
   PetscFunctionBeginUser;
-  PetscCall(FormatPlace(nm->op->dim, w.at_strain, place, sizeof(place)));
+  PetscCall(FormatPlace(nm->dim, w.at_strain, place, sizeof(place)));
   PetscCheck(w.strain <= nm->max_strain, comm, MM_ERR_PHYSICS, "At step %" PetscInt_FMT " (t = %g) the cell at %s has a strain of %.3g, above -max_strain %g: a small-strain model means nothing there. Check -v0, the loads and the units (SI), use a finite-strain law (-elasticity svk or neohookean), or raise -max_strain. The output up to the previous step is intact", h->step, (double)h->time, place, (double)w.strain, (double)nm->max_strain);
   if (w.strain > nm->strain_warn && !d->warned) {
     d->warned = PETSC_TRUE;
@@ -359,7 +361,7 @@ PetscErrorCode MMDeformationView(MMNewmark nm, PetscViewer viewer)
   PetscFunctionBeginUser;
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
   if (!nm->deformation_audit || !ascii) PetscFunctionReturn(0);
-  PetscCall(FormatPlace(nm->op->dim, d->where, place, sizeof(place)));
+  PetscCall(FormatPlace(nm->dim, d->where, place, sizeof(place)));
   /* -strain_warn and -max_strain apply to the linear law only: a finite-strain run's strain is the Green strain */
   if (nm->material->finite) PetscCall(PetscViewerASCIIPrintf(viewer, "  largest strain %.3e (Green strain) at step %" PetscInt_FMT ", in the cell at %s\n", (double)d->max_strain, d->step, place));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "  largest strain %.3e at step %" PetscInt_FMT ", in the cell at %s (-strain_warn %g, -max_strain %g)\n", (double)d->max_strain, d->step, place, (double)nm->strain_warn, (double)nm->max_strain));

@@ -60,7 +60,7 @@ static PetscErrorCode TrapezoidalWork(MMNewmark nm, IS is, Vec du, PetscReal *wo
 static PetscErrorCode ObstacleWork(MMNewmark nm, PetscReal t0, PetscReal t1, PetscReal *wn, PetscReal *wt)
 {
   MMContactNodes     nodes, *ct = &nodes;
-  const PetscInt     dim = nm->op->dim;
+  const PetscInt     dim = nm->dim;
   const PetscInt    *in;
   const PetscScalar *f1, *f0;
   PetscInt           rstart;
@@ -90,7 +90,7 @@ static PetscErrorCode ObstacleWork(MMNewmark nm, PetscReal t0, PetscReal t1, Pet
   PetscCall(VecRestoreArrayRead(nm->state.react_old, &f0));
   PetscCall(VecRestoreArrayRead(nm->state.react, &f1));
   PetscCall(ISRestoreIndices(ct->is_normal, &in));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, w, 2, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)nm->op->dm)));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, w, 2, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)nm->dm)));
   *wn = w[0];
   *wt = w[1];
   PetscFunctionReturn(0);
@@ -149,7 +149,7 @@ static PetscErrorCode CheckFinite(MMNewmark nm, const MMHistory *h, PetscReal w_
 
   PetscFunctionBeginUser;
   for (size_t i = 0; i < sizeof(val) / sizeof(val[0]); ++i)
-    PetscCheck(!PetscIsInfOrNanReal(val[i]), PetscObjectComm((PetscObject)nm->op->dm), PETSC_ERR_FP,
+    PetscCheck(!PetscIsInfOrNanReal(val[i]), PetscObjectComm((PetscObject)nm->dm), PETSC_ERR_FP,
                "The %s is %s at step %" PetscInt_FMT " (t = %g): the state overflowed or a solve failed. Check the units of the material (-E %g, -rho %g), the loads and the initial velocity. The output up to the previous step is intact",
                name[i], PetscIsNanReal(val[i]) ? "NaN" : "infinite", h->step, (double)h->time, (double)nm->pb.E, (double)nm->pb.rho);
   PetscFunctionReturn(0);
@@ -183,7 +183,7 @@ PetscErrorCode MMEnergyInitial(MMNewmark nm, PetscBool restarted)
   h->work_dirichlet = 0;
   h->work_frame = 0;
   h->balance_residual = h->max_balance = h->max_penetration_run = 0;
-  h->cfl = cn.enabled ? nm->op->c_p * h->dt / cn.h_c : 0;
+  h->cfl = cn.enabled ? nm->material->c_p_max * h->dt / cn.h_c : 0;
   /* the quadrature inserts the Dirichlet data of t = 0: a restarted run's moving boundary is elsewhere */
   if (!(nm->loads->moving && restarted) && !nm->material->finite) PetscCall(MMContactCheckElasticEnergy(nm->contact, nm->material, nm->state.u));
   PetscCall(TotalEnergy(nm, h));
@@ -296,10 +296,10 @@ PetscErrorCode MMEnergyStep(MMNewmark nm)
     char advice[768];
 
     PetscCall(AuditAdvice(nm, h->balance_residual, advice, sizeof(advice)));
-    SETERRQ(PetscObjectComm((PetscObject)nm->op->dm), PETSC_ERR_NOT_CONVERGED, "Energy audit failed at step %" PetscInt_FMT " (t = %g): balance residual %.3e > -audit_tol %.1e. %s The output up to the previous step is intact", h->step, (double)h->time, (double)h->balance_residual, (double)nm->audit_tol, advice);
+    SETERRQ(PetscObjectComm((PetscObject)nm->dm), PETSC_ERR_NOT_CONVERGED, "Energy audit failed at step %" PetscInt_FMT " (t = %g): balance residual %.3e > -audit_tol %.1e. %s The output up to the previous step is intact", h->step, (double)h->time, (double)h->balance_residual, (double)nm->audit_tol, advice);
   }
   s->work_frame      = 0;
-  h->cfl              = cn.enabled ? nm->op->c_p * s->dt / cn.h_c : 0;
+  h->cfl              = cn.enabled ? nm->material->c_p_max * s->dt / cn.h_c : 0;
   PetscCall(ContactDiagnostics(nm, s->u, s->react, s->v, PETSC_TRUE, h));
   PetscCall(MMFrictionGetConvergence(nm->friction, &h->friction_its, NULL, NULL, &h->contraction));
   h->max_penetration_run = PetscMax(h->max_penetration_run, h->max_penetration);

@@ -58,10 +58,10 @@ static PetscErrorCode ProjectInitialField(MMNewmark nm, PetscErrorCode (*f)(Pets
   void *fctx = &nm->pb;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalVector(nm->op->dm, &ucart));
+  PetscCall(DMGetGlobalVector(nm->dm, &ucart));
   PetscCall(MMFEInterpolate(nm->op, f, fctx, ucart));
   PetscCall(MMFEFromCartesian(nm->op, ucart, w));
-  PetscCall(DMRestoreGlobalVector(nm->op->dm, &ucart));
+  PetscCall(DMRestoreGlobalVector(nm->dm, &ucart));
   PetscFunctionReturn(0);
 }
 
@@ -69,8 +69,8 @@ static PetscErrorCode ProjectInitialField(MMNewmark nm, PetscErrorCode (*f)(Pets
  * vector: the Dirichlet dofs drop out */
 static PetscErrorCode VertexTableCartesian(MMNewmark nm, const PetscReal table[], Vec g)
 {
-  DM             dm  = nm->op->dm;
-  const PetscInt dim = nm->op->dim;
+  DM             dm  = nm->dm;
+  const PetscInt dim = nm->dim;
   PetscSection   ls;
   PetscInt       vStart, vEnd;
   PetscScalar   *a;
@@ -96,7 +96,7 @@ static PetscErrorCode VertexTableCartesian(MMNewmark nm, const PetscReal table[]
  * rotation is added to every body. */
 static PetscErrorCode BodiesInitialVelocity(MMNewmark nm, Vec w)
 {
-  DM               dm  = nm->op->dm;
+  DM               dm  = nm->dm;
   MMNewmarkProblem rotation = nm->pb; /* the rotation alone: InitialVelocity without -v0 */
   Vec              ucart, tglob;
 
@@ -120,13 +120,13 @@ static PetscErrorCode AddRotationAboutCentres(MMNewmark nm, Vec w)
   Vec tglob, tw;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalVector(nm->op->dm, &tglob));
+  PetscCall(DMGetGlobalVector(nm->dm, &tglob));
   PetscCall(VecDuplicate(w, &tw));
   PetscCall(VertexTableCartesian(nm, nm->material->vertex_omega0, tglob));
   PetscCall(MMFEFromCartesian(nm->op, tglob, tw));
   PetscCall(VecAXPY(w, 1.0, tw));
   PetscCall(VecDestroy(&tw));
-  PetscCall(DMRestoreGlobalVector(nm->op->dm, &tglob));
+  PetscCall(DMRestoreGlobalVector(nm->dm, &tglob));
   PetscFunctionReturn(0);
 }
 
@@ -189,7 +189,7 @@ static PetscErrorCode InitialAcceleration(MMNewmark nm)
  * (README "Options"). The normal part is dropped, and said. */
 static PetscErrorCode TangentialInitialVelocity(MMNewmark nm)
 {
-  const PetscInt dim = nm->op->dim;
+  const PetscInt dim = nm->dim;
   PetscReal      vn  = 0, p[MM_MAX_DIM], n[MM_MAX_DIM];
   PetscBool      plane;
 
@@ -198,7 +198,7 @@ static PetscErrorCode TangentialInitialVelocity(MMNewmark nm)
   for (PetscInt d = 0; d < dim; ++d) vn += nm->pb.v0[d] * n[d];
   if (vn == 0) PetscFunctionReturn(0);
   for (PetscInt d = 0; d < dim; ++d) nm->pb.v0[d] -= vn * n[d];
-  if (!nm->pb.quiet) PetscCall(PetscPrintf(PetscObjectComm((PetscObject)nm->op->dm), "mmcontact: -initial_state static_sliding slides along the plane: the normal part %g of -v0 is dropped\n", (double)vn));
+  if (!nm->pb.quiet) PetscCall(PetscPrintf(PetscObjectComm((PetscObject)nm->dm), "mmcontact: -initial_state static_sliding slides along the plane: the normal part %g of -v0 is dropped\n", (double)vn));
   PetscFunctionReturn(0);
 }
 
@@ -252,7 +252,7 @@ PetscErrorCode MMNewmarkInitialState(MMNewmark nm)
 
   PetscFunctionBeginUser;
   PetscCall(MMContactGetOperators(nm->contact, &ops));
-  PetscCall(DMCreateGlobalVector(nm->op->dm, &s->u));
+  PetscCall(DMCreateGlobalVector(nm->dm, &s->u));
   {
     Vec *copies[] = {&s->v, &s->a, &s->u_old, &s->v_old, &s->a_old, &s->react, &s->react_old, &s->work, &s->u_next};
     for (size_t i = 0; i < sizeof(copies) / sizeof(copies[0]); ++i) PetscCall(VecDuplicate(s->u, copies[i]));
@@ -274,7 +274,7 @@ PetscErrorCode MMNewmarkInitialState(MMNewmark nm)
   if (nm->pb.initial_state == MM_INITIAL_STATIC_SLIDING) PetscCall(MMInitialStaticSliding(nm, s->u, s->react));
   else if (nm->pb.initial_state == MM_INITIAL_STATIC) {
     /* u0 is the static solution: an affine u0 given with it would be ignored */
-    PetscCheck(!nm->pb.u0_given, PetscObjectComm((PetscObject)nm->op->dm), PETSC_ERR_USER_INPUT, "-initial_state static computes u0 from the loads at t = 0: drop -u0_offset and -u0_gradient, or use -initial_state given");
+    PetscCheck(!nm->pb.u0_given, PetscObjectComm((PetscObject)nm->dm), PETSC_ERR_USER_INPUT, "-initial_state static computes u0 from the loads at t = 0: drop -u0_offset and -u0_gradient, or use -initial_state given");
     PetscCall(MMContactSolveStatic(nm->contact, s->u, s->react));
   } else {
     PetscCall(ProjectInitialField(nm, InitialDisplacement, s->u));

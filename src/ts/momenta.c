@@ -21,8 +21,8 @@
 static PetscErrorCode MomentaWeights(MMNewmark nm, Vec e[], Vec p[], Vec a[])
 {
   MMMomenta         *mo  = &nm->momenta;
-  DM                 dm  = nm->op->dm;
-  const PetscInt     dim = nm->op->dim;
+  DM                 dm  = nm->dm;
+  const PetscInt     dim = nm->dim;
   const PetscReal    origin[MM_MAX_DIM] = {0, 0, 0};
   PetscSection       gs, ls, cs;
   PetscInt           vStart, vEnd, rstart, nv = 0;
@@ -73,7 +73,7 @@ static PetscErrorCode MomentaSetUp(MMNewmark nm)
 {
   MMContactOperators ops;
   MMMomenta         *mo  = &nm->momenta;
-  const PetscInt     dim = nm->op->dim;
+  const PetscInt     dim = nm->dim;
   Vec                w[3 * MM_MAX_DIM], t;
 
   PetscFunctionBeginUser;
@@ -81,7 +81,7 @@ static PetscErrorCode MomentaSetUp(MMNewmark nm)
   mo->nJ = dim == 3 ? 3 : 1;
   mo->ng = 2 * dim + mo->nJ;
   for (PetscInt k = 0; k < mo->ng; ++k) {
-    PetscCall(DMCreateGlobalVector(nm->op->dm, &w[k]));
+    PetscCall(DMCreateGlobalVector(nm->dm, &w[k]));
     PetscCall(VecZeroEntries(w[k]));
   }
   PetscCall(MomentaWeights(nm, w, &w[dim], &w[2 * dim]));
@@ -106,14 +106,15 @@ static PetscErrorCode MomentaSetUp(MMNewmark nm)
 static PetscErrorCode AngularMomentum(MMNewmark nm, MMHistory *h)
 {
   MMMomenta         *mo = &nm->momenta;
-  DM                 dm = nm->op->dm;
-  const PetscInt     dim = nm->op->dim;
-  Vec                uc, vc, X;
+  DM                 dm = nm->dm;
+  const PetscInt     dim = nm->dim;
+  Vec                uc, vc, X, mass;
   const PetscScalar *u, *v, *m, *x;
   PetscReal          sum[1 + MM_MAX_DIM] = {0}, cm[MM_MAX_DIM] = {0, 0, 0}, L[3] = {0, 0, 0};
   MPI_Comm           comm = PetscObjectComm((PetscObject)dm);
 
   PetscFunctionBeginUser;
+  PetscCall(MMFEGetLumpedMass(nm->op, &mass));
   PetscCall(DMGetGlobalVector(dm, &uc));
   PetscCall(DMGetGlobalVector(dm, &vc));
   PetscCall(MMFEToCartesian(nm->op, nm->state.u, uc));
@@ -121,7 +122,7 @@ static PetscErrorCode AngularMomentum(MMNewmark nm, MMHistory *h)
   PetscCall(DMGetCoordinatesLocal(dm, &X));
   PetscCall(VecGetArrayRead(uc, &u));
   PetscCall(VecGetArrayRead(vc, &v));
-  PetscCall(VecGetArrayRead(nm->op->mass_lumped_cart, &m));
+  PetscCall(VecGetArrayRead(mass, &m));
   PetscCall(VecGetArrayRead(X, &x));
   /* first pass: mass and first moment of the current position */
   for (PetscInt n = 0; n < mo->nv; ++n) {
@@ -153,7 +154,7 @@ static PetscErrorCode AngularMomentum(MMNewmark nm, MMHistory *h)
     h->L[2] = h->J[2] - (cm[0] * P[1] - cm[1] * P[0]);
   }
   PetscCall(VecRestoreArrayRead(X, &x));
-  PetscCall(VecRestoreArrayRead(nm->op->mass_lumped_cart, &m));
+  PetscCall(VecRestoreArrayRead(mass, &m));
   PetscCall(VecRestoreArrayRead(vc, &v));
   PetscCall(VecRestoreArrayRead(uc, &u));
   PetscCall(DMRestoreGlobalVector(dm, &vc));
@@ -172,11 +173,11 @@ static PetscErrorCode LoadResultant(MMNewmark nm, MMHistory *h)
 
   PetscFunctionBeginUser;
   PetscCall(MMContactGetOperators(nm->contact, &ops));
-  PetscCall(DMGetGlobalVector(nm->op->dm, &lc));
+  PetscCall(DMGetGlobalVector(nm->dm, &lc));
   PetscCall(MMFEForceToCartesian(nm->op, ops.load, lc));
-  PetscCall(VecMDot(lc, nm->op->dim, mo->sel, r));
-  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) h->load[d] = d < nm->op->dim ? PetscRealPart(r[d]) : 0;
-  PetscCall(DMRestoreGlobalVector(nm->op->dm, &lc));
+  PetscCall(VecMDot(lc, nm->dim, mo->sel, r));
+  for (PetscInt d = 0; d < MM_MAX_DIM; ++d) h->load[d] = d < nm->dim ? PetscRealPart(r[d]) : 0;
+  PetscCall(DMRestoreGlobalVector(nm->dm, &lc));
   PetscFunctionReturn(0);
 }
 
@@ -226,7 +227,7 @@ PetscErrorCode MMRigidBodyDiagnostics(MMNewmark nm, MMHistory *h)
 {
   MMContactOperators ops;
   MMMomenta         *mo  = &nm->momenta;
-  const PetscInt     dim = nm->op->dim;
+  const PetscInt     dim = nm->dim;
   PetscScalar        su[MM_MAX_DIM], sv[3 * MM_MAX_DIM];
 
   PetscFunctionBeginUser;
@@ -272,8 +273,8 @@ PetscErrorCode MMMomentaDestroy(MMMomenta *mo)
 static PetscErrorCode ForceMoments(MMNewmark nm, Vec u, Vec f, PetscBool reference, PetscReal F[3], PetscReal T[3])
 {
   MMMomenta         *mo  = &nm->momenta;
-  DM                 dm  = nm->op->dm;
-  const PetscInt     dim = nm->op->dim;
+  DM                 dm  = nm->dm;
+  const PetscInt     dim = nm->dim;
   Vec                uc, fc, X;
   const PetscScalar *ua, *fa, *x;
   PetscReal          s[6] = {0, 0, 0, 0, 0, 0};

@@ -67,7 +67,7 @@ static PetscErrorCode RejectStep(TS ts, MMNewmark nm, PetscInt rejections, MMRej
   PetscFunctionBeginUser;
   PetscCall(MMContactGetNodes(nm->contact, &cn));
   h_c = cn.h_c;
-  cfl = nm->op->c_p * dt / h_c;
+  cfl = nm->material->c_p_max * dt / h_c;
   PetscCall(TSAdaptGetStepLimits(ts->adapt, &hmin, &hmax));
   PetscCall(MMFrictionGetConvergence(nm->friction, NULL, NULL, &contraction, NULL));
   ts->reject++;
@@ -87,7 +87,7 @@ static PetscErrorCode RejectStep(TS ts, MMNewmark nm, PetscInt rejections, MMRej
   } else {
     PetscCheck(can_retry, comm, PETSC_ERR_NOT_CONVERGED,
                "A contact release at t = %g creates energy that dt does not resolve: the step's contact work W_c = %g is %.3g of the energy scale, above -contact_work_tol %g, with dt = %g (c_p dt / h_c' = %.3g). The next dt %g would be below -ts_adapt_dt_min %g (or past -ts_max_reject %" PetscInt_FMT "). Use a -ts_dt near h_c' / c_p = %g, so that the contact pressure is resolved in time. The output up to t = %g is intact",
-               (double)ts->ptime, (double)w_c, (double)(w_c / scale), (double)nm->contact_work_tol, (double)dt, (double)cfl, (double)new_dt, (double)hmin, ts->max_reject, (double)(h_c / nm->op->c_p), (double)ts->ptime);
+               (double)ts->ptime, (double)w_c, (double)(w_c / scale), (double)nm->contact_work_tol, (double)dt, (double)cfl, (double)new_dt, (double)hmin, ts->max_reject, (double)(h_c / nm->material->c_p_max), (double)ts->ptime);
     if (!nm->pb.quiet) PetscCall(PetscPrintf(comm, "  step rejected at t = %g: its contact work W_c = %g would create %.3g of the energy scale (-contact_work_tol %g) with dt = %g (c_p dt / h_c' = %.3g); retrying with dt = %g\n", (double)ts->ptime, (double)w_c, (double)(w_c / scale), (double)nm->contact_work_tol, (double)dt, (double)cfl, (double)new_dt));
   }
   ts->time_step = new_dt;
@@ -383,11 +383,11 @@ static PetscErrorCode WarnUnresolvedContact(MMNewmark nm, PetscReal dt)
   PetscFunctionBeginUser;
   PetscCall(MMContactGetNodes(nm->contact, &cn));
   if (!cn.enabled || cn.h_c <= 0) PetscFunctionReturn(0);
-  const PetscReal cfl = nm->op->c_p * dt / cn.h_c;
-  PetscCheck(!PetscIsInfOrNanReal(cfl), PetscObjectComm((PetscObject)nm->op->dm), PETSC_ERR_USER_INPUT, "The wave speed c_p = %g from -E %g, -nu %g, -rho %g is not a finite number", (double)nm->op->c_p, (double)nm->pb.E, (double)nm->pb.nu, (double)nm->pb.rho);
+  const PetscReal cfl = nm->material->c_p_max * dt / cn.h_c;
+  PetscCheck(!PetscIsInfOrNanReal(cfl), PetscObjectComm((PetscObject)nm->dm), PETSC_ERR_USER_INPUT, "The wave speed c_p = %g from -E %g, -nu %g, -rho %g is not a finite number", (double)nm->material->c_p_max, (double)nm->pb.E, (double)nm->pb.nu, (double)nm->pb.rho);
   if (cfl > limit)
-    PetscCall(PetscPrintf(PetscObjectComm((PetscObject)nm->op->dm), "WARNING: c_p dt / h_c' = %.3g is far above 1 (c_p = %g, h_c' = %g, dt = %g): the time step does not resolve the contact pressure. A release may create energy; steps that create more than -contact_work_tol %g of the energy scale are retried with smaller dt. A -ts_dt near h_c' / c_p = %g resolves the contact\n",
-                          (double)cfl, (double)nm->op->c_p, (double)cn.h_c, (double)dt, (double)nm->contact_work_tol, (double)(cn.h_c / nm->op->c_p)));
+    PetscCall(PetscPrintf(PetscObjectComm((PetscObject)nm->dm), "WARNING: c_p dt / h_c' = %.3g is far above 1 (c_p = %g, h_c' = %g, dt = %g): the time step does not resolve the contact pressure. A release may create energy; steps that create more than -contact_work_tol %g of the energy scale are retried with smaller dt. A -ts_dt near h_c' / c_p = %g resolves the contact\n",
+                          (double)cfl, (double)nm->material->c_p_max, (double)cn.h_c, (double)dt, (double)nm->contact_work_tol, (double)(cn.h_c / nm->material->c_p_max)));
   PetscFunctionReturn(0);
 }
 
@@ -434,7 +434,7 @@ static PetscErrorCode SetUpAdapt(TS ts, PetscReal dt)
 @*/
 PetscErrorCode MMNewmarkCreateTS(MMNewmark nm, TS *ts)
 {
-  MPI_Comm  comm = PetscObjectComm((PetscObject)nm->op->dm);
+  MPI_Comm  comm = PetscObjectComm((PetscObject)nm->dm);
   PetscReal dt;
   TSType    type;
   PetscBool isnewmark;

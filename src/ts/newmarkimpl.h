@@ -118,7 +118,9 @@ struct _p_MMNewmark {
   MPI_Comm         comm;
   MMNewmarkProblem pb;
   /* the lower components, borrowed (MMNewmarkSetUp) */
-  MMOperators *op;
+  MMOperators  op;
+  DM           dm;  /* fem's (MMFEGetDM): the mesh and the layout of every vector */
+  PetscInt     dim; /* the mesh's (MMFEGetDimension) */
   MMMaterial  *material;
   MMLoads     *loads;
   MMContact    contact;

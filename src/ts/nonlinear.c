@@ -98,8 +98,8 @@ PetscErrorCode MMNonlinearSetUp(MMNewmark nm)
   }
   {
     PetscReal lo[MM_MAX_DIM], hi[MM_MAX_DIM], D = 0;
-    PetscCall(DMGetBoundingBox(nm->op->dm, lo, hi)); /* the mesh's size: the angular momentum's length scale */
-    for (PetscInt d = 0; d < nm->op->dim; ++d) D += PetscSqr(hi[d] - lo[d]);
+    PetscCall(DMGetBoundingBox(nm->dm, lo, hi)); /* the mesh's size: the angular momentum's length scale */
+    for (PetscInt d = 0; d < nm->dim; ++d) D += PetscSqr(hi[d] - lo[d]);
     nl->size = PetscSqrtReal(D);
   }
   PetscCall(MMElasticitySetUp(&nl->el, nm->op));
@@ -312,8 +312,8 @@ static PetscErrorCode BuildTangent(MMNewmark nm, Vec l, PetscReal t)
     PetscCall(MMElasticityAssembleTangent(&nl->el, nm->op, nm->material, l, Kc));
     PetscCall(MMContactFrameMatrixEnd(nm->contact, Kc, nl->Ks));
   }
-  if (!nl->Ks_at) PetscCall(DMCreateGlobalVector(nm->op->dm, &nl->Ks_at));
-  PetscCall(DMLocalToGlobal(nm->op->dm, l, INSERT_VALUES, nl->Ks_at)); /* the owned values, exactly */
+  if (!nl->Ks_at) PetscCall(DMCreateGlobalVector(nm->dm, &nl->Ks_at));
+  PetscCall(DMLocalToGlobal(nm->dm, l, INSERT_VALUES, nl->Ks_at)); /* the owned values, exactly */
   nl->Ks_time     = t;
   nl->use_tangent = PETSC_TRUE;
   nl->version++;
@@ -398,7 +398,7 @@ PetscErrorCode MMNewmarkRestoreTangent(MMNewmark nm, Vec at, PetscReal t)
   /* -nonlinear_tangent reference or step at the restart: K, or each step's own tangent */
   if (!at || !nm->material->finite || nm->nl.policy != MM_TANGENT_AUTO) PetscFunctionReturn(0);
   PetscCall(VecZeroEntries(el->l1));
-  PetscCall(DMGlobalToLocal(nm->op->dm, at, INSERT_VALUES, el->l1));
+  PetscCall(DMGlobalToLocal(nm->dm, at, INSERT_VALUES, el->l1));
   PetscCall(MMLoadsInsertBoundaryValues(nm->loads, el->l1, t));
   PetscCall(BuildTangent(nm, el->l1, t));
   PetscFunctionReturn(0);

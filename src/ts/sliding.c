@@ -22,26 +22,27 @@ static PetscReal Tangential(const PetscReal n[], const PetscReal v[], PetscInt d
 static PetscErrorCode SlidingLoads(MMNewmark nm, PetscReal e[], PetscReal *Fe, PetscReal *P, PetscReal *m, PetscBool *from_rest)
 {
   MMContactOperators ops;
-  const PetscInt     dim = nm->op->dim;
+  const PetscInt     dim = nm->dim;
   const PetscReal   *n = nm->pb.obstacle_normal;
   PetscReal          ne, F[MM_MAX_DIM] = {0, 0, 0};
   PetscInt           bs;
-  Vec                Lc;
+  Vec                Lc, mass;
 
   PetscFunctionBeginUser;
+  PetscCall(MMFEGetLumpedMass(nm->op, &mass));
   PetscCall(MMContactGetOperators(nm->contact, &ops));
-  PetscCall(DMGetGlobalVector(nm->op->dm, &Lc));
+  PetscCall(DMGetGlobalVector(nm->dm, &Lc));
   PetscCall(MMFEForceToCartesian(nm->op, ops.load, Lc));
   PetscCall(VecGetBlockSize(Lc, &bs));
-  PetscCheck(bs == dim, PetscObjectComm((PetscObject)nm->op->dm), PETSC_ERR_SUP, "-initial_state static_sliding needs a body without Dirichlet boundaries");
+  PetscCheck(bs == dim, PetscObjectComm((PetscObject)nm->dm), PETSC_ERR_SUP, "-initial_state static_sliding needs a body without Dirichlet boundaries");
   for (PetscInt d = 0; d < dim; ++d) PetscCall(VecStrideSum(Lc, d, (PetscScalar *)&F[d]));
-  PetscCall(DMRestoreGlobalVector(nm->op->dm, &Lc));
+  PetscCall(DMRestoreGlobalVector(nm->dm, &Lc));
   ne         = Tangential(n, nm->pb.v0, dim, e);
   *from_rest = (PetscBool)(ne == 0);
   if (*from_rest) ne = Tangential(n, F, dim, e);
-  PetscCheck(ne > 0, PetscObjectComm((PetscObject)nm->op->dm), PETSC_ERR_USER_INPUT, "-initial_state static_sliding needs a direction along the obstacle plane: from -v0, or from the load when at rest");
+  PetscCheck(ne > 0, PetscObjectComm((PetscObject)nm->dm), PETSC_ERR_USER_INPUT, "-initial_state static_sliding needs a direction along the obstacle plane: from -v0, or from the load when at rest");
   for (PetscInt d = 0; d < dim; ++d) e[d] /= ne;
-  PetscCall(VecSum(nm->op->mass_lumped_cart, (PetscScalar *)m));
+  PetscCall(VecSum(mass, (PetscScalar *)m));
   *m /= dim;
   *Fe = *P = 0;
   for (PetscInt d = 0; d < dim; ++d) {
@@ -63,11 +64,11 @@ static PetscErrorCode ContactNodeCoordinates(MMNewmark nm, PetscInt k, PetscReal
 
   PetscFunctionBeginUser;
   PetscCall(MMContactGetNodes(nm->contact, &cn));
-  PetscCall(DMGetCoordinateSection(nm->op->dm, &cs));
-  PetscCall(DMGetCoordinatesLocal(nm->op->dm, &X));
+  PetscCall(DMGetCoordinateSection(nm->dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(nm->dm, &X));
   PetscCall(PetscSectionGetOffset(cs, cn.vertex[k], &off));
   PetscCall(VecGetArrayRead(X, &xa));
-  for (PetscInt d = 0; d < nm->op->dim; ++d) x[d] = PetscRealPart(xa[off + d]);
+  for (PetscInt d = 0; d < nm->dim; ++d) x[d] = PetscRealPart(xa[off + d]);
   PetscCall(VecRestoreArrayRead(X, &xa));
   PetscFunctionReturn(0);
 }
@@ -78,8 +79,8 @@ static PetscErrorCode ContactNodeCoordinates(MMNewmark nm, PetscInt k, PetscReal
 static PetscErrorCode RigidPins(MMNewmark nm, PetscInt pins[], PetscInt *npins)
 {
   MMContactNodes     nodes, *ct = &nodes;
-  const PetscInt  dim = nm->op->dim;
-  MPI_Comm        comm = PetscObjectComm((PetscObject)nm->op->dm);
+  const PetscInt  dim = nm->dim;
+  MPI_Comm        comm = PetscObjectComm((PetscObject)nm->dm);
   const PetscInt *in;
   PetscInt        A = PETSC_MAX_INT, mine, kA = -1, B = PETSC_MAX_INT;
   PetscReal       xA[MM_MAX_DIM] = {0, 0, 0}, xB[MM_MAX_DIM] = {0, 0, 0}, dmax = -1, gmax;
@@ -138,7 +139,7 @@ static PetscErrorCode SlidingSystem(MMNewmark nm, const PetscReal et[], Vec f, M
   MMContactOperators ops;
   MMContactNodes     nodes, *ct = &nodes;
   const PetscReal    mu  = nm->pb.mu;
-  const PetscInt     dim = nm->op->dim;
+  const PetscInt     dim = nm->dim;
   const PetscInt    *in;
   const PetscScalar *fa, *ga;
   PetscScalar       *ra;
@@ -210,15 +211,16 @@ PetscErrorCode MMInitialStaticSliding(MMNewmark nm, Vec w, Vec react)
 {
   MMContactOperators ops;
   MMContactNodes     nodes, *ct = &nodes;
-  MPI_Comm           comm = PetscObjectComm((PetscObject)nm->op->dm);
+  MPI_Comm           comm = PetscObjectComm((PetscObject)nm->dm);
   PetscReal          e[MM_MAX_DIM] = {0, 0, 0}, Fe = 0, P = 0, m = 0, a, et[2] = {0, 0}, rmin;
-  PetscInt           dim = nm->op->dim;
+  PetscInt           dim = nm->dim;
   PetscBool          from_rest = PETSC_FALSE;
-  Vec                f, rhs, me, rn;
+  Vec                f, rhs, me, rn, mass;
   Mat                A;
   KSP                ksp;
 
   PetscFunctionBeginUser;
+  PetscCall(MMFEGetLumpedMass(nm->op, &mass));
   PetscCall(MMContactGetOperators(nm->contact, &ops));
   PetscCall(MMContactGetNodes(nm->contact, &nodes));
   PetscCheck(ct->enabled && !nm->pb.dirichlet, comm, PETSC_ERR_SUP, "-initial_state static_sliding needs contact on and no Dirichlet boundary");
@@ -234,7 +236,7 @@ PetscErrorCode MMInitialStaticSliding(MMNewmark nm, Vec w, Vec react)
    * m_i I), and the strides are the Cartesian components (no Dirichlet data here) */
   PetscCall(VecDuplicate(w, &f));
   PetscCall(VecDuplicate(w, &rhs));
-  PetscCall(VecDuplicate(nm->op->mass_lumped_cart, &me));
+  PetscCall(VecDuplicate(mass, &me));
   for (PetscInt d = 0; d < dim; ++d) PetscCall(VecStrideSet(me, d, -a * e[d]));
   PetscCall(MMFEForceFromCartesian(nm->op, me, rhs));
   PetscCall(MatMult(ops.Mstar, rhs, f));

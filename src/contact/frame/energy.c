@@ -26,14 +26,18 @@
 @*/
 PetscErrorCode MMContactElasticEnergy(MMContact ct, Vec w, PetscReal *energy)
 {
-  const MMOperators *op = ct->op;
-  PetscScalar        wKw, wl;
+  PetscScalar wKw, wl;
+  PetscReal   energy_dirichlet;
+  Vec         work;
 
   PetscFunctionBeginUser;
-  PetscCall(MatMult(ct->K, w, op->work));
-  PetscCall(VecDot(w, op->work, &wKw));
+  PetscCall(MMFEGetDirichletEnergy(ct->op, &energy_dirichlet));
+  PetscCall(DMGetGlobalVector(ct->dm, &work));
+  PetscCall(MatMult(ct->K, w, work));
+  PetscCall(VecDot(w, work, &wKw));
+  PetscCall(DMRestoreGlobalVector(ct->dm, &work));
   PetscCall(VecDot(w, ct->lift, &wl));
-  *energy = 0.5 * PetscRealPart(wKw) + PetscRealPart(wl) + op->energy_dirichlet;
+  *energy = 0.5 * PetscRealPart(wKw) + PetscRealPart(wl) + energy_dirichlet;
   PetscFunctionReturn(0);
 }
 
@@ -42,10 +46,10 @@ PetscErrorCode MMContactElasticEnergy(MMContact ct, Vec w, PetscReal *energy)
  * moved rigidly, the terms of w.K w cancel to a small fraction of their sum (2e-9 on the clamped
  * cantilever of t/L = 0.02 under its weight), so the energy's error is eps times this sum, not eps
  * times the energy. Once, at start-up and on a restart: |K| is a copy of K. */
-static PetscErrorCode ElasticEnergyRoundoffScale(const MMOperators *op, Mat K, Vec lift, Vec w, PetscReal *scale)
+static PetscErrorCode ElasticEnergyRoundoffScale(PetscReal energy_dirichlet, Mat K, Vec lift, Vec w, PetscReal *scale)
 {
   Mat         A, blocks[2];
-  Vec         aw;
+  Vec         aw, work;
   PetscScalar wAw, wl;
   PetscMPIInt size;
   PetscInt    nb = 1;
@@ -69,12 +73,14 @@ static PetscErrorCode ElasticEnergyRoundoffScale(const MMOperators *op, Mat K, V
   PetscCall(VecDuplicate(w, &aw));
   PetscCall(VecCopy(w, aw));
   PetscCall(VecAbs(aw));
-  PetscCall(MatMult(A, aw, op->work));
-  PetscCall(VecDot(aw, op->work, &wAw));
-  PetscCall(VecCopy(lift, op->work));
-  PetscCall(VecAbs(op->work));
-  PetscCall(VecDot(aw, op->work, &wl));
-  *scale = 0.5 * PetscRealPart(wAw) + PetscRealPart(wl) + PetscAbsReal(op->energy_dirichlet);
+  PetscCall(VecDuplicate(w, &work));
+  PetscCall(MatMult(A, aw, work));
+  PetscCall(VecDot(aw, work, &wAw));
+  PetscCall(VecCopy(lift, work));
+  PetscCall(VecAbs(work));
+  PetscCall(VecDot(aw, work, &wl));
+  *scale = 0.5 * PetscRealPart(wAw) + PetscRealPart(wl) + PetscAbsReal(energy_dirichlet);
+  PetscCall(VecDestroy(&work));
   PetscCall(VecDestroy(&aw));
   PetscCall(MatDestroy(&A));
   PetscFunctionReturn(0);
@@ -109,21 +115,22 @@ static PetscErrorCode ElasticEnergyRoundoffScale(const MMOperators *op, Mat K, V
 @*/
 PetscErrorCode MMContactCheckElasticEnergy(MMContact ct, const MMMaterial *mat, Vec w)
 {
-  const MMOperators *op = ct->op;
-  PetscReal          e, integral[1], scale, tol;
+  MMOperators        op = ct->op;
+  PetscReal          e, integral[1], scale, tol, energy_dirichlet;
   PetscInt           n;
   Vec                ucart;
 
   PetscFunctionBeginUser;
   PetscCall(MMContactElasticEnergy(ct, w, &e));
-  PetscCall(DMGetGlobalVector(op->dm, &ucart));
+  PetscCall(DMGetGlobalVector(ct->dm, &ucart));
   PetscCall(MMFEToCartesian(op, w, ucart));
   PetscCall(MMFEElasticEnergyIntegral(op, mat, ucart, &integral[0]));
-  PetscCall(DMRestoreGlobalVector(op->dm, &ucart));
-  PetscCall(ElasticEnergyRoundoffScale(op, ct->K, ct->lift, w, &scale));
+  PetscCall(DMRestoreGlobalVector(ct->dm, &ucart));
+  PetscCall(MMFEGetDirichletEnergy(op, &energy_dirichlet));
+  PetscCall(ElasticEnergyRoundoffScale(energy_dirichlet, ct->K, ct->lift, w, &scale));
   PetscCall(VecGetSize(w, &n));
   tol = MM_ENERGY_ROUNDOFF * PetscSqrtReal((PetscReal)n) * PETSC_MACHINE_EPSILON * scale;
   PetscCall(PetscInfo(NULL, "elastic energy: matrix form %.16e, integral %.16e: they differ by %g eps of the terms' absolute sum %g\n", (double)e, (double)integral[0], (double)(PetscAbsReal(e - integral[0]) / (PETSC_MACHINE_EPSILON * scale)), (double)scale));
-  PetscCheck(PetscAbsReal(e - integral[0]) <= tol, PetscObjectComm((PetscObject)op->dm), PETSC_ERR_PLIB, "Elastic energy audit failed: matrix form %.16e, %s %.16e, differ by %.3e, above %d sqrt(N) eps of the terms' absolute sum %.3e (N = %" PetscInt_FMT ")", (double)e, mat->uniform ? "quadrature" : "cell by cell", (double)integral[0], (double)PetscAbsReal(e - integral[0]), MM_ENERGY_ROUNDOFF, (double)scale, n);
+  PetscCheck(PetscAbsReal(e - integral[0]) <= tol, PetscObjectComm((PetscObject)ct->dm), PETSC_ERR_PLIB, "Elastic energy audit failed: matrix form %.16e, %s %.16e, differ by %.3e, above %d sqrt(N) eps of the terms' absolute sum %.3e (N = %" PetscInt_FMT ")", (double)e, mat->uniform ? "quadrature" : "cell by cell", (double)integral[0], (double)PetscAbsReal(e - integral[0]), MM_ENERGY_ROUNDOFF, (double)scale, n);
   PetscFunctionReturn(0);
 }

@@ -11,19 +11,19 @@
 /* Q, u_cart = Q w: per contact node the block of its frame, F^T (the columns nu, tau_1, tau_2), the
  * identity elsewhere; a corner's block is its first row's frame. Q is contact's (ct->transform), and
  * fem's frame transforms (MMFEToCartesian) reach it through the ops installed here (transform.c). */
-PetscErrorCode MMContactFrameBuildRotation(MMContact ct, MMOperators *op)
+PetscErrorCode MMContactFrameBuildRotation(MMContact ct, MMOperators op)
 {
-  const PetscInt  dim = op->dim;
+  const PetscInt  dim = ct->dim;
   PetscInt        n, rstart, nrow = 0;
   const PetscInt *in = NULL;
   PetscBool      *rotated;
   Vec             g;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalVector(op->dm, &g));
+  PetscCall(DMGetGlobalVector(ct->dm, &g));
   PetscCall(VecGetLocalSize(g, &n));
   PetscCall(VecGetOwnershipRange(g, &rstart, NULL));
-  PetscCall(DMRestoreGlobalVector(op->dm, &g));
+  PetscCall(DMRestoreGlobalVector(ct->dm, &g));
   PetscCall(MatCreateAIJ(ct->comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, ct->enabled ? dim : 1, NULL, 0, NULL, &ct->transform.Q));
   PetscCall(PetscCalloc1(n, &rotated));
   if (ct->enabled) {
@@ -52,14 +52,17 @@ PetscErrorCode MMContactFrameBuildRotation(MMContact ct, MMOperators *op)
  * MatPtAP would build new matrices, through a symbolic product that costs more than the closed-form
  * assembly (docs/scaling.md, "Assembly of K and M, measured"). A lumped M is m I at each node, which
  * the rotation leaves unchanged: it is not rotated, so that no round-off enters it. */
-static PetscErrorCode RotateOperators(Mat Q, MMOperators *op, Mat *K, Mat *M)
+static PetscErrorCode RotateOperators(Mat Q, MMOperators op, Mat *K, Mat *M)
 {
+  PetscBool lumped;
+
   PetscFunctionBeginUser;
+  PetscCall(MMFEIsMassLumped(op, &lumped));
   PetscCall(PetscLogEventBegin(MMCONTACT_FrameRotate, 0, 0, 0, 0));
   /* fem hands its K and M over rather than keeping a Cartesian copy: one matrix of K's pattern less
    * for the whole run (at a million dofs, hundreds of MB; docs/scaling.md) */
   PetscCall(MMFEHandMatrices(op, K, M));
-  PetscCall(MMRotateP1(Q, *K, op->lumped ? NULL : *M));
+  PetscCall(MMRotateP1(Q, *K, lumped ? NULL : *M));
   PetscCall(PetscLogEventEnd(MMCONTACT_FrameRotate, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -107,21 +110,24 @@ void MMContactMassBoundary(MMContact ct, MMMassBoundary *mb)
 
 .seealso: `MMContactSetUp()`, `MMFEAssembleOperators()`, `MMFEAssembleOperatorsEnd()`, `MMContactGetOperators()`
 @*/
-PetscErrorCode MMContactSetUpFrame(MMContact ct, MMOperators *op, const MMMaterial *material)
+PetscErrorCode MMContactSetUpFrame(MMContact ct, MMOperators op, const MMMaterial *material)
 {
   MMMassBoundary mb;
+  Vec            load, lift;
 
   PetscFunctionBeginUser;
   PetscCheck(op == ct->op, ct->comm, PETSC_ERR_ARG_WRONG, "The contact frame rotates the operators given to MMContactSetUp, whose Q it built");
   PetscCall(PetscLogEventBegin(MMCONTACT_FrameSetUp, 0, 0, 0, 0));
   PetscCall(RotateOperators(ct->transform.Q, op, &ct->K, &ct->mass.M));
-  PetscCall(RotateForce(ct->transform.Q, op->load, &ct->load)); /* fem's load and lift stay Cartesian */
-  PetscCall(RotateForce(ct->transform.Q, op->lift, &ct->lift));
+  PetscCall(MMFEGetLoad(op, &load)); /* fem's load and lift stay Cartesian */
+  PetscCall(MMFEGetLift(op, &lift));
+  PetscCall(RotateForce(ct->transform.Q, load, &ct->load));
+  PetscCall(RotateForce(ct->transform.Q, lift, &ct->lift));
   /* frames that follow the contact point rebuild M* from the whole w-frame M, turned with them */
   if (ct->frames.follow) PetscCall(MatDuplicate(ct->mass.M, MAT_COPY_VALUES, &ct->frames.M));
   MMContactMassBoundary(ct, &mb);
   PetscCall(MMContactMassStar(&ct->mass, op, material, &mb));
-  if (ct->transform.N) PetscCall(VecDuplicate(op->load, &ct->transform.pair_work));
+  if (ct->transform.N) PetscCall(VecDuplicate(load, &ct->transform.pair_work));
   PetscCall(MMContactPairsTransformOperators(ct, op));
   /* M served only to build M* and to check M*'s moments against it: the steps, the audit and the
    * diagnostics use M*. Freed here, before any factorization, it leaves the run's peak memory: one

@@ -1,6 +1,6 @@
 /* Private to contact: the contact frame (src/contact/frame/, docs/method.md section 2). fem assembles
- * K, M, the load and the lift on the Cartesian dofs; the frame turns them into the w-frame ones in
- * fem's MMOperators, which app hands it (frame.c), builds M* for -mass (mass_star.c) and, for -mass
+ * K, M, the load and the lift on the Cartesian dofs; the frame turns them into its own w-frame ones
+ * (fem's MMOperators, which app hands it, hands over K and M and lends the load and lift: frame.c), builds M* for -mass (mass_star.c) and, for -mass
  * redistributed, gives the removed mass back (mass_redistribution.c). */
 #pragma once
 #include "contact.h"
@@ -11,7 +11,7 @@ typedef struct {
   IS               massless;     /* the contact-normal dofs (w-frame), NULL without contact */
   PetscInt         n;            /* owned contact rows */
   const PetscInt  *vertex;       /* per row: its mesh point */
-  const PetscInt  *scalar_index; /* per row: its vertex's global index on MMOperators.dm_scalar */
+  const PetscInt  *scalar_index; /* per row: its vertex's global index on fem's scalar DM (MMFEGetScalarDM) */
   const PetscBool *second;       /* per row: a corner node's second row */
   const PetscReal *frame;        /* per row, 9 reals: its node's frame, rows nu, tau_1, tau_2 */
   const PetscInt  *fc_obstacle;  /* per row: a friction corner's second obstacle, or -1; NULL: none */
@@ -47,15 +47,15 @@ typedef struct {
 } MMContactTransform;
 
 /* frame.c: Q from the contact nodes' frames (MMContactSetUp, before fem assembles) */
-PETSC_INTERN PetscErrorCode MMContactFrameBuildRotation(MMContact ct, MMOperators *op);
+PETSC_INTERN PetscErrorCode MMContactFrameBuildRotation(MMContact ct, MMOperators op);
 /* transform.c: the frame's transforms, installed into fem's operators; freed with contact */
-PETSC_INTERN PetscErrorCode MMContactFrameInstall(MMContact ct, MMOperators *op);
+PETSC_INTERN PetscErrorCode MMContactFrameInstall(MMContact ct, MMOperators op);
 PETSC_INTERN PetscErrorCode MMContactTransformDestroy(MMContactTransform *xf);
 /* mass_star.c: -mass, M* from M, its view */
 PETSC_INTERN PetscErrorCode MMContactMassSetFromOptions(MPI_Comm comm, MMContactMass *mass);
-PETSC_INTERN PetscErrorCode MMContactMassStar(MMContactMass *mass, MMOperators *op, const MMMaterial *material, const MMMassBoundary *mb);
-PETSC_INTERN PetscErrorCode MMContactMassRebuild(MMContactMass *mass, MMOperators *op, Mat M, const MMMaterial *material, const MMMassBoundary *mb);
+PETSC_INTERN PetscErrorCode MMContactMassStar(MMContactMass *mass, MMOperators op, const MMMaterial *material, const MMMassBoundary *mb);
+PETSC_INTERN PetscErrorCode MMContactMassRebuild(MMContactMass *mass, MMOperators op, Mat M, const MMMaterial *material, const MMMassBoundary *mb);
 PETSC_INTERN void           MMContactMassBoundary(MMContact ct, MMMassBoundary *mb);
 /* mass_redistribution.c: -mass redistributed, and the moments of M* */
-PETSC_INTERN PetscErrorCode MMContactRedistributeMass(MMContactMass *mass, MMOperators *op, const MMMaterial *material, const MMMassBoundary *mb);
-PETSC_INTERN PetscErrorCode MMContactMassMoments(MMContactMass *mass, MMOperators *op);
+PETSC_INTERN PetscErrorCode MMContactRedistributeMass(MMContactMass *mass, MMOperators op, const MMMaterial *material, const MMMassBoundary *mb);
+PETSC_INTERN PetscErrorCode MMContactMassMoments(MMContactMass *mass, MMOperators op);

@@ -24,21 +24,39 @@
 /* What the redistribution reads and builds: the operators (M, M*, the lumped masses), the material
  * and the contact boundary; what it finds goes to mass, for the mass's view. */
 typedef struct {
-  MMOperators          *op;
+  MMOperators           op;
   const MMMaterial     *material;
   const MMMassBoundary *mb;
   MMContactMass        *mass;
+  /* what it reads of fem's operators, fetched once (MassRedistGetFE) */
+  DM                    dm, dms;     /* the mesh and its scalar vertex DM */
+  PetscInt              dim;
+  PetscBool             lumped;      /* -mass_lumped */
+  Vec                   mass_lumped; /* the lumped standard mass per Cartesian dof */
+  const MMCells        *cells;
 } MassRedist;
+
+static PetscErrorCode MassRedistGetFE(MassRedist *r)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MMFEGetDM(r->op, &r->dm));
+  PetscCall(MMFEGetScalarDM(r->op, &r->dms));
+  PetscCall(MMFEGetDimension(r->op, &r->dim));
+  PetscCall(MMFEIsMassLumped(r->op, &r->lumped));
+  PetscCall(MMFEGetLumpedMass(r->op, &r->mass_lumped));
+  PetscCall(MMFEGetCells(r->op, &r->cells));
+  PetscFunctionReturn(0);
+}
 
 /* The centre and half-diagonal of the mesh's bounding box: rigid modes about it, scaled by it, keep
  * the Gram matrices of order one whatever the units and the position of the body. */
 static PetscErrorCode RigidFrame(MassRedist *r, PetscReal x0[], PetscReal *ell)
 {
-  const PetscInt dim = r->op->dim;
+  const PetscInt dim = r->dim;
   PetscReal      lo[MM_MAX_DIM], hi[MM_MAX_DIM], d2 = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetBoundingBox(r->op->dm, lo, hi));
+  PetscCall(DMGetBoundingBox(r->dm, lo, hi));
   for (PetscInt d = 0; d < MM_MAX_DIM; ++d) x0[d] = 0;
   for (PetscInt d = 0; d < dim; ++d) {
     x0[d] = 0.5 * (lo[d] + hi[d]);
@@ -51,18 +69,18 @@ static PetscErrorCode RigidFrame(MassRedist *r, PetscReal x0[], PetscReal *ell)
 /* The rigid modes as w-frame vectors on the free dofs, about x0 and scaled by 1/ell. */
 static PetscErrorCode RigidModes(MassRedist *r, const PetscReal x0[], PetscReal ell, Vec R[])
 {
-  const PetscInt nr = MMFENumRigidModes(r->op->dim);
+  const PetscInt nr = MMFENumRigidModes(r->dim);
   Vec            cart;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalVector(r->op->dm, &cart));
+  PetscCall(DMGetGlobalVector(r->dm, &cart));
   for (PetscInt k = 0; k < nr; ++k) PetscCall(VecDuplicate(cart, &R[k]));
   PetscCall(MMFERigidModesCartesian(r->op, x0, ell, nr, R));
   for (PetscInt k = 0; k < nr; ++k) {
     PetscCall(MatMultTranspose(r->mass->Q, R[k], cart)); /* to the w-frame */
     PetscCall(VecCopy(cart, R[k]));
   }
-  PetscCall(DMRestoreGlobalVector(r->op->dm, &cart));
+  PetscCall(DMRestoreGlobalVector(r->dm, &cart));
   PetscFunctionReturn(0);
 }
 
@@ -89,8 +107,8 @@ static PetscErrorCode Gram(Mat A, PetscInt nr, Vec R[], PetscReal G[MM_MAX_RIGID
 static PetscErrorCode VertexKinds(MassRedist *r, Vec *kind, Vec n[])
 {
   const MMMassBoundary *ct = r->mb;
-  DM             dms = r->op->dm_scalar;
-  const PetscInt dim = r->op->dim;
+  DM             dms = r->dms;
+  const PetscInt dim = r->dim;
   PetscSection   ls;
   PetscInt       vStart, vEnd, sstart;
   Vec            g;
@@ -112,7 +130,7 @@ static PetscErrorCode VertexKinds(MassRedist *r, Vec *kind, Vec n[])
   }
   PetscCall(DMRestoreGlobalVector(dms, &g));
   /* the Dirichlet nodes, known on every rank from the local section */
-  PetscCall(DMGetLocalSection(r->op->dm, &ls));
+  PetscCall(DMGetLocalSection(r->dm, &ls));
   PetscCall(DMPlexGetDepthStratum(dms, 0, &vStart, &vEnd));
   PetscCall(VecGetArray(*kind, &k));
   for (PetscInt v = vStart; v < vEnd; ++v) {
@@ -138,8 +156,8 @@ static PetscErrorCode VertexGlobalDof(PetscSection gs, PetscInt v, PetscInt *g)
  * Cartesian frame, which is the w-frame of a non-contact node (docs/method.md section 8). */
 static PetscErrorCode AddCellShares(MassRedist *r, Vec kind, Vec normal[], const PetscInt vgroup[], PetscInt group, PetscReal sign, Mat A)
 {
-  DM                 dm = r->op->dm, dms = r->op->dm_scalar;
-  const PetscInt     dim = r->op->dim;
+  DM                 dm = r->dm, dms = r->dms;
+  const PetscInt     dim = r->dim;
   PetscSection       gs;
   PetscInt           cStart, cEnd, vStart, vEnd;
   const PetscScalar *k, *n[MM_MAX_DIM];
@@ -151,7 +169,7 @@ static PetscErrorCode AddCellShares(MassRedist *r, Vec kind, Vec normal[], const
   PetscCall(VecGetArrayRead(kind, &k));
   for (PetscInt d = 0; d < dim; ++d) PetscCall(VecGetArrayRead(normal[d], &n[d]));
   for (PetscInt c = cStart; c < cEnd; ++c) {
-    const MMCells *cells = &r->op->cells;
+    const MMCells *cells = r->cells;
     PetscInt       contact[MM_MAX_DIM + 1], others[MM_MAX_DIM + 1], nc = 0, nf = 0;
     PetscReal      vol, B[MM_MAX_DIM][MM_MAX_DIM] = {{0}};
     PetscScalar    vals[MM_MAX_DIM * MM_MAX_DIM];
@@ -213,9 +231,9 @@ static PetscErrorCode SmallestEigenvalue(PetscInt dim, PetscReal D[MM_MAX_DIM][M
  * A_j = T_j^T P_j T_j: an nr^2 system, summed over the ranks. */
 static PetscErrorCode AddMomentCorrection(MassRedist *r, Vec kind, const PetscInt vgroup[], PetscInt group, const PetscReal x0[], PetscReal ell, PetscReal dG[MM_MAX_RIGID][MM_MAX_RIGID], Mat A, PetscBool *exceeded)
 {
-  DM                 dm = r->op->dm, dms = r->op->dm_scalar;
+  DM                 dm = r->dm, dms = r->dms;
   const MMMassBoundary *ct = r->mb;
-  const PetscInt     dim = r->op->dim, nr = MMFENumRigidModes(dim), n2 = nr * nr;
+  const PetscInt     dim = r->dim, nr = MMFENumRigidModes(dim), n2 = nr * nr;
   MPI_Comm           comm = PetscObjectComm((PetscObject)dm);
   PetscSection       gs, cs;
   PetscInt           vStart, vEnd, rstart, *node;
@@ -224,7 +242,7 @@ static PetscErrorCode AddMomentCorrection(MassRedist *r, Vec kind, const PetscIn
   PetscReal          S[MM_MAX_RIGID * MM_MAX_RIGID * MM_MAX_RIGID * MM_MAX_RIGID] = {0}, lam[MM_MAX_RIGID * MM_MAX_RIGID], worst = 0;
   /* the consistent mass is at least 1/(d+2) of the lumped one (the P1 element matrix is
    * rho |T| (I + 1 1^T) / ((d+1)(d+2))): a block above -0.9 of that keeps M* positive definite */
-  const PetscReal    floor = 0.9 / (r->op->lumped ? 1.0 : (PetscReal)(dim + 2));
+  const PetscReal    floor = 0.9 / (r->lumped ? 1.0 : (PetscReal)(dim + 2));
   PetscBLASInt       bn, one = 1, info;
 
   PetscFunctionBeginUser;
@@ -236,10 +254,10 @@ static PetscErrorCode AddMomentCorrection(MassRedist *r, Vec kind, const PetscIn
   for (PetscInt v = 0; v < vEnd - vStart; ++v) node[v] = -1;
   for (PetscInt c = 0; c < ct->n; ++c)
     if (!ct->second[c]) node[ct->vertex[c] - vStart] = c;
-  PetscCall(VecGetOwnershipRange(r->op->mass_lumped_cart, &rstart, NULL));
+  PetscCall(VecGetOwnershipRange(r->mass_lumped, &rstart, NULL));
   PetscCall(VecGetArrayRead(X, &x));
   PetscCall(VecGetArrayRead(kind, &k));
-  PetscCall(VecGetArrayRead(r->op->mass_lumped_cart, &m));
+  PetscCall(VecGetArrayRead(r->mass_lumped, &m));
   *exceeded = PETSC_FALSE;
   /* pass 0 sums the system, pass 1 measures the blocks, pass 2 adds them if they keep M* definite */
   for (PetscInt pass = 0; pass < 3; ++pass) {
@@ -327,7 +345,7 @@ static PetscErrorCode AddMomentCorrection(MassRedist *r, Vec kind, const PetscIn
       PetscCheck(info == 0, comm, PETSC_ERR_LIB, "-mass redistributed: LAPACK gelss failed with info %d", (int)info);
     }
   }
-  PetscCall(VecRestoreArrayRead(r->op->mass_lumped_cart, &m));
+  PetscCall(VecRestoreArrayRead(r->mass_lumped, &m));
   PetscCall(VecRestoreArrayRead(kind, &k));
   PetscCall(VecRestoreArrayRead(X, &x));
   PetscCall(PetscFree(node));
@@ -345,9 +363,9 @@ typedef struct {
 
 static PetscErrorCode CollectMassNodes(MassRedist *r, Vec kind, const PetscInt vgroup[], PetscInt group, const PetscReal x0[], PetscReal ell, PetscInt *n, MassNode **nodes)
 {
-  DM                 dm = r->op->dm, dms = r->op->dm_scalar;
+  DM                 dm = r->dm, dms = r->dms;
   const MMMassBoundary *ct = r->mb;
-  const PetscInt     dim = r->op->dim, nr = MMFENumRigidModes(dim);
+  const PetscInt     dim = r->dim, nr = MMFENumRigidModes(dim);
   PetscSection       gs, cs;
   PetscInt           vStart, vEnd, rstart, *node;
   Vec                X;
@@ -363,10 +381,10 @@ static PetscErrorCode CollectMassNodes(MassRedist *r, Vec kind, const PetscInt v
   for (PetscInt v = 0; v < vEnd - vStart; ++v) node[v] = -1;
   for (PetscInt c = 0; c < ct->n; ++c)
     if (!ct->second[c]) node[ct->vertex[c] - vStart] = c;
-  PetscCall(VecGetOwnershipRange(r->op->mass_lumped_cart, &rstart, NULL));
+  PetscCall(VecGetOwnershipRange(r->mass_lumped, &rstart, NULL));
   PetscCall(VecGetArrayRead(X, &x));
   PetscCall(VecGetArrayRead(kind, &k));
-  PetscCall(VecGetArrayRead(r->op->mass_lumped_cart, &m));
+  PetscCall(VecGetArrayRead(r->mass_lumped, &m));
   *n = 0;
   for (PetscInt v = vStart; v < vEnd; ++v) {
     PetscInt         goff, xoff, soff, first;
@@ -396,7 +414,7 @@ static PetscErrorCode CollectMassNodes(MassRedist *r, Vec kind, const PetscInt v
       }
     ++*n;
   }
-  PetscCall(VecRestoreArrayRead(r->op->mass_lumped_cart, &m));
+  PetscCall(VecRestoreArrayRead(r->mass_lumped, &m));
   PetscCall(VecRestoreArrayRead(kind, &k));
   PetscCall(VecRestoreArrayRead(X, &x));
   PetscCall(PetscFree(node));
@@ -505,10 +523,10 @@ static PetscErrorCode BoundedDual(MPI_Comm comm, PetscInt n, const MassNode node
  * nothing is added, when Newton's method finds no Lambda: the moments are out of the bound's reach. */
 static PetscErrorCode AddBoundedCorrection(MassRedist *r, Vec kind, const PetscInt vgroup[], PetscInt group, const PetscReal x0[], PetscReal ell, PetscReal dG0[MM_MAX_RIGID][MM_MAX_RIGID], PetscInt moments, PetscReal mass, Mat A, PetscBool *matched)
 {
-  const PetscInt dim = r->op->dim, nr = MMFENumRigidModes(dim);
-  MPI_Comm       comm = PetscObjectComm((PetscObject)r->op->dm);
+  const PetscInt dim = r->dim, nr = MMFENumRigidModes(dim);
+  MPI_Comm       comm = PetscObjectComm((PetscObject)r->dm);
   /* the bound of AddMomentCorrection: 0.9 of the consistent mass's margin 1/(d+2), or of all of a lumped one */
-  const PetscReal c = 0.9 / (r->op->lumped ? 1.0 : (PetscReal)(dim + 2));
+  const PetscReal c = 0.9 / (r->lumped ? 1.0 : (PetscReal)(dim + 2));
   PetscInt        n = 0, np = 0, pa[MM_MAX_RIGID * (MM_MAX_RIGID + 1) / 2], pb[MM_MAX_RIGID * (MM_MAX_RIGID + 1) / 2], it;
   PetscReal       dG[MM_MAX_RIGID][MM_MAX_RIGID], lam[MM_MAX_RIGID * (MM_MAX_RIGID + 1) / 2] = {0}, psi, smax, res = PETSC_MAX_REAL, worst = 0;
   MassNode       *nodes;
@@ -614,18 +632,18 @@ static PetscErrorCode CountInnerNodes(MassRedist *r, Vec kind, const PetscInt vg
   const PetscScalar *k;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalSection(r->op->dm, &gs));
-  PetscCall(DMPlexGetDepthStratum(r->op->dm, 0, &vStart, &vEnd));
+  PetscCall(DMGetGlobalSection(r->dm, &gs));
+  PetscCall(DMPlexGetDepthStratum(r->dm, 0, &vStart, &vEnd));
   PetscCall(VecGetArrayRead(kind, &k));
   *count = 0;
   for (PetscInt v = vStart; v < vEnd; ++v) {
     PetscInt goff, soff;
     PetscCall(PetscSectionGetOffset(gs, v, &goff));
-    PetscCall(DMPlexGetPointLocal(r->op->dm_scalar, v, &soff, NULL));
+    PetscCall(DMPlexGetPointLocal(r->dms, v, &soff, NULL));
     if (goff >= 0 && PetscAbsReal(PetscRealPart(k[soff])) < 0.5 && vgroup[v - vStart] == group) ++*count;
   }
   PetscCall(VecRestoreArrayRead(kind, &k));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, count, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)r->op->dm)));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, count, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)r->dm)));
   PetscFunctionReturn(0);
 }
 
@@ -636,7 +654,7 @@ static PetscErrorCode CountInnerNodes(MassRedist *r, Vec kind, const PetscInt vg
 static PetscErrorCode VertexGroups(MassRedist *r, PetscInt **vgroup)
 {
   const MMMaterial *mat = r->material;
-  DM                dm  = r->op->dm;
+  DM                dm  = r->dm;
   const PetscInt    nb  = PetscMax(mat->n_bodies, 1);
   PetscInt          vStart, vEnd, cStart, cEnd, *link;
 
@@ -648,7 +666,7 @@ static PetscErrorCode VertexGroups(MassRedist *r, PetscInt **vgroup)
   for (PetscInt v = 0; v < vEnd - vStart; ++v) (*vgroup)[v] = -1;
   for (PetscInt c = cStart; c < cEnd; ++c) {
     const PetscInt b     = mat->cell_body ? mat->cell_body[c - cStart] : 0;
-    const MMCells *cells = &r->op->cells;
+    const MMCells *cells = r->cells;
     for (PetscInt a = 0; a < cells->nv; ++a) {
       const PetscInt v = cells->vertex[cells->nv * (c - cStart) + a];
       if ((*vgroup)[v - vStart] >= 0 && (*vgroup)[v - vStart] != b) link[(*vgroup)[v - vStart] * nb + b] = link[b * nb + (*vgroup)[v - vStart]] = 1;
@@ -679,7 +697,7 @@ static PetscErrorCode VertexGroups(MassRedist *r, PetscInt **vgroup)
 /* The rigid modes restricted to one group's dofs (all of them with one group: unchanged). */
 static PetscErrorCode GroupModes(MassRedist *r, const PetscInt vgroup[], PetscInt group, PetscInt nr, Vec R[], Vec Rg[])
 {
-  DM           dm = r->op->dm;
+  DM           dm = r->dm;
   PetscSection gs, ls;
   PetscInt     vStart, vEnd, rstart;
   Vec          mask;
@@ -740,17 +758,21 @@ static PetscReal MomentMismatch(PetscInt nr, PetscInt moments, PetscReal GM[MM_M
 /* -mass redistributed: M* (already without its contact-normal rows and columns) gets the lost
  * moments back on the other nodes, and is checked: its Gram matrix equals M's to 1e-12 of the mass
  * (docs/method.md section 2). */
-PetscErrorCode MMContactRedistributeMass(MMContactMass *mass, MMOperators *op, const MMMaterial *material, const MMMassBoundary *mb)
+PetscErrorCode MMContactRedistributeMass(MMContactMass *mass, MMOperators op, const MMMaterial *material, const MMMassBoundary *mb)
 {
   MassRedist     rd = {op, material, mb, mass}, *r = &rd;
-  const PetscInt nr   = MMFENumRigidModes(r->op->dim);
-  MPI_Comm       comm = PetscObjectComm((PetscObject)r->op->dm);
+  PetscInt       nr;
+  MPI_Comm       comm;
   PetscReal      x0[MM_MAX_DIM], ell = 1, GM[MM_MAX_RIGID][MM_MAX_RIGID], Gs[MM_MAX_RIGID][MM_MAX_RIGID], dG[MM_MAX_RIGID][MM_MAX_RIGID];
   PetscReal      mismatch = 0, unreachable = 0, correction = 0, inertia = 0;
   Vec            R[MM_MAX_RIGID], Rg[MM_MAX_RIGID], kind, normal[MM_MAX_DIM];
-  PetscInt      *vgroup, matched_moments = nr;
+  PetscInt      *vgroup, matched_moments;
 
   PetscFunctionBeginUser;
+  PetscCall(MassRedistGetFE(r));
+  nr              = MMFENumRigidModes(r->dim);
+  comm            = PetscObjectComm((PetscObject)r->dm);
+  matched_moments = nr;
   PetscCall(RigidFrame(r, x0, &ell));
   PetscCall(RigidModes(r, x0, ell, R));
   PetscCall(VertexKinds(r, &kind, normal));
@@ -792,7 +814,7 @@ PetscErrorCode MMContactRedistributeMass(MMContactMass *mass, MMOperators *op, c
             for (PetscInt b = 0; b < nr; ++b) dG[a][b] = GM[a][b] - Gs[a][b];
           PetscCall(AddBoundedCorrection(r, kind, vgroup, g, x0, ell, dG, nr, GM[0][0], r->mass->Mstar, &matched));
           if (!matched) {
-            moments = r->op->dim;
+            moments = r->dim;
             PetscCall(AddBoundedCorrection(r, kind, vgroup, g, x0, ell, dG, moments, GM[0][0], r->mass->Mstar, &matched));
           }
           if (!matched) {
@@ -831,21 +853,24 @@ PetscErrorCode MMContactRedistributeMass(MMContactMass *mass, MMOperators *op, c
    * held by Dirichlet data (one cell across), or whose free nodes are too few to carry the moments */
   PetscCheck(r->mass->moment_mismatch <= 1e-12, comm, PETSC_ERR_USER_INPUT, "-mass redistributed cannot give the contact nodes' normal mass back: after the redistribution the moments of M* still differ from those of M by %.3g of the mass, because too few nodes are off the contact boundary and free of Dirichlet data to carry it (a body one cell across has none). Mesh the body with more cells across, or use -mass modified", (double)r->mass->moment_mismatch);
   PetscCall(VecDestroy(&kind));
-  for (PetscInt d = 0; d < r->op->dim; ++d) PetscCall(VecDestroy(&normal[d]));
+  for (PetscInt d = 0; d < r->dim; ++d) PetscCall(VecDestroy(&normal[d]));
   for (PetscInt k = 0; k < nr; ++k) PetscCall(VecDestroy(&R[k]));
   PetscFunctionReturn(0);
 }
 
 /* The masses the diagnostics need: M's total mass, and M*'s mass for rigid translations (a dim x dim
  * matrix: the modified mass lacks the normal masses, so it is not m I) and its inverse. */
-PetscErrorCode MMContactMassMoments(MMContactMass *mass, MMOperators *op)
+PetscErrorCode MMContactMassMoments(MMContactMass *mass, MMOperators op)
 {
   MassRedist     rd = {op, NULL, NULL, mass}, *r = &rd;
-  const PetscInt dim = r->op->dim, nr = MMFENumRigidModes(dim);
+  PetscInt       dim, nr;
   PetscReal      zero[MM_MAX_DIM] = {0, 0, 0}, GM[MM_MAX_RIGID][MM_MAX_RIGID], Gs[MM_MAX_RIGID][MM_MAX_RIGID];
   Vec            R[MM_MAX_RIGID];
 
   PetscFunctionBeginUser;
+  PetscCall(MassRedistGetFE(r));
+  dim = r->dim;
+  nr  = MMFENumRigidModes(dim);
   PetscCall(RigidModes(r, zero, 1.0, R));
   PetscCall(Gram(r->mass->M, nr, R, GM));
   PetscCall(Gram(r->mass->Mstar, nr, R, Gs));

@@ -40,7 +40,7 @@ PetscErrorCode MMContactGetMassType(MMContact ct, MMMassType *type)
 
 /* Mstar (a copy of the w-frame M) loses the massless dofs' rows and columns; -mass redistributed gives
  * their mass back to the other nodes; then the masses of M*'s translations and rotations */
-static PetscErrorCode DropMasslessMass(MMContactMass *mass, MMOperators *op, const MMMaterial *material, const MMMassBoundary *mb)
+static PetscErrorCode DropMasslessMass(MMContactMass *mass, MMOperators op, const MMMaterial *material, const MMMassBoundary *mb)
 {
   PetscFunctionBeginUser;
   if (mass->massless) PetscCall(MatZeroRowsColumnsIS(mass->Mstar, mass->massless, 0.0, NULL, NULL));
@@ -55,7 +55,7 @@ static PetscErrorCode DropMasslessMass(MMContactMass *mass, MMOperators *op, con
 
 /* M* from op's w-frame M, with the masses of its translations (read by the stepper through
  * MMContactGetOperators); the modified and the redistributed mass leave mb's massless dofs without inertia. */
-PetscErrorCode MMContactMassStar(MMContactMass *mass, MMOperators *op, const MMMaterial *material, const MMMassBoundary *mb)
+PetscErrorCode MMContactMassStar(MMContactMass *mass, MMOperators op, const MMMaterial *material, const MMMassBoundary *mb)
 {
   PetscFunctionBeginUser;
   PetscCall(MatDuplicate(mass->M, MAT_COPY_VALUES, &mass->Mstar));
@@ -71,7 +71,7 @@ PetscErrorCode MMContactMassStar(MMContactMass *mass, MMOperators *op, const MMM
  * docs/method.md section 8): the massless dofs are the same dofs, now along the new normals, and
  * -mass redistributed gives their mass back anew. M* keeps its pattern (M's), so the matrices that
  * borrow it see the new values. */
-PetscErrorCode MMContactMassRebuild(MMContactMass *mass, MMOperators *op, Mat M, const MMMaterial *material, const MMMassBoundary *mb)
+PetscErrorCode MMContactMassRebuild(MMContactMass *mass, MMOperators op, Mat M, const MMMaterial *material, const MMMassBoundary *mb)
 {
   PetscFunctionBeginUser;
   mass->M = M; /* borrowed: the redistribution and the moments read M */
@@ -117,8 +117,7 @@ static PetscErrorCode RedistributionText(const MMContactMass *mass, PetscInt dim
 @*/
 PetscErrorCode MMContactMassView(MMContact ct, PetscViewer viewer)
 {
-  const MMOperators *op  = ct->op;
-  const PetscInt     dim = op->dim;
+  const PetscInt     dim = ct->dim;
   char               star[128] = "", moments[512] = "";
   PetscDS            ds;
   PetscInt           n_dirichlet;
@@ -135,7 +134,7 @@ PetscErrorCode MMContactMassView(MMContact ct, PetscViewer viewer)
   if (ct->mass.massless && ct->mass.type == MM_MASS_REDISTRIBUTED) PetscCall(RedistributionText(&ct->mass, dim, moments, sizeof(moments)));
   /* M is over the free dofs: a node held by -dirichlet (one boundary of the DS each) is the
    * support's, outside the system */
-  PetscCall(DMGetDS(op->dm, &ds));
+  PetscCall(DMGetDS(ct->dm, &ds));
   PetscCall(PetscDSGetNumBoundary(ds, &n_dirichlet));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  mass: total of M %.10g%s; of M* along %s%s\n", (double)ct->mass.total, n_dirichlet ? " (without the dofs held by -dirichlet)" : "", star, moments));
   PetscFunctionReturn(0);

@@ -79,7 +79,7 @@ PetscErrorCode MMContactFrameMatrixBegin(MMContact ct, Mat Kw, Mat *Kc)
   PetscFunctionBeginUser;
   if (!ct->transform.N) *Kc = Kw;
   else {
-    if (!ct->frame_Kp) PetscCall(MMFECreateMatrix(ct->op, ct->op->dm, &ct->frame_Kp));
+    if (!ct->frame_Kp) PetscCall(MMFECreateMatrix(ct->op, ct->dm, &ct->frame_Kp));
     *Kc = ct->frame_Kp;
   }
   PetscFunctionReturn(0);
@@ -140,15 +140,15 @@ PetscErrorCode MMContactFrameMatrixEnd(MMContact ct, Mat Kc, Mat Kw)
 @*/
 PetscErrorCode MMContactDampingStiffness(MMContact ct, const MMMaterial *material, IS is_massless, Mat *B)
 {
-  const MMOperators *op = ct->op;
+  MMOperators        op = ct->op;
   Vec                mark;
 
   PetscFunctionBeginUser;
-  PetscCall(MMFECreateMatrix(op, op->dm, B));
-  PetscCall(DMCreateGlobalVector(op->dm, &mark));
+  PetscCall(MMFECreateMatrix(op, ct->dm, B));
+  PetscCall(DMCreateGlobalVector(ct->dm, &mark));
   PetscCall(VecZeroEntries(mark));
   PetscCall(VecISSet(mark, is_massless, 1.0));
-  PetscCall(MMAssembleP1DampingStiffness(op->dm, material, ct->transform.Q, mark, *B));
+  PetscCall(MMAssembleP1DampingStiffness(ct->dm, material, ct->transform.Q, mark, *B));
   PetscCall(VecDestroy(&mark));
   if (ct->transform.N) {
     Mat BN;

@@ -66,7 +66,7 @@ static PetscErrorCode ForceFromCartesian(void *ctx, Vec fcart, Vec fw)
 
 /* Hands fem's operators the frame: its transforms read Q and N through ct when called, so a frame
  * that turns or a new pairing needs no second install. */
-PetscErrorCode MMContactFrameInstall(MMContact ct, MMOperators *op)
+PetscErrorCode MMContactFrameInstall(MMContact ct, MMOperators op)
 {
   static const MMFrameOps ops = {ToCartesian, FromCartesian, ForceToCartesian, ForceFromCartesian};
 

@@ -89,9 +89,9 @@ static PetscErrorCode GlobalDofs(MMContact ct, PetscInt *n)
   PetscSection gs;
 
   PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalSection(ct->op->dm, &gs));
+  PetscCall(DMGetGlobalSection(ct->dm, &gs));
   PetscCall(PetscSectionGetConstrainedStorageSize(gs, n));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, n, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ct->op->dm)));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, n, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ct->dm)));
   PetscFunctionReturn(0);
 }
 
@@ -109,11 +109,11 @@ PetscErrorCode MMContactSetType(MMContact ct)
   PetscFunctionBeginUser;
   PetscCall(MMContactRegisterAll());
   PetscCall(GlobalDofs(ct, &n));
-  ct->prefer_iterative = (PetscBool)(ct->op->dim == 3 && ct->opt.iterative_dofs > 0 && n >= ct->opt.iterative_dofs);
+  ct->prefer_iterative = (PetscBool)(ct->dim == 3 && ct->opt.iterative_dofs > 0 && n >= ct->opt.iterative_dofs);
   PetscCall(PetscStrcmp(ct->opt.contact_formulation, "auto", &ct->auto_type));
   if (ct->auto_type && ct->enabled) PetscCall(MMContactChooseFormulation(ct, n));
   PetscCall(PetscFunctionListFind(MMContactList, ct->opt.contact_formulation, &create));
-  PetscCheck(create || ct->auto_type, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_USER_INPUT, "-contact_formulation %s is not a contact formulation: use auto (the default), condensed, full or active_set", ct->opt.contact_formulation);
+  PetscCheck(create || ct->auto_type, PetscObjectComm((PetscObject)ct->dm), PETSC_ERR_USER_INPUT, "-contact_formulation %s is not a contact formulation: use auto (the default), condensed, full or active_set", ct->opt.contact_formulation);
   if (!ct->enabled) create = MMContactCreate_None;
   PetscCall(PetscStrncpy(ct->type, ct->enabled ? ct->opt.contact_formulation : "none", sizeof(ct->type)));
   PetscCall((*create)(ct));
@@ -180,12 +180,12 @@ PetscErrorCode MMContactSwapKeptOperator(MMContact ct, KSP *ksp)
  * cm M* (the contact normals have none). */
 static PetscErrorCode CheckStepMatrixArithmetic(MMContact ct, PetscReal dt, PetscReal ck, PetscReal cm)
 {
-  MPI_Comm           comm = PetscObjectComm((PetscObject)ct->op->dm);
+  MPI_Comm           comm = PetscObjectComm((PetscObject)ct->dm);
   const PetscReal    room = 1e2 * PETSC_MACHINE_EPSILON; /* a factor 100 from where the round-off takes all */
   Vec                d;
   const PetscScalar *a;
   PetscInt           n;
-  PetscReal          k[2] = {0, 0}, m_min = PETSC_MAX_REAL, cfl = ct->enabled ? ct->op->c_p * dt / ct->h_c : -1;
+  PetscReal          k[2] = {0, 0}, m_min = PETSC_MAX_REAL, cfl = ct->enabled ? ct->material->c_p_max * dt / ct->h_c : -1;
   char               ratio[64] = "";
 
   PetscFunctionBeginUser;
@@ -385,7 +385,7 @@ PetscErrorCode MMContactCreateReactions(MMContact ct)
 {
 
   PetscFunctionBeginUser;
-  PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)ct->op->dm), ct->ncomp * ct->n_local, PETSC_DETERMINE, &ct->rho));
+  PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)ct->dm), ct->ncomp * ct->n_local, PETSC_DETERMINE, &ct->rho));
   PetscCall(VecSetBlockSize(ct->rho, ct->ncomp));
   PetscCall(VecZeroEntries(ct->rho));
   PetscCall(VecDuplicate(ct->rho, &ct->rho_lo));
@@ -454,7 +454,7 @@ PetscErrorCode MMContactSolveContactDofs(MMContact ct, Vec b, Vec w, Vec react)
 {
 
   PetscFunctionBeginUser;
-  PetscCheck(ct->ops->solvecontactdofs, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_PLIB, "The contact formulation %s cannot solve the contact dofs alone", ct->type);
+  PetscCheck(ct->ops->solvecontactdofs, PetscObjectComm((PetscObject)ct->dm), PETSC_ERR_PLIB, "The contact formulation %s cannot solve the contact dofs alone", ct->type);
   PetscCall(PetscLogEventBegin(MMCONTACT_Solve, 0, 0, 0, 0));
   PetscCall((*ct->ops->solvecontactdofs)(ct, b, w, react));
   PetscCall(PetscLogEventEnd(MMCONTACT_Solve, 0, 0, 0, 0));
@@ -513,7 +513,7 @@ PetscErrorCode MMContactSetFrictionThresholds(MMContact ct, Vec s)
 {
 
   PetscFunctionBeginUser;
-  PetscCheck(ct->ops->setthresholds, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_PLIB, "The contact formulation %s has no threshold solves", ct->type);
+  PetscCheck(ct->ops->setthresholds, PetscObjectComm((PetscObject)ct->dm), PETSC_ERR_PLIB, "The contact formulation %s has no threshold solves", ct->type);
   PetscCall((*ct->ops->setthresholds)(ct, s));
   PetscFunctionReturn(0);
 }
@@ -573,7 +573,7 @@ PetscErrorCode MMContactSolveCoulomb(MMContact ct, Vec b, Vec w, Vec react, MMCo
 {
 
   PetscFunctionBeginUser;
-  PetscCheck(ct->ops->solvecoulomb, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_PLIB, "The contact formulation %s has no Delassus operator for a contact-space solve", ct->type);
+  PetscCheck(ct->ops->solvecoulomb, PetscObjectComm((PetscObject)ct->dm), PETSC_ERR_PLIB, "The contact formulation %s has no Delassus operator for a contact-space solve", ct->type);
   PetscCall(PetscLogEventBegin(MMCONTACT_Solve, 0, 0, 0, 0));
   PetscCall((*ct->ops->solvecoulomb)(ct, b, w, react, fn, fctx, ok));
   PetscCall(PetscLogEventEnd(MMCONTACT_Solve, 0, 0, 0, 0));
@@ -639,7 +639,7 @@ PetscErrorCode MMContactSolveCoulombDofs(MMContact ct, Vec b, Vec w, Vec react, 
 {
 
   PetscFunctionBeginUser;
-  PetscCheck(ct->ops->solvecoulombdofs, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_PLIB, "The contact formulation %s has no Coulomb solve of its own", ct->type);
+  PetscCheck(ct->ops->solvecoulombdofs, PetscObjectComm((PetscObject)ct->dm), PETSC_ERR_PLIB, "The contact formulation %s has no Coulomb solve of its own", ct->type);
   PetscCall(PetscLogEventBegin(MMCONTACT_Solve, 0, 0, 0, 0));
   PetscCall((*ct->ops->solvecoulombdofs)(ct, b, w, react, s, rtol, its, ok));
   PetscCall(PetscLogEventEnd(MMCONTACT_Solve, 0, 0, 0, 0));
@@ -720,8 +720,8 @@ PetscErrorCode MMContactView(MMContact ct, PetscViewer viewer)
  * penetration deeper than -initial_penetration_tol h_c', naming the deepest node. */
 static PetscErrorCode CheckInitialPenetration(MMContact ct, Vec w)
 {
-  DM                 dm  = ct->op->dm;
-  PetscInt           dim = ct->op->dim, rstart, deepest = -1;
+  DM                 dm  = ct->dm;
+  PetscInt           dim = ct->dim, rstart, deepest = -1;
   const PetscInt    *in;
   const PetscScalar *wa, *ga;
   struct {
@@ -828,7 +828,7 @@ PetscErrorCode MMContactProjectInitial(MMContact ct, Vec w)
   PetscCall(VecSet(ct->lower0, PETSC_NINFINITY));
   PetscCall(MasslessUpperBounds(ct, ct->upper0));
   ct->qp0.rtol_b = ct->tol;
-  PetscCall(MMQPCreate(PetscObjectComm((PetscObject)ct->op->dm), "contact0_", &ct->qp0, 0, &ct->snes0));
+  PetscCall(MMQPCreate(PetscObjectComm((PetscObject)ct->dm), "contact0_", &ct->qp0, 0, &ct->snes0));
   PetscCall(SNESVISetVariableBounds(ct->snes0, ct->lower0, ct->upper0));
 
   /* b0 = (L - lift - K w*)_c with the contact dofs zeroed in w* */

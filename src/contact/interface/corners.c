@@ -90,7 +90,7 @@ PetscErrorCode MMContactCornersSetUpVecs(MMContact ct)
  * condensed slot's local dof. */
 PetscErrorCode MMContactCornersRHS(MMContact ct, const PetscInt row[])
 {
-  const PetscInt     dim = ct->op->dim;
+  const PetscInt     dim = ct->dim;
   const PetscScalar *za, *sa;
   PetscScalar       *qa, *xa;
 
@@ -254,7 +254,7 @@ PetscErrorCode MMContactCornersAccept(MMContact ct)
 {
 
   PetscFunctionBeginUser;
-  if (ct->fc_r) PetscCall(PetscArraycpy(ct->fc_r_old, ct->fc_r, (size_t)ct->n_local * ct->op->dim));
+  if (ct->fc_r) PetscCall(PetscArraycpy(ct->fc_r_old, ct->fc_r, (size_t)ct->n_local * ct->dim));
   PetscFunctionReturn(0);
 }
 
@@ -291,7 +291,7 @@ PetscErrorCode MMContactCornersAccept(MMContact ct)
 @*/
 PetscErrorCode MMContactCornersWork(MMContact ct, PetscReal t0, PetscReal t1, Vec du, PetscReal *dwc, PetscReal *dwn, PetscReal *dwt)
 {
-  const PetscInt     dim = ct->op->dim;
+  const PetscInt     dim = ct->dim;
   const PetscInt    *in;
   const PetscScalar *da;
   PetscInt           rstart;
@@ -337,7 +337,7 @@ PetscErrorCode MMContactCornersWork(MMContact ct, PetscReal t0, PetscReal t1, Ve
   }
   PetscCall(VecRestoreArrayRead(du, &da));
   PetscCall(ISRestoreIndices(ct->is_normal, &in));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, w, 3, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)ct->op->dm)));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, w, 3, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)ct->dm)));
   *dwc = w[0];
   *dwn = w[1];
   *dwt = w[2];

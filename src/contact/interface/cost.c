@@ -46,9 +46,9 @@ PetscErrorCode MMContactChooseFormulation(MMContact ct, PetscInt n_dofs)
   char          second_name[MM_TYPE_LEN] = "";
 
   PetscFunctionBeginUser;
-  in.dim      = ct->op->dim;
+  in.dim      = ct->dim;
   in.dofs     = PetscMax((PetscReal)n_dofs, 1);
-  in.cfl      = ct->h_c > 0 ? ct->op->c_p * ct->pb.dt / ct->h_c : 1;
+  in.cfl      = ct->h_c > 0 ? ct->material->c_p_max * ct->pb.dt / ct->h_c : 1;
   if (!(in.cfl >= 0 && in.cfl < 1e6)) in.cfl = 1; /* a dt refused later (-ts_dt <= 0, inf) predicts nothing */
   in.steps    = PetscMax(ct->pb.steps, 1);
   in.friction = (PetscBool)(ct->pb.mu_max > 0);

@@ -25,7 +25,7 @@ typedef struct {
  * summary report it. */
 static PetscReal OtherObstaclesPenetration(MMContact ct, PetscInt k, const PetscScalar w[], const PetscReal cob[])
 {
-  const PetscInt   dim = ct->op->dim, nob = ct->pb.n_rigid;
+  const PetscInt   dim = ct->dim, nob = ct->pb.n_rigid;
   const PetscReal *F   = &ct->node_frame[9 * k];
   PetscReal        u[MM_MAX_DIM] = {0, 0, 0}, worst = PETSC_MIN_REAL;
 
@@ -87,7 +87,7 @@ static PetscReal RowResidual(const RowState *rs, PetscInt dim, PetscReal h_c, Pe
  * (MMContactStepVelocity; NULL before the stepper hands it: v). */
 static void SecondObstacleRow(MMContact ct, PetscInt k, const PetscScalar w[], const PetscScalar v[], const PetscScalar sg[], PetscReal fob[], RowState *rs)
 {
-  const PetscInt   dim = ct->op->dim;
+  const PetscInt   dim = ct->dim;
   const PetscReal *r2  = &ct->fc_r[dim * k], dt = ct->Kt_dt;
   PetscReal        F2[MM_MAX_DIM][MM_MAX_DIM], T[MM_MAX_DIM][MM_MAX_DIM], rt = 0, sigma[MM_MAX_DIM];
 
@@ -120,13 +120,13 @@ static PetscErrorCode ContactStatistics(MMContact ct, PetscReal t, Vec w, Vec re
   PetscReal         *fob, *cob;
   /* slip is judged by the step's slip increment sigma dt/2 against h_c', like penetration */
   const PetscReal    vtol = 1e-9 * 2 * ct->h_c / dt;
-  PetscInt           dim = ct->op->dim, nc = ct->n_local, cnt[4] = {0, 0, 0, 0}, rstart;
+  PetscInt           dim = ct->dim, nc = ct->n_local, cnt[4] = {0, 0, 0, 0}, rstart;
   const PetscInt    *in;
   const PetscScalar *wa, *fa, *ga, *va, *ra = NULL, *rh = NULL, *sga = NULL;
   Vec                sigma2 = NULL; /* friction corners: the velocity of w over the step, for their second rows */
   const PetscInt     nr = ct->ncomp;
   PetscReal          sums[1 + MM_MAX_DIM] = {0, 0, 0, 0}, loc[4] = {0, 0, 0, 0}, rmax = 0, fscale;
-  MPI_Comm           comm = PetscObjectComm((PetscObject)ct->op->dm);
+  MPI_Comm           comm = PetscObjectComm((PetscObject)ct->dm);
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(st, sizeof(*st)));
@@ -327,7 +327,7 @@ PetscErrorCode MMContactDiagnostics(MMContact ct, PetscReal t, Vec w, Vec react,
   h->switched         = st.switched;
   h->slipping         = st.slipping;
   h->force_normal     = st.force_normal;
-  h->force_tangential = ct->op->dim == 2 ? st.force_t[0] : PetscSqrtReal(PetscSqr(st.force_t[0]) + PetscSqr(st.force_t[1]) + PetscSqr(st.force_t[2]));
+  h->force_tangential = ct->dim == 2 ? st.force_t[0] : PetscSqrtReal(PetscSqr(st.force_t[0]) + PetscSqr(st.force_t[1]) + PetscSqr(st.force_t[2]));
   h->max_penetration  = st.max_penetration;
   h->coulomb_residual = st.coulomb;
   ct->penetration_free = st.penetration_free;
@@ -367,7 +367,7 @@ PetscErrorCode MMContactDiagnostics(MMContact ct, PetscReal t, Vec w, Vec react,
 @*/
 PetscErrorCode MMContactBoundaryFields(MMContact ct, Vec u, Vec v, Vec react, DM dm_out, Vec pressure, Vec gap, Vec traction_t, Vec slip)
 {
-  const PetscInt     dim = ct->op->dim;
+  const PetscInt     dim = ct->dim;
   Vec                out[] = {pressure, gap, traction_t, slip};
   const PetscInt    *in;
   const PetscScalar *wa, *fa, *va, *ga, *aa;
@@ -480,7 +480,7 @@ PetscErrorCode MMContactObstacleField(MMContact ct, Vec field)
 @*/
 PetscErrorCode MMContactAudit(MMContact ct, PetscInt step, PetscReal t, const MMContactStats *h)
 {
-  MPI_Comm         comm = PetscObjectComm((PetscObject)ct->op->dm);
+  MPI_Comm         comm = PetscObjectComm((PetscObject)ct->dm);
   const char      *advice = "The usual cause is inconsistent units (SI throughout: the mesh in metres, -E in Pa, -rho in kg/m^3, loads in N/m^2 and m/s^2) or material values far from what was meant";
 
   PetscFunctionBeginUser;

@@ -98,12 +98,12 @@ static PetscReal RowFirstContact(const MMObstacle *ob, PetscInt dim, const Petsc
 @*/
 PetscErrorCode MMContactFirstContact(MMContact ct, Vec u, Vec v, Vec a, PetscReal t0, PetscReal t_end, MMFirstContact *fc)
 {
-  const PetscInt     dim = ct->op->dim;
+  const PetscInt     dim = ct->dim;
   const PetscScalar *ua, *va, *aa, *ga;
   const PetscInt    *in;
   PetscInt           rstart, first = -1;
   PetscMPIInt        rank;
-  MPI_Comm           comm = PetscObjectComm((PetscObject)ct->op->dm);
+  MPI_Comm           comm = PetscObjectComm((PetscObject)ct->dm);
   struct {
     double t;
     int    rank;
@@ -152,8 +152,8 @@ PetscErrorCode MMContactFirstContact(MMContact ct, Vec u, Vec v, Vec a, PetscRea
     info[0] = PetscRealPart(ga[first]) + cn - PetscRealPart(ua[i]);
     info[1] = PetscRealPart(va[i]) - vn;
     info[2] = PetscRealPart(aa[i]);
-    PetscCall(DMGetCoordinateSection(ct->op->dm, &cs));
-    PetscCall(DMGetCoordinatesLocal(ct->op->dm, &X));
+    PetscCall(DMGetCoordinateSection(ct->dm, &cs));
+    PetscCall(DMGetCoordinatesLocal(ct->dm, &X));
     PetscCall(PetscSectionGetOffset(cs, ct->vertex[first], &off));
     PetscCall(VecGetArrayRead(X, &xa));
     for (PetscInt d = 0; d < dim; ++d) info[3 + d] = PetscRealPart(xa[off + d]);
@@ -206,14 +206,14 @@ PetscErrorCode MMContactFirstContact(MMContact ct, Vec u, Vec v, Vec a, PetscRea
 @*/
 PetscErrorCode MMContactObstacleGaps(MMContact ct, Vec u, PetscReal t0, PetscInt count[], PetscReal gap[], PetscReal x[])
 {
-  const PetscInt     dim = ct->op->dim, nob = ct->pb.n_obstacles;
+  const PetscInt     dim = ct->dim, nob = ct->pb.n_obstacles;
   const PetscScalar *ua, *ga, *xa;
   const PetscInt    *in;
   PetscInt           rstart, *best;
   PetscMPIInt        rank;
   PetscSection       cs;
   Vec                X;
-  MPI_Comm           comm = PetscObjectComm((PetscObject)ct->op->dm);
+  MPI_Comm           comm = PetscObjectComm((PetscObject)ct->dm);
   struct {
     double g;
     int    rank;
@@ -253,8 +253,8 @@ PetscErrorCode MMContactObstacleGaps(MMContact ct, Vec u, PetscReal t0, PetscInt
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, count, nob, MPIU_INT, MPI_SUM, comm));
   PetscCallMPI(MPI_Allreduce(loc, glob, (PetscMPIInt)nob, MPI_DOUBLE_INT, MPI_MINLOC, comm));
   /* the winner's node: its coordinates, zeros elsewhere, summed */
-  PetscCall(DMGetCoordinateSection(ct->op->dm, &cs));
-  PetscCall(DMGetCoordinatesLocal(ct->op->dm, &X));
+  PetscCall(DMGetCoordinateSection(ct->dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(ct->dm, &X));
   PetscCall(VecGetArrayRead(X, &xa));
   for (PetscInt b = 0; b < nob; ++b) {
     PetscInt off;

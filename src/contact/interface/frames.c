@@ -34,9 +34,9 @@ static PetscBool RowFollows(MMContact ct, PetscInt k)
 PetscErrorCode MMContactFramesSetUp(MMContact ct)
 {
   MMContactFrames *fr  = &ct->frames;
-  const PetscInt   dim = ct->op->dim;
+  const PetscInt   dim = ct->dim;
   PetscBool        follow, curved = PETSC_FALSE;
-  DM               dm = ct->op->dm;
+  DM               dm = ct->dm;
   PetscSection     cs;
   Vec              X;
   const PetscScalar *x;
@@ -99,15 +99,15 @@ static void RowCartesian(MMContact ct, PetscInt k, const PetscScalar w[], PetscR
   const PetscReal *F = &ct->node_frame[9 * k];
 
   for (PetscInt d = 0; d < MM_MAX_DIM; ++d) u[d] = 0;
-  for (PetscInt e = 0; e < ct->op->dim; ++e)
-    for (PetscInt d = 0; d < ct->op->dim; ++d) u[d] += PetscRealPart(w[e]) * F[3 * e + d];
+  for (PetscInt e = 0; e < ct->dim; ++e)
+    for (PetscInt d = 0; d < ct->dim; ++d) u[d] += PetscRealPart(w[e]) * F[3 * e + d];
 }
 
 /* Row k's signed distance g and obstacle normal n at its current position X + u, the obstacle where
  * it is at time t (translated by c(t)), and c(t). */
 static PetscErrorCode RowDistance(MMContact ct, PetscInt k, PetscInt b, PetscReal t, const PetscReal u[], PetscReal *g, PetscReal n[], PetscReal c[])
 {
-  const PetscInt    dim = ct->op->dim;
+  const PetscInt    dim = ct->dim;
   const MMObstacle *ob  = &ct->pb.obstacles[b];
   PetscReal         x[MM_MAX_DIM] = {0, 0, 0};
 
@@ -147,7 +147,7 @@ PetscErrorCode MMContactFramesPenetration(MMContact ct, PetscInt k, PetscReal t,
 static PetscErrorCode SelectTurningRows(MMContact ct, Vec u, Vec midpoint, PetscReal t_mid, PetscInt *count)
 {
   MMContactFrames   *fr  = &ct->frames;
-  const PetscInt     dim = ct->op->dim;
+  const PetscInt     dim = ct->dim;
   const PetscInt    *in;
   const PetscScalar *ua, *ya;
   PetscScalar       *g0, *ga;
@@ -207,7 +207,7 @@ static PetscErrorCode SelectTurningRows(MMContact ct, Vec u, Vec midpoint, Petsc
 static PetscErrorCode BuildRotation(MMContact ct)
 {
   MMContactFrames *fr  = &ct->frames;
-  const PetscInt   dim = ct->op->dim;
+  const PetscInt   dim = ct->dim;
   const PetscInt  *in;
   PetscInt         n, rstart;
   PetscBool       *block;
@@ -257,12 +257,12 @@ static PetscErrorCode RotateVec(MMContact ct, void *fctx, PetscBool force, Vec x
 }
 
 /* The turned rows' new frames into node_frame and Q's blocks (in place: Q keeps its pattern, and
- * whoever reads it through MMOperators sees the new one), and the friction warm starts that live in
+ * whoever reads it through fem's frame ops sees the new one), and the friction warm starts that live in
  * frame components: the condensed reactions and, in 3D, the slip direction. */
 static PetscErrorCode SetNewFrames(MMContact ct)
 {
   MMContactFrames *fr  = &ct->frames;
-  const PetscInt   dim = ct->op->dim, nr = ct->ncomp;
+  const PetscInt   dim = ct->dim, nr = ct->ncomp;
   const PetscInt  *in;
   PetscScalar     *rho = NULL;
 
@@ -306,13 +306,15 @@ static PetscErrorCode SetNewFrames(MMContact ct)
 static PetscErrorCode TurnSelectedRows(MMContact ct, PetscBool state)
 {
   MMContactFrames *fr = &ct->frames;
-  MMOperators     *op = ct->op;
+  MMOperators      op = ct->op;
   MMMassBoundary   mb;
+  PetscBool        lumped;
 
   PetscFunctionBeginUser;
+  PetscCall(MMFEIsMassLumped(op, &lumped));
   PetscCall(BuildRotation(ct));
   /* w-frame K and M <- R^T (.) R: a lumped M is m I at each node, which no rotation changes */
-  PetscCall(MMRotateP1(fr->R, ct->K, op->lumped ? NULL : fr->M));
+  PetscCall(MMRotateP1(fr->R, ct->K, lumped ? NULL : fr->M));
   PetscCall(SetNewFrames(ct));
   MMContactMassBoundary(ct, &mb);
   PetscCall(MMContactMassRebuild(&ct->mass, op, fr->M, ct->material, &mb));
@@ -465,7 +467,7 @@ PetscErrorCode MMContactFramesGetCounters(MMContact ct, PetscReal counters[3])
 PetscErrorCode MMContactFramesRestore(MMContact ct, const PetscScalar rec[], const PetscReal counters[3], PetscInt *turned)
 {
   MMContactFrames *fr  = &ct->frames;
-  const PetscInt   dim = ct->op->dim, bs = MM_CONTACT_FRAME_RECORD;
+  const PetscInt   dim = ct->dim, bs = MM_CONTACT_FRAME_RECORD;
   PetscScalar     *g0, *ga;
   PetscInt         count = 0, bad = 0;
 

@@ -10,18 +10,18 @@
  * orthonormalized: GAMG's near-null space. */
 static PetscErrorCode RigidBodyModes(MMContact ct, MatNullSpace *sp)
 {
-  const PetscInt nmodes = ct->op->dim == 2 ? 3 : 6;
+  const PetscInt nmodes = ct->dim == 2 ? 3 : 6;
   Vec            modes[6], ucart[6];
 
   PetscFunctionBeginUser;
   for (PetscInt m = 0; m < nmodes; ++m) {
-    PetscCall(DMGetGlobalVector(ct->op->dm, &ucart[m]));
+    PetscCall(DMGetGlobalVector(ct->dm, &ucart[m]));
     PetscCall(VecDuplicate(ct->qp.b, &modes[m]));
   }
   PetscCall(MMFERigidModesCartesian(ct->op, (PetscReal[MM_MAX_DIM]){0, 0, 0}, 1.0, nmodes, ucart));
   for (PetscInt m = 0; m < nmodes; ++m) {
     PetscCall(MMFEFromCartesian(ct->op, ucart[m], modes[m]));
-    PetscCall(DMRestoreGlobalVector(ct->op->dm, &ucart[m]));
+    PetscCall(DMRestoreGlobalVector(ct->dm, &ucart[m]));
   }
   /* modified Gram-Schmidt; a mode the Dirichlet data remove entirely is still harmless to GAMG */
   for (PetscInt i = 0; i < nmodes; ++i) {
@@ -33,7 +33,7 @@ static PetscErrorCode RigidBodyModes(MMContact ct, MatNullSpace *sp)
     }
     PetscCall(VecNormalize(modes[i], &nrm));
   }
-  PetscCall(MatNullSpaceCreate(PetscObjectComm((PetscObject)ct->op->dm), PETSC_FALSE, nmodes, modes, sp));
+  PetscCall(MatNullSpaceCreate(PetscObjectComm((PetscObject)ct->dm), PETSC_FALSE, nmodes, modes, sp));
   for (PetscInt m = 0; m < nmodes; ++m) PetscCall(VecDestroy(&modes[m]));
   PetscFunctionReturn(0);
 }
@@ -80,9 +80,9 @@ PetscErrorCode MMKtCreate(MMContact ct, PetscBool iterative)
   MMStepSolver *kt = &ct->kt;
 
   PetscFunctionBeginUser;
-  PetscCall(KSPCreate(PetscObjectComm((PetscObject)ct->op->dm), &kt->ksp));
+  PetscCall(KSPCreate(PetscObjectComm((PetscObject)ct->dm), &kt->ksp));
   PetscCall(KSPSetOptionsPrefix(kt->ksp, "contact_K_"));
-  PetscCall(KtSetDefaults(kt->ksp, iterative, ct->op->dim));
+  PetscCall(KtSetDefaults(kt->ksp, iterative, ct->dim));
   PetscCall(KSPSetFromOptions(kt->ksp));
   PetscCall(KtClassify(kt));
   if (!kt->iterative) PetscFunctionReturn(0);

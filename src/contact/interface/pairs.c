@@ -34,8 +34,8 @@
  * vertex held by Dirichlet data (it does not move). */
 static PetscErrorCode LocalMasterFacets(MMContact ct, const MMObstacle *ob, const PetscInt mark[], PetscInt *nf, PetscReal **xf, PetscInt **df)
 {
-  DM                 dm = ct->op->dm;
-  const PetscInt     dim = ct->op->dim;
+  DM                 dm = ct->dm;
+  const PetscInt     dim = ct->dim;
   DMLabel            label;
   MMFacetList        fl;
   PetscInt           pStart, counts[3] = {0, 0, 0}; /* facets, cells in the group, interior facets */
@@ -114,7 +114,7 @@ static PetscErrorCode GatherMasterSurface(MMContact ct, PetscInt p, const PetscI
 {
   MMContactPairs *pr   = &ct->pairs;
   const MMObstacle *ob = &ct->pb.obstacles[ct->pb.n_rigid + p];
-  MPI_Comm        comm = PetscObjectComm((PetscObject)ct->op->dm);
+  MPI_Comm        comm = PetscObjectComm((PetscObject)ct->dm);
   PetscMPIInt     size, nl, *cnt, *dsp, *cntd, *dspd;
   PetscInt        nf = 0, ntot = 0;
   PetscReal      *xf;
@@ -155,7 +155,7 @@ PetscErrorCode MMContactPairsResolveSliding(MMContact ct)
 {
   MMContactPairs *pr       = &ct->pairs;
   PetscBool       friction = PETSC_FALSE, condensed;
-  MPI_Comm        comm     = PetscObjectComm((PetscObject)ct->op->dm);
+  MPI_Comm        comm     = PetscObjectComm((PetscObject)ct->dm);
 
   PetscFunctionBeginUser;
   for (PetscInt p = 0; p < pr->n; ++p) friction = (PetscBool)(friction || ct->pb.obstacles[ct->pb.n_rigid + p].mu > 0);
@@ -302,7 +302,7 @@ static void SetPairing(MMContactPairs *pr, PetscInt dim, PetscInt p, PetscInt k,
 PetscErrorCode MMContactPairsProject(MMContact ct, PetscInt p, PetscInt k, const PetscReal x[], PetscReal *gap, PetscReal n[])
 {
   MMContactPairs  *pr  = &ct->pairs;
-  const PetscInt   dim = ct->op->dim;
+  const PetscInt   dim = ct->dim;
   PetscReal        phib[MM_MAX_DIM] = {0, 0, 0};
   const PetscInt   fb = ClosestFacet(dim, pr->nf[p], pr->xf[p], x, phib);
   const PetscReal *xf = &pr->xf[p][fb * MM_FACET_REALS];
@@ -330,11 +330,11 @@ PetscErrorCode MMContactPairsProject(MMContact ct, PetscInt p, PetscInt k, const
 static PetscErrorCode BuildN(MMContact ct)
 {
   MMContactPairs *pr  = &ct->pairs;
-  const PetscInt  dim = ct->op->dim, nr = ct->ncomp;
+  const PetscInt  dim = ct->dim, nr = ct->ncomp;
   const PetscInt *in;
   PetscInt        n, rstart;
   Mat             N[2];
-  MPI_Comm        comm = PetscObjectComm((PetscObject)ct->op->dm);
+  MPI_Comm        comm = PetscObjectComm((PetscObject)ct->dm);
 
   PetscFunctionBeginUser;
   PetscCall(MatGetLocalSize(ct->transform.Q, &n, NULL));
@@ -393,9 +393,9 @@ static PetscErrorCode BuildN(MMContact ct)
 PetscErrorCode MMContactPairsBuildTransform(MMContact ct)
 {
   MMContactPairs *pr  = &ct->pairs;
-  const PetscInt  dim = ct->op->dim;
+  const PetscInt  dim = ct->dim;
   PetscInt        corners = 0;
-  MPI_Comm        comm = PetscObjectComm((PetscObject)ct->op->dm);
+  MPI_Comm        comm = PetscObjectComm((PetscObject)ct->dm);
 
   PetscFunctionBeginUser;
   for (PetscInt k = 0; k < ct->n_local; ++k) corners += ct->second[k];
@@ -419,7 +419,7 @@ PetscErrorCode MMContactPairsBuildTransform(MMContact ct)
 /* The w-frame operators and loads of the pairs' relative variables, from the contact-frame ones:
  * K <- N^T K N, M <- N^T M N, M* <- N^T M* N, and the loads L <- N^T L (docs/method.md section 11).
  * Runs after M* is built and its moments taken, which N leaves unchanged (frame/frame.c). */
-PetscErrorCode MMContactPairsTransformOperators(MMContact ct, MMOperators *op)
+PetscErrorCode MMContactPairsTransformOperators(MMContact ct, MMOperators op)
 {
   Mat         *A[3] = {&ct->K, &ct->mass.M, &ct->mass.Mstar}, B;
   Vec          t;
@@ -467,7 +467,7 @@ PetscErrorCode MMContactPairsDestroy(MMContactPairs *pr)
 static PetscErrorCode GatherMasterDisplacements(MMContact ct, Vec w)
 {
   MMContactPairs *pr  = &ct->pairs;
-  const PetscInt  dim = ct->op->dim;
+  const PetscInt  dim = ct->dim;
 
   PetscFunctionBeginUser;
   if (!pr->to_um) {
@@ -596,7 +596,7 @@ static PetscInt ProjectNode(MMContactPairs *pr, PetscInt dim, PetscInt p, const 
 static PetscErrorCode Positions(MMContact ct, Vec u, PetscReal **xc, PetscReal x[])
 {
   MMContactPairs    *pr  = &ct->pairs;
-  const PetscInt     dim = ct->op->dim;
+  const PetscInt     dim = ct->dim;
   const PetscInt    *in;
   const PetscScalar *ya, *um;
   PetscInt           rstart;
@@ -656,11 +656,11 @@ static PetscErrorCode Positions(MMContact ct, Vec u, PetscReal **xc, PetscReal x
 PetscErrorCode MMContactSlidePairs(MMContact ct, Vec u, Vec up, PetscBool *changed)
 {
   MMContactPairs *pr  = &ct->pairs;
-  const PetscInt  dim = ct->op->dim;
+  const PetscInt  dim = ct->dim;
   PetscScalar    *ga, *g0a;
   PetscReal     **xc, *x, pen = 0;
   PetscInt        cnt[2] = {0, 0}; /* slave nodes whose pairing changed, and that changed facet */
-  MPI_Comm        comm = PetscObjectComm((PetscObject)ct->op->dm);
+  MPI_Comm        comm = PetscObjectComm((PetscObject)ct->dm);
   OldPairing      old;
 
   PetscFunctionBeginUser;
@@ -754,7 +754,7 @@ static PetscBool PairSlides(MMContact ct, PetscInt k)
 PetscErrorCode MMContactPairsGetRecord(MMContact ct, PetscInt k, PetscBool *has, PetscScalar rec[])
 {
   MMContactPairs    *pr  = &ct->pairs;
-  const PetscInt     dim = ct->op->dim;
+  const PetscInt     dim = ct->dim;
   const PetscScalar *ga;
 
   PetscFunctionBeginUser;
@@ -813,10 +813,10 @@ static PetscInt FacetOfKey(MMContactPairs *pr, PetscInt dim, PetscInt p, const P
 PetscErrorCode MMContactPairsRestore(MMContact ct, const PetscScalar rec[], PetscBool *changed)
 {
   MMContactPairs *pr  = &ct->pairs;
-  const PetscInt  dim = ct->op->dim, bs = MM_CONTACT_PAIR_RECORD;
+  const PetscInt  dim = ct->dim, bs = MM_CONTACT_PAIR_RECORD;
   PetscInt        cnt[2] = {0, 0}; /* changed, not found */
   PetscScalar    *ga, *g0a;
-  MPI_Comm        comm = PetscObjectComm((PetscObject)ct->op->dm);
+  MPI_Comm        comm = PetscObjectComm((PetscObject)ct->dm);
 
   PetscFunctionBeginUser;
   *changed = PETSC_FALSE;

@@ -38,7 +38,7 @@ void MMContactFrameFromNormal(PetscInt dim, const PetscReal n[], PetscReal F[MM_
 static PetscErrorCode BuildFrame(MMContact ct)
 {
   PetscFunctionBeginUser;
-  MMContactFrameFromNormal(ct->op->dim, ct->pb.obstacle_normal, ct->frame);
+  MMContactFrameFromNormal(ct->dim, ct->pb.obstacle_normal, ct->frame);
   PetscFunctionReturn(0);
 }
 
@@ -48,7 +48,7 @@ static PetscErrorCode BuildFrame(MMContact ct)
  * normal dof, so a frame that turned would change M* and K~ and break the energy identity. */
 static PetscErrorCode NearestObstacle(MMContact ct, const PetscReal x[], PetscInt *which, PetscReal *gap, PetscReal n[])
 {
-  const PetscInt dim = ct->op->dim;
+  const PetscInt dim = ct->dim;
 
   PetscFunctionBeginUser;
   *which = -1;
@@ -71,7 +71,7 @@ static PetscErrorCode NearestObstacle(MMContact ct, const PetscReal x[], PetscIn
  * obstacle within h_c' of the node and not parallel to the first, which gets a second row; -1 if none. */
 static PetscErrorCode SecondObstacle(MMContact ct, const PetscReal x[], PetscInt first, const PetscReal n1[], PetscInt *which, PetscReal *gap, PetscReal n[])
 {
-  const PetscInt dim = ct->op->dim;
+  const PetscInt dim = ct->dim;
 
   PetscFunctionBeginUser;
   *which = -1;
@@ -117,7 +117,7 @@ static void CornerFrame(PetscInt dim, const PetscReal n1[], const PetscReal n2[]
  * of the one it is constrained against (docs/method.md section 8). */
 static PetscErrorCode AllObstacleGaps(MMContact ct, const PetscReal x[], PetscInt k)
 {
-  const PetscInt dim = ct->op->dim, nob = ct->pb.n_rigid;
+  const PetscInt dim = ct->dim, nob = ct->pb.n_rigid;
 
   PetscFunctionBeginUser;
   if (nob < 2) PetscFunctionReturn(0);
@@ -133,13 +133,14 @@ static PetscErrorCode AllObstacleGaps(MMContact ct, const PetscReal x[], PetscIn
 /* Marks the points of one contact surface with value, and adds int_F phi_i to each vertex's area. */
 static PetscErrorCode MarkSurface(MMContact ct, const char name[], PetscInt value, PetscInt mark[], PetscScalar aa[])
 {
-  DM          dm = ct->op->dm;
+  DM          dm = ct->dm, dms;
   DMLabel     label;
   MMFacetList fl;
   PetscInt    pStart, n, *pts, *vals;
   PetscReal   one = 1;
 
   PetscFunctionBeginUser;
+  PetscCall(MMFEGetScalarDM(ct->op, &dms));
   PetscCall(MMMeshGetLabel(dm, name, &label));
   PetscCall(DMPlexGetChart(dm, &pStart, NULL));
   PetscCall(MMMeshLabelPoints(label, &n, &pts, &vals));
@@ -158,7 +159,7 @@ static PetscErrorCode MarkSurface(MMContact ct, const char name[], PetscInt valu
   PetscCall(PetscFree2(pts, vals));
   /* int_F phi_i for P1 on each facet F: the contact nodes' areas */
   PetscCall(MMMeshGetFacets(dm, name, &fl));
-  PetscCall(MMMeshFacetsAddNodal(dm, &fl, ct->op->dm_scalar, 1, &one, aa));
+  PetscCall(MMMeshFacetsAddNodal(dm, &fl, dms, 1, &one, aa));
   PetscCall(MMFacetListDestroy(&fl));
   PetscFunctionReturn(0);
 }
@@ -170,16 +171,17 @@ static PetscErrorCode MarkContactVertices(MMContact ct, PetscInt **mark, Vec are
 {
   Vec          aloc;
   PetscScalar *aa;
-  DM           dm = ct->op->dm;
+  DM           dm = ct->dm, dms;
   PetscInt     pStart, pEnd;
   PetscInt    *root;
   PetscSF      sf;
 
   PetscFunctionBeginUser;
+  PetscCall(MMFEGetScalarDM(ct->op, &dms));
   PetscCall(DMPlexGetChart(dm, &pStart, &pEnd));
   PetscCall(PetscCalloc1(pEnd - pStart, mark));
   PetscCall(PetscCalloc1(pEnd - pStart, &root));
-  PetscCall(DMGetLocalVector(ct->op->dm_scalar, &aloc));
+  PetscCall(DMGetLocalVector(dms, &aloc));
   PetscCall(VecZeroEntries(aloc));
   PetscCall(VecGetArray(aloc, &aa));
   if (ct->pb.n_rigid) {
@@ -191,8 +193,8 @@ static PetscErrorCode MarkContactVertices(MMContact ct, PetscInt **mark, Vec are
   for (PetscInt b = ct->pb.n_rigid; b < ct->pb.n_obstacles; ++b) PetscCall(MarkSurface(ct, ct->pb.obstacles[b].slave, 2 + b - ct->pb.n_rigid, *mark, aa));
   PetscCall(VecRestoreArray(aloc, &aa));
   PetscCall(VecZeroEntries(area));
-  PetscCall(DMLocalToGlobal(ct->op->dm_scalar, aloc, ADD_VALUES, area));
-  PetscCall(DMRestoreLocalVector(ct->op->dm_scalar, &aloc));
+  PetscCall(DMLocalToGlobal(dms, aloc, ADD_VALUES, area));
+  PetscCall(DMRestoreLocalVector(dms, &aloc));
   PetscCall(DMGetPointSF(dm, &sf));
   PetscCall(PetscArraycpy(root, *mark, pEnd - pStart));
   PetscCall(PetscSFReduceBegin(sf, MPIU_INT, *mark, root, MPI_MAX));
@@ -207,22 +209,23 @@ static PetscErrorCode MarkContactVertices(MMContact ct, PetscInt **mark, Vec are
 /* h_c': the smallest diameter of the cells touching a contact node (Theorem 4.2). */
 static PetscErrorCode ContactLayerDiameter(MMContact ct, const PetscInt mark[])
 {
-  DM        dm = ct->op->dm;
-  PetscInt  cStart, cEnd, pStart, cdim;
-  PetscReal hmin = PETSC_MAX_REAL;
-  Vec       X;
+  DM             dm = ct->dm;
+  const MMCells *cells;
+  PetscInt       cStart, cEnd, pStart, cdim;
+  PetscReal      hmin = PETSC_MAX_REAL;
+  Vec            X;
 
   PetscFunctionBeginUser;
+  PetscCall(MMFEGetCells(ct->op, &cells));
   PetscCall(DMPlexGetChart(dm, &pStart, NULL));
   PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
   PetscCall(DMGetCoordinatesLocal(dm, &X));
   PetscCall(DMGetCoordinateDim(dm, &cdim));
   for (PetscInt c = cStart; c < cEnd; ++c) {
-    const MMCells *cells = &ct->op->cells;
-    PetscScalar   *xc    = NULL;
-    PetscInt       nx;
-    PetscBool      touches = PETSC_FALSE;
-    PetscReal      diam    = 0;
+    PetscScalar *xc      = NULL;
+    PetscInt     nx;
+    PetscBool    touches = PETSC_FALSE;
+    PetscReal    diam    = 0;
 
     for (PetscInt a = 0; a < cells->nv; ++a) touches = (PetscBool)(touches || mark[cells->vertex[cells->nv * (c - cStart) + a] - pStart]);
     if (!touches) continue;
@@ -267,9 +270,9 @@ static PetscErrorCode BuildContactDofs(MMContact ct, const PetscInt mark[], Vec 
   PetscInt           astart;
   const PetscScalar *av;
   PetscReal         *nodal_area;
-  DM           dm = ct->op->dm;
+  DM           dm = ct->dm, dms;
   PetscSection gs, ls, cs;
-  PetscInt     vStart, vEnd, pStart, dim = ct->op->dim, n, rstart, rend, nc = 0, nt = 0, nm = 0, *in, *it, *is, *im, b2, bf;
+  PetscInt     vStart, vEnd, pStart, dim = ct->dim, n, rstart, rend, nc = 0, nt = 0, nm = 0, *in, *it, *is, *im, b2, bf;
   PetscReal    ab[2] = {0, 0}, n2[MM_MAX_DIM] = {0, 0, 0}, g2 = 0;
   PetscReal   *gap;
   Vec          X, g;
@@ -278,6 +281,7 @@ static PetscErrorCode BuildContactDofs(MMContact ct, const PetscInt mark[], Vec 
   MPI_Comm     comm = PetscObjectComm((PetscObject)dm);
 
   PetscFunctionBeginUser;
+  PetscCall(MMFEGetScalarDM(ct->op, &dms));
   PetscCall(DMGetGlobalSection(dm, &gs));
   PetscCall(DMGetLocalSection(dm, &ls));
   PetscCall(DMGetCoordinateSection(dm, &cs));
@@ -349,7 +353,7 @@ static PetscErrorCode BuildContactDofs(MMContact ct, const PetscInt mark[], Vec 
     for (PetscInt r = 0; r < (b2 >= 0 ? 2 : 1); ++r) {
       PetscInt sstart, send;
       in[nc] = goff + r;
-      PetscCall(DMPlexGetPointGlobal(ct->op->dm_scalar, v, &sstart, &send));
+      PetscCall(DMPlexGetPointGlobal(dms, v, &sstart, &send));
       ct->scalar_index[nc] = sstart;
       ct->vertex[nc]       = v;
       nodal_area[nc]       = PetscRealPart(av[sstart - astart]);
@@ -434,10 +438,10 @@ static PetscErrorCode BuildNoContact(MMContact ct)
 {
   Vec      g;
   PetscInt n, rstart;
-  MPI_Comm comm = PetscObjectComm((PetscObject)ct->op->dm);
+  MPI_Comm comm = PetscObjectComm((PetscObject)ct->dm);
 
   PetscFunctionBeginUser;
-  PetscCall(DMCreateGlobalVector(ct->op->dm, &g));
+  PetscCall(DMCreateGlobalVector(ct->dm, &g));
   PetscCall(VecGetLocalSize(g, &n));
   PetscCall(VecGetOwnershipRange(g, &rstart, NULL));
   PetscCall(ISCreateStride(comm, 0, 0, 1, &ct->is_normal));
@@ -458,19 +462,19 @@ static PetscErrorCode SetUp(MMContact ct)
 {
   PetscInt  *mark;
   Vec        area;
+  DM         dms;
 
   PetscFunctionBeginUser;
   ct->enabled     = ct->opt.contact;
   ct->tol         = ct->opt.contact_tol;
-  ct->ncomp       = ct->pb.mu_max > 0 ? ct->op->dim : 1;
-  ct->dim         = ct->op->dim;
+  ct->ncomp       = ct->pb.mu_max > 0 ? ct->dim : 1;
   PetscCall(PetscCalloc1(MM_MAX_DIM * ct->pb.n_obstacles, &ct->force_obstacle));
   for (PetscInt b = 0; b < ct->pb.n_obstacles; ++b)
-    for (PetscInt d = 0; d < ct->op->dim; ++d) ct->moving = (PetscBool)(ct->moving || ct->pb.obstacles[b].velocity[d] != 0);
+    for (PetscInt d = 0; d < ct->dim; ++d) ct->moving = (PetscBool)(ct->moving || ct->pb.obstacles[b].velocity[d] != 0);
   if (ct->pb.static_sliding) {
     PetscBool plane;
     PetscCall(MMObstacleGetPlane(&ct->pb.obstacles[0], ct->pb.obstacle_point, ct->pb.obstacle_normal, &plane));
-    PetscCheck(ct->pb.n_obstacles == 1 && plane && !ct->moving, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_USER_INPUT, "-initial_state static_sliding needs a single fixed plane obstacle: the sliding state is built on one plane");
+    PetscCheck(ct->pb.n_obstacles == 1 && plane && !ct->moving, PetscObjectComm((PetscObject)ct->dm), PETSC_ERR_USER_INPUT, "-initial_state static_sliding needs a single fixed plane obstacle: the sliding state is built on one plane");
   }
   PetscCall(BuildFrame(ct));
   if (!ct->enabled) {
@@ -479,11 +483,12 @@ static PetscErrorCode SetUp(MMContact ct)
     PetscCall(MMContactFrameBuildRotation(ct, ct->op));
     PetscFunctionReturn(0);
   }
-  PetscCall(DMCreateGlobalVector(ct->op->dm_scalar, &area));
+  PetscCall(MMFEGetScalarDM(ct->op, &dms));
+  PetscCall(DMCreateGlobalVector(dms, &area));
   PetscCall(MarkContactVertices(ct, &mark, area));
   {
     PetscInt vStart, vEnd;
-    PetscCall(DMPlexGetDepthStratum(ct->op->dm, 0, &vStart, &vEnd));
+    PetscCall(DMPlexGetDepthStratum(ct->dm, 0, &vStart, &vEnd));
     PetscCall(MMContactPairsSetUp(ct, mark, vEnd - vStart));
   }
   PetscCall(ContactLayerDiameter(ct, mark)); /* before the rows: h_c' is the reach of a second obstacle */
@@ -496,9 +501,9 @@ static PetscErrorCode SetUp(MMContact ct)
   PetscCall(VecDestroy(&area));
   PetscCall(MMContactFramesSetUp(ct)); /* -contact_frames */
   /* a friction corner's two Coulomb laws on one node's dofs are solved in contact space only */
-  PetscCheck(!ct->n_fc || ct->ops->solvecoulomb, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_SUP, "%" PetscInt_FMT " contact nodes are within h_c' of two obstacles with friction (-mu %g), and -contact_formulation %s cannot carry both obstacles' Coulomb laws on one node: use -contact_formulation condensed (or auto, which chooses it here)", ct->n_fc, (double)ct->pb.mu_max, ct->type);
-  PetscCheck(ct->ncomp == 1 || ct->ops->solvecontactdofs, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_SUP, "Friction (-mu %g) needs a contact formulation that solves the contact dofs alone, and -contact_formulation %s cannot: use condensed or active_set", (double)ct->pb.mu_max, ct->type);
-  PetscCheck(ct->n_global > 0, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_USER_INPUT, "The contact boundary \"%s\" has no nodes", ct->pb.contact_name);
+  PetscCheck(!ct->n_fc || ct->ops->solvecoulomb, PetscObjectComm((PetscObject)ct->dm), PETSC_ERR_SUP, "%" PetscInt_FMT " contact nodes are within h_c' of two obstacles with friction (-mu %g), and -contact_formulation %s cannot carry both obstacles' Coulomb laws on one node: use -contact_formulation condensed (or auto, which chooses it here)", ct->n_fc, (double)ct->pb.mu_max, ct->type);
+  PetscCheck(ct->ncomp == 1 || ct->ops->solvecontactdofs, PetscObjectComm((PetscObject)ct->dm), PETSC_ERR_SUP, "Friction (-mu %g) needs a contact formulation that solves the contact dofs alone, and -contact_formulation %s cannot: use condensed or active_set", (double)ct->pb.mu_max, ct->type);
+  PetscCheck(ct->n_global > 0, PetscObjectComm((PetscObject)ct->dm), PETSC_ERR_USER_INPUT, "The contact boundary \"%s\" has no nodes", ct->pb.contact_name);
   PetscFunctionReturn(0);
 }
 
@@ -519,12 +524,14 @@ static PetscErrorCode SetUp(MMContact ct)
 
 .seealso: `MMContactSetFromOptions()`, `MMContactSetUpFrame()`, `MMContactSetUpView()`, `MMContactDestroy()`
 @*/
-PetscErrorCode MMContactSetUp(MMContact ct, MMOperators *op, const MMMaterial *material, const MMContactProblem *pb)
+PetscErrorCode MMContactSetUp(MMContact ct, MMOperators op, const MMMaterial *material, const MMContactProblem *pb)
 {
   PetscFunctionBeginUser;
   ct->pb = *pb; /* the obstacles and the contact boundary's name are the caller's, kept until destroy */
   ct->op       = op;
   ct->material = material;
+  PetscCall(MMFEGetDM(op, &ct->dm));
+  PetscCall(MMFEGetDimension(op, &ct->dim));
   PetscCall(SetUp(ct));
   PetscFunctionReturn(0);
 }
@@ -560,7 +567,7 @@ PetscErrorCode MMContactGetPlane(MMContact ct, PetscReal point[], PetscReal norm
  * sliding dt/2 V_2.tau'_j along the second row's tangents (docs/method.md section 12). */
 static void FrictionCornerSetTime(MMContact ct, PetscInt k, PetscReal t, PetscReal dt)
 {
-  const PetscInt    dim = ct->op->dim;
+  const PetscInt    dim = ct->dim;
   const MMObstacle *ob  = &ct->pb.obstacles[ct->fc_obstacle[k]];
   PetscReal         c[MM_MAX_DIM] = {0, 0, 0}, V[MM_MAX_DIM] = {0, 0, 0}, F2[MM_MAX_DIM][MM_MAX_DIM];
 
@@ -600,7 +607,7 @@ static void FrictionCornerSetTime(MMContact ct, PetscInt k, PetscReal t, PetscRe
 @*/
 PetscErrorCode MMContactSetTime(MMContact ct, PetscReal t, PetscReal dt)
 {
-  const PetscInt     dim = ct->op->dim;
+  const PetscInt     dim = ct->dim;
   const PetscScalar *g0;
   PetscScalar       *g;
 

@@ -105,7 +105,7 @@ static PetscErrorCode StaticBounds(MMContact ct, Vec lower, Vec upper)
 @*/
 PetscErrorCode MMContactSolveStatic(MMContact ct, Vec w, Vec react)
 {
-  MPI_Comm   comm = PetscObjectComm((PetscObject)ct->op->dm);
+  MPI_Comm   comm = PetscObjectComm((PetscObject)ct->dm);
   MMBoundQP  qp;
   SNES       snes;
   Vec        lower, upper;

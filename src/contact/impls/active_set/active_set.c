@@ -152,7 +152,7 @@ static PetscErrorCode ProjectedPC(PC pc, Vec x, Vec y)
 PetscErrorCode MMActiveSetSetUp(MMContact ct)
 {
   MMActiveSet *as = MMActiveSetData(ct);
-  MPI_Comm     comm = PetscObjectComm((PetscObject)ct->op->dm);
+  MPI_Comm     comm = PetscObjectComm((PetscObject)ct->dm);
   PetscInt     n, N;
   PC           pc;
 
@@ -172,7 +172,7 @@ PetscErrorCode MMActiveSetSetUp(MMContact ct)
   PetscCall(VecDuplicate(ct->gap, &as->s));
   PetscCall(VecZeroEntries(as->s));
   PetscCall(MMContactCreateReactions(ct));
-  PetscCall(PetscCalloc3(ct->n_local, &as->active, ct->n_local, &as->stick, PetscMax(1, ct->n_local * (ct->op->dim - 1)), &as->dir));
+  PetscCall(PetscCalloc3(ct->n_local, &as->active, ct->n_local, &as->stick, PetscMax(1, ct->n_local * (ct->dim - 1)), &as->dir));
   PetscCall(PetscCalloc3(ct->n_local, &as->kappa, ct->n_local, &as->beta, ct->n_local, &as->rperp));
 
   PetscCall(VecGetLocalSize(ct->qp.b, &n));
@@ -207,7 +207,7 @@ static PetscErrorCode RefreshBlockOperator(MMContact ct)
   PetscCall(PetscObjectStateGet((PetscObject)ct->qp.A, &state));
   if (as->Kb_of == ct->qp.A && as->Kb_state == state) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(MMCONTACT_BlockOperator, 0, 0, 0, 0));
-  PetscCall(MMActiveSetBlockOperator(ct->qp.A, ct->op->dim, &as->Kb));
+  PetscCall(MMActiveSetBlockOperator(ct->qp.A, ct->dim, &as->Kb));
   PetscCall(PetscLogEventEnd(MMCONTACT_BlockOperator, 0, 0, 0, 0));
   as->block    = (PetscBool)(as->Kb != NULL);
   as->Kb_of    = ct->qp.A;
@@ -255,7 +255,7 @@ static PetscErrorCode NodeDataGet(MMContact ct, NodeData *nd)
 {
 
   PetscFunctionBeginUser;
-  nd->dim     = ct->op->dim;
+  nd->dim     = ct->dim;
   nd->nt      = ct->ncomp > 1 ? nd->dim - 1 : 0; /* tangential dofs with friction */
   nd->ncomp   = ct->ncomp;
   nd->slide   = ct->slide_ref;
@@ -398,7 +398,7 @@ static PetscErrorCode GetSetTolerances(MMContact ct, SetTolerances *tol)
 
   PetscFunctionBeginUser;
   PetscCall(VecStrideMax(ct->rho, 0, NULL, &rmax));
-  tol->fscale = PetscMax(rmax, 1e-3 * ct->material->E_max * PetscPowReal(ct->h_c, ct->op->dim - 1));
+  tol->fscale = PetscMax(rmax, 1e-3 * ct->material->E_max * PetscPowReal(ct->h_c, ct->dim - 1));
   tol->len    = 1e-10 * ct->h_c;
   tol->force  = 1e-9 * tol->fscale;
   PetscFunctionReturn(0);

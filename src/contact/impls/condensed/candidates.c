@@ -37,7 +37,7 @@ static PetscErrorCode CreateSetSolver(MMContact ct)
 PetscErrorCode MMCandidatesSetUp(MMContact ct)
 {
   MMCandidates *c = &MMCondensedData(ct)->cand;
-  MPI_Comm     comm = PetscObjectComm((PetscObject)ct->op->dm);
+  MPI_Comm     comm = PetscObjectComm((PetscObject)ct->dm);
   PetscMPIInt  size, nl;
   const PetscInt *in;
   PetscInt    *mine;
@@ -163,7 +163,7 @@ static PetscErrorCode ReserveSlots(MMContact ct, PetscInt n)
     c->full_ok = PETSC_FALSE;
     PetscCall(PetscFree(c->full));
   }
-  PetscCheck((c->n_cached + n) * per_node <= c->memory_cap, PetscObjectComm((PetscObject)ct->op->dm), PETSC_ERR_USER_INPUT,
+  PetscCheck((c->n_cached + n) * per_node <= c->memory_cap, PetscObjectComm((PetscObject)ct->dm), PETSC_ERR_USER_INPUT,
              "The contact candidate set (%" PetscInt_FMT " nodes) needs %.3g MiB of K~^{-1} E columns, above -contact_candidate_memory %g MiB. Raise it, or use a contact formulation that needs no Delassus operator",
              c->n_cached + n, (c->n_cached + n) * per_node / 1048576.0, (double)ct->opt.candidate_memory);
   if (c->n_cached + n > c->cap || (c->full_ok && !c->full)) {
@@ -213,7 +213,7 @@ static inline PetscInt ColumnDof(const MMCandidates *c, const PetscInt todo[], P
 static PetscErrorCode SolveColumnsDistributed(MMContact ct, Mat F, const PetscInt todo[], PetscInt m, const PetscInt ic[])
 {
   MMCandidates  *c  = &MMCondensedData(ct)->cand;
-  MPI_Comm       comm = PetscObjectComm((PetscObject)ct->op->dm);
+  MPI_Comm       comm = PetscObjectComm((PetscObject)ct->dm);
   const PetscInt nb_max = 96, nr = ct->ncomp;
   PetscInt       n, rstart, *rows = NULL;
   PetscScalar   *xb   = NULL;
@@ -280,7 +280,7 @@ static PetscErrorCode SolveColumnsDistributed(MMContact ct, Mat F, const PetscIn
 static PetscErrorCode SolveColumnsRedundant(MMContact ct, Mat F, const PetscInt todo[], PetscInt m, const PetscInt ic[])
 {
   MMCandidates   *c  = &MMCondensedData(ct)->cand;
-  MPI_Comm        comm = PetscObjectComm((PetscObject)ct->op->dm);
+  MPI_Comm        comm = PetscObjectComm((PetscObject)ct->dm);
   const PetscInt  nb_max = 96, nr = ct->ncomp, N = c->N;
   const PetscInt *ranges;
   PetscMPIInt     rank, size, *scount, *sdispl, *rcount, *rdispl;
@@ -448,7 +448,7 @@ static PetscErrorCode DestroySetProblem(MMCandidates *c)
 static PetscErrorCode BuildSetOperator(MMContact ct)
 {
   MMCandidates *c  = &MMCondensedData(ct)->cand;
-  MPI_Comm      comm = PetscObjectComm((PetscObject)ct->op->dm);
+  MPI_Comm      comm = PetscObjectComm((PetscObject)ct->dm);
   const PetscInt nr = ct->ncomp;
   PetscMPIInt   size, *cnt, *dsp, mine;
   PetscInt      first = -1, nloc = 0, m;
@@ -519,7 +519,7 @@ static PetscErrorCode BuildSetOperator(MMContact ct)
 static PetscErrorCode AddToSet(MMContact ct, PetscInt nmine, const PetscInt mine[], PetscInt *added)
 {
   MMCandidates *c  = &MMCondensedData(ct)->cand;
-  MPI_Comm      comm = PetscObjectComm((PetscObject)ct->op->dm);
+  MPI_Comm      comm = PetscObjectComm((PetscObject)ct->dm);
   PetscMPIInt   size, n, *cnt, *dsp;
   PetscInt     *news, total = 0, k = 0;
 
@@ -579,7 +579,7 @@ PetscErrorCode MMCandidatesSelect(MMContact ct)
   if (ct->fc_q) PetscCall(VecGetArrayRead(ct->fc_q, &q2));
   if (ct->fc_x) PetscCall(VecGetArrayRead(ct->fc_x, &r2));
   for (PetscInt k = 0; k < ct->n_local; ++k) deepest = PetscMax(deepest, PetscMax(PetscRealPart(qa[nr * k]), q2 ? PetscRealPart(q2[nr * k]) : 0.0));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &deepest, 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)ct->op->dm)));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &deepest, 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)ct->dm)));
   PetscCall(PetscMalloc1(ct->n_local, &mine));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
     const PetscBool second = (PetscBool)(q2 && ct->fc_obstacle[k] >= 0 && (PetscRealPart(q2[nr * k]) >= -c->margin * deepest || PetscRealPart(r2[nr * k]) > 0));

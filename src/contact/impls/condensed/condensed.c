@@ -20,9 +20,9 @@ PetscErrorCode MMCondensedFactor(MMContact ct)
   PetscFunctionBeginUser;
   if (!ct->z) PetscCall(MatCreateVecs(ct->qp.A, &ct->z, &MMCondensedData(ct)->rhs_c));
   if (!MMCondensedData(ct)->ksp_K) { /* the first, or a second one for the kept factor */
-    PetscCall(KSPCreate(PetscObjectComm((PetscObject)ct->op->dm), &MMCondensedData(ct)->ksp_K));
+    PetscCall(KSPCreate(PetscObjectComm((PetscObject)ct->dm), &MMCondensedData(ct)->ksp_K));
     PetscCall(KSPSetOptionsPrefix(MMCondensedData(ct)->ksp_K, "contact_K_"));
-    PetscCall(MMKSPSetDirectSPD(MMCondensedData(ct)->ksp_K, ct->op->dim));
+    PetscCall(MMKSPSetDirectSPD(MMCondensedData(ct)->ksp_K, ct->dim));
     PetscCall(KSPSetFromOptions(MMCondensedData(ct)->ksp_K));
     /* now, not at the first solve: the Delassus operator is built from the factor before it */
     PetscCall(MMKSPCheckDirect(MMCondensedData(ct)->ksp_K));

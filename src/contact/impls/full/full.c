@@ -27,7 +27,7 @@ static PetscErrorCode FullSetUp(MMContact ct)
   PetscFunctionBeginUser;
   PetscCall(VecDuplicate(ct->qp.b, &ct->lower));
   PetscCall(VecDuplicate(ct->qp.b, &ct->upper));
-  PetscCall(MMQPCreate(PetscObjectComm((PetscObject)ct->op->dm), "contact_", &ct->qp, 0, &MMFullData(ct)->snes));
+  PetscCall(MMQPCreate(PetscObjectComm((PetscObject)ct->dm), "contact_", &ct->qp, 0, &MMFullData(ct)->snes));
   PetscCall(MMQPSetFactorSPD(MMFullData(ct)->snes));
   PetscCall(SNESGetKSP(MMFullData(ct)->snes, &ksp));
   PetscCall(MMKSPSetFailureCheck(ksp));
