@@ -64,6 +64,8 @@ PetscErrorCode MMNewmarkView(MMNewmark nm, PetscReal dt, PetscViewer viewer)
   }
   if (nm->material->finite) PetscCall(NonlinearView(&nm->nl, viewer));
   PetscCall(PetscViewerASCIIPrintf(viewer, "audits: -audit_tol %g, -contact_work_tol %g; deformation audit %s\n", (double)nm->audit_tol, (double)nm->contact_work_tol, nm->deformation_audit ? "on" : "off (-deformation_audit 0)"));
+  if (nm->cert.on) PetscCall(PetscViewerASCIIPrintf(viewer, "step certificate: a step is accepted when its residual's work, resultant and moment are within %g round-offs of their terms, solved again with a tighter -contact_tol otherwise\n", (double)MM_CERT_ROUNDOFFS));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "step certificate: %s\n", nm->law->certified ? "off (-step_certificate 0): the solves stop at -contact_tol" : "the finite-strain iteration's: a stalled iterate within the round-off of its terms ends the step"));
   if (nm->deformation_audit) PetscCall(PetscViewerASCIIPrintf(viewer, "  -strain_warn %g, -max_strain %g\n", (double)nm->strain_warn, (double)nm->max_strain));
   PetscCall(PetscViewerASCIIPopTab(viewer));
   PetscFunctionReturn(0);
