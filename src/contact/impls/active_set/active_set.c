@@ -801,15 +801,15 @@ static PetscErrorCode ActiveSetSwapKept(MMContact ct, PetscReal dt, PetscBool *h
 }
 
 /* -contact_formulation auto's model of this formulation (docs/scaling.md, "The formulation chosen by
- * cost"), fitted on 1 rank over 1.3k to 115k dofs: no factorization; a step is CG iterations, whose
+ * cost"), fitted on 1 rank over 1.3k to 115k dofs, steps accepted by their certificate: no factorization; a step is CG iterations, whose
  * number grows with c_p dt / h_c' (the conditioning of K~ on the free dofs) and with the friction
  * sets' changes. It cannot carry a friction corner's two Coulomb laws, nor contact pairs that slide
  * (-contact_pairs_sliding large keeps K~ on one pattern). */
 static PetscErrorCode ActiveSetCost(MMContact ct, const MMCostInput *in, MMCost *cost)
 {
   static const MMCostModel model[2] = {
-    {{-13.86, 0.8038, 0.9084, -0.1772, 0.4168}, {-10.04, 0.8182}}, /* 2D */
-    {{-13.09, 0.8721, 0.5810, 0.1339, 0.2289}, {-10.50, 0.9405}},  /* 3D */
+    {{-16.02, 1.071, 1.187, 0.1169, -0.00619}, {-10.03, 0.8425}}, /* 2D */
+    {{-13.45, 0.9784, 0.8623, 0.2161, 0.02843}, {-10.02, 0.9205}}, /* 3D */
   };
 
   PetscFunctionBeginUser;

@@ -543,8 +543,8 @@ static PetscErrorCode CondensedSwapKept(MMContact ct, PetscReal dt, PetscBool *h
 static PetscErrorCode CondensedCost(MMContact ct, const MMCostInput *in, MMCost *cost)
 {
   static const MMCostModel model[2] = {
-    {{-13.44, 0.8507, 0.2155, -0.0902, 0.1130}, {-12.16, 1.124}}, /* 2D */
-    {{-14.87, 1.181, 0.1259, -0.2469, 0.3439}, {-12.83, 1.287}},  /* 3D */
+    {{-15.94, 1.155, 0.1492, 0.06502, 0.06159}, {-11.81, 1.109}}, /* 2D */
+    {{-15.54, 1.249, 0.2461, -0.03408, 0.2}, {-12.32, 1.252}},     /* 3D */
   };
 
   PetscFunctionBeginUser;
