@@ -80,10 +80,6 @@ PetscErrorCode MMCertificateOfIterate(MMNewmark nm, Vec bH, Vec w, MMStepCertifi
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(MM_TS_Certificate, 0, 0, 0, 0));
-  if (!cd->r) {
-    PetscCall(VecDuplicate(nm->state.u, &cd->r));
-    PetscCall(VecDuplicate(nm->state.u, &cd->scale));
-  }
   PetscCall(MMContactStepResidual(nm->contact, bH, w, nm->state.react, cd->r, cd->scale));
   PetscCall(Defects(nm, w, cd->r, NULL, cd->scale, c));
   PetscCall(PetscLogEventEnd(MM_TS_Certificate, 0, 0, 0, 0));
@@ -105,18 +101,13 @@ PetscErrorCode MMCertificateCheck(MMNewmark nm, Vec b, Vec w, PetscInt tries, Pe
   PetscCall(Measure(nm, b, w, &c));
   PetscCall(MMContactGetSolveTolerance(nm->contact, &tol, &user));
   PetscCall(PetscInfo(NULL, "step certificate (solve %" PetscInt_FMT ", -contact_tol now %.1e): work of the residual %.3e (round-off %.3e), resultant %.3e (%.3e), moment %.3e (%.3e): %.3g round-offs\n", tries, (double)tol, (double)c.energy, (double)c.energy_tol, (double)c.force, (double)c.force_tol, (double)c.torque, (double)c.torque_tol, (double)c.ratio));
-  cd->last = c;
   if (c.ratio <= 1) {
     /* met: the next step starts looser again, as long as it keeps meeting it */
     if (tries == 1 && c.ratio < 1e-2 && tol < user) PetscCall(MMContactSetSolveTolerance(nm->contact, PetscMin(user, 10 * tol)));
     cd->ratio_max = PetscMax(cd->ratio_max, c.ratio);
-  } else if (tries > 1 && c.ratio > 0.5 * cd->ratio_prev) {
-    /* the last tightening did not halve the defect: the residual is at its floor, accepted there */
-    cd->floor_steps++;
-    cd->floor_max = PetscMax(cd->floor_max, c.ratio);
-  } else if (tries >= cd->max_tries || tol <= 10 * PETSC_MACHINE_EPSILON) {
-    cd->floor_steps++;
-    cd->floor_max = PetscMax(cd->floor_max, c.ratio);
+  } else if ((tries > 1 && c.ratio > 0.5 * cd->ratio_prev) || tries >= MM_CERT_MAX_SOLVES || tol <= 10 * PETSC_MACHINE_EPSILON) {
+    /* the last tightening did not halve the defect (or none is left): the residual is at its floor, accepted there */
+    MMCertificateAtFloor(cd, c.ratio);
   } else {
     /* the residual falls about as the tolerance: ask for what the certificate lacks, and 10 times more */
     PetscCall(MMContactSetSolveTolerance(nm->contact, PetscMax(10 * PETSC_MACHINE_EPSILON, tol / (10 * c.ratio))));
@@ -135,15 +126,14 @@ PetscErrorCode MMCertificateSetUp(MMNewmark nm)
   PetscReal          lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
 
   PetscFunctionBeginUser;
-  cd->max_tries = 4;
   PetscCall(DMGetBoundingBox(nm->dm, lo, hi));
   cd->radius = 0;
   for (PetscInt d = 0; d < 3; ++d) cd->radius += PetscSqr(PetscMax(PetscAbsReal(lo[d]), PetscAbsReal(hi[d])));
   cd->radius = PetscSqrtReal(cd->radius);
-  if (!cd->on) PetscFunctionReturn(0); /* the finite-strain iteration makes r and scale on first use */
+  /* the finite-strain iteration measures its stalled iterates too (MMCertificateOfIterate) */
   PetscCall(VecDuplicate(nm->state.u, &cd->r));
   PetscCall(VecDuplicate(nm->state.u, &cd->scale));
-  PetscCall(VecDuplicate(nm->state.u, &cd->r_old));
+  if (cd->on) PetscCall(VecDuplicate(nm->state.u, &cd->r_old));
   PetscFunctionReturn(0);
 }
 

@@ -77,18 +77,23 @@ typedef struct {
  * that stopped falling: its floor, accepted there */
 #define MM_CERT_ROUNDOFFS       4.0
 #define MM_CERT_FLOOR_ROUNDOFFS 1e3
+#define MM_CERT_MAX_SOLVES      4 /* solves of one linear step at most */
 typedef struct {
   PetscBool         on;          /* -step_certificate, with the linear law */
-  PetscInt          max_tries;   /* solves of one step at most */
   Vec               r, scale, r_old; /* the residual and its entries' round-off scale; the last accepted step's residual */
   PetscReal         radius;      /* the mesh's farthest extent from the origin: the moments' lever */
   PetscReal         ratio_prev;  /* the last solve's ratio, this step */
-  MMStepCertificate last;        /* the last step's */
   PetscReal         ratio_max;   /* over the run, of the steps that met it */
   PetscInt          resolves;    /* solves again with a tighter tolerance, over the run */
   PetscInt          floor_steps; /* steps accepted at their residual's round-off floor */
   PetscReal         floor_max;   /* their largest ratio */
 } MMCertificateData;
+/* A step accepted at its residual's round-off floor, counted for the run's report */
+static inline void MMCertificateAtFloor(MMCertificateData *cd, PetscReal ratio)
+{
+  cd->floor_steps++;
+  cd->floor_max = PetscMax(cd->floor_max, ratio);
+}
 PETSC_INTERN PetscErrorCode MMCertificateSetUp(MMNewmark nm);
 PETSC_INTERN PetscErrorCode MMCertificateCheck(MMNewmark nm, Vec b, Vec w, PetscInt tries, PetscBool *again);
 PETSC_INTERN PetscErrorCode MMCertificateDestroy(MMCertificateData *cd);

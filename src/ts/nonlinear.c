@@ -563,10 +563,8 @@ PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b,
       PetscCall(MMCertificateOfIterate(nm, nl->f, w, &cert));
       PetscCall(PetscInfo(NULL, "finite-strain step %" PetscInt_FMT " stalled at %.3e: its residual is %.3g round-offs of its terms\n", nm->hist.step + 1, (double)res, (double)cert.ratio));
       if (cert.ratio <= 1 || (stalls >= 2 && cert.ratio <= MM_CERT_FLOOR_ROUNDOFFS)) {
-        if (cert.ratio > 1) { /* else the step meets its certificate: exact, at a residual -nonlinear_rtol cannot see */
-          nm->cert.floor_steps++;
-          nm->cert.floor_max = PetscMax(nm->cert.floor_max, cert.ratio);
-        }
+        /* at or below 1 the step meets its certificate: exact, at a residual -nonlinear_rtol cannot see */
+        if (cert.ratio > 1) MMCertificateAtFloor(&nm->cert, cert.ratio);
         tol = res;
         break;
       }
