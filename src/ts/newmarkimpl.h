@@ -179,7 +179,7 @@ PETSC_INTERN PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscRe
 PETSC_INTERN PetscErrorCode MMNonlinearElasticEnergy(MMNewmark nm, Vec u, PetscReal t, PetscReal *energy);
 PETSC_INTERN PetscErrorCode MMNonlinearDestroy(MMNonlinear *nl);
 PETSC_INTERN PetscErrorCode MMNonlinearDampingWork(MMNewmark nm, Vec du, PetscReal t1, PetscReal dt, PetscReal *w);
-PETSC_INTERN PetscErrorCode MMNonlinearFollowFrames(MMNewmark nm, PetscReal t, PetscReal dt);
+PETSC_INTERN PetscErrorCode MMNonlinearFollowFrames(MMNewmark nm, PetscReal t, PetscReal dt, Vec midpoint);
 PETSC_INTERN PetscErrorCode MMAdaptGrowBackRegister(void);
 PETSC_INTERN PetscErrorCode MMNewmarkSchemeSetUp(MMNewmark nm);
 PETSC_INTERN PetscErrorCode MMNewmarkPredictMidpoint(MMNewmark nm, PetscReal dt, Vec *midpoint);

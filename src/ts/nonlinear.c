@@ -615,24 +615,22 @@ PetscErrorCode MMNonlinearDampingWork(MMNewmark nm, Vec du, PetscReal t1, PetscR
 }
 
 /* -contact_frames follow (docs/method.md section 8, "Frames that follow the contact point"): at the
- * step's start the frames of the nodes near a curved obstacle follow their current position. The
+ * step's start the frames of the nodes near a curved obstacle follow their position at the step's predicted midpoint (handed by the law's begin, step_laws.c, from scheme.c). The
  * Cartesian state is unchanged: contact turns the frame components of the stepper's registered data
  * by R (RegisterFrameData: u, v, a, the reactions, the load parts, the iteration stiffness); the
  * momentum functionals follow the frame state (momenta.c). M* does not turn with them, it is rebuilt
  * (the massless dofs lie along the new normals), so the kinetic energy 1/2 v.M* v moves by W_frame =
  * 1/2 v.(M*_new - M*_old) v: booked in the balance (work_frame), not hidden in its residual. The
  * elastic energy, a function of the Cartesian displacement, does not move. */
-PetscErrorCode MMNonlinearFollowFrames(MMNewmark nm, PetscReal t, PetscReal dt)
+PetscErrorCode MMNonlinearFollowFrames(MMNewmark nm, PetscReal t, PetscReal dt, Vec midpoint)
 {
   MMContactOperators ops;
   MMState           *s = &nm->state;
   PetscInt           turned;
   PetscReal          kinetic_old = nm->hist.kinetic; /* 1/2 v.M*_old v of the last accepted step (no moving Dirichlet data here) */
-  Vec                midpoint;
 
   PetscFunctionBeginUser;
   PetscCall(MMContactGetOperators(nm->contact, &ops));
-  PetscCall(MMNewmarkPredictMidpoint(nm, dt, &midpoint));
   PetscCall(MMContactFramesUpdate(nm->contact, s->u, midpoint, t + 0.5 * dt, &turned));
   if (!turned) PetscFunctionReturn(0);
   {

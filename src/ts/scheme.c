@@ -70,14 +70,14 @@ PetscErrorCode MMNewmarkSchemeSetUp(MMNewmark nm)
   PetscFunctionReturn(0);
 }
 
-/* The step of dt handed to contact: its matrix (the law's, MMNewmarkGetStepMatrix), and the offset
+/* The step of dt handed to contact: its matrix (the law's ops, as MMNewmarkGetStepMatrix gives it), and the offset
  * and scale of the step from the saved start u^n, v^n. At each try of a step, and once at set-up. */
 PetscErrorCode MMNewmarkSetStep(MMNewmark nm, PetscReal dt)
 {
   MMStepMatrix sm;
 
   PetscFunctionBeginUser;
-  PetscCall(MMNewmarkGetStepMatrix(nm, dt, &sm));
+  PetscCall((*nm->law->stepmatrix)(nm, dt, &sm)); /* the law's K~ coefficients (step_laws.c) */
   PetscCall(MMContactSetStepMatrix(nm->contact, &sm));
   PetscCall(StepOffset(nm, dt));
   nm->scheme.scale = 2.0 / dt;

@@ -49,8 +49,11 @@ static PetscErrorCode LinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec 
  * section 8), then the contact pairs' large-sliding pairing */
 static PetscErrorCode FiniteBegin(MMNewmark nm, PetscReal t, PetscReal dt)
 {
+  Vec midpoint;
+
   PetscFunctionBeginUser;
-  PetscCall(MMNonlinearFollowFrames(nm, t, dt));
+  PetscCall(MMNewmarkPredictMidpoint(nm, dt, &midpoint)); /* the scheme's prediction (scheme.c) */
+  PetscCall(MMNonlinearFollowFrames(nm, t, dt, midpoint));
   PetscCall(MMNonlinearSlidePairs(nm, dt));
   PetscFunctionReturn(0);
 }
