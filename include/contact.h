@@ -169,6 +169,12 @@ PETSC_EXTERN PetscErrorCode MMContactGetFrameState(MMContact ct, PetscObjectStat
  * at the step's predicted midpoint, t + dt/2; *turned: how many turned (all ranks). The w-frame K, M*, Q, loads and gaps are contact's
  * and turn with them, as do the held vectors and matrices (x <- R^T x, A <- R^T A R). */
 PETSC_EXTERN PetscErrorCode MMContactFramesFollow(MMContact ct, PetscBool *follow);
+/* the mass in free flight (src/contact/frame/mass_free.c) */
+PETSC_EXTERN PetscErrorCode MMContactMassFreeFlight(MMContact ct, PetscBool *on, PetscBool *is_free);
+PETSC_EXTERN PetscErrorCode MMContactMassSetFree(MMContact ct, PetscBool is_free);
+PETSC_EXTERN PetscErrorCode MMContactMassReach(MMContact ct, Vec w, PetscReal t, PetscReal *slack, PetscReal *h_c);
+PETSC_EXTERN PetscErrorCode MMContactMassFreeGetSwitches(MMContact ct, PetscInt switches[2]);
+PETSC_EXTERN PetscErrorCode MMContactMassFreeRestore(MMContact ct, PetscBool is_free, const PetscInt switches[2]);
 PETSC_EXTERN PetscErrorCode MMContactFramesUpdate(MMContact ct, Vec u, Vec midpoint, PetscReal t_mid, PetscInt *turned);
 /* Checkpoints of a run whose frames follow (frames.c): per following row its normal nu (MM_MAX_DIM)
  * and gap g_0, MM_CONTACT_FRAME_RECORD reals (*has: the row follows); the run's counters (updates,

@@ -84,6 +84,8 @@ typedef struct {
   PetscScalar *node;                           /* its per-node records of the owned contact nodes */
   PetscScalar *frames;                         /* frames that follow: the owned contact nodes' frame records (NULL: none) */
   PetscReal    frames_run[4];                  /* and the run's W_frame and the frames' counters */
+  PetscBool    mass_free_read;                 /* the mass in free flight's record was read */
+  PetscReal    mass_free_work;                 /* and its W_frame so far */
   PetscScalar *pairs;                          /* large sliding: the owned contact nodes' pairing records (NULL: none) */
   PetscReal    pairs_run[3];                   /* and the run's counters of new pairings */
   Vec          tangent;                        /* finite strain: the point of the iteration matrix (NULL: K) */

@@ -273,7 +273,7 @@ PETSC_INTERN PetscClassId  MMCONTACT_CLASSID;
 PETSC_INTERN PetscLogEvent MMCONTACT_Assemble, MMCONTACT_Solve, MMCONTACT_Recover, MMCONTACT_KtReuse, MMCONTACT_KtSetUp, MMCONTACT_KtSolve;
 PETSC_INTERN PetscLogEvent MMCONTACT_CandidateColumns, MMCONTACT_CandidateOperator, MMCONTACT_ColumnsSolve, MMCONTACT_ColumnsMove;
 PETSC_INTERN PetscLogEvent MMCONTACT_SplitInterface, MMCONTACT_SplitBackward, MMCONTACT_ActiveSetIterate, MMCONTACT_ActiveSetCG, MMCONTACT_BlockOperator;
-PETSC_INTERN PetscLogEvent MMCONTACT_FrameSetUp, MMCONTACT_FrameRotate, MMCONTACT_MassRedistribute, MMCONTACT_FrameFollow, MMCONTACT_PairsSlide;
+PETSC_INTERN PetscLogEvent MMCONTACT_FrameSetUp, MMCONTACT_FrameRotate, MMCONTACT_MassRedistribute, MMCONTACT_FrameFollow, MMCONTACT_PairsSlide, MMCONTACT_MassFree;
 
 /* The formulation of -contact_formulation (auto resolved by the cost model), or "none" (contact.c) */
 PETSC_INTERN PetscErrorCode MMContactSetType(MMContact ct);

@@ -16,6 +16,7 @@
 #define MM_CKPT_TMP  ".tmp" /* written whole, then renamed over the last good one */
 #define MM_CKPT_NODE MM_CONTACT_NODE_STATE /* per vertex: the contact row's state (MMContactGetNodeState) */
 #define MM_CKPT_FRAMES_RUN 4 /* frames that follow: W_frame, and the frames' counters (MMContactFramesGetCounters) */
+#define MM_CKPT_MASS_FREE 4  /* the mass in free flight: M* is M (1 or 0), the switches to M and back, W_frame */
 #define MM_CKPT_VERSION 5 /* 4: the redistributed mass (mass type + 3 if lumped); the Rayleigh damping (alpha, beta, W_d and vC);
                            * 5: the per-cell material's checksums (-bodies) */
 
@@ -681,6 +682,29 @@ static PetscErrorCode CountVertices(MMCheckpoint *ck)
 
 /* The checkpoint's datasets into the file tmp. A failed write returns its error, for the caller's
  * MMOutputHDF5End to name the file. */
+/* The mass in free flight (-mass_free_flight, src/contact/frame/mass_free.c): whether M* is M, the
+ * run's switches and W_frame so far; written only then, as every other checkpoint keeps its datasets */
+static PetscErrorCode WriteMassFree(MMCheckpoint *ck, PetscViewer viewer)
+{
+  PetscBool on, is_free;
+  PetscInt  sw[2];
+  PetscReal vals[MM_CKPT_MASS_FREE];
+  Vec       mv;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMContactMassFreeFlight(ck->contact, &on, &is_free));
+  if (!on) PetscFunctionReturn(0);
+  PetscCall(MMContactMassFreeGetSwitches(ck->contact, sw));
+  vals[0] = is_free ? 1 : 0;
+  vals[1] = (PetscReal)sw[0];
+  vals[2] = (PetscReal)sw[1];
+  vals[3] = ck->hist->work_frame;
+  PetscCall(RootVector(PetscObjectComm((PetscObject)ck->dm), "mass_free", MM_CKPT_MASS_FREE, vals, &mv));
+  PetscCall(VecView(mv, viewer));
+  PetscCall(VecDestroy(&mv));
+  PetscFunctionReturn(0);
+}
+
 /* The state of the stepper besides u, v, a: the finite-strain iteration matrix's point, and under large
  * sliding the pairing, its counters and the forces carried across pairings (docs/method.md section 9). */
 static PetscErrorCode WriteStepperState(MMCheckpoint *ck, TS ts, PetscViewer viewer)
@@ -692,6 +716,7 @@ static PetscErrorCode WriteStepperState(MMCheckpoint *ck, TS ts, PetscViewer vie
 
   PetscFunctionBeginUser;
   PetscCall(MMNewmarkFromTS(ts, &nm));
+  PetscCall(WriteMassFree(ck, viewer));
   PetscCall(MMNewmarkGetTangentPoint(nm, &at, &t));
   if (at) {
     PetscCall(ViewPacked(ck, viewer, "tangent_point", ck->dim, at, PackDofs));
@@ -781,6 +806,14 @@ static PetscErrorCode CheckpointBytes(MMCheckpoint *ck, TS ts, PetscReal *bytes)
 
   PetscFunctionBeginUser;
   if (frames) values += nv * MM_CONTACT_FRAME_RECORD + MM_CKPT_FRAMES_RUN;
+  {
+    PetscBool free_on;
+    PetscCall(MMContactMassFreeFlight(ck->contact, &free_on, NULL));
+    if (free_on) {
+      values += MM_CKPT_MASS_FREE;
+      datasets += 1;
+    }
+  }
   PetscCall(MMNewmarkFromTS(ts, &nm));
   PetscCall(MMNewmarkGetTangentPoint(nm, &at, &t));
   if (at) {
@@ -1193,6 +1226,27 @@ static PetscErrorCode LoadTangentPoint(MMCheckpoint *ck, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
+/* The mass in free flight: M* as the checkpointed run had it (a checkpoint without it, or of a run
+ * without the switches, leaves M* as set up: the next step's start decides), its counts and W_frame */
+static PetscErrorCode LoadMassFree(MMCheckpoint *ck, PetscViewer viewer)
+{
+  PetscBool on, has;
+  PetscReal vals[MM_CKPT_MASS_FREE];
+  PetscInt  sw[2];
+
+  PetscFunctionBeginUser;
+  PetscCall(MMContactMassFreeFlight(ck->contact, &on, NULL));
+  PetscCall(PetscViewerHDF5HasDataset(viewer, "mass_free", &has));
+  if (!on || !has) PetscFunctionReturn(0);
+  PetscCall(LoadSmallVector(ck, viewer, "mass_free", MM_CKPT_MASS_FREE, vals));
+  sw[0] = (PetscInt)vals[1];
+  sw[1] = (PetscInt)vals[2];
+  PetscCall(MMContactMassFreeRestore(ck->contact, (PetscBool)(vals[0] > 0.5), sw));
+  ck->mass_free_work = vals[3];
+  ck->mass_free_read = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
 /* The step certificate's state, when the checkpoint has it and this run certifies its steps */
 static PetscErrorCode LoadCertificate(MMCheckpoint *ck, TS ts, PetscViewer viewer)
 {
@@ -1419,6 +1473,7 @@ PetscErrorCode MMCheckpointLoad(MMCheckpoint *c, TS ts)
   PetscCall(LoadTangentPoint(c, viewer));
   PetscCall(LoadPairs(c, ts, viewer));
   PetscCall(LoadCertificate(c, ts, viewer));
+  PetscCall(LoadMassFree(c, viewer));
   PetscCall(LoadSnapshotTimes(c, viewer));
   PetscCall(PetscViewerDestroy(&viewer));
   PetscCall(VecCopy(s->u, s->u_next));
@@ -1551,6 +1606,7 @@ PetscErrorCode MMCheckpointRestoreHistory(MMCheckpoint *c)
   h->energy_scale        = run[MM_RUN_ENERGY_SCALE];
   h->resolves            = (PetscInt)run[MM_RUN_RESOLVES];
   if (c->frames) h->work_frame = c->frames_run[0]; /* frames that follow: W_frame so far */
+  if (c->mass_free_read) h->work_frame = c->mass_free_work; /* the mass in free flight books there too */
   PetscCall(MMContactSetCandidateResolves(c->contact, h->resolves));
   /* here, not at the load: the condensed reactions and the active-set states are created with the
    * step matrix, and the initial diagnostics would overwrite the states (the last active set among them) */

@@ -230,13 +230,16 @@ static PetscErrorCode CSVWrite(MMOutput *o, const MMLine *l)
   PetscFunctionReturn(0);
 }
 
-/* Whether the contact frames follow the contact point (-contact_frames follow on curved obstacles) */
-static PetscBool FramesFollow(const MMOutput *o)
+/* Whether a step's start may move kinetic energy, booked as W_frame: the contact frames follow the
+ * contact point (-contact_frames follow on curved obstacles), or M* switches in free flight
+ * (-mass_free_flight) */
+static PetscBool WorkFrameColumn(const MMOutput *o)
 {
-  PetscBool follow = PETSC_FALSE;
+  PetscBool follow = PETSC_FALSE, free_on = PETSC_FALSE;
 
   if (o->contact && MMContactFramesFollow(o->contact, &follow)) return PETSC_FALSE;
-  return follow;
+  if (o->contact && MMContactMassFreeFlight(o->contact, &free_on, NULL)) return PETSC_FALSE;
+  return (PetscBool)(follow || free_on);
 }
 
 /* The obstacles with a force column: none without contact (-contact 0), where no obstacle is there. */
@@ -274,8 +277,8 @@ PetscErrorCode MMOutputCSVHeaderLine(const MMOutput *o, MMLine *lp)
   if (opt->n_dirichlet) PetscCall(MMOutputLineAdd(&l, ",work_dirichlet"));
   for (PetscInt b = 0; b < opt->n_dirichlet; ++b)
     for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",reaction_%s_%c", opt->dirichlet[b].name, axes[d]));
-  /* contact frames that follow the contact point: the kinetic energy their updates moved (docs/method.md section 8) */
-  if (FramesFollow(o)) PetscCall(MMOutputLineAdd(&l, ",work_frame"));
+  /* the kinetic energy moved at steps' starts: frames that follow (docs/method.md section 8), M* in free flight (section 2) */
+  if (WorkFrameColumn(o)) PetscCall(MMOutputLineAdd(&l, ",work_frame"));
   /* -probes: each group's mean displacement, then velocity (probes.c) */
   for (PetscInt g = 0; g < o->probes.n; ++g) {
     for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",probe_%s_u%c", o->probes.name[g], axes[d]));
@@ -325,7 +328,7 @@ PetscErrorCode MMOutputWriteRow(MMOutput *o)
   if (opt->n_dirichlet) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->work_dirichlet));
   for (PetscInt b = 0; b < opt->n_dirichlet; ++b)
     for (PetscInt d = 0; d < dim; ++d) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)o->loads->reaction[MM_MAX_DIM * b + d]));
-  if (FramesFollow(o)) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->work_frame));
+  if (WorkFrameColumn(o)) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)h->work_frame));
   PetscCall(MMProbesEvaluate(o));
   for (PetscInt k = 0; k < 2 * dim * o->probes.n; ++k) PetscCall(MMOutputLineAdd(&l, ",%.16e", (double)o->probes.mean[k]));
   PetscCall(MMOutputLineAdd(&l, "\n"));

@@ -176,6 +176,9 @@ PETSC_INTERN PetscErrorCode MMNonlinearSetUp(MMNewmark nm);
 PETSC_INTERN PetscErrorCode MMNonlinearStepMatrix(MMNewmark nm, PetscReal dt, MMStepMatrix *sm);
 PETSC_INTERN PetscErrorCode MMNonlinearSlidePairs(MMNewmark nm, PetscReal dt);
 PETSC_INTERN PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b, Vec w, PetscBool *solved);
+/* free_flight.c: the mass in free flight */
+PETSC_INTERN PetscErrorCode MMNonlinearFreeFlight(MMNewmark nm, PetscReal t, PetscReal dt);
+PETSC_INTERN PetscErrorCode MMNonlinearFreeFlightTouched(MMNewmark nm, Vec w, PetscReal t, PetscBool *touched);
 PETSC_INTERN PetscErrorCode MMNonlinearElasticEnergy(MMNewmark nm, Vec u, PetscReal t, PetscReal *energy);
 PETSC_INTERN PetscErrorCode MMNonlinearDestroy(MMNonlinear *nl);
 PETSC_INTERN PetscErrorCode MMNonlinearDampingWork(MMNewmark nm, Vec du, PetscReal t1, PetscReal dt, PetscReal *w);

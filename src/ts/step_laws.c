@@ -46,7 +46,8 @@ static PetscErrorCode LinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec 
 }
 
 /* The contact frames of the nodes near a curved obstacle follow their contact point (docs/method.md
- * section 8), then the contact pairs' large-sliding pairing */
+ * section 8), M* is M or -mass's as the body is far from its obstacles or near (free_flight.c), then
+ * the contact pairs' large-sliding pairing */
 static PetscErrorCode FiniteBegin(MMNewmark nm, PetscReal t, PetscReal dt)
 {
   Vec midpoint;
@@ -54,12 +55,31 @@ static PetscErrorCode FiniteBegin(MMNewmark nm, PetscReal t, PetscReal dt)
   PetscFunctionBeginUser;
   PetscCall(MMNewmarkPredictMidpoint(nm, dt, &midpoint)); /* the scheme's prediction (scheme.c) */
   PetscCall(MMNonlinearFollowFrames(nm, t, dt, midpoint));
+  PetscCall(MMNonlinearFreeFlight(nm, t, dt));
   PetscCall(MMNonlinearSlidePairs(nm, dt));
   PetscFunctionReturn(0);
 }
 
+/* The finite-strain iteration (nonlinear.c); a step solved with the standard mass in which a node
+ * touched is solved again from its start with -mass's M* (free_flight.c) */
+static PetscErrorCode FiniteSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b, Vec w, PetscBool *solved)
+{
+  PetscBool touched;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMNonlinearSolve(nm, t0, dt, b, w, solved));
+  if (!*solved) PetscFunctionReturn(0);
+  PetscCall(MMNonlinearFreeFlightTouched(nm, w, t0 + dt, &touched));
+  if (!touched) PetscFunctionReturn(0);
+  PetscCall(MMNewmarkSetStep(nm, dt)); /* K~ of the new M* */
+  PetscCall(VecAXPBYPCZ(w, dt, 0.25 * dt * dt, 0.0, nm->state.v, nm->state.a));
+  PetscCall(VecAXPY(w, 1.0, nm->state.u));
+  PetscCall(MMNonlinearSolve(nm, t0, dt, b, w, solved));
+  PetscFunctionReturn(0);
+}
+
 static const MMStepLawOps LinearLaw = {.begin = NULL, .stepmatrix = LinearStepMatrix, .solve = LinearSolve, .failure = MM_REJECT_FRICTION, .certified = PETSC_TRUE};
-static const MMStepLawOps FiniteLaw = {.begin = FiniteBegin, .stepmatrix = MMNonlinearStepMatrix, .solve = MMNonlinearSolve, .failure = MM_REJECT_NONLINEAR, .certified = PETSC_FALSE};
+static const MMStepLawOps FiniteLaw = {.begin = FiniteBegin, .stepmatrix = MMNonlinearStepMatrix, .solve = FiniteSolve, .failure = MM_REJECT_NONLINEAR, .certified = PETSC_FALSE};
 
 /* The step's law of the elasticity law: the finite-strain step for the finite-strain laws */
 const MMStepLawOps *MMStepLawGetOps(const MMMaterial *material)

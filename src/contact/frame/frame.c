@@ -77,10 +77,11 @@ static PetscErrorCode RotateForce(Mat Q, Vec cart, Vec *w)
   PetscFunctionReturn(0);
 }
 
-/* The contact boundary as M* sees it: without contact, no dof loses its mass. */
+/* The contact boundary as M* sees it: without contact, or in free flight (mass_free.c), no dof loses
+ * its mass. */
 void MMContactMassBoundary(MMContact ct, MMMassBoundary *mb)
 {
-  mb->massless     = ct->enabled ? ct->is_massless : NULL;
+  mb->massless     = ct->enabled && !ct->mass.is_free ? ct->is_massless : NULL;
   mb->n            = ct->n_local;
   mb->vertex       = ct->vertex;
   mb->scalar_index = ct->scalar_index;
@@ -125,6 +126,7 @@ PetscErrorCode MMContactSetUpFrame(MMContact ct, MMOperators op, const MMMateria
   PetscCall(RotateForce(ct->transform.Q, lift, &ct->lift));
   /* frames that follow the contact point rebuild M* from the whole w-frame M, turned with them */
   if (ct->frames.follow) PetscCall(MatDuplicate(ct->mass.M, MAT_COPY_VALUES, &ct->frames.M));
+  PetscCall(MMContactMassFreeSetUp(ct)); /* the mass in free flight keeps it too (mass_free.c) */
   MMContactMassBoundary(ct, &mb);
   PetscCall(MMContactMassStar(&ct->mass, op, material, &mb));
   if (ct->transform.N) PetscCall(VecDuplicate(load, &ct->transform.pair_work));

@@ -35,6 +35,13 @@ typedef struct {
   PetscReal  inertia_mismatch;    /* then max |second moments of M* - of M| / total mass */
   PetscBool  warned;              /* the warning of an M* short of M's mass was printed (once a run) */
   Mat        Q;                   /* borrowed: the frame's rotation (contact's), which turns the rigid modes into the w-frame */
+  /* the mass in free flight (mass_free.c, docs/method.md section 2, "The mass in free flight") */
+  PetscBool  free_flight;         /* -mass_free_flight */
+  PetscBool  free_flight_set;     /* given: else on for the finite-strain laws where it applies */
+  PetscBool  free_on;             /* resolved at set-up: M* switches between M and -mass's M* */
+  PetscBool  is_free;             /* M* is M now: no contact node within reach of an obstacle */
+  Mat        Mall;                /* the whole w-frame M, kept for the switches (shared with frames that follow) */
+  PetscInt   switches[2];         /* over the run: switches to M (0) and back to -mass's M* (1) */
 } MMContactMass;
 
 /* The frame's transforms (docs/method.md sections 2 and 11): u_cart = Q N w, Q from the contact nodes'
@@ -59,3 +66,7 @@ PETSC_INTERN void           MMContactMassBoundary(MMContact ct, MMMassBoundary *
 /* mass_redistribution.c: -mass redistributed, and the moments of M* */
 PETSC_INTERN PetscErrorCode MMContactRedistributeMass(MMContactMass *mass, MMOperators op, const MMMaterial *material, const MMMassBoundary *mb);
 PETSC_INTERN PetscErrorCode MMContactMassMoments(MMContactMass *mass, MMOperators op);
+/* mass_free.c: the mass in free flight */
+PETSC_INTERN PetscErrorCode MMContactMassFreeSetUp(MMContact ct);
+PETSC_INTERN PetscErrorCode MMContactMassFreeDestroy(MMContactMass *mass);
+PETSC_INTERN PetscErrorCode MMContactMassFreeView(MMContact ct, PetscViewer viewer);

@@ -12,6 +12,9 @@ PetscErrorCode MMContactMassSetFromOptions(MPI_Comm comm, MMContactMass *mass)
   PetscOptionsBegin(comm, NULL, "mmcontact: the mass in time stepping", "MMContact");
   mass->type = MM_MASS_REDISTRIBUTED;
   PetscCall(MMOptionsEnum(PetscOptionsObject, comm, "-mass", "Mass matrix in time stepping: modified (normal mass of contact nodes removed), redistributed (modified, with the removed mass given to the other nodes so that the total mass, centre of gravity and inertia are those of the standard mass) or standard", MMMassTypes, (PetscEnum *)&mass->type));
+  mass->free_flight = PETSC_TRUE;
+  PetscCall(MMOptionsBool(PetscOptionsObject, comm, "-mass_free_flight", "Finite-strain laws: the standard mass M while no contact node is within reach of an obstacle, so that a body in free flight keeps its angular momentum exactly; -mass's M* from the step that brings a node near (docs/method.md section 2, \"The mass in free flight\")", &mass->free_flight));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-mass_free_flight", &mass->free_flight_set));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

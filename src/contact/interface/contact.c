@@ -705,6 +705,7 @@ PetscErrorCode MMContactView(MMContact ct, PetscViewer viewer)
   if (ct->enabled) PetscCall(CornerView(ct, viewer));
   if (ct->enabled) PetscCall(FrictionCornerView(ct, viewer));
   if (ct->enabled) PetscCall(MMContactFramesView(ct, viewer));
+  if (ct->enabled) PetscCall(MMContactMassFreeView(ct, viewer));
   if (ct->enabled && ct->pairs.large) {
     PetscBool ascii;
     PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
@@ -966,6 +967,7 @@ PetscErrorCode MMContactDestroy(MMContact *pct)
   PetscCall(VecDestroy(&ct->load));
   PetscCall(VecDestroy(&ct->lift));
   PetscCall(ISDestroy(&ct->mass.massless));
+  PetscCall(MMContactMassFreeDestroy(&ct->mass));
   PetscCall(PetscFree2(ct->second, ct->corner_ab));
   PetscCall(PetscFree(ct->force_obstacle));
   PetscCall(VecDestroy(&ct->area));

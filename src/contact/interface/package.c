@@ -5,7 +5,7 @@ PetscClassId  MMCONTACT_CLASSID;
 PetscLogEvent MMCONTACT_Assemble, MMCONTACT_Solve, MMCONTACT_Recover, MMCONTACT_KtReuse, MMCONTACT_KtSetUp, MMCONTACT_KtSolve;
 PetscLogEvent MMCONTACT_CandidateColumns, MMCONTACT_CandidateOperator, MMCONTACT_ColumnsSolve, MMCONTACT_ColumnsMove;
 PetscLogEvent MMCONTACT_SplitInterface, MMCONTACT_SplitBackward, MMCONTACT_ActiveSetIterate, MMCONTACT_ActiveSetCG, MMCONTACT_BlockOperator;
-PetscLogEvent MMCONTACT_FrameSetUp, MMCONTACT_FrameRotate, MMCONTACT_MassRedistribute, MMCONTACT_FrameFollow, MMCONTACT_PairsSlide;
+PetscLogEvent MMCONTACT_FrameSetUp, MMCONTACT_FrameRotate, MMCONTACT_MassRedistribute, MMCONTACT_FrameFollow, MMCONTACT_PairsSlide, MMCONTACT_MassFree;
 
 static PetscBool MMContactPackageInitialized = PETSC_FALSE;
 
@@ -44,6 +44,7 @@ PetscErrorCode MMContactInitializePackage(void)
   PetscCall(PetscLogEventRegister("MMContactFrame", MMCONTACT_CLASSID, &MMCONTACT_FrameSetUp));
   PetscCall(PetscLogEventRegister("MMRotateKM", MMCONTACT_CLASSID, &MMCONTACT_FrameRotate));
   PetscCall(PetscLogEventRegister("MMFramesFollow", MMCONTACT_CLASSID, &MMCONTACT_FrameFollow));
+  PetscCall(PetscLogEventRegister("MMMassFree", MMCONTACT_CLASSID, &MMCONTACT_MassFree));
   PetscCall(PetscLogEventRegister("MMMassRedist", MMCONTACT_CLASSID, &MMCONTACT_MassRedistribute));
   PetscCall(PetscLogEventRegister("MMPairsSlide", MMCONTACT_CLASSID, &MMCONTACT_PairsSlide));
   PetscFunctionReturn(0);
