@@ -20,12 +20,16 @@
  * inapplicable: refused, naming why. */
 static PetscErrorCode FreeFlightApplies(MMContact ct, PetscBool *applies, const char **why)
 {
+  PetscInt fc = 0, fc_all;
+
   PetscFunctionBeginUser;
   *why = NULL;
+  for (PetscInt k = 0; ct->fc_obstacle && k < ct->n_local; ++k) fc += ct->fc_obstacle[k] >= 0;
+  PetscCall(MPIU_Allreduce(&fc, &fc_all, 1, MPIU_INT, MPI_SUM, ct->comm));
   if (!ct->material->finite) *why = "the linear law's step balances a^n with the M* of the step before (use -elasticity svk or neohookean)";
   else if (ct->mass.type == MM_MASS_STANDARD) *why = "-mass standard has no massless dofs";
   else if (ct->transform.N) *why = "contact pairs and corners (a node on two obstacles) build their transform on the massless rows";
-  else if (ct->fc_obstacle) *why = "friction corners build their second law on the massless rows";
+  else if (fc_all) *why = "friction corners build their second law on the massless rows";
   *applies = (PetscBool)(ct->enabled && !*why);
   PetscFunctionReturn(0);
 }
