@@ -101,7 +101,7 @@ static PetscErrorCode SolveLevel(MMNewmark nm, MMStaticFinite *sf, PetscReal lam
     PetscCall(VecWAXPY(sf->b, -1.0, s->react, sf->r));
     PetscCall(MMNonlinearBuildTangent(nm, nm->nl.el.l1, 0.0));
     PetscCall(VecZeroEntries(sf->dw));
-    PetscCall(MMContactSolveStaticStep(nm->contact, nm->nl.Ks, sf->b, s->u, sf->dw, sf->react_new, &vi, &failed));
+    PetscCall(MMContactSolveStaticStep(nm->contact, nm->nl.Ks, sf->b, s->u, (PetscBool)(!sf->levels && *its == 0), sf->dw, sf->react_new, &vi, &failed));
     if (failed) break;
     PetscCall(VecAXPY(s->u, 1.0, sf->dw));
     PetscCall(VecCopy(sf->react_new, s->react));
@@ -184,6 +184,9 @@ PetscErrorCode MMNewmarkStaticFinite(MMNewmark nm, Vec u, Vec react)
     PetscCall(VecCopy(sf.react_start, react));
     inc *= 0.5;
     sf.cuts++;
+    PetscCheck(inc >= MM_STATIC_MIN_INC || lambda > 0, nm->comm, PETSC_ERR_NOT_CONVERGED,
+               "-initial_state static: the finite-strain static problem did not converge at any load level, down to %g of the loads at t = 0: it is not well posed (a rigid motion held neither by a Dirichlet condition nor by the contact nodes in contact: a free body, one free to slide along a frictionless obstacle, or loads that pull it off its support; the static start is frictionless). Hold it with -dirichlet, or start from -initial_state given",
+               (double)inc);
     PetscCheck(inc >= MM_STATIC_MIN_INC, nm->comm, PETSC_ERR_NOT_CONVERGED,
                "-initial_state static: the finite-strain static problem did not converge beyond load factor %g of the loads at t = 0 (Newton's residual at %.3g round-offs of its terms with the load increment cut to %g): under these loads the body may buckle, snap or lose its support (the static start is frictionless). Check the loads and supports, or start from -initial_state given with the loads ramped in time (-..._amplitude ramp)",
                (double)lambda, (double)sf.ratio, (double)inc);

@@ -20,8 +20,9 @@
 #define MM_STATIC_NULL_PIVOT 1e-11
 
 /* After each Newton step's solve: a failed factorization stops the run (MMKSPCheckFactored), and so
- * does a MUMPS factor with null pivots. With ptr (a PetscBool, the finite-strain Newton's solves), a
- * failed factorization only fails the solve (an indefinite tangent: the load step is cut) */
+ * does a MUMPS factor with null pivots. With ptr (a PetscBool, the finite-strain Newton's solves),
+ * either only fails the solve (an indefinite tangent, a Newton iterate that lifts the body off: the
+ * load step is cut) */
 static PetscErrorCode StaticPostSolve(KSP ksp, Vec b, Vec x, void *ptr)
 {
   PC          pc;
@@ -43,7 +44,8 @@ static PetscErrorCode StaticPostSolve(KSP ksp, Vec b, Vec x, void *ptr)
   PetscCall(PetscStrcmp(type, MATSOLVERMUMPS, &mumps));
   if (!mumps) PetscFunctionReturn(0);
   PetscCall(MatMumpsGetInfog(F, 28, &nnull));
-  PetscCheck(!nnull, PetscObjectComm((PetscObject)ksp), PETSC_ERR_USER_INPUT,
+  if (ptr && nnull) *(PetscBool *)ptr = PETSC_TRUE; /* an iterate far from the state may release the contact */
+  PetscCheck(!nnull || ptr, PetscObjectComm((PetscObject)ksp), PETSC_ERR_USER_INPUT,
              "-initial_state static: the static problem at t = 0 is not well posed: %" PetscInt_FMT " rigid motion%s of the body %s held neither by a Dirichlet condition nor by the contact nodes in contact (a free body, one free to slide along a frictionless obstacle, or loads that pull it off its support: the static solve is frictionless). Hold it with -dirichlet, or start from -initial_state given",
              nnull, nnull > 1 ? "s" : "", nnull > 1 ? "are" : "is");
   PetscFunctionReturn(0);
@@ -180,6 +182,42 @@ PetscErrorCode MMContactSolveStatic(MMContact ct, Vec w, Vec react)
   PetscFunctionReturn(0);
 }
 
+/* A push, of this times |b|_inf, into the obstacle on the unloaded rows of the touching nodes (Seat) */
+#define MM_STATIC_SEAT 1e-8
+
+/* A body that rests on its contact face with no load on the contact nodes themselves (a pressure on
+ * its top) leaves them inactive in the VI's first iterate (its active set takes a node at its bound
+ * only where the force pushes it on), and K alone is singular there. The first Newton step of a
+ * nonlinear static start seats them: a small push into the obstacle on their unloaded rows of b, which
+ * the next Newton step, from the true residual, takes back. */
+static PetscErrorCode Seat(MMContact ct, Vec b, Vec u)
+{
+  Vec          bn, un;
+  PetscScalar *ba;
+  const PetscScalar *ga, *ua;
+  PetscReal    bmax, push;
+  PetscInt     n;
+
+  PetscFunctionBeginUser;
+  if (!ct->enabled || !ct->is_normal) PetscFunctionReturn(0);
+  PetscCall(VecNorm(b, NORM_INFINITY, &bmax));
+  push = MM_STATIC_SEAT * bmax;
+  PetscCall(VecGetSubVector(b, ct->is_normal, &bn));
+  PetscCall(VecGetSubVector(u, ct->is_normal, &un));
+  PetscCall(VecGetLocalSize(bn, &n));
+  PetscCall(VecGetArray(bn, &ba));
+  PetscCall(VecGetArrayRead(un, &ua));
+  PetscCall(VecGetArrayRead(ct->gap, &ga));
+  for (PetscInt i = 0; i < n; ++i)
+    if (PetscRealPart(ga[i] - ua[i]) <= 0 && PetscAbsScalar(ba[i]) <= push) ba[i] = push;
+  PetscCall(VecRestoreArrayRead(ct->gap, &ga));
+  PetscCall(VecRestoreArrayRead(un, &ua));
+  PetscCall(VecRestoreArray(bn, &ba));
+  PetscCall(VecRestoreSubVector(u, ct->is_normal, &un));
+  PetscCall(VecRestoreSubVector(b, ct->is_normal, &bn));
+  PetscFunctionReturn(0);
+}
+
 /*@
   MMContactSolveStaticStep - Solves one Newton step of a nonlinear static contact problem: the
   frictionless contact problem of a given matrix for the increment of a state
@@ -189,8 +227,10 @@ PetscErrorCode MMContactSolveStatic(MMContact ct, Vec w, Vec react)
   Input Parameters:
 + ct - the contact object
 . A  - the step's matrix (w-frame, K's layout): the tangent stiffness at u
-. b  - the residual at u, the loads less the internal force
-- u  - the state the increment starts from
+. b    - the residual at u, the loads less the internal force (changed on the seated rows)
+. u    - the state the increment starts from
+- seat - whether the nodes touching at u with no load on them start pushed on their obstacle (the
+         first step from rest)
 
   Output Parameters:
 + dw     - the increment: min 1/2 dw.A dw - b.dw subject to u_n + dw_n <= g (zero on entry: from u)
@@ -201,17 +241,19 @@ PetscErrorCode MMContactSolveStatic(MMContact ct, Vec w, Vec react)
   Note:
   The finite-strain static start (docs/method.md section 13, "The static start in finite strain"):
   the increment, not the state, is the unknown, so that the solve's relative tolerance shrinks with
-  the Newton residual. A null pivot (a rigid motion nothing holds) stops the run as in
-  MMContactSolveStatic(); any other failure is returned, for the caller to cut its load step.
+  the Newton residual. A seated first step (seat) starts the nodes that touch with no load on them
+  in the active set. A failed solve, null pivots included (a rigid motion nothing holds, which an
+  iterate far from the state can give), is returned, for the caller to cut its load step.
 
   Level: developer
 
 .seealso: `MMContactSolveStatic()`
 @*/
-PetscErrorCode MMContactSolveStaticStep(MMContact ct, Mat A, Vec b, Vec u, Vec dw, Vec react, PetscInt *its, PetscBool *failed)
+PetscErrorCode MMContactSolveStaticStep(MMContact ct, Mat A, Vec b, Vec u, PetscBool seat, Vec dw, Vec react, PetscInt *its, PetscBool *failed)
 {
   PetscFunctionBeginUser;
   *failed = PETSC_FALSE;
+  if (seat) PetscCall(Seat(ct, b, u));
   PetscCall(StaticSolve(ct, "static_", A, b, u, dw, react, its, failed));
   PetscFunctionReturn(0);
 }
