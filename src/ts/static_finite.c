@@ -117,7 +117,11 @@ static PetscErrorCode StaticFiniteView(MMNewmark nm, const MMStaticFinite *sf)
 
   PetscFunctionBeginUser;
   if (nm->pb.quiet) PetscFunctionReturn(0);
-  for (PetscInt k = 0; k < shown && len + 5 < sizeof(list); ++k) len += (size_t)snprintf(list + len, sizeof(list) - len, "%s%" PetscInt_FMT, k ? " " : "", sf->its[k]);
+  for (PetscInt k = 0; k < shown && len + 5 < sizeof(list); ++k) {
+    size_t n;
+    PetscCall(PetscSNPrintfCount(list + len, sizeof(list) - len, "%s%" PetscInt_FMT, &n, k ? " " : "", sf->its[k]));
+    len += n - 1; /* the count includes the terminating null */
+  }
   PetscCall(PetscPrintf(nm->comm, "mmcontact: -initial_state static (finite strain): %" PetscInt_FMT " load steps (%" PetscInt_FMT " cut), %" PetscInt_FMT " Newton iterations (per load step: %s%s), final residual %.3g round-offs of its terms\n", sf->levels, sf->cuts, sf->its_total, list,
                         sf->levels > shown ? " ..." : "", (double)sf->ratio));
   PetscFunctionReturn(0);
