@@ -760,7 +760,7 @@ PetscErrorCode MMLoadsScaleBoundaryValues(MMLoads *ld, Vec l, PetscReal s)
   PetscScalar *a;
 
   PetscFunctionBeginUser;
-  if (s == 1.0 || !ld->bv_n) PetscFunctionReturn(0);
+  if (s == 1.0 || !ld->n_bc || !ld->bv_n) PetscFunctionReturn(0); /* no Dirichlet data */
   PetscCheck(ld->bv_n > 0 && ld->bv_idx, PETSC_COMM_SELF, PETSC_ERR_SUP, "The Dirichlet data are not tabulated (a value with an amplitude): they cannot be scaled");
   PetscCall(VecGetArray(l, &a));
   for (PetscInt i = 0; i < ld->bv_n; ++i) a[ld->bv_idx[i]] *= s;
