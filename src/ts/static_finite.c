@@ -23,7 +23,7 @@
 
 typedef struct {
   Vec       r, scale, f, b, dw, react_new, react_start;
-  PetscInt  levels, cuts, its_total, its_max, its[MM_STATIC_LIST];
+  PetscInt  levels, cuts, its_total, its[MM_STATIC_LIST]; /* load steps solved, cut; Newton iterations, and per step */
   PetscReal ratio; /* the last iterate's residual in round-offs of its terms */
 } MMStaticFinite;
 
