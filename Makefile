@@ -44,6 +44,8 @@ MSH  += meshes/ball_roll.msh
 MSH  += meshes/disk_track.msh
 # A block sliding along a longer one over many master facets (issue 40: contact pairs, large sliding)
 MSH  += meshes/block_slide.msh
+# A rubber block pressed on a plane by a pressure (issue 50: the static start in finite strain)
+MSH  += meshes/rubber_block.msh
 # Bench meshes: the 2D D1 disk (115k dofs), the 3D D2 ball (H 0.045: 113k dofs, 3.8k contact nodes)
 # and the large D2 ball of `make bench-large` (H 0.021: about 1M dofs), generated when first needed;
 # the two balls of the 3d suite's two_body row at H 0.057 (116,520 dofs for both, as the D2 ball's 113k).
@@ -104,6 +106,8 @@ meshes/disk.msh: meshes/disk.geo
 meshes/block.msh: meshes/block.geo
 	gmsh -2 $< -o $@ -v 2
 meshes/block_slide.msh: meshes/block_slide.geo
+	gmsh -2 $< -o $@ -v 2
+meshes/rubber_block.msh: meshes/rubber_block.geo
 	gmsh -2 $< -o $@ -v 2
 meshes/box.msh: meshes/box.geo
 	gmsh -3 $< -o $@ -v 2

@@ -238,6 +238,7 @@ PETSC_EXTERN PetscErrorCode MMContactSolveCoulombDofs(MMContact ct, Vec b, Vec w
 PETSC_EXTERN PetscErrorCode MMContactProjectInitial(MMContact ct, Vec w);
 PETSC_EXTERN PetscErrorCode MMContactProjectInitialCorrect(MMContact ct, Vec w, Vec res, PetscReal *change);
 PETSC_EXTERN PetscErrorCode MMContactSolveStatic(MMContact ct, Vec u, Vec react);
+PETSC_EXTERN PetscErrorCode MMContactSolveStaticStep(MMContact ct, Mat A, Vec b, Vec u, PetscBool seat, Vec dw, Vec react, PetscInt *its, PetscBool *failed);
 /* The contact quantities of an accepted state (docs/method.md sections 5-6), for the history */
 typedef struct {
   PetscInt  active, switched, slipping; /* contact rows in contact, that changed state, slipping */

@@ -296,6 +296,7 @@ PETSC_EXTERN PetscErrorCode MMLoadsStepWork(MMLoads *ld, Vec u, Vec a, Vec u_old
 PETSC_EXTERN PetscErrorCode MMLoadsDirichletKinetic(MMLoads *ld, Vec v, PetscReal *ek);
 PETSC_EXTERN PetscErrorCode MMLoadsInsertDirichletVelocity(MMLoads *ld, Vec whole);
 PETSC_EXTERN PetscErrorCode MMLoadsInsertBoundaryValues(MMLoads *ld, Vec l, PetscReal t);
+PETSC_EXTERN PetscErrorCode MMLoadsScaleBoundaryValues(MMLoads *ld, Vec l, PetscReal s);
 PETSC_EXTERN PetscErrorCode MMLoadsDestroy(MMLoads *ld);
 PETSC_EXTERN PetscReal      MMAmplitudeValue(const MMAmplitude *a, PetscReal t);
 /* bodies.c: the bodies read from their options (whole: the whole mesh's material, their defaults) */
@@ -326,6 +327,7 @@ typedef struct _MMElasticity {
   PetscInt *cell_off;   /* per local cell, its dim + 1 vertices' offsets in the local vectors */
   PetscReal *cell_geom; /* per local cell, its P1 gradients (dim + 1 by dim) and volume */
   PetscReal  visc;      /* beta/dt: the step's viscous stress beta D : dE/dt (Rayleigh's stiffness part), 0 undamped */
+  PetscBool  consistent; /* the tangent dP/dF itself, its geometric term everywhere (the static start's Newton) */
 } MMElasticity;
 #define MM_ELASTICITY_GEOM ((MM_MAX_DIM + 1) * MM_MAX_DIM + 1)
 PETSC_EXTERN PetscErrorCode MMElasticitySetUp(MMElasticity *el, MMOperators op);
@@ -337,6 +339,7 @@ PETSC_EXTERN PetscErrorCode MMElasticitySetStepStart(MMElasticity *el, MMOperato
 PETSC_EXTERN PetscErrorCode MMElasticityForce(MMElasticity *el, MMOperators op, const MMMaterial *mat, Vec l1, Vec fw);
 /* el->lf (local, Cartesian, unassembled: the constrained dofs' rows too) = the internal force P(F) at l */
 PETSC_EXTERN PetscErrorCode MMElasticityForceLocal(MMElasticity *el, MMOperators op, const MMMaterial *mat, Vec l);
+PETSC_EXTERN PetscErrorCode MMElasticityForceMagnitude(MMElasticity *el, MMOperators op, const MMMaterial *mat, Vec l, Vec sw);
 /* the reactions of the Dirichlet supports from the finite-strain force instead of K_D (el borrowed) */
 PETSC_EXTERN PetscErrorCode MMLoadsSetElasticity(MMLoads *ld, MMElasticity *el);
 PETSC_EXTERN PetscErrorCode MMElasticityEnergy(MMElasticity *el, MMOperators op, const MMMaterial *mat, Vec l, PetscReal *energy);

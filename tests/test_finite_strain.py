@@ -156,10 +156,15 @@ def test_restart_across_rank_counts_svk(tmp_path, d1_friction):
 
 
 def test_finite_strain_refuses_what_it_does_not_support(tmp_path):
-    """A static start is linear-only for now: refused with the option named"""
+    """The static sliding start is linear-only: refused with the option named (64). The static start
+    runs with the finite-strain laws (tests/test_static_finite.py), but the D1 disk above its plane has
+    no static state: nothing holds it, and the run stops in one line saying so (65)"""
+    bad = run(os.path.join(ROOT, "options", "d1_disk.opts"), tmp_path, "-elasticity", "svk", "-initial_state", "static_sliding",
+              "-ts_max_steps", 1, name="sliding", np_=0, check=False)
+    assert bad.returncode == 64 and "-initial_state static_sliding" in bad.output, bad.output[-1500:]
     bad = run(os.path.join(ROOT, "options", "d1_disk.opts"), tmp_path, "-elasticity", "svk", "-initial_state", "static",
-              "-ts_max_steps", 1, name="static", check=False)
-    assert bad.returncode != 0 and "-initial_state" in bad.output
+              "-ts_max_steps", 1, name="static", np_=0, check=False)
+    assert bad.returncode == 65 and "not well posed" in bad.output and "-initial_state" in bad.output, bad.output[-1500:]
 
 
 @pytest.mark.parametrize("np_", [1, 2])

@@ -200,8 +200,9 @@ PetscErrorCode MMElasticitySetStepStart(MMElasticity *el, MMOperators op, Vec l0
 }
 
 /* The cells' forces into the local array f, dim a constant once inlined so that the small loops unroll:
- * of the step from the kept G0 (step) or of the state u1 itself (its P(F), no viscous part) */
-static inline void ForceCells(const PetscInt dim, const MMElasticity *el, const MMMaterial *mat, PetscInt ncells, PetscBool step, const PetscScalar *u1, PetscScalar *f)
+ * of the step from the kept G0 (step) or of the state u1 itself (its P(F), no viscous part); mag:
+ * their magnitudes |f_e| summed instead, the round-off scale of the sum */
+static inline void ForceCells(const PetscInt dim, const MMElasticity *el, const MMMaterial *mat, PetscInt ncells, PetscBool step, PetscBool mag, const PetscScalar *u1, PetscScalar *f)
 {
   for (PetscInt cl = 0; cl < ncells; ++cl) {
     const PetscInt  *off = &el->cell_off[(dim + 1) * cl];
@@ -221,13 +222,13 @@ static inline void ForceCells(const PetscInt dim, const MMElasticity *el, const 
       for (PetscInt i = 0; i < dim; ++i) {
         PetscReal r = 0;
         for (PetscInt J = 0; J < dim; ++J) r += P[i][J] * q[a * dim + J];
-        f[off[a] + i] += vol * r;
+        f[off[a] + i] += mag ? PetscAbsReal(vol * r) : vol * r;
       }
   }
 }
 
 /* el->lf = the cells' forces, unassembled: of the step from the kept start to l1, or of the state l1 */
-static PetscErrorCode LocalForce(MMElasticity *el, MMOperators op, const MMMaterial *mat, PetscBool step, Vec l1)
+static PetscErrorCode LocalForce(MMElasticity *el, MMOperators op, const MMMaterial *mat, PetscBool step, PetscBool mag, Vec l1)
 {
   const PetscScalar *u1;
   PetscScalar       *f;
@@ -237,8 +238,8 @@ static PetscErrorCode LocalForce(MMElasticity *el, MMOperators op, const MMMater
   PetscCall(VecGetArrayRead(l1, &u1));
   PetscCall(VecZeroEntries(el->lf));
   PetscCall(VecGetArray(el->lf, &f));
-  if (op->dim == 2) ForceCells(2, el, mat, op->cells.ncells, step, u1, f);
-  else ForceCells(3, el, mat, op->cells.ncells, step, u1, f);
+  if (op->dim == 2) ForceCells(2, el, mat, op->cells.ncells, step, mag, u1, f);
+  else ForceCells(3, el, mat, op->cells.ncells, step, mag, u1, f);
   PetscCall(VecRestoreArray(el->lf, &f));
   PetscCall(VecRestoreArrayRead(l1, &u1));
   PetscFunctionReturn(0);
@@ -268,7 +269,7 @@ PetscErrorCode MMElasticityForceLocal(MMElasticity *el, MMOperators op, const MM
 {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(MM_FE_ElasticForce, 0, 0, 0, 0));
-  PetscCall(LocalForce(el, op, mat, PETSC_FALSE, l));
+  PetscCall(LocalForce(el, op, mat, PETSC_FALSE, PETSC_FALSE, l));
   PetscCall(PetscLogEventEnd(MM_FE_ElasticForce, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -299,11 +300,45 @@ PetscErrorCode MMElasticityForce(MMElasticity *el, MMOperators op, const MMMater
 {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(MM_FE_ElasticForce, 0, 0, 0, 0));
-  PetscCall(LocalForce(el, op, mat, PETSC_TRUE, l1));
+  PetscCall(LocalForce(el, op, mat, PETSC_TRUE, PETSC_FALSE, l1));
   PetscCall(VecZeroEntries(el->g));
   PetscCall(DMLocalToGlobal(op->dm, el->lf, ADD_VALUES, el->g)); /* the Dirichlet dofs drop out */
   PetscCall(MMFEForceFromCartesian(op, el->g, fw));
   PetscCall(PetscLogEventEnd(MM_FE_ElasticForce, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/*@
+  MMElasticityForceMagnitude - Computes, per dof, the sum of the magnitudes of the cells' forces of a
+  state: the round-off scale of its internal force
+
+  Collective
+
+  Input Parameters:
++ el  - the finite-strain elasticity
+. op  - the operators
+. mat - the bodies' material
+- l   - the state (MMElasticityLocal())
+
+  Output Parameter:
+. sw - sum_e |f_e,i| on the free dofs (w-frame components, taken in magnitude)
+
+  Note:
+  A slender part's internal force is a small difference of large element forces: its rounding is
+  eps times these sums, not eps times the force (the static start's stop, docs/method.md section 13)
+
+  Level: developer
+
+.seealso: `MMElasticityForce()`, `MMElasticityForceLocal()`
+@*/
+PetscErrorCode MMElasticityForceMagnitude(MMElasticity *el, MMOperators op, const MMMaterial *mat, Vec l, Vec sw)
+{
+  PetscFunctionBeginUser;
+  PetscCall(LocalForce(el, op, mat, PETSC_FALSE, PETSC_TRUE, l));
+  PetscCall(VecZeroEntries(el->g));
+  PetscCall(DMLocalToGlobal(op->dm, el->lf, ADD_VALUES, el->g));
+  PetscCall(MMFEForceFromCartesian(op, el->g, sw));
+  PetscCall(VecAbs(sw));
   PetscFunctionReturn(0);
 }
 
@@ -405,7 +440,7 @@ static PetscErrorCode TangentElement(void *ctx, PetscInt c, const PetscInt v[], 
   (void)vol_unused;
   CellGeometry(td->el, dim, cl, off, g, &vol);
   DisplacementGradient(dim, td->u, off, (const PetscReal(*)[MM_MAX_DIM])g, G);
-  CellLaw(td->mat, cl)->tangent(dim, td->mat->lambda[cl], td->mat->mu[cl], (const PetscReal(*)[MM_MAX_DIM])G, A);
+  CellLaw(td->mat, cl)->tangent(dim, td->mat->lambda[cl], td->mat->mu[cl], (const PetscReal(*)[MM_MAX_DIM])G, td->el->consistent, A);
   for (PetscInt a = 0; a <= dim; ++a) {
     PetscReal ga[MM_MAX_DIM][MM_MAX_DIM][MM_MAX_DIM]; /* vol g_a,J A_iJkL, then contracted with each g_b */
     for (PetscInt i = 0; i < dim; ++i)

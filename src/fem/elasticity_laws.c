@@ -250,8 +250,9 @@ static PetscBool SemiDefinite(PetscInt dim, const Mat3 S)
 /* The iteration matrix's A_iJkL = delta_ik S_JL + F_iI D_IJKL F_kK (dP_iJ / dF_kL), with the geometric
  * term delta_ik S_JL only where S is positive semi-definite: under compression it is indefinite, and
  * K_t + 4/dt^2 M* could lose definiteness, which the factorizations of K~ need. The iteration converges
- * to the same step either way (docs/method.md section 13). */
-static void HyperTangent(const HyperLaw *law, PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G, MMTangent A)
+ * to the same step either way (docs/method.md section 13). consistent: the geometric term everywhere,
+ * dP/dF itself, for the static start's Newton (its quadratic convergence needs it). */
+static void HyperTangent(const HyperLaw *law, PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G, PetscBool consistent, MMTangent A)
 {
   Mat3      E, S, F;
   MMTangent D, FD;
@@ -260,7 +261,7 @@ static void HyperTangent(const HyperLaw *law, PetscInt dim, PetscReal lam, Petsc
   GreenStrain(dim, G, E);
   law->stress(dim, lam, mu, E, S);
   law->moduli(dim, lam, mu, E, D);
-  geometric = SemiDefinite(dim, S);
+  geometric = (PetscBool)(consistent || SemiDefinite(dim, S));
   for (PetscInt i = 0; i < dim; ++i)
     for (PetscInt j = 0; j < dim; ++j) F[i][j] = (i == j ? 1 : 0) + G[i][j];
   for (PetscInt i = 0; i < dim; ++i)
@@ -356,7 +357,7 @@ static PetscReal LinearDissipation(PetscInt dim, PetscReal lam, PetscReal mu, co
   return 2 * LinearEnergy(dim, lam, mu, dG);
 }
 
-static void LinearTangent(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G, MMTangent A)
+static void LinearTangent(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G, PetscBool consistent, MMTangent A)
 {
   SVKModuli(dim, lam, mu, G, A); /* the same isotropic moduli, on grad u */
 }
@@ -372,9 +373,9 @@ static void LinearTangent(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 
   { \
     HyperStressAlg(&law, dim, lam, mu, visc, G0, G1, P); \
   } \
-  static void Name##Tangent(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G, MMTangent A) \
+  static void Name##Tangent(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G, PetscBool consistent, MMTangent A) \
   { \
-    HyperTangent(&law, dim, lam, mu, G, A); \
+    HyperTangent(&law, dim, lam, mu, G, consistent, A); \
   } \
   static void Name##Cauchy(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G, Mat3 s) \
   { \

@@ -738,6 +738,37 @@ PetscErrorCode MMLoadsInsertBoundaryValues(MMLoads *ld, Vec l, PetscReal t)
 }
 
 /*@
+  MMLoadsScaleBoundaryValues - Scales the Dirichlet data inserted in a local vector
+
+  Not collective
+
+  Input Parameters:
++ ld - the loads, their Dirichlet data tabulated (no amplitude)
+. l  - a local vector with the Dirichlet data inserted (MMLoadsInsertBoundaryValues())
+- s  - the factor
+
+  Note:
+  The finite-strain static start's load factor (docs/method.md section 13): its load levels take the
+  Dirichlet data in the same proportion as the forces
+
+  Level: developer
+
+.seealso: `MMLoadsInsertBoundaryValues()`
+@*/
+PetscErrorCode MMLoadsScaleBoundaryValues(MMLoads *ld, Vec l, PetscReal s)
+{
+  PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  if (s == 1.0 || !ld->n_bc || !ld->bv_n) PetscFunctionReturn(0); /* no Dirichlet data */
+  PetscCheck(ld->bv_n > 0 && ld->bv_idx, PETSC_COMM_SELF, PETSC_ERR_SUP, "The Dirichlet data are not tabulated (a value with an amplitude): they cannot be scaled");
+  PetscCall(VecGetArray(l, &a));
+  for (PetscInt i = 0; i < ld->bv_n; ++i) a[ld->bv_idx[i]] *= s;
+  PetscCall(VecRestoreArray(l, &a));
+  PetscFunctionReturn(0);
+}
+
+/*@
   MMLoadsSetUp - Sets up the loads' parts in time and the Dirichlet data's rows on the operators
 
   Collective

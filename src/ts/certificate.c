@@ -86,6 +86,15 @@ PetscErrorCode MMCertificateOfIterate(MMNewmark nm, Vec bH, Vec w, MMStepCertifi
   PetscFunctionReturn(0);
 }
 
+/* The static start's certificate (static_finite.c): its residual r at w with the round-off scale
+ * of its terms, the work over the load step from u_old */
+PetscErrorCode MMCertificateOfResidual(MMNewmark nm, Vec r, Vec scale, Vec w, MMStepCertificate *c)
+{
+  PetscFunctionBeginUser;
+  PetscCall(Defects(nm, w, r, NULL, scale, c));
+  PetscFunctionReturn(0);
+}
+
 /* After a solved step: *again true asks for the step to be solved once more, from w, with the
  * tighter tolerance set here. tries: the solves of this step so far (1 after the first). */
 PetscErrorCode MMCertificateCheck(MMNewmark nm, Vec b, Vec w, PetscInt tries, PetscBool *again)

@@ -2,7 +2,7 @@
  * and borrows the lower components it steps (fem's operators, material and loads, contact, friction). */
 #include "newmarkimpl.h"
 
-PetscLogEvent MM_TS_Energy, MM_TS_Momenta, MM_TS_Deformation, MM_TS_Certificate;
+PetscLogEvent MM_TS_Energy, MM_TS_Momenta, MM_TS_Deformation, MM_TS_Certificate, MM_TS_StaticFinite;
 
 /*@
   MMTSInitializePackage - Registers the TS type newmark, the TSAdapt type growback and ts's log
@@ -27,6 +27,7 @@ PetscErrorCode MMTSInitializePackage(void)
   PetscCall(PetscLogEventRegister("MMMomenta", id, &MM_TS_Momenta));
   PetscCall(PetscLogEventRegister("MMDeformation", id, &MM_TS_Deformation));
   PetscCall(PetscLogEventRegister("MMStepCertificate", id, &MM_TS_Certificate));
+  PetscCall(PetscLogEventRegister("MMStaticFinite", id, &MM_TS_StaticFinite));
   PetscCall(MMNewmarkRegister());
   PetscFunctionReturn(0);
 }

@@ -262,7 +262,7 @@ PetscErrorCode MMNewmarkInitialState(MMNewmark nm)
   PetscCall(MMCertificateSetUp(nm));
   PetscCall(MMContactGetNodes(nm->contact, &cn));
   if (nm->material->finite) {
-    PetscCheck(nm->pb.initial_state == MM_INITIAL_GIVEN, nm->comm, PETSC_ERR_SUP, "-initial_state static and static_sliding solve a linear static problem: with -elasticity svk or neohookean only -initial_state given is supported yet");
+    PetscCheck(nm->pb.initial_state != MM_INITIAL_STATIC_SLIDING, nm->comm, PETSC_ERR_SUP, "-initial_state static_sliding solves a linear sliding state: with -elasticity svk or neohookean use -initial_state static (the finite-strain static state, frictionless) or given");
     PetscCall(MMNonlinearSetUp(nm));
   }
   if (nm->pb.initial_state == MM_INITIAL_STATIC_SLIDING) PetscCall(TangentialInitialVelocity(nm));
@@ -275,14 +275,16 @@ PetscErrorCode MMNewmarkInitialState(MMNewmark nm)
   else if (nm->pb.initial_state == MM_INITIAL_STATIC) {
     /* u0 is the static solution: an affine u0 given with it would be ignored */
     PetscCheck(!nm->pb.u0_given, PetscObjectComm((PetscObject)nm->dm), PETSC_ERR_USER_INPUT, "-initial_state static computes u0 from the loads at t = 0: drop -u0_offset and -u0_gradient, or use -initial_state given");
-    PetscCall(MMContactSolveStatic(nm->contact, s->u, s->react));
+    if (nm->material->finite) PetscCall(MMNewmarkStaticFinite(nm, s->u, s->react));
+    else PetscCall(MMContactSolveStatic(nm->contact, s->u, s->react));
   } else {
     PetscCall(ProjectInitialField(nm, InitialDisplacement, s->u));
     PetscCall(MMContactProjectInitial(nm->contact, s->u));
     if (nm->material->finite) PetscCall(ProjectInitialFinite(nm));
   }
-  /* f_c0 = K u0 + lift - L (+ C v0) on the massless dofs: their quasi-static equation */
-  if (MMNewmarkHasMasslessDofs(nm) && nm->pb.initial_state == MM_INITIAL_GIVEN) {
+  /* f_c0 = K u0 + lift - L (+ C v0) on the massless dofs: their quasi-static equation (the
+   * finite-strain static start's too: its Newton's contact forces are the tangent's, f_c0 the law's) */
+  if (MMNewmarkHasMasslessDofs(nm) && (nm->pb.initial_state == MM_INITIAL_GIVEN || (nm->material->finite && nm->pb.initial_state == MM_INITIAL_STATIC))) {
     Vec rc, fc;
     PetscCall(InternalForce(nm, s->u, s->work));
     PetscCall(VecAXPY(s->work, -1.0, ops.load));

@@ -65,6 +65,8 @@ typedef struct {
   Vec             bnl, f, c, c_prev; /* the step's fixed right-hand side; 2 f_alg; K_s w - 2 f_alg at this iterate and the last */
   PetscInt        its, its_total, rebuilds, steps; /* the last step's iterations; over the run, and the solved steps */
   PetscReal       residual;    /* the last step's final relative residual */
+  PetscInt        static_steps;  /* -static_load_steps: the static start's first load increment is 1/this */
+  PetscInt        static_max_it; /* -static_max_it: Newton iterations per load level before the increment is halved */
 } MMNonlinear;
 
 /* The step's certificate (certificate.c, docs/method.md section 3): the defects of a step's solution,
@@ -98,6 +100,7 @@ PETSC_INTERN PetscErrorCode MMCertificateSetUp(MMNewmark nm);
 PETSC_INTERN PetscErrorCode MMCertificateCheck(MMNewmark nm, Vec b, Vec w, PetscInt tries, PetscBool *again);
 PETSC_INTERN PetscErrorCode MMCertificateDestroy(MMCertificateData *cd);
 PETSC_INTERN PetscErrorCode MMCertificateOfIterate(MMNewmark nm, Vec bH, Vec w, MMStepCertificate *c);
+PETSC_INTERN PetscErrorCode MMCertificateOfResidual(MMNewmark nm, Vec r, Vec scale, Vec w, MMStepCertificate *c);
 
 /* Why a step is rejected and retried with a smaller dt. */
 typedef enum {
@@ -154,7 +157,7 @@ static inline PetscBool MMNewmarkHasMasslessDofs(MMNewmark nm)
 }
 
 /* ts's events (MMTSInitializePackage) */
-PETSC_INTERN PetscLogEvent MM_TS_Energy, MM_TS_Momenta, MM_TS_Deformation, MM_TS_Certificate;
+PETSC_INTERN PetscLogEvent MM_TS_Energy, MM_TS_Momenta, MM_TS_Deformation, MM_TS_Certificate, MM_TS_StaticFinite;
 
 /* The parts of the stepper, each in its file */
 PETSC_INTERN PetscErrorCode MMEnergyContactWork(MMNewmark nm, Vec w, PetscReal *w_c);
@@ -183,6 +186,8 @@ PETSC_INTERN PetscErrorCode MMNonlinearElasticEnergy(MMNewmark nm, Vec u, PetscR
 PETSC_INTERN PetscErrorCode MMNonlinearDestroy(MMNonlinear *nl);
 PETSC_INTERN PetscErrorCode MMNonlinearDampingWork(MMNewmark nm, Vec du, PetscReal t1, PetscReal dt, PetscReal *w);
 PETSC_INTERN PetscErrorCode MMNonlinearFollowFrames(MMNewmark nm, PetscReal t, PetscReal dt, Vec midpoint);
+PETSC_INTERN PetscErrorCode MMNonlinearBuildTangent(MMNewmark nm, Vec l, PetscReal t);
+PETSC_INTERN PetscErrorCode MMNewmarkStaticFinite(MMNewmark nm, Vec u, Vec react);
 PETSC_INTERN PetscErrorCode MMAdaptGrowBackRegister(void);
 PETSC_INTERN PetscErrorCode MMNewmarkSchemeSetUp(MMNewmark nm);
 PETSC_INTERN PetscErrorCode MMNewmarkPredictMidpoint(MMNewmark nm, PetscReal dt, Vec *midpoint);

@@ -45,6 +45,12 @@ PetscErrorCode MMNonlinearSetFromOptions(PetscOptionItems *PetscOptionsObject, M
   PetscCheck(nl->anderson >= 0 && nl->anderson <= MM_ANDERSON_MAX, comm, PETSC_ERR_USER_INPUT, "-nonlinear_anderson %" PetscInt_FMT " must be in [0, %d]", nl->anderson, MM_ANDERSON_MAX);
   nl->refresh = PETSC_DEFAULT;
   PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-nonlinear_refresh_ratio", "-nonlinear_tangent auto: rebuild the iteration matrix at the iterate when an iteration reduces the residual by less than this factor, in (0, 1) (default 0.5 for the condensed formulation, whose rebuild refactors K~ and recomputes every Delassus column, 0.1 otherwise)", &nl->refresh));
+  nl->static_steps = 4;
+  PetscCall(MMOptionsInt(PetscOptionsObject, comm, "-static_load_steps", "-initial_state static with -elasticity svk or neohookean: the first load increment is 1/this of the loads at t = 0; then halved on a failed Newton solve, doubled after an easy one (>= 1)", &nl->static_steps));
+  nl->static_max_it = 25;
+  PetscCall(MMOptionsInt(PetscOptionsObject, comm, "-static_max_it", "-initial_state static with -elasticity svk or neohookean: most Newton iterations per load level, past them the load increment is halved (>= 2)", &nl->static_max_it));
+  PetscCheck(nl->static_steps >= 1, comm, PETSC_ERR_USER_INPUT, "-static_load_steps %" PetscInt_FMT " must be >= 1", nl->static_steps);
+  PetscCheck(nl->static_max_it >= 2, comm, PETSC_ERR_USER_INPUT, "-static_max_it %" PetscInt_FMT " must be >= 2", nl->static_max_it);
   PetscCheck(nl->rtol > 0, comm, PETSC_ERR_USER_INPUT, "-nonlinear_rtol %g must be > 0", (double)nl->rtol);
   PetscCheck(nl->rtol_audit >= nl->rtol && nl->rtol_audit < 1, comm, PETSC_ERR_USER_INPUT, "-nonlinear_audit_rtol %g must be in [-nonlinear_rtol %g, 1): the residual below which the audits decide whether the finite-strain step is done", (double)nl->rtol_audit, (double)nl->rtol);
   PetscCheck(nl->max_it >= 1, comm, PETSC_ERR_USER_INPUT, "-nonlinear_max_it %" PetscInt_FMT " must be >= 1", nl->max_it);
@@ -297,8 +303,9 @@ PetscErrorCode MMNonlinearStepMatrix(MMNewmark nm, PetscReal dt, MMStepMatrix *s
 }
 
 /* K_s <- the tangent at the local state l (Cartesian, with the Dirichlet data of time t), and where it
- * was taken: the iteration matrix is state the next steps depend on, which a checkpoint keeps */
-static PetscErrorCode BuildTangent(MMNewmark nm, Vec l, PetscReal t)
+ * was taken: the iteration matrix is state the next steps depend on, which a checkpoint keeps. Also
+ * the static start's Newton matrix (static_finite.c). */
+PetscErrorCode MMNonlinearBuildTangent(MMNewmark nm, Vec l, PetscReal t)
 {
   MMContactOperators ops;
   MMNonlinear       *nl = &nm->nl;
@@ -327,7 +334,7 @@ static PetscErrorCode RebuildTangent(MMNewmark nm, PetscReal dt, Vec l, PetscRea
   MMStepMatrix sm;
 
   PetscFunctionBeginUser;
-  PetscCall(BuildTangent(nm, l, t));
+  PetscCall(MMNonlinearBuildTangent(nm, l, t));
   nl->rebuilds++;
   PetscCall(MMNonlinearStepMatrix(nm, dt, &sm));
   PetscCall(MMContactSetStepMatrix(nm->contact, &sm));
@@ -400,7 +407,7 @@ PetscErrorCode MMNewmarkRestoreTangent(MMNewmark nm, Vec at, PetscReal t)
   PetscCall(VecZeroEntries(el->l1));
   PetscCall(DMGlobalToLocal(nm->dm, at, INSERT_VALUES, el->l1));
   PetscCall(MMLoadsInsertBoundaryValues(nm->loads, el->l1, t));
-  PetscCall(BuildTangent(nm, el->l1, t));
+  PetscCall(MMNonlinearBuildTangent(nm, el->l1, t));
   PetscFunctionReturn(0);
 }
 
