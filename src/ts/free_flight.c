@@ -60,7 +60,7 @@ static PetscErrorCode Momenta(MMNewmark nm, PetscInt nr, Vec R[], Vec v, PetscRe
   PetscFunctionReturn(0);
 }
 
-/* The scheme's momenta P and J kept through the switch to M: v gains the rigid velocity R y with
+/* The scheme's momenta P and J kept through the switch to M (-mass redistributed): v gains the rigid velocity R y with
  * (R^T M R) y = p_old - R^T M v. M and M* weigh a rigid velocity alike (-mass redistributed keeps
  * M's moments, docs/method.md section 2), not the body's vibration nor the massless rows' backward
  * difference (newmark.c), which M* never weighed: without it P and J would jump at the switch by what
@@ -100,6 +100,7 @@ static PetscErrorCode SwitchMass(MMNewmark nm, PetscBool is_free, Vec v)
   MMContactNodes     cn;
   MMState           *s = &nm->state;
   PetscScalar        before, after;
+  MMMassType         type;
 
   PetscFunctionBeginUser;
   PetscCall(MMContactGetNodes(nm->contact, &cn));
@@ -107,7 +108,10 @@ static PetscErrorCode SwitchMass(MMNewmark nm, PetscBool is_free, Vec v)
   PetscCall(MatMult(ops.Mstar, v, s->work));
   PetscCall(VecDot(v, s->work, &before));
   if (is_free) PetscCall(VecISSet(s->react, cn.is_massless, 0.0));
-  if (is_free && !nm->pb.dirichlet) {
+  PetscCall(MMContactGetMassType(nm->contact, &type));
+  /* -mass redistributed's M* carries M's moments, so its momenta are the body's; the modified one's
+   * lack the removed mass, and keeping them would slow the body down */
+  if (is_free && !nm->pb.dirichlet && type == MM_MASS_REDISTRIBUTED) {
     const PetscInt nr = MMFENumRigidModes(nm->dim);
     Vec            R[MM_MAX_RIGID];
     PetscReal      p_old[MM_MAX_RIGID];
