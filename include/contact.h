@@ -206,6 +206,7 @@ typedef struct {
   void     *ctx;
 } MMStepOffset;
 PETSC_EXTERN PetscErrorCode MMContactSetStepOffset(MMContact ct, const MMStepOffset *so);
+PETSC_EXTERN PetscErrorCode MMContactShiftBounds(MMContact ct, Vec origin, PetscBool shift);
 PETSC_EXTERN PetscErrorCode MMContactGetStepOffset(MMContact ct, MMStepOffset *so);
 PETSC_EXTERN PetscErrorCode MMContactStepVelocity(MMContact ct, Vec w, Vec sigma);
 PETSC_EXTERN PetscErrorCode MMContactGetStepKSP(MMContact ct, KSP *krylov, KSP *pc_ksp);

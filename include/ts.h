@@ -25,6 +25,8 @@ typedef struct {
   Vec       react, react_old;  /* contact reactions on the body (K~ w - b on contact dofs) */
   Vec       work;              /* scratch */
   Vec       u_next;            /* the TS solution vector */
+  Vec       du;                /* the step's increment u^{n+1} - u^n as the linear step solves for it (-step_increments) */
+  PetscBool has_du;            /* du holds the accepted step's increment (else it is formed as u^{n+1} - u^n) */
   PetscReal dt;
   PetscReal dt_user;           /* -ts_dt: after a rejected step, dt grows back to it */
   PetscReal work_contact;      /* W_c of the accepted step, computed once by the contact-work guard */

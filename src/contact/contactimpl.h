@@ -191,6 +191,7 @@ struct _p_MMContact {
                                      row's q and reactions (zero off the friction corners) */
   IS         is_massless;         /* the dofs M* drops: the normal dofs and the friction corners' tau_1 */
   Vec        gap0;                /* g_i at time 0, layout of gap */
+  Vec        gap_step;            /* the gaps at the step's time, kept while the bounds are of an increment (MMContactShiftBounds) */
   Vec        mu;                  /* per owned contact node, the friction coefficient of its obstacle */
   PetscReal *slide_ref;           /* per owned contact node and tangent, dt/2 V.tau_j: the obstacle's sliding */
   PetscBool  moving;              /* some obstacle moves: gaps follow it every step */

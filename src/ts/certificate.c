@@ -23,7 +23,7 @@ static PetscErrorCode Defects(MMNewmark nm, Vec w, Vec r, Vec r_old, Vec scale, 
 {
   MMCertificateData *cd = &nm->cert;
   MMState           *s  = &nm->state;
-  const PetscScalar *ra, *oa = NULL, *sa, *ua, *wa;
+  const PetscScalar *ra, *oa = NULL, *sa, *da, *wa;
   PetscReal          sums[4] = {0, 0, 0, 0}, F[3], T[3], umax = 0;
   PetscInt           n;
 
@@ -32,10 +32,11 @@ static PetscErrorCode Defects(MMNewmark nm, Vec w, Vec r, Vec r_old, Vec scale, 
   PetscCall(VecGetArrayRead(r, &ra));
   if (r_old) PetscCall(VecGetArrayRead(r_old, &oa));
   PetscCall(VecGetArrayRead(scale, &sa));
-  PetscCall(VecGetArrayRead(s->u_old, &ua));
+  PetscCall(MMNewmarkStepIncrement(nm, w, s->work));
+  PetscCall(VecGetArrayRead(s->work, &da));
   PetscCall(VecGetArrayRead(w, &wa));
   for (PetscInt i = 0; i < n; ++i) {
-    const PetscReal du = PetscRealPart(wa[i] - ua[i]);
+    const PetscReal du = PetscRealPart(da[i]);
     sums[0] += du * PetscRealPart(ra[i]);
     if (oa) sums[1] += du * PetscRealPart(oa[i]);
     sums[2] += PetscAbsReal(du) * PetscRealPart(sa[i]);
@@ -43,7 +44,7 @@ static PetscErrorCode Defects(MMNewmark nm, Vec w, Vec r, Vec r_old, Vec scale, 
     umax = PetscMax(umax, PetscAbsScalar(wa[i]));
   }
   PetscCall(VecRestoreArrayRead(w, &wa));
-  PetscCall(VecRestoreArrayRead(s->u_old, &ua));
+  PetscCall(VecRestoreArrayRead(s->work, &da));
   PetscCall(VecRestoreArrayRead(scale, &sa));
   if (r_old) PetscCall(VecRestoreArrayRead(r_old, &oa));
   PetscCall(VecRestoreArrayRead(r, &ra));
@@ -60,13 +61,14 @@ static PetscErrorCode Defects(MMNewmark nm, Vec w, Vec r, Vec r_old, Vec scale, 
   PetscFunctionReturn(0);
 }
 
-/* The linear step's: its residual r = b + f_c - K~ w (contact's step residual) */
+/* The linear step's: its residual r = b + f_c - K~ w (contact's step residual); of the increment,
+ * b - K~ u^n + f_c - K~ du, when the step solved for du (-step_increments, b is then b - K~ u^n) */
 static PetscErrorCode Measure(MMNewmark nm, Vec b, Vec w, MMStepCertificate *c)
 {
   MMCertificateData *cd = &nm->cert;
 
   PetscFunctionBeginUser;
-  PetscCall(MMContactStepResidual(nm->contact, b, w, nm->state.react, cd->r, cd->scale));
+  PetscCall(MMContactStepResidual(nm->contact, b, nm->state.has_du ? nm->state.du : w, nm->state.react, cd->r, cd->scale));
   PetscCall(Defects(nm, w, cd->r, cd->r_old, cd->scale, c));
   PetscFunctionReturn(0);
 }

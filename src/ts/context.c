@@ -216,7 +216,7 @@ PetscErrorCode MMNewmarkDestroy(MMNewmark *nm)
   if (!*nm) PetscFunctionReturn(0);
   s = &(*nm)->state;
   {
-    Vec *vecs[] = {&s->u, &s->v, &s->a, &s->u_old, &s->v_old, &s->a_old, &s->react, &s->react_old, &s->work, &s->u_next};
+    Vec *vecs[] = {&s->u, &s->v, &s->a, &s->u_old, &s->v_old, &s->a_old, &s->react, &s->react_old, &s->work, &s->u_next, &s->du};
     for (size_t i = 0; i < sizeof(vecs) / sizeof(vecs[0]); ++i) PetscCall(VecDestroy(vecs[i]));
   }
   PetscCall(MMDampingDestroy(&(*nm)->damping));

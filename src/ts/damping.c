@@ -213,13 +213,25 @@ PetscErrorCode MMDampingAddStepRHS(MMDamping *d, Vec u, PetscReal dt, Vec b)
   PetscFunctionReturn(0);
 }
 
-/* vC^{n+1} = 2/dt (u^{n+1} - u^n) - vC^n, once the step is accepted. */
-PetscErrorCode MMDampingUpdateVelocity(MMDamping *d, Vec u, Vec u_old, PetscReal dt)
+/* vC^{n+1} = 2/dt du - vC^n, du = u^{n+1} - u^n, once the step is accepted. */
+PetscErrorCode MMDampingUpdateVelocity(MMDamping *d, Vec du, PetscReal dt)
 {
   PetscFunctionBeginUser;
   if (!MMDampingOn(d)) PetscFunctionReturn(0);
-  PetscCall(VecWAXPY(d->work, -1.0, u_old, u));
-  PetscCall(VecAXPBY(d->vC, 2.0 / dt, -1.0, d->work));
+  PetscCall(VecAXPBY(d->vC, 2.0 / dt, -1.0, du));
+  PetscFunctionReturn(0);
+}
+
+/* b += C vC^n: the damping's share of the increment's right-hand side (step_laws.c), b - K~ u^n with
+ * the 2/dt C u^n of b and of K~ u^n cancelled */
+PetscErrorCode MMDampingAddStepRHSIncrement(MMDamping *d, Vec b)
+{
+  PetscFunctionBeginUser;
+  if (!MMDampingOn(d)) PetscFunctionReturn(0);
+  PetscCall(MatMult(d->Mstar, d->vC, d->work));
+  PetscCall(VecAXPY(b, d->alpha, d->work));
+  PetscCall(MatMult(d->B, d->vC, d->work));
+  PetscCall(VecAXPY(b, d->beta, d->work));
   PetscFunctionReturn(0);
 }
 

@@ -252,7 +252,7 @@ PetscErrorCode MMEnergyStep(MMNewmark nm)
   PetscCall(MMContactGetOperators(nm->contact, &ops));
   PetscCall(MMContactGetNodes(nm->contact, &cn));
   PetscCall(PetscLogEventBegin(MM_TS_Energy, 0, 0, 0, 0));
-  PetscCall(VecWAXPY(s->work, -1.0, s->u_old, s->u));
+  PetscCall(MMNewmarkStepIncrement(nm, s->u, s->work));
   PetscCall(VecDot(ops.load, s->work, &Ldu)); /* L^{n+1}: L^n too when the loads are constant */
   w_ext = PetscRealPart(Ldu);
   if (nm->loads->in_time) { /* 1/2 (L^n + L^{n+1}).du (docs/method.md section 10) */

@@ -254,11 +254,17 @@ PetscErrorCode MMNewmarkInitialState(MMNewmark nm)
   PetscCall(MMContactGetOperators(nm->contact, &ops));
   PetscCall(DMCreateGlobalVector(nm->dm, &s->u));
   {
-    Vec *copies[] = {&s->v, &s->a, &s->u_old, &s->v_old, &s->a_old, &s->react, &s->react_old, &s->work, &s->u_next};
+    Vec *copies[] = {&s->v, &s->a, &s->u_old, &s->v_old, &s->a_old, &s->react, &s->react_old, &s->work, &s->u_next, &s->du};
     for (size_t i = 0; i < sizeof(copies) / sizeof(copies[0]); ++i) PetscCall(VecDuplicate(s->u, copies[i]));
     PetscCall(MMNewmarkSchemeSetUp(nm)); /* the step's offset, for the contact solves */
   }
   nm->cert.on = (PetscBool)(nm->cert.on && nm->law->certified);
+  {
+    MMContactNodes cn0;
+    PetscCall(MMContactGetNodes(nm->contact, &cn0));
+    /* the linear step's increment (step_laws.c): not with friction corners, whose second bound is of T2 w */
+    nm->increments = (PetscBool)(nm->increments && !nm->material->finite && !cn0.n_fc);
+  }
   PetscCall(MMCertificateSetUp(nm));
   PetscCall(MMContactGetNodes(nm->contact, &cn));
   if (nm->material->finite) {

@@ -21,7 +21,7 @@ static PetscErrorCode UpdateKinematics(MMNewmark nm, PetscReal dt, Vec w)
   MMState *s = &nm->state;
 
   PetscFunctionBeginUser;
-  PetscCall(VecWAXPY(s->work, -1.0, s->u_old, w));
+  PetscCall(MMNewmarkStepIncrement(nm, w, s->work)); /* du: solved for by the linear step */
   PetscCall(VecAXPBYPCZ(s->a, 4.0 / (dt * dt), -4.0 / dt, 0.0, s->work, s->v_old));
   PetscCall(VecAXPY(s->a, -1.0, s->a_old));
   PetscCall(VecWAXPY(s->v, 1.0, s->a_old, s->a));
@@ -169,6 +169,7 @@ static PetscErrorCode TSStep_Newmark(TS ts)
   PetscCall(MatchFinalTime(ts));
   if (nm->law->begin) PetscCall((*nm->law->begin)(nm, ts->ptime, ts->time_step)); /* frames and pairs that follow the body */
   PetscCall(SaveOldState(s));
+  s->has_du = PETSC_FALSE;
   PetscCall(MMContactCornersAccept(nm->contact));
   while (!solved) {
     PetscReal w_c, scale;
@@ -202,7 +203,8 @@ static PetscErrorCode TSStep_Newmark(TS ts)
     }
   }
   PetscCall(UpdateKinematics(nm, dt, w));
-  PetscCall(MMDampingUpdateVelocity(&nm->damping, s->u, s->u_old, dt));
+  PetscCall(MMNewmarkStepIncrement(nm, s->u, s->work));
+  PetscCall(MMDampingUpdateVelocity(&nm->damping, s->work, dt));
   s->dt   = dt;
   next_dt = dt;
   PetscCall(TSAdaptChoose(ts->adapt, ts, dt, NULL, &next_dt, &accept));

@@ -146,6 +146,8 @@ struct _p_MMNewmark {
   MMMomenta     momenta;
   MMNonlinear   nl;     /* the finite-strain laws' step (material->finite) */
   MMStepOffset  scheme; /* the step's offset and scale, handed to contact (scheme.c) */
+  PetscBool     increments; /* -step_increments, resolved at set-up: the linear step solves for du (scheme.c) */
+  PetscBool     scheme_origin_zero; /* the step's offset and velocity are of du, during the increment's solve */
   MMCertificateData cert; /* the step's acceptance rule (certificate.c) */
   const MMStepLawOps *law; /* the step's law: linear or finite strain (step_laws.c) */
 };
@@ -170,7 +172,10 @@ PETSC_INTERN PetscErrorCode MMInitialStaticSliding(MMNewmark nm, Vec w, Vec reac
 PETSC_INTERN PetscErrorCode MMDampingSetFromOptions(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMDamping *d);
 PETSC_INTERN PetscErrorCode MMDampingSetUp(MMDamping *d, MMContact ct, MMMaterial *material, IS is_massless, Vec v0);
 PETSC_INTERN PetscErrorCode MMDampingAddStepRHS(MMDamping *d, Vec u, PetscReal dt, Vec b);
-PETSC_INTERN PetscErrorCode MMDampingUpdateVelocity(MMDamping *d, Vec u, Vec u_old, PetscReal dt);
+PETSC_INTERN PetscErrorCode MMNewmarkSchemeIncrement(MMNewmark nm, PetscReal dt, PetscBool on);
+PETSC_INTERN PetscErrorCode MMNewmarkStepIncrement(MMNewmark nm, Vec w, Vec du);
+PETSC_INTERN PetscErrorCode MMDampingUpdateVelocity(MMDamping *d, Vec du, PetscReal dt);
+PETSC_INTERN PetscErrorCode MMDampingAddStepRHSIncrement(MMDamping *d, Vec b);
 PETSC_INTERN PetscErrorCode MMDampingWork(MMDamping *d, Vec du, PetscReal dt, PetscReal *w);
 PETSC_INTERN PetscErrorCode MMNewmarkRegister(void);
 PETSC_INTERN PetscErrorCode MMNewmarkView(MMNewmark nm, PetscReal dt, PetscViewer viewer);

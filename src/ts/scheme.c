@@ -5,13 +5,15 @@
  * section 3). */
 #include "newmarkimpl.h"
 
-/* sigma = 2/dt (w - u^n) - v^n: the velocity of w over the step (MMStepOffset's velocity) */
+/* sigma = 2/dt (w - u^n) - v^n: the velocity of w over the step (MMStepOffset's velocity); while the
+ * linear step solves for the increment (MMNewmarkSolveIncrement), w is du and sigma = 2/dt du - v^n */
 static PetscErrorCode StepVelocity(void *ctx, Vec w, Vec sigma)
 {
   MMNewmark nm = (MMNewmark)ctx;
 
   PetscFunctionBeginUser;
-  PetscCall(VecWAXPY(sigma, -1.0, nm->state.u_old, w));
+  if (nm->scheme_origin_zero) PetscCall(VecCopy(w, sigma));
+  else PetscCall(VecWAXPY(sigma, -1.0, nm->state.u_old, w));
   PetscCall(VecAXPBY(sigma, -1.0, nm->scheme.scale, nm->state.v_old));
   PetscFunctionReturn(0);
 }
@@ -36,11 +38,13 @@ static PetscErrorCode Midpoint(Vec u, Vec v, PetscReal dt, Vec offset)
   PetscFunctionReturn(0);
 }
 
-/* The step's offset from its saved start u^n, v^n */
+/* The step's offset from its saved start u^n, v^n; from the origin of the increment, dt/2 v^n, while
+ * the linear step solves for du (MMNewmarkSolveIncrement) */
 static PetscErrorCode StepOffset(MMNewmark nm, PetscReal dt)
 {
   PetscFunctionBeginUser;
-  PetscCall(Midpoint(nm->state.u_old, nm->state.v_old, dt, nm->scheme.offset));
+  if (nm->scheme_origin_zero) PetscCall(VecAXPBY(nm->scheme.offset, 0.5 * dt, 0.0, nm->state.v_old));
+  else PetscCall(Midpoint(nm->state.u_old, nm->state.v_old, dt, nm->scheme.offset));
   PetscFunctionReturn(0);
 }
 
@@ -82,6 +86,26 @@ PetscErrorCode MMNewmarkSetStep(MMNewmark nm, PetscReal dt)
   PetscCall(StepOffset(nm, dt));
   nm->scheme.scale = 2.0 / dt;
   PetscCall(MMContactSetStepOffset(nm->contact, &nm->scheme));
+  PetscFunctionReturn(0);
+}
+
+/* While the linear step solves for its increment du (step_laws.c): the offset and the velocity of the
+ * step are those of du, the origin u^n taken out (on), or of w again (off) */
+PetscErrorCode MMNewmarkSchemeIncrement(MMNewmark nm, PetscReal dt, PetscBool on)
+{
+  PetscFunctionBeginUser;
+  nm->scheme_origin_zero = on;
+  PetscCall(StepOffset(nm, dt));
+  PetscCall(MMContactSetStepOffset(nm->contact, &nm->scheme));
+  PetscFunctionReturn(0);
+}
+
+/* The step's increment du = w - u^n: the one the linear step solved for, or formed */
+PetscErrorCode MMNewmarkStepIncrement(MMNewmark nm, Vec w, Vec du)
+{
+  PetscFunctionBeginUser;
+  if (nm->state.has_du) PetscCall(VecCopy(nm->state.du, du));
+  else PetscCall(VecWAXPY(du, -1.0, nm->state.u_old, w));
   PetscFunctionReturn(0);
 }
 

@@ -35,13 +35,50 @@ static PetscErrorCode LinearStepMatrix(MMNewmark nm, PetscReal dt, MMStepMatrix 
   PetscFunctionReturn(0);
 }
 
-/* b completed with the step's right-hand side, and the one contact (and friction) solve */
+/* The increment's right-hand side b - K~ u^n, formed without the 4/dt^2 M* u^n that the two cancel:
+ * L - lift + M* (4/dt v^n + a^n) - K u^n [+ C vC^n with damping] (K~ = K + cb B + cm M*, ck = 1) */
+static PetscErrorCode StepRHSIncrement(MMNewmark nm, PetscReal dt, Vec b)
+{
+  MMContactOperators ops;
+  MMState           *s = &nm->state;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
+  PetscCall(VecAXPBYPCZ(s->work, 4.0 / dt, 1.0, 0.0, s->v, s->a));
+  PetscCall(MatMult(ops.Mstar, s->work, b));
+  PetscCall(VecAXPY(b, 1.0, ops.load));
+  PetscCall(VecAXPY(b, -1.0, ops.lift));
+  PetscCall(MatMult(ops.K, s->u, s->work));
+  PetscCall(VecAXPY(b, -1.0, s->work));
+  PetscCall(MMDampingAddStepRHSIncrement(&nm->damping, b));
+  PetscFunctionReturn(0);
+}
+
+/* b completed with the step's right-hand side, and the one contact (and friction) solve. With
+ * -step_increments the unknown is du = w - u^n (docs/method.md section 3, "The step's unknown"): the
+ * bounds, the offset and the velocity of the step are taken from the origin u^n, du is solved for
+ * and kept (the kinematics, the certificate and the audit use it), and w = u^n + du. */
 static PetscErrorCode LinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b, Vec w, PetscBool *solved)
 {
+  MMState *s = &nm->state;
+
   PetscFunctionBeginUser;
   (void)t0;
-  PetscCall(StepRHS(nm, dt, b));
-  PetscCall(MMFrictionSolve(nm->friction, nm->hist.step, nm->hist.time, b, w, nm->state.react, solved));
+  s->has_du = PETSC_FALSE;
+  if (!nm->increments) {
+    PetscCall(StepRHS(nm, dt, b));
+    PetscCall(MMFrictionSolve(nm->friction, nm->hist.step, nm->hist.time, b, w, s->react, solved));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(StepRHSIncrement(nm, dt, b));
+  PetscCall(VecWAXPY(s->du, -1.0, s->u_old, w)); /* the predictor's increment: where the solve starts */
+  PetscCall(MMNewmarkSchemeIncrement(nm, dt, PETSC_TRUE));
+  PetscCall(MMContactShiftBounds(nm->contact, s->u_old, PETSC_TRUE));
+  PetscCall(MMFrictionSolve(nm->friction, nm->hist.step, nm->hist.time, b, s->du, s->react, solved));
+  PetscCall(MMContactShiftBounds(nm->contact, s->u_old, PETSC_FALSE));
+  PetscCall(MMNewmarkSchemeIncrement(nm, dt, PETSC_FALSE));
+  PetscCall(VecWAXPY(w, 1.0, s->u_old, s->du));
+  s->has_du = *solved;
   PetscFunctionReturn(0);
 }
 

@@ -949,6 +949,7 @@ PetscErrorCode MMContactDestroy(MMContact *pct)
   PetscCall(VecDestroy(&ct->lower0));
   PetscCall(VecDestroy(&ct->upper0));
   PetscCall(VecDestroy(&ct->gap));
+  PetscCall(VecDestroy(&ct->gap_step));
   PetscCall(VecDestroy(&ct->gap0));
   PetscCall(VecDestroy(&ct->mu));
   PetscCall(PetscFree(ct->slide_ref));

@@ -634,3 +634,50 @@ PetscErrorCode MMContactSetTime(MMContact ct, PetscReal t, PetscReal dt)
   PetscCall(VecRestoreArrayRead(ct->gap0, &g0));
   PetscFunctionReturn(0);
 }
+
+/*@
+  MMContactShiftBounds - Makes the contact bounds those of an increment from an origin, or gives them
+  back
+
+  Collective
+
+  Input Parameters:
++ ct     - the contact object, its time set (MMContactSetTime)
+. origin - the origin u^n of the increment (w-frame)
+- shift  - PETSC_TRUE: the bounds become g - u^n_nu, for du = w - u^n; PETSC_FALSE: back to g
+
+  Note:
+  The linear step solves for du (docs/method.md section 3, "The step's unknown"): each row's bound
+  w_nu <= g becomes du_nu <= g - u^n_nu. The gaps are kept and copied back, not shifted back, so that
+  they come out bit for bit. Not with friction corners, whose second bound is of T2 w.
+
+  Level: developer
+
+.seealso: `MMContactSetTime()`, `MMContactSetStepOffset()`
+@*/
+PetscErrorCode MMContactShiftBounds(MMContact ct, Vec origin, PetscBool shift)
+{
+  const PetscInt    *in;
+  const PetscScalar *oa;
+  PetscScalar       *ga;
+  PetscInt           rstart;
+
+  PetscFunctionBeginUser;
+  if (!ct->enabled) PetscFunctionReturn(0);
+  PetscCheck(!ct->n_fc, ct->comm, PETSC_ERR_SUP, "The bounds of an increment do not take friction corners");
+  if (!shift) {
+    PetscCall(VecCopy(ct->gap_step, ct->gap));
+    PetscFunctionReturn(0);
+  }
+  if (!ct->gap_step) PetscCall(VecDuplicate(ct->gap, &ct->gap_step));
+  PetscCall(VecCopy(ct->gap, ct->gap_step));
+  PetscCall(VecGetOwnershipRange(origin, &rstart, NULL));
+  PetscCall(ISGetIndices(ct->is_normal, &in));
+  PetscCall(VecGetArrayRead(origin, &oa));
+  PetscCall(VecGetArray(ct->gap, &ga));
+  for (PetscInt k = 0; k < ct->n_local; ++k) ga[k] -= oa[in[k] - rstart];
+  PetscCall(VecRestoreArray(ct->gap, &ga));
+  PetscCall(VecRestoreArrayRead(origin, &oa));
+  PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  PetscFunctionReturn(0);
+}
