@@ -9,7 +9,7 @@ import re
 import numpy as np
 import pytest
 
-from conftest import ROOT
+from conftest import ROOT, run
 
 AS = ("-contact_formulation", "active_set")
 
@@ -69,9 +69,11 @@ def test_two_bars_exchange_momentum_exactly_on_the_active_set(mm):
 
 
 def test_without_the_certificate_the_active_set_is_only_as_exact_as_its_tolerance(mm):
-    """-step_certificate 0 stops every solve at -contact_tol: the same bowl drifts by orders of
-    magnitude more, which is what the certificate removes (the test above would fail)."""
-    h = mm("disk_bowl", *AS, "-output_every", 0, "-ts_max_time", 0.6, "-step_certificate", 0).history
+    """-step_certificate 0 stops every solve at -contact_tol: at -contact_tol 1e-8 the same bowl
+    drifts by orders of magnitude more, which is what the certificate removes (the test above would
+    fail). (At the default 1e-11 the uncertified increment's solve drifts 1.6e-11 of J: the
+    tolerance applies to the increment's right-hand side, docs/method.md section 3.)"""
+    h = mm("disk_bowl", *AS, "-output_every", 0, "-ts_max_time", 0.6, "-step_certificate", 0, "-contact_tol", 1e-8).history
     J = h["J_z"] + 4 * h["P_x"]
     assert np.abs(J - J[0]).max() > 1e-10 * abs(J[0])
 
@@ -86,3 +88,26 @@ def test_certificate_state_survives_a_restart(mm, tmp_path):
     assert len(again) == len(full)
     for c in ("kinetic", "elastic", "J_z", "P_x", "force_normal"):
         assert np.array_equal(full[c], again[c]), c
+
+
+def test_increment_removes_the_small_dt_floor(tmp_path):
+    """The linear cube spinning onto its plane with -mass standard on the active set (2 ranks): the
+    contact-work guard cuts dt to 9.8e-7, where the total displacement's equation cancels 4/dt^2 M* u
+    in its residual. Solving for the increment (-step_increments, the default; docs/method.md section 3,
+    "The step's unknown"), no step meets a floor and the balance is 1e-13 (measured 1.0e-13); solving
+    for u^{n+1}, 61 steps end at their floor and the balance is 1.8e-10."""
+    opts = tmp_path / "cube.opts"
+    opts.write_text("# the linear cube of tests/test_step_certificate.py\n")
+    cube = ("-mesh", "meshes/cube_drop.msh", "-contact_boundary", "skin", "-obstacle_point", "0,0,0",
+            "-obstacle_normal", "0,0,1", "-E", 1000, "-nu", 0.3, "-rho", 1, "-omega0", "1,4,0.5",
+            "-v0", "0,0,-0.215", "-ts_dt", 1e-3, "-ts_max_time", 0.3, "-mass", "standard",
+            "-contact_formulation", "active_set", "-output_every", 0, "-progress_every", 0)
+    floors = {}
+    for inc in (1, 0):
+        r = run(str(opts), tmp_path, *cube, "-step_increments", inc, np_=2, name=f"inc{inc}")
+        floors[inc] = int(r.output.split(" steps accepted at their residual's floor")[0].rsplit(" ", 1)[1])
+        h = r.history
+        assert h["dt"][1:].min() < 1e-5  # the guard's small steps, where the floor lies
+        if inc:
+            assert h["balance_residual"].max() <= 1e-12
+    assert floors[1] == 0 and floors[0] > 10, floors

@@ -49,10 +49,16 @@ static PetscErrorCode FullSetOperator(MMContact ct)
   PetscFunctionReturn(0);
 }
 
+/* The bounds are the step's: an increment's are g - u^n (MMContactShiftBounds, docs/method.md
+ * section 3), a moving obstacle's move with it */
 static PetscErrorCode FullSolve(MMContact ct, Vec b, Vec w, Vec react)
 {
+  Vec sub;
 
   PetscFunctionBeginUser;
+  PetscCall(VecGetSubVector(ct->upper, ct->is_normal, &sub));
+  PetscCall(VecCopy(ct->gap, sub));
+  PetscCall(VecRestoreSubVector(ct->upper, ct->is_normal, &sub));
   PetscCall(VecCopy(b, ct->qp.b));
   PetscCall(MMQPSolve(MMFullData(ct)->snes, &ct->qp, w, &ct->vi_its));
   PetscCall(MMContactForce(ct, b, w, react));
