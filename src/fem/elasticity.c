@@ -9,8 +9,10 @@
 #include "femimpl.h"
 #include "assembly_p1.h"
 #include "mesh.h"
+#include <petscblaslapack.h>
 
 #define MM_NV_MAX (MM_MAX_DIM + 1)
+#define MM_KE_MAX (MM_NV_MAX * MM_MAX_DIM) /* a cell matrix's rows */
 
 /* Once: each local cell's vertex offsets in the local vectors, P1 gradients and volume (the force is
  * evaluated several times per step: reading the sections and inverting the edge matrix each time
@@ -426,6 +428,32 @@ PetscErrorCode MMElasticityDissipation(MMElasticity *el, MMOperators op, const M
 
 /* The tangent's element matrix: K_e[a i][b k] = |T| grad phi_a,J A_iJkL grad phi_b,L, with the cell's
  * offsets and gradients from the cache (the assembler's own g and vol are the same) */
+/* The cell matrix Ke (n x n, symmetric) made positive semi-definite: its negative eigenvalues set to 0
+ * (LAPACK syev), the closest such matrix. A compressed cell's geometric stiffness is indefinite; leaving
+ * out the whole of it (as the tangent did before issue 50) also drops the stiffness of the directions the
+ * cell is stretched in, and the iteration matrix is then softer than the force along the massless
+ * contact rows, which no mass term steadies: the iteration overshoots and diverges (docs/method.md
+ * section 13, "The iteration matrix"). Only the cell's negative modes are left out here. */
+static PetscErrorCode ClampNegativeEigenvalues(PetscInt n, PetscScalar Ke[])
+{
+  PetscScalar  V[MM_KE_MAX * MM_KE_MAX], work[8 * MM_KE_MAX];
+  PetscReal    ev[MM_KE_MAX];
+  PetscBLASInt bn, lwork = 8 * MM_KE_MAX, info;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < n * n; ++i) V[i] = Ke[i];
+  PetscCall(PetscBLASIntCast(n, &bn));
+  PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "U", &bn, V, &bn, ev, work, &lwork, &info));
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev failed (%d) on a cell's tangent", (int)info);
+  for (PetscInt i = 0; i < n * n; ++i) Ke[i] = 0;
+  for (PetscInt e = 0; e < n; ++e) { /* column e of V (column-major) is the eigenvector of ev[e] */
+    if (ev[e] <= 0) continue;
+    for (PetscInt r = 0; r < n; ++r)
+      for (PetscInt c = 0; c < n; ++c) Ke[r * n + c] += ev[e] * V[e * n + r] * V[e * n + c];
+  }
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode TangentElement(void *ctx, PetscInt c, const PetscInt v[], const PetscReal g_unused[][MM_MAX_DIM], PetscReal vol_unused, PetscScalar Ke[])
 {
   const TangentData *td  = (const TangentData *)ctx;
@@ -433,6 +461,7 @@ static PetscErrorCode TangentElement(void *ctx, PetscInt c, const PetscInt v[], 
   PetscInt           off[MM_NV_MAX];
   PetscReal          g[MM_NV_MAX][MM_MAX_DIM], vol, G[MM_MAX_DIM][MM_MAX_DIM];
   MMTangent          A;
+  PetscBool          definite;
 
   PetscFunctionBeginUser;
   (void)v;
@@ -440,7 +469,7 @@ static PetscErrorCode TangentElement(void *ctx, PetscInt c, const PetscInt v[], 
   (void)vol_unused;
   CellGeometry(td->el, dim, cl, off, g, &vol);
   DisplacementGradient(dim, td->u, off, (const PetscReal(*)[MM_MAX_DIM])g, G);
-  CellLaw(td->mat, cl)->tangent(dim, td->mat->lambda[cl], td->mat->mu[cl], (const PetscReal(*)[MM_MAX_DIM])G, td->el->consistent, A);
+  CellLaw(td->mat, cl)->tangent(dim, td->mat->lambda[cl], td->mat->mu[cl], (const PetscReal(*)[MM_MAX_DIM])G, A, &definite);
   for (PetscInt a = 0; a <= dim; ++a) {
     PetscReal ga[MM_MAX_DIM][MM_MAX_DIM][MM_MAX_DIM]; /* vol g_a,J A_iJkL, then contracted with each g_b */
     for (PetscInt i = 0; i < dim; ++i)
@@ -458,6 +487,7 @@ static PetscErrorCode TangentElement(void *ctx, PetscInt c, const PetscInt v[], 
           Ke[(a * dim + i) * n + b * dim + k] = t;
         }
   }
+  if (!definite && !td->el->consistent) PetscCall(ClampNegativeEigenvalues(n, Ke)); /* the static start's Newton takes dP/dF itself */
   PetscFunctionReturn(0);
 }
 

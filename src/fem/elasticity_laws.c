@@ -247,21 +247,21 @@ static PetscBool SemiDefinite(PetscInt dim, const Mat3 S)
   return (PetscBool)(dim == 2 || MMDetInverse(3, S, NULL) >= 0);
 }
 
-/* The iteration matrix's A_iJkL = delta_ik S_JL + F_iI D_IJKL F_kK (dP_iJ / dF_kL), with the geometric
- * term delta_ik S_JL only where S is positive semi-definite: under compression it is indefinite, and
- * K_t + 4/dt^2 M* could lose definiteness, which the factorizations of K~ need. The iteration converges
- * to the same step either way (docs/method.md section 13). consistent: the geometric term everywhere,
- * dP/dF itself, for the static start's Newton (its quadratic convergence needs it). */
-static void HyperTangent(const HyperLaw *law, PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G, PetscBool consistent, MMTangent A)
+/* The iteration matrix's A_iJkL = delta_ik S_JL + F_iI D_IJKL F_kK (dP_iJ / dF_kL), the symmetric part of
+ * the step's tangent. *definite: whether it is positive semi-definite by construction (S is, and the moduli
+ * D are); under compression S, and with it the cell's matrix, is indefinite, and K_t + 4/dt^2 M* could lose
+ * the definiteness the factorizations of K~ need: elasticity.c then clamps the cell matrix's negative
+ * eigenvalues (docs/method.md section 13, "The iteration matrix"), unless it wants dP/dF itself (the
+ * static start's Newton, el->consistent). The iteration converges to the same step either way. */
+static void HyperTangent(const HyperLaw *law, PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G, MMTangent A, PetscBool *definite)
 {
   Mat3      E, S, F;
   MMTangent D, FD;
-  PetscBool geometric;
 
   GreenStrain(dim, G, E);
   law->stress(dim, lam, mu, E, S);
   law->moduli(dim, lam, mu, E, D);
-  geometric = (PetscBool)(consistent || SemiDefinite(dim, S));
+  *definite = SemiDefinite(dim, S);
   for (PetscInt i = 0; i < dim; ++i)
     for (PetscInt j = 0; j < dim; ++j) F[i][j] = (i == j ? 1 : 0) + G[i][j];
   for (PetscInt i = 0; i < dim; ++i)
@@ -275,7 +275,7 @@ static void HyperTangent(const HyperLaw *law, PetscInt dim, PetscReal lam, Petsc
     for (PetscInt J = 0; J < dim; ++J)
       for (PetscInt k = 0; k < dim; ++k)
         for (PetscInt L = 0; L < dim; ++L) {
-          PetscReal a = (i == k && geometric) ? S[J][L] : 0;
+          PetscReal a = i == k ? S[J][L] : 0;
           for (PetscInt K = 0; K < dim; ++K) a += FD[i][J][K][L] * F[k][K];
           A[i][J][k][L] = a;
         }
@@ -357,9 +357,10 @@ static PetscReal LinearDissipation(PetscInt dim, PetscReal lam, PetscReal mu, co
   return 2 * LinearEnergy(dim, lam, mu, dG);
 }
 
-static void LinearTangent(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G, PetscBool consistent, MMTangent A)
+static void LinearTangent(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G, MMTangent A, PetscBool *definite)
 {
   SVKModuli(dim, lam, mu, G, A); /* the same isotropic moduli, on grad u */
+  *definite = PETSC_TRUE;
 }
 
 /* ---------------------------------------------------------------- the tables */
@@ -373,9 +374,9 @@ static void LinearTangent(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 
   { \
     HyperStressAlg(&law, dim, lam, mu, visc, G0, G1, P); \
   } \
-  static void Name##Tangent(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G, PetscBool consistent, MMTangent A) \
+  static void Name##Tangent(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G, MMTangent A, PetscBool *definite) \
   { \
-    HyperTangent(&law, dim, lam, mu, G, consistent, A); \
+    HyperTangent(&law, dim, lam, mu, G, A, definite); \
   } \
   static void Name##Cauchy(PetscInt dim, PetscReal lam, PetscReal mu, const Mat3 G, Mat3 s) \
   { \

@@ -14,8 +14,9 @@ typedef struct {
   void (*stress_alg)(PetscInt dim, PetscReal lambda, PetscReal mu, PetscReal visc, const PetscReal G0[MM_MAX_DIM][MM_MAX_DIM], const PetscReal G1[MM_MAX_DIM][MM_MAX_DIM], PetscReal P[MM_MAX_DIM][MM_MAX_DIM]);
   /* dE : D : dE of the step from G0 to G1, the viscous stress's dissipation per unit volume and visc */
   PetscReal (*dissipation)(PetscInt dim, PetscReal lambda, PetscReal mu, const PetscReal G0[MM_MAX_DIM][MM_MAX_DIM], const PetscReal G1[MM_MAX_DIM][MM_MAX_DIM]);
-  /* A = dP/dF at G (material and geometric parts): the Newton iteration matrix's */
-  void (*tangent)(PetscInt dim, PetscReal lambda, PetscReal mu, const PetscReal G[MM_MAX_DIM][MM_MAX_DIM], PetscBool consistent, MMTangent A);
+  /* A = dP/dF at G (material and geometric parts): the Newton iteration matrix's; *definite false where
+   * the geometric part is indefinite (a compressed cell): the cell's matrix is then made semi-definite */
+  void (*tangent)(PetscInt dim, PetscReal lambda, PetscReal mu, const PetscReal G[MM_MAX_DIM][MM_MAX_DIM], MMTangent A, PetscBool *definite);
   /* the Cauchy stress of the current configuration (the linear law: sigma(eps)) */
   void (*cauchy)(PetscInt dim, PetscReal lambda, PetscReal mu, const PetscReal G[MM_MAX_DIM][MM_MAX_DIM], PetscReal sigma[MM_MAX_DIM][MM_MAX_DIM]);
   PetscBool finite; /* a finite-strain law: rotations are free of strain */

@@ -517,6 +517,7 @@ PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b,
   MMState     *s  = &nm->state;
   PetscReal    scale, fscale = 0, res = PETSC_MAX_REAL, res_prev = PETSC_MAX_REAL, tol = nl->rtol;
   PetscInt     stalls = 0;
+  PetscBool    rebuilt = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   *solved = PETSC_FALSE;
@@ -576,8 +577,12 @@ PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b,
         break;
       }
     }
-    if (nl->policy == MM_TANGENT_AUTO && res > nl->refresh * res_prev) {
-      /* a slow contraction: the iteration matrix is far from the tangent (large rotations) */
+    if (nl->policy == MM_TANGENT_AUTO && (res > res_prev || (!rebuilt && res > nl->refresh * res_prev))) {
+      /* a slow contraction: the iteration matrix is far from the tangent (large rotations). Once per
+       * step: a tangent rebuilt again where the contraction stays slow (compressed cells, whose matrix
+       * is stiffer than the force: elasticity.c) would only reset the acceleration, which is what
+       * converges then (issue 50). A residual that grows rebuilds it again. */
+      rebuilt = PETSC_TRUE;
       PetscCall(RebuildTangent(nm, dt, nl->el.l1, t0 + dt));
       PetscCall(Correction(nm, t0 + dt, w, nl->c, &scale));
       PetscCall(MMAndersonReset(&nl->aa));
