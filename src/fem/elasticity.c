@@ -426,8 +426,6 @@ PetscErrorCode MMElasticityDissipation(MMElasticity *el, MMOperators op, const M
   PetscFunctionReturn(0);
 }
 
-/* The tangent's element matrix: K_e[a i][b k] = |T| grad phi_a,J A_iJkL grad phi_b,L, with the cell's
- * offsets and gradients from the cache (the assembler's own g and vol are the same) */
 /* The cell matrix Ke (n x n, symmetric) made positive semi-definite: its negative eigenvalues set to 0
  * (LAPACK syev), the closest such matrix. A compressed cell's geometric stiffness is indefinite; leaving
  * out the whole of it (as the tangent did before issue 50) also drops the stiffness of the directions the
@@ -454,6 +452,9 @@ static PetscErrorCode ClampNegativeEigenvalues(PetscInt n, PetscScalar Ke[])
   PetscFunctionReturn(0);
 }
 
+/* The tangent's element matrix: K_e[a i][b k] = |T| grad phi_a,J A_iJkL grad phi_b,L, with the cell's
+ * offsets and gradients from the cache (the assembler's own g and vol are the same);
+ * a compressed cell's made semi-definite (ClampNegativeEigenvalues) */
 static PetscErrorCode TangentElement(void *ctx, PetscInt c, const PetscInt v[], const PetscReal g_unused[][MM_MAX_DIM], PetscReal vol_unused, PetscScalar Ke[])
 {
   const TangentData *td  = (const TangentData *)ctx;
