@@ -44,7 +44,7 @@ PetscErrorCode MMNonlinearSetFromOptions(PetscOptionItems *PetscOptionsObject, M
   PetscCall(MMOptionsInt(PetscOptionsObject, comm, "-nonlinear_anderson", "Anderson acceleration of the finite-strain step's iteration: how many past iterates it mixes (0: none, plain modified Newton; at most 16)", &nl->anderson));
   PetscCheck(nl->anderson >= 0 && nl->anderson <= MM_ANDERSON_MAX, comm, PETSC_ERR_USER_INPUT, "-nonlinear_anderson %" PetscInt_FMT " must be in [0, %d]", nl->anderson, MM_ANDERSON_MAX);
   nl->refresh = PETSC_DEFAULT;
-  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-nonlinear_refresh_ratio", "-nonlinear_tangent auto: rebuild the iteration matrix at the iterate when an iteration reduces the residual by less than this factor, in (0, 1) (default 0.5 for the condensed formulation, whose rebuild refactors K~ and recomputes every Delassus column, 0.1 otherwise)", &nl->refresh));
+  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-nonlinear_refresh_ratio", "-nonlinear_tangent auto: rebuild the iteration matrix at the iterate when an iteration reduces the residual by less than this factor (once per step; again when the residual grows), in (0, 1) (default 0.5 for the condensed formulation, whose rebuild refactors K~ and recomputes every Delassus column, 0.1 otherwise)", &nl->refresh));
   nl->static_steps = 4;
   PetscCall(MMOptionsInt(PetscOptionsObject, comm, "-static_load_steps", "-initial_state static with -elasticity svk or neohookean: the first load increment is 1/this of the loads at t = 0; then halved on a failed Newton solve, doubled after an easy one (>= 1)", &nl->static_steps));
   nl->static_max_it = 25;
