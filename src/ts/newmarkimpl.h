@@ -65,6 +65,7 @@ typedef struct {
   Vec             bnl, f, c, c_prev; /* the step's fixed right-hand side; 2 f_alg; K_s w - 2 f_alg at this iterate and the last */
   PetscInt        its, its_total, rebuilds, steps; /* the last step's iterations; over the run, and the solved steps */
   PetscReal       residual;    /* the last step's final relative residual */
+  PetscBool       friction_failed; /* the last step's iteration stopped at a friction solve that did not converge (at iteration its) */
   PetscInt        static_steps;  /* -static_load_steps: the static start's first load increment is 1/this */
   PetscInt        static_max_it; /* -static_max_it: Newton iterations per load level before the increment is halved */
 } MMNonlinear;

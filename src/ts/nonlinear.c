@@ -532,6 +532,7 @@ PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b,
     Vec H = nl->c_prev;
     PetscCall(VecWAXPY(b, 1.0, nl->bnl, nl->c));
     PetscCall(MMFrictionSolve(nm->friction, nm->hist.step, nm->hist.time, b, w, s->react, solved));
+    nl->friction_failed = (PetscBool)!*solved; /* the rejection says which failed (newmark.c) */
     if (!*solved) PetscFunctionReturn(0);
     PetscCall(Correction(nm, t0 + dt, w, H, &scale));
     /* the residual of the nonlinear step at w: the correction there, H(c), less the one its solve used, c */
