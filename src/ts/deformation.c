@@ -275,8 +275,12 @@ static PetscErrorCode CheckFiniteStrain(MMNewmark nm, const Worst *w, char place
 
   PetscFunctionBeginUser;
   if (w->detF < 0.5 && !d->warned) {
+    const MMMaterial *mat = nm->material;
+    PetscBool         svk = PETSC_FALSE;
+    for (PetscInt b = 0; b < mat->n_bodies; ++b) svk = (PetscBool)(svk || mat->body[b].elasticity == MM_ELASTICITY_SVK);
     d->warned = PETSC_TRUE;
-    PetscCall(PetscPrintf(nm->comm, "mmcontact warning: at step %" PetscInt_FMT " (t = %g) the cell at %s is compressed to J = det F = %.4g of its volume, below 0.5: a St. Venant-Kirchhoff material softens there towards collapse, and no elasticity law is a good model of a real material (warned once)\n", nm->hist.step, (double)nm->hist.time, place, (double)w->detF));
+    PetscCall(PetscPrintf(nm->comm, "mmcontact warning: at step %" PetscInt_FMT " (t = %g) the cell at %s is compressed to J = det F = %.4g of its volume, below 0.5: %s, and no elasticity law is a good model of a real material (warned once)\n", nm->hist.step, (double)nm->hist.time, place, (double)w->detF,
+                          svk ? "a St. Venant-Kirchhoff material softens there towards collapse" : "the neo-Hookean law's energy grows without bound as J -> 0, so the cell resists"));
   }
   PetscFunctionReturn(0);
 }
