@@ -77,19 +77,6 @@ static PetscErrorCode RotateForce(Mat Q, Vec cart, Vec *w)
   PetscFunctionReturn(0);
 }
 
-/* The contact boundary as M* sees it: without contact, or in free flight (mass_free.c), no dof loses
- * its mass. */
-void MMContactMassBoundary(MMContact ct, MMMassBoundary *mb)
-{
-  mb->massless     = ct->enabled && !ct->mass.is_free ? ct->is_massless : NULL;
-  mb->n            = ct->n_local;
-  mb->vertex       = ct->vertex;
-  mb->scalar_index = ct->scalar_index;
-  mb->second       = ct->second;
-  mb->frame        = ct->node_frame;
-  mb->fc_obstacle  = ct->fc_obstacle;
-}
-
 /*@
   MMContactSetUpFrame - Takes fem's K and M (MMFEHandMatrices) and turns them into contact's
   w-frame ones, and makes its own w-frame load and lift from fem's (which stay Cartesian): Q^T A Q,

@@ -41,6 +41,19 @@ PetscErrorCode MMContactGetMassType(MMContact ct, MMMassType *type)
   PetscFunctionReturn(0);
 }
 
+/* The contact boundary as M* sees it: without contact, or in free flight (mass_free.c), no dof loses
+ * its mass. */
+void MMContactMassBoundary(MMContact ct, MMMassBoundary *mb)
+{
+  mb->massless     = ct->enabled && !ct->mass.is_free ? ct->is_massless : NULL;
+  mb->n            = ct->n_local;
+  mb->vertex       = ct->vertex;
+  mb->scalar_index = ct->scalar_index;
+  mb->second       = ct->second;
+  mb->frame        = ct->node_frame;
+  mb->fc_obstacle  = ct->fc_obstacle;
+}
+
 /* Mstar (a copy of the w-frame M) loses the massless dofs' rows and columns; -mass redistributed gives
  * their mass back to the other nodes; then the masses of M*'s translations and rotations */
 static PetscErrorCode DropMasslessMass(MMContactMass *mass, MMOperators op, const MMMaterial *material, const MMMassBoundary *mb)
