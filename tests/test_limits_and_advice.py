@@ -54,13 +54,16 @@ def test_nearly_incompressible_runs_where_accepted(mm, law, nu):
 
 @pytest.mark.parametrize("np_", [1, 2])
 def test_indefinite_step_matrix_is_one_line_and_a_shorter_step_runs(mm, np_):
-    """At an accepted -nu 0.4995 a harder impact (D1 thrown at 10, v/c_s = 0.5) still turns the
-    neo-Hookean tangent indefinite at dt = 2e-3: one line and 65 (main: PETSc's trace, 56, "Diagonal
-    must be real and nonnegative"); with the -ts_dt it advises lowered 4 times it runs, balance 5e-13."""
+    """At an accepted -nu 0.4995 a harder impact (D1 thrown at 10, v/c_s = 0.5, c_p dt / h_c' = 14.5)
+    is not resolved by dt = 2e-3: one line and 65 naming -ts_dt (issue 48: PETSc's trace, 56, "Diagonal
+    must be real and nonnegative"). The iteration matrix of a compressed neo-Hookean cell was
+    indefinite there ("not positive definite"); since issue 50 its negative eigenvalues are clamped
+    (docs/method.md section 13), and the step's contact solve fails on the nearly singular matrix
+    instead, after the retries. With the -ts_dt advised lowered 4 times it runs, balance 5e-13."""
     hard = ("-elasticity", "neohookean", "-nu", 0.4995, "-v0", "0,-10", "-output_every", 0, "-ts_max_time", 0.04)
     r = mm(*D1, *hard, np_=np_, check=False)
     line = first_error(r)
-    assert r.returncode == PHYSICS and "not positive definite" in line and "-ts_dt" in line, r.output[-2000:]
+    assert r.returncode == PHYSICS and ("not positive definite" in line or "did not converge" in line) and "-ts_dt" in line, r.output[-2000:]
     assert "PETSC ERROR" not in r.output
     if np_ == 1:
         r = mm(*D1, *hard, "-ts_dt", 5e-4, name="short")

@@ -628,7 +628,7 @@ PetscErrorCode MMQPSolve(SNES snes, MMBoundQP *qp, Vec x, PetscInt *its)
   PetscCall(SNESSolve(snes, NULL, x));
   PetscCall(SNESGetConvergedReason(snes, &reason));
   PetscCall(SNESGetIterationNumber(snes, its));
-  PetscCheck(reason > 0, PetscObjectComm((PetscObject)snes), PETSC_ERR_NOT_CONVERGED, "The contact solver (%s) did not converge: %s after %" PetscInt_FMT " iterations. Run with -%ssnes_monitor -%ssnes_converged_reason to see why",
+  PetscCheck(reason > 0, PetscObjectComm((PetscObject)snes), PETSC_ERR_NOT_CONVERGED, "The contact solver (%s) did not converge: %s after %" PetscInt_FMT " iterations. Where the time step does not resolve the contact (c_p dt / h_c' well above 1 in the set-up's time line), a finite-strain step's matrix can be nearly singular there: lower -ts_dt towards h_c' / c_p. Else run with -%ssnes_monitor -%ssnes_converged_reason to see why",
              prefix, SNESConvergedReasons[reason], *its, prefix, prefix);
   PetscFunctionReturn(0);
 }
