@@ -94,8 +94,8 @@ def test_increment_removes_the_small_dt_floor(tmp_path):
     """The linear cube spinning onto its plane with -mass standard on the active set (2 ranks): the
     contact-work guard cuts dt to 9.8e-7, where the total displacement's equation cancels 4/dt^2 M* u
     in its residual. Solving for the increment (-step_increments, the default; docs/method.md section 3,
-    "The step's unknown"), no step meets a floor and the balance is 1e-13 (measured 1.0e-13); solving
-    for u^{n+1}, 61 steps end at their floor and the balance is 1.8e-10."""
+    "The step's unknown"), the balance is 1e-13 (measured 1.0e-13) and at most a step meets a floor;
+    solving for u^{n+1}, 61 steps end at their floor and the balance is 1.8e-10."""
     opts = tmp_path / "cube.opts"
     opts.write_text("# the linear cube of tests/test_step_certificate.py\n")
     cube = ("-mesh", "meshes/cube_drop.msh", "-contact_boundary", "skin", "-obstacle_point", "0,0,0",
@@ -110,4 +110,6 @@ def test_increment_removes_the_small_dt_floor(tmp_path):
         assert h["dt"][1:].min() < 1e-5  # the guard's small steps, where the floor lies
         if inc:
             assert h["balance_residual"].max() <= 1e-12
-    assert floors[1] == 0 and floors[0] > 10, floors
+    # how many steps meet a floor depends on the BLAS kernel's rounding (61 and 0 with OpenBLAS's
+    # SkylakeX kernel, 39 and 1 with Haswell's): the increment removes nearly all of them
+    assert floors[0] > 10 and floors[1] <= floors[0] / 10, floors
