@@ -129,17 +129,6 @@ static PetscErrorCode SwitchMass(MMNewmark nm, PetscBool is_free, Vec v)
   PetscFunctionReturn(0);
 }
 
-/* u + dt v + dt^2/4 a, the step's predictor (TSStep_Newmark's), in s->work */
-static PetscErrorCode PredictEnd(MMNewmark nm, PetscReal dt)
-{
-  MMState *s = &nm->state;
-
-  PetscFunctionBeginUser;
-  PetscCall(VecAXPBYPCZ(s->work, dt, 0.25 * dt * dt, 0.0, s->v, s->a));
-  PetscCall(VecAXPY(s->work, 1.0, s->u));
-  PetscFunctionReturn(0);
-}
-
 /* At a step's start: free (M) while every contact row's predicted end stays more than h_c' from its
  * bound, -mass's M* once one comes within h_c'; free again only past 2 h_c', so that a node resting
  * near its bound does not switch at every step. */
@@ -151,7 +140,7 @@ PetscErrorCode MMNonlinearFreeFlight(MMNewmark nm, PetscReal t, PetscReal dt)
   PetscFunctionBeginUser;
   PetscCall(MMContactMassFreeFlight(nm->contact, &on, &is_free));
   if (!on) PetscFunctionReturn(0);
-  PetscCall(PredictEnd(nm, dt));
+  PetscCall(MMNewmarkPredictEnd(nm, dt, nm->state.work));
   PetscCall(MMContactMassReach(nm->contact, nm->state.work, t + dt, &slack, &h_c));
   want = (PetscBool)(slack > (is_free ? 1.0 : 2.0) * h_c);
   if (want != is_free) PetscCall(SwitchMass(nm, want, nm->state.v));

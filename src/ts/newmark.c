@@ -182,9 +182,7 @@ static PetscErrorCode TSStep_Newmark(TS ts)
     PetscCall(MMContactSetTime(nm->contact, ts->ptime + dt, dt));
     PetscCall(MMLoadsSetTime(nm->loads, ts->ptime, ts->ptime + dt)); /* L^{n+1} and the lift of u_D(t^{n+1}) */
     PetscCall(MMContactGetRHS(nm->contact, &b));
-    /* predictor u + dt v + dt^2/4 a: exact for constant acceleration */
-    PetscCall(VecAXPBYPCZ(w, dt, 0.25 * dt * dt, 0.0, s->v, s->a));
-    PetscCall(VecAXPY(w, 1.0, s->u));
+    PetscCall(MMNewmarkPredictEnd(nm, dt, w)); /* scheme.c */
     PetscCall((*nm->law->solve)(nm, ts->ptime, dt, b, w, &solved));
     for (PetscInt tries = 1; solved; ++tries) { /* accepted by its certificate (certificate.c) */
       PetscBool again;

@@ -175,6 +175,7 @@ PETSC_INTERN PetscErrorCode MMDampingSetUp(MMDamping *d, MMContact ct, MMMateria
 PETSC_INTERN PetscErrorCode MMDampingAddStepRHS(MMDamping *d, Vec u, PetscReal dt, Vec b);
 PETSC_INTERN PetscErrorCode MMNewmarkSchemeIncrement(MMNewmark nm, PetscReal dt, PetscBool on);
 PETSC_INTERN PetscErrorCode MMNewmarkStepIncrement(MMNewmark nm, Vec w, Vec du);
+PETSC_INTERN PetscErrorCode MMNewmarkPredictEnd(MMNewmark nm, PetscReal dt, Vec w);
 PETSC_INTERN PetscErrorCode MMDampingUpdateVelocity(MMDamping *d, Vec du, PetscReal dt);
 PETSC_INTERN PetscErrorCode MMDampingAddStepRHSIncrement(MMDamping *d, Vec b);
 PETSC_INTERN PetscErrorCode MMDampingWork(MMDamping *d, Vec du, PetscReal dt, PetscReal *w);

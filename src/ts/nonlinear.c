@@ -179,8 +179,7 @@ PetscErrorCode MMNonlinearSlidePairs(MMNewmark nm, PetscReal dt)
 
   PetscFunctionBeginUser;
   /* the pairing of the step's predictor u + dt v + dt^2/4 a (newmark.c), dt the step's first try */
-  PetscCall(VecAXPBYPCZ(s->u_next, dt, 0.25 * dt * dt, 0.0, s->v, s->a));
-  PetscCall(VecAXPY(s->u_next, 1.0, s->u));
+  PetscCall(MMNewmarkPredictEnd(nm, dt, s->u_next));
   PetscCall(MMContactSlidePairs(nm->contact, s->u, s->u_next, &changed));
   if (!changed) PetscFunctionReturn(0);
   PetscCall(DropPairingOperators(nm));

@@ -60,6 +60,17 @@ PetscErrorCode MMNewmarkPredictMidpoint(MMNewmark nm, PetscReal dt, Vec *midpoin
   PetscFunctionReturn(0);
 }
 
+/* The step's predictor u + dt v + dt^2/4 a from the current state, exact for a constant acceleration:
+ * where the step's solve starts (newmark.c), the large-sliding pairing (nonlinear.c) and the mass in
+ * free flight (free_flight.c) look */
+PetscErrorCode MMNewmarkPredictEnd(MMNewmark nm, PetscReal dt, Vec w)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecAXPBYPCZ(w, dt, 0.25 * dt * dt, 0.0, nm->state.v, nm->state.a));
+  PetscCall(VecAXPY(w, 1.0, nm->state.u));
+  PetscFunctionReturn(0);
+}
+
 /* Before any contact solve: the offset of a state at rest at the origin (u^n = v^n = 0 until the
  * first step saves its start), no scale yet (MMNewmarkSetStep gives it with the first dt). */
 PetscErrorCode MMNewmarkSchemeSetUp(MMNewmark nm)

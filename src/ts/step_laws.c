@@ -109,8 +109,7 @@ static PetscErrorCode FiniteSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec 
   PetscCall(MMNonlinearFreeFlightTouched(nm, w, t0 + dt, &touched));
   if (!touched) PetscFunctionReturn(0);
   PetscCall(MMNewmarkSetStep(nm, dt)); /* K~ of the new M* */
-  PetscCall(VecAXPBYPCZ(w, dt, 0.25 * dt * dt, 0.0, nm->state.v, nm->state.a));
-  PetscCall(VecAXPY(w, 1.0, nm->state.u));
+  PetscCall(MMNewmarkPredictEnd(nm, dt, w));
   PetscCall(MMNonlinearSolve(nm, t0, dt, b, w, solved));
   PetscFunctionReturn(0);
 }
