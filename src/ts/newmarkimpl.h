@@ -101,6 +101,7 @@ PETSC_INTERN PetscErrorCode MMCertificateSetUp(MMNewmark nm);
 PETSC_INTERN PetscErrorCode MMCertificateCheck(MMNewmark nm, Vec b, Vec w, PetscInt tries, PetscBool *again);
 PETSC_INTERN PetscErrorCode MMCertificateDestroy(MMCertificateData *cd);
 PETSC_INTERN PetscErrorCode MMCertificateOfIterate(MMNewmark nm, Vec bH, Vec w, MMStepCertificate *c);
+PETSC_INTERN PetscErrorCode MMCertificateResidualOfIterate(MMNewmark nm, Vec bH, Vec w, Vec *r);
 PETSC_INTERN PetscErrorCode MMCertificateOfResidual(MMNewmark nm, Vec r, Vec scale, Vec w, MMStepCertificate *c);
 
 /* Why a step is rejected and retried with a smaller dt. */
