@@ -85,6 +85,12 @@ PetscErrorCode MMCertificateOfIterate(MMNewmark nm, Vec bH, Vec w, MMStepCertifi
   PetscCall(PetscLogEventBegin(MM_TS_Certificate, 0, 0, 0, 0));
   PetscCall(MMContactStepResidual(nm->contact, bH, nm->state.has_du ? nm->state.du : w, nm->state.react, cd->r, cd->scale));
   PetscCall(Defects(nm, w, cd->r, NULL, cd->scale, c));
+  {
+    PetscReal rn, sn;
+    PetscCall(VecNorm(cd->r, NORM_2, &rn));
+    PetscCall(VecNorm(cd->scale, NORM_2, &sn));
+    c->size = rn / PetscMax(PETSC_MACHINE_EPSILON * sn, PETSC_MIN_REAL);
+  }
   PetscCall(PetscLogEventEnd(MM_TS_Certificate, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

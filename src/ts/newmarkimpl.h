@@ -75,6 +75,7 @@ typedef struct {
  * terms; ratio: the largest defect in round-offs (<= 1: met). */
 typedef struct {
   PetscReal energy, energy_tol, force, force_tol, torque, torque_tol, ratio;
+  PetscReal size; /* an iterate's (MMCertificateOfIterate): ||r|| in round-offs of its terms, eps ||scale|| */
 } MMStepCertificate;
 /* The round-offs of its terms a step's defect may be (certificate.c), and those of an iteration
  * that stopped falling: its floor, accepted there */
