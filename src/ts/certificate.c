@@ -75,15 +75,17 @@ static PetscErrorCode Measure(MMNewmark nm, Vec b, Vec w, MMStepCertificate *c)
 
 /* The finite-strain step's certificate at the iterate w: its whole residual, b_nl + H + f_c - K~ w
  * with H = c(w) the correction at w (nonlinear.c: the inner solve's residual and the correction's
- * change together), against the round-off of its terms. bH: b_nl + H, formed by the caller; of the
- * increment du when the iteration solves for it (nonlinear.c). */
-PetscErrorCode MMCertificateOfIterate(MMNewmark nm, Vec bH, Vec w, MMStepCertificate *c)
+ * change together), against the round-off of its terms, the cells' force magnitudes among them
+ * (force_scale: a slender part's force is a small difference of large cell forces). bH: b_nl + H,
+ * formed by the caller; of the increment du when the iteration solves for it (nonlinear.c). */
+PetscErrorCode MMCertificateOfIterate(MMNewmark nm, Vec bH, Vec w, Vec force_scale, MMStepCertificate *c)
 {
   MMCertificateData *cd = &nm->cert;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(MM_TS_Certificate, 0, 0, 0, 0));
   PetscCall(MMContactStepResidual(nm->contact, bH, nm->state.has_du ? nm->state.du : w, nm->state.react, cd->r, cd->scale));
+  PetscCall(VecAXPY(cd->scale, 1.0, force_scale)); /* the rounding of the cells' forces, which the net force hides */
   PetscCall(Defects(nm, w, cd->r, NULL, cd->scale, c));
   {
     PetscReal rn, sn;

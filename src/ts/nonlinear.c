@@ -114,6 +114,7 @@ PetscErrorCode MMNonlinearSetUp(MMNewmark nm)
   PetscCall(VecDuplicate(nm->state.u, &nl->f));
   PetscCall(VecDuplicate(nm->state.u, &nl->c));
   PetscCall(VecDuplicate(nm->state.u, &nl->c_prev));
+  PetscCall(VecDuplicate(nm->state.u, &nl->c_scale));
   PetscCall(MMAndersonSetUp(&nl->aa, nl->anderson, nm->state.u));
   PetscCall(RegisterFrameData(nm));
   PetscFunctionReturn(0);
@@ -129,6 +130,8 @@ PetscErrorCode MMNonlinearDestroy(MMNonlinear *nl)
   PetscCall(VecDestroy(&nl->f));
   PetscCall(VecDestroy(&nl->c));
   PetscCall(VecDestroy(&nl->c_prev));
+  PetscCall(VecDestroy(&nl->c_scale));
+  PetscCall(MatDestroy(&nl->Kabs));
   PetscCall(MMAndersonDestroy(&nl->aa));
   PetscFunctionReturn(0);
 }
@@ -458,6 +461,57 @@ static PetscErrorCode Correction(MMNewmark nm, PetscReal t1, Vec w, Vec x, Vec c
   PetscFunctionReturn(0);
 }
 
+/* |K|, K's entries in magnitude (w-frame), built on first use: the round-off scale of a force
+ * computed from a displacement (ForceRoundoffScale) */
+static PetscErrorCode AbsoluteStiffness(MMNewmark nm, Mat *Kabs)
+{
+  MMContactOperators ops;
+  MMNonlinear       *nl = &nm->nl;
+  PetscInt           rstart, rend;
+
+  PetscFunctionBeginUser;
+  if (!nl->Kabs) {
+    PetscCall(MMContactGetOperators(nm->contact, &ops));
+    PetscCall(MatDuplicate(ops.K, MAT_DO_NOT_COPY_VALUES, &nl->Kabs));
+    PetscCall(MatGetOwnershipRange(ops.K, &rstart, &rend));
+    for (PetscInt row = rstart; row < rend; ++row) {
+      const PetscInt    *cols;
+      const PetscScalar *vals;
+      PetscScalar        a[MM_ABS_ROW_MAX];
+      PetscInt           nc;
+      PetscCall(MatGetRow(ops.K, row, &nc, &cols, &vals));
+      PetscCheck(nc <= MM_ABS_ROW_MAX, PETSC_COMM_SELF, PETSC_ERR_SUP, "A row of K has %" PetscInt_FMT " entries, more than %d", nc, MM_ABS_ROW_MAX);
+      for (PetscInt j = 0; j < nc; ++j) a[j] = PetscAbsScalar(vals[j]);
+      PetscCall(MatSetValues(nl->Kabs, 1, &row, nc, cols, a, INSERT_VALUES));
+      PetscCall(MatRestoreRow(ops.K, row, &nc, &cols, &vals));
+    }
+    PetscCall(MatAssemblyBegin(nl->Kabs, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(nl->Kabs, MAT_FINAL_ASSEMBLY));
+  }
+  *Kabs = nl->Kabs;
+  PetscFunctionReturn(0);
+}
+
+/* The round-off of 2 f_alg(u^n, w) per entry: the cells' forces in magnitude, and the rounding of
+ * the displacement they are computed from, |K| |w| (a strain is a difference of displacements that
+ * a slender part's rotation makes large: on the cantilever the second is a thousand times the
+ * first), with Rayleigh's beta (1 + 2 beta/dt) times. A stalled iterate's certificate measures
+ * against it (docs/method.md section 13, "The step's iteration"). From el.l1, the local w. */
+static PetscErrorCode ForceRoundoffScale(MMNewmark nm, Vec w, Vec scale)
+{
+  MMNonlinear *nl = &nm->nl;
+  Mat          Kabs;
+
+  PetscFunctionBeginUser;
+  PetscCall(AbsoluteStiffness(nm, &Kabs));
+  PetscCall(VecCopy(w, nm->state.work));
+  PetscCall(VecAbs(nm->state.work));
+  PetscCall(MatMult(Kabs, nm->state.work, scale));
+  PetscCall(MMElasticityForceMagnitude(&nl->el, nm->op, nm->material, nl->el.l1, nm->state.work));
+  PetscCall(VecAXPBY(scale, 2.0, 2.0 * (1.0 + 2.0 * nl->el.visc), nm->state.work));
+  PetscFunctionReturn(0);
+}
+
 /* The step's tolerance: -nonlinear_rtol, or with iterative K~ solves, which stop at contact_tol ||b||,
  * ten times the residual that leaves in the force scale S: no iteration can go below it */
 static PetscErrorCode Tolerance(MMNewmark nm, Vec b, PetscReal S, PetscReal *tol)
@@ -574,13 +628,14 @@ static PetscErrorCode Iterate(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b, V
     stalls = res > 0.5 * res_prev ? stalls + 1 : 0;
     if (stalls) {
       MMStepCertificate cert;
+      PetscCall(ForceRoundoffScale(nm, w, nl->c_scale));
       PetscCall(VecWAXPY(nl->f, 1.0, nl->bnl, H));
-      PetscCall(MMCertificateOfIterate(nm, nl->f, w, &cert));
+      PetscCall(MMCertificateOfIterate(nm, nl->f, w, nl->c_scale, &cert));
       PetscCall(PetscInfo(NULL, "finite-strain step %" PetscInt_FMT " stalled at %.3e: its residual's defects are %.3g round-offs of their terms, its size %.3g\n", nm->hist.step + 1, (double)res, (double)cert.ratio, (double)cert.size));
       /* and only where the residual itself is at the round-off of its terms: a stalled iteration's
        * residual can be large and still do no work over the step (on the slender cantilever with
        * -nonlinear_tangent step, 2.7e-5 of the force scale with no work, then 5e-2) */
-      if (cert.size <= MM_CERT_FLOOR_ROUNDOFFS && (cert.ratio <= 1 || (stalls >= 2 && cert.ratio <= MM_CERT_FLOOR_ROUNDOFFS))) {
+      if (cert.size <= MM_CERT_ROUNDOFFS && (cert.ratio <= 1 || (stalls >= 2 && cert.ratio <= MM_CERT_FLOOR_ROUNDOFFS))) {
         /* at or below 1 the step meets its certificate: exact, at a residual -nonlinear_rtol cannot see */
         if (cert.ratio > 1) MMCertificateAtFloor(&nm->cert, cert.ratio);
         tol = res;
