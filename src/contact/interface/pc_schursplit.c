@@ -37,7 +37,9 @@ typedef struct {
   PetscScalar       *t;
 } PC_SchurSplit;
 
-static PetscErrorCode ReleaseFactorArrays(PC_SchurSplit *sp)
+/* The factor's arrays the backward sweep reads, given back; the ordering too unless keep_ordering
+ * (a refactorization of the same pattern reuses it, PCSetUp_SchurSplit) */
+static PetscErrorCode ReleaseFactorArrays(PC_SchurSplit *sp, PetscBool keep_ordering)
 {
   PetscInt  n;
   PetscBool done;
@@ -46,7 +48,7 @@ static PetscErrorCode ReleaseFactorArrays(PC_SchurSplit *sp)
   if (sp->fa) PetscCall(MatSeqSBAIJRestoreArray(sp->F, &sp->fa));
   if (sp->fi) PetscCall(MatRestoreRowIJ(sp->F, 0, PETSC_FALSE, PETSC_FALSE, &n, &sp->fi, &sp->fj, &done));
   if (sp->rp) PetscCall(ISRestoreIndices(sp->rperm, &sp->rp));
-  PetscCall(ISDestroy(&sp->rperm));
+  if (!keep_ordering) PetscCall(ISDestroy(&sp->rperm));
   PetscCall(PetscFree2(sp->sqd, sp->t));
   sp->fa   = NULL;
   sp->fi   = sp->fj = sp->rp = NULL;
@@ -54,15 +56,19 @@ static PetscErrorCode ReleaseFactorArrays(PC_SchurSplit *sp)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode PCReset_SchurSplit(PC pc)
+/* What depends on the operator's values: all but the interior block A, its factor F and ordering,
+ * which a new operator of the same nonzero pattern refactors in place (keep) */
+static PetscErrorCode ResetSplit(PC pc, PetscBool keep)
 {
   PC_SchurSplit *sp = (PC_SchurSplit *)pc->data;
 
   PetscFunctionBegin;
-  PetscCall(ReleaseFactorArrays(sp));
+  PetscCall(ReleaseFactorArrays(sp, keep));
   PetscCall(PetscFree2(sp->iloc, sp->gloc));
-  PetscCall(MatDestroy(&sp->A));
-  PetscCall(MatDestroy(&sp->F));
+  if (!keep) {
+    PetscCall(MatDestroy(&sp->A));
+    PetscCall(MatDestroy(&sp->F));
+  }
   PetscCall(MatDestroy(&sp->Wt));
   PetscCall(MatDestroy(&sp->B));
   PetscCall(MatDestroy(&sp->S));
@@ -73,6 +79,13 @@ static PetscErrorCode PCReset_SchurSplit(PC pc)
   PetscCall(VecDestroy(&sp->g));
   PetscCall(VecDestroy(&sp->xg));
   sp->nI = sp->ng = sp->ns = sp->gstart = sp->nnzW = 0;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode PCReset_SchurSplit(PC pc)
+{
+  PetscFunctionBegin;
+  PetscCall(ResetSplit(pc, PETSC_FALSE));
   PetscFunctionReturn(0);
 }
 
@@ -207,6 +220,28 @@ static PetscErrorCode FactorInterior(PC pc, Mat Ad)
   PetscCall(MatCholeskyFactorNumeric(sp->F, sp->A, &info));
   sp->rperm = rperm;
   PetscCall(ISDestroy(&cperm));
+  PetscCall(MatFactorGetError(sp->F, &err));
+  if (err) pc->failedreason = (PCFailedReason)err;
+  PetscFunctionReturn(0);
+}
+
+/* A new operator of the same nonzero pattern (the finite-strain tangent rebuilt, src/ts/nonlinear.c):
+ * the interior block's values taken again into A and refactored in F, with the ordering and the
+ * symbolic factorization of the first set-up; the same operations on the same pattern, so the
+ * factor is the one a set-up from scratch would give, bit for bit. */
+static PetscErrorCode RefactorInterior(PC pc, Mat Ad)
+{
+  PC_SchurSplit *sp = (PC_SchurSplit *)pc->data;
+  IS             is;
+  MatFactorInfo  info;
+  MatFactorError err;
+
+  PetscFunctionBegin;
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, sp->nI, sp->iloc, PETSC_USE_POINTER, &is));
+  PetscCall(MatCreateSubMatrix(Ad, is, is, MAT_REUSE_MATRIX, &sp->A));
+  PetscCall(ISDestroy(&is));
+  PetscCall(MatFactorInfoInitialize(&info));
+  PetscCall(MatCholeskyFactorNumeric(sp->F, sp->A, &info));
   PetscCall(MatFactorGetError(sp->F, &err));
   if (err) pc->failedreason = (PCFailedReason)err;
   PetscFunctionReturn(0);
@@ -493,15 +528,19 @@ static PetscErrorCode PCSetUp_SchurSplit(PC pc)
   PC_SchurSplit  *sp = (PC_SchurSplit *)pc->data;
   LocalRows       lr;
   PetscInt        rstart, *gam_all, *gpos;
+  PetscBool       reuse;
 
   PetscFunctionBegin;
-  PetscCall(PCReset_SchurSplit(pc));
+  /* the same pattern as the last set-up, which succeeded: its split, ordering and symbolic factor hold */
+  reuse = (PetscBool)(pc->setupcalled && pc->flag == SAME_NONZERO_PATTERN && sp->F && sp->A && sp->rperm && !pc->failedreason);
+  PetscCall(ResetSplit(pc, reuse));
   PetscCall(MMKtGetLocalBlocks(pc->pmat, "-pc_type schursplit", &lr.Ad, &lr.Ao, &lr.colmap));
   PetscCall(MatGetOwnershipRange(pc->pmat, &rstart, NULL));
   PetscCall(SplitRows(pc, lr.Ad, lr.Ao, lr.colmap, rstart, &gam_all, &gpos));
   lr.gam_all = gam_all;
   lr.gpos    = gpos;
-  PetscCall(FactorInterior(pc, lr.Ad));
+  if (reuse) PetscCall(RefactorInterior(pc, lr.Ad));
+  else PetscCall(FactorInterior(pc, lr.Ad));
   {
     PetscInt failed = (PetscInt)pc->failedreason; /* every rank stops building, or none */
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &failed, 1, MPIU_INT, MPI_MAX, PetscObjectComm((PetscObject)pc)));
