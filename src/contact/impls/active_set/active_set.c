@@ -149,6 +149,21 @@ static PetscErrorCode ProjectedPC(PC pc, Vec x, Vec y)
   PetscFunctionReturn(0);
 }
 
+/* The contact_K_ PC's default (docs/method.md section 3, "Active-set formulation"): an incomplete
+ * Cholesky factor ICC(0) of K~, set up once per dt, where it is available and the operator is K~
+ * itself: frictionless, on one rank. On the 33k-dof D2 ball it takes a third of Jacobi's CG
+ * iterations per step for an apply that costs about one product with K~ (docs/benchmark_history.md,
+ * "Issue 50, the active set's step"). With friction in 3D the disk's springs join the operator, and
+ * ScaleDiskTangent makes them exact only for a diagonal PC: there, and on more ranks (ICC needs one
+ * rank's matrix; -contact_K_pc_type bjacobi -contact_K_sub_pc_type icc gives it per rank), Jacobi. */
+static PCType ActiveSetDefaultPC(MMContact ct)
+{
+  PetscMPIInt size;
+
+  if (MPI_Comm_size(PetscObjectComm((PetscObject)ct->dm), &size)) return PCJACOBI;
+  return size == 1 && ct->ncomp == 1 ? PCICC : PCJACOBI;
+}
+
 PetscErrorCode MMActiveSetSetUp(MMContact ct)
 {
   MMActiveSet *as = MMActiveSetData(ct);
@@ -162,7 +177,7 @@ PetscErrorCode MMActiveSetSetUp(MMContact ct)
   as->inexact_coulomb_rtol = ct->opt.active_set_inexact_coulomb_rtol;
   as->monitor = ct->opt.active_set_monitor;
   as->block   = ct->opt.active_set_block;
-  PetscCall(MMKtCreate(ct, PETSC_TRUE));
+  PetscCall(MMKtCreate(ct, PETSC_TRUE, ActiveSetDefaultPC(ct)));
   PetscCall(VecDuplicate(ct->qp.b, &as->free));
   PetscCall(VecDuplicate(ct->qp.b, &as->x0));
   PetscCall(VecDuplicate(ct->qp.b, &as->r));
@@ -794,7 +809,7 @@ static PetscErrorCode ActiveSetSwapKept(MMContact ct, PetscReal dt, PetscBool *h
   MMActiveSetData(ct)->ct_diag = MMActiveSetData(ct)->kept_diag;
   MMActiveSetData(ct)->kept_diag  = diag;
   /* a first swap: the buffers of the new dt are made here, as MMActiveSetSetUp made the first ones */
-  if (!ct->kt.ksp) PetscCall(MMKtCreate(ct, PETSC_TRUE));
+  if (!ct->kt.ksp) PetscCall(MMKtCreate(ct, PETSC_TRUE, ActiveSetDefaultPC(ct)));
   if (!MMActiveSetData(ct)->ct_diag) PetscCall(VecDuplicate(ct->qp.b, &MMActiveSetData(ct)->ct_diag));
   *hit = (PetscBool)(ct->qp.A && ct->Kt_dt == dt);
   PetscFunctionReturn(0);
