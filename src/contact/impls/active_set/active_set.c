@@ -150,9 +150,9 @@ static PetscErrorCode ProjectedPC(PC pc, Vec x, Vec y)
 }
 
 /* The contact_K_ PC's default (docs/method.md section 3, "Active-set formulation"): on one rank the
- * incomplete Cholesky factor ICC(0) of K~, set up once per dt. On the 33k-dof D2 ball it takes a
- * third of Jacobi's CG iterations per step for an apply that costs about one product with K~, and
- * with friction half of them (the disk's springs, which ScaleDiskTangent makes exact for a diagonal
+ * incomplete Cholesky factor ICC(0) of K~, set up once per dt. On the 33k-dof D2 ball it takes 0.27
+ * to 0.29 of Jacobi's CG iterations per step for an apply that costs less than a product with K~, and
+ * with friction 0.33 to 0.43 of them (the disk's springs, which ScaleDiskTangent makes exact for a diagonal
  * PC, are then only scaled: docs/benchmark_history.md, "Issue 50, the active set's step"). ICC needs
  * one rank's matrix: on more ranks Jacobi (-contact_K_pc_type bjacobi -contact_K_sub_pc_type icc gives
  * ICC(0) per rank). */
