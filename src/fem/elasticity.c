@@ -452,6 +452,33 @@ static PetscErrorCode ClampNegativeEigenvalues(PetscInt n, PetscScalar Ke[])
   PetscFunctionReturn(0);
 }
 
+/* Whether the cell's tangent A, as the symmetric dim^2 x dim^2 matrix A[(i J)][(k L)], is positive
+ * definite, by a Cholesky factorization whose pivots stay above 1e-10 of the largest diagonal entry.
+ * The cell matrix is |T| B^T A B with B onto every displacement gradient, so A definite makes it
+ * semi-definite: a compressed cell whose geometric term the material term outweighs (nearly all of
+ * them at moderate strains) needs no eigen-decomposition (ClampNegativeEigenvalues). */
+static PetscBool TangentIsDefinite(PetscInt dim, const MMTangent A)
+{
+  const PetscInt m = dim * dim;
+  PetscReal      L[MM_MAX_DIM * MM_MAX_DIM][MM_MAX_DIM * MM_MAX_DIM], dmax = 0;
+
+  for (PetscInt p = 0; p < m; ++p)
+    for (PetscInt q = 0; q < m; ++q) L[p][q] = A[p / dim][p % dim][q / dim][q % dim];
+  for (PetscInt p = 0; p < m; ++p) dmax = PetscMax(dmax, L[p][p]);
+  for (PetscInt j = 0; j < m; ++j) {
+    PetscReal d = L[j][j];
+    for (PetscInt k = 0; k < j; ++k) d -= L[j][k] * L[j][k];
+    if (!(d > 1e-10 * dmax)) return PETSC_FALSE;
+    L[j][j] = PetscSqrtReal(d);
+    for (PetscInt i = j + 1; i < m; ++i) {
+      PetscReal t = L[i][j];
+      for (PetscInt k = 0; k < j; ++k) t -= L[i][k] * L[j][k];
+      L[i][j] = t / L[j][j];
+    }
+  }
+  return PETSC_TRUE;
+}
+
 /* The tangent's element matrix: K_e[a i][b k] = |T| grad phi_a,J A_iJkL grad phi_b,L, with the cell's
  * offsets and gradients from the cache (the assembler's own g and vol are the same);
  * a compressed cell's made semi-definite (ClampNegativeEigenvalues) */
@@ -488,7 +515,7 @@ static PetscErrorCode TangentElement(void *ctx, PetscInt c, const PetscInt v[], 
           Ke[(a * dim + i) * n + b * dim + k] = t;
         }
   }
-  if (!definite && !td->el->consistent) PetscCall(ClampNegativeEigenvalues(n, Ke)); /* the static start's Newton takes dP/dF itself */
+  if (!definite && !td->el->consistent && !TangentIsDefinite(dim, (const PetscReal(*)[MM_MAX_DIM][MM_MAX_DIM][MM_MAX_DIM])A)) PetscCall(ClampNegativeEigenvalues(n, Ke)); /* the static start's Newton takes dP/dF itself */
   PetscFunctionReturn(0);
 }
 

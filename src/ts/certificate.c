@@ -75,16 +75,38 @@ static PetscErrorCode Measure(MMNewmark nm, Vec b, Vec w, MMStepCertificate *c)
 
 /* The finite-strain step's certificate at the iterate w: its whole residual, b_nl + H + f_c - K~ w
  * with H = c(w) the correction at w (nonlinear.c: the inner solve's residual and the correction's
- * change together), against the round-off of its terms. bH: b_nl + H, formed by the caller. */
-PetscErrorCode MMCertificateOfIterate(MMNewmark nm, Vec bH, Vec w, MMStepCertificate *c)
+ * change together), against the round-off of its terms, the cells' force magnitudes among them
+ * (force_scale: a slender part's force is a small difference of large cell forces). bH: b_nl + H,
+ * formed by the caller; of the increment du when the iteration solves for it (nonlinear.c). */
+PetscErrorCode MMCertificateOfIterate(MMNewmark nm, Vec bH, Vec w, Vec force_scale, MMStepCertificate *c)
 {
   MMCertificateData *cd = &nm->cert;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(MM_TS_Certificate, 0, 0, 0, 0));
-  PetscCall(MMContactStepResidual(nm->contact, bH, w, nm->state.react, cd->r, cd->scale));
+  PetscCall(MMContactStepResidual(nm->contact, bH, nm->state.has_du ? nm->state.du : w, nm->state.react, cd->r, cd->scale));
+  PetscCall(VecAXPY(cd->scale, 1.0, force_scale)); /* the rounding of the cells' forces, which the net force hides */
   PetscCall(Defects(nm, w, cd->r, NULL, cd->scale, c));
+  {
+    PetscReal rn, sn;
+    PetscCall(VecNorm(cd->r, NORM_2, &rn));
+    PetscCall(VecNorm(cd->scale, NORM_2, &sn));
+    c->size = rn / PetscMax(PETSC_MACHINE_EPSILON * sn, PETSC_MIN_REAL);
+  }
   PetscCall(PetscLogEventEnd(MM_TS_Certificate, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* The finite-strain step's whole residual at the iterate w, b_nl + H + f_c - K~ w (of du when the
+ * iteration solves for it): the outer iteration's change of the correction and the inner solve's own
+ * residual together, what the audits will see (nonlinear.c). In the certificate's storage. */
+PetscErrorCode MMCertificateResidualOfIterate(MMNewmark nm, Vec bH, Vec w, Vec *r)
+{
+  MMCertificateData *cd = &nm->cert;
+
+  PetscFunctionBeginUser;
+  PetscCall(MMContactStepResidual(nm->contact, bH, nm->state.has_du ? nm->state.du : w, nm->state.react, cd->r, cd->scale));
+  *r = cd->r;
   PetscFunctionReturn(0);
 }
 

@@ -262,8 +262,8 @@ PetscErrorCode MMNewmarkInitialState(MMNewmark nm)
   {
     MMContactNodes cn0;
     PetscCall(MMContactGetNodes(nm->contact, &cn0));
-    /* the linear step's increment (step_laws.c): not with friction corners, whose second bound is of T2 w */
-    nm->increments = (PetscBool)(nm->increments && !nm->material->finite && !cn0.n_fc);
+    /* the step's increment (step_laws.c, nonlinear.c): not with friction corners, whose second bound is of T2 w */
+    nm->increments = (PetscBool)(nm->increments && !cn0.n_fc);
   }
   PetscCall(MMCertificateSetUp(nm));
   PetscCall(MMContactGetNodes(nm->contact, &cn));

@@ -63,6 +63,8 @@ typedef struct {
   Vec             Ks_at;       /* the Cartesian displacement Ks is the tangent at, and its time (the Dirichlet data's): */
   PetscReal       Ks_time;     /* a checkpoint keeps them, so that a restart builds the same Ks (docs/method.md section 9) */
   Vec             bnl, f, c, c_prev; /* the step's fixed right-hand side; 2 f_alg; K_s w - 2 f_alg at this iterate and the last */
+  Vec             c_scale;     /* the round-off scale of 2 f_alg (a stalled iterate's certificate) */
+  Mat             Kabs;        /* |K|, for that scale, built on first use */
   PetscInt        its, its_total, rebuilds, steps; /* the last step's iterations; over the run, and the solved steps */
   PetscReal       residual;    /* the last step's final relative residual */
   PetscBool       friction_failed; /* the last step's iteration stopped at a friction solve that did not converge (at iteration its) */
@@ -75,9 +77,11 @@ typedef struct {
  * terms; ratio: the largest defect in round-offs (<= 1: met). */
 typedef struct {
   PetscReal energy, energy_tol, force, force_tol, torque, torque_tol, ratio;
+  PetscReal size; /* an iterate's (MMCertificateOfIterate): ||r|| in round-offs of its terms, eps ||scale|| */
 } MMStepCertificate;
 /* The round-offs of its terms a step's defect may be (certificate.c), and those of an iteration
  * that stopped falling: its floor, accepted there */
+#define MM_ABS_ROW_MAX          256 /* entries of a row of K: 3 x the vertices that share a cell with one */
 #define MM_CERT_ROUNDOFFS       4.0
 #define MM_CERT_FLOOR_ROUNDOFFS 1e3
 #define MM_CERT_MAX_SOLVES      4 /* solves of one linear step at most */
@@ -100,7 +104,8 @@ static inline void MMCertificateAtFloor(MMCertificateData *cd, PetscReal ratio)
 PETSC_INTERN PetscErrorCode MMCertificateSetUp(MMNewmark nm);
 PETSC_INTERN PetscErrorCode MMCertificateCheck(MMNewmark nm, Vec b, Vec w, PetscInt tries, PetscBool *again);
 PETSC_INTERN PetscErrorCode MMCertificateDestroy(MMCertificateData *cd);
-PETSC_INTERN PetscErrorCode MMCertificateOfIterate(MMNewmark nm, Vec bH, Vec w, MMStepCertificate *c);
+PETSC_INTERN PetscErrorCode MMCertificateOfIterate(MMNewmark nm, Vec bH, Vec w, Vec force_scale, MMStepCertificate *c);
+PETSC_INTERN PetscErrorCode MMCertificateResidualOfIterate(MMNewmark nm, Vec bH, Vec w, Vec *r);
 PETSC_INTERN PetscErrorCode MMCertificateOfResidual(MMNewmark nm, Vec r, Vec scale, Vec w, MMStepCertificate *c);
 
 /* Why a step is rejected and retried with a smaller dt. */

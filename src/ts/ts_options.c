@@ -31,7 +31,7 @@ PetscErrorCode MMNewmarkSetFromOptions(MMNewmark nm)
   nm->cert.on = PETSC_TRUE;
   PetscCall(MMOptionsBool(PetscOptionsObject, comm, "-step_certificate", "Accept a step when its residual does no work, has no resultant and no moment beyond the round-off of their terms, solving it again with tighter -contact_tol until it does (or its residual stops falling); 0: the solves stop at -contact_tol alone", &nm->cert.on));
   nm->increments = PETSC_TRUE;
-  PetscCall(MMOptionsBool(PetscOptionsObject, comm, "-step_increments", "The linear law's step solves for the increment du = u^{n+1} - u^n, its right-hand side formed without the 4/dt^2 M* u^n that the total displacement's equation cancels, so that its round-off does not grow as 1/dt^2 (docs/method.md section 3); 0: for u^{n+1}. Not with friction corners", &nm->increments));
+  PetscCall(MMOptionsBool(PetscOptionsObject, comm, "-step_increments", "The step (the linear law's solve, each finite-strain iterate) solves for the increment du = u^{n+1} - u^n, its right-hand side formed without the 4/dt^2 M* u^n that the total displacement's equation cancels, so that its round-off does not grow as 1/dt^2 (docs/method.md section 3); 0: for u^{n+1}. Not with friction corners", &nm->increments));
   nm->audit_tol = 1e-6;
   PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-audit_tol", "Stop the run when a step's relative energy-balance residual exceeds this (> 0): the scheme's identity no longer holds", &nm->audit_tol));
   nm->contact_work_tol = 1e-3;
