@@ -1,5 +1,6 @@
-"""Iterative K~ solves: the active-set formulation (CG with GAMG on the free dofs) gives the direct
-condensed history, with and without friction, in 2D and 3D, on 1 and 2 ranks; -contact 0 with CG
+"""Iterative K~ solves: the active-set formulation (CG with GAMG on the free dofs, and with its default
+PC, ICC(0) on 1 rank) gives the direct condensed history, with and without friction, in
+2D and 3D, on 1 and 2 ranks; -contact 0 with CG
 (GAMG, hypre) gives the direct history; the condensed formulation still refuses iterative K~.
 
 Short runs (20 to 30 steps through the impact) with tight solver tolerances on both sides: the
@@ -43,6 +44,24 @@ def test_active_set_equals_condensed(case, mm):
         assert h["slipping"].max() >= 2
         assert h["friction_its"].max() >= 2
     assert h["max_penetration"].max() == 0  # active nodes sit on the obstacle exactly
+
+
+@pytest.mark.parametrize("case", ["d2", "d2_friction"])
+def test_active_set_default_pc(case, mm):
+    """The active set's default contact_K_ PC on 1 rank: ICC(0) of K~, which gives the condensed
+    (direct) history with the balance at round-off, with and without friction (docs/method.md
+    section 3); on 2 ranks Jacobi, ICC needing one rank's matrix."""
+    opts, *extra = CASES[case]
+    direct = mm(opts, *extra, *TIGHT, "-output_every", 0, name="condensed").history
+    icc = mm(opts, *extra, *TIGHT, "-contact_formulation", "active_set", "-output_every", 0, name="icc")
+    assert "K~ by cg + icc" in icc.output
+    assert_same_history(direct, icc.history)
+    assert icc.history["balance_residual"].max() <= 1e-12
+    if "friction" in case:
+        assert icc.history["coulomb_residual"].max() <= 1e-8
+        assert icc.history["slipping"].max() >= 2
+    two = mm(opts, *extra, "-ts_max_steps", 2, "-contact_formulation", "active_set", "-output_every", 0, np_=2, name="two")
+    assert "K~ by cg + jacobi" in two.output
 
 
 def test_active_set_two_ranks(mm):

@@ -338,7 +338,7 @@ PETSC_EXTERN PetscErrorCode MMKSPSetFactorSPD(KSP ksp, PetscInt dim);
 PETSC_EXTERN PetscErrorCode MMPCRegisterSchurSplit(void);
 
 /* interface/kt.c: K~ without a Delassus operator, by a factorization or preconditioned CG */
-PETSC_EXTERN PetscErrorCode MMKtCreate(MMContact ct, PetscBool iterative);
+PETSC_EXTERN PetscErrorCode MMKtCreate(MMContact ct, PetscBool iterative, PCType pc_default);
 PETSC_EXTERN PetscErrorCode MMKtSetOperator(MMContact ct, Mat Kt);
 PETSC_EXTERN PetscErrorCode MMKtSolveToTolerance(KSP ksp, PetscReal tol, Vec b, Vec rhs, Vec x, PetscReal *atol_used);
 PETSC_EXTERN PetscErrorCode MMKtSolve(MMContact ct, Vec b, Vec w);

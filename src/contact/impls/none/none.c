@@ -10,7 +10,7 @@ static PetscErrorCode NoneSetUp(MMContact ct)
   PetscFunctionBeginUser;
   /* large 3D problems: CG with Jacobi, faster per step than the factor's triangular solves and with
    * a fraction of its set-up (contact.c, PrefersIterative; docs/scaling.md, "The figures behind the code's choices") */
-  PetscCall(MMKtCreate(ct, ct->prefer_iterative));
+  PetscCall(MMKtCreate(ct, ct->prefer_iterative, PCJACOBI));
   PetscFunctionReturn(0);
 }
 
