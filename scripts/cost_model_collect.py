@@ -9,14 +9,14 @@ summary line "setup X s; N steps to t = T in W s wall"), and noise (the larger o
 the smaller, less 1). The dt of a case is the options file's dt scaled to the target c_p dt / h_c' read
 from a -check_input run of the mesh (the ratio is proportional to dt).
 
-The fit set: the D1 disk (options/d1_disk.opts) and the D2 ball (options/d2_ball.opts) on 7 meshes at 2
+The fit set: the D1 disk (options/d1_disk.opts) and the D2 ball (options/d2_ball.opts) on 8 meshes at 2
 or 3 c_p dt / h_c' each, mu 0 and 0.2, 1 rank, the linear law; at each mesh's lowest c_p dt / h_c', 2
 ranks (linear, mu 0 and 0.2) and -elasticity svk (mu 0.2, 1 and 2 ranks; not on the two largest meshes,
 which would take the script past 20 minutes on 2 cores).
 --check runs the held-out cases instead (other c_p dt / h_c', the disk in the bowl on 2 ranks) in both
 formulations and asks the binary's auto (-check_input) which it takes; it prints, for each, the chosen
 formulation's whole run against the faster one's.
-    Usage: scripts/cost_model_collect.py [--out FILE] [--subset] [--check] [--repeat N] [--mmcontact PATH]
+    Usage: scripts/cost_model_collect.py [--out FILE] [--subset] [--check] [--meshes a.msh,b.msh] [--repeat N] [--mmcontact PATH]
 """
 import argparse
 import csv
@@ -32,6 +32,7 @@ FORMULATIONS = ("condensed", "active_set")
 OPTS = {2: "options/d1_disk.opts", 3: "options/d2_ball.opts"}
 # mesh: (dim, the c_p dt / h_c' of the fit set, made by `make meshes` or the gmsh line below)
 MESHES = {
+    "disk.msh": (2, (1.84, 7.35)),         # D1's own mesh (the bowl's, held out at its 0.92)
     "disk05.msh": (2, (1.81, 7.24)),       # gmsh -2 meshes/disk.geo -setnumber H 0.05 -o meshes/disk05.msh
     "disk0125.msh": (2, (1.75, 7.0)),      # gmsh -2 meshes/disk.geo -setnumber H 0.0125 -o meshes/disk0125.msh
     "disk_bench.msh": (2, (1.08, 5.4)),
@@ -48,10 +49,12 @@ CFL = re.compile(r"dt = ([\d.e+-]+) .*c_p dt / h_c' = ([\d.e+-]+)")
 AUTO = re.compile(r"contact formulation (\w+) \(auto: (?:(\d+) steps predicted ([\d.e+-]+) s, (\w+) ([\d.e+-]+) s|the only)")
 
 
-def fit_cases():
-    """(mesh, cfl, mu, law, ranks) of the fit set."""
+def fit_cases(meshes=None):
+    """(mesh, cfl, mu, law, ranks) of the fit set (on the given meshes only)."""
     cases = []
     for mesh, (dim, cfls) in MESHES.items():
+        if meshes and mesh not in meshes:
+            continue
         cases += [(mesh, cfl, mu, "linear", 1) for cfl in cfls for mu in (0.0, 0.2)]
         cases += [(mesh, cfls[0], mu, "linear", 2) for mu in (0.0, 0.2)]
         if mesh not in SVK_SKIPPED:
@@ -133,10 +136,11 @@ def main():
                     "scripts/cost_model_check.csv with --check)")
     ap.add_argument("--subset", action="store_true", help="a quick subset (a smoke run, 1 repeat)")
     ap.add_argument("--check", action="store_true", help="the held-out cases, with auto's choice")
+    ap.add_argument("--meshes", help="comma-separated: the fit set's cases on these meshes only")
     ap.add_argument("--repeat", type=int, default=2, help="runs of each row; the smaller time is kept")
     ap.add_argument("--mmcontact", default=os.path.join(ROOT, "mmcontact"))
     a = ap.parse_args()
-    cases = check_cases() if a.check else subset_cases() if a.subset else fit_cases()
+    cases = check_cases() if a.check else subset_cases() if a.subset else fit_cases(a.meshes and a.meshes.split(","))
     repeat = 1 if a.subset else a.repeat
     out = a.out or os.path.join(ROOT, "scripts", "cost_model_check.csv" if a.check else "cost_model_runs.csv")
     fields = ["dim", "mesh", "dofs", "cfl", "mu", "law", "ranks", "formulation", "setup_s", "s_per_step", "noise", "steps"]

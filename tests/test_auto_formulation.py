@@ -118,8 +118,8 @@ def model_total(models, dim, form, dofs, cfl, mu, law, ranks, steps):
     """docs/scaling.md, "Refitted with the ranks and the law": set-up + steps x step."""
     s, u = models[(dim, form)]
     ln, lc, lr, f, g = np.log(dofs), np.log1p(cfl), np.log(ranks), float(mu > 0), float(law != "linear")
-    step = np.exp(s[0] + s[1] * ln + s[2] * lc + f * (s[3] + s[4] * lc) + s[5] * lr + g * (s[6] + s[7] * ln))
-    return np.exp(u[0] + u[1] * ln + u[2] * lr) + steps * step
+    step = np.exp(s[0] + s[1] * ln + s[2] * lc + f * (s[3] + s[4] * lc) + g * (s[6] + s[7] * ln) + lr * (s[5] + s[8] * ln))
+    return np.exp(u[0] + u[1] * ln + lr * (u[2] + u[3] * ln)) + steps * step
 
 
 # issue 50's first row, the disk in the bowl; and the D2 ball on the 12k-dof mesh with friction. flips: the

@@ -12,8 +12,8 @@ void MMCostEvaluate(const MMCostModel *m, const MMCostInput *in, MMCost *cost)
   const PetscReal ln = PetscLogReal(in->dofs), lc = PetscLogReal(1 + in->cfl), lr = PetscLogReal(PetscMax(in->ranks, 1));
   const PetscReal f = in->friction ? 1.0 : 0.0, g = in->finite ? 1.0 : 0.0;
 
-  cost->step  = PetscExpReal(m->s[0] + m->s[1] * ln + m->s[2] * lc + f * (m->s[3] + m->s[4] * lc) + m->s[5] * lr + g * (m->s[6] + m->s[7] * ln));
-  cost->setup = PetscExpReal(m->u[0] + m->u[1] * ln + m->u[2] * lr);
+  cost->step  = PetscExpReal(m->s[0] + m->s[1] * ln + m->s[2] * lc + f * (m->s[3] + m->s[4] * lc) + g * (m->s[6] + m->s[7] * ln) + lr * (m->s[5] + m->s[8] * ln));
+  cost->setup = PetscExpReal(m->u[0] + m->u[1] * ln + lr * (m->u[2] + m->u[3] * ln));
 }
 
 /* A registered formulation's predicted cost, from a scratch object of its type (NULL ops->cost:
