@@ -37,13 +37,6 @@ def test_auto_chooses_the_cheaper_prediction(tmp_path, case, extra, expected):
     assert m.group(4) in ("condensed", "active_set") and m.group(4) != expected
 
 
-def test_auto_choice_is_the_same_on_any_number_of_ranks(tmp_path):
-    """The model reads global quantities only (dofs, h_c', the plan): 2 ranks choose as 1 does."""
-    lines = [choice(run("d2_ball", tmp_path, "-contact_formulation", "auto", "-mesh", "meshes/ball10.msh", "-mu", 0.2,
-                        "-check_input", np_=n, name=f"r{n}")).group(0) for n in (1, 2)]
-    assert lines[0] == lines[1]
-
-
 @pytest.mark.parametrize("case,extra", [
     ("cube_groove", ("-mu", 0.3)),  # friction corners: two Coulomb laws on one node, contact space only
     ("two_balls", ("-elasticity", "svk", "-contact_pairs_sliding", "large")),  # K~'s pattern changes
@@ -79,28 +72,113 @@ def test_auto_active_set_is_the_condensed_motion_to_its_tolerance(auto_and_conde
 
 
 def test_fit_script_reproduces_the_models_in_the_sources():
-    """scripts/cost_model_fit.py on the committed runs (measured again with the step certificate,
-    issue 50) prints the constants that the formulations' cost functions hold, and no measured case
-    loses more than 10% to the choice but the eight the model's form does not capture
-    (docs/scaling.md, "The formulation chosen by cost"): they are listed, so that a refit that
+    """scripts/cost_model_fit.py on the committed runs (scripts/cost_model_collect.py: 1 and 2 ranks, the
+    linear law and svk, issue 50) prints the constants that src/contact/impls/cost_constants.h holds, and
+    no measured case loses more than 10% to the choice but the ones the model's form does not capture
+    (docs/scaling.md, "Refitted with the ranks and the law"): they are listed, so that a refit that
     loses elsewhere fails."""
     import os
     import subprocess
     import sys
     from conftest import ROOT
     out = subprocess.run([sys.executable, "-s", os.path.join(ROOT, "scripts", "cost_model_fit.py")], capture_output=True, text=True, check=True).stdout
-    sources = {f: open(os.path.join(ROOT, "src", "contact", "impls", f, f + ".c")).read().replace(" ", "") for f in ("condensed", "active_set")}
+    models, seen = header_models(), 0
     for line in out.splitlines():
-        m = re.match(r"([23])D (\w+)\s+(\{\{.*\}\})$", line)
+        m = re.match(r"([23])D (\w+)\s+\{\{([^}]*)\}, \{([^}]*)\}\}$", line)
         if m:
-            numbers = [float(x) for x in re.findall(r"-?[\d.]+(?:e-?\d+)?", m.group(3))]
-            table = re.search(r"\{\{([^}]*)\},\{([^}]*)\}\},/\*" + m.group(1) + r"D\*/", sources[m.group(2)])
-            assert table, (m.group(2), m.group(1))
-            held = [float(x) for x in (table.group(1) + "," + table.group(2)).split(",")]
-            assert np.allclose(held, numbers, rtol=2e-3, atol=2e-4), (line, held)
-    losses = re.findall(r"^\s*(\d+)\s+(\d)D (\S+)\s+cfl\s+(\S+) mu (\S+).*?(\d+\.\d)%", out, re.M)
+            held = models[(int(m.group(1)), m.group(2))]
+            assert np.allclose(held[0] + held[1], [float(x) for x in (m.group(3) + "," + m.group(4)).split(",")], rtol=2e-3, atol=2e-4), (line, held)
+            seen += 1
+    assert seen == 4, out
+    losses = re.findall(r"^\s*(\d+)\s+(\d)D (\S+)\s+cfl\s+(\S+) mu (\S+) (\w+)\s+(\d) rk.*?(\d+\.\d)%", out.split("held out")[0], re.M)
     assert losses
-    known = {("20", "2", "disk05.msh", "1.81"), ("20", "3", "ball10.msh", "2.94"), ("75", "3", "ball10.msh", "1.47"),
-             ("150", "3", "ball07.msh", "2.10"), ("1000", "2", "disk0125.msh", "1.75"), ("1000", "3", "ball07.msh", "2.10")}
-    for steps, dim, mesh, cfl, mu, loss in losses:
-        assert float(loss) <= 10 or ((steps, dim, mesh, cfl) in known and float(loss) <= 80), (steps, dim, mesh, cfl, mu, loss)
+    for steps, dim, mesh, cfl, mu, law, ranks, loss in losses:
+        assert float(loss) <= 10 or ((steps, mesh, cfl, mu, law, ranks) in KNOWN_LOSSES and float(loss) <= KNOWN_LOSSES_MAX), (steps, dim, mesh, cfl, mu, law, ranks, loss)
+
+
+# the case-lengths of the committed fit that lose more than 10% (scripts/cost_model_fit.py's printout):
+# (steps, mesh, cfl, mu, law, ranks)
+KNOWN_LOSSES = {
+    ("20", "ball07.msh", "2.10", "0.2", "svk", "1"),
+    ("20", "ball10.msh", "1.47", "0.2", "linear", "1"),
+    ("20", "disk05.msh", "1.81", "0.0", "linear", "1"),
+    ("20", "disk05.msh", "1.81", "0.0", "linear", "2"),
+    ("20", "disk05.msh", "1.81", "0.2", "linear", "1"),
+    ("20", "disk05.msh", "1.81", "0.2", "linear", "2"),
+    ("20", "disk05.msh", "1.81", "0.2", "svk", "2"),
+    ("75", "ball07.msh", "2.10", "0.2", "linear", "1"),
+    ("75", "ball07.msh", "2.10", "0.2", "svk", "1"),
+    ("75", "ball10.msh", "1.47", "0.0", "linear", "1"),
+    ("75", "ball10.msh", "1.47", "0.2", "linear", "2"),
+    ("75", "disk05.msh", "1.81", "0.0", "linear", "2"),
+    ("75", "disk05.msh", "1.81", "0.2", "linear", "1"),
+    ("75", "disk05.msh", "1.81", "0.2", "svk", "2"),
+    ("75", "disk_bench.msh", "1.08", "0.0", "linear", "2"),
+    ("150", "ball07.msh", "2.10", "0.0", "linear", "1"),
+    ("150", "ball07.msh", "2.10", "0.2", "linear", "2"),
+    ("150", "ball07.msh", "2.10", "0.2", "svk", "1"),
+    ("150", "ball10.msh", "1.47", "0.0", "linear", "1"),
+    ("150", "disk0125.msh", "1.75", "0.0", "linear", "1"),
+    ("150", "disk05.msh", "1.81", "0.0", "linear", "2"),
+    ("150", "disk05.msh", "1.81", "0.2", "linear", "1"),
+    ("150", "disk05.msh", "1.81", "0.2", "svk", "2"),
+    ("150", "disk_bench.msh", "1.08", "0.0", "linear", "2"),
+    ("1000", "ball07.msh", "2.10", "0.0", "linear", "1"),
+    ("1000", "ball07.msh", "2.10", "0.2", "linear", "2"),
+    ("1000", "ball07.msh", "2.10", "0.2", "svk", "1"),
+    ("1000", "disk0125.msh", "1.75", "0.0", "linear", "1"),
+    ("1000", "disk0125.msh", "1.75", "0.2", "linear", "1"),
+    ("1000", "disk05.msh", "1.81", "0.2", "svk", "2"),
+    ("1000", "disk_bench.msh", "1.08", "0.0", "linear", "2"),
+}
+KNOWN_LOSSES_MAX = 125
+
+
+
+def header_models():
+    """The constants auto holds: src/contact/impls/cost_constants.h, written by scripts/cost_model_fit.py --write."""
+    import os
+    from conftest import ROOT
+    models = {}
+    for m in re.finditer(r"#define MM_COST_(\w+)_([23])D \{\{([^}]*)\}, \{([^}]*)\}\}", open(os.path.join(ROOT, "src", "contact", "impls", "cost_constants.h")).read()):
+        models[(int(m.group(2)), m.group(1).lower())] = ([float(x) for x in m.group(3).split(",")], [float(x) for x in m.group(4).split(",")])
+    assert len(models) == 4
+    return models
+
+
+def model_total(models, dim, form, dofs, cfl, mu, law, ranks, steps):
+    """docs/scaling.md, "Refitted with the ranks and the law": set-up + steps x step."""
+    s, u = models[(dim, form)]
+    ln, lc, lr, f, g = np.log(dofs), np.log1p(cfl), np.log(ranks), float(mu > 0), float(law != "linear")
+    step = np.exp(s[0] + s[1] * ln + s[2] * lc + f * (s[3] + s[4] * lc) + g * (s[6] + s[7] * ln) + lr * (s[5] + s[8] * ln))
+    return np.exp(u[0] + u[1] * ln + lr * (u[2] + u[3] * ln)) + steps * step
+
+
+# issue 50's first row, the disk in the bowl; and the D2 ball on the 12k-dof mesh with friction. flips: the
+# committed fit's choice differs among 1 and 2 ranks, linear and svk (after a refit, set it from the
+# model's printout if it fails here only)
+FLIPS_BOWL, FLIPS_BALL = False, True
+RANKS_AND_LAW_CASES = [("disk_bowl", 2, (), 0.0, FLIPS_BOWL), ("d2_ball", 3, ("-mesh", "meshes/ball10.msh", "-mu", 0.2), 0.2, FLIPS_BALL)]
+
+
+@pytest.mark.parametrize("case,dim,extra,mu,flips", RANKS_AND_LAW_CASES)
+def test_auto_choice_follows_the_ranks_and_the_law(tmp_path, case, dim, extra, mu, flips):
+    """auto's prediction reads the run's ranks and the law (MMCostInput.ranks, .finite): on 1 and 2 ranks,
+    linear and svk, the start-up report's predicted totals are the model's of cost_constants.h for that
+    rank count and law (to the 3 digits printed), and the choice is the model's; where the model says the
+    ranks or the law change the choice, the binary's choice changes with them. Not a timing test."""
+    models, choices = header_models(), {}
+    for ranks in (1, 2):
+        for law in ("linear", "svk"):
+            r = run(case, tmp_path, "-contact_formulation", "auto", *extra, *(("-elasticity", law) if law != "linear" else ()),
+                    "-check_input", np_=ranks, name=f"{ranks}{law}")
+            m = choice(r)
+            dofs = float(re.search(r"(\d+) dofs;", r.output).group(1))
+            cfl = float(re.search(r"c_p dt / h_c' = ([\d.e+-]+)", r.output).group(1))
+            total = {f: model_total(models, dim, f, dofs, cfl, mu, law, ranks, int(m.group(2))) for f in ("condensed", "active_set")}
+            expected = min(total, key=total.get)
+            assert m.group(1) == expected, (ranks, law, m.group(0), total)
+            assert float(m.group(3)) == pytest.approx(total[expected], rel=6e-3), (ranks, law, m.group(0), total)
+            assert float(m.group(5)) == pytest.approx(total[m.group(4)], rel=6e-3), (ranks, law, m.group(0), total)
+            choices[(ranks, law)] = m.group(1)
+    assert (len(set(choices.values())) > 1) == flips, choices

@@ -228,6 +228,8 @@ typedef struct {
   PetscReal steps;    /* the plan's */
   PetscBool friction; /* some obstacle has mu > 0 */
   PetscInt  n_fc;     /* friction corners (nodes near two obstacles with friction) */
+  PetscReal ranks;    /* the run's MPI ranks */
+  PetscBool finite;   /* some body has a finite-strain law: a step is iterations of linear solves */
 } MMCostInput;
 
 /* A formulation's predicted times (s); setup PETSC_INFINITY: it cannot carry the problem */
@@ -236,10 +238,15 @@ typedef struct {
 } MMCost;
 
 /* A fitted model of one formulation in one dimension (docs/scaling.md, "The formulation chosen by
- * cost"): ln step = s[0] + s[1] ln dofs + s[2] ln(1 + cfl) + f (s[3] + s[4] ln(1 + cfl)), f = 1
- * with friction, and ln setup = u[0] + u[1] ln dofs. */
+ * cost" and "Refitted with the ranks and the law"):
+ *   ln step  = s[0] + s[1] ln dofs + s[2] ln(1 + cfl) + f (s[3] + s[4] ln(1 + cfl))
+ *              + g (s[6] + s[7] ln dofs) + ln ranks (s[5] + s[8] ln dofs)
+ *   ln setup = u[0] + u[1] ln dofs + ln ranks (u[2] + u[3] ln dofs)
+ * f = 1 with friction, g = 1 with a finite-strain law; a second rank pays on large meshes and costs
+ * on small ones, hence its terms in ln dofs. The constants are written by scripts/cost_model_fit.py
+ * --write into impls/cost_constants.h. */
 typedef struct {
-  PetscReal s[5], u[2];
+  PetscReal s[9], u[4];
 } MMCostModel;
 PETSC_INTERN void MMCostEvaluate(const MMCostModel *m, const MMCostInput *in, MMCost *cost);
 

@@ -1,17 +1,19 @@
 /* -contact_formulation auto: the formulation whose whole run, set-up and steps, a fitted cost model
  * predicts cheapest (docs/scaling.md, "The formulation chosen by cost"). Each formulation that auto
- * may choose predicts its own times (ops->cost: a power law in the dofs, c_p dt / h_c' and friction,
- * fitted on measured runs); one that cannot carry the problem predicts an infinite set-up. The
- * factorizing formulation's set-up grows faster than its steps, so the run's length (the plan of
- * -ts_dt, -ts_max_time and -ts_max_steps) decides between the two where neither wins both. */
+ * may choose predicts its own times (ops->cost: a power law in the dofs, c_p dt / h_c', friction,
+ * the ranks and the law, fitted on runs of 1 and 2 ranks that scripts/cost_model_collect.py
+ * measures); one that cannot carry the problem predicts an infinite set-up. The factorizing
+ * formulation's set-up grows faster than its steps, so the run's length (the plan of -ts_dt,
+ * -ts_max_time and -ts_max_steps) decides between the two where neither wins both. */
 #include "../contactimpl.h"
 
 void MMCostEvaluate(const MMCostModel *m, const MMCostInput *in, MMCost *cost)
 {
-  const PetscReal ln = PetscLogReal(in->dofs), lc = PetscLogReal(1 + in->cfl), f = in->friction ? 1.0 : 0.0;
+  const PetscReal ln = PetscLogReal(in->dofs), lc = PetscLogReal(1 + in->cfl), lr = PetscLogReal(PetscMax(in->ranks, 1));
+  const PetscReal f = in->friction ? 1.0 : 0.0, g = in->finite ? 1.0 : 0.0;
 
-  cost->step  = PetscExpReal(m->s[0] + m->s[1] * ln + m->s[2] * lc + f * (m->s[3] + m->s[4] * lc));
-  cost->setup = PetscExpReal(m->u[0] + m->u[1] * ln);
+  cost->step  = PetscExpReal(m->s[0] + m->s[1] * ln + m->s[2] * lc + f * (m->s[3] + m->s[4] * lc) + g * (m->s[6] + m->s[7] * ln) + lr * (m->s[5] + m->s[8] * ln));
+  cost->setup = PetscExpReal(m->u[0] + m->u[1] * ln + lr * (m->u[2] + m->u[3] * ln));
 }
 
 /* A registered formulation's predicted cost, from a scratch object of its type (NULL ops->cost:
@@ -53,9 +55,15 @@ PetscErrorCode MMContactChooseFormulation(MMContact ct, PetscInt n_dofs)
   in.steps    = PetscMax(ct->pb.steps, 1);
   in.friction = (PetscBool)(ct->pb.mu_max > 0);
   in.n_fc     = ct->n_fc;
+  in.finite   = ct->material->finite;
+  {
+    PetscMPIInt size;
+    PetscCallMPI(MPI_Comm_size(ct->comm, &size));
+    in.ranks = size;
+  }
   PetscCall(PetscFunctionListGet(MMContactList, &names, &n));
   for (int i = 0; i < n && names[i]; ++i) {
-    PetscBool has;
+    PetscBool has = PETSC_FALSE;
     MMCost    c;
     PetscReal total;
     PetscCall(Predict(ct, names[i], &in, &has, &c));

@@ -25,6 +25,7 @@
  * linearly (docs/method.md section 3, "Coulomb in the active-set iteration"). */
 #include <petsc/private/petscimpl.h> /* PetscObjectStateGet */
 #include "active_setimpl.h"
+#include "../cost_constants.h"
 
 /* y += kappa_k e_k (e_k.x_t) at every slipping node in 3D, e_k = d_perp: the Newton tangent of the
  * Tresca disk across the slip direction (its tangential dofs are free). */
@@ -823,16 +824,13 @@ static PetscErrorCode ActiveSetSwapKept(MMContact ct, PetscReal dt, PetscBool *h
 }
 
 /* -contact_formulation auto's model of this formulation (docs/scaling.md, "The formulation chosen by
- * cost"), fitted on 1 rank over 1.3k to 115k dofs, steps accepted by their certificate: no factorization; a step is CG iterations, whose
- * number grows with c_p dt / h_c' (the conditioning of K~ on the free dofs) and with the friction
- * sets' changes. It cannot carry a friction corner's two Coulomb laws, nor contact pairs that slide
+ * cost"), fitted on 1 and 2 ranks over 1.3k to 115k dofs, the linear law and svk, steps accepted
+ * by their certificate: no factorization; a step is CG iterations, whose number grows with
+ * c_p dt / h_c' (the conditioning of K~ on the free dofs) and with the friction sets' changes. It cannot carry a friction corner's two Coulomb laws, nor contact pairs that slide
  * (-contact_pairs_sliding large keeps K~ on one pattern). */
 static PetscErrorCode ActiveSetCost(MMContact ct, const MMCostInput *in, MMCost *cost)
 {
-  static const MMCostModel model[2] = {
-    {{-16.02, 1.071, 1.187, 0.1169, -0.00619}, {-10.03, 0.8425}}, /* 2D */
-    {{-13.45, 0.9784, 0.8623, 0.2161, 0.02843}, {-10.02, 0.9205}}, /* 3D */
-  };
+  static const MMCostModel model[2] = {MM_COST_ACTIVE_SET_2D, MM_COST_ACTIVE_SET_3D}; /* scripts/cost_model_fit.py --write */
 
   PetscFunctionBeginUser;
   MMCostEvaluate(&model[in->dim == 3], in, cost);

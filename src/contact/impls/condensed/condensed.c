@@ -2,6 +2,7 @@
  * the step's contact VI on the reactions (docs/method.md section 3). */
 #include <petsc/private/petscimpl.h> /* PetscObjectStateGet */
 #include "condensedimpl.h"
+#include "../cost_constants.h"
 
 /* The condensed dofs are the normal dof of each contact node and, with friction, its tangential
  * dofs. With z = K~^{-1} b and the Delassus operator W = E^T K~^{-1} E on them, the step solution
@@ -538,14 +539,12 @@ static PetscErrorCode CondensedSwapKept(MMContact ct, PetscReal dt, PetscBool *h
 }
 
 /* -contact_formulation auto's model of this formulation (docs/scaling.md, "The formulation chosen by
- * cost"), fitted on 1 rank over 1.3k to 115k dofs: its set-up holds K~'s factorization, its step a
- * triangular solve and the candidate columns, which grow with c_p dt / h_c' and friction. */
+ * cost"), fitted on 1 and 2 ranks over 1.3k to 115k dofs, the linear law and svk: its set-up
+ * holds K~'s factorization, its step a triangular solve and the candidate columns, which grow with
+ * c_p dt / h_c' and friction (and with the finite-strain law's iterations). */
 static PetscErrorCode CondensedCost(MMContact ct, const MMCostInput *in, MMCost *cost)
 {
-  static const MMCostModel model[2] = {
-    {{-15.94, 1.155, 0.1492, 0.06502, 0.06159}, {-11.81, 1.109}}, /* 2D */
-    {{-15.54, 1.249, 0.2461, -0.03408, 0.2}, {-12.32, 1.252}},     /* 3D */
-  };
+  static const MMCostModel model[2] = {MM_COST_CONDENSED_2D, MM_COST_CONDENSED_3D}; /* scripts/cost_model_fit.py --write */
 
   PetscFunctionBeginUser;
   (void)ct;

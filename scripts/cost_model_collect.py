@@ -1,0 +1,171 @@
+#!/usr/bin/env python3
+"""Measures the runs that -contact_formulation auto's cost model is fitted on (scripts/cost_model_fit.py,
+src/contact/interface/cost.c, docs/scaling.md "The formulation chosen by cost").
+
+Each case (mesh, c_p dt / h_c', mu, law, ranks) runs mmcontact for 20 steps in the condensed and in the
+active-set formulation, each twice (the smaller time is kept: the machine is shared), and writes one row
+per formulation: dim, mesh, dofs, cfl, mu, law, ranks, formulation, setup_s, s_per_step (from the run's
+summary line "setup X s; N steps to t = T in W s wall"), and noise (the larger of the two whole runs over
+the smaller, less 1). The dt of a case is the options file's dt scaled to the target c_p dt / h_c' read
+from a -check_input run of the mesh (the ratio is proportional to dt).
+
+The fit set: the D1 disk (options/d1_disk.opts) and the D2 ball (options/d2_ball.opts) on 8 meshes at 2
+or 3 c_p dt / h_c' each, mu 0 and 0.2, 1 rank, the linear law; at each mesh's lowest c_p dt / h_c', 2
+ranks (linear, mu 0 and 0.2) and -elasticity svk (mu 0.2, 1 and 2 ranks; not on the two largest meshes,
+which would take the script past 20 minutes on 2 cores).
+--check runs the held-out cases instead (other c_p dt / h_c', the disk in the bowl on 2 ranks) in both
+formulations and asks the binary's auto (-check_input) which it takes; it prints, for each, the chosen
+formulation's whole run against the faster one's.
+    Usage: scripts/cost_model_collect.py [--out FILE] [--subset] [--check] [--meshes a.msh,b.msh] [--repeat N] [--mmcontact PATH]
+"""
+import argparse
+import csv
+import os
+import re
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+FORMULATIONS = ("condensed", "active_set")
+OPTS = {2: "options/d1_disk.opts", 3: "options/d2_ball.opts"}
+# mesh: (dim, the c_p dt / h_c' of the fit set, made by `make meshes` or the gmsh line below)
+MESHES = {
+    "disk.msh": (2, (1.84, 7.35)),         # D1's own mesh (the bowl's, held out at its 0.92)
+    "disk05.msh": (2, (1.81, 7.24)),       # gmsh -2 meshes/disk.geo -setnumber H 0.05 -o meshes/disk05.msh
+    "disk0125.msh": (2, (1.75, 7.0)),      # gmsh -2 meshes/disk.geo -setnumber H 0.0125 -o meshes/disk0125.msh
+    "disk_bench.msh": (2, (1.08, 5.4)),
+    "ball.msh": (3, (0.609, 1.22, 2.43)),
+    "ball10.msh": (3, (1.47, 2.94, 5.89)),
+    "ball07.msh": (3, (2.1, 4.2, 8.4)),
+    "ball_bench.msh": (3, (0.82, 1.64, 3.28)),
+}
+SVK_SKIPPED = ("disk_bench.msh", "ball_bench.msh")  # the largest: their svk runs alone would take ~10 minutes
+STEPS = 20
+SUMMARY = re.compile(r"summary: setup ([\d.e+-]+) s; (\d+) steps to t = \S+ in ([\d.e+-]+) s wall")
+HEADER = re.compile(r"(\d+) dofs; (\d+) rank")
+CFL = re.compile(r"dt = ([\d.e+-]+) .*c_p dt / h_c' = ([\d.e+-]+)")
+AUTO = re.compile(r"contact formulation (\w+) \(auto: (?:(\d+) steps predicted ([\d.e+-]+) s, (\w+) ([\d.e+-]+) s|the only)")
+
+
+def fit_cases(meshes=None):
+    """(mesh, cfl, mu, law, ranks) of the fit set (on the given meshes only)."""
+    cases = []
+    for mesh, (dim, cfls) in MESHES.items():
+        if meshes and mesh not in meshes:
+            continue
+        cases += [(mesh, cfl, mu, "linear", 1) for cfl in cfls for mu in (0.0, 0.2)]
+        cases += [(mesh, cfls[0], mu, "linear", 2) for mu in (0.0, 0.2)]
+        if mesh not in SVK_SKIPPED:
+            cases += [(mesh, cfls[0], 0.2, "svk", n) for n in (1, 2)]
+    return cases
+
+
+def subset_cases():
+    return [(m, MESHES[m][1][0], mu, law, n) for m in ("disk05.msh", "ball.msh") for mu, law, n in
+            ((0.0, "linear", 1), (0.2, "linear", 2), (0.2, "svk", 1))]
+
+
+def check_cases():
+    """Held out: c_p dt / h_c' and (law, ranks) pairs the fit set does not hold, and issue 50's bowl
+    (options/disk_bowl.opts, 2 ranks, its own dt and length: cfl None)."""
+    return [("ball07.msh", 4.2, 0.2, "linear", 2), ("ball07.msh", 4.2, 0.0, "linear", 2),
+            ("disk0125.msh", 7.0, 0.0, "linear", 2), ("disk0125.msh", 7.0, 0.2, "linear", 2),
+            ("ball10.msh", 2.94, 0.2, "svk", 1), ("ball10.msh", 2.94, 0.2, "svk", 2),
+            ("disk0125.msh", 7.0, 0.2, "svk", 1), ("disk05.msh", 7.24, 0.2, "svk", 2),
+            ("ball10.msh", 5.89, 0.0, "linear", 2), ("disk.msh", None, 0.0, "linear", 2)]
+
+
+def run(exe, ranks, args, outdir):
+    cmd = [exe] + [str(a) for a in args] + ["-output_dir", outdir]
+    if ranks > 1:
+        cmd = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", str(ranks)] + cmd
+    p = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
+    if p.returncode:
+        sys.exit(f"failed ({p.returncode}): {' '.join(cmd)}\n{p.stdout[-2000:]}{p.stderr[-2000:]}")
+    return p.stdout
+
+
+def case_args(mesh, cfl, mu, law, exe, tmp, dt_cache):
+    """The options of a case: its options file, mesh, dt for the target c_p dt / h_c', mu and law."""
+    if cfl is None:  # the bowl: its own options, whole run
+        args = ["-options_file", "options/disk_bowl.opts"]
+    else:
+        dim = MESHES[mesh][0]
+        args = ["-options_file", OPTS[dim], "-mesh", "meshes/" + mesh]
+        if mesh not in dt_cache:
+            m = CFL.search(run(exe, 1, args + ["-check_input"], tmp))
+            dt_cache[mesh] = (float(m.group(1)), float(m.group(2)))
+        dt0, cfl0 = dt_cache[mesh]
+        args += ["-ts_dt", "%.6g" % (dt0 * cfl / cfl0), "-ts_max_steps", STEPS, "-ts_max_time", 1]
+    args += ["-mu", mu, "-output_every", 0, "-ts_monitor_cancel"]
+    if law != "linear":
+        args += ["-elasticity", law]
+    return args
+
+
+def measure(exe, case, repeat, tmp, dt_cache, check):
+    mesh, cfl, mu, law, ranks = case
+    args = case_args(mesh, cfl, mu, law, exe, tmp, dt_cache)
+    rows, runs = {}, {f: [] for f in FORMULATIONS}
+    for _ in range(repeat):
+        for form in FORMULATIONS:
+            out = run(exe, ranks, args + ["-contact_formulation", form], tmp)
+            s, h, c = SUMMARY.search(out), HEADER.search(out), CFL.search(out)
+            assert s and h and c, out[-1500:]
+            runs[form].append((float(s.group(1)), float(s.group(3)) / int(s.group(2)), int(s.group(2))))
+            dofs, steps, cfl_run = int(h.group(1)), int(s.group(2)), float(c.group(2))
+    for form in FORMULATIONS:
+        setup, step = min(r[0] for r in runs[form]), min(r[1] for r in runs[form])
+        whole = [r[0] + r[1] * r[2] for r in runs[form]]
+        rows[form] = dict(dim=MESHES.get(mesh, (2,))[0], mesh=mesh if cfl is not None else "disk_bowl", dofs=dofs,
+                          cfl="%.3g" % cfl_run, mu=mu, law=law, ranks=ranks, formulation=form, setup_s="%.4g" % setup,
+                          s_per_step="%.4g" % step, noise="%.3f" % (max(whole) / min(whole) - 1), steps=steps)
+    if check:
+        a = AUTO.search(run(exe, ranks, args + ["-contact_formulation", "auto", "-check_input"], tmp))
+        for form in FORMULATIONS:
+            rows[form]["auto"] = a.group(1)
+            rows[form]["predicted_s"] = a.group(3) if a.group(1) == form else a.group(5)
+    return list(rows.values())
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--out", default=None, help="the CSV written (default scripts/cost_model_runs.csv, or "
+                    "scripts/cost_model_check.csv with --check)")
+    ap.add_argument("--subset", action="store_true", help="a quick subset (a smoke run, 1 repeat)")
+    ap.add_argument("--check", action="store_true", help="the held-out cases, with auto's choice")
+    ap.add_argument("--meshes", help="comma-separated: the fit set's cases on these meshes only")
+    ap.add_argument("--repeat", type=int, default=2, help="runs of each row; the smaller time is kept")
+    ap.add_argument("--mmcontact", default=os.path.join(ROOT, "mmcontact"))
+    a = ap.parse_args()
+    cases = check_cases() if a.check else subset_cases() if a.subset else fit_cases(a.meshes and a.meshes.split(","))
+    repeat = 1 if a.subset else a.repeat
+    out = a.out or os.path.join(ROOT, "scripts", "cost_model_check.csv" if a.check else "cost_model_runs.csv")
+    fields = ["dim", "mesh", "dofs", "cfl", "mu", "law", "ranks", "formulation", "setup_s", "s_per_step", "noise", "steps"]
+    if a.check:
+        fields += ["auto", "predicted_s"]
+    t0, dt_cache, rows = time.time(), {}, []
+    with tempfile.TemporaryDirectory() as tmp:
+        for i, case in enumerate(cases):
+            rows += measure(a.mmcontact, case, repeat, tmp, dt_cache, a.check)
+            print(f"[{time.time() - t0:6.0f} s] {i + 1}/{len(cases)} {case}: " + ", ".join(
+                f"{r['formulation']} {r['setup_s']} + {r['s_per_step']}/step (noise {r['noise']})" for r in rows[-2:]), flush=True)
+            with open(out, "w", newline="") as f:  # written as it goes: a stopped collection keeps its rows
+                w = csv.DictWriter(f, fieldnames=fields)
+                w.writeheader()
+                w.writerows(rows)
+    print(f"{len(rows)} rows in {out}; {time.time() - t0:.0f} s")
+    if a.check:
+        print("case                                           steps  auto        faster      loss")
+        for c, f in zip(rows[0::2], rows[1::2]):
+            total = {r["formulation"]: float(r["setup_s"]) + r["steps"] * float(r["s_per_step"]) for r in (c, f)}
+            best = min(total, key=total.get)
+            loss = total[c["auto"]] / total[best] - 1
+            print(f"{c['dim']}D {c['mesh']:14s} cfl {c['cfl']:>5s} mu {c['mu']:.1f} {c['law']:6s} {c['ranks']} rk  {c['steps']:5d}  "
+                  f"{c['auto']:10s}  {best:10s}  {100 * loss:5.1f}%  ({total[c['auto']]:.3g} s against {total[best]:.3g} s)")
+
+
+if __name__ == "__main__":
+    main()
