@@ -170,6 +170,11 @@ meshes/two_balls_bench.msh: meshes/two_balls.geo
 	gmsh -3 $< -setnumber H $(TWO_BALLS_BENCH_H) -o $@ -v 2
 meshes/ball07.msh: meshes/ball.geo
 	gmsh -3 $< -setnumber H 0.07 -o $@ -v 2
+# auto's cost model's disks (scripts/cost_model_collect.py makes them when first needed)
+meshes/disk05.msh: meshes/disk.geo
+	gmsh -2 $< -setnumber H 0.05 -o $@ -v 2
+meshes/disk0125.msh: meshes/disk.geo
+	gmsh -2 $< -setnumber H 0.0125 -o $@ -v 2
 # The surface suite's slab: 144 x 144 x 5 hexahedra split into tetrahedra, 315k dofs, 21,025 base nodes
 meshes/slab.msh: meshes/slab.geo
 	gmsh -3 $< -o $@ -v 2

@@ -30,11 +30,11 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 FORMULATIONS = ("condensed", "active_set")
 OPTS = {2: "options/d1_disk.opts", 3: "options/d2_ball.opts"}
-# mesh: (dim, the c_p dt / h_c' of the fit set, made by `make meshes` or the gmsh line below)
+# mesh: (dim, the c_p dt / h_c' of the fit set); a missing one is made by its Makefile rule (EnsureMeshes)
 MESHES = {
     "disk.msh": (2, (1.84, 7.35)),         # D1's own mesh (the bowl's, held out at its 0.92)
-    "disk05.msh": (2, (1.81, 7.24)),       # gmsh -2 meshes/disk.geo -setnumber H 0.05 -o meshes/disk05.msh
-    "disk0125.msh": (2, (1.75, 7.0)),      # gmsh -2 meshes/disk.geo -setnumber H 0.0125 -o meshes/disk0125.msh
+    "disk05.msh": (2, (1.81, 7.24)),       # meshes/disk.geo at H 0.05
+    "disk0125.msh": (2, (1.75, 7.0)),      # meshes/disk.geo at H 0.0125
     "disk_bench.msh": (2, (1.08, 5.4)),
     "ball.msh": (3, (0.609, 1.22, 2.43)),
     "ball10.msh": (3, (1.47, 2.94, 5.89)),
@@ -47,6 +47,13 @@ SUMMARY = re.compile(r"summary: setup ([\d.e+-]+) s; (\d+) steps to t = \S+ in (
 HEADER = re.compile(r"(\d+) dofs; (\d+) rank")
 CFL = re.compile(r"dt = ([\d.e+-]+) .*c_p dt / h_c' = ([\d.e+-]+)")
 AUTO = re.compile(r"contact formulation (\w+) \(auto: (?:(\d+) steps predicted ([\d.e+-]+) s, (\w+) ([\d.e+-]+) s|the only)")
+
+
+def ensure_meshes(cases):
+    """Makes the cases' meshes that are missing, by their Makefile rules (a fresh clone has none of them)."""
+    missing = sorted({"meshes/" + c[0] for c in cases if not os.path.exists(os.path.join(ROOT, "meshes", c[0]))})
+    if missing:
+        subprocess.run(["make", "-C", ROOT] + missing, check=True)
 
 
 def fit_cases(meshes=None):
@@ -141,6 +148,7 @@ def main():
     ap.add_argument("--mmcontact", default=os.path.join(ROOT, "mmcontact"))
     a = ap.parse_args()
     cases = check_cases() if a.check else subset_cases() if a.subset else fit_cases(a.meshes and a.meshes.split(","))
+    ensure_meshes(cases)
     repeat = 1 if a.subset else a.repeat
     out = a.out or os.path.join(ROOT, "scripts", "cost_model_check.csv" if a.check else "cost_model_runs.csv")
     fields = ["dim", "mesh", "dofs", "cfl", "mu", "law", "ranks", "formulation", "setup_s", "s_per_step", "noise", "steps"]
