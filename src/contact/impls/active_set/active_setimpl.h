@@ -24,6 +24,7 @@ typedef struct {
   PetscReal *kappa, *beta, *rperp; /* 3D slip: Newton tangent of the disk across d (a spring kappa on
                                     * w.d_perp), and the reaction across d it corrects (beta rperp) */
   PetscInt   max_it, its, lin_its;
+  KSPConvergedReason cg_failed; /* the last solve's CG failure (< 0), else KSP_CONVERGED_ITERATING */
   PetscReal  inexact_rtol; /* CG's relative tolerance while nodes change set (0: always tight) */
   PetscReal  inexact_coulomb_rtol; /* and while only the slip directions and thresholds move */
   PetscBool  monitor;
