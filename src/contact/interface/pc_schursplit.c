@@ -201,8 +201,12 @@ static PetscErrorCode BuildInteriorInterface(PC pc, const LocalRows *lr, Mat *B)
   PetscFunctionReturn(0);
 }
 
-/* The interior block's Cholesky factor; a failure is the PC's (PCGetFailedReason), as PCCHOLESKY's. */
-static PetscErrorCode FactorInterior(PC pc, Mat Ad)
+/* The interior block's Cholesky factor; a failure is the PC's (PCGetFailedReason), as PCCHOLESKY's.
+ * reuse: a new operator of the same nonzero pattern (the finite-strain tangent rebuilt,
+ * src/ts/nonlinear.c): the block's values taken again into A and refactored in F, with the ordering
+ * and the symbolic factorization of the first set-up; the same operations on the same pattern, so
+ * the factor is the one a set-up from scratch would give, bit for bit. */
+static PetscErrorCode FactorInterior(PC pc, Mat Ad, PetscBool reuse)
 {
   PC_SchurSplit *sp = (PC_SchurSplit *)pc->data;
   IS             is, rperm, cperm;
@@ -211,36 +215,16 @@ static PetscErrorCode FactorInterior(PC pc, Mat Ad)
 
   PetscFunctionBegin;
   PetscCall(ISCreateGeneral(PETSC_COMM_SELF, sp->nI, sp->iloc, PETSC_USE_POINTER, &is));
-  PetscCall(MatCreateSubMatrix(Ad, is, is, MAT_INITIAL_MATRIX, &sp->A));
-  PetscCall(ISDestroy(&is));
-  PetscCall(MatGetFactor(sp->A, MATSOLVERPETSC, MAT_FACTOR_CHOLESKY, &sp->F));
-  PetscCall(MatGetOrdering(sp->A, MATORDERINGND, &rperm, &cperm));
-  PetscCall(MatFactorInfoInitialize(&info));
-  PetscCall(MatCholeskyFactorSymbolic(sp->F, sp->A, rperm, &info));
-  PetscCall(MatCholeskyFactorNumeric(sp->F, sp->A, &info));
-  sp->rperm = rperm;
-  PetscCall(ISDestroy(&cperm));
-  PetscCall(MatFactorGetError(sp->F, &err));
-  if (err) pc->failedreason = (PCFailedReason)err;
-  PetscFunctionReturn(0);
-}
-
-/* A new operator of the same nonzero pattern (the finite-strain tangent rebuilt, src/ts/nonlinear.c):
- * the interior block's values taken again into A and refactored in F, with the ordering and the
- * symbolic factorization of the first set-up; the same operations on the same pattern, so the
- * factor is the one a set-up from scratch would give, bit for bit. */
-static PetscErrorCode RefactorInterior(PC pc, Mat Ad)
-{
-  PC_SchurSplit *sp = (PC_SchurSplit *)pc->data;
-  IS             is;
-  MatFactorInfo  info;
-  MatFactorError err;
-
-  PetscFunctionBegin;
-  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, sp->nI, sp->iloc, PETSC_USE_POINTER, &is));
-  PetscCall(MatCreateSubMatrix(Ad, is, is, MAT_REUSE_MATRIX, &sp->A));
+  PetscCall(MatCreateSubMatrix(Ad, is, is, reuse ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, &sp->A));
   PetscCall(ISDestroy(&is));
   PetscCall(MatFactorInfoInitialize(&info));
+  if (!reuse) {
+    PetscCall(MatGetFactor(sp->A, MATSOLVERPETSC, MAT_FACTOR_CHOLESKY, &sp->F));
+    PetscCall(MatGetOrdering(sp->A, MATORDERINGND, &rperm, &cperm));
+    PetscCall(MatCholeskyFactorSymbolic(sp->F, sp->A, rperm, &info));
+    sp->rperm = rperm;
+    PetscCall(ISDestroy(&cperm));
+  }
   PetscCall(MatCholeskyFactorNumeric(sp->F, sp->A, &info));
   PetscCall(MatFactorGetError(sp->F, &err));
   if (err) pc->failedreason = (PCFailedReason)err;
@@ -539,8 +523,7 @@ static PetscErrorCode PCSetUp_SchurSplit(PC pc)
   PetscCall(SplitRows(pc, lr.Ad, lr.Ao, lr.colmap, rstart, &gam_all, &gpos));
   lr.gam_all = gam_all;
   lr.gpos    = gpos;
-  if (reuse) PetscCall(RefactorInterior(pc, lr.Ad));
-  else PetscCall(FactorInterior(pc, lr.Ad));
+  PetscCall(FactorInterior(pc, lr.Ad, reuse));
   {
     PetscInt failed = (PetscInt)pc->failedreason; /* every rank stops building, or none */
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &failed, 1, MPIU_INT, MPI_MAX, PetscObjectComm((PetscObject)pc)));
