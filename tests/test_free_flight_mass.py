@@ -51,14 +51,15 @@ def test_free_body_keeps_its_angular_momentum_with_the_default_mass(tmp_path, np
 @pytest.mark.parametrize("elasticity", ["svk", "linear"])
 def test_free_body_on_the_active_set_is_exact(tmp_path, elasticity):
     """The free cube with -mass standard on the active set (issue 50's table: svk kept J to 1.4e-6,
-    linear stopped at t = 0.207): every step's balance within 1e-12 of the energy, J to 1e-10. With
-    svk the iteration meets its tolerance at the CG's own, whose residual c^k - c^{k+1} does not see:
-    it is accepted only once the whole residual is below the audits, else the CG goes tighter (the
-    balance was 6.2e-11 and J's drift 1.4e-10 without it)."""
+    linear stopped at t = 0.207): every step's balance within 3e-12 of the energy (measured 5.0e-13
+    svk, 8.2e-13 linear, with both BLAS kernels), J to 1e-10. With svk the iteration meets its
+    tolerance at the CG's own, whose residual c^k - c^{k+1} does not see: it is accepted only once the
+    whole residual is below the audits, else the CG goes tighter (the balance was 6.2e-11 and J's
+    drift 1.4e-10 without it)."""
     h = case(tmp_path, *FAR, "-elasticity", elasticity, "-mass", "standard", "-contact_formulation", "active_set", "-ts_max_time", 0.5, name=elasticity).history
     j = J(h)
     assert h["time"][-1] == pytest.approx(0.5)
-    assert h["balance_residual"].max() <= 1e-12
+    assert h["balance_residual"].max() <= 3e-12
     assert np.abs(j - j[0]).max() <= 1e-10 * np.abs(j[0]).max()
 
 
