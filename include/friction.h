@@ -18,6 +18,8 @@ PETSC_EXTERN PetscErrorCode MMFrictionSetUp(MMFriction fr, MMContact ct, PetscRe
 PETSC_EXTERN PetscErrorCode MMFrictionSolve(MMFriction fr, PetscInt step, PetscReal t, Vec b, Vec w, Vec react, PetscBool *ok);
 PETSC_EXTERN PetscErrorCode MMFrictionGetType(MMFriction fr, const char **type);
 PETSC_EXTERN PetscErrorCode MMFrictionGetConvergence(MMFriction fr, PetscInt *its, PetscInt *inner_its, PetscReal *contraction, PetscReal *contraction_max);
+PETSC_EXTERN PetscErrorCode MMFrictionBeginStep(MMFriction);
+PETSC_EXTERN PetscErrorCode MMFrictionRejectStep(MMFriction);
 PETSC_EXTERN PetscErrorCode MMFrictionGetThresholds(MMFriction fr, Vec *s);
 PETSC_EXTERN PetscErrorCode MMFrictionView(MMFriction fr, PetscViewer viewer); /* -friction_view */
 PETSC_EXTERN PetscErrorCode MMFrictionDestroy(MMFriction *fr);

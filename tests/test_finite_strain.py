@@ -146,6 +146,20 @@ def test_active_set_svk_step_is_exact(tmp_path):
         assert np.abs(ha[col] - hc[col]).max() <= 1e-9 * scale, col
 
 
+def test_active_set_svk_retry_starts_from_the_step_start(tmp_path):
+    """The same ball at c_p dt / h_c' 5.9 (dt 0.016) rolling out of its impact: steps whose iteration
+    diverges are rejected and retried. A retry must start from the step's start, not from the failed
+    try's iterates: its tangent (rebuilt at a diverging iterate) and its friction thresholds (1e23 on the
+    H 0.07 ball) were kept, the retries' right-hand sides were 1e10 times the forces, and a stalled
+    iterate was accepted with a balance of 5e-4 (H 0.1) and 0.15 (H 0.07), stopping the run at the
+    energy audit. Every accepted step within 5e-12 of the energy scale."""
+    r = run("d2_ball", tmp_path, "-mesh", "meshes/ball10.msh", "-ts_dt", 0.016, "-ts_max_time", 0.32, "-mu", 0.2,
+            "-elasticity", "svk", "-contact_formulation", "active_set", "-output_every", 0)
+    assert "step rejected" in r.output  # the retry path is what is tested
+    assert r.history["balance_residual"].max() <= 5e-12
+    assert r.history["time"][-1] >= 0.32 - 1e-9
+
+
 def test_d1_friction_svk_two_ranks_is_one(d1_friction):
     """1 and 2 ranks: every energy and work equal to 1e-8 of the energy scale, the contact force to 1e-8 of its scale"""
     h1, h2 = d1_friction[1].history, d1_friction[2].history

@@ -71,6 +71,7 @@ struct _p_MMFriction {
   char               dump[PETSC_MAX_PATH_LEN]; /* -friction_dump: directory for the step problems, empty: none */
   SNES               snes;     /* prefix friction_: a shell whose solve is the type's */
   Vec                s, s_new; /* thresholds mu r_n per contact node (the threshold loop) */
+  Vec                s_start;  /* the thresholds at the step's start: a rejected step's retry starts from them */
   Vec                sigma;    /* velocity of the current iterate */
   Vec                b, w, react; /* the step problem being solved (borrowed) */
   MMCoulombWork      work;

@@ -74,6 +74,7 @@ static PetscErrorCode RejectStep(TS ts, MMNewmark nm, PetscInt rejections, MMRej
   ts->num_snes_failures++;
   PetscCall(MMAdaptGrowBackRejected(ts, (PetscBool)(why == MM_REJECT_FRICTION)));
   PetscCall(VecCopy(nm->state.react_old, nm->state.react));
+  PetscCall(MMFrictionRejectStep(nm->friction));
   can_retry = (PetscBool)(new_dt >= hmin && (ts->max_reject < 0 || rejections <= ts->max_reject));
   if (why == MM_REJECT_FRICTION) {
     PetscCheck(can_retry, comm, PETSC_ERR_NOT_CONVERGED,
@@ -170,6 +171,7 @@ static PetscErrorCode TSStep_Newmark(TS ts)
   PetscCall(MatchFinalTime(ts));
   if (nm->law->begin) PetscCall((*nm->law->begin)(nm, ts->ptime, ts->time_step)); /* frames and pairs that follow the body */
   PetscCall(SaveOldState(s));
+  PetscCall(MMFrictionBeginStep(nm->friction));
   s->has_du = PETSC_FALSE;
   PetscCall(MMContactCornersAccept(nm->contact));
   while (!solved) {

@@ -636,7 +636,7 @@ static PetscErrorCode Iterate(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b, V
       PetscCall(Accepted(nm, w, H, dt, b, PetscMax(PetscMax(scale, fscale), PETSC_SMALL * PETSC_SMALL), &tol, &done));
       if (done) break;
       PetscCall(MMAndersonUpdate(&nl->aa, nl->c, H));
-      res_prev = res;
+      res_prev = PETSC_MAX_REAL; /* tighter solves: a new contraction, no stall to compare with */
       continue;
     }
     /* short of the tolerance, a residual that no audit can see ends the step too */
@@ -652,10 +652,19 @@ static PetscErrorCode Iterate(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b, V
       }
     }
     /* stalled within ten times the tolerance: the round-off floor of the force (the discrete gradient's quotient, the
-     * contact solves' tolerance) is reached, and the energy audit still checks the step */
+     * contact solves' tolerance) is reached. With iterative solves the tolerance is theirs (Tolerance), which
+     * an iteration matrix far from the tangent makes large: the whole residual is checked as at the
+     * tolerance (Accepted), and the iteration goes on with tighter solves where it is above the audits */
     if (res <= 10 * tol && res > 0.5 * res_prev) {
-      tol = res;
-      break;
+      PetscBool done;
+      PetscCall(Accepted(nm, w, H, dt, b, PetscMax(PetscMax(scale, fscale), PETSC_SMALL * PETSC_SMALL), &tol, &done));
+      if (done) {
+        tol = res;
+        break;
+      }
+      PetscCall(MMAndersonUpdate(&nl->aa, nl->c, H));
+      res_prev = PETSC_MAX_REAL;
+      continue;
     }
     /* stalled farther from it: the step is done when its whole residual meets its certificate
      * (certificate.c): a slender part's internal force is a small difference of large element forces,
@@ -699,6 +708,19 @@ static PetscErrorCode Iterate(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b, V
   PetscFunctionReturn(0);
 }
 
+/* A step that failed after rebuilding its iteration matrix took the tangent at one of its iterates,
+ * which may be far from any state of the motion (a diverging iteration's): the retry starts from the
+ * tangent at the step's start u^n instead (el.l0, Iterate), K~ rebuilt on it by the retry's
+ * MMNewmarkSetStep. Kept, such a tangent made the svk ball's retries stall with a right-hand side
+ * 1e10 times the forces' size, and a step with balance 0.15 was accepted (issue 50). */
+static PetscErrorCode ForgetFailedTangent(MMNewmark nm, PetscReal t0)
+{
+  PetscFunctionBeginUser;
+  if (nm->nl.policy != MM_TANGENT_AUTO) PetscFunctionReturn(0); /* reference keeps K; step builds its own */
+  PetscCall(MMNonlinearBuildTangent(nm, nm->nl.el.l0, t0));
+  PetscFunctionReturn(0);
+}
+
 /* One step: w holds the predictor on entry, u^{n+1} on success; b is contact's right-hand side vector.
  * *solved false: the friction solver or the iteration did not converge (the caller rejects the step).
  * With -step_increments every iterate solves for the increment du = w - u^n (docs/method.md section
@@ -710,9 +732,11 @@ PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b,
   MMNonlinear *nl = &nm->nl;
   MMState     *s  = &nm->state;
   PetscReal    ctol;
+  PetscInt     rebuilds;
 
   PetscFunctionBeginUser;
   s->has_du = PETSC_FALSE;
+  rebuilds  = nl->rebuilds;
   PetscCall(MMContactGetSolveTolerance(nm->contact, &ctol, NULL));
   if (!nm->increments) PetscCall(Iterate(nm, t0, dt, b, w, w, solved));
   else {
@@ -725,6 +749,7 @@ PetscErrorCode MMNonlinearSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b,
     PetscCall(MMNewmarkSchemeIncrement(nm, dt, PETSC_FALSE));
     s->has_du = *solved;
   }
+  if (!*solved && nl->rebuilds > rebuilds) PetscCall(ForgetFailedTangent(nm, t0));
   PetscCall(MMContactSetSolveTolerance(nm->contact, ctol)); /* tightened for this step only (Accepted) */
   nl->its_total += PetscMin(nl->its, nl->max_it);
   nl->steps++;

@@ -508,6 +508,52 @@ PetscErrorCode MMFrictionGetThresholds(MMFriction fr, Vec *s)
 }
 
 /*@
+  MMFrictionBeginStep - Keeps the thresholds at a step's start, where a rejected step's retry starts
+
+  Collective
+
+  Input Parameter:
+. fr - the friction solver, or NULL
+
+  Level: developer
+
+.seealso: `MMFrictionRejectStep()`
+@*/
+PetscErrorCode MMFrictionBeginStep(MMFriction fr)
+{
+  PetscFunctionBeginUser;
+  if (!fr || !fr->s) PetscFunctionReturn(0);
+  if (!fr->s_start) PetscCall(VecDuplicate(fr->s, &fr->s_start));
+  PetscCall(VecCopy(fr->s, fr->s_start));
+  PetscFunctionReturn(0);
+}
+
+/*@
+  MMFrictionRejectStep - Gives back the thresholds of the step's start to a rejected step's retry
+
+  Collective
+
+  Input Parameter:
+. fr - the friction solver, or NULL
+
+  Note:
+  Each solve warm-starts from the thresholds the last one left, and a solve that did not converge,
+  or an iterate of a diverging finite-strain step, leaves any: on the svk ball of issue 50 they
+  reached 1e23 and every retry's first CG diverged down to dt/256.
+
+  Level: developer
+
+.seealso: `MMFrictionBeginStep()`
+@*/
+PetscErrorCode MMFrictionRejectStep(MMFriction fr)
+{
+  PetscFunctionBeginUser;
+  if (!fr || !fr->s_start) PetscFunctionReturn(0);
+  PetscCall(VecCopy(fr->s_start, fr->s));
+  PetscFunctionReturn(0);
+}
+
+/*@
   MMFrictionDestroy - Destroys a friction solver
 
   Collective
@@ -526,6 +572,7 @@ PetscErrorCode MMFrictionDestroy(MMFriction *fr)
   PetscCall(SNESDestroy(&(*fr)->snes));
   PetscCall(VecDestroy(&(*fr)->s));
   PetscCall(VecDestroy(&(*fr)->s_new));
+  PetscCall(VecDestroy(&(*fr)->s_start));
   PetscCall(VecDestroy(&(*fr)->sigma));
   PetscCall(MMCoulombWorkDestroy(&(*fr)->work));
   PetscCall(PetscFree(*fr));
