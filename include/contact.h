@@ -97,6 +97,7 @@ typedef struct {
   PetscInt         ncomp;      /* reaction components per row: 1 (normal), or dim with friction */
   PetscInt         n_corners, n_fc; /* second rows; friction corners (over all ranks) */
   PetscReal        h_c;        /* h_c': the smallest diameter of the cells touching the contact boundary */
+  PetscReal        h_min;      /* without contact: the smallest cell diameter; 0 with contact */
   PetscReal        dt;         /* the dt of the step matrix K~ */
   IS               is_normal, is_tangent, is_star, is_interior, is_massless; /* owned global dofs */
   Vec              gap;        /* g_i on the normal dofs, layout of is_normal */

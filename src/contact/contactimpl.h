@@ -145,7 +145,7 @@ struct _p_MMContact {
   const MMMaterial *material;     /* borrowed: E_max, the force scale of the audits */
   MMStepOffset      step;         /* the step's offset and scale, the stepper's (MMContactSetStepOffset) */
   PetscBool  enabled;
-  PetscBool  prefer_iterative; /* without contact, 3D with at least -iterative_dofs dofs: CG for K~ */
+  PetscBool  prefer_iterative; /* without contact: CG for K~ (by the cost model, or -iterative_dofs) */
   PetscBool  auto_type;        /* the formulation was chosen by -contact_formulation auto */
   char       auto_why[160];    /* auto's predicted whole runs, for the start-up report */
   PetscInt   n_local, n_global;   /* contact nodes owned here / in total */
@@ -197,6 +197,7 @@ struct _p_MMContact {
   PetscBool  moving;              /* some obstacle moves: gaps follow it every step */
   PetscReal *force_obstacle;      /* per obstacle, MM_MAX_DIM: the contact force on it (Cartesian), last step */
   PetscReal  h_c;                 /* smallest diameter of cells touching the contact boundary */
+  PetscReal  h_min;               /* without contact: the smallest cell diameter (the linear path's c_p dt / h) */
   PetscReal  penetration_free;    /* last accepted step: the deepest penetration of an obstacle a node has no row for */
   PetscReal  penetration_bound;   /* last accepted step: the deepest crossing of a node's own bound (frames that follow: the audit's) */
   PetscReal  tol;                 /* -contact_tol */
@@ -232,23 +233,33 @@ typedef struct {
   PetscBool finite;   /* some body has a finite-strain law: a step is iterations of linear solves */
 } MMCostInput;
 
-/* A formulation's predicted times (s); setup PETSC_INFINITY: it cannot carry the problem */
+/* A formulation's predicted times (s); setup PETSC_INFINITY: it cannot carry the problem. direct: its
+ * step is a direct solve, exact by construction (the iterative ones are exact by the step's
+ * certificate, at a cost that varies with the contact state, which the model does not see): within
+ * MM_COST_DIRECT_MARGIN of the cheapest prediction, auto takes it (cost.c) */
 typedef struct {
   PetscReal setup, step;
+  PetscBool direct;
 } MMCost;
 
 /* A fitted model of one formulation in one dimension (docs/scaling.md, "The formulation chosen by
  * cost" and "Refitted with the ranks and the law"):
  *   ln step  = s[0] + s[1] ln dofs + s[2] ln(1 + cfl) + f (s[3] + s[4] ln(1 + cfl))
- *              + g (s[6] + s[7] ln dofs) + ln ranks (s[5] + s[8] ln dofs)
+ *              + g (s[6] + s[7] ln dofs + s[10] ln(1 + cfl))
+ *              + ln ranks (s[5] + s[8] ln dofs + s[9] ln(1 + cfl))
  *   ln setup = u[0] + u[1] ln dofs + ln ranks (u[2] + u[3] ln dofs)
  * f = 1 with friction, g = 1 with a finite-strain law; a second rank pays on large meshes and costs
- * on small ones, hence its terms in ln dofs. The constants are written by scripts/cost_model_fit.py
- * --write into impls/cost_constants.h. */
+ * on small ones, hence its terms in ln dofs; the active set's CG iterations grow with c_p dt / h_c'
+ * faster on more ranks (Jacobi, not ICC(0)) and with a finite-strain law (its iterations), hence
+ * theirs in ln(1 + cfl). The constants are written by scripts/cost_model_fit.py --write into
+ * impls/cost_constants.h. */
 typedef struct {
-  PetscReal s[9], u[4];
+  PetscReal s[11], u[4];
 } MMCostModel;
+#define MM_MAX_FORMULATIONS 16 /* registered contact formulations auto compares */
 PETSC_INTERN void MMCostEvaluate(const MMCostModel *m, const MMCostInput *in, MMCost *cost);
+PETSC_INTERN PetscErrorCode MMContactChooseLinearPath(MMContact ct, PetscInt n_dofs);
+PETSC_INTERN PCType MMKtDefaultPC(MPI_Comm comm);
 
 /* A contact formulation's operations (docs/method.md section 3). A NULL entry is a capability the
  * formulation lacks: solvecontactdofs (a friction loop over it), setthresholds (Tresca solves with

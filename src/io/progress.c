@@ -240,6 +240,7 @@ static PetscErrorCode HeaderPhysics(MMProgress *pg, TS ts)
   PetscCall(TSGetMaxSteps(ts, &max_steps));
   if (max_steps < PETSC_MAX_INT) PetscCall(PetscSNPrintf(steps, sizeof(steps), " or %" PetscInt_FMT " steps", max_steps));
   if (h_c > 0) PetscCall(PetscSNPrintf(cfl, sizeof(cfl), "h_c' = %.4g, c_p dt / h_c' = %.3g", (double)h_c, (double)(pg->material->c_p_max * dt / h_c)));
+  else if (cn.h_min > 0) PetscCall(PetscSNPrintf(cfl, sizeof(cfl), "no contact boundary; smallest cell h = %.4g, c_p dt / h = %.3g", (double)cn.h_min, (double)(pg->material->c_p_max * dt / cn.h_min)));
   else PetscCall(PetscStrncpy(cfl, "no contact boundary", sizeof(cfl)));
   if (!pg->material->named) PetscCall(PetscPrintf(comm, "  material: E = %.6g, nu = %.6g, rho = %.6g; waves c_p = %.4g, c_s = %.4g%s\n", (double)opt->E, (double)opt->nu, (double)opt->rho, (double)pg->material->c_p_max, (double)c_s, LawText(pg->material->body[0].elasticity)));
   else PetscCall(HeaderBodies(pg));

@@ -96,11 +96,10 @@ static PetscErrorCode GlobalDofs(MMContact ct, PetscInt *n)
 }
 
 /* ct->ops of -contact_formulation, or of "none" (K~ solves alone) without contact. auto is resolved
- * by the cost model (cost.c) with contact, and without it by the size: 3D with at least
- * -iterative_dofs dofs solves K~ by CG, where the factor costs more than the CG solves it saves, in
- * memory, set-up and step (README "Large meshes"; docs/scaling.md, "The figures behind the code's
- * choices"); in 2D the factor is cheap. With contact it runs after the contact dofs are built:
- * the model needs h_c' and the friction corners. */
+ * by the cost model (cost.c) with contact, and without it K~'s solver (factor or CG) by the linear
+ * path's cost model, or by -iterative_dofs when given (README "Large meshes"; docs/scaling.md, "The
+ * linear path chosen by cost"). With contact it runs after the contact dofs are built: the model
+ * needs h_c' and the friction corners; without, it needs the smallest cell's diameter. */
 PetscErrorCode MMContactSetType(MMContact ct)
 {
   PetscErrorCode (*create)(MMContact) = NULL;
@@ -109,7 +108,8 @@ PetscErrorCode MMContactSetType(MMContact ct)
   PetscFunctionBeginUser;
   PetscCall(MMContactRegisterAll());
   PetscCall(GlobalDofs(ct, &n));
-  ct->prefer_iterative = (PetscBool)(ct->dim == 3 && ct->opt.iterative_dofs > 0 && n >= ct->opt.iterative_dofs);
+  ct->prefer_iterative = (PetscBool)(ct->opt.iterative_dofs > 0 && n >= ct->opt.iterative_dofs);
+  if (!ct->enabled && ct->opt.iterative_dofs < 0) PetscCall(MMContactChooseLinearPath(ct, n));
   PetscCall(PetscStrcmp(ct->opt.contact_formulation, "auto", &ct->auto_type));
   if (ct->auto_type && ct->enabled) PetscCall(MMContactChooseFormulation(ct, n));
   PetscCall(PetscFunctionListFind(MMContactList, ct->opt.contact_formulation, &create));

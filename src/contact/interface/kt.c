@@ -38,9 +38,20 @@ static PetscErrorCode RigidBodyModes(MMContact ct, MatNullSpace *sp)
   PetscFunctionReturn(0);
 }
 
+/* The CG's default PC for K~ (the active set's and the linear path's): on one rank the incomplete
+ * Cholesky factor ICC(0) of K~, set up once per dt, on more Jacobi (ICC needs one rank's matrix;
+ * -contact_K_pc_type bjacobi -contact_K_sub_pc_type icc gives ICC(0) per rank). On the 33k-dof D2 ball
+ * it takes 0.27 to 0.29 of Jacobi's CG iterations (docs/benchmark_history.md, "Issue 50, the active
+ * set's step"). */
+PCType MMKtDefaultPC(MPI_Comm comm)
+{
+  PetscMPIInt size;
+
+  return !MPI_Comm_size(comm, &size) && size == 1 ? PCICC : PCJACOBI;
+}
+
 /* The defaults, before the options: the linear runs keep the exact factorization they always had;
- * the iterative paths CG with the PC pc_default, whose choice each caller gives (Jacobi for the linear
- * runs, the active-set formulation its own: ActiveSetDefaultPC). At the c_p dt / h_c' near 1 that
+ * the iterative paths CG with the PC pc_default, whose choice each caller gives (MMKtDefaultPC). At the c_p dt / h_c' near 1 that
  * resolves the contact, K~ = K + 4/dt^2 M* is dominated by the mass, so a one-level PC needs few
  * iterations and beats GAMG's costly cycle; GAMG wins at much larger dt (docs/scaling.md, "The
  * figures behind the code's choices"). An incomplete Cholesky factor is taken in RCM order, which

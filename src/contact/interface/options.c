@@ -54,8 +54,8 @@ PetscErrorCode MMContactSetFromOptions(MMContact ct)
   o->contact = PETSC_TRUE;
   PetscCall(MMOptionsBool(PetscOptionsObject, comm, "-contact", "Enforce unilateral contact; 0 gives linear elastodynamics on the same mesh (the contact boundary is then unused)", &o->contact));
   PetscCall(PetscStrncpy(o->contact_formulation, "auto", sizeof(o->contact_formulation)));
-  o->iterative_dofs = 50000;
-  PetscCall(MMOptionsInt(PetscOptionsObject, comm, "-iterative_dofs", "Without contact (-contact 0), 3D problems with at least this many dofs solve K~ by CG with Jacobi rather than factoring it (0: never); below it, and in 2D, K~ is factored. With contact, -contact_formulation auto chooses by its cost model instead", &o->iterative_dofs));
+  o->iterative_dofs = -1;
+  PetscCall(MMOptionsInt(PetscOptionsObject, comm, "-iterative_dofs", "Without contact (-contact 0): problems with at least this many dofs solve K~ by CG (ICC(0) on one rank, Jacobi on more) rather than factoring it; 0: always the factor; -1 (the default): whichever of the two a cost model fitted on measured runs predicts faster for the whole run (docs/scaling.md). With contact, -contact_formulation auto chooses instead", &o->iterative_dofs));
   PetscCall(MMOptionsString(PetscOptionsObject, comm, "-contact_formulation", "Contact formulation: auto (the default: condensed or active_set, whichever a cost model fitted on measured runs predicts cheaper for the whole run, from the dofs, the dimension, c_p dt / h_c', friction, the law (linear or finite strain), the number of ranks and the number of steps to -ts_max_time; the start-up report shows both predictions), condensed (the VI on the contact dofs through the Delassus operator, K~ factored once per dt), full (the VI on all dofs, a factorization per VI iteration, frictionless), or active_set (the primal-dual active-set method on all dofs: CG on the free dofs with the contact_K_ PC, default ICC(0) on one rank and Jacobi on more, -contact_K_pc_type gamg or hypre for c_p dt / h_c' above about 10, set up once per dt; for large 3D meshes)", o->contact_formulation, sizeof(o->contact_formulation), NULL));
   o->contact_tol = 1e-11;
   PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-contact_tol", "Contact solves stop when ||K~ w - b - f_c|| <= contact_tol ||b|| (on top of -contact_snes_rtol/atol), in (0, 1)", &o->contact_tol));
@@ -89,7 +89,7 @@ PetscErrorCode MMContactSetFromOptions(MMContact ct)
   PetscCheck(o->audit_penetration_tol > 0, comm, PETSC_ERR_USER_INPUT, "-audit_penetration_tol %.6g must be > 0: it is a fraction of h_c'", (double)o->audit_penetration_tol);
   PetscCheck(o->audit_coulomb_tol > 0, comm, PETSC_ERR_USER_INPUT, "-audit_coulomb_tol %.6g must be > 0: it is a normalized residual (the history's coulomb_residual)", (double)o->audit_coulomb_tol);
   PetscCheck(o->initial_penetration_tol >= 0, comm, PETSC_ERR_USER_INPUT, "-initial_penetration_tol %g must be >= 0: it is a fraction of h_c'", (double)o->initial_penetration_tol);
-  PetscCheck(o->iterative_dofs >= 0, comm, PETSC_ERR_USER_INPUT, "-iterative_dofs %" PetscInt_FMT " must be >= 0 (0: never the iterative path by default)", o->iterative_dofs);
+  PetscCheck(o->iterative_dofs >= -1, comm, PETSC_ERR_USER_INPUT, "-iterative_dofs %" PetscInt_FMT " must be >= -1 (-1: by the cost model, 0: always the factor)", o->iterative_dofs);
   PetscFunctionReturn(0);
 }
 

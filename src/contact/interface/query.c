@@ -29,6 +29,7 @@ PetscErrorCode MMContactGetNodes(MMContact ct, MMContactNodes *nodes)
   nodes->n_corners    = ct->n_corners;
   nodes->n_fc         = ct->n_fc;
   nodes->h_c          = ct->h_c;
+  nodes->h_min        = ct->h_min;
   nodes->dt           = ct->Kt_dt;
   nodes->is_normal    = ct->is_normal;
   nodes->is_tangent   = ct->is_tangent;
@@ -116,7 +117,7 @@ PetscErrorCode MMContactGetSolverText(MMContact ct, const char **type, const cha
 {
   PetscFunctionBeginUser;
   *type     = ct->type;
-  *choice   = ct->auto_type && ct->enabled ? ct->auto_why : "";
+  *choice   = (ct->auto_type && ct->enabled) || (!ct->enabled && ct->opt.iterative_dofs < 0) ? ct->auto_why : "";
   *products = "";
   if (ct->ops->getproducts) PetscCall((*ct->ops->getproducts)(ct, products));
   PetscFunctionReturn(0);

@@ -206,8 +206,9 @@ static PetscErrorCode MarkContactVertices(MMContact ct, PetscInt **mark, Vec are
   PetscFunctionReturn(0);
 }
 
-/* h_c': the smallest diameter of the cells touching a contact node (Theorem 4.2). */
-static PetscErrorCode ContactLayerDiameter(MMContact ct, const PetscInt mark[])
+/* h_c': the smallest diameter of the cells touching a contact node (Theorem 4.2); mark NULL: of all
+ * cells (the linear path's cost model, without contact). */
+static PetscErrorCode SmallestDiameter(MMContact ct, const PetscInt mark[], PetscReal *h)
 {
   DM             dm = ct->dm;
   const MMCells *cells;
@@ -227,7 +228,7 @@ static PetscErrorCode ContactLayerDiameter(MMContact ct, const PetscInt mark[])
     PetscBool    touches = PETSC_FALSE;
     PetscReal    diam    = 0;
 
-    for (PetscInt a = 0; a < cells->nv; ++a) touches = (PetscBool)(touches || mark[cells->vertex[cells->nv * (c - cStart) + a] - pStart]);
+    for (PetscInt a = 0; a < cells->nv; ++a) touches = (PetscBool)(touches || !mark || mark[cells->vertex[cells->nv * (c - cStart) + a] - pStart]);
     if (!touches) continue;
     PetscCall(DMPlexVecGetClosure(dm, NULL, X, c, &nx, &xc));
     for (PetscInt i = 0; i < nx / cdim; ++i)
@@ -239,7 +240,7 @@ static PetscErrorCode ContactLayerDiameter(MMContact ct, const PetscInt mark[])
     PetscCall(DMPlexVecRestoreClosure(dm, NULL, X, c, &nx, &xc));
     hmin = PetscMin(hmin, diam);
   }
-  PetscCall(MPIU_Allreduce(&hmin, &ct->h_c, 1, MPIU_REAL, MPIU_MIN, PetscObjectComm((PetscObject)dm)));
+  PetscCall(MPIU_Allreduce(&hmin, h, 1, MPIU_REAL, MPIU_MIN, PetscObjectComm((PetscObject)dm)));
   PetscFunctionReturn(0);
 }
 
@@ -478,6 +479,7 @@ static PetscErrorCode SetUp(MMContact ct)
   }
   PetscCall(BuildFrame(ct));
   if (!ct->enabled) {
+    PetscCall(SmallestDiameter(ct, NULL, &ct->h_min)); /* the linear path's cost model (cost.c) */
     PetscCall(MMContactSetType(ct));
     PetscCall(BuildNoContact(ct));
     PetscCall(MMContactFrameBuildRotation(ct, ct->op));
@@ -491,7 +493,7 @@ static PetscErrorCode SetUp(MMContact ct)
     PetscCall(DMPlexGetDepthStratum(ct->dm, 0, &vStart, &vEnd));
     PetscCall(MMContactPairsSetUp(ct, mark, vEnd - vStart));
   }
-  PetscCall(ContactLayerDiameter(ct, mark)); /* before the rows: h_c' is the reach of a second obstacle */
+  PetscCall(SmallestDiameter(ct, mark, &ct->h_c)); /* before the rows: h_c' is the reach of a second obstacle */
   PetscCall(BuildContactDofs(ct, mark, area));
   PetscCall(MMContactSetType(ct)); /* auto's cost model needs h_c' and the friction corners */
   if (ct->pairs.n) PetscCall(MMContactPairsResolveSliding(ct));

@@ -150,23 +150,15 @@ static PetscErrorCode ProjectedPC(PC pc, Vec x, Vec y)
   PetscFunctionReturn(0);
 }
 
-/* The contact_K_ PC's default (docs/method.md section 3, "Active-set formulation"): on one rank the
- * incomplete Cholesky factor ICC(0) of K~, set up once per dt. On the 33k-dof D2 ball it takes 0.27
- * to 0.29 of Jacobi's CG iterations per step for an apply that costs less than a product with K~, and
- * with friction 0.33 to 0.43 of them (the disk's springs, which ScaleDiskTangent makes exact for a diagonal
- * PC, are then only scaled: docs/benchmark_history.md, "Issue 50, the active set's step"). ICC needs
- * one rank's matrix: on more ranks Jacobi (-contact_K_pc_type bjacobi -contact_K_sub_pc_type icc gives
- * ICC(0) per rank). */
+/* The contact_K_ PC's default is MMKtDefaultPC's (interface/kt.c; docs/method.md section 3, "Active-set
+ * formulation"): ICC(0) on one rank, Jacobi on more. With friction ICC takes 0.33 to 0.43 of Jacobi's CG
+ * iterations on the D2 ball (the disk's springs, which ScaleDiskTangent makes exact for a diagonal PC,
+ * are then only scaled). */
 static PetscBool ActiveSetDefaultICC(MPI_Comm comm)
 {
-  PetscMPIInt size;
+  PetscBool icc = PETSC_FALSE;
 
-  return (PetscBool)(!MPI_Comm_size(comm, &size) && size == 1);
-}
-
-static PCType ActiveSetDefaultPC(MPI_Comm comm)
-{
-  return ActiveSetDefaultICC(comm) ? PCICC : PCJACOBI;
+  return (PetscBool)(!PetscStrcmp(MMKtDefaultPC(comm), PCICC, &icc) && icc);
 }
 
 PetscErrorCode MMActiveSetSetUp(MMContact ct)
@@ -182,7 +174,7 @@ PetscErrorCode MMActiveSetSetUp(MMContact ct)
   as->inexact_coulomb_rtol = ct->opt.active_set_inexact_coulomb_rtol;
   as->monitor = ct->opt.active_set_monitor;
   as->block   = ct->opt.active_set_block;
-  PetscCall(MMKtCreate(ct, PETSC_TRUE, ActiveSetDefaultPC(PetscObjectComm((PetscObject)ct->dm))));
+  PetscCall(MMKtCreate(ct, PETSC_TRUE, MMKtDefaultPC(PetscObjectComm((PetscObject)ct->dm))));
   PetscCall(VecDuplicate(ct->qp.b, &as->free));
   PetscCall(VecDuplicate(ct->qp.b, &as->x0));
   PetscCall(VecDuplicate(ct->qp.b, &as->r));
@@ -829,7 +821,7 @@ static PetscErrorCode ActiveSetSwapKept(MMContact ct, PetscReal dt, PetscBool *h
   MMActiveSetData(ct)->ct_diag = MMActiveSetData(ct)->kept_diag;
   MMActiveSetData(ct)->kept_diag  = diag;
   /* a first swap: the buffers of the new dt are made here, as MMActiveSetSetUp made the first ones */
-  if (!ct->kt.ksp) PetscCall(MMKtCreate(ct, PETSC_TRUE, ActiveSetDefaultPC(PetscObjectComm((PetscObject)ct->dm))));
+  if (!ct->kt.ksp) PetscCall(MMKtCreate(ct, PETSC_TRUE, MMKtDefaultPC(PetscObjectComm((PetscObject)ct->dm))));
   if (!MMActiveSetData(ct)->ct_diag) PetscCall(VecDuplicate(ct->qp.b, &MMActiveSetData(ct)->ct_diag));
   *hit = (PetscBool)(ct->qp.A && ct->Kt_dt == dt);
   PetscFunctionReturn(0);

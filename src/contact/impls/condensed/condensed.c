@@ -549,6 +549,7 @@ static PetscErrorCode CondensedCost(MMContact ct, const MMCostInput *in, MMCost 
   PetscFunctionBeginUser;
   (void)ct;
   MMCostEvaluate(&model[in->dim == 3], in, cost);
+  cost->direct = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 

@@ -1,5 +1,5 @@
 /* The "none" contact formulation (-contact 0): no contact boundary, each step is one solve with
- * K~ (interface/kt.c: a factorization, or CG for large 3D meshes). It has no state of its own
+ * K~ (interface/kt.c: a factorization, or CG where the cost model predicts it faster). It has no state of its own
  * (data NULL) and lacks every capability the others add: friction, the Delassus operator, the kept
  * K~, a warm start to checkpoint. Adding a formulation is a folder like this one and one
  * MMContactRegister line (interface/contact.c). */
@@ -8,9 +8,10 @@
 static PetscErrorCode NoneSetUp(MMContact ct)
 {
   PetscFunctionBeginUser;
-  /* large 3D problems: CG with Jacobi, faster per step than the factor's triangular solves and with
-   * a fraction of its set-up (contact.c, PrefersIterative; docs/scaling.md, "The figures behind the code's choices") */
-  PetscCall(MMKtCreate(ct, ct->prefer_iterative, PCJACOBI));
+  /* CG where the cost model (or -iterative_dofs) prefers it to the factor: on large 3D problems its
+   * solves are faster than the factor's triangular solves, with a fraction of its set-up (contact.c;
+   * docs/scaling.md, "The linear path chosen by cost") */
+  PetscCall(MMKtCreate(ct, ct->prefer_iterative, MMKtDefaultPC(ct->comm)));
   PetscFunctionReturn(0);
 }
 
