@@ -328,6 +328,7 @@ typedef struct _MMElasticity {
   PetscReal *cell_geom; /* per local cell, its P1 gradients (dim + 1 by dim) and volume */
   PetscReal  visc;      /* beta/dt: the step's viscous stress beta D : dE/dt (Rayleigh's stiffness part), 0 undamped */
   PetscBool  consistent; /* the tangent dP/dF itself, its geometric term everywhere (the static start's Newton) */
+  PetscBool  clamp;      /* a compressed cell's tangent made semi-definite (unless consistent): the iteration matrix's choice */
 } MMElasticity;
 #define MM_ELASTICITY_GEOM ((MM_MAX_DIM + 1) * MM_MAX_DIM + 1)
 PETSC_EXTERN PetscErrorCode MMElasticitySetUp(MMElasticity *el, MMOperators op);

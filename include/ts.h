@@ -127,6 +127,9 @@ PETSC_EXTERN PetscErrorCode MMDeformationView(MMNewmark nm, PetscViewer viewer);
 PETSC_EXTERN PetscErrorCode MMNonlinearView(MMNewmark nm, PetscViewer viewer);
 PETSC_EXTERN PetscErrorCode MMCertificateView(MMNewmark nm, PetscViewer viewer);
 PETSC_EXTERN PetscErrorCode MMNewmarkGetCertificateResidual(MMNewmark nm, Vec *r);
+/* The step from which a rejection made the finite-strain tangent clamped, 0: not (nonlinear.c; a checkpoint keeps it) */
+PETSC_EXTERN PetscErrorCode MMNewmarkGetTangentClampStep(MMNewmark nm, PetscInt *step);
+PETSC_EXTERN PetscErrorCode MMNewmarkSetTangentClampStep(MMNewmark nm, PetscInt step);
 
 /* Rayleigh damping C = alpha M* + beta B in the trapezoidal scheme (damping.c) */
 PETSC_EXTERN PetscBool      MMDampingOn(const MMDamping *d);

@@ -2,6 +2,7 @@
 the energy-momentum step, the Cauchy stress of the current configuration. Each tolerance is against the
 case's physical scale: its energy, force, momentum, or the strain it is given."""
 import os
+import re
 
 import numpy as np
 import pytest
@@ -158,6 +159,21 @@ def test_active_set_svk_retry_starts_from_the_step_start(tmp_path):
     assert "step rejected" in r.output  # the retry path is what is tested
     assert r.history["balance_residual"].max() <= 5e-12
     assert r.history["time"][-1] >= 0.32 - 1e-9
+    # the first rejection, with the unclamped tangent, makes the run clamp it from then on
+    assert re.search(r"finite strain: .*clamped from step \d+ \(a step with the unclamped tangent was rejected\)", r.output), r.output[-1500:]
+
+
+def test_the_clamp_fallback_restarts_bit_for_bit(tmp_path):
+    """The same run checkpointed at step 25, after its fallback to the clamped tangent (step 19), and
+    continued by -restart: the checkpoint keeps the fallback (tangent_clamp_step), and the continued
+    history is the uninterrupted run's, byte for byte."""
+    common = ("-mesh", "meshes/ball10.msh", "-ts_dt", 0.016, "-ts_max_time", 0.32, "-mu", 0.2, "-elasticity", "svk",
+              "-contact_formulation", "active_set", "-output_every", 0)
+    whole = run("d2_ball", tmp_path, *common, name="whole")
+    first = run("d2_ball", tmp_path, *common, "-checkpoint_every", 25, "-ts_max_steps", 25, name="first")
+    assert "clamped from step" in first.output
+    cont = run("d2_ball", tmp_path, *common, "-restart", first.outdir, "-output_dir", first.outdir, name="first")
+    assert open(os.path.join(cont.outdir, "history.csv")).read() == open(os.path.join(whole.outdir, "history.csv")).read()
 
 
 def test_d1_friction_svk_two_ranks_is_one(d1_friction):

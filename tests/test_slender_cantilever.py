@@ -3,6 +3,8 @@ finite-strain step's residual stalls at the round-off of the beam's large, cance
 above -nonlinear_rtol; the step is accepted there by its certificate (docs/method.md section 13, "A
 floor is accepted by the step's certificate") instead of being cut down to dt 4e-8 and stopped. The
 tip is compared with the elastica, computed here."""
+import re
+
 import numpy as np
 import pytest
 
@@ -72,3 +74,24 @@ def test_a_stalled_iteration_is_accepted_only_at_its_round_off(mm):
     h = r.history
     assert h["time"][-1] == pytest.approx(1.0)
     assert h["balance_residual"].max() <= 1e-8
+
+
+def test_the_unclamped_tangent_takes_fewer_iterations(mm):
+    """The iteration matrix's tangent with its compressed cells as they are (the default) against clamped
+    semi-definite (-nonlinear_tangent_clamp), on the t/L = 0.02 cantilever to t = 2 (the load ramping up):
+    the same motion (tip to 1e-9 of its deflection, every step certified), at most 0.8 of the clamped
+    run's iterations (5.2 against 7.3 per step to t = 6, measured) and no fallback to the clamp (the mass
+    term covers the compressed fibres' negative stiffness at dt 0.01). Not a timing test."""
+    runs = {c: mm("slender_cantilever", *c, "-ts_max_time", 2, "-output_every", 0, name="clamp" if c else "as_is")
+            for c in ((), ("-nonlinear_tangent_clamp",))}
+    its = {}
+    for c, r in runs.items():
+        m = re.search(r"finite strain: ([\d.]+) iterations per step", r.output)
+        assert m, r.output[-1500:]
+        its[c] = float(m.group(1))
+        assert r.history["balance_residual"].max() <= 1e-8
+    as_is, clamped = runs[()], runs[("-nonlinear_tangent_clamp",)]
+    assert "clamped from step" not in as_is.output
+    uy = np.abs(clamped.history["probe_tip_uy"]).max()
+    assert np.abs(as_is.history["probe_tip_uy"] - clamped.history["probe_tip_uy"]).max() <= 1e-9 * uy
+    assert its[()] <= 0.8 * its[("-nonlinear_tangent_clamp",)], its

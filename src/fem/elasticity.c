@@ -65,6 +65,7 @@ static PetscErrorCode CellCache(MMElasticity *el, MMOperators op)
 PetscErrorCode MMElasticitySetUp(MMElasticity *el, MMOperators op)
 {
   PetscFunctionBeginUser;
+  el->clamp = PETSC_TRUE;
   PetscCall(DMCreateLocalVector(op->dm, &el->l0));
   PetscCall(VecDuplicate(el->l0, &el->l1));
   PetscCall(VecDuplicate(el->l0, &el->lf));
@@ -481,7 +482,7 @@ static PetscBool TangentIsDefinite(PetscInt dim, const MMTangent A)
 
 /* The tangent's element matrix: K_e[a i][b k] = |T| grad phi_a,J A_iJkL grad phi_b,L, with the cell's
  * offsets and gradients from the cache (the assembler's own g and vol are the same);
- * a compressed cell's made semi-definite (ClampNegativeEigenvalues) */
+ * a compressed cell's made semi-definite (ClampNegativeEigenvalues) where el->clamp asks for it */
 static PetscErrorCode TangentElement(void *ctx, PetscInt c, const PetscInt v[], const PetscReal g_unused[][MM_MAX_DIM], PetscReal vol_unused, PetscScalar Ke[])
 {
   const TangentData *td  = (const TangentData *)ctx;
@@ -515,7 +516,7 @@ static PetscErrorCode TangentElement(void *ctx, PetscInt c, const PetscInt v[], 
           Ke[(a * dim + i) * n + b * dim + k] = t;
         }
   }
-  if (!definite && !td->el->consistent && !TangentIsDefinite(dim, (const PetscReal(*)[MM_MAX_DIM][MM_MAX_DIM][MM_MAX_DIM])A)) PetscCall(ClampNegativeEigenvalues(n, Ke)); /* the static start's Newton takes dP/dF itself */
+  if (!definite && td->el->clamp && !td->el->consistent && !TangentIsDefinite(dim, (const PetscReal(*)[MM_MAX_DIM][MM_MAX_DIM][MM_MAX_DIM])A)) PetscCall(ClampNegativeEigenvalues(n, Ke)); /* the static start's Newton takes dP/dF itself */
   PetscFunctionReturn(0);
 }
 

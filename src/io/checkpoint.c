@@ -723,6 +723,17 @@ static PetscErrorCode WriteStepperState(MMCheckpoint *ck, TS ts, PetscViewer vie
     PetscCall(PetscViewerHDF5WriteAttribute(viewer, "tangent_point", "time", PETSC_REAL, &t));
   }
   {
+    PetscInt step; /* the tangent clamped since a rejection (src/ts/nonlinear.c) */
+    PetscCall(MMNewmarkGetTangentClampStep(nm, &step));
+    if (step > 0) {
+      PetscReal val = (PetscReal)step;
+      Vec       cv;
+      PetscCall(RootVector(comm, "tangent_clamp_step", 1, &val, &cv));
+      PetscCall(VecView(cv, viewer));
+      PetscCall(VecDestroy(&cv));
+    }
+  }
+  {
     /* the step certificate's state: the last residual the next step sums with its own, and the
      * solves' tolerance it has tightened to (src/ts/certificate.c): the next step as the run's */
     Vec       r;
@@ -819,6 +830,14 @@ static PetscErrorCode CheckpointBytes(MMCheckpoint *ck, TS ts, PetscReal *bytes)
   if (at) {
     values += nv * dim;
     datasets += 1;
+  }
+  {
+    PetscInt step;
+    PetscCall(MMNewmarkGetTangentClampStep(nm, &step));
+    if (step > 0) {
+      values += 1;
+      datasets += 1;
+    }
   }
   PetscCall(MMNewmarkGetCertificateResidual(nm, &at));
   if (at) {
@@ -1247,6 +1266,22 @@ static PetscErrorCode LoadMassFree(MMCheckpoint *ck, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
+/* The finite-strain tangent clamped since a rejection, when the checkpointed run was (nonlinear.c) */
+static PetscErrorCode LoadTangentClamp(MMCheckpoint *ck, TS ts, PetscViewer viewer)
+{
+  MMNewmark nm;
+  PetscBool has;
+  PetscReal step;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5HasDataset(viewer, "tangent_clamp_step", &has));
+  if (!has || !ck->material->finite) PetscFunctionReturn(0);
+  PetscCall(LoadSmallVector(ck, viewer, "tangent_clamp_step", 1, &step));
+  PetscCall(MMNewmarkFromTS(ts, &nm));
+  PetscCall(MMNewmarkSetTangentClampStep(nm, (PetscInt)step));
+  PetscFunctionReturn(0);
+}
+
 /* The step certificate's state, when the checkpoint has it and this run certifies its steps */
 static PetscErrorCode LoadCertificate(MMCheckpoint *ck, TS ts, PetscViewer viewer)
 {
@@ -1473,6 +1508,7 @@ PetscErrorCode MMCheckpointLoad(MMCheckpoint *c, TS ts)
   PetscCall(LoadTangentPoint(c, viewer));
   PetscCall(LoadPairs(c, ts, viewer));
   PetscCall(LoadCertificate(c, ts, viewer));
+  PetscCall(LoadTangentClamp(c, ts, viewer));
   PetscCall(LoadMassFree(c, viewer));
   PetscCall(LoadSnapshotTimes(c, viewer));
   PetscCall(PetscViewerDestroy(&viewer));

@@ -60,6 +60,8 @@ typedef struct {
   Mat             Ks;          /* the iteration stiffness when not K (w-frame, K's pattern) */
   PetscInt        version;     /* counts the rebuilds of Ks: contact rebuilds K~ when it changes */
   PetscBool       use_tangent; /* Ks, not K, is in K~ */
+  PetscBool       clamp;       /* the tangent's compressed cells clamped semi-definite: -nonlinear_tangent_clamp, or since a step with the unclamped one was rejected */
+  PetscInt        clamp_step;  /* the step from which it is clamped by that fallback, 0: not */
   Vec             Ks_at;       /* the Cartesian displacement Ks is the tangent at, and its time (the Dirichlet data's): */
   PetscReal       Ks_time;     /* a checkpoint keeps them, so that a restart builds the same Ks (docs/method.md section 9) */
   Vec             bnl, f, c, c_prev; /* the step's fixed right-hand side; 2 f_alg; K_s w - 2 f_alg at this iterate and the last */
