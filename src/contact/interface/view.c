@@ -54,7 +54,7 @@ PetscErrorCode MMContactSetUpView(MMContact ct, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPrintf(viewer, "MMContact: formulation %s%s\n", ct->type, ct->auto_type && ct->enabled ? ct->auto_why : ""));
   PetscCall(PetscViewerASCIIPushTab(viewer));
   if (!ct->enabled) {
-    PetscCall(PetscViewerASCIIPrintf(viewer, "no contact (-contact 0): K~ %s\n", ct->prefer_iterative ? "solved by CG with Jacobi (3D, at least -iterative_dofs dofs)" : "factored"));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "no contact (-contact 0): K~ %s%s\n", ct->prefer_iterative ? "solved by CG" : "factored", ct->opt.iterative_dofs < 0 ? ct->auto_why : (ct->opt.iterative_dofs > 0 ? " (-iterative_dofs)" : " (-iterative_dofs 0)")));
     PetscCall(StepSolverView(ct, viewer));
     PetscCall(PetscViewerASCIIPopTab(viewer));
     PetscFunctionReturn(0);
