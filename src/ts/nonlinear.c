@@ -416,9 +416,26 @@ PetscErrorCode MMNewmarkRestoreTangent(MMNewmark nm, Vec at, PetscReal t)
   PetscFunctionReturn(0);
 }
 
-/* The fallback to the clamped tangent (ForgetFailedTangent) is state the next steps depend on: a
- * checkpoint keeps its step (src/io/checkpoint.c), and -restart sets it back before the tangent is
- * rebuilt (MMNewmarkRestoreTangent) */
+/*@
+  MMNewmarkGetTangentClampStep - Gives the step from which the finite-strain tangent is clamped because
+  a step iterated with it unclamped was rejected, for a checkpoint
+
+  Not collective
+
+  Input Parameter:
+. nm - the stepper's context
+
+  Output Parameter:
+. step - that step, 0 when the run has not fallen back (or its law is linear)
+
+  Note:
+  The fallback (ForgetFailedTangent) is state the next steps depend on: a checkpoint keeps its step,
+  and -restart sets it back (MMNewmarkSetTangentClampStep) before the tangent is rebuilt.
+
+  Level: developer
+
+.seealso: `MMNewmarkSetTangentClampStep()`, `MMNewmarkRestoreTangent()`
+@*/
 PetscErrorCode MMNewmarkGetTangentClampStep(MMNewmark nm, PetscInt *step)
 {
   PetscFunctionBeginUser;
@@ -426,6 +443,19 @@ PetscErrorCode MMNewmarkGetTangentClampStep(MMNewmark nm, PetscInt *step)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MMNewmarkSetTangentClampStep - Restores, on -restart, the checkpointed run's fallback to the clamped tangent
+
+  Not collective
+
+  Input Parameters:
++ nm   - the stepper's context
+- step - the step it fell back at (MMNewmarkGetTangentClampStep), 0: none
+
+  Level: developer
+
+.seealso: `MMNewmarkGetTangentClampStep()`
+@*/
 PetscErrorCode MMNewmarkSetTangentClampStep(MMNewmark nm, PetscInt step)
 {
   PetscFunctionBeginUser;
