@@ -83,7 +83,6 @@ typedef struct {
 } MMStepCertificate;
 /* The round-offs of its terms a step's defect may be (certificate.c), and those of an iteration
  * that stopped falling: its floor, accepted there */
-#define MM_ABS_ROW_MAX          256 /* entries of a row of K: 3 x the vertices that share a cell with one */
 #define MM_CERT_ROUNDOFFS       4.0
 #define MM_SOLVE_TOL_MIN        1e-15 /* the tightest relative tolerance the finite-strain step asks of an iterative solve */
 #define MM_CERT_FLOOR_ROUNDOFFS 1e3

@@ -513,29 +513,35 @@ static PetscErrorCode Correction(MMNewmark nm, PetscReal t1, Vec w, Vec x, Vec c
 }
 
 /* |K|, K's entries in magnitude (w-frame), built on first use: the round-off scale of a force
- * computed from a displacement (ForceRoundoffScale) */
+ * computed from a displacement (ForceRoundoffScale). Any row length (contact pairs and high-valence
+ * vertices lengthen K's rows; a fixed buffer of 256 refused them). */
 static PetscErrorCode AbsoluteStiffness(MMNewmark nm, Mat *Kabs)
 {
   MMContactOperators ops;
   MMNonlinear       *nl = &nm->nl;
-  PetscInt           rstart, rend;
 
   PetscFunctionBeginUser;
   if (!nl->Kabs) {
+    PetscScalar *a   = NULL; /* a row's magnitudes, grown to the longest row met */
+    PetscInt     cap = 0, rstart, rend;
     PetscCall(MMContactGetOperators(nm->contact, &ops));
     PetscCall(MatDuplicate(ops.K, MAT_DO_NOT_COPY_VALUES, &nl->Kabs));
     PetscCall(MatGetOwnershipRange(ops.K, &rstart, &rend));
     for (PetscInt row = rstart; row < rend; ++row) {
       const PetscInt    *cols;
       const PetscScalar *vals;
-      PetscScalar        a[MM_ABS_ROW_MAX];
       PetscInt           nc;
       PetscCall(MatGetRow(ops.K, row, &nc, &cols, &vals));
-      PetscCheck(nc <= MM_ABS_ROW_MAX, PETSC_COMM_SELF, PETSC_ERR_SUP, "A row of K has %" PetscInt_FMT " entries, more than %d", nc, MM_ABS_ROW_MAX);
+      if (nc > cap) {
+        PetscCall(PetscFree(a));
+        cap = 2 * nc;
+        PetscCall(PetscMalloc1(cap, &a));
+      }
       for (PetscInt j = 0; j < nc; ++j) a[j] = PetscAbsScalar(vals[j]);
       PetscCall(MatSetValues(nl->Kabs, 1, &row, nc, cols, a, INSERT_VALUES));
       PetscCall(MatRestoreRow(ops.K, row, &nc, &cols, &vals));
     }
+    PetscCall(PetscFree(a));
     PetscCall(MatAssemblyBegin(nl->Kabs, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(nl->Kabs, MAT_FINAL_ASSEMBLY));
   }
@@ -551,7 +557,7 @@ static PetscErrorCode AbsoluteStiffness(MMNewmark nm, Mat *Kabs)
 static PetscErrorCode ForceRoundoffScale(MMNewmark nm, Vec w, Vec scale)
 {
   MMNonlinear *nl = &nm->nl;
-  Mat          Kabs;
+  Mat          Kabs = NULL;
 
   PetscFunctionBeginUser;
   PetscCall(AbsoluteStiffness(nm, &Kabs));
