@@ -14,6 +14,8 @@ struct _MMObstacle {
   PetscBool inside;                  /* the body is inside the shape (-obstacle_NAME_side inside) */
   PetscBool curved;                  /* its normal varies along its surface (not a plane): a contact node's
                                         frame may follow the contact point (-contact_frames follow) */
+  PetscBool faceted;                 /* its normal jumps across the edges of its facets (type mesh): a
+                                        node may cross one within a step (-contact_frames_depth) */
   PetscReal mu;                      /* friction coefficient against this obstacle */
   PetscBool mu_given;                /* its own _mu was given (else it took -mu) */
   PetscBool prefixed;                /* it read its options under -obstacle_NAME_ (not the plane of -obstacle_point) */
@@ -52,6 +54,7 @@ PETSC_EXTERN PetscErrorCode MMObstacleGetParameter(const MMObstacle *ob, const c
 PETSC_EXTERN PetscErrorCode MMObstacleGetParameterNames(const MMObstacle *ob, PetscInt max, PetscInt *n, const char *names[]);
 PETSC_EXTERN PetscErrorCode MMObstacleDistance(const MMObstacle *ob, PetscInt dim, const PetscReal x[], PetscReal *g, PetscReal n[]);
 PETSC_EXTERN PetscErrorCode MMObstacleView(const MMObstacle *ob, PetscViewer viewer); /* -obstacle_view */
+PETSC_EXTERN PetscErrorCode MMObstacleDescribe(const MMObstacle *ob, char text[], size_t len); /* for a restart's comparison */
 PETSC_EXTERN void           MMObstacleDisplacement(const MMObstacle *ob, PetscInt dim, PetscReal t, PetscReal c[]);
 PETSC_EXTERN void           MMObstacleVelocity(const MMObstacle *ob, PetscInt dim, PetscReal t, PetscReal V[]);
 /* Frees the shape's data. */

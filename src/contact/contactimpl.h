@@ -97,7 +97,9 @@ typedef struct {
   PetscReal *X;               /* per contact row, MM_MAX_DIM: its reference position */
   PetscReal *F_new;           /* per contact row, 9: the new frame of a node that turns */
   PetscBool *turn;            /* per contact row: its frame turns at this update */
+  PetscReal  depth;           /* -contact_frames_depth (of h_c') */
   PetscInt   updates, turned; /* over the run: updates (steps with a turned frame), node frames turned */
+  PetscInt   resolves;        /* over this run (not a restart's before it): steps solved again with frames at their end */
   PetscReal  angle_max;       /* the largest turn of one update */
 } MMContactFrames;
 
@@ -129,6 +131,7 @@ typedef struct {
   MMFramesType      frames;                  /* -contact_frames */
   PetscBool         frames_set;              /* given: else follow for the finite-strain laws, fixed for linear */
   PetscReal         frames_angle;            /* -contact_frames_angle */
+  PetscReal         frames_depth;            /* -contact_frames_depth */
   MMPairsSliding    pairs_sliding;        /* -contact_pairs_sliding */
 } MMContactOptions;
 

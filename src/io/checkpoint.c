@@ -501,7 +501,7 @@ static PetscErrorCode PhysicsObstacle(MMCheckpoint *ck, MMPhysics *ph, const MMO
    * checkpoints have always held them; then those of a later shape, its own */
   const char *legacy[] = {"point", "normal", "center", "axis", "radius"}, *names[16];
   PetscInt    n;
-  char        key[64];
+  char        key[64], text[MM_PHYS_LEN];
   PetscReal   v[MM_MAX_DIM];
 
   PetscFunctionBeginUser;
@@ -521,6 +521,8 @@ static PetscErrorCode PhysicsObstacle(MMCheckpoint *ck, MMPhysics *ph, const MMO
     PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%%s_%s", names[i]));
     PetscCall(PhysicsAddReals(ph, key, ob->name, dim, v));
   }
+  PetscCall(MMObstacleDescribe(ob, text, sizeof(text)));
+  if (text[0]) PetscCall(PhysicsAddNamed(ph, "-obstacle_%s_mesh", ob->name, text));
   PetscCall(PhysicsAddNamed(ph, "-obstacle_%s_side", ob->name, ob->inside ? "inside" : "outside"));
   PetscCall(PhysicsAddReals(ph, "-obstacle_%s_mu", ob->name, 1, &ob->mu));
   PetscCall(PhysicsAddReals(ph, "-obstacle_%s_velocity", ob->name, dim, ob->velocity));

@@ -31,6 +31,7 @@ struct _MMObstacleOps {
   PetscInt                   nparams;
   size_t                     datasize; /* its data: a struct of MMObstacleValue */
   PetscBool                  curved;   /* its normal varies along its surface */
+  PetscBool                  faceted;  /* its normal jumps across its facets' edges (a mesh) */
   PetscBool                  sided;    /* the body may be inside it (-obstacle_NAME_side inside) */
   PetscInt                   dim;      /* the one dimension it exists in, 0: any */
   const char                *other;    /* dim given: the shape to use in the other dimension */
@@ -39,6 +40,15 @@ struct _MMObstacleOps {
   /* signed distance g of x (positive outside the obstacle) and n = grad g, in the obstacle's
    * position at time 0 */
   PetscErrorCode (*distance)(const MMObstacle *ob, PetscInt dim, const PetscReal x[], PetscReal *g, PetscReal n[]);
+  /* A shape with options that are not real parameters (the meshed obstacle's file), NULL for the
+   * others: their suffixes, NULL-terminated, so that another shape refuses them; the reading, under
+   * the obstacle's prefix; what -obstacle_view prints of them; the text a checkpoint compares on
+   * restart (the same shape, not only the same file name); freeing what the data points to. */
+  const char *const *options;
+  PetscErrorCode (*setfromoptions)(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, MMObstacle *ob);
+  PetscErrorCode (*view)(const MMObstacle *ob, PetscViewer viewer);
+  PetscErrorCode (*describe)(const MMObstacle *ob, char text[], size_t len);
+  PetscErrorCode (*destroy)(MMObstacle *ob);
 };
 
 PETSC_EXTERN PetscErrorCode MMObstacleSetType(MMObstacle *ob, MPI_Comm comm, const char type[]);

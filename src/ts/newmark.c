@@ -164,7 +164,7 @@ static PetscErrorCode TSStep_Newmark(TS ts)
   MMState  *s   = &nm->state;
   PetscReal dt = ts->time_step, next_dt;
   PetscBool accept, solved = PETSC_FALSE;
-  PetscInt  rejections = 0;
+  PetscInt  rejections = 0, refines = 0;
   Vec       w  = ts->vec_sol;
 
   PetscFunctionBeginUser;
@@ -195,6 +195,16 @@ static PetscErrorCode TSStep_Newmark(TS ts)
     if (!solved) {
       PetscCall(RejectStep(ts, nm, ++rejections, nm->law->failure, 0, 0));
       continue;
+    }
+    if (nm->law->refine) {
+      PetscBool again;
+      PetscCall((*nm->law->refine)(nm, ts->ptime, dt, w, ++refines, &again));
+      if (again) { /* solved again from its start, with the frames where it ended (nonlinear.c) */
+        PetscCall(MMFrictionRejectStep(nm->friction));
+        PetscCall(SaveOldState(s)); /* the start, turned */
+        solved = PETSC_FALSE;
+        continue;
+      }
     }
     PetscCall(ContactWorkTooLarge(nm, w, &too_large, &w_c, &scale));
     s->work_contact = w_c;

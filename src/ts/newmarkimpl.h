@@ -125,10 +125,14 @@ typedef struct {
   PetscErrorCode (*begin)(MMNewmark nm, PetscReal t, PetscReal dt);
   PetscErrorCode (*stepmatrix)(MMNewmark nm, PetscReal dt, MMStepMatrix *sm);
   PetscErrorCode (*solve)(MMNewmark nm, PetscReal t0, PetscReal dt, Vec b, Vec w, PetscBool *solved);
+  /* after a solved step (NULL: none): *again, the step is to be solved again from its start (the
+   * frames of the nodes that ended inside their obstacle turned to where they ended) */
+  PetscErrorCode (*refine)(MMNewmark nm, PetscReal t0, PetscReal dt, Vec w, PetscInt tries, PetscBool *again);
   MMRejectReason failure;
   PetscBool      certified; /* the step is accepted by the certificate of K~ w = b + f_c (certificate.c) */
 } MMStepLawOps;
 PETSC_INTERN const MMStepLawOps *MMStepLawGetOps(const MMMaterial *material);
+PETSC_INTERN PetscErrorCode      MMNonlinearRefineFrames(MMNewmark nm, PetscReal t0, PetscReal dt, Vec w, PetscInt tries, PetscBool *again);
 
 struct _p_MMNewmark {
   MPI_Comm         comm;

@@ -877,6 +877,35 @@ PetscErrorCode MMNonlinearFollowFrames(MMNewmark nm, PetscReal t, PetscReal dt, 
   PetscFunctionReturn(0);
 }
 
+/* After a solved step: the nodes that ended inside their obstacle (deeper than -contact_frames_depth
+ * h_c') take the frame and bound of where they ended (MMContactFramesRefine), at most 3 times a step;
+ * *again: the caller solves the step again from its start. The state is still the step's start, and
+ * turns with the frames; the kinetic energy the rebuilt M* moves, 1/2 v.(M*_new - M*_old) v, is
+ * booked as at a step's start (work_frame). The step's reaction, already its mean (KeepMeanContactForce),
+ * turns with it as the retry's warm start. */
+PetscErrorCode MMNonlinearRefineFrames(MMNewmark nm, PetscReal t0, PetscReal dt, Vec w, PetscInt tries, PetscBool *again)
+{
+  MMContactOperators ops;
+  MMState           *s = &nm->state;
+  PetscInt           turned;
+  PetscScalar        before, after;
+
+  PetscFunctionBeginUser;
+  *again = PETSC_FALSE;
+  if (tries > 3) PetscFunctionReturn(0);
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
+  PetscCall(MatMult(ops.Mstar, s->v, s->work));
+  PetscCall(VecDot(s->v, s->work, &before));
+  PetscCall(MMContactFramesRefine(nm->contact, w, t0 + dt, &turned));
+  if (!turned) PetscFunctionReturn(0);
+  PetscCall(MMContactGetOperators(nm->contact, &ops));
+  PetscCall(MatMult(ops.Mstar, s->v, s->work));
+  PetscCall(VecDot(s->v, s->work, &after));
+  s->work_frame += 0.5 * PetscRealPart(after - before);
+  *again = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
 /*@
   MMNewmarkRestoreFrames - Restores, on -restart, the contact frames of a run whose frames followed
   the contact point

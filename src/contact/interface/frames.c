@@ -46,6 +46,10 @@ PetscErrorCode MMContactFramesSetUp(MMContact ct)
   PetscCheck(!(ct->opt.frames_set && follow) || ct->material->finite, ct->comm, PETSC_ERR_SUP, "-contact_frames follow needs a finite-strain law (-elasticity svk or neohookean): the linear model's step uses the acceleration of the last step in its frame, which a turned frame would not balance. Use -contact_frames fixed with -elasticity linear");
   for (PetscInt b = 0; b < ct->pb.n_rigid; ++b) curved = (PetscBool)(curved || ct->pb.obstacles[b].curved);
   fr->angle  = ct->opt.frames_angle;
+  fr->depth  = -1;
+  for (PetscInt b = 0; b < ct->pb.n_rigid; ++b)
+    if (ct->pb.obstacles[b].faceted) fr->depth = 1e-12; /* a facet's edge is crossed in one step: docs/method.md section 8 */
+  if (ct->opt.frames_depth != PETSC_DEFAULT) fr->depth = ct->opt.frames_depth;
   fr->follow = (PetscBool)(follow && curved && ct->enabled);
   if (!fr->follow) PetscFunctionReturn(0);
   PetscCheck(ct->pb.n_obstacles == ct->pb.n_rigid, ct->comm, PETSC_ERR_SUP, "-contact_frames follow (the default with -elasticity svk and neohookean on curved obstacles) does not take contact pairs (-contact_pairs) yet: their transform N would have to be rebuilt with M*. Use -contact_frames fixed");
@@ -371,6 +375,108 @@ PetscErrorCode MMContactFramesUpdate(MMContact ct, Vec u, Vec midpoint, PetscRea
   PetscFunctionReturn(0);
 }
 
+/* The rows whose step ended inside their obstacle, deeper than depth h_c' at w (time t): each gets
+ * the frame of its end position x_e and the bound linearized there, w_nu <= g(x_e) + u_e.nu, in F_new
+ * and its gaps. On a flat facet this bound holds the node on the facet it ended on; a node that
+ * crossed a concave edge within the step had its bound from the facet it left, whose plane the
+ * next facet cuts. */
+static PetscErrorCode SelectPenetratingRows(MMContact ct, Vec w, PetscReal t, PetscInt *count)
+{
+  MMContactFrames   *fr  = &ct->frames;
+  const PetscInt     dim = ct->dim;
+  const PetscInt    *in;
+  const PetscScalar *wa;
+  PetscScalar       *g0, *ga;
+  PetscInt           rstart;
+
+  PetscFunctionBeginUser;
+  *count = 0;
+  PetscCall(VecGetOwnershipRange(w, &rstart, NULL));
+  PetscCall(ISGetIndices(ct->is_normal, &in));
+  PetscCall(VecGetArrayRead(w, &wa));
+  PetscCall(VecGetArray(ct->gap0, &g0));
+  PetscCall(VecGetArray(ct->gap, &ga));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscReal *F = &ct->node_frame[9 * k];
+    PetscReal        ue[MM_MAX_DIM], n[MM_MAX_DIM], c[MM_MAX_DIM], g, len = 0, cosa = 0, wn = 0, cn = 0, Fn[MM_MAX_DIM][MM_MAX_DIM];
+
+    fr->turn[k] = PETSC_FALSE;
+    if (!RowFollows(ct, k)) continue;
+    RowCartesian(ct, k, &wa[in[k] - rstart], ue);
+    PetscCall(RowDistance(ct, k, ct->obstacle[k], t, ue, &g, n, c));
+    for (PetscInt d = 0; d < dim; ++d) {
+      len += n[d] * n[d];
+      cosa -= n[d] * F[d];
+    }
+    if (len < 0.5 || -g <= fr->depth * ct->h_c) continue;
+    PetscCall(PetscInfo(NULL, "contact row %" PetscInt_FMT " ended %.3e inside its obstacle; its frame turns by %.3e rad to where it ended\n", k, (double)-g, (double)PetscAcosReal(PetscMin(1.0, cosa))));
+    MMContactFrameFromNormal(dim, n, Fn);
+    for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
+      for (PetscInt b = 0; b < MM_MAX_DIM; ++b) fr->F_new[9 * k + 3 * a + b] = Fn[a][b];
+    fr->angle_max = PetscMax(fr->angle_max, PetscAcosReal(PetscMin(1.0, cosa)));
+    fr->turn[k]   = PETSC_TRUE;
+    ++*count;
+    for (PetscInt d = 0; d < dim; ++d) {
+      wn += ue[d] * Fn[0][d];
+      cn += c[d] * Fn[0][d];
+    }
+    ga[k] = g + wn;
+    g0[k] = g + wn - cn;
+  }
+  PetscCall(VecRestoreArray(ct->gap, &ga));
+  PetscCall(VecRestoreArray(ct->gap0, &g0));
+  PetscCall(VecRestoreArrayRead(w, &wa));
+  PetscCall(ISRestoreIndices(ct->is_normal, &in));
+  PetscFunctionReturn(0);
+}
+
+/*@
+  MMContactFramesRefine - Turns, after a step was solved, the frames of the rows that ended inside
+  their obstacle, to the frame and bound of where they ended, so that the step is solved again
+
+  Collective
+
+  Input Parameters:
++ ct - the contact object
+. w  - the step's solution (w-frame)
+- t  - the step's end time
+
+  Output Parameter:
+. turned - how many frames turned (all ranks); 0: the step's end is outside every obstacle to
+           -contact_frames_depth, and stands
+
+  Note:
+  The midpoint's bound (MMContactFramesUpdate) is exact for motion along its normal; a node that
+  crosses a concave edge of a meshed obstacle within the step, or moves far along the inside of a
+  curve, ends inside the obstacle by up to its tangential travel times the angle it turned
+  (docs/method.md section 8, "Frames at the step's end"). Its frame and bound are then taken where it
+  ended, the held state turned with them (the caller solves the step again from its start, which
+  has not moved: the state is the step's start until the step is accepted).
+
+  Level: intermediate
+
+.seealso: `MMContactFramesUpdate()`
+@*/
+PetscErrorCode MMContactFramesRefine(MMContact ct, Vec w, PetscReal t, PetscInt *turned)
+{
+  MMContactFrames *fr = &ct->frames;
+  PetscInt         count;
+
+  PetscFunctionBeginUser;
+  *turned = 0;
+  if (!fr->follow || fr->depth < 0) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(MMCONTACT_FrameFollow, 0, 0, 0, 0));
+  PetscCall(SelectPenetratingRows(ct, w, t, &count));
+  PetscCall(MPIU_Allreduce(&count, turned, 1, MPIU_INT, MPI_SUM, ct->comm));
+  if (*turned) {
+    fr->resolves++;
+    fr->turned += *turned;
+    PetscCall(TurnSelectedRows(ct, PETSC_TRUE));
+  }
+  PetscCall(PetscLogEventEnd(MMCONTACT_FrameFollow, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
 /* ---- Checkpoints (src/io/checkpoint.c, docs/method.md section 9): a following row's frame is a
  * function of its obstacle normal alone (MMContactFrameFromNormal), so its normal nu and its gap
  * g_0 restore it bit for bit, on any partition; the state is kept in these frames. ---- */
@@ -529,6 +635,8 @@ PetscErrorCode MMContactFramesView(MMContact ct, PetscViewer viewer)
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
   if (!ascii || !fr->follow) PetscFunctionReturn(0);
   PetscCall(MPIU_Allreduce(&fr->angle_max, &amax, 1, MPIU_REAL, MPIU_MAX, ct->comm));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  contact frames follow the contact point: %" PetscInt_FMT " updates, %" PetscInt_FMT " node frames turned (largest turn %.3g rad, -contact_frames_angle %g)\n", fr->updates, fr->turned, (double)amax, (double)fr->angle));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  contact frames follow the contact point: %" PetscInt_FMT " updates, %" PetscInt_FMT " node frames turned (largest turn %.3g rad, -contact_frames_angle %g)", fr->updates, fr->turned, (double)amax, (double)fr->angle));
+  if (fr->depth >= 0) PetscCall(PetscViewerASCIIPrintf(viewer, "; %" PetscInt_FMT " steps solved again with frames where they ended (-contact_frames_depth %g)", fr->resolves, (double)fr->depth));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
   PetscFunctionReturn(0);
 }

@@ -78,6 +78,8 @@ PetscErrorCode MMContactSetFromOptions(MMContact ct)
   PetscCall(MMOptionsEnum(PetscOptionsObject, comm, "-contact_frames", "Contact frames on curved obstacles (sphere, circle, cylinder): fixed (each node's normal and gap at its reference position, all run: the small-sliding setting) or follow (at each step's start, a node near the obstacle whose normal at its current position turned by more than -contact_frames_angle takes that normal and the gap there; M* and K~ are rebuilt, and the kinetic energy this moves is booked as work_frame). Default: follow with -elasticity svk or neohookean, fixed with linear", MMFramesTypes, (PetscEnum *)&o->frames));
   PetscCall(PetscOptionsHasName(NULL, NULL, "-contact_frames", &o->frames_set));
   o->frames_angle = 1e-3;
+  o->frames_depth = PETSC_DEFAULT;
+  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-contact_frames_depth", "-contact_frames follow: a step whose end leaves a node deeper in its obstacle than this times h_c' is solved again from its start, that node's bound linearized where the step ended (at most 3 times: an edge of a meshed obstacle crossed within the step, or a long slide along a curve); < 0: never. Default 1e-12 with a meshed obstacle (type mesh), never otherwise", &o->frames_depth));
   PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-contact_frames_angle", "-contact_frames follow: a node's frame turns when its normal has turned by more than this angle (radians, >= 0) since its frame was set; the bound it keeps in between is off by at most R angle^2 / 2 on an obstacle of radius R", &o->frames_angle));
   {
     PetscBool view; /* viewed by app once set up (MMContactSetUpView), as PETSc's -ksp_view */

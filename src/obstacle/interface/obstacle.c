@@ -2,6 +2,7 @@
  * type, its motion, its parameters' checks once the dimension is known, its signed distance. A
  * shape declares its parameters and distance in its ops table (obstacleimpl.h); a new shape is one
  * folder impls/<type>/ and one line in MMObstacleRegisterAll. */
+#include <string.h>
 #include "../obstacleimpl.h"
 
 static PetscFunctionList ObstacleList = NULL;
@@ -55,6 +56,7 @@ PetscErrorCode MMObstacleRegisterAll(void)
   MM_OBSTACLE_REGISTER("circle", MMObstacleCreate_Circle);
   MM_OBSTACLE_REGISTER("cylinder", MMObstacleCreate_Cylinder);
   MM_OBSTACLE_REGISTER("box", MMObstacleCreate_Box);
+  MM_OBSTACLE_REGISTER("mesh", MMObstacleCreate_Mesh);
   PetscFunctionReturn(0);
 }
 
@@ -123,9 +125,11 @@ PetscErrorCode MMObstacleSetType(MMObstacle *ob, MPI_Comm comm, const char type[
   PetscCall(MMObstacleTypesList(types, sizeof(types)));
   PetscCheck(create, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_type %s is not a known obstacle type: use %s", ob->name, type, types);
   PetscCall(PetscStrncpy(ob->type, type, sizeof(ob->type)));
+  if (ob->ops && ob->ops->destroy && ob->data) PetscCall((*ob->ops->destroy)(ob));
   PetscCall(PetscFree(ob->data));
   PetscCall((*create)(ob));
-  ob->curved = ob->ops->curved;
+  ob->curved  = ob->ops->curved;
+  ob->faceted = ob->ops->faceted;
   PetscCall(PetscMalloc(ob->ops->datasize, &ob->data));
   PetscCall(PetscMemzero(ob->data, ob->ops->datasize));
   for (PetscInt i = 0; i < ob->ops->nparams; ++i) ((MMObstacleValue *)((char *)ob->data + ob->ops->params[i].offset))->n = -1;
@@ -350,6 +354,17 @@ static PetscErrorCode RefuseOthers(const MMObstacle *ob, MPI_Comm comm)
       PetscCall(PetscOptionsHasName(NULL, NULL, key, &given));
       PetscCheck(!given, comm, PETSC_ERR_USER_INPUT, "%s does not apply to an obstacle of type %s", key, ob->type);
     }
+    for (PetscInt i = 0; other.ops->options && other.ops->options[i]; ++i) {
+      const char *what = other.ops->options[i];
+      char        key[512];
+      PetscBool   given, own = PETSC_FALSE;
+
+      for (PetscInt j = 0; ob->ops->options && ob->ops->options[j]; ++j) own = (PetscBool)(own || !strcmp(what, ob->ops->options[j]));
+      if (own) continue;
+      PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_%s", ob->name, what));
+      PetscCall(PetscOptionsHasName(NULL, NULL, key, &given));
+      PetscCheck(!given, comm, PETSC_ERR_USER_INPUT, "%s does not apply to an obstacle of type %s (it is an obstacle of type %s's)", key, ob->type, types[t]);
+    }
   }
   PetscCall(PetscFree(types));
   PetscCheck(ob->ops->sided || !ob->inside, comm, PETSC_ERR_USER_INPUT, "-obstacle_%s_side inside does not apply to an obstacle of type %s: the body is on the side its normal points to", ob->name, ob->type);
@@ -501,7 +516,33 @@ void MMObstacleDisplacement(const MMObstacle *ob, PetscInt dim, PetscReal t, Pet
 PetscErrorCode MMObstacleDestroy(MMObstacle *ob)
 {
   PetscFunctionBeginUser;
+  if (ob->ops && ob->ops->destroy && ob->data) PetscCall((*ob->ops->destroy)(ob));
   PetscCall(PetscFree(ob->data));
+  PetscFunctionReturn(0);
+}
+
+/*@
+  MMObstacleDescribe - Gives the text by which a restart recognizes a shape's options that are not
+  real parameters (a meshed obstacle's surface)
+
+  Not collective
+
+  Input Parameters:
++ ob  - the obstacle
+- len - the size of text
+
+  Output Parameter:
+. text - the text, empty for a shape that has none
+
+  Level: developer
+
+.seealso: `MMObstacleView()`
+@*/
+PetscErrorCode MMObstacleDescribe(const MMObstacle *ob, char text[], size_t len)
+{
+  PetscFunctionBeginUser;
+  text[0] = 0;
+  if (ob->ops && ob->ops->describe) PetscCall((*ob->ops->describe)(ob, text, len));
   PetscFunctionReturn(0);
 }
 
@@ -561,6 +602,7 @@ PetscErrorCode MMObstacleView(const MMObstacle *ob, PetscViewer viewer)
     else PetscCall(VectorText(val->v, val->n, v[0], sizeof(v[0])));
     PetscCall(PetscViewerASCIIPrintf(viewer, "%s %s\n", ob->ops->params[i].name, v[0]));
   }
+  if (ob->ops && ob->ops->view) PetscCall((*ob->ops->view)(ob, viewer));
   if (ob->nvelocity > 0) {
     PetscCall(VectorText(ob->velocity, ob->nvelocity, v[2], sizeof(v[2])));
     if (ob->stop < PETSC_MAX_REAL) PetscCall(PetscViewerASCIIPrintf(viewer, "moves at velocity %s for %g < t <= %g\n", v[2], (double)ob->start, (double)ob->stop));

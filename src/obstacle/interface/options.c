@@ -36,7 +36,7 @@ static PetscErrorCode ReadSide(PetscOptionItems *PetscOptionsObject, MPI_Comm co
   PetscBool out, in;
 
   PetscFunctionBeginUser;
-  PetscCall(MMOptionsString(PetscOptionsObject, comm, "-side", "sphere, circle, cylinder: outside (the body outside the shape: a bump) or inside (the body inside it: a bowl, a rail, a cavity)", side, sizeof(side), NULL));
+  PetscCall(MMOptionsString(PetscOptionsObject, comm, "-side", "sphere, circle, cylinder: outside (the body outside the shape: a bump) or inside (the body inside it: a bowl, a rail, a cavity); mesh: outside (the body on the side the facets' normals point to) or inside (the other side)", side, sizeof(side), NULL));
   PetscCall(PetscSNPrintf(key, sizeof(key), "-obstacle_%s_side", ob->name));
   PetscCall(PetscStrcmp(side, "outside", &out));
   PetscCall(PetscStrcmp(side, "inside", &in));
@@ -87,6 +87,7 @@ PetscErrorCode MMObstacleSetFromOptions(MMObstacle *ob, MPI_Comm comm, const cha
   PetscCall(MMOptionsString(PetscOptionsObject, comm, "-type", help, type, sizeof(type), NULL));
   PetscCall(MMObstacleSetType(ob, comm, type));
   PetscCall(ReadParameters(PetscOptionsObject, comm, ob));
+  if (ob->ops->setfromoptions) PetscCall((*ob->ops->setfromoptions)(PetscOptionsObject, comm, ob));
   PetscCall(ReadSide(PetscOptionsObject, comm, ob));
   PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-mu", "Coulomb friction coefficient against this obstacle, >= 0 (default -mu)", &ob->mu));
   PetscCall(PetscOptionsHasName(NULL, prefix, "-mu", &ob->mu_given));
