@@ -46,6 +46,9 @@ MSH  += meshes/disk_track.msh
 MSH  += meshes/block_slide.msh
 # A rubber block pressed on a plane by a pressure (issue 50: the static start in finite strain)
 MSH  += meshes/rubber_block.msh
+# Meshed rigid obstacles (issue 51, -obstacle_NAME_type mesh): a step with a rounded edge (2D lines), a
+# funnel, the rounded box of options/ball_box.opts at two sizes, and the plane as segments and triangles
+MSH  += meshes/step2d.msh meshes/funnel.msh meshes/box_rounded.msh meshes/box_rounded_coarse.msh meshes/plane_line.msh meshes/plane_grid.msh
 # Bench meshes: the 2D D1 disk (115k dofs), the 3D D2 ball (H 0.045: 113k dofs, 3.8k contact nodes)
 # and the large D2 ball of `make bench-large` (H 0.021: about 1M dofs), generated when first needed;
 # the two balls of the 3d suite's two_body row at H 0.057 (116,520 dofs for both, as the D2 ball's 113k).
@@ -156,6 +159,18 @@ meshes/cube_groove.msh: meshes/cube_groove.geo
 	gmsh -3 $< -o $@ -v 2
 meshes/cube_drop.msh: meshes/cube_drop.geo
 	gmsh -3 $< -o $@ -v 2
+meshes/step2d.msh: meshes/step2d.geo
+	gmsh -1 $< -o $@ -v 2
+meshes/plane_line.msh: meshes/plane_line.geo
+	gmsh -1 $< -o $@ -v 2
+meshes/funnel.msh: meshes/funnel.geo
+	gmsh -2 $< -o $@ -v 2
+meshes/plane_grid.msh: meshes/plane_grid.geo
+	gmsh -2 $< -o $@ -v 2
+meshes/box_rounded.msh: meshes/box_rounded.geo
+	gmsh -2 $< -o $@ -v 2
+meshes/box_rounded_coarse.msh: meshes/box_rounded.geo
+	gmsh -2 $< -setnumber H 0.2 -o $@ -v 2
 meshes/bimaterial.msh: meshes/bimaterial.geo
 	gmsh -2 $< -o $@ -v 2
 meshes/plate.msh: meshes/plate.geo

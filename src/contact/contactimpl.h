@@ -98,6 +98,8 @@ typedef struct {
   PetscReal *F_new;           /* per contact row, 9: the new frame of a node that turns */
   PetscBool *turn;            /* per contact row: its frame turns at this update */
   PetscReal  depth;           /* -contact_frames_depth (of h_c') */
+  PetscInt  *refined;         /* per contact row, in this step: 0, 1 its bound was taken where a try ended, 2 then between two (frames.c) */
+  PetscReal *prev;            /* per contact row, MM_MAX_DIM + 1: the bound before that, nu and g_0 */
   PetscInt   updates, turned; /* over the run: updates (steps with a turned frame), node frames turned */
   PetscInt   resolves;        /* over this run (not a restart's before it): steps solved again with frames at their end */
   PetscReal  angle_max;       /* the largest turn of one update */

@@ -54,6 +54,7 @@ PetscErrorCode MMContactFramesSetUp(MMContact ct)
   if (!fr->follow) PetscFunctionReturn(0);
   PetscCheck(ct->pb.n_obstacles == ct->pb.n_rigid, ct->comm, PETSC_ERR_SUP, "-contact_frames follow (the default with -elasticity svk and neohookean on curved obstacles) does not take contact pairs (-contact_pairs) yet: their transform N would have to be rebuilt with M*. Use -contact_frames fixed");
   PetscCall(PetscCalloc3((size_t)MM_MAX_DIM * ct->n_local + 1, &fr->X, 9 * (size_t)ct->n_local + 1, &fr->F_new, ct->n_local + 1, &fr->turn));
+  PetscCall(PetscCalloc2(ct->n_local + 1, &fr->refined, (MM_MAX_DIM + 1) * (size_t)ct->n_local + 1, &fr->prev));
   PetscCall(DMGetCoordinateSection(dm, &cs));
   PetscCall(DMGetCoordinatesLocal(dm, &X));
   PetscCall(VecGetArrayRead(X, &x));
@@ -72,6 +73,7 @@ PetscErrorCode MMContactFramesDestroy(MMContactFrames *fr)
   PetscCall(MatDestroy(&fr->M));
   PetscCall(MatDestroy(&fr->R));
   PetscCall(PetscFree3(fr->X, fr->F_new, fr->turn));
+  PetscCall(PetscFree2(fr->refined, fr->prev));
   PetscFunctionReturn(0);
 }
 
@@ -364,6 +366,7 @@ PetscErrorCode MMContactFramesUpdate(MMContact ct, Vec u, Vec midpoint, PetscRea
   *turned = 0;
   if (!fr->follow) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(MMCONTACT_FrameFollow, 0, 0, 0, 0));
+  for (PetscInt k = 0; k < ct->n_local; ++k) fr->refined[k] = 0; /* a new step */
   PetscCall(SelectTurningRows(ct, u, midpoint, t_mid, &count));
   PetscCall(MPIU_Allreduce(&count, turned, 1, MPIU_INT, MPI_SUM, ct->comm));
   if (*turned) {
@@ -378,8 +381,10 @@ PetscErrorCode MMContactFramesUpdate(MMContact ct, Vec u, Vec midpoint, PetscRea
 /* The rows whose step ended inside their obstacle, deeper than depth h_c' at w (time t): each gets
  * the frame of its end position x_e and the bound linearized there, w_nu <= g(x_e) + u_e.nu, in F_new
  * and its gaps. On a flat facet this bound holds the node on the facet it ended on; a node that
- * crossed a concave edge within the step had its bound from the facet it left, whose plane the
- * next facet cuts. */
+ * crossed an edge within the step had its bound from the facet it left. A row that ends inside again
+ * after that sits in a concave crease, where two facets hold it and one bound cannot be exact: it
+ * takes once the bound between the two it had, their sum (w.(nu_1 + nu_2) <= g_1 + g_2, normalized),
+ * whose plane holds the crease's line, and keeps it for the step (docs/method.md section 8). */
 static PetscErrorCode SelectPenetratingRows(MMContact ct, Vec w, PetscReal t, PetscInt *count)
 {
   MMContactFrames   *fr  = &ct->frames;
@@ -398,30 +403,45 @@ static PetscErrorCode SelectPenetratingRows(MMContact ct, Vec w, PetscReal t, Pe
   PetscCall(VecGetArray(ct->gap, &ga));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
     const PetscReal *F = &ct->node_frame[9 * k];
-    PetscReal        ue[MM_MAX_DIM], n[MM_MAX_DIM], c[MM_MAX_DIM], g, len = 0, cosa = 0, wn = 0, cn = 0, Fn[MM_MAX_DIM][MM_MAX_DIM];
+    PetscReal       *prev = &fr->prev[(MM_MAX_DIM + 1) * k];
+    PetscReal        ue[MM_MAX_DIM], n[MM_MAX_DIM], c[MM_MAX_DIM], g, len = 0, cosa = 0, wn = 0, cn = 0, g0new, Fn[MM_MAX_DIM][MM_MAX_DIM];
 
     fr->turn[k] = PETSC_FALSE;
-    if (!RowFollows(ct, k)) continue;
+    if (!RowFollows(ct, k) || fr->refined[k] > 1) continue;
     RowCartesian(ct, k, &wa[in[k] - rstart], ue);
     PetscCall(RowDistance(ct, k, ct->obstacle[k], t, ue, &g, n, c));
-    for (PetscInt d = 0; d < dim; ++d) {
-      len += n[d] * n[d];
-      cosa -= n[d] * F[d];
-    }
+    for (PetscInt d = 0; d < dim; ++d) len += n[d] * n[d];
     if (len < 0.5 || -g <= fr->depth * ct->h_c) continue;
-    PetscCall(PetscInfo(NULL, "contact row %" PetscInt_FMT " ended %.3e inside its obstacle; its frame turns by %.3e rad to where it ended\n", k, (double)-g, (double)PetscAcosReal(PetscMin(1.0, cosa))));
+    if (!fr->refined[k]) {
+      for (PetscInt d = 0; d < dim; ++d) wn += ue[d] * -n[d];
+      g0new = g + wn;
+      for (PetscInt d = 0; d < dim; ++d) g0new -= c[d] * -n[d];
+    } else {
+      /* the crease: nu = (nu_1 + nu_2)/|.|, g_0 = (g_0,1 + g_0,2)/|.| */
+      PetscReal s = 0;
+      for (PetscInt d = 0; d < dim; ++d) {
+        n[d] = -(F[d] + prev[d]);
+        s += n[d] * n[d];
+      }
+      s = PetscSqrtReal(s);
+      if (s < 1e-12) continue;
+      for (PetscInt d = 0; d < dim; ++d) n[d] /= s;
+      g0new = (PetscRealPart(g0[k]) + prev[MM_MAX_DIM]) / s;
+    }
+    for (PetscInt d = 0; d < dim; ++d) cosa -= n[d] * F[d];
+    PetscCall(PetscInfo(NULL, "contact row %" PetscInt_FMT " ended %.3e inside its obstacle; its frame turns by %.3e rad%s\n", k, (double)-g, (double)PetscAcosReal(PetscMin(1.0, cosa)), fr->refined[k] ? ", between its last two bounds (a crease)" : " to where it ended"));
+    for (PetscInt d = 0; d < MM_MAX_DIM; ++d) prev[d] = F[d];
+    prev[MM_MAX_DIM] = PetscRealPart(g0[k]);
+    fr->refined[k]++;
     MMContactFrameFromNormal(dim, n, Fn);
     for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
       for (PetscInt b = 0; b < MM_MAX_DIM; ++b) fr->F_new[9 * k + 3 * a + b] = Fn[a][b];
     fr->angle_max = PetscMax(fr->angle_max, PetscAcosReal(PetscMin(1.0, cosa)));
     fr->turn[k]   = PETSC_TRUE;
     ++*count;
-    for (PetscInt d = 0; d < dim; ++d) {
-      wn += ue[d] * Fn[0][d];
-      cn += c[d] * Fn[0][d];
-    }
-    ga[k] = g + wn;
-    g0[k] = g + wn - cn;
+    for (PetscInt d = 0; d < dim; ++d) cn += c[d] * Fn[0][d];
+    g0[k] = g0new;
+    ga[k] = g0new + cn;
   }
   PetscCall(VecRestoreArray(ct->gap, &ga));
   PetscCall(VecRestoreArray(ct->gap0, &g0));
