@@ -37,6 +37,27 @@ static PetscErrorCode Predict(MMContact ct, const char name[], const MMCostInput
   PetscFunctionReturn(0);
 }
 
+/* What both choices predict from: the global dofs n_dofs, c_p dt / h (h: h_c' for the formulations,
+ * the smallest cell for the linear path), the run's steps, the friction, the law and the ranks. */
+static PetscErrorCode CostInput(MMContact ct, PetscInt n_dofs, PetscReal h, MMCostInput *in)
+{
+  PetscMPIInt size;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(in, sizeof(*in)));
+  PetscCallMPI(MPI_Comm_size(ct->comm, &size));
+  in->dim      = ct->dim;
+  in->dofs     = PetscMax((PetscReal)n_dofs, 1);
+  in->cfl      = h > 0 ? ct->material->c_p_max * ct->pb.dt / h : 1;
+  if (!(in->cfl >= 0 && in->cfl < 1e6)) in->cfl = 1; /* a dt refused later (-ts_dt <= 0, inf) predicts nothing */
+  in->steps    = PetscMax(ct->pb.steps, 1);
+  in->friction = (PetscBool)(ct->pb.mu_max > 0);
+  in->n_fc     = ct->n_fc;
+  in->finite   = ct->material->finite;
+  in->ranks    = size;
+  PetscFunctionReturn(0);
+}
+
 /* Sets ct->opt.contact_formulation to the cheapest predicted whole run over the registered
  * formulations, or to a direct one (condensed) predicted within MM_COST_DIRECT_MARGIN of it: the fit's
  * scatter, where the measured runs of tiny and mid-sized 2D cases went either way (docs/scaling.md,
@@ -54,19 +75,7 @@ PetscErrorCode MMContactChooseFormulation(MMContact ct, PetscInt n_dofs)
   char          second_name[MM_TYPE_LEN] = "";
 
   PetscFunctionBeginUser;
-  in.dim      = ct->dim;
-  in.dofs     = PetscMax((PetscReal)n_dofs, 1);
-  in.cfl      = ct->h_c > 0 ? ct->material->c_p_max * ct->pb.dt / ct->h_c : 1;
-  if (!(in.cfl >= 0 && in.cfl < 1e6)) in.cfl = 1; /* a dt refused later (-ts_dt <= 0, inf) predicts nothing */
-  in.steps    = PetscMax(ct->pb.steps, 1);
-  in.friction = (PetscBool)(ct->pb.mu_max > 0);
-  in.n_fc     = ct->n_fc;
-  in.finite   = ct->material->finite;
-  {
-    PetscMPIInt size;
-    PetscCallMPI(MPI_Comm_size(ct->comm, &size));
-    in.ranks = size;
-  }
+  PetscCall(CostInput(ct, n_dofs, ct->h_c, &in));
   PetscCall(PetscFunctionListGet(MMContactList, &names, &n));
   PetscCheck(n <= MM_MAX_FORMULATIONS, ct->comm, PETSC_ERR_SUP, "More than %d contact formulations are registered", MM_MAX_FORMULATIONS);
   for (int i = 0; i < MM_MAX_FORMULATIONS; ++i) total[i] = PETSC_INFINITY;
@@ -105,18 +114,11 @@ PetscErrorCode MMContactChooseLinearPath(MMContact ct, PetscInt n_dofs)
   MMCostInput in;
   MMCost      f, c;
   PetscReal   tf, tc;
-  PetscMPIInt size;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMemzero(&in, sizeof(in)));
-  PetscCallMPI(MPI_Comm_size(ct->comm, &size));
-  in.dim    = ct->dim;
-  in.dofs   = PetscMax((PetscReal)n_dofs, 1);
-  in.cfl    = ct->h_min > 0 ? ct->material->c_p_max * ct->pb.dt / ct->h_min : 1;
-  if (!(in.cfl >= 0 && in.cfl < 1e6)) in.cfl = 1; /* a dt refused later predicts nothing */
-  in.steps  = PetscMax(ct->pb.steps, 1);
-  in.finite = ct->material->finite;
-  in.ranks  = size;
+  PetscCall(CostInput(ct, n_dofs, ct->h_min, &in));
+  in.friction = PETSC_FALSE; /* no contact: the linear path's models have no friction */
+  in.n_fc     = 0;
   MMCostEvaluate(&factor[ct->dim - 2], &in, &f);
   MMCostEvaluate(&cg[ct->dim - 2], &in, &c);
   tf                   = f.setup + in.steps * f.step;
