@@ -178,6 +178,7 @@ PETSC_EXTERN PetscErrorCode MMContactMassFreeGetSwitches(MMContact ct, PetscInt 
 PETSC_EXTERN PetscErrorCode MMContactMassFreeRestore(MMContact ct, PetscBool is_free, const PetscInt switches[2]);
 PETSC_EXTERN PetscErrorCode MMContactFramesUpdate(MMContact ct, Vec u, Vec midpoint, PetscReal t_mid, PetscInt *turned);
 PETSC_EXTERN PetscErrorCode MMContactFramesRefine(MMContact ct, Vec w, PetscReal t, PetscInt *turned);
+PETSC_EXTERN PetscErrorCode MMContactFramesSlid(MMContact ct, PetscInt k, PetscReal t, const PetscScalar w[], PetscReal *g);
 /* Checkpoints of a run whose frames follow (frames.c): per following row its normal nu (MM_MAX_DIM)
  * and gap g_0, MM_CONTACT_FRAME_RECORD reals (*has: the row follows); the run's counters (updates,
  * frames turned, the largest turn); at -restart each row's frame and gap from its record, contact's

@@ -108,6 +108,7 @@ def test_disk_rolls_off_the_meshed_step(step_runs):
     holds, and no node is inside the step's facets beyond round-off (the history's penetration, with
     frames that follow, is measured on the true surface)."""
     h = step_runs[2].history
+    assert "held by its bound" not in step_runs[2].output  # frames that follow: no small-sliding warning
     assert h["ucm_y"][-1] < -0.4  # it dropped off the step
     assert h["force_step_x"].min() < -0.2 * h["force_normal"].max()  # the edge pushed it out (+x): the step feels -x
     assert h["force_step_x"].max() <= 0.7 * h["force_normal"].max()
@@ -223,3 +224,14 @@ def test_restart_with_another_surface_is_refused(tmp_path):
     assert ok.returncode == 0
     r = run("disk_step", tmp_path, "-restart", first.outdir, "-obstacle_step_mesh", str(moved), "-quiet", np_=0, name="ck2", check=False)
     assert r.returncode != 0 and "-obstacle_step_mesh" in r.output and "its state would mean another problem" in r.output, r.output[-2000:]
+
+
+def test_fixed_frames_that_slid_off_are_reported(tmp_path):
+    """With the linear law the frames are fixed: each node's bound is the tangent plane of its reference
+    contact point. On disk_step the disk then rolls on the top's plane past the rounded edge, held
+    above the falling surface, where svk's frames follow the edge down (test_disk_rolls_off_the_meshed_step):
+    the run says so once, naming the obstacle and the fix, instead of a silent float."""
+    r = run("disk_step", tmp_path, "-elasticity", "linear", "-output_every", 0, np_=2)
+    said = "a contact node held by its bound is"
+    assert r.output.count(said) == 1 and "off the true surface of obstacle step" in r.output and "-elasticity svk or neohookean" in r.output, r.output[-2000:]
+    assert r.history["ucm_y"][-1] > -0.2  # it did not drop: the small-sliding bound held it up

@@ -205,6 +205,8 @@ struct _p_MMContact {
   PetscReal  h_min;               /* without contact: the smallest cell diameter (the linear path's c_p dt / h) */
   PetscReal  penetration_free;    /* last accepted step: the deepest penetration of an obstacle a node has no row for */
   PetscReal  penetration_bound;   /* last accepted step: the deepest crossing of a node's own bound (frames that follow: the audit's) */
+  PetscReal  slid[2];             /* last accepted step, fixed frames on a curved obstacle: the farthest held row from the true surface (MMContactFramesSlid), and its obstacle */
+  PetscBool  slid_warned;         /* that warning was printed (once a run) */
   PetscReal  tol;                 /* -contact_tol */
   PetscBool *was_active;          /* per owned contact node, at the previous step */
   PetscBool *slipping;            /* friction: per owned contact node, slipping (on the rim of its disk) */

@@ -127,8 +127,19 @@ static PetscErrorCode ContactStatistics(MMContact ct, PetscReal t, Vec w, Vec re
   const PetscInt     nr = ct->ncomp;
   PetscReal          sums[1 + MM_MAX_DIM] = {0, 0, 0, 0}, loc[4] = {0, 0, 0, 0}, rmax = 0, fscale;
   MPI_Comm           comm = PetscObjectComm((PetscObject)ct->dm);
+  struct {
+    double value; /* MPI_DOUBLE_INT's layout, for MPI_MAXLOC */
+    int    rank;
+  } slid;
+  PetscInt slid_ob = 0;
 
   PetscFunctionBeginUser;
+  slid.value = 0;
+  {
+    PetscMPIInt rank;
+    PetscCallMPI(MPI_Comm_rank(comm, &rank));
+    slid.rank = rank;
+  }
   PetscCall(PetscMemzero(st, sizeof(*st)));
   if (!ct->enabled) PetscFunctionReturn(0);
   PetscCall(PetscCalloc1(MM_MAX_DIM * nob, &fob));
@@ -225,6 +236,24 @@ static PetscErrorCode ContactStatistics(MMContact ct, PetscReal t, Vec w, Vec re
       loc[2] = PetscMax(loc[2], others);
       loc[3] = PetscMax(loc[3], own);
     } else if (ct->all_gap0 && ct->obstacle[k] < ct->pb.n_rigid && !ct->second[k]) loc[2] = PetscMax(loc[2], OtherObstaclesPenetration(ct, k, &wa[i], cob));
+    if (record_switches && active && rs.r > 0) {
+      PetscReal g;
+      PetscCall(MMContactFramesSlid(ct, k, t, &wa[i], &g));
+      if (PetscAbsReal(g) > slid.value) {
+        slid.value = (double)PetscAbsReal(g);
+        slid_ob    = ct->obstacle[k];
+      }
+    }
+  }
+  if (record_switches) {
+    /* the farthest held row over the ranks, and its obstacle */
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &slid, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm));
+    {
+      PetscInt b = slid_ob;
+      PetscCallMPI(MPI_Bcast(&b, 1, MPIU_INT, slid.rank, comm));
+      ct->slid[0] = slid.value;
+      ct->slid[1] = (PetscReal)b;
+    }
   }
   if (nr > 1) {
     PetscCall(VecRestoreArrayRead(ct->rho, &ra));
@@ -497,6 +526,10 @@ PetscErrorCode MMContactAudit(MMContact ct, PetscInt step, PetscReal t, const MM
     PetscCheck(depth <= ct->opt.audit_penetration_tol * ct->h_c, comm, MM_ERR_PHYSICS,
                "Contact audit failed at step %" PetscInt_FMT " (t = %.6g): a contact node is %.3g inside an obstacle, %.3g h_c', above -audit_penetration_tol %.6g (-E %.6g, -rho %.6g). %s. The output up to the previous step is intact",
                step, (double)t, (double)depth, (double)(depth / ct->h_c), (double)ct->opt.audit_penetration_tol, (double)ct->pb.E, (double)ct->pb.rho, advice);
+  }
+  if (!ct->slid_warned && ct->slid[0] > 0.1 * ct->h_c) {
+    ct->slid_warned = PETSC_TRUE;
+    PetscCall(PetscPrintf(comm, "mmcontact warning: at step %" PetscInt_FMT " (t = %g) a contact node held by its bound is %.3g (%.3g h_c') off the true surface of obstacle %s: with fixed frames (-contact_frames fixed, the linear law's small-sliding setting) its bound is the tangent plane at its reference contact point, and it has slid away from that point. With -elasticity svk or neohookean the frames follow the contact point (README \"Several, curved and moving obstacles\") (warned once)\n", step, (double)t, (double)ct->slid[0], (double)(ct->slid[0] / ct->h_c), ct->pb.obstacles[(PetscInt)ct->slid[1]].name));
   }
   PetscCheck(h->coulomb_residual <= ct->opt.audit_coulomb_tol, comm, MM_ERR_PHYSICS,
              "Contact audit failed at step %" PetscInt_FMT " (t = %.6g): the discrete Coulomb residual (history column coulomb_residual) is %.3g, above -audit_coulomb_tol %.6g (-E %.6g, -rho %.6g). %s. The output up to the previous step is intact",

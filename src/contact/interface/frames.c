@@ -51,8 +51,10 @@ PetscErrorCode MMContactFramesSetUp(MMContact ct)
     if (ct->pb.obstacles[b].faceted) fr->depth = 1e-12; /* a facet's edge is crossed in one step: docs/method.md section 8 */
   if (ct->opt.frames_depth != PETSC_DEFAULT) fr->depth = ct->opt.frames_depth;
   fr->follow = (PetscBool)(follow && curved && ct->enabled);
-  if (!fr->follow) PetscFunctionReturn(0);
-  PetscCheck(ct->pb.n_obstacles == ct->pb.n_rigid, ct->comm, PETSC_ERR_SUP, "-contact_frames follow (the default with -elasticity svk and neohookean on curved obstacles) does not take contact pairs (-contact_pairs) yet: their transform N would have to be rebuilt with M*. Use -contact_frames fixed");
+  if (!curved || !ct->enabled) PetscFunctionReturn(0);
+  PetscCheck(!fr->follow || ct->pb.n_obstacles == ct->pb.n_rigid, ct->comm, PETSC_ERR_SUP, "-contact_frames follow (the default with -elasticity svk and neohookean on curved obstacles) does not take contact pairs (-contact_pairs) yet: their transform N would have to be rebuilt with M*. Use -contact_frames fixed");
+  /* the reference positions: frames that follow measure from them, and fixed frames on a curved
+   * obstacle are audited on the true surface with them (MMContactFramesSlid) */
   PetscCall(PetscCalloc3((size_t)MM_MAX_DIM * ct->n_local + 1, &fr->X, 9 * (size_t)ct->n_local + 1, &fr->F_new, ct->n_local + 1, &fr->turn));
   PetscCall(PetscCalloc2(ct->n_local + 1, &fr->refined, (MM_MAX_DIM + 1) * (size_t)ct->n_local + 1, &fr->prev));
   PetscCall(DMGetCoordinateSection(dm, &cs));
@@ -141,6 +143,45 @@ PetscErrorCode MMContactFramesPenetration(MMContact ct, PetscInt k, PetscReal t,
     if (b == ct->obstacle[k]) *own = -g;
     else *others = PetscMax(*others, -g);
   }
+  PetscFunctionReturn(0);
+}
+
+/*@
+  MMContactFramesSlid - With fixed frames, how far a contact row held by its bound is from the true
+  surface of its curved obstacle
+
+  Not collective
+
+  Input Parameters:
++ ct - the contact object
+. k  - the owned contact row
+. t  - the state's time
+- w  - the row's frame components
+
+  Output Parameter:
+. g - the row's signed distance to its obstacle's true surface at X + u; 0 for a row the check does
+      not apply to (frames that follow, a plane, a corner's or a pair's row)
+
+  Note:
+  Fixed frames keep each node's bound on the tangent plane of its reference contact point: on a
+  curved or meshed obstacle a node that slides away from that point is held off the surface (a bump,
+  a step's edge past which the plane goes on) or let into it (a bowl). The audit warns once when a
+  held node is farther than 0.1 h_c' either way (MMContactAudit).
+
+  Level: developer
+
+.seealso: `MMContactFramesPenetration()`, `MMContactAudit()`
+@*/
+PetscErrorCode MMContactFramesSlid(MMContact ct, PetscInt k, PetscReal t, const PetscScalar w[], PetscReal *g)
+{
+  PetscReal u[MM_MAX_DIM], n[MM_MAX_DIM], c[MM_MAX_DIM];
+
+  PetscFunctionBeginUser;
+  *g = 0;
+  if (ct->frames.follow || !ct->frames.X || ct->second[k] || (k + 1 < ct->n_local && ct->second[k + 1])) PetscFunctionReturn(0);
+  if ((ct->fc_obstacle && ct->fc_obstacle[k] >= 0) || ct->obstacle[k] >= ct->pb.n_rigid || !ct->pb.obstacles[ct->obstacle[k]].curved) PetscFunctionReturn(0);
+  RowCartesian(ct, k, w, u);
+  PetscCall(RowDistance(ct, k, ct->obstacle[k], t, u, g, n, c));
   PetscFunctionReturn(0);
 }
 
