@@ -185,6 +185,22 @@ PetscErrorCode MMContactFramesSlid(MMContact ct, PetscInt k, PetscReal t, const 
   PetscFunctionReturn(0);
 }
 
+/* Row k turns at this update: its new frame from the obstacle normal n, turned by acos(cosa) from
+ * the old, and its bound's gaps g_0 (time 0) and g (now). */
+static void TakeFrame(MMContact ct, PetscInt k, const PetscReal n[], PetscReal cosa, PetscScalar g0[], PetscReal g0k, PetscScalar ga[], PetscReal gk)
+{
+  MMContactFrames *fr = &ct->frames;
+  PetscReal        Fn[MM_MAX_DIM][MM_MAX_DIM];
+
+  MMContactFrameFromNormal(ct->dim, n, Fn);
+  for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
+    for (PetscInt b = 0; b < MM_MAX_DIM; ++b) fr->F_new[9 * k + 3 * a + b] = Fn[a][b];
+  fr->angle_max = PetscMax(fr->angle_max, PetscAcosReal(PetscMin(1.0, cosa)));
+  fr->turn[k]   = PETSC_TRUE;
+  g0[k]         = g0k;
+  ga[k]         = gk;
+}
+
 /* Which rows turn: a row that follows, whose obstacle normal at its current position has turned by
  * more than -contact_frames_angle from its frame's, and that is near: within h_c' of the obstacle or
  * of the bound it has now (on a convex obstacle, seen from outside, an old tangent plane can cut
@@ -226,20 +242,15 @@ static PetscErrorCode SelectTurningRows(MMContact ct, Vec u, Vec midpoint, Petsc
     if (len < 0.5) continue; /* on a sphere's centre or a cylinder's axis: no normal */
     slack = PetscRealPart(ga[k] - w[0]);
     if (PetscAcosReal(PetscMin(1.0, cosa)) <= fr->angle || PetscMin(g, slack) > ct->h_c) continue;
-    MMContactFrameFromNormal(dim, n, Fn);
-    for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
-      for (PetscInt b = 0; b < MM_MAX_DIM; ++b) fr->F_new[9 * k + 3 * a + b] = Fn[a][b];
-    fr->angle_max = PetscMax(fr->angle_max, PetscAcosReal(PetscMin(1.0, cosa)));
-    fr->turn[k]   = PETSC_TRUE;
     ++*count;
-    /* the bound linearized at x_m = X + u_m, u_m = u^n + dt/2 v^n, along nu: w_nu <= g(x_m) + u_m.nu, and
-     * g(t') = g_0 + c(t').nu as for a moving obstacle (MMContactSetTime) */
+    /* the bound linearized at x_m = X + u_m, u_m = u^n + dt/2 v^n, along nu = -n: w_nu <= g(x_m) + u_m.nu,
+     * and g(t') = g_0 + c(t').nu as for a moving obstacle (MMContactSetTime) */
+    MMContactFrameFromNormal(dim, n, Fn);
     for (PetscInt d = 0; d < dim; ++d) {
       wn += uc[d] * Fn[0][d];
       cn += c[d] * Fn[0][d];
     }
-    ga[k] = g + wn;
-    g0[k] = g + wn - cn;
+    TakeFrame(ct, k, n, cosa, g0, g + wn - cn, ga, g + wn);
   }
   PetscCall(VecRestoreArray(ct->gap, &ga));
   PetscCall(VecRestoreArray(ct->gap0, &g0));
@@ -445,7 +456,7 @@ static PetscErrorCode SelectPenetratingRows(MMContact ct, Vec w, PetscReal t, Pe
   for (PetscInt k = 0; k < ct->n_local; ++k) {
     const PetscReal *F = &ct->node_frame[9 * k];
     PetscReal       *prev = &fr->prev[(MM_MAX_DIM + 1) * k];
-    PetscReal        ue[MM_MAX_DIM], n[MM_MAX_DIM], c[MM_MAX_DIM], g, len = 0, cosa = 0, wn = 0, cn = 0, g0new, Fn[MM_MAX_DIM][MM_MAX_DIM];
+    PetscReal        ue[MM_MAX_DIM], n[MM_MAX_DIM], c[MM_MAX_DIM], g, len = 0, cosa = 0, wn = 0, cn = 0, g0new;
 
     fr->turn[k] = PETSC_FALSE;
     if (!RowFollows(ct, k) || fr->refined[k] > 1) continue;
@@ -474,15 +485,9 @@ static PetscErrorCode SelectPenetratingRows(MMContact ct, Vec w, PetscReal t, Pe
     for (PetscInt d = 0; d < MM_MAX_DIM; ++d) prev[d] = F[d];
     prev[MM_MAX_DIM] = PetscRealPart(g0[k]);
     fr->refined[k]++;
-    MMContactFrameFromNormal(dim, n, Fn);
-    for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
-      for (PetscInt b = 0; b < MM_MAX_DIM; ++b) fr->F_new[9 * k + 3 * a + b] = Fn[a][b];
-    fr->angle_max = PetscMax(fr->angle_max, PetscAcosReal(PetscMin(1.0, cosa)));
-    fr->turn[k]   = PETSC_TRUE;
     ++*count;
-    for (PetscInt d = 0; d < dim; ++d) cn += c[d] * Fn[0][d];
-    g0[k] = g0new;
-    ga[k] = g0new + cn;
+    for (PetscInt d = 0; d < dim; ++d) cn += c[d] * -n[d];
+    TakeFrame(ct, k, n, cosa, g0, g0new, ga, g0new + cn);
   }
   PetscCall(VecRestoreArray(ct->gap, &ga));
   PetscCall(VecRestoreArray(ct->gap0, &g0));
