@@ -22,7 +22,8 @@ typedef struct {
 
 static PetscErrorCode ReadNodes(FILE *in, double version, Reading *r, char **line, size_t *len)
 {
-  long blocks = 1, total = 0, lo = 0, hi = 0, k = 0;
+  long  blocks = 1, total = 0, lo = 0, hi = 0, k = 0;
+  long *tags;
 
   PetscFunctionBeginUser;
   if (getline(line, len, in) <= 0) goto bad;
@@ -31,7 +32,6 @@ static PetscErrorCode ReadNodes(FILE *in, double version, Reading *r, char **lin
   } else if (sscanf(*line, "%ld %ld %ld %ld", &blocks, &total, &lo, &hi) != 4) goto bad;
   if (total < 0 || total > 100000000) goto bad;
   PetscCall(PetscMalloc1(3 * total + 1, &r->xyz));
-  long *tags;
   PetscCall(PetscMalloc1(total + 1, &tags));
   if (version < 4) {
     for (k = 0; k < total; ++k) {
