@@ -87,12 +87,13 @@ def test_the_meshed_box_converges_to_the_box(box_runs):
 
 
 def test_the_meshed_box_is_not_crossed(box_runs):
-    """The nodes that slide over the facets of the box's rounded corner stay outside them: at most
-    1.2e-6 h_c' deep (2.9e-7 measured, in one step where a node ends in a crease between two facets
-    that gmsh made slightly concave; docs/method.md section 8), and at round-off with the finer facets
-    of 0.05 (3.7e-17), not run here."""
+    """The nodes that slide over the facets of the box's rounded corner stay outside them: 2.9e-7 =
+    1.16e-6 h_c' measured, in one step where a node ends in a crease between two facets that gmsh made
+    slightly concave (docs/method.md section 8), asserted at 1e-5 h_c': which rows a step solves again
+    turns on a 1e-12 h_c' threshold, so another machine's rounding may take another path through that
+    step. At round-off with the finer facets of 0.05 (3.7e-17), not run here."""
     h = box_runs["box_rounded"].history
-    assert h["max_penetration"].max() <= 1.2e-6 * 0.2546
+    assert h["max_penetration"].max() <= 1e-5 * 0.2546
 
 
 @pytest.fixture(scope="module")
