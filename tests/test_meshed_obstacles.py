@@ -191,6 +191,7 @@ $EndElements
     (("flipped.msh", LINES_41.format(a="1 2", b="3 2")), (), "facets 1 and 2 face opposite sides"),
     (("binary.msh", "$MeshFormat\n4.1 1 8\n$EndMeshFormat\n"), (), "it is a binary gmsh file: save it as ASCII"),
     (("points.msh", LINES_41.format(a="1 2", b="2 3").replace("1 1 1 2", "1 1 15 2")), (), "it has no 2-node line"),
+    (("cut.msh", LINES_41.format(a="1 2", b="2 3").replace("$EndElements\n", "")), (), "it has no $EndElements line where its section ends: the file is cut short"),
     (("lifted.msh", LINES_41.format(a="1 2", b="2 3").replace("0 0 0", "0 0 0.5")), (), "its node 2 is at z = 0.5: a 2D obstacle's lines lie in the plane z = 0"),
 ])
 def test_bad_surfaces_are_refused_by_name(tmp_path, surface, extra, message):

@@ -139,6 +139,19 @@ bad:
   PetscFunctionReturn(0);
 }
 
+/* A section read whole is followed by its end line: a file cut inside the section's last line (a
+ * node tag cut short, read as another node) is refused, not read as another surface. */
+static PetscErrorCode SectionEnd(FILE *in, const char end[], Reading *r, char **line, size_t *len)
+{
+  size_t n;
+
+  PetscFunctionBeginUser;
+  if (r->why[0]) PetscFunctionReturn(0);
+  PetscCall(PetscStrlen(end, &n));
+  if (getline(line, len, in) <= 0 || strncmp(*line, end, n)) PetscCall(PetscSNPrintf(r->why, sizeof(r->why), "it has no %s line where its section ends: the file is cut short or damaged; mesh the surface again", end));
+  PetscFunctionReturn(0);
+}
+
 /* Rank 0: the file's nodes and facets, or why not. */
 static PetscErrorCode ReadFile(const char file[], PetscInt dim, Reading *r)
 {
@@ -158,8 +171,13 @@ static PetscErrorCode ReadFile(const char file[], PetscInt dim, Reading *r)
       if (getline(&line, &len, in) <= 0 || sscanf(line, "%lf %d", &version, &binary) != 2) PetscCall(PetscSNPrintf(r->why, sizeof(r->why), "its $MeshFormat line could not be read"));
       else if (binary) PetscCall(PetscSNPrintf(r->why, sizeof(r->why), "it is a binary gmsh file: save it as ASCII (gmsh option -bin 0, or Mesh.Binary = 0)"));
       else if (version != 2.2 && version != 4.1) PetscCall(PetscSNPrintf(r->why, sizeof(r->why), "it is gmsh format %g: save it as format 4.1 or 2.2 (gmsh -format msh41)", version));
-    } else if (!strncmp(line, "$Nodes", 6)) PetscCall(ReadNodes(in, version, r, &line, &len));
-    else if (!strncmp(line, "$Elements", 9)) PetscCall(ReadElements(in, version, dim, r, &line, &len));
+    } else if (!strncmp(line, "$Nodes", 6)) {
+      PetscCall(ReadNodes(in, version, r, &line, &len));
+      PetscCall(SectionEnd(in, "$EndNodes", r, &line, &len));
+    } else if (!strncmp(line, "$Elements", 9)) {
+      PetscCall(ReadElements(in, version, dim, r, &line, &len));
+      PetscCall(SectionEnd(in, "$EndElements", r, &line, &len));
+    }
   }
   free(line);
   (void)fclose(in);
