@@ -126,6 +126,7 @@ PETSC_EXTERN PetscErrorCode MMContactGetPairCounts(MMContact ct, PetscInt p, Pet
  * and the held ones, MMContactFramesAddVec) carried to the new variables. changed: it did (the holder
  * drops what it built on N: the held matrices are not carried). */
 PETSC_EXTERN PetscErrorCode MMContactSlidePairs(MMContact ct, Vec u, Vec up, PetscBool *changed);
+PETSC_EXTERN PetscErrorCode MMContactPairsRefine(MMContact ct, Vec w, PetscBool *changed);
 /* A checkpoint of large sliding (docs/method.md section 9): per owned contact row its pairing, MM_CONTACT_PAIR_RECORD
  * reals (the facet's reference centroid, the weights, the row's direction, the gap; *has: the row is a sliding
  * pair's), restored by -restart with N, K and M* rebuilt (*changed); the run's counters of new pairings */

@@ -69,6 +69,8 @@ typedef struct {
   PetscInt   repairs;  /* steps whose pairing changed */
   PetscInt   facet_changes; /* slave nodes that moved to another facet, over the run */
   PetscReal  penetration; /* the deepest penetration of the current master surface at a step's start, over the run */
+  PetscReal  depth;    /* -contact_pairs_depth (of h_c'): a step ending deeper inside the master is solved again */
+  PetscInt   resolves; /* steps solved again with the pairing where they ended (MMContactPairsRefine) */
 } MMContactPairs;
 /* -contact_pairs_sliding */
 typedef enum {
@@ -134,6 +136,7 @@ typedef struct {
   PetscBool         frames_set;              /* given: else follow for the finite-strain laws, fixed for linear */
   PetscReal         frames_angle;            /* -contact_frames_angle */
   PetscReal         frames_depth;            /* -contact_frames_depth */
+  PetscReal         pairs_depth;             /* -contact_pairs_depth */
   MMPairsSliding    pairs_sliding;        /* -contact_pairs_sliding */
 } MMContactOptions;
 

@@ -132,7 +132,7 @@ typedef struct {
   PetscBool      certified; /* the step is accepted by the certificate of K~ w = b + f_c (certificate.c) */
 } MMStepLawOps;
 PETSC_INTERN const MMStepLawOps *MMStepLawGetOps(const MMMaterial *material);
-PETSC_INTERN PetscErrorCode      MMNonlinearRefineFrames(MMNewmark nm, PetscReal t0, PetscReal dt, Vec w, PetscInt tries, PetscBool *again);
+PETSC_INTERN PetscErrorCode      MMNonlinearRefineStep(MMNewmark nm, PetscReal t0, PetscReal dt, Vec w, PetscInt tries, PetscBool *again);
 
 struct _p_MMNewmark {
   MPI_Comm         comm;

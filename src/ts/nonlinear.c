@@ -877,22 +877,33 @@ PetscErrorCode MMNonlinearFollowFrames(MMNewmark nm, PetscReal t, PetscReal dt, 
   PetscFunctionReturn(0);
 }
 
-/* After a solved step: the nodes that ended inside their obstacle (deeper than -contact_frames_depth
- * h_c') take the frame and bound of where they ended (MMContactFramesRefine), at most 3 times a step;
- * *again: the caller solves the step again from its start. The state is still the step's start, and
- * turns with the frames; the kinetic energy the rebuilt M* moves, 1/2 v.(M*_new - M*_old) v, is
- * booked as at a step's start (work_frame). The step's reaction, already its mean (KeepMeanContactForce),
- * turns with it as the retry's warm start. */
-PetscErrorCode MMNonlinearRefineFrames(MMNewmark nm, PetscReal t0, PetscReal dt, Vec w, PetscInt tries, PetscBool *again)
+/* After a solved step, at most 3 times a step; *again: the caller solves the step again from its start.
+ * - Large sliding: the slave nodes that ended inside the master surface (deeper than
+ *   -contact_pairs_depth h_c') take the row of where they ended (MMContactPairsRefine). The state,
+ *   still the step's start, is carried to the new variables with its Cartesian value unchanged, and
+ *   M* does not change (docs/method.md section 11, "Large sliding").
+ * - Frames that follow: the nodes that ended inside their obstacle (deeper than -contact_frames_depth
+ *   h_c') take the frame and bound of where they ended (MMContactFramesRefine). The state turns with
+ *   the frames; the kinetic energy the rebuilt M* moves, 1/2 v.(M*_new - M*_old) v, is booked as at a
+ *   step's start (work_frame).
+ * The step's reaction, already its mean (KeepMeanContactForce), goes with it as the retry's warm start. */
+PetscErrorCode MMNonlinearRefineStep(MMNewmark nm, PetscReal t0, PetscReal dt, Vec w, PetscInt tries, PetscBool *again)
 {
   MMContactOperators ops;
   MMState           *s = &nm->state;
   PetscInt           turned;
   PetscScalar        before, after;
+  PetscBool          paired;
 
   PetscFunctionBeginUser;
   *again = PETSC_FALSE;
   if (tries > 3) PetscFunctionReturn(0);
+  PetscCall(MMContactPairsRefine(nm->contact, w, &paired));
+  if (paired) {
+    PetscCall(DropPairingOperators(nm));
+    *again = PETSC_TRUE;
+    PetscFunctionReturn(0);
+  }
   PetscCall(MMContactGetOperators(nm->contact, &ops));
   PetscCall(MatMult(ops.Mstar, s->v, s->work));
   PetscCall(VecDot(s->v, s->work, &before));

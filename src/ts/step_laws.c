@@ -115,7 +115,7 @@ static PetscErrorCode FiniteSolve(MMNewmark nm, PetscReal t0, PetscReal dt, Vec 
 }
 
 static const MMStepLawOps LinearLaw = {.begin = NULL, .stepmatrix = LinearStepMatrix, .solve = LinearSolve, .failure = MM_REJECT_FRICTION, .certified = PETSC_TRUE};
-static const MMStepLawOps FiniteLaw = {.begin = FiniteBegin, .stepmatrix = MMNonlinearStepMatrix, .solve = FiniteSolve, .refine = MMNonlinearRefineFrames, .failure = MM_REJECT_NONLINEAR, .certified = PETSC_FALSE};
+static const MMStepLawOps FiniteLaw = {.begin = FiniteBegin, .stepmatrix = MMNonlinearStepMatrix, .solve = FiniteSolve, .refine = MMNonlinearRefineStep, .failure = MM_REJECT_NONLINEAR, .certified = PETSC_FALSE};
 
 /* The step's law of the elasticity law: the finite-strain step for the finite-strain laws */
 const MMStepLawOps *MMStepLawGetOps(const MMMaterial *material)

@@ -709,9 +709,11 @@ PetscErrorCode MMContactView(MMContact ct, PetscViewer viewer)
   if (ct->enabled && ct->pairs.large) {
     PetscBool ascii;
     PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
-    if (ascii)
+    if (ascii) {
       PetscCall(PetscViewerASCIIPrintf(viewer, "  contact pairs, large sliding: pairing changed at %" PetscInt_FMT " step starts, %" PetscInt_FMT " moves of a slave node to another facet; deepest penetration of the current master surface at a step's start %.3e (%.3e h_c')\n", ct->pairs.repairs, ct->pairs.facet_changes,
                                        (double)ct->pairs.penetration, (double)(ct->pairs.penetration / ct->h_c)));
+      if (ct->pairs.depth >= 0) PetscCall(PetscViewerASCIIPrintf(viewer, "  contact pairs: %" PetscInt_FMT " extra solves of a step, with the rows of the nodes that ended inside the master taken where they ended (-contact_pairs_depth %g)\n", ct->pairs.resolves, (double)ct->pairs.depth));
+    }
   }
   PetscFunctionReturn(0);
 }

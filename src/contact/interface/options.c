@@ -64,6 +64,8 @@ PetscErrorCode MMContactSetFromOptions(MMContact ct)
   PetscCall(FormulationsSetFromOptions(ct, PetscOptionsObject));
   o->pairs_sliding = MM_PAIRS_SLIDING_SMALL; /* large: opt-in, docs/method.md section 11, "Large sliding" */
   PetscCall(MMOptionsEnum(PetscOptionsObject, comm, "-contact_pairs_sliding", "Contact pairs (-contact_pairs): small (each slave node's master facet, weights and gap found once, on the reference mesh), large (found again at each step's start on the current configuration, the pairs' transform N rebuilt; -elasticity svk or neohookean, frictionless pairs, -contact_formulation condensed), or auto (large where those hold, small otherwise); default small: on curved masters large sliding exchanges energy at each new pairing", MMPairsSlidings, (PetscEnum *)&o->pairs_sliding));
+  o->pairs_depth = 1e-9;
+  PetscCall(MMOptionsReal(PetscOptionsObject, comm, "-contact_pairs_depth", "-contact_pairs_sliding large: a step whose end leaves a slave node deeper inside the master surface (as it is at the step's end) than this times h_c' is solved again from its start, that node's row turned to its facet's normal at the end, or to the facet it ended over (at most 3 times); < 0: never", &o->pairs_depth));
   /* The contact audit's tolerances, far above what correct runs reach: penetration at most 3e-14
    * h_c' over options/'s cases and the solver variants, the Coulomb residual at most 4e-5 (with
    * -mass standard, at dt down to 1/1024 of -ts_dt, where the reactions carry the round-off of

@@ -175,6 +175,7 @@ PetscErrorCode MMContactPairsResolveSliding(MMContact ct)
     pr->large = PETSC_TRUE;
     break;
   }
+  pr->depth = ct->opt.pairs_depth;
   PetscFunctionReturn(0);
 }
 
@@ -570,24 +571,18 @@ static PetscErrorCode RebuildOperators(MMContact ct)
   PetscFunctionReturn(0);
 }
 
-/* Pair p's master surface (facets xc) and the slave node k at x: its facet, weights, distance along
- * the facet's normal n_c, gap g = n_c.(X_s - sum_j phi_j X_mj) (so that w_0 <= g reads
- * n_c.(x_s - sum_j phi_j x_mj) >= 0) and the cosine c0 = -n_c.nu of the row's direction to the frame's */
-static PetscInt ProjectNode(MMContactPairs *pr, PetscInt dim, PetscInt p, const PetscReal xc[], PetscInt k, const PetscReal F[], const PetscReal x[], PetscReal phi[], PetscReal *dist, PetscReal *g, PetscReal *c0)
+/* Pair p's master surface (facets xc) and the slave node k at x: its closest facet, the weights of the
+ * closest point and the distance along that facet's normal (negative inside the master) */
+static PetscInt ProjectNode(MMContactPairs *pr, PetscInt dim, PetscInt p, const PetscReal xc[], const PetscReal x[], PetscReal phi[], PetscReal *dist)
 {
   const PetscInt   fb = ClosestFacet(dim, pr->nf[p], xc, x, phi);
-  const PetscReal *f = &xc[fb * MM_FACET_REALS], *fr = &pr->xf[p][fb * MM_FACET_REALS];
+  const PetscReal *f  = &xc[fb * MM_FACET_REALS];
 
-  *dist = *g = *c0 = 0;
+  *dist = 0;
   for (PetscInt d = 0; d < dim; ++d) {
-    PetscReal xp = 0, xr = 0;
-    for (PetscInt j = 0; j < dim; ++j) {
-      xp += phi[j] * f[j * dim + d];
-      xr += phi[j] * fr[j * dim + d];
-    }
+    PetscReal xp = 0;
+    for (PetscInt j = 0; j < dim; ++j) xp += phi[j] * f[j * dim + d];
     *dist += f[dim * dim + d] * (x[d] - xp);
-    *g += f[dim * dim + d] * (pr->xs[MM_MAX_DIM * k + d] - xr);
-    *c0 -= f[dim * dim + d] * F[d];
   }
   return fb;
 }
@@ -624,6 +619,56 @@ static PetscErrorCode Positions(MMContact ct, Vec u, PetscReal **xc, PetscReal x
   PetscFunctionReturn(0);
 }
 
+/* Slave node k's row on facet fb of pair p, with weights phi and the facet's current outward normal n:
+ * w_0 = nu_c.(u_s - sum_j phi_j u_mj) <= g = n.(X_s - sum_j phi_j X_mj), nu_c = -n, which reads
+ * n.(x_s - sum_j phi_j x_mj) >= 0 on the positions. Counts in cnt the nodes whose row changed, and of
+ * those the ones that changed facet. */
+static PetscErrorCode TakeRow(MMContact ct, PetscInt p, PetscInt k, PetscInt fb, const PetscReal phi[], const PetscReal n[], PetscScalar ga[], PetscScalar g0a[], PetscInt cnt[2])
+{
+  MMContactPairs  *pr  = &ct->pairs;
+  const PetscInt   dim = ct->dim;
+  const PetscReal *F = &ct->node_frame[9 * k], *fr = &pr->xf[p][fb * MM_FACET_REALS];
+  PetscReal        g = 0, c0 = 0;
+  PetscBool        same = (PetscBool)(fb == pr->facet[k]);
+
+  PetscFunctionBeginUser;
+  for (PetscInt d = 0; d < dim; ++d) {
+    PetscReal xr = 0;
+    for (PetscInt j = 0; j < dim; ++j) xr += phi[j] * fr[j * dim + d];
+    g += n[d] * (pr->xs[MM_MAX_DIM * k + d] - xr);
+    c0 -= n[d] * F[d];
+  }
+  /* the row's direction against the frame's massless nu: a facet turned this far is beyond the
+   * method's setting (the frame is the reference one) */
+  PetscCheck(c0 > 0.5, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Contact pair %s: a slave node's master facet has turned by %.3g degrees from the node's reference normal, beyond what large sliding carries (60 degrees): the node's frame is fixed at t = 0", ct->pb.obstacles[ct->obstacle[k]].name, (double)(PetscAcosReal(PetscMin(c0, 1.0)) * 180 / PETSC_PI));
+  for (PetscInt j = 0; j < dim; ++j) same = (PetscBool)(same && phi[j] == pr->phi[MM_MAX_DIM * k + j]);
+  for (PetscInt d = 0; d < dim; ++d) same = (PetscBool)(same && -n[d] == pr->nuc[MM_MAX_DIM * k + d]);
+  if (same) PetscFunctionReturn(0);
+  cnt[0]++;
+  cnt[1] += fb != pr->facet[k];
+  SetPairing(pr, dim, p, k, fb, phi);
+  for (PetscInt d = 0; d < dim; ++d) pr->nuc[MM_MAX_DIM * k + d] = -n[d];
+  ga[k] = g0a[k] = g;
+  PetscFunctionReturn(0);
+}
+
+/* After rows changed: N rebuilt, every w-frame vector carried to the new variables (the Cartesian
+ * state unchanged), K and M* rebuilt from the contact-frame ones */
+static PetscErrorCode NewPairing(MMContact ct)
+{
+  OldPairing old;
+
+  PetscFunctionBeginUser;
+  old.N    = ct->transform.N;
+  old.Ninv = ct->transform.Ninv;
+  PetscCall(BuildN(ct));
+  PetscCall(MMContactHeldTransform(ct, PETSC_TRUE, ChangeVariables, &old));
+  PetscCall(MatDestroy(&old.N));
+  PetscCall(MatDestroy(&old.Ninv));
+  PetscCall(RebuildOperators(ct));
+  PetscFunctionReturn(0);
+}
+
 /*@
   MMContactSlidePairs - Finds the contact pairs' pairing again at a step's start (large sliding)
   and, where it changed, rebuilds N, K and M* and carries the w-frame vectors to the new variables
@@ -639,86 +684,132 @@ static PetscErrorCode Positions(MMContact ct, Vec u, PetscReal **xc, PetscReal x
 . changed - the pairing changed (all ranks)
 
   Note:
-  At a step's start: each slave node's deepest penetration of the current master surface (u = u^n),
-  for the run's summary; then the pairing of its predicted position (up, the step's predictor
-  u + dt v + dt^2/4 a, on the predicted master surface: the pairing of the step's end to O(dt^2)).
-  Where the facet, the weights or the facet's normal n_c change, the node's row becomes
-  w_0 = nu_c.(u_s - sum_j phi_j u_mj) <= g = n_c.(X_s - sum_j phi_j X_mj), nu_c = -n_c: the
-  non-penetration of the facet's line, exact for a facet that neither turns nor bends in the step. N is
-  rebuilt, and with it K and M*; every w-frame vector, the load, the lift and the held ones (held.c), is
-  carried to the new variables, so that the Cartesian state is unchanged. The ranks find the same pairing: the master
-  surface and its displacements are gathered on each.
+  Each slave node takes the closest point of the master surface as it is at the step's start (u = u^n):
+  its facet and weights, so that x_s - sum_j phi_j x_mj is the node's distance d along the facet's normal
+  (0 for a node on the facet), and the row's value at u^n is d n_c.n whatever the row's normal n_c. That
+  normal is the facet's at the step's predicted end (up, the step's predictor u + dt v + dt^2/4 a), where
+  the row closes; MMContactPairsRefine() corrects it where the step ends inside the master. The row is
+  w_0 = nu_c.(u_s - sum_j phi_j u_mj) <= g = n_c.(X_s - sum_j phi_j X_mj), nu_c = -n_c. Where a row
+  changed, N is rebuilt, and with it K and M*; every w-frame vector, the load, the lift and the held ones
+  (held.c), is carried to the new variables, so that the Cartesian state is unchanged. The ranks find
+  the same pairing: the master surface and its displacements are gathered on each.
+  (docs/method.md section 11, "Large sliding")
 
   Level: intermediate
 
-.seealso: `MMContactPairsGetRecord()`, `MMContactPairsRestore()`, `MMContactFramesAddVec()`
+.seealso: `MMContactPairsRefine()`, `MMContactPairsGetRecord()`, `MMContactPairsRestore()`
 @*/
 PetscErrorCode MMContactSlidePairs(MMContact ct, Vec u, Vec up, PetscBool *changed)
 {
   MMContactPairs *pr  = &ct->pairs;
   const PetscInt  dim = ct->dim;
   PetscScalar    *ga, *g0a;
-  PetscReal     **xc, *x, pen = 0;
-  PetscInt        cnt[2] = {0, 0}; /* slave nodes whose pairing changed, and that changed facet */
+  PetscReal     **xc, **xe, *x, *phi, pen = 0;
+  PetscInt       *fb, cnt[2] = {0, 0}; /* slave nodes whose row changed, and that changed facet */
   MPI_Comm        comm = PetscObjectComm((PetscObject)ct->dm);
-  OldPairing      old;
 
   PetscFunctionBeginUser;
   *changed = PETSC_FALSE;
   if (!ct->enabled || !pr->large) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(MMCONTACT_PairsSlide, 0, 0, 0, 0));
-  PetscCall(PetscMalloc2(pr->n, &xc, MM_MAX_DIM * (ct->n_local + 1), &x));
-  for (PetscInt p = 0; p < pr->n; ++p) PetscCall(PetscMalloc1(pr->nf[p] * MM_FACET_REALS, &xc[p]));
+  PetscCall(PetscMalloc5(pr->n, &xc, pr->n, &xe, MM_MAX_DIM * (ct->n_local + 1), &x, MM_MAX_DIM * (ct->n_local + 1), &phi, ct->n_local + 1, &fb));
+  for (PetscInt p = 0; p < pr->n; ++p) PetscCall(PetscMalloc2(pr->nf[p] * MM_FACET_REALS, &xc[p], pr->nf[p] * MM_FACET_REALS, &xe[p]));
   PetscCall(Positions(ct, u, xc, x));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
     const PetscInt p = ct->obstacle[k] - ct->pb.n_rigid;
-    PetscReal      phi[MM_MAX_DIM], dist, g, c0;
+    PetscReal      dist;
     if (p < 0 || ct->second[k]) continue;
-    (void)ProjectNode(pr, dim, p, xc[p], k, &ct->node_frame[9 * k], &x[MM_MAX_DIM * k], phi, &dist, &g, &c0);
-    pen = PetscMax(pen, -dist);
+    fb[k] = ProjectNode(pr, dim, p, xc[p], &x[MM_MAX_DIM * k], &phi[MM_MAX_DIM * k], &dist);
+    pen   = PetscMax(pen, -dist);
   }
-  PetscCall(Positions(ct, up, xc, x));
+  PetscCall(Positions(ct, up, xe, x));
   PetscCall(VecGetArray(ct->gap, &ga));
   PetscCall(VecGetArray(ct->gap0, &g0a));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
-    const PetscInt   p = ct->obstacle[k] - ct->pb.n_rigid;
-    const PetscReal *F = &ct->node_frame[9 * k], *n;
-    PetscReal        phi[MM_MAX_DIM] = {0, 0, 0}, dist, g, c0;
-    PetscInt         fb;
-    PetscBool        same;
+    const PetscInt p = ct->obstacle[k] - ct->pb.n_rigid;
     if (p < 0 || ct->second[k]) continue;
-    fb = ProjectNode(pr, dim, p, xc[p], k, F, &x[MM_MAX_DIM * k], phi, &dist, &g, &c0);
-    n  = &xc[p][fb * MM_FACET_REALS + dim * dim];
-    /* the row's direction against the frame's massless nu: a facet turned this far is beyond the
-     * method's setting (the frame is the reference one) */
-    PetscCheck(c0 > 0.5, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Contact pair %s: a slave node's master facet has turned by %.3g degrees from the node's reference normal, beyond what large sliding carries (60 degrees): the node's frame is fixed at t = 0", ct->pb.obstacles[ct->obstacle[k]].name, (double)(PetscAcosReal(PetscMin(c0, 1.0)) * 180 / PETSC_PI));
-    same = (PetscBool)(fb == pr->facet[k]);
-    for (PetscInt j = 0; j < dim; ++j) same = (PetscBool)(same && phi[j] == pr->phi[MM_MAX_DIM * k + j]);
-    for (PetscInt d = 0; d < dim; ++d) same = (PetscBool)(same && -n[d] == pr->nuc[MM_MAX_DIM * k + d]);
-    if (same) continue;
-    cnt[0]++;
-    cnt[1] += fb != pr->facet[k];
-    SetPairing(pr, dim, p, k, fb, phi);
-    for (PetscInt d = 0; d < dim; ++d) pr->nuc[MM_MAX_DIM * k + d] = -n[d];
-    ga[k] = g0a[k] = g;
+    PetscCall(TakeRow(ct, p, k, fb[k], &phi[MM_MAX_DIM * k], &xe[p][fb[k] * MM_FACET_REALS + dim * dim], ga, g0a, cnt));
   }
   PetscCall(VecRestoreArray(ct->gap0, &g0a));
   PetscCall(VecRestoreArray(ct->gap, &ga));
-  for (PetscInt p = 0; p < pr->n; ++p) PetscCall(PetscFree(xc[p]));
-  PetscCall(PetscFree2(xc, x));
+  for (PetscInt p = 0; p < pr->n; ++p) PetscCall(PetscFree2(xc[p], xe[p]));
+  PetscCall(PetscFree5(xc, xe, x, phi, fb));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cnt, 2, MPIU_INT, MPI_SUM, comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &pen, 1, MPIU_REAL, MPIU_MAX, comm));
   pr->penetration = PetscMax(pr->penetration, pen);
   if (cnt[0]) {
     pr->repairs++;
     pr->facet_changes += cnt[1];
-    old.N    = ct->transform.N;
-    old.Ninv = ct->transform.Ninv;
-    PetscCall(BuildN(ct));
-    PetscCall(MMContactHeldTransform(ct, PETSC_TRUE, ChangeVariables, &old));
-    PetscCall(MatDestroy(&old.N));
-    PetscCall(MatDestroy(&old.Ninv));
-    PetscCall(RebuildOperators(ct));
+    PetscCall(NewPairing(ct));
+    *changed = PETSC_TRUE;
+  }
+  PetscCall(PetscLogEventEnd(MMCONTACT_PairsSlide, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/*@
+  MMContactPairsRefine - After a solved step under large sliding, gives the rows whose slave node ended
+  inside the master's surface as it is at the step's end the pairing of that end, for the step to be
+  solved again from its start
+
+  Collective
+
+  Input Parameters:
++ ct - the contact object
+- w  - the solved step's end (w-frame)
+
+  Output Parameter:
+. changed - some row changed (all ranks): solve the step again
+
+  Note:
+  A node deeper than -contact_pairs_depth h_c' inside the master surface at w takes the normal of its
+  facet there (its weights from the step's start kept, so that its row's value at u^n stays its start
+  distance), or, if it ended over another facet, that facet with the weights of its end point. N, K and
+  M* are rebuilt and the state carried as at a step's start. The row's normal at the step's predicted end
+  misses the true end's by the predictor's error, and a node that crosses into a concave crease within
+  the step penetrates the facet beyond it (docs/method.md section 11, "Large sliding").
+
+  Level: intermediate
+
+.seealso: `MMContactSlidePairs()`
+@*/
+PetscErrorCode MMContactPairsRefine(MMContact ct, Vec w, PetscBool *changed)
+{
+  MMContactPairs *pr  = &ct->pairs;
+  const PetscInt  dim = ct->dim;
+  PetscScalar    *ga, *g0a;
+  PetscReal     **xe, *x;
+  PetscInt        cnt[2] = {0, 0};
+
+  PetscFunctionBeginUser;
+  *changed = PETSC_FALSE;
+  if (!ct->enabled || !pr->large || pr->depth < 0) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(MMCONTACT_PairsSlide, 0, 0, 0, 0));
+  PetscCall(PetscMalloc2(pr->n, &xe, MM_MAX_DIM * (ct->n_local + 1), &x));
+  for (PetscInt p = 0; p < pr->n; ++p) PetscCall(PetscMalloc1(pr->nf[p] * MM_FACET_REALS, &xe[p]));
+  PetscCall(Positions(ct, w, xe, x));
+  PetscCall(VecGetArray(ct->gap, &ga));
+  PetscCall(VecGetArray(ct->gap0, &g0a));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscInt p = ct->obstacle[k] - ct->pb.n_rigid;
+    PetscReal      phi[MM_MAX_DIM] = {0, 0, 0}, dist;
+    PetscInt       fb;
+    if (p < 0 || ct->second[k]) continue;
+    fb = ProjectNode(pr, dim, p, xe[p], &x[MM_MAX_DIM * k], phi, &dist);
+    if (-dist <= pr->depth * ct->h_c) continue;
+    if (fb == pr->facet[k])
+      for (PetscInt j = 0; j < dim; ++j) phi[j] = pr->phi[MM_MAX_DIM * k + j];
+    PetscCall(TakeRow(ct, p, k, fb, phi, &xe[p][fb * MM_FACET_REALS + dim * dim], ga, g0a, cnt));
+  }
+  PetscCall(VecRestoreArray(ct->gap0, &g0a));
+  PetscCall(VecRestoreArray(ct->gap, &ga));
+  for (PetscInt p = 0; p < pr->n; ++p) PetscCall(PetscFree(xe[p]));
+  PetscCall(PetscFree2(xe, x));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cnt, 2, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ct->dm)));
+  if (cnt[0]) {
+    pr->resolves++;
+    pr->facet_changes += cnt[1];
+    PetscCall(NewPairing(ct));
     *changed = PETSC_TRUE;
   }
   PetscCall(PetscLogEventEnd(MMCONTACT_PairsSlide, 0, 0, 0, 0));
