@@ -26,6 +26,9 @@ MSH  += meshes/ball_bowl.msh meshes/disk_rail.msh meshes/block_push.msh meshes/b
 # two_balls), a ball on a block; and the cube dropped into a V-groove
 MSH  += meshes/two_bars.msh meshes/two_bars_conf.msh meshes/two_balls.msh meshes/ball_x.msh meshes/ball_block.msh
 MSH  += meshes/cube_groove.msh
+# Two thin rings in an oblique impact, large sliding on curved masters (issue 51): cells of 0.005 m (the
+# case) and 0.01 m (its test)
+MSH  += meshes/two_rings.msh meshes/two_rings_coarse.msh
 # A cantilever settling on a plane under Rayleigh damping (issue 38)
 MSH  += meshes/cantilever.msh
 # Slender clamped cantilevers, t/L = 0.02 and 0.05, for the static start and beam theory (issue 48)
@@ -139,6 +142,10 @@ meshes/two_bars_conf.msh: meshes/two_bars.geo
 # H 0.18: the two-ball contact time and peak force are within 1.4% of the one ball's against the plane
 meshes/two_balls.msh: meshes/two_balls.geo
 	gmsh -3 $< -setnumber H 0.18 -o $@ -v 2
+meshes/two_rings.msh: meshes/two_rings.geo
+	gmsh -2 $< -o $@ -v 2
+meshes/two_rings_coarse.msh: meshes/two_rings.geo
+	gmsh -2 $< -setnumber H 0.01 -o $@ -v 2
 meshes/ball_x.msh: meshes/two_balls.geo
 	gmsh -3 $< -setnumber H 0.18 -setnumber ONLY_A 1 -o $@ -v 2
 meshes/ball_block.msh: meshes/ball_block.geo
