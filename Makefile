@@ -29,6 +29,8 @@ MSH  += meshes/cube_groove.msh
 # Two thin rings in an oblique impact, large sliding on curved masters (issue 51): cells of 0.005 m (the
 # case) and 0.01 m (its test)
 MSH  += meshes/two_rings.msh meshes/two_rings_coarse.msh
+# A cylinder thrown inside a held ring, 3D: large sliding on a concave master (issue 51)
+MSH  += meshes/cylinder_ring.msh
 # A cantilever settling on a plane under Rayleigh damping (issue 38)
 MSH  += meshes/cantilever.msh
 # Slender clamped cantilevers, t/L = 0.02 and 0.05, for the static start and beam theory (issue 48)
@@ -146,6 +148,8 @@ meshes/two_rings.msh: meshes/two_rings.geo
 	gmsh -2 $< -o $@ -v 2
 meshes/two_rings_coarse.msh: meshes/two_rings.geo
 	gmsh -2 $< -setnumber H 0.01 -o $@ -v 2
+meshes/cylinder_ring.msh: meshes/cylinder_ring.geo
+	gmsh -3 $< -o $@ -v 2
 meshes/ball_x.msh: meshes/two_balls.geo
 	gmsh -3 $< -setnumber H 0.18 -setnumber ONLY_A 1 -o $@ -v 2
 meshes/ball_block.msh: meshes/ball_block.geo

@@ -61,6 +61,8 @@ typedef struct {
   PetscInt  *facet;    /* per contact node, its master facet (index in its pair's gathered surface) */
   PetscReal *xs;       /* per contact node, MM_MAX_DIM: its reference position */
   PetscReal *nuc;      /* per contact node, MM_MAX_DIM: its constraint's direction, -(the current facet normal) */
+  PetscBool *far;      /* per contact node: its row is a far one, along its frame's nu (pairs.c TakeRow) */
+  PetscReal *far_d;    /* per contact node: a far row's distance at its step's start */
   Mat        Ky, My;   /* K and M* in the contact frame, before N: N^T K N and N^T M* N are rebuilt from them */
   Vec        y;        /* scratch, the layout of w: y = N w */
   Vec        um;       /* every master facet vertex's displacement, gathered on every rank */

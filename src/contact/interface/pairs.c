@@ -146,6 +146,105 @@ static PetscErrorCode GatherMasterSurface(MMContact ct, PetscInt p, const PetscI
   PetscFunctionReturn(0);
 }
 
+/* The outward normal of a facet (dim vertices x) away from its cell, times the facet's measure */
+static PetscErrorCode FacetOutwardNormal(DM dm, PetscInt dim, PetscInt cell, const PetscReal x[], PetscReal measure, PetscReal n[])
+{
+  PetscReal ccen[MM_MAX_DIM] = {0, 0, 0}, len = 0, dot = 0;
+
+  PetscFunctionBeginUser;
+  if (dim == 2) {
+    n[0] = x[3] - x[1];
+    n[1] = -(x[2] - x[0]);
+  } else {
+    const PetscReal a[3] = {x[3] - x[0], x[4] - x[1], x[5] - x[2]}, b[3] = {x[6] - x[0], x[7] - x[1], x[8] - x[2]};
+    n[0] = a[1] * b[2] - a[2] * b[1];
+    n[1] = a[2] * b[0] - a[0] * b[2];
+    n[2] = a[0] * b[1] - a[1] * b[0];
+  }
+  PetscCall(MMMeshCellCentroid(dm, cell, ccen));
+  for (PetscInt d = 0; d < dim; ++d) {
+    len += n[d] * n[d];
+    dot += (ccen[d] - x[d]) * n[d];
+  }
+  len = PetscSqrtReal(len) * (dot > 0 ? -1 : 1);
+  for (PetscInt d = 0; d < dim; ++d) n[d] *= measure / len;
+  PetscFunctionReturn(0);
+}
+
+/* Under large sliding each slave node's frame is that of its own outward normal (the mean of its slave
+ * facets' normals, weighted by their measures), not its reference master facet's: the node meets the
+ * master with its own surface wherever it slides to, and its massless nu is along the rows it will have
+ * there (c_0 = nu_c.nu near 1 in contact, TakeRow). Sums over the ranks that share a vertex. */
+static PetscErrorCode SlaveFrames(MMContact ct)
+{
+  DM                 dm = ct->dm;
+  const PetscInt     dim = ct->dim;
+  PetscSection       ls, cs;
+  Vec                X, nl, ng;
+  const PetscScalar *xc, *ga;
+  PetscScalar       *na;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLocalSection(dm, &ls));
+  PetscCall(DMGetCoordinateSection(dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  PetscCall(DMGetLocalVector(dm, &nl));
+  PetscCall(DMGetGlobalVector(dm, &ng));
+  PetscCall(VecZeroEntries(nl));
+  PetscCall(VecGetArrayRead(X, &xc));
+  PetscCall(VecGetArray(nl, &na));
+  for (PetscInt p = 0; p < ct->pairs.n; ++p) {
+    MMFacetList fl;
+    PetscCall(MMMeshGetFacets(dm, ct->pb.obstacles[ct->pb.n_rigid + p].slave, &fl));
+    for (PetscInt j = 0; j < fl.n; ++j) {
+      PetscInt  v[MM_MAX_DIM], off;
+      PetscReal f[MM_FACET_REALS], measure, n[MM_MAX_DIM];
+      PetscCall(MMFacetGeometry(dm, &fl, j, cs, xc, v, f, &measure));
+      PetscCall(FacetOutwardNormal(dm, dim, fl.cell[j], f, measure, n));
+      for (PetscInt a = 0; a < dim; ++a) {
+        PetscCall(PetscSectionGetOffset(ls, v[a], &off));
+        for (PetscInt d = 0; d < dim; ++d) na[off + d] += n[d];
+      }
+    }
+    PetscCall(MMFacetListDestroy(&fl));
+  }
+  PetscCall(VecRestoreArray(nl, &na));
+  PetscCall(VecRestoreArrayRead(X, &xc));
+  PetscCall(VecZeroEntries(ng));
+  PetscCall(DMLocalToGlobal(dm, nl, ADD_VALUES, ng));
+  PetscCall(DMGlobalToLocal(dm, ng, INSERT_VALUES, nl));
+  PetscCall(VecGetArray(nl, &na));
+  PetscCall(VecGetArrayRead(ct->gap, &ga));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    PetscReal n[MM_MAX_DIM] = {0, 0, 0}, F[MM_MAX_DIM][MM_MAX_DIM], len = 0;
+    PetscInt  off;
+    if (ct->obstacle[k] < ct->pb.n_rigid || ct->second[k]) continue;
+    PetscCall(PetscSectionGetOffset(ls, ct->vertex[k], &off));
+    for (PetscInt d = 0; d < dim; ++d) len += PetscRealPart(na[off + d] * na[off + d]);
+    len = PetscSqrtReal(len);
+    for (PetscInt d = 0; d < dim; ++d) n[d] = -PetscRealPart(na[off + d]) / len; /* the frame's n is the obstacle's: minus the body's */
+    MMContactFrameFromNormal(dim, n, F);
+    for (PetscInt a = 0; a < MM_MAX_DIM; ++a)
+      for (PetscInt b = 0; b < MM_MAX_DIM; ++b) ct->node_frame[9 * k + 3 * a + b] = F[a][b];
+    /* a node whose reference master facet faces away from it: the far row of TakeRow, with its
+     * reference gap as its slack, until the first step's start pairs it */
+    {
+      PetscReal c0 = 0;
+      for (PetscInt d = 0; d < dim; ++d) c0 += ct->pairs.nuc[MM_MAX_DIM * k + d] * F[0][d];
+      if (c0 <= 0.5) {
+        ct->pairs.far[k]   = PETSC_TRUE;
+        ct->pairs.far_d[k] = PetscRealPart(ga[k]);
+        for (PetscInt d = 0; d < dim; ++d) ct->pairs.nuc[MM_MAX_DIM * k + d] = F[0][d];
+      }
+    }
+  }
+  PetscCall(VecRestoreArrayRead(ct->gap, &ga));
+  PetscCall(VecRestoreArray(nl, &na));
+  PetscCall(DMRestoreGlobalVector(dm, &ng));
+  PetscCall(DMRestoreLocalVector(dm, &nl));
+  PetscFunctionReturn(0);
+}
+
 /* -contact_pairs_sliding: large sliding finds the pairing again on the current configuration at each
  * step (docs/method.md section 11, "Large sliding"). Its transform of the state keeps the energy
  * identity and the momentum exact for the finite-strain step only, whose right-hand side carries the
@@ -176,6 +275,7 @@ PetscErrorCode MMContactPairsResolveSliding(MMContact ct)
     break;
   }
   pr->depth = ct->opt.pairs_depth;
+  if (pr->large) PetscCall(SlaveFrames(ct));
   PetscFunctionReturn(0);
 }
 
@@ -193,6 +293,7 @@ PetscErrorCode MMContactPairsSetUp(MMContact ct, const PetscInt mark[], PetscInt
    * facet and its reference position */
   PetscCall(PetscMalloc2(MM_MAX_DIM * n_vertex_bound, &pr->phi, MM_MAX_DIM * n_vertex_bound, &pr->mdof));
   PetscCall(PetscMalloc3(n_vertex_bound, &pr->facet, MM_MAX_DIM * n_vertex_bound, &pr->xs, MM_MAX_DIM * n_vertex_bound, &pr->nuc));
+  PetscCall(PetscCalloc2(n_vertex_bound, &pr->far, n_vertex_bound, &pr->far_d));
   PetscFunctionReturn(0);
 }
 
@@ -452,6 +553,7 @@ PetscErrorCode MMContactPairsDestroy(MMContactPairs *pr)
   if (pr->n) PetscCall(PetscFree4(pr->nf, pr->xf, pr->df, pr->count));
   PetscCall(PetscFree2(pr->phi, pr->mdof));
   PetscCall(PetscFree3(pr->facet, pr->xs, pr->nuc));
+  PetscCall(PetscFree2(pr->far, pr->far_d));
   PetscCall(MatDestroy(&pr->Ky));
   PetscCall(MatDestroy(&pr->My));
   PetscCall(VecDestroy(&pr->y));
@@ -619,28 +721,50 @@ static PetscErrorCode Positions(MMContact ct, Vec u, PetscReal **xc, PetscReal x
   PetscFunctionReturn(0);
 }
 
+/* A slave node at the step's start: its distance d to the master surface, its displacement relative to
+ * the facet's material point, u_s - sum_j phi_j u_mj, and how far the step's predictor moves it from
+ * that point */
+typedef struct {
+  PetscReal d, ru[MM_MAX_DIM], travel; /* travel: how far the predictor moves the node from that point */
+} RowStart;
+
 /* Slave node k's row on facet fb of pair p, with weights phi and the facet's current outward normal n:
  * w_0 = nu_c.(u_s - sum_j phi_j u_mj) <= g = n.(X_s - sum_j phi_j X_mj), nu_c = -n, which reads
- * n.(x_s - sum_j phi_j x_mj) >= 0 on the positions. Counts in cnt the nodes whose row changed, and of
- * those the ones that changed facet. */
-static PetscErrorCode TakeRow(MMContact ct, PetscInt p, PetscInt k, PetscInt fb, const PetscReal phi[], const PetscReal n[], PetscScalar ga[], PetscScalar g0a[], PetscInt cnt[2])
+ * n.(x_s - sum_j phi_j x_mj) >= 0 on the positions. A node whose facet faces away from its frame's nu
+ * by more than 60 degrees, farther from the master at the step's start (st, when given) than twice the
+ * predictor's travel (a node off the contact, whose closest facet is one it will not meet there), takes
+ * the frame's nu as its row's direction and the bound that leaves it its distance d as slack at u^n:
+ * the row cannot close within the step, and N stays well conditioned (c_0 = 1). MMContactPairsRefine()
+ * stops a run where such a node ends the step nearer than half that distance. Counts in cnt the nodes whose row changed, and of those the ones that
+ * changed facet. */
+static PetscErrorCode TakeRow(MMContact ct, PetscInt p, PetscInt k, PetscInt fb, const PetscReal phi[], const PetscReal nf[], const RowStart *st, PetscScalar ga[], PetscScalar g0a[], PetscInt cnt[2])
 {
   MMContactPairs  *pr  = &ct->pairs;
   const PetscInt   dim = ct->dim;
-  const PetscReal *F = &ct->node_frame[9 * k], *fr = &pr->xf[p][fb * MM_FACET_REALS];
-  PetscReal        g = 0, c0 = 0;
+  const PetscReal *F = &ct->node_frame[9 * k], *fr = &pr->xf[p][fb * MM_FACET_REALS], *n = nf;
+  PetscReal        g = 0, c0 = 0, nfar[MM_MAX_DIM];
   PetscBool        same = (PetscBool)(fb == pr->facet[k]);
 
   PetscFunctionBeginUser;
-  for (PetscInt d = 0; d < dim; ++d) {
-    PetscReal xr = 0;
-    for (PetscInt j = 0; j < dim; ++j) xr += phi[j] * fr[j * dim + d];
-    g += n[d] * (pr->xs[MM_MAX_DIM * k + d] - xr);
-    c0 -= n[d] * F[d];
+  for (PetscInt d = 0; d < dim; ++d) c0 -= n[d] * F[d];
+  pr->far[k] = (PetscBool)(c0 <= 0.5 && st && st->d > 2 * st->travel + 1e-3 * ct->h_c);
+  if (pr->far[k]) {
+    for (PetscInt d = 0; d < dim; ++d) nfar[d] = -F[d];
+    n = nfar;
+    g            = st->d;
+    pr->far_d[k] = st->d;
+    for (PetscInt d = 0; d < dim; ++d) g -= n[d] * st->ru[d];
+  } else {
+    /* the row's direction against the frame's massless nu: a facet turned this far is beyond the
+     * method's setting (the frame is the reference one) */
+    PetscCheck(c0 > 0.5, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Contact pair %s: a slave node within h_c' of its master facet faces it at %.3g degrees from the node's reference normal, beyond what large sliding carries (60 degrees): the node's frame is fixed at t = 0", ct->pb.obstacles[ct->obstacle[k]].name, (double)(PetscAcosReal(PetscMax(PetscMin(c0, 1.0), -1.0)) * 180 / PETSC_PI));
+    for (PetscInt d = 0; d < dim; ++d) {
+      PetscReal xr = 0;
+      for (PetscInt j = 0; j < dim; ++j) xr += phi[j] * fr[j * dim + d];
+      g += n[d] * (pr->xs[MM_MAX_DIM * k + d] - xr);
+    }
   }
-  /* the row's direction against the frame's massless nu: a facet turned this far is beyond the
-   * method's setting (the frame is the reference one) */
-  PetscCheck(c0 > 0.5, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Contact pair %s: a slave node's master facet has turned by %.3g degrees from the node's reference normal, beyond what large sliding carries (60 degrees): the node's frame is fixed at t = 0", ct->pb.obstacles[ct->obstacle[k]].name, (double)(PetscAcosReal(PetscMin(c0, 1.0)) * 180 / PETSC_PI));
+  ga[k] = g0a[k] = g; /* a far row's bound moves with its distance; N does not */
   for (PetscInt j = 0; j < dim; ++j) same = (PetscBool)(same && phi[j] == pr->phi[MM_MAX_DIM * k + j]);
   for (PetscInt d = 0; d < dim; ++d) same = (PetscBool)(same && -n[d] == pr->nuc[MM_MAX_DIM * k + d]);
   if (same) PetscFunctionReturn(0);
@@ -648,7 +772,6 @@ static PetscErrorCode TakeRow(MMContact ct, PetscInt p, PetscInt k, PetscInt fb,
   cnt[1] += fb != pr->facet[k];
   SetPairing(pr, dim, p, k, fb, phi);
   for (PetscInt d = 0; d < dim; ++d) pr->nuc[MM_MAX_DIM * k + d] = -n[d];
-  ga[k] = g0a[k] = g;
   PetscFunctionReturn(0);
 }
 
@@ -706,34 +829,55 @@ PetscErrorCode MMContactSlidePairs(MMContact ct, Vec u, Vec up, PetscBool *chang
   PetscScalar    *ga, *g0a;
   PetscReal     **xc, **xe, *x, *phi, pen = 0;
   PetscInt       *fb, cnt[2] = {0, 0}; /* slave nodes whose row changed, and that changed facet */
+  RowStart       *st;
   MPI_Comm        comm = PetscObjectComm((PetscObject)ct->dm);
 
   PetscFunctionBeginUser;
   *changed = PETSC_FALSE;
   if (!ct->enabled || !pr->large) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(MMCONTACT_PairsSlide, 0, 0, 0, 0));
-  PetscCall(PetscMalloc5(pr->n, &xc, pr->n, &xe, MM_MAX_DIM * (ct->n_local + 1), &x, MM_MAX_DIM * (ct->n_local + 1), &phi, ct->n_local + 1, &fb));
+  PetscCall(PetscMalloc6(pr->n, &xc, pr->n, &xe, MM_MAX_DIM * (ct->n_local + 1), &x, MM_MAX_DIM * (ct->n_local + 1), &phi, ct->n_local + 1, &fb, ct->n_local + 1, &st));
   for (PetscInt p = 0; p < pr->n; ++p) PetscCall(PetscMalloc2(pr->nf[p] * MM_FACET_REALS, &xc[p], pr->nf[p] * MM_FACET_REALS, &xe[p]));
   PetscCall(Positions(ct, u, xc, x));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
-    const PetscInt p = ct->obstacle[k] - ct->pb.n_rigid;
-    PetscReal      dist;
+    const PetscInt   p = ct->obstacle[k] - ct->pb.n_rigid;
+    const PetscReal *f, *fr;
     if (p < 0 || ct->second[k]) continue;
-    fb[k] = ProjectNode(pr, dim, p, xc[p], &x[MM_MAX_DIM * k], &phi[MM_MAX_DIM * k], &dist);
-    pen   = PetscMax(pen, -dist);
+    fb[k] = ProjectNode(pr, dim, p, xc[p], &x[MM_MAX_DIM * k], &phi[MM_MAX_DIM * k], &st[k].d);
+    pen   = PetscMax(pen, -st[k].d);
+    f     = &xc[p][fb[k] * MM_FACET_REALS];
+    fr    = &pr->xf[p][fb[k] * MM_FACET_REALS];
+    for (PetscInt d = 0; d < dim; ++d) {
+      st[k].ru[d] = x[MM_MAX_DIM * k + d] - pr->xs[MM_MAX_DIM * k + d];
+      for (PetscInt j = 0; j < dim; ++j) st[k].ru[d] -= phi[MM_MAX_DIM * k + j] * (f[j * dim + d] - fr[j * dim + d]);
+    }
   }
   PetscCall(Positions(ct, up, xe, x));
+  for (PetscInt k = 0; k < ct->n_local; ++k) {
+    const PetscInt   p = ct->obstacle[k] - ct->pb.n_rigid;
+    const PetscReal *f, *fr;
+    PetscReal        t2 = 0;
+    if (p < 0 || ct->second[k]) continue;
+    f  = &xe[p][fb[k] * MM_FACET_REALS];
+    fr = &pr->xf[p][fb[k] * MM_FACET_REALS];
+    for (PetscInt d = 0; d < dim; ++d) {
+      PetscReal r = x[MM_MAX_DIM * k + d] - pr->xs[MM_MAX_DIM * k + d] - st[k].ru[d];
+      for (PetscInt j = 0; j < dim; ++j) r -= phi[MM_MAX_DIM * k + j] * (f[j * dim + d] - fr[j * dim + d]);
+      t2 += r * r;
+    }
+    st[k].travel = PetscSqrtReal(t2);
+  }
   PetscCall(VecGetArray(ct->gap, &ga));
   PetscCall(VecGetArray(ct->gap0, &g0a));
   for (PetscInt k = 0; k < ct->n_local; ++k) {
     const PetscInt p = ct->obstacle[k] - ct->pb.n_rigid;
     if (p < 0 || ct->second[k]) continue;
-    PetscCall(TakeRow(ct, p, k, fb[k], &phi[MM_MAX_DIM * k], &xe[p][fb[k] * MM_FACET_REALS + dim * dim], ga, g0a, cnt));
+    PetscCall(TakeRow(ct, p, k, fb[k], &phi[MM_MAX_DIM * k], &xe[p][fb[k] * MM_FACET_REALS + dim * dim], &st[k], ga, g0a, cnt));
   }
   PetscCall(VecRestoreArray(ct->gap0, &g0a));
   PetscCall(VecRestoreArray(ct->gap, &ga));
   for (PetscInt p = 0; p < pr->n; ++p) PetscCall(PetscFree2(xc[p], xe[p]));
-  PetscCall(PetscFree5(xc, xe, x, phi, fb));
+  PetscCall(PetscFree6(xc, xe, x, phi, fb, st));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cnt, 2, MPIU_INT, MPI_SUM, comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &pen, 1, MPIU_REAL, MPIU_MAX, comm));
   pr->penetration = PetscMax(pr->penetration, pen);
@@ -796,10 +940,12 @@ PetscErrorCode MMContactPairsRefine(MMContact ct, Vec w, PetscBool *changed)
     PetscInt       fb;
     if (p < 0 || ct->second[k]) continue;
     fb = ProjectNode(pr, dim, p, xe[p], &x[MM_MAX_DIM * k], phi, &dist);
-    if (-dist <= pr->depth * ct->h_c) continue;
+    /* a far row (TakeRow) that ended nearer than half its start's distance: its direction was not the
+     * facet's, and TakeRow refuses it */
+    if (-dist <= pr->depth * ct->h_c && !(pr->far[k] && dist < 0.5 * pr->far_d[k])) continue;
     if (fb == pr->facet[k])
       for (PetscInt j = 0; j < dim; ++j) phi[j] = pr->phi[MM_MAX_DIM * k + j];
-    PetscCall(TakeRow(ct, p, k, fb, phi, &xe[p][fb * MM_FACET_REALS + dim * dim], ga, g0a, cnt));
+    PetscCall(TakeRow(ct, p, k, fb, phi, &xe[p][fb * MM_FACET_REALS + dim * dim], NULL, ga, g0a, cnt));
   }
   PetscCall(VecRestoreArray(ct->gap0, &g0a));
   PetscCall(VecRestoreArray(ct->gap, &ga));
