@@ -346,10 +346,16 @@ PETSC_INTERN PetscErrorCode MMContactCornersExpand(PetscInt n, PetscInt nc, cons
 PETSC_INTERN PetscErrorCode MMContactCornersContract(PetscInt n, PetscInt nc, PetscInt ne, const PetscInt of[], const PetscScalar geom[], const PetscScalar xe[], PetscScalar x[], PetscScalar x2[]);
 PETSC_INTERN PetscErrorCode MMContactCornersStore(MMContact ct);
 
-/* interface/pairs.c: contact pairs between two bodies, node to segment or facet */
+/* interface/pairs.c and pairs_sliding.c: contact pairs between two bodies, node to segment or facet */
 PETSC_INTERN PetscErrorCode MMContactPairsSetUp(MMContact ct, const PetscInt mark[], PetscInt n_vertex_bound);
 PETSC_INTERN PetscErrorCode MMContactPairsProject(MMContact ct, PetscInt p, PetscInt k, const PetscReal x[], PetscReal *gap, PetscReal n[]);
 PETSC_INTERN PetscErrorCode MMContactPairsBuildTransform(MMContact ct);
+/* One facet of a master surface, as gathered on every rank (pairs.c) */
+#define MM_FACET_REALS 16 /* coordinates (dim x dim), outward normal (dim), centroid key (dim) */
+PETSC_INTERN PetscErrorCode MMContactPairsFacetNormal(DM dm, PetscInt dim, PetscInt cell, const PetscReal x[], PetscReal n[], PetscReal *length);
+PETSC_INTERN PetscInt       MMContactPairsClosestFacet(PetscInt dim, PetscInt nf, const PetscReal xf_all[], const PetscReal x[], PetscReal phib[]);
+PETSC_INTERN void           MMContactPairsSetPairing(MMContactPairs *pr, PetscInt dim, PetscInt p, PetscInt k, PetscInt fb, const PetscReal phib[]);
+PETSC_INTERN PetscErrorCode MMContactPairsBuildN(MMContact ct);
 PETSC_INTERN PetscErrorCode MMContactPairsTransformOperators(MMContact ct, MMOperators op);
 PETSC_INTERN PetscErrorCode MMContactPairsDestroy(MMContactPairs *pr);
 /* The direction of row k's normal reaction: its frame's nu, or under large sliding its facet's current one */

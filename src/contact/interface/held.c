@@ -1,6 +1,6 @@
 /* The w-frame data other components keep (docs/developer.md, "The contact frame"): a holder (the
  * stepper) registers once the addresses of its w-frame vectors and matrices; when contact's frames
- * turn (-contact_frames follow, frames.c) or its pairing changes (large sliding, pairs.c), contact
+ * turn (-contact_frames follow, frames.c) or its pairing changes (large sliding, pairs_sliding.c), contact
  * turns or carries them all here, with its own load and lift, in one order: the kinematic vectors,
  * the state's forces, contact's load and lift, the set-up forces. What a holder builds on the frame
  * instead of turning (the momentum functionals) it rebuilds when MMContactGetFrameState() changes. */
