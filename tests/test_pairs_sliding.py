@@ -200,6 +200,18 @@ def test_cylinder_inside_ring(tmp_path):
     assert pen <= 5e-3
 
 
+def test_spinning_ring_beyond_the_fixed_frames(tmp_path):
+    """Ring A spinning at 100 rad/s (2 ranks): its slave nodes' frames are fixed at t = 0, and a node that has
+    turned past 60 degrees when it meets the master cannot carry its row. The run stops on every rank with
+    one line that names the pair, the angle and why, and the history written so far stays."""
+    r = run("two_rings", tmp_path, "-mesh", "meshes/two_rings_coarse.msh", "-ts_dt", 4e-5, "-body_a_omega0", 100,
+            "-ts_max_time", 0.03, "-output_every", 0, np_=2, check=False)
+    assert r.returncode == 65, r.output[-1500:]
+    assert "Contact pair p: a slave node near its master facet faces it at" in r.output
+    assert "beyond what large sliding carries (60 degrees)" in r.output and "PETSC ERROR" not in r.output
+    assert len(r.history["time"]) > 50
+
+
 @pytest.mark.parametrize("extra, message", [
     (("-elasticity", "linear", "-contact_pairs_sliding", "large"), "finite-strain law"),
     (("-contact_pair_p_mu", 0.1, "-contact_pairs_sliding", "large"), "frictionless"),

@@ -272,6 +272,21 @@ static PetscErrorCode Positions(MMContact ct, Vec u, PetscReal **xc, PetscReal x
   PetscFunctionReturn(0);
 }
 
+/* The row that turned farthest from its node's nu, beyond 60 degrees: c_0 = nu_c.nu and its pair */
+typedef struct {
+  double c0;
+  int    p;
+} Turned;
+
+/* Stops the run, on every rank, if a row near the master turned beyond 60 degrees from its node's nu */
+static PetscErrorCode TurnedTooFar(MMContact ct, Turned *worst)
+{
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, worst, 1, MPI_DOUBLE_INT, MPI_MINLOC, PetscObjectComm((PetscObject)ct->dm)));
+  PetscCheck(worst->c0 > 0.5, PetscObjectComm((PetscObject)ct->dm), PETSC_ERR_NOT_CONVERGED, "Contact pair %s: a slave node near its master facet faces it at %.3g degrees from the node's normal at t = 0, beyond what large sliding carries (60 degrees): the slave node's frame is fixed at t = 0, so a body that turns this far on its master is out of reach (frames that follow the slave are not done: docs/method.md section 11, \"Large sliding\")", ct->pb.obstacles[ct->pb.n_rigid + worst->p].name, PetscAcosReal(PetscMax(PetscMin(worst->c0, 1.0), -1.0)) * 180 / PETSC_PI);
+  PetscFunctionReturn(0);
+}
+
 /* A slave node at the step's start: its distance d to the master surface, its displacement relative to
  * the facet's material point, u_s - sum_j phi_j u_mj, and how far the step's predictor moves it from
  * that point */
@@ -288,7 +303,7 @@ typedef struct {
  * the row cannot close within the step, and N stays well conditioned (c_0 = 1). MMContactPairsRefine()
  * stops a run where such a node ends the step nearer than half that distance. Counts in cnt the nodes whose row changed, and of those the ones that
  * changed facet. */
-static PetscErrorCode TakeRow(MMContact ct, PetscInt p, PetscInt k, PetscInt fb, const PetscReal phi[], const PetscReal nf[], const RowStart *st, PetscScalar ga[], PetscScalar g0a[], PetscInt cnt[2])
+static PetscErrorCode TakeRow(MMContact ct, PetscInt p, PetscInt k, PetscInt fb, const PetscReal phi[], const PetscReal nf[], const RowStart *st, PetscScalar ga[], PetscScalar g0a[], PetscInt cnt[2], Turned *worst)
 {
   MMContactPairs  *pr  = &ct->pairs;
   const PetscInt   dim = ct->dim;
@@ -307,8 +322,14 @@ static PetscErrorCode TakeRow(MMContact ct, PetscInt p, PetscInt k, PetscInt fb,
     for (PetscInt d = 0; d < dim; ++d) g -= n[d] * st->ru[d];
   } else {
     /* the row's direction against the frame's massless nu: a facet turned this far is beyond the
-     * method's setting (the frame is the reference one) */
-    PetscCheck(c0 > 0.5, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Contact pair %s: a slave node within h_c' of its master facet faces it at %.3g degrees from the node's reference normal, beyond what large sliding carries (60 degrees): the node's frame is fixed at t = 0", ct->pb.obstacles[ct->obstacle[k]].name, (double)(PetscAcosReal(PetscMax(PetscMin(c0, 1.0), -1.0)) * 180 / PETSC_PI));
+     * method's setting (the frame is the reference one); the caller stops the run (TurnedTooFar) */
+    if (c0 <= 0.5) {
+      if (c0 < worst->c0) {
+        worst->c0 = c0;
+        worst->p  = (int)p;
+      }
+      PetscFunctionReturn(0);
+    }
     for (PetscInt d = 0; d < dim; ++d) {
       PetscReal xr = 0;
       for (PetscInt j = 0; j < dim; ++j) xr += phi[j] * fr[j * dim + d];
@@ -381,6 +402,7 @@ PetscErrorCode MMContactSlidePairs(MMContact ct, Vec u, Vec up, PetscBool *chang
   PetscReal     **xc, **xe, *x, *phi, pen = 0;
   PetscInt       *fb, cnt[2] = {0, 0}; /* slave nodes whose row changed, and that changed facet */
   RowStart       *st;
+  Turned          worst = {1.0, 0};
   MPI_Comm        comm = PetscObjectComm((PetscObject)ct->dm);
 
   PetscFunctionBeginUser;
@@ -423,12 +445,13 @@ PetscErrorCode MMContactSlidePairs(MMContact ct, Vec u, Vec up, PetscBool *chang
   for (PetscInt k = 0; k < ct->n_local; ++k) {
     const PetscInt p = ct->obstacle[k] - ct->pb.n_rigid;
     if (p < 0 || ct->second[k]) continue;
-    PetscCall(TakeRow(ct, p, k, fb[k], &phi[MM_MAX_DIM * k], &xe[p][fb[k] * MM_FACET_REALS + dim * dim], &st[k], ga, g0a, cnt));
+    PetscCall(TakeRow(ct, p, k, fb[k], &phi[MM_MAX_DIM * k], &xe[p][fb[k] * MM_FACET_REALS + dim * dim], &st[k], ga, g0a, cnt, &worst));
   }
   PetscCall(VecRestoreArray(ct->gap0, &g0a));
   PetscCall(VecRestoreArray(ct->gap, &ga));
   for (PetscInt p = 0; p < pr->n; ++p) PetscCall(PetscFree2(xc[p], xe[p]));
   PetscCall(PetscFree6(xc, xe, x, phi, fb, st));
+  PetscCall(TurnedTooFar(ct, &worst));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cnt, 2, MPIU_INT, MPI_SUM, comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &pen, 1, MPIU_REAL, MPIU_MAX, comm));
   pr->penetration = PetscMax(pr->penetration, pen);
@@ -475,6 +498,7 @@ PetscErrorCode MMContactPairsRefine(MMContact ct, Vec w, PetscBool *changed)
   PetscScalar    *ga, *g0a;
   PetscReal     **xe, *x;
   PetscInt        cnt[2] = {0, 0};
+  Turned          worst = {1.0, 0};
 
   PetscFunctionBeginUser;
   *changed = PETSC_FALSE;
@@ -496,12 +520,13 @@ PetscErrorCode MMContactPairsRefine(MMContact ct, Vec w, PetscBool *changed)
     if (-dist <= pr->depth * ct->h_c && !(pr->far[k] && dist < 0.5 * pr->far_d[k])) continue;
     if (fb == pr->facet[k])
       for (PetscInt j = 0; j < dim; ++j) phi[j] = pr->phi[MM_MAX_DIM * k + j];
-    PetscCall(TakeRow(ct, p, k, fb, phi, &xe[p][fb * MM_FACET_REALS + dim * dim], NULL, ga, g0a, cnt));
+    PetscCall(TakeRow(ct, p, k, fb, phi, &xe[p][fb * MM_FACET_REALS + dim * dim], NULL, ga, g0a, cnt, &worst));
   }
   PetscCall(VecRestoreArray(ct->gap0, &g0a));
   PetscCall(VecRestoreArray(ct->gap, &ga));
   for (PetscInt p = 0; p < pr->n; ++p) PetscCall(PetscFree(xe[p]));
   PetscCall(PetscFree2(xe, x));
+  PetscCall(TurnedTooFar(ct, &worst));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cnt, 2, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ct->dm)));
   if (cnt[0]) {
     pr->resolves++;
