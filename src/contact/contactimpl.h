@@ -352,6 +352,7 @@ PETSC_INTERN PetscErrorCode MMContactPairsProject(MMContact ct, PetscInt p, Pets
 PETSC_INTERN PetscErrorCode MMContactPairsBuildTransform(MMContact ct);
 /* One facet of a master surface, as gathered on every rank (pairs.c) */
 #define MM_FACET_REALS 16 /* coordinates (dim x dim), outward normal (dim), centroid key (dim) */
+PETSC_INTERN void           MMContactPairsFacetCross(PetscInt dim, const PetscReal x[], PetscReal n[]);
 PETSC_INTERN PetscErrorCode MMContactPairsFacetNormal(DM dm, PetscInt dim, PetscInt cell, const PetscReal x[], PetscReal n[], PetscReal *length);
 PETSC_INTERN PetscInt       MMContactPairsClosestFacet(PetscInt dim, PetscInt nf, const PetscReal xf_all[], const PetscReal x[], PetscReal phib[]);
 PETSC_INTERN void           MMContactPairsSetPairing(MMContactPairs *pr, PetscInt dim, PetscInt p, PetscInt k, PetscInt fb, const PetscReal phib[]);

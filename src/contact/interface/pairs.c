@@ -26,12 +26,10 @@
 #include "mesh.h"
 #include "../contactimpl.h"
 
-/* A normal of a facet (dim vertices x) pointing away from its cell, not normalized, and its length */
-PetscErrorCode MMContactPairsFacetNormal(DM dm, PetscInt dim, PetscInt cell, const PetscReal x[], PetscReal n[], PetscReal *length)
+/* A facet's (dim vertices x) normal by the right-hand rule on its vertex order, not normalized: the
+ * segment's tangent turned by -90 degrees (2D), the cross product of two edges (3D) */
+void MMContactPairsFacetCross(PetscInt dim, const PetscReal x[], PetscReal n[])
 {
-  PetscReal ccen[MM_MAX_DIM] = {0, 0, 0}, len = 0, dot = 0;
-
-  PetscFunctionBeginUser;
   if (dim == 2) {
     n[0] = x[3] - x[1];
     n[1] = -(x[2] - x[0]);
@@ -41,6 +39,15 @@ PetscErrorCode MMContactPairsFacetNormal(DM dm, PetscInt dim, PetscInt cell, con
     n[1] = a[2] * b[0] - a[0] * b[2];
     n[2] = a[0] * b[1] - a[1] * b[0];
   }
+}
+
+/* A normal of a facet (dim vertices x) pointing away from its cell, not normalized, and its length */
+PetscErrorCode MMContactPairsFacetNormal(DM dm, PetscInt dim, PetscInt cell, const PetscReal x[], PetscReal n[], PetscReal *length)
+{
+  PetscReal ccen[MM_MAX_DIM] = {0, 0, 0}, len = 0, dot = 0;
+
+  PetscFunctionBeginUser;
+  MMContactPairsFacetCross(dim, x, n);
   PetscCall(MMMeshCellCentroid(dm, cell, ccen));
   for (PetscInt d = 0; d < dim; ++d) {
     len += n[d] * n[d];

@@ -165,15 +165,7 @@ static void CurrentMasterSurface(MMContactPairs *pr, PetscInt dim, PetscInt p, c
       if (pr->df[p][f * MM_MAX_DIM + j] < 0) continue;
       for (PetscInt d = 0; d < dim; ++d) x[j * dim + d] += PetscRealPart(um[pr->um_off[p] + (f * dim + j) * dim + d]);
     }
-    if (dim == 2) {
-      n[0] = x[3] - x[1];
-      n[1] = -(x[2] - x[0]);
-    } else {
-      const PetscReal a[3] = {x[3] - x[0], x[4] - x[1], x[5] - x[2]}, b[3] = {x[6] - x[0], x[7] - x[1], x[8] - x[2]};
-      n[0] = a[1] * b[2] - a[2] * b[1];
-      n[1] = a[2] * b[0] - a[0] * b[2];
-      n[2] = a[0] * b[1] - a[1] * b[0];
-    }
+    MMContactPairsFacetCross(dim, x, n);
     for (PetscInt d = 0; d < dim; ++d) {
       len += n[d] * n[d];
       dot += n[d] * xr[dim * dim + d];
