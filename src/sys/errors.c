@@ -126,6 +126,11 @@ static void PrintAndExit(MPI_Comm comm, const char mess[], int status)
   }
   if (together && status == MM_EXIT_IO) EndWithFilesOpen(status);
   if (together) {
+    /* rank 0's clean-up (the output directory's lock) before any rank ends: mpiexec kills the job's
+     * other processes as soon as one exits with an error status, and an atexit handler of rank 0
+     * could then never run (a refused -restart on 2 ranks left its lock file, under load) */
+    if (at_abort) at_abort();
+    (void)MPI_Barrier(MPI_COMM_WORLD);
     (void)MPI_Finalize();
     exit(status);
   }
